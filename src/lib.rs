@@ -1,6 +1,7 @@
 //! dqsym: exact symbolic algebra of dual quaternions for robot kinematics.
 
-mod algebra;
 mod ring;
+mod scalar;
 
 pub use ring::Ring;
+pub use scalar::{set_term_limit, term_limit, Scalar, ScalarError, Sym};

@@ -1,0 +1,403 @@
+//! Ring operations on canonical scalars: `+ - *`, powers, reciprocals of constants, exact
+//! square roots of rationals, and cos / sin of angles.
+
+use super::atoms::{mode_mul, mono_mul, rad_mul, small_ok, split_square, trig_mode, Mode, Small, Sym};
+use super::{term_limit, Scalar, ScalarError, Term};
+use crate::Ring;
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+use std::ops::{Add, Mul, Neg, Sub};
+
+/// How many term pairs one product may form, as a multiple of the term limit.
+const PRODUCT_FACTOR: usize = 2;
+
+/// The largest result, in bits, a power of a number may have.
+const MAX_POW_BITS: u64 = 1 << 20;
+
+fn too_large() -> Scalar {
+    Scalar::error(ScalarError::TooLarge { limit: term_limit() })
+}
+
+/// Propagates error values: the first operand's error wins.
+macro_rules! terms_or_return {
+    ($a:expr, $b:expr) => {
+        match ($a.terms(), $b.terms()) {
+            (Ok(x), Ok(y)) => (x, y),
+            (Err(e), _) | (_, Err(e)) => return Scalar::error(e.clone()),
+        }
+    };
+}
+
+pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
+    let (x, y) = terms_or_return!(a, b);
+    let mut out = Vec::with_capacity(x.len() + y.len());
+    let (mut i, mut j) = (0, 0);
+    let flip = |t: &Term| {
+        let mut t = t.clone();
+        if sign < 0 {
+            t.coef = -t.coef;
+        }
+        t
+    };
+    while i < x.len() && j < y.len() {
+        match x[i].key_cmp(&y[j]) {
+            std::cmp::Ordering::Less => {
+                out.push(x[i].clone());
+                i += 1;
+            }
+            std::cmp::Ordering::Greater => {
+                out.push(flip(&y[j]));
+                j += 1;
+            }
+            std::cmp::Ordering::Equal => {
+                let c = if sign < 0 { &x[i].coef - &y[j].coef } else { &x[i].coef + &y[j].coef };
+                if !c.is_zero() {
+                    let mut t = x[i].clone();
+                    t.coef = c;
+                    out.push(t);
+                }
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+    out.extend(x[i..].iter().cloned());
+    out.extend(y[j..].iter().map(flip));
+    Scalar::from_terms_sorted(out)
+}
+
+/// Splits a sorted term slice into runs that share a mode.
+fn mode_runs(t: &[Term]) -> Vec<&[Term]> {
+    let mut runs = Vec::new();
+    let mut start = 0;
+    for i in 1..=t.len() {
+        if i == t.len() || t[i].mode != t[start].mode {
+            runs.push(&t[start..i]);
+            start = i;
+        }
+    }
+    runs
+}
+
+pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
+    let (x, y) = terms_or_return!(a, b);
+    if x.len().saturating_mul(y.len()) > term_limit().saturating_mul(PRODUCT_FACTOR) {
+        return too_large();
+    }
+    let mut out = Vec::with_capacity(x.len() * y.len());
+    // Mode products are the expensive part; compute each once per pair of mode runs.
+    for ra in mode_runs(x) {
+        for rb in mode_runs(y) {
+            let modes = mode_mul(&ra[0].mode, &rb[0].mode);
+            for s in ra {
+                for t in rb {
+                    let Some(mono) = mono_mul(&s.mono, &t.mono) else {
+                        return Scalar::error(ScalarError::OutOfRange("exponent too large".into()));
+                    };
+                    let Some((rad, g)) = rad_mul(s.rad, t.rad) else {
+                        return Scalar::error(ScalarError::OutOfRange("radicand too large".into()));
+                    };
+                    let mut coef = &s.coef * &t.coef;
+                    if g != 1 {
+                        coef *= BigRational::from_integer(BigInt::from(g));
+                    }
+                    for (mode, weights) in &modes {
+                        for (r2, w) in weights {
+                            let Some((rad3, g2)) = rad_mul(rad, *r2) else {
+                                return Scalar::error(ScalarError::OutOfRange("radicand too large".into()));
+                            };
+                            let mut c = &coef * w;
+                            if g2 != 1 {
+                                c *= BigRational::from_integer(BigInt::from(g2));
+                            }
+                            out.push(Term { mode: mode.clone(), mono: mono.clone(), rad: rad3, coef: c });
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Scalar::from_terms(out)
+}
+
+impl Scalar {
+    /// `self^n`, by repeated squaring; an error value when the result would be too large.
+    pub fn pow(&self, n: u64) -> Scalar {
+        if let Err(e) = self.terms() {
+            return Scalar::error(e.clone());
+        }
+        if n == 0 {
+            return Scalar::int(1);
+        }
+        if let Some(q) = self.as_rational() {
+            let bits = q.numer().bits().max(q.denom().bits());
+            if bits > 1 && bits.saturating_mul(n) > MAX_POW_BITS {
+                return Scalar::error(ScalarError::OutOfRange(format!("power {n} of {q} is too large")));
+            }
+        }
+        if n > u32::MAX as u64 {
+            return Scalar::error(ScalarError::OutOfRange(format!("exponent {n} is too large")));
+        }
+        let mut base = self.clone();
+        let mut acc = Scalar::int(1);
+        let mut e = n;
+        loop {
+            if e & 1 == 1 {
+                acc = mul(&acc, &base);
+                if acc.as_error().is_some() {
+                    return acc;
+                }
+            }
+            e >>= 1;
+            if e == 0 {
+                return acc;
+            }
+            base = mul(&base, &base);
+            if base.as_error().is_some() {
+                return base;
+            }
+        }
+    }
+
+    /// `self / other`; `other` must be a nonzero number (rationals and radicals).
+    pub fn try_div(&self, other: &Scalar) -> Result<Scalar, ScalarError> {
+        let r = other.recip();
+        mul(self, &r).check()
+    }
+
+    /// `1 / self` for a nonzero constant built from rationals and radicals; an error value
+    /// otherwise. Radicals in the denominator are removed by multiplying with conjugates.
+    pub fn recip(&self) -> Scalar {
+        let t = match self.terms() {
+            Ok(t) => t,
+            Err(e) => return Scalar::error(e.clone()),
+        };
+        if t.is_empty() {
+            return Scalar::error(ScalarError::DivisionByZero);
+        }
+        if !t.iter().all(|x| x.mode.is_unit() && x.mono.is_empty()) {
+            return Scalar::error(ScalarError::SymbolicDivisor(self.to_string()));
+        }
+        let mut num = Scalar::int(1);
+        let mut den = self.clone();
+        loop {
+            let dt = match den.terms() {
+                Ok(dt) => dt,
+                Err(e) => return Scalar::error(e.clone()),
+            };
+            let Some(r) = dt.iter().map(|x| x.rad).find(|&r| r > 1) else { break };
+            let p = smallest_prime_factor(r);
+            let conj: Vec<Term> = dt
+                .iter()
+                .map(|x| {
+                    let mut x = x.clone();
+                    if x.rad % p == 0 {
+                        x.coef = -x.coef;
+                    }
+                    x
+                })
+                .collect();
+            let conj = Scalar::from_terms(conj);
+            num = mul(&num, &conj);
+            den = mul(&den, &conj);
+        }
+        match den.as_rational() {
+            Some(q) if !q.is_zero() => mul(&num, &Scalar::rational(q.recip())),
+            _ => Scalar::error(ScalarError::DivisionByZero),
+        }
+    }
+
+    /// The exact square root of a non-negative rational, reduced: `sqrt(8) = 2 sqrt(2)`,
+    /// `sqrt(1/2) = sqrt(2)/2`.
+    pub fn sqrt(&self) -> Scalar {
+        let Some(q) = self.as_rational() else {
+            return match self.terms() {
+                Err(e) => Scalar::error(e.clone()),
+                Ok(_) => Scalar::error(ScalarError::BadSqrt(self.to_string())),
+            };
+        };
+        if q.is_negative() {
+            return Scalar::error(ScalarError::BadSqrt(q.to_string()));
+        }
+        if q.is_zero() {
+            return Scalar::int(0);
+        }
+        let prod = q.numer() * q.denom();
+        let Some((s, r)) = split_square(&prod) else {
+            return Scalar::error(ScalarError::BadSqrt(format!("{q} (too large to factor)")));
+        };
+        let coef = BigRational::new(s, q.denom().clone());
+        Scalar::from_terms_sorted(vec![Term { mode: Mode::unit(), mono: Vec::new(), rad: r, coef }])
+    }
+
+    /// `cos(self)`, reduced to canonical modes; an error value when `self` is not an angle.
+    pub fn cos(&self) -> Scalar {
+        self.trig(false)
+    }
+
+    /// `sin(self)`, reduced to canonical modes; an error value when `self` is not an angle.
+    pub fn sin(&self) -> Scalar {
+        self.trig(true)
+    }
+
+    fn trig(&self, sin: bool) -> Scalar {
+        let func = if sin { "sin" } else { "cos" };
+        match self.angle_parts() {
+            Ok((freq, pi)) => {
+                let mut out = Vec::new();
+                for (mode, weights) in trig_mode(sin, freq, pi) {
+                    for (rad, coef) in weights {
+                        out.push(Term { mode: mode.clone(), mono: Vec::new(), rad, coef });
+                    }
+                }
+                Scalar::from_terms(out)
+            }
+            Err(None) => Scalar::error(ScalarError::NotAnAngle { func, arg: self.to_string() }),
+            Err(Some(e)) => Scalar::error(e),
+        }
+    }
+
+    /// Reads `self` as `sum k_i x_i + p pi` with small rational `k_i`, `p`.
+    pub(crate) fn angle_parts(&self) -> Result<(Vec<(Sym, Small)>, Small), Option<ScalarError>> {
+        let t = self.terms().map_err(|e| Some(e.clone()))?;
+        let mut freq = Vec::new();
+        let mut pi = Small::zero();
+        for x in t {
+            if !x.mode.is_unit() || x.rad != 1 {
+                return Err(None);
+            }
+            let k = to_small(&x.coef).ok_or_else(|| {
+                Some(ScalarError::OutOfRange(format!("angle coefficient {} is too large", x.coef)))
+            })?;
+            match x.mono.as_slice() {
+                [] => freq.push((Sym::unit(), k)),
+                [(s, 1)] if s.is_pi() => pi = k,
+                [(s, 1)] => freq.push((s.clone(), k)),
+                _ => return Err(None),
+            }
+        }
+        freq.sort_by(|a, b| a.0.cmp(&b.0));
+        Ok((freq, pi))
+    }
+}
+
+fn to_small(q: &BigRational) -> Option<Small> {
+    let s = Small::new(q.numer().to_i64()?, q.denom().to_i64()?);
+    small_ok(&s).then_some(s)
+}
+
+fn smallest_prime_factor(n: u64) -> u64 {
+    let mut p = 2;
+    while p * p <= n {
+        if n % p == 0 {
+            return p;
+        }
+        p += 1;
+    }
+    n
+}
+
+impl Zero for Scalar {
+    fn zero() -> Self {
+        Scalar::int(0)
+    }
+    fn is_zero(&self) -> bool {
+        self.is_zero_value()
+    }
+}
+
+impl One for Scalar {
+    fn one() -> Self {
+        Scalar::int(1)
+    }
+}
+
+macro_rules! binop {
+    ($tr:ident, $m:ident, $body:expr) => {
+        impl $tr<Scalar> for Scalar {
+            type Output = Scalar;
+            fn $m(self, rhs: Scalar) -> Scalar {
+                $body(&self, &rhs)
+            }
+        }
+        impl<'a> $tr<&'a Scalar> for Scalar {
+            type Output = Scalar;
+            fn $m(self, rhs: &'a Scalar) -> Scalar {
+                $body(&self, rhs)
+            }
+        }
+        impl<'a> $tr<Scalar> for &'a Scalar {
+            type Output = Scalar;
+            fn $m(self, rhs: Scalar) -> Scalar {
+                $body(self, &rhs)
+            }
+        }
+        impl<'a, 'b> $tr<&'b Scalar> for &'a Scalar {
+            type Output = Scalar;
+            fn $m(self, rhs: &'b Scalar) -> Scalar {
+                $body(self, rhs)
+            }
+        }
+    };
+}
+
+binop!(Add, add, |a, b| add(a, b, 1));
+binop!(Sub, sub, |a, b| add(a, b, -1));
+binop!(Mul, mul, mul);
+
+impl Neg for Scalar {
+    type Output = Scalar;
+    fn neg(self) -> Scalar {
+        -&self
+    }
+}
+
+impl Neg for &Scalar {
+    type Output = Scalar;
+    fn neg(self) -> Scalar {
+        match self.terms() {
+            Ok(t) => Scalar::from_terms_sorted(
+                t.iter()
+                    .map(|x| {
+                        let mut x = x.clone();
+                        x.coef = -x.coef;
+                        x
+                    })
+                    .collect(),
+            ),
+            Err(e) => Scalar::error(e.clone()),
+        }
+    }
+}
+
+impl Ring for Scalar {
+    fn from_ratio(num: i64, den: i64) -> Self {
+        if den == 0 {
+            return Scalar::error(ScalarError::DivisionByZero);
+        }
+        Scalar::rational(BigRational::new(BigInt::from(num), BigInt::from(den)))
+    }
+    fn try_recip(&self) -> Option<Self> {
+        self.recip().check().ok()
+    }
+    fn cos(&self) -> Self {
+        Scalar::cos(self)
+    }
+    fn sin(&self) -> Self {
+        Scalar::sin(self)
+    }
+    fn try_sqrt(&self) -> Option<Self> {
+        self.sqrt().check().ok()
+    }
+    fn to_f64(&self) -> Option<f64> {
+        self.eval(&|_| None).ok()
+    }
+}
+
+impl From<i64> for Scalar {
+    fn from(n: i64) -> Scalar {
+        Scalar::int(n)
+    }
+}
+

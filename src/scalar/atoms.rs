@@ -1,0 +1,358 @@
+//! The atoms of the canonical form: symbols, monomials, radicals and trigonometric modes.
+//!
+//! A canonical scalar is a finite sum of terms `q * sqrt(r) * m * t` where `q` is a rational,
+//! `r` a square-free integer, `m` a monomial in plain symbols and `t` a *mode*: `1`,
+//! `cos(phi)` or `sin(phi)` with `phi` a rational linear combination of symbols (plus a rational
+//! multiple of pi that has no exact value). This is a finite Fourier series whose coefficients
+//! are polynomials: products of modes are turned back into single modes by the product-to-sum
+//! identities, so `cos(t)^2 + sin(t)^2` and `1` are the same vector of terms.
+
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::{BigRational, Ratio};
+use num_traits::{One, Signed, ToPrimitive, Zero};
+use std::cmp::Ordering;
+use std::fmt;
+use std::sync::Arc;
+
+/// A symbol name. Ordered by its text, so the canonical order never depends on the order in
+/// which symbols were first seen (no interning-order leaks into the output).
+#[derive(Clone, PartialEq, Eq, Hash)]
+pub struct Sym(Arc<str>);
+
+impl Sym {
+    /// The symbol called `name`.
+    pub fn new(name: &str) -> Sym {
+        Sym(Arc::from(name))
+    }
+
+    /// The name as written.
+    pub fn name(&self) -> &str {
+        &self.0
+    }
+
+    /// The pseudo-symbol whose value is 1: it carries rational constants inside trigonometric
+    /// arguments (`cos(t + 1)`), which are not multiples of pi.
+    pub(crate) fn unit() -> Sym {
+        Sym::new("1")
+    }
+
+    pub(crate) fn is_pi(&self) -> bool {
+        &*self.0 == "pi"
+    }
+
+    pub(crate) fn is_unit(&self) -> bool {
+        &*self.0 == "1"
+    }
+}
+
+impl Ord for Sym {
+    fn cmp(&self, other: &Self) -> Ordering {
+        if Arc::ptr_eq(&self.0, &other.0) {
+            return Ordering::Equal;
+        }
+        self.0.cmp(&other.0)
+    }
+}
+
+impl PartialOrd for Sym {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl fmt::Debug for Sym {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl fmt::Display for Sym {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+/// A small exact rational for frequencies and pi offsets; bounded so sums never overflow.
+pub type Small = Ratio<i64>;
+
+/// The largest numerator or denominator a frequency may have.
+pub(crate) const SMALL_BOUND: i64 = 1 << 40;
+
+pub(crate) fn small_ok(q: &Small) -> bool {
+    q.numer().abs() < SMALL_BOUND && *q.denom() < SMALL_BOUND
+}
+
+/// A monomial: symbols with positive exponents, sorted by symbol, no duplicates.
+pub type Mono = Vec<(Sym, u32)>;
+
+/// The product of two monomials, or `None` when an exponent would overflow.
+pub(crate) fn mono_mul(a: &Mono, b: &Mono) -> Option<Mono> {
+    if a.is_empty() {
+        return Some(b.clone());
+    }
+    if b.is_empty() {
+        return Some(a.clone());
+    }
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() && j < b.len() {
+        match a[i].0.cmp(&b[j].0) {
+            Ordering::Less => {
+                out.push(a[i].clone());
+                i += 1;
+            }
+            Ordering::Greater => {
+                out.push(b[j].clone());
+                j += 1;
+            }
+            Ordering::Equal => {
+                out.push((a[i].0.clone(), a[i].1.checked_add(b[j].1)?));
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+    out.extend_from_slice(&a[i..]);
+    out.extend_from_slice(&b[j..]);
+    Some(out)
+}
+
+/// A trigonometric mode: `1` (empty frequency, no pi offset, cosine), `cos(phi)` or `sin(phi)`.
+///
+/// Invariants, kept by [`Mode::normalize`]: `freq` is sorted by symbol with nonzero entries and
+/// a positive first entry; `pi` lies in `[0, 2)` and is never a multiple of 1/12 (those are
+/// expanded exactly); a mode with empty `freq` has `pi` in `(0, 1)`, or is the unit mode.
+#[derive(Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+pub struct Mode {
+    pub(crate) sin: bool,
+    pub(crate) freq: Vec<(Sym, Small)>,
+    pub(crate) pi: Small,
+}
+
+impl Mode {
+    /// The mode `1`.
+    pub(crate) fn unit() -> Mode {
+        Mode {
+            sin: false,
+            freq: Vec::new(),
+            pi: Small::zero(),
+        }
+    }
+
+    pub(crate) fn is_unit(&self) -> bool {
+        !self.sin && self.freq.is_empty() && self.pi.is_zero()
+    }
+}
+
+/// A mode together with the exact coefficient it was multiplied by while being normalized:
+/// `cos(-x) = cos x`, `sin(-x) = -sin x`, `cos(x + pi/4) = sqrt(2)/2 (cos x - sin x)`.
+pub(crate) type ModeSum = Vec<(Mode, Vec<(u64, BigRational)>)>;
+
+/// `cos(phi)` or `sin(phi)` with `phi = freq . symbols + pi_mult * pi`, as a sum of
+/// normalized modes times exact constants (radical, rational).
+pub(crate) fn trig_mode(sin: bool, mut freq: Vec<(Sym, Small)>, pi_mult: Small) -> ModeSum {
+    freq.retain(|(_, k)| !k.is_zero());
+    let mut pi = pi_mult;
+    let mut sign = 1i64;
+    if freq.first().is_some_and(|(_, k)| k.is_negative()) {
+        for (_, k) in freq.iter_mut() {
+            *k = -*k;
+        }
+        pi = -pi;
+        if sin {
+            sign = -1;
+        }
+    }
+    // Reduce pi into [0, 2).
+    let two = Small::from_integer(2);
+    pi = pi - (pi / two).floor() * two;
+    let twelfths = pi * Small::from_integer(12);
+    if twelfths.is_integer() {
+        // cos(x + a) = cos a cos x - sin a sin x; sin(x + a) = cos a sin x + sin a cos x.
+        let n = twelfths.to_integer();
+        let (ca, sa) = (exact_cos_twelfth(n), exact_cos_twelfth(n - 6));
+        let base = |s: bool| Mode {
+            sin: s,
+            freq: freq.clone(),
+            pi: Small::zero(),
+        };
+        let scaled = |v: Vec<(u64, BigRational)>, f: i64| {
+            v.into_iter()
+                .map(|(r, q)| (r, q * BigRational::from_integer(BigInt::from(f))))
+                .collect::<Vec<_>>()
+        };
+        let mut out: ModeSum = Vec::new();
+        if freq.is_empty() {
+            // A pure constant: cos a or sin a.
+            let v = if sin { sa } else { ca };
+            if !v.is_empty() {
+                out.push((Mode::unit(), scaled(v, sign)));
+            }
+            return out;
+        }
+        if sin {
+            if !ca.is_empty() {
+                out.push((base(true), scaled(ca, sign)));
+            }
+            if !sa.is_empty() {
+                out.push((base(false), scaled(sa, sign)));
+            }
+        } else {
+            if !ca.is_empty() {
+                out.push((base(false), ca));
+            }
+            if !sa.is_empty() {
+                out.push((base(true), scaled(sa, -1)));
+            }
+        }
+        return out;
+    }
+    if freq.is_empty() && pi > Small::one() {
+        // cos(a) = cos(2 pi - a), sin(a) = -sin(2 pi - a).
+        pi = two - pi;
+        if sin {
+            sign = -sign;
+        }
+    }
+    let one = vec![(1u64, BigRational::from_integer(BigInt::from(sign)))];
+    vec![(Mode { sin, freq, pi }, one)]
+}
+
+/// `cos(n pi / 12)` exactly, as a sum of (square-free radicand, rational) pairs; empty for 0.
+pub(crate) fn exact_cos_twelfth(n: i64) -> Vec<(u64, BigRational)> {
+    let n = n.rem_euclid(24);
+    // cos(pi - x) = -cos x and cos(2 pi - x) = cos x fold everything into [0, 6].
+    let (m, sign) = match n {
+        0..=6 => (n, 1),
+        7..=12 => (12 - n, -1),
+        13..=18 => (n - 12, -1),
+        _ => (24 - n, 1),
+    };
+    let q = |a: i64, b: i64| BigRational::new(BigInt::from(a * sign), BigInt::from(b));
+    match m {
+        0 => vec![(1, q(1, 1))],
+        1 => vec![(2, q(1, 4)), (6, q(1, 4))],
+        2 => vec![(3, q(1, 2))],
+        3 => vec![(2, q(1, 2))],
+        4 => vec![(1, q(1, 2))],
+        5 => vec![(2, q(-1, 4)), (6, q(1, 4))],
+        _ => vec![],
+    }
+}
+
+/// The product of two modes as a sum of modes with exact weights (product-to-sum identities).
+pub(crate) fn mode_mul(a: &Mode, b: &Mode) -> ModeSum {
+    let one = || vec![(1u64, BigRational::one())];
+    if a.is_unit() {
+        return vec![(b.clone(), one())];
+    }
+    if b.is_unit() {
+        return vec![(a.clone(), one())];
+    }
+    let half = BigRational::new(BigInt::from(1), BigInt::from(2));
+    let sum = freq_combine(&a.freq, &b.freq, 1);
+    let diff = freq_combine(&a.freq, &b.freq, -1);
+    let (ps, pd) = (a.pi + b.pi, a.pi - b.pi);
+    // cos a cos b = (cos(a-b) + cos(a+b))/2, sin a sin b = (cos(a-b) - cos(a+b))/2,
+    // sin a cos b = (sin(a+b) + sin(a-b))/2, cos a sin b = (sin(a+b) - sin(a-b))/2.
+    let (kind, w_diff) = match (a.sin, b.sin) {
+        (false, false) => (false, 1),
+        (true, true) => (false, 1),
+        (true, false) => (true, 1),
+        (false, true) => (true, -1),
+    };
+    let w_sum = if a.sin && b.sin { -1 } else { 1 };
+    let mut out = Vec::new();
+    for (f, p, w) in [(diff, pd, w_diff), (sum, ps, w_sum)] {
+        for (m, v) in trig_mode(kind, f, p) {
+            let v = v
+                .into_iter()
+                .map(|(r, q)| (r, q * &half * BigRational::from_integer(BigInt::from(w))))
+                .collect();
+            out.push((m, v));
+        }
+    }
+    out
+}
+
+/// `a + sign * b` on sorted frequency vectors.
+pub(crate) fn freq_combine(a: &[(Sym, Small)], b: &[(Sym, Small)], sign: i64) -> Vec<(Sym, Small)> {
+    let s = Small::from_integer(sign);
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() && j < b.len() {
+        match a[i].0.cmp(&b[j].0) {
+            Ordering::Less => {
+                out.push(a[i].clone());
+                i += 1;
+            }
+            Ordering::Greater => {
+                out.push((b[j].0.clone(), b[j].1 * s));
+                j += 1;
+            }
+            Ordering::Equal => {
+                let k = a[i].1 + b[j].1 * s;
+                if !k.is_zero() {
+                    out.push((a[i].0.clone(), k));
+                }
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+    out.extend_from_slice(&a[i..]);
+    out.extend(b[j..].iter().map(|(x, k)| (x.clone(), *k * s)));
+    out
+}
+
+/// `sqrt(a) sqrt(b) = g sqrt(ab / g^2)` with `g = gcd(a, b)`, for square-free `a`, `b`;
+/// `None` when the radicand leaves `u64`.
+pub(crate) fn rad_mul(a: u64, b: u64) -> Option<(u64, u64)> {
+    if a == 1 {
+        return Some((b, 1));
+    }
+    if b == 1 {
+        return Some((a, 1));
+    }
+    let g = a.gcd(&b);
+    let r = (a / g).checked_mul(b / g)?;
+    Some((r, g))
+}
+
+/// The largest square dividing a positive integer: `n = s^2 * r` with `r` square-free.
+/// `None` when `n` is too large to factor quickly.
+pub(crate) fn split_square(n: &BigInt) -> Option<(BigInt, u64)> {
+    let mut n = n.clone();
+    let mut s = BigInt::one();
+    let mut r: u64 = 1;
+    let mut p: u64 = 2;
+    while p <= 1_000_000 {
+        let pb = BigInt::from(p);
+        if &pb * &pb > n {
+            break;
+        }
+        let mut e = 0u32;
+        while (&n % &pb).is_zero() {
+            n /= &pb;
+            e += 1;
+        }
+        for _ in 0..e / 2 {
+            s *= &pb;
+        }
+        if e % 2 == 1 {
+            r = r.checked_mul(p)?;
+        }
+        p += if p == 2 { 1 } else { 2 };
+    }
+    if n.is_one() {
+        return Some((s, r));
+    }
+    let root = n.sqrt();
+    if &root * &root == n {
+        return Some((s * root, r));
+    }
+    // No factor up to 10^6: below 10^12 the rest is prime, hence square-free.
+    let rest = n.to_u64().filter(|&v| v < 1_000_000_000_000)?;
+    Some((s, r.checked_mul(rest)?))
+}

@@ -1,0 +1,217 @@
+//! Differentiation, substitution and numeric evaluation of canonical scalars.
+
+use super::atoms::{Mode, Sym};
+use super::{Scalar, ScalarError, Term};
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{ToPrimitive, Zero};
+use std::fmt;
+
+impl Scalar {
+    /// The partial derivative with respect to the symbol `x`.
+    ///
+    /// Works term by term on the canonical form: the power rule on the monomial, and
+    /// `d cos(k x + ...)/dx = -k sin(k x + ...)`, `d sin(k x + ...)/dx = k cos(k x + ...)`.
+    pub fn diff(&self, x: &str) -> Scalar {
+        let t = match self.terms() {
+            Ok(t) => t,
+            Err(e) => return Scalar::error(e.clone()),
+        };
+        let mut out = Vec::new();
+        for term in t {
+            if let Some(pos) = term.mono.iter().position(|(s, _)| s.name() == x) {
+                let e = term.mono[pos].1;
+                let mut mono = term.mono.clone();
+                if e == 1 {
+                    mono.remove(pos);
+                } else {
+                    mono[pos].1 = e - 1;
+                }
+                out.push(Term {
+                    mode: term.mode.clone(),
+                    mono,
+                    rad: term.rad,
+                    coef: &term.coef * BigRational::from_integer(BigInt::from(e)),
+                });
+            }
+            if let Some((_, k)) = term.mode.freq.iter().find(|(s, _)| s.name() == x) {
+                let k = BigRational::new(BigInt::from(*k.numer()), BigInt::from(*k.denom()));
+                let coef = if term.mode.sin { &term.coef * k } else { -(&term.coef * k) };
+                let mode = Mode { sin: !term.mode.sin, ..term.mode.clone() };
+                out.push(Term { mode, mono: term.mono.clone(), rad: term.rad, coef });
+            }
+        }
+        Scalar::from_terms(out)
+    }
+
+    /// `self` with the symbol `x` replaced by `value` everywhere, re-canonicalized.
+    /// Inside a trigonometric argument `value` must be an angle.
+    pub fn subs(&self, x: &str, value: &Scalar) -> Scalar {
+        let t = match self.terms() {
+            Ok(t) => t,
+            Err(e) => return Scalar::error(e.clone()),
+        };
+        let mut keep = Vec::new();
+        let mut acc = Scalar::int(0);
+        for term in t {
+            let in_mono = term.mono.iter().any(|(s, _)| s.name() == x);
+            let in_freq = term.mode.freq.iter().any(|(s, _)| s.name() == x);
+            if !in_mono && !in_freq {
+                keep.push(term.clone());
+                continue;
+            }
+            let mut f = Scalar::from_terms_sorted(vec![Term {
+                mode: Mode::unit(),
+                mono: Vec::new(),
+                rad: term.rad,
+                coef: term.coef.clone(),
+            }]);
+            for (s, e) in &term.mono {
+                let base = if s.name() == x { value.clone() } else { Scalar::sym(s.name()) };
+                f = f * base.pow(u64::from(*e));
+            }
+            if !term.mode.is_unit() {
+                f = f * mode_value(&term.mode, Some((x, value)));
+            }
+            acc = acc + f;
+        }
+        Scalar::from_terms(keep) + acc
+    }
+
+    /// The value under a binding of symbols (`pi` defaults to pi).
+    pub fn eval(&self, env: &dyn Fn(&str) -> Option<f64>) -> Result<f64, ScalarError> {
+        let t = self.terms().map_err(Clone::clone)?;
+        let look = |s: &Sym| -> Result<f64, ScalarError> {
+            if let Some(v) = env(s.name()) {
+                return Ok(v);
+            }
+            if s.is_pi() {
+                Ok(std::f64::consts::PI)
+            } else if s.is_unit() {
+                Ok(1.0)
+            } else {
+                Err(ScalarError::Unbound(s.name().to_string()))
+            }
+        };
+        let mut sum = 0.0;
+        for term in t {
+            let mut v = term.coef.to_f64().unwrap_or(f64::NAN) * (term.rad as f64).sqrt();
+            for (s, e) in &term.mono {
+                v *= look(s)?.powi(*e as i32);
+            }
+            if !term.mode.is_unit() {
+                let mut phi = term.mode.pi.to_f64().unwrap_or(0.0) * std::f64::consts::PI;
+                for (s, k) in &term.mode.freq {
+                    phi += k.to_f64().unwrap_or(0.0) * look(s)?;
+                }
+                v *= if term.mode.sin { phi.sin() } else { phi.cos() };
+            }
+            sum += v;
+        }
+        Ok(sum)
+    }
+
+    /// [`Scalar::eval`] over a list of `(name, value)` pairs.
+    pub fn eval_at(&self, values: &[(&str, f64)]) -> Result<f64, ScalarError> {
+        self.eval(&|n| values.iter().find(|(k, _)| *k == n).map(|(_, v)| *v))
+    }
+}
+
+/// The angle of a mode as a scalar, optionally with one symbol substituted.
+pub(crate) fn mode_angle(mode: &Mode, sub: Option<(&str, &Scalar)>) -> Scalar {
+    let q = |k: &super::Small| BigRational::new(BigInt::from(*k.numer()), BigInt::from(*k.denom()));
+    let mut angle = Scalar::pi() * Scalar::rational(q(&mode.pi));
+    for (s, k) in &mode.freq {
+        let v = match sub {
+            Some((x, v)) if s.name() == x => v.clone(),
+            _ if s.is_unit() => Scalar::int(1),
+            _ => Scalar::sym(s.name()),
+        };
+        angle = angle + v * Scalar::rational(q(k));
+    }
+    angle
+}
+
+/// The value of a mode (`cos` or `sin` of its angle), optionally with one symbol substituted.
+pub(crate) fn mode_value(mode: &Mode, sub: Option<(&str, &Scalar)>) -> Scalar {
+    let angle = mode_angle(mode, sub);
+    if mode.sin {
+        angle.sin()
+    } else {
+        angle.cos()
+    }
+}
+
+/// A plain, unsimplified rendering of the canonical form, for messages and debugging; the
+/// closed-form printers give what users read.
+impl fmt::Display for Scalar {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let t = match self.terms() {
+            Ok(t) => t,
+            Err(e) => return write!(f, "<error: {e}>"),
+        };
+        if t.is_empty() {
+            return f.write_str("0");
+        }
+        for (i, term) in t.iter().enumerate() {
+            let mut factors: Vec<String> = Vec::new();
+            if term.rad != 1 {
+                factors.push(format!("sqrt({})", term.rad));
+            }
+            for (s, e) in &term.mono {
+                factors.push(if *e == 1 { s.to_string() } else { format!("{s}^{e}") });
+            }
+            if !term.mode.is_unit() {
+                factors.push(format!(
+                    "{}({})",
+                    if term.mode.sin { "sin" } else { "cos" },
+                    angle_text(&term.mode)
+                ));
+            }
+            let neg = term.coef < BigRational::zero();
+            let c = if neg { -term.coef.clone() } else { term.coef.clone() };
+            let sep = match (i, neg) {
+                (0, true) => "-",
+                (0, false) => "",
+                (_, true) => " - ",
+                (_, false) => " + ",
+            };
+            f.write_str(sep)?;
+            let body = factors.join("*");
+            if body.is_empty() {
+                write!(f, "{c}")?;
+            } else if c == BigRational::from_integer(1.into()) {
+                f.write_str(&body)?;
+            } else {
+                write!(f, "{c}*{body}")?;
+            }
+        }
+        Ok(())
+    }
+}
+
+fn angle_text(mode: &Mode) -> String {
+    let mut s = String::new();
+    for (i, (sym, k)) in mode.freq.iter().enumerate() {
+        let neg = *k < super::Small::zero();
+        let a = if neg { -*k } else { *k };
+        if i > 0 || neg {
+            s.push_str(if neg { " - " } else { " + " });
+        }
+        let name = if sym.is_unit() { String::new() } else { sym.to_string() };
+        let coef = if a == super::Small::from_integer(1) {
+            String::new()
+        } else {
+            format!("{a}*")
+        };
+        if name.is_empty() {
+            s.push_str(&a.to_string());
+        } else {
+            s.push_str(&format!("{coef}{name}"));
+        }
+    }
+    if !mode.pi.is_zero() {
+        s.push_str(&format!(" + {}*pi", mode.pi));
+    }
+    s.trim_start().to_string()
+}

@@ -1,0 +1,238 @@
+//! Exact scalars in one canonical form.
+//!
+//! [`Scalar`] is a finite Fourier series in angle symbols whose coefficients are polynomials in
+//! plain symbols over the rationals extended by square roots (see `atoms.rs` for the shape of a
+//! term). Only the functions of this module build the term vector, always sorted, merged and
+//! free of zero coefficients, so two equal scalars have the same representation and `==` is
+//! exact: `cos(t)^2 + sin(t)^2 == 1`, `2 sin(t/2) cos(t/2) == sin(t)`, `sqrt(2) sqrt(3) == sqrt(6)`.
+//!
+//! Arithmetic goes through `std::ops` so the generic quaternion algebra can use it. An
+//! operation that cannot be done exactly (a result over the size limit, `cos` of a non-angle)
+//! yields an *error value* that propagates like a NaN; [`Scalar::check`] turns it into a
+//! `Result`. Building or combining scalars never panics.
+
+mod arith;
+pub(crate) mod atoms;
+mod calculus;
+
+pub use atoms::Sym;
+pub(crate) use atoms::{Mode, Mono, Small};
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{One, Zero};
+use std::cell::Cell;
+use thiserror::Error;
+
+/// Why an exact operation on scalars could not be done.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, Error)]
+#[non_exhaustive]
+pub enum ScalarError {
+    /// A result would have more terms than the configured limit.
+    #[error("expression too large: more than {limit} terms")]
+    TooLarge { limit: usize },
+    /// Division by zero.
+    #[error("division by zero")]
+    DivisionByZero,
+    /// Division by an expression with symbols (rational functions are not supported yet).
+    #[error("cannot divide by a symbolic expression ({0}); only numbers and radicals can be divisors")]
+    SymbolicDivisor(String),
+    /// A trigonometric argument that is not an angle.
+    #[error("the argument of {func} must be a rational combination of symbols plus a rational multiple of pi, got {arg}")]
+    NotAnAngle { func: &'static str, arg: String },
+    /// A square root that has no exact reduced form here.
+    #[error("cannot take an exact square root of {0}")]
+    BadSqrt(String),
+    /// An exponent or coefficient outside the supported range.
+    #[error("number out of range: {0}")]
+    OutOfRange(String),
+    /// A symbol without a value during numeric evaluation.
+    #[error("no value for symbol {0}")]
+    Unbound(String),
+}
+
+/// One term `coef * sqrt(rad) * mono * mode` of the canonical form.
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+pub(crate) struct Term {
+    pub(crate) mode: Mode,
+    pub(crate) mono: Mono,
+    pub(crate) rad: u64,
+    pub(crate) coef: BigRational,
+}
+
+impl Term {
+    pub(crate) fn key_cmp(&self, other: &Term) -> std::cmp::Ordering {
+        self.mode
+            .cmp(&other.mode)
+            .then_with(|| self.mono.cmp(&other.mono))
+            .then_with(|| self.rad.cmp(&other.rad))
+    }
+}
+
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+enum Repr {
+    Terms(Vec<Term>),
+    Error(ScalarError),
+}
+
+/// An exact scalar in canonical form (or an error value; see the module docs).
+///
+/// # Laws
+/// Equal values have equal representations: `a == b` iff `a - b` is the zero scalar, for all
+/// scalars built from rationals, radicals of rationals, symbols, `+ - *`, division by nonzero
+/// constants, and cos/sin of angles. `Hash` agrees with `Eq` because both read the canonical
+/// term vector.
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+pub struct Scalar(Repr);
+
+thread_local! {
+    static TERM_LIMIT: Cell<usize> = const { Cell::new(200_000) };
+}
+
+/// The largest number of terms a scalar may have on this thread (default 200,000).
+pub fn term_limit() -> usize {
+    TERM_LIMIT.with(|c| c.get())
+}
+
+/// Sets the term limit for this thread; results larger than it become [`ScalarError::TooLarge`].
+pub fn set_term_limit(limit: usize) {
+    TERM_LIMIT.with(|c| c.set(limit.max(1)));
+}
+
+impl Scalar {
+    pub(crate) fn from_terms_sorted(terms: Vec<Term>) -> Scalar {
+        let limit = term_limit();
+        if terms.len() > limit {
+            return Scalar::error(ScalarError::TooLarge { limit });
+        }
+        Scalar(Repr::Terms(terms))
+    }
+
+    /// Sorts, merges equal keys and drops zero coefficients.
+    pub(crate) fn from_terms(mut terms: Vec<Term>) -> Scalar {
+        terms.sort_unstable_by(|a, b| a.key_cmp(b));
+        let mut out: Vec<Term> = Vec::with_capacity(terms.len());
+        for t in terms {
+            match out.last_mut() {
+                Some(last) if last.key_cmp(&t).is_eq() => last.coef += t.coef,
+                _ => {
+                    if out.last().is_some_and(|l| l.coef.is_zero()) {
+                        out.pop();
+                    }
+                    out.push(t)
+                }
+            }
+        }
+        if out.last().is_some_and(|l| l.coef.is_zero()) {
+            out.pop();
+        }
+        Scalar::from_terms_sorted(out)
+    }
+
+    /// An error value.
+    pub fn error(e: ScalarError) -> Scalar {
+        Scalar(Repr::Error(e))
+    }
+
+    /// The terms, or the error this value carries.
+    pub(crate) fn terms(&self) -> Result<&[Term], &ScalarError> {
+        match &self.0 {
+            Repr::Terms(t) => Ok(t),
+            Repr::Error(e) => Err(e),
+        }
+    }
+
+    /// `Ok(self)` unless this is an error value.
+    pub fn check(self) -> Result<Scalar, ScalarError> {
+        match self.0 {
+            Repr::Error(e) => Err(e),
+            t => Ok(Scalar(t)),
+        }
+    }
+
+    /// The error this value carries, if any.
+    pub fn as_error(&self) -> Option<&ScalarError> {
+        self.terms().err()
+    }
+
+    /// The integer `n`.
+    pub fn int(n: i64) -> Scalar {
+        Scalar::rational(BigRational::from_integer(BigInt::from(n)))
+    }
+
+    /// The exact rational `q`.
+    pub fn rational(q: BigRational) -> Scalar {
+        if q.is_zero() {
+            return Scalar::from_terms_sorted(Vec::new());
+        }
+        Scalar::from_terms_sorted(vec![Term {
+            mode: Mode::unit(),
+            mono: Vec::new(),
+            rad: 1,
+            coef: q,
+        }])
+    }
+
+    /// The symbol `name` (`pi` is the constant pi).
+    pub fn sym(name: &str) -> Scalar {
+        Scalar::from_terms_sorted(vec![Term {
+            mode: Mode::unit(),
+            mono: vec![(Sym::new(name), 1)],
+            rad: 1,
+            coef: BigRational::one(),
+        }])
+    }
+
+    /// The constant pi.
+    pub fn pi() -> Scalar {
+        Scalar::sym("pi")
+    }
+
+    /// Number of terms of the canonical form (0 for zero and for error values).
+    pub fn len(&self) -> usize {
+        self.terms().map_or(0, |t| t.len())
+    }
+
+    /// True for the zero scalar.
+    pub fn is_zero_value(&self) -> bool {
+        matches!(&self.0, Repr::Terms(t) if t.is_empty())
+    }
+
+    /// The value as a rational, when it is one.
+    pub fn as_rational(&self) -> Option<BigRational> {
+        let t = self.terms().ok()?;
+        match t {
+            [] => Some(BigRational::zero()),
+            [x] if x.mode.is_unit() && x.mono.is_empty() && x.rad == 1 => Some(x.coef.clone()),
+            _ => None,
+        }
+    }
+
+    /// True when the value contains no symbol (it is a number: rationals, radicals, and exact
+    /// trigonometric constants).
+    pub fn is_constant(&self) -> bool {
+        self.terms()
+            .is_ok_and(|t| t.iter().all(|x| x.mono.is_empty() && x.mode.freq.is_empty()))
+    }
+
+    /// Every symbol the value mentions, sorted by name (`pi` included when present).
+    pub fn symbols(&self) -> Vec<Sym> {
+        let mut out: Vec<Sym> = Vec::new();
+        if let Ok(t) = self.terms() {
+            for x in t {
+                out.extend(x.mono.iter().map(|(s, _)| s.clone()));
+                out.extend(x.mode.freq.iter().map(|(s, _)| s.clone()));
+            }
+        }
+        out.retain(|s| !s.is_unit());
+        out.sort();
+        out.dedup();
+        out
+    }
+}
+
+impl Default for Scalar {
+    fn default() -> Self {
+        Scalar::int(0)
+    }
+}
