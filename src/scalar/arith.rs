@@ -1,7 +1,9 @@
 //! Ring operations on canonical scalars: `+ - *`, powers, reciprocals of constants, exact
 //! square roots of rationals, and cos / sin of angles.
 
-use super::atoms::{mode_mul, mono_mul, rad_mul, small_ok, split_square, trig_mode, Mode, Small, Sym};
+use super::atoms::{
+    mode_mul, mono_mul, rad_mul, small_ok, split_square, trig_mode, Mode, Small, Sym,
+};
 use super::{term_limit, Scalar, ScalarError, Term};
 use crate::Ring;
 use num_bigint::BigInt;
@@ -16,7 +18,9 @@ const PRODUCT_FACTOR: usize = 2;
 const MAX_POW_BITS: u64 = 1 << 20;
 
 fn too_large() -> Scalar {
-    Scalar::error(ScalarError::TooLarge { limit: term_limit() })
+    Scalar::error(ScalarError::TooLarge {
+        limit: term_limit(),
+    })
 }
 
 /// Propagates error values: the first operand's error wins.
@@ -51,7 +55,11 @@ pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
                 j += 1;
             }
             std::cmp::Ordering::Equal => {
-                let c = if sign < 0 { &x[i].coef - &y[j].coef } else { &x[i].coef + &y[j].coef };
+                let c = if sign < 0 {
+                    &x[i].coef - &y[j].coef
+                } else {
+                    &x[i].coef + &y[j].coef
+                };
                 if !c.is_zero() {
                     let mut t = x[i].clone();
                     t.coef = c;
@@ -105,13 +113,20 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
                     for (mode, weights) in &modes {
                         for (r2, w) in weights {
                             let Some((rad3, g2)) = rad_mul(rad, *r2) else {
-                                return Scalar::error(ScalarError::OutOfRange("radicand too large".into()));
+                                return Scalar::error(ScalarError::OutOfRange(
+                                    "radicand too large".into(),
+                                ));
                             };
                             let mut c = &coef * w;
                             if g2 != 1 {
                                 c *= BigRational::from_integer(BigInt::from(g2));
                             }
-                            out.push(Term { mode: mode.clone(), mono: mono.clone(), rad: rad3, coef: c });
+                            out.push(Term {
+                                mode: mode.clone(),
+                                mono: mono.clone(),
+                                rad: rad3,
+                                coef: c,
+                            });
                         }
                     }
                 }
@@ -133,11 +148,15 @@ impl Scalar {
         if let Some(q) = self.as_rational() {
             let bits = q.numer().bits().max(q.denom().bits());
             if bits > 1 && bits.saturating_mul(n) > MAX_POW_BITS {
-                return Scalar::error(ScalarError::OutOfRange(format!("power {n} of {q} is too large")));
+                return Scalar::error(ScalarError::OutOfRange(format!(
+                    "power {n} of {q} is too large"
+                )));
             }
         }
         if n > u32::MAX as u64 {
-            return Scalar::error(ScalarError::OutOfRange(format!("exponent {n} is too large")));
+            return Scalar::error(ScalarError::OutOfRange(format!(
+                "exponent {n} is too large"
+            )));
         }
         let mut base = self.clone();
         let mut acc = Scalar::int(1);
@@ -186,7 +205,9 @@ impl Scalar {
                 Ok(dt) => dt,
                 Err(e) => return Scalar::error(e.clone()),
             };
-            let Some(r) = dt.iter().map(|x| x.rad).find(|&r| r > 1) else { break };
+            let Some(r) = dt.iter().map(|x| x.rad).find(|&r| r > 1) else {
+                break;
+            };
             let p = smallest_prime_factor(r);
             let conj: Vec<Term> = dt
                 .iter()
@@ -228,7 +249,12 @@ impl Scalar {
             return Scalar::error(ScalarError::BadSqrt(format!("{q} (too large to factor)")));
         };
         let coef = BigRational::new(s, q.denom().clone());
-        Scalar::from_terms_sorted(vec![Term { mode: Mode::unit(), mono: Vec::new(), rad: r, coef }])
+        Scalar::from_terms_sorted(vec![Term {
+            mode: Mode::unit(),
+            mono: Vec::new(),
+            rad: r,
+            coef,
+        }])
     }
 
     /// `cos(self)`, reduced to canonical modes; an error value when `self` is not an angle.
@@ -248,12 +274,20 @@ impl Scalar {
                 let mut out = Vec::new();
                 for (mode, weights) in trig_mode(sin, freq, pi) {
                     for (rad, coef) in weights {
-                        out.push(Term { mode: mode.clone(), mono: Vec::new(), rad, coef });
+                        out.push(Term {
+                            mode: mode.clone(),
+                            mono: Vec::new(),
+                            rad,
+                            coef,
+                        });
                     }
                 }
                 Scalar::from_terms(out)
             }
-            Err(None) => Scalar::error(ScalarError::NotAnAngle { func, arg: self.to_string() }),
+            Err(None) => Scalar::error(ScalarError::NotAnAngle {
+                func,
+                arg: self.to_string(),
+            }),
             Err(Some(e)) => Scalar::error(e),
         }
     }
@@ -268,7 +302,10 @@ impl Scalar {
                 return Err(None);
             }
             let k = to_small(&x.coef).ok_or_else(|| {
-                Some(ScalarError::OutOfRange(format!("angle coefficient {} is too large", x.coef)))
+                Some(ScalarError::OutOfRange(format!(
+                    "angle coefficient {} is too large",
+                    x.coef
+                )))
             })?;
             match x.mono.as_slice() {
                 [] => freq.push((Sym::unit(), k)),
@@ -400,4 +437,3 @@ impl From<i64> for Scalar {
         Scalar::int(n)
     }
 }
-

@@ -36,9 +36,21 @@ impl Scalar {
             }
             if let Some((_, k)) = term.mode.freq.iter().find(|(s, _)| s.name() == x) {
                 let k = BigRational::new(BigInt::from(*k.numer()), BigInt::from(*k.denom()));
-                let coef = if term.mode.sin { &term.coef * k } else { -(&term.coef * k) };
-                let mode = Mode { sin: !term.mode.sin, ..term.mode.clone() };
-                out.push(Term { mode, mono: term.mono.clone(), rad: term.rad, coef });
+                let coef = if term.mode.sin {
+                    &term.coef * k
+                } else {
+                    -(&term.coef * k)
+                };
+                let mode = Mode {
+                    sin: !term.mode.sin,
+                    ..term.mode.clone()
+                };
+                out.push(Term {
+                    mode,
+                    mono: term.mono.clone(),
+                    rad: term.rad,
+                    coef,
+                });
             }
         }
         Scalar::from_terms(out)
@@ -67,7 +79,11 @@ impl Scalar {
                 coef: term.coef.clone(),
             }]);
             for (s, e) in &term.mono {
-                let base = if s.name() == x { value.clone() } else { Scalar::sym(s.name()) };
+                let base = if s.name() == x {
+                    value.clone()
+                } else {
+                    Scalar::sym(s.name())
+                };
                 f = f * base.pow(u64::from(*e));
             }
             if !term.mode.is_unit() {
@@ -159,7 +175,11 @@ impl fmt::Display for Scalar {
                 factors.push(format!("sqrt({})", term.rad));
             }
             for (s, e) in &term.mono {
-                factors.push(if *e == 1 { s.to_string() } else { format!("{s}^{e}") });
+                factors.push(if *e == 1 {
+                    s.to_string()
+                } else {
+                    format!("{s}^{e}")
+                });
             }
             if !term.mode.is_unit() {
                 factors.push(format!(
@@ -169,7 +189,11 @@ impl fmt::Display for Scalar {
                 ));
             }
             let neg = term.coef < BigRational::zero();
-            let c = if neg { -term.coef.clone() } else { term.coef.clone() };
+            let c = if neg {
+                -term.coef.clone()
+            } else {
+                term.coef.clone()
+            };
             let sep = match (i, neg) {
                 (0, true) => "-",
                 (0, false) => "",
@@ -198,7 +222,11 @@ fn angle_text(mode: &Mode) -> String {
         if i > 0 || neg {
             s.push_str(if neg { " - " } else { " + " });
         }
-        let name = if sym.is_unit() { String::new() } else { sym.to_string() };
+        let name = if sym.is_unit() {
+            String::new()
+        } else {
+            sym.to_string()
+        };
         let coef = if a == super::Small::from_integer(1) {
             String::new()
         } else {

@@ -35,7 +35,9 @@ pub enum ScalarError {
     #[error("division by zero")]
     DivisionByZero,
     /// Division by an expression with symbols (rational functions are not supported yet).
-    #[error("cannot divide by a symbolic expression ({0}); only numbers and radicals can be divisors")]
+    #[error(
+        "cannot divide by a symbolic expression ({0}); only numbers and radicals can be divisors"
+    )]
     SymbolicDivisor(String),
     /// A trigonometric argument that is not an angle.
     #[error("the argument of {func} must be a rational combination of symbols plus a rational multiple of pi, got {arg}")]
@@ -211,8 +213,10 @@ impl Scalar {
     /// True when the value contains no symbol (it is a number: rationals, radicals, and exact
     /// trigonometric constants).
     pub fn is_constant(&self) -> bool {
-        self.terms()
-            .is_ok_and(|t| t.iter().all(|x| x.mono.is_empty() && x.mode.freq.is_empty()))
+        self.terms().is_ok_and(|t| {
+            t.iter()
+                .all(|x| x.mono.is_empty() && x.mode.freq.is_empty())
+        })
     }
 
     /// Every symbol the value mentions, sorted by name (`pi` included when present).

@@ -50,7 +50,10 @@ fn exact_values_at_twelfths_of_pi() {
     assert_eq!(cos(&pi), n(-1));
     assert_eq!(sin(&(&pi * q(1, 4))), n(2).sqrt() * q(1, 2));
     assert_eq!(cos(&(&pi * q(1, 6))), n(3).sqrt() * q(1, 2));
-    assert_eq!(cos(&(&pi * q(1, 12))), (n(6).sqrt() + n(2).sqrt()) * q(1, 4));
+    assert_eq!(
+        cos(&(&pi * q(1, 12))),
+        (n(6).sqrt() + n(2).sqrt()) * q(1, 4)
+    );
     assert_eq!(sin(&(&pi * q(7, 6))), q(-1, 2));
 }
 
@@ -67,16 +70,28 @@ fn radicals_reduce() {
 
 #[test]
 fn division_by_symbols_and_zero_is_refused() {
-    assert!(matches!(n(1).try_div(&n(0)), Err(ScalarError::DivisionByZero)));
-    assert!(matches!(n(1).try_div(&s("x")), Err(ScalarError::SymbolicDivisor(_))));
-    assert!(matches!(s("x").pow(2).cos().check(), Err(ScalarError::NotAnAngle { .. })));
+    assert!(matches!(
+        n(1).try_div(&n(0)),
+        Err(ScalarError::DivisionByZero)
+    ));
+    assert!(matches!(
+        n(1).try_div(&s("x")),
+        Err(ScalarError::SymbolicDivisor(_))
+    ));
+    assert!(matches!(
+        s("x").pow(2).cos().check(),
+        Err(ScalarError::NotAnAngle { .. })
+    ));
 }
 
 #[test]
 fn size_limit_is_an_error_not_a_hang() {
     let x = s("x") + s("y") + s("z") + s("w");
     let t = std::time::Instant::now();
-    assert!(matches!(x.pow(100_000).check(), Err(ScalarError::TooLarge { .. })));
+    assert!(matches!(
+        x.pow(100_000).check(),
+        Err(ScalarError::TooLarge { .. })
+    ));
     assert!(t.elapsed().as_secs() < 5);
     assert!(n(2).pow(1 << 40).check().is_err());
 }
@@ -100,7 +115,8 @@ fn substitution_into_trig_arguments() {
 
 #[test]
 fn evaluation_agrees_with_f64() {
-    let e = s("l") * cos(&(s("t") * q(1, 2))) + n(2).sqrt() * sin(&(s("t") + Scalar::pi() * q(1, 3)));
+    let e =
+        s("l") * cos(&(s("t") * q(1, 2))) + n(2).sqrt() * sin(&(s("t") + Scalar::pi() * q(1, 3)));
     let v = e.eval_at(&[("l", 1.5), ("t", 0.7)]).unwrap();
     let want = 1.5 * (0.35f64).cos() + 2f64.sqrt() * (0.7 + std::f64::consts::PI / 3.0).sin();
     assert!((v - want).abs() < 1e-12);

@@ -1,0 +1,157 @@
+//! Display expressions: what a closed form is made of, its cost, and its exact value.
+
+use crate::scalar::{Small, Sym};
+use crate::Scalar;
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{One, Zero};
+
+/// An angle: a rational combination of symbols plus a rational multiple of pi. The
+/// pseudo-symbol `1` carries rational constants that are not multiples of pi.
+#[derive(Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+pub struct Angle {
+    /// `(symbol, coefficient)`, sorted by symbol, nonzero, first coefficient positive.
+    pub terms: Vec<(Sym, Small)>,
+    /// The multiple of pi.
+    pub pi: Small,
+}
+
+impl Angle {
+    /// The angle as an exact scalar.
+    pub fn to_scalar(&self) -> Scalar {
+        let mut a = Scalar::pi() * small(&self.pi);
+        for (s, k) in &self.terms {
+            let v = if s.name() == "1" {
+                Scalar::int(1)
+            } else {
+                Scalar::sym(s.name())
+            };
+            a = a + v * small(k);
+        }
+        a
+    }
+
+    /// True when every coefficient is 1 and there is no pi part: `theta1 + theta2`.
+    pub fn is_plain_sum(&self) -> bool {
+        self.pi.is_zero()
+            && self
+                .terms
+                .iter()
+                .all(|(s, k)| k.is_one() && s.name() != "1")
+    }
+}
+
+pub(crate) fn small(k: &Small) -> Scalar {
+    Scalar::rational(BigRational::new(
+        BigInt::from(*k.numer()),
+        BigInt::from(*k.denom()),
+    ))
+}
+
+/// A display expression. Built by the closed-form extractor; read by the printers, which never
+/// simplify.
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+pub enum Expr {
+    /// A non-negative rational.
+    Num(BigRational),
+    /// `sqrt(n)`, `n` square-free.
+    Sqrt(u64),
+    /// A symbol (`pi` included).
+    Sym(Sym),
+    /// `cos(angle)` or `sin(angle)`.
+    Trig { sin: bool, angle: Angle },
+    /// A sum; negative terms are `Neg`.
+    Add(Vec<Expr>),
+    /// A product.
+    Mul(Vec<Expr>),
+    /// `-e`.
+    Neg(Box<Expr>),
+    /// `e^n`, `n >= 2`.
+    Pow(Box<Expr>, u32),
+}
+
+/// What a closed form costs to read or to evaluate.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Debug, Default)]
+pub struct Cost {
+    /// Additions, subtractions, multiplications, divisions, negations and calls.
+    pub ops: usize,
+    /// Calls of cos, sin and sqrt.
+    pub calls: usize,
+}
+
+impl Expr {
+    /// The exact value, re-canonicalized: every closed form must equal its input.
+    pub fn to_scalar(&self) -> Scalar {
+        match self {
+            Expr::Num(q) => Scalar::rational(q.clone()),
+            Expr::Sqrt(n) => Scalar::int(*n as i64).sqrt(),
+            Expr::Sym(s) => Scalar::sym(s.name()),
+            Expr::Trig { sin, angle } => {
+                let a = angle.to_scalar();
+                if *sin {
+                    a.sin()
+                } else {
+                    a.cos()
+                }
+            }
+            Expr::Add(v) => v.iter().fold(Scalar::int(0), |acc, e| acc + e.to_scalar()),
+            Expr::Mul(v) => v.iter().fold(Scalar::int(1), |acc, e| acc * e.to_scalar()),
+            Expr::Neg(e) => -e.to_scalar(),
+            Expr::Pow(e, n) => e.to_scalar().pow(u64::from(*n)),
+        }
+    }
+
+    /// Operation and call counts: `a + b - c` is 2 ops, `2 l1 c1` is 2 ops and 1 call,
+    /// `1/2` is one division, `-x` alone one negation.
+    pub fn cost(&self) -> Cost {
+        let mut c = Cost::default();
+        self.add_cost(&mut c, false);
+        c
+    }
+
+    fn add_cost(&self, c: &mut Cost, in_sum: bool) {
+        match self {
+            Expr::Num(q) => {
+                if !q.denom().is_one() {
+                    c.ops += 1;
+                }
+            }
+            Expr::Sqrt(_) => {
+                c.ops += 1;
+                c.calls += 1;
+            }
+            Expr::Sym(_) => {}
+            Expr::Trig { .. } => {
+                c.ops += 1;
+                c.calls += 1;
+            }
+            Expr::Add(v) => {
+                c.ops += v.len().saturating_sub(1);
+                for e in v {
+                    e.add_cost(c, true);
+                }
+            }
+            Expr::Mul(v) => {
+                c.ops += v.len().saturating_sub(1);
+                for e in v {
+                    e.add_cost(c, false);
+                }
+            }
+            Expr::Neg(e) => {
+                if !in_sum {
+                    c.ops += 1;
+                }
+                e.add_cost(c, false);
+            }
+            Expr::Pow(e, n) => {
+                c.ops += (*n as usize).saturating_sub(1);
+                e.add_cost(c, false);
+            }
+        }
+    }
+
+    /// The number zero.
+    pub fn zero() -> Expr {
+        Expr::Num(BigRational::zero())
+    }
+}

@@ -1,0 +1,45 @@
+//! Closed forms: the display layer between canonical scalars and printed text.
+//!
+//! The canonical form is a Fourier series; a kinematician reads products of cosines and sines
+//! of grouped angles. [`closed_form`] tries two shapes and keeps the cheaper by [`Cost`]:
+//! (a) every mode split into single-symbol atoms, then regrouped by the angle-sum identities
+//! (`recombine.rs`) and factored (`factor.rs`); (b) the Fourier modes kept whole and factored.
+//! The result is re-canonicalized and compared with the input before it is returned.
+
+mod expr;
+mod factor;
+mod mon;
+mod recombine;
+
+pub use expr::{Angle, Cost, Expr};
+
+use crate::{Scalar, ScalarError};
+
+/// The largest number of monomials the split shape may have before it is skipped.
+const SPLIT_LIMIT: usize = 100_000;
+
+/// The most readable equivalent form of `x`: fewest operations, then fewest calls.
+///
+/// # Errors
+/// Only when `x` is an error value.
+pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
+    x.clone().check()?;
+    let whole = factor::build(&mon::whole_modes(x));
+    let split_size: usize = x
+        .terms()
+        .map(|t| t.iter().map(|t| 1usize << t.mode.freq.len().min(30)).sum())
+        .unwrap_or(0);
+    if split_size > SPLIT_LIMIT {
+        return Ok(whole);
+    }
+    let split = factor::build(&recombine::recombine(mon::split_modes(x)));
+    let (wc, sc) = (whole.cost(), split.cost());
+    // Prefer the regrouped shape on ties: it is the one textbooks print.
+    let best = if sc <= wc { split } else { whole.clone() };
+    if best.to_scalar() == *x {
+        Ok(best)
+    } else {
+        debug_assert!(false, "closed form does not equal its input");
+        Ok(whole)
+    }
+}

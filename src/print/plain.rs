@@ -1,0 +1,208 @@
+//! Plain text in the field's notation: robotics shorthand (`l1 c1 + l2 c12`) or explicit
+//! (`l1*cos(theta1) + l2*cos(theta1 + theta2)`).
+
+use crate::closed::{Angle, Expr};
+use crate::scalar::Small;
+use num_traits::{One, Signed, Zero};
+use std::collections::BTreeSet;
+
+/// How plain text is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PlainOptions {
+    /// `c12` for `cos(theta1 + theta2)` where the angle allows it (see [`shorthand_name`]).
+    pub shorthand: bool,
+}
+
+impl Default for PlainOptions {
+    fn default() -> Self {
+        PlainOptions { shorthand: true }
+    }
+}
+
+/// `c12` / `s123` for cos / sin of a plain sum of numbered symbols sharing one prefix
+/// (`theta1 + theta2`, `t2 + t3`); `None` for any other angle.
+pub fn shorthand_name(sin: bool, angle: &Angle) -> Option<String> {
+    if !angle.is_plain_sum() || angle.terms.is_empty() {
+        return None;
+    }
+    let mut prefix: Option<&str> = None;
+    let mut idx = Vec::new();
+    for (s, _) in &angle.terms {
+        let name = s.name();
+        let cut = name.find(|c: char| c.is_ascii_digit())?;
+        let (p, digits) = name.split_at(cut);
+        if p.is_empty() || !digits.chars().all(|c| c.is_ascii_digit()) || digits.starts_with('0') {
+            return None;
+        }
+        if prefix.is_some_and(|q| q != p) {
+            return None;
+        }
+        prefix = Some(p);
+        idx.push(digits.parse::<u64>().ok()?);
+    }
+    idx.sort_unstable();
+    let sep = if idx.iter().any(|&i| i >= 10) {
+        ","
+    } else {
+        ""
+    };
+    let body: Vec<String> = idx.iter().map(|i| i.to_string()).collect();
+    Some(format!("{}{}", if sin { "s" } else { "c" }, body.join(sep)))
+}
+
+/// The angle in explicit form: `theta1 + theta2`, `theta3/2`, `t - pi/7`.
+pub fn angle_text(angle: &Angle) -> String {
+    let mut s = String::new();
+    let mut first = true;
+    let mut push = |k: Small, name: &str, s: &mut String| {
+        let neg = k.is_negative();
+        let a = k.abs();
+        if first {
+            if neg {
+                s.push('-');
+            }
+        } else {
+            s.push_str(if neg { " - " } else { " + " });
+        }
+        first = false;
+        if name.is_empty() {
+            s.push_str(&a.to_string());
+        } else if a.is_one() {
+            s.push_str(name);
+        } else if a.numer().is_one() {
+            s.push_str(&format!("{name}/{}", a.denom()));
+        } else if a.denom().is_one() {
+            s.push_str(&format!("{}*{name}", a.numer()));
+        } else {
+            s.push_str(&format!("{}*{name}/{}", a.numer(), a.denom()));
+        }
+    };
+    for (sym, k) in &angle.terms {
+        let name = if sym.name() == "1" { "" } else { sym.name() };
+        push(*k, name, &mut s);
+    }
+    if !angle.pi.is_zero() {
+        push(angle.pi, "pi", &mut s);
+    }
+    if s.is_empty() {
+        s.push('0');
+    }
+    s
+}
+
+/// The expression as plain text.
+pub fn plain(e: &Expr, opts: &PlainOptions) -> String {
+    let mut out = String::new();
+    write(e, opts, 0, &mut out);
+    out
+}
+
+/// Precedence levels: 0 top, 1 sum, 2 product, 3 power base.
+fn write(e: &Expr, o: &PlainOptions, prec: u8, out: &mut String) {
+    let times = if o.shorthand { " " } else { "*" };
+    match e {
+        Expr::Num(q) => {
+            if q.denom().is_one() || prec < 2 {
+                out.push_str(&q.to_string());
+            } else {
+                out.push('(');
+                out.push_str(&q.to_string());
+                out.push(')');
+            }
+        }
+        Expr::Sqrt(n) => out.push_str(&format!("sqrt({n})")),
+        Expr::Sym(s) => out.push_str(s.name()),
+        Expr::Trig { sin, angle } => {
+            match o.shorthand.then(|| shorthand_name(*sin, angle)).flatten() {
+                Some(name) => out.push_str(&name),
+                None => {
+                    out.push_str(if *sin { "sin(" } else { "cos(" });
+                    out.push_str(&angle_text(angle));
+                    out.push(')');
+                }
+            }
+        }
+        Expr::Add(v) => {
+            if prec > 1 {
+                out.push('(');
+            }
+            for (i, t) in v.iter().enumerate() {
+                match t {
+                    Expr::Neg(inner) => {
+                        out.push_str(if i == 0 { "-" } else { " - " });
+                        write(inner, o, 2, out);
+                    }
+                    t => {
+                        if i > 0 {
+                            out.push_str(" + ");
+                        }
+                        write(t, o, 1, out);
+                    }
+                }
+            }
+            if prec > 1 {
+                out.push(')');
+            }
+        }
+        Expr::Mul(v) => {
+            if prec > 2 {
+                out.push('(');
+            }
+            for (i, t) in v.iter().enumerate() {
+                if i > 0 {
+                    out.push_str(times);
+                }
+                // A leading fraction reads as a coefficient: `3/8 cos(t)`.
+                if i == 0 && matches!(t, Expr::Num(_)) {
+                    if let Expr::Num(q) = t {
+                        out.push_str(&q.to_string());
+                    }
+                    continue;
+                }
+                write(t, o, 2, out);
+            }
+            if prec > 2 {
+                out.push(')');
+            }
+        }
+        Expr::Neg(inner) => {
+            if prec > 1 {
+                out.push('(');
+            }
+            out.push('-');
+            write(inner, o, 2, out);
+            if prec > 1 {
+                out.push(')');
+            }
+        }
+        Expr::Pow(b, n) => {
+            write(b, o, 3, out);
+            out.push_str(&format!("^{n}"));
+        }
+    }
+}
+
+/// The shorthand names used in `exprs`, with their meaning, sorted:
+/// `c12 = cos(theta1 + theta2)`.
+pub fn legend(exprs: &[&Expr]) -> Vec<String> {
+    let mut seen = BTreeSet::new();
+    for e in exprs {
+        collect(e, &mut seen);
+    }
+    seen.into_iter()
+        .map(|(name, sin, text)| format!("{name} = {}({text})", if sin { "sin" } else { "cos" }))
+        .collect()
+}
+
+fn collect(e: &Expr, seen: &mut BTreeSet<(String, bool, String)>) {
+    match e {
+        Expr::Trig { sin, angle } => {
+            if let Some(n) = shorthand_name(*sin, angle) {
+                seen.insert((n, *sin, angle_text(angle)));
+            }
+        }
+        Expr::Add(v) | Expr::Mul(v) => v.iter().for_each(|x| collect(x, seen)),
+        Expr::Neg(x) | Expr::Pow(x, _) => collect(x, seen),
+        _ => {}
+    }
+}
