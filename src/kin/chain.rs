@@ -70,6 +70,9 @@ impl<T: Ring> Chain<T> {
 
     /// The cumulative motions `J₁(q₁)`, `J₁ J₂`, …, `J₁ … Jₙ` (without the tool): the
     /// pose of every link frame, as a Jacobian needs them.
+    ///
+    /// # Errors
+    /// [`ChainError::WrongJointCount`] when `q` does not hold one value per joint.
     pub fn forward_frames(&self, q: &[T]) -> Result<Vec<DualQuat<T>>, ChainError> {
         self.check(q)?;
         let mut acc = DualQuat::identity();
@@ -82,6 +85,9 @@ impl<T: Ring> Chain<T> {
     }
 
     /// The end-effector motion `J₁(q₁) … Jₙ(qₙ) · tool` as a dual quaternion.
+    ///
+    /// # Errors
+    /// [`ChainError::WrongJointCount`] when `q` does not hold one value per joint.
     pub fn forward(&self, q: &[T]) -> Result<DualQuat<T>, ChainError> {
         self.check(q)?;
         let pose = self
@@ -94,6 +100,9 @@ impl<T: Ring> Chain<T> {
 
     /// The end-effector motion as a product of the joints' elementary matrices. The tool is
     /// the one factor converted from its dual quaternion ([`DualQuat::to_matrix`]).
+    ///
+    /// # Errors
+    /// [`ChainError::WrongJointCount`] when `q` does not hold one value per joint.
     pub fn forward_matrix(&self, q: &[T]) -> Result<Matrix4<T>, ChainError> {
         self.check(q)?;
         let pose = self
