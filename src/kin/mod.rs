@@ -1,0 +1,14 @@
+//! Kinematics over any [`Ring`](crate::Ring): Denavit–Hartenberg links, joints and serial
+//! chains, each both as a dual quaternion and as a 4×4 matrix.
+//!
+//! The matrix versions are built from the elementary matrices of
+//! [`Matrix4`](crate::Matrix4) and never from a dual quaternion, so the two agree only if
+//! both are right: tests compare them.
+
+mod chain;
+mod dh;
+mod joint;
+
+pub use chain::{Chain, ChainError};
+pub use dh::{dh_link, dh_link_matrix, mdh_link, mdh_link_matrix};
+pub use joint::{Joint, JointGeometry, JointKind};
