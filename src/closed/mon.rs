@@ -160,7 +160,19 @@ fn expand(parts: &[Angle], sin: bool, m: Mon, out: &mut Vec<Mon>) {
     }
 }
 
-pub(crate) fn with_atom(mut m: Mon, a: Atom, sign: i64) -> Mon {
+pub(crate) fn with_atom(mut m: Mon, mut a: Atom, mut sign: i64) -> Mon {
+    // cos(-x) = cos x, sin(-x) = -sin x: atoms keep a positive leading coefficient.
+    if a.angle.terms.first().is_some_and(|(_, k)| k.is_negative())
+        || (a.angle.terms.is_empty() && a.angle.pi.is_negative())
+    {
+        for (_, k) in a.angle.terms.iter_mut() {
+            *k = -*k;
+        }
+        a.angle.pi = -a.angle.pi;
+        if a.sin {
+            sign = -sign;
+        }
+    }
     let pos = m.atoms.partition_point(|x| x < &a);
     m.atoms.insert(pos, a);
     if sign < 0 {
