@@ -3,3 +3,5 @@
 mod algebra;
 mod common;
 mod scalar;
+mod paper;
+mod paper_support;
