@@ -3,7 +3,9 @@
 #![allow(dead_code)]
 
 use crate::common::Rng;
-use dqsym::{closed_form, legend, plain, DualQuat, Expr, Matrix4, PlainOptions, Quat, Ring, Scalar};
+use dqsym::{
+    closed_form, legend, plain, DualQuat, Expr, Matrix4, PlainOptions, Quat, Ring, Scalar,
+};
 
 pub type S = Scalar;
 
@@ -57,10 +59,18 @@ pub struct Report {
 
 impl Report {
     pub fn new(title: &str) -> Report {
-        Report { lines: vec![title.to_string()], exprs: Vec::new(), shorthand: true }
+        Report {
+            lines: vec![title.to_string()],
+            exprs: Vec::new(),
+            shorthand: true,
+        }
     }
     pub fn explicit(title: &str) -> Report {
-        Report { lines: vec![title.to_string()], exprs: Vec::new(), shorthand: false }
+        Report {
+            lines: vec![title.to_string()],
+            exprs: Vec::new(),
+            shorthand: false,
+        }
     }
     pub fn note(&mut self, text: &str) -> &mut Self {
         self.lines.push(format!("# {text}"));
@@ -68,13 +78,17 @@ impl Report {
     }
     pub fn value(&mut self, name: &str, x: &S) -> &mut Self {
         let e = closed(x);
-        let o = PlainOptions { shorthand: self.shorthand };
+        let o = PlainOptions {
+            shorthand: self.shorthand,
+        };
         self.lines.push(format!("{name} = {}", plain(&e, &o)));
         self.exprs.push(e);
         self
     }
     pub fn vector(&mut self, name: &str, v: &[S]) -> &mut Self {
-        let o = PlainOptions { shorthand: self.shorthand };
+        let o = PlainOptions {
+            shorthand: self.shorthand,
+        };
         let parts: Vec<String> = v
             .iter()
             .map(|x| {
@@ -120,7 +134,12 @@ pub fn snap(name: &str, r: &Report) {
 pub fn points(names: &[&str], n: usize) -> Vec<Vec<(String, f64)>> {
     let mut rng = Rng::new(names.len() as u64 * 7919 + n as u64);
     (0..n)
-        .map(|_| names.iter().map(|s| (s.to_string(), rng.range(-2.0, 2.0))).collect())
+        .map(|_| {
+            names
+                .iter()
+                .map(|s| (s.to_string(), rng.range(-2.0, 2.0)))
+                .collect()
+        })
         .collect()
 }
 
@@ -130,7 +149,10 @@ pub fn ev(x: &S, env: &[(String, f64)]) -> f64 {
 }
 
 pub fn get(env: &[(String, f64)], name: &str) -> f64 {
-    env.iter().find(|(k, _)| k == name).map(|(_, v)| *v).expect("bound")
+    env.iter()
+        .find(|(k, _)| k == name)
+        .map(|(_, v)| *v)
+        .expect("bound")
 }
 
 pub fn close(a: f64, b: f64) -> bool {
