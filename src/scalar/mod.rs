@@ -6,6 +6,11 @@
 //! free of zero coefficients, so two equal scalars have the same representation and `==` is
 //! exact: `cos(t)^2 + sin(t)^2 == 1`, `2 sin(t/2) cos(t/2) == sin(t)`, `sqrt(2) sqrt(3) == sqrt(6)`.
 //!
+//! Exact values: cos and sin at multiples of pi/12 become radicals in Q(sqrt 2, sqrt 3). Other
+//! rational multiples of pi (pi/8, pi/7) stay as constant modes; the product-to-sum identities
+//! still hold for them, but algebraic relations such as `cos(3 pi/8) = sin(pi/8)` or
+//! `2 cos(pi/8)^2 = 1 + sqrt(2)/2` are not normalized, so equality is exact only up to those.
+//!
 //! Arithmetic goes through `std::ops` so the generic quaternion algebra can use it. An
 //! operation that cannot be done exactly (a result over the size limit, `cos` of a non-angle)
 //! yields an *error value* that propagates like a NaN; [`Scalar::check`] turns it into a

@@ -2,6 +2,7 @@
 
 mod algebra;
 mod common;
+mod laws;
 mod paper;
 mod paper_arms;
 mod paper_support;
