@@ -293,7 +293,7 @@ impl Scalar {
     }
 
     /// Reads `self` as `sum k_i x_i + p pi` with small rational `k_i`, `p`.
-    pub(crate) fn angle_parts(&self) -> Result<(Vec<(Sym, Small)>, Small), Option<ScalarError>> {
+    pub(crate) fn angle_parts(&self) -> Result<AngleParts, Option<ScalarError>> {
         let t = self.terms().map_err(|e| Some(e.clone()))?;
         let mut freq = Vec::new();
         let mut pi = Small::zero();
@@ -319,6 +319,9 @@ impl Scalar {
     }
 }
 
+/// An angle read off a scalar: `(symbol, coefficient)` pairs and the multiple of pi.
+pub(crate) type AngleParts = (Vec<(Sym, Small)>, Small);
+
 fn to_small(q: &BigRational) -> Option<Small> {
     let s = Small::new(q.numer().to_i64()?, q.denom().to_i64()?);
     small_ok(&s).then_some(s)
@@ -327,7 +330,7 @@ fn to_small(q: &BigRational) -> Option<Small> {
 fn smallest_prime_factor(n: u64) -> u64 {
     let mut p = 2;
     while p * p <= n {
-        if n % p == 0 {
+        if n.is_multiple_of(p) {
             return p;
         }
         p += 1;

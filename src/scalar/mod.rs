@@ -200,6 +200,11 @@ impl Scalar {
         self.terms().map_or(0, |t| t.len())
     }
 
+    /// True for the zero scalar (no terms).
+    pub fn is_empty(&self) -> bool {
+        self.is_zero_value()
+    }
+
     /// True for the zero scalar.
     pub fn is_zero_value(&self) -> bool {
         matches!(&self.0, Repr::Terms(t) if t.is_empty())

@@ -1,6 +1,7 @@
 //! The integration tests: one binary, one module per concern.
 
 mod algebra;
+mod cli;
 mod common;
 mod laws;
 mod paper;

@@ -1,5 +1,6 @@
 //! Every result of the paper (with ERRATA.md), exact, as a snapshot, and checked numerically
 //! against 4x4 homogeneous matrices built without the DQ code.
+#![allow(clippy::needless_range_loop)] // Matrix entries read best as (i, j).
 
 use crate::paper_support::*;
 use dqsym::{DualQuat, Matrix4, Quat};

@@ -1,5 +1,6 @@
 //! Sec 6 of the paper: the RRR arm (and Appendix III), the wrist (sec 6.2, Appendix IV), the 6R
 //! robot (sec 6.3) and the Puma-like robot (sec 6.4), plus the PUMA 560 pose in DH form.
+#![allow(clippy::needless_range_loop)] // Matrix entries read best as (i, j).
 
 use crate::paper_support::*;
 use dqsym::{dh_link, dh_link_matrix, DualQuat, Matrix4, Quat};
