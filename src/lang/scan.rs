@@ -221,7 +221,7 @@ mod tests {
         let map = SourceMap::new("θ1 = 2\nx");
         assert_eq!(map.line_col(0), (1, 1));
         assert_eq!(map.line_col(2), (1, 2)); // after the two-byte θ
-        assert_eq!(map.line_col(9), (2, 1));
+        assert_eq!(map.line_col(8), (2, 1));
         assert_eq!(map.line_text(1), "θ1 = 2");
     }
 
