@@ -332,6 +332,9 @@ fn found_words(src: &str, pos: usize) -> String {
     if c == '\n' || rest.starts_with("\r\n") {
         return "end of line".to_owned();
     }
+    if c.is_control() {
+        return format!("`{}`", c.escape_default());
+    }
     let word_char = |c: char| c.is_alphanumeric() || c == '_';
     let token = if word_char(c) {
         let len = rest.find(|c| !word_char(c)).unwrap_or(rest.len());
