@@ -3,6 +3,7 @@
 mod algebra;
 mod closed;
 mod kin;
+mod lang;
 mod print;
 mod ring;
 mod scalar;
@@ -12,6 +13,10 @@ pub use closed::{closed_form, Angle, Cost, Expr};
 pub use kin::{
     dh_link, dh_link_matrix, mdh_link, mdh_link_matrix, Chain, ChainError, Joint, JointGeometry,
     JointKind,
+};
+pub use lang::{
+    parse, parse_expr, parse_expr_with, parse_with, AddOp, Expr as AstExpr, ExprKind, Ident, MulOp,
+    ParseError, ParseErrorKind, ParseOptions, Program, Span, Stmt, StmtKind, UnaryOp,
 };
 pub use print::{legend, plain, shorthand_name, PlainOptions};
 pub use ring::Ring;

@@ -7,4 +7,5 @@ mod laws;
 mod paper;
 mod paper_arms;
 mod paper_support;
+mod parse;
 mod scalar;
