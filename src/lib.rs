@@ -11,7 +11,7 @@ mod scalar;
 pub use algebra::{DualNumber, DualQuat, Matrix4, Quat, UnitConstraints};
 pub use closed::{closed_form, Angle, Cost, Expr};
 pub use kin::{
-    dh_link, dh_link_matrix, mdh_link, mdh_link_matrix, Chain, ChainError, Joint, JointGeometry,
+    dh_link, dh_link_matrix, dq_jacobian, geometric_jacobian, mdh_link, mdh_link_matrix, Chain, ChainError, Joint, JointGeometry,
     JointKind,
 };
 pub use lang::{
@@ -20,4 +20,4 @@ pub use lang::{
 };
 pub use print::{legend, plain, shorthand_name, PlainOptions};
 pub use ring::Ring;
-pub use scalar::{set_term_limit, term_limit, Scalar, ScalarError, Sym};
+pub use scalar::{set_term_limit, term_limit, Frac, Scalar, ScalarError, Sym};

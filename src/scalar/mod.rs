@@ -19,8 +19,10 @@
 mod arith;
 pub(crate) mod atoms;
 mod calculus;
+mod frac;
 
 pub use atoms::Sym;
+pub use frac::Frac;
 pub(crate) use atoms::{Mode, Mono, Small};
 
 use num_bigint::BigInt;
