@@ -62,7 +62,7 @@ pub(crate) fn whole_modes(x: &Scalar) -> Vec<Mon> {
     terms
         .iter()
         .map(|t| Mon {
-            q: t.coef.clone(),
+            q: t.coef.to_big(),
             rad: t.rad,
             syms: t.mono.clone(),
             atoms: if t.mode.is_unit() {
@@ -87,7 +87,7 @@ pub(crate) fn split_modes(x: &Scalar) -> Vec<Mon> {
     let mut out = Vec::new();
     for t in terms {
         let base = Mon {
-            q: t.coef.clone(),
+            q: t.coef.to_big(),
             rad: t.rad,
             syms: t.mono.clone(),
             atoms: Vec::new(),

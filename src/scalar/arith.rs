@@ -4,11 +4,10 @@
 use super::atoms::{
     mode_mul, mono_mul, rad_mul, small_ok, split_square, trig_mode, Mode, Small, Sym,
 };
-use super::{term_limit, Scalar, ScalarError, Term};
+use super::{term_limit, Scalar, ScalarError, Term, Q};
 use crate::Ring;
-use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use num_traits::{One, Signed, Zero};
 use std::ops::{Add, Mul, Neg, Sub};
 
 /// How many term pairs one product may form, as a multiple of the term limit.
@@ -108,7 +107,7 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
                     };
                     let mut coef = &s.coef * &t.coef;
                     if g != 1 {
-                        coef *= BigRational::from_integer(BigInt::from(g));
+                        coef = &coef * &Q::from_u64(g);
                     }
                     for (mode, weights) in &modes {
                         for (r2, w) in weights {
@@ -119,7 +118,7 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
                             };
                             let mut c = &coef * w;
                             if g2 != 1 {
-                                c *= BigRational::from_integer(BigInt::from(g2));
+                                c = &c * &Q::from_u64(g2);
                             }
                             out.push(Term {
                                 mode: mode.clone(),
@@ -248,7 +247,7 @@ impl Scalar {
         let Some((s, r)) = split_square(&prod) else {
             return Scalar::error(ScalarError::BadSqrt(format!("{q} (too large to factor)")));
         };
-        let coef = BigRational::new(s, q.denom().clone());
+        let coef = Q::big(BigRational::new(s, q.denom().clone()));
         Scalar::from_terms_sorted(vec![Term {
             mode: Mode::unit(),
             mono: Vec::new(),
@@ -293,7 +292,7 @@ impl Scalar {
     }
 
     /// Reads `self` as `sum k_i x_i + p pi` with small rational `k_i`, `p`.
-    pub(crate) fn angle_parts(&self) -> Result<(Vec<(Sym, Small)>, Small), Option<ScalarError>> {
+    pub(crate) fn angle_parts(&self) -> Result<AngleParts, Option<ScalarError>> {
         let t = self.terms().map_err(|e| Some(e.clone()))?;
         let mut freq = Vec::new();
         let mut pi = Small::zero();
@@ -319,15 +318,18 @@ impl Scalar {
     }
 }
 
-fn to_small(q: &BigRational) -> Option<Small> {
-    let s = Small::new(q.numer().to_i64()?, q.denom().to_i64()?);
+/// An angle read as `(frequencies, multiple of pi)`.
+pub(crate) type AngleParts = (Vec<(Sym, Small)>, Small);
+
+fn to_small(q: &Q) -> Option<Small> {
+    let s = q.to_ratio_i64()?;
     small_ok(&s).then_some(s)
 }
 
 fn smallest_prime_factor(n: u64) -> u64 {
     let mut p = 2;
     while p * p <= n {
-        if n % p == 0 {
+        if n.is_multiple_of(p) {
             return p;
         }
         p += 1;
@@ -413,7 +415,7 @@ impl Ring for Scalar {
         if den == 0 {
             return Scalar::error(ScalarError::DivisionByZero);
         }
-        Scalar::rational(BigRational::new(BigInt::from(num), BigInt::from(den)))
+        Scalar::from_q(Q::new(num, den))
     }
     fn try_recip(&self) -> Option<Self> {
         self.recip().check().ok()

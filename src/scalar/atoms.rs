@@ -7,9 +7,10 @@
 //! are polynomials: products of modes are turned back into single modes by the product-to-sum
 //! identities, so `cos(t)^2 + sin(t)^2` and `1` are the same vector of terms.
 
+use super::q::Q;
 use num_bigint::BigInt;
 use num_integer::Integer;
-use num_rational::{BigRational, Ratio};
+use num_rational::Ratio;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::cmp::Ordering;
 use std::fmt;
@@ -147,7 +148,7 @@ impl Mode {
 
 /// A mode together with the exact coefficient it was multiplied by while being normalized:
 /// `cos(-x) = cos x`, `sin(-x) = -sin x`, `cos(x + pi/4) = sqrt(2)/2 (cos x - sin x)`.
-pub(crate) type ModeSum = Vec<(Mode, Vec<(u64, BigRational)>)>;
+pub(crate) type ModeSum = Vec<(Mode, Vec<(u64, Q)>)>;
 
 /// `cos(phi)` or `sin(phi)` with `phi = freq . symbols + pi_mult * pi`, as a sum of
 /// normalized modes times exact constants (radical, rational).
@@ -177,9 +178,9 @@ pub(crate) fn trig_mode(sin: bool, mut freq: Vec<(Sym, Small)>, pi_mult: Small) 
             freq: freq.clone(),
             pi: Small::zero(),
         };
-        let scaled = |v: Vec<(u64, BigRational)>, f: i64| {
+        let scaled = |v: Vec<(u64, Q)>, f: i64| {
             v.into_iter()
-                .map(|(r, q)| (r, q * BigRational::from_integer(BigInt::from(f))))
+                .map(|(r, q)| (r, q.mul_int(f)))
                 .collect::<Vec<_>>()
         };
         let mut out: ModeSum = Vec::new();
@@ -215,12 +216,12 @@ pub(crate) fn trig_mode(sin: bool, mut freq: Vec<(Sym, Small)>, pi_mult: Small) 
             sign = -sign;
         }
     }
-    let one = vec![(1u64, BigRational::from_integer(BigInt::from(sign)))];
+    let one = vec![(1u64, Q::int(sign))];
     vec![(Mode { sin, freq, pi }, one)]
 }
 
 /// `cos(n pi / 12)` exactly, as a sum of (square-free radicand, rational) pairs; empty for 0.
-pub(crate) fn exact_cos_twelfth(n: i64) -> Vec<(u64, BigRational)> {
+pub(crate) fn exact_cos_twelfth(n: i64) -> Vec<(u64, Q)> {
     let n = n.rem_euclid(24);
     // cos(pi - x) = -cos x and cos(2 pi - x) = cos x fold everything into [0, 6].
     let (m, sign) = match n {
@@ -229,7 +230,7 @@ pub(crate) fn exact_cos_twelfth(n: i64) -> Vec<(u64, BigRational)> {
         13..=18 => (n - 12, -1),
         _ => (24 - n, 1),
     };
-    let q = |a: i64, b: i64| BigRational::new(BigInt::from(a * sign), BigInt::from(b));
+    let q = |a: i64, b: i64| Q::new(a * sign, b);
     match m {
         0 => vec![(1, q(1, 1))],
         1 => vec![(2, q(1, 4)), (6, q(1, 4))],
@@ -243,14 +244,13 @@ pub(crate) fn exact_cos_twelfth(n: i64) -> Vec<(u64, BigRational)> {
 
 /// The product of two modes as a sum of modes with exact weights (product-to-sum identities).
 pub(crate) fn mode_mul(a: &Mode, b: &Mode) -> ModeSum {
-    let one = || vec![(1u64, BigRational::one())];
+    let one = || vec![(1u64, Q::ONE)];
     if a.is_unit() {
         return vec![(b.clone(), one())];
     }
     if b.is_unit() {
         return vec![(a.clone(), one())];
     }
-    let half = BigRational::new(BigInt::from(1), BigInt::from(2));
     let sum = freq_combine(&a.freq, &b.freq, 1);
     let diff = freq_combine(&a.freq, &b.freq, -1);
     let (ps, pd) = (a.pi + b.pi, a.pi - b.pi);
@@ -268,7 +268,7 @@ pub(crate) fn mode_mul(a: &Mode, b: &Mode) -> ModeSum {
         for (m, v) in trig_mode(kind, f, p) {
             let v = v
                 .into_iter()
-                .map(|(r, q)| (r, q * &half * BigRational::from_integer(BigInt::from(w))))
+                .map(|(r, q)| (r, &q * &Q::new(w, 2)))
                 .collect();
             out.push((m, v));
         }

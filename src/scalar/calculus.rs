@@ -1,7 +1,7 @@
 //! Differentiation, substitution and numeric evaluation of canonical scalars.
 
 use super::atoms::{Mode, Sym};
-use super::{Scalar, ScalarError, Term};
+use super::{Scalar, ScalarError, Term, Q};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};
@@ -31,15 +31,15 @@ impl Scalar {
                     mode: term.mode.clone(),
                     mono,
                     rad: term.rad,
-                    coef: &term.coef * BigRational::from_integer(BigInt::from(e)),
+                    coef: &term.coef * &Q::from_u64(u64::from(e)),
                 });
             }
             if let Some((_, k)) = term.mode.freq.iter().find(|(s, _)| s.name() == x) {
-                let k = BigRational::new(BigInt::from(*k.numer()), BigInt::from(*k.denom()));
+                let k = Q::new(*k.numer(), *k.denom());
                 let coef = if term.mode.sin {
-                    &term.coef * k
+                    &term.coef * &k
                 } else {
-                    -(&term.coef * k)
+                    -(&term.coef * &k)
                 };
                 let mode = Mode {
                     sin: !term.mode.sin,
@@ -188,7 +188,7 @@ impl fmt::Display for Scalar {
                     angle_text(&term.mode)
                 ));
             }
-            let neg = term.coef < BigRational::zero();
+            let neg = term.coef.is_negative();
             let c = if neg {
                 -term.coef.clone()
             } else {
@@ -204,7 +204,7 @@ impl fmt::Display for Scalar {
             let body = factors.join("*");
             if body.is_empty() {
                 write!(f, "{c}")?;
-            } else if c == BigRational::from_integer(1.into()) {
+            } else if c.is_one() {
                 f.write_str(&body)?;
             } else {
                 write!(f, "{c}*{body}")?;

@@ -14,13 +14,14 @@
 mod arith;
 pub(crate) mod atoms;
 mod calculus;
+pub(crate) mod q;
 
 pub use atoms::Sym;
 pub(crate) use atoms::{Mode, Mono, Small};
+pub(crate) use q::Q;
 
-use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Zero};
+use num_traits::Zero;
 use std::cell::Cell;
 use thiserror::Error;
 
@@ -59,7 +60,7 @@ pub(crate) struct Term {
     pub(crate) mode: Mode,
     pub(crate) mono: Mono,
     pub(crate) rad: u64,
-    pub(crate) coef: BigRational,
+    pub(crate) coef: Q,
 }
 
 impl Term {
@@ -116,7 +117,7 @@ impl Scalar {
         let mut out: Vec<Term> = Vec::with_capacity(terms.len());
         for t in terms {
             match out.last_mut() {
-                Some(last) if last.key_cmp(&t).is_eq() => last.coef += t.coef,
+                Some(last) if last.key_cmp(&t).is_eq() => last.coef += &t.coef,
                 _ => {
                     if out.last().is_some_and(|l| l.coef.is_zero()) {
                         out.pop();
@@ -159,11 +160,11 @@ impl Scalar {
 
     /// The integer `n`.
     pub fn int(n: i64) -> Scalar {
-        Scalar::rational(BigRational::from_integer(BigInt::from(n)))
+        Scalar::from_q(Q::int(n))
     }
 
-    /// The exact rational `q`.
-    pub fn rational(q: BigRational) -> Scalar {
+    /// The exact rational `q`, small-form coefficient.
+    pub(crate) fn from_q(q: Q) -> Scalar {
         if q.is_zero() {
             return Scalar::from_terms_sorted(Vec::new());
         }
@@ -175,13 +176,18 @@ impl Scalar {
         }])
     }
 
+    /// The exact rational `q`.
+    pub fn rational(q: BigRational) -> Scalar {
+        Scalar::from_q(Q::big(q))
+    }
+
     /// The symbol `name` (`pi` is the constant pi).
     pub fn sym(name: &str) -> Scalar {
         Scalar::from_terms_sorted(vec![Term {
             mode: Mode::unit(),
             mono: vec![(Sym::new(name), 1)],
             rad: 1,
-            coef: BigRational::one(),
+            coef: Q::ONE,
         }])
     }
 
@@ -191,6 +197,7 @@ impl Scalar {
     }
 
     /// Number of terms of the canonical form (0 for zero and for error values).
+    #[allow(clippy::len_without_is_empty)] // `is_zero_value` is the emptiness test.
     pub fn len(&self) -> usize {
         self.terms().map_or(0, |t| t.len())
     }
@@ -205,7 +212,7 @@ impl Scalar {
         let t = self.terms().ok()?;
         match t {
             [] => Some(BigRational::zero()),
-            [x] if x.mode.is_unit() && x.mono.is_empty() && x.rad == 1 => Some(x.coef.clone()),
+            [x] if x.mode.is_unit() && x.mono.is_empty() && x.rad == 1 => Some(x.coef.to_big()),
             _ => None,
         }
     }
