@@ -49,7 +49,7 @@ pub(crate) fn merge(mons: Vec<Mon>) -> Vec<Mon> {
 /// A mode's angle, as stored in the canonical form.
 fn mode_angle(mode: &Mode) -> Angle {
     Angle {
-        terms: mode.freq.clone(),
+        terms: mode.freq.to_vec(),
         pi: mode.pi,
     }
 }
@@ -64,7 +64,7 @@ pub(crate) fn whole_modes(x: &Scalar) -> Vec<Mon> {
         .map(|t| Mon {
             q: t.coef.to_big(),
             rad: t.rad,
-            syms: t.mono.clone(),
+            syms: t.mono.to_vec(),
             atoms: if t.mode.is_unit() {
                 Vec::new()
             } else {
@@ -89,7 +89,7 @@ pub(crate) fn split_modes(x: &Scalar) -> Vec<Mon> {
         let base = Mon {
             q: t.coef.to_big(),
             rad: t.rad,
-            syms: t.mono.clone(),
+            syms: t.mono.to_vec(),
             atoms: Vec::new(),
         };
         if t.mode.is_unit() {

@@ -2,7 +2,7 @@
 //! square roots of rationals, and cos / sin of angles.
 
 use super::atoms::{
-    mode_mul, mono_mul, rad_mul, small_ok, split_square, trig_mode, Mode, Small, Sym,
+    empty_mono, mode_mul, mono_mul, rad_mul, small_ok, split_square, trig_mode, Mode, Small, Sym,
 };
 use super::{term_limit, Scalar, ScalarError, Term, Q};
 use crate::Ring;
@@ -250,7 +250,7 @@ impl Scalar {
         let coef = Q::big(BigRational::new(s, q.denom().clone()));
         Scalar::from_terms_sorted(vec![Term {
             mode: Mode::unit(),
-            mono: Vec::new(),
+            mono: empty_mono(),
             rad: r,
             coef,
         }])
@@ -275,7 +275,7 @@ impl Scalar {
                     for (rad, coef) in weights {
                         out.push(Term {
                             mode: mode.clone(),
-                            mono: Vec::new(),
+                            mono: empty_mono(),
                             rad,
                             coef,
                         });
@@ -306,7 +306,7 @@ impl Scalar {
                     x.coef
                 )))
             })?;
-            match x.mono.as_slice() {
+            match &x.mono[..] {
                 [] => freq.push((Sym::unit(), k)),
                 [(s, 1)] if s.is_pi() => pi = k,
                 [(s, 1)] => freq.push((s.clone(), k)),

@@ -14,7 +14,7 @@ use num_rational::Ratio;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::cmp::Ordering;
 use std::fmt;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// A symbol name. Ordered by its text, so the canonical order never depends on the order in
 /// which symbols were first seen (no interning-order leaks into the output).
@@ -87,8 +87,34 @@ pub(crate) fn small_ok(q: &Small) -> bool {
 /// A monomial: symbols with positive exponents, sorted by symbol, no duplicates.
 pub type Mono = Vec<(Sym, u32)>;
 
+/// A monomial as a term stores it: shared, so copying a term never copies its factors.
+pub(crate) type MonoRc = Arc<[(Sym, u32)]>;
+
+/// The frequency vector of a mode, shared like [`MonoRc`].
+pub(crate) type Freq = Arc<[(Sym, Small)]>;
+
+/// The empty monomial (one shared allocation).
+pub(crate) fn empty_mono() -> MonoRc {
+    static EMPTY: OnceLock<MonoRc> = OnceLock::new();
+    EMPTY.get_or_init(|| Arc::from(Vec::new())).clone()
+}
+
+fn empty_freq() -> Freq {
+    static EMPTY: OnceLock<Freq> = OnceLock::new();
+    EMPTY.get_or_init(|| Arc::from(Vec::new())).clone()
+}
+
+/// A frequency vector as shared storage (the empty one is not allocated again).
+pub(crate) fn freq_rc(v: Vec<(Sym, Small)>) -> Freq {
+    if v.is_empty() {
+        empty_freq()
+    } else {
+        Arc::from(v)
+    }
+}
+
 /// The product of two monomials, or `None` when an exponent would overflow.
-pub(crate) fn mono_mul(a: &Mono, b: &Mono) -> Option<Mono> {
+pub(crate) fn mono_mul(a: &MonoRc, b: &MonoRc) -> Option<MonoRc> {
     if a.is_empty() {
         return Some(b.clone());
     }
@@ -116,7 +142,13 @@ pub(crate) fn mono_mul(a: &Mono, b: &Mono) -> Option<Mono> {
     }
     out.extend_from_slice(&a[i..]);
     out.extend_from_slice(&b[j..]);
-    Some(out)
+    Some(Arc::from(out))
+}
+
+/// Numeric order of two small rationals (denominators are positive): the order `Ratio`
+/// gives, without its divisions.
+pub(crate) fn small_cmp(a: &Small, b: &Small) -> Ordering {
+    (*a.numer() as i128 * *b.denom() as i128).cmp(&(*b.numer() as i128 * *a.denom() as i128))
 }
 
 /// A trigonometric mode: `1` (empty frequency, no pi offset, cosine), `cos(phi)` or `sin(phi)`.
@@ -124,11 +156,39 @@ pub(crate) fn mono_mul(a: &Mono, b: &Mono) -> Option<Mono> {
 /// Invariants, kept by [`Mode::normalize`]: `freq` is sorted by symbol with nonzero entries and
 /// a positive first entry; `pi` lies in `[0, 2)` and is never a multiple of 1/12 (those are
 /// expanded exactly); a mode with empty `freq` has `pi` in `(0, 1)`, or is the unit mode.
-#[derive(Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
 pub struct Mode {
     pub(crate) sin: bool,
-    pub(crate) freq: Vec<(Sym, Small)>,
+    pub(crate) freq: Freq,
     pub(crate) pi: Small,
+}
+
+/// Lexicographic by `(sin, freq, pi)`, the frequencies compared entry by entry (symbol by
+/// name, then coefficient by value), shorter first on a common prefix.
+impl Ord for Mode {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.sin
+            .cmp(&other.sin)
+            .then_with(|| {
+                if Arc::ptr_eq(&self.freq, &other.freq) {
+                    return Ordering::Equal;
+                }
+                for (x, y) in self.freq.iter().zip(other.freq.iter()) {
+                    let o = x.0.cmp(&y.0).then_with(|| small_cmp(&x.1, &y.1));
+                    if o.is_ne() {
+                        return o;
+                    }
+                }
+                self.freq.len().cmp(&other.freq.len())
+            })
+            .then_with(|| small_cmp(&self.pi, &other.pi))
+    }
+}
+
+impl PartialOrd for Mode {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
 }
 
 impl Mode {
@@ -136,7 +196,7 @@ impl Mode {
     pub(crate) fn unit() -> Mode {
         Mode {
             sin: false,
-            freq: Vec::new(),
+            freq: empty_freq(),
             pi: Small::zero(),
         }
     }
@@ -165,6 +225,24 @@ pub(crate) fn trig_mode(sin: bool, mut freq: Vec<(Sym, Small)>, pi_mult: Small) 
             sign = -1;
         }
     }
+    if pi.is_zero() {
+        // cos(x) or sign * sin(x): the common case, without the reduction below.
+        if freq.is_empty() {
+            return if sin {
+                Vec::new()
+            } else {
+                vec![(Mode::unit(), vec![(1, Q::ONE)])]
+            };
+        }
+        return vec![(
+            Mode {
+                sin,
+                freq: freq_rc(freq),
+                pi,
+            },
+            vec![(1, Q::int(sign))],
+        )];
+    }
     // Reduce pi into [0, 2).
     let two = Small::from_integer(2);
     pi = pi - (pi / two).floor() * two;
@@ -173,6 +251,7 @@ pub(crate) fn trig_mode(sin: bool, mut freq: Vec<(Sym, Small)>, pi_mult: Small) 
         // cos(x + a) = cos a cos x - sin a sin x; sin(x + a) = cos a sin x + sin a cos x.
         let n = twelfths.to_integer();
         let (ca, sa) = (exact_cos_twelfth(n), exact_cos_twelfth(n - 6));
+        let freq = freq_rc(freq);
         let base = |s: bool| Mode {
             sin: s,
             freq: freq.clone(),
@@ -217,7 +296,14 @@ pub(crate) fn trig_mode(sin: bool, mut freq: Vec<(Sym, Small)>, pi_mult: Small) 
         }
     }
     let one = vec![(1u64, Q::int(sign))];
-    vec![(Mode { sin, freq, pi }, one)]
+    vec![(
+        Mode {
+            sin,
+            freq: freq_rc(freq),
+            pi,
+        },
+        one,
+    )]
 }
 
 /// `cos(n pi / 12)` exactly, as a sum of (square-free radicand, rational) pairs; empty for 0.
@@ -278,7 +364,11 @@ pub(crate) fn mode_mul(a: &Mode, b: &Mode) -> ModeSum {
 
 /// `a + sign * b` on sorted frequency vectors.
 pub(crate) fn freq_combine(a: &[(Sym, Small)], b: &[(Sym, Small)], sign: i64) -> Vec<(Sym, Small)> {
-    let s = Small::from_integer(sign);
+    let signed = |k: Small| match sign {
+        1 => k,
+        -1 => -k,
+        _ => k * Small::from_integer(sign),
+    };
     let mut out = Vec::with_capacity(a.len() + b.len());
     let (mut i, mut j) = (0, 0);
     while i < a.len() && j < b.len() {
@@ -288,11 +378,11 @@ pub(crate) fn freq_combine(a: &[(Sym, Small)], b: &[(Sym, Small)], sign: i64) ->
                 i += 1;
             }
             Ordering::Greater => {
-                out.push((b[j].0.clone(), b[j].1 * s));
+                out.push((b[j].0.clone(), signed(b[j].1)));
                 j += 1;
             }
             Ordering::Equal => {
-                let k = a[i].1 + b[j].1 * s;
+                let k = a[i].1 + signed(b[j].1);
                 if !k.is_zero() {
                     out.push((a[i].0.clone(), k));
                 }
@@ -302,7 +392,7 @@ pub(crate) fn freq_combine(a: &[(Sym, Small)], b: &[(Sym, Small)], sign: i64) ->
         }
     }
     out.extend_from_slice(&a[i..]);
-    out.extend(b[j..].iter().map(|(x, k)| (x.clone(), *k * s)));
+    out.extend(b[j..].iter().map(|(x, k)| (x.clone(), signed(*k))));
     out
 }
 

@@ -21,7 +21,7 @@ impl Scalar {
         for term in t {
             if let Some(pos) = term.mono.iter().position(|(s, _)| s.name() == x) {
                 let e = term.mono[pos].1;
-                let mut mono = term.mono.clone();
+                let mut mono = term.mono.to_vec();
                 if e == 1 {
                     mono.remove(pos);
                 } else {
@@ -29,7 +29,7 @@ impl Scalar {
                 }
                 out.push(Term {
                     mode: term.mode.clone(),
-                    mono,
+                    mono: mono.into(),
                     rad: term.rad,
                     coef: &term.coef * &Q::from_u64(u64::from(e)),
                 });
@@ -74,11 +74,11 @@ impl Scalar {
             }
             let mut f = Scalar::from_terms_sorted(vec![Term {
                 mode: Mode::unit(),
-                mono: Vec::new(),
+                mono: super::atoms::empty_mono(),
                 rad: term.rad,
                 coef: term.coef.clone(),
             }]);
-            for (s, e) in &term.mono {
+            for (s, e) in term.mono.iter() {
                 let base = if s.name() == x {
                     value.clone()
                 } else {
@@ -112,12 +112,12 @@ impl Scalar {
         let mut sum = 0.0;
         for term in t {
             let mut v = term.coef.to_f64().unwrap_or(f64::NAN) * (term.rad as f64).sqrt();
-            for (s, e) in &term.mono {
+            for (s, e) in term.mono.iter() {
                 v *= look(s)?.powi(*e as i32);
             }
             if !term.mode.is_unit() {
                 let mut phi = term.mode.pi.to_f64().unwrap_or(0.0) * std::f64::consts::PI;
-                for (s, k) in &term.mode.freq {
+                for (s, k) in term.mode.freq.iter() {
                     phi += k.to_f64().unwrap_or(0.0) * look(s)?;
                 }
                 v *= if term.mode.sin { phi.sin() } else { phi.cos() };
@@ -137,7 +137,7 @@ impl Scalar {
 pub(crate) fn mode_angle(mode: &Mode, sub: Option<(&str, &Scalar)>) -> Scalar {
     let q = |k: &super::Small| BigRational::new(BigInt::from(*k.numer()), BigInt::from(*k.denom()));
     let mut angle = Scalar::pi() * Scalar::rational(q(&mode.pi));
-    for (s, k) in &mode.freq {
+    for (s, k) in mode.freq.iter() {
         let v = match sub {
             Some((x, v)) if s.name() == x => v.clone(),
             _ if s.is_unit() => Scalar::int(1),
@@ -174,7 +174,7 @@ impl fmt::Display for Scalar {
             if term.rad != 1 {
                 factors.push(format!("sqrt({})", term.rad));
             }
-            for (s, e) in &term.mono {
+            for (s, e) in term.mono.iter() {
                 factors.push(if *e == 1 {
                     s.to_string()
                 } else {

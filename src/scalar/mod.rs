@@ -17,7 +17,7 @@ mod calculus;
 pub(crate) mod q;
 
 pub use atoms::Sym;
-pub(crate) use atoms::{Mode, Mono, Small};
+pub(crate) use atoms::{Mode, Mono, MonoRc, Small};
 pub(crate) use q::Q;
 
 use num_rational::BigRational;
@@ -58,7 +58,7 @@ pub enum ScalarError {
 #[derive(Clone, PartialEq, Eq, Hash, Debug)]
 pub(crate) struct Term {
     pub(crate) mode: Mode,
-    pub(crate) mono: Mono,
+    pub(crate) mono: MonoRc,
     pub(crate) rad: u64,
     pub(crate) coef: Q,
 }
@@ -170,7 +170,7 @@ impl Scalar {
         }
         Scalar::from_terms_sorted(vec![Term {
             mode: Mode::unit(),
-            mono: Vec::new(),
+            mono: atoms::empty_mono(),
             rad: 1,
             coef: q,
         }])
@@ -185,7 +185,7 @@ impl Scalar {
     pub fn sym(name: &str) -> Scalar {
         Scalar::from_terms_sorted(vec![Term {
             mode: Mode::unit(),
-            mono: vec![(Sym::new(name), 1)],
+            mono: std::sync::Arc::from(vec![(Sym::new(name), 1)]),
             rad: 1,
             coef: Q::ONE,
         }])
