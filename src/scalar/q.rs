@@ -95,6 +95,18 @@ impl Q {
         Q::from_i128(n as i128, d as i128)
     }
 
+    /// `n / d` reduced, for `d > 0`.
+    fn from_i64(n: i64, d: i64) -> Q {
+        if n == 0 {
+            return Q::ZERO;
+        }
+        if n == i64::MIN {
+            return Q::from_i128(n as i128, d as i128);
+        }
+        let g = gcd_u64(n.unsigned_abs(), d as u64) as i64;
+        Q::S(n / g, d / g)
+    }
+
     /// `n / d` reduced, for `d != 0`.
     fn from_i128(mut n: i128, mut d: i128) -> Q {
         if n == 0 {
@@ -184,6 +196,11 @@ impl Q {
                 let (a, b, d) = (*a as i128, *b as i128, *d as i128);
                 if b == d {
                     // Same denominator (the common case): one gcd with the denominator.
+                    if let Ok(c) = i64::try_from(c) {
+                        if let Some(n) = (a as i64).checked_add(c) {
+                            return Q::from_i64(n, b as i64);
+                        }
+                    }
                     return Q::from_i128(a + c, b);
                 }
                 // a/b + c/d with g = gcd(b, d): (a (d/g) + c (b/g)) / (b/g * d).
@@ -242,6 +259,18 @@ impl Mul<&Q> for &Q {
                     };
                 }
                 // Cross-reduce so the product is already in lowest terms.
+                let g1 = gcd_u64(a.unsigned_abs(), *d as u64) as i64;
+                let g2 = gcd_u64(c.unsigned_abs(), *b as u64) as i64;
+                if let (Some(n), Some(m)) =
+                    ((a / g1).checked_mul(c / g2), (b / g2).checked_mul(d / g1))
+                {
+                    if n == 0 {
+                        return Q::ZERO;
+                    }
+                    if n != i64::MIN {
+                        return Q::S(n, m);
+                    }
+                }
                 let g1 = gcd_u64(a.unsigned_abs(), d.unsigned_abs()) as i128;
                 let g2 = gcd_u64(c.unsigned_abs(), b.unsigned_abs()) as i128;
                 let (a, b, c, d) = (*a as i128, *b as i128, *c as i128, *d as i128);
