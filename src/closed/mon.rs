@@ -49,7 +49,7 @@ pub(crate) fn merge(mons: Vec<Mon>) -> Vec<Mon> {
 /// A mode's angle, as stored in the canonical form.
 fn mode_angle(mode: &Mode) -> Angle {
     Angle {
-        terms: mode.freq.clone(),
+        terms: mode.freq.to_vec(),
         pi: mode.pi,
     }
 }
@@ -62,9 +62,9 @@ pub(crate) fn whole_modes(x: &Scalar) -> Vec<Mon> {
     terms
         .iter()
         .map(|t| Mon {
-            q: t.coef.clone(),
+            q: t.coef.to_big(),
             rad: t.rad,
-            syms: t.mono.clone(),
+            syms: t.mono.to_vec(),
             atoms: if t.mode.is_unit() {
                 Vec::new()
             } else {
@@ -87,9 +87,9 @@ pub(crate) fn split_modes(x: &Scalar) -> Vec<Mon> {
     let mut out = Vec::new();
     for t in terms {
         let base = Mon {
-            q: t.coef.clone(),
+            q: t.coef.to_big(),
             rad: t.rad,
-            syms: t.mono.clone(),
+            syms: t.mono.to_vec(),
             atoms: Vec::new(),
         };
         if t.mode.is_unit() {

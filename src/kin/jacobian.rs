@@ -22,7 +22,7 @@ pub fn geometric_jacobian(q: &DualQuat<Scalar>, vars: &[&str]) -> Vec<Vec<Scalar
     let r = &q.real;
     let d = &q.dual;
     let two = Scalar::int(2);
-    let mut rows: Vec<Vec<Scalar>> = vec![Vec::with_capacity(vars.len()); 6];
+    let mut rows: Vec<Vec<Scalar>> = (0..6).map(|_| Vec::with_capacity(vars.len())).collect();
     for v in vars {
         let dr = diff_quat(r, v);
         let dd = diff_quat(d, v);

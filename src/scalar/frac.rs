@@ -53,7 +53,10 @@ impl Frac {
         if self.den == other.den {
             return Frac::new(&self.num + &other.num, self.den.clone());
         }
-        Frac::new(&self.num * &other.den + &other.num * &self.den, &self.den * &other.den)
+        Frac::new(
+            &self.num * &other.den + &other.num * &self.den,
+            &self.den * &other.den,
+        )
     }
 
     /// `self - other`.
@@ -63,7 +66,10 @@ impl Frac {
 
     /// `-self`.
     pub fn neg(&self) -> Frac {
-        Frac { num: -&self.num, den: self.den.clone() }
+        Frac {
+            num: -&self.num,
+            den: self.den.clone(),
+        }
     }
 
     /// `self * other`.
@@ -84,7 +90,10 @@ impl Frac {
 
 impl From<Scalar> for Frac {
     fn from(s: Scalar) -> Frac {
-        Frac { num: s, den: Scalar::int(1) }
+        Frac {
+            num: s,
+            den: Scalar::int(1),
+        }
     }
 }
 
@@ -105,8 +114,18 @@ fn constant_ratio(num: &Scalar, den: &Scalar) -> Option<Scalar> {
     if a.mode != b.mode || a.mono != b.mono {
         return None;
     }
-    let ka = Scalar::from_terms_sorted(vec![super::Term { mode: super::Mode::unit(), mono: Vec::new(), rad: a.rad, coef: a.coef.clone() }]);
-    let kb = Scalar::from_terms_sorted(vec![super::Term { mode: super::Mode::unit(), mono: Vec::new(), rad: b.rad, coef: b.coef.clone() }]);
+    let ka = Scalar::from_terms_sorted(vec![super::Term {
+        mode: super::Mode::unit(),
+        mono: Vec::new().into(),
+        rad: a.rad,
+        coef: a.coef.clone(),
+    }]);
+    let kb = Scalar::from_terms_sorted(vec![super::Term {
+        mode: super::Mode::unit(),
+        mono: Vec::new().into(),
+        rad: b.rad,
+        coef: b.coef.clone(),
+    }]);
     let k = ka.try_div(&kb).ok()?;
     (&k * den == *num).then_some(k)
 }
