@@ -243,3 +243,32 @@ fn angle_text(mode: &Mode) -> String {
     }
     s.trim_start().to_string()
 }
+
+impl Scalar {
+    /// An angle `phi` with `self == cos(phi)`, when `self` is visibly one: `cos(x)`, `-cos(x)`
+    /// (then `phi = x + pi`), or a number equal to `cos(k pi/12)`.
+    pub fn as_cos_of_angle(&self) -> Option<Scalar> {
+        let t = self.terms().ok()?;
+        if let [x] = t {
+            if !x.mode.is_unit() && !x.mode.sin && x.mono.is_empty() && x.rad == 1 {
+                let phi = mode_angle(&x.mode, None);
+                if x.coef.is_one() {
+                    return Some(phi);
+                }
+                if x.coef.is_negative() && (-self.clone()) == phi.cos() {
+                    return Some(phi + Scalar::pi());
+                }
+            }
+        }
+        if self.is_constant() {
+            return (0..24)
+                .map(|k| Scalar::pi() * Scalar::from_ratio_i64(k, 12))
+                .find(|phi| phi.cos() == *self);
+        }
+        None
+    }
+
+    fn from_ratio_i64(n: i64, d: i64) -> Scalar {
+        Scalar::rational(BigRational::new(BigInt::from(n), BigInt::from(d)))
+    }
+}

@@ -3,6 +3,7 @@
 mod algebra;
 mod cli;
 mod common;
+mod kinematics;
 mod laws;
 mod paper;
 mod paper_arms;
