@@ -12,7 +12,8 @@ pub use algebra::{DualNumber, DualQuat, Matrix4, Quat, UnitConstraints};
 pub use closed::{closed_form, Angle, Cost, Expr};
 pub use kin::{
     dh_link, dh_link_matrix, dq_jacobian, geometric_jacobian, mdh_link, mdh_link_matrix,
-    screw_parameters, Chain, ChainError, Joint, JointGeometry, JointKind, ScrewError, ScrewParams,
+    parse_robot, screw_parameters, Chain, ChainError, Convention, FieldEval, Joint, JointGeometry,
+    JointKind, Robot, RobotError, ScrewError, ScrewParams,
 };
 pub use lang::{
     parse, parse_expr, parse_expr_with, parse_with, AddOp, Expr as AstExpr, ExprKind, Ident, MulOp,
