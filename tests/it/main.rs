@@ -3,9 +3,11 @@
 mod algebra;
 mod cli;
 mod common;
+mod emit;
 mod laws;
 mod paper;
 mod paper_arms;
 mod paper_support;
 mod parse;
 mod scalar;
+mod tools;
