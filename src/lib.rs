@@ -2,6 +2,7 @@
 
 mod algebra;
 mod closed;
+mod emit;
 mod kin;
 mod lang;
 mod print;
@@ -10,6 +11,10 @@ mod scalar;
 
 pub use algebra::{DualNumber, DualQuat, Matrix4, Quat, UnitConstraints};
 pub use closed::{closed_form, Angle, Cost, Expr};
+pub use emit::{
+    latex, latex_aligned, latex_dual_quat, latex_matrix, latex_symbol, latex_tuple, sympy,
+    LatexOptions,
+};
 pub use kin::{
     dh_link, dh_link_matrix, dq_jacobian, geometric_jacobian, mdh_link, mdh_link_matrix,
     parse_robot, screw_parameters, Chain, ChainError, Convention, FieldEval, Joint, JointGeometry,

@@ -2,4 +2,5 @@
 
 mod plain;
 
+pub(crate) use plain::angle_text;
 pub use plain::{legend, plain, shorthand_name, PlainOptions};

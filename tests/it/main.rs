@@ -3,6 +3,7 @@
 mod algebra;
 mod cli;
 mod common;
+mod emit;
 mod kinematics;
 mod laws;
 mod paper;
@@ -10,3 +11,4 @@ mod paper_arms;
 mod paper_support;
 mod parse;
 mod scalar;
+mod tools;

@@ -1,0 +1,12 @@
+//! Emitters: pure functions from closed forms ([`Expr`](crate::Expr)) to text that another tool
+//! reads. LaTeX for papers (checked by KaTeX in the tests), SymPy-parsable text, and source code
+//! (Rust, C, Python/NumPy) that shares common subexpressions across all outputs. Like the
+//! printers, emitters never simplify: what they write equals the expression they were given.
+
+mod latex;
+mod sympy;
+
+pub use latex::{
+    latex, latex_aligned, latex_dual_quat, latex_matrix, latex_symbol, latex_tuple, LatexOptions,
+};
+pub use sympy::sympy;
