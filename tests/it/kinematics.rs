@@ -1,4 +1,5 @@
 //! Screw parameters, planar centres and Jacobians, exact and against finite differences.
+#![allow(clippy::needless_range_loop)] // Components read best by index.
 
 use crate::paper_support::*;
 use dqsym::{
