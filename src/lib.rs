@@ -24,6 +24,6 @@ pub use lang::{
     parse, parse_expr, parse_expr_with, parse_with, AddOp, Expr as AstExpr, ExprKind, Ident, MulOp,
     ParseError, ParseErrorKind, ParseOptions, Program, Span, Stmt, StmtKind, UnaryOp,
 };
-pub use print::{legend, plain, shorthand_name, PlainOptions};
+pub use print::{fk_report, legend, plain, shorthand_name, FkOptions, PlainOptions, ReportFormat};
 pub use ring::Ring;
 pub use scalar::{set_term_limit, term_limit, Frac, Scalar, ScalarError, Sym};
