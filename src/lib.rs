@@ -15,8 +15,10 @@ pub use kin::{
     JointKind,
 };
 pub use lang::{
-    parse, parse_expr, parse_expr_with, parse_with, AddOp, Expr as AstExpr, ExprKind, Ident, MulOp,
-    ParseError, ParseErrorKind, ParseOptions, Program, Span, Stmt, StmtKind, UnaryOp,
+    builtin, parse, parse_expr, parse_expr_with, parse_with, show, show_value, AddOp, Binding,
+    BindingKind, Builtin, Displayed, EvalError, EvalErrorKind, Expr as AstExpr, ExprKind, Format,
+    Ident, MulOp, ParseError, ParseErrorKind, ParseOptions, Program, Session, ShowOptions, Span,
+    Stmt, StmtKind, UnaryOp, Value, BUILTINS, CONSTANTS, MAX_EXPONENT,
 };
 pub use print::{legend, plain, shorthand_name, PlainOptions};
 pub use ring::Ring;
