@@ -21,8 +21,10 @@ pub use kin::{
     JointKind, Robot, RobotError, ScrewError, ScrewParams,
 };
 pub use lang::{
-    parse, parse_expr, parse_expr_with, parse_with, AddOp, Expr as AstExpr, ExprKind, Ident, MulOp,
-    ParseError, ParseErrorKind, ParseOptions, Program, Span, Stmt, StmtKind, UnaryOp,
+    builtin, parse, parse_expr, parse_expr_with, parse_with, show, show_value, AddOp, Binding,
+    BindingKind, Builtin, Displayed, EvalError, EvalErrorKind, Expr as AstExpr, ExprKind, Format,
+    Ident, MulOp, ParseError, ParseErrorKind, ParseOptions, Program, Session, ShowOptions, Span,
+    Stmt, StmtKind, UnaryOp, Value, BUILTINS, CONSTANTS, MAX_EXPONENT,
 };
 pub use print::{fk_report, legend, plain, shorthand_name, FkOptions, PlainOptions, ReportFormat};
 pub use ring::Ring;

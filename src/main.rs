@@ -1,35 +1,103 @@
 //! The `dqsym` command line. Only this file does I/O.
 
-use clap::{Parser, Subcommand};
-use dqsym::{closed_form, dh_link, legend, plain, DualQuat, Expr, PlainOptions, Ring, Scalar};
+use clap::{Parser, Subcommand, ValueEnum};
+use dqsym::{
+    closed_form, dh_link, legend, parse, plain, show, show_value, DualQuat, Expr, Format,
+    PlainOptions, Ring, Scalar, Session, ShowOptions, StmtKind,
+};
 use std::process::ExitCode;
+
+mod repl;
 
 #[derive(Parser)]
 #[command(
     name = "dqsym",
     version,
-    about = "Exact symbolic dual quaternions for robot kinematics"
+    about = "Exact symbolic dual quaternions for robot kinematics",
+    after_help = "Without a command or -e, dqsym starts an interactive session (type :help)."
 )]
 struct Cli {
+    /// Evaluate one expression (or `;`-separated statements) and print its closed form. Free
+    /// names are symbols here.
+    #[arg(short = 'e', value_name = "EXPR")]
+    expr: Option<String>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = OutputFormat::Plain, global = true)]
+    format: OutputFormat,
+    /// Print cos(theta1 + theta2) instead of the shorthand c12.
+    #[arg(long, global = true)]
+    explicit: bool,
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
 }
 
 #[derive(Subcommand)]
 enum Command {
-    /// Derive and print the paper's worked examples (sec 6) and the PUMA 560 pose.
-    Paper {
-        /// Print cos(theta1 + theta2) instead of the shorthand c12.
-        #[arg(long)]
-        explicit: bool,
+    /// Run a .dq script and print each displayed result.
+    Run {
+        /// The script.
+        file: std::path::PathBuf,
     },
+    /// Derive and print the paper's worked examples (sec 6) and the PUMA 560 pose.
+    Paper,
 }
+
+/// The output formats of `--format`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum OutputFormat {
+    /// Plain text in robotics notation (c12 = cos(theta1 + theta2)).
+    Plain,
+    /// LaTeX.
+    Latex,
+    /// Rust source.
+    Rust,
+    /// Text that SymPy's sympify parses.
+    Sympy,
+}
+
+/// The options for the library's printers, or a message when the format is not available.
+fn show_options(format: OutputFormat, explicit: bool) -> Result<ShowOptions, String> {
+    let format = match format {
+        OutputFormat::Plain => Format::Plain,
+        other => {
+            return Err(format!(
+                "error: --format {} is not available yet in this build",
+                format!("{other:?}").to_lowercase()
+            ))
+        }
+    };
+    Ok(ShowOptions { format, explicit })
+}
+
+/// Deep but legal inputs recurse up to the parser's depth limit in the evaluator and the
+/// printers; a large stack makes that safe in debug builds too.
+const STACK: usize = 256 << 20;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match cli.command {
-        Command::Paper { explicit } => match paper(&PlainOptions {
-            shorthand: !explicit,
+    let worker = std::thread::Builder::new()
+        .stack_size(STACK)
+        .spawn(move || dispatch(cli));
+    match worker.map(|h| h.join()) {
+        Ok(Ok(code)) => code,
+        _ => {
+            eprintln!("error: internal failure");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn dispatch(cli: Cli) -> ExitCode {
+    let opts = match show_options(cli.format, cli.explicit) {
+        Ok(o) => o,
+        Err(message) => {
+            eprintln!("{message}");
+            return ExitCode::FAILURE;
+        }
+    };
+    match (cli.command, cli.expr) {
+        (Some(Command::Paper), _) => match paper(&PlainOptions {
+            shorthand: !cli.explicit,
         }) {
             Ok(text) => {
                 print!("{text}");
@@ -40,6 +108,108 @@ fn main() -> ExitCode {
                 ExitCode::FAILURE
             }
         },
+        (Some(Command::Run { file }), _) => run_file(&file, &opts),
+        (None, Some(expr)) => one_liner(&expr, &opts),
+        (None, None) => repl::run(&opts),
+    }
+}
+
+/// `dqsym run FILE`: prints results as statements complete; stops at the first error.
+fn run_file(path: &std::path::Path, opts: &ShowOptions) -> ExitCode {
+    let src = match std::fs::read_to_string(path) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: cannot read {}: {e}", path.display());
+            return ExitCode::FAILURE;
+        }
+    };
+    let mut session = Session::new();
+    if run_source(&mut session, &src, opts, &path.display().to_string()) {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    }
+}
+
+/// Parses and runs `src`, printing each result to stdout and any error to stderr, with `origin`
+/// naming the text. Returns whether everything succeeded.
+pub(crate) fn run_source(
+    session: &mut Session,
+    src: &str,
+    opts: &ShowOptions,
+    origin: &str,
+) -> bool {
+    let program = match parse(src) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("{}", with_origin(&e.to_string(), origin));
+            return false;
+        }
+    };
+    for stmt in &program.statements {
+        match session.exec(stmt) {
+            Ok(Some(d)) => match show(&d, opts) {
+                Ok(text) => print!("{text}"),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return false;
+                }
+            },
+            Ok(None) => {}
+            Err(e) => {
+                eprintln!("{}", with_origin(&e.render(src), origin));
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// Puts the file name into the ` --> line:col` line of a rendered error.
+fn with_origin(rendered: &str, origin: &str) -> String {
+    if origin.is_empty() {
+        return rendered.to_owned();
+    }
+    match rendered.find("--> ") {
+        Some(i) => format!("{}--> {origin}:{}", &rendered[..i], &rendered[i + 4..]),
+        None => rendered.to_owned(),
+    }
+}
+
+/// `dqsym -e EXPR`: free names are symbols; a lone expression prints without a label.
+fn one_liner(src: &str, opts: &ShowOptions) -> ExitCode {
+    let mut session = Session::with_implicit_symbols();
+    let program = match parse(src) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    if let [stmt] = program.statements.as_slice() {
+        if let StmtKind::Expr(e) = &stmt.kind {
+            return match session.eval(e) {
+                Ok(v) => match show_value(&v, opts) {
+                    Ok(text) => {
+                        print!("{text}");
+                        ExitCode::SUCCESS
+                    }
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        ExitCode::FAILURE
+                    }
+                },
+                Err(e) => {
+                    eprintln!("{}", e.render(src));
+                    ExitCode::FAILURE
+                }
+            };
+        }
+    }
+    if run_source(&mut session, src, opts, "") {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
     }
 }
 

@@ -47,6 +47,8 @@ pub struct Stmt {
     pub kind: StmtKind,
     /// The whole statement, without its separator.
     pub span: Span,
+    /// Ended by `;`: as in Matlab, the statement's value is not displayed.
+    pub quiet: bool,
 }
 
 /// The kinds of statement.

@@ -198,7 +198,7 @@ fn entries(n: usize) -> String {
 
 /// Renders `message` at `span`: a header, the location, the source line and a caret under the
 /// span (cut at the end of the line).
-fn render(map: &SourceMap<'_>, message: &str, span: Span) -> String {
+pub(crate) fn render(map: &SourceMap<'_>, message: &str, span: Span) -> String {
     let line: Vec<char> = map
         .line_text(span.line)
         .chars()

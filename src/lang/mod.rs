@@ -10,14 +10,26 @@
 //! - `scan`: the bracket pre-scan and byte-to-line:column mapping.
 //! - `error`: [`ParseError`] and its rendering with a caret.
 //! - `print`: `Display` back to source, such that parsing the output gives the same tree.
+//! - `value`: the [`Value`]s a script computes and the typing rules of their arithmetic.
+//! - `eval`: the [`Session`] that runs statements and keeps bindings; [`EvalError`].
+//! - `builtins`: the table of built-in functions and their implementations.
+//! - `show`: displayed results as text (closed form, then a printer).
 
 mod ast;
+mod builtins;
 mod error;
+mod eval;
 mod names;
 mod parse;
 mod print;
 mod scan;
+mod show;
+mod value;
 
 pub use ast::{AddOp, Expr, ExprKind, Ident, MulOp, Program, Span, Stmt, StmtKind, UnaryOp};
+pub use builtins::{lookup as builtin, Builtin, BUILTINS};
 pub use error::{ParseError, ParseErrorKind};
+pub use eval::{Binding, BindingKind, Displayed, EvalError, EvalErrorKind, Session, CONSTANTS};
 pub use parse::{parse, parse_expr, parse_expr_with, parse_with, ParseOptions};
+pub use show::{show, show_value, Format, ShowOptions};
+pub use value::{Value, MAX_EXPONENT};

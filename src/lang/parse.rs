@@ -167,7 +167,8 @@ impl<'s> Lower<'s> {
     /// `program`: the statements, skipping separators.
     fn program(&self, pair: Pair<'s, Rule>) -> Result<Program> {
         let mut statements = Vec::new();
-        for p in pair.into_inner() {
+        let mut pairs = pair.into_inner().peekable();
+        while let Some(p) = pairs.next() {
             let span = self.span(&p);
             let kind = match p.as_rule() {
                 Rule::syms_decl => self.syms_decl(p)?,
@@ -175,7 +176,10 @@ impl<'s> Lower<'s> {
                 Rule::expr_statement => self.expr_statement(p)?,
                 _ => continue, // separators and EOI
             };
-            statements.push(Stmt { kind, span });
+            let quiet = pairs
+                .peek()
+                .is_some_and(|next| next.as_rule() == Rule::separator && next.as_str() == ";");
+            statements.push(Stmt { kind, span, quiet });
         }
         Ok(Program { statements })
     }

@@ -151,9 +151,12 @@ impl Display for Stmt {
     }
 }
 
-/// One statement per line.
+/// One statement per line, with `;` after the quiet ones.
 impl Display for Program {
     fn fmt(&self, f: &mut Formatter<'_>) -> fmt::Result {
-        self.statements.iter().try_for_each(|s| writeln!(f, "{s}"))
+        self.statements.iter().try_for_each(|s| {
+            let end = if s.quiet { ";" } else { "" };
+            writeln!(f, "{s}{end}")
+        })
     }
 }

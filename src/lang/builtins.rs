@@ -1,0 +1,595 @@
+//! The built-in functions: their table (names, arities, help with an example) and their
+//! implementations over [`Value`]s.
+
+use super::ast::{Expr, Ident, Span};
+use super::eval::{op_error, scalar_error, EvalError, EvalErrorKind, Evaluator, Result};
+use super::value::{self, Value};
+use crate::{closed_form, dh_link, mdh_link, plain, DualQuat, Matrix4, PlainOptions, Quat, Scalar};
+use num_traits::{One, Zero};
+
+/// A built-in function as `:help` lists it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Builtin {
+    /// The name it is called by.
+    pub name: &'static str,
+    /// The signature, `dh(theta, d, a, alpha)`.
+    pub usage: &'static str,
+    /// What it does, one line.
+    pub doc: &'static str,
+    /// An example call that runs in a session where `syms theta1 d1 a1 alpha1 t l` holds.
+    pub example: &'static str,
+    min: usize,
+    max: usize,
+}
+
+const fn b(
+    name: &'static str,
+    usage: &'static str,
+    min: usize,
+    max: usize,
+    doc: &'static str,
+    example: &'static str,
+) -> Builtin {
+    Builtin {
+        name,
+        usage,
+        doc,
+        example,
+        min,
+        max,
+    }
+}
+
+/// Every built-in, in the order `:help` lists them.
+pub const BUILTINS: &[Builtin] = &[
+    b(
+        "rot",
+        "rot(axis, angle) or rot(axis, angle, point)",
+        2,
+        3,
+        "rotation by angle about the unit axis (through point)",
+        "rot((1, 0, 0), theta1, (0, l, 0))",
+    ),
+    b(
+        "trans",
+        "trans(v)",
+        1,
+        1,
+        "translation by the vector v: 1 + eps v/2",
+        "trans((0, 0, d1))",
+    ),
+    b(
+        "screw",
+        "screw(axis, point, angle, slide)",
+        4,
+        4,
+        "rotation by angle about the line through point, and slide along it",
+        "screw((0, 0, 1), (0, l, 0), theta1, d1)",
+    ),
+    b(
+        "dh",
+        "dh(theta, d, a, alpha)",
+        4,
+        4,
+        "standard Denavit-Hartenberg link Rz(theta) Tz(d) Tx(a) Rx(alpha)",
+        "dh(theta1, d1, a1, pi/2)",
+    ),
+    b(
+        "mdh",
+        "mdh(alpha, a, theta, d)",
+        4,
+        4,
+        "modified (Craig) DH link Rx(alpha) Tx(a) Rz(theta) Tz(d), the paper's sec 5",
+        "mdh(alpha1, a1, theta1, d1)",
+    ),
+    b(
+        "point",
+        "point(v)",
+        1,
+        1,
+        "the point DQ 1 + eps (0; v)",
+        "point((0, l, 0))",
+    ),
+    b(
+        "transform",
+        "transform(q, v)",
+        2,
+        2,
+        "image of the point v under the unit DQ q: vector part of q (1 + eps v) cconj(q)",
+        "transform(rot((1, 0, 0), theta1), (0, l, 0))",
+    ),
+    b(
+        "matrix",
+        "matrix(q)",
+        1,
+        1,
+        "the 4x4 homogeneous matrix of a unit DQ",
+        "matrix(rot((0, 0, 1), theta1))",
+    ),
+    b(
+        "frommatrix",
+        "frommatrix(M)",
+        1,
+        1,
+        "the unit DQ of a 4x4 rigid-motion matrix",
+        "frommatrix([1, 0, 0, l; 0, 1, 0, 0; 0, 0, 1, 0; 0, 0, 0, 1])",
+    ),
+    b(
+        "closed",
+        "closed(x)",
+        1,
+        1,
+        "x itself; every displayed value is shown in closed form",
+        "closed(cos(t)^2 - sin(t)^2)",
+    ),
+    b(
+        "jacobian",
+        "jacobian(q, [x1, x2, ...])",
+        2,
+        2,
+        "8 x n matrix of the derivatives of the 8 DQ components by each symbol",
+        "jacobian(dh(theta1, 0, a1, 0), [theta1])",
+    ),
+    b(
+        "diff",
+        "diff(x, t)",
+        2,
+        2,
+        "derivative of x (any value) by the symbol t",
+        "diff(sin(t)^2, t)",
+    ),
+    b(
+        "cos",
+        "cos(angle)",
+        1,
+        1,
+        "cosine of an angle (symbols and multiples of pi)",
+        "cos(pi/6)",
+    ),
+    b(
+        "sin",
+        "sin(angle)",
+        1,
+        1,
+        "sine of an angle",
+        "sin(theta1 + pi/2)",
+    ),
+    b(
+        "sqrt",
+        "sqrt(x)",
+        1,
+        1,
+        "exact square root of a non-negative rational",
+        "sqrt(8)",
+    ),
+    b(
+        "real",
+        "real(q)",
+        1,
+        1,
+        "the real part q of q + eps q_eps",
+        "real(trans((1, 2, 3)))",
+    ),
+    b(
+        "dual",
+        "dual(q)",
+        1,
+        1,
+        "the dual part q_eps of q + eps q_eps",
+        "dual(trans((1, 2, 3)))",
+    ),
+    b(
+        "norm2",
+        "norm2(q)",
+        1,
+        1,
+        "the dual-number norm q q* = |q|^2 + eps 2 (q . q_eps), as a dual number a + eps b",
+        "norm2(rot((0, 0, 1), t))",
+    ),
+    b(
+        "inverse",
+        "inverse(q)",
+        1,
+        1,
+        "inverse of a scalar, quaternion or DQ (error if none)",
+        "inverse((1, 1, 0, 0))",
+    ),
+    b(
+        "unit",
+        "unit(q)",
+        1,
+        1,
+        "q itself if it is a unit DQ (a rigid motion), else an error",
+        "unit(dh(theta1, d1, a1, alpha1))",
+    ),
+    b(
+        "conj",
+        "conj(q)",
+        1,
+        1,
+        "quaternion conjugate q* + eps q_eps*; postfix q' is the same",
+        "conj((1, 2, 3, 4))",
+    ),
+    b(
+        "dconj",
+        "dconj(q)",
+        1,
+        1,
+        "dual conjugate q - eps q_eps (eq 8)",
+        "dconj(trans((1, 0, 0)))",
+    ),
+    b(
+        "cconj",
+        "cconj(q)",
+        1,
+        1,
+        "combined conjugate q* - eps q_eps* (eq 9)",
+        "cconj(rot((1, 0, 0), t, (0, l, 0)))",
+    ),
+    b(
+        "transpose",
+        "transpose(M)",
+        1,
+        1,
+        "matrix transpose",
+        "transpose([1, 2; 3, 4])",
+    ),
+];
+
+/// The built-in called `name`.
+pub fn lookup(name: &str) -> Option<&'static Builtin> {
+    BUILTINS.iter().find(|b| b.name == name)
+}
+
+/// An evaluated argument with its place.
+struct Arg {
+    value: Value,
+    span: Span,
+}
+
+/// Calls the built-in `func` on `args`.
+pub(crate) fn call(ev: &Evaluator<'_>, func: &Ident, args: &[Expr], span: Span) -> Result<Value> {
+    let Some(builtin) = lookup(&func.name) else {
+        let hint = if BUILTINS
+            .iter()
+            .any(|b| b.name.eq_ignore_ascii_case(&func.name))
+        {
+            format!(
+                "; built-in names are lowercase: `{}`",
+                func.name.to_lowercase()
+            )
+        } else {
+            "; `:help` lists the built-ins".to_owned()
+        };
+        return Err(EvalError::new(
+            EvalErrorKind::UnknownFunction {
+                name: func.name.clone(),
+                hint,
+            },
+            func.span,
+        ));
+    };
+    if args.len() < builtin.min || args.len() > builtin.max {
+        let expected = match (builtin.min, builtin.max) {
+            (1, 1) => "1 argument".to_owned(),
+            (a, b) if a == b => format!("{a} arguments"),
+            (a, b) => format!("{a} or {b} arguments"),
+        };
+        return Err(EvalError::new(
+            EvalErrorKind::Arity {
+                func: builtin.name.to_owned(),
+                expected,
+                got: args.len(),
+                usage: builtin.usage.to_owned(),
+            },
+            span,
+        ));
+    }
+    let mut vals = Vec::with_capacity(args.len());
+    for a in args {
+        vals.push(Arg {
+            value: ev.expr(a)?,
+            span: a.span,
+        });
+    }
+    let name = builtin.name;
+    let out = match name {
+        "rot" => {
+            let axis = unit_axis(name, &vals[0])?;
+            let angle = scalar(name, "the angle", &vals[1])?;
+            match vals.get(2) {
+                None => Value::DualQuat(DualQuat::rotation(&axis, angle)),
+                Some(p) => {
+                    let p = vector(name, "the point", p)?;
+                    Value::DualQuat(DualQuat::rotation_about_point(&axis, angle, p))
+                }
+            }
+        }
+        "trans" => Value::DualQuat(DualQuat::translation(vector(
+            name,
+            "the argument",
+            &vals[0],
+        )?)),
+        "screw" => {
+            let axis = unit_axis(name, &vals[0])?;
+            let p = vector(name, "the point", &vals[1])?;
+            let angle = scalar(name, "the angle", &vals[2])?;
+            let slide = scalar(name, "the slide", &vals[3])?;
+            Value::DualQuat(DualQuat::screw(&axis, p, angle, slide))
+        }
+        "dh" | "mdh" => {
+            let what = if name == "dh" {
+                ["theta", "d", "a", "alpha"]
+            } else {
+                ["alpha", "a", "theta", "d"]
+            };
+            let mut s = Vec::new();
+            for (v, w) in vals.iter().zip(what) {
+                s.push(scalar(name, w, v)?);
+            }
+            Value::DualQuat(if name == "dh" {
+                dh_link(s[0], s[1], s[2], s[3])
+            } else {
+                mdh_link(s[0], s[1], s[2], s[3])
+            })
+        }
+        "point" => Value::DualQuat(DualQuat::point(vector(name, "the argument", &vals[0])?)),
+        "transform" => {
+            let q = unit_dq(name, &vals[0])?;
+            let v = match &vals[1].value {
+                Value::DualQuat(p)
+                    if value::is_one(&p.real.w)
+                        && p.real.vector_part().iter().all(Zero::is_zero)
+                        && p.dual.w.is_zero() =>
+                {
+                    p.dual.vector_part()
+                }
+                _ => vector(name, "the point", &vals[1])?.clone(),
+            };
+            Value::Vector(q.transform_point(&v))
+        }
+        "matrix" => {
+            let q = unit_dq(name, &vals[0])?;
+            Value::Matrix(q.to_matrix().rows.iter().map(|r| r.to_vec()).collect())
+        }
+        "frommatrix" => {
+            let m = matrix4(name, &vals[0])?;
+            let q = DualQuat::from_matrix(&m).ok_or_else(|| {
+                invalid(
+                    "`frommatrix` needs a rigid-motion matrix: last row 0 0 0 1 and a rotation \
+                     block whose quaternion has an exact square root",
+                    vals[0].span,
+                )
+            })?;
+            Value::DualQuat(q)
+        }
+        "closed" => vals[0].value.clone(),
+        "jacobian" => jacobian(&vals[0], &vals[1])?,
+        "diff" => {
+            let t = symbol_name(name, &vals[1].value, vals[1].span)?;
+            vals[0].value.map(&|s| s.diff(&t))
+        }
+        "cos" => Value::Scalar(scalar(name, "the angle", &vals[0])?.cos()),
+        "sin" => Value::Scalar(scalar(name, "the angle", &vals[0])?.sin()),
+        "sqrt" => Value::Scalar(scalar(name, "the argument", &vals[0])?.sqrt()),
+        "real" | "dual" => {
+            let d = dq_like(name, &vals[0])?;
+            Value::Quat(if name == "real" { d.real } else { d.dual })
+        }
+        "norm2" => match &vals[0].value {
+            Value::Quat(q) => Value::Scalar(q.norm_squared()),
+            _ => {
+                let n = dq_like(name, &vals[0])?.norm_squared();
+                Value::DualQuat(DualQuat::from_real_and_dual(
+                    Quat::from_scalar(n.re),
+                    Quat::from_scalar(n.du),
+                ))
+            }
+        },
+        "inverse" => value::inverse(&vals[0].value).map_err(|e| op_error(e, vals[0].span))?,
+        "unit" => {
+            unit_dq(name, &vals[0])?;
+            vals[0].value.clone()
+        }
+        "conj" => value::conj(&vals[0].value).map_err(|e| op_error(e, vals[0].span))?,
+        "dconj" | "cconj" => {
+            let d = dq_like(name, &vals[0])?;
+            Value::DualQuat(if name == "dconj" {
+                d.dual_conjugate()
+            } else {
+                d.combined_conjugate()
+            })
+        }
+        "transpose" => match &vals[0].value {
+            Value::Matrix(rows) => Value::Matrix(
+                (0..rows[0].len())
+                    .map(|j| rows.iter().map(|r| r[j].clone()).collect())
+                    .collect(),
+            ),
+            other => {
+                return Err(type_error(
+                    name,
+                    "the argument",
+                    "a matrix",
+                    other,
+                    vals[0].span,
+                ))
+            }
+        },
+        _ => return Err(invalid(&format!("`{name}` is not implemented"), func.span)),
+    };
+    out.check().map_err(|e| scalar_error(e, span))
+}
+
+fn invalid(message: &str, span: Span) -> EvalError {
+    EvalError::new(EvalErrorKind::Invalid(message.to_owned()), span)
+}
+
+fn type_error(func: &str, what: &str, expected: &str, found: &Value, span: Span) -> EvalError {
+    EvalError::new(
+        EvalErrorKind::Type(format!(
+            "`{func}`: {what} must be {expected}, found {}",
+            found.describe()
+        )),
+        span,
+    )
+}
+
+fn scalar<'v>(func: &str, what: &str, a: &'v Arg) -> Result<&'v Scalar> {
+    match &a.value {
+        Value::Scalar(s) => Ok(s),
+        other => Err(type_error(func, what, "a scalar", other, a.span)),
+    }
+}
+
+fn vector<'v>(func: &str, what: &str, a: &'v Arg) -> Result<&'v [Scalar; 3]> {
+    match &a.value {
+        Value::Vector(v) => Ok(v),
+        other => Err(type_error(func, what, "a vector (x, y, z)", other, a.span)),
+    }
+}
+
+/// A unit axis: its squared length must be exactly 1.
+fn unit_axis(func: &str, a: &Arg) -> Result<[Scalar; 3]> {
+    let v = vector(func, "the axis", a)?;
+    let len2 = v.iter().fold(Scalar::zero(), |acc, x| acc + x * x);
+    if len2 != Scalar::one() {
+        return Err(EvalError::new(
+            EvalErrorKind::Invalid(format!(
+                "`{func}`: the axis must be a unit vector, but its squared length is {}",
+                text(&len2)
+            )),
+            a.span,
+        ));
+    }
+    Ok(v.clone())
+}
+
+/// A quaternion (as a DQ with zero dual part) or a dual quaternion.
+fn dq_like(func: &str, a: &Arg) -> Result<DualQuat<Scalar>> {
+    match &a.value {
+        Value::DualQuat(d) => Ok(d.clone()),
+        Value::Quat(q) => Ok(DualQuat::from_real(q.clone())),
+        other => Err(type_error(
+            func,
+            "the argument",
+            "a dual quaternion or a quaternion",
+            other,
+            a.span,
+        )),
+    }
+}
+
+/// A unit dual quaternion: both constraints of sec 2 hold exactly.
+fn unit_dq(func: &str, a: &Arg) -> Result<DualQuat<Scalar>> {
+    let d = dq_like(func, a)?;
+    let c = d.unit_constraints();
+    if !c.hold_exactly() {
+        return Err(EvalError::new(
+            EvalErrorKind::NotUnit(format!(
+                "`{func}` needs a unit dual quaternion (a rigid motion), but |q|^2 - 1 = {} \
+                 and q . q_eps = {}",
+                text(&c.norm_minus_one),
+                text(&c.real_dot_dual)
+            )),
+            a.span,
+        ));
+    }
+    Ok(d)
+}
+
+fn matrix4(func: &str, a: &Arg) -> Result<Matrix4<Scalar>> {
+    if let Value::Matrix(rows) = &a.value {
+        if rows.len() == 4 && rows[0].len() == 4 {
+            let row = |i: usize| -> [Scalar; 4] {
+                [
+                    rows[i][0].clone(),
+                    rows[i][1].clone(),
+                    rows[i][2].clone(),
+                    rows[i][3].clone(),
+                ]
+            };
+            return Ok(Matrix4::from_rows([row(0), row(1), row(2), row(3)]));
+        }
+    }
+    Err(type_error(
+        func,
+        "the argument",
+        "a 4x4 matrix",
+        &a.value,
+        a.span,
+    ))
+}
+
+/// The name of the symbol `v` is, or an error.
+fn symbol_name(func: &str, v: &Value, span: Span) -> Result<String> {
+    if let Value::Scalar(s) = v {
+        if let [sym] = s.symbols().as_slice() {
+            if *s == Scalar::sym(sym.name()) {
+                return Ok(sym.name().to_owned());
+            }
+        }
+    }
+    Err(EvalError::new(
+        EvalErrorKind::Type(format!(
+            "`{func}`: differentiate by a symbol such as theta1, found {}",
+            match v {
+                Value::Scalar(s) => format!("the expression {}", text(s)),
+                other => other.describe(),
+            }
+        )),
+        span,
+    ))
+}
+
+/// `jacobian(q, vars)`: rows are the 8 (or 4) components, columns the variables.
+fn jacobian(q: &Arg, vars: &Arg) -> Result<Value> {
+    let comps: Vec<Scalar> = match &q.value {
+        Value::DualQuat(d) => d.components().to_vec(),
+        Value::Quat(x) => x.components().to_vec(),
+        other => {
+            return Err(type_error(
+                "jacobian",
+                "the first argument",
+                "a dual quaternion",
+                other,
+                q.span,
+            ))
+        }
+    };
+    let list: Vec<Value> = match &vars.value {
+        Value::Matrix(rows) if rows.len() == 1 || rows[0].len() == 1 => {
+            rows.iter().flatten().cloned().map(Value::Scalar).collect()
+        }
+        Value::Scalar(s) => vec![Value::Scalar(s.clone())],
+        Value::Vector(v) => v.iter().cloned().map(Value::Scalar).collect(),
+        Value::Quat(x) => x.components().into_iter().map(Value::Scalar).collect(),
+        other => {
+            return Err(type_error(
+                "jacobian",
+                "the second argument",
+                "a list of symbols [x1, x2, ...]",
+                other,
+                vars.span,
+            ))
+        }
+    };
+    let mut names = Vec::new();
+    for v in &list {
+        names.push(symbol_name("jacobian", v, vars.span)?);
+    }
+    Ok(Value::Matrix(
+        comps
+            .iter()
+            .map(|c| names.iter().map(|n| c.diff(n)).collect())
+            .collect(),
+    ))
+}
+
+/// A scalar in closed form, for messages.
+fn text(s: &Scalar) -> String {
+    match closed_form(s) {
+        Ok(e) => plain(&e, &PlainOptions { shorthand: false }),
+        Err(e) => e.to_string(),
+    }
+}

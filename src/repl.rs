@@ -1,0 +1,312 @@
+//! The interactive session: rustyline for editing, history and completion; evaluation on a
+//! worker thread so that Ctrl-C can abandon a long computation while the bindings stay.
+//!
+//! Each statement runs on a clone of the session in its own thread; the clone replaces the
+//! session only when the statement succeeds. Ctrl-C sets a flag the evaluator polls; if the
+//! worker is inside one long scalar operation, the prompt comes back at once anyway and the
+//! worker's result is dropped when it finishes.
+
+use dqsym::{parse, show, BindingKind, Session, ShowOptions, BUILTINS, CONSTANTS, MAX_EXPONENT};
+use rustyline::completion::{Completer, Pair};
+use rustyline::error::ReadlineError;
+use rustyline::highlight::Highlighter;
+use rustyline::hint::Hinter;
+use rustyline::history::DefaultHistory;
+use rustyline::validate::Validator;
+use rustyline::{Context, Editor, Helper};
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+const PROMPT: &str = "dq> ";
+const MORE: &str = "..> ";
+const COMMANDS: [&str; 4] = [":help", ":quit", ":vars", ":q"];
+
+/// Completes commands, built-ins, constants and the names bound so far.
+struct DqHelper {
+    names: Arc<Mutex<Vec<String>>>,
+}
+
+impl Completer for DqHelper {
+    type Candidate = Pair;
+
+    fn complete(
+        &self,
+        line: &str,
+        pos: usize,
+        _ctx: &Context<'_>,
+    ) -> rustyline::Result<(usize, Vec<Pair>)> {
+        let head = &line[..pos];
+        let start = head
+            .rfind(|c: char| !(c.is_alphanumeric() || c == '_' || c == ':'))
+            .map_or(0, |i| {
+                i + head[i..].chars().next().map_or(1, char::len_utf8)
+            });
+        let word = &head[start..];
+        if word.is_empty() {
+            return Ok((pos, Vec::new()));
+        }
+        let mut out: Vec<Pair> = Vec::new();
+        let mut push = |name: &str, call: bool| {
+            if name.starts_with(word) {
+                let replacement = if call {
+                    format!("{name}(")
+                } else {
+                    name.to_owned()
+                };
+                out.push(Pair {
+                    display: name.to_owned(),
+                    replacement,
+                });
+            }
+        };
+        COMMANDS.iter().for_each(|c| push(c, false));
+        BUILTINS.iter().for_each(|b| push(b.name, true));
+        CONSTANTS.iter().for_each(|(c, _)| push(c, false));
+        push("syms", false);
+        push("halfangle", false);
+        if let Ok(names) = self.names.lock() {
+            names.iter().for_each(|n| push(n, false));
+        }
+        out.sort_by(|a, b| a.display.cmp(&b.display));
+        out.dedup_by(|a, b| a.display == b.display);
+        Ok((start, out))
+    }
+}
+
+impl Hinter for DqHelper {
+    type Hint = String;
+}
+impl Highlighter for DqHelper {}
+impl Validator for DqHelper {}
+impl Helper for DqHelper {}
+
+/// Where history is kept: `$XDG_STATE_HOME/dqsym_history`, else `~/.dqsym_history`.
+fn history_path() -> Option<std::path::PathBuf> {
+    if let Some(dir) = std::env::var_os("XDG_STATE_HOME").filter(|d| !d.is_empty()) {
+        return Some(std::path::PathBuf::from(dir).join("dqsym_history"));
+    }
+    std::env::var_os("HOME").map(|h| std::path::PathBuf::from(h).join(".dqsym_history"))
+}
+
+/// Whether `text` needs more lines: an open bracket, or a trailing `...` continuation.
+fn incomplete(text: &str) -> bool {
+    let mut depth: i64 = 0;
+    for line in text.lines() {
+        let code = line.find(['%', '#']).map_or(line, |i| &line[..i]);
+        let code = code.find("//").map_or(code, |i| &code[..i]);
+        for c in code.chars() {
+            match c {
+                '(' | '[' => depth += 1,
+                ')' | ']' => depth -= 1,
+                _ => {}
+            }
+        }
+    }
+    depth > 0 || text.trim_end().ends_with("...")
+}
+
+/// The `:help` text: the language in brief, every built-in with an example, the commands.
+pub(crate) fn help() -> String {
+    let mut s = String::from(
+        "dqsym: exact dual quaternions. Statements end at a line break or `;` (`;` also \
+         hides the result).\n\
+         \n\
+         Values and rules\n\
+         \x20 (w, x, y, z)      a quaternion;  (x, y, z) a vector;  [a, b; c, d] a matrix\n\
+         \x20 I, eps           the dual unit: q + I*q_e is a dual quaternion; I*(x, y, z) = eps (0; x, y, z)\n\
+         \x20 pi               the number pi\n\
+         \x20 a*b              products keep their order (quaternions do not commute)\n\
+         \x20 q'               quaternion conjugate, the same as conj(q)\n\
+         \x20 + and -          a scalar may be added to a dual quaternion (points: 1 + I*(0, l, 0)),\n\
+         \x20                  not to a quaternion or vector: (c, s, 0, 0) + l1 is an error; write\n\
+         \x20                  (c + l1, s, 0, 0), l1*(1, 0, 0, 0), or a dual part I*(...)\n\
+         \x20 /                only by nonzero numbers; use inverse(q) for quaternions\n",
+    );
+    s += &format!(
+        "  ^                integer exponents up to {MAX_EXPONENT}; negative ones invert\n\
+         \n\
+         Declarations\n\
+         \x20 syms l1 l2 t     declare symbols; names must be declared or assigned before use\n\
+         \x20 halfangle c3, s3 = theta3\n\
+         \x20                  c3 = cos(theta3/2), s3 = sin(theta3/2); results print in full angles,\n\
+         \x20                  c3 = cos(theta3), c12 = cos(theta1 + theta2)\n\
+         \x20 x = expr         assign; shown unless the statement ends with `;`\n\
+         \x20 expr             shown as `expr = value` and stored in `ans`\n\
+         \n\
+         Built-ins\n"
+    );
+    for b in BUILTINS {
+        s += &format!(
+            "  {:<44} {}\n  {:<44} e.g. {}\n",
+            b.usage, b.doc, "", b.example
+        );
+    }
+    s += "\nCommands\n  :help  this text    :vars  the bindings    :quit  leave (also Ctrl-D)\n  \
+          Ctrl-C abandons the line being typed or the computation running; bindings stay.\n";
+    s
+}
+
+/// The `:vars` listing.
+fn vars(session: &Session) -> String {
+    let mut s = String::new();
+    for (name, b) in session.bindings() {
+        let what = match &b.kind {
+            BindingKind::Symbol => "symbol".to_owned(),
+            BindingKind::HalfAngle { meaning } => meaning.clone(),
+            _ => b.value.describe(),
+        };
+        s += &format!("  {name}: {what}\n");
+    }
+    if s.is_empty() {
+        s = "  (no bindings)\n".to_owned();
+    }
+    s
+}
+
+/// What a worker sends back for one statement.
+type Outcome = (Session, Result<Option<String>, String>);
+
+/// Runs the REPL until `:quit` or end of input.
+pub(crate) fn run(opts: &ShowOptions) -> ExitCode {
+    let interrupt = Arc::new(AtomicBool::new(false));
+    {
+        let flag = interrupt.clone();
+        // Without a handler Ctrl-C during a computation would end the process; if one cannot
+        // be installed the REPL still works, only without that.
+        let _ = ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst));
+    }
+    let names = Arc::new(Mutex::new(Vec::new()));
+    let mut editor: Editor<DqHelper, DefaultHistory> = match Editor::new() {
+        Ok(e) => e,
+        Err(e) => {
+            eprintln!("error: cannot start the line editor: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    editor.set_helper(Some(DqHelper {
+        names: names.clone(),
+    }));
+    let history = history_path();
+    if let Some(h) = &history {
+        let _ = editor.load_history(h);
+    }
+    let mut session = Session::new();
+    session.set_cancel_flag(interrupt.clone());
+    let mut buffer = String::new();
+    loop {
+        let prompt = if buffer.is_empty() { PROMPT } else { MORE };
+        let line = match editor.readline(prompt) {
+            Ok(l) => l,
+            Err(ReadlineError::Interrupted) => {
+                buffer.clear();
+                continue;
+            }
+            Err(ReadlineError::Eof) => break,
+            Err(e) => {
+                eprintln!("error: {e}");
+                break;
+            }
+        };
+        if buffer.is_empty() {
+            match line.trim() {
+                "" => continue,
+                ":quit" | ":q" | ":exit" => {
+                    let _ = editor.add_history_entry(line.as_str());
+                    break;
+                }
+                ":help" | ":h" => {
+                    let _ = editor.add_history_entry(line.as_str());
+                    print!("{}", help());
+                    continue;
+                }
+                ":vars" => {
+                    let _ = editor.add_history_entry(line.as_str());
+                    print!("{}", vars(&session));
+                    continue;
+                }
+                cmd if cmd.starts_with(':') => {
+                    eprintln!("error: unknown command `{cmd}`; try :help");
+                    continue;
+                }
+                _ => {}
+            }
+        }
+        buffer.push_str(&line);
+        buffer.push('\n');
+        if incomplete(&buffer) {
+            continue;
+        }
+        let src = std::mem::take(&mut buffer);
+        let _ = editor.add_history_entry(src.trim_end());
+        evaluate(&mut session, &src, opts, &interrupt);
+        if let Ok(mut n) = names.lock() {
+            *n = session.bindings().keys().cloned().collect();
+        }
+    }
+    if let Some(h) = &history {
+        let _ = editor.save_history(h);
+    }
+    ExitCode::SUCCESS
+}
+
+/// Parses and runs one input, statement by statement, each on a worker thread.
+fn evaluate(session: &mut Session, src: &str, opts: &ShowOptions, interrupt: &Arc<AtomicBool>) {
+    let program = match parse(src) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("{e}");
+            return;
+        }
+    };
+    interrupt.store(false, Ordering::SeqCst);
+    for stmt in program.statements {
+        let (tx, rx) = mpsc::channel::<Outcome>();
+        let mut work = session.clone();
+        let opts = *opts;
+        let source = src.to_owned();
+        let spawned = std::thread::Builder::new()
+            .stack_size(crate::STACK)
+            .spawn(move || {
+                let result = match work.exec(&stmt) {
+                    Ok(Some(d)) => show(&d, &opts).map(Some).map_err(|e| format!("error: {e}")),
+                    Ok(None) => Ok(None),
+                    Err(e) => Err(e.render(&source)),
+                };
+                let _ = tx.send((work, result));
+            });
+        if let Err(e) = spawned {
+            eprintln!("error: cannot start the evaluation: {e}");
+            return;
+        }
+        let outcome = loop {
+            match rx.recv_timeout(Duration::from_millis(20)) {
+                Ok(o) => break Some(o),
+                Err(mpsc::RecvTimeoutError::Timeout) => {
+                    if interrupt.load(Ordering::SeqCst) {
+                        break None;
+                    }
+                }
+                Err(mpsc::RecvTimeoutError::Disconnected) => break None,
+            }
+        };
+        match outcome {
+            Some((next, Ok(shown))) => {
+                *session = next;
+                if let Some(text) = shown {
+                    print!("{text}");
+                }
+            }
+            Some((_, Err(message))) => {
+                eprintln!("{message}");
+                return;
+            }
+            None => {
+                eprintln!("interrupted; the bindings are unchanged");
+                return;
+            }
+        }
+    }
+}
