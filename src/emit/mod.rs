@@ -3,10 +3,18 @@
 //! (Rust, C, Python/NumPy) that shares common subexpressions across all outputs. Like the
 //! printers, emitters never simplify: what they write equals the expression they were given.
 
+mod c;
+mod codegen;
 mod latex;
+mod python;
+mod rust;
 mod sympy;
 
+pub use c::c_function;
+pub use codegen::{arguments, CodegenError, CodegenOptions, OpCount, Output};
 pub use latex::{
     latex, latex_aligned, latex_dual_quat, latex_matrix, latex_symbol, latex_tuple, LatexOptions,
 };
+pub use python::python_function;
+pub use rust::rust_function;
 pub use sympy::sympy;

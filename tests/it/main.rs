@@ -2,6 +2,7 @@
 
 mod algebra;
 mod cli;
+mod codegen;
 mod common;
 mod emit;
 mod kinematics;
