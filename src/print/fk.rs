@@ -143,10 +143,7 @@ fn header(robot: &Robot) -> String {
 /// `T[1][2]` -> `T_{1,2}`, `dq[3]` -> `q_{3}` style subscripts.
 fn latex_name(n: &str) -> String {
     let (base, rest) = n.split_once('[').unwrap_or((n, ""));
-    let idx: Vec<&str> = rest
-        .split(|c| c == '[' || c == ']')
-        .filter(|s| !s.is_empty())
-        .collect();
+    let idx: Vec<&str> = rest.split(['[', ']']).filter(|s| !s.is_empty()).collect();
     let base = match base {
         "dq" => "q".to_string(),
         b => latex_symbol(b),
