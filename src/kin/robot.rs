@@ -83,9 +83,17 @@ pub type FieldEval<'a> = &'a dyn Fn(&str) -> Result<Scalar, String>;
 
 /// Reads a robot file. `file` names it in messages; `eval` evaluates one field expression.
 pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, RobotError> {
-    let f: RobotFile = toml::from_str(text).map_err(|e| RobotError::File {
-        file: file.to_string(),
-        message: e.to_string().trim_end().replace('\n', " "),
+    let f: RobotFile = toml::from_str(text).map_err(|e| {
+        let at = e.span().map(|s| {
+            let before = &text[..s.start.min(text.len())];
+            let line = before.matches('\n').count() + 1;
+            let col = before.chars().rev().take_while(|&c| c != '\n').count() + 1;
+            format!("line {line}, column {col}: ")
+        });
+        RobotError::File {
+            file: file.to_string(),
+            message: format!("{}{}", at.unwrap_or_default(), e.message()),
+        }
     })?;
     let convention = match f.convention.as_str() {
         "dh" => Convention::Dh,

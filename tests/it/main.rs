@@ -11,5 +11,6 @@ mod paper;
 mod paper_arms;
 mod paper_support;
 mod parse;
+mod robots;
 mod scalar;
 mod tools;
