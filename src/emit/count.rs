@@ -15,6 +15,16 @@ thread_local! {
     static COUNT: Cell<OpCount> = const { Cell::new(OpCount { mul: 0, add: 0, neg: 0, trig: 0 }) };
 }
 
+/// Records one addition or subtraction. (Counting lives outside the operator impls, where
+/// clippy would read the counter's `+=` as a suspicious operator.)
+fn tick_add() {
+    bump(|c| c.add += 1);
+}
+
+fn tick_mul() {
+    bump(|c| c.mul += 1);
+}
+
 fn bump(f: impl FnOnce(&mut OpCount)) {
     COUNT.with(|c| {
         let mut v = c.get();
@@ -52,7 +62,7 @@ pub fn generated_ops(
 impl Add for Counted {
     type Output = Counted;
     fn add(self, b: Counted) -> Counted {
-        bump(|c| c.add += 1);
+        tick_add();
         Counted(self.0 + b.0)
     }
 }
@@ -60,7 +70,7 @@ impl Add for Counted {
 impl Sub for Counted {
     type Output = Counted;
     fn sub(self, b: Counted) -> Counted {
-        bump(|c| c.add += 1);
+        tick_add();
         Counted(self.0 - b.0)
     }
 }
@@ -68,7 +78,7 @@ impl Sub for Counted {
 impl Mul for Counted {
     type Output = Counted;
     fn mul(self, b: Counted) -> Counted {
-        bump(|c| c.mul += 1);
+        tick_mul();
         Counted(self.0 * b.0)
     }
 }
