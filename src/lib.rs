@@ -12,9 +12,9 @@ mod scalar;
 pub use algebra::{DualNumber, DualQuat, Matrix4, Quat, UnitConstraints};
 pub use closed::{closed_form, Angle, Cost, Expr};
 pub use emit::{
-    arguments, c_function, latex, latex_aligned, latex_dual_quat, latex_matrix, latex_symbol,
-    latex_tuple, python_function, rust_function, sympy, CodegenError, CodegenOptions, LatexOptions,
-    OpCount, Output,
+    arguments, c_function, count_ops, generated_ops, latex, latex_aligned, latex_dual_quat,
+    latex_matrix, latex_symbol, latex_tuple, python_function, rust_function, sympy, CodegenError,
+    CodegenOptions, Counted, LatexOptions, OpCount, Output,
 };
 pub use kin::{
     dh_link, dh_link_matrix, dq_jacobian, geometric_jacobian, mdh_link, mdh_link_matrix,

@@ -4,6 +4,7 @@ mod algebra;
 mod cli;
 mod codegen;
 mod common;
+mod counts;
 mod emit;
 mod kinematics;
 mod laws;
