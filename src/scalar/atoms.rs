@@ -84,9 +84,6 @@ pub(crate) fn small_ok(q: &Small) -> bool {
     q.numer().abs() < SMALL_BOUND && *q.denom() < SMALL_BOUND
 }
 
-/// A monomial: symbols with positive exponents, sorted by symbol, no duplicates.
-pub type Mono = Vec<(Sym, u32)>;
-
 /// A monomial as a term stores it: shared, so copying a term never copies its factors.
 pub(crate) type MonoRc = Arc<[(Sym, u32)]>;
 

@@ -23,7 +23,7 @@ mod frac;
 pub(crate) mod q;
 
 pub use atoms::Sym;
-pub(crate) use atoms::{Mode, Mono, MonoRc, Small};
+pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use frac::Frac;
 pub(crate) use q::Q;
 
