@@ -28,6 +28,8 @@ pub use lang::{
     Program, Session, ShowOptions, Span, Stmt, StmtKind, UnaryOp, Value, BUILTINS, CONSTANTS,
     MAX_EXPONENT,
 };
-pub use print::{fk_report, legend, plain, shorthand_name, FkOptions, PlainOptions, ReportFormat};
+pub use print::{
+    fk_report, legend, plain, shorthand_name, FkOptions, PlainOptions, ReportError, ReportFormat,
+};
 pub use ring::Ring;
 pub use scalar::{set_term_limit, term_limit, Frac, Scalar, ScalarError, Sym};

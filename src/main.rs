@@ -177,7 +177,7 @@ fn fk(
             shorthand: !explicit,
         },
         OutputFormat::Sympy => dqsym::ReportFormat::Sympy,
-        OutputFormat::Rust => return fail("--format rust is not available for fk yet".into()),
+        OutputFormat::Rust => dqsym::ReportFormat::Rust,
     };
     match dqsym::fk_report(
         &robot,

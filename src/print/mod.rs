@@ -3,6 +3,6 @@
 mod fk;
 mod plain;
 
-pub use fk::{fk_report, FkOptions, ReportFormat};
+pub use fk::{fk_report, FkOptions, ReportError, ReportFormat};
 pub(crate) use plain::angle_text;
 pub use plain::{legend, plain, shorthand_name, PlainOptions};

@@ -249,3 +249,47 @@ for line in sys.stdin:
     }
     assert_eq!(seen, 11, "8 DQ components and 3 point coordinates");
 }
+
+#[test]
+fn fk_rust_output_compiles_and_agrees_with_the_engine() {
+    let bin = env!("CARGO_BIN_EXE_dqsym");
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/robots/scara.toml");
+    let out = Command::new(bin)
+        .args(["fk", file, "--jacobian", "--format", "rust"])
+        .output()
+        .expect("runs");
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let code = String::from_utf8(out.stdout).expect("utf-8");
+    let r = load(file);
+    let q = r.forward();
+    let vals = [0.4, -0.9, 0.25, 1.3, 0.8, 0.6, 0.35];
+    let mut names = r.variables.clone();
+    names.extend(r.parameters());
+    assert_eq!(names.len(), vals.len(), "{names:?}");
+    let env: Vec<(String, f64)> = names.iter().cloned().zip(vals).collect();
+    let args: Vec<String> = vals.iter().map(|v| format!("{v:?}")).collect();
+    let main = format!(
+        "{code}\nfn main() {{\n    let r = scara_fk({});\n    for v in r.dq {{ println!(\"{{v:?}}\"); }}\n}}\n",
+        args.join(", ")
+    );
+    let dir = crate::tools::temp_dir("fk-scara");
+    let src = dir.join("fk.rs");
+    std::fs::write(&src, main).expect("write");
+    let exe = dir.join("fk");
+    let mut rustc = Command::new("rustc");
+    rustc
+        .args(["--edition", "2021", "-D", "warnings", "-o"])
+        .arg(&exe)
+        .arg(&src);
+    crate::tools::run(rustc, "", "rustc -D warnings on the fk output");
+    let printed = crate::tools::run(Command::new(&exe), "", "the compiled fk function");
+    let got: Vec<f64> = printed.lines().map(|l| l.parse().expect("f64")).collect();
+    for (k, c) in q.components().iter().enumerate() {
+        assert!((got[k] - ev(c, &env)).abs() < 1e-12, "dq[{k}]");
+    }
+}
