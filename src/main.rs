@@ -27,6 +27,9 @@ struct Cli {
     /// Print cos(theta1 + theta2) instead of the shorthand c12.
     #[arg(long, global = true)]
     explicit: bool,
+    /// The most terms an expanded scalar may have; larger results are errors, not hangs.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_TERM_LIMIT, global = true)]
+    term_limit: usize,
     #[command(subcommand)]
     command: Option<Command>,
 }
@@ -71,7 +74,11 @@ fn show_options(format: OutputFormat, explicit: bool) -> Result<ShowOptions, Str
 
 /// Deep but legal inputs recurse up to the parser's depth limit in the evaluator and the
 /// printers; a large stack makes that safe in debug builds too.
-const STACK: usize = 256 << 20;
+pub(crate) const STACK: usize = 256 << 20;
+
+/// The default `--term-limit`: the paper's largest intermediate scalars have a few thousand
+/// terms, and a product of two scalars this size is still well under a second.
+const DEFAULT_TERM_LIMIT: usize = 20_000;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -88,6 +95,7 @@ fn main() -> ExitCode {
 }
 
 fn dispatch(cli: Cli) -> ExitCode {
+    dqsym::set_term_limit(cli.term_limit);
     let opts = match show_options(cli.format, cli.explicit) {
         Ok(o) => o,
         Err(message) => {
@@ -110,7 +118,7 @@ fn dispatch(cli: Cli) -> ExitCode {
         },
         (Some(Command::Run { file }), _) => run_file(&file, &opts),
         (None, Some(expr)) => one_liner(&expr, &opts),
-        (None, None) => repl::run(&opts),
+        (None, None) => repl::run(&opts, cli.term_limit),
     }
 }
 

@@ -3,6 +3,7 @@
 mod algebra;
 mod cli;
 mod common;
+mod lang;
 mod laws;
 mod paper;
 mod paper_arms;
