@@ -103,9 +103,7 @@ fn pending(text: &str) -> Option<char> {
                 '(' | '[' => open.push(c),
                 // A stray closing bracket is left for the parser to report.
                 ')' | ']' => {
-                    if open.pop().is_none() {
-                        return None;
-                    }
+                    open.pop()?;
                 }
                 _ => {}
             }
