@@ -1,1 +1,42 @@
-fn main() {}
+use criterion::{criterion_group, criterion_main, Criterion};
+use dqsym::{dh_link, DualQuat, Ring, Scalar};
+use std::hint::black_box;
+
+/// The six standard-DH links of the PUMA 560.
+fn puma_links() -> Vec<DualQuat<Scalar>> {
+    let pi = Scalar::pi();
+    let alpha = [(1, 2), (0, 1), (-1, 2), (1, 2), (-1, 2), (0, 1)];
+    (0..6)
+        .map(|i| {
+            let th = Scalar::sym(&format!("theta{}", i + 1));
+            let a = match i {
+                1 => Scalar::sym("a2"),
+                2 => Scalar::sym("a3"),
+                _ => Scalar::int(0),
+            };
+            let d = match i {
+                2 => Scalar::sym("d3"),
+                3 => Scalar::sym("d4"),
+                _ => Scalar::int(0),
+            };
+            let (n, m) = alpha[i];
+            dh_link(&th, &d, &a, &(&pi * &<Scalar as Ring>::from_ratio(n, m)))
+        })
+        .collect()
+}
+
+fn puma560_fk_dq_product(c: &mut Criterion) {
+    let links = puma_links();
+    c.bench_function("puma560_fk_dq_product", |b| {
+        b.iter(|| {
+            let mut acc = links[0].clone();
+            for l in &links[1..] {
+                acc = acc * l;
+            }
+            black_box(acc)
+        })
+    });
+}
+
+criterion_group!(benches, puma560_fk_dq_product);
+criterion_main!(benches);

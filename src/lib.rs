@@ -2,6 +2,7 @@
 
 mod algebra;
 mod closed;
+mod emit;
 mod kin;
 mod lang;
 mod print;
@@ -10,16 +11,23 @@ mod scalar;
 
 pub use algebra::{DualNumber, DualQuat, Matrix4, Quat, UnitConstraints};
 pub use closed::{closed_form, Angle, Cost, Expr};
+pub use emit::{
+    arguments, c_function, count_ops, generated_ops, latex, latex_aligned, latex_dual_quat,
+    latex_matrix, latex_symbol, latex_tuple, python_function, rust_function, sympy, CodegenError,
+    CodegenOptions, Counted, LatexOptions, OpCount, Output,
+};
 pub use kin::{
-    dh_link, dh_link_matrix, mdh_link, mdh_link_matrix, Chain, ChainError, Joint, JointGeometry,
-    JointKind,
+    dh_link, dh_link_matrix, dq_jacobian, geometric_jacobian, mdh_link, mdh_link_matrix,
+    parse_robot, screw_parameters, Chain, ChainError, Convention, FieldEval, Joint, JointGeometry,
+    JointKind, Robot, RobotError, ScrewError, ScrewParams,
 };
 pub use lang::{
-    builtin, parse, parse_expr, parse_expr_with, parse_with, show, show_value, AddOp, Binding,
-    BindingKind, Builtin, Displayed, EvalError, EvalErrorKind, Expr as AstExpr, ExprKind, Format,
-    Ident, MulOp, ParseError, ParseErrorKind, ParseOptions, Program, Session, ShowOptions, Span,
-    Stmt, StmtKind, UnaryOp, Value, BUILTINS, CONSTANTS, MAX_EXPONENT,
+    builtin, eval_point_text, eval_scalar_text, parse, parse_expr, parse_expr_with, parse_with,
+    show, show_value, AddOp, Binding, BindingKind, Builtin, Displayed, EvalError, EvalErrorKind,
+    Expr as AstExpr, ExprKind, Format, Ident, MulOp, ParseError, ParseErrorKind, ParseOptions,
+    Program, Session, ShowError, ShowOptions, Span, Stmt, StmtKind, UnaryOp, Value, BUILTINS,
+    CONSTANTS, MAX_EXPONENT,
 };
-pub use print::{legend, plain, shorthand_name, PlainOptions};
+pub use print::{fk_report, legend, plain, shorthand_name, FkOptions, PlainOptions, ReportFormat};
 pub use ring::Ring;
-pub use scalar::{set_term_limit, term_limit, Scalar, ScalarError, Sym};
+pub use scalar::{set_term_limit, term_limit, Frac, Scalar, ScalarError, Sym};

@@ -43,6 +43,19 @@ enum Command {
     },
     /// Derive and print the paper's worked examples (sec 6) and the PUMA 560 pose.
     Paper,
+    /// Forward kinematics of a robot file (TOML: dh, mdh or screw convention) in closed form:
+    /// the unit DQ and the 4x4 matrix; with --point the image of a point, with --jacobian the
+    /// 8 x n Jacobian of the DQ components.
+    Fk {
+        /// The robot description file.
+        robot: std::path::PathBuf,
+        /// A point of the last link, "x, y, z" (default: the file's tool point, if any).
+        #[arg(long, value_name = "X, Y, Z")]
+        point: Option<String>,
+        /// Add the 8 x n Jacobian d dq[i] / d q[j].
+        #[arg(long)]
+        jacobian: bool,
+    },
 }
 
 /// The output formats of `--format`.
@@ -58,16 +71,13 @@ enum OutputFormat {
     Sympy,
 }
 
-/// The options for the library's printers, or a message when the format is not available.
+/// The options for the library's printers.
 fn show_options(format: OutputFormat, explicit: bool) -> Result<ShowOptions, String> {
     let format = match format {
         OutputFormat::Plain => Format::Plain,
-        other => {
-            return Err(format!(
-                "error: --format {} is not available yet in this build",
-                format!("{other:?}").to_lowercase()
-            ))
-        }
+        OutputFormat::Latex => Format::Latex,
+        OutputFormat::Rust => Format::Rust,
+        OutputFormat::Sympy => Format::Sympy,
     };
     Ok(ShowOptions { format, explicit })
 }
@@ -95,15 +105,34 @@ fn main() -> ExitCode {
 }
 
 fn dispatch(cli: Cli) -> ExitCode {
-    dqsym::set_term_limit(cli.term_limit);
-    let opts = match show_options(cli.format, cli.explicit) {
-        Ok(o) => o,
-        Err(message) => {
-            eprintln!("{message}");
-            return ExitCode::FAILURE;
-        }
+    // The term limit guards scripts and one-liners; fk and paper keep the library default.
+    if !matches!(cli.command, Some(Command::Fk { .. } | Command::Paper)) {
+        dqsym::set_term_limit(cli.term_limit);
+    }
+    // fk has its own formats (a report per entry); the other commands share show options.
+    let opts = match &cli.command {
+        Some(Command::Fk { .. }) => None,
+        _ => match show_options(cli.format, cli.explicit) {
+            Ok(o) => Some(o),
+            Err(message) => {
+                eprintln!("{message}");
+                return ExitCode::FAILURE;
+            }
+        },
     };
+    let opts = opts.unwrap_or(ShowOptions {
+        format: Format::Plain,
+        explicit: cli.explicit,
+    });
     match (cli.command, cli.expr) {
+        (
+            Some(Command::Fk {
+                robot,
+                point,
+                jacobian,
+            }),
+            _,
+        ) => fk(&robot, point.as_deref(), jacobian, cli.format, cli.explicit),
         (Some(Command::Paper), _) => match paper(&PlainOptions {
             shorthand: !cli.explicit,
         }) {
@@ -119,6 +148,58 @@ fn dispatch(cli: Cli) -> ExitCode {
         (Some(Command::Run { file }), _) => run_file(&file, &opts),
         (None, Some(expr)) => one_liner(&expr, &opts),
         (None, None) => repl::run(&opts, cli.term_limit),
+    }
+}
+
+/// `dqsym fk ROBOT`: reads the file, derives, prints; every failure is a message and status 1.
+fn fk(
+    path: &std::path::Path,
+    point: Option<&str>,
+    jacobian: bool,
+    format: OutputFormat,
+    explicit: bool,
+) -> ExitCode {
+    let fail = |m: String| {
+        eprintln!("error: {m}");
+        ExitCode::FAILURE
+    };
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) => return fail(format!("cannot read {}: {e}", path.display())),
+    };
+    let robot =
+        match dqsym::parse_robot(&text, &path.display().to_string(), &dqsym::eval_scalar_text) {
+            Ok(r) => r,
+            Err(e) => return fail(e.to_string()),
+        };
+    let point = match point.map(dqsym::eval_point_text) {
+        Some(Err(m)) => return fail(format!("--point: {m}")),
+        Some(Ok(p)) => Some(p),
+        None => robot.tool.clone(),
+    };
+    let format = match format {
+        OutputFormat::Plain => dqsym::ReportFormat::Plain {
+            shorthand: !explicit,
+        },
+        OutputFormat::Latex => dqsym::ReportFormat::Latex {
+            shorthand: !explicit,
+        },
+        OutputFormat::Sympy => dqsym::ReportFormat::Sympy,
+        OutputFormat::Rust => return fail("--format rust is not available for fk yet".into()),
+    };
+    match dqsym::fk_report(
+        &robot,
+        &dqsym::FkOptions {
+            format,
+            point,
+            jacobian,
+        },
+    ) {
+        Ok(t) => {
+            print!("{t}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(e.to_string()),
     }
 }
 

@@ -94,8 +94,7 @@ impl<T: Ring> DualQuat<T> {
     /// The translation `t`, the vector part of `2 q_ε q*` (sec 2-3), of a unit DQ. It is
     /// where the motion takes the origin.
     pub fn translation_part(&self) -> [T; 3] {
-        let t = &self.dual * &self.real.conjugate();
-        let [x, y, z] = t.vector_part();
+        let [x, y, z] = self.dual.mul_vector_part(&self.real.conjugate());
         [x.clone() + &x, y.clone() + &y, z.clone() + &z]
     }
 }

@@ -141,6 +141,17 @@ impl<T: Ring> Quat<T> {
         }
     }
 
+    /// The vector part `(x, y, z)` of `self * b`, computed exactly as [`Quat::mul_ref`]
+    /// computes it, without the scalar part.
+    pub(crate) fn mul_vector_part(&self, b: &Self) -> [T; 3] {
+        let a = self;
+        [
+            mul(&a.w, &b.x) + mul(&a.x, &b.w) + mul(&a.y, &b.z) - mul(&a.z, &b.y),
+            mul(&a.w, &b.y) - mul(&a.x, &b.z) + mul(&a.y, &b.w) + mul(&a.z, &b.x),
+            mul(&a.w, &b.z) + mul(&a.x, &b.y) - mul(&a.y, &b.x) + mul(&a.z, &b.w),
+        ]
+    }
+
     fn add_ref(&self, b: &Self) -> Self {
         Quat {
             w: self.w.clone() + &b.w,

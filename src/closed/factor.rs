@@ -1,19 +1,20 @@
 //! From monomials to a nested display expression: common factors (symbols, trigonometric
 //! atoms, numeric content) are pulled out where that lowers the cost.
+//!
+//! The search works on [`E`], a display expression over the interned atoms and symbols of a
+//! [`Ctx`]; only the chosen one becomes an [`Expr`].
 
 use super::expr::{Cost, Expr};
-use super::mon::{content, Atom, Mon};
-use crate::scalar::Sym;
-
-use num_rational::BigRational;
-use num_traits::{One, Signed};
-use std::collections::BTreeMap;
+use super::mon::{angle_of, content, div_q, is_sin, Atom, Ctx, Mon};
+use crate::scalar::Q;
+use num_traits::One;
+use std::collections::HashMap;
 
 /// A factor that can be pulled out of several monomials.
-#[derive(Clone, PartialEq, Eq, PartialOrd, Ord, Debug)]
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug)]
 enum Factor {
     Atom(Atom),
-    Sym(Sym),
+    Sym(u32),
 }
 
 /// How many alternative factors are tried at each of the first levels.
@@ -21,238 +22,334 @@ const BRANCH: usize = 3;
 /// How many levels branch; below them the most frequent factor is taken.
 const BRANCH_DEPTH: usize = 3;
 
-/// The cheapest nested expression this search finds for the sum of `mons`.
-pub(crate) fn build(mons: &[Mon]) -> Expr {
-    build_at(mons, 0)
+/// [`Expr`] over interned atoms and symbols.
+#[derive(Clone, Debug)]
+pub(crate) enum E {
+    Num(Q),
+    Sqrt(u64),
+    Sym(u32),
+    /// `sym^n`.
+    Pow(u32, u32),
+    Trig(Atom),
+    Add(Vec<E>),
+    Mul(Vec<E>),
+    Neg(Box<E>),
 }
 
-fn build_at(mons: &[Mon], depth: usize) -> Expr {
-    match mons {
-        [] => return Expr::zero(),
-        [m] => return mon_expr(m),
-        _ => {}
+impl E {
+    fn zero() -> E {
+        E::Num(Q::ZERO)
     }
-    // A sum whose terms are all negative reads better as the negation of a sum.
-    if mons.iter().all(|m| m.q.is_negative()) {
-        let neg: Vec<Mon> = mons
-            .iter()
-            .map(|m| Mon {
-                q: -m.q.clone(),
-                ..m.clone()
-            })
-            .collect();
-        return Expr::Neg(Box::new(build_at(&neg, depth)));
-    }
-    let g = content(mons);
-    if !g.is_one() {
-        let inner: Vec<Mon> = mons
-            .iter()
-            .map(|m| Mon {
-                q: &m.q / &g,
-                ..m.clone()
-            })
-            .collect();
-        return mul(vec![Expr::Num(g), build_at(&inner, depth)]);
-    }
-    let r = mons[0].rad;
-    if r != 1 && mons.iter().all(|m| m.rad == r) {
-        let inner: Vec<Mon> = mons
-            .iter()
-            .map(|m| Mon {
-                rad: 1,
-                ..m.clone()
-            })
-            .collect();
-        return mul(vec![Expr::Sqrt(r), build_at(&inner, depth)]);
-    }
-    let candidates = candidates(mons);
-    if candidates.is_empty() {
-        return Expr::Add(mons.iter().map(mon_expr).collect());
-    }
-    let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
-    let mut best: Option<(Cost, Expr)> = None;
-    for f in candidates.into_iter().take(tries) {
-        let e = split_on(mons, &f, depth);
-        let c = e.cost();
-        if best.as_ref().is_none_or(|(bc, _)| c < *bc) {
-            best = Some((c, e));
-        }
-    }
-    best.map(|(_, e)| e).unwrap_or_else(Expr::zero)
-}
 
-/// Factors that occur in at least two monomials, most frequent first, ties by factor order.
-fn candidates(mons: &[Mon]) -> Vec<Factor> {
-    let mut count: BTreeMap<Factor, usize> = BTreeMap::new();
-    for m in mons {
-        for (s, _) in &m.syms {
-            *count.entry(Factor::Sym(s.clone())).or_default() += 1;
-        }
-        let mut last: Option<&Atom> = None;
-        for a in &m.atoms {
-            if last != Some(a) {
-                *count.entry(Factor::Atom(a.clone())).or_default() += 1;
+    /// The cost of the [`Expr`] this becomes (see [`Expr::cost`]).
+    pub(crate) fn cost(&self) -> Cost {
+        let mut c = Cost::default();
+        self.add_cost(&mut c, false);
+        c
+    }
+
+    fn add_cost(&self, c: &mut Cost, in_sum: bool) {
+        match self {
+            E::Num(q) => {
+                let integer = match q {
+                    Q::S(_, d) => *d == 1,
+                    Q::B(b) => b.denom().is_one(),
+                };
+                if !integer {
+                    c.ops += 1;
+                }
             }
-            last = Some(a);
+            E::Sqrt(_) | E::Trig(_) => {
+                c.ops += 1;
+                c.calls += 1;
+            }
+            E::Sym(_) => {}
+            E::Add(v) => {
+                c.ops += v.len().saturating_sub(1);
+                for e in v {
+                    e.add_cost(c, true);
+                }
+            }
+            E::Mul(v) => {
+                c.ops += v.len().saturating_sub(1);
+                for e in v {
+                    e.add_cost(c, false);
+                }
+            }
+            E::Neg(e) => {
+                if !in_sum {
+                    c.ops += 1;
+                }
+                e.add_cost(c, false);
+            }
+            E::Pow(_, n) => {
+                c.ops += (*n as usize).saturating_sub(1);
+            }
         }
     }
-    let mut v: Vec<(Factor, usize)> = count.into_iter().filter(|(_, n)| *n >= 2).collect();
-    v.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
-    v.into_iter().map(|(f, _)| f).collect()
+
+    /// The display expression.
+    pub(crate) fn to_expr(&self, ctx: &Ctx) -> Expr {
+        match self {
+            E::Num(q) => Expr::Num(q.to_big()),
+            E::Sqrt(n) => Expr::Sqrt(*n),
+            E::Sym(s) => Expr::Sym(ctx.syms[*s as usize].clone()),
+            E::Pow(s, n) => Expr::Pow(Box::new(Expr::Sym(ctx.syms[*s as usize].clone())), *n),
+            E::Trig(a) => Expr::Trig {
+                sin: is_sin(*a),
+                angle: ctx.angles[angle_of(*a) as usize].clone(),
+            },
+            E::Add(v) => Expr::Add(v.iter().map(|e| e.to_expr(ctx)).collect()),
+            E::Mul(v) => Expr::Mul(v.iter().map(|e| e.to_expr(ctx)).collect()),
+            E::Neg(e) => Expr::Neg(Box::new(e.to_expr(ctx))),
+        }
+    }
 }
 
-/// `f * (sum of the monomials containing f, divided by f) + (the others)`.
-fn split_on(mons: &[Mon], f: &Factor, depth: usize) -> Expr {
-    let mut with = Vec::new();
-    let mut without = Vec::new();
-    let mut first_with = None;
-    for (i, m) in mons.iter().enumerate() {
-        match divide(m, f) {
-            Some(d) => {
-                first_with.get_or_insert(i);
-                with.push(d)
-            }
-            None => without.push((i, m.clone())),
+/// The search state: results already found for a monomial list at a depth class.
+#[derive(Default)]
+struct Search {
+    memo: HashMap<(usize, Vec<Mon>), (E, Cost)>,
+}
+
+/// The cheapest nested expression this search finds for the sum of `mons`, with its cost.
+pub(crate) fn build(mons: &[Mon]) -> (E, Cost) {
+    let mut s = Search::default();
+    let e = s.build_at(mons, 0);
+    let c = e.cost();
+    (e, c)
+}
+
+impl Search {
+    fn build_at(&mut self, mons: &[Mon], depth: usize) -> E {
+        match mons {
+            [] => return E::zero(),
+            [m] => return mon_expr(m),
+            _ => {}
         }
+        // A sum whose terms are all negative reads better as the negation of a sum.
+        if mons.iter().all(|m| m.q.is_negative()) {
+            let neg: Vec<Mon> = mons
+                .iter()
+                .map(|m| Mon {
+                    q: -&m.q,
+                    ..m.clone()
+                })
+                .collect();
+            return E::Neg(Box::new(self.build_at(&neg, depth)));
+        }
+        let g = content(mons);
+        if !g.is_one() {
+            let inner: Vec<Mon> = mons
+                .iter()
+                .map(|m| Mon {
+                    q: div_q(&m.q, &g),
+                    ..m.clone()
+                })
+                .collect();
+            return mul(vec![E::Num(g), self.build_at(&inner, depth)]);
+        }
+        let r = mons[0].rad;
+        if r != 1 && mons.iter().all(|m| m.rad == r) {
+            let inner: Vec<Mon> = mons
+                .iter()
+                .map(|m| Mon {
+                    rad: 1,
+                    ..m.clone()
+                })
+                .collect();
+            return mul(vec![E::Sqrt(r), self.build_at(&inner, depth)]);
+        }
+        let candidates = candidates(mons);
+        if candidates.is_empty() {
+            return E::Add(mons.iter().map(mon_expr).collect());
+        }
+        let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
+        // Below the branching levels the result depends only on the monomials.
+        let key = (depth.min(BRANCH_DEPTH), mons.to_vec());
+        if let Some((e, _)) = self.memo.get(&key) {
+            return e.clone();
+        }
+        let mut best: Option<(Cost, E)> = None;
+        for f in candidates.into_iter().take(tries) {
+            let e = self.split_on(mons, f, depth);
+            let c = e.cost();
+            if best.as_ref().is_none_or(|(bc, _)| c < *bc) {
+                best = Some((c, e));
+            }
+        }
+        let (c, e) = best.unwrap_or_else(|| (Cost::default(), E::zero()));
+        self.memo.insert(key, (e.clone(), c));
+        e
     }
-    let factored = mul(vec![factor_expr(f), build_at(&with, depth + 1)]);
-    let first_with = first_with.unwrap_or(0);
-    // Keep the reading order: the factored group stands where its first monomial stood.
-    let before: Vec<Mon> = without
-        .iter()
-        .filter(|(i, _)| *i < first_with)
-        .map(|(_, m)| m.clone())
-        .collect();
-    let after: Vec<Mon> = without
-        .iter()
-        .filter(|(i, _)| *i > first_with)
-        .map(|(_, m)| m.clone())
-        .collect();
-    let mut terms = Vec::new();
-    if !before.is_empty() || !after.is_empty() {
-        let rest: Vec<Mon> = before.iter().chain(after.iter()).cloned().collect();
-        let rest_expr = build_at(&rest, depth + 1);
+
+    /// `f * (sum of the monomials containing f, divided by f) + (the others)`.
+    fn split_on(&mut self, mons: &[Mon], f: Factor, depth: usize) -> E {
+        let mut with = Vec::new();
+        let mut without = Vec::new();
+        let mut first_with = None;
+        for (i, m) in mons.iter().enumerate() {
+            match divide(m, f) {
+                Some(d) => {
+                    first_with.get_or_insert(i);
+                    with.push(d)
+                }
+                None => without.push(i),
+            }
+        }
+        let factored = mul(vec![factor_expr(f), self.build_at(&with, depth + 1)]);
+        let first_with = first_with.unwrap_or(0);
+        // Keep the reading order: the factored group stands where its first monomial stood.
+        let n_before = without.iter().filter(|&&i| i < first_with).count();
+        let rest: Vec<Mon> = without
+            .iter()
+            .filter(|&&i| i != first_with)
+            .map(|&i| mons[i].clone())
+            .collect();
+        if rest.is_empty() {
+            return factored;
+        }
+        let rest_expr = self.build_at(&rest, depth + 1);
         // Splice the rest around the factored group in reading order.
-        let rest_terms = match rest_expr {
-            Expr::Add(v) => v,
+        let mut rest_terms = match rest_expr {
+            E::Add(v) => v,
             e => vec![e],
         };
-        let n_before = before.len().min(rest_terms.len());
+        let mut terms = Vec::with_capacity(rest_terms.len() + 1);
         if rest_terms.len() == rest.len() {
-            terms.extend(rest_terms[..n_before].iter().cloned());
+            let n_before = n_before.min(rest_terms.len());
+            let after = rest_terms.split_off(n_before);
+            terms.extend(rest_terms);
             terms.push(factored);
-            terms.extend(rest_terms[n_before..].iter().cloned());
+            terms.extend(after);
         } else {
             terms.push(factored);
             terms.extend(rest_terms);
         }
-    } else {
-        terms.push(factored);
-    }
-    if terms.len() == 1 {
-        terms.pop().unwrap_or_else(Expr::zero)
-    } else {
-        Expr::Add(terms)
+        if terms.len() == 1 {
+            terms.pop().unwrap_or_else(E::zero)
+        } else {
+            E::Add(terms)
+        }
     }
 }
 
-fn divide(m: &Mon, f: &Factor) -> Option<Mon> {
-    let mut m = m.clone();
+/// Factors that occur in at least two monomials, most frequent first, ties by factor order.
+fn candidates(mons: &[Mon]) -> Vec<Factor> {
+    let mut all: Vec<Factor> = Vec::new();
+    for m in mons {
+        all.extend(m.syms.iter().map(|&(s, _)| Factor::Sym(s)));
+        let mut last: Option<Atom> = None;
+        for &a in &m.atoms {
+            if last != Some(a) {
+                all.push(Factor::Atom(a));
+            }
+            last = Some(a);
+        }
+    }
+    all.sort_unstable();
+    let mut v: Vec<(Factor, usize)> = Vec::new();
+    for f in all {
+        match v.last_mut() {
+            Some((g, n)) if *g == f => *n += 1,
+            _ => v.push((f, 1)),
+        }
+    }
+    v.retain(|(_, n)| *n >= 2);
+    v.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
+    v.into_iter().map(|(f, _)| f).collect()
+}
+
+fn divide(m: &Mon, f: Factor) -> Option<Mon> {
     match f {
         Factor::Sym(s) => {
-            let pos = m.syms.iter().position(|(x, _)| x == s)?;
+            let pos = m.syms.iter().position(|&(x, _)| x == s)?;
+            let mut m = m.clone();
             if m.syms[pos].1 == 1 {
                 m.syms.remove(pos);
             } else {
                 m.syms[pos].1 -= 1;
             }
+            Some(m)
         }
         Factor::Atom(a) => {
-            let pos = m.atoms.iter().position(|x| x == a)?;
+            let pos = m.atoms.iter().position(|&x| x == a)?;
+            let mut m = m.clone();
             m.atoms.remove(pos);
+            Some(m)
         }
     }
-    Some(m)
 }
 
-fn factor_expr(f: &Factor) -> Expr {
+fn factor_expr(f: Factor) -> E {
     match f {
-        Factor::Sym(s) => Expr::Sym(s.clone()),
-        Factor::Atom(a) => Expr::Trig {
-            sin: a.sin,
-            angle: a.angle.clone(),
-        },
+        Factor::Sym(s) => E::Sym(s),
+        Factor::Atom(a) => E::Trig(a),
     }
 }
 
 /// A product, flattened, with a leading negation pulled out of it.
-pub(crate) fn mul(parts: Vec<Expr>) -> Expr {
+fn mul(parts: Vec<E>) -> E {
     let mut flat = Vec::new();
     let mut neg = false;
     for p in parts {
         match p {
-            Expr::Mul(v) => flat.extend(v),
-            Expr::Neg(e) => {
+            E::Mul(v) => flat.extend(v),
+            E::Neg(e) => {
                 neg = !neg;
                 match *e {
-                    Expr::Mul(v) => flat.extend(v),
+                    E::Mul(v) => flat.extend(v),
                     e => flat.push(e),
                 }
             }
-            Expr::Num(q) if q.is_one() => {}
+            E::Num(q) if q.is_one() => {}
             e => flat.push(e),
         }
     }
     // Numbers first, then radicals, symbols, sums and trigonometric factors.
     flat.sort_by_key(rank);
     let e = match flat.len() {
-        0 => Expr::Num(BigRational::one()),
-        1 => flat.pop().unwrap_or_else(Expr::zero),
-        _ => Expr::Mul(flat),
+        0 => E::Num(Q::ONE),
+        1 => flat.pop().unwrap_or_else(E::zero),
+        _ => E::Mul(flat),
     };
     if neg {
-        Expr::Neg(Box::new(e))
+        E::Neg(Box::new(e))
     } else {
         e
     }
 }
 
-fn rank(e: &Expr) -> u8 {
+fn rank(e: &E) -> u8 {
     match e {
-        Expr::Num(_) => 0,
-        Expr::Sqrt(_) => 1,
-        Expr::Sym(_) | Expr::Pow(..) => 2,
-        Expr::Trig { .. } => 3,
+        E::Num(_) => 0,
+        E::Sqrt(_) => 1,
+        E::Sym(_) | E::Pow(..) => 2,
+        E::Trig(_) => 3,
         _ => 4,
     }
 }
 
 /// One monomial as an expression: `-2 sqrt(3) l1^2 c1`.
-pub(crate) fn mon_expr(m: &Mon) -> Expr {
-    let mut parts = Vec::new();
-    let q = m.q.abs();
+fn mon_expr(m: &Mon) -> E {
+    let mut parts = Vec::with_capacity(2 + m.syms.len() + m.atoms.len());
+    let neg = m.q.is_negative();
+    let q = if neg { -&m.q } else { m.q.clone() };
     if !q.is_one() {
-        parts.push(Expr::Num(q));
+        parts.push(E::Num(q));
     }
     if m.rad != 1 {
-        parts.push(Expr::Sqrt(m.rad));
+        parts.push(E::Sqrt(m.rad));
     }
-    for (s, e) in &m.syms {
-        parts.push(if *e == 1 {
-            Expr::Sym(s.clone())
-        } else {
-            Expr::Pow(Box::new(Expr::Sym(s.clone())), *e)
-        });
+    for &(s, e) in &m.syms {
+        parts.push(if e == 1 { E::Sym(s) } else { E::Pow(s, e) });
     }
-    for a in &m.atoms {
-        parts.push(Expr::Trig {
-            sin: a.sin,
-            angle: a.angle.clone(),
-        });
+    for &a in &m.atoms {
+        parts.push(E::Trig(a));
     }
     let e = mul(parts);
-    if m.q.is_negative() {
-        Expr::Neg(Box::new(e))
+    if neg {
+        E::Neg(Box::new(e))
     } else {
         e
     }

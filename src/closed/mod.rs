@@ -23,23 +23,31 @@ const SPLIT_LIMIT: usize = 100_000;
 /// # Errors
 /// Only when `x` is an error value.
 pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
-    x.clone().check()?;
-    let whole = factor::build(&mon::whole_modes(x));
+    if let Err(e) = x.terms() {
+        return Err(e.clone());
+    }
+    let (wctx, wmons) = mon::whole_modes(x);
+    let (whole, wc) = factor::build(&wmons);
     let split_size: usize = x
         .terms()
         .map(|t| t.iter().map(|t| 1usize << t.mode.freq.len().min(30)).sum())
         .unwrap_or(0);
     if split_size > SPLIT_LIMIT {
-        return Ok(whole);
+        return Ok(whole.to_expr(&wctx));
     }
-    let split = factor::build(&recombine::recombine(mon::split_modes(x)));
-    let (wc, sc) = (whole.cost(), split.cost());
+    let (mut sctx, smons) = mon::split_modes(x);
+    let smons = recombine::recombine(&mut sctx, smons);
+    let (split, sc) = factor::build(&smons);
     // Prefer the regrouped shape on ties: it is the one textbooks print.
-    let best = if sc <= wc { split } else { whole.clone() };
+    let best = if sc <= wc {
+        split.to_expr(&sctx)
+    } else {
+        whole.to_expr(&wctx)
+    };
     if best.to_scalar() == *x {
         Ok(best)
     } else {
         debug_assert!(false, "closed form does not equal its input");
-        Ok(whole)
+        Ok(whole.to_expr(&wctx))
     }
 }

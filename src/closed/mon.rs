@@ -1,97 +1,225 @@
 //! Monomials over trigonometric atoms: the working form between the canonical Fourier series
 //! and a display expression.
+//!
+//! Within one closed-form computation the angles and symbols are interned in a [`Ctx`]: an
+//! angle is a small integer whose order is the order of the angles themselves (the table is
+//! kept sorted, see [`Ctx::renumber`]), so monomials compare, sort and hash as plain integer
+//! vectors and the result depends on nothing but the input.
 
 use super::expr::Angle;
-use crate::scalar::atoms::{freq_combine, Mode};
-use crate::scalar::{Mono, Small};
+use crate::scalar::atoms::freq_combine;
+use crate::scalar::{Small, Sym, Q};
 use crate::Scalar;
 use num_bigint::BigInt;
+use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
-use std::collections::BTreeMap;
+use std::cmp::Ordering;
+use std::collections::HashMap;
 
-/// `cos(angle)` or `sin(angle)` as a factor of a monomial.
-#[derive(Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
-pub(crate) struct Atom {
-    pub(crate) angle: Angle,
-    pub(crate) sin: bool,
+/// `cos(angle)` or `sin(angle)` as a factor of a monomial: `2 * angle id + sin`, so the order of
+/// the codes is the order `(angle, sin)`.
+pub(crate) type Atom = u32;
+
+/// The atom `cos(angle)` or `sin(angle)`.
+pub(crate) fn atom(angle: u32, sin: bool) -> Atom {
+    angle * 2 + u32::from(sin)
 }
 
-/// `q * sqrt(rad) * syms * atoms`, atoms sorted.
-#[derive(Clone, PartialEq, Eq, Debug)]
+/// The angle of an atom.
+pub(crate) fn angle_of(a: Atom) -> u32 {
+    a >> 1
+}
+
+/// Whether an atom is a sine.
+pub(crate) fn is_sin(a: Atom) -> bool {
+    a & 1 == 1
+}
+
+/// The interned angles and symbols of one closed-form computation.
+#[derive(Default)]
+pub(crate) struct Ctx {
+    /// The angles; after [`Ctx::renumber`] sorted, so an id is its angle's rank.
+    pub(crate) angles: Vec<Angle>,
+    ids: HashMap<Angle, u32>,
+    /// Angles were added since the last renumbering.
+    dirty: bool,
+    /// The plain symbols of the input, sorted; a symbol's id is its rank.
+    pub(crate) syms: Vec<Sym>,
+}
+
+impl Ctx {
+    fn new(x: &Scalar) -> Ctx {
+        let mut syms: Vec<Sym> = Vec::new();
+        if let Ok(terms) = x.terms() {
+            for t in terms {
+                syms.extend(t.mono.iter().map(|(s, _)| s.clone()));
+            }
+        }
+        syms.sort();
+        syms.dedup();
+        Ctx {
+            syms,
+            ..Ctx::default()
+        }
+    }
+
+    /// The id of `a` (a new angle gets the next free id until the next renumbering).
+    pub(crate) fn intern(&mut self, a: Angle) -> u32 {
+        if let Some(&i) = self.ids.get(&a) {
+            return i;
+        }
+        let i = self.angles.len() as u32;
+        self.ids.insert(a.clone(), i);
+        self.angles.push(a);
+        self.dirty = true;
+        i
+    }
+
+    /// Sorts the angle table; returns the map from old to new ids when anything was added.
+    /// The map is monotonic on the ids that were already sorted.
+    pub(crate) fn renumber(&mut self) -> Option<Vec<u32>> {
+        if !self.dirty {
+            return None;
+        }
+        self.dirty = false;
+        let mut order: Vec<u32> = (0..self.angles.len() as u32).collect();
+        order.sort_by(|&a, &b| self.angles[a as usize].cmp(&self.angles[b as usize]));
+        let mut map = vec![0u32; order.len()];
+        for (new, &old) in order.iter().enumerate() {
+            map[old as usize] = new as u32;
+        }
+        let mut old: Vec<Option<Angle>> = std::mem::take(&mut self.angles)
+            .into_iter()
+            .map(Some)
+            .collect();
+        self.angles = order
+            .iter()
+            .filter_map(|&o| old[o as usize].take())
+            .collect();
+        for v in self.ids.values_mut() {
+            *v = map[*v as usize];
+        }
+        Some(map)
+    }
+
+    fn sym_id(&self, s: &Sym) -> u32 {
+        // Every symbol of the input is in the table.
+        self.syms.binary_search(s).unwrap_or(0) as u32
+    }
+}
+
+/// Renames the atoms of `m` after a renumbering and restores their order.
+pub(crate) fn remap(m: &mut Mon, map: &[u32]) {
+    for a in m.atoms.iter_mut() {
+        *a = atom(map[angle_of(*a) as usize], is_sin(*a));
+    }
+    m.atoms.sort_unstable();
+}
+
+/// `q * sqrt(rad) * syms * atoms`, symbols `(id, exponent)` and atoms sorted.
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
 pub(crate) struct Mon {
-    pub(crate) q: BigRational,
+    pub(crate) q: Q,
     pub(crate) rad: u64,
-    pub(crate) syms: Mono,
+    pub(crate) syms: Vec<(u32, u32)>,
     pub(crate) atoms: Vec<Atom>,
 }
 
-type MonKey = (u64, Mono, Vec<Atom>);
-
-/// Sums monomials with equal factors and drops zeros; output sorted by factors.
-pub(crate) fn merge(mons: Vec<Mon>) -> Vec<Mon> {
-    let mut map: BTreeMap<MonKey, BigRational> = BTreeMap::new();
-    for m in mons {
-        *map.entry((m.rad, m.syms, m.atoms))
-            .or_insert_with(BigRational::zero) += m.q;
-    }
-    map.into_iter()
-        .filter(|(_, q)| !q.is_zero())
-        .map(|((rad, syms, atoms), q)| Mon {
-            q,
-            rad,
-            syms,
-            atoms,
-        })
-        .collect()
+/// The order of the factors `(rad, syms, atoms)`.
+pub(crate) fn key_cmp(a: &Mon, b: &Mon) -> Ordering {
+    a.rad
+        .cmp(&b.rad)
+        .then_with(|| a.syms.cmp(&b.syms))
+        .then_with(|| a.atoms.cmp(&b.atoms))
 }
 
-/// A mode's angle, as stored in the canonical form.
-fn mode_angle(mode: &Mode) -> Angle {
-    Angle {
-        terms: mode.freq.clone(),
-        pi: mode.pi,
+/// Sums monomials with equal factors and drops zeros; output sorted by factors.
+pub(crate) fn merge(mut mons: Vec<Mon>) -> Vec<Mon> {
+    mons.sort_unstable_by(key_cmp);
+    let mut out: Vec<Mon> = Vec::with_capacity(mons.len());
+    for m in mons {
+        match out.last_mut() {
+            Some(l) if key_cmp(l, &m).is_eq() => l.q += &m.q,
+            _ => {
+                if out.last().is_some_and(|l| l.q.is_zero()) {
+                    out.pop();
+                }
+                out.push(m);
+            }
+        }
+    }
+    if out.last().is_some_and(|l| l.q.is_zero()) {
+        out.pop();
+    }
+    out
+}
+
+fn base_mon(ctx: &Ctx, t: &crate::scalar::Term) -> Mon {
+    Mon {
+        q: t.coef.clone(),
+        rad: t.rad,
+        syms: t.mono.iter().map(|(s, e)| (ctx.sym_id(s), *e)).collect(),
+        atoms: Vec::new(),
     }
 }
 
 /// The canonical form as monomials, each mode kept whole (`cos(t1 + t2)` is one atom).
-pub(crate) fn whole_modes(x: &Scalar) -> Vec<Mon> {
+pub(crate) fn whole_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
+    let mut ctx = Ctx::new(x);
     let Ok(terms) = x.terms() else {
-        return Vec::new();
+        return (ctx, Vec::new());
     };
-    terms
+    let mut mons: Vec<Mon> = terms
         .iter()
-        .map(|t| Mon {
-            q: t.coef.clone(),
-            rad: t.rad,
-            syms: t.mono.clone(),
-            atoms: if t.mode.is_unit() {
-                Vec::new()
-            } else {
-                vec![Atom {
-                    angle: mode_angle(&t.mode),
-                    sin: t.mode.sin,
-                }]
-            },
+        .map(|t| {
+            let mut m = base_mon(&ctx, t);
+            if !t.mode.is_unit() {
+                let id = ctx.intern(Angle {
+                    terms: t.mode.freq.to_vec(),
+                    pi: t.mode.pi,
+                });
+                m.atoms.push(atom(id, t.mode.sin));
+            }
+            m
         })
-        .collect()
+        .collect();
+    if let Some(map) = ctx.renumber() {
+        for m in &mut mons {
+            remap(m, &map);
+        }
+    }
+    (ctx, mons)
+}
+
+/// Flips an angle to a positive leading coefficient (`cos(-x) = cos x`, `sin(-x) = -sin x`);
+/// true when it was flipped.
+fn normalize(a: &mut Angle) -> bool {
+    if a.terms.first().is_some_and(|(_, k)| k.is_negative())
+        || (a.terms.is_empty() && a.pi.is_negative())
+    {
+        for (_, k) in a.terms.iter_mut() {
+            *k = -*k;
+        }
+        a.pi = -a.pi;
+        true
+    } else {
+        false
+    }
 }
 
 /// The canonical form as monomials in single-symbol atoms: every mode is split with the
 /// angle-sum formulas, `cos(a + b) = cos a cos b - sin a sin b`, so that recombination can
 /// regroup the angles the way the expression is best read.
-pub(crate) fn split_modes(x: &Scalar) -> Vec<Mon> {
+pub(crate) fn split_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
+    let mut ctx = Ctx::new(x);
     let Ok(terms) = x.terms() else {
-        return Vec::new();
+        return (ctx, Vec::new());
     };
     let mut out = Vec::new();
+    let mut atoms = Vec::new();
     for t in terms {
-        let base = Mon {
-            q: t.coef.clone(),
-            rad: t.rad,
-            syms: t.mono.clone(),
-            atoms: Vec::new(),
-        };
+        let base = base_mon(&ctx, t);
         if t.mode.is_unit() {
             out.push(base);
             continue;
@@ -115,97 +243,130 @@ pub(crate) fn split_modes(x: &Scalar) -> Vec<Mon> {
                 }),
             }
         }
-        expand(&parts, t.mode.sin, base, &mut out);
+        let parts: Vec<(u32, bool)> = parts
+            .into_iter()
+            .map(|mut a| {
+                let flipped = normalize(&mut a);
+                (ctx.intern(a), flipped)
+            })
+            .collect();
+        expand(&parts, t.mode.sin, false, &mut atoms, &base, &mut out);
     }
-    merge(out)
+    if let Some(map) = ctx.renumber() {
+        for m in &mut out {
+            remap(m, &map);
+        }
+    } else {
+        for m in &mut out {
+            m.atoms.sort_unstable();
+        }
+    }
+    (ctx, merge(out))
 }
 
-/// Pushes `m * trig(sum of parts)` expanded into products of single-part atoms.
-fn expand(parts: &[Angle], sin: bool, m: Mon, out: &mut Vec<Mon>) {
-    let Some((first, rest)) = parts.split_first() else {
+/// Pushes `(-1)^neg * base * atoms * trig(sum of parts)` expanded into products of
+/// single-part atoms; a part is `(angle id, the angle was negated to normalize it)`.
+fn expand(
+    parts: &[(u32, bool)],
+    sin: bool,
+    neg: bool,
+    atoms: &mut Vec<Atom>,
+    base: &Mon,
+    out: &mut Vec<Mon>,
+) {
+    let Some((&(id, flipped), rest)) = parts.split_first() else {
         // trig(0): cos 0 = 1, sin 0 = 0.
         if !sin {
-            out.push(m);
+            out.push(leaf(base, atoms, neg));
         }
         return;
     };
+    // An atom of this part with the sign it brings: sin(-x) = -sin x.
+    let part = |s: bool, minus: bool| (atom(id, s), minus ^ (flipped && s));
     if rest.is_empty() {
-        out.push(with_atom(
-            m,
-            Atom {
-                angle: first.clone(),
-                sin,
-            },
-            1,
-        ));
+        let (a, n) = part(sin, false);
+        atoms.push(a);
+        out.push(leaf(base, atoms, neg ^ n));
+        atoms.pop();
         return;
     }
     // cos(a + r) = cos a cos r - sin a sin r;  sin(a + r) = sin a cos r + cos a sin r.
-    let (ca, sa) = (
-        Atom {
-            angle: first.clone(),
-            sin: false,
-        },
-        Atom {
-            angle: first.clone(),
-            sin: true,
-        },
-    );
-    if sin {
-        expand(rest, false, with_atom(m.clone(), sa, 1), out);
-        expand(rest, true, with_atom(m, ca, 1), out);
+    // Each branch: (atom is a sine, the branch is subtracted, trig of the rest is a sine).
+    let branches = if sin {
+        [(true, false, false), (false, false, true)]
     } else {
-        expand(rest, false, with_atom(m.clone(), ca, 1), out);
-        expand(rest, true, with_atom(m, sa, -1), out);
+        [(false, false, false), (true, true, true)]
+    };
+    for (s, minus, rest_sin) in branches {
+        let (a, n) = part(s, minus);
+        atoms.push(a);
+        expand(rest, rest_sin, neg ^ n, atoms, base, out);
+        atoms.pop();
     }
 }
 
-pub(crate) fn with_atom(mut m: Mon, mut a: Atom, mut sign: i64) -> Mon {
-    // cos(-x) = cos x, sin(-x) = -sin x: atoms keep a positive leading coefficient.
-    if a.angle.terms.first().is_some_and(|(_, k)| k.is_negative())
-        || (a.angle.terms.is_empty() && a.angle.pi.is_negative())
-    {
-        for (_, k) in a.angle.terms.iter_mut() {
-            *k = -*k;
-        }
-        a.angle.pi = -a.angle.pi;
-        if a.sin {
-            sign = -sign;
-        }
+fn leaf(base: &Mon, atoms: &[Atom], neg: bool) -> Mon {
+    Mon {
+        q: if neg { -&base.q } else { base.q.clone() },
+        rad: base.rad,
+        syms: base.syms.clone(),
+        atoms: atoms.to_vec(),
     }
-    let pos = m.atoms.partition_point(|x| x < &a);
-    m.atoms.insert(pos, a);
-    if sign < 0 {
-        m.q = -m.q;
-    }
-    m
 }
 
-/// `a + sign * b` as a normalized angle, with the sign flip the normalization needed.
-pub(crate) fn angle_combine(a: &Angle, b: &Angle, sign: i64) -> (Angle, bool) {
-    let mut terms = freq_combine(&a.terms, &b.terms, sign);
-    let mut pi = a.pi + b.pi * Small::from_integer(sign);
-    let flip = terms.first().is_some_and(|(_, k)| k.is_negative());
-    if flip {
-        for (_, k) in terms.iter_mut() {
-            *k = -*k;
-        }
-        pi = -pi;
+/// `a + sign * b` as a normalized angle (positive leading coefficient, and a pure multiple of
+/// pi non-negative), with whether the normalization negated it; `None` for the zero angle.
+pub(crate) fn angle_combine(a: &Angle, b: &Angle, sign: i64) -> Option<(Angle, bool)> {
+    let terms = freq_combine(&a.terms, &b.terms, sign);
+    let pi = a.pi + b.pi * Small::from_integer(sign);
+    if terms.is_empty() && pi.is_zero() {
+        return None;
     }
-    (Angle { terms, pi }, flip)
+    let mut angle = Angle { terms, pi };
+    let flipped = normalize(&mut angle);
+    Some((angle, flipped))
 }
 
 /// The rational gcd of the coefficients (positive), e.g. `1/4` for `3/4 x + 1/2 y`.
-pub(crate) fn content(mons: &[Mon]) -> BigRational {
-    use num_integer::Integer;
+pub(crate) fn content(mons: &[Mon]) -> Q {
+    let (mut num, mut den) = (0u64, 1u64);
+    for m in mons {
+        let Q::S(n, d) = m.q else {
+            return content_big(mons);
+        };
+        num = num.gcd(&n.unsigned_abs());
+        let Some(l) = (den / den.gcd(&(d as u64))).checked_mul(d as u64) else {
+            return content_big(mons);
+        };
+        den = l;
+    }
+    if num == 0 {
+        return Q::ONE;
+    }
+    match (i64::try_from(num), i64::try_from(den)) {
+        (Ok(n), Ok(d)) => Q::new(n, d),
+        _ => content_big(mons),
+    }
+}
+
+fn content_big(mons: &[Mon]) -> Q {
     let mut num = BigInt::zero();
     let mut den = BigInt::from(1);
     for m in mons {
-        num = num.gcd(m.q.numer());
-        den = den.lcm(m.q.denom());
+        let q = m.q.to_big();
+        num = num.gcd(q.numer());
+        den = den.lcm(q.denom());
     }
     if num.is_zero() {
-        return BigRational::from_integer(1.into());
+        return Q::ONE;
     }
-    BigRational::new(num, den)
+    Q::big(BigRational::new(num, den))
+}
+
+/// `q / g` for a positive `g`.
+pub(crate) fn div_q(q: &Q, g: &Q) -> Q {
+    match g {
+        Q::S(n, d) => q * &Q::new(*d, *n),
+        Q::B(b) => Q::big(q.to_big() / &**b),
+    }
 }

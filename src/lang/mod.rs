@@ -19,6 +19,7 @@ mod ast;
 mod builtins;
 mod error;
 mod eval;
+mod field;
 mod names;
 mod parse;
 mod print;
@@ -30,6 +31,7 @@ pub use ast::{AddOp, Expr, ExprKind, Ident, MulOp, Program, Span, Stmt, StmtKind
 pub use builtins::{lookup as builtin, Builtin, BUILTINS};
 pub use error::{ParseError, ParseErrorKind};
 pub use eval::{Binding, BindingKind, Displayed, EvalError, EvalErrorKind, Session, CONSTANTS};
+pub use field::{eval_point_text, eval_scalar_text};
 pub use parse::{parse, parse_expr, parse_expr_with, parse_with, ParseOptions};
-pub use show::{show, show_value, Format, ShowOptions};
+pub use show::{show, show_value, Format, ShowError, ShowOptions};
 pub use value::{Value, MAX_EXPONENT};

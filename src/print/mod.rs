@@ -1,5 +1,8 @@
 //! Printers: pure functions from display expressions to text. They never simplify.
 
+mod fk;
 mod plain;
 
+pub use fk::{fk_report, FkOptions, ReportFormat};
+pub(crate) use plain::angle_text;
 pub use plain::{legend, plain, shorthand_name, PlainOptions};

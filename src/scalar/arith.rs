@@ -2,14 +2,18 @@
 //! square roots of rationals, and cos / sin of angles.
 
 use super::atoms::{
-    mode_mul, mono_mul, rad_mul, small_ok, split_square, trig_mode, Mode, Small, Sym,
+    empty_mono, mode_mul, mono_mul, rad_mul, small_ok, split_square, trig_mode, Mode, ModeSum,
+    Small, Sym,
 };
-use super::{term_limit, Scalar, ScalarError, Term};
+use super::{term_limit, Scalar, ScalarError, Term, Q};
 use crate::Ring;
-use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use num_traits::{One, Signed, Zero};
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 use std::ops::{Add, Mul, Neg, Sub};
+use std::rc::Rc;
 
 /// How many term pairs one product may form, as a multiple of the term limit.
 const PRODUCT_FACTOR: usize = 2;
@@ -75,6 +79,81 @@ pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
     Scalar::from_terms_sorted(out)
 }
 
+/// A small, fast, non-cryptographic hasher (FxHash) for the mode-product cache.
+#[derive(Default)]
+struct FxHasher(u64);
+
+impl FxHasher {
+    fn add(&mut self, w: u64) {
+        self.0 = (self.0.rotate_left(5) ^ w).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+impl Hasher for FxHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        let mut chunks = bytes.chunks_exact(8);
+        for c in &mut chunks {
+            let mut b = [0u8; 8];
+            b.copy_from_slice(c);
+            self.add(u64::from_le_bytes(b));
+        }
+        let rest = chunks.remainder();
+        if !rest.is_empty() {
+            let mut b = [0u8; 8];
+            b[..rest.len()].copy_from_slice(rest);
+            self.add(u64::from_le_bytes(b) ^ ((rest.len() as u64) << 56));
+        }
+    }
+    fn write_u8(&mut self, i: u8) {
+        self.add(u64::from(i));
+    }
+    fn write_u32(&mut self, i: u32) {
+        self.add(u64::from(i));
+    }
+    fn write_u64(&mut self, i: u64) {
+        self.add(i);
+    }
+    fn write_i64(&mut self, i: i64) {
+        self.add(i as u64);
+    }
+    fn write_usize(&mut self, i: usize) {
+        self.add(i as u64);
+    }
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+type ModeCache = HashMap<(Mode, Mode), Rc<ModeSum>, BuildHasherDefault<FxHasher>>;
+
+/// How many mode products the per-thread cache keeps before it starts over.
+const MODE_CACHE_LIMIT: usize = 1 << 14;
+
+thread_local! {
+    static MODE_CACHE: RefCell<ModeCache> = RefCell::new(ModeCache::default());
+}
+
+/// [`mode_mul`], remembered per thread: kinematic chains multiply the same modes again and
+/// again (every quaternion product forms sixteen scalar products of the same factors).
+fn cached_mode_mul(a: &Mode, b: &Mode) -> Rc<ModeSum> {
+    if a.is_unit() || b.is_unit() {
+        return Rc::new(mode_mul(a, b));
+    }
+    let key = (a.clone(), b.clone());
+    if let Some(v) = MODE_CACHE.with(|c| c.borrow().get(&key).cloned()) {
+        return v;
+    }
+    let v = Rc::new(mode_mul(a, b));
+    MODE_CACHE.with(|c| {
+        let mut c = c.borrow_mut();
+        if c.len() >= MODE_CACHE_LIMIT {
+            c.clear();
+        }
+        c.insert(key, v.clone());
+    });
+    v
+}
+
 /// Splits a sorted term slice into runs that share a mode.
 fn mode_runs(t: &[Term]) -> Vec<&[Term]> {
     let mut runs = Vec::new();
@@ -97,7 +176,7 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
     // Mode products are the expensive part; compute each once per pair of mode runs.
     for ra in mode_runs(x) {
         for rb in mode_runs(y) {
-            let modes = mode_mul(&ra[0].mode, &rb[0].mode);
+            let modes = cached_mode_mul(&ra[0].mode, &rb[0].mode);
             for s in ra {
                 for t in rb {
                     let Some(mono) = mono_mul(&s.mono, &t.mono) else {
@@ -108,9 +187,9 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
                     };
                     let mut coef = &s.coef * &t.coef;
                     if g != 1 {
-                        coef *= BigRational::from_integer(BigInt::from(g));
+                        coef = &coef * &Q::from_u64(g);
                     }
-                    for (mode, weights) in &modes {
+                    for (mode, weights) in modes.iter() {
                         for (r2, w) in weights {
                             let Some((rad3, g2)) = rad_mul(rad, *r2) else {
                                 return Scalar::error(ScalarError::OutOfRange(
@@ -119,7 +198,7 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
                             };
                             let mut c = &coef * w;
                             if g2 != 1 {
-                                c *= BigRational::from_integer(BigInt::from(g2));
+                                c = &c * &Q::from_u64(g2);
                             }
                             out.push(Term {
                                 mode: mode.clone(),
@@ -248,10 +327,10 @@ impl Scalar {
         let Some((s, r)) = split_square(&prod) else {
             return Scalar::error(ScalarError::BadSqrt(format!("{q} (too large to factor)")));
         };
-        let coef = BigRational::new(s, q.denom().clone());
+        let coef = Q::big(BigRational::new(s, q.denom().clone()));
         Scalar::from_terms_sorted(vec![Term {
             mode: Mode::unit(),
-            mono: Vec::new(),
+            mono: empty_mono(),
             rad: r,
             coef,
         }])
@@ -276,7 +355,7 @@ impl Scalar {
                     for (rad, coef) in weights {
                         out.push(Term {
                             mode: mode.clone(),
-                            mono: Vec::new(),
+                            mono: empty_mono(),
                             rad,
                             coef,
                         });
@@ -307,7 +386,7 @@ impl Scalar {
                     x.coef
                 )))
             })?;
-            match x.mono.as_slice() {
+            match &x.mono[..] {
                 [] => freq.push((Sym::unit(), k)),
                 [(s, 1)] if s.is_pi() => pi = k,
                 [(s, 1)] => freq.push((s.clone(), k)),
@@ -319,11 +398,11 @@ impl Scalar {
     }
 }
 
-/// An angle read off a scalar: `(symbol, coefficient)` pairs and the multiple of pi.
+/// An angle read as `(frequencies, multiple of pi)`.
 pub(crate) type AngleParts = (Vec<(Sym, Small)>, Small);
 
-fn to_small(q: &BigRational) -> Option<Small> {
-    let s = Small::new(q.numer().to_i64()?, q.denom().to_i64()?);
+fn to_small(q: &Q) -> Option<Small> {
+    let s = q.to_ratio_i64()?;
     small_ok(&s).then_some(s)
 }
 
@@ -416,7 +495,7 @@ impl Ring for Scalar {
         if den == 0 {
             return Scalar::error(ScalarError::DivisionByZero);
         }
-        Scalar::rational(BigRational::new(BigInt::from(num), BigInt::from(den)))
+        Scalar::from_q(Q::new(num, den))
     }
     fn try_recip(&self) -> Option<Self> {
         self.recip().check().ok()

@@ -7,13 +7,14 @@
 //! are polynomials: products of modes are turned back into single modes by the product-to-sum
 //! identities, so `cos(t)^2 + sin(t)^2` and `1` are the same vector of terms.
 
+use super::q::Q;
 use num_bigint::BigInt;
 use num_integer::Integer;
-use num_rational::{BigRational, Ratio};
+use num_rational::Ratio;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::cmp::Ordering;
 use std::fmt;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// A symbol name. Ordered by its text, so the canonical order never depends on the order in
 /// which symbols were first seen (no interning-order leaks into the output).
@@ -83,11 +84,34 @@ pub(crate) fn small_ok(q: &Small) -> bool {
     q.numer().abs() < SMALL_BOUND && *q.denom() < SMALL_BOUND
 }
 
-/// A monomial: symbols with positive exponents, sorted by symbol, no duplicates.
-pub type Mono = Vec<(Sym, u32)>;
+/// A monomial as a term stores it: shared, so copying a term never copies its factors.
+pub(crate) type MonoRc = Arc<[(Sym, u32)]>;
+
+/// The frequency vector of a mode, shared like [`MonoRc`].
+pub(crate) type Freq = Arc<[(Sym, Small)]>;
+
+/// The empty monomial (one shared allocation).
+pub(crate) fn empty_mono() -> MonoRc {
+    static EMPTY: OnceLock<MonoRc> = OnceLock::new();
+    EMPTY.get_or_init(|| Arc::from(Vec::new())).clone()
+}
+
+fn empty_freq() -> Freq {
+    static EMPTY: OnceLock<Freq> = OnceLock::new();
+    EMPTY.get_or_init(|| Arc::from(Vec::new())).clone()
+}
+
+/// A frequency vector as shared storage (the empty one is not allocated again).
+pub(crate) fn freq_rc(v: Vec<(Sym, Small)>) -> Freq {
+    if v.is_empty() {
+        empty_freq()
+    } else {
+        Arc::from(v)
+    }
+}
 
 /// The product of two monomials, or `None` when an exponent would overflow.
-pub(crate) fn mono_mul(a: &Mono, b: &Mono) -> Option<Mono> {
+pub(crate) fn mono_mul(a: &MonoRc, b: &MonoRc) -> Option<MonoRc> {
     if a.is_empty() {
         return Some(b.clone());
     }
@@ -115,7 +139,13 @@ pub(crate) fn mono_mul(a: &Mono, b: &Mono) -> Option<Mono> {
     }
     out.extend_from_slice(&a[i..]);
     out.extend_from_slice(&b[j..]);
-    Some(out)
+    Some(Arc::from(out))
+}
+
+/// Numeric order of two small rationals (denominators are positive): the order `Ratio`
+/// gives, without its divisions.
+pub(crate) fn small_cmp(a: &Small, b: &Small) -> Ordering {
+    (*a.numer() as i128 * *b.denom() as i128).cmp(&(*b.numer() as i128 * *a.denom() as i128))
 }
 
 /// A trigonometric mode: `1` (empty frequency, no pi offset, cosine), `cos(phi)` or `sin(phi)`.
@@ -123,11 +153,39 @@ pub(crate) fn mono_mul(a: &Mono, b: &Mono) -> Option<Mono> {
 /// Invariants, kept by [`Mode::normalize`]: `freq` is sorted by symbol with nonzero entries and
 /// a positive first entry; `pi` lies in `[0, 2)` and is never a multiple of 1/12 (those are
 /// expanded exactly); a mode with empty `freq` has `pi` in `(0, 1)`, or is the unit mode.
-#[derive(Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
 pub struct Mode {
     pub(crate) sin: bool,
-    pub(crate) freq: Vec<(Sym, Small)>,
+    pub(crate) freq: Freq,
     pub(crate) pi: Small,
+}
+
+/// Lexicographic by `(sin, freq, pi)`, the frequencies compared entry by entry (symbol by
+/// name, then coefficient by value), shorter first on a common prefix.
+impl Ord for Mode {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.sin
+            .cmp(&other.sin)
+            .then_with(|| {
+                if Arc::ptr_eq(&self.freq, &other.freq) {
+                    return Ordering::Equal;
+                }
+                for (x, y) in self.freq.iter().zip(other.freq.iter()) {
+                    let o = x.0.cmp(&y.0).then_with(|| small_cmp(&x.1, &y.1));
+                    if o.is_ne() {
+                        return o;
+                    }
+                }
+                self.freq.len().cmp(&other.freq.len())
+            })
+            .then_with(|| small_cmp(&self.pi, &other.pi))
+    }
+}
+
+impl PartialOrd for Mode {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
 }
 
 impl Mode {
@@ -135,7 +193,7 @@ impl Mode {
     pub(crate) fn unit() -> Mode {
         Mode {
             sin: false,
-            freq: Vec::new(),
+            freq: empty_freq(),
             pi: Small::zero(),
         }
     }
@@ -147,7 +205,7 @@ impl Mode {
 
 /// A mode together with the exact coefficient it was multiplied by while being normalized:
 /// `cos(-x) = cos x`, `sin(-x) = -sin x`, `cos(x + pi/4) = sqrt(2)/2 (cos x - sin x)`.
-pub(crate) type ModeSum = Vec<(Mode, Vec<(u64, BigRational)>)>;
+pub(crate) type ModeSum = Vec<(Mode, Vec<(u64, Q)>)>;
 
 /// `cos(phi)` or `sin(phi)` with `phi = freq . symbols + pi_mult * pi`, as a sum of
 /// normalized modes times exact constants (radical, rational).
@@ -164,6 +222,24 @@ pub(crate) fn trig_mode(sin: bool, mut freq: Vec<(Sym, Small)>, pi_mult: Small) 
             sign = -1;
         }
     }
+    if pi.is_zero() {
+        // cos(x) or sign * sin(x): the common case, without the reduction below.
+        if freq.is_empty() {
+            return if sin {
+                Vec::new()
+            } else {
+                vec![(Mode::unit(), vec![(1, Q::ONE)])]
+            };
+        }
+        return vec![(
+            Mode {
+                sin,
+                freq: freq_rc(freq),
+                pi,
+            },
+            vec![(1, Q::int(sign))],
+        )];
+    }
     // Reduce pi into [0, 2).
     let two = Small::from_integer(2);
     pi = pi - (pi / two).floor() * two;
@@ -172,14 +248,15 @@ pub(crate) fn trig_mode(sin: bool, mut freq: Vec<(Sym, Small)>, pi_mult: Small) 
         // cos(x + a) = cos a cos x - sin a sin x; sin(x + a) = cos a sin x + sin a cos x.
         let n = twelfths.to_integer();
         let (ca, sa) = (exact_cos_twelfth(n), exact_cos_twelfth(n - 6));
+        let freq = freq_rc(freq);
         let base = |s: bool| Mode {
             sin: s,
             freq: freq.clone(),
             pi: Small::zero(),
         };
-        let scaled = |v: Vec<(u64, BigRational)>, f: i64| {
+        let scaled = |v: Vec<(u64, Q)>, f: i64| {
             v.into_iter()
-                .map(|(r, q)| (r, q * BigRational::from_integer(BigInt::from(f))))
+                .map(|(r, q)| (r, q.mul_int(f)))
                 .collect::<Vec<_>>()
         };
         let mut out: ModeSum = Vec::new();
@@ -215,12 +292,19 @@ pub(crate) fn trig_mode(sin: bool, mut freq: Vec<(Sym, Small)>, pi_mult: Small) 
             sign = -sign;
         }
     }
-    let one = vec![(1u64, BigRational::from_integer(BigInt::from(sign)))];
-    vec![(Mode { sin, freq, pi }, one)]
+    let one = vec![(1u64, Q::int(sign))];
+    vec![(
+        Mode {
+            sin,
+            freq: freq_rc(freq),
+            pi,
+        },
+        one,
+    )]
 }
 
 /// `cos(n pi / 12)` exactly, as a sum of (square-free radicand, rational) pairs; empty for 0.
-pub(crate) fn exact_cos_twelfth(n: i64) -> Vec<(u64, BigRational)> {
+pub(crate) fn exact_cos_twelfth(n: i64) -> Vec<(u64, Q)> {
     let n = n.rem_euclid(24);
     // cos(pi - x) = -cos x and cos(2 pi - x) = cos x fold everything into [0, 6].
     let (m, sign) = match n {
@@ -229,7 +313,7 @@ pub(crate) fn exact_cos_twelfth(n: i64) -> Vec<(u64, BigRational)> {
         13..=18 => (n - 12, -1),
         _ => (24 - n, 1),
     };
-    let q = |a: i64, b: i64| BigRational::new(BigInt::from(a * sign), BigInt::from(b));
+    let q = |a: i64, b: i64| Q::new(a * sign, b);
     match m {
         0 => vec![(1, q(1, 1))],
         1 => vec![(2, q(1, 4)), (6, q(1, 4))],
@@ -243,14 +327,13 @@ pub(crate) fn exact_cos_twelfth(n: i64) -> Vec<(u64, BigRational)> {
 
 /// The product of two modes as a sum of modes with exact weights (product-to-sum identities).
 pub(crate) fn mode_mul(a: &Mode, b: &Mode) -> ModeSum {
-    let one = || vec![(1u64, BigRational::one())];
+    let one = || vec![(1u64, Q::ONE)];
     if a.is_unit() {
         return vec![(b.clone(), one())];
     }
     if b.is_unit() {
         return vec![(a.clone(), one())];
     }
-    let half = BigRational::new(BigInt::from(1), BigInt::from(2));
     let sum = freq_combine(&a.freq, &b.freq, 1);
     let diff = freq_combine(&a.freq, &b.freq, -1);
     let (ps, pd) = (a.pi + b.pi, a.pi - b.pi);
@@ -268,7 +351,7 @@ pub(crate) fn mode_mul(a: &Mode, b: &Mode) -> ModeSum {
         for (m, v) in trig_mode(kind, f, p) {
             let v = v
                 .into_iter()
-                .map(|(r, q)| (r, q * &half * BigRational::from_integer(BigInt::from(w))))
+                .map(|(r, q)| (r, &q * &Q::new(w, 2)))
                 .collect();
             out.push((m, v));
         }
@@ -278,7 +361,11 @@ pub(crate) fn mode_mul(a: &Mode, b: &Mode) -> ModeSum {
 
 /// `a + sign * b` on sorted frequency vectors.
 pub(crate) fn freq_combine(a: &[(Sym, Small)], b: &[(Sym, Small)], sign: i64) -> Vec<(Sym, Small)> {
-    let s = Small::from_integer(sign);
+    let signed = |k: Small| match sign {
+        1 => k,
+        -1 => -k,
+        _ => k * Small::from_integer(sign),
+    };
     let mut out = Vec::with_capacity(a.len() + b.len());
     let (mut i, mut j) = (0, 0);
     while i < a.len() && j < b.len() {
@@ -288,11 +375,11 @@ pub(crate) fn freq_combine(a: &[(Sym, Small)], b: &[(Sym, Small)], sign: i64) ->
                 i += 1;
             }
             Ordering::Greater => {
-                out.push((b[j].0.clone(), b[j].1 * s));
+                out.push((b[j].0.clone(), signed(b[j].1)));
                 j += 1;
             }
             Ordering::Equal => {
-                let k = a[i].1 + b[j].1 * s;
+                let k = a[i].1 + signed(b[j].1);
                 if !k.is_zero() {
                     out.push((a[i].0.clone(), k));
                 }
@@ -302,7 +389,7 @@ pub(crate) fn freq_combine(a: &[(Sym, Small)], b: &[(Sym, Small)], sign: i64) ->
         }
     }
     out.extend_from_slice(&a[i..]);
-    out.extend(b[j..].iter().map(|(x, k)| (x.clone(), *k * s)));
+    out.extend(b[j..].iter().map(|(x, k)| (x.clone(), signed(*k))));
     out
 }
 

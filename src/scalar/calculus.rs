@@ -1,7 +1,7 @@
 //! Differentiation, substitution and numeric evaluation of canonical scalars.
 
 use super::atoms::{Mode, Sym};
-use super::{Scalar, ScalarError, Term};
+use super::{Scalar, ScalarError, Term, Q};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};
@@ -21,7 +21,7 @@ impl Scalar {
         for term in t {
             if let Some(pos) = term.mono.iter().position(|(s, _)| s.name() == x) {
                 let e = term.mono[pos].1;
-                let mut mono = term.mono.clone();
+                let mut mono = term.mono.to_vec();
                 if e == 1 {
                     mono.remove(pos);
                 } else {
@@ -29,17 +29,17 @@ impl Scalar {
                 }
                 out.push(Term {
                     mode: term.mode.clone(),
-                    mono,
+                    mono: mono.into(),
                     rad: term.rad,
-                    coef: &term.coef * BigRational::from_integer(BigInt::from(e)),
+                    coef: &term.coef * &Q::from_u64(u64::from(e)),
                 });
             }
             if let Some((_, k)) = term.mode.freq.iter().find(|(s, _)| s.name() == x) {
-                let k = BigRational::new(BigInt::from(*k.numer()), BigInt::from(*k.denom()));
+                let k = Q::new(*k.numer(), *k.denom());
                 let coef = if term.mode.sin {
-                    &term.coef * k
+                    &term.coef * &k
                 } else {
-                    -(&term.coef * k)
+                    -(&term.coef * &k)
                 };
                 let mode = Mode {
                     sin: !term.mode.sin,
@@ -74,11 +74,11 @@ impl Scalar {
             }
             let mut f = Scalar::from_terms_sorted(vec![Term {
                 mode: Mode::unit(),
-                mono: Vec::new(),
+                mono: super::atoms::empty_mono(),
                 rad: term.rad,
                 coef: term.coef.clone(),
             }]);
-            for (s, e) in &term.mono {
+            for (s, e) in term.mono.iter() {
                 let base = if s.name() == x {
                     value.clone()
                 } else {
@@ -112,12 +112,12 @@ impl Scalar {
         let mut sum = 0.0;
         for term in t {
             let mut v = term.coef.to_f64().unwrap_or(f64::NAN) * (term.rad as f64).sqrt();
-            for (s, e) in &term.mono {
+            for (s, e) in term.mono.iter() {
                 v *= look(s)?.powi(*e as i32);
             }
             if !term.mode.is_unit() {
                 let mut phi = term.mode.pi.to_f64().unwrap_or(0.0) * std::f64::consts::PI;
-                for (s, k) in &term.mode.freq {
+                for (s, k) in term.mode.freq.iter() {
                     phi += k.to_f64().unwrap_or(0.0) * look(s)?;
                 }
                 v *= if term.mode.sin { phi.sin() } else { phi.cos() };
@@ -137,7 +137,7 @@ impl Scalar {
 pub(crate) fn mode_angle(mode: &Mode, sub: Option<(&str, &Scalar)>) -> Scalar {
     let q = |k: &super::Small| BigRational::new(BigInt::from(*k.numer()), BigInt::from(*k.denom()));
     let mut angle = Scalar::pi() * Scalar::rational(q(&mode.pi));
-    for (s, k) in &mode.freq {
+    for (s, k) in mode.freq.iter() {
         let v = match sub {
             Some((x, v)) if s.name() == x => v.clone(),
             _ if s.is_unit() => Scalar::int(1),
@@ -174,7 +174,7 @@ impl fmt::Display for Scalar {
             if term.rad != 1 {
                 factors.push(format!("sqrt({})", term.rad));
             }
-            for (s, e) in &term.mono {
+            for (s, e) in term.mono.iter() {
                 factors.push(if *e == 1 {
                     s.to_string()
                 } else {
@@ -188,7 +188,7 @@ impl fmt::Display for Scalar {
                     angle_text(&term.mode)
                 ));
             }
-            let neg = term.coef < BigRational::zero();
+            let neg = term.coef.is_negative();
             let c = if neg {
                 -term.coef.clone()
             } else {
@@ -204,7 +204,7 @@ impl fmt::Display for Scalar {
             let body = factors.join("*");
             if body.is_empty() {
                 write!(f, "{c}")?;
-            } else if c == BigRational::from_integer(1.into()) {
+            } else if c.is_one() {
                 f.write_str(&body)?;
             } else {
                 write!(f, "{c}*{body}")?;
@@ -242,4 +242,33 @@ fn angle_text(mode: &Mode) -> String {
         s.push_str(&format!(" + {}*pi", mode.pi));
     }
     s.trim_start().to_string()
+}
+
+impl Scalar {
+    /// An angle `phi` with `self == cos(phi)`, when `self` is visibly one: `cos(x)`, `-cos(x)`
+    /// (then `phi = x + pi`), or a number equal to `cos(k pi/12)`.
+    pub fn as_cos_of_angle(&self) -> Option<Scalar> {
+        let t = self.terms().ok()?;
+        if let [x] = t {
+            if !x.mode.is_unit() && !x.mode.sin && x.mono.is_empty() && x.rad == 1 {
+                let phi = mode_angle(&x.mode, None);
+                if x.coef.is_one() {
+                    return Some(phi);
+                }
+                if x.coef.is_negative() && (-self.clone()) == phi.cos() {
+                    return Some(phi + Scalar::pi());
+                }
+            }
+        }
+        if self.is_constant() {
+            return (0..24)
+                .map(|k| Scalar::pi() * Scalar::from_ratio_i64(k, 12))
+                .find(|phi| phi.cos() == *self);
+        }
+        None
+    }
+
+    fn from_ratio_i64(n: i64, d: i64) -> Scalar {
+        Scalar::rational(BigRational::new(BigInt::from(n), BigInt::from(d)))
+    }
 }

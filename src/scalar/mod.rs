@@ -19,13 +19,16 @@
 mod arith;
 pub(crate) mod atoms;
 mod calculus;
+mod frac;
+pub(crate) mod q;
 
 pub use atoms::Sym;
-pub(crate) use atoms::{Mode, Mono, Small};
+pub(crate) use atoms::{Mode, MonoRc, Small};
+pub use frac::Frac;
+pub(crate) use q::Q;
 
-use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Zero};
+use num_traits::Zero;
 use std::cell::Cell;
 use thiserror::Error;
 
@@ -62,9 +65,9 @@ pub enum ScalarError {
 #[derive(Clone, PartialEq, Eq, Hash, Debug)]
 pub(crate) struct Term {
     pub(crate) mode: Mode,
-    pub(crate) mono: Mono,
+    pub(crate) mono: MonoRc,
     pub(crate) rad: u64,
-    pub(crate) coef: BigRational,
+    pub(crate) coef: Q,
 }
 
 impl Term {
@@ -121,7 +124,7 @@ impl Scalar {
         let mut out: Vec<Term> = Vec::with_capacity(terms.len());
         for t in terms {
             match out.last_mut() {
-                Some(last) if last.key_cmp(&t).is_eq() => last.coef += t.coef,
+                Some(last) if last.key_cmp(&t).is_eq() => last.coef += &t.coef,
                 _ => {
                     if out.last().is_some_and(|l| l.coef.is_zero()) {
                         out.pop();
@@ -164,29 +167,34 @@ impl Scalar {
 
     /// The integer `n`.
     pub fn int(n: i64) -> Scalar {
-        Scalar::rational(BigRational::from_integer(BigInt::from(n)))
+        Scalar::from_q(Q::int(n))
     }
 
-    /// The exact rational `q`.
-    pub fn rational(q: BigRational) -> Scalar {
+    /// The exact rational `q`, small-form coefficient.
+    pub(crate) fn from_q(q: Q) -> Scalar {
         if q.is_zero() {
             return Scalar::from_terms_sorted(Vec::new());
         }
         Scalar::from_terms_sorted(vec![Term {
             mode: Mode::unit(),
-            mono: Vec::new(),
+            mono: atoms::empty_mono(),
             rad: 1,
             coef: q,
         }])
+    }
+
+    /// The exact rational `q`.
+    pub fn rational(q: BigRational) -> Scalar {
+        Scalar::from_q(Q::big(q))
     }
 
     /// The symbol `name` (`pi` is the constant pi).
     pub fn sym(name: &str) -> Scalar {
         Scalar::from_terms_sorted(vec![Term {
             mode: Mode::unit(),
-            mono: vec![(Sym::new(name), 1)],
+            mono: std::sync::Arc::from(vec![(Sym::new(name), 1)]),
             rad: 1,
-            coef: BigRational::one(),
+            coef: Q::ONE,
         }])
     }
 
@@ -215,7 +223,7 @@ impl Scalar {
         let t = self.terms().ok()?;
         match t {
             [] => Some(BigRational::zero()),
-            [x] if x.mode.is_unit() && x.mono.is_empty() && x.rad == 1 => Some(x.coef.clone()),
+            [x] if x.mode.is_unit() && x.mono.is_empty() && x.rad == 1 => Some(x.coef.to_big()),
             _ => None,
         }
     }

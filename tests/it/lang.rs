@@ -416,3 +416,52 @@ fn displayed_values_use_the_closed_form_layout() {
         "matrix(trans((l, 0, 0))) =\n  [1, 0, 0, l]\n  [0, 1, 0, 0]\n  [0, 0, 1, 0]\n  [0, 0, 0, 1]\n"
     );
 }
+
+#[test]
+fn sympy_format_is_parsed_by_sympify() {
+    let one = run_bin(&["-e", "cos(t)^2 + sin(t)^2", "--format", "sympy"], None);
+    assert_eq!(stdout(&one), "1\n");
+    let path = format!("{}/examples/appendix3_rrr.dq", env!("CARGO_MANIFEST_DIR"));
+    let out = stdout(&run_bin(&["run", &path, "--format", "sympy"], None));
+    let v0 = out
+        .lines()
+        .find_map(|l| l.strip_prefix("v0 = "))
+        .expect("v0 shown");
+    let script = "import sys\nfrom sympy import sympify, symbols, cos, sin, simplify\n\
+        t1, t2, t3, l1, l2, l3 = symbols('theta1 theta2 theta3 l1 l2 l3')\n\
+        v = sympify(sys.stdin.read(), locals={str(s): s for s in (t1, t2, t3, l1, l2, l3)})\n\
+        want = l1*cos(t1) + l2*cos(t1 + t2) + l3*cos(t1 + t2 + t3)\n\
+        print(len(v), v[0], simplify(v[6] - want))\n";
+    let got = crate::tools::run_python(script, v0, "sympy");
+    assert_eq!(got.trim(), "8 1 0");
+}
+
+#[test]
+fn latex_format_renders_with_katex() {
+    for expr in [
+        "rot((0, 0, 1), theta1)*trans((a1, 0, 0))",
+        "matrix(dh(theta1, d1, a1, pi/2))",
+        "transform(rot((1, 0, 0), theta1), (0, l, 0))",
+    ] {
+        let out = run_bin(&["-e", expr, "--format", "latex"], None);
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+        crate::tools::katex(&stdout(&out), expr);
+    }
+}
+
+#[test]
+fn rust_format_generates_a_function_of_the_symbols() {
+    let out = stdout(&run_bin(
+        &[
+            "-e",
+            "transform(rot((0, 0, 1), theta1), (l, 0, 0))",
+            "--format",
+            "rust",
+        ],
+        None,
+    ));
+    assert!(
+        out.contains("pub fn value(l: f64, theta1: f64) -> Value {"),
+        "{out}"
+    );
+}

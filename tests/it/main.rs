@@ -2,11 +2,17 @@
 
 mod algebra;
 mod cli;
+mod codegen;
 mod common;
+mod counts;
+mod emit;
+mod kinematics;
 mod lang;
 mod laws;
 mod paper;
 mod paper_arms;
 mod paper_support;
 mod parse;
+mod robots;
 mod scalar;
+mod tools;

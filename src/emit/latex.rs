@@ -1,0 +1,426 @@
+//! LaTeX in the paper's notation: `\theta_{1}`, `l_{1}`, `c_{12}` (or `\cos(\theta_{1} +
+//! \theta_{2})`), `\frac{\theta_{3}}{2}`, `\sqrt{2}`, `\varepsilon` for the dual unit, matrices
+//! as `pmatrix`, long sums broken over lines inside `aligned`.
+//!
+//! Every string written here is valid KaTeX input; the tests render each snapshot with KaTeX
+//! (`throwOnError: true`).
+
+use crate::closed::{Angle, Expr};
+use crate::print::shorthand_name;
+use crate::scalar::Small;
+use num_rational::BigRational;
+use num_traits::{One, Signed, Zero};
+
+/// How LaTeX is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LatexOptions {
+    /// `c_{12}` for `\cos(\theta_{1} + \theta_{2})` where the angle allows it (a plain sum of
+    /// numbered symbols, see [`shorthand_name`](crate::shorthand_name)).
+    pub shorthand: bool,
+    /// [`latex_aligned`] breaks a line longer than this many characters (a command counting as one) at a
+    /// `+` or `-` of the outermost sum it can; 0 never breaks.
+    pub width: usize,
+}
+
+impl Default for LatexOptions {
+    fn default() -> Self {
+        LatexOptions {
+            shorthand: true,
+            width: 80,
+        }
+    }
+}
+
+const GREEK: &[&str] = &[
+    "alpha",
+    "beta",
+    "gamma",
+    "delta",
+    "epsilon",
+    "varepsilon",
+    "zeta",
+    "eta",
+    "theta",
+    "vartheta",
+    "iota",
+    "kappa",
+    "lambda",
+    "mu",
+    "nu",
+    "xi",
+    "pi",
+    "rho",
+    "sigma",
+    "tau",
+    "upsilon",
+    "phi",
+    "varphi",
+    "chi",
+    "psi",
+    "omega",
+    "Gamma",
+    "Delta",
+    "Theta",
+    "Lambda",
+    "Xi",
+    "Pi",
+    "Sigma",
+    "Upsilon",
+    "Phi",
+    "Psi",
+    "Omega",
+];
+
+/// A symbol name in LaTeX: `theta1` -> `\theta_{1}`, `l1` -> `l_{1}`, `d` -> `d`, `pi` -> `\pi`,
+/// `q_e` -> `q_{e}`, `tx` -> `\mathit{tx}`.
+pub fn latex_symbol(name: &str) -> String {
+    let (base, sub) = match name.split_once('_') {
+        Some((b, s)) if !b.is_empty() && !s.is_empty() => (b, Some(s)),
+        _ => {
+            let cut = name.trim_end_matches(|c: char| c.is_ascii_digit()).len();
+            if cut == 0 || cut == name.len() {
+                (name, None)
+            } else {
+                (&name[..cut], Some(&name[cut..]))
+            }
+        }
+    };
+    let mut s = base_text(base);
+    if let Some(sub) = sub {
+        let sub = if sub.chars().all(|c| c.is_ascii_digit()) {
+            sub.to_string()
+        } else {
+            latex_symbol(sub)
+        };
+        s.push_str(&format!("_{{{sub}}}"));
+    }
+    s
+}
+
+fn base_text(base: &str) -> String {
+    if GREEK.contains(&base) {
+        format!("\\{base}")
+    } else if base.chars().count() == 1 {
+        base.to_string()
+    } else {
+        format!("\\mathit{{{base}}}")
+    }
+}
+
+/// The expression as inline LaTeX, on one line.
+pub fn latex(e: &Expr, o: &LatexOptions) -> String {
+    let mut w = Writer::new(o);
+    w.expr(e, 0);
+    w.out
+}
+
+/// A tuple `(a, b, c)`: a point, a vector or a quaternion `(w, x, y, z)`.
+pub fn latex_tuple(v: &[Expr], o: &LatexOptions) -> String {
+    let parts: Vec<String> = v.iter().map(|e| latex(e, o)).collect();
+    format!("\\left({}\\right)", parts.join(", "))
+}
+
+/// A dual quaternion `(w, x, y, z) + \varepsilon (w', x', y', z')` from its real and dual parts.
+pub fn latex_dual_quat(real: &[Expr], dual: &[Expr], o: &LatexOptions) -> String {
+    format!(
+        "{} + \\varepsilon {}",
+        latex_tuple(real, o),
+        latex_tuple(dual, o)
+    )
+}
+
+/// A matrix as `\begin{pmatrix} a & b \\ c & d \end{pmatrix}`, from its rows.
+pub fn latex_matrix<R: AsRef<[Expr]>>(rows: &[R], o: &LatexOptions) -> String {
+    let body: Vec<String> = rows
+        .iter()
+        .map(|r| {
+            let cells: Vec<String> = r.as_ref().iter().map(|e| latex(e, o)).collect();
+            cells.join(" & ")
+        })
+        .collect();
+    format!(
+        "\\begin{{pmatrix}}\n{}\n\\end{{pmatrix}}",
+        body.join(" \\\\\n")
+    )
+}
+
+/// Named values as `\begin{aligned} name &= value \\ ... \end{aligned}`; `name` is LaTeX
+/// already. A value longer than [`LatexOptions::width`] is broken at the `+` or `-` of the
+/// outermost sum that keeps the line within the width, continued on the next line after
+/// `\quad`.
+pub fn latex_aligned(rows: &[(String, Expr)], o: &LatexOptions) -> String {
+    let mut lines = Vec::new();
+    for (name, e) in rows {
+        let mut w = Writer::new(o);
+        w.expr(e, 0);
+        let parts = wrap(&w.out, &w.breaks, o.width);
+        for (i, p) in parts.iter().enumerate() {
+            if i == 0 {
+                lines.push(format!("{name} &= {p}"));
+            } else {
+                lines.push(format!("&\\quad {p}"));
+            }
+        }
+    }
+    format!(
+        "\\begin{{aligned}}\n{}\n\\end{{aligned}}",
+        lines.join(" \\\\\n")
+    )
+}
+
+/// Splits `s` at recorded break points so that each piece is at most `width` wide (as
+/// [`visual_len`] measures) where a break allows it. Among the break points that fit, the latest
+/// wins, less a penalty for each enclosing parenthesis: a break in an outer sum reads better.
+fn wrap(s: &str, breaks: &[(usize, usize)], width: usize) -> Vec<String> {
+    if width == 0 || visual_len(s) <= width {
+        return vec![s.to_string()];
+    }
+    let mut out = Vec::new();
+    let mut start = 0;
+    while visual_len(&s[start..]) > width {
+        let best = breaks
+            .iter()
+            .filter(|&&(p, _)| p > start)
+            .map(|&(p, d)| (p, d, visual_len(&s[start..p])))
+            .filter(|&(_, _, v)| v >= width / 3 && v <= width)
+            .max_by_key(|&(p, d, v)| (v.saturating_sub(12 * d), p))
+            .map(|(p, _, _)| p)
+            .or_else(|| breaks.iter().map(|&(p, _)| p).find(|&p| p > start));
+        match best {
+            Some(p) => {
+                out.push(s[start..p].trim().to_string());
+                start = p;
+            }
+            None => break,
+        }
+    }
+    out.push(s[start..].trim().to_string());
+    out
+}
+
+/// The width of LaTeX source as rendered, roughly: a command counts as one character, braces
+/// and sub- and superscript marks as none.
+fn visual_len(s: &str) -> usize {
+    let mut n = 0;
+    let mut chars = s.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '\\' => {
+                while chars.next_if(|c| c.is_ascii_alphabetic()).is_some() {}
+                n += 1;
+            }
+            '{' | '}' | '_' | '^' => {}
+            _ => n += 1,
+        }
+    }
+    n
+}
+
+struct Writer<'a> {
+    o: &'a LatexOptions,
+    out: String,
+    /// Positions just before a ` + ` or ` - ` of a sum, with the parenthesis depth there.
+    breaks: Vec<(usize, usize)>,
+    depth: usize,
+}
+
+impl<'a> Writer<'a> {
+    fn new(o: &'a LatexOptions) -> Self {
+        Writer {
+            o,
+            out: String::new(),
+            breaks: Vec::new(),
+            depth: 0,
+        }
+    }
+
+    fn open(&mut self) {
+        self.out.push('(');
+        self.depth += 1;
+    }
+
+    fn close(&mut self) {
+        self.out.push(')');
+        self.depth -= 1;
+    }
+
+    /// Precedence levels: 0 top, 1 sum term, 2 product factor, 3 power base.
+    fn expr(&mut self, e: &Expr, prec: u8) {
+        match e {
+            Expr::Num(q) => {
+                let t = rational(q);
+                let paren = prec >= 3 && !q.denom().is_one();
+                if paren {
+                    self.open();
+                }
+                self.out.push_str(&t);
+                if paren {
+                    self.close();
+                }
+            }
+            Expr::Sqrt(n) => self.out.push_str(&format!("\\sqrt{{{n}}}")),
+            Expr::Sym(s) => self.out.push_str(&latex_symbol(s.name())),
+            Expr::Trig { sin, angle } => {
+                let short = self.o.shorthand.then(|| shorthand_name(*sin, angle));
+                match short.flatten() {
+                    Some(name) => {
+                        let (c, idx) = name.split_at(1);
+                        self.out.push_str(&format!("{c}_{{{idx}}}"));
+                    }
+                    None => {
+                        self.out.push_str(if *sin { "\\sin(" } else { "\\cos(" });
+                        self.out.push_str(&latex_angle(angle));
+                        self.out.push(')');
+                    }
+                }
+            }
+            Expr::Add(v) => {
+                let paren = prec > 1;
+                if paren {
+                    self.open();
+                }
+                for (i, t) in v.iter().enumerate() {
+                    if i > 0 {
+                        self.breaks.push((self.out.len(), self.depth));
+                    }
+                    match t {
+                        Expr::Neg(inner) => {
+                            self.out.push_str(if i == 0 { "-" } else { " - " });
+                            self.expr(inner, 2);
+                        }
+                        t => {
+                            if i > 0 {
+                                self.out.push_str(" + ");
+                            }
+                            self.expr(t, 1);
+                        }
+                    }
+                }
+                if paren {
+                    self.close();
+                }
+            }
+            Expr::Mul(v) => {
+                let paren = prec > 2;
+                if paren {
+                    self.open();
+                }
+                for (i, t) in v.iter().enumerate() {
+                    if i > 0 {
+                        self.out.push(' ');
+                    }
+                    // A leading fraction reads as a coefficient: `\frac{3}{8} \cos(\theta)`.
+                    if let (0, Expr::Num(q)) = (i, t) {
+                        self.out.push_str(&rational(q));
+                        continue;
+                    }
+                    self.expr(t, 2);
+                }
+                if paren {
+                    self.close();
+                }
+            }
+            Expr::Neg(inner) => {
+                let paren = prec > 1;
+                if paren {
+                    self.open();
+                }
+                self.out.push('-');
+                self.expr(inner, 2);
+                if paren {
+                    self.close();
+                }
+            }
+            Expr::Pow(b, n) => {
+                self.expr(b, 3);
+                self.out.push_str(&format!("^{{{n}}}"));
+            }
+        }
+    }
+}
+
+fn rational(q: &BigRational) -> String {
+    if q.denom().is_one() {
+        q.numer().to_string()
+    } else {
+        let sign = if q.is_negative() { "-" } else { "" };
+        format!("{sign}\\frac{{{}}}{{{}}}", q.numer().abs(), q.denom())
+    }
+}
+
+/// The angle: `\theta_{1} + \theta_{2}`, `\frac{\theta_{3}}{2}`, `\frac{\theta_{1} -
+/// \theta_{4}}{2}`, `\theta - \frac{\pi}{2}`. Coefficients sharing one denominator are written
+/// over it once.
+fn latex_angle(angle: &Angle) -> String {
+    let mut items: Vec<(Small, Option<String>)> = angle
+        .terms
+        .iter()
+        .map(|(sym, k)| {
+            let name = (sym.name() != "1").then(|| latex_symbol(sym.name()));
+            (*k, name)
+        })
+        .collect();
+    if !angle.pi.is_zero() {
+        items.push((angle.pi, Some("\\pi".to_string())));
+    }
+    let den = items.first().map_or(1, |(k, _)| *k.denom());
+    if items.len() > 1 && den > 1 && items.iter().all(|(k, _)| *k.denom() == den) {
+        let whole: Vec<(Small, Option<String>)> = items
+            .iter()
+            .map(|(k, n)| (*k * Small::from_integer(den), n.clone()))
+            .collect();
+        return format!("\\frac{{{}}}{{{den}}}", sum_text(&whole));
+    }
+    sum_text(&items)
+}
+
+/// `k1 x1 + k2 x2 ...` with fractions as `\frac{x}{q}`; a missing name is the constant 1.
+fn sum_text(items: &[(Small, Option<String>)]) -> String {
+    let mut s = String::new();
+    for (i, (k, name)) in items.iter().enumerate() {
+        let neg = k.is_negative();
+        let a = k.abs();
+        if i == 0 {
+            if neg {
+                s.push('-');
+            }
+        } else {
+            s.push_str(if neg { " - " } else { " + " });
+        }
+        let (p, q) = (*a.numer(), *a.denom());
+        let num = match name {
+            None => p.to_string(),
+            Some(n) if p == 1 => n.clone(),
+            Some(n) => format!("{p} {n}"),
+        };
+        if q == 1 {
+            s.push_str(&num);
+        } else {
+            s.push_str(&format!("\\frac{{{num}}}{{{q}}}"));
+        }
+    }
+    if s.is_empty() {
+        s.push('0');
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_bigint::BigInt;
+
+    #[test]
+    fn symbols_follow_the_paper() {
+        assert_eq!(latex_symbol("theta1"), "\\theta_{1}");
+        assert_eq!(latex_symbol("alpha2"), "\\alpha_{2}");
+        assert_eq!(latex_symbol("l1"), "l_{1}");
+        assert_eq!(latex_symbol("d"), "d");
+        assert_eq!(latex_symbol("q_e"), "q_{e}");
+        assert_eq!(latex_symbol("tx"), "\\mathit{tx}");
+        assert_eq!(
+            rational(&BigRational::new(BigInt::from(-3), BigInt::from(8))),
+            "-\\frac{3}{8}"
+        );
+    }
+}

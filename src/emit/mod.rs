@@ -1,0 +1,22 @@
+//! Emitters: pure functions from closed forms ([`Expr`](crate::Expr)) to text that another tool
+//! reads. LaTeX for papers (checked by KaTeX in the tests), SymPy-parsable text, and source code
+//! (Rust, C, Python/NumPy) that shares common subexpressions across all outputs. Like the
+//! printers, emitters never simplify: what they write equals the expression they were given.
+
+mod c;
+mod codegen;
+mod count;
+mod latex;
+mod python;
+mod rust;
+mod sympy;
+
+pub use c::c_function;
+pub use codegen::{arguments, CodegenError, CodegenOptions, OpCount, Output};
+pub use count::{count_ops, generated_ops, Counted};
+pub use latex::{
+    latex, latex_aligned, latex_dual_quat, latex_matrix, latex_symbol, latex_tuple, LatexOptions,
+};
+pub use python::python_function;
+pub use rust::rust_function;
+pub use sympy::sympy;

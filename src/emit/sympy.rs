@@ -1,0 +1,90 @@
+//! Text that SymPy's `sympify` parses back to the same value: integers, rationals, `+ - * / **`,
+//! parentheses, `sqrt`, `sin`, `cos`, `pi` and the user's symbols.
+//!
+//! Symbol names are written as they are. A few names mean something else to `sympify` (`E`,
+//! `I`, `N`, `O`, `Q`, `S`, `beta`, `gamma`, `zeta`, `lambda`, ...), so a reader should bind every
+//! symbol explicitly: `sympify(text, locals={n: Symbol(n) for n in names})`.
+
+use crate::closed::Expr;
+use crate::print::angle_text;
+use num_traits::One;
+
+/// The expression as SymPy input: `l1*cos(theta1) + l2*cos(theta1 + theta2)`, `(3/8)*x`,
+/// `sqrt(2)*sin(theta/2)`; the canonical 1 is `1`.
+pub fn sympy(e: &Expr) -> String {
+    let mut out = String::new();
+    write(e, 0, &mut out);
+    out
+}
+
+/// Precedence levels: 0 top, 1 sum term, 2 product factor, 3 power base.
+fn write(e: &Expr, prec: u8, out: &mut String) {
+    match e {
+        Expr::Num(q) => {
+            // `(3/8)` keeps the division from binding to a neighbour in `x*(3/8)`.
+            if q.denom().is_one() || prec == 0 {
+                out.push_str(&q.to_string());
+            } else {
+                out.push_str(&format!("({q})"));
+            }
+        }
+        Expr::Sqrt(n) => out.push_str(&format!("sqrt({n})")),
+        Expr::Sym(s) => out.push_str(s.name()),
+        Expr::Trig { sin, angle } => {
+            out.push_str(if *sin { "sin(" } else { "cos(" });
+            out.push_str(&angle_text(angle));
+            out.push(')');
+        }
+        Expr::Add(v) => {
+            if prec > 1 {
+                out.push('(');
+            }
+            for (i, t) in v.iter().enumerate() {
+                match t {
+                    Expr::Neg(inner) => {
+                        out.push_str(if i == 0 { "-" } else { " - " });
+                        write(inner, 2, out);
+                    }
+                    t => {
+                        if i > 0 {
+                            out.push_str(" + ");
+                        }
+                        write(t, 1, out);
+                    }
+                }
+            }
+            if prec > 1 {
+                out.push(')');
+            }
+        }
+        Expr::Mul(v) => {
+            if prec > 2 {
+                out.push('(');
+            }
+            for (i, t) in v.iter().enumerate() {
+                if i > 0 {
+                    out.push('*');
+                }
+                write(t, 2, out);
+            }
+            if prec > 2 {
+                out.push(')');
+            }
+        }
+        Expr::Neg(inner) => {
+            // `-x**2` is `-(x**2)` in Python, so a power needs no parentheses here.
+            if prec > 1 {
+                out.push('(');
+            }
+            out.push('-');
+            write(inner, 2, out);
+            if prec > 1 {
+                out.push(')');
+            }
+        }
+        Expr::Pow(b, n) => {
+            write(b, 3, out);
+            out.push_str(&format!("**{n}"));
+        }
+    }
+}

@@ -1,0 +1,131 @@
+//! Quotients of canonical scalars, for results that divide by an expression: screw axes and
+//! moments (divided by sin(theta/2)), centres of planar displacements.
+//!
+//! A [`Frac`] is not canonical: `a/b` and `(a k)/(b k)` are different representations of one
+//! value. Equality is therefore decided by cross-multiplication, which is exact on canonical
+//! scalars. Constant denominators are always divided out, and a numerator that is a constant
+//! multiple of the denominator collapses to that constant, so the common cases print simply.
+
+use super::{Scalar, ScalarError};
+use num_traits::Zero;
+
+/// `num / den` with `den != 0`.
+#[derive(Clone, Debug)]
+pub struct Frac {
+    num: Scalar,
+    den: Scalar,
+}
+
+impl Frac {
+    /// `num / den`, reduced where that is cheap and exact.
+    pub fn new(num: Scalar, den: Scalar) -> Result<Frac, ScalarError> {
+        let num = num.check()?;
+        let den = den.check()?;
+        if den.is_zero() {
+            return Err(ScalarError::DivisionByZero);
+        }
+        if den.is_constant() {
+            return Ok(Frac::from(num.try_div(&den)?));
+        }
+        if let Some(k) = constant_ratio(&num, &den) {
+            return Ok(Frac::from(k));
+        }
+        Ok(Frac { num, den })
+    }
+
+    /// The numerator.
+    pub fn num(&self) -> &Scalar {
+        &self.num
+    }
+
+    /// The denominator (1 when the value is a plain scalar).
+    pub fn den(&self) -> &Scalar {
+        &self.den
+    }
+
+    /// The value as a scalar, when the denominator is 1.
+    pub fn as_scalar(&self) -> Option<&Scalar> {
+        (self.den == Scalar::int(1)).then_some(&self.num)
+    }
+
+    /// `self + other`.
+    pub fn add(&self, other: &Frac) -> Result<Frac, ScalarError> {
+        if self.den == other.den {
+            return Frac::new(&self.num + &other.num, self.den.clone());
+        }
+        Frac::new(
+            &self.num * &other.den + &other.num * &self.den,
+            &self.den * &other.den,
+        )
+    }
+
+    /// `self - other`.
+    pub fn sub(&self, other: &Frac) -> Result<Frac, ScalarError> {
+        self.add(&other.neg())
+    }
+
+    /// `-self`.
+    pub fn neg(&self) -> Frac {
+        Frac {
+            num: -&self.num,
+            den: self.den.clone(),
+        }
+    }
+
+    /// `self * other`.
+    pub fn mul(&self, other: &Frac) -> Result<Frac, ScalarError> {
+        Frac::new(&self.num * &other.num, &self.den * &other.den)
+    }
+
+    /// `self / other`.
+    pub fn div(&self, other: &Frac) -> Result<Frac, ScalarError> {
+        Frac::new(&self.num * &other.den, &self.den * &other.num)
+    }
+
+    /// The value under a binding of symbols.
+    pub fn eval(&self, env: &dyn Fn(&str) -> Option<f64>) -> Result<f64, ScalarError> {
+        Ok(self.num.eval(env)? / self.den.eval(env)?)
+    }
+}
+
+impl From<Scalar> for Frac {
+    fn from(s: Scalar) -> Frac {
+        Frac {
+            num: s,
+            den: Scalar::int(1),
+        }
+    }
+}
+
+/// Equal values: `a/b == c/d` iff `a d == c b`, exact on canonical scalars.
+impl PartialEq for Frac {
+    fn eq(&self, other: &Frac) -> bool {
+        &self.num * &other.den == &other.num * &self.den
+    }
+}
+
+/// `k` when `num == k den` for a constant `k`, read off the leading terms and then checked.
+fn constant_ratio(num: &Scalar, den: &Scalar) -> Option<Scalar> {
+    let (n, d) = (num.terms().ok()?, den.terms().ok()?);
+    if num.is_zero() {
+        return Some(Scalar::int(0));
+    }
+    let (a, b) = (n.first()?, d.first()?);
+    if a.mode != b.mode || a.mono != b.mono {
+        return None;
+    }
+    let ka = Scalar::from_terms_sorted(vec![super::Term {
+        mode: super::Mode::unit(),
+        mono: Vec::new().into(),
+        rad: a.rad,
+        coef: a.coef.clone(),
+    }]);
+    let kb = Scalar::from_terms_sorted(vec![super::Term {
+        mode: super::Mode::unit(),
+        mono: Vec::new().into(),
+        rad: b.rad,
+        coef: b.coef.clone(),
+    }]);
+    let k = ka.try_div(&kb).ok()?;
+    (&k * den == *num).then_some(k)
+}

@@ -1,0 +1,398 @@
+//! Exact rationals with a machine-word fast path, for the coefficients of canonical terms.
+//!
+//! Almost every coefficient of a kinematic expression is a small fraction (`1/2`, `-3/4`,
+//! `sqrt(2)/4` has rational part `1/4`), so [`Q`] keeps `numerator / denominator` in two
+//! `i64` words and does checked arithmetic on them, switching to a [`BigRational`] only when a
+//! result leaves that range. A value has exactly one representation: it is [`Q::S`] whenever
+//! it fits (reduced, positive denominator, numerator not `i64::MIN`), so the derived `Eq` and
+//! `Hash` agree with the numeric value.
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{Signed, ToPrimitive};
+use std::cmp::Ordering;
+use std::fmt;
+use std::ops::{Add, AddAssign, Mul, Neg, Sub};
+
+/// An exact rational: small (`S(numerator, denominator)`, reduced, denominator positive,
+/// numerator never `i64::MIN`) whenever it fits, big otherwise.
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+pub(crate) enum Q {
+    S(i64, i64),
+    B(Box<BigRational>),
+}
+
+fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
+    if a == 0 {
+        return b;
+    }
+    if b == 0 {
+        return a;
+    }
+    let shift = (a | b).trailing_zeros();
+    a >>= a.trailing_zeros();
+    loop {
+        b >>= b.trailing_zeros();
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        b -= a;
+        if b == 0 {
+            return a << shift;
+        }
+    }
+}
+
+fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
+    if a <= u64::MAX as u128 && b <= u64::MAX as u128 {
+        return gcd_u64(a as u64, b as u64) as u128;
+    }
+    if a == 0 {
+        return b;
+    }
+    if b == 0 {
+        return a;
+    }
+    let shift = (a | b).trailing_zeros();
+    a >>= a.trailing_zeros();
+    loop {
+        b >>= b.trailing_zeros();
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        b -= a;
+        if b == 0 {
+            return a << shift;
+        }
+    }
+}
+
+impl Q {
+    pub(crate) const ZERO: Q = Q::S(0, 1);
+    pub(crate) const ONE: Q = Q::S(1, 1);
+
+    /// The integer `n`.
+    pub(crate) fn int(n: i64) -> Q {
+        if n == i64::MIN {
+            return Q::big(BigRational::from_integer(BigInt::from(n)));
+        }
+        Q::S(n, 1)
+    }
+
+    /// The integer `n`.
+    pub(crate) fn from_u64(n: u64) -> Q {
+        match i64::try_from(n) {
+            Ok(v) => Q::S(v, 1),
+            Err(_) => Q::B(Box::new(BigRational::from_integer(BigInt::from(n)))),
+        }
+    }
+
+    /// `n / d` for `d != 0` (a zero denominator gives zero; callers never pass one).
+    pub(crate) fn new(n: i64, d: i64) -> Q {
+        if d == 0 {
+            return Q::ZERO;
+        }
+        Q::from_i128(n as i128, d as i128)
+    }
+
+    /// `n / d` reduced, for `d > 0`.
+    fn from_i64(n: i64, d: i64) -> Q {
+        if n == 0 {
+            return Q::ZERO;
+        }
+        if n == i64::MIN {
+            return Q::from_i128(n as i128, d as i128);
+        }
+        let g = gcd_u64(n.unsigned_abs(), d as u64) as i64;
+        Q::S(n / g, d / g)
+    }
+
+    /// `n / d` reduced, for `d != 0`.
+    fn from_i128(mut n: i128, mut d: i128) -> Q {
+        if n == 0 {
+            return Q::ZERO;
+        }
+        if d < 0 {
+            n = -n;
+            d = -d;
+        }
+        let g = gcd_u128(n.unsigned_abs(), d as u128) as i128;
+        if g > 1 {
+            n /= g;
+            d /= g;
+        }
+        match (i64::try_from(n), i64::try_from(d)) {
+            (Ok(a), Ok(b)) if a != i64::MIN => Q::S(a, b),
+            _ => Q::B(Box::new(BigRational::new_raw(
+                BigInt::from(n),
+                BigInt::from(d),
+            ))),
+        }
+    }
+
+    /// The value of a big rational, demoted to the small form when it fits.
+    pub(crate) fn big(q: BigRational) -> Q {
+        if let (Some(n), Some(d)) = (q.numer().to_i64(), q.denom().to_i64()) {
+            if n != i64::MIN {
+                return if n == 0 { Q::ZERO } else { Q::S(n, d) };
+            }
+        }
+        Q::B(Box::new(q))
+    }
+
+    /// The value as a big rational.
+    pub(crate) fn to_big(&self) -> BigRational {
+        match self {
+            Q::S(n, d) => BigRational::new_raw(BigInt::from(*n), BigInt::from(*d)),
+            Q::B(b) => (**b).clone(),
+        }
+    }
+
+    pub(crate) fn is_zero(&self) -> bool {
+        matches!(self, Q::S(0, _))
+    }
+
+    pub(crate) fn is_one(&self) -> bool {
+        matches!(self, Q::S(1, 1))
+    }
+
+    pub(crate) fn is_negative(&self) -> bool {
+        match self {
+            Q::S(n, _) => *n < 0,
+            Q::B(b) => b.is_negative(),
+        }
+    }
+
+    /// The value as a small `Ratio<i64>`, when it is one.
+    pub(crate) fn to_ratio_i64(&self) -> Option<num_rational::Ratio<i64>> {
+        match self {
+            Q::S(n, d) => Some(num_rational::Ratio::new_raw(*n, *d)),
+            Q::B(_) => None,
+        }
+    }
+
+    pub(crate) fn to_f64(&self) -> Option<f64> {
+        match self {
+            // Exact operands and one IEEE division: correctly rounded, like BigRational's.
+            Q::S(n, d) if n.unsigned_abs() <= 1 << 53 && *d <= 1 << 53 => {
+                Some(*n as f64 / *d as f64)
+            }
+            _ => self.to_big().to_f64(),
+        }
+    }
+
+    /// `self * k` for a small integer `k`.
+    pub(crate) fn mul_int(&self, k: i64) -> Q {
+        if k == 1 {
+            return self.clone();
+        }
+        self * &Q::int(k)
+    }
+
+    fn add_signed(&self, o: &Q, negate: bool) -> Q {
+        match (self, o) {
+            (Q::S(a, b), Q::S(c, d)) => {
+                let c = if negate { -(*c as i128) } else { *c as i128 };
+                let (a, b, d) = (*a as i128, *b as i128, *d as i128);
+                if b == d {
+                    // Same denominator (the common case): one gcd with the denominator.
+                    if let Ok(c) = i64::try_from(c) {
+                        if let Some(n) = (a as i64).checked_add(c) {
+                            return Q::from_i64(n, b as i64);
+                        }
+                    }
+                    return Q::from_i128(a + c, b);
+                }
+                // a/b + c/d with g = gcd(b, d): (a (d/g) + c (b/g)) / (b/g * d).
+                let g = gcd_u128(b as u128, d as u128) as i128;
+                Q::from_i128(a * (d / g) + c * (b / g), (b / g) * d)
+            }
+            _ => {
+                let (x, y) = (self.to_big(), o.to_big());
+                Q::big(if negate { x - y } else { x + y })
+            }
+        }
+    }
+}
+
+impl Default for Q {
+    fn default() -> Self {
+        Q::ZERO
+    }
+}
+
+impl From<&BigRational> for Q {
+    fn from(q: &BigRational) -> Q {
+        Q::big(q.clone())
+    }
+}
+
+impl Add<&Q> for &Q {
+    type Output = Q;
+    fn add(self, o: &Q) -> Q {
+        self.add_signed(o, false)
+    }
+}
+
+impl Sub<&Q> for &Q {
+    type Output = Q;
+    fn sub(self, o: &Q) -> Q {
+        self.add_signed(o, true)
+    }
+}
+
+impl AddAssign<&Q> for Q {
+    fn add_assign(&mut self, o: &Q) {
+        *self = &*self + o;
+    }
+}
+
+impl Mul<&Q> for &Q {
+    type Output = Q;
+    fn mul(self, o: &Q) -> Q {
+        match (self, o) {
+            (Q::S(a, b), Q::S(c, d)) => {
+                if *b == 1 && *d == 1 {
+                    return match a.checked_mul(*c) {
+                        Some(n) if n != i64::MIN => Q::S(n, 1),
+                        _ => Q::from_i128(*a as i128 * *c as i128, 1),
+                    };
+                }
+                // Cross-reduce so the product is already in lowest terms.
+                let g1 = gcd_u64(a.unsigned_abs(), *d as u64) as i64;
+                let g2 = gcd_u64(c.unsigned_abs(), *b as u64) as i64;
+                if let (Some(n), Some(m)) =
+                    ((a / g1).checked_mul(c / g2), (b / g2).checked_mul(d / g1))
+                {
+                    if n == 0 {
+                        return Q::ZERO;
+                    }
+                    if n != i64::MIN {
+                        return Q::S(n, m);
+                    }
+                }
+                let g1 = gcd_u64(a.unsigned_abs(), d.unsigned_abs()) as i128;
+                let g2 = gcd_u64(c.unsigned_abs(), b.unsigned_abs()) as i128;
+                let (a, b, c, d) = (*a as i128, *b as i128, *c as i128, *d as i128);
+                let n = (a / g1) * (c / g2);
+                let m = (b / g2) * (d / g1);
+                if n == 0 {
+                    return Q::ZERO;
+                }
+                match (i64::try_from(n), i64::try_from(m)) {
+                    (Ok(x), Ok(y)) if x != i64::MIN => Q::S(x, y),
+                    _ => Q::B(Box::new(BigRational::new_raw(
+                        BigInt::from(n),
+                        BigInt::from(m),
+                    ))),
+                }
+            }
+            _ => Q::big(self.to_big() * o.to_big()),
+        }
+    }
+}
+
+impl Mul<Q> for Q {
+    type Output = Q;
+    fn mul(self, o: Q) -> Q {
+        &self * &o
+    }
+}
+
+impl Add<Q> for Q {
+    type Output = Q;
+    fn add(self, o: Q) -> Q {
+        &self + &o
+    }
+}
+
+impl Neg for Q {
+    type Output = Q;
+    fn neg(self) -> Q {
+        -&self
+    }
+}
+
+impl Neg for &Q {
+    type Output = Q;
+    fn neg(self) -> Q {
+        match self {
+            // The numerator is never i64::MIN, so this cannot overflow.
+            Q::S(n, d) => Q::S(-n, *d),
+            Q::B(b) => Q::big(-(**b).clone()),
+        }
+    }
+}
+
+impl Ord for Q {
+    fn cmp(&self, o: &Q) -> Ordering {
+        match (self, o) {
+            (Q::S(a, b), Q::S(c, d)) => (*a as i128 * *d as i128).cmp(&(*c as i128 * *b as i128)),
+            _ => self.to_big().cmp(&o.to_big()),
+        }
+    }
+}
+
+impl PartialOrd for Q {
+    fn partial_cmp(&self, o: &Q) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+
+/// Prints like [`BigRational`]: `n` for integers, `n/d` otherwise.
+impl fmt::Display for Q {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Q::S(n, 1) => write!(f, "{n}"),
+            Q::S(n, d) => write!(f, "{n}/{d}"),
+            Q::B(b) => write!(f, "{b}"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn big(n: i128, d: i128) -> BigRational {
+        BigRational::new(BigInt::from(n), BigInt::from(d))
+    }
+
+    #[test]
+    fn small_arithmetic_agrees_with_big() {
+        let vals = [
+            (0i64, 1i64),
+            (1, 2),
+            (-3, 4),
+            (7, 1),
+            (i64::MAX, 1),
+            (-i64::MAX, 3),
+            (1, i64::MAX),
+            (i64::MAX - 1, i64::MAX),
+            (5, 6),
+        ];
+        for &(a, b) in &vals {
+            for &(c, d) in &vals {
+                let (x, y) = (Q::new(a, b), Q::new(c, d));
+                let (bx, by) = (big(a.into(), b.into()), big(c.into(), d.into()));
+                assert_eq!(&x + &y, Q::big(&bx + &by));
+                assert_eq!(&x - &y, Q::big(&bx - &by));
+                assert_eq!(&x * &y, Q::big(&bx * &by));
+                assert_eq!(x.cmp(&y), bx.cmp(&by));
+                assert_eq!((&x * &y).to_big(), &bx * &by);
+                assert_eq!(x.to_string(), bx.to_string());
+            }
+        }
+    }
+
+    #[test]
+    fn big_values_demote_when_they_fit() {
+        let x = Q::int(i64::MAX);
+        let y = &x + &Q::ONE;
+        assert!(matches!(y, Q::B(_)));
+        let z = &y - &Q::ONE;
+        assert_eq!(z, Q::S(i64::MAX, 1));
+        assert!(matches!(Q::int(i64::MIN), Q::B(_)));
+        assert_eq!(-&Q::int(i64::MIN), Q::big(big(-(i64::MIN as i128), 1)));
+    }
+}

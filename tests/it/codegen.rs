@@ -1,0 +1,329 @@
+//! Generated Rust, C and Python: compiled (rustc -D warnings, clippy, gcc -Werror) or run (the
+//! venv's Python with NumPy), then compared at random points with `Scalar::eval`.
+
+use crate::paper_support::*;
+use crate::tools;
+use dqsym::{arguments, c_function, python_function, rust_function, CodegenOptions, Output};
+use std::process::Command;
+
+fn joints(n: usize) -> Vec<String> {
+    (1..=n).map(|i| format!("theta{i}")).collect()
+}
+
+/// The PUMA 560 pose: the 8 DQ components and the top three rows of the 4x4 matrix.
+pub fn puma_outputs() -> Vec<Output> {
+    let (q, _) = crate::paper_arms::puma560();
+    let m = q.to_matrix();
+    vec![
+        Output::vector(
+            "dq",
+            "The pose as a unit dual quaternion (w, x, y, z) + eps (w, x, y, z).",
+            q.components().iter().map(closed).collect(),
+        ),
+        Output::matrix(
+            "t",
+            "The top three rows of the 4x4 homogeneous matrix.",
+            m.rows
+                .iter()
+                .take(3)
+                .map(|r| r.iter().map(closed).collect())
+                .collect(),
+        ),
+    ]
+}
+
+fn rrr_outputs() -> Vec<Output> {
+    let (q, v0) = crate::emit::rrr();
+    vec![
+        Output::vector(
+            "dq",
+            "q_d1 q_d2 q_d3.",
+            q.components().iter().map(closed).collect(),
+        ),
+        Output::vector("v0", "The end effector.", v0.iter().map(closed).collect()),
+        Output::scalar(
+            "reach",
+            "y + z of the end effector.",
+            closed(&(&v0[1] + &v0[2])),
+        ),
+    ]
+}
+
+/// Random points for `args`, and the expected outputs there from `Scalar::eval`, flattened.
+fn expected(outputs: &[Output], args: &[String]) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
+    let names: Vec<&str> = args.iter().map(String::as_str).collect();
+    let pts = points(&names, 6);
+    let want = pts
+        .iter()
+        .map(|env| {
+            outputs
+                .iter()
+                .flat_map(|o| o.values.iter())
+                .map(|e| ev(&e.to_scalar(), env))
+                .collect()
+        })
+        .collect();
+    let pts = pts
+        .iter()
+        .map(|env| env.iter().map(|(_, v)| *v).collect())
+        .collect();
+    (pts, want)
+}
+
+fn input(pts: &[Vec<f64>]) -> String {
+    pts.iter()
+        .map(|p| {
+            let v: Vec<String> = p.iter().map(|x| format!("{x:?}")).collect();
+            v.join(" ") + "\n"
+        })
+        .collect()
+}
+
+fn compare(what: &str, out: &str, want: &[Vec<f64>]) {
+    let got: Vec<Vec<f64>> = out
+        .lines()
+        .map(|l| {
+            l.replace(['[', ']', ','], " ")
+                .split_whitespace()
+                .map(|x| x.parse::<f64>().expect("a number"))
+                .collect()
+        })
+        .collect();
+    assert_eq!(got.len(), want.len(), "{what}: one line per point");
+    for (g, w) in got.iter().zip(want) {
+        assert_eq!(g.len(), w.len(), "{what}: one value per output entry");
+        for (k, (a, b)) in g.iter().zip(w).enumerate() {
+            assert!(close(*a, *b), "{what}: entry {k}: {a} != {b}");
+        }
+    }
+}
+
+fn check_rust(name: &str, outputs: &[Output], args: &[String], o: &CodegenOptions) {
+    let code = rust_function(name, "Generated for a test.", outputs, args, o).expect("codegen");
+    let call: Vec<String> = (0..args.len()).map(|i| format!("v[{i}]")).collect();
+    let fields: Vec<String> = outputs.iter().map(|o| format!("r.{}", o.name)).collect();
+    let fmt = vec!["{:?}"; fields.len()].join(" ");
+    let main = format!(
+        "\nfn main() {{\n    let mut s = String::new();\n    std::io::Read::read_to_string(&mut std::io::stdin(), &mut s).unwrap();\n    for line in s.lines() {{\n        let v: Vec<f64> = line.split_whitespace().map(|x| x.parse().unwrap()).collect();\n        let r = {name}({});\n        println!(\"{fmt}\", {});\n    }}\n}}\n",
+        call.join(", "),
+        fields.join(", ")
+    );
+    let dir = tools::temp_dir(&format!("rust-{name}"));
+    let src = dir.join("gen.rs");
+    std::fs::write(&src, code + &main).expect("write gen.rs");
+    let bin = dir.join("gen");
+    let mut rustc = Command::new("rustc");
+    rustc
+        .args(["--edition", "2021", "-D", "warnings", "-O", "-o"])
+        .arg(&bin)
+        .arg(&src);
+    tools::run(
+        rustc,
+        "",
+        &format!("rustc -D warnings on {}", src.display()),
+    );
+    let mut clippy = Command::new("clippy-driver");
+    clippy
+        .args([
+            "--edition",
+            "2021",
+            "-D",
+            "warnings",
+            "--emit=metadata",
+            "--out-dir",
+        ])
+        .arg(&dir)
+        .arg(&src);
+    tools::run(
+        clippy,
+        "",
+        &format!(
+            "clippy-driver -D warnings on {} (install with `rustup component add clippy`)",
+            src.display()
+        ),
+    );
+    let (pts, want) = expected(outputs, args);
+    let out = tools::run(Command::new(&bin), &input(&pts), "generated Rust");
+    compare(&format!("Rust {name}"), &out, &want);
+}
+
+fn check_c(name: &str, outputs: &[Output], args: &[String]) {
+    let code = c_function(
+        name,
+        "Generated for a test.",
+        outputs,
+        args,
+        &Default::default(),
+    )
+    .expect("codegen");
+    let mut decl = String::new();
+    let mut outs = Vec::new();
+    let mut prints = String::new();
+    for o in outputs {
+        match o.shape {
+            None => {
+                decl.push_str(&format!("        double {};\n", o.name));
+                outs.push(format!("&{}", o.name));
+                prints.push_str(&format!("        printf(\"%.17g \", {});\n", o.name));
+            }
+            Some((r, c)) => {
+                decl.push_str(&format!("        double {}[{}];\n", o.name, r * c));
+                outs.push(if r == 1 {
+                    o.name.clone()
+                } else {
+                    format!("(double (*)[{c}]){}", o.name)
+                });
+                prints.push_str(&format!(
+                    "        for (int k = 0; k < {}; k++) printf(\"%.17g \", {}[k]);\n",
+                    r * c,
+                    o.name
+                ));
+            }
+        }
+    }
+    let n = args.len();
+    let main = format!(
+        "\n#include <stdio.h>\nint main(void)\n{{\n    double v[{n}];\n    for (;;) {{\n        for (int i = 0; i < {n}; i++)\n            if (scanf(\"%lf\", &v[i]) != 1) return 0;\n{decl}        {name}({}, {});\n{prints}        printf(\"\\n\");\n    }}\n}}\n",
+        (0..n).map(|i| format!("v[{i}]")).collect::<Vec<_>>().join(", "),
+        outs.join(", ")
+    );
+    let dir = tools::temp_dir(&format!("c-{name}"));
+    let src = dir.join("gen.c");
+    std::fs::write(&src, code + &main).expect("write gen.c");
+    let bin = dir.join("gen");
+    let mut gcc = Command::new("gcc");
+    gcc.args(["-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "-o"])
+        .arg(&bin)
+        .arg(&src)
+        .arg("-lm");
+    tools::run(
+        gcc,
+        "",
+        &format!("gcc -std=c99 -Werror on {}", src.display()),
+    );
+    let (pts, want) = expected(outputs, args);
+    let out = tools::run(Command::new(&bin), &input(&pts), "generated C");
+    compare(&format!("C {name}"), &out, &want);
+}
+
+fn check_python(name: &str, outputs: &[Output], args: &[String]) {
+    let code = python_function(
+        name,
+        "Generated for a test.",
+        outputs,
+        args,
+        &Default::default(),
+    )
+    .expect("codegen");
+    let names: Vec<String> = outputs.iter().map(|o| format!("{:?}", o.name)).collect();
+    // All points in one vectorized call: each argument is the column of its values.
+    let driver = format!(
+        "\nimport sys\ndata = np.loadtxt(sys.stdin, ndmin=2)\nr = {name}(*data.T)\nfor i in range(data.shape[0]):\n    print(' '.join(repr(float(x)) for k in [{}] for x in np.ravel(r[k][i])))\n",
+        names.join(", ")
+    );
+    let (pts, want) = expected(outputs, args);
+    let out = tools::run_python(&(code + &driver), &input(&pts), "numpy");
+    compare(&format!("Python {name}"), &out, &want);
+}
+
+#[test]
+fn rust_puma560_pose_compiles_clean_and_matches_eval() {
+    let outs = puma_outputs();
+    let args = arguments(
+        &outs,
+        &["theta1", "theta2", "theta3", "theta4", "theta5", "theta6"],
+    );
+    assert_eq!(
+        args,
+        [
+            joints(6),
+            vec!["a2".into(), "a3".into(), "d3".into(), "d4".into()]
+        ]
+        .concat()
+    );
+    check_rust("puma560", &outs, &args, &CodegenOptions::default());
+    check_rust(
+        "puma560_per_angle",
+        &outs,
+        &args,
+        &CodegenOptions {
+            expand_angles: false,
+        },
+    );
+}
+
+#[test]
+fn rust_rrr_arm_compiles_clean_and_matches_eval() {
+    let outs = rrr_outputs();
+    let mut args = arguments(&outs, &["theta1", "theta2", "theta3"]);
+    args.push("unused".into());
+    check_rust("rrr", &outs, &args, &CodegenOptions::default());
+}
+
+#[test]
+fn c_puma560_and_rrr_compile_with_werror_and_match_eval() {
+    let outs = puma_outputs();
+    let args = arguments(
+        &outs,
+        &["theta1", "theta2", "theta3", "theta4", "theta5", "theta6"],
+    );
+    check_c("puma560", &outs, &args);
+    let outs = rrr_outputs();
+    let mut args = arguments(&outs, &["theta1", "theta2", "theta3"]);
+    args.push("unused".into());
+    check_c("rrr", &outs, &args);
+}
+
+#[test]
+fn python_puma560_and_rrr_vectorized_match_eval() {
+    let outs = puma_outputs();
+    let args = arguments(
+        &outs,
+        &["theta1", "theta2", "theta3", "theta4", "theta5", "theta6"],
+    );
+    check_python("puma560", &outs, &args);
+    let outs = rrr_outputs();
+    let args = arguments(&outs, &["theta1", "theta2", "theta3"]);
+    check_python("rrr", &outs, &args);
+}
+
+#[test]
+fn constants_and_pi_shifts_compile_to_std_consts() {
+    // sqrt(2) = SQRT_2, pi = PI, a quarter-turn shift, a pi/3 shift.
+    let th = sym("theta");
+    let x = int(2).sqrt() * frac(1, 2) * cos(&(&th + S::pi() * frac(1, 2)))
+        + sym("pi_weight") * S::pi()
+        + sin(&(&th * frac(3, 2) - S::pi() * frac(1, 3)));
+    let outs = vec![Output::scalar("x", "A test value.", closed(&x))];
+    let args = arguments(&outs, &["theta"]);
+    let code = rust_function("consts", "Constants.", &outs, &args, &Default::default()).unwrap();
+    assert!(code.contains("std::f64::consts::SQRT_2"), "{code}");
+    assert!(code.contains("std::f64::consts::PI"), "{code}");
+    check_rust("consts", &outs, &args, &CodegenOptions::default());
+    check_c("consts", &outs, &args);
+    check_python("consts", &outs, &args);
+}
+
+#[test]
+fn rust_puma560_calls_sin_cos_once_per_joint_and_shares_subexpressions() {
+    let outs = puma_outputs();
+    let args = arguments(
+        &outs,
+        &["theta1", "theta2", "theta3", "theta4", "theta5", "theta6"],
+    );
+    let code = rust_function("puma560", "PUMA 560.", &outs, &args, &Default::default()).unwrap();
+    assert_eq!(code.matches(".sin_cos()").count(), 6, "{code}");
+    assert!(code.matches("\n    let t").count() > 10, "{code}");
+    let per_angle = rust_function(
+        "puma560",
+        "PUMA 560.",
+        &outs,
+        &args,
+        &CodegenOptions {
+            expand_angles: false,
+        },
+    )
+    .unwrap();
+    let lets = per_angle.matches(".sin_cos()").count();
+    assert_eq!(lets, 13, "one per distinct angle: {per_angle}");
+}

@@ -1,0 +1,251 @@
+//! Robot files: every example robot against plain 4x4 matrix products at random configurations,
+//! its Jacobian against finite differences, `dqsym fk` output, and malformed files.
+
+use crate::paper_support::{ev, points};
+use dqsym::{
+    dq_jacobian, eval_scalar_text, parse_robot, Chain, Joint, JointGeometry, Robot, Scalar,
+};
+use std::process::Command;
+
+fn load(path: &str) -> Robot {
+    let text = std::fs::read_to_string(path).expect("robot file");
+    parse_robot(&text, path, &eval_scalar_text).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn robot_files() -> Vec<String> {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/robots");
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .expect("examples/robots")
+        .map(|e| e.expect("entry").path().display().to_string())
+        .filter(|p| p.ends_with(".toml"))
+        .collect();
+    v.sort();
+    v
+}
+
+/// The chain with every parameter evaluated at `env`: an f64 chain built without symbols.
+fn numeric_chain(r: &Robot, env: &[(String, f64)]) -> Chain<f64> {
+    let f = |x: &Scalar| ev(x, env);
+    let f3 = |v: &[Scalar; 3]| [f(&v[0]), f(&v[1]), f(&v[2])];
+    let joints = r
+        .chain
+        .joints
+        .iter()
+        .map(|j| {
+            let g = match &j.geometry {
+                JointGeometry::Dh { theta, d, a, alpha } => JointGeometry::Dh {
+                    theta: f(theta),
+                    d: f(d),
+                    a: f(a),
+                    alpha: f(alpha),
+                },
+                JointGeometry::Mdh { alpha, a, theta, d } => JointGeometry::Mdh {
+                    alpha: f(alpha),
+                    a: f(a),
+                    theta: f(theta),
+                    d: f(d),
+                },
+                JointGeometry::Screw { axis, point } => JointGeometry::Screw {
+                    axis: f3(axis),
+                    point: f3(point),
+                },
+            };
+            Joint::new(j.kind, g)
+        })
+        .collect();
+    Chain::new(joints)
+}
+
+#[test]
+fn every_example_robot_matches_plain_matrix_products() {
+    let files = robot_files();
+    assert!(files.len() >= 8, "the example robots: {files:?}");
+    for file in files {
+        let r = load(&file);
+        let q = r.forward();
+        assert!(
+            q.unit_constraints().hold_exactly(),
+            "{file}: forward kinematics is a unit DQ"
+        );
+        let m = q.to_matrix();
+        let mut names: Vec<String> = r.variables.clone();
+        names.extend(r.parameters());
+        let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+        for env in points(&refs, 4) {
+            let num = numeric_chain(&r, &env);
+            let qs: Vec<f64> = r
+                .variables
+                .iter()
+                .map(|v| {
+                    env.iter()
+                        .find(|(k, _)| k == v)
+                        .map(|(_, x)| *x)
+                        .unwrap_or(0.0)
+                })
+                .collect();
+            let want = num.forward_matrix(&qs).expect("joint count");
+            for i in 0..3 {
+                for j in 0..4 {
+                    let got = ev(&m.rows[i][j], &env);
+                    assert!(
+                        (got - want.rows[i][j]).abs() < 1e-9,
+                        "{file}: T[{i}][{j}] {got} != {}",
+                        want.rows[i][j]
+                    );
+                }
+            }
+            if let Some(tool) = &r.tool {
+                let p = q.transform_point(tool);
+                let t = [ev(&tool[0], &env), ev(&tool[1], &env), ev(&tool[2], &env)];
+                let wp = want.transform_point(&t);
+                for k in 0..3 {
+                    assert!((ev(&p[k], &env) - wp[k]).abs() < 1e-9, "{file}: tool point");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn every_example_jacobian_matches_finite_differences() {
+    for file in robot_files() {
+        let r = load(&file);
+        let q = r.forward();
+        let vars: Vec<&str> = r.variables.iter().map(String::as_str).collect();
+        let jac = dq_jacobian(&q, &vars);
+        let comps = q.components();
+        let mut names: Vec<String> = r.variables.clone();
+        names.extend(r.parameters());
+        let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+        let env = &points(&refs, 1)[0];
+        let h = 1e-6;
+        for (j, v) in vars.iter().enumerate() {
+            let shifted = |d: f64| -> Vec<(String, f64)> {
+                env.iter()
+                    .map(|(k, x)| (k.clone(), if k == v { x + d } else { *x }))
+                    .collect()
+            };
+            let (p, m) = (shifted(h), shifted(-h));
+            for (i, c) in comps.iter().enumerate() {
+                let fd = (ev(c, &p) - ev(c, &m)) / (2.0 * h);
+                assert!(
+                    (fd - ev(&jac[i][j], env)).abs() < 1e-6,
+                    "{file}: J[{i}][{j}]"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn malformed_robot_files_name_the_file_joint_and_field() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/robots_bad");
+    let mut files: Vec<_> = std::fs::read_dir(dir)
+        .expect("dir")
+        .map(|e| e.expect("entry").path())
+        .collect();
+    files.sort();
+    let mut out = String::new();
+    for f in &files {
+        let name = format!(
+            "robots_bad/{}",
+            f.file_name().expect("name").to_string_lossy()
+        );
+        let text = std::fs::read_to_string(f).expect("read");
+        match parse_robot(&text, &name, &eval_scalar_text) {
+            Ok(_) => panic!("{name} should be refused"),
+            Err(e) => {
+                let msg = e.to_string();
+                assert!(msg.starts_with(&name), "message names the file: {msg}");
+                out.push_str(&format!("{msg}\n"));
+            }
+        }
+    }
+    crate::common::snapshot_settings().bind(|| insta::assert_snapshot!("robot_file_errors", out));
+}
+
+#[test]
+fn fk_command_prints_sympy_lines_and_exits_1_on_bad_files() {
+    let bin = env!("CARGO_BIN_EXE_dqsym");
+    let puma = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/robots/puma560.toml");
+    let out = Command::new(bin)
+        .args(["fk", puma, "--jacobian", "--format", "sympy"])
+        .output()
+        .expect("runs");
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 8 + 12 + 8 * 6, "one line per entry");
+    for l in &lines {
+        let (name, expr) = l.split_once(" = ").expect("NAME = EXPR");
+        let ok = name.starts_with("dq[") || name.starts_with("T[") || name.starts_with("J[");
+        assert!(ok && !expr.is_empty(), "{l}");
+    }
+    assert!(text.contains("T[2][3] = "));
+    let bad = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/robots_bad/symbolic_axis.toml"
+    );
+    let out = Command::new(bin).args(["fk", bad]).output().expect("runs");
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("joint 1, field `axis`"), "{err}");
+}
+
+#[test]
+fn fk_sympy_output_parses_in_sympy_and_agrees_numerically() {
+    let bin = env!("CARGO_BIN_EXE_dqsym");
+    let rrr = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/robots/rrr.toml");
+    let out = Command::new(bin)
+        .args(["fk", rrr, "--format", "sympy"])
+        .output()
+        .expect("runs");
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let script = r#"
+import sys, math, sympy
+vals = {"theta1": 0.3, "theta2": -1.1, "theta3": 0.8, "l1": 1.5, "l2": 0.7, "l3": 0.4}
+for line in sys.stdin:
+    name, expr = line.rstrip("\n").split(" = ", 1)
+    e = sympy.sympify(expr)
+    v = float(e.subs({sympy.Symbol(k): x for k, x in vals.items()}).evalf())
+    print(f"{name} {v!r}")
+"#;
+    let res = crate::tools::run_python(script, &text, "sympy");
+    let r = load(rrr);
+    let q = r.forward();
+    let env: Vec<(String, f64)> = [
+        ("theta1", 0.3),
+        ("theta2", -1.1),
+        ("theta3", 0.8),
+        ("l1", 1.5),
+        ("l2", 0.7),
+        ("l3", 0.4),
+    ]
+    .iter()
+    .map(|(k, v)| (k.to_string(), *v))
+    .collect();
+    let p = q.transform_point(r.tool.as_ref().expect("tool"));
+    let mut seen = 0;
+    for line in res.lines() {
+        let (name, v) = line.split_once(' ').expect("name value");
+        let v: f64 = v.parse().expect("number");
+        let want = if let Some(k) = name.strip_prefix("p[") {
+            ev(&p[k[..1].parse::<usize>().expect("index")], &env)
+        } else if let Some(k) = name.strip_prefix("dq[") {
+            ev(
+                &q.components()[k[..1].parse::<usize>().expect("index")],
+                &env,
+            )
+        } else {
+            continue;
+        };
+        assert!((v - want).abs() < 1e-9, "{name}: {v} != {want}");
+        seen += 1;
+    }
+    assert_eq!(seen, 11, "8 DQ components and 3 point coordinates");
+}
