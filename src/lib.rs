@@ -25,8 +25,8 @@ pub use lang::{
     builtin, eval_point_text, eval_scalar_text, parse, parse_expr, parse_expr_with, parse_with,
     show, show_value, AddOp, Binding, BindingKind, Builtin, Displayed, EvalError, EvalErrorKind,
     Expr as AstExpr, ExprKind, Format, Ident, MulOp, ParseError, ParseErrorKind, ParseOptions,
-    Program, Session, ShowOptions, Span, Stmt, StmtKind, UnaryOp, Value, BUILTINS, CONSTANTS,
-    MAX_EXPONENT,
+    Program, Session, ShowError, ShowOptions, Span, Stmt, StmtKind, UnaryOp, Value, BUILTINS,
+    CONSTANTS, MAX_EXPONENT,
 };
 pub use print::{
     fk_report, legend, plain, shorthand_name, FkOptions, PlainOptions, ReportError, ReportFormat,

@@ -27,6 +27,9 @@ struct Cli {
     /// Print cos(theta1 + theta2) instead of the shorthand c12.
     #[arg(long, global = true)]
     explicit: bool,
+    /// The most terms an expanded scalar may have; larger results are errors, not hangs.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_TERM_LIMIT, global = true)]
+    term_limit: usize,
     #[command(subcommand)]
     command: Option<Command>,
 }
@@ -68,23 +71,24 @@ enum OutputFormat {
     Sympy,
 }
 
-/// The options for the library's printers, or a message when the format is not available.
+/// The options for the library's printers.
 fn show_options(format: OutputFormat, explicit: bool) -> Result<ShowOptions, String> {
     let format = match format {
         OutputFormat::Plain => Format::Plain,
-        other => {
-            return Err(format!(
-                "error: --format {} is not available yet in this build",
-                format!("{other:?}").to_lowercase()
-            ))
-        }
+        OutputFormat::Latex => Format::Latex,
+        OutputFormat::Rust => Format::Rust,
+        OutputFormat::Sympy => Format::Sympy,
     };
     Ok(ShowOptions { format, explicit })
 }
 
 /// Deep but legal inputs recurse up to the parser's depth limit in the evaluator and the
 /// printers; a large stack makes that safe in debug builds too.
-const STACK: usize = 256 << 20;
+pub(crate) const STACK: usize = 256 << 20;
+
+/// The default `--term-limit`: the paper's largest intermediate scalars have a few thousand
+/// terms, and a product of two scalars this size is still well under a second.
+const DEFAULT_TERM_LIMIT: usize = 20_000;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -101,6 +105,10 @@ fn main() -> ExitCode {
 }
 
 fn dispatch(cli: Cli) -> ExitCode {
+    // The term limit guards scripts and one-liners; fk and paper keep the library default.
+    if !matches!(cli.command, Some(Command::Fk { .. } | Command::Paper)) {
+        dqsym::set_term_limit(cli.term_limit);
+    }
     // fk has its own formats (a report per entry); the other commands share show options.
     let opts = match &cli.command {
         Some(Command::Fk { .. }) => None,
@@ -139,7 +147,7 @@ fn dispatch(cli: Cli) -> ExitCode {
         },
         (Some(Command::Run { file }), _) => run_file(&file, &opts),
         (None, Some(expr)) => one_liner(&expr, &opts),
-        (None, None) => repl::run(&opts),
+        (None, None) => repl::run(&opts, cli.term_limit),
     }
 }
 

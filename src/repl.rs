@@ -91,21 +91,28 @@ fn history_path() -> Option<std::path::PathBuf> {
     std::env::var_os("HOME").map(|h| std::path::PathBuf::from(h).join(".dqsym_history"))
 }
 
-/// Whether `text` needs more lines: an open bracket, or a trailing `...` continuation.
-fn incomplete(text: &str) -> bool {
-    let mut depth: i64 = 0;
+/// What keeps `text` from being complete: the innermost open bracket, or `.` for a trailing
+/// `...` continuation; `None` when it can be evaluated.
+fn pending(text: &str) -> Option<char> {
+    let mut open = Vec::new();
     for line in text.lines() {
         let code = line.find(['%', '#']).map_or(line, |i| &line[..i]);
         let code = code.find("//").map_or(code, |i| &code[..i]);
         for c in code.chars() {
             match c {
-                '(' | '[' => depth += 1,
-                ')' | ']' => depth -= 1,
+                '(' | '[' => open.push(c),
+                // A stray closing bracket is left for the parser to report.
+                ')' | ']' => {
+                    open.pop()?;
+                }
                 _ => {}
             }
         }
     }
-    depth > 0 || text.trim_end().ends_with("...")
+    if let Some(&c) = open.last() {
+        return Some(c);
+    }
+    text.trim_end().ends_with("...").then_some('.')
 }
 
 /// The `:help` text: the language in brief, every built-in with an example, the commands.
@@ -170,7 +177,7 @@ fn vars(session: &Session) -> String {
 type Outcome = (Session, Result<Option<String>, String>);
 
 /// Runs the REPL until `:quit` or end of input.
-pub(crate) fn run(opts: &ShowOptions) -> ExitCode {
+pub(crate) fn run(opts: &ShowOptions, term_limit: usize) -> ExitCode {
     let interrupt = Arc::new(AtomicBool::new(false));
     {
         let flag = interrupt.clone();
@@ -234,14 +241,20 @@ pub(crate) fn run(opts: &ShowOptions) -> ExitCode {
                 _ => {}
             }
         }
+        // Parentheses must close on their own line in scripts, so a line continuing an open
+        // `(` is joined with a space; matrix rows and `...` keep their line breaks.
+        if pending(&buffer) == Some('(') && buffer.ends_with('\n') {
+            buffer.pop();
+            buffer.push(' ');
+        }
         buffer.push_str(&line);
         buffer.push('\n');
-        if incomplete(&buffer) {
+        if pending(&buffer).is_some() {
             continue;
         }
         let src = std::mem::take(&mut buffer);
         let _ = editor.add_history_entry(src.trim_end());
-        evaluate(&mut session, &src, opts, &interrupt);
+        evaluate(&mut session, &src, opts, &interrupt, term_limit);
         if let Ok(mut n) = names.lock() {
             *n = session.bindings().keys().cloned().collect();
         }
@@ -253,7 +266,13 @@ pub(crate) fn run(opts: &ShowOptions) -> ExitCode {
 }
 
 /// Parses and runs one input, statement by statement, each on a worker thread.
-fn evaluate(session: &mut Session, src: &str, opts: &ShowOptions, interrupt: &Arc<AtomicBool>) {
+fn evaluate(
+    session: &mut Session,
+    src: &str,
+    opts: &ShowOptions,
+    interrupt: &Arc<AtomicBool>,
+    term_limit: usize,
+) {
     let program = match parse(src) {
         Ok(p) => p,
         Err(e) => {
@@ -270,6 +289,8 @@ fn evaluate(session: &mut Session, src: &str, opts: &ShowOptions, interrupt: &Ar
         let spawned = std::thread::Builder::new()
             .stack_size(crate::STACK)
             .spawn(move || {
+                // The limit is per thread.
+                dqsym::set_term_limit(term_limit);
                 let result = match work.exec(&stmt) {
                     Ok(Some(d)) => show(&d, &opts).map(Some).map_err(|e| format!("error: {e}")),
                     Ok(None) => Ok(None),

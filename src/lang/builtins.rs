@@ -234,6 +234,38 @@ pub const BUILTINS: &[Builtin] = &[
         "matrix transpose",
         "transpose([1, 2; 3, 4])",
     ),
+    b(
+        "latex",
+        "latex(x)",
+        1,
+        1,
+        "x itself, displayed as LaTeX",
+        "latex(rot((0, 0, 1), theta1))",
+    ),
+    b(
+        "sympy",
+        "sympy(x)",
+        1,
+        1,
+        "x itself, displayed as SymPy input (sympify parses it)",
+        "sympy(cos(t)^2 - sin(t)^2)",
+    ),
+    b(
+        "rust",
+        "rust(x)",
+        1,
+        1,
+        "x itself, displayed as a Rust function of its symbols",
+        "rust(transform(rot((0, 0, 1), theta1), (l, 0, 0)))",
+    ),
+    b(
+        "plain",
+        "plain(x)",
+        1,
+        1,
+        "x itself, displayed as plain text",
+        "plain(sin(2*t))",
+    ),
 ];
 
 /// The built-in called `name`.
@@ -363,7 +395,7 @@ pub(crate) fn call(ev: &Evaluator<'_>, func: &Ident, args: &[Expr], span: Span) 
             })?;
             Value::DualQuat(q)
         }
-        "closed" => vals[0].value.clone(),
+        "closed" | "latex" | "sympy" | "rust" | "plain" => vals[0].value.clone(),
         "jacobian" => jacobian(&vals[0], &vals[1])?,
         "diff" => {
             let t = symbol_name(name, &vals[1].value, vals[1].span)?;

@@ -14,6 +14,7 @@ use super::ast::{AddOp, Expr, ExprKind, MulOp, Program, Span, Stmt, StmtKind, Un
 use super::builtins;
 use super::error::render;
 use super::scan::SourceMap;
+use super::show::Format;
 use super::value::{self, OpError, Value};
 use crate::{DualQuat, Quat, Scalar, ScalarError};
 use std::collections::BTreeMap;
@@ -59,6 +60,9 @@ pub struct Displayed {
     pub label: String,
     /// The value.
     pub value: Value,
+    /// The format asked for by an output function (`latex(x)`, `sympy(x)`, `rust(x)`) around
+    /// the statement's value, overriding the session's.
+    pub format: Option<Format>,
 }
 
 /// An error while evaluating a statement: the reason and the place.
@@ -343,6 +347,7 @@ impl Session {
                 Ok((!stmt.quiet).then(|| Displayed {
                     label: name.name.clone(),
                     value: v,
+                    format: output_format(value),
                 }))
             }
             StmtKind::Expr(e) => {
@@ -354,7 +359,11 @@ impl Session {
                 } else {
                     "ans".to_owned()
                 };
-                Ok((!stmt.quiet).then_some(Displayed { label, value: v }))
+                Ok((!stmt.quiet).then_some(Displayed {
+                    label,
+                    value: v,
+                    format: output_format(e),
+                }))
             }
         }
     }
@@ -398,6 +407,20 @@ impl Session {
         self.cancel
             .as_ref()
             .is_some_and(|c| c.load(Ordering::Relaxed))
+    }
+}
+
+/// The format of an output function call (`latex(x)`) at the top of `e`.
+fn output_format(e: &Expr) -> Option<Format> {
+    match &e.kind {
+        ExprKind::Call { func, args } if args.len() == 1 => match func.name.as_str() {
+            "latex" => Some(Format::Latex),
+            "sympy" => Some(Format::Sympy),
+            "rust" => Some(Format::Rust),
+            "plain" => Some(Format::Plain),
+            _ => None,
+        },
+        _ => None,
     }
 }
 

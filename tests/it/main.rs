@@ -7,6 +7,7 @@ mod common;
 mod counts;
 mod emit;
 mod kinematics;
+mod lang;
 mod laws;
 mod paper;
 mod paper_arms;

@@ -3,7 +3,7 @@
 
 use dqsym::{
     parse, parse_expr, parse_with, AddOp, AstExpr, ExprKind, MulOp, ParseErrorKind, ParseOptions,
-    StmtKind, UnaryOp,
+    Session, StmtKind, UnaryOp,
 };
 use proptest::prelude::*;
 
@@ -263,12 +263,26 @@ fn bad_inputs_have_clear_messages() {
             "bad/*.dq",
             |path| {
                 let src = std::fs::read_to_string(path).unwrap();
+                let semantic = path
+                    .file_name()
+                    .and_then(|n| n.to_str())
+                    .is_some_and(|n| n.starts_with("semantic_"));
                 let shown = match parse(&src) {
-                    Err(e) => e.to_string(),
+                    Err(e) => {
+                        assert!(!semantic, "{path:?} should parse:\n{e}");
+                        e.to_string()
+                    }
                     Ok(program) => {
-                        let text = program.to_string();
-                        let text: String = text.chars().take(400).collect();
-                        format!("parses; the evaluator must reject it:\n{text}")
+                        assert!(semantic, "{path:?} should not parse");
+                        let err = Session::new()
+                            .run(&program)
+                            .expect_err("the evaluator must reject it");
+                        let rendered = err.render(&src);
+                        assert!(rendered.contains('^'), "{rendered}");
+                        let message = err.message();
+                        assert!(!message.ends_with('.'), "{message}");
+                        assert!(!message.starts_with(char::is_uppercase), "{message}");
+                        rendered
                     }
                 };
                 insta::assert_snapshot!(shown);
