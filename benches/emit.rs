@@ -6,7 +6,9 @@ use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use nalgebra::{Translation3, UnitDualQuaternion, UnitQuaternion, Vector3};
 use std::f64::consts::FRAC_PI_2;
 
-include!("puma560_gen.rs");
+// Not a file of its own under benches/: Cargo would take it for a bench target, rustfmt would
+// reformat it.
+include!("generated/puma560_dq.rs");
 
 const A2: f64 = 0.4318;
 const A3: f64 = 0.0203;

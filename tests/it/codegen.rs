@@ -349,14 +349,17 @@ fn bench_source() -> String {
 
 #[test]
 fn bench_generated_puma560_is_up_to_date() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/benches/puma560_gen.rs");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/benches/generated/puma560_dq.rs"
+    );
     let want = bench_source();
     if std::env::var_os("DQSYM_BLESS").is_some() {
-        std::fs::write(path, &want).expect("write benches/puma560_gen.rs");
+        std::fs::write(path, &want).expect("write benches/generated/puma560_dq.rs");
     }
     let have = std::fs::read_to_string(path).unwrap_or_default();
     assert!(
         have == want,
-        "benches/puma560_gen.rs is out of date: rerun with DQSYM_BLESS=1 to rewrite it"
+        "benches/generated/puma560_dq.rs is out of date: rerun with DQSYM_BLESS=1 to rewrite it"
     );
 }
