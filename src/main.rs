@@ -193,6 +193,7 @@ fn fk(
             format,
             point,
             jacobian,
+            ..dqsym::FkOptions::default()
         },
     ) {
         Ok(t) => {

@@ -227,15 +227,50 @@ impl Robot {
             .unwrap_or_else(|_| DualQuat::identity())
     }
 
-    /// The symbols other than the joint variables (and pi), sorted by name.
-    pub fn parameters(&self) -> Vec<String> {
-        let fk = self.forward();
-        let mut names: Vec<String> = fk
-            .components()
+    /// Each joint's factor at its symbolic variable, base first.
+    pub fn joint_dqs(&self) -> Vec<DualQuat<Scalar>> {
+        self.chain
+            .joints
             .iter()
-            .flat_map(|c| c.symbols())
-            .map(|s| s.name().to_string())
-            .collect();
+            .zip(&self.variables)
+            .map(|(j, v)| j.dq(&Scalar::sym(v)))
+            .collect()
+    }
+
+    /// The forward kinematics, or `None` as soon as a component of a partial product has more
+    /// than `max_terms` terms: a chain whose expansion grows exponentially (every DH parameter
+    /// symbolic, many joints) is detected after a few products instead of exhausting memory.
+    pub fn forward_within(&self, max_terms: usize) -> Option<DualQuat<Scalar>> {
+        let mut acc = DualQuat::identity();
+        for f in self.joint_dqs() {
+            acc = acc * f;
+            if acc
+                .components()
+                .iter()
+                .any(|c| c.len() > max_terms || c.as_error().is_some())
+            {
+                return None;
+            }
+        }
+        Some(acc * self.chain.tool.clone())
+    }
+
+    /// The symbols other than the joint variables (and pi), sorted by name: those of the joint
+    /// factors and the tool, so nothing is expanded to find them.
+    pub fn parameters(&self) -> Vec<String> {
+        let mut names: Vec<String> = Vec::new();
+        for f in self
+            .joint_dqs()
+            .iter()
+            .chain(std::iter::once(&self.chain.tool))
+        {
+            names.extend(
+                f.components()
+                    .iter()
+                    .flat_map(|c| c.symbols())
+                    .map(|s| s.name().to_string()),
+            );
+        }
         if let Some(t) = &self.tool {
             names.extend(
                 t.iter()

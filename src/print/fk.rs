@@ -11,7 +11,7 @@ use crate::emit::{
 };
 use crate::kin::{dq_jacobian, Robot};
 use crate::print::{legend, plain, PlainOptions};
-use crate::{closed_form, Expr, Scalar, ScalarError};
+use crate::{closed_form, DualQuat, Expr, Scalar, ScalarError};
 
 /// The text format of a report.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -39,6 +39,20 @@ pub struct FkOptions {
     pub point: Option<[Scalar; 3]>,
     /// Add the 8 x n Jacobian of the DQ components.
     pub jacobian: bool,
+    /// The most terms an expanded entry may have; beyond it the pose is reported as a
+    /// recurrence over the joint factors (see [`fk_report`]).
+    pub max_terms: usize,
+}
+
+impl Default for FkOptions {
+    fn default() -> Self {
+        FkOptions {
+            format: ReportFormat::Plain { shorthand: true },
+            point: None,
+            jacobian: false,
+            max_terms: 20_000,
+        }
+    }
 }
 
 /// Why a report could not be written.
@@ -51,11 +65,23 @@ pub enum ReportError {
     /// Code generation refused the outputs.
     #[error(transparent)]
     Codegen(#[from] CodegenError),
+    /// The expanded form is too large and the format cannot express the recurrence form.
+    #[error("the expanded forward kinematics exceeds {0} terms per entry; only the plain, LaTeX and SymPy formats print it (as a recurrence)")]
+    TooLargeForCode(usize),
 }
 
 /// The report, or why it could not be made.
+///
+/// When the expanded pose exceeds `max_terms` terms per entry (a long chain with every
+/// parameter symbolic grows exponentially), the pose is reported exactly but as a recurrence:
+/// each joint factor `L{i}[k]` in closed form, then `Q{i}[k]`, the components of
+/// `Q{i} = Q{i-1} L{i}`, as expressions in the symbols `Q{i-1}_k` and `L{i}_k`, then the matrix
+/// and the point in terms of the last `Q{n}_k`. The Jacobian needs the expanded form and is
+/// left out there, with a note.
 pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
-    let q = robot.forward();
+    let Some(q) = robot.forward_within(o.max_terms) else {
+        return recurrence_report(robot, o);
+    };
     let mut sections: Vec<(&str, Vec<(String, Expr)>)> = Vec::new();
     let named =
         |prefix: &str, xs: &[(String, &Scalar)]| -> Result<Vec<(String, Expr)>, ScalarError> {
@@ -102,9 +128,19 @@ pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
             .collect();
         sections.push(("Jacobian d dq[i] / d q[j]", named("J", &js)?));
     }
-    Ok(match o.format {
+    render(robot, &sections, o.format, &[])
+}
+
+/// The sections in the chosen format, after `notes` (comment lines in plain and LaTeX).
+fn render(
+    robot: &Robot,
+    sections: &[(&str, Vec<(String, Expr)>)],
+    format: ReportFormat,
+    notes: &[String],
+) -> Result<String, ReportError> {
+    Ok(match format {
         ReportFormat::Rust | ReportFormat::C | ReportFormat::Python => {
-            code(robot, &sections, o.format)?
+            code(robot, sections, format)?
         }
         ReportFormat::Sympy => sections
             .iter()
@@ -113,7 +149,10 @@ pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
         ReportFormat::Plain { shorthand } => {
             let po = PlainOptions { shorthand };
             let mut out = header(robot);
-            for (title, rows) in &sections {
+            for n in notes {
+                out.push_str(&format!("# {n}\n"));
+            }
+            for (title, rows) in sections {
                 out.push_str(&format!("# {title}\n"));
                 for (n, e) in rows {
                     out.push_str(&format!("{n} = {}\n", plain(e, &po)));
@@ -135,7 +174,10 @@ pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
                 ..LatexOptions::default()
             };
             let mut out = format!("% {}", header(robot));
-            for (title, rows) in &sections {
+            for n in notes {
+                out.push_str(&format!("% {n}\n"));
+            }
+            for (title, rows) in sections {
                 out.push_str(&format!("% {title}\n"));
                 let rows: Vec<(String, Expr)> = rows
                     .iter()
@@ -147,6 +189,76 @@ pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
             out
         }
     })
+}
+
+/// The pose as a recurrence over the joint factors (see [`fk_report`]).
+fn recurrence_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
+    if matches!(
+        o.format,
+        ReportFormat::Rust | ReportFormat::C | ReportFormat::Python
+    ) {
+        return Err(ReportError::TooLargeForCode(o.max_terms));
+    }
+    let syms = |prefix: &str| -> DualQuat<Scalar> {
+        let c = |k: usize| Scalar::sym(&format!("{prefix}_{k}"));
+        DualQuat::from_components([c(0), c(1), c(2), c(3), c(4), c(5), c(6), c(7)])
+    };
+    let factors = robot.joint_dqs();
+    let n = factors.len();
+    let mut links = Vec::new();
+    for (i, f) in factors.iter().enumerate() {
+        for (k, c) in f.components().iter().enumerate() {
+            links.push((format!("L{}[{k}]", i + 1), closed_form(c)?));
+        }
+    }
+    let mut steps = Vec::new();
+    for i in 2..=n {
+        let prev = if i == 2 {
+            syms("L1")
+        } else {
+            syms(&format!("Q{}", i - 1))
+        };
+        let prod = prev * syms(&format!("L{i}"));
+        for (k, c) in prod.components().iter().enumerate() {
+            steps.push((format!("Q{i}[{k}]"), closed_form(c)?));
+        }
+    }
+    let last = if n <= 1 {
+        syms("L1")
+    } else {
+        syms(&format!("Q{n}"))
+    };
+    let mut sections: Vec<(&str, Vec<(String, Expr)>)> = vec![
+        ("joint factors L{i} (unit DQs)", links),
+        (
+            "Q{i} = Q{i-1} L{i}, Q{1} = L{1}; the pose is the last Q",
+            steps,
+        ),
+    ];
+    let m = last.to_matrix();
+    let mut t = Vec::new();
+    for i in 0..3 {
+        for j in 0..4 {
+            t.push((format!("T[{i}][{j}]"), closed_form(&m.rows[i][j])?));
+        }
+    }
+    sections.push(("homogeneous matrix (rows 0..2) of the last Q", t));
+    if let Some(p) = &o.point {
+        let img = last.transform_point(p);
+        let mut ps = Vec::new();
+        for (k, c) in img.iter().enumerate() {
+            ps.push((format!("p[{k}]"), closed_form(c)?));
+        }
+        sections.push(("image of the point", ps));
+    }
+    let mut notes = vec![format!(
+        "the expanded pose exceeds {} terms per entry: it is given exactly, as a recurrence over the joint factors",
+        o.max_terms
+    )];
+    if o.jacobian {
+        notes.push("the Jacobian needs the expanded pose and is not printed".to_string());
+    }
+    render(robot, &sections, o.format, &notes)
 }
 
 /// The report's sections as one generated function: `dq` (8), `t` (3 x 4), `p` (3) and `j`

@@ -293,3 +293,73 @@ fn fk_rust_output_compiles_and_agrees_with_the_engine() {
         assert!((got[k] - ev(c, &env)).abs() < 1e-12, "dq[{k}]");
     }
 }
+
+#[test]
+fn chain_of_20_symbolic_joints_is_reported_as_an_exact_recurrence() {
+    let file = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/chain20_symbolic.toml"
+    );
+    let r = load(file);
+    // A small term limit keeps the debug-build test quick; the default (20,000) behaves alike.
+    let o = dqsym::FkOptions {
+        format: dqsym::ReportFormat::Sympy,
+        max_terms: 2_000,
+        ..dqsym::FkOptions::default()
+    };
+    let text = dqsym::fk_report(&r, &o).expect("a report");
+    // Evaluate the recurrence line by line in SymPy at one configuration.
+    let mut names: Vec<String> = r.variables.clone();
+    names.extend(r.parameters());
+    assert_eq!(names.len(), 80, "every DH parameter is a symbol");
+    let env: Vec<(String, f64)> = names
+        .iter()
+        .enumerate()
+        .map(|(i, n)| (n.clone(), ((i * 37 % 101) as f64) / 50.0 - 1.0))
+        .collect();
+    let vals: Vec<String> = env.iter().map(|(k, v)| format!("{k:?}: {v:?}")).collect();
+    let script = format!(
+        r#"
+import sys, sympy
+env = {{{}}}
+for line in sys.stdin:
+    name, expr = line.rstrip("\n").split(" = ", 1)
+    e = sympy.sympify(expr)
+    v = float(e.xreplace({{s: sympy.Float(env[s.name], 30) for s in e.free_symbols}}).evalf(30))
+    key = name.replace("[", "_").replace("]", "")
+    if key.startswith(("L", "Q")):
+        key = key.rstrip("_")
+    env[key] = v
+    if name.startswith("T["):
+        print(name, repr(v))
+"#,
+        vals.join(", ")
+    );
+    let out = crate::tools::run_python(&script, &text, "sympy");
+    let num = numeric_chain(&r, &env);
+    let q: Vec<f64> = r
+        .variables
+        .iter()
+        .map(|v| {
+            env.iter()
+                .find(|(k, _)| k == v)
+                .map(|(_, x)| *x)
+                .unwrap_or(0.0)
+        })
+        .collect();
+    let want = num.forward_matrix(&q).expect("joint count");
+    let mut seen = 0;
+    for line in out.lines() {
+        let (name, v) = line.split_once(' ').expect("name value");
+        let v: f64 = v.parse().expect("f64");
+        let i: usize = name[2..3].parse().expect("row");
+        let j: usize = name[5..6].parse().expect("column");
+        assert!(
+            (v - want.rows[i][j]).abs() < 1e-9,
+            "{name}: {v} != {}",
+            want.rows[i][j]
+        );
+        seen += 1;
+    }
+    assert_eq!(seen, 12);
+}
