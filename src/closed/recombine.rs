@@ -2,9 +2,8 @@
 //! siblings, for any cofactor `T` (lengths, other trigonometric factors, numbers), repeated
 //! until nothing pairs up, so `c1 c2 c3 - ...` regroups to `c123` at any depth.
 
-use super::mon::{angle_combine, angle_of, atom, is_sin, merge, remap, Atom, Ctx, Mon};
+use super::mon::{angle_combine, angle_of, atom, is_sin, merge, remap, Atom, Ctx, FxMap, Mon};
 use std::cmp::Ordering;
-use std::collections::HashMap;
 
 /// Which identity a pair of atoms can take part in.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Debug)]
@@ -112,7 +111,7 @@ fn round(ctx: &mut Ctx, mons: &[Mon]) -> (Vec<Mon>, bool) {
     let mut used = vec![false; mons.len()];
     let mut out = Vec::new();
     let mut changed = false;
-    let mut combined: HashMap<(u32, u32, i64), Combined> = HashMap::new();
+    let mut combined: FxMap<(u32, u32, i64), Combined> = FxMap::default();
     let mut start = 0;
     while start < index.len() {
         let mut end = start + 1;
