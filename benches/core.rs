@@ -1,5 +1,5 @@
 use criterion::{criterion_group, criterion_main, Criterion};
-use dqsym::{dh_link, DualQuat, Ring, Scalar};
+use dqsym::{closed_form, dh_link, DualQuat, Expr, Ring, Scalar};
 use std::hint::black_box;
 
 /// The six standard-DH links of the PUMA 560.
@@ -38,5 +38,38 @@ fn puma560_fk_dq_product(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, puma560_fk_dq_product);
+/// The PUMA 560 pose as a dual quaternion.
+fn puma_pose() -> DualQuat<Scalar> {
+    let links = puma_links();
+    let mut acc = links[0].clone();
+    for l in &links[1..] {
+        acc = acc * l;
+    }
+    acc
+}
+
+/// Closed forms of the 8 components and of the 12 top entries of the matrix.
+fn closed_forms(pose: &DualQuat<Scalar>, rows: &[[Scalar; 4]]) -> Vec<Expr> {
+    pose.components()
+        .iter()
+        .chain(rows[..3].iter().flatten())
+        .map(|x| closed_form(x).expect("closed form"))
+        .collect()
+}
+
+fn puma560_closed_form(c: &mut Criterion) {
+    let pose = puma_pose();
+    c.bench_function("puma560_closed_form", |b| {
+        b.iter(|| {
+            let m = black_box(&pose).to_matrix();
+            black_box(closed_forms(&pose, &m.rows))
+        })
+    });
+    let m = pose.to_matrix();
+    c.bench_function("puma560_closed_form_only", |b| {
+        b.iter(|| black_box(closed_forms(black_box(&pose), &m.rows)))
+    });
+}
+
+criterion_group!(benches, puma560_fk_dq_product, puma560_closed_form);
 criterion_main!(benches);

@@ -82,22 +82,39 @@ pub struct Cost {
 impl Expr {
     /// The exact value, re-canonicalized: every closed form must equal its input.
     pub fn to_scalar(&self) -> Scalar {
+        self.eval(&mut Vec::new())
+    }
+
+    /// [`Expr::to_scalar`], with the trigonometric factors computed once per distinct atom.
+    fn eval<'a>(&'a self, trig: &mut Vec<(bool, &'a Angle, Scalar)>) -> Scalar {
         match self {
             Expr::Num(q) => Scalar::rational(q.clone()),
             Expr::Sqrt(n) => Scalar::int(*n as i64).sqrt(),
             Expr::Sym(s) => Scalar::sym(s.name()),
             Expr::Trig { sin, angle } => {
-                let a = angle.to_scalar();
-                if *sin {
-                    a.sin()
-                } else {
-                    a.cos()
+                if let Some((_, _, v)) = trig.iter().find(|(s, a, _)| s == sin && *a == angle) {
+                    return v.clone();
                 }
+                let a = angle.to_scalar();
+                let v = if *sin { a.sin() } else { a.cos() };
+                trig.push((*sin, angle, v.clone()));
+                v
             }
-            Expr::Add(v) => v.iter().fold(Scalar::int(0), |acc, e| acc + e.to_scalar()),
-            Expr::Mul(v) => v.iter().fold(Scalar::int(1), |acc, e| acc * e.to_scalar()),
-            Expr::Neg(e) => -e.to_scalar(),
-            Expr::Pow(e, n) => e.to_scalar().pow(u64::from(*n)),
+            // Folded from the first operand: `0 + x` and `1 * x` are `x` exactly.
+            Expr::Add(v) => match v.split_first() {
+                Some((first, rest)) => rest
+                    .iter()
+                    .fold(first.eval(trig), |acc, e| acc + e.eval(trig)),
+                None => Scalar::int(0),
+            },
+            Expr::Mul(v) => match v.split_first() {
+                Some((first, rest)) => rest
+                    .iter()
+                    .fold(first.eval(trig), |acc, e| acc * e.eval(trig)),
+                None => Scalar::int(1),
+            },
+            Expr::Neg(e) => -e.eval(trig),
+            Expr::Pow(e, n) => e.eval(trig).pow(u64::from(*n)),
         }
     }
 

@@ -5,10 +5,10 @@
 //! [`Ctx`]; only the chosen one becomes an [`Expr`].
 
 use super::expr::{Cost, Expr};
-use super::mon::{angle_of, content, div_q, is_sin, Atom, Ctx, Mon};
-use crate::scalar::Q;
+use super::mon::{angle_of, content, div_q, is_sin, Atom, Ctx, FxMap, Mon};
+use crate::scalar::{FxHasher, Q};
 use num_traits::One;
-use std::collections::HashMap;
+use std::hash::{Hash, Hasher};
 
 /// A factor that can be pulled out of several monomials.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug)]
@@ -106,10 +106,10 @@ impl E {
     }
 }
 
-/// The search state: results already found for a monomial list at a depth class.
+/// The search state: results already found for a monomial list at a depth class, by hash.
 #[derive(Default)]
 struct Search {
-    memo: HashMap<(usize, Vec<Mon>), (E, Cost)>,
+    memo: FxMap<u64, Vec<(usize, Vec<Mon>, E)>>,
 }
 
 /// The cheapest nested expression this search finds for the sum of `mons`, with its cost.
@@ -165,9 +165,20 @@ impl Search {
             return E::Add(mons.iter().map(mon_expr).collect());
         }
         let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
-        // Below the branching levels the result depends only on the monomials.
-        let key = (depth.min(BRANCH_DEPTH), mons.to_vec());
-        if let Some((e, _)) = self.memo.get(&key) {
+        // The result depends on the depth only through the branching, so below the branching
+        // levels all depths share one entry.
+        let level = depth.min(BRANCH_DEPTH);
+        let hash = {
+            let mut h = FxHasher::default();
+            level.hash(&mut h);
+            mons.hash(&mut h);
+            h.finish()
+        };
+        if let Some((_, _, e)) = self
+            .memo
+            .get(&hash)
+            .and_then(|v| v.iter().find(|(l, m, _)| *l == level && m == mons))
+        {
             return e.clone();
         }
         let mut best: Option<(Cost, E)> = None;
@@ -178,8 +189,11 @@ impl Search {
                 best = Some((c, e));
             }
         }
-        let (c, e) = best.unwrap_or_else(|| (Cost::default(), E::zero()));
-        self.memo.insert(key, (e.clone(), c));
+        let e = best.map(|(_, e)| e).unwrap_or_else(E::zero);
+        self.memo
+            .entry(hash)
+            .or_default()
+            .push((level, mons.to_vec(), e.clone()));
         e
     }
 

@@ -8,7 +8,7 @@
 
 use super::expr::Angle;
 use crate::scalar::atoms::freq_combine;
-use crate::scalar::{Small, Sym, Q};
+use crate::scalar::{FxHasher, Small, Sym, Q};
 use crate::Scalar;
 use num_bigint::BigInt;
 use num_integer::Integer;
@@ -16,6 +16,28 @@ use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 use std::cmp::Ordering;
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hash, Hasher};
+
+/// A map with the crate's fast deterministic hasher (only looked up, never iterated for output).
+pub(crate) type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
+
+/// An angle as a hash key: hashes the symbol names and the (always reduced) coefficients
+/// directly, which is much cheaper than the generic `Ratio` hash.
+#[derive(PartialEq, Eq)]
+struct AngleKey(Angle);
+
+impl Hash for AngleKey {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        h.write_usize(self.0.terms.len());
+        for (s, k) in &self.0.terms {
+            s.name().hash(h);
+            h.write_i64(*k.numer());
+            h.write_i64(*k.denom());
+        }
+        h.write_i64(*self.0.pi.numer());
+        h.write_i64(*self.0.pi.denom());
+    }
+}
 
 /// `cos(angle)` or `sin(angle)` as a factor of a monomial: `2 * angle id + sin`, so the order of
 /// the codes is the order `(angle, sin)`.
@@ -41,7 +63,7 @@ pub(crate) fn is_sin(a: Atom) -> bool {
 pub(crate) struct Ctx {
     /// The angles; after [`Ctx::renumber`] sorted, so an id is its angle's rank.
     pub(crate) angles: Vec<Angle>,
-    ids: HashMap<Angle, u32>,
+    ids: FxMap<AngleKey, u32>,
     /// Angles were added since the last renumbering.
     dirty: bool,
     /// The plain symbols of the input, sorted; a symbol's id is its rank.
@@ -66,11 +88,13 @@ impl Ctx {
 
     /// The id of `a` (a new angle gets the next free id until the next renumbering).
     pub(crate) fn intern(&mut self, a: Angle) -> u32 {
-        if let Some(&i) = self.ids.get(&a) {
+        let key = AngleKey(a);
+        if let Some(&i) = self.ids.get(&key) {
             return i;
         }
+        let a = key.0.clone();
         let i = self.angles.len() as u32;
-        self.ids.insert(a.clone(), i);
+        self.ids.insert(key, i);
         self.angles.push(a);
         self.dirty = true;
         i
@@ -216,12 +240,11 @@ pub(crate) fn split_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
     let Ok(terms) = x.terms() else {
         return (ctx, Vec::new());
     };
-    let mut out = Vec::new();
-    let mut atoms = Vec::new();
+    // First the parts of every mode, so the angle ids are final before expanding.
+    let mut parts_of: Vec<Vec<(u32, bool)>> = Vec::with_capacity(terms.len());
     for t in terms {
-        let base = base_mon(&ctx, t);
         if t.mode.is_unit() {
-            out.push(base);
+            parts_of.push(Vec::new());
             continue;
         }
         // Each symbol's part is its own angle; a leftover pi part rides on the last one.
@@ -243,41 +266,100 @@ pub(crate) fn split_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
                 }),
             }
         }
-        let parts: Vec<(u32, bool)> = parts
-            .into_iter()
-            .map(|mut a| {
-                let flipped = normalize(&mut a);
-                (ctx.intern(a), flipped)
-            })
-            .collect();
-        expand(&parts, t.mode.sin, false, &mut atoms, &base, &mut out);
+        parts_of.push(
+            parts
+                .into_iter()
+                .map(|mut a| {
+                    let flipped = normalize(&mut a);
+                    (ctx.intern(a), flipped)
+                })
+                .collect(),
+        );
     }
     if let Some(map) = ctx.renumber() {
-        for m in &mut out {
-            remap(m, &map);
-        }
-    } else {
-        for m in &mut out {
-            m.atoms.sort_unstable();
+        for parts in &mut parts_of {
+            for (id, _) in parts.iter_mut() {
+                *id = map[*id as usize];
+            }
         }
     }
-    (ctx, merge(out))
+    // Sum the expansions per cofactor `(rad, syms)`, keyed by the atoms.
+    type Cofactor = (u64, Vec<(u32, u32)>);
+    let mut group_of: FxMap<Cofactor, usize> = FxMap::default();
+    let mut groups: Vec<(Cofactor, FxMap<Vec<Atom>, Q>)> = Vec::new();
+    let mut atoms = Vec::new();
+    for (t, parts) in terms.iter().zip(&parts_of) {
+        let base = base_mon(&ctx, t);
+        let cof = (base.rad, base.syms);
+        let g = match group_of.get(&cof) {
+            Some(&g) => g,
+            None => {
+                group_of.insert(cof.clone(), groups.len());
+                groups.push((cof, FxMap::default()));
+                groups.len() - 1
+            }
+        };
+        let sum = &mut groups[g].1;
+        if t.mode.is_unit() {
+            add_to(sum, &[], &t.coef, false);
+            continue;
+        }
+        expand(parts, t.mode.sin, false, &mut atoms, &t.coef, sum);
+    }
+    let mut out: Vec<Mon> = Vec::new();
+    for ((rad, syms), sum) in groups {
+        out.extend(
+            sum.into_iter()
+                .filter(|(_, q)| !q.is_zero())
+                .map(|(atoms, q)| Mon {
+                    q,
+                    rad,
+                    syms: syms.clone(),
+                    atoms,
+                }),
+        );
+    }
+    // The keys are distinct: this is the order `merge` gives.
+    out.sort_unstable_by(key_cmp);
+    (ctx, out)
 }
 
-/// Pushes `(-1)^neg * base * atoms * trig(sum of parts)` expanded into products of
-/// single-part atoms; a part is `(angle id, the angle was negated to normalize it)`.
+/// Adds `(-1)^neg q` to the coefficient of `atoms`.
+fn add_to(sum: &mut FxMap<Vec<Atom>, Q>, atoms: &[Atom], q: &Q, neg: bool) {
+    let sorted;
+    let atoms = if atoms.is_sorted() {
+        atoms
+    } else {
+        sorted = {
+            let mut v = atoms.to_vec();
+            v.sort_unstable();
+            v
+        };
+        &sorted
+    };
+    let q = if neg { -q } else { q.clone() };
+    match sum.get_mut(atoms) {
+        Some(s) => *s += &q,
+        None => {
+            sum.insert(atoms.to_vec(), q);
+        }
+    }
+}
+
+/// Adds `(-1)^neg * q * atoms * trig(sum of parts)` expanded into products of single-part
+/// atoms; a part is `(angle id, the angle was negated to normalize it)`.
 fn expand(
     parts: &[(u32, bool)],
     sin: bool,
     neg: bool,
     atoms: &mut Vec<Atom>,
-    base: &Mon,
-    out: &mut Vec<Mon>,
+    q: &Q,
+    out: &mut FxMap<Vec<Atom>, Q>,
 ) {
     let Some((&(id, flipped), rest)) = parts.split_first() else {
         // trig(0): cos 0 = 1, sin 0 = 0.
         if !sin {
-            out.push(leaf(base, atoms, neg));
+            add_to(out, atoms, q, neg);
         }
         return;
     };
@@ -286,7 +368,7 @@ fn expand(
     if rest.is_empty() {
         let (a, n) = part(sin, false);
         atoms.push(a);
-        out.push(leaf(base, atoms, neg ^ n));
+        add_to(out, atoms, q, neg ^ n);
         atoms.pop();
         return;
     }
@@ -300,17 +382,8 @@ fn expand(
     for (s, minus, rest_sin) in branches {
         let (a, n) = part(s, minus);
         atoms.push(a);
-        expand(rest, rest_sin, neg ^ n, atoms, base, out);
+        expand(rest, rest_sin, neg ^ n, atoms, q, out);
         atoms.pop();
-    }
-}
-
-fn leaf(base: &Mon, atoms: &[Atom], neg: bool) -> Mon {
-    Mon {
-        q: if neg { -&base.q } else { base.q.clone() },
-        rad: base.rad,
-        syms: base.syms.clone(),
-        atoms: atoms.to_vec(),
     }
 }
 

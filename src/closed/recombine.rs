@@ -2,9 +2,10 @@
 //! siblings, for any cofactor `T` (lengths, other trigonometric factors, numbers), repeated
 //! until nothing pairs up, so `c1 c2 c3 - ...` regroups to `c123` at any depth.
 
-use super::mon::{angle_combine, angle_of, atom, is_sin, merge, remap, Atom, Ctx, Mon};
+use super::mon::{angle_combine, angle_of, atom, is_sin, merge, remap, Atom, Ctx, FxMap, Mon};
+use crate::scalar::FxHasher;
 use std::cmp::Ordering;
-use std::collections::HashMap;
+use std::hash::Hasher;
 
 /// Which identity a pair of atoms can take part in.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Debug)]
@@ -23,37 +24,130 @@ struct Entry {
     class: Class,
     a: u32,
     b: u32,
+    /// The rank of the monomial's `(rad, syms)`.
+    cof: u32,
     i: usize,
     /// The first atom is a sine.
     sin: bool,
     p: usize,
     q: usize,
+    /// A hash of the key.
+    hash: u64,
 }
 
-/// The atoms of `m` other than those at `p` and `q`.
-fn rest(m: &Mon, p: usize, q: usize) -> impl Iterator<Item = &Atom> {
-    m.atoms
-        .iter()
-        .enumerate()
-        .filter(move |&(k, _)| k != p && k != q)
-        .map(|(_, a)| a)
+/// A hash of the key of `e`, a pair of atoms of `m`.
+fn key_hash(m: &Mon, e: &Entry) -> u64 {
+    let mut h = FxHasher::default();
+    h.write_u64(u64::from(e.class == Class::Sin) | u64::from(e.a) << 1 | u64::from(e.b) << 32);
+    h.write_u32(e.cof);
+    for (k, a) in m.atoms.iter().enumerate() {
+        if k != e.p && k != e.q {
+            h.write_u32(*a);
+        }
+    }
+    h.finish()
 }
 
+/// The entries grouped by key, the groups in key order, each group's entries in the order in
+/// which they were found (`(i, p, q)`). Only groups that can pair (two entries, one with a
+/// first atom that is a sine and one without) are kept: the others change nothing.
+fn groups(mons: &[Mon], mut index: Vec<Entry>) -> Vec<Vec<Entry>> {
+    // Stable: equal hashes keep the order in which the entries were found.
+    index.sort_by_key(|e| e.hash);
+    let mut groups: Vec<Vec<Entry>> = Vec::new();
+    let mut start = 0;
+    while start < index.len() {
+        let mut end = start + 1;
+        while end < index.len() && index[end].hash == index[start].hash {
+            end += 1;
+        }
+        let run = &mut index[start..end];
+        start = end;
+        if run.len() < 2 {
+            continue;
+        }
+        // Different keys with one hash: order by key, stably.
+        if run[1..].iter().any(|e| key_cmp(mons, &run[0], e).is_ne()) {
+            run.sort_by(|x, y| key_cmp(mons, x, y));
+        }
+        let mut s = 0;
+        while s < run.len() {
+            let mut t = s + 1;
+            while t < run.len() && key_cmp(mons, &run[s], &run[t]).is_eq() {
+                t += 1;
+            }
+            let g = &run[s..t];
+            if g.iter().any(|e| e.sin) && g.iter().any(|e| !e.sin) {
+                groups.push(g.to_vec());
+            }
+            s = t;
+        }
+    }
+    groups.sort_by(|x, y| key_cmp(mons, &x[0], &y[0]));
+    groups
+}
+
+/// Compares the atoms of `x` other than those at `xp < xq` with those of `y` other than those
+/// at `yp < yq`, lexicographically.
+fn rest_cmp(x: &[Atom], xp: usize, xq: usize, y: &[Atom], yp: usize, yq: usize) -> Ordering {
+    let skip = |mut k: usize, p: usize, q: usize| {
+        if k == p {
+            k += 1;
+        }
+        if k == q {
+            k += 1;
+        }
+        k
+    };
+    let (mut i, mut j) = (skip(0, xp, xq), skip(0, yp, yq));
+    loop {
+        match (x.get(i), y.get(j)) {
+            (None, None) => return Ordering::Equal,
+            (None, Some(_)) => return Ordering::Less,
+            (Some(_), None) => return Ordering::Greater,
+            (Some(a), Some(b)) => {
+                if a != b {
+                    return a.cmp(b);
+                }
+            }
+        }
+        i = skip(i + 1, xp, xq);
+        j = skip(j + 1, yp, yq);
+    }
+}
+
+/// The key order; `cof` ranks `(rad, syms)`, so it stands for comparing them.
 fn key_cmp(mons: &[Mon], x: &Entry, y: &Entry) -> Ordering {
     x.class
         .cmp(&y.class)
         .then(x.a.cmp(&y.a))
         .then(x.b.cmp(&y.b))
+        .then(x.cof.cmp(&y.cof))
         .then_with(|| {
             if x.i == y.i && x.p == y.p && x.q == y.q {
                 return Ordering::Equal;
             }
-            let (m, n) = (&mons[x.i], &mons[y.i]);
-            m.rad
-                .cmp(&n.rad)
-                .then_with(|| m.syms.cmp(&n.syms))
-                .then_with(|| rest(m, x.p, x.q).cmp(rest(n, y.p, y.q)))
+            rest_cmp(&mons[x.i].atoms, x.p, x.q, &mons[y.i].atoms, y.p, y.q)
         })
+}
+
+/// The rank of each monomial's cofactor `(rad, syms)` among those of `mons`.
+fn cofactor_ranks(mons: &[Mon]) -> Vec<u32> {
+    let cof_cmp = |a: &Mon, b: &Mon| a.rad.cmp(&b.rad).then_with(|| a.syms.cmp(&b.syms));
+    let mut order: Vec<usize> = (0..mons.len()).collect();
+    // The monomials come sorted from `merge`; sort anyway when they are not.
+    if !mons.is_sorted_by(|a, b| cof_cmp(a, b).is_le()) {
+        order.sort_by(|&a, &b| cof_cmp(&mons[a], &mons[b]));
+    }
+    let mut rank = vec![0u32; mons.len()];
+    let mut r = 0u32;
+    for k in 1..order.len() {
+        if cof_cmp(&mons[order[k - 1]], &mons[order[k]]).is_ne() {
+            r += 1;
+        }
+        rank[order[k]] = r;
+    }
+    rank
 }
 
 /// Applies the angle-sum identities until no pair of monomials combines.
@@ -82,6 +176,7 @@ pub(crate) fn recombine(ctx: &mut Ctx, mut mons: Vec<Mon>) -> Vec<Mon> {
 type Combined = Option<(u32, bool)>;
 
 fn round(ctx: &mut Ctx, mons: &[Mon]) -> (Vec<Mon>, bool) {
+    let cof = cofactor_ranks(mons);
     let mut index: Vec<Entry> = Vec::new();
     for (i, m) in mons.iter().enumerate() {
         for p in 0..m.atoms.len() {
@@ -95,32 +190,30 @@ fn round(ctx: &mut Ctx, mons: &[Mon]) -> (Vec<Mon>, bool) {
                 } else {
                     Class::Sin
                 };
-                index.push(Entry {
+                let e = Entry {
                     class,
                     a: angle_of(a),
                     b: angle_of(b),
+                    cof: cof[i],
                     i,
                     sin: is_sin(a),
                     p,
                     q,
+                    hash: 0,
+                };
+                index.push(Entry {
+                    hash: key_hash(m, &e),
+                    ..e
                 });
             }
         }
     }
-    // Stable: within a key, the entries keep the order in which they were found.
-    index.sort_by(|x, y| key_cmp(mons, x, y));
+    let groups = groups(mons, index);
     let mut used = vec![false; mons.len()];
     let mut out = Vec::new();
     let mut changed = false;
-    let mut combined: HashMap<(u32, u32, i64), Combined> = HashMap::new();
-    let mut start = 0;
-    while start < index.len() {
-        let mut end = start + 1;
-        while end < index.len() && key_cmp(mons, &index[start], &index[end]).is_eq() {
-            end += 1;
-        }
-        let entries = &index[start..end];
-        start = end;
+    let mut combined: FxMap<(u32, u32, i64), Combined> = FxMap::default();
+    for entries in &groups {
         let (class, a, b) = (entries[0].class, entries[0].a, entries[0].b);
         for e in entries {
             let (i, i_sin) = (e.i, e.sin);

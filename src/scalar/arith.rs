@@ -81,7 +81,7 @@ pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
 
 /// A small, fast, non-cryptographic hasher (FxHash) for the mode-product cache.
 #[derive(Default)]
-struct FxHasher(u64);
+pub(crate) struct FxHasher(u64);
 
 impl FxHasher {
     fn add(&mut self, w: u64) {

@@ -22,6 +22,7 @@ mod calculus;
 mod frac;
 pub(crate) mod q;
 
+pub(crate) use arith::FxHasher;
 pub use atoms::Sym;
 pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use frac::Frac;
