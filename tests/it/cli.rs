@@ -37,3 +37,46 @@ fn unknown_command_exits_with_status_2_not_a_panic() {
         .expect("runs");
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn ctrl_c_abandons_a_long_computation_and_keeps_the_bindings() {
+    use std::io::Write;
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_dqsym"))
+        .args(["--term-limit", "200000"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("starts the REPL");
+    let mut stdin = child.stdin.take().expect("stdin");
+    // A result of 11,628 terms: its closed form takes seconds in a debug build, long enough to
+    // interrupt.
+    stdin
+        .write_all(b"a = 5\nsyms x y z w u v\n(x + y + z + w + u + v)^14\n")
+        .expect("write");
+    stdin.flush().expect("flush");
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill");
+    assert!(status.success());
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    stdin
+        .write_all(b"b = a + 1\n:quit\n")
+        .expect("write after the interrupt");
+    drop(stdin);
+    let out = child.wait_with_output().expect("exits");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(
+        stderr.contains("interrupted; the bindings are unchanged"),
+        "{stderr}"
+    );
+    assert!(
+        stdout.contains("b = 6"),
+        "later lines see earlier bindings: {stdout}"
+    );
+}
