@@ -56,6 +56,15 @@ enum Command {
         #[arg(long)]
         jacobian: bool,
     },
+    /// Operation counts: the paper's Tables 1 and 2, counted by running the products (with the
+    /// corrections of ERRATA 10 and 11); with a robot file, also its generated forward kinematics.
+    Ops {
+        /// A robot description file.
+        robot: Option<std::path::PathBuf>,
+        /// Count the Jacobian too.
+        #[arg(long)]
+        jacobian: bool,
+    },
 }
 
 /// The output formats of `--format`.
@@ -111,7 +120,7 @@ fn dispatch(cli: Cli) -> ExitCode {
     }
     // fk has its own formats (a report per entry); the other commands share show options.
     let opts = match &cli.command {
-        Some(Command::Fk { .. }) => None,
+        Some(Command::Fk { .. } | Command::Ops { .. }) => None,
         _ => match show_options(cli.format, cli.explicit) {
             Ok(o) => Some(o),
             Err(message) => {
@@ -125,6 +134,7 @@ fn dispatch(cli: Cli) -> ExitCode {
         explicit: cli.explicit,
     });
     match (cli.command, cli.expr) {
+        (Some(Command::Ops { robot, jacobian }), _) => ops(robot.as_deref(), jacobian),
         (
             Some(Command::Fk {
                 robot,
@@ -201,6 +211,42 @@ fn fk(
             ExitCode::SUCCESS
         }
         Err(e) => fail(e.to_string()),
+    }
+}
+
+/// `dqsym ops [ROBOT]`: the paper's tables, then the robot's generated code.
+fn ops(path: Option<&std::path::Path>, jacobian: bool) -> ExitCode {
+    print!("{}", dqsym::ops_tables());
+    let Some(path) = path else {
+        return ExitCode::SUCCESS;
+    };
+    let robot = match std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))
+        .and_then(|t| {
+            dqsym::parse_robot(&t, &path.display().to_string(), &dqsym::eval_scalar_text)
+                .map_err(|e| e.to_string())
+        }) {
+        Ok(r) => r,
+        Err(m) => {
+            eprintln!("error: {m}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let o = dqsym::FkOptions {
+        format: dqsym::ReportFormat::Ops,
+        jacobian,
+        point: robot.tool.clone(),
+        ..dqsym::FkOptions::default()
+    };
+    match dqsym::fk_report(&robot, &o) {
+        Ok(t) => {
+            print!("{t}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
     }
 }
 

@@ -13,7 +13,7 @@ mod sympy;
 
 pub use c::c_function;
 pub use codegen::{arguments, CodegenError, CodegenOptions, OpCount, Output};
-pub use count::{count_ops, generated_ops, Counted};
+pub use count::{count_ops, generated_ops, product_table, rotation_chain_ops, Counted};
 pub use latex::{
     latex, latex_aligned, latex_dual_quat, latex_matrix, latex_symbol, latex_tuple, LatexOptions,
 };

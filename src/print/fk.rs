@@ -6,8 +6,9 @@
 //! (i = 0..2, j = 0..3), `p[i]` and `J[i][j]` (i = 0..7, j = 0..n-1).
 
 use crate::emit::{
-    arguments, c_function, latex_aligned, latex_symbol, python_function, rust_function, sympy,
-    CodegenError, CodegenOptions, LatexOptions, Output,
+    arguments, c_function, count_ops, generated_ops, latex_aligned, latex_symbol, product_table,
+    python_function, rotation_chain_ops, rust_function, sympy, CodegenError, CodegenOptions,
+    Counted, LatexOptions, Output,
 };
 use crate::kin::{dq_jacobian, Robot};
 use crate::print::{legend, plain, PlainOptions};
@@ -28,6 +29,8 @@ pub enum ReportFormat {
     C,
     /// A NumPy function, vectorized over arrays of configurations.
     Python,
+    /// Operation counts of the generated code (see [`ops_tables`] for the paper's tables).
+    Ops,
 }
 
 /// What the report contains.
@@ -139,7 +142,7 @@ fn render(
     notes: &[String],
 ) -> Result<String, ReportError> {
     Ok(match format {
-        ReportFormat::Rust | ReportFormat::C | ReportFormat::Python => {
+        ReportFormat::Rust | ReportFormat::C | ReportFormat::Python | ReportFormat::Ops => {
             code(robot, sections, format)?
         }
         ReportFormat::Sympy => sections
@@ -308,6 +311,46 @@ fn code(
     );
     let o = CodegenOptions::default();
     match f {
+        ReportFormat::Ops => {
+            let mut out = header(robot);
+            let n = robot.variables.len();
+            let dq = count_ops(|| {
+                let mk = |k: f64| Counted(k);
+                let q = |a: f64| {
+                    DualQuat::from_components([
+                        mk(a),
+                        mk(0.1),
+                        mk(0.2),
+                        mk(0.3),
+                        mk(0.4),
+                        mk(0.5),
+                        mk(0.6),
+                        mk(0.7),
+                    ])
+                };
+                q(1.0) * q(0.5)
+            })
+            .1;
+            out.push_str(&format!(
+                "chain of {n} joint DQs, multiplied numerically: {} products of {} mult, {} add = {} mult, {} add\n",
+                n.saturating_sub(1),
+                dq.mul,
+                dq.add,
+                dq.mul * n.saturating_sub(1),
+                dq.add * n.saturating_sub(1)
+            ));
+            for (label, outs) in [
+                ("generated code, DQ only", &outputs[..1]),
+                ("generated code, all outputs", &outputs[..]),
+            ] {
+                let c = generated_ops(outs, &args, &o)?;
+                out.push_str(&format!(
+                    "{label}: {} mult, {} add, {} neg, {} sin/cos calls\n",
+                    c.mul, c.add, c.neg, c.trig
+                ));
+            }
+            Ok(out)
+        }
         ReportFormat::C => c_function(&name, &doc, &outputs, &args, &o),
         ReportFormat::Python => python_function(&name, &doc, &outputs, &args, &o),
         _ => rust_function(&name, &doc, &outputs, &args, &o),
@@ -362,4 +405,27 @@ fn latex_name(n: &str) -> String {
         b => latex_symbol(b),
     };
     format!("{base}_{{{}}}", idx.join(","))
+}
+
+/// Tables 1 and 2 of the paper, counted by running each product (with the corrections of
+/// ERRATA items 10 and 11), and the sec 7 chain of 3x3 rotations.
+pub fn ops_tables() -> String {
+    let mut out =
+        String::from("# operations of one product, counted by running it (ERRATA 10, 11)\n");
+    for (name, c) in product_table() {
+        out.push_str(&format!(
+            "{name}: {} mult, {} add, total {}\n",
+            c.mul,
+            c.add,
+            c.mul + c.add
+        ));
+    }
+    for n in [3usize, 6] {
+        let c = rotation_chain_ops(n);
+        out.push_str(&format!(
+            "chain of {n} 3x3 rotations (orientation only): {} mult, {} add\n",
+            c.mul, c.add
+        ));
+    }
+    out
 }

@@ -3,6 +3,6 @@
 mod fk;
 mod plain;
 
-pub use fk::{fk_report, FkOptions, ReportError, ReportFormat};
+pub use fk::{fk_report, ops_tables, FkOptions, ReportError, ReportFormat};
 pub(crate) use plain::angle_text;
 pub use plain::{legend, plain, shorthand_name, PlainOptions};

@@ -80,3 +80,32 @@ fn ctrl_c_abandons_a_long_computation_and_keeps_the_bindings() {
         "later lines see earlier bindings: {stdout}"
     );
 }
+
+#[test]
+fn ops_command_reproduces_tables_1_and_2_with_the_errata() {
+    let puma = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/robots/puma560.toml");
+    let out = Command::new(env!("CARGO_BIN_EXE_dqsym"))
+        .args(["ops", puma])
+        .output()
+        .expect("runs");
+    assert_eq!(out.status.code(), Some(0));
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    // ERRATA 10: the DQ product is 48 + 40 = 88; ERRATA 11: 27(n - 1) and 18(n - 1).
+    assert!(
+        text.contains("dual quaternion product: 48 mult, 40 add, total 88"),
+        "{text}"
+    );
+    assert!(
+        text.contains("quaternion product: 16 mult, 12 add"),
+        "{text}"
+    );
+    assert!(
+        text.contains("3x3 rotation matrix product: 27 mult, 18 add"),
+        "{text}"
+    );
+    assert!(
+        text.contains("chain of 3 3x3 rotations (orientation only): 54 mult, 36 add"),
+        "{text}"
+    );
+    assert!(text.contains("generated code, DQ only:"), "{text}");
+}
