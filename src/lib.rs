@@ -10,7 +10,7 @@ mod ring;
 mod scalar;
 
 pub use algebra::{DualNumber, DualQuat, Matrix4, Quat, UnitConstraints};
-pub use closed::{closed_form, Angle, Cost, Expr};
+pub use closed::{closed_form, closed_form_traced, Angle, Cost, Expr, Identity, TraceStep};
 pub use emit::{
     arguments, c_function, count_ops, generated_ops, latex, latex_aligned, latex_dual_quat,
     latex_matrix, latex_symbol, latex_tuple, python_function, rust_function, sympy, CodegenError,
