@@ -8,6 +8,7 @@ mod lang;
 mod print;
 mod ring;
 mod scalar;
+mod walk;
 
 pub use algebra::{DualNumber, DualQuat, Matrix4, Quat, UnitConstraints};
 pub use closed::{closed_form, closed_form_traced, Angle, Cost, Expr, Identity, TraceStep};
@@ -32,4 +33,9 @@ pub use print::{
     fk_report, legend, plain, shorthand_name, FkOptions, PlainOptions, ReportError, ReportFormat,
 };
 pub use ring::Ring;
+pub use walk::{
+    mechanism_svg, walk_html, walk_markdown, walk_robot, walk_script, walk_text, ComponentTrace,
+    Config, HalfAngle, KatexAssets, Mechanism, Motion, Step, SvgOptions, WalkError, Walkthrough,
+    Word, Words,
+};
 pub use scalar::{set_term_limit, term_limit, Frac, Scalar, ScalarError, Sym};
