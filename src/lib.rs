@@ -33,9 +33,9 @@ pub use print::{
     fk_report, legend, plain, shorthand_name, FkOptions, PlainOptions, ReportError, ReportFormat,
 };
 pub use ring::Ring;
+pub use scalar::{set_term_limit, term_limit, Frac, Scalar, ScalarError, Sym};
 pub use walk::{
     mechanism_svg, walk_html, walk_markdown, walk_robot, walk_script, walk_text, ComponentTrace,
     Config, HalfAngle, KatexAssets, Mechanism, Motion, Step, SvgOptions, WalkError, Walkthrough,
     Word, Words,
 };
-pub use scalar::{set_term_limit, term_limit, Frac, Scalar, ScalarError, Sym};

@@ -304,10 +304,12 @@ fn katex_assets() -> Result<dqsym::KatexAssets, String> {
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("node_modules/katex/dist"),
     ];
     let Some(dir) = candidates.iter().find(|d| d.join("katex.min.js").is_file()) else {
-        return Err("KaTeX is not installed (node_modules/katex/dist/katex.min.js): run \
+        return Err(
+            "KaTeX is not installed (node_modules/katex/dist/katex.min.js): run \
                     `npm install katex` in the dqsym directory, or `bash scripts/test.sh`, \
                     which installs it"
-            .to_owned());
+                .to_owned(),
+        );
     };
     let read = |name: &str| {
         std::fs::read_to_string(dir.join(name))

@@ -2,9 +2,7 @@
 //! implementations over [`Value`]s.
 
 use super::ast::{Expr, Ident, Span};
-use super::eval::{
-    op_error, scalar_error, EvalError, EvalErrorKind, Evaluator, Event, Result,
-};
+use super::eval::{op_error, scalar_error, EvalError, EvalErrorKind, Evaluator, Event, Result};
 use super::value::{self, Value};
 use crate::{closed_form, dh_link, mdh_link, plain, DualQuat, Matrix4, PlainOptions, Quat, Scalar};
 use num_traits::{One, Zero};

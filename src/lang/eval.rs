@@ -467,6 +467,9 @@ pub(crate) fn scalar_error(e: ScalarError, span: Span) -> EvalError {
 }
 
 /// What a walkthrough needs to know about one evaluation step.
+// Events are few and short-lived (one list per statement), so boxing the larger variants
+// would buy nothing.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug)]
 pub(crate) enum Event {
     /// A built-in that builds a motion or a point (`rot`, `trans`, `screw`, `dh`, `mdh`,
@@ -707,7 +710,14 @@ impl ChainRec {
         if op != MulOp::Mul || unit || matches!(v, Value::Scalar(_) | Value::Matrix(_)) {
             self.plain = false;
         }
-        self.factors.push((e.to_string(), v.clone()));
+        // A sum or a negation as a factor keeps its brackets: `qd2*(1 + I*(x2, y2, z2))`.
+        let text = match e.kind {
+            ExprKind::Sum { .. } | ExprKind::Unary { .. } | ExprKind::Product { .. } => {
+                format!("({e})")
+            }
+            _ => e.to_string(),
+        };
+        self.factors.push((text, v.clone()));
     }
 
     /// A product of motions and points, as a walkthrough shows it.

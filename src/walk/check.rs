@@ -53,12 +53,21 @@ pub(crate) fn oracle(motions: &[Motion]) -> String {
 
 /// The check of the image `image` of the home point `v` under the chain `motions`; `None`
 /// when a value cannot be evaluated.
-pub(crate) fn check(motions: &[Motion], v: &[Scalar; 3], image: &[Scalar; 3], label: &str) -> Option<Step> {
+pub(crate) fn check(
+    motions: &[Motion],
+    v: &[Scalar; 3],
+    image: &[Scalar; 3],
+    label: &str,
+) -> Option<Step> {
     let mut max: f64 = 0.0;
     for k in 0..SAMPLES {
         let env = |n: &str| sample_value(n, k);
         let m = chain_matrix(motions, k).ok()?;
-        let home = [v[0].eval(&env).ok()?, v[1].eval(&env).ok()?, v[2].eval(&env).ok()?];
+        let home = [
+            v[0].eval(&env).ok()?,
+            v[1].eval(&env).ok()?,
+            v[2].eval(&env).ok()?,
+        ];
         let want = m.transform_point(&home);
         for (w, x) in want.iter().zip(image) {
             max = max.max((w - x.eval(&env).ok()?).abs());

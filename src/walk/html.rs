@@ -4,6 +4,7 @@
 
 use super::svg::{mechanism_svg, xml_escape, Config, SvgOptions};
 use super::text::{pieces, Piece};
+
 use super::{WalkError, Walkthrough};
 
 /// KaTeX ready to inline: its stylesheet with the fonts embedded, and its script.
@@ -45,7 +46,9 @@ impl KatexAssets {
             };
             let file = name.rsplit('/').next().unwrap_or(&name);
             let bytes = font(file).ok_or_else(|| {
-                WalkError::Config(format!("KaTeX font `{file}` is missing from katex/dist/fonts"))
+                WalkError::Config(format!(
+                    "KaTeX font `{file}` is missing from katex/dist/fonts"
+                ))
             })?;
             out.push_str(&format!(
                 "src:url(data:font/woff2;base64,{}) format(\"woff2\")",
@@ -116,7 +119,11 @@ throwOnError:false});});";
 /// When a value cannot be shown or the mechanism cannot be evaluated.
 pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<String, WalkError> {
     let title = format!("Walkthrough: {}", w.title);
-    let mut body = format!("<h1>{}</h1>\n", xml_escape(&title));
+    let mut body = format!(
+        "<h1>{}</h1>\n<p>{}</p>\n",
+        xml_escape(&title),
+        inline(super::text::NOTATION)
+    );
     if let Some(m) = &w.mechanism {
         body += "<figure>\n";
         body += &mechanism_svg(m, cfg, &SvgOptions::default())?;

@@ -252,7 +252,8 @@ impl Motion {
         }
         let p = screw_parameters(q).ok()?;
         let sc = |f: &Frac| f.as_scalar().cloned();
-        let v3 = |v: &[Frac; 3]| -> Option<[Scalar; 3]> { Some([sc(&v[0])?, sc(&v[1])?, sc(&v[2])?]) };
+        let v3 =
+            |v: &[Frac; 3]| -> Option<[Scalar; 3]> { Some([sc(&v[0])?, sc(&v[1])?, sc(&v[2])?]) };
         Some(Motion::Screw {
             axis: v3(&p.axis)?,
             point: v3(&p.point)?,
@@ -287,7 +288,8 @@ fn joint_screw(q: &DualQuat<Scalar>) -> Option<Motion> {
     let slide = -(at_pi(&q.dual.w) * Scalar::int(2));
     let ve = q.dual.vector_part();
     let m = [at_pi(&ve[0]), at_pi(&ve[1]), at_pi(&ve[2])];
-    let half_t = slide.clone() * Scalar::rational(num_rational::BigRational::new(1.into(), 2.into()));
+    let half_t =
+        slide.clone() * Scalar::rational(num_rational::BigRational::new(1.into(), 2.into()));
     for k in 0..3 {
         if &s * &axis[k] != v[k] || &s * &m[k] + &c * &half_t * &axis[k] != ve[k] {
             return None;

@@ -67,16 +67,13 @@ pub fn walk_robot(text: &str, file: &str, eval: FieldEval) -> Result<Walkthrough
     let pose = acc.unwrap_or_else(DualQuat::identity);
     let pose = &pose * &robot.chain.tool;
     let zero = || [Scalar::int(0), Scalar::int(0), Scalar::int(0)];
-    let (home, what) = match &robot.tool {
-        Some(t) => (t.clone(), "the tool point"),
-        None => (zero(), "the origin of the last frame"),
-    };
+    let home = robot.tool.clone().unwrap_or_else(zero);
     let image = pose.transform_point(&home);
     let chain = names.join("*");
     steps.push(Step::Transform {
         label: "p".to_owned(),
         q: chain.clone(),
-        v: format!("{what} {}", tuple_text(&home)?),
+        v: tuple_text(&home)?,
         value: Value::Vector(image.clone()),
         half_angles: super::script::half_angle_symbols(&pose)
             .into_iter()

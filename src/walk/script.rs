@@ -4,9 +4,7 @@
 use super::motion::{is_point, Motion, Words};
 use super::{ComponentTrace, HalfAngle, Mechanism, Step, WalkError, Walkthrough};
 use crate::lang::Event;
-use crate::{
-    closed_form_traced, parse, BindingKind, DualQuat, Scalar, Session, StmtKind, Value,
-};
+use crate::{closed_form_traced, parse, BindingKind, DualQuat, Scalar, Session, StmtKind, Value};
 use std::cell::RefCell;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -137,6 +135,9 @@ pub(crate) fn traces(label: &str, p: &[Scalar; 3]) -> Result<Vec<ComponentTrace>
     Ok(out)
 }
 
+/// A point to check: the chain's motions, the home point, its image, the label.
+type PointCheck = (Vec<Motion>, [Scalar; 3], [Scalar; 3], String);
+
 /// The walkthrough being built.
 #[derive(Default)]
 struct ScriptWalk {
@@ -149,7 +150,7 @@ struct ScriptWalk {
     shown_products: BTreeSet<String>,
     half_names: BTreeMap<String, (String, String)>,
     /// Transforms whose motion is a known chain: (motions, home point, image, label).
-    checks: Vec<(Vec<Motion>, [Scalar; 3], [Scalar; 3], String)>,
+    checks: Vec<PointCheck>,
     last_shown: Option<(String, Value)>,
     /// The value the last transform step produced.
     last_image: Option<Value>,
@@ -183,7 +184,11 @@ impl ScriptWalk {
 
     fn event(&mut self, e: Event, label: &str, value: Option<&Value>) -> Result<(), WalkError> {
         match e {
-            Event::Built { func, args, value: v } => {
+            Event::Built {
+                func,
+                args,
+                value: v,
+            } => {
                 let name = if value == Some(&v) {
                     label.to_owned()
                 } else {
@@ -223,7 +228,8 @@ impl ScriptWalk {
                         } else {
                             as_dq(&partials[k - 1]).and_then(|q| self.motions_of(&q).cloned())
                         };
-                        let next = as_dq(&factors[k + 1].1).and_then(|q| self.motions_of(&q).cloned());
+                        let next =
+                            as_dq(&factors[k + 1].1).and_then(|q| self.motions_of(&q).cloned());
                         prefix.zip(next).map(|(mut a, b)| {
                             a.extend(b);
                             a
@@ -241,7 +247,9 @@ impl ScriptWalk {
                     }
                 }
                 // q v q‾*: a point carried by a motion (eq 10).
-                if let ([(qt, qv), (vt, vv), (_, cv)], Some(image)) = (factors.as_slice(), partials.last()) {
+                if let ([(qt, qv), (vt, vv), (_, cv)], Some(image)) =
+                    (factors.as_slice(), partials.last())
+                {
                     let (q, v, c) = (as_dq(qv), as_dq(vv), as_dq(cv));
                     if let (Some(q), Some(v), Some(c)) = (q, v, c) {
                         if is_point(&v) && !is_point(&q) && c == q.combined_conjugate() {
@@ -422,7 +430,6 @@ fn built_motion(func: &str, args: &[(String, Value)]) -> Option<Motion> {
         _ => return None,
     })
 }
-
 
 fn is_name(label: &str) -> bool {
     label.chars().next().is_some_and(|c| c.is_alphabetic())

@@ -65,7 +65,7 @@ pub struct SvgOptions {
 
 impl Default for SvgOptions {
     fn default() -> Self {
-        SvgOptions { width: 560.0 }
+        SvgOptions { width: 640.0 }
     }
 }
 
@@ -111,14 +111,21 @@ fn eval3(v: &[Scalar; 3], env: &dyn Fn(&str) -> Option<f64>) -> Result<V3, WalkE
 /// Screw joints: where on its axis each joint is drawn, in the home pose. The point of the
 /// axis nearest the previous joint; when that is the previous joint itself (two axes meeting,
 /// as at a wrist), the point nearest the next joint's given point instead.
-fn screw_anchors(m: &Mechanism, env: &dyn Fn(&str) -> Option<f64>) -> Result<Vec<Option<V3>>, WalkError> {
+fn screw_anchors(
+    m: &Mechanism,
+    env: &dyn Fn(&str) -> Option<f64>,
+) -> Result<Vec<Option<V3>>, WalkError> {
     let mut geo: Vec<Option<(V3, V3)>> = Vec::new();
     for x in &m.motions {
         geo.push(match x {
             Motion::Screw { axis, point, .. } => {
                 let n = eval3(axis, env)?;
                 let l = norm(n);
-                let n = if l > 0.0 { [n[0] / l, n[1] / l, n[2] / l] } else { n };
+                let n = if l > 0.0 {
+                    [n[0] / l, n[1] / l, n[2] / l]
+                } else {
+                    n
+                };
                 Some((eval3(point, env)?, n))
             }
             _ => None,
@@ -143,7 +150,11 @@ fn screw_anchors(m: &Mechanism, env: &dyn Fn(&str) -> Option<f64>) -> Result<Vec
     Ok(out)
 }
 
-fn pose(m: &Mechanism, env: &dyn Fn(&str) -> Option<f64>, anchors: &[Option<V3>]) -> Result<Pose, WalkError> {
+fn pose(
+    m: &Mechanism,
+    env: &dyn Fn(&str) -> Option<f64>,
+    anchors: &[Option<V3>],
+) -> Result<Pose, WalkError> {
     let mut acc = Matrix4::identity();
     let mut line = vec![[0.0; 3]];
     let mut joints = Vec::new();
@@ -214,9 +225,11 @@ pub fn mechanism_svg(m: &Mechanism, cfg: &Config, o: &SvgOptions) -> Result<Stri
     let anchors = screw_anchors(m, &home_env)?;
     let home = pose(m, &home_env, &anchors)?;
     let conf = pose(m, &conf_env, &anchors)?;
-    let planar = home.joints.iter().all(|(p, n)| {
-        p[0].abs() < 1e-9 && n[1].abs() < 1e-9 && n[2].abs() < 1e-9
-    }) && home.line.iter().all(|p| p[0].abs() < 1e-9);
+    let planar = home
+        .joints
+        .iter()
+        .all(|(p, n)| p[0].abs() < 1e-9 && n[1].abs() < 1e-9 && n[2].abs() < 1e-9)
+        && home.line.iter().all(|p| p[0].abs() < 1e-9);
     // Screen coordinates, y down.
     let proj = |p: V3| -> (f64, f64) {
         if planar {
@@ -315,14 +328,24 @@ pub fn mechanism_svg(m: &Mechanism, cfg: &Config, o: &SvgOptions) -> Result<Stri
             let (x, y) = at(j.0);
             let (tx, ty) = at(tip(j));
             let op = if home { "0.45" } else { "1" };
-            *s += &format!(
-                "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#c0392b\" stroke-width=\"1.5\" opacity=\"{op}\" marker-end=\"url(#axis-head)\"{dash}/>\n",
-                f(x), f(y), f(tx), f(ty)
-            );
+            if !planar {
+                *s += &format!(
+                    "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#c0392b\" stroke-width=\"1.5\" opacity=\"{op}\" marker-end=\"url(#axis-head)\"{dash}/>\n",
+                    f(x), f(y), f(tx), f(ty)
+                );
+            }
             *s += &format!(
                 "<circle cx=\"{}\" cy=\"{}\" r=\"6\" fill=\"#ffffff\" stroke=\"{stroke}\" stroke-width=\"2\"{dash}/>\n",
                 f(x), f(y)
             );
+            if planar {
+                // The axis is normal to the drawing: out of the page.
+                *s += &format!(
+                    "<circle cx=\"{}\" cy=\"{}\" r=\"2\" fill=\"#c0392b\" opacity=\"{op}\"/>\n",
+                    f(x),
+                    f(y)
+                );
+            }
             if !home {
                 *s += &format!(
                     "<text x=\"{}\" y=\"{}\" fill=\"#1f5fbf\">{}</text>\n",
@@ -351,25 +374,24 @@ pub fn mechanism_svg(m: &Mechanism, cfg: &Config, o: &SvgOptions) -> Result<Stri
     );
     let config_text: Vec<String> = vars
         .iter()
-        .map(|v| format!("{v} = {:.2}", conf_env(v).unwrap_or(0.0)))
+        .map(|v| format!("{v}={:.2}", conf_env(v).unwrap_or(0.0)))
         .collect();
     s += "<g class=\"legend\">\n";
     s += "<line x1=\"14\" y1=\"18\" x2=\"44\" y2=\"18\" stroke=\"#999999\" stroke-width=\"2\" stroke-dasharray=\"6 4\"/>\n";
     s += "<text x=\"52\" y=\"22\">home pose (every joint variable 0)</text>\n";
-    s += "<line x1=\"14\" y1=\"40\" x2=\"44\" y2=\"40\" stroke=\"#1f5fbf\" stroke-width=\"3.5\"/>\n";
+    s +=
+        "<line x1=\"14\" y1=\"40\" x2=\"44\" y2=\"40\" stroke=\"#1f5fbf\" stroke-width=\"3.5\"/>\n";
     s += &format!(
         "<text x=\"52\" y=\"44\">configuration: {}</text>\n",
         xml_escape(&config_text.join(", "))
     );
-    s += "<line x1=\"14\" y1=\"62\" x2=\"44\" y2=\"62\" stroke=\"#c0392b\" stroke-width=\"1.5\" marker-end=\"url(#axis-head)\"/>\n";
-    s += &format!(
-        "<text x=\"52\" y=\"66\">joint axes; circles are joints, squares the tool; {}</text>\n",
-        if planar {
-            "view of the yz plane"
-        } else {
-            "isometric view"
-        }
-    );
+    if planar {
+        s += "<circle cx=\"29\" cy=\"62\" r=\"6\" fill=\"#ffffff\" stroke=\"#1f5fbf\" stroke-width=\"2\"/><circle cx=\"29\" cy=\"62\" r=\"2\" fill=\"#c0392b\"/>\n";
+        s += "<text x=\"52\" y=\"66\">joints, axes (x) out of the page; squares: the tool; view of the yz plane</text>\n";
+    } else {
+        s += "<line x1=\"14\" y1=\"62\" x2=\"44\" y2=\"62\" stroke=\"#c0392b\" stroke-width=\"1.5\" marker-end=\"url(#axis-head)\"/>\n";
+        s += "<text x=\"52\" y=\"66\">joint axes; circles are joints, squares the tool; isometric view</text>\n";
+    }
     s += "</g>\n</svg>\n";
     Ok(s)
 }

@@ -283,7 +283,10 @@ fn pair_text(terms: &[Expr], [i, j]: [usize; 2]) -> String {
 
 /// A label as LaTeX: a name as a symbol, an expression in typewriter type.
 pub(crate) fn label_tex(label: &str) -> String {
-    let ident = label.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
+    let ident = label
+        .chars()
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic())
         && label.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
     if ident {
         return latex_symbol(label);
@@ -348,6 +351,11 @@ pub(crate) fn numbered_sum_tex(terms: &[Expr]) -> String {
     rows.push(row);
     format!("\\begin{{aligned}}{}\\end{{aligned}}", rows.join(" \\\\ "))
 }
+
+/// The notation of results, said once at the top of Markdown and HTML walkthroughs.
+pub(crate) const NOTATION: &str = "In results, $c_{1}$, $s_{12}$, $c_{123}$ are $\\cos\\theta_{1}$, \
+    $\\sin(\\theta_{1} + \\theta_{2})$, $\\cos(\\theta_{1} + \\theta_{2} + \\theta_{3})$ of full joint \
+    angles; half angles inside the factors are written out, $\\cos\\frac{\\theta_{3}}{2}$.";
 
 /// A formula or text piece of a Markdown or HTML walkthrough.
 pub(crate) enum Piece {
@@ -478,9 +486,7 @@ fn half_angle_tex(a: &HalfAngle) -> String {
             format!("\\sin\\tfrac{{{t}}}{{2}}"),
         ),
     };
-    format!(
-        "{c}^2 - {s}^2 = \\cos {t}, \\quad 2 {s} {c} = \\sin {t}, \\quad {c}^2 + {s}^2 = 1"
-    )
+    format!("{c}^2 - {s}^2 = \\cos {t}, \\quad 2 {s} {c} = \\sin {t}, \\quad {c}^2 + {s}^2 = 1")
 }
 
 fn trace_tex(t: &ComponentTrace) -> Vec<Piece> {
@@ -512,9 +518,7 @@ fn trace_tex(t: &ComponentTrace) -> Vec<Piece> {
                     last.get(terms[0].wrapping_sub(1)),
                     last.get(terms[1].wrapping_sub(1)),
                 ) {
-                    (Some(x), Some(y)) => {
-                        Tex.expr(&Expr::Add(vec![x.clone(), y.clone()]))
-                    }
+                    (Some(x), Some(y)) => Tex.expr(&Expr::Add(vec![x.clone(), y.clone()])),
                     _ => String::new(),
                 };
                 out.push(Piece::Text(format!(
@@ -554,7 +558,7 @@ fn angle_tex(a: &crate::Angle) -> String {
 /// # Errors
 /// When a value cannot be shown (never for a walkthrough this crate built).
 pub fn walk_markdown(w: &Walkthrough) -> Result<String, WalkError> {
-    let mut out = format!("# Walkthrough: {}\n", w.title);
+    let mut out = format!("# Walkthrough: {}\n\n{}\n", w.title, NOTATION);
     for (head, body) in pieces(w)? {
         out += &format!("\n## {head}\n");
         for p in body {
