@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test. Sets up, when missing, what the emitter tests hand their output to: a Python
-# venv in .venv with sympy and numpy (exported as DQSYM_PYTHON) and KaTeX in node_modules/.
+# venv in .venv with sympy and numpy (exported as DQSYM_PYTHON), KaTeX in node_modules/, and
+# Debian's chromium for the walkthrough page.
 # Idempotent: a second run only checks that both are there.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,6 +14,12 @@ export DQSYM_PYTHON="$PWD/.venv/bin/python"
 
 if [ ! -f node_modules/katex/package.json ]; then
     npm install --no-save --no-audit --no-fund --silent katex
+fi
+
+# The walkthrough page is checked in headless Chromium (Debian's package; the machine is root).
+if ! command -v chromium >/dev/null 2>&1; then
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get install -y -qq chromium || { apt-get update -qq && apt-get install -y -qq chromium; }
 fi
 
 cargo test --locked --all-targets "$@"

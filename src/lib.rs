@@ -8,9 +8,10 @@ mod lang;
 mod print;
 mod ring;
 mod scalar;
+mod walk;
 
 pub use algebra::{DualNumber, DualQuat, Matrix4, Quat, UnitConstraints};
-pub use closed::{closed_form, Angle, Cost, Expr};
+pub use closed::{closed_form, closed_form_traced, Angle, Cost, Expr, Identity, TraceStep};
 pub use emit::{
     arguments, c_function, count_ops, generated_ops, latex, latex_aligned, latex_dual_quat,
     latex_matrix, latex_symbol, latex_tuple, product_table, python_function, rotation_chain_ops,
@@ -34,3 +35,8 @@ pub use print::{
 };
 pub use ring::Ring;
 pub use scalar::{set_term_limit, term_limit, Frac, Scalar, ScalarError, Sym};
+pub use walk::{
+    mechanism_svg, walk_html, walk_markdown, walk_robot, walk_script, walk_text, ComponentTrace,
+    Config, HalfAngle, KatexAssets, Mechanism, Motion, Step, SvgOptions, WalkError, Walkthrough,
+    Word, Words,
+};

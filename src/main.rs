@@ -43,6 +43,24 @@ enum Command {
     },
     /// Derive and print the paper's worked examples (sec 6) and the PUMA 560 pose.
     Paper,
+    /// A derivation step by step: each factor with its meaning, each product, each identity
+    /// applied, the closed form, and the check against 4x4 matrices. FILE is a .dq script or
+    /// a robot .toml file.
+    Walk {
+        /// The script or robot file.
+        file: std::path::PathBuf,
+        /// Markdown with LaTeX instead of terminal text.
+        #[arg(long, conflicts_with = "html")]
+        markdown: bool,
+        /// Write a self-contained web page (KaTeX inlined from node_modules/katex, and a
+        /// drawing of the mechanism) to OUT.html.
+        #[arg(long, value_name = "OUT.html")]
+        html: Option<std::path::PathBuf>,
+        /// The configuration drawn on the page: `theta1=0.3,theta2=-0.5,l1=2`; joints not
+        /// given take a fixed default, lengths 1.
+        #[arg(long, value_name = "NAME=VALUE,...")]
+        config: Option<String>,
+    },
     /// Forward kinematics of a robot file (TOML: dh, mdh or screw convention) in closed form:
     /// the unit DQ and the 4x4 matrix; with --point the image of a point, with --jacobian the
     /// 8 x n Jacobian of the DQ components.
@@ -156,6 +174,15 @@ fn dispatch(cli: Cli) -> ExitCode {
             }
         },
         (Some(Command::Run { file }), _) => run_file(&file, &opts),
+        (
+            Some(Command::Walk {
+                file,
+                markdown,
+                html,
+                config,
+            }),
+            _,
+        ) => walk(&file, markdown, html.as_deref(), config.as_deref()),
         (None, Some(expr)) => one_liner(&expr, &opts),
         (None, None) => repl::run(&opts, cli.term_limit),
     }
@@ -248,6 +275,97 @@ fn ops(path: Option<&std::path::Path>, jacobian: bool) -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// `dqsym walk FILE`: the walkthrough as text, Markdown or a web page.
+fn walk(
+    path: &std::path::Path,
+    markdown: bool,
+    html: Option<&std::path::Path>,
+    config: Option<&str>,
+) -> ExitCode {
+    let fail = |m: String| {
+        eprintln!("error: {m}");
+        ExitCode::FAILURE
+    };
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) => return fail(format!("cannot read {}: {e}", path.display())),
+    };
+    let name = path.display().to_string();
+    let w = if path.extension().is_some_and(|e| e == "toml") {
+        dqsym::walk_robot(&text, &name, &dqsym::eval_scalar_text)
+    } else {
+        dqsym::walk_script(&text, &name)
+    };
+    let w = match w {
+        Ok(w) => w,
+        Err(dqsym::WalkError::Script(m)) => {
+            eprintln!("{}", with_origin(&m, &name));
+            return ExitCode::FAILURE;
+        }
+        Err(e) => return fail(e.to_string()),
+    };
+    if let Some(out) = html {
+        let cfg = match dqsym::Config::parse(config.unwrap_or("")) {
+            Ok(c) => c,
+            Err(e) => return fail(format!("--config: {e}")),
+        };
+        let assets = match katex_assets() {
+            Ok(a) => a,
+            Err(m) => return fail(m),
+        };
+        return match dqsym::walk_html(&w, &assets, &cfg) {
+            Ok(page) => match std::fs::write(out, page) {
+                Ok(()) => {
+                    eprintln!("wrote {}", out.display());
+                    ExitCode::SUCCESS
+                }
+                Err(e) => fail(format!("cannot write {}: {e}", out.display())),
+            },
+            Err(e) => fail(e.to_string()),
+        };
+    }
+    if config.is_some() {
+        return fail("--config only applies to the --html page".to_owned());
+    }
+    let r = if markdown {
+        dqsym::walk_markdown(&w)
+    } else {
+        dqsym::walk_text(&w)
+    };
+    match r {
+        Ok(t) => {
+            print!("{t}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(e.to_string()),
+    }
+}
+
+/// KaTeX's stylesheet, script and fonts from `node_modules/katex/dist`, looked for in the
+/// current directory and then in the source tree this binary was built from.
+fn katex_assets() -> Result<dqsym::KatexAssets, String> {
+    let candidates = [
+        std::path::PathBuf::from("node_modules/katex/dist"),
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("node_modules/katex/dist"),
+    ];
+    let Some(dir) = candidates.iter().find(|d| d.join("katex.min.js").is_file()) else {
+        return Err(
+            "KaTeX is not installed (node_modules/katex/dist/katex.min.js): run \
+                    `npm install katex` in the dqsym directory, or `bash scripts/test.sh`, \
+                    which installs it"
+                .to_owned(),
+        );
+    };
+    let read = |name: &str| {
+        std::fs::read_to_string(dir.join(name))
+            .map_err(|e| format!("cannot read {}: {e}", dir.join(name).display()))
+    };
+    let css = read("katex.min.css")?;
+    let js = read("katex.min.js")?;
+    let font = |name: &str| std::fs::read(dir.join("fonts").join(name)).ok();
+    dqsym::KatexAssets::new(&css, &js, &font).map_err(|e| e.to_string())
 }
 
 /// `dqsym run FILE`: prints results as statements complete; stops at the first error.

@@ -22,7 +22,7 @@ use std::time::Duration;
 
 const PROMPT: &str = "dq> ";
 const MORE: &str = "..> ";
-const COMMANDS: [&str; 4] = [":help", ":quit", ":vars", ":q"];
+const COMMANDS: [&str; 5] = [":help", ":quit", ":vars", ":q", ":steps"];
 
 /// Completes commands, built-ins, constants and the names bound so far.
 struct DqHelper {
@@ -152,6 +152,8 @@ pub(crate) fn help() -> String {
         );
     }
     s += "\nCommands\n  :help  this text    :vars  the bindings    :quit  leave (also Ctrl-D)\n  \
+           :steps the walkthrough of every statement entered so far that succeeded: factors in \
+           words,\n         products, identities applied, closed form, check against 4x4 matrices\n  \
           Ctrl-C abandons the line being typed or the computation running; bindings stay.\n";
     s
 }
@@ -203,6 +205,8 @@ pub(crate) fn run(opts: &ShowOptions, term_limit: usize) -> ExitCode {
     let mut session = Session::new();
     session.set_cancel_flag(interrupt.clone());
     let mut buffer = String::new();
+    // The inputs that ran without error, replayed by `:steps`.
+    let mut entered = String::new();
     loop {
         let prompt = if buffer.is_empty() { PROMPT } else { MORE };
         let line = match editor.readline(prompt) {
@@ -234,6 +238,16 @@ pub(crate) fn run(opts: &ShowOptions, term_limit: usize) -> ExitCode {
                     print!("{}", vars(&session));
                     continue;
                 }
+                ":steps" => {
+                    let _ = editor.add_history_entry(line.as_str());
+                    match dqsym::walk_script(&entered, "the statements entered so far")
+                        .and_then(|w| dqsym::walk_text(&w))
+                    {
+                        Ok(t) => print!("{t}"),
+                        Err(e) => eprintln!("error: {e}"),
+                    }
+                    continue;
+                }
                 cmd if cmd.starts_with(':') => {
                     eprintln!("error: unknown command `{cmd}`; try :help");
                     continue;
@@ -254,7 +268,9 @@ pub(crate) fn run(opts: &ShowOptions, term_limit: usize) -> ExitCode {
         }
         let src = std::mem::take(&mut buffer);
         let _ = editor.add_history_entry(src.trim_end());
-        evaluate(&mut session, &src, opts, &interrupt, term_limit);
+        if evaluate(&mut session, &src, opts, &interrupt, term_limit) {
+            entered.push_str(&src);
+        }
         if let Ok(mut n) = names.lock() {
             *n = session.bindings().keys().cloned().collect();
         }
@@ -265,19 +281,20 @@ pub(crate) fn run(opts: &ShowOptions, term_limit: usize) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-/// Parses and runs one input, statement by statement, each on a worker thread.
+/// Parses and runs one input, statement by statement, each on a worker thread; true when
+/// every statement succeeded.
 fn evaluate(
     session: &mut Session,
     src: &str,
     opts: &ShowOptions,
     interrupt: &Arc<AtomicBool>,
     term_limit: usize,
-) {
+) -> bool {
     let program = match parse(src) {
         Ok(p) => p,
         Err(e) => {
             eprintln!("{e}");
-            return;
+            return false;
         }
     };
     interrupt.store(false, Ordering::SeqCst);
@@ -300,7 +317,7 @@ fn evaluate(
             });
         if let Err(e) = spawned {
             eprintln!("error: cannot start the evaluation: {e}");
-            return;
+            return false;
         }
         let outcome = loop {
             match rx.recv_timeout(Duration::from_millis(20)) {
@@ -322,12 +339,13 @@ fn evaluate(
             }
             Some((_, Err(message))) => {
                 eprintln!("{message}");
-                return;
+                return false;
             }
             None => {
                 eprintln!("interrupted; the bindings are unchanged");
-                return;
+                return false;
             }
         }
     }
+    true
 }

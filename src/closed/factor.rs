@@ -345,7 +345,7 @@ fn rank(e: &E) -> u8 {
 }
 
 /// One monomial as an expression: `-2 sqrt(3) l1^2 c1`.
-fn mon_expr(m: &Mon) -> E {
+pub(crate) fn mon_expr(m: &Mon) -> E {
     let mut parts = Vec::with_capacity(2 + m.syms.len() + m.atoms.len());
     let neg = m.q.is_negative();
     let q = if neg { -&m.q } else { m.q.clone() };

@@ -10,8 +10,10 @@ mod expr;
 mod factor;
 mod mon;
 mod recombine;
+mod trace;
 
 pub use expr::{Angle, Cost, Expr};
+pub use trace::{Identity, TraceStep};
 
 use crate::{Scalar, ScalarError};
 
@@ -49,5 +51,45 @@ pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
     } else {
         debug_assert!(false, "closed form does not equal its input");
         Ok(whole.to_expr(&wctx))
+    }
+}
+
+/// [`closed_form`] with a record of how it was reached: the expanded sum, every angle-sum
+/// identity applied (with the numbers of the terms it combined), each regrouped sum, and the
+/// factored result. The expression is the one [`closed_form`] returns.
+///
+/// # Errors
+/// Only when `x` is an error value.
+pub fn closed_form_traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarError> {
+    if let Err(e) = x.terms() {
+        return Err(e.clone());
+    }
+    let (wctx, wmons) = mon::whole_modes(x);
+    let (whole, wc) = factor::build(&wmons);
+    let split_size: usize = x
+        .terms()
+        .map(|t| t.iter().map(|t| 1usize << t.mode.freq.len().min(30)).sum())
+        .unwrap_or(0);
+    if split_size > SPLIT_LIMIT {
+        let e = whole.to_expr(&wctx);
+        return Ok((e.clone(), vec![TraceStep::KeptWhole(e)]));
+    }
+    let (mut sctx, smons) = mon::split_modes(x);
+    let mut rec = trace::Recorder::default();
+    let smons = recombine::recombine_traced(&mut sctx, smons, &mut Some(&mut rec));
+    let (split, sc) = factor::build(&smons);
+    let (best, last) = if sc <= wc {
+        let e = split.to_expr(&sctx);
+        (e.clone(), TraceStep::Factored(e))
+    } else {
+        let e = whole.to_expr(&wctx);
+        (e.clone(), TraceStep::KeptWhole(e))
+    };
+    if best.to_scalar() == *x {
+        Ok((best, rec.finish(last)))
+    } else {
+        debug_assert!(false, "closed form does not equal its input");
+        let e = whole.to_expr(&wctx);
+        Ok((e.clone(), vec![TraceStep::KeptWhole(e)]))
     }
 }

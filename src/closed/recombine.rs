@@ -3,6 +3,7 @@
 //! until nothing pairs up, so `c1 c2 c3 - ...` regroups to `c123` at any depth.
 
 use super::mon::{angle_combine, angle_of, atom, is_sin, merge, remap, Atom, Ctx, FxMap, Mon};
+use super::trace::{AngleSum, Recorder};
 use crate::scalar::FxHasher;
 use std::cmp::Ordering;
 use std::hash::Hasher;
@@ -151,10 +152,22 @@ fn cofactor_ranks(mons: &[Mon]) -> Vec<u32> {
 }
 
 /// Applies the angle-sum identities until no pair of monomials combines.
-pub(crate) fn recombine(ctx: &mut Ctx, mut mons: Vec<Mon>) -> Vec<Mon> {
+pub(crate) fn recombine(ctx: &mut Ctx, mons: Vec<Mon>) -> Vec<Mon> {
+    recombine_traced(ctx, mons, &mut None)
+}
+
+/// [`recombine`], telling `rec` (when there is one) each round's sum and every identity applied.
+pub(crate) fn recombine_traced(
+    ctx: &mut Ctx,
+    mut mons: Vec<Mon>,
+    rec: &mut Option<&mut Recorder>,
+) -> Vec<Mon> {
     // Each round strictly lowers the number of monomials or stops, so this terminates.
     loop {
-        let (mut next, changed) = round(ctx, &mons);
+        if let Some(r) = rec.as_deref_mut() {
+            r.round(ctx, &mons);
+        }
+        let (mut next, changed) = round(ctx, &mons, rec);
         if let Some(map) = ctx.renumber() {
             for m in &mut next {
                 remap(m, &map);
@@ -175,7 +188,7 @@ pub(crate) fn recombine(ctx: &mut Ctx, mut mons: Vec<Mon>) -> Vec<Mon> {
 /// id and whether it was negated to normalize it.
 type Combined = Option<(u32, bool)>;
 
-fn round(ctx: &mut Ctx, mons: &[Mon]) -> (Vec<Mon>, bool) {
+fn round(ctx: &mut Ctx, mons: &[Mon], rec: &mut Option<&mut Recorder>) -> (Vec<Mon>, bool) {
     let cof = cofactor_ranks(mons);
     let mut index: Vec<Entry> = Vec::new();
     for (i, m) in mons.iter().enumerate() {
@@ -256,6 +269,20 @@ fn round(ctx: &mut Ctx, mons: &[Mon]) -> (Vec<Mon>, bool) {
             let mut base = mons[first.0].clone();
             base.atoms.remove(first.2);
             base.atoms.remove(first.1);
+            if let Some(r) = rec.as_deref_mut() {
+                r.apply(
+                    ctx,
+                    &AngleSum {
+                        sin,
+                        sign,
+                        a,
+                        b,
+                        terms: [first.0, second.0],
+                        cofactor: &base,
+                        combined: c,
+                    },
+                );
+            }
             used[i] = true;
             used[j] = true;
             changed = true;

@@ -2,7 +2,7 @@
 //! implementations over [`Value`]s.
 
 use super::ast::{Expr, Ident, Span};
-use super::eval::{op_error, scalar_error, EvalError, EvalErrorKind, Evaluator, Result};
+use super::eval::{op_error, scalar_error, EvalError, EvalErrorKind, Evaluator, Event, Result};
 use super::value::{self, Value};
 use crate::{closed_form, dh_link, mdh_link, plain, DualQuat, Matrix4, PlainOptions, Quat, Scalar};
 use num_traits::{One, Zero};
@@ -450,7 +450,22 @@ pub(crate) fn call(ev: &Evaluator<'_>, func: &Ident, args: &[Expr], span: Span) 
         },
         _ => return Err(invalid(&format!("`{name}` is not implemented"), func.span)),
     };
-    out.check().map_err(|e| scalar_error(e, span))
+    let out = out.check().map_err(|e| scalar_error(e, span))?;
+    let text = |k: usize| (args[k].to_string(), vals[k].value.clone());
+    match name {
+        "rot" | "trans" | "screw" | "dh" | "mdh" | "point" => ev.record(|| Event::Built {
+            func: name,
+            args: (0..args.len()).map(text).collect(),
+            value: out.clone(),
+        }),
+        "transform" => ev.record(|| Event::Transform {
+            q: text(0),
+            v: text(1),
+            value: out.clone(),
+        }),
+        _ => {}
+    }
+    Ok(out)
 }
 
 fn invalid(message: &str, span: Span) -> EvalError {

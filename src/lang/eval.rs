@@ -17,6 +17,7 @@ use super::scan::SourceMap;
 use super::show::Format;
 use super::value::{self, OpError, Value};
 use crate::{DualQuat, Quat, Scalar, ScalarError};
+use std::cell::RefCell;
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -247,6 +248,24 @@ impl Session {
 
     /// Runs one statement; on error the session is unchanged.
     pub fn exec(&mut self, stmt: &Stmt) -> Result<Option<Displayed>> {
+        self.exec_with(stmt, None)
+    }
+
+    /// [`Session::exec`], telling `rec` about every motion built, product taken and point
+    /// transformed (for walkthroughs).
+    pub(crate) fn exec_recorded(
+        &mut self,
+        stmt: &Stmt,
+        rec: &RefCell<Vec<Event>>,
+    ) -> Result<Option<Displayed>> {
+        self.exec_with(stmt, Some(rec))
+    }
+
+    fn exec_with(
+        &mut self,
+        stmt: &Stmt,
+        rec: Option<&RefCell<Vec<Event>>>,
+    ) -> Result<Option<Displayed>> {
         match &stmt.kind {
             StmtKind::Syms(names) => {
                 for n in names {
@@ -287,7 +306,7 @@ impl Session {
                         sin.span,
                     ));
                 }
-                let value = self.eval_with(angle, true)?;
+                let value = self.eval_with(angle, true, None)?;
                 let Value::Scalar(a) = value else {
                     return Err(EvalError::new(
                         EvalErrorKind::Type(format!(
@@ -342,7 +361,7 @@ impl Session {
             StmtKind::Assign { name, value } => {
                 check_not_constant(&name.name, name.span)?;
                 self.check_not_half_angle(&name.name, name.span)?;
-                let v = self.eval(value)?;
+                let v = self.eval_with(value, self.implicit_symbols, rec)?;
                 self.bind(&name.name, v.clone(), BindingKind::Variable);
                 Ok((!stmt.quiet).then(|| Displayed {
                     label: name.name.clone(),
@@ -351,7 +370,7 @@ impl Session {
                 }))
             }
             StmtKind::Expr(e) => {
-                let v = self.eval(e)?;
+                let v = self.eval_with(e, self.implicit_symbols, rec)?;
                 self.bind("ans", v.clone(), BindingKind::Variable);
                 let text = e.to_string();
                 let label = if text.chars().count() <= 60 {
@@ -392,13 +411,19 @@ impl Session {
 
     /// Evaluates one expression against the current bindings.
     pub fn eval(&self, e: &Expr) -> Result<Value> {
-        self.eval_with(e, self.implicit_symbols)
+        self.eval_with(e, self.implicit_symbols, None)
     }
 
-    fn eval_with(&self, e: &Expr, implicit: bool) -> Result<Value> {
+    fn eval_with(
+        &self,
+        e: &Expr,
+        implicit: bool,
+        rec: Option<&RefCell<Vec<Event>>>,
+    ) -> Result<Value> {
         Evaluator {
             session: self,
             implicit,
+            rec,
         }
         .expr(e)
     }
@@ -441,13 +466,57 @@ pub(crate) fn scalar_error(e: ScalarError, span: Span) -> EvalError {
     EvalError::new(EvalErrorKind::Scalar(e), span)
 }
 
-/// One evaluation: the session to read and whether free names are symbols.
+/// What a walkthrough needs to know about one evaluation step.
+// Events are few and short-lived (one list per statement), so boxing the larger variants
+// would buy nothing.
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug)]
+pub(crate) enum Event {
+    /// A built-in that builds a motion or a point (`rot`, `trans`, `screw`, `dh`, `mdh`,
+    /// `point`) was called.
+    Built {
+        /// The built-in.
+        func: &'static str,
+        /// Each argument as written, with its value.
+        args: Vec<(String, Value)>,
+        /// The result.
+        value: Value,
+    },
+    /// A product `f1 * f2 * ... * fn` of quaternions, dual quaternions and vectors;
+    /// `partials[k]` is the product of the first `k + 2` factors.
+    Chain {
+        /// Each factor as written, with its value.
+        factors: Vec<(String, Value)>,
+        /// The running products.
+        partials: Vec<Value>,
+    },
+    /// `transform(q, v)` was called.
+    Transform {
+        /// The motion as written, with its value.
+        q: (String, Value),
+        /// The point as written, with its value.
+        v: (String, Value),
+        /// The image point.
+        value: Value,
+    },
+}
+
+/// One evaluation: the session to read, whether free names are symbols, and where to record
+/// events for a walkthrough.
 pub(crate) struct Evaluator<'a> {
     session: &'a Session,
     implicit: bool,
+    rec: Option<&'a RefCell<Vec<Event>>>,
 }
 
 impl Evaluator<'_> {
+    /// Records `event` when a walkthrough is listening.
+    pub(crate) fn record(&self, event: impl FnOnce() -> Event) {
+        if let Some(r) = self.rec {
+            r.borrow_mut().push(event());
+        }
+    }
+
     pub(crate) fn cancelled(&self) -> bool {
         self.session.cancelled()
     }
@@ -487,8 +556,12 @@ impl Evaluator<'_> {
             }
             ExprKind::Product { first, rest } => {
                 let mut acc = self.expr(first)?;
+                let mut chain = self.rec.is_some().then(|| ChainRec::new(first, &acc));
                 for (op, factor) in rest {
                     let v = self.expr(factor)?;
+                    if let Some(c) = chain.as_mut() {
+                        c.factor(*op, factor, &v);
+                    }
                     let r = match op {
                         MulOp::Mul => value::mul(&acc, &v),
                         MulOp::Div => match value::div(&acc, &v) {
@@ -500,6 +573,15 @@ impl Evaluator<'_> {
                     let span = join(first.span, factor.span);
                     acc = at(r, span)?;
                     acc = acc.check().map_err(|err| scalar_error(err, span))?;
+                    if let Some(c) = chain.as_mut() {
+                        c.partials.push(acc.clone());
+                    }
+                }
+                if let Some(c) = chain.filter(ChainRec::is_motion_chain) {
+                    self.record(|| Event::Chain {
+                        factors: c.factors,
+                        partials: c.partials,
+                    });
                 }
                 Ok(acc)
             }
@@ -601,5 +683,49 @@ fn join(a: Span, b: Span) -> Span {
     Span {
         end: b.end.max(a.end),
         ..a
+    }
+}
+
+/// A product being evaluated, for [`Event::Chain`].
+struct ChainRec {
+    factors: Vec<(String, Value)>,
+    partials: Vec<Value>,
+    /// Only `*`, no factor is a scalar or the dual unit itself.
+    plain: bool,
+}
+
+impl ChainRec {
+    fn new(first: &Expr, v: &Value) -> ChainRec {
+        let mut c = ChainRec {
+            factors: Vec::new(),
+            partials: Vec::new(),
+            plain: true,
+        };
+        c.factor(MulOp::Mul, first, v);
+        c
+    }
+
+    fn factor(&mut self, op: MulOp, e: &Expr, v: &Value) {
+        let unit = matches!(&e.kind, ExprKind::Name(n) if n == "I" || n == "eps");
+        if op != MulOp::Mul || unit || matches!(v, Value::Scalar(_) | Value::Matrix(_)) {
+            self.plain = false;
+        }
+        // A sum or a negation as a factor keeps its brackets: `qd2*(1 + I*(x2, y2, z2))`.
+        let text = match e.kind {
+            ExprKind::Sum { .. } | ExprKind::Unary { .. } | ExprKind::Product { .. } => {
+                format!("({e})")
+            }
+            _ => e.to_string(),
+        };
+        self.factors.push((text, v.clone()));
+    }
+
+    /// A product of motions and points, as a walkthrough shows it.
+    fn is_motion_chain(&self) -> bool {
+        self.plain
+            && self
+                .factors
+                .iter()
+                .any(|(_, v)| matches!(v, Value::Quat(_) | Value::DualQuat(_)))
     }
 }

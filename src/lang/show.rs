@@ -162,7 +162,7 @@ fn quat_items(q: &Quat<Scalar>) -> [&Scalar; 4] {
 }
 
 /// The value in LaTeX.
-fn latex_value(v: &Value, o: &LatexOptions) -> Result<String, ScalarError> {
+pub(crate) fn latex_value(v: &Value, o: &LatexOptions) -> Result<String, ScalarError> {
     Ok(match v {
         Value::Scalar(s) => latex(&closed_form(s)?, o),
         Value::Quat(q) => latex_tuple(&closed_all(quat_items(q))?, o),

@@ -16,3 +16,4 @@ mod parse;
 mod robots;
 mod scalar;
 mod tools;
+mod walk;

@@ -90,3 +90,39 @@ pub fn temp_dir(name: &str) -> PathBuf {
     std::fs::create_dir_all(&dir).expect("temp dir");
     dir
 }
+
+/// Renders every formula of `formulas` with KaTeX in one node process, display mode,
+/// `throwOnError: true`; panics naming the first formula KaTeX rejects.
+pub fn katex_all(formulas: &[String], what: &str) {
+    assert!(
+        Path::new(ROOT).join("node_modules/katex").is_dir(),
+        "KaTeX is missing (node_modules/katex): run `bash scripts/test.sh`, which installs it with npm"
+    );
+    let script = "let s='';process.stdin.on('data',d=>s+=d);process.stdin.on('end',()=>{\
+        const k=require('katex');for(const f of JSON.parse(s)){\
+        try{k.renderToString(f,{throwOnError:true,displayMode:true});}\
+        catch(e){console.error(String(e)+'\\nin: '+f);process.exit(1);}}});";
+    let json: Vec<String> = formulas.iter().map(|f| json_string(f)).collect();
+    let mut cmd = Command::new("node");
+    cmd.args(["-e", script]).current_dir(ROOT);
+    run(
+        cmd,
+        &format!("[{}]", json.join(",")),
+        &format!("KaTeX on {what}"),
+    );
+}
+
+fn json_string(s: &str) -> String {
+    let mut out = String::from("\"");
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            c if (c as u32) < 0x20 => out.push_str(&format!("\\u{:04x}", c as u32)),
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}

@@ -1,0 +1,164 @@
+//! Teaching walkthroughs: a derivation as numbered steps, each factor with its meaning in
+//! words, each product with its result, each trigonometric identity by name with the terms it
+//! combined, the closed form, and a numeric check against plain 4x4 matrices.
+//!
+//! - `motion.rs`: [`Motion`], a rigid motion described by its geometry, in words and as an
+//!   independent 4x4 matrix (the check's oracle); reading the motion of a unit DQ.
+//! - `script.rs`: a [`Walkthrough`] from a `.dq` script, by listening to the evaluator.
+//! - `robot.rs`: a [`Walkthrough`] from a robot file.
+//! - `text.rs`: [`walk_text`] and [`walk_markdown`].
+//! - `svg.rs`: [`mechanism_svg`], the drawing of the mechanism.
+//! - `html.rs`: [`walk_html`], a self-contained page (KaTeX inlined).
+//!
+//! Walkthroughs are data; renderers are pure functions of them and never simplify.
+
+mod check;
+mod html;
+mod motion;
+mod robot;
+mod script;
+mod svg;
+mod text;
+
+pub use html::{walk_html, KatexAssets};
+pub use motion::{Motion, Word, Words};
+pub use robot::walk_robot;
+pub use script::walk_script;
+pub use svg::{mechanism_svg, Config, SvgOptions};
+pub use text::{walk_markdown, walk_text};
+
+use crate::{TraceStep, Value};
+use thiserror::Error;
+
+/// A derivation as a list of typed steps.
+#[derive(Clone, Debug)]
+pub struct Walkthrough {
+    /// What is derived: the script's file name or the robot's name.
+    pub title: String,
+    /// The steps in order; renderers number them from 1.
+    pub steps: Vec<Step>,
+    /// The chain of the final result, for the drawing (when its factors are known motions).
+    pub mechanism: Option<Mechanism>,
+}
+
+/// One step of a walkthrough.
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub enum Step {
+    /// A notation introduced by the script: `c3 = cos(theta3/2)`.
+    Notation {
+        /// The names.
+        names: Vec<String>,
+        /// What they stand for, plain text.
+        meaning: String,
+    },
+    /// A motion (a dual quaternion factor) with its meaning in words.
+    Factor {
+        /// Its name, or the expression as written.
+        name: String,
+        /// The value.
+        value: Value,
+        /// What it does.
+        meaning: Words,
+    },
+    /// A point `1 + eps (0, x, y, z)`, or another value defined along the way.
+    Define {
+        /// Its name.
+        name: String,
+        /// The value.
+        value: Value,
+        /// What it is.
+        meaning: Words,
+    },
+    /// A product of two operands.
+    Product {
+        /// The left operand as written.
+        left: String,
+        /// The right operand as written.
+        right: String,
+        /// The product.
+        value: Value,
+    },
+    /// A point carried by a motion: `q v q‾*` (eq 10) or `transform(q, v)`, with the
+    /// trigonometric identities that bring each coordinate to its closed form.
+    Transform {
+        /// The name of the image (`v2`) or the expression.
+        label: String,
+        /// The motion as written.
+        q: String,
+        /// The point as written.
+        v: String,
+        /// The image point (a point DQ or a vector).
+        value: Value,
+        /// The half angles of the motion lifted to full angles in the product.
+        half_angles: Vec<HalfAngle>,
+        /// Each coordinate's trace, for the coordinates that needed identities.
+        traces: Vec<ComponentTrace>,
+    },
+    /// The final closed form.
+    Result {
+        /// Its name.
+        label: String,
+        /// The value.
+        value: Value,
+    },
+    /// The result evaluated at random configurations against plain 4x4 homogeneous matrices.
+    Check {
+        /// What was compared.
+        what: String,
+        /// The matrix product used as the oracle, in words.
+        oracle: String,
+        /// The configurations tried.
+        samples: usize,
+        /// The largest absolute difference of a coordinate.
+        max_deviation: f64,
+    },
+}
+
+/// A half angle of a motion, and the names the script gave its cosine and sine.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct HalfAngle {
+    /// The joint symbol, `theta3`.
+    pub symbol: String,
+    /// The script's names for cos and sin of the half angle (`c3`, `s3`), when it has them.
+    pub names: Option<(String, String)>,
+}
+
+/// The trace of one coordinate's closed form.
+#[derive(Clone, Debug)]
+pub struct ComponentTrace {
+    /// `v2.y`.
+    pub label: String,
+    /// The steps of [`closed_form_traced`](crate::closed_form_traced).
+    pub steps: Vec<TraceStep>,
+}
+
+/// The joints of a chain, for the drawing.
+#[derive(Clone, Debug)]
+pub struct Mechanism {
+    /// The motions, base first.
+    pub motions: Vec<Motion>,
+    /// The point carried by the chain (the tool), in the home pose, if there is one.
+    pub tool: Option<[crate::Scalar; 3]>,
+}
+
+/// Why a walkthrough could not be made.
+#[derive(Clone, Debug, PartialEq, Eq, Error)]
+#[non_exhaustive]
+pub enum WalkError {
+    /// The script does not parse or a statement fails; the message is rendered with a caret.
+    #[error("{0}")]
+    Script(String),
+    /// The robot file is invalid.
+    #[error(transparent)]
+    Robot(#[from] crate::RobotError),
+    /// A value could not be shown.
+    #[error(transparent)]
+    Show(#[from] crate::ShowError),
+    /// An exact operation failed.
+    #[error(transparent)]
+    Scalar(#[from] crate::ScalarError),
+    /// A `--config` entry is invalid.
+    #[error("{0}")]
+    Config(String),
+}
