@@ -131,6 +131,22 @@ pub const BUILTINS: &[Builtin] = &[
         "jacobian(dh(theta1, 0, a1, 0), [theta1])",
     ),
     b(
+        "gjacobian",
+        "gjacobian(q, [q1, q2, ...])",
+        2,
+        2,
+        "6 x n geometric Jacobian of a unit DQ pose: linear velocity (x, y, z) over angular (x, y, z)",
+        "gjacobian(rot((0, 0, 1), theta1) * trans((l, 0, 0)), [theta1])",
+    ),
+    b(
+        "screwparams",
+        "screwparams(q)",
+        1,
+        1,
+        "screw of a unit DQ as rows: (angle, slide, 0), axis n, moment m, axis point nearest O",
+        "screwparams(screw((0, 0, 1), (l, 0, 0), theta1, t))",
+    ),
+    b(
         "diff",
         "diff(x, t)",
         2,
@@ -397,6 +413,13 @@ pub(crate) fn call(ev: &Evaluator<'_>, func: &Ident, args: &[Expr], span: Span) 
         }
         "closed" | "latex" | "sympy" | "rust" | "plain" => vals[0].value.clone(),
         "jacobian" => jacobian(&vals[0], &vals[1])?,
+        "gjacobian" => {
+            let q = unit_dq(name, &vals[0])?;
+            let names = symbol_list(name, &vals[1])?;
+            let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+            Value::Matrix(crate::geometric_jacobian(&q, &refs))
+        }
+        "screwparams" => screw_params(&vals[0])?,
         "diff" => {
             let t = symbol_name(name, &vals[1].value, vals[1].span)?;
             vals[0].value.map(&|s| s.diff(&t))
@@ -587,6 +610,61 @@ fn symbol_name(func: &str, v: &Value, span: Span) -> Result<String> {
         )),
         span,
     ))
+}
+
+/// `screwparams(q)`: the screw of a unit DQ as a 4 x 3 matrix, when every parameter is a plain
+/// expression. Parameters that divide by sin(theta/2) by an expression (the centres of planar
+/// displacements) need quotients, which values cannot hold yet: the message gives them exactly.
+fn screw_params(a: &Arg) -> Result<Value> {
+    let q = unit_dq("screwparams", a)?;
+    let sp =
+        crate::screw_parameters(&q).map_err(|e| invalid(&format!("screwparams: {e}"), a.span))?;
+    let fracs: Vec<&crate::Frac> = std::iter::once(&sp.slide)
+        .chain(&sp.axis)
+        .chain(&sp.moment)
+        .chain(&sp.point)
+        .collect();
+    if let Some(f) = fracs.iter().find(|f| f.as_scalar().is_none()) {
+        return Err(invalid(
+            &format!(
+                "screwparams: a parameter is the quotient ({}) / ({}), which a value cannot hold yet \
+                 (the library's screw_parameters returns it exactly)",
+                text(f.num()),
+                text(f.den())
+            ),
+            a.span,
+        ));
+    }
+    let s = |f: &crate::Frac| f.as_scalar().cloned().unwrap_or_default();
+    Ok(Value::Matrix(vec![
+        vec![sp.angle.clone(), s(&sp.slide), Scalar::int(0)],
+        sp.axis.iter().map(s).collect(),
+        sp.moment.iter().map(s).collect(),
+        sp.point.iter().map(s).collect(),
+    ]))
+}
+
+/// The symbol names of a list argument `[x1, x2, ...]`.
+fn symbol_list(func: &str, vars: &Arg) -> Result<Vec<String>> {
+    let list: Vec<Value> = match &vars.value {
+        Value::Matrix(rows) if rows.len() == 1 || rows[0].len() == 1 => {
+            rows.iter().flatten().cloned().map(Value::Scalar).collect()
+        }
+        Value::Scalar(s) => vec![Value::Scalar(s.clone())],
+        Value::Vector(v) => v.iter().cloned().map(Value::Scalar).collect(),
+        other => {
+            return Err(type_error(
+                func,
+                "the second argument",
+                "a list of symbols [x1, x2, ...]",
+                other,
+                vars.span,
+            ))
+        }
+    };
+    list.iter()
+        .map(|v| symbol_name(func, v, vars.span))
+        .collect()
 }
 
 /// `jacobian(q, vars)`: rows are the 8 (or 4) components, columns the variables.

@@ -104,28 +104,55 @@ impl PartialEq for Frac {
     }
 }
 
-/// `k` when `num == k den` for a constant `k`, read off the leading terms and then checked.
+/// `k` when `num == k den` and `k` is read off term by term: for a one-term denominator
+/// `c sqrt(r) m M` (monomial `m`, mode `M`), each numerator term with mode `M` divided by it;
+/// otherwise a constant ratio of the leading terms. The candidate is always checked by
+/// multiplying back, so a wrong guess only means no reduction.
 fn constant_ratio(num: &Scalar, den: &Scalar) -> Option<Scalar> {
     let (n, d) = (num.terms().ok()?, den.terms().ok()?);
     if num.is_zero() {
         return Some(Scalar::int(0));
     }
-    let (a, b) = (n.first()?, d.first()?);
-    if a.mode != b.mode || a.mono != b.mono {
-        return None;
+    let unit = |rad: u64, coef: &super::Q, mono: super::MonoRc| {
+        Scalar::from_terms_sorted(vec![super::Term {
+            mode: super::Mode::unit(),
+            mono,
+            rad,
+            coef: coef.clone(),
+        }])
+    };
+    let candidate = if let [b] = d {
+        let inv = unit(b.rad, &b.coef, Vec::new().into()).recip();
+        let mut k = Scalar::int(0);
+        for t in n.iter().filter(|t| t.mode == b.mode) {
+            let mono = mono_div(&t.mono, &b.mono)?;
+            k = k + unit(t.rad, &t.coef, mono) * &inv;
+        }
+        k
+    } else {
+        let (a, b) = (n.first()?, d.first()?);
+        if a.mode != b.mode || a.mono != b.mono {
+            return None;
+        }
+        unit(a.rad, &a.coef, Vec::new().into())
+            .try_div(&unit(b.rad, &b.coef, Vec::new().into()))
+            .ok()?
+    };
+    (&candidate * den == *num).then_some(candidate)
+}
+
+/// `a / b` for monomials, when `b` divides `a`.
+fn mono_div(a: &[(super::Sym, u32)], b: &[(super::Sym, u32)]) -> Option<super::MonoRc> {
+    let mut out: Vec<(super::Sym, u32)> = a.to_vec();
+    for (s, e) in b {
+        let pos = out.iter().position(|(x, _)| x == s)?;
+        if out[pos].1 < *e {
+            return None;
+        }
+        out[pos].1 -= e;
+        if out[pos].1 == 0 {
+            out.remove(pos);
+        }
     }
-    let ka = Scalar::from_terms_sorted(vec![super::Term {
-        mode: super::Mode::unit(),
-        mono: Vec::new().into(),
-        rad: a.rad,
-        coef: a.coef.clone(),
-    }]);
-    let kb = Scalar::from_terms_sorted(vec![super::Term {
-        mode: super::Mode::unit(),
-        mono: Vec::new().into(),
-        rad: b.rad,
-        coef: b.coef.clone(),
-    }]);
-    let k = ka.try_div(&kb).ok()?;
-    (&k * den == *num).then_some(k)
+    Some(out.into())
 }

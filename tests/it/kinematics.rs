@@ -127,3 +127,44 @@ fn jacobians_of_the_puma560_agree_with_finite_differences() {
         }
     }
 }
+
+#[test]
+fn language_screwparams_and_gjacobian_match_the_library() {
+    use std::process::Command;
+    let run = |e: &str| {
+        let out = Command::new(env!("CARGO_BIN_EXE_dqsym"))
+            .args(["-e", e])
+            .output()
+            .expect("runs");
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stdout).to_string(),
+            String::from_utf8_lossy(&out.stderr).to_string(),
+        )
+    };
+    let (code, text, _) = run("screwparams(screw((3/5, 4/5, 0), (l, d, 0), theta1, t))");
+    assert_eq!(code, Some(0));
+    // Moment p x n and nearest point p - (p.n) n of the axis through (l, d, 0).
+    assert_eq!(text, "[theta1, t, 0]\n[3/5, 4/5, 0]\n[0, 0, 1/5 (-3 d + 4 l)]\n[4/25 (-3 d + 4 l), 3/25 (3 d - 4 l), 0]\n");
+    let q = DualQuat::screw(
+        &[frac(3, 5), frac(4, 5), int(0)],
+        &v3(sym("l"), sym("d"), int(0)),
+        &sym("theta1"),
+        &sym("t"),
+    );
+    let sp = screw_parameters(&q).expect("screw");
+    assert_eq!(
+        sp.moment[2],
+        Frac::from((sym("l") * int(4) - sym("d") * int(3)) * frac(1, 5))
+    );
+    // A planar centre divides by sin(theta/2): the language says so instead of guessing.
+    let (code, _, err) = run("screwparams(trans((0, d1, d2)) * rot((1, 0, 0), theta))");
+    assert_eq!(code, Some(1));
+    assert!(err.contains("quotient"), "{err}");
+    let (code, text, _) = run("gjacobian(rot((0, 0, 1), theta1) * trans((l, 0, 0)), [theta1])");
+    assert_eq!(code, Some(0));
+    assert_eq!(
+        text,
+        "[-l s1]\n[l c1]\n[0]\n[0]\n[0]\n[1]\n  where c1 = cos(theta1), s1 = sin(theta1)\n"
+    );
+}
