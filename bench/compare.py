@@ -26,33 +26,55 @@ WORKLOADS = {
 }
 
 
+def descendants(pid):
+    """The process ids below pid, deepest last, from /proc."""
+    out = []
+    try:
+        with open(f"/proc/{pid}/task/{pid}/children") as f:
+            kids = [int(x) for x in f.read().split()]
+    except OSError:
+        return out
+    for k in kids:
+        out.append(k)
+        out.extend(descendants(k))
+    return out
+
+
 def run_limited(cmd, limit, env=None, keep_stderr=False):
-    """Runs cmd under /usr/bin/time for its peak RSS; kills its process group at `limit`
-    seconds. Returns (stdout lines, finished, peak RSS in MB or None, wall seconds)."""
+    """Runs cmd under /usr/bin/time for its peak RSS. At `limit` seconds it kills what runs
+    under time(1), not time(1) itself, so a killed process still reports its peak RSS.
+    Returns (stdout lines, finished, peak RSS in MB or None, wall seconds[, stderr lines])."""
     with tempfile.NamedTemporaryFile("r", suffix=".rss") as rss:
-        # timeout(1) inside time(1): a process killed at the limit still reports its peak RSS.
-        full = ["/usr/bin/time", "-f", "%M", "-o", rss.name,
-                "timeout", "-s", "KILL", str(limit)] + cmd
+        full = ["/usr/bin/time", "-f", "%M", "-o", rss.name] + cmd
         t = time.perf_counter()
         p = subprocess.Popen(
             full, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
             start_new_session=True, cwd=ROOT, env=env,
         )
         try:
-            out, err = p.communicate(timeout=limit + 30)
+            out, err = p.communicate(timeout=limit)
             finished = p.returncode == 0
         except subprocess.TimeoutExpired:
-            os.killpg(p.pid, signal.SIGKILL)
-            out, err = p.communicate()
+            for pid in reversed(descendants(p.pid)):
+                try:
+                    os.kill(pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
+            try:
+                out, err = p.communicate(timeout=30)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                out, err = p.communicate()
             finished = False
         wall = time.perf_counter() - t
         text = rss.read().strip().splitlines()
         kb = next((int(x) for x in reversed(text) if x.strip().isdigit()), None)
     if not finished and not keep_stderr and err.strip() and "Command terminated" not in err:
         sys.stderr.write(f"[{' '.join(cmd)}] {err.strip()[-500:]}\n")
+    mb = kb / 1024 if kb else None
     if keep_stderr:
-        return out.splitlines(), finished, (kb / 1024 if kb else None), wall, err.splitlines()
-    return out.splitlines(), finished, (kb / 1024 if kb else None), wall
+        return out.splitlines(), finished, mb, wall, err.splitlines()
+    return out.splitlines(), finished, mb, wall
 
 
 def parse_stage_lines(lines):
@@ -180,7 +202,7 @@ def main():
                 part = {"matrix": "4x4", "dq": "DQ"}.get(part, part)
                 rows.append((w, part, p, stage, r["seconds"], r["ops"], r["calls"], rss, ""))
             if not ok:
-                rows.append((w, "", p, "(next stage)", None, None, None, rss,
+                rows.append((w, "~", p, "(next stage)", None, None, None, rss,
                              f"did not finish (limit {a.limit:.0f} s)"))
 
     # The table.
@@ -195,6 +217,7 @@ def main():
     print("| workload | part | system | stage | time | + - * / and calls | trig/sqrt calls | time / dqsym | peak RSS | note |")
     print("|---|---|---|---|---:|---:|---:|---:|---:|---|")
     for w, part, sysname, stage, secs, ops, calls, rss, note in rows:
+        part = "" if part == "~" else part
         base = dq_time(w, part)
         ratio = "-"
         if secs is not None and base and sysname != "dqsym":

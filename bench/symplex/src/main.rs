@@ -195,7 +195,7 @@ fn count(e: &Ex, in_sum: bool, s: &mut Size) {
             }
         }
         ExprType::Mul => {
-            let mut n = 0;
+            let mut n: usize = 0;
             let mut neg = false;
             for a in &args {
                 if a.expr_type() == ExprType::Number && a.to_string() == "-1" {
