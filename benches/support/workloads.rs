@@ -1,0 +1,65 @@
+//! The DH tables of the benchmark workloads, shared by `benches/core.rs` and
+//! `examples/bench_workloads.rs` (which `bench/compare` runs), so both measure the same thing.
+
+use dqsym::{dh_link, DualQuat, Ring, Scalar};
+
+/// `(theta, d, a, alpha)` of one DH link.
+pub type Dh = [Scalar; 4];
+
+pub fn planar(n: usize) -> Vec<Dh> {
+    (1..=n)
+        .map(|i| {
+            [
+                Scalar::sym(&format!("theta{i}")),
+                Scalar::int(0),
+                Scalar::sym(&format!("l{i}")),
+                Scalar::int(0),
+            ]
+        })
+        .collect()
+}
+
+pub fn puma() -> Vec<Dh> {
+    let alpha = [(1, 2), (0, 1), (-1, 2), (1, 2), (-1, 2), (0, 1)];
+    let d = ["0", "0", "d3", "d4", "0", "0"];
+    let a = ["0", "a2", "a3", "0", "0", "0"];
+    let v = |s: &str| {
+        if s == "0" {
+            Scalar::int(0)
+        } else {
+            Scalar::sym(s)
+        }
+    };
+    (0..6)
+        .map(|i| {
+            let (n, m) = alpha[i];
+            [
+                Scalar::sym(&format!("theta{}", i + 1)),
+                v(d[i]),
+                v(a[i]),
+                Scalar::pi() * <Scalar as Ring>::from_ratio(n, m),
+            ]
+        })
+        .collect()
+}
+
+pub fn generic(n: usize) -> Vec<Dh> {
+    (1..=n)
+        .map(|i| {
+            [
+                Scalar::sym(&format!("theta{i}")),
+                Scalar::sym(&format!("d{i}")),
+                Scalar::sym(&format!("a{i}")),
+                Scalar::sym(&format!("alpha{i}")),
+            ]
+        })
+        .collect()
+}
+
+pub fn chain(links: &[Dh]) -> DualQuat<Scalar> {
+    links
+        .iter()
+        .fold(DualQuat::identity(), |acc, [t, d, a, al]| {
+            acc * dh_link(t, d, a, al)
+        })
+}
