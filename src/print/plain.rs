@@ -145,6 +145,13 @@ fn write(e: &Expr, o: &PlainOptions, prec: u8, out: &mut String) {
             }
         }
         Expr::Mul(v) => {
+            // `pi/2`, `l/3`: a unit fraction times one symbol reads as a quotient.
+            if let [Expr::Num(q), Expr::Sym(s)] = v.as_slice() {
+                if q.numer().is_one() && !q.denom().is_one() && prec <= 2 {
+                    out.push_str(&format!("{}/{}", s.name(), q.denom()));
+                    return;
+                }
+            }
             if prec > 2 {
                 out.push('(');
             }
