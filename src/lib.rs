@@ -32,4 +32,7 @@ pub use print::{
     fk_report, legend, plain, shorthand_name, FkOptions, PlainOptions, ReportError, ReportFormat,
 };
 pub use ring::Ring;
-pub use scalar::{set_term_limit, term_limit, Frac, Scalar, ScalarError, Sym};
+pub use scalar::{
+    max_exponent, reset_work, set_max_exponent, set_term_limit, set_work_budget, term_limit,
+    work_budget, work_used, Frac, Scalar, ScalarError, Sym, DEFAULT_MAX_EXPONENT,
+};

@@ -245,8 +245,10 @@ impl Session {
         Ok(shown)
     }
 
-    /// Runs one statement; on error the session is unchanged.
+    /// Runs one statement; on error the session is unchanged. The statement starts a new
+    /// work budget ([`crate::set_work_budget`]).
     pub fn exec(&mut self, stmt: &Stmt) -> Result<Option<Displayed>> {
+        crate::reset_work();
         match &stmt.kind {
             StmtKind::Syms(names) => {
                 for n in names {
@@ -390,8 +392,9 @@ impl Session {
         Ok(())
     }
 
-    /// Evaluates one expression against the current bindings.
+    /// Evaluates one expression against the current bindings, with a new work budget.
     pub fn eval(&self, e: &Expr) -> Result<Value> {
+        crate::reset_work();
         self.eval_with(e, self.implicit_symbols)
     }
 
