@@ -21,7 +21,8 @@ const SPLIT_LIMIT: usize = 100_000;
 /// The most readable equivalent form of `x`: fewest operations, then fewest calls.
 ///
 /// # Errors
-/// Only when `x` is an error value.
+/// When `x` is an error value, and when checking the result against `x` runs out of the work
+/// budget or over the term limit (see [`crate::set_work_budget`]).
 pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
     if let Err(e) = x.terms() {
         return Err(e.clone());
@@ -44,7 +45,12 @@ pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
     } else {
         whole.to_expr(&wctx)
     };
-    if best.to_scalar() == *x {
+    let value = best.to_scalar();
+    if let Some(e) = value.as_error() {
+        // The check ran out of the budget or the term limit: no verified form to give.
+        return Err(e.clone());
+    }
+    if value == *x {
         Ok(best)
     } else {
         debug_assert!(false, "closed form does not equal its input");
