@@ -21,14 +21,14 @@ const SPLIT_LIMIT: usize = 100_000;
 /// The most readable equivalent form of `x`: fewest operations, then fewest calls.
 ///
 /// # Errors
-/// When `x` is an error value, and when checking the result against `x` runs out of the work
-/// budget or over the term limit (see [`crate::set_work_budget`]).
+/// When `x` is an error value, and when the search or the check of its result against `x`
+/// runs out of the work budget or over the term limit (see [`crate::set_work_budget`]).
 pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
     if let Err(e) = x.terms() {
         return Err(e.clone());
     }
     let (wctx, wmons) = mon::whole_modes(x);
-    let (whole, wc) = factor::build(&wmons);
+    let (whole, wc) = factor::build(&wmons)?;
     let split_size: usize = x
         .terms()
         .map(|t| t.iter().map(|t| 1usize << t.mode.freq.len().min(30)).sum())
@@ -38,7 +38,7 @@ pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
     }
     let (mut sctx, smons) = mon::split_modes(x);
     let smons = recombine::recombine(&mut sctx, smons);
-    let (split, sc) = factor::build(&smons);
+    let (split, sc) = factor::build(&smons)?;
     // Prefer the regrouped shape on ties: it is the one textbooks print.
     let best = if sc <= wc {
         split.to_expr(&sctx)

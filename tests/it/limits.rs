@@ -275,3 +275,42 @@ fn repl_survives_every_error_class_and_keeps_bindings() {
         "{text}"
     );
 }
+
+/// Inputs the fuzzers found slow or crashing (`fuzz/`), run as the fuzz targets run them: under
+/// small limits, in every format; each ends with status 0 or 1, quickly.
+#[test]
+fn fuzz_findings_end_quickly_under_small_limits() {
+    let small = ["--term-limit", "2000", "--work-budget", "200000"];
+    let mut count = 0;
+    for f in files("tests/data/fuzz", "dq") {
+        let src = std::fs::read_to_string(&f).unwrap();
+        for format in ["plain", "latex", "sympy", "rust"] {
+            let mut args = small.to_vec();
+            args.extend(["--format", format, "-e", &src]);
+            let (out, took) = run(&args, "");
+            assert!(
+                matches!(out.status.code(), Some(0 | 1)),
+                "{f:?}: {}",
+                stderr(&out)
+            );
+            assert!(
+                took < Duration::from_secs(10),
+                "{f:?} {format} took {took:?}"
+            );
+        }
+        count += 1;
+    }
+    for f in files("tests/data/fuzz", "toml") {
+        let mut args = small.to_vec();
+        args.extend(["fk", f.to_str().unwrap()]);
+        let (out, took) = run(&args, "");
+        assert!(
+            matches!(out.status.code(), Some(0 | 1)),
+            "{f:?}: {}",
+            stderr(&out)
+        );
+        assert!(took < Duration::from_secs(10), "{f:?} took {took:?}");
+        count += 1;
+    }
+    assert!(count >= 2);
+}
