@@ -34,7 +34,10 @@ pub use print::{
     ReportFormat,
 };
 pub use ring::Ring;
-pub use scalar::{set_term_limit, term_limit, Frac, Scalar, ScalarError, Sym};
+pub use scalar::{
+    max_exponent, reset_work, set_max_exponent, set_term_limit, set_work_budget, term_limit,
+    work_budget, work_used, Frac, Scalar, ScalarError, Sym, DEFAULT_MAX_EXPONENT,
+};
 pub use walk::{
     mechanism_svg, walk_html, walk_markdown, walk_robot, walk_script, walk_text, ComponentTrace,
     Config, HalfAngle, KatexAssets, Mechanism, Motion, Step, SvgOptions, WalkError, Walkthrough,

@@ -2,8 +2,8 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 use dqsym::{
-    closed_form, dh_link, legend, parse, plain, show, show_value, DualQuat, Expr, Format,
-    PlainOptions, Ring, Scalar, Session, ShowOptions, StmtKind,
+    closed_form, dh_link, legend, parse_with, plain, show, show_value, DualQuat, Expr, Format,
+    ParseOptions, PlainOptions, Ring, Scalar, Session, ShowOptions, StmtKind,
 };
 use std::process::ExitCode;
 
@@ -30,6 +30,17 @@ struct Cli {
     /// The most terms an expanded scalar may have; larger results are errors, not hangs.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_TERM_LIMIT, global = true)]
     term_limit: usize,
+    /// The deepest nesting of brackets and operators a script may have.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_DEPTH, global = true,
+          value_parser = clap::value_parser!(u16).range(1..=MAX_MAX_DEPTH))]
+    max_depth: u16,
+    /// The largest exponent `^` accepts, in absolute value.
+    #[arg(long, value_name = "N", default_value_t = dqsym::DEFAULT_MAX_EXPONENT, global = true)]
+    max_exponent: u64,
+    /// The most term operations (terms of sums, term pairs of products) one statement, one
+    /// robot file field or the whole fk derivation may do; more is an error, not a hang.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_WORK_BUDGET, global = true)]
+    work_budget: u64,
     #[command(subcommand)]
     command: Option<Command>,
 }
@@ -117,6 +128,44 @@ pub(crate) const STACK: usize = 256 << 20;
 /// terms, and a product of two scalars this size is still well under a second.
 const DEFAULT_TERM_LIMIT: usize = 20_000;
 
+/// The default `--max-depth`, the parser's own default.
+const DEFAULT_MAX_DEPTH: u16 = 256;
+
+/// The largest `--max-depth`: the evaluator and printers recurse once per level, and this many
+/// levels fit in [`STACK`] with room to spare even in debug builds.
+const MAX_MAX_DEPTH: i64 = 4096;
+
+/// The default `--work-budget`: about twice what the largest example (`fk` of
+/// `examples/robots/puma_like.toml` with `--jacobian`) needs, and well under a second of work
+/// in a release build (a robot of 20 fully symbolic DH joints spends it in 0.7 s).
+const DEFAULT_WORK_BUDGET: u64 = 1_000_000;
+
+/// The limits of the command line, applied to each thread that evaluates.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Limits {
+    term_limit: usize,
+    max_depth: usize,
+    max_exponent: u64,
+    work_budget: u64,
+}
+
+impl Limits {
+    /// Sets the scalar layer's per-thread limits on the calling thread.
+    pub(crate) fn apply(&self) {
+        dqsym::set_term_limit(self.term_limit);
+        dqsym::set_max_exponent(self.max_exponent);
+        dqsym::set_work_budget(self.work_budget);
+    }
+
+    /// The parser's options.
+    pub(crate) fn parse_options(&self) -> ParseOptions {
+        ParseOptions {
+            max_depth: self.max_depth,
+            ..ParseOptions::default()
+        }
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let worker = std::thread::Builder::new()
@@ -132,9 +181,15 @@ fn main() -> ExitCode {
 }
 
 fn dispatch(cli: Cli) -> ExitCode {
-    // The term limit guards scripts and one-liners; fk and paper keep the library default.
-    if !matches!(cli.command, Some(Command::Fk { .. } | Command::Paper)) {
-        dqsym::set_term_limit(cli.term_limit);
+    let limits = Limits {
+        term_limit: cli.term_limit,
+        max_depth: usize::from(cli.max_depth),
+        max_exponent: cli.max_exponent,
+        work_budget: cli.work_budget,
+    };
+    // The limits guard scripts, one-liners and robot files; paper keeps the library defaults.
+    if !matches!(cli.command, Some(Command::Paper)) {
+        limits.apply();
     }
     // fk has its own formats (a report per entry); the other commands share show options.
     let opts = match &cli.command {
@@ -173,7 +228,7 @@ fn dispatch(cli: Cli) -> ExitCode {
                 ExitCode::FAILURE
             }
         },
-        (Some(Command::Run { file }), _) => run_file(&file, &opts),
+        (Some(Command::Run { file }), _) => run_file(&file, &opts, &limits),
         (
             Some(Command::Walk {
                 file,
@@ -183,8 +238,8 @@ fn dispatch(cli: Cli) -> ExitCode {
             }),
             _,
         ) => walk(&file, markdown, html.as_deref(), config.as_deref()),
-        (None, Some(expr)) => one_liner(&expr, &opts),
-        (None, None) => repl::run(&opts, cli.term_limit),
+        (None, Some(expr)) => one_liner(&expr, &opts, &limits),
+        (None, None) => repl::run(&opts, &limits),
     }
 }
 
@@ -224,6 +279,8 @@ fn fk(
         OutputFormat::Sympy => dqsym::ReportFormat::Sympy,
         OutputFormat::Rust => dqsym::ReportFormat::Rust,
     };
+    // The fields were evaluated each with its own budget; the derivation gets a whole one.
+    dqsym::reset_work();
     match dqsym::fk_report(
         &robot,
         &dqsym::FkOptions {
@@ -369,7 +426,7 @@ fn katex_assets() -> Result<dqsym::KatexAssets, String> {
 }
 
 /// `dqsym run FILE`: prints results as statements complete; stops at the first error.
-fn run_file(path: &std::path::Path, opts: &ShowOptions) -> ExitCode {
+fn run_file(path: &std::path::Path, opts: &ShowOptions, limits: &Limits) -> ExitCode {
     let src = match std::fs::read_to_string(path) {
         Ok(s) => s,
         Err(e) => {
@@ -378,7 +435,13 @@ fn run_file(path: &std::path::Path, opts: &ShowOptions) -> ExitCode {
         }
     };
     let mut session = Session::new();
-    if run_source(&mut session, &src, opts, &path.display().to_string()) {
+    if run_source(
+        &mut session,
+        &src,
+        opts,
+        limits,
+        &path.display().to_string(),
+    ) {
         ExitCode::SUCCESS
     } else {
         ExitCode::FAILURE
@@ -391,9 +454,10 @@ pub(crate) fn run_source(
     session: &mut Session,
     src: &str,
     opts: &ShowOptions,
+    limits: &Limits,
     origin: &str,
 ) -> bool {
-    let program = match parse(src) {
+    let program = match parse_with(src, &limits.parse_options()) {
         Ok(p) => p,
         Err(e) => {
             eprintln!("{}", with_origin(&e.to_string(), origin));
@@ -431,9 +495,9 @@ fn with_origin(rendered: &str, origin: &str) -> String {
 }
 
 /// `dqsym -e EXPR`: free names are symbols; a lone expression prints without a label.
-fn one_liner(src: &str, opts: &ShowOptions) -> ExitCode {
+fn one_liner(src: &str, opts: &ShowOptions, limits: &Limits) -> ExitCode {
     let mut session = Session::with_implicit_symbols();
-    let program = match parse(src) {
+    let program = match parse_with(src, &limits.parse_options()) {
         Ok(p) => p,
         Err(e) => {
             eprintln!("{e}");
@@ -460,7 +524,7 @@ fn one_liner(src: &str, opts: &ShowOptions) -> ExitCode {
             };
         }
     }
-    if run_source(&mut session, src, opts, "") {
+    if run_source(&mut session, src, opts, limits, "") {
         ExitCode::SUCCESS
     } else {
         ExitCode::FAILURE

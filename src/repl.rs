@@ -6,7 +6,8 @@
 //! worker is inside one long scalar operation, the prompt comes back at once anyway and the
 //! worker's result is dropped when it finishes.
 
-use dqsym::{parse, show, BindingKind, Session, ShowOptions, BUILTINS, CONSTANTS, MAX_EXPONENT};
+use crate::Limits;
+use dqsym::{parse_with, show, BindingKind, Session, ShowOptions, BUILTINS, CONSTANTS};
 use rustyline::completion::{Completer, Pair};
 use rustyline::error::ReadlineError;
 use rustyline::highlight::Highlighter;
@@ -133,7 +134,7 @@ pub(crate) fn help() -> String {
          \x20 /                only by nonzero numbers; use inverse(q) for quaternions\n",
     );
     s += &format!(
-        "  ^                integer exponents up to {MAX_EXPONENT}; negative ones invert\n\
+        "  ^                integer exponents up to {}; negative ones invert\n\
          \n\
          Declarations\n\
          \x20 syms l1 l2 t     declare symbols; names must be declared or assigned before use\n\
@@ -143,7 +144,8 @@ pub(crate) fn help() -> String {
          \x20 x = expr         assign; shown unless the statement ends with `;`\n\
          \x20 expr             shown as `expr = value` and stored in `ans`\n\
          \n\
-         Built-ins\n"
+         Built-ins\n",
+        dqsym::max_exponent()
     );
     for b in BUILTINS {
         s += &format!(
@@ -179,7 +181,7 @@ fn vars(session: &Session) -> String {
 type Outcome = (Session, Result<Option<String>, String>);
 
 /// Runs the REPL until `:quit` or end of input.
-pub(crate) fn run(opts: &ShowOptions, term_limit: usize) -> ExitCode {
+pub(crate) fn run(opts: &ShowOptions, limits: &Limits) -> ExitCode {
     let interrupt = Arc::new(AtomicBool::new(false));
     {
         let flag = interrupt.clone();
@@ -268,7 +270,7 @@ pub(crate) fn run(opts: &ShowOptions, term_limit: usize) -> ExitCode {
         }
         let src = std::mem::take(&mut buffer);
         let _ = editor.add_history_entry(src.trim_end());
-        if evaluate(&mut session, &src, opts, &interrupt, term_limit) {
+        if evaluate(&mut session, &src, opts, &interrupt, limits) {
             entered.push_str(&src);
         }
         if let Ok(mut n) = names.lock() {
@@ -288,9 +290,9 @@ fn evaluate(
     src: &str,
     opts: &ShowOptions,
     interrupt: &Arc<AtomicBool>,
-    term_limit: usize,
+    limits: &Limits,
 ) -> bool {
-    let program = match parse(src) {
+    let program = match parse_with(src, &limits.parse_options()) {
         Ok(p) => p,
         Err(e) => {
             eprintln!("{e}");
@@ -302,12 +304,13 @@ fn evaluate(
         let (tx, rx) = mpsc::channel::<Outcome>();
         let mut work = session.clone();
         let opts = *opts;
+        let limits = *limits;
         let source = src.to_owned();
         let spawned = std::thread::Builder::new()
             .stack_size(crate::STACK)
             .spawn(move || {
-                // The limit is per thread.
-                dqsym::set_term_limit(term_limit);
+                // The limits are per thread.
+                limits.apply();
                 let result = match work.exec(&stmt) {
                     Ok(Some(d)) => show(&d, &opts).map(Some).map_err(|e| format!("error: {e}")),
                     Ok(None) => Ok(None),

@@ -6,7 +6,8 @@
 
 use super::expr::{Cost, Expr};
 use super::mon::{angle_of, content, div_q, is_sin, Atom, Ctx, FxMap, Mon};
-use crate::scalar::{FxHasher, Q};
+use crate::scalar::{charge, FxHasher, Q};
+use crate::ScalarError;
 use num_traits::One;
 use std::hash::{Hash, Hasher};
 
@@ -106,18 +107,26 @@ impl E {
     }
 }
 
-/// The search state: results already found for a monomial list at a depth class, by hash.
+/// The search state: results already found for a monomial list at a depth class, by hash, and
+/// the budget error once the search has used up the work budget.
 #[derive(Default)]
 struct Search {
     memo: FxMap<u64, Vec<(usize, Vec<Mon>, E)>>,
+    spent: Option<ScalarError>,
 }
 
 /// The cheapest nested expression this search finds for the sum of `mons`, with its cost.
-pub(crate) fn build(mons: &[Mon]) -> (E, Cost) {
+///
+/// The search counts against the work budget like scalar arithmetic (one unit per monomial
+/// and per factor of it looked at); when the budget runs out it stops with the budget error.
+pub(crate) fn build(mons: &[Mon]) -> Result<(E, Cost), ScalarError> {
     let mut s = Search::default();
     let e = s.build_at(mons, 0);
+    if let Some(err) = s.spent {
+        return Err(err);
+    }
     let c = e.cost();
-    (e, c)
+    Ok((e, c))
 }
 
 impl Search {
@@ -126,6 +135,14 @@ impl Search {
             [] => return E::zero(),
             [m] => return mon_expr(m),
             _ => {}
+        }
+        let work: usize = mons.iter().map(|m| 1 + m.syms.len() + m.atoms.len()).sum();
+        if self.spent.is_none() {
+            self.spent = charge(work as u64).err();
+        }
+        if self.spent.is_some() {
+            // Out of budget: the result is discarded, so stop at once.
+            return E::Add(mons.iter().map(mon_expr).collect());
         }
         // A sum whose terms are all negative reads better as the negation of a sum.
         if mons.iter().all(|m| m.q.is_negative()) {

@@ -23,13 +23,14 @@ const SPLIT_LIMIT: usize = 100_000;
 /// The most readable equivalent form of `x`: fewest operations, then fewest calls.
 ///
 /// # Errors
-/// Only when `x` is an error value.
+/// When `x` is an error value, and when the search or the check of its result against `x`
+/// runs out of the work budget or over the term limit (see [`crate::set_work_budget`]).
 pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
     if let Err(e) = x.terms() {
         return Err(e.clone());
     }
     let (wctx, wmons) = mon::whole_modes(x);
-    let (whole, wc) = factor::build(&wmons);
+    let (whole, wc) = factor::build(&wmons)?;
     let split_size: usize = x
         .terms()
         .map(|t| t.iter().map(|t| 1usize << t.mode.freq.len().min(30)).sum())
@@ -39,14 +40,19 @@ pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
     }
     let (mut sctx, smons) = mon::split_modes(x);
     let smons = recombine::recombine(&mut sctx, smons);
-    let (split, sc) = factor::build(&smons);
+    let (split, sc) = factor::build(&smons)?;
     // Prefer the regrouped shape on ties: it is the one textbooks print.
     let best = if sc <= wc {
         split.to_expr(&sctx)
     } else {
         whole.to_expr(&wctx)
     };
-    if best.to_scalar() == *x {
+    let value = best.to_scalar();
+    if let Some(e) = value.as_error() {
+        // The check ran out of the budget or the term limit: no verified form to give.
+        return Err(e.clone());
+    }
+    if value == *x {
         Ok(best)
     } else {
         debug_assert!(false, "closed form does not equal its input");
@@ -59,13 +65,13 @@ pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
 /// factored result. The expression is the one [`closed_form`] returns.
 ///
 /// # Errors
-/// Only when `x` is an error value.
+/// When `x` is an error value, or the work budget runs out.
 pub fn closed_form_traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarError> {
     if let Err(e) = x.terms() {
         return Err(e.clone());
     }
     let (wctx, wmons) = mon::whole_modes(x);
-    let (whole, wc) = factor::build(&wmons);
+    let (whole, wc) = factor::build(&wmons)?;
     let split_size: usize = x
         .terms()
         .map(|t| t.iter().map(|t| 1usize << t.mode.freq.len().min(30)).sum())
@@ -77,7 +83,7 @@ pub fn closed_form_traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarEr
     let (mut sctx, smons) = mon::split_modes(x);
     let mut rec = trace::Recorder::default();
     let smons = recombine::recombine_traced(&mut sctx, smons, &mut Some(&mut rec));
-    let (split, sc) = factor::build(&smons);
+    let (split, sc) = factor::build(&smons)?;
     let (best, last) = if sc <= wc {
         let e = split.to_expr(&sctx);
         (e.clone(), TraceStep::Factored(e))

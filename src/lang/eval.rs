@@ -246,7 +246,8 @@ impl Session {
         Ok(shown)
     }
 
-    /// Runs one statement; on error the session is unchanged.
+    /// Runs one statement; on error the session is unchanged. The statement starts a new
+    /// work budget ([`crate::set_work_budget`]).
     pub fn exec(&mut self, stmt: &Stmt) -> Result<Option<Displayed>> {
         self.exec_with(stmt, None)
     }
@@ -266,6 +267,7 @@ impl Session {
         stmt: &Stmt,
         rec: Option<&RefCell<Vec<Event>>>,
     ) -> Result<Option<Displayed>> {
+        crate::reset_work();
         match &stmt.kind {
             StmtKind::Syms(names) => {
                 for n in names {
@@ -409,8 +411,9 @@ impl Session {
         Ok(())
     }
 
-    /// Evaluates one expression against the current bindings.
+    /// Evaluates one expression against the current bindings, with a new work budget.
     pub fn eval(&self, e: &Expr) -> Result<Value> {
+        crate::reset_work();
         self.eval_with(e, self.implicit_symbols, None)
     }
 

@@ -16,9 +16,10 @@
 use crate::{DualQuat, Quat, Scalar, ScalarError};
 use num_traits::{One, Zero};
 
-/// The largest exponent accepted by `^`, in absolute value. Larger powers of symbols are one
-/// cheap term but never meant, and larger powers of sums blow up; both are refused at once.
-pub const MAX_EXPONENT: u64 = 10_000;
+/// The default largest exponent accepted by `^`, in absolute value ([`crate::max_exponent`] is
+/// the current one). Larger powers of symbols are one cheap term but never meant, and larger
+/// powers of sums blow up; both are refused at once.
+pub const MAX_EXPONENT: u64 = crate::scalar::DEFAULT_MAX_EXPONENT;
 
 /// A value computed by a script.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -296,7 +297,8 @@ pub(crate) fn inverse(a: &Value) -> OpResult {
     })
 }
 
-/// `base ^ exponent` for an integer exponent of at most [`MAX_EXPONENT`] in absolute value.
+/// `base ^ exponent` for an integer exponent of at most [`crate::max_exponent`] in absolute
+/// value.
 pub(crate) fn pow(base: &Value, exponent: &Value, cancelled: &dyn Fn() -> bool) -> OpResult {
     let n = match exponent {
         Value::Scalar(s) => s.as_rational().filter(|q| q.is_integer()).ok_or_else(|| {
@@ -312,9 +314,10 @@ pub(crate) fn pow(base: &Value, exponent: &Value, cancelled: &dyn Fn() -> bool) 
         }
     };
     let magnitude = n.numer().magnitude();
-    let Some(k) = num_traits::ToPrimitive::to_u64(magnitude).filter(|&k| k <= MAX_EXPONENT) else {
+    let limit = crate::scalar::max_exponent();
+    let Some(k) = num_traits::ToPrimitive::to_u64(magnitude).filter(|&k| k <= limit) else {
         return Err(OpError::Exponent(format!(
-            "exponent {n} is too large: the limit is {MAX_EXPONENT}"
+            "exponent {n} is too large: the limit is {limit}"
         )));
     };
     let negative = n < num_rational::BigRational::zero();

@@ -5,7 +5,7 @@ use super::atoms::{
     empty_mono, mode_mul, mono_mul, rad_mul, small_ok, split_square, trig_mode, Mode, ModeSum,
     Small, Sym,
 };
-use super::{term_limit, Scalar, ScalarError, Term, Q};
+use super::{charge, term_limit, Scalar, ScalarError, Term, Q};
 use crate::Ring;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
@@ -39,6 +39,9 @@ macro_rules! terms_or_return {
 
 pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
     let (x, y) = terms_or_return!(a, b);
+    if let Err(e) = charge((x.len() + y.len()) as u64) {
+        return Scalar::error(e);
+    }
     let mut out = Vec::with_capacity(x.len() + y.len());
     let (mut i, mut j) = (0, 0);
     let flip = |t: &Term| {
@@ -167,10 +170,22 @@ fn mode_runs(t: &[Term]) -> Vec<&[Term]> {
     runs
 }
 
+/// The work of a product, for the budget: one unit per pair of terms plus one per symbol of the
+/// pair's monomials, since merging monomials is what a pair costs when symbols are many (a chain
+/// of fully symbolic links spends most of its time there).
+fn product_work(x: &[Term], y: &[Term]) -> u64 {
+    let syms = |t: &[Term]| t.iter().map(|t| t.mono.len() as u64).sum::<u64>();
+    let (nx, ny) = (x.len() as u64, y.len() as u64);
+    nx * ny + ny * syms(x) + nx * syms(y)
+}
+
 pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
     let (x, y) = terms_or_return!(a, b);
     if x.len().saturating_mul(y.len()) > term_limit().saturating_mul(PRODUCT_FACTOR) {
         return too_large();
+    }
+    if let Err(e) = charge(product_work(x, y)) {
+        return Scalar::error(e);
     }
     let mut out = Vec::with_capacity(x.len() * y.len());
     // Mode products are the expensive part; compute each once per pair of mode runs.

@@ -60,6 +60,9 @@ pub enum ScalarError {
     /// A symbol without a value during numeric evaluation.
     #[error("no value for symbol {0}")]
     Unbound(String),
+    /// The evaluation used up its work budget (see [`set_work_budget`]).
+    #[error("work budget exceeded: more than {limit} term operations in one evaluation")]
+    Budget { limit: u64 },
 }
 
 /// One term `coef * sqrt(rad) * mono * mode` of the canonical form.
@@ -98,7 +101,13 @@ pub struct Scalar(Repr);
 
 thread_local! {
     static TERM_LIMIT: Cell<usize> = const { Cell::new(200_000) };
+    static WORK_BUDGET: Cell<u64> = const { Cell::new(u64::MAX) };
+    static WORK_USED: Cell<u64> = const { Cell::new(0) };
+    static MAX_EXPONENT: Cell<u64> = const { Cell::new(DEFAULT_MAX_EXPONENT) };
 }
+
+/// The default of [`max_exponent`].
+pub const DEFAULT_MAX_EXPONENT: u64 = 10_000;
 
 /// The largest number of terms a scalar may have on this thread (default 200,000).
 pub fn term_limit() -> usize {
@@ -108,6 +117,56 @@ pub fn term_limit() -> usize {
 /// Sets the term limit for this thread; results larger than it become [`ScalarError::TooLarge`].
 pub fn set_term_limit(limit: usize) {
     TERM_LIMIT.with(|c| c.set(limit.max(1)));
+}
+
+/// The work budget of this thread, in term operations (default: unlimited).
+pub fn work_budget() -> u64 {
+    WORK_BUDGET.with(|c| c.get())
+}
+
+/// Sets the work budget for this thread: once more than `units` term operations (one per term
+/// of a sum; one per pair of terms of a product, plus one per symbol of the pair's monomials)
+/// have been done since the last [`reset_work`], every further operation yields
+/// [`ScalarError::Budget`]. The term limit bounds the size of one
+/// result; the budget bounds the time of a whole evaluation made of many small operations.
+pub fn set_work_budget(units: u64) {
+    WORK_BUDGET.with(|c| c.set(units));
+}
+
+/// Starts a new evaluation: the work done so far no longer counts against the budget.
+/// [`Session::exec`](crate::Session::exec) and [`Session::eval`](crate::Session::eval) call it.
+pub fn reset_work() {
+    WORK_USED.with(|c| c.set(0));
+}
+
+/// The term operations done on this thread since the last [`reset_work`].
+pub fn work_used() -> u64 {
+    WORK_USED.with(|c| c.get())
+}
+
+/// Counts `units` of work; the error to return when the budget is spent.
+pub(crate) fn charge(units: u64) -> Result<(), ScalarError> {
+    let used = WORK_USED.with(|c| {
+        let used = c.get().saturating_add(units);
+        c.set(used);
+        used
+    });
+    let limit = work_budget();
+    if used > limit {
+        return Err(ScalarError::Budget { limit });
+    }
+    Ok(())
+}
+
+/// The largest exponent `^` accepts on this thread, in absolute value (default
+/// [`DEFAULT_MAX_EXPONENT`]).
+pub fn max_exponent() -> u64 {
+    MAX_EXPONENT.with(|c| c.get())
+}
+
+/// Sets the largest exponent `^` accepts on this thread.
+pub fn set_max_exponent(limit: u64) {
+    MAX_EXPONENT.with(|c| c.set(limit));
 }
 
 impl Scalar {

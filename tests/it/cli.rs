@@ -43,7 +43,7 @@ fn ctrl_c_abandons_a_long_computation_and_keeps_the_bindings() {
     use std::io::Write;
     use std::process::Stdio;
     let mut child = Command::new(env!("CARGO_BIN_EXE_dqsym"))
-        .args(["--term-limit", "200000"])
+        .args(["--term-limit", "200000", "--work-budget", "1000000000"])
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())

@@ -206,7 +206,7 @@ fn check_c(name: &str, outputs: &[Output], args: &[String]) {
     compare(&format!("C {name}"), &out, &want);
 }
 
-fn check_python(name: &str, outputs: &[Output], args: &[String]) {
+pub(crate) fn check_python(name: &str, outputs: &[Output], args: &[String]) {
     let code = python_function(
         name,
         "Generated for a test.",

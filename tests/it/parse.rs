@@ -363,6 +363,8 @@ fn arb_expr() -> impl Strategy<Value = AstExpr> {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig::with_cases(3000))]
+
     #[test]
     fn printing_then_parsing_gives_the_same_tree(e in arb_expr()) {
         let text = e.to_string();
@@ -373,6 +375,8 @@ proptest! {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1500))]
+
     #[test]
     fn parsing_never_panics(src in "[-+*/^'()\\[\\],;=.%#/ \t\r\na-z0-9θεé_]{0,80}") {
         let _ = parse(&src);

@@ -1,0 +1,29 @@
+//! Robot files: bytes, UTF-8, `parse_robot` with the language's field evaluator, and the plain
+//! forward-kinematics report (without the Jacobian) under small limits.
+#![no_main]
+
+use dqsym::{eval_scalar_text, fk_report, parse_robot, FkOptions, ReportFormat};
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    dqsym::set_term_limit(2_000);
+    dqsym::set_work_budget(200_000);
+    dqsym::set_max_exponent(1_000);
+    let robot = match parse_robot(text, "fuzz.toml", &eval_scalar_text) {
+        Ok(r) => r,
+        Err(e) => {
+            let _ = e.to_string();
+            return;
+        }
+    };
+    dqsym::reset_work();
+    let options = FkOptions {
+        format: ReportFormat::Plain { shorthand: true },
+        point: robot.tool.clone(),
+        jacobian: false,
+    };
+    let _ = fk_report(&robot, &options);
+});
