@@ -1,5 +1,6 @@
 //! Display expressions: what a closed form is made of, its cost, and its exact value.
 
+use crate::scalar::atoms::small_ok;
 use crate::scalar::{Small, Sym};
 use crate::Scalar;
 use num_bigint::BigInt;
@@ -29,6 +30,26 @@ impl Angle {
             a = a + v * small(k);
         }
         a
+    }
+
+    /// `cos` or `sin` of the angle: what `to_scalar().cos()` (or `.sin()`) gives, built from
+    /// the parts directly when they are what reading the angle back would give.
+    fn trig(&self, sin: bool) -> Scalar {
+        let direct = small_ok(&self.pi)
+            && self.terms.is_sorted_by(|a, b| a.0 < b.0)
+            && self
+                .terms
+                .iter()
+                .all(|(s, k)| !s.is_pi() && !k.is_zero() && small_ok(k));
+        if direct {
+            return Scalar::trig_of_parts(sin, self.terms.clone(), self.pi);
+        }
+        let a = self.to_scalar();
+        if sin {
+            a.sin()
+        } else {
+            a.cos()
+        }
     }
 
     /// True when every coefficient is 1 and there is no pi part: `theta1 + theta2`.
@@ -95,8 +116,7 @@ impl Expr {
                 if let Some((_, _, v)) = trig.iter().find(|(s, a, _)| s == sin && *a == angle) {
                     return v.clone();
                 }
-                let a = angle.to_scalar();
-                let v = if *sin { a.sin() } else { a.cos() };
+                let v = angle.trig(*sin);
                 trig.push((*sin, angle, v.clone()));
                 v
             }

@@ -14,6 +14,7 @@ use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
+use smallvec::SmallVec;
 use std::cmp::Ordering;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hash, Hasher};
@@ -141,13 +142,19 @@ pub(crate) fn remap(m: &mut Mon, map: &[u32]) {
     m.atoms.sort_unstable();
 }
 
+/// The atoms of a monomial, inline up to eight (one per symbol of a mode, at most).
+pub(crate) type Atoms = SmallVec<[Atom; 8]>;
+
+/// The symbols `(id, exponent)` of a monomial, inline up to four.
+pub(crate) type Syms = SmallVec<[(u32, u32); 4]>;
+
 /// `q * sqrt(rad) * syms * atoms`, symbols `(id, exponent)` and atoms sorted.
 #[derive(Clone, PartialEq, Eq, Hash, Debug)]
 pub(crate) struct Mon {
     pub(crate) q: Q,
     pub(crate) rad: u64,
-    pub(crate) syms: Vec<(u32, u32)>,
-    pub(crate) atoms: Vec<Atom>,
+    pub(crate) syms: Syms,
+    pub(crate) atoms: Atoms,
 }
 
 /// The order of the factors `(rad, syms, atoms)`.
@@ -184,7 +191,7 @@ fn base_mon(ctx: &Ctx, t: &crate::scalar::Term) -> Mon {
         q: t.coef.clone(),
         rad: t.rad,
         syms: t.mono.iter().map(|(s, e)| (ctx.sym_id(s), *e)).collect(),
-        atoms: Vec::new(),
+        atoms: Atoms::new(),
     }
 }
 
@@ -284,9 +291,9 @@ pub(crate) fn split_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
         }
     }
     // Sum the expansions per cofactor `(rad, syms)`, keyed by the atoms.
-    type Cofactor = (u64, Vec<(u32, u32)>);
+    type Cofactor = (u64, Syms);
     let mut group_of: FxMap<Cofactor, usize> = FxMap::default();
-    let mut groups: Vec<(Cofactor, FxMap<Vec<Atom>, Q>)> = Vec::new();
+    let mut groups: Vec<(Cofactor, Sum)> = Vec::new();
     let mut atoms = Vec::new();
     for (t, parts) in terms.iter().zip(&parts_of) {
         let base = base_mon(&ctx, t);
@@ -295,7 +302,7 @@ pub(crate) fn split_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
             Some(&g) => g,
             None => {
                 group_of.insert(cof.clone(), groups.len());
-                groups.push((cof, FxMap::default()));
+                groups.push((cof, Sum::default()));
                 groups.len() - 1
             }
         };
@@ -308,24 +315,65 @@ pub(crate) fn split_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
     }
     let mut out: Vec<Mon> = Vec::new();
     for ((rad, syms), sum) in groups {
-        out.extend(
-            sum.into_iter()
-                .filter(|(_, q)| !q.is_zero())
-                .map(|(atoms, q)| Mon {
-                    q,
-                    rad,
-                    syms: syms.clone(),
-                    atoms,
-                }),
-        );
+        out.extend(sum.into_terms().map(|(atoms, q)| Mon {
+            q,
+            rad,
+            syms: syms.clone(),
+            atoms,
+        }));
     }
     // The keys are distinct: this is the order `merge` gives.
     out.sort_unstable_by(key_cmp);
     (ctx, out)
 }
 
+/// A sum of atom products with rational coefficients, keyed by the sorted atoms; short
+/// products of small ids are keyed by one packed integer (16 bits an atom) to spare the
+/// hashing and allocation of a vector key.
+#[derive(Default)]
+struct Sum {
+    packed: FxMap<u128, Q>,
+    other: FxMap<Atoms, Q>,
+}
+
+/// `atoms` (sorted) packed 16 bits each as `atom + 1`, when there are at most 8, all below
+/// `0xffff`; distinct lists give distinct keys.
+fn pack(atoms: &[Atom]) -> Option<u128> {
+    if atoms.len() > 8 {
+        return None;
+    }
+    let mut key = 0u128;
+    for (k, &a) in atoms.iter().enumerate() {
+        if a >= 0xffff {
+            return None;
+        }
+        key |= u128::from(a + 1) << (16 * k);
+    }
+    Some(key)
+}
+
+fn unpack(mut key: u128) -> Atoms {
+    let mut atoms = Atoms::new();
+    while key != 0 {
+        atoms.push((key & 0xffff) as u32 - 1);
+        key >>= 16;
+    }
+    atoms
+}
+
+impl Sum {
+    /// The nonzero terms, in no particular order.
+    fn into_terms(self) -> impl Iterator<Item = (Atoms, Q)> {
+        self.packed
+            .into_iter()
+            .map(|(k, q)| (unpack(k), q))
+            .chain(self.other)
+            .filter(|(_, q)| !q.is_zero())
+    }
+}
+
 /// Adds `(-1)^neg q` to the coefficient of `atoms`.
-fn add_to(sum: &mut FxMap<Vec<Atom>, Q>, atoms: &[Atom], q: &Q, neg: bool) {
+fn add_to(sum: &mut Sum, atoms: &[Atom], q: &Q, neg: bool) {
     let sorted;
     let atoms = if atoms.is_sorted() {
         atoms
@@ -338,10 +386,19 @@ fn add_to(sum: &mut FxMap<Vec<Atom>, Q>, atoms: &[Atom], q: &Q, neg: bool) {
         &sorted
     };
     let q = if neg { -q } else { q.clone() };
-    match sum.get_mut(atoms) {
+    if let Some(key) = pack(atoms) {
+        match sum.packed.get_mut(&key) {
+            Some(s) => *s += &q,
+            None => {
+                sum.packed.insert(key, q);
+            }
+        }
+        return;
+    }
+    match sum.other.get_mut(atoms) {
         Some(s) => *s += &q,
         None => {
-            sum.insert(atoms.to_vec(), q);
+            sum.other.insert(Atoms::from_slice(atoms), q);
         }
     }
 }
@@ -354,7 +411,7 @@ fn expand(
     neg: bool,
     atoms: &mut Vec<Atom>,
     q: &Q,
-    out: &mut FxMap<Vec<Atom>, Q>,
+    out: &mut Sum,
 ) {
     let Some((&(id, flipped), rest)) = parts.split_first() else {
         // trig(0): cos 0 = 1, sin 0 = 0.

@@ -52,9 +52,12 @@ fn key_hash(m: &Mon, e: &Entry) -> u64 {
 /// The entries grouped by key, the groups in key order, each group's entries in the order in
 /// which they were found (`(i, p, q)`). Only groups that can pair (two entries, one with a
 /// first atom that is a sine and one without) are kept: the others change nothing.
-fn groups(mons: &[Mon], mut index: Vec<Entry>) -> Vec<Vec<Entry>> {
-    // Stable: equal hashes keep the order in which the entries were found.
-    index.sort_by_key(|e| e.hash);
+fn groups(mons: &[Mon], index: Vec<Entry>) -> Vec<Vec<Entry>> {
+    // Ordered by hash; equal hashes keep the order in which the entries were found (the
+    // position breaks ties, so sorting the small `(hash, position)` pairs is a stable sort).
+    let mut order: Vec<(u64, usize)> = index.iter().enumerate().map(|(k, e)| (e.hash, k)).collect();
+    order.sort_unstable();
+    let mut index: Vec<Entry> = order.iter().map(|&(_, k)| index[k]).collect();
     let mut groups: Vec<Vec<Entry>> = Vec::new();
     let mut start = 0;
     while start < index.len() {

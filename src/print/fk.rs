@@ -13,6 +13,7 @@ use crate::emit::{
 use crate::kin::{dq_jacobian, Robot};
 use crate::print::{legend, plain, PlainOptions};
 use crate::{closed_form, DualQuat, Expr, Scalar, ScalarError};
+use std::collections::HashMap;
 
 /// The text format of a report.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -86,10 +87,24 @@ pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
         return recurrence_report(robot, o);
     };
     let mut sections: Vec<(&str, Vec<(String, Expr)>)> = Vec::new();
-    let named =
+    // Entries often repeat (a Jacobian column of two joints that always appear together, say);
+    // each distinct scalar is put in closed form once. `closed_form` is a pure function of its
+    // input, so this changes no output.
+    let mut seen: HashMap<Scalar, Expr> = HashMap::new();
+    let mut named =
         |prefix: &str, xs: &[(String, &Scalar)]| -> Result<Vec<(String, Expr)>, ScalarError> {
             xs.iter()
-                .map(|(n, x)| Ok((format!("{prefix}{n}"), closed_form(x)?)))
+                .map(|(n, x)| {
+                    let e = match seen.get(*x) {
+                        Some(e) => e.clone(),
+                        None => {
+                            let e = closed_form(x)?;
+                            seen.insert((*x).clone(), e.clone());
+                            e
+                        }
+                    };
+                    Ok((format!("{prefix}{n}"), e))
+                })
                 .collect()
         };
     let comps = q.components();

@@ -364,26 +364,31 @@ impl Scalar {
     fn trig(&self, sin: bool) -> Scalar {
         let func = if sin { "sin" } else { "cos" };
         match self.angle_parts() {
-            Ok((freq, pi)) => {
-                let mut out = Vec::new();
-                for (mode, weights) in trig_mode(sin, freq, pi) {
-                    for (rad, coef) in weights {
-                        out.push(Term {
-                            mode: mode.clone(),
-                            mono: empty_mono(),
-                            rad,
-                            coef,
-                        });
-                    }
-                }
-                Scalar::from_terms(out)
-            }
+            Ok((freq, pi)) => Scalar::trig_of_parts(sin, freq, pi),
             Err(None) => Scalar::error(ScalarError::NotAnAngle {
                 func,
                 arg: self.to_string(),
             }),
             Err(Some(e)) => Scalar::error(e),
         }
+    }
+
+    /// `cos` or `sin` of the angle `sum k_i x_i + p pi` given by its parts, as
+    /// [`Scalar::angle_parts`] reads them (sorted by symbol, the constant part on the symbol
+    /// `1`, coefficients within the small bound).
+    pub(crate) fn trig_of_parts(sin: bool, freq: Vec<(Sym, Small)>, pi: Small) -> Scalar {
+        let mut out = Vec::new();
+        for (mode, weights) in trig_mode(sin, freq, pi) {
+            for (rad, coef) in weights {
+                out.push(Term {
+                    mode: mode.clone(),
+                    mono: empty_mono(),
+                    rad,
+                    coef,
+                });
+            }
+        }
+        Scalar::from_terms(out)
     }
 
     /// Reads `self` as `sum k_i x_i + p pi` with small rational `k_i`, `p`.

@@ -14,6 +14,7 @@ use num_rational::Ratio;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::cmp::Ordering;
 use std::fmt;
+use std::hash::{Hash, Hasher};
 use std::sync::{Arc, OnceLock};
 
 /// A symbol name. Ordered by its text, so the canonical order never depends on the order in
@@ -153,7 +154,7 @@ pub(crate) fn small_cmp(a: &Small, b: &Small) -> Ordering {
 /// Invariants, kept by [`Mode::normalize`]: `freq` is sorted by symbol with nonzero entries and
 /// a positive first entry; `pi` lies in `[0, 2)` and is never a multiple of 1/12 (those are
 /// expanded exactly); a mode with empty `freq` has `pi` in `(0, 1)`, or is the unit mode.
-#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+#[derive(Clone, PartialEq, Eq, Debug)]
 pub struct Mode {
     pub(crate) sin: bool,
     pub(crate) freq: Freq,
@@ -179,6 +180,24 @@ impl Ord for Mode {
                 self.freq.len().cmp(&other.freq.len())
             })
             .then_with(|| small_cmp(&self.pi, &other.pi))
+    }
+}
+
+/// Hashes the symbol names and the coefficients' numerators and denominators directly: the
+/// generic `Ratio` hash (a continued-fraction expansion) dominated the mode-product cache.
+/// Agrees with `Eq` because every `Small` is kept reduced (all of them come from `Ratio`
+/// arithmetic or `Ratio::new`).
+impl Hash for Mode {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        h.write_u8(u8::from(self.sin));
+        h.write_usize(self.freq.len());
+        for (s, k) in self.freq.iter() {
+            s.hash(h);
+            h.write_i64(*k.numer());
+            h.write_i64(*k.denom());
+        }
+        h.write_i64(*self.pi.numer());
+        h.write_i64(*self.pi.denom());
     }
 }
 
