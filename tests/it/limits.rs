@@ -150,7 +150,10 @@ fn twenty_fully_symbolic_dh_joints_fail_fast() {
     let took = start.elapsed();
     let err = stderr(&out);
     assert_eq!(out.status.code(), Some(1), "{err}");
-    assert!(err.contains("expression too large: more than 5000 terms"), "{err}");
+    assert!(
+        err.contains("expression too large: more than 5000 terms"),
+        "{err}"
+    );
     assert!(took < Duration::from_secs(30), "took {took:?}");
     let rss: u64 = err
         .lines()
