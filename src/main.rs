@@ -27,9 +27,10 @@ struct Cli {
     /// Print cos(theta1 + theta2) instead of the shorthand c12.
     #[arg(long, global = true)]
     explicit: bool,
-    /// The most terms an expanded scalar may have; larger results are errors, not hangs.
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_TERM_LIMIT, global = true)]
-    term_limit: usize,
+    /// The most terms an expanded scalar may have; larger results are errors, not hangs
+    /// [default: 20000, and 5000 for fk].
+    #[arg(long, value_name = "N", global = true)]
+    term_limit: Option<usize>,
     /// The deepest nesting of brackets and operators a script may have.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_DEPTH, global = true,
           value_parser = clap::value_parser!(u16).range(1..=MAX_MAX_DEPTH))]
@@ -128,6 +129,11 @@ pub(crate) const STACK: usize = 256 << 20;
 /// terms, and a product of two scalars this size is still well under a second.
 const DEFAULT_TERM_LIMIT: usize = 20_000;
 
+/// The default `--term-limit` of `fk`: the example robots need at most a few thousand terms
+/// (the KUKA iiwa's Jacobian), and a chain whose terms multiply at every joint (20 fully
+/// symbolic DH links) reaches this size in about a second, where 20,000 would take several.
+const DEFAULT_FK_TERM_LIMIT: usize = 5_000;
+
 /// The default `--max-depth`, the parser's own default.
 const DEFAULT_MAX_DEPTH: u16 = 256;
 
@@ -135,10 +141,10 @@ const DEFAULT_MAX_DEPTH: u16 = 256;
 /// levels fit in [`STACK`] with room to spare even in debug builds.
 const MAX_MAX_DEPTH: i64 = 4096;
 
-/// The default `--work-budget`: about twice what the largest example (`fk` of
-/// `examples/robots/puma_like.toml` with `--jacobian`) needs, and well under a second of work
-/// in a release build (a robot of 20 fully symbolic DH joints spends it in 0.7 s).
-const DEFAULT_WORK_BUDGET: u64 = 1_000_000;
+/// The default `--work-budget`: over three times what the largest example (`fk` of
+/// `examples/robots/kuka_iiwa7.toml` with `--jacobian`, closed forms included) needs, and a
+/// second or so of work on small terms.
+const DEFAULT_WORK_BUDGET: u64 = 3_000_000;
 
 /// The limits of the command line, applied to each thread that evaluates.
 #[derive(Clone, Copy, Debug)]
@@ -181,8 +187,12 @@ fn main() -> ExitCode {
 }
 
 fn dispatch(cli: Cli) -> ExitCode {
+    let default_terms = match cli.command {
+        Some(Command::Fk { .. }) => DEFAULT_FK_TERM_LIMIT,
+        _ => DEFAULT_TERM_LIMIT,
+    };
     let limits = Limits {
-        term_limit: cli.term_limit,
+        term_limit: cli.term_limit.unwrap_or(default_terms),
         max_depth: usize::from(cli.max_depth),
         max_exponent: cli.max_exponent,
         work_budget: cli.work_budget,
@@ -287,7 +297,8 @@ fn fk(
             format,
             point,
             jacobian,
-            ..dqsym::FkOptions::default()
+            // Past the evaluation's term limit, the pose is printed as a recurrence.
+            max_terms: dqsym::term_limit(),
         },
     ) {
         Ok(t) => {

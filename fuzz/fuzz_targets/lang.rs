@@ -14,8 +14,8 @@ fuzz_target!(|data: &[u8]| {
     let Ok(src) = std::str::from_utf8(data) else {
         return;
     };
-    dqsym::set_term_limit(2_000);
-    dqsym::set_work_budget(200_000);
+    dqsym::set_term_limit(1_000);
+    dqsym::set_work_budget(50_000);
     dqsym::set_max_exponent(1_000);
     let program = match parse(src) {
         Ok(p) => p,

@@ -9,8 +9,8 @@ fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
-    dqsym::set_term_limit(2_000);
-    dqsym::set_work_budget(200_000);
+    dqsym::set_term_limit(1_000);
+    dqsym::set_work_budget(50_000);
     dqsym::set_max_exponent(1_000);
     let robot = match parse_robot(text, "fuzz.toml", &eval_scalar_text) {
         Ok(r) => r,

@@ -115,7 +115,7 @@ fn many_small_operations_run_out_of_the_work_budget() {
     // Each product is small, but there are many: the term limit alone would not stop it.
     let line = format!("a = (x + y + z)^6; b = a*a{}", " + a*a".repeat(1000));
     fails_quickly(
-        &["-e", &line],
+        &["--work-budget", "500000", "-e", &line],
         "work budget exceeded",
         Duration::from_secs(10),
     );
@@ -286,7 +286,7 @@ fn repl_survives_every_error_class_and_keeps_bindings() {
 /// small limits, in every format; each ends with status 0 or 1, quickly.
 #[test]
 fn fuzz_findings_end_quickly_under_small_limits() {
-    let small = ["--term-limit", "2000", "--work-budget", "200000"];
+    let small = ["--term-limit", "1000", "--work-budget", "50000"];
     let mut count = 0;
     for f in files("tests/data/fuzz", "dq") {
         let src = std::fs::read_to_string(&f).unwrap();
