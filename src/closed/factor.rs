@@ -9,6 +9,7 @@ use super::mon::{angle_of, content, div_q, is_sin, Atom, Ctx, FxMap, Mon};
 use crate::scalar::{FxHasher, Q};
 use num_traits::One;
 use std::hash::{Hash, Hasher};
+use std::rc::Rc;
 
 /// A factor that can be pulled out of several monomials.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug)]
@@ -31,9 +32,10 @@ pub(crate) enum E {
     /// `sym^n`.
     Pow(u32, u32),
     Trig(Atom),
-    Add(Vec<E>),
-    Mul(Vec<E>),
-    Neg(Box<E>),
+    /// Children are shared: the search copies and memoizes subtrees without copying them.
+    Add(Rc<[E]>),
+    Mul(Rc<[E]>),
+    Neg(Rc<E>),
 }
 
 impl E {
@@ -66,13 +68,13 @@ impl E {
             E::Sym(_) => {}
             E::Add(v) => {
                 c.ops += v.len().saturating_sub(1);
-                for e in v {
+                for e in v.iter() {
                     e.add_cost(c, true);
                 }
             }
             E::Mul(v) => {
                 c.ops += v.len().saturating_sub(1);
-                for e in v {
+                for e in v.iter() {
                     e.add_cost(c, false);
                 }
             }
@@ -136,7 +138,7 @@ impl Search {
                     ..m.clone()
                 })
                 .collect();
-            return E::Neg(Box::new(self.build_at(&neg, depth)));
+            return E::Neg(Rc::new(self.build_at(&neg, depth)));
         }
         let g = content(mons);
         if !g.is_one() {
@@ -199,8 +201,8 @@ impl Search {
 
     /// `f * (sum of the monomials containing f, divided by f) + (the others)`.
     fn split_on(&mut self, mons: &[Mon], f: Factor, depth: usize) -> E {
-        let mut with = Vec::new();
-        let mut without = Vec::new();
+        let mut with = Vec::with_capacity(mons.len());
+        let mut without = Vec::with_capacity(mons.len());
         let mut first_with = None;
         for (i, m) in mons.iter().enumerate() {
             match divide(m, f) {
@@ -226,7 +228,7 @@ impl Search {
         let rest_expr = self.build_at(&rest, depth + 1);
         // Splice the rest around the factored group in reading order.
         let mut rest_terms = match rest_expr {
-            E::Add(v) => v,
+            E::Add(v) => v.to_vec(),
             e => vec![e],
         };
         let mut terms = Vec::with_capacity(rest_terms.len() + 1);
@@ -243,14 +245,15 @@ impl Search {
         if terms.len() == 1 {
             terms.pop().unwrap_or_else(E::zero)
         } else {
-            E::Add(terms)
+            E::Add(terms.into())
         }
     }
 }
 
 /// Factors that occur in at least two monomials, most frequent first, ties by factor order.
 fn candidates(mons: &[Mon]) -> Vec<Factor> {
-    let mut all: Vec<Factor> = Vec::new();
+    let mut all: Vec<Factor> =
+        Vec::with_capacity(mons.iter().map(|m| m.syms.len() + m.atoms.len()).sum());
     for m in mons {
         all.extend(m.syms.iter().map(|&(s, _)| Factor::Sym(s)));
         let mut last: Option<Atom> = None;
@@ -262,7 +265,7 @@ fn candidates(mons: &[Mon]) -> Vec<Factor> {
         }
     }
     all.sort_unstable();
-    let mut v: Vec<(Factor, usize)> = Vec::new();
+    let mut v: Vec<(Factor, usize)> = Vec::with_capacity(all.len());
     for f in all {
         match v.last_mut() {
             Some((g, n)) if *g == f => *n += 1,
@@ -308,11 +311,11 @@ fn mul(parts: Vec<E>) -> E {
     let mut neg = false;
     for p in parts {
         match p {
-            E::Mul(v) => flat.extend(v),
+            E::Mul(v) => flat.extend(v.iter().cloned()),
             E::Neg(e) => {
                 neg = !neg;
-                match *e {
-                    E::Mul(v) => flat.extend(v),
+                match Rc::unwrap_or_clone(e) {
+                    E::Mul(v) => flat.extend(v.iter().cloned()),
                     e => flat.push(e),
                 }
             }
@@ -325,10 +328,10 @@ fn mul(parts: Vec<E>) -> E {
     let e = match flat.len() {
         0 => E::Num(Q::ONE),
         1 => flat.pop().unwrap_or_else(E::zero),
-        _ => E::Mul(flat),
+        _ => E::Mul(flat.into()),
     };
     if neg {
-        E::Neg(Box::new(e))
+        E::Neg(Rc::new(e))
     } else {
         e
     }
@@ -363,7 +366,7 @@ pub(crate) fn mon_expr(m: &Mon) -> E {
     }
     let e = mul(parts);
     if neg {
-        E::Neg(Box::new(e))
+        E::Neg(Rc::new(e))
     } else {
         e
     }

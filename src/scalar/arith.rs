@@ -155,7 +155,7 @@ fn cached_mode_mul(a: &Mode, b: &Mode) -> Rc<ModeSum> {
 
 /// Splits a sorted term slice into runs that share a mode.
 fn mode_runs(t: &[Term]) -> Vec<&[Term]> {
-    let mut runs = Vec::new();
+    let mut runs = Vec::with_capacity(t.len());
     let mut start = 0;
     for i in 1..=t.len() {
         if i == t.len() || t[i].mode != t[start].mode {
@@ -176,6 +176,8 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
     for ra in mode_runs(x) {
         for rb in mode_runs(y) {
             let modes = cached_mode_mul(&ra[0].mode, &rb[0].mode);
+            let weights: usize = modes.iter().map(|(_, w)| w.len()).sum();
+            out.reserve(ra.len() * rb.len() * weights);
             for s in ra {
                 for t in rb {
                     let Some(mono) = mono_mul(&s.mono, &t.mono) else {
