@@ -10,6 +10,7 @@ use crate::scalar::{charge, FxHasher, Q};
 use crate::ScalarError;
 use num_traits::One;
 use std::hash::{Hash, Hasher};
+use std::rc::Rc;
 
 /// A factor that can be pulled out of several monomials.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug)]
@@ -32,9 +33,10 @@ pub(crate) enum E {
     /// `sym^n`.
     Pow(u32, u32),
     Trig(Atom),
-    Add(Vec<E>),
-    Mul(Vec<E>),
-    Neg(Box<E>),
+    /// Children are shared: the search copies and memoizes subtrees without copying them.
+    Add(Rc<[E]>),
+    Mul(Rc<[E]>),
+    Neg(Rc<E>),
 }
 
 impl E {
@@ -67,13 +69,13 @@ impl E {
             E::Sym(_) => {}
             E::Add(v) => {
                 c.ops += v.len().saturating_sub(1);
-                for e in v {
+                for e in v.iter() {
                     e.add_cost(c, true);
                 }
             }
             E::Mul(v) => {
                 c.ops += v.len().saturating_sub(1);
-                for e in v {
+                for e in v.iter() {
                     e.add_cost(c, false);
                 }
             }
@@ -153,7 +155,7 @@ impl Search {
                     ..m.clone()
                 })
                 .collect();
-            return E::Neg(Box::new(self.build_at(&neg, depth)));
+            return E::Neg(Rc::new(self.build_at(&neg, depth)));
         }
         let g = content(mons);
         if !g.is_one() {
@@ -216,8 +218,8 @@ impl Search {
 
     /// `f * (sum of the monomials containing f, divided by f) + (the others)`.
     fn split_on(&mut self, mons: &[Mon], f: Factor, depth: usize) -> E {
-        let mut with = Vec::new();
-        let mut without = Vec::new();
+        let mut with = Vec::with_capacity(mons.len());
+        let mut without = Vec::with_capacity(mons.len());
         let mut first_with = None;
         for (i, m) in mons.iter().enumerate() {
             match divide(m, f) {
@@ -243,7 +245,7 @@ impl Search {
         let rest_expr = self.build_at(&rest, depth + 1);
         // Splice the rest around the factored group in reading order.
         let mut rest_terms = match rest_expr {
-            E::Add(v) => v,
+            E::Add(v) => v.to_vec(),
             e => vec![e],
         };
         let mut terms = Vec::with_capacity(rest_terms.len() + 1);
@@ -260,14 +262,15 @@ impl Search {
         if terms.len() == 1 {
             terms.pop().unwrap_or_else(E::zero)
         } else {
-            E::Add(terms)
+            E::Add(terms.into())
         }
     }
 }
 
 /// Factors that occur in at least two monomials, most frequent first, ties by factor order.
 fn candidates(mons: &[Mon]) -> Vec<Factor> {
-    let mut all: Vec<Factor> = Vec::new();
+    let mut all: Vec<Factor> =
+        Vec::with_capacity(mons.iter().map(|m| m.syms.len() + m.atoms.len()).sum());
     for m in mons {
         all.extend(m.syms.iter().map(|&(s, _)| Factor::Sym(s)));
         let mut last: Option<Atom> = None;
@@ -279,7 +282,7 @@ fn candidates(mons: &[Mon]) -> Vec<Factor> {
         }
     }
     all.sort_unstable();
-    let mut v: Vec<(Factor, usize)> = Vec::new();
+    let mut v: Vec<(Factor, usize)> = Vec::with_capacity(all.len());
     for f in all {
         match v.last_mut() {
             Some((g, n)) if *g == f => *n += 1,
@@ -325,11 +328,11 @@ fn mul(parts: Vec<E>) -> E {
     let mut neg = false;
     for p in parts {
         match p {
-            E::Mul(v) => flat.extend(v),
+            E::Mul(v) => flat.extend(v.iter().cloned()),
             E::Neg(e) => {
                 neg = !neg;
-                match *e {
-                    E::Mul(v) => flat.extend(v),
+                match Rc::unwrap_or_clone(e) {
+                    E::Mul(v) => flat.extend(v.iter().cloned()),
                     e => flat.push(e),
                 }
             }
@@ -342,10 +345,10 @@ fn mul(parts: Vec<E>) -> E {
     let e = match flat.len() {
         0 => E::Num(Q::ONE),
         1 => flat.pop().unwrap_or_else(E::zero),
-        _ => E::Mul(flat),
+        _ => E::Mul(flat.into()),
     };
     if neg {
-        E::Neg(Box::new(e))
+        E::Neg(Rc::new(e))
     } else {
         e
     }
@@ -380,7 +383,7 @@ pub(crate) fn mon_expr(m: &Mon) -> E {
     }
     let e = mul(parts);
     if neg {
-        E::Neg(Box::new(e))
+        E::Neg(Rc::new(e))
     } else {
         e
     }

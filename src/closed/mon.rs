@@ -239,6 +239,37 @@ fn normalize(a: &mut Angle) -> bool {
     }
 }
 
+/// A part `coef * sym + pi * pi` (no symbol: a pure multiple of pi) with its interned,
+/// normalized angle: `(id, negated)`.
+type PartKey = (Option<Sym>, Small, Small, (u32, bool));
+
+/// The id of the angle `coef * sym + pi * pi`, normalized, and whether normalizing negated it.
+fn part_id(
+    ctx: &mut Ctx,
+    seen: &mut Vec<PartKey>,
+    sym: Option<&Sym>,
+    coef: Small,
+    pi: Small,
+) -> (u32, bool) {
+    if let Some((_, _, _, r)) = seen
+        .iter()
+        .find(|(s, c, p, _)| s.as_ref() == sym && *c == coef && *p == pi)
+    {
+        return *r;
+    }
+    let mut a = Angle {
+        terms: sym.map(|s| vec![(s.clone(), coef)]).unwrap_or_default(),
+        pi,
+    };
+    let flipped = normalize(&mut a);
+    let r = (ctx.intern(a), flipped);
+    // A short list: beyond it, parts are interned directly (the scan stays cheap).
+    if seen.len() < 64 {
+        seen.push((sym.cloned(), coef, pi, r));
+    }
+    r
+}
+
 /// The canonical form as monomials in single-symbol atoms: every mode is split with the
 /// angle-sum formulas, `cos(a + b) = cos a cos b - sin a sin b`, so that recombination can
 /// regroup the angles the way the expression is best read.
@@ -247,7 +278,9 @@ pub(crate) fn split_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
     let Ok(terms) = x.terms() else {
         return (ctx, Vec::new());
     };
-    // First the parts of every mode, so the angle ids are final before expanding.
+    // First the parts of every mode, so the angle ids are final before expanding. The few
+    // distinct parts are remembered by value, sparing an angle and a hash per repeat.
+    let mut seen: Vec<PartKey> = Vec::new();
     let mut parts_of: Vec<Vec<(u32, bool)>> = Vec::with_capacity(terms.len());
     for t in terms {
         if t.mode.is_unit() {
@@ -255,33 +288,16 @@ pub(crate) fn split_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
             continue;
         }
         // Each symbol's part is its own angle; a leftover pi part rides on the last one.
-        let mut parts: Vec<Angle> = t
-            .mode
-            .freq
-            .iter()
-            .map(|(s, k)| Angle {
-                terms: vec![(s.clone(), *k)],
-                pi: Small::zero(),
-            })
-            .collect();
-        if !t.mode.pi.is_zero() {
-            match parts.last_mut() {
-                Some(p) => p.pi = t.mode.pi,
-                None => parts.push(Angle {
-                    terms: Vec::new(),
-                    pi: t.mode.pi,
-                }),
-            }
+        let n = t.mode.freq.len();
+        let mut parts: Vec<(u32, bool)> = Vec::with_capacity(n + 1);
+        for (k, (s, c)) in t.mode.freq.iter().enumerate() {
+            let pi = if k + 1 == n { t.mode.pi } else { Small::zero() };
+            parts.push(part_id(&mut ctx, &mut seen, Some(s), *c, pi));
         }
-        parts_of.push(
-            parts
-                .into_iter()
-                .map(|mut a| {
-                    let flipped = normalize(&mut a);
-                    (ctx.intern(a), flipped)
-                })
-                .collect(),
-        );
+        if n == 0 && !t.mode.pi.is_zero() {
+            parts.push(part_id(&mut ctx, &mut seen, None, Small::zero(), t.mode.pi));
+        }
+        parts_of.push(parts);
     }
     if let Some(map) = ctx.renumber() {
         for parts in &mut parts_of {

@@ -193,7 +193,11 @@ type Combined = Option<(u32, bool)>;
 
 fn round(ctx: &mut Ctx, mons: &[Mon], rec: &mut Option<&mut Recorder>) -> (Vec<Mon>, bool) {
     let cof = cofactor_ranks(mons);
-    let mut index: Vec<Entry> = Vec::new();
+    let pairs: usize = mons
+        .iter()
+        .map(|m| m.atoms.len() * m.atoms.len().saturating_sub(1) / 2)
+        .sum();
+    let mut index: Vec<Entry> = Vec::with_capacity(pairs);
     for (i, m) in mons.iter().enumerate() {
         for p in 0..m.atoms.len() {
             for q in p + 1..m.atoms.len() {
@@ -226,7 +230,7 @@ fn round(ctx: &mut Ctx, mons: &[Mon], rec: &mut Option<&mut Recorder>) -> (Vec<M
     }
     let groups = groups(mons, index);
     let mut used = vec![false; mons.len()];
-    let mut out = Vec::new();
+    let mut out = Vec::with_capacity(mons.len());
     let mut changed = false;
     let mut combined: FxMap<(u32, u32, i64), Combined> = FxMap::default();
     for entries in &groups {

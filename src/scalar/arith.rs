@@ -10,6 +10,7 @@ use crate::Ring;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 use std::cell::RefCell;
+use std::collections::hash_map::Entry;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 use std::ops::{Add, Mul, Neg, Sub};
@@ -142,24 +143,22 @@ fn cached_mode_mul(a: &Mode, b: &Mode) -> Rc<ModeSum> {
     if a.is_unit() || b.is_unit() {
         return Rc::new(mode_mul(a, b));
     }
-    let key = (a.clone(), b.clone());
-    if let Some(v) = MODE_CACHE.with(|c| c.borrow().get(&key).cloned()) {
-        return v;
-    }
-    let v = Rc::new(mode_mul(a, b));
     MODE_CACHE.with(|c| {
         let mut c = c.borrow_mut();
         if c.len() >= MODE_CACHE_LIMIT {
             c.clear();
         }
-        c.insert(key, v.clone());
-    });
-    v
+        // One hash per lookup, hit or miss; `mode_mul` does not touch the cache.
+        match c.entry((a.clone(), b.clone())) {
+            Entry::Occupied(o) => o.get().clone(),
+            Entry::Vacant(v) => v.insert(Rc::new(mode_mul(a, b))).clone(),
+        }
+    })
 }
 
 /// Splits a sorted term slice into runs that share a mode.
 fn mode_runs(t: &[Term]) -> Vec<&[Term]> {
-    let mut runs = Vec::new();
+    let mut runs = Vec::with_capacity(t.len());
     let mut start = 0;
     for i in 1..=t.len() {
         if i == t.len() || t[i].mode != t[start].mode {
@@ -192,6 +191,8 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
     for ra in mode_runs(x) {
         for rb in mode_runs(y) {
             let modes = cached_mode_mul(&ra[0].mode, &rb[0].mode);
+            let weights: usize = modes.iter().map(|(_, w)| w.len()).sum();
+            out.reserve(ra.len() * rb.len() * weights);
             for s in ra {
                 for t in rb {
                     let Some(mono) = mono_mul(&s.mono, &t.mono) else {

@@ -146,6 +146,9 @@ pub(crate) fn mono_mul(a: &MonoRc, b: &MonoRc) -> Option<MonoRc> {
 /// Numeric order of two small rationals (denominators are positive): the order `Ratio`
 /// gives, without its divisions.
 pub(crate) fn small_cmp(a: &Small, b: &Small) -> Ordering {
+    if a.denom() == b.denom() {
+        return a.numer().cmp(b.numer());
+    }
     (*a.numer() as i128 * *b.denom() as i128).cmp(&(*b.numer() as i128 * *a.denom() as i128))
 }
 
@@ -192,7 +195,14 @@ impl Hash for Mode {
         h.write_u8(u8::from(self.sin));
         h.write_usize(self.freq.len());
         for (s, k) in self.freq.iter() {
-            s.hash(h);
+            // The name's length and last (up to) eight bytes: content only, so still
+            // consistent with `Eq`, and one word instead of a byte-string hash.
+            let b = s.name().as_bytes();
+            let tail = &b[b.len().saturating_sub(8)..];
+            let mut w = [0u8; 8];
+            w[..tail.len()].copy_from_slice(tail);
+            h.write_u64(u64::from_le_bytes(w));
+            h.write_usize(b.len());
             h.write_i64(*k.numer());
             h.write_i64(*k.denom());
         }
@@ -378,6 +388,23 @@ pub(crate) fn mode_mul(a: &Mode, b: &Mode) -> ModeSum {
     out
 }
 
+/// `a + b`, reduced like `Ratio`'s sum; a shortcut for a common denominator (the usual case:
+/// half angles), which `Ratio` reduces through its generic gcd.
+fn small_add(a: &Small, b: &Small) -> Small {
+    let d = *a.denom();
+    if d == *b.denom() {
+        if let Some(n) = a.numer().checked_add(*b.numer()) {
+            if n == 0 {
+                return Small::zero();
+            }
+            let g = n.unsigned_abs().gcd(&d.unsigned_abs());
+            // `g` divides both, and `d > 0`, so the quotients fit and the sign stays on top.
+            return Small::new_raw(n / g as i64, d / g as i64);
+        }
+    }
+    a + b
+}
+
 /// `a + sign * b` on sorted frequency vectors.
 pub(crate) fn freq_combine(a: &[(Sym, Small)], b: &[(Sym, Small)], sign: i64) -> Vec<(Sym, Small)> {
     let signed = |k: Small| match sign {
@@ -398,7 +425,7 @@ pub(crate) fn freq_combine(a: &[(Sym, Small)], b: &[(Sym, Small)], sign: i64) ->
                 j += 1;
             }
             Ordering::Equal => {
-                let k = a[i].1 + signed(b[j].1);
+                let k = small_add(&a[i].1, &signed(b[j].1));
                 if !k.is_zero() {
                     out.push((a[i].0.clone(), k));
                 }

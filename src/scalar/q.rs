@@ -103,6 +103,15 @@ impl Q {
         if n == i64::MIN {
             return Q::from_i128(n as i128, d as i128);
         }
+        if d == 1 {
+            return Q::S(n, 1);
+        }
+        if d & (d - 1) == 0 {
+            // A power-of-two denominator (the common case: half angles): the gcd is a power
+            // of two too, read off the trailing zeros.
+            let shift = n.trailing_zeros().min(d.trailing_zeros());
+            return Q::S(n >> shift, d >> shift);
+        }
         let g = gcd_u64(n.unsigned_abs(), d as u64) as i64;
         Q::S(n / g, d / g)
     }
@@ -190,6 +199,16 @@ impl Q {
     }
 
     fn add_signed(&self, o: &Q, negate: bool) -> Q {
+        if let (Q::S(a, b), Q::S(c, d)) = (self, o) {
+            // Same denominator and no overflow: one reduction (the numerator is never
+            // i64::MIN, so the negation cannot overflow).
+            if b == d {
+                let c = if negate { -*c } else { *c };
+                if let Some(n) = a.checked_add(c) {
+                    return Q::from_i64(n, *b);
+                }
+            }
+        }
         match (self, o) {
             (Q::S(a, b), Q::S(c, d)) => {
                 let c = if negate { -(*c as i128) } else { *c as i128 };
