@@ -24,6 +24,7 @@ fuzz_target!(|data: &[u8]| {
         format: ReportFormat::Plain { shorthand: true },
         point: robot.tool.clone(),
         jacobian: false,
+        max_terms: dqsym::term_limit(),
     };
     let _ = fk_report(&robot, &options);
 });
