@@ -260,32 +260,16 @@ for text in lines[2 + n:]:
 
 #[test]
 fn latex_of_jacobians_renders_in_katex() {
-    use std::process::Command;
-    let bin = env!("CARGO_BIN_EXE_dqsym");
-    let out = Command::new(bin)
-        .args([
-            "-e",
-            "jacobian(dh(theta1, d1, a1, pi/2) * dh(theta2, 0, a2, 0), [theta1, theta2])",
-            "--format",
-            "latex",
-        ])
-        .output()
-        .expect("runs");
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let tex = String::from_utf8(out.stdout).expect("utf-8");
+    let tex = tools::dqsym_ok(&[
+        "-e",
+        "jacobian(dh(theta1, d1, a1, pi/2) * dh(theta2, 0, a2, 0), [theta1, theta2])",
+        "--format",
+        "latex",
+    ]);
     assert!(tex.contains("\\begin{pmatrix}"), "{tex}");
     tools::katex(&tex, "the LaTeX of an 8 x 2 Jacobian");
     let rrr = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/robots/rrr.toml");
-    let out = Command::new(bin)
-        .args(["fk", rrr, "--jacobian", "--format", "latex"])
-        .output()
-        .expect("runs");
-    let report = String::from_utf8(out.stdout).expect("utf-8");
+    let report = tools::dqsym_ok(&["fk", rrr, "--jacobian", "--format", "latex"]);
     // Each aligned block is one formula; the % lines are comments.
     let body: String = report
         .lines()

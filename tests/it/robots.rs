@@ -168,17 +168,7 @@ fn malformed_robot_files_name_the_file_joint_and_field() {
 fn fk_command_prints_sympy_lines_and_exits_1_on_bad_files() {
     let bin = env!("CARGO_BIN_EXE_dqsym");
     let puma = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/robots/puma560.toml");
-    let out = Command::new(bin)
-        .args(["fk", puma, "--jacobian", "--format", "sympy"])
-        .output()
-        .expect("runs");
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let text = crate::tools::dqsym_ok(&["fk", puma, "--jacobian", "--format", "sympy"]);
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines.len(), 8 + 12 + 8 * 6, "one line per entry");
     for l in &lines {
@@ -252,19 +242,8 @@ for line in sys.stdin:
 
 #[test]
 fn fk_rust_output_compiles_and_agrees_with_the_engine() {
-    let bin = env!("CARGO_BIN_EXE_dqsym");
     let file = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/robots/scara.toml");
-    let out = Command::new(bin)
-        .args(["fk", file, "--jacobian", "--format", "rust"])
-        .output()
-        .expect("runs");
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let code = String::from_utf8(out.stdout).expect("utf-8");
+    let code = crate::tools::dqsym_ok(&["fk", file, "--jacobian", "--format", "rust"]);
     let r = load(file);
     let q = r.forward();
     let vals = [0.4, -0.9, 0.25, 1.3, 0.8, 0.6, 0.35];

@@ -126,3 +126,19 @@ fn json_string(s: &str) -> String {
     out.push('"');
     out
 }
+
+/// Runs the `dqsym` binary with `args`, asserts it exits 0 (showing stderr otherwise) and
+/// returns its standard output.
+pub fn dqsym_ok(args: &[&str]) -> String {
+    let out = Command::new(env!("CARGO_BIN_EXE_dqsym"))
+        .args(args)
+        .output()
+        .expect("dqsym runs");
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "dqsym {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).expect("utf-8 output")
+}
