@@ -36,7 +36,7 @@ pub use print::{
 pub use ring::Ring;
 pub use scalar::{
     max_exponent, reset_work, set_max_exponent, set_term_limit, set_work_budget, term_limit,
-    work_budget, work_used, Frac, Scalar, ScalarError, Sym, DEFAULT_MAX_EXPONENT,
+    work_budget, work_used, worker_threads, Frac, Scalar, ScalarError, Sym, DEFAULT_MAX_EXPONENT,
 };
 pub use walk::{
     mechanism_svg, walk_html, walk_markdown, walk_robot, walk_script, walk_text, ComponentTrace,

@@ -12,8 +12,13 @@ use crate::emit::{
 };
 use crate::kin::{dq_jacobian, Robot};
 use crate::print::{legend, plain, PlainOptions};
-use crate::{closed_form, DualQuat, Expr, Scalar, ScalarError};
+use crate::scalar::FxHasher;
+use crate::scalar::{join, par_map};
 use std::collections::HashMap;
+use std::hash::BuildHasherDefault;
+
+type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
+use crate::{closed_form, DualQuat, Expr, Scalar, ScalarError};
 
 /// The text format of a report.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -86,65 +91,74 @@ pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
     let Some(q) = robot.forward_within(o.max_terms) else {
         return recurrence_report(robot, o);
     };
-    let mut sections: Vec<(&str, Vec<(String, Expr)>)> = Vec::new();
-    // Entries often repeat (a Jacobian column of two joints that always appear together, say);
-    // each distinct scalar is put in closed form once. `closed_form` is a pure function of its
-    // input, so this changes no output.
-    let mut seen: HashMap<Scalar, Expr> = HashMap::new();
-    let mut named =
-        |prefix: &str, xs: &[(String, &Scalar)]| -> Result<Vec<(String, Expr)>, ScalarError> {
-            xs.iter()
-                .map(|(n, x)| {
-                    let e = match seen.get(*x) {
-                        Some(e) => e.clone(),
-                        None => {
-                            let e = closed_form(x)?;
-                            seen.insert((*x).clone(), e.clone());
-                            e
-                        }
-                    };
-                    Ok((format!("{prefix}{n}"), e))
-                })
-                .collect()
-        };
+    // The matrix, the point and the Jacobian are derived on a second thread while this one
+    // puts the DQ components in closed form; then every distinct remaining entry is put in
+    // closed form, in parallel. `closed_form` is a pure function of its input, so neither the
+    // threads nor the deduplication change the output.
     let comps = q.components();
-    let dq: Vec<(String, &Scalar)> = comps
-        .iter()
-        .enumerate()
-        .map(|(k, c)| (format!("[{k}]"), c))
-        .collect();
-    sections.push((
-        "unit dual quaternion (w, x, y, z, w_e, x_e, y_e, z_e)",
-        named("dq", &dq)?,
-    ));
-    let m = q.to_matrix();
-    let t: Vec<(String, &Scalar)> = (0..3)
-        .flat_map(|i| (0..4).map(move |j| (i, j)))
-        .map(|(i, j)| (format!("[{i}][{j}]"), &m.rows[i][j]))
-        .collect();
-    sections.push(("homogeneous matrix (rows 0..2)", named("T", &t)?));
-    if let Some(p) = &o.point {
-        let img = q.transform_point(p);
-        let ps: Vec<(String, &Scalar)> = img
-            .iter()
-            .enumerate()
-            .map(|(k, c)| (format!("[{k}]"), c))
-            .collect();
-        sections.push(("image of the point", named("p", &ps)?));
+    let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
+    let (dq_forms, (m, img, jac)) = join(
+        || par_map(&comps, closed_form),
+        || {
+            let m = robot.forward_matrix();
+            let img = o.point.as_ref().map(|p| q.transform_point(p));
+            let jac = o.jacobian.then(|| dq_jacobian(&q, &vars));
+            (m, img, jac)
+        },
+    );
+    let mut rest: Vec<(&'static str, String, &Scalar)> = Vec::new();
+    for i in 0..3 {
+        for j in 0..4 {
+            rest.push(("T", format!("[{i}][{j}]"), &m.rows[i][j]));
+        }
     }
-    if o.jacobian {
-        let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
-        let j = dq_jacobian(&q, &vars);
-        let js: Vec<(String, &Scalar)> = j
-            .iter()
-            .enumerate()
-            .flat_map(|(i, row)| {
-                row.iter()
-                    .enumerate()
-                    .map(move |(k, x)| (format!("[{i}][{k}]"), x))
+    if let Some(img) = &img {
+        for (k, c) in img.iter().enumerate() {
+            rest.push(("p", format!("[{k}]"), c));
+        }
+    }
+    if let Some(jac) = &jac {
+        for (i, row) in jac.iter().enumerate() {
+            for (k, x) in row.iter().enumerate() {
+                rest.push(("J", format!("[{i}][{k}]"), x));
+            }
+        }
+    }
+    // Entries often repeat (a Jacobian column of two joints that always appear together,
+    // say): each distinct scalar is put in closed form once.
+    let mut index: FxMap<&Scalar, usize> = FxMap::default();
+    let mut distinct: Vec<&Scalar> = Vec::new();
+    let slots: Vec<usize> = rest
+        .iter()
+        .map(|(_, _, x)| {
+            *index.entry(*x).or_insert_with(|| {
+                distinct.push(*x);
+                distinct.len() - 1
             })
-            .collect();
-        sections.push(("Jacobian d dq[i] / d q[j]", named("J", &js)?));
+        })
+        .collect();
+    let forms = par_map(&distinct, |x| closed_form(x));
+    let mut sections: Vec<(&str, Vec<(String, Expr)>)> = vec![(
+        "unit dual quaternion (w, x, y, z, w_e, x_e, y_e, z_e)",
+        dq_forms
+            .into_iter()
+            .enumerate()
+            .map(|(k, e)| Ok((format!("dq[{k}]"), e?)))
+            .collect::<Result<_, ScalarError>>()?,
+    )];
+    for ((prefix, n, _), slot) in rest.iter().zip(slots) {
+        let title = match *prefix {
+            "T" => "homogeneous matrix (rows 0..2)",
+            "p" => "image of the point",
+            _ => "Jacobian d dq[i] / d q[j]",
+        };
+        if sections.last().map(|(t, _)| *t) != Some(title) {
+            sections.push((title, Vec::new()));
+        }
+        let e = forms[slot].clone()?;
+        if let Some((_, rows)) = sections.last_mut() {
+            rows.push((format!("{prefix}{n}"), e));
+        }
     }
     render(robot, &sections, o.format, &[])
 }

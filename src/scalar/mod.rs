@@ -20,12 +20,15 @@ mod arith;
 pub(crate) mod atoms;
 mod calculus;
 mod frac;
+mod par;
 pub(crate) mod q;
 
 pub(crate) use arith::FxHasher;
 pub use atoms::Sym;
 pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use frac::Frac;
+pub use par::threads as worker_threads;
+pub(crate) use par::{join, par_map};
 pub(crate) use q::Q;
 
 use num_rational::BigRational;

@@ -107,6 +107,22 @@ fn every_example_robot_matches_plain_matrix_products() {
 }
 
 #[test]
+fn forward_matrix_equals_the_matrix_of_the_forward_dq() {
+    // `fk` takes the matrix as the product of the joint factors' matrices (cheaper than
+    // converting the product DQ); both must be exactly the same scalars.
+    for f in robot_files() {
+        let r = load(&f);
+        let via_dq = r.forward().to_matrix();
+        let chained = r.forward_matrix();
+        for i in 0..4 {
+            for j in 0..4 {
+                assert_eq!(chained.rows[i][j], via_dq.rows[i][j], "{f}: T[{i}][{j}]");
+            }
+        }
+    }
+}
+
+#[test]
 fn every_example_jacobian_matches_finite_differences() {
     for file in robot_files() {
         let r = load(&file);
