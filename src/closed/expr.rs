@@ -62,6 +62,28 @@ impl Angle {
     }
 }
 
+fn small_f64(k: &Small) -> f64 {
+    *k.numer() as f64 / *k.denom() as f64
+}
+
+fn big_f64(q: &BigRational) -> f64 {
+    use num_traits::ToPrimitive;
+    match (q.numer().to_i64(), q.denom().to_i64()) {
+        (Some(n), Some(d)) => n as f64 / d as f64,
+        _ => q.to_f64().unwrap_or(f64::NAN),
+    }
+}
+
+fn sym_value(s: &Sym, env: &dyn Fn(&Sym) -> f64) -> f64 {
+    if s.is_pi() {
+        std::f64::consts::PI
+    } else if s.is_unit() {
+        1.0
+    } else {
+        env(s)
+    }
+}
+
 pub(crate) fn small(k: &Small) -> Scalar {
     Scalar::rational(BigRational::new(
         BigInt::from(*k.numer()),
@@ -104,6 +126,51 @@ impl Expr {
     /// The exact value, re-canonicalized: every closed form must equal its input.
     pub fn to_scalar(&self) -> Scalar {
         self.eval(&mut Vec::new())
+    }
+
+    /// The value in f64 with every symbol bound by `env` (`pi` is pi, the pseudo-symbol `1`
+    /// is 1), and the sum of the magnitudes of the terms met along the way: a scale for
+    /// comparing two evaluations of an expression with cancellation.
+    pub(crate) fn eval_f64(&self, env: &dyn Fn(&Sym) -> f64) -> (f64, f64) {
+        match self {
+            Expr::Num(q) => {
+                let v = big_f64(q);
+                (v, v.abs())
+            }
+            Expr::Sqrt(n) => {
+                let v = (*n as f64).sqrt();
+                (v, v)
+            }
+            Expr::Sym(s) => {
+                let v = sym_value(s, env);
+                (v, v.abs())
+            }
+            Expr::Trig { sin, angle } => {
+                let mut phi = small_f64(&angle.pi) * std::f64::consts::PI;
+                for (s, k) in &angle.terms {
+                    phi += small_f64(k) * sym_value(s, env);
+                }
+                let v = if *sin { phi.sin() } else { phi.cos() };
+                (v, v.abs())
+            }
+            Expr::Add(v) => v.iter().fold((0.0, 0.0), |(a, m), e| {
+                let (x, y) = e.eval_f64(env);
+                (a + x, m + y)
+            }),
+            Expr::Mul(v) => v.iter().fold((1.0, 1.0), |(a, m), e| {
+                let (x, y) = e.eval_f64(env);
+                (a * x, m * y)
+            }),
+            Expr::Neg(e) => {
+                let (x, y) = e.eval_f64(env);
+                (-x, y)
+            }
+            Expr::Pow(e, n) => {
+                let (x, y) = e.eval_f64(env);
+                let n = i32::try_from(*n).unwrap_or(i32::MAX);
+                (x.powi(n), y.powi(n))
+            }
+        }
     }
 
     /// [`Expr::to_scalar`], with the trigonometric factors computed once per distinct atom.

@@ -4,7 +4,7 @@ use super::atoms::{Mode, Sym};
 use super::{Scalar, ScalarError, Term, Q};
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{ToPrimitive, Zero};
+use num_traits::Zero;
 use std::fmt;
 
 impl Scalar {
@@ -116,9 +116,10 @@ impl Scalar {
                 v *= look(s)?.powi(*e as i32);
             }
             if !term.mode.is_unit() {
-                let mut phi = term.mode.pi.to_f64().unwrap_or(0.0) * std::f64::consts::PI;
+                let mut phi = (*term.mode.pi.numer() as f64 / *term.mode.pi.denom() as f64)
+                    * std::f64::consts::PI;
                 for (s, k) in term.mode.freq.iter() {
-                    phi += k.to_f64().unwrap_or(0.0) * look(s)?;
+                    phi += (*k.numer() as f64 / *k.denom() as f64) * look(s)?;
                 }
                 v *= if term.mode.sin { phi.sin() } else { phi.cos() };
             }
