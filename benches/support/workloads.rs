@@ -1,7 +1,7 @@
 //! The DH tables of the benchmark workloads, shared by `benches/core.rs` and
 //! `examples/bench_workloads.rs` (which `bench/compare` runs), so both measure the same thing.
 
-use dqsym::{dh_link, DualQuat, Ring, Scalar};
+use dqsym::{dh_link, dh_link_matrix, DualQuat, Matrix4, Ring, Scalar};
 
 /// `(theta, d, a, alpha)` of one DH link.
 pub type Dh = [Scalar; 4];
@@ -62,4 +62,25 @@ pub fn chain(links: &[Dh]) -> DualQuat<Scalar> {
         .fold(DualQuat::identity(), |acc, [t, d, a, al]| {
             acc * dh_link(t, d, a, al)
         })
+}
+
+/// The 4x4 product of the links' DH matrices as polynomials in the cosines and sines of the
+/// angles (`Scalar::to_cos_sin_polynomial`): what an expanding CAS computes, in the form in
+/// which a product of distinct angles stays one monomial. `None` if a link angle is not a
+/// plain symbol plus a constant.
+#[allow(dead_code)]
+pub fn matrix_cos_sin(links: &[Dh]) -> Option<Matrix4<Scalar>> {
+    let mut acc: Option<Matrix4<Scalar>> = None;
+    for [t, d, a, al] in links {
+        let mut rows = dh_link_matrix(t, d, a, al).rows;
+        for x in rows.iter_mut().flatten() {
+            *x = x.to_cos_sin_polynomial()?;
+        }
+        let m = Matrix4::from_rows(rows);
+        acc = Some(match acc {
+            None => m,
+            Some(p) => p.mul_ref(&m),
+        });
+    }
+    acc
 }

@@ -128,6 +128,45 @@ impl Expr {
         self.eval(&mut Vec::new())
     }
 
+    /// The expression with every placeholder symbol `cos(x)` / `sin(x)` of a
+    /// [`Scalar::to_cos_sin_polynomial`] form replaced by the cosine or sine of `x`.
+    pub fn with_placeholders_as_trig(self) -> Expr {
+        match self {
+            Expr::Sym(s) => match crate::scalar::parse_trig_placeholder(s.name()) {
+                Some((x, sin)) => Expr::Trig {
+                    sin,
+                    angle: Angle {
+                        terms: vec![(Sym::new(x), Small::from_integer(1))],
+                        pi: Small::from_integer(0),
+                    },
+                },
+                None => Expr::Sym(s),
+            },
+            Expr::Add(v) => Expr::Add(v.into_iter().map(Expr::with_placeholders_as_trig).collect()),
+            Expr::Mul(v) => Expr::Mul(v.into_iter().map(Expr::with_placeholders_as_trig).collect()),
+            Expr::Neg(e) => Expr::Neg(Box::new(e.with_placeholders_as_trig())),
+            Expr::Pow(e, n) => Expr::Pow(Box::new(e.with_placeholders_as_trig()), n),
+            e => e,
+        }
+    }
+
+    /// The value in f64 with the symbols bound by `values` (`pi` is pi); `None` when a symbol
+    /// has no value.
+    pub fn value_at(&self, values: &[(&str, f64)]) -> Option<f64> {
+        let missing = std::cell::Cell::new(false);
+        let (v, _) = self.eval_f64(&|s: &Sym| {
+            values
+                .iter()
+                .find(|(n, _)| *n == s.name())
+                .map(|(_, v)| *v)
+                .unwrap_or_else(|| {
+                    missing.set(true);
+                    f64::NAN
+                })
+        });
+        (!missing.get()).then_some(v)
+    }
+
     /// The value in f64 with every symbol bound by `env` (`pi` is pi, the pseudo-symbol `1`
     /// is 1), and the sum of the magnitudes of the terms met along the way: a scale for
     /// comparing two evaluations of an expression with cancellation.

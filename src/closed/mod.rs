@@ -63,6 +63,35 @@ pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
     }
 }
 
+/// The closed form of a polynomial in cosine and sine placeholders (see
+/// [`Scalar::to_cos_sin_polynomial`]), factored as a polynomial and shown with each
+/// placeholder as the cosine or sine of its angle: `c1 (a2 c2 + a3 c23)` style for chains
+/// whose Fourier form is too large. Checked exactly against `x` as a polynomial.
+///
+/// # Errors
+/// As [`closed_form`].
+pub fn closed_form_cos_sin(x: &Scalar) -> Result<Expr, ScalarError> {
+    Ok(closed_form(x)?.with_placeholders_as_trig())
+}
+
+/// `x` as its plain sum of monomials, each Fourier mode one trigonometric factor: what an
+/// expanding CAS prints, for comparing sizes (see `bench/compare`).
+pub fn expanded_form(x: &Scalar) -> Result<Expr, ScalarError> {
+    if let Err(e) = x.terms() {
+        return Err(e.clone());
+    }
+    let (ctx, mons) = mon::whole_modes(x);
+    Ok(match mons.len() {
+        0 => Expr::zero(),
+        1 => factor::mon_expr(&mons[0]).to_expr(&ctx),
+        _ => Expr::Add(
+            mons.iter()
+                .map(|m| factor::mon_expr(m).to_expr(&ctx))
+                .collect(),
+        ),
+    })
+}
+
 /// Whether `e` and `x` have the same value at a fixed pseudo-random point, to a relative
 /// 1e-9 of the magnitudes involved. Every step from `x` to `e` is an exact identity; this check
 /// guards against a defect in them. Release builds use it in place of the exact check

@@ -264,8 +264,16 @@ impl<'a> Writer<'a> {
                 let short = self.o.shorthand.then(|| shorthand_name(*sin, angle));
                 match short.flatten() {
                     Some(name) => {
-                        let (c, idx) = name.split_at(1);
-                        self.out.push_str(&format!("{c}_{{{idx}}}"));
+                        let (c, rest) = name.split_at(1);
+                        // `calpha5` (a prefix kept, see `shorthand_name`) is c_{\alpha_{5}}.
+                        let cut = rest.find(|ch: char| ch.is_ascii_digit()).unwrap_or(0);
+                        let (prefix, idx) = rest.split_at(cut);
+                        if prefix.is_empty() {
+                            self.out.push_str(&format!("{c}_{{{idx}}}"));
+                        } else {
+                            let p = latex_symbol(prefix);
+                            self.out.push_str(&format!("{c}_{{{p}_{{{idx}}}}}"));
+                        }
                     }
                     None => {
                         self.out.push_str(if *sin { "\\sin(" } else { "\\cos(" });

@@ -257,6 +257,44 @@ impl Robot {
         acc.unwrap_or_else(Matrix4::identity)
     }
 
+    /// The homogeneous matrix as polynomials in the cosines and sines of the joint variables
+    /// and angle parameters (see [`Scalar::to_cos_sin_polynomial`]), or `None` when a joint
+    /// factor's matrix holds a half or multiple angle, or an entry exceeds `max_terms`.
+    /// For chains whose Fourier form explodes (a 6R with every DH parameter symbolic: 1,595
+    /// monomials against about 300,000 Fourier terms); put it in closed form with
+    /// [`crate::closed_form_cos_sin`].
+    pub fn forward_matrix_cos_sin(&self, max_terms: usize) -> Option<Matrix4<Scalar>> {
+        let mut acc: Option<Matrix4<Scalar>> = None;
+        for f in self
+            .joint_dqs()
+            .iter()
+            .chain(std::iter::once(&self.chain.tool))
+        {
+            let m = f.to_matrix();
+            let mut rows = m.rows.clone();
+            for row in rows.iter_mut() {
+                for x in row.iter_mut() {
+                    *x = x.to_cos_sin_polynomial()?;
+                }
+            }
+            let m = Matrix4::from_rows(rows);
+            let next = match acc {
+                None => m,
+                Some(a) => a.mul_ref(&m),
+            };
+            if next
+                .rows
+                .iter()
+                .flatten()
+                .any(|x| x.len() > max_terms || x.as_error().is_some())
+            {
+                return None;
+            }
+            acc = Some(next);
+        }
+        Some(acc.unwrap_or_else(Matrix4::identity))
+    }
+
     /// The forward kinematics, or `None` as soon as a component of a partial product has more
     /// than `max_terms` terms: a chain whose expansion grows exponentially (every DH parameter
     /// symbolic, many joints) is detected after a few products instead of exhausting memory.

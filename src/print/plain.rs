@@ -20,7 +20,8 @@ impl Default for PlainOptions {
 }
 
 /// `c12` / `s123` for cos / sin of a plain sum of numbered symbols sharing one prefix
-/// (`theta1 + theta2`, `t2 + t3`); `None` for any other angle.
+/// (`theta1 + theta2`, `t2 + t3`; prefixes other than theta, q, t and th are kept:
+/// `calpha5`); `None` for any other angle.
 pub fn shorthand_name(sin: bool, angle: &Angle) -> Option<String> {
     if !angle.is_plain_sum() || angle.terms.is_empty() {
         return None;
@@ -47,7 +48,17 @@ pub fn shorthand_name(sin: bool, angle: &Angle) -> Option<String> {
         ""
     };
     let body: Vec<String> = idx.iter().map(|i| i.to_string()).collect();
-    Some(format!("{}{}", if sin { "s" } else { "c" }, body.join(sep)))
+    // The bare `c12` is kept for the usual names of joint variables; any other prefix is
+    // written out (`calpha5`), so cos(alpha5) and cos(theta5) never print alike.
+    let shown = match prefix {
+        Some("theta" | "q" | "t" | "th") | None => "",
+        Some(p) => p,
+    };
+    Some(format!(
+        "{}{shown}{}",
+        if sin { "s" } else { "c" },
+        body.join(sep)
+    ))
 }
 
 /// The angle in explicit form: `theta1 + theta2`, `theta3/2`, `t - pi/7`.

@@ -19,6 +19,7 @@
 mod arith;
 pub(crate) mod atoms;
 mod calculus;
+mod cs;
 mod frac;
 mod par;
 pub(crate) mod q;
@@ -26,6 +27,7 @@ pub(crate) mod q;
 pub(crate) use arith::FxHasher;
 pub use atoms::Sym;
 pub(crate) use atoms::{Mode, MonoRc, Small};
+pub use cs::{parse_trig_placeholder, trig_placeholder};
 pub use frac::Frac;
 pub use par::threads as worker_threads;
 pub(crate) use par::{join, par_map};

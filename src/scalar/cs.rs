@@ -1,0 +1,83 @@
+//! The other exact form of a kinematic expression: a polynomial in the cosines and sines of the
+//! angle symbols, each `cos(x)` and `sin(x)` a plain placeholder symbol.
+//!
+//! The canonical Fourier form is compact for products that share angles (a planar arm, the
+//! PUMA) but a product of `n` factors in distinct angles has `2^(n-1)` Fourier modes where the
+//! polynomial has one monomial: the 4x4 pose of a 6R chain with every DH parameter symbolic has
+//! about 300,000 Fourier terms and 1,595 monomials. Link matrices hold only `cos x`, `sin x` of
+//! their own angles, so their product is multilinear in the placeholders and needs no
+//! `cos^2 + sin^2 = 1` reduction: equal polynomials are equal values, and two polynomials that
+//! differ may still be equal values only through that identity (which this form does not
+//! apply). The placeholder names (`cos(theta1)`) cannot be written in the language, so they
+//! never meet a user's symbol.
+
+use super::{Mode, Scalar, Term};
+
+/// The placeholder symbol standing for `cos(x)` (or `sin(x)`).
+pub fn trig_placeholder(x: &str, sin: bool) -> Scalar {
+    Scalar::sym(&format!("{}({x})", if sin { "sin" } else { "cos" }))
+}
+
+/// The angle symbol and kind of a placeholder name: `("theta1", false)` for `cos(theta1)`.
+pub fn parse_trig_placeholder(name: &str) -> Option<(&str, bool)> {
+    let (kind, rest) = name.split_once('(')?;
+    let x = rest.strip_suffix(')')?;
+    match kind {
+        "cos" => Some((x, false)),
+        "sin" => Some((x, true)),
+        _ => None,
+    }
+}
+
+impl Scalar {
+    /// The same value as a polynomial in placeholders `cos(x)`, `sin(x)` (see
+    /// [`trig_placeholder`]): every mode `cos(k1 x1 + ... + c pi)` is expanded with the
+    /// angle-sum formulas, the pi part exactly. `None` when a frequency is not an integer (a half
+    /// angle) or is above 8 in magnitude, or for an error value.
+    pub fn to_cos_sin_polynomial(&self) -> Option<Scalar> {
+        let terms = self.terms().ok()?;
+        let mut out = Scalar::int(0);
+        for t in terms {
+            let trig = mode_polynomial(&t.mode)?;
+            let rest = Scalar::from_terms_sorted(vec![Term {
+                mode: Mode::unit(),
+                ..t.clone()
+            }]);
+            out = out + rest * trig;
+        }
+        out.check().ok()
+    }
+}
+
+/// The largest multiple `k` of an angle symbol `cos(k x)` may hold.
+const MAX_MULTIPLE: i64 = 8;
+
+/// `cos` or `sin` of a mode's angle as a placeholder polynomial.
+fn mode_polynomial(m: &Mode) -> Option<Scalar> {
+    if m.is_unit() {
+        return Some(Scalar::int(1));
+    }
+    // (C, S) = (cos, sin) of the part so far, starting from the exact pi multiple.
+    let offset = Scalar::pi()
+        * Scalar::rational(super::BigRational::new(
+            (*m.pi.numer()).into(),
+            (*m.pi.denom()).into(),
+        ));
+    let (mut c, mut s) = (offset.cos(), offset.sin());
+    for (x, k) in m.freq.iter() {
+        // Integer multiples only, and small ones: k x is |k| angle additions of +-x.
+        if *k.denom() != 1 || k.numer().abs() > MAX_MULTIPLE || x.is_unit() {
+            return None;
+        }
+        let cx = trig_placeholder(x.name(), false);
+        let sx = trig_placeholder(x.name(), true);
+        // sin(-x) = -sin(x).
+        let sx = if *k.numer() < 0 { -sx } else { sx };
+        for _ in 0..k.numer().abs() {
+            let c2 = c.clone() * &cx - s.clone() * &sx;
+            s = s * &cx + c * &sx;
+            c = c2;
+        }
+    }
+    Some(if m.sin { s } else { c })
+}
