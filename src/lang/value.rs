@@ -41,7 +41,7 @@ pub enum Value {
     Matrix(Vec<Vec<Scalar>>),
     /// A matrix shaped as [`Value::Matrix`] with at least one entry that [`Frac::new`] does not
     /// reduce to a scalar, such as the centre `(d1 s - d2 c)/(2 s)` of a planar displacement.
-    /// Operations build it through [`quotient_matrix`], so it is never all scalars.
+    /// Operations build it through `quotient_matrix`, so it is never all scalars.
     QuotientMatrix(Vec<Vec<Frac>>),
 }
 
