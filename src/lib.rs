@@ -17,8 +17,9 @@ pub use closed::{
 };
 pub use emit::{
     arguments, c_function, count_ops, generated_ops, latex, latex_aligned, latex_dual_quat,
-    latex_matrix, latex_symbol, latex_tuple, product_table, python_function, rotation_chain_ops,
-    rust_function, sympy, CodegenError, CodegenOptions, Counted, LatexOptions, OpCount, Output,
+    latex_matrix, latex_quotient, latex_quotient_matrix, latex_symbol, latex_tuple, product_table,
+    python_function, rotation_chain_ops, rust_function, sympy, sympy_quotient, CodegenError,
+    CodegenOptions, Counted, LatexOptions, OpCount, Output,
 };
 pub use kin::{
     dh_link, dh_link_matrix, dq_jacobian, geometric_jacobian, mdh_link, mdh_link_matrix,
@@ -33,8 +34,8 @@ pub use lang::{
     CONSTANTS, MAX_EXPONENT,
 };
 pub use print::{
-    fk_report, legend, ops_tables, plain, shorthand_name, FkOptions, PlainOptions, ReportError,
-    ReportFormat,
+    fk_report, legend, ops_tables, plain, plain_quotient, shorthand_name, FkOptions, PlainOptions,
+    ReportError, ReportFormat,
 };
 pub use ring::Ring;
 pub use scalar::{

@@ -131,17 +131,43 @@ pub fn latex_dual_quat(real: &[Expr], dual: &[Expr], o: &LatexOptions) -> String
 
 /// A matrix as `\begin{pmatrix} a & b \\ c & d \end{pmatrix}`, from its rows.
 pub fn latex_matrix<R: AsRef<[Expr]>>(rows: &[R], o: &LatexOptions) -> String {
-    let body: Vec<String> = rows
-        .iter()
-        .map(|r| {
-            let cells: Vec<String> = r.as_ref().iter().map(|e| latex(e, o)).collect();
-            cells.join(" & ")
-        })
-        .collect();
+    pmatrix(
+        rows.iter()
+            .map(|r| r.as_ref().iter().map(|e| latex(e, o)).collect()),
+    )
+}
+
+/// The quotient `num / den` as `\frac{num}{den}`, or `num` alone when `den` is 1.
+pub fn latex_quotient(num: &Expr, den: &Expr, o: &LatexOptions) -> String {
+    if is_one(den) {
+        return latex(num, o);
+    }
+    format!("\\frac{{{}}}{{{}}}", latex(num, o), latex(den, o))
+}
+
+/// A matrix of quotients `(num, den)` as [`latex_matrix`] writes a matrix, each entry as
+/// [`latex_quotient`] writes it.
+pub fn latex_quotient_matrix<R: AsRef<[(Expr, Expr)]>>(rows: &[R], o: &LatexOptions) -> String {
+    pmatrix(rows.iter().map(|r| {
+        r.as_ref()
+            .iter()
+            .map(|(n, d)| latex_quotient(n, d, o))
+            .collect()
+    }))
+}
+
+/// Rows of LaTeX cells as a `pmatrix`.
+fn pmatrix(rows: impl Iterator<Item = Vec<String>>) -> String {
+    let body: Vec<String> = rows.map(|cells| cells.join(" & ")).collect();
     format!(
         "\\begin{{pmatrix}}\n{}\n\\end{{pmatrix}}",
         body.join(" \\\\\n")
     )
+}
+
+/// Whether `e` is the number 1.
+fn is_one(e: &Expr) -> bool {
+    matches!(e, Expr::Num(q) if q.is_one())
 }
 
 /// Named values as `\begin{aligned} name &= value \\ ... \end{aligned}`; `name` is LaTeX

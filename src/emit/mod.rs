@@ -15,8 +15,9 @@ pub use c::c_function;
 pub use codegen::{arguments, CodegenError, CodegenOptions, OpCount, Output};
 pub use count::{count_ops, generated_ops, product_table, rotation_chain_ops, Counted};
 pub use latex::{
-    latex, latex_aligned, latex_dual_quat, latex_matrix, latex_symbol, latex_tuple, LatexOptions,
+    latex, latex_aligned, latex_dual_quat, latex_matrix, latex_quotient, latex_quotient_matrix,
+    latex_symbol, latex_tuple, LatexOptions,
 };
 pub use python::python_function;
 pub use rust::rust_function;
-pub use sympy::sympy;
+pub use sympy::{sympy, sympy_quotient};

@@ -17,6 +17,14 @@ pub fn sympy(e: &Expr) -> String {
     out
 }
 
+/// The quotient `num / den` as SymPy input, `(num)/(den)`; `num` alone when `den` is 1.
+pub fn sympy_quotient(num: &Expr, den: &Expr) -> String {
+    if matches!(den, Expr::Num(q) if q.is_one()) {
+        return sympy(num);
+    }
+    format!("({})/({})", sympy(num), sympy(den))
+}
+
 /// Precedence levels: 0 top, 1 sum term, 2 product factor, 3 power base.
 fn write(e: &Expr, prec: u8, out: &mut String) {
     match e {

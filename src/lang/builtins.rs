@@ -4,7 +4,9 @@
 use super::ast::{Expr, Ident, Span};
 use super::eval::{op_error, scalar_error, EvalError, EvalErrorKind, Evaluator, Event, Result};
 use super::value::{self, Value};
-use crate::{closed_form, dh_link, mdh_link, plain, DualQuat, Matrix4, PlainOptions, Quat, Scalar};
+use crate::{
+    closed_form, dh_link, mdh_link, plain, DualQuat, Frac, Matrix4, PlainOptions, Quat, Scalar,
+};
 use num_traits::{One, Zero};
 
 /// A built-in function as `:help` lists it.
@@ -143,8 +145,9 @@ pub const BUILTINS: &[Builtin] = &[
         "screwparams(q)",
         1,
         1,
-        "screw of a unit DQ as rows: (angle, slide, 0), axis n, moment m, axis point nearest O",
-        "screwparams(screw((0, 0, 1), (l, 0, 0), theta1, t))",
+        "screw of a unit DQ as rows: (angle, slide, 0), axis n, moment m, axis point nearest O, \
+         as quotients where needed",
+        "screwparams(dh(theta1, d1, a1, 0))",
     ),
     b(
         "diff",
@@ -422,7 +425,7 @@ pub(crate) fn call(ev: &Evaluator<'_>, func: &Ident, args: &[Expr], span: Span) 
         "screwparams" => screw_params(&vals[0])?,
         "diff" => {
             let t = symbol_name(name, &vals[1].value, vals[1].span)?;
-            vals[0].value.map(&|s| s.diff(&t))
+            value::diff(&vals[0].value, &t).map_err(|e| op_error(e, span))?
         }
         "cos" => Value::Scalar(scalar(name, "the angle", &vals[0])?.cos()),
         "sin" => Value::Scalar(scalar(name, "the angle", &vals[0])?.sin()),
@@ -455,22 +458,15 @@ pub(crate) fn call(ev: &Evaluator<'_>, func: &Ident, args: &[Expr], span: Span) 
                 d.combined_conjugate()
             })
         }
-        "transpose" => match &vals[0].value {
-            Value::Matrix(rows) => Value::Matrix(
-                (0..rows[0].len())
-                    .map(|j| rows.iter().map(|r| r[j].clone()).collect())
-                    .collect(),
-            ),
-            other => {
-                return Err(type_error(
-                    name,
-                    "the argument",
-                    "a matrix",
-                    other,
-                    vals[0].span,
-                ))
-            }
-        },
+        "transpose" => value::transpose(&vals[0].value).ok_or_else(|| {
+            type_error(
+                name,
+                "the argument",
+                "a matrix",
+                &vals[0].value,
+                vals[0].span,
+            )
+        })?,
         _ => return Err(invalid(&format!("`{name}` is not implemented"), func.span)),
     };
     let out = out.check().map_err(|e| scalar_error(e, span))?;
@@ -612,35 +608,18 @@ fn symbol_name(func: &str, v: &Value, span: Span) -> Result<String> {
     ))
 }
 
-/// `screwparams(q)`: the screw of a unit DQ as a 4 x 3 matrix, when every parameter is a plain
-/// expression. Parameters that divide by sin(theta/2) by an expression (the centres of planar
-/// displacements) need quotients, which values cannot hold yet: the message gives them exactly.
+/// `screwparams(q)`: the screw of a unit DQ as a 4 x 3 matrix, rows (angle, slide, 0), axis,
+/// moment, nearest point. Parameters that divide by sin(theta/2) by an expression (the centres
+/// of planar displacements) are quotients, so the matrix then has quotient entries.
 fn screw_params(a: &Arg) -> Result<Value> {
     let q = unit_dq("screwparams", a)?;
     let sp =
         crate::screw_parameters(&q).map_err(|e| invalid(&format!("screwparams: {e}"), a.span))?;
-    let fracs: Vec<&crate::Frac> = std::iter::once(&sp.slide)
-        .chain(&sp.axis)
-        .chain(&sp.moment)
-        .chain(&sp.point)
-        .collect();
-    if let Some(f) = fracs.iter().find(|f| f.as_scalar().is_none()) {
-        return Err(invalid(
-            &format!(
-                "screwparams: a parameter is the quotient ({}) / ({}), which a value cannot hold yet \
-                 (the library's screw_parameters returns it exactly)",
-                text(f.num()),
-                text(f.den())
-            ),
-            a.span,
-        ));
-    }
-    let s = |f: &crate::Frac| f.as_scalar().cloned().unwrap_or_default();
-    Ok(Value::Matrix(vec![
-        vec![sp.angle.clone(), s(&sp.slide), Scalar::int(0)],
-        sp.axis.iter().map(s).collect(),
-        sp.moment.iter().map(s).collect(),
-        sp.point.iter().map(s).collect(),
+    Ok(value::quotient_matrix(vec![
+        vec![Frac::from(sp.angle), sp.slide, Frac::from(Scalar::int(0))],
+        sp.axis.to_vec(),
+        sp.moment.to_vec(),
+        sp.point.to_vec(),
     ]))
 }
 

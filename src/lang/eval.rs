@@ -710,7 +710,13 @@ impl ChainRec {
 
     fn factor(&mut self, op: MulOp, e: &Expr, v: &Value) {
         let unit = matches!(&e.kind, ExprKind::Name(n) if n == "I" || n == "eps");
-        if op != MulOp::Mul || unit || matches!(v, Value::Scalar(_) | Value::Matrix(_)) {
+        if op != MulOp::Mul
+            || unit
+            || matches!(
+                v,
+                Value::Scalar(_) | Value::Matrix(_) | Value::QuotientMatrix(_)
+            )
+        {
             self.plain = false;
         }
         // A sum or a negation as a factor keeps its brackets: `qd2*(1 + I*(x2, y2, z2))`.

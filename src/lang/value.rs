@@ -12,8 +12,12 @@
 //!   a dual quaternion, a vector is the pure quaternion `(0, x, y, z)`.
 //! - Division only by nonzero numbers (rationals and radicals); powers only with integer
 //!   exponents.
+//! - A matrix may hold quotients of expressions (`screwparams` of a planar displacement divides
+//!   by sin(theta/2)). Such a matrix adds to matrices, multiplies with matrices and scalars, and
+//!   divides by numbers like any other; it becomes a plain matrix again whenever every entry
+//!   reduces to an expression.
 
-use crate::{DualQuat, Quat, Scalar, ScalarError};
+use crate::{DualQuat, Frac, Quat, Scalar, ScalarError};
 use num_traits::{One, Zero};
 
 /// The default largest exponent accepted by `^`, in absolute value ([`crate::max_exponent`] is
@@ -35,6 +39,10 @@ pub enum Value {
     Vector([Scalar; 3]),
     /// A matrix: at least one row, all rows of the same non-zero length.
     Matrix(Vec<Vec<Scalar>>),
+    /// A matrix shaped as [`Value::Matrix`] with at least one entry that [`Frac::new`] does not
+    /// reduce to a scalar, such as the centre `(d1 s - d2 c)/(2 s)` of a planar displacement.
+    /// Operations build it through `quotient_matrix`, so it is never all scalars.
+    QuotientMatrix(Vec<Vec<Frac>>),
 }
 
 /// Why an operation on values failed; the evaluator adds the place.
@@ -67,6 +75,11 @@ impl Value {
             Value::DualQuat(_) => "a dual quaternion".into(),
             Value::Vector(_) => "a vector".into(),
             Value::Matrix(rows) => format!("a {}x{} matrix", rows.len(), rows[0].len()),
+            Value::QuotientMatrix(rows) => format!(
+                "a {}x{} matrix with quotient entries",
+                rows.len(),
+                rows[0].len()
+            ),
         }
     }
 
@@ -81,6 +94,11 @@ impl Value {
             }
             Value::Vector(v) => v.iter().collect(),
             Value::Matrix(rows) => rows.iter().flatten().collect(),
+            Value::QuotientMatrix(rows) => rows
+                .iter()
+                .flatten()
+                .flat_map(|f| [f.num(), f.den()])
+                .collect(),
         }
     }
 
@@ -92,7 +110,8 @@ impl Value {
         Ok(self)
     }
 
-    /// Applies `f` to every scalar, keeping the shape.
+    /// Applies `f` to every scalar, keeping the shape. `f` must be linear (a negation, a
+    /// scaling): of a quotient it maps the numerator.
     pub(crate) fn map(&self, f: &dyn Fn(&Scalar) -> Scalar) -> Value {
         let q = |q: &Quat<Scalar>| Quat::new(f(&q.w), f(&q.x), f(&q.y), f(&q.z));
         match self {
@@ -105,6 +124,31 @@ impl Value {
             Value::Matrix(rows) => {
                 Value::Matrix(rows.iter().map(|r| r.iter().map(f).collect()).collect())
             }
+            Value::QuotientMatrix(rows) => quotient_matrix(
+                rows.iter()
+                    .map(|r| {
+                        r.iter()
+                            .map(|q| {
+                                Frac::new(f(q.num()), q.den().clone())
+                                    .unwrap_or_else(|e| Frac::from(Scalar::error(e)))
+                            })
+                            .collect()
+                    })
+                    .collect(),
+            ),
+        }
+    }
+
+    /// The entries of a matrix, plain or with quotients, as quotients.
+    fn frac_rows(&self) -> Option<Vec<Vec<Frac>>> {
+        match self {
+            Value::Matrix(rows) => Some(
+                rows.iter()
+                    .map(|r| r.iter().cloned().map(Frac::from).collect())
+                    .collect(),
+            ),
+            Value::QuotientMatrix(rows) => Some(rows.clone()),
+            _ => None,
         }
     }
 
@@ -130,6 +174,70 @@ impl Value {
     }
 }
 
+/// A matrix of quotients as a value: a plain [`Value::Matrix`] when every entry is a scalar.
+pub(crate) fn quotient_matrix(rows: Vec<Vec<Frac>>) -> Value {
+    if rows.iter().flatten().all(|f| f.as_scalar().is_some()) {
+        return Value::Matrix(
+            rows.iter()
+                .map(|r| r.iter().map(|f| f.num().clone()).collect())
+                .collect(),
+        );
+    }
+    Value::QuotientMatrix(rows)
+}
+
+/// The matrix sum or product of `a` and `b` when one of them has quotient entries.
+fn quotient_op(a: &Value, b: &Value, op: QuotientOp) -> OpResult {
+    let (Some(x), Some(y)) = (a.frac_rows(), b.frac_rows()) else {
+        return Err(unreachable_type());
+    };
+    let rows = match op {
+        QuotientOp::Add { sub } => {
+            let mut rows = Vec::with_capacity(x.len());
+            for (r, s) in x.iter().zip(&y) {
+                let mut row = Vec::with_capacity(r.len());
+                for (p, q) in r.iter().zip(s) {
+                    row.push(if sub { p.sub(q)? } else { p.add(q)? });
+                }
+                rows.push(row);
+            }
+            rows
+        }
+        QuotientOp::Mul => {
+            let mut rows = Vec::with_capacity(x.len());
+            for r in &x {
+                let mut row = Vec::with_capacity(y[0].len());
+                for j in 0..y[0].len() {
+                    let mut acc = Frac::from(Scalar::zero());
+                    for (p, yrow) in r.iter().zip(&y) {
+                        acc = acc.add(&p.mul(&yrow[j])?)?;
+                    }
+                    row.push(acc);
+                }
+                rows.push(row);
+            }
+            rows
+        }
+    };
+    Ok(quotient_matrix(rows))
+}
+
+/// What [`quotient_op`] computes.
+#[derive(Clone, Copy)]
+enum QuotientOp {
+    Add { sub: bool },
+    Mul,
+}
+
+/// The rows and columns of a matrix value.
+fn shape(v: &Value) -> Option<(usize, usize)> {
+    match v {
+        Value::Matrix(rows) => Some((rows.len(), rows[0].len())),
+        Value::QuotientMatrix(rows) => Some((rows.len(), rows[0].len())),
+        _ => None,
+    }
+}
+
 /// `a + b` (or `a - b` when `sub`).
 pub(crate) fn add(a: &Value, b: &Value, sub: bool) -> OpResult {
     let op = |x: &Scalar, y: &Scalar| if sub { x - y } else { x + y };
@@ -140,20 +248,25 @@ pub(crate) fn add(a: &Value, b: &Value, sub: bool) -> OpResult {
         (Value::Vector(x), Value::Vector(y)) => {
             Value::Vector([op(&x[0], &y[0]), op(&x[1], &y[1]), op(&x[2], &y[2])])
         }
-        (Value::Matrix(x), Value::Matrix(y)) => {
-            if x.len() != y.len() || x[0].len() != y[0].len() {
-                return Err(OpError::Type(format!(
-                    "cannot {word} {} and {}: the shapes differ",
-                    a.describe(),
-                    b.describe()
-                )));
-            }
-            Value::Matrix(
-                x.iter()
-                    .zip(y)
-                    .map(|(r, s)| r.iter().zip(s).map(|(p, q)| op(p, q)).collect())
-                    .collect(),
-            )
+        (
+            Value::Matrix(_) | Value::QuotientMatrix(_),
+            Value::Matrix(_) | Value::QuotientMatrix(_),
+        ) if shape(a) != shape(b) => {
+            return Err(OpError::Type(format!(
+                "cannot {word} {} and {}: the shapes differ",
+                a.describe(),
+                b.describe()
+            )))
+        }
+        (Value::Matrix(x), Value::Matrix(y)) => Value::Matrix(
+            x.iter()
+                .zip(y)
+                .map(|(r, s)| r.iter().zip(s).map(|(p, q)| op(p, q)).collect())
+                .collect(),
+        ),
+        (Value::Matrix(_) | Value::QuotientMatrix(_), Value::QuotientMatrix(_))
+        | (Value::QuotientMatrix(_), Value::Matrix(_)) => {
+            return quotient_op(a, b, QuotientOp::Add { sub })
         }
         (Value::DualQuat(_), Value::Scalar(_) | Value::Quat(_) | Value::DualQuat(_))
         | (Value::Scalar(_) | Value::Quat(_), Value::DualQuat(_)) => {
@@ -195,14 +308,17 @@ pub(crate) fn mul(a: &Value, b: &Value) -> OpResult {
     Ok(match (a, b) {
         (Value::Scalar(x), Value::Scalar(y)) => Value::Scalar(x * y),
         (Value::Scalar(k), v) | (v, Value::Scalar(k)) => v.map(&|s| s * k),
+        (
+            Value::Matrix(_) | Value::QuotientMatrix(_),
+            Value::Matrix(_) | Value::QuotientMatrix(_),
+        ) if shape(a).map(|s| s.1) != shape(b).map(|s| s.0) => {
+            return Err(OpError::Type(format!(
+                "cannot multiply {} by {}: the inner sizes differ",
+                a.describe(),
+                b.describe()
+            )))
+        }
         (Value::Matrix(x), Value::Matrix(y)) => {
-            if x[0].len() != y.len() {
-                return Err(OpError::Type(format!(
-                    "cannot multiply {} by {}: the inner sizes differ",
-                    a.describe(),
-                    b.describe()
-                )));
-            }
             let n = y[0].len();
             let rows = x
                 .iter()
@@ -217,6 +333,17 @@ pub(crate) fn mul(a: &Value, b: &Value) -> OpResult {
                 })
                 .collect();
             Value::Matrix(rows)
+        }
+        (Value::Matrix(_) | Value::QuotientMatrix(_), Value::QuotientMatrix(_))
+        | (Value::QuotientMatrix(_), Value::Matrix(_)) => {
+            return quotient_op(a, b, QuotientOp::Mul)
+        }
+        (Value::QuotientMatrix(_), _) | (_, Value::QuotientMatrix(_)) => {
+            return Err(OpError::Type(format!(
+                "cannot multiply {} by {}",
+                a.describe(),
+                b.describe()
+            )))
         }
         (Value::Matrix(_), _) | (_, Value::Matrix(_)) => {
             return Err(OpError::Type(format!(
@@ -263,7 +390,7 @@ pub(crate) fn conj(a: &Value) -> OpResult {
         Value::Quat(q) => Value::Quat(q.conjugate()),
         Value::DualQuat(d) => Value::DualQuat(d.conjugate()),
         Value::Vector(_) => neg(a),
-        Value::Matrix(_) => {
+        Value::Matrix(_) | Value::QuotientMatrix(_) => {
             return Err(OpError::Type(format!(
                 "the quaternion conjugate needs a quaternion or a dual quaternion, found {}; \
                  `transpose(M)` transposes a matrix",
@@ -271,6 +398,35 @@ pub(crate) fn conj(a: &Value) -> OpResult {
             )))
         }
     })
+}
+
+/// The derivative of every entry by the symbol `t`; of a quotient by the quotient rule.
+pub(crate) fn diff(a: &Value, t: &str) -> OpResult {
+    match a {
+        Value::QuotientMatrix(rows) => {
+            let mut out = Vec::with_capacity(rows.len());
+            for r in rows {
+                let row: Result<Vec<Frac>, ScalarError> = r.iter().map(|q| q.diff(t)).collect();
+                out.push(row?);
+            }
+            Ok(quotient_matrix(out))
+        }
+        _ => Ok(a.map(&|s| s.diff(t))),
+    }
+}
+
+/// The transpose of a matrix, plain or with quotients.
+pub(crate) fn transpose(a: &Value) -> Option<Value> {
+    fn t<T: Clone>(rows: &[Vec<T>]) -> Vec<Vec<T>> {
+        (0..rows[0].len())
+            .map(|j| rows.iter().map(|r| r[j].clone()).collect())
+            .collect()
+    }
+    match a {
+        Value::Matrix(rows) => Some(Value::Matrix(t(rows))),
+        Value::QuotientMatrix(rows) => Some(Value::QuotientMatrix(t(rows))),
+        _ => None,
+    }
 }
 
 /// The inverse of a scalar, quaternion or dual quaternion.

@@ -5,4 +5,4 @@ mod plain;
 
 pub use fk::{fk_report, ops_tables, FkOptions, ReportError, ReportFormat};
 pub(crate) use plain::angle_text;
-pub use plain::{legend, plain, shorthand_name, PlainOptions};
+pub use plain::{legend, plain, plain_quotient, shorthand_name, PlainOptions};

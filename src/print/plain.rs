@@ -108,6 +108,25 @@ pub fn plain(e: &Expr, opts: &PlainOptions) -> String {
     out
 }
 
+/// The quotient `num / den` as plain text, `num` alone when `den` is 1. A part that is a sum or
+/// a product is bracketed, so the quotient reads one way: `(d1 s - d2 c)/(2 s)`, `-l/sin(t)`.
+pub fn plain_quotient(num: &Expr, den: &Expr, opts: &PlainOptions) -> String {
+    if matches!(den, Expr::Num(q) if q.is_one()) {
+        return plain(num, opts);
+    }
+    let mut out = String::new();
+    match num {
+        Expr::Neg(inner) => {
+            out.push('-');
+            write(inner, opts, 3, &mut out);
+        }
+        _ => write(num, opts, 3, &mut out),
+    }
+    out.push('/');
+    write(den, opts, 3, &mut out);
+    out
+}
+
 /// Precedence levels: 0 top, 1 sum, 2 product, 3 power base.
 fn write(e: &Expr, o: &PlainOptions, prec: u8, out: &mut String) {
     let times = if o.shorthand { " " } else { "*" };

@@ -48,10 +48,15 @@ impl Frac {
         (self.den == Scalar::int(1)).then_some(&self.num)
     }
 
-    /// `self + other`.
+    /// `self + other`. When one denominator is a constant multiple of the other (`s` and
+    /// `2 s`), the sum keeps the first one rather than their product.
     pub fn add(&self, other: &Frac) -> Result<Frac, ScalarError> {
         if self.den == other.den {
             return Frac::new(&self.num + &other.num, self.den.clone());
+        }
+        if let Some(k) = constant_ratio(&other.den, &self.den).filter(Scalar::is_constant) {
+            // other = b / (k d) = (b / k) / d.
+            return Frac::new(&self.num + other.num.try_div(&k)?, self.den.clone());
         }
         Frac::new(
             &self.num * &other.den + &other.num * &self.den,
@@ -82,6 +87,15 @@ impl Frac {
         Frac::new(&self.num * &other.den, &self.den * &other.num)
     }
 
+    /// The derivative by the symbol `x`, by the quotient rule.
+    pub fn diff(&self, x: &str) -> Result<Frac, ScalarError> {
+        let (dn, dd) = (self.num.diff(x), self.den.diff(x));
+        if dd.is_zero() {
+            return Frac::new(dn, self.den.clone());
+        }
+        Frac::new(dn * &self.den - &self.num * dd, &self.den * &self.den)
+    }
+
     /// The value under a binding of symbols.
     pub fn eval(&self, env: &dyn Fn(&str) -> Option<f64>) -> Result<f64, ScalarError> {
         Ok(self.num.eval(env)? / self.den.eval(env)?)
@@ -103,6 +117,11 @@ impl PartialEq for Frac {
         &self.num * &other.den == &other.num * &self.den
     }
 }
+
+/// Cross-multiplication is an equivalence: canonical scalars form an integral domain (polynomials
+/// in symbols and in cos, sin of angles modulo cos^2 + sin^2 = 1, over rationals and radicals),
+/// and denominators are never zero.
+impl Eq for Frac {}
 
 /// `k` when `num == k den` and `k` is read off term by term: for a one-term denominator
 /// `c sqrt(r) m M` (monomial `m`, mode `M`), each numerator term with mode `M` divided by it;

@@ -157,10 +157,13 @@ fn language_screwparams_and_gjacobian_match_the_library() {
         sp.moment[2],
         Frac::from((sym("l") * int(4) - sym("d") * int(3)) * frac(1, 5))
     );
-    // A planar centre divides by sin(theta/2): the language says so instead of guessing.
-    let (code, _, err) = run("screwparams(trans((0, d1, d2)) * rot((1, 0, 0), theta))");
-    assert_eq!(code, Some(1));
-    assert!(err.contains("quotient"), "{err}");
+    // A planar centre divides by sin(theta/2): the matrix holds the quotients (tests/it/quotients.rs).
+    let (code, text, _) = run("screwparams(trans((0, d1, d2)) * rot((1, 0, 0), theta))");
+    assert_eq!(code, Some(0));
+    assert!(
+        text.contains("(d1 sin(theta/2) - d2 cos(theta/2))/(2 sin(theta/2))"),
+        "{text}"
+    );
     let (code, text, _) = run("gjacobian(rot((0, 0, 1), theta1) * trans((l, 0, 0)), [theta1])");
     assert_eq!(code, Some(0));
     assert_eq!(
