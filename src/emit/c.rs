@@ -25,7 +25,7 @@ pub fn c_function(
         s.push_str(&format!(" * {line}\n").replace(" * \n", " *\n"));
     }
     s.push_str(" *\n");
-    for out in outputs {
+    for out in outputs.iter().filter(|o| !o.intermediate) {
         s.push_str(&format!(" * {}: {}\n", out.name, out.doc));
     }
     s.push_str(&format!(
@@ -33,7 +33,7 @@ pub fn c_function(
         count.trig, count.mul, count.add, count.neg
     ));
     let mut params: Vec<String> = args.iter().map(|a| format!("double {a}")).collect();
-    for out in outputs {
+    for out in outputs.iter().filter(|o| !o.intermediate) {
         params.push(match out.shape {
             None => format!("double *{}", out.name),
             Some((1, n)) => format!("double {}[{n}]", out.name),

@@ -34,7 +34,7 @@ pub fn python_function(
         args.join(", ")
     ));
     s.push_str("    Returns a dict of arrays:\n");
-    for out in outputs {
+    for out in outputs.iter().filter(|o| !o.intermediate) {
         let shape = match out.shape {
             None => "S".to_string(),
             Some((1, n)) => format!("S + ({n},)"),

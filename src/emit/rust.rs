@@ -54,7 +54,7 @@ pub fn rust_function(
     s.push_str(&format!("/// The results of [`{name}`].\n"));
     s.push_str("#[derive(Clone, Copy, Debug, PartialEq)]\n");
     s.push_str(&format!("pub struct {ty} {{\n"));
-    for out in outputs {
+    for out in outputs.iter().filter(|o| !o.intermediate) {
         s.push_str(&format!("    /// {}\n", out.doc));
         s.push_str(&format!("    pub {}: {},\n", out.name, rust_type(out)));
     }

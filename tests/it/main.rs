@@ -15,6 +15,7 @@ mod paper_arms;
 mod paper_support;
 mod parse;
 mod props;
+mod recurrence;
 mod robots;
 mod scalar;
 mod tools;

@@ -7,7 +7,7 @@ use dqsym::{
 };
 use std::process::Command;
 
-fn load(path: &str) -> Robot {
+pub(crate) fn load(path: &str) -> Robot {
     let text = std::fs::read_to_string(path).expect("robot file");
     parse_robot(&text, path, &eval_scalar_text).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -24,7 +24,7 @@ fn robot_files() -> Vec<String> {
 }
 
 /// The chain with every parameter evaluated at `env`: an f64 chain built without symbols.
-fn numeric_chain(r: &Robot, env: &[(String, f64)]) -> Chain<f64> {
+pub(crate) fn numeric_chain(r: &Robot, env: &[(String, f64)]) -> Chain<f64> {
     let f = |x: &Scalar| ev(x, env);
     let f3 = |v: &[Scalar; 3]| [f(&v[0]), f(&v[1]), f(&v[2])];
     let joints = r
