@@ -6,7 +6,7 @@ use super::codegen::{float_literal, lower, CodegenError, CodegenOptions, Output}
 /// with the same common subexpressions as [`rust_function`](crate::rust_function). A scalar
 /// output is a `double *`, a vector `double name[n]`, a matrix `double name[rows][cols]`. The
 /// text starts with `#include <math.h>`, needs `-lm`, and compiles under
-/// `gcc -std=c99 -Wall -Wextra -Werror`.
+/// `gcc -std=c99 -Wall -Wextra -Werror`. Intermediate outputs are locals, not parameters.
 ///
 /// # Errors
 /// As [`rust_function`](crate::rust_function).

@@ -42,7 +42,7 @@ fn key(name: &str) -> String {
 }
 
 /// Every entry's value at `env`, in order, each evaluated with the ones before it bound.
-fn evaluate(entries: &[(String, Expr)], env: &[(String, f64)]) -> HashMap<String, f64> {
+pub(crate) fn evaluate(entries: &[(String, Expr)], env: &[(String, f64)]) -> HashMap<String, f64> {
     let mut vals: HashMap<String, f64> = env.iter().cloned().collect();
     for (name, e) in entries {
         let v = e
