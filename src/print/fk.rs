@@ -77,6 +77,9 @@ pub enum ReportError {
     /// Code generation refused the outputs.
     #[error(transparent)]
     Codegen(#[from] CodegenError),
+    /// A symbol of the robot is also the name a recurrence gives one of its entries.
+    #[error("symbol `{0}` is also an entry of the recurrence; rename it")]
+    NameClash(String),
 }
 
 /// The report, or why it could not be made.

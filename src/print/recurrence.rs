@@ -42,12 +42,18 @@ pub(crate) type Section = (String, Vec<(String, Expr)>);
 /// `max_terms`).
 ///
 /// # Errors
-/// When an exact operation fails (a size limit or the work budget, say).
+/// When an exact operation fails (a size limit or the work budget, say), or a symbol of the
+/// robot or the point has the name of an entry's symbol (`Q2_3`).
 pub fn fk_recurrence(robot: &Robot, o: &FkOptions) -> Result<Vec<(String, Expr)>, ReportError> {
     Ok(recurrence_sections(robot, o)?
         .into_iter()
         .flat_map(|(_, rows)| rows)
         .collect())
+}
+
+/// The symbol later entries read entry `name` by: `Q2[3]` -> `Q2_3`.
+fn entry_symbol(name: &str) -> String {
+    name.replace("][", "_").replace('[', "_").replace(']', "")
 }
 
 /// A DQ of the symbols `{prefix}_0` .. `{prefix}_7`.
@@ -187,6 +193,18 @@ pub(crate) fn recurrence_sections(
         ));
     }
 
+    // A robot symbol named like an entry (`Q2_3`) would be read as that entry.
+    let point_syms = o.point.iter().flatten().flat_map(|c| c.symbols());
+    let robot_syms = robot.variables.iter().cloned().chain(robot.parameters());
+    for s in robot_syms.chain(point_syms.map(|s| s.name().to_string())) {
+        let clash = sections
+            .iter()
+            .flat_map(|(_, rows)| rows)
+            .any(|(name, _)| entry_symbol(name) == s);
+        if clash {
+            return Err(ReportError::NameClash(s));
+        }
+    }
     let all: Vec<&Scalar> = sections
         .iter()
         .flat_map(|(_, rows)| rows.iter().map(|(_, x)| x))

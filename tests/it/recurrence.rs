@@ -403,3 +403,14 @@ fn recurrence_latex_renders_in_katex() {
         .collect();
     tools::katex_all(&blocks, "the LaTeX of a recurrence");
 }
+
+#[test]
+fn a_robot_symbol_named_like_a_recurrence_entry_is_refused() {
+    let text = "name = \"clash\"\nconvention = \"dh\"\n[[joint]]\ntype = \"revolute\"\ntheta = \"theta1\"\nd = \"Q2_3\"\na = \"1\"\nalpha = \"0\"\n[[joint]]\ntype = \"revolute\"\ntheta = \"theta2\"\nd = \"0\"\na = \"1\"\nalpha = \"0\"\n";
+    let r = dqsym::parse_robot(text, "clash.toml", &dqsym::eval_scalar_text).expect("a robot");
+    let err = fk_recurrence(&r, &forced(ReportFormat::Sympy, some_point())).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "symbol `Q2_3` is also an entry of the recurrence; rename it"
+    );
+}
