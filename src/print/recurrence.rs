@@ -25,11 +25,15 @@
 //!   multiplied out), Q{1} is L{1} and P{n} is L{n}. By the product rule this is
 //!   d (L{1} ... L{n}) / d q_i, exactly the column the expanded Jacobian would give.
 //!
-//! Entry `X[k]` is read by later entries as the symbol `X_k` (`Q2[3]` as `Q2_3`).
+//! Entry `X[k]` is read by later entries as the symbol `X_k` (`Q2[3]` as `Q2_3`), except
+//! that an entry whose value is a constant (the zeros of a planar link) is read as that
+//! constant, so the zeros propagate instead of being multiplied at run time.
 
 use super::fk::{FkOptions, ReportError};
 use crate::scalar::par_map;
 use crate::{closed_form, DualQuat, Expr, Robot, Scalar, ScalarError};
+use std::cell::RefCell;
+use std::collections::HashMap;
 
 /// One titled group of `NAME = EXPR` entries.
 pub(crate) type Section = (String, Vec<(String, Expr)>);
@@ -56,10 +60,30 @@ fn entry_symbol(name: &str) -> String {
     name.replace("][", "_").replace('[', "_").replace(']', "")
 }
 
-/// A DQ of the symbols `{prefix}_0` .. `{prefix}_7`.
-fn syms(prefix: &str) -> DualQuat<Scalar> {
-    let c = |k: usize| Scalar::sym(&format!("{prefix}_{k}"));
+/// The entries whose value is a constant (the zeros of a planar link, say), by symbol: later
+/// entries read the constant instead of the symbol, so the zeros propagate.
+type Known = RefCell<HashMap<String, Scalar>>;
+
+/// A DQ of the symbols `{prefix}_0` .. `{prefix}_7`, or of their constant values.
+fn syms(known: &Known, prefix: &str) -> DualQuat<Scalar> {
+    let known = known.borrow();
+    let c = |k: usize| {
+        let name = format!("{prefix}_{k}");
+        known
+            .get(&name)
+            .cloned()
+            .unwrap_or_else(|| Scalar::sym(&name))
+    };
     DualQuat::from_components([c(0), c(1), c(2), c(3), c(4), c(5), c(6), c(7)])
+}
+
+/// Records the constant entries of `rows` in `known`.
+fn learn(known: &Known, rows: &[(String, Scalar)]) {
+    for (name, x) in rows {
+        if x.symbols().is_empty() && x.as_error().is_none() {
+            known.borrow_mut().insert(entry_symbol(name), x.clone());
+        }
+    }
 }
 
 /// The entries of [`fk_recurrence`] in titled sections, every closed form computed in
@@ -82,18 +106,20 @@ pub(crate) fn recurrence_sections(
     let cols = robot.variables.len().min(n);
     // The prefix product Q{i} and suffix product P{i} as symbols; Q{1} is L{1}, P{n} is L{n},
     // Q{0} and P{n+1} the identity.
+    let known = Known::default();
+    let l = |i: usize| syms(&known, &format!("L{i}"));
     let q = |i: usize| match i {
         0 => DualQuat::identity(),
-        1 => syms("L1"),
-        _ => syms(&format!("Q{i}")),
+        1 => l(1),
+        _ => syms(&known, &format!("Q{i}")),
     };
     let p = |i: usize| {
         if i > n {
             DualQuat::identity()
         } else if i == n {
-            syms(&format!("L{n}"))
+            l(n)
         } else {
-            syms(&format!("P{i}"))
+            syms(&known, &format!("P{i}"))
         }
     };
     let comps = |prefix: &str, d: &DualQuat<Scalar>| -> Vec<(String, Scalar)> {
@@ -115,6 +141,7 @@ pub(crate) fn recurrence_sections(
         .enumerate()
         .flat_map(|(i, f)| comps(&format!("L{}", i + 1), f))
         .collect();
+    learn(&known, &links);
     sections.push((title.to_string(), links));
     if o.jacobian {
         let derivs: Vec<(String, Scalar)> = factors
@@ -129,14 +156,18 @@ pub(crate) fn recurrence_sections(
                     .collect::<Vec<_>>()
             })
             .collect();
+        learn(&known, &derivs);
         sections.push((
             "derivatives dL{i} = d L{i} / d q_i of the joint factors".to_string(),
             derivs,
         ));
     }
-    let steps: Vec<(String, Scalar)> = (2..=n)
-        .flat_map(|i| comps(&format!("Q{i}"), &(q(i - 1) * syms(&format!("L{i}")))))
-        .collect();
+    let mut steps: Vec<(String, Scalar)> = Vec::new();
+    for i in 2..=n {
+        let rows = comps(&format!("Q{i}"), &(q(i - 1) * l(i)));
+        learn(&known, &rows);
+        steps.extend(rows);
+    }
     sections.push((
         "prefix products Q{i} = Q{i-1} L{i}, Q{1} = L{1}".to_string(),
         steps,
@@ -146,10 +177,12 @@ pub(crate) fn recurrence_sections(
         comps("dq", &q(n)),
     ));
     if o.jacobian {
-        let suffix: Vec<(String, Scalar)> = (2..n)
-            .rev()
-            .flat_map(|i| comps(&format!("P{i}"), &(syms(&format!("L{i}")) * p(i + 1))))
-            .collect();
+        let mut suffix: Vec<(String, Scalar)> = Vec::new();
+        for i in (2..n).rev() {
+            let rows = comps(&format!("P{i}"), &(l(i) * p(i + 1)));
+            learn(&known, &rows);
+            suffix.extend(rows);
+        }
         sections.push((
             "suffix products P{i} = L{i} P{i+1}, P{n} = L{n}".to_string(),
             suffix,
@@ -178,7 +211,7 @@ pub(crate) fn recurrence_sections(
     }
     if o.jacobian {
         let columns: Vec<[Scalar; 8]> = (1..=cols)
-            .map(|i| (q(i - 1) * syms(&format!("dL{i}")) * p(i + 1)).components())
+            .map(|i| (q(i - 1) * syms(&known, &format!("dL{i}")) * p(i + 1)).components())
             .collect();
         let mut jac = Vec::new();
         for k in 0..8 {

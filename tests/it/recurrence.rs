@@ -414,3 +414,14 @@ fn a_robot_symbol_named_like_a_recurrence_entry_is_refused() {
         "symbol `Q2_3` is also an entry of the recurrence; rename it"
     );
 }
+
+#[test]
+fn rrr_forced_into_a_recurrence_reads_as_a_recurrence() {
+    // The shape of the report: factors, derivatives, prefix products, the pose, suffix
+    // products, matrix, point and Jacobian, each line over the symbols of the lines before.
+    let r = load(&example("rrr"));
+    let o = forced(ReportFormat::Plain { shorthand: true }, some_point());
+    let text = fk_report(&r, &o).expect("a report");
+    crate::common::snapshot_settings()
+        .bind(|| insta::assert_snapshot!("fk_recurrence_rrr_plain", text));
+}
