@@ -92,7 +92,8 @@ pub enum ReportError {
 /// `Q{i}[k]` of `Q{i} = Q{i-1} L{i}` in the symbols `Q{i-1}_k` and `L{i}_k`; `dq[k]` (the last
 /// Q); with the Jacobian, the suffix products `P{i}[k]` of `P{i} = L{i} P{i+1}`; `T[i][j]` and
 /// `p[i]` in the symbols of the last Q; and `J[k][i-1]`, component k of `Q{i-1} dL{i} P{i+1}`.
-/// Entry `X[k]` is the symbol `X_k` of the entries after it, in every format: SymPy lines stay
+/// Entry `X[k]` is the symbol `X_k` of the entries after it (or its value, when that is a
+/// constant such as the zeros of a planar link), in every format: SymPy lines stay
 /// `NAME = EXPR` with these additional names, and the code formats compute the recurrence as
 /// straight-line code, its entries as locals.
 pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
