@@ -6,7 +6,7 @@ use super::codegen::{float_literal, lower, CodegenError, CodegenOptions, Output}
 /// with the same common subexpressions as [`rust_function`](crate::rust_function). A scalar
 /// output is a `double *`, a vector `double name[n]`, a matrix `double name[rows][cols]`. The
 /// text starts with `#include <math.h>`, needs `-lm`, and compiles under
-/// `gcc -std=c99 -Wall -Wextra -Werror`.
+/// `gcc -std=c99 -Wall -Wextra -Werror`. Intermediate outputs are locals, not parameters.
 ///
 /// # Errors
 /// As [`rust_function`](crate::rust_function).
@@ -25,7 +25,7 @@ pub fn c_function(
         s.push_str(&format!(" * {line}\n").replace(" * \n", " *\n"));
     }
     s.push_str(" *\n");
-    for out in outputs {
+    for out in outputs.iter().filter(|o| !o.intermediate) {
         s.push_str(&format!(" * {}: {}\n", out.name, out.doc));
     }
     s.push_str(&format!(
@@ -33,7 +33,7 @@ pub fn c_function(
         count.trig, count.mul, count.add, count.neg
     ));
     let mut params: Vec<String> = args.iter().map(|a| format!("double {a}")).collect();
-    for out in outputs {
+    for out in outputs.iter().filter(|o| !o.intermediate) {
         params.push(match out.shape {
             None => format!("double *{}", out.name),
             Some((1, n)) => format!("double {}[{n}]", out.name),

@@ -45,6 +45,10 @@ pub struct Output {
     pub shape: Option<(usize, usize)>,
     /// The values, row-major.
     pub values: Vec<Expr>,
+    /// An intermediate result: computed but not returned. Entry `k` is the symbol
+    /// `{name}_{k}` in the outputs after it (a recurrence `Q2 = Q1 L2` reads `Q1_0`, ...), so
+    /// the function evaluates it once, as a local, and never takes it as an argument.
+    pub intermediate: bool,
 }
 
 impl Output {
@@ -55,6 +59,7 @@ impl Output {
             doc: doc.into(),
             shape: None,
             values: vec![e],
+            intermediate: false,
         }
     }
 
@@ -65,7 +70,22 @@ impl Output {
             doc: doc.into(),
             shape: Some((1, v.len())),
             values: v,
+            intermediate: false,
         }
+    }
+
+    /// An intermediate vector (see [`Output::intermediate`](Output#structfield.intermediate)):
+    /// entry `k` is read by later outputs as the symbol `{name}_{k}`.
+    pub fn intermediate(name: &str, doc: &str, v: Vec<Expr>) -> Output {
+        Output {
+            intermediate: true,
+            ..Output::vector(name, doc, v)
+        }
+    }
+
+    /// The symbol later outputs read entry `k` of an intermediate output by.
+    pub fn entry_symbol(&self, k: usize) -> String {
+        format!("{}_{k}", self.name)
     }
 
     /// A matrix result (`[[f64; cols]; rows]`) from its rows.
@@ -76,6 +96,7 @@ impl Output {
             doc: doc.into(),
             shape: Some((rows.len(), cols)),
             values: rows.into_iter().flatten().collect(),
+            intermediate: false,
         }
     }
 }
@@ -96,14 +117,19 @@ pub enum CodegenError {
 }
 
 /// The arguments of a generated function: `joints` in joint order, then every other symbol of
-/// the outputs in alphabetical order (`pi` excluded).
+/// the outputs in alphabetical order (`pi` and the entries of intermediate outputs excluded).
 pub fn arguments(outputs: &[Output], joints: &[&str]) -> Vec<String> {
+    let bound: HashSet<String> = outputs
+        .iter()
+        .filter(|o| o.intermediate)
+        .flat_map(|o| (0..o.values.len()).map(|k| o.entry_symbol(k)))
+        .collect();
     let mut rest: Vec<String> = outputs
         .iter()
         .flat_map(|o| o.values.iter())
         .flat_map(|e| e.to_scalar().symbols())
         .map(|s| s.name().to_string())
-        .filter(|n| n != "pi" && !joints.contains(&n.as_str()))
+        .filter(|n| n != "pi" && !joints.contains(&n.as_str()) && !bound.contains(n))
         .collect();
     rest.sort();
     rest.dedup();
@@ -154,6 +180,7 @@ pub(crate) struct Program {
     pub uses: Vec<usize>,
     /// The temporary's name for nodes read more than once.
     pub temp: HashMap<Id, String>,
+    /// The returned outputs (intermediate ones are only reached through them).
     pub outputs: Vec<(Output, Vec<Id>)>,
 }
 
@@ -168,6 +195,10 @@ struct Builder<'a> {
     step: BTreeMap<Sym, Small>,
     /// `(cos, sin)` of an angle given by integer multiples of the steps.
     trig: HashMap<Vec<(Sym, i64)>, (Id, Id)>,
+    /// The entries of the intermediate outputs lowered so far: their node by symbol, and the
+    /// local's name (`q2_3` for `Q2_3`) in the order they were lowered.
+    bound: HashMap<String, Id>,
+    locals: Vec<(Id, String)>,
 }
 
 fn is_ident(s: &str) -> bool {
@@ -203,6 +234,8 @@ pub(crate) fn lower(
         atom_index: HashMap::new(),
         step: BTreeMap::new(),
         trig: HashMap::new(),
+        bound: HashMap::new(),
+        locals: Vec::new(),
     };
     for out in outputs {
         for e in &out.values {
@@ -216,7 +249,15 @@ pub(crate) fn lower(
             .iter()
             .map(|e| b.expr(e))
             .collect::<Result<Vec<_>, _>>()?;
-        outs.push((out.clone(), ids));
+        if out.intermediate {
+            for (k, id) in ids.into_iter().enumerate() {
+                b.bound.insert(out.entry_symbol(k), id);
+                b.locals
+                    .push((id, out.entry_symbol(k).to_ascii_lowercase()));
+            }
+        } else {
+            outs.push((out.clone(), ids));
+        }
     }
     Ok(b.finish(outs))
 }
@@ -320,6 +361,7 @@ impl Builder<'_> {
             Expr::Num(q) => self.constant(q.to_f64().unwrap_or(f64::NAN)),
             Expr::Sqrt(n) => self.constant((*n as f64).sqrt()),
             Expr::Sym(s) if s.name() == "pi" => self.constant(std::f64::consts::PI),
+            Expr::Sym(s) if self.bound.contains_key(s.name()) => self.bound[s.name()],
             Expr::Sym(s) => {
                 let i = self
                     .args
@@ -553,7 +595,23 @@ impl Builder<'_> {
                 }
             })
             .collect();
-        // A prefix no argument or angle name is the prefix of, followed by digits.
+        // An intermediate entry read more than once is a local named after it (`q2_3`): the
+        // first entry of a node names it, unless an argument or angle took the name.
+        let mut entry_name: HashMap<Id, String> = HashMap::new();
+        for (id, local) in &self.locals {
+            let compound = matches!(
+                self.nodes[*id],
+                Node::Add(..) | Node::Sub(..) | Node::Mul(..) | Node::Neg(_)
+            );
+            if compound
+                && uses[*id] > 1
+                && !entry_name.contains_key(id)
+                && taken.insert(local.clone())
+            {
+                entry_name.insert(*id, local.clone());
+            }
+        }
+        // A prefix no argument, angle or local name is the prefix of, followed by digits.
         let clash = |p: &str| {
             taken.iter().any(|n| {
                 n.strip_prefix(p)
@@ -565,13 +623,18 @@ impl Builder<'_> {
             .find(|p| !clash(p))
             .unwrap_or("dqsym_t");
         let mut temp = HashMap::new();
+        let mut generic = 0;
         for (id, n) in self.nodes.iter().enumerate() {
             let compound = matches!(
                 n,
                 Node::Add(..) | Node::Sub(..) | Node::Mul(..) | Node::Neg(_)
             );
             if compound && uses[id] > 1 {
-                temp.insert(id, format!("{prefix}{}", temp.len()));
+                let name = entry_name.remove(&id).unwrap_or_else(|| {
+                    generic += 1;
+                    format!("{prefix}{}", generic - 1)
+                });
+                temp.insert(id, name);
             }
         }
         Program {

@@ -6,7 +6,7 @@ use super::codegen::{float_literal, lower, CodegenError, CodegenOptions, Output}
 /// `args` with the same common subexpressions as [`rust_function`](crate::rust_function). The
 /// arguments are floats or NumPy arrays, broadcast together to a shape `S`; the function
 /// returns a dict from output name to an array of shape `S` (scalar), `S + (n,)` (vector) or
-/// `S + (rows, cols)` (matrix).
+/// `S + (rows, cols)` (matrix). Intermediate outputs are locals, not in the dict.
 ///
 /// # Errors
 /// As [`rust_function`](crate::rust_function).
@@ -34,7 +34,7 @@ pub fn python_function(
         args.join(", ")
     ));
     s.push_str("    Returns a dict of arrays:\n");
-    for out in outputs {
+    for out in outputs.iter().filter(|o| !o.intermediate) {
         let shape = match out.shape {
             None => "S".to_string(),
             Some((1, n)) => format!("S + ({n},)"),

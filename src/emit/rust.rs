@@ -35,7 +35,9 @@ fn rust_type(o: &Output) -> String {
 /// [`CodegenOptions`]). It returns a struct named after the function in CamelCase with one
 /// public field per output (`f64`, `[f64; n]` or `[[f64; cols]; rows]`). The text needs nothing
 /// but `std` and compiles without warnings under `rustc -D warnings` and clippy; an argument no
-/// output reads is written `_name`.
+/// output reads is written `_name`. An intermediate output (a step of a recurrence, see
+/// [`Output::intermediate()`]) has no field: its entries are locals, named after their symbols
+/// (`q2_3` for `Q2_3`) when read more than once.
 ///
 /// # Errors
 /// When an output reads a symbol that is not an argument, a name is not an identifier, or an
@@ -54,7 +56,7 @@ pub fn rust_function(
     s.push_str(&format!("/// The results of [`{name}`].\n"));
     s.push_str("#[derive(Clone, Copy, Debug, PartialEq)]\n");
     s.push_str(&format!("pub struct {ty} {{\n"));
-    for out in outputs {
+    for out in outputs.iter().filter(|o| !o.intermediate) {
         s.push_str(&format!("    /// {}\n", out.doc));
         s.push_str(&format!("    pub {}: {},\n", out.name, rust_type(out)));
     }

@@ -3,8 +3,11 @@
 //!
 //! Entry names are the same in every format: `dq[k]` (k = 0..7, the components
 //! (w, x, y, z, w_e, x_e, y_e, z_e) of q = r + eps q_e with q_e = t r / 2), `T[i][j]`
-//! (i = 0..2, j = 0..3), `p[i]` and `J[i][j]` (i = 0..7, j = 0..n-1).
+//! (i = 0..2, j = 0..3), `p[i]` and `J[i][j]` (i = 0..7, j = 0..n-1). A recurrence (see
+//! [`fk_report`]) adds the names of its steps, `L{i}[k]`, `dL{i}[k]`, `Q{i}[k]` and `P{i}[k]`,
+//! each read by later entries as the symbol `L{i}_k`, ...
 
+use super::recurrence::recurrence_sections;
 use crate::emit::{
     arguments, c_function, count_ops, generated_ops, latex_aligned, latex_symbol, product_table,
     python_function, rotation_chain_ops, rust_function, sympy, CodegenError, CodegenOptions,
@@ -74,19 +77,25 @@ pub enum ReportError {
     /// Code generation refused the outputs.
     #[error(transparent)]
     Codegen(#[from] CodegenError),
-    /// The expanded form is too large and the format cannot express the recurrence form.
-    #[error("the expanded forward kinematics exceeds {0} terms per entry; only the plain, LaTeX and SymPy formats print it (as a recurrence)")]
-    TooLargeForCode(usize),
+    /// A symbol of the robot is also the name a recurrence gives one of its entries.
+    #[error("symbol `{0}` is also an entry of the recurrence; rename it")]
+    NameClash(String),
 }
 
 /// The report, or why it could not be made.
 ///
 /// When the expanded pose exceeds `max_terms` terms per entry (a long chain with every
-/// parameter symbolic grows exponentially), the pose is reported exactly but as a recurrence:
-/// each joint factor `L{i}[k]` in closed form, then `Q{i}[k]`, the components of
-/// `Q{i} = Q{i-1} L{i}`, as expressions in the symbols `Q{i-1}_k` and `L{i}_k`, then the matrix
-/// and the point in terms of the last `Q{n}_k`. The Jacobian needs the expanded form and is
-/// left out there, with a note.
+/// parameter symbolic grows exponentially: k 4^k terms after k DH links), the report is exact
+/// but a recurrence over the joint factors, linear in the number of joints (see
+/// [`fk_recurrence`](crate::fk_recurrence) for its entries): the joint factors `L{i}[k]` and,
+/// with the Jacobian, their derivatives `dL{i}[k]` in closed form; the prefix products
+/// `Q{i}[k]` of `Q{i} = Q{i-1} L{i}` in the symbols `Q{i-1}_k` and `L{i}_k`; `dq[k]` (the last
+/// Q); with the Jacobian, the suffix products `P{i}[k]` of `P{i} = L{i} P{i+1}`; `T[i][j]` and
+/// `p[i]` in the symbols of the last Q; and `J[k][i-1]`, component k of `Q{i-1} dL{i} P{i+1}`.
+/// Entry `X[k]` is the symbol `X_k` of the entries after it (or its value, when that is a
+/// constant such as the zeros of a planar link), in every format: SymPy lines stay
+/// `NAME = EXPR` with these additional names, and the code formats compute the recurrence as
+/// straight-line code, its entries as locals.
 pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
     let Some(q) = robot.forward_within(o.max_terms) else {
         return recurrence_report(robot, o);
@@ -164,9 +173,9 @@ pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
 }
 
 /// The sections in the chosen format, after `notes` (comment lines in plain and LaTeX).
-fn render(
+fn render<S: AsRef<str>>(
     robot: &Robot,
-    sections: &[(&str, Vec<(String, Expr)>)],
+    sections: &[(S, Vec<(String, Expr)>)],
     format: ReportFormat,
     notes: &[String],
 ) -> Result<String, ReportError> {
@@ -185,7 +194,7 @@ fn render(
                 out.push_str(&format!("# {n}\n"));
             }
             for (title, rows) in sections {
-                out.push_str(&format!("# {title}\n"));
+                out.push_str(&format!("# {}\n", title.as_ref()));
                 for (n, e) in rows {
                     out.push_str(&format!("{n} = {}\n", plain(e, &po)));
                 }
@@ -210,7 +219,7 @@ fn render(
                 out.push_str(&format!("% {n}\n"));
             }
             for (title, rows) in sections {
-                out.push_str(&format!("% {title}\n"));
+                out.push_str(&format!("% {}\n", title.as_ref()));
                 let rows: Vec<(String, Expr)> = rows
                     .iter()
                     .map(|(n, e)| (latex_name(n), e.clone()))
@@ -225,117 +234,65 @@ fn render(
 
 /// The pose as a recurrence over the joint factors (see [`fk_report`]).
 fn recurrence_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
-    if matches!(
-        o.format,
-        ReportFormat::Rust | ReportFormat::C | ReportFormat::Python
-    ) {
-        return Err(ReportError::TooLargeForCode(o.max_terms));
-    }
-    let syms = |prefix: &str| -> DualQuat<Scalar> {
-        let c = |k: usize| Scalar::sym(&format!("{prefix}_{k}"));
-        DualQuat::from_components([c(0), c(1), c(2), c(3), c(4), c(5), c(6), c(7)])
-    };
-    let factors = robot.joint_dqs();
-    let n = factors.len();
-    let mut links = Vec::new();
-    for (i, f) in factors.iter().enumerate() {
-        for (k, c) in f.components().iter().enumerate() {
-            links.push((format!("L{}[{k}]", i + 1), closed_form(c)?));
-        }
-    }
-    let mut steps = Vec::new();
-    for i in 2..=n {
-        let prev = if i == 2 {
-            syms("L1")
-        } else {
-            syms(&format!("Q{}", i - 1))
-        };
-        let prod = prev * syms(&format!("L{i}"));
-        for (k, c) in prod.components().iter().enumerate() {
-            steps.push((format!("Q{i}[{k}]"), closed_form(c)?));
-        }
-    }
-    let last = if n <= 1 {
-        syms("L1")
-    } else {
-        syms(&format!("Q{n}"))
-    };
-    let mut sections: Vec<(&str, Vec<(String, Expr)>)> = vec![
-        ("joint factors L{i} (unit DQs)", links),
-        (
-            "Q{i} = Q{i-1} L{i}, Q{1} = L{1}; the pose is the last Q",
-            steps,
-        ),
-    ];
-    let m = last.to_matrix();
-    let mut t = Vec::new();
-    for i in 0..3 {
-        for j in 0..4 {
-            t.push((format!("T[{i}][{j}]"), closed_form(&m.rows[i][j])?));
-        }
-    }
-    sections.push(("homogeneous matrix (rows 0..2) of the last Q", t));
-    if let Some(p) = &o.point {
-        let img = last.transform_point(p);
-        let mut ps = Vec::new();
-        for (k, c) in img.iter().enumerate() {
-            ps.push((format!("p[{k}]"), closed_form(c)?));
-        }
-        sections.push(("image of the point", ps));
-    }
-    let mut notes = vec![format!(
-        "the expanded pose exceeds {} terms per entry: it is given exactly, as a recurrence over the joint factors",
+    let sections = recurrence_sections(robot, o)?;
+    let notes = [format!(
+        "the expanded pose exceeds {} terms per entry: it is given exactly, as a recurrence over the joint factors (entry X[k] is the symbol X_k of later entries)",
         o.max_terms
     )];
-    if o.jacobian {
-        notes.push("the Jacobian needs the expanded pose and is not printed".to_string());
-    }
     render(robot, &sections, o.format, &notes)
 }
 
 /// The report's sections as one generated function: `dq` (8), `t` (3 x 4), `p` (3) and `j`
 /// (8 x n), arguments the joint variables in joint order, then the parameters alphabetically.
-fn code(
+/// The entries of a recurrence (`L1[k]`, `Q2[k]`, ...) are intermediate outputs: locals the
+/// function computes in order, each read by the later ones as the symbol `L1_k`, `Q2_k`.
+fn code<S>(
     robot: &Robot,
-    sections: &[(&str, Vec<(String, Expr)>)],
+    sections: &[(S, Vec<(String, Expr)>)],
     f: ReportFormat,
 ) -> Result<String, CodegenError> {
     let n = robot.variables.len();
-    let exprs = |k: usize| -> Vec<Expr> {
-        sections
-            .get(k)
-            .map(|(_, r)| r.iter().map(|(_, e)| e.clone()).collect())
-            .unwrap_or_default()
-    };
-    let mut outputs = vec![
-        Output::vector(
-            "dq",
-            "Unit dual quaternion (w, x, y, z, w_e, x_e, y_e, z_e), q = r + eps t r / 2.",
-            exprs(0),
-        ),
-        Output::matrix(
-            "t",
-            "Homogeneous matrix, rows 0..2 (the last row is 0 0 0 1).",
-            exprs(1).chunks(4).map(<[Expr]>::to_vec).collect(),
-        ),
-    ];
-    for (title, rows) in &sections[2..] {
-        let v: Vec<Expr> = rows.iter().map(|(_, e)| e.clone()).collect();
-        if title.starts_with("image") {
-            outputs.push(Output::vector("p", "Image of the point.", v));
-        } else {
-            outputs.push(Output::matrix(
+    // Consecutive entries with one base name (`T` of `T[1][2]`) make one output.
+    let mut groups: Vec<(&str, Vec<Expr>)> = Vec::new();
+    for (name, e) in sections.iter().flat_map(|(_, rows)| rows) {
+        let base = name.split_once('[').map_or(name.as_str(), |(b, _)| b);
+        match groups.last_mut() {
+            Some((b, v)) if *b == base => v.push(e.clone()),
+            _ => groups.push((base, vec![e.clone()])),
+        }
+    }
+    let outputs: Vec<Output> = groups
+        .into_iter()
+        .map(|(base, v)| match base {
+            "dq" => Output::vector(
+                "dq",
+                "Unit dual quaternion (w, x, y, z, w_e, x_e, y_e, z_e), q = r + eps t r / 2.",
+                v,
+            ),
+            "T" => Output::matrix(
+                "t",
+                "Homogeneous matrix, rows 0..2 (the last row is 0 0 0 1).",
+                v.chunks(4).map(<[Expr]>::to_vec).collect(),
+            ),
+            "p" => Output::vector("p", "Image of the point.", v),
+            "J" => Output::matrix(
                 "j",
                 "Jacobian d dq[i] / d q[j] (8 x n).",
                 v.chunks(n.max(1)).map(<[Expr]>::to_vec).collect(),
-            ));
-        }
-    }
+            ),
+            other => Output::intermediate(other, "A step of the recurrence.", v),
+        })
+        .collect();
     let joints: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
     let args = arguments(&outputs, &joints);
     let name = snake(&robot.name);
+    let form = if outputs.iter().any(|o| o.intermediate) {
+        "its closed form, a recurrence over the joint factors"
+    } else {
+        "its closed form"
+    };
     let doc = format!(
-        "Forward kinematics of {} (generated by dqsym from its closed form).",
+        "Forward kinematics of {} (generated by dqsym from {form}).",
         robot.name
     );
     let o = CodegenOptions::default();
@@ -368,8 +325,12 @@ fn code(
                 dq.mul * n.saturating_sub(1),
                 dq.add * n.saturating_sub(1)
             ));
+            let dq_end = outputs
+                .iter()
+                .position(|o| o.name == "dq")
+                .map_or(outputs.len(), |i| i + 1);
             for (label, outs) in [
-                ("generated code, DQ only", &outputs[..1]),
+                ("generated code, DQ only", &outputs[..dq_end]),
                 ("generated code, all outputs", &outputs[..]),
             ] {
                 let c = generated_ops(outs, &args, &o)?;
@@ -425,15 +386,16 @@ fn header(robot: &Robot) -> String {
     )
 }
 
-/// `T[1][2]` -> `T_{1,2}`, `dq[3]` -> `q_{3}` style subscripts.
+/// `T[1][2]` -> `T_{1,2}`, `dq[3]` -> `q_{3}` style subscripts; `Q2[3]` like the symbol `Q2_3`.
 fn latex_name(n: &str) -> String {
     let (base, rest) = n.split_once('[').unwrap_or((n, ""));
     let idx: Vec<&str> = rest.split(['[', ']']).filter(|s| !s.is_empty()).collect();
-    let base = match base {
-        "dq" => "q".to_string(),
-        b => latex_symbol(b),
-    };
-    format!("{base}_{{{}}}", idx.join(","))
+    match base {
+        "dq" => format!("q_{{{}}}", idx.join(",")),
+        "T" | "p" | "J" => format!("{}_{{{}}}", latex_symbol(base), idx.join(",")),
+        // A recurrence entry `Q2[3]` is written as its symbol `Q2_3` is in later entries.
+        b => latex_symbol(&format!("{b}_{}", idx.join("_"))),
+    }
 }
 
 /// Tables 1 and 2 of the paper, counted by running each product (with the corrections of

@@ -49,18 +49,27 @@ fn rrr_outputs() -> Vec<Output> {
     ]
 }
 
-/// Random points for `args`, and the expected outputs there from `Scalar::eval`, flattened.
+/// Random points for `args`, and the expected returned outputs there from `Scalar::eval`,
+/// flattened; an intermediate output's entries are bound to their symbols for the later ones.
 fn expected(outputs: &[Output], args: &[String]) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
     let names: Vec<&str> = args.iter().map(String::as_str).collect();
     let pts = points(&names, 6);
     let want = pts
         .iter()
         .map(|env| {
-            outputs
-                .iter()
-                .flat_map(|o| o.values.iter())
-                .map(|e| ev(&e.to_scalar(), env))
-                .collect()
+            let mut env = env.clone();
+            let mut want = Vec::new();
+            for o in outputs {
+                for (k, e) in o.values.iter().enumerate() {
+                    let v = ev(&e.to_scalar(), &env);
+                    if o.intermediate {
+                        env.push((o.entry_symbol(k), v));
+                    } else {
+                        want.push(v);
+                    }
+                }
+            }
+            want
         })
         .collect();
     let pts = pts
@@ -101,7 +110,11 @@ fn compare(what: &str, out: &str, want: &[Vec<f64>]) {
 fn check_rust(name: &str, outputs: &[Output], args: &[String], o: &CodegenOptions) {
     let code = rust_function(name, "Generated for a test.", outputs, args, o).expect("codegen");
     let call: Vec<String> = (0..args.len()).map(|i| format!("v[{i}]")).collect();
-    let fields: Vec<String> = outputs.iter().map(|o| format!("r.{}", o.name)).collect();
+    let fields: Vec<String> = outputs
+        .iter()
+        .filter(|o| !o.intermediate)
+        .map(|o| format!("r.{}", o.name))
+        .collect();
     let fmt = vec!["{:?}"; fields.len()].join(" ");
     let main = format!(
         "\nfn main() {{\n    let mut s = String::new();\n    std::io::Read::read_to_string(&mut std::io::stdin(), &mut s).unwrap();\n    for line in s.lines() {{\n        let v: Vec<f64> = line.split_whitespace().map(|x| x.parse().unwrap()).collect();\n        let r = {name}({});\n        println!(\"{fmt}\", {});\n    }}\n}}\n",
@@ -159,7 +172,7 @@ fn check_c(name: &str, outputs: &[Output], args: &[String]) {
     let mut decl = String::new();
     let mut outs = Vec::new();
     let mut prints = String::new();
-    for o in outputs {
+    for o in outputs.iter().filter(|o| !o.intermediate) {
         match o.shape {
             None => {
                 decl.push_str(&format!("        double {};\n", o.name));
@@ -215,7 +228,11 @@ pub(crate) fn check_python(name: &str, outputs: &[Output], args: &[String]) {
         &Default::default(),
     )
     .expect("codegen");
-    let names: Vec<String> = outputs.iter().map(|o| format!("{:?}", o.name)).collect();
+    let names: Vec<String> = outputs
+        .iter()
+        .filter(|o| !o.intermediate)
+        .map(|o| format!("{:?}", o.name))
+        .collect();
     // All points in one vectorized call: each argument is the column of its values.
     let driver = format!(
         "\nimport sys\ndata = np.loadtxt(sys.stdin, ndmin=2)\nr = {name}(*data.T)\nfor i in range(data.shape[0]):\n    print(' '.join(repr(float(x)) for k in [{}] for x in np.ravel(r[k][i])))\n",
@@ -362,4 +379,42 @@ fn bench_generated_puma560_is_up_to_date() {
         have == want,
         "benches/generated/puma560_dq.rs is out of date: rerun with DQSYM_BLESS=1 to rewrite it"
     );
+}
+
+#[test]
+fn intermediate_outputs_are_locals_that_later_outputs_read_by_symbol() {
+    // A two-step recurrence: A from the arguments, B from A's entries, the results from both.
+    let th = sym("theta");
+    let a = vec![
+        closed(&(cos(&th) * sym("x"))),
+        closed(&(sin(&th) + sym("x") * sym("y"))),
+    ];
+    let b = vec![
+        closed(&(sym("A_0") * sym("A_1") + sym("A_0"))),
+        closed(&(sym("A_0") - sym("A_1"))),
+    ];
+    let r = vec![
+        closed(&(sym("B_0") * sym("B_1") + sym("A_0"))),
+        closed(&(sym("B_0") * sym("B_0"))),
+    ];
+    let outs = vec![
+        Output::intermediate("A", "First step.", a),
+        Output::intermediate("B", "Second step.", b),
+        Output::vector("r", "The results.", r),
+    ];
+    let args = arguments(&outs, &["theta"]);
+    assert_eq!(
+        args,
+        ["theta", "x", "y"],
+        "entries of A and B are not arguments"
+    );
+    let code = rust_function("steps", "Steps.", &outs, &args, &Default::default()).unwrap();
+    assert!(
+        code.contains("    let a_0 = ") && code.contains("    let b_0 = "),
+        "{code}"
+    );
+    assert!(!code.contains("pub a:") && !code.contains("A_0"), "{code}");
+    check_rust("steps", &outs, &args, &CodegenOptions::default());
+    check_c("steps", &outs, &args);
+    check_python("steps", &outs, &args);
 }

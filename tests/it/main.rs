@@ -16,6 +16,7 @@ mod paper_support;
 mod parse;
 mod props;
 mod quotients;
+mod recurrence;
 mod robots;
 mod scalar;
 mod tools;

@@ -7,7 +7,7 @@ use dqsym::{
 };
 use std::process::Command;
 
-fn load(path: &str) -> Robot {
+pub(crate) fn load(path: &str) -> Robot {
     let text = std::fs::read_to_string(path).expect("robot file");
     parse_robot(&text, path, &eval_scalar_text).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -24,7 +24,7 @@ fn robot_files() -> Vec<String> {
 }
 
 /// The chain with every parameter evaluated at `env`: an f64 chain built without symbols.
-fn numeric_chain(r: &Robot, env: &[(String, f64)]) -> Chain<f64> {
+pub(crate) fn numeric_chain(r: &Robot, env: &[(String, f64)]) -> Chain<f64> {
     let f = |x: &Scalar| ev(x, env);
     let f3 = |v: &[Scalar; 3]| [f(&v[0]), f(&v[1]), f(&v[2])];
     let joints = r
@@ -300,6 +300,7 @@ fn chain_of_20_symbolic_joints_is_reported_as_an_exact_recurrence() {
     let o = dqsym::FkOptions {
         format: dqsym::ReportFormat::Sympy,
         max_terms: 2_000,
+        jacobian: true,
         ..dqsym::FkOptions::default()
     };
     let text = dqsym::fk_report(&r, &o).expect("a report");
@@ -321,11 +322,8 @@ for line in sys.stdin:
     name, expr = line.rstrip("\n").split(" = ", 1)
     e = sympy.sympify(expr)
     v = float(e.xreplace({{s: sympy.Float(env[s.name], 30) for s in e.free_symbols}}).evalf(30))
-    key = name.replace("[", "_").replace("]", "")
-    if key.startswith(("L", "Q")):
-        key = key.rstrip("_")
-    env[key] = v
-    if name.startswith("T["):
+    env[name.replace("[", "_").replace("]", "")] = v
+    if name.startswith(("T[", "J[")):
         print(name, repr(v))
 "#,
         vals.join(", ")
@@ -343,10 +341,23 @@ for line in sys.stdin:
         })
         .collect();
     let want = num.forward_matrix(&q).expect("joint count");
+    // The Jacobian against the recurrence's own entries in f64 (which a test checks against
+    // finite differences).
+    let vals = crate::recurrence::evaluate(&dqsym::fk_recurrence(&r, &o).expect("entries"), &env);
     let mut seen = 0;
     for line in out.lines() {
         let (name, v) = line.split_once(' ').expect("name value");
         let v: f64 = v.parse().expect("f64");
+        if name.starts_with("J[") {
+            let key = name.replace("][", "_").replace('[', "_").replace(']', "");
+            let want = vals[&key];
+            assert!(
+                (v - want).abs() <= 1e-9 * (1.0 + want.abs()),
+                "{name}: {v} != {want}"
+            );
+            seen += 1;
+            continue;
+        }
         let i: usize = name[2..3].parse().expect("row");
         let j: usize = name[5..6].parse().expect("column");
         assert!(
@@ -356,5 +367,5 @@ for line in sys.stdin:
         );
         seen += 1;
     }
-    assert_eq!(seen, 12);
+    assert_eq!(seen, 12 + 8 * 20);
 }

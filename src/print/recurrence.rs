@@ -1,0 +1,258 @@
+//! The forward kinematics of a long symbolic chain, exactly, as a recurrence over the joint
+//! factors (the form `dqsym fk` takes when the expanded pose exceeds its term budget).
+//!
+//! Expanding the product of n DH links with every parameter symbolic is hopeless: the largest
+//! DQ component of the product of the first k links has exactly k 4^k terms (4, 32, 192, 1,024,
+//! 5,120, 24,576, 114,688 for k = 1..7, measured, and checked for k <= 5 by the test
+//! `symbolic_chain_expansion_has_k_times_4_to_the_k_terms`), about 2.2e13 for k = 20. The
+//! recurrence is linear in n instead: each line is a closed form over the joint parameters or
+//! over the symbols of the lines before it.
+//!
+//! The entries, in the order of evaluation (i = 1..n is the joint, k = 0..7 the DQ component):
+//!
+//! - `L{i}[k]`: the joint factor L{i} at its symbolic variable (the last one times the tool
+//!   motion of the chain, when it has one), in closed form over the robot's symbols.
+//! - `dL{i}[k]` (with the Jacobian): d L{i} / d q_i, in closed form (revolute, prismatic, any
+//!   convention: it is the derivative of the closed form).
+//! - `Q{i}[k]`, i = 2..n: the prefix products `Q{i} = Q{i-1} L{i}` (Q{1} = L{1}), as
+//!   expressions in the symbols `Q{i-1}_k` and `L{i}_k`.
+//! - `dq[k]`: the pose, `Q{n}_k`.
+//! - `P{i}[k]`, i = n-1 down to 2 (with the Jacobian): the suffix products
+//!   `P{i} = L{i} P{i+1}` (P{n} = L{n}) in the symbols `L{i}_k` and `P{i+1}_k`.
+//! - `T[i][j]` and `p[i]`: the matrix and the image of the point, in the symbols `Q{n}_k`.
+//! - `J[k][i-1]` (with the Jacobian): component k of `Q{i-1} dL{i} P{i+1}` in the symbols
+//!   `Q{i-1}_k`, `dL{i}_k` and `P{i+1}_k`, where Q{0} and P{n+1} are the identity (and are
+//!   multiplied out), Q{1} is L{1} and P{n} is L{n}. By the product rule this is
+//!   d (L{1} ... L{n}) / d q_i, exactly the column the expanded Jacobian would give.
+//!
+//! Entry `X[k]` is read by later entries as the symbol `X_k` (`Q2[3]` as `Q2_3`), except
+//! that an entry whose value is a constant (the zeros of a planar link) is read as that
+//! constant, so the zeros propagate instead of being multiplied at run time.
+
+use super::fk::{FkOptions, ReportError};
+use crate::scalar::par_map;
+use crate::{closed_form, DualQuat, Expr, Robot, Scalar, ScalarError};
+use std::cell::RefCell;
+use std::collections::HashMap;
+
+/// One titled group of `NAME = EXPR` entries.
+pub(crate) type Section = (String, Vec<(String, Expr)>);
+
+/// The forward kinematics of `robot` as a recurrence (see the module documentation): every
+/// entry in the order of evaluation, named as in the report (`L1[0]`, `Q2[3]`, `dq[0]`,
+/// `T[0][3]`, `J[7][19]`, ...). Entry `X[k]` appears in later entries as the symbol `X_k`.
+/// The point and the Jacobian follow `o.point` and `o.jacobian`; `o.max_terms` and the format
+/// are ignored ([`fk_report`](crate::fk_report) prints this when the expansion exceeds
+/// `max_terms`).
+///
+/// # Errors
+/// When an exact operation fails (a size limit or the work budget, say), or a symbol of the
+/// robot or the point has the name of an entry's symbol (`Q2_3`).
+pub fn fk_recurrence(robot: &Robot, o: &FkOptions) -> Result<Vec<(String, Expr)>, ReportError> {
+    Ok(recurrence_sections(robot, o)?
+        .into_iter()
+        .flat_map(|(_, rows)| rows)
+        .collect())
+}
+
+/// The symbol later entries read entry `name` by: `Q2[3]` -> `Q2_3`.
+fn entry_symbol(name: &str) -> String {
+    name.replace("][", "_").replace('[', "_").replace(']', "")
+}
+
+/// The entries whose value is a constant (the zeros of a planar link, say), by symbol: later
+/// entries read the constant instead of the symbol, so the zeros propagate.
+type Known = RefCell<HashMap<String, Scalar>>;
+
+/// A DQ of the symbols `{prefix}_0` .. `{prefix}_7`, or of their constant values.
+fn syms(known: &Known, prefix: &str) -> DualQuat<Scalar> {
+    let known = known.borrow();
+    let c = |k: usize| {
+        let name = format!("{prefix}_{k}");
+        known
+            .get(&name)
+            .cloned()
+            .unwrap_or_else(|| Scalar::sym(&name))
+    };
+    DualQuat::from_components([c(0), c(1), c(2), c(3), c(4), c(5), c(6), c(7)])
+}
+
+/// Records the constant entries of `rows` in `known`.
+fn learn(known: &Known, rows: &[(String, Scalar)]) {
+    for (name, x) in rows {
+        if x.symbols().is_empty() && x.as_error().is_none() {
+            known.borrow_mut().insert(entry_symbol(name), x.clone());
+        }
+    }
+}
+
+/// The entries of [`fk_recurrence`] in titled sections, every closed form computed in
+/// parallel.
+pub(crate) fn recurrence_sections(
+    robot: &Robot,
+    o: &FkOptions,
+) -> Result<Vec<Section>, ReportError> {
+    let mut factors = robot.joint_dqs();
+    let tool = &robot.chain.tool;
+    let has_tool = *tool != DualQuat::identity();
+    if has_tool {
+        match factors.last_mut() {
+            Some(last) => *last = last.clone() * tool.clone(),
+            None => factors.push(tool.clone()),
+        }
+    }
+    let n = factors.len();
+    // Columns of the Jacobian: one per joint variable (a tool-only chain has none).
+    let cols = robot.variables.len().min(n);
+    // The prefix product Q{i} and suffix product P{i} as symbols; Q{1} is L{1}, P{n} is L{n},
+    // Q{0} and P{n+1} the identity.
+    let known = Known::default();
+    let l = |i: usize| syms(&known, &format!("L{i}"));
+    let q = |i: usize| match i {
+        0 => DualQuat::identity(),
+        1 => l(1),
+        _ => syms(&known, &format!("Q{i}")),
+    };
+    let p = |i: usize| {
+        if i > n {
+            DualQuat::identity()
+        } else if i == n {
+            l(n)
+        } else {
+            syms(&known, &format!("P{i}"))
+        }
+    };
+    let comps = |prefix: &str, d: &DualQuat<Scalar>| -> Vec<(String, Scalar)> {
+        d.components()
+            .into_iter()
+            .enumerate()
+            .map(|(k, c)| (format!("{prefix}[{k}]"), c))
+            .collect()
+    };
+
+    let mut sections: Vec<(String, Vec<(String, Scalar)>)> = Vec::new();
+    let title = if has_tool {
+        "joint factors L{i} (unit DQs; the last one times the tool)"
+    } else {
+        "joint factors L{i} (unit DQs)"
+    };
+    let links: Vec<(String, Scalar)> = factors
+        .iter()
+        .enumerate()
+        .flat_map(|(i, f)| comps(&format!("L{}", i + 1), f))
+        .collect();
+    learn(&known, &links);
+    sections.push((title.to_string(), links));
+    if o.jacobian {
+        let derivs: Vec<(String, Scalar)> = factors
+            .iter()
+            .zip(&robot.variables)
+            .enumerate()
+            .flat_map(|(i, (f, v))| {
+                f.components()
+                    .iter()
+                    .enumerate()
+                    .map(|(k, c)| (format!("dL{}[{k}]", i + 1), c.diff(v)))
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        learn(&known, &derivs);
+        sections.push((
+            "derivatives dL{i} = d L{i} / d q_i of the joint factors".to_string(),
+            derivs,
+        ));
+    }
+    let mut steps: Vec<(String, Scalar)> = Vec::new();
+    for i in 2..=n {
+        let rows = comps(&format!("Q{i}"), &(q(i - 1) * l(i)));
+        learn(&known, &rows);
+        steps.extend(rows);
+    }
+    sections.push((
+        "prefix products Q{i} = Q{i-1} L{i}, Q{1} = L{1}".to_string(),
+        steps,
+    ));
+    sections.push((
+        "unit dual quaternion (w, x, y, z, w_e, x_e, y_e, z_e): the last Q".to_string(),
+        comps("dq", &q(n)),
+    ));
+    if o.jacobian {
+        let mut suffix: Vec<(String, Scalar)> = Vec::new();
+        for i in (2..n).rev() {
+            let rows = comps(&format!("P{i}"), &(l(i) * p(i + 1)));
+            learn(&known, &rows);
+            suffix.extend(rows);
+        }
+        sections.push((
+            "suffix products P{i} = L{i} P{i+1}, P{n} = L{n}".to_string(),
+            suffix,
+        ));
+    }
+    let last = q(n);
+    let m = last.to_matrix();
+    let mut t = Vec::new();
+    for i in 0..3 {
+        for j in 0..4 {
+            t.push((format!("T[{i}][{j}]"), m.rows[i][j].clone()));
+        }
+    }
+    sections.push((
+        "homogeneous matrix (rows 0..2) of the last Q".to_string(),
+        t,
+    ));
+    if let Some(pt) = &o.point {
+        let img = last.transform_point(pt);
+        let ps = img
+            .into_iter()
+            .enumerate()
+            .map(|(k, c)| (format!("p[{k}]"), c))
+            .collect();
+        sections.push(("image of the point".to_string(), ps));
+    }
+    if o.jacobian {
+        let columns: Vec<[Scalar; 8]> = (1..=cols)
+            .map(|i| (q(i - 1) * syms(&known, &format!("dL{i}")) * p(i + 1)).components())
+            .collect();
+        let mut jac = Vec::new();
+        for k in 0..8 {
+            for (j, c) in columns.iter().enumerate() {
+                jac.push((format!("J[{k}][{j}]"), c[k].clone()));
+            }
+        }
+        sections.push((
+            "Jacobian d dq[k] / d q[i-1]: component k of Q{i-1} dL{i} P{i+1}, Q{0} = P{n+1} = 1"
+                .to_string(),
+            jac,
+        ));
+    }
+
+    // A robot symbol named like an entry (`Q2_3`) would be read as that entry.
+    let point_syms = o.point.iter().flatten().flat_map(|c| c.symbols());
+    let robot_syms = robot.variables.iter().cloned().chain(robot.parameters());
+    for s in robot_syms.chain(point_syms.map(|s| s.name().to_string())) {
+        let clash = sections
+            .iter()
+            .flat_map(|(_, rows)| rows)
+            .any(|(name, _)| entry_symbol(name) == s);
+        if clash {
+            return Err(ReportError::NameClash(s));
+        }
+    }
+    let all: Vec<&Scalar> = sections
+        .iter()
+        .flat_map(|(_, rows)| rows.iter().map(|(_, x)| x))
+        .collect();
+    let mut forms = par_map(&all, |x| closed_form(x)).into_iter();
+    sections
+        .into_iter()
+        .map(|(title, rows)| {
+            // `forms` holds one closed form per entry, in the same order.
+            let rows = rows
+                .into_iter()
+                .zip(forms.by_ref())
+                .map(|((name, _), e)| Ok((name, e?)))
+                .collect::<Result<Vec<_>, ScalarError>>()?;
+            Ok((title, rows))
+        })
+        .collect()
+}
