@@ -369,3 +369,101 @@ for line in sys.stdin:
     }
     assert_eq!(seen, 12 + 8 * 20);
 }
+
+#[test]
+fn generic_6r_pose_as_a_cos_sin_polynomial_matches_plain_matrix_products() {
+    // Every DH parameter symbolic: the Fourier form of the pose has about 300,000 terms, the
+    // cos/sin polynomial 1,595 monomials (the form SymEngine expands to; bench W3).
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/generic_6r.toml");
+    let r = load(file);
+    assert!(
+        r.forward_within(5_000).is_none(),
+        "the Fourier form explodes"
+    );
+    let m = r
+        .forward_matrix_cos_sin(5_000)
+        .expect("the cos/sin polynomial fits");
+    let monomials: usize = m.rows[..3].iter().flatten().map(Scalar::len).sum();
+    assert!(monomials < 2_000, "{monomials} monomials");
+    let forms: Vec<Vec<dqsym::Expr>> = (0..3)
+        .map(|i| {
+            (0..4)
+                .map(|j| dqsym::closed_form_cos_sin(&m.rows[i][j]).expect("closed form"))
+                .collect()
+        })
+        .collect();
+    let ops: usize = forms.iter().flatten().map(|e| e.cost().ops).sum();
+    let expanded: usize = m.rows[..3]
+        .iter()
+        .flatten()
+        .map(|x| {
+            dqsym::expanded_form(x)
+                .expect("expanded")
+                .with_placeholders_as_trig()
+                .cost()
+                .ops
+        })
+        .sum();
+    assert!(
+        ops * 2 < expanded,
+        "closed form {ops} ops, expanded {expanded}"
+    );
+    let mut names: Vec<String> = r.variables.clone();
+    names.extend(r.parameters());
+    let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+    for env in points(&refs, 3) {
+        let num = numeric_chain(&r, &env);
+        let qs: Vec<f64> = r
+            .variables
+            .iter()
+            .map(|v| {
+                env.iter()
+                    .find(|(k, _)| k == v)
+                    .map(|(_, x)| *x)
+                    .unwrap_or(0.0)
+            })
+            .collect();
+        let want = num.forward_matrix(&qs).expect("joint count");
+        let value = |n: &str| -> Option<f64> {
+            if let Some((x, sin)) = dqsym::parse_trig_placeholder(n) {
+                let v = env.iter().find(|(k, _)| k == x)?.1;
+                return Some(if sin { v.sin() } else { v.cos() });
+            }
+            env.iter().find(|(k, _)| k == n).map(|(_, v)| *v)
+        };
+        let pairs: Vec<(&str, f64)> = env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        for i in 0..3 {
+            for j in 0..4 {
+                let poly = m.rows[i][j].eval(&value).expect("bound");
+                let closed = forms[i][j].value_at(&pairs).expect("bound");
+                let w = want.rows[i][j];
+                assert!(
+                    (poly - w).abs() < 1e-9,
+                    "T[{i}][{j}] polynomial {poly} != {w}"
+                );
+                assert!(
+                    (closed - w).abs() < 1e-9,
+                    "T[{i}][{j}] closed form {closed} != {w}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn cos_sin_polynomial_of_the_puma_pose_is_the_fourier_pose() {
+    // Both forms of the same matrix: the polynomial, read back with cos/sin of the angles,
+    // is exactly the canonical Fourier form.
+    let r = load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/robots/puma560.toml"
+    ));
+    let fourier = r.forward_matrix();
+    let poly = r.forward_matrix_cos_sin(5_000).expect("fits");
+    for i in 0..3 {
+        for j in 0..4 {
+            let e = dqsym::closed_form_cos_sin(&poly.rows[i][j]).expect("closed form");
+            assert_eq!(e.to_scalar(), fourier.rows[i][j], "T[{i}][{j}]");
+        }
+    }
+}
