@@ -432,10 +432,10 @@ fn generic_6r_pose_as_a_cos_sin_polynomial_matches_plain_matrix_products() {
             env.iter().find(|(k, _)| k == n).map(|(_, v)| *v)
         };
         let pairs: Vec<(&str, f64)> = env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-        for i in 0..3 {
-            for j in 0..4 {
+        for (i, row) in forms.iter().enumerate() {
+            for (j, form) in row.iter().enumerate() {
                 let poly = m.rows[i][j].eval(&value).expect("bound");
-                let closed = forms[i][j].value_at(&pairs).expect("bound");
+                let closed = form.value_at(&pairs).expect("bound");
                 let w = want.rows[i][j];
                 assert!(
                     (poly - w).abs() < 1e-9,
