@@ -12,8 +12,8 @@ mod walk;
 
 pub use algebra::{DualNumber, DualQuat, Matrix4, Quat, UnitConstraints};
 pub use closed::{
-    closed_form, closed_form_cos_sin, closed_form_traced, expanded_form, Angle, Cost, Expr,
-    Identity, TraceStep,
+    closed_form, closed_form_cos_sin, closed_form_of_derivative, closed_form_prepared,
+    closed_form_traced, expanded_form, Angle, Cost, Expr, Identity, Prepared, TraceStep,
 };
 pub use emit::{
     arguments, c_function, count_ops, generated_ops, latex, latex_aligned, latex_dual_quat,

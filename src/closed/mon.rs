@@ -24,7 +24,7 @@ pub(crate) type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
 
 /// An angle as a hash key: hashes the symbol names and the (always reduced) coefficients
 /// directly, which is much cheaper than the generic `Ratio` hash.
-#[derive(PartialEq, Eq)]
+#[derive(PartialEq, Eq, Clone)]
 struct AngleKey(Angle);
 
 impl Hash for AngleKey {
@@ -60,7 +60,7 @@ pub(crate) fn is_sin(a: Atom) -> bool {
 }
 
 /// The interned angles and symbols of one closed-form computation.
-#[derive(Default)]
+#[derive(Default, Clone)]
 pub(crate) struct Ctx {
     /// The angles; after [`Ctx::renumber`] sorted, so an id is its angle's rank.
     pub(crate) angles: Vec<Angle>,
@@ -132,6 +132,58 @@ impl Ctx {
         // Every symbol of the input is in the table.
         self.syms.binary_search(s).unwrap_or(0) as u32
     }
+}
+
+/// The derivative of the sum of `mons` with respect to the symbol `var`, unmerged: for each
+/// factor holding `var`, the monomial with that factor differentiated (product rule).
+pub(crate) fn differentiate(ctx: &Ctx, mons: &[Mon], var: &str) -> Vec<Mon> {
+    let sym = ctx
+        .syms
+        .iter()
+        .position(|s| s.name() == var)
+        .map(|i| i as u32);
+    // The coefficient of `var` in each angle.
+    let k: Vec<Option<Q>> = ctx
+        .angles
+        .iter()
+        .map(|a| {
+            a.terms
+                .iter()
+                .find(|(s, _)| s.name() == var)
+                .map(|(_, k)| Q::new(*k.numer(), *k.denom()))
+        })
+        .collect();
+    let mut out = Vec::new();
+    for m in mons {
+        if let Some(s) = sym {
+            if let Some(pos) = m.syms.iter().position(|&(x, _)| x == s) {
+                let e = m.syms[pos].1;
+                let mut d = m.clone();
+                d.q = d.q.mul_int(i64::from(e));
+                if e == 1 {
+                    d.syms.remove(pos);
+                } else {
+                    d.syms[pos].1 -= 1;
+                }
+                out.push(d);
+            }
+        }
+        for (pos, &a) in m.atoms.iter().enumerate() {
+            let Some(kq) = &k[angle_of(a) as usize] else {
+                continue;
+            };
+            // cos(phi)' = -k sin(phi), sin(phi)' = k cos(phi).
+            let mut d = m.clone();
+            d.q = &d.q * kq;
+            if !is_sin(a) {
+                d.q = -&d.q;
+            }
+            d.atoms[pos] = atom(angle_of(a), !is_sin(a));
+            d.atoms.sort_unstable();
+            out.push(d);
+        }
+    }
+    out
 }
 
 /// Renames the atoms of `m` after a renumbering and restores their order.

@@ -242,6 +242,16 @@ impl Robot {
     /// every example robot), and much cheaper: the factors' matrices are in full angles, while
     /// converting the product DQ multiplies long half-angle sums.
     pub fn forward_matrix(&self) -> Matrix4<Scalar> {
+        self.matrix_product(None).unwrap_or_else(Matrix4::identity)
+    }
+
+    /// [`Robot::forward_matrix`], or `None` as soon as an entry of a partial product has more
+    /// than `max_terms` terms (or is an error value).
+    pub fn forward_matrix_within(&self, max_terms: usize) -> Option<Matrix4<Scalar>> {
+        self.matrix_product(Some(max_terms))
+    }
+
+    fn matrix_product(&self, max_terms: Option<usize>) -> Option<Matrix4<Scalar>> {
         let mut acc: Option<Matrix4<Scalar>> = None;
         for f in self
             .joint_dqs()
@@ -249,12 +259,23 @@ impl Robot {
             .chain(std::iter::once(&self.chain.tool))
         {
             let m = f.to_matrix();
-            acc = Some(match acc {
+            let next = match acc {
                 None => m,
                 Some(a) => a.mul_ref(&m),
-            });
+            };
+            if let Some(limit) = max_terms {
+                if next
+                    .rows
+                    .iter()
+                    .flatten()
+                    .any(|x| x.len() > limit || x.as_error().is_some())
+                {
+                    return None;
+                }
+            }
+            acc = Some(next);
         }
-        acc.unwrap_or_else(Matrix4::identity)
+        Some(acc.unwrap_or_else(Matrix4::identity))
     }
 
     /// The homogeneous matrix as polynomials in the cosines and sines of the joint variables

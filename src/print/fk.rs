@@ -21,7 +21,10 @@ use std::collections::HashMap;
 use std::hash::BuildHasherDefault;
 
 type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
-use crate::{closed_form, DualQuat, Expr, Scalar, ScalarError};
+use crate::{
+    closed_form, closed_form_of_derivative, closed_form_prepared, DualQuat, Expr, Scalar,
+    ScalarError,
+};
 
 /// The text format of a report.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -97,79 +100,124 @@ pub enum ReportError {
 /// `NAME = EXPR` with these additional names, and the code formats compute the recurrence as
 /// straight-line code, its entries as locals.
 pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
-    let Some(q) = robot.forward_within(o.max_terms) else {
-        return recurrence_report(robot, o);
-    };
-    // The matrix, the point and the Jacobian are derived on a second thread while this one
-    // puts the DQ components in closed form; then every distinct remaining entry is put in
-    // closed form, in parallel. `closed_form` is a pure function of its input, so neither the
-    // threads nor the deduplication change the output.
-    let comps = q.components();
-    let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
-    let (dq_forms, (m, img, jac)) = join(
-        || par_map(&comps, closed_form),
+    // Two pipelines side by side: the DQ product, then its components in closed form; the
+    // matrix (the product of the joint factors' matrices, which does not wait for the DQ),
+    // then its entries. Then the point and the Jacobian, every distinct entry once, in
+    // parallel. `closed_form` is a pure function of its input, so neither the threads nor
+    // the sharing of equal entries change the output.
+    let (pose, matrix) = join(
         || {
-            let m = robot.forward_matrix();
-            let img = o.point.as_ref().map(|p| q.transform_point(p));
-            let jac = o.jacobian.then(|| dq_jacobian(&q, &vars));
-            (m, img, jac)
+            robot.forward_within(o.max_terms).map(|q| {
+                let (forms, prepared): (Vec<_>, Vec<_>) =
+                    par_map(&q.components(), closed_form_prepared)
+                        .into_iter()
+                        .unzip();
+                (q, forms, prepared)
+            })
+        },
+        || {
+            robot
+                .forward_matrix_within(o.max_terms)
+                .map(|m| (par_map(&matrix_cells(&m), |x| closed_form(x)), m))
         },
     );
-    let mut rest: Vec<(&'static str, String, &Scalar)> = Vec::new();
-    for i in 0..3 {
-        for j in 0..4 {
-            rest.push(("T", format!("[{i}][{j}]"), &m.rows[i][j]));
+    let Some((q, dq_forms, prepared)) = pose else {
+        return recurrence_report(robot, o);
+    };
+    // The matrix fits whenever the DQ does; computed here only if the limit cut it short.
+    let (t_forms, m) = match matrix {
+        Some(x) => x,
+        None => {
+            let m = robot.forward_matrix();
+            (par_map(&matrix_cells(&m), |x| closed_form(x)), m)
         }
+    };
+    let comps = q.components();
+    let mut known: FxMap<&Scalar, &Result<Expr, ScalarError>> = FxMap::default();
+    for (x, e) in comps.iter().zip(&dq_forms) {
+        known.entry(x).or_insert(e);
     }
+    let cells = matrix_cells(&m);
+    for (x, e) in cells.iter().zip(&t_forms) {
+        known.entry(*x).or_insert(e);
+    }
+    let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
+    let img = o.point.as_ref().map(|p| q.transform_point(p));
+    let jac = o.jacobian.then(|| dq_jacobian(&q, &vars));
+    // Each entry with, for a Jacobian entry, the DQ component it is the derivative of and the
+    // variable: its closed form starts from that component's regrouped monomials.
+    type Entry<'a> = (&'static str, String, &'a Scalar, Option<(usize, &'a str)>);
+    let mut rest: Vec<Entry> = Vec::new();
     if let Some(img) = &img {
         for (k, c) in img.iter().enumerate() {
-            rest.push(("p", format!("[{k}]"), c));
+            rest.push(("p", format!("[{k}]"), c, None));
         }
     }
     if let Some(jac) = &jac {
         for (i, row) in jac.iter().enumerate() {
             for (k, x) in row.iter().enumerate() {
-                rest.push(("J", format!("[{i}][{k}]"), x));
+                rest.push(("J", format!("[{i}][{k}]"), x, Some((i, vars[k]))));
             }
         }
     }
     // Entries often repeat (a Jacobian column of two joints that always appear together,
     // say): each distinct scalar is put in closed form once.
     let mut index: FxMap<&Scalar, usize> = FxMap::default();
-    let mut distinct: Vec<&Scalar> = Vec::new();
-    let slots: Vec<usize> = rest
-        .iter()
-        .map(|(_, _, x)| {
-            *index.entry(*x).or_insert_with(|| {
-                distinct.push(*x);
-                distinct.len() - 1
-            })
-        })
-        .collect();
-    let forms = par_map(&distinct, |x| closed_form(x));
-    let mut sections: Vec<(&str, Vec<(String, Expr)>)> = vec![(
-        "unit dual quaternion (w, x, y, z, w_e, x_e, y_e, z_e)",
-        dq_forms
-            .into_iter()
-            .enumerate()
-            .map(|(k, e)| Ok((format!("dq[{k}]"), e?)))
-            .collect::<Result<_, ScalarError>>()?,
-    )];
-    for ((prefix, n, _), slot) in rest.iter().zip(slots) {
+    let mut distinct: Vec<(&Scalar, Option<(usize, &str)>)> = Vec::new();
+    for (_, _, x, from) in &rest {
+        if !known.contains_key(*x) && !index.contains_key(*x) {
+            index.insert(x, distinct.len());
+            distinct.push((x, *from));
+        }
+    }
+    let forms = par_map(&distinct, |(x, from)| match from {
+        Some((i, var)) => closed_form_of_derivative(&prepared[*i], var, x),
+        None => closed_form(x),
+    });
+    let form_of = |x: &Scalar| -> Result<Expr, ScalarError> {
+        match known.get(x) {
+            Some(e) => (*e).clone(),
+            None => forms[index[x]].clone(),
+        }
+    };
+    let named = |prefix: &str, n: &str, x: &Scalar| Ok((format!("{prefix}{n}"), form_of(x)?));
+    let mut sections: Vec<(&str, Vec<(String, Expr)>)> = vec![
+        (
+            "unit dual quaternion (w, x, y, z, w_e, x_e, y_e, z_e)",
+            comps
+                .iter()
+                .enumerate()
+                .map(|(k, x)| named("dq", &format!("[{k}]"), x))
+                .collect::<Result<_, ScalarError>>()?,
+        ),
+        (
+            "homogeneous matrix (rows 0..2)",
+            cells
+                .iter()
+                .enumerate()
+                .map(|(c, x)| named("T", &format!("[{}][{}]", c / 4, c % 4), x))
+                .collect::<Result<_, ScalarError>>()?,
+        ),
+    ];
+    for (prefix, n, x, _) in &rest {
         let title = match *prefix {
-            "T" => "homogeneous matrix (rows 0..2)",
             "p" => "image of the point",
             _ => "Jacobian d dq[i] / d q[j]",
         };
         if sections.last().map(|(t, _)| *t) != Some(title) {
             sections.push((title, Vec::new()));
         }
-        let e = forms[slot].clone()?;
+        let row = named(prefix, n, x)?;
         if let Some((_, rows)) = sections.last_mut() {
-            rows.push((format!("{prefix}{n}"), e));
+            rows.push(row);
         }
     }
     render(robot, &sections, o.format, &[])
+}
+
+/// Rows 0..2 of a matrix, row by row.
+fn matrix_cells(m: &crate::Matrix4<Scalar>) -> Vec<&Scalar> {
+    m.rows[..3].iter().flatten().collect()
 }
 
 /// The sections in the chosen format, after `notes` (comment lines in plain and LaTeX).
