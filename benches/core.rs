@@ -66,8 +66,7 @@ criterion_group!(benches, puma560_fk_dq_product, puma560_closed_form);
 #[path = "support/workloads.rs"]
 mod workloads;
 
-use dqsym::dq_jacobian;
-use workloads::{chain, generic, planar, puma, Dh};
+use workloads::{chain, generic, jacobian_closed_forms, matrix_cos_sin, planar, puma, Dh};
 
 /// Closed forms of the end effector (px, py) of a DH chain.
 fn end_effector(links: &[Dh]) -> Vec<Expr> {
@@ -111,6 +110,9 @@ fn w3_generic_6r_dq_expand(c: &mut Criterion) {
     g.bench_function("w3_generic_6r_dq_expand", |b| {
         b.iter(|| black_box(chain(&links)))
     });
+    g.bench_function("w3_generic_6r_matrix_cos_sin_expand", |b| {
+        b.iter(|| black_box(matrix_cos_sin(&links)))
+    });
     g.finish();
 }
 
@@ -121,15 +123,7 @@ fn w4_puma560_jacobian_closed_form(c: &mut Criterion) {
     let mut g = c.benchmark_group("w4");
     g.sample_size(20);
     g.bench_function("w4_puma560_jacobian_closed_form", |b| {
-        b.iter(|| {
-            let j = dq_jacobian(&chain(&links), &vars);
-            let forms: Vec<Expr> = j
-                .iter()
-                .flatten()
-                .map(|x| closed_form(x).expect("closed form"))
-                .collect();
-            black_box(forms)
-        })
+        b.iter(|| black_box(jacobian_closed_forms(&links, &vars).expect("closed forms")))
     });
     g.finish();
 }

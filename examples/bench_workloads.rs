@@ -13,14 +13,13 @@
 //! must stop with a size error.
 
 use dqsym::{
-    closed_form, closed_form_cos_sin, dh_link, dq_jacobian, expanded_form, Cost, DualQuat, Scalar,
-    ScalarError,
+    closed_form, closed_form_cos_sin, dh_link, expanded_form, Cost, DualQuat, Scalar, ScalarError,
 };
 use std::time::{Duration, Instant};
 
 #[path = "../benches/support/workloads.rs"]
 mod workloads;
-use workloads::{chain, generic, matrix_cos_sin, planar, puma, Dh};
+use workloads::{chain, generic, jacobian_closed_forms, matrix, matrix_cos_sin, planar, puma, Dh};
 /// What one run of a workload produced: the size of the closed forms (or of nothing, for a
 /// workload that stops) and the number of canonical terms.
 struct Outcome {
@@ -53,15 +52,11 @@ fn end_effector(links: &[Dh]) -> Result<Outcome, ScalarError> {
     closed(&[&m.rows[0][3], &m.rows[1][3]])
 }
 
-fn pose(q: &DualQuat<Scalar>) -> Vec<Scalar> {
-    let m = q.to_matrix();
-    m.rows[..3].iter().flatten().cloned().collect()
-}
-
-/// W2 and W3 report the 4x4 pose (rows 0..2) and the DQ as two results.
+/// W2 reports the 4x4 pose (rows 0..2, the product of the DH matrices, as `dqsym fk` forms it)
+/// and the DQ as two results.
 fn pose_and_dq(links: &[Dh]) -> Result<(Outcome, Outcome), ScalarError> {
     let q = chain(links);
-    let m = pose(&q);
+    let m: Vec<Scalar> = matrix(links).rows[..3].iter().flatten().cloned().collect();
     let comps = q.components();
     Ok((
         closed(&m.iter().collect::<Vec<_>>())?,
@@ -70,11 +65,21 @@ fn pose_and_dq(links: &[Dh]) -> Result<(Outcome, Outcome), ScalarError> {
 }
 
 fn jacobian() -> Result<Outcome, ScalarError> {
-    let q = chain(&puma());
     let vars: Vec<String> = (1..=6).map(|i| format!("theta{i}")).collect();
     let vars: Vec<&str> = vars.iter().map(String::as_str).collect();
-    let j = dq_jacobian(&q, &vars);
-    closed(&j.iter().flatten().collect::<Vec<_>>())
+    let forms = jacobian_closed_forms(&puma(), &vars)?;
+    let mut cost = Cost::default();
+    for e in &forms {
+        let c = e.cost();
+        cost.ops += c.ops;
+        cost.calls += c.calls;
+    }
+    Ok(Outcome {
+        cost,
+        entries: forms.len(),
+        terms: 0,
+        error: None,
+    })
 }
 
 /// The 20-joint chain with every DH parameter symbolic: the product is exponential in the

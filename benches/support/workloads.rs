@@ -1,7 +1,10 @@
 //! The DH tables of the benchmark workloads, shared by `benches/core.rs` and
 //! `examples/bench_workloads.rs` (which `bench/compare` runs), so both measure the same thing.
 
-use dqsym::{dh_link, dh_link_matrix, DualQuat, Matrix4, Ring, Scalar};
+use dqsym::{
+    closed_form_of_derivative, closed_form_prepared, dh_link, dh_link_matrix, dq_jacobian,
+    DualQuat, Expr, Matrix4, Ring, Scalar, ScalarError,
+};
 
 /// `(theta, d, a, alpha)` of one DH link.
 pub type Dh = [Scalar; 4];
@@ -83,4 +86,32 @@ pub fn matrix_cos_sin(links: &[Dh]) -> Option<Matrix4<Scalar>> {
         });
     }
     acc
+}
+
+/// The 8 x n Jacobian of the chain's DQ in closed form, rows first, the way `dqsym fk
+/// --jacobian` computes it: each DQ component put in closed form, then each entry from its
+/// component's regrouped monomials (`closed_form_of_derivative`).
+#[allow(dead_code)]
+pub fn jacobian_closed_forms(links: &[Dh], vars: &[&str]) -> Result<Vec<Expr>, ScalarError> {
+    let q = chain(links);
+    let j = dq_jacobian(&q, vars);
+    let mut out = Vec::with_capacity(8 * vars.len());
+    for (row, c) in j.iter().zip(q.components()) {
+        let (_, prepared) = closed_form_prepared(&c);
+        for (x, v) in row.iter().zip(vars) {
+            out.push(closed_form_of_derivative(&prepared, v, x)?);
+        }
+    }
+    Ok(out)
+}
+
+/// The 4x4 product of the links' DH matrices (each built from elementary matrices), in the
+/// canonical form: how `dqsym fk` forms the pose matrix (`Robot::forward_matrix`).
+#[allow(dead_code)]
+pub fn matrix(links: &[Dh]) -> Matrix4<Scalar> {
+    links
+        .iter()
+        .fold(Matrix4::identity(), |acc, [t, d, a, al]| {
+            acc.mul_ref(&dh_link_matrix(t, d, a, al))
+        })
 }
