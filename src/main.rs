@@ -9,11 +9,6 @@ use std::process::ExitCode;
 
 mod repl;
 
-/// Exact algebra allocates and frees many small term vectors; mimalloc serves them with less
-/// CPU time than the system allocator.
-#[global_allocator]
-static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 #[derive(Parser)]
 #[command(
     name = "dqsym",

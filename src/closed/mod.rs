@@ -31,8 +31,9 @@ pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
 
 /// The regrouped monomials [`closed_form`] found for a scalar, kept so that the closed forms of
 /// its derivatives start from them ([`closed_form_of_derivative`]) instead of from the
-/// expanded Fourier series. `None` when the split shape was skipped (too large) or failed.
-pub struct Prepared(Option<(mon::Ctx, Vec<mon::Mon>)>);
+/// expanded Fourier series, and whether that regrouped shape won over the whole modes. `None`
+/// when the split shape was skipped (too large) or failed.
+pub struct Prepared(Option<(mon::Ctx, Vec<mon::Mon>, bool)>);
 
 /// [`closed_form`], and what it found on the way (see [`Prepared`]).
 pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
@@ -48,8 +49,12 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
     }
     let (mut sctx, smons) = mon::split_modes(x);
     let smons = recombine::recombine(&mut sctx, smons);
-    let result = best_of(x, &sctx, &smons);
-    (result, Prepared(Some((sctx, smons))))
+    let result = best_of(x, &sctx, &smons, true);
+    let split_won = result.as_ref().is_ok_and(|(_, split)| *split);
+    (
+        result.map(|(e, _)| e),
+        Prepared(Some((sctx, smons, split_won))),
+    )
 }
 
 /// The whole-modes shape: each Fourier mode one factor, factored.
@@ -59,19 +64,27 @@ fn whole_form(x: &Scalar) -> Result<(Expr, Cost), ScalarError> {
     Ok((whole.to_expr(&wctx), wc))
 }
 
-/// The cheaper of the regrouped monomials `smons` (factored) and the whole-modes shape of
-/// `x`, checked against `x`.
-fn best_of(x: &Scalar, sctx: &mon::Ctx, smons: &[mon::Mon]) -> Result<Expr, ScalarError> {
-    let (whole, wc) = whole_form(x)?;
+/// The cheaper of the regrouped monomials `smons` (factored) and, with `try_whole`, the
+/// whole-modes shape of `x`, checked against `x`; and whether the regrouped shape was taken.
+fn best_of(
+    x: &Scalar,
+    sctx: &mon::Ctx,
+    smons: &[mon::Mon],
+    try_whole: bool,
+) -> Result<(Expr, bool), ScalarError> {
     let (split, sc) = factor::build(smons)?;
-    // Prefer the regrouped shape on ties: it is the one textbooks print.
-    let best = if sc <= wc {
-        split.to_expr(sctx)
+    let whole = if try_whole {
+        Some(whole_form(x)?)
     } else {
-        whole.clone()
+        None
+    };
+    // Prefer the regrouped shape on ties: it is the one textbooks print.
+    let (best, split_won) = match &whole {
+        Some((w, wc)) if *wc < sc => (w.clone(), false),
+        _ => (split.to_expr(sctx), true),
     };
     if !cfg!(debug_assertions) && agrees_numerically(&best, x) {
-        return Ok(best);
+        return Ok((best, split_won));
     }
     let value = best.to_scalar();
     if let Some(e) = value.as_error() {
@@ -79,18 +92,22 @@ fn best_of(x: &Scalar, sctx: &mon::Ctx, smons: &[mon::Mon]) -> Result<Expr, Scal
         return Err(e.clone());
     }
     if value == *x {
-        Ok(best)
+        Ok((best, split_won))
     } else {
         debug_assert!(false, "closed form does not equal its input");
-        Ok(whole)
+        let (w, _) = match whole {
+            Some(w) => w,
+            None => whole_form(x)?,
+        };
+        Ok((w, false))
     }
 }
 
 /// The closed form of `dx`, the derivative of the scalar `p` was prepared from with respect to
 /// the symbol `var`: the prepared monomials are differentiated (each cosine or sine of an
 /// angle holding `var` turns into the other, each power of `var` drops by one), regrouped
-/// and factored, and the result is compared, like [`closed_form`]'s, with the whole-modes
-/// shape of `dx` and checked against `dx`. Much cheaper than [`closed_form`] on `dx` for the
+/// and factored, compared with the whole-modes shape of `dx` when that shape won for the
+/// prepared scalar, and checked against `dx`. Much cheaper than [`closed_form`] on `dx` for the
 /// Jacobian of a chain, whose entries are long half-angle series: the expansion into single
 /// angles is not redone. The form may differ from `closed_form(dx)`; it equals `dx`.
 ///
@@ -104,13 +121,15 @@ pub fn closed_form_of_derivative(
     if let Err(e) = dx.terms() {
         return Err(e.clone());
     }
-    let Some((ctx, mons)) = &p.0 else {
+    let Some((ctx, mons, split_won)) = &p.0 else {
         return closed_form(dx);
     };
     let mut ctx = ctx.clone();
     let dmons = mon::differentiate(&ctx, mons, var);
     let dmons = recombine::recombine(&mut ctx, mon::merge(dmons));
-    best_of(dx, &ctx, &dmons)
+    // Where the regrouped shape won for the scalar, it is kept for its derivatives (which have
+    // the same modes) without factoring the whole modes again.
+    best_of(dx, &ctx, &dmons, !split_won).map(|(e, _)| e)
 }
 
 /// The closed form of a polynomial in cosine and sine placeholders (see
