@@ -19,7 +19,10 @@
 //! - `dq[k]`: the pose, `Q{n}_k`.
 //! - `P{i}[k]`, i = n-1 down to 2 (with the Jacobian): the suffix products
 //!   `P{i} = L{i} P{i+1}` (P{n} = L{n}) in the symbols `L{i}_k` and `P{i+1}_k`.
-//! - `T[i][j]` and `p[i]`: the matrix and the image of the point, in the symbols `Q{n}_k`.
+//! - `T[i][j]` and `p[i]`: the matrix and the image of the point, in the symbols `Q{n}_k`;
+//!   the matrix instead in the robot's symbols, factored from its polynomial in the cosines and
+//!   sines (`Robot::forward_matrix_cos_sin`), when that fits the term budget (a 6R with every
+//!   DH parameter symbolic: 1,595 monomials, where the Fourier form has about 300,000 terms).
 //! - `J[k][i-1]` (with the Jacobian): component k of `Q{i-1} dL{i} P{i+1}` in the symbols
 //!   `Q{i-1}_k`, `dL{i}_k` and `P{i+1}_k`, where Q{0} and P{n+1} are the identity (and are
 //!   multiplied out), Q{1} is L{1} and P{n} is L{n}. By the product rule this is
@@ -30,8 +33,15 @@
 //! constant, so the zeros propagate instead of being multiplied at run time.
 
 use super::fk::{FkOptions, ReportError};
-use crate::scalar::par_map;
-use crate::{closed_form, DualQuat, Expr, Robot, Scalar, ScalarError};
+use crate::scalar::{par_map, with_own_budget};
+
+/// The work budget of the attempt at the matrix as a cos/sin polynomial (the generic 6R needs
+/// about 52,000).
+const COS_SIN_BUDGET: u64 = 500_000;
+
+/// The largest entry of that polynomial, in monomials (the generic 6R's is 232).
+const COS_SIN_MAX_TERMS: usize = 1_000;
+use crate::{closed_form_cos_sin, DualQuat, Expr, Robot, Scalar, ScalarError};
 use std::cell::RefCell;
 use std::collections::HashMap;
 
@@ -189,17 +199,29 @@ pub(crate) fn recurrence_sections(
         ));
     }
     let last = q(n);
-    let m = last.to_matrix();
+    // The matrix in the robot's own symbols when it fits as a polynomial in the cosines and
+    // sines (a generic 6R: 1,595 monomials), else in the last Q's symbols.
+    // An attempt with its own small budget: a long chain stops early and costs little.
+    let cos_sin = with_own_budget(COS_SIN_BUDGET, || {
+        robot.forward_matrix_cos_sin(o.max_terms.min(COS_SIN_MAX_TERMS))
+    });
+    let (m, title) = match cos_sin {
+        Some(m) => (
+            m,
+            "homogeneous matrix (rows 0..2), from the cos/sin polynomial of the joint matrices",
+        ),
+        None => (
+            last.to_matrix(),
+            "homogeneous matrix (rows 0..2) of the last Q",
+        ),
+    };
     let mut t = Vec::new();
     for i in 0..3 {
         for j in 0..4 {
             t.push((format!("T[{i}][{j}]"), m.rows[i][j].clone()));
         }
     }
-    sections.push((
-        "homogeneous matrix (rows 0..2) of the last Q".to_string(),
-        t,
-    ));
+    sections.push((title.to_string(), t));
     if let Some(pt) = &o.point {
         let img = last.transform_point(pt);
         let ps = img
@@ -242,7 +264,8 @@ pub(crate) fn recurrence_sections(
         .iter()
         .flat_map(|(_, rows)| rows.iter().map(|(_, x)| x))
         .collect();
-    let mut forms = par_map(&all, |x| closed_form(x)).into_iter();
+    // `closed_form_cos_sin` is `closed_form` on every entry without cos/sin placeholders.
+    let mut forms = par_map(&all, |x| closed_form_cos_sin(x)).into_iter();
     sections
         .into_iter()
         .map(|(title, rows)| {

@@ -30,7 +30,7 @@ pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
 pub use frac::Frac;
 pub use par::threads as worker_threads;
-pub(crate) use par::{join, par_map};
+pub(crate) use par::{join, par_map, with_own_budget};
 pub(crate) use q::Q;
 
 use num_rational::BigRational;

@@ -9,7 +9,7 @@
 use super::{charge, max_exponent, set_max_exponent, set_term_limit, set_work_budget, term_limit};
 use super::{work_budget, work_used, ScalarError};
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
+use std::sync::{Mutex, OnceLock};
 
 /// The stack of a worker: closed-form searches recurse over expression depth.
 const WORKER_STACK: usize = 64 << 20;
@@ -41,19 +41,39 @@ impl Limits {
     }
 }
 
+/// Runs `f` on this thread with a budget of its own, `units` term operations, and leaves this
+/// thread's budget and the work counted against it as they were: for an optional attempt
+/// (a form that may not fit) that must neither fail for lack of the caller's budget nor spend
+/// it.
+pub(crate) fn with_own_budget<R>(units: u64, f: impl FnOnce() -> R) -> R {
+    let (budget, used) = (work_budget(), work_used());
+    set_work_budget(units);
+    super::reset_work();
+    let r = f();
+    set_work_budget(budget);
+    super::reset_work();
+    let _ = charge(used);
+    r
+}
+
 /// How many threads a parallel map uses: `DQSYM_THREADS` if set (at least 1), otherwise the
 /// available parallelism, at most 8.
+///
+/// Read once per process: finding the available parallelism reads cgroup files.
 pub fn threads() -> usize {
-    if let Some(n) = std::env::var("DQSYM_THREADS")
-        .ok()
-        .and_then(|s| s.trim().parse::<usize>().ok())
-    {
-        return n.max(1);
-    }
-    std::thread::available_parallelism()
-        .map(|n| n.get())
-        .unwrap_or(1)
-        .min(8)
+    static THREADS: OnceLock<usize> = OnceLock::new();
+    *THREADS.get_or_init(|| {
+        if let Some(n) = std::env::var("DQSYM_THREADS")
+            .ok()
+            .and_then(|s| s.trim().parse::<usize>().ok())
+        {
+            return n.max(1);
+        }
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+            .min(8)
+    })
 }
 
 /// `items.iter().map(f).collect()`, computed on up to [`threads`] threads (the caller is one

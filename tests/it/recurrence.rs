@@ -45,10 +45,10 @@ fn key(name: &str) -> String {
 pub(crate) fn evaluate(entries: &[(String, Expr)], env: &[(String, f64)]) -> HashMap<String, f64> {
     let mut vals: HashMap<String, f64> = env.iter().cloned().collect();
     for (name, e) in entries {
+        let bound: Vec<(&str, f64)> = vals.iter().map(|(k, v)| (k.as_str(), *v)).collect();
         let v = e
-            .to_scalar()
-            .eval(&|n| vals.get(n).copied())
-            .unwrap_or_else(|err| panic!("{name}: {err:?}"));
+            .value_at(&bound)
+            .unwrap_or_else(|| panic!("{name}: a symbol without a value"));
         vals.insert(key(name), v);
     }
     vals
@@ -128,6 +128,32 @@ fn symbolic_chain_expansion_has_k_times_4_to_the_k_terms() {
         let largest = acc.components().iter().map(Scalar::len).max();
         assert_eq!(largest, Some(k << (2 * k)), "after {k} links");
     }
+}
+
+#[test]
+fn generic_6r_recurrence_prints_the_matrix_from_its_cos_sin_polynomial() {
+    // Every DH parameter symbolic, six joints: the DQ exceeds the term budget, the matrix as a
+    // polynomial in the cosines and sines does not, so T is in the robot's own symbols.
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/generic_6r.toml");
+    let r = load(file);
+    let o = FkOptions {
+        format: ReportFormat::Plain { shorthand: true },
+        point: Some(some_point()),
+        jacobian: true,
+        max_terms: 5_000,
+    };
+    let entries = fk_recurrence(&r, &o).expect("a recurrence");
+    let names = symbols(&r);
+    let own: Vec<(&str, f64)> = names.iter().map(|s| (s.as_str(), 0.5)).collect();
+    for (name, e) in entries.iter().filter(|(n, _)| n.starts_with("T[")) {
+        assert!(
+            e.value_at(&own).is_some(),
+            "{name} reads only the robot's own symbols"
+        );
+    }
+    check_against_f64_chain(file, &r, &entries);
+    let text = fk_report(&r, &o).expect("report");
+    assert!(text.contains("from the cos/sin polynomial"), "{text}");
 }
 
 #[test]
