@@ -320,17 +320,30 @@ impl Robot {
     /// than `max_terms` terms: a chain whose expansion grows exponentially (every DH parameter
     /// symbolic, many joints) is detected after a few products instead of exhausting memory.
     pub fn forward_within(&self, max_terms: usize) -> Option<DualQuat<Scalar>> {
-        let mut acc = DualQuat::identity();
-        for f in self.joint_dqs() {
-            acc = acc * f;
-            if acc
-                .components()
-                .iter()
-                .any(|c| c.len() > max_terms || c.as_error().is_some())
-            {
-                return None;
+        let factors = self.joint_dqs();
+        let product = |fs: &[DualQuat<Scalar>]| -> Option<DualQuat<Scalar>> {
+            let mut acc = DualQuat::identity();
+            for f in fs {
+                acc = acc * f.clone();
+                if acc
+                    .components()
+                    .iter()
+                    .any(|c| c.len() > max_terms || c.as_error().is_some())
+                {
+                    return None;
+                }
             }
-        }
+            Some(acc)
+        };
+        // The two halves of a long chain on two threads, then their product (exact, so the
+        // same value as the product from the left).
+        let acc = if factors.len() >= 4 && crate::scalar::worker_threads() > 1 {
+            let (a, b) = factors.split_at(factors.len() / 2);
+            let (pa, pb) = crate::scalar::join(|| product(a), || product(b));
+            product(&[pa?, pb?])?
+        } else {
+            product(&factors)?
+        };
         Some(acc * self.chain.tool.clone())
     }
 
