@@ -242,23 +242,35 @@ impl Robot {
     /// every example robot), and much cheaper: the factors' matrices are in full angles, while
     /// converting the product DQ multiplies long half-angle sums.
     pub fn forward_matrix(&self) -> Matrix4<Scalar> {
-        self.matrix_product(None).unwrap_or_else(Matrix4::identity)
+        self.matrix_product(None, |x| Some(x.clone()))
+            .unwrap_or_else(Matrix4::identity)
     }
 
     /// [`Robot::forward_matrix`], or `None` as soon as an entry of a partial product has more
     /// than `max_terms` terms (or is an error value).
     pub fn forward_matrix_within(&self, max_terms: usize) -> Option<Matrix4<Scalar>> {
-        self.matrix_product(Some(max_terms))
+        self.matrix_product(Some(max_terms), |x| Some(x.clone()))
     }
 
-    fn matrix_product(&self, max_terms: Option<usize>) -> Option<Matrix4<Scalar>> {
+    /// The product of the joint factors' matrices (and the tool's), each entry first passed
+    /// through `entry` (`None` there gives `None`); `None` as soon as an entry of a partial
+    /// product has more than `max_terms` terms or is an error value.
+    fn matrix_product(
+        &self,
+        max_terms: Option<usize>,
+        entry: impl Fn(&Scalar) -> Option<Scalar>,
+    ) -> Option<Matrix4<Scalar>> {
         let mut acc: Option<Matrix4<Scalar>> = None;
         for f in self
             .joint_dqs()
             .iter()
             .chain(std::iter::once(&self.chain.tool))
         {
-            let m = f.to_matrix();
+            let mut rows = f.to_matrix().rows;
+            for x in rows.iter_mut().flatten() {
+                *x = entry(x)?;
+            }
+            let m = Matrix4::from_rows(rows);
             let next = match acc {
                 None => m,
                 Some(a) => a.mul_ref(&m),
@@ -285,35 +297,7 @@ impl Robot {
     /// monomials against about 300,000 Fourier terms); put it in closed form with
     /// [`crate::closed_form_cos_sin`].
     pub fn forward_matrix_cos_sin(&self, max_terms: usize) -> Option<Matrix4<Scalar>> {
-        let mut acc: Option<Matrix4<Scalar>> = None;
-        for f in self
-            .joint_dqs()
-            .iter()
-            .chain(std::iter::once(&self.chain.tool))
-        {
-            let m = f.to_matrix();
-            let mut rows = m.rows.clone();
-            for row in rows.iter_mut() {
-                for x in row.iter_mut() {
-                    *x = x.to_cos_sin_polynomial()?;
-                }
-            }
-            let m = Matrix4::from_rows(rows);
-            let next = match acc {
-                None => m,
-                Some(a) => a.mul_ref(&m),
-            };
-            if next
-                .rows
-                .iter()
-                .flatten()
-                .any(|x| x.len() > max_terms || x.as_error().is_some())
-            {
-                return None;
-            }
-            acc = Some(next);
-        }
-        Some(acc.unwrap_or_else(Matrix4::identity))
+        self.matrix_product(Some(max_terms), Scalar::to_cos_sin_polynomial)
     }
 
     /// The forward kinematics, or `None` as soon as a component of a partial product has more

@@ -56,6 +56,23 @@ pub(crate) fn numeric_chain(r: &Robot, env: &[(String, f64)]) -> Chain<f64> {
     Chain::new(joints)
 }
 
+/// The pose matrix of `r` at `env` from the f64 chain (joints not bound are 0).
+fn plain_pose(r: &Robot, env: &[(String, f64)]) -> dqsym::Matrix4<f64> {
+    let qs: Vec<f64> = r
+        .variables
+        .iter()
+        .map(|v| {
+            env.iter()
+                .find(|(k, _)| k == v)
+                .map(|(_, x)| *x)
+                .unwrap_or(0.0)
+        })
+        .collect();
+    numeric_chain(r, env)
+        .forward_matrix(&qs)
+        .expect("joint count")
+}
+
 #[test]
 fn every_example_robot_matches_plain_matrix_products() {
     let files = robot_files();
@@ -72,18 +89,7 @@ fn every_example_robot_matches_plain_matrix_products() {
         names.extend(r.parameters());
         let refs: Vec<&str> = names.iter().map(String::as_str).collect();
         for env in points(&refs, 4) {
-            let num = numeric_chain(&r, &env);
-            let qs: Vec<f64> = r
-                .variables
-                .iter()
-                .map(|v| {
-                    env.iter()
-                        .find(|(k, _)| k == v)
-                        .map(|(_, x)| *x)
-                        .unwrap_or(0.0)
-                })
-                .collect();
-            let want = num.forward_matrix(&qs).expect("joint count");
+            let want = plain_pose(&r, &env);
             for i in 0..3 {
                 for j in 0..4 {
                     let got = ev(&m.rows[i][j], &env);
@@ -412,18 +418,7 @@ fn generic_6r_pose_as_a_cos_sin_polynomial_matches_plain_matrix_products() {
     names.extend(r.parameters());
     let refs: Vec<&str> = names.iter().map(String::as_str).collect();
     for env in points(&refs, 3) {
-        let num = numeric_chain(&r, &env);
-        let qs: Vec<f64> = r
-            .variables
-            .iter()
-            .map(|v| {
-                env.iter()
-                    .find(|(k, _)| k == v)
-                    .map(|(_, x)| *x)
-                    .unwrap_or(0.0)
-            })
-            .collect();
-        let want = num.forward_matrix(&qs).expect("joint count");
+        let want = plain_pose(&r, &env);
         let value = |n: &str| -> Option<f64> {
             if let Some((x, sin)) = dqsym::parse_trig_placeholder(n) {
                 let v = env.iter().find(|(k, _)| k == x)?.1;
