@@ -109,3 +109,28 @@ fn ops_command_reproduces_tables_1_and_2_with_the_errata() {
     );
     assert!(text.contains("generated code, DQ only:"), "{text}");
 }
+
+#[test]
+fn fk_output_does_not_depend_on_the_number_of_threads() {
+    // Closed forms are computed on worker threads (DQSYM_THREADS, default: the cores); each is
+    // a pure function of its input and results keep their order, so the bytes are the same.
+    let run = |threads: &str, robot: &str| {
+        let file = format!(
+            "{}/examples/robots/{robot}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_dqsym"))
+            .env("DQSYM_THREADS", threads)
+            .args(["fk", &file, "--jacobian"])
+            .output()
+            .expect("dqsym runs");
+        assert!(out.status.success(), "{robot} with {threads} threads");
+        out.stdout
+    };
+    for robot in ["puma560", "stanford", "six_r"] {
+        let one = run("1", robot);
+        assert!(!one.is_empty());
+        assert_eq!(one, run("2", robot), "{robot}: 1 and 2 threads");
+        assert_eq!(one, run("5", robot), "{robot}: 1 and 5 threads");
+    }
+}
