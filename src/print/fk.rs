@@ -133,14 +133,7 @@ pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
         }
     };
     let comps = q.components();
-    let mut known: FxMap<&Scalar, &Result<Expr, ScalarError>> = FxMap::default();
-    for (x, e) in comps.iter().zip(&dq_forms) {
-        known.entry(x).or_insert(e);
-    }
     let cells = matrix_cells(&m);
-    for (x, e) in cells.iter().zip(&t_forms) {
-        known.entry(*x).or_insert(e);
-    }
     let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
     let img = o.point.as_ref().map(|p| q.transform_point(p));
     let jac = o.jacobian.then(|| dq_jacobian(&q, &vars));
@@ -161,7 +154,16 @@ pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
         }
     }
     // Entries often repeat (a Jacobian column of two joints that always appear together,
-    // say): each distinct scalar is put in closed form once.
+    // say, or equal to a DQ component): each distinct scalar is put in closed form once.
+    let mut known: FxMap<&Scalar, &Result<Expr, ScalarError>> = FxMap::default();
+    if !rest.is_empty() {
+        for (x, e) in comps.iter().zip(&dq_forms) {
+            known.entry(x).or_insert(e);
+        }
+        for (x, e) in cells.iter().zip(&t_forms) {
+            known.entry(*x).or_insert(e);
+        }
+    }
     let mut index: FxMap<&Scalar, usize> = FxMap::default();
     let mut distinct: Vec<(&Scalar, Option<(usize, &str)>)> = Vec::new();
     for (_, _, x, from) in &rest {
@@ -180,22 +182,24 @@ pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
             None => forms[index[x]].clone(),
         }
     };
-    let named = |prefix: &str, n: &str, x: &Scalar| Ok((format!("{prefix}{n}"), form_of(x)?));
+    let named = |prefix: &str, n: &str, x: &Scalar| -> Result<(String, Expr), ScalarError> {
+        Ok((format!("{prefix}{n}"), form_of(x)?))
+    };
     let mut sections: Vec<(&str, Vec<(String, Expr)>)> = vec![
         (
             "unit dual quaternion (w, x, y, z, w_e, x_e, y_e, z_e)",
-            comps
+            dq_forms
                 .iter()
                 .enumerate()
-                .map(|(k, x)| named("dq", &format!("[{k}]"), x))
+                .map(|(k, e)| Ok((format!("dq[{k}]"), e.clone()?)))
                 .collect::<Result<_, ScalarError>>()?,
         ),
         (
             "homogeneous matrix (rows 0..2)",
-            cells
+            t_forms
                 .iter()
                 .enumerate()
-                .map(|(c, x)| named("T", &format!("[{}][{}]", c / 4, c % 4), x))
+                .map(|(c, e)| Ok((format!("T[{}][{}]", c / 4, c % 4), e.clone()?)))
                 .collect::<Result<_, ScalarError>>()?,
         ),
     ];
