@@ -125,36 +125,7 @@ fn check_rust(name: &str, outputs: &[Output], args: &[String], o: &CodegenOption
     let src = dir.join("gen.rs");
     std::fs::write(&src, code + &main).expect("write gen.rs");
     let bin = dir.join("gen");
-    let mut rustc = Command::new("rustc");
-    rustc
-        .args(["--edition", "2021", "-D", "warnings", "-O", "-o"])
-        .arg(&bin)
-        .arg(&src);
-    tools::run(
-        rustc,
-        "",
-        &format!("rustc -D warnings on {}", src.display()),
-    );
-    let mut clippy = Command::new("clippy-driver");
-    clippy
-        .args([
-            "--edition",
-            "2021",
-            "-D",
-            "warnings",
-            "--emit=metadata",
-            "--out-dir",
-        ])
-        .arg(&dir)
-        .arg(&src);
-    tools::run(
-        clippy,
-        "",
-        &format!(
-            "clippy-driver -D warnings on {} (install with `rustup component add clippy`)",
-            src.display()
-        ),
-    );
+    tools::compile_rust_clean(&src, &bin, true, &src.display().to_string());
     let (pts, want) = expected(outputs, args);
     let out = tools::run(Command::new(&bin), &input(&pts), "generated Rust");
     compare(&format!("Rust {name}"), &out, &want);

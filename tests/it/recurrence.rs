@@ -313,29 +313,7 @@ fn chain20_recurrence_as_rust_compiles_clean_and_agrees_with_the_recurrence() {
     let src = dir.join("fk.rs");
     std::fs::write(&src, code + &main).expect("write");
     let exe = dir.join("fk");
-    let mut rustc = Command::new("rustc");
-    rustc
-        .args(["--edition", "2021", "-D", "warnings", "-o"])
-        .arg(&exe)
-        .arg(&src);
-    tools::run(rustc, "", "rustc -D warnings on the chain20 recurrence");
-    let mut clippy = Command::new("clippy-driver");
-    clippy
-        .args([
-            "--edition",
-            "2021",
-            "-D",
-            "warnings",
-            "--emit=metadata",
-            "--out-dir",
-        ])
-        .arg(&dir)
-        .arg(&src);
-    tools::run(
-        clippy,
-        "",
-        "clippy-driver -D warnings on the chain20 recurrence",
-    );
+    tools::compile_rust_clean(&src, &exe, false, "the chain20 recurrence");
     let (envs, input) = inputs(&args);
     let out = tools::run(
         Command::new(&exe),

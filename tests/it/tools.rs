@@ -142,3 +142,35 @@ pub fn dqsym_ok(args: &[&str]) -> String {
     );
     String::from_utf8(out.stdout).expect("utf-8 output")
 }
+
+/// Compiles the Rust program `src` into `exe` with `rustc -D warnings` (optimized when `opt`)
+/// and lints it with `clippy-driver -D warnings`; `what` names it in failure messages.
+pub fn compile_rust_clean(src: &Path, exe: &Path, opt: bool, what: &str) {
+    let dir = src.parent().expect("a file in a directory");
+    let mut rustc = Command::new("rustc");
+    rustc.args(["--edition", "2021", "-D", "warnings"]);
+    if opt {
+        rustc.arg("-O");
+    }
+    rustc.arg("-o").arg(exe).arg(src);
+    run(rustc, "", &format!("rustc -D warnings on {what}"));
+    let mut clippy = Command::new("clippy-driver");
+    clippy
+        .args([
+            "--edition",
+            "2021",
+            "-D",
+            "warnings",
+            "--emit=metadata",
+            "--out-dir",
+        ])
+        .arg(dir)
+        .arg(src);
+    run(
+        clippy,
+        "",
+        &format!(
+            "clippy-driver -D warnings on {what} (install with `rustup component add clippy`)"
+        ),
+    );
+}
