@@ -335,18 +335,7 @@ for line in sys.stdin:
         vals.join(", ")
     );
     let out = crate::tools::run_python(&script, &text, "sympy");
-    let num = numeric_chain(&r, &env);
-    let q: Vec<f64> = r
-        .variables
-        .iter()
-        .map(|v| {
-            env.iter()
-                .find(|(k, _)| k == v)
-                .map(|(_, x)| *x)
-                .unwrap_or(0.0)
-        })
-        .collect();
-    let want = num.forward_matrix(&q).expect("joint count");
+    let want = plain_pose(&r, &env);
     // The Jacobian against the recurrence's own entries in f64 (which a test checks against
     // finite differences).
     let vals = crate::recurrence::evaluate(&dqsym::fk_recurrence(&r, &o).expect("entries"), &env);
