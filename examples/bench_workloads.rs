@@ -172,13 +172,14 @@ fn failed(e: ScalarError) -> Outcome {
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mut runs = 5;
+    let mut ctx = dqsym::Context::new();
     let trace = args.iter().any(|a| a == "--trace");
     let mut picked = Vec::new();
     let mut it = args.iter();
     while let Some(a) = it.next() {
         if a == "--term-limit" {
             if let Some(n) = it.next().and_then(|s| s.parse().ok()) {
-                dqsym::set_term_limit(n);
+                ctx = ctx.with_term_limit(n);
             }
         } else if a == "--runs" {
             runs = it
@@ -193,6 +194,7 @@ fn main() {
     if picked.is_empty() {
         picked = vec!["W1", "W2", "W3", "W4", "W5"];
     }
+    let _entered = ctx.enter();
     for w in picked {
         match w {
             "W1" => {

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # The main job: the paper's worked examples, derived and printed in closed form.
+# The first run builds the release binary (several minutes); cargo shows its progress.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo run --locked --release --quiet -- paper "$@"
+cargo build --locked --release
+exec target/release/dqsym paper "$@"

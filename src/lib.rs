@@ -27,11 +27,11 @@ pub use kin::{
     JointKind, Robot, RobotError, ScrewError, ScrewParams,
 };
 pub use lang::{
-    builtin, eval_point_text, eval_scalar_text, parse, parse_expr, parse_expr_with, parse_with,
-    show, show_value, AddOp, Binding, BindingKind, Builtin, Displayed, EvalError, EvalErrorKind,
-    Expr as AstExpr, ExprKind, Format, Ident, MulOp, ParseError, ParseErrorKind, ParseOptions,
-    Program, Session, ShowError, ShowOptions, Span, Stmt, StmtKind, UnaryOp, Value, BUILTINS,
-    CONSTANTS, MAX_EXPONENT,
+    builtin, continues, eval_point_text, eval_scalar_text, parse, parse_expr, parse_expr_with,
+    parse_with, show, show_value, AddOp, Binding, BindingKind, Builtin, Displayed, EvalError,
+    EvalErrorKind, Expr as AstExpr, ExprKind, Format, Ident, MulOp, ParseError, ParseErrorKind,
+    ParseOptions, Program, Session, ShowError, ShowOptions, Span, Stmt, StmtKind, UnaryOp, Value,
+    BUILTINS, CONSTANTS, MAX_EXPONENT,
 };
 pub use print::{
     fk_recurrence, fk_report, legend, ops_tables, plain, plain_quotient, shorthand_name, FkOptions,
@@ -39,9 +39,8 @@ pub use print::{
 };
 pub use ring::Ring;
 pub use scalar::{
-    max_exponent, parse_trig_placeholder, reset_work, set_max_exponent, set_term_limit,
-    set_work_budget, term_limit, trig_placeholder, work_budget, work_used, worker_threads, Frac,
-    Scalar, ScalarError, Sym, DEFAULT_MAX_EXPONENT,
+    parse_trig_placeholder, trig_placeholder, Context, Entered, Frac, Scalar, ScalarError, Sym,
+    DEFAULT_MAX_EXPONENT,
 };
 pub use walk::{
     mechanism_svg, walk_html, walk_markdown, walk_robot, walk_script, walk_text, ComponentTrace,

@@ -2,8 +2,8 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 use dqsym::{
-    closed_form, dh_link, legend, parse_with, plain, show, show_value, DualQuat, Expr, Format,
-    ParseOptions, PlainOptions, Ring, Scalar, Session, ShowOptions, StmtKind,
+    closed_form, dh_link, legend, parse_with, plain, show, show_value, Context, DualQuat, Expr,
+    Format, ParseOptions, PlainOptions, Ring, Scalar, Session, ShowOptions, StmtKind,
 };
 use std::process::ExitCode;
 
@@ -19,11 +19,11 @@ mod repl;
 struct Cli {
     /// Evaluate one expression (or `;`-separated statements) and print its closed form. Free
     /// names are symbols here.
-    #[arg(short = 'e', value_name = "EXPR")]
+    #[arg(short = 'e', value_name = "EXPR", allow_hyphen_values = true)]
     expr: Option<String>,
-    /// Output format.
-    #[arg(long, value_enum, default_value_t = OutputFormat::Plain, global = true)]
-    format: OutputFormat,
+    /// Output format of -e, run, fk and the REPL [default: plain].
+    #[arg(long, value_enum, global = true)]
+    format: Option<OutputFormat>,
     /// Print cos(theta1 + theta2) instead of the shorthand c12.
     #[arg(long, global = true)]
     explicit: bool,
@@ -108,6 +108,10 @@ enum OutputFormat {
     Rust,
     /// Text that SymPy's sympify parses.
     Sympy,
+    /// C99 source.
+    C,
+    /// Python source (NumPy, vectorized).
+    Python,
 }
 
 /// The options for the library's printers.
@@ -117,6 +121,8 @@ fn show_options(format: OutputFormat, explicit: bool) -> Result<ShowOptions, Str
         OutputFormat::Latex => Format::Latex,
         OutputFormat::Rust => Format::Rust,
         OutputFormat::Sympy => Format::Sympy,
+        OutputFormat::C => Format::C,
+        OutputFormat::Python => Format::Python,
     };
     Ok(ShowOptions { format, explicit })
 }
@@ -146,23 +152,15 @@ const MAX_MAX_DEPTH: i64 = 4096;
 /// second or so of work on small terms.
 const DEFAULT_WORK_BUDGET: u64 = 3_000_000;
 
-/// The limits of the command line, applied to each thread that evaluates.
-#[derive(Clone, Copy, Debug)]
+/// The limits of the command line: the parser's depth and the execution context every
+/// evaluation runs in.
+#[derive(Clone, Debug)]
 pub(crate) struct Limits {
-    term_limit: usize,
     max_depth: usize,
-    max_exponent: u64,
-    work_budget: u64,
+    ctx: Context,
 }
 
 impl Limits {
-    /// Sets the scalar layer's per-thread limits on the calling thread.
-    pub(crate) fn apply(&self) {
-        dqsym::set_term_limit(self.term_limit);
-        dqsym::set_max_exponent(self.max_exponent);
-        dqsym::set_work_budget(self.work_budget);
-    }
-
     /// The parser's options.
     pub(crate) fn parse_options(&self) -> ParseOptions {
         ParseOptions {
@@ -170,29 +168,75 @@ impl Limits {
             ..ParseOptions::default()
         }
     }
+
+    /// The execution context of every evaluation.
+    pub(crate) fn context(&self) -> &Context {
+        &self.ctx
+    }
+}
+
+/// The threads of parallel maps: `DQSYM_THREADS` if set (at least 1), else the library's
+/// default (the available cores, at most 8).
+fn threads_from_env() -> Option<usize> {
+    std::env::var("DQSYM_THREADS")
+        .ok()
+        .and_then(|s| s.trim().parse::<usize>().ok())
+        .map(|n| n.max(1))
 }
 
 /// glibc grows a thread's heap arena a page run at a time, one `mprotect` each; `fk` on two
 /// threads made about 85 such calls per run. A 16 MB top pad grows it in few steps.
+///
+/// The REPL instead keeps its resident memory small between statements: an abandoned
+/// computation's memory must go back to the system, and a thread arena keeps its top pad (and
+/// glibc's dynamic trim threshold, which freeing large blocks raises up to 64 MB) resident.
+/// Fixed thresholds of 1 MB hand freed memory back at once.
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
-fn tune_allocator() {
+fn tune_allocator(interactive: bool) {
     extern "C" {
         fn mallopt(param: std::ffi::c_int, value: std::ffi::c_int) -> std::ffi::c_int;
     }
+    const M_TRIM_THRESHOLD: std::ffi::c_int = -1;
     const M_TOP_PAD: std::ffi::c_int = -2;
-    // SAFETY: mallopt only sets an allocator tuning parameter; it is called before any other
+    const M_MMAP_THRESHOLD: std::ffi::c_int = -3;
+    // SAFETY: mallopt only sets allocator tuning parameters; it is called before any other
     // thread exists.
     unsafe {
-        mallopt(M_TOP_PAD, 16 << 20);
+        if interactive {
+            mallopt(M_TRIM_THRESHOLD, 1 << 20);
+            mallopt(M_MMAP_THRESHOLD, 1 << 20);
+        } else {
+            mallopt(M_TOP_PAD, 16 << 20);
+        }
     }
 }
 
 #[cfg(not(all(target_os = "linux", target_env = "gnu")))]
-fn tune_allocator() {}
+fn tune_allocator(_interactive: bool) {}
+
+/// Writing to a closed pipe (`dqsym fk robot.toml | head -1`) ends the process quietly, as it
+/// ends `cat`: the default action of SIGPIPE, which the Rust runtime sets to "ignore" (every
+/// `print!` would then panic on the broken pipe).
+#[cfg(unix)]
+fn quiet_on_closed_pipe() {
+    extern "C" {
+        fn signal(signum: std::ffi::c_int, handler: usize) -> usize;
+    }
+    const SIGPIPE: std::ffi::c_int = 13;
+    const SIG_DFL: usize = 0;
+    // SAFETY: restores the default disposition of one signal before any thread exists.
+    unsafe {
+        signal(SIGPIPE, SIG_DFL);
+    }
+}
+
+#[cfg(not(unix))]
+fn quiet_on_closed_pipe() {}
 
 fn main() -> ExitCode {
-    tune_allocator();
+    quiet_on_closed_pipe();
     let cli = Cli::parse();
+    tune_allocator(cli.command.is_none() && cli.expr.is_none());
     let worker = std::thread::Builder::new()
         .stack_size(STACK)
         .spawn(move || dispatch(cli));
@@ -207,23 +251,47 @@ fn main() -> ExitCode {
 
 fn dispatch(cli: Cli) -> ExitCode {
     let default_terms = match cli.command {
-        Some(Command::Fk { .. }) => DEFAULT_FK_TERM_LIMIT,
+        Some(Command::Fk { .. } | Command::Ops { .. }) => DEFAULT_FK_TERM_LIMIT,
         _ => DEFAULT_TERM_LIMIT,
     };
+    let mut base = Context::new();
+    if let Some(n) = threads_from_env() {
+        base = base.with_threads(n);
+    }
     let limits = Limits {
-        term_limit: cli.term_limit.unwrap_or(default_terms),
         max_depth: usize::from(cli.max_depth),
-        max_exponent: cli.max_exponent,
-        work_budget: cli.work_budget,
+        ctx: base
+            .clone()
+            .with_term_limit(cli.term_limit.unwrap_or(default_terms))
+            .with_max_exponent(cli.max_exponent)
+            .with_work_budget(cli.work_budget),
     };
     // The limits guard scripts, one-liners and robot files; paper keeps the library defaults.
-    if !matches!(cli.command, Some(Command::Paper)) {
-        limits.apply();
+    let _entered = if matches!(cli.command, Some(Command::Paper)) {
+        base.enter()
+    } else {
+        limits.context().enter()
+    };
+    // Every option applies or is an error: walk, ops and paper have no output formats.
+    let formatless = match &cli.command {
+        Some(Command::Walk { .. }) => Some("walk (it has --markdown and --html)"),
+        Some(Command::Ops { .. }) => Some("ops (it prints operation counts)"),
+        Some(Command::Paper) => Some("paper (it prints plain text)"),
+        _ => None,
+    };
+    if let (Some(what), Some(_)) = (formatless, cli.format) {
+        eprintln!("error: --format does not apply to {what}");
+        return ExitCode::from(2);
     }
+    if cli.command.is_some() && cli.expr.is_some() {
+        eprintln!("error: -e cannot be combined with a command");
+        return ExitCode::from(2);
+    }
+    let format = cli.format.unwrap_or(OutputFormat::Plain);
     // fk has its own formats (a report per entry); the other commands share show options.
     let opts = match &cli.command {
         Some(Command::Fk { .. } | Command::Ops { .. }) => None,
-        _ => match show_options(cli.format, cli.explicit) {
+        _ => match show_options(format, cli.explicit) {
             Ok(o) => Some(o),
             Err(message) => {
                 eprintln!("{message}");
@@ -244,7 +312,7 @@ fn dispatch(cli: Cli) -> ExitCode {
                 jacobian,
             }),
             _,
-        ) => fk(&robot, point.as_deref(), jacobian, cli.format, cli.explicit),
+        ) => fk(&robot, point.as_deref(), jacobian, format, cli.explicit),
         (Some(Command::Paper), _) => match paper(&PlainOptions {
             shorthand: !cli.explicit,
         }) {
@@ -307,9 +375,12 @@ fn fk(
         },
         OutputFormat::Sympy => dqsym::ReportFormat::Sympy,
         OutputFormat::Rust => dqsym::ReportFormat::Rust,
+        OutputFormat::C => dqsym::ReportFormat::C,
+        OutputFormat::Python => dqsym::ReportFormat::Python,
     };
     // The fields were evaluated each with its own budget; the derivation gets a whole one.
-    dqsym::reset_work();
+    let derivation = Context::entered();
+    let _derivation = derivation.enter();
     match dqsym::fk_report(
         &robot,
         &dqsym::FkOptions {
@@ -317,7 +388,7 @@ fn fk(
             point,
             jacobian,
             // Past the evaluation's term limit, the pose is printed as a recurrence.
-            max_terms: dqsym::term_limit(),
+            max_terms: derivation.term_limit(),
         },
     ) {
         Ok(t) => {
@@ -346,11 +417,15 @@ fn ops(path: Option<&std::path::Path>, jacobian: bool) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
+    // The fields were evaluated each with its own budget; the derivation gets a whole one,
+    // and, as fk, prints a recurrence past the term limit.
+    let derivation = Context::entered();
+    let _derivation = derivation.enter();
     let o = dqsym::FkOptions {
         format: dqsym::ReportFormat::Ops,
         jacobian,
         point: robot.tool.clone(),
-        ..dqsym::FkOptions::default()
+        max_terms: derivation.term_limit(),
     };
     match dqsym::fk_report(&robot, &o) {
         Ok(t) => {

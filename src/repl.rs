@@ -2,12 +2,15 @@
 //! worker thread so that Ctrl-C can abandon a long computation while the bindings stay.
 //!
 //! Each statement runs on a clone of the session in its own thread; the clone replaces the
-//! session only when the statement succeeds. Ctrl-C sets a flag the evaluator polls; if the
-//! worker is inside one long scalar operation, the prompt comes back at once anyway and the
-//! worker's result is dropped when it finishes.
+//! session only when the statement succeeds. Ctrl-C sets the cancel flag of the statement's
+//! execution context, which every scalar operation, closed form and worker thread checks where
+//! it charges work: the worker ends within milliseconds, is joined, and its memory is returned
+//! before the prompt comes back.
 
 use crate::Limits;
-use dqsym::{parse_with, show, BindingKind, Session, ShowOptions, BUILTINS, CONSTANTS};
+use dqsym::{
+    parse_with, show, BindingKind, EvalErrorKind, Session, ShowOptions, BUILTINS, CONSTANTS,
+};
 use rustyline::completion::{Completer, Pair};
 use rustyline::error::ReadlineError;
 use rustyline::highlight::Highlighter;
@@ -19,7 +22,6 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::sync::{Arc, Mutex};
-use std::time::Duration;
 
 const PROMPT: &str = "dq> ";
 const MORE: &str = "..> ";
@@ -92,30 +94,6 @@ fn history_path() -> Option<std::path::PathBuf> {
     std::env::var_os("HOME").map(|h| std::path::PathBuf::from(h).join(".dqsym_history"))
 }
 
-/// What keeps `text` from being complete: the innermost open bracket, or `.` for a trailing
-/// `...` continuation; `None` when it can be evaluated.
-fn pending(text: &str) -> Option<char> {
-    let mut open = Vec::new();
-    for line in text.lines() {
-        let code = line.find(['%', '#']).map_or(line, |i| &line[..i]);
-        let code = code.find("//").map_or(code, |i| &code[..i]);
-        for c in code.chars() {
-            match c {
-                '(' | '[' => open.push(c),
-                // A stray closing bracket is left for the parser to report.
-                ')' | ']' => {
-                    open.pop()?;
-                }
-                _ => {}
-            }
-        }
-    }
-    if let Some(&c) = open.last() {
-        return Some(c);
-    }
-    text.trim_end().ends_with("...").then_some('.')
-}
-
 /// The `:help` text: the language in brief, every built-in with an example, the commands.
 pub(crate) fn help() -> String {
     let mut s = String::from(
@@ -145,7 +123,7 @@ pub(crate) fn help() -> String {
          \x20 expr             shown as `expr = value` and stored in `ans`\n\
          \n\
          Built-ins\n",
-        dqsym::max_exponent()
+        dqsym::Context::entered().max_exponent()
     );
     for b in BUILTINS {
         s += &format!(
@@ -180,6 +158,26 @@ fn vars(session: &Session) -> String {
 /// What a worker sends back for one statement.
 type Outcome = (Session, Result<Option<String>, String>);
 
+/// The state of one interactive session.
+struct Repl<'a> {
+    session: Session,
+    /// The lines of a statement still open (a bracket, a trailing `...`).
+    buffer: String,
+    /// The inputs that ran without error, replayed by `:steps`.
+    entered: String,
+    opts: &'a ShowOptions,
+    limits: &'a Limits,
+    /// The context statements run in: the command line's limits and the Ctrl-C flag.
+    ctx: dqsym::Context,
+    interrupt: Arc<AtomicBool>,
+}
+
+/// What to do after one line.
+enum Next {
+    Continue,
+    Quit,
+}
+
 /// Runs the REPL until `:quit` or end of input.
 pub(crate) fn run(opts: &ShowOptions, limits: &Limits) -> ExitCode {
     let interrupt = Arc::new(AtomicBool::new(false));
@@ -204,17 +202,21 @@ pub(crate) fn run(opts: &ShowOptions, limits: &Limits) -> ExitCode {
     if let Some(h) = &history {
         let _ = editor.load_history(h);
     }
-    let mut session = Session::new();
-    session.set_cancel_flag(interrupt.clone());
-    let mut buffer = String::new();
-    // The inputs that ran without error, replayed by `:steps`.
-    let mut entered = String::new();
-    loop {
-        let prompt = if buffer.is_empty() { PROMPT } else { MORE };
-        let line = match editor.readline(prompt) {
+    let mut repl = Repl {
+        session: Session::new(),
+        buffer: String::new(),
+        entered: String::new(),
+        opts,
+        limits,
+        ctx: limits.context().clone().with_cancel_flag(interrupt.clone()),
+        interrupt,
+    };
+    'read: loop {
+        let prompt = if repl.buffer.is_empty() { PROMPT } else { MORE };
+        let input = match editor.readline(prompt) {
             Ok(l) => l,
             Err(ReadlineError::Interrupted) => {
-                buffer.clear();
+                repl.buffer.clear();
                 continue;
             }
             Err(ReadlineError::Eof) => break,
@@ -223,59 +225,22 @@ pub(crate) fn run(opts: &ShowOptions, limits: &Limits) -> ExitCode {
                 break;
             }
         };
-        if buffer.is_empty() {
-            match line.trim() {
-                "" => continue,
-                ":quit" | ":q" | ":exit" => {
-                    let _ = editor.add_history_entry(line.as_str());
-                    break;
-                }
-                ":help" | ":h" => {
-                    let _ = editor.add_history_entry(line.as_str());
-                    print!("{}", help());
-                    continue;
-                }
-                ":vars" => {
-                    let _ = editor.add_history_entry(line.as_str());
-                    print!("{}", vars(&session));
-                    continue;
-                }
-                ":steps" => {
-                    let _ = editor.add_history_entry(line.as_str());
-                    match dqsym::walk_script(&entered, "the statements entered so far")
-                        .and_then(|w| dqsym::walk_text(&w))
-                    {
-                        Ok(t) => print!("{t}"),
-                        Err(e) => eprintln!("error: {e}"),
-                    }
-                    continue;
-                }
-                cmd if cmd.starts_with(':') => {
-                    eprintln!("error: unknown command `{cmd}`; try :help");
-                    continue;
-                }
-                _ => {}
+        // Pasted text (bracketed paste) arrives as one input with line breaks: it is taken
+        // line by line, as if typed.
+        for line in input.split('\n') {
+            let line = line.strip_suffix('\r').unwrap_or(line);
+            if let Next::Quit = repl.line(line, &mut editor) {
+                break 'read;
             }
         }
-        // Parentheses must close on their own line in scripts, so a line continuing an open
-        // `(` is joined with a space; matrix rows and `...` keep their line breaks.
-        if pending(&buffer) == Some('(') && buffer.ends_with('\n') {
-            buffer.pop();
-            buffer.push(' ');
-        }
-        buffer.push_str(&line);
-        buffer.push('\n');
-        if pending(&buffer).is_some() {
-            continue;
-        }
-        let src = std::mem::take(&mut buffer);
-        let _ = editor.add_history_entry(src.trim_end());
-        if evaluate(&mut session, &src, opts, &interrupt, limits) {
-            entered.push_str(&src);
-        }
         if let Ok(mut n) = names.lock() {
-            *n = session.bindings().keys().cloned().collect();
+            *n = repl.session.bindings().keys().cloned().collect();
         }
+    }
+    // Input that ended inside a statement (an open bracket) gets its message, not silence.
+    if !repl.buffer.is_empty() {
+        let src = std::mem::take(&mut repl.buffer);
+        repl.evaluate(&src);
     }
     if let Some(h) = &history {
         let _ = editor.save_history(h);
@@ -283,72 +248,143 @@ pub(crate) fn run(opts: &ShowOptions, limits: &Limits) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-/// Parses and runs one input, statement by statement, each on a worker thread; true when
-/// every statement succeeded.
-fn evaluate(
-    session: &mut Session,
-    src: &str,
-    opts: &ShowOptions,
-    interrupt: &Arc<AtomicBool>,
-    limits: &Limits,
-) -> bool {
-    let program = match parse_with(src, &limits.parse_options()) {
-        Ok(p) => p,
-        Err(e) => {
-            eprintln!("{e}");
-            return false;
-        }
-    };
-    interrupt.store(false, Ordering::SeqCst);
-    for stmt in program.statements {
-        let (tx, rx) = mpsc::channel::<Outcome>();
-        let mut work = session.clone();
-        let opts = *opts;
-        let limits = *limits;
-        let source = src.to_owned();
-        let spawned = std::thread::Builder::new()
-            .stack_size(crate::STACK)
-            .spawn(move || {
-                // The limits are per thread.
-                limits.apply();
-                let result = match work.exec(&stmt) {
-                    Ok(Some(d)) => show(&d, &opts).map(Some).map_err(|e| format!("error: {e}")),
-                    Ok(None) => Ok(None),
-                    Err(e) => Err(e.render(&source)),
-                };
-                let _ = tx.send((work, result));
-            });
-        if let Err(e) = spawned {
-            eprintln!("error: cannot start the evaluation: {e}");
-            return false;
-        }
-        let outcome = loop {
-            match rx.recv_timeout(Duration::from_millis(20)) {
-                Ok(o) => break Some(o),
-                Err(mpsc::RecvTimeoutError::Timeout) => {
-                    if interrupt.load(Ordering::SeqCst) {
-                        break None;
-                    }
+impl Repl<'_> {
+    /// Takes one line: a command, or a line of a statement (run once complete).
+    fn line(&mut self, line: &str, editor: &mut Editor<DqHelper, DefaultHistory>) -> Next {
+        if self.buffer.is_empty() {
+            match line.trim() {
+                "" => return Next::Continue,
+                ":quit" | ":q" | ":exit" => {
+                    let _ = editor.add_history_entry(line);
+                    return Next::Quit;
                 }
-                Err(mpsc::RecvTimeoutError::Disconnected) => break None,
+                ":help" | ":h" => {
+                    let _ = editor.add_history_entry(line);
+                    print!("{}", help());
+                    return Next::Continue;
+                }
+                ":vars" => {
+                    let _ = editor.add_history_entry(line);
+                    print!("{}", vars(&self.session));
+                    return Next::Continue;
+                }
+                ":steps" => {
+                    let _ = editor.add_history_entry(line);
+                    match dqsym::walk_script(&self.entered, "the statements entered so far")
+                        .and_then(|w| dqsym::walk_text(&w))
+                    {
+                        Ok(t) => print!("{t}"),
+                        Err(e) => eprintln!("error: {e}"),
+                    }
+                    return Next::Continue;
+                }
+                cmd if cmd.starts_with(':') => {
+                    eprintln!("error: unknown command `{cmd}`; try :help");
+                    return Next::Continue;
+                }
+                _ => {}
+            }
+        }
+        self.buffer.push_str(line);
+        self.buffer.push('\n');
+        if dqsym::continues(&self.buffer) {
+            return Next::Continue;
+        }
+        let src = std::mem::take(&mut self.buffer);
+        let _ = editor.add_history_entry(src.trim_end());
+        if self.evaluate(&src) {
+            self.entered.push_str(&src);
+        }
+        Next::Continue
+    }
+
+    /// Parses and runs one input, statement by statement, each on a worker thread; true when
+    /// every statement succeeded.
+    fn evaluate(&mut self, src: &str) -> bool {
+        let program = match parse_with(src, &self.limits.parse_options()) {
+            Ok(p) => p,
+            Err(e) => {
+                eprintln!("{e}");
+                return false;
             }
         };
-        match outcome {
-            Some((next, Ok(shown))) => {
-                *session = next;
-                if let Some(text) = shown {
-                    print!("{text}");
+        self.interrupt.store(false, Ordering::SeqCst);
+        for stmt in program.statements {
+            let (tx, rx) = mpsc::channel::<Outcome>();
+            let mut work = self.session.clone();
+            let opts = *self.opts;
+            let ctx = self.ctx.clone();
+            let source = src.to_owned();
+            let spawned = std::thread::Builder::new()
+                .stack_size(crate::STACK)
+                .spawn(move || {
+                    let _entered = ctx.enter();
+                    let result = match work.exec(&stmt) {
+                        Ok(Some(d)) => show(&d, &opts).map(Some).map_err(|e| match e {
+                            dqsym::ShowError::Scalar(dqsym::ScalarError::Cancelled) => {
+                                INTERRUPTED.to_owned()
+                            }
+                            e => format!("error: {e}"),
+                        }),
+                        Ok(None) => Ok(None),
+                        Err(e) if matches!(e.kind(), EvalErrorKind::Interrupted) => {
+                            Err(INTERRUPTED.to_owned())
+                        }
+                        Err(e) => Err(e.render(&source)),
+                    };
+                    let _ = tx.send((work, result));
+                });
+            let worker = match spawned {
+                Ok(w) => w,
+                Err(e) => {
+                    eprintln!("error: cannot start the evaluation: {e}");
+                    return false;
+                }
+            };
+            // Ctrl-C reaches the worker through the context: every scalar operation, closed
+            // form and worker thread of it stops at its next charge of work, so the worker
+            // always answers soon; it is joined so that its memory is gone before the prompt.
+            let outcome = rx.recv().ok();
+            let _ = worker.join();
+            match outcome {
+                Some((next, Ok(shown))) => {
+                    self.session = next;
+                    if let Some(text) = shown {
+                        print!("{text}");
+                    }
+                }
+                Some((_, Err(message))) => {
+                    if message == INTERRUPTED {
+                        release_freed_memory();
+                    }
+                    eprintln!("{message}");
+                    return false;
+                }
+                None => {
+                    eprintln!("error: internal failure in the evaluation");
+                    return false;
                 }
             }
-            Some((_, Err(message))) => {
-                eprintln!("{message}");
-                return false;
-            }
-            None => {
-                eprintln!("interrupted; the bindings are unchanged");
-                return false;
-            }
         }
+        true
     }
-    true
 }
+
+/// The message after Ctrl-C stopped a computation.
+const INTERRUPTED: &str = "interrupted; the bindings are unchanged";
+
+/// Hands the memory an abandoned computation freed back to the system: glibc keeps a worker
+/// thread's freed heap in its arena otherwise.
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+fn release_freed_memory() {
+    extern "C" {
+        fn malloc_trim(pad: usize) -> std::ffi::c_int;
+    }
+    // SAFETY: malloc_trim only returns free memory of the allocator's arenas to the system.
+    unsafe {
+        malloc_trim(0);
+    }
+}
+
+#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+fn release_freed_memory() {}

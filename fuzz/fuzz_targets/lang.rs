@@ -14,9 +14,11 @@ fuzz_target!(|data: &[u8]| {
     let Ok(src) = std::str::from_utf8(data) else {
         return;
     };
-    dqsym::set_term_limit(1_000);
-    dqsym::set_work_budget(50_000);
-    dqsym::set_max_exponent(1_000);
+    let ctx = dqsym::Context::new()
+        .with_term_limit(1_000)
+        .with_work_budget(50_000)
+        .with_max_exponent(1_000);
+    let _entered = ctx.enter();
     let program = match parse(src) {
         Ok(p) => p,
         Err(e) => {

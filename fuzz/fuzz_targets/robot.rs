@@ -9,9 +9,11 @@ fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
-    dqsym::set_term_limit(1_000);
-    dqsym::set_work_budget(50_000);
-    dqsym::set_max_exponent(1_000);
+    let ctx = dqsym::Context::new()
+        .with_term_limit(1_000)
+        .with_work_budget(50_000)
+        .with_max_exponent(1_000);
+    let _entered = ctx.enter();
     let robot = match parse_robot(text, "fuzz.toml", &eval_scalar_text) {
         Ok(r) => r,
         Err(e) => {
@@ -19,12 +21,13 @@ fuzz_target!(|data: &[u8]| {
             return;
         }
     };
-    dqsym::reset_work();
+    // The fields were evaluated each with its own budget; the derivation gets a whole one.
+    let _derivation = ctx.enter();
     let options = FkOptions {
         format: ReportFormat::Plain { shorthand: true },
         point: robot.tool.clone(),
         jacobian: false,
-        max_terms: dqsym::term_limit(),
+        max_terms: ctx.term_limit(),
     };
     let _ = fk_report(&robot, &options);
 });

@@ -123,6 +123,36 @@ pub struct Cost {
 }
 
 impl Expr {
+    /// The names of the symbols the expression reads (angle symbols included, the symbol of a
+    /// `cos(x)` placeholder as `x`, `pi` left out), sorted, found without evaluating it: the
+    /// exact value of a large cos/sin polynomial may be far over the term limit.
+    pub fn symbol_names(&self) -> Vec<String> {
+        fn walk(e: &Expr, out: &mut Vec<String>) {
+            match e {
+                Expr::Num(_) | Expr::Sqrt(_) => {}
+                Expr::Sym(s) => match crate::scalar::parse_trig_placeholder(s.name()) {
+                    Some((x, _)) => out.push(x.to_owned()),
+                    None => out.push(s.name().to_owned()),
+                },
+                Expr::Trig { angle, .. } => out.extend(
+                    angle
+                        .terms
+                        .iter()
+                        .map(|(s, _)| s.name().to_owned())
+                        .filter(|n| n != "1"),
+                ),
+                Expr::Add(v) | Expr::Mul(v) => v.iter().for_each(|x| walk(x, out)),
+                Expr::Neg(x) | Expr::Pow(x, _) => walk(x, out),
+            }
+        }
+        let mut out = Vec::new();
+        walk(self, &mut out);
+        out.retain(|n| n != "pi");
+        out.sort();
+        out.dedup();
+        out
+    }
+
     /// The exact value, re-canonicalized: every closed form must equal its input.
     pub fn to_scalar(&self) -> Scalar {
         self.eval(&mut Vec::new())

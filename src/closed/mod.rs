@@ -24,7 +24,7 @@ const SPLIT_LIMIT: usize = 100_000;
 ///
 /// # Errors
 /// When `x` is an error value, and when the search or the check of its result against `x`
-/// runs out of the work budget or over the term limit (see [`crate::set_work_budget`]).
+/// runs out of the work budget or over the term limit (see [`crate::Context::with_work_budget`]).
 pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
     closed_form_prepared(x).0
 }

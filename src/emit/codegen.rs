@@ -127,9 +127,8 @@ pub fn arguments(outputs: &[Output], joints: &[&str]) -> Vec<String> {
     let mut rest: Vec<String> = outputs
         .iter()
         .flat_map(|o| o.values.iter())
-        .flat_map(|e| e.to_scalar().symbols())
-        .map(|s| s.name().to_string())
-        .filter(|n| n != "pi" && !joints.contains(&n.as_str()) && !bound.contains(n))
+        .flat_map(Expr::symbol_names)
+        .filter(|n| !joints.contains(&n.as_str()) && !bound.contains(n))
         .collect();
     rest.sort();
     rest.dedup();

@@ -154,7 +154,24 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
                     JointKind::Revolute => ("theta", &theta),
                     JointKind::Prismatic => ("d", &d),
                 };
+                // theta and alpha are angles (halved in the joint's DQ): say so here, naming
+                // the field as written, rather than deep in the derivation.
+                for (name, value, text) in
+                    [("theta", &theta, &j.theta), ("alpha", &alpha, &j.alpha)]
+                {
+                    if value.cos().check().is_err() {
+                        return Err(err(
+                            name,
+                            format!(
+                                "`{}` is not an angle (a rational combination of symbols plus a \
+                                 rational multiple of pi)",
+                                text.as_deref().unwrap_or_default()
+                            ),
+                        ));
+                    }
+                }
                 let var = joint_variable(vfield).map_err(|m| err(vname, m))?;
+                check_distinct(&variables, &var).map_err(|m| err(vname, m))?;
                 let off = |x: &Scalar, is_var: bool| {
                     if is_var {
                         x - &Scalar::sym(&var)
@@ -177,9 +194,12 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
                     .variable
                     .clone()
                     .ok_or_else(|| err("variable", "missing".into()))?;
-                if var.is_empty() || !var.chars().all(|c| c.is_alphanumeric() || c == '_') {
+                if !var.starts_with(char::is_alphabetic)
+                    || !var.chars().all(|c| c.is_alphanumeric() || c == '_')
+                {
                     return Err(err("variable", format!("`{var}` is not a symbol name")));
                 }
+                check_distinct(&variables, &var).map_err(|m| err("variable", m))?;
                 let axis = vec3(j.axis.as_ref(), "axis", eval).map_err(|m| err("axis", m))?;
                 let axis = unit_numeric(&axis).map_err(|m| err("axis", m))?;
                 let point = match (kind, j.point.as_ref()) {
@@ -321,7 +341,7 @@ impl Robot {
         };
         // The two halves of a long chain on two threads, then their product (exact, so the
         // same value as the product from the left).
-        let acc = if factors.len() >= 4 && crate::scalar::worker_threads() > 1 {
+        let acc = if factors.len() >= 4 && crate::Context::entered().threads() > 1 {
             let (a, b) = factors.split_at(factors.len() / 2);
             let (pa, pb) = crate::scalar::join(|| product(a), || product(b));
             product(&[pa?, pb?])?
@@ -358,6 +378,19 @@ impl Robot {
         names.dedup();
         names.retain(|n| n != "pi" && !self.variables.contains(n));
         names
+    }
+}
+
+/// Refuses a joint variable an earlier joint already has: each Jacobian column is the
+/// derivative by one joint's variable, so a shared one would make both columns the total
+/// derivative.
+fn check_distinct(earlier: &[String], var: &str) -> Result<(), String> {
+    match earlier.iter().position(|v| v == var) {
+        Some(k) => Err(format!(
+            "`{var}` is already the variable of joint {}; every joint needs a variable of its own",
+            k + 1
+        )),
+        None => Ok(()),
     }
 }
 

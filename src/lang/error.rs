@@ -122,7 +122,7 @@ pub enum ParseErrorKind {
         open_col: usize,
     },
     /// Brackets, prefix operators or powers nest deeper than the limit.
-    #[error("nesting deeper than {limit}")]
+    #[error("nesting deeper than {limit} (the nesting limit; --max-depth raises it, up to 4096)")]
     TooDeep {
         /// The limit, [`ParseOptions::max_depth`](super::ParseOptions).
         limit: usize,

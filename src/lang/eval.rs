@@ -16,11 +16,9 @@ use super::error::render;
 use super::scan::SourceMap;
 use super::show::Format;
 use super::value::{self, OpError, Value};
-use crate::{DualQuat, Quat, Scalar, ScalarError};
+use crate::{Context, DualQuat, Quat, Scalar, ScalarError};
 use std::cell::RefCell;
 use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
 use thiserror::Error;
 
 /// Names that stand for constants and cannot be bound.
@@ -189,7 +187,7 @@ pub(crate) type Result<T> = std::result::Result<T, EvalError>;
 /// Turns an [`OpError`] into an [`EvalError`] at `span`.
 pub(crate) fn op_error(e: OpError, span: Span) -> EvalError {
     let kind = match e {
-        OpError::Type(m) if m == "interrupted" => EvalErrorKind::Interrupted,
+        OpError::Scalar(ScalarError::Cancelled) => EvalErrorKind::Interrupted,
         OpError::Type(m) => EvalErrorKind::Type(m),
         OpError::Scalar(e) => EvalErrorKind::Scalar(e),
         OpError::Exponent(m) => EvalErrorKind::Exponent(m),
@@ -203,7 +201,6 @@ pub(crate) fn op_error(e: OpError, span: Span) -> EvalError {
 pub struct Session {
     bindings: BTreeMap<String, Binding>,
     implicit_symbols: bool,
-    cancel: Option<Arc<AtomicBool>>,
 }
 
 impl Session {
@@ -219,11 +216,6 @@ impl Session {
             implicit_symbols: true,
             ..Session::default()
         }
-    }
-
-    /// Makes evaluation stop with [`EvalErrorKind::Interrupted`] soon after `flag` is set.
-    pub fn set_cancel_flag(&mut self, flag: Arc<AtomicBool>) {
-        self.cancel = Some(flag);
     }
 
     /// The bindings, sorted by name.
@@ -246,8 +238,10 @@ impl Session {
         Ok(shown)
     }
 
-    /// Runs one statement; on error the session is unchanged. The statement starts a new
-    /// work budget ([`crate::set_work_budget`]).
+    /// Runs one statement; on error the session is unchanged. The statement runs under the
+    /// [`Context`](crate::Context) entered on this thread, with a work budget of its own (the
+    /// context's whole budget), and stops with [`EvalErrorKind::Interrupted`] when the
+    /// context is cancelled.
     pub fn exec(&mut self, stmt: &Stmt) -> Result<Option<Displayed>> {
         self.exec_with(stmt, None)
     }
@@ -267,7 +261,7 @@ impl Session {
         stmt: &Stmt,
         rec: Option<&RefCell<Vec<Event>>>,
     ) -> Result<Option<Displayed>> {
-        crate::reset_work();
+        let _statement = Context::entered().enter();
         match &stmt.kind {
             StmtKind::Syms(names) => {
                 for n in names {
@@ -411,9 +405,10 @@ impl Session {
         Ok(())
     }
 
-    /// Evaluates one expression against the current bindings, with a new work budget.
+    /// Evaluates one expression against the current bindings, with a work budget of its own
+    /// (see [`Session::exec`]).
     pub fn eval(&self, e: &Expr) -> Result<Value> {
-        crate::reset_work();
+        let _statement = Context::entered().enter();
         self.eval_with(e, self.implicit_symbols, None)
     }
 
@@ -429,12 +424,6 @@ impl Session {
             rec,
         }
         .expr(e)
-    }
-
-    fn cancelled(&self) -> bool {
-        self.cancel
-            .as_ref()
-            .is_some_and(|c| c.load(Ordering::Relaxed))
     }
 }
 
@@ -466,7 +455,10 @@ fn check_not_constant(name: &str, span: Span) -> Result<()> {
 }
 
 pub(crate) fn scalar_error(e: ScalarError, span: Span) -> EvalError {
-    EvalError::new(EvalErrorKind::Scalar(e), span)
+    match e {
+        ScalarError::Cancelled => EvalError::new(EvalErrorKind::Interrupted, span),
+        e => EvalError::new(EvalErrorKind::Scalar(e), span),
+    }
 }
 
 /// What a walkthrough needs to know about one evaluation step.
@@ -520,13 +512,9 @@ impl Evaluator<'_> {
         }
     }
 
-    pub(crate) fn cancelled(&self) -> bool {
-        self.session.cancelled()
-    }
-
     /// Evaluates `e`; every value returned is free of scalar error values.
     pub(crate) fn expr(&self, e: &Expr) -> Result<Value> {
-        if self.cancelled() {
+        if crate::scalar::check_cancelled().is_err() {
             return Err(EvalError::new(EvalErrorKind::Interrupted, e.span));
         }
         let v = self.expr_unchecked(e)?;
@@ -591,8 +579,7 @@ impl Evaluator<'_> {
             ExprKind::Pow { base, exponent } => {
                 let b = self.expr(base)?;
                 let x = self.expr(exponent)?;
-                let cancelled = || self.cancelled();
-                value::pow(&b, &x, &cancelled).map_err(|err| match err {
+                value::pow(&b, &x).map_err(|err| match err {
                     OpError::Exponent(_) => op_error(err, exponent.span),
                     _ => op_error(err, e.span),
                 })

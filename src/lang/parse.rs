@@ -15,7 +15,7 @@
 use super::ast::{AddOp, Expr, ExprKind, Ident, MulOp, Program, Span, Stmt, StmtKind, UnaryOp};
 use super::error::{from_pest, ParseError, ParseErrorKind};
 use super::names::{decimal_as_fraction, normalize_name};
-use super::scan::{prescan, SourceMap};
+use super::scan::{blank, prescan, SourceMap};
 use num_bigint::BigUint;
 use pest::iterators::Pair;
 use pest::pratt_parser::{pratt_precedence, Assoc, ConstPrattParser, Op};
@@ -68,9 +68,26 @@ pub fn parse(src: &str) -> std::result::Result<Program, ParseError> {
 
 /// Parses a script.
 pub fn parse_with(src: &str, options: &ParseOptions) -> std::result::Result<Program, ParseError> {
-    let lower = Lower::new(src, options)?;
+    let map = SourceMap::new(src);
+    let text = scanned(&map, options)?;
+    let lower = Lower {
+        map,
+        text: &text,
+        options,
+    };
     let pair = lower.run(Rule::program)?;
     lower.program(pair)
+}
+
+/// Runs the bracket pre-scan over `map`; the text the grammar reads (line breaks inside
+/// parentheses as spaces).
+fn scanned<'s>(
+    map: &SourceMap<'s>,
+    options: &ParseOptions,
+) -> std::result::Result<std::borrow::Cow<'s, str>, ParseError> {
+    let ranges = prescan(map, options.max_depth, options.max_line_len)
+        .map_err(|(kind, start, end)| ParseError::new(map, kind, start, end))?;
+    Ok(blank(map.src(), &ranges))
 }
 
 /// Parses a single expression (all of `src`) with the default [`ParseOptions`].
@@ -80,7 +97,13 @@ pub fn parse_expr(src: &str) -> std::result::Result<Expr, ParseError> {
 
 /// Parses a single expression (all of `src`).
 pub fn parse_expr_with(src: &str, options: &ParseOptions) -> std::result::Result<Expr, ParseError> {
-    let lower = Lower::new(src, options)?;
+    let map = SourceMap::new(src);
+    let text = scanned(&map, options)?;
+    let lower = Lower {
+        map,
+        text: &text,
+        options,
+    };
     let pair = lower.run(Rule::expression)?;
     let expr = pair.into_inner().next().expect("expression holds an expr");
     Ok(lower.expr(expr)?.expr)
@@ -102,28 +125,18 @@ struct Folded {
 
 type Result<T> = std::result::Result<T, ParseError>;
 
-/// Lowering state: the source map and the limits.
+/// Lowering state: the source map, the text the grammar reads (the source with line breaks
+/// inside parentheses as spaces, byte for byte as long) and the limits.
 struct Lower<'s> {
     map: SourceMap<'s>,
+    text: &'s str,
     options: &'s ParseOptions,
 }
 
 impl<'s> Lower<'s> {
-    /// Indexes the source and runs the bracket pre-scan.
-    fn new(src: &'s str, options: &'s ParseOptions) -> Result<Lower<'s>> {
-        let lower = Lower {
-            map: SourceMap::new(src),
-            options,
-        };
-        prescan(&lower.map, options.max_depth, options.max_line_len)
-            .map_err(|(kind, start, end)| lower.error(kind, start, end))?;
-        Ok(lower)
-    }
-
     /// Runs pest from `rule` and returns its single top pair.
     fn run(&self, rule: Rule) -> Result<Pair<'s, Rule>> {
-        let mut pairs =
-            DqParser::parse(rule, self.map.src()).map_err(|e| from_pest(&self.map, e))?;
+        let mut pairs = DqParser::parse(rule, self.text).map_err(|e| from_pest(&self.map, e))?;
         Ok(pairs.next().expect("a successful parse has a top pair"))
     }
 

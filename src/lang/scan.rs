@@ -105,10 +105,14 @@ fn is_continuation(b: u8) -> bool {
 /// A problem found by the pre-scan: what, and the byte range it points at.
 pub(crate) type ScanError = (ParseErrorKind, usize, usize);
 
-/// Checks that no line is longer than `max_line_len` bytes, that brackets balance, that no `(`
-/// stays open across a line break (only matrix rows may span lines), and that nesting stays
-/// within `max_depth`. Comments and `...` continuations are skipped as the grammar skips them.
-/// Reports the first problem in text order; an unclosed bracket is reported at the bracket.
+/// Checks that no line is longer than `max_line_len` bytes, that brackets balance, and that
+/// nesting stays within `max_depth`. Comments and `...` continuations are skipped as the
+/// grammar skips them. Reports the first problem in text order; an unclosed bracket is
+/// reported at the bracket.
+///
+/// Returns the byte ranges the grammar must read as spaces: a line break whose innermost open
+/// bracket is `(` continues the expression (as in the REPL), so it is blanked together with a
+/// comment before it on its line; inside `[` a line break separates matrix rows and stays.
 ///
 /// The line limit is there because pest spends a few microseconds per token (more in debug
 /// builds): a 1 MB line would take seconds, while a line at the limit parses in milliseconds.
@@ -116,15 +120,26 @@ pub(crate) fn prescan(
     map: &SourceMap<'_>,
     max_depth: usize,
     max_line_len: usize,
-) -> Result<(), ScanError> {
+) -> Result<Vec<(usize, usize)>, ScanError> {
     check_line_lengths(map.src(), max_line_len)?;
     let bytes = map.src().as_bytes();
     let mut open: Vec<(u8, usize)> = Vec::new();
+    let mut blanks: Vec<(usize, usize)> = Vec::new();
+    // Where a comment on the current line starts.
+    let mut comment: Option<usize> = None;
     let mut i = 0;
     while i < bytes.len() {
         match bytes[i] {
-            b'%' | b'#' => i = skip_to_line_break(bytes, i),
-            b'/' if bytes.get(i + 1) == Some(&b'/') => i = skip_to_line_break(bytes, i),
+            b'%' | b'#' => {
+                comment = Some(i);
+                i = skip_to_line_break(bytes, i);
+                continue;
+            }
+            b'/' if bytes.get(i + 1) == Some(&b'/') => {
+                comment = Some(i);
+                i = skip_to_line_break(bytes, i);
+                continue;
+            }
             b'.' if bytes[i..].starts_with(b"...") => {
                 // A continuation hides the rest of its line and the line break itself.
                 i = skip_to_line_break(bytes, i) + 1;
@@ -159,9 +174,14 @@ pub(crate) fn prescan(
                 }
             }
             b'\n' => {
-                if let Some(&(_, at)) = open.iter().rev().find(|(o, _)| *o == b'(') {
-                    return Err((ParseErrorKind::Unclosed { open: '(' }, at, at + 1));
+                if open.last().is_some_and(|&(o, _)| o == b'(') {
+                    let mut start = comment.unwrap_or(i);
+                    if comment.is_none() && i > 0 && bytes[i - 1] == b'\r' {
+                        start = i - 1;
+                    }
+                    blanks.push((start, i + 1));
                 }
+                comment = None;
             }
             _ => {}
         }
@@ -175,8 +195,53 @@ pub(crate) fn prescan(
             at,
             at + 1,
         )),
-        None => Ok(()),
+        None => Ok(blanks),
     }
+}
+
+/// `src` with the byte ranges of [`prescan`] as spaces (the same length, so every byte offset
+/// and every line:column stays that of `src`).
+pub(crate) fn blank<'s>(src: &'s str, ranges: &[(usize, usize)]) -> std::borrow::Cow<'s, str> {
+    if ranges.is_empty() {
+        return std::borrow::Cow::Borrowed(src);
+    }
+    let mut bytes = src.as_bytes().to_vec();
+    for &(a, b) in ranges {
+        bytes[a..b].fill(b' ');
+    }
+    // Whole characters were replaced by ASCII spaces.
+    std::borrow::Cow::Owned(String::from_utf8(bytes).unwrap_or_else(|_| src.to_owned()))
+}
+
+/// Whether `text` is an unfinished statement that continues on the next line: a bracket is
+/// still open, or the last line ends with a `...` continuation. The REPL asks this before it
+/// runs a line; `dqsym run` follows the same rules (see [`prescan`]).
+pub fn continues(text: &str) -> bool {
+    let bytes = text.as_bytes();
+    let mut open = 0usize;
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'%' | b'#' => i = skip_to_line_break(bytes, i),
+            b'/' if bytes.get(i + 1) == Some(&b'/') => i = skip_to_line_break(bytes, i),
+            b'.' if bytes[i..].starts_with(b"...") => {
+                let end = skip_to_line_break(bytes, i);
+                if end + 1 >= bytes.len() {
+                    return true;
+                }
+                i = end;
+            }
+            b'(' | b'[' => open += 1,
+            // A stray closing bracket is left for the parser to report.
+            b')' | b']' => match open.checked_sub(1) {
+                Some(n) => open = n,
+                None => return false,
+            },
+            _ => {}
+        }
+        i += 1;
+    }
+    open > 0
 }
 
 /// Refuses the first line longer than `limit` bytes, pointing at the first byte past the limit.
@@ -232,7 +297,7 @@ mod tests {
         assert_eq!(map.line_col(2 * 777), (1, 778));
     }
 
-    fn check(src: &str) -> Result<(), ScanError> {
+    fn check(src: &str) -> Result<Vec<(usize, usize)>, ScanError> {
         prescan(&SourceMap::new(src), 8, 100)
     }
 
@@ -250,9 +315,26 @@ mod tests {
     }
 
     #[test]
-    fn a_paren_cannot_span_lines_but_a_bracket_can() {
-        assert!(check("[1, 2\n3, 4]").is_ok());
-        let err = check("x = (1\n)").unwrap_err();
-        assert_eq!((err.1, err.2), (4, 5));
+    fn a_line_break_in_a_paren_is_blanked_and_a_row_break_is_kept() {
+        assert_eq!(check("[1, 2\n3, 4]"), Ok(vec![]));
+        assert_eq!(check("x = (1 % c\r\n)"), Ok(vec![(7, 12)]));
+        assert_eq!(check("x = (1\r\n)"), Ok(vec![(6, 8)]));
+        assert_eq!(check("f([1\n2])"), Ok(vec![]));
+        let src = "x = (1 + # note\n 2)";
+        let ranges = check(src).unwrap();
+        assert_eq!(
+            blank(src, &ranges),
+            format!("x = (1 + {} 2)", " ".repeat(7))
+        );
+    }
+
+    #[test]
+    fn continuation_follows_brackets_and_dots() {
+        assert!(continues("x = (1 +\n"));
+        assert!(continues("m = [1, 2\n"));
+        assert!(continues("x = 1 + ...\n"));
+        assert!(!continues("x = (1 + 2) % (\n"));
+        assert!(!continues("x = 1)\n"));
+        assert!(!continues("x = 1\n"));
     }
 }

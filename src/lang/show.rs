@@ -56,6 +56,10 @@ pub enum Format {
     Sympy,
     /// A Rust function computing the value from its symbols.
     Rust,
+    /// A C99 function computing the value from its symbols.
+    C,
+    /// A NumPy function computing the value from its symbols, vectorized.
+    Python,
 }
 
 /// How results are shown.
@@ -253,9 +257,24 @@ fn is_identifier(label: &str) -> bool {
         && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
-/// The value as a Rust function named after `label` (or `value`). A matrix with quotient
-/// entries becomes two outputs, `{name}_num` and `{name}_den`: the emitters have no division.
-fn rust_value(label: &str, v: &Value) -> Result<String, ShowError> {
+/// The signature shared by the code emitters.
+type Emitter =
+    fn(&str, &str, &[Output], &[String], &CodegenOptions) -> Result<String, CodegenError>;
+
+/// The code emitter of a code format.
+fn emitter(format: Format) -> Option<Emitter> {
+    match format {
+        Format::Rust => Some(rust_function),
+        Format::C => Some(crate::c_function),
+        Format::Python => Some(crate::python_function),
+        Format::Plain | Format::Latex | Format::Sympy => None,
+    }
+}
+
+/// The value as a function named after `label` (or `value`) in the language of `emit`. A
+/// matrix with quotient entries becomes two outputs, `{name}_num` and `{name}_den`: the
+/// emitters have no division.
+fn code_value(label: &str, v: &Value, emit: Emitter) -> Result<String, ShowError> {
     let name = if is_identifier(label) {
         label.to_lowercase()
     } else {
@@ -304,7 +323,7 @@ fn rust_value(label: &str, v: &Value) -> Result<String, ShowError> {
         }
     };
     let args = arguments(&outputs, &[]);
-    Ok(rust_function(
+    Ok(emit(
         &name,
         &doc,
         &outputs,
@@ -341,7 +360,11 @@ pub fn show(d: &Displayed, opts: &ShowOptions) -> Result<String, ShowError> {
             });
         }
         Format::Sympy => return Ok(format!("{} = {}\n", d.label, sympy_value(&d.value)?)),
-        Format::Rust => return rust_value(&d.label, &d.value),
+        code => {
+            if let Some(emit) = emitter(code) {
+                return code_value(&d.label, &d.value, emit);
+            }
+        }
     }
     let laid = lay_out(&d.value, opts)?;
     let mut out = if let [one] = laid.lines.as_slice() {
@@ -369,7 +392,11 @@ pub fn show_value(v: &Value, opts: &ShowOptions) -> Result<String, ShowError> {
         Format::Plain => {}
         Format::Latex => return Ok(latex_value(v, &latex_options(opts))? + "\n"),
         Format::Sympy => return Ok(sympy_value(v)? + "\n"),
-        Format::Rust => return rust_value("value", v),
+        code => {
+            if let Some(emit) = emitter(code) {
+                return code_value("value", v, emit);
+            }
+        }
     }
     let laid = lay_out(v, opts)?;
     let mut out = laid.lines.join("\n");

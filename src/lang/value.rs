@@ -20,7 +20,7 @@
 use crate::{DualQuat, Frac, Quat, Scalar, ScalarError};
 use num_traits::{One, Zero};
 
-/// The default largest exponent accepted by `^`, in absolute value ([`crate::max_exponent`] is
+/// The default largest exponent accepted by `^`, in absolute value ([`crate::Context::max_exponent`] is
 /// the current one). Larger powers of symbols are one cheap term but never meant, and larger
 /// powers of sums blow up; both are refused at once.
 pub const MAX_EXPONENT: u64 = crate::scalar::DEFAULT_MAX_EXPONENT;
@@ -453,9 +453,9 @@ pub(crate) fn inverse(a: &Value) -> OpResult {
     })
 }
 
-/// `base ^ exponent` for an integer exponent of at most [`crate::max_exponent`] in absolute
-/// value.
-pub(crate) fn pow(base: &Value, exponent: &Value, cancelled: &dyn Fn() -> bool) -> OpResult {
+/// `base ^ exponent` for an integer exponent of at most the context's
+/// [`max_exponent`](crate::Context::max_exponent) in absolute value.
+pub(crate) fn pow(base: &Value, exponent: &Value) -> OpResult {
     let n = match exponent {
         Value::Scalar(s) => s.as_rational().filter(|q| q.is_integer()).ok_or_else(|| {
             OpError::Exponent(format!(
@@ -473,7 +473,7 @@ pub(crate) fn pow(base: &Value, exponent: &Value, cancelled: &dyn Fn() -> bool) 
     let limit = crate::scalar::max_exponent();
     let Some(k) = num_traits::ToPrimitive::to_u64(magnitude).filter(|&k| k <= limit) else {
         return Err(OpError::Exponent(format!(
-            "exponent {n} is too large: the limit is {limit}"
+            "exponent {n} is too large: the limit is {limit} (--max-exponent raises it)"
         )));
     };
     let negative = n < num_rational::BigRational::zero();
@@ -492,9 +492,7 @@ pub(crate) fn pow(base: &Value, exponent: &Value, cancelled: &dyn Fn() -> bool) 
             let mut sq = base.clone();
             let mut e = k;
             while e > 0 {
-                if cancelled() {
-                    return Err(OpError::Type("interrupted".into()));
-                }
+                crate::scalar::check_cancelled()?;
                 if e & 1 == 1 {
                     acc = mul(&acc, &sq)?.check()?;
                 }

@@ -5,7 +5,7 @@ use super::atoms::{
     empty_mono, mode_mul, mono_mul, rad_mul, small_ok, split_square, trig_mode, Mode, ModeSum,
     Small, Sym,
 };
-use super::{charge, term_limit, Scalar, ScalarError, Term, Q};
+use super::{charge, check_cancelled, term_limit, Scalar, ScalarError, Term, Q};
 use crate::Ring;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
@@ -16,17 +16,14 @@ use std::hash::{BuildHasherDefault, Hasher};
 use std::ops::{Add, Mul, Neg, Sub};
 use std::rc::Rc;
 
+/// How many term pairs a product forms between two looks at the cancel flag.
+const CANCEL_CHECK_PAIRS: usize = 4096;
+
 /// How many term pairs one product may form, as a multiple of the term limit.
 const PRODUCT_FACTOR: usize = 2;
 
 /// The largest result, in bits, a power of a number may have.
 const MAX_POW_BITS: u64 = 1 << 20;
-
-fn too_large() -> Scalar {
-    Scalar::error(ScalarError::TooLarge {
-        limit: term_limit(),
-    })
-}
 
 /// Propagates error values: the first operand's error wins.
 macro_rules! terms_or_return {
@@ -180,13 +177,20 @@ fn product_work(x: &[Term], y: &[Term]) -> u64 {
 
 pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
     let (x, y) = terms_or_return!(a, b);
-    if x.len().saturating_mul(y.len()) > term_limit().saturating_mul(PRODUCT_FACTOR) {
-        return too_large();
+    let limit = term_limit();
+    if x.len().saturating_mul(y.len()) > limit.saturating_mul(PRODUCT_FACTOR) {
+        return Scalar::error(ScalarError::TooManyPairs {
+            left: x.len(),
+            right: y.len(),
+            limit,
+        });
     }
     if let Err(e) = charge(product_work(x, y)) {
         return Scalar::error(e);
     }
     let mut out = Vec::with_capacity(x.len() * y.len());
+    // A large product notices cancellation every few thousand term pairs, not only before.
+    let mut pairs_since_check = 0usize;
     // Mode products are the expensive part; compute each once per pair of mode runs.
     for ra in mode_runs(x) {
         for rb in mode_runs(y) {
@@ -194,6 +198,13 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
             let weights: usize = modes.iter().map(|(_, w)| w.len()).sum();
             out.reserve(ra.len() * rb.len() * weights);
             for s in ra {
+                pairs_since_check += rb.len();
+                if pairs_since_check > CANCEL_CHECK_PAIRS {
+                    pairs_since_check = 0;
+                    if let Err(e) = check_cancelled() {
+                        return Scalar::error(e);
+                    }
+                }
                 for t in rb {
                     let Some(mono) = mono_mul(&s.mono, &t.mono) else {
                         return Scalar::error(ScalarError::OutOfRange("exponent too large".into()));

@@ -20,6 +20,7 @@ mod arith;
 pub(crate) mod atoms;
 mod calculus;
 mod cs;
+mod ctx;
 mod frac;
 mod par;
 pub(crate) mod q;
@@ -28,23 +29,47 @@ pub(crate) use arith::FxHasher;
 pub use atoms::Sym;
 pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
+pub(crate) use ctx::{charge, check_cancelled, max_exponent, term_limit};
+pub use ctx::{Context, Entered, DEFAULT_MAX_EXPONENT};
 pub use frac::Frac;
-pub use par::threads as worker_threads;
 pub(crate) use par::{join, par_map, with_own_budget};
 pub(crate) use q::Q;
 
 use num_rational::BigRational;
 use num_traits::Zero;
-use std::cell::Cell;
 use thiserror::Error;
 
 /// Why an exact operation on scalars could not be done.
 #[derive(Debug, Clone, PartialEq, Eq, Hash, Error)]
 #[non_exhaustive]
 pub enum ScalarError {
-    /// A result would have more terms than the configured limit.
-    #[error("expression too large: more than {limit} terms")]
-    TooLarge { limit: usize },
+    /// A result has more terms than the context's term limit.
+    #[error(
+        "expression too large: {terms} terms, over the term limit of {limit} (--term-limit \
+         raises it)"
+    )]
+    TooLarge {
+        /// The terms of the result.
+        terms: usize,
+        /// The term limit.
+        limit: usize,
+    },
+    /// A product would form more term pairs than twice the term limit (refused before any
+    /// of them is formed).
+    #[error(
+        "expression too large: a product of {left} by {right} terms forms {} term pairs, over \
+         the limit of {} (twice the term limit of {limit}; --term-limit raises it)",
+        *left as u128 * *right as u128,
+        2 * *limit as u128
+    )]
+    TooManyPairs {
+        /// The terms of the left factor.
+        left: usize,
+        /// The terms of the right factor.
+        right: usize,
+        /// The term limit.
+        limit: usize,
+    },
     /// Division by zero.
     #[error("division by zero")]
     DivisionByZero,
@@ -65,9 +90,20 @@ pub enum ScalarError {
     /// A symbol without a value during numeric evaluation.
     #[error("no value for symbol {0}")]
     Unbound(String),
-    /// The evaluation used up its work budget (see [`set_work_budget`]).
-    #[error("work budget exceeded: more than {limit} term operations in one evaluation")]
-    Budget { limit: u64 },
+    /// The evaluation used up its work budget (see [`Context::with_work_budget`]).
+    #[error(
+        "work budget exceeded: at least {used} term operations in one evaluation, over the \
+         budget of {limit} (--work-budget raises it)"
+    )]
+    Budget {
+        /// The work charged when the budget ran out.
+        used: u64,
+        /// The budget.
+        limit: u64,
+    },
+    /// The computation was cancelled through its context's cancel flag (Ctrl-C).
+    #[error("interrupted")]
+    Cancelled,
 }
 
 /// One term `coef * sqrt(rad) * mono * mode` of the canonical form.
@@ -104,81 +140,14 @@ enum Repr {
 #[derive(Clone, PartialEq, Eq, Hash, Debug)]
 pub struct Scalar(Repr);
 
-thread_local! {
-    static TERM_LIMIT: Cell<usize> = const { Cell::new(200_000) };
-    static WORK_BUDGET: Cell<u64> = const { Cell::new(u64::MAX) };
-    static WORK_USED: Cell<u64> = const { Cell::new(0) };
-    static MAX_EXPONENT: Cell<u64> = const { Cell::new(DEFAULT_MAX_EXPONENT) };
-}
-
-/// The default of [`max_exponent`].
-pub const DEFAULT_MAX_EXPONENT: u64 = 10_000;
-
-/// The largest number of terms a scalar may have on this thread (default 200,000).
-pub fn term_limit() -> usize {
-    TERM_LIMIT.with(|c| c.get())
-}
-
-/// Sets the term limit for this thread; results larger than it become [`ScalarError::TooLarge`].
-pub fn set_term_limit(limit: usize) {
-    TERM_LIMIT.with(|c| c.set(limit.max(1)));
-}
-
-/// The work budget of this thread, in term operations (default: unlimited).
-pub fn work_budget() -> u64 {
-    WORK_BUDGET.with(|c| c.get())
-}
-
-/// Sets the work budget for this thread: once more than `units` term operations (one per term
-/// of a sum; one per pair of terms of a product, plus one per symbol of the pair's monomials)
-/// have been done since the last [`reset_work`], every further operation yields
-/// [`ScalarError::Budget`]. The term limit bounds the size of one
-/// result; the budget bounds the time of a whole evaluation made of many small operations.
-pub fn set_work_budget(units: u64) {
-    WORK_BUDGET.with(|c| c.set(units));
-}
-
-/// Starts a new evaluation: the work done so far no longer counts against the budget.
-/// [`Session::exec`](crate::Session::exec) and [`Session::eval`](crate::Session::eval) call it.
-pub fn reset_work() {
-    WORK_USED.with(|c| c.set(0));
-}
-
-/// The term operations done on this thread since the last [`reset_work`].
-pub fn work_used() -> u64 {
-    WORK_USED.with(|c| c.get())
-}
-
-/// Counts `units` of work; the error to return when the budget is spent.
-pub(crate) fn charge(units: u64) -> Result<(), ScalarError> {
-    let used = WORK_USED.with(|c| {
-        let used = c.get().saturating_add(units);
-        c.set(used);
-        used
-    });
-    let limit = work_budget();
-    if used > limit {
-        return Err(ScalarError::Budget { limit });
-    }
-    Ok(())
-}
-
-/// The largest exponent `^` accepts on this thread, in absolute value (default
-/// [`DEFAULT_MAX_EXPONENT`]).
-pub fn max_exponent() -> u64 {
-    MAX_EXPONENT.with(|c| c.get())
-}
-
-/// Sets the largest exponent `^` accepts on this thread.
-pub fn set_max_exponent(limit: u64) {
-    MAX_EXPONENT.with(|c| c.set(limit));
-}
-
 impl Scalar {
     pub(crate) fn from_terms_sorted(terms: Vec<Term>) -> Scalar {
         let limit = term_limit();
         if terms.len() > limit {
-            return Scalar::error(ScalarError::TooLarge { limit });
+            return Scalar::error(ScalarError::TooLarge {
+                terms: terms.len(),
+                limit,
+            });
         }
         Scalar(Repr::Terms(terms))
     }

@@ -1,82 +1,29 @@
-//! Independent exact computations on several threads, under the caller's limits.
+//! Independent exact computations on several threads, under the caller's context.
 //!
-//! The limits of [`super`] (term limit, work budget, largest exponent) are per thread. A worker
-//! starts with the caller's term limit and exponent limit and with what is left of the
-//! caller's work budget; the work the workers did is charged to the caller afterwards, so a
-//! parallel derivation spends one budget, as a sequential one would (the workers together may
-//! overshoot it by at most one worker's budget before they stop).
+//! A worker enters the caller's [`Context`] (term limit, exponent limit, threads, cancel flag)
+//! with what is left of the caller's work budget; the work the workers did is charged to the
+//! caller afterwards, so a parallel derivation spends one budget, as a sequential one would
+//! (the workers together may overshoot it by at most one worker's budget before they stop).
+//! Cancelling the context stops the workers too: they charge their work to the same flag.
 
-use super::{charge, max_exponent, set_max_exponent, set_term_limit, set_work_budget, term_limit};
-use super::{work_budget, work_used, ScalarError};
+use super::ctx::{charge, threads, Context};
+use super::ScalarError;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Mutex, OnceLock};
+use std::sync::Mutex;
 
 /// The stack of a worker: closed-form searches recurse over expression depth.
 const WORKER_STACK: usize = 64 << 20;
 
-/// The limits of the calling thread, to install on a worker.
-#[derive(Clone, Copy)]
-pub(crate) struct Limits {
-    terms: usize,
-    exponent: u64,
-    budget_left: u64,
-}
-
-impl Limits {
-    /// This thread's limits, with the budget that is left.
-    pub(crate) fn current() -> Limits {
-        Limits {
-            terms: term_limit(),
-            exponent: max_exponent(),
-            budget_left: work_budget().saturating_sub(work_used()),
-        }
-    }
-
-    /// Installs them on this (fresh) thread.
-    fn install(self) {
-        set_term_limit(self.terms);
-        set_max_exponent(self.exponent);
-        set_work_budget(self.budget_left);
-        super::reset_work();
-    }
-}
-
 /// Runs `f` on this thread with a budget of its own, `units` term operations, and leaves this
 /// thread's budget and the work counted against it as they were: for an optional attempt
 /// (a form that may not fit) that must neither fail for lack of the caller's budget nor spend
-/// it.
+/// it. The other limits and the cancel flag stay the caller's.
 pub(crate) fn with_own_budget<R>(units: u64, f: impl FnOnce() -> R) -> R {
-    let (budget, used) = (work_budget(), work_used());
-    set_work_budget(units);
-    super::reset_work();
-    let r = f();
-    set_work_budget(budget);
-    super::reset_work();
-    let _ = charge(used);
-    r
+    let _own = Context::current().with_work_budget(units).enter();
+    f()
 }
 
-/// How many threads a parallel map uses: `DQSYM_THREADS` if set (at least 1), otherwise the
-/// available parallelism, at most 8.
-///
-/// Read once per process: finding the available parallelism reads cgroup files.
-pub fn threads() -> usize {
-    static THREADS: OnceLock<usize> = OnceLock::new();
-    *THREADS.get_or_init(|| {
-        if let Some(n) = std::env::var("DQSYM_THREADS")
-            .ok()
-            .and_then(|s| s.trim().parse::<usize>().ok())
-        {
-            return n.max(1);
-        }
-        std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1)
-            .min(8)
-    })
-}
-
-/// `items.iter().map(f).collect()`, computed on up to [`threads`] threads (the caller is one
+/// `items.iter().map(f).collect()`, computed on up to [`Context::threads`] threads (the caller is one
 /// of them). The result is in the order of `items` and does not depend on the number of
 /// threads when `f` is a pure function of its argument.
 pub fn par_map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
@@ -84,23 +31,21 @@ pub fn par_map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec
     if n <= 1 {
         return items.iter().map(&f).collect();
     }
-    let limits = Limits::current();
+    let ctx = Context::current();
     let next = AtomicUsize::new(0);
     let done: Mutex<Vec<(usize, R)>> = Mutex::new(Vec::with_capacity(items.len()));
     let spent = AtomicUsize::new(0);
     let work = |install: bool| {
-        if install {
-            limits.install();
-        }
+        let entered = install.then(|| ctx.enter());
         let mut mine = Vec::new();
         loop {
             let i = next.fetch_add(1, Ordering::Relaxed);
             let Some(x) = items.get(i) else { break };
             mine.push((i, f(x)));
         }
-        if install {
+        if let Some(e) = entered {
             spent.fetch_add(
-                usize::try_from(work_used()).unwrap_or(usize::MAX),
+                usize::try_from(e.work_used()).unwrap_or(usize::MAX),
                 Ordering::Relaxed,
             );
         }
@@ -143,14 +88,14 @@ where
         let rb = take().map(|b| b());
         return (ra, rb.unwrap_or_else(|| unreachable!("b runs once")));
     }
-    let limits = Limits::current();
+    let ctx = Context::current();
     std::thread::scope(|s| {
         let other = std::thread::Builder::new()
             .stack_size(WORKER_STACK)
             .spawn_scoped(s, || {
-                limits.install();
+                let entered = ctx.enter();
                 let r = take().map(|b| b());
-                (r, work_used())
+                (r, entered.work_used())
             });
         let ra = a();
         let (rb, used) = match other {
@@ -169,6 +114,7 @@ where
 
 #[cfg(test)]
 mod tests {
+    use super::super::ctx::work_used;
     use super::*;
     use crate::Scalar;
 
@@ -185,12 +131,11 @@ mod tests {
 
     #[test]
     fn workers_inherit_the_term_limit_and_charge_the_budget() {
-        set_term_limit(10);
+        let small = Context::new().with_term_limit(10).with_threads(2).enter();
         let out = par_map(&[3usize, 30, 4, 40], |&n| sum_of(n).check().is_ok());
         assert_eq!(out, vec![true, false, true, false]);
-        set_term_limit(200_000);
-        set_work_budget(u64::MAX);
-        super::super::reset_work();
+        drop(small);
+        let _big = Context::new().with_threads(2).enter();
         let before = work_used();
         let _ = par_map(&[20usize; 8], |&n| sum_of(n));
         assert!(
@@ -199,5 +144,16 @@ mod tests {
         );
         let (a, b) = join(|| sum_of(2).len(), || sum_of(3).len());
         assert_eq!((a, b), (2, 3));
+    }
+
+    #[test]
+    fn cancelling_stops_the_workers() {
+        let flag = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(true));
+        let _in = Context::new()
+            .with_threads(2)
+            .with_cancel_flag(flag)
+            .enter();
+        let out = par_map(&[5usize; 4], |&n| sum_of(n).check());
+        assert!(out.iter().all(|r| *r == Err(ScalarError::Cancelled)));
     }
 }

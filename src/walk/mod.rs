@@ -161,4 +161,18 @@ pub enum WalkError {
     /// A `--config` entry is invalid.
     #[error("{0}")]
     Config(String),
+    /// The robot's chain is too large to expand and show product by product.
+    #[error(
+        "{file}: the chain is too large for a walkthrough: its pose expands past {limit} terms \
+         (or {budget} term operations); `dqsym fk {file}` derives it, as a recurrence over the \
+         joint factors when it is this large"
+    )]
+    TooLarge {
+        /// The robot file.
+        file: String,
+        /// The largest pose component a walkthrough expands, in terms.
+        limit: usize,
+        /// The work the size probe may do.
+        budget: u64,
+    },
 }

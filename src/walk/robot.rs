@@ -7,13 +7,36 @@ use super::script::traces;
 use super::{Mechanism, Step, WalkError, Walkthrough};
 use crate::{parse_robot, DualQuat, FieldEval, JointGeometry, JointKind, Scalar, Value};
 
+/// The largest pose component, in terms, a robot walkthrough expands.
+const WALK_MAX_TERMS: usize = 2_000;
+
+/// The work the size probe of a robot walkthrough may do.
+const WALK_PROBE_BUDGET: u64 = 2_000_000;
+
 /// The walkthrough of the robot file `text`; `file` names it in messages, `eval` evaluates a
 /// field (`eval_scalar_text`).
 ///
 /// # Errors
-/// When the file is invalid, or a value cannot be shown.
+/// When the file is invalid, the chain is too large to expand ([`WalkError::TooLarge`]), or a
+/// value cannot be shown.
 pub fn walk_robot(text: &str, file: &str, eval: FieldEval) -> Result<Walkthrough, WalkError> {
     let robot = parse_robot(text, file, eval)?;
+    // Decide at once whether the chain can be shown expanded: the pose under a small term
+    // limit and work budget (a fully symbolic chain grows exponentially and is noticed after a
+    // few products), instead of failing after seconds of closed forms.
+    let fits = {
+        let _probe = crate::Context::entered()
+            .with_work_budget(WALK_PROBE_BUDGET)
+            .enter();
+        robot.forward_within(WALK_MAX_TERMS).is_some()
+    };
+    if !fits {
+        return Err(WalkError::TooLarge {
+            file: file.to_owned(),
+            limit: WALK_MAX_TERMS,
+            budget: WALK_PROBE_BUDGET,
+        });
+    }
     let mut steps = Vec::new();
     let mut motions = Vec::new();
     let mut acc: Option<DualQuat<Scalar>> = None;

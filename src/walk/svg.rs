@@ -190,6 +190,22 @@ fn pose(
 }
 
 /// The joint variable of each motion.
+/// The Levenshtein distance of two names, in characters.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let cur = row[j + 1];
+            row[j + 1] = (prev + usize::from(ca != *cb)).min(row[j] + 1).min(cur + 1);
+            prev = cur;
+        }
+    }
+    row[b.len()]
+}
+
 fn variables(m: &Mechanism) -> Vec<String> {
     m.motions
         .iter()
@@ -200,11 +216,15 @@ fn variables(m: &Mechanism) -> Vec<String> {
 /// The mechanism drawn at its home pose (all joint variables 0, dashed) and at `cfg` (solid).
 ///
 /// # Errors
-/// When a parameter cannot be evaluated (a `--config` name that is not a symbol is ignored).
+/// When a parameter cannot be evaluated, or a `--config` name is not a symbol of the
+/// mechanism (the message suggests the closest one).
 pub fn mechanism_svg(m: &Mechanism, cfg: &Config, o: &SvgOptions) -> Result<String, WalkError> {
     let vars = variables(m);
     let length = |n: &str| cfg.get(n).unwrap_or(1.0);
+    // The symbols the drawing reads: every --config name must be one of them.
+    let asked = std::cell::RefCell::new(std::collections::BTreeSet::<String>::new());
     let home_env = |n: &str| -> Option<f64> {
+        asked.borrow_mut().insert(n.to_owned());
         match n {
             "pi" | "1" => None,
             _ if vars.iter().any(|v| v == n) => Some(0.0),
@@ -225,6 +245,26 @@ pub fn mechanism_svg(m: &Mechanism, cfg: &Config, o: &SvgOptions) -> Result<Stri
     let anchors = screw_anchors(m, &home_env)?;
     let home = pose(m, &home_env, &anchors)?;
     let conf = pose(m, &conf_env, &anchors)?;
+    let asked = asked.into_inner();
+    if let Some((name, _)) = cfg.values.iter().find(|(n, _)| !asked.contains(n)) {
+        let known: Vec<&String> = asked.iter().filter(|n| *n != "pi" && *n != "1").collect();
+        let closest = known
+            .iter()
+            .min_by_key(|k| edit_distance(k, name))
+            .filter(|k| edit_distance(k, name) <= 2.max(name.len() / 3));
+        let hint = match closest {
+            Some(k) => format!("; did you mean `{k}`?"),
+            None => String::new(),
+        };
+        let list = known
+            .iter()
+            .map(|k| k.as_str())
+            .collect::<Vec<_>>()
+            .join(", ");
+        return Err(WalkError::Config(format!(
+            "`{name}` is not a symbol of this mechanism{hint} (its symbols: {list})"
+        )));
+    }
     let planar = home
         .joints
         .iter()

@@ -38,47 +38,196 @@ fn unknown_command_exits_with_status_2_not_a_panic() {
     assert_eq!(out.status.code(), Some(2));
 }
 
+/// The REPL in a pseudo-terminal, as a user has it: rustyline in raw mode, Ctrl-C as the byte
+/// 0x03 that the terminal turns into SIGINT.
+struct Pty {
+    child: std::process::Child,
+    master: std::fs::File,
+    out: std::sync::mpsc::Receiver<u8>,
+    seen: String,
+}
+
+impl Pty {
+    fn spawn(args: &[&str]) -> Pty {
+        use std::os::fd::{FromRawFd, OwnedFd};
+        use std::os::unix::process::CommandExt;
+        let (mut master, mut slave) = (0, 0);
+        // SAFETY: openpty writes two new descriptors into the given integers.
+        let r = unsafe {
+            libc::openpty(
+                &mut master,
+                &mut slave,
+                std::ptr::null_mut(),
+                std::ptr::null(),
+                std::ptr::null(),
+            )
+        };
+        assert_eq!(r, 0, "openpty");
+        // SAFETY: both descriptors were just opened and are owned here.
+        let (master, slave) =
+            unsafe { (OwnedFd::from_raw_fd(master), OwnedFd::from_raw_fd(slave)) };
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_dqsym"));
+        cmd.args(args)
+            .env("XDG_STATE_HOME", std::env::temp_dir())
+            .env("TERM", "xterm")
+            .stdin(slave.try_clone().unwrap())
+            .stdout(slave.try_clone().unwrap())
+            .stderr(slave);
+        // SAFETY: setsid and ioctl are async-signal-safe; the child gets its own session with
+        // the pseudo-terminal as controlling terminal, so 0x03 becomes SIGINT for it.
+        unsafe {
+            cmd.pre_exec(|| {
+                if libc::setsid() < 0 || libc::ioctl(0, libc::TIOCSCTTY, 0) < 0 {
+                    return Err(std::io::Error::last_os_error());
+                }
+                Ok(())
+            });
+        }
+        let child = cmd.spawn().expect("starts the REPL");
+        let master = std::fs::File::from(master);
+        let mut reader = master.try_clone().unwrap();
+        let (tx, out) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            use std::io::Read;
+            let mut buf = [0u8; 4096];
+            while let Ok(n) = reader.read(&mut buf) {
+                if n == 0 {
+                    break;
+                }
+                for &b in &buf[..n] {
+                    if tx.send(b).is_err() {
+                        return;
+                    }
+                }
+            }
+        });
+        Pty {
+            child,
+            master,
+            out,
+            seen: String::new(),
+        }
+    }
+
+    fn send(&mut self, bytes: &[u8]) {
+        use std::io::Write;
+        self.master.write_all(bytes).unwrap();
+        self.master.flush().unwrap();
+    }
+
+    /// Reads until `text` has appeared since the last call; fails after two minutes, which
+    /// only a broken REPL takes.
+    fn expect(&mut self, text: &str) {
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+        loop {
+            if let Some(i) = self.seen.find(text) {
+                self.seen.drain(..i + text.len());
+                return;
+            }
+            let left = deadline.saturating_duration_since(std::time::Instant::now());
+            match self.out.recv_timeout(left) {
+                Ok(b) => self.seen.push(char::from(b)),
+                Err(_) => panic!("no `{text}` from the REPL; it printed:\n{}", self.seen),
+            }
+        }
+    }
+
+    fn pid(&self) -> u32 {
+        self.child.id()
+    }
+}
+
+impl Drop for Pty {
+    /// A failed test must not leave its REPL computing.
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// The threads of process `pid`.
+fn threads_of(pid: u32) -> usize {
+    std::fs::read_dir(format!("/proc/{pid}/task"))
+        .map(|d| d.count())
+        .unwrap_or(0)
+}
+
+/// The resident memory of process `pid`, in kilobytes.
+fn rss_kb(pid: u32) -> u64 {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).unwrap_or_default();
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmRSS:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+        .unwrap_or(0)
+}
+
+/// Looks at `/proc` until `done` holds (no sleeping: the state is read again at once), for at
+/// most two minutes, which only a broken REPL takes.
+fn wait_for(what: &str, mut done: impl FnMut() -> bool) {
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+    while !done() {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "{what} never happened"
+        );
+        std::thread::yield_now();
+    }
+}
+
 #[test]
-fn ctrl_c_abandons_a_long_computation_and_keeps_the_bindings() {
-    use std::io::Write;
-    use std::process::Stdio;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_dqsym"))
-        .args(["--term-limit", "200000", "--work-budget", "1000000000"])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("starts the REPL");
-    let mut stdin = child.stdin.take().expect("stdin");
-    // A result of 6,188 terms: its closed form takes seconds in a debug build, long enough to
-    // interrupt.
-    stdin
-        .write_all(b"a = 5\nsyms x y z w u v\n(x + y + z + w + u + v)^12\n")
-        .expect("write");
-    stdin.flush().expect("flush");
-    std::thread::sleep(std::time::Duration::from_millis(1500));
-    let status = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .expect("kill");
-    assert!(status.success());
-    std::thread::sleep(std::time::Duration::from_millis(300));
-    stdin
-        .write_all(b"b = a + 1\n:quit\n")
-        .expect("write after the interrupt");
-    drop(stdin);
-    let out = child.wait_with_output().expect("exits");
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(0), "{stderr}");
-    assert!(
-        stderr.contains("interrupted; the bindings are unchanged"),
-        "{stderr}"
+fn ctrl_c_stops_the_computation_frees_its_memory_and_keeps_the_bindings() {
+    let mut repl = Pty::spawn(&["--term-limit", "10000000", "--work-budget", "100000000000"]);
+    repl.expect("dq> ");
+    repl.send(b"a = 5\r");
+    repl.expect("a = 5");
+    repl.send(b"syms x y z\r");
+    repl.expect("dq> ");
+    let pid = repl.pid();
+    let (threads, rss) = (threads_of(pid), rss_kb(pid));
+    // 5,151 terms with coefficients of up to 47 digits, then their closed form: minutes of
+    // work; the interrupt comes once it holds 8 MB more than before.
+    repl.send(b"(x + y + z)^100\r");
+    wait_for("the worker thread and its memory", || {
+        threads_of(pid) > threads && rss_kb(pid) > rss + 8 * 1024
+    });
+    let peak = rss_kb(pid);
+    let start = std::time::Instant::now();
+    repl.send(b"\x03");
+    repl.expect("interrupted; the bindings are unchanged");
+    let latency = start.elapsed();
+    // The REPL joins the worker before it answers, and hands its memory back.
+    wait_for("the worker's exit", || threads_of(pid) == threads);
+    let after = rss_kb(pid);
+    eprintln!(
+        "Ctrl-C: answered after {latency:?}; memory {rss} kB before, {peak} kB while computing, \
+         {after} kB after"
     );
     assert!(
-        stdout.contains("b = 6"),
-        "later lines see earlier bindings: {stdout}"
+        after < rss + 4 * 1024,
+        "memory did not return: {rss} kB before, {peak} kB at the interrupt, {after} kB after"
     );
+    repl.send(b"b = a + 1\r");
+    repl.expect("b = 6");
+    repl.send(b":vars\r");
+    repl.expect("x: symbol");
+    repl.send(b":quit\r");
+    let status = repl.child.wait().expect("exits");
+    assert_eq!(status.code(), Some(0));
+}
+
+#[test]
+fn pasted_lines_run_one_by_one_with_or_without_bracketed_paste() {
+    let mut repl = Pty::spawn(&[]);
+    repl.expect("dq> ");
+    // Bracketed paste: one input holding several lines, one of them continued.
+    repl.send(b"\x1b[200~syms l1 l2\ra = (l1 +\r l2)\rb = 2*a\r\x1b[201~\r");
+    repl.expect("b = 2 (l1 + l2)");
+    // Typed ahead without bracketed paste: every line arrives before the first result.
+    repl.send(b"c = b + 1\rd = c + 1\re = d + 1\r");
+    repl.expect("e = 3 + 2 l1 + 2 l2");
+    repl.send(b":quit\r");
+    assert_eq!(repl.child.wait().expect("exits").code(), Some(0));
 }
 
 #[test]

@@ -256,6 +256,24 @@ fn a_one_megabyte_line_is_refused_at_once() {
 }
 
 #[test]
+fn a_line_break_inside_parentheses_continues_the_expression() {
+    // The REPL's continuation rule: an open `(` continues onto the next line, in scripts too;
+    // a comment before the line break is still a comment.
+    let split =
+        parse("x = dh(theta1, % the joint\r\n  d1, a1,\n alpha1) + (1 +\n 2)\ny = 3").unwrap();
+    let one = parse("x = dh(theta1, d1, a1, alpha1) + (1 + 2)\ny = 3").unwrap();
+    assert_eq!(split.to_string(), one.to_string());
+    assert_eq!(split.statements.len(), 2);
+    assert_eq!(split.statements[1].span.line, 5);
+    // Inside a matrix a line break still separates rows.
+    let m = parse("m = [f(1,\n 2), 3\n 4, 5]").unwrap();
+    assert_eq!(
+        m.to_string(),
+        parse("m = [f(1, 2), 3; 4, 5]").unwrap().to_string()
+    );
+}
+
+#[test]
 fn bad_inputs_have_clear_messages() {
     snapshot_settings().bind(|| {
         insta::glob!(

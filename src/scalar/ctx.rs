@@ -1,0 +1,322 @@
+//! The execution context: the limits of a computation and its cancel flag, as one value.
+//!
+//! A [`Context`] says how large a scalar may grow (`term_limit`), the largest exponent `^`
+//! accepts (`max_exponent`), how much work one unit of evaluation may do (`work_budget`, in
+//! term operations), how many threads parallel maps use (`threads`), and carries a cancel flag
+//! shared with whoever may want to stop the computation (a Ctrl-C handler).
+//!
+//! Scalar arithmetic goes through `std::ops`, so the context is not an argument of `+` and
+//! `*`: it is *entered* on a thread ([`Context::enter`]), which installs it until the returned
+//! guard is dropped, and restores what was there before. Worker threads of
+//! [`par_map`](super::par_map) and [`join`](super::join) enter the caller's context (with what
+//! is left of its budget) and charge their work back to it. Every scalar sum and product, and
+//! every step of a closed-form search, charges its work to the entered context; that is where
+//! the budget is checked and where cancellation is noticed, so a cancelled computation ends at
+//! its next charge with [`ScalarError::Cancelled`], on every thread it runs on.
+//!
+//! On a thread that never entered a context the default one applies: 200,000 terms, exponents
+//! up to [`DEFAULT_MAX_EXPONENT`], no work budget, the available cores (at most 8), and no way
+//! to cancel.
+//!
+//! ```
+//! use dqsym::{Context, Scalar, ScalarError};
+//! let ctx = Context::new().with_term_limit(10);
+//! let _in = ctx.enter();
+//! let x = Scalar::sym("x") + Scalar::sym("y") + Scalar::sym("z");
+//! assert!(matches!(x.pow(5).check(), Err(ScalarError::TooManyPairs { .. })));
+//! ```
+
+use super::ScalarError;
+use std::cell::{Cell, RefCell};
+use std::marker::PhantomData;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, OnceLock};
+
+/// The default largest exponent of `^`, in absolute value.
+pub const DEFAULT_MAX_EXPONENT: u64 = 10_000;
+
+/// The default term limit.
+const DEFAULT_TERM_LIMIT: usize = 200_000;
+
+/// The limits and the cancel flag of a computation (see the module docs).
+#[derive(Clone, Debug)]
+pub struct Context {
+    term_limit: usize,
+    max_exponent: u64,
+    work_budget: u64,
+    threads: usize,
+    cancel: Option<Arc<AtomicBool>>,
+}
+
+impl Default for Context {
+    fn default() -> Context {
+        Context {
+            term_limit: DEFAULT_TERM_LIMIT,
+            max_exponent: DEFAULT_MAX_EXPONENT,
+            work_budget: u64::MAX,
+            threads: available_threads(),
+            cancel: None,
+        }
+    }
+}
+
+/// The available parallelism, at most 8 (read once: it reads cgroup files).
+fn available_threads() -> usize {
+    static THREADS: OnceLock<usize> = OnceLock::new();
+    *THREADS.get_or_init(|| {
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+            .min(8)
+    })
+}
+
+impl Context {
+    /// The default context: 200,000 terms, exponents up to [`DEFAULT_MAX_EXPONENT`], no work
+    /// budget, the available cores (at most 8), no cancel flag.
+    pub fn new() -> Context {
+        Context::default()
+    }
+
+    /// The context entered on this thread (the default one if none is), with the budget that
+    /// is left of it: what a computation started here may still spend.
+    pub fn current() -> Context {
+        STATE.with(|s| match &*s.borrow() {
+            Some(st) => Context {
+                work_budget: st.ctx.work_budget.saturating_sub(st.used),
+                ..st.ctx.clone()
+            },
+            None => Context::default(),
+        })
+    }
+
+    /// The context entered on this thread as it was entered, its whole budget included: a new
+    /// unit of work (a statement, a robot-file field) under the same limits.
+    pub fn entered() -> Context {
+        STATE.with(|s| match &*s.borrow() {
+            Some(st) => st.ctx.clone(),
+            None => Context::default(),
+        })
+    }
+
+    /// Results with more terms than `n` (at least 1) become [`ScalarError::TooLarge`].
+    pub fn with_term_limit(mut self, n: usize) -> Context {
+        self.term_limit = n.max(1);
+        self
+    }
+
+    /// `^` accepts exponents up to `n` in absolute value.
+    pub fn with_max_exponent(mut self, n: u64) -> Context {
+        self.max_exponent = n;
+        self
+    }
+
+    /// Once more than `units` term operations (one per term of a sum; one per pair of terms of
+    /// a product, plus one per symbol of the pair's monomials) have been charged since the
+    /// context was entered, every further operation yields [`ScalarError::Budget`]. The term
+    /// limit bounds the size of one result; the budget the time of a whole evaluation made of
+    /// many small operations.
+    pub fn with_work_budget(mut self, units: u64) -> Context {
+        self.work_budget = units;
+        self
+    }
+
+    /// Parallel maps use up to `n` threads (at least 1; 1 runs everything on the caller).
+    pub fn with_threads(mut self, n: usize) -> Context {
+        self.threads = n.max(1);
+        self
+    }
+
+    /// Setting `flag` cancels every computation running in this context: each ends at its next
+    /// charge of work with [`ScalarError::Cancelled`].
+    pub fn with_cancel_flag(mut self, flag: Arc<AtomicBool>) -> Context {
+        self.cancel = Some(flag);
+        self
+    }
+
+    /// The term limit.
+    pub fn term_limit(&self) -> usize {
+        self.term_limit
+    }
+
+    /// The largest exponent `^` accepts.
+    pub fn max_exponent(&self) -> u64 {
+        self.max_exponent
+    }
+
+    /// The work budget, in term operations.
+    pub fn work_budget(&self) -> u64 {
+        self.work_budget
+    }
+
+    /// The threads parallel maps use.
+    pub fn threads(&self) -> usize {
+        self.threads
+    }
+
+    /// All the work charged on this thread so far, in every context entered on it (a unit's
+    /// own counter starts at zero when it is entered and is gone when it ends); the work of
+    /// worker threads counts once they finish. The difference of two readings is the
+    /// deterministic cost of what ran between them: tests assert on it instead of on time.
+    pub fn work_done() -> u64 {
+        TOTAL.with(Cell::get)
+    }
+
+    /// Whether the cancel flag is set.
+    pub fn is_cancelled(&self) -> bool {
+        self.cancel
+            .as_ref()
+            .is_some_and(|c| c.load(Ordering::Relaxed))
+    }
+
+    /// Installs this context on the calling thread, with no work charged yet, until the guard
+    /// is dropped; the context that was there before comes back then (with its work count).
+    pub fn enter(&self) -> Entered {
+        let previous = STATE.with(|s| {
+            s.borrow_mut().replace(State {
+                ctx: self.clone(),
+                used: 0,
+            })
+        });
+        Entered {
+            previous,
+            _not_send: PhantomData,
+        }
+    }
+}
+
+/// A context entered on this thread; dropping it restores the previous one.
+#[must_use = "the context applies only while the guard lives"]
+pub struct Entered {
+    previous: Option<State>,
+    // The guard restores the state of the thread that created it.
+    _not_send: PhantomData<*const ()>,
+}
+
+impl Entered {
+    /// The term operations charged since the context was entered (on this thread, including
+    /// the work of the worker threads it started).
+    pub fn work_used(&self) -> u64 {
+        work_used()
+    }
+}
+
+impl Drop for Entered {
+    fn drop(&mut self) {
+        let previous = self.previous.take();
+        STATE.with(|s| *s.borrow_mut() = previous);
+    }
+}
+
+struct State {
+    ctx: Context,
+    used: u64,
+}
+
+thread_local! {
+    static STATE: RefCell<Option<State>> = const { RefCell::new(None) };
+    /// Every unit of work ever charged on this thread, whatever the context.
+    static TOTAL: Cell<u64> = const { Cell::new(0) };
+}
+
+/// The term limit of the entered context.
+pub(crate) fn term_limit() -> usize {
+    STATE.with(|s| {
+        s.borrow()
+            .as_ref()
+            .map_or(DEFAULT_TERM_LIMIT, |st| st.ctx.term_limit)
+    })
+}
+
+/// The largest exponent of the entered context.
+pub(crate) fn max_exponent() -> u64 {
+    STATE.with(|s| {
+        s.borrow()
+            .as_ref()
+            .map_or(DEFAULT_MAX_EXPONENT, |st| st.ctx.max_exponent)
+    })
+}
+
+/// The threads of the entered context.
+pub(crate) fn threads() -> usize {
+    STATE.with(|s| {
+        s.borrow()
+            .as_ref()
+            .map_or_else(available_threads, |st| st.ctx.threads)
+    })
+}
+
+/// The work charged to the entered context on this thread.
+pub(crate) fn work_used() -> u64 {
+    STATE.with(|s| s.borrow().as_ref().map_or(0, |st| st.used))
+}
+
+/// Counts `units` of work; the error to return when the computation is cancelled or the budget
+/// is spent.
+pub(crate) fn charge(units: u64) -> Result<(), ScalarError> {
+    STATE.with(|s| {
+        let mut s = s.borrow_mut();
+        let Some(st) = s.as_mut() else {
+            return Ok(());
+        };
+        if st.ctx.is_cancelled() {
+            return Err(ScalarError::Cancelled);
+        }
+        TOTAL.with(|t| t.set(t.get().saturating_add(units)));
+        st.used = st.used.saturating_add(units);
+        if st.used > st.ctx.work_budget {
+            return Err(ScalarError::Budget {
+                used: st.used,
+                limit: st.ctx.work_budget,
+            });
+        }
+        Ok(())
+    })
+}
+
+/// `Err(Cancelled)` when the entered context is cancelled: for long loops that charge no work.
+pub(crate) fn check_cancelled() -> Result<(), ScalarError> {
+    STATE.with(|s| match &*s.borrow() {
+        Some(st) if st.ctx.is_cancelled() => Err(ScalarError::Cancelled),
+        _ => Ok(()),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Scalar;
+
+    #[test]
+    fn entering_nests_and_restores() {
+        let outer = Context::new().with_term_limit(7).with_work_budget(1000);
+        let g = outer.enter();
+        assert_eq!(term_limit(), 7);
+        let _ = Scalar::sym("a") + Scalar::sym("b");
+        let used = g.work_used();
+        assert!(used > 0);
+        {
+            let _inner = Context::new().with_term_limit(3).enter();
+            assert_eq!(term_limit(), 3);
+            assert_eq!(work_used(), 0);
+        }
+        assert_eq!(term_limit(), 7);
+        assert_eq!(g.work_used(), used);
+        assert_eq!(Context::current().work_budget(), 1000 - used);
+        drop(g);
+        assert_eq!(term_limit(), DEFAULT_TERM_LIMIT);
+    }
+
+    #[test]
+    fn a_set_cancel_flag_stops_the_next_operation() {
+        let flag = Arc::new(AtomicBool::new(false));
+        let ctx = Context::new().with_cancel_flag(flag.clone());
+        let _in = ctx.enter();
+        let s = Scalar::sym("a") + Scalar::sym("b");
+        assert!(s.as_error().is_none());
+        flag.store(true, Ordering::Relaxed);
+        let p = &s * &s;
+        assert_eq!(p.as_error(), Some(&ScalarError::Cancelled));
+        assert_eq!(check_cancelled(), Err(ScalarError::Cancelled));
+    }
+}
