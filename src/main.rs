@@ -86,6 +86,16 @@ enum Command {
         #[arg(long)]
         jacobian: bool,
     },
+    /// Inverse kinematics of a robot file in closed form: the family decided exactly from the
+    /// axes, every joint as atan2 of closed forms, every branch; --format rust, c or python
+    /// emit a solver returning every solution for a target pose.
+    Ik {
+        /// The robot description file.
+        robot: std::path::PathBuf,
+        /// A joint variable given as a parameter (7-joint arms): `--free theta3`.
+        #[arg(long, value_name = "VARIABLE")]
+        free: Option<String>,
+    },
     /// Operation counts: the paper's Tables 1 and 2, counted by running the products (with the
     /// corrections of ERRATA 10 and 11); with a robot file, also its generated forward kinematics.
     Ops {
@@ -108,6 +118,10 @@ enum OutputFormat {
     Rust,
     /// Text that SymPy's sympify parses.
     Sympy,
+    /// C99 source (`ik` only).
+    C,
+    /// Python with NumPy (`ik` only).
+    Python,
 }
 
 /// The options for the library's printers.
@@ -117,6 +131,9 @@ fn show_options(format: OutputFormat, explicit: bool) -> Result<ShowOptions, Str
         OutputFormat::Latex => Format::Latex,
         OutputFormat::Rust => Format::Rust,
         OutputFormat::Sympy => Format::Sympy,
+        OutputFormat::C | OutputFormat::Python => {
+            return Err("--format c and --format python are for `dqsym ik` only".into())
+        }
     };
     Ok(ShowOptions { format, explicit })
 }
@@ -222,7 +239,7 @@ fn dispatch(cli: Cli) -> ExitCode {
     }
     // fk has its own formats (a report per entry); the other commands share show options.
     let opts = match &cli.command {
-        Some(Command::Fk { .. } | Command::Ops { .. }) => None,
+        Some(Command::Fk { .. } | Command::Ops { .. } | Command::Ik { .. }) => None,
         _ => match show_options(cli.format, cli.explicit) {
             Ok(o) => Some(o),
             Err(message) => {
@@ -245,6 +262,7 @@ fn dispatch(cli: Cli) -> ExitCode {
             }),
             _,
         ) => fk(&robot, point.as_deref(), jacobian, cli.format, cli.explicit),
+        (Some(Command::Ik { robot, free }), _) => ik(&robot, free, cli.format, cli.explicit),
         (Some(Command::Paper), _) => match paper(&PlainOptions {
             shorthand: !cli.explicit,
         }) {
@@ -269,6 +287,54 @@ fn dispatch(cli: Cli) -> ExitCode {
         ) => walk(&file, markdown, html.as_deref(), config.as_deref()),
         (None, Some(expr)) => one_liner(&expr, &opts, &limits),
         (None, None) => repl::run(&opts, &limits),
+    }
+}
+
+/// `dqsym ik ROBOT`: reads the file, derives the closed-form inverse kinematics, prints the
+/// derivation or the solver code; every failure is a message and status 1.
+fn ik(
+    path: &std::path::Path,
+    free: Option<String>,
+    format: OutputFormat,
+    explicit: bool,
+) -> ExitCode {
+    let fail = |m: String| {
+        eprintln!("error: {m}");
+        ExitCode::FAILURE
+    };
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) => return fail(format!("cannot read {}: {e}", path.display())),
+    };
+    let robot =
+        match dqsym::parse_robot(&text, &path.display().to_string(), &dqsym::eval_scalar_text) {
+            Ok(r) => r,
+            Err(e) => return fail(e.to_string()),
+        };
+    dqsym::reset_work();
+    let sol = match dqsym::ik::solve(&robot, &dqsym::ik::IkOptions { free }) {
+        Ok(s) => s,
+        Err(e) => return fail(e.to_string()),
+    };
+    let shorthand = !explicit;
+    let out = match format {
+        OutputFormat::Plain => {
+            dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Plain { shorthand })
+        }
+        OutputFormat::Latex => {
+            dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Latex { shorthand })
+        }
+        OutputFormat::Sympy => dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Sympy),
+        OutputFormat::Rust => dqsym::ik::ik_rust(&sol),
+        OutputFormat::C => dqsym::ik::ik_c(&sol),
+        OutputFormat::Python => dqsym::ik::ik_python(&sol),
+    };
+    match out {
+        Ok(t) => {
+            print!("{t}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(e.to_string()),
     }
 }
 
@@ -307,6 +373,9 @@ fn fk(
         },
         OutputFormat::Sympy => dqsym::ReportFormat::Sympy,
         OutputFormat::Rust => dqsym::ReportFormat::Rust,
+        OutputFormat::C | OutputFormat::Python => {
+            return fail("--format c and --format python are for `dqsym ik` only".into())
+        }
     };
     // The fields were evaluated each with its own budget; the derivation gets a whole one.
     dqsym::reset_work();
