@@ -72,6 +72,13 @@ enum Command {
         /// given take a fixed default, lengths 1.
         #[arg(long, value_name = "NAME=VALUE,...")]
         config: Option<String>,
+        /// The inverse kinematics of a robot file instead: the axes, the decisions, each
+        /// subproblem and branch, a numeric check (text or --markdown).
+        #[arg(long)]
+        ik: bool,
+        /// With --ik: a joint variable given as a parameter.
+        #[arg(long, value_name = "VARIABLE", requires = "ik")]
+        free: Option<String>,
     },
     /// Forward kinematics of a robot file (TOML: dh, mdh or screw convention) in closed form:
     /// the unit DQ and the 4x4 matrix; with --point the image of a point, with --jacobian the
@@ -282,6 +289,18 @@ fn dispatch(cli: Cli) -> ExitCode {
                 markdown,
                 html,
                 config,
+                ik: true,
+                free,
+            }),
+            _,
+        ) => walk_ik(&file, markdown, html.is_some() || config.is_some(), free),
+        (
+            Some(Command::Walk {
+                file,
+                markdown,
+                html,
+                config,
+                ..
             }),
             _,
         ) => walk(&file, markdown, html.as_deref(), config.as_deref()),
@@ -330,6 +349,38 @@ fn ik(
         OutputFormat::Python => dqsym::ik::ik_python(&sol),
     };
     match out {
+        Ok(t) => {
+            print!("{t}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(e.to_string()),
+    }
+}
+
+/// `dqsym walk ROBOT --ik`: the inverse kinematics derivation step by step.
+fn walk_ik(path: &std::path::Path, markdown: bool, html: bool, free: Option<String>) -> ExitCode {
+    let fail = |m: String| {
+        eprintln!("error: {m}");
+        ExitCode::FAILURE
+    };
+    if html {
+        return fail("walk --ik writes text or --markdown (no --html page yet)".into());
+    }
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) => return fail(format!("cannot read {}: {e}", path.display())),
+    };
+    let robot =
+        match dqsym::parse_robot(&text, &path.display().to_string(), &dqsym::eval_scalar_text) {
+            Ok(r) => r,
+            Err(e) => return fail(e.to_string()),
+        };
+    dqsym::reset_work();
+    let sol = match dqsym::ik::solve(&robot, &dqsym::ik::IkOptions { free }) {
+        Ok(s) => s,
+        Err(e) => return fail(e.to_string()),
+    };
+    match dqsym::ik::ik_walk(&robot, &sol, markdown) {
         Ok(t) => {
             print!("{t}");
             ExitCode::SUCCESS

@@ -198,3 +198,47 @@ pub fn home_axes(robot: &Robot) -> (Vec<Axis>, Matrix4<Scalar>) {
     let m = frame.mul_ref(&robot.chain.tool.to_matrix());
     (axes, m)
 }
+
+/// The joint axes and home pose of a chain given as one symbolic unit DQ `Q(q1, ..., qn)`
+/// (a product of joint motions): with every variable 0, `Q = M` and `2 (dQ/dqi) M*` is the
+/// pure dual quaternion `k + eps m` of joint i's line (revolute), or `eps v` (prismatic).
+/// `None` when a derivative is not a line of that form.
+pub fn dq_axes(q: &crate::DualQuat<Scalar>, variables: &[String]) -> Option<(Vec<Axis>, Matrix4<Scalar>)> {
+    let zero = Scalar::int(0);
+    let at_home = |x: &Scalar| -> Scalar {
+        let mut y = x.clone();
+        for v in variables {
+            y = y.subs(v, &zero);
+        }
+        y
+    };
+    let comps = q.components();
+    let home: Vec<Scalar> = comps.iter().map(at_home).collect();
+    let m = crate::DualQuat::from_components(std::array::from_fn(|i| home[i].clone()));
+    let mut axes = Vec::new();
+    for v in variables {
+        let d: [Scalar; 8] = std::array::from_fn(|i| at_home(&comps[i].diff(v)));
+        let d = crate::DualQuat::from_components(d);
+        let xi = (d * m.conjugate()).components();
+        let two = Scalar::int(2);
+        let xi: Vec<Scalar> = xi.iter().map(|x| &two * x).collect();
+        if !xi[0].is_zero_value() || !xi[4].is_zero_value() {
+            return None;
+        }
+        let w: V3 = [xi[1].clone(), xi[2].clone(), xi[3].clone()];
+        let e: V3 = [xi[5].clone(), xi[6].clone(), xi[7].clone()];
+        if is_zero3(&w) {
+            if is_zero3(&e) || !dot(&e, &e).is_constant() {
+                return None;
+            }
+            axes.push(Axis::new(JointKind::Prismatic, v, e, zero3()));
+        } else {
+            if dot(&w, &w) != Scalar::int(1) || !dot(&w, &e).is_zero_value() {
+                return None;
+            }
+            let p = cross(&w, &e);
+            axes.push(Axis::new(JointKind::Revolute, v, w, p));
+        }
+    }
+    Some((axes, m.to_matrix()))
+}

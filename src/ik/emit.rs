@@ -58,7 +58,7 @@ fn angle_code(a: &Angle, lang: Lang) -> String {
     format!("({})", parts.join(" + "))
 }
 
-fn code(e: &Expr, lang: Lang) -> String {
+fn code(e: &Expr, lang: Lang, bound: &[&str]) -> String {
     match e {
         Expr::Num(q) => {
             let v = q.to_f64().unwrap_or(f64::NAN);
@@ -73,6 +73,13 @@ fn code(e: &Expr, lang: Lang) -> String {
         },
         Expr::Trig { sin, angle } => {
             let f = if *sin { "sin" } else { "cos" };
+            // A solved joint's cosine and sine are locals (one sin_cos per joint).
+            if angle.pi.is_zero() && angle.terms.len() == 1 && angle.terms[0].1.is_one() {
+                let n = angle.terms[0].0.name();
+                if bound.contains(&n) {
+                    return format!("{}_{n}", &f[..1]);
+                }
+            }
             let a = angle_code(angle, lang);
             match lang {
                 Lang::Rust => format!("{a}.{f}()"),
@@ -86,13 +93,13 @@ fn code(e: &Expr, lang: Lang) -> String {
                 match t {
                     Expr::Neg(inner) => {
                         s.push_str(if i == 0 { "-" } else { " - " });
-                        s.push_str(&code(inner, lang));
+                        s.push_str(&code(inner, lang, bound));
                     }
                     t => {
                         if i > 0 {
                             s.push_str(" + ");
                         }
-                        s.push_str(&code(t, lang));
+                        s.push_str(&code(t, lang, bound));
                     }
                 }
             }
@@ -100,12 +107,12 @@ fn code(e: &Expr, lang: Lang) -> String {
             s
         }
         Expr::Mul(v) => {
-            let f: Vec<String> = v.iter().map(|t| code(t, lang)).collect();
+            let f: Vec<String> = v.iter().map(|t| code(t, lang, bound)).collect();
             format!("({})", f.join("*"))
         }
-        Expr::Neg(x) => format!("(-{})", code(x, lang)),
+        Expr::Neg(x) => format!("(-{})", code(x, lang, bound)),
         Expr::Pow(x, n) => {
-            let b = code(x, lang);
+            let b = code(x, lang, bound);
             match lang {
                 Lang::Rust => format!("{b}.powi({n})"),
                 Lang::C => format!("pow({b}, {n})"),
@@ -123,6 +130,8 @@ fn is_one(e: &Expr) -> bool {
 
 struct Ctx<'a> {
     sol: &'a IkSolution,
+    /// The joints whose `c_q`, `s_q` locals exist, per step.
+    bound: Vec<Vec<&'a str>>,
     lang: Lang,
     parts: Vec<Vec<(&'static str, Expr)>>,
 }
@@ -132,6 +141,25 @@ fn max_solutions(sol: &IkSolution) -> usize {
 }
 
 impl Ctx<'_> {
+    /// `c_q`, `s_q` of a revolute joint just bound.
+    fn trig_locals(&self, k: usize, ind: usize, out: &mut String) {
+        let step = &self.sol.steps[k];
+        if matches!(step.formula, Formula::Value { .. } | Formula::Quadratic { .. }) {
+            return;
+        }
+        let q = &step.variable;
+        let pad = " ".repeat(ind);
+        match self.lang {
+            Lang::Rust => out.push_str(&format!("{pad}let (s_{q}, c_{q}) = {q}.sin_cos();\n")),
+            Lang::C => out.push_str(&format!(
+                "{pad}const double s_{q} = sin({q}), c_{q} = cos({q});\n{pad}(void)s_{q};\n{pad}(void)c_{q};\n"
+            )),
+            Lang::Python => out.push_str(&format!(
+                "{pad}s_{q}, c_{q} = math.sin({q}), math.cos({q})\n"
+            )),
+        }
+    }
+
     /// The body of the branch loops, from step `k` on, at indentation `ind`.
     fn body(&self, k: usize, ind: usize, out: &mut String) {
         let pad = " ".repeat(ind);
@@ -172,7 +200,7 @@ impl Ctx<'_> {
         out.push_str(&format!("{pad}{comment} {q}: {}\n", step.method));
         let tmp = |n: &str| format!("ik_{q}_{n}");
         for (n, e) in &self.parts[k] {
-            let c = code(e, self.lang);
+            let c = code(e, self.lang, &self.bound[k]);
             match self.lang {
                 Lang::Rust => out.push_str(&format!("{pad}let {} = {c};\n", tmp(n))),
                 Lang::C => out.push_str(&format!("{pad}const double {} = {c};\n", tmp(n))),
@@ -185,11 +213,13 @@ impl Ctx<'_> {
             (Formula::Atan2 { .. }, Lang::Rust) => {
                 out.push_str(&format!("{pad}let ({q}, sg{k}) = ik_atan2({args});\n"));
                 out.push_str(&format!("{pad}let ap{k} = false;\n"));
+                self.trig_locals(k, ind, out);
                 self.body(k + 1, ind, out);
             }
             (Formula::Value { .. }, Lang::Rust) => {
                 out.push_str(&format!("{pad}let {q} = {args};\n"));
                 out.push_str(&format!("{pad}let (sg{k}, ap{k}) = (false, false);\n"));
+                self.trig_locals(k, ind, out);
                 self.body(k + 1, ind, out);
             }
             (Formula::Trig { .. } | Formula::Quadratic { .. }, Lang::Rust) => {
@@ -200,6 +230,7 @@ impl Ctx<'_> {
                 };
                 out.push_str(&format!("{pad}let (n{k}, c{k}) = {f}({args});\n"));
                 out.push_str(&format!("{pad}for &({q}, sg{k}, ap{k}) in &c{k}[..n{k}] {{\n"));
+                self.trig_locals(k, ind + 4, out);
                 self.body(k + 1, ind + 4, out);
                 out.push_str(&format!("{pad}}}\n"));
             }
@@ -207,11 +238,13 @@ impl Ctx<'_> {
                 out.push_str(&format!("{pad}int sg{k} = 0;\n"));
                 out.push_str(&format!("{pad}const double {q} = ik_atan2({args}, &sg{k});\n"));
                 out.push_str(&format!("{pad}const int ap{k} = 0;\n"));
+                self.trig_locals(k, ind, out);
                 self.body(k + 1, ind, out);
             }
             (Formula::Value { .. }, Lang::C) => {
                 out.push_str(&format!("{pad}const double {q} = {args};\n"));
                 out.push_str(&format!("{pad}const int sg{k} = 0, ap{k} = 0;\n"));
+                self.trig_locals(k, ind, out);
                 self.body(k + 1, ind, out);
             }
             (Formula::Trig { .. } | Formula::Quadratic { .. }, Lang::C) => {
@@ -228,17 +261,20 @@ impl Ctx<'_> {
                 out.push_str(&format!(
                     "{p2}const double {q} = v{k}[i{k}];\n{p2}const int sg{k} = s{k}[i{k}], ap{k} = a{k}[i{k}];\n"
                 ));
+                self.trig_locals(k, ind + 4, out);
                 self.body(k + 1, ind + 4, out);
                 out.push_str(&format!("{pad}}}\n"));
             }
             (Formula::Atan2 { .. }, Lang::Python) => {
                 out.push_str(&format!("{pad}{q}, sg{k} = _ik_atan2({args})\n"));
                 out.push_str(&format!("{pad}ap{k} = False\n"));
+                self.trig_locals(k, ind, out);
                 self.body(k + 1, ind, out);
             }
             (Formula::Value { .. }, Lang::Python) => {
                 out.push_str(&format!("{pad}{q} = {args}\n"));
                 out.push_str(&format!("{pad}sg{k}, ap{k} = False, False\n"));
+                self.trig_locals(k, ind, out);
                 self.body(k + 1, ind, out);
             }
             (Formula::Trig { .. } | Formula::Quadratic { .. }, Lang::Python) => {
@@ -248,10 +284,45 @@ impl Ctx<'_> {
                     "_ik_quadratic"
                 };
                 out.push_str(&format!("{pad}for {q}, sg{k}, ap{k} in {f}({args}):\n"));
+                self.trig_locals(k, ind + 4, out);
                 self.body(k + 1, ind + 4, out);
             }
         }
     }
+}
+
+/// The helper functions the solver uses (blocks of the helper texts, kept when the name they
+/// define is needed).
+fn helpers(sol: &IkSolution, texts: &[&str]) -> String {
+    let has = |f: fn(&Formula) -> bool| sol.steps.iter().any(|s| f(&s.formula));
+    let atan2 = has(|f| matches!(f, Formula::Atan2 { .. }));
+    let trig = has(|f| matches!(f, Formula::Trig { .. }));
+    let quad = has(|f| matches!(f, Formula::Quadratic { .. }));
+    let mut out = Vec::new();
+    for t in texts {
+        for block in t.split("\n\n\n").flat_map(|b| b.split("\n\n")) {
+            let block = block.trim_matches('\n');
+            if block.is_empty() {
+                continue;
+            }
+            let keep = if block.contains("ik_radicand(rad") || block.contains("ik_radicand(double *rad") {
+                trig || quad
+            } else if block.contains("_atan2(") && !block.contains("_trig(") {
+                atan2
+            } else if block.contains("_trig(") {
+                trig
+            } else if block.contains("_quadratic(") {
+                quad
+            } else {
+                true
+            };
+            if keep {
+                out.push(block.to_string());
+            }
+        }
+    }
+    let sep = if texts.len() == 1 { "\n\n\n" } else { "\n\n" };
+    format!("{}\n", out.join(sep))
 }
 
 fn ctx(sol: &IkSolution, lang: Lang) -> Result<Ctx<'_>, ScalarError> {
@@ -260,7 +331,20 @@ fn ctx(sol: &IkSolution, lang: Lang) -> Result<Ctx<'_>, ScalarError> {
         .iter()
         .map(|s| parts(&s.formula))
         .collect::<Result<_, _>>()?;
-    Ok(Ctx { sol, lang, parts })
+    let mut bound = Vec::new();
+    let mut now: Vec<&str> = Vec::new();
+    for st in &sol.steps {
+        bound.push(now.clone());
+        if !matches!(st.formula, Formula::Value { .. } | Formula::Quadratic { .. }) {
+            now.push(st.variable.as_str());
+        }
+    }
+    Ok(Ctx {
+        sol,
+        bound,
+        lang,
+        parts,
+    })
 }
 
 fn doc_lines(sol: &IkSolution) -> Vec<String> {
@@ -304,7 +388,7 @@ pub fn ik_rust(sol: &IkSolution) -> Result<String, ScalarError> {
 /// A singular set was met.\n    pub singular: [bool; IK_MAX],\n    /// A radicand was clamped.\n    pub approximate: [bool; IK_MAX],\n    \
 /// How many are valid.\n    pub n: usize,\n}}\n\n"
     ));
-    s.push_str(RUST_HELPERS);
+    s.push_str(&helpers(sol, &[RUST_RADICAND, RUST_HELPERS]));
     s.push_str(&format!(
         "\n/// Every solution for the target pose `t` (row-major homogeneous matrix).\n\
 #[allow(non_snake_case, unused_variables, clippy::too_many_arguments, clippy::excessive_precision, clippy::neg_multiply, clippy::double_parens, unused_parens)]\n\
@@ -330,6 +414,20 @@ pub fn ik_dq(dq: &[f64; 8]{params}) -> IkSolutions {{\n    ik(&ik_dq_matrix(dq){
     Ok(s)
 }
 
+const RUST_RADICAND: &str = r#"/// A radicand of scale `n`: none below -1e-8 n, a double root within 1e-12 n of zero
+/// (singular; approximate beyond rounding), else itself.
+#[inline(always)]
+fn ik_radicand(rad: f64, n: f64) -> Option<(f64, bool, bool)> {
+    if rad < -1e-8 * n {
+        None
+    } else if rad <= 1e-12 * n {
+        Some((0.0, true, rad.abs() > 1e-14 * n))
+    } else {
+        Some((rad, false, false))
+    }
+}
+"#;
+
 const RUST_HELPERS: &str = r#"#[inline(always)]
 fn ik_atan2(y: f64, x: f64) -> (f64, bool) {
     if y.hypot(x) < 1e-10 {
@@ -350,16 +448,9 @@ fn ik_trig(a: f64, b: f64, c: f64) -> (usize, [(f64, bool, bool); 2]) {
             (0, [(0.0, false, false); 2])
         };
     }
-    let mut rad = n - c * c;
-    let (mut sg, mut ap) = (rad <= 1e-10 * n, false);
-    if rad < -1e-8 * n {
+    let Some((rad, sg, ap)) = ik_radicand(n - c * c, n) else {
         return (0, [(0.0, false, false); 2]);
-    }
-    if rad < 0.0 {
-        ap = rad < -1e-10 * n;
-        sg = true;
-        rad = 0.0;
-    }
+    };
     let phi = b.atan2(a);
     let w = rad.sqrt().atan2(c);
     (2, [(phi + w, sg, ap), (phi - w, sg, ap)])
@@ -367,19 +458,11 @@ fn ik_trig(a: f64, b: f64, c: f64) -> (usize, [(f64, bool, bool); 2]) {
 
 /// `q^2 + 2 beta q + gamma = 0`: up to two roots.
 #[inline(always)]
-#[allow(dead_code)]
 fn ik_quadratic(beta: f64, gamma: f64) -> (usize, [(f64, bool, bool); 2]) {
-    let mut rad = beta * beta - gamma;
     let scale = (beta * beta).max(gamma.abs()).max(1.0);
-    let (mut sg, mut ap) = (rad <= 1e-10 * scale, false);
-    if rad < -1e-8 * scale {
+    let Some((rad, sg, ap)) = ik_radicand(beta * beta - gamma, scale) else {
         return (0, [(0.0, false, false); 2]);
-    }
-    if rad < 0.0 {
-        ap = rad < -1e-10 * scale;
-        sg = true;
-        rad = 0.0;
-    }
+    };
     let r = rad.sqrt();
     (2, [(-beta + r, sg, ap), (-beta - r, sg, ap)])
 }
@@ -419,7 +502,7 @@ pub fn ik_c(sol: &IkSolution) -> Result<String, ScalarError> {
         "#include <math.h>\n#ifndef M_PI\n#define M_PI 3.14159265358979323846\n#endif\n\n\
 #define IK_MAX {max}\n#define IK_DOF {n}\n\ntypedef struct {{\n    double q[IK_MAX][IK_DOF];\n    int singular[IK_MAX];\n    int approximate[IK_MAX];\n    int n;\n}} ik_solutions;\n\n"
     ));
-    s.push_str(C_HELPERS);
+    s.push_str(&helpers(sol, &[C_RADICAND, C_HELPERS]));
     s.push_str(&format!(
         "\nvoid ik(const double T[4][4]{params}, ik_solutions *out) {{\n"
     ));
@@ -428,6 +511,9 @@ pub fn ik_c(sol: &IkSolution) -> Result<String, ScalarError> {
             s.push_str(&format!("    const double {name} = T[{r}][{col}];\n"));
             s.push_str(&format!("    (void){name};\n"));
         }
+    }
+    for p in &sol.params {
+        s.push_str(&format!("    (void){p};\n"));
     }
     s.push_str("    out->n = 0;\n");
     let mut body = String::new();
@@ -439,6 +525,17 @@ pub fn ik_c(sol: &IkSolution) -> Result<String, ScalarError> {
     ));
     Ok(s)
 }
+
+const C_RADICAND: &str = r#"static int ik_radicand(double *rad, double n, int *sg, int *ap) {
+    if (*rad < -1e-8 * n) return 0;
+    if (*rad <= 1e-12 * n) {
+        *sg = 1;
+        *ap = fabs(*rad) > 1e-14 * n;
+        *rad = 0.0;
+    }
+    return 1;
+}
+"#;
 
 const C_HELPERS: &str = r#"static double ik_atan2(double y, double x, int *sg) {
     if (hypot(y, x) < 1e-10) {
@@ -456,9 +553,8 @@ static int ik_trig(double a, double b, double c, double v[2], int sg[2], int ap[
         return fabs(c) < 1e-9 ? 1 : 0;
     }
     double rad = n - c * c;
-    int s = rad <= 1e-10 * n, p = 0;
-    if (rad < -1e-8 * n) return 0;
-    if (rad < 0.0) { p = rad < -1e-10 * n; s = 1; rad = 0.0; }
+    int s = 0, p = 0;
+    if (!ik_radicand(&rad, n, &s, &p)) return 0;
     const double phi = atan2(b, a), w = atan2(sqrt(rad), c);
     v[0] = phi + w; v[1] = phi - w;
     sg[0] = sg[1] = s; ap[0] = ap[1] = p;
@@ -468,9 +564,8 @@ static int ik_trig(double a, double b, double c, double v[2], int sg[2], int ap[
 static int ik_quadratic(double beta, double gamma, double v[2], int sg[2], int ap[2]) {
     double rad = beta * beta - gamma;
     double scale = fmax(fmax(beta * beta, fabs(gamma)), 1.0);
-    int s = rad <= 1e-10 * scale, p = 0;
-    if (rad < -1e-8 * scale) return 0;
-    if (rad < 0.0) { p = rad < -1e-10 * scale; s = 1; rad = 0.0; }
+    int s = 0, p = 0;
+    if (!ik_radicand(&rad, scale, &s, &p)) return 0;
     const double r = sqrt(rad);
     v[0] = -beta + r; v[1] = -beta - r;
     sg[0] = sg[1] = s; ap[0] = ap[1] = p;
@@ -509,7 +604,7 @@ pub fn ik_python(sol: &IkSolution) -> Result<String, ScalarError> {
         s.push_str(&format!("# {l}\n"));
     }
     s.push_str("import math\n\nimport numpy as np\n\n\n");
-    s.push_str(PY_HELPERS);
+    s.push_str(&helpers(sol, &[PY_HELPERS]));
     s.push_str(&format!(
         "\n\ndef ik_full(T{kw}):\n    \"\"\"Every solution as (q, singular, approximate).\"\"\"\n    T = np.asarray(T, dtype=float)\n"
     ));
@@ -533,7 +628,15 @@ pub fn ik_python(sol: &IkSolution) -> Result<String, ScalarError> {
     Ok(s)
 }
 
-const PY_HELPERS: &str = r#"def _ik_atan2(y, x):
+const PY_HELPERS: &str = r#"def _ik_radicand(rad, n):
+    if rad < -1e-8 * n:
+        return None
+    if rad <= 1e-12 * n:
+        return 0.0, True, abs(rad) > 1e-14 * n
+    return rad, False, False
+
+
+def _ik_atan2(y, x):
     if math.hypot(y, x) < 1e-10:
         return 0.0, True
     return math.atan2(y, x), False
@@ -543,25 +646,21 @@ def _ik_trig(a, b, c):
     n = a * a + b * b
     if n < 1e-20:
         return [(0.0, True, False)] if abs(c) < 1e-9 else []
-    rad = n - c * c
-    sg, ap = rad <= 1e-10 * n, False
-    if rad < -1e-8 * n:
+    r = _ik_radicand(n - c * c, n)
+    if r is None:
         return []
-    if rad < 0.0:
-        ap, sg, rad = rad < -1e-10 * n, True, 0.0
+    rad, sg, ap = r
     phi = math.atan2(b, a)
     w = math.atan2(math.sqrt(rad), c)
     return [(phi + w, sg, ap), (phi - w, sg, ap)]
 
 
 def _ik_quadratic(beta, gamma):
-    rad = beta * beta - gamma
     scale = max(beta * beta, abs(gamma), 1.0)
-    sg, ap = rad <= 1e-10 * scale, False
-    if rad < -1e-8 * scale:
+    r = _ik_radicand(beta * beta - gamma, scale)
+    if r is None:
         return []
-    if rad < 0.0:
-        ap, sg, rad = rad < -1e-10 * scale, True, 0.0
+    rad, sg, ap = r
     r = math.sqrt(rad)
     return [(-beta + r, sg, ap), (-beta - r, sg, ap)]
 

@@ -12,10 +12,12 @@ pub mod axes;
 mod emit;
 mod plan;
 mod report;
+mod walk;
 
 pub use axes::{home_axes, intersection, relation, Axis, Relation, V3};
 pub use emit::{ik_c, ik_python, ik_rust};
 pub use report::{ik_report, IkFormat};
+pub use walk::ik_walk;
 
 use crate::kin::Robot;
 use crate::{Matrix4, Scalar};
@@ -142,7 +144,11 @@ pub struct IkSolution {
     pub position_only: bool,
     /// The home pose `M` of the end effector.
     pub home: Matrix4<Scalar>,
+    /// The closed forms of every step's parts, computed on first use.
+    pub(crate) forms: std::sync::OnceLock<Result<Vec<Parts>, String>>,
 }
+
+type Parts = Vec<(&'static str, crate::Expr)>;
 
 /// Derives the closed-form inverse kinematics of `robot`.
 ///
@@ -151,6 +157,36 @@ pub struct IkSolution {
 /// [`IkError::Option`] for a bad `--free`; [`IkError::Scalar`] when a limit is reached.
 pub fn solve(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkError> {
     plan::derive(robot, opts)
+}
+
+/// Derives the closed-form inverse kinematics of a chain given as one symbolic unit DQ
+/// `q(vars)` (a product of joint motions, as built in the language), named `name`.
+///
+/// # Errors
+/// As [`solve`]; [`IkError::Option`] when a variable's derivative is not a joint axis.
+pub fn solve_dq(
+    name: &str,
+    q: &crate::DualQuat<Scalar>,
+    variables: &[String],
+    opts: &IkOptions,
+) -> Result<IkSolution, IkError> {
+    let (axes, home) = axes::dq_axes(q, variables).ok_or_else(|| {
+        IkError::Option(format!(
+            "{name}: not a product of joint motions in {} (each variable must turn about or \
+             slide along one line)",
+            variables.join(", ")
+        ))
+    })?;
+    let mut params: Vec<String> = q
+        .components()
+        .iter()
+        .flat_map(|c| c.symbols())
+        .map(|s| s.name().to_string())
+        .filter(|n| n != "pi" && !variables.contains(n))
+        .collect();
+    params.sort();
+    params.dedup();
+    plan::derive_axes(name, variables, params, axes, home, opts)
 }
 
 /// One numeric solution.
@@ -165,7 +201,19 @@ pub struct NumSolution {
 }
 
 const SINGULAR_TOL: f64 = 1e-10;
-const CLAMP_TOL: f64 = 1e-8;
+
+/// A radicand `rad` of scale `n`: `None` below `-1e-8 n` (out of reach); within `1e-12 n` of
+/// zero a double root (singular; approximate when beyond rounding, `1e-14 n`, or negative
+/// beyond it: the closest reach); otherwise itself.
+pub fn radicand(rad: f64, n: f64) -> Option<(f64, bool, bool)> {
+    if rad < -1e-8 * n {
+        None
+    } else if rad <= 1e-12 * n {
+        Some((0.0, true, rad.abs() > 1e-14 * n))
+    } else {
+        Some((rad, false, false))
+    }
+}
 
 impl IkSolution {
     /// Every solution for a numeric target pose (row-major 4x4), the parameters given by name.
@@ -213,11 +261,29 @@ impl IkSolution {
             });
             return Ok(());
         };
-        let ev = |x: &Scalar, env: &Vec<(String, f64)>| -> Result<f64, String> {
-            x.eval(&|n| env.iter().rev().find(|(k, _)| k == n).map(|(_, v)| *v))
-                .map_err(|e| e.to_string())
-        };
-        let cands = candidates(&step.formula, &|x| ev(x, env))?;
+        let forms = self.forms.get_or_init(|| {
+            self.steps
+                .iter()
+                .map(|s| report::parts(&s.formula).map_err(|e| e.to_string()))
+                .collect()
+        });
+        let forms = forms.as_ref().map_err(Clone::clone)?;
+        let mut vals = [0.0; 3];
+        for (i, (_, e)) in forms[k].iter().enumerate() {
+            vals[i] = e
+                .eval_f64(&|s: &crate::Sym| {
+                    let n = s.name();
+                    if n == "pi" {
+                        return std::f64::consts::PI;
+                    }
+                    env.iter()
+                        .rev()
+                        .find(|(k, _)| k == n)
+                        .map_or(f64::NAN, |(_, v)| *v)
+                })
+                .0;
+        }
+        let cands = from_values(&step.formula, &vals);
         for (v, sing, approx) in cands {
             env.push((step.variable.clone(), v));
             q[step.joint] = v;
@@ -235,51 +301,52 @@ pub fn candidates(
     f: &Formula,
     ev: &dyn Fn(&Scalar) -> Result<f64, String>,
 ) -> Result<Vec<(f64, bool, bool)>, String> {
-    Ok(match f {
-        Formula::Atan2 { y, x } => {
-            let (y, x) = (ev(y)?, ev(x)?);
+    let v: Vec<f64> = match f {
+        Formula::Atan2 { y, x } => vec![ev(y)?, ev(x)?],
+        Formula::Trig { a, b, c } => vec![ev(a)?, ev(b)?, ev(c)?],
+        Formula::Value { v } => vec![ev(v)?],
+        Formula::Quadratic { beta, gamma } => vec![ev(beta)?, ev(gamma)?],
+    };
+    Ok(from_values(f, &v))
+}
+
+/// The candidates of a formula from the values of its parts (in the order of its fields).
+fn from_values(f: &Formula, v: &[f64]) -> Vec<(f64, bool, bool)> {
+    match f {
+        Formula::Atan2 { .. } => {
+            let (y, x) = (v[0], v[1]);
             if y.hypot(x) < SINGULAR_TOL {
                 vec![(0.0, true, false)]
             } else {
                 vec![(y.atan2(x), false, false)]
             }
         }
-        Formula::Value { v } => vec![(ev(v)?, false, false)],
-        Formula::Trig { a, b, c } => {
-            let (a, b, c) = (ev(a)?, ev(b)?, ev(c)?);
+        Formula::Value { .. } => vec![(v[0], false, false)],
+        Formula::Trig { .. } => {
+            let (a, b, c) = (v[0], v[1], v[2]);
             let n = a * a + b * b;
             if n < SINGULAR_TOL * SINGULAR_TOL {
-                return Ok(if c.abs() < 1e-9 {
+                return if c.abs() < 1e-9 {
                     vec![(0.0, true, false)]
                 } else {
                     vec![]
-                });
+                };
             }
-            let rad = n - c * c;
-            let (rad, sing, approx) = if rad < -CLAMP_TOL * n {
-                return Ok(vec![]);
-            } else if rad < 0.0 {
-                (0.0, true, rad < -SINGULAR_TOL * n)
-            } else {
-                (rad, rad <= SINGULAR_TOL * n, false)
+            let Some((rad, sing, approx)) = radicand(n - c * c, n) else {
+                return vec![];
             };
             let phi = b.atan2(a);
             let w = rad.sqrt().atan2(c);
             vec![(phi + w, sing, approx), (phi - w, sing, approx)]
         }
-        Formula::Quadratic { beta, gamma } => {
-            let (b, g) = (ev(beta)?, ev(gamma)?);
-            let rad = b * b - g;
+        Formula::Quadratic { .. } => {
+            let (b, g) = (v[0], v[1]);
             let scale = (b * b).max(g.abs()).max(1.0);
-            let (rad, sing, approx) = if rad < -CLAMP_TOL * scale {
-                return Ok(vec![]);
-            } else if rad < 0.0 {
-                (0.0, true, rad < -SINGULAR_TOL * scale)
-            } else {
-                (rad, rad <= SINGULAR_TOL * scale, false)
+            let Some((rad, sing, approx)) = radicand(b * b - g, scale) else {
+                return vec![];
             };
             let r = rad.sqrt();
             vec![(-b + r, sing, approx), (-b - r, sing, approx)]
         }
-    })
+    }
 }

@@ -252,6 +252,16 @@ fn common_point(ax: &[Axis]) -> Option<V3> {
     None
 }
 
+/// Where axes 1 and 2 meet when they do, else the point of axis 2.
+fn shoulder_centre(a1: &Axis, a2: &Axis) -> V3 {
+    if relation(a1, a2) == Relation::Intersecting {
+        if let Some(o) = intersection(a1, a2) {
+            return o;
+        }
+    }
+    a2.point.clone()
+}
+
 fn parallel(a: &Axis, b: &Axis) -> bool {
     is_zero3(&cross(&a.dir, &b.dir))
 }
@@ -261,24 +271,40 @@ fn revolute(ax: &[Axis]) -> bool {
 }
 
 pub(crate) fn derive(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkError> {
+    let (axes, home) = home_axes(robot);
+    derive_axes(
+        &robot.name,
+        &robot.variables,
+        robot.parameters(),
+        axes,
+        home,
+        opts,
+    )
+}
+
+/// The derivation from the axes and the home pose.
+pub(crate) fn derive_axes(
+    name: &str,
+    variables: &[String],
+    mut params: Vec<String>,
+    mut axes: Vec<Axis>,
+    mut home: Matrix4<Scalar>,
+    opts: &IkOptions,
+) -> Result<IkSolution, IkError> {
     for row in TARGET_SYMBOLS {
         for s in row {
-            if robot.variables.iter().any(|v| v == s) || robot.parameters().iter().any(|v| v == s)
-            {
+            if variables.iter().any(|v| v == s) || params.iter().any(|v| v == s) {
                 return Err(IkError::Option(format!(
                     "the robot uses the name `{s}`, which ik keeps for the target pose"
                 )));
             }
         }
     }
-    let (mut axes, mut home) = home_axes(robot);
-    let mut params = robot.parameters();
     if let Some(f) = &opts.free {
-        let k = robot.variables.iter().position(|v| v == f).ok_or_else(|| {
+        let k = variables.iter().position(|v| v == f).ok_or_else(|| {
             IkError::Option(format!(
-                "--free {f}: not a joint variable of {} (joint variables: {})",
-                robot.name,
-                robot.variables.join(", ")
+                "--free {f}: not a joint variable of {name} (joint variables: {})",
+                variables.join(", ")
             ))
         })?;
         let by = axes[k].clone();
@@ -304,7 +330,20 @@ pub(crate) fn derive(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkEr
         params.push(f.clone());
         params.sort();
     }
-    let geometry = geometry_lines(&axes);
+    let mut geometry = geometry_lines(&axes);
+    if opts.free.is_some() {
+        geometry.insert(
+            0,
+            format!(
+                "axes numbered without the free joint: {}",
+                axes.iter()
+                    .enumerate()
+                    .map(|(i, a)| format!("{} = {}", i + 1, a.variable))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        );
+    }
     let target = Target::new(&home);
     let mut b = Builder {
         axes: &axes,
@@ -312,7 +351,7 @@ pub(crate) fn derive(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkEr
     };
     let attempt = family(&mut b, &target);
     let unsupported = |why: Option<String>| IkError::Unsupported {
-        robot: robot.name.clone(),
+        robot: name.to_string(),
         geometry: {
             let mut g = geometry.clone();
             if let Some(w) = why {
@@ -346,14 +385,13 @@ pub(crate) fn derive(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkEr
         }
     }
     let steps = b.steps;
-    let variables = robot
-        .variables
+    let variables = variables
         .iter()
         .filter(|v| Some(*v) != opts.free.as_ref())
         .cloned()
         .collect();
     Ok(IkSolution {
-        robot: robot.name.clone(),
+        robot: name.to_string(),
         family,
         geometry,
         conditions,
@@ -363,6 +401,7 @@ pub(crate) fn derive(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkEr
         free: opts.free.clone(),
         position_only,
         home,
+        forms: std::sync::OnceLock::new(),
     })
 }
 
@@ -540,19 +579,21 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
             "the wrist centre on axis 1 (radicand zero: shoulder singularity)",
         )?;
         let q = a1.move_point(&pw, -1);
-        let p2 = &a2.point;
-        let k = &a2.dir;
-        let delta2 = norm2(&sub(&q, p2)) - dot(k, &sub(&q, p2)) * dot(k, &sub(&q, p2))
-            + dot(k, &sub(w, p2)) * dot(k, &sub(w, p2));
+        // The centre: where axes 1 and 2 meet when they do (then |q - O| = |wc - O|), else the
+        // point of axis 2. The component of q - centre along k2 equals that of C - centre,
+        // by theta1's equation, so the distance from axis 2 is |q - centre|.
+        let centre = shoulder_centre(a1, a2);
+        let delta2 = norm2(&sub(&q, &centre));
         b.push(
             2,
-            sp3(a3, w, p2, &delta2),
-            "subproblem 3 (distance): joint 3 sets the wrist centre's distance from axis 2, \
-             which joint 2 keeps"
+            sp3(a3, w, &centre, &delta2),
+            "subproblem 3 (distance): joint 3 sets the wrist centre's distance from a point of \
+             axis 2, which joint 2 keeps"
                 .into(),
             Some(ELBOW),
             "elbow straight (radicand zero)",
         )?;
+        let p2 = &centre;
         let x3 = a3.move_point(w, 1);
         b.push(
             1,
@@ -710,13 +751,15 @@ fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), String> {
     let x4 = ax[3].point.clone();
     let z = ax[5].move_point(&ax[4].move_point(&x4, -1), -1);
     let q = ax[0].move_point(&t.point(&z), -1);
-    let p2 = &ax[1].point;
-    let delta2 = norm2(&sub(&q, p2)) - dot(k, &sub(&q, p2)) * dot(k, &sub(&q, p2))
-        + dot(k, &sub(&x4, p2)) * dot(k, &sub(&x4, p2));
+    let centre = shoulder_centre(&ax[0], &ax[1]);
+    let p2 = &centre;
+    let delta2 = norm2(&sub(&q, p2));
     b.push(
         2,
         sp3(&ax[2], &x4, p2, &delta2),
-        "subproblem 3 (distance): joint 3 sets the distance of axis 4 from axis 2".into(),
+        "subproblem 3 (distance): joint 3 sets the distance of axis 4 from a point of axis 2 \
+         (their components along k2 agree by theta1's equation)"
+            .into(),
         Some(ELBOW),
         "elbow straight (radicand zero)",
     )?;

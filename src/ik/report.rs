@@ -32,12 +32,25 @@ pub(crate) fn parts(f: &Formula) -> Result<Vec<(&'static str, Expr)>, ScalarErro
         Formula::Value { v } => vec![("v", v)],
         Formula::Quadratic { beta, gamma } => vec![("beta", beta), ("gamma", gamma)],
     };
-    let forms = crate::scalar::par_map(&named, |(_, s)| closed_form(s));
+    let forms = crate::scalar::par_map(&named, |(_, s)| best_form(s));
     named
         .iter()
         .zip(forms)
         .map(|((n, _), e)| Ok((*n, e?)))
         .collect()
+}
+
+/// The closed form of a scalar, or the closed form of its cos/sin polynomial when that is
+/// cheaper (squares of `px c1 + py s1` read better than double angles).
+fn best_form(s: &Scalar) -> Result<Expr, ScalarError> {
+    let e = closed_form(s)?;
+    let alt = s
+        .to_cos_sin_polynomial()
+        .and_then(|p| crate::closed_form_cos_sin(&p).ok());
+    Ok(match alt {
+        Some(a) if a.cost() < e.cost() => a,
+        _ => e,
+    })
 }
 
 /// The closed form of a step's joint, in plain text over its part names.
