@@ -8,9 +8,11 @@ use std::time::Duration;
 
 // Not files of their own under benches/: Cargo would take them for bench targets, rustfmt would
 // reformat them. A test keeps them equal to what `dqsym ik --format rust` writes.
+#[allow(dead_code)]
 mod puma {
     include!("generated/ik_puma560.rs");
 }
+#[allow(dead_code)]
 mod ur5 {
     include!("generated/ik_ur5.rs");
 }
@@ -39,7 +41,12 @@ fn puma_target() -> [[f64; 4]; 4] {
     let r = load("puma560");
     let sol = dqsym::ik::solve(&r, &dqsym::ik::IkOptions::default()).expect("ik");
     let q = [0.3, -0.7, 1.1, 0.25, -1.3, 2.0];
-    let env = [("a2", 0.4318), ("a3", 0.0203), ("d3", 0.15005), ("d4", 0.4318)];
+    let env = [
+        ("a2", 0.4318),
+        ("a3", 0.0203),
+        ("d3", 0.15005),
+        ("d4", 0.4318),
+    ];
     let t = pose(&sol.home, &q, &r, &env);
     let n = puma::ik(&t, 0.4318, 0.0203, 0.15005, 0.4318);
     assert_eq!(n.n, 8, "PUMA: 8 branches");
@@ -85,7 +92,9 @@ fn bench(c: &mut Criterion) {
     let iiwa = load("kuka_iiwa7");
     let mut g = c.benchmark_group("ik_derivation");
     g.sample_size(10);
-    g.bench_function("puma560", |b| b.iter(|| derive(black_box(&puma_robot), None)));
+    g.bench_function("puma560", |b| {
+        b.iter(|| derive(black_box(&puma_robot), None))
+    });
     g.bench_function("ur5", |b| b.iter(|| derive(black_box(&ur5_robot), None)));
     g.bench_function("iiwa_free_theta3", |b| {
         b.iter(|| derive(black_box(&iiwa), Some("theta3")))
@@ -98,7 +107,17 @@ fn bench(c: &mut Criterion) {
         b.iter(|| puma::ik(black_box(&tp), 0.4318, 0.0203, 0.15005, 0.4318))
     });
     g.bench_function("ur5_generated", |b| {
-        b.iter(|| ur5::ik(black_box(&tu), -0.425, -0.39225, 0.089159, 0.10915, 0.09465, 0.0823))
+        b.iter(|| {
+            ur5::ik(
+                black_box(&tu),
+                -0.425,
+                -0.39225,
+                0.089159,
+                0.10915,
+                0.09465,
+                0.0823,
+            )
+        })
     });
     g.finish();
 }

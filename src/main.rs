@@ -337,12 +337,8 @@ fn ik(
     };
     let shorthand = !explicit;
     let out = match format {
-        OutputFormat::Plain => {
-            dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Plain { shorthand })
-        }
-        OutputFormat::Latex => {
-            dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Latex { shorthand })
-        }
+        OutputFormat::Plain => dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Plain { shorthand }),
+        OutputFormat::Latex => dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Latex { shorthand }),
         OutputFormat::Sympy => dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Sympy),
         OutputFormat::Rust => dqsym::ik::ik_rust(&sol),
         OutputFormat::C => dqsym::ik::ik_c(&sol),

@@ -183,7 +183,12 @@ fn ik_command(session: &Session, cmd: &str, opts: &ShowOptions) -> Result<String
     }
     let q = match session.get(name) {
         Some(dqsym::Value::DualQuat(q)) => q.clone(),
-        Some(v) => return Err(format!("`{name}` is {}, not a dual quaternion", v.describe())),
+        Some(v) => {
+            return Err(format!(
+                "`{name}` is {}, not a dual quaternion",
+                v.describe()
+            ))
+        }
         None => return Err(format!("`{name}` is not bound")),
     };
     let vars: Vec<String> = vars.iter().map(|v| v.to_string()).collect();

@@ -90,7 +90,10 @@ impl Axis {
         match self.kind {
             JointKind::Revolute => {
                 let (c, s) = self.cs(sign);
-                add(&self.point, &rotate(&self.dir, &c, &s, &sub(x, &self.point)))
+                add(
+                    &self.point,
+                    &rotate(&self.dir, &c, &s, &sub(x, &self.point)),
+                )
             }
             JointKind::Prismatic => {
                 let q = Scalar::int(sign) * Scalar::sym(&self.variable);
@@ -176,7 +179,11 @@ pub fn home_axes(robot: &Robot) -> (Vec<Axis>, Matrix4<Scalar>) {
     let mut frame = Matrix4::identity();
     let mut axes = Vec::new();
     let col = |m: &Matrix4<Scalar>, c: usize| -> V3 {
-        [m.rows[0][c].clone(), m.rows[1][c].clone(), m.rows[2][c].clone()]
+        [
+            m.rows[0][c].clone(),
+            m.rows[1][c].clone(),
+            m.rows[2][c].clone(),
+        ]
     };
     for (j, var) in robot.chain.joints.iter().zip(&robot.variables) {
         let home = j.matrix(&zero);
@@ -203,7 +210,10 @@ pub fn home_axes(robot: &Robot) -> (Vec<Axis>, Matrix4<Scalar>) {
 /// (a product of joint motions): with every variable 0, `Q = M` and `2 (dQ/dqi) M*` is the
 /// pure dual quaternion `k + eps m` of joint i's line (revolute), or `eps v` (prismatic).
 /// `None` when a derivative is not a line of that form.
-pub fn dq_axes(q: &crate::DualQuat<Scalar>, variables: &[String]) -> Option<(Vec<Axis>, Matrix4<Scalar>)> {
+pub fn dq_axes(
+    q: &crate::DualQuat<Scalar>,
+    variables: &[String],
+) -> Option<(Vec<Axis>, Matrix4<Scalar>)> {
     let zero = Scalar::int(0);
     let at_home = |x: &Scalar| -> Scalar {
         let mut y = x.clone();

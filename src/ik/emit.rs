@@ -2,7 +2,6 @@
 //! formulas are the closed forms of the report, written as they are; the branch logic
 //! (tolerances for singular and clamped radicands) is the one of [`super::candidates`].
 
-use super::report::parts;
 use super::{Formula, IkSolution, TARGET_SYMBOLS};
 use crate::closed::{Angle, Expr};
 use crate::ScalarError;
@@ -133,7 +132,7 @@ struct Ctx<'a> {
     /// The joints whose `c_q`, `s_q` locals exist, per step.
     bound: Vec<Vec<&'a str>>,
     lang: Lang,
-    parts: Vec<Vec<(&'static str, Expr)>>,
+    parts: &'a [Vec<(&'static str, Expr)>],
 }
 
 fn max_solutions(sol: &IkSolution) -> usize {
@@ -144,7 +143,10 @@ impl Ctx<'_> {
     /// `c_q`, `s_q` of a revolute joint just bound.
     fn trig_locals(&self, k: usize, ind: usize, out: &mut String) {
         let step = &self.sol.steps[k];
-        if matches!(step.formula, Formula::Value { .. } | Formula::Quadratic { .. }) {
+        if matches!(
+            step.formula,
+            Formula::Value { .. } | Formula::Quadratic { .. }
+        ) {
             return;
         }
         let q = &step.variable;
@@ -165,26 +167,38 @@ impl Ctx<'_> {
         let pad = " ".repeat(ind);
         let Some(step) = self.sol.steps.get(k) else {
             let q = self.sol.variables.join(", ");
-            let sg: Vec<String> = (0..k).map(|i| format!("sg{i}")).collect();
-            let ap: Vec<String> = (0..k).map(|i| format!("ap{i}")).collect();
+            let sg: Vec<String> = (0..k).map(|i| format!("ik_sg{i}")).collect();
+            let ap: Vec<String> = (0..k).map(|i| format!("ik_ap{i}")).collect();
             match self.lang {
                 Lang::Rust => {
-                    out.push_str(&format!("{pad}out.q[out.n] = [{q}];\n"));
-                    out.push_str(&format!("{pad}out.singular[out.n] = {};\n", sg.join(" || ")));
-                    out.push_str(&format!("{pad}out.approximate[out.n] = {};\n", ap.join(" || ")));
-                    out.push_str(&format!("{pad}out.n += 1;\n"));
+                    out.push_str(&format!("{pad}ik_out.q[ik_out.n] = [{q}];\n"));
+                    out.push_str(&format!(
+                        "{pad}ik_out.singular[ik_out.n] = {};\n",
+                        sg.join(" || ")
+                    ));
+                    out.push_str(&format!(
+                        "{pad}ik_out.approximate[ik_out.n] = {};\n",
+                        ap.join(" || ")
+                    ));
+                    out.push_str(&format!("{pad}ik_out.n += 1;\n"));
                 }
                 Lang::C => {
                     for (i, v) in self.sol.variables.iter().enumerate() {
-                        out.push_str(&format!("{pad}out->q[out->n][{i}] = {v};\n"));
+                        out.push_str(&format!("{pad}ik_out->q[ik_out->n][{i}] = {v};\n"));
                     }
-                    out.push_str(&format!("{pad}out->singular[out->n] = {};\n", sg.join(" || ")));
-                    out.push_str(&format!("{pad}out->approximate[out->n] = {};\n", ap.join(" || ")));
-                    out.push_str(&format!("{pad}out->n += 1;\n"));
+                    out.push_str(&format!(
+                        "{pad}ik_out->singular[ik_out->n] = {};\n",
+                        sg.join(" || ")
+                    ));
+                    out.push_str(&format!(
+                        "{pad}ik_out->approximate[ik_out->n] = {};\n",
+                        ap.join(" || ")
+                    ));
+                    out.push_str(&format!("{pad}ik_out->n += 1;\n"));
                 }
                 Lang::Python => {
                     out.push_str(&format!(
-                        "{pad}out.append(([{q}], {}, {}))\n",
+                        "{pad}ik_out.append(([{q}], {}, {}))\n",
                         sg.join(" or "),
                         ap.join(" or ")
                     ));
@@ -211,14 +225,16 @@ impl Ctx<'_> {
         let args = args.join(", ");
         match (&step.formula, self.lang) {
             (Formula::Atan2 { .. }, Lang::Rust) => {
-                out.push_str(&format!("{pad}let ({q}, sg{k}) = ik_atan2({args});\n"));
-                out.push_str(&format!("{pad}let ap{k} = false;\n"));
+                out.push_str(&format!("{pad}let ({q}, ik_sg{k}) = ik_atan2({args});\n"));
+                out.push_str(&format!("{pad}let ik_ap{k} = false;\n"));
                 self.trig_locals(k, ind, out);
                 self.body(k + 1, ind, out);
             }
             (Formula::Value { .. }, Lang::Rust) => {
                 out.push_str(&format!("{pad}let {q} = {args};\n"));
-                out.push_str(&format!("{pad}let (sg{k}, ap{k}) = (false, false);\n"));
+                out.push_str(&format!(
+                    "{pad}let (ik_sg{k}, ik_ap{k}) = (false, false);\n"
+                ));
                 self.trig_locals(k, ind, out);
                 self.body(k + 1, ind, out);
             }
@@ -228,22 +244,26 @@ impl Ctx<'_> {
                 } else {
                     "ik_quadratic"
                 };
-                out.push_str(&format!("{pad}let (n{k}, c{k}) = {f}({args});\n"));
-                out.push_str(&format!("{pad}for &({q}, sg{k}, ap{k}) in &c{k}[..n{k}] {{\n"));
+                out.push_str(&format!("{pad}let (ik_n{k}, ik_c{k}) = {f}({args});\n"));
+                out.push_str(&format!(
+                    "{pad}for &({q}, ik_sg{k}, ik_ap{k}) in &ik_c{k}[..ik_n{k}] {{\n"
+                ));
                 self.trig_locals(k, ind + 4, out);
                 self.body(k + 1, ind + 4, out);
                 out.push_str(&format!("{pad}}}\n"));
             }
             (Formula::Atan2 { .. }, Lang::C) => {
-                out.push_str(&format!("{pad}int sg{k} = 0;\n"));
-                out.push_str(&format!("{pad}const double {q} = ik_atan2({args}, &sg{k});\n"));
-                out.push_str(&format!("{pad}const int ap{k} = 0;\n"));
+                out.push_str(&format!("{pad}int ik_sg{k} = 0;\n"));
+                out.push_str(&format!(
+                    "{pad}const double {q} = ik_atan2({args}, &ik_sg{k});\n"
+                ));
+                out.push_str(&format!("{pad}const int ik_ap{k} = 0;\n"));
                 self.trig_locals(k, ind, out);
                 self.body(k + 1, ind, out);
             }
             (Formula::Value { .. }, Lang::C) => {
                 out.push_str(&format!("{pad}const double {q} = {args};\n"));
-                out.push_str(&format!("{pad}const int sg{k} = 0, ap{k} = 0;\n"));
+                out.push_str(&format!("{pad}const int ik_sg{k} = 0, ik_ap{k} = 0;\n"));
                 self.trig_locals(k, ind, out);
                 self.body(k + 1, ind, out);
             }
@@ -254,26 +274,28 @@ impl Ctx<'_> {
                     "ik_quadratic"
                 };
                 out.push_str(&format!(
-                    "{pad}double v{k}[2]; int s{k}[2], a{k}[2];\n{pad}const int n{k} = {f}({args}, v{k}, s{k}, a{k});\n"
+                    "{pad}double ik_v{k}[2]; int ik_s{k}[2], ik_a{k}[2];\n{pad}const int ik_n{k} = {f}({args}, ik_v{k}, ik_s{k}, ik_a{k});\n"
                 ));
-                out.push_str(&format!("{pad}for (int i{k} = 0; i{k} < n{k}; i{k}++) {{\n"));
+                out.push_str(&format!(
+                    "{pad}for (int ik_i{k} = 0; ik_i{k} < ik_n{k}; ik_i{k}++) {{\n"
+                ));
                 let p2 = " ".repeat(ind + 4);
                 out.push_str(&format!(
-                    "{p2}const double {q} = v{k}[i{k}];\n{p2}const int sg{k} = s{k}[i{k}], ap{k} = a{k}[i{k}];\n"
+                    "{p2}const double {q} = ik_v{k}[ik_i{k}];\n{p2}const int ik_sg{k} = ik_s{k}[ik_i{k}], ik_ap{k} = ik_a{k}[ik_i{k}];\n"
                 ));
                 self.trig_locals(k, ind + 4, out);
                 self.body(k + 1, ind + 4, out);
                 out.push_str(&format!("{pad}}}\n"));
             }
             (Formula::Atan2 { .. }, Lang::Python) => {
-                out.push_str(&format!("{pad}{q}, sg{k} = _ik_atan2({args})\n"));
-                out.push_str(&format!("{pad}ap{k} = False\n"));
+                out.push_str(&format!("{pad}{q}, ik_sg{k} = _ik_atan2({args})\n"));
+                out.push_str(&format!("{pad}ik_ap{k} = False\n"));
                 self.trig_locals(k, ind, out);
                 self.body(k + 1, ind, out);
             }
             (Formula::Value { .. }, Lang::Python) => {
                 out.push_str(&format!("{pad}{q} = {args}\n"));
-                out.push_str(&format!("{pad}sg{k}, ap{k} = False, False\n"));
+                out.push_str(&format!("{pad}ik_sg{k}, ik_ap{k} = False, False\n"));
                 self.trig_locals(k, ind, out);
                 self.body(k + 1, ind, out);
             }
@@ -283,7 +305,9 @@ impl Ctx<'_> {
                 } else {
                     "_ik_quadratic"
                 };
-                out.push_str(&format!("{pad}for {q}, sg{k}, ap{k} in {f}({args}):\n"));
+                out.push_str(&format!(
+                    "{pad}for {q}, ik_sg{k}, ik_ap{k} in {f}({args}):\n"
+                ));
                 self.trig_locals(k, ind + 4, out);
                 self.body(k + 1, ind + 4, out);
             }
@@ -305,17 +329,18 @@ fn helpers(sol: &IkSolution, texts: &[&str]) -> String {
             if block.is_empty() {
                 continue;
             }
-            let keep = if block.contains("ik_radicand(rad") || block.contains("ik_radicand(double *rad") {
-                trig || quad
-            } else if block.contains("_atan2(") && !block.contains("_trig(") {
-                atan2
-            } else if block.contains("_trig(") {
-                trig
-            } else if block.contains("_quadratic(") {
-                quad
-            } else {
-                true
-            };
+            let keep =
+                if block.contains("ik_radicand(rad") || block.contains("ik_radicand(double *rad") {
+                    trig || quad
+                } else if block.contains("_atan2(") && !block.contains("_trig(") {
+                    atan2
+                } else if block.contains("_trig(") {
+                    trig
+                } else if block.contains("_quadratic(") {
+                    quad
+                } else {
+                    true
+                };
             if keep {
                 out.push(block.to_string());
             }
@@ -326,16 +351,15 @@ fn helpers(sol: &IkSolution, texts: &[&str]) -> String {
 }
 
 fn ctx(sol: &IkSolution, lang: Lang) -> Result<Ctx<'_>, ScalarError> {
-    let parts = sol
-        .steps
-        .iter()
-        .map(|s| parts(&s.formula))
-        .collect::<Result<_, _>>()?;
+    let parts = sol.forms().map_err(ScalarError::Unbound)?;
     let mut bound = Vec::new();
     let mut now: Vec<&str> = Vec::new();
     for st in &sol.steps {
         bound.push(now.clone());
-        if !matches!(st.formula, Formula::Value { .. } | Formula::Quadratic { .. }) {
+        if !matches!(
+            st.formula,
+            Formula::Value { .. } | Formula::Quadratic { .. }
+        ) {
             now.push(st.variable.as_str());
         }
     }
@@ -349,7 +373,10 @@ fn ctx(sol: &IkSolution, lang: Lang) -> Result<Ctx<'_>, ScalarError> {
 
 fn doc_lines(sol: &IkSolution) -> Vec<String> {
     let mut v = vec![
-        format!("Inverse kinematics of {}: every closed-form solution.", sol.robot),
+        format!(
+            "Inverse kinematics of {}: every closed-form solution.",
+            sol.robot
+        ),
         format!("Family: {}.", sol.family),
         format!(
             "Joint vector order: {}; at most {} solutions.",
@@ -392,24 +419,24 @@ pub fn ik_rust(sol: &IkSolution) -> Result<String, ScalarError> {
     s.push_str(&format!(
         "\n/// Every solution for the target pose `t` (row-major homogeneous matrix).\n\
 #[allow(non_snake_case, unused_variables, clippy::too_many_arguments, clippy::excessive_precision, clippy::neg_multiply, clippy::double_parens, unused_parens)]\n\
-pub fn ik(t: &[[f64; 4]; 4]{params}) -> IkSolutions {{\n"
+pub fn ik(ik_target: &[[f64; 4]; 4]{params}) -> IkSolutions {{\n"
     ));
     for (r, row) in TARGET_SYMBOLS.iter().enumerate() {
         for (col, name) in row.iter().enumerate() {
-            s.push_str(&format!("    let {name} = t[{r}][{col}];\n"));
+            s.push_str(&format!("    let {name} = ik_target[{r}][{col}];\n"));
         }
     }
     s.push_str(&format!(
-        "    let mut out = IkSolutions {{\n        q: [[0.0; {n}]; IK_MAX],\n        singular: [false; IK_MAX],\n        approximate: [false; IK_MAX],\n        n: 0,\n    }};\n"
+        "    let mut ik_out = IkSolutions {{\n        q: [[0.0; {n}]; IK_MAX],\n        singular: [false; IK_MAX],\n        approximate: [false; IK_MAX],\n        n: 0,\n    }};\n"
     ));
     let mut body = String::new();
     c.body(0, 4, &mut body);
     s.push_str(&body);
-    s.push_str("    out\n}\n\n");
+    s.push_str("    ik_out\n}\n\n");
     s.push_str(&format!(
         "/// Every solution for the target given as a unit dual quaternion `(w, x, y, z)` +\n\
 /// eps `(w, x, y, z)`.\n#[allow(non_snake_case, clippy::too_many_arguments)]\n\
-pub fn ik_dq(dq: &[f64; 8]{params}) -> IkSolutions {{\n    ik(&ik_dq_matrix(dq){pnames})\n}}\n"
+pub fn ik_dq(ik_q: &[f64; 8]{params}) -> IkSolutions {{\n    ik(&ik_dq_matrix(ik_q){pnames})\n}}\n"
     ));
     Ok(s)
 }
@@ -504,24 +531,26 @@ pub fn ik_c(sol: &IkSolution) -> Result<String, ScalarError> {
     ));
     s.push_str(&helpers(sol, &[C_RADICAND, C_HELPERS]));
     s.push_str(&format!(
-        "\nvoid ik(const double T[4][4]{params}, ik_solutions *out) {{\n"
+        "\nvoid ik(const double ik_target[4][4]{params}, ik_solutions *ik_out) {{\n"
     ));
     for (r, row) in TARGET_SYMBOLS.iter().enumerate() {
         for (col, name) in row.iter().enumerate() {
-            s.push_str(&format!("    const double {name} = T[{r}][{col}];\n"));
+            s.push_str(&format!(
+                "    const double {name} = ik_target[{r}][{col}];\n"
+            ));
             s.push_str(&format!("    (void){name};\n"));
         }
     }
     for p in &sol.params {
         s.push_str(&format!("    (void){p};\n"));
     }
-    s.push_str("    out->n = 0;\n");
+    s.push_str("    ik_out->n = 0;\n");
     let mut body = String::new();
     c.body(0, 4, &mut body);
     s.push_str(&body);
     s.push_str("}\n\n");
     s.push_str(&format!(
-        "void ik_dq(const double q[8]{params}, ik_solutions *out) {{\n    double T[4][4];\n    ik_dq_matrix(q, T);\n    ik(T{pnames}, out);\n}}\n"
+        "void ik_dq(const double ik_q[8]{params}, ik_solutions *ik_out) {{\n    double ik_target[4][4];\n    ik_dq_matrix(ik_q, ik_target);\n    ik(ik_target{pnames}, ik_out);\n}}\n"
     ));
     Ok(s)
 }
@@ -613,11 +642,11 @@ pub fn ik_python(sol: &IkSolution) -> Result<String, ScalarError> {
             s.push_str(&format!("    {name} = float(T[{r}, {col}])\n"));
         }
     }
-    s.push_str("    out = []\n");
+    s.push_str("    ik_out = []\n");
     let mut body = String::new();
     c.body(0, 4, &mut body);
     s.push_str(&body);
-    s.push_str("    return out\n\n\n");
+    s.push_str("    return ik_out\n\n\n");
     s.push_str(&format!(
         "def ik(T{kw}):\n    \"\"\"Every solution: joint vectors in joint order ({}).\"\"\"\n    return [q for q, _, _ in ik_full(T{pass})]\n\n\n",
         sol.variables.join(", ")

@@ -216,6 +216,23 @@ pub fn radicand(rad: f64, n: f64) -> Option<(f64, bool, bool)> {
 }
 
 impl IkSolution {
+    /// The closed forms of every step's parts (`a`, `b`, `c`; `y`, `x`; ...), computed once.
+    ///
+    /// # Errors
+    /// A closed form that fails (term limit, work budget).
+    pub fn forms(&self) -> Result<&[Vec<(&'static str, crate::Expr)>], String> {
+        self.forms
+            .get_or_init(|| {
+                self.steps
+                    .iter()
+                    .map(|s| report::parts(&s.formula).map_err(|e| e.to_string()))
+                    .collect()
+            })
+            .as_ref()
+            .map(|v| v.as_slice())
+            .map_err(Clone::clone)
+    }
+
     /// Every solution for a numeric target pose (row-major 4x4), the parameters given by name.
     /// Evaluates the exact formulas in f64 (the reference the generated code is checked
     /// against).
@@ -261,13 +278,7 @@ impl IkSolution {
             });
             return Ok(());
         };
-        let forms = self.forms.get_or_init(|| {
-            self.steps
-                .iter()
-                .map(|s| report::parts(&s.formula).map_err(|e| e.to_string()))
-                .collect()
-        });
-        let forms = forms.as_ref().map_err(Clone::clone)?;
+        let forms = self.forms()?;
         let mut vals = [0.0; 3];
         for (i, (_, e)) in forms[k].iter().enumerate() {
             vals[i] = e

@@ -3,8 +3,8 @@
 //! joints solved before it.
 
 use super::axes::{
-    add, cross, dot, home_axes, intersection, is_zero3, on_line, relation, scale, sub, zero3,
-    Axis, Relation, V3,
+    add, cross, dot, home_axes, intersection, is_zero3, on_line, relation, scale, sub, zero3, Axis,
+    Relation, V3,
 };
 use super::{Formula, IkError, IkOptions, IkSolution, IkStep, TARGET_SYMBOLS};
 use crate::kin::{JointKind, Robot};
@@ -360,7 +360,10 @@ pub(crate) fn derive_axes(
             if opts.free.is_none() && axes.len() == 7 {
                 g.push("7 joints: give one joint variable as a parameter with --free".into());
             }
-            g.iter().map(|l| format!("  {l}")).collect::<Vec<_>>().join("\n")
+            g.iter()
+                .map(|l| format!("  {l}"))
+                .collect::<Vec<_>>()
+                .join("\n")
         },
         families: FAMILIES.into(),
     };
@@ -482,7 +485,11 @@ fn planar(b: &mut Builder, t: &Target) -> Result<(), String> {
         format!(
             "subproblem 3 (distance): joint 2 turns the {} about axis 2; its distance to axis 1 \
              must equal the target's",
-            if n == 2 { "tool point" } else { "point of axis 3" }
+            if n == 2 {
+                "tool point"
+            } else {
+                "point of axis 3"
+            }
         ),
         Some(ELBOW),
         "elbow straight or folded (radicand zero)",
@@ -773,10 +780,7 @@ fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), String> {
     )?;
     let e = perpendicular(&ax[3].dir);
     let r = ax[5].move_dir(&ax[4].move_dir(&e, -1), -1);
-    let r = ax[2].move_dir(
-        &ax[1].move_dir(&ax[0].move_dir(&t.dir(&r), -1), -1),
-        -1,
-    );
+    let r = ax[2].move_dir(&ax[1].move_dir(&ax[0].move_dir(&t.dir(&r), -1), -1), -1);
     b.push(
         3,
         sp1(&ax[3], &e, &r),

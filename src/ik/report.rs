@@ -132,11 +132,7 @@ fn header(sol: &IkSolution) -> Vec<String> {
 /// # Errors
 /// A closed form that fails (term limit, work budget).
 pub fn ik_report(sol: &IkSolution, format: IkFormat) -> Result<String, ScalarError> {
-    let all: Vec<Vec<(&'static str, Expr)>> = sol
-        .steps
-        .iter()
-        .map(|s| parts(&s.formula))
-        .collect::<Result<_, _>>()?;
+    let all = sol.forms().map_err(ScalarError::Unbound)?;
     let mut out = String::new();
     match format {
         IkFormat::Plain { shorthand } => {
@@ -145,7 +141,7 @@ pub fn ik_report(sol: &IkSolution, format: IkFormat) -> Result<String, ScalarErr
                 out.push_str(&l);
                 out.push('\n');
             }
-            for (step, parts) in sol.steps.iter().zip(&all) {
+            for (step, parts) in sol.steps.iter().zip(all) {
                 out.push('\n');
                 out.push_str(&step.variable);
                 if let Some((n, p, m)) = &step.branch {
@@ -188,7 +184,7 @@ pub fn ik_report(sol: &IkSolution, format: IkFormat) -> Result<String, ScalarErr
             for l in header(sol) {
                 out.push_str(&format!("% {l}\n"));
             }
-            for (step, parts) in sol.steps.iter().zip(&all) {
+            for (step, parts) in sol.steps.iter().zip(all) {
                 let q = latex_symbol(&step.variable);
                 out.push_str(&format!("% {}\n", step.method));
                 out.push_str("\\begin{aligned}\n");
@@ -226,7 +222,7 @@ pub fn ik_report(sol: &IkSolution, format: IkFormat) -> Result<String, ScalarErr
             for l in header(sol) {
                 out.push_str(&format!("# {l}\n"));
             }
-            for (step, parts) in sol.steps.iter().zip(&all) {
+            for (step, parts) in sol.steps.iter().zip(all) {
                 let q = &step.variable;
                 out.push_str(&format!("# {}\n", step.method));
                 for (n, e) in parts {

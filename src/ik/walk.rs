@@ -2,7 +2,6 @@
 //! decisions, the wrist centre or carried point, each subproblem with its identity and its
 //! branches), then a numeric check at one configuration.
 
-use super::report::parts;
 use super::{home_axes, Formula, IkSolution};
 use crate::emit::{latex, latex_symbol, LatexOptions};
 use crate::kin::{Chain, Joint, JointGeometry, Robot};
@@ -64,7 +63,10 @@ pub fn ik_walk(robot: &Robot, sol: &IkSolution, markdown: bool) -> Result<String
         if markdown {
             format!("{} {t}\n\n", "#".repeat(level))
         } else {
-            format!("{t}\n{}\n\n", if level == 1 { "=" } else { "-" }.repeat(t.chars().count()))
+            format!(
+                "{t}\n{}\n\n",
+                if level == 1 { "=" } else { "-" }.repeat(t.chars().count())
+            )
         }
     };
     let mut out = String::new();
@@ -116,11 +118,12 @@ pub fn ik_walk(robot: &Robot, sol: &IkSolution, markdown: bool) -> Result<String
          (two branches; none when the radicand is negative: out of reach);\n\
          - Rot(k, q) u = v  has  q = atan2(k·(u x v), u·v − (k·u)(k·v)).\n\n",
     );
+    let forms = sol.forms().map_err(ScalarError::Unbound)?;
     for (i, step) in sol.steps.iter().enumerate() {
         out.push_str(&h(3, &format!("Step {}: {}", i + 1, step.variable)));
         out.push_str(&format!("{}.\n\n", step.method));
-        for (n, e) in parts(&step.formula)? {
-            out.push_str(&format!("- {n} = {}\n", show(&e)));
+        for (n, e) in &forms[i] {
+            out.push_str(&format!("- {n} = {}\n", show(e)));
         }
         out.push('\n');
         let q = &step.variable;
@@ -167,9 +170,7 @@ pub fn ik_walk(robot: &Robot, sol: &IkSolution, markdown: bool) -> Result<String
         .map_err(|e| ScalarError::Unbound(e.to_string()))?
         .rows;
     let p: Vec<(&str, f64)> = env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-    let sols = sol
-        .solve_numeric(&t, &p)
-        .map_err(ScalarError::Unbound)?;
+    let sols = sol.solve_numeric(&t, &p).map_err(ScalarError::Unbound)?;
     out.push_str(&format!(
         "Parameters {}; configuration {} = ({}); the solver returns {} solutions:\n\n",
         env.iter()
@@ -177,7 +178,10 @@ pub fn ik_walk(robot: &Robot, sol: &IkSolution, markdown: bool) -> Result<String
             .collect::<Vec<_>>()
             .join(", "),
         robot.variables.join(", "),
-        q0.iter().map(|x| format!("{x:.1}")).collect::<Vec<_>>().join(", "),
+        q0.iter()
+            .map(|x| format!("{x:.1}"))
+            .collect::<Vec<_>>()
+            .join(", "),
         sols.len()
     ));
     let free_k = sol
@@ -208,7 +212,10 @@ pub fn ik_walk(robot: &Robot, sol: &IkSolution, markdown: bool) -> Result<String
         };
         out.push_str(&format!(
             "- ({}): pose deviation {dev}{}\n",
-            s.q.iter().map(|x| format!("{x:.4}")).collect::<Vec<_>>().join(", "),
+            s.q.iter()
+                .map(|x| format!("{x:.4}"))
+                .collect::<Vec<_>>()
+                .join(", "),
             if s.singular { " (singular)" } else { "" }
         ));
     }

@@ -12,7 +12,12 @@ const ROBOTS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/robots/");
 /// Published values of each example robot's parameters (m).
 pub(crate) fn params(file: &str) -> Vec<(String, f64)> {
     let v: &[(&str, f64)] = match file {
-        "puma560" => &[("a2", 0.4318), ("a3", 0.0203), ("d3", 0.15005), ("d4", 0.4318)],
+        "puma560" => &[
+            ("a2", 0.4318),
+            ("a3", 0.0203),
+            ("d3", 0.15005),
+            ("d4", 0.4318),
+        ],
         "puma_like" => &[
             ("l1", 0.3),
             ("l2", 0.4),
@@ -57,7 +62,13 @@ pub(crate) fn params(file: &str) -> Vec<(String, f64)> {
             ("a6", 0.088),
             ("dF", 0.107),
         ],
-        "six_r" => &[("l1", 0.3), ("l2", 0.3), ("l3", 0.2), ("l4", 0.1), ("L", 0.8)],
+        "six_r" => &[
+            ("l1", 0.3),
+            ("l2", 0.3),
+            ("l3", 0.2),
+            ("l4", 0.1),
+            ("L", 0.8),
+        ],
         _ => &[],
     };
     v.iter().map(|(n, x)| (n.to_string(), *x)).collect()
@@ -119,7 +130,10 @@ fn full_q(sol: &IkSolution, s: &NumSolution, free_val: Option<(usize, f64)>) -> 
     if let Some((k, v)) = free_val {
         q.insert(k, v);
     }
-    assert_eq!(q.len(), sol.variables.len() + usize::from(free_val.is_some()));
+    assert_eq!(
+        q.len(),
+        sol.variables.len() + usize::from(free_val.is_some())
+    );
     q
 }
 
@@ -152,12 +166,14 @@ fn round_trip(file: &str, free: Option<&str>, n: usize, seed: u64) {
                 dev < 1e-9,
                 "{file}: solution {qq:?} misses the pose of {q:?} by {dev:e}"
             );
-            let same = qq.iter().zip(&q).enumerate().all(|(i, (a, b))| {
-                match r.chain.joints[i].kind {
-                    JointKind::Revolute => angle_diff(*a, *b) < 1e-6,
-                    JointKind::Prismatic => (a - b).abs() < 1e-6,
-                }
-            });
+            let same =
+                qq.iter()
+                    .zip(&q)
+                    .enumerate()
+                    .all(|(i, (a, b))| match r.chain.joints[i].kind {
+                        JointKind::Revolute => angle_diff(*a, *b) < 1e-6,
+                        JointKind::Prismatic => (a - b).abs() < 1e-6,
+                    });
             found |= same;
         }
         assert!(
@@ -307,7 +323,11 @@ fn robots_outside_the_families_get_the_clear_error() {
     for (file, free, found) in [
         ("six_r", None, "axes 1 and 2 are parallel"),
         ("panda", Some("theta3"), "spherical wrist): no"),
-        ("kuka_iiwa7", None, "give one joint variable as a parameter with --free"),
+        (
+            "kuka_iiwa7",
+            None,
+            "give one joint variable as a parameter with --free",
+        ),
     ] {
         let e = derive(file, free).expect_err(file).to_string();
         assert!(e.contains(found), "{file}: {e}");
@@ -353,7 +373,9 @@ fn robots_outside_the_families_get_the_clear_error() {
         assert!(e.contains("no closed-form inverse kinematics"), "{e}");
     }
     // A bad --free names the joint variables.
-    let e = derive("kuka_iiwa7", Some("theta9")).expect_err("bad free").to_string();
+    let e = derive("kuka_iiwa7", Some("theta9"))
+        .expect_err("bad free")
+        .to_string();
     assert!(e.contains("theta9") && e.contains("theta7"), "{e}");
 }
 
@@ -595,8 +617,14 @@ for line in open(sys.argv[1]).read().split('\n'):
 #[test]
 fn ik_command_prints_the_derivation_and_fails_clearly() {
     let out = crate::tools::dqsym_ok(&["ik", &format!("{ROBOTS}puma560.toml")]);
-    assert!(out.contains("branches: 8 (shoulder x elbow x wrist)"), "{out}");
-    assert!(out.contains("c = 1/2 (a2^2 + a3^2 + d3^2 + d4^2 - px^2 - py^2 - pz^2)"), "{out}");
+    assert!(
+        out.contains("branches: 8 (shoulder x elbow x wrist)"),
+        "{out}"
+    );
+    assert!(
+        out.contains("c = 1/2 (a2^2 + a3^2 + d3^2 + d4^2 - px^2 - py^2 - pz^2)"),
+        "{out}"
+    );
     let out = crate::tools::dqsym_ok(&["ik", &format!("{ROBOTS}ur5.toml")]);
     assert!(out.contains("branches: 8"), "{out}");
     let out = crate::tools::dqsym_ok(&[
@@ -607,11 +635,17 @@ fn ik_command_prints_the_derivation_and_fails_clearly() {
     ]);
     assert!(out.contains("free joint (a parameter): theta3"), "{out}");
     // LaTeX: every aligned block renders in KaTeX.
-    let tex = crate::tools::dqsym_ok(&["ik", &format!("{ROBOTS}puma560.toml"), "--format", "latex"]);
+    let tex =
+        crate::tools::dqsym_ok(&["ik", &format!("{ROBOTS}puma560.toml"), "--format", "latex"]);
     let blocks: Vec<String> = tex
         .split("\\begin{aligned}")
         .skip(1)
-        .map(|b| format!("\\begin{{aligned}}{}", b.split("\\end{aligned}").next().unwrap_or("")) + "\\end{aligned}")
+        .map(|b| {
+            format!(
+                "\\begin{{aligned}}{}",
+                b.split("\\end{aligned}").next().unwrap_or("")
+            ) + "\\end{aligned}"
+        })
         .collect();
     assert_eq!(blocks.len(), 6);
     crate::tools::katex_all(&blocks, "ik --format latex");
@@ -650,7 +684,11 @@ fn walk_ik_shows_every_step_and_a_check() {
     assert_eq!(out.matches("Step ").count(), 6, "{out}");
     assert!(out.contains("Branch wrist: + is no flip"), "{out}");
     assert!(out.contains("the solver returns 8 solutions"), "{out}");
-    assert_eq!(out.matches("pose deviation below 1e-12").count(), 8, "{out}");
+    assert_eq!(
+        out.matches("pose deviation below 1e-12").count(),
+        8,
+        "{out}"
+    );
     let md = crate::tools::dqsym_ok(&[
         "walk",
         &format!("{ROBOTS}kuka_iiwa7.toml"),
@@ -660,7 +698,10 @@ fn walk_ik_shows_every_step_and_a_check() {
         "--markdown",
     ]);
     assert!(md.contains("## 3. The subproblems"), "{md}");
-    assert!(md.contains("$\\theta_{4}$") || md.contains("\\theta_{4}"), "{md}");
+    assert!(
+        md.contains("$\\theta_{4}$") || md.contains("\\theta_{4}"),
+        "{md}"
+    );
     let formulas: Vec<String> = md
         .split('$')
         .skip(1)
