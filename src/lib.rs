@@ -39,9 +39,9 @@ pub use print::{
 };
 pub use ring::Ring;
 pub use scalar::{
-    max_exponent, parse_trig_placeholder, reset_work, set_max_exponent, set_term_limit,
-    set_work_budget, term_limit, trig_placeholder, work_budget, work_used, worker_threads, Frac,
-    Scalar, ScalarError, Sym, DEFAULT_MAX_EXPONENT,
+    max_exponent, parse_decimal, parse_trig_placeholder, reset_work, set_max_exponent,
+    set_term_limit, set_work_budget, term_limit, trig_placeholder, work_budget, work_used,
+    worker_threads, Frac, Scalar, ScalarError, Sym, DEFAULT_MAX_EXPONENT,
 };
 pub use walk::{
     mechanism_svg, walk_html, walk_markdown, walk_robot, walk_script, walk_text, ComponentTrace,
