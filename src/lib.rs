@@ -23,8 +23,8 @@ pub use emit::{
 };
 pub use kin::{
     dh_link, dh_link_matrix, dq_jacobian, geometric_jacobian, mdh_link, mdh_link_matrix,
-    parse_robot, screw_parameters, Chain, ChainError, Convention, FieldEval, Joint, JointGeometry,
-    JointKind, Robot, RobotError, ScrewError, ScrewParams,
+    parse_robot, screw_parameters, Chain, ChainError, Convention, FieldEval, Frame, Joint,
+    JointGeometry, JointKind, Robot, RobotError, ScrewError, ScrewParams,
 };
 pub use lang::{
     builtin, eval_point_text, eval_scalar_text, parse, parse_expr, parse_expr_with, parse_with,
@@ -44,7 +44,7 @@ pub use scalar::{
     worker_threads, Frac, Scalar, ScalarError, Sym, DEFAULT_MAX_EXPONENT,
 };
 pub use walk::{
-    mechanism_svg, walk_html, walk_markdown, walk_robot, walk_script, walk_text, ComponentTrace,
-    Config, HalfAngle, KatexAssets, Mechanism, Motion, Step, SvgOptions, WalkError, Walkthrough,
-    Word, Words,
+    mechanism_svg, walk_html, walk_markdown, walk_robot, walk_robot_chain, walk_script, walk_text,
+    ComponentTrace, Config, HalfAngle, KatexAssets, Mechanism, Motion, Step, SvgOptions, WalkError,
+    Walkthrough, Word, Words,
 };
