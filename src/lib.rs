@@ -23,8 +23,9 @@ pub use emit::{
 };
 pub use kin::{
     dh_link, dh_link_matrix, dq_jacobian, geometric_jacobian, mdh_link, mdh_link_matrix,
-    parse_robot, screw_parameters, Chain, ChainError, Convention, FieldEval, Frame, Joint,
-    JointGeometry, JointKind, Robot, RobotError, ScrewError, ScrewParams,
+    parse_robot, parse_urdf, screw_parameters, Chain, ChainError, Convention, FieldEval, Frame,
+    Joint, JointGeometry, JointKind, Robot, RobotError, ScrewError, ScrewParams, UrdfError,
+    UrdfOptions, UrdfRobot, SNAP_TOLERANCE,
 };
 pub use lang::{
     builtin, eval_point_text, eval_scalar_text, parse, parse_expr, parse_expr_with, parse_with,
@@ -34,8 +35,8 @@ pub use lang::{
     CONSTANTS, MAX_EXPONENT,
 };
 pub use print::{
-    fk_recurrence, fk_report, legend, ops_tables, plain, plain_quotient, shorthand_name, FkOptions,
-    PlainOptions, ReportError, ReportFormat,
+    fk_recurrence, fk_report, legend, ops_tables, plain, plain_quotient, robot_toml,
+    shorthand_name, FkOptions, PlainOptions, ReportError, ReportFormat,
 };
 pub use ring::Ring;
 pub use scalar::{

@@ -169,6 +169,7 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
     }
     let mut joints = Vec::new();
     let mut variables = Vec::new();
+    let mut values = Vec::new();
     for (i, j) in f.joint.iter().enumerate() {
         let n = i + 1;
         let err = |field: &str, message: String| RobotError::Field {
@@ -222,17 +223,26 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
                 } else {
                     JointGeometry::Mdh { alpha, a, theta, d }
                 };
+                values.push(Scalar::sym(&var));
                 variables.push(var);
                 joints.push(Joint::new(kind, geometry));
             }
             Convention::Screw => {
-                let var = j
+                let text = j
                     .variable
                     .clone()
                     .ok_or_else(|| err("variable", "missing".into()))?;
-                if var.is_empty() || !var.chars().all(|c| c.is_alphanumeric() || c == '_') {
-                    return Err(err("variable", format!("`{var}` is not a symbol name")));
-                }
+                // A symbol, or an expression in one symbol for a coupled joint
+                // (`2*q1 + pi/4`, as a converted URDF mimic joint reads).
+                let plain_name =
+                    !text.is_empty() && text.chars().all(|c| c.is_alphanumeric() || c == '_');
+                let (var, value) = if plain_name {
+                    (text.clone(), Scalar::sym(&text))
+                } else {
+                    let value = eval(&text).map_err(|m| err("variable", m))?;
+                    let var = joint_variable(&value).map_err(|m| err("variable", m))?;
+                    (var, value)
+                };
                 let axis = vec3(j.axis.as_ref(), "axis", eval).map_err(|m| err("axis", m))?;
                 let axis = unit_numeric(&axis).map_err(|m| err("axis", m))?;
                 let point = match (kind, j.point.as_ref()) {
@@ -250,7 +260,10 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
                         None => [Scalar::int(0), Scalar::int(0), Scalar::int(0)],
                     },
                 };
-                variables.push(var);
+                values.push(value);
+                if !variables.contains(&var) {
+                    variables.push(var);
+                }
                 joints.push(Joint::new(kind, JointGeometry::Screw { axis, point }));
             }
         }
@@ -291,7 +304,7 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
     Ok(Robot {
         name: f.name.unwrap_or_else(|| file.to_string()),
         convention,
-        joint_values: variables.iter().map(|v| Scalar::sym(v)).collect(),
+        joint_values: values,
         variables,
         chain,
         base_frames,
@@ -705,7 +718,7 @@ fn vec3(v: Option<&Vec<String>>, name: &str, eval: FieldEval) -> Result<[Scalar;
 }
 
 /// The axis scaled to unit length, exactly; the axis must be numeric and nonzero.
-fn unit_numeric(a: &[Scalar; 3]) -> Result<[Scalar; 3], String> {
+pub(crate) fn unit_numeric(a: &[Scalar; 3]) -> Result<[Scalar; 3], String> {
     if !a.iter().all(Scalar::is_constant) {
         return Err("the axis must be numeric".into());
     }
