@@ -100,6 +100,18 @@ pub enum ReportError {
 /// `NAME = EXPR` with these additional names, and the code formats compute the recurrence as
 /// straight-line code, its entries as locals.
 pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
+    // Any stage past the term limit (the DQ, the matrix, the point, the Jacobian, a closed
+    // form) switches to the recurrence, whose every entry is small.
+    match expanded_report(robot, o) {
+        Some(Err(ReportError::Scalar(ScalarError::TooLarge { .. }))) | None => {
+            recurrence_report(robot, o)
+        }
+        Some(r) => r,
+    }
+}
+
+/// The expanded report, or `None` when the DQ or the matrix exceeds `o.max_terms` terms.
+fn expanded_report(robot: &Robot, o: &FkOptions) -> Option<Result<String, ReportError>> {
     // Two pipelines side by side: the DQ product, then its components in closed form; the
     // matrix (the product of the joint factors' matrices, which does not wait for the DQ),
     // then its entries. Then the point and the Jacobian, every distinct entry once, in
@@ -121,17 +133,24 @@ pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
                 .map(|m| (par_map(&matrix_cells(&m), |x| closed_form(x)), m))
         },
     );
-    let Some((q, dq_forms, prepared)) = pose else {
-        return recurrence_report(robot, o);
-    };
-    // The matrix fits whenever the DQ does; computed here only if the limit cut it short.
-    let (t_forms, m) = match matrix {
-        Some(x) => x,
-        None => {
-            let m = robot.forward_matrix();
-            (par_map(&matrix_cells(&m), |x| closed_form(x)), m)
-        }
-    };
+    let (q, dq_forms, prepared) = pose?;
+    let (t_forms, m) = matrix?;
+    Some(expanded_sections(
+        robot, o, q, dq_forms, prepared, t_forms, m,
+    ))
+}
+
+/// The report from the expanded DQ and matrix and their closed forms.
+#[allow(clippy::too_many_arguments)]
+fn expanded_sections(
+    robot: &Robot,
+    o: &FkOptions,
+    q: DualQuat<Scalar>,
+    dq_forms: Vec<Result<Expr, ScalarError>>,
+    prepared: Vec<crate::Prepared>,
+    t_forms: Vec<Result<Expr, ScalarError>>,
+    m: crate::Matrix4<Scalar>,
+) -> Result<String, ReportError> {
     let comps = q.components();
     let cells = matrix_cells(&m);
     let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();

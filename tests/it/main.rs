@@ -20,4 +20,5 @@ mod recurrence;
 mod robots;
 mod scalar;
 mod tools;
+mod urdf;
 mod walk;
