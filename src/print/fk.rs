@@ -117,24 +117,35 @@ fn expanded_report(robot: &Robot, o: &FkOptions) -> Option<Result<String, Report
     // then its entries. Then the point and the Jacobian, every distinct entry once, in
     // parallel. `closed_form` is a pure function of its input, so neither the threads nor
     // the sharing of equal entries change the output.
+    // Both expansions first (each stops as soon as an entry exceeds the limit), so that an
+    // oversized stage costs no closed forms; then every entry's closed form in parallel.
     let (pose, matrix) = join(
-        || {
-            robot.forward_within(o.max_terms).map(|q| {
-                let (forms, prepared): (Vec<_>, Vec<_>) =
-                    par_map(&q.components(), closed_form_prepared)
-                        .into_iter()
-                        .unzip();
-                (q, forms, prepared)
-            })
-        },
-        || {
-            robot
-                .forward_matrix_within(o.max_terms)
-                .map(|m| (par_map(&matrix_cells(&m), |x| closed_form(x)), m))
-        },
+        || robot.forward_within(o.max_terms),
+        || robot.forward_matrix_within(o.max_terms),
     );
-    let (q, dq_forms, prepared) = pose?;
-    let (t_forms, m) = matrix?;
+    let (q, m) = (pose?, matrix?);
+    let comps = q.components();
+    let cells = matrix_cells(&m);
+    let all: Vec<(bool, &Scalar)> = comps
+        .iter()
+        .map(|c| (true, c))
+        .chain(cells.iter().map(|c| (false, *c)))
+        .collect();
+    let mut forms = par_map(&all, |(dq, x)| {
+        if *dq {
+            let (e, p) = closed_form_prepared(x);
+            (e, Some(p))
+        } else {
+            (closed_form(x), None)
+        }
+    })
+    .into_iter();
+    let (dq_forms, prepared): (Vec<_>, Vec<_>) = forms
+        .by_ref()
+        .take(8)
+        .map(|(e, p)| (e, p.expect("a DQ entry is prepared")))
+        .unzip();
+    let t_forms: Vec<_> = forms.map(|(e, _)| e).collect();
     Some(expanded_sections(
         robot, o, q, dq_forms, prepared, t_forms, m,
     ))
