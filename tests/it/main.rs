@@ -6,6 +6,7 @@ mod codegen;
 mod common;
 mod counts;
 mod emit;
+mod ik;
 mod kinematics;
 mod lang;
 mod laws;
