@@ -10,6 +10,8 @@ mod ring;
 mod scalar;
 mod walk;
 
+pub use algebra::dqr;
+pub use kin::dqexp;
 pub use algebra::{DualNumber, DualQuat, Matrix4, Quat, UnitConstraints};
 pub use closed::{
     closed_form, closed_form_cos_sin, closed_form_of_derivative, closed_form_prepared,
