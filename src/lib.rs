@@ -36,7 +36,7 @@ pub use lang::{
     CONSTANTS, MAX_EXPONENT,
 };
 pub use print::{
-    fk_recurrence, fk_report, legend, ops_tables, plain, plain_quotient, shorthand_name, FkOptions,
+    fk_recurrence, fk_report, rate_name, task_jacobian, task_report, TaskJacobian, legend, ops_tables, plain, plain_quotient, shorthand_name, FkOptions,
     PlainOptions, ReportError, ReportFormat,
 };
 pub use ring::Ring;

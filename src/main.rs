@@ -82,9 +82,12 @@ enum Command {
         /// A point of the last link, "x, y, z" (default: the file's tool point, if any).
         #[arg(long, value_name = "X, Y, Z")]
         point: Option<String>,
-        /// Add the 8 x n Jacobian d dq[i] / d q[j].
-        #[arg(long)]
-        jacobian: bool,
+        /// Add the 8 x n Jacobian d dq[i] / d q[j]; `--jacobian=KIND` gives instead a task
+        /// Jacobian of DQ Robotics: pose (the same 8 x n), rotation, translation,
+        /// line[:X,Y,Z], plane[:X,Y,Z] (end-effector direction, default z), distance, or
+        /// pose_derivative (a function of q and the rates <q>_dot).
+        #[arg(long, value_name = "KIND", num_args = 0..=1, require_equals = true, default_missing_value = "")]
+        jacobian: Option<String>,
     },
     /// Operation counts: the paper's Tables 1 and 2, counted by running the products (with the
     /// corrections of ERRATA 10 and 11); with a robot file, also its generated forward kinematics.
@@ -244,7 +247,7 @@ fn dispatch(cli: Cli) -> ExitCode {
                 jacobian,
             }),
             _,
-        ) => fk(&robot, point.as_deref(), jacobian, cli.format, cli.explicit),
+        ) => fk(&robot, point.as_deref(), jacobian.as_deref(), cli.format, cli.explicit),
         (Some(Command::Paper), _) => match paper(&PlainOptions {
             shorthand: !cli.explicit,
         }) {
@@ -276,7 +279,7 @@ fn dispatch(cli: Cli) -> ExitCode {
 fn fk(
     path: &std::path::Path,
     point: Option<&str>,
-    jacobian: bool,
+    jacobian: Option<&str>,
     format: OutputFormat,
     explicit: bool,
 ) -> ExitCode {
@@ -284,6 +287,17 @@ fn fk(
         eprintln!("error: {m}");
         ExitCode::FAILURE
     };
+    // `--jacobian` alone (and `--jacobian=pose`) is the 8 x n Jacobian of the report; any
+    // other kind is a task Jacobian with the pose.
+    let task = match jacobian {
+        None | Some("") => None,
+        Some(k) => match dqsym::TaskJacobian::parse(k, &|v| dqsym::eval_point_text(v)) {
+            Ok(dqsym::TaskJacobian::Pose) => None,
+            Ok(t) => Some(t),
+            Err(m) => return fail(format!("--jacobian: {m}")),
+        },
+    };
+    let jacobian = jacobian.is_some();
     let text = match std::fs::read_to_string(path) {
         Ok(t) => t,
         Err(e) => return fail(format!("cannot read {}: {e}", path.display())),
@@ -310,16 +324,18 @@ fn fk(
     };
     // The fields were evaluated each with its own budget; the derivation gets a whole one.
     dqsym::reset_work();
-    match dqsym::fk_report(
-        &robot,
-        &dqsym::FkOptions {
-            format,
-            point,
-            jacobian,
-            // Past the evaluation's term limit, the pose is printed as a recurrence.
-            max_terms: dqsym::term_limit(),
-        },
-    ) {
+    let options = dqsym::FkOptions {
+        format,
+        point,
+        jacobian,
+        // Past the evaluation's term limit, the pose is printed as a recurrence.
+        max_terms: dqsym::term_limit(),
+    };
+    let report = match &task {
+        Some(t) => dqsym::task_report(&robot, &options, t),
+        None => dqsym::fk_report(&robot, &options),
+    };
+    match report {
         Ok(t) => {
             print!("{t}");
             ExitCode::SUCCESS

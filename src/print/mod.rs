@@ -3,8 +3,10 @@
 mod fk;
 mod plain;
 mod recurrence;
+mod task;
 
 pub use fk::{fk_report, ops_tables, FkOptions, ReportError, ReportFormat};
 pub(crate) use plain::angle_text;
 pub use plain::{legend, plain, plain_quotient, shorthand_name, PlainOptions};
 pub use recurrence::fk_recurrence;
+pub use task::{rate_name, task_jacobian, task_report, TaskJacobian};
