@@ -27,7 +27,7 @@
 //! needed.
 
 use crate::algebra::dqr;
-use crate::{screw_parameters, DualQuat, Frac, Quat, Ring, Scalar, ScalarError, ScrewError};
+use crate::{DualQuat, Frac, Quat, Ring, Scalar, ScalarError};
 use num_traits::{One, Zero};
 use thiserror::Error;
 
@@ -64,15 +64,6 @@ pub enum DqError {
     Scalar(#[from] ScalarError),
 }
 
-impl From<ScrewError> for DqError {
-    fn from(e: ScrewError) -> Self {
-        match e {
-            ScrewError::Angle(s) => DqError::Angle(s),
-            ScrewError::Scalar(e) => DqError::Scalar(e),
-            other => DqError::Angle(other.to_string()),
-        }
-    }
-}
 
 type Result<T> = std::result::Result<T, DqError>;
 
@@ -93,18 +84,30 @@ fn require_unit(h: &DualQuat<Scalar>) -> Result<()> {
 /// Half the rotation angle of a unit quaternion's scalar part `w` (see the module docs for the
 /// branch).
 fn half_angle(w: &Scalar) -> Result<Scalar> {
-    let x = w
-        .as_cos_of_angle()
-        .ok_or_else(|| DqError::Angle(text(w)))?;
+    let Some(x) = w.as_cos_of_angle() else {
+        return shifted_angle(w).ok_or_else(|| DqError::Angle(text(w)));
+    };
     if w.is_constant() {
         return Ok(x);
     }
     // `-cos(y)` was read as `y + pi`; `pi - y` has the same cosine and the sine of `y`.
-    let negative = matches!(w.terms(), Ok([t]) if t.coef.is_negative());
-    if negative {
+    let negative_cos = matches!(w.terms(), Ok([t]) if t.coef.is_negative() && !t.mode.sin);
+    if negative_cos {
         return Ok(Scalar::pi() * Scalar::int(2) - x);
     }
     Ok(x)
+}
+
+/// An angle `y + k pi/12` with `cos` equal to `w`, `y` the angle of one of `w`'s modes: the
+/// scalar layer expands `cos(theta/2 + pi/12)` into radicals times `cos(theta/2)` and
+/// `sin(theta/2)`, which [`Scalar::as_cos_of_angle`] does not read back.
+fn shifted_angle(w: &Scalar) -> Option<Scalar> {
+    let terms = w.terms().ok()?;
+    let mode = &terms.iter().find(|t| !t.mode.is_unit())?.mode;
+    let y = crate::scalar::mode_angle(mode, None);
+    (0..24)
+        .map(|k| &y + Scalar::pi() * Scalar::from_ratio(k, 12))
+        .find(|x| x.cos() == *w)
 }
 
 /// `norm(h) = sqrt(h* h)`, a dual number `|P| + ε (P · D)/|P|` (DQ Robotics' `norm`), exact when
@@ -300,25 +303,27 @@ fn screw_of(q: &DualQuat<Scalar>) -> Result<Option<Screw>> {
         }
         return Ok(None);
     }
-    // Read with the branch of `half_angle`: rewrite `w` as cos(half) explicitly.
-    let sp = screw_parameters(&DualQuat::from_real_and_dual(
-        Quat::new(half.cos(), q.real.x.clone(), q.real.y.clone(), q.real.z.clone()),
-        q.dual.clone(),
-    ))?;
-    let half2 = sp.angle.clone() * Scalar::from_ratio(1, 2);
-    // screw_parameters reads the angle itself; when it chose y + pi for our pi - y, the axis
-    // and slide flip, so recompute against our half angle for the sign.
-    let sign = if half2.sin() == half.sin() {
-        Scalar::one()
-    } else {
-        -Scalar::one()
-    };
-    let f = |x: &Frac| -> Result<Scalar> { Ok(scalar_of(x)? * &sign) };
+    // q = (c, s n) + eps (-(d/2) s, (d/2) c n + s m), c, s = cos, sin(half) (sec 4, eq 18).
+    let (c, sn) = (half.cos().check()?, half.sin().check()?);
+    let over_s = |x: Scalar| -> Result<Scalar> { scalar_of(&Frac::new(x, sn.clone())?) };
+    let v = q.real.vector_part();
+    let axis = [
+        over_s(v[0].clone())?,
+        over_s(v[1].clone())?,
+        over_s(v[2].clone())?,
+    ];
+    let slide = over_s(-(&q.dual.w * Scalar::int(2)))?;
+    let ve = q.dual.vector_part();
+    let hd = &slide * Scalar::from_ratio(1, 2);
+    let mut moment = Vec::with_capacity(3);
+    for k in 0..3 {
+        moment.push(over_s(ve[k].clone() - &hd * &c * &axis[k])?);
+    }
     Ok(Some(Screw {
         half,
-        slide: f(&sp.slide)?,
-        axis: [f(&sp.axis[0])?, f(&sp.axis[1])?, f(&sp.axis[2])?],
-        moment: [f(&sp.moment[0])?, f(&sp.moment[1])?, f(&sp.moment[2])?],
+        slide,
+        axis,
+        moment: [moment[0].clone(), moment[1].clone(), moment[2].clone()],
     }))
 }
 

@@ -307,3 +307,158 @@ fn every_operation_matches_numpy_and_dqrobotics_at_random_points() {
     assert_eq!(counts[0], lines.len(), "every case checked against NumPy");
     assert!(counts[1] >= lines.len() * 3 / 4, "most cases checked against dqrobotics: {out}");
 }
+
+mod exact {
+    //! Exact identities (proptest over axes, points, angles and slides).
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Exact unit axes with rational components.
+    const AXES: [[(i64, i64); 3]; 5] = [
+        [(1, 1), (0, 1), (0, 1)],
+        [(0, 1), (0, 1), (1, 1)],
+        [(2, 3), (1, 3), (-2, 3)],
+        [(3, 5), (0, 1), (4, 5)],
+        [(-2, 7), (3, 7), (6, 7)],
+    ];
+
+    fn ax(k: usize) -> [Scalar; 3] {
+        AXES[k].map(|(n, d)| r(n, d))
+    }
+
+    /// A screw with an angle `k pi/6 + j theta` (half angles with exact cosines) (j in 0..=1) and small integer point and slide.
+    fn screw_strategy() -> impl Strategy<Value = DualQuat<Scalar>> {
+        (0usize..5, -3i64..4, -3i64..4, -3i64..4, 1i64..6, 0i64..2, -3i64..4).prop_map(
+            |(k, x, y, z, a, j, d)| {
+                let angle = Scalar::pi() * r(a, 6) + s("theta") * Scalar::int(j);
+                let p = [Scalar::int(x), Scalar::int(y), Scalar::int(z)];
+                // A symbolic slide with a constant angle: with theta in the angle, the half
+                // angle is shifted and sin of it is not a divisor the scalar layer takes
+                // (`Frac` reduces only constant ratios).
+                let slide = if j == 0 { Scalar::int(d) + s("d") } else { Scalar::int(d) };
+                DualQuat::screw(&ax(k), &p, &angle, &slide)
+            },
+        )
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+
+        #[test]
+        fn exp_of_log_is_the_pose_up_to_sign(q in screw_strategy()) {
+            let back = dqexp::exp(&dqexp::log(&q).unwrap()).unwrap();
+            prop_assert!(back == q || back == -q.clone(), "{back:?} vs {q:?}");
+        }
+
+        #[test]
+        fn screw_log_of_coaxial_screws_adds(k in 0usize..5, x in -3i64..4, z in -3i64..4,
+                                           a in 1i64..6, b in 1i64..6) {
+            // Two screws about one axis (angles theta + a pi/6 and b pi/6, slides -1 and 2):
+            // the screw log of the product is the sum of the logs.
+            let p = [Scalar::int(x), Scalar::int(0), Scalar::int(z)];
+            let t1 = s("theta") + Scalar::pi() * r(a, 6);
+            let t2 = Scalar::pi() * r(b, 6);
+            let q1 = DualQuat::screw(&ax(k), &p, &t1, &Scalar::int(-1));
+            let q2 = DualQuat::screw(&ax(k), &p, &t2, &Scalar::int(2));
+            let sum = dqexp::screw_log(&q1).unwrap() + dqexp::screw_log(&q2).unwrap();
+            prop_assert_eq!(dqexp::screw_log(&(&q1 * &q2)).unwrap(), sum);
+        }
+
+        #[test]
+        fn sclerp_has_its_endpoints_and_a_constant_body_twist(q in screw_strategy(),
+                                                               k in 0usize..5, w in -2i64..3) {
+            let q0 = DualQuat::rotation(&ax(k), &s("phi")) * DualQuat::translation(&[Scalar::int(w), s("e"), Scalar::int(1)]);
+            let q1 = &q0 * &q;
+            prop_assert_eq!(dqexp::sclerp(&q0, &q1, &Scalar::int(0), None).unwrap(), q0.clone());
+            prop_assert_eq!(dqexp::sclerp(&q0, &q1, &Scalar::int(1), None).unwrap(), q1.clone());
+            // q(t) = sclerp, q'(t) = sclerp xi: the body twist 2 q* q' is 2 xi, free of t and psi.
+            let x = dqexp::sclerp(&q0, &q1, &s("t"), Some(&s("psi"))).unwrap();
+            let xd = dqexp::sclerp_derivative(&q0, &q1, &s("t"), Some(&s("psi"))).unwrap();
+            let body = dqexp::twist(&x, &xd, true);
+            let xi = dqexp::screw_log(&q).unwrap().scale(&Scalar::int(2));
+            prop_assert_eq!(body, xi);
+        }
+
+        #[test]
+        fn ad_moves_lines_like_points_and_keeps_pluecker_constraints(q in screw_strategy(),
+                                                                   k in 0usize..5,
+                                                                   x in -3i64..4) {
+            let p = [Scalar::int(x), s("b"), Scalar::int(1)];
+            let l = dqr::line(&ax(k), &p);
+            let moved = dqr::transform_line(&q, &l);
+            let (a, b) = dqr::line_constraints(&moved);
+            prop_assert!(a.is_zero_value() && b.is_zero_value());
+            let dir = (&q.real * &Quat::from_vector(&ax(k)) * q.real.conjugate()).vector_part();
+            prop_assert_eq!(&moved, &dqr::line(&dir, &q.transform_point(&p)));
+            // Ad(q) x = q x q* (conj conjugates both parts).
+            prop_assert_eq!(moved, &q * &l * q.conjugate());
+        }
+
+        #[test]
+        fn hamilton_matrices_compute_the_product_exactly(a in screw_strategy(), b in screw_strategy()) {
+            let ab = (&a * &b).components();
+            let (hp, hm) = (dqr::hamiplus8(&a), dqr::haminus8(&b));
+            let (va, vb) = (a.components(), b.components());
+            for i in 0..8 {
+                let p = (0..8).fold(Scalar::int(0), |acc, j| acc + &hp[i][j] * &vb[j]);
+                let m = (0..8).fold(Scalar::int(0), |acc, j| acc + &hm[i][j] * &va[j]);
+                prop_assert_eq!(&p, &ab[i]);
+                prop_assert_eq!(&m, &ab[i]);
+            }
+        }
+    }
+
+    #[test]
+    fn special_cases_are_exact() {
+        // Zero rotation: log is eps t/2, the axis is k (DQ Robotics' convention), exp inverts it.
+        let t = DualQuat::translation(&[s("a"), Scalar::int(2), s("c")]);
+        let l = dqexp::log(&t).unwrap();
+        assert_eq!(l, DualQuat::from_real_and_dual(Quat::zero(), Quat::vector(s("a") * r(1, 2), Scalar::int(1), s("c") * r(1, 2))));
+        assert_eq!(dqexp::exp(&l).unwrap(), t);
+        assert_eq!(dqexp::rotation_axis(&t).unwrap(), Quat::vector(Scalar::int(0), Scalar::int(0), Scalar::int(1)));
+        assert_eq!(dqexp::screw_pow(&t, &s("u"), None).unwrap(), DualQuat::translation(&[s("a") * s("u"), s("u") * Scalar::int(2), s("c") * s("u")]));
+        // A full turn has no axis; its negation is the identity.
+        let full = DualQuat::rotation(&ax(2), &(Scalar::pi() * Scalar::int(2)));
+        assert!(matches!(dqexp::log(&full), Err(dqexp::DqError::FullTurn)));
+        // A symbolic power whose angle is not linear asks for a name.
+        let q = DualQuat::rotation(&ax(2), &s("theta"));
+        assert!(matches!(dqexp::pow(&q, &s("t"), None), Err(dqexp::DqError::NeedsAngle { .. })));
+        // -cos(x): the branch pi - x keeps sin's sign.
+        let q = DualQuat::rotation(&ax(0), &(s("theta") + Scalar::pi() * Scalar::int(2)));
+        let back = dqexp::exp(&dqexp::log(&q).unwrap()).unwrap();
+        assert!(back == q || back == -q.clone());
+    }
+}
+
+#[test]
+fn closed_forms_on_a_symbolic_screw() {
+    // A screw of angle theta and slide d about the axis n = (2/3, 1/3, -2/3) through the
+    // symbolic point (a, b, c) (moment m = (a, b, c) x n), and its operations in closed form.
+    let src = "syms theta d a b c t psi phi e
+q = screw((2/3, 1/3, -2/3), (a, b, c), theta, d)
+rotation_angle(q)
+rotation_axis(q)
+translation(q)
+log(q)
+exp(log(q))
+screwlog(q)
+pow(q, t, psi)
+screwpow(q, t, psi)
+screwpow(q, 1/2)
+q0 = rot((0, 0, 1), phi) * trans((e, 0, 0))
+sclerp(q0, q0 * q, t, psi)
+sclerpdot(q0, q0 * q, t, psi)
+bodytwist(q, diff(q, theta))
+Ad(q, line((0, 0, 1), (e, 0, 0)))
+line_to_line_squared_distance(line((1, 0, 0), (0, 0, 0)), line((0, 1, 0), (0, 0, d)))
+point_to_line_squared_distance((a, b, c), line((0, 0, 1), (e, 0, 0)))
+";
+    let program = dqsym::parse(src).unwrap();
+    let out = dqsym::Session::new().run(&program).unwrap();
+    let opts = dqsym::ShowOptions::default();
+    let text: String = out
+        .iter()
+        .map(|d| dqsym::show(d, &opts).unwrap())
+        .collect();
+    crate::common::snapshot_settings().bind(|| insta::assert_snapshot!("dqr_symbolic_screw", text));
+}
