@@ -247,7 +247,13 @@ fn dispatch(cli: Cli) -> ExitCode {
                 jacobian,
             }),
             _,
-        ) => fk(&robot, point.as_deref(), jacobian.as_deref(), cli.format, cli.explicit),
+        ) => fk(
+            &robot,
+            point.as_deref(),
+            jacobian.as_deref(),
+            cli.format,
+            cli.explicit,
+        ),
         (Some(Command::Paper), _) => match paper(&PlainOptions {
             shorthand: !cli.explicit,
         }) {

@@ -182,7 +182,11 @@ pub fn point_to_point_squared_distance<T: Ring>(a: &[T; 3], b: &[T; 3]) -> T {
 pub fn point_to_line_squared_distance<T: Ring>(p: &[T; 3], line: &DualQuat<T>) -> T {
     let c = cross3(p, &line.real.vector_part());
     let m = line.dual.vector_part();
-    let d = [c[0].clone() - &m[0], c[1].clone() - &m[1], c[2].clone() - &m[2]];
+    let d = [
+        c[0].clone() - &m[0],
+        c[1].clone() - &m[1],
+        c[2].clone() - &m[2],
+    ];
     dot3(&d, &d)
 }
 

@@ -64,7 +64,6 @@ pub enum DqError {
     Scalar(#[from] ScalarError),
 }
 
-
 type Result<T> = std::result::Result<T, DqError>;
 
 fn text(s: &Scalar) -> String {
@@ -221,10 +220,7 @@ pub fn exp(h: &DualQuat<Scalar>) -> Result<DualQuat<Scalar>> {
         return Err(DqError::NotPure);
     }
     let prim = quat_exp(&h.real)?;
-    Ok(DualQuat::from_real_and_dual(
-        prim.clone(),
-        &h.dual * &prim,
-    ))
+    Ok(DualQuat::from_real_and_dual(prim.clone(), &h.dual * &prim))
 }
 
 /// `e^r = cos|r| + sin|r| r/|r|` of a pure quaternion.

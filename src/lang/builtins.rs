@@ -519,7 +519,13 @@ pub(super) fn invalid(message: &str, span: Span) -> EvalError {
     EvalError::new(EvalErrorKind::Invalid(message.to_owned()), span)
 }
 
-pub(super) fn type_error(func: &str, what: &str, expected: &str, found: &Value, span: Span) -> EvalError {
+pub(super) fn type_error(
+    func: &str,
+    what: &str,
+    expected: &str,
+    found: &Value,
+    span: Span,
+) -> EvalError {
     EvalError::new(
         EvalErrorKind::Type(format!(
             "`{func}`: {what} must be {expected}, found {}",

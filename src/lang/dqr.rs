@@ -143,12 +143,22 @@ pub(super) fn call(name: &str, v: &[Arg]) -> Option<Result<Value>> {
         let a = &v[0];
         Ok(match name {
             "P" | "rotation" => {
-                let h = if name == "P" { dq_like(name, a)? } else { unit_dq(name, a)? };
+                let h = if name == "P" {
+                    dq_like(name, a)?
+                } else {
+                    unit_dq(name, a)?
+                };
                 Value::Quat(dqr::primary(&h))
             }
             "D" => Value::Quat(dqr::dual_part(&dq_like(name, a)?)),
-            "Re" => dq_value(dqr::re(&dq_like(name, a)?), matches!(a.value, Value::Quat(_))),
-            "Im" => dq_value(dqr::im(&dq_like(name, a)?), matches!(a.value, Value::Quat(_))),
+            "Re" => dq_value(
+                dqr::re(&dq_like(name, a)?),
+                matches!(a.value, Value::Quat(_)),
+            ),
+            "Im" => dq_value(
+                dqr::im(&dq_like(name, a)?),
+                matches!(a.value, Value::Quat(_)),
+            ),
             "sharp" => Value::DualQuat(dqr::sharp(&dq_like(name, a)?)),
             "norm" => {
                 let h = dq_like(name, a)?;
@@ -162,9 +172,9 @@ pub(super) fn call(name: &str, v: &[Arg]) -> Option<Result<Value>> {
             "rotation_axis" => Value::Quat(
                 dqexp::rotation_axis(&unit_dq(name, a)?).map_err(|e| dq_error(name, e, a))?,
             ),
-            "log" => Value::DualQuat(
-                dqexp::log(&unit_dq(name, a)?).map_err(|e| dq_error(name, e, a))?,
-            ),
+            "log" => {
+                Value::DualQuat(dqexp::log(&unit_dq(name, a)?).map_err(|e| dq_error(name, e, a))?)
+            }
             "screwlog" => Value::DualQuat(
                 dqexp::screw_log(&unit_dq(name, a)?).map_err(|e| dq_error(name, e, a))?,
             ),

@@ -111,11 +111,7 @@ fn task_vector(x: &DualQuat<Scalar>, task: &TaskJacobian) -> Vec<Scalar> {
 }
 
 /// The task Jacobian's rows (exact), `vars` the joint variables.
-pub fn task_jacobian(
-    x: &DualQuat<Scalar>,
-    vars: &[&str],
-    task: &TaskJacobian,
-) -> Vec<Vec<Scalar>> {
+pub fn task_jacobian(x: &DualQuat<Scalar>, vars: &[&str], task: &TaskJacobian) -> Vec<Vec<Scalar>> {
     let v = task_vector(x, task);
     let jac: Vec<Vec<Scalar>> = v
         .iter()
@@ -139,10 +135,16 @@ pub fn task_jacobian(
 
 /// The report of `dqsym fk ROBOT --jacobian=KIND`: the pose (`dq[k]`) and the task Jacobian,
 /// in any format. Needs the expanded pose (within `o.max_terms`).
-pub fn task_report(robot: &Robot, o: &FkOptions, task: &TaskJacobian) -> Result<String, ReportError> {
+pub fn task_report(
+    robot: &Robot,
+    o: &FkOptions,
+    task: &TaskJacobian,
+) -> Result<String, ReportError> {
     let x = robot
         .forward_within(o.max_terms)
-        .ok_or(ReportError::Scalar(ScalarError::TooLarge { limit: o.max_terms }))?;
+        .ok_or(ReportError::Scalar(ScalarError::TooLarge {
+            limit: o.max_terms,
+        }))?;
     let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
     if let TaskJacobian::PoseDerivative = task {
         for q in &vars {
@@ -166,7 +168,10 @@ pub fn task_report(robot: &Robot, o: &FkOptions, task: &TaskJacobian) -> Result<
     let mut rows = Vec::new();
     for i in 0..jac.len() {
         for j in 0..n.min(vars.len()) {
-            rows.push((format!("{base}[{i}][{j}]"), forms.next().expect("an entry")?));
+            rows.push((
+                format!("{base}[{i}][{j}]"),
+                forms.next().expect("an entry")?,
+            ));
         }
     }
     let sections = vec![

@@ -53,7 +53,8 @@ fn env(k: usize) -> Env {
 }
 
 fn ev(x: &Scalar, e: &Env) -> f64 {
-    x.eval_at(e).unwrap_or_else(|err| panic!("eval {x:?}: {err}"))
+    x.eval_at(e)
+        .unwrap_or_else(|err| panic!("eval {x:?}: {err}"))
 }
 
 fn evs(xs: &[Scalar], e: &Env) -> Vec<f64> {
@@ -226,7 +227,13 @@ fn every_operation_matches_numpy_and_dqrobotics_at_random_points() {
     let third = r(1, 3);
     let mut lines = Vec::new();
     let mut add = |op: &str, a: Vec<f64>, b: Vec<f64>, k: Vec<f64>, want: Vec<f64>| {
-        lines.push(format!("{op};{};{};{};{}", fmt(&a), fmt(&b), fmt(&k), fmt(&want)));
+        lines.push(format!(
+            "{op};{};{};{};{}",
+            fmt(&a),
+            fmt(&b),
+            fmt(&k),
+            fmt(&want)
+        ));
     };
     for i in 0..6 {
         let e = env(i);
@@ -237,21 +244,51 @@ fn every_operation_matches_numpy_and_dqrobotics_at_random_points() {
         add("Re", a.clone(), vec![], vec![], dq8(&dqr::re(&q1), &e));
         add("Im", a.clone(), vec![], vec![], dq8(&dqr::im(&q1), &e));
         add("conj", a.clone(), vec![], vec![], dq8(&q1.conjugate(), &e));
-        add("sharp", a.clone(), vec![], vec![], dq8(&dqr::sharp(&q1), &e));
+        add(
+            "sharp",
+            a.clone(),
+            vec![],
+            vec![],
+            dq8(&dqr::sharp(&q1), &e),
+        );
         let scaled = q2.scale(&Scalar::int(3));
         let n = dqexp::norm(&scaled).unwrap();
         add("norm", dq8(&scaled, &e), vec![], vec![], dq8(&n, &e));
-        add("inv", dq8(&scaled, &e), vec![], vec![], dq8(&scaled.try_inverse().unwrap(), &e));
-        add("translation", a.clone(), vec![], vec![], q4(&dqr::translation(&q1), &e));
+        add(
+            "inv",
+            dq8(&scaled, &e),
+            vec![],
+            vec![],
+            dq8(&scaled.try_inverse().unwrap(), &e),
+        );
+        add(
+            "translation",
+            a.clone(),
+            vec![],
+            vec![],
+            q4(&dqr::translation(&q1), &e),
+        );
         add("rotation", a.clone(), vec![], vec![], q4(&q1.real, &e));
         let ang = dqexp::rotation_angle(&q1).unwrap();
-        add("rotation_angle", a.clone(), vec![], vec![], vec![ev(&ang, &e)]);
+        add(
+            "rotation_angle",
+            a.clone(),
+            vec![],
+            vec![],
+            vec![ev(&ang, &e)],
+        );
         let ax = dqexp::rotation_axis(&q1).unwrap();
         add("rotation_axis", a.clone(), vec![], vec![], q4(&ax, &e));
         for q in [&q1, &q2] {
             let l = dqexp::log(q).unwrap();
             add("log", dq8(q, &e), vec![], vec![], dq8(&l, &e));
-            add("exp", dq8(&l, &e), vec![], vec![], dq8(&dqexp::exp(&l).unwrap(), &e));
+            add(
+                "exp",
+                dq8(&l, &e),
+                vec![],
+                vec![],
+                dq8(&dqexp::exp(&l).unwrap(), &e),
+            );
             let p = dqexp::pow(q, &third, None).unwrap();
             add("pow", dq8(q, &e), vec![], vec![1.0 / 3.0], dq8(&p, &e));
             // A symbolic exponent with its named angle psi = t * rotation_angle(q).
@@ -274,38 +311,135 @@ fn every_operation_matches_numpy_and_dqrobotics_at_random_points() {
         let sc = dqexp::sclerp(&q2, &end, &s("t"), Some(&s("psi"))).unwrap();
         add("sclerp", b.clone(), dq8(&end, &e), vec![t], dq8(&sc, &e2));
         let scd = dqexp::sclerp_derivative(&q2, &end, &s("t"), Some(&s("psi"))).unwrap();
-        add("sclerpdot", b.clone(), dq8(&end, &e), vec![t], dq8(&scd, &e2));
-        add("tplus", a.clone(), vec![], vec![], dq8(&dqr::tplus(&q1), &e));
+        add(
+            "sclerpdot",
+            b.clone(),
+            dq8(&end, &e),
+            vec![t],
+            dq8(&scd, &e2),
+        );
+        add(
+            "tplus",
+            a.clone(),
+            vec![],
+            vec![],
+            dq8(&dqr::tplus(&q1), &e),
+        );
         let x = dqr::line(&axis(), &[s("e"), two.clone(), s("f")]);
-        let p = DualQuat::from_real_and_dual(Quat::identity(), Quat::vector(s("a"), s("b"), s("c")));
-        add("Ad", a.clone(), dq8(&x, &e), vec![], dq8(&dqr::ad(&q1, &x), &e));
-        add("Adsharp", a.clone(), dq8(&p, &e), vec![], dq8(&dqr::adsharp(&q1, &p), &e));
-        add("hamiplus4", a.clone(), vec![], vec![], flat4(&dqr::hamiplus4(&q1.real), &e));
-        add("haminus4", a.clone(), vec![], vec![], flat4(&dqr::haminus4(&q1.real), &e));
-        add("hamiplus8", a.clone(), vec![], vec![], flat(&dqr::hamiplus8(&q1), &e));
-        add("haminus8", a.clone(), vec![], vec![], flat(&dqr::haminus8(&q1), &e));
+        let p =
+            DualQuat::from_real_and_dual(Quat::identity(), Quat::vector(s("a"), s("b"), s("c")));
+        add(
+            "Ad",
+            a.clone(),
+            dq8(&x, &e),
+            vec![],
+            dq8(&dqr::ad(&q1, &x), &e),
+        );
+        add(
+            "Adsharp",
+            a.clone(),
+            dq8(&p, &e),
+            vec![],
+            dq8(&dqr::adsharp(&q1, &p), &e),
+        );
+        add(
+            "hamiplus4",
+            a.clone(),
+            vec![],
+            vec![],
+            flat4(&dqr::hamiplus4(&q1.real), &e),
+        );
+        add(
+            "haminus4",
+            a.clone(),
+            vec![],
+            vec![],
+            flat4(&dqr::haminus4(&q1.real), &e),
+        );
+        add(
+            "hamiplus8",
+            a.clone(),
+            vec![],
+            vec![],
+            flat(&dqr::hamiplus8(&q1), &e),
+        );
+        add(
+            "haminus8",
+            a.clone(),
+            vec![],
+            vec![],
+            flat(&dqr::haminus8(&q1), &e),
+        );
         let y = dqr::transform_line(&q2, &x);
-        add("cross", dq8(&x, &e), dq8(&y, &e), vec![], dq8(&dqr::cross(&x, &y), &e));
-        add("dot", dq8(&x, &e), dq8(&y, &e), vec![], dq8(&dqr::dot(&x, &y), &e));
+        add(
+            "cross",
+            dq8(&x, &e),
+            dq8(&y, &e),
+            vec![],
+            dq8(&dqr::cross(&x, &y), &e),
+        );
+        add(
+            "dot",
+            dq8(&x, &e),
+            dq8(&y, &e),
+            vec![],
+            dq8(&dqr::dot(&x, &y), &e),
+        );
         let (dir, at) = (axis(), [s("a"), s("b"), s("c")]);
-        add("line", pt(&dir, &e), pt(&at, &e), vec![], dq8(&dqr::line(&dir, &at), &e));
-        add("plane", pt(&dir, &e), pt(&at, &e), vec![], dq8(&dqr::plane(&dir, &at), &e));
+        add(
+            "line",
+            pt(&dir, &e),
+            pt(&at, &e),
+            vec![],
+            dq8(&dqr::line(&dir, &at), &e),
+        );
+        add(
+            "plane",
+            pt(&dir, &e),
+            pt(&at, &e),
+            vec![],
+            dq8(&dqr::plane(&dir, &at), &e),
+        );
         let (u, w) = ([s("a"), s("b"), s("c")], [s("e"), s("f"), s("d")]);
         let pu = |v: &[Scalar; 3]| DualQuat::from_real(Quat::from_vector(v));
-        add("p2p", dq8(&pu(&u), &e), dq8(&pu(&w), &e), vec![],
-            vec![ev(&dqr::point_to_point_squared_distance(&u, &w), &e)]);
-        add("p2l", dq8(&pu(&u), &e), dq8(&y, &e), vec![],
-            vec![ev(&dqr::point_to_line_squared_distance(&u, &y), &e)]);
+        add(
+            "p2p",
+            dq8(&pu(&u), &e),
+            dq8(&pu(&w), &e),
+            vec![],
+            vec![ev(&dqr::point_to_point_squared_distance(&u, &w), &e)],
+        );
+        add(
+            "p2l",
+            dq8(&pu(&u), &e),
+            dq8(&y, &e),
+            vec![],
+            vec![ev(&dqr::point_to_line_squared_distance(&u, &y), &e)],
+        );
         let pl = dqr::plane(&axis(), &w);
-        add("p2pi", dq8(&pu(&u), &e), dq8(&pl, &e), vec![],
-            vec![ev(&dqr::point_to_plane_distance(&u, &pl), &e)]);
+        add(
+            "p2pi",
+            dq8(&pu(&u), &e),
+            dq8(&pl, &e),
+            vec![],
+            vec![ev(&dqr::point_to_plane_distance(&u, &pl), &e)],
+        );
         let (num, den) = dqr::line_to_line_squared_distance(&x, &y);
-        add("l2l", dq8(&x, &e), dq8(&y, &e), vec![], vec![ev(&num, &e) / ev(&den, &e)]);
+        add(
+            "l2l",
+            dq8(&x, &e),
+            dq8(&y, &e),
+            vec![],
+            vec![ev(&num, &e) / ev(&den, &e)],
+        );
     }
     let out = run_python(ORACLE, &(lines.join("\n") + "\n"), "dqrobotics");
     let counts: Vec<usize> = out.split_whitespace().map(|x| x.parse().unwrap()).collect();
     assert_eq!(counts[0], lines.len(), "every case checked against NumPy");
-    assert!(counts[1] >= lines.len() * 3 / 4, "most cases checked against dqrobotics: {out}");
+    assert!(
+        counts[1] >= lines.len() * 3 / 4,
+        "most cases checked against dqrobotics: {out}"
+    );
 }
 
 mod exact {
@@ -328,17 +462,28 @@ mod exact {
 
     /// A screw with an angle `k pi/6 + j theta` (half angles with exact cosines) (j in 0..=1) and small integer point and slide.
     fn screw_strategy() -> impl Strategy<Value = DualQuat<Scalar>> {
-        (0usize..5, -3i64..4, -3i64..4, -3i64..4, 1i64..6, 0i64..2, -3i64..4).prop_map(
-            |(k, x, y, z, a, j, d)| {
+        (
+            0usize..5,
+            -3i64..4,
+            -3i64..4,
+            -3i64..4,
+            1i64..6,
+            0i64..2,
+            -3i64..4,
+        )
+            .prop_map(|(k, x, y, z, a, j, d)| {
                 let angle = Scalar::pi() * r(a, 6) + s("theta") * Scalar::int(j);
                 let p = [Scalar::int(x), Scalar::int(y), Scalar::int(z)];
                 // A symbolic slide with a constant angle: with theta in the angle, the half
                 // angle is shifted and sin of it is not a divisor the scalar layer takes
                 // (`Frac` reduces only constant ratios).
-                let slide = if j == 0 { Scalar::int(d) + s("d") } else { Scalar::int(d) };
+                let slide = if j == 0 {
+                    Scalar::int(d) + s("d")
+                } else {
+                    Scalar::int(d)
+                };
                 DualQuat::screw(&ax(k), &p, &angle, &slide)
-            },
-        )
+            })
     }
 
     proptest! {
@@ -413,16 +558,31 @@ mod exact {
         // Zero rotation: log is eps t/2, the axis is k (DQ Robotics' convention), exp inverts it.
         let t = DualQuat::translation(&[s("a"), Scalar::int(2), s("c")]);
         let l = dqexp::log(&t).unwrap();
-        assert_eq!(l, DualQuat::from_real_and_dual(Quat::zero(), Quat::vector(s("a") * r(1, 2), Scalar::int(1), s("c") * r(1, 2))));
+        assert_eq!(
+            l,
+            DualQuat::from_real_and_dual(
+                Quat::zero(),
+                Quat::vector(s("a") * r(1, 2), Scalar::int(1), s("c") * r(1, 2))
+            )
+        );
         assert_eq!(dqexp::exp(&l).unwrap(), t);
-        assert_eq!(dqexp::rotation_axis(&t).unwrap(), Quat::vector(Scalar::int(0), Scalar::int(0), Scalar::int(1)));
-        assert_eq!(dqexp::screw_pow(&t, &s("u"), None).unwrap(), DualQuat::translation(&[s("a") * s("u"), s("u") * Scalar::int(2), s("c") * s("u")]));
+        assert_eq!(
+            dqexp::rotation_axis(&t).unwrap(),
+            Quat::vector(Scalar::int(0), Scalar::int(0), Scalar::int(1))
+        );
+        assert_eq!(
+            dqexp::screw_pow(&t, &s("u"), None).unwrap(),
+            DualQuat::translation(&[s("a") * s("u"), s("u") * Scalar::int(2), s("c") * s("u")])
+        );
         // A full turn has no axis; its negation is the identity.
         let full = DualQuat::rotation(&ax(2), &(Scalar::pi() * Scalar::int(2)));
         assert!(matches!(dqexp::log(&full), Err(dqexp::DqError::FullTurn)));
         // A symbolic power whose angle is not linear asks for a name.
         let q = DualQuat::rotation(&ax(2), &s("theta"));
-        assert!(matches!(dqexp::pow(&q, &s("t"), None), Err(dqexp::DqError::NeedsAngle { .. })));
+        assert!(matches!(
+            dqexp::pow(&q, &s("t"), None),
+            Err(dqexp::DqError::NeedsAngle { .. })
+        ));
         // -cos(x): the branch pi - x keeps sin's sign.
         let q = DualQuat::rotation(&ax(0), &(s("theta") + Scalar::pi() * Scalar::int(2)));
         let back = dqexp::exp(&dqexp::log(&q).unwrap()).unwrap();
@@ -456,9 +616,118 @@ point_to_line_squared_distance((a, b, c), line((0, 0, 1), (e, 0, 0)))
     let program = dqsym::parse(src).unwrap();
     let out = dqsym::Session::new().run(&program).unwrap();
     let opts = dqsym::ShowOptions::default();
-    let text: String = out
-        .iter()
-        .map(|d| dqsym::show(d, &opts).unwrap())
-        .collect();
+    let text: String = out.iter().map(|d| dqsym::show(d, &opts).unwrap()).collect();
     crate::common::snapshot_settings().bind(|| insta::assert_snapshot!("dqr_symbolic_screw", text));
+}
+
+#[test]
+fn task_jacobians_match_finite_differences() {
+    // The exact task Jacobians of two robots, evaluated at random configurations, against
+    // central differences of the task quantities computed in f64 from the evaluated pose.
+    use dqsym::{task_jacobian, TaskJacobian};
+    for file in ["puma_like", "scara"] {
+        let path = format!("{}/examples/robots/{file}.toml", env!("CARGO_MANIFEST_DIR"));
+        let robot = crate::robots::load(&path);
+        let x = robot.forward();
+        let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
+        let params = robot.parameters();
+        let k = [Scalar::int(0), Scalar::int(1), Scalar::int(0)];
+        let tasks = [
+            TaskJacobian::Rotation,
+            TaskJacobian::Translation,
+            TaskJacobian::Line(k.clone()),
+            TaskJacobian::Plane(k.clone()),
+            TaskJacobian::Distance,
+        ];
+        for seed in 0..2u64 {
+            let mut rng = crate::common::Rng::new(seed + 7);
+            let mut env: Vec<(String, f64)> = vars
+                .iter()
+                .map(|v| (v.to_string(), rng.range(-2.0, 2.0)))
+                .collect();
+            env.extend(params.iter().map(|p| (p.clone(), rng.range(0.3, 1.5))));
+            let at = |env: &Vec<(String, f64)>| -> Vec<f64> {
+                let e: Vec<(&str, f64)> = env.iter().map(|(a, b)| (a.as_str(), *b)).collect();
+                x.components()
+                    .iter()
+                    .map(|c| c.eval_at(&e).unwrap())
+                    .collect()
+            };
+            // The task quantities of an f64 pose, written with the f64 algebra.
+            let task = |p: &[f64], t: &TaskJacobian| -> Vec<f64> {
+                let q = DualQuat::from_components([p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7]]);
+                let tr = dqr::translation(&q);
+                let moved = |v: [f64; 3]| {
+                    (&q.real * &Quat::from_vector(&v) * q.real.conjugate()).vector_part()
+                };
+                match t {
+                    TaskJacobian::Rotation => q.real.components().to_vec(),
+                    TaskJacobian::Translation => tr.components().to_vec(),
+                    TaskJacobian::Line(_) => dqr::line(&moved([0., 1., 0.]), &tr.vector_part())
+                        .components()
+                        .to_vec(),
+                    TaskJacobian::Plane(_) => dqr::plane(&moved([0., 1., 0.]), &tr.vector_part())
+                        .components()
+                        .to_vec(),
+                    _ => vec![tr.norm_squared()],
+                }
+            };
+            let e: Vec<(&str, f64)> = env.iter().map(|(a, b)| (a.as_str(), *b)).collect();
+            for t in &tasks {
+                let jac = task_jacobian(&x, &vars, t);
+                for (j, v) in vars.iter().enumerate() {
+                    let h = 1e-6;
+                    let shifted = |d: f64| {
+                        let mut e2 = env.clone();
+                        e2.iter_mut().find(|(n, _)| n == v).unwrap().1 += d;
+                        task(&at(&e2), t)
+                    };
+                    let (hi, lo) = (shifted(h), shifted(-h));
+                    for (i, row) in jac.iter().enumerate() {
+                        let fd = (hi[i] - lo[i]) / (2.0 * h);
+                        let exact = row[j].eval_at(&e).unwrap();
+                        assert!(
+                            (fd - exact).abs() < 1e-6 * (1.0 + fd.abs()),
+                            "{file} {t:?} [{i}][{j}]: {exact} vs {fd}"
+                        );
+                    }
+                }
+            }
+            // The pose Jacobian's time derivative: d/ds J(q + s qdot) at s = 0.
+            let jd = task_jacobian(&x, &vars, &TaskJacobian::PoseDerivative);
+            let jp = task_jacobian(&x, &vars, &TaskJacobian::Pose);
+            let rates: Vec<f64> = vars.iter().map(|_| rng.range(-1.0, 1.0)).collect();
+            let mut e2: Vec<(String, f64)> = env.clone();
+            e2.extend(
+                vars.iter()
+                    .zip(&rates)
+                    .map(|(v, r)| (dqsym::rate_name(v), *r)),
+            );
+            let e2r: Vec<(&str, f64)> = e2.iter().map(|(a, b)| (a.as_str(), *b)).collect();
+            let h = 1e-6;
+            let along = |s: f64| -> Vec<(String, f64)> {
+                let mut e3 = env.clone();
+                for (v, r) in vars.iter().zip(&rates) {
+                    e3.iter_mut().find(|(n, _)| n == v).unwrap().1 += s * r;
+                }
+                e3
+            };
+            let (ep, em) = (along(h), along(-h));
+            for i in 0..8 {
+                for j in 0..vars.len() {
+                    let ev3 = |e3: &Vec<(String, f64)>| {
+                        let e: Vec<(&str, f64)> =
+                            e3.iter().map(|(a, b)| (a.as_str(), *b)).collect();
+                        jp[i][j].eval_at(&e).unwrap()
+                    };
+                    let fd = (ev3(&ep) - ev3(&em)) / (2.0 * h);
+                    let exact = jd[i][j].eval_at(&e2r).unwrap();
+                    assert!(
+                        (fd - exact).abs() < 1e-6 * (1.0 + fd.abs()),
+                        "{file} Jdot [{i}][{j}]: {exact} vs {fd}"
+                    );
+                }
+            }
+        }
+    }
 }
