@@ -731,3 +731,107 @@ fn task_jacobians_match_finite_differences() {
         }
     }
 }
+
+/// A spatial RRPR arm in classic DH, the same in DQ Robotics' `DQ_SerialManipulatorDH` (rows
+/// theta, d, a, alpha, type; type 1 prismatic, its d added to the row's d).
+const RRPR: &str = r#"name = "RRPR"
+convention = "dh"
+[[joint]]
+type = "revolute"
+theta = "theta1"
+d = "1/2"
+a = "0"
+alpha = "pi/2"
+[[joint]]
+type = "revolute"
+theta = "theta2"
+d = "0"
+a = "3/4"
+alpha = "0"
+[[joint]]
+type = "prismatic"
+theta = "pi/2"
+d = "d3"
+a = "0"
+alpha = "-pi/2"
+[[joint]]
+type = "revolute"
+theta = "theta4"
+d = "1/5"
+a = "1/10"
+alpha = "pi/3"
+"#;
+
+#[test]
+fn generated_task_jacobians_match_dqrobotics() {
+    // Every `--jacobian=KIND` as a generated NumPy function, run at random configurations and
+    // rates, against DQ Robotics' numeric pose, pose Jacobian and its derivative, and the
+    // rotation, translation, line, plane and distance Jacobians built from them.
+    use dqsym::{task_report, FkOptions, ReportFormat, TaskJacobian};
+    let robot = dqsym::parse_robot(RRPR, "rrpr.toml", &dqsym::eval_scalar_text).expect("robot");
+    let o = FkOptions {
+        format: ReportFormat::Python,
+        ..FkOptions::default()
+    };
+    let k = [Scalar::int(0), Scalar::int(0), Scalar::int(1)];
+    let kinds = [
+        ("j", TaskJacobian::Pose),
+        ("jr", TaskJacobian::Rotation),
+        ("jt", TaskJacobian::Translation),
+        ("jl", TaskJacobian::Line(k.clone())),
+        ("jpi", TaskJacobian::Plane(k.clone())),
+        ("jd", TaskJacobian::Distance),
+        ("jdot", TaskJacobian::PoseDerivative),
+    ];
+    let mut script = String::from(
+        "import inspect, numpy as np\nfrom dqrobotics import *\nfrom dqrobotics.robot_modeling import DQ_SerialManipulatorDH, DQ_Kinematics as K\n",
+    );
+    let mut checks = String::new();
+    for (key, kind) in &kinds {
+        let code = if *kind == TaskJacobian::Pose {
+            dqsym::fk_report(
+                &robot,
+                &FkOptions {
+                    jacobian: true,
+                    ..o.clone()
+                },
+            )
+        } else {
+            task_report(&robot, &o, kind)
+        }
+        .expect("generated code");
+        let code = code.replace("def rrpr_fk(", &format!("def fk_{key}("));
+        script.push_str(&code);
+        checks.push_str(&format!("    check('{key}', fk_{key})\n"));
+    }
+    script.push_str(
+        r#"
+dh = np.array([[0, 0, np.pi/2, 0], [0.5, 0, 0, 0.2], [0, 0.75, 0, 0.1],
+               [np.pi/2, 0, -np.pi/2, np.pi/3], [0, 0, 1, 0]])
+robot = DQ_SerialManipulatorDH(dh)
+rng = np.random.default_rng(5)
+count = 0
+for _ in range(5):
+    q = rng.uniform(-2, 2, 4)
+    qd = rng.uniform(-1, 1, 4)
+    vals = {"theta1": q[0], "theta2": q[1], "d3": q[2], "theta4": q[3],
+            "theta1_dot": qd[0], "theta2_dot": qd[1], "d3_dot": qd[2], "theta4_dot": qd[3]}
+    x = robot.fkm(q)
+    J = robot.pose_jacobian(q)
+    want = {"j": J, "jr": K.rotation_jacobian(J), "jt": K.translation_jacobian(J, x),
+            "jl": K.line_jacobian(J, x, k_), "jpi": K.plane_jacobian(J, x, k_),
+            "jd": K.distance_jacobian(J, x), "jdot": robot.pose_jacobian_derivative(q, qd)}
+    def check(key, f):
+        global count
+        r = f(*[np.array([vals[p]]) for p in inspect.signature(f).parameters])
+        assert np.allclose(r["dq"][0], vec8(x), atol=1e-12), ("dq", r["dq"][0], vec8(x))
+        got = np.asarray(r[key][0]).reshape(want[key].shape)
+        assert np.allclose(got, want[key], atol=1e-12), (key, got, want[key])
+        count += 1
+"#,
+    );
+    script.push_str(&checks);
+    script.push_str("print(count)\n");
+    let out = run_python(&script, "", "dqrobotics");
+    assert_eq!(out.trim(), (5 * kinds.len()).to_string());
+}
