@@ -835,3 +835,35 @@ for _ in range(5):
     let out = run_python(&script, "", "dqrobotics");
     assert_eq!(out.trim(), (5 * kinds.len()).to_string());
 }
+
+#[test]
+fn twists_give_the_geometric_jacobian() {
+    // For every joint of the Stanford arm: xi = 2 (dq/dqj) q* = omega + eps (t-dot + t x omega),
+    // and the geometric Jacobian's column is (t-dot; omega); qdot(q, xi) gives the derivative
+    // back, and the body twist is conj(q) xi q. Exact.
+    let path = format!("{}/examples/robots/stanford.toml", env!("CARGO_MANIFEST_DIR"));
+    let robot = crate::robots::load(&path);
+    let q = robot.forward();
+    let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
+    let gj = dqsym::geometric_jacobian(&q, &vars);
+    let t = dqr::translation(&q).vector_part();
+    for (j, v) in vars.iter().enumerate() {
+        let qd = DualQuat::from_components(q.components().map(|c| c.diff(v)));
+        let xi = dqexp::twist(&q, &qd, false);
+        assert!(xi.real.w.is_zero_value() && xi.dual.w.is_zero_value());
+        let omega = xi.real.vector_part();
+        let cross = [
+            &t[1] * &omega[2] - &t[2] * &omega[1],
+            &t[2] * &omega[0] - &t[0] * &omega[2],
+            &t[0] * &omega[1] - &t[1] * &omega[0],
+        ];
+        for k in 0..3 {
+            assert_eq!(gj[k + 3][j], omega[k], "omega {v} {k}");
+            assert_eq!(gj[k][j], &xi.dual.vector_part()[k] - &cross[k], "t-dot {v} {k}");
+        }
+        assert_eq!(dqexp::from_twist(&q, &xi, false), qd);
+        let body = dqexp::twist(&q, &qd, true);
+        assert_eq!(body, q.conjugate() * &xi * &q);
+        assert_eq!(dqexp::from_twist(&q, &body, true), qd);
+    }
+}
