@@ -841,7 +841,10 @@ fn twists_give_the_geometric_jacobian() {
     // For every joint of the Stanford arm: xi = 2 (dq/dqj) q* = omega + eps (t-dot + t x omega),
     // and the geometric Jacobian's column is (t-dot; omega); qdot(q, xi) gives the derivative
     // back, and the body twist is conj(q) xi q. Exact.
-    let path = format!("{}/examples/robots/stanford.toml", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/examples/robots/stanford.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let robot = crate::robots::load(&path);
     let q = robot.forward();
     let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
@@ -859,7 +862,11 @@ fn twists_give_the_geometric_jacobian() {
         ];
         for k in 0..3 {
             assert_eq!(gj[k + 3][j], omega[k], "omega {v} {k}");
-            assert_eq!(gj[k][j], &xi.dual.vector_part()[k] - &cross[k], "t-dot {v} {k}");
+            assert_eq!(
+                gj[k][j],
+                &xi.dual.vector_part()[k] - &cross[k],
+                "t-dot {v} {k}"
+            );
         }
         assert_eq!(dqexp::from_twist(&q, &xi, false), qd);
         let body = dqexp::twist(&q, &qd, true);
