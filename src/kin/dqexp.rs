@@ -154,9 +154,8 @@ fn axis_of(r: &Quat<Scalar>, half: &Scalar) -> Result<Quat<Scalar>> {
     }
     let mut n = Vec::with_capacity(3);
     for v in r.vector_part() {
-        let f = Frac::new(v.clone(), s.clone())?;
-        match f.as_scalar() {
-            Some(x) => n.push(x.clone()),
+        match exact_div(&v, &s)? {
+            Some(x) => n.push(x),
             None => return Err(DqError::Axis(text(&v))),
         }
     }
@@ -233,8 +232,7 @@ fn quat_exp(r: &Quat<Scalar>) -> Result<Quat<Scalar>> {
     let (c, s) = (phi.cos().check()?, phi.sin().check()?);
     let mut u = Vec::with_capacity(3);
     for v in r.vector_part() {
-        let f = Frac::new(v.clone(), phi.clone())?;
-        match f.as_scalar() {
+        match exact_div(&v, &phi)? {
             Some(x) => u.push(&s * x),
             None => return Err(DqError::Axis(text(&v))),
         }
@@ -284,10 +282,51 @@ struct Screw {
     moment: [Scalar; 3],
 }
 
-fn scalar_of(f: &Frac) -> Result<Scalar> {
-    f.as_scalar()
-        .cloned()
-        .ok_or_else(|| DqError::Axis(format!("({})/({})", text(f.num()), text(f.den()))))
+/// The exact quotient `num / den` when it is a scalar (a polynomial in symbols and modes), found
+/// without polynomial division: the symbols of `den` are set to a value where `den` is a
+/// nonzero number (1, 2, pi, pi/2, pi/3), the candidate `num / den` there is kept when
+/// `candidate * den == num` exactly. This finds every quotient that does not involve `den`'s
+/// symbols (an axis `v / sin(theta/2)`, a slide, `r / |r|`); others are `None`.
+pub fn exact_div(num: &Scalar, den: &Scalar) -> Result<Option<Scalar>> {
+    if den.is_zero() {
+        return Err(DqError::Scalar(ScalarError::DivisionByZero));
+    }
+    if num.is_zero() {
+        return Ok(Some(Scalar::zero()));
+    }
+    let f = Frac::new(num.clone(), den.clone())?;
+    if let Some(k) = f.as_scalar() {
+        return Ok(Some(k.clone()));
+    }
+    let syms: Vec<String> = den
+        .symbols()
+        .iter()
+        .map(|s| s.name().to_owned())
+        .filter(|n| n != "pi")
+        .collect();
+    let pi = Scalar::pi();
+    let values = [
+        Scalar::one(),
+        Scalar::int(2),
+        pi.clone(),
+        &pi * Scalar::from_ratio(1, 2),
+        &pi * Scalar::from_ratio(1, 3),
+        &pi * Scalar::from_ratio(2, 3),
+    ];
+    for v in &values {
+        let at = |x: &Scalar| syms.iter().fold(x.clone(), |acc, n| acc.subs(n, v));
+        let d = at(den);
+        if d.is_zero() || !d.is_constant() || d.symbols().iter().any(|s| s.name() == "pi") {
+            continue;
+        }
+        let Ok(k) = at(num).try_div(&d) else {
+            continue;
+        };
+        if (&k * den).check()? == *num {
+            return Ok(Some(k));
+        }
+    }
+    Ok(None)
 }
 
 fn screw_of(q: &DualQuat<Scalar>) -> Result<Option<Screw>> {
@@ -301,7 +340,9 @@ fn screw_of(q: &DualQuat<Scalar>) -> Result<Option<Screw>> {
     }
     // q = (c, s n) + eps (-(d/2) s, (d/2) c n + s m), c, s = cos, sin(half) (sec 4, eq 18).
     let (c, sn) = (half.cos().check()?, half.sin().check()?);
-    let over_s = |x: Scalar| -> Result<Scalar> { scalar_of(&Frac::new(x, sn.clone())?) };
+    let over_s = |x: Scalar| -> Result<Scalar> {
+        exact_div(&x, &sn)?.ok_or_else(|| DqError::Axis(format!("({})/({})", text(&x), text(&sn))))
+    };
     let v = q.real.vector_part();
     let axis = [
         over_s(v[0].clone())?,

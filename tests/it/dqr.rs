@@ -460,7 +460,8 @@ mod exact {
         AXES[k].map(|(n, d)| r(n, d))
     }
 
-    /// A screw with an angle `k pi/6 + j theta` (half angles with exact cosines) (j in 0..=1) and small integer point and slide.
+    /// A screw with an angle `k pi/6 + j theta` (j in 0..=1; half angles with exact cosines), a
+    /// small integer point and a slide `k + d`.
     fn screw_strategy() -> impl Strategy<Value = DualQuat<Scalar>> {
         (
             0usize..5,
@@ -474,15 +475,7 @@ mod exact {
             .prop_map(|(k, x, y, z, a, j, d)| {
                 let angle = Scalar::pi() * r(a, 6) + s("theta") * Scalar::int(j);
                 let p = [Scalar::int(x), Scalar::int(y), Scalar::int(z)];
-                // A symbolic slide with a constant angle: with theta in the angle, the half
-                // angle is shifted and sin of it is not a divisor the scalar layer takes
-                // (`Frac` reduces only constant ratios).
-                let slide = if j == 0 {
-                    Scalar::int(d) + s("d")
-                } else {
-                    Scalar::int(d)
-                };
-                DualQuat::screw(&ax(k), &p, &angle, &slide)
+                DualQuat::screw(&ax(k), &p, &angle, &(Scalar::int(d) + s("d")))
             })
     }
 
@@ -498,12 +491,12 @@ mod exact {
         #[test]
         fn screw_log_of_coaxial_screws_adds(k in 0usize..5, x in -3i64..4, z in -3i64..4,
                                            a in 1i64..6, b in 1i64..6) {
-            // Two screws about one axis (angles theta + a pi/6 and b pi/6, slides -1 and 2):
+            // Two screws about one axis (angles theta + a pi/6 and b pi/6, slides d and 2):
             // the screw log of the product is the sum of the logs.
             let p = [Scalar::int(x), Scalar::int(0), Scalar::int(z)];
             let t1 = s("theta") + Scalar::pi() * r(a, 6);
             let t2 = Scalar::pi() * r(b, 6);
-            let q1 = DualQuat::screw(&ax(k), &p, &t1, &Scalar::int(-1));
+            let q1 = DualQuat::screw(&ax(k), &p, &t1, &s("d"));
             let q2 = DualQuat::screw(&ax(k), &p, &t2, &Scalar::int(2));
             let sum = dqexp::screw_log(&q1).unwrap() + dqexp::screw_log(&q2).unwrap();
             prop_assert_eq!(dqexp::screw_log(&(&q1 * &q2)).unwrap(), sum);
@@ -613,6 +606,22 @@ Ad(q, line((0, 0, 1), (e, 0, 0)))
 line_to_line_squared_distance(line((1, 0, 0), (0, 0, 0)), line((0, 1, 0), (0, 0, d)))
 point_to_line_squared_distance((a, b, c), line((0, 0, 1), (e, 0, 0)))
 ";
+    // The same operations on a screw whose axis is symbolic too: the unit axis
+    // n = (sin(beta) cos(alpha), sin(beta) sin(alpha), cos(beta)), exactly unit, through the
+    // point (a, b, c), so the moment m = (a, b, c) x n is symbolic.
+    let src = format!(
+        "{src}syms alpha beta
+n = (sin(beta)*cos(alpha), sin(beta)*sin(alpha), cos(beta))
+g = screw(n, (a, b, c), theta, d)
+rotation_axis(g)
+log(g)
+exp(log(g)) - g
+screwlog(g)
+screwpow(g, t, psi)
+bodytwist(g, diff(g, theta))
+"
+    );
+    let src = src.as_str();
     let program = dqsym::parse(src).unwrap();
     let out = dqsym::Session::new().run(&program).unwrap();
     let opts = dqsym::ShowOptions::default();
