@@ -23,8 +23,7 @@
 //! `cos(psi/2)` and `sin(psi/2)`, and code generated from it takes `psi` as an argument, which
 //! the caller computes as `t * rotation_angle(q)`. The derivative in `t` is not `diff(x, t)` (that
 //! misses `psi`'s dependence) but the closed form [`sclerp_derivative`]: `q0 (q0* q1)^t xi`.
-//! When `t phi` is linear (a rational `t`, or a constant `phi`... times a rational), no name is
-//! needed.
+//! When `t phi` is linear (a rational `t` and a symbolic `phi`), no name is needed.
 
 use crate::algebra::dqr;
 use crate::{DualQuat, Frac, Quat, Ring, Scalar, ScalarError};

@@ -80,6 +80,9 @@ pub enum ReportError {
     /// Code generation refused the outputs.
     #[error(transparent)]
     Codegen(#[from] CodegenError),
+    /// A task Jacobian needs the expanded pose, which exceeds the term limit.
+    #[error("task Jacobians need the expanded pose, which exceeds {0} terms per entry (raise --term-limit)")]
+    TaskTooLarge(usize),
     /// A symbol of the robot is also the name a recurrence gives one of its entries.
     #[error("symbol `{0}` is also an entry of the recurrence; rename it")]
     NameClash(String),

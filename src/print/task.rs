@@ -140,6 +140,17 @@ pub fn task_report(
     o: &FkOptions,
     task: &TaskJacobian,
 ) -> Result<String, ReportError> {
+    task_report_inner(robot, o, task).map_err(|e| match e {
+        ReportError::Scalar(ScalarError::TooLarge { limit }) => ReportError::TaskTooLarge(limit),
+        other => other,
+    })
+}
+
+fn task_report_inner(
+    robot: &Robot,
+    o: &FkOptions,
+    task: &TaskJacobian,
+) -> Result<String, ReportError> {
     let x = robot
         .forward_within(o.max_terms)
         .ok_or(ReportError::Scalar(ScalarError::TooLarge {
