@@ -84,8 +84,10 @@ enum Command {
         point: Option<String>,
         /// Add the 8 x n Jacobian d dq[i] / d q[j]; `--jacobian=KIND` gives instead a task
         /// Jacobian of DQ Robotics: pose (the same 8 x n), rotation, translation,
-        /// line[:X,Y,Z], plane[:X,Y,Z] (end-effector direction, default z), distance, or
-        /// pose_derivative (a function of q and the rates <q>_dot).
+        /// line[:X,Y,Z], plane[:X,Y,Z] (end-effector direction, default z), distance,
+        /// point_to_point:X,Y,Z, point_to_line:DX,DY,DZ,PX,PY,PZ, point_to_plane:NX,NY,NZ,PX,PY,PZ
+        /// (workspace point, line, plane), or pose_derivative (a function of q and the rates
+        /// <q>_dot).
         #[arg(long, value_name = "KIND", num_args = 0..=1, require_equals = true, default_missing_value = "")]
         jacobian: Option<String>,
     },

@@ -28,6 +28,14 @@ pub enum TaskJacobian {
     /// `distance_jacobian`: d |t|² / dq, the squared distance of the end effector from the base
     /// origin, 1 x n.
     Distance,
+    /// `point_to_point_distance_jacobian`: d |t - p|² / dq for a workspace point `p`, 1 x n.
+    PointToPoint([Scalar; 3]),
+    /// `point_to_line_distance_jacobian`: d |t × l - m|² / dq for a workspace line `l + ε m`
+    /// (given by its unit direction and a point), 1 x n.
+    PointToLine([Scalar; 3], [Scalar; 3]),
+    /// `point_to_plane_distance_jacobian`: d (t · n - d) / dq for a workspace plane `n + ε d`
+    /// (given by its unit normal and a point), 1 x n.
+    PointToPlane([Scalar; 3], [Scalar; 3]),
     /// `pose_jacobian_derivative`: d/dt of the pose Jacobian, `sum_k dJ/dq_k qdot_k`, 8 x n, a
     /// function of `q` and the joint rates `<q>_dot`.
     PoseDerivative,
@@ -55,7 +63,26 @@ impl TaskJacobian {
             None => Ok(t),
             Some(_) => Err(format!("`{kind}` takes no `:` argument")),
         };
+        let two = || -> Result<([Scalar; 3], [Scalar; 3]), String> {
+            let a = arg.ok_or_else(|| format!("`{kind}` needs `:DX,DY,DZ,PX,PY,PZ`"))?;
+            let parts: Vec<&str> = a.split(',').collect();
+            if parts.len() != 6 {
+                return Err(format!(
+                    "`{kind}` needs six numbers (a unit direction, then a point), got `{a}`"
+                ));
+            }
+            Ok((
+                parse_vec(&parts[..3].join(","))?,
+                parse_vec(&parts[3..].join(","))?,
+            ))
+        };
         match kind {
+            "point_to_point" => match arg {
+                Some(a) => Ok(TaskJacobian::PointToPoint(parse_vec(a)?)),
+                None => Err("`point_to_point` needs `:X,Y,Z`".into()),
+            },
+            "point_to_line" => two().map(|(d, p)| TaskJacobian::PointToLine(d, p)),
+            "point_to_plane" => two().map(|(n, p)| TaskJacobian::PointToPlane(n, p)),
             "pose" => plain(TaskJacobian::Pose),
             "rotation" => plain(TaskJacobian::Rotation),
             "translation" => plain(TaskJacobian::Translation),
@@ -65,7 +92,8 @@ impl TaskJacobian {
             "plane" => Ok(TaskJacobian::Plane(dir()?)),
             other => Err(format!(
                 "unknown Jacobian `{other}`: expected pose, rotation, translation, line[:X,Y,Z], \
-                 plane[:X,Y,Z], distance or pose_derivative"
+                 plane[:X,Y,Z], distance, point_to_point:X,Y,Z, point_to_line:DX,DY,DZ,PX,PY,PZ, \
+                 point_to_plane:NX,NY,NZ,PX,PY,PZ or pose_derivative"
             )),
         }
     }
@@ -79,6 +107,9 @@ impl TaskJacobian {
             TaskJacobian::Line(_) => ("Jl", "line Jacobian d vec8(l + eps t x l)[i] / d q[j] (DQ Robotics' line_jacobian)"),
             TaskJacobian::Plane(_) => ("Jpi", "plane Jacobian d vec8(n + eps t . n)[i] / d q[j] (DQ Robotics' plane_jacobian)"),
             TaskJacobian::Distance => ("Jd", "distance Jacobian d |t|^2 / d q[j] (DQ Robotics' distance_jacobian)"),
+            TaskJacobian::PointToPoint(_) => ("Jd", "point-to-point distance Jacobian d |t - p|^2 / d q[j] (DQ Robotics' point_to_point_distance_jacobian)"),
+            TaskJacobian::PointToLine(..) => ("Jd", "point-to-line distance Jacobian d |t x l - m|^2 / d q[j] (DQ Robotics' point_to_line_distance_jacobian)"),
+            TaskJacobian::PointToPlane(..) => ("Jd", "point-to-plane distance Jacobian d (t . n - d) / d q[j] (DQ Robotics' point_to_plane_distance_jacobian)"),
             TaskJacobian::PoseDerivative => ("Jdot", "pose Jacobian derivative sum_k d J[i][j] / d q[k] q_dot[k] (DQ Robotics' pose_jacobian_derivative)"),
         }
     }
@@ -107,6 +138,17 @@ fn task_vector(x: &DualQuat<Scalar>, task: &TaskJacobian) -> Vec<Scalar> {
             dqr::plane(&n, &t.vector_part()).components().to_vec()
         }
         TaskJacobian::Distance => vec![t.norm_squared()],
+        TaskJacobian::PointToPoint(p) => {
+            vec![dqr::point_to_point_squared_distance(&t.vector_part(), p)]
+        }
+        TaskJacobian::PointToLine(l, p) => vec![dqr::point_to_line_squared_distance(
+            &t.vector_part(),
+            &dqr::line(l, p),
+        )],
+        TaskJacobian::PointToPlane(n, p) => vec![dqr::point_to_plane_distance(
+            &t.vector_part(),
+            &dqr::plane(n, p),
+        )],
     }
 }
 

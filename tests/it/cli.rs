@@ -189,6 +189,9 @@ fn fk_task_jacobians_from_the_command_line() {
             }
         }
     }
+    let bad = run(&["fk", &file, "--jacobian=point_to_plane:1,0"]);
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("needs six numbers"));
     let bad = run(&["fk", &file, "--jacobian=speed"]);
     assert_eq!(bad.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("unknown Jacobian `speed`"));

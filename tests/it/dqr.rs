@@ -792,6 +792,21 @@ fn generated_task_jacobians_match_dqrobotics() {
         ("jd", TaskJacobian::Distance),
         ("jdot", TaskJacobian::PoseDerivative),
     ];
+    let v = |a: (i64, i64), b: (i64, i64), c: (i64, i64)| [r(a.0, a.1), r(b.0, b.1), r(c.0, c.1)];
+    let distances = [
+        (
+            "p2p",
+            TaskJacobian::PointToPoint(v((3, 10), (-1, 5), (1, 2))),
+        ),
+        (
+            "p2l",
+            TaskJacobian::PointToLine(v((0, 1), (0, 1), (1, 1)), v((1, 2), (1, 3), (0, 1))),
+        ),
+        (
+            "p2pi",
+            TaskJacobian::PointToPlane(v((0, 1), (1, 1), (0, 1)), v((0, 1), (1, 4), (0, 1))),
+        ),
+    ];
     let mut script = String::from(
         "import inspect, numpy as np\nfrom dqrobotics import *\nfrom dqrobotics.robot_modeling import DQ_SerialManipulatorDH, DQ_Kinematics as K\n",
     );
@@ -813,6 +828,11 @@ fn generated_task_jacobians_match_dqrobotics() {
         script.push_str(&code);
         checks.push_str(&format!("    check('{key}', fk_{key})\n"));
     }
+    for (key, kind) in &distances {
+        let code = task_report(&robot, &o, kind).expect("generated code");
+        script.push_str(&code.replace("def rrpr_fk(", &format!("def fk_{key}(")));
+        checks.push_str(&format!("    check('{key}', fk_{key}, 'jd')\n"));
+    }
     script.push_str(
         r#"
 dh = np.array([[0, 0, np.pi/2, 0], [0.5, 0, 0, 0.2], [0, 0.75, 0, 0.1],
@@ -830,11 +850,15 @@ for _ in range(5):
     want = {"j": J, "jr": K.rotation_jacobian(J), "jt": K.translation_jacobian(J, x),
             "jl": K.line_jacobian(J, x, k_), "jpi": K.plane_jacobian(J, x, k_),
             "jd": K.distance_jacobian(J, x), "jdot": robot.pose_jacobian_derivative(q, qd)}
-    def check(key, f):
+    Jt, t = K.translation_jacobian(J, x), translation(x)
+    want["p2p"] = K.point_to_point_distance_jacobian(Jt, t, 0.3*i_ - 0.2*j_ + 0.5*k_)
+    want["p2l"] = K.point_to_line_distance_jacobian(Jt, t, k_ + E_*cross(0.5*i_ + (1/3)*j_, k_))
+    want["p2pi"] = K.point_to_plane_distance_jacobian(Jt, t, j_ + E_*0.25)
+    def check(key, f, field=None):
         global count
         r = f(*[np.array([vals[p]]) for p in inspect.signature(f).parameters])
         assert np.allclose(r["dq"][0], vec8(x), atol=1e-12), ("dq", r["dq"][0], vec8(x))
-        got = np.asarray(r[key][0]).reshape(want[key].shape)
+        got = np.asarray(r[field or key][0]).reshape(want[key].shape)
         assert np.allclose(got, want[key], atol=1e-12), (key, got, want[key])
         count += 1
 "#,
@@ -842,7 +866,10 @@ for _ in range(5):
     script.push_str(&checks);
     script.push_str("print(count)\n");
     let out = run_python(&script, "", "dqrobotics");
-    assert_eq!(out.trim(), (5 * kinds.len()).to_string());
+    assert_eq!(
+        out.trim(),
+        (5 * (kinds.len() + distances.len())).to_string()
+    );
 }
 
 #[test]
