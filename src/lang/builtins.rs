@@ -658,7 +658,7 @@ fn screw_params(a: &Arg) -> Result<Value> {
 }
 
 /// The symbol names of a list argument `[x1, x2, ...]`.
-fn symbol_list(func: &str, vars: &Arg) -> Result<Vec<String>> {
+pub(super) fn symbol_list(func: &str, vars: &Arg) -> Result<Vec<String>> {
     let list: Vec<Value> = match &vars.value {
         Value::Matrix(rows) if rows.len() == 1 || rows[0].len() == 1 => {
             rows.iter().flatten().cloned().map(Value::Scalar).collect()

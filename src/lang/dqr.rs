@@ -7,16 +7,16 @@
 //! `sin(phi/2)/(phi/2)`, which is not a polynomial), and every `is_*` predicate with a
 //! threshold (exactness makes them `unit(q)` and the Plücker constraints).
 
-use super::builtins::{b, dq_like, invalid, type_error, unit_dq, Arg, Builtin};
+use super::builtins::{b, dq_like, invalid, symbol_list, type_error, unit_dq, Arg, Builtin};
 use super::eval::{op_error, EvalError, Result};
 use super::value::{self, Value};
 use crate::algebra::dqr;
 use crate::kin::dqexp::{self, DqError};
-use crate::{DualQuat, Frac, Quat, Scalar};
+use crate::{DualQuat, Frac, Quat, Scalar, TaskJacobian};
 use num_traits::Zero;
 
 /// The DQ Robotics built-ins, in the order `:help` lists them (after the core ones).
-pub(super) const TABLE: [Builtin; 41] = [
+pub(super) const TABLE: [Builtin; 48] = [
     b("P", "P(h)", 1, 1, "DQ Robotics' primary part P(h) (our real part)", "P(dh(theta1, d1, a1, 0))"),
     b("D", "D(h)", 1, 1, "DQ Robotics' dual part D(h): h = P(h) + eps D(h), as in our q + eps q_eps", "D(trans((l, 0, 0)))"),
     b("Re", "Re(h)", 1, 1, "the scalar parts w + eps w_eps", "Re(dh(theta1, d1, 0, 0))"),
@@ -58,6 +58,13 @@ pub(super) const TABLE: [Builtin; 41] = [
     b("point_to_plane_distance", "point_to_plane_distance(p, plane)", 2, 2, "the signed distance p . n - d from the plane n + eps d", "point_to_plane_distance((l, 0, d1), plane((0, 0, 1), (0, 0, 1)))"),
     b("line_to_line_squared_distance", "line_to_line_squared_distance(l1, l2)", 2, 2, "D(l1 . l2)^2 / |P(l1 x l2)|^2, or |D(l1 x l2)|^2 for parallel lines (a quotient when symbolic)", "line_to_line_squared_distance(line((1, 0, 0), (0, 0, 0)), line((0, 1, 0), (0, 0, d1)))"),
     b("line_to_line_angle", "line_to_line_angle(l1, l2)", 2, 2, "acos(P(l1 . l2)), read exactly when that is cos of an angle", "line_to_line_angle(line((1, 0, 0), (0, 0, 0)), Ad(rot((0, 0, 1), theta1), line((1, 0, 0), (0, 0, l))))"),
+    b("pose_jacobian", "pose_jacobian(x, [q1, q2, ...])", 2, 2, "d vec8(x) / dq, 8 x n (the same as jacobian)", "pose_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("rotation_jacobian", "rotation_jacobian(x, [q1, ...])", 2, 2, "d vec4(P(x)) / dq of a unit pose, 4 x n", "rotation_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("translation_jacobian", "translation_jacobian(x, [q1, ...])", 2, 2, "d vec4(translation(x)) / dq of a unit pose, 4 x n", "translation_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("line_jacobian", "line_jacobian(x, [q1, ...], direction)", 3, 3, "d vec8(l + eps t x l) / dq, l = r direction r* (direction in the frame x)", "line_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))"),
+    b("plane_jacobian", "plane_jacobian(x, [q1, ...], normal)", 3, 3, "d vec8(n + eps t . n) / dq, n = r normal r* (normal in the frame x)", "plane_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))"),
+    b("distance_jacobian", "distance_jacobian(x, [q1, ...])", 2, 2, "d |translation(x)|^2 / dq, 1 x n", "distance_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("pose_jacobian_derivative", "pose_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of the pose Jacobian, sum_k dJ/dq_k q_k_dot (rates named q_dot)", "pose_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
 ];
 
 fn dq_error(name: &str, e: DqError, a: &Arg) -> EvalError {
@@ -307,6 +314,28 @@ pub(super) fn call(name: &str, v: &[Arg]) -> Option<Result<Value>> {
                     )
                 })?;
                 Value::Scalar(phi)
+            }
+            "pose_jacobian"
+            | "rotation_jacobian"
+            | "translation_jacobian"
+            | "line_jacobian"
+            | "plane_jacobian"
+            | "distance_jacobian"
+            | "pose_jacobian_derivative" => {
+                let x = unit_dq(name, a)?;
+                let vars = symbol_list(name, &v[1])?;
+                let dir = || vec3_arg(name, "the direction", &v[2]);
+                let task = match name {
+                    "pose_jacobian" => TaskJacobian::Pose,
+                    "rotation_jacobian" => TaskJacobian::Rotation,
+                    "translation_jacobian" => TaskJacobian::Translation,
+                    "line_jacobian" => TaskJacobian::Line(dir()?),
+                    "plane_jacobian" => TaskJacobian::Plane(dir()?),
+                    "distance_jacobian" => TaskJacobian::Distance,
+                    _ => TaskJacobian::PoseDerivative,
+                };
+                let refs: Vec<&str> = vars.iter().map(String::as_str).collect();
+                Value::Matrix(crate::task_jacobian(&x, &refs, &task))
             }
             _ => return Err(invalid(&format!("`{name}` is not implemented"), a.span)),
         })
