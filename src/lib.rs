@@ -3,6 +3,7 @@
 mod algebra;
 mod closed;
 mod emit;
+pub mod ik;
 mod kin;
 mod lang;
 mod print;

@@ -72,6 +72,13 @@ enum Command {
         /// given take a fixed default, lengths 1.
         #[arg(long, value_name = "NAME=VALUE,...")]
         config: Option<String>,
+        /// The inverse kinematics of a robot file instead: the axes, the decisions, each
+        /// subproblem and branch, a numeric check (text or --markdown).
+        #[arg(long)]
+        ik: bool,
+        /// With --ik: a joint variable given as a parameter.
+        #[arg(long, value_name = "VARIABLE", requires = "ik")]
+        free: Option<String>,
     },
     /// Forward kinematics of a robot file (TOML: dh, mdh or screw convention) in closed form:
     /// the unit DQ and the 4x4 matrix; with --point the image of a point, with --jacobian the
@@ -90,6 +97,16 @@ enum Command {
         /// <q>_dot).
         #[arg(long, value_name = "KIND", num_args = 0..=1, require_equals = true, default_missing_value = "")]
         jacobian: Option<String>,
+    },
+    /// Inverse kinematics of a robot file in closed form: the family decided exactly from the
+    /// axes, every joint as atan2 of closed forms, every branch; --format rust, c or python
+    /// emit a solver returning every solution for a target pose.
+    Ik {
+        /// The robot description file.
+        robot: std::path::PathBuf,
+        /// A joint variable given as a parameter (7-joint arms): `--free theta3`.
+        #[arg(long, value_name = "VARIABLE")]
+        free: Option<String>,
     },
     /// Operation counts: the paper's Tables 1 and 2, counted by running the products (with the
     /// corrections of ERRATA 10 and 11); with a robot file, also its generated forward kinematics.
@@ -113,6 +130,10 @@ enum OutputFormat {
     Rust,
     /// Text that SymPy's sympify parses.
     Sympy,
+    /// C99 source (`ik` only).
+    C,
+    /// Python with NumPy (`ik` only).
+    Python,
 }
 
 /// The options for the library's printers.
@@ -122,6 +143,9 @@ fn show_options(format: OutputFormat, explicit: bool) -> Result<ShowOptions, Str
         OutputFormat::Latex => Format::Latex,
         OutputFormat::Rust => Format::Rust,
         OutputFormat::Sympy => Format::Sympy,
+        OutputFormat::C | OutputFormat::Python => {
+            return Err("--format c and --format python are for `dqsym ik` only".into())
+        }
     };
     Ok(ShowOptions { format, explicit })
 }
@@ -227,7 +251,7 @@ fn dispatch(cli: Cli) -> ExitCode {
     }
     // fk has its own formats (a report per entry); the other commands share show options.
     let opts = match &cli.command {
-        Some(Command::Fk { .. } | Command::Ops { .. }) => None,
+        Some(Command::Fk { .. } | Command::Ops { .. } | Command::Ik { .. }) => None,
         _ => match show_options(cli.format, cli.explicit) {
             Ok(o) => Some(o),
             Err(message) => {
@@ -256,6 +280,7 @@ fn dispatch(cli: Cli) -> ExitCode {
             cli.format,
             cli.explicit,
         ),
+        (Some(Command::Ik { robot, free }), _) => ik(&robot, free, cli.format, cli.explicit),
         (Some(Command::Paper), _) => match paper(&PlainOptions {
             shorthand: !cli.explicit,
         }) {
@@ -275,11 +300,99 @@ fn dispatch(cli: Cli) -> ExitCode {
                 markdown,
                 html,
                 config,
+                ik: true,
+                free,
+            }),
+            _,
+        ) => walk_ik(&file, markdown, html.is_some() || config.is_some(), free),
+        (
+            Some(Command::Walk {
+                file,
+                markdown,
+                html,
+                config,
+                ..
             }),
             _,
         ) => walk(&file, markdown, html.as_deref(), config.as_deref()),
         (None, Some(expr)) => one_liner(&expr, &opts, &limits),
         (None, None) => repl::run(&opts, &limits),
+    }
+}
+
+/// `dqsym ik ROBOT`: reads the file, derives the closed-form inverse kinematics, prints the
+/// derivation or the solver code; every failure is a message and status 1.
+fn ik(
+    path: &std::path::Path,
+    free: Option<String>,
+    format: OutputFormat,
+    explicit: bool,
+) -> ExitCode {
+    let fail = |m: String| {
+        eprintln!("error: {m}");
+        ExitCode::FAILURE
+    };
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) => return fail(format!("cannot read {}: {e}", path.display())),
+    };
+    let robot =
+        match dqsym::parse_robot(&text, &path.display().to_string(), &dqsym::eval_scalar_text) {
+            Ok(r) => r,
+            Err(e) => return fail(e.to_string()),
+        };
+    dqsym::reset_work();
+    let sol = match dqsym::ik::solve(&robot, &dqsym::ik::IkOptions { free }) {
+        Ok(s) => s,
+        Err(e) => return fail(e.to_string()),
+    };
+    let shorthand = !explicit;
+    let out = match format {
+        OutputFormat::Plain => dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Plain { shorthand }),
+        OutputFormat::Latex => dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Latex { shorthand }),
+        OutputFormat::Sympy => dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Sympy),
+        OutputFormat::Rust => dqsym::ik::ik_rust(&sol),
+        OutputFormat::C => dqsym::ik::ik_c(&sol),
+        OutputFormat::Python => dqsym::ik::ik_python(&sol),
+    };
+    match out {
+        Ok(t) => {
+            print!("{t}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(e.to_string()),
+    }
+}
+
+/// `dqsym walk ROBOT --ik`: the inverse kinematics derivation step by step.
+fn walk_ik(path: &std::path::Path, markdown: bool, html: bool, free: Option<String>) -> ExitCode {
+    let fail = |m: String| {
+        eprintln!("error: {m}");
+        ExitCode::FAILURE
+    };
+    if html {
+        return fail("walk --ik writes text or --markdown (no --html page yet)".into());
+    }
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) => return fail(format!("cannot read {}: {e}", path.display())),
+    };
+    let robot =
+        match dqsym::parse_robot(&text, &path.display().to_string(), &dqsym::eval_scalar_text) {
+            Ok(r) => r,
+            Err(e) => return fail(e.to_string()),
+        };
+    dqsym::reset_work();
+    let sol = match dqsym::ik::solve(&robot, &dqsym::ik::IkOptions { free }) {
+        Ok(s) => s,
+        Err(e) => return fail(e.to_string()),
+    };
+    match dqsym::ik::ik_walk(&robot, &sol, markdown) {
+        Ok(t) => {
+            print!("{t}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(e.to_string()),
     }
 }
 
@@ -329,6 +442,9 @@ fn fk(
         },
         OutputFormat::Sympy => dqsym::ReportFormat::Sympy,
         OutputFormat::Rust => dqsym::ReportFormat::Rust,
+        OutputFormat::C | OutputFormat::Python => {
+            return fail("--format c and --format python are for `dqsym ik` only".into())
+        }
     };
     // The fields were evaluated each with its own budget; the derivation gets a whole one.
     dqsym::reset_work();

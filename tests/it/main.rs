@@ -7,6 +7,7 @@ mod common;
 mod counts;
 mod dqr;
 mod emit;
+mod ik;
 mod kinematics;
 mod lang;
 mod laws;
