@@ -156,6 +156,18 @@ type Parts = Vec<(&'static str, crate::Expr)>;
 /// [`IkError::Unsupported`] naming the geometry found when no family applies;
 /// [`IkError::Option`] for a bad `--free`; [`IkError::Scalar`] when a limit is reached.
 pub fn solve(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkError> {
+    // A base frame, or joints coupled to another's variable (URDF mimic joints), leave the
+    // joints' own geometry: the axes are read from the whole pose instead.
+    let plain = robot.chain.base == crate::DualQuat::identity()
+        && robot.joint_values.len() == robot.variables.len()
+        && robot
+            .joint_values
+            .iter()
+            .zip(&robot.variables)
+            .all(|(x, v)| *x == Scalar::sym(v));
+    if !plain {
+        return solve_dq(&robot.name, &robot.forward(), &robot.variables, opts);
+    }
     plan::derive(robot, opts)
 }
 
