@@ -79,20 +79,20 @@ fn ik_dq_matrix(q: &[f64; 8]) -> [[f64; 4]; 4] {
 
 /// Every solution for the target pose `t` (row-major homogeneous matrix).
 #[allow(non_snake_case, unused_variables, clippy::too_many_arguments, clippy::excessive_precision, clippy::neg_multiply, clippy::double_parens, unused_parens)]
-pub fn ik(t: &[[f64; 4]; 4], a2: f64, a3: f64, d3: f64, d4: f64) -> IkSolutions {
-    let r11 = t[0][0];
-    let r12 = t[0][1];
-    let r13 = t[0][2];
-    let px = t[0][3];
-    let r21 = t[1][0];
-    let r22 = t[1][1];
-    let r23 = t[1][2];
-    let py = t[1][3];
-    let r31 = t[2][0];
-    let r32 = t[2][1];
-    let r33 = t[2][2];
-    let pz = t[2][3];
-    let mut out = IkSolutions {
+pub fn ik(ik_target: &[[f64; 4]; 4], a2: f64, a3: f64, d3: f64, d4: f64) -> IkSolutions {
+    let r11 = ik_target[0][0];
+    let r12 = ik_target[0][1];
+    let r13 = ik_target[0][2];
+    let px = ik_target[0][3];
+    let r21 = ik_target[1][0];
+    let r22 = ik_target[1][1];
+    let r23 = ik_target[1][2];
+    let py = ik_target[1][3];
+    let r31 = ik_target[2][0];
+    let r32 = ik_target[2][1];
+    let r33 = ik_target[2][2];
+    let pz = ik_target[2][3];
+    let mut ik_out = IkSolutions {
         q: [[0.0; 6]; IK_MAX],
         singular: [false; IK_MAX],
         approximate: [false; IK_MAX],
@@ -102,54 +102,54 @@ pub fn ik(t: &[[f64; 4]; 4], a2: f64, a3: f64, d3: f64, d4: f64) -> IkSolutions 
     let ik_theta1_a = (-py);
     let ik_theta1_b = px;
     let ik_theta1_c = d3;
-    let (n0, c0) = ik_trig(ik_theta1_a, ik_theta1_b, ik_theta1_c);
-    for &(theta1, sg0, ap0) in &c0[..n0] {
+    let (ik_n0, ik_c0) = ik_trig(ik_theta1_a, ik_theta1_b, ik_theta1_c);
+    for &(theta1, ik_sg0, ik_ap0) in &ik_c0[..ik_n0] {
         let (s_theta1, c_theta1) = theta1.sin_cos();
         // theta3: subproblem 3 (distance): joint 3 sets the wrist centre's distance from a point of axis 2, which joint 2 keeps
         let ik_theta3_a = (-(a2*a3));
         let ik_theta3_b = (a2*d4);
         let ik_theta3_c = (0.5*(a2.powi(2) + a3.powi(2) + d3.powi(2) + d4.powi(2) - px.powi(2) - py.powi(2) - pz.powi(2)));
-        let (n1, c1) = ik_trig(ik_theta3_a, ik_theta3_b, ik_theta3_c);
-        for &(theta3, sg1, ap1) in &c1[..n1] {
+        let (ik_n1, ik_c1) = ik_trig(ik_theta3_a, ik_theta3_b, ik_theta3_c);
+        for &(theta3, ik_sg1, ik_ap1) in &ik_c1[..ik_n1] {
             let (s_theta3, c_theta3) = theta3.sin_cos();
             // theta2: subproblem 1 (rotation): joint 2 turns the wrist centre onto the target's
             let ik_theta2_y = ((c_theta3*((a3*pz) - (d4*((px*c_theta1) + (py*s_theta1))))) + (a2*pz) - (s_theta3*((a3*((px*c_theta1) + (py*s_theta1))) + (d4*pz))));
             let ik_theta2_x = ((px*c_theta1*(a2 + (a3*c_theta3) - (d4*s_theta3))) + (py*s_theta1*(a2 + (a3*c_theta3) - (d4*s_theta3))) + (pz*((a3*s_theta3) + (d4*c_theta3))));
-            let (theta2, sg2) = ik_atan2(ik_theta2_y, ik_theta2_x);
-            let ap2 = false;
+            let (theta2, ik_sg2) = ik_atan2(ik_theta2_y, ik_theta2_x);
+            let ik_ap2 = false;
             let (s_theta2, c_theta2) = theta2.sin_cos();
             // theta5: subproblem 4 (height): R4 R5 R6 = R3ᵀ R2ᵀ R1ᵀ R; joint 4 keeps the component along axis 4 and joint 6 fixes k6, so k4·Rot(axis 5, theta) k6 = k4·(R456 k6)
             let ik_theta5_a = 1.0;
             let ik_theta5_b = 0.0;
             let ik_theta5_c = (-((theta2 + theta3).sin()*((r13*c_theta1) + (r23*s_theta1))) + (r33*(theta2 + theta3).cos()));
-            let (n3, c3) = ik_trig(ik_theta5_a, ik_theta5_b, ik_theta5_c);
-            for &(theta5, sg3, ap3) in &c3[..n3] {
+            let (ik_n3, ik_c3) = ik_trig(ik_theta5_a, ik_theta5_b, ik_theta5_c);
+            for &(theta5, ik_sg3, ik_ap3) in &ik_c3[..ik_n3] {
                 let (s_theta5, c_theta5) = theta5.sin_cos();
                 // theta4: subproblem 1 (rotation): joint 4 turns Rot(axis 5) k6 onto R456 k6
                 let ik_theta4_y = (s_theta5*((r13*s_theta1) - (r23*c_theta1)));
                 let ik_theta4_x = (-(s_theta5*(((theta2 + theta3).cos()*((r13*c_theta1) + (r23*s_theta1))) + (r33*(theta2 + theta3).sin()))));
-                let (theta4, sg4) = ik_atan2(ik_theta4_y, ik_theta4_x);
-                let ap4 = false;
+                let (theta4, ik_sg4) = ik_atan2(ik_theta4_y, ik_theta4_x);
+                let ik_ap4 = false;
                 let (s_theta4, c_theta4) = theta4.sin_cos();
                 // theta6: subproblem 1 (rotation): joint 6 turns a vector normal to axis 6 onto R5ᵀ R4ᵀ R456 of it
                 let ik_theta6_y = ((c_theta5*(-(c_theta4*(((theta2 + theta3).cos()*((r12*c_theta1) + (r22*s_theta1))) + (r32*(theta2 + theta3).sin()))) + (s_theta4*((r12*s_theta1) - (r22*c_theta1))))) + (s_theta5*(((theta2 + theta3).sin()*((r12*c_theta1) + (r22*s_theta1))) - (r32*(theta2 + theta3).cos()))));
                 let ik_theta6_x = (-(s_theta4*(((theta2 + theta3).cos()*((r12*c_theta1) + (r22*s_theta1))) + (r32*(theta2 + theta3).sin()))) + (c_theta4*(-(r12*s_theta1) + (r22*c_theta1))));
-                let (theta6, sg5) = ik_atan2(ik_theta6_y, ik_theta6_x);
-                let ap5 = false;
+                let (theta6, ik_sg5) = ik_atan2(ik_theta6_y, ik_theta6_x);
+                let ik_ap5 = false;
                 let (s_theta6, c_theta6) = theta6.sin_cos();
-                out.q[out.n] = [theta1, theta2, theta3, theta4, theta5, theta6];
-                out.singular[out.n] = sg0 || sg1 || sg2 || sg3 || sg4 || sg5;
-                out.approximate[out.n] = ap0 || ap1 || ap2 || ap3 || ap4 || ap5;
-                out.n += 1;
+                ik_out.q[ik_out.n] = [theta1, theta2, theta3, theta4, theta5, theta6];
+                ik_out.singular[ik_out.n] = ik_sg0 || ik_sg1 || ik_sg2 || ik_sg3 || ik_sg4 || ik_sg5;
+                ik_out.approximate[ik_out.n] = ik_ap0 || ik_ap1 || ik_ap2 || ik_ap3 || ik_ap4 || ik_ap5;
+                ik_out.n += 1;
             }
         }
     }
-    out
+    ik_out
 }
 
 /// Every solution for the target given as a unit dual quaternion `(w, x, y, z)` +
 /// eps `(w, x, y, z)`.
 #[allow(non_snake_case, clippy::too_many_arguments)]
-pub fn ik_dq(dq: &[f64; 8], a2: f64, a3: f64, d3: f64, d4: f64) -> IkSolutions {
-    ik(&ik_dq_matrix(dq), a2, a3, d3, d4)
+pub fn ik_dq(ik_q: &[f64; 8], a2: f64, a3: f64, d3: f64, d4: f64) -> IkSolutions {
+    ik(&ik_dq_matrix(ik_q), a2, a3, d3, d4)
 }
