@@ -19,8 +19,10 @@
 mod arith;
 pub(crate) mod atoms;
 mod calculus;
+pub(crate) use calculus::mode_angle;
 mod cs;
 mod ctx;
+mod decimal;
 mod frac;
 mod par;
 pub(crate) mod q;
@@ -31,6 +33,7 @@ pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
 pub(crate) use ctx::{charge, check_cancelled, max_exponent, term_limit};
 pub use ctx::{Context, Entered, DEFAULT_MAX_EXPONENT};
+pub use decimal::parse_decimal;
 pub use frac::Frac;
 pub(crate) use par::{join, par_map, with_own_budget};
 pub(crate) use q::Q;
