@@ -156,12 +156,11 @@ fn rnd(seed: &mut u64) -> f64 {
 
 /// The robot's pose matrix at `env` (every variable bound), entries evaluated from the exact
 /// matrix.
-fn pose_at(r: &Robot, m: &dqsym::Matrix4<dqsym::Scalar>, env: &[(String, f64)]) -> M {
-    let _ = r;
+fn pose_at(m: &dqsym::Matrix4<dqsym::Scalar>, env: &[(String, f64)]) -> M {
     let mut out = [[0.0; 4]; 4];
-    for i in 0..4 {
-        for k in 0..4 {
-            out[i][k] = m.rows[i][k]
+    for (row, exact) in out.iter_mut().zip(&m.rows) {
+        for (x, e) in row.iter_mut().zip(exact) {
+            *x = e
                 .eval(&|n| env.iter().find(|(a, _)| a == n).map(|(_, v)| *v))
                 .expect("bound");
         }
@@ -187,7 +186,7 @@ fn check_against_oracle(r: &Robot, joints: &[J], seed: u64) {
             env.iter().find(|(a, _)| *a == v).map_or(0.0, |(_, x)| *x)
         };
         let want = oracle(joints, &q);
-        for got in [pose_at(r, &m, &env), pose_at(r, &from_dq, &env)] {
+        for got in [pose_at(&m, &env), pose_at(&from_dq, &env)] {
             for i in 0..4 {
                 for k in 0..4 {
                     assert!(
