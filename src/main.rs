@@ -79,6 +79,8 @@ enum Command {
         /// With --ik: a joint variable given as a parameter.
         #[arg(long, value_name = "VARIABLE", requires = "ik")]
         free: Option<String>,
+        #[command(flatten)]
+        urdf: UrdfArgs,
     },
     /// Forward kinematics of a robot file (TOML: dh, mdh or screw convention; or URDF) in closed form:
     /// the unit DQ and the 4x4 matrix; with --point the image of a point, with --jacobian the
@@ -439,6 +441,7 @@ fn dispatch(cli: Cli) -> ExitCode {
                 config,
                 ik: true,
                 free,
+                ..
             }),
             _,
         ) => walk_ik(&file, markdown, html.is_some() || config.is_some(), free),
@@ -448,10 +451,11 @@ fn dispatch(cli: Cli) -> ExitCode {
                 markdown,
                 html,
                 config,
+                urdf,
                 ..
             }),
             _,
-        ) => walk(&file, markdown, html.as_deref(), config.as_deref()),
+        ) => walk(&file, markdown, html.as_deref(), config.as_deref(), &urdf),
         (None, Some(expr)) => one_liner(&expr, &opts, &limits),
         (None, None) => repl::run(&opts, &limits),
     }
@@ -661,6 +665,7 @@ fn walk(
     markdown: bool,
     html: Option<&std::path::Path>,
     config: Option<&str>,
+    urdf: &UrdfArgs,
 ) -> ExitCode {
     let fail = |m: String| {
         eprintln!("error: {m}");
@@ -672,7 +677,7 @@ fn walk(
     };
     let name = path.display().to_string();
     let w = if is_urdf(path) {
-        match load_robot(path, &UrdfArgs::default()) {
+        match load_robot(path, urdf) {
             Ok(r) => dqsym::walk_robot_chain(&r),
             Err(m) => return fail(m),
         }

@@ -156,8 +156,7 @@ fn rnd(seed: &mut u64) -> f64 {
 
 /// The robot's pose matrix at `env` (every variable bound), entries evaluated from the exact
 /// matrix.
-fn pose_at(r: &Robot, m: &dqsym::Matrix4<dqsym::Scalar>, env: &[(String, f64)]) -> M {
-    let _ = r;
+fn pose_at(m: &dqsym::Matrix4<dqsym::Scalar>, env: &[(String, f64)]) -> M {
     let mut out = [[0.0; 4]; 4];
     for (row, exact) in out.iter_mut().zip(&m.rows) {
         for (x, e) in row.iter_mut().zip(exact) {
@@ -187,7 +186,7 @@ fn check_against_oracle(r: &Robot, joints: &[J], seed: u64) {
             env.iter().find(|(a, _)| *a == v).map_or(0.0, |(_, x)| *x)
         };
         let want = oracle(joints, &q);
-        for got in [pose_at(r, &m, &env), pose_at(r, &from_dq, &env)] {
+        for got in [pose_at(&m, &env), pose_at(&from_dq, &env)] {
             for i in 0..4 {
                 for k in 0..4 {
                     assert!(
@@ -736,4 +735,122 @@ fn bad_urdf_files_have_clear_messages() {
             }
         );
     });
+}
+
+/// The recurrence (forced with a term limit of 1) of robots with base and tool frames and with
+/// coupled joints: every DQ component, matrix entry and Jacobian entry equals the expanded one.
+#[test]
+fn recurrence_with_frames_and_coupled_joints_matches_the_expansion() {
+    let mut joints = vec![
+        j("a1", "revolute", "w", "a", ["0.1", "0", "0.25"], Z, AZ),
+        j(
+            "a2",
+            "revolute",
+            "a",
+            "b",
+            ["0.3", "0", "0"],
+            ["1.5707963268", "0", "0"],
+            AZ,
+        ),
+        j(
+            "a3",
+            "revolute",
+            "b",
+            "c",
+            ["0", "0.2", "0"],
+            Z,
+            ["0", "1", "0"],
+        ),
+        j(
+            "flange",
+            "fixed",
+            "c",
+            "t",
+            ["0", "0", "0.12"],
+            ["0", "0", "0.7853981634"],
+            AZ,
+        ),
+    ];
+    joints[2].mimic = Some(("a1", "3", "0"));
+    let coupled = read("coupled", &joints, &UrdfOptions::default()).robot;
+    let framed = parse_robot(
+        "convention = \"dh\"\n[base]\nxyz = [0.5, 0, 0.1]\nrpy = [0, 0, \"pi/3\"]\n[tool]\nxyz = [0, 0, 0.107]\nrpy = [\"pi/2\", 0, 0]\n\
+         [[joint]]\ntype = \"revolute\"\ntheta = \"q1\"\nd = 0.333\na = 0\nalpha = \"-pi/2\"\n\
+         [[joint]]\ntype = \"prismatic\"\ntheta = 0\nd = \"d2\"\na = 0.0825\nalpha = 0\n",
+        "framed.toml",
+        &eval_scalar_text,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    for r in [&coupled, &framed] {
+        let o = FkOptions {
+            format: dqsym::ReportFormat::Sympy,
+            jacobian: true,
+            max_terms: 1,
+            ..FkOptions::default()
+        };
+        let entries = dqsym::fk_recurrence(r, &o).expect("a recurrence");
+        let q = r.forward();
+        let m = r.forward_matrix();
+        let vars: Vec<&str> = r.variables.iter().map(String::as_str).collect();
+        let jac = dqsym::dq_jacobian(&q, &vars);
+        let mut seed = 5;
+        let env: Vec<(String, f64)> = r
+            .variables
+            .iter()
+            .map(|v| (v.clone(), rnd(&mut seed)))
+            .collect();
+        let vals = crate::recurrence::evaluate(&entries, &env);
+        let ev = |x: &dqsym::Scalar| {
+            x.eval(&|n| env.iter().find(|(a, _)| a == n).map(|(_, v)| *v))
+                .unwrap()
+        };
+        let close = |got: f64, want: f64, what: &str| {
+            assert!(
+                (got - want).abs() < 1e-9,
+                "{}: {what} {got} != {want}",
+                r.name
+            )
+        };
+        for (k, c) in q.components().iter().enumerate() {
+            close(vals[&format!("dq_{k}")], ev(c), &format!("dq[{k}]"));
+        }
+        for i in 0..3 {
+            for k in 0..4 {
+                close(
+                    vals[&format!("T_{i}_{k}")],
+                    ev(&m.rows[i][k]),
+                    &format!("T[{i}][{k}]"),
+                );
+            }
+        }
+        for (k, row) in jac.iter().enumerate() {
+            for (c, x) in row.iter().enumerate() {
+                close(vals[&format!("J_{k}_{c}")], ev(x), &format!("J[{k}][{c}]"));
+            }
+        }
+    }
+}
+
+/// RTB's 10-joint chains (Ball, Coil, Hyper3d class: DH links with a = d = 1, alpha = pi/2)
+/// at the default fk limit: the report is the recurrence, small.
+#[test]
+fn ten_joint_numeric_chain_reports_a_small_recurrence_at_the_default_limit() {
+    let mut text = String::from("name = \"coil\"\nconvention = \"dh\"\n");
+    for i in 1..=10 {
+        text += &format!(
+            "[[joint]]\ntype = \"revolute\"\ntheta = \"q{i}\"\nd = 1\na = 1\nalpha = \"pi/2\"\n"
+        );
+    }
+    let r = parse_robot(&text, "coil.toml", &eval_scalar_text).unwrap();
+    let report = fk_report(
+        &r,
+        &FkOptions {
+            jacobian: true,
+            max_terms: 5_000,
+            ..FkOptions::default()
+        },
+    )
+    .expect("a report at the default limit");
+    assert!(report.contains("as a recurrence"), "{}", &report[..200]);
+    assert!(report.len() <= 100_000, "{} bytes", report.len());
 }
