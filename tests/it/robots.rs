@@ -53,7 +53,14 @@ pub(crate) fn numeric_chain(r: &Robot, env: &[(String, f64)]) -> Chain<f64> {
             Joint::new(j.kind, g)
         })
         .collect();
+    // The base and tool frames, evaluated component by component.
+    let dq = |q: &dqsym::DualQuat<Scalar>| {
+        let c = q.components();
+        dqsym::DualQuat::from_components(std::array::from_fn(|k| f(&c[k])))
+    };
     Chain::new(joints)
+        .with_base(dq(&r.chain.base))
+        .with_tool(dq(&r.chain.tool))
 }
 
 /// The pose matrix of `r` at `env` from the f64 chain (joints not bound are 0).
