@@ -156,6 +156,7 @@ fn rnd(seed: &mut u64) -> f64 {
 
 /// The robot's pose matrix at `env` (every variable bound), entries evaluated from the exact
 /// matrix.
+#[allow(clippy::needless_range_loop)] // rows and columns of a 4 x 4 matrix, by index
 fn pose_at(r: &Robot, m: &dqsym::Matrix4<dqsym::Scalar>, env: &[(String, f64)]) -> M {
     let _ = r;
     let mut out = [[0.0; 4]; 4];
