@@ -283,6 +283,7 @@ pub(crate) fn derive(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkEr
 }
 
 /// The derivation from the axes and the home pose.
+#[allow(clippy::needless_range_loop)] // rows and columns of a 3 x 4 block, by index
 pub(crate) fn derive_axes(
     name: &str,
     variables: &[String],
