@@ -37,12 +37,17 @@ fn numeric_chain(robot: &Robot, env: &[(String, f64)]) -> Result<Chain<f64>, Sca
         };
         joints.push(Joint::new(j.kind, g));
     }
-    let tool = robot.chain.tool.components();
-    let mut t = [0.0; 8];
-    for (o, c) in t.iter_mut().zip(&tool) {
-        *o = num(c, env)?;
-    }
-    Ok(Chain::new(joints).with_tool(crate::DualQuat::from_components(t)))
+    let dq = |q: &crate::DualQuat<Scalar>| -> Result<crate::DualQuat<f64>, ScalarError> {
+        let c = q.components();
+        let mut t = [0.0; 8];
+        for (o, c) in t.iter_mut().zip(&c) {
+            *o = num(c, env)?;
+        }
+        Ok(crate::DualQuat::from_components(t))
+    };
+    Ok(Chain::new(joints)
+        .with_base(dq(&robot.chain.base)?)
+        .with_tool(dq(&robot.chain.tool)?))
 }
 
 /// The walkthrough of a derived inverse kinematics; `markdown` writes LaTeX in `$...$`.
