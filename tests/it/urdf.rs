@@ -158,15 +158,13 @@ fn rnd(seed: &mut u64) -> f64 {
 /// matrix.
 fn pose_at(r: &Robot, m: &dqsym::Matrix4<dqsym::Scalar>, env: &[(String, f64)]) -> M {
     let _ = r;
-    let mut out = [[0.0; 4]; 4];
-    for i in 0..4 {
-        for k in 0..4 {
-            out[i][k] = m.rows[i][k]
+    std::array::from_fn(|i| {
+        std::array::from_fn(|k| {
+            m.rows[i][k]
                 .eval(&|n| env.iter().find(|(a, _)| a == n).map(|(_, v)| *v))
-                .expect("bound");
-        }
-    }
-    out
+                .expect("bound")
+        })
+    })
 }
 
 /// Checks `r` (whose variables are the joints named in `names`, URDF order) against the
