@@ -34,8 +34,8 @@ pub use lang::{
     CONSTANTS, MAX_EXPONENT,
 };
 pub use print::{
-    fk_recurrence, fk_report, legend, ops_tables, plain, plain_quotient, shorthand_name, FkOptions,
-    PlainOptions, ReportError, ReportFormat,
+    fk_entries, fk_recurrence, fk_report, legend, ops_tables, plain, plain_quotient,
+    shorthand_name, FkEntries, FkOptions, PlainOptions, ReportError, ReportFormat,
 };
 pub use ring::Ring;
 pub use scalar::{

@@ -100,6 +100,34 @@ pub enum ReportError {
 /// `NAME = EXPR` with these additional names, and the code formats compute the recurrence as
 /// straight-line code, its entries as locals.
 pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
+    let entries = fk_entries(robot, o)?;
+    if !entries.recurrence {
+        return render(robot, &entries.sections, o.format, &[]);
+    }
+    let notes = [format!(
+        "the expanded pose exceeds {} terms per entry: it is given exactly, as a recurrence over the joint factors (entry X[k] is the symbol X_k of later entries)",
+        o.max_terms
+    )];
+    render(robot, &entries.sections, o.format, &notes)
+}
+
+/// The entries of [`fk_report`] before any formatting (`o.format` is not read), for callers
+/// that take closed forms rather than text (the Python package).
+#[derive(Clone, Debug)]
+pub struct FkEntries {
+    /// Titled sections of `(name, closed form)` rows, named as in the report: `dq[k]`,
+    /// `T[i][j]`, `p[i]`, `J[i][j]`, and for a recurrence `L{i}[k]`, `Q{i}[k]`, ...
+    pub sections: Vec<(String, Vec<(String, Expr)>)>,
+    /// Whether the pose is a recurrence over the joint factors (the expansion exceeded
+    /// `o.max_terms`): entry `X[k]` is then the symbol `X_k` of the entries after it.
+    pub recurrence: bool,
+}
+
+/// The closed forms of [`fk_report`], section by section.
+///
+/// # Errors
+/// As [`fk_report`].
+pub fn fk_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError> {
     // Two pipelines side by side: the DQ product, then its components in closed form; the
     // matrix (the product of the joint factors' matrices, which does not wait for the DQ),
     // then its entries. Then the point and the Jacobian, every distinct entry once, in
@@ -122,7 +150,10 @@ pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
         },
     );
     let Some((q, dq_forms, prepared)) = pose else {
-        return recurrence_report(robot, o);
+        return Ok(FkEntries {
+            sections: recurrence_sections(robot, o)?,
+            recurrence: true,
+        });
     };
     // The matrix fits whenever the DQ does; computed here only if the limit cut it short.
     let (t_forms, m) = match matrix {
@@ -216,7 +247,13 @@ pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
             rows.push(row);
         }
     }
-    render(robot, &sections, o.format, &[])
+    Ok(FkEntries {
+        sections: sections
+            .into_iter()
+            .map(|(t, rows)| (t.to_owned(), rows))
+            .collect(),
+        recurrence: false,
+    })
 }
 
 /// Rows 0..2 of a matrix, row by row.
@@ -282,16 +319,6 @@ fn render<S: AsRef<str>>(
             out
         }
     })
-}
-
-/// The pose as a recurrence over the joint factors (see [`fk_report`]).
-fn recurrence_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
-    let sections = recurrence_sections(robot, o)?;
-    let notes = [format!(
-        "the expanded pose exceeds {} terms per entry: it is given exactly, as a recurrence over the joint factors (entry X[k] is the symbol X_k of later entries)",
-        o.max_terms
-    )];
-    render(robot, &sections, o.format, &notes)
 }
 
 /// The report's sections as one generated function: `dq` (8), `t` (3 x 4), `p` (3) and `j`

@@ -4,7 +4,7 @@ mod fk;
 mod plain;
 mod recurrence;
 
-pub use fk::{fk_report, ops_tables, FkOptions, ReportError, ReportFormat};
+pub use fk::{fk_entries, fk_report, ops_tables, FkEntries, FkOptions, ReportError, ReportFormat};
 pub(crate) use plain::angle_text;
 pub use plain::{legend, plain, plain_quotient, shorthand_name, PlainOptions};
 pub use recurrence::fk_recurrence;
