@@ -9,31 +9,31 @@ use pyo3::exceptions::{PyException, PyKeyboardInterrupt};
 use pyo3::prelude::*;
 
 create_exception!(
-    _dqsym,
+    dqsym,
     DqsymError,
     PyException,
     "An error of dqsym: bad input or a limit."
 );
 create_exception!(
-    _dqsym,
+    dqsym,
     ParseError,
     DqsymError,
     "Text that is not a dqsym statement (line and column in `line`, `column`)."
 );
 create_exception!(
-    _dqsym,
+    dqsym,
     EvalError,
     DqsymError,
     "A statement that cannot be evaluated (line and column in `line`, `column`)."
 );
 create_exception!(
-    _dqsym,
+    dqsym,
     LimitError,
     EvalError,
     "A limit was reached: the term limit, the work budget, the exponent limit."
 );
 create_exception!(
-    _dqsym,
+    dqsym,
     RobotError,
     DqsymError,
     "A robot file that cannot be read (file, joint and field where known)."

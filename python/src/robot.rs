@@ -310,7 +310,13 @@ impl Robot {
         let module_name = CString::new("dqsym_generated").unwrap_or_default();
         let m = PyModule::from_code(py, &code, &file, &module_name)?;
         let f = m.getattr(name.as_str())?;
+        let args: Vec<String> = src
+            .lines()
+            .find_map(|l| l.strip_prefix("def ")?.split_once('(')?.1.split_once(')'))
+            .map(|(a, _)| a.split(',').map(|s| s.trim().to_owned()).filter(|s| !s.is_empty()).collect())
+            .unwrap_or_default();
         f.setattr("source", src)?;
+        f.setattr("args", args)?;
         Ok(f.unbind())
     }
 
@@ -318,14 +324,6 @@ impl Robot {
     #[pyo3(signature = (jacobian=false, point=None))]
     fn numpy_function(&self, py: Python<'_>, jacobian: bool, point: Option<&Bound<'_, PyAny>>) -> PyResult<PyObject> {
         self.lambdify(py, jacobian, point)
-    }
-
-    /// The arguments of the generated NumPy function, in order.
-    #[getter]
-    fn numpy_args(&self) -> Vec<String> {
-        let mut a = self.robot.variables.clone();
-        a.extend(self.robot.parameters());
-        a
     }
 
     /// The derivation step by step (`dqsym walk`): factors in words, products, the check

@@ -55,7 +55,7 @@ impl Output {
             .map_err(|e| errors::other(py, e.to_string()))?;
         // An expression label comes as a `% label` comment line, which display math cannot hold.
         let body: Vec<&str> = t.lines().filter(|l| !l.starts_with('%')).collect();
-        Ok(format!("$\\displaystyle {}$", body.join(" ")))
+        Ok(format!("$\\displaystyle {}$", body.join("\n")))
     }
 
     fn __repr__(&self, py: Python<'_>) -> PyResult<String> {

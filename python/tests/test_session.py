@@ -81,7 +81,7 @@ def test_bindings_take_sympy_values():
     assert s.eval("k*3") == t + 6
     assert s.eval("M*M") == Matrix([[1, 2 * t], [0, 1]])
     assert s.eval("Q*conj(Q)") == Quaternion(30, 0, 0, 0)
-    assert sorted(s.keys()) == ["M", "Q", "k", "p", "q"]
+    assert sorted(s.keys()) == ["M", "Q", "ans", "k", "p", "q"]
     # Keyword bindings, and a sympy symbol named like a session variable stays a symbol.
     assert dqsym.evaluate("a + b", a=Symbol("b"), b=sqrt(2)) == Symbol("b") + sqrt(2)
 
@@ -114,7 +114,7 @@ def test_dq_arithmetic_is_the_engines_and_matches_numbers():
         dual = quat_mul(na[:4], nb[4:]) + quat_mul(na[4:], nb[:4])
         got = np.array([float(c.subs(vals)) for c in ab])
         assert np.allclose(got, np.concatenate([real, dual]))
-    assert a.cconj() * a == dqsym.DQ(1, 0, 0, 0, 0, 0, 0, 0)
+    assert a.conj() * a == dqsym.DQ(1, 0, 0, 0, 0, 0, 0, 0)
     m = ab.matrix()
     assert isinstance(m, sympy.MatrixBase) and m.shape == (4, 4)
     assert a.real == Quaternion(*a.components[:4])
@@ -160,7 +160,7 @@ def test_limits_are_errors_as_in_the_cli():
 def test_outputs_show_the_projects_latex_which_katex_renders():
     s = dqsym.Session()
     outs = s.run(
-        "syms l1 l2\nq = rot((1, 0, 0), theta1, (0, l1, 0))\nM = matrix(q)\n"
+        "syms l1 l2 theta1 theta2\nq = rot((1, 0, 0), theta1, (0, l1, 0))\nM = matrix(q)\n"
         "v = transform(q, (0, l1 + l2, 0))\nc = cos(theta1 + theta2)"
     )
     for o in outs:
