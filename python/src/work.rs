@@ -10,7 +10,7 @@
 //! and hands back both the worker's result and the interruption, so that the caller can keep
 //! its state consistent before raising.
 
-use pyo3::exceptions::PyRuntimeError;
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError};
 use pyo3::prelude::*;
 use std::panic::AssertUnwindSafe;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -117,13 +117,21 @@ where
             if let Some(c) = cancel {
                 c.store(true, Ordering::Relaxed);
             }
-            interrupted = Some(e);
+            interrupted = Some(if e.is_instance_of::<PyKeyboardInterrupt>(py) {
+                PyKeyboardInterrupt::new_err(
+                    "dqsym: interrupted; the session's bindings are as before the statement",
+                )
+            } else {
+                e
+            });
             // The evaluator stops soon after the flag is set; work that does not poll it is
             // bounded by the work budget.
-            match py.allow_threads(|| wait(&slot, None)) {
-                Some(r) => break r,
-                None => unreachable!("wait without a timeout returns the result"),
-            }
+            let r = py.allow_threads(|| loop {
+                if let Some(r) = wait(&slot, None) {
+                    return r;
+                }
+            });
+            break r;
         }
     };
     if let Some(c) = cancel {
