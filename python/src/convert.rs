@@ -159,10 +159,36 @@ impl<'py> ToSympy<'py> {
                     parts.push(self.mul.call1((self.small(&angle.pi)?, self.pi.clone()))?);
                 }
                 let arg = self.add.call1(PyTuple::new(self.py, parts)?)?;
-                if *sin {
-                    self.sin.call1((arg,))?
-                } else {
-                    self.cos.call1((arg,))?
+                // SymPy's `cos(arg)` spends milliseconds on a cold cache looking for multiples
+                // of pi and imaginary parts. An angle without pi and with a symbol has neither,
+                // and the only rewrite SymPy would make is the sign: done here the same way
+                // (`could_extract_minus_sign`), then built unevaluated. The result is the same
+                // tree as the evaluated call (a test compares with `sympify` structurally).
+                let plain = *angle.pi.numer() == 0
+                    && angle
+                        .terms
+                        .iter()
+                        .any(|(s, _)| !matches!(s.name(), "1" | "pi"));
+                if !plain {
+                    return Ok(if *sin {
+                        self.sin.call1((arg,))?
+                    } else {
+                        self.cos.call1((arg,))?
+                    });
+                }
+                let kw = PyDict::new(self.py);
+                kw.set_item("evaluate", false)?;
+                let negate = arg
+                    .call_method0("could_extract_minus_sign")?
+                    .extract::<bool>()?;
+                let arg = if negate { arg.neg()? } else { arg };
+                match (*sin, negate) {
+                    (false, _) => self.cos.call((arg,), Some(&kw))?,
+                    (true, false) => self.sin.call((arg,), Some(&kw))?,
+                    (true, true) => {
+                        let s = self.sin.call((arg,), Some(&kw))?;
+                        self.mul.call1((self.minus_one.clone(), s))?
+                    }
                 }
             }
             Expr::Add(v) => {
@@ -198,7 +224,7 @@ impl<'py> ToSympy<'py> {
     pub(crate) fn matrix(&mut self, rows: &[Vec<Expr>]) -> PyResult<Bound<'py, PyAny>> {
         let rows = rows
             .iter()
-            .map(|r| Ok(PyList::new(self.py, self.exprs(r)?)?))
+            .map(|r| PyList::new(self.py, self.exprs(r)?))
             .collect::<PyResult<Vec<_>>>()?;
         self.sympy
             .getattr("Matrix")?
@@ -411,7 +437,9 @@ impl<'py> FromPython<'py> {
     pub(crate) fn value(&self, x: &Bound<'py, PyAny>, what: &str) -> PyResult<Value> {
         if x.is_instance(&self.dq)? {
             let c: Vec<Bound<'py, PyAny>> = x.getattr("components")?.extract()?;
-            return Ok(Value::DualQuat(DualQuat::from_components(self.array(&c, what)?)));
+            return Ok(Value::DualQuat(DualQuat::from_components(
+                self.array(&c, what)?,
+            )));
         }
         if x.is_instance(&self.quaternion)? {
             let c: Vec<Bound<'py, PyAny>> = ["a", "b", "c", "d"]
@@ -425,7 +453,12 @@ impl<'py> FromPython<'py> {
             if r == 0 || c == 0 {
                 return Err(PyValueError::new_err(format!("{what}: an empty matrix")));
             }
-            let cells: Vec<Bound<'py, PyAny>> = x.call_method0("tolist")?.extract::<Vec<Vec<_>>>()?.into_iter().flatten().collect();
+            let cells: Vec<Bound<'py, PyAny>> = x
+                .call_method0("tolist")?
+                .extract::<Vec<Vec<_>>>()?
+                .into_iter()
+                .flatten()
+                .collect();
             let cells = cells
                 .iter()
                 .map(|e| self.scalar(e, what))
@@ -434,11 +467,15 @@ impl<'py> FromPython<'py> {
             if (r, c) == (3, 1) {
                 return Ok(Value::Vector(self.array3(cells)));
             }
-            return Ok(Value::Matrix(cells.chunks(c).map(<[Scalar]>::to_vec).collect()));
+            return Ok(Value::Matrix(
+                cells.chunks(c).map(<[Scalar]>::to_vec).collect(),
+            ));
         }
         if x.is_instance_of::<PyTuple>() || x.is_instance_of::<PyList>() {
             let items: Vec<Bound<'py, PyAny>> = x.extract()?;
-            if items.iter().all(|i| i.is_instance_of::<PyList>() || i.is_instance_of::<PyTuple>())
+            if items
+                .iter()
+                .all(|i| i.is_instance_of::<PyList>() || i.is_instance_of::<PyTuple>())
                 && !items.is_empty()
             {
                 // A list of rows.
@@ -447,7 +484,9 @@ impl<'py> FromPython<'py> {
             }
             return match items.len() {
                 3 => Ok(Value::Vector(self.array(&items, what)?)),
-                4 => Ok(Value::Quat(Quat::from_components(self.array(&items, what)?))),
+                4 => Ok(Value::Quat(Quat::from_components(
+                    self.array(&items, what)?,
+                ))),
                 8 => Ok(Value::DualQuat(DualQuat::from_components(
                     self.array(&items, what)?,
                 ))),
@@ -460,13 +499,20 @@ impl<'py> FromPython<'py> {
         Ok(Value::Scalar(self.scalar(x, what)?))
     }
 
-    fn array<const N: usize>(&self, items: &[Bound<'py, PyAny>], what: &str) -> PyResult<[Scalar; N]> {
+    fn array<const N: usize>(
+        &self,
+        items: &[Bound<'py, PyAny>],
+        what: &str,
+    ) -> PyResult<[Scalar; N]> {
         let v = items
             .iter()
             .map(|e| self.scalar(e, what))
             .collect::<PyResult<Vec<_>>>()?;
         v.try_into().map_err(|v: Vec<Scalar>| {
-            PyValueError::new_err(format!("{what}: expected {N} components, found {}", v.len()))
+            PyValueError::new_err(format!(
+                "{what}: expected {N} components, found {}",
+                v.len()
+            ))
         })
     }
 

@@ -61,10 +61,22 @@ pub(crate) fn parse_error(py: Python<'_>, e: &LibParseError) -> PyErr {
         py,
         e.rendered().to_owned(),
         &[
-            ("message", e.message().into_pyobject(py).unwrap().into_any().unbind()),
-            ("line", e.line().into_pyobject(py).unwrap().into_any().unbind()),
-            ("column", e.col().into_pyobject(py).unwrap().into_any().unbind()),
-            ("rendered", e.rendered().into_pyobject(py).unwrap().into_any().unbind()),
+            (
+                "message",
+                e.message().into_pyobject(py).unwrap().into_any().unbind(),
+            ),
+            (
+                "line",
+                e.line().into_pyobject(py).unwrap().into_any().unbind(),
+            ),
+            (
+                "column",
+                e.col().into_pyobject(py).unwrap().into_any().unbind(),
+            ),
+            (
+                "rendered",
+                e.rendered().into_pyobject(py).unwrap().into_any().unbind(),
+            ),
         ],
     )
 }
@@ -93,10 +105,21 @@ pub(crate) fn eval_error(py: Python<'_>, e: &LibEvalError, src: &str) -> PyErr {
         )
     };
     let attrs = [
-        ("message", e.message().into_pyobject(py).unwrap().into_any().unbind()),
+        (
+            "message",
+            e.message().into_pyobject(py).unwrap().into_any().unbind(),
+        ),
         ("line", line),
         ("column", col),
-        ("rendered", rendered.as_str().into_pyobject(py).unwrap().into_any().unbind()),
+        (
+            "rendered",
+            rendered
+                .as_str()
+                .into_pyobject(py)
+                .unwrap()
+                .into_any()
+                .unbind(),
+        ),
     ];
     match e.kind() {
         EvalErrorKind::Scalar(s) if is_limit(s) => with_attrs::<LimitError>(py, rendered, &attrs),
@@ -108,7 +131,15 @@ pub(crate) fn eval_error(py: Python<'_>, e: &LibEvalError, src: &str) -> PyErr {
 pub(crate) fn scalar_error(py: Python<'_>, e: &ScalarError) -> PyErr {
     let message = e.to_string();
     let attrs = [
-        ("message", message.as_str().into_pyobject(py).unwrap().into_any().unbind()),
+        (
+            "message",
+            message
+                .as_str()
+                .into_pyobject(py)
+                .unwrap()
+                .into_any()
+                .unbind(),
+        ),
         ("line", py.None()),
         ("column", py.None()),
     ];
@@ -180,7 +211,15 @@ pub(crate) fn other(py: Python<'_>, message: String) -> PyErr {
         py,
         format!("error: {message}"),
         &[
-            ("message", message.as_str().into_pyobject(py).unwrap().into_any().unbind()),
+            (
+                "message",
+                message
+                    .as_str()
+                    .into_pyobject(py)
+                    .unwrap()
+                    .into_any()
+                    .unbind(),
+            ),
             ("line", py.None()),
             ("column", py.None()),
         ],
@@ -219,10 +258,26 @@ pub(crate) fn rendered(py: Python<'_>, rendered: String) -> PyErr {
         py,
         rendered.clone(),
         &[
-            ("message", message.as_str().into_pyobject(py).unwrap().into_any().unbind()),
+            (
+                "message",
+                message
+                    .as_str()
+                    .into_pyobject(py)
+                    .unwrap()
+                    .into_any()
+                    .unbind(),
+            ),
             ("line", num(pos.map(|p| p.0))),
             ("column", num(pos.map(|p| p.1))),
-            ("rendered", rendered.as_str().into_pyobject(py).unwrap().into_any().unbind()),
+            (
+                "rendered",
+                rendered
+                    .as_str()
+                    .into_pyobject(py)
+                    .unwrap()
+                    .into_any()
+                    .unbind(),
+            ),
         ],
     )
 }

@@ -7,11 +7,14 @@ use crate::errors;
 use crate::walk::Walkthrough;
 use crate::work::{self, Limits};
 use dqsym::{Convention, FkEntries, FkOptions, ReportFormat, Scalar, Value};
-use pyo3::exceptions::{PyValueError};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyModule};
 use std::ffi::CString;
 use std::sync::Arc;
+
+/// What a derivation was asked for: the Jacobian, and the point.
+type CacheKey = (bool, Option<[Scalar; 3]>);
 
 /// A robot read from a file: its joints with symbolic variables.
 #[pyclass(module = "dqsym")]
@@ -22,15 +25,10 @@ pub(crate) struct Robot {
     file: String,
     limits: Limits,
     /// The last derivation, by (Jacobian, point): fk() and fk_matrix() share one.
-    cache: Option<((bool, Option<[Scalar; 3]>), Arc<FkEntries>)>,
+    cache: Option<(CacheKey, Arc<FkEntries>)>,
 }
 
-fn read_robot(
-    py: Python<'_>,
-    text: &str,
-    file: &str,
-    limits: Limits,
-) -> PyResult<dqsym::Robot> {
+fn read_robot(py: Python<'_>, text: &str, file: &str, limits: Limits) -> PyResult<dqsym::Robot> {
     let (t, f) = (text.to_owned(), file.to_owned());
     let (r, interrupted) = work::run(py, limits, None, move || {
         dqsym::parse_robot(&t, &f, &|field: &str| {
@@ -58,7 +56,11 @@ impl Robot {
     }
 
     /// The point argument: None (the file's tool), a "x, y, z" string, or three values.
-    fn point_arg(&self, py: Python<'_>, p: Option<&Bound<'_, PyAny>>) -> PyResult<Option<[Scalar; 3]>> {
+    fn point_arg(
+        &self,
+        py: Python<'_>,
+        p: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Option<[Scalar; 3]>> {
         let Some(p) = p else {
             return Ok(self.robot.tool.clone());
         };
@@ -146,10 +148,14 @@ impl Robot {
     /// the pose is a recurrence, see `entries`).
     #[staticmethod]
     #[pyo3(signature = (path, term_limit=Limits::FK.term_limit, work_budget=Limits::FK.work_budget))]
-    fn from_file(py: Python<'_>, path: std::path::PathBuf, term_limit: usize, work_budget: u64) -> PyResult<Robot> {
-        let text = std::fs::read_to_string(&path).map_err(|e| {
-            errors::other(py, format!("cannot read {}: {e}", path.display()))
-        })?;
+    fn from_file(
+        py: Python<'_>,
+        path: std::path::PathBuf,
+        term_limit: usize,
+        work_budget: u64,
+    ) -> PyResult<Robot> {
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| errors::other(py, format!("cannot read {}: {e}", path.display())))?;
         Robot::new(
             py,
             &text,
@@ -165,7 +171,13 @@ impl Robot {
     /// Reads a robot from the text of a TOML robot file; `name` stands for the file in messages.
     #[staticmethod]
     #[pyo3(signature = (text, name="<string>", term_limit=Limits::FK.term_limit, work_budget=Limits::FK.work_budget))]
-    fn from_toml(py: Python<'_>, text: &str, name: &str, term_limit: usize, work_budget: u64) -> PyResult<Robot> {
+    fn from_toml(
+        py: Python<'_>,
+        text: &str,
+        name: &str,
+        term_limit: usize,
+        work_budget: u64,
+    ) -> PyResult<Robot> {
         Robot::new(
             py,
             text,
@@ -209,7 +221,10 @@ impl Robot {
     /// The forward kinematics: the unit dual quaternion (a `dqsym.DQ`) in closed form.
     fn fk(&mut self, py: Python<'_>) -> PyResult<PyObject> {
         let e = self.expanded(py, false, None)?;
-        let rows: Vec<dqsym::Expr> = Robot::rows(&e, "dq").into_iter().map(|(_, x)| x.clone()).collect();
+        let rows: Vec<dqsym::Expr> = Robot::rows(&e, "dq")
+            .into_iter()
+            .map(|(_, x)| x.clone())
+            .collect();
         Ok(ToSympy::new(py)?.dual_quat(&rows)?.unbind())
     }
 
@@ -217,8 +232,12 @@ impl Robot {
     /// the product of the joint factors' matrices, as `dqsym fk` prints it.
     fn fk_matrix(&mut self, py: Python<'_>) -> PyResult<PyObject> {
         let e = self.expanded(py, false, None)?;
-        let cells: Vec<dqsym::Expr> = Robot::rows(&e, "T").into_iter().map(|(_, x)| x.clone()).collect();
-        let mut rows: Vec<Vec<dqsym::Expr>> = cells.chunks(4).map(<[dqsym::Expr]>::to_vec).collect();
+        let cells: Vec<dqsym::Expr> = Robot::rows(&e, "T")
+            .into_iter()
+            .map(|(_, x)| x.clone())
+            .collect();
+        let mut rows: Vec<Vec<dqsym::Expr>> =
+            cells.chunks(4).map(<[dqsym::Expr]>::to_vec).collect();
         let num = |n: i64| dqsym::Expr::Num(num_rational::BigRational::from_integer(n.into()));
         rows.push(vec![num(0), num(0), num(0), num(1)]);
         Ok(ToSympy::new(py)?.matrix(&rows)?.unbind())
@@ -229,7 +248,10 @@ impl Robot {
     fn jacobian(&mut self, py: Python<'_>) -> PyResult<PyObject> {
         let e = self.expanded(py, true, None)?;
         let n = self.robot.variables.len().max(1);
-        let cells: Vec<dqsym::Expr> = Robot::rows(&e, "J").into_iter().map(|(_, x)| x.clone()).collect();
+        let cells: Vec<dqsym::Expr> = Robot::rows(&e, "J")
+            .into_iter()
+            .map(|(_, x)| x.clone())
+            .collect();
         let rows: Vec<Vec<dqsym::Expr>> = cells.chunks(n).map(<[dqsym::Expr]>::to_vec).collect();
         Ok(ToSympy::new(py)?.matrix(&rows)?.unbind())
     }
@@ -245,7 +267,10 @@ impl Robot {
             ));
         }
         let e = self.expanded(py, false, p)?;
-        let cells: Vec<Vec<dqsym::Expr>> = Robot::rows(&e, "p").into_iter().map(|(_, x)| vec![x.clone()]).collect();
+        let cells: Vec<Vec<dqsym::Expr>> = Robot::rows(&e, "p")
+            .into_iter()
+            .map(|(_, x)| vec![x.clone()])
+            .collect();
         Ok(ToSympy::new(py)?.matrix(&cells)?.unbind())
     }
 
@@ -254,20 +279,40 @@ impl Robot {
     /// `L1[0]`, `Q2[3]`, ..., entry `X[k]` being the symbol `X_k` of later entries) to a SymPy
     /// expression.
     #[pyo3(signature = (jacobian=false, point=None))]
-    fn entries<'py>(&mut self, py: Python<'py>, jacobian: bool, point: Option<&Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+    fn entries<'py>(
+        &mut self,
+        py: Python<'py>,
+        jacobian: bool,
+        point: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
         let p = self.point_arg(py, point)?;
         let e = self.entries_of(py, jacobian, p)?;
-        let rows: Vec<(String, dqsym::Expr)> = e.sections.iter().flat_map(|(_, r)| r.iter().cloned()).collect();
+        let rows: Vec<(String, dqsym::Expr)> = e
+            .sections
+            .iter()
+            .flat_map(|(_, r)| r.iter().cloned())
+            .collect();
         ToSympy::new(py)?.dict(&rows)
     }
 
     /// The `dqsym fk` report as text: format "plain", "latex", "sympy", "rust", "c", "python"
     /// (the NumPy function) or "ops".
     #[pyo3(signature = (format="plain", jacobian=false, point=None, explicit=false))]
-    fn report(&self, py: Python<'_>, format: &str, jacobian: bool, point: Option<&Bound<'_, PyAny>>, explicit: bool) -> PyResult<String> {
+    fn report(
+        &self,
+        py: Python<'_>,
+        format: &str,
+        jacobian: bool,
+        point: Option<&Bound<'_, PyAny>>,
+        explicit: bool,
+    ) -> PyResult<String> {
         let format = match format {
-            "plain" => ReportFormat::Plain { shorthand: !explicit },
-            "latex" => ReportFormat::Latex { shorthand: !explicit },
+            "plain" => ReportFormat::Plain {
+                shorthand: !explicit,
+            },
+            "latex" => ReportFormat::Latex {
+                shorthand: !explicit,
+            },
             "sympy" => ReportFormat::Sympy,
             "rust" => ReportFormat::Rust,
             "c" => ReportFormat::C,
@@ -284,7 +329,15 @@ impl Robot {
         let max_terms = self.limits.term_limit;
         let (r, interrupted) = work::run(py, self.limits, None, move || {
             dqsym::reset_work();
-            dqsym::fk_report(&robot, &FkOptions { format, point, jacobian, max_terms })
+            dqsym::fk_report(
+                &robot,
+                &FkOptions {
+                    format,
+                    point,
+                    jacobian,
+                    max_terms,
+                },
+            )
         })?;
         if let Some(e) = interrupted {
             return Err(e);
@@ -298,7 +351,12 @@ impl Robot {
     /// (S + (8,)), `t` (S + (3, 4), rows 0..2 of the matrix), `p` (S + (3,), with a point) and
     /// `j` (S + (8, n), with `jacobian=True`). Its source is the attribute `source`.
     #[pyo3(signature = (jacobian=false, point=None))]
-    fn lambdify(&self, py: Python<'_>, jacobian: bool, point: Option<&Bound<'_, PyAny>>) -> PyResult<PyObject> {
+    fn lambdify(
+        &self,
+        py: Python<'_>,
+        jacobian: bool,
+        point: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<PyObject> {
         let src = self.report(py, "python", jacobian, point, false)?;
         let name = src
             .lines()
@@ -313,7 +371,12 @@ impl Robot {
         let args: Vec<String> = src
             .lines()
             .find_map(|l| l.strip_prefix("def ")?.split_once('(')?.1.split_once(')'))
-            .map(|(a, _)| a.split(',').map(|s| s.trim().to_owned()).filter(|s| !s.is_empty()).collect())
+            .map(|(a, _)| {
+                a.split(',')
+                    .map(|s| s.trim().to_owned())
+                    .filter(|s| !s.is_empty())
+                    .collect()
+            })
             .unwrap_or_default();
         f.setattr("source", src)?;
         f.setattr("args", args)?;
@@ -322,7 +385,12 @@ impl Robot {
 
     /// `lambdify`, under the name NumPy users look for.
     #[pyo3(signature = (jacobian=false, point=None))]
-    fn numpy_function(&self, py: Python<'_>, jacobian: bool, point: Option<&Bound<'_, PyAny>>) -> PyResult<PyObject> {
+    fn numpy_function(
+        &self,
+        py: Python<'_>,
+        jacobian: bool,
+        point: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<PyObject> {
         self.lambdify(py, jacobian, point)
     }
 

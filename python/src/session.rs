@@ -5,8 +5,7 @@ use crate::convert::{Forms, FromPython, ToSympy};
 use crate::errors;
 use crate::work::{self, Limits};
 use dqsym::{
-    parse_with, show, show_value, Displayed, Format, Session as LibSession, ShowOptions,
-    Value,
+    parse_with, show, show_value, Displayed, Format, Session as LibSession, ShowOptions, Value,
 };
 use pyo3::exceptions::{PyKeyError, PyValueError};
 use pyo3::prelude::*;
@@ -31,7 +30,13 @@ fn shown_text(d: &Displayed, format: Format) -> Result<String, dqsym::ShowError>
         format,
         explicit: false,
     };
-    show(&Displayed { format: None, ..d.clone() }, &opts)
+    show(
+        &Displayed {
+            format: None,
+            ..d.clone()
+        },
+        &opts,
+    )
 }
 
 #[pymethods]
@@ -51,8 +56,8 @@ impl Output {
     }
 
     fn _repr_latex_(&self, py: Python<'_>) -> PyResult<String> {
-        let t = shown_text(&self.shown, Format::Latex)
-            .map_err(|e| errors::other(py, e.to_string()))?;
+        let t =
+            shown_text(&self.shown, Format::Latex).map_err(|e| errors::other(py, e.to_string()))?;
         // An expression label comes as a `% label` comment line, which display math cannot hold.
         let body: Vec<&str> = t.lines().filter(|l| !l.starts_with('%')).collect();
         Ok(format!("$\\displaystyle {}$", body.join("\n")))
@@ -162,11 +167,10 @@ impl Session {
         let mut session = std::mem::take(&mut self.inner);
         let limits = self.limits;
         let text = src.to_owned();
-        let ((session, run), interrupted) =
-            work::run(py, limits, Some(&self.cancel), move || {
-                let run = run_statements(&mut session, &text, &limits);
-                (session, run)
-            })?;
+        let ((session, run), interrupted) = work::run(py, limits, Some(&self.cancel), move || {
+            let run = run_statements(&mut session, &text, &limits);
+            (session, run)
+        })?;
         self.inner = session;
         if let Some(e) = interrupted {
             return Err(e);
@@ -205,7 +209,9 @@ impl Session {
         bindings: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Session> {
         if !(1..=4096).contains(&max_depth) {
-            return Err(PyValueError::new_err("max_depth must be between 1 and 4096"));
+            return Err(PyValueError::new_err(
+                "max_depth must be between 1 and 4096",
+            ));
         }
         let inner = if implicit_symbols {
             LibSession::with_implicit_symbols()
@@ -266,7 +272,12 @@ impl Session {
 
     /// Binds `name` to a SymPy expression, a Matrix, a Quaternion, a DQ, a tuple (3: vector,
     /// 4: quaternion, 8: dual quaternion) or a number (exact: ints, Fractions, Rationals).
-    fn __setitem__(&mut self, py: Python<'_>, name: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
+    fn __setitem__(
+        &mut self,
+        py: Python<'_>,
+        name: &str,
+        value: &Bound<'_, PyAny>,
+    ) -> PyResult<()> {
         if !is_identifier(name) {
             return Err(PyValueError::new_err(format!("`{name}` is not a name")));
         }
@@ -349,10 +360,13 @@ fn shown_value(py: Python<'_>, value: &Bound<'_, PyAny>, format: Format) -> PyRe
     Limits::SCRIPT.apply();
     let v = FromPython::new(py)?.value(value, "value")?;
     let (r, interrupted) = work::run(py, Limits::SCRIPT, None, move || {
-        show_value(&v, &ShowOptions {
-            format,
-            explicit: false,
-        })
+        show_value(
+            &v,
+            &ShowOptions {
+                format,
+                explicit: false,
+            },
+        )
     })?;
     if let Some(e) = interrupted {
         return Err(e);

@@ -85,8 +85,8 @@ impl Walkthrough {
     /// (`"theta2=-0.4,a2=0.43"`); KaTeX is read from `katex_dir` or found as `katex_dir` says.
     #[pyo3(signature = (config="", katex_dir=None))]
     fn html(&self, py: Python<'_>, config: &str, katex_dir: Option<PathBuf>) -> PyResult<String> {
-        let cfg = dqsym::Config::parse(config)
-            .map_err(|e| errors::other(py, format!("config: {e}")))?;
+        let cfg =
+            dqsym::Config::parse(config).map_err(|e| errors::other(py, format!("config: {e}")))?;
         let assets = katex_assets(katex_dir).map_err(|m| errors::other(py, m))?;
         dqsym::walk_html(&self.inner, &assets, &cfg).map_err(|e| errors::other(py, e.to_string()))
     }
@@ -130,9 +130,7 @@ impl Walkthrough {
 #[pyo3(signature = (src, title="script"))]
 pub(crate) fn walk(py: Python<'_>, src: &str, title: &str) -> PyResult<Walkthrough> {
     let (s, t) = (src.to_owned(), title.to_owned());
-    let (r, interrupted) = work::run(py, Limits::SCRIPT, None, move || {
-        dqsym::walk_script(&s, &t)
-    })?;
+    let (r, interrupted) = work::run(py, Limits::SCRIPT, None, move || dqsym::walk_script(&s, &t))?;
     if let Some(e) = interrupted {
         return Err(e);
     }

@@ -59,6 +59,11 @@ def pathlib_read(path):
     return open(path, encoding="utf-8").read()
 
 
+def assert_identical(a, b):
+    """The same SymPy tree (not only an equal value)."""
+    assert a == b, f"{a} is not the tree {b}"
+
+
 def random_values(robot, rng):
     return {n: rng.uniform(-1.5, 1.5) for n in robot.variables + robot.parameters}
 
@@ -67,24 +72,25 @@ def random_values(robot, rng):
 def test_every_result_equals_the_cli_and_plain_matrices(path):
     robot = dqsym.Robot.from_file(str(path))
     want = parse_sympy_lines(cli("fk", str(path), "--format", "sympy", "--jacobian"))
+    # The same SymPy trees as sympify makes of the command line's text, entry for entry.
     dq = robot.fk()
     T = robot.fk_matrix()
     J = robot.jacobian()
     n = len(robot.variables)
     assert isinstance(dq, dqsym.DQ) and T.shape == (4, 4) and J.shape == (8, n)
     for k in range(8):
-        assert same(dq[k], want[f"dq[{k}]"])
+        assert_identical(dq[k], want[f"dq[{k}]"])
     for i in range(3):
         for j in range(4):
-            assert same(T[i, j], want[f"T[{i}][{j}]"])
+            assert_identical(T[i, j], want[f"T[{i}][{j}]"])
     assert list(T[3, :]) == [0, 0, 0, 1]
     for i in range(8):
         for j in range(n):
-            assert same(J[i, j], want[f"J[{i}][{j}]"])
+            assert_identical(J[i, j], want[f"J[{i}][{j}]"])
     p = robot.point() if "p[0]" in want else None
     if p is not None:
         for i in range(3):
-            assert same(p[i], want[f"p[{i}]"])
+            assert_identical(p[i], want[f"p[{i}]"])
     # The entries dict is the CLI's report, name for name.
     entries = robot.entries(jacobian=True)
     assert set(entries) == set(want)
