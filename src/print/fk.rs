@@ -118,7 +118,7 @@ pub struct FkEntries {
     /// Titled sections of `(name, closed form)` rows, named as in the report: `dq[k]`,
     /// `T[i][j]`, `p[i]`, `J[i][j]`, and for a recurrence `L{i}[k]`, `Q{i}[k]`, ...
     pub sections: Vec<(String, Vec<(String, Expr)>)>,
-    /// Whether the pose is a recurrence over the joint factors (the expansion exceeded
+    /// Whether the pose is a recurrence over the joint factors (a stage exceeded
     /// `o.max_terms`): entry `X[k]` is then the symbol `X_k` of the entries after it.
     pub recurrence: bool,
 }
@@ -128,41 +128,75 @@ pub struct FkEntries {
 /// # Errors
 /// As [`fk_report`].
 pub fn fk_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError> {
+    // Any stage past the term limit (the DQ, the matrix, the point, the Jacobian, a closed
+    // form) switches to the recurrence, whose every entry is small.
+    match expanded_entries(robot, o) {
+        Some(Err(ReportError::Scalar(ScalarError::TooLarge { .. }))) | None => Ok(FkEntries {
+            sections: recurrence_sections(robot, o)?,
+            recurrence: true,
+        }),
+        Some(r) => r.map(|sections| FkEntries {
+            sections,
+            recurrence: false,
+        }),
+    }
+}
+
+/// Titled sections of named closed forms.
+type Sections = Vec<(String, Vec<(String, Expr)>)>;
+
+/// The expanded entries, or `None` when the DQ or the matrix exceeds `o.max_terms` terms.
+fn expanded_entries(robot: &Robot, o: &FkOptions) -> Option<Result<Sections, ReportError>> {
     // Two pipelines side by side: the DQ product, then its components in closed form; the
     // matrix (the product of the joint factors' matrices, which does not wait for the DQ),
     // then its entries. Then the point and the Jacobian, every distinct entry once, in
     // parallel. `closed_form` is a pure function of its input, so neither the threads nor
     // the sharing of equal entries change the output.
+    // Both expansions first (each stops as soon as an entry exceeds the limit), so that an
+    // oversized stage costs no closed forms; then every entry's closed form in parallel.
     let (pose, matrix) = join(
-        || {
-            robot.forward_within(o.max_terms).map(|q| {
-                let (forms, prepared): (Vec<_>, Vec<_>) =
-                    par_map(&q.components(), closed_form_prepared)
-                        .into_iter()
-                        .unzip();
-                (q, forms, prepared)
-            })
-        },
-        || {
-            robot
-                .forward_matrix_within(o.max_terms)
-                .map(|m| (par_map(&matrix_cells(&m), |x| closed_form(x)), m))
-        },
+        || robot.forward_within(o.max_terms),
+        || robot.forward_matrix_within(o.max_terms),
     );
-    let Some((q, dq_forms, prepared)) = pose else {
-        return Ok(FkEntries {
-            sections: recurrence_sections(robot, o)?,
-            recurrence: true,
-        });
-    };
-    // The matrix fits whenever the DQ does; computed here only if the limit cut it short.
-    let (t_forms, m) = match matrix {
-        Some(x) => x,
-        None => {
-            let m = robot.forward_matrix();
-            (par_map(&matrix_cells(&m), |x| closed_form(x)), m)
+    let (q, m) = (pose?, matrix?);
+    let comps = q.components();
+    let cells = matrix_cells(&m);
+    let all: Vec<(bool, &Scalar)> = comps
+        .iter()
+        .map(|c| (true, c))
+        .chain(cells.iter().map(|c| (false, *c)))
+        .collect();
+    let mut forms = par_map(&all, |(dq, x)| {
+        if *dq {
+            let (e, p) = closed_form_prepared(x);
+            (e, Some(p))
+        } else {
+            (closed_form(x), None)
         }
-    };
+    })
+    .into_iter();
+    let (dq_forms, prepared): (Vec<_>, Vec<_>) = forms
+        .by_ref()
+        .take(8)
+        .map(|(e, p)| (e, p.expect("a DQ entry is prepared")))
+        .unzip();
+    let t_forms: Vec<_> = forms.map(|(e, _)| e).collect();
+    Some(expanded_sections(
+        robot, o, q, dq_forms, prepared, t_forms, m,
+    ))
+}
+
+/// The report from the expanded DQ and matrix and their closed forms.
+#[allow(clippy::too_many_arguments)]
+fn expanded_sections(
+    robot: &Robot,
+    o: &FkOptions,
+    q: DualQuat<Scalar>,
+    dq_forms: Vec<Result<Expr, ScalarError>>,
+    prepared: Vec<crate::Prepared>,
+    t_forms: Vec<Result<Expr, ScalarError>>,
+    m: crate::Matrix4<Scalar>,
+) -> Result<Sections, ReportError> {
     let comps = q.components();
     let cells = matrix_cells(&m);
     let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
@@ -247,13 +281,10 @@ pub fn fk_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError
             rows.push(row);
         }
     }
-    Ok(FkEntries {
-        sections: sections
-            .into_iter()
-            .map(|(t, rows)| (t.to_owned(), rows))
-            .collect(),
-        recurrence: false,
-    })
+    Ok(sections
+        .into_iter()
+        .map(|(t, rows)| (t.to_owned(), rows))
+        .collect())
 }
 
 /// Rows 0..2 of a matrix, row by row.

@@ -1,9 +1,11 @@
 //! Printers: pure functions from display expressions to text. They never simplify.
 
+mod convert;
 mod fk;
 mod plain;
 mod recurrence;
 
+pub use convert::robot_toml;
 pub use fk::{fk_entries, fk_report, ops_tables, FkEntries, FkOptions, ReportError, ReportFormat};
 pub(crate) use plain::angle_text;
 pub use plain::{legend, plain, plain_quotient, shorthand_name, PlainOptions};
