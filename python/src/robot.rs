@@ -26,6 +26,8 @@ pub(crate) struct Robot {
     limits: Limits,
     /// The last derivation, by (Jacobian, point): fk() and fk_matrix() share one.
     cache: Option<(CacheKey, Arc<FkEntries>)>,
+    /// What reading a URDF file rounded.
+    notes: Vec<String>,
 }
 
 fn read_robot(py: Python<'_>, text: &str, file: &str, limits: Limits) -> PyResult<dqsym::Robot> {
@@ -43,16 +45,61 @@ fn read_robot(py: Python<'_>, text: &str, file: &str, limits: Limits) -> PyResul
     r.map_err(|e| errors::robot_error(py, &e))
 }
 
+/// A URDF file's chain, in screw form; the angles read as multiples of pi/12 are in `notes`.
+fn read_urdf(
+    py: Python<'_>,
+    text: &str,
+    file: &str,
+    o: dqsym::UrdfOptions,
+    limits: Limits,
+) -> PyResult<(dqsym::Robot, Vec<String>)> {
+    let (t, f) = (text.to_owned(), file.to_owned());
+    let (r, interrupted) = work::run(py, limits, None, move || dqsym::parse_urdf(&t, &f, &o))?;
+    if let Some(e) = interrupted {
+        return Err(e);
+    }
+    let r = r.map_err(|e| errors::other(py, e.to_string()))?;
+    Ok((r.robot, r.notes))
+}
+
 impl Robot {
     fn new(py: Python<'_>, text: &str, file: &str, limits: Limits) -> PyResult<Robot> {
         let robot = read_robot(py, text, file, limits)?;
-        Ok(Robot {
+        Ok(Robot::of(robot, text, file, limits, Vec::new()))
+    }
+
+    fn of(
+        robot: dqsym::Robot,
+        text: &str,
+        file: &str,
+        limits: Limits,
+        notes: Vec<String>,
+    ) -> Robot {
+        Robot {
             robot: Arc::new(robot),
             text: Arc::from(text),
             file: file.to_owned(),
             limits,
             cache: None,
-        })
+            notes,
+        }
+    }
+
+    /// The inverse kinematics solution of the robot.
+    fn ik_solution(
+        &self,
+        py: Python<'_>,
+        free: Option<String>,
+    ) -> PyResult<Arc<dqsym::ik::IkSolution>> {
+        let robot = self.robot.clone();
+        let (r, interrupted) = work::run(py, self.limits, None, move || {
+            dqsym::reset_work();
+            dqsym::ik::solve(&robot, &dqsym::ik::IkOptions { free }).map(Arc::new)
+        })?;
+        if let Some(e) = interrupted {
+            return Err(e);
+        }
+        r.map_err(|e| errors::other(py, e.to_string()))
     }
 
     /// The point argument: None (the file's tool), a "x, y, z" string, or three values.
@@ -156,16 +203,135 @@ impl Robot {
     ) -> PyResult<Robot> {
         let text = std::fs::read_to_string(&path)
             .map_err(|e| errors::other(py, format!("cannot read {}: {e}", path.display())))?;
-        Robot::new(
-            py,
-            &text,
-            &path.display().to_string(),
-            Limits {
-                term_limit,
-                work_budget,
-                ..Limits::FK
-            },
-        )
+        let limits = Limits {
+            term_limit,
+            work_budget,
+            ..Limits::FK
+        };
+        let name = path.display().to_string();
+        let urdf = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("urdf") || e.eq_ignore_ascii_case("xml"));
+        if urdf {
+            let (r, notes) = read_urdf(py, &text, &name, dqsym::UrdfOptions::default(), limits)?;
+            return Ok(Robot::of(r, &text, &name, limits, notes));
+        }
+        Robot::new(py, &text, &name, limits)
+    }
+
+    /// Reads the chain of a URDF file's text (screw form), from `base` (the root link) to
+    /// `tip` (the only leaf); angles near a multiple of pi/12 are read as that multiple unless
+    /// `exact_angles` (then refused), and listed in `notes`.
+    #[staticmethod]
+    #[pyo3(signature = (text, name="<string>", tip=None, base=None, exact_angles=false, term_limit=Limits::FK.term_limit, work_budget=Limits::FK.work_budget))]
+    #[allow(clippy::too_many_arguments)]
+    fn from_urdf(
+        py: Python<'_>,
+        text: &str,
+        name: &str,
+        tip: Option<String>,
+        base: Option<String>,
+        exact_angles: bool,
+        term_limit: usize,
+        work_budget: u64,
+    ) -> PyResult<Robot> {
+        let limits = Limits {
+            term_limit,
+            work_budget,
+            ..Limits::FK
+        };
+        let o = dqsym::UrdfOptions {
+            tip,
+            base,
+            snap_angles: !exact_angles,
+        };
+        let (r, notes) = read_urdf(py, text, name, o, limits)?;
+        Ok(Robot::of(r, text, name, limits, notes))
+    }
+
+    /// What reading a URDF file rounded (`joint elbow, origin rpy[0]: 1.5708 read as pi/2`).
+    #[getter]
+    fn notes(&self) -> Vec<String> {
+        self.notes.clone()
+    }
+
+    /// The closed-form inverse kinematics (`dqsym ik --format sympy`) as a dict from each name
+    /// to a SymPy expression: each joint's coefficients (`theta1_a`, ...) and the joint
+    /// (`theta1 = atan2(...) + sign_theta1*atan2(...)`, `sign_q` choosing the branch), in the
+    /// target `r11 ... r33, px, py, pz`, the parameters and the joints solved before. `free`
+    /// names a joint given as a parameter (a 7-joint arm).
+    #[pyo3(signature = (free=None))]
+    fn ik<'py>(&self, py: Python<'py>, free: Option<String>) -> PyResult<Bound<'py, PyDict>> {
+        let text = self.ik_report(py, "sympy", free, false)?;
+        // The report's SymPy lines, read with every name bound to a plain Symbol.
+        let sympy = py.import("sympy")?;
+        let symbol = sympy.getattr("Symbol")?;
+        let sympify = sympy.getattr("sympify")?;
+        let locals = PyDict::new(py);
+        for f in ["atan2", "sqrt", "cos", "sin", "pi"] {
+            locals.set_item(f, sympy.getattr(f)?)?;
+        }
+        let out = PyDict::new(py);
+        for line in text.lines().filter(|l| !l.starts_with('#')) {
+            let Some((name, expr)) = line.split_once(" = ") else {
+                continue;
+            };
+            for word in expr.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_')) {
+                if word.starts_with(|c: char| c.is_ascii_alphabetic()) && !locals.contains(word)? {
+                    locals.set_item(word, symbol.call1((word,))?)?;
+                }
+            }
+            let kw = PyDict::new(py);
+            kw.set_item("locals", &locals)?;
+            out.set_item(name, sympify.call((expr,), Some(&kw))?)?;
+        }
+        Ok(out)
+    }
+
+    /// The inverse kinematics report (`dqsym ik`): format "plain", "latex", "sympy", "rust",
+    /// "c" or "python".
+    #[pyo3(signature = (format="plain", free=None, explicit=false))]
+    fn ik_report(
+        &self,
+        py: Python<'_>,
+        format: &str,
+        free: Option<String>,
+        explicit: bool,
+    ) -> PyResult<String> {
+        use dqsym::ik::{ik_c, ik_python, ik_report, ik_rust, IkFormat};
+        let sol = self.ik_solution(py, free)?;
+        let shorthand = !explicit;
+        let r = match format {
+            "plain" => ik_report(&sol, IkFormat::Plain { shorthand }),
+            "latex" => ik_report(&sol, IkFormat::Latex { shorthand }),
+            "sympy" => ik_report(&sol, IkFormat::Sympy),
+            "rust" => ik_rust(&sol),
+            "c" => ik_c(&sol),
+            "python" | "numpy" => ik_python(&sol),
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "unknown format `{other}` (plain, latex, sympy, rust, c, python)"
+                )))
+            }
+        };
+        r.map_err(|e| errors::scalar_error(py, &e))
+    }
+
+    /// The inverse kinematics solver the project's emitter generates (Python): `ik(T, **params)`
+    /// returns every solution of a 4x4 target pose as joint vectors; `ik_full` and `ik_dq` are
+    /// attributes of it, and `source` its text.
+    #[pyo3(signature = (free=None))]
+    fn ik_function(&self, py: Python<'_>, free: Option<String>) -> PyResult<PyObject> {
+        let src = self.ik_report(py, "python", free, false)?;
+        let code = CString::new(src.clone()).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let file = CString::new(format!("<dqsym ik {}>", self.robot.name)).unwrap_or_default();
+        let module_name = CString::new("dqsym_generated_ik").unwrap_or_default();
+        let m = PyModule::from_code(py, &code, &file, &module_name)?;
+        let f = m.getattr("ik")?;
+        f.setattr("ik_full", m.getattr("ik_full")?)?;
+        f.setattr("ik_dq", m.getattr("ik_dq")?)?;
+        f.setattr("source", src)?;
+        Ok(f.unbind())
     }
 
     /// Reads a robot from the text of a TOML robot file; `name` stands for the file in messages.

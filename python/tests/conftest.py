@@ -41,7 +41,7 @@ def parse_sympy_lines(text):
         names = set(
             tok
             for tok in __import__("re").findall(r"[A-Za-z_][A-Za-z_0-9]*", expr)
-            if tok not in ("sqrt", "sin", "cos", "pi", "Matrix")
+            if tok not in ("sqrt", "sin", "cos", "pi", "Matrix", "atan2")
         )
         local = {n: sympy.Symbol(n) for n in names}
         out[name] = sympy.sympify(expr, locals=local)
