@@ -9,11 +9,15 @@ import pytest
 import sympy
 
 import dqsym
-from conftest import ROBOTS, ROOT, cli, dh, dq_to_matrix, mdh, parse_sympy_lines, same, trans
+from conftest import ROBOTS, ROOT, cli, dh, dq_to_matrix, mdh, parse_sympy_lines, rot_z, same, trans
 
 
 def field_value(text, values):
-    """A robot-file field evaluated numerically (independently of dqsym's evaluator)."""
+    """A robot-file field evaluated numerically (independently of dqsym's evaluator): a TOML
+    number, or an expression (`90deg` is degrees)."""
+    if isinstance(text, (int, float)):
+        return float(text)
+    text = re.sub(r"(\d+(?:\.\d+)?)\s*deg\b", r"(\1*pi/180)", text)
     names = set(re.findall(r"[A-Za-z_][A-Za-z_0-9]*", text)) - {"pi", "sqrt", "cos", "sin"}
     local = {n: sympy.Symbol(n) for n in names}
     e = sympy.sympify(text.replace("^", "**"), locals=local)
@@ -30,11 +34,25 @@ def rotation(axis, angle):
     return m
 
 
+def rot_y(t):
+    c, s = np.cos(t), np.sin(t)
+    return np.array([[c, 0, s, 0], [0, 1.0, 0, 0], [-s, 0, c, 0], [0, 0, 0, 1]])
+
+
+def frame(table, v):
+    """A [base] or [tool] frame: translation xyz, then rotation rpy (URDF: Rz Ry Rx)."""
+    x, y, z = (v(t) for t in table.get("xyz", [0, 0, 0]))
+    r, p, w = (v(t) for t in table.get("rpy", [0, 0, 0]))
+    from conftest import rot_x
+
+    return trans(x, y, z) @ rot_z(w) @ rot_y(p) @ rot_x(r)
+
+
 def oracle(path, values):
     """The robot's 4x4 pose and tool point at `values`, from the file, with plain matrices."""
     f = tomllib.loads(pathlib_read(path))
     v = lambda t: field_value(t, values)  # noqa: E731
-    m = np.eye(4)
+    m = frame(f["base"], v) if isinstance(f.get("base"), dict) else np.eye(4)
     for j in f["joint"]:
         if f["convention"] == "dh":
             m = m @ dh(v(j["theta"]), v(j["d"]), v(j["a"]), v(j["alpha"]))
@@ -50,7 +68,9 @@ def oracle(path, values):
                 n = np.asarray(axis) / np.linalg.norm(axis)
                 m = m @ trans(*(n * q))
     tool = None
-    if "tool" in f:
+    if isinstance(f.get("tool"), dict):
+        m = m @ frame(f["tool"], v)
+    elif "tool" in f:
         tool = (m @ np.append([v(x) for x in f["tool"]], 1.0))[:3]
     return m, tool
 

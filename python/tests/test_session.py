@@ -128,9 +128,9 @@ def test_parse_errors_carry_line_and_column():
     assert err.line >= 2 and err.column >= 1
     assert "-->" in str(err) and "^" in str(err)
     with pytest.raises(dqsym.ParseError) as e:
-        s.run("x = 0.5")
-    assert (e.value.line, e.value.column) == (1, 5)
-    assert "decimal" in e.value.message
+        s.run("x = 1\ny = (2 + 3")
+    assert (e.value.line, e.value.column) == (2, 5)
+    assert "never closed" in e.value.message
 
 
 def test_eval_errors_carry_line_and_column_and_leave_the_session():
