@@ -11,6 +11,7 @@ mod ring;
 mod scalar;
 mod walk;
 
+pub use algebra::dqr;
 pub use algebra::{DualNumber, DualQuat, Matrix4, Quat, UnitConstraints};
 pub use closed::{
     closed_form, closed_form_cos_sin, closed_form_of_derivative, closed_form_prepared,
@@ -22,6 +23,7 @@ pub use emit::{
     python_function, rotation_chain_ops, rust_function, sympy, sympy_quotient, CodegenError,
     CodegenOptions, Counted, LatexOptions, OpCount, Output,
 };
+pub use kin::dqexp;
 pub use kin::{
     dh_link, dh_link_matrix, dq_jacobian, geometric_jacobian, mdh_link, mdh_link_matrix,
     parse_robot, parse_urdf, screw_parameters, Chain, ChainError, Convention, FieldEval, Frame,
@@ -36,8 +38,9 @@ pub use lang::{
     CONSTANTS, MAX_EXPONENT,
 };
 pub use print::{
-    fk_entries, fk_recurrence, fk_report, legend, ops_tables, plain, plain_quotient, robot_toml,
-    shorthand_name, FkEntries, FkOptions, PlainOptions, ReportError, ReportFormat,
+    fk_entries, fk_recurrence, fk_report, legend, ops_tables, plain, plain_quotient, rate_name,
+    robot_toml, shorthand_name, task_jacobian, task_report, FkEntries, FkOptions, PlainOptions,
+    ReportError, ReportFormat, TaskJacobian,
 };
 pub use ring::Ring;
 pub use scalar::{

@@ -89,9 +89,14 @@ enum Command {
         /// A point of the last link, "x, y, z" (default: the file's tool point, if any).
         #[arg(long, value_name = "X, Y, Z")]
         point: Option<String>,
-        /// Add the 8 x n Jacobian d dq[i] / d q[j].
-        #[arg(long)]
-        jacobian: bool,
+        /// Add the 8 x n Jacobian d dq[i] / d q[j]; `--jacobian=KIND` gives instead a task
+        /// Jacobian of DQ Robotics: pose (the same 8 x n), rotation, translation,
+        /// line[:X,Y,Z], plane[:X,Y,Z] (end-effector direction, default z), distance,
+        /// point_to_point:X,Y,Z, point_to_line:DX,DY,DZ,PX,PY,PZ, point_to_plane:NX,NY,NZ,PX,PY,PZ
+        /// (workspace point, line, plane), or pose_derivative (a function of q and the rates
+        /// <q>_dot).
+        #[arg(long, value_name = "KIND", num_args = 0..=1, require_equals = true, default_missing_value = "")]
+        jacobian: Option<String>,
         #[command(flatten)]
         urdf: UrdfArgs,
     },
@@ -345,7 +350,7 @@ fn dispatch(cli: Cli) -> ExitCode {
         ) => fk(
             &robot,
             point.as_deref(),
-            jacobian,
+            jacobian.as_deref(),
             cli.format,
             cli.explicit,
             &urdf,
@@ -461,7 +466,7 @@ fn walk_ik(path: &std::path::Path, markdown: bool, html: bool, free: Option<Stri
 fn fk(
     path: &std::path::Path,
     point: Option<&str>,
-    jacobian: bool,
+    jacobian: Option<&str>,
     format: OutputFormat,
     explicit: bool,
     urdf: &UrdfArgs,
@@ -470,6 +475,17 @@ fn fk(
         eprintln!("error: {m}");
         ExitCode::FAILURE
     };
+    // `--jacobian` alone (and `--jacobian=pose`) is the 8 x n Jacobian of the report; any
+    // other kind is a task Jacobian with the pose.
+    let task = match jacobian {
+        None | Some("") => None,
+        Some(k) => match dqsym::TaskJacobian::parse(k, &|v| dqsym::eval_point_text(v)) {
+            Ok(dqsym::TaskJacobian::Pose) => None,
+            Ok(t) => Some(t),
+            Err(m) => return fail(format!("--jacobian: {m}")),
+        },
+    };
+    let jacobian = jacobian.is_some();
     let robot = match load_robot(path, urdf) {
         Ok(r) => r,
         Err(m) => return fail(m),
@@ -494,16 +510,18 @@ fn fk(
     };
     // The fields were evaluated each with its own budget; the derivation gets a whole one.
     dqsym::reset_work();
-    match dqsym::fk_report(
-        &robot,
-        &dqsym::FkOptions {
-            format,
-            point,
-            jacobian,
-            // Past the evaluation's term limit, the pose is printed as a recurrence.
-            max_terms: dqsym::term_limit(),
-        },
-    ) {
+    let options = dqsym::FkOptions {
+        format,
+        point,
+        jacobian,
+        // Past the evaluation's term limit, the pose is printed as a recurrence.
+        max_terms: dqsym::term_limit(),
+    };
+    let report = match &task {
+        Some(t) => dqsym::task_report(&robot, &options, t),
+        None => dqsym::fk_report(&robot, &options),
+    };
+    match report {
         Ok(t) => {
             print!("{t}");
             ExitCode::SUCCESS

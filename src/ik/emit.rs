@@ -135,8 +135,13 @@ struct Ctx<'a> {
     parts: &'a [Vec<(&'static str, Expr)>],
 }
 
+/// The regular branches, times 12 for the representatives of a singular set (see `ik_atan2`).
 fn max_solutions(sol: &IkSolution) -> usize {
-    sol.steps.iter().map(|s| s.formula.branches()).product()
+    12 * sol
+        .steps
+        .iter()
+        .map(|s| s.formula.branches())
+        .product::<usize>()
 }
 
 impl Ctx<'_> {
@@ -171,6 +176,9 @@ impl Ctx<'_> {
             let ap: Vec<String> = (0..k).map(|i| format!("ik_ap{i}")).collect();
             match self.lang {
                 Lang::Rust => {
+                    out.push_str(&format!(
+                        "{pad}if ik_out.n == IK_MAX {{\n{pad}    return ik_out;\n{pad}}}\n"
+                    ));
                     out.push_str(&format!("{pad}ik_out.q[ik_out.n] = [{q}];\n"));
                     out.push_str(&format!(
                         "{pad}ik_out.singular[ik_out.n] = {};\n",
@@ -183,6 +191,7 @@ impl Ctx<'_> {
                     out.push_str(&format!("{pad}ik_out.n += 1;\n"));
                 }
                 Lang::C => {
+                    out.push_str(&format!("{pad}if (ik_out->n == IK_MAX) return;\n"));
                     for (i, v) in self.sol.variables.iter().enumerate() {
                         out.push_str(&format!("{pad}ik_out->q[ik_out->n][{i}] = {v};\n"));
                     }
@@ -225,10 +234,17 @@ impl Ctx<'_> {
         let args = args.join(", ");
         match (&step.formula, self.lang) {
             (Formula::Atan2 { .. }, Lang::Rust) => {
-                out.push_str(&format!("{pad}let ({q}, ik_sg{k}) = ik_atan2({args});\n"));
-                out.push_str(&format!("{pad}let ik_ap{k} = false;\n"));
-                self.trig_locals(k, ind, out);
-                self.body(k + 1, ind, out);
+                out.push_str(&format!(
+                    "{pad}let (ik_n{k}, ik_c{k}) = ik_atan2({args});\n"
+                ));
+                out.push_str(&format!(
+                    "{pad}for &({q}, ik_sg{k}) in &ik_c{k}[..ik_n{k}] {{\n"
+                ));
+                let p2 = " ".repeat(ind + 4);
+                out.push_str(&format!("{p2}let ik_ap{k} = false;\n"));
+                self.trig_locals(k, ind + 4, out);
+                self.body(k + 1, ind + 4, out);
+                out.push_str(&format!("{pad}}}\n"));
             }
             (Formula::Value { .. }, Lang::Rust) => {
                 out.push_str(&format!("{pad}let {q} = {args};\n"));
@@ -253,13 +269,19 @@ impl Ctx<'_> {
                 out.push_str(&format!("{pad}}}\n"));
             }
             (Formula::Atan2 { .. }, Lang::C) => {
-                out.push_str(&format!("{pad}int ik_sg{k} = 0;\n"));
                 out.push_str(&format!(
-                    "{pad}const double {q} = ik_atan2({args}, &ik_sg{k});\n"
+                    "{pad}double ik_v{k}[12]; int ik_s{k};\n{pad}const int ik_n{k} = ik_atan2({args}, ik_v{k}, &ik_s{k});\n"
                 ));
-                out.push_str(&format!("{pad}const int ik_ap{k} = 0;\n"));
-                self.trig_locals(k, ind, out);
-                self.body(k + 1, ind, out);
+                out.push_str(&format!(
+                    "{pad}for (int ik_i{k} = 0; ik_i{k} < ik_n{k}; ik_i{k}++) {{\n"
+                ));
+                let p2 = " ".repeat(ind + 4);
+                out.push_str(&format!(
+                    "{p2}const double {q} = ik_v{k}[ik_i{k}];\n{p2}const int ik_sg{k} = ik_s{k}, ik_ap{k} = 0;\n"
+                ));
+                self.trig_locals(k, ind + 4, out);
+                self.body(k + 1, ind + 4, out);
+                out.push_str(&format!("{pad}}}\n"));
             }
             (Formula::Value { .. }, Lang::C) => {
                 out.push_str(&format!("{pad}const double {q} = {args};\n"));
@@ -288,10 +310,10 @@ impl Ctx<'_> {
                 out.push_str(&format!("{pad}}}\n"));
             }
             (Formula::Atan2 { .. }, Lang::Python) => {
-                out.push_str(&format!("{pad}{q}, ik_sg{k} = _ik_atan2({args})\n"));
-                out.push_str(&format!("{pad}ik_ap{k} = False\n"));
-                self.trig_locals(k, ind, out);
-                self.body(k + 1, ind, out);
+                out.push_str(&format!("{pad}for {q}, ik_sg{k} in _ik_atan2({args}):\n"));
+                out.push_str(&format!("{pad}    ik_ap{k} = False\n"));
+                self.trig_locals(k, ind + 4, out);
+                self.body(k + 1, ind + 4, out);
             }
             (Formula::Value { .. }, Lang::Python) => {
                 out.push_str(&format!("{pad}{q} = {args}\n"));
@@ -383,7 +405,9 @@ fn doc_lines(sol: &IkSolution) -> Vec<String> {
             sol.variables.join(", "),
             max_solutions(sol)
         ),
-        "Flags: singular (a singular set was met: a joint chosen as 0, or a double root);".into(),
+        "Flags: singular (a singular set was met: a double root, or a joint free on it, given as"
+            .into(),
+        "k pi/6, k = -5..6, so that a later joint can still reach; capped at IK_MAX);".into(),
         "approximate (a slightly negative radicand clamped to 0: the closest reach).".into(),
         "Generated by dqsym ik.".into(),
     ];
@@ -456,11 +480,13 @@ fn ik_radicand(rad: f64, n: f64) -> Option<(f64, bool, bool)> {
 "#;
 
 const RUST_HELPERS: &str = r#"#[inline(always)]
-fn ik_atan2(y: f64, x: f64) -> (f64, bool) {
+/// `atan2(y, x)`; where `x = y = 0` (a singular set: any value) twelve values k pi/6,
+/// k = -5..6, so that a later joint can still reach.
+fn ik_atan2(y: f64, x: f64) -> (usize, [(f64, bool); 12]) {
     if y.hypot(x) < 1e-10 {
-        (0.0, true)
+        (12, std::array::from_fn(|k| ((k as f64 - 5.0) * std::f64::consts::FRAC_PI_6, true)))
     } else {
-        (y.atan2(x), false)
+        (1, [(y.atan2(x), false); 12])
     }
 }
 
@@ -566,13 +592,15 @@ const C_RADICAND: &str = r#"static int ik_radicand(double *rad, double n, int *s
 }
 "#;
 
-const C_HELPERS: &str = r#"static double ik_atan2(double y, double x, int *sg) {
+const C_HELPERS: &str = r#"static int ik_atan2(double y, double x, double v[12], int *sg) {
     if (hypot(y, x) < 1e-10) {
         *sg = 1;
-        return 0.0;
+        for (int k = 0; k < 12; k++) v[k] = (k - 5) * (M_PI / 6);
+        return 12;
     }
     *sg = 0;
-    return atan2(y, x);
+    v[0] = atan2(y, x);
+    return 1;
 }
 
 static int ik_trig(double a, double b, double c, double v[2], int sg[2], int ap[2]) {
@@ -667,8 +695,8 @@ const PY_HELPERS: &str = r#"def _ik_radicand(rad, n):
 
 def _ik_atan2(y, x):
     if math.hypot(y, x) < 1e-10:
-        return 0.0, True
-    return math.atan2(y, x), False
+        return [(k * math.pi / 6, True) for k in range(-5, 7)]
+    return [(math.atan2(y, x), False)]
 
 
 def _ik_trig(a, b, c):

@@ -339,7 +339,11 @@ fn from_values(f: &Formula, v: &[f64]) -> Vec<(f64, bool, bool)> {
         Formula::Atan2 { .. } => {
             let (y, x) = (v[0], v[1]);
             if y.hypot(x) < SINGULAR_TOL {
-                vec![(0.0, true, false)]
+                // Any value: twelve, k pi/6, so that a later joint can still reach (the
+                // generated code does the same).
+                (-5..=6)
+                    .map(|k| (f64::from(k) * std::f64::consts::FRAC_PI_6, true, false))
+                    .collect()
             } else {
                 vec![(y.atan2(x), false, false)]
             }

@@ -283,6 +283,7 @@ pub(crate) fn derive(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkEr
 }
 
 /// The derivation from the axes and the home pose.
+#[allow(clippy::needless_range_loop)] // rows and columns of a 3 x 4 block, by index
 pub(crate) fn derive_axes(
     name: &str,
     variables: &[String],
@@ -313,17 +314,16 @@ pub(crate) fn derive_axes(
         }
         // M' = E_k M.
         let mut rows = home.rows.clone();
-        for c in 0..3 {
+        for c in 0..4 {
             let col: V3 = std::array::from_fn(|r| home.rows[r][c].clone());
-            let m = by.move_dir(&col, 1);
-            for r in 0..3 {
-                rows[r][c] = m[r].clone();
+            let m = if c < 3 {
+                by.move_dir(&col, 1)
+            } else {
+                by.move_point(&col, 1)
+            };
+            for (row, x) in rows.iter_mut().zip(m) {
+                row[c] = x;
             }
-        }
-        let t: V3 = std::array::from_fn(|r| home.rows[r][3].clone());
-        let m = by.move_point(&t, 1);
-        for r in 0..3 {
-            rows[r][3] = m[r].clone();
         }
         home = Matrix4::from_rows(rows);
         axes.remove(k);

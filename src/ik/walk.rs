@@ -161,10 +161,7 @@ pub fn ik_walk(robot: &Robot, sol: &IkSolution, markdown: bool) -> Result<String
             env.push((v.clone(), *x));
         }
     }
-    let chain = match numeric_chain(robot, &env) {
-        Ok(c) => c,
-        Err(e) => return Err(e),
-    };
+    let chain = numeric_chain(robot, &env)?;
     let t = chain
         .forward_matrix(&q0)
         .map_err(|e| ScalarError::Unbound(e.to_string()))?

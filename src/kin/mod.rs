@@ -7,6 +7,7 @@
 
 mod chain;
 mod dh;
+pub mod dqexp;
 mod jacobian;
 mod joint;
 mod robot;

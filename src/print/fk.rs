@@ -80,6 +80,9 @@ pub enum ReportError {
     /// Code generation refused the outputs.
     #[error(transparent)]
     Codegen(#[from] CodegenError),
+    /// A task Jacobian needs the expanded pose, which exceeds the term limit.
+    #[error("task Jacobians need the expanded pose, which exceeds {0} terms per entry (raise --term-limit)")]
+    TaskTooLarge(usize),
     /// A symbol of the robot is also the name a recurrence gives one of its entries.
     #[error("symbol `{0}` is also an entry of the recurrence; rename it")]
     NameClash(String),
@@ -293,7 +296,7 @@ fn matrix_cells(m: &crate::Matrix4<Scalar>) -> Vec<&Scalar> {
 }
 
 /// The sections in the chosen format, after `notes` (comment lines in plain and LaTeX).
-fn render<S: AsRef<str>>(
+pub(super) fn render<S: AsRef<str>>(
     robot: &Robot,
     sections: &[(S, Vec<(String, Expr)>)],
     format: ReportFormat,
@@ -388,6 +391,18 @@ fn code<S>(
             "J" => Output::matrix(
                 "j",
                 "Jacobian d dq[i] / d q[j] (8 x n).",
+                v.chunks(n.max(1)).map(<[Expr]>::to_vec).collect(),
+            ),
+            "Jr" | "Jt" | "Jl" | "Jpi" | "Jd" | "Jdot" => Output::matrix(
+                &base.to_lowercase(),
+                match base {
+                    "Jr" => "Rotation Jacobian d r[i] / d q[j] (4 x n).",
+                    "Jt" => "Translation Jacobian d t[i] / d q[j], t = (0, x, y, z) (4 x n).",
+                    "Jl" => "Line Jacobian d vec8(l + eps t x l)[i] / d q[j] (8 x n).",
+                    "Jpi" => "Plane Jacobian d vec8(n + eps t . n)[i] / d q[j] (8 x n).",
+                    "Jd" => "Distance Jacobian d |t|^2 / d q[j] (1 x n).",
+                    _ => "Pose Jacobian derivative sum_k d J / d q[k] q_dot[k] (8 x n).",
+                },
                 v.chunks(n.max(1)).map(<[Expr]>::to_vec).collect(),
             ),
             other => Output::intermediate(other, "A step of the recurrence.", v),
@@ -503,6 +518,10 @@ fn latex_name(n: &str) -> String {
     match base {
         "dq" => format!("q_{{{}}}", idx.join(",")),
         "T" | "p" | "J" => format!("{}_{{{}}}", latex_symbol(base), idx.join(",")),
+        "Jr" | "Jt" | "Jl" | "Jpi" | "Jd" => {
+            format!("J^{{{}}}_{{{}}}", latex_symbol(&base[1..]), idx.join(","))
+        }
+        "Jdot" => format!("\\dot{{J}}_{{{}}}", idx.join(",")),
         // A recurrence entry `Q2[3]` is written as its symbol `Q2_3` is in later entries.
         b => latex_symbol(&format!("{b}_{}", idx.join("_"))),
     }

@@ -4,9 +4,11 @@ mod convert;
 mod fk;
 mod plain;
 mod recurrence;
+mod task;
 
 pub use convert::robot_toml;
 pub use fk::{fk_entries, fk_report, ops_tables, FkEntries, FkOptions, ReportError, ReportFormat};
 pub(crate) use plain::angle_text;
 pub use plain::{legend, plain, plain_quotient, shorthand_name, PlainOptions};
 pub use recurrence::fk_recurrence;
+pub use task::{rate_name, task_jacobian, task_report, TaskJacobian};

@@ -19,6 +19,7 @@
 mod arith;
 pub(crate) mod atoms;
 mod calculus;
+pub(crate) use calculus::mode_angle;
 mod cs;
 mod decimal;
 mod frac;

@@ -5,6 +5,7 @@ mod cli;
 mod codegen;
 mod common;
 mod counts;
+mod dqr;
 mod emit;
 mod ik;
 mod kinematics;
