@@ -159,9 +159,9 @@ fn rnd(seed: &mut u64) -> f64 {
 fn pose_at(r: &Robot, m: &dqsym::Matrix4<dqsym::Scalar>, env: &[(String, f64)]) -> M {
     let _ = r;
     let mut out = [[0.0; 4]; 4];
-    for i in 0..4 {
-        for k in 0..4 {
-            out[i][k] = m.rows[i][k]
+    for (row, exact) in out.iter_mut().zip(&m.rows) {
+        for (x, e) in row.iter_mut().zip(exact) {
+            *x = e
                 .eval(&|n| env.iter().find(|(a, _)| a == n).map(|(_, v)| *v))
                 .expect("bound");
         }
