@@ -1,14 +1,21 @@
 #!/usr/bin/env bash
 # Runs every test. Sets up, when missing, what the emitter tests hand their output to: a Python
 # venv in .venv with sympy and numpy (exported as DQSYM_PYTHON), KaTeX in node_modules/, and
-# Debian's chromium for the walkthrough page.
-# Idempotent: a second run only checks that both are there.
+# Debian's chromium for the walkthrough page; and for the Python package (python/): maturin,
+# pytest, nbclient and ipykernel in the same venv. After the Rust tests it builds and installs
+# the package (`pip install ./python`) and runs its pytest suite, which runs the notebooks in
+# examples/notebooks/.
+# Idempotent: a second run only checks that everything is there.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 if ! .venv/bin/python -c "import sympy, numpy" 2>/dev/null; then
     python3 -m venv .venv
     .venv/bin/python -m pip install --quiet --disable-pip-version-check sympy numpy
+fi
+if ! .venv/bin/python -c "import maturin, pytest, nbclient, nbformat, ipykernel" 2>/dev/null; then
+    .venv/bin/python -m pip install --quiet --disable-pip-version-check \
+        maturin pytest nbclient nbformat ipykernel
 fi
 # DQ Robotics itself, the reference the DQ Robotics vocabulary is compared with (tests/it/dqr.rs).
 if ! .venv/bin/python -c "import dqrobotics" 2>/dev/null; then
@@ -45,3 +52,25 @@ if [ "$#" -eq 0 ]; then
         exit 1
     fi
 fi
+
+# The Python package: built by maturin (the venv's, hence --no-build-isolation) in its own
+# target directory, python/target, with its release profile at opt-level 2 (python/Cargo.toml);
+# cargo's progress is shown. Then its tests, with the binary `cargo test` built as the oracle
+# of "what the command line prints".
+echo "building the Python package: pip install ./python" >&2
+start=$SECONDS
+log="$(mktemp)"
+trap 'rm -f "$refs" "$log"' EXIT
+set +o pipefail
+PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip install --disable-pip-version-check \
+    --no-build-isolation --force-reinstall --no-deps -v ./python 2>&1 | tee "$log" |
+    { grep --line-buffered -E '^ *(Compiling|Finished|Successfully installed)' >&2 || true; }
+status=${PIPESTATUS[0]}
+set -o pipefail
+if [ "$status" -ne 0 ]; then
+    cat "$log" >&2
+    echo "error: building the Python package failed" >&2
+    exit 1
+fi
+echo "the Python package was built and installed in $((SECONDS - start)) s" >&2
+DQSYM_BIN="$PWD/target/debug/dqsym" .venv/bin/python -m pytest python/tests -q

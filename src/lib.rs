@@ -38,9 +38,9 @@ pub use lang::{
     BUILTINS, CONSTANTS, MAX_EXPONENT,
 };
 pub use print::{
-    fk_recurrence, fk_report, legend, ops_tables, plain, plain_quotient, rate_name, robot_toml,
-    shorthand_name, task_jacobian, task_report, FkOptions, PlainOptions, ReportError, ReportFormat,
-    TaskJacobian,
+    fk_entries, fk_recurrence, fk_report, legend, ops_tables, plain, plain_quotient, rate_name,
+    robot_toml, shorthand_name, task_jacobian, task_report, FkEntries, FkOptions, PlainOptions,
+    ReportError, ReportFormat, TaskJacobian,
 };
 pub use ring::Ring;
 pub use scalar::{

@@ -218,6 +218,16 @@ impl Session {
         }
     }
 
+    /// Binds `name` to `value` as `name = value` would, for callers that hold values rather
+    /// than text (the Python package). Constants and `halfangle` names are refused with the
+    /// error that assignment gives, at the default span.
+    pub fn define(&mut self, name: &str, value: Value) -> Result<()> {
+        check_not_constant(name, Span::default())?;
+        self.check_not_half_angle(name, Span::default())?;
+        self.bind(name, value, BindingKind::Variable);
+        Ok(())
+    }
+
     /// The bindings, sorted by name.
     pub fn bindings(&self) -> &BTreeMap<String, Binding> {
         &self.bindings

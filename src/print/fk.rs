@@ -103,18 +103,53 @@ pub enum ReportError {
 /// `NAME = EXPR` with these additional names, and the code formats compute the recurrence as
 /// straight-line code, its entries as locals.
 pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
+    let entries = fk_entries(robot, o)?;
+    if !entries.recurrence {
+        return render(robot, &entries.sections, o.format, &[]);
+    }
+    let notes = [format!(
+        "the expanded pose exceeds {} terms per entry: it is given exactly, as a recurrence over the joint factors (entry X[k] is the symbol X_k of later entries)",
+        o.max_terms
+    )];
+    render(robot, &entries.sections, o.format, &notes)
+}
+
+/// The entries of [`fk_report`] before any formatting (`o.format` is not read), for callers
+/// that take closed forms rather than text (the Python package).
+#[derive(Clone, Debug)]
+pub struct FkEntries {
+    /// Titled sections of `(name, closed form)` rows, named as in the report: `dq[k]`,
+    /// `T[i][j]`, `p[i]`, `J[i][j]`, and for a recurrence `L{i}[k]`, `Q{i}[k]`, ...
+    pub sections: Vec<(String, Vec<(String, Expr)>)>,
+    /// Whether the pose is a recurrence over the joint factors (a stage exceeded
+    /// `o.max_terms`): entry `X[k]` is then the symbol `X_k` of the entries after it.
+    pub recurrence: bool,
+}
+
+/// The closed forms of [`fk_report`], section by section.
+///
+/// # Errors
+/// As [`fk_report`].
+pub fn fk_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError> {
     // Any stage past the term limit (the DQ, the matrix, the point, the Jacobian, a closed
     // form) switches to the recurrence, whose every entry is small.
-    match expanded_report(robot, o) {
-        Some(Err(ReportError::Scalar(ScalarError::TooLarge { .. }))) | None => {
-            recurrence_report(robot, o)
-        }
-        Some(r) => r,
+    match expanded_entries(robot, o) {
+        Some(Err(ReportError::Scalar(ScalarError::TooLarge { .. }))) | None => Ok(FkEntries {
+            sections: recurrence_sections(robot, o)?,
+            recurrence: true,
+        }),
+        Some(r) => r.map(|sections| FkEntries {
+            sections,
+            recurrence: false,
+        }),
     }
 }
 
-/// The expanded report, or `None` when the DQ or the matrix exceeds `o.max_terms` terms.
-fn expanded_report(robot: &Robot, o: &FkOptions) -> Option<Result<String, ReportError>> {
+/// Titled sections of named closed forms.
+type Sections = Vec<(String, Vec<(String, Expr)>)>;
+
+/// The expanded entries, or `None` when the DQ or the matrix exceeds `o.max_terms` terms.
+fn expanded_entries(robot: &Robot, o: &FkOptions) -> Option<Result<Sections, ReportError>> {
     // Two pipelines side by side: the DQ product, then its components in closed form; the
     // matrix (the product of the joint factors' matrices, which does not wait for the DQ),
     // then its entries. Then the point and the Jacobian, every distinct entry once, in
@@ -164,7 +199,7 @@ fn expanded_sections(
     prepared: Vec<crate::Prepared>,
     t_forms: Vec<Result<Expr, ScalarError>>,
     m: crate::Matrix4<Scalar>,
-) -> Result<String, ReportError> {
+) -> Result<Sections, ReportError> {
     let comps = q.components();
     let cells = matrix_cells(&m);
     let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
@@ -249,7 +284,10 @@ fn expanded_sections(
             rows.push(row);
         }
     }
-    render(robot, &sections, o.format, &[])
+    Ok(sections
+        .into_iter()
+        .map(|(t, rows)| (t.to_owned(), rows))
+        .collect())
 }
 
 /// Rows 0..2 of a matrix, row by row.
@@ -315,16 +353,6 @@ pub(super) fn render<S: AsRef<str>>(
             out
         }
     })
-}
-
-/// The pose as a recurrence over the joint factors (see [`fk_report`]).
-fn recurrence_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
-    let sections = recurrence_sections(robot, o)?;
-    let notes = [format!(
-        "the expanded pose exceeds {} terms per entry: it is given exactly, as a recurrence over the joint factors (entry X[k] is the symbol X_k of later entries)",
-        o.max_terms
-    )];
-    render(robot, &sections, o.format, &notes)
 }
 
 /// The report's sections as one generated function: `dq` (8), `t` (3 x 4), `p` (3) and `j`

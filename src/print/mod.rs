@@ -7,7 +7,7 @@ mod recurrence;
 mod task;
 
 pub use convert::robot_toml;
-pub use fk::{fk_report, ops_tables, FkOptions, ReportError, ReportFormat};
+pub use fk::{fk_entries, fk_report, ops_tables, FkEntries, FkOptions, ReportError, ReportFormat};
 pub(crate) use plain::angle_text;
 pub use plain::{legend, plain, plain_quotient, shorthand_name, PlainOptions};
 pub use recurrence::fk_recurrence;
