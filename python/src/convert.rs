@@ -411,10 +411,10 @@ impl<'py> FromPython<'py> {
             let n: i64 = p.try_into().map_err(|_| {
                 PyValueError::new_err(format!("{what}: the exponent of {shown} is too large"))
             })?;
-            if n.unsigned_abs() > dqsym::max_exponent() {
+            if n.unsigned_abs() > dqsym::Context::current().max_exponent() {
                 return Err(PyValueError::new_err(format!(
                     "{what}: exponent {n} is larger than the limit of {}",
-                    dqsym::max_exponent()
+                    dqsym::Context::current().max_exponent()
                 )));
             }
             let base = if n < 0 {

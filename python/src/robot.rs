@@ -35,7 +35,7 @@ fn read_robot(py: Python<'_>, text: &str, file: &str, limits: Limits) -> PyResul
     let (r, interrupted) = work::run(py, limits, None, move || {
         dqsym::parse_robot(&t, &f, &|field: &str| {
             // Each field is evaluated with a budget of its own, as on the command line.
-            dqsym::reset_work();
+            let _field = dqsym::Context::entered().enter();
             dqsym::eval_scalar_text(field)
         })
     })?;
@@ -93,7 +93,6 @@ impl Robot {
     ) -> PyResult<Arc<dqsym::ik::IkSolution>> {
         let robot = self.robot.clone();
         let (r, interrupted) = work::run(py, self.limits, None, move || {
-            dqsym::reset_work();
             dqsym::ik::solve(&robot, &dqsym::ik::IkOptions { free }).map(Arc::new)
         })?;
         if let Some(e) = interrupted {
@@ -119,7 +118,7 @@ impl Robot {
                 .map(Some)
                 .map_err(|m| PyValueError::new_err(format!("point: {m}")));
         }
-        self.limits.apply();
+        let _limits = self.limits.enter();
         match FromPython::new(py)?.value(p, "point")? {
             Value::Vector(v) => Ok(Some(v)),
             other => Err(PyValueError::new_err(format!(
@@ -151,7 +150,6 @@ impl Robot {
             max_terms: self.limits.term_limit,
         };
         let (r, interrupted) = work::run(py, self.limits, None, move || {
-            dqsym::reset_work();
             dqsym::fk_entries(&robot, &opts)
         })?;
         if let Some(e) = interrupted {
@@ -173,6 +171,8 @@ impl Robot {
             return Err(errors::scalar_error(
                 py,
                 &dqsym::ScalarError::TooLarge {
+                    // The expansion stopped past the limit; its exact size was not computed.
+                    terms: self.limits.term_limit + 1,
                     limit: self.limits.term_limit,
                 },
             ));
@@ -494,7 +494,6 @@ impl Robot {
         let robot = self.robot.clone();
         let max_terms = self.limits.term_limit;
         let (r, interrupted) = work::run(py, self.limits, None, move || {
-            dqsym::reset_work();
             dqsym::fk_report(
                 &robot,
                 &FkOptions {
@@ -566,7 +565,7 @@ impl Robot {
         let (text, file) = (self.text.clone(), self.file.clone());
         let (r, interrupted) = work::run(py, self.limits, None, move || {
             dqsym::walk_robot(&text, &file, &|field: &str| {
-                dqsym::reset_work();
+                let _field = dqsym::Context::entered().enter();
                 dqsym::eval_scalar_text(field)
             })
         })?;

@@ -184,7 +184,7 @@ impl Session {
 
     fn convert_in(&self, py: Python<'_>, x: &Bound<'_, PyAny>, what: &str) -> PyResult<Value> {
         // Conversions compute (sums, products, powers): under the session's limits.
-        self.limits.apply();
+        let _limits = self.limits.enter();
         FromPython::new(py)?.value(x, what)
     }
 }
@@ -219,8 +219,6 @@ impl Session {
             LibSession::new()
         };
         let cancel = Arc::new(AtomicBool::new(false));
-        let mut inner = inner;
-        inner.set_cancel_flag(cancel.clone());
         let mut s = Session {
             inner,
             limits: Limits {
@@ -357,7 +355,7 @@ pub(crate) fn text(py: Python<'_>, value: &Bound<'_, PyAny>) -> PyResult<String>
 }
 
 fn shown_value(py: Python<'_>, value: &Bound<'_, PyAny>, format: Format) -> PyResult<String> {
-    Limits::SCRIPT.apply();
+    let _limits = Limits::SCRIPT.enter();
     let v = FromPython::new(py)?.value(value, "value")?;
     let (r, interrupted) = work::run(py, Limits::SCRIPT, None, move || {
         show_value(

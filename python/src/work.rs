@@ -47,11 +47,19 @@ impl Limits {
         ..Limits::SCRIPT
     };
 
-    /// Sets the library's limits on the calling thread.
-    pub(crate) fn apply(&self) {
-        dqsym::set_term_limit(self.term_limit);
-        dqsym::set_max_exponent(self.max_exponent);
-        dqsym::set_work_budget(self.work_budget);
+    /// The library's execution context with these limits and `cancel` as its cancel flag.
+    pub(crate) fn context(&self, cancel: Arc<AtomicBool>) -> dqsym::Context {
+        dqsym::Context::new()
+            .with_term_limit(self.term_limit)
+            .with_max_exponent(self.max_exponent)
+            .with_work_budget(self.work_budget)
+            .with_cancel_flag(cancel)
+    }
+
+    /// Enters these limits on the calling thread (for conversions done on the Python thread)
+    /// until the guard is dropped.
+    pub(crate) fn enter(&self) -> dqsym::Entered {
+        self.context(Arc::new(AtomicBool::new(false))).enter()
     }
 
     /// The parser's options.
@@ -95,13 +103,18 @@ where
     F: FnOnce() -> T + Send + 'static,
     T: Send + 'static,
 {
+    // Every computation is cancellable: a caller without a flag of its own gets a fresh one.
+    let cancel = cancel
+        .cloned()
+        .unwrap_or_else(|| Arc::new(AtomicBool::new(false)));
+    let ctx = limits.context(cancel.clone());
     let slot: Slot<T> = Arc::new((Mutex::new(None), Condvar::new()));
     let worker_slot = slot.clone();
     let handle = std::thread::Builder::new()
         .name("dqsym".into())
         .stack_size(STACK)
         .spawn(move || {
-            limits.apply();
+            let _entered = ctx.enter();
             let r = std::panic::catch_unwind(AssertUnwindSafe(f));
             let (m, c) = &*worker_slot;
             *m.lock().unwrap_or_else(|p| p.into_inner()) = Some(r);
@@ -114,9 +127,7 @@ where
             break r;
         }
         if let Err(e) = py.check_signals() {
-            if let Some(c) = cancel {
-                c.store(true, Ordering::Relaxed);
-            }
+            cancel.store(true, Ordering::Relaxed);
             interrupted = Some(if e.is_instance_of::<PyKeyboardInterrupt>(py) {
                 PyKeyboardInterrupt::new_err(
                     "dqsym: interrupted; the session's bindings are as before the statement",
@@ -134,9 +145,7 @@ where
             break r;
         }
     };
-    if let Some(c) = cancel {
-        c.store(false, Ordering::Relaxed);
-    }
+    cancel.store(false, Ordering::Relaxed);
     let _ = handle.join();
     match result {
         Ok(v) => Ok((v, interrupted)),
