@@ -6,5 +6,8 @@ mod recurrence;
 
 pub use fk::{fk_report, ops_tables, FkOptions, ReportError, ReportFormat};
 pub(crate) use plain::angle_text;
-pub use plain::{legend, plain, plain_quotient, shorthand_name, PlainOptions};
+pub use plain::{
+    legend, plain, plain_named, plain_quotient, plain_quotient_named, shorthand_name, PlainOptions,
+    TrigNames,
+};
 pub use recurrence::fk_recurrence;
