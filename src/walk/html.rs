@@ -3,7 +3,7 @@
 //! (fonts as `data:` URIs), so the page needs no network when it is viewed.
 
 use super::svg::{mechanism_svg, xml_escape, Config, SvgOptions};
-use super::text::{pieces, Piece};
+use super::text::{page, Piece};
 
 use super::{WalkError, Walkthrough};
 
@@ -119,18 +119,18 @@ throwOnError:false});});";
 /// When a value cannot be shown or the mechanism cannot be evaluated.
 pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<String, WalkError> {
     let title = format!("Walkthrough: {}", w.title);
-    let mut body = format!(
-        "<h1>{}</h1>\n<p>{}</p>\n",
-        xml_escape(&title),
-        inline(super::text::NOTATION)
-    );
+    let p = page(w)?;
+    let mut body = format!("<h1>{}</h1>\n", xml_escape(&title));
+    for l in &p.legend {
+        body += &format!("<p class=\"legend\">{}</p>\n", inline(l));
+    }
     if let Some(m) = &w.mechanism {
         body += "<figure>\n";
         body += &mechanism_svg(m, cfg, &SvgOptions::default())?;
         body += "<figcaption>The mechanism of the final result: links through the joints, \
                  joint axes as arrows.</figcaption>\n</figure>\n";
     }
-    for (head, parts) in pieces(w)? {
+    for (head, parts) in p.sections {
         body += &format!("<section class=\"step\">\n<h2>{}</h2>\n", inline(&head));
         for p in parts {
             match p {
@@ -138,6 +138,13 @@ pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<S
                 Piece::Display(d) => {
                     body += &format!(
                         "<div class=\"tex display\" data-tex=\"{}\"></div>\n",
+                        xml_escape(&d)
+                    )
+                }
+                Piece::Folded(summary, d) => {
+                    body += &format!(
+                        "<details><summary>{}</summary>\n<div class=\"tex display\" data-tex=\"{}\"></div>\n</details>\n",
+                        inline(&summary),
                         xml_escape(&d)
                     )
                 }

@@ -15,6 +15,7 @@
 mod check;
 mod html;
 mod motion;
+mod notation;
 mod robot;
 mod script;
 mod svg;

@@ -165,7 +165,7 @@ impl ScriptWalk {
         self.steps.push(Step::Notation {
             names: vec![c.to_owned(), s.to_owned()],
             meaning: format!(
-                "{c} = {}, {s} = {}: the half-angle cosine and sine inside the factors",
+                "{c} = {}, {s} = {}",
                 meaning(c),
                 meaning(s)
             ),
