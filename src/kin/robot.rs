@@ -34,6 +34,9 @@ pub struct Robot {
     pub chain: Chain<Scalar>,
     /// The `tool` point of a screw-form file, in the home pose.
     pub tool: Option<[Scalar; 3]>,
+    /// The `[values]` table: nominal numbers for symbolic parameters (`a2 = 0.4318`), used
+    /// where a number is needed (the walkthrough's drawing); results stay symbolic.
+    pub values: Vec<(String, f64)>,
 }
 
 /// What is wrong with a robot file; every message names the file, and the joint and field
@@ -60,6 +63,8 @@ struct RobotFile {
     name: Option<String>,
     convention: String,
     tool: Option<Vec<String>>,
+    #[serde(default)]
+    values: std::collections::BTreeMap<String, toml::Value>,
     #[serde(default)]
     joint: Vec<JointFile>,
 }
@@ -209,12 +214,32 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
             message: format!("field `tool`: {m}"),
         })?),
     };
+    let mut values = Vec::new();
+    for (name, v) in &f.values {
+        let bad = |m: &str| RobotError::File {
+            file: file.into(),
+            message: format!("[values], `{name}`: {m}"),
+        };
+        if name.is_empty() || !name.chars().all(|c| c.is_alphanumeric() || c == '_') {
+            return Err(bad("not a symbol name"));
+        }
+        if variables.contains(name) {
+            return Err(bad("a joint variable has no nominal value"));
+        }
+        let x = match v {
+            toml::Value::Integer(i) => *i as f64,
+            toml::Value::Float(x) if x.is_finite() => *x,
+            _ => return Err(bad("not a finite number")),
+        };
+        values.push((name.clone(), x));
+    }
     Ok(Robot {
         name: f.name.unwrap_or_else(|| file.to_string()),
         convention,
         variables,
         chain: Chain::new(joints),
         tool,
+        values,
     })
 }
 

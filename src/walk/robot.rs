@@ -104,6 +104,7 @@ pub fn walk_robot(text: &str, file: &str, eval: FieldEval) -> Result<Walkthrough
         mechanism: Some(Mechanism {
             motions,
             tool: robot.tool.clone(),
+            values: robot.values.clone(),
         }),
     })
 }

@@ -373,6 +373,7 @@ impl ScriptWalk {
             mechanism = Some(Mechanism {
                 motions: motions.clone(),
                 tool: Some(v.clone()),
+                values: Vec::new(),
             });
         }
         Walkthrough {
