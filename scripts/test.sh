@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test. Sets up, when missing, what the emitter tests hand their output to: a Python
-# venv in .venv with sympy and numpy (exported as DQSYM_PYTHON), KaTeX in node_modules/, and
+# venv in .venv with sympy and numpy (exported as DQSYM_PYTHON), KaTeX and playwright-core (which
+# drives Chromium for the interactive walkthrough page) in node_modules/, and
 # Debian's chromium for the walkthrough page.
 # Idempotent: a second run only checks that both are there.
 set -euo pipefail
@@ -12,8 +13,8 @@ if ! .venv/bin/python -c "import sympy, numpy" 2>/dev/null; then
 fi
 export DQSYM_PYTHON="$PWD/.venv/bin/python"
 
-if [ ! -f node_modules/katex/package.json ]; then
-    npm install --no-save --no-audit --no-fund --silent katex
+if [ ! -f node_modules/katex/package.json ] || [ ! -f node_modules/playwright-core/package.json ]; then
+    npm install --no-save --no-audit --no-fund --silent katex playwright-core
 fi
 
 # The walkthrough page is checked in headless Chromium (Debian's package; the machine is root).

@@ -249,7 +249,11 @@ fn live_function(scene: &Scene) -> Result<String, WalkError> {
         .map(c)
         .collect::<Result<_, _>>()?;
     let mut outputs = vec![
-        Output::vector("tool", "The tool point.", scene.tool.iter().map(c).collect::<Result<_, _>>()?),
+        Output::vector(
+            "tool",
+            "The tool point.",
+            scene.tool.iter().map(c).collect::<Result<_, _>>()?,
+        ),
         Output::matrix("T", "The pose as a 4x4 homogeneous matrix.", t),
         Output::vector("dq", "The pose as a unit dual quaternion.", dq),
     ];
@@ -267,7 +271,10 @@ fn live_function(scene: &Scene) -> Result<String, WalkError> {
     )
     .map_err(|e| WalkError::Config(e.to_string()))?;
     if scene.joints.is_empty() {
-        code = code.replace("    return {\n", "    return {\n        joints: [],\n        axes: [],\n");
+        code = code.replace(
+            "    return {\n",
+            "    return {\n        joints: [],\n        axes: [],\n",
+        );
     }
     Ok(code)
 }

@@ -41,7 +41,11 @@ pub(crate) fn scalars(v: &Value) -> Vec<&Scalar> {
             &d.real.w, &d.real.x, &d.real.y, &d.real.z, &d.dual.w, &d.dual.x, &d.dual.y, &d.dual.z,
         ],
         Value::Matrix(rows) => rows.iter().flatten().collect(),
-        Value::QuotientMatrix(rows) => rows.iter().flatten().flat_map(|f| [f.num(), f.den()]).collect(),
+        Value::QuotientMatrix(rows) => rows
+            .iter()
+            .flatten()
+            .flat_map(|f| [f.num(), f.den()])
+            .collect(),
     }
 }
 
@@ -77,10 +81,7 @@ impl Names {
         }
         let half = num_rational::Ratio::new(1, 2);
         let full = a.is_plain_sum();
-        let is_half = a
-            .terms
-            .iter()
-            .all(|(s, k)| *k == half && s.name() != "1");
+        let is_half = a.terms.iter().all(|(s, k)| *k == half && s.name() != "1");
         if !full && !is_half {
             return None;
         }

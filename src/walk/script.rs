@@ -164,11 +164,7 @@ impl ScriptWalk {
         };
         self.steps.push(Step::Notation {
             names: vec![c.to_owned(), s.to_owned()],
-            meaning: format!(
-                "{c} = {}, {s} = {}",
-                meaning(c),
-                meaning(s)
-            ),
+            meaning: format!("{c} = {}, {s} = {}", meaning(c), meaning(s)),
         });
     }
 

@@ -336,9 +336,7 @@ impl Scene {
     fn planar(&self) -> Result<bool, WalkError> {
         let (line, axes) = self.numbers(true)?;
         Ok(line.iter().all(|p| p[0].abs() < 1e-9)
-            && axes
-                .iter()
-                .all(|n| n[1].abs() < 1e-9 && n[2].abs() < 1e-9))
+            && axes.iter().all(|n| n[1].abs() < 1e-9 && n[2].abs() < 1e-9))
     }
 }
 
@@ -538,7 +536,11 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
     let _ = writeln!(
         s,
         "<title>The mechanism to scale, {} view: home pose dashed, configuration solid</title>",
-        if frame.planar { "yz-plane" } else { "isometric" }
+        if frame.planar {
+            "yz-plane"
+        } else {
+            "isometric"
+        }
     );
     s += "<defs><marker id=\"axis-head\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" \
           markerWidth=\"7\" markerHeight=\"7\" orient=\"auto\"><path d=\"M0,0 L10,5 L0,10 z\" \
@@ -557,7 +559,8 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
     s += "<g class=\"legend\" font-size=\"12\">\n";
     s += "<line x1=\"14\" y1=\"16\" x2=\"44\" y2=\"16\" stroke=\"#999999\" stroke-width=\"2\" \
           stroke-dasharray=\"6 4\"/>\n<text x=\"52\" y=\"20\">home pose (every joint variable 0)</text>\n";
-    s += "<line x1=\"14\" y1=\"34\" x2=\"44\" y2=\"34\" stroke=\"#1f5fbf\" stroke-width=\"3.5\"/>\n\
+    s +=
+        "<line x1=\"14\" y1=\"34\" x2=\"44\" y2=\"34\" stroke=\"#1f5fbf\" stroke-width=\"3.5\"/>\n\
           <text x=\"52\" y=\"38\">the configuration:</text>\n";
     let _ = writeln!(
         s,
@@ -606,7 +609,10 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
         let mut e = [0.0; 3];
         e[k] = 1.0;
         let (ex, ey) = frame.at(e, 22.0);
-        let (dx, dy) = (ex - frame.width / 2.0, ey - frame.legend - frame.width / 2.0);
+        let (dx, dy) = (
+            ex - frame.width / 2.0,
+            ey - frame.legend - frame.width / 2.0,
+        );
         if dx.abs() + dy.abs() < 1e-9 {
             // Along the line of sight: out of the page.
             let _ = writeln!(

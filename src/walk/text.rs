@@ -8,8 +8,8 @@ use super::{ComponentTrace, HalfAngle, Step, WalkError, Walkthrough, Word, Words
 use crate::emit::visual_len;
 use crate::print::angle_text;
 use crate::{
-    closed_form, latex_aligned_named, latex_named, latex_symbol, plain_named,
-    plain_quotient_named, Expr, LatexOptions, PlainOptions, Scalar, TraceStep, Value,
+    closed_form, latex_aligned_named, latex_named, latex_symbol, plain_named, plain_quotient_named,
+    Expr, LatexOptions, PlainOptions, Scalar, TraceStep, Value,
 };
 
 /// Expanded sums longer than this are listed in rows of this many terms.
@@ -292,10 +292,17 @@ fn half_angle_identities(symbol: &str) -> Result<[(Expr, Expr); 3], WalkError> {
             closed_form(&t.cos())?,
         ),
         (
-            Expr::Mul(vec![Expr::Num(num_rational::BigRational::from_integer(2.into())), s.clone(), c.clone()]),
+            Expr::Mul(vec![
+                Expr::Num(num_rational::BigRational::from_integer(2.into())),
+                s.clone(),
+                c.clone(),
+            ]),
             closed_form(&t.sin())?,
         ),
-        (Expr::Add(vec![sq(&c), sq(&s)]), Expr::Num(num_rational::BigRational::from_integer(1.into()))),
+        (
+            Expr::Add(vec![sq(&c), sq(&s)]),
+            Expr::Num(num_rational::BigRational::from_integer(1.into())),
+        ),
     ])
 }
 
@@ -465,7 +472,11 @@ pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piec
             Some(w) => {
                 let t = e(w)?;
                 let simple = !t.contains([' ', '+', '-']) || t.starts_with('(');
-                Ok(if simple { t } else { format!("\\left({t}\\right)") })
+                Ok(if simple {
+                    t
+                } else {
+                    format!("\\left({t}\\right)")
+                })
             }
             None => tuple(&[&q.w, &q.x, &q.y, &q.z]),
         }
@@ -504,11 +515,13 @@ pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piec
                         .iter()
                         .map(|q| {
                             let (n, d) = (closed_form(q.num())?, closed_form(q.den())?);
-                            Ok(if matches!(&d, Expr::Num(x) if num_traits::One::is_one(x)) {
-                                st.expr(&n)
-                            } else {
-                                format!("\\frac{{{}}}{{{}}}", st.expr(&n), st.expr(&d))
-                            })
+                            Ok(
+                                if matches!(&d, Expr::Num(x) if num_traits::One::is_one(x)) {
+                                    st.expr(&n)
+                                } else {
+                                    format!("\\frac{{{}}}{{{}}}", st.expr(&n), st.expr(&d))
+                                },
+                            )
                         })
                         .collect();
                     Ok(cells?.join(" & "))
@@ -524,20 +537,21 @@ pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piec
         return Ok(vec![Piece::Display(format!("{lab} = {line}"))]);
     }
     // Too wide: the entries named, then listed.
-    let named = |xs: &[(&Scalar, String)]| -> Result<(Vec<String>, Vec<(String, Expr)>), WalkError> {
-        let mut shown = Vec::new();
-        let mut rows = Vec::new();
-        for (x, name) in xs {
-            let (ex, constant) = entry(x)?;
-            if constant {
-                shown.push(st.expr(&ex));
-            } else {
-                shown.push(name.clone());
-                rows.push((name.clone(), ex));
+    let named =
+        |xs: &[(&Scalar, String)]| -> Result<(Vec<String>, Vec<(String, Expr)>), WalkError> {
+            let mut shown = Vec::new();
+            let mut rows = Vec::new();
+            for (x, name) in xs {
+                let (ex, constant) = entry(x)?;
+                if constant {
+                    shown.push(st.expr(&ex));
+                } else {
+                    shown.push(name.clone());
+                    rows.push((name.clone(), ex));
+                }
             }
-        }
-        Ok((shown, rows))
-    };
+            Ok((shown, rows))
+        };
     let c = |k: &str| component(label, k, false);
     let cd = |k: &str| component(label, k, true);
     let mut out = Vec::new();
@@ -546,15 +560,25 @@ pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piec
             out.push(Piece::Display(st.aligned(&[(lab, closed_form(x)?)])));
         }
         Value::Quat(q) => {
-            let (shown, rows) =
-                named(&[(&q.w, c("w")), (&q.x, c("x")), (&q.y, c("y")), (&q.z, c("z"))])?;
-            out.push(Piece::Display(format!("{lab} = \\left({}\\right)", shown.join(", "))));
+            let (shown, rows) = named(&[
+                (&q.w, c("w")),
+                (&q.x, c("x")),
+                (&q.y, c("y")),
+                (&q.z, c("z")),
+            ])?;
+            out.push(Piece::Display(format!(
+                "{lab} = \\left({}\\right)",
+                shown.join(", ")
+            )));
             out.push(Piece::Text("where".to_owned()));
             out.push(Piece::Display(st.aligned(&rows)));
         }
         Value::Vector(x) => {
             let (shown, rows) = named(&[(&x[0], c("x")), (&x[1], c("y")), (&x[2], c("z"))])?;
-            out.push(Piece::Display(format!("{lab} = \\left({}\\right)", shown.join(", "))));
+            out.push(Piece::Display(format!(
+                "{lab} = \\left({}\\right)",
+                shown.join(", ")
+            )));
             out.push(Piece::Text("where".to_owned()));
             out.push(Piece::Display(st.aligned(&rows)));
         }
@@ -688,10 +712,7 @@ pub(crate) fn page(w: &Walkthrough) -> Result<Page, WalkError> {
                 value,
                 meaning,
             } => {
-                let mut body = vec![Piece::Text(format!(
-                    "{}.",
-                    capitalize(&st.words(meaning)?)
-                ))];
+                let mut body = vec![Piece::Text(format!("{}.", capitalize(&st.words(meaning)?)))];
                 body.extend(value_tex(name, value, &st)?);
                 (format!("{n}. Factor ${}$", label_tex(name)), body)
             }
@@ -700,10 +721,7 @@ pub(crate) fn page(w: &Walkthrough) -> Result<Page, WalkError> {
                 value,
                 meaning,
             } => {
-                let mut body = vec![Piece::Text(format!(
-                    "{}.",
-                    capitalize(&st.words(meaning)?)
-                ))];
+                let mut body = vec![Piece::Text(format!("{}.", capitalize(&st.words(meaning)?)))];
                 body.extend(value_tex(name, value, &st)?);
                 (format!("{n}. Define ${}$", label_tex(name)), body)
             }

@@ -4,6 +4,7 @@
 
 use crate::common::snapshot_settings;
 use crate::tools::katex_all;
+use dqsym::Matrix4;
 use dqsym::{
     closed_form, closed_form_traced, walk_markdown, walk_robot, walk_script, walk_text, Scalar,
     Step, TraceStep, Walkthrough,
@@ -289,4 +290,314 @@ fn html_walkthrough_renders_in_headless_chromium() {
     );
     assert!(dom.contains("<svg"), "no drawing");
     assert!(dom.contains("class=\"mechanism\""), "no mechanism drawing");
+}
+
+/// The product of the mechanism's elementary 4x4 matrices (no dual quaternion code) at `env`,
+/// up to motion `upto` (exclusive).
+fn chain(
+    motions: &[dqsym::Motion],
+    upto: usize,
+    env: &dyn Fn(&str) -> Option<f64>,
+) -> Matrix4<f64> {
+    let mut m = Matrix4::identity();
+    for x in &motions[..upto] {
+        m = m * x.matrix(env).expect("evaluates");
+    }
+    m
+}
+
+/// The inverse of a rigid 4x4 matrix: R^T, -R^T p.
+fn rigid_inverse(m: &Matrix4<f64>) -> Matrix4<f64> {
+    let r = &m.rows;
+    let mut out = Matrix4::identity();
+    for i in 0..3 {
+        for j in 0..3 {
+            out.rows[i][j] = r[j][i];
+        }
+        out.rows[i][3] = -(0..3).map(|k| r[k][i] * r[k][3]).sum::<f64>();
+    }
+    out
+}
+
+fn vec3(v: &serde_json::Value) -> [f64; 3] {
+    let a: Vec<f64> = v
+        .as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect();
+    [a[0], a[1], a[2]]
+}
+
+fn numbers(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect()
+}
+
+fn near(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * (1.0 + b.abs())
+}
+
+/// Label boxes (screen rectangles) that overlap, by index pairs.
+fn overlapping(labels: &[[f64; 4]]) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    for i in 0..labels.len() {
+        for j in i + 1..labels.len() {
+            let (a, b) = (labels[i], labels[j]);
+            if a[0] < b[0] + b[2] - 0.5
+                && b[0] < a[0] + a[2] - 0.5
+                && a[1] < b[1] + b[3] - 0.5
+                && b[1] < a[1] + a[3] - 0.5
+            {
+                out.push((i, j));
+            }
+        }
+    }
+    out
+}
+
+/// One example in the browser: the page from `dqsym walk --html`, its sliders moved to
+/// pseudo-random values, the drawn joints, the tool and the printed pose compared with the
+/// product of elementary 4x4 matrices at those values.
+fn check_page_in_chromium(file: &str, w: &Walkthrough) {
+    let chromium = chromium();
+    assert!(
+        Path::new(ROOT)
+            .join("node_modules/playwright-core")
+            .is_dir(),
+        "playwright-core is missing (node_modules/playwright-core): run `bash scripts/test.sh`"
+    );
+    let artifacts = Path::new(ROOT).join("artifacts");
+    std::fs::create_dir_all(&artifacts).expect("artifacts dir");
+    let stem = Path::new(file)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .expect("stem")
+        .to_owned();
+    let page = artifacts.join(format!("walk_{stem}.html"));
+    let out = Command::new(env!("CARGO_BIN_EXE_dqsym"))
+        .args(["walk", file, "--html"])
+        .arg(&page)
+        .current_dir(ROOT)
+        .output()
+        .expect("runs");
+    assert!(
+        out.status.success(),
+        "dqsym walk --html {file}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let html = std::fs::read_to_string(&page).expect("page");
+    assert!(
+        html.contains("function dqsym_walk("),
+        "{file}: no generated function"
+    );
+    let m = w.mechanism.as_ref().expect("a mechanism");
+    // Slider values: a hash of the name, inside each slider's range.
+    let names: Vec<String> = html
+        .split("data-name=\"")
+        .skip(1)
+        .map(|s| s.split('"').next().unwrap_or_default().to_owned())
+        .collect();
+    assert!(!names.is_empty(), "{file}: no sliders");
+    let mut values = serde_json::Map::new();
+    for (k, n) in names.iter().enumerate() {
+        let joint = html.contains(&format!("data-name=\"{n}\" data-joint"));
+        let h = n
+            .bytes()
+            .fold(7u64, |a, b| a.wrapping_mul(31).wrapping_add(u64::from(b)));
+        let u = ((h + k as u64 * 17) % 1000) as f64 / 1000.0;
+        let v = if joint { 2.4 * u - 1.2 } else { 0.3 + 0.6 * u };
+        let v = if joint {
+            v
+        } else {
+            v.copysign(if html.contains(&format!("data-name=\"{n}\" min=\"-")) {
+                -1.0
+            } else {
+                1.0
+            })
+        };
+        values.insert(n.clone(), serde_json::json!(v));
+    }
+    let url = format!("file://{}", page.display());
+    let shots = artifacts.join(format!("walk_{stem}"));
+    let mut node = Command::new("node");
+    node.arg(Path::new(ROOT).join("tests/it/walk_page.js"))
+        .arg(&url)
+        .arg(&shots)
+        .arg(serde_json::Value::Object(values.clone()).to_string())
+        .env("CHROMIUM", &chromium)
+        .current_dir(ROOT);
+    let text = crate::tools::run(node, "", &format!("playwright on {file}"));
+    let r: serde_json::Value = serde_json::from_str(&text).expect("json from the page");
+    for width in ["1000", "1600"] {
+        let r = &r[width];
+        assert_eq!(r["problems"], serde_json::json!([]), "{file} at {width}px");
+        assert!(
+            shots
+                .with_file_name(format!("walk_{stem}-{width}.png"))
+                .is_file(),
+            "{file}: no screenshot at {width}px"
+        );
+        for state in ["initial", "home", "moved"] {
+            let s = &r[state];
+            assert_eq!(
+                s["katexErrors"], 0,
+                "{file} {width}px {state}: KaTeX errors"
+            );
+            assert_eq!(
+                s["rendered"], s["formulas"],
+                "{file} {width}px: every formula renders"
+            );
+            let labels: Vec<[f64; 4]> = s["labels"]
+                .as_array()
+                .expect("labels")
+                .iter()
+                .map(|b| {
+                    let v = numbers(b);
+                    [v[0], v[1], v[2], v[3]]
+                })
+                .collect();
+            assert!(
+                overlapping(&labels).is_empty(),
+                "{file} {width}px {state}: joint labels overlap: {:?}",
+                overlapping(&labels)
+            );
+        }
+        if width == "1000" {
+            let s = &r["initial"];
+            assert_eq!(
+                s["tooWide"],
+                serde_json::json!([]),
+                "{file}: formulas wider than the page at 1000px"
+            );
+            assert!(
+                s["pageWidth"].as_f64().expect("width") <= 1000.0,
+                "{file}: the page scrolls sideways at 1000px"
+            );
+        }
+        let (home, moved) = (&r["home"], &r["moved"]);
+        assert_ne!(
+            home["arm"], moved["arm"],
+            "{file}: moving the sliders redraws the arm"
+        );
+        assert_ne!(
+            home["shown"], moved["shown"],
+            "{file}: moving the sliders changes the numbers"
+        );
+        // The page's values of every symbol, as the sliders hold them.
+        let at = |state: &serde_json::Value| -> Vec<(String, f64)> {
+            state["sliders"]
+                .as_object()
+                .expect("sliders")
+                .iter()
+                .map(|(k, v)| (k.clone(), v.as_f64().expect("number")))
+                .collect()
+        };
+        let moved_env = at(moved);
+        let home_env = at(home);
+        for (n, v) in &moved_env {
+            let want = values[n].as_f64().expect("number");
+            assert!(
+                (v - want).abs() < 1e-12,
+                "{file}: slider {n} is {v}, set {want}"
+            );
+        }
+        let env_of = |vals: &[(String, f64)]| {
+            let vals = vals.to_vec();
+            move |n: &str| vals.iter().find(|(k, _)| k == n).map(|(_, v)| *v)
+        };
+        let (he, me) = (env_of(&home_env), env_of(&moved_env));
+        let t = chain(&m.motions, m.motions.len(), &me);
+        let page_t = numbers(&moved["numbers"]["T"]);
+        for i in 0..4 {
+            for j in 0..4 {
+                assert!(
+                    near(page_t[4 * i + j], t.rows[i][j]),
+                    "{file}: T[{i}][{j}] {} != {}",
+                    page_t[4 * i + j],
+                    t.rows[i][j]
+                );
+            }
+        }
+        let dq = numbers(&moved["numbers"]["dq"]);
+        let q = dqsym::DualQuat::from_real_and_dual(
+            dqsym::Quat::new(dq[0], dq[1], dq[2], dq[3]),
+            dqsym::Quat::new(dq[4], dq[5], dq[6], dq[7]),
+        );
+        let qm = q.to_matrix();
+        for i in 0..4 {
+            for j in 0..4 {
+                assert!(
+                    near(qm.rows[i][j], t.rows[i][j]),
+                    "{file}: the DQ's matrix [{i}][{j}]"
+                );
+            }
+        }
+        let tool_home = match &m.tool {
+            Some(p) => [
+                p[0].eval(&me).unwrap(),
+                p[1].eval(&me).unwrap(),
+                p[2].eval(&me).unwrap(),
+            ],
+            None => [0.0; 3],
+        };
+        let want_tool = t.transform_point(&tool_home);
+        let got_tool = vec3(&moved["tool"]);
+        let printed = numbers(&moved["numbers"]["p"]);
+        for k in 0..3 {
+            assert!(near(got_tool[k], want_tool[k]), "{file}: drawn tool {k}");
+            assert!(near(printed[k], want_tool[k]), "{file}: printed tool {k}");
+        }
+        // Joint k is drawn on the link before it: at F(q) F(0)^-1 applied to its home position.
+        let drawn_motions: Vec<usize> = m
+            .motions
+            .iter()
+            .enumerate()
+            .filter(|(_, x)| !matches!(x, dqsym::Motion::Translation { .. }))
+            .map(|(i, _)| i)
+            .collect();
+        let hj = home["joints"].as_array().expect("joints");
+        let mj = moved["joints"].as_array().expect("joints");
+        assert_eq!(
+            hj.len(),
+            drawn_motions.len(),
+            "{file}: one circle per joint"
+        );
+        for (k, &i) in drawn_motions.iter().enumerate() {
+            let f = chain(&m.motions, i, &me) * rigid_inverse(&chain(&m.motions, i, &he));
+            let want = f.transform_point(&vec3(&hj[k]));
+            let got = vec3(&mj[k]);
+            for c in 0..3 {
+                assert!(
+                    near(got[c], want[c]),
+                    "{file}: joint {} coordinate {c}: {} != {}",
+                    k + 1,
+                    got[c],
+                    want[c]
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn interactive_pages_match_forward_kinematics_in_chromium() {
+    for file in [
+        "examples/appendix3_rrr.dq",
+        "examples/robots/puma560.toml",
+        "examples/robots/stanford.toml",
+        "examples/robots/kuka_iiwa7.toml",
+        "examples/robots/puma_like.toml",
+    ] {
+        let w = if file.ends_with(".toml") {
+            let text = std::fs::read_to_string(Path::new(ROOT).join(file)).expect("robot");
+            walk_robot(&text, file, &dqsym::eval_scalar_text).expect("walk")
+        } else {
+            walk(file)
+        };
+        check_page_in_chromium(file, &w);
+    }
 }
