@@ -236,7 +236,7 @@ fn live_function(scene: &Scene) -> Result<String, WalkError> {
     };
     let joints = rows3(&mut scene.joints.iter().map(|(p, _)| p))?;
     let axes = rows3(&mut scene.joints.iter().map(|(_, n)| n))?;
-    let m = scene.pose.to_matrix();
+    let m = &scene.matrix;
     let t: Vec<Vec<Expr>> = m
         .rows
         .iter()

@@ -13,7 +13,7 @@
 
 use super::motion::Motion;
 use super::{Mechanism, WalkError};
-use crate::{dh_link, mdh_link, DualQuat, Scalar};
+use crate::{dh_link, dh_link_matrix, mdh_link, mdh_link_matrix, DualQuat, Matrix4, Scalar};
 use std::fmt::Write as _;
 
 /// Values of symbols for the drawn configuration: joint variables and lengths.
@@ -104,8 +104,10 @@ pub(crate) struct Scene {
     pub joints: Vec<([Scalar; 3], [Scalar; 3])>,
     /// The tool point.
     pub tool: [Scalar; 3],
-    /// The pose of the chain.
+    /// The pose of the chain as a dual quaternion.
     pub pose: DualQuat<Scalar>,
+    /// The pose of the chain as a 4x4 matrix (the product of the motions' matrices).
+    pub matrix: Matrix4<Scalar>,
     /// Whether a tool point was given (else the tool is the last frame's origin).
     pub has_tool: bool,
     /// The joint variables (prismatic or not) in joint order, then the other symbols by name.
@@ -141,8 +143,33 @@ fn eval3(v: &[Scalar; 3], env: &dyn Fn(&str) -> Option<f64>) -> Result<V3, WalkE
     Ok([v[0].eval(env)?, v[1].eval(env)?, v[2].eval(env)?])
 }
 
-fn rotate(q: &DualQuat<Scalar>, v: &[Scalar; 3]) -> [Scalar; 3] {
-    DualQuat::from_real(q.real.clone()).transform_point(v)
+fn rotate(m: &Matrix4<Scalar>, v: &[Scalar; 3]) -> [Scalar; 3] {
+    let r = &m.rows;
+    let row = |i: usize| &(&(&r[i][0] * &v[0]) + &(&r[i][1] * &v[1])) + &(&r[i][2] * &v[2]);
+    [row(0), row(1), row(2)]
+}
+
+/// The exact 4x4 matrix of a motion, from elementary matrices in full angles (cheaper to
+/// multiply than the half-angle dual quaternions).
+fn motion_matrix(m: &Motion) -> Matrix4<Scalar> {
+    match m {
+        Motion::Screw {
+            axis,
+            point,
+            angle,
+            slide,
+        } => {
+            let minus = [-&point[0], -&point[1], -&point[2]];
+            let along = [&axis[0] * slide, &axis[1] * slide, &axis[2] * slide];
+            Matrix4::trans(point)
+                * Matrix4::rotation(axis, angle)
+                * Matrix4::trans(&minus)
+                * Matrix4::trans(&along)
+        }
+        Motion::Translation { t } => Matrix4::trans(t),
+        Motion::Dh { theta, d, a, alpha } => dh_link_matrix(theta, d, a, alpha),
+        Motion::Mdh { alpha, a, theta, d } => mdh_link_matrix(alpha, a, theta, d),
+    }
 }
 
 /// The exact factor of a motion.
@@ -275,7 +302,8 @@ impl Scene {
             prev = a.clone();
             anchors.push(Some(a));
         }
-        let mut acc = DualQuat::identity();
+        let mut acc = Matrix4::identity();
+        let mut pose = DualQuat::identity();
         let mut drawn = Vec::new();
         let z = [Scalar::int(0), Scalar::int(0), Scalar::int(1)];
         for (x, anchor) in m.motions.iter().zip(&anchors) {
@@ -289,18 +317,20 @@ impl Scene {
                     drawn.push((acc.transform_point(&zero3()), rotate(&acc, &z)));
                 }
                 Motion::Mdh { alpha, a, .. } => {
-                    let f = &acc * &mdh_link(alpha, a, &Scalar::int(0), &Scalar::int(0));
+                    let f = &acc * &mdh_link_matrix(alpha, a, &Scalar::int(0), &Scalar::int(0));
                     drawn.push((f.transform_point(&zero3()), rotate(&f, &z)));
                 }
                 Motion::Translation { .. } => {}
             }
-            acc = &acc * &motion_dq(x);
+            acc = &acc * &motion_matrix(x);
+            pose = &pose * &motion_dq(x);
         }
         let tool = acc.transform_point(m.tool.as_ref().unwrap_or(&zero3()));
         Ok(Scene {
             joints: drawn,
             tool,
-            pose: acc,
+            matrix: acc,
+            pose,
             has_tool: m.tool.is_some(),
             symbols,
         })
@@ -482,9 +512,9 @@ pub(crate) fn values_text(symbols: &[Symbol], joints: bool) -> String {
     parts.join("; ")
 }
 
-/// A value for the legend: at most 4 decimals, trailing zeros dropped.
+/// A value for the legend: at most 6 decimals, trailing zeros dropped.
 pub(crate) fn number(v: f64) -> String {
-    let s = format!("{v:.4}");
+    let s = format!("{v:.6}");
     let s = s.trim_end_matches('0').trim_end_matches('.').to_owned();
     if s == "-0" {
         "0".to_owned()

@@ -20,7 +20,7 @@ pub(crate) const FOLD: usize = 16;
 
 /// Display formulas wider than this (in [`visual_len`] characters) are laid out one entry per
 /// line, long entries broken at a `+` or `-`: about 900 px of KaTeX display math.
-pub(crate) const WIDTH: usize = 64;
+pub(crate) const WIDTH: usize = 72;
 
 /// How a renderer writes values and words.
 pub(crate) trait Style {

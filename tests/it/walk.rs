@@ -27,7 +27,7 @@ fn appendix3_rrr_text_walkthrough() {
     ));
     assert!(text.contains(
         "cos a cos b - sin a sin b = cos(a + b), a = theta1 + theta2, b = theta3, terms 3 and 4: \
-         l3 c12 c3 - l3 s12 s3 = l3 c123"
+         l3 C12 C3 - l3 S12 S3 = l3 C123"
     ));
     snapshot_settings().bind(|| insta::assert_snapshot!("walk_appendix3_rrr_text", text));
 }
@@ -138,7 +138,7 @@ fn robot_file_walkthrough_describes_each_joint_in_words() {
         "{t}"
     );
     assert!(t.contains("p.y:"), "{t}");
-    assert!(t.contains("l1 c1 + l2 c12 + l3 c123"), "{t}");
+    assert!(t.contains("l1 C1 + l2 C12 + l3 C123"), "{t}");
 }
 
 #[test]
@@ -600,4 +600,138 @@ fn interactive_pages_match_forward_kinematics_in_chromium() {
         };
         check_page_in_chromium(file, &w);
     }
+}
+
+/// `name="value"` attributes of every element `<tag ... class="class"` in an SVG text.
+fn svg_elements<'a>(svg: &'a str, tag: &str, class: &str) -> Vec<&'a str> {
+    svg.split(&format!("<{tag} "))
+        .skip(1)
+        .filter(|e| e.contains(&format!("class=\"{class}\"")))
+        .map(|e| e.split('>').next().unwrap_or_default())
+        .collect()
+}
+
+fn attr(element: &str, name: &str) -> f64 {
+    element
+        .split(&format!(" {name}=\""))
+        .nth(1)
+        .and_then(|s| s.split('"').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no numeric {name} in {element}"))
+}
+
+#[test]
+fn drawings_are_to_scale_with_labels_apart_for_every_example() {
+    let mut robots: Vec<String> = std::fs::read_dir(Path::new(ROOT).join("examples/robots"))
+        .expect("examples/robots")
+        .filter_map(|e| e.ok())
+        .map(|e| format!("examples/robots/{}", e.file_name().to_string_lossy()))
+        .filter(|p| p.ends_with(".toml"))
+        .collect();
+    robots.sort();
+    assert!(robots.len() >= 8, "{robots:?}");
+    let scripts = ["examples/appendix3_rrr.dq", "examples/sec6_3_6r.dq"];
+    for file in robots.iter().map(String::as_str).chain(scripts) {
+        let w = if file.ends_with(".toml") {
+            let text = std::fs::read_to_string(Path::new(ROOT).join(file)).expect("robot");
+            walk_robot(&text, file, &dqsym::eval_scalar_text).expect("walk")
+        } else {
+            walk(file)
+        };
+        let m = w.mechanism.as_ref().expect("a mechanism");
+        let svg = dqsym::mechanism_svg(m, &dqsym::Config::default(), &dqsym::SvgOptions::default())
+            .expect("svg");
+        assert!(svg.contains("class=\"base\""), "{file}: no base marker");
+        assert!(svg.contains("class=\"triad\""), "{file}: no triad");
+        for axis in [">x</text>", ">y</text>", ">z</text>"] {
+            assert!(svg.contains(axis), "{file}: the triad names {axis}");
+        }
+        // Every symbol's value is stated in the legend.
+        for s in m.motions.iter().flat_map(|x| x.variables()) {
+            assert!(
+                svg.contains(&format!("{s} = ")),
+                "{file}: the legend omits {s}"
+            );
+        }
+        if file.ends_with(".toml") {
+            let text = std::fs::read_to_string(Path::new(ROOT).join(file)).expect("robot");
+            if let Some(values) = text.split("[values]").nth(1) {
+                for line in values.lines().filter(|l| l.contains('=')) {
+                    let (name, v) = line.split_once('=').expect("name = value");
+                    let v: f64 = v.trim().parse().expect("a number");
+                    let shown = format!("{} = {v}", name.trim());
+                    assert!(svg.contains(&shown), "{file}: the legend omits `{shown}`");
+                }
+            }
+        }
+        // Labels: boxes of 8 px per digit and 16 px high around their centres, disjoint,
+        // and off every joint circle.
+        let labels: Vec<[f64; 4]> = svg_elements(&svg, "text", "dq-label")
+            .iter()
+            .map(|e| {
+                let (x, y) = (attr(e, "x"), attr(e, "y"));
+                [x - 5.0, y - 7.5, 10.0, 15.0]
+            })
+            .collect();
+        let joints: Vec<(f64, f64)> = svg_elements(&svg, "circle", "dq-joint")
+            .iter()
+            .map(|e| (attr(e, "cx"), attr(e, "cy")))
+            .collect();
+        assert_eq!(labels.len(), joints.len(), "{file}: one label per joint");
+        assert!(
+            overlapping(&labels).is_empty(),
+            "{file}: labels overlap: {:?}",
+            overlapping(&labels)
+        );
+        for (i, b) in labels.iter().enumerate() {
+            for (k, (x, y)) in joints.iter().enumerate() {
+                let inside = b[0] < x + 6.0
+                    && x - 6.0 < b[0] + b[2]
+                    && b[1] < y + 6.0
+                    && y - 6.0 < b[1] + b[3];
+                assert!(!inside, "{file}: label {} covers joint {}", i + 1, k + 1);
+            }
+        }
+    }
+}
+
+#[test]
+fn the_rrr_drawing_has_the_robot_files_proportions() {
+    let text =
+        std::fs::read_to_string(Path::new(ROOT).join("examples/robots/rrr.toml")).expect("robot");
+    let w = walk_robot(&text, "rrr.toml", &dqsym::eval_scalar_text).expect("walk");
+    let svg = dqsym::mechanism_svg(
+        w.mechanism.as_ref().expect("mechanism"),
+        &dqsym::Config::default(),
+        &dqsym::SvgOptions::default(),
+    )
+    .expect("svg");
+    // The home pose: base, joints 1 to 3 (joint 1 at the base), tool; links l1, l2, l3 as
+    // [values] gives them (1, 0.8, 0.5), in one scale.
+    let home = svg
+        .split("id=\"dq-home\" points=\"")
+        .nth(1)
+        .and_then(|s| s.split('"').next())
+        .expect("home polyline");
+    let pts: Vec<(f64, f64)> = home
+        .split(' ')
+        .map(|p| {
+            let (x, y) = p.split_once(',').expect("x,y");
+            (x.parse().expect("x"), y.parse().expect("y"))
+        })
+        .collect();
+    let len = |a: (f64, f64), b: (f64, f64)| ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt();
+    let (l1, l2, l3) = (
+        len(pts[1], pts[2]),
+        len(pts[2], pts[3]),
+        len(pts[3], pts[4]),
+    );
+    assert!(
+        (l2 / l1 - 0.8).abs() < 0.01 && (l3 / l1 - 0.5).abs() < 0.01,
+        "{pts:?}"
+    );
+    assert!(
+        svg.contains("l1 = 1, l2 = 0.8, l3 = 0.5 (robot file)"),
+        "{svg}"
+    );
 }

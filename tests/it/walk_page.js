@@ -86,6 +86,7 @@ async function main() {
             const home = await read();
             await set(values);
             const moved = await read();
+            await page.evaluate(() => window.scrollTo(0, 0));
             await page.screenshot({ path: `${shots}-${width}.png`, fullPage: false });
             out[width] = { initial, home, moved, problems };
             await page.close();
