@@ -809,6 +809,10 @@ fn capitalize(s: &str) -> String {
 }
 
 fn trace_tex(t: &ComponentTrace, st: &Tex) -> Vec<Piece> {
+    let name = match t.label.split_once('.') {
+        Some((v, k)) => component(v, k, false),
+        None => label_tex(&t.label),
+    };
     let mut out = vec![Piece::Text(format!("Coordinate `{}`:", t.label))];
     let mut last: &[Expr] = &[];
     for s in &t.steps {
@@ -854,13 +858,13 @@ fn trace_tex(t: &ComponentTrace, st: &Tex) -> Vec<Piece> {
             }
             TraceStep::Factored(e) => {
                 out.push(Piece::Text("common factors out:".to_owned()));
-                out.push(Piece::Display(st.aligned(&[(String::new(), e.clone())])));
+                out.push(Piece::Display(st.aligned(&[(name.clone(), e.clone())])));
             }
             TraceStep::KeptWhole(e) => {
                 out.push(Piece::Text(
                     "closed form (the Fourier modes kept whole are shorter):".to_owned(),
                 ));
-                out.push(Piece::Display(st.aligned(&[(String::new(), e.clone())])));
+                out.push(Piece::Display(st.aligned(&[(name.clone(), e.clone())])));
             }
         }
     }

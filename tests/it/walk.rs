@@ -88,6 +88,17 @@ fn markdown_walkthroughs_render_in_katex() {
         .expect("robot");
     let w = walk_robot(&puma, "puma560.toml", &dqsym::eval_scalar_text).expect("walk");
     katex_all(&formulas(&walk_markdown(&w).expect("markdown")), "PUMA 560");
+    // The Puma-like robot's tool point expands to sums of 17 terms: folded, not dropped.
+    let text = std::fs::read_to_string(Path::new(ROOT).join("examples/robots/puma_like.toml"))
+        .expect("robot");
+    let w = walk_robot(&text, "puma_like.toml", &dqsym::eval_scalar_text).expect("walk");
+    let md = walk_markdown(&w).expect("markdown");
+    assert!(
+        md.contains("<details><summary>expanded sum, terms numbered: 17 terms"),
+        "{md}"
+    );
+    assert!(md.contains("}_{17}"), "the folded sum keeps every term");
+    katex_all(&formulas(&md), "Puma-like robot");
 }
 
 fn checks(w: &Walkthrough) -> Vec<f64> {
