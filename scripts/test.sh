@@ -23,4 +23,22 @@ if ! command -v chromium >/dev/null 2>&1; then
     apt-get install -y -qq chromium || { apt-get update -qq && apt-get install -y -qq chromium; }
 fi
 
-cargo test --locked --all-targets "$@"
+# insta records every snapshot a test reads; with no filter given, a snapshot file that no test
+# read is stale and fails the run (as `cargo insta test --unreferenced=reject` would).
+refs="$(mktemp)"
+trap 'rm -f "$refs"' EXIT
+INSTA_SNAPSHOT_REFERENCES_FILE="$refs" INSTA_UPDATE=no cargo test --locked --all-targets "$@"
+if [ "$#" -eq 0 ]; then
+    pending="$(find snapshots -name '*.snap.new' -o -name '*.pending-snap')"
+    if [ -n "$pending" ]; then
+        echo "error: pending snapshots (review them, then accept or delete):" >&2
+        echo "$pending" >&2
+        exit 1
+    fi
+    unreferenced="$(comm -23 <(find "$PWD/snapshots" -name '*.snap' | sort) <(sort -u "$refs"))"
+    if [ -n "$unreferenced" ]; then
+        echo "error: snapshots no test reads (delete them or restore their test):" >&2
+        echo "$unreferenced" >&2
+        exit 1
+    fi
+fi
