@@ -457,6 +457,9 @@ fn entry(x: &Scalar) -> Result<(Expr, bool), WalkError> {
     Ok((closed_form(x)?, x.is_constant()))
 }
 
+/// The entries of a value as shown in place (a constant, or a name), and the named ones.
+type Named = (Vec<String>, Vec<(String, Expr)>);
+
 /// `label = value` as display math that fits the page: on one line when it is short, else the
 /// value with its entries named, then the entries one per line (a matrix column by column),
 /// each broken at [`WIDTH`].
@@ -537,21 +540,20 @@ pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piec
         return Ok(vec![Piece::Display(format!("{lab} = {line}"))]);
     }
     // Too wide: the entries named, then listed.
-    let named =
-        |xs: &[(&Scalar, String)]| -> Result<(Vec<String>, Vec<(String, Expr)>), WalkError> {
-            let mut shown = Vec::new();
-            let mut rows = Vec::new();
-            for (x, name) in xs {
-                let (ex, constant) = entry(x)?;
-                if constant {
-                    shown.push(st.expr(&ex));
-                } else {
-                    shown.push(name.clone());
-                    rows.push((name.clone(), ex));
-                }
+    let named = |xs: &[(&Scalar, String)]| -> Result<Named, WalkError> {
+        let mut shown = Vec::new();
+        let mut rows = Vec::new();
+        for (x, name) in xs {
+            let (ex, constant) = entry(x)?;
+            if constant {
+                shown.push(st.expr(&ex));
+            } else {
+                shown.push(name.clone());
+                rows.push((name.clone(), ex));
             }
-            Ok((shown, rows))
-        };
+        }
+        Ok((shown, rows))
+    };
     let c = |k: &str| component(label, k, false);
     let cd = |k: &str| component(label, k, true);
     let mut out = Vec::new();

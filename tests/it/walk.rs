@@ -321,11 +321,11 @@ fn chain(
 fn rigid_inverse(m: &Matrix4<f64>) -> Matrix4<f64> {
     let r = &m.rows;
     let mut out = Matrix4::identity();
-    for i in 0..3 {
-        for j in 0..3 {
-            out.rows[i][j] = r[j][i];
+    for (i, row) in out.rows.iter_mut().take(3).enumerate() {
+        for (j, x) in row.iter_mut().take(3).enumerate() {
+            *x = r[j][i];
         }
-        out.rows[i][3] = -(0..3).map(|k| r[k][i] * r[k][3]).sum::<f64>();
+        row[3] = -r.iter().take(3).map(|rk| rk[i] * rk[3]).sum::<f64>();
     }
     out
 }
