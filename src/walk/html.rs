@@ -107,7 +107,7 @@ fn inline(t: &str) -> String {
 const STYLE: &str = "body{font-family:Georgia,serif;margin:0;color:#222;line-height:1.45}\
 main{max-width:1560px;margin:0 auto;padding:1em 16px}h1{font-size:1.6em}h2{font-size:1.15em;\
 margin-top:1.6em;border-bottom:1px solid #ddd}.display{overflow-x:auto;margin:.6em 0 .6em 1em}\
-figure{margin:0}figcaption{font-size:.9em;color:#555}code{font-size:.9em}\
+figure{margin:0;flex:0 1 600px;max-width:600px}figcaption{font-size:.9em;color:#555}code{font-size:.9em}\
 .layout{display:grid;grid-template-columns:minmax(0,1fr);gap:24px}.steps{min-width:0}\
 .live{display:flex;flex-wrap:wrap;gap:16px;align-items:flex-start;min-width:0}\
 .controls{flex:1 1 340px;min-width:0;font-family:sans-serif;font-size:14px}\
@@ -120,7 +120,7 @@ table.num caption{text-align:left;font-weight:bold;padding-bottom:2px}\
 details.code pre{font-size:11px;max-height:24em;overflow:auto;background:#f6f6f2;padding:6px}\
 @media (min-width:1400px){.layout{grid-template-columns:minmax(0,1fr) 620px}\
 .live{grid-column:2;grid-row:1;position:sticky;top:8px;align-self:start;max-height:calc(100vh - 16px);\
-overflow-y:auto}.steps{grid-column:1;grid-row:1}.controls{flex-basis:100%}}";
+overflow-y:auto}.steps{grid-column:1;grid-row:1}.controls{flex-basis:100%}figure{flex-basis:100%}}";
 
 const RENDER: &str = "document.querySelectorAll('[data-tex]').forEach(function(el){\
 katex.render(el.getAttribute('data-tex'),el,{displayMode:el.classList.contains('display'),\

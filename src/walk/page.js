@@ -123,6 +123,8 @@
                     .map((i) => `${i.dataset.name} = ${num(Number(i.value))}`)
                     .join(", ");
             svg.querySelector("#dq-config").textContent = `${said(true)} (sliders)`;
+            const view = D.planar ? "view of the yz plane" : "isometric view";
+            svg.querySelector("#dq-scale").textContent = `${view}, to scale: ${num(scale)} px per unit length`;
             const l = said(false);
             if (l) {
                 svg.querySelector("#dq-lengths").textContent = `lengths: ${l} (sliders)`;

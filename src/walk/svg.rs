@@ -623,7 +623,7 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
     );
     let _ = writeln!(
         s,
-        "<text x=\"14\" y=\"110\">{}, to scale: {} px per unit length</text>",
+        "<text id=\"dq-scale\" x=\"14\" y=\"110\">{}, to scale: {} px per unit length</text>",
         if frame.planar {
             "view of the yz plane"
         } else {

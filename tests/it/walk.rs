@@ -598,10 +598,14 @@ fn check_page_in_chromium(file: &str, w: &Walkthrough) {
 fn interactive_pages_match_forward_kinematics_in_chromium() {
     for file in [
         "examples/appendix3_rrr.dq",
+        "examples/robots/rrr.toml",
+        "examples/robots/six_r.toml",
+        "examples/robots/puma_like.toml",
         "examples/robots/puma560.toml",
         "examples/robots/stanford.toml",
+        "examples/robots/scara.toml",
+        "examples/robots/ur5.toml",
         "examples/robots/kuka_iiwa7.toml",
-        "examples/robots/puma_like.toml",
     ] {
         let w = if file.ends_with(".toml") {
             let text = std::fs::read_to_string(Path::new(ROOT).join(file)).expect("robot");
@@ -745,4 +749,36 @@ fn the_rrr_drawing_has_the_robot_files_proportions() {
         svg.contains("l1 = 1, l2 = 0.8, l3 = 0.5 (robot file)"),
         "{svg}"
     );
+}
+
+#[test]
+fn repl_steps_use_the_pages_notation() {
+    use std::io::Write;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_dqsym"))
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("runs");
+    child
+        .stdin
+        .take()
+        .expect("stdin")
+        .write_all(
+            b"syms l1\nhalfangle c1, s1 = theta1\nq = (c1, s1, 0, 0) + I*(0, 0, -l1*s1)\n\
+              p = q*(1 + I*(0, l1, 0))*cconj(q)\n:steps\n",
+        )
+        .expect("writes");
+    let out = child.wait_with_output().expect("output");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("Notation (each symbol has one meaning on this page):"),
+        "{text}"
+    );
+    assert!(
+        text.contains("c1 = cos(theta1/2)") && text.contains("C1 = cos(theta1)"),
+        "{text}"
+    );
+    assert!(text.contains("c1^2 - s1^2 = C1, 2 s1 c1 = S1"), "{text}");
+    assert!(!text.contains("where c1 = cos(theta1)"), "{text}");
 }
