@@ -39,9 +39,11 @@
     function meets(a, b) {
         return a[0] < b[0] + b[2] && b[0] < a[0] + a[2] && a[1] < b[1] + b[3] && b[1] < a[1] + a[3];
     }
-    // The label rule of svg.rs `place_labels`: 8 directions, growing distance, first free box.
-    function place(pts) {
+    // The label rule of svg.rs `place_labels`: 8 directions, growing distance, first free box
+    // (off the other labels, the joints and the tool).
+    function place(pts, tool) {
         const joints = pts.map(([x, y]) => [x - 7, y - 7, 14, 14]);
+        joints.push([tool[0] - 6, tool[1] - 6, 12, 12]);
         const placed = [];
         pts.forEach(([x, y], i) => {
             const w = 8 * String(i + 1).length + 4;
@@ -108,7 +110,7 @@
         tool.setAttribute("x", f1(tx - 4.5));
         tool.setAttribute("y", f1(ty - 4.5));
         tool.dataset.xyz = r.tool.join(",");
-        place(screen).forEach((b, i) => {
+        place(screen, [tx, ty]).forEach((b, i) => {
             const t = svg.querySelector(`text.dq-label[data-i="${i}"]`);
             t.setAttribute("x", f1(b[0] + b[2] / 2));
             t.setAttribute("y", f1(b[1] + b[3] / 2));

@@ -454,12 +454,13 @@ fn meets(a: &LabelBox, b: &LabelBox) -> bool {
 
 /// Boxes for the labels of joints at screen points `pts` (texts `1`, `2`, ...): for each, the
 /// first place around its joint (8 directions, growing distance) whose box meets no label
-/// placed before and no joint. The page's script runs the same rule.
-pub(crate) fn place_labels(pts: &[(f64, f64)]) -> Vec<LabelBox> {
-    let joints: Vec<LabelBox> = pts
+/// placed before, no joint and not the tool at `tool`. The page's script runs the same rule.
+pub(crate) fn place_labels(pts: &[(f64, f64)], tool: (f64, f64)) -> Vec<LabelBox> {
+    let mut joints: Vec<LabelBox> = pts
         .iter()
         .map(|(x, y)| [x - 7.0, y - 7.0, 14.0, 14.0])
         .collect();
+    joints.push([tool.0 - 6.0, tool.1 - 6.0, 12.0, 12.0]);
     let mut placed: Vec<LabelBox> = Vec::new();
     for (i, (x, y)) in pts.iter().enumerate() {
         let w = 8.0 * (i + 1).to_string().len() as f64 + 4.0;
@@ -757,7 +758,7 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
         f(tx - 4.5),
         f(ty - 4.5)
     );
-    for (i, b) in place_labels(&screen).iter().enumerate() {
+    for (i, b) in place_labels(&screen, (tx, ty)).iter().enumerate() {
         let _ = writeln!(
             s,
             "<text class=\"dq-label\" data-i=\"{i}\" x=\"{}\" y=\"{}\" fill=\"#1f5fbf\" \
