@@ -11,6 +11,10 @@ if ! .venv/bin/python -c "import sympy, numpy" 2>/dev/null; then
     python3 -m venv .venv
     .venv/bin/python -m pip install --quiet --disable-pip-version-check sympy numpy
 fi
+# DQ Robotics itself, the reference the DQ Robotics vocabulary is compared with (tests/it/dqr.rs).
+if ! .venv/bin/python -c "import dqrobotics" 2>/dev/null; then
+    .venv/bin/python -m pip install --quiet --disable-pip-version-check dqrobotics==26.4.0a7
+fi
 export DQSYM_PYTHON="$PWD/.venv/bin/python"
 
 if [ ! -f node_modules/katex/package.json ] || [ ! -f node_modules/playwright-core/package.json ]; then

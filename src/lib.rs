@@ -3,6 +3,7 @@
 mod algebra;
 mod closed;
 mod emit;
+pub mod ik;
 mod kin;
 mod lang;
 mod print;
@@ -10,6 +11,7 @@ mod ring;
 mod scalar;
 mod walk;
 
+pub use algebra::dqr;
 pub use algebra::{DualNumber, DualQuat, Matrix4, Quat, UnitConstraints};
 pub use closed::{
     closed_form, closed_form_cos_sin, closed_form_of_derivative, closed_form_prepared,
@@ -22,10 +24,12 @@ pub use emit::{
     rotation_chain_ops, rust_function, sympy, sympy_quotient, CodegenError, CodegenOptions,
     Counted, LatexOptions, OpCount, Output,
 };
+pub use kin::dqexp;
 pub use kin::{
     dh_link, dh_link_matrix, dq_jacobian, geometric_jacobian, mdh_link, mdh_link_matrix,
-    parse_robot, screw_parameters, Chain, ChainError, Convention, FieldEval, Joint, JointGeometry,
-    JointKind, Robot, RobotError, ScrewError, ScrewParams,
+    parse_robot, parse_urdf, screw_parameters, Chain, ChainError, Convention, FieldEval, Frame,
+    Joint, JointGeometry, JointKind, Robot, RobotError, ScrewError, ScrewParams, UrdfError,
+    UrdfOptions, UrdfRobot, SNAP_TOLERANCE,
 };
 pub use lang::{
     builtin, eval_point_text, eval_scalar_text, parse, parse_expr, parse_expr_with, parse_with,
@@ -36,17 +40,17 @@ pub use lang::{
 };
 pub use print::{
     fk_recurrence, fk_report, legend, ops_tables, plain, plain_named, plain_quotient,
-    plain_quotient_named, shorthand_name, FkOptions, PlainOptions, ReportError, ReportFormat,
-    TrigNames,
+    plain_quotient_named, rate_name, robot_toml, shorthand_name, task_jacobian, task_report,
+    FkOptions, PlainOptions, ReportError, ReportFormat, TaskJacobian, TrigNames,
 };
 pub use ring::Ring;
 pub use scalar::{
-    max_exponent, parse_trig_placeholder, reset_work, set_max_exponent, set_term_limit,
-    set_work_budget, term_limit, trig_placeholder, work_budget, work_used, worker_threads, Frac,
-    Scalar, ScalarError, Sym, DEFAULT_MAX_EXPONENT,
+    max_exponent, parse_decimal, parse_trig_placeholder, reset_work, set_max_exponent,
+    set_term_limit, set_work_budget, term_limit, trig_placeholder, work_budget, work_used,
+    worker_threads, Frac, Scalar, ScalarError, Sym, DEFAULT_MAX_EXPONENT,
 };
 pub use walk::{
-    mechanism_svg, walk_html, walk_markdown, walk_robot, walk_script, walk_text, ComponentTrace,
-    Config, HalfAngle, KatexAssets, Mechanism, Motion, Step, SvgOptions, WalkError, Walkthrough,
-    Word, Words,
+    mechanism_svg, walk_html, walk_markdown, walk_robot, walk_robot_chain, walk_script, walk_text,
+    ComponentTrace, Config, HalfAngle, KatexAssets, Mechanism, Motion, Step, SvgOptions, WalkError,
+    Walkthrough, Word, Words,
 };

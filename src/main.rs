@@ -72,8 +72,15 @@ enum Command {
         /// given take a fixed default, lengths 1.
         #[arg(long, value_name = "NAME=VALUE,...")]
         config: Option<String>,
+        /// The inverse kinematics of a robot file instead: the axes, the decisions, each
+        /// subproblem and branch, a numeric check (text or --markdown).
+        #[arg(long)]
+        ik: bool,
+        /// With --ik: a joint variable given as a parameter.
+        #[arg(long, value_name = "VARIABLE", requires = "ik")]
+        free: Option<String>,
     },
-    /// Forward kinematics of a robot file (TOML: dh, mdh or screw convention) in closed form:
+    /// Forward kinematics of a robot file (TOML: dh, mdh or screw convention; or URDF) in closed form:
     /// the unit DQ and the 4x4 matrix; with --point the image of a point, with --jacobian the
     /// 8 x n Jacobian of the DQ components.
     Fk {
@@ -82,9 +89,36 @@ enum Command {
         /// A point of the last link, "x, y, z" (default: the file's tool point, if any).
         #[arg(long, value_name = "X, Y, Z")]
         point: Option<String>,
-        /// Add the 8 x n Jacobian d dq[i] / d q[j].
-        #[arg(long)]
-        jacobian: bool,
+        /// Add the 8 x n Jacobian d dq[i] / d q[j]; `--jacobian=KIND` gives instead a task
+        /// Jacobian of DQ Robotics: pose (the same 8 x n), rotation, translation,
+        /// line[:X,Y,Z], plane[:X,Y,Z] (end-effector direction, default z), distance,
+        /// point_to_point:X,Y,Z, point_to_line:DX,DY,DZ,PX,PY,PZ, point_to_plane:NX,NY,NZ,PX,PY,PZ
+        /// (workspace point, line, plane), or pose_derivative (a function of q and the rates
+        /// <q>_dot).
+        #[arg(long, value_name = "KIND", num_args = 0..=1, require_equals = true, default_missing_value = "")]
+        jacobian: Option<String>,
+        #[command(flatten)]
+        urdf: UrdfArgs,
+    },
+    /// Convert a URDF file to a robot file (screw form) that fk reads to the same pose.
+    Convert {
+        /// The URDF file.
+        robot: std::path::PathBuf,
+        /// The output format.
+        #[arg(long, value_enum, default_value_t = ConvertTo::Toml)]
+        to: ConvertTo,
+        #[command(flatten)]
+        urdf: UrdfArgs,
+    },
+    /// Inverse kinematics of a robot file in closed form: the family decided exactly from the
+    /// axes, every joint as atan2 of closed forms, every branch; --format rust, c or python
+    /// emit a solver returning every solution for a target pose.
+    Ik {
+        /// The robot description file.
+        robot: std::path::PathBuf,
+        /// A joint variable given as a parameter (7-joint arms): `--free theta3`.
+        #[arg(long, value_name = "VARIABLE")]
+        free: Option<String>,
     },
     /// Operation counts: the paper's Tables 1 and 2, counted by running the products (with the
     /// corrections of ERRATA 10 and 11); with a robot file, also its generated forward kinematics.
@@ -94,7 +128,61 @@ enum Command {
         /// Count the Jacobian too.
         #[arg(long)]
         jacobian: bool,
+        #[command(flatten)]
+        urdf: UrdfArgs,
     },
+}
+
+/// How a URDF file is read (robot files ignore these).
+#[derive(clap::Args, Clone, Debug, Default)]
+struct UrdfArgs {
+    /// URDF: the last link of the chain (default: the only leaf link).
+    #[arg(long, value_name = "LINK")]
+    tip: Option<String>,
+    /// URDF: the first link of the chain (default: the root link).
+    #[arg(long, value_name = "LINK")]
+    base: Option<String>,
+    /// URDF: refuse angles that are not exact instead of reading those within 0.001 of a
+    /// multiple of pi/12 (1.5708, 3.14159) as that multiple.
+    #[arg(long)]
+    exact_angles: bool,
+}
+
+/// The output formats of `convert`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum ConvertTo {
+    /// A robot file (TOML, screw form).
+    Toml,
+}
+
+/// Whether `path` names a URDF file (by its extension).
+fn is_urdf(path: &std::path::Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("urdf") || e.eq_ignore_ascii_case("xml"))
+}
+
+/// Reads a robot file or a URDF file; the angles a URDF file rounds are reported on stderr.
+fn load_robot(path: &std::path::Path, urdf: &UrdfArgs) -> Result<dqsym::Robot, String> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let name = path.display().to_string();
+    if is_urdf(path) {
+        let o = dqsym::UrdfOptions {
+            tip: urdf.tip.clone(),
+            base: urdf.base.clone(),
+            snap_angles: !urdf.exact_angles,
+        };
+        let r = dqsym::parse_urdf(&text, &name, &o).map_err(|e| e.to_string())?;
+        for n in &r.notes {
+            eprintln!("note: {n}");
+        }
+        Ok(r.robot)
+    } else {
+        if urdf.tip.is_some() || urdf.base.is_some() || urdf.exact_angles {
+            return Err("--tip, --base and --exact-angles apply to URDF files only".into());
+        }
+        dqsym::parse_robot(&text, &name, &dqsym::eval_scalar_text).map_err(|e| e.to_string())
+    }
 }
 
 /// The output formats of `--format`.
@@ -108,6 +196,10 @@ enum OutputFormat {
     Rust,
     /// Text that SymPy's sympify parses.
     Sympy,
+    /// C99 source (`ik` only).
+    C,
+    /// Python with NumPy (`ik` only).
+    Python,
 }
 
 /// The options for the library's printers.
@@ -117,6 +209,9 @@ fn show_options(format: OutputFormat, explicit: bool) -> Result<ShowOptions, Str
         OutputFormat::Latex => Format::Latex,
         OutputFormat::Rust => Format::Rust,
         OutputFormat::Sympy => Format::Sympy,
+        OutputFormat::C | OutputFormat::Python => {
+            return Err("--format c and --format python are for `dqsym ik` only".into())
+        }
     };
     Ok(ShowOptions { format, explicit })
 }
@@ -222,7 +317,7 @@ fn dispatch(cli: Cli) -> ExitCode {
     }
     // fk has its own formats (a report per entry); the other commands share show options.
     let opts = match &cli.command {
-        Some(Command::Fk { .. } | Command::Ops { .. }) => None,
+        Some(Command::Fk { .. } | Command::Ops { .. } | Command::Ik { .. }) => None,
         _ => match show_options(cli.format, cli.explicit) {
             Ok(o) => Some(o),
             Err(message) => {
@@ -236,15 +331,32 @@ fn dispatch(cli: Cli) -> ExitCode {
         explicit: cli.explicit,
     });
     match (cli.command, cli.expr) {
-        (Some(Command::Ops { robot, jacobian }), _) => ops(robot.as_deref(), jacobian),
+        (
+            Some(Command::Ops {
+                robot,
+                jacobian,
+                urdf,
+            }),
+            _,
+        ) => ops(robot.as_deref(), jacobian, &urdf),
         (
             Some(Command::Fk {
                 robot,
                 point,
                 jacobian,
+                urdf,
             }),
             _,
-        ) => fk(&robot, point.as_deref(), jacobian, cli.format, cli.explicit),
+        ) => fk(
+            &robot,
+            point.as_deref(),
+            jacobian.as_deref(),
+            cli.format,
+            cli.explicit,
+            &urdf,
+        ),
+        (Some(Command::Convert { robot, to, urdf }), _) => convert(&robot, to, &urdf),
+        (Some(Command::Ik { robot, free }), _) => ik(&robot, free, cli.format, cli.explicit),
         (Some(Command::Paper), _) => match paper(&PlainOptions {
             shorthand: !cli.explicit,
         }) {
@@ -264,6 +376,18 @@ fn dispatch(cli: Cli) -> ExitCode {
                 markdown,
                 html,
                 config,
+                ik: true,
+                free,
+            }),
+            _,
+        ) => walk_ik(&file, markdown, html.is_some() || config.is_some(), free),
+        (
+            Some(Command::Walk {
+                file,
+                markdown,
+                html,
+                config,
+                ..
             }),
             _,
         ) => walk(&file, markdown, html.as_deref(), config.as_deref()),
@@ -272,11 +396,11 @@ fn dispatch(cli: Cli) -> ExitCode {
     }
 }
 
-/// `dqsym fk ROBOT`: reads the file, derives, prints; every failure is a message and status 1.
-fn fk(
+/// `dqsym ik ROBOT`: reads the file, derives the closed-form inverse kinematics, prints the
+/// derivation or the solver code; every failure is a message and status 1.
+fn ik(
     path: &std::path::Path,
-    point: Option<&str>,
-    jacobian: bool,
+    free: Option<String>,
     format: OutputFormat,
     explicit: bool,
 ) -> ExitCode {
@@ -284,15 +408,88 @@ fn fk(
         eprintln!("error: {m}");
         ExitCode::FAILURE
     };
-    let text = match std::fs::read_to_string(path) {
-        Ok(t) => t,
-        Err(e) => return fail(format!("cannot read {}: {e}", path.display())),
+    let robot = match load_robot(path, &UrdfArgs::default()) {
+        Ok(r) => r,
+        Err(m) => return fail(m),
     };
-    let robot =
-        match dqsym::parse_robot(&text, &path.display().to_string(), &dqsym::eval_scalar_text) {
-            Ok(r) => r,
-            Err(e) => return fail(e.to_string()),
-        };
+    dqsym::reset_work();
+    let sol = match dqsym::ik::solve(&robot, &dqsym::ik::IkOptions { free }) {
+        Ok(s) => s,
+        Err(e) => return fail(e.to_string()),
+    };
+    let shorthand = !explicit;
+    let out = match format {
+        OutputFormat::Plain => dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Plain { shorthand }),
+        OutputFormat::Latex => dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Latex { shorthand }),
+        OutputFormat::Sympy => dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Sympy),
+        OutputFormat::Rust => dqsym::ik::ik_rust(&sol),
+        OutputFormat::C => dqsym::ik::ik_c(&sol),
+        OutputFormat::Python => dqsym::ik::ik_python(&sol),
+    };
+    match out {
+        Ok(t) => {
+            print!("{t}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(e.to_string()),
+    }
+}
+
+/// `dqsym walk ROBOT --ik`: the inverse kinematics derivation step by step.
+fn walk_ik(path: &std::path::Path, markdown: bool, html: bool, free: Option<String>) -> ExitCode {
+    let fail = |m: String| {
+        eprintln!("error: {m}");
+        ExitCode::FAILURE
+    };
+    if html {
+        return fail("walk --ik writes text or --markdown (no --html page yet)".into());
+    }
+    let robot = match load_robot(path, &UrdfArgs::default()) {
+        Ok(r) => r,
+        Err(m) => return fail(m),
+    };
+    dqsym::reset_work();
+    let sol = match dqsym::ik::solve(&robot, &dqsym::ik::IkOptions { free }) {
+        Ok(s) => s,
+        Err(e) => return fail(e.to_string()),
+    };
+    match dqsym::ik::ik_walk(&robot, &sol, markdown) {
+        Ok(t) => {
+            print!("{t}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(e.to_string()),
+    }
+}
+
+/// `dqsym fk ROBOT`: reads the file, derives, prints; every failure is a message and status 1.
+fn fk(
+    path: &std::path::Path,
+    point: Option<&str>,
+    jacobian: Option<&str>,
+    format: OutputFormat,
+    explicit: bool,
+    urdf: &UrdfArgs,
+) -> ExitCode {
+    let fail = |m: String| {
+        eprintln!("error: {m}");
+        ExitCode::FAILURE
+    };
+    // `--jacobian` alone (and `--jacobian=pose`) is the 8 x n Jacobian of the report; any
+    // other kind is a task Jacobian with the pose.
+    let task = match jacobian {
+        None | Some("") => None,
+        Some(k) => match dqsym::TaskJacobian::parse(k, &|v| dqsym::eval_point_text(v)) {
+            Ok(dqsym::TaskJacobian::Pose) => None,
+            Ok(t) => Some(t),
+            Err(m) => return fail(format!("--jacobian: {m}")),
+        },
+    };
+    let jacobian = jacobian.is_some();
+    let robot = match load_robot(path, urdf) {
+        Ok(r) => r,
+        Err(m) => return fail(m),
+    };
     let point = match point.map(dqsym::eval_point_text) {
         Some(Err(m)) => return fail(format!("--point: {m}")),
         Some(Ok(p)) => Some(p),
@@ -307,19 +504,24 @@ fn fk(
         },
         OutputFormat::Sympy => dqsym::ReportFormat::Sympy,
         OutputFormat::Rust => dqsym::ReportFormat::Rust,
+        OutputFormat::C | OutputFormat::Python => {
+            return fail("--format c and --format python are for `dqsym ik` only".into())
+        }
     };
     // The fields were evaluated each with its own budget; the derivation gets a whole one.
     dqsym::reset_work();
-    match dqsym::fk_report(
-        &robot,
-        &dqsym::FkOptions {
-            format,
-            point,
-            jacobian,
-            // Past the evaluation's term limit, the pose is printed as a recurrence.
-            max_terms: dqsym::term_limit(),
-        },
-    ) {
+    let options = dqsym::FkOptions {
+        format,
+        point,
+        jacobian,
+        // Past the evaluation's term limit, the pose is printed as a recurrence.
+        max_terms: dqsym::term_limit(),
+    };
+    let report = match &task {
+        Some(t) => dqsym::task_report(&robot, &options, t),
+        None => dqsym::fk_report(&robot, &options),
+    };
+    match report {
         Ok(t) => {
             print!("{t}");
             ExitCode::SUCCESS
@@ -329,17 +531,12 @@ fn fk(
 }
 
 /// `dqsym ops [ROBOT]`: the paper's tables, then the robot's generated code.
-fn ops(path: Option<&std::path::Path>, jacobian: bool) -> ExitCode {
+fn ops(path: Option<&std::path::Path>, jacobian: bool, urdf: &UrdfArgs) -> ExitCode {
     print!("{}", dqsym::ops_tables());
     let Some(path) = path else {
         return ExitCode::SUCCESS;
     };
-    let robot = match std::fs::read_to_string(path)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))
-        .and_then(|t| {
-            dqsym::parse_robot(&t, &path.display().to_string(), &dqsym::eval_scalar_text)
-                .map_err(|e| e.to_string())
-        }) {
+    let robot = match load_robot(path, urdf) {
         Ok(r) => r,
         Err(m) => {
             eprintln!("error: {m}");
@@ -364,6 +561,35 @@ fn ops(path: Option<&std::path::Path>, jacobian: bool) -> ExitCode {
     }
 }
 
+/// `dqsym convert ROBOT.urdf --to toml`: the robot file on stdout.
+fn convert(path: &std::path::Path, to: ConvertTo, urdf: &UrdfArgs) -> ExitCode {
+    let ConvertTo::Toml = to;
+    if !is_urdf(path) {
+        eprintln!(
+            "error: {}: convert reads URDF files (.urdf)",
+            path.display()
+        );
+        return ExitCode::FAILURE;
+    }
+    let r = load_robot(path, urdf).and_then(|robot| {
+        let name = path.file_name().map_or_else(
+            || path.display().to_string(),
+            |n| n.to_string_lossy().into_owned(),
+        );
+        dqsym::robot_toml(&robot, &name).map_err(|e| e.to_string())
+    });
+    match r {
+        Ok(t) => {
+            print!("{t}");
+            ExitCode::SUCCESS
+        }
+        Err(m) => {
+            eprintln!("error: {m}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
 /// `dqsym walk FILE`: the walkthrough as text, Markdown or a web page.
 fn walk(
     path: &std::path::Path,
@@ -380,7 +606,12 @@ fn walk(
         Err(e) => return fail(format!("cannot read {}: {e}", path.display())),
     };
     let name = path.display().to_string();
-    let w = if path.extension().is_some_and(|e| e == "toml") {
+    let w = if is_urdf(path) {
+        match load_robot(path, &UrdfArgs::default()) {
+            Ok(r) => dqsym::walk_robot_chain(&r),
+            Err(m) => return fail(m),
+        }
+    } else if path.extension().is_some_and(|e| e == "toml") {
         dqsym::walk_robot(&text, &name, &dqsym::eval_scalar_text)
     } else {
         dqsym::walk_script(&text, &name)

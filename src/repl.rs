@@ -23,7 +23,7 @@ use std::time::Duration;
 
 const PROMPT: &str = "dq> ";
 const MORE: &str = "..> ";
-const COMMANDS: [&str; 5] = [":help", ":quit", ":vars", ":q", ":steps"];
+const COMMANDS: [&str; 6] = [":help", ":quit", ":vars", ":q", ":steps", ":ik"];
 
 /// Completes commands, built-ins, constants and the names bound so far.
 struct DqHelper {
@@ -156,8 +156,55 @@ pub(crate) fn help() -> String {
     s += "\nCommands\n  :help  this text    :vars  the bindings    :quit  leave (also Ctrl-D)\n  \
            :steps the walkthrough of every statement entered so far that succeeded: factors in \
            words,\n         products, identities applied, closed form, check against 4x4 matrices\n  \
+           :ik NAME q1 q2 ... [--free qk]  closed-form inverse kinematics of the chain bound to \
+           NAME\n         (a product of joint motions in the variables q1 q2 ...)\n  \
           Ctrl-C abandons the line being typed or the computation running; bindings stay.\n";
     s
+}
+
+/// `:ik NAME q1 q2 ... [--free qk]`: the inverse kinematics of a bound chain DQ.
+fn ik_command(session: &Session, cmd: &str, opts: &ShowOptions) -> Result<String, String> {
+    let mut words: Vec<&str> = cmd.split_whitespace().skip(1).collect();
+    let mut free = None;
+    if let Some(i) = words.iter().position(|w| *w == "--free") {
+        free = Some(
+            words
+                .get(i + 1)
+                .ok_or("--free needs a joint variable")?
+                .to_string(),
+        );
+        words.drain(i..i + 2);
+    }
+    let (name, vars) = words
+        .split_first()
+        .ok_or("usage: :ik NAME q1 q2 ... [--free qk]")?;
+    if vars.is_empty() {
+        return Err("usage: :ik NAME q1 q2 ... [--free qk] (name the joint variables)".into());
+    }
+    let q = match session.get(name) {
+        Some(dqsym::Value::DualQuat(q)) => q.clone(),
+        Some(v) => {
+            return Err(format!(
+                "`{name}` is {}, not a dual quaternion",
+                v.describe()
+            ))
+        }
+        None => return Err(format!("`{name}` is not bound")),
+    };
+    let vars: Vec<String> = vars.iter().map(|v| v.to_string()).collect();
+    dqsym::reset_work();
+    let sol = dqsym::ik::solve_dq(name, &q, &vars, &dqsym::ik::IkOptions { free })
+        .map_err(|e| e.to_string())?;
+    let format = match opts.format {
+        dqsym::Format::Latex => dqsym::ik::IkFormat::Latex {
+            shorthand: !opts.explicit,
+        },
+        dqsym::Format::Sympy => dqsym::ik::IkFormat::Sympy,
+        _ => dqsym::ik::IkFormat::Plain {
+            shorthand: !opts.explicit,
+        },
+    };
+    dqsym::ik::ik_report(&sol, format).map_err(|e| e.to_string())
 }
 
 /// The `:vars` listing.
@@ -245,6 +292,14 @@ pub(crate) fn run(opts: &ShowOptions, limits: &Limits) -> ExitCode {
                     match dqsym::walk_script(&entered, "the statements entered so far")
                         .and_then(|w| dqsym::walk_text(&w))
                     {
+                        Ok(t) => print!("{t}"),
+                        Err(e) => eprintln!("error: {e}"),
+                    }
+                    continue;
+                }
+                cmd if cmd.starts_with(":ik ") || cmd == ":ik" => {
+                    let _ = editor.add_history_entry(line.as_str());
+                    match ik_command(&session, cmd, opts) {
                         Ok(t) => print!("{t}"),
                         Err(e) => eprintln!("error: {e}"),
                     }

@@ -10,6 +10,7 @@
 //! converted where they are used (ERRATA, "Two dual-part conventions").
 
 mod construct;
+pub mod dqr;
 mod dual_quat;
 mod matrix;
 mod quat;

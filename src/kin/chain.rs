@@ -17,13 +17,14 @@ pub enum ChainError {
     },
 }
 
-/// A serial chain: joints from the base outwards, then a fixed tool motion.
+/// A serial chain: a fixed base motion, joints from the base outwards, then a fixed tool motion.
 ///
-/// Forward kinematics is `J₁(q₁) J₂(q₂) … Jₙ(qₙ) · tool`, the paper's `q = q₀₁ q₁₂ … q_{n−1,n}`
+/// Forward kinematics is `base · J₁(q₁) J₂(q₂) … Jₙ(qₙ) · tool`, the paper's `q = q₀₁ q₁₂ … q_{n−1,n}`
 /// (sec 5 A). With DH joints each factor is the motion of a link frame relative to the
 /// previous one and `tool` is the end effector in the last frame; with screw joints each
 /// factor is a motion about a home-pose axis in base coordinates and `tool` is the end
-/// effector's home pose (sec 6). Nothing here needs more than a [`Ring`], so symbolic joint
+/// effector's home pose (sec 6), both relative to `base` (the robot's mounting in the world;
+/// the identity by default). Nothing here needs more than a [`Ring`], so symbolic joint
 /// values flow through unchanged.
 ///
 /// # Laws
@@ -32,6 +33,8 @@ pub enum ChainError {
 /// - The last entry of `forward_frames(q)` times `tool` is `forward(q)`.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Chain<T> {
+    /// The fixed motion applied before the first joint (the base frame in the world).
+    pub base: DualQuat<T>,
     /// The joints, base first.
     pub joints: Vec<Joint<T>>,
     /// The fixed motion applied after the last joint.
@@ -39,12 +42,18 @@ pub struct Chain<T> {
 }
 
 impl<T: Ring> Chain<T> {
-    /// The chain of `joints` with no tool (identity).
+    /// The chain of `joints` with no base and no tool (identities).
     pub fn new(joints: Vec<Joint<T>>) -> Self {
         Chain {
+            base: DualQuat::identity(),
             joints,
             tool: DualQuat::identity(),
         }
+    }
+
+    /// The same chain with `base` applied before the first joint.
+    pub fn with_base(self, base: DualQuat<T>) -> Self {
+        Chain { base, ..self }
     }
 
     /// The same chain with `tool` applied after the last joint.
@@ -68,14 +77,14 @@ impl<T: Ring> Chain<T> {
         }
     }
 
-    /// The cumulative motions `J₁(q₁)`, `J₁ J₂`, …, `J₁ … Jₙ` (without the tool): the
-    /// pose of every link frame, as a Jacobian needs them.
+    /// The cumulative motions `base J₁(q₁)`, `base J₁ J₂`, …, `base J₁ … Jₙ` (without the
+    /// tool): the pose of every link frame, as a Jacobian needs them.
     ///
     /// # Errors
     /// [`ChainError::WrongJointCount`] when `q` does not hold one value per joint.
     pub fn forward_frames(&self, q: &[T]) -> Result<Vec<DualQuat<T>>, ChainError> {
         self.check(q)?;
-        let mut acc = DualQuat::identity();
+        let mut acc = self.base.clone();
         let mut frames = Vec::with_capacity(q.len());
         for (joint, qi) in self.joints.iter().zip(q) {
             acc = acc * joint.dq(qi);
@@ -84,7 +93,7 @@ impl<T: Ring> Chain<T> {
         Ok(frames)
     }
 
-    /// The end-effector motion `J₁(q₁) … Jₙ(qₙ) · tool` as a dual quaternion.
+    /// The end-effector motion `base · J₁(q₁) … Jₙ(qₙ) · tool` as a dual quaternion.
     ///
     /// # Errors
     /// [`ChainError::WrongJointCount`] when `q` does not hold one value per joint.
@@ -94,12 +103,12 @@ impl<T: Ring> Chain<T> {
             .joints
             .iter()
             .zip(q)
-            .fold(DualQuat::identity(), |acc, (joint, qi)| acc * joint.dq(qi));
+            .fold(self.base.clone(), |acc, (joint, qi)| acc * joint.dq(qi));
         Ok(pose * &self.tool)
     }
 
-    /// The end-effector motion as a product of the joints' elementary matrices. The tool is
-    /// the one factor converted from its dual quaternion ([`DualQuat::to_matrix`]).
+    /// The end-effector motion as a product of the joints' elementary matrices. The base and
+    /// the tool are the factors converted from their dual quaternions ([`DualQuat::to_matrix`]).
     ///
     /// # Errors
     /// [`ChainError::WrongJointCount`] when `q` does not hold one value per joint.
@@ -109,7 +118,7 @@ impl<T: Ring> Chain<T> {
             .joints
             .iter()
             .zip(q)
-            .fold(Matrix4::identity(), |acc, (joint, qi)| {
+            .fold(self.base.to_matrix(), |acc, (joint, qi)| {
                 acc * joint.matrix(qi)
             });
         Ok(pose * self.tool.to_matrix())

@@ -2,11 +2,18 @@
 //! paper's screw form (sec 6), where each joint turns about or slides along an axis given in the
 //! home pose.
 //!
-//! Every field is an expression of the dqsym language. This module does not evaluate them
-//! itself: the caller passes the evaluator, so the kinematics layer stays free of the language.
+//! Every field is an expression of the dqsym language, or a TOML number (read from its decimal
+//! text, never through binary floating point: `0.4318` is 2159/5000). This module does not
+//! evaluate them itself: the caller passes the evaluator, so the kinematics layer stays free
+//! of the language.
+//!
+//! Optional `[base]` and `[tool]` tables give constant frames before the first joint and after
+//! the last, URDF style: `xyz = [x, y, z]` and `rpy = [roll, pitch, yaw]` (fixed axes: roll
+//! about x, then pitch about y, then yaw about z, so `R = Rz(yaw) Ry(pitch) Rx(roll)`), the
+//! frame being `Trans(xyz) R`. `tool = ["x", "y", "z"]` (or `"x, y, z"`) is a point instead.
 
 use super::{Chain, Joint, JointGeometry, JointKind};
-use crate::{DualQuat, Matrix4, Scalar};
+use crate::{DualQuat, Matrix4, Quat, Scalar};
 use serde::Deserialize;
 use thiserror::Error;
 
@@ -22,21 +29,62 @@ pub enum Convention {
 }
 
 /// A robot read from a file: its chain with symbolic joint variables.
+///
+/// The pose is `chain.forward(&joint_values)`: `base · J₁(v₁) … Jₙ(vₙ) · tool`. Usually joint
+/// i's value `vᵢ` is the symbol of `variables[i]`; a URDF `mimic` joint's value is instead
+/// `multiplier · v + offset` for the variable `v` of the joint it follows, so `variables` (the
+/// independent variables, one Jacobian column each, in order of first use) can be shorter than
+/// the chain.
 #[derive(Clone, Debug)]
 pub struct Robot {
     /// The `name` field, or the file name.
     pub name: String,
-    /// The convention the joints were given in.
+    /// The convention the joints were given in (URDF files become screw form).
     pub convention: Convention,
-    /// The joint variables in joint order.
+    /// The independent joint variables, in joint order.
     pub variables: Vec<String>,
-    /// The chain; its joint values are the variables.
+    /// Each joint's value in the variables, one per joint of `chain`.
+    pub joint_values: Vec<Scalar>,
+    /// The chain; its base and tool motions are the products of `base_frames` and
+    /// `tool_frames`.
     pub chain: Chain<Scalar>,
-    /// The `tool` point of a screw-form file, in the home pose.
+    /// The constant frames before the first joint, in order (`[base]`).
+    pub base_frames: Vec<Frame>,
+    /// The constant frames after the last joint, in order (`[tool]`; for a URDF file, the
+    /// joints' origins, whose product is the tip's home pose).
+    pub tool_frames: Vec<Frame>,
+    /// The `tool` point, if the file gives one (in the home pose for screw robots, in the last
+    /// frame for DH).
     pub tool: Option<[Scalar; 3]>,
     /// The `[values]` table: nominal numbers for symbolic parameters (`a2 = 0.4318`), used
     /// where a number is needed (the walkthrough's drawing); results stay symbolic.
     pub values: Vec<(String, f64)>,
+}
+
+/// A constant frame `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)`, with `rpy = [roll, pitch, yaw]`
+/// (the URDF `origin`: fixed axes, roll about x first).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Frame {
+    /// The translation.
+    pub xyz: [Scalar; 3],
+    /// Roll, pitch and yaw, angles (symbols or rational multiples of pi).
+    pub rpy: [Scalar; 3],
+}
+
+impl Frame {
+    /// The frame as a unit DQ, or why an angle has no exact cosine.
+    pub fn dq(&self) -> Result<DualQuat<Scalar>, String> {
+        frame_dq(&self.xyz, &self.rpy)
+    }
+
+    /// The product of `frames` in order (the identity for none).
+    pub fn product(frames: &[Frame]) -> Result<DualQuat<Scalar>, String> {
+        let mut acc = DualQuat::identity();
+        for f in frames {
+            acc = acc * f.dq()?;
+        }
+        Ok(acc)
+    }
 }
 
 /// What is wrong with a robot file; every message names the file, and the joint and field
@@ -62,7 +110,8 @@ pub enum RobotError {
 struct RobotFile {
     name: Option<String>,
     convention: String,
-    tool: Option<Vec<String>>,
+    base: Option<toml::Value>,
+    tool: Option<toml::Value>,
     #[serde(default)]
     values: std::collections::BTreeMap<String, toml::Value>,
     #[serde(default)]
@@ -88,6 +137,10 @@ pub type FieldEval<'a> = &'a dyn Fn(&str) -> Result<Scalar, String>;
 
 /// Reads a robot file. `file` names it in messages; `eval` evaluates one field expression.
 pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, RobotError> {
+    let text = &numbers_as_text(text).map_err(|message| RobotError::File {
+        file: file.to_string(),
+        message,
+    })?;
     let f: RobotFile = toml::from_str(text).map_err(|e| {
         let at = e.span().map(|s| {
             let before = &text[..s.start.min(text.len())];
@@ -121,6 +174,7 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
     }
     let mut joints = Vec::new();
     let mut variables = Vec::new();
+    let mut values = Vec::new();
     for (i, j) in f.joint.iter().enumerate() {
         let n = i + 1;
         let err = |field: &str, message: String| RobotError::Field {
@@ -174,17 +228,26 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
                 } else {
                     JointGeometry::Mdh { alpha, a, theta, d }
                 };
+                values.push(Scalar::sym(&var));
                 variables.push(var);
                 joints.push(Joint::new(kind, geometry));
             }
             Convention::Screw => {
-                let var = j
+                let text = j
                     .variable
                     .clone()
                     .ok_or_else(|| err("variable", "missing".into()))?;
-                if var.is_empty() || !var.chars().all(|c| c.is_alphanumeric() || c == '_') {
-                    return Err(err("variable", format!("`{var}` is not a symbol name")));
-                }
+                // A symbol, or an expression in one symbol for a coupled joint
+                // (`2*q1 + pi/4`, as a converted URDF mimic joint reads).
+                let plain_name =
+                    !text.is_empty() && text.chars().all(|c| c.is_alphanumeric() || c == '_');
+                let (var, value) = if plain_name {
+                    (text.clone(), Scalar::sym(&text))
+                } else {
+                    let value = eval(&text).map_err(|m| err("variable", m))?;
+                    let var = joint_variable(&value).map_err(|m| err("variable", m))?;
+                    (var, value)
+                };
                 let axis = vec3(j.axis.as_ref(), "axis", eval).map_err(|m| err("axis", m))?;
                 let axis = unit_numeric(&axis).map_err(|m| err("axis", m))?;
                 let point = match (kind, j.point.as_ref()) {
@@ -202,19 +265,19 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
                         None => [Scalar::int(0), Scalar::int(0), Scalar::int(0)],
                     },
                 };
-                variables.push(var);
+                values.push(value);
+                if !variables.contains(&var) {
+                    variables.push(var);
+                }
                 joints.push(Joint::new(kind, JointGeometry::Screw { axis, point }));
             }
         }
     }
-    let tool = match &f.tool {
-        None => None,
-        Some(t) => Some(vec3(Some(t), "tool", eval).map_err(|m| RobotError::File {
-            file: file.into(),
-            message: format!("field `tool`: {m}"),
-        })?),
+    let file_err = |field: &str, m: String| RobotError::File {
+        file: file.into(),
+        message: format!("field `{field}`: {m}"),
     };
-    let mut values = Vec::new();
+    let mut nominal = Vec::new();
     for (name, v) in &f.values {
         let bad = |m: &str| RobotError::File {
             file: file.into(),
@@ -231,35 +294,301 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
             toml::Value::Float(x) if x.is_finite() => *x,
             _ => return Err(bad("not a finite number")),
         };
-        values.push((name.clone(), x));
+        nominal.push((name.clone(), x));
     }
+    let (tool, tool_frames) = match &f.tool {
+        None => (None, Vec::new()),
+        Some(v @ (toml::Value::Table(_) | toml::Value::Array(_))) if is_frames(v) => (
+            None,
+            frames(v, eval).map_err(|(k, m)| file_err(&format!("tool{k}"), m))?,
+        ),
+        Some(v) => (
+            Some(point(v, eval).map_err(|m| file_err("tool", m))?),
+            Vec::new(),
+        ),
+    };
+    let base_frames = match &f.base {
+        None => Vec::new(),
+        Some(v) if is_frames(v) => {
+            frames(v, eval).map_err(|(k, m)| file_err(&format!("base{k}"), m))?
+        }
+        Some(_) => {
+            return Err(file_err(
+                "base",
+                "expected a table `[base]` with `xyz` and `rpy`".into(),
+            ))
+        }
+    };
+    let product = |fs: &[Frame], name: &str| {
+        Frame::product(fs).map_err(|m| file_err(&format!("{name}.rpy"), m))
+    };
+    let chain = Chain::new(joints)
+        .with_base(product(&base_frames, "base")?)
+        .with_tool(product(&tool_frames, "tool")?);
     Ok(Robot {
         name: f.name.unwrap_or_else(|| file.to_string()),
         convention,
+        joint_values: values,
         variables,
-        chain: Chain::new(joints),
+        chain,
+        base_frames,
+        tool_frames,
         tool,
-        values,
+        values: nominal,
     })
 }
 
+/// Whether a `base` or `tool` value is a frame table `[tool]` or an array of them `[[tool]]`.
+fn is_frames(v: &toml::Value) -> bool {
+    match v {
+        toml::Value::Table(_) => true,
+        toml::Value::Array(a) => !a.is_empty() && a.iter().all(toml::Value::is_table),
+        _ => false,
+    }
+}
+
+/// One frame table, or an array of frame tables applied in order; errors name the key
+/// (`.rpy`, `[2].xyz`).
+fn frames(v: &toml::Value, eval: FieldEval) -> Result<Vec<Frame>, (String, String)> {
+    match v {
+        toml::Value::Table(t) => Ok(vec![frame(t, eval).map_err(|(k, m)| (format!(".{k}"), m))?]),
+        toml::Value::Array(a) => a
+            .iter()
+            .enumerate()
+            .map(|(i, t)| match t {
+                toml::Value::Table(t) => {
+                    frame(t, eval).map_err(|(k, m)| (format!("[{}].{k}", i + 1), m))
+                }
+                _ => Err((format!("[{}]", i + 1), "expected a table".to_string())),
+            })
+            .collect(),
+        _ => Err((
+            String::new(),
+            "expected a table with `xyz` and `rpy`".to_string(),
+        )),
+    }
+}
+
+/// The text with every TOML number turned into a string of its decimal text (`0.4318` into
+/// `"0.4318"`, `0x10` into `"16"`), so that every field reads as an expression and no value
+/// passes through binary floating point. Text that is not valid TOML is returned unchanged,
+/// for the TOML reader to report.
+fn numbers_as_text(text: &str) -> Result<String, String> {
+    let Ok(mut doc) = text.parse::<toml_edit::DocumentMut>() else {
+        return Ok(text.to_string());
+    };
+    let mut changed = false;
+    visit_table(doc.as_table_mut(), "", &mut changed)?;
+    Ok(if changed {
+        doc.to_string()
+    } else {
+        text.to_string()
+    })
+}
+
+fn visit_table(t: &mut dyn toml_edit::TableLike, path: &str, ch: &mut bool) -> Result<(), String> {
+    for (k, item) in t.iter_mut() {
+        let path = if path.is_empty() {
+            k.get().to_string()
+        } else {
+            format!("{path}.{}", k.get())
+        };
+        visit_item(item, &path, ch)?;
+    }
+    Ok(())
+}
+
+fn visit_item(item: &mut toml_edit::Item, path: &str, ch: &mut bool) -> Result<(), String> {
+    match item {
+        toml_edit::Item::Value(v) => visit_value(v, path, ch),
+        toml_edit::Item::Table(t) => visit_table(t, path, ch),
+        toml_edit::Item::ArrayOfTables(a) => {
+            for (i, t) in a.iter_mut().enumerate() {
+                visit_table(t, &format!("{path}[{}]", i + 1), ch)?;
+            }
+            Ok(())
+        }
+        toml_edit::Item::None => Ok(()),
+    }
+}
+
+fn visit_value(v: &mut toml_edit::Value, path: &str, ch: &mut bool) -> Result<(), String> {
+    let text = match v {
+        toml_edit::Value::Integer(i) => i.value().to_string(),
+        toml_edit::Value::Float(f) => {
+            let raw = f
+                .as_repr()
+                .and_then(|r| r.as_raw().as_str())
+                .map(|r| r.replace('_', ""))
+                .unwrap_or_else(|| f.value().to_string());
+            if !f.value().is_finite() {
+                return Err(format!("field `{path}`: `{raw}` is not a finite number"));
+            }
+            raw
+        }
+        toml_edit::Value::Array(a) => {
+            for (i, x) in a.iter_mut().enumerate() {
+                visit_value(x, &format!("{path}[{i}]"), ch)?;
+            }
+            return Ok(());
+        }
+        toml_edit::Value::InlineTable(t) => return visit_table(t, path, ch),
+        _ => return Ok(()),
+    };
+    let decor = v.decor().clone();
+    *v = toml_edit::Value::from(text);
+    *v.decor_mut() = decor;
+    *ch = true;
+    Ok(())
+}
+
+/// A point: an array of three fields, or one text `"x, y, z"`.
+fn point(v: &toml::Value, eval: FieldEval) -> Result<[Scalar; 3], String> {
+    match v {
+        toml::Value::String(s) => {
+            let parts = split_top_level(s);
+            if parts.len() != 3 {
+                return Err(format!(
+                    "a point needs 3 coordinates separated by commas, found {}",
+                    parts.len()
+                ));
+            }
+            Ok([eval(parts[0])?, eval(parts[1])?, eval(parts[2])?])
+        }
+        toml::Value::Array(_) => vec3(Some(&strings(v)?), "a point", eval),
+        _ => Err("expected a point [\"x\", \"y\", \"z\"] or a table with `xyz` and `rpy`".into()),
+    }
+}
+
+/// The entries of an array as field texts (numbers were already turned into text).
+fn strings(v: &toml::Value) -> Result<Vec<String>, String> {
+    match v {
+        toml::Value::Array(a) => a
+            .iter()
+            .map(|x| match x {
+                toml::Value::String(s) => Ok(s.clone()),
+                other => Err(format!(
+                    "expected a number or an expression in quotes, found a {}",
+                    other.type_str()
+                )),
+            })
+            .collect(),
+        other => Err(format!("expected an array, found a {}", other.type_str())),
+    }
+}
+
+/// A constant frame from a table with `xyz` and `rpy` (each optional, zero by default); errors
+/// name the key.
+fn frame(
+    t: &toml::map::Map<String, toml::Value>,
+    eval: FieldEval,
+) -> Result<Frame, (String, String)> {
+    if let Some(k) = t.keys().find(|k| *k != "xyz" && *k != "rpy") {
+        return Err((
+            k.clone(),
+            "unknown key (a frame has `xyz` and `rpy`)".to_string(),
+        ));
+    }
+    let get = |k: &str| -> Result<[Scalar; 3], (String, String)> {
+        match t.get(k) {
+            None => Ok([Scalar::int(0), Scalar::int(0), Scalar::int(0)]),
+            Some(v) => strings(v)
+                .and_then(|s| vec3(Some(&s), k, eval))
+                .map_err(|m| (k.to_string(), m)),
+        }
+    };
+    let f = Frame {
+        xyz: get("xyz")?,
+        rpy: get("rpy")?,
+    };
+    f.dq().map_err(|m| ("rpy".to_string(), m))?;
+    Ok(f)
+}
+
+/// `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` as a unit DQ (the URDF `origin` convention), or why
+/// an angle has no exact cosine (`rpy` entries must be angles: symbols, multiples of pi).
+pub(crate) fn frame_dq(xyz: &[Scalar; 3], rpy: &[Scalar; 3]) -> Result<DualQuat<Scalar>, String> {
+    let (o, l) = (Scalar::int(0), Scalar::int(1));
+    let rx = Quat::rotation(&[l.clone(), o.clone(), o.clone()], &rpy[0]);
+    let ry = Quat::rotation(&[o.clone(), l.clone(), o.clone()], &rpy[1]);
+    let rz = Quat::rotation(&[o.clone(), o.clone(), l], &rpy[2]);
+    let q = DualQuat::from_rotation_and_translation(rz * ry * rx, xyz);
+    for c in q.components() {
+        c.check().map_err(|e| e.to_string())?;
+    }
+    Ok(q)
+}
+
+/// Splits at commas outside parentheses and brackets.
+fn split_top_level(text: &str) -> Vec<&str> {
+    let mut depth = 0i32;
+    let mut start = 0;
+    let mut out = Vec::new();
+    for (i, c) in text.char_indices() {
+        match c {
+            '(' | '[' => depth += 1,
+            ')' | ']' => depth -= 1,
+            ',' if depth == 0 => {
+                out.push(text[start..i].trim());
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    out.push(text[start..].trim());
+    out
+}
+
 impl Robot {
-    /// The forward kinematics at the symbolic joint variables.
+    /// The forward kinematics at the symbolic joint variables (base and tool frames included).
     pub fn forward(&self) -> DualQuat<Scalar> {
-        let q: Vec<Scalar> = self.variables.iter().map(|v| Scalar::sym(v)).collect();
         self.chain
-            .forward(&q)
+            .forward(&self.joint_values)
             .unwrap_or_else(|_| DualQuat::identity())
     }
 
-    /// Each joint's factor at its symbolic variable, base first.
+    /// Each joint's factor at its symbolic value, first joint first (without the base and
+    /// tool frames).
     pub fn joint_dqs(&self) -> Vec<DualQuat<Scalar>> {
         self.chain
             .joints
             .iter()
-            .zip(&self.variables)
-            .map(|(j, v)| j.dq(&Scalar::sym(v)))
+            .zip(&self.joint_values)
+            .map(|(j, v)| j.dq(v))
             .collect()
+    }
+
+    /// The factors of the pose, in order: the joint factors, the first one after the base
+    /// frame and the last one before the tool frame (`base J₁`, `J₂`, ..., `Jₙ tool`), so
+    /// that their product is the pose and each joint's variables sit in its own factor. A
+    /// chain without joints gives the single factor `base tool`.
+    pub fn pose_factors(&self) -> Vec<DualQuat<Scalar>> {
+        let mut f = self.joint_dqs();
+        let (base, tool) = (&self.chain.base, &self.chain.tool);
+        let id = DualQuat::identity();
+        if f.is_empty() {
+            return vec![base * tool];
+        }
+        if *base != id {
+            f[0] = base * &f[0];
+        }
+        if *tool != id {
+            let last = f.len() - 1;
+            f[last] = &f[last] * tool;
+        }
+        f
+    }
+
+    /// The variables joint `i`'s value depends on (its own, or the followed joint's).
+    pub fn joint_variables(&self, i: usize) -> Vec<String> {
+        let mut v: Vec<String> = self.joint_values[i]
+            .symbols()
+            .into_iter()
+            .map(|s| s.name().to_string())
+            .filter(|n| self.variables.contains(n))
+            .collect();
+        v.dedup();
+        v
     }
 
     /// The homogeneous matrix of the forward kinematics: the product of the joint factors'
@@ -286,9 +615,11 @@ impl Robot {
         entry: impl Fn(&Scalar) -> Option<Scalar>,
     ) -> Option<Matrix4<Scalar>> {
         let mut acc: Option<Matrix4<Scalar>> = None;
-        for f in self
-            .joint_dqs()
-            .iter()
+        let id = DualQuat::identity();
+        let base = (self.chain.base != id).then_some(&self.chain.base);
+        for f in base
+            .into_iter()
+            .chain(&self.joint_dqs())
             .chain(std::iter::once(&self.chain.tool))
         {
             let mut rows = f.to_matrix().rows;
@@ -329,7 +660,7 @@ impl Robot {
     /// than `max_terms` terms: a chain whose expansion grows exponentially (every DH parameter
     /// symbolic, many joints) is detected after a few products instead of exhausting memory.
     pub fn forward_within(&self, max_terms: usize) -> Option<DualQuat<Scalar>> {
-        let factors = self.joint_dqs();
+        let factors = self.pose_factors();
         let product = |fs: &[DualQuat<Scalar>]| -> Option<DualQuat<Scalar>> {
             let mut acc = DualQuat::identity();
             for f in fs {
@@ -353,7 +684,7 @@ impl Robot {
         } else {
             product(&factors)?
         };
-        Some(acc * self.chain.tool.clone())
+        Some(acc)
     }
 
     /// The symbols other than the joint variables (and pi), sorted by name: those of the joint
@@ -363,7 +694,7 @@ impl Robot {
         for f in self
             .joint_dqs()
             .iter()
-            .chain(std::iter::once(&self.chain.tool))
+            .chain([&self.chain.base, &self.chain.tool])
         {
             names.extend(
                 f.components()
@@ -412,7 +743,7 @@ fn vec3(v: Option<&Vec<String>>, name: &str, eval: FieldEval) -> Result<[Scalar;
 }
 
 /// The axis scaled to unit length, exactly; the axis must be numeric and nonzero.
-fn unit_numeric(a: &[Scalar; 3]) -> Result<[Scalar; 3], String> {
+pub(crate) fn unit_numeric(a: &[Scalar; 3]) -> Result<[Scalar; 3], String> {
     if !a.iter().all(Scalar::is_constant) {
         return Err("the axis must be numeric".into());
     }

@@ -18,6 +18,7 @@
 //! - The tree is at most [`ParseOptions::max_depth`](super::ParseOptions) levels deep.
 
 use num_bigint::BigUint;
+use num_rational::BigRational;
 
 /// Where a node sits in the source: a byte range plus the 1-based line and column (counted in
 /// characters) of its first character.
@@ -99,6 +100,20 @@ pub struct Expr {
 pub enum ExprKind {
     /// A non-negative integer of any size.
     Int(BigUint),
+    /// A decimal or scientific literal (`0.4318`, `1e-3`), exact; `text` as written.
+    Decimal {
+        /// The literal as written, printed back unchanged.
+        text: String,
+        /// Its exact value (non-negative).
+        value: BigRational,
+    },
+    /// An angle in degrees (`90deg`, `22.5deg`): `value` pi/180, exact.
+    Degrees {
+        /// The number as written, without `deg`.
+        text: String,
+        /// The number of degrees (non-negative).
+        value: BigRational,
+    },
     /// A name: a variable, a symbol, or `I`/`eps`/`pi`, which the evaluator binds.
     Name(String),
     /// A prefix or postfix unary operator.
@@ -184,7 +199,10 @@ impl Expr {
     pub fn erase_spans(&mut self) {
         self.span = Span::default();
         match &mut self.kind {
-            ExprKind::Int(_) | ExprKind::Name(_) => {}
+            ExprKind::Int(_)
+            | ExprKind::Decimal { .. }
+            | ExprKind::Degrees { .. }
+            | ExprKind::Name(_) => {}
             ExprKind::Unary { operand, .. } => operand.erase_spans(),
             ExprKind::Sum { first, rest } => {
                 first.erase_spans();

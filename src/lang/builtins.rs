@@ -24,7 +24,7 @@ pub struct Builtin {
     max: usize,
 }
 
-const fn b(
+pub(super) const fn b(
     name: &'static str,
     usage: &'static str,
     min: usize,
@@ -42,8 +42,28 @@ const fn b(
     }
 }
 
-/// Every built-in, in the order `:help` lists them.
-pub const BUILTINS: &[Builtin] = &[
+/// Every built-in, in the order `:help` lists them: the core ones, then DQ Robotics' vocabulary
+/// (`dqr.rs`).
+pub const BUILTINS: &[Builtin] = &ALL;
+
+const ALL: [Builtin; CORE.len() + super::dqr::TABLE.len()] = concat(&CORE, &super::dqr::TABLE);
+
+/// `a` then `b` (`N` is their total length).
+const fn concat<const A: usize, const B: usize, const N: usize>(
+    a: &[Builtin; A],
+    b: &[Builtin; B],
+) -> [Builtin; N] {
+    let mut out = [a[0]; N];
+    let mut i = 0;
+    while i < N {
+        out[i] = if i < A { a[i] } else { b[i - A] };
+        i += 1;
+    }
+    out
+}
+
+/// The core built-ins.
+const CORE: [Builtin; 30] = [
     b(
         "rot",
         "rot(axis, angle) or rot(axis, angle, point)",
@@ -293,9 +313,9 @@ pub fn lookup(name: &str) -> Option<&'static Builtin> {
 }
 
 /// An evaluated argument with its place.
-struct Arg {
-    value: Value,
-    span: Span,
+pub(super) struct Arg {
+    pub(super) value: Value,
+    pub(super) span: Span,
 }
 
 /// Calls the built-in `func` on `args`.
@@ -305,10 +325,15 @@ pub(crate) fn call(ev: &Evaluator<'_>, func: &Ident, args: &[Expr], span: Span) 
             .iter()
             .any(|b| b.name.eq_ignore_ascii_case(&func.name))
         {
-            format!(
-                "; built-in names are lowercase: `{}`",
-                func.name.to_lowercase()
-            )
+            let b = BUILTINS
+                .iter()
+                .find(|b| b.name.eq_ignore_ascii_case(&func.name))
+                .map_or("", |b| b.name);
+            if b.chars().all(|c| !c.is_ascii_uppercase()) {
+                format!("; built-in names are lowercase: `{b}`")
+            } else {
+                format!("; built-in names are case-sensitive: `{b}`")
+            }
         } else {
             "; `:help` lists the built-ins".to_owned()
         };
@@ -467,7 +492,10 @@ pub(crate) fn call(ev: &Evaluator<'_>, func: &Ident, args: &[Expr], span: Span) 
                 vals[0].span,
             )
         })?,
-        _ => return Err(invalid(&format!("`{name}` is not implemented"), func.span)),
+        _ => match super::dqr::call(name, &vals) {
+            Some(r) => r?,
+            None => return Err(invalid(&format!("`{name}` is not implemented"), func.span)),
+        },
     };
     let out = out.check().map_err(|e| scalar_error(e, span))?;
     let text = |k: usize| (args[k].to_string(), vals[k].value.clone());
@@ -487,11 +515,17 @@ pub(crate) fn call(ev: &Evaluator<'_>, func: &Ident, args: &[Expr], span: Span) 
     Ok(out)
 }
 
-fn invalid(message: &str, span: Span) -> EvalError {
+pub(super) fn invalid(message: &str, span: Span) -> EvalError {
     EvalError::new(EvalErrorKind::Invalid(message.to_owned()), span)
 }
 
-fn type_error(func: &str, what: &str, expected: &str, found: &Value, span: Span) -> EvalError {
+pub(super) fn type_error(
+    func: &str,
+    what: &str,
+    expected: &str,
+    found: &Value,
+    span: Span,
+) -> EvalError {
     EvalError::new(
         EvalErrorKind::Type(format!(
             "`{func}`: {what} must be {expected}, found {}",
@@ -532,7 +566,7 @@ fn unit_axis(func: &str, a: &Arg) -> Result<[Scalar; 3]> {
 }
 
 /// A quaternion (as a DQ with zero dual part) or a dual quaternion.
-fn dq_like(func: &str, a: &Arg) -> Result<DualQuat<Scalar>> {
+pub(super) fn dq_like(func: &str, a: &Arg) -> Result<DualQuat<Scalar>> {
     match &a.value {
         Value::DualQuat(d) => Ok(d.clone()),
         Value::Quat(q) => Ok(DualQuat::from_real(q.clone())),
@@ -547,7 +581,7 @@ fn dq_like(func: &str, a: &Arg) -> Result<DualQuat<Scalar>> {
 }
 
 /// A unit dual quaternion: both constraints of sec 2 hold exactly.
-fn unit_dq(func: &str, a: &Arg) -> Result<DualQuat<Scalar>> {
+pub(super) fn unit_dq(func: &str, a: &Arg) -> Result<DualQuat<Scalar>> {
     let d = dq_like(func, a)?;
     let c = d.unit_constraints();
     if !c.hold_exactly() {
@@ -624,7 +658,7 @@ fn screw_params(a: &Arg) -> Result<Value> {
 }
 
 /// The symbol names of a list argument `[x1, x2, ...]`.
-fn symbol_list(func: &str, vars: &Arg) -> Result<Vec<String>> {
+pub(super) fn symbol_list(func: &str, vars: &Arg) -> Result<Vec<String>> {
     let list: Vec<Value> = match &vars.value {
         Value::Matrix(rows) if rows.len() == 1 || rows[0].len() == 1 => {
             rows.iter().flatten().cloned().map(Value::Scalar).collect()
@@ -691,7 +725,7 @@ fn jacobian(q: &Arg, vars: &Arg) -> Result<Value> {
 }
 
 /// A scalar in closed form, for messages.
-fn text(s: &Scalar) -> String {
+pub(super) fn text(s: &Scalar) -> String {
     match closed_form(s) {
         Ok(e) => plain(&e, &PlainOptions { shorthand: false }),
         Err(e) => e.to_string(),

@@ -133,13 +133,13 @@ pub enum ParseErrorKind {
         /// The limit, [`ParseOptions::max_line_len`](super::ParseOptions).
         limit: usize,
     },
-    /// A decimal or scientific literal: dqsym is exact.
-    #[error("decimal numbers are not exact: write `{exact}` instead of `{literal}`")]
-    Decimal {
+    /// A decimal or scientific literal whose exact value needs too many digits (`1e999999`).
+    #[error("the number `{literal}` needs more than {limit} digits")]
+    LongDecimal {
         /// The literal as written.
         literal: String,
-        /// The exact rational to write instead, or a hint when it is too long to show.
-        exact: String,
+        /// The limit, [`ParseOptions::max_integer_digits`](super::ParseOptions).
+        limit: usize,
     },
     /// A number directly followed by a name, like `2x`.
     #[error("a number cannot run into a name: write `{number}*{name}` for a product")]

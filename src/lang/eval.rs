@@ -339,9 +339,11 @@ impl Session {
                     }
                 }
                 let text = match angle.kind {
-                    ExprKind::Name(_) | ExprKind::Int(_) | ExprKind::Call { .. } => {
-                        angle.to_string()
-                    }
+                    ExprKind::Name(_)
+                    | ExprKind::Int(_)
+                    | ExprKind::Decimal { .. }
+                    | ExprKind::Degrees { .. }
+                    | ExprKind::Call { .. } => angle.to_string(),
                     _ => format!("({angle})"),
                 };
                 self.bind(
@@ -539,6 +541,11 @@ impl Evaluator<'_> {
             ExprKind::Int(n) => Ok(Value::Scalar(Scalar::rational(
                 num_rational::BigRational::from_integer(n.clone().into()),
             ))),
+            ExprKind::Decimal { value, .. } => Ok(Value::Scalar(Scalar::rational(value.clone()))),
+            ExprKind::Degrees { value, .. } => Ok(Value::Scalar(
+                Scalar::rational(value / num_rational::BigRational::from_integer(180.into()))
+                    * Scalar::pi(),
+            )),
             ExprKind::Name(name) => self.name(name, e.span),
             ExprKind::Unary { op, operand } => {
                 let v = self.expr(operand)?;

@@ -17,6 +17,7 @@
 
 mod ast;
 mod builtins;
+mod dqr;
 mod error;
 mod eval;
 mod field;

@@ -1,9 +1,4 @@
-//! Spelling helpers for lowering: Greek letters in names, and the exact fraction a decimal
-//! literal stands for.
-
-use num_bigint::BigUint;
-use num_integer::Integer;
-use num_traits::{One, Zero};
+//! Spelling helpers for lowering: Greek letters in names.
 
 /// The name a Greek letter is spelled as, so that `θ1` and `theta1` are one symbol. ε is
 /// spelled `eps`, Matlab's name, so that `ε` and `eps` both denote the dual unit.
@@ -76,51 +71,6 @@ pub(crate) fn normalize_name(name: &str) -> String {
     out
 }
 
-/// Literals whose exact value would need more digits than this get a generic hint instead.
-const MAX_SHOWN_DIGITS: usize = 40;
-
-/// The exact value of a decimal literal (`1.5`, `.25`, `2e-3`) as dqsym source: `3/2`, `1/4`,
-/// `1/500`. Literals too long to show usefully get `p/q` as a hint.
-pub(crate) fn decimal_as_fraction(literal: &str) -> String {
-    exact(literal).unwrap_or_else(|| "p/q".to_owned())
-}
-
-fn exact(literal: &str) -> Option<String> {
-    let (mantissa, exponent) = match literal.find(['e', 'E']) {
-        Some(i) => (&literal[..i], literal[i + 1..].parse::<i64>().ok()?),
-        None => (literal, 0),
-    };
-    let (whole, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
-    let digits = format!("{whole}{frac}");
-    let scale = exponent.checked_sub(i64::try_from(frac.len()).ok()?)?;
-    let digits = digits.trim_start_matches('0');
-    if digits.len() + scale.unsigned_abs() as usize > MAX_SHOWN_DIGITS {
-        return None;
-    }
-    let mut num = if digits.is_empty() {
-        BigUint::zero()
-    } else {
-        BigUint::parse_bytes(digits.as_bytes(), 10)?
-    };
-    let ten_pow = BigUint::from(10u32).pow(u32::try_from(scale.unsigned_abs()).ok()?);
-    let mut den = BigUint::one();
-    if scale >= 0 {
-        num *= ten_pow;
-    } else {
-        den = ten_pow;
-    }
-    let g = num.gcd(&den);
-    if !g.is_zero() {
-        num /= &g;
-        den /= &g;
-    }
-    Some(if den.is_one() {
-        num.to_string()
-    } else {
-        format!("{num}/{den}")
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -132,17 +82,5 @@ mod tests {
         assert_eq!(normalize_name("ε"), "eps");
         assert_eq!(normalize_name("Δx"), "Deltax");
         assert_eq!(normalize_name("l1"), "l1");
-    }
-
-    #[test]
-    fn decimals_become_reduced_fractions() {
-        assert_eq!(decimal_as_fraction("1.5"), "3/2");
-        assert_eq!(decimal_as_fraction(".25"), "1/4");
-        assert_eq!(decimal_as_fraction("2e-3"), "1/500");
-        assert_eq!(decimal_as_fraction("1.5E2"), "150");
-        assert_eq!(decimal_as_fraction("3."), "3");
-        assert_eq!(decimal_as_fraction("0.0"), "0");
-        assert_eq!(decimal_as_fraction("1e99999999999999999999"), "p/q");
-        assert_eq!(decimal_as_fraction("1e-100"), "p/q");
     }
 }

@@ -14,8 +14,9 @@
 
 use super::ast::{AddOp, Expr, ExprKind, Ident, MulOp, Program, Span, Stmt, StmtKind, UnaryOp};
 use super::error::{from_pest, ParseError, ParseErrorKind};
-use super::names::{decimal_as_fraction, normalize_name};
+use super::names::normalize_name;
 use super::scan::{prescan, SourceMap};
+use crate::scalar::parse_decimal;
 use num_bigint::BigUint;
 use pest::iterators::Pair;
 use pest::pratt_parser::{pratt_precedence, Assoc, ConstPrattParser, Op};
@@ -374,21 +375,13 @@ impl<'s> Lower<'s> {
         }
     }
 
-    /// `number`: a plain integer within the digit limit; decimals and numbers run into names
-    /// are refused with the fix to write.
+    /// `number`: an integer, a decimal or scientific literal (exact: `0.4318` is 2159/5000),
+    /// each within the digit limit, or a number of degrees (`90deg`); other names run into a
+    /// number are refused with the fix to write.
     fn number(&self, pair: &Pair<'s, Rule>) -> Result<Node> {
         let text = pair.as_str();
         let (number, name) = split_number(text);
-        if number.bytes().any(|b| !b.is_ascii_digit()) {
-            let literal = number.to_owned();
-            let exact = decimal_as_fraction(&literal);
-            let (start, end) = (
-                pair.as_span().start(),
-                pair.as_span().start() + number.len(),
-            );
-            return Err(self.error(ParseErrorKind::Decimal { literal, exact }, start, end));
-        }
-        if !name.is_empty() {
+        if !name.is_empty() && name != "deg" {
             let kind = ParseErrorKind::GluedNumber {
                 number: number.to_owned(),
                 name: name.to_owned(),
@@ -396,12 +389,30 @@ impl<'s> Lower<'s> {
             return Err(self.error_at(kind, pair));
         }
         let limit = self.options.max_integer_digits;
-        if text.len() > limit {
-            let digits = text.len();
-            return Err(self.error_at(ParseErrorKind::LongInteger { digits, limit }, pair));
+        let span = self.span(pair);
+        if name.is_empty() && number.bytes().all(|b| b.is_ascii_digit()) {
+            if text.len() > limit {
+                let digits = text.len();
+                return Err(self.error_at(ParseErrorKind::LongInteger { digits, limit }, pair));
+            }
+            let value = BigUint::parse_bytes(text.as_bytes(), 10).expect("integer is digits");
+            return self.node(ExprKind::Int(value), span, 1);
         }
-        let value = BigUint::parse_bytes(text.as_bytes(), 10).expect("integer is digits");
-        self.node(ExprKind::Int(value), self.span(pair), 1)
+        let Some(value) = parse_decimal(number, limit) else {
+            let literal = number.to_owned();
+            let (start, end) = (
+                pair.as_span().start(),
+                pair.as_span().start() + number.len(),
+            );
+            return Err(self.error(ParseErrorKind::LongDecimal { literal, limit }, start, end));
+        };
+        let text = number.to_owned();
+        let kind = if name == "deg" {
+            ExprKind::Degrees { text, value }
+        } else {
+            ExprKind::Decimal { text, value }
+        };
+        self.node(kind, span, 1)
     }
 
     /// `reference`: a name, or a call when an argument list (even an empty one) follows.

@@ -63,6 +63,8 @@ impl Display for Expr {
     fn fmt(&self, f: &mut Formatter<'_>) -> fmt::Result {
         match &self.kind {
             ExprKind::Int(n) => write!(f, "{n}"),
+            ExprKind::Decimal { text, .. } => f.write_str(text),
+            ExprKind::Degrees { text, .. } => write!(f, "{text}deg"),
             ExprKind::Name(name) => f.write_str(name),
             ExprKind::Unary {
                 op: UnaryOp::Neg,

@@ -80,6 +80,9 @@ pub enum ReportError {
     /// Code generation refused the outputs.
     #[error(transparent)]
     Codegen(#[from] CodegenError),
+    /// A task Jacobian needs the expanded pose, which exceeds the term limit.
+    #[error("task Jacobians need the expanded pose, which exceeds {0} terms per entry (raise --term-limit)")]
+    TaskTooLarge(usize),
     /// A symbol of the robot is also the name a recurrence gives one of its entries.
     #[error("symbol `{0}` is also an entry of the recurrence; rename it")]
     NameClash(String),
@@ -100,38 +103,68 @@ pub enum ReportError {
 /// `NAME = EXPR` with these additional names, and the code formats compute the recurrence as
 /// straight-line code, its entries as locals.
 pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
+    // Any stage past the term limit (the DQ, the matrix, the point, the Jacobian, a closed
+    // form) switches to the recurrence, whose every entry is small.
+    match expanded_report(robot, o) {
+        Some(Err(ReportError::Scalar(ScalarError::TooLarge { .. }))) | None => {
+            recurrence_report(robot, o)
+        }
+        Some(r) => r,
+    }
+}
+
+/// The expanded report, or `None` when the DQ or the matrix exceeds `o.max_terms` terms.
+fn expanded_report(robot: &Robot, o: &FkOptions) -> Option<Result<String, ReportError>> {
     // Two pipelines side by side: the DQ product, then its components in closed form; the
     // matrix (the product of the joint factors' matrices, which does not wait for the DQ),
     // then its entries. Then the point and the Jacobian, every distinct entry once, in
     // parallel. `closed_form` is a pure function of its input, so neither the threads nor
     // the sharing of equal entries change the output.
+    // Both expansions first (each stops as soon as an entry exceeds the limit), so that an
+    // oversized stage costs no closed forms; then every entry's closed form in parallel.
     let (pose, matrix) = join(
-        || {
-            robot.forward_within(o.max_terms).map(|q| {
-                let (forms, prepared): (Vec<_>, Vec<_>) =
-                    par_map(&q.components(), closed_form_prepared)
-                        .into_iter()
-                        .unzip();
-                (q, forms, prepared)
-            })
-        },
-        || {
-            robot
-                .forward_matrix_within(o.max_terms)
-                .map(|m| (par_map(&matrix_cells(&m), |x| closed_form(x)), m))
-        },
+        || robot.forward_within(o.max_terms),
+        || robot.forward_matrix_within(o.max_terms),
     );
-    let Some((q, dq_forms, prepared)) = pose else {
-        return recurrence_report(robot, o);
-    };
-    // The matrix fits whenever the DQ does; computed here only if the limit cut it short.
-    let (t_forms, m) = match matrix {
-        Some(x) => x,
-        None => {
-            let m = robot.forward_matrix();
-            (par_map(&matrix_cells(&m), |x| closed_form(x)), m)
+    let (q, m) = (pose?, matrix?);
+    let comps = q.components();
+    let cells = matrix_cells(&m);
+    let all: Vec<(bool, &Scalar)> = comps
+        .iter()
+        .map(|c| (true, c))
+        .chain(cells.iter().map(|c| (false, *c)))
+        .collect();
+    let mut forms = par_map(&all, |(dq, x)| {
+        if *dq {
+            let (e, p) = closed_form_prepared(x);
+            (e, Some(p))
+        } else {
+            (closed_form(x), None)
         }
-    };
+    })
+    .into_iter();
+    let (dq_forms, prepared): (Vec<_>, Vec<_>) = forms
+        .by_ref()
+        .take(8)
+        .map(|(e, p)| (e, p.expect("a DQ entry is prepared")))
+        .unzip();
+    let t_forms: Vec<_> = forms.map(|(e, _)| e).collect();
+    Some(expanded_sections(
+        robot, o, q, dq_forms, prepared, t_forms, m,
+    ))
+}
+
+/// The report from the expanded DQ and matrix and their closed forms.
+#[allow(clippy::too_many_arguments)]
+fn expanded_sections(
+    robot: &Robot,
+    o: &FkOptions,
+    q: DualQuat<Scalar>,
+    dq_forms: Vec<Result<Expr, ScalarError>>,
+    prepared: Vec<crate::Prepared>,
+    t_forms: Vec<Result<Expr, ScalarError>>,
+    m: crate::Matrix4<Scalar>,
+) -> Result<String, ReportError> {
     let comps = q.components();
     let cells = matrix_cells(&m);
     let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
@@ -225,7 +258,7 @@ fn matrix_cells(m: &crate::Matrix4<Scalar>) -> Vec<&Scalar> {
 }
 
 /// The sections in the chosen format, after `notes` (comment lines in plain and LaTeX).
-fn render<S: AsRef<str>>(
+pub(super) fn render<S: AsRef<str>>(
     robot: &Robot,
     sections: &[(S, Vec<(String, Expr)>)],
     format: ReportFormat,
@@ -330,6 +363,18 @@ fn code<S>(
             "J" => Output::matrix(
                 "j",
                 "Jacobian d dq[i] / d q[j] (8 x n).",
+                v.chunks(n.max(1)).map(<[Expr]>::to_vec).collect(),
+            ),
+            "Jr" | "Jt" | "Jl" | "Jpi" | "Jd" | "Jdot" => Output::matrix(
+                &base.to_lowercase(),
+                match base {
+                    "Jr" => "Rotation Jacobian d r[i] / d q[j] (4 x n).",
+                    "Jt" => "Translation Jacobian d t[i] / d q[j], t = (0, x, y, z) (4 x n).",
+                    "Jl" => "Line Jacobian d vec8(l + eps t x l)[i] / d q[j] (8 x n).",
+                    "Jpi" => "Plane Jacobian d vec8(n + eps t . n)[i] / d q[j] (8 x n).",
+                    "Jd" => "Distance Jacobian d |t|^2 / d q[j] (1 x n).",
+                    _ => "Pose Jacobian derivative sum_k d J / d q[k] q_dot[k] (8 x n).",
+                },
                 v.chunks(n.max(1)).map(<[Expr]>::to_vec).collect(),
             ),
             other => Output::intermediate(other, "A step of the recurrence.", v),
@@ -445,6 +490,10 @@ fn latex_name(n: &str) -> String {
     match base {
         "dq" => format!("q_{{{}}}", idx.join(",")),
         "T" | "p" | "J" => format!("{}_{{{}}}", latex_symbol(base), idx.join(",")),
+        "Jr" | "Jt" | "Jl" | "Jpi" | "Jd" => {
+            format!("J^{{{}}}_{{{}}}", latex_symbol(&base[1..]), idx.join(","))
+        }
+        "Jdot" => format!("\\dot{{J}}_{{{}}}", idx.join(",")),
         // A recurrence entry `Q2[3]` is written as its symbol `Q2_3` is in later entries.
         b => latex_symbol(&format!("{b}_{}", idx.join("_"))),
     }

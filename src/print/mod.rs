@@ -1,9 +1,12 @@
 //! Printers: pure functions from display expressions to text. They never simplify.
 
+mod convert;
 mod fk;
 mod plain;
 mod recurrence;
+mod task;
 
+pub use convert::robot_toml;
 pub use fk::{fk_report, ops_tables, FkOptions, ReportError, ReportFormat};
 pub(crate) use plain::angle_text;
 pub use plain::{
@@ -11,3 +14,4 @@ pub use plain::{
     TrigNames,
 };
 pub use recurrence::fk_recurrence;
+pub use task::{rate_name, task_jacobian, task_report, TaskJacobian};

@@ -102,18 +102,16 @@ pub(crate) fn recurrence_sections(
     robot: &Robot,
     o: &FkOptions,
 ) -> Result<Vec<Section>, ReportError> {
-    let mut factors = robot.joint_dqs();
-    let tool = &robot.chain.tool;
-    let has_tool = *tool != DualQuat::identity();
-    if has_tool {
-        match factors.last_mut() {
-            Some(last) => *last = last.clone() * tool.clone(),
-            None => factors.push(tool.clone()),
-        }
-    }
+    // The base frame is folded into the first factor and the tool frame into the last.
+    let factors = robot.pose_factors();
+    let has_tool = robot.chain.tool != DualQuat::identity();
+    let has_base = robot.chain.base != DualQuat::identity();
     let n = factors.len();
-    // Columns of the Jacobian: one per joint variable (a tool-only chain has none).
-    let cols = robot.variables.len().min(n);
+    // The variable each joint factor is differentiated by (a URDF mimic joint's is the
+    // variable of the joint it follows); a chain without joints has none.
+    let joint_var: Vec<Option<String>> = (0..robot.joint_values.len().min(n))
+        .map(|i| robot.joint_variables(i).into_iter().next())
+        .collect();
     // The prefix product Q{i} and suffix product P{i} as symbols; Q{1} is L{1}, P{n} is L{n},
     // Q{0} and P{n+1} the identity.
     let known = Known::default();
@@ -141,10 +139,13 @@ pub(crate) fn recurrence_sections(
     };
 
     let mut sections: Vec<(String, Vec<(String, Scalar)>)> = Vec::new();
-    let title = if has_tool {
-        "joint factors L{i} (unit DQs; the last one times the tool)"
-    } else {
-        "joint factors L{i} (unit DQs)"
+    let title = match (has_base, has_tool) {
+        (false, false) => "joint factors L{i} (unit DQs)",
+        (false, true) => "joint factors L{i} (unit DQs; the last one times the tool)",
+        (true, false) => "joint factors L{i} (unit DQs; the first one after the base)",
+        (true, true) => {
+            "joint factors L{i} (unit DQs; the first one after the base, the last one times the tool)"
+        }
     };
     let links: Vec<(String, Scalar)> = factors
         .iter()
@@ -156,9 +157,10 @@ pub(crate) fn recurrence_sections(
     if o.jacobian {
         let derivs: Vec<(String, Scalar)> = factors
             .iter()
-            .zip(&robot.variables)
+            .zip(&joint_var)
             .enumerate()
-            .flat_map(|(i, (f, v))| {
+            .filter_map(|(i, (f, v))| Some((i, f, v.as_ref()?)))
+            .flat_map(|(i, f, v)| {
                 f.components()
                     .iter()
                     .enumerate()
@@ -232,8 +234,20 @@ pub(crate) fn recurrence_sections(
         sections.push(("image of the point".to_string(), ps));
     }
     if o.jacobian {
-        let columns: Vec<[Scalar; 8]> = (1..=cols)
-            .map(|i| (q(i - 1) * syms(&known, &format!("dL{i}")) * p(i + 1)).components())
+        // Column v is the sum over the joints that move with v (one, except for mimic joints).
+        let columns: Vec<[Scalar; 8]> = robot
+            .variables
+            .iter()
+            .map(|v| {
+                let mut col = DualQuat::from_components(std::array::from_fn(|_| Scalar::int(0)));
+                for (i, jv) in joint_var.iter().enumerate() {
+                    if jv.as_ref() == Some(v) {
+                        let i = i + 1;
+                        col = col + q(i - 1) * syms(&known, &format!("dL{i}")) * p(i + 1);
+                    }
+                }
+                col.components()
+            })
             .collect();
         let mut jac = Vec::new();
         for k in 0..8 {

@@ -19,7 +19,9 @@
 mod arith;
 pub(crate) mod atoms;
 mod calculus;
+pub(crate) use calculus::mode_angle;
 mod cs;
+mod decimal;
 mod frac;
 mod par;
 pub(crate) mod q;
@@ -28,6 +30,7 @@ pub(crate) use arith::FxHasher;
 pub use atoms::Sym;
 pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
+pub use decimal::parse_decimal;
 pub use frac::Frac;
 pub use par::threads as worker_threads;
 pub(crate) use par::{join, par_map, with_own_budget};

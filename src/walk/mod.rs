@@ -23,7 +23,7 @@ mod text;
 
 pub use html::{walk_html, KatexAssets};
 pub use motion::{Motion, Word, Words};
-pub use robot::walk_robot;
+pub use robot::{walk_robot, walk_robot_chain};
 pub use script::walk_script;
 pub use svg::{mechanism_svg, Config, SvgOptions};
 pub use text::{walk_markdown, walk_text};

@@ -3,9 +3,12 @@
 
 use super::check::{check, check_pose};
 use super::motion::Motion;
+use super::motion::{Word, Words};
 use super::script::traces;
 use super::{Mechanism, Step, WalkError, Walkthrough};
-use crate::{parse_robot, DualQuat, FieldEval, JointGeometry, JointKind, Scalar, Value};
+use crate::{
+    parse_robot, DualQuat, FieldEval, Frame, JointGeometry, JointKind, Robot, Scalar, Value,
+};
 
 /// The walkthrough of the robot file `text`; `file` names it in messages, `eval` evaluates a
 /// field (`eval_scalar_text`).
@@ -14,12 +17,89 @@ use crate::{parse_robot, DualQuat, FieldEval, JointGeometry, JointKind, Scalar, 
 /// When the file is invalid, or a value cannot be shown.
 pub fn walk_robot(text: &str, file: &str, eval: FieldEval) -> Result<Walkthrough, WalkError> {
     let robot = parse_robot(text, file, eval)?;
+    walk_robot_chain(&robot)
+}
+
+/// The motions of a constant frame `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)`, zero parts left out.
+fn frame_motions(f: &Frame) -> Vec<Motion> {
+    let (o, l) = (Scalar::int(0), Scalar::int(1));
+    let mut out = Vec::new();
+    if f.xyz.iter().any(|x| !x.is_zero_value()) {
+        out.push(Motion::Translation { t: f.xyz.clone() });
+    }
+    let axes = [
+        [o.clone(), o.clone(), l.clone()],
+        [o.clone(), l.clone(), o.clone()],
+        [l, o.clone(), o.clone()],
+    ];
+    for (axis, angle) in axes.into_iter().zip(f.rpy.iter().rev()) {
+        if !angle.is_zero_value() {
+            out.push(Motion::Screw {
+                axis,
+                point: [o.clone(), o.clone(), o.clone()],
+                angle: angle.clone(),
+                slide: o.clone(),
+            });
+        }
+    }
+    out
+}
+
+/// The walkthrough of a robot already read (from a robot file or a URDF file).
+///
+/// # Errors
+/// When a value cannot be shown.
+pub fn walk_robot_chain(robot: &Robot) -> Result<Walkthrough, WalkError> {
     let mut steps = Vec::new();
     let mut motions = Vec::new();
     let mut acc: Option<DualQuat<Scalar>> = None;
     let mut names: Vec<String> = Vec::new();
-    for (i, (joint, var)) in robot.chain.joints.iter().zip(&robot.variables).enumerate() {
-        let v = Scalar::sym(var);
+    let push = |name: String,
+                q: DualQuat<Scalar>,
+                meaning: Words,
+                steps: &mut Vec<Step>,
+                acc: &mut Option<DualQuat<Scalar>>,
+                names: &mut Vec<String>| {
+        steps.push(Step::Factor {
+            name: name.clone(),
+            value: Value::DualQuat(q.clone()),
+            meaning,
+        });
+        *acc = Some(match acc.take() {
+            None => q,
+            Some(p) => {
+                let prod = &p * &q;
+                steps.push(Step::Product {
+                    left: names.join("*"),
+                    right: name.clone(),
+                    value: Value::DualQuat(prod.clone()),
+                });
+                prod
+            }
+        });
+        names.push(name);
+    };
+    for (i, f) in robot.base_frames.iter().enumerate() {
+        let ms = frame_motions(f);
+        let q = f.dq().map_err(WalkError::Script)?;
+        push(
+            format!("b{}", i + 1),
+            q,
+            frame_words("base frame", f),
+            &mut steps,
+            &mut acc,
+            &mut names,
+        );
+        motions.extend(ms);
+    }
+    for (i, (joint, v)) in robot
+        .chain
+        .joints
+        .iter()
+        .zip(&robot.joint_values)
+        .enumerate()
+    {
+        let v = v.clone();
         let revolute = joint.kind == JointKind::Revolute;
         let add = |x: &Scalar, on: bool| if on { x + &v } else { x.clone() };
         let m = match &joint.geometry {
@@ -43,29 +123,31 @@ pub fn walk_robot(text: &str, file: &str, eval: FieldEval) -> Result<Walkthrough
             },
         };
         let q = joint.dq(&v);
-        let name = format!("q{}", i + 1);
-        steps.push(Step::Factor {
-            name: name.clone(),
-            value: Value::DualQuat(q.clone()),
-            meaning: m.describe(),
-        });
+        let meaning = m.describe();
         motions.push(m);
-        acc = Some(match acc {
-            None => q,
-            Some(p) => {
-                let prod = &p * &q;
-                steps.push(Step::Product {
-                    left: names.join("*"),
-                    right: name.clone(),
-                    value: Value::DualQuat(prod.clone()),
-                });
-                prod
-            }
-        });
-        names.push(name);
+        push(
+            format!("q{}", i + 1),
+            q,
+            meaning,
+            &mut steps,
+            &mut acc,
+            &mut names,
+        );
+    }
+    for (i, f) in robot.tool_frames.iter().enumerate() {
+        let ms = frame_motions(f);
+        let q = f.dq().map_err(WalkError::Script)?;
+        push(
+            format!("t{}", i + 1),
+            q,
+            frame_words("tool frame", f),
+            &mut steps,
+            &mut acc,
+            &mut names,
+        );
+        motions.extend(ms);
     }
     let pose = acc.unwrap_or_else(DualQuat::identity);
-    let pose = &pose * &robot.chain.tool;
     let zero = || [Scalar::int(0), Scalar::int(0), Scalar::int(0)];
     let home = robot.tool.clone().unwrap_or_else(zero);
     let image = pose.transform_point(&home);
@@ -118,4 +200,14 @@ fn tuple_text(v: &[Scalar; 3]) -> Result<String, WalkError> {
         ));
     }
     Ok(format!("({})", parts.join(", ")))
+}
+
+/// "base frame: translation by (x, y, z), then roll r, pitch p, yaw y (R = Rz Ry Rx)".
+fn frame_words(what: &str, f: &Frame) -> Words {
+    Words(vec![
+        Word::Text(format!("{what}: translation by ")),
+        Word::Tuple(f.xyz.to_vec()),
+        Word::Text(", rotation Rz(yaw) Ry(pitch) Rx(roll) with (roll, pitch, yaw) = ".into()),
+        Word::Tuple(f.rpy.to_vec()),
+    ])
 }

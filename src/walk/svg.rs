@@ -281,7 +281,11 @@ impl Scene {
             .motions
             .iter()
             .map(|x| match x {
-                Motion::Screw { axis, point, .. } => Some((point.clone(), axis.clone())),
+                // A joint: a screw with a variable (a constant rotation of a base or tool
+                // frame is not drawn as a joint).
+                Motion::Screw { axis, point, .. } if !x.variables().is_empty() => {
+                    Some((point.clone(), axis.clone()))
+                }
                 _ => None,
             })
             .collect();
@@ -309,6 +313,7 @@ impl Scene {
         for (x, anchor) in m.motions.iter().zip(&anchors) {
             match x {
                 Motion::Screw { axis, .. } => {
+                    // Only joints have anchors.
                     if let Some(a) = anchor {
                         drawn.push((acc.transform_point(a), rotate(&acc, axis)));
                     }

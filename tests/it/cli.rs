@@ -134,3 +134,65 @@ fn fk_output_does_not_depend_on_the_number_of_threads() {
         assert_eq!(one, run("5", robot), "{robot}: 1 and 5 threads");
     }
 }
+
+#[test]
+fn fk_task_jacobians_from_the_command_line() {
+    // `--jacobian` alone keeps its meaning and bytes (= `--jacobian=pose`), before or after the
+    // robot; `--jacobian=KIND` adds a task Jacobian of the named kind; a bad kind is an error.
+    let file = format!("{}/examples/robots/rrr.toml", env!("CARGO_MANIFEST_DIR"));
+    let run = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_dqsym"))
+            .args(args)
+            .output()
+            .expect("dqsym runs")
+    };
+    let plain = run(&["fk", &file, "--jacobian"]);
+    assert!(plain.status.success());
+    assert_eq!(plain.stdout, run(&["fk", "--jacobian", &file]).stdout);
+    assert_eq!(plain.stdout, run(&["fk", &file, "--jacobian=pose"]).stdout);
+    for (kind, base, rows) in [
+        ("rotation", "Jr", 4),
+        ("translation", "Jt", 4),
+        ("line:0,1,0", "Jl", 8),
+        ("plane", "Jpi", 8),
+        ("distance", "Jd", 1),
+        ("pose_derivative", "Jdot", 8),
+    ] {
+        for format in ["plain", "sympy", "latex", "rust"] {
+            let out = run(&[
+                "--format",
+                format,
+                "fk",
+                &file,
+                &format!("--jacobian={kind}"),
+            ]);
+            assert!(
+                out.status.success(),
+                "{kind} {format}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            let text = String::from_utf8(out.stdout).expect("utf-8");
+            if format == "sympy" {
+                let n = text
+                    .lines()
+                    .filter(|l| l.starts_with(&format!("{base}[")))
+                    .count();
+                assert_eq!(n, rows * 3, "{kind}: {text}");
+            }
+            if format == "rust" {
+                let field = if rows == 1 {
+                    format!("pub {}: [f64; 3]", base.to_lowercase())
+                } else {
+                    format!("pub {}: [[f64; 3]; {rows}]", base.to_lowercase())
+                };
+                assert!(text.contains(&field), "{kind}: {text}");
+            }
+        }
+    }
+    let bad = run(&["fk", &file, "--jacobian=point_to_plane:1,0"]);
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("needs six numbers"));
+    let bad = run(&["fk", &file, "--jacobian=speed"]);
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("unknown Jacobian `speed`"));
+}

@@ -20,6 +20,8 @@ fn sexpr(e: &AstExpr) -> String {
     let join = |items: &[AstExpr]| items.iter().map(sexpr).collect::<Vec<_>>().join(" ");
     match &e.kind {
         ExprKind::Int(n) => n.to_string(),
+        ExprKind::Decimal { text, .. } => text.clone(),
+        ExprKind::Degrees { text, .. } => format!("{text}deg"),
         ExprKind::Name(name) => name.clone(),
         ExprKind::Unary { op, operand } => {
             let op = if *op == UnaryOp::Neg { "neg" } else { "conj" };
@@ -198,13 +200,35 @@ fn errors_carry_line_column_and_a_caret() {
 }
 
 #[test]
-fn decimals_are_refused_with_the_exact_fraction() {
-    let kind = error_kind("x = 0.125");
+fn decimals_and_degrees_are_exact_and_print_as_written() {
+    for (src, exact) in [
+        ("0.4318", "2159/5000"),
+        ("1e-3", "1/1000"),
+        (".25*l1", "1/4*l1"),
+        ("3.", "3"),
+        ("2.5E2", "250"),
+        ("90deg", "pi/2"),
+        ("22.5deg", "pi/8"),
+        ("-0.39225", "-1569/4000"),
+    ] {
+        let program = parse(&format!("x = {src}")).unwrap();
+        let mut reference = Session::new();
+        reference
+            .run(&parse(&format!("syms l1\nx = {exact}")).unwrap())
+            .unwrap();
+        let mut s = Session::new();
+        s.run(&parse("syms l1").unwrap()).unwrap();
+        s.run(&program).unwrap();
+        assert_eq!(s.get("x"), reference.get("x"), "{src}");
+        // The tree prints back as written.
+        let printed = program.to_string();
+        assert!(printed.contains(src.trim_start_matches('-')), "{printed}");
+    }
     assert_eq!(
-        kind,
-        ParseErrorKind::Decimal {
-            literal: "0.125".into(),
-            exact: "1/8".into()
+        error_kind("x = 1e99999"),
+        ParseErrorKind::LongDecimal {
+            literal: "1e99999".into(),
+            limit: 10_000
         }
     );
 }
@@ -304,11 +328,22 @@ fn messages_are_lowercase_without_trailing_period() {
     }
 }
 
-/// Trees the parser can produce: names, integers, and every operator and bracket form.
+/// Trees the parser can produce: names, integers, decimals, degrees, and every operator and
+/// bracket form.
 fn arb_expr() -> impl Strategy<Value = AstExpr> {
     let name = prop::sample::select(vec!["a", "x1", "theta_2", "I", "eps", "l1"]);
     let leaf = prop_oneof![
         (0u64..1000).prop_map(|n| AstExpr::new(ExprKind::Int(n.into()))),
+        (0u64..100_000, 1u32..5, any::<bool>()).prop_map(|(n, places, degrees)| {
+            let den = 10u64.pow(places);
+            let text = format!("{}.{:0w$}", n / den, n % den, w = places as usize);
+            let value = dqsym::parse_decimal(&text, 100).unwrap();
+            AstExpr::new(if degrees {
+                ExprKind::Degrees { text, value }
+            } else {
+                ExprKind::Decimal { text, value }
+            })
+        }),
         name.prop_map(|n| AstExpr::new(ExprKind::Name(n.into()))),
     ];
     leaf.prop_recursive(5, 48, 4, |inner| {

@@ -567,7 +567,9 @@ fn check_page_in_chromium(file: &str, w: &Walkthrough) {
             .motions
             .iter()
             .enumerate()
-            .filter(|(_, x)| !matches!(x, dqsym::Motion::Translation { .. }))
+            .filter(|(_, x)| {
+                !matches!(x, dqsym::Motion::Translation { .. }) && !x.variables().is_empty()
+            })
             .map(|(i, _)| i)
             .collect();
         let hj = home["joints"].as_array().expect("joints");

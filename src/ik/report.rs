@@ -1,0 +1,247 @@
+//! The derivation as text: plain (the field's `c1`, `s23` notation), LaTeX, SymPy lines.
+
+use super::{Formula, IkSolution, IkStep};
+use crate::closed::Expr;
+use crate::emit::{latex, latex_symbol, sympy, LatexOptions};
+use crate::print::{plain, PlainOptions};
+use crate::{closed_form, Scalar, ScalarError};
+
+/// The text format of [`ik_report`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IkFormat {
+    /// Plain text; `shorthand` writes `c1`, `s23`.
+    Plain {
+        /// Robotics shorthand.
+        shorthand: bool,
+    },
+    /// LaTeX (an `aligned` block per joint).
+    Latex {
+        /// `c_{1}` shorthand.
+        shorthand: bool,
+    },
+    /// `NAME = EXPR` lines SymPy's `sympify` reads, one sign symbol `sign_q` per branch.
+    Sympy,
+}
+
+/// The named parts of a formula (`a`, `b`, `c`; `y`, `x`; `v`; `beta`, `gamma`), each in
+/// closed form.
+pub(crate) fn parts(f: &Formula) -> Result<Vec<(&'static str, Expr)>, ScalarError> {
+    let named: Vec<(&'static str, &Scalar)> = match f {
+        Formula::Atan2 { y, x } => vec![("y", y), ("x", x)],
+        Formula::Trig { a, b, c } => vec![("a", a), ("b", b), ("c", c)],
+        Formula::Value { v } => vec![("v", v)],
+        Formula::Quadratic { beta, gamma } => vec![("beta", beta), ("gamma", gamma)],
+    };
+    let forms = crate::scalar::par_map(&named, |(_, s)| best_form(s));
+    named
+        .iter()
+        .zip(forms)
+        .map(|((n, _), e)| Ok((*n, e?)))
+        .collect()
+}
+
+/// The closed form of a scalar, or the closed form of its cos/sin polynomial when that is
+/// cheaper (squares of `px c1 + py s1` read better than double angles).
+fn best_form(s: &Scalar) -> Result<Expr, ScalarError> {
+    let e = closed_form(s)?;
+    let alt = s
+        .to_cos_sin_polynomial()
+        .and_then(|p| crate::closed_form_cos_sin(&p).ok());
+    Ok(match alt {
+        Some(a) if a.cost() < e.cost() => a,
+        _ => e,
+    })
+}
+
+/// The closed form of a step's joint, in plain text over its part names.
+fn solution_text(step: &IkStep) -> String {
+    let q = &step.variable;
+    match &step.formula {
+        Formula::Atan2 { .. } => format!("{q} = atan2(y, x)"),
+        Formula::Trig { .. } => {
+            format!("{q} = atan2(b, a) ± atan2(sqrt(a^2 + b^2 - c^2), c)")
+        }
+        Formula::Value { .. } => format!("{q} = v"),
+        Formula::Quadratic { .. } => format!("{q} = -beta ± sqrt(beta^2 - gamma)"),
+    }
+}
+
+fn equation_text(step: &IkStep) -> Option<String> {
+    let q = &step.variable;
+    match &step.formula {
+        Formula::Trig { .. } => Some(format!("a cos({q}) + b sin({q}) = c")),
+        Formula::Quadratic { .. } => Some(format!("{q}^2 + 2 beta {q} + gamma = 0")),
+        _ => None,
+    }
+}
+
+fn branch_count(sol: &IkSolution) -> usize {
+    sol.steps.iter().map(|s| s.formula.branches()).product()
+}
+
+fn header(sol: &IkSolution) -> Vec<String> {
+    let mut out = vec![
+        format!("Inverse kinematics of {}", sol.robot),
+        format!("family: {}", sol.family),
+    ];
+    out.push("geometry (decided exactly on the home-pose axes):".into());
+    out.extend(sol.geometry.iter().map(|g| format!("  {g}")));
+    out.push(if sol.position_only {
+        "target: the position (px, py, pz) of the end effector".into()
+    } else {
+        "target: T = [r11 r12 r13 px; r21 r22 r23 py; r31 r32 r33 pz; 0 0 0 1]".into()
+    });
+    if let Some(f) = &sol.free {
+        out.push(format!("free joint (a parameter): {f}"));
+    }
+    out.push(format!(
+        "parameters: {}",
+        if sol.params.is_empty() {
+            "none".into()
+        } else {
+            sol.params.join(", ")
+        }
+    ));
+    let names: Vec<String> = sol
+        .steps
+        .iter()
+        .filter_map(|s| s.branch.as_ref().map(|b| b.0.clone()))
+        .collect();
+    out.push(format!(
+        "branches: {}{}",
+        branch_count(sol),
+        if names.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", names.join(" x "))
+        }
+    ));
+    out.push(format!(
+        "solved in the order: {}",
+        sol.steps
+            .iter()
+            .map(|s| s.variable.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    ));
+    out
+}
+
+/// The derivation as text.
+///
+/// # Errors
+/// A closed form that fails (term limit, work budget).
+pub fn ik_report(sol: &IkSolution, format: IkFormat) -> Result<String, ScalarError> {
+    let all = sol.forms().map_err(ScalarError::Unbound)?;
+    let mut out = String::new();
+    match format {
+        IkFormat::Plain { shorthand } => {
+            let o = PlainOptions { shorthand };
+            for l in header(sol) {
+                out.push_str(&l);
+                out.push('\n');
+            }
+            for (step, parts) in sol.steps.iter().zip(all) {
+                out.push('\n');
+                out.push_str(&step.variable);
+                if let Some((n, p, m)) = &step.branch {
+                    out.push_str(&format!(" ({n}: + {p}, - {m})"));
+                }
+                out.push('\n');
+                out.push_str(&format!("  {}\n", step.method));
+                if let Some(e) = equation_text(step) {
+                    out.push_str(&format!("  {e}\n"));
+                }
+                for (n, e) in parts {
+                    out.push_str(&format!("    {n} = {}\n", plain(e, &o)));
+                }
+                out.push_str(&format!("  {}\n", solution_text(step)));
+                if matches!(
+                    step.formula,
+                    Formula::Trig { .. } | Formula::Quadratic { .. }
+                ) {
+                    out.push_str("  exists where the radicand is >= 0 (else out of reach)\n");
+                }
+                out.push_str(&format!("  singular: {}\n", step.singular));
+            }
+            if shorthand {
+                let refs: Vec<&Expr> = all.iter().flatten().map(|(_, e)| e).collect();
+                let leg = crate::print::legend(&refs);
+                if !leg.is_empty() {
+                    out.push('\n');
+                    for l in leg {
+                        out.push_str(&l);
+                        out.push('\n');
+                    }
+                }
+            }
+        }
+        IkFormat::Latex { shorthand } => {
+            let o = LatexOptions {
+                shorthand,
+                ..LatexOptions::default()
+            };
+            for l in header(sol) {
+                out.push_str(&format!("% {l}\n"));
+            }
+            for (step, parts) in sol.steps.iter().zip(all) {
+                let q = latex_symbol(&step.variable);
+                out.push_str(&format!("% {}\n", step.method));
+                out.push_str("\\begin{aligned}\n");
+                for (n, e) in parts {
+                    let n = match *n {
+                        "beta" => "\\beta".to_string(),
+                        "gamma" => "\\gamma".to_string(),
+                        n => n.to_string(),
+                    };
+                    out.push_str(&format!("{n}_{{{q}}} &= {} \\\\\n", latex(e, &o)));
+                }
+                let sub = |n: &str| format!("{n}_{{{q}}}");
+                let line = match &step.formula {
+                    Formula::Atan2 { .. } => {
+                        format!("{q} &= \\operatorname{{atan2}}({}, {})", sub("y"), sub("x"))
+                    }
+                    Formula::Trig { .. } => format!(
+                        "{q} &= \\operatorname{{atan2}}({b}, {a}) \\pm \\operatorname{{atan2}}\\left(\\sqrt{{{a}^2 + {b}^2 - {c}^2}}, {c}\\right)",
+                        a = sub("a"),
+                        b = sub("b"),
+                        c = sub("c")
+                    ),
+                    Formula::Value { .. } => format!("{q} &= {}", sub("v")),
+                    Formula::Quadratic { .. } => format!(
+                        "{q} &= -{b} \\pm \\sqrt{{{b}^2 - {g}}}",
+                        b = sub("\\beta"),
+                        g = sub("\\gamma")
+                    ),
+                };
+                out.push_str(&line);
+                out.push_str("\n\\end{aligned}\n");
+            }
+        }
+        IkFormat::Sympy => {
+            for l in header(sol) {
+                out.push_str(&format!("# {l}\n"));
+            }
+            for (step, parts) in sol.steps.iter().zip(all) {
+                let q = &step.variable;
+                out.push_str(&format!("# {}\n", step.method));
+                for (n, e) in parts {
+                    out.push_str(&format!("{q}_{n} = {}\n", sympy(e)));
+                }
+                let line = match &step.formula {
+                    Formula::Atan2 { .. } => format!("{q} = atan2({q}_y, {q}_x)"),
+                    Formula::Trig { .. } => format!(
+                        "{q} = atan2({q}_b, {q}_a) + sign_{q}*atan2(sqrt({q}_a**2 + {q}_b**2 - {q}_c**2), {q}_c)"
+                    ),
+                    Formula::Value { .. } => format!("{q} = {q}_v"),
+                    Formula::Quadratic { .. } => {
+                        format!("{q} = -{q}_beta + sign_{q}*sqrt({q}_beta**2 - {q}_gamma)")
+                    }
+                };
+                out.push_str(&line);
+                out.push('\n');
+            }
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,519 @@
+//! URDF import: a serial chain of a URDF file as a screw-form [`Robot`], exactly.
+//!
+//! Each joint of the chain from the base link to the tip link has an `origin` (a constant
+//! frame `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` from its parent link) and an `axis` in its
+//! own frame. The pose `F₁ J₁(q₁) F₂ J₂(q₂) … Fₙ Jₙ(qₙ)` is rewritten in product-of-exponentials
+//! form (the paper's sec 6): joint i turns about (or slides along) its axis carried to the
+//! base by `F₁ … Fᵢ`, the home pose, and the chain ends with the tool frames `F₁ … Fₙ` (whose
+//! product is the tip's home pose). Fixed joints are frames like any other origin, so they
+//! fold into the constants; a `mimic` joint's value is `multiplier · q + offset` in the
+//! variable q of the joint it follows.
+//!
+//! Lengths are exact decimals read from the text (`0.4318` is 2159/5000). Angles must be
+//! exact too: an `rpy` angle (or a mimic offset of a revolute joint) within [`SNAP_TOLERANCE`]
+//! of a multiple of pi/12 (1.5708, 3.14159) is read as that multiple and reported in
+//! [`UrdfRobot::notes`]; with [`UrdfOptions::snap_angles`] off, or farther away, it is an error.
+
+use super::robot::{frame_dq, unit_numeric};
+use super::{Chain, Convention, Frame, Joint, JointKind, Robot};
+use crate::{DualQuat, Scalar};
+use num_rational::BigRational;
+use num_traits::ToPrimitive;
+use std::collections::{BTreeMap, BTreeSet};
+use thiserror::Error;
+
+/// How far (radians) an angle may be from a multiple of pi/12 to be read as it.
+pub const SNAP_TOLERANCE: f64 = 1e-3;
+
+/// The longest decimal literal, in digits, a URDF number may need.
+const MAX_DIGITS: usize = 1_000;
+
+/// Which chain of the file to read, and how.
+#[derive(Clone, Debug)]
+pub struct UrdfOptions {
+    /// The last link of the chain; by default the only leaf link.
+    pub tip: Option<String>,
+    /// The first link of the chain; by default the root link.
+    pub base: Option<String>,
+    /// Read angles near a multiple of pi/12 as that multiple (reported); otherwise refuse them.
+    pub snap_angles: bool,
+}
+
+impl Default for UrdfOptions {
+    fn default() -> Self {
+        UrdfOptions {
+            tip: None,
+            base: None,
+            snap_angles: true,
+        }
+    }
+}
+
+/// A robot read from a URDF file, with what was rounded on the way.
+#[derive(Clone, Debug)]
+pub struct UrdfRobot {
+    /// The chain, in screw form.
+    pub robot: Robot,
+    /// One line per angle read as a multiple of pi/12 (`joint `elbow`, origin rpy[0]: 1.5708
+    /// read as pi/2`).
+    pub notes: Vec<String>,
+}
+
+/// What is wrong with a URDF file; every message names the file and, where there is one, the
+/// element.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[non_exhaustive]
+pub enum UrdfError {
+    /// Not well-formed XML, or not a `<robot>`.
+    #[error("{file}: {message}")]
+    Xml {
+        /// The file name.
+        file: String,
+        /// What is wrong, with line and column.
+        message: String,
+    },
+    /// An element is missing, wrong or unsupported.
+    #[error("{file}: {element}: {message}")]
+    Element {
+        /// The file name.
+        file: String,
+        /// The element, as `joint `elbow`` or `link `tool0``.
+        element: String,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// One `<joint>` as written.
+struct UrdfJoint {
+    name: String,
+    kind: String,
+    parent: String,
+    child: String,
+    xyz: [BigRational; 3],
+    rpy: [BigRational; 3],
+    axis: [BigRational; 3],
+    mimic: Option<(String, BigRational, BigRational)>,
+    line: u32,
+}
+
+/// Reads the chain of a URDF file. `file` names it in messages.
+///
+/// # Errors
+/// Malformed XML, a joint without parent or child, a link that is not declared, a loop, an
+/// unknown or unsupported joint type (floating, planar), several leaf links without
+/// `tip`, an angle that is not a multiple of pi/12.
+pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, UrdfError> {
+    let xml_err = |message: String| UrdfError::Xml {
+        file: file.to_string(),
+        message,
+    };
+    let doc = roxmltree::Document::parse(text).map_err(|e| xml_err(e.to_string()))?;
+    let root = doc.root_element();
+    if root.tag_name().name() != "robot" {
+        return Err(xml_err(format!(
+            "the root element is <{}>, expected <robot>",
+            root.tag_name().name()
+        )));
+    }
+    let el_err = |element: String, message: String| UrdfError::Element {
+        file: file.to_string(),
+        element,
+        message,
+    };
+    let mut links: BTreeSet<String> = BTreeSet::new();
+    let mut joints: Vec<UrdfJoint> = Vec::new();
+    for node in root.children().filter(|n| n.is_element()) {
+        let line = doc.text_pos_at(node.range().start).row;
+        match node.tag_name().name() {
+            "link" => {
+                let name = node
+                    .attribute("name")
+                    .ok_or_else(|| el_err(format!("<link> at line {line}"), "no `name`".into()))?;
+                links.insert(name.to_string());
+            }
+            "joint" => joints.push(read_joint(node, line, &el_err)?),
+            _ => {}
+        }
+    }
+    // Every joint joins two declared links; every link has at most one parent joint.
+    let mut parent_of: BTreeMap<&str, usize> = BTreeMap::new();
+    let mut names: BTreeSet<&str> = BTreeSet::new();
+    for (i, j) in joints.iter().enumerate() {
+        let el = || format!("joint `{}` (line {})", j.name, j.line);
+        if !names.insert(&j.name) {
+            return Err(el_err(el(), "a second joint with this name".into()));
+        }
+        for (role, l) in [("parent", &j.parent), ("child", &j.child)] {
+            if !links.contains(l) {
+                return Err(el_err(
+                    el(),
+                    format!("{role} link `{l}` is not a <link> of the file"),
+                ));
+            }
+        }
+        if let Some(&k) = parent_of.get(j.child.as_str()) {
+            return Err(el_err(
+                format!("link `{}`", j.child),
+                format!(
+                    "child of two joints, `{}` and `{}`: a URDF is a tree",
+                    joints[k].name, j.name
+                ),
+            ));
+        }
+        parent_of.insert(&j.child, i);
+    }
+    let roots: Vec<&String> = links
+        .iter()
+        .filter(|l| !parent_of.contains_key(l.as_str()))
+        .collect();
+    if roots.is_empty() && !links.is_empty() {
+        let l = links.iter().next().map(String::as_str).unwrap_or("");
+        return Err(el_err(
+            format!("link `{l}`"),
+            "the joints form a loop: no link is the root".into(),
+        ));
+    }
+    let is_parent: BTreeSet<&str> = joints.iter().map(|j| j.parent.as_str()).collect();
+    let tip = match &o.tip {
+        Some(t) => {
+            if !links.contains(t) {
+                return Err(el_err(format!("--tip `{t}`"), "no such <link>".into()));
+            }
+            t.clone()
+        }
+        None => {
+            let leaves: Vec<&String> = links
+                .iter()
+                .filter(|l| !is_parent.contains(l.as_str()))
+                .collect();
+            match leaves.as_slice() {
+                [one] => (*one).clone(),
+                [] => return Err(xml_err("no links".into())),
+                many => {
+                    return Err(xml_err(format!(
+                        "several leaf links ({}): choose the tip with --tip",
+                        many.iter()
+                            .map(|s| format!("`{s}`"))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    )))
+                }
+            }
+        }
+    };
+    // Walk from the tip to the base (or the root), refusing loops.
+    let mut path: Vec<usize> = Vec::new();
+    let mut at = tip.as_str();
+    let mut seen: BTreeSet<&str> = BTreeSet::new();
+    loop {
+        if o.base.as_deref() == Some(at) {
+            break;
+        }
+        if !seen.insert(at) {
+            return Err(el_err(
+                format!("link `{at}`"),
+                "the joints form a loop through this link".into(),
+            ));
+        }
+        match parent_of.get(at) {
+            Some(&k) => {
+                path.push(k);
+                at = joints[k].parent.as_str();
+            }
+            None => {
+                if let Some(b) = &o.base {
+                    return Err(el_err(
+                        format!("--base `{b}`"),
+                        format!("not a link between the root `{at}` and the tip `{tip}`"),
+                    ));
+                }
+                break;
+            }
+        }
+    }
+    let base_link = at.to_string();
+    path.reverse();
+
+    let mut notes = Vec::new();
+    let mut snap = |x: &BigRational, what: String| -> Result<Scalar, UrdfError> {
+        snap_angle(x, o.snap_angles)
+            .map(|(s, note)| {
+                if let Some(n) = note {
+                    notes.push(format!("{what}: {n}"));
+                }
+                s
+            })
+            .map_err(|m| el_err(what.clone(), m))
+    };
+    // Variables: one per moving joint, named after it; a mimic joint uses its leader's.
+    let by_name: BTreeMap<&str, &UrdfJoint> = joints.iter().map(|j| (j.name.as_str(), j)).collect();
+    let mut var_names: BTreeMap<String, String> = BTreeMap::new();
+    let mut used: BTreeSet<String> = BTreeSet::new();
+    let mut var_of = |joint: &str| -> String {
+        if let Some(v) = var_names.get(joint) {
+            return v.clone();
+        }
+        let mut v = sanitize(joint);
+        while used.contains(&v) {
+            v.push('_');
+        }
+        used.insert(v.clone());
+        var_names.insert(joint.to_string(), v.clone());
+        v
+    };
+
+    let mut home = DualQuat::identity();
+    let mut frames = Vec::new();
+    let mut chain_joints = Vec::new();
+    let mut values = Vec::new();
+    let mut variables: Vec<String> = Vec::new();
+    for &k in &path {
+        let j = &joints[k];
+        let el = format!("joint `{}` (line {})", j.name, j.line);
+        let rpy = [
+            snap(&j.rpy[0], format!("{el}, origin rpy[0]"))?,
+            snap(&j.rpy[1], format!("{el}, origin rpy[1]"))?,
+            snap(&j.rpy[2], format!("{el}, origin rpy[2]"))?,
+        ];
+        let f = Frame {
+            xyz: j.xyz.clone().map(Scalar::rational),
+            rpy,
+        };
+        let fdq = frame_dq(&f.xyz, &f.rpy).map_err(|m| el_err(el.clone(), m))?;
+        home = home * fdq;
+        frames.push(f);
+        let kind = match j.kind.as_str() {
+            "fixed" => continue,
+            "revolute" | "continuous" => JointKind::Revolute,
+            "prismatic" => JointKind::Prismatic,
+            _ => unreachable!("read_joint refuses other types"),
+        };
+        let axis = unit_numeric(&j.axis.clone().map(Scalar::rational))
+            .map_err(|m| el_err(el.clone(), format!("<axis>: {m}")))?;
+        let dir = DualQuat::from_real(home.real.clone()).transform_point(&axis);
+        let value = match &j.mimic {
+            None => Scalar::sym(&var_of(&j.name)),
+            Some((leader, mult, offset)) => {
+                // A leader that itself follows another joint: follow the chain to its end.
+                let (mut lead, mut m, mut off) = (leader.as_str(), mult.clone(), offset.clone());
+                let mut hops = 0;
+                while let Some(Some((l2, m2, o2))) = by_name.get(lead).map(|lj| lj.mimic.as_ref()) {
+                    hops += 1;
+                    if hops > joints.len() {
+                        return Err(el_err(
+                            el.clone(),
+                            "<mimic> joints follow each other in a loop".into(),
+                        ));
+                    }
+                    off = &m * o2 + off;
+                    m = &m * m2;
+                    lead = l2;
+                }
+                if !by_name.contains_key(lead) {
+                    return Err(el_err(
+                        el.clone(),
+                        format!("<mimic> follows `{lead}`, which is not a <joint>"),
+                    ));
+                }
+                let off = match kind {
+                    JointKind::Revolute => snap(&off, format!("{el}, mimic offset"))?,
+                    JointKind::Prismatic => Scalar::rational(off),
+                };
+                Scalar::rational(m) * Scalar::sym(&var_of(lead)) + off
+            }
+        };
+        for s in value.symbols() {
+            let n = s.name().to_string();
+            if n != "pi" && !variables.contains(&n) {
+                variables.push(n);
+            }
+        }
+        let joint = match kind {
+            JointKind::Revolute => Joint::revolute_screw(dir, home.translation_part()),
+            JointKind::Prismatic => Joint::prismatic_screw(dir),
+        };
+        chain_joints.push(joint);
+        values.push(value);
+    }
+    let name = root.attribute("name").unwrap_or(file).to_string();
+    let chain = Chain::new(chain_joints).with_tool(home);
+    Ok(UrdfRobot {
+        robot: Robot {
+            name: format!("{name} ({base_link} to {tip})"),
+            convention: Convention::Screw,
+            variables,
+            joint_values: values,
+            chain,
+            base_frames: Vec::new(),
+            tool_frames: frames,
+            tool: None,
+            values: Vec::new(),
+        },
+        notes,
+    })
+}
+
+/// One `<joint>`: its attributes and children, or what is missing or unsupported.
+fn read_joint(
+    node: roxmltree::Node,
+    line: u32,
+    el_err: &dyn Fn(String, String) -> UrdfError,
+) -> Result<UrdfJoint, UrdfError> {
+    let name = node
+        .attribute("name")
+        .ok_or_else(|| el_err(format!("<joint> at line {line}"), "no `name`".into()))?
+        .to_string();
+    let el = format!("joint `{name}` (line {line})");
+    let kind = node
+        .attribute("type")
+        .ok_or_else(|| el_err(el.clone(), "no `type`".into()))?
+        .to_string();
+    match kind.as_str() {
+        "revolute" | "continuous" | "prismatic" | "fixed" => {}
+        "floating" | "planar" => {
+            return Err(el_err(
+                el,
+                format!("type `{kind}` is not supported: only one-degree-of-freedom joints (revolute, continuous, prismatic) and fixed joints make a serial chain"),
+            ))
+        }
+        other => {
+            return Err(el_err(
+                el,
+                format!("unknown type `{other}` (expected revolute, continuous, prismatic or fixed)"),
+            ))
+        }
+    }
+    let child = |tag: &str| node.children().find(|n| n.has_tag_name(tag));
+    let link = |tag: &str| -> Result<String, UrdfError> {
+        child(tag)
+            .and_then(|n| n.attribute("link"))
+            .map(str::to_string)
+            .ok_or_else(|| el_err(el.clone(), format!("no <{tag} link=\"...\"/>")))
+    };
+    let (parent, child_link) = (link("parent")?, link("child")?);
+    let vec = |tag: &str, attr: &str, default: [i64; 3]| -> Result<[BigRational; 3], UrdfError> {
+        let Some(text) = child(tag).and_then(|n| n.attribute(attr)) else {
+            return Ok(default.map(|x| BigRational::from_integer(x.into())));
+        };
+        let parts: Vec<&str> = text.split_whitespace().collect();
+        if parts.len() != 3 {
+            return Err(el_err(
+                el.clone(),
+                format!(
+                    "<{tag} {attr}=\"{text}\">: expected 3 numbers, found {}",
+                    parts.len()
+                ),
+            ));
+        }
+        let mut out = Vec::new();
+        for p in parts {
+            out.push(number(p).ok_or_else(|| {
+                el_err(
+                    el.clone(),
+                    format!("<{tag} {attr}=\"{text}\">: `{p}` is not a number"),
+                )
+            })?);
+        }
+        Ok([out[0].clone(), out[1].clone(), out[2].clone()])
+    };
+    let mimic = match child("mimic") {
+        None => None,
+        Some(m) => {
+            let leader = m
+                .attribute("joint")
+                .ok_or_else(|| el_err(el.clone(), "<mimic> without `joint`".into()))?
+                .to_string();
+            let num = |attr: &str, default: i64| -> Result<BigRational, UrdfError> {
+                match m.attribute(attr) {
+                    None => Ok(BigRational::from_integer(default.into())),
+                    Some(t) => number(t).ok_or_else(|| {
+                        el_err(el.clone(), format!("<mimic {attr}=\"{t}\">: not a number"))
+                    }),
+                }
+            };
+            Some((leader, num("multiplier", 1)?, num("offset", 0)?))
+        }
+    };
+    Ok(UrdfJoint {
+        xyz: vec("origin", "xyz", [0, 0, 0])?,
+        rpy: vec("origin", "rpy", [0, 0, 0])?,
+        axis: vec("axis", "xyz", [1, 0, 0])?,
+        name,
+        kind,
+        parent,
+        child: child_link,
+        mimic,
+        line,
+    })
+}
+
+/// A URDF number, exactly.
+fn number(text: &str) -> Option<BigRational> {
+    crate::scalar::parse_decimal(text.trim(), MAX_DIGITS)
+}
+
+/// The exact angle an URDF angle stands for: itself when it is 0, else the multiple of pi/12
+/// within [`SNAP_TOLERANCE`] (with a note saying so) when `snap`, else an error.
+fn snap_angle(x: &BigRational, snap: bool) -> Result<(Scalar, Option<String>), String> {
+    let xf = x.to_f64().unwrap_or(f64::NAN);
+    if xf == 0.0 && x == &BigRational::from_integer(0.into()) {
+        return Ok((Scalar::int(0), None));
+    }
+    let step = std::f64::consts::PI / 12.0;
+    let k = (xf / step).round();
+    let shown = pi_multiple_text(k as i64);
+    if !snap || !xf.is_finite() || (xf - k * step).abs() > SNAP_TOLERANCE || k.abs() > 1e6 {
+        let why = if snap {
+            format!("the angle {} is not within {SNAP_TOLERANCE} of a multiple of pi/12, and only such angles have exact cosines here", decimal_text(x))
+        } else {
+            format!(
+                "the angle {} is not exact (reading it as {shown} is turned off)",
+                decimal_text(x)
+            )
+        };
+        return Err(why);
+    }
+    let exact = Scalar::rational(BigRational::new((k as i64).into(), 12.into())) * Scalar::pi();
+    Ok((exact, Some(format!("{} read as {shown}", decimal_text(x)))))
+}
+
+/// `k pi/12` as text: `pi/2`, `-pi/4`, `5*pi/12`, `pi`, `0`.
+fn pi_multiple_text(k: i64) -> String {
+    let g = num_integer::gcd(k, 12);
+    let (n, d) = if g == 0 { (0, 1) } else { (k / g, 12 / g) };
+    let num = match n {
+        0 => return "0".into(),
+        1 => "pi".to_string(),
+        -1 => "-pi".to_string(),
+        n => format!("{n}*pi"),
+    };
+    if d == 1 {
+        num
+    } else {
+        format!("{num}/{d}")
+    }
+}
+
+fn decimal_text(x: &BigRational) -> String {
+    x.to_f64().map_or_else(|| x.to_string(), |f| format!("{f}"))
+}
+
+/// A joint name as a variable name: letters, digits and `_`, starting with a letter, never a
+/// name the language reserves (`pi`, `I`, `eps`, ...).
+fn sanitize(name: &str) -> String {
+    let mut s: String = name
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect();
+    if !s.starts_with(|c: char| c.is_ascii_alphabetic()) {
+        s = format!("q_{s}");
+    }
+    // The language's constants and keywords, and the built-ins a robot file could not use
+    // as a symbol.
+    const RESERVED: [&str; 5] = ["pi", "I", "eps", "syms", "halfangle"];
+    if RESERVED.contains(&s.as_str()) {
+        s = format!("q_{s}");
+    }
+    s
+}

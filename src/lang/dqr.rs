@@ -1,0 +1,360 @@
+//! The built-ins with DQ Robotics' names and semantics (`DQ.cpp`, `DQ_Geometry.cpp`), exact:
+//! their `:help` table and their implementations. The library functions are in
+//! `algebra/dqr.rs` (polynomial ones) and `kin/dqexp.rs` (angles, exp, log, powers, ScLERP).
+//!
+//! Left out: `pinv` and `dec_mult` (decompositional products, numeric conveniences with no
+//! closed-form use), `generalized_jacobian`, `Q4`/`Q8` (derivatives of `exp` divided by
+//! `sin(phi/2)/(phi/2)`, which is not a polynomial), and every `is_*` predicate with a
+//! threshold (exactness makes them `unit(q)` and the Plücker constraints).
+
+use super::builtins::{b, dq_like, invalid, symbol_list, type_error, unit_dq, Arg, Builtin};
+use super::eval::{op_error, EvalError, Result};
+use super::value::{self, Value};
+use crate::algebra::dqr;
+use crate::kin::dqexp::{self, DqError};
+use crate::{DualQuat, Frac, Quat, Scalar, TaskJacobian};
+use num_traits::Zero;
+
+/// The DQ Robotics built-ins, in the order `:help` lists them (after the core ones).
+pub(super) const TABLE: [Builtin; 48] = [
+    b("P", "P(h)", 1, 1, "DQ Robotics' primary part P(h) (our real part)", "P(dh(theta1, d1, a1, 0))"),
+    b("D", "D(h)", 1, 1, "DQ Robotics' dual part D(h): h = P(h) + eps D(h), as in our q + eps q_eps", "D(trans((l, 0, 0)))"),
+    b("Re", "Re(h)", 1, 1, "the scalar parts w + eps w_eps", "Re(dh(theta1, d1, 0, 0))"),
+    b("Im", "Im(h)", 1, 1, "the vector parts (0, x, y, z) + eps (0, x_eps, y_eps, z_eps)", "Im(dh(theta1, d1, 0, 0))"),
+    b("sharp", "sharp(h)", 1, 1, "P(h) - eps D(h) (our dconj)", "sharp(trans((l, 0, 0)))"),
+    b("norm", "norm(h)", 1, 1, "DQ Robotics' norm sqrt(h* h) = |P| + eps (P . D)/|P|, exact when |P|^2 is 1 or a rational", "norm(2*trans((l, 0, 0)))"),
+    b("inv", "inv(h)", 1, 1, "DQ Robotics' inverse (the same as inverse)", "inv(rot((0, 0, 1), theta1))"),
+    b("translation", "translation(h)", 1, 1, "the translation 2 D(h) P(h)* of a unit DQ, a pure quaternion (0; t)", "translation(dh(theta1, d1, a1, alpha1))"),
+    b("rotation", "rotation(h)", 1, 1, "the rotation P(h) of a unit DQ", "rotation(dh(theta1, d1, a1, 0))"),
+    b("rotation_angle", "rotation_angle(h)", 1, 1, "2 acos(w) of a unit DQ, read exactly (branch: acos in [0, pi] for numbers, the written angle for cos(x))", "rotation_angle(rot((0, 0, 1), theta1))"),
+    b("rotation_axis", "rotation_axis(h)", 1, 1, "Im(P(h))/sin(phi/2), a pure quaternion; k for no rotation (DQ Robotics' convention)", "rotation_axis(rot((0, 1, 0), theta1, (l, 0, 0)))"),
+    b("log", "log(h)", 1, 1, "DQ Robotics' log (phi/2) n + eps t/2 of a unit DQ (rotation and translation apart; screwlog is the screw one)", "log(rot((0, 0, 1), theta1) * trans((l, 0, 0)))"),
+    b("exp", "exp(h)", 1, 1, "DQ Robotics' exp e^P + eps D e^P of a pure DQ, e^r = cos|r| + sin|r| r/|r| (|r| must be linear in the symbols)", "exp((0, theta1/2, 0, 0) + eps*(0, l, 0, 0))"),
+    b("pow", "pow(h, a) or pow(h, a, psi)", 2, 3, "DQ Robotics' pow exp(a log h): rotation r^a, translation a t; psi names the angle a*phi when it is not linear", "pow(rot((0, 0, 1), theta1) * trans((l, 0, 0)), t, alpha1)"),
+    b("screwlog", "screwlog(q)", 1, 1, "the screw logarithm (theta/2) n + eps ((d/2) n + (theta/2) m), q = exp of it (2 xi is the twist)", "screwlog(screw((0, 0, 1), (l, 0, 0), theta1, d1))"),
+    b("screwpow", "screwpow(q, t) or screwpow(q, t, psi)", 2, 3, "the screw power q^t: angle t theta (psi names it when not linear), slide t d about the same axis", "screwpow(screw((0, 0, 1), (l, 0, 0), pi/2, d1), t, alpha1)"),
+    b("sclerp", "sclerp(q0, q1, t) or sclerp(q0, q1, t, psi)", 3, 4, "ScLERP q0 (q0* q1)^t, the screw power (psi = t * rotation_angle(q0* q1) when not linear)", "sclerp(trans((0, 0, 0)), rot((0, 0, 1), pi/2, (l, 0, 0)), t, alpha1)"),
+    b("sclerpdot", "sclerpdot(q0, q1, t) or sclerpdot(q0, q1, t, psi)", 3, 4, "d/dt of sclerp: sclerp(q0, q1, t) xi, xi = screwlog(q0* q1); the body twist 2 xi is constant", "sclerpdot(trans((0, 0, 0)), rot((0, 0, 1), pi/2, (l, 0, 0)), t, alpha1)"),
+    b("twist", "twist(q, qdot)", 2, 2, "the spatial twist xi = 2 qdot q* (qdot = 1/2 xi q): angular velocity + eps (linear velocity of the point at the origin)", "twist(rot((0, 0, 1), theta1), diff(rot((0, 0, 1), theta1), theta1))"),
+    b("bodytwist", "bodytwist(q, qdot)", 2, 2, "the body twist xi = 2 q* qdot (qdot = 1/2 q xi)", "bodytwist(rot((0, 0, 1), theta1), diff(rot((0, 0, 1), theta1), theta1))"),
+    b("qdot", "qdot(q, xi)", 2, 2, "1/2 xi q, the derivative of q under the spatial twist xi", "qdot(rot((0, 0, 1), theta1), (0, 0, 0, 1))"),
+    b("tplus", "tplus(h)", 1, 1, "h P(h)*, the translation factor 1 + eps t/2 of a unit DQ", "tplus(dh(theta1, d1, a1, alpha1))"),
+    b("Ad", "Ad(a, x)", 2, 2, "the adjoint a x conj(a) (moves lines, twists and directions by a)", "Ad(rot((0, 0, 1), theta1), (0, 1, 0, 0))"),
+    b("Adsharp", "Adsharp(a, x)", 2, 2, "sharp(a) x conj(a) (moves the pure point x by a)", "Adsharp(trans((l, 0, 0)), (0, 0, 1, 0))"),
+    b("hamiplus4", "hamiplus4(q)", 1, 1, "the 4x4 matrix with vec4(q p) = hamiplus4(q) vec4(p)", "hamiplus4(rot((0, 0, 1), theta1))"),
+    b("haminus4", "haminus4(q)", 1, 1, "the 4x4 matrix with vec4(p q) = haminus4(q) vec4(p)", "haminus4(rot((0, 0, 1), theta1))"),
+    b("hamiplus8", "hamiplus8(h)", 1, 1, "the 8x8 matrix with vec8(h g) = hamiplus8(h) vec8(g)", "hamiplus8(trans((l, 0, 0)))"),
+    b("haminus8", "haminus8(h)", 1, 1, "the 8x8 matrix with vec8(g h) = haminus8(h) vec8(g)", "haminus8(trans((l, 0, 0)))"),
+    b("vec3", "vec3(q)", 1, 1, "the column (x, y, z) of P(q)", "vec3(translation(trans((l, 0, 0))))"),
+    b("vec4", "vec4(q)", 1, 1, "the column (w, x, y, z) of P(q)", "vec4(rot((0, 0, 1), theta1))"),
+    b("vec6", "vec6(h)", 1, 1, "the column of the vector parts (x, y, z, x_eps, y_eps, z_eps)", "vec6(log(trans((l, 0, 0))))"),
+    b("vec8", "vec8(h)", 1, 1, "the column of all eight components", "vec8(dh(theta1, d1, a1, alpha1))"),
+    b("cross", "cross(a, b)", 2, 2, "(a b - b a)/2: the cross product of pure quaternions, extended to lines", "cross((1, 0, 0), (0, l, 0))"),
+    b("dot", "dot(a, b)", 2, 2, "-(a b + b a)/2: the dot product of pure quaternions (a scalar for vectors), extended to lines", "dot((1, 0, 0), (l, 1, 0))"),
+    b("line", "line(direction, point)", 2, 2, "the Plücker line l + eps (p x l) through point with direction l", "line((0, 0, 1), (l, 0, 0))"),
+    b("plane", "plane(normal, point)", 2, 2, "the plane n + eps (p . n) through point with normal n", "plane((0, 0, 1), (0, 0, d1))"),
+    b("point_to_point_squared_distance", "point_to_point_squared_distance(p, q)", 2, 2, "|p - q|^2", "point_to_point_squared_distance((l, 0, 0), (0, d1, 0))"),
+    b("point_to_line_squared_distance", "point_to_line_squared_distance(p, line)", 2, 2, "|p x l - m|^2 for the line l + eps m", "point_to_line_squared_distance((l, 0, 0), line((0, 0, 1), (0, 0, d1)))"),
+    b("point_to_plane_distance", "point_to_plane_distance(p, plane)", 2, 2, "the signed distance p . n - d from the plane n + eps d", "point_to_plane_distance((l, 0, d1), plane((0, 0, 1), (0, 0, 1)))"),
+    b("line_to_line_squared_distance", "line_to_line_squared_distance(l1, l2)", 2, 2, "D(l1 . l2)^2 / |P(l1 x l2)|^2, or |D(l1 x l2)|^2 for parallel lines (a quotient when symbolic)", "line_to_line_squared_distance(line((1, 0, 0), (0, 0, 0)), line((0, 1, 0), (0, 0, d1)))"),
+    b("line_to_line_angle", "line_to_line_angle(l1, l2)", 2, 2, "acos(P(l1 . l2)), read exactly when that is cos of an angle", "line_to_line_angle(line((1, 0, 0), (0, 0, 0)), Ad(rot((0, 0, 1), theta1), line((1, 0, 0), (0, 0, l))))"),
+    b("pose_jacobian", "pose_jacobian(x, [q1, q2, ...])", 2, 2, "d vec8(x) / dq, 8 x n (the same as jacobian)", "pose_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("rotation_jacobian", "rotation_jacobian(x, [q1, ...])", 2, 2, "d vec4(P(x)) / dq of a unit pose, 4 x n", "rotation_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("translation_jacobian", "translation_jacobian(x, [q1, ...])", 2, 2, "d vec4(translation(x)) / dq of a unit pose, 4 x n", "translation_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("line_jacobian", "line_jacobian(x, [q1, ...], direction)", 3, 3, "d vec8(l + eps t x l) / dq, l = r direction r* (direction in the frame x)", "line_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))"),
+    b("plane_jacobian", "plane_jacobian(x, [q1, ...], normal)", 3, 3, "d vec8(n + eps t . n) / dq, n = r normal r* (normal in the frame x)", "plane_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))"),
+    b("distance_jacobian", "distance_jacobian(x, [q1, ...])", 2, 2, "d |translation(x)|^2 / dq, 1 x n", "distance_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("pose_jacobian_derivative", "pose_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of the pose Jacobian, sum_k dJ/dq_k q_k_dot (rates named q_dot)", "pose_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+];
+
+fn dq_error(name: &str, e: DqError, a: &Arg) -> EvalError {
+    invalid(&format!("`{name}`: {e}"), a.span)
+}
+
+/// A pure quaternion, a vector or a DQ `(0, v) + eps 0` as a 3-vector (a point, a direction).
+fn vec3_arg(func: &str, what: &str, a: &Arg) -> Result<[Scalar; 3]> {
+    match &a.value {
+        Value::Vector(v) => return Ok(v.clone()),
+        Value::Quat(q) if q.w.is_zero() => return Ok(q.vector_part()),
+        Value::DualQuat(d) if d.real.w.is_zero() && d.dual.is_zero() => {
+            return Ok(d.real.vector_part())
+        }
+        _ => {}
+    }
+    Err(type_error(
+        func,
+        what,
+        "a vector (x, y, z) or a pure quaternion (0, x, y, z)",
+        &a.value,
+        a.span,
+    ))
+}
+
+/// A DQ argument, vectors promoted to pure quaternions.
+fn dq_arg(func: &str, a: &Arg) -> Result<DualQuat<Scalar>> {
+    match &a.value {
+        Value::Vector(v) => Ok(DualQuat::from_real(Quat::from_vector(v))),
+        _ => dq_like(func, a),
+    }
+}
+
+fn column(x: &[Scalar]) -> Value {
+    Value::Matrix(x.iter().map(|s| vec![s.clone()]).collect())
+}
+
+fn square4(m: [[Scalar; 4]; 4]) -> Value {
+    Value::Matrix(m.into_iter().map(|r| r.to_vec()).collect())
+}
+
+/// A DQ result that is a quaternion (dual part zero) when `quat` holds.
+fn dq_value(d: DualQuat<Scalar>, quat: bool) -> Value {
+    if quat && d.dual.is_zero() {
+        Value::Quat(d.real)
+    } else {
+        Value::DualQuat(d)
+    }
+}
+
+/// An optional angle-name argument: a symbol.
+fn angle_arg<'v>(func: &str, a: Option<&'v Arg>) -> Result<Option<&'v Scalar>> {
+    match a {
+        None => Ok(None),
+        Some(a) => match &a.value {
+            Value::Scalar(s) if matches!(s.symbols().as_slice(), [x] if *s == Scalar::sym(x.name())) => {
+                Ok(Some(s))
+            }
+            other => Err(type_error(
+                func,
+                "the angle name",
+                "a symbol (psi = t * rotation angle)",
+                other,
+                a.span,
+            )),
+        },
+    }
+}
+
+fn scalar_arg(func: &str, what: &str, a: &Arg) -> Result<Scalar> {
+    match &a.value {
+        Value::Scalar(s) => Ok(s.clone()),
+        other => Err(type_error(func, what, "a scalar", other, a.span)),
+    }
+}
+
+/// Calls the DQ Robotics built-in `name`; `None` when `name` is not one of them.
+pub(super) fn call(name: &str, v: &[Arg]) -> Option<Result<Value>> {
+    if !TABLE.iter().any(|b| b.name == name) {
+        return None;
+    }
+    Some((|| -> Result<Value> {
+        let a = &v[0];
+        Ok(match name {
+            "P" | "rotation" => {
+                let h = if name == "P" {
+                    dq_like(name, a)?
+                } else {
+                    unit_dq(name, a)?
+                };
+                Value::Quat(dqr::primary(&h))
+            }
+            "D" => Value::Quat(dqr::dual_part(&dq_like(name, a)?)),
+            "Re" => dq_value(
+                dqr::re(&dq_like(name, a)?),
+                matches!(a.value, Value::Quat(_)),
+            ),
+            "Im" => dq_value(
+                dqr::im(&dq_like(name, a)?),
+                matches!(a.value, Value::Quat(_)),
+            ),
+            "sharp" => Value::DualQuat(dqr::sharp(&dq_like(name, a)?)),
+            "norm" => {
+                let h = dq_like(name, a)?;
+                Value::DualQuat(dqexp::norm(&h).map_err(|e| dq_error(name, e, a))?)
+            }
+            "inv" => value::inverse(&a.value).map_err(|e| op_error(e, a.span))?,
+            "translation" => Value::Quat(dqr::translation(&unit_dq(name, a)?)),
+            "rotation_angle" => Value::Scalar(
+                dqexp::rotation_angle(&unit_dq(name, a)?).map_err(|e| dq_error(name, e, a))?,
+            ),
+            "rotation_axis" => Value::Quat(
+                dqexp::rotation_axis(&unit_dq(name, a)?).map_err(|e| dq_error(name, e, a))?,
+            ),
+            "log" => {
+                Value::DualQuat(dqexp::log(&unit_dq(name, a)?).map_err(|e| dq_error(name, e, a))?)
+            }
+            "screwlog" => Value::DualQuat(
+                dqexp::screw_log(&unit_dq(name, a)?).map_err(|e| dq_error(name, e, a))?,
+            ),
+            "exp" => {
+                let h = dq_like(name, a)?;
+                let quat = matches!(a.value, Value::Quat(_));
+                dq_value(dqexp::exp(&h).map_err(|e| dq_error(name, e, a))?, quat)
+            }
+            "pow" | "screwpow" => {
+                let h = unit_dq(name, a)?;
+                let t = scalar_arg(name, "the exponent", &v[1])?;
+                let psi = angle_arg(name, v.get(2))?;
+                let r = if name == "pow" {
+                    dqexp::pow(&h, &t, psi)
+                } else {
+                    dqexp::screw_pow(&h, &t, psi)
+                };
+                Value::DualQuat(r.map_err(|e| dq_error(name, e, a))?)
+            }
+            "sclerp" | "sclerpdot" => {
+                let q0 = unit_dq(name, a)?;
+                let q1 = unit_dq(name, &v[1])?;
+                let t = scalar_arg(name, "t", &v[2])?;
+                let psi = angle_arg(name, v.get(3))?;
+                let r = if name == "sclerp" {
+                    dqexp::sclerp(&q0, &q1, &t, psi)
+                } else {
+                    dqexp::sclerp_derivative(&q0, &q1, &t, psi)
+                };
+                Value::DualQuat(r.map_err(|e| dq_error(name, e, a))?)
+            }
+            "twist" | "bodytwist" => {
+                let q = unit_dq(name, a)?;
+                let qd = dq_like(name, &v[1])?;
+                Value::DualQuat(dqexp::twist(&q, &qd, name == "bodytwist"))
+            }
+            "qdot" => {
+                let q = unit_dq(name, a)?;
+                let xi = dq_arg(name, &v[1])?;
+                Value::DualQuat(dqexp::from_twist(&q, &xi, false))
+            }
+            "tplus" => Value::DualQuat(dqr::tplus(&unit_dq(name, a)?)),
+            "Ad" | "Adsharp" => {
+                let g = dq_like(name, a)?;
+                let x = dq_arg(name, &v[1])?;
+                let quat = !matches!(v[1].value, Value::DualQuat(_))
+                    && !matches!(a.value, Value::DualQuat(_));
+                let r = if name == "Ad" {
+                    dqr::ad(&g, &x)
+                } else {
+                    dqr::adsharp(&g, &x)
+                };
+                dq_value(r, quat)
+            }
+            "hamiplus4" => square4(dqr::hamiplus4(&dq_like(name, a)?.real)),
+            "haminus4" => square4(dqr::haminus4(&dq_like(name, a)?.real)),
+            "hamiplus8" => Value::Matrix(dqr::hamiplus8(&dq_like(name, a)?)),
+            "haminus8" => Value::Matrix(dqr::haminus8(&dq_like(name, a)?)),
+            "vec3" => column(&dq_arg(name, a)?.real.vector_part()),
+            "vec4" => column(&dq_arg(name, a)?.real.components()),
+            "vec6" => column(&dqr::vec6(&dq_arg(name, a)?)),
+            "vec8" => column(&dq_arg(name, a)?.components()),
+            "cross" | "dot" => {
+                let (x, y) = (dq_arg(name, a)?, dq_arg(name, &v[1])?);
+                let vectors = matches!(
+                    (&a.value, &v[1].value),
+                    (Value::Vector(_), Value::Vector(_))
+                );
+                let quats = !matches!(a.value, Value::DualQuat(_))
+                    && !matches!(v[1].value, Value::DualQuat(_));
+                if name == "cross" {
+                    let r = dqr::cross(&x, &y);
+                    if vectors {
+                        Value::Vector(r.real.vector_part())
+                    } else {
+                        dq_value(r, quats)
+                    }
+                } else {
+                    let r = dqr::dot(&x, &y);
+                    if vectors {
+                        Value::Scalar(r.real.w)
+                    } else {
+                        dq_value(r, quats)
+                    }
+                }
+            }
+            "line" | "plane" => {
+                let d = vec3_arg(name, "the direction", a)?;
+                let p = vec3_arg(name, "the point", &v[1])?;
+                Value::DualQuat(if name == "line" {
+                    dqr::line(&d, &p)
+                } else {
+                    dqr::plane(&d, &p)
+                })
+            }
+            "point_to_point_squared_distance" => {
+                let p = vec3_arg(name, "the first point", a)?;
+                let q = vec3_arg(name, "the second point", &v[1])?;
+                Value::Scalar(dqr::point_to_point_squared_distance(&p, &q))
+            }
+            "point_to_line_squared_distance" => {
+                let p = vec3_arg(name, "the point", a)?;
+                let l = line_arg(name, &v[1])?;
+                Value::Scalar(dqr::point_to_line_squared_distance(&p, &l))
+            }
+            "point_to_plane_distance" => {
+                let p = vec3_arg(name, "the point", a)?;
+                let pl = dq_like(name, &v[1])?;
+                Value::Scalar(dqr::point_to_plane_distance(&p, &pl))
+            }
+            "line_to_line_squared_distance" => {
+                let (l1, l2) = (line_arg(name, a)?, line_arg(name, &v[1])?);
+                let (num, den) = dqr::line_to_line_squared_distance(&l1, &l2);
+                let f = Frac::new(num, den).map_err(|e| super::eval::scalar_error(e, a.span))?;
+                match f.as_scalar() {
+                    Some(s) => Value::Scalar(s.clone()),
+                    None => value::quotient_matrix(vec![vec![f]]),
+                }
+            }
+            "line_to_line_angle" => {
+                let (l1, l2) = (line_arg(name, a)?, line_arg(name, &v[1])?);
+                let c = dqr::line_to_line_cos(&l1, &l2);
+                let phi = c.as_cos_of_angle().ok_or_else(|| {
+                    invalid(
+                        &format!(
+                            "`{name}`: P(dot(l1, l2)) = {} is not visibly cos of an angle; it is the cosine of the angle",
+                            super::builtins::text(&c)
+                        ),
+                        a.span,
+                    )
+                })?;
+                Value::Scalar(phi)
+            }
+            "pose_jacobian"
+            | "rotation_jacobian"
+            | "translation_jacobian"
+            | "line_jacobian"
+            | "plane_jacobian"
+            | "distance_jacobian"
+            | "pose_jacobian_derivative" => {
+                let x = unit_dq(name, a)?;
+                let vars = symbol_list(name, &v[1])?;
+                let dir = || vec3_arg(name, "the direction", &v[2]);
+                let task = match name {
+                    "pose_jacobian" => TaskJacobian::Pose,
+                    "rotation_jacobian" => TaskJacobian::Rotation,
+                    "translation_jacobian" => TaskJacobian::Translation,
+                    "line_jacobian" => TaskJacobian::Line(dir()?),
+                    "plane_jacobian" => TaskJacobian::Plane(dir()?),
+                    "distance_jacobian" => TaskJacobian::Distance,
+                    _ => TaskJacobian::PoseDerivative,
+                };
+                let refs: Vec<&str> = vars.iter().map(String::as_str).collect();
+                Value::Matrix(crate::task_jacobian(&x, &refs, &task))
+            }
+            _ => return Err(invalid(&format!("`{name}` is not implemented"), a.span)),
+        })
+    })())
+}
+
+/// A Plücker line: a DQ with pure parts whose constraints hold exactly.
+fn line_arg(func: &str, a: &Arg) -> Result<DualQuat<Scalar>> {
+    let l = dq_like(func, a)?;
+    let (n, o) = dqr::line_constraints(&l);
+    if !l.real.w.is_zero() || !l.dual.w.is_zero() || !n.is_zero() || !o.is_zero() {
+        return Err(invalid(
+            &format!(
+                "`{func}` needs a line l + eps m (pure, |l| = 1, l . m = 0), but |l|^2 - 1 = {} and l . m = {}",
+                super::builtins::text(&n),
+                super::builtins::text(&o)
+            ),
+            a.span,
+        ));
+    }
+    Ok(l)
+}

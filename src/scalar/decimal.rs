@@ -1,0 +1,90 @@
+//! Exact values of decimal literals: `0.4318` is 2159/5000, `1e-3` is 1/1000. Datasheets, robot
+//! files and URDF give lengths as decimals; reading them through binary floating point would
+//! change them (0.4318 is not a binary fraction), so they are read from their text.
+
+use num_bigint::{BigInt, BigUint};
+use num_rational::BigRational;
+use num_traits::{One, Zero};
+
+/// The exact value of a decimal literal: an optional sign, digits with an optional point
+/// (`12`, `0.5`, `.5`, `3.`), then an optional exponent (`e-3`, `E+2`). `None` when the text is
+/// not such a literal, or when its value would need more than `max_digits` decimal digits
+/// (`1e999999999`): a bound, so that no literal costs more than its length in work.
+pub fn parse_decimal(text: &str, max_digits: usize) -> Option<BigRational> {
+    let (negative, body) = match text.as_bytes().first()? {
+        b'-' => (true, &text[1..]),
+        b'+' => (false, &text[1..]),
+        _ => (false, text),
+    };
+    let (mantissa, exponent) = match body.find(['e', 'E']) {
+        Some(i) => {
+            let e = &body[i + 1..];
+            let digits = e.strip_prefix(['+', '-']).unwrap_or(e);
+            if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+                return None;
+            }
+            (&body[..i], e.parse::<i64>().ok()?)
+        }
+        None => (body, 0),
+    };
+    let (whole, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+    if whole.is_empty() && frac.is_empty()
+        || !whole
+            .bytes()
+            .chain(frac.bytes())
+            .all(|b| b.is_ascii_digit())
+    {
+        return None;
+    }
+    let digits = format!("{whole}{frac}");
+    let digits = digits.trim_start_matches('0');
+    let scale = exponent.checked_sub(i64::try_from(frac.len()).ok()?)?;
+    if digits.is_empty() {
+        return Some(BigRational::zero());
+    }
+    if digits.len() as u64 + scale.unsigned_abs() > max_digits as u64 {
+        return None;
+    }
+    let num = BigUint::parse_bytes(digits.as_bytes(), 10)?;
+    let ten_pow = BigUint::from(10u32).pow(u32::try_from(scale.unsigned_abs()).ok()?);
+    let (num, den) = if scale >= 0 {
+        (num * ten_pow, BigUint::one())
+    } else {
+        (num, ten_pow)
+    };
+    let num = BigInt::from(num);
+    let num = if negative { -num } else { num };
+    Some(BigRational::new(num, BigInt::from(den)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(n: i64, d: i64) -> BigRational {
+        BigRational::new(n.into(), d.into())
+    }
+
+    #[test]
+    fn decimals_are_read_exactly() {
+        assert_eq!(parse_decimal("0.4318", 100), Some(q(2159, 5000)));
+        assert_eq!(parse_decimal("-0.39225", 100), Some(q(-1569, 4000)));
+        assert_eq!(parse_decimal("1e-3", 100), Some(q(1, 1000)));
+        assert_eq!(parse_decimal("1.5E2", 100), Some(q(150, 1)));
+        assert_eq!(parse_decimal(".25", 100), Some(q(1, 4)));
+        assert_eq!(parse_decimal("3.", 100), Some(q(3, 1)));
+        assert_eq!(parse_decimal("+0.0", 100), Some(q(0, 1)));
+        assert_eq!(parse_decimal("0e999999999999", 100), Some(q(0, 1)));
+    }
+
+    #[test]
+    fn malformed_or_huge_literals_are_refused() {
+        for bad in [
+            "", ".", "e3", "1e", "1e+", "1.2.3", "inf", "nan", "0x10", "1_0", "--1",
+        ] {
+            assert_eq!(parse_decimal(bad, 100), None, "{bad}");
+        }
+        assert_eq!(parse_decimal("1e999999999", 10_000), None);
+        assert_eq!(parse_decimal("1e-99999999999999999999", 10_000), None);
+    }
+}

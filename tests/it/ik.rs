@@ -1,0 +1,713 @@
+//! Closed-form inverse kinematics: for every supported example robot, FK(q) -> IK at random
+//! configurations reproduces the pose with every solution and finds q among them; the singular
+//! sets give flagged solutions, never NaN; robots outside the families get the clear error.
+
+use crate::common::Rng;
+use crate::robots::{load, numeric_chain};
+use dqsym::ik::{solve, IkError, IkOptions, IkSolution, NumSolution};
+use dqsym::{Chain, JointKind};
+
+const ROBOTS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/robots/");
+
+/// Published values of each example robot's parameters (m).
+pub(crate) fn params(file: &str) -> Vec<(String, f64)> {
+    let v: &[(&str, f64)] = match file {
+        "puma560" => &[
+            ("a2", 0.4318),
+            ("a3", 0.0203),
+            ("d3", 0.15005),
+            ("d4", 0.4318),
+        ],
+        "puma_like" => &[
+            ("l1", 0.3),
+            ("l2", 0.4),
+            ("d", 0.1),
+            ("L", 0.9),
+            ("b", 0.15),
+        ],
+        "ur5" => &[
+            ("d1", 0.089159),
+            ("a2", -0.425),
+            ("a3", -0.39225),
+            ("d4", 0.10915),
+            ("d5", 0.09465),
+            ("d6", 0.0823),
+        ],
+        "stanford" => &[("d2", 0.154), ("d6", 0.263)],
+        "scara" => &[("a1", 0.4), ("a2", 0.3), ("d4", 0.1)],
+        "rrr" => &[("l1", 0.5), ("l2", 0.4), ("l3", 0.2)],
+        "planar2r" => &[("l1", 0.5), ("l2", 0.35)],
+        "irb140" => &[
+            ("d1", 0.352),
+            ("a1", 0.07),
+            ("a2", 0.36),
+            ("d4", 0.38),
+            ("d6", 0.065),
+        ],
+        "kuka_kr5" => &[
+            ("d1", 0.4),
+            ("a1", 0.18),
+            ("a2", 0.6),
+            ("a3", 0.12),
+            ("d4", -0.62),
+            ("d6", -0.115),
+        ],
+        "kuka_iiwa7" => &[("d1", 0.34), ("d3", 0.4), ("d5", 0.4), ("d7", 0.126)],
+        "panda" => &[
+            ("d1", 0.333),
+            ("d3", 0.316),
+            ("a3", 0.0825),
+            ("a4", -0.0825),
+            ("d5", 0.384),
+            ("a6", 0.088),
+            ("dF", 0.107),
+        ],
+        "six_r" => &[
+            ("l1", 0.3),
+            ("l2", 0.3),
+            ("l3", 0.2),
+            ("l4", 0.1),
+            ("L", 0.8),
+        ],
+        _ => &[],
+    };
+    v.iter().map(|(n, x)| (n.to_string(), *x)).collect()
+}
+
+pub(crate) fn derive(file: &str, free: Option<&str>) -> Result<IkSolution, IkError> {
+    let r = load(&format!("{ROBOTS}{file}.toml"));
+    solve(
+        &r,
+        &IkOptions {
+            free: free.map(str::to_string),
+        },
+    )
+}
+
+/// The plain f64 chain of `file` at its published parameters.
+pub(crate) fn chain(file: &str) -> Chain<f64> {
+    let r = load(&format!("{ROBOTS}{file}.toml"));
+    numeric_chain(&r, &params(file))
+}
+
+/// The pose of the chain at `q` (all joints, the free one included).
+pub(crate) fn pose(c: &Chain<f64>, q: &[f64]) -> [[f64; 4]; 4] {
+    c.forward_matrix(q).expect("joints").rows
+}
+
+fn angle_diff(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(std::f64::consts::TAU);
+    d.min(std::f64::consts::TAU - d)
+}
+
+fn max_dev(a: &[[f64; 4]; 4], b: &[[f64; 4]; 4], position_only: bool) -> f64 {
+    let mut m: f64 = 0.0;
+    for r in 0..3 {
+        for c in 0..4 {
+            if position_only && c < 3 {
+                continue;
+            }
+            m = m.max((a[r][c] - b[r][c]).abs());
+        }
+    }
+    m
+}
+
+/// A random configuration: angles in (-pi, pi), slides in (0.1, 0.6).
+pub(crate) fn random_q(c: &Chain<f64>, rng: &mut Rng) -> Vec<f64> {
+    c.joints
+        .iter()
+        .map(|j| match j.kind {
+            JointKind::Revolute => rng.range(-3.1, 3.1),
+            JointKind::Prismatic => rng.range(0.1, 0.6),
+        })
+        .collect()
+}
+
+/// Inserts the free joint's value back into a solution.
+fn full_q(sol: &IkSolution, s: &NumSolution, free_val: Option<(usize, f64)>) -> Vec<f64> {
+    let mut q = s.q.clone();
+    if let Some((k, v)) = free_val {
+        q.insert(k, v);
+    }
+    assert_eq!(
+        q.len(),
+        sol.variables.len() + usize::from(free_val.is_some())
+    );
+    q
+}
+
+/// FK(q) -> IK at `n` random configurations: every solution reproduces the pose to 1e-9 and q is
+/// among them (mod 2 pi).
+fn round_trip(file: &str, free: Option<&str>, n: usize, seed: u64) {
+    let sol = derive(file, free).unwrap_or_else(|e| panic!("{file}: {e}"));
+    let r = load(&format!("{ROBOTS}{file}.toml"));
+    let free_k = free.map(|f| r.variables.iter().position(|v| v == f).expect("free"));
+    let env = params(file);
+    let c = chain(file);
+    let mut rng = Rng::new(seed);
+    let mut total = 0;
+    for _ in 0..n {
+        let q = random_q(&c, &mut rng);
+        let t = pose(&c, &q);
+        let mut p: Vec<(&str, f64)> = env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        if let Some(k) = free_k {
+            p.push((free.expect("free"), q[k]));
+        }
+        let sols = sol.solve_numeric(&t, &p).expect("params");
+        assert!(!sols.is_empty(), "{file}: no solution at q = {q:?}");
+        let mut found = false;
+        for s in &sols {
+            assert!(s.q.iter().all(|x| x.is_finite()), "{file}: NaN at {q:?}");
+            let qq = full_q(&sol, s, free_k.map(|k| (k, q[k])));
+            let back = pose(&c, &qq);
+            let dev = max_dev(&t, &back, sol.position_only);
+            assert!(
+                dev < 1e-9,
+                "{file}: solution {qq:?} misses the pose of {q:?} by {dev:e}"
+            );
+            let same =
+                qq.iter()
+                    .zip(&q)
+                    .enumerate()
+                    .all(|(i, (a, b))| match r.chain.joints[i].kind {
+                        JointKind::Revolute => angle_diff(*a, *b) < 1e-6,
+                        JointKind::Prismatic => (a - b).abs() < 1e-6,
+                    });
+            found |= same;
+        }
+        assert!(
+            found,
+            "{file}: q = {q:?} is not among the {} solutions {:?}",
+            sols.len(),
+            sols.iter().map(|s| &s.q).collect::<Vec<_>>()
+        );
+        total += sols.len();
+    }
+    assert!(total >= n);
+}
+
+#[test]
+fn puma560_round_trip() {
+    round_trip("puma560", None, 1000, 1);
+}
+
+#[test]
+fn puma_like_screw_round_trip() {
+    round_trip("puma_like", None, 1000, 2);
+}
+
+#[test]
+fn ur5_round_trip() {
+    round_trip("ur5", None, 1000, 3);
+}
+
+#[test]
+fn ur3_and_ur10_round_trip() {
+    round_trip("ur3", None, 1000, 4);
+    round_trip("ur10", None, 1000, 5);
+}
+
+#[test]
+fn stanford_round_trip() {
+    round_trip("stanford", None, 1000, 6);
+}
+
+#[test]
+fn scara_round_trip() {
+    round_trip("scara", None, 1000, 7);
+}
+
+#[test]
+fn planar_round_trips() {
+    round_trip("rrr", None, 1000, 8);
+    round_trip("planar2r", None, 1000, 9);
+}
+
+#[test]
+fn irb140_and_kr5_round_trip() {
+    round_trip("irb140", None, 1000, 10);
+    round_trip("kuka_kr5", None, 1000, 11);
+}
+
+#[test]
+fn iiwa_with_free_theta3_round_trip() {
+    round_trip("kuka_iiwa7", Some("theta3"), 1000, 12);
+}
+
+/// The value of a formula part with the parameters only (`None` when it needs the target or a
+/// joint).
+fn constant_part(x: &dqsym::Scalar, env: &[(String, f64)]) -> Option<f64> {
+    x.eval(&|n| env.iter().find(|(k, _)| k == n).map(|(_, v)| *v))
+        .ok()
+}
+
+/// At `n` configurations on each singular set whose angle is fixed by the parameters (the
+/// wrist and elbow branches: the root of `a cos q + b sin q` at its extreme), the solver
+/// returns solutions that reproduce the pose, one flagged singular, none NaN.
+fn singular_sets(file: &str, free: Option<&str>, n: usize, seed: u64) -> usize {
+    let sol = derive(file, free).unwrap_or_else(|e| panic!("{file}: {e}"));
+    let r = load(&format!("{ROBOTS}{file}.toml"));
+    let free_k = free.map(|f| r.variables.iter().position(|v| v == f).expect("free"));
+    let env = params(file);
+    let c = chain(file);
+    let mut rng = Rng::new(seed);
+    let mut sets = 0;
+    for step in &sol.steps {
+        let dqsym::ik::Formula::Trig { a, b, .. } = &step.formula else {
+            continue;
+        };
+        let (Some(a), Some(b)) = (constant_part(a, &env), constant_part(b, &env)) else {
+            continue;
+        };
+        sets += 1;
+        let k = r
+            .variables
+            .iter()
+            .position(|v| *v == step.variable)
+            .expect("joint");
+        for _ in 0..n {
+            let mut q = random_q(&c, &mut rng);
+            q[k] = b.atan2(a);
+            let t = pose(&c, &q);
+            let mut p: Vec<(&str, f64)> = env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+            if let Some(fk) = free_k {
+                p.push((free.expect("free"), q[fk]));
+            }
+            let sols = sol.solve_numeric(&t, &p).expect("params");
+            assert!(!sols.is_empty(), "{file} {}: no solution", step.variable);
+            assert!(
+                sols.iter().any(|s| s.singular),
+                "{file}: {} = {} not flagged singular",
+                step.variable,
+                q[k]
+            );
+            for s in &sols {
+                assert!(s.q.iter().all(|x| x.is_finite()), "{file}: NaN");
+                let qq = full_q(&sol, s, free_k.map(|fk| (fk, q[fk])));
+                let dev = max_dev(&t, &pose(&c, &qq), sol.position_only);
+                assert!(
+                    dev < 1e-9,
+                    "{file}: singular {}: {qq:?} misses the pose of {q:?} by {dev:e}",
+                    step.variable
+                );
+            }
+        }
+    }
+    sets
+}
+
+#[test]
+fn singular_sets_give_flagged_solutions_that_reproduce_the_pose() {
+    // wrist and elbow of the spherical-wrist arms, wrist and elbow of the UR type, the elbow of
+    // the planar and SCARA arms.
+    for (file, free, want) in [
+        ("puma560", None, 2),
+        ("irb140", None, 2),
+        ("kuka_kr5", None, 2),
+        ("puma_like", None, 2),
+        ("ur5", None, 2),
+        ("ur10", None, 2),
+        ("kuka_iiwa7", Some("theta3"), 2),
+        ("stanford", None, 1),
+        ("scara", None, 1),
+        ("rrr", None, 1),
+    ] {
+        let sets = singular_sets(file, free, 100, 40);
+        assert_eq!(sets, want, "{file}: singular sets checked");
+    }
+}
+
+#[test]
+fn robots_outside_the_families_get_the_clear_error() {
+    for (file, free, found) in [
+        ("six_r", None, "axes 1 and 2 are parallel"),
+        ("panda", Some("theta3"), "spherical wrist): no"),
+        (
+            "kuka_iiwa7",
+            None,
+            "give one joint variable as a parameter with --free",
+        ),
+    ] {
+        let e = derive(file, free).expect_err(file).to_string();
+        assert!(e.contains(found), "{file}: {e}");
+        assert!(e.contains("Supported families:"), "{file}: {e}");
+    }
+    // Inline robots: a spatial RRR, a 6R whose wrist axes 5 and 6 miss each other, a 5R.
+    let joint = |t: &str, d: &str, a: &str, al: &str| {
+        format!("[[joint]]\ntype = \"revolute\"\ntheta = \"{t}\"\nd = \"{d}\"\na = \"{a}\"\nalpha = \"{al}\"\n")
+    };
+    let rrr = format!(
+        "name = \"spatial RRR\"\nconvention = \"dh\"\n{}{}{}",
+        joint("q1", "0", "1", "pi/2"),
+        joint("q2", "0", "1", "pi/3"),
+        joint("q3", "0", "1", "0")
+    );
+    let ur_offset = format!(
+        "name = \"UR with offset wrist\"\nconvention = \"dh\"\n{}{}{}{}{}{}",
+        joint("q1", "d1", "0", "pi/2"),
+        joint("q2", "0", "a2", "0"),
+        joint("q3", "0", "a3", "0"),
+        joint("q4", "d4", "0", "pi/2"),
+        joint("q5", "d5", "a5", "-pi/2"),
+        joint("q6", "d6", "0", "0")
+    );
+    let five = format!(
+        "name = \"5R\"\nconvention = \"dh\"\n{}{}{}{}{}",
+        joint("q1", "0", "0", "pi/2"),
+        joint("q2", "0", "1", "0"),
+        joint("q3", "0", "1", "0"),
+        joint("q4", "0", "0", "pi/2"),
+        joint("q5", "1", "0", "0")
+    );
+    for (text, found) in [
+        (rrr, "axes 1 and 2 are skew"),
+        (ur_offset, "axes 5 and 6 are skew unless"),
+        (five, "joints: RRRRR (5)"),
+    ] {
+        let r = dqsym::parse_robot(&text, "inline", &dqsym::eval_scalar_text).expect("robot");
+        let e = solve(&r, &IkOptions::default())
+            .expect_err("unsupported")
+            .to_string();
+        assert!(e.contains(found), "{e}");
+        assert!(e.contains("no closed-form inverse kinematics"), "{e}");
+    }
+    // A bad --free names the joint variables.
+    let e = derive("kuka_iiwa7", Some("theta9"))
+        .expect_err("bad free")
+        .to_string();
+    assert!(e.contains("theta9") && e.contains("theta7"), "{e}");
+}
+
+/// The input lines of the generated-code checks: the 16 entries of T, the 8 DQ components, the
+/// parameters in the solver's order; and the configurations.
+fn codegen_cases(file: &str, free: Option<&str>, n: usize) -> (String, Vec<Vec<f64>>) {
+    let sol = derive(file, free).expect("derive");
+    let r = load(&format!("{ROBOTS}{file}.toml"));
+    let env = params(file);
+    let c = chain(file);
+    let mut rng = Rng::new(77);
+    let mut text = String::new();
+    let mut qs = Vec::new();
+    for _ in 0..n {
+        let q = random_q(&c, &mut rng);
+        let t = pose(&c, &q);
+        let m = c.forward_matrix(&q).expect("q");
+        let dq = dqsym::DualQuat::from_matrix(&m).expect("dq").components();
+        let mut v: Vec<f64> = t.iter().flatten().copied().collect();
+        v.extend(dq);
+        for p in &sol.params {
+            let x = match env.iter().find(|(k, _)| k == p) {
+                Some((_, x)) => *x,
+                None => q[r.variables.iter().position(|v| v == p).expect("free")],
+            };
+            v.push(x);
+        }
+        text.push_str(
+            &v.iter()
+                .map(|x| format!("{x:e}"))
+                .collect::<Vec<_>>()
+                .join(" "),
+        );
+        text.push('\n');
+        qs.push(q);
+    }
+    (text, qs)
+}
+
+/// Checks a generated solver's output: per case a line `n n_dq`, then n lines of joint values
+/// and two flags; every solution reproduces the pose, q is among them, the count is the
+/// engine's and the DQ variant's.
+fn check_output(file: &str, free: Option<&str>, what: &str, out: &str, qs: &[Vec<f64>]) {
+    let sol = derive(file, free).expect("derive");
+    let r = load(&format!("{ROBOTS}{file}.toml"));
+    let free_k = free.map(|f| r.variables.iter().position(|v| v == f).expect("free"));
+    let c = chain(file);
+    let env = params(file);
+    let mut lines = out.lines();
+    for q in qs {
+        let head: Vec<usize> = lines
+            .next()
+            .unwrap_or_else(|| panic!("{what}: output ends early"))
+            .split_whitespace()
+            .map(|x| x.parse().expect("count"))
+            .collect();
+        let t = pose(&c, q);
+        let mut p: Vec<(&str, f64)> = env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        if let Some(fk) = free_k {
+            p.push((free.expect("free"), q[fk]));
+        }
+        let engine = sol.solve_numeric(&t, &p).expect("params");
+        assert_eq!(head[0], engine.len(), "{what}: solution count at {q:?}");
+        assert_eq!(head[1], head[0], "{what}: the DQ variant's count");
+        let mut found = false;
+        for _ in 0..head[0] {
+            let v: Vec<f64> = lines
+                .next()
+                .expect("solution line")
+                .split_whitespace()
+                .map(|x| x.parse().expect("number"))
+                .collect();
+            let s = NumSolution {
+                q: v[..sol.variables.len()].to_vec(),
+                singular: false,
+                approximate: false,
+            };
+            let qq = full_q(&sol, &s, free_k.map(|fk| (fk, q[fk])));
+            assert!(qq.iter().all(|x| x.is_finite()), "{what}: NaN");
+            let dev = max_dev(&t, &pose(&c, &qq), sol.position_only);
+            assert!(dev < 1e-9, "{what}: {qq:?} misses the pose by {dev:e}");
+            found |= qq
+                .iter()
+                .zip(q)
+                .all(|(a, b)| angle_diff(*a, *b) < 1e-6 || (a - b).abs() < 1e-6);
+        }
+        assert!(found, "{what}: {q:?} not among the solutions");
+    }
+}
+
+const CODEGEN_ROBOTS: [(&str, Option<&str>); 6] = [
+    ("puma560", None),
+    ("ur5", None),
+    ("stanford", None),
+    ("scara", None),
+    ("planar2r", None),
+    ("kuka_iiwa7", Some("theta3")),
+];
+
+#[test]
+fn generated_rust_compiles_clean_and_solves() {
+    for (file, free) in CODEGEN_ROBOTS {
+        let sol = derive(file, free).expect("derive");
+        let code = dqsym::ik::ik_rust(&sol).expect("rust");
+        let np = sol.params.len();
+        let args: String = (0..np).map(|i| format!(", v[{}]", 24 + i)).collect();
+        let main = format!(
+            "{code}\nfn main() {{\n    use std::io::BufRead;\n    for line in std::io::stdin().lock().lines() {{\n        \
+let v: Vec<f64> = line.expect(\"line\").split_whitespace().map(|x| x.parse().expect(\"number\")).collect();\n        \
+let mut t = [[0.0; 4]; 4];\n        for (i, x) in v[..16].iter().enumerate() {{\n            t[i / 4][i % 4] = *x;\n        }}\n        \
+let mut dq = [0.0; 8];\n        dq.copy_from_slice(&v[16..24]);\n        let s = ik(&t{args});\n        let d = ik_dq(&dq{args});\n        \
+println!(\"{{}} {{}}\", s.n, d.n);\n        for i in 0..s.n {{\n            let q: Vec<String> = s.q[i].iter().map(|x| format!(\"{{x:e}}\")).collect();\n            \
+println!(\"{{}} {{}} {{}}\", q.join(\" \"), u8::from(s.singular[i]), u8::from(s.approximate[i]));\n        }}\n    }}\n}}\n"
+        );
+        let dir = crate::tools::temp_dir(&format!("ik-rust-{file}"));
+        let src = dir.join("ik.rs");
+        let exe = dir.join("ik");
+        std::fs::write(&src, main).expect("write");
+        crate::tools::compile_rust_clean(&src, &exe, false, &format!("ik solver of {file}"));
+        let (input, qs) = codegen_cases(file, free, 50);
+        let out = crate::tools::run(std::process::Command::new(&exe), &input, "generated ik");
+        check_output(file, free, &format!("Rust {file}"), &out, &qs);
+    }
+}
+
+#[test]
+fn generated_c_compiles_clean_and_solves() {
+    for (file, free) in CODEGEN_ROBOTS {
+        let sol = derive(file, free).expect("derive");
+        let code = dqsym::ik::ik_c(&sol).expect("c");
+        let np = sol.params.len();
+        let args: String = (0..np).map(|i| format!(", v[{}]", 24 + i)).collect();
+        let main = format!(
+            "{code}\n#include <stdio.h>\nint main(void) {{\n    double v[64];\n    for (;;) {{\n        \
+for (int i = 0; i < 24 + {np}; i++) if (scanf(\"%lf\", &v[i]) != 1) return 0;\n        \
+double T[4][4];\n        for (int i = 0; i < 16; i++) T[i / 4][i % 4] = v[i];\n        \
+ik_solutions s, d;\n        ik(T{args}, &s);\n        ik_dq(v + 16{args}, &d);\n        printf(\"%d %d\\n\", s.n, d.n);\n        \
+for (int i = 0; i < s.n; i++) {{\n            for (int j = 0; j < IK_DOF; j++) printf(\"%.17e \", s.q[i][j]);\n            \
+printf(\"%d %d\\n\", s.singular[i], s.approximate[i]);\n        }}\n    }}\n}}\n"
+        );
+        let dir = crate::tools::temp_dir(&format!("ik-c-{file}"));
+        let src = dir.join("ik.c");
+        let exe = dir.join("ik");
+        std::fs::write(&src, main).expect("write");
+        let mut gcc = std::process::Command::new("gcc");
+        gcc.args(["-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "-o"])
+            .arg(&exe)
+            .arg(&src)
+            .arg("-lm");
+        crate::tools::run(gcc, "", &format!("gcc -Werror on the ik solver of {file}"));
+        let (input, qs) = codegen_cases(file, free, 50);
+        let out = crate::tools::run(std::process::Command::new(&exe), &input, "generated C ik");
+        check_output(file, free, &format!("C {file}"), &out, &qs);
+    }
+}
+
+#[test]
+fn generated_python_runs_and_solves() {
+    for (file, free) in CODEGEN_ROBOTS {
+        let sol = derive(file, free).expect("derive");
+        let code = dqsym::ik::ik_python(&sol).expect("python");
+        let names: Vec<String> = sol.params.iter().map(|p| format!("'{p}'")).collect();
+        let script = format!(
+            "{code}\n\nimport sys\nNAMES = [{}]\nfor line in sys.stdin:\n    v = [float(x) for x in line.split()]\n    \
+T = np.array(v[:16]).reshape(4, 4)\n    params = dict(zip(NAMES, v[24:]))\n    sols = ik_full(T, **params)\n    \
+plain = ik(T, **params)\n    assert [list(q) for q, _, _ in sols] == plain\n    d = ik_dq(v[16:24], **params)\n    \
+print(len(sols), len(d))\n    for q, sg, ap in sols:\n        assert all(isinstance(x, float) for x in q)\n        \
+print(' '.join(repr(x) for x in q), int(sg), int(ap))\n",
+            names.join(", ")
+        );
+        let (input, qs) = codegen_cases(file, free, 50);
+        let out = crate::tools::run_python(&script, &input, "numpy");
+        check_output(file, free, &format!("Python {file}"), &out, &qs);
+    }
+}
+
+#[test]
+fn sympy_lines_parse_and_agree_with_the_engine() {
+    for (file, free) in [("puma560", None), ("ur5", None), ("stanford", None)] {
+        let sol = derive(file, free).expect("derive");
+        let text = dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Sympy).expect("sympy");
+        let vars: Vec<String> = sol.variables.iter().map(|v| format!("'{v}'")).collect();
+        let names: Vec<String> = sol.params.iter().map(|p| format!("'{p}'")).collect();
+        // Evaluates the lines in order; a joint line with sign_q branches on +1, -1; complex
+        // values (negative radicands) end the branch.
+        let script = format!(
+            r#"
+import sys, re
+from sympy import sympify, Symbol, atan2, sqrt, cos, sin, pi, N, im
+lines = [l for l in sys.stdin.read().split('\n') if l and not l.startswith('#')]
+VARS = [{vars}]
+NAMES = [{names}]
+TARGET = ['r11','r12','r13','px','r21','r22','r23','py','r31','r32','r33','pz']
+parsed = []
+for l in lines:
+    name, expr = l.split(' = ', 1)
+    syms = set(re.findall(r'[A-Za-z_][A-Za-z_0-9]*', expr)) - {{'atan2','sqrt','cos','sin','pi'}}
+    parsed.append((name, sympify(expr, locals={{s: Symbol(s) for s in syms}})))
+def run(i, env, out):
+    if i == len(parsed):
+        out.append([env[v] for v in VARS]); return
+    name, e = parsed[i]
+    signs = [1, -1] if ('sign_' + name) in [str(s) for s in e.free_symbols] else [None]
+    for s in signs:
+        env2 = dict(env)
+        if s is not None:
+            env2['sign_' + name] = s
+        v = complex(N(e.subs({{Symbol(k): x for k, x in env2.items()}}), 30))
+        if abs(v.imag) > 1e-12:
+            continue
+        env2[name] = v.real
+        run(i + 1, env2, out)
+for line in open(sys.argv[1]).read().split('\n'):
+    if not line: continue
+    v = [float(x) for x in line.split()]
+    env = dict(zip(TARGET, [v[i] for i in (0,1,2,3,4,5,6,7,8,9,10,11)]))
+    env.update(dict(zip(NAMES, v[24:])))
+    out = []
+    run(0, env, out)
+    print(len(out), len(out))
+    for q in out:
+        print(' '.join(repr(x) for x in q), 0, 0)
+"#,
+            vars = vars.join(", "),
+            names = names.join(", ")
+        );
+        let (input, qs) = codegen_cases(file, free, 4);
+        let dir = crate::tools::temp_dir(&format!("ik-sympy-{file}"));
+        let cases = dir.join("cases.txt");
+        std::fs::write(&cases, &input).expect("write");
+        let py = crate::tools::python();
+        let mut cmd = std::process::Command::new(&py);
+        cmd.args(["-c", &script]).arg(&cases);
+        let out = crate::tools::run(cmd, &text, "the SymPy lines of ik");
+        check_output(file, free, &format!("SymPy {file}"), &out, &qs);
+    }
+}
+
+#[test]
+fn ik_command_prints_the_derivation_and_fails_clearly() {
+    let out = crate::tools::dqsym_ok(&["ik", &format!("{ROBOTS}puma560.toml")]);
+    assert!(
+        out.contains("branches: 8 (shoulder x elbow x wrist)"),
+        "{out}"
+    );
+    assert!(
+        out.contains("c = 1/2 (a2^2 + a3^2 + d3^2 + d4^2 - px^2 - py^2 - pz^2)"),
+        "{out}"
+    );
+    let out = crate::tools::dqsym_ok(&["ik", &format!("{ROBOTS}ur5.toml")]);
+    assert!(out.contains("branches: 8"), "{out}");
+    let out = crate::tools::dqsym_ok(&[
+        "ik",
+        &format!("{ROBOTS}kuka_iiwa7.toml"),
+        "--free",
+        "theta3",
+    ]);
+    assert!(out.contains("free joint (a parameter): theta3"), "{out}");
+    // LaTeX: every aligned block renders in KaTeX.
+    let tex =
+        crate::tools::dqsym_ok(&["ik", &format!("{ROBOTS}puma560.toml"), "--format", "latex"]);
+    let blocks: Vec<String> = tex
+        .split("\\begin{aligned}")
+        .skip(1)
+        .map(|b| {
+            format!(
+                "\\begin{{aligned}}{}",
+                b.split("\\end{aligned}").next().unwrap_or("")
+            ) + "\\end{aligned}"
+        })
+        .collect();
+    assert_eq!(blocks.len(), 6);
+    crate::tools::katex_all(&blocks, "ik --format latex");
+    let bad = std::process::Command::new(env!("CARGO_BIN_EXE_dqsym"))
+        .args(["ik", &format!("{ROBOTS}six_r.toml")])
+        .output()
+        .expect("run");
+    assert_eq!(bad.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert!(err.contains("no closed-form inverse kinematics"), "{err}");
+}
+
+#[test]
+fn generated_bench_solvers_are_current() {
+    for file in ["puma560", "ur5"] {
+        let path = format!(
+            "{}/benches/generated/ik_{file}.rs",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let want = dqsym::ik::ik_rust(&derive(file, None).expect("derive")).expect("rust");
+        if std::env::var_os("DQSYM_BLESS").is_some() {
+            std::fs::write(&path, &want).expect("write the bench solver");
+        }
+        let have = std::fs::read_to_string(&path).unwrap_or_default();
+        assert!(
+            have == want,
+            "{path} is out of date: rerun with DQSYM_BLESS=1 to rewrite it"
+        );
+    }
+}
+
+#[test]
+fn walk_ik_shows_every_step_and_a_check() {
+    let out = crate::tools::dqsym_ok(&["walk", &format!("{ROBOTS}puma560.toml"), "--ik"]);
+    assert!(out.contains("The joint axes as Plücker lines"), "{out}");
+    assert_eq!(out.matches("Step ").count(), 6, "{out}");
+    assert!(out.contains("Branch wrist: + is no flip"), "{out}");
+    assert!(out.contains("the solver returns 8 solutions"), "{out}");
+    assert_eq!(
+        out.matches("pose deviation below 1e-12").count(),
+        8,
+        "{out}"
+    );
+    let md = crate::tools::dqsym_ok(&[
+        "walk",
+        &format!("{ROBOTS}kuka_iiwa7.toml"),
+        "--ik",
+        "--free",
+        "theta3",
+        "--markdown",
+    ]);
+    assert!(md.contains("## 3. The subproblems"), "{md}");
+    assert!(
+        md.contains("$\\theta_{4}$") || md.contains("\\theta_{4}"),
+        "{md}"
+    );
+    let formulas: Vec<String> = md
+        .split('$')
+        .skip(1)
+        .step_by(2)
+        .map(str::to_string)
+        .collect();
+    assert!(!formulas.is_empty());
+    crate::tools::katex_all(&formulas, "walk --ik --markdown");
+}

@@ -1,0 +1,739 @@
+//! URDF import and robot files with decimals, TOML numbers, base and tool frames: every robot
+//! against an independent chain of plain f64 4x4 matrices built here from the origins and axes
+//! as written (pose at random configurations, and its derivatives by finite differences), the
+//! conversion back to a robot file, and malformed files.
+
+use dqsym::{
+    eval_scalar_text, fk_report, parse_robot, parse_urdf, robot_toml, FkOptions, Robot, UrdfOptions,
+};
+
+type M = [[f64; 4]; 4];
+
+fn mul(a: &M, b: &M) -> M {
+    let mut c = [[0.0; 4]; 4];
+    for i in 0..4 {
+        for j in 0..4 {
+            c[i][j] = (0..4).map(|k| a[i][k] * b[k][j]).sum();
+        }
+    }
+    c
+}
+
+fn trans(t: [f64; 3]) -> M {
+    let mut m = ident();
+    for i in 0..3 {
+        m[i][3] = t[i];
+    }
+    m
+}
+
+fn ident() -> M {
+    let mut m = [[0.0; 4]; 4];
+    for (i, row) in m.iter_mut().enumerate() {
+        row[i] = 1.0;
+    }
+    m
+}
+
+/// Rodrigues' rotation about the unit vector `n`.
+fn rot(n: [f64; 3], t: f64) -> M {
+    let (s, c) = t.sin_cos();
+    let v = 1.0 - c;
+    let [x, y, z] = n;
+    let mut m = ident();
+    m[0][..3].copy_from_slice(&[c + x * x * v, x * y * v - z * s, x * z * v + y * s]);
+    m[1][..3].copy_from_slice(&[y * x * v + z * s, c + y * y * v, y * z * v - x * s]);
+    m[2][..3].copy_from_slice(&[z * x * v - y * s, z * y * v + x * s, c + z * z * v]);
+    m
+}
+
+/// The URDF origin `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)`.
+fn origin(xyz: [f64; 3], rpy: [f64; 3]) -> M {
+    let r = mul(
+        &rot([0.0, 0.0, 1.0], rpy[2]),
+        &mul(&rot([0.0, 1.0, 0.0], rpy[1]), &rot([1.0, 0.0, 0.0], rpy[0])),
+    );
+    mul(&trans(xyz), &r)
+}
+
+/// A joint as the test writes it into the URDF and into the oracle.
+#[derive(Clone)]
+struct J {
+    name: &'static str,
+    kind: &'static str,
+    parent: &'static str,
+    child: &'static str,
+    xyz: [&'static str; 3],
+    rpy: [&'static str; 3],
+    axis: [&'static str; 3],
+    mimic: Option<(&'static str, &'static str, &'static str)>,
+}
+
+fn j(
+    name: &'static str,
+    kind: &'static str,
+    parent: &'static str,
+    child: &'static str,
+    xyz: [&'static str; 3],
+    rpy: [&'static str; 3],
+    axis: [&'static str; 3],
+) -> J {
+    J {
+        name,
+        kind,
+        parent,
+        child,
+        xyz,
+        rpy,
+        axis,
+        mimic: None,
+    }
+}
+
+fn urdf_text(name: &str, joints: &[J]) -> String {
+    let mut links: Vec<&str> = Vec::new();
+    for x in joints {
+        for l in [x.parent, x.child] {
+            if !links.contains(&l) {
+                links.push(l);
+            }
+        }
+    }
+    let mut s = format!("<?xml version=\"1.0\"?>\n<robot name=\"{name}\">\n");
+    for l in &links {
+        s += &format!("  <link name=\"{l}\"/>\n");
+    }
+    for x in joints {
+        s += &format!(
+            "  <joint name=\"{}\" type=\"{}\">\n    <parent link=\"{}\"/>\n    <child link=\"{}\"/>\n    <origin xyz=\"{}\" rpy=\"{}\"/>\n    <axis xyz=\"{}\"/>\n",
+            x.name, x.kind, x.parent, x.child, x.xyz.join(" "), x.rpy.join(" "), x.axis.join(" ")
+        );
+        if let Some((l, m, o)) = x.mimic {
+            s += &format!("    <mimic joint=\"{l}\" multiplier=\"{m}\" offset=\"{o}\"/>\n");
+        }
+        s += "  </joint>\n";
+    }
+    s + "</robot>\n"
+}
+
+fn f(x: &str) -> f64 {
+    x.parse().unwrap()
+}
+
+fn f3(v: [&str; 3]) -> [f64; 3] {
+    [f(v[0]), f(v[1]), f(v[2])]
+}
+
+/// The oracle: the product of the joints' origins and motions from the first joint to the
+/// last, with the values of `q` by joint name (a mimic joint: multiplier * leader + offset).
+fn oracle(joints: &[J], q: &dyn Fn(&str) -> f64) -> M {
+    let mut m = ident();
+    for x in joints {
+        m = mul(&m, &origin(f3(x.xyz), f3(x.rpy)));
+        let v = match x.mimic {
+            Some((l, mult, off)) => f(mult) * q(l) + f(off),
+            None => q(x.name),
+        };
+        let a = f3(x.axis);
+        let n = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+        let a = [a[0] / n, a[1] / n, a[2] / n];
+        m = match x.kind {
+            "revolute" | "continuous" => mul(&m, &rot(a, v)),
+            "prismatic" => mul(&m, &trans([a[0] * v, a[1] * v, a[2] * v])),
+            _ => m,
+        };
+    }
+    m
+}
+
+/// A deterministic pseudo-random number in [-2, 2).
+fn rnd(seed: &mut u64) -> f64 {
+    *seed = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    ((*seed >> 11) as f64 / (1u64 << 53) as f64) * 4.0 - 2.0
+}
+
+/// The robot's pose matrix at `env` (every variable bound), entries evaluated from the exact
+/// matrix.
+fn pose_at(r: &Robot, m: &dqsym::Matrix4<dqsym::Scalar>, env: &[(String, f64)]) -> M {
+    let _ = r;
+    let mut out = [[0.0; 4]; 4];
+    for i in 0..4 {
+        for k in 0..4 {
+            out[i][k] = m.rows[i][k]
+                .eval(&|n| env.iter().find(|(a, _)| a == n).map(|(_, v)| *v))
+                .expect("bound");
+        }
+    }
+    out
+}
+
+/// Checks `r` (whose variables are the joints named in `names`, URDF order) against the
+/// oracle at random configurations: the pose, the DQ's matrix, and each column of the pose's
+/// derivative by central differences of the oracle.
+fn check_against_oracle(r: &Robot, joints: &[J], seed: u64) {
+    let m = r.forward_matrix();
+    let from_dq = r.forward().to_matrix();
+    let mut seed = seed;
+    for _ in 0..5 {
+        let env: Vec<(String, f64)> = r
+            .variables
+            .iter()
+            .map(|v| (v.clone(), rnd(&mut seed)))
+            .collect();
+        let q = |name: &str| {
+            let v = name.replace('-', "_");
+            env.iter().find(|(a, _)| *a == v).map_or(0.0, |(_, x)| *x)
+        };
+        let want = oracle(joints, &q);
+        for got in [pose_at(r, &m, &env), pose_at(r, &from_dq, &env)] {
+            for i in 0..4 {
+                for k in 0..4 {
+                    assert!(
+                        (got[i][k] - want[i][k]).abs() < 1e-6,
+                        "{}: T[{i}][{k}] = {} against {}",
+                        r.name,
+                        got[i][k],
+                        want[i][k]
+                    );
+                }
+            }
+        }
+        // Each variable's column: d T / d v, exact derivative against finite differences.
+        for (vi, v) in r.variables.iter().enumerate() {
+            let h = 1e-6;
+            let shifted = |d: f64| {
+                let q = |name: &str| {
+                    let n = name.replace('-', "_");
+                    env.iter()
+                        .find(|(a, _)| *a == n)
+                        .map_or(0.0, |(a, x)| if *a == *v { x + d } else { *x })
+                };
+                oracle(joints, &q)
+            };
+            let (p, mm) = (shifted(h), shifted(-h));
+            for i in 0..3 {
+                for k in 0..4 {
+                    let exact = m.rows[i][k]
+                        .diff(v)
+                        .eval(&|n| env.iter().find(|(a, _)| a == n).map(|(_, x)| *x))
+                        .unwrap();
+                    let fd = (p[i][k] - mm[i][k]) / (2.0 * h);
+                    assert!(
+                        (exact - fd).abs() < 1e-5,
+                        "{}: d T[{i}][{k}] / d {v} (column {vi}) = {exact} against {fd}",
+                        r.name
+                    );
+                }
+            }
+        }
+    }
+}
+
+fn read(name: &str, joints: &[J], o: &UrdfOptions) -> dqsym::UrdfRobot {
+    parse_urdf(&urdf_text(name, joints), name, o).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Reads the URDF, checks it against the oracle, prints its report, and converts it to a
+/// robot file that reads back to the same pose, exactly.
+fn full_check(name: &str, joints: &[J], o: &UrdfOptions) -> Robot {
+    let r = read(name, joints, o).robot;
+    check_against_oracle(&r, joints, 7);
+    let report = fk_report(
+        &r,
+        &FkOptions {
+            jacobian: true,
+            max_terms: 5_000,
+            ..FkOptions::default()
+        },
+    )
+    .unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert!(report.contains("T[2][3] = "), "{report}");
+    let toml = robot_toml(&r, name).unwrap();
+    let back =
+        parse_robot(&toml, name, &eval_scalar_text).unwrap_or_else(|e| panic!("{e}\n{toml}"));
+    assert_eq!(back.variables, r.variables, "{toml}");
+    assert_eq!(back.forward_matrix(), r.forward_matrix(), "{toml}");
+    r
+}
+
+const Z: [&str; 3] = ["0", "0", "0"];
+const AZ: [&str; 3] = ["0", "0", "1"];
+const HALF_PI: &str = "1.570796325";
+
+fn ur5() -> Vec<J> {
+    vec![
+        j(
+            "shoulder_pan_joint",
+            "revolute",
+            "base_link",
+            "shoulder_link",
+            ["0.0", "0.0", "0.089159"],
+            ["0.0", "0.0", "0.0"],
+            AZ,
+        ),
+        j(
+            "shoulder_lift_joint",
+            "revolute",
+            "shoulder_link",
+            "upper_arm_link",
+            ["0.0", "0.13585", "0.0"],
+            ["0.0", HALF_PI, "0.0"],
+            ["0", "1", "0"],
+        ),
+        j(
+            "elbow_joint",
+            "revolute",
+            "upper_arm_link",
+            "forearm_link",
+            ["0.0", "-0.1197", "0.425"],
+            ["0.0", "0.0", "0.0"],
+            ["0", "1", "0"],
+        ),
+        j(
+            "wrist_1_joint",
+            "revolute",
+            "forearm_link",
+            "wrist_1_link",
+            ["0.0", "0.0", "0.39225"],
+            ["0.0", HALF_PI, "0.0"],
+            ["0", "1", "0"],
+        ),
+        j(
+            "wrist_2_joint",
+            "revolute",
+            "wrist_1_link",
+            "wrist_2_link",
+            ["0.0", "0.093", "0.0"],
+            ["0.0", "0.0", "0.0"],
+            AZ,
+        ),
+        j(
+            "wrist_3_joint",
+            "revolute",
+            "wrist_2_link",
+            "wrist_3_link",
+            ["0.0", "0.0", "0.09465"],
+            ["0.0", "0.0", "0.0"],
+            ["0", "1", "0"],
+        ),
+        j(
+            "ee_fixed_joint",
+            "fixed",
+            "wrist_3_link",
+            "ee_link",
+            ["0.0", "0.0823", "0.0"],
+            ["0.0", "0.0", HALF_PI],
+            AZ,
+        ),
+    ]
+}
+
+/// PUMA 560 in Craig's modified DH, each link `Tx(a) Rx(alpha) Tz(d) Rz(theta)` as a URDF
+/// origin with xyz = (a, -sin(alpha) d, cos(alpha) d) and rpy = (alpha, 0, 0).
+fn puma560() -> Vec<J> {
+    vec![
+        j("j1", "revolute", "base", "l1", Z, Z, AZ),
+        j(
+            "j2",
+            "revolute",
+            "l1",
+            "l2",
+            Z,
+            ["-1.5707963268", "0", "0"],
+            AZ,
+        ),
+        j(
+            "j3",
+            "revolute",
+            "l2",
+            "l3",
+            ["0.4318", "0", "0.15005"],
+            Z,
+            AZ,
+        ),
+        j(
+            "j4",
+            "revolute",
+            "l3",
+            "l4",
+            ["0.0203", "0.4318", "0"],
+            ["-1.5707963268", "0", "0"],
+            AZ,
+        ),
+        j(
+            "j5",
+            "revolute",
+            "l4",
+            "l5",
+            Z,
+            ["1.5707963268", "0", "0"],
+            AZ,
+        ),
+        j(
+            "j6",
+            "revolute",
+            "l5",
+            "l6",
+            Z,
+            ["-1.5707963268", "0", "0"],
+            AZ,
+        ),
+    ]
+}
+
+/// The Franka Panda arm of franka_description (panda_arm.urdf), flange included.
+fn panda() -> Vec<J> {
+    let hp = "1.5707963267948966";
+    let mhp = "-1.5707963267948966";
+    vec![
+        j(
+            "panda_joint1",
+            "revolute",
+            "panda_link0",
+            "panda_link1",
+            ["0", "0", "0.333"],
+            Z,
+            AZ,
+        ),
+        j(
+            "panda_joint2",
+            "revolute",
+            "panda_link1",
+            "panda_link2",
+            Z,
+            [mhp, "0", "0"],
+            AZ,
+        ),
+        j(
+            "panda_joint3",
+            "revolute",
+            "panda_link2",
+            "panda_link3",
+            ["0", "-0.316", "0"],
+            [hp, "0", "0"],
+            AZ,
+        ),
+        j(
+            "panda_joint4",
+            "revolute",
+            "panda_link3",
+            "panda_link4",
+            ["0.0825", "0", "0"],
+            [hp, "0", "0"],
+            AZ,
+        ),
+        j(
+            "panda_joint5",
+            "revolute",
+            "panda_link4",
+            "panda_link5",
+            ["-0.0825", "0.384", "0"],
+            [mhp, "0", "0"],
+            AZ,
+        ),
+        j(
+            "panda_joint6",
+            "revolute",
+            "panda_link5",
+            "panda_link6",
+            Z,
+            [hp, "0", "0"],
+            AZ,
+        ),
+        j(
+            "panda_joint7",
+            "revolute",
+            "panda_link6",
+            "panda_link7",
+            ["0.088", "0", "0"],
+            [hp, "0", "0"],
+            AZ,
+        ),
+        j(
+            "panda_joint8",
+            "fixed",
+            "panda_link7",
+            "panda_link8",
+            ["0", "0", "0.107"],
+            Z,
+            AZ,
+        ),
+        j(
+            "panda_hand_joint",
+            "fixed",
+            "panda_link8",
+            "panda_hand",
+            Z,
+            ["0", "0", "-0.7853981633974483"],
+            AZ,
+        ),
+    ]
+}
+
+#[test]
+fn ur5_urdf_with_its_real_offsets_matches_plain_matrices() {
+    let r = full_check("ur5", &ur5(), &UrdfOptions::default());
+    assert_eq!(r.variables.len(), 6);
+    assert_eq!(r.variables[0], "shoulder_pan_joint");
+    // The three rpy values near pi/2 are reported.
+    let notes = read("ur5", &ur5(), &UrdfOptions::default()).notes;
+    assert_eq!(notes.len(), 3, "{notes:?}");
+    assert!(notes[0].contains("1.570796325 read as pi/2"), "{notes:?}");
+}
+
+#[test]
+fn puma560_urdf_matches_plain_matrices() {
+    full_check("puma560", &puma560(), &UrdfOptions::default());
+}
+
+#[test]
+fn panda_urdf_matches_plain_matrices() {
+    let r = full_check("panda", &panda(), &UrdfOptions::default());
+    assert_eq!(r.variables.len(), 7);
+}
+
+#[test]
+fn fixed_and_mimic_joints_fold_into_constants_and_coupled_variables() {
+    let mut joints = vec![
+        j(
+            "base_yaw",
+            "continuous",
+            "world",
+            "a",
+            ["0.1", "0", "0.25"],
+            Z,
+            AZ,
+        ),
+        j(
+            "bracket",
+            "fixed",
+            "a",
+            "b",
+            ["0", "0.05", "0.1"],
+            ["0.5235987756", "0", "0"],
+            AZ,
+        ),
+        j(
+            "lift",
+            "revolute",
+            "b",
+            "c",
+            ["0.3", "0", "0"],
+            Z,
+            ["1", "0", "0"],
+        ),
+        j(
+            "follow",
+            "revolute",
+            "c",
+            "d",
+            ["0", "0.2", "0"],
+            ["0", "0", "3.14159265"],
+            ["0", "1", "0"],
+        ),
+        j(
+            "tool-mount",
+            "fixed",
+            "d",
+            "tool",
+            ["0", "0", "0.12"],
+            Z,
+            AZ,
+        ),
+    ];
+    joints[3].mimic = Some(("lift", "-2", "0.785398163"));
+    let r = full_check("coupled", &joints, &UrdfOptions::default());
+    // Two independent variables; the mimic joint moves with `lift`.
+    assert_eq!(r.variables, ["base_yaw", "lift"]);
+    assert_eq!(r.chain.joints.len(), 3);
+}
+
+#[test]
+fn prismatic_joints_and_non_unit_axes() {
+    let joints = vec![
+        j(
+            "slide_z",
+            "prismatic",
+            "base",
+            "a",
+            ["0", "0", "0.5"],
+            Z,
+            AZ,
+        ),
+        j("turn", "revolute", "a", "b", ["0.2", "0", "0"], Z, AZ),
+        j(
+            "reach",
+            "prismatic",
+            "b",
+            "c",
+            ["0.1", "0", "0"],
+            Z,
+            ["1", "1", "0"],
+        ),
+        j(
+            "wrist",
+            "revolute",
+            "c",
+            "d",
+            Z,
+            ["0", "1.5707963", "0"],
+            ["0", "0", "2"],
+        ),
+    ];
+    let r = full_check("cartesian", &joints, &UrdfOptions::default());
+    assert_eq!(r.variables.len(), 4);
+}
+
+#[test]
+fn tip_and_base_choose_the_chain_of_a_tree() {
+    let mut joints = panda();
+    joints.push(j(
+        "finger_joint1",
+        "prismatic",
+        "panda_hand",
+        "leftfinger",
+        ["0", "0", "0.0584"],
+        Z,
+        ["0", "1", "0"],
+    ));
+    let mut right = j(
+        "finger_joint2",
+        "prismatic",
+        "panda_hand",
+        "rightfinger",
+        ["0", "0", "0.0584"],
+        Z,
+        ["0", "-1", "0"],
+    );
+    right.mimic = Some(("finger_joint1", "1", "0"));
+    joints.push(right);
+    let text = urdf_text("panda_hand", &joints);
+    let err = parse_urdf(&text, "panda_hand.urdf", &UrdfOptions::default()).unwrap_err();
+    assert!(err.to_string().contains("--tip"), "{err}");
+    let o = UrdfOptions {
+        tip: Some("rightfinger".into()),
+        ..UrdfOptions::default()
+    };
+    let r = parse_urdf(&text, "panda_hand.urdf", &o).unwrap().robot;
+    // The right finger follows the left one's variable, which is not in the chain.
+    assert_eq!(
+        r.variables.last().map(String::as_str),
+        Some("finger_joint1")
+    );
+    let mut chain: Vec<J> = panda();
+    chain.push(joints.last().unwrap().clone());
+    check_against_oracle(&r, &chain, 11);
+    let o = UrdfOptions {
+        tip: Some("panda_link4".into()),
+        base: Some("panda_link2".into()),
+        ..UrdfOptions::default()
+    };
+    let r = parse_urdf(&text, "panda_hand.urdf", &o).unwrap().robot;
+    assert_eq!(r.variables, ["panda_joint3", "panda_joint4"]);
+    check_against_oracle(&r, &panda()[2..4], 13);
+}
+
+#[test]
+fn snapping_can_be_turned_off() {
+    let o = UrdfOptions {
+        snap_angles: false,
+        ..UrdfOptions::default()
+    };
+    let err = parse_urdf(&urdf_text("ur5", &ur5()), "ur5.urdf", &o).unwrap_err();
+    assert!(err.to_string().contains("shoulder_lift_joint"), "{err}");
+    assert!(err.to_string().contains("turned off"), "{err}");
+}
+
+/// A robot file with decimals, plain TOML numbers (integers and floats, read from their
+/// text), degrees, and base and tool frames, against the same oracle.
+#[test]
+fn robot_file_with_decimals_numbers_base_and_tool_frames_matches_plain_matrices() {
+    let text = r#"
+name = "framed"
+convention = "screw"
+[base]
+xyz = [0.1, -2, "0.333"]
+rpy = ["90deg", 0, "pi/4"]
+[tool]
+xyz = [0, 0.0825, 1e-1]
+rpy = [0, "-pi/2", 0.0]
+
+[[joint]]
+type = "revolute"
+variable = "q1"
+axis = [0, 0, 1]
+point = [0, 0, 0]
+
+[[joint]]
+type = "revolute"
+variable = "q2"
+axis = [0, 1, 0]
+point = [0.4318, 0, 0.15005]
+
+[[joint]]
+type = "prismatic"
+variable = "d3"
+axis = [1, 0, 0]
+"#;
+    let r = parse_robot(text, "framed.toml", &eval_scalar_text).unwrap_or_else(|e| panic!("{e}"));
+    // The same chain as URDF joints: base, joints about home-pose axes, tool.
+    let joints = vec![
+        j(
+            "base",
+            "fixed",
+            "w",
+            "b",
+            ["0.1", "-2", "0.333"],
+            [HALF_PI, "0", "0.785398163397"],
+            AZ,
+        ),
+        j("q1", "revolute", "b", "l1", Z, Z, AZ),
+        j("to2", "fixed", "l1", "x", ["0.4318", "0", "0.15005"], Z, AZ),
+        j("q2", "revolute", "x", "y", Z, Z, ["0", "1", "0"]),
+        j(
+            "back",
+            "fixed",
+            "y",
+            "l2",
+            ["-0.4318", "0", "-0.15005"],
+            Z,
+            AZ,
+        ),
+        j("d3", "prismatic", "l2", "l3", Z, Z, ["1", "0", "0"]),
+        j(
+            "tool",
+            "fixed",
+            "l3",
+            "t",
+            ["0", "0.0825", "0.1"],
+            ["0", "-1.570796326795", "0"],
+            AZ,
+        ),
+    ];
+    check_against_oracle(&r, &joints, 3);
+    // Exact: 0.4318 is 2159/5000, not the nearest binary float.
+    let x = r.chain.joints[1].geometry.clone();
+    let dqsym::JointGeometry::Screw { point, .. } = x else {
+        panic!()
+    };
+    assert_eq!(point[0], eval_scalar_text("2159/5000").unwrap());
+}
+
+#[test]
+fn bad_urdf_files_have_clear_messages() {
+    crate::common::snapshot_settings().bind(|| {
+        insta::glob!(
+            concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data"),
+            "urdf_bad/*.urdf",
+            |path| {
+                let text = std::fs::read_to_string(path).unwrap();
+                let name = path.file_name().unwrap().to_string_lossy().into_owned();
+                let err =
+                    parse_urdf(&text, &name, &UrdfOptions::default()).expect_err("must be refused");
+                insta::assert_snapshot!(err.to_string());
+            }
+        );
+    });
+}
