@@ -292,6 +292,11 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
         let x = match v {
             toml::Value::Integer(i) => *i as f64,
             toml::Value::Float(x) if x.is_finite() => *x,
+            // A TOML number may arrive as its decimal text (read exactly elsewhere).
+            toml::Value::String(t) => match eval(t).ok().and_then(|x| x.eval(&|_| None).ok()) {
+                Some(x) if x.is_finite() => x,
+                _ => return Err(bad("not a finite number")),
+            },
             _ => return Err(bad("not a finite number")),
         };
         nominal.push((name.clone(), x));
