@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Runs every test. Sets up, when missing, what the emitter tests hand their output to: a Python
-# venv in .venv with sympy and numpy (exported as DQSYM_PYTHON), KaTeX in node_modules/, and
-# Debian's chromium for the walkthrough page; and for the Python package (python/): maturin,
-# pytest, nbclient and ipykernel in the same venv. After the Rust tests it builds and installs
-# the package (`pip install ./python`) and runs its pytest suite, which runs the notebooks in
-# examples/notebooks/.
+# venv in .venv with sympy and numpy (exported as DQSYM_PYTHON), KaTeX and playwright-core (which
+# drives Chromium for the interactive walkthrough page) in node_modules/, and Debian's chromium;
+# and for the Python package (python/): maturin, pytest, nbclient and ipykernel in the same venv.
+# After the Rust tests it builds and installs the package (`pip install ./python`) and runs its
+# pytest suite, which runs the notebooks in examples/notebooks/.
 # Idempotent: a second run only checks that everything is there.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,8 +23,8 @@ if ! .venv/bin/python -c "import dqrobotics" 2>/dev/null; then
 fi
 export DQSYM_PYTHON="$PWD/.venv/bin/python"
 
-if [ ! -f node_modules/katex/package.json ]; then
-    npm install --no-save --no-audit --no-fund --silent katex
+if [ ! -f node_modules/katex/package.json ] || [ ! -f node_modules/playwright-core/package.json ]; then
+    npm install --no-save --no-audit --no-fund --silent katex playwright-core
 fi
 
 # The walkthrough page is checked in headless Chromium (Debian's package; the machine is root).

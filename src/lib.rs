@@ -18,10 +18,11 @@ pub use closed::{
     closed_form_traced, expanded_form, Angle, Cost, Expr, Identity, Prepared, TraceStep,
 };
 pub use emit::{
-    arguments, c_function, count_ops, generated_ops, latex, latex_aligned, latex_dual_quat,
-    latex_matrix, latex_quotient, latex_quotient_matrix, latex_symbol, latex_tuple, product_table,
-    python_function, rotation_chain_ops, rust_function, sympy, sympy_quotient, CodegenError,
-    CodegenOptions, Counted, LatexOptions, OpCount, Output,
+    arguments, c_function, count_ops, generated_ops, javascript_function, latex, latex_aligned,
+    latex_aligned_named, latex_dual_quat, latex_matrix, latex_named, latex_quotient,
+    latex_quotient_matrix, latex_symbol, latex_tuple, product_table, python_function,
+    rotation_chain_ops, rust_function, sympy, sympy_quotient, CodegenError, CodegenOptions,
+    Counted, LatexOptions, OpCount, Output,
 };
 pub use kin::dqexp;
 pub use kin::{
@@ -38,9 +39,9 @@ pub use lang::{
     BUILTINS, CONSTANTS, MAX_EXPONENT,
 };
 pub use print::{
-    fk_entries, fk_recurrence, fk_report, legend, ops_tables, plain, plain_quotient, rate_name,
-    robot_toml, shorthand_name, task_jacobian, task_report, FkEntries, FkOptions, PlainOptions,
-    ReportError, ReportFormat, TaskJacobian,
+    fk_entries, fk_recurrence, fk_report, legend, ops_tables, plain, plain_named, plain_quotient,
+    plain_quotient_named, rate_name, robot_toml, shorthand_name, task_jacobian, task_report,
+    FkEntries, FkOptions, PlainOptions, ReportError, ReportFormat, TaskJacobian, TrigNames,
 };
 pub use ring::Ring;
 pub use scalar::{

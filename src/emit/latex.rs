@@ -6,7 +6,7 @@
 //! (`throwOnError: true`).
 
 use crate::closed::{Angle, Expr};
-use crate::print::shorthand_name;
+use crate::print::{shorthand_name, TrigNames};
 use crate::scalar::Small;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
@@ -114,6 +114,15 @@ pub fn latex(e: &Expr, o: &LatexOptions) -> String {
     w.out
 }
 
+/// The expression as inline LaTeX, cos and sin named by `names` (LaTeX text, a walkthrough's
+/// notation: `C_{12}`) instead of the shorthand; `None` writes the function out.
+pub fn latex_named(e: &Expr, o: &LatexOptions, names: TrigNames) -> String {
+    let mut w = Writer::new(o);
+    w.names = Some(names);
+    w.expr(e, 0);
+    w.out
+}
+
 /// A tuple `(a, b, c)`: a point, a vector or a quaternion `(w, x, y, z)`.
 pub fn latex_tuple(v: &[Expr], o: &LatexOptions) -> String {
     let parts: Vec<String> = v.iter().map(|e| latex(e, o)).collect();
@@ -175,9 +184,19 @@ fn is_one(e: &Expr) -> bool {
 /// outermost sum that keeps the line within the width, continued on the next line after
 /// `\quad`.
 pub fn latex_aligned(rows: &[(String, Expr)], o: &LatexOptions) -> String {
+    aligned(rows, o, None)
+}
+
+/// [`latex_aligned`] with cos and sin named by `names`, as [`latex_named`].
+pub fn latex_aligned_named(rows: &[(String, Expr)], o: &LatexOptions, names: TrigNames) -> String {
+    aligned(rows, o, Some(names))
+}
+
+fn aligned(rows: &[(String, Expr)], o: &LatexOptions, names: Option<TrigNames>) -> String {
     let mut lines = Vec::new();
     for (name, e) in rows {
         let mut w = Writer::new(o);
+        w.names = names;
         w.expr(e, 0);
         let parts = wrap(&w.out, &w.breaks, o.width);
         for (i, p) in parts.iter().enumerate() {
@@ -226,7 +245,7 @@ fn wrap(s: &str, breaks: &[(usize, usize)], width: usize) -> Vec<String> {
 
 /// The width of LaTeX source as rendered, roughly: a command counts as one character, braces
 /// and sub- and superscript marks as none.
-fn visual_len(s: &str) -> usize {
+pub(crate) fn visual_len(s: &str) -> usize {
     let mut n = 0;
     let mut chars = s.chars().peekable();
     while let Some(c) = chars.next() {
@@ -244,6 +263,8 @@ fn visual_len(s: &str) -> usize {
 
 struct Writer<'a> {
     o: &'a LatexOptions,
+    /// Names of cos and sin overriding the shorthand, when given.
+    names: Option<TrigNames<'a>>,
     out: String,
     /// Positions just before a ` + ` or ` - ` of a sum, with the parenthesis depth there.
     breaks: Vec<(usize, usize)>,
@@ -254,6 +275,7 @@ impl<'a> Writer<'a> {
     fn new(o: &'a LatexOptions) -> Self {
         Writer {
             o,
+            names: None,
             out: String::new(),
             breaks: Vec::new(),
             depth: 0,
@@ -268,6 +290,44 @@ impl<'a> Writer<'a> {
     fn close(&mut self) {
         self.out.push(')');
         self.depth -= 1;
+    }
+
+    /// `cos` or `sin` of `angle`, by its shorthand name when it has one, else written out with
+    /// the exponent `pow` on the function: `\cos^{2}(\frac{\theta_{3}}{2})`.
+    fn trig(&mut self, sin: bool, angle: &Angle, pow: Option<u32>) {
+        let name = match self.names {
+            Some(names) => names(sin, angle),
+            None => self
+                .o
+                .shorthand
+                .then(|| shorthand_name(sin, angle))
+                .flatten()
+                .map(|name| {
+                    let (c, rest) = name.split_at(1);
+                    // `calpha5` (a prefix kept, see `shorthand_name`) is c_{\alpha_{5}}.
+                    let cut = rest.find(|ch: char| ch.is_ascii_digit()).unwrap_or(0);
+                    let (prefix, idx) = rest.split_at(cut);
+                    if prefix.is_empty() {
+                        format!("{c}_{{{idx}}}")
+                    } else {
+                        format!("{c}_{{{}_{{{idx}}}}}", latex_symbol(prefix))
+                    }
+                }),
+        };
+        let pow = pow.map(|n| format!("^{{{n}}}")).unwrap_or_default();
+        match name {
+            Some(n) => {
+                self.out.push_str(&n);
+                self.out.push_str(&pow);
+            }
+            None => {
+                self.out.push_str(if sin { "\\sin" } else { "\\cos" });
+                self.out.push_str(&pow);
+                self.out.push('(');
+                self.out.push_str(&latex_angle(angle));
+                self.out.push(')');
+            }
+        }
     }
 
     /// Precedence levels: 0 top, 1 sum term, 2 product factor, 3 power base.
@@ -286,28 +346,7 @@ impl<'a> Writer<'a> {
             }
             Expr::Sqrt(n) => self.out.push_str(&format!("\\sqrt{{{n}}}")),
             Expr::Sym(s) => self.out.push_str(&latex_symbol(s.name())),
-            Expr::Trig { sin, angle } => {
-                let short = self.o.shorthand.then(|| shorthand_name(*sin, angle));
-                match short.flatten() {
-                    Some(name) => {
-                        let (c, rest) = name.split_at(1);
-                        // `calpha5` (a prefix kept, see `shorthand_name`) is c_{\alpha_{5}}.
-                        let cut = rest.find(|ch: char| ch.is_ascii_digit()).unwrap_or(0);
-                        let (prefix, idx) = rest.split_at(cut);
-                        if prefix.is_empty() {
-                            self.out.push_str(&format!("{c}_{{{idx}}}"));
-                        } else {
-                            let p = latex_symbol(prefix);
-                            self.out.push_str(&format!("{c}_{{{p}_{{{idx}}}}}"));
-                        }
-                    }
-                    None => {
-                        self.out.push_str(if *sin { "\\sin(" } else { "\\cos(" });
-                        self.out.push_str(&latex_angle(angle));
-                        self.out.push(')');
-                    }
-                }
-            }
+            Expr::Trig { sin, angle } => self.trig(*sin, angle, None),
             Expr::Add(v) => {
                 let paren = prec > 1;
                 if paren {
@@ -335,6 +374,24 @@ impl<'a> Writer<'a> {
                 }
             }
             Expr::Mul(v) => {
+                // `\frac{\pi}{2}`, `\frac{3\pi}{4}`, `\frac{l}{3}`: a fraction times one symbol
+                // reads as a quotient, as in plain text.
+                if let [Expr::Num(q), Expr::Sym(s)] = v.as_slice() {
+                    let unit = q.numer().is_one() || s.is_pi();
+                    if unit && !q.denom().is_one() && q.numer() > &0.into() && prec <= 2 {
+                        let k = if q.numer().is_one() {
+                            String::new()
+                        } else {
+                            format!("{} ", q.numer())
+                        };
+                        self.out.push_str(&format!(
+                            "\\frac{{{k}{}}}{{{}}}",
+                            latex_symbol(s.name()),
+                            q.denom()
+                        ));
+                        return;
+                    }
+                }
                 let paren = prec > 2;
                 if paren {
                     self.open();
@@ -365,10 +422,14 @@ impl<'a> Writer<'a> {
                     self.close();
                 }
             }
-            Expr::Pow(b, n) => {
-                self.expr(b, 3);
-                self.out.push_str(&format!("^{{{n}}}"));
-            }
+            Expr::Pow(b, n) => match &**b {
+                // The exponent on the function: `\cos^{2}(x)`, never on its argument.
+                Expr::Trig { sin, angle } => self.trig(*sin, angle, Some(*n)),
+                b => {
+                    self.expr(b, 3);
+                    self.out.push_str(&format!("^{{{n}}}"));
+                }
+            },
         }
     }
 }

@@ -1,11 +1,13 @@
 //! Emitters: pure functions from closed forms ([`Expr`](crate::Expr)) to text that another tool
 //! reads. LaTeX for papers (checked by KaTeX in the tests), SymPy-parsable text, and source code
-//! (Rust, C, Python/NumPy) that shares common subexpressions across all outputs. Like the
+//! (Rust, C, Python/NumPy, JavaScript for the interactive walkthrough page) that shares common subexpressions across all outputs. Like the
 //! printers, emitters never simplify: what they write equals the expression they were given.
 
 mod c;
 mod codegen;
 mod count;
+mod javascript;
+pub(crate) use latex::visual_len;
 mod latex;
 mod python;
 mod rust;
@@ -14,9 +16,10 @@ mod sympy;
 pub use c::c_function;
 pub use codegen::{arguments, CodegenError, CodegenOptions, OpCount, Output};
 pub use count::{count_ops, generated_ops, product_table, rotation_chain_ops, Counted};
+pub use javascript::javascript_function;
 pub use latex::{
-    latex, latex_aligned, latex_dual_quat, latex_matrix, latex_quotient, latex_quotient_matrix,
-    latex_symbol, latex_tuple, LatexOptions,
+    latex, latex_aligned, latex_aligned_named, latex_dual_quat, latex_matrix, latex_named,
+    latex_quotient, latex_quotient_matrix, latex_symbol, latex_tuple, LatexOptions,
 };
 pub use python::python_function;
 pub use rust::rust_function;

@@ -56,6 +56,9 @@ pub struct Robot {
     /// The `tool` point, if the file gives one (in the home pose for screw robots, in the last
     /// frame for DH).
     pub tool: Option<[Scalar; 3]>,
+    /// The `[values]` table: nominal numbers for symbolic parameters (`a2 = 0.4318`), used
+    /// where a number is needed (the walkthrough's drawing); results stay symbolic.
+    pub values: Vec<(String, f64)>,
 }
 
 /// A constant frame `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)`, with `rpy = [roll, pitch, yaw]`
@@ -109,6 +112,8 @@ struct RobotFile {
     convention: String,
     base: Option<toml::Value>,
     tool: Option<toml::Value>,
+    #[serde(default)]
+    values: std::collections::BTreeMap<String, toml::Value>,
     #[serde(default)]
     joint: Vec<JointFile>,
 }
@@ -295,6 +300,30 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
         file: file.into(),
         message: format!("field `{field}`: {m}"),
     };
+    let mut nominal = Vec::new();
+    for (name, v) in &f.values {
+        let bad = |m: &str| RobotError::File {
+            file: file.into(),
+            message: format!("[values], `{name}`: {m}"),
+        };
+        if name.is_empty() || !name.chars().all(|c| c.is_alphanumeric() || c == '_') {
+            return Err(bad("not a symbol name"));
+        }
+        if variables.contains(name) {
+            return Err(bad("a joint variable has no nominal value"));
+        }
+        let x = match v {
+            toml::Value::Integer(i) => *i as f64,
+            toml::Value::Float(x) if x.is_finite() => *x,
+            // A TOML number may arrive as its decimal text (read exactly elsewhere).
+            toml::Value::String(t) => match eval(t).ok().and_then(|x| x.eval(&|_| None).ok()) {
+                Some(x) if x.is_finite() => x,
+                _ => return Err(bad("not a finite number")),
+            },
+            _ => return Err(bad("not a finite number")),
+        };
+        nominal.push((name.clone(), x));
+    }
     let (tool, tool_frames) = match &f.tool {
         None => (None, Vec::new()),
         Some(v @ (toml::Value::Table(_) | toml::Value::Array(_))) if is_frames(v) => (
@@ -333,6 +362,7 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
         base_frames,
         tool_frames,
         tool,
+        values: nominal,
     })
 }
 

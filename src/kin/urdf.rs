@@ -348,6 +348,7 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
             base_frames: Vec::new(),
             tool_frames: frames,
             tool: None,
+            values: Vec::new(),
         },
         notes,
     })

@@ -36,6 +36,5 @@ pub use eval::{Binding, BindingKind, Displayed, EvalError, EvalErrorKind, Sessio
 pub use field::{eval_point_text, eval_scalar_text};
 pub use parse::{parse, parse_expr, parse_expr_with, parse_with, ParseOptions};
 pub use scan::continues;
-pub(crate) use show::latex_value;
 pub use show::{show, show_value, Format, ShowError, ShowOptions};
 pub use value::{Value, MAX_EXPONENT};

@@ -9,6 +9,9 @@ mod task;
 pub use convert::robot_toml;
 pub use fk::{fk_entries, fk_report, ops_tables, FkEntries, FkOptions, ReportError, ReportFormat};
 pub(crate) use plain::angle_text;
-pub use plain::{legend, plain, plain_quotient, shorthand_name, PlainOptions};
+pub use plain::{
+    legend, plain, plain_named, plain_quotient, plain_quotient_named, shorthand_name, PlainOptions,
+    TrigNames,
+};
 pub use recurrence::fk_recurrence;
 pub use task::{rate_name, task_jacobian, task_report, TaskJacobian};

@@ -101,10 +101,21 @@ pub fn angle_text(angle: &Angle) -> String {
     s
 }
 
+/// How a printer names the cosine (`false`) or sine (`true`) of an angle: `Some(name)` for a
+/// shorthand, `None` to write the function out.
+pub type TrigNames<'a> = &'a dyn Fn(bool, &Angle) -> Option<String>;
+
 /// The expression as plain text.
 pub fn plain(e: &Expr, opts: &PlainOptions) -> String {
+    let names = |sin: bool, a: &Angle| opts.shorthand.then(|| shorthand_name(sin, a)).flatten();
+    plain_named(e, opts, &names)
+}
+
+/// The expression as plain text, cos and sin named by `names` (a walkthrough's notation)
+/// instead of [`shorthand_name`]; `opts.shorthand` still chooses `l1 c1` over `l1*c1`.
+pub fn plain_named(e: &Expr, opts: &PlainOptions, names: TrigNames) -> String {
     let mut out = String::new();
-    write(e, opts, 0, &mut out);
+    write(e, opts, names, 0, &mut out);
     out
 }
 
@@ -114,21 +125,35 @@ pub fn plain_quotient(num: &Expr, den: &Expr, opts: &PlainOptions) -> String {
     if matches!(den, Expr::Num(q) if q.is_one()) {
         return plain(num, opts);
     }
+    let names = |sin: bool, a: &Angle| opts.shorthand.then(|| shorthand_name(sin, a)).flatten();
+    plain_quotient_named(num, den, opts, &names)
+}
+
+/// [`plain_quotient`] with cos and sin named by `names`, as [`plain_named`].
+pub fn plain_quotient_named(
+    num: &Expr,
+    den: &Expr,
+    opts: &PlainOptions,
+    names: TrigNames,
+) -> String {
+    if matches!(den, Expr::Num(q) if q.is_one()) {
+        return plain_named(num, opts, names);
+    }
     let mut out = String::new();
     match num {
         Expr::Neg(inner) => {
             out.push('-');
-            write(inner, opts, 3, &mut out);
+            write(inner, opts, names, 3, &mut out);
         }
-        _ => write(num, opts, 3, &mut out),
+        _ => write(num, opts, names, 3, &mut out),
     }
     out.push('/');
-    write(den, opts, 3, &mut out);
+    write(den, opts, names, 3, &mut out);
     out
 }
 
 /// Precedence levels: 0 top, 1 sum, 2 product, 3 power base.
-fn write(e: &Expr, o: &PlainOptions, prec: u8, out: &mut String) {
+fn write(e: &Expr, o: &PlainOptions, names: TrigNames, prec: u8, out: &mut String) {
     let times = if o.shorthand { " " } else { "*" };
     match e {
         Expr::Num(q) => {
@@ -142,16 +167,14 @@ fn write(e: &Expr, o: &PlainOptions, prec: u8, out: &mut String) {
         }
         Expr::Sqrt(n) => out.push_str(&format!("sqrt({n})")),
         Expr::Sym(s) => out.push_str(s.name()),
-        Expr::Trig { sin, angle } => {
-            match o.shorthand.then(|| shorthand_name(*sin, angle)).flatten() {
-                Some(name) => out.push_str(&name),
-                None => {
-                    out.push_str(if *sin { "sin(" } else { "cos(" });
-                    out.push_str(&angle_text(angle));
-                    out.push(')');
-                }
+        Expr::Trig { sin, angle } => match names(*sin, angle) {
+            Some(name) => out.push_str(&name),
+            None => {
+                out.push_str(if *sin { "sin(" } else { "cos(" });
+                out.push_str(&angle_text(angle));
+                out.push(')');
             }
-        }
+        },
         Expr::Add(v) => {
             if prec > 1 {
                 out.push('(');
@@ -160,13 +183,13 @@ fn write(e: &Expr, o: &PlainOptions, prec: u8, out: &mut String) {
                 match t {
                     Expr::Neg(inner) => {
                         out.push_str(if i == 0 { "-" } else { " - " });
-                        write(inner, o, 2, out);
+                        write(inner, o, names, 2, out);
                     }
                     t => {
                         if i > 0 {
                             out.push_str(" + ");
                         }
-                        write(t, o, 1, out);
+                        write(t, o, names, 1, out);
                     }
                 }
             }
@@ -196,7 +219,7 @@ fn write(e: &Expr, o: &PlainOptions, prec: u8, out: &mut String) {
                     }
                     continue;
                 }
-                write(t, o, 2, out);
+                write(t, o, names, 2, out);
             }
             if prec > 2 {
                 out.push(')');
@@ -207,13 +230,13 @@ fn write(e: &Expr, o: &PlainOptions, prec: u8, out: &mut String) {
                 out.push('(');
             }
             out.push('-');
-            write(inner, o, 2, out);
+            write(inner, o, names, 2, out);
             if prec > 1 {
                 out.push(')');
             }
         }
         Expr::Pow(b, n) => {
-            write(b, o, 3, out);
+            write(b, o, names, 3, out);
             out.push_str(&format!("^{n}"));
         }
     }

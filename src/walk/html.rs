@@ -2,10 +2,10 @@
 //! browser, and the drawing of the mechanism. KaTeX's script, stylesheet and fonts are inlined
 //! (fonts as `data:` URIs), so the page needs no network when it is viewed.
 
-use super::svg::{mechanism_svg, xml_escape, Config, SvgOptions};
-use super::text::{pieces, Piece};
-
-use super::{WalkError, Walkthrough};
+use super::svg::{number, range, scene_svg, slides, xml_escape, Config, Scene, SvgOptions, Symbol};
+use super::text::{page, Piece};
+use super::{Mechanism, WalkError, Walkthrough};
+use crate::{closed_form, javascript_function, latex_symbol, CodegenOptions, Expr, Output, Scalar};
 
 /// KaTeX ready to inline: its stylesheet with the fonts embedded, and its script.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -104,33 +104,203 @@ fn inline(t: &str) -> String {
     out
 }
 
-const STYLE: &str = "body{font-family:Georgia,serif;max-width:980px;margin:2em auto;padding:0 1em;\
-color:#222;line-height:1.45}h1{font-size:1.6em}h2{font-size:1.15em;margin-top:1.6em;\
-border-bottom:1px solid #ddd}.display{overflow-x:auto;margin:.6em 0 .6em 1.5em}\
-figure{margin:1em 0}figcaption{font-size:.9em;color:#555}code{font-size:.9em}";
+const STYLE: &str = "body{font-family:Georgia,serif;margin:0;color:#222;line-height:1.45}\
+main{max-width:1560px;margin:0 auto;padding:1em 16px}h1{font-size:1.6em}h2{font-size:1.15em;\
+margin-top:1.6em;border-bottom:1px solid #ddd}.display{overflow-x:auto;margin:.6em 0 .6em 1em}\
+figure{margin:0;flex:0 1 600px;max-width:600px}figcaption{font-size:.9em;color:#555}code{font-size:.9em}\
+.layout{display:grid;grid-template-columns:minmax(0,1fr);gap:24px}.steps{min-width:0}\
+.live{display:flex;flex-wrap:wrap;gap:16px;align-items:flex-start;min-width:0}\
+.controls{flex:1 1 340px;min-width:0;font-family:sans-serif;font-size:14px}\
+svg.mechanism{max-width:100%;height:auto}\
+.slider{display:grid;grid-template-columns:4.5em minmax(0,1fr) 4.5em;align-items:center;gap:6px}\
+.slider output{font-variant-numeric:tabular-nums;text-align:right}\
+table.num{border-collapse:collapse;margin:.4em 0 .8em}table.num td{padding:1px 6px;\
+text-align:right;font-variant-numeric:tabular-nums;border-left:1px solid #ccc}\
+table.num caption{text-align:left;font-weight:bold;padding-bottom:2px}\
+details.code pre{font-size:11px;max-height:24em;overflow:auto;background:#f6f6f2;padding:6px}\
+@media (min-width:1400px){.layout{grid-template-columns:minmax(0,1fr) 620px}\
+.live{grid-column:2;grid-row:1;position:sticky;top:8px;align-self:start;max-height:calc(100vh - 16px);\
+overflow-y:auto}.steps{grid-column:1;grid-row:1}.controls{flex-basis:100%}figure{flex-basis:100%}}";
 
 const RENDER: &str = "document.querySelectorAll('[data-tex]').forEach(function(el){\
 katex.render(el.getAttribute('data-tex'),el,{displayMode:el.classList.contains('display'),\
 throwOnError:false});});";
 
-/// The walkthrough as a self-contained HTML page, with the mechanism drawn at `cfg`.
+/// The page's script: sliders, redrawing, numbers (see the file's first comment).
+const PAGE_JS: &str = include_str!("page.js");
+
+/// `**bold**` in legend prose.
+fn bold(t: &str) -> String {
+    let mut out = String::new();
+    for (i, part) in t.split("**").enumerate() {
+        if i % 2 == 1 {
+            out += &format!("<strong>{part}</strong>");
+        } else {
+            out += part;
+        }
+    }
+    out
+}
+
+/// The live part of the page: the drawing, a slider per symbol, the numbers, and the
+/// generated function; `None` when the closed forms cannot be compiled to JavaScript.
+fn live(m: &Mechanism, cfg: &Config) -> Result<(String, Option<String>), WalkError> {
+    let scene = Scene::new(m, cfg)?;
+    let drawing = scene_svg(&scene, &SvgOptions::default())?;
+    let Ok(code) = live_function(&scene) else {
+        let mut s = String::from("<aside class=\"live\">\n<figure>\n");
+        s += &drawing;
+        s += "<figcaption>The mechanism drawn to scale at the configuration in the legend.</figcaption>\n</figure>\n</aside>\n";
+        return Ok((s, None));
+    };
+    let frame_legend = 18.0 * super::svg::LEGEND_LINES + 8.0;
+    let planar = drawing.contains("yz-plane view");
+    let mut s = String::from("<aside class=\"live\" id=\"live\">\n<figure>\n");
+    s += &drawing;
+    s += "<figcaption>The mechanism to scale. Move the sliders: the arm and the numbers are \
+          recomputed by the function below, generated from the closed forms.</figcaption>\n\
+          </figure>\n<div class=\"controls\">\n";
+    for (joint, what) in [(true, "Joints"), (false, "Lengths")] {
+        let items: Vec<&Symbol> = scene
+            .symbols
+            .iter()
+            .filter(|x| x.joint.is_some() == joint)
+            .collect();
+        if items.is_empty() {
+            continue;
+        }
+        s += &format!("<p><strong>{what}</strong></p>\n");
+        for x in items {
+            let (lo, hi) = range(x);
+            s += &format!(
+                "<label class=\"slider\"><span class=\"tex\" data-tex=\"{}\"></span>\
+                 <input type=\"range\" data-name=\"{}\"{} min=\"{lo}\" max=\"{hi}\" step=\"any\" \
+                 value=\"{}\"><output>{}</output></label>\n",
+                xml_escape(&latex_symbol(&x.name)),
+                xml_escape(&x.name),
+                if joint { " data-joint=\"1\"" } else { "" },
+                x.value,
+                number(x.value)
+            );
+        }
+    }
+    s += "<table class=\"num\"><caption>Tool point</caption><tr>";
+    for k in 0..3 {
+        s += &format!("<td data-out=\"p\" data-k=\"{k}\"></td>");
+    }
+    s += "</tr></table>\n<table class=\"num\"><caption>Pose: the 4x4 matrix</caption>";
+    for i in 0..4 {
+        s += "<tr>";
+        for j in 0..4 {
+            s += &format!("<td data-out=\"T\" data-k=\"{}\"></td>", 4 * i + j);
+        }
+        s += "</tr>";
+    }
+    s += "</table>\n<table class=\"num\"><caption>Pose: the dual quaternion (w, x, y, z) + \
+          &#949; (w, x, y, z)</caption>";
+    for part in 0..2 {
+        s += "<tr>";
+        for k in 0..4 {
+            s += &format!("<td data-out=\"dq\" data-k=\"{}\"></td>", 4 * part + k);
+        }
+        s += "</tr>";
+    }
+    s += "</table>\n<details class=\"code\"><summary>The generated JavaScript</summary><pre>";
+    s += &xml_escape(&code);
+    s += "</pre></details>\n</div>\n</aside>\n";
+    let args: Vec<String> = scene
+        .symbols
+        .iter()
+        .map(|x| format!("\"{}\"", x.name))
+        .collect();
+    let data = format!(
+        "{{\"args\":[{}],\"planar\":{planar},\"width\":{},\"legend\":{frame_legend},\"slides\":{}}}",
+        args.join(","),
+        SvgOptions::default().width,
+        slides(&scene.symbols)
+    );
+    let scripts = format!(
+        "<script id=\"dq-data\" type=\"application/json\">{data}</script>\n<script>{}</script>\n<script>{}</script>\n",
+        code.replace("</script", "<\\/script"),
+        PAGE_JS.replace("</script", "<\\/script")
+    );
+    Ok((s, Some(scripts)))
+}
+
+/// The function of the page: the joints, their axes, the tool, the pose as a matrix and as a
+/// dual quaternion, from the exact scene, by the JavaScript emitter.
+fn live_function(scene: &Scene) -> Result<String, WalkError> {
+    let c = |x: &Scalar| closed_form(x).map_err(WalkError::from);
+    let rows3 = |v: &mut dyn Iterator<Item = &[Scalar; 3]>| -> Result<Vec<Vec<Expr>>, WalkError> {
+        v.map(|p| p.iter().map(c).collect()).collect()
+    };
+    let joints = rows3(&mut scene.joints.iter().map(|(p, _)| p))?;
+    let axes = rows3(&mut scene.joints.iter().map(|(_, n)| n))?;
+    let m = &scene.matrix;
+    let t: Vec<Vec<Expr>> = m
+        .rows
+        .iter()
+        .map(|r| r.iter().map(c).collect())
+        .collect::<Result<_, _>>()?;
+    let dq: Vec<Expr> = scene
+        .pose
+        .components()
+        .iter()
+        .map(c)
+        .collect::<Result<_, _>>()?;
+    let mut outputs = vec![
+        Output::vector(
+            "tool",
+            "The tool point.",
+            scene.tool.iter().map(c).collect::<Result<_, _>>()?,
+        ),
+        Output::matrix("T", "The pose as a 4x4 homogeneous matrix.", t),
+        Output::vector("dq", "The pose as a unit dual quaternion.", dq),
+    ];
+    if !joints.is_empty() {
+        outputs.push(Output::matrix("joints", "Each joint's position.", joints));
+        outputs.push(Output::matrix("axes", "Each joint's axis direction.", axes));
+    }
+    let args: Vec<String> = scene.symbols.iter().map(|x| x.name.clone()).collect();
+    let mut code = javascript_function(
+        "dqsym_walk",
+        "The mechanism of the walkthrough at the sliders' values, from its closed forms.",
+        &outputs,
+        &args,
+        &CodegenOptions::default(),
+    )
+    .map_err(|e| WalkError::Config(e.to_string()))?;
+    if scene.joints.is_empty() {
+        code = code.replace(
+            "    return {\n",
+            "    return {\n        joints: [],\n        axes: [],\n",
+        );
+    }
+    Ok(code)
+}
+
+/// The walkthrough as a self-contained HTML page: the notation, the mechanism drawn to scale
+/// at `cfg` with a slider per joint variable and length that redraws it and recomputes the
+/// pose by JavaScript generated from the closed forms, and the derivation steps beside it.
 ///
 /// # Errors
 /// When a value cannot be shown or the mechanism cannot be evaluated.
 pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<String, WalkError> {
     let title = format!("Walkthrough: {}", w.title);
-    let mut body = format!(
-        "<h1>{}</h1>\n<p>{}</p>\n",
-        xml_escape(&title),
-        inline(super::text::NOTATION)
-    );
-    if let Some(m) = &w.mechanism {
-        body += "<figure>\n";
-        body += &mechanism_svg(m, cfg, &SvgOptions::default())?;
-        body += "<figcaption>The mechanism of the final result: links through the joints, \
-                 joint axes as arrows.</figcaption>\n</figure>\n";
+    let p = page(w)?;
+    let mut body = format!("<h1>{}</h1>\n", xml_escape(&title));
+    for l in &p.legend {
+        body += &format!("<p class=\"legend\">{}</p>\n", bold(&inline(l)));
     }
-    for (head, parts) in pieces(w)? {
+    body += "<div class=\"layout\">\n";
+    let mut scripts = None;
+    if let Some(m) = &w.mechanism {
+        let (aside, js) = live(m, cfg)?;
+        body += &aside;
+        scripts = js;
+    }
+    body += "<div class=\"steps\">\n";
+    for (head, parts) in p.sections {
         body += &format!("<section class=\"step\">\n<h2>{}</h2>\n", inline(&head));
         for p in parts {
             match p {
@@ -141,16 +311,26 @@ pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<S
                         xml_escape(&d)
                     )
                 }
+                Piece::Folded(summary, d) => {
+                    body += &format!(
+                        "<details><summary>{}</summary>\n<div class=\"tex display\" data-tex=\"{}\"></div>\n</details>\n",
+                        inline(&summary),
+                        xml_escape(&d)
+                    )
+                }
             }
         }
         body += "</section>\n";
     }
+    body += "</div>\n</div>\n";
     Ok(format!(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
          <title>{}</title>\n<style>{}</style>\n<style>{STYLE}</style>\n</head>\n<body>\n<main>\n\
-         {body}</main>\n<script>{}</script>\n<script>{RENDER}</script>\n</body>\n</html>\n",
+         {body}</main>\n<script>{}</script>\n<script>{RENDER}</script>\n{}</body>\n</html>\n",
         xml_escape(&title),
         katex.css,
-        katex.js
+        katex.js,
+        scripts.unwrap_or_default()
     ))
 }

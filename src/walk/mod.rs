@@ -15,6 +15,7 @@
 mod check;
 mod html;
 mod motion;
+mod notation;
 mod robot;
 mod script;
 mod svg;
@@ -140,6 +141,8 @@ pub struct Mechanism {
     pub motions: Vec<Motion>,
     /// The point carried by the chain (the tool), in the home pose, if there is one.
     pub tool: Option<[crate::Scalar; 3]>,
+    /// Nominal values of symbolic parameters for the drawing (a robot file's `[values]`).
+    pub values: Vec<(String, f64)>,
 }
 
 /// Why a walkthrough could not be made.

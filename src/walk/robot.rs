@@ -209,6 +209,7 @@ pub fn walk_robot_chain(robot: &Robot) -> Result<Walkthrough, WalkError> {
         mechanism: Some(Mechanism {
             motions,
             tool: robot.tool.clone(),
+            values: robot.values.clone(),
         }),
     })
 }

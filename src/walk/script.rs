@@ -164,11 +164,7 @@ impl ScriptWalk {
         };
         self.steps.push(Step::Notation {
             names: vec![c.to_owned(), s.to_owned()],
-            meaning: format!(
-                "{c} = {}, {s} = {}: the half-angle cosine and sine inside the factors",
-                meaning(c),
-                meaning(s)
-            ),
+            meaning: format!("{c} = {}, {s} = {}", meaning(c), meaning(s)),
         });
     }
 
@@ -373,6 +369,7 @@ impl ScriptWalk {
             mechanism = Some(Mechanism {
                 motions: motions.clone(),
                 tool: Some(v.clone()),
+                values: Vec::new(),
             });
         }
         Walkthrough {

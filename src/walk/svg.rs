@@ -1,14 +1,20 @@
-//! The mechanism as an SVG drawing: links as polylines through the joints, joints as circles,
-//! joint axes as short arrows; the home pose dashed, a chosen configuration solid.
+//! The mechanism as an SVG drawing, to scale: links as a polyline from the base through the
+//! joints to the tool, joints as circles numbered from 1, joint axes as arrows; the home pose
+//! dashed, a chosen configuration solid; a base marker, an x/y/z triad, and a legend with the
+//! values used for every symbol.
 //!
-//! Joint positions are computed numerically from the chain's elementary matrices. A planar
-//! mechanism (every axis along x, every point in the yz plane, as the paper's RRR arm) is
-//! drawn in the yz plane; any other in an isometric view. Coordinates are printed with one
-//! decimal, so the text is the same on every run.
+//! The geometry is exact ([`Scene`]): each joint's position and axis in the configuration, and
+//! the tool, as scalars of the joint variables and the lengths, from the product of the exact
+//! factors. The drawing evaluates them at numbers; the interactive page compiles the same
+//! scalars to JavaScript. A planar mechanism (every axis along x, every point in the yz plane,
+//! as the paper's RRR arm) is drawn in the yz plane; any other in an isometric view. The scale
+//! is fixed by the home pose (a reach bound), so moving a joint never rescales the drawing.
+//! Joint labels are placed where their boxes meet no other label and no joint.
 
 use super::motion::Motion;
 use super::{Mechanism, WalkError};
-use crate::{mdh_link_matrix, Matrix4, Scalar};
+use crate::{dh_link, dh_link_matrix, mdh_link, mdh_link_matrix, DualQuat, Matrix4, Scalar};
+use std::fmt::Write as _;
 
 /// Values of symbols for the drawn configuration: joint variables and lengths.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -59,137 +65,746 @@ impl Config {
 /// How the drawing is laid out.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SvgOptions {
-    /// The width in pixels; the height follows the mechanism's extent.
+    /// The width in pixels; the drawing area is square below the legend.
     pub width: f64,
 }
 
 impl Default for SvgOptions {
     fn default() -> Self {
-        SvgOptions { width: 640.0 }
+        SvgOptions { width: 600.0 }
     }
 }
 
 type V3 = [f64; 3];
 
-fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+/// Where a value of the drawing comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Source {
+    /// `--config`.
+    Config,
+    /// The robot file's `[values]`.
+    File,
+    /// Nothing gave it: a joint's fixed default, or 1 for a length.
+    Default,
 }
 
-fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+/// A symbol of the drawing with its value.
+#[derive(Clone, Debug)]
+pub(crate) struct Symbol {
+    pub name: String,
+    pub value: f64,
+    pub source: Source,
+    /// A joint variable: revolute (an angle) or prismatic (a slide).
+    pub joint: Option<bool>,
 }
 
-fn norm(a: V3) -> f64 {
-    dot(a, a).sqrt()
+/// The exact geometry of a mechanism in its configuration.
+pub(crate) struct Scene {
+    /// Each drawn joint: its position and its axis direction (unit at every configuration).
+    pub joints: Vec<([Scalar; 3], [Scalar; 3])>,
+    /// The tool point.
+    pub tool: [Scalar; 3],
+    /// The pose of the chain as a dual quaternion.
+    pub pose: DualQuat<Scalar>,
+    /// The pose of the chain as a 4x4 matrix (the product of the motions' matrices).
+    pub matrix: Matrix4<Scalar>,
+    /// Whether a tool point was given (else the tool is the last frame's origin).
+    pub has_tool: bool,
+    /// The joint variables (prismatic or not) in joint order, then the other symbols by name.
+    pub symbols: Vec<Symbol>,
 }
 
-/// The point of the line `p + t n` (unit `n`) nearest `x`.
-fn project(x: V3, p: V3, n: V3) -> V3 {
-    let t = dot(sub(x, p), n);
-    [p[0] + t * n[0], p[1] + t * n[1], p[2] + t * n[2]]
+fn zero3() -> [Scalar; 3] {
+    [Scalar::int(0), Scalar::int(0), Scalar::int(0)]
 }
 
-fn rotate(m: &Matrix4<f64>, v: V3) -> V3 {
-    let r = &m.rows;
+fn dot(a: &[Scalar; 3], b: &[Scalar; 3]) -> Scalar {
+    &(&a[0] * &b[0] + &a[1] * &b[1]) + &(&a[2] * &b[2])
+}
+
+fn sub(a: &[Scalar; 3], b: &[Scalar; 3]) -> [Scalar; 3] {
+    [&a[0] - &b[0], &a[1] - &b[1], &a[2] - &b[2]]
+}
+
+/// The point of the line `p + t n` nearest `x` (exact; `n` unit, else `p` itself).
+fn project(x: &[Scalar; 3], p: &[Scalar; 3], n: &[Scalar; 3]) -> [Scalar; 3] {
+    if dot(n, n) != Scalar::int(1) {
+        return p.clone();
+    }
+    let t = dot(&sub(x, p), n);
     [
-        r[0][0] * v[0] + r[0][1] * v[1] + r[0][2] * v[2],
-        r[1][0] * v[0] + r[1][1] * v[1] + r[1][2] * v[2],
-        r[2][0] * v[0] + r[2][1] * v[1] + r[2][2] * v[2],
+        &p[0] + &(&t * &n[0]),
+        &p[1] + &(&t * &n[1]),
+        &p[2] + &(&t * &n[2]),
     ]
-}
-
-/// One pose of the mechanism: the polyline, and each joint's position and axis direction.
-struct Pose {
-    line: Vec<V3>,
-    joints: Vec<(V3, V3)>,
 }
 
 fn eval3(v: &[Scalar; 3], env: &dyn Fn(&str) -> Option<f64>) -> Result<V3, WalkError> {
     Ok([v[0].eval(env)?, v[1].eval(env)?, v[2].eval(env)?])
 }
 
-/// Screw joints: where on its axis each joint is drawn, in the home pose. The point of the
-/// axis nearest the previous joint; when that is the previous joint itself (two axes meeting,
-/// as at a wrist), the point nearest the next joint's given point instead.
-fn screw_anchors(
-    m: &Mechanism,
-    env: &dyn Fn(&str) -> Option<f64>,
-) -> Result<Vec<Option<V3>>, WalkError> {
-    let mut geo: Vec<Option<(V3, V3)>> = Vec::new();
-    for x in &m.motions {
-        geo.push(match x {
-            Motion::Screw { axis, point, .. } => {
-                let n = eval3(axis, env)?;
-                let l = norm(n);
-                let n = if l > 0.0 {
-                    [n[0] / l, n[1] / l, n[2] / l]
-                } else {
-                    n
-                };
-                Some((eval3(point, env)?, n))
-            }
-            _ => None,
-        });
-    }
-    let mut prev = [0.0; 3];
-    let mut out = Vec::new();
-    for (i, g) in geo.iter().enumerate() {
-        let Some((p, n)) = g else {
-            out.push(None);
-            continue;
-        };
-        let mut a = project(prev, *p, *n);
-        if norm(sub(a, prev)) < 1e-9 {
-            if let Some(Some((q, _))) = geo[i + 1..].iter().find(|g| g.is_some()) {
-                a = project(*q, *p, *n);
-            }
-        }
-        out.push(Some(a));
-        prev = a;
-    }
-    Ok(out)
+fn rotate(m: &Matrix4<Scalar>, v: &[Scalar; 3]) -> [Scalar; 3] {
+    let r = &m.rows;
+    let row = |i: usize| &(&(&r[i][0] * &v[0]) + &(&r[i][1] * &v[1])) + &(&r[i][2] * &v[2]);
+    [row(0), row(1), row(2)]
 }
 
-fn pose(
-    m: &Mechanism,
-    env: &dyn Fn(&str) -> Option<f64>,
-    anchors: &[Option<V3>],
-) -> Result<Pose, WalkError> {
-    let mut acc = Matrix4::identity();
-    let mut line = vec![[0.0; 3]];
-    let mut joints = Vec::new();
-    for (x, anchor) in m.motions.iter().zip(anchors) {
-        match x {
-            Motion::Screw { axis, .. } => {
-                if let Some(a) = anchor {
-                    let p = acc.transform_point(a);
-                    joints.push((p, rotate(&acc, eval3(axis, env)?)));
-                    line.push(p);
+/// The exact 4x4 matrix of a motion, from elementary matrices in full angles (cheaper to
+/// multiply than the half-angle dual quaternions).
+fn motion_matrix(m: &Motion) -> Matrix4<Scalar> {
+    match m {
+        Motion::Screw {
+            axis,
+            point,
+            angle,
+            slide,
+        } => {
+            let minus = [-&point[0], -&point[1], -&point[2]];
+            let along = [&axis[0] * slide, &axis[1] * slide, &axis[2] * slide];
+            Matrix4::trans(point)
+                * Matrix4::rotation(axis, angle)
+                * Matrix4::trans(&minus)
+                * Matrix4::trans(&along)
+        }
+        Motion::Translation { t } => Matrix4::trans(t),
+        Motion::Dh { theta, d, a, alpha } => dh_link_matrix(theta, d, a, alpha),
+        Motion::Mdh { alpha, a, theta, d } => mdh_link_matrix(alpha, a, theta, d),
+    }
+}
+
+/// The exact factor of a motion.
+fn motion_dq(m: &Motion) -> DualQuat<Scalar> {
+    match m {
+        Motion::Screw {
+            axis,
+            point,
+            angle,
+            slide,
+        } => DualQuat::screw(axis, point, angle, slide),
+        Motion::Translation { t } => DualQuat::translation(t),
+        Motion::Dh { theta, d, a, alpha } => dh_link(theta, d, a, alpha),
+        Motion::Mdh { alpha, a, theta, d } => mdh_link(alpha, a, theta, d),
+    }
+}
+
+impl Scene {
+    /// The scene of `m`, with the values of `cfg`, then of the robot file, then the defaults.
+    pub(crate) fn new(m: &Mechanism, cfg: &Config) -> Result<Scene, WalkError> {
+        // The joint variables, in order, and whether each slides.
+        let mut joints: Vec<(String, bool)> = Vec::new();
+        for x in &m.motions {
+            if let Some(v) = x.variables().into_iter().next() {
+                let prismatic = match x {
+                    Motion::Screw { angle, .. } => angle.symbols().iter().all(|s| s.is_pi()),
+                    Motion::Translation { .. } => true,
+                    Motion::Dh { theta, .. } | Motion::Mdh { theta, .. } => {
+                        !theta.symbols().iter().any(|s| s.name() == v)
+                    }
+                };
+                if !joints.iter().any(|(n, _)| *n == v) {
+                    joints.push((v, prismatic));
                 }
             }
-            Motion::Dh { .. } => {
-                let p = acc.transform_point(&[0.0; 3]);
-                joints.push((p, rotate(&acc, [0.0, 0.0, 1.0])));
-                line.push(p);
-            }
-            Motion::Mdh { alpha, a, .. } => {
-                let f = &acc * mdh_link_matrix(&alpha.eval(env)?, &a.eval(env)?, &0.0, &0.0);
-                let p = f.transform_point(&[0.0; 3]);
-                joints.push((p, rotate(&f, [0.0, 0.0, 1.0])));
-                line.push(p);
-            }
-            Motion::Translation { .. } => {}
         }
-        acc = acc * x.matrix(env)?;
+        let value_of = |n: &str, k: Option<usize>| -> (f64, Source) {
+            if let Some(v) = cfg.get(n) {
+                return (v, Source::Config);
+            }
+            if let Some((_, v)) = m.values.iter().find(|(x, _)| x == n) {
+                return (*v, Source::File);
+            }
+            match k {
+                Some(i) => (DEFAULT_JOINTS[i % DEFAULT_JOINTS.len()], Source::Default),
+                None => (1.0, Source::Default),
+            }
+        };
+        let mut symbols: Vec<Symbol> = joints
+            .iter()
+            .enumerate()
+            .map(|(i, (n, prismatic))| {
+                let (value, source) = value_of(n, Some(i));
+                Symbol {
+                    name: n.clone(),
+                    value,
+                    source,
+                    joint: Some(*prismatic),
+                }
+            })
+            .collect();
+        // The other symbols: whatever the motions and the tool mention.
+        let mut others = std::collections::BTreeSet::new();
+        let mut note = |x: &Scalar| {
+            for s in x.symbols() {
+                if !s.is_pi() && s.name() != "1" && !joints.iter().any(|(n, _)| n == s.name()) {
+                    others.insert(s.name().to_owned());
+                }
+            }
+        };
+        for x in &m.motions {
+            match x {
+                Motion::Screw {
+                    axis,
+                    point,
+                    angle,
+                    slide,
+                } => {
+                    axis.iter().chain(point).for_each(&mut note);
+                    note(angle);
+                    note(slide);
+                }
+                Motion::Translation { t } => t.iter().for_each(&mut note),
+                Motion::Dh { theta, d, a, alpha } | Motion::Mdh { alpha, a, theta, d } => {
+                    [theta, d, a, alpha].into_iter().for_each(&mut note);
+                }
+            }
+        }
+        if let Some(t) = &m.tool {
+            t.iter().for_each(&mut note);
+        }
+        for n in others {
+            let (value, source) = value_of(&n, None);
+            symbols.push(Symbol {
+                name: n,
+                value,
+                source,
+                joint: None,
+            });
+        }
+        // Every --config name must be a symbol of the mechanism: a misspelt name is an error
+        // with the closest name suggested, never silently ignored.
+        if let Some((name, _)) = cfg
+            .values
+            .iter()
+            .find(|(n, _)| !symbols.iter().any(|s| &s.name == n))
+        {
+            let known: Vec<&str> = symbols.iter().map(|s| s.name.as_str()).collect();
+            let closest = known
+                .iter()
+                .min_by_key(|k| edit_distance(k, name))
+                .filter(|k| edit_distance(k, name) <= 2.max(name.len() / 3));
+            let hint = match closest {
+                Some(k) => format!("; did you mean `{k}`?"),
+                None => String::new(),
+            };
+            return Err(WalkError::Config(format!(
+                "`{name}` is not a symbol of this mechanism{hint} (its symbols: {})",
+                known.join(", ")
+            )));
+        }
+        let home_env = |n: &str| -> Option<f64> {
+            let s = symbols.iter().find(|s| s.name == n)?;
+            Some(if s.joint.is_some() { 0.0 } else { s.value })
+        };
+        // Screw joints: where on its axis each is drawn, in the home pose. The point of the
+        // axis nearest the previous joint; when that is the previous joint itself (two axes
+        // meeting, as at a wrist), the point nearest the next joint's given point instead.
+        let screws: Vec<Option<([Scalar; 3], [Scalar; 3])>> = m
+            .motions
+            .iter()
+            .map(|x| match x {
+                // A joint: a screw with a variable (a constant rotation of a base or tool
+                // frame is not drawn as a joint).
+                Motion::Screw { axis, point, .. } if !x.variables().is_empty() => {
+                    Some((point.clone(), axis.clone()))
+                }
+                _ => None,
+            })
+            .collect();
+        let mut anchors: Vec<Option<[Scalar; 3]>> = Vec::new();
+        let mut prev = zero3();
+        for (i, g) in screws.iter().enumerate() {
+            let Some((p, n)) = g else {
+                anchors.push(None);
+                continue;
+            };
+            let mut a = project(&prev, p, n);
+            let gap = eval3(&sub(&a, &prev), &home_env)?;
+            if gap.iter().map(|x| x * x).sum::<f64>() < 1e-18 {
+                if let Some(Some((q, _))) = screws[i + 1..].iter().find(|g| g.is_some()) {
+                    a = project(q, p, n);
+                }
+            }
+            prev = a.clone();
+            anchors.push(Some(a));
+        }
+        let mut acc = Matrix4::identity();
+        let mut pose = DualQuat::identity();
+        let mut drawn = Vec::new();
+        let z = [Scalar::int(0), Scalar::int(0), Scalar::int(1)];
+        for (x, anchor) in m.motions.iter().zip(&anchors) {
+            match x {
+                Motion::Screw { axis, .. } => {
+                    // Only joints have anchors.
+                    if let Some(a) = anchor {
+                        drawn.push((acc.transform_point(a), rotate(&acc, axis)));
+                    }
+                }
+                Motion::Dh { .. } => {
+                    drawn.push((acc.transform_point(&zero3()), rotate(&acc, &z)));
+                }
+                Motion::Mdh { alpha, a, .. } => {
+                    let f = &acc * &mdh_link_matrix(alpha, a, &Scalar::int(0), &Scalar::int(0));
+                    drawn.push((f.transform_point(&zero3()), rotate(&f, &z)));
+                }
+                Motion::Translation { .. } => {}
+            }
+            acc = &acc * &motion_matrix(x);
+            pose = &pose * &motion_dq(x);
+        }
+        let tool = acc.transform_point(m.tool.as_ref().unwrap_or(&zero3()));
+        Ok(Scene {
+            joints: drawn,
+            tool,
+            matrix: acc,
+            pose,
+            has_tool: m.tool.is_some(),
+            symbols,
+        })
     }
-    match &m.tool {
-        Some(t) => line.push(acc.transform_point(&eval3(t, env)?)),
-        None => line.push(acc.transform_point(&[0.0; 3])),
+
+    /// The value of each symbol, joints at `joints` (or their values when `None`).
+    fn env(&self, home: bool) -> impl Fn(&str) -> Option<f64> + '_ {
+        move |n: &str| {
+            let s = self.symbols.iter().find(|s| s.name == n)?;
+            Some(if home && s.joint.is_some() {
+                0.0
+            } else {
+                s.value
+            })
+        }
     }
-    Ok(Pose { line, joints })
+
+    /// The polyline (base, joints, tool) and the joints' axes at the home pose or at the
+    /// configuration.
+    fn numbers(&self, home: bool) -> Result<(Vec<V3>, Vec<V3>), WalkError> {
+        let env = self.env(home);
+        let mut line = vec![[0.0; 3]];
+        let mut axes = Vec::new();
+        for (p, n) in &self.joints {
+            line.push(eval3(p, &env)?);
+            axes.push(eval3(n, &env)?);
+        }
+        line.push(eval3(&self.tool, &env)?);
+        Ok((line, axes))
+    }
+
+    /// Whether the mechanism is drawn in the yz plane.
+    fn planar(&self) -> Result<bool, WalkError> {
+        let (line, axes) = self.numbers(true)?;
+        Ok(line.iter().all(|p| p[0].abs() < 1e-9)
+            && axes.iter().all(|n| n[1].abs() < 1e-9 && n[2].abs() < 1e-9))
+    }
 }
 
-/// The joint variable of each motion.
+/// The length of a polyline.
+pub(crate) fn reach(line: &[V3], slides: f64) -> f64 {
+    let mut r = slides;
+    for w in line.windows(2) {
+        let d = [w[1][0] - w[0][0], w[1][1] - w[0][1], w[1][2] - w[0][2]];
+        r += (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    }
+    r.max(1e-6)
+}
+
+/// The slider range of a symbol: an angle over a full turn, a length or a slide around its
+/// value.
+pub(crate) fn range(s: &Symbol) -> (f64, f64) {
+    match s.joint {
+        Some(false) => (-std::f64::consts::PI, std::f64::consts::PI),
+        _ => {
+            let m = (2.0 * s.value.abs()).max(1.0);
+            if s.joint.is_some() {
+                (-m, m)
+            } else if s.value < 0.0 {
+                (-m, 0.0)
+            } else {
+                (0.0, m)
+            }
+        }
+    }
+}
+
+/// The prismatic joints' largest slides, added to the reach bound.
+pub(crate) fn slides(symbols: &[Symbol]) -> f64 {
+    symbols
+        .iter()
+        .filter(|s| s.joint == Some(true))
+        .map(|s| range(s).1)
+        .sum()
+}
+
+/// The layout of the drawing, shared with the page's script: the legend's height, the
+/// drawing's centre and the pixels per unit length.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Frame {
+    pub width: f64,
+    pub legend: f64,
+    pub planar: bool,
+}
+
+/// Lines of legend text at the top.
+pub(crate) const LEGEND_LINES: f64 = 6.0;
+
+impl Frame {
+    pub(crate) fn height(&self) -> f64 {
+        self.legend + self.width
+    }
+
+    /// Pixels per unit of length for a mechanism of reach `r`.
+    pub(crate) fn scale(&self, r: f64) -> f64 {
+        let k = if self.planar { 1.0 } else { 1.2248 };
+        (self.width / 2.0 - 24.0) / (r * k)
+    }
+
+    /// A point on the screen (y down), the base at the centre of the square.
+    pub(crate) fn at(&self, p: V3, scale: f64) -> (f64, f64) {
+        let (u, v) = if self.planar {
+            (p[1], -p[2])
+        } else {
+            let (c, s) = (0.866_025_403_784_438_6, 0.5);
+            ((p[1] - p[0]) * c, -(p[2] - (p[0] + p[1]) * s))
+        };
+        (
+            self.width / 2.0 + u * scale,
+            self.legend + self.width / 2.0 + v * scale,
+        )
+    }
+}
+
+/// A label's box: x, y, width, height.
+pub(crate) type LabelBox = [f64; 4];
+
+fn meets(a: &LabelBox, b: &LabelBox) -> bool {
+    a[0] < b[0] + b[2] && b[0] < a[0] + a[2] && a[1] < b[1] + b[3] && b[1] < a[1] + a[3]
+}
+
+/// Boxes for the labels of joints at screen points `pts` (texts `1`, `2`, ...): for each, the
+/// first place around its joint (8 directions, growing distance) whose box meets no label
+/// placed before, no joint and not the tool at `tool`. The page's script runs the same rule.
+pub(crate) fn place_labels(pts: &[(f64, f64)], tool: (f64, f64)) -> Vec<LabelBox> {
+    let mut joints: Vec<LabelBox> = pts
+        .iter()
+        .map(|(x, y)| [x - 7.0, y - 7.0, 14.0, 14.0])
+        .collect();
+    joints.push([tool.0 - 6.0, tool.1 - 6.0, 12.0, 12.0]);
+    let mut placed: Vec<LabelBox> = Vec::new();
+    for (i, (x, y)) in pts.iter().enumerate() {
+        let w = 8.0 * (i + 1).to_string().len() as f64 + 4.0;
+        let h = 16.0;
+        let mut best = None;
+        'search: for step in 0..8 {
+            let r = 14.0 + 8.0 * f64::from(step);
+            for k in 0..8 {
+                let a = (-45.0 + 45.0 * f64::from(k)).to_radians();
+                let (cx, cy) = (x + r * a.cos(), y + r * a.sin());
+                let b = [cx - w / 2.0, cy - h / 2.0, w, h];
+                if !placed.iter().chain(&joints).any(|o| meets(&b, o)) {
+                    best = Some(b);
+                    break 'search;
+                }
+            }
+        }
+        placed.push(best.unwrap_or([x + 10.0, y - 24.0, w, h]));
+    }
+    placed
+}
+
+/// One decimal, never `-0.0`: the same text on every run.
+fn f(v: f64) -> String {
+    let s = format!("{v:.1}");
+    if s == "-0.0" {
+        "0.0".to_owned()
+    } else {
+        s
+    }
+}
+
+/// The legend's line of values: `a2 = 0.4318, d3 = 0.15 (robot file); l1 = 1 (default)`.
+pub(crate) fn values_text(symbols: &[Symbol], joints: bool) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    for (source, what) in [
+        (Source::Config, "--config"),
+        (Source::File, "robot file"),
+        (Source::Default, "default"),
+    ] {
+        let items: Vec<String> = symbols
+            .iter()
+            .filter(|s| s.source == source && s.joint.is_some() == joints)
+            .map(|s| format!("{} = {}", s.name, number(s.value)))
+            .collect();
+        if !items.is_empty() {
+            parts.push(format!("{} ({what})", items.join(", ")));
+        }
+    }
+    parts.join("; ")
+}
+
+/// A value for the legend: at most 6 decimals, trailing zeros dropped.
+pub(crate) fn number(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.').to_owned();
+    if s == "-0" {
+        "0".to_owned()
+    } else {
+        s
+    }
+}
+
+/// The mechanism drawn at its home pose (all joint variables 0, dashed) and at `cfg` (solid).
+///
+/// # Errors
+/// When a parameter cannot be evaluated (a `--config` name that is not a symbol is ignored).
+pub fn mechanism_svg(m: &Mechanism, cfg: &Config, o: &SvgOptions) -> Result<String, WalkError> {
+    let scene = Scene::new(m, cfg)?;
+    scene_svg(&scene, o)
+}
+
+/// The drawing of a scene.
+pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkError> {
+    let frame = Frame {
+        width: o.width,
+        legend: 18.0 * LEGEND_LINES + 8.0,
+        planar: scene.planar()?,
+    };
+    let (home, _) = scene.numbers(true)?;
+    let (conf, axes) = scene.numbers(false)?;
+    let scale = frame.scale(reach(&home, slides(&scene.symbols)));
+    let at = |p: V3| frame.at(p, scale);
+    let pts = |line: &[V3]| -> String {
+        line.iter()
+            .map(|p| {
+                let (x, y) = at(*p);
+                format!("{},{}", f(x), f(y))
+            })
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let (w, h) = (o.width, frame.height());
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"mechanism\" width=\"{}\" height=\"{}\" \
+         viewBox=\"0 0 {} {}\" font-family=\"sans-serif\" font-size=\"13\">",
+        f(w),
+        f(h),
+        f(w),
+        f(h)
+    );
+    let _ = writeln!(
+        s,
+        "<title>The mechanism to scale, {} view: home pose dashed, configuration solid</title>",
+        if frame.planar {
+            "yz-plane"
+        } else {
+            "isometric"
+        }
+    );
+    s += "<defs><marker id=\"axis-head\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" \
+          markerWidth=\"7\" markerHeight=\"7\" orient=\"auto\"><path d=\"M0,0 L10,5 L0,10 z\" \
+          fill=\"#c0392b\"/></marker><marker id=\"triad-head\" viewBox=\"0 0 10 10\" refX=\"9\" \
+          refY=\"5\" markerWidth=\"6\" markerHeight=\"6\" orient=\"auto\"><path \
+          d=\"M0,0 L10,5 L0,10 z\" fill=\"#444444\"/></marker></defs>\n";
+    let _ = writeln!(
+        s,
+        "<rect x=\"0.5\" y=\"0.5\" width=\"{}\" height=\"{}\" fill=\"#fcfcfa\" stroke=\"#dddddd\"/>",
+        f(w - 1.0),
+        f(h - 1.0)
+    );
+    // Legend.
+    let joints_text = values_text(&scene.symbols, true);
+    let lengths_text = values_text(&scene.symbols, false);
+    s += "<g class=\"legend\" font-size=\"12\">\n";
+    s += "<line x1=\"14\" y1=\"16\" x2=\"44\" y2=\"16\" stroke=\"#999999\" stroke-width=\"2\" \
+          stroke-dasharray=\"6 4\"/>\n<text x=\"52\" y=\"20\">home pose (every joint variable 0)</text>\n";
+    s +=
+        "<line x1=\"14\" y1=\"34\" x2=\"44\" y2=\"34\" stroke=\"#1f5fbf\" stroke-width=\"3.5\"/>\n\
+          <text x=\"52\" y=\"38\">the configuration:</text>\n";
+    let _ = writeln!(
+        s,
+        "<text id=\"dq-config\" x=\"14\" y=\"56\">{}</text>",
+        xml_escape(&joints_text)
+    );
+    let _ = writeln!(
+        s,
+        "<text id=\"dq-lengths\" x=\"14\" y=\"74\">{}</text>",
+        xml_escape(&if lengths_text.is_empty() {
+            "no length parameters".to_owned()
+        } else {
+            format!("lengths: {lengths_text}")
+        })
+    );
+    let _ = writeln!(
+        s,
+        "<text x=\"14\" y=\"92\">circles: joints 1 to {}, {}; square: the {}; triangle: the base</text>",
+        scene.joints.len(),
+        if frame.planar {
+            "axes (x) out of the page"
+        } else {
+            "arrows: joint axes"
+        },
+        if scene.has_tool {
+            "tool point"
+        } else {
+            "last frame's origin"
+        }
+    );
+    let _ = writeln!(
+        s,
+        "<text id=\"dq-scale\" x=\"14\" y=\"110\">{}, to scale: {} px per unit length</text>",
+        if frame.planar {
+            "view of the yz plane"
+        } else {
+            "isometric view"
+        },
+        number(scale)
+    );
+    s += "</g>\n";
+    // The triad, bottom left: x, y, z of the base frame as drawn.
+    let (ox, oy) = (34.0, h - 34.0);
+    s += "<g class=\"triad\">\n";
+    for (k, name) in ["x", "y", "z"].iter().enumerate() {
+        let mut e = [0.0; 3];
+        e[k] = 1.0;
+        let (ex, ey) = frame.at(e, 22.0);
+        let (dx, dy) = (
+            ex - frame.width / 2.0,
+            ey - frame.legend - frame.width / 2.0,
+        );
+        if dx.abs() + dy.abs() < 1e-9 {
+            // Along the line of sight: out of the page.
+            let _ = writeln!(
+                s,
+                "<circle cx=\"{}\" cy=\"{}\" r=\"4\" fill=\"none\" stroke=\"#444444\"/>\
+                 <circle cx=\"{}\" cy=\"{}\" r=\"1.5\" fill=\"#444444\"/>\
+                 <text x=\"{}\" y=\"{}\" fill=\"#444444\">{name}</text>",
+                f(ox),
+                f(oy),
+                f(ox),
+                f(oy),
+                f(ox - 16.0),
+                f(oy + 14.0)
+            );
+            continue;
+        }
+        let _ = writeln!(
+            s,
+            "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#444444\" stroke-width=\"1.5\" \
+             marker-end=\"url(#triad-head)\"/><text x=\"{}\" y=\"{}\" fill=\"#444444\" \
+             text-anchor=\"middle\" dominant-baseline=\"central\">{name}</text>",
+            f(ox),
+            f(oy),
+            f(ox + dx),
+            f(oy + dy),
+            f(ox + dx * 1.5),
+            f(oy + dy * 1.5)
+        );
+    }
+    s += "</g>\n";
+    // The base.
+    let (bx, by) = at([0.0; 3]);
+    let _ = writeln!(
+        s,
+        "<path class=\"base\" d=\"M{},{} l-11,16 h22 z\" fill=\"#555555\"/>\
+         <line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#555555\" stroke-width=\"2\"/>",
+        f(bx),
+        f(by),
+        f(bx - 18.0),
+        f(by + 17.0),
+        f(bx + 18.0),
+        f(by + 17.0)
+    );
+    // Home pose.
+    let _ = writeln!(
+        s,
+        "<polyline id=\"dq-home\" points=\"{}\" fill=\"none\" stroke=\"#999999\" \
+         stroke-width=\"2\" stroke-dasharray=\"6 4\" stroke-linejoin=\"round\"/>",
+        pts(&home)
+    );
+    // Configuration.
+    let _ = writeln!(
+        s,
+        "<polyline id=\"dq-arm\" points=\"{}\" fill=\"none\" stroke=\"#1f5fbf\" \
+         stroke-width=\"3.5\" stroke-linejoin=\"round\"/>",
+        pts(&conf)
+    );
+    let arrow = 0.16 * reach(&home, slides(&scene.symbols)) * scale;
+    let screen: Vec<(f64, f64)> = conf[1..conf.len() - 1].iter().map(|p| at(*p)).collect();
+    for (i, ((x, y), n)) in screen.iter().zip(&axes).enumerate() {
+        let p = conf[i + 1];
+        let (tx, ty) = at([
+            p[0] + n[0] * arrow / scale,
+            p[1] + n[1] * arrow / scale,
+            p[2] + n[2] * arrow / scale,
+        ]);
+        let _ = writeln!(
+            s,
+            "<line class=\"dq-axis\" data-i=\"{i}\" x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" \
+             stroke=\"#c0392b\" stroke-width=\"1.5\" marker-end=\"url(#axis-head)\"{}/>",
+            f(*x),
+            f(*y),
+            f(tx),
+            f(ty),
+            if frame.planar {
+                " visibility=\"hidden\""
+            } else {
+                ""
+            }
+        );
+    }
+    for (i, (x, y)) in screen.iter().enumerate() {
+        let p = conf[i + 1];
+        let _ = writeln!(
+            s,
+            "<circle class=\"dq-joint\" data-i=\"{i}\" data-xyz=\"{:.9},{:.9},{:.9}\" cx=\"{}\" \
+             cy=\"{}\" r=\"6\" fill=\"#ffffff\" stroke=\"#1f5fbf\" stroke-width=\"2\"/>",
+            p[0],
+            p[1],
+            p[2],
+            f(*x),
+            f(*y)
+        );
+        if frame.planar {
+            let _ = writeln!(
+                s,
+                "<circle class=\"dq-dot\" data-i=\"{i}\" cx=\"{}\" cy=\"{}\" r=\"2\" fill=\"#c0392b\"/>",
+                f(*x),
+                f(*y)
+            );
+        }
+    }
+    let t = conf[conf.len() - 1];
+    let (tx, ty) = at(t);
+    let _ = writeln!(
+        s,
+        "<rect id=\"dq-tool\" data-xyz=\"{:.9},{:.9},{:.9}\" x=\"{}\" y=\"{}\" width=\"9\" \
+         height=\"9\" fill=\"#1f5fbf\"/>",
+        t[0],
+        t[1],
+        t[2],
+        f(tx - 4.5),
+        f(ty - 4.5)
+    );
+    for (i, b) in place_labels(&screen, (tx, ty)).iter().enumerate() {
+        let _ = writeln!(
+            s,
+            "<text class=\"dq-label\" data-i=\"{i}\" x=\"{}\" y=\"{}\" fill=\"#1f5fbf\" \
+             text-anchor=\"middle\" dominant-baseline=\"central\">{}</text>",
+            f(b[0] + b[2] / 2.0),
+            f(b[1] + b[3] / 2.0),
+            i + 1
+        );
+    }
+    s += "</svg>\n";
+    Ok(s)
+}
+
+pub(crate) fn xml_escape(t: &str) -> String {
+    t.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
 /// The Levenshtein distance of two names, in characters.
 fn edit_distance(a: &str, b: &str) -> usize {
     let b: Vec<char> = b.chars().collect();
@@ -204,241 +819,4 @@ fn edit_distance(a: &str, b: &str) -> usize {
         }
     }
     row[b.len()]
-}
-
-fn variables(m: &Mechanism) -> Vec<String> {
-    m.motions
-        .iter()
-        .filter_map(|x| x.variables().into_iter().next())
-        .collect()
-}
-
-/// The mechanism drawn at its home pose (all joint variables 0, dashed) and at `cfg` (solid).
-///
-/// # Errors
-/// When a parameter cannot be evaluated, or a `--config` name is not a symbol of the
-/// mechanism (the message suggests the closest one).
-pub fn mechanism_svg(m: &Mechanism, cfg: &Config, o: &SvgOptions) -> Result<String, WalkError> {
-    let vars = variables(m);
-    let length = |n: &str| cfg.get(n).unwrap_or(1.0);
-    // The symbols the drawing reads: every --config name must be one of them.
-    let asked = std::cell::RefCell::new(std::collections::BTreeSet::<String>::new());
-    let home_env = |n: &str| -> Option<f64> {
-        asked.borrow_mut().insert(n.to_owned());
-        match n {
-            "pi" | "1" => None,
-            _ if vars.iter().any(|v| v == n) => Some(0.0),
-            _ => Some(length(n)),
-        }
-    };
-    let conf_env = |n: &str| -> Option<f64> {
-        match n {
-            "pi" | "1" => None,
-            _ => cfg.get(n).or_else(|| {
-                vars.iter()
-                    .position(|v| v == n)
-                    .map(|i| DEFAULT_JOINTS[i % DEFAULT_JOINTS.len()])
-                    .or(Some(1.0))
-            }),
-        }
-    };
-    let anchors = screw_anchors(m, &home_env)?;
-    let home = pose(m, &home_env, &anchors)?;
-    let conf = pose(m, &conf_env, &anchors)?;
-    let asked = asked.into_inner();
-    if let Some((name, _)) = cfg.values.iter().find(|(n, _)| !asked.contains(n)) {
-        let known: Vec<&String> = asked.iter().filter(|n| *n != "pi" && *n != "1").collect();
-        let closest = known
-            .iter()
-            .min_by_key(|k| edit_distance(k, name))
-            .filter(|k| edit_distance(k, name) <= 2.max(name.len() / 3));
-        let hint = match closest {
-            Some(k) => format!("; did you mean `{k}`?"),
-            None => String::new(),
-        };
-        let list = known
-            .iter()
-            .map(|k| k.as_str())
-            .collect::<Vec<_>>()
-            .join(", ");
-        return Err(WalkError::Config(format!(
-            "`{name}` is not a symbol of this mechanism{hint} (its symbols: {list})"
-        )));
-    }
-    let planar = home
-        .joints
-        .iter()
-        .all(|(p, n)| p[0].abs() < 1e-9 && n[1].abs() < 1e-9 && n[2].abs() < 1e-9)
-        && home.line.iter().all(|p| p[0].abs() < 1e-9);
-    // Screen coordinates, y down.
-    let proj = |p: V3| -> (f64, f64) {
-        if planar {
-            (p[1], -p[2])
-        } else {
-            let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
-            ((p[1] - p[0]) * c, -(p[2] - (p[0] + p[1]) * s))
-        }
-    };
-    let extent = home
-        .line
-        .iter()
-        .chain(&conf.line)
-        .map(|p| norm(*p))
-        .fold(0.0f64, f64::max)
-        .max(1e-6);
-    let arrow = 0.22 * extent;
-    let tip = |(p, n): &(V3, V3)| -> V3 {
-        let l = norm(*n).max(1e-12);
-        [
-            p[0] + arrow * n[0] / l,
-            p[1] + arrow * n[1] / l,
-            p[2] + arrow * n[2] / l,
-        ]
-    };
-    let mut all: Vec<(f64, f64)> = Vec::new();
-    for ps in [&home, &conf] {
-        all.extend(ps.line.iter().map(|p| proj(*p)));
-        all.extend(ps.joints.iter().map(|j| proj(tip(j))));
-    }
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for (x, y) in &all {
-        x0 = x0.min(*x);
-        x1 = x1.max(*x);
-        y0 = y0.min(*y);
-        y1 = y1.max(*y);
-    }
-    let margin = 30.0;
-    let legend_h = 78.0;
-    let span = (x1 - x0).max(y1 - y0).max(1e-6);
-    let scale = (o.width - 2.0 * margin) / span;
-    let height = ((y1 - y0) * scale + 2.0 * margin + legend_h).max(160.0);
-    let at = |p: V3| -> (f64, f64) {
-        let (x, y) = proj(p);
-        (
-            margin + (x - x0) * scale + ((o.width - 2.0 * margin) - (x1 - x0) * scale) / 2.0,
-            legend_h + margin + (y - y0) * scale,
-        )
-    };
-    let f = |v: f64| {
-        let s = format!("{v:.1}");
-        if s == "-0.0" {
-            "0.0".to_owned()
-        } else {
-            s
-        }
-    };
-    let mut s = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"mechanism\" width=\"{w}\" height=\"{h}\" \
-         viewBox=\"0 0 {w} {h}\" font-family=\"sans-serif\" font-size=\"13\">\n",
-        w = f(o.width),
-        h = f(height)
-    );
-    s += &format!(
-        "<title>The mechanism, {} view: home pose dashed, configuration solid</title>\n",
-        if planar { "yz-plane" } else { "isometric" }
-    );
-    s += "<defs><marker id=\"axis-head\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" \
-          markerWidth=\"7\" markerHeight=\"7\" orient=\"auto\"><path d=\"M0,0 L10,5 L0,10 z\" \
-          fill=\"#c0392b\"/></marker></defs>\n";
-    s += &format!(
-        "<rect x=\"0.5\" y=\"0.5\" width=\"{}\" height=\"{}\" fill=\"#fcfcfa\" stroke=\"#ddd\"/>\n",
-        f(o.width - 1.0),
-        f(height - 1.0)
-    );
-    let draw = |ps: &Pose, home: bool, s: &mut String| {
-        let (stroke, dash, width) = if home {
-            ("#999999", " stroke-dasharray=\"6 4\"", "2")
-        } else {
-            ("#1f5fbf", "", "3.5")
-        };
-        let pts: Vec<String> = ps
-            .line
-            .iter()
-            .map(|p| {
-                let (x, y) = at(*p);
-                format!("{},{}", f(x), f(y))
-            })
-            .collect();
-        *s += &format!(
-            "<polyline class=\"{}\" points=\"{}\" fill=\"none\" stroke=\"{stroke}\" stroke-width=\"{width}\" stroke-linejoin=\"round\"{dash}/>\n",
-            if home { "home" } else { "config" },
-            pts.join(" ")
-        );
-        for (i, j) in ps.joints.iter().enumerate() {
-            let (x, y) = at(j.0);
-            let (tx, ty) = at(tip(j));
-            let op = if home { "0.45" } else { "1" };
-            if !planar {
-                *s += &format!(
-                    "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#c0392b\" stroke-width=\"1.5\" opacity=\"{op}\" marker-end=\"url(#axis-head)\"{dash}/>\n",
-                    f(x), f(y), f(tx), f(ty)
-                );
-            }
-            *s += &format!(
-                "<circle cx=\"{}\" cy=\"{}\" r=\"6\" fill=\"#ffffff\" stroke=\"{stroke}\" stroke-width=\"2\"{dash}/>\n",
-                f(x), f(y)
-            );
-            if planar {
-                // The axis is normal to the drawing: out of the page.
-                *s += &format!(
-                    "<circle cx=\"{}\" cy=\"{}\" r=\"2\" fill=\"#c0392b\" opacity=\"{op}\"/>\n",
-                    f(x),
-                    f(y)
-                );
-            }
-            if !home {
-                *s += &format!(
-                    "<text x=\"{}\" y=\"{}\" fill=\"#1f5fbf\">{}</text>\n",
-                    f(x + 8.0),
-                    f(y - 8.0),
-                    i + 1
-                );
-            }
-        }
-        if let Some(p) = ps.line.last() {
-            let (x, y) = at(*p);
-            *s += &format!(
-                "<rect x=\"{}\" y=\"{}\" width=\"8\" height=\"8\" fill=\"{stroke}\"/>\n",
-                f(x - 4.0),
-                f(y - 4.0)
-            );
-        }
-    };
-    draw(&home, true, &mut s);
-    draw(&conf, false, &mut s);
-    let (bx, by) = at([0.0; 3]);
-    s += &format!(
-        "<path d=\"M{},{} l-9,14 h18 z\" fill=\"#555555\"/>\n",
-        f(bx),
-        f(by)
-    );
-    let config_text: Vec<String> = vars
-        .iter()
-        .map(|v| format!("{v}={:.2}", conf_env(v).unwrap_or(0.0)))
-        .collect();
-    s += "<g class=\"legend\">\n";
-    s += "<line x1=\"14\" y1=\"18\" x2=\"44\" y2=\"18\" stroke=\"#999999\" stroke-width=\"2\" stroke-dasharray=\"6 4\"/>\n";
-    s += "<text x=\"52\" y=\"22\">home pose (every joint variable 0)</text>\n";
-    s +=
-        "<line x1=\"14\" y1=\"40\" x2=\"44\" y2=\"40\" stroke=\"#1f5fbf\" stroke-width=\"3.5\"/>\n";
-    s += &format!(
-        "<text x=\"52\" y=\"44\">configuration: {}</text>\n",
-        xml_escape(&config_text.join(", "))
-    );
-    if planar {
-        s += "<circle cx=\"29\" cy=\"62\" r=\"6\" fill=\"#ffffff\" stroke=\"#1f5fbf\" stroke-width=\"2\"/><circle cx=\"29\" cy=\"62\" r=\"2\" fill=\"#c0392b\"/>\n";
-        s += "<text x=\"52\" y=\"66\">joints, axes (x) out of the page; squares: the tool; view of the yz plane</text>\n";
-    } else {
-        s += "<line x1=\"14\" y1=\"62\" x2=\"44\" y2=\"62\" stroke=\"#c0392b\" stroke-width=\"1.5\" marker-end=\"url(#axis-head)\"/>\n";
-        s += "<text x=\"52\" y=\"66\">joint axes; circles are joints, squares the tool; isometric view</text>\n";
-    }
-    s += "</g>\n</svg>\n";
-    Ok(s)
-}
-
-pub(crate) fn xml_escape(t: &str) -> String {
-    t.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }

@@ -3,16 +3,24 @@
 //! Both number the steps from 1 and print each value through the same closed forms as
 //! `dqsym run` (plain text with its shorthand legend, or [`latex_value`]).
 
+use super::notation::Names;
 use super::{ComponentTrace, HalfAngle, Step, WalkError, Walkthrough, Word, Words};
-use crate::lang::latex_value;
+use crate::emit::visual_len;
 use crate::print::angle_text;
 use crate::{
-    closed_form, latex, latex_symbol, legend, plain, show, Displayed, Expr, LatexOptions,
-    PlainOptions, Scalar, ShowOptions, TraceStep, Value,
+    closed_form, latex_aligned_named, latex_named, latex_symbol, plain_named, plain_quotient_named,
+    Expr, LatexOptions, PlainOptions, Scalar, TraceStep, Value,
 };
 
 /// Expanded sums longer than this are listed in rows of this many terms.
 const ROW: usize = 6;
+
+/// Expanded sums with more terms than this are folded on the page (expandable), not dropped.
+pub(crate) const FOLD: usize = 16;
+
+/// Display formulas wider than this (in [`visual_len`] characters) are laid out one entry per
+/// line, long entries broken at a `+` or `-`: about 900 px of KaTeX display math.
+pub(crate) const WIDTH: usize = 72;
 
 /// How a renderer writes values and words.
 pub(crate) trait Style {
@@ -36,29 +44,30 @@ pub(crate) trait Style {
     fn tuple(&self, parts: &[String]) -> String;
 }
 
-struct Plain;
+/// Plain text in the page's notation.
+pub(crate) struct Plain<'a>(pub &'a Names);
 
-impl Style for Plain {
+impl Style for Plain<'_> {
     fn scalar(&self, x: &Scalar) -> Result<String, WalkError> {
-        Ok(plain(&closed_form(x)?, &PlainOptions { shorthand: false }))
+        Ok(self.expr(&closed_form(x)?))
     }
     fn expr(&self, e: &Expr) -> String {
-        plain(e, &PlainOptions::default())
+        plain_named(e, &PlainOptions::default(), &|s, a| self.0.plain(s, a))
     }
     fn tuple(&self, parts: &[String]) -> String {
         format!("({})", parts.join(", "))
     }
 }
 
-/// Markdown: values in `$...$`.
-pub(crate) struct Tex;
+/// Markdown: values in `$...$`, in the page's notation.
+pub(crate) struct Tex<'a>(pub &'a Names);
 
-impl Style for Tex {
+impl Style for Tex<'_> {
     fn scalar(&self, x: &Scalar) -> Result<String, WalkError> {
-        Ok(format!("${}$", latex(&closed_form(x)?, &latex_opts())))
+        Ok(format!("${}$", self.expr(&closed_form(x)?)))
     }
     fn expr(&self, e: &Expr) -> String {
-        latex(e, &latex_opts())
+        latex_named(e, &latex_opts(), &|s, a| self.0.tex(s, a))
     }
     fn tuple(&self, parts: &[String]) -> String {
         let inner: Vec<&str> = parts.iter().map(|p| p.trim_matches('$')).collect();
@@ -66,19 +75,117 @@ impl Style for Tex {
     }
 }
 
+impl Tex<'_> {
+    /// Named rows in `aligned`, each broken at [`WIDTH`].
+    fn aligned(&self, rows: &[(String, Expr)]) -> String {
+        let o = LatexOptions {
+            width: WIDTH,
+            ..latex_opts()
+        };
+        latex_aligned_named(rows, &o, &|s, a| self.0.tex(s, a))
+    }
+}
+
 pub(crate) fn latex_opts() -> LatexOptions {
     LatexOptions::default()
 }
 
-/// `label = value` in plain text, each line indented by `pad`.
-fn shown(label: &str, value: &Value, pad: &str) -> Result<String, WalkError> {
-    let d = Displayed {
-        label: label.to_owned(),
-        value: value.clone(),
-        format: None,
+/// A quaternion part of a DQ: its scalar when the vector part is zero (a point reads
+/// `1 + eps (0, x, y, z)`).
+fn dq_part(q: &crate::Quat<Scalar>) -> Option<&Scalar> {
+    q.vector_part()
+        .iter()
+        .all(num_traits::Zero::is_zero)
+        .then_some(&q.w)
+}
+
+/// A value as plain lines (several for a matrix).
+fn plain_value(v: &Value, st: &Plain) -> Result<Vec<String>, WalkError> {
+    let list = |items: Vec<&Scalar>| -> Result<String, WalkError> {
+        let parts: Result<Vec<String>, WalkError> = items.iter().map(|x| st.scalar(x)).collect();
+        Ok(parts?.join(", "))
     };
-    let text = show(&d, &ShowOptions::default())?;
-    Ok(text.lines().map(|l| format!("{pad}{l}\n")).collect())
+    let part = |q: &crate::Quat<Scalar>| -> Result<String, WalkError> {
+        match dq_part(q) {
+            Some(w) => {
+                let t = st.scalar(w)?;
+                let simple = !t.contains([' ', '+', '-']) || t.starts_with('(');
+                Ok(if simple { t } else { format!("({t})") })
+            }
+            None => Ok(format!("({})", list(vec![&q.w, &q.x, &q.y, &q.z])?)),
+        }
+    };
+    Ok(match v {
+        Value::Scalar(x) => vec![st.scalar(x)?],
+        Value::Quat(q) => vec![format!("({})", list(vec![&q.w, &q.x, &q.y, &q.z])?)],
+        Value::Vector(x) => vec![format!("({})", list(x.iter().collect())?)],
+        Value::DualQuat(d) => vec![format!("{} + eps {}", part(&d.real)?, part(&d.dual)?)],
+        Value::Matrix(rows) => rows
+            .iter()
+            .map(|r| Ok(format!("[{}]", list(r.iter().collect())?)))
+            .collect::<Result<_, WalkError>>()?,
+        Value::QuotientMatrix(rows) => {
+            let mut lines = Vec::new();
+            for r in rows {
+                let mut parts = Vec::new();
+                for q in r {
+                    let (n, d) = (closed_form(q.num())?, closed_form(q.den())?);
+                    parts.push(plain_quotient_named(
+                        &n,
+                        &d,
+                        &PlainOptions::default(),
+                        &|s, a| st.0.plain(s, a),
+                    ));
+                }
+                lines.push(format!("[{}]", parts.join(", ")));
+            }
+            lines
+        }
+    })
+}
+
+/// `label = value` in plain text, each line indented by `pad`.
+fn shown(label: &str, value: &Value, st: &Plain, pad: &str) -> Result<String, WalkError> {
+    let lines = plain_value(value, st)?;
+    Ok(match lines.as_slice() {
+        [one] => format!("{pad}{label} = {one}\n"),
+        _ => {
+            let mut s = format!("{pad}{label} =\n");
+            for l in &lines {
+                s += &format!("{pad}  {l}\n");
+            }
+            s
+        }
+    })
+}
+
+/// The legend of a page in plain text: the notation, and the script's own `halfangle` names.
+fn legend_text(w: &Walkthrough, names: &Names) -> String {
+    let mut out = String::new();
+    let lines = names.legend_plain();
+    if !lines.is_empty() {
+        out += "\nNotation (each symbol has one meaning on this page):\n";
+        for l in lines {
+            out += &format!("  {l}\n");
+        }
+    }
+    if let Some(s) = script_names(w) {
+        out += &format!("  the script's halfangle names: {s}\n");
+    }
+    out
+}
+
+/// The script's `halfangle` names, in words.
+fn script_names(w: &Walkthrough) -> Option<String> {
+    let m: Vec<&str> = w
+        .steps
+        .iter()
+        .filter_map(|s| match s {
+            Step::Notation { meaning, .. } => Some(meaning.as_str()),
+            _ => None,
+        })
+        .collect();
+    (!m.is_empty()).then(|| m.join(", "))
 }
 
 /// The walkthrough as terminal text.
@@ -86,32 +193,38 @@ fn shown(label: &str, value: &Value, pad: &str) -> Result<String, WalkError> {
 /// # Errors
 /// When a value cannot be shown (never for a walkthrough this crate built).
 pub fn walk_text(w: &Walkthrough) -> Result<String, WalkError> {
-    let mut out = format!("Walkthrough: {}\n", w.title);
+    let names = Names::for_walk(w);
+    let st = Plain(&names);
+    let mut out = String::new();
     let pad = "   ";
-    for (i, step) in w.steps.iter().enumerate() {
-        let n = i + 1;
+    let mut n = 0;
+    for step in &w.steps {
+        if matches!(step, Step::Notation { .. }) {
+            continue;
+        }
+        n += 1;
         out.push('\n');
         match step {
-            Step::Notation { meaning, .. } => out += &format!("{n}. Notation: {meaning}\n"),
+            Step::Notation { .. } => {}
             Step::Factor {
                 name,
                 value,
                 meaning,
             } => {
-                out += &format!("{n}. Factor {name}: {}\n", Plain.words(meaning)?);
-                out += &shown(name, value, pad)?;
+                out += &format!("{n}. Factor {name}: {}\n", st.words(meaning)?);
+                out += &shown(name, value, &st, pad)?;
             }
             Step::Define {
                 name,
                 value,
                 meaning,
             } => {
-                out += &format!("{n}. Define {name}: {}\n", Plain.words(meaning)?);
-                out += &shown(name, value, pad)?;
+                out += &format!("{n}. Define {name}: {}\n", st.words(meaning)?);
+                out += &shown(name, value, &st, pad)?;
             }
             Step::Product { left, right, value } => {
                 out += &format!("{n}. Product {left} times {right}\n");
-                out += &shown(&format!("{left}*{right}"), value, pad)?;
+                out += &shown(&format!("{left}*{right}"), value, &st, pad)?;
             }
             Step::Transform {
                 label,
@@ -124,17 +237,17 @@ pub fn walk_text(w: &Walkthrough) -> Result<String, WalkError> {
                 out += &format!(
                     "{n}. Transform: {label} is the point {v} carried by {q} (eq 10, q v q*)\n"
                 );
-                out += &shown(label, value, pad)?;
+                out += &shown(label, value, &st, pad)?;
                 if !half_angles.is_empty() {
-                    out += &format!("{pad}{}\n", half_angle_text(half_angles));
+                    out += &format!("{pad}{}\n", half_angle_text(half_angles, &st)?);
                 }
                 for t in traces {
-                    out += &trace_text(t, pad);
+                    out += &trace_text(t, &st, pad);
                 }
             }
             Step::Result { label, value } => {
                 out += &format!("{n}. Result: the closed form\n");
-                out += &shown(label, value, pad)?;
+                out += &shown(label, value, &st, pad)?;
             }
             Step::Check {
                 what,
@@ -150,7 +263,11 @@ pub fn walk_text(w: &Walkthrough) -> Result<String, WalkError> {
             }
         }
     }
-    Ok(out)
+    Ok(format!(
+        "Walkthrough: {}\n{}{out}",
+        w.title,
+        legend_text(w, &names)
+    ))
 }
 
 /// The deviation, machine-independent when it is rounding noise.
@@ -162,37 +279,58 @@ pub(crate) fn deviation(d: f64) -> String {
     }
 }
 
-fn half_angle_text(h: &[HalfAngle]) -> String {
-    let mut parts = Vec::new();
-    for a in h {
-        let (c, s) = match &a.names {
-            Some((c, s)) => (c.clone(), s.clone()),
-            None => (
-                format!("cos({}/2)", a.symbol),
-                format!("sin({}/2)", a.symbol),
-            ),
-        };
-        parts.push(format!(
-            "{c}^2 - {s}^2 = cos({t}), 2 {s} {c} = sin({t}), {c}^2 + {s}^2 = 1",
-            t = a.symbol
-        ));
-    }
-    format!(
-        "Half angles lifted: the factor and its conjugate each hold the half angle, so the \
-         product has pairs of them: {}",
-        parts.join("; ")
-    )
+/// The identities of the half angles, as expressions: `c3^2 - s3^2 = C3`, `2 s3 c3 = S3`,
+/// `c3^2 + s3^2 = 1`.
+fn half_angle_identities(symbol: &str) -> Result<[(Expr, Expr); 3], WalkError> {
+    let t = Scalar::sym(symbol);
+    let half = &t * Scalar::rational(num_rational::BigRational::new(1.into(), 2.into()));
+    let (c, s) = (closed_form(&half.cos())?, closed_form(&half.sin())?);
+    let sq = |e: &Expr| Expr::Pow(Box::new(e.clone()), 2);
+    Ok([
+        (
+            Expr::Add(vec![sq(&c), Expr::Neg(Box::new(sq(&s)))]),
+            closed_form(&t.cos())?,
+        ),
+        (
+            Expr::Mul(vec![
+                Expr::Num(num_rational::BigRational::from_integer(2.into())),
+                s.clone(),
+                c.clone(),
+            ]),
+            closed_form(&t.sin())?,
+        ),
+        (
+            Expr::Add(vec![sq(&c), sq(&s)]),
+            Expr::Num(num_rational::BigRational::from_integer(1.into())),
+        ),
+    ])
 }
 
-/// A sum with numbered terms: `[1] l1 + [2] l2 c2 - [3] l3 s2 s3`.
-fn numbered_sum(terms: &[Expr], pad: &str) -> String {
+const HALF_ANGLES: &str = "Half angles lifted: the factor and its conjugate each hold the half \
+    angle, so the product has pairs of them";
+
+fn half_angle_text(h: &[HalfAngle], st: &Plain) -> Result<String, WalkError> {
+    let mut parts = Vec::new();
+    for a in h {
+        let ids = half_angle_identities(&a.symbol)?;
+        let each: Vec<String> = ids
+            .iter()
+            .map(|(l, r)| format!("{} = {}", st.expr(l), st.expr(r)))
+            .collect();
+        parts.push(each.join(", "));
+    }
+    Ok(format!("{HALF_ANGLES}: {}", parts.join("; ")))
+}
+
+/// A sum with numbered terms: `[1] l1 + [2] l2 C2 - [3] l3 S2 S3`.
+fn numbered_sum(terms: &[Expr], st: &Plain, pad: &str) -> String {
     let mut out = String::new();
     for (i, t) in terms.iter().enumerate() {
         let (neg, body) = match t {
             Expr::Neg(e) => (true, &**e),
             e => (false, e),
         };
-        let body = plain(body, &PlainOptions::default());
+        let body = st.expr(body);
         if i > 0 && i % ROW == 0 {
             out += &format!("\n{pad}  ");
         }
@@ -209,11 +347,10 @@ fn numbered_sum(terms: &[Expr], pad: &str) -> String {
     out
 }
 
-fn trace_text(t: &ComponentTrace, pad: &str) -> String {
+fn trace_text(t: &ComponentTrace, st: &Plain, pad: &str) -> String {
     let mut out = format!("{pad}{}:\n", t.label);
     let inner = format!("{pad}  ");
     let mut last: &[Expr] = &[];
-    let mut exprs: Vec<Expr> = Vec::new();
     for s in &t.steps {
         match s {
             TraceStep::Sum { round, terms } => {
@@ -222,8 +359,7 @@ fn trace_text(t: &ComponentTrace, pad: &str) -> String {
                 } else {
                     "regrouped"
                 };
-                out += &format!("{inner}{what}: {}\n", numbered_sum(terms, &inner));
-                exprs.extend(terms.iter().cloned());
+                out += &format!("{inner}{what}: {}\n", numbered_sum(terms, st, &inner));
                 last = terms;
             }
             TraceStep::Identity {
@@ -234,7 +370,9 @@ fn trace_text(t: &ComponentTrace, pad: &str) -> String {
                 result,
                 ..
             } => {
-                let pair = pair_text(last, *terms);
+                let pair = pair_expr(last, *terms)
+                    .map(|p| st.expr(&p))
+                    .unwrap_or_default();
                 out += &format!(
                     "{inner}{}, a = {}, b = {}, terms {} and {}: {pair} = {}\n",
                     identity.text(),
@@ -242,53 +380,33 @@ fn trace_text(t: &ComponentTrace, pad: &str) -> String {
                     angle_text(b),
                     terms[0],
                     terms[1],
-                    plain(result, &PlainOptions::default())
+                    st.expr(result)
                 );
-                exprs.push(result.clone());
             }
             TraceStep::Factored(e) => {
-                out += &format!(
-                    "{inner}common factors out: {}\n",
-                    plain(e, &PlainOptions::default())
-                );
-                exprs.push(e.clone());
+                out += &format!("{inner}common factors out: {}\n", st.expr(e));
             }
             TraceStep::KeptWhole(e) => {
                 out += &format!(
                     "{inner}closed form (the Fourier modes kept whole are shorter): {}\n",
-                    plain(e, &PlainOptions::default())
+                    st.expr(e)
                 );
-                exprs.push(e.clone());
             }
         }
-    }
-    let refs: Vec<&Expr> = exprs.iter().collect();
-    let names = legend(&refs);
-    if !names.is_empty() {
-        out += &format!("{inner}where {}\n", names.join(", "));
     }
     out
 }
 
-/// The two terms `i` and `j` (from 1) of `terms` as a sum, plain text.
-fn pair_text(terms: &[Expr], [i, j]: [usize; 2]) -> String {
-    match (terms.get(i.wrapping_sub(1)), terms.get(j.wrapping_sub(1))) {
-        (Some(x), Some(y)) => plain(
-            &Expr::Add(vec![x.clone(), y.clone()]),
-            &PlainOptions::default(),
-        ),
-        _ => String::new(),
-    }
+/// The two terms `i` and `j` (from 1) of `terms` as a sum.
+fn pair_expr(terms: &[Expr], [i, j]: [usize; 2]) -> Option<Expr> {
+    let x = terms.get(i.wrapping_sub(1))?;
+    let y = terms.get(j.wrapping_sub(1))?;
+    Some(Expr::Add(vec![x.clone(), y.clone()]))
 }
 
 /// A label as LaTeX: a name as a symbol, an expression in typewriter type.
 pub(crate) fn label_tex(label: &str) -> String {
-    let ident = label
-        .chars()
-        .next()
-        .is_some_and(|c| c.is_ascii_alphabetic())
-        && label.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
-    if ident {
+    if is_ident(label) {
         return latex_symbol(label);
     }
     let mut s = String::new();
@@ -308,42 +426,249 @@ pub(crate) fn label_tex(label: &str) -> String {
     format!("\\texttt{{{s}}}")
 }
 
-/// `label = value` as display LaTeX.
-pub(crate) fn value_tex(label: &str, value: &Value) -> Result<String, WalkError> {
-    let v = latex_value(value, &latex_opts()).map_err(WalkError::Scalar)?;
-    Ok(format!("{} = {v}", label_tex(label)))
+fn is_ident(label: &str) -> bool {
+    label
+        .chars()
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic())
+        && label.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
-/// A sum with numbered terms as LaTeX, `\underbrace{term}_{k}`, in rows of [`ROW`].
-pub(crate) fn numbered_sum_tex(terms: &[Expr]) -> String {
+/// The name of component `c` (LaTeX) of the value labelled `label`: `q_{x}`, `q_{1,x}` for
+/// `q1`, `\hat q_{x}` for a label that is an expression; a dual part's component carries an
+/// `\varepsilon` above: `q^{\varepsilon}_{x}`.
+fn component(label: &str, c: &str, dual: bool) -> String {
+    let up = if dual { "^{\\varepsilon}" } else { "" };
+    if !is_ident(label) {
+        return format!("\\hat q{up}_{{{c}}}");
+    }
+    let l = latex_symbol(label);
+    match l.split_once("_{") {
+        Some((base, sub)) if sub.ends_with('}') && !sub[..sub.len() - 1].contains('{') => {
+            format!("{base}{up}_{{{},{c}}}", &sub[..sub.len() - 1])
+        }
+        Some(_) => format!("{{{l}}}{up}_{{{c}}}"),
+        None => format!("{l}{up}_{{{c}}}"),
+    }
+}
+
+/// The closed form of `x` when it is not a constant (constants are shown in place).
+fn entry(x: &Scalar) -> Result<(Expr, bool), WalkError> {
+    Ok((closed_form(x)?, x.is_constant()))
+}
+
+/// The entries of a value as shown in place (a constant, or a name), and the named ones.
+type Named = (Vec<String>, Vec<(String, Expr)>);
+
+/// `label = value` as display math that fits the page: on one line when it is short, else the
+/// value with its entries named, then the entries one per line (a matrix column by column),
+/// each broken at [`WIDTH`].
+pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piece>, WalkError> {
+    let lab = label_tex(label);
+    let e = |x: &Scalar| -> Result<String, WalkError> { Ok(st.expr(&closed_form(x)?)) };
+    let tuple = |xs: &[&Scalar]| -> Result<String, WalkError> {
+        let parts: Result<Vec<String>, WalkError> = xs.iter().map(|x| e(x)).collect();
+        Ok(format!("\\left({}\\right)", parts?.join(", ")))
+    };
+    let part = |q: &crate::Quat<Scalar>| -> Result<String, WalkError> {
+        match dq_part(q) {
+            Some(w) => {
+                let t = e(w)?;
+                let simple = !t.contains([' ', '+', '-']) || t.starts_with('(');
+                Ok(if simple {
+                    t
+                } else {
+                    format!("\\left({t}\\right)")
+                })
+            }
+            None => tuple(&[&q.w, &q.x, &q.y, &q.z]),
+        }
+    };
+    let line = match value {
+        Value::Scalar(x) => e(x)?,
+        Value::Quat(q) => tuple(&[&q.w, &q.x, &q.y, &q.z])?,
+        Value::Vector(x) => tuple(&[&x[0], &x[1], &x[2]])?,
+        Value::DualQuat(d) => format!("{} + \\varepsilon {}", part(&d.real)?, part(&d.dual)?),
+        Value::Matrix(rows) => {
+            let body: Result<Vec<String>, WalkError> = rows
+                .iter()
+                .map(|r| {
+                    let cells: Result<Vec<String>, WalkError> = r.iter().map(e).collect();
+                    Ok(cells?.join(" & "))
+                })
+                .collect();
+            let widest = body
+                .as_ref()
+                .map(|b| b.iter().map(|r| visual_len(r)).max().unwrap_or(0))
+                .unwrap_or(0);
+            if widest <= WIDTH {
+                let one = format!(
+                    "{lab} = \\begin{{pmatrix}} {} \\end{{pmatrix}}",
+                    body?.join(" \\\\ ")
+                );
+                return Ok(vec![Piece::Display(one)]);
+            }
+            String::new()
+        }
+        Value::QuotientMatrix(rows) => {
+            let body: Result<Vec<String>, WalkError> = rows
+                .iter()
+                .map(|r| {
+                    let cells: Result<Vec<String>, WalkError> = r
+                        .iter()
+                        .map(|q| {
+                            let (n, d) = (closed_form(q.num())?, closed_form(q.den())?);
+                            Ok(
+                                if matches!(&d, Expr::Num(x) if num_traits::One::is_one(x)) {
+                                    st.expr(&n)
+                                } else {
+                                    format!("\\frac{{{}}}{{{}}}", st.expr(&n), st.expr(&d))
+                                },
+                            )
+                        })
+                        .collect();
+                    Ok(cells?.join(" & "))
+                })
+                .collect();
+            return Ok(vec![Piece::Display(format!(
+                "{lab} = \\begin{{pmatrix}} {} \\end{{pmatrix}}",
+                body?.join(" \\\\ ")
+            ))]);
+        }
+    };
+    if !line.is_empty() && visual_len(&line) + visual_len(&lab) + 3 <= WIDTH {
+        return Ok(vec![Piece::Display(format!("{lab} = {line}"))]);
+    }
+    // Too wide: the entries named, then listed.
+    let named = |xs: &[(&Scalar, String)]| -> Result<Named, WalkError> {
+        let mut shown = Vec::new();
+        let mut rows = Vec::new();
+        for (x, name) in xs {
+            let (ex, constant) = entry(x)?;
+            if constant {
+                shown.push(st.expr(&ex));
+            } else {
+                shown.push(name.clone());
+                rows.push((name.clone(), ex));
+            }
+        }
+        Ok((shown, rows))
+    };
+    let c = |k: &str| component(label, k, false);
+    let cd = |k: &str| component(label, k, true);
+    let mut out = Vec::new();
+    match value {
+        Value::Scalar(x) => {
+            out.push(Piece::Display(st.aligned(&[(lab, closed_form(x)?)])));
+        }
+        Value::Quat(q) => {
+            let (shown, rows) = named(&[
+                (&q.w, c("w")),
+                (&q.x, c("x")),
+                (&q.y, c("y")),
+                (&q.z, c("z")),
+            ])?;
+            out.push(Piece::Display(format!(
+                "{lab} = \\left({}\\right)",
+                shown.join(", ")
+            )));
+            out.push(Piece::Text("where".to_owned()));
+            out.push(Piece::Display(st.aligned(&rows)));
+        }
+        Value::Vector(x) => {
+            let (shown, rows) = named(&[(&x[0], c("x")), (&x[1], c("y")), (&x[2], c("z"))])?;
+            out.push(Piece::Display(format!(
+                "{lab} = \\left({}\\right)",
+                shown.join(", ")
+            )));
+            out.push(Piece::Text("where".to_owned()));
+            out.push(Piece::Display(st.aligned(&rows)));
+        }
+        Value::DualQuat(d) => {
+            let (re, mut rows) = if let Some(w) = dq_part(&d.real) {
+                (e(w)?, Vec::new())
+            } else {
+                let (shown, rows) = named(&[
+                    (&d.real.w, c("w")),
+                    (&d.real.x, c("x")),
+                    (&d.real.y, c("y")),
+                    (&d.real.z, c("z")),
+                ])?;
+                (format!("\\left({}\\right)", shown.join(", ")), rows)
+            };
+            let (du, rows2) = named(&[
+                (&d.dual.w, cd("w")),
+                (&d.dual.x, cd("x")),
+                (&d.dual.y, cd("y")),
+                (&d.dual.z, cd("z")),
+            ])?;
+            rows.extend(rows2);
+            out.push(Piece::Display(format!(
+                "{lab} = {re} + \\varepsilon \\left({}\\right)",
+                du.join(", ")
+            )));
+            out.push(Piece::Text("where".to_owned()));
+            out.push(Piece::Display(st.aligned(&rows)));
+        }
+        Value::Matrix(rows) => {
+            let n = rows.first().map_or(0, Vec::len);
+            let mut skeleton = Vec::new();
+            let mut columns: Vec<Vec<(String, Expr)>> = vec![Vec::new(); n];
+            for (i, r) in rows.iter().enumerate() {
+                let mut cells = Vec::new();
+                for (j, x) in r.iter().enumerate() {
+                    let name = component(label, &format!("{}{}", i + 1, j + 1), false);
+                    let (ex, constant) = entry(x)?;
+                    if constant {
+                        cells.push(st.expr(&ex));
+                    } else {
+                        cells.push(name.clone());
+                        columns[j].push((name, ex));
+                    }
+                }
+                skeleton.push(cells.join(" & "));
+            }
+            out.push(Piece::Display(format!(
+                "{lab} = \\begin{{pmatrix}} {} \\end{{pmatrix}}",
+                skeleton.join(" \\\\ ")
+            )));
+            out.push(Piece::Text("where, column by column:".to_owned()));
+            for col in columns.iter().filter(|c| !c.is_empty()) {
+                out.push(Piece::Display(st.aligned(col)));
+            }
+        }
+        Value::QuotientMatrix(_) => {}
+    }
+    Ok(out)
+}
+
+/// A sum with numbered terms as LaTeX, `\underbrace{term}_{k}`, in rows of at most [`WIDTH`].
+pub(crate) fn numbered_sum_tex(terms: &[Expr], st: &Tex) -> String {
     let mut rows: Vec<String> = Vec::new();
     let mut row = String::new();
+    let mut len = 0;
     for (i, t) in terms.iter().enumerate() {
         let (neg, body) = match t {
             Expr::Neg(e) => (true, &**e),
             e => (false, e),
         };
-        if i > 0 && i % ROW == 0 {
+        let body = st.expr(body);
+        let w = visual_len(&body) + 3;
+        let new_row = i > 0 && len + w > WIDTH;
+        if new_row {
             rows.push(std::mem::take(&mut row));
+            len = 0;
         }
         let sign = match (i, neg) {
-            (0, false) => "",
-            (0, true) => "-",
+            (0, false) => "&",
+            (0, true) => "&-",
+            (_, true) if new_row => "&-",
+            (_, false) if new_row => "&+",
             (_, true) => " - ",
             (_, false) => " + ",
         };
-        let sign = if i % ROW == 0 && i > 0 {
-            format!("&{}", sign.trim())
-        } else if i == 0 {
-            format!("&{sign}")
-        } else {
-            sign.to_owned()
-        };
-        row += &format!(
-            "{sign}\\underbrace{{{}}}_{{{}}}",
-            latex(body, &latex_opts()),
-            i + 1
-        );
+        len += w;
+        row += &format!("{sign}\\underbrace{{{body}}}_{{{}}}", i + 1);
     }
     if terms.is_empty() {
         row.push_str("&0");
@@ -352,66 +677,65 @@ pub(crate) fn numbered_sum_tex(terms: &[Expr]) -> String {
     format!("\\begin{{aligned}}{}\\end{{aligned}}", rows.join(" \\\\ "))
 }
 
-/// The notation of results, said once at the top of Markdown and HTML walkthroughs.
-pub(crate) const NOTATION: &str = "In results, $c_{1}$, $s_{12}$, $c_{123}$ are $\\cos\\theta_{1}$, \
-    $\\sin(\\theta_{1} + \\theta_{2})$, $\\cos(\\theta_{1} + \\theta_{2} + \\theta_{3})$ of full joint \
-    angles; half angles inside the factors are written out, $\\cos\\frac{\\theta_{3}}{2}$.";
-
 /// A formula or text piece of a Markdown or HTML walkthrough.
 pub(crate) enum Piece {
     /// Prose with inline `$...$` math.
     Text(String),
     /// Display math.
     Display(String),
+    /// Display math folded away behind a summary (prose), for very long expanded sums.
+    Folded(String, String),
 }
 
-/// The walkthrough as pieces, shared by Markdown and HTML: one heading per step, then
-/// prose and display formulas.
-pub(crate) fn pieces(w: &Walkthrough) -> Result<Vec<(String, Vec<Piece>)>, WalkError> {
+/// A walkthrough laid out for Markdown and HTML.
+pub(crate) struct Page {
+    /// The notation, as prose lines with inline math.
+    pub legend: Vec<String>,
+    /// One heading per step, then prose and display formulas.
+    pub sections: Vec<(String, Vec<Piece>)>,
+}
+
+/// The walkthrough as pieces, shared by Markdown and HTML: the legend, then one heading per
+/// step with prose and display formulas.
+pub(crate) fn page(w: &Walkthrough) -> Result<Page, WalkError> {
+    let names = Names::for_walk(w);
+    let st = Tex(&names);
     let mut out = Vec::new();
-    for (i, step) in w.steps.iter().enumerate() {
-        let n = i + 1;
+    let mut n = 0;
+    for step in &w.steps {
+        if matches!(step, Step::Notation { .. }) {
+            continue;
+        }
+        n += 1;
         let (head, body) = match step {
-            Step::Notation { names, meaning } => {
-                let _ = names;
-                (
-                    format!("{n}. Notation"),
-                    vec![Piece::Text(format!("`{meaning}`"))],
-                )
-            }
+            Step::Notation { .. } => continue,
             Step::Factor {
                 name,
                 value,
                 meaning,
-            } => (
-                format!("{n}. Factor ${}$", label_tex(name)),
-                vec![
-                    Piece::Text(format!("{}.", capitalize(&Tex.words(meaning)?))),
-                    Piece::Display(value_tex(name, value)?),
-                ],
-            ),
+            } => {
+                let mut body = vec![Piece::Text(format!("{}.", capitalize(&st.words(meaning)?)))];
+                body.extend(value_tex(name, value, &st)?);
+                (format!("{n}. Factor ${}$", label_tex(name)), body)
+            }
             Step::Define {
                 name,
                 value,
                 meaning,
-            } => (
-                format!("{n}. Define ${}$", label_tex(name)),
-                vec![
-                    Piece::Text(format!("{}.", capitalize(&Tex.words(meaning)?))),
-                    Piece::Display(value_tex(name, value)?),
-                ],
-            ),
-            Step::Product { left, right, value } => (
-                format!("{n}. Product"),
-                vec![
-                    Piece::Text(format!(
-                        "${}$ times ${}$:",
-                        label_tex(left),
-                        label_tex(right)
-                    )),
-                    Piece::Display(value_tex(&format!("{left}*{right}"), value)?),
-                ],
-            ),
+            } => {
+                let mut body = vec![Piece::Text(format!("{}.", capitalize(&st.words(meaning)?)))];
+                body.extend(value_tex(name, value, &st)?);
+                (format!("{n}. Define ${}$", label_tex(name)), body)
+            }
+            Step::Product { left, right, value } => {
+                let mut body = vec![Piece::Text(format!(
+                    "${}$ times ${}$:",
+                    label_tex(left),
+                    label_tex(right)
+                ))];
+                body.extend(value_tex(&format!("{left}*{right}"), value, &st)?);
+                (format!("{n}. Product"), body)
+            }
             Step::Transform {
                 label,
                 q,
@@ -420,36 +744,33 @@ pub(crate) fn pieces(w: &Walkthrough) -> Result<Vec<(String, Vec<Piece>)>, WalkE
                 half_angles,
                 traces,
             } => {
-                let mut body = vec![
-                    Piece::Text(format!(
-                        "The point ${}$ carried by ${}$ (eq 10, $\\hat q \\hat v \\bar{{\\hat q}}^*$):",
-                        label_tex(v),
-                        label_tex(q)
-                    )),
-                    Piece::Display(value_tex(label, value)?),
-                ];
+                let mut body = vec![Piece::Text(format!(
+                    "The point ${}$ carried by ${}$ (eq 10, $\\hat q \\hat v \\bar{{\\hat q}}^*$):",
+                    label_tex(v),
+                    label_tex(q)
+                ))];
+                body.extend(value_tex(label, value, &st)?);
                 if !half_angles.is_empty() {
-                    body.push(Piece::Text(
-                        "Half angles lifted: the factor and its conjugate each hold the half \
-                         angle, so the product has pairs of them:"
-                            .to_owned(),
-                    ));
+                    body.push(Piece::Text(format!("{HALF_ANGLES}:")));
                     for a in half_angles {
-                        body.push(Piece::Display(half_angle_tex(a)));
+                        let ids = half_angle_identities(&a.symbol)?;
+                        let each: Vec<String> = ids
+                            .iter()
+                            .map(|(l, r)| format!("{} = {}", st.expr(l), st.expr(r)))
+                            .collect();
+                        body.push(Piece::Display(each.join(", \\quad ")));
                     }
                 }
                 for t in traces {
-                    body.extend(trace_tex(t));
+                    body.extend(trace_tex(t, &st));
                 }
                 (format!("{n}. Transform ${}$", label_tex(label)), body)
             }
-            Step::Result { label, value } => (
-                format!("{n}. Result"),
-                vec![
-                    Piece::Text("The closed form:".to_owned()),
-                    Piece::Display(value_tex(label, value)?),
-                ],
-            ),
+            Step::Result { label, value } => {
+                let mut body = vec![Piece::Text("The closed form:".to_owned())];
+                body.extend(value_tex(label, value, &st)?);
+                (format!("{n}. Result"), body)
+            }
             Step::Check {
                 what,
                 oracle,
@@ -466,7 +787,19 @@ pub(crate) fn pieces(w: &Walkthrough) -> Result<Vec<(String, Vec<Piece>)>, WalkE
         };
         out.push((head, body));
     }
-    Ok(out)
+    let mut legend = Vec::new();
+    let lines = names.legend_tex();
+    if !lines.is_empty() {
+        legend.push("**Notation**, one meaning per symbol on this page.".to_owned());
+        legend.extend(lines);
+    }
+    if let Some(s) = script_names(w) {
+        legend.push(format!("The script's `halfangle` names: `{s}`."));
+    }
+    Ok(Page {
+        legend,
+        sections: out,
+    })
 }
 
 fn capitalize(s: &str) -> String {
@@ -477,33 +810,31 @@ fn capitalize(s: &str) -> String {
     }
 }
 
-fn half_angle_tex(a: &HalfAngle) -> String {
-    let t = latex_symbol(&a.symbol);
-    let (c, s) = match &a.names {
-        Some((c, s)) => (latex_symbol(c), latex_symbol(s)),
-        None => (
-            format!("\\cos\\tfrac{{{t}}}{{2}}"),
-            format!("\\sin\\tfrac{{{t}}}{{2}}"),
-        ),
+fn trace_tex(t: &ComponentTrace, st: &Tex) -> Vec<Piece> {
+    let name = match t.label.split_once('.') {
+        Some((v, k)) => component(v, k, false),
+        None => label_tex(&t.label),
     };
-    format!("{c}^2 - {s}^2 = \\cos {t}, \\quad 2 {s} {c} = \\sin {t}, \\quad {c}^2 + {s}^2 = 1")
-}
-
-fn trace_tex(t: &ComponentTrace) -> Vec<Piece> {
     let mut out = vec![Piece::Text(format!("Coordinate `{}`:", t.label))];
     let mut last: &[Expr] = &[];
     for s in &t.steps {
         match s {
             TraceStep::Sum { round, terms } => {
-                out.push(Piece::Text(
-                    if *round == 1 {
-                        "expanded sum, terms numbered:"
-                    } else {
-                        "regrouped:"
-                    }
-                    .to_owned(),
-                ));
-                out.push(Piece::Display(numbered_sum_tex(terms)));
+                let what = if *round == 1 {
+                    "expanded sum, terms numbered"
+                } else {
+                    "regrouped"
+                };
+                let sum = numbered_sum_tex(terms, st);
+                if terms.len() > FOLD {
+                    out.push(Piece::Folded(
+                        format!("{what}: {} terms (select to show)", terms.len()),
+                        sum,
+                    ));
+                } else {
+                    out.push(Piece::Text(format!("{what}:")));
+                    out.push(Piece::Display(sum));
+                }
                 last = terms;
             }
             TraceStep::Identity {
@@ -514,57 +845,63 @@ fn trace_tex(t: &ComponentTrace) -> Vec<Piece> {
                 result,
                 ..
             } => {
-                let pair = match (
-                    last.get(terms[0].wrapping_sub(1)),
-                    last.get(terms[1].wrapping_sub(1)),
-                ) {
-                    (Some(x), Some(y)) => Tex.expr(&Expr::Add(vec![x.clone(), y.clone()])),
-                    _ => String::new(),
-                };
+                let pair = pair_expr(last, *terms)
+                    .map(|p| st.expr(&p))
+                    .unwrap_or_default();
                 out.push(Piece::Text(format!(
                     "${}$ with $a = {}$, $b = {}$, terms {} and {}:",
                     identity.latex(),
-                    angle_tex(a),
-                    angle_tex(b),
+                    angle_tex(a, st),
+                    angle_tex(b, st),
                     terms[0],
                     terms[1]
                 )));
-                out.push(Piece::Display(format!("{pair} = {}", Tex.expr(result))));
+                out.push(Piece::Display(format!("{pair} = {}", st.expr(result))));
             }
             TraceStep::Factored(e) => {
                 out.push(Piece::Text("common factors out:".to_owned()));
-                out.push(Piece::Display(Tex.expr(e)));
+                out.push(Piece::Display(st.aligned(&[(name.clone(), e.clone())])));
             }
             TraceStep::KeptWhole(e) => {
                 out.push(Piece::Text(
                     "closed form (the Fourier modes kept whole are shorter):".to_owned(),
                 ));
-                out.push(Piece::Display(Tex.expr(e)));
+                out.push(Piece::Display(st.aligned(&[(name.clone(), e.clone())])));
             }
         }
     }
     out
 }
 
-fn angle_tex(a: &crate::Angle) -> String {
+fn angle_tex(a: &crate::Angle, st: &Tex) -> String {
     match closed_form(&a.to_scalar()) {
-        Ok(e) => Tex.expr(&e),
+        Ok(e) => st.expr(&e),
         Err(_) => String::new(),
     }
 }
 
-/// The walkthrough as Markdown: a heading per step, formulas in `$$ ... $$`.
+/// The walkthrough as Markdown: the notation, then a heading per step, formulas in
+/// `$$ ... $$`; very long expanded sums inside `<details>`.
 ///
 /// # Errors
 /// When a value cannot be shown (never for a walkthrough this crate built).
 pub fn walk_markdown(w: &Walkthrough) -> Result<String, WalkError> {
-    let mut out = format!("# Walkthrough: {}\n\n{}\n", w.title, NOTATION);
-    for (head, body) in pieces(w)? {
+    let p = page(w)?;
+    let mut out = format!("# Walkthrough: {}\n", w.title);
+    for l in &p.legend {
+        out += &format!("\n{l}\n");
+    }
+    for (head, body) in p.sections {
         out += &format!("\n## {head}\n");
         for p in body {
             match p {
                 Piece::Text(t) => out += &format!("\n{t}\n"),
                 Piece::Display(d) => out += &format!("\n$$\n{d}\n$$\n"),
+                Piece::Folded(summary, d) => {
+                    out += &format!(
+                        "\n<details><summary>{summary}</summary>\n\n$$\n{d}\n$$\n\n</details>\n"
+                    )
+                }
             }
         }
     }

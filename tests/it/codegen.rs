@@ -1,9 +1,13 @@
-//! Generated Rust, C and Python: compiled (rustc -D warnings, clippy, gcc -Werror) or run (the
-//! venv's Python with NumPy), then compared at random points with `Scalar::eval`.
+//! Generated Rust, C, Python and JavaScript: compiled (rustc -D warnings, clippy, gcc -Werror)
+//! or run (the venv's Python with NumPy, Node in strict mode), then compared at random points
+//! with `Scalar::eval`.
 
 use crate::paper_support::*;
 use crate::tools;
-use dqsym::{arguments, c_function, python_function, rust_function, CodegenOptions, Output};
+use dqsym::{
+    arguments, c_function, javascript_function, python_function, rust_function, CodegenOptions,
+    Output,
+};
 use std::process::Command;
 
 fn joints(n: usize) -> Vec<String> {
@@ -214,6 +218,56 @@ pub(crate) fn check_python(name: &str, outputs: &[Output], args: &[String]) {
     compare(&format!("Python {name}"), &out, &want);
 }
 
+pub(crate) fn check_js(name: &str, outputs: &[Output], args: &[String]) {
+    let code = javascript_function(
+        name,
+        "Generated for a test.",
+        outputs,
+        args,
+        &Default::default(),
+    )
+    .expect("codegen");
+    let names: Vec<String> = outputs
+        .iter()
+        .filter(|o| !o.intermediate)
+        .map(|o| format!("{:?}", o.name))
+        .collect();
+    // Node runs the function as a strict-mode module body; `.flat()` lays a matrix row-major.
+    let driver = format!(
+        "\nlet s = '';\nprocess.stdin.on('data', d => s += d);\nprocess.stdin.on('end', () => {{\n    for (const line of s.split('\\n').filter(l => l.trim())) {{\n        const v = line.trim().split(/\\s+/).map(Number);\n        const r = {name}(...v);\n        console.log([{}].flatMap(k => [r[k]].flat(2)).map(x => x.toPrecision(17)).join(' '));\n    }}\n}});\n",
+        names.join(", ")
+    );
+    let dir = tools::temp_dir(&format!("js-{name}"));
+    let src = dir.join("gen.mjs");
+    std::fs::write(&src, code + &driver).expect("write gen.mjs");
+    let (pts, want) = expected(outputs, args);
+    let mut node = Command::new("node");
+    node.arg(&src);
+    let out = tools::run(node, &input(&pts), "node (install Node.js)");
+    compare(&format!("JavaScript {name}"), &out, &want);
+}
+
+#[test]
+fn javascript_puma560_and_rrr_run_in_node_and_match_eval() {
+    let outs = puma_outputs();
+    let args = arguments(
+        &outs,
+        &["theta1", "theta2", "theta3", "theta4", "theta5", "theta6"],
+    );
+    check_js("puma560", &outs, &args);
+    let outs = rrr_outputs();
+    let mut args = arguments(&outs, &["theta1", "theta2", "theta3"]);
+    args.push("unused".into());
+    check_js("rrr", &outs, &args);
+    let code = javascript_function("f", "Doc.", &outs, &args, &Default::default()).unwrap();
+    assert!(
+        code.contains("Math.sin(") && code.contains("\"use strict\";"),
+        "{code}"
+    );
+    let bad = vec![Output::scalar("x", "X.", closed(&sym("new")))];
+    assert!(javascript_function("f", "", &bad, &["new".to_owned()], &Default::default()).is_err());
+}
+
 #[test]
 fn rust_puma560_pose_compiles_clean_and_matches_eval() {
     let outs = puma_outputs();
@@ -290,6 +344,7 @@ fn constants_and_pi_shifts_compile_to_std_consts() {
     check_rust("consts", &outs, &args, &CodegenOptions::default());
     check_c("consts", &outs, &args);
     check_python("consts", &outs, &args);
+    check_js("consts", &outs, &args);
 }
 
 #[test]
@@ -388,4 +443,5 @@ fn intermediate_outputs_are_locals_that_later_outputs_read_by_symbol() {
     check_rust("steps", &outs, &args, &CodegenOptions::default());
     check_c("steps", &outs, &args);
     check_python("steps", &outs, &args);
+    check_js("steps", &outs, &args);
 }

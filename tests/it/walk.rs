@@ -4,6 +4,7 @@
 
 use crate::common::snapshot_settings;
 use crate::tools::katex_all;
+use dqsym::Matrix4;
 use dqsym::{
     closed_form, closed_form_traced, walk_markdown, walk_robot, walk_script, walk_text, Scalar,
     Step, TraceStep, Walkthrough,
@@ -26,7 +27,7 @@ fn appendix3_rrr_text_walkthrough() {
     ));
     assert!(text.contains(
         "cos a cos b - sin a sin b = cos(a + b), a = theta1 + theta2, b = theta3, terms 3 and 4: \
-         l3 c12 c3 - l3 s12 s3 = l3 c123"
+         l3 C12 C3 - l3 S12 S3 = l3 C123"
     ));
     snapshot_settings().bind(|| insta::assert_snapshot!("walk_appendix3_rrr_text", text));
 }
@@ -87,6 +88,17 @@ fn markdown_walkthroughs_render_in_katex() {
         .expect("robot");
     let w = walk_robot(&puma, "puma560.toml", &dqsym::eval_scalar_text).expect("walk");
     katex_all(&formulas(&walk_markdown(&w).expect("markdown")), "PUMA 560");
+    // The Puma-like robot's tool point expands to sums of 17 terms: folded, not dropped.
+    let text = std::fs::read_to_string(Path::new(ROOT).join("examples/robots/puma_like.toml"))
+        .expect("robot");
+    let w = walk_robot(&text, "puma_like.toml", &dqsym::eval_scalar_text).expect("walk");
+    let md = walk_markdown(&w).expect("markdown");
+    assert!(
+        md.contains("<details><summary>expanded sum, terms numbered: 17 terms"),
+        "{md}"
+    );
+    assert!(md.contains("}_{17}"), "the folded sum keeps every term");
+    katex_all(&formulas(&md), "Puma-like robot");
 }
 
 fn checks(w: &Walkthrough) -> Vec<f64> {
@@ -137,7 +149,7 @@ fn robot_file_walkthrough_describes_each_joint_in_words() {
         "{t}"
     );
     assert!(t.contains("p.y:"), "{t}");
-    assert!(t.contains("l1 c1 + l2 c12 + l3 c123"), "{t}");
+    assert!(t.contains("l1 C1 + l2 C12 + l3 C123"), "{t}");
 }
 
 #[test]
@@ -289,4 +301,486 @@ fn html_walkthrough_renders_in_headless_chromium() {
     );
     assert!(dom.contains("<svg"), "no drawing");
     assert!(dom.contains("class=\"mechanism\""), "no mechanism drawing");
+}
+
+/// The product of the mechanism's elementary 4x4 matrices (no dual quaternion code) at `env`,
+/// up to motion `upto` (exclusive).
+fn chain(
+    motions: &[dqsym::Motion],
+    upto: usize,
+    env: &dyn Fn(&str) -> Option<f64>,
+) -> Matrix4<f64> {
+    let mut m = Matrix4::identity();
+    for x in &motions[..upto] {
+        m = m * x.matrix(env).expect("evaluates");
+    }
+    m
+}
+
+/// The inverse of a rigid 4x4 matrix: R^T, -R^T p.
+fn rigid_inverse(m: &Matrix4<f64>) -> Matrix4<f64> {
+    let r = &m.rows;
+    let mut out = Matrix4::identity();
+    for (i, row) in out.rows.iter_mut().take(3).enumerate() {
+        for (j, x) in row.iter_mut().take(3).enumerate() {
+            *x = r[j][i];
+        }
+        row[3] = -r.iter().take(3).map(|rk| rk[i] * rk[3]).sum::<f64>();
+    }
+    out
+}
+
+fn vec3(v: &serde_json::Value) -> [f64; 3] {
+    let a: Vec<f64> = v
+        .as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect();
+    [a[0], a[1], a[2]]
+}
+
+fn numbers(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect()
+}
+
+fn near(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * (1.0 + b.abs())
+}
+
+/// Label boxes (screen rectangles) that overlap, by index pairs.
+fn overlapping(labels: &[[f64; 4]]) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    for i in 0..labels.len() {
+        for j in i + 1..labels.len() {
+            let (a, b) = (labels[i], labels[j]);
+            if a[0] < b[0] + b[2] - 0.5
+                && b[0] < a[0] + a[2] - 0.5
+                && a[1] < b[1] + b[3] - 0.5
+                && b[1] < a[1] + a[3] - 0.5
+            {
+                out.push((i, j));
+            }
+        }
+    }
+    out
+}
+
+/// One example in the browser: the page from `dqsym walk --html`, its sliders moved to
+/// pseudo-random values, the drawn joints, the tool and the printed pose compared with the
+/// product of elementary 4x4 matrices at those values.
+fn check_page_in_chromium(file: &str, w: &Walkthrough) {
+    let chromium = chromium();
+    assert!(
+        Path::new(ROOT)
+            .join("node_modules/playwright-core")
+            .is_dir(),
+        "playwright-core is missing (node_modules/playwright-core): run `bash scripts/test.sh`"
+    );
+    let artifacts = Path::new(ROOT).join("artifacts");
+    std::fs::create_dir_all(&artifacts).expect("artifacts dir");
+    let stem = Path::new(file)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .expect("stem")
+        .to_owned();
+    let page = artifacts.join(format!("walk_{stem}.html"));
+    let out = Command::new(env!("CARGO_BIN_EXE_dqsym"))
+        .args(["walk", file, "--html"])
+        .arg(&page)
+        .current_dir(ROOT)
+        .output()
+        .expect("runs");
+    assert!(
+        out.status.success(),
+        "dqsym walk --html {file}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let html = std::fs::read_to_string(&page).expect("page");
+    assert!(
+        html.contains("function dqsym_walk("),
+        "{file}: no generated function"
+    );
+    let m = w.mechanism.as_ref().expect("a mechanism");
+    // Slider values: a hash of the name, inside each slider's range.
+    let names: Vec<String> = html
+        .split("data-name=\"")
+        .skip(1)
+        .map(|s| s.split('"').next().unwrap_or_default().to_owned())
+        .collect();
+    assert!(!names.is_empty(), "{file}: no sliders");
+    let mut values = serde_json::Map::new();
+    for (k, n) in names.iter().enumerate() {
+        let joint = html.contains(&format!("data-name=\"{n}\" data-joint"));
+        let h = n
+            .bytes()
+            .fold(7u64, |a, b| a.wrapping_mul(31).wrapping_add(u64::from(b)));
+        let u = ((h + k as u64 * 17) % 1000) as f64 / 1000.0;
+        let v = if joint { 2.4 * u - 1.2 } else { 0.3 + 0.6 * u };
+        let v = if joint {
+            v
+        } else {
+            v.copysign(if html.contains(&format!("data-name=\"{n}\" min=\"-")) {
+                -1.0
+            } else {
+                1.0
+            })
+        };
+        values.insert(n.clone(), serde_json::json!(v));
+    }
+    let url = format!("file://{}", page.display());
+    let shots = artifacts.join(format!("walk_{stem}"));
+    let mut node = Command::new("node");
+    node.arg(Path::new(ROOT).join("tests/it/walk_page.js"))
+        .arg(&url)
+        .arg(&shots)
+        .arg(serde_json::Value::Object(values.clone()).to_string())
+        .env("CHROMIUM", &chromium)
+        .current_dir(ROOT);
+    let text = crate::tools::run(node, "", &format!("playwright on {file}"));
+    let r: serde_json::Value = serde_json::from_str(&text).expect("json from the page");
+    for width in ["1000", "1600"] {
+        let r = &r[width];
+        assert_eq!(r["problems"], serde_json::json!([]), "{file} at {width}px");
+        assert!(
+            shots
+                .with_file_name(format!("walk_{stem}-{width}.png"))
+                .is_file(),
+            "{file}: no screenshot at {width}px"
+        );
+        for state in ["initial", "home", "moved"] {
+            let s = &r[state];
+            assert_eq!(
+                s["katexErrors"], 0,
+                "{file} {width}px {state}: KaTeX errors"
+            );
+            assert_eq!(
+                s["rendered"], s["formulas"],
+                "{file} {width}px: every formula renders"
+            );
+            let labels: Vec<[f64; 4]> = s["labels"]
+                .as_array()
+                .expect("labels")
+                .iter()
+                .map(|b| {
+                    let v = numbers(b);
+                    [v[0], v[1], v[2], v[3]]
+                })
+                .collect();
+            assert!(
+                overlapping(&labels).is_empty(),
+                "{file} {width}px {state}: joint labels overlap: {:?}",
+                overlapping(&labels)
+            );
+        }
+        if width == "1000" {
+            let s = &r["initial"];
+            assert_eq!(
+                s["tooWide"],
+                serde_json::json!([]),
+                "{file}: formulas wider than the page at 1000px"
+            );
+            assert!(
+                s["pageWidth"].as_f64().expect("width") <= 1000.0,
+                "{file}: the page scrolls sideways at 1000px"
+            );
+        }
+        let (home, moved) = (&r["home"], &r["moved"]);
+        assert_ne!(
+            home["arm"], moved["arm"],
+            "{file}: moving the sliders redraws the arm"
+        );
+        assert_ne!(
+            home["shown"], moved["shown"],
+            "{file}: moving the sliders changes the numbers"
+        );
+        // The page's values of every symbol, as the sliders hold them.
+        let at = |state: &serde_json::Value| -> Vec<(String, f64)> {
+            state["sliders"]
+                .as_object()
+                .expect("sliders")
+                .iter()
+                .map(|(k, v)| (k.clone(), v.as_f64().expect("number")))
+                .collect()
+        };
+        let moved_env = at(moved);
+        let home_env = at(home);
+        for (n, v) in &moved_env {
+            let want = values[n].as_f64().expect("number");
+            assert!(
+                (v - want).abs() < 1e-12,
+                "{file}: slider {n} is {v}, set {want}"
+            );
+        }
+        let env_of = |vals: &[(String, f64)]| {
+            let vals = vals.to_vec();
+            move |n: &str| vals.iter().find(|(k, _)| k == n).map(|(_, v)| *v)
+        };
+        let (he, me) = (env_of(&home_env), env_of(&moved_env));
+        let t = chain(&m.motions, m.motions.len(), &me);
+        let page_t = numbers(&moved["numbers"]["T"]);
+        for i in 0..4 {
+            for j in 0..4 {
+                assert!(
+                    near(page_t[4 * i + j], t.rows[i][j]),
+                    "{file}: T[{i}][{j}] {} != {}",
+                    page_t[4 * i + j],
+                    t.rows[i][j]
+                );
+            }
+        }
+        let dq = numbers(&moved["numbers"]["dq"]);
+        let q = dqsym::DualQuat::from_real_and_dual(
+            dqsym::Quat::new(dq[0], dq[1], dq[2], dq[3]),
+            dqsym::Quat::new(dq[4], dq[5], dq[6], dq[7]),
+        );
+        let qm = q.to_matrix();
+        for i in 0..4 {
+            for j in 0..4 {
+                assert!(
+                    near(qm.rows[i][j], t.rows[i][j]),
+                    "{file}: the DQ's matrix [{i}][{j}]"
+                );
+            }
+        }
+        let tool_home = match &m.tool {
+            Some(p) => [
+                p[0].eval(&me).unwrap(),
+                p[1].eval(&me).unwrap(),
+                p[2].eval(&me).unwrap(),
+            ],
+            None => [0.0; 3],
+        };
+        let want_tool = t.transform_point(&tool_home);
+        let got_tool = vec3(&moved["tool"]);
+        let printed = numbers(&moved["numbers"]["p"]);
+        for k in 0..3 {
+            assert!(near(got_tool[k], want_tool[k]), "{file}: drawn tool {k}");
+            assert!(near(printed[k], want_tool[k]), "{file}: printed tool {k}");
+        }
+        // Joint k is drawn on the link before it: at F(q) F(0)^-1 applied to its home position.
+        let drawn_motions: Vec<usize> = m
+            .motions
+            .iter()
+            .enumerate()
+            .filter(|(_, x)| {
+                !matches!(x, dqsym::Motion::Translation { .. }) && !x.variables().is_empty()
+            })
+            .map(|(i, _)| i)
+            .collect();
+        let hj = home["joints"].as_array().expect("joints");
+        let mj = moved["joints"].as_array().expect("joints");
+        assert_eq!(
+            hj.len(),
+            drawn_motions.len(),
+            "{file}: one circle per joint"
+        );
+        for (k, &i) in drawn_motions.iter().enumerate() {
+            let f = chain(&m.motions, i, &me) * rigid_inverse(&chain(&m.motions, i, &he));
+            let want = f.transform_point(&vec3(&hj[k]));
+            let got = vec3(&mj[k]);
+            for c in 0..3 {
+                assert!(
+                    near(got[c], want[c]),
+                    "{file}: joint {} coordinate {c}: {} != {}",
+                    k + 1,
+                    got[c],
+                    want[c]
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn interactive_pages_match_forward_kinematics_in_chromium() {
+    for file in [
+        "examples/appendix3_rrr.dq",
+        "examples/robots/rrr.toml",
+        "examples/robots/six_r.toml",
+        "examples/robots/puma_like.toml",
+        "examples/robots/puma560.toml",
+        "examples/robots/stanford.toml",
+        "examples/robots/scara.toml",
+        "examples/robots/ur5.toml",
+        "examples/robots/kuka_iiwa7.toml",
+    ] {
+        let w = if file.ends_with(".toml") {
+            let text = std::fs::read_to_string(Path::new(ROOT).join(file)).expect("robot");
+            walk_robot(&text, file, &dqsym::eval_scalar_text).expect("walk")
+        } else {
+            walk(file)
+        };
+        check_page_in_chromium(file, &w);
+    }
+}
+
+/// `name="value"` attributes of every element `<tag ... class="class"` in an SVG text.
+fn svg_elements<'a>(svg: &'a str, tag: &str, class: &str) -> Vec<&'a str> {
+    svg.split(&format!("<{tag} "))
+        .skip(1)
+        .filter(|e| e.contains(&format!("class=\"{class}\"")))
+        .map(|e| e.split('>').next().unwrap_or_default())
+        .collect()
+}
+
+fn attr(element: &str, name: &str) -> f64 {
+    element
+        .split(&format!(" {name}=\""))
+        .nth(1)
+        .and_then(|s| s.split('"').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no numeric {name} in {element}"))
+}
+
+#[test]
+fn drawings_are_to_scale_with_labels_apart_for_every_example() {
+    let mut robots: Vec<String> = std::fs::read_dir(Path::new(ROOT).join("examples/robots"))
+        .expect("examples/robots")
+        .filter_map(|e| e.ok())
+        .map(|e| format!("examples/robots/{}", e.file_name().to_string_lossy()))
+        .filter(|p| p.ends_with(".toml"))
+        .collect();
+    robots.sort();
+    assert!(robots.len() >= 8, "{robots:?}");
+    let scripts = ["examples/appendix3_rrr.dq", "examples/sec6_3_6r.dq"];
+    for file in robots.iter().map(String::as_str).chain(scripts) {
+        let w = if file.ends_with(".toml") {
+            let text = std::fs::read_to_string(Path::new(ROOT).join(file)).expect("robot");
+            walk_robot(&text, file, &dqsym::eval_scalar_text).expect("walk")
+        } else {
+            walk(file)
+        };
+        let m = w.mechanism.as_ref().expect("a mechanism");
+        let svg = dqsym::mechanism_svg(m, &dqsym::Config::default(), &dqsym::SvgOptions::default())
+            .expect("svg");
+        assert!(svg.contains("class=\"base\""), "{file}: no base marker");
+        assert!(svg.contains("class=\"triad\""), "{file}: no triad");
+        for axis in [">x</text>", ">y</text>", ">z</text>"] {
+            assert!(svg.contains(axis), "{file}: the triad names {axis}");
+        }
+        // Every symbol's value is stated in the legend.
+        for s in m.motions.iter().flat_map(|x| x.variables()) {
+            assert!(
+                svg.contains(&format!("{s} = ")),
+                "{file}: the legend omits {s}"
+            );
+        }
+        if file.ends_with(".toml") {
+            let text = std::fs::read_to_string(Path::new(ROOT).join(file)).expect("robot");
+            if let Some(values) = text.split("[values]").nth(1) {
+                for line in values.lines().filter(|l| l.contains('=')) {
+                    let (name, v) = line.split_once('=').expect("name = value");
+                    let v: f64 = v.trim().parse().expect("a number");
+                    let shown = format!("{} = {v}", name.trim());
+                    assert!(svg.contains(&shown), "{file}: the legend omits `{shown}`");
+                }
+            }
+        }
+        // Labels: boxes of 8 px per digit and 16 px high around their centres, disjoint,
+        // and off every joint circle.
+        let labels: Vec<[f64; 4]> = svg_elements(&svg, "text", "dq-label")
+            .iter()
+            .map(|e| {
+                let (x, y) = (attr(e, "x"), attr(e, "y"));
+                [x - 5.0, y - 7.5, 10.0, 15.0]
+            })
+            .collect();
+        let joints: Vec<(f64, f64)> = svg_elements(&svg, "circle", "dq-joint")
+            .iter()
+            .map(|e| (attr(e, "cx"), attr(e, "cy")))
+            .collect();
+        assert_eq!(labels.len(), joints.len(), "{file}: one label per joint");
+        assert!(
+            overlapping(&labels).is_empty(),
+            "{file}: labels overlap: {:?}",
+            overlapping(&labels)
+        );
+        for (i, b) in labels.iter().enumerate() {
+            for (k, (x, y)) in joints.iter().enumerate() {
+                let inside = b[0] < x + 6.0
+                    && x - 6.0 < b[0] + b[2]
+                    && b[1] < y + 6.0
+                    && y - 6.0 < b[1] + b[3];
+                assert!(!inside, "{file}: label {} covers joint {}", i + 1, k + 1);
+            }
+        }
+    }
+}
+
+#[test]
+fn the_rrr_drawing_has_the_robot_files_proportions() {
+    let text =
+        std::fs::read_to_string(Path::new(ROOT).join("examples/robots/rrr.toml")).expect("robot");
+    let w = walk_robot(&text, "rrr.toml", &dqsym::eval_scalar_text).expect("walk");
+    let svg = dqsym::mechanism_svg(
+        w.mechanism.as_ref().expect("mechanism"),
+        &dqsym::Config::default(),
+        &dqsym::SvgOptions::default(),
+    )
+    .expect("svg");
+    // The home pose: base, joints 1 to 3 (joint 1 at the base), tool; links l1, l2, l3 as
+    // [values] gives them (1, 0.8, 0.5), in one scale.
+    let home = svg
+        .split("id=\"dq-home\" points=\"")
+        .nth(1)
+        .and_then(|s| s.split('"').next())
+        .expect("home polyline");
+    let pts: Vec<(f64, f64)> = home
+        .split(' ')
+        .map(|p| {
+            let (x, y) = p.split_once(',').expect("x,y");
+            (x.parse().expect("x"), y.parse().expect("y"))
+        })
+        .collect();
+    let len = |a: (f64, f64), b: (f64, f64)| ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt();
+    let (l1, l2, l3) = (
+        len(pts[1], pts[2]),
+        len(pts[2], pts[3]),
+        len(pts[3], pts[4]),
+    );
+    assert!(
+        (l2 / l1 - 0.8).abs() < 0.01 && (l3 / l1 - 0.5).abs() < 0.01,
+        "{pts:?}"
+    );
+    assert!(
+        svg.contains("l1 = 1, l2 = 0.8, l3 = 0.5 (robot file)"),
+        "{svg}"
+    );
+}
+
+#[test]
+fn repl_steps_use_the_pages_notation() {
+    use std::io::Write;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_dqsym"))
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("runs");
+    child
+        .stdin
+        .take()
+        .expect("stdin")
+        .write_all(
+            b"syms l1\nhalfangle c1, s1 = theta1\nq = (c1, s1, 0, 0) + I*(0, 0, -l1*s1)\n\
+              p = q*(1 + I*(0, l1, 0))*cconj(q)\n:steps\n",
+        )
+        .expect("writes");
+    let out = child.wait_with_output().expect("output");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("Notation (each symbol has one meaning on this page):"),
+        "{text}"
+    );
+    assert!(
+        text.contains("c1 = cos(theta1/2)") && text.contains("C1 = cos(theta1)"),
+        "{text}"
+    );
+    assert!(text.contains("c1^2 - s1^2 = C1, 2 s1 c1 = S1"), "{text}");
+    assert!(!text.contains("where c1 = cos(theta1)"), "{text}");
 }
