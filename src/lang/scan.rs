@@ -215,7 +215,7 @@ pub(crate) fn blank<'s>(src: &'s str, ranges: &[(usize, usize)]) -> std::borrow:
 
 /// Whether `text` is an unfinished statement that continues on the next line: a bracket is
 /// still open, or the last line ends with a `...` continuation. The REPL asks this before it
-/// runs a line; `dqsym run` follows the same rules (see [`prescan`]).
+/// runs a line; `dqsym run` follows the same rules (see `prescan`).
 pub fn continues(text: &str) -> bool {
     let bytes = text.as_bytes();
     let mut open = 0usize;
