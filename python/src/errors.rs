@@ -85,7 +85,10 @@ pub(crate) fn parse_error(py: Python<'_>, e: &LibParseError) -> PyErr {
 fn is_limit(e: &ScalarError) -> bool {
     matches!(
         e,
-        ScalarError::TooLarge { .. } | ScalarError::Budget { .. } | ScalarError::OutOfRange(_)
+        ScalarError::TooLarge { .. }
+            | ScalarError::TooManyPairs { .. }
+            | ScalarError::Budget { .. }
+            | ScalarError::OutOfRange(_)
     )
 }
 
