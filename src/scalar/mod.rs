@@ -22,6 +22,7 @@ mod calculus;
 pub(crate) use calculus::mode_angle;
 mod cs;
 mod ctx;
+mod cyclo;
 mod decimal;
 mod frac;
 mod par;
@@ -145,6 +146,13 @@ pub struct Scalar(Repr);
 
 impl Scalar {
     pub(crate) fn from_terms_sorted(terms: Vec<Term>) -> Scalar {
+        // Constants at rational multiples of pi other than pi/12 (and symbolic angles offset
+        // by them) take their canonical basis; the common case only pays for this scan.
+        let terms = if terms.iter().any(|t| !t.mode.pi.is_zero()) {
+            sort_merge(cyclo::canonicalize(&terms))
+        } else {
+            terms
+        };
         let limit = term_limit();
         if terms.len() > limit {
             return Scalar::error(ScalarError::TooLarge {
@@ -156,24 +164,8 @@ impl Scalar {
     }
 
     /// Sorts, merges equal keys and drops zero coefficients.
-    pub(crate) fn from_terms(mut terms: Vec<Term>) -> Scalar {
-        terms.sort_unstable_by(|a, b| a.key_cmp(b));
-        let mut out: Vec<Term> = Vec::with_capacity(terms.len());
-        for t in terms {
-            match out.last_mut() {
-                Some(last) if last.key_cmp(&t).is_eq() => last.coef += &t.coef,
-                _ => {
-                    if out.last().is_some_and(|l| l.coef.is_zero()) {
-                        out.pop();
-                    }
-                    out.push(t)
-                }
-            }
-        }
-        if out.last().is_some_and(|l| l.coef.is_zero()) {
-            out.pop();
-        }
-        Scalar::from_terms_sorted(out)
+    pub(crate) fn from_terms(terms: Vec<Term>) -> Scalar {
+        Scalar::from_terms_sorted(sort_merge(terms))
     }
 
     /// An error value.
@@ -288,6 +280,27 @@ impl Scalar {
         out.dedup();
         out
     }
+}
+
+/// Sorts terms by key, merges equal keys and drops zero coefficients.
+fn sort_merge(mut terms: Vec<Term>) -> Vec<Term> {
+    terms.sort_unstable_by(|a, b| a.key_cmp(b));
+    let mut out: Vec<Term> = Vec::with_capacity(terms.len());
+    for t in terms {
+        match out.last_mut() {
+            Some(last) if last.key_cmp(&t).is_eq() => last.coef += &t.coef,
+            _ => {
+                if out.last().is_some_and(|l| l.coef.is_zero()) {
+                    out.pop();
+                }
+                out.push(t)
+            }
+        }
+    }
+    if out.last().is_some_and(|l| l.coef.is_zero()) {
+        out.pop();
+    }
+    out
 }
 
 impl Default for Scalar {
