@@ -11,17 +11,20 @@
 //! When a group holds a mode with a pi offset (a constant `cos(3 pi/7)`, a symbolic
 //! `cos(x + pi/5)`; multiples of pi/12 never stay as offsets), [`canonicalize`] rewrites it as
 //! the unique expansion of its value in a fixed basis:
-//! - `M`, the smallest divisor of `W` with `c` in `K(zeta_M)` (or `z` in `K(i, zeta_M)`), found by
-//!   removing one prime of `W` at a time (the fields containing a value are closed under `gcd`);
-//! - for real `c`, the basis `R_M` of `K(zeta_M)^+` over `K`: cosines `cos(2 pi k / L)`,
-//!   `L = lcm(2, M)`, angles in `[0, pi/2)`, taken greedily in the order (conductor, angle) when
-//!   independent of the ones before (over `K`: `cos(pi/7)`, `cos(2 pi/7)` for `M = 7`, with
-//!   `cos(3 pi/7) = 1/2 - cos(pi/7) + cos(2 pi/7)`; `{1}` for `M` dividing 24, or 5, 8, 10,
-//!   whose constants are square roots);
-//! - for complex `z`, the basis `C_M` of `K(i, zeta_M)` over `K(i)`: `e^{i theta}`,
-//!   `theta` a multiple of `2 pi / M` in `(-pi/4, pi/4]`, taken greedily by (conductor, |theta|,
-//!   positive first). A coefficient `a + b i` of `e^{i theta}` prints as
-//!   `a cos(phi + theta) - b sin(phi + theta)`.
+//! - `M`, the smallest multiple of 24 dividing `W` with `c` (or `z`) in `K(zeta_M)`, found by
+//!   removing one prime of `W` at a time. `K(zeta_M)` contains `i` and `zeta_3` through the
+//!   square roots (`i = sqrt(-3)/sqrt(3)`), so fields are only told apart at multiples of 24:
+//!   there `K(zeta_M) = K(zeta_N)` only for `M = N`, and the fields holding a value are the
+//!   multiples of one smallest;
+//! - for real `c`, the basis `R_M` of `K(zeta_M)^+` over `K`: cosines `cos(2 pi k / M)` at
+//!   angles in `[0, pi/2)`, taken greedily when independent of the ones before (over `K`), in
+//!   the order (the field they need, the denominator of the angle over pi, the angle):
+//!   `cos(pi/7)`, `cos(2 pi/7)` for sevenths, with `cos(3 pi/7) = 1/2 - cos(pi/7) + cos(2 pi/7)`; `{1}` for `M = 24` (and
+//!   fifths, eighths, tenths and twelfths, whose constants are square roots);
+//! - for complex `z`, the basis `C_M` of `K(zeta_M)` over `K(i)`: `e^{i theta}`,
+//!   `theta` a multiple of `2 pi / M` in `(-pi/4, pi/4]`, taken greedily in the same order
+//!   (`|theta|` then positive first for the angle). A coefficient `a + b i` of `e^{i theta}`
+//!   prints as `a cos(phi + theta) - b sin(phi + theta)`.
 //!
 //! `{q sqrt(d) b}` (`d` square-free, `b` in the basis) is a basis of the field over `Q`, so two
 //! equal values give the same terms. The computation is in `Q(zeta_W)` (vectors over `Q` in the
@@ -38,9 +41,9 @@ use num_traits::{One, Signed, Zero};
 use std::collections::{BTreeMap, HashMap};
 use std::sync::{Arc, Mutex, OnceLock};
 
-/// The largest degree `phi(W)` of a cyclotomic field computed in (`W = 360`, angles in whole
-/// degrees, has 96).
-pub(crate) const MAX_DEGREE: u64 = 128;
+/// The largest degree `phi(W)` of a cyclotomic field computed in: every denominator up to 28
+/// alone (`W = lcm(24, 2q)`), whole degrees (`W = 360`, degree 96), pi/7 with pi/9 (144).
+pub(crate) const MAX_DEGREE: u64 = 192;
 
 fn lcm(a: u64, b: u64) -> u64 {
     a / a.gcd(&b) * b
@@ -354,14 +357,35 @@ struct Basis {
     cols: Vec<Col>,
 }
 
-/// The order of `e^{2 pi i k / n}` as a conductor (`2 mod 4` halved).
-fn conductor(k: i64, n: u64) -> u64 {
-    let o = n / (k.unsigned_abs().gcd(&n));
-    if o % 4 == 2 {
-        o / 2
-    } else {
-        o
+/// The order of `e^{2 pi i k / n}`.
+fn order(k: i64, n: u64) -> u64 {
+    n / (k.unsigned_abs().gcd(&n))
+}
+
+/// What `zeta_o` adds to the field of all square roots and `i`: `o` without its factor 3 when
+/// 9 does not divide it, and without its power of 2 when 16 does not (`zeta_3`, `zeta_8` are
+/// in `K(i)`). Candidates are taken by this first.
+fn reduced(o: u64) -> u64 {
+    let mut r = o;
+    let mut two = 1;
+    while r % 2 == 0 {
+        r /= 2;
+        two *= 2;
     }
+    if two >= 16 {
+        r *= two;
+    }
+    if r % 3 == 0 && r % 9 != 0 {
+        r /= 3;
+    }
+    r
+}
+
+/// The order in which basis candidates are taken: the field they need first, then the
+/// denominator of the angle as a multiple of pi (`pi/10` before `2 pi/15`), then the angle.
+fn rank(k: i64, n: u64) -> (u64, u64) {
+    let o = order(k, n);
+    (reduced(o), if o % 2 == 0 { o / 2 } else { o })
 }
 
 impl Basis {
@@ -375,7 +399,7 @@ impl Basis {
             let l = lcm(2, m);
             // theta = 2 pi k / l in [0, pi/2): 4k < l.
             let mut cands: Vec<i64> = (0..).take_while(|k| 4 * k < l as i64).collect();
-            cands.sort_by_key(|&k| (conductor(k, l), k));
+            cands.sort_by_key(|&k| (rank(k, l), k));
             for k in cands {
                 let a = k as u64 * (w / l);
                 let c = if a == 0 {
@@ -404,7 +428,7 @@ impl Basis {
             let mut cands: Vec<i64> = (-(bound / 8)..=bound / 8)
                 .filter(|k| 8 * k > -bound)
                 .collect();
-            cands.sort_by_key(|&k| (conductor(k, m), k.abs(), k < 0));
+            cands.sort_by_key(|&k| (rank(k, m), k.abs(), k < 0));
             let i = mono(w / 4, Rat::one());
             for k in cands {
                 let a = (k.rem_euclid(m as i64) as u64) * (w / m);
@@ -489,10 +513,26 @@ pub(crate) fn canonicalize(terms: &[Term]) -> Vec<Term> {
     out
 }
 
+/// True when every pi offset of the terms is within the degree bound: the representation is
+/// then the canonical one (equal values, equal terms).
+pub(crate) fn within_bound(terms: &[Term]) -> bool {
+    let mut w = 24u64;
+    for t in terms.iter().filter(|t| !t.mode.pi.is_zero()) {
+        w = lcm(w, 2 * *t.mode.pi.denom() as u64);
+        if w > 100_000 || totient(w) > MAX_DEGREE {
+            return false;
+        }
+    }
+    true
+}
+
 fn canonical_group(g: &[&Term]) -> Option<Vec<Term>> {
     let first = g.first()?;
     let real = first.mode.freq.is_empty();
-    let mut w = 4u64;
+    // Multiples of 24 only: K(zeta_M) for 24 | M are distinct fields, one for each smallest
+    // field holding a value (K(zeta_15) = K(zeta_20) = K(zeta_120) since sqrt(-3) and i are
+    // there), so the descent below ends at one M.
+    let mut w = 24u64;
     for t in g {
         let d = *t.mode.pi.denom() as u64;
         w = lcm(w, 2 * d);
@@ -542,11 +582,8 @@ fn canonical_group(g: &[&Term]) -> Option<Vec<Term>> {
     let mut sol = fits(m)?;
     'descend: loop {
         for p in primes_of(m) {
-            let mut n = m / p;
-            if real && n % 4 == 2 {
-                n /= 2;
-            }
-            if n == m || (!real && n % 4 != 0) {
+            let n = m / p;
+            if n % 24 != 0 {
                 continue;
             }
             if let Some(s) = fits(n) {

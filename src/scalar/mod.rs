@@ -6,10 +6,13 @@
 //! free of zero coefficients, so two equal scalars have the same representation and `==` is
 //! exact: `cos(t)^2 + sin(t)^2 == 1`, `2 sin(t/2) cos(t/2) == sin(t)`, `sqrt(2) sqrt(3) == sqrt(6)`.
 //!
-//! Exact values: cos and sin at multiples of pi/12 become radicals in Q(sqrt 2, sqrt 3). Other
-//! rational multiples of pi (pi/8, pi/7) stay as constant modes; the product-to-sum identities
-//! still hold for them, but algebraic relations such as `cos(3 pi/8) = sin(pi/8)` or
-//! `2 cos(pi/8)^2 = 1 + sqrt(2)/2` are not normalized, so equality is exact only up to those.
+//! Exact values: cos and sin at multiples of pi/12 become radicals in Q(sqrt 2, sqrt 3) at once
+//! (the fast path). Other rational multiples of pi (pi/8, pi/7) are constant modes, and
+//! symbolic angles may carry them as offsets (`cos(x + pi/7)`); every group of terms holding
+//! such a mode is rewritten in a canonical basis of the cyclotomic field it lives in
+//! (`cyclo.rs`), so `cos(3 pi/8) = sin(pi/8)`, `cos(pi/5) = (1 + sqrt 5)/4` and
+//! `cos(x + 6 pi/5) = -cos(x + pi/5)` hold as equal term vectors. The boundary is the degree
+//! bound of `cyclo.rs` (denominators up to 30, whole degrees): past it a group stays as it is.
 //!
 //! Arithmetic goes through `std::ops` so the generic quaternion algebra can use it. An
 //! operation that cannot be done exactly (a result over the size limit, `cos` of a non-angle)
@@ -264,6 +267,13 @@ impl Scalar {
             t.iter()
                 .all(|x| x.mono.is_empty() && x.mode.freq.is_empty())
         })
+    }
+
+    /// True when the representation is the canonical one for its value: every constant or
+    /// offset at a rational multiple of pi is within the degree bound of `cyclo.rs` (always
+    /// true without such constants, and for denominators up to 28).
+    pub fn is_canonical(&self) -> bool {
+        self.terms().is_ok_and(cyclo::within_bound)
     }
 
     /// Every symbol the value mentions, sorted by name (`pi` included when present).
