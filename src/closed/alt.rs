@@ -40,7 +40,7 @@ pub(super) fn best_alternative(x: &Scalar) -> Option<Expr> {
     if t.len() <= MAX_TERMS {
         cands.extend(harmonic(t));
         cands.extend(sum_to_product(t));
-        cands.extend(single_angle(x, t));
+        cands.extend(single_angle(t));
     }
     cands.extend(product(t));
     cands.extend(constant_trig(x, t));
@@ -209,10 +209,16 @@ fn harmonic(t: &[Term]) -> Option<Expr> {
     let coef = plain(&(&r * &mono_scalar))?;
     // cos(F + theta) or sin(F + theta + 1/2), the smaller denominator (cos on ties).
     let (c, s) = (centred(p), centred(p + Small::new(1, 2)));
-    let tr = if c.denom() <= s.denom() {
-        trig(false, f.to_vec(), c)
+    let (sin, off) = if c.denom() <= s.denom() {
+        (false, c)
     } else {
-        trig(true, f.to_vec(), s)
+        (true, s)
+    };
+    // An offset of pi is a sign.
+    let tr = if off.is_one() {
+        neg(trig(sin, f.to_vec(), Small::zero()))
+    } else {
+        trig(sin, f.to_vec(), off)
     };
     Some(mul(coef, tr))
 }
@@ -276,7 +282,7 @@ fn sum_to_product(t: &[Term]) -> Option<Expr> {
 
 /// A polynomial in `cos x` alone (or `sin x` alone, or one of them times such a polynomial)
 /// with rational coefficients, factored by its rational roots.
-fn single_angle(x: &Scalar, t: &[Term]) -> Vec<Expr> {
+fn single_angle(t: &[Term]) -> Vec<Expr> {
     let mut var: Option<&Sym> = None;
     for u in t {
         if !u.mono.is_empty() || u.rad != 1 || !u.mode.pi.is_zero() {
@@ -294,7 +300,6 @@ fn single_angle(x: &Scalar, t: &[Term]) -> Vec<Expr> {
         }
     }
     let Some(var) = var else { return Vec::new() };
-    let _ = x;
     // (i, j) -> coefficient of cos^i sin^j: cos(k x) and sin(k x) are the real and imaginary
     // parts of (c + i s)^k.
     let mut poly: BTreeMap<(u32, u32), Rat> = BTreeMap::new();

@@ -87,7 +87,7 @@ fn best_of(
     };
     // A shorter form of another kind (checked exactly by `best_alternative`).
     let best = match alt::best_alternative(x) {
-        Some(a) if alt::full_cost(&a) < alt::full_cost(&best) => a,
+        Some(a) if alt::full_cost(&a).0 < alt::full_cost(&best).0 => a,
         _ => best,
     };
     if !cfg!(debug_assertions) && agrees_numerically(&best, x) {
@@ -239,7 +239,9 @@ pub fn closed_form_traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarEr
         (e.clone(), TraceStep::KeptWhole(e))
     };
     let (best, last) = match alt::best_alternative(x) {
-        Some(a) if alt::full_cost(&a) < alt::full_cost(&best) => (a.clone(), TraceStep::Shorter(a)),
+        Some(a) if alt::full_cost(&a).0 < alt::full_cost(&best).0 => {
+            (a.clone(), TraceStep::Shorter(a))
+        }
         _ => (best, last),
     };
     if best.to_scalar() == *x {

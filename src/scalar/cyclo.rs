@@ -391,7 +391,8 @@ fn rank(k: i64, n: u64) -> (u64, u64) {
 impl Basis {
     /// `R_M` (real) or `C_M` (complex, `4 | M`) inside `Q(zeta_W)`, with `sqrt(h)` (and
     /// `i sqrt(h)`) multiples for every square root of the field.
-    fn new(f: &Field, m: u64, real: bool) -> Basis {
+    /// `None` when the work budget runs out on the way (nothing is cached then).
+    fn new(f: &Field, m: u64, real: bool) -> Option<Basis> {
         let w = f.w;
         let mut span = Span::new();
         let mut cols = Vec::new();
@@ -402,6 +403,7 @@ impl Basis {
             cands.sort_by_key(|&k| (rank(k, l), k));
             for k in cands {
                 let a = k as u64 * (w / l);
+                super::charge((span.rows.len() * f.phi) as u64 + 1).ok()?;
                 let c = if a == 0 {
                     mono(0, Rat::one())
                 } else {
@@ -432,6 +434,7 @@ impl Basis {
             let i = mono(w / 4, Rat::one());
             for k in cands {
                 let a = (k.rem_euclid(m as i64) as u64) * (w / m);
+                super::charge((span.rows.len() * f.phi) as u64 + 1).ok()?;
                 let c = mono(a, Rat::one());
                 if !span.independent(&f.reduce(&c)) {
                     continue;
@@ -449,7 +452,7 @@ impl Basis {
                 }
             }
         }
-        Basis { span, cols }
+        Some(Basis { span, cols })
     }
 }
 
@@ -473,7 +476,7 @@ fn basis(f: &Field, m: u64, real: bool) -> Option<Arc<Basis>> {
     if let Some(b) = cache.lock().ok()?.get(&key) {
         return b.clone();
     }
-    let b = Some(Arc::new(Basis::new(f, m, real)));
+    let b = Some(Arc::new(Basis::new(f, m, real)?));
     cache.lock().ok()?.insert(key, b.clone());
     b
 }
@@ -540,6 +543,7 @@ fn canonical_group(g: &[&Term]) -> Option<Vec<Term>> {
             return None;
         }
     }
+    super::charge(g.len() as u64 * totient(w)).ok()?;
     let f = field(w)?;
     // y_s for each class s of square roots outside the field.
     let mut ys: BTreeMap<u64, Sparse> = BTreeMap::new();

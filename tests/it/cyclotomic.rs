@@ -407,3 +407,47 @@ fn past_the_degree_bound_values_stay_exact() {
     let e = dqsym::closed_form(&v).expect("closed form");
     assert!(e.value_at(&[]).unwrap().abs() < 1e-12);
 }
+
+/// The closed forms the issue asks for: powers and products of one angle rebuilt, sums turned
+/// into products, the harmonic form with a rational multiple of pi, single constants kept.
+/// Each is also exactly its input.
+#[test]
+fn closed_forms_are_the_hand_forms() {
+    let product = (0..10)
+        .map(|k| format!("cos({})", 1 << k))
+        .collect::<Vec<_>>()
+        .join("*");
+    let product_text = (0..10)
+        .map(|k| format!("cos({})", 1 << k))
+        .collect::<Vec<_>>()
+        .join(" ");
+    let cases: Vec<(&str, &str)> = vec![
+        ("1 - sin(x)^2", "cos(x)^2"),
+        ("sin(x)^10", "sin(x)^10"),
+        (
+            "(cos(x) - 1)^2*(cos(x) + 1)^3",
+            "(cos(x) - 1)^2 (cos(x) + 1)^3",
+        ),
+        ("sin(x - y) + sin(x + y)", "2 sin(x) cos(y)"),
+        ("sin(x)/2 + sqrt(3)*cos(x)/2", "sin(x + pi/3)"),
+        ("cos(t + pi/4)", "cos(t + pi/4)"),
+        ("cos(x)*cos(2*x)*cos(4*x)", "cos(x) cos(2*x) cos(4*x)"),
+        (&product, &product_text),
+        ("cos(3*pi/7)", "cos(3*pi/7)"),
+        (
+            "cos(q + 5*pi/9)*cos(pi/3) - sin(q + 5*pi/9)*sin(pi/3)",
+            "cos(q + 8*pi/9)",
+        ),
+        ("cos(x)^4 - sin(x)^4", "cos(2*x)"),
+    ];
+    for (input, want) in cases {
+        let v = dqsym::eval_scalar_text(input).expect(input);
+        let e = dqsym::closed_form(&v).expect("closed form");
+        assert_eq!(e.to_scalar(), v, "{input}");
+        let got = dqsym::plain(&e, &dqsym::PlainOptions::default());
+        assert_eq!(got, want, "{input}");
+    }
+    // The 10-factor product is 512 Fourier terms; its closed form stays a product.
+    let v = dqsym::eval_scalar_text(&product).unwrap();
+    assert_eq!(v.len(), 512);
+}
