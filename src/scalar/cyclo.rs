@@ -53,9 +53,9 @@ fn primes_of(mut n: u64) -> Vec<u64> {
     let mut out = Vec::new();
     let mut p = 2;
     while p * p <= n {
-        if n % p == 0 {
+        if n.is_multiple_of(p) {
             out.push(p);
-            while n % p == 0 {
+            while n.is_multiple_of(p) {
                 n /= p;
             }
         }
@@ -76,7 +76,7 @@ fn moebius(n: u64) -> i64 {
     let mut k = 0;
     for p in primes_of(n) {
         m /= p;
-        if m % p == 0 {
+        if m.is_multiple_of(p) {
             return 0;
         }
         k += 1;
@@ -146,7 +146,7 @@ impl Field {
         let phi = totient(w) as usize;
         // Phi_W = prod_{d | W} (x^d - 1)^mu(W/d): the multiplications first, so that every
         // division is exact.
-        let divisors: Vec<u64> = (1..=w).filter(|d| w % d == 0).collect();
+        let divisors: Vec<u64> = (1..=w).filter(|d| w.is_multiple_of(*d)).collect();
         let mut poly: Vec<i64> = vec![1];
         for &d in &divisors {
             if moebius(w / d) == 1 {
@@ -194,7 +194,7 @@ impl Field {
         }
         let allowed: Vec<u64> = primes_of(w)
             .into_iter()
-            .filter(|&p| p != 2 || w % 8 == 0)
+            .filter(|&p| p != 2 || w.is_multiple_of(8))
             .collect();
         let mut prime_roots: Vec<(u64, Sparse)> = Vec::new();
         for &p in &allowed {
@@ -257,16 +257,23 @@ impl Field {
 
     /// `d = s h`: `h` the part of the square-free `d` whose square root is in the field.
     fn split(&self, d: u64) -> (u64, u64) {
-        let h: u64 = self.allowed.iter().filter(|&&p| d % p == 0).product();
+        let h: u64 = self
+            .allowed
+            .iter()
+            .filter(|&&p| d.is_multiple_of(p))
+            .product();
         (d / h, h)
     }
 }
+
+/// A pivot row: its pivot index, the reduced vector, and the combination of columns it is.
+type PivotRow = (usize, Vec<Rat>, Vec<(usize, Rat)>);
 
 /// A subspace of `Q^phi` spanned by columns added one at a time, in echelon form, with the
 /// combination of columns each pivot row stands for.
 struct Span {
     cols: usize,
-    rows: Vec<(usize, Vec<Rat>, Vec<(usize, Rat)>)>,
+    rows: Vec<PivotRow>,
 }
 
 impl Span {
@@ -368,14 +375,14 @@ fn order(k: i64, n: u64) -> u64 {
 fn reduced(o: u64) -> u64 {
     let mut r = o;
     let mut two = 1;
-    while r % 2 == 0 {
+    while r.is_multiple_of(2) {
         r /= 2;
         two *= 2;
     }
     if two >= 16 {
         r *= two;
     }
-    if r % 3 == 0 && r % 9 != 0 {
+    if r.is_multiple_of(3) && !r.is_multiple_of(9) {
         r /= 3;
     }
     r
@@ -385,7 +392,7 @@ fn reduced(o: u64) -> u64 {
 /// denominator of the angle as a multiple of pi (`pi/10` before `2 pi/15`), then the angle.
 fn rank(k: i64, n: u64) -> (u64, u64) {
     let o = order(k, n);
-    (reduced(o), if o % 2 == 0 { o / 2 } else { o })
+    (reduced(o), if o.is_multiple_of(2) { o / 2 } else { o })
 }
 
 impl Basis {
@@ -587,7 +594,7 @@ fn canonical_group(g: &[&Term]) -> Option<Vec<Term>> {
     'descend: loop {
         for p in primes_of(m) {
             let n = m / p;
-            if n % 24 != 0 {
+            if !n.is_multiple_of(24) {
                 continue;
             }
             if let Some(s) = fits(n) {
