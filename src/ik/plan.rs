@@ -13,8 +13,9 @@ use crate::{Matrix4, Scalar};
 pub(crate) const FAMILIES: &str = "planar 2R (position) and 3R; SCARA-type RRPR (three parallel \
 revolute axes, a prismatic joint along them); 6 joints with a spherical wrist (axes 4, 5, 6 \
 through one point) and either axes 2 and 3 parallel, or axes 1 and 2 intersecting (joint 3 \
-revolute or prismatic); 6R with axes 2, 3, 4 parallel and axes 5 and 6 intersecting (UR type); \
-7 joints with one joint given by --free reducing to one of these";
+revolute or prismatic); the same read backwards (a spherical shoulder: axes 1, 2, 3 through one \
+point, with axes 4 and 5 parallel or axes 5 and 6 intersecting); 6R with axes 2, 3, 4 parallel \
+and axes 5 and 6 intersecting (UR type); 7 joints with one joint given by --free reducing to one of these";
 
 /// The target pose and the home pose: `G = T M⁻¹`, the motion `E1 ... En`.
 struct Target {
@@ -23,6 +24,8 @@ struct Target {
     /// `R_M`, `t_M` of the home pose.
     rm: [[Scalar; 3]; 3],
     tm: V3,
+    /// The motion is `G⁻¹ = M T⁻¹` (the chain reversed) instead of `G`.
+    inverse: bool,
 }
 
 impl Target {
@@ -32,7 +35,24 @@ impl Target {
         let p = std::array::from_fn(|i| s(TARGET_SYMBOLS[i][3]));
         let rm = std::array::from_fn(|i| std::array::from_fn(|j| home.rows[i][j].clone()));
         let tm = std::array::from_fn(|i| home.rows[i][3].clone());
-        Target { r, p, rm, tm }
+        Target {
+            r,
+            p,
+            rm,
+            tm,
+            inverse: false,
+        }
+    }
+
+    /// The target of the reversed chain: `G⁻¹ = E6⁻¹ ⋯ E1⁻¹`.
+    fn reversed(&self) -> Target {
+        Target {
+            r: self.r.clone(),
+            p: self.p.clone(),
+            rm: self.rm.clone(),
+            tm: self.tm.clone(),
+            inverse: !self.inverse,
+        }
     }
 
     fn mat(m: &[[Scalar; 3]; 3], v: &V3) -> V3 {
@@ -43,19 +63,31 @@ impl Target {
         std::array::from_fn(|i| &m[0][i] * &v[0] + &m[1][i] * &v[1] + &m[2][i] * &v[2])
     }
 
-    /// `R_G v = R_T R_Mᵀ v`.
+    /// `R_G v = R_T R_Mᵀ v` (reversed: `R_M R_Tᵀ v`).
     fn dir(&self, v: &V3) -> V3 {
-        Self::mat(&self.r, &Self::mat_t(&self.rm, v))
+        if self.inverse {
+            Self::mat(&self.rm, &Self::mat_t(&self.r, v))
+        } else {
+            Self::mat(&self.r, &Self::mat_t(&self.rm, v))
+        }
     }
 
-    /// `R_Gᵀ v = R_M R_Tᵀ v`.
+    /// `R_Gᵀ v = R_M R_Tᵀ v` (reversed: `R_T R_Mᵀ v`).
     fn dir_inv(&self, v: &V3) -> V3 {
-        Self::mat(&self.rm, &Self::mat_t(&self.r, v))
+        if self.inverse {
+            Self::mat(&self.r, &Self::mat_t(&self.rm, v))
+        } else {
+            Self::mat(&self.rm, &Self::mat_t(&self.r, v))
+        }
     }
 
-    /// `G x = R_T R_Mᵀ (x − t_M) + p`.
+    /// `G x = R_T R_Mᵀ (x − t_M) + p` (reversed: `G⁻¹ x = R_M R_Tᵀ (x − p) + t_M`).
     fn point(&self, x: &V3) -> V3 {
-        add(&self.dir(&sub(x, &self.tm)), &self.p)
+        if self.inverse {
+            add(&self.dir(&sub(x, &self.p)), &self.tm)
+        } else {
+            add(&self.dir(&sub(x, &self.tm)), &self.p)
+        }
     }
 }
 
@@ -435,16 +467,53 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, String>
         return Ok(None);
     }
     if let Some(w) = common_point(&ax[3..6]) {
-        if parallel(&ax[3], &ax[4]) || parallel(&ax[4], &ax[5]) {
-            return Ok(None);
+        if !parallel(&ax[3], &ax[4]) && !parallel(&ax[4], &ax[5]) {
+            if let Some(pos) = spherical_position(b, t, &w)? {
+                wrist_orientation(b, t)?;
+                return Ok(Some((
+                    format!("6 joints with a spherical wrist (Pieper): {pos}"),
+                    false,
+                )));
+            }
         }
-        let pos = spherical_position(b, t, &w)?;
-        let Some(pos) = pos else { return Ok(None) };
-        wrist_orientation(b, t)?;
-        return Ok(Some((
-            format!("6 joints with a spherical wrist (Pieper): {pos}"),
-            false,
-        )));
+    }
+    // A spherical shoulder (axes 1, 2, 3 through one point): the chain read backwards,
+    // G⁻¹ = E6⁻¹ ⋯ E1⁻¹, is a chain of the reversed axes 6, ..., 1 at the same variables
+    // with a spherical wrist.
+    if let Some(o) = common_point(&ax[0..3]) {
+        if !parallel(&ax[0], &ax[1]) && !parallel(&ax[1], &ax[2]) {
+            let rev: Vec<Axis> = ax.iter().rev().map(Axis::reversed).collect();
+            let tr = t.reversed();
+            let mut rb = Builder {
+                axes: &rev,
+                steps: Vec::new(),
+            };
+            if let Some(pos) = spherical_position(&mut rb, &tr, &o)? {
+                wrist_orientation(&mut rb, &tr)?;
+                for mut s in rb.steps {
+                    s.joint = n - 1 - s.joint;
+                    s.method = format!("chain reversed (axis j' = axis {} − j): {}", n + 1, s.method);
+                    s.singular = format!("chain reversed: {}", s.singular);
+                    // The reversed chain's shoulder is the arm's wrist and the other way round.
+                    if let Some(br) = &mut s.branch {
+                        br.0 = match br.0.as_str() {
+                            "shoulder" => "wrist".into(),
+                            "wrist" => "shoulder".into(),
+                            x => x.into(),
+                        };
+                    }
+                    b.steps.push(s);
+                }
+                return Ok(Some((
+                    format!(
+                        "6 joints with a spherical shoulder (axes 1, 2, 3 through one point): \
+                         the chain reversed, G⁻¹ = E6⁻¹ ⋯ E1⁻¹ about the reversed axes \
+                         1' = 6, ..., 6' = 1, is a spherical-wrist arm (Pieper), in the primed numbering: {pos}"
+                    ),
+                    false,
+                )));
+            }
+        }
     }
     if revolute(ax)
         && parallel(&ax[1], &ax[2])

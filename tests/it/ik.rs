@@ -235,6 +235,14 @@ fn iiwa_with_free_theta3_round_trip() {
     round_trip("kuka_iiwa7", Some("theta3"), 1000, 12);
 }
 
+#[test]
+fn panda_with_free_theta7_round_trip() {
+    // No spherical wrist: axes 1, 2, 3 meet (a spherical shoulder), so with theta7 given the
+    // chain read backwards is a Pieper arm.
+    round_trip("panda", Some("theta7"), 1000, 13);
+    round_trip("franka_panda", Some("q7"), 1000, 14);
+}
+
 /// The value of a formula part with the parameters only (`None` when it needs the target or a
 /// joint).
 fn constant_part(x: &dqsym::Scalar, env: &[(String, f64)]) -> Option<f64> {
