@@ -314,9 +314,101 @@ pub(crate) fn derive(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkEr
     )
 }
 
-/// The derivation from the axes and the home pose.
-#[allow(clippy::needless_range_loop)] // rows and columns of a 3 x 4 block, by index
+/// The derivation from the axes and the home pose. A 7-joint chain without `--free` gets the
+/// first joint whose value as a parameter leaves a supported family (said in the geometry); a
+/// `--free` that leaves none gets an error naming the joints that would.
 pub(crate) fn derive_axes(
+    name: &str,
+    variables: &[String],
+    params: Vec<String>,
+    axes: Vec<Axis>,
+    home: Matrix4<Scalar>,
+    opts: &IkOptions,
+) -> Result<IkSolution, IkError> {
+    let first = derive_fixed(
+        name,
+        variables,
+        params.clone(),
+        axes.clone(),
+        home.clone(),
+        opts,
+    );
+    if axes.len() != 7 || !matches!(first, Err(IkError::Unsupported { .. })) {
+        return first;
+    }
+    let try_free = |v: &String| {
+        let o = IkOptions {
+            free: Some(v.clone()),
+        };
+        derive_fixed(
+            name,
+            variables,
+            params.clone(),
+            axes.clone(),
+            home.clone(),
+            &o,
+        )
+    };
+    match &opts.free {
+        None => {
+            for v in variables {
+                match try_free(v) {
+                    Ok(mut sol) => {
+                        sol.geometry.insert(
+                            0,
+                            format!(
+                                "7 joints, no --free given: {v} chosen as the free joint (a \
+                                 parameter), the first joint whose value leaves a supported family"
+                            ),
+                        );
+                        return Ok(sol);
+                    }
+                    Err(IkError::Unsupported { .. }) => {}
+                    Err(e) => return Err(e),
+                }
+            }
+            first.map_err(|e| with_line(e, "no joint given as --free leaves a supported family"))
+        }
+        Some(f) => {
+            let fits: Vec<&str> = variables
+                .iter()
+                .filter(|v| *v != f && try_free(v).is_ok())
+                .map(String::as_str)
+                .collect();
+            let line = if fits.is_empty() {
+                format!("--free {f}: no joint given as --free leaves a supported family")
+            } else {
+                format!(
+                    "--free {f} leaves no supported family; --free {} does",
+                    fits.join(" or --free ")
+                )
+            };
+            first.map_err(|e| with_line(e, &line))
+        }
+    }
+}
+
+/// An [`IkError::Unsupported`] with one more geometry line.
+fn with_line(e: IkError, line: &str) -> IkError {
+    match e {
+        IkError::Unsupported {
+            robot,
+            mut geometry,
+            families,
+        } => {
+            geometry.push_str(&format!("\n  {line}"));
+            IkError::Unsupported {
+                robot,
+                geometry,
+                families,
+            }
+        }
+        e => e,
+    }
+}
+
+#[allow(clippy::needless_range_loop)] // rows and columns of a 3 x 4 block, by index
+fn derive_fixed(
     name: &str,
     variables: &[String],
     mut params: Vec<String>,
@@ -388,9 +480,6 @@ pub(crate) fn derive_axes(
             let mut g = geometry.clone();
             if let Some(w) = why {
                 g.push(w);
-            }
-            if opts.free.is_none() && axes.len() == 7 {
-                g.push("7 joints: give one joint variable as a parameter with --free".into());
             }
             g.iter()
                 .map(|l| format!("  {l}"))
@@ -492,7 +581,11 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, String>
                 wrist_orientation(&mut rb, &tr)?;
                 for mut s in rb.steps {
                     s.joint = n - 1 - s.joint;
-                    s.method = format!("chain reversed (axis j' = axis {} − j): {}", n + 1, s.method);
+                    s.method = format!(
+                        "chain reversed (axis j' = axis {} − j): {}",
+                        n + 1,
+                        s.method
+                    );
                     s.singular = format!("chain reversed: {}", s.singular);
                     // The reversed chain's shoulder is the arm's wrist and the other way round.
                     if let Some(br) = &mut s.branch {

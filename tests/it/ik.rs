@@ -124,63 +124,96 @@ pub(crate) fn random_q(c: &Chain<f64>, rng: &mut Rng) -> Vec<f64> {
         .collect()
 }
 
-/// Inserts the free joint's value back into a solution.
-fn full_q(sol: &IkSolution, s: &NumSolution, free_val: Option<(usize, f64)>) -> Vec<f64> {
-    let mut q = s.q.clone();
-    if let Some((k, v)) = free_val {
-        q.insert(k, v);
+/// A derived solver and what checking it needs: the robot, its f64 chain and parameters, and
+/// where the free joint sits.
+struct Case {
+    file: String,
+    sol: IkSolution,
+    kinds: Vec<JointKind>,
+    free_k: Option<usize>,
+    env: Vec<(String, f64)>,
+    c: Chain<f64>,
+}
+
+impl Case {
+    fn new(file: &str, free: Option<&str>) -> Case {
+        let sol = derive(file, free).unwrap_or_else(|e| panic!("{file}: {e}"));
+        let r = load(&format!("{ROBOTS}{file}.toml"));
+        let free_k = sol
+            .free
+            .as_ref()
+            .map(|f| r.variables.iter().position(|v| v == f).expect("free"));
+        Case {
+            file: file.to_string(),
+            sol,
+            kinds: r.chain.joints.iter().map(|j| j.kind).collect(),
+            free_k,
+            env: params(file),
+            c: chain(file),
+        }
     }
-    assert_eq!(
-        q.len(),
-        sol.variables.len() + usize::from(free_val.is_some())
-    );
-    q
+
+    /// The parameters' values, the free joint's taken from `q`.
+    fn params(&self, q: &[f64]) -> Vec<(&str, f64)> {
+        let mut p: Vec<(&str, f64)> = self.env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        if let (Some(k), Some(f)) = (self.free_k, &self.sol.free) {
+            p.push((f.as_str(), q[k]));
+        }
+        p
+    }
+
+    /// The engine's solutions for the pose of `q`.
+    fn solve(&self, q: &[f64]) -> Vec<NumSolution> {
+        self.sol
+            .solve_numeric(&pose(&self.c, q), &self.params(q))
+            .expect("params")
+    }
+
+    /// Checks solutions (the free joint excluded) for the pose of `q`: each is finite and
+    /// reproduces the pose to 1e-9. True when `q` is among them (mod 2 pi).
+    fn check(&self, what: &str, q: &[f64], sols: &[Vec<f64>]) -> bool {
+        let t = pose(&self.c, q);
+        let mut found = false;
+        for s in sols {
+            let mut qq = s.clone();
+            if let Some(k) = self.free_k {
+                qq.insert(k, q[k]);
+            }
+            assert_eq!(qq.len(), q.len(), "{what}: joint count");
+            assert!(qq.iter().all(|x| x.is_finite()), "{what}: NaN in {qq:?}");
+            let dev = max_dev(&t, &pose(&self.c, &qq), self.sol.position_only);
+            assert!(
+                dev < 1e-9,
+                "{what}: solution {qq:?} misses the pose of {q:?} by {dev:e}"
+            );
+            found |= qq
+                .iter()
+                .zip(q)
+                .zip(&self.kinds)
+                .all(|((a, b), k)| match k {
+                    JointKind::Revolute => angle_diff(*a, *b) < 1e-6,
+                    JointKind::Prismatic => (a - b).abs() < 1e-6,
+                });
+        }
+        found
+    }
 }
 
 /// FK(q) -> IK at `n` random configurations: every solution reproduces the pose to 1e-9 and q is
 /// among them (mod 2 pi).
 fn round_trip(file: &str, free: Option<&str>, n: usize, seed: u64) {
-    let sol = derive(file, free).unwrap_or_else(|e| panic!("{file}: {e}"));
-    let r = load(&format!("{ROBOTS}{file}.toml"));
-    let free_k = free.map(|f| r.variables.iter().position(|v| v == f).expect("free"));
-    let env = params(file);
-    let c = chain(file);
+    let case = Case::new(file, free);
     let mut rng = Rng::new(seed);
     let mut total = 0;
     for _ in 0..n {
-        let q = random_q(&c, &mut rng);
-        let t = pose(&c, &q);
-        let mut p: Vec<(&str, f64)> = env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-        if let Some(k) = free_k {
-            p.push((free.expect("free"), q[k]));
-        }
-        let sols = sol.solve_numeric(&t, &p).expect("params");
+        let q = random_q(&case.c, &mut rng);
+        let sols = case.solve(&q);
         assert!(!sols.is_empty(), "{file}: no solution at q = {q:?}");
-        let mut found = false;
-        for s in &sols {
-            assert!(s.q.iter().all(|x| x.is_finite()), "{file}: NaN at {q:?}");
-            let qq = full_q(&sol, s, free_k.map(|k| (k, q[k])));
-            let back = pose(&c, &qq);
-            let dev = max_dev(&t, &back, sol.position_only);
-            assert!(
-                dev < 1e-9,
-                "{file}: solution {qq:?} misses the pose of {q:?} by {dev:e}"
-            );
-            let same =
-                qq.iter()
-                    .zip(&q)
-                    .enumerate()
-                    .all(|(i, (a, b))| match r.chain.joints[i].kind {
-                        JointKind::Revolute => angle_diff(*a, *b) < 1e-6,
-                        JointKind::Prismatic => (a - b).abs() < 1e-6,
-                    });
-            found |= same;
-        }
+        let qs: Vec<Vec<f64>> = sols.iter().map(|s| s.q.clone()).collect();
         assert!(
-            found,
-            "{file}: q = {q:?} is not among the {} solutions {:?}",
-            sols.len(),
-            sols.iter().map(|s| &s.q).collect::<Vec<_>>()
+            case.check(file, &q, &qs),
+            "{file}: q = {q:?} is not among the {} solutions {qs:?}",
+            sols.len()
         );
         total += sols.len();
     }
@@ -236,6 +269,25 @@ fn iiwa_with_free_theta3_round_trip() {
 }
 
 #[test]
+fn a_seven_joint_arm_without_free_gets_a_free_joint_chosen_from_its_geometry() {
+    // The Panda reduces only with theta7 given; the iiwa already with theta1.
+    for (file, want) in [
+        ("panda", "theta7"),
+        ("franka_panda", "q7"),
+        ("kuka_iiwa7", "theta1"),
+    ] {
+        let sol = derive(file, None).unwrap_or_else(|e| panic!("{file}: {e}"));
+        assert_eq!(sol.free.as_deref(), Some(want), "{file}");
+        assert!(
+            sol.geometry[0].contains(&format!("{want} chosen as the free joint")),
+            "{file}: {:?}",
+            sol.geometry
+        );
+    }
+    round_trip("panda", None, 200, 15);
+}
+
+#[test]
 fn panda_with_free_theta7_round_trip() {
     // No spherical wrist: axes 1, 2, 3 meet (a spherical shoulder), so with theta7 given the
     // chain read backwards is a Pieper arm.
@@ -254,18 +306,15 @@ fn constant_part(x: &dqsym::Scalar, env: &[(String, f64)]) -> Option<f64> {
 /// wrist and elbow branches: the root of `a cos q + b sin q` at its extreme), the solver
 /// returns solutions that reproduce the pose, one flagged singular, none NaN.
 fn singular_sets(file: &str, free: Option<&str>, n: usize, seed: u64) -> usize {
-    let sol = derive(file, free).unwrap_or_else(|e| panic!("{file}: {e}"));
+    let case = Case::new(file, free);
     let r = load(&format!("{ROBOTS}{file}.toml"));
-    let free_k = free.map(|f| r.variables.iter().position(|v| v == f).expect("free"));
-    let env = params(file);
-    let c = chain(file);
     let mut rng = Rng::new(seed);
     let mut sets = 0;
-    for step in &sol.steps {
+    for step in &case.sol.steps {
         let dqsym::ik::Formula::Trig { a, b, .. } = &step.formula else {
             continue;
         };
-        let (Some(a), Some(b)) = (constant_part(a, &env), constant_part(b, &env)) else {
+        let (Some(a), Some(b)) = (constant_part(a, &case.env), constant_part(b, &case.env)) else {
             continue;
         };
         sets += 1;
@@ -275,14 +324,9 @@ fn singular_sets(file: &str, free: Option<&str>, n: usize, seed: u64) -> usize {
             .position(|v| *v == step.variable)
             .expect("joint");
         for _ in 0..n {
-            let mut q = random_q(&c, &mut rng);
+            let mut q = random_q(&case.c, &mut rng);
             q[k] = b.atan2(a);
-            let t = pose(&c, &q);
-            let mut p: Vec<(&str, f64)> = env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-            if let Some(fk) = free_k {
-                p.push((free.expect("free"), q[fk]));
-            }
-            let sols = sol.solve_numeric(&t, &p).expect("params");
+            let sols = case.solve(&q);
             assert!(!sols.is_empty(), "{file} {}: no solution", step.variable);
             assert!(
                 sols.iter().any(|s| s.singular),
@@ -290,16 +334,8 @@ fn singular_sets(file: &str, free: Option<&str>, n: usize, seed: u64) -> usize {
                 step.variable,
                 q[k]
             );
-            for s in &sols {
-                assert!(s.q.iter().all(|x| x.is_finite()), "{file}: NaN");
-                let qq = full_q(&sol, s, free_k.map(|fk| (fk, q[fk])));
-                let dev = max_dev(&t, &pose(&c, &qq), sol.position_only);
-                assert!(
-                    dev < 1e-9,
-                    "{file}: singular {}: {qq:?} misses the pose of {q:?} by {dev:e}",
-                    step.variable
-                );
-            }
+            let qs: Vec<Vec<f64>> = sols.iter().map(|s| s.q.clone()).collect();
+            case.check(&format!("{file}: singular {}", step.variable), &q, &qs);
         }
     }
     sets
@@ -317,6 +353,7 @@ fn singular_sets_give_flagged_solutions_that_reproduce_the_pose() {
         ("ur5", None, 2),
         ("ur10", None, 2),
         ("kuka_iiwa7", Some("theta3"), 2),
+        ("panda", Some("theta7"), 2),
         ("stanford", None, 1),
         ("scara", None, 1),
         ("rrr", None, 1),
@@ -330,11 +367,10 @@ fn singular_sets_give_flagged_solutions_that_reproduce_the_pose() {
 fn robots_outside_the_families_get_the_clear_error() {
     for (file, free, found) in [
         ("six_r", None, "axes 1 and 2 are parallel"),
-        ("panda", Some("theta3"), "spherical wrist): no"),
         (
-            "kuka_iiwa7",
-            None,
-            "give one joint variable as a parameter with --free",
+            "panda",
+            Some("theta3"),
+            "--free theta3 leaves no supported family; --free theta7 does",
         ),
     ] {
         let e = derive(file, free).expect_err(file).to_string();
@@ -368,7 +404,11 @@ fn robots_outside_the_families_get_the_clear_error() {
         joint("q4", "0", "0", "pi/2"),
         joint("q5", "1", "0", "0")
     );
+    let skew7: String = std::iter::once("name = \"skew 7R\"\nconvention = \"dh\"\n".to_string())
+        .chain((1..=7).map(|i| joint(&format!("q{i}"), "1", "1", "pi/3")))
+        .collect();
     for (text, found) in [
+        (skew7, "no joint given as --free leaves a supported family"),
         (rrr, "axes 1 and 2 are skew"),
         (ur_offset, "axes 5 and 6 are skew unless"),
         (five, "joints: RRRRR (5)"),
@@ -427,11 +467,7 @@ fn codegen_cases(file: &str, free: Option<&str>, n: usize) -> (String, Vec<Vec<f
 /// and two flags; every solution reproduces the pose, q is among them, the count is the
 /// engine's and the DQ variant's.
 fn check_output(file: &str, free: Option<&str>, what: &str, out: &str, qs: &[Vec<f64>]) {
-    let sol = derive(file, free).expect("derive");
-    let r = load(&format!("{ROBOTS}{file}.toml"));
-    let free_k = free.map(|f| r.variables.iter().position(|v| v == f).expect("free"));
-    let c = chain(file);
-    let env = params(file);
+    let case = Case::new(file, free);
     let mut lines = out.lines();
     for q in qs {
         let head: Vec<usize> = lines
@@ -440,41 +476,29 @@ fn check_output(file: &str, free: Option<&str>, what: &str, out: &str, qs: &[Vec
             .split_whitespace()
             .map(|x| x.parse().expect("count"))
             .collect();
-        let t = pose(&c, q);
-        let mut p: Vec<(&str, f64)> = env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-        if let Some(fk) = free_k {
-            p.push((free.expect("free"), q[fk]));
-        }
-        let engine = sol.solve_numeric(&t, &p).expect("params");
+        let engine = case.solve(q);
         assert_eq!(head[0], engine.len(), "{what}: solution count at {q:?}");
         assert_eq!(head[1], head[0], "{what}: the DQ variant's count");
-        let mut found = false;
-        for _ in 0..head[0] {
-            let v: Vec<f64> = lines
-                .next()
-                .expect("solution line")
-                .split_whitespace()
-                .map(|x| x.parse().expect("number"))
-                .collect();
-            let s = NumSolution {
-                q: v[..sol.variables.len()].to_vec(),
-                singular: false,
-                approximate: false,
-            };
-            let qq = full_q(&sol, &s, free_k.map(|fk| (fk, q[fk])));
-            assert!(qq.iter().all(|x| x.is_finite()), "{what}: NaN");
-            let dev = max_dev(&t, &pose(&c, &qq), sol.position_only);
-            assert!(dev < 1e-9, "{what}: {qq:?} misses the pose by {dev:e}");
-            found |= qq
-                .iter()
-                .zip(q)
-                .all(|(a, b)| angle_diff(*a, *b) < 1e-6 || (a - b).abs() < 1e-6);
-        }
-        assert!(found, "{what}: {q:?} not among the solutions");
+        let sols: Vec<Vec<f64>> = (0..head[0])
+            .map(|_| {
+                let v: Vec<f64> = lines
+                    .next()
+                    .expect("solution line")
+                    .split_whitespace()
+                    .map(|x| x.parse().expect("number"))
+                    .collect();
+                v[..case.sol.variables.len()].to_vec()
+            })
+            .collect();
+        assert!(
+            case.check(what, q, &sols),
+            "{what}: {q:?} not among the solutions"
+        );
     }
 }
 
-const CODEGEN_ROBOTS: [(&str, Option<&str>); 6] = [
+const CODEGEN_ROBOTS: [(&str, Option<&str>); 7] = [
+    ("panda", Some("theta7")),
     ("puma560", None),
     ("ur5", None),
     ("stanford", None),
