@@ -209,6 +209,13 @@ fn name(i: usize) -> usize {
     i + 1
 }
 
+/// A scalar in closed form, plain text.
+fn scalar_text(x: &Scalar) -> String {
+    crate::closed_form(x)
+        .map(|e| crate::plain(&e, &crate::PlainOptions::default()))
+        .unwrap_or_else(|_| x.to_string())
+}
+
 fn rel_text(rel: &Relation) -> String {
     match rel {
         Relation::Parallel { same_line: true } => "coincide".into(),
@@ -591,7 +598,13 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, String>
                     if let Some(br) = &mut s.branch {
                         br.0 = match br.0.as_str() {
                             "shoulder" => "wrist".into(),
-                            "wrist" => "shoulder".into(),
+                            "wrist" => {
+                                // Axes 4' and 6' are axes 3 and 1.
+                                s.singular = "shoulder singularity (radicand zero, the two \
+                                              branches merge): axes 1 and 3 in line"
+                                    .into();
+                                "shoulder".into()
+                            }
                             x => x.into(),
                         };
                     }
@@ -745,7 +758,12 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
              centre's component along them, so (Rot(axis 1, theta) k2)·(wc − p1) = k2·(C − p1)"
                 .into(),
             Some(SHOULDER),
-            "the wrist centre on axis 1 (radicand zero: shoulder singularity)",
+            &format!(
+                "radicand zero (shoulder singularity, left and right merge): the wrist centre's \
+                 distance from axis 1 equals the shoulder offset |k2·(C − p1)| = |{}| (the \
+                 wrist centre on axis 1 when it is 0)",
+                scalar_text(&dot(&a2.dir, &sub(w, p1)))
+            ),
         )?;
         let q = a1.move_point(&pw, -1);
         // The centre: where axes 1 and 2 meet when they do (then |q - O| = |wc - O|), else the
@@ -823,7 +841,8 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
          k1·Rot(axis 2, theta) u = k1·(wc − O)"
             .into(),
         Some(SHOULDER),
-        "the wrist centre on axis 1 (shoulder singularity)",
+        "radicand zero (left and right merge): joint 2 at the extreme of the height \
+         k1·Rot(axis 2, theta) u, the wrist centre as high along axis 1 as it can be",
     )?;
     b.push(
         0,
@@ -897,7 +916,11 @@ fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), String> {
          k2·(C56 − p1)"
             .into(),
         Some(SHOULDER),
-        "radicand zero (shoulder singularity)",
+        &format!(
+            "radicand zero (shoulder singularity, left and right merge): the point where axes 5 \
+             and 6 meet at distance |k2·(C56 − p1)| = |{}| from axis 1",
+            scalar_text(&dot(k, &sub(&x56, p1)))
+        ),
     )?;
     let g6 = t.dir(&ax[5].dir);
     b.push(

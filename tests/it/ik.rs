@@ -882,3 +882,122 @@ fn solve_rows(
         env.pop();
     }
 }
+
+/// The shoulder singular sets: where a `shoulder` step's two roots merge. At the true
+/// configuration the step's equation `a cos q + b sin q = c` holds, and `b cos q − a sin q` is
+/// ± the square root of its radicand, with the branch's sign; it changes sign across the set.
+/// Configurations on the set are found by scanning another joint for a sign change and bisecting;
+/// there the solver flags a singular solution, every solution reproduces the pose and q is among
+/// them. `dqsym ik` states the condition.
+#[test]
+fn shoulder_singular_sets_merge_the_branches_and_are_stated() {
+    for (file, free) in [
+        ("puma560", None),
+        ("irb140", None),
+        ("kuka_kr5", None),
+        ("ur5", None),
+        ("stanford", None),
+        ("kuka_iiwa7", Some("theta3")),
+        ("panda", Some("theta7")),
+    ] {
+        let case = Case::new(file, free);
+        let r = load(&format!("{ROBOTS}{file}.toml"));
+        let (_, step) = case
+            .sol
+            .steps
+            .iter()
+            .enumerate()
+            .find(|(_, s)| s.branch.as_ref().is_some_and(|b| b.0 == "shoulder"))
+            .unwrap_or_else(|| panic!("{file}: no shoulder step"));
+        assert!(
+            step.singular.contains("left and right merge")
+                || step.singular.contains("shoulder singularity"),
+            "{file}: {}",
+            step.singular
+        );
+        let k = r
+            .variables
+            .iter()
+            .position(|v| *v == step.variable)
+            .expect("joint");
+        let dqsym::ik::Formula::Trig { a: sa, b: sb, .. } = &step.formula else {
+            panic!("{file}: the shoulder step is not a Trig form");
+        };
+        // The value of a formula part at configuration q (target, parameters, joints).
+        let at = |x: &dqsym::Scalar, q: &[f64]| -> f64 {
+            let t = pose(&case.c, q);
+            let mut env: Vec<(String, f64)> = case.env.clone();
+            for (rr, row) in dqsym::ik::TARGET_SYMBOLS.iter().enumerate() {
+                for (cc, s) in row.iter().enumerate() {
+                    env.push((s.to_string(), t[rr][cc]));
+                }
+            }
+            env.extend(r.variables.iter().cloned().zip(q.iter().copied()));
+            x.eval(&|n| env.iter().find(|(k, _)| k == n).map(|(_, v)| *v))
+                .unwrap_or(f64::NAN)
+        };
+        // b cos q - a sin q at configuration q.
+        let signed = |q: &[f64]| -> f64 {
+            let (a, b) = (at(sa, q), at(sb, q));
+            b * q[k].cos() - a * q[k].sin()
+        };
+        // Some joint turns freely at q (its step's arguments vanish): the solver returns
+        // representatives of the family, not q's own value.
+        let free_at = |q: &[f64]| {
+            case.sol.steps.iter().any(|s| match &s.formula {
+                dqsym::ik::Formula::Atan2 { y, x } => at(y, q).hypot(at(x, q)) < 1e-9,
+                dqsym::ik::Formula::Trig { a, b, .. } => at(a, q).hypot(at(b, q)) < 1e-9,
+                _ => false,
+            })
+        };
+        let mut rng = Rng::new(57);
+        let mut hits = 0;
+        let mut tries = 0;
+        while hits < 100 {
+            tries += 1;
+            assert!(tries < 2000, "{file}: the shoulder set was not met");
+            let mut q = random_q(&case.c, &mut rng);
+            let j = (k + tries) % q.len();
+            if Some(j) == case.free_k {
+                continue;
+            }
+            let f = |x: f64, q: &mut Vec<f64>| {
+                q[j] = x;
+                signed(q)
+            };
+            let grid: Vec<f64> = (0..=25).map(|i| -3.1 + 6.2 * f64::from(i) / 25.0).collect();
+            let Some(w) = grid.windows(2).find(|w| {
+                let (fa, fb) = (f(w[0], &mut q), f(w[1], &mut q));
+                fa.is_finite() && fb.is_finite() && fa * fb < 0.0
+            }) else {
+                continue;
+            };
+            let (mut lo, mut hi) = (w[0], w[1]);
+            let flo = f(lo, &mut q);
+            for _ in 0..56 {
+                let mid = 0.5 * (lo + hi);
+                if f(mid, &mut q) * flo > 0.0 {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            q[j] = 0.5 * (lo + hi);
+            let sols = case.solve(&q);
+            assert!(
+                !sols.is_empty(),
+                "{file}: no solution on the shoulder set at {q:?}"
+            );
+            assert!(
+                sols.iter().any(|s| s.singular),
+                "{file}: {q:?} on the shoulder set not flagged singular"
+            );
+            let qs: Vec<Vec<f64>> = sols.iter().map(|s| s.q.clone()).collect();
+            let found = case.check(&format!("{file} shoulder set"), &q, &qs);
+            // With a zero shoulder offset the set is the wrist centre on axis 1, where joint 1
+            // turns freely; on the Panda's (axes 1 and 3 in line) only theta1 + theta3 is fixed.
+            assert!(found || free_at(&q), "{file}: {q:?} not among {qs:?}");
+            hits += 1;
+        }
+    }
+}
