@@ -49,7 +49,7 @@ pub use scalar::{
     ScalarError, Sym, DEFAULT_MAX_EXPONENT,
 };
 pub use walk::{
-    mechanism_svg, walk_html, walk_markdown, walk_robot, walk_robot_chain, walk_script, walk_text,
-    ComponentTrace, Config, HalfAngle, KatexAssets, Mechanism, Motion, Step, SvgOptions, WalkError,
-    Walkthrough, Word, Words,
+    ik_walk_html, mechanism_svg, walk_html, walk_markdown, walk_robot, walk_robot_chain,
+    walk_script, walk_text, ComponentTrace, Config, HalfAngle, KatexAssets, Mechanism, Motion,
+    Step, SvgOptions, WalkError, Walkthrough, Word, Words,
 };

@@ -444,7 +444,7 @@ fn dispatch(cli: Cli) -> ExitCode {
                 ..
             }),
             _,
-        ) => walk_ik(&file, markdown, html.is_some() || config.is_some(), free),
+        ) => walk_ik(&file, markdown, html.as_deref(), config.as_deref(), free),
         (
             Some(Command::Walk {
                 file,
@@ -501,13 +501,19 @@ fn ik(
 }
 
 /// `dqsym walk ROBOT --ik`: the inverse kinematics derivation step by step.
-fn walk_ik(path: &std::path::Path, markdown: bool, html: bool, free: Option<String>) -> ExitCode {
+fn walk_ik(
+    path: &std::path::Path,
+    markdown: bool,
+    html: Option<&std::path::Path>,
+    config: Option<&str>,
+    free: Option<String>,
+) -> ExitCode {
     let fail = |m: String| {
         eprintln!("error: {m}");
         ExitCode::FAILURE
     };
-    if html {
-        return fail("walk --ik writes text or --markdown (no --html page yet)".into());
+    if config.is_some() && html.is_none() {
+        return fail("--config only applies to the --html page".to_owned());
     }
     let robot = match load_robot(path, &UrdfArgs::default()) {
         Ok(r) => r,
@@ -518,6 +524,32 @@ fn walk_ik(path: &std::path::Path, markdown: bool, html: bool, free: Option<Stri
         Ok(s) => s,
         Err(e) => return fail(e.to_string()),
     };
+    if let Some(out) = html {
+        let page = (|| -> Result<String, String> {
+            let md = dqsym::ik::ik_walk(&robot, &sol, true).map_err(|e| e.to_string())?;
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+            let w = if is_urdf(path) {
+                dqsym::walk_robot_chain(&robot)
+            } else {
+                dqsym::walk_robot(&text, &path.display().to_string(), &dqsym::eval_scalar_text)
+            }
+            .map_err(|e| e.to_string())?;
+            let cfg =
+                dqsym::Config::parse(config.unwrap_or("")).map_err(|e| format!("--config: {e}"))?;
+            let assets = katex_assets()?;
+            dqsym::ik_walk_html(&w, &sol, &md, &assets, &cfg).map_err(|e| e.to_string())
+        })();
+        return match page.and_then(|p| {
+            std::fs::write(out, p).map_err(|e| format!("cannot write {}: {e}", out.display()))
+        }) {
+            Ok(()) => {
+                eprintln!("wrote {}", out.display());
+                ExitCode::SUCCESS
+            }
+            Err(m) => fail(m),
+        };
+    }
     match dqsym::ik::ik_walk(&robot, &sol, markdown) {
         Ok(t) => {
             print!("{t}");

@@ -1001,3 +1001,85 @@ fn shoulder_singular_sets_merge_the_branches_and_are_stated() {
         }
     }
 }
+
+/// `walk --ik --html`: the page renders every formula with KaTeX in headless Chromium, and its
+/// solver, run by the page on the sliders' pose, lists solutions whose own poses (computed by
+/// the page) match the target.
+#[test]
+fn walk_ik_html_page_solves_in_the_browser() {
+    let chromium = std::env::var_os("PATH")
+        .and_then(|p| {
+            std::env::split_paths(&p)
+                .map(|d| d.join("chromium"))
+                .find(|c| c.is_file())
+        })
+        .unwrap_or_else(|| {
+            panic!("chromium is missing: run `bash scripts/test.sh`, which installs it")
+        });
+    let root = env!("CARGO_MANIFEST_DIR");
+    let artifacts = std::path::Path::new(root).join("artifacts");
+    std::fs::create_dir_all(&artifacts).expect("artifacts dir");
+    for (file, free) in [("puma560", None), ("ur5", None), ("panda", Some("theta7"))] {
+        let page = artifacts.join(format!("walk_ik_{file}.html"));
+        let mut args = vec![
+            "walk".to_string(),
+            format!("{ROBOTS}{file}.toml"),
+            "--ik".into(),
+            "--html".into(),
+            page.display().to_string(),
+        ];
+        if let Some(f) = free {
+            args.extend(["--free".to_string(), f.to_string()]);
+        }
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        crate::tools::dqsym_ok(&refs);
+        let html = std::fs::read_to_string(&page).expect("page");
+        assert!(html.contains("function dqsym_ik_step0("), "{file}");
+        let profile = crate::tools::temp_dir(&format!("chromium-ik-{file}"));
+        let d = std::process::Command::new(&chromium)
+            .args([
+                "--headless",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--disable-background-networking",
+                "--no-first-run",
+                "--disable-component-update",
+                "--disable-sync",
+                "--virtual-time-budget=5000",
+                "--dump-dom",
+            ])
+            .arg(format!("--user-data-dir={}", profile.display()))
+            .arg(format!("file://{}", page.display()))
+            .output()
+            .expect("chromium runs");
+        assert!(d.status.success(), "{}", String::from_utf8_lossy(&d.stderr));
+        let dom = String::from_utf8_lossy(&d.stdout);
+        let formulas = html.matches("data-tex=").count();
+        let rendered = dom.matches("class=\"katex\"").count();
+        assert!(
+            rendered >= formulas && formulas > 20,
+            "{file}: {rendered} of {formulas} rendered"
+        );
+        assert!(
+            !dom.contains("class=\"katex-error\""),
+            "{file}: a formula failed in KaTeX"
+        );
+        let count: usize = dom
+            .split("data-count=\"")
+            .nth(1)
+            .and_then(|s| s.split('"').next())
+            .and_then(|s| s.parse().ok())
+            .unwrap_or_else(|| panic!("{file}: the page's solver did not run"));
+        assert!(count >= 1, "{file}: no solution on the page");
+        let devs: Vec<f64> = dom
+            .split("data-dev=\"")
+            .skip(1)
+            // The page's own script holds the template `data-dev="${dev}"`.
+            .filter_map(|s| s.split('"').next().unwrap_or("").parse().ok())
+            .collect();
+        assert_eq!(devs.len(), count, "{file}: one row per solution");
+        for d in devs {
+            assert!(d < 1e-9, "{file}: a solution on the page misses by {d:e}");
+        }
+    }
+}
