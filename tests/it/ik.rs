@@ -742,26 +742,18 @@ fn walk_ik_shows_every_step_and_a_check() {
     crate::tools::katex_all(&formulas, "walk --ik --markdown");
 }
 
-/// The roots of one row `(q, a, b, c, n)` of the language's `ik(...)`, as `:help ik` states
-/// them: revolute `a cos q + b sin q = c` (n = 2: both roots; n = 1: `atan2(-a, b)`);
-/// prismatic `a q^2 + b q + c = 0`.
-fn row_roots(a: f64, b: f64, c: f64, n: usize, revolute: bool) -> Vec<f64> {
-    if revolute {
-        if n == 1 {
-            return vec![(-a).atan2(b)];
-        }
-        let rad = a * a + b * b - c * c;
-        if rad < -1e-9 {
-            return vec![];
-        }
-        let (phi, w) = (b.atan2(a), rad.max(0.0).sqrt().atan2(c));
-        vec![phi + w, phi - w]
-    } else if a == 0.0 {
-        vec![-c / b]
-    } else {
-        let rad = (b * b - 4.0 * a * c).max(0.0).sqrt();
-        vec![(-b + rad) / (2.0 * a), (-b - rad) / (2.0 * a)]
+/// The roots of one revolute row `(q, a, b, c, n)` of the language's `ik(...)`, as `:help ik`
+/// states them: `a cos q + b sin q = c`, n = 2: both roots; n = 1: `atan2(-a, b)`.
+fn row_roots(a: f64, b: f64, c: f64, n: usize) -> Vec<f64> {
+    if n == 1 {
+        return vec![(-a).atan2(b)];
     }
+    let rad = a * a + b * b - c * c;
+    if rad < -1e-9 {
+        return vec![];
+    }
+    let (phi, w) = (b.atan2(a), rad.max(0.0).sqrt().atan2(c));
+    vec![phi + w, phi - w]
 }
 
 #[test]
@@ -822,7 +814,7 @@ fn the_ik_builtin_gives_equations_whose_roots_reproduce_the_pose() {
                     base.push((s.to_string(), t[r][c]));
                 }
             }
-            let solved: Vec<String> = rows.iter().map(|r| format!("{}", ev_name(&r[0]))).collect();
+            let solved: Vec<String> = rows.iter().map(|r| ev_name(&r[0])).collect();
             for (name, v) in names.iter().zip(&q) {
                 if !solved.contains(name) {
                     base.push((name.clone(), *v));
@@ -863,11 +855,14 @@ fn ev_name(x: &dqsym::Scalar) -> String {
 
 type Env = Vec<(String, f64)>;
 
+/// A scalar's value in an environment.
+type EvalAt = dyn Fn(&dqsym::Scalar, &[(String, f64)]) -> f64;
+
 fn solve_rows(
     rows: &[Vec<dqsym::Scalar>],
     k: usize,
     env: &mut Env,
-    ev: &dyn Fn(&dqsym::Scalar, &[(String, f64)]) -> f64,
+    ev: &EvalAt,
     out: &mut Vec<Env>,
 ) {
     let Some(row) = rows.get(k) else {
@@ -876,7 +871,7 @@ fn solve_rows(
     };
     let (a, b, c) = (ev(&row[1], env), ev(&row[2], env), ev(&row[3], env));
     let n = ev(&row[4], env) as usize;
-    for v in row_roots(a, b, c, n, true) {
+    for v in row_roots(a, b, c, n) {
         env.push((ev_name(&row[0]), v));
         solve_rows(rows, k + 1, env, ev, out);
         env.pop();
