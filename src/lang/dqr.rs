@@ -16,7 +16,7 @@ use crate::{DualQuat, Frac, Quat, Scalar, TaskJacobian};
 use num_traits::Zero;
 
 /// The DQ Robotics built-ins, in the order `:help` lists them (after the core ones).
-pub(super) const TABLE: [Builtin; 48] = [
+pub(super) const TABLE: [Builtin; 60] = [
     b("P", "P(h)", 1, 1, "DQ Robotics' primary part P(h) (our real part)", "P(dh(theta1, d1, a1, 0))"),
     b("D", "D(h)", 1, 1, "DQ Robotics' dual part D(h): h = P(h) + eps D(h), as in our q + eps q_eps", "D(trans((l, 0, 0)))"),
     b("Re", "Re(h)", 1, 1, "the scalar parts w + eps w_eps", "Re(dh(theta1, d1, 0, 0))"),
@@ -63,8 +63,20 @@ pub(super) const TABLE: [Builtin; 48] = [
     b("translation_jacobian", "translation_jacobian(x, [q1, ...])", 2, 2, "d vec4(translation(x)) / dq of a unit pose, 4 x n", "translation_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
     b("line_jacobian", "line_jacobian(x, [q1, ...], direction)", 3, 3, "d vec8(l + eps t x l) / dq, l = r direction r* (direction in the frame x)", "line_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))"),
     b("plane_jacobian", "plane_jacobian(x, [q1, ...], normal)", 3, 3, "d vec8(n + eps t . n) / dq, n = r normal r* (normal in the frame x)", "plane_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))"),
-    b("distance_jacobian", "distance_jacobian(x, [q1, ...])", 2, 2, "d |translation(x)|^2 / dq, 1 x n", "distance_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("distance_jacobian", "distance_jacobian(x, [q1, ...])", 2, 2, "d |translation(x)|^2 / dq, 1 x n", "distance_jacobian(dh(theta1, 0, l, 0) * dh(t, 0, l, 0), [theta1, t])"),
+    b("point_to_point_distance_jacobian", "point_to_point_distance_jacobian(x, [q1, ...], p)", 3, 3, "d |t - p|^2 / dq, t = translation(x), p a workspace point, 1 x n", "point_to_point_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0))"),
+    b("point_to_line_distance_jacobian", "point_to_line_distance_jacobian(x, [q1, ...], line)", 3, 3, "d |t x l - m|^2 / dq for the workspace line l + eps m, 1 x n", "point_to_line_distance_jacobian(dh(theta1, 0, l, 0), [theta1], line((0, 1, 0), (1, 0, 0)))"),
+    b("point_to_plane_distance_jacobian", "point_to_plane_distance_jacobian(x, [q1, ...], plane)", 3, 3, "d (t . n - d) / dq for the workspace plane n + eps d, 1 x n", "point_to_plane_distance_jacobian(dh(theta1, 0, l, 0), [theta1], plane((1, 0, 0), (1, 0, 0)))"),
+    b("line_to_point_distance_jacobian", "line_to_point_distance_jacobian(x, [q1, ...], direction, p)", 4, 4, "d |p x l - m|^2 / dq: the workspace point p from the robot line l + eps t x l, l = r direction r*, 1 x n", "line_to_point_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 1, 0), (1, 0, 0))"),
+    b("plane_to_point_distance_jacobian", "plane_to_point_distance_jacobian(x, [q1, ...], normal, p)", 4, 4, "d (p . n - d) / dq: the workspace point p from the robot plane n + eps t . n, n = r normal r*, 1 x n", "plane_to_point_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0), (0, 1, 0))"),
+    b("line_to_line_distance_jacobian", "line_to_line_distance_jacobian(x, [q1, ...], direction, line)", 4, 4, "d of line_to_line_squared_distance(robot line, line) / dq, the robot line through t along r direction r*: a quotient, 1 x n", "line_to_line_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0), line((0, 3/5, 4/5), (0, 0, 1)))"),
+    b("line_to_line_angle_jacobian", "line_to_line_angle_jacobian(x, [q1, ...], direction, line)", 4, 4, "d |P(l) - P(line)|^2 / dq, l = r direction r* the robot line's direction, 1 x n", "line_to_line_angle_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0), line((0, 1, 0), (0, 0, 0)))"),
     b("pose_jacobian_derivative", "pose_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of the pose Jacobian, sum_k dJ/dq_k q_k_dot (rates named q_dot)", "pose_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("rotation_jacobian_derivative", "rotation_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of rotation_jacobian (rates named q_dot)", "rotation_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("translation_jacobian_derivative", "translation_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of translation_jacobian (rates named q_dot)", "translation_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("line_jacobian_derivative", "line_jacobian_derivative(x, [q1, ...], direction)", 3, 3, "the time derivative of line_jacobian (rates named q_dot)", "line_jacobian_derivative(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))"),
+    b("plane_jacobian_derivative", "plane_jacobian_derivative(x, [q1, ...], normal)", 3, 3, "the time derivative of plane_jacobian (rates named q_dot)", "plane_jacobian_derivative(dh(theta1, 0, l, 0), [theta1], (1, 0, 0))"),
+    b("distance_jacobian_derivative", "distance_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of distance_jacobian (rates named q_dot)", "distance_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, 0, l, 0), [theta1, t])"),
 ];
 
 fn dq_error(name: &str, e: DqError, a: &Arg) -> EvalError {
@@ -315,27 +327,79 @@ pub(super) fn call(name: &str, v: &[Arg]) -> Option<Result<Value>> {
                 })?;
                 Value::Scalar(phi)
             }
-            "pose_jacobian"
-            | "rotation_jacobian"
-            | "translation_jacobian"
-            | "line_jacobian"
-            | "plane_jacobian"
-            | "distance_jacobian"
-            | "pose_jacobian_derivative" => {
+            n if n.ends_with("_jacobian") || n.ends_with("_jacobian_derivative") => {
                 let x = unit_dq(name, a)?;
                 let vars = symbol_list(name, &v[1])?;
-                let dir = || vec3_arg(name, "the direction", &v[2]);
-                let task = match name {
+                let vec = |k: usize, what: &str| vec3_arg(name, what, &v[k]);
+                let workspace_line = |k: usize| -> Result<([Scalar; 3], [Scalar; 3])> {
+                    let l = line_arg(name, &v[k])?;
+                    Ok((l.real.vector_part(), point_on_line(&l)))
+                };
+                let workspace_plane =
+                    |k: usize| -> Result<([Scalar; 3], [Scalar; 3])> { plane_arg(name, &v[k]) };
+                let (kind, derivative) = match n.strip_suffix("_derivative") {
+                    Some(k) => (k, true),
+                    None => (n, false),
+                };
+                let task = match kind {
                     "pose_jacobian" => TaskJacobian::Pose,
                     "rotation_jacobian" => TaskJacobian::Rotation,
                     "translation_jacobian" => TaskJacobian::Translation,
-                    "line_jacobian" => TaskJacobian::Line(dir()?),
-                    "plane_jacobian" => TaskJacobian::Plane(dir()?),
+                    "line_jacobian" => TaskJacobian::Line(vec(2, "the direction")?),
+                    "plane_jacobian" => TaskJacobian::Plane(vec(2, "the normal")?),
                     "distance_jacobian" => TaskJacobian::Distance,
-                    _ => TaskJacobian::PoseDerivative,
+                    "point_to_point_distance_jacobian" => {
+                        TaskJacobian::PointToPoint(vec(2, "the point")?)
+                    }
+                    "point_to_line_distance_jacobian" => {
+                        let (l, p) = workspace_line(2)?;
+                        TaskJacobian::PointToLine(l, p)
+                    }
+                    "point_to_plane_distance_jacobian" => {
+                        let (nn, p) = workspace_plane(2)?;
+                        TaskJacobian::PointToPlane(nn, p)
+                    }
+                    "line_to_point_distance_jacobian" => {
+                        TaskJacobian::LineToPoint(vec(2, "the direction")?, vec(3, "the point")?)
+                    }
+                    "plane_to_point_distance_jacobian" => {
+                        TaskJacobian::PlaneToPoint(vec(2, "the normal")?, vec(3, "the point")?)
+                    }
+                    "line_to_line_distance_jacobian" | "line_to_line_angle_jacobian" => {
+                        let l0 = vec(2, "the direction")?;
+                        let (l, p) = workspace_line(3)?;
+                        if kind == "line_to_line_angle_jacobian" {
+                            TaskJacobian::LineToLineAngle(l0, l, p)
+                        } else {
+                            TaskJacobian::LineToLine(l0, l, p)
+                        }
+                    }
+                    _ => return Err(invalid(&format!("`{name}` is not implemented"), a.span)),
+                };
+                let task = if derivative {
+                    TaskJacobian::Derivative(Box::new(task))
+                } else {
+                    task
                 };
                 let refs: Vec<&str> = vars.iter().map(String::as_str).collect();
-                Value::Matrix(crate::task_jacobian(&x, &refs, &task))
+                let m = crate::task_jacobian(&x, &refs, &task);
+                match m.as_polynomial() {
+                    Some(rows) => Value::Matrix(rows.clone()),
+                    None => {
+                        let mut rows = Vec::with_capacity(m.num.len());
+                        for r in &m.num {
+                            let mut row = Vec::with_capacity(r.len());
+                            for e in r {
+                                row.push(
+                                    Frac::new(e.clone(), m.den.clone())
+                                        .map_err(|e| super::eval::scalar_error(e, a.span))?,
+                                );
+                            }
+                            rows.push(row);
+                        }
+                        value::quotient_matrix(rows)
+                    }
+                }
             }
             _ => return Err(invalid(&format!("`{name}` is not implemented"), a.span)),
         })
@@ -357,4 +421,37 @@ fn line_arg(func: &str, a: &Arg) -> Result<DualQuat<Scalar>> {
         ));
     }
     Ok(l)
+}
+
+/// A point of the line `l + eps m` (unit `l`): `l x m`, the point nearest the origin.
+fn point_on_line(l: &DualQuat<Scalar>) -> [Scalar; 3] {
+    crate::algebra::cross(&l.real.vector_part(), &l.dual.vector_part())
+}
+
+/// A plane `n + eps d` (pure primary part, unit `n`, scalar dual part) as its normal and the
+/// point `d n` on it.
+fn plane_arg(func: &str, a: &Arg) -> Result<([Scalar; 3], [Scalar; 3])> {
+    let pl = dq_like(func, a)?;
+    let n = pl.real.vector_part();
+    let unit = dqr::dot3(&n, &n) - Scalar::int(1);
+    let problem = if !pl.real.w.is_zero() {
+        Some(format!(
+            "P(plane) has the scalar part {}",
+            super::builtins::text(&pl.real.w)
+        ))
+    } else if !pl.dual.vector_part().iter().all(Zero::is_zero) {
+        Some("D(plane) has a vector part".to_owned())
+    } else if !unit.is_zero() {
+        Some(format!("|n|^2 - 1 = {}", super::builtins::text(&unit)))
+    } else {
+        None
+    };
+    if let Some(p) = problem {
+        return Err(invalid(
+            &format!("`{func}` needs a plane n + eps d (n pure and unit, d a scalar), but {p}"),
+            a.span,
+        ));
+    }
+    let d = pl.dual.w.clone();
+    Ok((n.clone(), [&n[0] * &d, &n[1] * &d, &n[2] * &d]))
 }
