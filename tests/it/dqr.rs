@@ -916,7 +916,7 @@ fn generated_task_jacobians_match_dqrobotics() {
         ),
     ];
     let mut script = String::from(
-        "import inspect, numpy as np\nfrom dqrobotics import *\nfrom dqrobotics.robot_modeling import DQ_SerialManipulatorDH, DQ_Kinematics as K\n",
+        "import inspect, numpy as np\nfrom dqrobotics import *\nfrom dqrobotics.robot_modeling import DQ_SerialManipulatorDH, DQ_Kinematics as K\nfrom dqrobotics.utils import DQ_Geometry as G\n",
     );
     let mut checks = String::new();
     for (key, kind) in &kinds {
@@ -978,6 +978,13 @@ for _ in range(5):
     want["pi2p"] = K.plane_to_point_distance_jacobian(Jpi, point)
     want["l2l"] = K.line_to_line_distance_jacobian(Jlx, robot_line_x, workspace_line)
     want["l2la"] = K.line_to_line_angle_jacobian(Jl, robot_line, workspace_line)
+    # The line-to-line distance Jacobian is also the central difference of the squared distance.
+    def l2l_distance(qq):
+        xx = robot.fkm(qq)
+        lq = Ad(rotation(xx), i_)
+        return G.line_to_line_squared_distance(lq + E_*cross(translation(xx), lq), workspace_line)
+    fd = np.array([[(l2l_distance(q + 1e-6*e) - l2l_distance(q - 1e-6*e)) / 2e-6 for e in np.eye(4)]])
+    assert np.allclose(fd, want["l2l"], atol=1e-6), ("l2l finite differences", fd, want["l2l"])
     Jdot = want["jdot"]
     want["jrdot"] = K.rotation_jacobian_derivative(Jdot)
     want["jtdot"] = K.translation_jacobian_derivative(J, Jdot, x, qd)
