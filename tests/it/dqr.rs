@@ -5,6 +5,7 @@
 
 use super::tools::run_python;
 use dqsym::{dqexp, dqr, DualQuat, Quat, Scalar};
+use std::process::Command;
 
 fn s(x: &str) -> Scalar {
     Scalar::sym(x)
@@ -1166,3 +1167,266 @@ wp = plane((2/3, -2/3, 1/3), (1/2, 1/3, -1))
         }
     }
 }
+
+/// The interpolation script of [`generated_interpolation_matches_an_independent_sclerp`]: ScLERP
+/// from `q0` to `q1 = q0 rel` (`rel` a screw of angle theta and slide d about the axis
+/// (2/3, 1/3, -2/3) through the point (a, b, c)), its derivative in t, DQ Robotics' decoupled
+/// `pow` and the screw power of `rel`, with t symbolic and psi = t theta.
+const INTERPOLATION: &str = "syms a b c d e phi t psi theta
+q0 = rot((0, 0, 1), phi) * trans((e, 0, 0));
+rel = screw((2/3, 1/3, -2/3), (a, b, c), theta, d);
+q1 = q0 * rel;
+s = sclerp(q0, q1, t, psi)
+sd = sclerpdot(q0, q1, t, psi)
+p = pow(rel, t, psi)
+sp = screwpow(rel, t, psi)
+";
+
+/// The symbols every generated interpolation function may take, in the order of the input lines.
+const INTERPOLATION_SYMBOLS: [&str; 9] = ["a", "b", "c", "d", "e", "phi", "psi", "t", "theta"];
+
+/// The argument names of the generated function `name` (`pub fn s(a: f64, ...)`,
+/// `void s(double a, ..., double s[8])`, `def s(a, ...)`).
+fn generated_args(code: &str, name: &str) -> Vec<String> {
+    let line = code
+        .lines()
+        .find(|l| {
+            [
+                format!("pub fn {name}("),
+                format!("void {name}("),
+                format!("def {name}("),
+            ]
+            .iter()
+            .any(|p| l.starts_with(p.as_str()))
+        })
+        .unwrap_or_else(|| panic!("no function {name} in\n{code}"));
+    let inner = &line[line.find('(').unwrap() + 1..line.find(')').unwrap()];
+    inner
+        .split(',')
+        .map(|a| {
+            a.trim()
+                .trim_start_matches("double ")
+                .split(':')
+                .next()
+                .unwrap()
+                .trim()
+        })
+        .filter(|a| !a.contains('['))
+        .map(str::to_owned)
+        .collect()
+}
+
+#[test]
+fn generated_interpolation_matches_an_independent_sclerp() {
+    // The script's interpolation functions emitted by `dqsym --format rust|c|python`, compiled
+    // (rustc and gcc with warnings as errors) or run (NumPy), called with t and psi = t theta at
+    // random parameters, and checked by an independent NumPy oracle: the matrix of sclerp(t) is
+    // T0 expm(t X) (X the 4x4 twist of the screw, built from its axis, point, angle and slide),
+    // that of screwpow(rel, t) is expm(t X), sclerp(0) = q0 exactly, sclerpdot is the central
+    // difference of the generated sclerp and the body twist 2 s* s' is constant in t, and pow
+    // is dqrobotics' DQ.pow of rel (its decoupled power).
+    let names = ["s", "sd", "p", "sp"];
+    let dir = crate::tools::temp_dir("interpolation");
+    let script = dir.join("interp.dq");
+    std::fs::write(&script, INTERPOLATION).unwrap();
+    let script = script.to_str().unwrap();
+    let code = |format: &str| crate::tools::dqsym_ok(&["--format", format, "run", script]);
+    // Input lines: the nine symbols, at t, t + h, t - h, 0 and 1 for each random point.
+    let h = 1e-6;
+    let mut rng = crate::common::Rng::new(11);
+    let mut input = String::new();
+    for _ in 0..5 {
+        let base: Vec<f64> = vec![
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(0.3, 2.8),
+        ];
+        let (t, theta) = (rng.range(0.05, 0.95), rng.range(0.3, 2.8));
+        for tt in [t, t + h, t - h, 0.0, 1.0] {
+            let mut v = base.clone();
+            v.extend([tt * theta, tt, theta]);
+            let line: Vec<String> = v.iter().map(|x| format!("{x:?}")).collect();
+            input.push_str(&(line.join(" ") + "\n"));
+        }
+    }
+    let index = |a: &str| INTERPOLATION_SYMBOLS.iter().position(|s| *s == a).unwrap();
+    let mut results = Vec::new();
+
+    // Rust.
+    let rust = code("rust");
+    let mut main = String::from(
+        "\nfn main() {\n    let mut text = String::new();\n    std::io::Read::read_to_string(&mut std::io::stdin(), &mut text).unwrap();\n    for line in text.lines() {\n        let v: Vec<f64> = line.split_whitespace().map(|x| x.parse().unwrap()).collect();\n        let mut out: Vec<f64> = Vec::new();\n",
+    );
+    for n in names {
+        let call: Vec<String> = generated_args(&rust, n)
+            .iter()
+            .map(|a| format!("v[{}]", index(a)))
+            .collect();
+        main.push_str(&format!(
+            "        out.extend({n}({}).{n});\n",
+            call.join(", ")
+        ));
+    }
+    main.push_str("        let words: Vec<String> = out.iter().map(|x| format!(\"{x:?}\")).collect();\n        println!(\"{}\", words.join(\" \"));\n    }\n}\n");
+    let src = dir.join("interp.rs");
+    std::fs::write(&src, rust + &main).unwrap();
+    let exe = dir.join("interp_rs");
+    crate::tools::compile_rust_clean(&src, &exe, false, "the generated interpolation (Rust)");
+    results.push((
+        "rust",
+        crate::tools::run(Command::new(&exe), &input, "generated Rust"),
+    ));
+
+    // C.
+    let c = code("c");
+    let mut main = String::from(
+        "\n#include <stdio.h>\nint main(void)\n{\n    double v[9];\n    for (;;) {\n        for (int i = 0; i < 9; i++)\n            if (scanf(\"%lf\", &v[i]) != 1) return 0;\n        double out[32];\n",
+    );
+    for (k, n) in names.iter().enumerate() {
+        let call: Vec<String> = generated_args(&c, n)
+            .iter()
+            .map(|a| format!("v[{}]", index(a)))
+            .collect();
+        main.push_str(&format!(
+            "        {n}({}, out + {});\n",
+            call.join(", "),
+            8 * k
+        ));
+    }
+    main.push_str("        for (int k = 0; k < 32; k++) printf(\"%.17g \", out[k]);\n        printf(\"\\n\");\n    }\n}\n");
+    let src = dir.join("interp.c");
+    std::fs::write(&src, c + &main).unwrap();
+    let exe = dir.join("interp_c");
+    let mut gcc = Command::new("gcc");
+    gcc.args(["-std=c99", "-Wall", "-Wextra", "-Werror", "-o"])
+        .arg(&exe)
+        .arg(&src)
+        .arg("-lm");
+    crate::tools::run(
+        gcc,
+        "",
+        "gcc -std=c99 -Werror on the generated interpolation",
+    );
+    results.push((
+        "c",
+        crate::tools::run(Command::new(&exe), &input, "generated C"),
+    ));
+
+    // Python (NumPy, one vectorized call per function).
+    let py = code("python");
+    let mut driver =
+        String::from("\nimport sys\ndata = np.loadtxt(sys.stdin, ndmin=2)\ncols = []\n");
+    for n in names {
+        let call: Vec<String> = generated_args(&py, n)
+            .iter()
+            .map(|a| format!("data[:, {}]", index(a)))
+            .collect();
+        driver.push_str(&format!("cols.append({n}({})[{n:?}])\n", call.join(", ")));
+    }
+    driver.push_str("for row in np.concatenate(cols, axis=1):\n    print(' '.join(repr(float(x)) for x in row))\n");
+    results.push(("python", run_python(&(py + &driver), &input, "numpy")));
+
+    // The oracle reads `language;inputs;outputs` lines.
+    let mut lines = String::new();
+    for (lang, out) in &results {
+        let outs: Vec<&str> = out.lines().collect();
+        let ins: Vec<&str> = input.lines().collect();
+        assert_eq!(
+            outs.len(),
+            ins.len(),
+            "{lang}: one output line per input line"
+        );
+        for (i, o) in ins.iter().zip(outs) {
+            lines.push_str(&format!("{lang};{i};{o}\n"));
+        }
+    }
+    let checked = run_python(SCLERP_ORACLE, &lines, "dqrobotics");
+    assert_eq!(
+        checked.trim(),
+        "5 5 5",
+        "random points checked per language"
+    );
+}
+
+/// The independent ScLERP of [`generated_interpolation_matches_an_independent_sclerp`]: 4x4
+/// matrices and a matrix exponential (Taylor series with scaling and squaring), quaternions
+/// from rotation matrices, and dqrobotics' `DQ.pow`.
+const SCLERP_ORACLE: &str = r#"
+import sys, numpy as np
+from dqrobotics import DQ, vec8
+import dqrobotics as dqr
+
+def expm(A):
+    s = max(0, int(np.ceil(np.log2(max(np.abs(A).sum(), 1e-300)))) + 1)
+    B = A / 2**s
+    E, term = np.eye(4), np.eye(4)
+    for k in range(1, 25):
+        term = term @ B / k
+        E = E + term
+    for _ in range(s):
+        E = E @ E
+    return E
+
+def hat(w):
+    return np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+
+def qm(a, b):
+    w1, x1, y1, z1 = a; w2, x2, y2, z2 = b
+    return np.array([w1*w2-x1*x2-y1*y2-z1*z2, w1*x2+x1*w2+y1*z2-z1*y2,
+                     w1*y2-x1*z2+y1*w2+z1*x2, w1*z2+x1*y2-y1*x2+z1*w2])
+def qc(a): return np.array([a[0], -a[1], -a[2], -a[3]])
+def dm(a, b): return np.concatenate([qm(a[:4], b[:4]), qm(a[:4], b[4:]) + qm(a[4:], b[:4])])
+
+def matrix(q):
+    w, x, y, z = q[:4]
+    R = np.array([[1-2*(y*y+z*z), 2*(x*y-w*z), 2*(x*z+w*y)],
+                  [2*(x*y+w*z), 1-2*(x*x+z*z), 2*(y*z-w*x)],
+                  [2*(x*z-w*y), 2*(y*z+w*x), 1-2*(x*x+y*y)]])
+    T = np.eye(4); T[:3, :3] = R; T[:3, 3] = (2 * qm(q[4:], qc(q[:4])))[1:]
+    return T
+
+def dq_of(T):
+    # A rotation of angle below pi: w = sqrt(1 + trace)/2 > 0.
+    R = T[:3, :3]
+    w = np.sqrt(1 + np.trace(R)) / 2
+    r = np.array([w, (R[2, 1] - R[1, 2]) / (4*w), (R[0, 2] - R[2, 0]) / (4*w), (R[1, 0] - R[0, 1]) / (4*w)])
+    return np.concatenate([r, 0.5 * qm(np.array([0, *T[:3, 3]]), r)])
+
+n = np.array([2, 1, -2]) / 3
+counts = {}
+rows = [l.rstrip("\n").split(";") for l in sys.stdin if l.strip()]
+for i in range(0, len(rows), 5):
+    group = rows[i:i+5]
+    lang = group[0][0]
+    ins = [np.array([float(x) for x in g[1].split()]) for g in group]
+    outs = [np.array([float(x) for x in g[2].split()]) for g in group]
+    a, b, c, d, e, phi, psi, t, theta = ins[0]
+    point = np.array([a, b, c])
+    X = np.zeros((4, 4)); X[:3, :3] = hat(theta * n); X[:3, 3] = -np.cross(theta * n, point) + d * n
+    T0 = np.eye(4); T0[:3, :3] = [[np.cos(phi), -np.sin(phi), 0], [np.sin(phi), np.cos(phi), 0], [0, 0, 1]]
+    T0[:3, 3] = T0[:3, :3] @ np.array([e, 0, 0])
+    rel = dq_of(expm(X))
+    for inp, out in zip(ins, outs):
+        tt = inp[7]
+        s, sd, p, sp = out[:8], out[8:16], out[16:24], out[24:32]
+        for what, got, want in (("sclerp", matrix(s), T0 @ expm(tt * X)),
+                                ("screwpow", matrix(sp), expm(tt * X)),
+                                ("pow", p, vec8(dqr.pow(DQ(rel), tt)))):
+            if not np.allclose(got, want, atol=1e-9):
+                raise SystemExit(f"{lang} {what} at t={tt}: {got} vs {want}")
+        # The body twist 2 s* s' is the constant 2 screwlog(rel), the same at every t.
+        xi = 2 * dm(np.concatenate([qc(s[:4]), qc(s[4:])]), sd)
+        xi0 = 2 * dm(np.concatenate([qc(outs[0][:4]), qc(outs[0][4:])]), outs[0][8:16])
+        if not np.allclose(xi, xi0, atol=1e-9):
+            raise SystemExit(f"{lang} body twist at t={tt}: {xi} vs {xi0}")
+    if not np.allclose(outs[3][:8], dq_of(T0), atol=1e-12):
+        raise SystemExit(f"{lang} sclerp(0) = {outs[3][:8]}, q0 = {dq_of(T0)}")
+    fd = (outs[1][:8] - outs[2][:8]) / 2e-6
+    if not np.allclose(outs[0][8:16], fd, atol=1e-6):
+        raise SystemExit(f"{lang} sclerpdot {outs[0][8:16]} vs central difference {fd}")
+    counts[lang] = counts.get(lang, 0) + 1
+print(counts.get("rust", 0), counts.get("c", 0), counts.get("python", 0))
+"#;
