@@ -59,8 +59,9 @@ pub fn ad<T: Ring>(a: &DualQuat<T>, x: &DualQuat<T>) -> DualQuat<T> {
     a * x * &a.conjugate()
 }
 
-/// `Adsharp(a, x) = sharp(a) x conj(a)`: the image of a pure point `x` (the translation
-/// enters twice, `a` and `sharp(a)` disagree in the sign of the dual part).
+/// `Adsharp(a, x) = sharp(a) x conj(a)`: for a unit `a` and a plane `x = n + ε d`, the plane
+/// moved by `a`, `n' + ε (d + t · n')` with `n' = r n r*` (see [`transform_plane`]). (`Ad`
+/// would give the dual part `d + ε t × n'`, not a plane.)
 pub fn adsharp<T: Ring>(a: &DualQuat<T>, x: &DualQuat<T>) -> DualQuat<T> {
     sharp(a) * x * &a.conjugate()
 }
@@ -218,6 +219,13 @@ pub fn line_to_line_cos<T: Ring>(l1: &DualQuat<T>, l2: &DualQuat<T>) -> T {
 /// The line `q l q*` (= `Ad(q, l)`): the line `l` carried by the unit DQ `q`.
 pub fn transform_line<T: Ring>(q: &DualQuat<T>, l: &DualQuat<T>) -> DualQuat<T> {
     ad(q, l)
+}
+
+/// The plane `n + ε d` carried by the unit DQ `q = r + ε (1/2) t r`: `Adsharp(q, π) =
+/// n' + ε (d + t · n')`, `n' = r n r*`, the plane through the moved points (DQ Robotics moves
+/// planes with `Adsharp`, lines with `Ad`).
+pub fn transform_plane<T: Ring>(q: &DualQuat<T>, plane: &DualQuat<T>) -> DualQuat<T> {
+    adsharp(q, plane)
 }
 
 /// DQ Robotics' `C4`: `vec4(r*) = C4 vec4(r)`.

@@ -40,7 +40,7 @@ pub(super) const TABLE: [Builtin; 60] = [
     b("qdot", "qdot(q, xi)", 2, 2, "1/2 xi q, the derivative of q under the spatial twist xi", "qdot(rot((0, 0, 1), theta1), (0, 0, 0, 1))"),
     b("tplus", "tplus(h)", 1, 1, "h P(h)*, the translation factor 1 + eps t/2 of a unit DQ", "tplus(dh(theta1, d1, a1, alpha1))"),
     b("Ad", "Ad(a, x)", 2, 2, "the adjoint a x conj(a) (moves lines, twists and directions by a)", "Ad(rot((0, 0, 1), theta1), (0, 1, 0, 0))"),
-    b("Adsharp", "Adsharp(a, x)", 2, 2, "sharp(a) x conj(a) (moves the pure point x by a)", "Adsharp(trans((l, 0, 0)), (0, 0, 1, 0))"),
+    b("Adsharp", "Adsharp(a, x)", 2, 2, "sharp(a) x conj(a): moves the plane x = n + eps d by a, to n' + eps (d + t . n'), n' = r n r* (Ad moves lines)", "Adsharp(rot((0, 0, 1), theta1, (l, 0, 0)), plane((1, 0, 0), (d1, 0, 0)))"),
     b("hamiplus4", "hamiplus4(q)", 1, 1, "the 4x4 matrix with vec4(q p) = hamiplus4(q) vec4(p)", "hamiplus4(rot((0, 0, 1), theta1))"),
     b("haminus4", "haminus4(q)", 1, 1, "the 4x4 matrix with vec4(p q) = haminus4(q) vec4(p)", "haminus4(rot((0, 0, 1), theta1))"),
     b("hamiplus8", "hamiplus8(h)", 1, 1, "the 8x8 matrix with vec8(h g) = hamiplus8(h) vec8(g)", "hamiplus8(trans((l, 0, 0)))"),

@@ -173,6 +173,13 @@ def ours(op, a, b, k):
     if op == "p2p": return np.array([np.sum((a[1:4] - b[1:4])**2)])
     if op == "p2l": return np.array([np.sum((np.cross(a[1:4], b[1:4]) - b[5:8])**2)])
     if op == "p2pi": return np.array([a[1:4] @ b[1:4] - b[4]])
+    if op == "plane_move":
+        w, x, y, z = a[:4]
+        R = np.array([[1-2*(y*y+z*z), 2*(x*y-w*z), 2*(x*z+w*y)],
+                      [2*(x*y+w*z), 1-2*(x*x+z*z), 2*(y*z-w*x)],
+                      [2*(x*z-w*y), 2*(y*z+w*x), 1-2*(x*x+y*y)]])
+        n = R @ b[1:4]
+        return np.array([0, *n, b[4] + transl(a)[1:] @ n, 0, 0, 0])
     if op == "l2l":
         c = np.cross(a[1:4], b[1:4]); dd = a[1:4] @ b[5:8] + a[5:8] @ b[1:4]
         return np.array([dd**2 / (c @ c)])
@@ -189,7 +196,7 @@ def theirs(op, a, b, k):
          "rotation_axis": lambda: vec4(dqr.rotation_axis(A)), "log": lambda: v(dqr.log(A)),
          "exp": lambda: v(dqr.exp(A)), "pow": lambda: v(dqr.pow(A, k[0])),
          "tplus": lambda: v(dqr.tplus(A)), "Ad": lambda: v(dqr.Ad(A, B)),
-         "Adsharp": lambda: v(dqr.Adsharp(A, B)), "hamiplus4": lambda: hamiplus4(A).ravel(),
+         "Adsharp": lambda: v(dqr.Adsharp(A, B)), "plane_move": lambda: v(dqr.Adsharp(A, B)), "hamiplus4": lambda: hamiplus4(A).ravel(),
          "haminus4": lambda: haminus4(A).ravel(), "hamiplus8": lambda: hamiplus8(A).ravel(),
          "haminus8": lambda: haminus8(A).ravel(), "cross": lambda: v(dqr.cross(A, B)),
          "dot": lambda: v(dqr.dot(A, B)),
@@ -425,6 +432,14 @@ fn every_operation_matches_numpy_and_dqrobotics_at_random_points() {
             vec![],
             vec![ev(&dqr::point_to_plane_distance(&u, &pl), &e)],
         );
+        // The plane through (e, f, d) with normal `axis()`, moved by q1.
+        add(
+            "plane_move",
+            a.clone(),
+            dq8(&pl, &e),
+            vec![],
+            dq8(&dqr::transform_plane(&q1, &pl), &e),
+        );
         let (num, den) = dqr::line_to_line_squared_distance(&x, &y);
         add(
             "l2l",
@@ -531,6 +546,37 @@ mod exact {
             prop_assert_eq!(&moved, &dqr::line(&dir, &q.transform_point(&p)));
             // Ad(q) x = q x q* (conj conjugates both parts).
             prop_assert_eq!(moved, &q * &l * q.conjugate());
+        }
+
+        #[test]
+        fn adsharp_moves_planes_like_points(q in screw_strategy(), k in 0usize..5,
+                                            x in -3i64..4) {
+            // A plane through (x, b, 1) with unit normal n: Adsharp(q, plane) is the plane
+            // through the moved point with the rotated normal, a plane again (pure unit normal,
+            // scalar dual part); signed distances of moved points to it are unchanged; and
+            // q plane q* (Ad) is not a plane (its dual part has the vector t x n').
+            let p = [Scalar::int(x), s("b"), Scalar::int(1)];
+            let pl = dqr::plane(&ax(k), &p);
+            let moved = dqr::transform_plane(&q, &pl);
+            let n = (&q.real * &Quat::from_vector(&ax(k)) * q.real.conjugate()).vector_part();
+            prop_assert_eq!(&moved, &dqr::plane(&n, &q.transform_point(&p)));
+            prop_assert!(moved.real.w.is_zero_value());
+            prop_assert!(moved.dual.vector_part().iter().all(Scalar::is_zero_value));
+            let nn = dqr::dot3(&moved.real.vector_part(), &moved.real.vector_part());
+            prop_assert!((nn - Scalar::int(1)).is_zero_value());
+            let u = [s("u"), s("v"), Scalar::int(x)];
+            prop_assert_eq!(
+                dqr::point_to_plane_distance(&q.transform_point(&u), &moved),
+                dqr::point_to_plane_distance(&u, &pl)
+            );
+            let t = dqr::translation(&q).vector_part();
+            let ad = dqr::ad(&q, &pl);
+            let txn = [
+                &t[1] * &n[2] - &t[2] * &n[1],
+                &t[2] * &n[0] - &t[0] * &n[2],
+                &t[0] * &n[1] - &t[1] * &n[0],
+            ];
+            prop_assert_eq!(ad.dual.vector_part(), txn);
         }
 
         #[test]
@@ -1430,3 +1476,99 @@ for i in range(0, len(rows), 5):
     counts[lang] = counts.get(lang, 0) + 1
 print(counts.get("rust", 0), counts.get("c", 0), counts.get("python", 0))
 "#;
+
+#[test]
+fn task_jacobians_are_dq_robotics_chain_rule_exactly() {
+    // DQ Robotics builds the translation, line and plane Jacobians from the pose Jacobian
+    // J = [J_P; J_D] by the chain rule (DQ_Kinematics.cpp): Jt = 2 haminus4(r*) J_D +
+    // 2 hamiplus4(D(x)) C4 J_P; for a direction l0 (normal n0), Jrx = haminus4(l0 r*) J_P +
+    // hamiplus4(r l0) C4 J_P; the line's moment rows crossmatrix4(lx)^T Jt + crossmatrix4(t) Jrx;
+    // the plane's distance row vec4(nz)^T Jt + vec4(t)^T Jrz. Written here with the exact
+    // Hamilton matrices on the spatial RRPR arm, they equal the task Jacobians entry for entry.
+    use dqsym::{task_jacobian, TaskJacobian};
+    let robot = dqsym::parse_robot(RRPR, "rrpr.toml", &dqsym::eval_scalar_text).expect("robot");
+    let x = robot.forward();
+    let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
+    let n = vars.len();
+    let j = task_jacobian(&x, &vars, &TaskJacobian::Pose).num;
+    let (jp, jd) = (j[..4].to_vec(), j[4..].to_vec());
+    type M = Vec<Vec<Scalar>>;
+    let zero = || Scalar::int(0);
+    let times = |m: &[[Scalar; 4]; 4], b: &M| -> M {
+        (0..4)
+            .map(|i| {
+                (0..n)
+                    .map(|c| (0..4).fold(zero(), |acc, k| acc + &m[i][k] * &b[k][c]))
+                    .collect()
+            })
+            .collect()
+    };
+    let square = |a: &[[Scalar; 4]; 4], b: &[[Scalar; 4]; 4]| -> [[Scalar; 4]; 4] {
+        std::array::from_fn(|i| {
+            std::array::from_fn(|c| (0..4).fold(zero(), |acc, k| acc + &a[i][k] * &b[k][c]))
+        })
+    };
+    let plus = |a: &M, b: &M| -> M {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| x.iter().zip(y).map(|(p, q)| p + q).collect())
+            .collect()
+    };
+    let scaled = |a: &M, k: i64| -> M {
+        a.iter()
+            .map(|row| row.iter().map(|e| e * Scalar::int(k)).collect())
+            .collect()
+    };
+    let crossmatrix4 = |a: &Quat<Scalar>| -> [[Scalar; 4]; 4] {
+        let [_, x, y, z] = a.components();
+        [
+            [zero(), zero(), zero(), zero()],
+            [zero(), zero(), -z.clone(), y.clone()],
+            [zero(), z, zero(), -x.clone()],
+            [zero(), -y, x, zero()],
+        ]
+    };
+    let transpose = |m: [[Scalar; 4]; 4]| -> [[Scalar; 4]; 4] {
+        std::array::from_fn(|i| std::array::from_fn(|c| m[c][i].clone()))
+    };
+    let rot = x.real.clone();
+    let t = dqr::translation(&x);
+    let c4 = dqr::c4::<Scalar>();
+    let jt = plus(
+        &scaled(&times(&dqr::haminus4(&rot.conjugate()), &jd), 2),
+        &scaled(&times(&square(&dqr::hamiplus4(&x.dual), &c4), &jp), 2),
+    );
+    assert_eq!(jt, task_jacobian(&x, &vars, &TaskJacobian::Translation).num);
+    let row = |v: &Quat<Scalar>, m: &M| -> Vec<Scalar> {
+        let v = v.components();
+        (0..n)
+            .map(|c| (0..4).fold(zero(), |acc, k| acc + &v[k] * &m[k][c]))
+            .collect()
+    };
+    for d0 in [[r(0, 1), r(0, 1), r(1, 1)], [r(2, 3), r(1, 3), r(-2, 3)]] {
+        let l0 = Quat::from_vector(&d0);
+        let jrx = plus(
+            &times(&dqr::haminus4(&(&l0 * &rot.conjugate())), &jp),
+            &times(&square(&dqr::hamiplus4(&(&rot * &l0)), &c4), &jp),
+        );
+        let lx = &rot * &l0 * rot.conjugate();
+        // Line: [Jrx; crossmatrix4(lx)^T Jt + crossmatrix4(t) Jrx].
+        let jmx = plus(
+            &times(&transpose(crossmatrix4(&lx)), &jt),
+            &times(&crossmatrix4(&t), &jrx),
+        );
+        let line: M = jrx.iter().chain(&jmx).cloned().collect();
+        assert_eq!(
+            line,
+            task_jacobian(&x, &vars, &TaskJacobian::Line(d0.clone())).num
+        );
+        // Plane: [Jrz; vec4(nz)^T Jt + vec4(t)^T Jrz; 0; 0; 0].
+        let mut plane = jrx.clone();
+        plane.push(plus(&vec![row(&lx, &jt)], &vec![row(&t, &jrx)]).remove(0));
+        plane.extend((0..3).map(|_| vec![zero(); n]));
+        assert_eq!(
+            plane,
+            task_jacobian(&x, &vars, &TaskJacobian::Plane(d0)).num
+        );
+    }
+}
