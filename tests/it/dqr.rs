@@ -1572,3 +1572,64 @@ fn task_jacobians_are_dq_robotics_chain_rule_exactly() {
         );
     }
 }
+
+#[test]
+fn walkthrough_explains_twists_with_the_geometric_jacobian() {
+    // `dqsym walk examples/twists.dq`: each twist step gives omega = P(xi) and
+    // t-dot = D(xi) - t x omega, exactly the joint's column (t-dot; omega) of the geometric
+    // Jacobian; the body twist step gives P and D of 2 q* qdot; the ScLERP derivative step gives
+    // the constant body twist 2 screwlog(home* goal). Snapshot of the text.
+    use dqsym::{Step, Word};
+    let path = format!("{}/examples/twists.dq", env!("CARGO_MANIFEST_DIR"));
+    let src = std::fs::read_to_string(&path).expect("example");
+    let w = dqsym::walk_script(&src, "examples/twists.dq").expect("walkthrough");
+    let mut session = dqsym::Session::new();
+    session.run(&dqsym::parse(&src).unwrap()).unwrap();
+    let dq = |n: &str| match session.get(n) {
+        Some(dqsym::Value::DualQuat(d)) => d.clone(),
+        other => panic!("{n}: {other:?}"),
+    };
+    let q = dq("q");
+    let gj = dqsym::geometric_jacobian(&q, &["theta1", "theta2"]);
+    let tuples = |name: &str| -> Vec<Vec<Scalar>> {
+        let meaning = w
+            .steps
+            .iter()
+            .find_map(|s| match s {
+                Step::Define {
+                    name: n, meaning, ..
+                } if n == name => Some(meaning.clone()),
+                _ => None,
+            })
+            .unwrap_or_else(|| panic!("no step defines {name}"));
+        meaning
+            .0
+            .iter()
+            .filter_map(|w| match w {
+                Word::Tuple(v) => Some(v.clone()),
+                _ => None,
+            })
+            .collect()
+    };
+    for (j, name) in ["xi1", "xi2"].iter().enumerate() {
+        let t = tuples(name);
+        assert_eq!(t.len(), 2, "{name}: omega and t-dot");
+        let column: Vec<Scalar> = (0..6).map(|k| gj[k][j].clone()).collect();
+        assert_eq!(t[1], column[..3].to_vec(), "{name}: t-dot");
+        assert_eq!(t[0], column[3..].to_vec(), "{name}: omega");
+    }
+    let xb = dq("xib2");
+    assert_eq!(
+        tuples("xib2"),
+        vec![
+            xb.real.vector_part().to_vec(),
+            xb.dual.vector_part().to_vec()
+        ]
+    );
+    let body = dqexp::screw_log(&(dq("home").conjugate() * dq("goal")))
+        .unwrap()
+        .scale(&Scalar::int(2));
+    assert_eq!(tuples("sd"), vec![body.components().to_vec()]);
+    let text = dqsym::walk_text(&w).expect("text");
+    crate::common::snapshot_settings().bind(|| insta::assert_snapshot!("walk_twists_text", text));
+}
