@@ -91,12 +91,21 @@ fn vec3_arg(func: &str, what: &str, a: &Arg) -> Result<[Scalar; 3]> {
         Value::DualQuat(d) if d.real.w.is_zero() && d.dual.is_zero() => {
             return Ok(d.real.vector_part())
         }
+        // A column or row of three, such as `vec3(...)`.
+        Value::Matrix(m) => {
+            let flat: Vec<&Scalar> = m.iter().flatten().collect();
+            if let [x, y, z] = flat.as_slice() {
+                if m.len() == 1 || m.len() == 3 {
+                    return Ok([(*x).clone(), (*y).clone(), (*z).clone()]);
+                }
+            }
+        }
         _ => {}
     }
     Err(type_error(
         func,
         what,
-        "a vector (x, y, z) or a pure quaternion (0, x, y, z)",
+        "a vector (x, y, z), a pure quaternion (0, x, y, z) or a column of three",
         &a.value,
         a.span,
     ))

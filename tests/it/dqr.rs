@@ -173,6 +173,14 @@ def ours(op, a, b, k):
     if op == "p2p": return np.array([np.sum((a[1:4] - b[1:4])**2)])
     if op == "p2l": return np.array([np.sum((np.cross(a[1:4], b[1:4]) - b[5:8])**2)])
     if op == "p2pi": return np.array([a[1:4] @ b[1:4] - b[4]])
+    if op == "vec3": return a[1:4]
+    if op == "vec4": return a[:4]
+    if op == "vec6": return np.concatenate([a[1:4], a[5:8]])
+    if op == "vec8": return a
+    if op == "twist": return 2 * m(b, conj(a))
+    if op == "bodytwist": return 2 * m(conj(a), b)
+    if op == "qdot": return 0.5 * m(b, a)
+    if op == "l2la": return np.array([np.arccos(np.clip(a[1:4] @ b[1:4], -1, 1))])
     if op == "plane_move":
         w, x, y, z = a[:4]
         R = np.array([[1-2*(y*y+z*z), 2*(x*y-w*z), 2*(x*z+w*y)],
@@ -196,7 +204,9 @@ def theirs(op, a, b, k):
          "rotation_axis": lambda: vec4(dqr.rotation_axis(A)), "log": lambda: v(dqr.log(A)),
          "exp": lambda: v(dqr.exp(A)), "pow": lambda: v(dqr.pow(A, k[0])),
          "tplus": lambda: v(dqr.tplus(A)), "Ad": lambda: v(dqr.Ad(A, B)),
-         "Adsharp": lambda: v(dqr.Adsharp(A, B)), "plane_move": lambda: v(dqr.Adsharp(A, B)), "hamiplus4": lambda: hamiplus4(A).ravel(),
+         "Adsharp": lambda: v(dqr.Adsharp(A, B)), "plane_move": lambda: v(dqr.Adsharp(A, B)),
+         "vec3": lambda: vec3(A), "vec4": lambda: vec4(A), "vec6": lambda: vec6(A), "vec8": lambda: vec8(A),
+         "l2la": lambda: np.array([G.line_to_line_angle(A, B)]), "hamiplus4": lambda: hamiplus4(A).ravel(),
          "haminus4": lambda: haminus4(A).ravel(), "hamiplus8": lambda: hamiplus8(A).ravel(),
          "haminus8": lambda: haminus8(A).ravel(), "cross": lambda: v(dqr.cross(A, B)),
          "dot": lambda: v(dqr.dot(A, B)),
@@ -432,6 +442,44 @@ fn every_operation_matches_numpy_and_dqrobotics_at_random_points() {
             vec![],
             vec![ev(&dqr::point_to_plane_distance(&u, &pl), &e)],
         );
+        // Vectorizations, twists and back, the angle between two lines.
+        add(
+            "vec3",
+            a.clone(),
+            vec![],
+            vec![],
+            evs(&q1.real.vector_part(), &e),
+        );
+        add("vec4", a.clone(), vec![], vec![], q4(&q1.real, &e));
+        add("vec6", a.clone(), vec![], vec![], evs(&dqr::vec6(&q1), &e));
+        add("vec8", a.clone(), vec![], vec![], dq8(&q1, &e));
+        let qd = DualQuat::from_components(q1.components().map(|c| c.diff("theta") + c.diff("d")));
+        let xi = dqexp::twist(&q1, &qd, false);
+        add("twist", a.clone(), dq8(&qd, &e), vec![], dq8(&xi, &e));
+        let xib = dqexp::twist(&q1, &qd, true);
+        add("bodytwist", a.clone(), dq8(&qd, &e), vec![], dq8(&xib, &e));
+        add(
+            "qdot",
+            a.clone(),
+            dq8(&xi, &e),
+            vec![],
+            dq8(&dqexp::from_twist(&q1, &xi, false), &e),
+        );
+        let x0 = dqr::line(&[r(1, 1), r(0, 1), r(0, 1)], &[s("e"), two.clone(), s("f")]);
+        let spun0 = dqr::ad(
+            &DualQuat::rotation(&[r(0, 1), r(0, 1), r(1, 1)], &s("phi")),
+            &x0,
+        );
+        let angle = dqr::line_to_line_cos(&x0, &spun0)
+            .as_cos_of_angle()
+            .expect("cos(phi)");
+        add(
+            "l2la",
+            dq8(&x0, &e),
+            dq8(&spun0, &e),
+            vec![],
+            vec![ev(&angle, &e)],
+        );
         // The plane through (e, f, d) with normal `axis()`, moved by q1.
         add(
             "plane_move",
@@ -666,6 +714,62 @@ exp(log(g)) - g
 screwlog(g)
 screwpow(g, t, psi)
 bodytwist(g, diff(g, theta))
+"
+    );
+    // Every other operation on the screw q (and some on g): parts and conjugates, the norm and
+    // inverse, Hamilton matrices, vectorizations, products of lines, planes, twists, and the
+    // task Jacobians by theta and d.
+    let src = format!(
+        "{src}P(q)
+D(q)
+Re(q)
+Im(q)
+conj(q)
+sharp(q)
+norm(2*q)
+inv(q)
+rotation(q)
+tplus(q)
+rotation_angle(g)
+translation(g)
+hamiplus4(q)
+haminus4(q)
+hamiplus8(q)
+haminus8(q)
+vec3(translation(q))
+vec4(q)
+vec6(screwlog(q))
+vec8(q)
+l = line((0, 0, 1), (e, 0, 0))
+m = Ad(q, line((1, 0, 0), (0, e, 0)))
+cross(l, m)
+dot(l, m)
+line_to_line_angle(line((1, 0, 0), (0, 0, 0)), Ad(rot((0, 0, 1), phi), line((1, 0, 0), (0, 0, e))))
+plane((2/3, 1/3, -2/3), (a, b, c))
+Adsharp(q, plane((0, 0, 1), (e, 0, 0)))
+point_to_plane_distance((e, 0, 0), Adsharp(q, plane((0, 0, 1), (0, 0, 0))))
+point_to_point_squared_distance(vec3(translation(q)), (e, 0, 0))
+twist(q, diff(q, theta))
+qdot(q, twist(q, diff(q, d)))
+pose_jacobian(q, [theta, d])
+rotation_jacobian(q, [theta, d])
+translation_jacobian(q, [theta, d])
+line_jacobian(q, [theta, d], (0, 0, 1))
+plane_jacobian(q, [theta, d], (0, 0, 1))
+distance_jacobian(q, [theta, d])
+point_to_point_distance_jacobian(q, [theta, d], (e, 0, 0))
+point_to_line_distance_jacobian(q, [theta, d], line((0, 0, 1), (e, 0, 0)))
+point_to_plane_distance_jacobian(q, [theta, d], plane((0, 0, 1), (0, 0, e)))
+line_to_point_distance_jacobian(q, [theta, d], (0, 0, 1), (e, 0, 0))
+plane_to_point_distance_jacobian(q, [theta, d], (0, 0, 1), (e, 0, 0))
+line_to_line_distance_jacobian(q, [theta, d], (1, 0, 0), line((0, 0, 1), (e, 0, 0)))
+line_to_line_angle_jacobian(q, [theta, d], (0, 0, 1), line((1, 0, 0), (0, 0, 0)))
+pose_jacobian_derivative(q, [theta, d])
+rotation_jacobian_derivative(q, [theta, d])
+translation_jacobian_derivative(q, [theta, d])
+line_jacobian_derivative(q, [theta, d], (0, 0, 1))
+plane_jacobian_derivative(q, [theta, d], (0, 0, 1))
+distance_jacobian_derivative(q, [theta, d])
 "
     );
     let src = src.as_str();
