@@ -5,7 +5,9 @@
 //! Left out: `pinv` and `dec_mult` (decompositional products, numeric conveniences with no
 //! closed-form use), `generalized_jacobian`, `Q4`/`Q8` (derivatives of `exp` divided by
 //! `sin(phi/2)/(phi/2)`, which is not a polynomial), and every `is_*` predicate with a
-//! threshold (exactness makes them `unit(q)` and the Plücker constraints).
+//! threshold (exactness makes them `unit(q)` and the Plücker constraints), the `*_residual`
+//! functions (a moving workspace primitive) and the line-segment distances (a numeric choice
+//! of the closest elements).
 
 use super::builtins::{b, dq_like, invalid, symbol_list, type_error, unit_dq, Arg, Builtin};
 use super::eval::{op_error, EvalError, Result};
@@ -16,7 +18,7 @@ use crate::{DualQuat, Frac, Quat, Scalar, TaskJacobian};
 use num_traits::Zero;
 
 /// The DQ Robotics built-ins, in the order `:help` lists them (after the core ones).
-pub(super) const TABLE: [Builtin; 60] = [
+pub(super) const TABLE: [Builtin; 66] = [
     b("P", "P(h)", 1, 1, "DQ Robotics' primary part P(h) (our real part)", "P(dh(theta1, d1, a1, 0))"),
     b("D", "D(h)", 1, 1, "DQ Robotics' dual part D(h): h = P(h) + eps D(h), as in our q + eps q_eps", "D(trans((l, 0, 0)))"),
     b("Re", "Re(h)", 1, 1, "the scalar parts w + eps w_eps", "Re(dh(theta1, d1, 0, 0))"),
@@ -38,6 +40,10 @@ pub(super) const TABLE: [Builtin; 60] = [
     b("twist", "twist(q, qdot)", 2, 2, "the spatial twist xi = 2 qdot q* (qdot = 1/2 xi q): angular velocity + eps (linear velocity of the point at the origin)", "twist(rot((0, 0, 1), theta1), diff(rot((0, 0, 1), theta1), theta1))"),
     b("bodytwist", "bodytwist(q, qdot)", 2, 2, "the body twist xi = 2 q* qdot (qdot = 1/2 q xi)", "bodytwist(rot((0, 0, 1), theta1), diff(rot((0, 0, 1), theta1), theta1))"),
     b("qdot", "qdot(q, xi)", 2, 2, "1/2 xi q, the derivative of q under the spatial twist xi", "qdot(rot((0, 0, 1), theta1), (0, 0, 0, 1))"),
+    b("normalize", "normalize(h)", 1, 1, "DQ Robotics' normalize h norm(h)^-1, a unit DQ (exact when |P(h)|^2 is a rational)", "normalize(2*trans((l, 0, 0)) + eps*(1, 0, 0, 0))"),
+    b("C4", "C4()", 0, 0, "the 4x4 matrix with vec4(conj(q)) = C4() vec4(q)", "C4()"),
+    b("C8", "C8()", 0, 0, "the 8x8 matrix with vec8(conj(h)) = C8() vec8(h)", "C8()"),
+    b("crossmatrix4", "crossmatrix4(a)", 1, 1, "the 4x4 matrix with vec4(cross(a, b)) = crossmatrix4(a) vec4(b) for pure a, b", "crossmatrix4((0, l, 0, 1))"),
     b("tplus", "tplus(h)", 1, 1, "h P(h)*, the translation factor 1 + eps t/2 of a unit DQ", "tplus(dh(theta1, d1, a1, alpha1))"),
     b("Ad", "Ad(a, x)", 2, 2, "the adjoint a x conj(a) (moves lines, twists and directions by a)", "Ad(rot((0, 0, 1), theta1), (0, 1, 0, 0))"),
     b("Adsharp", "Adsharp(a, x)", 2, 2, "sharp(a) x conj(a): moves the plane x = n + eps d by a, to n' + eps (d + t . n'), n' = r n r* (Ad moves lines)", "Adsharp(rot((0, 0, 1), theta1, (l, 0, 0)), plane((1, 0, 0), (d1, 0, 0)))"),
@@ -57,6 +63,8 @@ pub(super) const TABLE: [Builtin; 60] = [
     b("point_to_line_squared_distance", "point_to_line_squared_distance(p, line)", 2, 2, "|p x l - m|^2 for the line l + eps m", "point_to_line_squared_distance((l, 0, 0), line((0, 0, 1), (0, 0, d1)))"),
     b("point_to_plane_distance", "point_to_plane_distance(p, plane)", 2, 2, "the signed distance p . n - d from the plane n + eps d", "point_to_plane_distance((l, 0, d1), plane((0, 0, 1), (0, 0, 1)))"),
     b("line_to_line_squared_distance", "line_to_line_squared_distance(l1, l2)", 2, 2, "D(l1 . l2)^2 / |P(l1 x l2)|^2, or |D(l1 x l2)|^2 for parallel lines (a quotient when symbolic)", "line_to_line_squared_distance(line((1, 0, 0), (0, 0, 0)), line((0, 1, 0), (0, 0, d1)))"),
+    b("point_projected_in_line", "point_projected_in_line(p, line)", 2, 2, "the projection l x m + (p . l) l of the point p on the line l + eps m, a pure quaternion", "point_projected_in_line((l, 1, 0), line((1, 0, 0), (0, 0, d1)))"),
+    b("closest_points_between_lines", "closest_points_between_lines(l1, l2)", 2, 2, "the closest points of two non-parallel lines, the rows of a 2x3 matrix (a quotient by |l1 x l2|^2 when symbolic); DQ Robotics returns a pair", "closest_points_between_lines(line((1, 0, 0), (0, 0, 0)), line((0, 1, 0), (l, 0, d1)))"),
     b("line_to_line_angle", "line_to_line_angle(l1, l2)", 2, 2, "acos(P(l1 . l2)), read exactly when that is cos of an angle", "line_to_line_angle(line((1, 0, 0), (0, 0, 0)), Ad(rot((0, 0, 1), theta1), line((1, 0, 0), (0, 0, l))))"),
     b("pose_jacobian", "pose_jacobian(x, [q1, q2, ...])", 2, 2, "d vec8(x) / dq, 8 x n (the same as jacobian)", "pose_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
     b("rotation_jacobian", "rotation_jacobian(x, [q1, ...])", 2, 2, "d vec4(P(x)) / dq of a unit pose, 4 x n", "rotation_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
@@ -168,6 +176,11 @@ pub(super) fn call(name: &str, v: &[Arg]) -> Option<Result<Value>> {
         return None;
     }
     Some((|| -> Result<Value> {
+        match name {
+            "C4" => return Ok(square4(dqr::c4())),
+            "C8" => return Ok(Value::Matrix(dqr::c8())),
+            _ => {}
+        }
         let a = &v[0];
         Ok(match name {
             "P" | "rotation" => {
@@ -245,6 +258,40 @@ pub(super) fn call(name: &str, v: &[Arg]) -> Option<Result<Value>> {
                 Value::DualQuat(dqexp::from_twist(&q, &xi, false))
             }
             "tplus" => Value::DualQuat(dqr::tplus(&unit_dq(name, a)?)),
+            "normalize" => Value::DualQuat(
+                dqexp::normalize(&dq_like(name, a)?).map_err(|e| dq_error(name, e, a))?,
+            ),
+            "crossmatrix4" => square4(dqr::crossmatrix4(&Quat::from_vector(&vec3_arg(
+                name,
+                "the argument",
+                a,
+            )?))),
+            "point_projected_in_line" => {
+                let p = vec3_arg(name, "the point", a)?;
+                let l = line_arg(name, &v[1])?;
+                Value::Quat(Quat::from_vector(&dqr::point_projected_in_line(&p, &l)))
+            }
+            "closest_points_between_lines" => {
+                let (l1, l2) = (line_arg(name, a)?, line_arg(name, &v[1])?);
+                let (p1, p2, den) = dqr::closest_points_between_lines(&l1, &l2).ok_or_else(|| {
+                    invalid(
+                        &format!("`{name}`: the lines are parallel, so their closest points are not unique"),
+                        a.span,
+                    )
+                })?;
+                let mut rows = Vec::with_capacity(2);
+                for p in [p1, p2] {
+                    let mut row = Vec::with_capacity(3);
+                    for x in p {
+                        row.push(
+                            Frac::new(x, den.clone())
+                                .map_err(|e| super::eval::scalar_error(e, a.span))?,
+                        );
+                    }
+                    rows.push(row);
+                }
+                value::quotient_matrix(rows)
+            }
             "Ad" | "Adsharp" => {
                 let g = dq_like(name, a)?;
                 let x = dq_arg(name, &v[1])?;

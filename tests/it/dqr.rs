@@ -173,6 +173,22 @@ def ours(op, a, b, k):
     if op == "p2p": return np.array([np.sum((a[1:4] - b[1:4])**2)])
     if op == "p2l": return np.array([np.sum((np.cross(a[1:4], b[1:4]) - b[5:8])**2)])
     if op == "p2pi": return np.array([a[1:4] @ b[1:4] - b[4]])
+    if op == "normalize":
+        nP = np.sqrt(a[:4] @ a[:4])
+        return m(a, np.array([1 / nP, 0, 0, 0, -(a[:4] @ a[4:]) / nP**3, 0, 0, 0]))
+    if op == "crossmatrix4":
+        x, y, z = a[1:4]
+        return np.array([[0, 0, 0, 0], [0, 0, -z, y], [0, z, 0, -x], [0, -y, x, 0]]).ravel()
+    if op == "proj":
+        l, mm = b[1:4], b[5:8]
+        return pure(np.cross(l, mm) + (a[1:4] @ l) * l)
+    if op == "closest":
+        # Minimize |c1 + s l1 - c2 - u l2| over s, u (c the points nearest the origin).
+        l1, l2 = a[1:4], b[1:4]
+        c1, c2 = np.cross(l1, a[5:8]), np.cross(l2, b[5:8])
+        A = np.array([[l1 @ l1, -(l1 @ l2)], [l1 @ l2, -(l2 @ l2)]])
+        s_, u = np.linalg.solve(A, [(c2 - c1) @ l1, (c2 - c1) @ l2])
+        return np.concatenate([c1 + s_ * l1, c2 + u * l2])
     if op == "vec3": return a[1:4]
     if op == "vec4": return a[:4]
     if op == "vec6": return np.concatenate([a[1:4], a[5:8]])
@@ -206,7 +222,10 @@ def theirs(op, a, b, k):
          "tplus": lambda: v(dqr.tplus(A)), "Ad": lambda: v(dqr.Ad(A, B)),
          "Adsharp": lambda: v(dqr.Adsharp(A, B)), "plane_move": lambda: v(dqr.Adsharp(A, B)),
          "vec3": lambda: vec3(A), "vec4": lambda: vec4(A), "vec6": lambda: vec6(A), "vec8": lambda: vec8(A),
-         "l2la": lambda: np.array([G.line_to_line_angle(A, B)]), "hamiplus4": lambda: hamiplus4(A).ravel(),
+         "l2la": lambda: np.array([G.line_to_line_angle(A, B)]),
+         "normalize": lambda: v(dqr.normalize(A)), "crossmatrix4": lambda: dqr.crossmatrix4(A).ravel(),
+         "proj": lambda: vec4(G.point_projected_in_line(A, B)),
+         "closest": lambda: np.concatenate([vec3(p) for p in G.closest_points_between_lines(A, B)]), "hamiplus4": lambda: hamiplus4(A).ravel(),
          "haminus4": lambda: haminus4(A).ravel(), "hamiplus8": lambda: hamiplus8(A).ravel(),
          "haminus8": lambda: haminus8(A).ravel(), "cross": lambda: v(dqr.cross(A, B)),
          "dot": lambda: v(dqr.dot(A, B)),
@@ -480,6 +499,48 @@ fn every_operation_matches_numpy_and_dqrobotics_at_random_points() {
             vec![],
             vec![ev(&angle, &e)],
         );
+        // normalize, crossmatrix4, the projection on a line and the closest points of two lines.
+        let h = scaled.clone()
+            + DualQuat::from_real_and_dual(
+                Quat::zero(),
+                Quat::new(s("a"), s("b"), r(0, 1), s("c")),
+            );
+        add(
+            "normalize",
+            dq8(&h, &e),
+            vec![],
+            vec![],
+            dq8(&dqexp::normalize(&h).unwrap(), &e),
+        );
+        let pq = Quat::vector(s("a"), s("b"), s("c"));
+        add(
+            "crossmatrix4",
+            dq8(&DualQuat::from_real(pq.clone()), &e),
+            vec![],
+            vec![],
+            flat4(&dqr::crossmatrix4(&pq), &e),
+        );
+        let proj = dqr::point_projected_in_line(&pq.vector_part(), &y);
+        add(
+            "proj",
+            dq8(&DualQuat::from_real(pq.clone()), &e),
+            dq8(&y, &e),
+            vec![],
+            pt(&proj, &e),
+        );
+        let (c1, c2, den) = dqr::closest_points_between_lines(&x, &y).unwrap();
+        let dv = ev(&den, &e);
+        add(
+            "closest",
+            dq8(&x, &e),
+            dq8(&y, &e),
+            vec![],
+            evs(&c1, &e)
+                .into_iter()
+                .chain(evs(&c2, &e))
+                .map(|z| z / dv)
+                .collect(),
+        );
         // The plane through (e, f, d) with normal `axis()`, moved by q1.
         add(
             "plane_move",
@@ -639,6 +700,38 @@ mod exact {
                 prop_assert_eq!(&m, &ab[i]);
             }
         }
+    }
+
+    #[test]
+    fn closest_points_and_projections_are_on_their_lines() {
+        // Two skew lines through symbolic points: each closest point lies on its line, their
+        // difference is perpendicular to both, and its squared length is the line-to-line
+        // squared distance (all multiplied through by the denominator |l1 x l2|^2). The
+        // projection of a point lies on the line, the offset perpendicular to it.
+        let l1 = dqr::line(&ax(2), &[s("a"), s("b"), s("c")]);
+        let l2 = dqr::line(&ax(3), &[s("e"), s("f"), Scalar::int(1)]);
+        let (p1, p2, den) = dqr::closest_points_between_lines(&l1, &l2).unwrap();
+        let on = |p: &[Scalar; 3], l: &DualQuat<Scalar>, k: &Scalar| {
+            let c = dqsym::dqr::cross(&DualQuat::from_real(Quat::from_vector(p)), l).real;
+            // p x l = k m (cross of pure quaternions is the vector cross product).
+            assert_eq!(c.vector_part(), l.dual.vector_part().map(|x| x * k));
+        };
+        on(&p1, &l1, &den);
+        on(&p2, &l2, &den);
+        let diff: [Scalar; 3] = std::array::from_fn(|i| &p1[i] - &p2[i]);
+        assert!(dqr::dot3(&diff, &l1.real.vector_part()).is_zero_value());
+        assert!(dqr::dot3(&diff, &l2.real.vector_part()).is_zero_value());
+        let (num, dn) = dqr::line_to_line_squared_distance(&l1, &l2);
+        assert_eq!(dn, den);
+        assert_eq!(dqr::dot3(&diff, &diff), num * &den);
+        let p = [s("u"), s("v"), Scalar::int(2)];
+        let proj = dqr::point_projected_in_line(&p, &l1);
+        on(&proj, &l1, &Scalar::int(1));
+        let off: [Scalar; 3] = std::array::from_fn(|i| &p[i] - &proj[i]);
+        assert!(dqr::dot3(&off, &l1.real.vector_part()).is_zero_value());
+        // Parallel lines have no unique closest points.
+        let l3 = dqr::line(&ax(2), &[s("e"), Scalar::int(0), Scalar::int(1)]);
+        assert!(dqr::closest_points_between_lines(&l1, &l3).is_none());
     }
 
     #[test]
