@@ -312,7 +312,7 @@ fn fk_task_jacobians_from_the_command_line() {
         ("line_to_line_angle:0,3/5,4/5,1/2,0,0", "Jd", 1),
         ("point_to_line_derivative:0,3/5,4/5,1/2,0,0", "Jddot", 1),
     ] {
-        for format in ["plain", "sympy", "latex", "rust"] {
+        for format in ["plain", "sympy", "latex", "rust", "c", "python"] {
             let out = run(&[
                 "--format",
                 format,

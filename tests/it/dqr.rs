@@ -1235,9 +1235,31 @@ for _ in range(5):
     want["jldot"] = K.line_jacobian_derivative(J, Jdot, x, k_, qd)
     want["jpidot"] = K.plane_jacobian_derivative(J, Jdot, x, k_, qd)
     want["jddot"] = K.distance_jacobian_derivative(J, Jdot, x, qd)
+    def call(f, at):
+        return f(*[np.array([at[p]]) for p in inspect.signature(f).parameters])
+    def shifted(h):
+        at = dict(vals)
+        for k, name in enumerate(["theta1", "theta2", "d3", "theta4"]):
+            at[name] += h * qd[k]
+        return at
+    # The generated code against central differences of itself: the pose Jacobian against
+    # d dq / dq_j, and each time derivative against d/ds J(q + s qdot) of the generated J.
+    h = 1e-6
+    for j, name in enumerate(["theta1", "theta2", "d3", "theta4"]):
+        up, down = dict(vals), dict(vals)
+        up[name] += h
+        down[name] -= h
+        fd = (call(fk_j, up)["dq"][0] - call(fk_j, down)["dq"][0]) / (2 * h)
+        assert np.allclose(fd, np.asarray(call(fk_j, vals)["j"][0])[:, j], atol=1e-7), ("j fd", j)
+    for dkey, key in [("jdot", "j"), ("jrdot", "jr"), ("jtdot", "jt"), ("jldot", "jl"),
+                      ("jpidot", "jpi"), ("jddot", "jd")]:
+        f = globals()["fk_" + key]
+        fd = (np.asarray(call(f, shifted(h))[key][0]) - np.asarray(call(f, shifted(-h))[key][0])) / (2 * h)
+        got = np.asarray(call(globals()["fk_" + dkey], vals)[dkey][0])
+        assert np.allclose(fd, got, atol=1e-7), (dkey, fd, got)
     def check(key, f, field=None):
         global count
-        r = f(*[np.array([vals[p]]) for p in inspect.signature(f).parameters])
+        r = call(f, vals)
         assert np.allclose(r["dq"][0], vec8(x), atol=1e-12), ("dq", r["dq"][0], vec8(x))
         got = np.asarray(r[field or key][0])
         if field == "jd_num":
