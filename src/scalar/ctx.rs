@@ -276,10 +276,73 @@ pub(crate) fn charge(units: u64) -> Result<(), ScalarError> {
 
 /// `Err(Cancelled)` when the entered context is cancelled: for long loops that charge no work.
 pub(crate) fn check_cancelled() -> Result<(), ScalarError> {
+    #[cfg(test)]
+    if test_hook::look() {
+        return Err(ScalarError::Cancelled);
+    }
     STATE.with(|s| match &*s.borrow() {
         Some(st) if st.ctx.is_cancelled() => Err(ScalarError::Cancelled),
         _ => Ok(()),
     })
+}
+
+/// How many steps of a long loop pass between two looks at the cancel flag. A step is one
+/// term operation (a pair of a product, a term of a sum or of a sort's merge), which with
+/// coefficients of dozens of digits costs microseconds (tens of them in a debug build): a
+/// cancelled loop ends within a millisecond or so, and the look costs nothing measurable.
+const POLL_STEPS: u32 = 64;
+
+/// The cancel flag, looked at every [`POLL_STEPS`] steps of a long loop: a sum, a product, the
+/// sort of a product's terms. Work is charged for such a loop before it starts (the budget
+/// is known then); cancellation must be noticed inside it too, since one product of large
+/// scalars runs for seconds.
+#[derive(Default)]
+pub(crate) struct Poll(u32);
+
+impl Poll {
+    /// One step of the loop; `Err(Cancelled)` once the context is cancelled.
+    pub(crate) fn step(&mut self) -> Result<(), ScalarError> {
+        self.0 += 1;
+        if self.0 < POLL_STEPS {
+            return Ok(());
+        }
+        self.0 = 0;
+        check_cancelled()
+    }
+}
+
+/// For tests: counts the looks at the cancel flag on this thread and cancels at a chosen one,
+/// so that a test proves deterministically that a loop looks often enough and that its
+/// cancellation reaches the result.
+#[cfg(test)]
+pub(crate) mod test_hook {
+    use std::cell::Cell;
+
+    thread_local! {
+        static LOOKS: Cell<u64> = const { Cell::new(0) };
+        static CANCEL_AT: Cell<Option<u64>> = const { Cell::new(None) };
+    }
+
+    /// Starts counting from zero; `cancel_at`: the look (1-based) from which on the context
+    /// counts as cancelled.
+    pub(crate) fn reset(cancel_at: Option<u64>) {
+        LOOKS.with(|l| l.set(0));
+        CANCEL_AT.with(|c| c.set(cancel_at));
+    }
+
+    /// The looks since [`reset`].
+    pub(crate) fn looks() -> u64 {
+        LOOKS.with(Cell::get)
+    }
+
+    /// Counts one look; whether it is cancelled.
+    pub(crate) fn look() -> bool {
+        let n = LOOKS.with(|l| {
+            l.set(l.get() + 1);
+            l.get()
+        });
+        CANCEL_AT.with(|c| c.get().is_some_and(|at| n >= at))
+    }
 }
 
 #[cfg(test)]
