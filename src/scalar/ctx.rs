@@ -349,6 +349,9 @@ pub(crate) mod test_hook {
 mod tests {
     use super::*;
     use crate::Scalar;
+    use num_bigint::BigInt;
+    use num_rational::BigRational;
+    use num_traits::Pow;
 
     #[test]
     fn entering_nests_and_restores() {
@@ -381,5 +384,66 @@ mod tests {
         let p = &s * &s;
         assert_eq!(p.as_error(), Some(&ScalarError::Cancelled));
         assert_eq!(check_cancelled(), Err(ScalarError::Cancelled));
+    }
+    #[test]
+    fn a_large_product_and_the_sort_of_its_terms_look_at_the_cancel_flag_every_few_steps() {
+        let _in = Context::new().with_term_limit(1_000_000).enter();
+        let s = Scalar::sym("x") + Scalar::sym("y") + Scalar::sym("z");
+        let (a, b) = (s.pow(15), s.pow(16));
+        let pairs = (a.len() * b.len()) as u64;
+        // More pairs than one sorted run holds: the terms are sorted in runs, then merged.
+        assert!(pairs > 2 * super::super::RUN as u64, "{pairs} pairs");
+        test_hook::reset(None);
+        let p = &a * &b;
+        let looks = test_hook::looks();
+        // (x + y + z)^31: C(33, 2) terms; at x = y = z = 1 it is 3^31, at (1, 2, -1) 2^31.
+        assert_eq!(p.len(), 528);
+        let at = |v: [i64; 3]| {
+            p.subs("x", &Scalar::int(v[0]))
+                .subs("y", &Scalar::int(v[1]))
+                .subs("z", &Scalar::int(v[2]))
+        };
+        let power =
+            |n: i64| Scalar::rational(BigRational::from_integer(BigInt::from(n).pow(31u32)));
+        assert_eq!(at([1, 1, 1]), power(3));
+        assert_eq!(at([1, 2, -1]), power(2));
+        // One look per 64 term pairs formed, then more while the pairs are sorted and merged:
+        // no stretch of more than 64 steps goes unwatched.
+        let product_looks = pairs / u64::from(POLL_STEPS);
+        assert!(
+            looks > product_looks + pairs / 2 / u64::from(POLL_STEPS),
+            "{looks} looks at the cancel flag for {pairs} pairs"
+        );
+        // Cancelled at any of them, the product is the cancelled error value: at the first, in
+        // the middle of forming the pairs, as the sort starts, and at the last look, which is
+        // in the final merge of sorted runs.
+        for cancel_at in [
+            1,
+            product_looks / 2,
+            product_looks + 1,
+            product_looks + 3,
+            looks - 1,
+            looks,
+        ] {
+            test_hook::reset(Some(cancel_at));
+            let p = &a * &b;
+            let seen = test_hook::looks();
+            test_hook::reset(None);
+            assert_eq!(
+                p.as_error(),
+                Some(&ScalarError::Cancelled),
+                "cancelled at look {cancel_at}"
+            );
+            assert_eq!(
+                seen, cancel_at,
+                "the product stops at the look that sees the cancel"
+            );
+        }
+        // A long sum looks too.
+        let q = s.pow(30);
+        test_hook::reset(Some(1));
+        let sum = &p + &q;
+        test_hook::reset(None);
+        assert_eq!(sum.as_error(), Some(&ScalarError::Cancelled));
     }
 }
