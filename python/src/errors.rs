@@ -9,7 +9,6 @@ use dqsym::{EvalError as LibEvalError, EvalErrorKind, ParseError as LibParseErro
 use pyo3::create_exception;
 use pyo3::exceptions::{PyException, PyKeyboardInterrupt};
 use pyo3::prelude::*;
-use pyo3::types::{PyInt, PyString};
 
 create_exception!(
     dqsym,
@@ -92,11 +91,11 @@ impl Attrs<'_> {
     /// Every attribute by its Python name.
     fn table(&self, py: Python<'_>) -> [(&'static str, PyObject); 7] {
         let text = |t: Option<&str>| match t {
-            Some(t) => PyString::new(py, t).into_any().unbind(),
+            Some(t) => t.into_pyobject(py).unwrap().into_any().unbind(),
             None => py.None(),
         };
         let num = |n: Option<usize>| match n {
-            Some(n) => PyInt::new(py, n).into_any().unbind(),
+            Some(n) => n.into_pyobject(py).unwrap().into_any().unbind(),
             None => py.None(),
         };
         [
