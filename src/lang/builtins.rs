@@ -500,7 +500,8 @@ pub(crate) fn call(ev: &Evaluator<'_>, func: &Ident, args: &[Expr], span: Span) 
     let out = out.check().map_err(|e| scalar_error(e, span))?;
     let text = |k: usize| (args[k].to_string(), vals[k].value.clone());
     match name {
-        "rot" | "trans" | "screw" | "dh" | "mdh" | "point" => ev.record(|| Event::Built {
+        "rot" | "trans" | "screw" | "dh" | "mdh" | "point" | "twist" | "bodytwist" | "qdot"
+        | "sclerp" | "sclerpdot" => ev.record(|| Event::Built {
             func: name,
             args: (0..args.len()).map(text).collect(),
             value: out.clone(),

@@ -326,8 +326,17 @@ fn fk_task_jacobians_from_the_command_line() {
         ("plane", "Jpi", 8),
         ("distance", "Jd", 1),
         ("pose_derivative", "Jdot", 8),
+        ("rotation_derivative", "Jrdot", 4),
+        ("translation_derivative", "Jtdot", 4),
+        ("line_derivative:0,1,0", "Jldot", 8),
+        ("plane_derivative", "Jpidot", 8),
+        ("distance_derivative", "Jddot", 1),
+        ("line_to_point:1,0,0,1/2,1/3,0", "Jd", 1),
+        ("plane_to_point:1/2,1/3,0", "Jd", 1),
+        ("line_to_line_angle:0,3/5,4/5,1/2,0,0", "Jd", 1),
+        ("point_to_line_derivative:0,3/5,4/5,1/2,0,0", "Jddot", 1),
     ] {
-        for format in ["plain", "sympy", "latex", "rust"] {
+        for format in ["plain", "sympy", "latex", "rust", "c", "python"] {
             let out = run(&[
                 "--format",
                 format,
@@ -358,9 +367,59 @@ fn fk_task_jacobians_from_the_command_line() {
             }
         }
     }
+    // The line-to-line distance Jacobian is a quotient: its numerators over one denominator,
+    // built from b = D(l . lz), a = |P(l x lz)|^2 and their gradients (intermediate entries).
+    let out = run(&[
+        "--format",
+        "sympy",
+        "fk",
+        &file,
+        "--jacobian=line_to_line:0,3/5,4/5,1/2,0,0",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    for (prefix, count) in [
+        ("Jd_b[", 4),
+        ("Jd_a[", 4),
+        ("Jd_num[0][", 3),
+        ("Jd_den =", 1),
+    ] {
+        let n = text.lines().filter(|l| l.starts_with(prefix)).count();
+        assert_eq!(n, count, "{prefix}: {text}");
+    }
+    let out = run(&[
+        "--format",
+        "rust",
+        "fk",
+        &file,
+        "--jacobian=line_to_line:0,3/5,4/5,1/2,0,0",
+    ]);
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    assert!(
+        text.contains("pub jd_num: [f64; 3]") && text.contains("pub jd_den: f64"),
+        "{text}"
+    );
+    for (kind, message) in [
+        ("line_to_line:1,0,0", "needs 6 or 9 numbers"),
+        (
+            "line_to_line_derivative:0,0,1,1,0,0",
+            "no derivative of the line-to-line",
+        ),
+        ("pose_derivative_derivative", "joint accelerations"),
+        ("plane_to_point", "needs `:"),
+    ] {
+        let bad = run(&["fk", &file, &format!("--jacobian={kind}")]);
+        assert_eq!(bad.status.code(), Some(1), "{kind}");
+        let err = String::from_utf8_lossy(&bad.stderr);
+        assert!(err.contains(message), "{kind}: {err}");
+    }
     let bad = run(&["fk", &file, "--jacobian=point_to_plane:1,0"]);
     assert_eq!(bad.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&bad.stderr).contains("needs six numbers"));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("needs 6 numbers"));
     let bad = run(&["fk", &file, "--jacobian=speed"]);
     assert_eq!(bad.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("unknown Jacobian `speed`"));
