@@ -280,7 +280,11 @@ fn threads_from_env() -> Option<usize> {
 /// The REPL instead keeps its resident memory small between statements: an abandoned
 /// computation's memory must go back to the system, and a thread arena keeps its top pad (and
 /// glibc's dynamic trim threshold, which freeing large blocks raises up to 64 MB) resident.
-/// Fixed thresholds of 1 MB hand freed memory back at once.
+/// Fixed thresholds of 1 MB hand freed memory back at once. And one arena only: `malloc_trim`
+/// returns the free pages inside every arena, but the free top of a thread arena's heap only
+/// when a large `free` happens to trigger it, so an interrupted worker's arena kept megabytes
+/// resident; with every thread on the main arena, `malloc_trim` after the worker is joined
+/// hands back all of it (the REPL's threads contend a little more for the allocator's lock).
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 fn tune_allocator(interactive: bool) {
     extern "C" {
@@ -289,12 +293,14 @@ fn tune_allocator(interactive: bool) {
     const M_TRIM_THRESHOLD: std::ffi::c_int = -1;
     const M_TOP_PAD: std::ffi::c_int = -2;
     const M_MMAP_THRESHOLD: std::ffi::c_int = -3;
+    const M_ARENA_MAX: std::ffi::c_int = -8;
     // SAFETY: mallopt only sets allocator tuning parameters; it is called before any other
     // thread exists.
     unsafe {
         if interactive {
             mallopt(M_TRIM_THRESHOLD, 1 << 20);
             mallopt(M_MMAP_THRESHOLD, 1 << 20);
+            mallopt(M_ARENA_MAX, 1);
         } else {
             mallopt(M_TOP_PAD, 16 << 20);
         }

@@ -298,6 +298,12 @@ pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<S
         let (aside, js) = live(m, cfg)?;
         body += &aside;
         scripts = js;
+    } else if let Some((name, _)) = cfg.values.first() {
+        // No drawing, so no configuration: a --config name would be silently ignored.
+        return Err(WalkError::Config(format!(
+            "`{name}` is not a symbol of a drawing: this walkthrough has no drawing of a \
+             mechanism, so --config has nothing to set"
+        )));
     }
     body += "<div class=\"steps\">\n";
     for (head, parts) in p.sections {
