@@ -162,7 +162,7 @@ struct Dh {
 fn dh_toml(robot: &Robot, dh: &Dh, source: &str) -> Result<String, ScalarError> {
     let mut out = format!(
         "# {} in classic DH form (Rz(theta) Tz(d) Tx(a) Rx(alpha) per joint), converted by dqsym\n\
-         # from {source}; the base frame puts frame 0's z axis on joint 1's axis, the tool frame\n\
+         # from {source}; a base frame puts frame 0's z axis on joint 1's axis, the tool frame\n\
          # is the tip in the last joint's frame.\n",
         robot.name
     );
@@ -438,7 +438,14 @@ fn dh_form(robot: &Robot) -> Result<Dh, String> {
         return Err("the tip's home pose differs (a bug)".into());
     }
     let mut base = robot.base_frames.clone();
-    base.push(base_frame);
+    let identity = base_frame
+        .xyz
+        .iter()
+        .chain(&base_frame.rpy)
+        .all(Scalar::is_zero_value);
+    if !identity {
+        base.push(base_frame);
+    }
     Ok(Dh {
         base,
         rows,

@@ -973,3 +973,57 @@ fn convert_writes_dh_when_the_axes_allow_it_with_the_same_pose() {
         check_against_oracle(&back, &joints, 17);
     }
 }
+
+/// `dqsym convert` through the binary: the UR5 URDF (`benches/support/ur5.urdf`) becomes a DH
+/// file that `fk` reads to the same report as the URDF; a mimic joint gives screw form and a
+/// note on stderr saying why.
+#[test]
+fn convert_command_writes_a_file_fk_reads_to_the_same_pose() {
+    let bin = env!("CARGO_BIN_EXE_dqsym");
+    let dir = std::env::temp_dir().join(format!("dqsym-convert-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let urdf = concat!(env!("CARGO_MANIFEST_DIR"), "/benches/support/ur5.urdf");
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(bin).args(args).output().unwrap();
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        (
+            String::from_utf8(out.stdout).unwrap(),
+            String::from_utf8(out.stderr).unwrap(),
+        )
+    };
+    let (toml, err) = run(&["convert", urdf, "--to", "toml"]);
+    assert!(toml.contains("convention = \"dh\""), "{toml}");
+    assert!(!err.contains("screw form"), "{err}");
+    let file = dir.join("ur5.toml");
+    std::fs::write(&file, &toml).unwrap();
+    let body = |report: &str| report.lines().skip(1).collect::<Vec<_>>().join("\n");
+    let (from_urdf, _) = run(&["fk", urdf, "--format", "sympy"]);
+    let (from_toml, _) = run(&["fk", file.to_str().unwrap(), "--format", "sympy"]);
+    // The matrix rows are the same closed forms (the DQ may differ in sign).
+    let rows = |r: &str| -> Vec<String> {
+        r.lines()
+            .filter(|l| l.starts_with("T["))
+            .map(str::to_string)
+            .collect()
+    };
+    assert_eq!(rows(&from_urdf), rows(&from_toml), "{}", body(&from_toml));
+    assert_eq!(rows(&from_urdf).len(), 12);
+
+    let mut coupled = ur5();
+    coupled[2].mimic = Some(("shoulder_lift_joint", "-1", "0"));
+    let path = dir.join("coupled.urdf");
+    std::fs::write(&path, urdf_text("coupled", &coupled)).unwrap();
+    let (toml, err) = run(&["convert", path.to_str().unwrap(), "--to", "toml"]);
+    assert!(toml.contains("convention = \"screw\""), "{toml}");
+    assert!(
+        err.contains(
+            "note: written in screw form, not DH: joint 3 moves with another joint's variable"
+        ),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
