@@ -299,12 +299,15 @@ fn placeholder(k: usize) -> String {
     format!("~{k:06}")
 }
 
+/// An entry renamed to placeholders, and the renaming (symbol, placeholder), in order.
+type Shape = (Scalar, Vec<(String, String)>);
+
 /// The shape of an entry: its symbols renamed in order to placeholders, and the renaming.
 /// Entries of one shape (the joint factors of equal links, the prefix products past the
 /// first few, the Jacobian columns of the middle joints) share one closed form. `None` for an
 /// entry with `pi` or `1` as a symbol, or a cos/sin placeholder, whose order with respect
 /// to the placeholders a renaming could change.
-fn shape(x: &Scalar) -> Option<(Scalar, Vec<(String, String)>)> {
+fn shape(x: &Scalar) -> Option<Shape> {
     let mut names: Vec<String> = x.symbols().iter().map(|s| s.name().to_string()).collect();
     names.sort();
     names.dedup();
@@ -353,7 +356,7 @@ fn unshape(e: Expr, map: &[(String, String)]) -> Expr {
 /// the symbols, and closed forms only compare symbols, so an entry's form is its shape's form
 /// renamed back, of the same value (checked exactly in debug builds).
 fn shared_closed_forms(all: &[&Scalar]) -> Vec<Result<Expr, ScalarError>> {
-    let shapes: Vec<Option<(Scalar, Vec<(String, String)>)>> = par_map(all, |x| shape(x));
+    let shapes: Vec<Option<Shape>> = par_map(all, |x| shape(x));
     let mut index: HashMap<&Scalar, usize> = HashMap::new();
     let mut distinct: Vec<&Scalar> = Vec::new();
     let keys: Vec<usize> = all
