@@ -42,7 +42,7 @@ pub use print::{
     dh_refusal, fk_entries, fk_recurrence, fk_report, legend, ops_tables, plain, plain_named,
     plain_quotient, plain_quotient_named, rate_name, robot_toml, shorthand_name, task_jacobian,
     task_report, FkEntries, FkOptions, PlainOptions, ReportError, ReportFormat, TaskJacobian,
-    TrigNames,
+    TaskMatrix, TrigNames,
 };
 pub use ring::Ring;
 pub use scalar::{
@@ -50,7 +50,7 @@ pub use scalar::{
     ScalarError, Sym, DEFAULT_MAX_EXPONENT,
 };
 pub use walk::{
-    mechanism_svg, walk_html, walk_markdown, walk_robot, walk_robot_chain, walk_script, walk_text,
-    ComponentTrace, Config, HalfAngle, KatexAssets, Mechanism, Motion, Step, SvgOptions, WalkError,
-    Walkthrough, Word, Words,
+    ik_walk_html, mechanism_svg, walk_html, walk_markdown, walk_robot, walk_robot_chain,
+    walk_script, walk_text, ComponentTrace, Config, HalfAngle, KatexAssets, Mechanism, Motion,
+    Step, SvgOptions, WalkError, Walkthrough, Word, Words,
 };

@@ -14,4 +14,4 @@ pub use plain::{
     TrigNames,
 };
 pub use recurrence::fk_recurrence;
-pub use task::{rate_name, task_jacobian, task_report, TaskJacobian};
+pub use task::{rate_name, task_jacobian, task_report, TaskJacobian, TaskMatrix};
