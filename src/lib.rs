@@ -39,10 +39,10 @@ pub use lang::{
     BUILTINS, CONSTANTS, MAX_EXPONENT,
 };
 pub use print::{
-    fk_entries, fk_recurrence, fk_report, legend, ops_tables, plain, plain_named, plain_quotient,
-    plain_quotient_named, rate_name, robot_toml, shorthand_name, task_jacobian, task_report,
-    FkEntries, FkOptions, PlainOptions, ReportError, ReportFormat, TaskJacobian, TaskMatrix,
-    TrigNames,
+    dh_refusal, fk_entries, fk_recurrence, fk_report, legend, ops_tables, plain, plain_named,
+    plain_quotient, plain_quotient_named, rate_name, robot_toml, shorthand_name, task_jacobian,
+    task_report, FkEntries, FkOptions, PlainOptions, ReportError, ReportFormat, TaskJacobian,
+    TaskMatrix, TrigNames,
 };
 pub use ring::Ring;
 pub use scalar::{

@@ -683,6 +683,9 @@ fn convert(path: &std::path::Path, to: ConvertTo, urdf: &UrdfArgs) -> ExitCode {
             || path.display().to_string(),
             |n| n.to_string_lossy().into_owned(),
         );
+        if let Some(why) = dqsym::dh_refusal(&robot) {
+            eprintln!("note: written in screw form, not DH: {why}");
+        }
         dqsym::robot_toml(&robot, &name).map_err(|e| e.to_string())
     });
     match r {

@@ -6,7 +6,7 @@ mod plain;
 mod recurrence;
 mod task;
 
-pub use convert::robot_toml;
+pub use convert::{dh_refusal, robot_toml};
 pub use fk::{fk_entries, fk_report, ops_tables, FkEntries, FkOptions, ReportError, ReportFormat};
 pub(crate) use plain::angle_text;
 pub use plain::{
