@@ -3,8 +3,9 @@
 # venv in .venv with sympy and numpy (exported as DQSYM_PYTHON), KaTeX and playwright-core (which
 # drives Chromium for the interactive walkthrough page) in node_modules/, and Debian's chromium;
 # and for the Python package (python/): maturin, pytest, nbclient and ipykernel in the same venv.
-# After the Rust tests it builds and installs the package (`pip install ./python`) and runs its
-# pytest suite, which runs the notebooks in examples/notebooks/.
+# After the Rust tests it builds the package's wheel (`pip wheel ./python`), installs it, and
+# runs its pytest suite, which runs the notebooks in examples/notebooks/ and installs the same
+# wheel in a fresh venv.
 # Idempotent: a second run only checks that everything is there.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -53,24 +54,32 @@ if [ "$#" -eq 0 ]; then
     fi
 fi
 
-# The Python package: built by maturin (the venv's, hence --no-build-isolation) in its own
-# target directory, python/target, with its release profile at opt-level 2 (python/Cargo.toml);
-# cargo's progress is shown. Then its tests, with the binary `cargo test` built as the oracle
-# of "what the command line prints".
-echo "building the Python package: pip install ./python" >&2
+# The Python package: `pip wheel ./python` builds its wheel once, with the venv's maturin
+# (hence --no-build-isolation) in its own target directory, python/target, with its release
+# profile at opt-level 2 (python/Cargo.toml); cargo's progress is shown. The wheel goes into
+# .venv, and python/tests/test_install.py installs the same wheel into a fresh venv
+# ($DQSYM_WHEEL), so the package is compiled once. Then its tests, with the binary
+# `cargo test` built as the oracle of "what the command line prints".
+echo "building the Python package: pip wheel ./python" >&2
 start=$SECONDS
 log="$(mktemp)"
+wheels="python/target/wheels"
 trap 'rm -f "$refs" "$log"' EXIT
+rm -f "$wheels"/dqsym-*.whl
 set +o pipefail
-PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip install --disable-pip-version-check \
-    --no-build-isolation --force-reinstall --no-deps -v ./python 2>&1 | tee "$log" |
-    { grep --line-buffered -E '^ *(Compiling|Finished|Successfully installed)' >&2 || true; }
+PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip wheel --disable-pip-version-check \
+    --no-build-isolation --no-deps -v -w "$wheels" ./python 2>&1 | tee "$log" |
+    { grep --line-buffered -E '^ *(Compiling|Finished|Created wheel|Saved)' >&2 || true; }
 status=${PIPESTATUS[0]}
 set -o pipefail
-if [ "$status" -ne 0 ]; then
+wheel="$(ls "$wheels"/dqsym-*.whl 2>/dev/null | head -1)"
+if [ "$status" -ne 0 ] || [ -z "$wheel" ]; then
     cat "$log" >&2
     echo "error: building the Python package failed" >&2
     exit 1
 fi
+.venv/bin/python -m pip install --disable-pip-version-check --quiet --force-reinstall --no-deps \
+    "$wheel"
 echo "the Python package was built and installed in $((SECONDS - start)) s" >&2
-DQSYM_BIN="$PWD/target/debug/dqsym" .venv/bin/python -m pytest python/tests -q
+DQSYM_BIN="$PWD/target/debug/dqsym" DQSYM_WHEEL="$PWD/$wheel" \
+    .venv/bin/python -m pytest python/tests -q

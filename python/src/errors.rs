@@ -1,7 +1,9 @@
 //! The library's errors as Python exceptions. Each carries the message the command line
 //! prints (`str(e)`, with the source line and a caret where there is a place) and, as
-//! attributes, its parts: `message`, `line`, `column` (1-based, or None), and for robot files
-//! `file`, `joint` and `field`.
+//! attributes, its parts: `message`, `line`, `column` (1-based), `rendered` (the text with the
+//! caret), and for robot files `file`, `joint` and `field`. Every exception has every
+//! attribute (None where it does not apply), set from one table ([`Attrs::table`]); which
+//! class a library error becomes is decided in one place per error type.
 
 use dqsym::{EvalError as LibEvalError, EvalErrorKind, ParseError as LibParseError, ScalarError};
 use pyo3::create_exception;
@@ -39,57 +41,98 @@ create_exception!(
     "A robot file that cannot be read (file, joint and field where known)."
 );
 
-/// An exception of type `T` with `str(e)` = `shown` and the attributes set.
-fn with_attrs<T: pyo3::PyTypeInfo>(
-    py: Python<'_>,
-    shown: String,
-    attrs: &[(&str, PyObject)],
-) -> PyErr {
-    let err = PyErr::from_type(py.get_type::<T>(), (shown,));
-    let value = err.value(py);
-    for (k, v) in attrs {
-        // Setting an attribute on a fresh exception object cannot fail in practice; if it did,
-        // the exception would still carry its message.
-        let _ = value.setattr(*k, v);
+/// The exception classes of the module.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Class {
+    Dqsym,
+    Parse,
+    Eval,
+    Limit,
+    Robot,
+}
+
+impl Class {
+    /// A new exception of this class with `str(e)` = `shown`.
+    fn new_err(self, shown: String) -> PyErr {
+        match self {
+            Class::Dqsym => DqsymError::new_err(shown),
+            Class::Parse => ParseError::new_err(shown),
+            Class::Eval => EvalError::new_err(shown),
+            Class::Limit => LimitError::new_err(shown),
+            Class::Robot => RobotError::new_err(shown),
+        }
     }
-    err
+
+    /// A scalar failure: a limit (not a mistake in the input) is a LimitError.
+    fn of_scalar(e: &ScalarError) -> Class {
+        match e {
+            ScalarError::TooLarge { .. }
+            | ScalarError::TooManyPairs { .. }
+            | ScalarError::Budget { .. }
+            | ScalarError::OutOfRange(_) => Class::Limit,
+            _ => Class::Eval,
+        }
+    }
+}
+
+/// The attributes of an exception.
+#[derive(Default)]
+struct Attrs<'a> {
+    message: &'a str,
+    line: Option<usize>,
+    column: Option<usize>,
+    rendered: Option<&'a str>,
+    file: Option<&'a str>,
+    joint: Option<usize>,
+    field: Option<&'a str>,
+}
+
+impl Attrs<'_> {
+    /// Every attribute by its Python name.
+    fn table(&self, py: Python<'_>) -> [(&'static str, PyObject); 7] {
+        let text = |t: Option<&str>| match t {
+            Some(t) => t.into_pyobject(py).unwrap().into_any().unbind(),
+            None => py.None(),
+        };
+        let num = |n: Option<usize>| match n {
+            Some(n) => n.into_pyobject(py).unwrap().into_any().unbind(),
+            None => py.None(),
+        };
+        [
+            ("message", text(Some(self.message))),
+            ("line", num(self.line)),
+            ("column", num(self.column)),
+            ("rendered", text(self.rendered)),
+            ("file", text(self.file)),
+            ("joint", num(self.joint)),
+            ("field", text(self.field)),
+        ]
+    }
+
+    /// The exception of `class` with `str(e)` = `shown` and these attributes.
+    fn raise(&self, py: Python<'_>, class: Class, shown: String) -> PyErr {
+        let err = class.new_err(shown);
+        let value = err.value(py);
+        for (name, v) in self.table(py) {
+            // Setting an attribute on a fresh exception object cannot fail in practice; if it
+            // did, the exception would still carry its message.
+            let _ = value.setattr(name, v);
+        }
+        err
+    }
 }
 
 /// A parse error, `src` being the parsed text.
 pub(crate) fn parse_error(py: Python<'_>, e: &LibParseError) -> PyErr {
-    with_attrs::<ParseError>(
-        py,
-        e.rendered().to_owned(),
-        &[
-            (
-                "message",
-                e.message().into_pyobject(py).unwrap().into_any().unbind(),
-            ),
-            (
-                "line",
-                e.line().into_pyobject(py).unwrap().into_any().unbind(),
-            ),
-            (
-                "column",
-                e.col().into_pyobject(py).unwrap().into_any().unbind(),
-            ),
-            (
-                "rendered",
-                e.rendered().into_pyobject(py).unwrap().into_any().unbind(),
-            ),
-        ],
-    )
-}
-
-/// Whether a scalar error is a limit (not a mistake in the input).
-fn is_limit(e: &ScalarError) -> bool {
-    matches!(
-        e,
-        ScalarError::TooLarge { .. }
-            | ScalarError::TooManyPairs { .. }
-            | ScalarError::Budget { .. }
-            | ScalarError::OutOfRange(_)
-    )
+    let message = e.message();
+    Attrs {
+        message: &message,
+        line: Some(e.line()),
+        column: Some(e.col()),
+        rendered: Some(e.rendered()),
+        ..Attrs::default()
+    }
+    .raise(py, Class::Parse, e.rendered().to_owned())
 }
 
 /// An evaluation error of a statement of `src`; an interruption is KeyboardInterrupt.
@@ -97,101 +140,65 @@ pub(crate) fn eval_error(py: Python<'_>, e: &LibEvalError, src: &str) -> PyErr {
     if matches!(e.kind(), EvalErrorKind::Interrupted) {
         return PyKeyboardInterrupt::new_err("interrupted; the bindings are unchanged");
     }
-    let rendered = e.render(src);
+    let (rendered, message) = (e.render(src), e.message());
     let span = e.span();
-    let (line, col) = if span.line == 0 {
-        (py.None(), py.None())
-    } else {
-        (
-            span.line.into_pyobject(py).unwrap().into_any().unbind(),
-            span.col.into_pyobject(py).unwrap().into_any().unbind(),
-        )
+    let at = |n: usize| (span.line != 0).then_some(n);
+    let class = match e.kind() {
+        EvalErrorKind::Scalar(s) => Class::of_scalar(s),
+        _ => Class::Eval,
     };
-    let attrs = [
-        (
-            "message",
-            e.message().into_pyobject(py).unwrap().into_any().unbind(),
-        ),
-        ("line", line),
-        ("column", col),
-        (
-            "rendered",
-            rendered
-                .as_str()
-                .into_pyobject(py)
-                .unwrap()
-                .into_any()
-                .unbind(),
-        ),
-    ];
-    match e.kind() {
-        EvalErrorKind::Scalar(s) if is_limit(s) => with_attrs::<LimitError>(py, rendered, &attrs),
-        _ => with_attrs::<EvalError>(py, rendered, &attrs),
+    Attrs {
+        message: &message,
+        line: at(span.line),
+        column: at(span.col),
+        rendered: Some(&rendered),
+        ..Attrs::default()
     }
+    .raise(py, class, rendered.clone())
 }
 
 /// A scalar error outside any statement (a robot's derivation, a conversion).
 pub(crate) fn scalar_error(py: Python<'_>, e: &ScalarError) -> PyErr {
     let message = e.to_string();
-    let attrs = [
-        (
-            "message",
-            message
-                .as_str()
-                .into_pyobject(py)
-                .unwrap()
-                .into_any()
-                .unbind(),
-        ),
-        ("line", py.None()),
-        ("column", py.None()),
-    ];
-    if is_limit(e) {
-        with_attrs::<LimitError>(py, format!("error: {message}"), &attrs)
-    } else {
-        with_attrs::<EvalError>(py, format!("error: {message}"), &attrs)
+    Attrs {
+        message: &message,
+        ..Attrs::default()
     }
+    .raise(py, Class::of_scalar(e), format!("error: {message}"))
 }
 
-/// A robot file error, with its file, joint and field.
+/// A robot file error, with its file, joint and field (and the line and column of a TOML
+/// syntax error).
 pub(crate) fn robot_error(py: Python<'_>, e: &dqsym::RobotError) -> PyErr {
-    let none = || py.None();
-    let s = |x: &str| x.into_pyobject(py).unwrap().into_any().unbind();
-    let (file, joint, field) = match e {
-        dqsym::RobotError::File { file, .. } => (s(file), none(), none()),
-        dqsym::RobotError::Field {
-            file, joint, field, ..
-        } => (
-            s(file),
-            joint.into_pyobject(py).unwrap().into_any().unbind(),
-            s(field),
-        ),
-        _ => (none(), none(), none()),
-    };
-    let message = match e {
-        dqsym::RobotError::File { message, .. } | dqsym::RobotError::Field { message, .. } => {
-            message.clone()
+    let (file, joint, field, message) = match e {
+        dqsym::RobotError::File { file, message } => {
+            (Some(file.as_str()), None, None, message.clone())
         }
-        other => other.to_string(),
+        dqsym::RobotError::Field {
+            file,
+            joint,
+            field,
+            message,
+        } => (
+            Some(file.as_str()),
+            Some(*joint),
+            Some(field.as_str()),
+            message.clone(),
+        ),
+        other => (None, None, None, other.to_string()),
     };
     // `line N, column M: ` at the start of a TOML syntax message.
-    let (line, col) = toml_position(&message);
-    let num = |n: Option<usize>| match n {
-        Some(n) => n.into_pyobject(py).unwrap().into_any().unbind(),
-        None => py.None(),
-    };
-    with_attrs::<RobotError>(
-        py,
-        format!("error: {e}"),
-        &[
-            ("message", s(&message)),
-            ("file", file),
-            ("joint", joint),
-            ("field", field),
-            ("line", num(line)),
-            ("column", num(col)),
-        ],
-    )
+    let (line, column) = toml_position(&message);
+    Attrs {
+        message: &message,
+        line,
+        column,
+        file,
+        joint,
+        field,
+        ..Attrs::default()
+    }
+    .raise(py, Class::Robot, format!("error: {e}"))
 }
 
 /// The position the robot reader puts in front of a TOML syntax error.
@@ -210,23 +217,11 @@ fn toml_position(message: &str) -> (Option<usize>, Option<usize>) {
 
 /// Any other failure of the library (a report or a walkthrough that could not be made).
 pub(crate) fn other(py: Python<'_>, message: String) -> PyErr {
-    with_attrs::<DqsymError>(
-        py,
-        format!("error: {message}"),
-        &[
-            (
-                "message",
-                message
-                    .as_str()
-                    .into_pyobject(py)
-                    .unwrap()
-                    .into_any()
-                    .unbind(),
-            ),
-            ("line", py.None()),
-            ("column", py.None()),
-        ],
-    )
+    Attrs {
+        message: &message,
+        ..Attrs::default()
+    }
+    .raise(py, Class::Dqsym, format!("error: {message}"))
 }
 
 /// A report error: limits as [`LimitError`], the rest as [`DqsymError`].
@@ -251,36 +246,13 @@ pub(crate) fn rendered(py: Python<'_>, rendered: String) -> PyErr {
         .lines()
         .next()
         .unwrap_or("")
-        .trim_start_matches("error: ")
-        .to_owned();
-    let num = |n: Option<usize>| match n {
-        Some(n) => n.into_pyobject(py).unwrap().into_any().unbind(),
-        None => py.None(),
-    };
-    with_attrs::<EvalError>(
-        py,
-        rendered.clone(),
-        &[
-            (
-                "message",
-                message
-                    .as_str()
-                    .into_pyobject(py)
-                    .unwrap()
-                    .into_any()
-                    .unbind(),
-            ),
-            ("line", num(pos.map(|p| p.0))),
-            ("column", num(pos.map(|p| p.1))),
-            (
-                "rendered",
-                rendered
-                    .as_str()
-                    .into_pyobject(py)
-                    .unwrap()
-                    .into_any()
-                    .unbind(),
-            ),
-        ],
-    )
+        .trim_start_matches("error: ");
+    Attrs {
+        message,
+        line: pos.map(|p| p.0),
+        column: pos.map(|p| p.1),
+        rendered: Some(&rendered),
+        ..Attrs::default()
+    }
+    .raise(py, Class::Eval, rendered.clone())
 }
