@@ -526,7 +526,7 @@ impl Evaluator<'_> {
 
     /// Evaluates `e`; every value returned is free of scalar error values.
     pub(crate) fn expr(&self, e: &Expr) -> Result<Value> {
-        if crate::scalar::check_cancelled().is_err() {
+        if crate::Context::check_cancelled().is_err() {
             return Err(EvalError::new(EvalErrorKind::Interrupted, e.span));
         }
         let v = self.expr_unchecked(e)?;

@@ -106,15 +106,7 @@ pub(crate) fn as_dq(v: &Value) -> Option<DualQuat<Scalar>> {
 pub(crate) fn half_angle_symbols(q: &DualQuat<Scalar>) -> BTreeSet<String> {
     let mut out = BTreeSet::new();
     for c in q.components() {
-        if let Ok(terms) = c.terms() {
-            for t in terms {
-                for (s, k) in t.mode.freq.iter() {
-                    if !k.is_integer() {
-                        out.insert(s.name().to_owned());
-                    }
-                }
-            }
-        }
+        out.extend(c.fractional_angle_symbols());
     }
     out
 }

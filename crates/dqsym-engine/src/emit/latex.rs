@@ -245,7 +245,7 @@ fn wrap(s: &str, breaks: &[(usize, usize)], width: usize) -> Vec<String> {
 
 /// The width of LaTeX source as rendered, roughly: a command counts as one character, braces
 /// and sub- and superscript marks as none.
-pub(crate) fn visual_len(s: &str) -> usize {
+pub fn visual_len(s: &str) -> usize {
     let mut n = 0;
     let mut chars = s.chars().peekable();
     while let Some(c) = chars.next() {

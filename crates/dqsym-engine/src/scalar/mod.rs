@@ -31,7 +31,7 @@ pub(crate) use arith::FxHasher;
 pub use atoms::Sym;
 pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
-pub(crate) use ctx::{charge, check_cancelled, max_exponent, term_limit};
+pub(crate) use ctx::{charge, check_cancelled, term_limit};
 pub use ctx::{Context, Entered, DEFAULT_MAX_EXPONENT};
 pub use decimal::parse_decimal;
 pub use frac::Frac;
@@ -263,6 +263,20 @@ impl Scalar {
             [x] if x.mode.is_unit() && x.mono.is_empty() && x.rad == 1 => Some(x.coef.to_big()),
             _ => None,
         }
+    }
+
+    /// The names of the angle symbols that occur at a fractional frequency (a half angle,
+    /// `cos(t/2)`) in the canonical form, sorted; none for an error value.
+    pub fn fractional_angle_symbols(&self) -> std::collections::BTreeSet<String> {
+        let mut out = std::collections::BTreeSet::new();
+        for t in self.terms().unwrap_or(&[]) {
+            for (s, k) in t.mode.freq.iter() {
+                if !k.is_integer() {
+                    out.insert(s.name().to_owned());
+                }
+            }
+        }
+        out
     }
 
     /// True when the value contains no symbol (it is a number: rationals, radicals, and exact
