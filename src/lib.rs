@@ -1,8 +1,11 @@
 //! dqsym: exact symbolic algebra of dual quaternions for robot kinematics.
 
+#![warn(missing_docs)]
+
 pub use dqsym_engine::*;
 
 mod lang;
+mod paper;
 mod walk;
 
 pub use lang::{
@@ -12,6 +15,7 @@ pub use lang::{
     ParseOptions, Program, Session, ShowError, ShowOptions, Span, Stmt, StmtKind, UnaryOp, Value,
     BUILTINS, CONSTANTS, MAX_EXPONENT,
 };
+pub use paper::paper;
 pub use walk::{
     mechanism_svg, walk_html, walk_markdown, walk_robot, walk_robot_chain, walk_script, walk_text,
     ComponentTrace, Config, HalfAngle, KatexAssets, Mechanism, Motion, Step, SvgOptions, WalkError,

@@ -2,6 +2,8 @@
 //! kinematics: scalars, algebra, kinematics, closed forms, printers, emitters and reports.
 //! The script language, the walkthroughs and the command line live in the `dqsym` crate.
 
+#![warn(missing_docs)]
+
 pub mod algebra;
 pub mod app;
 pub mod closed;
@@ -20,7 +22,8 @@ pub use app::{
 };
 pub use closed::{
     closed_form, closed_form_cos_sin, closed_form_of_derivative, closed_form_prepared,
-    closed_form_traced, expanded_form, Angle, Cost, Expr, Identity, Prepared, TraceStep,
+    closed_form_traced, expanded_form, shorthand_name, Angle, Cost, Expr, Identity, Prepared,
+    TraceStep, TrigNames,
 };
 pub use emit::{
     arguments, c_function, count_ops, generated_ops, javascript_function, latex, latex_aligned,
@@ -36,10 +39,7 @@ pub use kin::{
     Joint, JointGeometry, JointKind, Robot, RobotError, ScrewError, ScrewParams, UrdfError,
     UrdfOptions, UrdfRobot, SNAP_TOLERANCE,
 };
-pub use print::{
-    legend, plain, plain_named, plain_quotient, plain_quotient_named, shorthand_name,
-    PlainOptions, TrigNames,
-};
+pub use print::{legend, plain, plain_named, plain_quotient, plain_quotient_named, PlainOptions};
 pub use ring::Ring;
 pub use scalar::{
     parse_decimal, parse_trig_placeholder, trig_placeholder, Context, Entered, Frac, Scalar,

@@ -5,8 +5,7 @@
 //! Every string written here is valid KaTeX input; the tests render each snapshot with KaTeX
 //! (`throwOnError: true`).
 
-use crate::closed::{Angle, Expr};
-use crate::print::{shorthand_name, TrigNames};
+use crate::closed::{shorthand_name, Angle, Expr, TrigNames};
 use crate::scalar::Small;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};

@@ -2,8 +2,4 @@
 
 mod plain;
 
-pub use plain::angle_text;
-pub use plain::{
-    legend, plain, plain_named, plain_quotient, plain_quotient_named, shorthand_name, PlainOptions,
-    TrigNames,
-};
+pub use plain::{legend, plain, plain_named, plain_quotient, plain_quotient_named, PlainOptions};

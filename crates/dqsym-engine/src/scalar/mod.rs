@@ -83,7 +83,12 @@ pub enum ScalarError {
     SymbolicDivisor(String),
     /// A trigonometric argument that is not an angle.
     #[error("the argument of {func} must be a rational combination of symbols plus a rational multiple of pi, got {arg}")]
-    NotAnAngle { func: &'static str, arg: String },
+    NotAnAngle {
+        /// The function (`cos`, `sin`).
+        func: &'static str,
+        /// The argument, as text.
+        arg: String,
+    },
     /// A square root that has no exact reduced form here.
     #[error("cannot take an exact square root of {0}")]
     BadSqrt(String),
