@@ -153,7 +153,10 @@ fn every_crate_import_goes_down_the_layer_table() {
                 continue;
             }
             let own = *layers.get(module).unwrap_or_else(|| {
-                panic!("{}: module `{module}` is not in the layer table", file.display())
+                panic!(
+                    "{}: module `{module}` is not in the layer table",
+                    file.display()
+                )
             });
             let text = std::fs::read_to_string(&file).expect("source");
             for name in crate_paths(&code(&text)) {
@@ -168,7 +171,10 @@ fn every_crate_import_goes_down_the_layer_table() {
                     )
                 };
                 let layer = *layers.get(&target).unwrap_or_else(|| {
-                    panic!("{}: module `{target}` is not in the layer table", file.display())
+                    panic!(
+                        "{}: module `{target}` is not in the layer table",
+                        file.display()
+                    )
                 });
                 checked += 1;
                 if target != module && layer >= own {
@@ -190,8 +196,12 @@ fn every_crate_import_goes_down_the_layer_table() {
 
 #[test]
 fn the_import_reader_sees_groups_and_paths() {
-    let paths = crate_paths("use crate::{a, b::{c, d}, e as f};\nlet x = crate::g::h();\n$crate::i");
+    let paths =
+        crate_paths("use crate::{a, b::{c, d}, e as f};\nlet x = crate::g::h();\n$crate::i");
     assert_eq!(paths, ["a", "b", "e", "g"]);
-    let map = reexports(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/src/lib.rs")));
+    let map = reexports(Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/src/lib.rs"
+    )));
     assert_eq!(map.get("AstExpr").map(String::as_str), Some("lang"));
 }
