@@ -1,23 +1,51 @@
-//! dqsym: exact symbolic algebra of dual quaternions for robot kinematics.
+//! dqsym: exact symbolic algebra of dual quaternions for robot kinematics, with a script
+//! language, teaching walkthroughs and the paper's derivations.
+//!
+//! This crate re-exports the engine ([`dqsym_engine`]: scalars, algebra, kinematics, closed
+//! forms, printers, emitters, reports) and adds, above it:
+//!
+//! - [`lang`]: the script language: [`parse`] a program, run it in a [`Session`], [`show`]
+//!   a [`Value`] as plain text, LaTeX, SymPy or Rust; robot-file fields are read through
+//!   [`eval_scalar_text`];
+//! - [`walk`]: walkthroughs of a script or a robot file, as text, Markdown or an HTML page;
+//! - [`paper`]: the paper's worked examples, derived from the files of `examples/`.
+//!
+//! ```
+//! use dqsym::{parse, Scalar, Session, Value};
+//!
+//! let mut session = Session::new();
+//! session.run(&parse("syms t\nx = cos(t)^2 + sin(t)^2")?)?;
+//! assert_eq!(session.get("x"), Some(&Value::Scalar(Scalar::int(1))));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 #![warn(missing_docs)]
 
 pub use dqsym_engine::*;
 
-mod lang;
+pub mod lang;
 mod paper;
-mod walk;
+pub mod walk;
 
+// The core nouns of the language, the walkthroughs and the paper.
 pub use lang::{
-    builtin, continues, eval_point_text, eval_scalar_text, parse, parse_expr, parse_expr_with,
-    parse_with, show, show_value, AddOp, Binding, BindingKind, Builtin, Displayed, EvalError,
-    EvalErrorKind, Expr as AstExpr, ExprKind, Format, Ident, MulOp, ParseError, ParseErrorKind,
-    ParseOptions, Program, Session, ShowError, ShowOptions, Span, Stmt, StmtKind, UnaryOp, Value,
-    BUILTINS, CONSTANTS, MAX_EXPONENT,
+    eval_scalar_text, parse, show, EvalError, Format, ParseError, Program, Session, ShowOptions,
+    Value,
 };
 pub use paper::paper;
+pub use walk::{walk_html, walk_markdown, walk_robot, walk_script, walk_text, Walkthrough};
+
+// Everything else, kept at the top for the callers written before the modules were public;
+// its documented home is its module.
+#[doc(hidden)]
+pub use lang::{
+    builtin, continues, eval_point_text, parse_expr, parse_expr_with, parse_with, show_value,
+    AddOp, Binding, BindingKind, Builtin, Displayed, EvalErrorKind, Expr as AstExpr, ExprKind,
+    Ident, MulOp, ParseErrorKind, ParseOptions, ShowError, Span, Stmt, StmtKind, UnaryOp, BUILTINS,
+    CONSTANTS, MAX_EXPONENT,
+};
+#[doc(hidden)]
 pub use walk::{
-    mechanism_svg, walk_html, walk_markdown, walk_robot, walk_robot_chain, walk_script, walk_text,
-    ComponentTrace, Config, HalfAngle, KatexAssets, Mechanism, Motion, Step, SvgOptions, WalkError,
-    Walkthrough, Word, Words,
+    mechanism_svg, walk_robot_chain, ComponentTrace, Config, HalfAngle, KatexAssets, Mechanism,
+    Motion, Step, SvgOptions, WalkError, Word, Words,
 };

@@ -89,14 +89,15 @@ fn crate_paths(code: &str) -> Vec<String> {
 }
 
 /// A crate's top-level re-exports: name to the module it comes from, read from the
-/// `pub use module::{...};` statements of its `lib.rs`.
+/// `pub use module::{...};` statements of its `lib.rs` (attributes before them allowed).
 fn reexports(lib: &Path) -> BTreeMap<String, String> {
     let text = code(&std::fs::read_to_string(lib).expect("lib.rs"));
     let mut map = BTreeMap::new();
     for stmt in text.split(';') {
-        let Some(body) = stmt.trim().strip_prefix("pub use ") else {
+        let Some(at) = stmt.find("pub use ") else {
             continue;
         };
+        let body = &stmt[at + "pub use ".len()..];
         let module = ident(body).to_owned();
         let tail = &body[module.len()..];
         let names: Vec<&str> = match tail.find('{') {

@@ -1,4 +1,4 @@
-//! Quaternions, dual quaternions and 4×4 homogeneous matrices over any [`Ring`](crate::Ring).
+//! Quaternions, dual quaternions and 4×4 homogeneous matrices over any [`Ring`].
 //!
 //! Non-commutativity and ε² = 0 live only in this module; the scalar stays commutative.
 //! The files follow nalgebra's split: the types and their operators (`quat.rs`,

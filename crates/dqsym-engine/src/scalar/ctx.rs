@@ -19,7 +19,7 @@
 //! to cancel.
 //!
 //! ```
-//! use dqsym::{Context, Scalar, ScalarError};
+//! use dqsym_engine::{Context, Scalar, ScalarError};
 //! let ctx = Context::new().with_term_limit(10);
 //! let _in = ctx.enter();
 //! let x = Scalar::sym("x") + Scalar::sym("y") + Scalar::sym("z");
