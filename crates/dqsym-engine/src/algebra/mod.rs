@@ -30,7 +30,7 @@ pub(crate) fn mul<T: Ring>(a: &T, b: &T) -> T {
 }
 
 /// The cross product `a × b` of two 3-vectors.
-pub(crate) fn cross<T: Ring>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
+pub fn cross<T: Ring>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
     [
         mul(&a[1], &b[2]) - mul(&a[2], &b[1]),
         mul(&a[2], &b[0]) - mul(&a[0], &b[2]),
