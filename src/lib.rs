@@ -46,6 +46,6 @@ pub use lang::{
 };
 #[doc(hidden)]
 pub use walk::{
-    mechanism_svg, walk_robot_chain, ComponentTrace, Config, HalfAngle, KatexAssets, Mechanism,
-    Motion, Step, SvgOptions, WalkError, Word, Words,
+    ik_walk_html, mechanism_svg, walk_robot_chain, ComponentTrace, Config, HalfAngle, KatexAssets,
+    Mechanism, Motion, Step, SvgOptions, WalkError, Word, Words,
 };

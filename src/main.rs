@@ -280,7 +280,11 @@ fn threads_from_env() -> Option<usize> {
 /// The REPL instead keeps its resident memory small between statements: an abandoned
 /// computation's memory must go back to the system, and a thread arena keeps its top pad (and
 /// glibc's dynamic trim threshold, which freeing large blocks raises up to 64 MB) resident.
-/// Fixed thresholds of 1 MB hand freed memory back at once.
+/// Fixed thresholds of 1 MB hand freed memory back at once. And one arena only: `malloc_trim`
+/// returns the free pages inside every arena, but the free top of a thread arena's heap only
+/// when a large `free` happens to trigger it, so an interrupted worker's arena kept megabytes
+/// resident; with every thread on the main arena, `malloc_trim` after the worker is joined
+/// hands back all of it (the REPL's threads contend a little more for the allocator's lock).
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 fn tune_allocator(interactive: bool) {
     extern "C" {
@@ -289,12 +293,14 @@ fn tune_allocator(interactive: bool) {
     const M_TRIM_THRESHOLD: std::ffi::c_int = -1;
     const M_TOP_PAD: std::ffi::c_int = -2;
     const M_MMAP_THRESHOLD: std::ffi::c_int = -3;
+    const M_ARENA_MAX: std::ffi::c_int = -8;
     // SAFETY: mallopt only sets allocator tuning parameters; it is called before any other
     // thread exists.
     unsafe {
         if interactive {
             mallopt(M_TRIM_THRESHOLD, 1 << 20);
             mallopt(M_MMAP_THRESHOLD, 1 << 20);
+            mallopt(M_ARENA_MAX, 1);
         } else {
             mallopt(M_TOP_PAD, 16 << 20);
         }
@@ -444,7 +450,7 @@ fn dispatch(cli: Cli) -> ExitCode {
                 ..
             }),
             _,
-        ) => walk_ik(&file, markdown, html.is_some() || config.is_some(), free),
+        ) => walk_ik(&file, markdown, html.as_deref(), config.as_deref(), free),
         (
             Some(Command::Walk {
                 file,
@@ -501,13 +507,19 @@ fn ik(
 }
 
 /// `dqsym walk ROBOT --ik`: the inverse kinematics derivation step by step.
-fn walk_ik(path: &std::path::Path, markdown: bool, html: bool, free: Option<String>) -> ExitCode {
+fn walk_ik(
+    path: &std::path::Path,
+    markdown: bool,
+    html: Option<&std::path::Path>,
+    config: Option<&str>,
+    free: Option<String>,
+) -> ExitCode {
     let fail = |m: String| {
         eprintln!("error: {m}");
         ExitCode::FAILURE
     };
-    if html {
-        return fail("walk --ik writes text or --markdown (no --html page yet)".into());
+    if config.is_some() && html.is_none() {
+        return fail("--config only applies to the --html page".to_owned());
     }
     let robot = match load_robot(path, &UrdfArgs::default()) {
         Ok(r) => r,
@@ -518,6 +530,32 @@ fn walk_ik(path: &std::path::Path, markdown: bool, html: bool, free: Option<Stri
         Ok(s) => s,
         Err(e) => return fail(e.to_string()),
     };
+    if let Some(out) = html {
+        let page = (|| -> Result<String, String> {
+            let md = dqsym::ik::ik_walk(&robot, &sol, true).map_err(|e| e.to_string())?;
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+            let w = if is_urdf(path) {
+                dqsym::walk_robot_chain(&robot)
+            } else {
+                dqsym::walk_robot(&text, &path.display().to_string(), &dqsym::eval_scalar_text)
+            }
+            .map_err(|e| e.to_string())?;
+            let cfg =
+                dqsym::Config::parse(config.unwrap_or("")).map_err(|e| format!("--config: {e}"))?;
+            let assets = katex_assets()?;
+            dqsym::ik_walk_html(&w, &sol, &md, &assets, &cfg).map_err(|e| e.to_string())
+        })();
+        return match page.and_then(|p| {
+            std::fs::write(out, p).map_err(|e| format!("cannot write {}: {e}", out.display()))
+        }) {
+            Ok(()) => {
+                eprintln!("wrote {}", out.display());
+                ExitCode::SUCCESS
+            }
+            Err(m) => fail(m),
+        };
+    }
     match dqsym::ik::ik_walk(&robot, &sol, markdown) {
         Ok(t) => {
             print!("{t}");
@@ -645,6 +683,9 @@ fn convert(path: &std::path::Path, to: ConvertTo, urdf: &UrdfArgs) -> ExitCode {
             || path.display().to_string(),
             |n| n.to_string_lossy().into_owned(),
         );
+        if let Some(why) = dqsym::dh_refusal(&robot) {
+            eprintln!("note: written in screw form, not DH: {why}");
+        }
         dqsym::robot_toml(&robot, &name).map_err(|e| e.to_string())
     });
     match r {

@@ -63,7 +63,7 @@ const fn concat<const A: usize, const B: usize, const N: usize>(
 }
 
 /// The core built-ins.
-const CORE: [Builtin; 30] = [
+const CORE: [Builtin; 31] = [
     b(
         "rot",
         "rot(axis, angle) or rot(axis, angle, point)",
@@ -168,6 +168,18 @@ const CORE: [Builtin; 30] = [
         "screw of a unit DQ as rows: (angle, slide, 0), axis n, moment m, axis point nearest O, \
          as quotients where needed",
         "screwparams(dh(theta1, d1, a1, 0))",
+    ),
+    b(
+        "ik",
+        "ik(q, [q1, ..., qn]) or ik(q, [q1, ..., qn], T, qk)",
+        2,
+        4,
+        "closed-form inverse kinematics of the chain q(q1, ..., qn) for the target T = [r11, r12, \
+         r13, px; ...; 0, 0, 0, 1] (symbolic unless given; a 7-joint chain takes the free joint \
+         qk given, else the first that leaves a supported family): one row (qk, a, b, c, n) per \
+         joint in the order solved; revolute: a cos qk + b sin qk = c, n = 2 both roots, n = 1 \
+         the root qk = atan2(-a, b); prismatic: a qk^2 + b qk + c = 0 (n roots); as `dqsym ik`",
+        "ik(dh(theta1, 0, a1, 0) * dh(t, 0, l, 0), [theta1, t])",
     ),
     b(
         "diff",
@@ -448,6 +460,7 @@ pub(crate) fn call(ev: &Evaluator<'_>, func: &Ident, args: &[Expr], span: Span) 
             Value::Matrix(crate::geometric_jacobian(&q, &refs))
         }
         "screwparams" => screw_params(&vals[0])?,
+        "ik" => ik(&vals)?,
         "diff" => {
             let t = symbol_name(name, &vals[1].value, vals[1].span)?;
             value::diff(&vals[0].value, &t).map_err(|e| op_error(e, span))?
@@ -500,7 +513,8 @@ pub(crate) fn call(ev: &Evaluator<'_>, func: &Ident, args: &[Expr], span: Span) 
     let out = out.check().map_err(|e| scalar_error(e, span))?;
     let text = |k: usize| (args[k].to_string(), vals[k].value.clone());
     match name {
-        "rot" | "trans" | "screw" | "dh" | "mdh" | "point" => ev.record(|| Event::Built {
+        "rot" | "trans" | "screw" | "dh" | "mdh" | "point" | "twist" | "bodytwist" | "qdot"
+        | "sclerp" | "sclerpdot" => ev.record(|| Event::Built {
             func: name,
             args: (0..args.len()).map(text).collect(),
             value: out.clone(),
@@ -655,6 +669,66 @@ fn screw_params(a: &Arg) -> Result<Value> {
         sp.moment.to_vec(),
         sp.point.to_vec(),
     ]))
+}
+
+/// `ik(q, vars[, T][, free])`: the closed-form inverse kinematics as one equation per joint.
+fn ik(vals: &[Arg]) -> Result<Value> {
+    let q = unit_dq("ik", &vals[0])?;
+    let vars = symbol_list("ik", &vals[1])?;
+    let mut target = None;
+    let mut free = None;
+    for a in &vals[2..] {
+        match &a.value {
+            Value::Matrix(_) if target.is_none() => target = Some(matrix4("ik", a)?),
+            Value::Scalar(s)
+                if free.is_none()
+                    && s.symbols().len() == 1
+                    && *s == Scalar::sym(s.symbols()[0].name()) =>
+            {
+                free = Some(s.symbols()[0].name().to_owned());
+            }
+            other => {
+                return Err(type_error(
+                    "ik",
+                    "an argument after the joint list",
+                    "the target (a 4x4 matrix) or the free joint (a symbol), each at most once",
+                    other,
+                    a.span,
+                ))
+            }
+        }
+    }
+    let sol = crate::ik::solve_dq("chain", &q, &vars, &crate::ik::IkOptions { free })
+        .map_err(|e| invalid(&format!("ik: {e}"), vals[0].span))?;
+    let at = |x: &Scalar| -> Scalar {
+        let mut y = x.clone();
+        if let Some(t) = &target {
+            for (r, row) in crate::ik::TARGET_SYMBOLS.iter().enumerate() {
+                for (c, name) in row.iter().enumerate() {
+                    y = y.subs(name, &t.rows[r][c]);
+                }
+            }
+        }
+        y
+    };
+    let zero = Scalar::int(0);
+    let one = Scalar::int(1);
+    let mut rows = Vec::new();
+    for step in &sol.steps {
+        let (a, b, c, n) = match &step.formula {
+            crate::ik::Formula::Trig { a, b, c } => (at(a), at(b), at(c), 2),
+            crate::ik::Formula::Atan2 { y, x } => (-at(y), at(x), zero.clone(), 1),
+            crate::ik::Formula::Value { v } => (zero.clone(), one.clone(), -at(v), 1),
+            crate::ik::Formula::Quadratic { beta, gamma } => {
+                (one.clone(), Scalar::int(2) * at(beta), at(gamma), 2)
+            }
+        };
+        if let Some(e) = [&a, &b, &c].iter().find_map(|x| x.as_error()) {
+            return Err(invalid(&format!("ik: {e}"), vals[0].span));
+        }
+        rows.push(vec![Scalar::sym(&step.variable), a, b, c, Scalar::int(n)]);
+    }
+    Ok(Value::Matrix(rows))
 }
 
 /// The symbol names of a list argument `[x1, x2, ...]`.

@@ -5,7 +5,9 @@
 //! Left out: `pinv` and `dec_mult` (decompositional products, numeric conveniences with no
 //! closed-form use), `generalized_jacobian`, `Q4`/`Q8` (derivatives of `exp` divided by
 //! `sin(phi/2)/(phi/2)`, which is not a polynomial), and every `is_*` predicate with a
-//! threshold (exactness makes them `unit(q)` and the Plücker constraints).
+//! threshold (exactness makes them `unit(q)` and the Plücker constraints), the `*_residual`
+//! functions (a moving workspace primitive) and the line-segment distances (a numeric choice
+//! of the closest elements).
 
 use super::builtins::{b, dq_like, invalid, symbol_list, type_error, unit_dq, Arg, Builtin};
 use super::eval::{op_error, EvalError, Result};
@@ -16,7 +18,7 @@ use crate::{DualQuat, Frac, Quat, Scalar, TaskJacobian};
 use num_traits::Zero;
 
 /// The DQ Robotics built-ins, in the order `:help` lists them (after the core ones).
-pub(super) const TABLE: [Builtin; 48] = [
+pub(super) const TABLE: [Builtin; 66] = [
     b("P", "P(h)", 1, 1, "DQ Robotics' primary part P(h) (our real part)", "P(dh(theta1, d1, a1, 0))"),
     b("D", "D(h)", 1, 1, "DQ Robotics' dual part D(h): h = P(h) + eps D(h), as in our q + eps q_eps", "D(trans((l, 0, 0)))"),
     b("Re", "Re(h)", 1, 1, "the scalar parts w + eps w_eps", "Re(dh(theta1, d1, 0, 0))"),
@@ -38,9 +40,13 @@ pub(super) const TABLE: [Builtin; 48] = [
     b("twist", "twist(q, qdot)", 2, 2, "the spatial twist xi = 2 qdot q* (qdot = 1/2 xi q): angular velocity + eps (linear velocity of the point at the origin)", "twist(rot((0, 0, 1), theta1), diff(rot((0, 0, 1), theta1), theta1))"),
     b("bodytwist", "bodytwist(q, qdot)", 2, 2, "the body twist xi = 2 q* qdot (qdot = 1/2 q xi)", "bodytwist(rot((0, 0, 1), theta1), diff(rot((0, 0, 1), theta1), theta1))"),
     b("qdot", "qdot(q, xi)", 2, 2, "1/2 xi q, the derivative of q under the spatial twist xi", "qdot(rot((0, 0, 1), theta1), (0, 0, 0, 1))"),
+    b("normalize", "normalize(h)", 1, 1, "DQ Robotics' normalize h norm(h)^-1, a unit DQ (exact when |P(h)|^2 is a rational)", "normalize(2*trans((l, 0, 0)) + eps*(1, 0, 0, 0))"),
+    b("C4", "C4()", 0, 0, "the 4x4 matrix with vec4(conj(q)) = C4() vec4(q)", "C4()"),
+    b("C8", "C8()", 0, 0, "the 8x8 matrix with vec8(conj(h)) = C8() vec8(h)", "C8()"),
+    b("crossmatrix4", "crossmatrix4(a)", 1, 1, "the 4x4 matrix with vec4(cross(a, b)) = crossmatrix4(a) vec4(b) for pure a, b", "crossmatrix4((0, l, 0, 1))"),
     b("tplus", "tplus(h)", 1, 1, "h P(h)*, the translation factor 1 + eps t/2 of a unit DQ", "tplus(dh(theta1, d1, a1, alpha1))"),
     b("Ad", "Ad(a, x)", 2, 2, "the adjoint a x conj(a) (moves lines, twists and directions by a)", "Ad(rot((0, 0, 1), theta1), (0, 1, 0, 0))"),
-    b("Adsharp", "Adsharp(a, x)", 2, 2, "sharp(a) x conj(a) (moves the pure point x by a)", "Adsharp(trans((l, 0, 0)), (0, 0, 1, 0))"),
+    b("Adsharp", "Adsharp(a, x)", 2, 2, "sharp(a) x conj(a): moves the plane x = n + eps d by a, to n' + eps (d + t . n'), n' = r n r* (Ad moves lines)", "Adsharp(rot((0, 0, 1), theta1, (l, 0, 0)), plane((1, 0, 0), (d1, 0, 0)))"),
     b("hamiplus4", "hamiplus4(q)", 1, 1, "the 4x4 matrix with vec4(q p) = hamiplus4(q) vec4(p)", "hamiplus4(rot((0, 0, 1), theta1))"),
     b("haminus4", "haminus4(q)", 1, 1, "the 4x4 matrix with vec4(p q) = haminus4(q) vec4(p)", "haminus4(rot((0, 0, 1), theta1))"),
     b("hamiplus8", "hamiplus8(h)", 1, 1, "the 8x8 matrix with vec8(h g) = hamiplus8(h) vec8(g)", "hamiplus8(trans((l, 0, 0)))"),
@@ -57,14 +63,28 @@ pub(super) const TABLE: [Builtin; 48] = [
     b("point_to_line_squared_distance", "point_to_line_squared_distance(p, line)", 2, 2, "|p x l - m|^2 for the line l + eps m", "point_to_line_squared_distance((l, 0, 0), line((0, 0, 1), (0, 0, d1)))"),
     b("point_to_plane_distance", "point_to_plane_distance(p, plane)", 2, 2, "the signed distance p . n - d from the plane n + eps d", "point_to_plane_distance((l, 0, d1), plane((0, 0, 1), (0, 0, 1)))"),
     b("line_to_line_squared_distance", "line_to_line_squared_distance(l1, l2)", 2, 2, "D(l1 . l2)^2 / |P(l1 x l2)|^2, or |D(l1 x l2)|^2 for parallel lines (a quotient when symbolic)", "line_to_line_squared_distance(line((1, 0, 0), (0, 0, 0)), line((0, 1, 0), (0, 0, d1)))"),
+    b("point_projected_in_line", "point_projected_in_line(p, line)", 2, 2, "the projection l x m + (p . l) l of the point p on the line l + eps m, a pure quaternion", "point_projected_in_line((l, 1, 0), line((1, 0, 0), (0, 0, d1)))"),
+    b("closest_points_between_lines", "closest_points_between_lines(l1, l2)", 2, 2, "the closest points of two non-parallel lines, the rows of a 2x3 matrix (a quotient by |l1 x l2|^2 when symbolic); DQ Robotics returns a pair", "closest_points_between_lines(line((1, 0, 0), (0, 0, 0)), line((0, 1, 0), (l, 0, d1)))"),
     b("line_to_line_angle", "line_to_line_angle(l1, l2)", 2, 2, "acos(P(l1 . l2)), read exactly when that is cos of an angle", "line_to_line_angle(line((1, 0, 0), (0, 0, 0)), Ad(rot((0, 0, 1), theta1), line((1, 0, 0), (0, 0, l))))"),
     b("pose_jacobian", "pose_jacobian(x, [q1, q2, ...])", 2, 2, "d vec8(x) / dq, 8 x n (the same as jacobian)", "pose_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
     b("rotation_jacobian", "rotation_jacobian(x, [q1, ...])", 2, 2, "d vec4(P(x)) / dq of a unit pose, 4 x n", "rotation_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
     b("translation_jacobian", "translation_jacobian(x, [q1, ...])", 2, 2, "d vec4(translation(x)) / dq of a unit pose, 4 x n", "translation_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
     b("line_jacobian", "line_jacobian(x, [q1, ...], direction)", 3, 3, "d vec8(l + eps t x l) / dq, l = r direction r* (direction in the frame x)", "line_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))"),
     b("plane_jacobian", "plane_jacobian(x, [q1, ...], normal)", 3, 3, "d vec8(n + eps t . n) / dq, n = r normal r* (normal in the frame x)", "plane_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))"),
-    b("distance_jacobian", "distance_jacobian(x, [q1, ...])", 2, 2, "d |translation(x)|^2 / dq, 1 x n", "distance_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("distance_jacobian", "distance_jacobian(x, [q1, ...])", 2, 2, "d |translation(x)|^2 / dq, 1 x n", "distance_jacobian(dh(theta1, 0, l, 0) * dh(t, 0, l, 0), [theta1, t])"),
+    b("point_to_point_distance_jacobian", "point_to_point_distance_jacobian(x, [q1, ...], p)", 3, 3, "d |t - p|^2 / dq, t = translation(x), p a workspace point, 1 x n", "point_to_point_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0))"),
+    b("point_to_line_distance_jacobian", "point_to_line_distance_jacobian(x, [q1, ...], line)", 3, 3, "d |t x l - m|^2 / dq for the workspace line l + eps m, 1 x n", "point_to_line_distance_jacobian(dh(theta1, 0, l, 0), [theta1], line((0, 1, 0), (1, 0, 0)))"),
+    b("point_to_plane_distance_jacobian", "point_to_plane_distance_jacobian(x, [q1, ...], plane)", 3, 3, "d (t . n - d) / dq for the workspace plane n + eps d, 1 x n", "point_to_plane_distance_jacobian(dh(theta1, 0, l, 0), [theta1], plane((1, 0, 0), (1, 0, 0)))"),
+    b("line_to_point_distance_jacobian", "line_to_point_distance_jacobian(x, [q1, ...], direction, p)", 4, 4, "d |p x l - m|^2 / dq: the workspace point p from the robot line l + eps t x l, l = r direction r*, 1 x n", "line_to_point_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 1, 0), (1, 0, 0))"),
+    b("plane_to_point_distance_jacobian", "plane_to_point_distance_jacobian(x, [q1, ...], normal, p)", 4, 4, "d (p . n - d) / dq: the workspace point p from the robot plane n + eps t . n, n = r normal r*, 1 x n", "plane_to_point_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0), (0, 1, 0))"),
+    b("line_to_line_distance_jacobian", "line_to_line_distance_jacobian(x, [q1, ...], direction, line)", 4, 4, "d of line_to_line_squared_distance(robot line, line) / dq, the robot line through t along r direction r*: a quotient, 1 x n", "line_to_line_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0), line((0, 3/5, 4/5), (0, 0, 1)))"),
+    b("line_to_line_angle_jacobian", "line_to_line_angle_jacobian(x, [q1, ...], direction, line)", 4, 4, "d |P(l) - P(line)|^2 / dq, l = r direction r* the robot line's direction, 1 x n", "line_to_line_angle_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0), line((0, 1, 0), (0, 0, 0)))"),
     b("pose_jacobian_derivative", "pose_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of the pose Jacobian, sum_k dJ/dq_k q_k_dot (rates named q_dot)", "pose_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("rotation_jacobian_derivative", "rotation_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of rotation_jacobian (rates named q_dot)", "rotation_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("translation_jacobian_derivative", "translation_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of translation_jacobian (rates named q_dot)", "translation_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])"),
+    b("line_jacobian_derivative", "line_jacobian_derivative(x, [q1, ...], direction)", 3, 3, "the time derivative of line_jacobian (rates named q_dot)", "line_jacobian_derivative(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))"),
+    b("plane_jacobian_derivative", "plane_jacobian_derivative(x, [q1, ...], normal)", 3, 3, "the time derivative of plane_jacobian (rates named q_dot)", "plane_jacobian_derivative(dh(theta1, 0, l, 0), [theta1], (1, 0, 0))"),
+    b("distance_jacobian_derivative", "distance_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of distance_jacobian (rates named q_dot)", "distance_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, 0, l, 0), [theta1, t])"),
 ];
 
 fn dq_error(name: &str, e: DqError, a: &Arg) -> EvalError {
@@ -79,12 +99,21 @@ fn vec3_arg(func: &str, what: &str, a: &Arg) -> Result<[Scalar; 3]> {
         Value::DualQuat(d) if d.real.w.is_zero() && d.dual.is_zero() => {
             return Ok(d.real.vector_part())
         }
+        // A column or row of three, such as `vec3(...)`.
+        Value::Matrix(m) => {
+            let flat: Vec<&Scalar> = m.iter().flatten().collect();
+            if let [x, y, z] = flat.as_slice() {
+                if m.len() == 1 || m.len() == 3 {
+                    return Ok([(*x).clone(), (*y).clone(), (*z).clone()]);
+                }
+            }
+        }
         _ => {}
     }
     Err(type_error(
         func,
         what,
-        "a vector (x, y, z) or a pure quaternion (0, x, y, z)",
+        "a vector (x, y, z), a pure quaternion (0, x, y, z) or a column of three",
         &a.value,
         a.span,
     ))
@@ -147,6 +176,11 @@ pub(super) fn call(name: &str, v: &[Arg]) -> Option<Result<Value>> {
         return None;
     }
     Some((|| -> Result<Value> {
+        match name {
+            "C4" => return Ok(square4(dqr::c4())),
+            "C8" => return Ok(Value::Matrix(dqr::c8())),
+            _ => {}
+        }
         let a = &v[0];
         Ok(match name {
             "P" | "rotation" => {
@@ -224,6 +258,40 @@ pub(super) fn call(name: &str, v: &[Arg]) -> Option<Result<Value>> {
                 Value::DualQuat(dqexp::from_twist(&q, &xi, false))
             }
             "tplus" => Value::DualQuat(dqr::tplus(&unit_dq(name, a)?)),
+            "normalize" => Value::DualQuat(
+                dqexp::normalize(&dq_like(name, a)?).map_err(|e| dq_error(name, e, a))?,
+            ),
+            "crossmatrix4" => square4(dqr::crossmatrix4(&Quat::from_vector(&vec3_arg(
+                name,
+                "the argument",
+                a,
+            )?))),
+            "point_projected_in_line" => {
+                let p = vec3_arg(name, "the point", a)?;
+                let l = line_arg(name, &v[1])?;
+                Value::Quat(Quat::from_vector(&dqr::point_projected_in_line(&p, &l)))
+            }
+            "closest_points_between_lines" => {
+                let (l1, l2) = (line_arg(name, a)?, line_arg(name, &v[1])?);
+                let (p1, p2, den) = dqr::closest_points_between_lines(&l1, &l2).ok_or_else(|| {
+                    invalid(
+                        &format!("`{name}`: the lines are parallel, so their closest points are not unique"),
+                        a.span,
+                    )
+                })?;
+                let mut rows = Vec::with_capacity(2);
+                for p in [p1, p2] {
+                    let mut row = Vec::with_capacity(3);
+                    for x in p {
+                        row.push(
+                            Frac::new(x, den.clone())
+                                .map_err(|e| super::eval::scalar_error(e, a.span))?,
+                        );
+                    }
+                    rows.push(row);
+                }
+                value::quotient_matrix(rows)
+            }
             "Ad" | "Adsharp" => {
                 let g = dq_like(name, a)?;
                 let x = dq_arg(name, &v[1])?;
@@ -315,27 +383,79 @@ pub(super) fn call(name: &str, v: &[Arg]) -> Option<Result<Value>> {
                 })?;
                 Value::Scalar(phi)
             }
-            "pose_jacobian"
-            | "rotation_jacobian"
-            | "translation_jacobian"
-            | "line_jacobian"
-            | "plane_jacobian"
-            | "distance_jacobian"
-            | "pose_jacobian_derivative" => {
+            n if n.ends_with("_jacobian") || n.ends_with("_jacobian_derivative") => {
                 let x = unit_dq(name, a)?;
                 let vars = symbol_list(name, &v[1])?;
-                let dir = || vec3_arg(name, "the direction", &v[2]);
-                let task = match name {
+                let vec = |k: usize, what: &str| vec3_arg(name, what, &v[k]);
+                let workspace_line = |k: usize| -> Result<([Scalar; 3], [Scalar; 3])> {
+                    let l = line_arg(name, &v[k])?;
+                    Ok((l.real.vector_part(), point_on_line(&l)))
+                };
+                let workspace_plane =
+                    |k: usize| -> Result<([Scalar; 3], [Scalar; 3])> { plane_arg(name, &v[k]) };
+                let (kind, derivative) = match n.strip_suffix("_derivative") {
+                    Some(k) => (k, true),
+                    None => (n, false),
+                };
+                let task = match kind {
                     "pose_jacobian" => TaskJacobian::Pose,
                     "rotation_jacobian" => TaskJacobian::Rotation,
                     "translation_jacobian" => TaskJacobian::Translation,
-                    "line_jacobian" => TaskJacobian::Line(dir()?),
-                    "plane_jacobian" => TaskJacobian::Plane(dir()?),
+                    "line_jacobian" => TaskJacobian::Line(vec(2, "the direction")?),
+                    "plane_jacobian" => TaskJacobian::Plane(vec(2, "the normal")?),
                     "distance_jacobian" => TaskJacobian::Distance,
-                    _ => TaskJacobian::PoseDerivative,
+                    "point_to_point_distance_jacobian" => {
+                        TaskJacobian::PointToPoint(vec(2, "the point")?)
+                    }
+                    "point_to_line_distance_jacobian" => {
+                        let (l, p) = workspace_line(2)?;
+                        TaskJacobian::PointToLine(l, p)
+                    }
+                    "point_to_plane_distance_jacobian" => {
+                        let (nn, p) = workspace_plane(2)?;
+                        TaskJacobian::PointToPlane(nn, p)
+                    }
+                    "line_to_point_distance_jacobian" => {
+                        TaskJacobian::LineToPoint(vec(2, "the direction")?, vec(3, "the point")?)
+                    }
+                    "plane_to_point_distance_jacobian" => {
+                        TaskJacobian::PlaneToPoint(vec(2, "the normal")?, vec(3, "the point")?)
+                    }
+                    "line_to_line_distance_jacobian" | "line_to_line_angle_jacobian" => {
+                        let l0 = vec(2, "the direction")?;
+                        let (l, p) = workspace_line(3)?;
+                        if kind == "line_to_line_angle_jacobian" {
+                            TaskJacobian::LineToLineAngle(l0, l, p)
+                        } else {
+                            TaskJacobian::LineToLine(l0, l, p)
+                        }
+                    }
+                    _ => return Err(invalid(&format!("`{name}` is not implemented"), a.span)),
+                };
+                let task = if derivative {
+                    TaskJacobian::Derivative(Box::new(task))
+                } else {
+                    task
                 };
                 let refs: Vec<&str> = vars.iter().map(String::as_str).collect();
-                Value::Matrix(crate::task_jacobian(&x, &refs, &task))
+                let m = crate::task_jacobian(&x, &refs, &task);
+                match m.as_polynomial() {
+                    Some(rows) => Value::Matrix(rows.clone()),
+                    None => {
+                        let mut rows = Vec::with_capacity(m.num.len());
+                        for r in &m.num {
+                            let mut row = Vec::with_capacity(r.len());
+                            for e in r {
+                                row.push(
+                                    Frac::new(e.clone(), m.den.clone())
+                                        .map_err(|e| super::eval::scalar_error(e, a.span))?,
+                                );
+                            }
+                            rows.push(row);
+                        }
+                        value::quotient_matrix(rows)
+                    }
+                }
             }
             _ => return Err(invalid(&format!("`{name}` is not implemented"), a.span)),
         })
@@ -357,4 +477,37 @@ fn line_arg(func: &str, a: &Arg) -> Result<DualQuat<Scalar>> {
         ));
     }
     Ok(l)
+}
+
+/// A point of the line `l + eps m` (unit `l`): `l x m`, the point nearest the origin.
+fn point_on_line(l: &DualQuat<Scalar>) -> [Scalar; 3] {
+    crate::algebra::cross(&l.real.vector_part(), &l.dual.vector_part())
+}
+
+/// A plane `n + eps d` (pure primary part, unit `n`, scalar dual part) as its normal and the
+/// point `d n` on it.
+fn plane_arg(func: &str, a: &Arg) -> Result<([Scalar; 3], [Scalar; 3])> {
+    let pl = dq_like(func, a)?;
+    let n = pl.real.vector_part();
+    let unit = dqr::dot3(&n, &n) - Scalar::int(1);
+    let problem = if !pl.real.w.is_zero() {
+        Some(format!(
+            "P(plane) has the scalar part {}",
+            super::builtins::text(&pl.real.w)
+        ))
+    } else if !pl.dual.vector_part().iter().all(Zero::is_zero) {
+        Some("D(plane) has a vector part".to_owned())
+    } else if !unit.is_zero() {
+        Some(format!("|n|^2 - 1 = {}", super::builtins::text(&unit)))
+    } else {
+        None
+    };
+    if let Some(p) = problem {
+        return Err(invalid(
+            &format!("`{func}` needs a plane n + eps d (n pure and unit, d a scalar), but {p}"),
+            a.span,
+        ));
+    }
+    let d = pl.dual.w.clone();
+    Ok((n.clone(), [&n[0] * &d, &n[1] * &d, &n[2] * &d]))
 }

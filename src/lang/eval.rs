@@ -477,7 +477,8 @@ pub(crate) trait Observer {
 #[derive(Clone, Debug)]
 pub(crate) enum Event {
     /// A built-in that builds a motion or a point (`rot`, `trans`, `screw`, `dh`, `mdh`,
-    /// `point`) was called.
+    /// `point`), a twist or a velocity (`twist`, `bodytwist`, `qdot`, `sclerp`, `sclerpdot`)
+    /// was called.
     Built {
         /// The built-in.
         func: &'static str,

@@ -298,6 +298,12 @@ pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<S
         let (aside, js) = live(m, cfg)?;
         body += &aside;
         scripts = js;
+    } else if let Some((name, _)) = cfg.values.first() {
+        // No drawing, so no configuration: a --config name would be silently ignored.
+        return Err(WalkError::Config(format!(
+            "`{name}` is not a symbol of a drawing: this walkthrough has no drawing of a \
+             mechanism, so --config has nothing to set"
+        )));
     }
     body += "<div class=\"steps\">\n";
     for (head, parts) in p.sections {
@@ -334,3 +340,236 @@ pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<S
         scripts.unwrap_or_default()
     ))
 }
+
+/// The inverse kinematics walkthrough as a self-contained page: the derivation (`markdown`, as
+/// `dqsym walk --ik --markdown` writes it) beside the mechanism of `w` with its sliders; each
+/// slider move recomputes the pose and runs the derived solver on it (JavaScript generated
+/// from the same closed forms), listing every solution with its flags and the deviation of
+/// its own pose from the target.
+///
+/// # Errors
+/// When a closed form cannot be written or the mechanism cannot be evaluated.
+pub fn ik_walk_html(
+    w: &Walkthrough,
+    sol: &crate::ik::IkSolution,
+    markdown: &str,
+    katex: &KatexAssets,
+    cfg: &Config,
+) -> Result<String, WalkError> {
+    let mut body = String::new();
+    // The Markdown's blocks as HTML: headings, `$$` displays, lists, paragraphs.
+    let mut sections: Vec<(String, Vec<String>)> = Vec::new();
+    for block in markdown.split("\n\n") {
+        let block = block.trim();
+        if block.is_empty() {
+            continue;
+        }
+        if let Some(t) = block.strip_prefix("# ") {
+            body += &format!("<h1>{}</h1>\n", inline(t));
+            continue;
+        }
+        if let Some(t) = block.strip_prefix("## ").or(block.strip_prefix("### ")) {
+            sections.push((t.to_string(), Vec::new()));
+            continue;
+        }
+        let html = if let Some(d) = block.strip_prefix("$$").and_then(|b| b.strip_suffix("$$")) {
+            format!(
+                "<div class=\"tex display\" data-tex=\"{}\"></div>\n",
+                xml_escape(d.trim())
+            )
+        } else if block.lines().all(|l| l.starts_with("- ")) {
+            let items: String = block
+                .lines()
+                .map(|l| format!("<li>{}</li>", inline(&l[2..])))
+                .collect();
+            format!("<ul>{items}</ul>\n")
+        } else {
+            let lines: Vec<String> = block.lines().map(inline).collect();
+            format!("<p>{}</p>\n", lines.join("<br>\n"))
+        };
+        if sections.is_empty() {
+            sections.push((String::new(), Vec::new()));
+        }
+        if let Some(s) = sections.last_mut() {
+            s.1.push(html);
+        }
+    }
+    body += "<div class=\"layout\">\n";
+    let mut scripts = None;
+    if let Some(m) = &w.mechanism {
+        let (aside, js) = live(m, cfg)?;
+        let panel = "<div class=\"controls\"><table class=\"num\" id=\"ik-solutions\"><caption>\
+                     The solver on this pose: every solution, its flags and how far its own pose \
+                     is from the target</caption></table></div>\n</aside>\n";
+        body += &aside.replacen("</aside>\n", panel, 1);
+        if let Some(js) = js {
+            scripts = Some(js + &ik_script(sol)?);
+        }
+    }
+    body += "<div class=\"steps\">\n";
+    for (head, parts) in sections {
+        body += &format!("<section class=\"step\">\n<h2>{}</h2>\n", inline(&head));
+        body += &parts.concat();
+        body += "</section>\n";
+    }
+    body += "</div>\n</div>\n";
+    let title = format!("Inverse kinematics walkthrough: {}", sol.robot);
+    Ok(format!(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
+         <title>{}</title>\n<style>{}</style>\n<style>{STYLE}</style>\n</head>\n<body>\n<main>\n\
+         {body}</main>\n<script>{}</script>\n<script>{RENDER}</script>\n{}</body>\n</html>\n",
+        xml_escape(&title),
+        katex.css,
+        katex.js,
+        scripts.unwrap_or_default()
+    ))
+}
+
+/// The solver of the page: one generated function per step (its parts from the target, the
+/// parameters and the joints solved before), and a driver that branches as
+/// [`crate::ik::candidates`] does.
+fn ik_script(sol: &crate::ik::IkSolution) -> Result<String, WalkError> {
+    use crate::ik::{Formula, TARGET_SYMBOLS};
+    let forms = sol.forms().map_err(WalkError::Config)?;
+    let target: Vec<String> = TARGET_SYMBOLS
+        .iter()
+        .flatten()
+        .map(|s| s.to_string())
+        .collect();
+    let mut code = String::new();
+    let mut steps = Vec::new();
+    let mut solved: Vec<String> = Vec::new();
+    for (k, (step, parts)) in sol.steps.iter().zip(forms).enumerate() {
+        let args: Vec<String> = target
+            .iter()
+            .chain(&sol.params)
+            .chain(&solved)
+            .cloned()
+            .collect();
+        let outputs: Vec<Output> = parts
+            .iter()
+            .map(|(n, e)| Output::scalar(&format!("part_{n}"), "A part of the step.", e.clone()))
+            .collect();
+        code += &javascript_function(
+            &format!("dqsym_ik_step{k}"),
+            &format!(
+                "Step {}: the parts of the formula for {}.",
+                k + 1,
+                step.variable
+            ),
+            &outputs,
+            &args,
+            &CodegenOptions::default(),
+        )
+        .map_err(|e| WalkError::Config(e.to_string()))?;
+        let kind = match step.formula {
+            Formula::Atan2 { .. } => "atan2",
+            Formula::Trig { .. } => "trig",
+            Formula::Value { .. } => "value",
+            Formula::Quadratic { .. } => "quadratic",
+        };
+        let names: Vec<String> = parts.iter().map(|(n, _)| format!("\"part_{n}\"")).collect();
+        let quoted: Vec<String> = args.iter().map(|a| format!("\"{a}\"")).collect();
+        steps.push(format!(
+            "{{\"f\":dqsym_ik_step{k},\"kind\":\"{kind}\",\"var\":\"{}\",\"joint\":{},\"args\":[{}],\"parts\":[{}]}}",
+            step.variable,
+            step.joint,
+            quoted.join(","),
+            names.join(",")
+        ));
+        solved.push(step.variable.clone());
+    }
+    let vars: Vec<String> = sol.variables.iter().map(|v| format!("\"{v}\"")).collect();
+    let data = format!(
+        "const IK = {{\"steps\":[{}],\"vars\":[{}],\"position_only\":{}}};\n",
+        steps.join(","),
+        vars.join(","),
+        sol.position_only
+    );
+    Ok(format!(
+        "<script>{}{data}{}</script>\n",
+        code.replace("</script", "<\\/script"),
+        IK_JS
+    ))
+}
+
+/// The page's IK driver: after each slider move, the target from `dqsym_walk`, every branch of
+/// the solver, each solution's own pose from `dqsym_walk` again.
+const IK_JS: &str = r#"(function () {
+    "use strict";
+    const D = JSON.parse(document.getElementById("dq-data").textContent);
+    const inputs = Array.from(document.querySelectorAll("input[data-name]"));
+    const TARGET = ["r11","r12","r13","px","r21","r22","r23","py","r31","r32","r33","pz"];
+    function cands(kind, v) {
+        if (kind === "atan2") {
+            if (Math.hypot(v[0], v[1]) < 1e-10) {
+                const out = [];
+                for (let k = -5; k <= 6; k++) out.push([k * Math.PI / 6, true]);
+                return out;
+            }
+            return [[Math.atan2(v[0], v[1]), false]];
+        }
+        if (kind === "value") return [[v[0], false]];
+        if (kind === "trig") {
+            const [a, b, c] = v, n = a * a + b * b;
+            if (n < 1e-20) return Math.abs(c) < 1e-9 ? [[0, true]] : [];
+            let rad = n - c * c;
+            if (rad < -1e-8 * n) return [];
+            const sing = rad <= 1e-12 * n;
+            if (sing) rad = 0;
+            const phi = Math.atan2(b, a), w = Math.atan2(Math.sqrt(rad), c);
+            return [[phi + w, sing], [phi - w, sing]];
+        }
+        const [b, g] = v, scale = Math.max(b * b, Math.abs(g), 1);
+        let rad = b * b - g;
+        if (rad < -1e-8 * scale) return [];
+        const sing = rad <= 1e-12 * scale;
+        if (sing) rad = 0;
+        return [[-b + Math.sqrt(rad), sing], [-b - Math.sqrt(rad), sing]];
+    }
+    function solve(env) {
+        const out = [];
+        (function go(k, env, sing) {
+            if (k === IK.steps.length) { out.push([Object.assign({}, env), sing]); return; }
+            const s = IK.steps[k];
+            const r = s.f(...s.args.map((n) => env[n]));
+            for (const [v, sg] of cands(s.kind, s.parts.map((p) => r[p]))) {
+                env[s.var] = v;
+                go(k + 1, env, sing || sg);
+            }
+            delete env[s.var];
+        })(0, Object.assign({}, env), false);
+        return out;
+    }
+    const run = (v) => dqsym_walk(...D.args.map((n) => v[n]));
+    function update() {
+        const v = {};
+        for (const i of inputs) v[i.dataset.name] = Number(i.value);
+        const T = run(v).T;
+        const env = Object.assign({}, v);
+        TARGET.forEach((n, i) => { env[n] = T[Math.floor(i / 4)][i % 4]; });
+        for (const n of IK.vars) delete env[n];
+        const sols = solve(env);
+        const table = document.getElementById("ik-solutions");
+        const cap = table.querySelector("caption").outerHTML;
+        let h = cap + "<tr><td>#</td>" + IK.vars.map((n) => `<td>${n}</td>`).join("") +
+            "<td>singular</td><td>deviation</td></tr>";
+        sols.forEach(([s, sing], k) => {
+            const back = run(Object.assign({}, v, s)).T;
+            let dev = 0;
+            for (let r = 0; r < 3; r++) for (let c = 0; c < 4; c++) {
+                if (IK.position_only && c < 3) continue;
+                dev = Math.max(dev, Math.abs(back[r][c] - T[r][c]));
+            }
+            h += `<tr data-dev="${dev}"><td>${k + 1}</td>` +
+                IK.vars.map((n) => `<td>${s[n].toFixed(4)}</td>`).join("") +
+                `<td>${sing ? "yes" : ""}</td><td>${dev.toExponential(1)}</td></tr>`;
+        });
+        table.innerHTML = h;
+        table.dataset.count = String(sols.length);
+    }
+    inputs.forEach((i) => i.addEventListener("input", update));
+    update();
+})();
+"#;

@@ -21,7 +21,7 @@ mod script;
 mod svg;
 mod text;
 
-pub use html::{walk_html, KatexAssets};
+pub use html::{ik_walk_html, walk_html, KatexAssets};
 pub use motion::{Motion, Word, Words};
 pub use robot::{walk_robot, walk_robot_chain};
 pub use script::walk_script;

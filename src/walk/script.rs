@@ -193,6 +193,17 @@ impl ScriptWalk {
                     let a: Vec<&str> = args.iter().map(|(t, _)| t.as_str()).collect();
                     format!("{func}({})", a.join(", "))
                 };
+                if let Some(meaning) = velocity_words(func, &args, &v) {
+                    if let Some(q) = as_dq(&v) {
+                        self.named.push((q, name.clone()));
+                    }
+                    self.steps.push(Step::Define {
+                        name,
+                        value: v,
+                        meaning,
+                    });
+                    return Ok(());
+                }
                 let Some(q) = as_dq(&v) else { return Ok(()) };
                 if func == "point" {
                     self.steps.push(Step::Define {
@@ -387,6 +398,91 @@ impl Words {
         self.0.push(super::Word::Tuple(v.to_vec()));
         self
     }
+}
+
+/// What a twist or velocity built-in's result is, in words with its exact parts: the spatial
+/// twist `xi = 2 qdot q* = omega + eps (t-dot + t x omega)` and the geometric Jacobian column
+/// `(t-dot; omega)` it gives, the body twist `2 q* qdot = omega_b + eps r* t-dot r`, `qdot =
+/// 1/2 xi q`, ScLERP and its derivative with the constant body twist `2 screwlog(q0* q1)`.
+fn velocity_words(func: &str, args: &[(String, Value)], v: &Value) -> Option<Words> {
+    use super::Word::{Text, Tuple};
+    let text = |s: &str| Text(s.to_owned());
+    let arg = |k: usize| args.get(k).map_or("", |a| a.0.as_str());
+    let cross = |a: &[Scalar; 3], b: &[Scalar; 3]| -> [Scalar; 3] {
+        [
+            &a[1] * &b[2] - &a[2] * &b[1],
+            &a[2] * &b[0] - &a[0] * &b[2],
+            &a[0] * &b[1] - &a[1] * &b[0],
+        ]
+    };
+    let words = match func {
+        "twist" => {
+            let q = as_dq(&args.first()?.1)?;
+            let xi = as_dq(v)?;
+            let omega = xi.real.vector_part();
+            let t = crate::dqr::translation(&q).vector_part();
+            let txo = cross(&t, &omega);
+            let d = xi.dual.vector_part();
+            let tdot: Vec<Scalar> = (0..3).map(|k| &d[k] - &txo[k]).collect();
+            vec![
+                text(&format!(
+                    "the spatial twist xi = 2 qdot q* of the motion {} moving at qdot = {} (so qdot = 1/2 xi q): the angular velocity omega = P(xi) = ",
+                    arg(0),
+                    arg(1)
+                )),
+                Tuple(omega.to_vec()),
+                text(", and D(xi) = t-dot + t x omega (t = translation(q)), so the velocity of the moving frame's origin is t-dot = D(xi) - t x omega = "),
+                Tuple(tdot),
+                text("; when qdot is the derivative of a pose by one joint variable, (t-dot; omega) is that joint's column of the geometric Jacobian (gjacobian)"),
+            ]
+        }
+        "bodytwist" => {
+            let xi = as_dq(v)?;
+            vec![
+                text(&format!(
+                    "the body twist xi_b = 2 q* qdot of the motion {} moving at qdot = {} (so qdot = 1/2 q xi_b; xi_b = q* xi q for the spatial twist xi): the angular velocity in the moving frame P(xi_b) = ",
+                    arg(0),
+                    arg(1)
+                )),
+                Tuple(xi.real.vector_part().to_vec()),
+                text(", and D(xi_b) = r* t-dot r, the velocity of the moving frame's origin in the moving frame, = "),
+                Tuple(xi.dual.vector_part().to_vec()),
+            ]
+        }
+        "qdot" => vec![text(&format!(
+            "the derivative qdot = 1/2 xi q of the motion {} under the spatial twist {} (twist(q, qdot) gives the twist back)",
+            arg(0),
+            arg(1)
+        ))],
+        "sclerp" => {
+            let (a, b, t) = (arg(0), arg(1), arg(2));
+            let named = match args.get(3) {
+                Some(p) => format!(", {} = {t} * rotation_angle({a}* {b})", p.0),
+                None => String::new(),
+            };
+            vec![text(&format!(
+                "ScLERP {a} ({a}* {b})^{t}: the screw motion about the axis of {a}* {b} from {a} ({t} = 0) to {b} ({t} = 1) at constant speed{named}"
+            ))]
+        }
+        "sclerpdot" => {
+            let (q0, q1) = (as_dq(&args.first()?.1)?, as_dq(&args.get(1)?.1)?);
+            let xi = crate::dqexp::screw_log(&(q0.conjugate() * q1)).ok()?;
+            let two = Scalar::int(2);
+            let body: Vec<Scalar> = xi.components().iter().map(|c| c * &two).collect();
+            vec![
+                text(&format!(
+                    "the derivative by {t} of sclerp({a}, {b}, {t}) = {a} ({a}* {b})^{t}: sclerp({a}, {b}, {t}) xi with xi = screwlog({a}* {b}); its body twist 2 q* qdot = 2 xi = ",
+                    a = arg(0),
+                    b = arg(1),
+                    t = arg(2),
+                )),
+                Tuple(body),
+                text(" (w, x, y, z, w_e, x_e, y_e, z_e) does not depend on t: a screw motion at constant speed"),
+            ]
+        }
+        _ => return None,
+    };
+    Some(Words(words))
 }
 
 /// The motion of a built-in call from its arguments.

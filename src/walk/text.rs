@@ -392,6 +392,12 @@ fn trace_text(t: &ComponentTrace, st: &Plain, pad: &str) -> String {
                     st.expr(e)
                 );
             }
+            TraceStep::Shorter(e) => {
+                out += &format!(
+                    "{inner}closed form (a shorter equivalent form): {}\n",
+                    st.expr(e)
+                );
+            }
         }
     }
     out
@@ -865,6 +871,12 @@ fn trace_tex(t: &ComponentTrace, st: &Tex) -> Vec<Piece> {
             TraceStep::KeptWhole(e) => {
                 out.push(Piece::Text(
                     "closed form (the Fourier modes kept whole are shorter):".to_owned(),
+                ));
+                out.push(Piece::Display(st.aligned(&[(name.clone(), e.clone())])));
+            }
+            TraceStep::Shorter(e) => {
+                out.push(Piece::Text(
+                    "closed form (a shorter equivalent form):".to_owned(),
                 ));
                 out.push(Piece::Display(st.aligned(&[(name.clone(), e.clone())])));
             }

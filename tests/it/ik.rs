@@ -124,63 +124,94 @@ pub(crate) fn random_q(c: &Chain<f64>, rng: &mut Rng) -> Vec<f64> {
         .collect()
 }
 
-/// Inserts the free joint's value back into a solution.
-fn full_q(sol: &IkSolution, s: &NumSolution, free_val: Option<(usize, f64)>) -> Vec<f64> {
-    let mut q = s.q.clone();
-    if let Some((k, v)) = free_val {
-        q.insert(k, v);
+/// A derived solver and what checking it needs: the robot, its f64 chain and parameters, and
+/// where the free joint sits.
+struct Case {
+    sol: IkSolution,
+    kinds: Vec<JointKind>,
+    free_k: Option<usize>,
+    env: Vec<(String, f64)>,
+    c: Chain<f64>,
+}
+
+impl Case {
+    fn new(file: &str, free: Option<&str>) -> Case {
+        let sol = derive(file, free).unwrap_or_else(|e| panic!("{file}: {e}"));
+        let r = load(&format!("{ROBOTS}{file}.toml"));
+        let free_k = sol
+            .free
+            .as_ref()
+            .map(|f| r.variables.iter().position(|v| v == f).expect("free"));
+        Case {
+            sol,
+            kinds: r.chain.joints.iter().map(|j| j.kind).collect(),
+            free_k,
+            env: params(file),
+            c: chain(file),
+        }
     }
-    assert_eq!(
-        q.len(),
-        sol.variables.len() + usize::from(free_val.is_some())
-    );
-    q
+
+    /// The parameters' values, the free joint's taken from `q`.
+    fn params(&self, q: &[f64]) -> Vec<(&str, f64)> {
+        let mut p: Vec<(&str, f64)> = self.env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        if let (Some(k), Some(f)) = (self.free_k, &self.sol.free) {
+            p.push((f.as_str(), q[k]));
+        }
+        p
+    }
+
+    /// The engine's solutions for the pose of `q`.
+    fn solve(&self, q: &[f64]) -> Vec<NumSolution> {
+        self.sol
+            .solve_numeric(&pose(&self.c, q), &self.params(q))
+            .expect("params")
+    }
+
+    /// Checks solutions (the free joint excluded) for the pose of `q`: each is finite and
+    /// reproduces the pose to 1e-9. True when `q` is among them (mod 2 pi).
+    fn check(&self, what: &str, q: &[f64], sols: &[Vec<f64>]) -> bool {
+        let t = pose(&self.c, q);
+        let mut found = false;
+        for s in sols {
+            let mut qq = s.clone();
+            if let Some(k) = self.free_k {
+                qq.insert(k, q[k]);
+            }
+            assert_eq!(qq.len(), q.len(), "{what}: joint count");
+            assert!(qq.iter().all(|x| x.is_finite()), "{what}: NaN in {qq:?}");
+            let dev = max_dev(&t, &pose(&self.c, &qq), self.sol.position_only);
+            assert!(
+                dev < 1e-9,
+                "{what}: solution {qq:?} misses the pose of {q:?} by {dev:e}"
+            );
+            found |= qq
+                .iter()
+                .zip(q)
+                .zip(&self.kinds)
+                .all(|((a, b), k)| match k {
+                    JointKind::Revolute => angle_diff(*a, *b) < 1e-6,
+                    JointKind::Prismatic => (a - b).abs() < 1e-6,
+                });
+        }
+        found
+    }
 }
 
 /// FK(q) -> IK at `n` random configurations: every solution reproduces the pose to 1e-9 and q is
 /// among them (mod 2 pi).
 fn round_trip(file: &str, free: Option<&str>, n: usize, seed: u64) {
-    let sol = derive(file, free).unwrap_or_else(|e| panic!("{file}: {e}"));
-    let r = load(&format!("{ROBOTS}{file}.toml"));
-    let free_k = free.map(|f| r.variables.iter().position(|v| v == f).expect("free"));
-    let env = params(file);
-    let c = chain(file);
+    let case = Case::new(file, free);
     let mut rng = Rng::new(seed);
     let mut total = 0;
     for _ in 0..n {
-        let q = random_q(&c, &mut rng);
-        let t = pose(&c, &q);
-        let mut p: Vec<(&str, f64)> = env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-        if let Some(k) = free_k {
-            p.push((free.expect("free"), q[k]));
-        }
-        let sols = sol.solve_numeric(&t, &p).expect("params");
+        let q = random_q(&case.c, &mut rng);
+        let sols = case.solve(&q);
         assert!(!sols.is_empty(), "{file}: no solution at q = {q:?}");
-        let mut found = false;
-        for s in &sols {
-            assert!(s.q.iter().all(|x| x.is_finite()), "{file}: NaN at {q:?}");
-            let qq = full_q(&sol, s, free_k.map(|k| (k, q[k])));
-            let back = pose(&c, &qq);
-            let dev = max_dev(&t, &back, sol.position_only);
-            assert!(
-                dev < 1e-9,
-                "{file}: solution {qq:?} misses the pose of {q:?} by {dev:e}"
-            );
-            let same =
-                qq.iter()
-                    .zip(&q)
-                    .enumerate()
-                    .all(|(i, (a, b))| match r.chain.joints[i].kind {
-                        JointKind::Revolute => angle_diff(*a, *b) < 1e-6,
-                        JointKind::Prismatic => (a - b).abs() < 1e-6,
-                    });
-            found |= same;
-        }
+        let qs: Vec<Vec<f64>> = sols.iter().map(|s| s.q.clone()).collect();
         assert!(
-            found,
-            "{file}: q = {q:?} is not among the {} solutions {:?}",
-            sols.len(),
-            sols.iter().map(|s| &s.q).collect::<Vec<_>>()
+            case.check(file, &q, &qs),
+            "{file}: q = {q:?} is not among the {} solutions {qs:?}",
+            sols.len()
         );
         total += sols.len();
     }
@@ -235,6 +266,33 @@ fn iiwa_with_free_theta3_round_trip() {
     round_trip("kuka_iiwa7", Some("theta3"), 1000, 12);
 }
 
+#[test]
+fn a_seven_joint_arm_without_free_gets_a_free_joint_chosen_from_its_geometry() {
+    // The Panda reduces only with theta7 given; the iiwa already with theta1.
+    for (file, want) in [
+        ("panda", "theta7"),
+        ("franka_panda", "q7"),
+        ("kuka_iiwa7", "theta1"),
+    ] {
+        let sol = derive(file, None).unwrap_or_else(|e| panic!("{file}: {e}"));
+        assert_eq!(sol.free.as_deref(), Some(want), "{file}");
+        assert!(
+            sol.geometry[0].contains(&format!("{want} chosen as the free joint")),
+            "{file}: {:?}",
+            sol.geometry
+        );
+    }
+    round_trip("panda", None, 200, 15);
+}
+
+#[test]
+fn panda_with_free_theta7_round_trip() {
+    // No spherical wrist: axes 1, 2, 3 meet (a spherical shoulder), so with theta7 given the
+    // chain read backwards is a Pieper arm.
+    round_trip("panda", Some("theta7"), 1000, 13);
+    round_trip("franka_panda", Some("q7"), 1000, 14);
+}
+
 /// The value of a formula part with the parameters only (`None` when it needs the target or a
 /// joint).
 fn constant_part(x: &dqsym::Scalar, env: &[(String, f64)]) -> Option<f64> {
@@ -246,18 +304,15 @@ fn constant_part(x: &dqsym::Scalar, env: &[(String, f64)]) -> Option<f64> {
 /// wrist and elbow branches: the root of `a cos q + b sin q` at its extreme), the solver
 /// returns solutions that reproduce the pose, one flagged singular, none NaN.
 fn singular_sets(file: &str, free: Option<&str>, n: usize, seed: u64) -> usize {
-    let sol = derive(file, free).unwrap_or_else(|e| panic!("{file}: {e}"));
+    let case = Case::new(file, free);
     let r = load(&format!("{ROBOTS}{file}.toml"));
-    let free_k = free.map(|f| r.variables.iter().position(|v| v == f).expect("free"));
-    let env = params(file);
-    let c = chain(file);
     let mut rng = Rng::new(seed);
     let mut sets = 0;
-    for step in &sol.steps {
+    for step in &case.sol.steps {
         let dqsym::ik::Formula::Trig { a, b, .. } = &step.formula else {
             continue;
         };
-        let (Some(a), Some(b)) = (constant_part(a, &env), constant_part(b, &env)) else {
+        let (Some(a), Some(b)) = (constant_part(a, &case.env), constant_part(b, &case.env)) else {
             continue;
         };
         sets += 1;
@@ -267,14 +322,9 @@ fn singular_sets(file: &str, free: Option<&str>, n: usize, seed: u64) -> usize {
             .position(|v| *v == step.variable)
             .expect("joint");
         for _ in 0..n {
-            let mut q = random_q(&c, &mut rng);
+            let mut q = random_q(&case.c, &mut rng);
             q[k] = b.atan2(a);
-            let t = pose(&c, &q);
-            let mut p: Vec<(&str, f64)> = env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-            if let Some(fk) = free_k {
-                p.push((free.expect("free"), q[fk]));
-            }
-            let sols = sol.solve_numeric(&t, &p).expect("params");
+            let sols = case.solve(&q);
             assert!(!sols.is_empty(), "{file} {}: no solution", step.variable);
             assert!(
                 sols.iter().any(|s| s.singular),
@@ -282,16 +332,8 @@ fn singular_sets(file: &str, free: Option<&str>, n: usize, seed: u64) -> usize {
                 step.variable,
                 q[k]
             );
-            for s in &sols {
-                assert!(s.q.iter().all(|x| x.is_finite()), "{file}: NaN");
-                let qq = full_q(&sol, s, free_k.map(|fk| (fk, q[fk])));
-                let dev = max_dev(&t, &pose(&c, &qq), sol.position_only);
-                assert!(
-                    dev < 1e-9,
-                    "{file}: singular {}: {qq:?} misses the pose of {q:?} by {dev:e}",
-                    step.variable
-                );
-            }
+            let qs: Vec<Vec<f64>> = sols.iter().map(|s| s.q.clone()).collect();
+            case.check(&format!("{file}: singular {}", step.variable), &q, &qs);
         }
     }
     sets
@@ -309,6 +351,7 @@ fn singular_sets_give_flagged_solutions_that_reproduce_the_pose() {
         ("ur5", None, 2),
         ("ur10", None, 2),
         ("kuka_iiwa7", Some("theta3"), 2),
+        ("panda", Some("theta7"), 2),
         ("stanford", None, 1),
         ("scara", None, 1),
         ("rrr", None, 1),
@@ -322,11 +365,10 @@ fn singular_sets_give_flagged_solutions_that_reproduce_the_pose() {
 fn robots_outside_the_families_get_the_clear_error() {
     for (file, free, found) in [
         ("six_r", None, "axes 1 and 2 are parallel"),
-        ("panda", Some("theta3"), "spherical wrist): no"),
         (
-            "kuka_iiwa7",
-            None,
-            "give one joint variable as a parameter with --free",
+            "panda",
+            Some("theta3"),
+            "--free theta3 leaves no supported family; --free theta7 does",
         ),
     ] {
         let e = derive(file, free).expect_err(file).to_string();
@@ -360,7 +402,11 @@ fn robots_outside_the_families_get_the_clear_error() {
         joint("q4", "0", "0", "pi/2"),
         joint("q5", "1", "0", "0")
     );
+    let skew7: String = std::iter::once("name = \"skew 7R\"\nconvention = \"dh\"\n".to_string())
+        .chain((1..=7).map(|i| joint(&format!("q{i}"), "1", "1", "pi/3")))
+        .collect();
     for (text, found) in [
+        (skew7, "no joint given as --free leaves a supported family"),
         (rrr, "axes 1 and 2 are skew"),
         (ur_offset, "axes 5 and 6 are skew unless"),
         (five, "joints: RRRRR (5)"),
@@ -419,11 +465,7 @@ fn codegen_cases(file: &str, free: Option<&str>, n: usize) -> (String, Vec<Vec<f
 /// and two flags; every solution reproduces the pose, q is among them, the count is the
 /// engine's and the DQ variant's.
 fn check_output(file: &str, free: Option<&str>, what: &str, out: &str, qs: &[Vec<f64>]) {
-    let sol = derive(file, free).expect("derive");
-    let r = load(&format!("{ROBOTS}{file}.toml"));
-    let free_k = free.map(|f| r.variables.iter().position(|v| v == f).expect("free"));
-    let c = chain(file);
-    let env = params(file);
+    let case = Case::new(file, free);
     let mut lines = out.lines();
     for q in qs {
         let head: Vec<usize> = lines
@@ -432,41 +474,29 @@ fn check_output(file: &str, free: Option<&str>, what: &str, out: &str, qs: &[Vec
             .split_whitespace()
             .map(|x| x.parse().expect("count"))
             .collect();
-        let t = pose(&c, q);
-        let mut p: Vec<(&str, f64)> = env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
-        if let Some(fk) = free_k {
-            p.push((free.expect("free"), q[fk]));
-        }
-        let engine = sol.solve_numeric(&t, &p).expect("params");
+        let engine = case.solve(q);
         assert_eq!(head[0], engine.len(), "{what}: solution count at {q:?}");
         assert_eq!(head[1], head[0], "{what}: the DQ variant's count");
-        let mut found = false;
-        for _ in 0..head[0] {
-            let v: Vec<f64> = lines
-                .next()
-                .expect("solution line")
-                .split_whitespace()
-                .map(|x| x.parse().expect("number"))
-                .collect();
-            let s = NumSolution {
-                q: v[..sol.variables.len()].to_vec(),
-                singular: false,
-                approximate: false,
-            };
-            let qq = full_q(&sol, &s, free_k.map(|fk| (fk, q[fk])));
-            assert!(qq.iter().all(|x| x.is_finite()), "{what}: NaN");
-            let dev = max_dev(&t, &pose(&c, &qq), sol.position_only);
-            assert!(dev < 1e-9, "{what}: {qq:?} misses the pose by {dev:e}");
-            found |= qq
-                .iter()
-                .zip(q)
-                .all(|(a, b)| angle_diff(*a, *b) < 1e-6 || (a - b).abs() < 1e-6);
-        }
-        assert!(found, "{what}: {q:?} not among the solutions");
+        let sols: Vec<Vec<f64>> = (0..head[0])
+            .map(|_| {
+                let v: Vec<f64> = lines
+                    .next()
+                    .expect("solution line")
+                    .split_whitespace()
+                    .map(|x| x.parse().expect("number"))
+                    .collect();
+                v[..case.sol.variables.len()].to_vec()
+            })
+            .collect();
+        assert!(
+            case.check(what, q, &sols),
+            "{what}: {q:?} not among the solutions"
+        );
     }
 }
 
-const CODEGEN_ROBOTS: [(&str, Option<&str>); 6] = [
+const CODEGEN_ROBOTS: [(&str, Option<&str>); 7] = [
+    ("panda", Some("theta7")),
     ("puma560", None),
     ("ur5", None),
     ("stanford", None),
@@ -710,4 +740,341 @@ fn walk_ik_shows_every_step_and_a_check() {
         .collect();
     assert!(!formulas.is_empty());
     crate::tools::katex_all(&formulas, "walk --ik --markdown");
+}
+
+/// The roots of one revolute row `(q, a, b, c, n)` of the language's `ik(...)`, as `:help ik`
+/// states them: `a cos q + b sin q = c`, n = 2: both roots; n = 1: `atan2(-a, b)`.
+fn row_roots(a: f64, b: f64, c: f64, n: usize) -> Vec<f64> {
+    if n == 1 {
+        return vec![(-a).atan2(b)];
+    }
+    let rad = a * a + b * b - c * c;
+    if rad < -1e-9 {
+        return vec![];
+    }
+    let (phi, w) = (b.atan2(a), rad.max(0.0).sqrt().atan2(c));
+    vec![phi + w, phi - w]
+}
+
+#[test]
+fn the_ik_builtin_gives_equations_whose_roots_reproduce_the_pose() {
+    // An elbow manipulator with a spherical wrist, and a 7R with a spherical shoulder whose
+    // free joint is chosen, built in the language; the rows' roots are taken as `:help ik`
+    // says and fed back through the chain's own matrix.
+    let cases = [
+        (
+            "syms t1 t2 t3 t4 t5 t6 a2 d4 d6\nq = dh(t1, 0, 0, pi/2) * dh(t2, 0, a2, 0) * \
+             dh(t3, 0, 0, pi/2) * dh(t4, d4, 0, -pi/2) * dh(t5, 0, 0, pi/2) * dh(t6, d6, 0, 0)\n\
+             sol = ik(q, [t1, t2, t3, t4, t5, t6])\nM = matrix(q)",
+            6,
+            vec![("a2", 0.43), ("d4", 0.41), ("d6", 0.09)],
+        ),
+        (
+            "syms t1 t2 t3 t4 t5 t6 t7 d1 d3 a3 d5 a6\nq = mdh(0, 0, t1, d1) * mdh(-pi/2, 0, t2, 0) \
+             * mdh(pi/2, 0, t3, d3) * mdh(pi/2, a3, t4, 0) * mdh(-pi/2, -a3, t5, d5) * \
+             mdh(pi/2, 0, t6, 0) * mdh(pi/2, a6, t7, 0)\nsol = ik(q, [t1, t2, t3, t4, t5, t6, t7])\n\
+             M = matrix(q)",
+            7,
+            vec![("d1", 0.333), ("d3", 0.316), ("a3", 0.0825), ("d5", 0.384), ("a6", 0.088)],
+        ),
+    ];
+    for (src, n, params) in cases {
+        let program = dqsym::parse(src).expect("parse");
+        let mut session = dqsym::Session::new();
+        session.run(&program).expect("run");
+        let rows = match session.get("sol") {
+            Some(dqsym::Value::Matrix(rows)) => rows.clone(),
+            other => panic!("ik gave {other:?}"),
+        };
+        let Some(dqsym::Value::Matrix(m)) = session.get("M").cloned() else {
+            panic!("matrix");
+        };
+        assert_eq!(rows.len(), 6, "{src}");
+        let names: Vec<String> = (1..=n).map(|i| format!("t{i}")).collect();
+        let mut rng = Rng::new(91);
+        for _ in 0..50 {
+            let q: Vec<f64> = (0..n).map(|_| rng.range(-3.1, 3.1)).collect();
+            let mut env: Vec<(String, f64)> =
+                params.iter().map(|(k, v)| (k.to_string(), *v)).collect();
+            env.extend(names.iter().cloned().zip(q.iter().copied()));
+            let ev = |x: &dqsym::Scalar, env: &[(String, f64)]| {
+                x.eval(&|s| env.iter().rev().find(|(k, _)| k == s).map(|(_, v)| *v))
+                    .expect("value")
+            };
+            let t: Vec<Vec<f64>> = m
+                .iter()
+                .map(|r| r.iter().map(|x| ev(x, &env)).collect())
+                .collect();
+            // The target, the parameters and (for the free joint) q's own value; the solved joints
+            // are pushed over q's.
+            let mut base: Vec<(String, f64)> =
+                params.iter().map(|(k, v)| (k.to_string(), *v)).collect();
+            for (r, row) in dqsym::ik::TARGET_SYMBOLS.iter().enumerate() {
+                for (c, s) in row.iter().enumerate() {
+                    base.push((s.to_string(), t[r][c]));
+                }
+            }
+            let solved: Vec<String> = rows.iter().map(|r| ev_name(&r[0])).collect();
+            for (name, v) in names.iter().zip(&q) {
+                if !solved.contains(name) {
+                    base.push((name.clone(), *v));
+                }
+            }
+            let mut sols = Vec::new();
+            solve_rows(&rows, 0, &mut base, &ev, &mut sols);
+            assert!(!sols.is_empty(), "no solution at {q:?}");
+            let mut found = false;
+            for s in &sols {
+                let full: Vec<(String, f64)> = params
+                    .iter()
+                    .map(|(k, v)| (k.to_string(), *v))
+                    .chain(s.iter().cloned())
+                    .collect();
+                let back: Vec<Vec<f64>> = m
+                    .iter()
+                    .map(|r| r.iter().map(|x| ev(x, &full)).collect())
+                    .collect();
+                let dev = (0..3)
+                    .flat_map(|r| (0..4).map(move |c| (r, c)))
+                    .map(|(r, c)| (back[r][c] - t[r][c]).abs())
+                    .fold(0.0, f64::max);
+                assert!(dev < 1e-9, "{s:?} misses the pose of {q:?} by {dev:e}");
+                found |= names.iter().zip(&q).all(|(nm, v)| {
+                    let got = s.iter().rev().find(|(k, _)| k == nm).expect("joint").1;
+                    angle_diff(got, *v) < 1e-6
+                });
+            }
+            assert!(found, "{q:?} not among {sols:?}");
+        }
+    }
+}
+
+fn ev_name(x: &dqsym::Scalar) -> String {
+    x.symbols()[0].name().to_string()
+}
+
+type Env = Vec<(String, f64)>;
+
+/// A scalar's value in an environment.
+type EvalAt = dyn Fn(&dqsym::Scalar, &[(String, f64)]) -> f64;
+
+fn solve_rows(
+    rows: &[Vec<dqsym::Scalar>],
+    k: usize,
+    env: &mut Env,
+    ev: &EvalAt,
+    out: &mut Vec<Env>,
+) {
+    let Some(row) = rows.get(k) else {
+        out.push(env.clone());
+        return;
+    };
+    let (a, b, c) = (ev(&row[1], env), ev(&row[2], env), ev(&row[3], env));
+    let n = ev(&row[4], env) as usize;
+    for v in row_roots(a, b, c, n) {
+        env.push((ev_name(&row[0]), v));
+        solve_rows(rows, k + 1, env, ev, out);
+        env.pop();
+    }
+}
+
+/// The shoulder singular sets: where a `shoulder` step's two roots merge. At the true
+/// configuration the step's equation `a cos q + b sin q = c` holds, and `b cos q − a sin q` is
+/// ± the square root of its radicand, with the branch's sign; it changes sign across the set.
+/// Configurations on the set are found by scanning another joint for a sign change and bisecting;
+/// there the solver flags a singular solution, every solution reproduces the pose and q is among
+/// them. `dqsym ik` states the condition.
+#[test]
+fn shoulder_singular_sets_merge_the_branches_and_are_stated() {
+    for (file, free) in [
+        ("puma560", None),
+        ("irb140", None),
+        ("kuka_kr5", None),
+        ("ur5", None),
+        ("stanford", None),
+        ("kuka_iiwa7", Some("theta3")),
+        ("panda", Some("theta7")),
+    ] {
+        let case = Case::new(file, free);
+        let r = load(&format!("{ROBOTS}{file}.toml"));
+        let (_, step) = case
+            .sol
+            .steps
+            .iter()
+            .enumerate()
+            .find(|(_, s)| s.branch.as_ref().is_some_and(|b| b.0 == "shoulder"))
+            .unwrap_or_else(|| panic!("{file}: no shoulder step"));
+        assert!(
+            step.singular.contains("left and right merge")
+                || step.singular.contains("shoulder singularity"),
+            "{file}: {}",
+            step.singular
+        );
+        let k = r
+            .variables
+            .iter()
+            .position(|v| *v == step.variable)
+            .expect("joint");
+        let dqsym::ik::Formula::Trig { a: sa, b: sb, .. } = &step.formula else {
+            panic!("{file}: the shoulder step is not a Trig form");
+        };
+        // The value of a formula part at configuration q (target, parameters, joints).
+        let at = |x: &dqsym::Scalar, q: &[f64]| -> f64 {
+            let t = pose(&case.c, q);
+            let mut env: Vec<(String, f64)> = case.env.clone();
+            for (rr, row) in dqsym::ik::TARGET_SYMBOLS.iter().enumerate() {
+                for (cc, s) in row.iter().enumerate() {
+                    env.push((s.to_string(), t[rr][cc]));
+                }
+            }
+            env.extend(r.variables.iter().cloned().zip(q.iter().copied()));
+            x.eval(&|n| env.iter().find(|(k, _)| k == n).map(|(_, v)| *v))
+                .unwrap_or(f64::NAN)
+        };
+        // b cos q - a sin q at configuration q.
+        let signed = |q: &[f64]| -> f64 {
+            let (a, b) = (at(sa, q), at(sb, q));
+            b * q[k].cos() - a * q[k].sin()
+        };
+        // Some joint turns freely at q (its step's arguments vanish): the solver returns
+        // representatives of the family, not q's own value.
+        let free_at = |q: &[f64]| {
+            case.sol.steps.iter().any(|s| match &s.formula {
+                dqsym::ik::Formula::Atan2 { y, x } => at(y, q).hypot(at(x, q)) < 1e-9,
+                dqsym::ik::Formula::Trig { a, b, .. } => at(a, q).hypot(at(b, q)) < 1e-9,
+                _ => false,
+            })
+        };
+        let mut rng = Rng::new(57);
+        let mut hits = 0;
+        let mut tries = 0;
+        while hits < 100 {
+            tries += 1;
+            assert!(tries < 2000, "{file}: the shoulder set was not met");
+            let mut q = random_q(&case.c, &mut rng);
+            let j = (k + tries) % q.len();
+            if Some(j) == case.free_k {
+                continue;
+            }
+            let f = |x: f64, q: &mut Vec<f64>| {
+                q[j] = x;
+                signed(q)
+            };
+            let grid: Vec<f64> = (0..=25).map(|i| -3.1 + 6.2 * f64::from(i) / 25.0).collect();
+            let Some(w) = grid.windows(2).find(|w| {
+                let (fa, fb) = (f(w[0], &mut q), f(w[1], &mut q));
+                fa.is_finite() && fb.is_finite() && fa * fb < 0.0
+            }) else {
+                continue;
+            };
+            let (mut lo, mut hi) = (w[0], w[1]);
+            let flo = f(lo, &mut q);
+            for _ in 0..56 {
+                let mid = 0.5 * (lo + hi);
+                if f(mid, &mut q) * flo > 0.0 {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            q[j] = 0.5 * (lo + hi);
+            let sols = case.solve(&q);
+            assert!(
+                !sols.is_empty(),
+                "{file}: no solution on the shoulder set at {q:?}"
+            );
+            assert!(
+                sols.iter().any(|s| s.singular),
+                "{file}: {q:?} on the shoulder set not flagged singular"
+            );
+            let qs: Vec<Vec<f64>> = sols.iter().map(|s| s.q.clone()).collect();
+            let found = case.check(&format!("{file} shoulder set"), &q, &qs);
+            // With a zero shoulder offset the set is the wrist centre on axis 1, where joint 1
+            // turns freely; on the Panda's (axes 1 and 3 in line) only theta1 + theta3 is fixed.
+            assert!(found || free_at(&q), "{file}: {q:?} not among {qs:?}");
+            hits += 1;
+        }
+    }
+}
+
+/// `walk --ik --html`: the page renders every formula with KaTeX in headless Chromium, and its
+/// solver, run by the page on the sliders' pose, lists solutions whose own poses (computed by
+/// the page) match the target.
+#[test]
+fn walk_ik_html_page_solves_in_the_browser() {
+    let chromium = std::env::var_os("PATH")
+        .and_then(|p| {
+            std::env::split_paths(&p)
+                .map(|d| d.join("chromium"))
+                .find(|c| c.is_file())
+        })
+        .unwrap_or_else(|| {
+            panic!("chromium is missing: run `bash scripts/test.sh`, which installs it")
+        });
+    let root = env!("CARGO_MANIFEST_DIR");
+    let artifacts = std::path::Path::new(root).join("artifacts");
+    std::fs::create_dir_all(&artifacts).expect("artifacts dir");
+    for (file, free) in [("puma560", None), ("ur5", None), ("panda", Some("theta7"))] {
+        let page = artifacts.join(format!("walk_ik_{file}.html"));
+        let mut args = vec![
+            "walk".to_string(),
+            format!("{ROBOTS}{file}.toml"),
+            "--ik".into(),
+            "--html".into(),
+            page.display().to_string(),
+        ];
+        if let Some(f) = free {
+            args.extend(["--free".to_string(), f.to_string()]);
+        }
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        crate::tools::dqsym_ok(&refs);
+        let html = std::fs::read_to_string(&page).expect("page");
+        assert!(html.contains("function dqsym_ik_step0("), "{file}");
+        let profile = crate::tools::temp_dir(&format!("chromium-ik-{file}"));
+        let d = std::process::Command::new(&chromium)
+            .args([
+                "--headless",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--disable-background-networking",
+                "--no-first-run",
+                "--disable-component-update",
+                "--disable-sync",
+                "--virtual-time-budget=5000",
+                "--dump-dom",
+            ])
+            .arg(format!("--user-data-dir={}", profile.display()))
+            .arg(format!("file://{}", page.display()))
+            .output()
+            .expect("chromium runs");
+        assert!(d.status.success(), "{}", String::from_utf8_lossy(&d.stderr));
+        let dom = String::from_utf8_lossy(&d.stdout);
+        let formulas = html.matches("data-tex=").count();
+        let rendered = dom.matches("class=\"katex\"").count();
+        assert!(
+            rendered >= formulas && formulas > 20,
+            "{file}: {rendered} of {formulas} rendered"
+        );
+        assert!(
+            !dom.contains("class=\"katex-error\""),
+            "{file}: a formula failed in KaTeX"
+        );
+        let count: usize = dom
+            .split("data-count=\"")
+            .nth(1)
+            .and_then(|s| s.split('"').next())
+            .and_then(|s| s.parse().ok())
+            .unwrap_or_else(|| panic!("{file}: the page's solver did not run"));
+        assert!(count >= 1, "{file}: no solution on the page");
+        let devs: Vec<f64> = dom
+            .split("data-dev=\"")
+            .skip(1)
+            // The page's own script holds the template `data-dev="${dev}"`.
+            .filter_map(|s| s.split('"').next().unwrap_or("").parse().ok())
+            .collect();
+        assert_eq!(devs.len(), count, "{file}: one row per solution");
+        for d in devs {
+            assert!(d < 1e-9, "{file}: a solution on the page misses by {d:e}");
+        }
+    }
 }

@@ -259,7 +259,8 @@ fn examples_run_and_print_the_papers_results() {
             "sec3b_planar.dq",
             "sec6_2_wrist.dq",
             "sec6_3_6r.dq",
-            "sec6_4_puma_like.dq"
+            "sec6_4_puma_like.dq",
+            "twists.dq"
         ]
     );
     for name in names {

@@ -112,7 +112,7 @@ pub fn katex_all(formulas: &[String], what: &str) {
     );
 }
 
-fn json_string(s: &str) -> String {
+pub fn json_string(s: &str) -> String {
     let mut out = String::from("\"");
     for c in s.chars() {
         match c {

@@ -4,7 +4,8 @@
 //! conversion back to a robot file, and malformed files.
 
 use dqsym::{
-    eval_scalar_text, fk_report, parse_robot, parse_urdf, robot_toml, FkOptions, Robot, UrdfOptions,
+    eval_scalar_text, fk_report, parse_robot, parse_urdf, robot_toml, DualQuat, FkOptions, Robot,
+    UrdfOptions,
 };
 
 type M = [[f64; 4]; 4];
@@ -853,4 +854,176 @@ fn ten_joint_numeric_chain_reports_a_small_recurrence_at_the_default_limit() {
     .expect("a report at the default limit");
     assert!(report.contains("as a recurrence"), "{}", &report[..200]);
     assert!(report.len() <= 100_000, "{} bytes", report.len());
+}
+
+/// Axes in odd directions: skew at 60 degrees with offsets, a prismatic joint tilted by 30 and
+/// 45 degrees, a revolute axis parallel to it, one collinear with that, one perpendicular and
+/// skew, and a tilted tool. Every angle between consecutive axes is a multiple of pi/12 with
+/// a rational square sine, so DH form exists.
+fn odd_axes() -> Vec<J> {
+    vec![
+        j("j1", "revolute", "base", "l1", ["0", "0", "0.3"], Z, AZ),
+        j(
+            "j2",
+            "revolute",
+            "l1",
+            "l2",
+            ["0.1", "0.05", "0.2"],
+            ["0.5235987756", "0", "0"],
+            ["0", "1", "0"],
+        ),
+        j(
+            "j3",
+            "prismatic",
+            "l2",
+            "l3",
+            ["0.2", "0", "0"],
+            ["0", "0", "0.785398163"],
+            ["1", "0", "0"],
+        ),
+        j(
+            "j4",
+            "revolute",
+            "l3",
+            "l4",
+            ["0", "0", "0.15"],
+            Z,
+            ["1", "0", "0"],
+        ),
+        j(
+            "j5",
+            "revolute",
+            "l4",
+            "l5",
+            ["0.1", "0", "0"],
+            Z,
+            ["2", "0", "0"],
+        ),
+        j("j6", "revolute", "l5", "l6", ["0", "0.2", "0.1"], Z, AZ),
+        j(
+            "flange",
+            "fixed",
+            "l6",
+            "tool",
+            ["0.05", "0", "0.1"],
+            ["0", "1.5707963", "0"],
+            AZ,
+        ),
+    ]
+}
+
+/// `convert --to toml` writes DH when the axes allow it and screw form otherwise, saying why;
+/// either way the file read back has exactly the URDF's pose (DQ up to sign, and matrix) and
+/// matches the independent chain of matrices.
+#[test]
+fn convert_writes_dh_when_the_axes_allow_it_with_the_same_pose() {
+    let mut coupled = ur5();
+    coupled[4].mimic = Some(("elbow_joint", "1", "0"));
+    let mut tilted = odd_axes();
+    // 15 degrees between axes 1 and 2: its sine is a nested radical.
+    tilted[1].rpy = ["0.2617993878", "0", "0"];
+    let cases: Vec<(&str, Vec<J>, Option<&str>)> = vec![
+        ("puma560", puma560(), None),
+        ("ur5", ur5(), None),
+        ("panda", panda(), None),
+        ("odd_axes", odd_axes(), None),
+        ("tilted", tilted, Some("axes 1 and 2")),
+        ("coupled", coupled, Some("mimic")),
+    ];
+    for (name, joints, refusal) in cases {
+        let r = read(name, &joints, &UrdfOptions::default()).robot;
+        let toml = robot_toml(&r, name).unwrap();
+        match refusal {
+            None => {
+                assert!(toml.contains("convention = \"dh\""), "{name}:\n{toml}");
+                assert_eq!(dqsym::dh_refusal(&r), None);
+            }
+            Some(why) => {
+                assert!(toml.contains("convention = \"screw\""), "{name}:\n{toml}");
+                let said = dqsym::dh_refusal(&r).expect("a reason");
+                assert!(said.contains(why), "{name}: {said}");
+                assert!(toml.contains(&format!("# Not DH: {said}.")), "{toml}");
+            }
+        }
+        let back = parse_robot(&toml, name, &eval_scalar_text)
+            .unwrap_or_else(|e| panic!("{name}: {e}\n{toml}"));
+        assert_eq!(back.variables, r.variables, "{toml}");
+        assert_eq!(back.forward_matrix(), r.forward_matrix(), "{name}:\n{toml}");
+        // The DQs, up to sign: exactly when no angle is an odd multiple of pi/8 (whose
+        // relations the canonical form does not normalize), else at random points.
+        let (a, b) = (back.forward(), r.forward());
+        let neg = DualQuat::from_components(b.components().map(|x| -x));
+        if a != b && a != neg {
+            let mut seed = 23;
+            for _ in 0..5 {
+                let env: Vec<(String, f64)> = r
+                    .variables
+                    .iter()
+                    .map(|v| (v.clone(), rnd(&mut seed)))
+                    .collect();
+                let ev = |x: &dqsym::Scalar| {
+                    x.eval(&|n| env.iter().find(|(a, _)| a == n).map(|(_, v)| *v))
+                        .unwrap()
+                };
+                let (ca, cb) = (a.components(), b.components());
+                let same = |s: f64| (0..8).all(|k| (ev(&ca[k]) - s * ev(&cb[k])).abs() < 1e-9);
+                assert!(same(1.0) || same(-1.0), "{name}: the DQs differ\n{toml}");
+            }
+        }
+        check_against_oracle(&back, &joints, 17);
+    }
+}
+
+/// `dqsym convert` through the binary: the UR5 URDF (`benches/support/ur5.urdf`) becomes a DH
+/// file that `fk` reads to the same report as the URDF; a mimic joint gives screw form and a
+/// note on stderr saying why.
+#[test]
+fn convert_command_writes_a_file_fk_reads_to_the_same_pose() {
+    let bin = env!("CARGO_BIN_EXE_dqsym");
+    let dir = std::env::temp_dir().join(format!("dqsym-convert-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let urdf = concat!(env!("CARGO_MANIFEST_DIR"), "/benches/support/ur5.urdf");
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(bin).args(args).output().unwrap();
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        (
+            String::from_utf8(out.stdout).unwrap(),
+            String::from_utf8(out.stderr).unwrap(),
+        )
+    };
+    let (toml, err) = run(&["convert", urdf, "--to", "toml"]);
+    assert!(toml.contains("convention = \"dh\""), "{toml}");
+    assert!(!err.contains("screw form"), "{err}");
+    let file = dir.join("ur5.toml");
+    std::fs::write(&file, &toml).unwrap();
+    let body = |report: &str| report.lines().skip(1).collect::<Vec<_>>().join("\n");
+    let (from_urdf, _) = run(&["fk", urdf, "--format", "sympy"]);
+    let (from_toml, _) = run(&["fk", file.to_str().unwrap(), "--format", "sympy"]);
+    // The matrix rows are the same closed forms (the DQ may differ in sign).
+    let rows = |r: &str| -> Vec<String> {
+        r.lines()
+            .filter(|l| l.starts_with("T["))
+            .map(str::to_string)
+            .collect()
+    };
+    assert_eq!(rows(&from_urdf), rows(&from_toml), "{}", body(&from_toml));
+    assert_eq!(rows(&from_urdf).len(), 12);
+
+    let mut coupled = ur5();
+    coupled[2].mimic = Some(("shoulder_lift_joint", "-1", "0"));
+    let path = dir.join("coupled.urdf");
+    std::fs::write(&path, urdf_text("coupled", &coupled)).unwrap();
+    let (toml, err) = run(&["convert", path.to_str().unwrap(), "--to", "toml"]);
+    assert!(toml.contains("convention = \"screw\""), "{toml}");
+    assert!(
+        err.contains(
+            "note: written in screw form, not DH: joint 3 moves with another joint's variable"
+        ),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
 }

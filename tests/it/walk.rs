@@ -78,6 +78,7 @@ fn markdown_walkthroughs_render_in_katex() {
         "examples/appendix3_rrr.dq",
         "examples/sec6_3_6r.dq",
         "examples/sec6_4_puma_like.dq",
+        "examples/twists.dq",
     ] {
         let md = walk_markdown(&walk(file)).expect("markdown");
         let f = formulas(&md);

@@ -59,8 +59,8 @@ pub use algebra::dqr;
 pub use algebra::{DualNumber, UnitConstraints};
 #[doc(hidden)]
 pub use app::{
-    fk_entries, fk_recurrence, ops_tables, rate_name, robot_toml, task_jacobian, task_report,
-    FkEntries, ReportError, TaskJacobian,
+    dh_refusal, fk_entries, fk_recurrence, ops_tables, rate_name, robot_toml, task_jacobian,
+    task_report, FkEntries, ReportError, TaskJacobian, TaskMatrix,
 };
 #[doc(hidden)]
 pub use closed::{

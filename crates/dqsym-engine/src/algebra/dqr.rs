@@ -59,8 +59,9 @@ pub fn ad<T: Ring>(a: &DualQuat<T>, x: &DualQuat<T>) -> DualQuat<T> {
     a * x * &a.conjugate()
 }
 
-/// `Adsharp(a, x) = sharp(a) x conj(a)`: the image of a pure point `x` (the translation
-/// enters twice, `a` and `sharp(a)` disagree in the sign of the dual part).
+/// `Adsharp(a, x) = sharp(a) x conj(a)`: for a unit `a` and a plane `x = n + ε d`, the plane
+/// moved by `a`, `n' + ε (d + t · n')` with `n' = r n r*` (see [`transform_plane`]). (`Ad`
+/// would give the dual part `d + ε t × n'`, not a plane.)
 pub fn adsharp<T: Ring>(a: &DualQuat<T>, x: &DualQuat<T>) -> DualQuat<T> {
     sharp(a) * x * &a.conjugate()
 }
@@ -220,6 +221,13 @@ pub fn transform_line<T: Ring>(q: &DualQuat<T>, l: &DualQuat<T>) -> DualQuat<T> 
     ad(q, l)
 }
 
+/// The plane `n + ε d` carried by the unit DQ `q = r + ε (1/2) t r`: `Adsharp(q, π) =
+/// n' + ε (d + t · n')`, `n' = r n r*`, the plane through the moved points (DQ Robotics moves
+/// planes with `Adsharp`, lines with `Ad`).
+pub fn transform_plane<T: Ring>(q: &DualQuat<T>, plane: &DualQuat<T>) -> DualQuat<T> {
+    adsharp(q, plane)
+}
+
 /// DQ Robotics' `C4`: `vec4(r*) = C4 vec4(r)`.
 pub fn c4<T: Ring>() -> [[T; 4]; 4] {
     let mut m: [[T; 4]; 4] = std::array::from_fn(|_| std::array::from_fn(|_| T::zero()));
@@ -228,6 +236,65 @@ pub fn c4<T: Ring>() -> [[T; 4]; 4] {
         row[k] = -T::one();
     }
     m
+}
+
+/// DQ Robotics' `C8`: `vec8(conj(h)) = C8 vec8(h)`.
+pub fn c8<T: Ring>() -> Vec<Vec<T>> {
+    let mut m = vec![vec![T::zero(); 8]; 8];
+    for (k, row) in m.iter_mut().enumerate() {
+        row[k] = if k % 4 == 0 { T::one() } else { -T::one() };
+    }
+    m
+}
+
+/// DQ Robotics' `crossmatrix4(a)`: `vec4(cross(a, b)) = crossmatrix4(a) vec4(b)` for pure `a`,
+/// `b`.
+pub fn crossmatrix4<T: Ring>(a: &Quat<T>) -> [[T; 4]; 4] {
+    let [x, y, z] = a.vector_part();
+    let o = T::zero;
+    [
+        [o(), o(), o(), o()],
+        [o(), o(), -z.clone(), y.clone()],
+        [o(), z, o(), -x.clone()],
+        [o(), -y, x, o()],
+    ]
+}
+
+/// The projection `l × m + (p · l) l` of the point `p` on the line `l + ε m` (unit `l`;
+/// `point_projected_in_line`).
+pub fn point_projected_in_line<T: Ring>(p: &[T; 3], line: &DualQuat<T>) -> [T; 3] {
+    let l = line.real.vector_part();
+    let c = cross3(&l, &line.dual.vector_part());
+    let k = dot3(p, &l);
+    [
+        c[0].clone() + &mul(&k, &l[0]),
+        c[1].clone() + &mul(&k, &l[1]),
+        c[2].clone() + &mul(&k, &l[2]),
+    ]
+}
+
+/// The closest points of two lines that are not parallel (`closest_points_between_lines`), as
+/// numerators over the common denominator `|l1 × l2|²`: with `c = l1 × l2`,
+/// `p1 = ((l2 × c) × m1 + (m2 · c) l1) / |c|²` and
+/// `p2 = (m2 × (l1 × c) - (m1 · c) l2) / |c|²`. `None` for parallel lines (`c = 0`), whose
+/// closest points are not unique.
+pub fn closest_points_between_lines<T: Ring>(
+    l1: &DualQuat<T>,
+    l2: &DualQuat<T>,
+) -> Option<([T; 3], [T; 3], T)> {
+    let (a, m1) = (l1.real.vector_part(), l1.dual.vector_part());
+    let (b, m2) = (l2.real.vector_part(), l2.dual.vector_part());
+    let c = cross3(&a, &b);
+    let den = dot3(&c, &c);
+    if den.is_zero() {
+        return None;
+    }
+    let (k1, k2) = (dot3(&m2, &c), dot3(&m1, &c));
+    let q1 = cross3(&cross3(&b, &c), &m1);
+    let q2 = cross3(&m2, &cross3(&a, &c));
+    let p1 = std::array::from_fn(|i| q1[i].clone() + &mul(&k1, &a[i]));
+    let p2 = std::array::from_fn(|i| q2[i].clone() - &mul(&k2, &b[i]));
+    Some((p1, p2, den))
 }
 
 #[cfg(test)]

@@ -1,50 +1,131 @@
-//! A robot as a robot file (`dqsym convert robot.urdf --to toml`): screw form, each joint's
-//! axis and point in the home pose, its variable (an expression in one symbol for a coupled
-//! joint), and the constant frames as `[[base]]` and `[[tool]]` tables. Every value is exact,
-//! written as an expression the robot-file reader evaluates back to the same scalar.
+//! A robot as a robot file (`dqsym convert robot.urdf --to toml`): classic DH when the joint
+//! axes allow it, screw form otherwise (the file's first comment says why). Every value is
+//! exact, written as a number or an expression the robot-file reader evaluates back to the
+//! same scalar.
+//!
+//! DH form is built by the usual construction on the exact axes of the home pose: frame 0 has
+//! its z axis on joint 1's axis (its rotation `[[base]] rpy = [0, polar, azimuth]`, its origin
+//! the foot of the perpendicular from the base origin); frame i has its z axis on joint i+1's
+//! axis and its x axis on the common normal of axes i and i+1 (for parallel axes the one
+//! through frame i-1's origin, so `d = 0`; a prismatic joint's line, whose position is free,
+//! is put on the next axis when parallel to it, else through the previous frame's origin); the last link is a pure rotation
+//! (or slide) and the rest of the tip's home pose is the `[[tool]]` frame. Every angle
+//! (`alpha`, the `theta` offsets, the frames' `rpy`) must be a multiple of pi/12 and every
+//! length must come out without nested radicals; otherwise, or for a coupled (mimic) joint,
+//! the file is in screw form. The DH file is checked before it is written: each joint's axis
+//! in its home pose is exactly the screw axis and the tip's home pose is exactly the same, so
+//! both forms give the same pose (product of exponentials).
 
-use crate::{closed_form, sympy, JointGeometry, JointKind, Robot, Scalar, ScalarError};
+use crate::algebra::cross;
+use crate::{
+    closed_form, sympy, DualQuat, Frame, Joint, JointGeometry, JointKind, Robot, Scalar,
+    ScalarError,
+};
 
-/// The robot file of `robot`, screw form. Reading it back gives the same pose.
+type V = [Scalar; 3];
+
+/// The robot file of `robot`: DH when its axes allow it, else screw form. Reading it back
+/// gives the same pose.
 ///
 /// # Errors
 /// When a value has no closed form (a size limit).
 pub fn robot_toml(robot: &Robot, source: &str) -> Result<String, ScalarError> {
-    let t = |x: &Scalar| -> Result<String, ScalarError> { Ok(sympy(&closed_form(x)?)) };
-    let quoted = |x: &Scalar| -> Result<String, ScalarError> {
-        let s = t(x)?;
-        // Numbers stay TOML numbers; everything else is an expression in quotes.
-        Ok(if s.parse::<i64>().is_ok() {
-            s
-        } else {
-            format!("\"{s}\"")
-        })
-    };
-    let v3 = |v: &[Scalar; 3]| -> Result<String, ScalarError> {
-        Ok(format!(
-            "[{}, {}, {}]",
-            quoted(&v[0])?,
-            quoted(&v[1])?,
-            quoted(&v[2])?
-        ))
-    };
+    match dh_form(robot) {
+        Ok(dh) => dh_toml(robot, &dh, source),
+        Err(why) => screw_toml(robot, source, &why),
+    }
+}
+
+/// Why `robot` cannot be written in DH form (`None` when it can); the screw-form file says it.
+pub fn dh_refusal(robot: &Robot) -> Option<String> {
+    dh_form(robot).err()
+}
+
+/// A value as text for a robot file: a TOML number when it is an integer or a terminating
+/// decimal (read back from its text, exactly), else an expression in quotes.
+fn value_text(x: &Scalar) -> Result<String, ScalarError> {
+    if let Some(q) = x.as_rational() {
+        if let Some(d) = decimal_text(&q) {
+            return Ok(d);
+        }
+    }
+    Ok(format!("\"{}\"", sympy(&closed_form(x)?)))
+}
+
+/// The decimal text of a rational whose denominator has no prime factors but 2 and 5.
+fn decimal_text(q: &num_rational::BigRational) -> Option<String> {
+    use num_bigint::BigInt;
+    use num_traits::{Signed, Zero};
+    let (num, den) = (q.numer().clone(), q.denom().clone());
+    let (two, five, ten) = (BigInt::from(2), BigInt::from(5), BigInt::from(10));
+    let (mut d, mut digits) = (den.clone(), 0usize);
+    let (mut twos, mut fives) = (0usize, 0usize);
+    while (&d % &two).is_zero() {
+        d /= &two;
+        twos += 1;
+    }
+    while (&d % &five).is_zero() {
+        d /= &five;
+        fives += 1;
+    }
+    if d != BigInt::from(1) {
+        return None;
+    }
+    digits = digits.max(twos).max(fives);
+    if digits == 0 {
+        return Some(num.to_string());
+    }
+    let scaled = &num * ten.pow(digits as u32) / &den;
+    let neg = scaled.is_negative();
+    let s = scaled.abs().to_string();
+    let s = format!("{}{s}", "0".repeat((digits + 1).saturating_sub(s.len())));
+    let (int, frac) = s.split_at(s.len() - digits);
+    Some(format!("{}{int}.{frac}", if neg { "-" } else { "" }))
+}
+
+fn expr_text(x: &Scalar) -> Result<String, ScalarError> {
+    Ok(sympy(&closed_form(x)?))
+}
+
+fn v3_text(v: &V) -> Result<String, ScalarError> {
+    Ok(format!(
+        "[{}, {}, {}]",
+        value_text(&v[0])?,
+        value_text(&v[1])?,
+        value_text(&v[2])?
+    ))
+}
+
+fn frames_text(name: &str, frames: &[Frame]) -> Result<String, ScalarError> {
+    let mut out = String::new();
+    for f in frames {
+        out += &format!(
+            "\n[[{name}]]\nxyz = {}\nrpy = {}\n",
+            v3_text(&f.xyz)?,
+            v3_text(&f.rpy)?
+        );
+    }
+    Ok(out)
+}
+
+/// The screw-form robot file, with `why` (the reason it is not DH) in its header.
+fn screw_toml(robot: &Robot, source: &str, why: &str) -> Result<String, ScalarError> {
     let mut out = format!(
         "# {} in screw form, converted by dqsym from {source}: each joint turns about (or slides\n\
          # along) its axis in the home pose, in base coordinates; the tool frames, in order,\n\
-         # give the last link's home pose.\n",
+         # give the last link's home pose.\n# Not DH: {why}.\n",
         robot.name
     );
     out += &format!("name = {:?}\nconvention = \"screw\"\n", robot.name);
-    for (name, frames) in [("base", &robot.base_frames), ("tool", &robot.tool_frames)] {
-        for f in frames.iter() {
-            out += &format!(
-                "\n[[{name}]]\nxyz = {}\nrpy = {}\n",
-                v3(&f.xyz)?,
-                v3(&f.rpy)?
-            );
-        }
-    }
-    for (j, value) in robot.chain.joints.iter().zip(&robot.joint_values) {
+    out += &frames_text("base", &robot.base_frames)?;
+    out += &frames_text("tool", &robot.tool_frames)?;
+    for (i, (j, value)) in robot
+        .chain
+        .joints
+        .iter()
+        .zip(&robot.joint_values)
+        .enumerate()
+    {
         let JointGeometry::Screw { axis, point } = &j.geometry else {
             // Only URDF robots (screw form) are converted; other forms are robot files already.
             continue;
@@ -53,14 +134,321 @@ pub fn robot_toml(robot: &Robot, source: &str) -> Result<String, ScalarError> {
             JointKind::Revolute => "revolute",
             JointKind::Prismatic => "prismatic",
         };
+        // A joint moving exactly with an earlier one (a mimic joint with multiplier 1 and no
+        // offset) is written `1*q`: a plain name would declare a variable of its own.
+        let mut var = expr_text(value)?;
+        if robot.joint_values[..i].contains(value) {
+            var = format!("1*{var}");
+        }
         out += &format!(
-            "\n[[joint]]\ntype = \"{kind}\"\nvariable = \"{}\"\naxis = {}\n",
-            t(value)?,
-            v3(axis)?
+            "\n[[joint]]\ntype = \"{kind}\"\nvariable = \"{var}\"\naxis = {}\n",
+            v3_text(axis)?
         );
         if j.kind == JointKind::Revolute {
-            out += &format!("point = {}\n", v3(point)?);
+            out += &format!("point = {}\n", v3_text(point)?);
         }
     }
     Ok(out)
+}
+
+/// A robot in DH form: frames before the first joint, one row per joint, frames after.
+struct Dh {
+    base: Vec<Frame>,
+    /// kind, value (the joint variable), theta offset, d offset, a, alpha.
+    rows: Vec<(JointKind, Scalar, [Scalar; 4])>,
+    tool: Vec<Frame>,
+}
+
+fn dh_toml(robot: &Robot, dh: &Dh, source: &str) -> Result<String, ScalarError> {
+    let mut out = format!(
+        "# {} in classic DH form (Rz(theta) Tz(d) Tx(a) Rx(alpha) per joint), converted by dqsym\n\
+         # from {source}; a base frame puts frame 0's z axis on joint 1's axis, the tool frame\n\
+         # is the tip in the last joint's frame.\n",
+        robot.name
+    );
+    out += &format!("name = {:?}\nconvention = \"dh\"\n", robot.name);
+    out += &frames_text("base", &dh.base)?;
+    out += &frames_text("tool", &dh.tool)?;
+    for (kind, value, [theta, d, a, alpha]) in &dh.rows {
+        let (kind, theta, d) = match kind {
+            JointKind::Revolute => (
+                "revolute",
+                format!("\"{}\"", expr_text(&(value + theta))?),
+                value_text(d)?,
+            ),
+            JointKind::Prismatic => (
+                "prismatic",
+                value_text(theta)?,
+                format!("\"{}\"", expr_text(&(value + d))?),
+            ),
+        };
+        out += &format!(
+            "\n[[joint]]\ntype = \"{kind}\"\ntheta = {theta}\nd = {d}\na = {}\nalpha = {}\n",
+            value_text(a)?,
+            value_text(alpha)?
+        );
+    }
+    Ok(out)
+}
+
+fn sub(a: &V, b: &V) -> V {
+    std::array::from_fn(|i| &a[i] - &b[i])
+}
+
+fn add(a: &V, b: &V) -> V {
+    std::array::from_fn(|i| &a[i] + &b[i])
+}
+
+fn scale(k: &Scalar, v: &V) -> V {
+    std::array::from_fn(|i| k * &v[i])
+}
+
+fn dot(a: &V, b: &V) -> Scalar {
+    &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]
+}
+
+fn is_zero(v: &V) -> bool {
+    v.iter().all(Scalar::is_zero_value)
+}
+
+fn num(x: &Scalar) -> f64 {
+    x.eval(&|_| None).unwrap_or(f64::NAN)
+}
+
+/// `x / y` for a nonzero constant `y`.
+fn div(x: &Scalar, y: &Scalar) -> Result<Scalar, String> {
+    x.try_div(y).map_err(|e| e.to_string())
+}
+
+/// The exact square root of `x`, which must be a rational (a nested radical has none here).
+fn root(x: &Scalar, what: &str) -> Result<Scalar, String> {
+    x.sqrt()
+        .check()
+        .map_err(|_| format!("{what} is not the square root of a rational"))
+}
+
+/// The angle `k pi/12` whose cosine and sine are `c` and `s`.
+fn angle_of(c: &Scalar, s: &Scalar, what: &str) -> Result<Scalar, String> {
+    let k = (num(s).atan2(num(c)) / (std::f64::consts::PI / 12.0)).round();
+    let refuse = || format!("{what} is not a multiple of pi/12");
+    if !k.is_finite() {
+        return Err(refuse());
+    }
+    let a = Scalar::pi() * <Scalar as crate::Ring>::from_ratio(k as i64, 12);
+    let exact = |x: Scalar, y: &Scalar| (x - y).is_zero_value();
+    if exact(a.cos(), c) && exact(a.sin(), s) {
+        Ok(a)
+    } else {
+        Err(refuse())
+    }
+}
+
+/// The frame `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` equal to the unit DQ `f`, with angles
+/// multiples of pi/12.
+fn frame_of(f: &DualQuat<Scalar>, what: &str) -> Result<Frame, String> {
+    let m = f.to_matrix().rows;
+    let r = |i: usize, j: usize| num(&m[i][j]);
+    let (yaw, pitch, roll) = if r(0, 0).hypot(r(1, 0)) > 1e-9 {
+        (
+            r(1, 0).atan2(r(0, 0)),
+            (-r(2, 0)).atan2(r(0, 0).hypot(r(1, 0))),
+            r(2, 1).atan2(r(2, 2)),
+        )
+    } else {
+        // Pitch +-pi/2: only yaw -+ roll is determined; roll = 0.
+        ((-r(0, 1)).atan2(r(1, 1)), (-r(2, 0)).atan2(0.0), 0.0)
+    };
+    let snap = |x: f64| {
+        let k = (x / (std::f64::consts::PI / 12.0)).round() as i64;
+        Scalar::pi() * <Scalar as crate::Ring>::from_ratio(k, 12)
+    };
+    let frame = Frame {
+        xyz: f.translation_part(),
+        rpy: [snap(roll), snap(pitch), snap(yaw)],
+    };
+    let back = frame.dq()?.to_matrix().rows;
+    let same = back
+        .iter()
+        .flatten()
+        .zip(m.iter().flatten())
+        .all(|(x, y)| (x - y).is_zero_value());
+    if same {
+        Ok(frame)
+    } else {
+        Err(format!(
+            "{what} has no roll, pitch and yaw that are multiples of pi/12"
+        ))
+    }
+}
+
+/// The DH form of a screw-form robot, or why there is none.
+fn dh_form(robot: &Robot) -> Result<Dh, String> {
+    let n = robot.chain.joints.len();
+    if n == 0 {
+        return Err("the chain has no moving joint".into());
+    }
+    // One variable per joint, each its own symbol (DH rows take one variable each).
+    let mut lines: Vec<(JointKind, V, V, Scalar)> = Vec::new();
+    for (i, (j, value)) in robot
+        .chain
+        .joints
+        .iter()
+        .zip(&robot.joint_values)
+        .enumerate()
+    {
+        let plain = robot
+            .variables
+            .iter()
+            .any(|v| (value - &Scalar::sym(v)).is_zero_value());
+        let shared = lines.iter().any(|l| l.3 == *value);
+        if !plain || shared {
+            return Err(format!(
+                "joint {} moves with another joint's variable (a mimic joint)",
+                i + 1
+            ));
+        }
+        let JointGeometry::Screw { axis, point } = &j.geometry else {
+            return Err("the robot is not in screw form".into());
+        };
+        lines.push((j.kind, axis.clone(), point.clone(), value.clone()));
+    }
+    let zero = || Scalar::int(0);
+    let one = Scalar::int(1);
+    // Frame 0: z on joint 1's axis, Rz(azimuth) Ry(polar).
+    let u = &lines[0].1;
+    let sin_polar = root(
+        &(&one - &(&u[2] * &u[2])),
+        "the sine of joint 1's polar angle",
+    )?;
+    let polar = angle_of(&u[2], &sin_polar, "joint 1's polar angle")?;
+    let azimuth = if sin_polar.is_zero_value() {
+        zero()
+    } else {
+        angle_of(
+            &div(&u[0], &sin_polar)?,
+            &div(&u[1], &sin_polar)?,
+            "joint 1's azimuth",
+        )?
+    };
+    let (cp, sp, ca, sa) = (polar.cos(), polar.sin(), azimuth.cos(), azimuth.sin());
+    let mut x: V = [&ca * &cp, &sa * &cp, -sp.clone()];
+    let mut origin: V = match lines[0].0 {
+        JointKind::Revolute => {
+            let p = &lines[0].2;
+            sub(p, &scale(&dot(p, u), u))
+        }
+        JointKind::Prismatic => [zero(), zero(), zero()],
+    };
+    let base_frame = Frame {
+        xyz: origin.clone(),
+        rpy: [zero(), polar, azimuth],
+    };
+    let mut rows = Vec::new();
+    for i in 0..n {
+        let (kind, u, _, value) = &lines[i];
+        let Some((next_kind, u2, p2, _)) = lines.get(i + 1) else {
+            rows.push((*kind, value.clone(), [zero(), zero(), zero(), zero()]));
+            break;
+        };
+        // A prismatic joint's line is free: on the axis after it when the two are parallel
+        // (so that they coincide, a = 0), else through this frame's origin.
+        let p2 = match (next_kind, lines.get(i + 2)) {
+            (JointKind::Revolute, _) => p2.clone(),
+            (JointKind::Prismatic, Some((JointKind::Revolute, u3, p3, _)))
+                if is_zero(&cross(u2, u3)) =>
+            {
+                p3.clone()
+            }
+            (JointKind::Prismatic, _) => origin.clone(),
+        };
+        let w = sub(&p2, &origin);
+        let c = cross(u, u2);
+        let j = i + 1;
+        let (d, a, xn) = if !is_zero(&c) {
+            let s2 = dot(&c, &c);
+            let s = root(
+                &s2,
+                &format!("the sine of the angle between axes {j} and {}", j + 1),
+            )?;
+            let mut xn: V = [div(&c[0], &s)?, div(&c[1], &s)?, div(&c[2], &s)?];
+            let mut a = dot(&w, &xn);
+            if num(&a) < 0.0 {
+                xn = scale(&Scalar::int(-1), &xn);
+                a = -a;
+            }
+            let d = div(&dot(&cross(&w, u2), &c), &s2)?;
+            (d, a, xn)
+        } else {
+            let perp = sub(&w, &scale(&dot(&w, u), u));
+            if is_zero(&perp) {
+                (zero(), zero(), x.clone())
+            } else {
+                let a = root(
+                    &dot(&perp, &perp),
+                    &format!("the distance between axes {j} and {}", j + 1),
+                )?;
+                let xn = [div(&perp[0], &a)?, div(&perp[1], &a)?, div(&perp[2], &a)?];
+                (zero(), a, xn)
+            }
+        };
+        let theta = angle_of(
+            &dot(&x, &xn),
+            &dot(&cross(&x, &xn), u),
+            &format!("joint {j}'s angle from the previous common normal"),
+        )?;
+        let alpha = angle_of(
+            &dot(u, u2),
+            &dot(&cross(u, u2), &xn),
+            &format!("the angle between axes {j} and {}", j + 1),
+        )?;
+        origin = add(&add(&origin, &scale(&d, u)), &scale(&a, &xn));
+        x = xn;
+        rows.push((*kind, value.clone(), [theta, d, a, alpha]));
+    }
+    // The DH chain at its home pose, checked against the screw axes.
+    let b0 = base_frame.dq()?;
+    let mut home = b0.clone();
+    for (i, (kind, _, [theta, d, a, alpha])) in rows.iter().enumerate() {
+        let (k, u, p, _) = &lines[i];
+        debug_assert_eq!(k, kind);
+        let z =
+            DualQuat::from_real(home.real.clone()).transform_point(&[zero(), zero(), one.clone()]);
+        let at = home.translation_part();
+        let on_line = *kind == JointKind::Prismatic || is_zero(&cross(&sub(&at, p), u));
+        if !is_zero(&sub(&z, u)) || !on_line {
+            return Err(format!(
+                "joint {}'s DH frame misses its axis (a bug)",
+                i + 1
+            ));
+        }
+        home = home
+            * Joint::revolute_dh(theta.clone(), d.clone(), a.clone(), alpha.clone()).dq(&zero());
+    }
+    let tool = home.conjugate() * &robot.chain.tool;
+    let tool = frame_of(&tool, "the tip in the last joint's frame")?;
+    let tool_dq = tool.dq()?;
+    let same = (home * tool_dq)
+        .to_matrix()
+        .rows
+        .iter()
+        .flatten()
+        .zip(robot.chain.tool.to_matrix().rows.iter().flatten())
+        .all(|(x, y)| (x - y).is_zero_value());
+    if !same {
+        return Err("the tip's home pose differs (a bug)".into());
+    }
+    let mut base = robot.base_frames.clone();
+    let identity = base_frame
+        .xyz
+        .iter()
+        .chain(&base_frame.rpy)
+        .all(Scalar::is_zero_value);
+    if !identity {
+        base.push(base_frame);
+    }
+    Ok(Dh {
+        base,
+        rows,
+        tool: vec![tool],
+    })
 }

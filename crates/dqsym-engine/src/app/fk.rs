@@ -394,23 +394,10 @@ fn code<S>(
                 v.chunks(4).map(<[Expr]>::to_vec).collect(),
             ),
             "p" => Output::vector("p", "Image of the point.", v),
-            "J" => Output::matrix(
-                "j",
-                "Jacobian d dq[i] / d q[j] (8 x n).",
-                v.chunks(n.max(1)).map(<[Expr]>::to_vec).collect(),
-            ),
-            "Jr" | "Jt" | "Jl" | "Jpi" | "Jd" | "Jdot" => Output::matrix(
-                &base.to_lowercase(),
-                match base {
-                    "Jr" => "Rotation Jacobian d r[i] / d q[j] (4 x n).",
-                    "Jt" => "Translation Jacobian d t[i] / d q[j], t = (0, x, y, z) (4 x n).",
-                    "Jl" => "Line Jacobian d vec8(l + eps t x l)[i] / d q[j] (8 x n).",
-                    "Jpi" => "Plane Jacobian d vec8(n + eps t . n)[i] / d q[j] (8 x n).",
-                    "Jd" => "Distance Jacobian d |t|^2 / d q[j] (1 x n).",
-                    _ => "Pose Jacobian derivative sum_k d J / d q[k] q_dot[k] (8 x n).",
-                },
-                v.chunks(n.max(1)).map(<[Expr]>::to_vec).collect(),
-            ),
+            b if b.starts_with('J') => match super::task::task_output(b, v.clone(), n) {
+                Some(o) => o,
+                None => Output::intermediate(b, "A step of the recurrence.", v),
+            },
             other => Output::intermediate(other, "A step of the recurrence.", v),
         })
         .collect();

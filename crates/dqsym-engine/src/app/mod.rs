@@ -7,7 +7,7 @@ mod fk;
 mod recurrence;
 mod task;
 
-pub use convert::robot_toml;
+pub use convert::{dh_refusal, robot_toml};
 pub use fk::{fk_entries, fk_report, ops_tables, FkEntries, FkOptions, ReportError, ReportFormat};
 pub use recurrence::fk_recurrence;
-pub use task::{rate_name, task_jacobian, task_report, TaskJacobian};
+pub use task::{rate_name, task_jacobian, task_report, TaskJacobian, TaskMatrix};

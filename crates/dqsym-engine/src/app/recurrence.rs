@@ -278,8 +278,7 @@ pub(crate) fn recurrence_sections(
         .iter()
         .flat_map(|(_, rows)| rows.iter().map(|(_, x)| x))
         .collect();
-    // `closed_form_cos_sin` is `closed_form` on every entry without cos/sin placeholders.
-    let mut forms = par_map(&all, |x| closed_form_cos_sin(x)).into_iter();
+    let mut forms = shared_closed_forms(&all).into_iter();
     sections
         .into_iter()
         .map(|(title, rows)| {
@@ -290,6 +289,104 @@ pub(crate) fn recurrence_sections(
                 .map(|((name, _), e)| Ok((name, e?)))
                 .collect::<Result<Vec<_>, ScalarError>>()?;
             Ok((title, rows))
+        })
+        .collect()
+}
+
+/// The placeholder names of [`shape`]: sorted like their index, and no robot symbol (those
+/// are identifiers) starts with `~`.
+fn placeholder(k: usize) -> String {
+    format!("~{k:06}")
+}
+
+/// An entry renamed to placeholders, and the renaming (symbol, placeholder), in order.
+type Shape = (Scalar, Vec<(String, String)>);
+
+/// The shape of an entry: its symbols renamed in order to placeholders, and the renaming.
+/// Entries of one shape (the joint factors of equal links, the prefix products past the
+/// first few, the Jacobian columns of the middle joints) share one closed form. `None` for an
+/// entry with `pi` or `1` as a symbol, or a cos/sin placeholder, whose order with respect
+/// to the placeholders a renaming could change.
+fn shape(x: &Scalar) -> Option<Shape> {
+    let mut names: Vec<String> = x.symbols().iter().map(|s| s.name().to_string()).collect();
+    names.sort();
+    names.dedup();
+    let special = |n: &String| {
+        n == "pi" || n == "1" || n.starts_with('~') || crate::parse_trig_placeholder(n).is_some()
+    };
+    if names.iter().any(special) {
+        return None;
+    }
+    let map: Vec<(String, String)> = names
+        .into_iter()
+        .enumerate()
+        .map(|(k, n)| (n, placeholder(k)))
+        .collect();
+    Some((x.rename_symbols_monotone(&map)?, map))
+}
+
+/// `e` with the placeholders of `map` renamed back to the symbols.
+fn unshape(e: Expr, map: &[(String, String)]) -> Expr {
+    let back = |s: crate::Sym| -> crate::Sym {
+        match s
+            .name()
+            .strip_prefix('~')
+            .and_then(|k| k.parse::<usize>().ok())
+        {
+            Some(k) if k < map.len() => crate::Sym::new(&map[k].0),
+            _ => s,
+        }
+    };
+    match e {
+        Expr::Sym(s) => Expr::Sym(back(s)),
+        Expr::Trig { sin, mut angle } => {
+            angle.terms = angle.terms.into_iter().map(|(s, k)| (back(s), k)).collect();
+            Expr::Trig { sin, angle }
+        }
+        Expr::Add(v) => Expr::Add(v.into_iter().map(|e| unshape(e, map)).collect()),
+        Expr::Mul(v) => Expr::Mul(v.into_iter().map(|e| unshape(e, map)).collect()),
+        Expr::Neg(e) => Expr::Neg(Box::new(unshape(*e, map))),
+        Expr::Pow(e, n) => Expr::Pow(Box::new(unshape(*e, map)), n),
+        e => e,
+    }
+}
+
+/// The closed form of every entry, each shape's once (in parallel, in order of first
+/// appearance, so the result does not depend on the threads). The renaming keeps the order of
+/// the symbols, and closed forms only compare symbols, so an entry's form is its shape's form
+/// renamed back, of the same value (checked exactly in debug builds).
+fn shared_closed_forms(all: &[&Scalar]) -> Vec<Result<Expr, ScalarError>> {
+    let shapes: Vec<Option<Shape>> = par_map(all, |x| shape(x));
+    let mut index: HashMap<&Scalar, usize> = HashMap::new();
+    let mut distinct: Vec<&Scalar> = Vec::new();
+    let keys: Vec<usize> = all
+        .iter()
+        .zip(&shapes)
+        .map(|(x, sh)| {
+            let key = sh.as_ref().map_or(*x, |(k, _)| k);
+            *index.entry(key).or_insert_with(|| {
+                distinct.push(key);
+                distinct.len() - 1
+            })
+        })
+        .collect();
+    // `closed_form_cos_sin` is `closed_form` on every entry without cos/sin placeholders.
+    let forms = par_map(&distinct, |x| closed_form_cos_sin(x));
+    keys.iter()
+        .zip(shapes.iter().zip(all))
+        .map(|(&k, (sh, x))| {
+            let e = forms[k].clone()?;
+            Ok(match sh {
+                None => e,
+                Some((_, map)) => {
+                    let e = unshape(e, map);
+                    debug_assert!(
+                        (e.to_scalar() - *x).is_zero_value(),
+                        "a shared closed form differs from its entry"
+                    );
+                    e
+                }
+            })
         })
         .collect()
 }

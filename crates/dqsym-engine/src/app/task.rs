@@ -3,12 +3,31 @@
 //! quantity of the pose `x = r + ε (1/2) t r` by the joint variables, so it equals DQ Robotics'
 //! chain-rule matrices built from the pose Jacobian (`translation_jacobian = 2 haminus4(P(x)*)
 //! J_D + 2 hamiplus4(D(x)) C4 J_P`, ...) entry for entry.
+//!
+//! The robot's line and plane (of `line`, `plane` and the distances from them) pass through the
+//! end effector `t` with the direction `l = r l0 r*` or normal `n = r n0 r*`, `l0`, `n0` given in
+//! the end-effector frame (DQ Robotics' `line_jacobian(J, x, l0)`). A workspace line or plane is
+//! given by a unit direction (normal) and a point, so it is `l + ε (p × l)` (`n + ε (p · n)`).
+//!
+//! All of them are polynomials except the line-to-line distance Jacobian: the squared distance
+//! of two skew lines is the quotient `D(l · lz)² / |P(l × lz)|²` ([`dqr::line_to_line_squared_distance`]),
+//! so its Jacobian is a row of numerators over one denominator ([`TaskMatrix`]); when the robot
+//! line is parallel to the workspace line for every configuration (`P(l × lz) = 0` exactly), it is
+//! the polynomial `|D(l × lz)|²`, as in DQ Robotics' parallel branch. Where `P(l × lz)` vanishes
+//! at some configurations only (the lines become parallel there), the quotient's denominator is
+//! zero: DQ Robotics switches to the parallel formula at exactly those points, which is not the
+//! limit of the other one (the squared distance is not differentiable there).
+//!
+//! The time derivative of any of them (`KIND_derivative`, DQ Robotics' `*_jacobian_derivative`)
+//! is `sum_k dJ/dq_k qdot_k`, the rates named `<q>_dot`; of a quotient `A/E`, `(A' E - A E')/E²`.
 
 use super::fk::{render, FkOptions, ReportError};
 use crate::algebra::dqr;
+use crate::emit::Output;
 use crate::kin::Robot;
 use crate::scalar::par_map;
 use crate::{closed_form, DualQuat, Expr, Quat, Scalar, ScalarError};
+use num_traits::Zero;
 
 /// A task Jacobian (`--jacobian=KIND`).
 #[derive(Clone, Debug, PartialEq)]
@@ -36,15 +55,59 @@ pub enum TaskJacobian {
     /// `point_to_plane_distance_jacobian`: d (t · n - d) / dq for a workspace plane `n + ε d`
     /// (given by its unit normal and a point), 1 x n.
     PointToPlane([Scalar; 3], [Scalar; 3]),
-    /// `pose_jacobian_derivative`: d/dt of the pose Jacobian, `sum_k dJ/dq_k qdot_k`, 8 x n, a
-    /// function of `q` and the joint rates `<q>_dot`.
-    PoseDerivative,
+    /// `line_to_point_distance_jacobian`: d |p × l - m|² / dq, the squared distance of a
+    /// workspace point `p` (second) from the robot line `l + ε m` (direction `l0` in the
+    /// end-effector frame, first), 1 x n.
+    LineToPoint([Scalar; 3], [Scalar; 3]),
+    /// `plane_to_point_distance_jacobian`: d (p · n - d) / dq, the signed distance of a workspace
+    /// point `p` (second) from the robot plane `n + ε d` (normal `n0` in the end-effector frame,
+    /// first), 1 x n.
+    PlaneToPoint([Scalar; 3], [Scalar; 3]),
+    /// `line_to_line_distance_jacobian`: d of the squared distance between the robot line
+    /// (direction `l0` in the end-effector frame) and a workspace line (unit direction, point),
+    /// 1 x n, a quotient (module docs).
+    LineToLine([Scalar; 3], [Scalar; 3], [Scalar; 3]),
+    /// `line_to_line_angle_jacobian`: d |l - lz|² / dq of the directions of the robot line
+    /// (`l0` in the end-effector frame) and a workspace line (unit direction, point), 1 x n.
+    LineToLineAngle([Scalar; 3], [Scalar; 3], [Scalar; 3]),
+    /// The time derivative `sum_k dJ/dq_k qdot_k` of another task Jacobian (DQ Robotics'
+    /// `pose_jacobian_derivative`, `rotation_jacobian_derivative`, ...), a function of `q` and
+    /// the joint rates `<q>_dot`.
+    Derivative(Box<TaskJacobian>),
 }
+
+/// A task Jacobian as exact numerators over one common denominator (1 for every kind but
+/// [`TaskJacobian::LineToLine`] and its derivative).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TaskMatrix {
+    /// The numerators, one row per task coordinate, one column per joint variable.
+    pub num: Vec<Vec<Scalar>>,
+    /// The common denominator.
+    pub den: Scalar,
+}
+
+impl TaskMatrix {
+    /// The entries when the denominator is 1.
+    pub fn as_polynomial(&self) -> Option<&Vec<Vec<Scalar>>> {
+        (self.den == Scalar::int(1)).then_some(&self.num)
+    }
+}
+
+const KINDS: &str = "pose, rotation, translation, line[:X,Y,Z], plane[:X,Y,Z], distance, \
+    point_to_point:X,Y,Z, point_to_line:DX,DY,DZ,PX,PY,PZ, point_to_plane:NX,NY,NZ,PX,PY,PZ, \
+    line_to_point:[LX,LY,LZ,]PX,PY,PZ, plane_to_point:[NX,NY,NZ,]PX,PY,PZ, \
+    line_to_line:[LX,LY,LZ,]DX,DY,DZ,PX,PY,PZ, line_to_line_angle:[LX,LY,LZ,]DX,DY,DZ,PX,PY,PZ, \
+    or any of them followed by _derivative (pose_derivative, line_derivative:X,Y,Z, ...)";
 
 impl TaskJacobian {
     /// Reads `pose`, `rotation`, `translation`, `line`, `line:X,Y,Z`, `plane`, `plane:X,Y,Z`,
-    /// `distance`, `pose_derivative` (`line` and `plane` default to the z axis, DQ Robotics'
-    /// usual `k_`); the direction is read by `parse_vec`.
+    /// `distance`, the distances to workspace primitives (`point_to_point:X,Y,Z`,
+    /// `point_to_line:DX,DY,DZ,PX,PY,PZ`, `point_to_plane:NX,NY,NZ,PX,PY,PZ`) and from the robot
+    /// line or plane (`line_to_point`, `plane_to_point`, `line_to_line`, `line_to_line_angle`,
+    /// with the robot line's direction or plane's normal in the end-effector frame first,
+    /// optional: default z), and any of them followed by `_derivative` (`line_derivative:0,1,0`).
+    /// `line` and `plane` default to the z axis, DQ Robotics' usual `k_`; the vectors are read by
+    /// `parse_vec`.
     pub fn parse(
         s: &str,
         parse_vec: &dyn Fn(&str) -> Result<[Scalar; 3], String>,
@@ -53,9 +116,26 @@ impl TaskJacobian {
             Some((k, a)) => (k, Some(a)),
             None => (s, None),
         };
+        if let Some(inner) = kind.strip_suffix("_derivative") {
+            let inner_s = match arg {
+                Some(a) => format!("{inner}:{a}"),
+                None => inner.to_owned(),
+            };
+            return match TaskJacobian::parse(&inner_s, parse_vec)? {
+                TaskJacobian::Derivative(_) => Err(format!(
+                    "`{kind}`: the derivative of a derivative would need the joint accelerations"
+                )),
+                TaskJacobian::LineToLine(..) => Err(format!(
+                    "`{kind}`: DQ Robotics has no derivative of the line-to-line distance \
+                     Jacobian, and that of its quotient is large: not generated"
+                )),
+                t => Ok(TaskJacobian::Derivative(Box::new(t))),
+            };
+        }
+        let k = || [Scalar::int(0), Scalar::int(0), Scalar::int(1)];
         let dir = || -> Result<[Scalar; 3], String> {
             match arg {
-                None => Ok([Scalar::int(0), Scalar::int(0), Scalar::int(1)]),
+                None => Ok(k()),
                 Some(a) => parse_vec(a),
             }
         };
@@ -63,44 +143,70 @@ impl TaskJacobian {
             None => Ok(t),
             Some(_) => Err(format!("`{kind}` takes no `:` argument")),
         };
-        let two = || -> Result<([Scalar; 3], [Scalar; 3]), String> {
-            let a = arg.ok_or_else(|| format!("`{kind}` needs `:DX,DY,DZ,PX,PY,PZ`"))?;
+        // `n` vectors of three numbers, the first optional when `optional`: (the vectors given,
+        // with the default robot direction first when it was left out).
+        let vectors = |n: usize, optional: bool, what: &str| -> Result<Vec<[Scalar; 3]>, String> {
+            let a = arg.ok_or_else(|| format!("`{kind}` needs `:{what}`"))?;
             let parts: Vec<&str> = a.split(',').collect();
-            if parts.len() != 6 {
+            let given = parts.len() / 3;
+            if !parts.len().is_multiple_of(3) || !(given == n || optional && given == n - 1) {
                 return Err(format!(
-                    "`{kind}` needs six numbers (a unit direction, then a point), got `{a}`"
+                    "`{kind}` needs {} numbers ({what}), got `{a}`",
+                    if optional {
+                        format!("{} or {}", 3 * (n - 1), 3 * n)
+                    } else {
+                        (3 * n).to_string()
+                    }
                 ));
             }
-            Ok((
-                parse_vec(&parts[..3].join(","))?,
-                parse_vec(&parts[3..].join(","))?,
-            ))
+            let mut out: Vec<[Scalar; 3]> = Vec::with_capacity(n);
+            if given < n {
+                out.push(k());
+            }
+            for c in parts.chunks(3) {
+                out.push(parse_vec(&c.join(","))?);
+            }
+            Ok(out)
         };
+        let two = |what: &str| vectors(2, false, what).map(|v| (v[0].clone(), v[1].clone()));
+        let robot_two = |what: &str| vectors(2, true, what).map(|v| (v[0].clone(), v[1].clone()));
+        let robot_three =
+            |what: &str| vectors(3, true, what).map(|v| (v[0].clone(), v[1].clone(), v[2].clone()));
         match kind {
             "point_to_point" => match arg {
                 Some(a) => Ok(TaskJacobian::PointToPoint(parse_vec(a)?)),
                 None => Err("`point_to_point` needs `:X,Y,Z`".into()),
             },
-            "point_to_line" => two().map(|(d, p)| TaskJacobian::PointToLine(d, p)),
-            "point_to_plane" => two().map(|(n, p)| TaskJacobian::PointToPlane(n, p)),
+            "point_to_line" => two("a unit direction, then a point")
+                .map(|(d, p)| TaskJacobian::PointToLine(d, p)),
+            "point_to_plane" => {
+                two("a unit normal, then a point").map(|(n, p)| TaskJacobian::PointToPlane(n, p))
+            }
+            "line_to_point" => robot_two("the robot line's direction (optional), then a point")
+                .map(|(l, p)| TaskJacobian::LineToPoint(l, p)),
+            "plane_to_point" => robot_two("the robot plane's normal (optional), then a point")
+                .map(|(n, p)| TaskJacobian::PlaneToPoint(n, p)),
+            "line_to_line" => robot_three(
+                "the robot line's direction (optional), the workspace line's unit direction and point",
+            )
+            .map(|(l, d, p)| TaskJacobian::LineToLine(l, d, p)),
+            "line_to_line_angle" => robot_three(
+                "the robot line's direction (optional), the workspace line's unit direction and point",
+            )
+            .map(|(l, d, p)| TaskJacobian::LineToLineAngle(l, d, p)),
             "pose" => plain(TaskJacobian::Pose),
             "rotation" => plain(TaskJacobian::Rotation),
             "translation" => plain(TaskJacobian::Translation),
             "distance" => plain(TaskJacobian::Distance),
-            "pose_derivative" => plain(TaskJacobian::PoseDerivative),
             "line" => Ok(TaskJacobian::Line(dir()?)),
             "plane" => Ok(TaskJacobian::Plane(dir()?)),
-            other => Err(format!(
-                "unknown Jacobian `{other}`: expected pose, rotation, translation, line[:X,Y,Z], \
-                 plane[:X,Y,Z], distance, point_to_point:X,Y,Z, point_to_line:DX,DY,DZ,PX,PY,PZ, \
-                 point_to_plane:NX,NY,NZ,PX,PY,PZ or pose_derivative"
-            )),
+            other => Err(format!("unknown Jacobian `{other}`: expected {KINDS}")),
         }
     }
 
     /// The entry base name (`Jt`) and the section title.
-    fn names(&self) -> (&'static str, &'static str) {
-        match self {
+    fn names(&self) -> (String, String) {
+        let (b, t): (&str, &str) = match self {
             TaskJacobian::Pose => ("J", "Jacobian d dq[i] / d q[j]"),
             TaskJacobian::Rotation => ("Jr", "rotation Jacobian d r[i] / d q[j] (DQ Robotics' rotation_jacobian)"),
             TaskJacobian::Translation => ("Jt", "translation Jacobian d t[i] / d q[j], t = (0, x, y, z) = 2 D P* (DQ Robotics' translation_jacobian)"),
@@ -110,9 +216,83 @@ impl TaskJacobian {
             TaskJacobian::PointToPoint(_) => ("Jd", "point-to-point distance Jacobian d |t - p|^2 / d q[j] (DQ Robotics' point_to_point_distance_jacobian)"),
             TaskJacobian::PointToLine(..) => ("Jd", "point-to-line distance Jacobian d |t x l - m|^2 / d q[j] (DQ Robotics' point_to_line_distance_jacobian)"),
             TaskJacobian::PointToPlane(..) => ("Jd", "point-to-plane distance Jacobian d (t . n - d) / d q[j] (DQ Robotics' point_to_plane_distance_jacobian)"),
-            TaskJacobian::PoseDerivative => ("Jdot", "pose Jacobian derivative sum_k d J[i][j] / d q[k] q_dot[k] (DQ Robotics' pose_jacobian_derivative)"),
-        }
+            TaskJacobian::LineToPoint(..) => ("Jd", "line-to-point distance Jacobian d |p x l - m|^2 / d q[j], l + eps m the robot line (DQ Robotics' line_to_point_distance_jacobian)"),
+            TaskJacobian::PlaneToPoint(..) => ("Jd", "plane-to-point distance Jacobian d (p . n - d) / d q[j], n + eps d the robot plane (DQ Robotics' plane_to_point_distance_jacobian)"),
+            TaskJacobian::LineToLine(..) => ("Jd", "line-to-line distance Jacobian d (D(l . lz)^2 / |P(l x lz)|^2) / d q[j], l the robot line, lz the workspace line (DQ Robotics' line_to_line_distance_jacobian)"),
+            TaskJacobian::LineToLineAngle(..) => ("Jd", "line-to-line angle Jacobian d |P(l) - P(lz)|^2 / d q[j], l the robot line, lz the workspace line (DQ Robotics' line_to_line_angle_jacobian)"),
+            TaskJacobian::Derivative(inner) => {
+                let (b, t) = inner.names();
+                return (
+                    format!("{b}dot"),
+                    format!("time derivative of the {t}: sum_k d/d q[k] of it times q_dot[k] (its *_derivative)"),
+                );
+            }
+        };
+        (b.to_owned(), t.to_owned())
     }
+}
+
+/// The one-line documentation of a generated output named by a task Jacobian's base name
+/// (`Jt`, `Jldot`, `Jd_num`, `Jd_den`, ...), `None` for other names.
+pub(super) fn output_doc(base: &str) -> Option<String> {
+    let (core, part) = match base.split_once('_') {
+        Some((c, p)) => (c, Some(p)),
+        None => (base, None),
+    };
+    let (core, derivative) = match core.strip_suffix("dot") {
+        Some(c) => (c, true),
+        None => (core, false),
+    };
+    let d = match core {
+        "J" => "Jacobian d dq[i] / d q[j] (8 x n).",
+        "Jr" => "Rotation Jacobian d r[i] / d q[j] (4 x n).",
+        "Jt" => "Translation Jacobian d t[i] / d q[j], t = (0, x, y, z) (4 x n).",
+        "Jl" => "Line Jacobian d vec8(l + eps t x l)[i] / d q[j] (8 x n).",
+        "Jpi" => "Plane Jacobian d vec8(n + eps t . n)[i] / d q[j] (8 x n).",
+        "Jd" => "Distance Jacobian d (squared) distance / d q[j] (1 x n).",
+        _ => return None,
+    };
+    let d = if derivative {
+        format!(
+            "Time derivative sum_k d/d q[k] q_dot[k] of the {}",
+            lower(d)
+        )
+    } else {
+        d.to_owned()
+    };
+    let whole = base.split_once('_').map_or(base, |(c, _)| c);
+    Some(match part {
+        None => d,
+        Some("num") => format!(
+            "Numerators (over `{}_den`) of the {}",
+            whole.to_lowercase(),
+            lower(&d)
+        ),
+        Some("den") => format!("Common denominator of the {}", lower(&d)),
+        Some(_) => return None,
+    })
+}
+
+fn lower(s: &str) -> String {
+    let mut c = s.chars();
+    c.next()
+        .map_or(String::new(), |f| f.to_lowercase().chain(c).collect())
+}
+
+/// The generated output of a task Jacobian's entries (`None` for other base names): a matrix
+/// with `n` columns, or the scalar denominator `*_den`.
+pub(super) fn task_output(base: &str, v: Vec<Expr>, n: usize) -> Option<Output> {
+    let doc = output_doc(base)?;
+    let name = base.to_lowercase();
+    Some(if base.ends_with("_den") {
+        Output::scalar(&name, &doc, v.into_iter().next()?)
+    } else {
+        Output::matrix(
+            &name,
+            &doc,
+            v.chunks(n.max(1)).map(<[Expr]>::to_vec).collect(),
+        )
+    })
 }
 
 /// The name of the rate of the joint variable `q`.
@@ -120,63 +300,117 @@ pub fn rate_name(q: &str) -> String {
     format!("{q}_dot")
 }
 
-/// The task quantity whose Jacobian is taken, as a list of scalars.
-fn task_vector(x: &DualQuat<Scalar>, task: &TaskJacobian) -> Vec<Scalar> {
+/// The task quantity whose Jacobian is taken, as numerators over one denominator (1 but for
+/// the line-to-line distance of lines that are not parallel for every configuration).
+fn task_quantity(x: &DualQuat<Scalar>, task: &TaskJacobian) -> (Vec<Scalar>, Scalar) {
     let r = &x.real;
     let t = dqr::translation(x);
-    let moved = |v: &[Scalar; 3]| -> Quat<Scalar> { r * &Quat::from_vector(v) * r.conjugate() };
+    let tv = t.vector_part();
+    let moved = |v: &[Scalar; 3]| -> [Scalar; 3] {
+        (r * &Quat::from_vector(v) * r.conjugate()).vector_part()
+    };
+    let robot_line = |l0: &[Scalar; 3]| dqr::line(&moved(l0), &tv);
+    let robot_plane = |n0: &[Scalar; 3]| dqr::plane(&moved(n0), &tv);
+    let poly = |v: Vec<Scalar>| (v, Scalar::int(1));
     match task {
-        TaskJacobian::Pose | TaskJacobian::PoseDerivative => x.components().to_vec(),
-        TaskJacobian::Rotation => r.components().to_vec(),
-        TaskJacobian::Translation => t.components().to_vec(),
-        TaskJacobian::Line(l0) => {
-            let l = moved(l0).vector_part();
-            dqr::line(&l, &t.vector_part()).components().to_vec()
-        }
-        TaskJacobian::Plane(n0) => {
-            let n = moved(n0).vector_part();
-            dqr::plane(&n, &t.vector_part()).components().to_vec()
-        }
-        TaskJacobian::Distance => vec![t.norm_squared()],
-        TaskJacobian::PointToPoint(p) => {
-            vec![dqr::point_to_point_squared_distance(&t.vector_part(), p)]
-        }
-        TaskJacobian::PointToLine(l, p) => vec![dqr::point_to_line_squared_distance(
-            &t.vector_part(),
+        TaskJacobian::Pose => poly(x.components().to_vec()),
+        TaskJacobian::Rotation => poly(r.components().to_vec()),
+        TaskJacobian::Translation => poly(t.components().to_vec()),
+        TaskJacobian::Line(l0) => poly(robot_line(l0).components().to_vec()),
+        TaskJacobian::Plane(n0) => poly(robot_plane(n0).components().to_vec()),
+        TaskJacobian::Distance => poly(vec![t.norm_squared()]),
+        TaskJacobian::PointToPoint(p) => poly(vec![dqr::point_to_point_squared_distance(&tv, p)]),
+        TaskJacobian::PointToLine(l, p) => poly(vec![dqr::point_to_line_squared_distance(
+            &tv,
             &dqr::line(l, p),
-        )],
-        TaskJacobian::PointToPlane(n, p) => vec![dqr::point_to_plane_distance(
-            &t.vector_part(),
-            &dqr::plane(n, p),
-        )],
+        )]),
+        TaskJacobian::PointToPlane(n, p) => {
+            poly(vec![dqr::point_to_plane_distance(&tv, &dqr::plane(n, p))])
+        }
+        TaskJacobian::LineToPoint(l0, p) => poly(vec![dqr::point_to_line_squared_distance(
+            p,
+            &robot_line(l0),
+        )]),
+        TaskJacobian::PlaneToPoint(n0, p) => {
+            poly(vec![dqr::point_to_plane_distance(p, &robot_plane(n0))])
+        }
+        TaskJacobian::LineToLine(l0, d, p) => {
+            let (num, den) = dqr::line_to_line_squared_distance(&robot_line(l0), &dqr::line(d, p));
+            (vec![num], den)
+        }
+        TaskJacobian::LineToLineAngle(l0, d, _) => {
+            let l = moved(l0);
+            let diff = [&l[0] - &d[0], &l[1] - &d[1], &l[2] - &d[2]];
+            poly(vec![dqr::dot3(&diff, &diff)])
+        }
+        TaskJacobian::Derivative(inner) => task_quantity(x, inner),
     }
 }
 
-/// The task Jacobian's rows (exact), `vars` the joint variables.
-pub fn task_jacobian(x: &DualQuat<Scalar>, vars: &[&str], task: &TaskJacobian) -> Vec<Vec<Scalar>> {
-    let v = task_vector(x, task);
-    let jac: Vec<Vec<Scalar>> = v
-        .iter()
-        .map(|c| vars.iter().map(|q| c.diff(q)).collect())
-        .collect();
-    if *task != TaskJacobian::PoseDerivative {
-        return jac;
+/// The task Jacobian (exact), `vars` the joint variables: numerators and their common
+/// denominator; the derivative of `A/E` is `(A' E - A E') / E²`.
+pub fn task_jacobian(x: &DualQuat<Scalar>, vars: &[&str], task: &TaskJacobian) -> TaskMatrix {
+    if let TaskJacobian::Derivative(inner) = task {
+        let j = task_jacobian(x, vars, inner);
+        let rate = |e: &Scalar| {
+            vars.iter().fold(Scalar::int(0), |acc, q| {
+                acc + e.diff(q) * Scalar::sym(&rate_name(q))
+            })
+        };
+        return over(&j.num, &j.den, rate);
     }
-    jac.iter()
-        .map(|row| {
-            row.iter()
-                .map(|e| {
-                    vars.iter().fold(Scalar::int(0), |acc, q| {
-                        acc + e.diff(q) * Scalar::sym(&rate_name(q))
-                    })
-                })
-                .collect()
-        })
-        .collect()
+    let (v, den) = task_quantity(x, task);
+    gradient(&v, &den, vars)
+}
+
+/// The Jacobian of the quotients `v[i] / den` by `vars`.
+fn gradient(v: &[Scalar], den: &Scalar, vars: &[&str]) -> TaskMatrix {
+    if *den == Scalar::int(1) {
+        return TaskMatrix {
+            num: v
+                .iter()
+                .map(|c| vars.iter().map(|q| c.diff(q)).collect())
+                .collect(),
+            den: den.clone(),
+        };
+    }
+    let dden: Vec<Scalar> = vars.iter().map(|q| den.diff(q)).collect();
+    TaskMatrix {
+        num: v
+            .iter()
+            .map(|c| {
+                vars.iter()
+                    .zip(&dden)
+                    .map(|(q, dd)| c.diff(q) * den - c * dd)
+                    .collect()
+            })
+            .collect(),
+        den: den * den,
+    }
+}
+
+/// `d(a / e)` entry by entry for a linear derivation `d`: `d a` over `e` when `e` is 1, else
+/// `(d a e - a d e) / e²`.
+fn over(a: &[Vec<Scalar>], e: &Scalar, d: impl Fn(&Scalar) -> Scalar) -> TaskMatrix {
+    if *e == Scalar::int(1) {
+        return TaskMatrix {
+            num: a.iter().map(|r| r.iter().map(&d).collect()).collect(),
+            den: e.clone(),
+        };
+    }
+    let de = d(e);
+    TaskMatrix {
+        num: a
+            .iter()
+            .map(|r| r.iter().map(|x| d(x) * e - x * &de).collect())
+            .collect(),
+        den: e * e,
+    }
 }
 
 /// The report of `dqsym fk ROBOT --jacobian=KIND`: the pose (`dq[k]`) and the task Jacobian,
-/// in any format. Needs the expanded pose (within `o.max_terms`).
+/// in any format; a quotient as its numerators `{base}_num[i][j]` and its common denominator
+/// `{base}_den`. Needs the expanded pose (within `o.max_terms`).
 pub fn task_report(
     robot: &Robot,
     o: &FkOptions,
@@ -199,7 +433,7 @@ fn task_report_inner(
         .forward_within(o.max_terms)
         .ok_or(ReportError::TaskTooLarge(o.max_terms))?;
     let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
-    if let TaskJacobian::PoseDerivative = task {
+    if let TaskJacobian::Derivative(_) = task {
         for q in &vars {
             let name = rate_name(q);
             if robot.parameters().contains(&name) {
@@ -207,10 +441,18 @@ fn task_report_inner(
             }
         }
     }
+    if let Some((b, a)) = line_to_line_parts(&x, task) {
+        return line_to_line_report(robot, o, &x, &vars, (b, a));
+    }
     let jac = task_jacobian(&x, &vars, task);
+    let quotient = jac.as_polynomial().is_none();
     let n = vars.len().max(1);
     let comps = x.components();
-    let flat: Vec<&Scalar> = comps.iter().chain(jac.iter().flatten()).collect();
+    let flat: Vec<&Scalar> = comps
+        .iter()
+        .chain(jac.num.iter().flatten())
+        .chain(quotient.then_some(&jac.den))
+        .collect();
     let forms: Vec<Result<Expr, ScalarError>> = par_map(&flat, |s| closed_form(s));
     let mut forms = forms.into_iter();
     let mut pose = Vec::new();
@@ -218,21 +460,139 @@ fn task_report_inner(
         pose.push((format!("dq[{k}]"), forms.next().expect("8 entries")?));
     }
     let (base, title) = task.names();
+    let entries = if quotient {
+        format!("{base}_num")
+    } else {
+        base.clone()
+    };
     let mut rows = Vec::new();
-    for i in 0..jac.len() {
+    for i in 0..jac.num.len() {
         for j in 0..n.min(vars.len()) {
             rows.push((
-                format!("{base}[{i}][{j}]"),
+                format!("{entries}[{i}][{j}]"),
                 forms.next().expect("an entry")?,
             ));
         }
     }
+    let mut sections = vec![
+        (
+            "unit dual quaternion (w, x, y, z, w_e, x_e, y_e, z_e)".to_owned(),
+            pose,
+        ),
+        (
+            if quotient {
+                format!("{title}, = {base}_num[i][j] / {base}_den")
+            } else {
+                title
+            },
+            rows,
+        ),
+    ];
+    if quotient {
+        sections.push((
+            format!("the common denominator {base}_den"),
+            vec![(
+                format!("{base}_den"),
+                forms.next().expect("the denominator")?,
+            )],
+        ));
+    }
+    render(robot, &sections, o.format, &[])
+}
+
+/// `D(l . lz)` and `|P(l x lz)|^2` of the line-to-line distance (`b` and `a`: the squared
+/// distance is `b^2 / a`), `None` for other tasks and for lines parallel at every
+/// configuration (`a = 0`, a polynomial Jacobian).
+fn line_to_line_parts(x: &DualQuat<Scalar>, task: &TaskJacobian) -> Option<(Scalar, Scalar)> {
+    let TaskJacobian::LineToLine(l0, d, p) = task else {
+        return None;
+    };
+    let r = &x.real;
+    let l = (r * &Quat::from_vector(l0) * r.conjugate()).vector_part();
+    let robot = dqr::line(&l, &dqr::translation(x).vector_part());
+    let workspace = dqr::line(d, p);
+    let a = dqr::cross(&robot, &workspace).real.norm_squared();
+    (!a.is_zero()).then(|| (dqr::dot(&robot, &workspace).dual.w, a))
+}
+
+/// The line-to-line distance Jacobian of lines that are not always parallel, as DQ Robotics
+/// builds it (`line_to_line_distance_jacobian`): the intermediate entries `Jd_b[0] = b =
+/// D(l . lz)`, `Jd_b[1 + j] = d b / d q[j]`, `Jd_a[0] = a = |P(l x lz)|^2`, `Jd_a[1 + j] = d a /
+/// d q[j]`, each in closed form, then `Jd_num[0][j] = 2 b b_j a - b^2 a_j` and `Jd_den = a^2` in
+/// their symbols `Jd_b_k`, `Jd_a_k`: the expanded quotient of a 6R arm is far too large, these
+/// entries are each about the size of a line Jacobian entry.
+fn line_to_line_report(
+    robot: &Robot,
+    o: &FkOptions,
+    x: &DualQuat<Scalar>,
+    vars: &[&str],
+    (b, a): (Scalar, Scalar),
+) -> Result<String, ReportError> {
+    let n = vars.len();
+    for k in 0..=n {
+        for name in [format!("Jd_b_{k}"), format!("Jd_a_{k}")] {
+            if robot.variables.contains(&name) || robot.parameters().contains(&name) {
+                return Err(ReportError::NameClash(name));
+            }
+        }
+    }
+    let with_gradient = |s: &Scalar| -> Vec<Scalar> {
+        std::iter::once(s.clone())
+            .chain(vars.iter().map(|q| s.diff(q)))
+            .collect()
+    };
+    let (bs, as_) = (with_gradient(&b), with_gradient(&a));
+    let sym = |base: &str, k: usize| Scalar::sym(&format!("{base}_{k}"));
+    let (b0, a0) = (sym("Jd_b", 0), sym("Jd_a", 0));
+    let nums: Vec<Scalar> = (1..=n)
+        .map(|k| &b0 * sym("Jd_b", k) * &a0 * Scalar::int(2) - &b0 * &b0 * sym("Jd_a", k))
+        .collect();
+    let den = &a0 * &a0;
+    let comps = x.components();
+    let flat: Vec<&Scalar> = comps
+        .iter()
+        .chain(&bs)
+        .chain(&as_)
+        .chain(&nums)
+        .chain(std::iter::once(&den))
+        .collect();
+    let forms: Vec<Result<Expr, ScalarError>> = par_map(&flat, |s| closed_form(s));
+    let mut forms = forms.into_iter();
+    let mut take = |names: Vec<String>| -> Result<Vec<(String, Expr)>, ScalarError> {
+        names
+            .into_iter()
+            .map(|nm| Ok((nm, forms.next().expect("an entry")?)))
+            .collect()
+    };
+    let pose = take((0..8).map(|k| format!("dq[{k}]")).collect())?;
+    let b_rows = take((0..=n).map(|k| format!("Jd_b[{k}]")).collect())?;
+    let a_rows = take((0..=n).map(|k| format!("Jd_a[{k}]")).collect())?;
+    let num_rows = take((0..n).map(|j| format!("Jd_num[0][{j}]")).collect())?;
+    let den_row = take(vec!["Jd_den".to_owned()])?;
+    let (_, title) = TaskJacobian::LineToLine(
+        [Scalar::int(0), Scalar::int(0), Scalar::int(1)],
+        [Scalar::int(0), Scalar::int(0), Scalar::int(1)],
+        [Scalar::int(0), Scalar::int(0), Scalar::int(0)],
+    )
+    .names();
     let sections = vec![
         (
             "unit dual quaternion (w, x, y, z, w_e, x_e, y_e, z_e)".to_owned(),
             pose,
         ),
-        (title.to_owned(), rows),
+        (
+            "b = D(l . lz) and its derivatives d b / d q[j] (entry X[k] is the symbol X_k of later entries)".to_owned(),
+            b_rows,
+        ),
+        (
+            "a = |P(l x lz)|^2 and its derivatives d a / d q[j]; the squared distance is b^2 / a".to_owned(),
+            a_rows,
+        ),
+        (
+            format!("{title} = Jd_num[0][j] / Jd_den, Jd_num[0][j] = 2 b (d b / d q[j]) a - b^2 (d a / d q[j])"),
+            num_rows,
+        ),
+        ("the common denominator Jd_den = a^2".to_owned(), den_row),
     ];
     render(robot, &sections, o.format, &[])
 }

@@ -3,9 +3,11 @@
 //! The canonical form is a Fourier series; a kinematician reads products of cosines and sines
 //! of grouped angles. [`closed_form`] tries two shapes and keeps the cheaper by [`Cost`]:
 //! (a) every mode split into single-symbol atoms, then regrouped by the angle-sum identities
-//! (`recombine.rs`) and factored (`factor.rs`); (b) the Fourier modes kept whole and factored.
-//! The result is re-canonicalized and compared with the input before it is returned.
+//! (`recombine.rs`) and factored (`factor.rs`); (b) the Fourier modes kept whole and factored;
+//! then (c) the candidates of `alt.rs` (harmonic form, sum to product, a polynomial in one
+//! cosine or sine factored by its rational roots) when one is cheaper still. The result is re-canonicalized and compared with the input before it is returned.
 
+mod alt;
 mod expr;
 mod factor;
 mod mon;
@@ -85,6 +87,11 @@ fn best_of(
         Some((w, wc)) if *wc < sc => (w.clone(), false),
         _ => (split.to_expr(sctx), true),
     };
+    // A shorter form of another kind (checked exactly by `best_alternative`).
+    let best = match alt::best_alternative(x) {
+        Some(a) if alt::full_cost(&a).0 < alt::full_cost(&best).0 => a,
+        _ => best,
+    };
     if !cfg!(debug_assertions) && agrees_numerically(&best, x) {
         return Ok((best, split_won));
     }
@@ -96,7 +103,8 @@ fn best_of(
     if value == *x {
         Ok((best, split_won))
     } else {
-        debug_assert!(false, "closed form does not equal its input");
+        // Past the degree bound of exact constants, equal values may differ in form.
+        debug_assert!(!x.is_canonical(), "closed form does not equal its input");
         let (w, _) = match whole {
             Some(w) => w,
             None => whole_form(x)?,
@@ -232,10 +240,17 @@ pub fn closed_form_traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarEr
         let e = whole.to_expr(&wctx);
         (e.clone(), TraceStep::KeptWhole(e))
     };
+    let (best, last) = match alt::best_alternative(x) {
+        Some(a) if alt::full_cost(&a).0 < alt::full_cost(&best).0 => {
+            (a.clone(), TraceStep::Shorter(a))
+        }
+        _ => (best, last),
+    };
     if best.to_scalar() == *x {
         Ok((best, rec.finish(last)))
     } else {
-        debug_assert!(false, "closed form does not equal its input");
+        // Past the degree bound of exact constants, equal values may differ in form.
+        debug_assert!(!x.is_canonical(), "closed form does not equal its input");
         let e = whole.to_expr(&wctx);
         Ok((e.clone(), vec![TraceStep::KeptWhole(e)]))
     }

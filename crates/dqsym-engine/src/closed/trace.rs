@@ -77,6 +77,10 @@ pub enum TraceStep {
     /// The regrouped form was not cheaper than the canonical Fourier modes kept whole and
     /// factored, so those are the closed form; the identity steps above are not used.
     KeptWhole(Expr),
+    /// A shorter equivalent form than both (the harmonic form `R cos(x - phi)`, a sum turned
+    /// into a product, a polynomial in one cosine or sine factored by its roots): the closed
+    /// form.
+    Shorter(Expr),
 }
 
 /// One identity application as the recombination sees it: atoms of the first and second term

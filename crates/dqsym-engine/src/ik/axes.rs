@@ -79,6 +79,19 @@ impl Axis {
         }
     }
 
+    /// The same line with its direction reversed: its motion at `q` is this axis's motion at
+    /// `−q`, so a chain read backwards, `E6⁻¹ ⋯ E1⁻¹`, is a chain of reversed axes at the same
+    /// variables.
+    pub(crate) fn reversed(&self) -> Axis {
+        let neg = Scalar::int(-1);
+        Axis::new(
+            self.kind,
+            &self.variable,
+            scale(&neg, &self.dir),
+            self.point.clone(),
+        )
+    }
+
     /// `cos` and `sin` of the joint variable (`sign` -1 for the inverse motion).
     pub(crate) fn cs(&self, sign: i64) -> (Scalar, Scalar) {
         let q = Scalar::sym(&self.variable);

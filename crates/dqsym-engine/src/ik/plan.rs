@@ -13,8 +13,9 @@ use crate::{Matrix4, Scalar};
 pub(crate) const FAMILIES: &str = "planar 2R (position) and 3R; SCARA-type RRPR (three parallel \
 revolute axes, a prismatic joint along them); 6 joints with a spherical wrist (axes 4, 5, 6 \
 through one point) and either axes 2 and 3 parallel, or axes 1 and 2 intersecting (joint 3 \
-revolute or prismatic); 6R with axes 2, 3, 4 parallel and axes 5 and 6 intersecting (UR type); \
-7 joints with one joint given by --free reducing to one of these";
+revolute or prismatic); the same read backwards (a spherical shoulder: axes 1, 2, 3 through one \
+point, with axes 4 and 5 parallel or axes 5 and 6 intersecting); 6R with axes 2, 3, 4 parallel \
+and axes 5 and 6 intersecting (UR type); 7 joints with one joint given by --free reducing to one of these";
 
 /// The target pose and the home pose: `G = T M⁻¹`, the motion `E1 ... En`.
 struct Target {
@@ -23,6 +24,8 @@ struct Target {
     /// `R_M`, `t_M` of the home pose.
     rm: [[Scalar; 3]; 3],
     tm: V3,
+    /// The motion is `G⁻¹ = M T⁻¹` (the chain reversed) instead of `G`.
+    inverse: bool,
 }
 
 impl Target {
@@ -32,7 +35,24 @@ impl Target {
         let p = std::array::from_fn(|i| s(TARGET_SYMBOLS[i][3]));
         let rm = std::array::from_fn(|i| std::array::from_fn(|j| home.rows[i][j].clone()));
         let tm = std::array::from_fn(|i| home.rows[i][3].clone());
-        Target { r, p, rm, tm }
+        Target {
+            r,
+            p,
+            rm,
+            tm,
+            inverse: false,
+        }
+    }
+
+    /// The target of the reversed chain: `G⁻¹ = E6⁻¹ ⋯ E1⁻¹`.
+    fn reversed(&self) -> Target {
+        Target {
+            r: self.r.clone(),
+            p: self.p.clone(),
+            rm: self.rm.clone(),
+            tm: self.tm.clone(),
+            inverse: !self.inverse,
+        }
     }
 
     fn mat(m: &[[Scalar; 3]; 3], v: &V3) -> V3 {
@@ -43,19 +63,31 @@ impl Target {
         std::array::from_fn(|i| &m[0][i] * &v[0] + &m[1][i] * &v[1] + &m[2][i] * &v[2])
     }
 
-    /// `R_G v = R_T R_Mᵀ v`.
+    /// `R_G v = R_T R_Mᵀ v` (reversed: `R_M R_Tᵀ v`).
     fn dir(&self, v: &V3) -> V3 {
-        Self::mat(&self.r, &Self::mat_t(&self.rm, v))
+        if self.inverse {
+            Self::mat(&self.rm, &Self::mat_t(&self.r, v))
+        } else {
+            Self::mat(&self.r, &Self::mat_t(&self.rm, v))
+        }
     }
 
-    /// `R_Gᵀ v = R_M R_Tᵀ v`.
+    /// `R_Gᵀ v = R_M R_Tᵀ v` (reversed: `R_T R_Mᵀ v`).
     fn dir_inv(&self, v: &V3) -> V3 {
-        Self::mat(&self.rm, &Self::mat_t(&self.r, v))
+        if self.inverse {
+            Self::mat(&self.r, &Self::mat_t(&self.rm, v))
+        } else {
+            Self::mat(&self.rm, &Self::mat_t(&self.r, v))
+        }
     }
 
-    /// `G x = R_T R_Mᵀ (x − t_M) + p`.
+    /// `G x = R_T R_Mᵀ (x − t_M) + p` (reversed: `G⁻¹ x = R_M R_Tᵀ (x − p) + t_M`).
     fn point(&self, x: &V3) -> V3 {
-        add(&self.dir(&sub(x, &self.tm)), &self.p)
+        if self.inverse {
+            add(&self.dir(&sub(x, &self.p)), &self.tm)
+        } else {
+            add(&self.dir(&sub(x, &self.tm)), &self.p)
+        }
     }
 }
 
@@ -177,6 +209,13 @@ fn name(i: usize) -> usize {
     i + 1
 }
 
+/// A scalar in closed form, plain text.
+fn scalar_text(x: &Scalar) -> String {
+    crate::closed_form(x)
+        .map(|e| crate::plain(&e, &crate::PlainOptions::default()))
+        .unwrap_or_else(|_| x.to_string())
+}
+
 fn rel_text(rel: &Relation) -> String {
     match rel {
         Relation::Parallel { same_line: true } => "coincide".into(),
@@ -282,9 +321,101 @@ pub(crate) fn derive(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkEr
     )
 }
 
-/// The derivation from the axes and the home pose.
-#[allow(clippy::needless_range_loop)] // rows and columns of a 3 x 4 block, by index
+/// The derivation from the axes and the home pose. A 7-joint chain without `--free` gets the
+/// first joint whose value as a parameter leaves a supported family (said in the geometry); a
+/// `--free` that leaves none gets an error naming the joints that would.
 pub(crate) fn derive_axes(
+    name: &str,
+    variables: &[String],
+    params: Vec<String>,
+    axes: Vec<Axis>,
+    home: Matrix4<Scalar>,
+    opts: &IkOptions,
+) -> Result<IkSolution, IkError> {
+    let first = derive_fixed(
+        name,
+        variables,
+        params.clone(),
+        axes.clone(),
+        home.clone(),
+        opts,
+    );
+    if axes.len() != 7 || !matches!(first, Err(IkError::Unsupported { .. })) {
+        return first;
+    }
+    let try_free = |v: &String| {
+        let o = IkOptions {
+            free: Some(v.clone()),
+        };
+        derive_fixed(
+            name,
+            variables,
+            params.clone(),
+            axes.clone(),
+            home.clone(),
+            &o,
+        )
+    };
+    match &opts.free {
+        None => {
+            for v in variables {
+                match try_free(v) {
+                    Ok(mut sol) => {
+                        sol.geometry.insert(
+                            0,
+                            format!(
+                                "7 joints, no --free given: {v} chosen as the free joint (a \
+                                 parameter), the first joint whose value leaves a supported family"
+                            ),
+                        );
+                        return Ok(sol);
+                    }
+                    Err(IkError::Unsupported { .. }) => {}
+                    Err(e) => return Err(e),
+                }
+            }
+            first.map_err(|e| with_line(e, "no joint given as --free leaves a supported family"))
+        }
+        Some(f) => {
+            let fits: Vec<&str> = variables
+                .iter()
+                .filter(|v| *v != f && try_free(v).is_ok())
+                .map(String::as_str)
+                .collect();
+            let line = if fits.is_empty() {
+                format!("--free {f}: no joint given as --free leaves a supported family")
+            } else {
+                format!(
+                    "--free {f} leaves no supported family; --free {} does",
+                    fits.join(" or --free ")
+                )
+            };
+            first.map_err(|e| with_line(e, &line))
+        }
+    }
+}
+
+/// An [`IkError::Unsupported`] with one more geometry line.
+fn with_line(e: IkError, line: &str) -> IkError {
+    match e {
+        IkError::Unsupported {
+            robot,
+            mut geometry,
+            families,
+        } => {
+            geometry.push_str(&format!("\n  {line}"));
+            IkError::Unsupported {
+                robot,
+                geometry,
+                families,
+            }
+        }
+        e => e,
+    }
+}
+
+#[allow(clippy::needless_range_loop)] // rows and columns of a 3 x 4 block, by index
+fn derive_fixed(
     name: &str,
     variables: &[String],
     mut params: Vec<String>,
@@ -356,9 +487,6 @@ pub(crate) fn derive_axes(
             let mut g = geometry.clone();
             if let Some(w) = why {
                 g.push(w);
-            }
-            if opts.free.is_none() && axes.len() == 7 {
-                g.push("7 joints: give one joint variable as a parameter with --free".into());
             }
             g.iter()
                 .map(|l| format!("  {l}"))
@@ -435,16 +563,63 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, String>
         return Ok(None);
     }
     if let Some(w) = common_point(&ax[3..6]) {
-        if parallel(&ax[3], &ax[4]) || parallel(&ax[4], &ax[5]) {
-            return Ok(None);
+        if !parallel(&ax[3], &ax[4]) && !parallel(&ax[4], &ax[5]) {
+            if let Some(pos) = spherical_position(b, t, &w)? {
+                wrist_orientation(b, t)?;
+                return Ok(Some((
+                    format!("6 joints with a spherical wrist (Pieper): {pos}"),
+                    false,
+                )));
+            }
         }
-        let pos = spherical_position(b, t, &w)?;
-        let Some(pos) = pos else { return Ok(None) };
-        wrist_orientation(b, t)?;
-        return Ok(Some((
-            format!("6 joints with a spherical wrist (Pieper): {pos}"),
-            false,
-        )));
+    }
+    // A spherical shoulder (axes 1, 2, 3 through one point): the chain read backwards,
+    // G⁻¹ = E6⁻¹ ⋯ E1⁻¹, is a chain of the reversed axes 6, ..., 1 at the same variables
+    // with a spherical wrist.
+    if let Some(o) = common_point(&ax[0..3]) {
+        if !parallel(&ax[0], &ax[1]) && !parallel(&ax[1], &ax[2]) {
+            let rev: Vec<Axis> = ax.iter().rev().map(Axis::reversed).collect();
+            let tr = t.reversed();
+            let mut rb = Builder {
+                axes: &rev,
+                steps: Vec::new(),
+            };
+            if let Some(pos) = spherical_position(&mut rb, &tr, &o)? {
+                wrist_orientation(&mut rb, &tr)?;
+                for mut s in rb.steps {
+                    s.joint = n - 1 - s.joint;
+                    s.method = format!(
+                        "chain reversed (axis j' = axis {} − j): {}",
+                        n + 1,
+                        s.method
+                    );
+                    s.singular = format!("chain reversed: {}", s.singular);
+                    // The reversed chain's shoulder is the arm's wrist and the other way round.
+                    if let Some(br) = &mut s.branch {
+                        br.0 = match br.0.as_str() {
+                            "shoulder" => "wrist".into(),
+                            "wrist" => {
+                                // Axes 4' and 6' are axes 3 and 1.
+                                s.singular = "shoulder singularity (radicand zero, the two \
+                                              branches merge): axes 1 and 3 in line"
+                                    .into();
+                                "shoulder".into()
+                            }
+                            x => x.into(),
+                        };
+                    }
+                    b.steps.push(s);
+                }
+                return Ok(Some((
+                    format!(
+                        "6 joints with a spherical shoulder (axes 1, 2, 3 through one point): \
+                         the chain reversed, G⁻¹ = E6⁻¹ ⋯ E1⁻¹ about the reversed axes \
+                         1' = 6, ..., 6' = 1, is a spherical-wrist arm (Pieper), in the primed numbering: {pos}"
+                    ),
+                    false,
+                )));
+            }
+        }
     }
     if revolute(ax)
         && parallel(&ax[1], &ax[2])
@@ -583,7 +758,12 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
              centre's component along them, so (Rot(axis 1, theta) k2)·(wc − p1) = k2·(C − p1)"
                 .into(),
             Some(SHOULDER),
-            "the wrist centre on axis 1 (radicand zero: shoulder singularity)",
+            &format!(
+                "radicand zero (shoulder singularity, left and right merge): the wrist centre's \
+                 distance from axis 1 equals the shoulder offset |k2·(C − p1)| = |{}| (the \
+                 wrist centre on axis 1 when it is 0)",
+                scalar_text(&dot(&a2.dir, &sub(w, p1)))
+            ),
         )?;
         let q = a1.move_point(&pw, -1);
         // The centre: where axes 1 and 2 meet when they do (then |q - O| = |wc - O|), else the
@@ -661,7 +841,8 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
          k1·Rot(axis 2, theta) u = k1·(wc − O)"
             .into(),
         Some(SHOULDER),
-        "the wrist centre on axis 1 (shoulder singularity)",
+        "radicand zero (left and right merge): joint 2 at the extreme of the height \
+         k1·Rot(axis 2, theta) u, the wrist centre as high along axis 1 as it can be",
     )?;
     b.push(
         0,
@@ -735,7 +916,11 @@ fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), String> {
          k2·(C56 − p1)"
             .into(),
         Some(SHOULDER),
-        "radicand zero (shoulder singularity)",
+        &format!(
+            "radicand zero (shoulder singularity, left and right merge): the point where axes 5 \
+             and 6 meet at distance |k2·(C56 − p1)| = |{}| from axis 1",
+            scalar_text(&dot(k, &sub(&x56, p1)))
+        ),
     )?;
     let g6 = t.dir(&ax[5].dir);
     b.push(

@@ -134,6 +134,22 @@ pub fn norm(h: &DualQuat<Scalar>) -> Result<DualQuat<Scalar>> {
     ))
 }
 
+/// DQ Robotics' `normalize(h) = h norm(h)^-1`, a unit DQ, exact when `norm` is (`|P(h)|²` 1
+/// or a non-negative rational); the inverse of the dual number `a + ε b` is `1/a - ε b/a²`.
+pub fn normalize(h: &DualQuat<Scalar>) -> Result<DualQuat<Scalar>> {
+    let n = norm(h)?;
+    let (a, b) = (&n.real.w, &n.dual.w);
+    if a.is_zero() {
+        return Err(DqError::Scalar(ScalarError::DivisionByZero));
+    }
+    let inv_a = Scalar::one().try_div(a)?;
+    let inv = DualQuat::from_real_and_dual(
+        Quat::from_scalar(inv_a.clone()),
+        Quat::from_scalar(-(b * &inv_a * &inv_a)),
+    );
+    Ok(h * &inv)
+}
+
 /// `rotation_angle(h) = 2 acos(w)` of a unit DQ, exact (branch in the module docs).
 pub fn rotation_angle(h: &DualQuat<Scalar>) -> Result<Scalar> {
     require_unit(h)?;

@@ -664,9 +664,10 @@ impl Robot {
                 *x = entry(x)?;
             }
             let m = Matrix4::from_rows(rows);
-            let next = match acc {
-                None => m,
-                Some(a) => a.mul_ref(&m),
+            let next = match (acc, max_terms) {
+                (None, _) => m,
+                (Some(a), None) => a.mul_ref(&m),
+                (Some(a), Some(limit)) => product_within(&a, &m, limit)?,
             };
             if let Some(limit) = max_terms {
                 if next
@@ -752,6 +753,33 @@ impl Robot {
         names.retain(|n| n != "pi" && !self.variables.contains(n));
         names
     }
+}
+
+/// `a b`, or `None` as soon as an entry has more than `limit` terms (or is an error value).
+/// The entries are computed largest first by the count of their term pairs, so that a product
+/// past the limit (the last factor of a long numeric chain, whose entries reach tens of
+/// thousands of terms) usually stops after its first entry instead of computing all sixteen.
+fn product_within(
+    a: &Matrix4<Scalar>,
+    b: &Matrix4<Scalar>,
+    limit: usize,
+) -> Option<Matrix4<Scalar>> {
+    let pairs = |i: usize, j: usize| -> usize {
+        (0..4)
+            .map(|k| a.rows[i][k].len() * b.rows[k][j].len())
+            .sum()
+    };
+    let mut order: Vec<(usize, usize)> = (0..4).flat_map(|i| (0..4).map(move |j| (i, j))).collect();
+    order.sort_by_key(|&(i, j)| std::cmp::Reverse(pairs(i, j)));
+    let mut rows: [[Scalar; 4]; 4] = Default::default();
+    for (i, j) in order {
+        let x = (0..4).fold(Scalar::int(0), |acc, k| acc + &a.rows[i][k] * &b.rows[k][j]);
+        if x.len() > limit || x.as_error().is_some() {
+            return None;
+        }
+        rows[i][j] = x;
+    }
+    Some(Matrix4::from_rows(rows))
 }
 
 /// Refuses a joint variable an earlier joint already has: each Jacobian column is the

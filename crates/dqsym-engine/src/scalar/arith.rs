@@ -5,7 +5,7 @@ use super::atoms::{
     empty_mono, mode_mul, mono_mul, rad_mul, small_ok, split_square, trig_mode, Mode, ModeSum,
     Small, Sym,
 };
-use super::{charge, check_cancelled, term_limit, Scalar, ScalarError, Term, Q};
+use super::{charge, term_limit, Poll, Scalar, ScalarError, Term, Q};
 use crate::Ring;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
@@ -15,9 +15,6 @@ use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 use std::ops::{Add, Mul, Neg, Sub};
 use std::rc::Rc;
-
-/// How many term pairs a product forms between two looks at the cancel flag.
-const CANCEL_CHECK_PAIRS: usize = 4096;
 
 /// How many term pairs one product may form, as a multiple of the term limit.
 const PRODUCT_FACTOR: usize = 2;
@@ -42,6 +39,8 @@ pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
     }
     let mut out = Vec::with_capacity(x.len() + y.len());
     let (mut i, mut j) = (0, 0);
+    // A long sum notices cancellation as it goes, not only before.
+    let mut poll = Poll::default();
     let flip = |t: &Term| {
         let mut t = t.clone();
         if sign < 0 {
@@ -50,6 +49,9 @@ pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
         t
     };
     while i < x.len() && j < y.len() {
+        if let Err(e) = poll.step() {
+            return Scalar::error(e);
+        }
         match x[i].key_cmp(&y[j]) {
             std::cmp::Ordering::Less => {
                 out.push(x[i].clone());
@@ -189,8 +191,8 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
         return Scalar::error(e);
     }
     let mut out = Vec::with_capacity(x.len() * y.len());
-    // A large product notices cancellation every few thousand term pairs, not only before.
-    let mut pairs_since_check = 0usize;
+    // A large product notices cancellation as it goes (every few term pairs), not only before.
+    let mut poll = Poll::default();
     // Mode products are the expensive part; compute each once per pair of mode runs.
     for ra in mode_runs(x) {
         for rb in mode_runs(y) {
@@ -198,14 +200,10 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
             let weights: usize = modes.iter().map(|(_, w)| w.len()).sum();
             out.reserve(ra.len() * rb.len() * weights);
             for s in ra {
-                pairs_since_check += rb.len();
-                if pairs_since_check > CANCEL_CHECK_PAIRS {
-                    pairs_since_check = 0;
-                    if let Err(e) = check_cancelled() {
+                for t in rb {
+                    if let Err(e) = poll.step() {
                         return Scalar::error(e);
                     }
-                }
-                for t in rb {
                     let Some(mono) = mono_mul(&s.mono, &t.mono) else {
                         return Scalar::error(ScalarError::OutOfRange("exponent too large".into()));
                     };

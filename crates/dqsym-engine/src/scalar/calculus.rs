@@ -56,6 +56,55 @@ impl Scalar {
         Scalar::from_terms(out)
     }
 
+    /// `self` with its symbols renamed, `names[k].0` to `names[k].1`, in one pass over the
+    /// terms (no multiplication). `names` must be sorted by old name, the new names sorted
+    /// too and cover every symbol of `self`, so that the sorted monomials and frequencies stay
+    /// sorted; otherwise (or for an error value) the result is `None`. For such a renaming the
+    /// closed form of the result is that of `self` renamed (closed forms only compare
+    /// symbols), which lets a caller share one closed form between entries of the same shape.
+    pub fn rename_symbols_monotone(&self, names: &[(String, String)]) -> Option<Scalar> {
+        let t = self.terms().ok()?;
+        let sorted =
+            |v: &[(String, String)]| v.windows(2).all(|w| w[0].0 < w[1].0 && w[0].1 < w[1].1);
+        if !sorted(names) {
+            return None;
+        }
+        let new: Vec<Sym> = names.iter().map(|(_, n)| Sym::new(n)).collect();
+        let r = |s: &Sym| -> Option<Sym> {
+            names
+                .binary_search_by(|(o, _)| o.as_str().cmp(s.name()))
+                .ok()
+                .map(|k| new[k].clone())
+        };
+        let mut out = Vec::with_capacity(t.len());
+        for term in t {
+            let mono: Option<Vec<(Sym, u32)>> =
+                term.mono.iter().map(|(s, e)| Some((r(s)?, *e))).collect();
+            let freq: Option<Vec<_>> = term
+                .mode
+                .freq
+                .iter()
+                .map(|(s, k)| Some((r(s)?, *k)))
+                .collect();
+            let mono = mono?;
+            out.push(Term {
+                mode: Mode {
+                    sin: term.mode.sin,
+                    freq: super::atoms::freq_rc(freq?),
+                    pi: term.mode.pi,
+                },
+                mono: if mono.is_empty() {
+                    super::atoms::empty_mono()
+                } else {
+                    std::sync::Arc::from(mono)
+                },
+                rad: term.rad,
+                coef: term.coef.clone(),
+            });
+        }
+        Some(Scalar::from_terms(out))
+    }
+
     /// `self` with the symbol `x` replaced by `value` everywhere, re-canonicalized.
     /// Inside a trigonometric argument `value` must be an angle.
     pub fn subs(&self, x: &str, value: &Scalar) -> Scalar {

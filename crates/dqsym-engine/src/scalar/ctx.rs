@@ -273,16 +273,82 @@ pub(crate) fn charge(units: u64) -> Result<(), ScalarError> {
 
 /// `Err(Cancelled)` when the entered context is cancelled: for long loops that charge no work.
 pub(crate) fn check_cancelled() -> Result<(), ScalarError> {
+    #[cfg(test)]
+    if test_hook::look() {
+        return Err(ScalarError::Cancelled);
+    }
     STATE.with(|s| match &*s.borrow() {
         Some(st) if st.ctx.is_cancelled() => Err(ScalarError::Cancelled),
         _ => Ok(()),
     })
 }
 
+/// How many steps of a long loop pass between two looks at the cancel flag. A step is one
+/// term operation (a pair of a product, a term of a sum or of a sort's merge), which with
+/// coefficients of dozens of digits costs microseconds (tens of them in a debug build): a
+/// cancelled loop ends within a millisecond or so, and the look costs nothing measurable.
+const POLL_STEPS: u32 = 64;
+
+/// The cancel flag, looked at every [`POLL_STEPS`] steps of a long loop: a sum, a product, the
+/// sort of a product's terms. Work is charged for such a loop before it starts (the budget
+/// is known then); cancellation must be noticed inside it too, since one product of large
+/// scalars runs for seconds.
+#[derive(Default)]
+pub(crate) struct Poll(u32);
+
+impl Poll {
+    /// One step of the loop; `Err(Cancelled)` once the context is cancelled.
+    pub(crate) fn step(&mut self) -> Result<(), ScalarError> {
+        self.0 += 1;
+        if self.0 < POLL_STEPS {
+            return Ok(());
+        }
+        self.0 = 0;
+        check_cancelled()
+    }
+}
+
+/// For tests: counts the looks at the cancel flag on this thread and cancels at a chosen one,
+/// so that a test proves deterministically that a loop looks often enough and that its
+/// cancellation reaches the result.
+#[cfg(test)]
+pub(crate) mod test_hook {
+    use std::cell::Cell;
+
+    thread_local! {
+        static LOOKS: Cell<u64> = const { Cell::new(0) };
+        static CANCEL_AT: Cell<Option<u64>> = const { Cell::new(None) };
+    }
+
+    /// Starts counting from zero; `cancel_at`: the look (1-based) from which on the context
+    /// counts as cancelled.
+    pub(crate) fn reset(cancel_at: Option<u64>) {
+        LOOKS.with(|l| l.set(0));
+        CANCEL_AT.with(|c| c.set(cancel_at));
+    }
+
+    /// The looks since [`reset`].
+    pub(crate) fn looks() -> u64 {
+        LOOKS.with(Cell::get)
+    }
+
+    /// Counts one look; whether it is cancelled.
+    pub(crate) fn look() -> bool {
+        let n = LOOKS.with(|l| {
+            l.set(l.get() + 1);
+            l.get()
+        });
+        CANCEL_AT.with(|c| c.get().is_some_and(|at| n >= at))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::Scalar;
+    use num_bigint::BigInt;
+    use num_rational::BigRational;
+    use num_traits::Pow;
 
     #[test]
     fn entering_nests_and_restores() {
@@ -315,5 +381,66 @@ mod tests {
         let p = &s * &s;
         assert_eq!(p.as_error(), Some(&ScalarError::Cancelled));
         assert_eq!(check_cancelled(), Err(ScalarError::Cancelled));
+    }
+    #[test]
+    fn a_large_product_and_the_sort_of_its_terms_look_at_the_cancel_flag_every_few_steps() {
+        let _in = Context::new().with_term_limit(1_000_000).enter();
+        let s = Scalar::sym("x") + Scalar::sym("y") + Scalar::sym("z");
+        let (a, b) = (s.pow(15), s.pow(16));
+        let pairs = (a.len() * b.len()) as u64;
+        // More pairs than one sorted run holds: the terms are sorted in runs, then merged.
+        assert!(pairs > 2 * super::super::RUN as u64, "{pairs} pairs");
+        test_hook::reset(None);
+        let p = &a * &b;
+        let looks = test_hook::looks();
+        // (x + y + z)^31: C(33, 2) terms; at x = y = z = 1 it is 3^31, at (1, 2, -1) 2^31.
+        assert_eq!(p.len(), 528);
+        let at = |v: [i64; 3]| {
+            p.subs("x", &Scalar::int(v[0]))
+                .subs("y", &Scalar::int(v[1]))
+                .subs("z", &Scalar::int(v[2]))
+        };
+        let power =
+            |n: i64| Scalar::rational(BigRational::from_integer(BigInt::from(n).pow(31u32)));
+        assert_eq!(at([1, 1, 1]), power(3));
+        assert_eq!(at([1, 2, -1]), power(2));
+        // One look per 64 term pairs formed, then more while the pairs are sorted and merged:
+        // no stretch of more than 64 steps goes unwatched.
+        let product_looks = pairs / u64::from(POLL_STEPS);
+        assert!(
+            looks > product_looks + pairs / 2 / u64::from(POLL_STEPS),
+            "{looks} looks at the cancel flag for {pairs} pairs"
+        );
+        // Cancelled at any of them, the product is the cancelled error value: at the first, in
+        // the middle of forming the pairs, as the sort starts, and at the last look, which is
+        // in the final merge of sorted runs.
+        for cancel_at in [
+            1,
+            product_looks / 2,
+            product_looks + 1,
+            product_looks + 3,
+            looks - 1,
+            looks,
+        ] {
+            test_hook::reset(Some(cancel_at));
+            let p = &a * &b;
+            let seen = test_hook::looks();
+            test_hook::reset(None);
+            assert_eq!(
+                p.as_error(),
+                Some(&ScalarError::Cancelled),
+                "cancelled at look {cancel_at}"
+            );
+            assert_eq!(
+                seen, cancel_at,
+                "the product stops at the look that sees the cancel"
+            );
+        }
+        // A long sum looks too.
+        let q = s.pow(30);
+        test_hook::reset(Some(1));
+        let sum = &p + &q;
+        test_hook::reset(None);
+        assert_eq!(sum.as_error(), Some(&ScalarError::Cancelled));
     }
 }

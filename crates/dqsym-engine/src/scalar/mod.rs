@@ -6,10 +6,13 @@
 //! free of zero coefficients, so two equal scalars have the same representation and `==` is
 //! exact: `cos(t)^2 + sin(t)^2 == 1`, `2 sin(t/2) cos(t/2) == sin(t)`, `sqrt(2) sqrt(3) == sqrt(6)`.
 //!
-//! Exact values: cos and sin at multiples of pi/12 become radicals in Q(sqrt 2, sqrt 3). Other
-//! rational multiples of pi (pi/8, pi/7) stay as constant modes; the product-to-sum identities
-//! still hold for them, but algebraic relations such as `cos(3 pi/8) = sin(pi/8)` or
-//! `2 cos(pi/8)^2 = 1 + sqrt(2)/2` are not normalized, so equality is exact only up to those.
+//! Exact values: cos and sin at multiples of pi/12 become radicals in Q(sqrt 2, sqrt 3) at once
+//! (the fast path). Other rational multiples of pi (pi/8, pi/7) are constant modes, and
+//! symbolic angles may carry them as offsets (`cos(x + pi/7)`); every group of terms holding
+//! such a mode is rewritten in a canonical basis of the cyclotomic field it lives in
+//! (`cyclo.rs`), so `cos(3 pi/8) = sin(pi/8)`, `cos(pi/5) = (1 + sqrt 5)/4` and
+//! `cos(x + 6 pi/5) = -cos(x + pi/5)` hold as equal term vectors. The boundary is the degree
+//! bound of `cyclo.rs` (denominators up to 30, whole degrees): past it a group stays as it is.
 //!
 //! Arithmetic goes through `std::ops` so the generic quaternion algebra can use it. An
 //! operation that cannot be done exactly (a result over the size limit, `cos` of a non-angle)
@@ -22,6 +25,7 @@ mod calculus;
 pub(crate) use calculus::mode_angle;
 mod cs;
 mod ctx;
+mod cyclo;
 mod decimal;
 mod frac;
 mod par;
@@ -31,7 +35,7 @@ pub(crate) use arith::FxHasher;
 pub use atoms::Sym;
 pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
-pub(crate) use ctx::{charge, check_cancelled, term_limit};
+pub(crate) use ctx::{charge, check_cancelled, term_limit, Poll};
 pub use ctx::{Context, Entered, DEFAULT_MAX_EXPONENT};
 pub use decimal::parse_decimal;
 pub use frac::Frac;
@@ -132,6 +136,100 @@ impl Term {
     }
 }
 
+/// The terms of one sorted run.
+const RUN: usize = 1 << 13;
+
+/// `terms` sorted by key, equal keys merged, zero coefficients dropped. Up to [`RUN`] terms
+/// are sorted at once; more (a large product forms millions of term pairs) are sorted in runs
+/// of [`RUN`] that are merged pairwise, equal keys summed at every merge, with a look at the
+/// cancel flag before each run and every few terms of a merge ([`Poll`]): sorting a huge
+/// product stops within milliseconds of a cancel. (The order of equal keys does not matter: their
+/// coefficients are summed exactly.)
+fn canonical_terms(mut terms: Vec<Term>) -> Result<Vec<Term>, ScalarError> {
+    if terms.len() <= RUN {
+        terms.sort_unstable_by(Term::key_cmp);
+        return merge_sorted(terms);
+    }
+    let mut runs = Vec::with_capacity(terms.len().div_ceil(RUN));
+    let mut rest = terms.into_iter();
+    loop {
+        check_cancelled()?;
+        let mut run: Vec<Term> = rest.by_ref().take(RUN).collect();
+        if run.is_empty() {
+            break;
+        }
+        run.sort_unstable_by(Term::key_cmp);
+        runs.push(merge_sorted(run)?);
+    }
+    drop(rest);
+    while runs.len() > 1 {
+        let mut next = Vec::with_capacity(runs.len().div_ceil(2));
+        let mut level = runs.into_iter();
+        while let Some(a) = level.next() {
+            next.push(match level.next() {
+                Some(b) => merge_runs(a, b)?,
+                None => a,
+            });
+        }
+        runs = next;
+    }
+    Ok(runs.pop().unwrap_or_default())
+}
+
+/// Sorted terms with equal keys merged and zero coefficients dropped (looking at the cancel
+/// flag every few terms).
+fn merge_sorted(terms: Vec<Term>) -> Result<Vec<Term>, ScalarError> {
+    let mut out: Vec<Term> = Vec::with_capacity(terms.len());
+    let mut poll = Poll::default();
+    for t in terms {
+        poll.step()?;
+        match out.last_mut() {
+            Some(last) if last.key_cmp(&t).is_eq() => last.coef += &t.coef,
+            _ => {
+                if out.last().is_some_and(|l| l.coef.is_zero()) {
+                    out.pop();
+                }
+                out.push(t)
+            }
+        }
+    }
+    if out.last().is_some_and(|l| l.coef.is_zero()) {
+        out.pop();
+    }
+    Ok(out)
+}
+
+/// Two runs of [`merge_sorted`] as one, looking at the cancel flag every few terms.
+fn merge_runs(a: Vec<Term>, b: Vec<Term>) -> Result<Vec<Term>, ScalarError> {
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    let (mut a, mut b) = (a.into_iter().peekable(), b.into_iter().peekable());
+    let mut poll = Poll::default();
+    loop {
+        poll.step()?;
+        let next = match (a.peek(), b.peek()) {
+            (Some(x), Some(y)) => match x.key_cmp(y) {
+                std::cmp::Ordering::Less => a.next(),
+                std::cmp::Ordering::Greater => b.next(),
+                std::cmp::Ordering::Equal => {
+                    let (mut x, y) = (a.next(), b.next());
+                    if let (Some(x), Some(y)) = (&mut x, &y) {
+                        x.coef += &y.coef;
+                    }
+                    match x {
+                        Some(x) if x.coef.is_zero() => continue,
+                        x => x,
+                    }
+                }
+            },
+            _ => break,
+        };
+        out.extend(next);
+    }
+    out.extend(a);
+    out.extend(b);
+    Ok(out)
+}
+
 #[derive(Clone, PartialEq, Eq, Hash, Debug)]
 enum Repr {
     Terms(Vec<Term>),
@@ -150,6 +248,13 @@ pub struct Scalar(Repr);
 
 impl Scalar {
     pub(crate) fn from_terms_sorted(terms: Vec<Term>) -> Scalar {
+        // Constants at rational multiples of pi other than pi/12 (and symbolic angles offset
+        // by them) take their canonical basis; the common case only pays for this scan.
+        let terms = if terms.iter().any(|t| !t.mode.pi.is_zero()) {
+            sort_merge(cyclo::canonicalize(&terms))
+        } else {
+            terms
+        };
         let limit = term_limit();
         if terms.len() > limit {
             return Scalar::error(ScalarError::TooLarge {
@@ -160,25 +265,13 @@ impl Scalar {
         Scalar(Repr::Terms(terms))
     }
 
-    /// Sorts, merges equal keys and drops zero coefficients.
-    pub(crate) fn from_terms(mut terms: Vec<Term>) -> Scalar {
-        terms.sort_unstable_by(|a, b| a.key_cmp(b));
-        let mut out: Vec<Term> = Vec::with_capacity(terms.len());
-        for t in terms {
-            match out.last_mut() {
-                Some(last) if last.key_cmp(&t).is_eq() => last.coef += &t.coef,
-                _ => {
-                    if out.last().is_some_and(|l| l.coef.is_zero()) {
-                        out.pop();
-                    }
-                    out.push(t)
-                }
-            }
+    /// Sorts, merges equal keys and drops zero coefficients; an error value when the context
+    /// is cancelled meanwhile (see [`canonical_terms`]).
+    pub(crate) fn from_terms(terms: Vec<Term>) -> Scalar {
+        match canonical_terms(terms) {
+            Ok(t) => Scalar::from_terms_sorted(t),
+            Err(e) => Scalar::error(e),
         }
-        if out.last().is_some_and(|l| l.coef.is_zero()) {
-            out.pop();
-        }
-        Scalar::from_terms_sorted(out)
     }
 
     /// An error value.
@@ -293,6 +386,13 @@ impl Scalar {
         })
     }
 
+    /// True when the representation is the canonical one for its value: every constant or
+    /// offset at a rational multiple of pi is within the degree bound of `cyclo.rs` (always
+    /// true without such constants, and for denominators up to 28).
+    pub fn is_canonical(&self) -> bool {
+        self.terms().is_ok_and(cyclo::within_bound)
+    }
+
     /// Every symbol the value mentions, sorted by name (`pi` included when present).
     pub fn symbols(&self) -> Vec<Sym> {
         let mut out: Vec<Sym> = Vec::new();
@@ -307,6 +407,27 @@ impl Scalar {
         out.dedup();
         out
     }
+}
+
+/// Sorts terms by key, merges equal keys and drops zero coefficients.
+fn sort_merge(mut terms: Vec<Term>) -> Vec<Term> {
+    terms.sort_unstable_by(|a, b| a.key_cmp(b));
+    let mut out: Vec<Term> = Vec::with_capacity(terms.len());
+    for t in terms {
+        match out.last_mut() {
+            Some(last) if last.key_cmp(&t).is_eq() => last.coef += &t.coef,
+            _ => {
+                if out.last().is_some_and(|l| l.coef.is_zero()) {
+                    out.pop();
+                }
+                out.push(t)
+            }
+        }
+    }
+    if out.last().is_some_and(|l| l.coef.is_zero()) {
+        out.pop();
+    }
+    out
 }
 
 impl Default for Scalar {

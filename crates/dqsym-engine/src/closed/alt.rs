@@ -1,0 +1,676 @@
+//! Closed-form candidates beside the regrouped and whole-mode shapes, taken when cheaper:
+//! - the harmonic form `a cos x + b sin x = R cos(x - phi)`, `R` a square root of a rational
+//!   and `phi` a rational multiple of pi (`sin(x)/2 + sqrt(3) cos(x)/2 = cos(x - pi/6)`,
+//!   `sqrt(2)/2 (cos t - sin t) = cos(t + pi/4)`);
+//! - sum to product for two terms of equal weight (`sin(x - y) + sin(x + y) = 2 sin(x) cos(y)`);
+//! - a polynomial in `cos x` alone or `sin x` alone (`sin^2 = 1 - cos^2` applied one way or
+//!   the other), factored over the rationals by its rational roots (`1 - sin(x)^2 = cos(x)^2`,
+//!   `(cos x - 1)^2 (cos x + 1)^3`);
+//! - a product of cosines and sines of multiples of one angle, peeled off by exact division
+//!   of the Fourier sum (`cos(1) cos(2) ... cos(512)`, Morrie's `cos x cos 2x cos 4x`).
+//!
+//! Every candidate is checked exactly against its input before it is offered.
+
+use super::expr::{Angle, Expr};
+use crate::scalar::atoms::{freq_combine, Small};
+use crate::scalar::{Sym, Term};
+use crate::Scalar;
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational as Rat;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+use std::collections::BTreeMap;
+
+/// The largest multiple `k` of `cos(k x)` expanded as a polynomial in `cos x`, `sin x`.
+const MAX_MULTIPLE: i64 = 24;
+
+/// The largest number of terms a scalar may have for these candidates to be tried.
+const MAX_TERMS: usize = 48;
+
+/// The largest number of terms a sum may have to be tried as a product of cosines and sines.
+const MAX_PRODUCT_TERMS: usize = 4096;
+
+/// The cheapest candidate that equals `x`, if any.
+pub(super) fn best_alternative(x: &Scalar) -> Option<Expr> {
+    let t = x.terms().ok()?;
+    if t.is_empty() || t.len() > MAX_PRODUCT_TERMS || t.iter().all(|t| t.mode.is_unit()) {
+        return None;
+    }
+    let mut cands = Vec::new();
+    if t.len() <= MAX_TERMS {
+        cands.extend(harmonic(t));
+        cands.extend(sum_to_product(t));
+        cands.extend(single_angle(t));
+    }
+    cands.extend(product(t));
+    cands.extend(constant_trig(x, t));
+    cands.sort_by_key(full_cost);
+    cands.into_iter().find(|e| e.to_scalar() == *x)
+}
+
+/// Operations counted as a CAS counts them (SymPy's `count_ops`): [`Expr::cost`] plus the
+/// arithmetic inside the angles (`sin(x - y)` is two operations, `cos(2*x)` two); then the
+/// plain cost. Candidates are compared with the shape found before by this.
+pub(super) fn full_cost(e: &Expr) -> (usize, usize, usize) {
+    fn angle_ops(e: &Expr) -> usize {
+        match e {
+            Expr::Trig { angle, .. } => {
+                let terms = angle.terms.len() + usize::from(!angle.pi.is_zero());
+                let coefs = angle
+                    .terms
+                    .iter()
+                    .filter(|(s, k)| !k.abs().is_one() && !s.is_unit())
+                    .count()
+                    + usize::from(!angle.pi.abs().is_one() && !angle.pi.is_zero());
+                terms.saturating_sub(1) + coefs
+            }
+            Expr::Add(v) | Expr::Mul(v) => v.iter().map(angle_ops).sum(),
+            Expr::Neg(x) | Expr::Pow(x, _) => angle_ops(x),
+            _ => 0,
+        }
+    }
+    let c = e.cost();
+    (c.ops + angle_ops(e), c.ops, c.calls)
+}
+
+fn mul(a: Expr, b: Expr) -> Expr {
+    let parts = |e: Expr| match e {
+        Expr::Mul(v) => v,
+        Expr::Num(q) if q.is_one() => Vec::new(),
+        e => vec![e],
+    };
+    match (a, b) {
+        (Expr::Neg(a), b) | (b, Expr::Neg(a)) => neg(mul(*a, b)),
+        (a, b) => {
+            let mut v = parts(a);
+            v.extend(parts(b));
+            match v.len() {
+                0 => Expr::Num(Rat::one()),
+                1 => v.pop().expect("one factor"),
+                _ => Expr::Mul(v),
+            }
+        }
+    }
+}
+
+fn neg(e: Expr) -> Expr {
+    match e {
+        Expr::Neg(e) => *e,
+        e => Expr::Neg(Box::new(e)),
+    }
+}
+
+fn num(q: Rat) -> Expr {
+    if q.is_negative() {
+        neg(Expr::Num(-q))
+    } else {
+        Expr::Num(q)
+    }
+}
+
+fn trig(sin: bool, terms: Vec<(Sym, Small)>, pi: Small) -> Expr {
+    Expr::Trig {
+        sin,
+        angle: Angle { terms, pi },
+    }
+}
+
+/// The closed form of a scalar without modes (a coefficient times a monomial).
+fn plain(x: &Scalar) -> Option<Expr> {
+    super::closed_form(x).ok()
+}
+
+/// The term's coefficient, radical and monomial as a scalar (its mode dropped).
+fn weight(t: &Term) -> Scalar {
+    Scalar::from_terms_sorted(vec![Term {
+        mode: crate::scalar::Mode::unit(),
+        ..t.clone()
+    }])
+}
+
+/// `pi` reduced into `(-1, 1]`.
+fn centred(p: Small) -> Small {
+    let two = Small::from_integer(2);
+    let mut p = p - (p / two).floor() * two;
+    if p > Small::one() {
+        p -= two;
+    }
+    p
+}
+
+/// A rational with a small denominator within `1e-9` of `v` (continued fractions).
+fn small_rational(v: f64) -> Option<Rat> {
+    if !v.is_finite() || v.abs() > 1e9 {
+        return None;
+    }
+    let (mut h0, mut h1, mut k0, mut k1) = (0i64, 1i64, 1i64, 0i64);
+    let mut x = v;
+    for _ in 0..40 {
+        let a = x.floor();
+        let ai = a as i64;
+        let h2 = ai.checked_mul(h1)?.checked_add(h0)?;
+        let k2 = ai.checked_mul(k1)?.checked_add(k0)?;
+        (h0, h1, k0, k1) = (h1, h2, k1, k2);
+        if k1 > 100_000 {
+            return None;
+        }
+        if (v - h1 as f64 / k1 as f64).abs() < 1e-10 * (1.0 + v.abs()) {
+            return Some(Rat::new(h1.into(), k1.into()));
+        }
+        let frac = x - a;
+        if frac.abs() < 1e-12 {
+            return None;
+        }
+        x = 1.0 / frac;
+    }
+    None
+}
+
+/// A sum over one monomial of cosines and sines of one angle `F` with any offsets:
+/// `R m cos(F + theta)` with `R^2` rational and `theta` a rational multiple of pi
+/// (`a cos F + b sin F = R cos(F - phi)`, `sqrt(2)/2 (cos t - sin t) = cos(t + pi/4)`).
+fn harmonic(t: &[Term]) -> Option<Expr> {
+    let f = &t[0].mode.freq;
+    if f.is_empty() {
+        return None;
+    }
+    let m = &t[0].mono;
+    if !t.iter().all(|x| x.mode.freq == *f && x.mono == *m) {
+        return None;
+    }
+    // The value as a function of F: A cos F - B sin F; at F = 0 it is A, at F = pi/2, -B.
+    let at = |phi: f64| -> Option<f64> {
+        let mut v = 0.0;
+        for x in t {
+            let a = phi
+                + std::f64::consts::PI * (*x.mode.pi.numer() as f64 / *x.mode.pi.denom() as f64);
+            let tr = if x.mode.sin { a.sin() } else { a.cos() };
+            v += x.coef.to_f64()? * (x.rad as f64).sqrt() * tr;
+        }
+        Some(v)
+    };
+    let (a, b) = (at(0.0)?, -at(std::f64::consts::FRAC_PI_2)?);
+    let r2 = small_rational(a * a + b * b)?;
+    if !r2.is_positive() {
+        return None;
+    }
+    let theta = b.atan2(a) / std::f64::consts::PI;
+    let p = (1..=120i64).find_map(|d| {
+        let n = (theta * d as f64).round();
+        ((theta - n / d as f64).abs() < 1e-9).then(|| Small::new(n as i64, d))
+    })?;
+    let r = Scalar::rational(r2).sqrt().check().ok()?;
+    let mono_scalar = weight(&Term {
+        coef: crate::scalar::Q::ONE,
+        rad: 1,
+        mode: crate::scalar::Mode::unit(),
+        ..t[0].clone()
+    });
+    let coef = plain(&(&r * &mono_scalar))?;
+    // cos(F + theta) or sin(F + theta + 1/2), the smaller denominator (cos on ties).
+    let (c, s) = (centred(p), centred(p + Small::new(1, 2)));
+    let (sin, off) = if c.denom() <= s.denom() {
+        (false, c)
+    } else {
+        (true, s)
+    };
+    // An offset of pi is a sign.
+    let tr = if off.is_one() {
+        neg(trig(sin, f.to_vec(), Small::zero()))
+    } else {
+        trig(sin, f.to_vec(), off)
+    };
+    Some(mul(coef, tr))
+}
+
+/// `w (trig A +- trig B)` as a product of two trigonometric factors.
+fn sum_to_product(t: &[Term]) -> Option<Expr> {
+    let [u, v] = t else { return None };
+    if u.mono != v.mono || u.rad != v.rad || u.mode.is_unit() || v.mode.is_unit() {
+        return None;
+    }
+    let sign = if u.coef == v.coef {
+        1
+    } else if u.coef == -v.coef.clone() {
+        -1
+    } else {
+        return None;
+    };
+    // Both as the kind of `u`: cos B = sin(B + 1/2), sin B = cos(B - 1/2).
+    let sin = u.mode.sin;
+    let vpi = match (sin, v.mode.sin) {
+        (true, false) => v.mode.pi + Small::new(1, 2),
+        (false, true) => v.mode.pi - Small::new(1, 2),
+        _ => v.mode.pi,
+    };
+    let half = |sign: i64| {
+        let f: Vec<(Sym, Small)> = freq_combine(&u.mode.freq, &v.mode.freq, sign)
+            .into_iter()
+            .map(|(s, k)| (s, k / Small::from_integer(2)))
+            .collect();
+        let pi = (u.mode.pi + vpi * Small::from_integer(sign)) / Small::from_integer(2);
+        (f, pi)
+    };
+    let (sf, spi) = half(1);
+    let (df, dpi) = half(-1);
+    // A function of an angle with the first coefficient made positive: (negated?, expr).
+    let make = |sin: bool, f: Vec<(Sym, Small)>, pi: Small| -> (bool, Expr) {
+        if f.first().is_some_and(|(_, k)| k.is_negative()) {
+            let f = f.into_iter().map(|(s, k)| (s, -k)).collect();
+            (sin, trig(sin, f, centred(-pi)))
+        } else {
+            (false, trig(sin, f, centred(pi)))
+        }
+    };
+    // cos A + cos B = 2 cos S cos D, cos A - cos B = -2 sin S sin D,
+    // sin A + sin B = 2 sin S cos D, sin A - sin B = 2 cos S sin D.
+    let (k1, k2, negate) = match (sin, sign) {
+        (false, 1) => (false, false, false),
+        (false, _) => (true, true, true),
+        (true, 1) => (true, false, false),
+        (true, _) => (false, true, false),
+    };
+    let (n1, e1) = make(k1, sf, spi);
+    let (n2, e2) = make(k2, df, dpi);
+    let w = weight(u) * Scalar::int(2);
+    let mut e = mul(plain(&w)?, mul(e1, e2));
+    if negate ^ n1 ^ n2 {
+        e = neg(e);
+    }
+    Some(e)
+}
+
+/// A polynomial in `cos x` alone (or `sin x` alone, or one of them times such a polynomial)
+/// with rational coefficients, factored by its rational roots.
+fn single_angle(t: &[Term]) -> Vec<Expr> {
+    let mut var: Option<&Sym> = None;
+    for u in t {
+        if !u.mono.is_empty() || u.rad != 1 || !u.mode.pi.is_zero() {
+            return Vec::new();
+        }
+        match &*u.mode.freq {
+            [] => {}
+            [(s, k)] if k.is_integer() => {
+                if var.is_some_and(|v| v != s) {
+                    return Vec::new();
+                }
+                var = Some(s);
+            }
+            _ => return Vec::new(),
+        }
+    }
+    let Some(var) = var else { return Vec::new() };
+    // (i, j) -> coefficient of cos^i sin^j: cos(k x) and sin(k x) are the real and imaginary
+    // parts of (c + i s)^k.
+    let mut poly: BTreeMap<(u32, u32), Rat> = BTreeMap::new();
+    for u in t {
+        let q = u.coef.to_big();
+        let k = match &*u.mode.freq {
+            [] => {
+                *poly.entry((0, 0)).or_insert_with(Rat::zero) += q;
+                continue;
+            }
+            [(_, k)] => k.to_integer(),
+            _ => return Vec::new(),
+        };
+        if !(1..=MAX_MULTIPLE).contains(&k) {
+            return Vec::new();
+        }
+        let k = k as u32;
+        let mut binom = BigInt::one();
+        for j in 0..=k {
+            // i^j: real for even j (sign (-1)^(j/2)), imaginary for odd j (sign (-1)^((j-1)/2)).
+            let real = j % 2 == 0;
+            if real != u.mode.sin {
+                let sign = if (j / 2) % 2 == 0 { 1 } else { -1 };
+                let c = Rat::from_integer(&binom * BigInt::from(sign)) * &q;
+                *poly.entry((k - j, j)).or_insert_with(Rat::zero) += c;
+            }
+            binom = binom * BigInt::from(k - j) / BigInt::from(j + 1);
+        }
+    }
+    poly.retain(|_, q| !q.is_zero());
+    let mut out = Vec::new();
+    for sin_var in [false, true] {
+        // Eliminate the square of the other function: o^2 = 1 - v^2.
+        let mut even: BTreeMap<u32, Rat> = BTreeMap::new();
+        let mut odd: BTreeMap<u32, Rat> = BTreeMap::new();
+        for (&(i, j), q) in &poly {
+            let (dv, d_o) = if sin_var { (j, i) } else { (i, j) };
+            let target = if d_o % 2 == 0 { &mut even } else { &mut odd };
+            // (1 - v^2)^(d_o / 2) v^dv.
+            let n = d_o / 2;
+            let mut binom = BigInt::one();
+            for k in 0..=n {
+                let c = Rat::from_integer(binom.clone())
+                    * q
+                    * Rat::from_integer(if k % 2 == 0 { 1.into() } else { (-1).into() });
+                *target.entry(dv + 2 * k).or_insert_with(Rat::zero) += c;
+                binom = binom * BigInt::from(n - k) / BigInt::from(k + 1);
+            }
+        }
+        even.retain(|_, q| !q.is_zero());
+        odd.retain(|_, q| !q.is_zero());
+        let v = trig(sin_var, vec![(var.clone(), Small::one())], Small::zero());
+        let o = trig(!sin_var, vec![(var.clone(), Small::one())], Small::zero());
+        let e = match (even.is_empty(), odd.is_empty()) {
+            (false, true) => factored(&even, &v),
+            (true, false) => factored(&odd, &v).map(|e| mul(o, e)),
+            _ => None,
+        };
+        out.extend(e);
+    }
+    out
+}
+
+/// `sum q_i v^i` factored by its rational roots (with multiplicity); the rest expanded.
+fn factored(p: &BTreeMap<u32, Rat>, v: &Expr) -> Option<Expr> {
+    let deg = *p.keys().max()? as usize;
+    if deg > 24 {
+        return None;
+    }
+    let mut coefs: Vec<Rat> = vec![Rat::zero(); deg + 1];
+    for (i, q) in p {
+        coefs[*i as usize] = q.clone();
+    }
+    // Primitive integer polynomial with a positive leading coefficient, and the constant.
+    let l = coefs
+        .iter()
+        .fold(BigInt::one(), |acc, q| acc.lcm(q.denom()));
+    let mut ints: Vec<BigInt> = coefs
+        .iter()
+        .map(|q| (q * Rat::from_integer(l.clone())).to_integer())
+        .collect();
+    let mut g = ints.iter().fold(BigInt::zero(), |acc, x| acc.gcd(x));
+    if ints[deg].is_negative() {
+        g = -g;
+    }
+    for x in ints.iter_mut() {
+        *x /= &g;
+    }
+    let mut k = Rat::new(g, l);
+    let mut factors: Vec<(Expr, u32)> = Vec::new();
+    let zeros = ints.iter().take_while(|x| x.is_zero()).count();
+    ints.drain(..zeros);
+    if zeros > 0 {
+        factors.push((v.clone(), zeros as u32));
+    }
+    // Rational roots p/q: p divides the constant term, q the leading one.
+    let divisors = |n: &BigInt| -> Option<Vec<i64>> {
+        let n = n.abs().to_i64()?;
+        (n <= 1_000_000).then(|| (1..=n).filter(|d| n % d == 0).collect())
+    };
+    if ints.len() > 1 {
+        let ps = divisors(&ints[0])?;
+        let qs = divisors(ints.last()?)?;
+        let mut roots: Vec<(i64, i64)> = Vec::new();
+        for &q in &qs {
+            for &pp in &ps {
+                for s in [1, -1] {
+                    if pp.gcd(&q) == 1 {
+                        roots.push((s * pp, q));
+                    }
+                }
+            }
+        }
+        for (rp, rq) in roots {
+            let mut mult = 0u32;
+            while ints.len() > 1 {
+                // Divide by (rq v - rp) when it divides exactly.
+                let n = ints.len() - 1;
+                let mut quot = vec![BigInt::zero(); n];
+                let mut rem = ints[n].clone();
+                let mut ok = true;
+                for i in (0..n).rev() {
+                    if !(&rem % rq).is_zero() {
+                        ok = false;
+                        break;
+                    }
+                    quot[i] = &rem / rq;
+                    rem = &ints[i] + &quot[i] * rp;
+                }
+                if !ok || !rem.is_zero() {
+                    break;
+                }
+                ints = quot;
+                mult += 1;
+            }
+            if mult > 0 {
+                let lin = if rq == 1 {
+                    v.clone()
+                } else {
+                    mul(Expr::Num(Rat::from_integer(rq.into())), v.clone())
+                };
+                let f = if rp > 0 {
+                    Expr::Add(vec![lin, neg(Expr::Num(Rat::from_integer(rp.into())))])
+                } else {
+                    Expr::Add(vec![lin, Expr::Num(Rat::from_integer((-rp).into()))])
+                };
+                factors.push((f, mult));
+            }
+        }
+    }
+    // What is left: a constant or a polynomial without rational roots.
+    if ints.len() == 1 {
+        k *= Rat::from_integer(ints[0].clone());
+    } else {
+        let mut terms = Vec::new();
+        for (i, c) in ints.iter().enumerate().rev() {
+            if c.is_zero() {
+                continue;
+            }
+            let pw = match i {
+                0 => Expr::Num(Rat::one()),
+                1 => v.clone(),
+                _ => Expr::Pow(Box::new(v.clone()), i as u32),
+            };
+            let c = Rat::from_integer(c.clone());
+            terms.push(mul(num(c), pw));
+        }
+        factors.push((Expr::Add(terms), 1));
+    }
+    let mut e = num(k);
+    for (f, m) in factors {
+        let f = if m == 1 { f } else { Expr::Pow(Box::new(f), m) };
+        e = mul(e, f);
+    }
+    Some(e)
+}
+
+/// A complex rational `(re, im)`.
+type C = (Rat, Rat);
+
+/// A Laurent polynomial in `z = e^{i theta}`: exponent to coefficient.
+type Laurent = BTreeMap<i64, C>;
+
+fn c_add(p: &mut Laurent, e: i64, c: &C) {
+    let v = p.entry(e).or_insert_with(|| (Rat::zero(), Rat::zero()));
+    v.0 += &c.0;
+    v.1 += &c.1;
+    if v.0.is_zero() && v.1.is_zero() {
+        p.remove(&e);
+    }
+}
+
+/// `p / ((z^a + z^-a)/2)` (cosine) or `p / ((z^a - z^-a)/(2i))` (sine) when exact.
+fn divide_trig(p: &Laurent, a: i64, sin: bool) -> Option<Laurent> {
+    let mut r = p.clone();
+    let lo = *p.keys().next()?;
+    let mut q = Laurent::new();
+    while let Some((&t, c)) = r.iter().next_back() {
+        let c = c.clone();
+        let e = t - a;
+        if e - a < lo {
+            return None;
+        }
+        // cos: (z^a + z^-a)/2 * (2c z^e) = c z^t + c z^(t-2a);
+        // sin: (z^a - z^-a)/(2i) * (2ic z^e) = c z^t - c z^(t-2a).
+        let two = Rat::from_integer(2.into());
+        let qc = if sin {
+            (-&c.1 * &two, &c.0 * &two)
+        } else {
+            (&c.0 * &two, &c.1 * &two)
+        };
+        c_add(&mut q, e, &qc);
+        c_add(&mut r, t, &(-&c.0, -&c.1));
+        let low = if sin { c.clone() } else { (-&c.0, -&c.1) };
+        c_add(&mut r, t - 2 * a, &low);
+    }
+    Some(q)
+}
+
+/// A sum of cosines and sines of multiples of one angle symbol (constants included) over one
+/// monomial, as a product of cosines and sines peeled off one at a time by exact division:
+/// `cos(1) cos(2) cos(4) ... cos(512)` stays a product.
+fn product(t: &[Term]) -> Option<Expr> {
+    let (m, rad) = (&t[0].mono, t[0].rad);
+    let mut var: Option<&Sym> = None;
+    let mut den: i64 = 1;
+    for u in t {
+        if u.mono != *m || u.rad != rad || !u.mode.pi.is_zero() {
+            return None;
+        }
+        match &*u.mode.freq {
+            [] => {}
+            [(s, k)] => {
+                if var.is_some_and(|v| v != s) {
+                    return None;
+                }
+                var = Some(s);
+                den = den.lcm(k.denom());
+            }
+            _ => return None,
+        }
+    }
+    let var = var?.clone();
+    // Exponents in units of var / (2 den), so that half differences are whole.
+    let unit = 2 * den;
+    let mut p = Laurent::new();
+    let half = Rat::new(1.into(), 2.into());
+    for u in t {
+        let q = u.coef.to_big();
+        let e = match &*u.mode.freq {
+            [] => 0,
+            [(_, k)] => (*k * Small::from_integer(unit)).to_integer(),
+            _ => return None,
+        };
+        if e == 0 {
+            c_add(&mut p, 0, &(q, Rat::zero()));
+        } else if u.mode.sin {
+            c_add(&mut p, e, &(Rat::zero(), -&q * &half));
+            c_add(&mut p, -e, &(Rat::zero(), &q * &half));
+        } else {
+            c_add(&mut p, e, &(&q * &half, Rat::zero()));
+            c_add(&mut p, -e, &(&q * &half, Rat::zero()));
+        }
+    }
+    let mut factors: Vec<Expr> = Vec::new();
+    loop {
+        if p.len() < 2 || factors.len() > 64 {
+            break;
+        }
+        let mut top = p.keys().rev();
+        let (t1, t2) = (*top.next()?, *top.next()?);
+        let a = (t1 - t2) / 2;
+        if a <= 0 || (t1 - t2) % 2 != 0 {
+            break;
+        }
+        let found = [false, true]
+            .into_iter()
+            .find_map(|sin| divide_trig(&p, a, sin).map(|q| (sin, q)));
+        let Some((sin, q)) = found else { break };
+        factors.push(trig(
+            sin,
+            vec![(var.clone(), Small::new(a, unit))],
+            Small::zero(),
+        ));
+        p = q;
+    }
+    if factors.len() < 2 {
+        return None;
+    }
+    // The quotient back as cosines and sines: c_e z^e + c_-e z^-e = A cos + B sin with
+    // A = c_e + c_-e, B = i (c_e - c_-e).
+    let mut rest: Vec<Term> = Vec::new();
+    let zero = (Rat::zero(), Rat::zero());
+    for (&e, c) in p.iter().filter(|(e, _)| **e >= 0) {
+        let d = p.get(&-e).unwrap_or(&zero);
+        let (a, b) = if e == 0 {
+            if !c.1.is_zero() {
+                return None;
+            }
+            (c.0.clone(), Rat::zero())
+        } else {
+            // A real function: c_-e is the conjugate of c_e.
+            if c.0 != d.0 || c.1 != -&d.1 {
+                return None;
+            }
+            (&c.0 + &d.0, -(&c.1 - &d.1))
+        };
+        let freq = if e == 0 {
+            Vec::new()
+        } else {
+            vec![(var.clone(), Small::new(e, unit))]
+        };
+        for (sin, w) in [(false, a), (true, b)] {
+            if w.is_zero() || (e == 0 && sin) {
+                continue;
+            }
+            rest.push(Term {
+                mode: crate::scalar::Mode {
+                    sin,
+                    freq: crate::scalar::atoms::freq_rc(freq.clone()),
+                    pi: Small::zero(),
+                },
+                mono: m.clone(),
+                rad,
+                coef: crate::scalar::Q::big(w),
+            });
+        }
+    }
+    if p.iter().any(|(e, _)| *e < 0 && !p.contains_key(&-e)) {
+        return None;
+    }
+    let rest = super::closed_form(&Scalar::from_terms(rest)).ok()?;
+    let mut e = rest;
+    for f in factors.into_iter().rev() {
+        e = mul(f, e);
+    }
+    Some(e)
+}
+
+/// A constant equal to `cos(k pi / n)` or `sin(k pi / n)` or their negatives, `n` from the
+/// offsets it holds:
+/// `cos(3 pi/7)` prints as itself, not as its expansion in the basis.
+fn constant_trig(x: &Scalar, t: &[Term]) -> Option<Expr> {
+    if !t
+        .iter()
+        .all(|u| u.mode.freq.is_empty() && u.mono.is_empty())
+    {
+        return None;
+    }
+    // The value's field holds zeta_24 through the square roots: look at multiples of pi/12 too.
+    let n = t
+        .iter()
+        .fold(24i64, |acc, u| acc.lcm(&(2 * u.mode.pi.denom())));
+    if n > 20_000 {
+        return None;
+    }
+    let v = x.eval(&|_| None).ok()?;
+    // An angle in [0, pi/2] whose cosine or sine is |v|: the smallest denominator, then the
+    // smallest numerator, cosine first.
+    let (_, _, sin, k) = (0..=n / 2)
+        .flat_map(|k| [(k, false), (k, true)])
+        .filter(|&(k, sin)| {
+            let a = std::f64::consts::PI * k as f64 / n as f64;
+            let f = if sin { a.sin() } else { a.cos() };
+            (f - v.abs()).abs() < 1e-12
+        })
+        .map(|(k, sin)| {
+            let r = Small::new(k, n);
+            (*r.denom(), *r.numer(), sin, k)
+        })
+        .min()?;
+    let e = trig(sin, Vec::new(), Small::new(k, n));
+    Some(if v < 0.0 { neg(e) } else { e })
+}

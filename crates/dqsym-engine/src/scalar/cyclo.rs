@@ -1,0 +1,644 @@
+//! The canonical form of cos and sin at rational multiples of pi: exact arithmetic in
+//! cyclotomic fields.
+//!
+//! Every term of a scalar is `q sqrt(d) m t` (see `atoms.rs`). For the terms that share a
+//! monomial `m` and a frequency vector `f` (a *group*), the sum of the `q sqrt(d) t` is:
+//! - for an empty `f`, a real number `c` in `K(zeta_W)`, where `K` is the field of all square
+//!   roots of rationals and `W` a multiple of 4 read from the pi offsets;
+//! - otherwise `Re(z e^{i phi})` with `phi` the symbolic angle and `z` in `K(zeta_W)`
+//!   (`cos(phi + a)` stands for `z = e^{ia}`, `sin(phi + a)` for `z = -i e^{ia}`).
+//!
+//! When a group holds a mode with a pi offset (a constant `cos(3 pi/7)`, a symbolic
+//! `cos(x + pi/5)`; multiples of pi/12 never stay as offsets), [`canonicalize`] rewrites it as
+//! the unique expansion of its value in a fixed basis:
+//! - `M`, the smallest multiple of 24 dividing `W` with `c` (or `z`) in `K(zeta_M)`, found by
+//!   removing one prime of `W` at a time. `K(zeta_M)` contains `i` and `zeta_3` through the
+//!   square roots (`i = sqrt(-3)/sqrt(3)`), so fields are only told apart at multiples of 24:
+//!   there `K(zeta_M) = K(zeta_N)` only for `M = N`, and the fields holding a value are the
+//!   multiples of one smallest;
+//! - for real `c`, the basis `R_M` of `K(zeta_M)^+` over `K`: cosines `cos(2 pi k / M)` at
+//!   angles in `[0, pi/2)`, taken greedily when independent of the ones before (over `K`), in
+//!   the order (the field they need, the denominator of the angle over pi, the angle):
+//!   `cos(pi/7)`, `cos(2 pi/7)` for sevenths, with `cos(3 pi/7) = 1/2 - cos(pi/7) + cos(2 pi/7)`; `{1}` for `M = 24` (and
+//!   fifths, eighths, tenths and twelfths, whose constants are square roots);
+//! - for complex `z`, the basis `C_M` of `K(zeta_M)` over `K(i)`: `e^{i theta}`,
+//!   `theta` a multiple of `2 pi / M` in `(-pi/4, pi/4]`, taken greedily in the same order
+//!   (`|theta|` then positive first for the angle). A coefficient `a + b i` of `e^{i theta}`
+//!   prints as `a cos(phi + theta) - b sin(phi + theta)`.
+//!
+//! `{q sqrt(d) b}` (`d` square-free, `b` in the basis) is a basis of the field over `Q`, so two
+//! equal values give the same terms. The computation is in `Q(zeta_W)` (vectors over `Q` in the
+//! power basis modulo the cyclotomic polynomial) for the square roots that live there (Gauss
+//! sums); the others are carried along as independent factors. `W` is bounded by
+//! [`MAX_DEGREE`]: past it, the group is left as it is (equal values may then differ).
+
+use super::atoms::{rad_mul, Mode, MonoRc, Small};
+use super::{Term, Q};
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational as Rat;
+use num_traits::{One, Signed, Zero};
+use std::collections::{BTreeMap, HashMap};
+use std::sync::{Arc, Mutex, OnceLock};
+
+/// The largest degree `phi(W)` of a cyclotomic field computed in: every denominator up to 28
+/// alone (`W = lcm(24, 2q)`), whole degrees (`W = 360`, degree 96), pi/7 with pi/9 (144).
+pub(crate) const MAX_DEGREE: u64 = 192;
+
+fn lcm(a: u64, b: u64) -> u64 {
+    a / a.gcd(&b) * b
+}
+
+fn primes_of(mut n: u64) -> Vec<u64> {
+    let mut out = Vec::new();
+    let mut p = 2;
+    while p * p <= n {
+        if n.is_multiple_of(p) {
+            out.push(p);
+            while n.is_multiple_of(p) {
+                n /= p;
+            }
+        }
+        p += 1;
+    }
+    if n > 1 {
+        out.push(n);
+    }
+    out
+}
+
+fn totient(n: u64) -> u64 {
+    primes_of(n).iter().fold(n, |acc, p| acc / p * (p - 1))
+}
+
+fn moebius(n: u64) -> i64 {
+    let mut m = n;
+    let mut k = 0;
+    for p in primes_of(n) {
+        m /= p;
+        if m.is_multiple_of(p) {
+            return 0;
+        }
+        k += 1;
+    }
+    if k % 2 == 0 {
+        1
+    } else {
+        -1
+    }
+}
+
+/// An element of `Q(zeta_W)` as a sum of powers of `zeta_W` (exponents mod `W`).
+type Sparse = BTreeMap<u64, Rat>;
+
+fn sparse_mul(a: &Sparse, b: &Sparse, w: u64) -> Sparse {
+    let mut out = Sparse::new();
+    for (i, x) in a {
+        for (j, y) in b {
+            let e = (i + j) % w;
+            let v = out.entry(e).or_insert_with(Rat::zero);
+            *v += x * y;
+        }
+    }
+    out.retain(|_, v| !v.is_zero());
+    out
+}
+
+fn mono(e: u64, c: Rat) -> Sparse {
+    let mut s = Sparse::new();
+    s.insert(e, c);
+    s
+}
+
+/// `Q(zeta_W)` for a multiple `W` of 4: the reduction of every power of `zeta_W` to the power
+/// basis, and the square roots it contains.
+struct Field {
+    w: u64,
+    phi: usize,
+    /// `red[k]`: `x^k` modulo the cyclotomic polynomial, `k < W`.
+    red: Vec<Vec<i64>>,
+    /// The primes `p` with `sqrt(p)` in the field (odd divisors of `W`, 2 when 8 divides `W`).
+    allowed: Vec<u64>,
+    /// Every square-free product `h` of allowed primes with `sqrt(h)`.
+    sqrts: Vec<(u64, Sparse)>,
+}
+
+fn legendre(a: u64, p: u64) -> i64 {
+    // Euler's criterion.
+    let mut r: u128 = 1;
+    let (mut b, mut e, m) = (a as u128 % p as u128, (p - 1) / 2, p as u128);
+    while e > 0 {
+        if e & 1 == 1 {
+            r = r * b % m;
+        }
+        b = b * b % m;
+        e >>= 1;
+    }
+    if r == 1 {
+        1
+    } else {
+        -1
+    }
+}
+
+impl Field {
+    fn new(w: u64) -> Option<Field> {
+        let phi = totient(w) as usize;
+        // Phi_W = prod_{d | W} (x^d - 1)^mu(W/d): the multiplications first, so that every
+        // division is exact.
+        let divisors: Vec<u64> = (1..=w).filter(|d| w.is_multiple_of(*d)).collect();
+        let mut poly: Vec<i64> = vec![1];
+        for &d in &divisors {
+            if moebius(w / d) == 1 {
+                let d = d as usize;
+                let mut next = vec![0i64; poly.len() + d];
+                for (i, c) in poly.iter().enumerate() {
+                    next[i + d] = next[i + d].checked_add(*c)?;
+                    next[i] = next[i].checked_sub(*c)?;
+                }
+                poly = next;
+            }
+        }
+        for &d in &divisors {
+            if moebius(w / d) == -1 {
+                // q (x^d - 1) = p: p[i] = q[i - d] - q[i].
+                let d = d as usize;
+                let n = poly.len() - d;
+                let mut q = vec![0i64; n];
+                for i in 0..n {
+                    let prev = if i >= d { q[i - d] } else { 0 };
+                    q[i] = prev.checked_sub(poly[i])?;
+                }
+                poly = q;
+            }
+        }
+        if poly.len() != phi + 1 || poly[phi] != 1 {
+            return None;
+        }
+        let mut red: Vec<Vec<i64>> = Vec::with_capacity(w as usize);
+        for k in 0..w as usize {
+            if k < phi {
+                let mut v = vec![0i64; phi];
+                v[k] = 1;
+                red.push(v);
+            } else {
+                let prev = &red[k - 1];
+                let lead = prev[phi - 1];
+                let mut v = vec![0i64; phi];
+                for j in 0..phi {
+                    let shifted = if j > 0 { prev[j - 1] } else { 0 };
+                    v[j] = shifted.checked_sub(lead.checked_mul(poly[j])?)?;
+                }
+                red.push(v);
+            }
+        }
+        let allowed: Vec<u64> = primes_of(w)
+            .into_iter()
+            .filter(|&p| p != 2 || w.is_multiple_of(8))
+            .collect();
+        let mut prime_roots: Vec<(u64, Sparse)> = Vec::new();
+        for &p in &allowed {
+            let s = if p == 2 {
+                let mut s = mono(w / 8, Rat::one());
+                s.insert(7 * w / 8, Rat::one());
+                s
+            } else {
+                // The Gauss sum g = sum (a/p) zeta_p^a is sqrt(p) for p = 1 mod 4 and
+                // i sqrt(p) for p = 3 mod 4.
+                let mut g = Sparse::new();
+                for a in 1..p {
+                    g.insert(a * (w / p), Rat::from_integer(legendre(a, p).into()));
+                }
+                if p % 4 == 1 {
+                    g
+                } else {
+                    sparse_mul(&g, &mono(3 * w / 4, Rat::one()), w)
+                }
+            };
+            prime_roots.push((p, s));
+        }
+        let mut sqrts: Vec<(u64, Sparse)> = vec![(1, mono(0, Rat::one()))];
+        for (p, s) in &prime_roots {
+            let more: Vec<(u64, Sparse)> = sqrts
+                .iter()
+                .map(|(h, x)| (h * p, sparse_mul(x, s, w)))
+                .collect();
+            sqrts.extend(more);
+        }
+        sqrts.sort_by_key(|(h, _)| *h);
+        Some(Field {
+            w,
+            phi,
+            red,
+            allowed,
+            sqrts,
+        })
+    }
+
+    fn reduce(&self, s: &Sparse) -> Vec<Rat> {
+        let mut out = vec![Rat::zero(); self.phi];
+        for (e, c) in s {
+            for (o, r) in out.iter_mut().zip(&self.red[*e as usize]) {
+                if *r != 0 {
+                    *o += c * Rat::from_integer(BigInt::from(*r));
+                }
+            }
+        }
+        out
+    }
+
+    fn sqrt(&self, h: u64) -> &Sparse {
+        let i = self
+            .sqrts
+            .binary_search_by_key(&h, |(x, _)| *x)
+            .expect("h is a product of allowed primes");
+        &self.sqrts[i].1
+    }
+
+    /// `d = s h`: `h` the part of the square-free `d` whose square root is in the field.
+    fn split(&self, d: u64) -> (u64, u64) {
+        let h: u64 = self
+            .allowed
+            .iter()
+            .filter(|&&p| d.is_multiple_of(p))
+            .product();
+        (d / h, h)
+    }
+}
+
+/// A pivot row: its pivot index, the reduced vector, and the combination of columns it is.
+type PivotRow = (usize, Vec<Rat>, Vec<(usize, Rat)>);
+
+/// A subspace of `Q^phi` spanned by columns added one at a time, in echelon form, with the
+/// combination of columns each pivot row stands for.
+struct Span {
+    cols: usize,
+    rows: Vec<PivotRow>,
+}
+
+impl Span {
+    fn new() -> Span {
+        Span {
+            cols: 0,
+            rows: Vec::new(),
+        }
+    }
+
+    /// Reduces `v` against the pivots: the remainder, and the multiples of each pivot row
+    /// taken away.
+    fn reduce(&self, mut v: Vec<Rat>) -> (Vec<Rat>, Vec<Rat>) {
+        let mut lambdas = Vec::with_capacity(self.rows.len());
+        for (p, row, _) in &self.rows {
+            if v[*p].is_zero() {
+                lambdas.push(Rat::zero());
+                continue;
+            }
+            let l = &v[*p] / &row[*p];
+            for (x, r) in v.iter_mut().zip(row) {
+                if !r.is_zero() {
+                    *x -= &l * r;
+                }
+            }
+            lambdas.push(l);
+        }
+        (v, lambdas)
+    }
+
+    fn independent(&self, v: &[Rat]) -> bool {
+        self.reduce(v.to_vec()).0.iter().any(|x| !x.is_zero())
+    }
+
+    /// Adds a column; false when it depends on the others (it is then not recorded).
+    fn push(&mut self, v: Vec<Rat>) -> bool {
+        let col = self.cols;
+        let (rest, lambdas) = self.reduce(v);
+        let Some(p) = rest.iter().position(|x| !x.is_zero()) else {
+            return false;
+        };
+        let mut comb: BTreeMap<usize, Rat> = BTreeMap::new();
+        comb.insert(col, Rat::one());
+        for (l, (_, _, c)) in lambdas.iter().zip(&self.rows) {
+            if l.is_zero() {
+                continue;
+            }
+            for (j, x) in c {
+                *comb.entry(*j).or_insert_with(Rat::zero) -= l * x;
+            }
+        }
+        comb.retain(|_, x| !x.is_zero());
+        self.rows.push((p, rest, comb.into_iter().collect()));
+        self.cols += 1;
+        true
+    }
+
+    /// The coefficients of `v` on the columns, or `None` when `v` is not in the span.
+    fn solve(&self, v: Vec<Rat>) -> Option<Vec<Rat>> {
+        let (rest, lambdas) = self.reduce(v);
+        if rest.iter().any(|x| !x.is_zero()) {
+            return None;
+        }
+        let mut out = vec![Rat::zero(); self.cols];
+        for (l, (_, _, c)) in lambdas.iter().zip(&self.rows) {
+            if l.is_zero() {
+                continue;
+            }
+            for (j, x) in c {
+                out[*j] += l * x;
+            }
+        }
+        Some(out)
+    }
+}
+
+/// One column of a basis: `sqrt(h) b` with `b = cos(theta)` (real) or `e^{i theta}` (times
+/// `i` when `imag`), `theta = pi * angle`.
+#[derive(Clone)]
+struct Col {
+    h: u64,
+    angle: Small,
+    imag: bool,
+}
+
+struct Basis {
+    span: Span,
+    cols: Vec<Col>,
+}
+
+/// The order of `e^{2 pi i k / n}`.
+fn order(k: i64, n: u64) -> u64 {
+    n / (k.unsigned_abs().gcd(&n))
+}
+
+/// What `zeta_o` adds to the field of all square roots and `i`: `o` without its factor 3 when
+/// 9 does not divide it, and without its power of 2 when 16 does not (`zeta_3`, `zeta_8` are
+/// in `K(i)`). Candidates are taken by this first.
+fn reduced(o: u64) -> u64 {
+    let mut r = o;
+    let mut two = 1;
+    while r.is_multiple_of(2) {
+        r /= 2;
+        two *= 2;
+    }
+    if two >= 16 {
+        r *= two;
+    }
+    if r.is_multiple_of(3) && !r.is_multiple_of(9) {
+        r /= 3;
+    }
+    r
+}
+
+/// The order in which basis candidates are taken: the field they need first, then the
+/// denominator of the angle as a multiple of pi (`pi/10` before `2 pi/15`), then the angle.
+fn rank(k: i64, n: u64) -> (u64, u64) {
+    let o = order(k, n);
+    (reduced(o), if o.is_multiple_of(2) { o / 2 } else { o })
+}
+
+impl Basis {
+    /// `R_M` (real) or `C_M` (complex, `4 | M`) inside `Q(zeta_W)`, with `sqrt(h)` (and
+    /// `i sqrt(h)`) multiples for every square root of the field.
+    /// `None` when the work budget runs out on the way (nothing is cached then).
+    fn new(f: &Field, m: u64, real: bool) -> Option<Basis> {
+        let w = f.w;
+        let mut span = Span::new();
+        let mut cols = Vec::new();
+        if real {
+            let l = lcm(2, m);
+            // theta = 2 pi k / l in [0, pi/2): 4k < l.
+            let mut cands: Vec<i64> = (0..).take_while(|k| 4 * k < l as i64).collect();
+            cands.sort_by_key(|&k| (rank(k, l), k));
+            for k in cands {
+                let a = k as u64 * (w / l);
+                super::charge((span.rows.len() * f.phi) as u64 + 1).ok()?;
+                let c = if a == 0 {
+                    mono(0, Rat::one())
+                } else {
+                    let half = Rat::new(1.into(), 2.into());
+                    let mut s = mono(a, half.clone());
+                    s.insert(w - a, half);
+                    s
+                };
+                if !span.independent(&f.reduce(&c)) {
+                    continue;
+                }
+                for (h, r) in &f.sqrts {
+                    span.push(f.reduce(&sparse_mul(r, &c, w)));
+                    cols.push(Col {
+                        h: *h,
+                        angle: Small::new(2 * k, l as i64),
+                        imag: false,
+                    });
+                }
+            }
+        } else {
+            let bound = m as i64;
+            // theta = 2 pi k / m in (-pi/4, pi/4]: -m < 8k <= m.
+            let mut cands: Vec<i64> = (-(bound / 8)..=bound / 8)
+                .filter(|k| 8 * k > -bound)
+                .collect();
+            cands.sort_by_key(|&k| (rank(k, m), k.abs(), k < 0));
+            let i = mono(w / 4, Rat::one());
+            for k in cands {
+                let a = (k.rem_euclid(m as i64) as u64) * (w / m);
+                super::charge((span.rows.len() * f.phi) as u64 + 1).ok()?;
+                let c = mono(a, Rat::one());
+                if !span.independent(&f.reduce(&c)) {
+                    continue;
+                }
+                let ic = sparse_mul(&i, &c, w);
+                for (h, r) in &f.sqrts {
+                    for (imag, x) in [(false, &c), (true, &ic)] {
+                        span.push(f.reduce(&sparse_mul(r, x, w)));
+                        cols.push(Col {
+                            h: *h,
+                            angle: Small::new(2 * k, m as i64),
+                            imag,
+                        });
+                    }
+                }
+            }
+        }
+        Some(Basis { span, cols })
+    }
+}
+
+type Cache<K, V> = OnceLock<Mutex<HashMap<K, Option<Arc<V>>>>>;
+
+fn field(w: u64) -> Option<Arc<Field>> {
+    static CACHE: Cache<u64, Field> = OnceLock::new();
+    let cache = CACHE.get_or_init(Default::default);
+    if let Some(f) = cache.lock().ok()?.get(&w) {
+        return f.clone();
+    }
+    let f = Field::new(w).map(Arc::new);
+    cache.lock().ok()?.insert(w, f.clone());
+    f
+}
+
+fn basis(f: &Field, m: u64, real: bool) -> Option<Arc<Basis>> {
+    static CACHE: Cache<(u64, u64, bool), Basis> = OnceLock::new();
+    let cache = CACHE.get_or_init(Default::default);
+    let key = (f.w, m, real);
+    if let Some(b) = cache.lock().ok()?.get(&key) {
+        return b.clone();
+    }
+    let b = Some(Arc::new(Basis::new(f, m, real)?));
+    cache.lock().ok()?.insert(key, b.clone());
+    b
+}
+
+/// `e^{i pi p}` as a power of `zeta_W`.
+fn pi_exponent(p: &Small, w: u64) -> u64 {
+    // p = n/d, 2d | W: exponent n W / (2d) mod W.
+    let (n, d) = (*p.numer() as i128, *p.denom() as i128);
+    let e = n * (w as i128) / (2 * d);
+    e.rem_euclid(w as i128) as u64
+}
+
+/// Rewrites the groups of terms holding a pi offset in their canonical basis (see the module
+/// docs); a group past the degree bound stays as it is.
+pub(crate) fn canonicalize(terms: &[Term]) -> Vec<Term> {
+    let mut keys: Vec<(&[(super::Sym, Small)], &MonoRc)> = terms
+        .iter()
+        .filter(|t| !t.mode.pi.is_zero())
+        .map(|t| (&*t.mode.freq, &t.mono))
+        .collect();
+    keys.sort();
+    keys.dedup();
+    let mut groups: Vec<Vec<&Term>> = vec![Vec::new(); keys.len()];
+    let mut out: Vec<Term> = Vec::with_capacity(terms.len());
+    for t in terms {
+        match keys.binary_search(&(&*t.mode.freq, &t.mono)) {
+            Ok(i) => groups[i].push(t),
+            Err(_) => out.push(t.clone()),
+        }
+    }
+    for g in groups {
+        match canonical_group(&g) {
+            Some(ts) => out.extend(ts),
+            None => out.extend(g.into_iter().cloned()),
+        }
+    }
+    out
+}
+
+/// True when every pi offset of the terms is within the degree bound: the representation is
+/// then the canonical one (equal values, equal terms).
+pub(crate) fn within_bound(terms: &[Term]) -> bool {
+    let mut w = 24u64;
+    for t in terms.iter().filter(|t| !t.mode.pi.is_zero()) {
+        w = lcm(w, 2 * *t.mode.pi.denom() as u64);
+        if w > 100_000 || totient(w) > MAX_DEGREE {
+            return false;
+        }
+    }
+    true
+}
+
+fn canonical_group(g: &[&Term]) -> Option<Vec<Term>> {
+    let first = g.first()?;
+    let real = first.mode.freq.is_empty();
+    // Multiples of 24 only: K(zeta_M) for 24 | M are distinct fields, one for each smallest
+    // field holding a value (K(zeta_15) = K(zeta_20) = K(zeta_120) since sqrt(-3) and i are
+    // there), so the descent below ends at one M.
+    let mut w = 24u64;
+    for t in g {
+        let d = *t.mode.pi.denom() as u64;
+        w = lcm(w, 2 * d);
+        if w > 100_000 || totient(w) > MAX_DEGREE {
+            return None;
+        }
+    }
+    super::charge(g.len() as u64 * totient(w)).ok()?;
+    let f = field(w)?;
+    // y_s for each class s of square roots outside the field.
+    let mut ys: BTreeMap<u64, Sparse> = BTreeMap::new();
+    for t in g {
+        let (s, h) = f.split(t.rad);
+        let a = pi_exponent(&t.mode.pi, w);
+        let q = t.coef.to_big();
+        let half = &q / Rat::from_integer(2.into());
+        let trig: Sparse = if real {
+            if t.mode.is_unit() {
+                mono(0, q)
+            } else if !t.mode.sin {
+                let mut s = mono(a, half.clone());
+                *s.entry((w - a) % w).or_insert_with(Rat::zero) += half;
+                s
+            } else {
+                // sin = -i (zeta^a - zeta^-a) / 2.
+                let q4 = 3 * w / 4;
+                let mut s = mono((a + q4) % w, half.clone());
+                *s.entry((w - a + q4) % w).or_insert_with(Rat::zero) -= half;
+                s
+            }
+        } else if !t.mode.sin {
+            mono(a, q)
+        } else {
+            mono((a + 3 * w / 4) % w, q)
+        };
+        let x = sparse_mul(f.sqrt(h), &trig, w);
+        let y = ys.entry(s).or_default();
+        for (e, c) in x {
+            *y.entry(e).or_insert_with(Rat::zero) += c;
+        }
+    }
+    let ys: Vec<(u64, Vec<Rat>)> = ys.into_iter().map(|(s, y)| (s, f.reduce(&y))).collect();
+    let fits = |m: u64| -> Option<Vec<Vec<Rat>>> {
+        let b = basis(&f, m, real)?;
+        ys.iter().map(|(_, y)| b.span.solve(y.clone())).collect()
+    };
+    let mut m = w;
+    let mut sol = fits(m)?;
+    'descend: loop {
+        for p in primes_of(m) {
+            let n = m / p;
+            if !n.is_multiple_of(24) {
+                continue;
+            }
+            if let Some(s) = fits(n) {
+                m = n;
+                sol = s;
+                continue 'descend;
+            }
+        }
+        break;
+    }
+    let b = basis(&f, m, real)?;
+    let mut out = Vec::new();
+    for ((s, _), xs) in ys.iter().zip(sol) {
+        for (col, x) in b.cols.iter().zip(xs) {
+            if x.is_zero() {
+                continue;
+            }
+            let (rad, k) = rad_mul(*s, col.h)?;
+            let mut coef = x * Rat::from_integer(k.into());
+            let mode = if col.angle.is_zero() && real {
+                Mode::unit()
+            } else {
+                let two = Small::from_integer(2);
+                let pi = if col.angle.is_negative() {
+                    col.angle + two
+                } else {
+                    col.angle
+                };
+                if col.imag {
+                    coef = -coef;
+                }
+                Mode {
+                    sin: col.imag,
+                    freq: first.mode.freq.clone(),
+                    pi,
+                }
+            };
+            out.push(Term {
+                mode,
+                mono: first.mono.clone(),
+                rad,
+                coef: Q::big(coef),
+            });
+        }
+    }
+    Some(out)
+}
