@@ -39,6 +39,10 @@ fi
 refs="$(mktemp)"
 trap 'rm -f "$refs"' EXIT
 INSTA_SNAPSHOT_REFERENCES_FILE="$refs" INSTA_UPDATE=no cargo test --locked --all-targets "$@"
+# The examples in the crates' documentation, which --all-targets does not build.
+if [ "$#" -eq 0 ]; then
+    cargo test --locked --doc
+fi
 if [ "$#" -eq 0 ]; then
     pending="$(find snapshots -name '*.snap.new' -o -name '*.pending-snap')"
     if [ -n "$pending" ]; then

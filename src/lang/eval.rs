@@ -17,7 +17,6 @@ use super::scan::SourceMap;
 use super::show::Format;
 use super::value::{self, OpError, Value};
 use crate::{Context, DualQuat, Quat, Scalar, ScalarError};
-use std::cell::RefCell;
 use std::collections::BTreeMap;
 use thiserror::Error;
 
@@ -256,21 +255,17 @@ impl Session {
         self.exec_with(stmt, None)
     }
 
-    /// [`Session::exec`], telling `rec` about every motion built, product taken and point
-    /// transformed (for walkthroughs).
-    pub(crate) fn exec_recorded(
+    /// [`Session::exec`], telling `observer` about every motion built, product taken and
+    /// point transformed (a walkthrough listens so).
+    pub(crate) fn exec_observed(
         &mut self,
         stmt: &Stmt,
-        rec: &RefCell<Vec<Event>>,
+        observer: &dyn Observer,
     ) -> Result<Option<Displayed>> {
-        self.exec_with(stmt, Some(rec))
+        self.exec_with(stmt, Some(observer))
     }
 
-    fn exec_with(
-        &mut self,
-        stmt: &Stmt,
-        rec: Option<&RefCell<Vec<Event>>>,
-    ) -> Result<Option<Displayed>> {
+    fn exec_with(&mut self, stmt: &Stmt, rec: Option<&dyn Observer>) -> Result<Option<Displayed>> {
         let _statement = Context::entered().enter();
         match &stmt.kind {
             StmtKind::Syms(names) => {
@@ -424,12 +419,7 @@ impl Session {
         self.eval_with(e, self.implicit_symbols, None)
     }
 
-    fn eval_with(
-        &self,
-        e: &Expr,
-        implicit: bool,
-        rec: Option<&RefCell<Vec<Event>>>,
-    ) -> Result<Value> {
+    fn eval_with(&self, e: &Expr, implicit: bool, rec: Option<&dyn Observer>) -> Result<Value> {
         Evaluator {
             session: self,
             implicit,
@@ -473,7 +463,14 @@ pub(crate) fn scalar_error(e: ScalarError, span: Span) -> EvalError {
     }
 }
 
-/// What a walkthrough needs to know about one evaluation step.
+/// Who listens to an evaluation: told of each [`Event`] as it happens. The evaluator knows
+/// nothing of what listens (a walkthrough records the events and explains them).
+pub(crate) trait Observer {
+    /// One evaluation step happened.
+    fn observe(&self, event: Event);
+}
+
+/// What an observer of the evaluation is told about one evaluation step.
 // Events are few and short-lived (one list per statement), so boxing the larger variants
 // would buy nothing.
 #[allow(clippy::large_enum_variant)]
@@ -514,20 +511,20 @@ pub(crate) enum Event {
 pub(crate) struct Evaluator<'a> {
     session: &'a Session,
     implicit: bool,
-    rec: Option<&'a RefCell<Vec<Event>>>,
+    rec: Option<&'a dyn Observer>,
 }
 
 impl Evaluator<'_> {
-    /// Records `event` when a walkthrough is listening.
+    /// Tells the observer about `event`, when one is listening.
     pub(crate) fn record(&self, event: impl FnOnce() -> Event) {
         if let Some(r) = self.rec {
-            r.borrow_mut().push(event());
+            r.observe(event());
         }
     }
 
     /// Evaluates `e`; every value returned is free of scalar error values.
     pub(crate) fn expr(&self, e: &Expr) -> Result<Value> {
-        if crate::scalar::check_cancelled().is_err() {
+        if crate::Context::check_cancelled().is_err() {
             return Err(EvalError::new(EvalErrorKind::Interrupted, e.span));
         }
         let v = self.expr_unchecked(e)?;

@@ -470,7 +470,7 @@ pub(crate) fn pow(base: &Value, exponent: &Value) -> OpResult {
         }
     };
     let magnitude = n.numer().magnitude();
-    let limit = crate::scalar::max_exponent();
+    let limit = crate::Context::entered().max_exponent();
     let Some(k) = num_traits::ToPrimitive::to_u64(magnitude).filter(|&k| k <= limit) else {
         return Err(OpError::Exponent(format!(
             "exponent {n} is too large: the limit is {limit} (--max-exponent raises it)"
@@ -492,7 +492,7 @@ pub(crate) fn pow(base: &Value, exponent: &Value) -> OpResult {
             let mut sq = base.clone();
             let mut e = k;
             while e > 0 {
-                crate::scalar::check_cancelled()?;
+                crate::Context::check_cancelled()?;
                 if e & 1 == 1 {
                     acc = mul(&acc, &sq)?.check()?;
                 }

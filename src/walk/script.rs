@@ -3,10 +3,20 @@
 
 use super::motion::{is_point, Motion, Words};
 use super::{ComponentTrace, HalfAngle, Mechanism, Step, WalkError, Walkthrough};
-use crate::lang::Event;
+use crate::lang::{Event, Observer};
 use crate::{closed_form_traced, parse, BindingKind, DualQuat, Scalar, Session, StmtKind, Value};
 use std::cell::RefCell;
 use std::collections::{BTreeMap, BTreeSet};
+
+/// The evaluation's events of one statement, in order.
+#[derive(Default)]
+struct Recorder(RefCell<Vec<Event>>);
+
+impl Observer for Recorder {
+    fn observe(&self, event: Event) {
+        self.0.borrow_mut().push(event);
+    }
+}
 
 /// The walkthrough of the script `src`; `title` names it (the file name).
 ///
@@ -18,9 +28,9 @@ pub fn walk_script(src: &str, title: &str) -> Result<Walkthrough, WalkError> {
     let mut session = Session::new();
     let mut w = ScriptWalk::default();
     for stmt in &program.statements {
-        let rec = RefCell::new(Vec::new());
+        let rec = Recorder::default();
         let shown = session
-            .exec_recorded(stmt, &rec)
+            .exec_observed(stmt, &rec)
             .map_err(|e| WalkError::Script(e.render(src)))?;
         let name = match &stmt.kind {
             StmtKind::Assign { name, .. } => Some(name.name.clone()),
@@ -41,7 +51,7 @@ pub fn walk_script(src: &str, title: &str) -> Result<Walkthrough, WalkError> {
             (None, None) => "ans".to_owned(),
         };
         w.half_names = half_angle_names(&session);
-        for e in rec.into_inner() {
+        for e in rec.0.into_inner() {
             w.event(e, &label, value.as_ref())?;
         }
         if let Some(v) = value {
@@ -106,15 +116,7 @@ pub(crate) fn as_dq(v: &Value) -> Option<DualQuat<Scalar>> {
 pub(crate) fn half_angle_symbols(q: &DualQuat<Scalar>) -> BTreeSet<String> {
     let mut out = BTreeSet::new();
     for c in q.components() {
-        if let Ok(terms) = c.terms() {
-            for t in terms {
-                for (s, k) in t.mode.freq.iter() {
-                    if !k.is_integer() {
-                        out.insert(s.name().to_owned());
-                    }
-                }
-            }
-        }
+        out.extend(c.fractional_angle_symbols());
     }
     out
 }

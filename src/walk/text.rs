@@ -5,8 +5,8 @@
 
 use super::notation::Names;
 use super::{ComponentTrace, HalfAngle, Step, WalkError, Walkthrough, Word, Words};
+use crate::closed::angle_text;
 use crate::emit::visual_len;
-use crate::print::angle_text;
 use crate::{
     closed_form, latex_aligned_named, latex_named, latex_symbol, plain_named, plain_quotient_named,
     Expr, LatexOptions, PlainOptions, Scalar, TraceStep, Value,

@@ -13,6 +13,7 @@ mod ik;
 mod kinematics;
 mod lang;
 mod laws;
+mod layers;
 mod limits;
 mod paper;
 mod paper_arms;

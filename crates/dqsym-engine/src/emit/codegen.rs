@@ -10,8 +10,7 @@
 //! sums and multiples built by the angle-addition formulas, themselves shared; without it, one
 //! per distinct angle.
 
-use crate::closed::{Angle, Expr};
-use crate::print::{angle_text, shorthand_name};
+use crate::closed::{angle_text, shorthand_name, Angle, Expr};
 use crate::scalar::{Small, Sym};
 use num_integer::Integer;
 use num_traits::{One, Signed, ToPrimitive, Zero};

@@ -102,7 +102,12 @@ pub enum Expr {
     /// A symbol (`pi` included).
     Sym(Sym),
     /// `cos(angle)` or `sin(angle)`.
-    Trig { sin: bool, angle: Angle },
+    Trig {
+        /// `sin` when true, `cos` when false.
+        sin: bool,
+        /// The argument.
+        angle: Angle,
+    },
     /// A sum; negative terms are `Neg`.
     Add(Vec<Expr>),
     /// A product.

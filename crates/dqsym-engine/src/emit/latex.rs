@@ -5,8 +5,7 @@
 //! Every string written here is valid KaTeX input; the tests render each snapshot with KaTeX
 //! (`throwOnError: true`).
 
-use crate::closed::{Angle, Expr};
-use crate::print::{shorthand_name, TrigNames};
+use crate::closed::{shorthand_name, Angle, Expr, TrigNames};
 use crate::scalar::Small;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
@@ -245,7 +244,7 @@ fn wrap(s: &str, breaks: &[(usize, usize)], width: usize) -> Vec<String> {
 
 /// The width of LaTeX source as rendered, roughly: a command counts as one character, braces
 /// and sub- and superscript marks as none.
-pub(crate) fn visual_len(s: &str) -> usize {
+pub fn visual_len(s: &str) -> usize {
     let mut n = 0;
     let mut chars = s.chars().peekable();
     while let Some(c) = chars.next() {

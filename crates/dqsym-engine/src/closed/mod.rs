@@ -11,10 +11,12 @@ mod alt;
 mod expr;
 mod factor;
 mod mon;
+mod notation;
 mod recombine;
 mod trace;
 
 pub use expr::{Angle, Cost, Expr};
+pub use notation::{angle_text, shorthand_name, TrigNames};
 pub use trace::{Identity, TraceStep};
 
 use crate::{Scalar, ScalarError, Sym};

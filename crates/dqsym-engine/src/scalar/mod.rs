@@ -35,7 +35,7 @@ pub(crate) use arith::FxHasher;
 pub use atoms::Sym;
 pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
-pub(crate) use ctx::{charge, check_cancelled, max_exponent, term_limit, Poll};
+pub(crate) use ctx::{charge, check_cancelled, term_limit, Poll};
 pub use ctx::{Context, Entered, DEFAULT_MAX_EXPONENT};
 pub use decimal::parse_decimal;
 pub use frac::Frac;
@@ -87,7 +87,12 @@ pub enum ScalarError {
     SymbolicDivisor(String),
     /// A trigonometric argument that is not an angle.
     #[error("the argument of {func} must be a rational combination of symbols plus a rational multiple of pi, got {arg}")]
-    NotAnAngle { func: &'static str, arg: String },
+    NotAnAngle {
+        /// The function (`cos`, `sin`).
+        func: &'static str,
+        /// The argument, as text.
+        arg: String,
+    },
     /// A square root that has no exact reduced form here.
     #[error("cannot take an exact square root of {0}")]
     BadSqrt(String),
@@ -356,6 +361,20 @@ impl Scalar {
             [x] if x.mode.is_unit() && x.mono.is_empty() && x.rad == 1 => Some(x.coef.to_big()),
             _ => None,
         }
+    }
+
+    /// The names of the angle symbols that occur at a fractional frequency (a half angle,
+    /// `cos(t/2)`) in the canonical form, sorted; none for an error value.
+    pub fn fractional_angle_symbols(&self) -> std::collections::BTreeSet<String> {
+        let mut out = std::collections::BTreeSet::new();
+        for t in self.terms().unwrap_or(&[]) {
+            for (s, k) in t.mode.freq.iter() {
+                if !k.is_integer() {
+                    out.insert(s.name().to_owned());
+                }
+            }
+        }
+        out
     }
 
     /// True when the value contains no symbol (it is a number: rationals, radicals, and exact

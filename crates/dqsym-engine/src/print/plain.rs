@@ -1,9 +1,8 @@
 //! Plain text in the field's notation: robotics shorthand (`l1 c1 + l2 c12`) or explicit
 //! (`l1*cos(theta1) + l2*cos(theta1 + theta2)`).
 
-use crate::closed::{Angle, Expr};
-use crate::scalar::Small;
-use num_traits::{One, Signed, Zero};
+use crate::closed::{angle_text, shorthand_name, Angle, Expr, TrigNames};
+use num_traits::One;
 use std::collections::BTreeSet;
 
 /// How plain text is written.
@@ -18,92 +17,6 @@ impl Default for PlainOptions {
         PlainOptions { shorthand: true }
     }
 }
-
-/// `c12` / `s123` for cos / sin of a plain sum of numbered symbols sharing one prefix
-/// (`theta1 + theta2`, `t2 + t3`; prefixes other than theta, q, t and th are kept:
-/// `calpha5`); `None` for any other angle.
-pub fn shorthand_name(sin: bool, angle: &Angle) -> Option<String> {
-    if !angle.is_plain_sum() || angle.terms.is_empty() {
-        return None;
-    }
-    let mut prefix: Option<&str> = None;
-    let mut idx = Vec::new();
-    for (s, _) in &angle.terms {
-        let name = s.name();
-        let cut = name.find(|c: char| c.is_ascii_digit())?;
-        let (p, digits) = name.split_at(cut);
-        if p.is_empty() || !digits.chars().all(|c| c.is_ascii_digit()) || digits.starts_with('0') {
-            return None;
-        }
-        if prefix.is_some_and(|q| q != p) {
-            return None;
-        }
-        prefix = Some(p);
-        idx.push(digits.parse::<u64>().ok()?);
-    }
-    idx.sort_unstable();
-    let sep = if idx.iter().any(|&i| i >= 10) {
-        ","
-    } else {
-        ""
-    };
-    let body: Vec<String> = idx.iter().map(|i| i.to_string()).collect();
-    // The bare `c12` is kept for the usual names of joint variables; any other prefix is
-    // written out (`calpha5`), so cos(alpha5) and cos(theta5) never print alike.
-    let shown = match prefix {
-        Some("theta" | "q" | "t" | "th") | None => "",
-        Some(p) => p,
-    };
-    Some(format!(
-        "{}{shown}{}",
-        if sin { "s" } else { "c" },
-        body.join(sep)
-    ))
-}
-
-/// The angle in explicit form: `theta1 + theta2`, `theta3/2`, `t - pi/7`.
-pub fn angle_text(angle: &Angle) -> String {
-    let mut s = String::new();
-    let mut first = true;
-    let mut push = |k: Small, name: &str, s: &mut String| {
-        let neg = k.is_negative();
-        let a = k.abs();
-        if first {
-            if neg {
-                s.push('-');
-            }
-        } else {
-            s.push_str(if neg { " - " } else { " + " });
-        }
-        first = false;
-        if name.is_empty() {
-            s.push_str(&a.to_string());
-        } else if a.is_one() {
-            s.push_str(name);
-        } else if a.numer().is_one() {
-            s.push_str(&format!("{name}/{}", a.denom()));
-        } else if a.denom().is_one() {
-            s.push_str(&format!("{}*{name}", a.numer()));
-        } else {
-            s.push_str(&format!("{}*{name}/{}", a.numer(), a.denom()));
-        }
-    };
-    for (sym, k) in &angle.terms {
-        let name = if sym.name() == "1" { "" } else { sym.name() };
-        push(*k, name, &mut s);
-    }
-    if !angle.pi.is_zero() {
-        push(angle.pi, "pi", &mut s);
-    }
-    if s.is_empty() {
-        s.push('0');
-    }
-    s
-}
-
-/// How a printer names the cosine (`false`) or sine (`true`) of an angle: `Some(name)` for a
-/// shorthand, `None` to write the function out.
-pub type TrigNames<'a> = &'a dyn Fn(bool, &Angle) -> Option<String>;
 
 /// The expression as plain text.
 pub fn plain(e: &Expr, opts: &PlainOptions) -> String {

@@ -1,17 +1,13 @@
-//! Printers: pure functions from display expressions to text. They never simplify.
+//! The application layer: whole derivations built from the layers below (kinematics, closed
+//! forms, printers, emitters): the `fk` report and its recurrence, the task Jacobians, the ops
+//! tables, a robot written back as a screw-form file.
 
 mod convert;
 mod fk;
-mod plain;
 mod recurrence;
 mod task;
 
 pub use convert::{dh_refusal, robot_toml};
 pub use fk::{fk_entries, fk_report, ops_tables, FkEntries, FkOptions, ReportError, ReportFormat};
-pub(crate) use plain::angle_text;
-pub use plain::{
-    legend, plain, plain_named, plain_quotient, plain_quotient_named, shorthand_name, PlainOptions,
-    TrigNames,
-};
 pub use recurrence::fk_recurrence;
 pub use task::{rate_name, task_jacobian, task_report, TaskJacobian, TaskMatrix};

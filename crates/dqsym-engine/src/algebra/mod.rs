@@ -1,4 +1,4 @@
-//! Quaternions, dual quaternions and 4×4 homogeneous matrices over any [`Ring`](crate::Ring).
+//! Quaternions, dual quaternions and 4×4 homogeneous matrices over any [`Ring`].
 //!
 //! Non-commutativity and ε² = 0 live only in this module; the scalar stays commutative.
 //! The files follow nalgebra's split: the types and their operators (`quat.rs`,
@@ -30,7 +30,7 @@ pub(crate) fn mul<T: Ring>(a: &T, b: &T) -> T {
 }
 
 /// The cross product `a × b` of two 3-vectors.
-pub(crate) fn cross<T: Ring>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
+pub fn cross<T: Ring>(a: &[T; 3], b: &[T; 3]) -> [T; 3] {
     [
         mul(&a[1], &b[2]) - mul(&a[2], &b[1]),
         mul(&a[2], &b[0]) - mul(&a[0], &b[2]),

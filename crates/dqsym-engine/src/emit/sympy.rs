@@ -5,8 +5,7 @@
 //! `I`, `N`, `O`, `Q`, `S`, `beta`, `gamma`, `zeta`, `lambda`, ...), so a reader should bind every
 //! symbol explicitly: `sympify(text, locals={n: Symbol(n) for n in names})`.
 
-use crate::closed::Expr;
-use crate::print::angle_text;
+use crate::closed::{angle_text, Expr};
 use num_traits::One;
 
 /// The expression as SymPy input: `l1*cos(theta1) + l2*cos(theta1 + theta2)`, `(3/8)*x`,

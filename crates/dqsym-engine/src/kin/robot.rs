@@ -94,13 +94,22 @@ impl Frame {
 pub enum RobotError {
     /// The file is not valid TOML or misses a top-level field.
     #[error("{file}: {message}")]
-    File { file: String, message: String },
+    File {
+        /// The file's name.
+        file: String,
+        /// What is wrong.
+        message: String,
+    },
     /// A joint field is missing or wrong.
     #[error("{file}: joint {joint}, field `{field}`: {message}")]
     Field {
+        /// The file's name.
         file: String,
+        /// The joint, counted from 1.
         joint: usize,
+        /// The field's name.
         field: String,
+        /// What is wrong.
         message: String,
     },
 }

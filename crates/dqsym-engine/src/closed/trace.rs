@@ -45,7 +45,6 @@ impl Identity {
 
 /// One step of a traced closed-form extraction.
 #[derive(Clone, Debug, PartialEq, Eq)]
-#[non_exhaustive]
 pub enum TraceStep {
     /// The sum the following identities work on, term by term. In round 1 every angle sum of
     /// the canonical form is expanded into products of single-angle factors (the form a hand

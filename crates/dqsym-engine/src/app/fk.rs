@@ -30,9 +30,15 @@ use crate::{
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ReportFormat {
     /// Plain text; `shorthand` selects `c12` over `cos(theta1 + theta2)`.
-    Plain { shorthand: bool },
+    Plain {
+        /// `c12` rather than `cos(theta1 + theta2)`.
+        shorthand: bool,
+    },
     /// LaTeX (an `aligned` block per section).
-    Latex { shorthand: bool },
+    Latex {
+        /// `c_{12}` rather than `\cos(\theta_1 + \theta_2)`.
+        shorthand: bool,
+    },
     /// Exactly one line per entry, `NAME = EXPR`, EXPR parsable by SymPy's sympify.
     Sympy,
     /// A self-contained Rust function (common subexpressions shared, one `sin_cos` per angle).

@@ -39,7 +39,8 @@ impl Sym {
         Sym::new("1")
     }
 
-    pub(crate) fn is_pi(&self) -> bool {
+    /// Whether this is the symbol `pi`.
+    pub fn is_pi(&self) -> bool {
         &*self.0 == "pi"
     }
 

@@ -54,7 +54,12 @@ pub enum DqError {
     FullTurn,
     /// A symbolic power needs a name for the angle of the result.
     #[error("the rotation angle of q^{t} is {t} * ({phi}), not linear in the symbols: name it with a third argument (psi = {t} * ({phi}))")]
-    NeedsAngle { t: String, phi: String },
+    NeedsAngle {
+        /// The exponent, as written.
+        t: String,
+        /// The rotation angle of the base, as written.
+        phi: String,
+    },
     /// The norm of a non-unit symbolic primary part.
     #[error("norm: |P(h)|^2 = {0} has no exact square root here")]
     Norm(String),

@@ -141,7 +141,10 @@ impl Axis {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Relation {
     /// Directions parallel (cross product zero); `same_line` when the lines coincide.
-    Parallel { same_line: bool },
+    Parallel {
+        /// The lines coincide.
+        same_line: bool,
+    },
     /// Not parallel, reciprocal product zero.
     Intersecting,
     /// Neither, for every value of the parameters.

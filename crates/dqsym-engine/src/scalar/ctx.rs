@@ -19,7 +19,7 @@
 //! to cancel.
 //!
 //! ```
-//! use dqsym::{Context, Scalar, ScalarError};
+//! use dqsym_engine::{Context, Scalar, ScalarError};
 //! let ctx = Context::new().with_term_limit(10);
 //! let _in = ctx.enter();
 //! let x = Scalar::sym("x") + Scalar::sym("y") + Scalar::sym("z");
@@ -162,6 +162,12 @@ impl Context {
         TOTAL.with(Cell::get)
     }
 
+    /// `Err(Cancelled)` when the context entered on this thread is cancelled: for long loops
+    /// that charge no work (the evaluator's, outside the engine).
+    pub fn check_cancelled() -> Result<(), ScalarError> {
+        check_cancelled()
+    }
+
     /// Whether the cancel flag is set.
     pub fn is_cancelled(&self) -> bool {
         self.cancel
@@ -225,15 +231,6 @@ pub(crate) fn term_limit() -> usize {
         s.borrow()
             .as_ref()
             .map_or(DEFAULT_TERM_LIMIT, |st| st.ctx.term_limit)
-    })
-}
-
-/// The largest exponent of the entered context.
-pub(crate) fn max_exponent() -> u64 {
-    STATE.with(|s| {
-        s.borrow()
-            .as_ref()
-            .map_or(DEFAULT_MAX_EXPONENT, |st| st.ctx.max_exponent)
     })
 }
 

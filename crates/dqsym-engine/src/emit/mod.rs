@@ -7,7 +7,7 @@ mod c;
 mod codegen;
 mod count;
 mod javascript;
-pub(crate) use latex::visual_len;
+pub use latex::visual_len;
 mod latex;
 mod python;
 mod rust;
