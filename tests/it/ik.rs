@@ -1002,15 +1002,6 @@ fn shoulder_singular_sets_merge_the_branches_and_are_stated() {
 /// the page) match the target.
 #[test]
 fn walk_ik_html_page_solves_in_the_browser() {
-    let chromium = std::env::var_os("PATH")
-        .and_then(|p| {
-            std::env::split_paths(&p)
-                .map(|d| d.join("chromium"))
-                .find(|c| c.is_file())
-        })
-        .unwrap_or_else(|| {
-            panic!("chromium is missing: run `bash scripts/test.sh`, which installs it")
-        });
     let root = env!("CARGO_MANIFEST_DIR");
     let artifacts = std::path::Path::new(root).join("artifacts");
     std::fs::create_dir_all(&artifacts).expect("artifacts dir");
@@ -1030,20 +1021,8 @@ fn walk_ik_html_page_solves_in_the_browser() {
         crate::tools::dqsym_ok(&refs);
         let html = std::fs::read_to_string(&page).expect("page");
         assert!(html.contains("function dqsym_ik_step0("), "{file}");
-        let profile = crate::tools::temp_dir(&format!("chromium-ik-{file}"));
-        let d = std::process::Command::new(&chromium)
-            .args([
-                "--headless",
-                "--no-sandbox",
-                "--disable-gpu",
-                "--disable-background-networking",
-                "--no-first-run",
-                "--disable-component-update",
-                "--disable-sync",
-                "--virtual-time-budget=5000",
-                "--dump-dom",
-            ])
-            .arg(format!("--user-data-dir={}", profile.display()))
+        let d = crate::tools::headless(&artifacts.join(format!("ik-{file}")))
+            .args(["--virtual-time-budget=5000", "--dump-dom"])
             .arg(format!("file://{}", page.display()))
             .output()
             .expect("chromium runs");

@@ -174,3 +174,35 @@ pub fn compile_rust_clean(src: &Path, exe: &Path, opt: bool, what: &str) {
         ),
     );
 }
+
+/// Debian's chromium on PATH, or a failure saying how to install it.
+pub fn chromium() -> PathBuf {
+    let found = std::env::var_os("PATH").and_then(|p| {
+        std::env::split_paths(&p)
+            .map(|d| d.join("chromium"))
+            .find(|c| c.is_file())
+    });
+    found.unwrap_or_else(|| {
+        panic!("chromium is missing: run `bash scripts/test.sh`, which installs Debian's chromium")
+    })
+}
+
+/// A headless chromium with a fresh profile named after `out`, no network services.
+pub fn headless(out: &Path) -> Command {
+    let profile = crate::tools::temp_dir(&format!(
+        "chromium-{}",
+        out.file_name().and_then(|n| n.to_str()).unwrap_or("x")
+    ));
+    let mut c = Command::new(chromium());
+    c.args([
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-background-networking",
+        "--no-first-run",
+        "--disable-component-update",
+        "--disable-sync",
+    ])
+    .arg(format!("--user-data-dir={}", profile.display()));
+    c
+}

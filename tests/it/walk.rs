@@ -3,13 +3,13 @@
 //! and the web page rendered in headless Chromium.
 
 use crate::common::snapshot_settings;
-use crate::tools::katex_all;
+use crate::tools::{chromium, headless, katex_all};
 use dqsym::Matrix4;
 use dqsym::{
     closed_form, closed_form_traced, walk_markdown, walk_robot, walk_script, walk_text, Scalar,
     Step, TraceStep, Walkthrough,
 };
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 const ROOT: &str = env!("CARGO_MANIFEST_DIR");
@@ -214,36 +214,6 @@ fn walk_command_prints_text_and_refuses_a_bad_config() {
         .expect("runs");
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--config"));
-}
-
-fn chromium() -> PathBuf {
-    let found = std::env::var_os("PATH").and_then(|p| {
-        std::env::split_paths(&p)
-            .map(|d| d.join("chromium"))
-            .find(|c| c.is_file())
-    });
-    found.unwrap_or_else(|| {
-        panic!("chromium is missing: run `bash scripts/test.sh`, which installs Debian's chromium")
-    })
-}
-
-fn headless(out: &Path) -> Command {
-    let profile = crate::tools::temp_dir(&format!(
-        "chromium-{}",
-        out.file_name().and_then(|n| n.to_str()).unwrap_or("x")
-    ));
-    let mut c = Command::new(chromium());
-    c.args([
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-background-networking",
-        "--no-first-run",
-        "--disable-component-update",
-        "--disable-sync",
-    ])
-    .arg(format!("--user-data-dir={}", profile.display()));
-    c
 }
 
 #[test]
