@@ -2,6 +2,7 @@
 //! the `--point` option. Free names are symbols; `pi`, `sqrt`, `cos`, `sin` work as in scripts.
 
 use super::{parse_expr, Session, Value};
+use crate::kin::split_top_level;
 use crate::Scalar;
 
 /// The exact scalar value of `text`, or a one-line message saying why there is none.
@@ -32,24 +33,4 @@ pub fn eval_point_text(text: &str) -> Result<[Scalar; 3], String> {
         eval_scalar_text(parts[1])?,
         eval_scalar_text(parts[2])?,
     ])
-}
-
-/// Splits at commas outside parentheses and brackets.
-fn split_top_level(text: &str) -> Vec<&str> {
-    let mut depth = 0i32;
-    let mut start = 0;
-    let mut out = Vec::new();
-    for (i, c) in text.char_indices() {
-        match c {
-            '(' | '[' => depth += 1,
-            ')' | ']' => depth -= 1,
-            ',' if depth == 0 => {
-                out.push(text[start..i].trim());
-                start = i + 1;
-            }
-            _ => {}
-        }
-    }
-    out.push(text[start..].trim());
-    out
 }

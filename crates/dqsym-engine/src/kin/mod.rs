@@ -18,6 +18,6 @@ pub use chain::{Chain, ChainError};
 pub use dh::{dh_link, dh_link_matrix, mdh_link, mdh_link_matrix};
 pub use jacobian::{dq_jacobian, geometric_jacobian};
 pub use joint::{Joint, JointGeometry, JointKind};
-pub use robot::{parse_robot, Convention, FieldEval, Frame, Robot, RobotError};
+pub use robot::{parse_robot, split_top_level, Convention, FieldEval, Frame, Robot, RobotError};
 pub use screw::{screw_parameters, ScrewError, ScrewParams};
 pub use urdf::{parse_urdf, UrdfError, UrdfOptions, UrdfRobot, SNAP_TOLERANCE};

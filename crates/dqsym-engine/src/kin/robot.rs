@@ -556,8 +556,9 @@ pub(crate) fn frame_dq(xyz: &[Scalar; 3], rpy: &[Scalar; 3]) -> Result<DualQuat<
     Ok(q)
 }
 
-/// Splits at commas outside parentheses and brackets.
-fn split_top_level(text: &str) -> Vec<&str> {
+/// Splits at commas outside parentheses and brackets (a robot file's and the language's
+/// comma-separated fields).
+pub fn split_top_level(text: &str) -> Vec<&str> {
     let mut depth = 0i32;
     let mut start = 0;
     let mut out = Vec::new();
