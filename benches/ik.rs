@@ -103,12 +103,20 @@ fn bench(c: &mut Criterion) {
     let tp = puma_target();
     let tu = ur5_target();
     let mut g = c.benchmark_group("ik_solver_all_branches");
+    // The solutions are written into a buffer the caller keeps (`ik_into`), as a controller
+    // calling the solver in its loop does.
+    let mut out = puma::IkSolutions::default();
     g.bench_function("puma560_generated", |b| {
-        b.iter(|| puma::ik(black_box(&tp), 0.4318, 0.0203, 0.15005, 0.4318))
+        b.iter(|| {
+            puma::ik_into(&mut out, black_box(&tp), 0.4318, 0.0203, 0.15005, 0.4318);
+            out.n
+        })
     });
+    let mut out = ur5::IkSolutions::default();
     g.bench_function("ur5_generated", |b| {
         b.iter(|| {
-            ur5::ik(
+            ur5::ik_into(
+                &mut out,
                 black_box(&tu),
                 -0.425,
                 -0.39225,
@@ -116,7 +124,8 @@ fn bench(c: &mut Criterion) {
                 0.10915,
                 0.09465,
                 0.0823,
-            )
+            );
+            out.n
         })
     });
     g.finish();

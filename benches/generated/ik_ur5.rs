@@ -22,6 +22,17 @@ pub struct IkSolutions {
     pub n: usize,
 }
 
+impl Default for IkSolutions {
+    fn default() -> Self {
+        IkSolutions {
+            q: [[0.0; 6]; IK_MAX],
+            singular: [false; IK_MAX],
+            approximate: [false; IK_MAX],
+            n: 0,
+        }
+    }
+}
+
 /// A radicand of scale `n`: none below -1e-8 n, a double root within 1e-12 n of zero
 /// (singular; approximate beyond rounding), else itself.
 #[inline(always)]
@@ -35,34 +46,103 @@ fn ik_radicand(rad: f64, n: f64) -> Option<(f64, bool, bool)> {
     }
 }
 
-#[inline(always)]
-/// `atan2(y, x)`; where `x = y = 0` (a singular set: any value) twelve values k pi/6,
-/// k = -5..6, so that a later joint can still reach.
-fn ik_atan2(y: f64, x: f64) -> (usize, [(f64, bool); 12]) {
-    if y.hypot(x) < 1e-10 {
-        (12, std::array::from_fn(|k| ((k as f64 - 5.0) * std::f64::consts::FRAC_PI_6, true)))
-    } else {
-        (1, [(y.atan2(x), false); 12])
+/// The roots of one step: `n` joint values with their sines and cosines (known without a
+/// call), and the flags; `n = 12` on a singular set of an atan2 (see `ik_any`).
+#[derive(Clone, Copy)]
+struct IkRoots {
+    n: usize,
+    q: [f64; 2],
+    s: [f64; 2],
+    c: [f64; 2],
+    sg: bool,
+    ap: bool,
+}
+
+impl IkRoots {
+    const NONE: IkRoots = IkRoots { n: 0, q: [0.0; 2], s: [0.0; 2], c: [1.0; 2], sg: false, ap: false };
+    /// Root `i`: `(q, sin q, cos q)`.
+    #[inline(always)]
+    fn root(&self, i: usize) -> (f64, f64, f64) {
+        if self.n == 12 {
+            ik_any(i)
+        } else {
+            (self.q[i], self.s[i], self.c[i])
+        }
     }
 }
 
-/// `a cos q + b sin q = c`: up to two roots `(q, singular, approximate)`.
+/// A joint free on a singular set: value `i` of twelve, k pi/6, k = -5..6, so that a later
+/// joint can still reach.
+#[cold]
+#[inline(never)]
+fn ik_any(i: usize) -> (f64, f64, f64) {
+    let q = (i as f64 - 5.0) * std::f64::consts::FRAC_PI_6;
+    let (s, c) = q.sin_cos();
+    (q, s, c)
+}
+
+/// A step's last atan2 (`y`, `x` and the root `q`, `sin q`, `cos q`), reused by the next call
+/// of the step: the same arguments give the same root, exactly negated ones the angle plus pi
+/// with the sine and cosine negated (the wrist flip theta4 + pi, theta6 + pi of the sibling
+/// branch).
+#[derive(Clone, Copy)]
+struct IkMemo {
+    y: f64,
+    x: f64,
+    q: f64,
+    s: f64,
+    c: f64,
+}
+
+impl IkMemo {
+    const NEW: IkMemo = IkMemo { y: f64::NAN, x: f64::NAN, q: 0.0, s: 0.0, c: 1.0 };
+}
+
+/// `atan2(y, x)`, its sine `y / h` and cosine `x / h`; where `x = y = 0` any value.
 #[inline(always)]
-fn ik_trig(a: f64, b: f64, c: f64) -> (usize, [(f64, bool, bool); 2]) {
+fn ik_atan2(y: f64, x: f64, m: &mut IkMemo) -> IkRoots {
+    if y == -m.y && x == -m.x {
+        m.q = if m.q > 0.0 { m.q - std::f64::consts::PI } else { m.q + std::f64::consts::PI };
+        m.s = -m.s;
+        m.c = -m.c;
+        m.y = y;
+        m.x = x;
+    } else if y != m.y || x != m.x {
+        let h2 = y * y + x * x;
+        if h2 < 1e-20 {
+            return IkRoots { n: 12, sg: true, ..IkRoots::NONE };
+        }
+        let h = h2.sqrt();
+        *m = IkMemo { y, x, q: y.atan2(x), s: y / h, c: x / h };
+    }
+    IkRoots { n: 1, q: [m.q, 0.0], s: [m.s, 0.0], c: [m.c, 1.0], sg: false, ap: false }
+}
+
+/// `a cos q + b sin q = c`: `q = atan2(b, a) +- atan2(r, c)`, `r = sqrt(a^2 + b^2 - c^2)`, as
+/// `atan2(b c +- a r, a c -+ b r)`, whose sine and cosine are those over `a^2 + b^2`. Where
+/// `b = 0` the roots are `+-q` (`atan2` is odd in `y`), where `a = 0` they are `q` and `pi - q`.
+#[inline(always)]
+fn ik_trig(a: f64, b: f64, c: f64) -> IkRoots {
     let n = a * a + b * b;
     if n < 1e-20 {
-        return if c.abs() < 1e-9 {
-            (1, [(0.0, true, false), (0.0, true, false)])
-        } else {
-            (0, [(0.0, false, false); 2])
-        };
+        return if c.abs() < 1e-9 { IkRoots { n: 1, sg: true, ..IkRoots::NONE } } else { IkRoots::NONE };
     }
     let Some((rad, sg, ap)) = ik_radicand(n - c * c, n) else {
-        return (0, [(0.0, false, false); 2]);
+        return IkRoots::NONE;
     };
-    let phi = b.atan2(a);
-    let w = rad.sqrt().atan2(c);
-    (2, [(phi + w, sg, ap), (phi - w, sg, ap)])
+    let r = rad.sqrt();
+    // r^2 + c^2 = n, unless the radicand was clamped to 0.
+    let d = if sg { (n * c * c).sqrt() } else { n };
+    let (y0, x0, y1, x1) = (b * c + a * r, a * c - b * r, b * c - a * r, a * c + b * r);
+    let q0 = y0.atan2(x0);
+    let q1 = if b == 0.0 {
+        -q0
+    } else if a == 0.0 {
+        std::f64::consts::PI.copysign(y0) - q0
+    } else {
+        y1.atan2(x1)
+    };
+    IkRoots { n: 2, q: [q0, q1], s: [y0 / d, y1 / d], c: [x0 / d, x1 / d], sg, ap }
 }
 
 /// The homogeneous matrix of a unit dual quaternion (Appendix I).
@@ -80,9 +160,10 @@ fn ik_dq_matrix(q: &[f64; 8]) -> [[f64; 4]; 4] {
     ]
 }
 
-/// Every solution for the target pose `t` (row-major homogeneous matrix).
+/// Every solution for the target pose `t` (row-major homogeneous matrix), written to
+/// `ik_out` (`ik_out.n` of them; the entries beyond are left as they were).
 #[allow(non_snake_case, unused_variables, clippy::too_many_arguments, clippy::excessive_precision, clippy::neg_multiply, clippy::double_parens, unused_parens)]
-pub fn ik(ik_target: &[[f64; 4]; 4], a2: f64, a3: f64, d1: f64, d4: f64, d5: f64, d6: f64) -> IkSolutions {
+pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4], a2: f64, a3: f64, d1: f64, d4: f64, d5: f64, d6: f64) {
     let r11 = ik_target[0][0];
     let r12 = ik_target[0][1];
     let r13 = ik_target[0][2];
@@ -95,60 +176,124 @@ pub fn ik(ik_target: &[[f64; 4]; 4], a2: f64, a3: f64, d1: f64, d4: f64, d5: f64
     let r32 = ik_target[2][1];
     let r33 = ik_target[2][2];
     let pz = ik_target[2][3];
-    let mut ik_out = IkSolutions {
-        q: [[0.0; 6]; IK_MAX],
-        singular: [false; IK_MAX],
-        approximate: [false; IK_MAX],
-        n: 0,
-    };
+    ik_out.n = 0;
+    let mut ik_m2 = IkMemo::NEW;
+    let mut ik_m4 = IkMemo::NEW;
+    let mut ik_m5 = IkMemo::NEW;
+    let ik_t0 = d6 * r23;
+    let ik_t1 = d6 * r13;
+    let ik_t10 = r11 * r11;
+    let ik_t11 = r12 * r12;
+    let ik_t12 = r21 * r21;
+    let ik_t13 = r22 * r22;
+    let ik_t14 = r31 * r31;
+    let ik_t15 = r32 * r32;
+    let ik_t16 = ik_t14 + ik_t10 + ik_t12 - ik_t11 - ik_t13 - ik_t15;
+    let ik_t18 = r31 * r32 + r12 * r11 + r22 * r21;
+    let ik_t20 = r13 * r13;
+    let ik_t21 = 2.0 * ik_t20;
+    let ik_t22 = r23 * r23;
+    let ik_t23 = 2.0 * ik_t22;
+    let ik_t24 = r33 * r33;
+    let ik_t25 = 2.0 * ik_t24;
+    let ik_t26 = ik_t15 + ik_t14 + ik_t13 + ik_t12 + ik_t10 + ik_t11;
+    let ik_t27 = r31 * r33 + r13 * r11 + r23 * r21;
+    let ik_t28 = r32 * r33 + r13 * r12 + r23 * r22;
+    let ik_t29 = ik_t15 + ik_t11 + ik_t13 - ik_t10 - ik_t12 - ik_t14;
+    let ik_t30 = ik_t25 + ik_t23 + ik_t21 + ik_t26;
+    let ik_t31 = d6 * ik_t27;
+    let ik_t32 = pz - d1;
+    let ik_t33 = px * r11;
+    let ik_t34 = py * r21;
+    let ik_t35 = ik_t34 + r31 * ik_t32 + ik_t33 - ik_t31;
+    let ik_t36 = d1 - pz;
+    let ik_t37 = d6 * ik_t28 + r32 * ik_t36 - (px * r12 + py * r22);
+    let ik_t38 = d6 * (ik_t24 + ik_t20 + ik_t22);
+    let ik_t39 = r33 * ik_t32;
+    let ik_t40 = r13 * px;
+    let ik_t41 = r23 * py;
+    let ik_t42 = ik_t31 + r31 * ik_t36 - (ik_t33 + ik_t34);
+    let ik_t43 = 2.0 * (d1 * (2.0 * pz - d1) + a3 * a3 + d6 * (2.0 * (ik_t41 + ik_t39 + ik_t40) - ik_t38) + a2 * a2 - px * px - py * py - pz * pz);
+    let ik_t45 = r32 * d5;
+    let ik_t47 = r31 * d5;
     // theta1: subproblem 4 (height): the point where axes 5 and 6 meet keeps its component along the parallel axes 2, 3, 4 under joints 2-6, so (Rot(axis 1, theta) k2)·(p56 − p1) = k2·(C56 − p1)
-    let ik_theta1_a = ((d6*r23) - py);
-    let ik_theta1_b = (-(d6*r13) + px);
+    let ik_theta1_a = ik_t0 - py;
+    let ik_theta1_b = px - ik_t1;
     let ik_theta1_c = d4;
-    let (ik_n0, ik_c0) = ik_trig(ik_theta1_a, ik_theta1_b, ik_theta1_c);
-    for &(theta1, ik_sg0, ik_ap0) in &ik_c0[..ik_n0] {
-        let (s_theta1, c_theta1) = theta1.sin_cos();
+    let ik_r0 = ik_trig(ik_theta1_a, ik_theta1_b, ik_theta1_c);
+    for ik_i0 in 0..ik_r0.n {
+        let (theta1, s_theta1, c_theta1) = ik_r0.root(ik_i0);
+        let ik_t2 = c_theta1 * r22 - s_theta1 * r12;
+        let ik_t3 = s_theta1 * r11 - c_theta1 * r21;
         // theta5: subproblem 4 (height): R2 R3 R4 keep k2, so k2·Rot(axis 5, theta) k6 = k2·(R1ᵀ R k6)
         let ik_theta5_a = 1.0;
         let ik_theta5_b = 0.0;
-        let ik_theta5_c = ((r13*s_theta1) - (r23*c_theta1));
-        let (ik_n1, ik_c1) = ik_trig(ik_theta5_a, ik_theta5_b, ik_theta5_c);
-        for &(theta5, ik_sg1, ik_ap1) in &ik_c1[..ik_n1] {
-            let (s_theta5, c_theta5) = theta5.sin_cos();
+        let ik_theta5_c = r13 * s_theta1 - r23 * c_theta1;
+        let ik_r1 = ik_trig(ik_theta5_a, ik_theta5_b, ik_theta5_c);
+        for ik_i1 in 0..ik_r1.n {
+            let (theta5, s_theta5, c_theta5) = ik_r1.root(ik_i1);
+            let ik_t4 = c_theta5 * s_theta5;
+            let ik_t5 = c_theta5 * c_theta5 - s_theta5 * s_theta5;
+            let ik_t6 = ik_t4 + ik_t4;
+            let ik_t44 = d4 * s_theta5;
+            let ik_t46 = ik_t45 - r31 * ik_t44;
+            let ik_t48 = r32 * ik_t44 + ik_t47;
+            let ik_t49 = r33 * (d6 + d4 * c_theta5);
+            let ik_t53 = r13 * c_theta5;
+            let ik_t58 = r23 * c_theta5;
             // theta6: subproblem 1 (rotation): R6 (Rᵀ R1 k2) = R5ᵀ k2
-            let ik_theta6_y = (s_theta5*(-(r12*s_theta1) + (r22*c_theta1)));
-            let ik_theta6_x = (s_theta5*((r11*s_theta1) - (r21*c_theta1)));
-            let (ik_n2, ik_c2) = ik_atan2(ik_theta6_y, ik_theta6_x);
-            for &(theta6, ik_sg2) in &ik_c2[..ik_n2] {
-                let ik_ap2 = false;
-                let (s_theta6, c_theta6) = theta6.sin_cos();
+            let ik_theta6_y = s_theta5 * ik_t2;
+            let ik_theta6_x = s_theta5 * ik_t3;
+            let ik_r2 = ik_atan2(ik_theta6_y, ik_theta6_x, &mut ik_m2);
+            for ik_i2 in 0..ik_r2.n {
+                let (theta6, s_theta6, c_theta6) = ik_r2.root(ik_i2);
+                let ik_t7 = c_theta6 * s_theta6;
+                let ik_t8 = c_theta6 * c_theta6 - s_theta6 * s_theta6;
+                let ik_t9 = ik_t7 + ik_t7;
+                let ik_t17 = ik_t8 * ik_t16;
+                let ik_t19 = ik_t9 * ik_t18 * 2.0;
+                let ik_t50 = s_theta6 * ik_t48 + pz + c_theta6 * ik_t46 - d1 - ik_t49;
+                let ik_t51 = r11 * c_theta6;
+                let ik_t52 = r12 * s_theta6;
+                let ik_t54 = r11 * s_theta6 + r12 * c_theta6;
+                let ik_t55 = d5 * ik_t54;
+                let ik_t56 = r21 * c_theta6;
+                let ik_t57 = r22 * s_theta6;
+                let ik_t59 = r21 * s_theta6 + r22 * c_theta6;
+                let ik_t60 = d5 * ik_t59;
+                let ik_t61 = c_theta1 * (ik_t1 + d4 * (s_theta5 * (ik_t51 - ik_t52) + ik_t53) - px - ik_t55) + s_theta1 * (ik_t0 + d4 * (s_theta5 * (ik_t56 - ik_t57) + ik_t58) - py - ik_t60);
+                let ik_t62 = a2 * ik_t50;
+                let ik_t63 = c_theta1 * (d4 * (s_theta5 * (ik_t52 - ik_t51) - ik_t53) + px + ik_t55 - ik_t1) + s_theta1 * (d4 * (s_theta5 * (ik_t57 - ik_t56) - ik_t58) + py + ik_t60 - ik_t0);
+                let ik_t64 = a2 * ik_t63;
+                let ik_t67 = c_theta1 * ik_t54 + s_theta1 * ik_t59;
+                let ik_t68 = s_theta6 * r31 + c_theta6 * r32;
                 // theta3: subproblem 3 (distance): joint 3 sets the distance of axis 4 from a point of axis 2 (their components along k2 agree by theta1's equation)
-                let ik_theta3_a = (-(a2*a3));
+                let ik_theta3_a = -(a2 * a3);
                 let ik_theta3_b = 0.0;
-                let ik_theta3_c = (0.125*((d4*((d4*(((2.0*theta5).cos()*(((2.0*theta6).cos()*(r11.powi(2) - r12.powi(2) + r21.powi(2) - r22.powi(2) + r31.powi(2) - r32.powi(2))) - (2.0*(2.0*theta6).sin()*((r11*r12) + (r21*r22) + (r31*r32))) + r11.powi(2) + r12.powi(2) - (2.0*r13.powi(2)) + r21.powi(2) + r22.powi(2) - (2.0*r23.powi(2)) + r31.powi(2) + r32.powi(2) - (2.0*r33.powi(2)))) + (4.0*(2.0*theta5).sin()*(-(c_theta6*((r11*r13) + (r21*r23) + (r31*r33))) + (s_theta6*((r12*r13) + (r22*r23) + (r32*r33))))) + ((2.0*theta6).cos()*(-r11.powi(2) + r12.powi(2) - r21.powi(2) + r22.powi(2) - r31.powi(2) + r32.powi(2))) + (2.0*(2.0*theta6).sin()*((r11*r12) + (r21*r22) + (r31*r32))) - (r11.powi(2) + r12.powi(2) + (2.0*r13.powi(2)) + r21.powi(2) + r22.powi(2) + (2.0*r23.powi(2)) + r31.powi(2) + r32.powi(2) + (2.0*r33.powi(2))))) + (4.0*((s_theta5*((d5*(((2.0*theta6).sin()*(r11.powi(2) - r12.powi(2) + r21.powi(2) - r22.powi(2) + r31.powi(2) - r32.powi(2))) + (2.0*(2.0*theta6).cos()*((r11*r12) + (r21*r22) + (r31*r32))))) + (2.0*((c_theta6*(-(d6*((r11*r13) + (r21*r23) + (r31*r33))) + (r31*(-d1 + pz)) + (px*r11) + (py*r21))) + (s_theta6*((d6*((r12*r13) + (r22*r23) + (r32*r33))) + (r32*(d1 - pz)) - ((px*r12) + (py*r22)))))))) + (2.0*c_theta5*((d5*((c_theta6*((r12*r13) + (r22*r23) + (r32*r33))) + (s_theta6*((r11*r13) + (r21*r23) + (r31*r33))))) - (d6*(r13.powi(2) + r23.powi(2) + r33.powi(2))) + (r33*(-d1 + pz)) + (px*r13) + (py*r23))))))) + (2.0*((d5*((d5*(((2.0*theta6).cos()*(r11.powi(2) - r12.powi(2) + r21.powi(2) - r22.powi(2) + r31.powi(2) - r32.powi(2))) - ((2.0*(2.0*theta6).sin()*((r11*r12) + (r21*r22) + (r31*r32))) + r11.powi(2) + r12.powi(2) + r21.powi(2) + r22.powi(2) + r31.powi(2) + r32.powi(2)))) + (4.0*((c_theta6*((d6*((r12*r13) + (r22*r23) + (r32*r33))) + (r32*(d1 - pz)) - ((px*r12) + (py*r22)))) + (s_theta6*((d6*((r11*r13) + (r21*r23) + (r31*r33))) + (r31*(d1 - pz)) - ((px*r11) + (py*r21)))))))) + (2.0*((d6*(-(d6*(r13.powi(2) + r23.powi(2) + r33.powi(2))) + (2.0*((r33*(-d1 + pz)) + (px*r13) + (py*r23))))) + a2.powi(2) + a3.powi(2) + (d1*((2.0*pz) - d1)) - px.powi(2) - py.powi(2) - pz.powi(2)))))));
-                let (ik_n3, ik_c3) = ik_trig(ik_theta3_a, ik_theta3_b, ik_theta3_c);
-                for &(theta3, ik_sg3, ik_ap3) in &ik_c3[..ik_n3] {
-                    let (s_theta3, c_theta3) = theta3.sin_cos();
+                let ik_theta3_c = (d4 * (d4 * (ik_t8 * ik_t29 + ik_t6 * (s_theta6 * ik_t28 - c_theta6 * ik_t27) * 4.0 + ik_t19 + ik_t5 * (ik_t17 + ik_t26 - ik_t19 - ik_t21 - ik_t23 - ik_t25) - ik_t30) + 4.0 * (s_theta5 * (d5 * (ik_t9 * ik_t16 + 2.0 * ik_t8 * ik_t18) + 2.0 * (c_theta6 * ik_t35 + s_theta6 * ik_t37)) + 2.0 * c_theta5 * (ik_t41 + ik_t40 + d5 * (c_theta6 * ik_t28 + s_theta6 * ik_t27) + ik_t39 - ik_t38))) + 2.0 * (d5 * (d5 * (ik_t17 - (ik_t19 + ik_t26)) + 4.0 * (c_theta6 * ik_t37 + s_theta6 * ik_t42)) + ik_t43)) * 0.125;
+                let ik_r3 = ik_trig(ik_theta3_a, ik_theta3_b, ik_theta3_c);
+                for ik_i3 in 0..ik_r3.n {
+                    let (theta3, s_theta3, c_theta3) = ik_r3.root(ik_i3);
                     // theta2: subproblem 1 (rotation): joint 2 turns axis 4 onto its target place
-                    let ik_theta2_y = ((a3*((c_theta3*((c_theta6*(-(d4*r31*s_theta5) + (d5*r32))) + (s_theta6*((d4*r32*s_theta5) + (d5*r31))) - d1 - (r33*((d4*c_theta5) + d6)) + pz)) + (s_theta3*((c_theta1*((d4*((s_theta5*((r11*c_theta6) - (r12*s_theta6))) + (r13*c_theta5))) - (d5*((r11*s_theta6) + (r12*c_theta6))) + (d6*r13) - px)) + (s_theta1*((d4*((s_theta5*((r21*c_theta6) - (r22*s_theta6))) + (r23*c_theta5))) - (d5*((r21*s_theta6) + (r22*c_theta6))) + (d6*r23) - py)))))) + (a2*((c_theta6*(-(d4*r31*s_theta5) + (d5*r32))) + (s_theta6*((d4*r32*s_theta5) + (d5*r31))) - d1 - (r33*((d4*c_theta5) + d6)) + pz)));
-                    let ik_theta2_x = ((a3*((s_theta3*((c_theta6*(-(d4*r31*s_theta5) + (d5*r32))) + (s_theta6*((d4*r32*s_theta5) + (d5*r31))) - d1 - (r33*((d4*c_theta5) + d6)) + pz)) + (c_theta3*((c_theta1*((d4*((s_theta5*(-(r11*c_theta6) + (r12*s_theta6))) - (r13*c_theta5))) + (d5*((r11*s_theta6) + (r12*c_theta6))) - (d6*r13) + px)) + (s_theta1*((d4*((s_theta5*(-(r21*c_theta6) + (r22*s_theta6))) - (r23*c_theta5))) + (d5*((r21*s_theta6) + (r22*c_theta6))) - (d6*r23) + py)))))) + (a2*((c_theta1*((d4*((s_theta5*(-(r11*c_theta6) + (r12*s_theta6))) - (r13*c_theta5))) + (d5*((r11*s_theta6) + (r12*c_theta6))) - (d6*r13) + px)) + (s_theta1*((d4*((s_theta5*(-(r21*c_theta6) + (r22*s_theta6))) - (r23*c_theta5))) + (d5*((r21*s_theta6) + (r22*c_theta6))) - (d6*r23) + py)))));
-                    let (ik_n4, ik_c4) = ik_atan2(ik_theta2_y, ik_theta2_x);
-                    for &(theta2, ik_sg4) in &ik_c4[..ik_n4] {
-                        let ik_ap4 = false;
-                        let (s_theta2, c_theta2) = theta2.sin_cos();
+                    let ik_theta2_y = a3 * (c_theta3 * ik_t50 + s_theta3 * ik_t61) + ik_t62;
+                    let ik_theta2_x = a3 * (s_theta3 * ik_t50 + c_theta3 * ik_t63) + ik_t64;
+                    let ik_r4 = ik_atan2(ik_theta2_y, ik_theta2_x, &mut ik_m4);
+                    for ik_i4 in 0..ik_r4.n {
+                        let (theta2, s_theta2, c_theta2) = ik_r4.root(ik_i4);
+                        let ik_t65 = c_theta3 * c_theta2 - s_theta3 * s_theta2;
+                        let ik_t66 = c_theta3 * s_theta2 + s_theta3 * c_theta2;
                         // theta4: subproblem 1 (rotation): R4 = R3ᵀ R2ᵀ R1ᵀ R R6ᵀ R5ᵀ
-                        let ik_theta4_y = (-(((theta2 + theta3).cos()*((c_theta1*((r11*s_theta6) + (r12*c_theta6))) + (s_theta1*((r21*s_theta6) + (r22*c_theta6))))) + ((theta2 + theta3).sin()*((r31*s_theta6) + (r32*c_theta6)))));
-                        let ik_theta4_x = (-((theta2 + theta3).sin()*((c_theta1*((r11*s_theta6) + (r12*c_theta6))) + (s_theta1*((r21*s_theta6) + (r22*c_theta6))))) + ((theta2 + theta3).cos()*((r31*s_theta6) + (r32*c_theta6))));
-                        let (ik_n5, ik_c5) = ik_atan2(ik_theta4_y, ik_theta4_x);
-                        for &(theta4, ik_sg5) in &ik_c5[..ik_n5] {
-                            let ik_ap5 = false;
-                            let (s_theta4, c_theta4) = theta4.sin_cos();
+                        let ik_theta4_y = -(ik_t65 * ik_t67 + ik_t66 * ik_t68);
+                        let ik_theta4_x = ik_t65 * ik_t68 - ik_t66 * ik_t67;
+                        let ik_r5 = ik_atan2(ik_theta4_y, ik_theta4_x, &mut ik_m5);
+                        for ik_i5 in 0..ik_r5.n {
+                            let (theta4, s_theta4, c_theta4) = ik_r5.root(ik_i5);
                             if ik_out.n == IK_MAX {
-                                return ik_out;
+                                return;
                             }
                             ik_out.q[ik_out.n] = [theta1, theta2, theta3, theta4, theta5, theta6];
-                            ik_out.singular[ik_out.n] = ik_sg0 || ik_sg1 || ik_sg2 || ik_sg3 || ik_sg4 || ik_sg5;
-                            ik_out.approximate[ik_out.n] = ik_ap0 || ik_ap1 || ik_ap2 || ik_ap3 || ik_ap4 || ik_ap5;
+                            ik_out.singular[ik_out.n] = ik_r0.sg || ik_r1.sg || ik_r2.sg || ik_r3.sg || ik_r4.sg || ik_r5.sg;
+                            ik_out.approximate[ik_out.n] = ik_r0.ap || ik_r1.ap || ik_r2.ap || ik_r3.ap || ik_r4.ap || ik_r5.ap;
                             ik_out.n += 1;
                         }
                     }
@@ -156,6 +301,13 @@ pub fn ik(ik_target: &[[f64; 4]; 4], a2: f64, a3: f64, d1: f64, d4: f64, d5: f64
             }
         }
     }
+}
+
+/// Every solution for the target pose `t` (row-major homogeneous matrix).
+#[allow(non_snake_case, clippy::too_many_arguments)]
+pub fn ik(ik_target: &[[f64; 4]; 4], a2: f64, a3: f64, d1: f64, d4: f64, d5: f64, d6: f64) -> IkSolutions {
+    let mut ik_out = IkSolutions::default();
+    ik_into(&mut ik_out, ik_target, a2, a3, d1, d4, d5, d6);
     ik_out
 }
 

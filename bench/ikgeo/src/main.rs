@@ -86,15 +86,23 @@ fn main() {
         .warm_up_time(Duration::from_secs(1))
         .configure_from_args();
     let mut g = c.benchmark_group("ik_solver_all_branches");
+    // The solutions are written into a buffer the caller keeps (`ik_into`), as a controller
+    // calling the solver in its loop does.
+    let mut out = puma::IkSolutions::default();
     g.bench_function("dqsym_puma560_generated", |b| {
-        b.iter(|| puma::ik(black_box(&tp), 0.4318, 0.0203, 0.15005, 0.4318))
+        b.iter(|| {
+            puma::ik_into(&mut out, black_box(&tp), 0.4318, 0.0203, 0.15005, 0.4318);
+            out.n
+        })
     });
     g.bench_function("ikgeo_irb6640_spherical_two_parallel", |b| {
         b.iter(|| irb.ik(black_box(ri), black_box(ti)))
     });
+    let mut out = ur5::IkSolutions::default();
     g.bench_function("dqsym_ur5_generated", |b| {
         b.iter(|| {
-            ur5::ik(
+            ur5::ik_into(
+                &mut out,
                 black_box(&tu),
                 -0.425,
                 -0.39225,
@@ -102,7 +110,8 @@ fn main() {
                 0.10915,
                 0.09465,
                 0.0823,
-            )
+            );
+            out.n
         })
     });
     g.bench_function("ikgeo_ur5_three_parallel_two_intersecting", |b| {

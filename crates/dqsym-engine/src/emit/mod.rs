@@ -4,7 +4,7 @@
 //! printers, emitters never simplify: what they write equals the expression they were given.
 
 mod c;
-mod codegen;
+pub(crate) mod codegen;
 mod count;
 mod javascript;
 pub use latex::visual_len;
