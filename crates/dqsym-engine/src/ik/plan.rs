@@ -149,6 +149,74 @@ fn sp1(axis: &Axis, u: &V3, v: &V3) -> Formula {
     }
 }
 
+/// A step's text written for the reversed chain (axis j' is axis n + 1 − j) in the arm's own
+/// numbering: the numbers after `axis`, `axes`, `joint`, `joints` (lists joined by `, `, ` and `,
+/// `-`), and the digits of `k2`, `p1`, `R4`, `R456`, `theta4` (each digit one axis).
+fn renumber(text: &str, n: usize) -> String {
+    let map = |d: usize| if (1..=n).contains(&d) { n + 1 - d } else { d };
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = String::new();
+    let mut i = 0;
+    let word_start = |i: usize| i == 0 || !chars[i - 1].is_alphanumeric();
+    let starts = |i: usize, w: &str| {
+        chars[i..]
+            .iter()
+            .take(w.chars().count())
+            .copied()
+            .eq(w.chars())
+    };
+    while i < chars.len() {
+        if word_start(i) {
+            if let Some(w) = ["axis ", "axes ", "joint ", "joints "]
+                .into_iter()
+                .find(|w| starts(i, w))
+            {
+                out.push_str(w);
+                i += w.len();
+                // A list of numbers: 1, 2 and 3; 2-6.
+                loop {
+                    let j = i;
+                    while i < chars.len() && chars[i].is_ascii_digit() {
+                        i += 1;
+                    }
+                    if i == j {
+                        break;
+                    }
+                    let d: String = chars[j..i].iter().collect();
+                    out.push_str(&d.parse().map_or(d.clone(), |d| map(d).to_string()));
+                    let sep = [", ", " and ", "-"].into_iter().find(|sep| {
+                        starts(i, sep) && chars.get(i + sep.len()).is_some_and(char::is_ascii_digit)
+                    });
+                    match sep {
+                        Some(sep) => {
+                            out.push_str(sep);
+                            i += sep.len();
+                        }
+                        None => break,
+                    }
+                }
+                continue;
+            }
+            if let Some(w) = ["theta", "k", "p", "R"]
+                .into_iter()
+                .find(|w| starts(i, w) && chars.get(i + w.len()).is_some_and(char::is_ascii_digit))
+            {
+                out.push_str(w);
+                i += w.len();
+                while i < chars.len() && chars[i].is_ascii_digit() {
+                    let d = chars[i].to_digit(10).unwrap_or(0) as usize;
+                    out.push_str(&map(d).to_string());
+                    i += 1;
+                }
+                continue;
+            }
+        }
+        out.push(chars[i]);
+        i += 1;
+    }
+    out
+}
+
 struct Builder<'a> {
     axes: &'a [Axis],
     steps: Vec<IkStep>,
@@ -588,12 +656,8 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, String>
                 wrist_orientation(&mut rb, &tr)?;
                 for mut s in rb.steps {
                     s.joint = n - 1 - s.joint;
-                    s.method = format!(
-                        "chain reversed (axis j' = axis {} − j): {}",
-                        n + 1,
-                        s.method
-                    );
-                    s.singular = format!("chain reversed: {}", s.singular);
+                    s.method = format!("chain reversed: {}", renumber(&s.method, n));
+                    s.singular = format!("chain reversed: {}", renumber(&s.singular, n));
                     // The reversed chain's shoulder is the arm's wrist and the other way round.
                     if let Some(br) = &mut s.branch {
                         br.0 = match br.0.as_str() {
@@ -614,7 +678,9 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, String>
                     format!(
                         "6 joints with a spherical shoulder (axes 1, 2, 3 through one point): \
                          the chain reversed, G⁻¹ = E6⁻¹ ⋯ E1⁻¹ about the reversed axes \
-                         1' = 6, ..., 6' = 1, is a spherical-wrist arm (Pieper), in the primed numbering: {pos}"
+                         1' = 6, ..., 6' = 1, is a spherical-wrist arm (Pieper); in the arm's own \
+                         numbering: {}",
+                        renumber(&pos, n)
                     ),
                     false,
                 )));

@@ -36,38 +36,63 @@ impl Scalar {
     /// angle) or is above 8 in magnitude, or for an error value.
     pub fn to_cos_sin_polynomial(&self) -> Option<Scalar> {
         let terms = self.terms().ok()?;
-        let mut out = Scalar::int(0);
-        for t in terms {
-            let trig = mode_polynomial(&t.mode)?;
-            let rest = Scalar::from_terms_sorted(vec![Term {
-                mode: Mode::unit(),
-                ..t.clone()
-            }]);
-            out = out + rest * trig;
+        // Terms are sorted by mode first: one expansion per mode, times the sum of its
+        // coefficients (still sorted with the mode made the unit), and the products summed
+        // pairwise, so that no sum grows one term at a time.
+        let mut parts = Vec::new();
+        let mut cache = TrigCache::new();
+        for run in terms.chunk_by(|a, b| a.mode == b.mode) {
+            let trig = mode_polynomial(&run[0].mode, &mut cache)?;
+            let rest = Scalar::from_terms_sorted(
+                run.iter()
+                    .map(|t| Term {
+                        mode: Mode::unit(),
+                        ..t.clone()
+                    })
+                    .collect(),
+            );
+            parts.push(rest * trig);
         }
-        out.check().ok()
+        while parts.len() > 1 {
+            let mut next = Vec::with_capacity(parts.len().div_ceil(2));
+            let mut it = parts.into_iter();
+            while let Some(a) = it.next() {
+                next.push(match it.next() {
+                    Some(b) => a + b,
+                    None => a,
+                });
+            }
+            parts = next;
+        }
+        parts.pop().unwrap_or_else(|| Scalar::int(0)).check().ok()
     }
 }
 
 /// The largest multiple `k` of an angle symbol `cos(k x)` may hold.
 const MAX_MULTIPLE: i64 = 8;
 
-/// `cos` or `sin` of a mode's angle as a placeholder polynomial.
-fn mode_polynomial(m: &Mode) -> Option<Scalar> {
+/// `(cos, sin)` of the sums `k1 x1 + ... + kj xj` already expanded, by their terms.
+type TrigCache = std::collections::HashMap<Vec<(String, i64)>, (Scalar, Scalar)>;
+
+/// `cos` or `sin` of a mode's angle as a placeholder polynomial; the expansions of the
+/// angle's leading sums are shared through `cache` (`theta1 + theta2` serves `theta1 +
+/// theta2 - theta4`, and `cos` and `sin` of one angle are one expansion).
+fn mode_polynomial(m: &Mode, cache: &mut TrigCache) -> Option<Scalar> {
     if m.is_unit() {
         return Some(Scalar::int(1));
     }
-    // (C, S) = (cos, sin) of the part so far, starting from the exact pi multiple.
-    let offset = Scalar::pi()
-        * Scalar::rational(super::BigRational::new(
-            (*m.pi.numer()).into(),
-            (*m.pi.denom()).into(),
-        ));
-    let (mut c, mut s) = (offset.cos(), offset.sin());
+    // (C, S) = (cos, sin) of the part so far.
+    let (mut c, mut s) = (Scalar::int(1), Scalar::int(0));
+    let mut key = Vec::new();
     for (x, k) in m.freq.iter() {
         // Integer multiples only, and small ones: k x is |k| angle additions of +-x.
         if *k.denom() != 1 || k.numer().abs() > MAX_MULTIPLE || x.is_unit() {
             return None;
+        }
+        key.push((x.name().to_string(), *k.numer()));
+        if let Some((kc, ks)) = cache.get(&key) {
+            (c, s) = (kc.clone(), ks.clone());
+            continue;
         }
         let cx = trig_placeholder(x.name(), false);
         let sx = trig_placeholder(x.name(), true);
@@ -78,6 +103,19 @@ fn mode_polynomial(m: &Mode) -> Option<Scalar> {
             s = s * &cx + c * &sx;
             c = c2;
         }
+        cache.insert(key.clone(), (c.clone(), s.clone()));
+    }
+    // The exact pi multiple last.
+    if *m.pi.numer() != 0 {
+        let offset = Scalar::pi()
+            * Scalar::rational(super::BigRational::new(
+                (*m.pi.numer()).into(),
+                (*m.pi.denom()).into(),
+            ));
+        let (co, so) = (offset.cos(), offset.sin());
+        let c2 = c.clone() * &co - s.clone() * &so;
+        s = s * &co + c * &so;
+        c = c2;
     }
     Some(if m.sin { s } else { c })
 }
