@@ -518,8 +518,10 @@ const IK_JS: &str = r#"(function () {
             if (rad < -1e-8 * n) return [];
             const sing = rad <= 1e-12 * n;
             if (sing) rad = 0;
-            const phi = Math.atan2(b, a), w = Math.atan2(Math.sqrt(rad), c);
-            return [[phi + w, sing], [phi - w, sing]];
+            // atan2(b, a) +- atan2(r, c) as atan2(b c +- a r, a c -+ b r), as the solvers do.
+            const r = Math.sqrt(rad);
+            return [[Math.atan2(b * c + a * r, a * c - b * r), sing],
+                [Math.atan2(b * c - a * r, a * c + b * r), sing]];
         }
         const [b, g] = v, scale = Math.max(b * b, Math.abs(g), 1);
         let rad = b * b - g;

@@ -285,6 +285,54 @@ fn a_seven_joint_arm_without_free_gets_a_free_joint_chosen_from_its_geometry() {
     round_trip("panda", None, 200, 15);
 }
 
+/// The reversed chain (Franka Panda's spherical shoulder) states its steps in the arm's own
+/// joint numbers: the joint a step says turns (or alone sets a distance) is the joint it solves.
+#[test]
+fn reversed_chain_steps_use_the_arms_joint_numbers() {
+    let sol = derive("panda", Some("theta7")).expect("derive");
+    let mut checked = 0;
+    for st in &sol.steps {
+        assert!(st.method.starts_with("chain reversed: "), "{}", st.method);
+        assert!(
+            !st.method.contains('\''),
+            "primed numbering left: {}",
+            st.method
+        );
+        for verb in ["turns", "alone sets"] {
+            for (i, _) in st.method.match_indices(&format!(" {verb} ")) {
+                let head = &st.method[..i];
+                if let Some(n) = head.strip_prefix_last("joint ") {
+                    assert_eq!(
+                        n,
+                        (st.joint + 1).to_string(),
+                        "{}: {}",
+                        st.variable,
+                        st.method
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked >= 3, "{checked} steps named their joint");
+}
+
+trait LastPrefix {
+    fn strip_prefix_last(&self, p: &str) -> Option<&str>;
+}
+
+impl LastPrefix for str {
+    /// What follows the last `p` when it ends the text.
+    fn strip_prefix_last(&self, p: &str) -> Option<&str> {
+        let k = self.rfind(p)?;
+        let rest = &self[k + p.len()..];
+        rest.chars()
+            .all(|c| c.is_ascii_digit())
+            .then_some(rest)
+            .filter(|r| !r.is_empty())
+    }
+}
+
 #[test]
 fn panda_with_free_theta7_round_trip() {
     // No spherical wrist: axes 1, 2, 3 meet (a spherical shoulder), so with theta7 given the
