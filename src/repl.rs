@@ -191,7 +191,7 @@ fn vars(session: &Session) -> String {
     for (name, b) in session.bindings() {
         let what = match &b.kind {
             BindingKind::Symbol => "symbol".to_owned(),
-            BindingKind::HalfAngle { meaning } => meaning.clone(),
+            BindingKind::HalfAngle { .. } => b.kind.half_angle_meaning().unwrap_or_default(),
             _ => b.value.describe(),
         };
         s += &format!("  {name}: {what}\n");

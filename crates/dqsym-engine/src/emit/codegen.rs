@@ -11,7 +11,7 @@
 //! per distinct angle.
 
 use crate::closed::{angle_text, shorthand_name, Angle, Expr};
-use crate::scalar::{Small, Sym};
+use crate::scalar::{Small, Sym, Trig};
 use num_integer::Integer;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::collections::{BTreeMap, HashMap, HashSet};
@@ -368,12 +368,11 @@ impl Builder<'_> {
                     .ok_or_else(|| CodegenError::Unbound(s.name().to_string()))?;
                 self.node(Node::Arg(i))
             }
-            Expr::Trig { sin, angle } => {
+            Expr::Trig { f, angle } => {
                 let (c, s) = self.cos_sin(angle)?;
-                if *sin {
-                    s
-                } else {
-                    c
+                match f {
+                    Trig::Cos => c,
+                    Trig::Sin => s,
                 }
             }
             Expr::Add(v) => {
@@ -649,14 +648,14 @@ impl Builder<'_> {
 /// `s1, c1` for theta1, `sh1, ch1` for theta1 / 2, `s23, c23` for theta2 + theta3, else
 /// `s_a<i>, c_a<i>`.
 fn atom_names(a: &Angle, i: usize, taken: &HashSet<String>) -> (String, String) {
-    let short = shorthand_name(true, a)
+    let short = shorthand_name(Trig::Sin, a)
         .map(|s| s[1..].to_string())
         .or_else(|| {
             let half = Angle {
                 terms: a.terms.iter().map(|(s, k)| (s.clone(), *k * 2)).collect(),
                 pi: a.pi * 2,
             };
-            let h = shorthand_name(true, &half)?;
+            let h = shorthand_name(Trig::Sin, &half)?;
             Some(format!("h{}", &h[1..]))
         });
     let body = short
@@ -676,9 +675,12 @@ const PRODUCT: u8 = 2;
 const UNARY: u8 = 3;
 
 impl Program {
-    /// Whether the sine (`true`) or cosine of atom `i` is read.
-    pub fn atom_used(&self, i: usize, sin: bool) -> bool {
-        let n = if sin { Node::Sin(i) } else { Node::Cos(i) };
+    /// Whether the sine or cosine of atom `i` is read.
+    pub fn atom_used(&self, i: usize, f: Trig) -> bool {
+        let n = match f {
+            Trig::Cos => Node::Cos(i),
+            Trig::Sin => Node::Sin(i),
+        };
         self.nodes
             .iter()
             .position(|x| *x == n)
@@ -694,7 +696,7 @@ impl Program {
             .is_some_and(|id| self.uses[id] > 0);
         direct
             || self.atoms.iter().enumerate().any(|(k, a)| {
-                (self.atom_used(k, true) || self.atom_used(k, false))
+                (self.atom_used(k, Trig::Sin) || self.atom_used(k, Trig::Cos))
                     && a.angle.terms.iter().any(|(s, _)| s.name() == self.args[i])
             })
     }

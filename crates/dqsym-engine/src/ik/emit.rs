@@ -70,8 +70,8 @@ fn code(e: &Expr, lang: Lang, bound: &[&str]) -> String {
             ("pi", Lang::Python) => "math.pi".into(),
             (n, _) => n.to_string(),
         },
-        Expr::Trig { sin, angle } => {
-            let f = if *sin { "sin" } else { "cos" };
+        Expr::Trig { f, angle } => {
+            let f = f.name();
             // A solved joint's cosine and sine are locals (one sin_cos per joint).
             if angle.pi.is_zero() && angle.terms.len() == 1 && angle.terms[0].1.is_one() {
                 let n = angle.terms[0].0.name();

@@ -76,6 +76,47 @@ impl fmt::Display for Sym {
     }
 }
 
+/// The two trigonometric functions of the canonical form and of display expressions.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+pub enum Trig {
+    /// The cosine.
+    Cos,
+    /// The sine.
+    Sin,
+}
+
+impl Trig {
+    /// `Sin` when `sin` is true, else `Cos`.
+    pub fn of(sin: bool) -> Trig {
+        if sin {
+            Trig::Sin
+        } else {
+            Trig::Cos
+        }
+    }
+
+    /// Whether this is the sine.
+    pub fn is_sin(self) -> bool {
+        self == Trig::Sin
+    }
+
+    /// The function's name: `cos` or `sin`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Trig::Cos => "cos",
+            Trig::Sin => "sin",
+        }
+    }
+
+    /// The function's value at `x` in f64.
+    pub fn f64(self, x: f64) -> f64 {
+        match self {
+            Trig::Cos => x.cos(),
+            Trig::Sin => x.sin(),
+        }
+    }
+}
+
 /// A small exact rational for frequencies and pi offsets; bounded so sums never overflow.
 pub type Small = Ratio<i64>;
 
