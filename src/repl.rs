@@ -202,8 +202,14 @@ fn vars(session: &Session) -> String {
     s
 }
 
+/// Why a statement failed: Ctrl-C stopped it, or an error to print.
+enum Failure {
+    Interrupted,
+    Error(String),
+}
+
 /// What a worker sends back for one statement.
-type Outcome = (Session, Result<Option<String>, String>);
+type Outcome = (Session, Result<Option<String>, Failure>);
 
 /// The state of one interactive session.
 struct Repl<'a> {
@@ -378,15 +384,15 @@ impl Repl<'_> {
                     let result = match work.exec(&stmt) {
                         Ok(Some(d)) => show(&d, &opts).map(Some).map_err(|e| match e {
                             dqsym::ShowError::Scalar(dqsym::ScalarError::Cancelled) => {
-                                INTERRUPTED.to_owned()
+                                Failure::Interrupted
                             }
-                            e => format!("error: {e}"),
+                            e => Failure::Error(format!("error: {e}")),
                         }),
                         Ok(None) => Ok(None),
                         Err(e) if matches!(e.kind(), EvalErrorKind::Interrupted) => {
-                            Err(INTERRUPTED.to_owned())
+                            Err(Failure::Interrupted)
                         }
-                        Err(e) => Err(e.render(&source)),
+                        Err(e) => Err(Failure::Error(e.render(&source))),
                     };
                     let _ = tx.send((work, result));
                 });
@@ -409,10 +415,12 @@ impl Repl<'_> {
                         print!("{text}");
                     }
                 }
-                Some((_, Err(message))) => {
-                    if message == INTERRUPTED {
-                        release_freed_memory();
-                    }
+                Some((_, Err(Failure::Interrupted))) => {
+                    release_freed_memory();
+                    eprintln!("{INTERRUPTED}");
+                    return false;
+                }
+                Some((_, Err(Failure::Error(message)))) => {
                     eprintln!("{message}");
                     return false;
                 }
