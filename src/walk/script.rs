@@ -389,11 +389,14 @@ impl ScriptWalk {
                 values: Vec::new(),
             });
         }
-        Walkthrough {
+        let mut w = Walkthrough {
             title: title.to_owned(),
             steps: self.steps,
             mechanism,
-        }
+            forms: super::Forms::default(),
+        };
+        w.prepare();
+        w
     }
 }
 

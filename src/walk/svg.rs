@@ -188,6 +188,20 @@ fn motion_dq(m: &Motion) -> DualQuat<Scalar> {
 }
 
 impl Scene {
+    /// The exact scalars of the scene: joint positions and axes, tool, pose matrix and DQ.
+    pub(crate) fn scalars(&self) -> impl Iterator<Item = &Scalar> {
+        self.joints
+            .iter()
+            .flat_map(|(p, n)| p.iter().chain(n))
+            .chain(&self.tool)
+            .chain(self.matrix.rows.iter().flatten())
+            .chain(
+                [&self.pose.real, &self.pose.dual]
+                    .into_iter()
+                    .flat_map(|q| [&q.w, &q.x, &q.y, &q.z]),
+            )
+    }
+
     /// The scene of `m`, with the values of `cfg`, then of the robot file, then the defaults.
     pub(crate) fn new(m: &Mechanism, cfg: &Config) -> Result<Scene, WalkError> {
         // The joint variables, in order, and whether each slides.
