@@ -81,7 +81,7 @@ impl Names {
         }
         let half = num_rational::Ratio::new(1, 2);
         let full = a.is_plain_sum();
-        let is_half = a.terms.iter().all(|(s, k)| *k == half && s.name() != "1");
+        let is_half = a.terms.iter().all(|(s, k)| *k == half && !s.is_unit());
         if !full && !is_half {
             return None;
         }

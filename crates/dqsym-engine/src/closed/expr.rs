@@ -22,7 +22,7 @@ impl Angle {
     pub fn to_scalar(&self) -> Scalar {
         let mut a = Scalar::pi() * small(&self.pi);
         for (s, k) in &self.terms {
-            let v = if s.name() == "1" {
+            let v = if s.is_unit() {
                 Scalar::int(1)
             } else {
                 Scalar::sym(s.name())
@@ -53,11 +53,20 @@ impl Angle {
 
     /// True when every coefficient is 1 and there is no pi part: `theta1 + theta2`.
     pub fn is_plain_sum(&self) -> bool {
-        self.pi.is_zero()
-            && self
-                .terms
-                .iter()
-                .all(|(s, k)| k.is_one() && s.name() != "1")
+        self.pi.is_zero() && self.terms.iter().all(|(s, k)| k.is_one() && !s.is_unit())
+    }
+
+    /// The rational constant of the angle (not a multiple of pi): `1` in `t + 1`.
+    pub fn constant(&self) -> Small {
+        self.terms
+            .iter()
+            .find(|(s, _)| s.is_unit())
+            .map_or_else(Small::zero, |(_, k)| *k)
+    }
+
+    /// The terms in symbols, the constant left out.
+    pub fn symbol_terms(&self) -> impl Iterator<Item = &(Sym, Small)> {
+        self.terms.iter().filter(|(s, _)| !s.is_unit())
     }
 }
 
@@ -138,13 +147,9 @@ impl Expr {
                     Some((x, _)) => out.push(x.to_owned()),
                     None => out.push(s.name().to_owned()),
                 },
-                Expr::Trig { angle, .. } => out.extend(
-                    angle
-                        .terms
-                        .iter()
-                        .map(|(s, _)| s.name().to_owned())
-                        .filter(|n| n != "1"),
-                ),
+                Expr::Trig { angle, .. } => {
+                    out.extend(angle.symbol_terms().map(|(s, _)| s.name().to_owned()))
+                }
                 Expr::Add(v) | Expr::Mul(v) => v.iter().for_each(|x| walk(x, out)),
                 Expr::Neg(x) | Expr::Pow(x, _) => walk(x, out),
             }

@@ -71,7 +71,7 @@ pub fn angle_text(angle: &Angle) -> String {
         }
     };
     for (sym, k) in &angle.terms {
-        let name = if sym.name() == "1" { "" } else { sym.name() };
+        let name = if sym.is_unit() { "" } else { sym.name() };
         push(*k, name, &mut s);
     }
     if !angle.pi.is_zero() {

@@ -358,7 +358,7 @@ impl Builder<'_> {
         Ok(match e {
             Expr::Num(q) => self.constant(q.to_f64().unwrap_or(f64::NAN)),
             Expr::Sqrt(n) => self.constant((*n as f64).sqrt()),
-            Expr::Sym(s) if s.name() == "pi" => self.constant(std::f64::consts::PI),
+            Expr::Sym(s) if s.is_pi() => self.constant(std::f64::consts::PI),
             Expr::Sym(s) if self.bound.contains_key(s.name()) => self.bound[s.name()],
             Expr::Sym(s) => {
                 let i = self
@@ -482,23 +482,13 @@ impl Builder<'_> {
     }
 
     fn cos_sin(&mut self, angle: &Angle) -> Result<(Id, Id), CodegenError> {
-        for (s, _) in &angle.terms {
-            if s.name() != "1" && !self.args.iter().any(|a| a == s.name()) {
+        for (s, _) in angle.symbol_terms() {
+            if !self.args.iter().any(|a| a == s.name()) {
                 return Err(CodegenError::Unbound(s.name().to_string()));
             }
         }
-        let sym_terms: Vec<(Sym, Small)> = angle
-            .terms
-            .iter()
-            .filter(|(s, _)| s.name() != "1")
-            .cloned()
-            .collect();
-        let unit: f64 = angle
-            .terms
-            .iter()
-            .filter(|(s, _)| s.name() == "1")
-            .map(|(_, k)| k.to_f64().unwrap_or(f64::NAN))
-            .sum();
+        let sym_terms: Vec<(Sym, Small)> = angle.symbol_terms().cloned().collect();
+        let unit: f64 = angle.constant().to_f64().unwrap_or(f64::NAN);
         let var = if sym_terms.is_empty() {
             None
         } else if self.o.expand_angles {

@@ -453,7 +453,7 @@ fn latex_angle(angle: &Angle) -> String {
         .terms
         .iter()
         .map(|(sym, k)| {
-            let name = (sym.name() != "1").then(|| latex_symbol(sym.name()));
+            let name = (!sym.is_unit()).then(|| latex_symbol(sym.name()));
             (*k, name)
         })
         .collect();

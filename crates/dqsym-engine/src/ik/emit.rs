@@ -31,7 +31,7 @@ fn angle_code(a: &Angle, lang: Lang) -> String {
     let mut parts = Vec::new();
     for (s, k) in &a.terms {
         let k = k.to_f64().unwrap_or(f64::NAN);
-        let name = if s.name() == "1" {
+        let name = if s.is_unit() {
             lit(1.0, lang)
         } else {
             s.name().to_string()

@@ -44,7 +44,9 @@ impl Sym {
         &*self.0 == "pi"
     }
 
-    pub(crate) fn is_unit(&self) -> bool {
+    /// Whether this is the pseudo-symbol whose value is 1, which carries the rational constant
+    /// of an angle (`cos(t + 1)`); [`Angle::constant`](crate::Angle::constant) reads it.
+    pub fn is_unit(&self) -> bool {
         &*self.0 == "1"
     }
 }
