@@ -173,16 +173,12 @@ fn ik_command(session: &Session, cmd: &str, opts: &ShowOptions) -> Result<String
     let _derivation = dqsym::Context::entered().enter();
     let sol = dqsym::ik::solve_dq(name, &q, &vars, &dqsym::ik::IkOptions { free })
         .map_err(|e| e.to_string())?;
+    // The report, in LaTeX or SymPy when those are the session's format, else in plain text.
     let format = match opts.format {
-        dqsym::Format::Latex => dqsym::ik::IkFormat::Latex {
-            shorthand: !opts.explicit,
-        },
-        dqsym::Format::Sympy => dqsym::ik::IkFormat::Sympy,
-        _ => dqsym::ik::IkFormat::Plain {
-            shorthand: !opts.explicit,
-        },
+        f @ (dqsym::Format::Latex | dqsym::Format::Sympy) => f,
+        _ => dqsym::Format::Plain,
     };
-    dqsym::ik::ik_report(&sol, format).map_err(|e| e.to_string())
+    dqsym::ik::ik_report(&sol, format, !opts.explicit).map_err(|e| e.to_string())
 }
 
 /// The `:vars` listing.

@@ -16,7 +16,7 @@ mod walk;
 
 pub use axes::{home_axes, intersection, relation, Axis, Relation, V3};
 pub use emit::{ik_c, ik_python, ik_rust};
-pub use report::{ik_report, IkFormat};
+pub use report::ik_report;
 pub use walk::ik_walk;
 
 use crate::kin::Robot;
