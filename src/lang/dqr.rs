@@ -67,25 +67,43 @@ pub(super) const TABLE: [Builtin; 66] = [
     b("point_projected_in_line", "point_projected_in_line(p, line)", 2, 2, "the projection l x m + (p . l) l of the point p on the line l + eps m, a pure quaternion", "point_projected_in_line((l, 1, 0), line((1, 0, 0), (0, 0, d1)))", run_point_projected_in_line),
     b("closest_points_between_lines", "closest_points_between_lines(l1, l2)", 2, 2, "the closest points of two non-parallel lines, the rows of a 2x3 matrix (a quotient by |l1 x l2|^2 when symbolic); DQ Robotics returns a pair", "closest_points_between_lines(line((1, 0, 0), (0, 0, 0)), line((0, 1, 0), (l, 0, d1)))", run_closest_points_between_lines),
     b("line_to_line_angle", "line_to_line_angle(l1, l2)", 2, 2, "acos(P(l1 . l2)), read exactly when that is cos of an angle", "line_to_line_angle(line((1, 0, 0), (0, 0, 0)), Ad(rot((0, 0, 1), theta1), line((1, 0, 0), (0, 0, l))))", run_line_to_line_angle),
-    b("pose_jacobian", "pose_jacobian(x, [q1, q2, ...])", 2, 2, "d vec8(x) / dq, 8 x n (the same as jacobian)", "pose_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])", run_task_jacobian),
-    b("rotation_jacobian", "rotation_jacobian(x, [q1, ...])", 2, 2, "d vec4(P(x)) / dq of a unit pose, 4 x n", "rotation_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])", run_task_jacobian),
-    b("translation_jacobian", "translation_jacobian(x, [q1, ...])", 2, 2, "d vec4(translation(x)) / dq of a unit pose, 4 x n", "translation_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])", run_task_jacobian),
-    b("line_jacobian", "line_jacobian(x, [q1, ...], direction)", 3, 3, "d vec8(l + eps t x l) / dq, l = r direction r* (direction in the frame x)", "line_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))", run_task_jacobian),
-    b("plane_jacobian", "plane_jacobian(x, [q1, ...], normal)", 3, 3, "d vec8(n + eps t . n) / dq, n = r normal r* (normal in the frame x)", "plane_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))", run_task_jacobian),
-    b("distance_jacobian", "distance_jacobian(x, [q1, ...])", 2, 2, "d |translation(x)|^2 / dq, 1 x n", "distance_jacobian(dh(theta1, 0, l, 0) * dh(t, 0, l, 0), [theta1, t])", run_task_jacobian),
-    b("point_to_point_distance_jacobian", "point_to_point_distance_jacobian(x, [q1, ...], p)", 3, 3, "d |t - p|^2 / dq, t = translation(x), p a workspace point, 1 x n", "point_to_point_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0))", run_task_jacobian),
-    b("point_to_line_distance_jacobian", "point_to_line_distance_jacobian(x, [q1, ...], line)", 3, 3, "d |t x l - m|^2 / dq for the workspace line l + eps m, 1 x n", "point_to_line_distance_jacobian(dh(theta1, 0, l, 0), [theta1], line((0, 1, 0), (1, 0, 0)))", run_task_jacobian),
-    b("point_to_plane_distance_jacobian", "point_to_plane_distance_jacobian(x, [q1, ...], plane)", 3, 3, "d (t . n - d) / dq for the workspace plane n + eps d, 1 x n", "point_to_plane_distance_jacobian(dh(theta1, 0, l, 0), [theta1], plane((1, 0, 0), (1, 0, 0)))", run_task_jacobian),
-    b("line_to_point_distance_jacobian", "line_to_point_distance_jacobian(x, [q1, ...], direction, p)", 4, 4, "d |p x l - m|^2 / dq: the workspace point p from the robot line l + eps t x l, l = r direction r*, 1 x n", "line_to_point_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 1, 0), (1, 0, 0))", run_task_jacobian),
-    b("plane_to_point_distance_jacobian", "plane_to_point_distance_jacobian(x, [q1, ...], normal, p)", 4, 4, "d (p . n - d) / dq: the workspace point p from the robot plane n + eps t . n, n = r normal r*, 1 x n", "plane_to_point_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0), (0, 1, 0))", run_task_jacobian),
-    b("line_to_line_distance_jacobian", "line_to_line_distance_jacobian(x, [q1, ...], direction, line)", 4, 4, "d of line_to_line_squared_distance(robot line, line) / dq, the robot line through t along r direction r*: a quotient, 1 x n", "line_to_line_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0), line((0, 3/5, 4/5), (0, 0, 1)))", run_task_jacobian),
-    b("line_to_line_angle_jacobian", "line_to_line_angle_jacobian(x, [q1, ...], direction, line)", 4, 4, "d |P(l) - P(line)|^2 / dq, l = r direction r* the robot line's direction, 1 x n", "line_to_line_angle_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0), line((0, 1, 0), (0, 0, 0)))", run_task_jacobian),
-    b("pose_jacobian_derivative", "pose_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of the pose Jacobian, sum_k dJ/dq_k q_k_dot (rates named q_dot)", "pose_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])", run_task_jacobian),
-    b("rotation_jacobian_derivative", "rotation_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of rotation_jacobian (rates named q_dot)", "rotation_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])", run_task_jacobian),
-    b("translation_jacobian_derivative", "translation_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of translation_jacobian (rates named q_dot)", "translation_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])", run_task_jacobian),
-    b("line_jacobian_derivative", "line_jacobian_derivative(x, [q1, ...], direction)", 3, 3, "the time derivative of line_jacobian (rates named q_dot)", "line_jacobian_derivative(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))", run_task_jacobian),
-    b("plane_jacobian_derivative", "plane_jacobian_derivative(x, [q1, ...], normal)", 3, 3, "the time derivative of plane_jacobian (rates named q_dot)", "plane_jacobian_derivative(dh(theta1, 0, l, 0), [theta1], (1, 0, 0))", run_task_jacobian),
-    b("distance_jacobian_derivative", "distance_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of distance_jacobian (rates named q_dot)", "distance_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, 0, l, 0), [theta1, t])", run_task_jacobian),
+    b("pose_jacobian", "pose_jacobian(x, [q1, q2, ...])", 2, 2, "d vec8(x) / dq, 8 x n (the same as jacobian)", "pose_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])", |n, v, _| task_jacobian(n, v, |_, _| Ok(TaskJacobian::Pose), false)),
+    b("rotation_jacobian", "rotation_jacobian(x, [q1, ...])", 2, 2, "d vec4(P(x)) / dq of a unit pose, 4 x n", "rotation_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])", |n, v, _| task_jacobian(n, v, |_, _| Ok(TaskJacobian::Rotation), false)),
+    b("translation_jacobian", "translation_jacobian(x, [q1, ...])", 2, 2, "d vec4(translation(x)) / dq of a unit pose, 4 x n", "translation_jacobian(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])", |n, v, _| task_jacobian(n, v, |_, _| Ok(TaskJacobian::Translation), false)),
+    b("line_jacobian", "line_jacobian(x, [q1, ...], direction)", 3, 3, "d vec8(l + eps t x l) / dq, l = r direction r* (direction in the frame x)", "line_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))", |n, v, _| task_jacobian(n, v, |n, v| Ok(TaskJacobian::Line(vec_at(n, v, 2, "the direction")?)), false)),
+    b("plane_jacobian", "plane_jacobian(x, [q1, ...], normal)", 3, 3, "d vec8(n + eps t . n) / dq, n = r normal r* (normal in the frame x)", "plane_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))", |n, v, _| task_jacobian(n, v, |n, v| Ok(TaskJacobian::Plane(vec_at(n, v, 2, "the normal")?)), false)),
+    b("distance_jacobian", "distance_jacobian(x, [q1, ...])", 2, 2, "d |translation(x)|^2 / dq, 1 x n", "distance_jacobian(dh(theta1, 0, l, 0) * dh(t, 0, l, 0), [theta1, t])", |n, v, _| task_jacobian(n, v, |_, _| Ok(TaskJacobian::Distance), false)),
+    b("point_to_point_distance_jacobian", "point_to_point_distance_jacobian(x, [q1, ...], p)", 3, 3, "d |t - p|^2 / dq, t = translation(x), p a workspace point, 1 x n", "point_to_point_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0))", |n, v, _| task_jacobian(n, v, |n, v| Ok(TaskJacobian::PointToPoint(vec_at(n, v, 2, "the point")?)), false)),
+    b("point_to_line_distance_jacobian", "point_to_line_distance_jacobian(x, [q1, ...], line)", 3, 3, "d |t x l - m|^2 / dq for the workspace line l + eps m, 1 x n", "point_to_line_distance_jacobian(dh(theta1, 0, l, 0), [theta1], line((0, 1, 0), (1, 0, 0)))", |n, v, _| task_jacobian(n, v, |n, v| {
+            let (l, p) = workspace_line(n, v, 2)?;
+            Ok(TaskJacobian::PointToLine(l, p))
+        }, false)),
+    b("point_to_plane_distance_jacobian", "point_to_plane_distance_jacobian(x, [q1, ...], plane)", 3, 3, "d (t . n - d) / dq for the workspace plane n + eps d, 1 x n", "point_to_plane_distance_jacobian(dh(theta1, 0, l, 0), [theta1], plane((1, 0, 0), (1, 0, 0)))", |n, v, _| task_jacobian(n, v, |n, v| {
+            let (nn, p) = plane_arg(n, &v[2])?;
+            Ok(TaskJacobian::PointToPlane(nn, p))
+        }, false)),
+    b("line_to_point_distance_jacobian", "line_to_point_distance_jacobian(x, [q1, ...], direction, p)", 4, 4, "d |p x l - m|^2 / dq: the workspace point p from the robot line l + eps t x l, l = r direction r*, 1 x n", "line_to_point_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (0, 1, 0), (1, 0, 0))", |n, v, _| task_jacobian(n, v, |n, v| {
+            Ok(TaskJacobian::LineToPoint(vec_at(n, v, 2, "the direction")?, vec_at(n, v, 3, "the point")?))
+        }, false)),
+    b("plane_to_point_distance_jacobian", "plane_to_point_distance_jacobian(x, [q1, ...], normal, p)", 4, 4, "d (p . n - d) / dq: the workspace point p from the robot plane n + eps t . n, n = r normal r*, 1 x n", "plane_to_point_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0), (0, 1, 0))", |n, v, _| task_jacobian(n, v, |n, v| {
+            Ok(TaskJacobian::PlaneToPoint(vec_at(n, v, 2, "the normal")?, vec_at(n, v, 3, "the point")?))
+        }, false)),
+    b("line_to_line_distance_jacobian", "line_to_line_distance_jacobian(x, [q1, ...], direction, line)", 4, 4, "d of line_to_line_squared_distance(robot line, line) / dq, the robot line through t along r direction r*: a quotient, 1 x n", "line_to_line_distance_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0), line((0, 3/5, 4/5), (0, 0, 1)))", |n, v, _| task_jacobian(n, v, |n, v| {
+            let l0 = vec_at(n, v, 2, "the direction")?;
+            let (l, p) = workspace_line(n, v, 3)?;
+            Ok(TaskJacobian::LineToLine(l0, l, p))
+        }, false)),
+    b("line_to_line_angle_jacobian", "line_to_line_angle_jacobian(x, [q1, ...], direction, line)", 4, 4, "d |P(l) - P(line)|^2 / dq, l = r direction r* the robot line's direction, 1 x n", "line_to_line_angle_jacobian(dh(theta1, 0, l, 0), [theta1], (1, 0, 0), line((0, 1, 0), (0, 0, 0)))", |n, v, _| task_jacobian(n, v, |n, v| {
+            let l0 = vec_at(n, v, 2, "the direction")?;
+            let (l, p) = workspace_line(n, v, 3)?;
+            Ok(TaskJacobian::LineToLineAngle(l0, l, p))
+        }, false)),
+    b("pose_jacobian_derivative", "pose_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of the pose Jacobian, sum_k dJ/dq_k q_k_dot (rates named q_dot)", "pose_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])", |n, v, _| task_jacobian(n, v, |_, _| Ok(TaskJacobian::Pose), true)),
+    b("rotation_jacobian_derivative", "rotation_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of rotation_jacobian (rates named q_dot)", "rotation_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])", |n, v, _| task_jacobian(n, v, |_, _| Ok(TaskJacobian::Rotation), true)),
+    b("translation_jacobian_derivative", "translation_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of translation_jacobian (rates named q_dot)", "translation_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, d1, 0, 0), [theta1, t])", |n, v, _| task_jacobian(n, v, |_, _| Ok(TaskJacobian::Translation), true)),
+    b("line_jacobian_derivative", "line_jacobian_derivative(x, [q1, ...], direction)", 3, 3, "the time derivative of line_jacobian (rates named q_dot)", "line_jacobian_derivative(dh(theta1, 0, l, 0), [theta1], (0, 0, 1))", |n, v, _| task_jacobian(n, v, |n, v| Ok(TaskJacobian::Line(vec_at(n, v, 2, "the direction")?)), true)),
+    b("plane_jacobian_derivative", "plane_jacobian_derivative(x, [q1, ...], normal)", 3, 3, "the time derivative of plane_jacobian (rates named q_dot)", "plane_jacobian_derivative(dh(theta1, 0, l, 0), [theta1], (1, 0, 0))", |n, v, _| task_jacobian(n, v, |n, v| Ok(TaskJacobian::Plane(vec_at(n, v, 2, "the normal")?)), true)),
+    b("distance_jacobian_derivative", "distance_jacobian_derivative(x, [q1, ...])", 2, 2, "the time derivative of distance_jacobian (rates named q_dot)", "distance_jacobian_derivative(dh(theta1, 0, l, 0) * dh(t, 0, l, 0), [theta1, t])", |n, v, _| task_jacobian(n, v, |_, _| Ok(TaskJacobian::Distance), true)),
 ];
 
 fn dq_error(name: &str, e: DqError, a: &Arg) -> EvalError {
@@ -576,80 +594,50 @@ fn run_line_to_line_angle(name: &'static str, v: &[Arg], _span: Span) -> Result<
     })
 }
 
-/// The built-in the task Jacobians.
-fn run_task_jacobian(name: &'static str, v: &[Arg], _span: Span) -> Result<Value> {
-    let n = name;
+/// How a task-Jacobian built-in reads its kind from its arguments (after the pose and the
+/// variables).
+type TaskKind = fn(&'static str, &[Arg]) -> Result<TaskJacobian>;
+
+/// Argument `k` as a vector.
+fn vec_at(name: &'static str, v: &[Arg], k: usize, what: &str) -> Result<[Scalar; 3]> {
+    vec3_arg(name, what, &v[k])
+}
+
+/// Argument `k` as a workspace line: its direction and a point on it.
+fn workspace_line(name: &'static str, v: &[Arg], k: usize) -> Result<([Scalar; 3], [Scalar; 3])> {
+    let l = line_arg(name, &v[k])?;
+    Ok((l.real.vector_part(), point_on_line(&l)))
+}
+
+/// The task Jacobian built-ins: `x`, the variables, then what `kind` reads; its time
+/// derivative when `derivative`.
+fn task_jacobian(name: &'static str, v: &[Arg], kind: TaskKind, derivative: bool) -> Result<Value> {
     let a = &v[0];
-    Ok({
-        let x = unit_dq(name, a)?;
-        let vars = symbol_list(name, &v[1])?;
-        let vec = |k: usize, what: &str| vec3_arg(name, what, &v[k]);
-        let workspace_line = |k: usize| -> Result<([Scalar; 3], [Scalar; 3])> {
-            let l = line_arg(name, &v[k])?;
-            Ok((l.real.vector_part(), point_on_line(&l)))
-        };
-        let workspace_plane =
-            |k: usize| -> Result<([Scalar; 3], [Scalar; 3])> { plane_arg(name, &v[k]) };
-        let (kind, derivative) = match n.strip_suffix("_derivative") {
-            Some(k) => (k, true),
-            None => (n, false),
-        };
-        let task = match kind {
-            "pose_jacobian" => TaskJacobian::Pose,
-            "rotation_jacobian" => TaskJacobian::Rotation,
-            "translation_jacobian" => TaskJacobian::Translation,
-            "line_jacobian" => TaskJacobian::Line(vec(2, "the direction")?),
-            "plane_jacobian" => TaskJacobian::Plane(vec(2, "the normal")?),
-            "distance_jacobian" => TaskJacobian::Distance,
-            "point_to_point_distance_jacobian" => TaskJacobian::PointToPoint(vec(2, "the point")?),
-            "point_to_line_distance_jacobian" => {
-                let (l, p) = workspace_line(2)?;
-                TaskJacobian::PointToLine(l, p)
-            }
-            "point_to_plane_distance_jacobian" => {
-                let (nn, p) = workspace_plane(2)?;
-                TaskJacobian::PointToPlane(nn, p)
-            }
-            "line_to_point_distance_jacobian" => {
-                TaskJacobian::LineToPoint(vec(2, "the direction")?, vec(3, "the point")?)
-            }
-            "plane_to_point_distance_jacobian" => {
-                TaskJacobian::PlaneToPoint(vec(2, "the normal")?, vec(3, "the point")?)
-            }
-            "line_to_line_distance_jacobian" | "line_to_line_angle_jacobian" => {
-                let l0 = vec(2, "the direction")?;
-                let (l, p) = workspace_line(3)?;
-                if kind == "line_to_line_angle_jacobian" {
-                    TaskJacobian::LineToLineAngle(l0, l, p)
-                } else {
-                    TaskJacobian::LineToLine(l0, l, p)
+    let x = unit_dq(name, a)?;
+    let vars = symbol_list(name, &v[1])?;
+    let task = kind(name, v)?;
+    let task = if derivative {
+        TaskJacobian::Derivative(Box::new(task))
+    } else {
+        task
+    };
+    let refs: Vec<&str> = vars.iter().map(String::as_str).collect();
+    let m = crate::task_jacobian(&x, &refs, &task);
+    Ok(match m.as_polynomial() {
+        Some(rows) => Value::Matrix(rows.clone()),
+        None => {
+            let mut rows = Vec::with_capacity(m.num.len());
+            for r in &m.num {
+                let mut row = Vec::with_capacity(r.len());
+                for e in r {
+                    row.push(
+                        Frac::new(e.clone(), m.den.clone())
+                            .map_err(|e| super::eval::scalar_error(e, a.span))?,
+                    );
                 }
+                rows.push(row);
             }
-            _ => return Err(invalid(&format!("`{name}` is not implemented"), a.span)),
-        };
-        let task = if derivative {
-            TaskJacobian::Derivative(Box::new(task))
-        } else {
-            task
-        };
-        let refs: Vec<&str> = vars.iter().map(String::as_str).collect();
-        let m = crate::task_jacobian(&x, &refs, &task);
-        match m.as_polynomial() {
-            Some(rows) => Value::Matrix(rows.clone()),
-            None => {
-                let mut rows = Vec::with_capacity(m.num.len());
-                for r in &m.num {
-                    let mut row = Vec::with_capacity(r.len());
-                    for e in r {
-                        row.push(
-                            Frac::new(e.clone(), m.den.clone())
-                                .map_err(|e| super::eval::scalar_error(e, a.span))?,
-                        );
-                    }
-                    rows.push(row);
-                }
-                value::quotient_matrix(rows)
-            }
+            value::quotient_matrix(rows)
         }
     })
 }
