@@ -341,7 +341,7 @@ impl Session {
                         .map_err(|e| scalar_error(e, angle.span))?,
                 );
                 for sym in a.symbols() {
-                    if !self.bindings.contains_key(sym.name()) && sym.name() != "pi" {
+                    if !self.bindings.contains_key(sym.name()) && !sym.is_pi() {
                         let name = sym.name().to_owned();
                         self.bind(
                             &name,

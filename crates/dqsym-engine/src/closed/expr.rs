@@ -143,6 +143,7 @@ impl Expr {
         fn walk(e: &Expr, out: &mut Vec<String>) {
             match e {
                 Expr::Num(_) | Expr::Sqrt(_) => {}
+                Expr::Sym(s) if s.is_pi() => {}
                 Expr::Sym(s) => match crate::scalar::parse_trig_placeholder(s.name()) {
                     Some((x, _)) => out.push(x.to_owned()),
                     None => out.push(s.name().to_owned()),
@@ -156,7 +157,6 @@ impl Expr {
         }
         let mut out = Vec::new();
         walk(self, &mut out);
-        out.retain(|n| n != "pi");
         out.sort();
         out.dedup();
         out

@@ -321,8 +321,8 @@ pub fn exact_div(num: &Scalar, den: &Scalar) -> Result<Option<Scalar>> {
     let syms: Vec<String> = den
         .symbols()
         .iter()
+        .filter(|s| !s.is_pi())
         .map(|s| s.name().to_owned())
-        .filter(|n| n != "pi")
         .collect();
     let pi = Scalar::pi();
     let values = [

@@ -757,6 +757,7 @@ impl Robot {
                 f.components()
                     .iter()
                     .flat_map(|c| c.symbols())
+                    .filter(|s| !s.is_pi())
                     .map(|s| s.name().to_string()),
             );
         }
@@ -764,12 +765,13 @@ impl Robot {
             names.extend(
                 t.iter()
                     .flat_map(|c| c.symbols())
+                    .filter(|s| !s.is_pi())
                     .map(|s| s.name().to_string()),
             );
         }
         names.sort();
         names.dedup();
-        names.retain(|n| n != "pi" && !self.variables.contains(n));
+        names.retain(|n| !self.variables.contains(n));
         names
     }
 }
@@ -818,8 +820,8 @@ fn joint_variable(x: &Scalar) -> Result<String, String> {
     let syms: Vec<String> = x
         .symbols()
         .into_iter()
+        .filter(|s| !s.is_pi())
         .map(|s| s.name().to_string())
-        .filter(|n| n != "pi")
         .collect();
     match syms.as_slice() {
         [one] => Ok(one.clone()),
