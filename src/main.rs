@@ -204,17 +204,26 @@ enum OutputFormat {
     Python,
 }
 
+/// The command line's names for the library's one output format.
+impl From<OutputFormat> for Format {
+    fn from(f: OutputFormat) -> Format {
+        match f {
+            OutputFormat::Plain => Format::Plain,
+            OutputFormat::Latex => Format::Latex,
+            OutputFormat::Rust => Format::Rust,
+            OutputFormat::Sympy => Format::Sympy,
+            OutputFormat::C => Format::C,
+            OutputFormat::Python => Format::Python,
+        }
+    }
+}
+
 /// The options for the library's printers.
 fn show_options(format: OutputFormat, explicit: bool) -> Result<ShowOptions, String> {
-    let format = match format {
-        OutputFormat::Plain => Format::Plain,
-        OutputFormat::Latex => Format::Latex,
-        OutputFormat::Rust => Format::Rust,
-        OutputFormat::Sympy => Format::Sympy,
-        OutputFormat::C => Format::C,
-        OutputFormat::Python => Format::Python,
-    };
-    Ok(ShowOptions { format, explicit })
+    Ok(ShowOptions {
+        format: format.into(),
+        explicit,
+    })
 }
 
 /// Deep but legal inputs recurse up to the parser's depth limit in the evaluator and the
@@ -488,15 +497,7 @@ fn ik(
         Ok(s) => s,
         Err(e) => return fail(e.to_string()),
     };
-    let shorthand = !explicit;
-    let out = match format {
-        OutputFormat::Plain => dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Plain { shorthand }),
-        OutputFormat::Latex => dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Latex { shorthand }),
-        OutputFormat::Sympy => dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Sympy),
-        OutputFormat::Rust => dqsym::ik::ik_rust(&sol),
-        OutputFormat::C => dqsym::ik::ik_c(&sol),
-        OutputFormat::Python => dqsym::ik::ik_python(&sol),
-    };
+    let out = dqsym::ik::ik_report(&sol, format.into(), !explicit);
     match out {
         Ok(t) => {
             print!("{t}");

@@ -173,16 +173,12 @@ fn ik_command(session: &Session, cmd: &str, opts: &ShowOptions) -> Result<String
     let _derivation = dqsym::Context::entered().enter();
     let sol = dqsym::ik::solve_dq(name, &q, &vars, &dqsym::ik::IkOptions { free })
         .map_err(|e| e.to_string())?;
+    // The report, in LaTeX or SymPy when those are the session's format, else in plain text.
     let format = match opts.format {
-        dqsym::Format::Latex => dqsym::ik::IkFormat::Latex {
-            shorthand: !opts.explicit,
-        },
-        dqsym::Format::Sympy => dqsym::ik::IkFormat::Sympy,
-        _ => dqsym::ik::IkFormat::Plain {
-            shorthand: !opts.explicit,
-        },
+        f @ (dqsym::Format::Latex | dqsym::Format::Sympy) => f,
+        _ => dqsym::Format::Plain,
     };
-    dqsym::ik::ik_report(&sol, format).map_err(|e| e.to_string())
+    dqsym::ik::ik_report(&sol, format, !opts.explicit).map_err(|e| e.to_string())
 }
 
 /// The `:vars` listing.
@@ -191,7 +187,7 @@ fn vars(session: &Session) -> String {
     for (name, b) in session.bindings() {
         let what = match &b.kind {
             BindingKind::Symbol => "symbol".to_owned(),
-            BindingKind::HalfAngle { meaning } => meaning.clone(),
+            BindingKind::HalfAngle { .. } => b.kind.half_angle_meaning().unwrap_or_default(),
             _ => b.value.describe(),
         };
         s += &format!("  {name}: {what}\n");
@@ -202,8 +198,14 @@ fn vars(session: &Session) -> String {
     s
 }
 
+/// Why a statement failed: Ctrl-C stopped it, or an error to print.
+enum Failure {
+    Interrupted,
+    Error(String),
+}
+
 /// What a worker sends back for one statement.
-type Outcome = (Session, Result<Option<String>, String>);
+type Outcome = (Session, Result<Option<String>, Failure>);
 
 /// The state of one interactive session.
 struct Repl<'a> {
@@ -378,15 +380,15 @@ impl Repl<'_> {
                     let result = match work.exec(&stmt) {
                         Ok(Some(d)) => show(&d, &opts).map(Some).map_err(|e| match e {
                             dqsym::ShowError::Scalar(dqsym::ScalarError::Cancelled) => {
-                                INTERRUPTED.to_owned()
+                                Failure::Interrupted
                             }
-                            e => format!("error: {e}"),
+                            e => Failure::Error(format!("error: {e}")),
                         }),
                         Ok(None) => Ok(None),
                         Err(e) if matches!(e.kind(), EvalErrorKind::Interrupted) => {
-                            Err(INTERRUPTED.to_owned())
+                            Err(Failure::Interrupted)
                         }
-                        Err(e) => Err(e.render(&source)),
+                        Err(e) => Err(Failure::Error(e.render(&source))),
                     };
                     let _ = tx.send((work, result));
                 });
@@ -409,10 +411,12 @@ impl Repl<'_> {
                         print!("{text}");
                     }
                 }
-                Some((_, Err(message))) => {
-                    if message == INTERRUPTED {
-                        release_freed_memory();
-                    }
+                Some((_, Err(Failure::Interrupted))) => {
+                    release_freed_memory();
+                    eprintln!("{INTERRUPTED}");
+                    return false;
+                }
+                Some((_, Err(Failure::Error(message)))) => {
                     eprintln!("{message}");
                     return false;
                 }

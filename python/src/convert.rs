@@ -142,7 +142,8 @@ impl<'py> ToSympy<'py> {
                 "1" => self.integer.call1((1,))?,
                 name => self.symbol(name)?,
             },
-            Expr::Trig { sin, angle } => {
+            Expr::Trig { f, angle } => {
+                let sin = f.is_sin();
                 let mut parts = Vec::with_capacity(angle.terms.len() + 1);
                 for (s, k) in &angle.terms {
                     let k = self.small(k)?;
@@ -170,7 +171,7 @@ impl<'py> ToSympy<'py> {
                         .iter()
                         .any(|(s, _)| !matches!(s.name(), "1" | "pi"));
                 if !plain {
-                    return Ok(if *sin {
+                    return Ok(if sin {
                         self.sin.call1((arg,))?
                     } else {
                         self.cos.call1((arg,))?
@@ -182,7 +183,7 @@ impl<'py> ToSympy<'py> {
                     .call_method0("could_extract_minus_sign")?
                     .extract::<bool>()?;
                 let arg = if negate { arg.neg()? } else { arg };
-                match (*sin, negate) {
+                match (sin, negate) {
                     (false, _) => self.cos.call((arg,), Some(&kw))?,
                     (true, false) => self.sin.call((arg,), Some(&kw))?,
                     (true, true) => {

@@ -298,23 +298,22 @@ impl Robot {
         free: Option<String>,
         explicit: bool,
     ) -> PyResult<String> {
-        use dqsym::ik::{ik_c, ik_python, ik_report, ik_rust, IkFormat};
+        use dqsym::Format;
         let sol = self.ik_solution(py, free)?;
-        let shorthand = !explicit;
-        let r = match format {
-            "plain" => ik_report(&sol, IkFormat::Plain { shorthand }),
-            "latex" => ik_report(&sol, IkFormat::Latex { shorthand }),
-            "sympy" => ik_report(&sol, IkFormat::Sympy),
-            "rust" => ik_rust(&sol),
-            "c" => ik_c(&sol),
-            "python" | "numpy" => ik_python(&sol),
+        let format = match format {
+            "plain" => Format::Plain,
+            "latex" => Format::Latex,
+            "sympy" => Format::Sympy,
+            "rust" => Format::Rust,
+            "c" => Format::C,
+            "python" | "numpy" => Format::Python,
             other => {
                 return Err(PyValueError::new_err(format!(
                     "unknown format `{other}` (plain, latex, sympy, rust, c, python)"
                 )))
             }
         };
-        r.map_err(|e| errors::scalar_error(py, &e))
+        dqsym::ik::ik_report(&sol, format, !explicit).map_err(|e| errors::scalar_error(py, &e))
     }
 
     /// The inverse kinematics solver the project's emitter generates (Python): `ik(T, **params)`

@@ -9,8 +9,13 @@ use crate::{
 };
 use num_traits::{One, Zero};
 
-/// A built-in function as `:help` lists it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// What runs a built-in: its name (shared implementations read it), the evaluated arguments
+/// (as many as its arity allows) and the place of the call.
+pub(super) type Run = fn(&'static str, &[Arg], Span) -> Result<Value>;
+
+/// A built-in function: its name, arity and help as `:help` lists them, and the function that
+/// runs it.
+#[derive(Clone, Copy)]
 pub struct Builtin {
     /// The name it is called by.
     pub name: &'static str,
@@ -22,6 +27,18 @@ pub struct Builtin {
     pub example: &'static str,
     min: usize,
     max: usize,
+    run: Run,
+}
+
+impl std::fmt::Debug for Builtin {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Builtin")
+            .field("name", &self.name)
+            .field("usage", &self.usage)
+            .field("min", &self.min)
+            .field("max", &self.max)
+            .finish_non_exhaustive()
+    }
 }
 
 pub(super) const fn b(
@@ -31,6 +48,7 @@ pub(super) const fn b(
     max: usize,
     doc: &'static str,
     example: &'static str,
+    run: Run,
 ) -> Builtin {
     Builtin {
         name,
@@ -39,6 +57,7 @@ pub(super) const fn b(
         example,
         min,
         max,
+        run,
     }
 }
 
@@ -71,6 +90,7 @@ const CORE: [Builtin; 31] = [
         3,
         "rotation by angle about the unit axis (through point)",
         "rot((1, 0, 0), theta1, (0, l, 0))",
+        run_rot,
     ),
     b(
         "trans",
@@ -79,6 +99,7 @@ const CORE: [Builtin; 31] = [
         1,
         "translation by the vector v: 1 + eps v/2",
         "trans((0, 0, d1))",
+        run_trans,
     ),
     b(
         "screw",
@@ -87,6 +108,7 @@ const CORE: [Builtin; 31] = [
         4,
         "rotation by angle about the line through point, and slide along it",
         "screw((0, 0, 1), (0, l, 0), theta1, d1)",
+        run_screw,
     ),
     b(
         "dh",
@@ -95,6 +117,7 @@ const CORE: [Builtin; 31] = [
         4,
         "standard Denavit-Hartenberg link Rz(theta) Tz(d) Tx(a) Rx(alpha)",
         "dh(theta1, d1, a1, pi/2)",
+        run_dh,
     ),
     b(
         "mdh",
@@ -103,6 +126,7 @@ const CORE: [Builtin; 31] = [
         4,
         "modified (Craig) DH link Rx(alpha) Tx(a) Rz(theta) Tz(d), the paper's sec 5",
         "mdh(alpha1, a1, theta1, d1)",
+        run_dh,
     ),
     b(
         "point",
@@ -111,6 +135,7 @@ const CORE: [Builtin; 31] = [
         1,
         "the point DQ 1 + eps (0; v)",
         "point((0, l, 0))",
+        run_point,
     ),
     b(
         "transform",
@@ -119,6 +144,7 @@ const CORE: [Builtin; 31] = [
         2,
         "image of the point v under the unit DQ q: vector part of q (1 + eps v) cconj(q)",
         "transform(rot((1, 0, 0), theta1), (0, l, 0))",
+        run_transform,
     ),
     b(
         "matrix",
@@ -127,6 +153,7 @@ const CORE: [Builtin; 31] = [
         1,
         "the 4x4 homogeneous matrix of a unit DQ",
         "matrix(rot((0, 0, 1), theta1))",
+        run_matrix,
     ),
     b(
         "frommatrix",
@@ -135,6 +162,7 @@ const CORE: [Builtin; 31] = [
         1,
         "the unit DQ of a 4x4 rigid-motion matrix",
         "frommatrix([1, 0, 0, l; 0, 1, 0, 0; 0, 0, 1, 0; 0, 0, 0, 1])",
+        run_frommatrix,
     ),
     b(
         "closed",
@@ -143,6 +171,7 @@ const CORE: [Builtin; 31] = [
         1,
         "x itself; every displayed value is shown in closed form",
         "closed(cos(t)^2 - sin(t)^2)",
+        run_closed,
     ),
     b(
         "jacobian",
@@ -151,6 +180,7 @@ const CORE: [Builtin; 31] = [
         2,
         "8 x n matrix of the derivatives of the 8 DQ components by each symbol",
         "jacobian(dh(theta1, 0, a1, 0), [theta1])",
+        run_jacobian,
     ),
     b(
         "gjacobian",
@@ -159,6 +189,7 @@ const CORE: [Builtin; 31] = [
         2,
         "6 x n geometric Jacobian of a unit DQ pose: linear velocity (x, y, z) over angular (x, y, z)",
         "gjacobian(rot((0, 0, 1), theta1) * trans((l, 0, 0)), [theta1])",
+        run_gjacobian,
     ),
     b(
         "screwparams",
@@ -168,6 +199,7 @@ const CORE: [Builtin; 31] = [
         "screw of a unit DQ as rows: (angle, slide, 0), axis n, moment m, axis point nearest O, \
          as quotients where needed",
         "screwparams(dh(theta1, d1, a1, 0))",
+        run_screwparams,
     ),
     b(
         "ik",
@@ -180,6 +212,7 @@ const CORE: [Builtin; 31] = [
          joint in the order solved; revolute: a cos qk + b sin qk = c, n = 2 both roots, n = 1 \
          the root qk = atan2(-a, b); prismatic: a qk^2 + b qk + c = 0 (n roots); as `dqsym ik`",
         "ik(dh(theta1, 0, a1, 0) * dh(t, 0, l, 0), [theta1, t])",
+        run_ik,
     ),
     b(
         "diff",
@@ -188,6 +221,7 @@ const CORE: [Builtin; 31] = [
         2,
         "derivative of x (any value) by the symbol t",
         "diff(sin(t)^2, t)",
+        run_diff,
     ),
     b(
         "cos",
@@ -196,6 +230,7 @@ const CORE: [Builtin; 31] = [
         1,
         "cosine of an angle (symbols and multiples of pi)",
         "cos(pi/6)",
+        run_cos,
     ),
     b(
         "sin",
@@ -204,6 +239,7 @@ const CORE: [Builtin; 31] = [
         1,
         "sine of an angle",
         "sin(theta1 + pi/2)",
+        run_sin,
     ),
     b(
         "sqrt",
@@ -212,6 +248,7 @@ const CORE: [Builtin; 31] = [
         1,
         "exact square root of a non-negative rational",
         "sqrt(8)",
+        run_sqrt,
     ),
     b(
         "real",
@@ -220,6 +257,7 @@ const CORE: [Builtin; 31] = [
         1,
         "the real part q of q + eps q_eps",
         "real(trans((1, 2, 3)))",
+        run_real,
     ),
     b(
         "dual",
@@ -228,6 +266,7 @@ const CORE: [Builtin; 31] = [
         1,
         "the dual part q_eps of q + eps q_eps",
         "dual(trans((1, 2, 3)))",
+        run_real,
     ),
     b(
         "norm2",
@@ -236,6 +275,7 @@ const CORE: [Builtin; 31] = [
         1,
         "the dual-number norm q q* = |q|^2 + eps 2 (q . q_eps), as a dual number a + eps b",
         "norm2(rot((0, 0, 1), t))",
+        run_norm2,
     ),
     b(
         "inverse",
@@ -244,6 +284,7 @@ const CORE: [Builtin; 31] = [
         1,
         "inverse of a scalar, quaternion or DQ (error if none)",
         "inverse((1, 1, 0, 0))",
+        run_inverse,
     ),
     b(
         "unit",
@@ -252,6 +293,7 @@ const CORE: [Builtin; 31] = [
         1,
         "q itself if it is a unit DQ (a rigid motion), else an error",
         "unit(dh(theta1, d1, a1, alpha1))",
+        run_unit,
     ),
     b(
         "conj",
@@ -260,6 +302,7 @@ const CORE: [Builtin; 31] = [
         1,
         "quaternion conjugate q* + eps q_eps*; postfix q' is the same",
         "conj((1, 2, 3, 4))",
+        run_conj,
     ),
     b(
         "dconj",
@@ -268,6 +311,7 @@ const CORE: [Builtin; 31] = [
         1,
         "dual conjugate q - eps q_eps (eq 8)",
         "dconj(trans((1, 0, 0)))",
+        run_dconj,
     ),
     b(
         "cconj",
@@ -276,6 +320,7 @@ const CORE: [Builtin; 31] = [
         1,
         "combined conjugate q* - eps q_eps* (eq 9)",
         "cconj(rot((1, 0, 0), t, (0, l, 0)))",
+        run_dconj,
     ),
     b(
         "transpose",
@@ -284,6 +329,7 @@ const CORE: [Builtin; 31] = [
         1,
         "matrix transpose",
         "transpose([1, 2; 3, 4])",
+        run_transpose,
     ),
     b(
         "latex",
@@ -292,6 +338,7 @@ const CORE: [Builtin; 31] = [
         1,
         "x itself, displayed as LaTeX",
         "latex(rot((0, 0, 1), theta1))",
+        run_closed,
     ),
     b(
         "sympy",
@@ -300,6 +347,7 @@ const CORE: [Builtin; 31] = [
         1,
         "x itself, displayed as SymPy input (sympify parses it)",
         "sympy(cos(t)^2 - sin(t)^2)",
+        run_closed,
     ),
     b(
         "rust",
@@ -308,6 +356,7 @@ const CORE: [Builtin; 31] = [
         1,
         "x itself, displayed as a Rust function of its symbols",
         "rust(transform(rot((0, 0, 1), theta1), (l, 0, 0)))",
+        run_closed,
     ),
     b(
         "plain",
@@ -316,6 +365,7 @@ const CORE: [Builtin; 31] = [
         1,
         "x itself, displayed as plain text",
         "plain(sin(2*t))",
+        run_closed,
     ),
 ];
 
@@ -381,135 +431,7 @@ pub(crate) fn call(ev: &Evaluator<'_>, func: &Ident, args: &[Expr], span: Span) 
         });
     }
     let name = builtin.name;
-    let out = match name {
-        "rot" => {
-            let axis = unit_axis(name, &vals[0])?;
-            let angle = scalar(name, "the angle", &vals[1])?;
-            match vals.get(2) {
-                None => Value::DualQuat(DualQuat::rotation(&axis, angle)),
-                Some(p) => {
-                    let p = vector(name, "the point", p)?;
-                    Value::DualQuat(DualQuat::rotation_about_point(&axis, angle, p))
-                }
-            }
-        }
-        "trans" => Value::DualQuat(DualQuat::translation(vector(
-            name,
-            "the argument",
-            &vals[0],
-        )?)),
-        "screw" => {
-            let axis = unit_axis(name, &vals[0])?;
-            let p = vector(name, "the point", &vals[1])?;
-            let angle = scalar(name, "the angle", &vals[2])?;
-            let slide = scalar(name, "the slide", &vals[3])?;
-            Value::DualQuat(DualQuat::screw(&axis, p, angle, slide))
-        }
-        "dh" | "mdh" => {
-            let what = if name == "dh" {
-                ["theta", "d", "a", "alpha"]
-            } else {
-                ["alpha", "a", "theta", "d"]
-            };
-            let mut s = Vec::new();
-            for (v, w) in vals.iter().zip(what) {
-                s.push(scalar(name, w, v)?);
-            }
-            Value::DualQuat(if name == "dh" {
-                dh_link(s[0], s[1], s[2], s[3])
-            } else {
-                mdh_link(s[0], s[1], s[2], s[3])
-            })
-        }
-        "point" => Value::DualQuat(DualQuat::point(vector(name, "the argument", &vals[0])?)),
-        "transform" => {
-            let q = unit_dq(name, &vals[0])?;
-            let v = match &vals[1].value {
-                Value::DualQuat(p)
-                    if value::is_one(&p.real.w)
-                        && p.real.vector_part().iter().all(Zero::is_zero)
-                        && p.dual.w.is_zero() =>
-                {
-                    p.dual.vector_part()
-                }
-                _ => vector(name, "the point", &vals[1])?.clone(),
-            };
-            Value::Vector(q.transform_point(&v))
-        }
-        "matrix" => {
-            let q = unit_dq(name, &vals[0])?;
-            Value::Matrix(q.to_matrix().rows.iter().map(|r| r.to_vec()).collect())
-        }
-        "frommatrix" => {
-            let m = matrix4(name, &vals[0])?;
-            let q = DualQuat::from_matrix(&m).ok_or_else(|| {
-                invalid(
-                    "`frommatrix` needs a rigid-motion matrix: last row 0 0 0 1 and a rotation \
-                     block whose quaternion has an exact square root",
-                    vals[0].span,
-                )
-            })?;
-            Value::DualQuat(q)
-        }
-        "closed" | "latex" | "sympy" | "rust" | "plain" => vals[0].value.clone(),
-        "jacobian" => jacobian(&vals[0], &vals[1])?,
-        "gjacobian" => {
-            let q = unit_dq(name, &vals[0])?;
-            let names = symbol_list(name, &vals[1])?;
-            let refs: Vec<&str> = names.iter().map(String::as_str).collect();
-            Value::Matrix(crate::geometric_jacobian(&q, &refs))
-        }
-        "screwparams" => screw_params(&vals[0])?,
-        "ik" => ik(&vals)?,
-        "diff" => {
-            let t = symbol_name(name, &vals[1].value, vals[1].span)?;
-            value::diff(&vals[0].value, &t).map_err(|e| op_error(e, span))?
-        }
-        "cos" => Value::Scalar(scalar(name, "the angle", &vals[0])?.cos()),
-        "sin" => Value::Scalar(scalar(name, "the angle", &vals[0])?.sin()),
-        "sqrt" => Value::Scalar(scalar(name, "the argument", &vals[0])?.sqrt()),
-        "real" | "dual" => {
-            let d = dq_like(name, &vals[0])?;
-            Value::Quat(if name == "real" { d.real } else { d.dual })
-        }
-        "norm2" => match &vals[0].value {
-            Value::Quat(q) => Value::Scalar(q.norm_squared()),
-            _ => {
-                let n = dq_like(name, &vals[0])?.norm_squared();
-                Value::DualQuat(DualQuat::from_real_and_dual(
-                    Quat::from_scalar(n.re),
-                    Quat::from_scalar(n.du),
-                ))
-            }
-        },
-        "inverse" => value::inverse(&vals[0].value).map_err(|e| op_error(e, vals[0].span))?,
-        "unit" => {
-            unit_dq(name, &vals[0])?;
-            vals[0].value.clone()
-        }
-        "conj" => value::conj(&vals[0].value).map_err(|e| op_error(e, vals[0].span))?,
-        "dconj" | "cconj" => {
-            let d = dq_like(name, &vals[0])?;
-            Value::DualQuat(if name == "dconj" {
-                d.dual_conjugate()
-            } else {
-                d.combined_conjugate()
-            })
-        }
-        "transpose" => value::transpose(&vals[0].value).ok_or_else(|| {
-            type_error(
-                name,
-                "the argument",
-                "a matrix",
-                &vals[0].value,
-                vals[0].span,
-            )
-        })?,
-        _ => match super::dqr::call(name, &vals) {
-            Some(r) => r?,
-            None => return Err(invalid(&format!("`{name}` is not implemented"), func.span)),
-        },
-    };
+    let out = (builtin.run)(name, &vals, span)?;
     let out = out.check().map_err(|e| scalar_error(e, span))?;
     let text = |k: usize| (args[k].to_string(), vals[k].value.clone());
     match name {
@@ -527,6 +449,231 @@ pub(crate) fn call(ev: &Evaluator<'_>, func: &Ident, args: &[Expr], span: Span) 
         _ => {}
     }
     Ok(out)
+}
+
+/// The built-in `rot`.
+fn run_rot(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok({
+        let axis = unit_axis(name, &vals[0])?;
+        let angle = scalar(name, "the angle", &vals[1])?;
+        match vals.get(2) {
+            None => Value::DualQuat(DualQuat::rotation(&axis, angle)),
+            Some(p) => {
+                let p = vector(name, "the point", p)?;
+                Value::DualQuat(DualQuat::rotation_about_point(&axis, angle, p))
+            }
+        }
+    })
+}
+
+/// The built-in `trans`.
+fn run_trans(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok(Value::DualQuat(DualQuat::translation(vector(
+        name,
+        "the argument",
+        &vals[0],
+    )?)))
+}
+
+/// The built-in `screw`.
+fn run_screw(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok({
+        let axis = unit_axis(name, &vals[0])?;
+        let p = vector(name, "the point", &vals[1])?;
+        let angle = scalar(name, "the angle", &vals[2])?;
+        let slide = scalar(name, "the slide", &vals[3])?;
+        Value::DualQuat(DualQuat::screw(&axis, p, angle, slide))
+    })
+}
+
+/// The built-in `dh`, `mdh`.
+fn run_dh(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok({
+        let what = if name == "dh" {
+            ["theta", "d", "a", "alpha"]
+        } else {
+            ["alpha", "a", "theta", "d"]
+        };
+        let mut s = Vec::new();
+        for (v, w) in vals.iter().zip(what) {
+            s.push(scalar(name, w, v)?);
+        }
+        Value::DualQuat(if name == "dh" {
+            dh_link(s[0], s[1], s[2], s[3])
+        } else {
+            mdh_link(s[0], s[1], s[2], s[3])
+        })
+    })
+}
+
+/// The built-in `point`.
+fn run_point(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok(Value::DualQuat(DualQuat::point(vector(
+        name,
+        "the argument",
+        &vals[0],
+    )?)))
+}
+
+/// The built-in `transform`.
+fn run_transform(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok({
+        let q = unit_dq(name, &vals[0])?;
+        let v = match &vals[1].value {
+            Value::DualQuat(p)
+                if value::is_one(&p.real.w)
+                    && p.real.vector_part().iter().all(Zero::is_zero)
+                    && p.dual.w.is_zero() =>
+            {
+                p.dual.vector_part()
+            }
+            _ => vector(name, "the point", &vals[1])?.clone(),
+        };
+        Value::Vector(q.transform_point(&v))
+    })
+}
+
+/// The built-in `matrix`.
+fn run_matrix(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok({
+        let q = unit_dq(name, &vals[0])?;
+        Value::Matrix(q.to_matrix().rows.iter().map(|r| r.to_vec()).collect())
+    })
+}
+
+/// The built-in `frommatrix`.
+fn run_frommatrix(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok({
+        let m = matrix4(name, &vals[0])?;
+        let q = DualQuat::from_matrix(&m).ok_or_else(|| {
+            invalid(
+                "`frommatrix` needs a rigid-motion matrix: last row 0 0 0 1 and a rotation \
+                 block whose quaternion has an exact square root",
+                vals[0].span,
+            )
+        })?;
+        Value::DualQuat(q)
+    })
+}
+
+/// The built-in `closed`, `latex`, `sympy`, `rust`, `plain`.
+fn run_closed(_name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok(vals[0].value.clone())
+}
+
+/// The built-in `jacobian`.
+fn run_jacobian(_name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    jacobian(&vals[0], &vals[1])
+}
+
+/// The built-in `gjacobian`.
+fn run_gjacobian(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok({
+        let q = unit_dq(name, &vals[0])?;
+        let names = symbol_list(name, &vals[1])?;
+        let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+        Value::Matrix(crate::geometric_jacobian(&q, &refs))
+    })
+}
+
+/// The built-in `screwparams`.
+fn run_screwparams(_name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    screw_params(&vals[0])
+}
+
+/// The built-in `ik`.
+fn run_ik(_name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    ik(vals)
+}
+
+/// The built-in `diff`.
+fn run_diff(name: &'static str, vals: &[Arg], span: Span) -> Result<Value> {
+    Ok({
+        let t = symbol_name(name, &vals[1].value, vals[1].span)?;
+        value::diff(&vals[0].value, &t).map_err(|e| op_error(e, span))?
+    })
+}
+
+/// The built-in `cos`.
+fn run_cos(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok(Value::Scalar(scalar(name, "the angle", &vals[0])?.cos()))
+}
+
+/// The built-in `sin`.
+fn run_sin(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok(Value::Scalar(scalar(name, "the angle", &vals[0])?.sin()))
+}
+
+/// The built-in `sqrt`.
+fn run_sqrt(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok(Value::Scalar(
+        scalar(name, "the argument", &vals[0])?.sqrt(),
+    ))
+}
+
+/// The built-in `real`, `dual`.
+fn run_real(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok({
+        let d = dq_like(name, &vals[0])?;
+        Value::Quat(if name == "real" { d.real } else { d.dual })
+    })
+}
+
+/// The built-in `norm2`.
+fn run_norm2(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok(match &vals[0].value {
+        Value::Quat(q) => Value::Scalar(q.norm_squared()),
+        _ => {
+            let n = dq_like(name, &vals[0])?.norm_squared();
+            Value::DualQuat(DualQuat::from_real_and_dual(
+                Quat::from_scalar(n.re),
+                Quat::from_scalar(n.du),
+            ))
+        }
+    })
+}
+
+/// The built-in `inverse`.
+fn run_inverse(_name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    value::inverse(&vals[0].value).map_err(|e| op_error(e, vals[0].span))
+}
+
+/// The built-in `unit`.
+fn run_unit(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok({
+        unit_dq(name, &vals[0])?;
+        vals[0].value.clone()
+    })
+}
+
+/// The built-in `conj`.
+fn run_conj(_name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    value::conj(&vals[0].value).map_err(|e| op_error(e, vals[0].span))
+}
+
+/// The built-in `dconj`, `cconj`.
+fn run_dconj(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    Ok({
+        let d = dq_like(name, &vals[0])?;
+        Value::DualQuat(if name == "dconj" {
+            d.dual_conjugate()
+        } else {
+            d.combined_conjugate()
+        })
+    })
+}
+
+/// The built-in `transpose`.
+fn run_transpose(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
+    value::transpose(&vals[0].value).ok_or_else(|| {
+        type_error(
+            name,
+            "the argument",
+            "a matrix",
+            &vals[0].value,
+            vals[0].span,
+        )
+    })
 }
 
 pub(super) fn invalid(message: &str, span: Span) -> EvalError {

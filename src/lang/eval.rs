@@ -16,7 +16,7 @@ use super::error::render;
 use super::scan::SourceMap;
 use super::show::Format;
 use super::value::{self, OpError, Value};
-use crate::{Context, DualQuat, Quat, Scalar, ScalarError};
+use crate::{Context, DualQuat, Quat, Scalar, ScalarError, Trig};
 use std::collections::BTreeMap;
 use thiserror::Error;
 
@@ -46,9 +46,22 @@ pub enum BindingKind {
     Symbol,
     /// By `halfangle c, s = angle`: cos or sin of half the angle, written as given.
     HalfAngle {
-        /// `cos(theta3/2)` or `sin(theta3/2)`.
-        meaning: String,
+        /// The cosine (the first name) or the sine (the second).
+        f: Trig,
+        /// The angle as written, bracketed unless it is one name, number or call: `theta3`,
+        /// `(theta1 + theta2)`.
+        angle: String,
     },
+}
+
+impl BindingKind {
+    /// What a `halfangle` name stands for, `cos(theta3/2)`; `None` for other bindings.
+    pub fn half_angle_meaning(&self) -> Option<String> {
+        match self {
+            BindingKind::HalfAngle { f, angle } => Some(format!("{}({angle}/2)", f.name())),
+            _ => None,
+        }
+    }
 }
 
 /// A result to show: a label (the assigned name, or the expression as written) and a value.
@@ -328,7 +341,7 @@ impl Session {
                         .map_err(|e| scalar_error(e, angle.span))?,
                 );
                 for sym in a.symbols() {
-                    if !self.bindings.contains_key(sym.name()) && sym.name() != "pi" {
+                    if !self.bindings.contains_key(sym.name()) && !sym.is_pi() {
                         let name = sym.name().to_owned();
                         self.bind(
                             &name,
@@ -349,14 +362,16 @@ impl Session {
                     &cos.name,
                     Value::Scalar(c),
                     BindingKind::HalfAngle {
-                        meaning: format!("cos({text}/2)"),
+                        f: Trig::Cos,
+                        angle: text.clone(),
                     },
                 );
                 self.bind(
                     &sin.name,
                     Value::Scalar(s),
                     BindingKind::HalfAngle {
-                        meaning: format!("sin({text}/2)"),
+                        f: Trig::Sin,
+                        angle: text,
                     },
                 );
                 Ok(None)
@@ -396,15 +411,15 @@ impl Session {
     }
 
     fn check_not_half_angle(&self, name: &str, span: Span) -> Result<()> {
-        if let Some(Binding {
-            kind: BindingKind::HalfAngle { meaning },
-            ..
-        }) = self.bindings.get(name)
+        if let Some(meaning) = self
+            .bindings
+            .get(name)
+            .and_then(|b| b.kind.half_angle_meaning())
         {
             return Err(EvalError::new(
                 EvalErrorKind::HalfAngleName {
                     name: name.to_owned(),
-                    meaning: meaning.clone(),
+                    meaning,
                 },
                 span,
             ));

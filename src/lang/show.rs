@@ -43,24 +43,7 @@ pub enum ShowError {
     Codegen(#[from] CodegenError),
 }
 
-/// The output language.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum Format {
-    /// Plain text in robotics notation.
-    #[default]
-    Plain,
-    /// LaTeX, inline math.
-    Latex,
-    /// Text SymPy's `sympify` parses.
-    Sympy,
-    /// A Rust function computing the value from its symbols.
-    Rust,
-    /// A C99 function computing the value from its symbols.
-    C,
-    /// A NumPy function computing the value from its symbols, vectorized.
-    Python,
-}
+pub use crate::print::Format;
 
 /// How results are shown.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -4,8 +4,8 @@
 
 use super::svg::{number, range, scene_svg, slides, xml_escape, Config, Scene, SvgOptions, Symbol};
 use super::text::{page, Piece};
-use super::{Mechanism, WalkError, Walkthrough};
-use crate::{closed_form, javascript_function, latex_symbol, CodegenOptions, Expr, Output, Scalar};
+use super::{Forms, Mechanism, WalkError, Walkthrough};
+use crate::{javascript_function, latex_symbol, CodegenOptions, Expr, Output, Scalar};
 
 /// KaTeX ready to inline: its stylesheet with the fonts embedded, and its script.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -144,10 +144,10 @@ fn bold(t: &str) -> String {
 
 /// The live part of the page: the drawing, a slider per symbol, the numbers, and the
 /// generated function; `None` when the closed forms cannot be compiled to JavaScript.
-fn live(m: &Mechanism, cfg: &Config) -> Result<(String, Option<String>), WalkError> {
+fn live(m: &Mechanism, cfg: &Config, forms: &Forms) -> Result<(String, Option<String>), WalkError> {
     let scene = Scene::new(m, cfg)?;
     let drawing = scene_svg(&scene, &SvgOptions::default())?;
-    let Ok(code) = live_function(&scene) else {
+    let Ok(code) = live_function(&scene, forms) else {
         let mut s = String::from("<aside class=\"live\">\n<figure>\n");
         s += &drawing;
         s += "<figcaption>The mechanism drawn to scale at the configuration in the legend.</figcaption>\n</figure>\n</aside>\n";
@@ -229,8 +229,8 @@ fn live(m: &Mechanism, cfg: &Config) -> Result<(String, Option<String>), WalkErr
 
 /// The function of the page: the joints, their axes, the tool, the pose as a matrix and as a
 /// dual quaternion, from the exact scene, by the JavaScript emitter.
-fn live_function(scene: &Scene) -> Result<String, WalkError> {
-    let c = |x: &Scalar| closed_form(x).map_err(WalkError::from);
+fn live_function(scene: &Scene, forms: &Forms) -> Result<String, WalkError> {
+    let c = |x: &Scalar| forms.of(x).cloned();
     let rows3 = |v: &mut dyn Iterator<Item = &[Scalar; 3]>| -> Result<Vec<Vec<Expr>>, WalkError> {
         v.map(|p| p.iter().map(c).collect()).collect()
     };
@@ -295,7 +295,7 @@ pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<S
     body += "<div class=\"layout\">\n";
     let mut scripts = None;
     if let Some(m) = &w.mechanism {
-        let (aside, js) = live(m, cfg)?;
+        let (aside, js) = live(m, cfg, &w.forms)?;
         body += &aside;
         scripts = js;
     } else if let Some((name, _)) = cfg.values.first() {
@@ -397,7 +397,7 @@ pub fn ik_walk_html(
     body += "<div class=\"layout\">\n";
     let mut scripts = None;
     if let Some(m) = &w.mechanism {
-        let (aside, js) = live(m, cfg)?;
+        let (aside, js) = live(m, cfg, &w.forms)?;
         let panel = "<div class=\"controls\"><table class=\"num\" id=\"ik-solutions\"><caption>\
                      The solver on this pose: every solution, its flags and how far its own pose \
                      is from the target</caption></table></div>\n</aside>\n";

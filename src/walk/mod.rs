@@ -9,10 +9,14 @@
 //! - `text.rs`: [`walk_text`] and [`walk_markdown`].
 //! - `svg.rs`: [`mechanism_svg`], the drawing of the mechanism.
 //! - `html.rs`: [`walk_html`], a self-contained page (KaTeX inlined).
+//! - `forms.rs`: [`Forms`], the closed form of every scalar shown, computed once by the
+//!   builders ([`Walkthrough::prepare`]).
 //!
-//! Walkthroughs are data; renderers are pure functions of them and never simplify.
+//! Walkthroughs are data; renderers are pure functions of them and never simplify: they look
+//! the closed forms up in [`Walkthrough::forms`].
 
 mod check;
+mod forms;
 mod html;
 mod motion;
 mod notation;
@@ -21,6 +25,7 @@ mod script;
 mod svg;
 mod text;
 
+pub use forms::Forms;
 pub use html::{ik_walk_html, walk_html, KatexAssets};
 pub use motion::{Motion, Word, Words};
 pub use robot::{walk_robot, walk_robot_chain};
@@ -40,6 +45,8 @@ pub struct Walkthrough {
     pub steps: Vec<Step>,
     /// The chain of the final result, for the drawing (when its factors are known motions).
     pub mechanism: Option<Mechanism>,
+    /// The closed forms of the scalars the steps show ([`Walkthrough::prepare`]).
+    pub forms: Forms,
 }
 
 /// One step of a walkthrough.
@@ -164,6 +171,10 @@ pub enum WalkError {
     /// A `--config` entry is invalid.
     #[error("{0}")]
     Config(String),
+    /// A value has no prepared closed form: the steps were edited after
+    /// [`Walkthrough::prepare`].
+    #[error("a value of the walkthrough has no closed form prepared (call Walkthrough::prepare)")]
+    Unprepared,
     /// The robot's chain is too large to expand and show product by product.
     #[error(
         "{file}: the chain is too large for a walkthrough: its pose expands past {limit} terms \

@@ -212,8 +212,8 @@ impl Motion {
         let of = |x: &Scalar| -> Vec<String> {
             x.symbols()
                 .into_iter()
+                .filter(|s| !s.is_pi())
                 .map(|s| s.name().to_owned())
-                .filter(|n| n != "pi")
                 .collect()
         };
         match self {
@@ -272,8 +272,8 @@ fn joint_screw(q: &DualQuat<Scalar>) -> Option<Motion> {
     let syms: Vec<String> = angle
         .symbols()
         .into_iter()
+        .filter(|s| !s.is_pi())
         .map(|s| s.name().to_owned())
-        .filter(|n| n != "pi")
         .collect();
     let [theta] = syms.as_slice() else {
         return None;

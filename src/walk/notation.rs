@@ -8,7 +8,7 @@
 //! legend at the top of the page lists exactly those.
 
 use super::{Step, Walkthrough};
-use crate::{latex_symbol, shorthand_name, Angle, Scalar, Value};
+use crate::{latex_symbol, shorthand_name, Angle, Scalar, Trig, Value};
 use num_traits::Zero;
 use std::cell::RefCell;
 use std::collections::{BTreeMap, BTreeSet};
@@ -74,14 +74,14 @@ impl Names {
         }
     }
 
-    /// The shorthand of cos (`sin` false) or sin of `a`, recorded for the legend: `(plain, tex)`.
-    fn name(&self, sin: bool, a: &Angle) -> Option<(String, String)> {
+    /// The shorthand of cos or sin of `a`, recorded for the legend: `(plain, tex)`.
+    fn name(&self, f: Trig, a: &Angle) -> Option<(String, String)> {
         if !a.pi.is_zero() || a.terms.is_empty() {
             return None;
         }
         let half = num_rational::Ratio::new(1, 2);
         let full = a.is_plain_sum();
-        let is_half = a.terms.iter().all(|(s, k)| *k == half && s.name() != "1");
+        let is_half = a.terms.iter().all(|(s, k)| *k == half && !s.is_unit());
         if !full && !is_half {
             return None;
         }
@@ -93,13 +93,13 @@ impl Names {
                 .collect(),
             pi: a.pi,
         };
-        let short = shorthand_name(sin, &whole)?;
+        let short = shorthand_name(f, &whole)?;
         let (_, rest) = short.split_at(1);
-        let letter = match (sin, full) {
-            (false, false) => "c",
-            (true, false) => "s",
-            (false, true) => "C",
-            (true, true) => "S",
+        let letter = match (f, full) {
+            (Trig::Cos, false) => "c",
+            (Trig::Sin, false) => "s",
+            (Trig::Cos, true) => "C",
+            (Trig::Sin, true) => "S",
         };
         let plain = format!("{letter}{rest}");
         if self.taken.contains(&plain) {
@@ -112,7 +112,7 @@ impl Names {
         } else {
             format!("{letter}_{{{}_{{{idx}}}}}", latex_symbol(prefix))
         };
-        let f = if sin { "sin" } else { "cos" };
+        let f = f.name();
         let names: Vec<&str> = whole.terms.iter().map(|(s, _)| s.name()).collect();
         let tex_names: Vec<String> = names.iter().map(|n| latex_symbol(n)).collect();
         let (plain_meaning, tex_meaning) = match (full, names.len()) {
@@ -146,13 +146,13 @@ impl Names {
     }
 
     /// The plain-text name of cos or sin of `a`, if it has one.
-    pub(crate) fn plain(&self, sin: bool, a: &Angle) -> Option<String> {
-        self.name(sin, a).map(|(p, _)| p)
+    pub(crate) fn plain(&self, f: Trig, a: &Angle) -> Option<String> {
+        self.name(f, a).map(|(p, _)| p)
     }
 
     /// The LaTeX name of cos or sin of `a`, if it has one.
-    pub(crate) fn tex(&self, sin: bool, a: &Angle) -> Option<String> {
-        self.name(sin, a).map(|(_, t)| t)
+    pub(crate) fn tex(&self, f: Trig, a: &Angle) -> Option<String> {
+        self.name(f, a).map(|(_, t)| t)
     }
 
     /// The names handed out so far, half angles first, as `(plain, meaning, tex, tex meaning,

@@ -203,7 +203,7 @@ pub fn walk_robot_chain(robot: &Robot) -> Result<Walkthrough, WalkError> {
     if let Some(s) = check_pose(&motions, &pose, "T") {
         steps.push(s);
     }
-    Ok(Walkthrough {
+    let mut w = Walkthrough {
         title: robot.name.clone(),
         steps,
         mechanism: Some(Mechanism {
@@ -211,7 +211,10 @@ pub fn walk_robot_chain(robot: &Robot) -> Result<Walkthrough, WalkError> {
             tool: robot.tool.clone(),
             values: robot.values.clone(),
         }),
-    })
+        forms: super::Forms::default(),
+    };
+    w.prepare();
+    Ok(w)
 }
 
 fn tuple_text(v: &[Scalar; 3]) -> Result<String, WalkError> {

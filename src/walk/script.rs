@@ -4,7 +4,9 @@
 use super::motion::{is_point, Motion, Words};
 use super::{ComponentTrace, HalfAngle, Mechanism, Step, WalkError, Walkthrough};
 use crate::lang::{Event, Observer};
-use crate::{closed_form_traced, parse, BindingKind, DualQuat, Scalar, Session, StmtKind, Value};
+use crate::{
+    closed_form_traced, parse, BindingKind, DualQuat, Scalar, Session, StmtKind, Trig, Value,
+};
 use std::cell::RefCell;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -69,11 +71,10 @@ fn half_angle_names(session: &Session) -> BTreeMap<String, (String, String)> {
     let mut cos: Vec<(Scalar, String)> = Vec::new();
     let mut sin: Vec<(Scalar, String)> = Vec::new();
     for (name, b) in session.bindings() {
-        if let (BindingKind::HalfAngle { meaning }, Value::Scalar(v)) = (&b.kind, &b.value) {
-            let map = if meaning.starts_with("cos") {
-                &mut cos
-            } else {
-                &mut sin
+        if let (BindingKind::HalfAngle { f, .. }, Value::Scalar(v)) = (&b.kind, &b.value) {
+            let map = match f {
+                Trig::Cos => &mut cos,
+                Trig::Sin => &mut sin,
             };
             map.push((v.clone(), name.clone()));
         }
@@ -160,9 +161,12 @@ struct ScriptWalk {
 
 impl ScriptWalk {
     fn notation(&mut self, session: &Session, c: &str, s: &str) {
-        let meaning = |n: &str| match session.bindings().get(n).map(|b| &b.kind) {
-            Some(BindingKind::HalfAngle { meaning }) => meaning.clone(),
-            _ => String::new(),
+        let meaning = |n: &str| {
+            session
+                .bindings()
+                .get(n)
+                .and_then(|b| b.kind.half_angle_meaning())
+                .unwrap_or_default()
         };
         self.steps.push(Step::Notation {
             names: vec![c.to_owned(), s.to_owned()],
@@ -385,11 +389,14 @@ impl ScriptWalk {
                 values: Vec::new(),
             });
         }
-        Walkthrough {
+        let mut w = Walkthrough {
             title: title.to_owned(),
             steps: self.steps,
             mechanism,
-        }
+            forms: super::Forms::default(),
+        };
+        w.prepare();
+        w
     }
 }
 

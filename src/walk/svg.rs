@@ -188,6 +188,20 @@ fn motion_dq(m: &Motion) -> DualQuat<Scalar> {
 }
 
 impl Scene {
+    /// The exact scalars of the scene: joint positions and axes, tool, pose matrix and DQ.
+    pub(crate) fn scalars(&self) -> impl Iterator<Item = &Scalar> {
+        self.joints
+            .iter()
+            .flat_map(|(p, n)| p.iter().chain(n))
+            .chain(&self.tool)
+            .chain(self.matrix.rows.iter().flatten())
+            .chain(
+                [&self.pose.real, &self.pose.dual]
+                    .into_iter()
+                    .flat_map(|q| [&q.w, &q.x, &q.y, &q.z]),
+            )
+    }
+
     /// The scene of `m`, with the values of `cfg`, then of the robot file, then the defaults.
     pub(crate) fn new(m: &Mechanism, cfg: &Config) -> Result<Scene, WalkError> {
         // The joint variables, in order, and whether each slides.
@@ -235,7 +249,7 @@ impl Scene {
         let mut others = std::collections::BTreeSet::new();
         let mut note = |x: &Scalar| {
             for s in x.symbols() {
-                if !s.is_pi() && s.name() != "1" && !joints.iter().any(|(n, _)| n == s.name()) {
+                if !s.is_pi() && !s.is_unit() && !joints.iter().any(|(n, _)| n == s.name()) {
                     others.insert(s.name().to_owned());
                 }
             }

@@ -3,13 +3,14 @@
 //! Both number the steps from 1 and print each value through the same closed forms as
 //! `dqsym run` (plain text with its shorthand legend, or [`latex_value`]).
 
+use super::forms::half;
 use super::notation::Names;
-use super::{ComponentTrace, HalfAngle, Step, WalkError, Walkthrough, Word, Words};
+use super::{ComponentTrace, Forms, HalfAngle, Step, WalkError, Walkthrough, Word, Words};
 use crate::closed::angle_text;
 use crate::emit::visual_len;
 use crate::{
-    closed_form, latex_aligned_named, latex_named, latex_symbol, plain_named, plain_quotient_named,
-    Expr, LatexOptions, PlainOptions, Scalar, TraceStep, Value,
+    latex_aligned_named, latex_named, latex_symbol, plain_named, plain_quotient_named, Expr,
+    LatexOptions, PlainOptions, Scalar, TraceStep, Value,
 };
 
 /// Expanded sums longer than this are listed in rows of this many terms.
@@ -44,12 +45,12 @@ pub(crate) trait Style {
     fn tuple(&self, parts: &[String]) -> String;
 }
 
-/// Plain text in the page's notation.
-pub(crate) struct Plain<'a>(pub &'a Names);
+/// Plain text in the page's notation, the closed forms looked up in the walkthrough's.
+pub(crate) struct Plain<'a>(pub &'a Names, pub &'a Forms);
 
 impl Style for Plain<'_> {
     fn scalar(&self, x: &Scalar) -> Result<String, WalkError> {
-        Ok(self.expr(&closed_form(x)?))
+        Ok(self.expr(self.1.of(x)?))
     }
     fn expr(&self, e: &Expr) -> String {
         plain_named(e, &PlainOptions::default(), &|s, a| self.0.plain(s, a))
@@ -59,12 +60,13 @@ impl Style for Plain<'_> {
     }
 }
 
-/// Markdown: values in `$...$`, in the page's notation.
-pub(crate) struct Tex<'a>(pub &'a Names);
+/// Markdown: values in `$...$`, in the page's notation, the closed forms looked up in the
+/// walkthrough's.
+pub(crate) struct Tex<'a>(pub &'a Names, pub &'a Forms);
 
 impl Style for Tex<'_> {
     fn scalar(&self, x: &Scalar) -> Result<String, WalkError> {
-        Ok(format!("${}$", self.expr(&closed_form(x)?)))
+        Ok(format!("${}$", self.expr(self.1.of(x)?)))
     }
     fn expr(&self, e: &Expr) -> String {
         latex_named(e, &latex_opts(), &|s, a| self.0.tex(s, a))
@@ -129,10 +131,10 @@ fn plain_value(v: &Value, st: &Plain) -> Result<Vec<String>, WalkError> {
             for r in rows {
                 let mut parts = Vec::new();
                 for q in r {
-                    let (n, d) = (closed_form(q.num())?, closed_form(q.den())?);
+                    let (n, d) = (st.1.of(q.num())?, st.1.of(q.den())?);
                     parts.push(plain_quotient_named(
-                        &n,
-                        &d,
+                        n,
+                        d,
                         &PlainOptions::default(),
                         &|s, a| st.0.plain(s, a),
                     ));
@@ -194,7 +196,7 @@ fn script_names(w: &Walkthrough) -> Option<String> {
 /// When a value cannot be shown (never for a walkthrough this crate built).
 pub fn walk_text(w: &Walkthrough) -> Result<String, WalkError> {
     let names = Names::for_walk(w);
-    let st = Plain(&names);
+    let st = Plain(&names, &w.forms);
     let mut out = String::new();
     let pad = "   ";
     let mut n = 0;
@@ -281,15 +283,15 @@ pub(crate) fn deviation(d: f64) -> String {
 
 /// The identities of the half angles, as expressions: `c3^2 - s3^2 = C3`, `2 s3 c3 = S3`,
 /// `c3^2 + s3^2 = 1`.
-fn half_angle_identities(symbol: &str) -> Result<[(Expr, Expr); 3], WalkError> {
+fn half_angle_identities(symbol: &str, forms: &Forms) -> Result<[(Expr, Expr); 3], WalkError> {
     let t = Scalar::sym(symbol);
-    let half = &t * Scalar::rational(num_rational::BigRational::new(1.into(), 2.into()));
-    let (c, s) = (closed_form(&half.cos())?, closed_form(&half.sin())?);
+    let h = half(&t);
+    let (c, s) = (forms.of(&h.cos())?.clone(), forms.of(&h.sin())?.clone());
     let sq = |e: &Expr| Expr::Pow(Box::new(e.clone()), 2);
     Ok([
         (
             Expr::Add(vec![sq(&c), Expr::Neg(Box::new(sq(&s)))]),
-            closed_form(&t.cos())?,
+            forms.of(&t.cos())?.clone(),
         ),
         (
             Expr::Mul(vec![
@@ -297,7 +299,7 @@ fn half_angle_identities(symbol: &str) -> Result<[(Expr, Expr); 3], WalkError> {
                 s.clone(),
                 c.clone(),
             ]),
-            closed_form(&t.sin())?,
+            forms.of(&t.sin())?.clone(),
         ),
         (
             Expr::Add(vec![sq(&c), sq(&s)]),
@@ -312,7 +314,7 @@ const HALF_ANGLES: &str = "Half angles lifted: the factor and its conjugate each
 fn half_angle_text(h: &[HalfAngle], st: &Plain) -> Result<String, WalkError> {
     let mut parts = Vec::new();
     for a in h {
-        let ids = half_angle_identities(&a.symbol)?;
+        let ids = half_angle_identities(&a.symbol, st.1)?;
         let each: Vec<String> = ids
             .iter()
             .map(|(l, r)| format!("{} = {}", st.expr(l), st.expr(r)))
@@ -459,8 +461,8 @@ fn component(label: &str, c: &str, dual: bool) -> String {
 }
 
 /// The closed form of `x` when it is not a constant (constants are shown in place).
-fn entry(x: &Scalar) -> Result<(Expr, bool), WalkError> {
-    Ok((closed_form(x)?, x.is_constant()))
+fn entry(x: &Scalar, forms: &Forms) -> Result<(Expr, bool), WalkError> {
+    Ok((forms.of(x)?.clone(), x.is_constant()))
 }
 
 /// The entries of a value as shown in place (a constant, or a name), and the named ones.
@@ -471,7 +473,7 @@ type Named = (Vec<String>, Vec<(String, Expr)>);
 /// each broken at [`WIDTH`].
 pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piece>, WalkError> {
     let lab = label_tex(label);
-    let e = |x: &Scalar| -> Result<String, WalkError> { Ok(st.expr(&closed_form(x)?)) };
+    let e = |x: &Scalar| -> Result<String, WalkError> { Ok(st.expr(st.1.of(x)?)) };
     let tuple = |xs: &[&Scalar]| -> Result<String, WalkError> {
         let parts: Result<Vec<String>, WalkError> = xs.iter().map(|x| e(x)).collect();
         Ok(format!("\\left({}\\right)", parts?.join(", ")))
@@ -523,14 +525,12 @@ pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piec
                     let cells: Result<Vec<String>, WalkError> = r
                         .iter()
                         .map(|q| {
-                            let (n, d) = (closed_form(q.num())?, closed_form(q.den())?);
-                            Ok(
-                                if matches!(&d, Expr::Num(x) if num_traits::One::is_one(x)) {
-                                    st.expr(&n)
-                                } else {
-                                    format!("\\frac{{{}}}{{{}}}", st.expr(&n), st.expr(&d))
-                                },
-                            )
+                            let (n, d) = (st.1.of(q.num())?, st.1.of(q.den())?);
+                            Ok(if matches!(d, Expr::Num(x) if num_traits::One::is_one(x)) {
+                                st.expr(n)
+                            } else {
+                                format!("\\frac{{{}}}{{{}}}", st.expr(n), st.expr(d))
+                            })
                         })
                         .collect();
                     Ok(cells?.join(" & "))
@@ -550,7 +550,7 @@ pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piec
         let mut shown = Vec::new();
         let mut rows = Vec::new();
         for (x, name) in xs {
-            let (ex, constant) = entry(x)?;
+            let (ex, constant) = entry(x, st.1)?;
             if constant {
                 shown.push(st.expr(&ex));
             } else {
@@ -565,7 +565,7 @@ pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piec
     let mut out = Vec::new();
     match value {
         Value::Scalar(x) => {
-            out.push(Piece::Display(st.aligned(&[(lab, closed_form(x)?)])));
+            out.push(Piece::Display(st.aligned(&[(lab, st.1.of(x)?.clone())])));
         }
         Value::Quat(q) => {
             let (shown, rows) = named(&[
@@ -624,7 +624,7 @@ pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piec
                 let mut cells = Vec::new();
                 for (j, x) in r.iter().enumerate() {
                     let name = component(label, &format!("{}{}", i + 1, j + 1), false);
-                    let (ex, constant) = entry(x)?;
+                    let (ex, constant) = entry(x, st.1)?;
                     if constant {
                         cells.push(st.expr(&ex));
                     } else {
@@ -705,7 +705,7 @@ pub(crate) struct Page {
 /// step with prose and display formulas.
 pub(crate) fn page(w: &Walkthrough) -> Result<Page, WalkError> {
     let names = Names::for_walk(w);
-    let st = Tex(&names);
+    let st = Tex(&names, &w.forms);
     let mut out = Vec::new();
     let mut n = 0;
     for step in &w.steps {
@@ -759,7 +759,7 @@ pub(crate) fn page(w: &Walkthrough) -> Result<Page, WalkError> {
                 if !half_angles.is_empty() {
                     body.push(Piece::Text(format!("{HALF_ANGLES}:")));
                     for a in half_angles {
-                        let ids = half_angle_identities(&a.symbol)?;
+                        let ids = half_angle_identities(&a.symbol, st.1)?;
                         let each: Vec<String> = ids
                             .iter()
                             .map(|(l, r)| format!("{} = {}", st.expr(l), st.expr(r)))
@@ -886,8 +886,8 @@ fn trace_tex(t: &ComponentTrace, st: &Tex) -> Vec<Piece> {
 }
 
 fn angle_tex(a: &crate::Angle, st: &Tex) -> String {
-    match closed_form(&a.to_scalar()) {
-        Ok(e) => st.expr(&e),
+    match st.1.of(&a.to_scalar()) {
+        Ok(e) => st.expr(e),
         Err(_) => String::new(),
     }
 }

@@ -634,7 +634,7 @@ print(' '.join(repr(x) for x in q), int(sg), int(ap))\n",
 fn sympy_lines_parse_and_agree_with_the_engine() {
     for (file, free) in [("puma560", None), ("ur5", None), ("stanford", None)] {
         let sol = derive(file, free).expect("derive");
-        let text = dqsym::ik::ik_report(&sol, dqsym::ik::IkFormat::Sympy).expect("sympy");
+        let text = dqsym::ik::ik_report(&sol, dqsym::Format::Sympy, true).expect("sympy");
         let vars: Vec<String> = sol.variables.iter().map(|v| format!("'{v}'")).collect();
         let names: Vec<String> = sol.params.iter().map(|p| format!("'{p}'")).collect();
         // Evaluates the lines in order; a joint line with sign_q branches on +1, -1; complex

@@ -416,9 +416,9 @@ fn generic_6r_pose_as_a_cos_sin_polynomial_matches_plain_matrix_products() {
     for env in points(&refs, 3) {
         let want = plain_pose(&r, &env);
         let value = |n: &str| -> Option<f64> {
-            if let Some((x, sin)) = dqsym::parse_trig_placeholder(n) {
+            if let Some((x, f)) = dqsym::parse_trig_placeholder(n) {
                 let v = env.iter().find(|(k, _)| k == x)?.1;
-                return Some(if sin { v.sin() } else { v.cos() });
+                return Some(f.f64(v));
             }
             env.iter().find(|(k, _)| k == n).map(|(_, v)| *v)
         };

@@ -49,7 +49,7 @@ pub use emit::{latex, LatexOptions};
 pub use kin::{parse_robot, parse_urdf, Chain, Joint, JointKind, Robot};
 pub use print::{plain, PlainOptions};
 pub use ring::Ring;
-pub use scalar::{Context, Frac, Scalar, ScalarError, Sym};
+pub use scalar::{Context, Frac, Scalar, ScalarError, Sym, Trig};
 
 // Everything else, kept at the top for the callers written before the modules were public;
 // its documented home is its module.

@@ -339,9 +339,9 @@ fn unshape(e: Expr, map: &[(String, String)]) -> Expr {
     };
     match e {
         Expr::Sym(s) => Expr::Sym(back(s)),
-        Expr::Trig { sin, mut angle } => {
+        Expr::Trig { f, mut angle } => {
             angle.terms = angle.terms.into_iter().map(|(s, k)| (back(s), k)).collect();
-            Expr::Trig { sin, angle }
+            Expr::Trig { f, angle }
         }
         Expr::Add(v) => Expr::Add(v.into_iter().map(|e| unshape(e, map)).collect()),
         Expr::Mul(v) => Expr::Mul(v.into_iter().map(|e| unshape(e, map)).collect()),

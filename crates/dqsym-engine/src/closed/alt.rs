@@ -110,7 +110,7 @@ fn num(q: Rat) -> Expr {
 
 fn trig(sin: bool, terms: Vec<(Sym, Small)>, pi: Small) -> Expr {
     Expr::Trig {
-        sin,
+        f: crate::scalar::Trig::of(sin),
         angle: Angle { terms, pi },
     }
 }

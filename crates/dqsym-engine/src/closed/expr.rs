@@ -1,7 +1,7 @@
 //! Display expressions: what a closed form is made of, its cost, and its exact value.
 
 use crate::scalar::atoms::small_ok;
-use crate::scalar::{Small, Sym};
+use crate::scalar::{Small, Sym, Trig};
 use crate::Scalar;
 use num_bigint::BigInt;
 use num_rational::BigRational;
@@ -22,7 +22,7 @@ impl Angle {
     pub fn to_scalar(&self) -> Scalar {
         let mut a = Scalar::pi() * small(&self.pi);
         for (s, k) in &self.terms {
-            let v = if s.name() == "1" {
+            let v = if s.is_unit() {
                 Scalar::int(1)
             } else {
                 Scalar::sym(s.name())
@@ -34,7 +34,7 @@ impl Angle {
 
     /// `cos` or `sin` of the angle: what `to_scalar().cos()` (or `.sin()`) gives, built from
     /// the parts directly when they are what reading the angle back would give.
-    fn trig(&self, sin: bool) -> Scalar {
+    fn trig(&self, f: Trig) -> Scalar {
         let direct = small_ok(&self.pi)
             && self.terms.is_sorted_by(|a, b| a.0 < b.0)
             && self
@@ -42,23 +42,31 @@ impl Angle {
                 .iter()
                 .all(|(s, k)| !s.is_pi() && !k.is_zero() && small_ok(k));
         if direct {
-            return Scalar::trig_of_parts(sin, self.terms.clone(), self.pi);
+            return Scalar::trig_of_parts(f.is_sin(), self.terms.clone(), self.pi);
         }
         let a = self.to_scalar();
-        if sin {
-            a.sin()
-        } else {
-            a.cos()
+        match f {
+            Trig::Cos => a.cos(),
+            Trig::Sin => a.sin(),
         }
     }
 
     /// True when every coefficient is 1 and there is no pi part: `theta1 + theta2`.
     pub fn is_plain_sum(&self) -> bool {
-        self.pi.is_zero()
-            && self
-                .terms
-                .iter()
-                .all(|(s, k)| k.is_one() && s.name() != "1")
+        self.pi.is_zero() && self.terms.iter().all(|(s, k)| k.is_one() && !s.is_unit())
+    }
+
+    /// The rational constant of the angle (not a multiple of pi): `1` in `t + 1`.
+    pub fn constant(&self) -> Small {
+        self.terms
+            .iter()
+            .find(|(s, _)| s.is_unit())
+            .map_or_else(Small::zero, |(_, k)| *k)
+    }
+
+    /// The terms in symbols, the constant left out.
+    pub fn symbol_terms(&self) -> impl Iterator<Item = &(Sym, Small)> {
+        self.terms.iter().filter(|(s, _)| !s.is_unit())
     }
 }
 
@@ -103,8 +111,8 @@ pub enum Expr {
     Sym(Sym),
     /// `cos(angle)` or `sin(angle)`.
     Trig {
-        /// `sin` when true, `cos` when false.
-        sin: bool,
+        /// Cosine or sine.
+        f: Trig,
         /// The argument.
         angle: Angle,
     },
@@ -135,24 +143,20 @@ impl Expr {
         fn walk(e: &Expr, out: &mut Vec<String>) {
             match e {
                 Expr::Num(_) | Expr::Sqrt(_) => {}
+                Expr::Sym(s) if s.is_pi() => {}
                 Expr::Sym(s) => match crate::scalar::parse_trig_placeholder(s.name()) {
                     Some((x, _)) => out.push(x.to_owned()),
                     None => out.push(s.name().to_owned()),
                 },
-                Expr::Trig { angle, .. } => out.extend(
-                    angle
-                        .terms
-                        .iter()
-                        .map(|(s, _)| s.name().to_owned())
-                        .filter(|n| n != "1"),
-                ),
+                Expr::Trig { angle, .. } => {
+                    out.extend(angle.symbol_terms().map(|(s, _)| s.name().to_owned()))
+                }
                 Expr::Add(v) | Expr::Mul(v) => v.iter().for_each(|x| walk(x, out)),
                 Expr::Neg(x) | Expr::Pow(x, _) => walk(x, out),
             }
         }
         let mut out = Vec::new();
         walk(self, &mut out);
-        out.retain(|n| n != "pi");
         out.sort();
         out.dedup();
         out
@@ -168,8 +172,8 @@ impl Expr {
     pub fn with_placeholders_as_trig(self) -> Expr {
         match self {
             Expr::Sym(s) => match crate::scalar::parse_trig_placeholder(s.name()) {
-                Some((x, sin)) => Expr::Trig {
-                    sin,
+                Some((x, f)) => Expr::Trig {
+                    f,
                     angle: Angle {
                         terms: vec![(Sym::new(x), Small::from_integer(1))],
                         pi: Small::from_integer(0),
@@ -219,12 +223,12 @@ impl Expr {
                 let v = sym_value(s, env);
                 (v, v.abs())
             }
-            Expr::Trig { sin, angle } => {
+            Expr::Trig { f, angle } => {
                 let mut phi = small_f64(&angle.pi) * std::f64::consts::PI;
                 for (s, k) in &angle.terms {
                     phi += small_f64(k) * sym_value(s, env);
                 }
-                let v = if *sin { phi.sin() } else { phi.cos() };
+                let v = f.f64(phi);
                 (v, v.abs())
             }
             Expr::Add(v) => v.iter().fold((0.0, 0.0), |(a, m), e| {
@@ -248,17 +252,17 @@ impl Expr {
     }
 
     /// [`Expr::to_scalar`], with the trigonometric factors computed once per distinct atom.
-    fn eval<'a>(&'a self, trig: &mut Vec<(bool, &'a Angle, Scalar)>) -> Scalar {
+    fn eval<'a>(&'a self, trig: &mut Vec<(Trig, &'a Angle, Scalar)>) -> Scalar {
         match self {
             Expr::Num(q) => Scalar::rational(q.clone()),
             Expr::Sqrt(n) => Scalar::int(*n as i64).sqrt(),
             Expr::Sym(s) => Scalar::sym(s.name()),
-            Expr::Trig { sin, angle } => {
-                if let Some((_, _, v)) = trig.iter().find(|(s, a, _)| s == sin && *a == angle) {
+            Expr::Trig { f, angle } => {
+                if let Some((_, _, v)) = trig.iter().find(|(g, a, _)| g == f && *a == angle) {
                     return v.clone();
                 }
-                let v = angle.trig(*sin);
-                trig.push((*sin, angle, v.clone()));
+                let v = angle.trig(*f);
+                trig.push((*f, angle, v.clone()));
                 v
             }
             // Folded from the first operand: `0 + x` and `1 * x` are `x` exactly.

@@ -99,7 +99,7 @@ impl E {
             E::Sym(s) => Expr::Sym(ctx.syms[*s as usize].clone()),
             E::Pow(s, n) => Expr::Pow(Box::new(Expr::Sym(ctx.syms[*s as usize].clone())), *n),
             E::Trig(a) => Expr::Trig {
-                sin: is_sin(*a),
+                f: crate::scalar::Trig::of(is_sin(*a)),
                 angle: ctx.angles[angle_of(*a) as usize].clone(),
             },
             E::Add(v) => Expr::Add(v.iter().map(|e| e.to_expr(ctx)).collect()),

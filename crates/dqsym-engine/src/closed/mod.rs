@@ -15,6 +15,7 @@ mod notation;
 mod recombine;
 mod trace;
 
+pub use crate::scalar::Trig;
 pub use expr::{Angle, Cost, Expr};
 pub use notation::{angle_text, shorthand_name, TrigNames};
 pub use trace::{Identity, TraceStep};

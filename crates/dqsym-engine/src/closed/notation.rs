@@ -2,13 +2,13 @@
 //! `s123` and the explicit text of an angle (`theta1 + theta2`, `t - pi/7`).
 
 use super::Angle;
-use crate::scalar::Small;
+use crate::scalar::{Small, Trig};
 use num_traits::{One, Signed, Zero};
 
 /// `c12` / `s123` for cos / sin of a plain sum of numbered symbols sharing one prefix
 /// (`theta1 + theta2`, `t2 + t3`; prefixes other than theta, q, t and th are kept:
 /// `calpha5`); `None` for any other angle.
-pub fn shorthand_name(sin: bool, angle: &Angle) -> Option<String> {
+pub fn shorthand_name(f: Trig, angle: &Angle) -> Option<String> {
     if !angle.is_plain_sum() || angle.terms.is_empty() {
         return None;
     }
@@ -40,11 +40,7 @@ pub fn shorthand_name(sin: bool, angle: &Angle) -> Option<String> {
         Some("theta" | "q" | "t" | "th") | None => "",
         Some(p) => p,
     };
-    Some(format!(
-        "{}{shown}{}",
-        if sin { "s" } else { "c" },
-        body.join(sep)
-    ))
+    Some(format!("{}{shown}{}", &f.name()[..1], body.join(sep)))
 }
 
 /// The angle in explicit form: `theta1 + theta2`, `theta3/2`, `t - pi/7`.
@@ -75,7 +71,7 @@ pub fn angle_text(angle: &Angle) -> String {
         }
     };
     for (sym, k) in &angle.terms {
-        let name = if sym.name() == "1" { "" } else { sym.name() };
+        let name = if sym.is_unit() { "" } else { sym.name() };
         push(*k, name, &mut s);
     }
     if !angle.pi.is_zero() {
@@ -87,6 +83,6 @@ pub fn angle_text(angle: &Angle) -> String {
     s
 }
 
-/// How a printer names the cosine (`false`) or sine (`true`) of an angle: `Some(name)` for a
-/// shorthand, `None` to write the function out.
-pub type TrigNames<'a> = &'a dyn Fn(bool, &Angle) -> Option<String>;
+/// How a printer names the cosine or sine of an angle: `Some(name)` for a shorthand, `None` to
+/// write the function out.
+pub type TrigNames<'a> = &'a dyn Fn(Trig, &Angle) -> Option<String>;

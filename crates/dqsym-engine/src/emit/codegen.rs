@@ -11,7 +11,7 @@
 //! per distinct angle.
 
 use crate::closed::{angle_text, shorthand_name, Angle, Expr};
-use crate::scalar::{Small, Sym};
+use crate::scalar::{Small, Sym, Trig};
 use num_integer::Integer;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::collections::{BTreeMap, HashMap, HashSet};
@@ -358,7 +358,7 @@ impl Builder<'_> {
         Ok(match e {
             Expr::Num(q) => self.constant(q.to_f64().unwrap_or(f64::NAN)),
             Expr::Sqrt(n) => self.constant((*n as f64).sqrt()),
-            Expr::Sym(s) if s.name() == "pi" => self.constant(std::f64::consts::PI),
+            Expr::Sym(s) if s.is_pi() => self.constant(std::f64::consts::PI),
             Expr::Sym(s) if self.bound.contains_key(s.name()) => self.bound[s.name()],
             Expr::Sym(s) => {
                 let i = self
@@ -368,12 +368,11 @@ impl Builder<'_> {
                     .ok_or_else(|| CodegenError::Unbound(s.name().to_string()))?;
                 self.node(Node::Arg(i))
             }
-            Expr::Trig { sin, angle } => {
+            Expr::Trig { f, angle } => {
                 let (c, s) = self.cos_sin(angle)?;
-                if *sin {
-                    s
-                } else {
-                    c
+                match f {
+                    Trig::Cos => c,
+                    Trig::Sin => s,
                 }
             }
             Expr::Add(v) => {
@@ -483,23 +482,13 @@ impl Builder<'_> {
     }
 
     fn cos_sin(&mut self, angle: &Angle) -> Result<(Id, Id), CodegenError> {
-        for (s, _) in &angle.terms {
-            if s.name() != "1" && !self.args.iter().any(|a| a == s.name()) {
+        for (s, _) in angle.symbol_terms() {
+            if !self.args.iter().any(|a| a == s.name()) {
                 return Err(CodegenError::Unbound(s.name().to_string()));
             }
         }
-        let sym_terms: Vec<(Sym, Small)> = angle
-            .terms
-            .iter()
-            .filter(|(s, _)| s.name() != "1")
-            .cloned()
-            .collect();
-        let unit: f64 = angle
-            .terms
-            .iter()
-            .filter(|(s, _)| s.name() == "1")
-            .map(|(_, k)| k.to_f64().unwrap_or(f64::NAN))
-            .sum();
+        let sym_terms: Vec<(Sym, Small)> = angle.symbol_terms().cloned().collect();
+        let unit: f64 = angle.constant().to_f64().unwrap_or(f64::NAN);
         let var = if sym_terms.is_empty() {
             None
         } else if self.o.expand_angles {
@@ -649,14 +638,14 @@ impl Builder<'_> {
 /// `s1, c1` for theta1, `sh1, ch1` for theta1 / 2, `s23, c23` for theta2 + theta3, else
 /// `s_a<i>, c_a<i>`.
 fn atom_names(a: &Angle, i: usize, taken: &HashSet<String>) -> (String, String) {
-    let short = shorthand_name(true, a)
+    let short = shorthand_name(Trig::Sin, a)
         .map(|s| s[1..].to_string())
         .or_else(|| {
             let half = Angle {
                 terms: a.terms.iter().map(|(s, k)| (s.clone(), *k * 2)).collect(),
                 pi: a.pi * 2,
             };
-            let h = shorthand_name(true, &half)?;
+            let h = shorthand_name(Trig::Sin, &half)?;
             Some(format!("h{}", &h[1..]))
         });
     let body = short
@@ -676,9 +665,12 @@ const PRODUCT: u8 = 2;
 const UNARY: u8 = 3;
 
 impl Program {
-    /// Whether the sine (`true`) or cosine of atom `i` is read.
-    pub fn atom_used(&self, i: usize, sin: bool) -> bool {
-        let n = if sin { Node::Sin(i) } else { Node::Cos(i) };
+    /// Whether the sine or cosine of atom `i` is read.
+    pub fn atom_used(&self, i: usize, f: Trig) -> bool {
+        let n = match f {
+            Trig::Cos => Node::Cos(i),
+            Trig::Sin => Node::Sin(i),
+        };
         self.nodes
             .iter()
             .position(|x| *x == n)
@@ -694,7 +686,7 @@ impl Program {
             .is_some_and(|id| self.uses[id] > 0);
         direct
             || self.atoms.iter().enumerate().any(|(k, a)| {
-                (self.atom_used(k, true) || self.atom_used(k, false))
+                (self.atom_used(k, Trig::Sin) || self.atom_used(k, Trig::Cos))
                     && a.angle.terms.iter().any(|(s, _)| s.name() == self.args[i])
             })
     }

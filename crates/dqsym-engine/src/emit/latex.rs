@@ -5,7 +5,7 @@
 //! Every string written here is valid KaTeX input; the tests render each snapshot with KaTeX
 //! (`throwOnError: true`).
 
-use crate::closed::{shorthand_name, Angle, Expr, TrigNames};
+use crate::closed::{shorthand_name, Angle, Expr, Trig, TrigNames};
 use crate::scalar::Small;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
@@ -293,13 +293,13 @@ impl<'a> Writer<'a> {
 
     /// `cos` or `sin` of `angle`, by its shorthand name when it has one, else written out with
     /// the exponent `pow` on the function: `\cos^{2}(\frac{\theta_{3}}{2})`.
-    fn trig(&mut self, sin: bool, angle: &Angle, pow: Option<u32>) {
+    fn trig(&mut self, f: Trig, angle: &Angle, pow: Option<u32>) {
         let name = match self.names {
-            Some(names) => names(sin, angle),
+            Some(names) => names(f, angle),
             None => self
                 .o
                 .shorthand
-                .then(|| shorthand_name(sin, angle))
+                .then(|| shorthand_name(f, angle))
                 .flatten()
                 .map(|name| {
                     let (c, rest) = name.split_at(1);
@@ -320,7 +320,10 @@ impl<'a> Writer<'a> {
                 self.out.push_str(&pow);
             }
             None => {
-                self.out.push_str(if sin { "\\sin" } else { "\\cos" });
+                self.out.push_str(match f {
+                    Trig::Cos => "\\cos",
+                    Trig::Sin => "\\sin",
+                });
                 self.out.push_str(&pow);
                 self.out.push('(');
                 self.out.push_str(&latex_angle(angle));
@@ -345,7 +348,7 @@ impl<'a> Writer<'a> {
             }
             Expr::Sqrt(n) => self.out.push_str(&format!("\\sqrt{{{n}}}")),
             Expr::Sym(s) => self.out.push_str(&latex_symbol(s.name())),
-            Expr::Trig { sin, angle } => self.trig(*sin, angle, None),
+            Expr::Trig { f, angle } => self.trig(*f, angle, None),
             Expr::Add(v) => {
                 let paren = prec > 1;
                 if paren {
@@ -423,7 +426,7 @@ impl<'a> Writer<'a> {
             }
             Expr::Pow(b, n) => match &**b {
                 // The exponent on the function: `\cos^{2}(x)`, never on its argument.
-                Expr::Trig { sin, angle } => self.trig(*sin, angle, Some(*n)),
+                Expr::Trig { f, angle } => self.trig(*f, angle, Some(*n)),
                 b => {
                     self.expr(b, 3);
                     self.out.push_str(&format!("^{{{n}}}"));
@@ -450,7 +453,7 @@ fn latex_angle(angle: &Angle) -> String {
         .terms
         .iter()
         .map(|(sym, k)| {
-            let name = (sym.name() != "1").then(|| latex_symbol(sym.name()));
+            let name = (!sym.is_unit()).then(|| latex_symbol(sym.name()));
             (*k, name)
         })
         .collect();

@@ -57,13 +57,13 @@ pub fn python_function(
     for (i, atom) in p.atoms.iter().enumerate() {
         let angle = p.angle_code(i, &lit);
         let comment = p.angle_comment(i);
-        if p.atom_used(i, true) {
+        if p.atom_used(i, crate::scalar::Trig::Sin) {
             s.push_str(&format!(
                 "    {} = np.sin({angle})  # {comment}\n",
                 atom.sin_name
             ));
         }
-        if p.atom_used(i, false) {
+        if p.atom_used(i, crate::scalar::Trig::Cos) {
             s.push_str(&format!("    {} = np.cos({angle})\n", atom.cos_name));
         }
     }

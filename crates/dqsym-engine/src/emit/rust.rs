@@ -103,7 +103,10 @@ pub fn rust_function(
             angle
         };
         let comment = p.angle_comment(i);
-        match (p.atom_used(i, true), p.atom_used(i, false)) {
+        match (
+            p.atom_used(i, crate::scalar::Trig::Sin),
+            p.atom_used(i, crate::scalar::Trig::Cos),
+        ) {
             (true, true) => s.push_str(&format!(
                 "    let ({}, {}) = {arg}.sin_cos(); // {comment}\n",
                 atom.sin_name, atom.cos_name

@@ -37,8 +37,9 @@ fn write(e: &Expr, prec: u8, out: &mut String) {
         }
         Expr::Sqrt(n) => out.push_str(&format!("sqrt({n})")),
         Expr::Sym(s) => out.push_str(s.name()),
-        Expr::Trig { sin, angle } => {
-            out.push_str(if *sin { "sin(" } else { "cos(" });
+        Expr::Trig { f, angle } => {
+            out.push_str(f.name());
+            out.push('(');
             out.push_str(&angle_text(angle));
             out.push(')');
         }

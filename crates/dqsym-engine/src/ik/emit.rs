@@ -6,6 +6,7 @@ use super::{Formula, IkSolution, TARGET_SYMBOLS};
 use crate::emit::codegen::{
     float_literal, lower, CodegenOptions, Id, Node, Output, Program, STD_CONSTS,
 };
+use crate::scalar::Trig;
 use crate::{Scalar, ScalarError};
 use num_traits::{One, Zero};
 
@@ -207,7 +208,7 @@ impl Ctx<'_> {
             }
         }
         for &i in &self.atoms[l] {
-            let (su, cu) = (p.atom_used(i, true), p.atom_used(i, false));
+            let (su, cu) = (p.atom_used(i, Trig::Sin), p.atom_used(i, Trig::Cos));
             if !su && !cu {
                 continue;
             }

@@ -16,7 +16,7 @@ mod walk;
 
 pub use axes::{home_axes, intersection, relation, Axis, Relation, V3};
 pub use emit::{ik_c, ik_python, ik_rust};
-pub use report::{ik_report, IkFormat};
+pub use report::ik_report;
 pub use walk::ik_walk;
 
 use crate::kin::Robot;
@@ -193,8 +193,9 @@ pub fn solve_dq(
         .components()
         .iter()
         .flat_map(|c| c.symbols())
+        .filter(|s| !s.is_pi())
         .map(|s| s.name().to_string())
-        .filter(|n| n != "pi" && !variables.contains(n))
+        .filter(|n| !variables.contains(n))
         .collect();
     params.sort();
     params.dedup();
@@ -295,10 +296,10 @@ impl IkSolution {
         for (i, (_, e)) in forms[k].iter().enumerate() {
             vals[i] = e
                 .eval_f64(&|s: &crate::Sym| {
-                    let n = s.name();
-                    if n == "pi" {
+                    if s.is_pi() {
                         return std::f64::consts::PI;
                     }
+                    let n = s.name();
                     env.iter()
                         .rev()
                         .find(|(k, _)| k == n)

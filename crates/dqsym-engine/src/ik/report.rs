@@ -3,25 +3,8 @@
 use super::{Formula, IkSolution, IkStep};
 use crate::closed::Expr;
 use crate::emit::{latex, latex_symbol, sympy, LatexOptions};
-use crate::print::{plain, PlainOptions};
+use crate::print::{plain, Format, PlainOptions};
 use crate::{closed_form, Scalar, ScalarError};
-
-/// The text format of [`ik_report`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum IkFormat {
-    /// Plain text; `shorthand` writes `c1`, `s23`.
-    Plain {
-        /// Robotics shorthand.
-        shorthand: bool,
-    },
-    /// LaTeX (an `aligned` block per joint).
-    Latex {
-        /// `c_{1}` shorthand.
-        shorthand: bool,
-    },
-    /// `NAME = EXPR` lines SymPy's `sympify` reads, one sign symbol `sign_q` per branch.
-    Sympy,
-}
 
 /// The named parts of a formula (`a`, `b`, `c`; `y`, `x`; `v`; `beta`, `gamma`), each in
 /// closed form.
@@ -127,15 +110,24 @@ fn header(sol: &IkSolution) -> Vec<String> {
     out
 }
 
-/// The derivation as text.
+/// The derivation as text: plain (`shorthand` writes `c1`, `s23`), LaTeX (an `aligned` block
+/// per joint; `shorthand` writes `c_{1}`), or `NAME = EXPR` lines SymPy's `sympify` reads (one
+/// sign symbol `sign_q` per branch); for Rust, C and Python the solver ([`super::ik_rust`],
+/// [`super::ik_c`], [`super::ik_python`]).
 ///
 /// # Errors
 /// A closed form that fails (term limit, work budget).
-pub fn ik_report(sol: &IkSolution, format: IkFormat) -> Result<String, ScalarError> {
+pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<String, ScalarError> {
+    match format {
+        Format::Rust => return super::ik_rust(sol),
+        Format::C => return super::ik_c(sol),
+        Format::Python => return super::ik_python(sol),
+        _ => {}
+    }
     let all = sol.forms().map_err(ScalarError::Unbound)?;
     let mut out = String::new();
     match format {
-        IkFormat::Plain { shorthand } => {
+        Format::Plain => {
             let o = PlainOptions { shorthand };
             for l in header(sol) {
                 out.push_str(&l);
@@ -176,7 +168,7 @@ pub fn ik_report(sol: &IkSolution, format: IkFormat) -> Result<String, ScalarErr
                 }
             }
         }
-        IkFormat::Latex { shorthand } => {
+        Format::Latex => {
             let o = LatexOptions {
                 shorthand,
                 ..LatexOptions::default()
@@ -218,7 +210,7 @@ pub fn ik_report(sol: &IkSolution, format: IkFormat) -> Result<String, ScalarErr
                 out.push_str("\n\\end{aligned}\n");
             }
         }
-        IkFormat::Sympy => {
+        _ => {
             for l in header(sol) {
                 out.push_str(&format!("# {l}\n"));
             }

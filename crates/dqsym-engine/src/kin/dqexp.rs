@@ -321,8 +321,8 @@ pub fn exact_div(num: &Scalar, den: &Scalar) -> Result<Option<Scalar>> {
     let syms: Vec<String> = den
         .symbols()
         .iter()
+        .filter(|s| !s.is_pi())
         .map(|s| s.name().to_owned())
-        .filter(|n| n != "pi")
         .collect();
     let pi = Scalar::pi();
     let values = [
@@ -336,7 +336,7 @@ pub fn exact_div(num: &Scalar, den: &Scalar) -> Result<Option<Scalar>> {
     for v in &values {
         let at = |x: &Scalar| syms.iter().fold(x.clone(), |acc, n| acc.subs(n, v));
         let d = at(den);
-        if d.is_zero() || !d.is_constant() || d.symbols().iter().any(|s| s.name() == "pi") {
+        if d.is_zero() || !d.is_constant() || d.symbols().iter().any(crate::Sym::is_pi) {
             continue;
         }
         let Ok(k) = at(num).try_div(&d) else {

@@ -4,8 +4,10 @@ use super::dh::{dh_link, dh_link_matrix, mdh_link, mdh_link_matrix};
 use crate::algebra::{neg3, scale3};
 use crate::{DualQuat, Matrix4, Ring};
 
-/// Whether the joint variable is an angle or a length.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// Whether the joint variable is an angle or a length. A robot file's joint `type`:
+/// `"revolute"` or `"prismatic"`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum JointKind {
     /// The joint variable is an angle (added to `θ`, or the rotation about the screw axis).
     Revolute,

@@ -17,8 +17,9 @@ use crate::{DualQuat, Matrix4, Quat, Scalar};
 use serde::Deserialize;
 use thiserror::Error;
 
-/// The joint convention of a robot file.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// The joint convention of a robot file: its `convention` field, `"dh"`, `"mdh"` or `"screw"`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Convention {
     /// `Rz(theta) Tz(d) Tx(a) Rx(alpha)`.
     Dh,
@@ -114,11 +115,31 @@ pub enum RobotError {
     },
 }
 
+/// A keyword field of a robot file: the variant of `T` it names, or the text when it names
+/// none (reported with the file, joint and field, the expected names listed).
+enum Keyword<T> {
+    Known(T),
+    Unknown(String),
+}
+
+impl<'de, T: serde::de::DeserializeOwned> Deserialize<'de> for Keyword<T> {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::IntoDeserializer;
+        let text = String::deserialize(d)?;
+        let known: Result<T, serde::de::value::Error> =
+            T::deserialize(text.as_str().into_deserializer());
+        Ok(match known {
+            Ok(t) => Keyword::Known(t),
+            Err(_) => Keyword::Unknown(text),
+        })
+    }
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RobotFile {
     name: Option<String>,
-    convention: String,
+    convention: Keyword<Convention>,
     base: Option<toml::Value>,
     tool: Option<toml::Value>,
     #[serde(default)]
@@ -131,7 +152,7 @@ struct RobotFile {
 #[serde(deny_unknown_fields)]
 struct JointFile {
     #[serde(rename = "type")]
-    kind: String,
+    kind: Keyword<JointKind>,
     theta: Option<String>,
     d: Option<String>,
     a: Option<String>,
@@ -162,11 +183,9 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
             message: format!("{}{}", at.unwrap_or_default(), e.message()),
         }
     })?;
-    let convention = match f.convention.as_str() {
-        "dh" => Convention::Dh,
-        "mdh" => Convention::Mdh,
-        "screw" => Convention::Screw,
-        other => {
+    let convention = match &f.convention {
+        Keyword::Known(c) => *c,
+        Keyword::Unknown(other) => {
             return Err(RobotError::File {
                 file: file.into(),
                 message: format!(
@@ -192,10 +211,9 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
             field: field.into(),
             message,
         };
-        let kind = match j.kind.as_str() {
-            "revolute" => JointKind::Revolute,
-            "prismatic" => JointKind::Prismatic,
-            other => {
+        let kind = match &j.kind {
+            Keyword::Known(k) => *k,
+            Keyword::Unknown(other) => {
                 return Err(err(
                     "type",
                     format!(
@@ -739,6 +757,7 @@ impl Robot {
                 f.components()
                     .iter()
                     .flat_map(|c| c.symbols())
+                    .filter(|s| !s.is_pi())
                     .map(|s| s.name().to_string()),
             );
         }
@@ -746,12 +765,13 @@ impl Robot {
             names.extend(
                 t.iter()
                     .flat_map(|c| c.symbols())
+                    .filter(|s| !s.is_pi())
                     .map(|s| s.name().to_string()),
             );
         }
         names.sort();
         names.dedup();
-        names.retain(|n| n != "pi" && !self.variables.contains(n));
+        names.retain(|n| !self.variables.contains(n));
         names
     }
 }
@@ -800,8 +820,8 @@ fn joint_variable(x: &Scalar) -> Result<String, String> {
     let syms: Vec<String> = x
         .symbols()
         .into_iter()
+        .filter(|s| !s.is_pi())
         .map(|s| s.name().to_string())
-        .filter(|n| n != "pi")
         .collect();
     match syms.as_slice() {
         [one] => Ok(one.clone()),

@@ -323,9 +323,9 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
                 Scalar::rational(m) * Scalar::sym(&var_of(lead)) + off
             }
         };
-        for s in value.symbols() {
+        for s in value.symbols().iter().filter(|s| !s.is_pi()) {
             let n = s.name().to_string();
-            if n != "pi" && !variables.contains(&n) {
+            if !variables.contains(&n) {
                 variables.push(n);
             }
         }

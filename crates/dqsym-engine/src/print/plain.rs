@@ -1,7 +1,7 @@
 //! Plain text in the field's notation: robotics shorthand (`l1 c1 + l2 c12`) or explicit
 //! (`l1*cos(theta1) + l2*cos(theta1 + theta2)`).
 
-use crate::closed::{angle_text, shorthand_name, Angle, Expr, TrigNames};
+use crate::closed::{angle_text, shorthand_name, Angle, Expr, Trig, TrigNames};
 use num_traits::One;
 use std::collections::BTreeSet;
 
@@ -20,7 +20,7 @@ impl Default for PlainOptions {
 
 /// The expression as plain text.
 pub fn plain(e: &Expr, opts: &PlainOptions) -> String {
-    let names = |sin: bool, a: &Angle| opts.shorthand.then(|| shorthand_name(sin, a)).flatten();
+    let names = |f: Trig, a: &Angle| opts.shorthand.then(|| shorthand_name(f, a)).flatten();
     plain_named(e, opts, &names)
 }
 
@@ -38,7 +38,7 @@ pub fn plain_quotient(num: &Expr, den: &Expr, opts: &PlainOptions) -> String {
     if matches!(den, Expr::Num(q) if q.is_one()) {
         return plain(num, opts);
     }
-    let names = |sin: bool, a: &Angle| opts.shorthand.then(|| shorthand_name(sin, a)).flatten();
+    let names = |f: Trig, a: &Angle| opts.shorthand.then(|| shorthand_name(f, a)).flatten();
     plain_quotient_named(num, den, opts, &names)
 }
 
@@ -80,10 +80,11 @@ fn write(e: &Expr, o: &PlainOptions, names: TrigNames, prec: u8, out: &mut Strin
         }
         Expr::Sqrt(n) => out.push_str(&format!("sqrt({n})")),
         Expr::Sym(s) => out.push_str(s.name()),
-        Expr::Trig { sin, angle } => match names(*sin, angle) {
+        Expr::Trig { f, angle } => match names(*f, angle) {
             Some(name) => out.push_str(&name),
             None => {
-                out.push_str(if *sin { "sin(" } else { "cos(" });
+                out.push_str(f.name());
+                out.push('(');
                 out.push_str(&angle_text(angle));
                 out.push(')');
             }
@@ -163,15 +164,15 @@ pub fn legend(exprs: &[&Expr]) -> Vec<String> {
         collect(e, &mut seen);
     }
     seen.into_iter()
-        .map(|(name, sin, text)| format!("{name} = {}({text})", if sin { "sin" } else { "cos" }))
+        .map(|(name, f, text)| format!("{name} = {}({text})", f.name()))
         .collect()
 }
 
-fn collect(e: &Expr, seen: &mut BTreeSet<(String, bool, String)>) {
+fn collect(e: &Expr, seen: &mut BTreeSet<(String, Trig, String)>) {
     match e {
-        Expr::Trig { sin, angle } => {
-            if let Some(n) = shorthand_name(*sin, angle) {
-                seen.insert((n, *sin, angle_text(angle)));
+        Expr::Trig { f, angle } => {
+            if let Some(n) = shorthand_name(*f, angle) {
+                seen.insert((n, *f, angle_text(angle)));
             }
         }
         Expr::Add(v) | Expr::Mul(v) => v.iter().for_each(|x| collect(x, seen)),

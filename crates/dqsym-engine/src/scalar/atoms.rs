@@ -44,7 +44,9 @@ impl Sym {
         &*self.0 == "pi"
     }
 
-    pub(crate) fn is_unit(&self) -> bool {
+    /// Whether this is the pseudo-symbol whose value is 1, which carries the rational constant
+    /// of an angle (`cos(t + 1)`); [`Angle::constant`](crate::Angle::constant) reads it.
+    pub fn is_unit(&self) -> bool {
         &*self.0 == "1"
     }
 }
@@ -73,6 +75,47 @@ impl fmt::Debug for Sym {
 impl fmt::Display for Sym {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&self.0)
+    }
+}
+
+/// The two trigonometric functions of the canonical form and of display expressions.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+pub enum Trig {
+    /// The cosine.
+    Cos,
+    /// The sine.
+    Sin,
+}
+
+impl Trig {
+    /// `Sin` when `sin` is true, else `Cos`.
+    pub fn of(sin: bool) -> Trig {
+        if sin {
+            Trig::Sin
+        } else {
+            Trig::Cos
+        }
+    }
+
+    /// Whether this is the sine.
+    pub fn is_sin(self) -> bool {
+        self == Trig::Sin
+    }
+
+    /// The function's name: `cos` or `sin`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Trig::Cos => "cos",
+            Trig::Sin => "sin",
+        }
+    }
+
+    /// The function's value at `x` in f64.
+    pub fn f64(self, x: f64) -> f64 {
+        match self {
+            Trig::Cos => x.cos(),
+            Trig::Sin => x.sin(),
+        }
     }
 }
 

@@ -11,20 +11,21 @@
 //! apply). The placeholder names (`cos(theta1)`) cannot be written in the language, so they
 //! never meet a user's symbol.
 
-use super::{Mode, Scalar, Term};
+use super::{Mode, Scalar, Term, Trig};
 
 /// The placeholder symbol standing for `cos(x)` (or `sin(x)`).
-pub fn trig_placeholder(x: &str, sin: bool) -> Scalar {
-    Scalar::sym(&format!("{}({x})", if sin { "sin" } else { "cos" }))
+pub fn trig_placeholder(x: &str, f: Trig) -> Scalar {
+    Scalar::sym(&format!("{}({x})", f.name()))
 }
 
-/// The angle symbol and kind of a placeholder name: `("theta1", false)` for `cos(theta1)`.
-pub fn parse_trig_placeholder(name: &str) -> Option<(&str, bool)> {
+/// The angle symbol and function of a placeholder name: `("theta1", Trig::Cos)` for
+/// `cos(theta1)`.
+pub fn parse_trig_placeholder(name: &str) -> Option<(&str, Trig)> {
     let (kind, rest) = name.split_once('(')?;
     let x = rest.strip_suffix(')')?;
     match kind {
-        "cos" => Some((x, false)),
-        "sin" => Some((x, true)),
+        "cos" => Some((x, Trig::Cos)),
+        "sin" => Some((x, Trig::Sin)),
         _ => None,
     }
 }
@@ -94,8 +95,8 @@ fn mode_polynomial(m: &Mode, cache: &mut TrigCache) -> Option<Scalar> {
             (c, s) = (kc.clone(), ks.clone());
             continue;
         }
-        let cx = trig_placeholder(x.name(), false);
-        let sx = trig_placeholder(x.name(), true);
+        let cx = trig_placeholder(x.name(), Trig::Cos);
+        let sx = trig_placeholder(x.name(), Trig::Sin);
         // sin(-x) = -sin(x).
         let sx = if *k.numer() < 0 { -sx } else { sx };
         for _ in 0..k.numer().abs() {

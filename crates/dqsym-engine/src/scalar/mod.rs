@@ -32,8 +32,8 @@ mod par;
 pub(crate) mod q;
 
 pub(crate) use arith::FxHasher;
-pub use atoms::Sym;
 pub(crate) use atoms::{Mode, MonoRc, Small};
+pub use atoms::{Sym, Trig};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
 pub(crate) use ctx::{charge, check_cancelled, term_limit, Poll};
 pub use ctx::{Context, Entered, DEFAULT_MAX_EXPONENT};
