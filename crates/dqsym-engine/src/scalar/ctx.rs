@@ -261,7 +261,9 @@ pub(crate) fn max_cyclotomic_degree() -> u64 {
     STATE.with(|s| {
         s.borrow()
             .as_ref()
-            .map_or(DEFAULT_MAX_CYCLOTOMIC_DEGREE, |st| st.ctx.max_cyclotomic_degree)
+            .map_or(DEFAULT_MAX_CYCLOTOMIC_DEGREE, |st| {
+                st.ctx.max_cyclotomic_degree
+            })
     })
 }
 
