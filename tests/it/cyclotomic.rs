@@ -543,9 +543,10 @@ fn past_the_degree_limit_is_an_error_then_exact() {
             Err(dqsym::ScalarError::CyclotomicDegree {
                 level,
                 degree,
+                exact,
                 limit,
             }) => {
-                assert_eq!((level, degree, limit), (348, 224, 192));
+                assert_eq!((level, degree, exact, limit), (348, 224, true, 192));
             }
             other => panic!("expected the degree limit, got {other:?}"),
         }

@@ -49,33 +49,36 @@ fn lcm(a: u64, b: u64) -> u64 {
 
 /// `W = lcm(24, 2 q1, 2 q2, ...)` for the denominators `q` of the pi offsets of `terms`, when
 /// `phi(W)` is within the context's limit; the error otherwise. `phi(n) >= sqrt(n / 2)`, so a
-/// `W` above `2 limit^2` is refused without factoring it.
+/// `W` above `2 limit^2` is refused without building anything; its degree is computed by
+/// trial division up to `W = 10^12`, and past that (or past `u128`) stated as a lower bound
+/// (such a `W` is refused whatever the limit).
 fn level_of<'a>(terms: impl Iterator<Item = &'a Term>) -> Result<u64, ScalarError> {
     let limit = super::ctx::max_cyclotomic_degree();
     let cap = 2u128.saturating_mul(u128::from(limit).saturating_mul(u128::from(limit)));
-    let mut w: u128 = 24;
+    let mut w: Option<u128> = Some(24);
     for t in terms {
         let d = 2 * u128::from(t.mode.pi.denom().unsigned_abs());
-        w = match (w / w.gcd(&d)).checked_mul(d) {
-            Some(x) if x <= cap => x,
-            other => {
-                let big = other.unwrap_or(u128::MAX);
-                return Err(ScalarError::CyclotomicDegree {
-                    level: u64::try_from(big / 2).unwrap_or(u64::MAX),
-                    degree: u64::try_from((big / 2).isqrt()).unwrap_or(u64::MAX),
-                    limit,
-                });
-            }
-        };
+        w = w.and_then(|w| (w / w.gcd(&d)).checked_mul(d));
     }
-    let w = u64::try_from(w).map_err(|_| ScalarError::OutOfRange("cyclotomic level".into()))?;
+    let refuse = |w: u128, degree: u64, exact: bool| ScalarError::CyclotomicDegree {
+        level: u64::try_from(w / 2).unwrap_or(u64::MAX),
+        degree,
+        exact,
+        limit,
+    };
+    const FACTORED: u128 = 1_000_000_000_000;
+    let w = match w {
+        Some(w) if w <= cap && w <= FACTORED => w as u64,
+        Some(w) if w <= FACTORED => return Err(refuse(w, totient(w as u64), true)),
+        Some(w) => {
+            let bound = u64::try_from((w / 2).isqrt()).unwrap_or(u64::MAX);
+            return Err(refuse(w, bound, false));
+        }
+        None => return Err(refuse(u128::MAX, u64::MAX, false)),
+    };
     let degree = totient(w);
     if degree > limit {
-        return Err(ScalarError::CyclotomicDegree {
-            level: w / 2,
-            degree,
-            limit,
-        });
+        return Err(refuse(u128::from(w), degree, true));
     }
     Ok(w)
 }

@@ -116,14 +116,17 @@ pub enum ScalarError {
     /// Constants at rational multiples of pi that meet in one sum need a cyclotomic field of
     /// a degree above the context's limit (see [`Context::with_max_cyclotomic_degree`]).
     #[error(
-        "exact constants at multiples of pi/{level} need a cyclotomic field of degree {degree}, \
-         over the limit of {limit} (--max-cyclotomic-degree raises it)"
+        "exact constants at multiples of pi/{level} need a cyclotomic field of degree {}{degree}, \
+         over the limit of {limit} (--max-cyclotomic-degree raises it)",
+        if *exact { "" } else { "at least " }
     )]
     CyclotomicDegree {
-        /// `lcm(12, q1, q2, ...)` for the denominators `q` of the pi offsets.
+        /// `lcm(12, q1, q2, ...)` for the denominators `q` of the pi offsets (saturated).
         level: u64,
-        /// The degree of the field.
+        /// The degree of the field, or a lower bound of it.
         degree: u64,
+        /// Whether `degree` is the degree itself (it is a lower bound for huge levels).
+        exact: bool,
         /// The limit.
         limit: u64,
     },
