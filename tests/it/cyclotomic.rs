@@ -429,7 +429,7 @@ proptest! {
                 let equal = ra == rb;
                 let diff = (&sa - &sb).check().expect("exact");
                 prop_assert_eq!(diff.is_zero_value(), equal, "{:?} - {:?} = {}", a, b, diff);
-                prop_assert_eq!(&sa == &sb, equal);
+                prop_assert_eq!(sa == sb, equal);
                 prop_assert_eq!(&ra, &reduce(&zval(&a2, n), n, &phi));
                 let d2 = (&sa - &sa2).check().expect("exact");
                 prop_assert!(d2.is_zero_value(), "{:?} vs {:?}: difference {}", a, a2, d2);
