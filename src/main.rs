@@ -38,6 +38,10 @@ struct Cli {
     /// The largest exponent `^` accepts, in absolute value.
     #[arg(long, value_name = "N", default_value_t = dqsym::DEFAULT_MAX_EXPONENT, global = true)]
     max_exponent: u64,
+    /// The largest degree of the cyclotomic field in which constants at rational multiples
+    /// of pi (cos(pi/7), x + 3 pi/29) are computed exactly; a larger one is an error.
+    #[arg(long, value_name = "N", default_value_t = dqsym::DEFAULT_MAX_CYCLOTOMIC_DEGREE, global = true)]
+    max_cyclotomic_degree: u64,
     /// The most term operations (terms of sums, term pairs of products) one statement, one
     /// robot file field or the whole fk derivation may do; more is an error, not a hang.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_WORK_BUDGET, global = true)]
@@ -369,6 +373,7 @@ fn dispatch(cli: Cli) -> ExitCode {
             .clone()
             .with_term_limit(cli.term_limit.unwrap_or(default_terms))
             .with_max_exponent(cli.max_exponent)
+            .with_max_cyclotomic_degree(cli.max_cyclotomic_degree)
             .with_work_budget(cli.work_budget),
     };
     // The limits guard scripts, one-liners and robot files; paper keeps the library defaults.

@@ -69,6 +69,7 @@ impl Class {
             ScalarError::TooLarge { .. }
             | ScalarError::TooManyPairs { .. }
             | ScalarError::Budget { .. }
+            | ScalarError::CyclotomicDegree { .. }
             | ScalarError::OutOfRange(_) => Class::Limit,
             _ => Class::Eval,
         }

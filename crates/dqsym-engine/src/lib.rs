@@ -87,5 +87,6 @@ pub use kin::{
 pub use print::{legend, plain_named, plain_quotient, plain_quotient_named};
 #[doc(hidden)]
 pub use scalar::{
-    parse_decimal, parse_trig_placeholder, trig_placeholder, Entered, DEFAULT_MAX_EXPONENT,
+    parse_decimal, parse_trig_placeholder, trig_placeholder, Entered,
+    DEFAULT_MAX_CYCLOTOMIC_DEGREE, DEFAULT_MAX_EXPONENT,
 };

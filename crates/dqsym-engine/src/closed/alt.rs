@@ -6,6 +6,9 @@
 //! - a polynomial in `cos x` alone or `sin x` alone (`sin^2 = 1 - cos^2` applied one way or
 //!   the other), factored over the rationals by its rational roots (`1 - sin(x)^2 = cos(x)^2`,
 //!   `(cos x - 1)^2 (cos x + 1)^3`);
+//!   a pair of the roots 1 and -1 also as `-sin(x)^2` (`sin(x)^4 (cos x + 1)`);
+//! - a sum of such polynomials in distinct angles, each in cos or sin, constants merged
+//!   (`cos(a + b) cos(a - b) = cos(a)^2 - sin(b)^2`);
 //! - a product of cosines and sines of multiples of one angle, peeled off by exact division
 //!   of the Fourier sum (`cos(1) cos(2) ... cos(512)`, Morrie's `cos x cos 2x cos 4x`).
 //!
@@ -41,6 +44,7 @@ pub(super) fn best_alternative(x: &Scalar) -> Option<Expr> {
         cands.extend(harmonic(t));
         cands.extend(sum_to_product(t));
         cands.extend(single_angle(t));
+        cands.extend(separable(t));
     }
     cands.extend(product(t));
     cands.extend(constant_trig(x, t));
@@ -283,23 +287,48 @@ fn sum_to_product(t: &[Term]) -> Option<Expr> {
 /// A polynomial in `cos x` alone (or `sin x` alone, or one of them times such a polynomial)
 /// with rational coefficients, factored by its rational roots.
 fn single_angle(t: &[Term]) -> Vec<Expr> {
+    let Some((var, poly)) = cos_sin_poly(t) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for sin_var in [false, true] {
+        let (even, odd) = in_one_function(&poly, sin_var);
+        let v = trig(sin_var, vec![(var.clone(), Small::one())], Small::zero());
+        let o = trig(!sin_var, vec![(var.clone(), Small::one())], Small::zero());
+        match (even.is_empty(), odd.is_empty()) {
+            (false, true) => out.extend(factored_forms(&even, &v, &o)),
+            (true, false) => out.extend(
+                factored_forms(&odd, &v, &o)
+                    .into_iter()
+                    .map(|e| mul(o.clone(), e)),
+            ),
+            _ => {}
+        }
+    }
+    out
+}
+
+/// `(x, p)` when the terms are a polynomial in `cos x` and `sin x` with rational coefficients:
+/// `p` maps `(i, j)` to the coefficient of `cos^i sin^j`.
+#[allow(clippy::type_complexity)]
+fn cos_sin_poly(t: &[Term]) -> Option<(Sym, BTreeMap<(u32, u32), Rat>)> {
     let mut var: Option<&Sym> = None;
     for u in t {
         if !u.mono.is_empty() || u.rad != 1 || !u.mode.pi.is_zero() {
-            return Vec::new();
+            return None;
         }
         match &*u.mode.freq {
             [] => {}
             [(s, k)] if k.is_integer() => {
                 if var.is_some_and(|v| v != s) {
-                    return Vec::new();
+                    return None;
                 }
                 var = Some(s);
             }
-            _ => return Vec::new(),
+            _ => return None,
         }
     }
-    let Some(var) = var else { return Vec::new() };
+    let var = var?;
     // (i, j) -> coefficient of cos^i sin^j: cos(k x) and sin(k x) are the real and imaginary
     // parts of (c + i s)^k.
     let mut poly: BTreeMap<(u32, u32), Rat> = BTreeMap::new();
@@ -311,10 +340,10 @@ fn single_angle(t: &[Term]) -> Vec<Expr> {
                 continue;
             }
             [(_, k)] => k.to_integer(),
-            _ => return Vec::new(),
+            _ => return None,
         };
         if !(1..=MAX_MULTIPLE).contains(&k) {
-            return Vec::new();
+            return None;
         }
         let k = k as u32;
         let mut binom = BigInt::one();
@@ -330,37 +359,171 @@ fn single_angle(t: &[Term]) -> Vec<Expr> {
         }
     }
     poly.retain(|_, q| !q.is_zero());
-    let mut out = Vec::new();
-    for sin_var in [false, true] {
-        // Eliminate the square of the other function: o^2 = 1 - v^2.
-        let mut even: BTreeMap<u32, Rat> = BTreeMap::new();
-        let mut odd: BTreeMap<u32, Rat> = BTreeMap::new();
-        for (&(i, j), q) in &poly {
-            let (dv, d_o) = if sin_var { (j, i) } else { (i, j) };
-            let target = if d_o % 2 == 0 { &mut even } else { &mut odd };
-            // (1 - v^2)^(d_o / 2) v^dv.
-            let n = d_o / 2;
-            let mut binom = BigInt::one();
-            for k in 0..=n {
-                let c = Rat::from_integer(binom.clone())
-                    * q
-                    * Rat::from_integer(if k % 2 == 0 { 1.into() } else { (-1).into() });
-                *target.entry(dv + 2 * k).or_insert_with(Rat::zero) += c;
-                binom = binom * BigInt::from(n - k) / BigInt::from(k + 1);
-            }
+    poly.retain(|_, q| !q.is_zero());
+    Some((var.clone(), poly))
+}
+
+/// The polynomial in `v = sin x` (or `cos x`) that `p` is, with `o^2 = 1 - v^2` for the other
+/// function `o`: the part even in `o` and the part odd in `o` (divided by `o`).
+fn in_one_function(
+    poly: &BTreeMap<(u32, u32), Rat>,
+    sin_var: bool,
+) -> (BTreeMap<u32, Rat>, BTreeMap<u32, Rat>) {
+    let mut even: BTreeMap<u32, Rat> = BTreeMap::new();
+    let mut odd: BTreeMap<u32, Rat> = BTreeMap::new();
+    for (&(i, j), q) in poly {
+        let (dv, d_o) = if sin_var { (j, i) } else { (i, j) };
+        let target = if d_o % 2 == 0 { &mut even } else { &mut odd };
+        // (1 - v^2)^(d_o / 2) v^dv.
+        let n = d_o / 2;
+        let mut binom = BigInt::one();
+        for k in 0..=n {
+            let c = Rat::from_integer(binom.clone())
+                * q
+                * Rat::from_integer(if k % 2 == 0 { 1.into() } else { (-1).into() });
+            *target.entry(dv + 2 * k).or_insert_with(Rat::zero) += c;
+            binom = binom * BigInt::from(n - k) / BigInt::from(k + 1);
         }
-        even.retain(|_, q| !q.is_zero());
-        odd.retain(|_, q| !q.is_zero());
-        let v = trig(sin_var, vec![(var.clone(), Small::one())], Small::zero());
-        let o = trig(!sin_var, vec![(var.clone(), Small::one())], Small::zero());
-        let e = match (even.is_empty(), odd.is_empty()) {
-            (false, true) => factored(&even, &v),
-            (true, false) => factored(&odd, &v).map(|e| mul(o, e)),
-            _ => None,
-        };
-        out.extend(e);
+    }
+    even.retain(|_, q| !q.is_zero());
+    odd.retain(|_, q| !q.is_zero());
+    (even, odd)
+}
+
+/// `p(v)` factored by its rational roots, and also with the pairs `(v - 1)(v + 1)` of the
+/// roots 1 and -1 written `-o^2` (`(cos x - 1)^2 (cos x + 1)^3 = sin(x)^4 (cos x + 1)`).
+fn factored_forms(p: &BTreeMap<u32, Rat>, v: &Expr, o: &Expr) -> Vec<Expr> {
+    let mut out: Vec<Expr> = factored(p, v).into_iter().collect();
+    // Divide out (v^2 - 1)^k, k as large as it goes, and factor the rest.
+    let mut rest = p.clone();
+    let mut k = 0u32;
+    while let Some(q) = divide_by_v2_minus_1(&rest) {
+        rest = q;
+        k += 1;
+    }
+    if k > 0 {
+        if let Some(f) = factored(&rest, v) {
+            let pw = Expr::Pow(Box::new(o.clone()), 2 * k);
+            let e = mul(pw, f);
+            out.push(if k % 2 == 1 { neg(e) } else { e });
+        }
     }
     out
+}
+
+/// `p / (v^2 - 1)` when exact.
+fn divide_by_v2_minus_1(p: &BTreeMap<u32, Rat>) -> Option<BTreeMap<u32, Rat>> {
+    let deg = *p.keys().max()? as usize;
+    if deg < 2 {
+        return None;
+    }
+    let mut r: Vec<Rat> = vec![Rat::zero(); deg + 1];
+    for (i, q) in p {
+        r[*i as usize] = q.clone();
+    }
+    let mut quot = vec![Rat::zero(); deg - 1];
+    for i in (2..=deg).rev() {
+        let c = r[i].clone();
+        if c.is_zero() {
+            continue;
+        }
+        r[i] = Rat::zero();
+        r[i - 2] += &c;
+        quot[i - 2] = c;
+    }
+    if r.iter().any(|x| !x.is_zero()) {
+        return None;
+    }
+    Some(
+        quot.into_iter()
+            .enumerate()
+            .filter(|(_, q)| !q.is_zero())
+            .map(|(i, q)| (i as u32, q))
+            .collect(),
+    )
+}
+
+/// A sum of polynomials in one cosine or sine each, of distinct angle symbols (and a
+/// constant): each part written in the function that makes it shortest, the constants merged
+/// (`cos(a + b) cos(a - b) = (cos 2a + cos 2b)/2 = cos(a)^2 - sin(b)^2`).
+fn separable(t: &[Term]) -> Option<Expr> {
+    let mut parts: BTreeMap<&Sym, Vec<Term>> = BTreeMap::new();
+    let mut constant = Rat::zero();
+    for u in t {
+        if !u.mono.is_empty() || u.rad != 1 || !u.mode.pi.is_zero() {
+            return None;
+        }
+        match &*u.mode.freq {
+            [] => constant += u.coef.to_big(),
+            [(s, _)] => parts.entry(s).or_default().push(u.clone()),
+            _ => return None,
+        }
+    }
+    if parts.len() < 2 || parts.len() > 4 {
+        return None;
+    }
+    // Each part in cos alone and in sin alone (without its constant); every combination is
+    // built with the constants merged, the cheapest kept.
+    let mut options: Vec<Vec<(Vec<Expr>, Rat)>> = Vec::new();
+    for ts in parts.values() {
+        let (var, poly) = cos_sin_poly(ts)?;
+        let mut opts = Vec::new();
+        for sin_var in [false, true] {
+            let (even, odd) = in_one_function(&poly, sin_var);
+            if !odd.is_empty() || even.len() > 4 {
+                continue;
+            }
+            let v = trig(sin_var, vec![(var.clone(), Small::one())], Small::zero());
+            let c0 = even.get(&0).cloned().unwrap_or_else(Rat::zero);
+            let terms: Vec<Expr> = even
+                .iter()
+                .rev()
+                .filter(|(i, _)| **i > 0)
+                .map(|(i, q)| {
+                    let pw = if *i == 1 {
+                        v.clone()
+                    } else {
+                        Expr::Pow(Box::new(v.clone()), *i)
+                    };
+                    if q.is_one() {
+                        pw
+                    } else if (-q).is_one() {
+                        neg(pw)
+                    } else {
+                        mul(num(q.clone()), pw)
+                    }
+                })
+                .collect();
+            opts.push((terms, c0));
+        }
+        if opts.is_empty() {
+            return None;
+        }
+        options.push(opts);
+    }
+    let mut best: Option<Expr> = None;
+    for mut pick in 0..(1usize << options.len()) {
+        let mut sum: Vec<Expr> = Vec::new();
+        let mut c = constant.clone();
+        for opts in &options {
+            let (terms, c0) = &opts[pick % 2 % opts.len()];
+            pick /= 2;
+            sum.extend(terms.iter().cloned());
+            c += c0;
+        }
+        if !c.is_zero() {
+            sum.push(num(c));
+        }
+        let e = match sum.len() {
+            0 => continue,
+            1 => sum.pop().expect("one term"),
+            _ => Expr::Add(sum),
+        };
+        if best.as_ref().is_none_or(|b| full_cost(&e) < full_cost(b)) {
+            best = Some(e);
+        }
+    }
+    best
 }
 
 /// `sum q_i v^i` factored by its rational roots (with multiplicity); the rest expanded.

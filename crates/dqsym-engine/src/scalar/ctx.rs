@@ -38,11 +38,17 @@ pub const DEFAULT_MAX_EXPONENT: u64 = 10_000;
 /// The default term limit.
 const DEFAULT_TERM_LIMIT: usize = 200_000;
 
+/// The default largest degree `phi(W)` of the cyclotomic field `Q(zeta_W)` in which the
+/// constants at rational multiples of pi of one group of terms are made canonical: every
+/// denominator up to 28 alone, whole degrees (`pi/180`, degree 96), sevenths with ninths (144).
+pub const DEFAULT_MAX_CYCLOTOMIC_DEGREE: u64 = 192;
+
 /// The limits and the cancel flag of a computation (see the module docs).
 #[derive(Clone, Debug)]
 pub struct Context {
     term_limit: usize,
     max_exponent: u64,
+    max_cyclotomic_degree: u64,
     work_budget: u64,
     threads: usize,
     cancel: Option<Arc<AtomicBool>>,
@@ -53,6 +59,7 @@ impl Default for Context {
         Context {
             term_limit: DEFAULT_TERM_LIMIT,
             max_exponent: DEFAULT_MAX_EXPONENT,
+            max_cyclotomic_degree: DEFAULT_MAX_CYCLOTOMIC_DEGREE,
             work_budget: u64::MAX,
             threads: available_threads(),
             cancel: None,
@@ -111,6 +118,16 @@ impl Context {
         self
     }
 
+    /// Constants at rational multiples of pi are computed exactly in the cyclotomic field
+    /// `Q(zeta_W)`, `W = lcm(24, 2 q1, 2 q2, ...)` for the denominators `q` of the pi offsets
+    /// that meet in one sum; a field of degree `phi(W)` above `n` makes the result a
+    /// [`ScalarError::CyclotomicDegree`] (never a non-canonical value). The work grows like the
+    /// cube of the degree.
+    pub fn with_max_cyclotomic_degree(mut self, n: u64) -> Context {
+        self.max_cyclotomic_degree = n;
+        self
+    }
+
     /// Once more than `units` term operations (one per term of a sum; one per pair of terms of
     /// a product, plus one per symbol of the pair's monomials) have been charged since the
     /// context was entered, every further operation yields [`ScalarError::Budget`]. The term
@@ -142,6 +159,11 @@ impl Context {
     /// The largest exponent `^` accepts.
     pub fn max_exponent(&self) -> u64 {
         self.max_exponent
+    }
+
+    /// The largest degree of a cyclotomic field the exact constants are computed in.
+    pub fn max_cyclotomic_degree(&self) -> u64 {
+        self.max_cyclotomic_degree
     }
 
     /// The work budget, in term operations.
@@ -231,6 +253,17 @@ pub(crate) fn term_limit() -> usize {
         s.borrow()
             .as_ref()
             .map_or(DEFAULT_TERM_LIMIT, |st| st.ctx.term_limit)
+    })
+}
+
+/// The largest cyclotomic degree of the entered context.
+pub(crate) fn max_cyclotomic_degree() -> u64 {
+    STATE.with(|s| {
+        s.borrow()
+            .as_ref()
+            .map_or(DEFAULT_MAX_CYCLOTOMIC_DEGREE, |st| {
+                st.ctx.max_cyclotomic_degree
+            })
     })
 }
 

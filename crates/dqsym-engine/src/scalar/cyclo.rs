@@ -29,11 +29,13 @@
 //! `{q sqrt(d) b}` (`d` square-free, `b` in the basis) is a basis of the field over `Q`, so two
 //! equal values give the same terms. The computation is in `Q(zeta_W)` (vectors over `Q` in the
 //! power basis modulo the cyclotomic polynomial) for the square roots that live there (Gauss
-//! sums); the others are carried along as independent factors. `W` is bounded by
-//! [`MAX_DEGREE`]: past it, the group is left as it is (equal values may then differ).
+//! sums); the others are carried along as independent factors. The degree `phi(W)` is bounded
+//! by the context's limit ([`Context::with_max_cyclotomic_degree`](super::Context), 192 by
+//! default): past it, or when the work budget runs out on the way, the result is an error
+//! value, never a group left in a non-canonical form.
 
 use super::atoms::{rad_mul, Mode, MonoRc, Small};
-use super::{Term, Q};
+use super::{ScalarError, Term, Q};
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational as Rat;
@@ -41,12 +43,44 @@ use num_traits::{One, Signed, Zero};
 use std::collections::{BTreeMap, HashMap};
 use std::sync::{Arc, Mutex, OnceLock};
 
-/// The largest degree `phi(W)` of a cyclotomic field computed in: every denominator up to 28
-/// alone (`W = lcm(24, 2q)`), whole degrees (`W = 360`, degree 96), pi/7 with pi/9 (144).
-pub(crate) const MAX_DEGREE: u64 = 192;
-
 fn lcm(a: u64, b: u64) -> u64 {
     a / a.gcd(&b) * b
+}
+
+/// `W = lcm(24, 2 q1, 2 q2, ...)` for the denominators `q` of the pi offsets of `terms`, when
+/// `phi(W)` is within the context's limit; the error otherwise. `phi(n) >= sqrt(n / 2)`, so a
+/// `W` above `2 limit^2` is refused without building anything; its degree is computed by
+/// trial division up to `W = 10^12`, and past that (or past `u128`) stated as a lower bound
+/// (such a `W` is refused whatever the limit).
+fn level_of<'a>(terms: impl Iterator<Item = &'a Term>) -> Result<u64, ScalarError> {
+    let limit = super::ctx::max_cyclotomic_degree();
+    let cap = 2u128.saturating_mul(u128::from(limit).saturating_mul(u128::from(limit)));
+    let mut w: Option<u128> = Some(24);
+    for t in terms {
+        let d = 2 * u128::from(t.mode.pi.denom().unsigned_abs());
+        w = w.and_then(|w| (w / w.gcd(&d)).checked_mul(d));
+    }
+    let refuse = |w: u128, degree: u64, exact: bool| ScalarError::CyclotomicDegree {
+        level: u64::try_from(w / 2).unwrap_or(u64::MAX),
+        degree,
+        exact,
+        limit,
+    };
+    const FACTORED: u128 = 1_000_000_000_000;
+    let w = match w {
+        Some(w) if w <= cap && w <= FACTORED => w as u64,
+        Some(w) if w <= FACTORED => return Err(refuse(w, totient(w as u64), true)),
+        Some(w) => {
+            let bound = u64::try_from((w / 2).isqrt()).unwrap_or(u64::MAX);
+            return Err(refuse(w, bound, false));
+        }
+        None => return Err(refuse(u128::MAX, u64::MAX, false)),
+    };
+    let degree = totient(w);
+    if degree > limit {
+        return Err(refuse(u128::from(w), degree, true));
+    }
+    Ok(w)
 }
 
 fn primes_of(mut n: u64) -> Vec<u64> {
@@ -399,7 +433,7 @@ impl Basis {
     /// `R_M` (real) or `C_M` (complex, `4 | M`) inside `Q(zeta_W)`, with `sqrt(h)` (and
     /// `i sqrt(h)`) multiples for every square root of the field.
     /// `None` when the work budget runs out on the way (nothing is cached then).
-    fn new(f: &Field, m: u64, real: bool) -> Option<Basis> {
+    fn new(f: &Field, m: u64, real: bool) -> Result<Basis, ScalarError> {
         let w = f.w;
         let mut span = Span::new();
         let mut cols = Vec::new();
@@ -410,7 +444,7 @@ impl Basis {
             cands.sort_by_key(|&k| (rank(k, l), k));
             for k in cands {
                 let a = k as u64 * (w / l);
-                super::charge((span.rows.len() * f.phi) as u64 + 1).ok()?;
+                super::charge((span.rows.len() * f.phi) as u64 + 1)?;
                 let c = if a == 0 {
                     mono(0, Rat::one())
                 } else {
@@ -441,7 +475,7 @@ impl Basis {
             let i = mono(w / 4, Rat::one());
             for k in cands {
                 let a = (k.rem_euclid(m as i64) as u64) * (w / m);
-                super::charge((span.rows.len() * f.phi) as u64 + 1).ok()?;
+                super::charge((span.rows.len() * f.phi) as u64 + 1)?;
                 let c = mono(a, Rat::one());
                 if !span.independent(&f.reduce(&c)) {
                     continue;
@@ -459,33 +493,41 @@ impl Basis {
                 }
             }
         }
-        Some(Basis { span, cols })
+        Ok(Basis { span, cols })
     }
 }
 
-type Cache<K, V> = OnceLock<Mutex<HashMap<K, Option<Arc<V>>>>>;
+type Cache<K, V> = OnceLock<Mutex<HashMap<K, Arc<V>>>>;
 
-fn field(w: u64) -> Option<Arc<Field>> {
+fn poisoned<T>(_: T) -> ScalarError {
+    ScalarError::OutOfRange("cyclotomic cache poisoned".into())
+}
+
+/// `Q(zeta_W)`, computed once per process (its work charged to the context that builds it).
+fn field(w: u64) -> Result<Arc<Field>, ScalarError> {
     static CACHE: Cache<u64, Field> = OnceLock::new();
     let cache = CACHE.get_or_init(Default::default);
-    if let Some(f) = cache.lock().ok()?.get(&w) {
-        return f.clone();
+    if let Some(f) = cache.lock().map_err(poisoned)?.get(&w) {
+        return Ok(f.clone());
     }
-    let f = Field::new(w).map(Arc::new);
-    cache.lock().ok()?.insert(w, f.clone());
-    f
+    super::charge(w.saturating_mul(totient(w)))?;
+    let f = Arc::new(Field::new(w).ok_or_else(|| {
+        ScalarError::OutOfRange(format!("the cyclotomic polynomial of order {w}"))
+    })?);
+    cache.lock().map_err(poisoned)?.insert(w, f.clone());
+    Ok(f)
 }
 
-fn basis(f: &Field, m: u64, real: bool) -> Option<Arc<Basis>> {
+fn basis(f: &Field, m: u64, real: bool) -> Result<Arc<Basis>, ScalarError> {
     static CACHE: Cache<(u64, u64, bool), Basis> = OnceLock::new();
     let cache = CACHE.get_or_init(Default::default);
     let key = (f.w, m, real);
-    if let Some(b) = cache.lock().ok()?.get(&key) {
-        return b.clone();
+    if let Some(b) = cache.lock().map_err(poisoned)?.get(&key) {
+        return Ok(b.clone());
     }
-    let b = Some(Arc::new(Basis::new(f, m, real)?));
-    cache.lock().ok()?.insert(key, b.clone());
-    b
+    let b = Arc::new(Basis::new(f, m, real)?);
+    cache.lock().map_err(poisoned)?.insert(key, b.clone());
+    Ok(b)
 }
 
 /// `e^{i pi p}` as a power of `zeta_W`.
@@ -497,8 +539,9 @@ fn pi_exponent(p: &Small, w: u64) -> u64 {
 }
 
 /// Rewrites the groups of terms holding a pi offset in their canonical basis (see the module
-/// docs); a group past the degree bound stays as it is.
-pub(crate) fn canonicalize(terms: &[Term]) -> Vec<Term> {
+/// docs); a field past the context's degree limit, or the work budget running out, is an
+/// error.
+pub(crate) fn canonicalize(terms: &[Term]) -> Result<Vec<Term>, ScalarError> {
     let mut keys: Vec<(&[(super::Sym, Small)], &MonoRc)> = terms
         .iter()
         .filter(|t| !t.mode.pi.is_zero())
@@ -515,42 +558,21 @@ pub(crate) fn canonicalize(terms: &[Term]) -> Vec<Term> {
         }
     }
     for g in groups {
-        match canonical_group(&g) {
-            Some(ts) => out.extend(ts),
-            None => out.extend(g.into_iter().cloned()),
-        }
+        out.extend(canonical_group(&g)?);
     }
-    out
+    Ok(out)
 }
 
-/// True when every pi offset of the terms is within the degree bound: the representation is
-/// then the canonical one (equal values, equal terms).
-pub(crate) fn within_bound(terms: &[Term]) -> bool {
-    let mut w = 24u64;
-    for t in terms.iter().filter(|t| !t.mode.pi.is_zero()) {
-        w = lcm(w, 2 * *t.mode.pi.denom() as u64);
-        if w > 100_000 || totient(w) > MAX_DEGREE {
-            return false;
-        }
-    }
-    true
-}
-
-fn canonical_group(g: &[&Term]) -> Option<Vec<Term>> {
-    let first = g.first()?;
+fn canonical_group(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
+    let Some(first) = g.first() else {
+        return Ok(Vec::new());
+    };
     let real = first.mode.freq.is_empty();
     // Multiples of 24 only: K(zeta_M) for 24 | M are distinct fields, one for each smallest
     // field holding a value (K(zeta_15) = K(zeta_20) = K(zeta_120) since sqrt(-3) and i are
     // there), so the descent below ends at one M.
-    let mut w = 24u64;
-    for t in g {
-        let d = *t.mode.pi.denom() as u64;
-        w = lcm(w, 2 * d);
-        if w > 100_000 || totient(w) > MAX_DEGREE {
-            return None;
-        }
-    }
-    super::charge(g.len() as u64 * totient(w)).ok()?;
+    let w = level_of(g.iter().copied())?;
+    super::charge(g.len() as u64 * totient(w))?;
     let f = field(w)?;
     // y_s for each class s of square roots outside the field.
     let mut ys: BTreeMap<u64, Sparse> = BTreeMap::new();
@@ -585,19 +607,21 @@ fn canonical_group(g: &[&Term]) -> Option<Vec<Term>> {
         }
     }
     let ys: Vec<(u64, Vec<Rat>)> = ys.into_iter().map(|(s, y)| (s, f.reduce(&y))).collect();
-    let fits = |m: u64| -> Option<Vec<Vec<Rat>>> {
+    let fits = |m: u64| -> Result<Option<Vec<Vec<Rat>>>, ScalarError> {
         let b = basis(&f, m, real)?;
-        ys.iter().map(|(_, y)| b.span.solve(y.clone())).collect()
+        Ok(ys.iter().map(|(_, y)| b.span.solve(y.clone())).collect())
     };
     let mut m = w;
-    let mut sol = fits(m)?;
+    let mut sol = fits(m)?.ok_or_else(|| {
+        ScalarError::OutOfRange(format!("a value outside its cyclotomic field of order {w}"))
+    })?;
     'descend: loop {
         for p in primes_of(m) {
             let n = m / p;
             if !n.is_multiple_of(24) {
                 continue;
             }
-            if let Some(s) = fits(n) {
+            if let Some(s) = fits(n)? {
                 m = n;
                 sol = s;
                 continue 'descend;
@@ -612,7 +636,8 @@ fn canonical_group(g: &[&Term]) -> Option<Vec<Term>> {
             if x.is_zero() {
                 continue;
             }
-            let (rad, k) = rad_mul(*s, col.h)?;
+            let (rad, k) = rad_mul(*s, col.h)
+                .ok_or_else(|| ScalarError::OutOfRange("radicand too large".into()))?;
             let mut coef = x * Rat::from_integer(k.into());
             let mode = if col.angle.is_zero() && real {
                 Mode::unit()
@@ -640,5 +665,5 @@ fn canonical_group(g: &[&Term]) -> Option<Vec<Term>> {
             });
         }
     }
-    Some(out)
+    Ok(out)
 }

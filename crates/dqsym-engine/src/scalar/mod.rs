@@ -36,7 +36,7 @@ pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use atoms::{Sym, Trig};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
 pub(crate) use ctx::{charge, check_cancelled, term_limit, Poll};
-pub use ctx::{Context, Entered, DEFAULT_MAX_EXPONENT};
+pub use ctx::{Context, Entered, DEFAULT_MAX_CYCLOTOMIC_DEGREE, DEFAULT_MAX_EXPONENT};
 pub use decimal::parse_decimal;
 pub use frac::Frac;
 pub(crate) use par::{join, par_map, with_own_budget};
@@ -111,6 +111,23 @@ pub enum ScalarError {
         /// The work charged when the budget ran out.
         used: u64,
         /// The budget.
+        limit: u64,
+    },
+    /// Constants at rational multiples of pi that meet in one sum need a cyclotomic field of
+    /// a degree above the context's limit (see [`Context::with_max_cyclotomic_degree`]).
+    #[error(
+        "exact constants at multiples of pi/{level} need a cyclotomic field of degree {}{degree}, \
+         over the limit of {limit} (--max-cyclotomic-degree raises it)",
+        if *exact { "" } else { "at least " }
+    )]
+    CyclotomicDegree {
+        /// `lcm(12, q1, q2, ...)` for the denominators `q` of the pi offsets (saturated).
+        level: u64,
+        /// The degree of the field, or a lower bound of it.
+        degree: u64,
+        /// Whether `degree` is the degree itself (it is a lower bound for huge levels).
+        exact: bool,
+        /// The limit.
         limit: u64,
     },
     /// The computation was cancelled through its context's cancel flag (Ctrl-C).
@@ -251,7 +268,10 @@ impl Scalar {
         // Constants at rational multiples of pi other than pi/12 (and symbolic angles offset
         // by them) take their canonical basis; the common case only pays for this scan.
         let terms = if terms.iter().any(|t| !t.mode.pi.is_zero()) {
-            sort_merge(cyclo::canonicalize(&terms))
+            match cyclo::canonicalize(&terms) {
+                Ok(t) => sort_merge(t),
+                Err(e) => return Scalar::error(e),
+            }
         } else {
             terms
         };
@@ -386,11 +406,11 @@ impl Scalar {
         })
     }
 
-    /// True when the representation is the canonical one for its value: every constant or
-    /// offset at a rational multiple of pi is within the degree bound of `cyclo.rs` (always
-    /// true without such constants, and for denominators up to 28).
+    /// True when the representation is the canonical one for its value: every value that is
+    /// not an error (constants at rational multiples of pi past the context's cyclotomic
+    /// degree limit are a [`ScalarError::CyclotomicDegree`], never a non-canonical value).
     pub fn is_canonical(&self) -> bool {
-        self.terms().is_ok_and(cyclo::within_bound)
+        self.terms().is_ok()
     }
 
     /// Every symbol the value mentions, sorted by name (`pi` included when present).
