@@ -148,8 +148,9 @@ struct UrdfArgs {
     /// URDF: the first link of the chain (default: the root link).
     #[arg(long, value_name = "LINK")]
     base: Option<String>,
-    /// URDF: refuse angles that are not exact instead of reading those within 0.001 of a
-    /// multiple of pi/12 (1.5708, 3.14159) as that multiple.
+    /// URDF: keep every nonzero angle as a named parameter (its decimal the nominal value)
+    /// instead of reading those within 0.001 of a multiple of pi/12 (1.5708, 3.14159) as that
+    /// multiple.
     #[arg(long)]
     exact_angles: bool,
 }

@@ -177,10 +177,13 @@ fn check_against_oracle(r: &Robot, joints: &[J], seed: u64) {
     let from_dq = r.forward().to_matrix();
     let mut seed = seed;
     for _ in 0..5 {
+        // The joint variables at random, the parameters (angles kept as names) at their
+        // nominal values, which are the file's decimals.
         let env: Vec<(String, f64)> = r
             .variables
             .iter()
             .map(|v| (v.clone(), rnd(&mut seed)))
+            .chain(r.values.iter().cloned())
             .collect();
         let q = |name: &str| {
             let v = name.replace('-', "_");
@@ -641,9 +644,103 @@ fn snapping_can_be_turned_off() {
         snap_angles: false,
         ..UrdfOptions::default()
     };
-    let err = parse_urdf(&urdf_text("ur5", &ur5()), "ur5.urdf", &o).unwrap_err();
-    assert!(err.to_string().contains("shoulder_lift_joint"), "{err}");
-    assert!(err.to_string().contains("turned off"), "{err}");
+    // Every nonzero angle is then a parameter named after its joint, at the file's decimal.
+    let u = parse_urdf(&urdf_text("ur5", &ur5()), "ur5.urdf", &o).unwrap_or_else(|e| panic!("{e}"));
+    let names: Vec<&str> = u.robot.values.iter().map(|(n, _)| n.as_str()).collect();
+    assert!(names.contains(&"shoulder_lift_joint_pitch"), "{names:?}");
+    assert!(
+        u.notes
+            .iter()
+            .any(|n| n.contains("kept as the parameter `shoulder_lift_joint_pitch`")),
+        "{:?}",
+        u.notes
+    );
+    assert!(
+        !u.notes.iter().any(|n| n.contains("read as")),
+        "{:?}",
+        u.notes
+    );
+    assert!(u
+        .robot
+        .values
+        .iter()
+        .all(|(n, _)| !u.robot.variables.contains(n)));
+    check_against_oracle(&u.robot, &ur5(), 17);
+}
+
+/// Angles that are no multiple of pi/12 (atan 7 = 1.42889927219074, 10 degrees)
+/// become parameters named after their joint and axis, their decimals the robot's nominal
+/// values; a mimic offset likewise. Pose and Jacobian against the oracle, and the converted
+/// robot file reads back to the same matrix, with the values under `[values]`.
+#[test]
+fn angles_off_pi_over_12_become_named_parameters() {
+    let mut joints = vec![
+        j("yaw", "revolute", "w", "a", ["0", "0", "0.14"], Z, AZ),
+        j(
+            "shoulder",
+            "revolute",
+            "a",
+            "b",
+            ["0", "0", "0.1"],
+            ["-1.5707963267949", "0", "0"],
+            AZ,
+        ),
+        j(
+            "elbow",
+            "revolute",
+            "b",
+            "c",
+            ["0.05", "0.35", "0"],
+            ["0", "0", "-1.42889927219074"],
+            AZ,
+        ),
+        j(
+            "wrist",
+            "revolute",
+            "c",
+            "d",
+            ["0.25", "0", "0"],
+            ["0", "-0.17453", "0.7853981634"],
+            ["0", "1", "0"],
+        ),
+        j("coupled", "revolute", "d", "e", ["0", "0.02", "0.1"], Z, AZ),
+        j("tip", "fixed", "e", "f", ["0.1", "0", "0"], Z, AZ),
+    ];
+    joints[4].mimic = Some(("wrist", "-1", "0.3"));
+    let u = read("odd_angles", &joints, &UrdfOptions::default());
+    let params: Vec<(&str, f64)> = u
+        .robot
+        .values
+        .iter()
+        .map(|(n, v)| (n.as_str(), *v))
+        .collect();
+    assert_eq!(
+        params,
+        [
+            ("elbow_yaw", -1.42889927219074),
+            ("wrist_pitch", -0.17453),
+            ("coupled_offset", 0.3)
+        ]
+    );
+    assert_eq!(u.robot.variables, ["yaw", "shoulder", "elbow", "wrist"]);
+    let notes = u.notes.join("\n");
+    assert!(notes.contains("0.7853981634 read as pi/4"), "{notes}");
+    assert!(
+        notes.contains("-1.42889927219074 kept as the parameter `elbow_yaw`"),
+        "{notes}"
+    );
+    let r = full_check("odd_angles", &joints, &UrdfOptions::default());
+    let toml = robot_toml(&r, "odd_angles").unwrap();
+    assert!(
+        toml.contains("[values]\nelbow_yaw = -1.42889927219074\n"),
+        "{toml}"
+    );
+    // The report names them as parameters, not joint variables.
+    let report = fk_report(&r, &FkOptions::default()).unwrap();
+    assert!(
+        report.contains("parameters: coupled_offset, elbow_yaw, wrist_pitch)"),
+        "{report}"
+    );
 }
 
 /// A robot file with decimals, plain TOML numbers (integers and floats, read from their
@@ -795,10 +892,13 @@ fn recurrence_with_frames_and_coupled_joints_matches_the_expansion() {
         let vars: Vec<&str> = r.variables.iter().map(String::as_str).collect();
         let jac = dqsym::dq_jacobian(&q, &vars);
         let mut seed = 5;
+        // The joint variables at random, the parameters (angles kept as names) at their
+        // nominal values, which are the file's decimals.
         let env: Vec<(String, f64)> = r
             .variables
             .iter()
             .map(|v| (v.clone(), rnd(&mut seed)))
+            .chain(r.values.iter().cloned())
             .collect();
         let vals = crate::recurrence::evaluate(&entries, &env);
         let ev = |x: &dqsym::Scalar| {

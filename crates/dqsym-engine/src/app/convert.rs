@@ -30,10 +30,18 @@ type V = [Scalar; 3];
 /// # Errors
 /// When a value has no closed form (a size limit).
 pub fn robot_toml(robot: &Robot, source: &str) -> Result<String, ScalarError> {
-    match dh_form(robot) {
+    let mut text = match dh_form(robot) {
         Ok(dh) => dh_toml(robot, &dh, source),
         Err(why) => screw_toml(robot, source, &why),
+    }?;
+    // The parameters' nominal values (a URDF angle kept as a name: its decimal).
+    if !robot.values.is_empty() {
+        text += "\n[values]\n";
+        for (name, v) in &robot.values {
+            text += &format!("{name} = {v:?}\n");
+        }
     }
+    Ok(text)
 }
 
 /// Why `robot` cannot be written in DH form (`None` when it can); the screw-form file says it.

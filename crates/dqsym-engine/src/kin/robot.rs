@@ -256,7 +256,7 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
                         ));
                     }
                 }
-                let var = joint_variable(vfield).map_err(|m| err(vname, m))?;
+                let var = joint_variable(vfield, &f.values).map_err(|m| err(vname, m))?;
                 check_distinct(&variables, &var).map_err(|m| err(vname, m))?;
                 let off = |x: &Scalar, is_var: bool| {
                     if is_var {
@@ -295,7 +295,7 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
                     (text.clone(), Scalar::sym(&text))
                 } else {
                     let value = eval(&text).map_err(|m| err("variable", m))?;
-                    let var = joint_variable(&value).map_err(|m| err("variable", m))?;
+                    let var = joint_variable(&value, &f.values).map_err(|m| err("variable", m))?;
                     (var, value)
                 };
                 let axis = vec3(j.axis.as_ref(), "axis", eval).map_err(|m| err("axis", m))?;
@@ -816,12 +816,18 @@ fn check_distinct(earlier: &[String], var: &str) -> Result<(), String> {
     }
 }
 
-fn joint_variable(x: &Scalar) -> Result<String, String> {
+/// The joint variable of a field: its one symbol that is not `pi` nor a parameter with a
+/// nominal value in `[values]` (a constant angle kept as a name, as in `q1 + offset`).
+fn joint_variable(
+    x: &Scalar,
+    params: &std::collections::BTreeMap<String, toml::Value>,
+) -> Result<String, String> {
     let syms: Vec<String> = x
         .symbols()
         .into_iter()
         .filter(|s| !s.is_pi())
         .map(|s| s.name().to_string())
+        .filter(|n| !params.contains_key(n))
         .collect();
     match syms.as_slice() {
         [one] => Ok(one.clone()),
@@ -841,12 +847,17 @@ fn vec3(v: Option<&Vec<String>>, name: &str, eval: FieldEval) -> Result<[Scalar;
     Ok([eval(&v[0])?, eval(&v[1])?, eval(&v[2])?])
 }
 
-/// The axis scaled to unit length, exactly; the axis must be numeric and nonzero.
+/// The axis scaled to unit length, exactly; the axis must be numeric and nonzero, or
+/// symbolic (in constant angles such as a URDF angle kept as a parameter) of unit length.
 pub(crate) fn unit_numeric(a: &[Scalar; 3]) -> Result<[Scalar; 3], String> {
-    if !a.iter().all(Scalar::is_constant) {
-        return Err("the axis must be numeric".into());
-    }
     let n2 = &a[0] * &a[0] + &a[1] * &a[1] + &a[2] * &a[2];
+    if !a.iter().all(Scalar::is_constant) {
+        return if (&n2 - &Scalar::int(1)).is_zero_value() {
+            Ok(a.clone())
+        } else {
+            Err("a symbolic axis must have unit length (x^2 + y^2 + z^2 = 1 exactly)".into())
+        };
+    }
     if n2.is_zero_value() {
         return Err("the axis is zero".into());
     }

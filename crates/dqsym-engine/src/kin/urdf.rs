@@ -9,10 +9,13 @@
 //! fold into the constants; a `mimic` joint's value is `multiplier · q + offset` in the
 //! variable q of the joint it follows.
 //!
-//! Lengths are exact decimals read from the text (`0.4318` is 2159/5000). Angles must be
-//! exact too: an `rpy` angle (or a mimic offset of a revolute joint) within [`SNAP_TOLERANCE`]
-//! of a multiple of pi/12 (1.5708, 3.14159) is read as that multiple and reported in
-//! [`UrdfRobot::notes`]; with [`UrdfOptions::snap_angles`] off, or farther away, it is an error.
+//! Lengths are exact decimals read from the text (`0.4318` is 2159/5000). Angles are exact
+//! too: an `rpy` angle (or a mimic offset of a revolute joint) within [`SNAP_TOLERANCE`] of a
+//! multiple of pi/12 (1.5708, 3.14159) is read as that multiple, reported in
+//! [`UrdfRobot::notes`]. Any other angle (-1.42889927219074, -0.17453), and every angle when
+//! [`UrdfOptions::snap_angles`] is off, becomes a named parameter of the robot
+//! (`ELBOW_yaw`): the results are exact in it, and its decimal is the robot's nominal value
+//! ([`Robot::values`]), as a hand derivation names a constant angle.
 
 use super::robot::{frame_dq, unit_numeric};
 use super::{Chain, Convention, Frame, Joint, JointKind, Robot};
@@ -35,7 +38,8 @@ pub struct UrdfOptions {
     pub tip: Option<String>,
     /// The first link of the chain; by default the root link.
     pub base: Option<String>,
-    /// Read angles near a multiple of pi/12 as that multiple (reported); otherwise refuse them.
+    /// Read angles near a multiple of pi/12 as that multiple (reported); when off, every
+    /// nonzero angle is a named parameter.
     pub snap_angles: bool,
 }
 
@@ -54,8 +58,8 @@ impl Default for UrdfOptions {
 pub struct UrdfRobot {
     /// The chain, in screw form.
     pub robot: Robot,
-    /// One line per angle read as a multiple of pi/12 (`joint `elbow`, origin rpy[0]: 1.5708
-    /// read as pi/2`).
+    /// One line per angle read as a multiple of pi (`joint `elbow`, origin rpy[0]: 1.5708
+    /// read as pi/2`) or kept as a named parameter.
     pub notes: Vec<String>,
 }
 
@@ -102,7 +106,7 @@ struct UrdfJoint {
 /// # Errors
 /// Malformed XML, a joint without parent or child, a link that is not declared, a loop, an
 /// unknown or unsupported joint type (floating, planar), several leaf links without
-/// `tip`, an angle that is not a multiple of pi/12.
+/// `tip`.
 pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, UrdfError> {
     let xml_err = |message: String| UrdfError::Xml {
         file: file.to_string(),
@@ -191,13 +195,34 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
                 [one] => (*one).clone(),
                 [] => return Err(xml_err("no links".into())),
                 many => {
+                    // Each leaf with the number of joints that move between it and the root
+                    // (most first): the arm's tool is usually among the first.
+                    let moving = |leaf: &str| {
+                        let (mut at, mut n, mut hops) = (leaf, 0usize, 0usize);
+                        while let Some(&k) = parent_of.get(at) {
+                            n += usize::from(joints[k].kind != "fixed");
+                            at = joints[k].parent.as_str();
+                            hops += 1;
+                            if hops > joints.len() {
+                                break;
+                            }
+                        }
+                        n
+                    };
+                    let mut listed: Vec<(usize, &String)> =
+                        many.iter().map(|l| (moving(l), *l)).collect();
+                    listed.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(b.1)));
                     return Err(xml_err(format!(
                         "several leaf links ({}): choose the tip with --tip",
-                        many.iter()
-                            .map(|s| format!("`{s}`"))
+                        listed
+                            .iter()
+                            .map(|(n, s)| format!(
+                                "`{s}` after {n} moving joint{}",
+                                if *n == 1 { "" } else { "s" }
+                            ))
                             .collect::<Vec<_>>()
                             .join(", ")
-                    )))
+                    )));
                 }
             }
         }
@@ -235,32 +260,45 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
     let base_link = at.to_string();
     path.reverse();
 
+    // Names: one variable per moving joint, named after it (a mimic joint uses its
+    // leader's), and one parameter per angle that is not read as a multiple of pi.
+    let by_name: BTreeMap<&str, &UrdfJoint> = joints.iter().map(|j| (j.name.as_str(), j)).collect();
+    let mut names = Names::default();
     let mut notes = Vec::new();
-    let mut snap = |x: &BigRational, what: String| -> Result<Scalar, UrdfError> {
-        snap_angle(x, o.snap_angles)
-            .map(|(s, note)| {
+    let mut params: Vec<(String, f64)> = Vec::new();
+    let mut angle = |x: &BigRational,
+                     what: String,
+                     param: String,
+                     names: &mut Names|
+     -> Result<Scalar, UrdfError> {
+        match snap_angle(x, o.snap_angles) {
+            Ok(Some((s, note))) => {
                 if let Some(n) = note {
                     notes.push(format!("{what}: {n}"));
                 }
-                s
-            })
-            .map_err(|m| el_err(what.clone(), m))
-    };
-    // Variables: one per moving joint, named after it; a mimic joint uses its leader's.
-    let by_name: BTreeMap<&str, &UrdfJoint> = joints.iter().map(|j| (j.name.as_str(), j)).collect();
-    let mut var_names: BTreeMap<String, String> = BTreeMap::new();
-    let mut used: BTreeSet<String> = BTreeSet::new();
-    let mut var_of = |joint: &str| -> String {
-        if let Some(v) = var_names.get(joint) {
-            return v.clone();
+                Ok(s)
+            }
+            Ok(None) => {
+                let v = x
+                    .to_f64()
+                    .filter(|v| v.is_finite())
+                    .ok_or_else(|| el_err(what.clone(), "the angle is out of range".into()))?;
+                let name = names.fresh(&param);
+                names.params.insert(name.clone());
+                notes.push(format!(
+                    "{what}: {} kept as the parameter `{name}`{}",
+                    decimal_text(x),
+                    if o.snap_angles {
+                        " (not near a multiple of pi/12)"
+                    } else {
+                        ""
+                    }
+                ));
+                params.push((name.clone(), v));
+                Ok(Scalar::sym(&name))
+            }
+            Err(m) => Err(el_err(what, m)),
         }
-        let mut v = sanitize(joint);
-        while used.contains(&v) {
-            v.push('_');
-        }
-        used.insert(v.clone());
-        var_names.insert(joint.to_string(), v.clone());
-        v
     };
 
     let mut home = DualQuat::identity();
@@ -271,10 +309,26 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
     for &k in &path {
         let j = &joints[k];
         let el = format!("joint `{}` (line {})", j.name, j.line);
+        let stem = sanitize(&j.name);
         let rpy = [
-            snap(&j.rpy[0], format!("{el}, origin rpy[0]"))?,
-            snap(&j.rpy[1], format!("{el}, origin rpy[1]"))?,
-            snap(&j.rpy[2], format!("{el}, origin rpy[2]"))?,
+            angle(
+                &j.rpy[0],
+                format!("{el}, origin rpy[0]"),
+                format!("{stem}_roll"),
+                &mut names,
+            )?,
+            angle(
+                &j.rpy[1],
+                format!("{el}, origin rpy[1]"),
+                format!("{stem}_pitch"),
+                &mut names,
+            )?,
+            angle(
+                &j.rpy[2],
+                format!("{el}, origin rpy[2]"),
+                format!("{stem}_yaw"),
+                &mut names,
+            )?,
         ];
         let f = Frame {
             xyz: j.xyz.clone().map(Scalar::rational),
@@ -293,7 +347,7 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
             .map_err(|m| el_err(el.clone(), format!("<axis>: {m}")))?;
         let dir = DualQuat::from_real(home.real.clone()).transform_point(&axis);
         let value = match &j.mimic {
-            None => Scalar::sym(&var_of(&j.name)),
+            None => Scalar::sym(&names.var_of(&j.name)),
             Some((leader, mult, offset)) => {
                 // A leader that itself follows another joint: follow the chain to its end.
                 let (mut lead, mut m, mut off) = (leader.as_str(), mult.clone(), offset.clone());
@@ -317,15 +371,20 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
                     ));
                 }
                 let off = match kind {
-                    JointKind::Revolute => snap(&off, format!("{el}, mimic offset"))?,
+                    JointKind::Revolute => angle(
+                        &off,
+                        format!("{el}, mimic offset"),
+                        format!("{stem}_offset"),
+                        &mut names,
+                    )?,
                     JointKind::Prismatic => Scalar::rational(off),
                 };
-                Scalar::rational(m) * Scalar::sym(&var_of(lead)) + off
+                Scalar::rational(m) * Scalar::sym(&names.var_of(lead)) + off
             }
         };
         for s in value.symbols().iter().filter(|s| !s.is_pi()) {
             let n = s.name().to_string();
-            if !variables.contains(&n) {
+            if !variables.contains(&n) && !names.params.contains(&n) {
                 variables.push(n);
             }
         }
@@ -348,7 +407,7 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
             base_frames: Vec::new(),
             tool_frames: frames,
             tool: None,
-            values: Vec::new(),
+            values: params,
         },
         notes,
     })
@@ -453,40 +512,40 @@ fn number(text: &str) -> Option<BigRational> {
     crate::scalar::parse_decimal(text.trim(), MAX_DIGITS)
 }
 
-/// The exact angle an URDF angle stands for: itself when it is 0, else the multiple of pi/12
-/// within [`SNAP_TOLERANCE`] (with a note saying so) when `snap`, else an error.
-fn snap_angle(x: &BigRational, snap: bool) -> Result<(Scalar, Option<String>), String> {
+/// The exact angle an URDF angle stands for: itself when it is 0, else (when `snap`) the
+/// multiple of pi/12 within [`SNAP_TOLERANCE`], with a note saying so; `None` when it is
+/// neither: the caller names it.
+fn snap_angle(x: &BigRational, snap: bool) -> Result<Option<(Scalar, Option<String>)>, String> {
+    if x == &BigRational::from_integer(0.into()) {
+        return Ok(Some((Scalar::int(0), None)));
+    }
     let xf = x.to_f64().unwrap_or(f64::NAN);
-    if xf == 0.0 && x == &BigRational::from_integer(0.into()) {
-        return Ok((Scalar::int(0), None));
+    if !snap || !xf.is_finite() || xf.abs() > 1e6 {
+        return Ok(None);
     }
-    let step = std::f64::consts::PI / 12.0;
-    let k = (xf / step).round();
-    let shown = pi_multiple_text(k as i64);
-    if !snap || !xf.is_finite() || (xf - k * step).abs() > SNAP_TOLERANCE || k.abs() > 1e6 {
-        let why = if snap {
-            format!("the angle {} is not within {SNAP_TOLERANCE} of a multiple of pi/12, and only such angles have exact cosines here", decimal_text(x))
-        } else {
-            format!(
-                "the angle {} is not exact (reading it as {shown} is turned off)",
-                decimal_text(x)
-            )
-        };
-        return Err(why);
+    let pi = std::f64::consts::PI;
+    let k = (xf / (pi / 12.0)).round();
+    if (xf - k * pi / 12.0).abs() <= SNAP_TOLERANCE {
+        let k = k as i64;
+        let exact = Scalar::rational(BigRational::new(k.into(), 12.into())) * Scalar::pi();
+        let shown = pi_multiple_text(k, 12);
+        return Ok(Some((
+            exact,
+            Some(format!("{} read as {shown}", decimal_text(x))),
+        )));
     }
-    let exact = Scalar::rational(BigRational::new((k as i64).into(), 12.into())) * Scalar::pi();
-    Ok((exact, Some(format!("{} read as {shown}", decimal_text(x)))))
+    Ok(None)
 }
 
-/// `k pi/12` as text: `pi/2`, `-pi/4`, `5*pi/12`, `pi`, `0`.
-fn pi_multiple_text(k: i64) -> String {
-    let g = num_integer::gcd(k, 12);
-    let (n, d) = if g == 0 { (0, 1) } else { (k / g, 12 / g) };
-    let num = match n {
+/// `k pi/n` as text: `pi/2`, `-pi/4`, `5*pi/12`, `pi`, `0`.
+fn pi_multiple_text(k: i64, n: i64) -> String {
+    let g = num_integer::gcd(k, n);
+    let (k, d) = if g == 0 { (0, 1) } else { (k / g, n / g) };
+    let num = match k {
         0 => return "0".into(),
         1 => "pi".to_string(),
         -1 => "-pi".to_string(),
-        n => format!("{n}*pi"),
+        k => format!("{k}*pi"),
     };
     if d == 1 {
         num
@@ -497,6 +556,36 @@ fn pi_multiple_text(k: i64) -> String {
 
 fn decimal_text(x: &BigRational) -> String {
     x.to_f64().map_or_else(|| x.to_string(), |f| format!("{f}"))
+}
+
+/// The names a URDF chain gives: variables after joints, parameters after angles, all distinct.
+#[derive(Default)]
+struct Names {
+    var_names: BTreeMap<String, String>,
+    used: BTreeSet<String>,
+    params: BTreeSet<String>,
+}
+
+impl Names {
+    /// The variable of a joint (the same name every time it is asked).
+    fn var_of(&mut self, joint: &str) -> String {
+        if let Some(v) = self.var_names.get(joint) {
+            return v.clone();
+        }
+        let v = self.fresh(&sanitize(joint));
+        self.var_names.insert(joint.to_string(), v.clone());
+        v
+    }
+
+    /// `stem`, or `stem_`, `stem__`, ... : a name not given before.
+    fn fresh(&mut self, stem: &str) -> String {
+        let mut v = stem.to_string();
+        while self.used.contains(&v) {
+            v.push('_');
+        }
+        self.used.insert(v.clone());
+        v
+    }
 }
 
 /// A joint name as a variable name: letters, digits and `_`, starting with a letter, never a
