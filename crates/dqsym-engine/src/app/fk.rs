@@ -19,6 +19,7 @@ use crate::scalar::FxHasher;
 use crate::scalar::{join, par_map};
 use std::collections::HashMap;
 use std::hash::BuildHasherDefault;
+use std::sync::atomic::AtomicBool;
 
 type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
 use crate::{
@@ -163,9 +164,13 @@ fn expanded_entries(robot: &Robot, o: &FkOptions) -> Option<Result<Sections, Rep
     // the sharing of equal entries change the output.
     // Both expansions first (each stops as soon as an entry exceeds the limit), so that an
     // oversized stage costs no closed forms; then every entry's closed form in parallel.
-    let (pose, matrix) = join(
-        || robot.forward_within(o.max_terms),
-        || robot.forward_matrix_within(o.max_terms),
+    // Whichever expansion is abandoned first stops the other; the matrix, which grows faster
+    // on numeric chains (3^k modes against 2^k) and predicts its overflow from its growth,
+    // goes first when there is one thread.
+    let stop = AtomicBool::new(false);
+    let (matrix, pose) = join(
+        || robot.forward_matrix_until(o.max_terms, &stop),
+        || robot.forward_within_until(o.max_terms, &stop),
     );
     let (q, m) = (pose?, matrix?);
     let comps = q.components();

@@ -51,6 +51,9 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
     if split_size > SPLIT_LIMIT {
         return (whole_form(x).map(|(e, _)| e), Prepared(None));
     }
+    if split_size > WIDE_SPLIT * x.len() {
+        return (best_whole(x), Prepared(None));
+    }
     let (mut sctx, smons) = mon::split_modes(x);
     let smons = recombine::recombine(&mut sctx, smons);
     let result = best_of(x, &sctx, &smons, true);
@@ -59,6 +62,35 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
         result.map(|(e, _)| e),
         Prepared(Some((sctx, smons, split_won))),
     )
+}
+
+/// The most a scalar's split shape may multiply its number of terms by, on average, before
+/// the split shape is skipped: modes of 8 or more symbols each (the half-angle series of a
+/// planar chain of 10 joints, `cos(q1/2 - q2/2 + ... - q10/2)`: 1,024 single-angle products
+/// per term, which the recombination only puts back together).
+const WIDE_SPLIT: usize = 256;
+
+/// The whole-modes shape or, when strictly shorter, a candidate of `alt.rs`, checked against
+/// `x` like [`best_of`]'s result.
+fn best_whole(x: &Scalar) -> Result<Expr, ScalarError> {
+    let (w, _) = whole_form(x)?;
+    let best = match alt::best_alternative(x) {
+        Some(a) if alt::full_cost(&a).0 < alt::full_cost(&w).0 => a,
+        _ => w,
+    };
+    if !cfg!(debug_assertions) && agrees_numerically(&best, x) {
+        return Ok(best);
+    }
+    let value = best.to_scalar();
+    if let Some(e) = value.as_error() {
+        return Err(e.clone());
+    }
+    if value == *x {
+        Ok(best)
+    } else {
+        debug_assert!(!x.is_canonical(), "closed form does not equal its input");
+        whole_form(x).map(|(e, _)| e)
+    }
 }
 
 /// The whole-modes shape: each Fourier mode one factor, factored.
@@ -77,6 +109,9 @@ fn best_of(
     try_whole: bool,
 ) -> Result<(Expr, bool), ScalarError> {
     let (split, sc) = factor::build(smons)?;
+    // Without trigonometric terms both shapes are the same monomials (a polynomial in cos/sin
+    // placeholders, say): the whole shape would be factored again to the same cost.
+    let try_whole = try_whole && !same_monomials(x, smons);
     let whole = if try_whole {
         Some(whole_form(x)?)
     } else {
@@ -111,6 +146,12 @@ fn best_of(
         };
         Ok((w, false))
     }
+}
+
+/// Whether `x` has no trigonometric term and its whole-modes monomials are `smons`.
+fn same_monomials(x: &Scalar, smons: &[mon::Mon]) -> bool {
+    let trig_free = x.terms().is_ok_and(|t| t.iter().all(|t| t.mode.is_unit()));
+    trig_free && mon::whole_modes(x).1 == smons
 }
 
 /// The closed form of `dx`, the derivative of the scalar `p` was prepared from with respect to
@@ -228,6 +269,16 @@ pub fn closed_form_traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarEr
     if split_size > SPLIT_LIMIT {
         let e = whole.to_expr(&wctx);
         return Ok((e.clone(), vec![TraceStep::KeptWhole(e)]));
+    }
+    if split_size > WIDE_SPLIT * x.len() {
+        let e = best_whole(x)?;
+        let kept = whole.to_expr(&wctx);
+        let step = if e == kept {
+            TraceStep::KeptWhole(e.clone())
+        } else {
+            TraceStep::Shorter(e.clone())
+        };
+        return Ok((e, vec![step]));
     }
     let (mut sctx, smons) = mon::split_modes(x);
     let mut rec = trace::Recorder::default();
