@@ -19,6 +19,7 @@ pub use expr::{Angle, Cost, Expr};
 pub use notation::{angle_text, shorthand_name, TrigNames};
 pub use trace::{Identity, TraceStep};
 
+use crate::scalar::Small;
 use crate::{Scalar, ScalarError, Sym};
 
 /// The largest number of monomials the split shape may have before it is skipped.
@@ -51,7 +52,7 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
     if split_size > SPLIT_LIMIT {
         return (whole_form(x).map(|(e, _)| e), Prepared(None));
     }
-    if split_size > WIDE_SPLIT * x.len() {
+    if skip_split(x, split_size) {
         return (best_whole(x), Prepared(None));
     }
     let (mut sctx, smons) = mon::split_modes(x);
@@ -69,6 +70,46 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
 /// planar chain of 10 joints, `cos(q1/2 - q2/2 + ... - q10/2)`: 1,024 single-angle products
 /// per term, which the recombination only puts back together).
 const WIDE_SPLIT: usize = 256;
+
+/// The least a scalar's split shape multiplies its number of terms by, on average, for the
+/// test of [`disjoint_parts`] to be worth making (modes of 5 or more symbols).
+const DISJOINT_SPLIT: usize = 32;
+
+/// Whether the split shape of `x` (of `split_size` single-angle products) is skipped for the
+/// whole modes: when it is very large for the number of terms ([`WIDE_SPLIT`]), or large
+/// and unable to regroup anything the whole modes do not ([`disjoint_parts`]).
+fn skip_split(x: &Scalar, split_size: usize) -> bool {
+    split_size > WIDE_SPLIT * x.len()
+        || (split_size > DISJOINT_SPLIT * x.len() && disjoint_parts(x))
+}
+
+/// Whether no two terms of `x` expand, split into single angles, into a common product of
+/// atoms: each term's expansion is the products of `cos` or `sin` of `c s` over its mode's
+/// symbols `s` with coefficients `c`, times its cofactor (radicand and monomial), so two terms
+/// can meet only if their cofactors and their sets of `(s, |c|)` agree (a pi offset is left
+/// out of the comparison, which only makes it stricter). When no two can meet, the
+/// recombination only reassembles each term, and the split shape is the whole modes again
+/// (the sum of cumulative angles `c1 + c12 + ... + c1..10` of a planar chain, say).
+fn disjoint_parts(x: &Scalar) -> bool {
+    let Ok(terms) = x.terms() else {
+        return false;
+    };
+    type Key<'a> = (u64, &'a [(Sym, u32)], Vec<(&'a Sym, Small)>);
+    let mut keys: Vec<Key> = terms
+        .iter()
+        .map(|t| {
+            let freq = t
+                .mode
+                .freq
+                .iter()
+                .map(|(s, c)| (s, if *c < Small::default() { -*c } else { *c }))
+                .collect();
+            (t.rad, &t.mono[..], freq)
+        })
+        .collect();
+    keys.sort_unstable();
+    keys.windows(2).all(|w| w[0] != w[1])
+}
 
 /// The whole-modes shape or, when strictly shorter, a candidate of `alt.rs`, checked against
 /// `x` like [`best_of`]'s result.
@@ -270,7 +311,7 @@ pub fn closed_form_traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarEr
         let e = whole.to_expr(&wctx);
         return Ok((e.clone(), vec![TraceStep::KeptWhole(e)]));
     }
-    if split_size > WIDE_SPLIT * x.len() {
+    if skip_split(x, split_size) {
         let e = best_whole(x)?;
         let kept = whole.to_expr(&wctx);
         let step = if e == kept {
