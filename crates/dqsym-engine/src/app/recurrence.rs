@@ -42,7 +42,7 @@ const COS_SIN_BUDGET: u64 = 500_000;
 /// The largest entry of that polynomial, in monomials (the generic 6R's is 232).
 const COS_SIN_MAX_TERMS: usize = 1_000;
 
-/// The work budget of the closed forms of that matrix (RTB's Ball needs about ...).
+/// The work budget of the closed forms of that matrix (RTB's Ball fits in it).
 const COS_SIN_FORMS_BUDGET: u64 = 1_500_000;
 
 /// The most bytes of plain text the closed forms of that matrix may take (RTB's Ball: 10 kB).
