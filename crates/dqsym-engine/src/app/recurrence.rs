@@ -43,10 +43,10 @@ const COS_SIN_BUDGET: u64 = 500_000;
 const COS_SIN_MAX_TERMS: usize = 1_000;
 
 /// The work budget of the closed forms of that matrix (RTB's Ball fits in it).
-const COS_SIN_FORMS_BUDGET: u64 = 1_500_000;
+const COS_SIN_FORMS_BUDGET: u64 = 4_000_000;
 
 /// The most bytes of plain text the closed forms of that matrix may take (RTB's Ball: 10 kB).
-const MAX_COS_SIN_TEXT: usize = 30_000;
+const MAX_COS_SIN_TEXT: usize = 40_000;
 use crate::{closed_form_cos_sin, DualQuat, Expr, Robot, Scalar, ScalarError};
 use std::cell::RefCell;
 use std::collections::HashMap;
