@@ -28,3 +28,4 @@ mod tools;
 mod trig_corpus;
 mod urdf;
 mod walk;
+mod zoo;

@@ -73,7 +73,7 @@ fn near(a: f64, b: f64, tol: f64) -> bool {
 
 /// The recurrence of `r` at random values of every symbol: `dq` and `T` against the f64
 /// chain, `p` against the f64 matrix, `J` against central differences of the f64 chain.
-fn check_against_f64_chain(file: &str, r: &Robot, entries: &[(String, Expr)]) {
+pub(crate) fn check_against_f64_chain(file: &str, r: &Robot, entries: &[(String, Expr)]) {
     let names = symbols(r);
     let refs: Vec<&str> = names.iter().map(String::as_str).collect();
     let pt = [0.5, -1.0, 2.0];

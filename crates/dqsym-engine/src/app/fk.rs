@@ -16,13 +16,14 @@ use crate::emit::{
 use crate::kin::{dq_jacobian, Robot};
 use crate::print::{legend, plain, PlainOptions};
 use crate::scalar::FxHasher;
-use crate::scalar::{join, par_map};
+use crate::scalar::{join, par_map, with_own_budget};
 use std::collections::HashMap;
 use std::hash::BuildHasherDefault;
+use std::sync::atomic::AtomicBool;
 
 type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
 use crate::{
-    closed_form, closed_form_of_derivative, closed_form_prepared, DualQuat, Expr, Scalar,
+    closed_form, closed_form_of_derivative, closed_form_prepared, Context, DualQuat, Expr, Scalar,
     ScalarError,
 };
 
@@ -139,16 +140,48 @@ pub struct FkEntries {
 pub fn fk_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError> {
     // Any stage past the term limit (the DQ, the matrix, the point, the Jacobian, a closed
     // form) switches to the recurrence, whose every entry is small.
-    match expanded_entries(robot, o) {
-        Some(Err(ReportError::Scalar(ScalarError::TooLarge { .. }))) | None => Ok(FkEntries {
-            sections: recurrence_sections(robot, o)?,
-            recurrence: true,
-        }),
+    // The expansion is an attempt with a budget of its own (what is left of the caller's), so
+    // that running out of it, or a report longer than `MAX_EXPANDED_TEXT`, leaves the whole
+    // budget to the recurrence.
+    let left = Context::current()
+        .work_budget()
+        .saturating_sub(crate::scalar::work_used());
+    let expanded = with_own_budget(left, || expanded_entries(robot, o));
+    match expanded {
+        Some(Err(ReportError::Scalar(
+            ScalarError::TooLarge { .. } | ScalarError::Budget { .. },
+        )))
+        | None => recurrence_entries(robot, o),
+        Some(Ok(sections)) if text_length(&sections) > MAX_EXPANDED_TEXT => {
+            recurrence_entries(robot, o)
+        }
         Some(r) => r.map(|sections| FkEntries {
             sections,
             recurrence: false,
         }),
     }
+}
+
+/// The most bytes the entries of an expanded report may take in plain text before the
+/// recurrence, linear in the number of joints, is printed instead (a numeric 10-joint chain
+/// whose expansion fits the term limit can print 650 kB; its recurrence about 50 kB).
+const MAX_EXPANDED_TEXT: usize = 100_000;
+
+/// The plain text length of the closed forms of `sections`.
+pub(super) fn text_length(sections: &[(String, Vec<(String, Expr)>)]) -> usize {
+    let po = PlainOptions { shorthand: true };
+    sections
+        .iter()
+        .flat_map(|(_, rows)| rows)
+        .map(|(_, e)| plain(e, &po).len())
+        .sum()
+}
+
+fn recurrence_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError> {
+    Ok(FkEntries {
+        sections: recurrence_sections(robot, o)?,
+        recurrence: true,
+    })
 }
 
 /// Titled sections of named closed forms.
@@ -163,9 +196,13 @@ fn expanded_entries(robot: &Robot, o: &FkOptions) -> Option<Result<Sections, Rep
     // the sharing of equal entries change the output.
     // Both expansions first (each stops as soon as an entry exceeds the limit), so that an
     // oversized stage costs no closed forms; then every entry's closed form in parallel.
-    let (pose, matrix) = join(
-        || robot.forward_within(o.max_terms),
-        || robot.forward_matrix_within(o.max_terms),
+    // Whichever expansion is abandoned first stops the other; the matrix, which grows faster
+    // on numeric chains (3^k modes against 2^k) and predicts its overflow from its growth,
+    // goes first when there is one thread.
+    let stop = AtomicBool::new(false);
+    let (matrix, pose) = join(
+        || robot.forward_matrix_until(o.max_terms, &stop),
+        || robot.forward_within_until(o.max_terms, &stop),
     );
     let (q, m) = (pose?, matrix?);
     let comps = q.components();

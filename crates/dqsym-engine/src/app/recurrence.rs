@@ -41,6 +41,12 @@ const COS_SIN_BUDGET: u64 = 500_000;
 
 /// The largest entry of that polynomial, in monomials (the generic 6R's is 232).
 const COS_SIN_MAX_TERMS: usize = 1_000;
+
+/// The work budget of the closed forms of that matrix (RTB's Ball fits in it).
+const COS_SIN_FORMS_BUDGET: u64 = 4_000_000;
+
+/// The most bytes of plain text the closed forms of that matrix may take (RTB's Ball: 10 kB).
+const MAX_COS_SIN_TEXT: usize = 40_000;
 use crate::{closed_form_cos_sin, DualQuat, Expr, Robot, Scalar, ScalarError};
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -207,14 +213,35 @@ pub(crate) fn recurrence_sections(
     let cos_sin = with_own_budget(COS_SIN_BUDGET, || {
         robot.forward_matrix_cos_sin(o.max_terms.min(COS_SIN_MAX_TERMS))
     });
-    let (m, title) = match cos_sin {
-        Some(m) => (
+    // Its closed forms are kept when they are short (a numeric 10-joint chain can give 20 kB
+    // per entry); else the matrix is read from the last Q.
+    // They are part of the attempt: made with a budget of their own, and given up when it
+    // runs out.
+    let cos_sin_forms = cos_sin.and_then(|m| {
+        let cells: Vec<&Scalar> = m.rows[..3].iter().flatten().collect();
+        let forms = with_own_budget(COS_SIN_FORMS_BUDGET, || {
+            par_map(&cells, |x| closed_form_cos_sin(x))
+        });
+        if forms.iter().any(Result::is_err) {
+            return None;
+        }
+        let po = crate::print::PlainOptions { shorthand: true };
+        let len: usize = forms
+            .iter()
+            .map(|e| e.as_ref().map_or(0, |e| crate::print::plain(e, &po).len()))
+            .sum();
+        (len <= MAX_COS_SIN_TEXT).then_some((m, forms))
+    });
+    let (m, title, t_forms) = match cos_sin_forms {
+        Some((m, forms)) => (
             m,
             "homogeneous matrix (rows 0..2), from the cos/sin polynomial of the joint matrices",
+            Some(forms),
         ),
         None => (
             last.to_matrix(),
             "homogeneous matrix (rows 0..2) of the last Q",
+            None,
         ),
     };
     let mut t = Vec::new();
@@ -274,18 +301,28 @@ pub(crate) fn recurrence_sections(
             return Err(ReportError::NameClash(s));
         }
     }
+    // The matrix's closed forms, when already made, are not made again.
+    let have_t = t_forms.is_some();
+    let done = |t: &str| t.starts_with("homogeneous matrix") && have_t;
     let all: Vec<&Scalar> = sections
         .iter()
+        .filter(|(t, _)| !done(t))
         .flat_map(|(_, rows)| rows.iter().map(|(_, x)| x))
         .collect();
     let mut forms = shared_closed_forms(&all).into_iter();
+    let mut t_forms = t_forms.into_iter().flatten();
     sections
         .into_iter()
         .map(|(title, rows)| {
             // `forms` holds one closed form per entry, in the same order.
+            let source: &mut dyn Iterator<Item = Result<Expr, ScalarError>> = if done(&title) {
+                &mut t_forms
+            } else {
+                &mut forms
+            };
             let rows = rows
                 .into_iter()
-                .zip(forms.by_ref())
+                .zip(source)
                 .map(|((name, _), e)| Ok((name, e?)))
                 .collect::<Result<Vec<_>, ScalarError>>()?;
             Ok((title, rows))

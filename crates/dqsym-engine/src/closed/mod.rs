@@ -20,6 +20,7 @@ pub use expr::{Angle, Cost, Expr};
 pub use notation::{angle_text, shorthand_name, TrigNames};
 pub use trace::{Identity, TraceStep};
 
+use crate::scalar::Small;
 use crate::{Scalar, ScalarError, Sym};
 
 /// The largest number of monomials the split shape may have before it is skipped.
@@ -52,6 +53,9 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
     if split_size > SPLIT_LIMIT {
         return (whole_form(x).map(|(e, _)| e), Prepared(None));
     }
+    if skip_split(x, split_size) {
+        return (best_whole(x), Prepared(None));
+    }
     let (mut sctx, smons) = mon::split_modes(x);
     let smons = recombine::recombine(&mut sctx, smons);
     let result = best_of(x, &sctx, &smons, true);
@@ -60,6 +64,75 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
         result.map(|(e, _)| e),
         Prepared(Some((sctx, smons, split_won))),
     )
+}
+
+/// The most a scalar's split shape may multiply its number of terms by, on average, before
+/// the split shape is skipped: modes of 8 or more symbols each (the half-angle series of a
+/// planar chain of 10 joints, `cos(q1/2 - q2/2 + ... - q10/2)`: 1,024 single-angle products
+/// per term, which the recombination only puts back together).
+const WIDE_SPLIT: usize = 256;
+
+/// The least a scalar's split shape multiplies its number of terms by, on average, for the
+/// test of [`disjoint_parts`] to be worth making (modes of 5 or more symbols).
+const DISJOINT_SPLIT: usize = 32;
+
+/// Whether the split shape of `x` (of `split_size` single-angle products) is skipped for the
+/// whole modes: when it is very large for the number of terms ([`WIDE_SPLIT`]), or large
+/// and unable to regroup anything the whole modes do not ([`disjoint_parts`]).
+fn skip_split(x: &Scalar, split_size: usize) -> bool {
+    split_size > WIDE_SPLIT * x.len()
+        || (split_size > DISJOINT_SPLIT * x.len() && disjoint_parts(x))
+}
+
+/// Whether no two terms of `x` expand, split into single angles, into a common product of
+/// atoms: each term's expansion is the products of `cos` or `sin` of `c s` over its mode's
+/// symbols `s` with coefficients `c`, times its cofactor (radicand and monomial), so two terms
+/// can meet only if their cofactors and their sets of `(s, |c|)` agree (a pi offset is left
+/// out of the comparison, which only makes it stricter). When no two can meet, the
+/// recombination only reassembles each term, and the split shape is the whole modes again
+/// (the sum of cumulative angles `c1 + c12 + ... + c1..10` of a planar chain, say).
+fn disjoint_parts(x: &Scalar) -> bool {
+    let Ok(terms) = x.terms() else {
+        return false;
+    };
+    type Key<'a> = (u64, &'a [(Sym, u32)], Vec<(&'a Sym, Small)>);
+    let mut keys: Vec<Key> = terms
+        .iter()
+        .map(|t| {
+            let freq = t
+                .mode
+                .freq
+                .iter()
+                .map(|(s, c)| (s, if *c < Small::default() { -*c } else { *c }))
+                .collect();
+            (t.rad, &t.mono[..], freq)
+        })
+        .collect();
+    keys.sort_unstable();
+    keys.windows(2).all(|w| w[0] != w[1])
+}
+
+/// The whole-modes shape or, when strictly shorter, a candidate of `alt.rs`, checked against
+/// `x` like [`best_of`]'s result.
+fn best_whole(x: &Scalar) -> Result<Expr, ScalarError> {
+    let (w, _) = whole_form(x)?;
+    let best = match alt::best_alternative(x) {
+        Some(a) if alt::full_cost(&a).0 < alt::full_cost(&w).0 => a,
+        _ => w,
+    };
+    if !cfg!(debug_assertions) && agrees_numerically(&best, x) {
+        return Ok(best);
+    }
+    let value = best.to_scalar();
+    if let Some(e) = value.as_error() {
+        return Err(e.clone());
+    }
+    if value == *x {
+        Ok(best)
+    } else {
+        debug_assert!(!x.is_canonical(), "closed form does not equal its input");
+        whole_form(x).map(|(e, _)| e)
+    }
 }
 
 /// The whole-modes shape: each Fourier mode one factor, factored.
@@ -78,6 +151,9 @@ fn best_of(
     try_whole: bool,
 ) -> Result<(Expr, bool), ScalarError> {
     let (split, sc) = factor::build(smons)?;
+    // Without trigonometric terms both shapes are the same monomials (a polynomial in cos/sin
+    // placeholders, say): the whole shape would be factored again to the same cost.
+    let try_whole = try_whole && !same_monomials(x, smons);
     let whole = if try_whole {
         Some(whole_form(x)?)
     } else {
@@ -112,6 +188,12 @@ fn best_of(
         };
         Ok((w, false))
     }
+}
+
+/// Whether `x` has no trigonometric term and its whole-modes monomials are `smons`.
+fn same_monomials(x: &Scalar, smons: &[mon::Mon]) -> bool {
+    let trig_free = x.terms().is_ok_and(|t| t.iter().all(|t| t.mode.is_unit()));
+    trig_free && mon::whole_modes(x).1 == smons
 }
 
 /// The closed form of `dx`, the derivative of the scalar `p` was prepared from with respect to
@@ -229,6 +311,16 @@ pub fn closed_form_traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarEr
     if split_size > SPLIT_LIMIT {
         let e = whole.to_expr(&wctx);
         return Ok((e.clone(), vec![TraceStep::KeptWhole(e)]));
+    }
+    if skip_split(x, split_size) {
+        let e = best_whole(x)?;
+        let kept = whole.to_expr(&wctx);
+        let step = if e == kept {
+            TraceStep::KeptWhole(e.clone())
+        } else {
+            TraceStep::Shorter(e.clone())
+        };
+        return Ok((e, vec![step]));
     }
     let (mut sctx, smons) = mon::split_modes(x);
     let mut rec = trace::Recorder::default();

@@ -15,6 +15,7 @@
 use super::{Chain, Joint, JointGeometry, JointKind};
 use crate::{DualQuat, Matrix4, Quat, Scalar};
 use serde::Deserialize;
+use std::sync::atomic::{AtomicBool, Ordering as AtomicOrdering};
 use thiserror::Error;
 
 /// The joint convention of a robot file: its `convention` field, `"dh"`, `"mdh"` or `"screw"`.
@@ -662,6 +663,22 @@ impl Robot {
         self.matrix_product(Some(max_terms), |x| Some(x.clone()))
     }
 
+    /// [`Robot::forward_matrix_within`] that gives up (`None`) once `stop` is set, and sets
+    /// it when it gives up; it also gives up early when the growth of the partial products
+    /// says the last one will exceed the limit (see [`Growth`]). For running it next to
+    /// [`Robot::forward_within_until`]: whichever expansion is abandoned first stops the other.
+    pub(crate) fn forward_matrix_until(
+        &self,
+        max_terms: usize,
+        stop: &AtomicBool,
+    ) -> Option<Matrix4<Scalar>> {
+        let r = self.matrix_product_until(Some(max_terms), |x| Some(x.clone()), Some(stop));
+        if r.is_none() {
+            stop.store(true, AtomicOrdering::Relaxed);
+        }
+        r
+    }
+
     /// The product of the joint factors' matrices (and the tool's), each entry first passed
     /// through `entry` (`None` there gives `None`); `None` as soon as an entry of a partial
     /// product has more than `max_terms` terms or is an error value.
@@ -670,14 +687,32 @@ impl Robot {
         max_terms: Option<usize>,
         entry: impl Fn(&Scalar) -> Option<Scalar>,
     ) -> Option<Matrix4<Scalar>> {
+        self.matrix_product_until(max_terms, entry, None)
+    }
+
+    /// [`Robot::matrix_product`]; with `stop`, also `None` once `stop` is set or when the
+    /// growth of the partial products predicts that the last one exceeds `max_terms`.
+    fn matrix_product_until(
+        &self,
+        max_terms: Option<usize>,
+        entry: impl Fn(&Scalar) -> Option<Scalar>,
+        stop: Option<&AtomicBool>,
+    ) -> Option<Matrix4<Scalar>> {
         let mut acc: Option<Matrix4<Scalar>> = None;
         let id = DualQuat::identity();
         let base = (self.chain.base != id).then_some(&self.chain.base);
-        for f in base
+        let joints = self.joint_dqs();
+        let factors: Vec<&DualQuat<Scalar>> = base
             .into_iter()
-            .chain(&self.joint_dqs())
+            .chain(&joints)
             .chain(std::iter::once(&self.chain.tool))
-        {
+            .collect();
+        let stopped = || stop.is_some_and(|s| s.load(AtomicOrdering::Relaxed));
+        let mut growth = Growth::default();
+        for (k, f) in factors.iter().enumerate() {
+            if stopped() {
+                return None;
+            }
             let mut rows = f.to_matrix().rows;
             for x in rows.iter_mut().flatten() {
                 *x = entry(x)?;
@@ -686,7 +721,7 @@ impl Robot {
             let next = match (acc, max_terms) {
                 (None, _) => m,
                 (Some(a), None) => a.mul_ref(&m),
-                (Some(a), Some(limit)) => product_within(&a, &m, limit)?,
+                (Some(a), Some(limit)) => product_within(&a, &m, limit, stop)?,
             };
             if let Some(limit) = max_terms {
                 if next
@@ -695,6 +730,11 @@ impl Robot {
                     .flatten()
                     .any(|x| x.len() > limit || x.as_error().is_some())
                 {
+                    return None;
+                }
+                let largest = next.rows.iter().flatten().map(Scalar::len).max();
+                let left = factors.len() - 1 - k;
+                if stop.is_some() && growth.exceeds(largest.unwrap_or(0), left, limit) {
                     return None;
                 }
             }
@@ -717,10 +757,31 @@ impl Robot {
     /// than `max_terms` terms: a chain whose expansion grows exponentially (every DH parameter
     /// symbolic, many joints) is detected after a few products instead of exhausting memory.
     pub fn forward_within(&self, max_terms: usize) -> Option<DualQuat<Scalar>> {
+        self.forward_within_until(max_terms, &AtomicBool::new(false))
+    }
+
+    /// [`Robot::forward_within`] that gives up (`None`) once `stop` is set, and sets it when
+    /// it gives up (see [`Robot::forward_matrix_until`]).
+    pub(crate) fn forward_within_until(
+        &self,
+        max_terms: usize,
+        stop: &AtomicBool,
+    ) -> Option<DualQuat<Scalar>> {
+        let r = self.forward_product(max_terms, stop);
+        if r.is_none() {
+            stop.store(true, AtomicOrdering::Relaxed);
+        }
+        r
+    }
+
+    fn forward_product(&self, max_terms: usize, stop: &AtomicBool) -> Option<DualQuat<Scalar>> {
         let factors = self.pose_factors();
         let product = |fs: &[DualQuat<Scalar>]| -> Option<DualQuat<Scalar>> {
             let mut acc = DualQuat::identity();
             for f in fs {
+                if stop.load(AtomicOrdering::Relaxed) {
+                    return None;
+                }
                 acc = acc * f.clone();
                 if acc
                     .components()
@@ -784,6 +845,7 @@ fn product_within(
     a: &Matrix4<Scalar>,
     b: &Matrix4<Scalar>,
     limit: usize,
+    stop: Option<&AtomicBool>,
 ) -> Option<Matrix4<Scalar>> {
     let pairs = |i: usize, j: usize| -> usize {
         (0..4)
@@ -794,6 +856,9 @@ fn product_within(
     order.sort_by_key(|&(i, j)| std::cmp::Reverse(pairs(i, j)));
     let mut rows: [[Scalar; 4]; 4] = Default::default();
     for (i, j) in order {
+        if stop.is_some_and(|s| s.load(AtomicOrdering::Relaxed)) {
+            return None;
+        }
         let x = (0..4).fold(Scalar::int(0), |acc, k| acc + &a.rows[i][k] * &b.rows[k][j]);
         if x.len() > limit || x.as_error().is_some() {
             return None;
@@ -801,6 +866,34 @@ fn product_within(
         rows[i][j] = x;
     }
     Some(Matrix4::from_rows(rows))
+}
+
+/// The sizes of the partial products of a chain, to predict the last one's.
+///
+/// The largest entry of a partial product grows by a steady factor per link on a chain of
+/// numeric links in general position (2.73 for the matrices of RTB's Ball and of 9 links
+/// a = d = 1, alpha = pi/2; the Fourier modes of k revolute joints number up to 3^k / 2), so
+/// once a partial product is large enough for its growth to be measured, the smaller of the
+/// last two growth factors raised to the number of links left predicts the last size; past
+/// twice the limit the expansion is abandoned before its most expensive products.
+#[derive(Default)]
+struct Growth {
+    /// The largest entry of the last two partial products.
+    last: [usize; 2],
+}
+
+impl Growth {
+    /// Records the largest entry `size` of the next partial product; whether `left` more
+    /// links at the present growth take it past twice `limit`.
+    fn exceeds(&mut self, size: usize, left: usize, limit: usize) -> bool {
+        let [a, b] = self.last;
+        self.last = [b, size];
+        if a == 0 || b == 0 || size < limit / 16 || left == 0 {
+            return false;
+        }
+        let rate = (b as f64 / a as f64).min(size as f64 / b as f64);
+        rate > 1.0 && size as f64 * rate.powi(left.min(64) as i32) > 2.0 * limit as f64
+    }
 }
 
 /// Refuses a joint variable an earlier joint already has: each Jacobian column is the

@@ -35,7 +35,7 @@ pub(crate) use arith::FxHasher;
 pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use atoms::{Sym, Trig};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
-pub(crate) use ctx::{charge, check_cancelled, term_limit, Poll};
+pub(crate) use ctx::{charge, check_cancelled, term_limit, work_used, Poll};
 pub use ctx::{Context, Entered, DEFAULT_MAX_CYCLOTOMIC_DEGREE, DEFAULT_MAX_EXPONENT};
 pub use decimal::parse_decimal;
 pub use frac::Frac;
