@@ -529,9 +529,10 @@ fn snake(name: &str) -> String {
 fn header(robot: &Robot) -> String {
     let params = robot.parameters();
     format!(
-        "# {} ({} joints: {}; parameters: {})\n",
+        "# {} ({} joint{}: {}; parameters: {})\n",
         robot.name,
         robot.variables.len(),
+        if robot.variables.len() == 1 { "" } else { "s" },
         robot.variables.join(", "),
         if params.is_empty() {
             "none".to_string()
