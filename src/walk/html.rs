@@ -329,16 +329,7 @@ pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<S
         body += "</section>\n";
     }
     body += "</div>\n</div>\n";
-    Ok(format!(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
-         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
-         <title>{}</title>\n<style>{}</style>\n<style>{STYLE}</style>\n</head>\n<body>\n<main>\n\
-         {body}</main>\n<script>{}</script>\n<script>{RENDER}</script>\n{}</body>\n</html>\n",
-        xml_escape(&title),
-        katex.css,
-        katex.js,
-        scripts.unwrap_or_default()
-    ))
+    Ok(html_page(&title, katex, &body, scripts.as_deref()))
 }
 
 /// The inverse kinematics walkthrough as a self-contained page: the derivation (`markdown`, as
@@ -414,16 +405,7 @@ pub fn ik_walk_html(
     }
     body += "</div>\n</div>\n";
     let title = format!("Inverse kinematics walkthrough: {}", sol.robot);
-    Ok(format!(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
-         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
-         <title>{}</title>\n<style>{}</style>\n<style>{STYLE}</style>\n</head>\n<body>\n<main>\n\
-         {body}</main>\n<script>{}</script>\n<script>{RENDER}</script>\n{}</body>\n</html>\n",
-        xml_escape(&title),
-        katex.css,
-        katex.js,
-        scripts.unwrap_or_default()
-    ))
+    Ok(html_page(&title, katex, &body, scripts.as_deref()))
 }
 
 /// The solver of the page: one generated function per step (its parts from the target, the
@@ -575,3 +557,18 @@ const IK_JS: &str = r#"(function () {
     update();
 })();
 "#;
+
+/// The page around a walkthrough's body: KaTeX's style and script inlined, the page's own
+/// style and renderer, and the mechanism's scripts (if any) last.
+fn html_page(title: &str, katex: &KatexAssets, body: &str, scripts: Option<&str>) -> String {
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
+         <title>{}</title>\n<style>{}</style>\n<style>{STYLE}</style>\n</head>\n<body>\n<main>\n\
+         {body}</main>\n<script>{}</script>\n<script>{RENDER}</script>\n{}</body>\n</html>\n",
+        xml_escape(title),
+        katex.css,
+        katex.js,
+        scripts.unwrap_or_default()
+    )
+}

@@ -268,8 +268,8 @@ impl Scalar {
         // Constants at rational multiples of pi other than pi/12 (and symbolic angles offset
         // by them) take their canonical basis; the common case only pays for this scan.
         let terms = if terms.iter().any(|t| !t.mode.pi.is_zero()) {
-            match cyclo::canonicalize(&terms) {
-                Ok(t) => sort_merge(t),
+            match cyclo::canonicalize(&terms).and_then(canonical_terms) {
+                Ok(t) => t,
                 Err(e) => return Scalar::error(e),
             }
         } else {
@@ -427,27 +427,6 @@ impl Scalar {
         out.dedup();
         out
     }
-}
-
-/// Sorts terms by key, merges equal keys and drops zero coefficients.
-fn sort_merge(mut terms: Vec<Term>) -> Vec<Term> {
-    terms.sort_unstable_by(|a, b| a.key_cmp(b));
-    let mut out: Vec<Term> = Vec::with_capacity(terms.len());
-    for t in terms {
-        match out.last_mut() {
-            Some(last) if last.key_cmp(&t).is_eq() => last.coef += &t.coef,
-            _ => {
-                if out.last().is_some_and(|l| l.coef.is_zero()) {
-                    out.pop();
-                }
-                out.push(t)
-            }
-        }
-    }
-    if out.last().is_some_and(|l| l.coef.is_zero()) {
-        out.pop();
-    }
-    out
 }
 
 impl Default for Scalar {
