@@ -137,23 +137,22 @@ impl<'py> ToSympy<'py> {
         Ok(match e {
             Expr::Num(q) => self.rational(q.numer().clone(), q.denom().clone())?,
             Expr::Sqrt(n) => self.sqrt.call1((self.integer.call1((*n,))?,))?,
-            Expr::Sym(s) => match s.name() {
-                "pi" => self.pi.clone(),
-                "1" => self.integer.call1((1,))?,
-                name => self.symbol(name)?,
-            },
+            Expr::Sym(s) if s.is_pi() => self.pi.clone(),
+            Expr::Sym(s) if s.is_one() => self.integer.call1((1,))?,
+            Expr::Sym(s) => self.symbol(s.name())?,
             Expr::Trig { f, angle } => {
                 let sin = f.is_sin();
-                let mut parts = Vec::with_capacity(angle.terms.len() + 1);
+                let mut parts = Vec::with_capacity(angle.terms.len() + 2);
+                if *angle.constant.numer() != 0 {
+                    parts.push(self.small(&angle.constant)?);
+                }
                 for (s, k) in &angle.terms {
                     let k = self.small(k)?;
-                    parts.push(match s.name() {
-                        "1" => k,
-                        "pi" => self.mul.call1((k, self.pi.clone()))?,
-                        name => {
-                            let x = self.symbol(name)?;
-                            self.mul.call1((k, x))?
-                        }
+                    parts.push(if s.is_pi() {
+                        self.mul.call1((k, self.pi.clone()))?
+                    } else {
+                        let x = self.symbol(s.name())?;
+                        self.mul.call1((k, x))?
                     });
                 }
                 if *angle.pi.numer() != 0 {
@@ -166,10 +165,7 @@ impl<'py> ToSympy<'py> {
                 // (`could_extract_minus_sign`), then built unevaluated. The result is the same
                 // tree as the evaluated call (a test compares with `sympify` structurally).
                 let plain = *angle.pi.numer() == 0
-                    && angle
-                        .terms
-                        .iter()
-                        .any(|(s, _)| !matches!(s.name(), "1" | "pi"));
+                    && angle.terms.iter().any(|(s, _)| !s.is_pi());
                 if !plain {
                     return Ok(if sin {
                         self.sin.call1((arg,))?

@@ -3,19 +3,17 @@
 
 use super::motion::Motion;
 use super::Step;
-use crate::{Matrix4, Scalar, ScalarError};
+use crate::{Matrix4, Scalar, ScalarError, Sym};
 
 /// How many configurations a check tries.
 pub(crate) const SAMPLES: usize = 5;
 
-/// A value in [-1.5, 1.5) for the symbol `name` in configuration `sample`: the same on every
-/// run and machine (FNV-1a of the name, then a linear congruential step).
-pub(crate) fn sample_value(name: &str, sample: usize) -> Option<f64> {
-    if name == "pi" || name == "1" {
-        return None;
-    }
+/// A value in [-1.5, 1.5) for the symbol `s` in configuration `sample`: the same on every
+/// run and machine (FNV-1a of the name, then a linear congruential step). `pi` has its value
+/// and is never asked for.
+pub(crate) fn sample_value(s: &Sym, sample: usize) -> f64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in name.bytes().chain((sample as u64).to_le_bytes()) {
+    for b in s.name().bytes().chain((sample as u64).to_le_bytes()) {
         h ^= u64::from(b);
         h = h.wrapping_mul(0x0100_0000_01b3);
     }
@@ -23,12 +21,12 @@ pub(crate) fn sample_value(name: &str, sample: usize) -> Option<f64> {
         .wrapping_mul(6_364_136_223_846_793_005)
         .wrapping_add(1_442_695_040_888_963_407);
     let u = (h >> 11) as f64 / (1u64 << 53) as f64;
-    Some(3.0 * u - 1.5)
+    3.0 * u - 1.5
 }
 
 /// The product of the motions' matrices at configuration `sample`.
 pub(crate) fn chain_matrix(motions: &[Motion], sample: usize) -> Result<Matrix4<f64>, ScalarError> {
-    let env = |n: &str| sample_value(n, sample);
+    let env = |s: &Sym| Some(sample_value(s, sample));
     let mut m = Matrix4::identity();
     for x in motions {
         m = m * x.matrix(&env)?;
@@ -61,16 +59,16 @@ pub(crate) fn check(
 ) -> Option<Step> {
     let mut max: f64 = 0.0;
     for k in 0..SAMPLES {
-        let env = |n: &str| sample_value(n, k);
+        let env = |s: &Sym| Some(sample_value(s, k));
         let m = chain_matrix(motions, k).ok()?;
         let home = [
-            v[0].eval(&env).ok()?,
-            v[1].eval(&env).ok()?,
-            v[2].eval(&env).ok()?,
+            v[0].eval_symbols(&env).ok()?,
+            v[1].eval_symbols(&env).ok()?,
+            v[2].eval_symbols(&env).ok()?,
         ];
         let want = m.transform_point(&home);
         for (w, x) in want.iter().zip(image) {
-            max = max.max((w - x.eval(&env).ok()?).abs());
+            max = max.max((w - x.eval_symbols(&env).ok()?).abs());
         }
     }
     Some(Step::Check {
@@ -91,11 +89,11 @@ pub(crate) fn check_pose(
     let m = pose.to_matrix();
     let mut max: f64 = 0.0;
     for k in 0..SAMPLES {
-        let env = |n: &str| sample_value(n, k);
+        let env = |s: &Sym| Some(sample_value(s, k));
         let want = chain_matrix(motions, k).ok()?;
         for (wr, mr) in want.rows.iter().zip(&m.rows) {
             for (w, x) in wr.iter().zip(mr) {
-                max = max.max((w - x.eval(&env).ok()?).abs());
+                max = max.max((w - x.eval_symbols(&env).ok()?).abs());
             }
         }
     }

@@ -4,7 +4,7 @@
 
 use crate::{
     dh_link_matrix, mdh_link_matrix, screw_parameters, DualQuat, Frac, Matrix4, Quat, Scalar,
-    ScalarError,
+    ScalarError, Sym,
 };
 use num_traits::Zero;
 
@@ -179,8 +179,8 @@ impl Motion {
     ///
     /// # Errors
     /// When a parameter names a symbol `env` has no value for.
-    pub fn matrix(&self, env: &dyn Fn(&str) -> Option<f64>) -> Result<Matrix4<f64>, ScalarError> {
-        let f = |x: &Scalar| x.eval(env);
+    pub fn matrix(&self, env: &dyn Fn(&Sym) -> Option<f64>) -> Result<Matrix4<f64>, ScalarError> {
+        let f = |x: &Scalar| x.eval_symbols(env);
         let f3 = |v: &[Scalar; 3]| -> Result<[f64; 3], ScalarError> {
             Ok([f(&v[0])?, f(&v[1])?, f(&v[2])?])
         };

@@ -76,23 +76,23 @@ impl Names {
 
     /// The shorthand of cos or sin of `a`, recorded for the legend: `(plain, tex)`.
     fn name(&self, f: Trig, a: &Angle) -> Option<(String, String)> {
-        if !a.pi.is_zero() || a.terms.is_empty() {
+        if !a.pi.is_zero() || !a.constant.is_zero() || a.terms.is_empty() {
             return None;
         }
         let half = num_rational::Ratio::new(1, 2);
         let full = a.is_plain_sum();
-        let is_half = a.terms.iter().all(|(s, k)| *k == half && !s.is_unit());
+        let is_half = a.terms.iter().all(|(_, k)| *k == half);
         if !full && !is_half {
             return None;
         }
-        let whole = Angle {
-            terms: a
-                .terms
+        let whole = Angle::new(
+            a.terms
                 .iter()
                 .map(|(s, _)| (s.clone(), num_rational::Ratio::from_integer(1)))
                 .collect(),
-            pi: a.pi,
-        };
+            a.constant,
+            a.pi,
+        );
         let short = shorthand_name(f, &whole)?;
         let (_, rest) = short.split_at(1);
         let letter = match (f, full) {

@@ -249,7 +249,7 @@ impl Scene {
         let mut others = std::collections::BTreeSet::new();
         let mut note = |x: &Scalar| {
             for s in x.symbols() {
-                if !s.is_pi() && !s.is_unit() && !joints.iter().any(|(n, _)| n == s.name()) {
+                if !s.is_pi() && !s.is_one() && !joints.iter().any(|(n, _)| n == s.name()) {
                     others.insert(s.name().to_owned());
                 }
             }

@@ -342,18 +342,21 @@ type Shape = (Scalar, Vec<(String, String)>);
 /// The shape of an entry: its symbols renamed in order to placeholders, and the renaming.
 /// Entries of one shape (the joint factors of equal links, the prefix products past the
 /// first few, the Jacobian columns of the middle joints) share one closed form. `None` for an
-/// entry with `pi` or `1` as a symbol, or a cos/sin placeholder, whose order with respect
-/// to the placeholders a renaming could change.
+/// entry with `pi` as a symbol, or a cos/sin placeholder, whose order with respect to the
+/// placeholders a renaming could change (the constant of an angle is no symbol of
+/// [`Scalar::symbols`], and keeps its place before every name).
 fn shape(x: &Scalar) -> Option<Shape> {
-    let mut names: Vec<String> = x.symbols().iter().map(|s| s.name().to_string()).collect();
-    names.sort();
-    names.dedup();
-    let special = |n: &String| {
-        n == "pi" || n == "1" || n.starts_with('~') || crate::parse_trig_placeholder(n).is_some()
+    let symbols = x.symbols();
+    let special = |s: &crate::Sym| {
+        let n = s.name();
+        s.is_pi() || n.starts_with('~') || crate::parse_trig_placeholder(n).is_some()
     };
-    if names.iter().any(special) {
+    if symbols.iter().any(special) {
         return None;
     }
+    let mut names: Vec<String> = symbols.iter().map(|s| s.name().to_string()).collect();
+    names.sort();
+    names.dedup();
     let map: Vec<(String, String)> = names
         .into_iter()
         .enumerate()

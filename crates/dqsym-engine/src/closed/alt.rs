@@ -59,11 +59,13 @@ pub(super) fn full_cost(e: &Expr) -> (usize, usize, usize) {
     fn angle_ops(e: &Expr) -> usize {
         match e {
             Expr::Trig { angle, .. } => {
-                let terms = angle.terms.len() + usize::from(!angle.pi.is_zero());
+                let terms = angle.terms.len()
+                    + usize::from(!angle.constant.is_zero())
+                    + usize::from(!angle.pi.is_zero());
                 let coefs = angle
                     .terms
                     .iter()
-                    .filter(|(s, k)| !k.abs().is_one() && !s.is_unit())
+                    .filter(|(_, k)| !k.abs().is_one())
                     .count()
                     + usize::from(!angle.pi.abs().is_one() && !angle.pi.is_zero());
                 terms.saturating_sub(1) + coefs
@@ -112,10 +114,12 @@ fn num(q: Rat) -> Expr {
     }
 }
 
-fn trig(sin: bool, terms: Vec<(Sym, Small)>, pi: Small) -> Expr {
+/// `cos` or `sin` of the angle of a frequency vector (see [`Angle::from_freq`]) and a multiple
+/// of pi.
+fn trig(sin: bool, freq: Vec<(Sym, Small)>, pi: Small) -> Expr {
     Expr::Trig {
         f: crate::scalar::Trig::of(sin),
-        angle: Angle { terms, pi },
+        angle: Angle::from_freq(&freq, pi),
     }
 }
 

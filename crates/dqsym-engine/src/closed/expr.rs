@@ -6,28 +6,133 @@ use crate::Scalar;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Zero};
+use std::cmp::Ordering;
 
-/// An angle: a rational combination of symbols plus a rational multiple of pi. The
-/// pseudo-symbol `1` carries rational constants that are not multiples of pi.
-#[derive(Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+/// An angle: a rational combination of symbols, plus a rational constant, plus a rational
+/// multiple of pi (`t1 - 2 t2 + 1/2 + pi/7`).
+///
+/// Ordered as the canonical form orders frequency vectors: by the sequence of `(symbol,
+/// coefficient)` with the constant, when nonzero, first (the canonical form carries it as
+/// [`Sym::is_one`], which sorts before every name), then by the multiple of pi.
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
 pub struct Angle {
-    /// `(symbol, coefficient)`, sorted by symbol, nonzero, first coefficient positive.
+    /// `(symbol, coefficient)`, sorted by symbol, nonzero; neither `pi` nor the constant.
     pub terms: Vec<(Sym, Small)>,
+    /// The rational constant (not a multiple of pi): `1` in `t + 1`.
+    pub constant: Small,
     /// The multiple of pi.
     pub pi: Small,
 }
 
+impl Ord for Angle {
+    fn cmp(&self, other: &Self) -> Ordering {
+        let head = |a: &Angle| (!a.constant.is_zero()).then_some(a.constant);
+        match (head(self), head(other)) {
+            (Some(x), Some(y)) => x.cmp(&y).then_with(|| self.terms.cmp(&other.terms)),
+            (None, None) => self.terms.cmp(&other.terms),
+            // The constant comes before any symbol, after the end of the sequence.
+            (Some(_), None) if other.terms.is_empty() => Ordering::Greater,
+            (Some(_), None) => Ordering::Less,
+            (None, Some(_)) if self.terms.is_empty() => Ordering::Less,
+            (None, Some(_)) => Ordering::Greater,
+        }
+        .then_with(|| self.pi.cmp(&other.pi))
+    }
+}
+
+impl PartialOrd for Angle {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
 impl Angle {
+    /// The angle `terms + constant + pi * pi` (`terms` sorted by symbol, nonzero, without
+    /// `pi` or the constant 1 of a frequency vector).
+    pub fn new(terms: Vec<(Sym, Small)>, constant: Small, pi: Small) -> Angle {
+        debug_assert!(terms.iter().all(|(s, _)| !s.is_one()));
+        Angle {
+            terms,
+            constant,
+            pi,
+        }
+    }
+
+    /// The angle `1 * s` of one symbol.
+    pub fn of_symbol(s: Sym) -> Angle {
+        Angle::new(vec![(s, Small::one())], Small::zero(), Small::zero())
+    }
+
+    /// The angle of a canonical frequency vector (its constant carried by the entry
+    /// [`Sym::is_one`]) and a multiple of pi.
+    pub fn from_freq(freq: &[(Sym, Small)], pi: Small) -> Angle {
+        let mut constant = Small::zero();
+        let mut terms = Vec::with_capacity(freq.len());
+        for (s, k) in freq {
+            if s.is_one() {
+                constant += *k;
+            } else {
+                terms.push((s.clone(), *k));
+            }
+        }
+        Angle {
+            terms,
+            constant,
+            pi,
+        }
+    }
+
+    /// The angle's frequency vector as the canonical form stores it: the constant, when
+    /// nonzero, as a leading entry [`Sym::is_one`], then the symbols.
+    pub fn freq(&self) -> Vec<(Sym, Small)> {
+        let mut v = Vec::with_capacity(self.terms.len() + 1);
+        if !self.constant.is_zero() {
+            v.push((Sym::one(), self.constant));
+        }
+        v.extend(self.terms.iter().cloned());
+        v
+    }
+
+    /// The first coefficient of the angle in the canonical order (the constant, when nonzero,
+    /// before the symbols), which the canonical sign rule keeps positive; `None` when the
+    /// angle is a multiple of pi.
+    pub fn leading(&self) -> Option<Small> {
+        if self.constant.is_zero() {
+            self.terms.first().map(|(_, k)| *k)
+        } else {
+            Some(self.constant)
+        }
+    }
+
+    /// Whether the angle has no symbols and no constant (a multiple of pi, zero included).
+    pub fn is_pi_multiple(&self) -> bool {
+        self.terms.is_empty() && self.constant.is_zero()
+    }
+
+    /// The negated angle.
+    pub fn negate(&mut self) {
+        for (_, k) in self.terms.iter_mut() {
+            *k = -*k;
+        }
+        self.constant = -self.constant;
+        self.pi = -self.pi;
+    }
+
+    /// The angle with every symbol's and the constant's coefficient, and the multiple of pi,
+    /// multiplied by `m`.
+    pub fn scaled(&self, m: Small) -> Angle {
+        Angle {
+            terms: self.terms.iter().map(|(s, k)| (s.clone(), *k * m)).collect(),
+            constant: self.constant * m,
+            pi: self.pi * m,
+        }
+    }
+
     /// The angle as an exact scalar.
     pub fn to_scalar(&self) -> Scalar {
-        let mut a = Scalar::pi() * small(&self.pi);
+        let mut a = Scalar::pi() * small(&self.pi) + small(&self.constant);
         for (s, k) in &self.terms {
-            let v = if s.is_unit() {
-                Scalar::int(1)
-            } else {
-                Scalar::sym(s.name())
-            };
-            a = a + v * small(k);
+            a = a + Scalar::sym(s.name()) * small(k);
         }
         a
     }
@@ -36,13 +141,14 @@ impl Angle {
     /// the parts directly when they are what reading the angle back would give.
     fn trig(&self, f: Trig) -> Scalar {
         let direct = small_ok(&self.pi)
+            && small_ok(&self.constant)
             && self.terms.is_sorted_by(|a, b| a.0 < b.0)
             && self
                 .terms
                 .iter()
                 .all(|(s, k)| !s.is_pi() && !k.is_zero() && small_ok(k));
         if direct {
-            return Scalar::trig_of_parts(f.is_sin(), self.terms.clone(), self.pi);
+            return Scalar::trig_of_parts(f.is_sin(), self.freq(), self.pi);
         }
         let a = self.to_scalar();
         match f {
@@ -51,22 +157,10 @@ impl Angle {
         }
     }
 
-    /// True when every coefficient is 1 and there is no pi part: `theta1 + theta2`.
+    /// True when every coefficient is 1 and there is no constant and no pi part: `theta1 +
+    /// theta2`.
     pub fn is_plain_sum(&self) -> bool {
-        self.pi.is_zero() && self.terms.iter().all(|(s, k)| k.is_one() && !s.is_unit())
-    }
-
-    /// The rational constant of the angle (not a multiple of pi): `1` in `t + 1`.
-    pub fn constant(&self) -> Small {
-        self.terms
-            .iter()
-            .find(|(s, _)| s.is_unit())
-            .map_or_else(Small::zero, |(_, k)| *k)
-    }
-
-    /// The terms in symbols, the constant left out.
-    pub fn symbol_terms(&self) -> impl Iterator<Item = &(Sym, Small)> {
-        self.terms.iter().filter(|(s, _)| !s.is_unit())
+        self.pi.is_zero() && self.constant.is_zero() && self.terms.iter().all(|(_, k)| k.is_one())
     }
 }
 
@@ -85,8 +179,6 @@ fn big_f64(q: &BigRational) -> f64 {
 fn sym_value(s: &Sym, env: &dyn Fn(&Sym) -> f64) -> f64 {
     if s.is_pi() {
         std::f64::consts::PI
-    } else if s.is_unit() {
-        1.0
     } else {
         env(s)
     }
@@ -149,7 +241,7 @@ impl Expr {
                     None => out.push(s.name().to_owned()),
                 },
                 Expr::Trig { angle, .. } => {
-                    out.extend(angle.symbol_terms().map(|(s, _)| s.name().to_owned()))
+                    out.extend(angle.terms.iter().map(|(s, _)| s.name().to_owned()))
                 }
                 Expr::Add(v) | Expr::Mul(v) => v.iter().for_each(|x| walk(x, out)),
                 Expr::Neg(x) | Expr::Pow(x, _) => walk(x, out),
@@ -174,10 +266,7 @@ impl Expr {
             Expr::Sym(s) => match crate::scalar::parse_trig_placeholder(s.name()) {
                 Some((x, f)) => Expr::Trig {
                     f,
-                    angle: Angle {
-                        terms: vec![(Sym::new(x), Small::from_integer(1))],
-                        pi: Small::from_integer(0),
-                    },
+                    angle: Angle::of_symbol(Sym::new(x)),
                 },
                 None => Expr::Sym(s),
             },
@@ -225,6 +314,9 @@ impl Expr {
             }
             Expr::Trig { f, angle } => {
                 let mut phi = small_f64(&angle.pi) * std::f64::consts::PI;
+                if !angle.constant.is_zero() {
+                    phi += small_f64(&angle.constant);
+                }
                 for (s, k) in &angle.terms {
                     phi += small_f64(k) * sym_value(s, env);
                 }

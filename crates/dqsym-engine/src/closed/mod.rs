@@ -262,9 +262,9 @@ pub fn expanded_form(x: &Scalar) -> Result<Expr, ScalarError> {
 /// exactly.
 fn agrees_numerically(e: &Expr, x: &Scalar) -> bool {
     [0x9e37_79b9_7f4a_7c15u64].iter().all(|&seed| {
-        let value = |s: &Sym| point_value(s.name(), seed);
+        let value = |s: &Sym| point_value(s, seed);
         let (a, scale_a) = e.eval_f64(&value);
-        let Ok(b) = x.eval(&|n| Some(point_value(n, seed))) else {
+        let Ok(b) = x.eval_symbols(&|s| Some(point_value(s, seed))) else {
             return false;
         };
         let scale = scale_a.max(b.abs()).max(1.0);
@@ -272,16 +272,11 @@ fn agrees_numerically(e: &Expr, x: &Scalar) -> bool {
     })
 }
 
-/// A value in [0.3, 1.7) for the symbol `name`, a fixed function of the name and the seed.
-fn point_value(name: &str, seed: u64) -> f64 {
-    if name == "pi" {
-        return std::f64::consts::PI;
-    }
-    if name == "1" {
-        return 1.0;
-    }
+/// A value in [0.3, 1.7) for the symbol `s`, a fixed function of its name and the seed (`pi`
+/// and the constant 1 have their values, and are never asked for).
+fn point_value(s: &Sym, seed: u64) -> f64 {
     let mut h = seed;
-    for b in name.bytes() {
+    for b in s.name().bytes() {
         h = (h ^ u64::from(b))
             .wrapping_mul(0x0100_0000_01b3)
             .rotate_left(17);

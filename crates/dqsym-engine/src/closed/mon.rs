@@ -35,6 +35,8 @@ impl Hash for AngleKey {
             h.write_i64(*k.numer());
             h.write_i64(*k.denom());
         }
+        h.write_i64(*self.0.constant.numer());
+        h.write_i64(*self.0.constant.denom());
         h.write_i64(*self.0.pi.numer());
         h.write_i64(*self.0.pi.denom());
     }
@@ -258,10 +260,7 @@ pub(crate) fn whole_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
         .map(|t| {
             let mut m = base_mon(&ctx, t);
             if !t.mode.is_unit() {
-                let id = ctx.intern(Angle {
-                    terms: t.mode.freq.to_vec(),
-                    pi: t.mode.pi,
-                });
+                let id = ctx.intern(Angle::from_freq(&t.mode.freq, t.mode.pi));
                 m.atoms.push(atom(id, t.mode.sin));
             }
             m
@@ -278,13 +277,8 @@ pub(crate) fn whole_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
 /// Flips an angle to a positive leading coefficient (`cos(-x) = cos x`, `sin(-x) = -sin x`);
 /// true when it was flipped.
 fn normalize(a: &mut Angle) -> bool {
-    if a.terms.first().is_some_and(|(_, k)| k.is_negative())
-        || (a.terms.is_empty() && a.pi.is_negative())
-    {
-        for (_, k) in a.terms.iter_mut() {
-            *k = -*k;
-        }
-        a.pi = -a.pi;
+    if a.leading().map_or(a.pi.is_negative(), |k| k.is_negative()) {
+        a.negate();
         true
     } else {
         false
@@ -309,9 +303,9 @@ fn part_id(
     {
         return *r;
     }
-    let mut a = Angle {
-        terms: sym.map(|s| vec![(s.clone(), coef)]).unwrap_or_default(),
-        pi,
+    let mut a = match sym {
+        Some(s) => Angle::from_freq(&[(s.clone(), coef)], pi),
+        None => Angle::new(Vec::new(), Small::zero(), pi),
     };
     let flipped = normalize(&mut a);
     let r = (ctx.intern(a), flipped);
@@ -516,11 +510,12 @@ fn expand(
 /// pi non-negative), with whether the normalization negated it; `None` for the zero angle.
 pub(crate) fn angle_combine(a: &Angle, b: &Angle, sign: i64) -> Option<(Angle, bool)> {
     let terms = freq_combine(&a.terms, &b.terms, sign);
+    let constant = a.constant + b.constant * Small::from_integer(sign);
     let pi = a.pi + b.pi * Small::from_integer(sign);
-    if terms.is_empty() && pi.is_zero() {
+    if terms.is_empty() && constant.is_zero() && pi.is_zero() {
         return None;
     }
-    let mut angle = Angle { terms, pi };
+    let mut angle = Angle::new(terms, constant, pi);
     let flipped = normalize(&mut angle);
     Some((angle, flipped))
 }

@@ -70,9 +70,11 @@ pub fn angle_text(angle: &Angle) -> String {
             s.push_str(&format!("{}*{name}/{}", a.numer(), a.denom()));
         }
     };
+    if !angle.constant.is_zero() {
+        push(angle.constant, "", &mut s);
+    }
     for (sym, k) in &angle.terms {
-        let name = if sym.is_unit() { "" } else { sym.name() };
-        push(*k, name, &mut s);
+        push(*k, sym.name(), &mut s);
     }
     if !angle.pi.is_zero() {
         push(angle.pi, "pi", &mut s);

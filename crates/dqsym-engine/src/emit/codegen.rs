@@ -463,10 +463,7 @@ impl Builder<'_> {
             (c, self.neg(s1))
         } else if n == 1 {
             let step = self.step[s];
-            self.atom(Angle {
-                terms: vec![(s.clone(), step)],
-                pi: Small::zero(),
-            })
+            self.atom(Angle::new(vec![(s.clone(), step)], Small::zero(), Small::zero()))
         } else {
             let half = self.multiple(s, n / 2);
             let double = self.sum_rule(half, half);
@@ -482,13 +479,13 @@ impl Builder<'_> {
     }
 
     fn cos_sin(&mut self, angle: &Angle) -> Result<(Id, Id), CodegenError> {
-        for (s, _) in angle.symbol_terms() {
+        for (s, _) in &angle.terms {
             if !self.args.iter().any(|a| a == s.name()) {
                 return Err(CodegenError::Unbound(s.name().to_string()));
             }
         }
-        let sym_terms: Vec<(Sym, Small)> = angle.symbol_terms().cloned().collect();
-        let unit: f64 = angle.constant().to_f64().unwrap_or(f64::NAN);
+        let sym_terms: Vec<(Sym, Small)> = angle.terms.clone();
+        let unit: f64 = angle.constant.to_f64().unwrap_or(f64::NAN);
         let var = if sym_terms.is_empty() {
             None
         } else if self.o.expand_angles {
@@ -512,10 +509,7 @@ impl Builder<'_> {
             }
             Some(acc)
         } else {
-            Some(self.atom(Angle {
-                terms: sym_terms,
-                pi: Small::zero(),
-            }))
+            Some(self.atom(Angle::new(sym_terms, Small::zero(), Small::zero())))
         };
         // The constant part: quarter turns exactly, any other constant numerically.
         let quarter = angle.pi * Small::from_integer(2);
@@ -641,10 +635,7 @@ fn atom_names(a: &Angle, i: usize, taken: &HashSet<String>) -> (String, String) 
     let short = shorthand_name(Trig::Sin, a)
         .map(|s| s[1..].to_string())
         .or_else(|| {
-            let half = Angle {
-                terms: a.terms.iter().map(|(s, k)| (s.clone(), *k * 2)).collect(),
-                pi: a.pi * 2,
-            };
+            let half = a.scaled(Small::from_integer(2));
             let h = shorthand_name(Trig::Sin, &half)?;
             Some(format!("h{}", &h[1..]))
         });

@@ -449,14 +449,16 @@ fn rational(q: &BigRational) -> String {
 /// \theta_{4}}{2}`, `\theta - \frac{\pi}{2}`. Coefficients sharing one denominator are written
 /// over it once.
 fn latex_angle(angle: &Angle) -> String {
-    let mut items: Vec<(Small, Option<String>)> = angle
-        .terms
-        .iter()
-        .map(|(sym, k)| {
-            let name = (!sym.is_unit()).then(|| latex_symbol(sym.name()));
-            (*k, name)
-        })
-        .collect();
+    let mut items: Vec<(Small, Option<String>)> = Vec::with_capacity(angle.terms.len() + 2);
+    if !angle.constant.is_zero() {
+        items.push((angle.constant, None));
+    }
+    items.extend(
+        angle
+            .terms
+            .iter()
+            .map(|(sym, k)| (*k, Some(latex_symbol(sym.name())))),
+    );
     if !angle.pi.is_zero() {
         items.push((angle.pi, Some("\\pi".to_string())));
     }

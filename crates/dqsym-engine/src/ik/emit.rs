@@ -8,7 +8,6 @@ use crate::emit::codegen::{
 };
 use crate::scalar::Trig;
 use crate::{Scalar, ScalarError};
-use num_traits::{One, Zero};
 
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Lang {
@@ -92,7 +91,7 @@ fn ctx(sol: &IkSolution, lang: Lang) -> Result<Ctx<'_>, ScalarError> {
     let mut atoms = vec![Vec::new(); n + 1];
     for (i, atom) in prog.atoms.iter_mut().enumerate() {
         let a = &atom.angle;
-        let own = (a.pi.is_zero() && a.terms.len() == 1 && a.terms[0].1.is_one())
+        let own = (a.is_plain_sum() && a.terms.len() == 1)
             .then(|| a.terms[0].0.name().to_string())
             .filter(|v| sol.steps.iter().any(|s| &s.variable == v && angled(s)));
         let level = a

@@ -417,7 +417,7 @@ impl Scalar {
                 )))
             })?;
             match &x.mono[..] {
-                [] => freq.push((Sym::unit(), k)),
+                [] => freq.push((Sym::one(), k)),
                 [(s, 1)] if s.is_pi() => pi = k,
                 [(s, 1)] => freq.push((s.clone(), k)),
                 _ => return Err(None),

@@ -17,46 +17,71 @@ use std::fmt;
 use std::hash::{Hash, Hasher};
 use std::sync::{Arc, OnceLock};
 
-/// A symbol name. Ordered by its text, so the canonical order never depends on the order in
-/// which symbols were first seen (no interning-order leaks into the output).
+/// A symbol of the canonical form: a named symbol, or the constant 1 that carries the
+/// rational constant of a trigonometric argument (`cos(t + 1)`, which is not a multiple of pi)
+/// inside a frequency vector. Ordered by the text it prints as (the constant as `1`, so before
+/// every name), so the canonical order never depends on the order in which symbols were first
+/// seen (no interning-order leaks into the output).
 #[derive(Clone, PartialEq, Eq, Hash)]
-pub struct Sym(Arc<str>);
+pub struct Sym(Kind);
+
+/// What a [`Sym`] is. The constant needs no allocation, and the enum is as small as the
+/// name's pointer (the constant takes the pointer's null niche).
+#[derive(Clone, PartialEq, Eq, Hash)]
+enum Kind {
+    /// The constant 1 of a frequency vector.
+    One,
+    /// A symbol with a name (`pi` included).
+    Named(Arc<str>),
+}
 
 impl Sym {
     /// The symbol called `name`.
     pub fn new(name: &str) -> Sym {
-        Sym(Arc::from(name))
+        Sym(Kind::Named(Arc::from(name)))
     }
 
-    /// The name as written.
+    /// The name as written; the constant of a frequency vector prints as `1`.
     pub fn name(&self) -> &str {
-        &self.0
+        match &self.0 {
+            Kind::One => "1",
+            Kind::Named(n) => n,
+        }
     }
 
-    /// The pseudo-symbol whose value is 1: it carries rational constants inside trigonometric
-    /// arguments (`cos(t + 1)`), which are not multiples of pi.
-    pub(crate) fn unit() -> Sym {
-        Sym::new("1")
+    /// The constant 1 as an entry of a frequency vector: it carries the rational constant of a
+    /// trigonometric argument (`cos(t + 1)`), which is not a multiple of pi.
+    pub(crate) fn one() -> Sym {
+        Sym(Kind::One)
     }
 
     /// Whether this is the symbol `pi`.
     pub fn is_pi(&self) -> bool {
-        &*self.0 == "pi"
+        matches!(&self.0, Kind::Named(n) if &**n == "pi")
     }
 
-    /// Whether this is the pseudo-symbol whose value is 1, which carries the rational constant
-    /// of an angle (`cos(t + 1)`); [`Angle::constant`](crate::Angle::constant) reads it.
-    pub fn is_unit(&self) -> bool {
-        &*self.0 == "1"
+    /// Whether this is the constant 1 of a frequency vector, which carries the rational
+    /// constant of an angle (`cos(t + 1)`); a display [`Angle`](crate::Angle) holds it as its
+    /// `constant` field instead.
+    pub fn is_one(&self) -> bool {
+        self.0 == Kind::One
     }
 }
 
 impl Ord for Sym {
     fn cmp(&self, other: &Self) -> Ordering {
-        if Arc::ptr_eq(&self.0, &other.0) {
-            return Ordering::Equal;
+        match (&self.0, &other.0) {
+            (Kind::Named(a), Kind::Named(b)) => {
+                if Arc::ptr_eq(a, b) {
+                    return Ordering::Equal;
+                }
+                a.cmp(b)
+            }
+            // By text, and the constant before a symbol that would print like it.
+            (Kind::One, Kind::One) => Ordering::Equal,
+            (Kind::One, Kind::Named(b)) => "1".cmp(b).then(Ordering::Less),
+            (Kind::Named(a), Kind::One) => (**a).cmp("1").then(Ordering::Greater),
         }
-        self.0.cmp(&other.0)
     }
 }
 
@@ -68,13 +93,13 @@ impl PartialOrd for Sym {
 
 impl fmt::Debug for Sym {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0)
+        f.write_str(self.name())
     }
 }
 
 impl fmt::Display for Sym {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0)
+        f.write_str(self.name())
     }
 }
 

@@ -145,18 +145,34 @@ impl Scalar {
 
     /// The value under a binding of symbols (`pi` defaults to pi).
     pub fn eval(&self, env: &dyn Fn(&str) -> Option<f64>) -> Result<f64, ScalarError> {
+        self.eval_by(&|s: &Sym| match env(s.name()) {
+            Some(v) => Some(v),
+            None if s.is_pi() => Some(std::f64::consts::PI),
+            None => None,
+        })
+    }
+
+    /// The value under a binding of the named symbols: `pi` is pi, and `env` is asked for
+    /// every other symbol.
+    pub fn eval_symbols(&self, env: &dyn Fn(&Sym) -> Option<f64>) -> Result<f64, ScalarError> {
+        self.eval_by(&|s: &Sym| {
+            if s.is_pi() {
+                Some(std::f64::consts::PI)
+            } else {
+                env(s)
+            }
+        })
+    }
+
+    /// The value with `env` giving each named symbol's (the constant 1 of a frequency vector
+    /// is never asked for).
+    fn eval_by(&self, env: &dyn Fn(&Sym) -> Option<f64>) -> Result<f64, ScalarError> {
         let t = self.terms().map_err(Clone::clone)?;
         let look = |s: &Sym| -> Result<f64, ScalarError> {
-            if let Some(v) = env(s.name()) {
-                return Ok(v);
+            if s.is_one() {
+                return Ok(1.0);
             }
-            if s.is_pi() {
-                Ok(std::f64::consts::PI)
-            } else if s.is_unit() {
-                Ok(1.0)
-            } else {
-                Err(ScalarError::Unbound(s.name().to_string()))
-            }
+            env(s).ok_or_else(|| ScalarError::Unbound(s.name().to_string()))
         };
         let mut sum = 0.0;
         for term in t {
@@ -190,7 +206,7 @@ pub(crate) fn mode_angle(mode: &Mode, sub: Option<(&str, &Scalar)>) -> Scalar {
     for (s, k) in mode.freq.iter() {
         let v = match sub {
             Some((x, v)) if s.name() == x => v.clone(),
-            _ if s.is_unit() => Scalar::int(1),
+            _ if s.is_one() => Scalar::int(1),
             _ => Scalar::sym(s.name()),
         };
         angle = angle + v * Scalar::rational(q(k));
@@ -272,7 +288,7 @@ fn angle_text(mode: &Mode) -> String {
         if i > 0 || neg {
             s.push_str(if neg { " - " } else { " + " });
         }
-        let name = if sym.is_unit() {
+        let name = if sym.is_one() {
             String::new()
         } else {
             sym.to_string()

@@ -87,7 +87,7 @@ fn mode_polynomial(m: &Mode, cache: &mut TrigCache) -> Option<Scalar> {
     let mut key = Vec::new();
     for (x, k) in m.freq.iter() {
         // Integer multiples only, and small ones: k x is |k| angle additions of +-x.
-        if *k.denom() != 1 || k.numer().abs() > MAX_MULTIPLE || x.is_unit() {
+        if *k.denom() != 1 || k.numer().abs() > MAX_MULTIPLE || x.is_one() {
             return None;
         }
         key.push((x.name().to_string(), *k.numer()));

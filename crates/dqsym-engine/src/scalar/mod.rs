@@ -384,7 +384,8 @@ impl Scalar {
     }
 
     /// The names of the angle symbols that occur at a fractional frequency (a half angle,
-    /// `cos(t/2)`) in the canonical form, sorted; none for an error value.
+    /// `cos(t/2)`) in the canonical form, sorted, the constant of an angle as `1` (`cos(t/2 +
+    /// 1/2)` gives `1` and `t`); none for an error value.
     pub fn fractional_angle_symbols(&self) -> std::collections::BTreeSet<String> {
         let mut out = std::collections::BTreeSet::new();
         for t in self.terms().unwrap_or(&[]) {
@@ -422,7 +423,7 @@ impl Scalar {
                 out.extend(x.mode.freq.iter().map(|(s, _)| s.clone()));
             }
         }
-        out.retain(|s| !s.is_unit());
+        out.retain(|s| !s.is_one());
         out.sort();
         out.dedup();
         out
