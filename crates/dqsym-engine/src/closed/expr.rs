@@ -429,3 +429,103 @@ impl Expr {
         Expr::Num(BigRational::zero())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small deterministic generator (xorshift).
+    struct Gen(u64);
+
+    impl Gen {
+        fn pick<T: Clone>(&mut self, v: &[T]) -> T {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            v[(self.0 % v.len() as u64) as usize].clone()
+        }
+    }
+
+    fn random_angle(g: &mut Gen) -> Angle {
+        let ks = [-2, -1, 0, 0, 1, 2].map(Small::from_integer);
+        let halves = [Small::new(-1, 2), Small::zero(), Small::zero(), Small::new(1, 3)];
+        let mut terms = Vec::new();
+        for name in ["a", "b", "theta1"] {
+            let k = g.pick(&ks);
+            if !k.is_zero() {
+                terms.push((Sym::new(name), k));
+            }
+        }
+        Angle::new(terms, g.pick(&halves), g.pick(&halves))
+    }
+
+    #[test]
+    fn angles_order_as_their_frequency_vectors() {
+        // The display order must be the canonical form's: the constant as the entry `1`,
+        // first in the vector.
+        let mut g = Gen(0x2545_f491_4f6c_dd1d);
+        for _ in 0..2000 {
+            let (a, b) = (random_angle(&mut g), random_angle(&mut g));
+            let old = (a.freq(), a.pi).cmp(&(b.freq(), b.pi));
+            assert_eq!(a.cmp(&b), old, "{a:?} vs {b:?}");
+            assert_eq!((a == b), old.is_eq());
+            assert_eq!(Angle::from_freq(&a.freq(), a.pi), a);
+            let lead = a.freq().first().map(|(_, k)| *k);
+            assert_eq!(a.leading(), lead);
+        }
+    }
+
+    #[test]
+    fn the_constant_is_a_kind_of_symbol_not_a_name() {
+        let one = Sym::one();
+        assert!(one.is_one() && !one.is_pi());
+        // Sorted by the text it prints as, before any symbol printing the same.
+        assert!(one < Sym::new("a") && one < Sym::new("1") && Sym::new("0") < one);
+        assert_ne!(one, Sym::new("1"));
+        assert!(!Sym::new("1").is_one());
+        assert!(Sym::new("pi").is_pi());
+        // No larger than the name's pointer: frequency vectors stay as compact as before.
+        assert_eq!(
+            std::mem::size_of::<Sym>(),
+            std::mem::size_of::<std::sync::Arc<str>>()
+        );
+    }
+
+    #[test]
+    fn an_angle_constant_is_a_field_and_evaluates_without_a_name() {
+        let t = Scalar::sym("t");
+        let x = (t.clone() + Scalar::int(1)).cos() * (t.clone() * small(&Small::new(1, 2))
+            - small(&Small::new(1, 3)))
+        .sin();
+        let e = crate::closed_form(&x).expect("closed form");
+        assert_eq!(e.to_scalar(), x);
+        let mut angles = Vec::new();
+        fn collect(e: &Expr, out: &mut Vec<Angle>) {
+            match e {
+                Expr::Trig { angle, .. } => out.push(angle.clone()),
+                Expr::Add(v) | Expr::Mul(v) => v.iter().for_each(|x| collect(x, out)),
+                Expr::Neg(x) | Expr::Pow(x, _) => collect(x, out),
+                _ => {}
+            }
+        }
+        collect(&e, &mut angles);
+        assert!(!angles.is_empty());
+        for a in &angles {
+            assert!(a.terms.iter().all(|(s, _)| !s.is_one() && !s.is_pi()));
+            assert!(!a.constant.is_zero(), "{a:?}");
+        }
+        // Numerically: the exact value, the display form, and an independent f64 formula.
+        let tv = 0.7_f64;
+        let want = (tv + 1.0).cos() * (tv / 2.0 - 1.0 / 3.0).sin();
+        let asked = std::cell::RefCell::new(Vec::new());
+        let exact = x
+            .eval_symbols(&|s| {
+                asked.borrow_mut().push(s.clone());
+                Some(tv)
+            })
+            .expect("value");
+        assert!(asked.borrow().iter().all(|s| s.name() == "t"));
+        let shown = e.value_at(&[("t", tv)]).expect("value");
+        assert!((exact - want).abs() < 1e-12 && (shown - want).abs() < 1e-12);
+    }
+}

@@ -22,66 +22,75 @@ use std::sync::{Arc, OnceLock};
 /// inside a frequency vector. Ordered by the text it prints as (the constant as `1`, so before
 /// every name), so the canonical order never depends on the order in which symbols were first
 /// seen (no interning-order leaks into the output).
-#[derive(Clone, PartialEq, Eq, Hash)]
-pub struct Sym(Kind);
+///
+/// The constant is one shared allocation, told apart by identity ([`Sym::is_one`]), never by
+/// its text: a named symbol `1` would be a different symbol. Symbols stay one pointer to their
+/// name, so frequency vectors and monomials copy, compare and hash as cheaply as names.
+#[derive(Clone)]
+pub struct Sym(Arc<str>);
 
-/// What a [`Sym`] is. The constant needs no allocation, and the enum is as small as the
-/// name's pointer (the constant takes the pointer's null niche).
-#[derive(Clone, PartialEq, Eq, Hash)]
-enum Kind {
-    /// The constant 1 of a frequency vector.
-    One,
-    /// A symbol with a name (`pi` included).
-    Named(Arc<str>),
+/// The constant's allocation.
+fn one_name() -> &'static Arc<str> {
+    static ONE: OnceLock<Arc<str>> = OnceLock::new();
+    ONE.get_or_init(|| Arc::from("1"))
 }
 
 impl Sym {
     /// The symbol called `name`.
     pub fn new(name: &str) -> Sym {
-        Sym(Kind::Named(Arc::from(name)))
+        Sym(Arc::from(name))
     }
 
     /// The name as written; the constant of a frequency vector prints as `1`.
     pub fn name(&self) -> &str {
-        match &self.0 {
-            Kind::One => "1",
-            Kind::Named(n) => n,
-        }
+        &self.0
     }
 
     /// The constant 1 as an entry of a frequency vector: it carries the rational constant of a
     /// trigonometric argument (`cos(t + 1)`), which is not a multiple of pi.
     pub(crate) fn one() -> Sym {
-        Sym(Kind::One)
+        Sym(one_name().clone())
     }
 
     /// Whether this is the symbol `pi`.
     pub fn is_pi(&self) -> bool {
-        matches!(&self.0, Kind::Named(n) if &**n == "pi")
+        &*self.0 == "pi"
     }
 
     /// Whether this is the constant 1 of a frequency vector, which carries the rational
     /// constant of an angle (`cos(t + 1)`); a display [`Angle`](crate::Angle) holds it as its
     /// `constant` field instead.
     pub fn is_one(&self) -> bool {
-        self.0 == Kind::One
+        Arc::ptr_eq(&self.0, one_name())
+    }
+}
+
+/// Equal names, and both the constant or neither.
+impl PartialEq for Sym {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+            || (self.0 == other.0 && !self.is_one() && !other.is_one())
+    }
+}
+
+impl Eq for Sym {}
+
+/// By the name (agrees with `Eq`: the constant and a symbol named `1` only share a hash).
+impl Hash for Sym {
+    fn hash<H: Hasher>(&self, h: &mut H) {
+        self.0.hash(h);
     }
 }
 
 impl Ord for Sym {
     fn cmp(&self, other: &Self) -> Ordering {
-        match (&self.0, &other.0) {
-            (Kind::Named(a), Kind::Named(b)) => {
-                if Arc::ptr_eq(a, b) {
-                    return Ordering::Equal;
-                }
-                a.cmp(b)
-            }
-            // By text, and the constant before a symbol that would print like it.
-            (Kind::One, Kind::One) => Ordering::Equal,
-            (Kind::One, Kind::Named(b)) => "1".cmp(b).then(Ordering::Less),
-            (Kind::Named(a), Kind::One) => (**a).cmp("1").then(Ordering::Greater),
+        if Arc::ptr_eq(&self.0, &other.0) {
+            return Ordering::Equal;
         }
+        // By text, and the constant before a symbol printing like it.
+        self.0
+            .cmp(&other.0)
+            .then_with(|| other.is_one().cmp(&self.is_one()))
     }
 }
 
@@ -93,13 +102,13 @@ impl PartialOrd for Sym {
 
 impl fmt::Debug for Sym {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
+        f.write_str(&self.0)
     }
 }
 
 impl fmt::Display for Sym {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
+        f.write_str(&self.0)
     }
 }
 
