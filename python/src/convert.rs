@@ -164,8 +164,7 @@ impl<'py> ToSympy<'py> {
                 // and the only rewrite SymPy would make is the sign: done here the same way
                 // (`could_extract_minus_sign`), then built unevaluated. The result is the same
                 // tree as the evaluated call (a test compares with `sympify` structurally).
-                let plain = *angle.pi.numer() == 0
-                    && angle.terms.iter().any(|(s, _)| !s.is_pi());
+                let plain = *angle.pi.numer() == 0 && angle.terms.iter().any(|(s, _)| !s.is_pi());
                 if !plain {
                     return Ok(if sin {
                         self.sin.call1((arg,))?

@@ -283,7 +283,9 @@ fn chain(
 ) -> Matrix4<f64> {
     let mut m = Matrix4::identity();
     for x in &motions[..upto] {
-        m = m * x.matrix(env).expect("evaluates");
+        m = m * x
+            .matrix(&|s: &dqsym::Sym| env(s.name()))
+            .expect("evaluates");
     }
     m
 }

@@ -122,7 +122,11 @@ impl Angle {
     /// multiplied by `m`.
     pub fn scaled(&self, m: Small) -> Angle {
         Angle {
-            terms: self.terms.iter().map(|(s, k)| (s.clone(), *k * m)).collect(),
+            terms: self
+                .terms
+                .iter()
+                .map(|(s, k)| (s.clone(), *k * m))
+                .collect(),
             constant: self.constant * m,
             pi: self.pi * m,
         }
@@ -448,7 +452,12 @@ mod tests {
 
     fn random_angle(g: &mut Gen) -> Angle {
         let ks = [-2, -1, 0, 0, 1, 2].map(Small::from_integer);
-        let halves = [Small::new(-1, 2), Small::zero(), Small::zero(), Small::new(1, 3)];
+        let halves = [
+            Small::new(-1, 2),
+            Small::zero(),
+            Small::zero(),
+            Small::new(1, 3),
+        ];
         let mut terms = Vec::new();
         for name in ["a", "b", "theta1"] {
             let k = g.pick(&ks);
@@ -494,9 +503,8 @@ mod tests {
     #[test]
     fn an_angle_constant_is_a_field_and_evaluates_without_a_name() {
         let t = Scalar::sym("t");
-        let x = (t.clone() + Scalar::int(1)).cos() * (t.clone() * small(&Small::new(1, 2))
-            - small(&Small::new(1, 3)))
-        .sin();
+        let x = (t.clone() + Scalar::int(1)).cos()
+            * (t.clone() * small(&Small::new(1, 2)) - small(&Small::new(1, 3))).sin();
         let e = crate::closed_form(&x).expect("closed form");
         assert_eq!(e.to_scalar(), x);
         let mut angles = Vec::new();

@@ -45,6 +45,9 @@ impl Identity {
 
 /// One step of a traced closed-form extraction.
 #[derive(Clone, Debug, PartialEq, Eq)]
+// A few steps per traced closed form, read in place by the walkthrough renderers: not worth
+// boxing the identity's angles and terms.
+#[allow(clippy::large_enum_variant)]
 pub enum TraceStep {
     /// The sum the following identities work on, term by term. In round 1 every angle sum of
     /// the canonical form is expanded into products of single-angle factors (the form a hand

@@ -463,7 +463,11 @@ impl Builder<'_> {
             (c, self.neg(s1))
         } else if n == 1 {
             let step = self.step[s];
-            self.atom(Angle::new(vec![(s.clone(), step)], Small::zero(), Small::zero()))
+            self.atom(Angle::new(
+                vec![(s.clone(), step)],
+                Small::zero(),
+                Small::zero(),
+            ))
         } else {
             let half = self.multiple(s, n / 2);
             let double = self.sum_rule(half, half);

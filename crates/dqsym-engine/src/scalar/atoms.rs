@@ -68,8 +68,7 @@ impl Sym {
 /// Equal names, and both the constant or neither.
 impl PartialEq for Sym {
     fn eq(&self, other: &Self) -> bool {
-        Arc::ptr_eq(&self.0, &other.0)
-            || (self.0 == other.0 && !self.is_one() && !other.is_one())
+        Arc::ptr_eq(&self.0, &other.0) || (self.0 == other.0 && !self.is_one() && !other.is_one())
     }
 }
 
