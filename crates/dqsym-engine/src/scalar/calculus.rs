@@ -145,7 +145,7 @@ impl Scalar {
 
     /// The value under a binding of symbols (`pi` defaults to pi).
     pub fn eval(&self, env: &dyn Fn(&str) -> Option<f64>) -> Result<f64, ScalarError> {
-        self.eval_by(&|s: &Sym| match env(s.name()) {
+        self.eval_by(|s: &Sym| match env(s.name()) {
             Some(v) => Some(v),
             None if s.is_pi() => Some(std::f64::consts::PI),
             None => None,
@@ -155,7 +155,7 @@ impl Scalar {
     /// The value under a binding of the named symbols: `pi` is pi, and `env` is asked for
     /// every other symbol.
     pub fn eval_symbols(&self, env: &dyn Fn(&Sym) -> Option<f64>) -> Result<f64, ScalarError> {
-        self.eval_by(&|s: &Sym| {
+        self.eval_by(|s: &Sym| {
             if s.is_pi() {
                 Some(std::f64::consts::PI)
             } else {
@@ -166,7 +166,7 @@ impl Scalar {
 
     /// The value with `env` giving each named symbol's (the constant 1 of a frequency vector
     /// is never asked for).
-    fn eval_by(&self, env: &dyn Fn(&Sym) -> Option<f64>) -> Result<f64, ScalarError> {
+    fn eval_by(&self, env: impl Fn(&Sym) -> Option<f64>) -> Result<f64, ScalarError> {
         let t = self.terms().map_err(Clone::clone)?;
         let look = |s: &Sym| -> Result<f64, ScalarError> {
             if s.is_one() {
