@@ -15,6 +15,10 @@ cmds=(
   "-e cos(a)*cos(b)-sin(a)*sin(b)"
   "--format latex -e sin(x/2)^2"
   "--explicit -e cos(a+b)*sin(c)"
+  "-e cos(t+1)*sin(u-1/2)+cos(t-u+2)"
+  "--format latex -e cos(t/2+1/3)^2*sin(x+1)"
+  "--explicit -e cos(x+1)*cos(y+1)-sin(x+1)*sin(y+1)"
+  "--format python -e cos(t+1/2+pi/5)*sin(t-3)"
 )
 for s in examples/*.dq; do
   cmds+=("run $s" "--format latex run $s" "walk $s" "walk --markdown $s" "walk --html OUT.html $s")
