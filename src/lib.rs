@@ -34,18 +34,3 @@ pub use lang::{
 };
 pub use paper::paper;
 pub use walk::{walk_html, walk_markdown, walk_robot, walk_script, walk_text, Walkthrough};
-
-// Everything else, kept at the top for the callers written before the modules were public;
-// its documented home is its module.
-#[doc(hidden)]
-pub use lang::{
-    builtin, continues, eval_point_text, parse_expr, parse_expr_with, parse_with, show_value,
-    AddOp, Binding, BindingKind, Builtin, Displayed, EvalErrorKind, Expr as AstExpr, ExprKind,
-    Ident, MulOp, ParseErrorKind, ParseOptions, ShowError, Span, Stmt, StmtKind, UnaryOp, BUILTINS,
-    CONSTANTS, MAX_EXPONENT,
-};
-#[doc(hidden)]
-pub use walk::{
-    ik_walk_html, mechanism_svg, walk_robot_chain, ComponentTrace, Config, HalfAngle, KatexAssets,
-    Mechanism, Motion, Step, SvgOptions, WalkError, Word, Words,
-};

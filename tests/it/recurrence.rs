@@ -6,8 +6,8 @@ use crate::paper_support::points;
 use crate::robots::{load, numeric_chain};
 use crate::tools;
 use dqsym::{
-    dq_jacobian, fk_recurrence, fk_report, sympy, DualQuat, Expr, FkOptions, ReportFormat, Robot,
-    Scalar,
+    app::fk_recurrence, emit::sympy, fk_report, kin::dq_jacobian, DualQuat, Expr, FkOptions,
+    ReportFormat, Robot, Scalar,
 };
 use std::collections::HashMap;
 use std::process::Command;
@@ -33,7 +33,7 @@ fn forced(format: ReportFormat, point: [Scalar; 3]) -> FkOptions {
 }
 
 fn some_point() -> [Scalar; 3] {
-    dqsym::eval_point_text("1/2, -1, 2").expect("a point")
+    dqsym::lang::eval_point_text("1/2, -1, 2").expect("a point")
 }
 
 /// `Q2[3]` -> `Q2_3`, `T[1][2]` -> `T_1_2`: the symbol later entries read an entry by.

@@ -23,8 +23,8 @@ use std::sync::atomic::AtomicBool;
 
 type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
 use crate::{
-    closed_form, closed_form_of_derivative, closed_form_prepared, Context, DualQuat, Expr, Scalar,
-    ScalarError,
+    closed::{closed_form_of_derivative, closed_form_prepared},
+    closed_form, Context, DualQuat, Expr, Scalar, ScalarError,
 };
 
 /// The text format of a report.
@@ -100,7 +100,7 @@ pub enum ReportError {
 /// When the expanded pose exceeds `max_terms` terms per entry (a long chain with every
 /// parameter symbolic grows exponentially: k 4^k terms after k DH links), the report is exact
 /// but a recurrence over the joint factors, linear in the number of joints (see
-/// [`fk_recurrence`](crate::fk_recurrence) for its entries): the joint factors `L{i}[k]` and,
+/// [`fk_recurrence`](crate::app::fk_recurrence) for its entries): the joint factors `L{i}[k]` and,
 /// with the Jacobian, their derivatives `dL{i}[k]` in closed form; the prefix products
 /// `Q{i}[k]` of `Q{i} = Q{i-1} L{i}` in the symbols `Q{i-1}_k` and `L{i}_k`; `dq[k]` (the last
 /// Q); with the Jacobian, the suffix products `P{i}[k]` of `P{i} = L{i} P{i+1}`; `T[i][j]` and
@@ -239,7 +239,7 @@ fn expanded_sections(
     o: &FkOptions,
     q: DualQuat<Scalar>,
     dq_forms: Vec<Result<Expr, ScalarError>>,
-    prepared: Vec<crate::Prepared>,
+    prepared: Vec<crate::closed::Prepared>,
     t_forms: Vec<Result<Expr, ScalarError>>,
     m: crate::Matrix4<Scalar>,
 ) -> Result<Sections, ReportError> {
