@@ -10,6 +10,11 @@
 //! - [`walk`]: walkthroughs of a script or a robot file, as text, Markdown or an HTML page;
 //! - [`paper`]: the paper's worked examples, derived from the files of `examples/`.
 //!
+//! The core nouns are re-exported here; everything else is reached through its module
+//! (`dqsym::lang::parse_with`, `dqsym::walk::Config`, `dqsym::emit::rust_function`). The
+//! binary's dependencies (clap, rustyline, ctrlc) come with the default feature `cli`; a
+//! library user depends on `dqsym = { ..., default-features = false }` and builds none of them.
+//!
 //! ```
 //! use dqsym::{parse, Scalar, Session, Value};
 //!
