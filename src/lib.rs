@@ -34,8 +34,7 @@ pub mod walk;
 
 // The core nouns of the language, the walkthroughs and the paper.
 pub use lang::{
-    eval_scalar_text, parse, show, EvalError, Format, ParseError, Program, Session, ShowOptions,
-    Value,
+    eval_scalar_text, parse, show, EvalError, ParseError, Program, Session, ShowOptions, Value,
 };
 pub use paper::paper;
 pub use walk::{walk_html, walk_markdown, walk_robot, walk_script, walk_text, Walkthrough};

@@ -605,23 +605,12 @@ fn fk(
         Some(Ok(p)) => Some(p),
         None => robot.tool.clone(),
     };
-    let format = match format {
-        OutputFormat::Plain => dqsym::ReportFormat::Plain {
-            shorthand: !explicit,
-        },
-        OutputFormat::Latex => dqsym::ReportFormat::Latex {
-            shorthand: !explicit,
-        },
-        OutputFormat::Sympy => dqsym::ReportFormat::Sympy,
-        OutputFormat::Rust => dqsym::ReportFormat::Rust,
-        OutputFormat::C => dqsym::ReportFormat::C,
-        OutputFormat::Python => dqsym::ReportFormat::Python,
-    };
     // The fields were evaluated each with its own budget; the derivation gets a whole one.
     let derivation = Context::entered();
     let _derivation = derivation.enter();
     let options = dqsym::FkOptions {
-        format,
+        format: format.into(),
+        shorthand: !explicit,
         point,
         jacobian,
         // Past the evaluation's term limit, the pose is printed as a recurrence.
@@ -658,12 +647,12 @@ fn ops(path: Option<&std::path::Path>, jacobian: bool, urdf: &UrdfArgs) -> ExitC
     let derivation = Context::entered();
     let _derivation = derivation.enter();
     let o = dqsym::FkOptions {
-        format: dqsym::ReportFormat::Ops,
         jacobian,
         point: robot.tool.clone(),
         max_terms: derivation.term_limit(),
+        ..dqsym::FkOptions::default()
     };
-    match dqsym::fk_report(&robot, &o) {
+    match dqsym::app::fk_ops(&robot, &o) {
         Ok(t) => {
             print!("{t}");
             ExitCode::SUCCESS

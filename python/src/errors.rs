@@ -5,7 +5,9 @@
 //! attribute (None where it does not apply), set from one table ([`Attrs::table`]); which
 //! class a library error becomes is decided in one place per error type.
 
-use dqsym::{EvalError as LibEvalError, ParseError as LibParseError, ScalarError, lang::EvalErrorKind};
+use dqsym::{
+    lang::EvalErrorKind, EvalError as LibEvalError, ParseError as LibParseError, ScalarError,
+};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyException, PyKeyboardInterrupt};
 use pyo3::prelude::*;

@@ -4,7 +4,10 @@
 use crate::convert::{Forms, FromPython, ToSympy};
 use crate::errors;
 use crate::work::{self, Limits};
-use dqsym::{show, Format, Session as LibSession, ShowOptions, Value, lang::{parse_with, show_value, Displayed}};
+use dqsym::{
+    lang::{parse_with, show_value, Displayed},
+    show, Format, Session as LibSession, ShowOptions, Value,
+};
 use pyo3::exceptions::{PyKeyError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;

@@ -85,8 +85,8 @@ impl Walkthrough {
     /// (`"theta2=-0.4,a2=0.43"`); KaTeX is read from `katex_dir` or found as `katex_dir` says.
     #[pyo3(signature = (config="", katex_dir=None))]
     fn html(&self, py: Python<'_>, config: &str, katex_dir: Option<PathBuf>) -> PyResult<String> {
-        let cfg =
-            dqsym::walk::Config::parse(config).map_err(|e| errors::other(py, format!("config: {e}")))?;
+        let cfg = dqsym::walk::Config::parse(config)
+            .map_err(|e| errors::other(py, format!("config: {e}")))?;
         let assets = katex_assets(katex_dir).map_err(|m| errors::other(py, m))?;
         dqsym::walk_html(&self.inner, &assets, &cfg).map_err(|e| errors::other(py, e.to_string()))
     }

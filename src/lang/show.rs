@@ -47,7 +47,7 @@ pub enum ShowError {
     Codegen(#[from] CodegenError),
 }
 
-pub use crate::print::Format;
+use crate::print::Format;
 
 /// How results are shown.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

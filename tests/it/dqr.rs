@@ -1075,11 +1075,11 @@ fn generated_task_jacobians_match_dqrobotics() {
     // rotation, translation, line, plane and distance Jacobians built from them.
     use dqsym::{
         app::{task_report, TaskJacobian},
-        FkOptions, ReportFormat,
+        FkOptions, Format,
     };
     let robot = dqsym::parse_robot(RRPR, "rrpr.toml", &dqsym::eval_scalar_text).expect("robot");
     let o = FkOptions {
-        format: ReportFormat::Python,
+        format: Format::Python,
         ..FkOptions::default()
     };
     let k = [Scalar::int(0), Scalar::int(0), Scalar::int(1)];

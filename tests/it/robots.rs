@@ -313,7 +313,7 @@ fn chain_of_20_symbolic_joints_is_reported_as_an_exact_recurrence() {
     let r = load(file);
     // A small term limit keeps the debug-build test quick; the default (20,000) behaves alike.
     let o = dqsym::FkOptions {
-        format: dqsym::ReportFormat::Sympy,
+        format: dqsym::Format::Sympy,
         max_terms: 2_000,
         jacobian: true,
         ..dqsym::FkOptions::default()

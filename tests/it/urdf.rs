@@ -881,7 +881,7 @@ fn recurrence_with_frames_and_coupled_joints_matches_the_expansion() {
     .unwrap_or_else(|e| panic!("{e}"));
     for r in [&coupled, &framed] {
         let o = FkOptions {
-            format: dqsym::ReportFormat::Sympy,
+            format: dqsym::Format::Sympy,
             jacobian: true,
             max_terms: 1,
             ..FkOptions::default()

@@ -43,10 +43,10 @@ pub mod scalar;
 
 // The core nouns.
 pub use algebra::{DualQuat, Matrix4, Quat};
-pub use app::{fk_report, FkOptions, ReportFormat};
+pub use app::{fk_report, FkOptions};
 pub use closed::{closed_form, Angle, Expr};
 pub use emit::{latex, LatexOptions};
 pub use kin::{parse_robot, parse_urdf, Chain, Joint, JointKind, Robot};
-pub use print::{plain, PlainOptions};
+pub use print::{plain, Format, PlainOptions};
 pub use ring::Ring;
 pub use scalar::{Context, Frac, Scalar, ScalarError, Sym, Trig};
