@@ -26,6 +26,7 @@ pub(crate) use calculus::mode_angle;
 mod cs;
 mod ctx;
 mod cyclo;
+mod modp;
 mod decimal;
 mod frac;
 mod par;
