@@ -150,13 +150,25 @@ fn mono(e: u64, c: Rat) -> Sparse {
 
 /// `Q(zeta_W)` for a multiple `W` of 4: the reduction of every power of `zeta_W` to the power
 /// basis, and the square roots it contains.
+///
+/// Two coordinate systems: the power basis modulo the cyclotomic polynomial (the exact dense
+/// path, built on first use) and, for the fast path, the tensor basis of
+/// `Q(zeta_W) = Q(zeta_q1) (x) ... (x) Q(zeta_qk)` for the prime powers `q` of `W`: an
+/// exponent `e` is the tuple `(e mod q)`, and each axis is reduced modulo
+/// `Phi_q(x) = sum_{j < p} x^{j q / p}` in one pass (`O(W)` per axis, no table).
 struct Field {
     w: u64,
     phi: usize,
-    /// `red[k]`: `x^k` modulo the cyclotomic polynomial, `k < W`.
-    red: Vec<Vec<i64>>,
-    /// The nonzero coefficients of the cyclotomic polynomial below its leading term.
-    poly: Vec<(usize, i64)>,
+    /// The cyclotomic polynomial, coefficients from the constant term.
+    poly: Vec<i64>,
+    /// `red[k]`: `x^k` modulo the cyclotomic polynomial, `k < W` (the exact path only).
+    red: OnceLock<Option<Vec<Vec<i64>>>>,
+    /// The prime powers `(q, p)` of `W`; axis `i` has stride `q_0 ... q_{i-1}`.
+    axes: Vec<(u64, u64)>,
+    /// The position of `zeta_W^e` in the tensor layout, for each exponent `e`.
+    slot: Vec<u32>,
+    /// The reduced positions (every digit below `phi(q)`), in order: the coordinates.
+    kept: Vec<u32>,
     /// The primes `p` with `sqrt(p)` in the field (odd divisors of `W`, 2 when 8 divides `W`).
     allowed: Vec<u64>,
     /// Every square-free product `h` of allowed primes with `sqrt(h)`.
@@ -215,22 +227,37 @@ impl Field {
         if poly.len() != phi + 1 || poly[phi] != 1 {
             return None;
         }
-        let mut red: Vec<Vec<i64>> = Vec::with_capacity(w as usize);
-        for k in 0..w as usize {
-            if k < phi {
-                let mut v = vec![0i64; phi];
-                v[k] = 1;
-                red.push(v);
-            } else {
-                let prev = &red[k - 1];
-                let lead = prev[phi - 1];
-                let mut v = vec![0i64; phi];
-                for j in 0..phi {
-                    let shifted = if j > 0 { prev[j - 1] } else { 0 };
-                    v[j] = shifted.checked_sub(lead.checked_mul(poly[j])?)?;
-                }
-                red.push(v);
+        let mut axes = Vec::new();
+        for p in primes_of(w) {
+            let mut q = 1;
+            while w.is_multiple_of(q * p) {
+                q *= p;
             }
+            axes.push((q, p));
+        }
+        let slot: Vec<u32> = (0..w)
+            .map(|e| {
+                let (mut pos, mut stride) = (0, 1);
+                for (q, _) in &axes {
+                    pos += (e % q) * stride;
+                    stride *= q;
+                }
+                pos as u32
+            })
+            .collect();
+        let kept: Vec<u32> = (0..w)
+            .filter(|&pos| {
+                let mut r = pos;
+                axes.iter().all(|(q, p)| {
+                    let d = r % q;
+                    r /= q;
+                    d < q / p * (p - 1)
+                })
+            })
+            .map(|pos| pos as u32)
+            .collect();
+        if kept.len() != phi {
+            return None;
         }
         let allowed: Vec<u64> = primes_of(w)
             .into_iter()
@@ -266,46 +293,106 @@ impl Field {
             sqrts.extend(more);
         }
         sqrts.sort_by_key(|(h, _)| *h);
-        let poly = poly[..phi]
-            .iter()
-            .enumerate()
-            .filter(|(_, c)| **c != 0)
-            .map(|(j, c)| (j, *c))
-            .collect();
         Some(Field {
             w,
             phi,
-            red,
             poly,
+            red: OnceLock::new(),
+            axes,
+            slot,
+            kept,
             allowed,
             sqrts,
         })
     }
 
-    fn reduce(&self, s: &Sparse) -> Vec<Rat> {
+    /// The power-basis reduction of every power of `zeta_W` (charged on first use).
+    fn red(&self) -> Result<&Vec<Vec<i64>>, ScalarError> {
+        if self.red.get().is_none() {
+            super::charge(self.w.saturating_mul(self.phi as u64))?;
+        }
+        let (w, phi, poly) = (self.w as usize, self.phi, &self.poly);
+        self.red
+            .get_or_init(|| {
+                let mut red: Vec<Vec<i64>> = Vec::with_capacity(w);
+                for k in 0..w {
+                    let mut v = vec![0i64; phi];
+                    if k < phi {
+                        v[k] = 1;
+                    } else {
+                        let prev = &red[k - 1];
+                        let lead = prev[phi - 1];
+                        for j in 0..phi {
+                            let shifted = if j > 0 { prev[j - 1] } else { 0 };
+                            v[j] = shifted.checked_sub(lead.checked_mul(poly[j])?)?;
+                        }
+                    }
+                    red.push(v);
+                }
+                Some(red)
+            })
+            .as_ref()
+            .ok_or_else(|| {
+                ScalarError::OutOfRange(format!("the cyclotomic polynomial of order {w}"))
+            })
+    }
+
+    fn reduce(&self, s: &Sparse) -> Result<Vec<Rat>, ScalarError> {
+        let red = self.red()?;
         let mut out = vec![Rat::zero(); self.phi];
         for (e, c) in s {
-            for (o, r) in out.iter_mut().zip(&self.red[*e as usize]) {
+            for (o, r) in out.iter_mut().zip(&red[*e as usize]) {
                 if *r != 0 {
                     *o += c * Rat::from_integer(BigInt::from(*r));
                 }
             }
         }
-        out
+        Ok(out)
     }
 
-    /// `s` in the power basis modulo [`modp::P`]; `None` when `P` divides a denominator.
-    fn reduce_mod(&self, s: &Sparse) -> Option<Vec<u64>> {
-        let mut out = vec![0u64; self.phi];
-        for (e, c) in s {
-            let c = modp::from_rat(c)?;
-            for (o, r) in out.iter_mut().zip(&self.red[*e as usize]) {
-                if *r != 0 {
-                    *o = modp::add(*o, modp::mul(c, modp::from_i64(*r)));
+    /// Reduces a vector in the tensor layout along every axis (see the type's docs), with
+    /// `sub(a, b) = a - b` (`None` stops).
+    fn crt_reduce<T: Copy + PartialEq>(
+        &self,
+        a: &mut [T],
+        zero: T,
+        sub: impl Fn(T, T) -> Option<T>,
+    ) -> Option<()> {
+        let mut stride = 1usize;
+        for &(q, p) in &self.axes {
+            let (q, p) = (q as usize, p as usize);
+            let m = q / p;
+            let block = q * stride;
+            for hi in (0..a.len()).step_by(block) {
+                for d in (p - 1) * m..q {
+                    let r = d - (p - 1) * m;
+                    for lo in 0..stride {
+                        let v = a[hi + d * stride + lo];
+                        if v == zero {
+                            continue;
+                        }
+                        a[hi + d * stride + lo] = zero;
+                        for j in 0..p - 1 {
+                            let t = &mut a[hi + (r + j * m) * stride + lo];
+                            *t = sub(*t, v)?;
+                        }
+                    }
                 }
             }
+            stride = block;
         }
-        Some(out)
+        Some(())
+    }
+
+    /// `s` in the tensor basis modulo [`modp::P`]; `None` when `P` divides a denominator.
+    fn reduce_mod(&self, s: &Sparse) -> Option<Vec<u64>> {
+        let mut a = vec![0u64; self.w as usize];
+        for (e, c) in s {
+            let t = &mut a[self.slot[*e as usize] as usize];
+            *t = modp::add(*t, modp::from_rat(c)?);
+        }
+        self.crt_reduce(&mut a, 0, |x, y| Some(modp::sub(x, y)))?;
+        Some(self.kept.iter().map(|&k| a[k as usize]).collect())
     }
 
     /// Whether `sum x_j v_j = t` exactly, for `v_j` given by their doubled integer
@@ -324,26 +411,16 @@ impl Field {
             let k = (x * Rat::from_integer(d.clone())).to_integer();
             let k = k.to_i128()?;
             for (e, c2) in &vs[*j] {
-                let a = &mut acc[*e as usize];
+                let a = &mut acc[self.slot[*e as usize] as usize];
                 *a = a.checked_add(k.checked_mul(i128::from(*c2))?)?;
             }
         }
         for (e, c) in t {
             let k = (c * Rat::from_integer(BigInt::from(2) * &d)).to_integer();
-            let a = &mut acc[*e as usize];
+            let a = &mut acc[self.slot[*e as usize] as usize];
             *a = a.checked_sub(k.to_i128()?)?;
         }
-        for k in (self.phi..self.w as usize).rev() {
-            let lead = acc[k];
-            if lead == 0 {
-                continue;
-            }
-            acc[k] = 0;
-            for (j, c) in &self.poly {
-                let a = &mut acc[k - self.phi + j];
-                *a = a.checked_sub(lead.checked_mul(i128::from(*c))?)?;
-            }
-        }
+        self.crt_reduce(&mut acc, 0, |x, y| x.checked_sub(y))?;
         Some(acc.iter().all(|a| *a == 0))
     }
 
@@ -519,11 +596,11 @@ impl Basis {
                     s.insert(w - a, half);
                     s
                 };
-                if !span.independent(&f.reduce(&c)) {
+                if !span.independent(&f.reduce(&c)?) {
                     continue;
                 }
                 for (h, r) in &f.sqrts {
-                    span.push(f.reduce(&sparse_mul(r, &c, w)));
+                    span.push(f.reduce(&sparse_mul(r, &c, w))?);
                     cols.push(Col {
                         h: *h,
                         angle: Small::new(2 * k, l as i64),
@@ -543,13 +620,13 @@ impl Basis {
                 let a = (k.rem_euclid(m as i64) as u64) * (w / m);
                 super::charge((span.rows.len() * f.phi) as u64 + 1)?;
                 let c = mono(a, Rat::one());
-                if !span.independent(&f.reduce(&c)) {
+                if !span.independent(&f.reduce(&c)?) {
                     continue;
                 }
                 let ic = sparse_mul(&i, &c, w);
                 for (h, r) in &f.sqrts {
                     for (imag, x) in [(false, &c), (true, &ic)] {
-                        span.push(f.reduce(&sparse_mul(r, x, w)));
+                        span.push(f.reduce(&sparse_mul(r, x, w))?);
                         cols.push(Col {
                             h: *h,
                             angle: Small::new(2 * k, m as i64),
@@ -719,7 +796,10 @@ impl FastBasis {
             let mut v = vec![0u64; f.phi];
             v[j] = 1;
             if fb.span.push(v) {
-                fb.vecs.push(vec![(j as u64, 2)]);
+                // The coordinate vector j is zeta_W^e for the exponent e in its slot.
+                let pos = f.kept[j];
+                let e = f.slot.iter().position(|s| *s == pos).expect("a slot") as u64;
+                fb.vecs.push(vec![(e, 2)]);
             }
         }
         Ok(Some(fb))
@@ -762,7 +842,7 @@ fn field(w: u64) -> Result<Arc<Field>, ScalarError> {
     if let Some(f) = cache.lock().map_err(poisoned)?.get(&w) {
         return Ok(f.clone());
     }
-    super::charge(w.saturating_mul(totient(w)))?;
+    super::charge(w)?;
     let f = Arc::new(Field::new(w).ok_or_else(|| {
         ScalarError::OutOfRange(format!("the cyclotomic polynomial of order {w}"))
     })?);
@@ -1011,7 +1091,10 @@ fn canonical_group_exact(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
             *y.entry(e).or_insert_with(Rat::zero) += c;
         }
     }
-    let ys: Vec<(u64, Vec<Rat>)> = ys.into_iter().map(|(s, y)| (s, f.reduce(&y))).collect();
+    let ys: Vec<(u64, Vec<Rat>)> = ys
+        .into_iter()
+        .map(|(s, y)| Ok((s, f.reduce(&y)?)))
+        .collect::<Result<_, ScalarError>>()?;
     let fits = |m: u64| -> Result<Option<Vec<Vec<Rat>>>, ScalarError> {
         let b = basis(&f, m, real)?;
         Ok(ys.iter().map(|(_, y)| b.span.solve(y.clone())).collect())

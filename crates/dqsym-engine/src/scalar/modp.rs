@@ -58,7 +58,7 @@ pub(crate) fn inv(a: u64) -> u64 {
     pow(a, P - 2)
 }
 
-pub(crate) fn from_i64(x: i64) -> u64 {
+fn from_i64(x: i64) -> u64 {
     if x >= 0 {
         x as u64 % P
     } else {
@@ -74,6 +74,18 @@ fn from_big(x: &BigInt) -> u64 {
 
 /// A rational modulo `P`; `None` when `P` divides its denominator.
 pub(crate) fn from_rat(x: &Rat) -> Option<u64> {
+    if let (Some(n), Some(d)) = (x.numer().to_i64(), x.denom().to_i64()) {
+        let n = from_i64(n);
+        return match d {
+            1 => Some(n),
+            // 1/2 = (P + 1)/2.
+            2 => Some(mul(n, P.div_ceil(2))),
+            _ => {
+                let d = from_i64(d);
+                (d != 0).then(|| mul(n, inv(d)))
+            }
+        };
+    }
     let d = from_big(x.denom());
     (d != 0).then(|| mul(from_big(x.numer()), inv(d)))
 }
