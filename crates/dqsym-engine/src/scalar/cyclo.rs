@@ -750,7 +750,7 @@ impl FastBasis {
             }
         }
         for (k, l, c, parts) in cands {
-            super::charge((fb.span.rank() * f.phi) as u64 / 32 + 1)?;
+            super::charge((fb.span.rank() * f.phi) as u64 / 128 + 1)?;
             let Some(v) = f.reduce_mod(&c) else {
                 return Ok(None);
             };
@@ -792,7 +792,7 @@ impl FastBasis {
             if fb.span.rank() == f.phi {
                 break;
             }
-            super::charge((fb.span.rank() * f.phi) as u64 / 32 + 1)?;
+            super::charge((fb.span.rank() * f.phi) as u64 / 128 + 1)?;
             let mut v = vec![0u64; f.phi];
             v[j] = 1;
             if fb.span.push(v) {
@@ -810,7 +810,7 @@ impl FastBasis {
         if let Some(c) = self.units.lock().map_err(poisoned)?.get(&u) {
             return Ok(c.clone());
         }
-        super::charge((f.phi * f.phi) as u64 / 32 + 1)?;
+        super::charge((f.phi * f.phi) as u64 / 128 + 1)?;
         let t = u.value(f, real);
         let xs = f
             .reduce_mod(&t)
@@ -925,7 +925,7 @@ fn canonical_group_fast(g: &[&Term]) -> Result<Option<Vec<Term>>, ScalarError> {
     };
     let real = first.mode.freq.is_empty();
     let w = level_of(g.iter().copied())?;
-    super::charge(g.len() as u64 * totient(w) / 32 + 1)?;
+    super::charge(g.len() as u64 * totient(w) / 128 + 1)?;
     let f = field(w)?;
     let mut ys: BTreeMap<u64, BTreeMap<Unit, Rat>> = BTreeMap::new();
     for t in g {
