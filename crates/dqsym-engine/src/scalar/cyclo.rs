@@ -645,7 +645,10 @@ fn ints(s: &Sparse) -> Option<Ints> {
     s.iter()
         .map(|(e, c)| {
             let c2 = c * Rat::from_integer(2.into());
-            c2.is_integer().then(|| c2.to_integer().to_i64()).flatten().map(|c| (*e, c))
+            c2.is_integer()
+                .then(|| c2.to_integer().to_i64())
+                .flatten()
+                .map(|c| (*e, c))
         })
         .collect()
 }
@@ -1142,9 +1145,15 @@ mod tests {
             let f = Field::new(w).expect("field");
             for m in (24..=w).step_by(24).filter(|m| w.is_multiple_of(*m)) {
                 for real in [true, false] {
-                    let fast = FastBasis::new(&f, m, real).expect("budget").expect("checked");
+                    let fast = FastBasis::new(&f, m, real)
+                        .expect("budget")
+                        .expect("checked");
                     let exact = Basis::new(&f, m, real).expect("budget");
-                    assert_eq!(key(&fast.cols), key(&exact.cols), "W = {w}, M = {m}, {real}");
+                    assert_eq!(
+                        key(&fast.cols),
+                        key(&exact.cols),
+                        "W = {w}, M = {m}, {real}"
+                    );
                     assert_eq!(fast.span.rank(), f.phi);
                     checked += 1;
                 }

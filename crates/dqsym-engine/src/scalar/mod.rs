@@ -26,9 +26,9 @@ pub(crate) use calculus::mode_angle;
 mod cs;
 mod ctx;
 mod cyclo;
-mod modp;
 mod decimal;
 mod frac;
+mod modp;
 mod par;
 pub(crate) mod q;
 

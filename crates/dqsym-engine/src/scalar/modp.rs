@@ -203,7 +203,14 @@ mod tests {
 
     #[test]
     fn reconstruction_reads_small_rationals_back() {
-        for (n, d) in [(1, 2), (-3, 7), (123456, 789), (-1, 1), (0, 1), (1 << 29, 3)] {
+        for (n, d) in [
+            (1, 2),
+            (-3, 7),
+            (123456, 789),
+            (-1, 1),
+            (0, 1),
+            (1 << 29, 3),
+        ] {
             let x = Rat::new(n.into(), d.into());
             let a = from_rat(&x).expect("denominator prime to P");
             assert_eq!(reconstruct(a), Some(x));
