@@ -48,6 +48,7 @@ pub(super) fn best_alternative(x: &Scalar) -> Option<Expr> {
     }
     cands.extend(product(t));
     cands.extend(constant_trig(x, t));
+    cands.extend(super::cprod::constant_products(t));
     cands.sort_by_key(full_cost);
     cands.into_iter().find(|e| e.to_scalar() == *x)
 }
@@ -77,7 +78,7 @@ pub(super) fn full_cost(e: &Expr) -> (usize, usize, usize) {
     (c.ops + angle_ops(e), c.ops, c.calls)
 }
 
-fn mul(a: Expr, b: Expr) -> Expr {
+pub(super) fn mul(a: Expr, b: Expr) -> Expr {
     let parts = |e: Expr| match e {
         Expr::Mul(v) => v,
         Expr::Num(q) if q.is_one() => Vec::new(),
@@ -104,7 +105,7 @@ fn neg(e: Expr) -> Expr {
     }
 }
 
-fn num(q: Rat) -> Expr {
+pub(super) fn num(q: Rat) -> Expr {
     if q.is_negative() {
         neg(Expr::Num(-q))
     } else {
@@ -112,7 +113,13 @@ fn num(q: Rat) -> Expr {
     }
 }
 
-fn trig(sin: bool, terms: Vec<(Sym, Small)>, pi: Small) -> Expr {
+/// `cos` or `sin` of an angle; a constant negative angle is shown positive (`cos` is even,
+/// `sin` odd).
+pub(super) fn trig(sin: bool, terms: Vec<(Sym, Small)>, pi: Small) -> Expr {
+    if terms.is_empty() && pi.is_negative() {
+        let e = trig(sin, terms, -pi);
+        return if sin { neg(e) } else { e };
+    }
     Expr::Trig {
         f: crate::scalar::Trig::of(sin),
         angle: Angle { terms, pi },
@@ -143,7 +150,7 @@ fn centred(p: Small) -> Small {
 }
 
 /// A rational with a small denominator within `1e-9` of `v` (continued fractions).
-fn small_rational(v: f64) -> Option<Rat> {
+pub(super) fn small_rational(v: f64) -> Option<Rat> {
     if !v.is_finite() || v.abs() > 1e9 {
         return None;
     }
