@@ -5,7 +5,8 @@
 //! For a scalar without symbolic angles, `sum_m c_m m` over monomials `m` with constant
 //! coefficients `c_m`, the candidates are `P sum_m r_m m` with `r_m` rational and `P` a product
 //! of one to three factors `cos(k pi/n)` or `sin(k pi/n)` (repeats are powers) at the angles of
-//! the scalar's field that are not multiples of `pi/12`. They are found numerically (every
+//! the scalar's field that are not multiples of `pi/12` (three only at the terms' own
+//! denominators). They are found numerically (every
 //! `c_m / P` a small rational) and then, like every candidate, checked exactly by the caller.
 
 use super::alt::{mul, num, small_rational, trig};
@@ -16,12 +17,13 @@ use num_integer::Integer;
 use num_rational::BigRational as Rat;
 use std::collections::BTreeMap;
 
-/// The most candidate factors for products of two, and of three.
+/// The most candidate factors for products of two, and of three (those at the terms' own
+/// denominators).
 const MAX_PAIRS: usize = 700;
 const MAX_TRIPLES: usize = 96;
 
 /// The most products returned (the caller keeps the cheapest one that checks).
-const MAX_FOUND: usize = 6;
+const MAX_FOUND: usize = 12;
 
 /// The value of a term without its monomial.
 fn value(t: &Term) -> Option<f64> {
@@ -34,6 +36,14 @@ fn value(t: &Term) -> Option<f64> {
         a.cos()
     };
     Some(t.coef.to_f64()? * (t.rad as f64).sqrt() * f)
+}
+
+/// A rational with a denominator up to 1000 within `1e-12` (relative) of `v`.
+fn rational(v: f64) -> Option<Rat> {
+    use num_traits::ToPrimitive;
+    let r = small_rational(v)?;
+    let f = r.to_f64()?;
+    (*r.denom() <= 1000.into() && (v - f).abs() < 1e-12 * (1.0 + v.abs())).then_some(r)
 }
 
 /// Candidates `P sum_m r_m m` (see the module docs); empty when the scalar has symbolic
@@ -60,7 +70,7 @@ pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
     }
     // cos(k pi/n) for 0 < k < n/2 off the multiples of pi/12, named by the smallest
     // denominator (cos(k pi/n) = sin((n/2 - k) pi/n)), cosine first.
-    let factors: Vec<(f64, bool, Small)> = (1..n / 2)
+    let mut factors: Vec<(f64, bool, Small)> = (1..n / 2)
         .filter(|k| (12 * k) % n != 0)
         .map(|k| {
             let c = Small::new(k, n);
@@ -73,11 +83,12 @@ pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
             }
         })
         .collect();
+    factors.sort_by_key(|(_, sin, a)| (*a.denom(), *a.numer(), *sin));
     let f = factors.len();
     let fits = |p: f64| -> Option<Vec<(MonoRc, Rat)>> {
         coefs
             .iter()
-            .map(|(m, c)| small_rational(c / p).map(|r| ((*m).clone(), r)))
+            .map(|(m, c)| rational(c / p).map(|r| ((*m).clone(), r)))
             .collect()
     };
     let mut found: Vec<(Vec<usize>, Vec<(MonoRc, Rat)>)> = Vec::new();
@@ -90,18 +101,24 @@ pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
     for i in 0..f {
         search(&[i], &mut found);
     }
-    if found.is_empty() && f <= MAX_PAIRS {
+    if f <= MAX_PAIRS {
         for i in 0..f {
             for j in i..f {
                 search(&[i, j], &mut found);
             }
         }
     }
-    if found.is_empty() && f <= MAX_TRIPLES {
-        for i in 0..f {
-            for j in i..f {
-                for l in j..f {
-                    search(&[i, j, l], &mut found);
+    // Triples among the angles whose denominator divides the terms' (pi/7 and pi/9 for a sum
+    // over pi/63).
+    let l = t.iter().fold(1i64, |acc, u| acc.lcm(u.mode.pi.denom()));
+    let near: Vec<usize> = (0..f)
+        .filter(|&i| l % factors[i].2.denom() == 0)
+        .collect();
+    if near.len() <= MAX_TRIPLES {
+        for (a, &i) in near.iter().enumerate() {
+            for (b, &j) in near.iter().enumerate().skip(a) {
+                for &k in &near[b..] {
+                    search(&[i, j, k], &mut found);
                 }
             }
         }
@@ -147,3 +164,4 @@ pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
         })
         .collect()
 }
+
