@@ -700,8 +700,9 @@ type Coords = Vec<(usize, Rat)>;
 /// checked exactly: every column taken is independent of the ones before modulo `P`, hence
 /// over `Q`; every candidate left out was shown to depend on the ones before by exact
 /// coordinates (small rationals read back from their residues, the combination checked in
-/// `Q(zeta_W)`). The span is completed to the whole field with powers of `zeta_W`, so every
-/// value has coordinates; a value is in the basis' field when those past `cols` are zero.
+/// `Q(zeta_W)`). The span is completed to the whole field (to its real subfield for real
+/// bases, whose values are real), so every value has coordinates; a value is in the basis'
+/// field when those past `cols` are zero.
 struct FastBasis {
     cols: Vec<Col>,
     span: ModSpan,
@@ -791,19 +792,38 @@ impl FastBasis {
                 }
             }
         }
-        for j in 0..f.phi {
-            if fb.span.rank() == f.phi {
-                break;
+        // Completed to the real subfield (real groups hold real values only) with
+        // cos(2 pi j / W), or to the whole field with the coordinate vectors.
+        let full = if real { f.phi / 2 } else { f.phi };
+        let mut j = 0;
+        while fb.span.rank() < full {
+            if j >= f.phi.max(w as usize) {
+                return Ok(None);
             }
             super::charge((fb.span.rank() * f.phi) as u64 / 128 + 1)?;
-            let mut v = vec![0u64; f.phi];
-            v[j] = 1;
-            if fb.span.push(v) {
+            let (v, val) = if real {
+                let e = j as u64;
+                let mut c = mono(e, Rat::new(1.into(), 2.into()));
+                *c.entry((w - e) % w).or_insert_with(Rat::zero) += Rat::new(1.into(), 2.into());
+                let Some(v) = f.reduce_mod(&c) else {
+                    return Ok(None);
+                };
+                let Some(n) = ints(&c) else {
+                    return Ok(None);
+                };
+                (v, n)
+            } else {
+                let mut v = vec![0u64; f.phi];
+                v[j] = 1;
                 // The coordinate vector j is zeta_W^e for the exponent e in its slot.
                 let pos = f.kept[j];
                 let e = f.slot.iter().position(|s| *s == pos).expect("a slot") as u64;
-                fb.vecs.push(vec![(e, 2)]);
+                (v, vec![(e, 2)])
+            };
+            if fb.span.push(v) {
+                fb.vecs.push(val);
             }
+            j += 1;
         }
         Ok(Some(fb))
     }
@@ -1154,7 +1174,7 @@ mod tests {
                         key(&exact.cols),
                         "W = {w}, M = {m}, {real}"
                     );
-                    assert_eq!(fast.span.rank(), f.phi);
+                    assert_eq!(fast.span.rank(), if real { f.phi / 2 } else { f.phi });
                     checked += 1;
                 }
             }
