@@ -39,7 +39,8 @@ pub(super) fn best_alternative(x: &Scalar) -> Option<Expr> {
     if t.is_empty() || t.len() > MAX_PRODUCT_TERMS || t.iter().all(|t| t.mode.is_unit()) {
         return None;
     }
-    let mut cands = Vec::new();
+    // First: on equal cost, constant factors in the order of their angles win.
+    let mut cands = super::cprod::constant_products(t);
     if t.len() <= MAX_TERMS {
         cands.extend(harmonic(t));
         cands.extend(sum_to_product(t));
@@ -48,7 +49,6 @@ pub(super) fn best_alternative(x: &Scalar) -> Option<Expr> {
     }
     cands.extend(product(t));
     cands.extend(constant_trig(x, t));
-    cands.extend(super::cprod::constant_products(t));
     cands.sort_by_key(full_cost);
     cands.into_iter().find(|e| e.to_scalar() == *x)
 }

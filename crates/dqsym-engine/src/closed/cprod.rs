@@ -38,12 +38,12 @@ fn value(t: &Term) -> Option<f64> {
     Some(t.coef.to_f64()? * (t.rad as f64).sqrt() * f)
 }
 
-/// A rational with a denominator up to 1000 within `1e-12` (relative) of `v`.
+/// A rational with a denominator up to 1000 within `1e-13` (relative) of `v`.
 fn rational(v: f64) -> Option<Rat> {
     use num_traits::ToPrimitive;
     let r = small_rational(v)?;
     let f = r.to_f64()?;
-    (*r.denom() <= 1000.into() && (v - f).abs() < 1e-12 * (1.0 + v.abs())).then_some(r)
+    (*r.denom() <= 1000.into() && (v - f).abs() < 1e-13 * (1.0 + v.abs())).then_some(r)
 }
 
 /// Candidates `P sum_m r_m m` (see the module docs); empty when the scalar has symbolic
@@ -101,19 +101,21 @@ pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
     for i in 0..f {
         search(&[i], &mut found);
     }
-    if f <= MAX_PAIRS {
-        for i in 0..f {
-            for j in i..f {
-                search(&[i, j], &mut found);
-            }
-        }
-    }
-    // Triples among the angles whose denominator divides the terms' (pi/7 and pi/9 for a sum
-    // over pi/63).
+    // Pairs among all the angles or, for large fields, among those whose denominator divides
+    // the terms' (triples only among those: pi/7 and pi/9 for a sum over pi/63).
     let l = t.iter().fold(1i64, |acc, u| acc.lcm(u.mode.pi.denom()));
     let near: Vec<usize> = (0..f)
         .filter(|&i| l % factors[i].2.denom() == 0)
         .collect();
+    let all: Vec<usize> = (0..f).collect();
+    let pairs = if f <= MAX_PAIRS { &all } else { &near };
+    if pairs.len() <= MAX_PAIRS {
+        for (a, &i) in pairs.iter().enumerate() {
+            for &j in &pairs[a..] {
+                search(&[i, j], &mut found);
+            }
+        }
+    }
     if near.len() <= MAX_TRIPLES {
         for (a, &i) in near.iter().enumerate() {
             for (b, &j) in near.iter().enumerate().skip(a) {
@@ -123,6 +125,8 @@ pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
             }
         }
     }
+    // Fewest factors first (the numeric search also finds chance matches, checked later).
+    found.sort_by_key(|(idx, _)| idx.len());
     found.truncate(MAX_FOUND);
     found
         .into_iter()

@@ -754,7 +754,7 @@ impl FastBasis {
             }
         }
         for (k, l, c, parts) in cands {
-            super::charge((fb.span.rank() * f.phi) as u64 / 128 + 1)?;
+            super::charge((fb.span.rank() * f.phi) as u64 / 256 + 1)?;
             let Some(v) = f.reduce_mod(&c) else {
                 return Ok(None);
             };
@@ -800,7 +800,7 @@ impl FastBasis {
             if j >= f.phi.max(w as usize) {
                 return Ok(None);
             }
-            super::charge((fb.span.rank() * f.phi) as u64 / 128 + 1)?;
+            super::charge((fb.span.rank() * f.phi) as u64 / 256 + 1)?;
             let (v, val) = if real {
                 let e = j as u64;
                 let mut c = mono(e, Rat::new(1.into(), 2.into()));
@@ -833,7 +833,7 @@ impl FastBasis {
         if let Some(c) = self.units.lock().map_err(poisoned)?.get(&u) {
             return Ok(c.clone());
         }
-        super::charge((f.phi * f.phi) as u64 / 128 + 1)?;
+        super::charge((f.phi * f.phi) as u64 / 256 + 1)?;
         let t = u.value(f, real);
         let xs = f
             .reduce_mod(&t)
