@@ -626,3 +626,72 @@ fn closed_forms_are_the_hand_forms() {
     let v = dqsym::eval_scalar_text(&product).unwrap();
     assert_eq!(v.len(), 512);
 }
+
+/// Products of constant cosines and sines at different denominators print as products when
+/// that is shorter than their canonical sum (display only: the scalar is the canonical one),
+/// constant angles print with a positive sign (`cos` even, `sin` odd), and the printed form is
+/// exactly the scalar and has the value computed here in f64.
+#[test]
+fn constant_products_print_as_products() {
+    use std::f64::consts::PI;
+    let (c, s) = (
+        |k: f64, d: f64| (k * PI / d).cos(),
+        |k: f64, d: f64| (k * PI / d).sin(),
+    );
+    let (x, y) = (0.7_f64, -1.3_f64);
+    let cases: Vec<(&str, &str, f64)> = vec![
+        (
+            "cos(pi/7)*cos(pi/9)",
+            "cos(pi/7) cos(pi/9)",
+            c(1., 7.) * c(1., 9.),
+        ),
+        (
+            "cos(pi/97)*cos(2*pi/97)",
+            "cos(pi/97) cos(2*pi/97)",
+            c(1., 97.) * c(2., 97.),
+        ),
+        (
+            "x*cos(pi/7)*cos(pi/9)",
+            "x cos(pi/7) cos(pi/9)",
+            x * c(1., 7.) * c(1., 9.),
+        ),
+        (
+            "(x + 2*y)*cos(pi/7)^2*cos(pi/9)",
+            "(x + 2 y) cos(pi/7)^2 cos(pi/9)",
+            (x + 2. * y) * c(1., 7.).powi(2) * c(1., 9.),
+        ),
+        (
+            "cos(pi/7)*sin(pi/9)/3",
+            "1/3 cos(pi/7) sin(pi/9)",
+            c(1., 7.) * s(1., 9.) / 3.,
+        ),
+        (
+            "sin(2*pi/13)*cos(pi/13)",
+            "cos(pi/13) sin(2*pi/13)",
+            s(2., 13.) * c(1., 13.),
+        ),
+        ("x*sin(pi/59)^2", "x sin(pi/59)^2", x * s(1., 59.).powi(2)),
+        ("sin(-pi/13)", "-sin(pi/13)", -s(1., 13.)),
+        ("cos(-3*pi/7)", "cos(3*pi/7)", c(3., 7.)),
+        ("cos(pi/9)*cos(2*pi/9)*cos(4*pi/9)", "1/8", 0.125),
+        (
+            "cos(pi/7)*cos(2*pi/7)*cos(pi/9)",
+            "cos(pi/7) cos(2*pi/7) cos(pi/9)",
+            c(1., 7.) * c(2., 7.) * c(1., 9.),
+        ),
+    ];
+    let env = |n: &str| match n {
+        "x" => Some(x),
+        "y" => Some(y),
+        _ => None,
+    };
+    for (input, want, value) in cases {
+        let v = dqsym::eval_scalar_text(input).expect(input);
+        let e = dqsym::closed_form(&v).expect("closed form");
+        assert_eq!(e.to_scalar(), v, "{input}");
+        let got = dqsym::plain(&e, &dqsym::PlainOptions::default());
+        assert_eq!(got, want, "{input}");
+        let f = e.to_scalar().eval(&env).expect("value");
+        assert!((f - value).abs() < 1e-12, "{input}: {f} vs {value}");
+    }
+}

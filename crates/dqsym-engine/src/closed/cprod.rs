@@ -104,9 +104,7 @@ pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
     // Pairs among all the angles or, for large fields, among those whose denominator divides
     // the terms' (triples only among those: pi/7 and pi/9 for a sum over pi/63).
     let l = t.iter().fold(1i64, |acc, u| acc.lcm(u.mode.pi.denom()));
-    let near: Vec<usize> = (0..f)
-        .filter(|&i| l % factors[i].2.denom() == 0)
-        .collect();
+    let near: Vec<usize> = (0..f).filter(|&i| l % factors[i].2.denom() == 0).collect();
     let all: Vec<usize> = (0..f).collect();
     let pairs = if f <= MAX_PAIRS { &all } else { &near };
     if pairs.len() <= MAX_PAIRS {
@@ -168,4 +166,3 @@ pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
         })
         .collect()
 }
-
