@@ -150,7 +150,7 @@ fn centred(p: Small) -> Small {
 }
 
 /// A rational with a small denominator within `1e-9` of `v` (continued fractions).
-pub(super) fn small_rational(v: f64) -> Option<Rat> {
+fn small_rational(v: f64) -> Option<Rat> {
     if !v.is_finite() || v.abs() > 1e9 {
         return None;
     }

@@ -9,7 +9,7 @@
 //! denominators). They are found numerically (every
 //! `c_m / P` a small rational) and then, like every candidate, checked exactly by the caller.
 
-use super::alt::{mul, num, small_rational, trig};
+use super::alt::{mul, num, trig};
 use super::expr::Expr;
 use crate::scalar::{MonoRc, Small, Term, Q};
 use crate::Scalar;
@@ -38,12 +38,30 @@ fn value(t: &Term) -> Option<f64> {
     Some(t.coef.to_f64()? * (t.rad as f64).sqrt() * f)
 }
 
-/// A rational with a denominator up to 1000 within `1e-13` (relative) of `v`.
+/// A rational with a denominator up to 1000 within `1e-13` (relative) of `v`: the
+/// continued-fraction convergents, in floats until one fits.
 fn rational(v: f64) -> Option<Rat> {
-    use num_traits::ToPrimitive;
-    let r = small_rational(v)?;
-    let f = r.to_f64()?;
-    (*r.denom() <= 1000.into() && (v - f).abs() < 1e-13 * (1.0 + v.abs())).then_some(r)
+    if !v.is_finite() || v.abs() > 1e9 {
+        return None;
+    }
+    let (mut h0, mut h1, mut k0, mut k1) = (0f64, 1f64, 1f64, 0f64);
+    let mut x = v;
+    loop {
+        let a = x.floor();
+        (h0, h1) = (h1, a * h1 + h0);
+        (k0, k1) = (k1, a * k1 + k0);
+        if k1 > 1000.0 {
+            return None;
+        }
+        if (v - h1 / k1).abs() < 1e-13 * (1.0 + v.abs()) {
+            return Some(Rat::new((h1 as i64).into(), (k1 as i64).into()));
+        }
+        let frac = x - a;
+        if frac.abs() < 1e-15 {
+            return None;
+        }
+        x = 1.0 / frac;
+    }
 }
 
 /// Candidates `P sum_m r_m m` (see the module docs); empty when the scalar has symbolic
