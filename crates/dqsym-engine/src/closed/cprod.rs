@@ -25,6 +25,9 @@ const MAX_TRIPLES: usize = 96;
 /// The most products returned (the caller keeps the cheapest one that checks).
 const MAX_FOUND: usize = 12;
 
+/// The rational `c_m / P` of each monomial.
+type Ratios = Vec<(MonoRc, Rat)>;
+
 /// The value of a term without its monomial.
 fn value(t: &Term) -> Option<f64> {
     let a = std::f64::consts::PI * (*t.mode.pi.numer() as f64) / (*t.mode.pi.denom() as f64);
@@ -103,13 +106,13 @@ pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
         .collect();
     factors.sort_by_key(|(_, sin, a)| (*a.denom(), *a.numer(), *sin));
     let f = factors.len();
-    let fits = |p: f64| -> Option<Vec<(MonoRc, Rat)>> {
+    let fits = |p: f64| -> Option<Ratios> {
         coefs
             .iter()
             .map(|(m, c)| rational(c / p).map(|r| ((*m).clone(), r)))
             .collect()
     };
-    let mut found: Vec<(Vec<usize>, Vec<(MonoRc, Rat)>)> = Vec::new();
+    let mut found: Vec<(Vec<usize>, Ratios)> = Vec::new();
     let search = |idx: &[usize], found: &mut Vec<_>| {
         let p: f64 = idx.iter().map(|&i| factors[i].0).product();
         if let Some(r) = fits(p) {
