@@ -39,7 +39,8 @@ pub(super) fn best_alternative(x: &Scalar) -> Option<Expr> {
     if t.is_empty() || t.len() > MAX_PRODUCT_TERMS || t.iter().all(|t| t.mode.is_unit()) {
         return None;
     }
-    let mut cands = Vec::new();
+    // First: on equal cost, constant factors in the order of their angles win.
+    let mut cands = super::cprod::constant_products(t);
     if t.len() <= MAX_TERMS {
         cands.extend(harmonic(t));
         cands.extend(sum_to_product(t));
@@ -79,7 +80,7 @@ pub(super) fn full_cost(e: &Expr) -> (usize, usize, usize) {
     (c.ops + angle_ops(e), c.ops, c.calls)
 }
 
-fn mul(a: Expr, b: Expr) -> Expr {
+pub(super) fn mul(a: Expr, b: Expr) -> Expr {
     let parts = |e: Expr| match e {
         Expr::Mul(v) => v,
         Expr::Num(q) if q.is_one() => Vec::new(),
@@ -106,7 +107,7 @@ fn neg(e: Expr) -> Expr {
     }
 }
 
-fn num(q: Rat) -> Expr {
+pub(super) fn num(q: Rat) -> Expr {
     if q.is_negative() {
         neg(Expr::Num(-q))
     } else {
@@ -115,8 +116,12 @@ fn num(q: Rat) -> Expr {
 }
 
 /// `cos` or `sin` of the angle of a frequency vector (see [`Angle::from_freq`]) and a multiple
-/// of pi.
-fn trig(sin: bool, freq: Vec<(Sym, Small)>, pi: Small) -> Expr {
+/// of pi; a constant negative angle is shown positive (`cos` is even, `sin` odd).
+pub(super) fn trig(sin: bool, freq: Vec<(Sym, Small)>, pi: Small) -> Expr {
+    if freq.is_empty() && pi.is_negative() {
+        let e = trig(sin, freq, -pi);
+        return if sin { neg(e) } else { e };
+    }
     Expr::Trig {
         f: crate::scalar::Trig::of(sin),
         angle: Angle::from_freq(&freq, pi),

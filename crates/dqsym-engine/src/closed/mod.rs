@@ -8,6 +8,7 @@
 //! cosine or sine factored by its rational roots) when one is cheaper still. The result is re-canonicalized and compared with the input before it is returned.
 
 mod alt;
+mod cprod;
 mod expr;
 mod factor;
 mod mon;

@@ -40,8 +40,9 @@ const DEFAULT_TERM_LIMIT: usize = 200_000;
 
 /// The default largest degree `phi(W)` of the cyclotomic field `Q(zeta_W)` in which the
 /// constants at rational multiples of pi of one group of terms are made canonical: every
-/// denominator up to 28 alone, whole degrees (`pi/180`, degree 96), sevenths with ninths (144).
-pub const DEFAULT_MAX_CYCLOTOMIC_DEGREE: u64 = 192;
+/// denominator up to 100 alone (`pi/97`, degree 768), with thirds and quarters too (`pi/59`
+/// with `pi/3`, 464), whole degrees (`pi/180`, 96), sevenths with ninths (144).
+pub const DEFAULT_MAX_CYCLOTOMIC_DEGREE: u64 = 768;
 
 /// The limits and the cancel flag of a computation (see the module docs).
 #[derive(Clone, Debug)]

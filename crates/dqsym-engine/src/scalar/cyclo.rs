@@ -35,11 +35,12 @@
 //! value, never a group left in a non-canonical form.
 
 use super::atoms::{rad_mul, Mode, MonoRc, Small};
+use super::modp::{self, ModSpan};
 use super::{ScalarError, Term, Q};
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational as Rat;
-use num_traits::{One, Signed, Zero};
+use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::collections::{BTreeMap, HashMap};
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -125,6 +126,9 @@ fn moebius(n: u64) -> i64 {
 /// An element of `Q(zeta_W)` as a sum of powers of `zeta_W` (exponents mod `W`).
 type Sparse = BTreeMap<u64, Rat>;
 
+/// The same with integer coefficients, doubled (every basis vector is in `Z[zeta_W] / 2`).
+type Ints = Vec<(u64, i64)>;
+
 fn sparse_mul(a: &Sparse, b: &Sparse, w: u64) -> Sparse {
     let mut out = Sparse::new();
     for (i, x) in a {
@@ -146,11 +150,25 @@ fn mono(e: u64, c: Rat) -> Sparse {
 
 /// `Q(zeta_W)` for a multiple `W` of 4: the reduction of every power of `zeta_W` to the power
 /// basis, and the square roots it contains.
+///
+/// Two coordinate systems: the power basis modulo the cyclotomic polynomial (the exact dense
+/// path, built on first use) and, for the fast path, the tensor basis of
+/// `Q(zeta_W) = Q(zeta_q1) (x) ... (x) Q(zeta_qk)` for the prime powers `q` of `W`: an
+/// exponent `e` is the tuple `(e mod q)`, and each axis is reduced modulo
+/// `Phi_q(x) = sum_{j < p} x^{j q / p}` in one pass (`O(W)` per axis, no table).
 struct Field {
     w: u64,
     phi: usize,
-    /// `red[k]`: `x^k` modulo the cyclotomic polynomial, `k < W`.
-    red: Vec<Vec<i64>>,
+    /// The cyclotomic polynomial, coefficients from the constant term.
+    poly: Vec<i64>,
+    /// `red[k]`: `x^k` modulo the cyclotomic polynomial, `k < W` (the exact path only).
+    red: OnceLock<Option<Vec<Vec<i64>>>>,
+    /// The prime powers `(q, p)` of `W`; axis `i` has stride `q_0 ... q_{i-1}`.
+    axes: Vec<(u64, u64)>,
+    /// The position of `zeta_W^e` in the tensor layout, for each exponent `e`.
+    slot: Vec<u32>,
+    /// The reduced positions (every digit below `phi(q)`), in order: the coordinates.
+    kept: Vec<u32>,
     /// The primes `p` with `sqrt(p)` in the field (odd divisors of `W`, 2 when 8 divides `W`).
     allowed: Vec<u64>,
     /// Every square-free product `h` of allowed primes with `sqrt(h)`.
@@ -209,22 +227,37 @@ impl Field {
         if poly.len() != phi + 1 || poly[phi] != 1 {
             return None;
         }
-        let mut red: Vec<Vec<i64>> = Vec::with_capacity(w as usize);
-        for k in 0..w as usize {
-            if k < phi {
-                let mut v = vec![0i64; phi];
-                v[k] = 1;
-                red.push(v);
-            } else {
-                let prev = &red[k - 1];
-                let lead = prev[phi - 1];
-                let mut v = vec![0i64; phi];
-                for j in 0..phi {
-                    let shifted = if j > 0 { prev[j - 1] } else { 0 };
-                    v[j] = shifted.checked_sub(lead.checked_mul(poly[j])?)?;
-                }
-                red.push(v);
+        let mut axes = Vec::new();
+        for p in primes_of(w) {
+            let mut q = 1;
+            while w.is_multiple_of(q * p) {
+                q *= p;
             }
+            axes.push((q, p));
+        }
+        let slot: Vec<u32> = (0..w)
+            .map(|e| {
+                let (mut pos, mut stride) = (0, 1);
+                for (q, _) in &axes {
+                    pos += (e % q) * stride;
+                    stride *= q;
+                }
+                pos as u32
+            })
+            .collect();
+        let kept: Vec<u32> = (0..w)
+            .filter(|&pos| {
+                let mut r = pos;
+                axes.iter().all(|(q, p)| {
+                    let d = r % q;
+                    r /= q;
+                    d < q / p * (p - 1)
+                })
+            })
+            .map(|pos| pos as u32)
+            .collect();
+        if kept.len() != phi {
+            return None;
         }
         let allowed: Vec<u64> = primes_of(w)
             .into_iter()
@@ -263,22 +296,132 @@ impl Field {
         Some(Field {
             w,
             phi,
-            red,
+            poly,
+            red: OnceLock::new(),
+            axes,
+            slot,
+            kept,
             allowed,
             sqrts,
         })
     }
 
-    fn reduce(&self, s: &Sparse) -> Vec<Rat> {
+    /// The power-basis reduction of every power of `zeta_W` (charged on first use).
+    fn red(&self) -> Result<&Vec<Vec<i64>>, ScalarError> {
+        if self.red.get().is_none() {
+            super::charge(self.w.saturating_mul(self.phi as u64))?;
+        }
+        let (w, phi, poly) = (self.w as usize, self.phi, &self.poly);
+        self.red
+            .get_or_init(|| {
+                let mut red: Vec<Vec<i64>> = Vec::with_capacity(w);
+                for k in 0..w {
+                    let mut v = vec![0i64; phi];
+                    if k < phi {
+                        v[k] = 1;
+                    } else {
+                        let prev = &red[k - 1];
+                        let lead = prev[phi - 1];
+                        for j in 0..phi {
+                            let shifted = if j > 0 { prev[j - 1] } else { 0 };
+                            v[j] = shifted.checked_sub(lead.checked_mul(poly[j])?)?;
+                        }
+                    }
+                    red.push(v);
+                }
+                Some(red)
+            })
+            .as_ref()
+            .ok_or_else(|| {
+                ScalarError::OutOfRange(format!("the cyclotomic polynomial of order {w}"))
+            })
+    }
+
+    fn reduce(&self, s: &Sparse) -> Result<Vec<Rat>, ScalarError> {
+        let red = self.red()?;
         let mut out = vec![Rat::zero(); self.phi];
         for (e, c) in s {
-            for (o, r) in out.iter_mut().zip(&self.red[*e as usize]) {
+            for (o, r) in out.iter_mut().zip(&red[*e as usize]) {
                 if *r != 0 {
                     *o += c * Rat::from_integer(BigInt::from(*r));
                 }
             }
         }
-        out
+        Ok(out)
+    }
+
+    /// Reduces a vector in the tensor layout along every axis (see the type's docs), with
+    /// `sub(a, b) = a - b` (`None` stops).
+    fn crt_reduce<T: Copy + PartialEq>(
+        &self,
+        a: &mut [T],
+        zero: T,
+        sub: impl Fn(T, T) -> Option<T>,
+    ) -> Option<()> {
+        let mut stride = 1usize;
+        for &(q, p) in &self.axes {
+            let (q, p) = (q as usize, p as usize);
+            let m = q / p;
+            let block = q * stride;
+            for hi in (0..a.len()).step_by(block) {
+                for d in (p - 1) * m..q {
+                    let r = d - (p - 1) * m;
+                    for lo in 0..stride {
+                        let v = a[hi + d * stride + lo];
+                        if v == zero {
+                            continue;
+                        }
+                        a[hi + d * stride + lo] = zero;
+                        for j in 0..p - 1 {
+                            let t = &mut a[hi + (r + j * m) * stride + lo];
+                            *t = sub(*t, v)?;
+                        }
+                    }
+                }
+            }
+            stride = block;
+        }
+        Some(())
+    }
+
+    /// `s` in the tensor basis modulo [`modp::P`]; `None` when `P` divides a denominator.
+    fn reduce_mod(&self, s: &Sparse) -> Option<Vec<u64>> {
+        let mut a = vec![0u64; self.w as usize];
+        for (e, c) in s {
+            let t = &mut a[self.slot[*e as usize] as usize];
+            *t = modp::add(*t, modp::from_rat(c)?);
+        }
+        self.crt_reduce(&mut a, 0, |x, y| Some(modp::sub(x, y)))?;
+        Some(self.kept.iter().map(|&k| a[k as usize]).collect())
+    }
+
+    /// Whether `sum x_j v_j = t` exactly, for `v_j` given by their doubled integer
+    /// coefficients; `None` when an integer overflows on the way (nothing is decided then).
+    fn combination_is(&self, xs: &[(usize, Rat)], vs: &[Ints], t: &Sparse) -> Option<bool> {
+        let mut d = BigInt::from(2);
+        for (_, x) in xs {
+            d = d.lcm(x.denom());
+        }
+        for c in t.values() {
+            d = d.lcm(c.denom());
+        }
+        let mut acc = vec![0i128; self.w as usize];
+        for (j, x) in xs {
+            // (d x) (2 v) = 2 d (x v).
+            let k = (x * Rat::from_integer(d.clone())).to_integer();
+            let k = k.to_i128()?;
+            for (e, c2) in &vs[*j] {
+                let a = &mut acc[self.slot[*e as usize] as usize];
+                *a = a.checked_add(k.checked_mul(i128::from(*c2))?)?;
+            }
+        }
+        for (e, c) in t {
+            let k = (c * Rat::from_integer(BigInt::from(2) * &d)).to_integer();
+            let a = &mut acc[self.slot[*e as usize] as usize];
+            *a = a.checked_sub(k.to_i128()?)?;
+        }
+        self.crt_reduce(&mut acc, 0, |x, y| x.checked_sub(y))?;
+        Some(acc.iter().all(|a| *a == 0))
     }
 
     fn sqrt(&self, h: u64) -> &Sparse {
@@ -453,11 +596,11 @@ impl Basis {
                     s.insert(w - a, half);
                     s
                 };
-                if !span.independent(&f.reduce(&c)) {
+                if !span.independent(&f.reduce(&c)?) {
                     continue;
                 }
                 for (h, r) in &f.sqrts {
-                    span.push(f.reduce(&sparse_mul(r, &c, w)));
+                    span.push(f.reduce(&sparse_mul(r, &c, w))?);
                     cols.push(Col {
                         h: *h,
                         angle: Small::new(2 * k, l as i64),
@@ -477,13 +620,13 @@ impl Basis {
                 let a = (k.rem_euclid(m as i64) as u64) * (w / m);
                 super::charge((span.rows.len() * f.phi) as u64 + 1)?;
                 let c = mono(a, Rat::one());
-                if !span.independent(&f.reduce(&c)) {
+                if !span.independent(&f.reduce(&c)?) {
                     continue;
                 }
                 let ic = sparse_mul(&i, &c, w);
                 for (h, r) in &f.sqrts {
                     for (imag, x) in [(false, &c), (true, &ic)] {
-                        span.push(f.reduce(&sparse_mul(r, x, w)));
+                        span.push(f.reduce(&sparse_mul(r, x, w))?);
                         cols.push(Col {
                             h: *h,
                             angle: Small::new(2 * k, m as i64),
@@ -494,6 +637,218 @@ impl Basis {
             }
         }
         Ok(Basis { span, cols })
+    }
+}
+
+/// The exact value of a column, doubled into integers (`None` past `i64`).
+fn ints(s: &Sparse) -> Option<Ints> {
+    s.iter()
+        .map(|(e, c)| {
+            let c2 = c * Rat::from_integer(2.into());
+            c2.is_integer()
+                .then(|| c2.to_integer().to_i64())
+                .flatten()
+                .map(|c| (*e, c))
+        })
+        .collect()
+}
+
+/// A term's value without its rational coefficient: `sqrt(h)` times `1`, `cos`, `sin` (real
+/// groups) or `e^{ia}`, `-i e^{ia}` (complex groups) at `zeta_W^a`.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+struct Unit {
+    h: u64,
+    a: u64,
+    kind: u8,
+}
+
+const UNIT_ONE: u8 = 0;
+const UNIT_COS: u8 = 1;
+const UNIT_SIN: u8 = 2;
+
+impl Unit {
+    fn value(&self, f: &Field, real: bool) -> Sparse {
+        let (w, a) = (f.w, self.a);
+        let half = Rat::new(1.into(), 2.into());
+        let trig = match (real, self.kind) {
+            (true, UNIT_ONE) => mono(0, Rat::one()),
+            (true, UNIT_COS) => {
+                let mut s = mono(a, half.clone());
+                *s.entry((w - a) % w).or_insert_with(Rat::zero) += half;
+                s
+            }
+            (true, _) => {
+                // sin = -i (zeta^a - zeta^-a) / 2.
+                let q4 = 3 * w / 4;
+                let mut s = mono((a + q4) % w, half.clone());
+                *s.entry((w - a + q4) % w).or_insert_with(Rat::zero) -= half;
+                s
+            }
+            (false, UNIT_COS) => mono(a, Rat::one()),
+            (false, _) => mono((a + 3 * w / 4) % w, Rat::one()),
+        };
+        let mut out = sparse_mul(f.sqrt(self.h), &trig, w);
+        out.retain(|_, c| !c.is_zero());
+        out
+    }
+}
+
+/// The exact coordinates of a vector over the columns of a [`FastBasis`] span.
+type Coords = Vec<(usize, Rat)>;
+
+/// The basis of [`Basis`] (the same columns, in the same order) found modulo a prime and
+/// checked exactly: every column taken is independent of the ones before modulo `P`, hence
+/// over `Q`; every candidate left out was shown to depend on the ones before by exact
+/// coordinates (small rationals read back from their residues, the combination checked in
+/// `Q(zeta_W)`). The span is completed to the whole field (to its real subfield for real
+/// bases, whose values are real), so every value has coordinates; a value is in the basis'
+/// field when those past `cols` are zero.
+struct FastBasis {
+    cols: Vec<Col>,
+    span: ModSpan,
+    /// The exact value of every span column (basis columns, then the completion).
+    vecs: Vec<Ints>,
+    units: Mutex<HashMap<Unit, Option<Arc<Coords>>>>,
+}
+
+impl FastBasis {
+    /// `Ok(None)` when a check fails (the caller takes the exact path).
+    fn new(f: &Field, m: u64, real: bool) -> Result<Option<FastBasis>, ScalarError> {
+        let w = f.w;
+        let mut fb = FastBasis {
+            cols: Vec::new(),
+            span: ModSpan::new(),
+            vecs: Vec::new(),
+            units: Mutex::new(HashMap::new()),
+        };
+        // Candidates in the order of `Basis::new`: (angle numerator over l, value).
+        let mut cands: Vec<(i64, i64, Sparse, Vec<Sparse>)> = Vec::new();
+        let l = if real { lcm(2, m) } else { m };
+        let i = mono(w / 4, Rat::one());
+        if real {
+            let mut ks: Vec<i64> = (0..).take_while(|k| 4 * k < l as i64).collect();
+            ks.sort_by_key(|&k| (rank(k, l), k));
+            for k in ks {
+                let a = k as u64 * (w / l);
+                let c = if a == 0 {
+                    mono(0, Rat::one())
+                } else {
+                    let half = Rat::new(1.into(), 2.into());
+                    let mut s = mono(a, half.clone());
+                    s.insert(w - a, half);
+                    s
+                };
+                cands.push((k, l as i64, c.clone(), vec![c]));
+            }
+        } else {
+            let bound = m as i64;
+            let mut ks: Vec<i64> = (-(bound / 8)..=bound / 8)
+                .filter(|k| 8 * k > -bound)
+                .collect();
+            ks.sort_by_key(|&k| (rank(k, m), k.abs(), k < 0));
+            for k in ks {
+                let a = (k.rem_euclid(m as i64) as u64) * (w / m);
+                let c = mono(a, Rat::one());
+                let ic = sparse_mul(&i, &c, w);
+                cands.push((k, m as i64, c.clone(), vec![c, ic]));
+            }
+        }
+        for (k, l, c, parts) in cands {
+            super::charge((fb.span.rank() * f.phi) as u64 / 256 + 1)?;
+            let Some(v) = f.reduce_mod(&c) else {
+                return Ok(None);
+            };
+            if let Some(xs) = fb.span.solve(v) {
+                // Dependent modulo P: shown over Q, or the exact path decides.
+                let Some(xs) = xs
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, x)| **x != 0)
+                    .map(|(j, x)| modp::reconstruct(*x).map(|r| (j, r)))
+                    .collect::<Option<Coords>>()
+                else {
+                    return Ok(None);
+                };
+                if f.combination_is(&xs, &fb.vecs, &c) != Some(true) {
+                    return Ok(None);
+                }
+                continue;
+            }
+            for (h, r) in &f.sqrts {
+                for (imag, x) in parts.iter().enumerate() {
+                    let val = sparse_mul(r, x, w);
+                    let (Some(v), Some(n)) = (f.reduce_mod(&val), ints(&val)) else {
+                        return Ok(None);
+                    };
+                    if !fb.span.push(v) {
+                        return Ok(None);
+                    }
+                    fb.vecs.push(n);
+                    fb.cols.push(Col {
+                        h: *h,
+                        angle: Small::new(2 * k, l),
+                        imag: imag == 1,
+                    });
+                }
+            }
+        }
+        // Completed to the real subfield (real groups hold real values only) with
+        // cos(2 pi j / W), or to the whole field with the coordinate vectors.
+        let full = if real { f.phi / 2 } else { f.phi };
+        let mut j = 0;
+        while fb.span.rank() < full {
+            if j >= f.phi.max(w as usize) {
+                return Ok(None);
+            }
+            super::charge((fb.span.rank() * f.phi) as u64 / 256 + 1)?;
+            let (v, val) = if real {
+                let e = j as u64;
+                let mut c = mono(e, Rat::new(1.into(), 2.into()));
+                *c.entry((w - e) % w).or_insert_with(Rat::zero) += Rat::new(1.into(), 2.into());
+                let Some(v) = f.reduce_mod(&c) else {
+                    return Ok(None);
+                };
+                let Some(n) = ints(&c) else {
+                    return Ok(None);
+                };
+                (v, n)
+            } else {
+                let mut v = vec![0u64; f.phi];
+                v[j] = 1;
+                // The coordinate vector j is zeta_W^e for the exponent e in its slot.
+                let pos = f.kept[j];
+                let e = f.slot.iter().position(|s| *s == pos).expect("a slot") as u64;
+                (v, vec![(e, 2)])
+            };
+            if fb.span.push(v) {
+                fb.vecs.push(val);
+            }
+            j += 1;
+        }
+        Ok(Some(fb))
+    }
+
+    /// The exact coordinates of a unit over the span (`None` when they cannot be shown).
+    fn unit(&self, f: &Field, u: Unit, real: bool) -> Result<Option<Arc<Coords>>, ScalarError> {
+        if let Some(c) = self.units.lock().map_err(poisoned)?.get(&u) {
+            return Ok(c.clone());
+        }
+        super::charge((f.phi * f.phi) as u64 / 256 + 1)?;
+        let t = u.value(f, real);
+        let xs = f
+            .reduce_mod(&t)
+            .and_then(|v| self.span.solve(v))
+            .and_then(|xs| {
+                xs.iter()
+                    .enumerate()
+                    .filter(|(_, x)| **x != 0)
+                    .map(|(j, x)| modp::reconstruct(*x).map(|r| (j, r)))
+                    .collect::<Option<Coords>>()
+            })
+            .filter(|xs| f.combination_is(xs, &self.vecs, &t) == Some(true))
+            .map(Arc::new);
+        self.units.lock().map_err(poisoned)?.insert(u, xs.clone());
+        Ok(xs)
     }
 }
 
@@ -510,7 +865,7 @@ fn field(w: u64) -> Result<Arc<Field>, ScalarError> {
     if let Some(f) = cache.lock().map_err(poisoned)?.get(&w) {
         return Ok(f.clone());
     }
-    super::charge(w.saturating_mul(totient(w)))?;
+    super::charge(w)?;
     let f = Arc::new(Field::new(w).ok_or_else(|| {
         ScalarError::OutOfRange(format!("the cyclotomic polynomial of order {w}"))
     })?);
@@ -526,6 +881,21 @@ fn basis(f: &Field, m: u64, real: bool) -> Result<Arc<Basis>, ScalarError> {
         return Ok(b.clone());
     }
     let b = Arc::new(Basis::new(f, m, real)?);
+    cache.lock().map_err(poisoned)?.insert(key, b.clone());
+    Ok(b)
+}
+
+/// The [`FastBasis`] of `(W, M, real)`, computed once per process; `None` when its checks
+/// failed (the exact [`Basis`] is used then).
+fn fast_basis(f: &Field, m: u64, real: bool) -> Result<Option<Arc<FastBasis>>, ScalarError> {
+    type FastCache = OnceLock<Mutex<HashMap<(u64, u64, bool), Option<Arc<FastBasis>>>>>;
+    static CACHE: FastCache = OnceLock::new();
+    let cache = CACHE.get_or_init(Default::default);
+    let key = (f.w, m, real);
+    if let Some(b) = cache.lock().map_err(poisoned)?.get(&key) {
+        return Ok(b.clone());
+    }
+    let b = FastBasis::new(f, m, real)?.map(Arc::new);
     cache.lock().map_err(poisoned)?.insert(key, b.clone());
     Ok(b)
 }
@@ -564,6 +934,144 @@ pub(crate) fn canonicalize(terms: &[Term]) -> Result<Vec<Term>, ScalarError> {
 }
 
 fn canonical_group(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
+    match canonical_group_fast(g)? {
+        Some(out) => Ok(out),
+        None => canonical_group_exact(g),
+    }
+}
+
+/// [`canonical_group_exact`] through the [`FastBasis`]es; `None` when one of their checks
+/// failed.
+fn canonical_group_fast(g: &[&Term]) -> Result<Option<Vec<Term>>, ScalarError> {
+    let Some(first) = g.first() else {
+        return Ok(Some(Vec::new()));
+    };
+    let real = first.mode.freq.is_empty();
+    let w = level_of(g.iter().copied())?;
+    super::charge(g.len() as u64 * totient(w) / 128 + 1)?;
+    let f = field(w)?;
+    let mut ys: BTreeMap<u64, BTreeMap<Unit, Rat>> = BTreeMap::new();
+    for t in g {
+        let (s, h) = f.split(t.rad);
+        let (a, kind) = if real && t.mode.is_unit() {
+            (0, UNIT_ONE)
+        } else {
+            let kind = if t.mode.sin { UNIT_SIN } else { UNIT_COS };
+            (pi_exponent(&t.mode.pi, w), kind)
+        };
+        *ys.entry(s)
+            .or_default()
+            .entry(Unit { h, a, kind })
+            .or_insert_with(Rat::zero) += t.coef.to_big();
+    }
+    enum Fit {
+        In(Vec<Vec<Rat>>),
+        Out,
+        Unsure,
+    }
+    let fits = |m: u64| -> Result<Fit, ScalarError> {
+        let Some(b) = fast_basis(&f, m, real)? else {
+            return Ok(Fit::Unsure);
+        };
+        let mut sol = Vec::with_capacity(ys.len());
+        for units in ys.values() {
+            let mut x = vec![Rat::zero(); b.span.cols];
+            for (u, q) in units {
+                let Some(cs) = b.unit(&f, *u, real)? else {
+                    return Ok(Fit::Unsure);
+                };
+                for (j, c) in cs.iter() {
+                    x[*j] += q * c;
+                }
+            }
+            if x[b.cols.len()..].iter().any(|v| !v.is_zero()) {
+                return Ok(Fit::Out);
+            }
+            x.truncate(b.cols.len());
+            sol.push(x);
+        }
+        Ok(Fit::In(sol))
+    };
+    let mut m = w;
+    let mut sol = match fits(m)? {
+        Fit::In(sol) => sol,
+        Fit::Out | Fit::Unsure => return Ok(None),
+    };
+    'descend: loop {
+        for p in primes_of(m) {
+            let n = m / p;
+            if !n.is_multiple_of(24) {
+                continue;
+            }
+            match fits(n)? {
+                Fit::In(s) => {
+                    m = n;
+                    sol = s;
+                    continue 'descend;
+                }
+                Fit::Out => {}
+                Fit::Unsure => return Ok(None),
+            }
+        }
+        break;
+    }
+    let Some(b) = fast_basis(&f, m, real)? else {
+        return Ok(None);
+    };
+    let classes: Vec<u64> = ys.keys().copied().collect();
+    terms_in_basis(first, real, &classes, sol, &b.cols).map(Some)
+}
+
+/// The terms of a group from its coordinates: for each class `s` of square roots outside the
+/// field, `x_j sqrt(s) b_j` over the basis columns `b_j`.
+fn terms_in_basis(
+    first: &Term,
+    real: bool,
+    classes: &[u64],
+    sol: Vec<Vec<Rat>>,
+    cols: &[Col],
+) -> Result<Vec<Term>, ScalarError> {
+    let mut out = Vec::new();
+    for (s, xs) in classes.iter().zip(sol) {
+        for (col, x) in cols.iter().zip(xs) {
+            if x.is_zero() {
+                continue;
+            }
+            let (rad, k) = rad_mul(*s, col.h)
+                .ok_or_else(|| ScalarError::OutOfRange("radicand too large".into()))?;
+            let mut coef = x * Rat::from_integer(k.into());
+            let mode = if col.angle.is_zero() && real {
+                Mode::unit()
+            } else {
+                let two = Small::from_integer(2);
+                let pi = if col.angle.is_negative() {
+                    col.angle + two
+                } else {
+                    col.angle
+                };
+                if col.imag {
+                    coef = -coef;
+                }
+                Mode {
+                    sin: col.imag,
+                    freq: first.mode.freq.clone(),
+                    pi,
+                }
+            };
+            out.push(Term {
+                mode,
+                mono: first.mono.clone(),
+                rad,
+                coef: Q::big(coef),
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// The canonical terms of a group by exact dense linear algebra over `Q` (the reference the
+/// fast path is checked against, and its fallback).
+fn canonical_group_exact(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
     let Some(first) = g.first() else {
         return Ok(Vec::new());
     };
@@ -606,7 +1114,10 @@ fn canonical_group(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
             *y.entry(e).or_insert_with(Rat::zero) += c;
         }
     }
-    let ys: Vec<(u64, Vec<Rat>)> = ys.into_iter().map(|(s, y)| (s, f.reduce(&y))).collect();
+    let ys: Vec<(u64, Vec<Rat>)> = ys
+        .into_iter()
+        .map(|(s, y)| Ok((s, f.reduce(&y)?)))
+        .collect::<Result<_, ScalarError>>()?;
     let fits = |m: u64| -> Result<Option<Vec<Vec<Rat>>>, ScalarError> {
         let b = basis(&f, m, real)?;
         Ok(ys.iter().map(|(_, y)| b.span.solve(y.clone())).collect())
@@ -630,40 +1141,44 @@ fn canonical_group(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
         break;
     }
     let b = basis(&f, m, real)?;
-    let mut out = Vec::new();
-    for ((s, _), xs) in ys.iter().zip(sol) {
-        for (col, x) in b.cols.iter().zip(xs) {
-            if x.is_zero() {
+    let classes: Vec<u64> = ys.iter().map(|(s, _)| *s).collect();
+    terms_in_basis(first, real, &classes, sol, &b.cols)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn key(cols: &[Col]) -> Vec<(u64, Small, bool)> {
+        cols.iter().map(|c| (c.h, c.angle, c.imag)).collect()
+    }
+
+    /// The basis found modulo a prime and checked is the exact dense one, column for column,
+    /// for every field of degree up to 96 and every subfield level, real and complex.
+    #[test]
+    fn fast_bases_are_the_exact_bases() {
+        let mut checked = 0;
+        for w in (24..=24 * 30).step_by(24) {
+            if totient(w) > 96 {
                 continue;
             }
-            let (rad, k) = rad_mul(*s, col.h)
-                .ok_or_else(|| ScalarError::OutOfRange("radicand too large".into()))?;
-            let mut coef = x * Rat::from_integer(k.into());
-            let mode = if col.angle.is_zero() && real {
-                Mode::unit()
-            } else {
-                let two = Small::from_integer(2);
-                let pi = if col.angle.is_negative() {
-                    col.angle + two
-                } else {
-                    col.angle
-                };
-                if col.imag {
-                    coef = -coef;
+            let f = Field::new(w).expect("field");
+            for m in (24..=w).step_by(24).filter(|m| w.is_multiple_of(*m)) {
+                for real in [true, false] {
+                    let fast = FastBasis::new(&f, m, real)
+                        .expect("budget")
+                        .expect("checked");
+                    let exact = Basis::new(&f, m, real).expect("budget");
+                    assert_eq!(
+                        key(&fast.cols),
+                        key(&exact.cols),
+                        "W = {w}, M = {m}, {real}"
+                    );
+                    assert_eq!(fast.span.rank(), if real { f.phi / 2 } else { f.phi });
+                    checked += 1;
                 }
-                Mode {
-                    sin: col.imag,
-                    freq: first.mode.freq.clone(),
-                    pi,
-                }
-            };
-            out.push(Term {
-                mode,
-                mono: first.mono.clone(),
-                rad,
-                coef: Q::big(coef),
-            });
+            }
         }
+        assert!(checked > 40, "{checked}");
     }
-    Ok(out)
 }

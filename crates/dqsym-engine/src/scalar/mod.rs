@@ -30,6 +30,7 @@ mod ctx;
 mod cyclo;
 mod decimal;
 mod frac;
+mod modp;
 mod par;
 pub(crate) mod q;
 

@@ -1,0 +1,189 @@
+//! A closed-form candidate for scalars whose constants are products of constant cosines and
+//! sines: `cos(pi/7) cos(pi/9)` is canonically a sum over `pi/63` (its field's basis), but
+//! reads shorter as the product. The scalar stays canonical; this is display only.
+//!
+//! For a scalar without symbolic angles, `sum_m c_m m` over monomials `m` with constant
+//! coefficients `c_m`, the candidates are `P sum_m r_m m` with `r_m` rational and `P` a product
+//! of one to three factors `cos(k pi/n)` or `sin(k pi/n)` (repeats are powers) at the angles of
+//! the scalar's field that are not multiples of `pi/12` (three only at the terms' own
+//! denominators). They are found numerically (every
+//! `c_m / P` a small rational) and then, like every candidate, checked exactly by the caller.
+
+use super::alt::{mul, num, trig};
+use super::expr::Expr;
+use crate::scalar::{MonoRc, Small, Term, Q};
+use crate::Scalar;
+use num_integer::Integer;
+use num_rational::BigRational as Rat;
+use std::collections::BTreeMap;
+
+/// The most candidate factors for products of two, and of three (those at the terms' own
+/// denominators).
+const MAX_PAIRS: usize = 700;
+const MAX_TRIPLES: usize = 96;
+
+/// The most products returned (the caller keeps the cheapest one that checks).
+const MAX_FOUND: usize = 12;
+
+/// The rational `c_m / P` of each monomial.
+type Ratios = Vec<(MonoRc, Rat)>;
+
+/// The value of a term without its monomial.
+fn value(t: &Term) -> Option<f64> {
+    let a = std::f64::consts::PI * (*t.mode.pi.numer() as f64) / (*t.mode.pi.denom() as f64);
+    let f = if t.mode.is_unit() {
+        1.0
+    } else if t.mode.sin {
+        a.sin()
+    } else {
+        a.cos()
+    };
+    Some(t.coef.to_f64()? * (t.rad as f64).sqrt() * f)
+}
+
+/// A rational with a denominator up to 1000 within `1e-13` (relative) of `v`: the
+/// continued-fraction convergents, in floats until one fits.
+fn rational(v: f64) -> Option<Rat> {
+    if !v.is_finite() || v.abs() > 1e9 {
+        return None;
+    }
+    let (mut h0, mut h1, mut k0, mut k1) = (0f64, 1f64, 1f64, 0f64);
+    let mut x = v;
+    loop {
+        let a = x.floor();
+        (h0, h1) = (h1, a * h1 + h0);
+        (k0, k1) = (k1, a * k1 + k0);
+        if k1 > 1000.0 {
+            return None;
+        }
+        if (v - h1 / k1).abs() < 1e-13 * (1.0 + v.abs()) {
+            return Some(Rat::new((h1 as i64).into(), (k1 as i64).into()));
+        }
+        let frac = x - a;
+        if frac.abs() < 1e-15 {
+            return None;
+        }
+        x = 1.0 / frac;
+    }
+}
+
+/// Candidates `P sum_m r_m m` (see the module docs); empty when the scalar has symbolic
+/// angles or no constant outside the multiples of `pi/12`.
+pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
+    if t.iter().any(|u| !u.mode.freq.is_empty()) {
+        return Vec::new();
+    }
+    let n = t
+        .iter()
+        .fold(24i64, |acc, u| acc.lcm(&(2 * u.mode.pi.denom())));
+    if n == 24 || n > 20_000 {
+        return Vec::new();
+    }
+    let mut coefs: BTreeMap<&MonoRc, f64> = BTreeMap::new();
+    for u in t {
+        let Some(v) = value(u) else {
+            return Vec::new();
+        };
+        *coefs.entry(&u.mono).or_insert(0.0) += v;
+    }
+    if coefs.values().any(|c| c.abs() < 1e-12) {
+        return Vec::new();
+    }
+    // cos(k pi/n) for 0 < k < n/2 off the multiples of pi/12, named by the smallest
+    // denominator (cos(k pi/n) = sin((n/2 - k) pi/n)), cosine first.
+    let mut factors: Vec<(f64, bool, Small)> = (1..n / 2)
+        .filter(|k| (12 * k) % n != 0)
+        .map(|k| {
+            let c = Small::new(k, n);
+            let s = Small::new(n / 2 - k, n);
+            let v = (std::f64::consts::PI * k as f64 / n as f64).cos();
+            if s.denom() < c.denom() {
+                (v, true, s)
+            } else {
+                (v, false, c)
+            }
+        })
+        .collect();
+    factors.sort_by_key(|(_, sin, a)| (*a.denom(), *a.numer(), *sin));
+    let f = factors.len();
+    let fits = |p: f64| -> Option<Ratios> {
+        coefs
+            .iter()
+            .map(|(m, c)| rational(c / p).map(|r| ((*m).clone(), r)))
+            .collect()
+    };
+    let mut found: Vec<(Vec<usize>, Ratios)> = Vec::new();
+    let search = |idx: &[usize], found: &mut Vec<_>| {
+        let p: f64 = idx.iter().map(|&i| factors[i].0).product();
+        if let Some(r) = fits(p) {
+            found.push((idx.to_vec(), r));
+        }
+    };
+    for i in 0..f {
+        search(&[i], &mut found);
+    }
+    // Pairs among all the angles or, for large fields, among those whose denominator divides
+    // the terms' (triples only among those: pi/7 and pi/9 for a sum over pi/63).
+    let l = t.iter().fold(1i64, |acc, u| acc.lcm(u.mode.pi.denom()));
+    let near: Vec<usize> = (0..f).filter(|&i| l % factors[i].2.denom() == 0).collect();
+    let all: Vec<usize> = (0..f).collect();
+    let pairs = if f <= MAX_PAIRS { &all } else { &near };
+    if pairs.len() <= MAX_PAIRS {
+        for (a, &i) in pairs.iter().enumerate() {
+            for &j in &pairs[a..] {
+                search(&[i, j], &mut found);
+            }
+        }
+    }
+    if near.len() <= MAX_TRIPLES {
+        for (a, &i) in near.iter().enumerate() {
+            for (b, &j) in near.iter().enumerate().skip(a) {
+                for &k in &near[b..] {
+                    search(&[i, j, k], &mut found);
+                }
+            }
+        }
+    }
+    // Fewest factors first (the numeric search also finds chance matches, checked later).
+    found.sort_by_key(|(idx, _)| idx.len());
+    found.truncate(MAX_FOUND);
+    found
+        .into_iter()
+        .filter_map(|(idx, r)| {
+            let rest = Scalar::from_terms(
+                r.into_iter()
+                    .map(|(mono, q)| Term {
+                        mode: crate::scalar::Mode::unit(),
+                        mono,
+                        rad: 1,
+                        coef: Q::big(q),
+                    })
+                    .collect(),
+            );
+            let mut p: Option<Expr> = None;
+            let mut k = 0;
+            while k < idx.len() {
+                let run = idx[k..].iter().take_while(|&&i| i == idx[k]).count();
+                let (_, sin, a) = &factors[idx[k]];
+                let mut x = trig(*sin, Vec::new(), *a);
+                if run > 1 {
+                    x = Expr::Pow(Box::new(x), run as u32);
+                }
+                p = Some(match p {
+                    Some(p) => mul(p, x),
+                    None => x,
+                });
+                k += run;
+            }
+            let p = p?;
+            let e = match rest.terms().ok()? {
+                [] => return None,
+                [u] if u.mode.is_unit() && u.mono.is_empty() && u.rad == 1 => {
+                    mul(num(u.coef.to_big()), p)
+                }
+                _ => mul(super::closed_form(&rest).ok()?, p),
+            };
+            Some(e)
+        })
+        .collect()
+}
