@@ -45,10 +45,12 @@ pub(super) fn best_alternative(x: &Scalar) -> Option<Expr> {
         cands.extend(sum_to_product(t));
         cands.extend(single_angle(t));
         cands.extend(separable(t));
+        cands.extend(super::cspoly::factored_forms(t));
     }
     cands.extend(product(t));
     cands.extend(constant_trig(x, t));
     cands.sort_by_key(full_cost);
+    if std::env::var("DQ_DBG").is_ok() { for c in &cands { eprintln!("cand {:?} {}", full_cost(c), crate::print::plain(c, &Default::default())); } }
     cands.into_iter().find(|e| e.to_scalar() == *x)
 }
 
@@ -77,7 +79,7 @@ pub(super) fn full_cost(e: &Expr) -> (usize, usize, usize) {
     (c.ops + angle_ops(e), c.ops, c.calls)
 }
 
-fn mul(a: Expr, b: Expr) -> Expr {
+pub(super) fn mul(a: Expr, b: Expr) -> Expr {
     let parts = |e: Expr| match e {
         Expr::Mul(v) => v,
         Expr::Num(q) if q.is_one() => Vec::new(),
@@ -97,14 +99,14 @@ fn mul(a: Expr, b: Expr) -> Expr {
     }
 }
 
-fn neg(e: Expr) -> Expr {
+pub(super) fn neg(e: Expr) -> Expr {
     match e {
         Expr::Neg(e) => *e,
         e => Expr::Neg(Box::new(e)),
     }
 }
 
-fn num(q: Rat) -> Expr {
+pub(super) fn num(q: Rat) -> Expr {
     if q.is_negative() {
         neg(Expr::Num(-q))
     } else {
@@ -112,7 +114,7 @@ fn num(q: Rat) -> Expr {
     }
 }
 
-fn trig(sin: bool, terms: Vec<(Sym, Small)>, pi: Small) -> Expr {
+pub(super) fn trig(sin: bool, terms: Vec<(Sym, Small)>, pi: Small) -> Expr {
     Expr::Trig {
         f: crate::scalar::Trig::of(sin),
         angle: Angle { terms, pi },

@@ -8,12 +8,14 @@
 //! cosine or sine factored by its rational roots) when one is cheaper still. The result is re-canonicalized and compared with the input before it is returned.
 
 mod alt;
+mod cspoly;
 mod expr;
 mod factor;
 mod mon;
 mod notation;
 mod recombine;
 mod trace;
+mod zfactor;
 
 pub use crate::scalar::Trig;
 pub use expr::{Angle, Cost, Expr};
