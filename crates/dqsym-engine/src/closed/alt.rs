@@ -62,12 +62,17 @@ pub(super) fn full_cost(e: &Expr) -> (usize, usize, usize) {
         match e {
             Expr::Trig { angle, .. } => {
                 let terms = angle.terms.len() + usize::from(!angle.pi.is_zero());
+                // Over a common denominator `(q1 + q2)/2` (see `angle_text`): one division,
+                // and a multiplication per numerator other than 1.
+                let d = super::notation::common_denominator(angle).unwrap_or(1);
+                let scale = Small::from_integer(d);
                 let coefs = angle
                     .terms
                     .iter()
-                    .filter(|(s, k)| !k.abs().is_one() && !s.is_unit())
+                    .filter(|(s, k)| !(*k * scale).abs().is_one() && !s.is_unit())
                     .count()
-                    + usize::from(!angle.pi.abs().is_one() && !angle.pi.is_zero());
+                    + usize::from(!(angle.pi * scale).abs().is_one() && !angle.pi.is_zero())
+                    + usize::from(d > 1);
                 terms.saturating_sub(1) + coefs
             }
             Expr::Add(v) | Expr::Mul(v) => v.iter().map(angle_ops).sum(),
