@@ -45,12 +45,14 @@ pub(super) fn best_alternative(x: &Scalar) -> Option<Expr> {
         cands.extend(sum_to_product(t));
         cands.extend(single_angle(t));
         cands.extend(separable(t));
-        cands.extend(super::cspoly::factored_forms(t));
     }
     cands.extend(product(t));
     cands.extend(constant_trig(x, t));
-    cands.sort_by_key(full_cost);
-    if std::env::var("DQ_DBG").is_ok() { for c in &cands { eprintln!("cand {:?} {}", full_cost(c), crate::print::plain(c, &Default::default())); } }
+    // Last, so that on ties the candidates above are kept.
+    if t.len() <= MAX_TERMS {
+        cands.extend(super::cspoly::factored_forms(t));
+    }
+    cands.sort_by_key(choice_key);
     cands.into_iter().find(|e| e.to_scalar() == *x)
 }
 
@@ -82,6 +84,28 @@ pub(super) fn full_cost(e: &Expr) -> (usize, usize, usize) {
     }
     let c = e.cost();
     (c.ops + angle_ops(e), c.ops, c.calls)
+}
+
+/// The order candidates are chosen in: [`full_cost`]'s operations, then the operations with
+/// a power counted once as SymPy's `count_ops` counts it (`sin(x)^4` one operation, not three),
+/// then the rest of [`full_cost`].
+pub(super) fn choice_key(e: &Expr) -> (usize, usize, usize, usize) {
+    fn extra_pow(e: &Expr) -> usize {
+        match e {
+            Expr::Pow(x, n) => (*n as usize).saturating_sub(2) + extra_pow(x),
+            Expr::Add(v) | Expr::Mul(v) => v.iter().map(extra_pow).sum(),
+            Expr::Neg(x) => extra_pow(x),
+            _ => 0,
+        }
+    }
+    let (all, ops, calls) = full_cost(e);
+    (all, all - extra_pow(e), ops, calls)
+}
+
+/// Whether `a` is chosen over `b` ([`choice_key`]).
+pub(super) fn shorter(a: &Expr, b: &Expr) -> bool {
+    let (ka, kb) = (choice_key(a), choice_key(b));
+    (ka.0, ka.1) < (kb.0, kb.1)
 }
 
 pub(super) fn mul(a: Expr, b: Expr) -> Expr {

@@ -7,7 +7,7 @@
 //! (`cos(a)^2 - cos(b)^2 = (cos a - cos b)(cos a + cos b)`,
 //! `(1 + cos x)(1 - cos y)` from its expansion in `x + y` and `x - y`).
 
-use super::alt::{full_cost, mul, neg, num, trig};
+use super::alt::{mul, neg, num, shorter, trig};
 use super::expr::Expr;
 use super::zfactor::{factor, MPoly};
 use crate::scalar::atoms::Small;
@@ -23,7 +23,7 @@ const MAX_TERMS: usize = 24;
 /// The largest multiple of an angle's unit expanded.
 const MAX_MULTIPLE: i64 = 8;
 /// The most variables (cosines, sines and monomial symbols) of the polynomial.
-const MAX_VARS: usize = 9;
+const MAX_VARS: usize = 12;
 
 #[derive(Clone, PartialEq, Eq, PartialOrd, Ord)]
 enum Var {
@@ -235,8 +235,16 @@ fn factored_expr(p: &BTreeMap<Vec<u32>, Rat>, vars: &[Var]) -> Option<Expr> {
             Expr::Pow(Box::new(e), *m)
         });
     }
-    // Single atoms (c_x, s_x, symbols) first, then sums.
-    parts.sort_by_key(|e| matches!(e, Expr::Add(_)));
+    // Symbols first, then cosines and sines by angle, then sums.
+    fn rank(e: &Expr) -> (u8, Option<&super::expr::Angle>) {
+        match e {
+            Expr::Sym(_) => (0, None),
+            Expr::Trig { angle, .. } => (1, Some(angle)),
+            Expr::Pow(b, _) => (rank(b).0, rank(b).1),
+            _ => (2, None),
+        }
+    }
+    parts.sort_by(|a, b| rank(a).cmp(&rank(b)));
     let mut e = num(k);
     for part in parts {
         e = mul(e, part);
@@ -289,7 +297,7 @@ fn factor_expr(g: &MPoly, vars: &[Var]) -> Option<(bool, Expr)> {
     // `c_x c_y - s_x s_y`.
     let closed = super::closed_form(&poly.to_scalar()).ok();
     match closed {
-        Some(c) if full_cost(&c) < full_cost(&poly) => Some((negated, c)),
+        Some(c) if shorter(&c, &poly) => Some((negated, c)),
         _ => Some((negated, poly)),
     }
 }

@@ -119,7 +119,7 @@ fn disjoint_parts(x: &Scalar) -> bool {
 fn best_whole(x: &Scalar) -> Result<Expr, ScalarError> {
     let (w, _) = whole_form(x)?;
     let best = match alt::best_alternative(x) {
-        Some(a) if alt::full_cost(&a).0 < alt::full_cost(&w).0 => a,
+        Some(a) if alt::shorter(&a, &w) => a,
         _ => w,
     };
     if !cfg!(debug_assertions) && agrees_numerically(&best, x) {
@@ -168,7 +168,7 @@ fn best_of(
     };
     // A shorter form of another kind (checked exactly by `best_alternative`).
     let best = match alt::best_alternative(x) {
-        Some(a) if alt::full_cost(&a).0 < alt::full_cost(&best).0 => a,
+        Some(a) if alt::shorter(&a, &best) => a,
         _ => best,
     };
     if !cfg!(debug_assertions) && agrees_numerically(&best, x) {
@@ -336,7 +336,7 @@ pub fn closed_form_traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarEr
         (e.clone(), TraceStep::KeptWhole(e))
     };
     let (best, last) = match alt::best_alternative(x) {
-        Some(a) if alt::full_cost(&a).0 < alt::full_cost(&best).0 => {
+        Some(a) if alt::shorter(&a, &best) => {
             (a.clone(), TraceStep::Shorter(a))
         }
         _ => (best, last),
