@@ -148,6 +148,7 @@ fn candidates(t: &[Term]) -> Option<Vec<Expr>> {
     }
     let mut out = Vec::new();
     for r in readings {
+        out.extend(expanded_expr(&r, &vars));
         if let Some(e) = factored_expr(&r, &vars) {
             out.push(e);
         }
@@ -195,9 +196,8 @@ fn reduce(
     Some(out)
 }
 
-/// The factored polynomial as an expression, when it has at least two factors.
-fn factored_expr(p: &BTreeMap<Vec<u32>, Rat>, vars: &[Var]) -> Option<Expr> {
-    let n = vars.len();
+/// The polynomial over Z times `1/den`.
+fn integral(p: &BTreeMap<Vec<u32>, Rat>, n: usize) -> (MPoly, BigInt) {
     let den = p
         .values()
         .fold(BigInt::one(), |acc, q| acc.lcm(q.denom()));
@@ -205,7 +205,28 @@ fn factored_expr(p: &BTreeMap<Vec<u32>, Rat>, vars: &[Var]) -> Option<Expr> {
         .iter()
         .map(|(e, q)| (e.clone(), (q * Rat::from_integer(den.clone())).to_integer()))
         .collect();
-    let f = factor(&MPoly { n, terms })?;
+    (MPoly { n, terms }, den)
+}
+
+/// The reading itself, expanded: `l1^2 - l2^2 cos(b)^2`.
+fn expanded_expr(p: &BTreeMap<Vec<u32>, Rat>, vars: &[Var]) -> Option<Expr> {
+    let (g, den) = integral(p, vars.len());
+    let c = g.terms.values().fold(BigInt::zero(), |acc, c| acc.gcd(c));
+    let g = MPoly {
+        n: g.n,
+        terms: g.terms.iter().map(|(e, x)| (e.clone(), x / &c)).collect(),
+    };
+    let (negated, e) = poly_expr(&g, vars)?;
+    let k = Rat::new(if negated { -c } else { c }, den);
+    Some(mul(num(k), e))
+}
+
+/// The factored polynomial as an expression, when it has at least two factors; two factors
+/// whose product has a cheaper closed form of its own are shown as that
+/// (`(cos(2a) - cos(2b)) (1 + cos(c))` for `2 (cos a - cos b) (cos a + cos b) (1 + cos c)`).
+fn factored_expr(p: &BTreeMap<Vec<u32>, Rat>, vars: &[Var]) -> Option<Expr> {
+    let (poly, den) = integral(p, vars.len());
+    let f = factor(&poly)?;
     let count: u32 = f.factors.iter().map(|(_, m)| m).sum();
     if count < 2 {
         return None;
@@ -245,6 +266,25 @@ fn factored_expr(p: &BTreeMap<Vec<u32>, Rat>, vars: &[Var]) -> Option<Expr> {
         }
     }
     parts.sort_by(|a, b| rank(a).cmp(&rank(b)));
+    while parts.len() >= 3 {
+        let mut best: Option<(usize, usize, Expr)> = None;
+        for i in 0..parts.len() {
+            for j in i + 1..parts.len() {
+                let pair = mul(num(k.clone()), mul(parts[i].clone(), parts[j].clone()));
+                let Ok(c) = super::closed_form(&pair.to_scalar()) else {
+                    continue;
+                };
+                let bar = best.as_ref().map_or(&pair, |(_, _, b)| b);
+                if shorter(&c, &pair) && (best.is_none() || shorter(&c, bar)) {
+                    best = Some((i, j, c));
+                }
+            }
+        }
+        let Some((i, j, c)) = best else { break };
+        parts.remove(j);
+        parts[i] = c;
+        k = Rat::one();
+    }
     let mut e = num(k);
     for part in parts {
         e = mul(e, part);
@@ -256,6 +296,22 @@ fn factored_expr(p: &BTreeMap<Vec<u32>, Rat>, vars: &[Var]) -> Option<Expr> {
 /// moved into the number in front): as its polynomial, with no more negative terms than
 /// positive ones, or as its closed form when that is cheaper.
 fn factor_expr(g: &MPoly, vars: &[Var]) -> Option<(bool, Expr)> {
+    let (negated, poly) = poly_expr(g, vars)?;
+    if g.terms.len() < 2 {
+        return Some((negated, poly));
+    }
+    // Its own closed form (of the factor shown), when cheaper: `cos(x + y)` for
+    // `c_x c_y - s_x s_y`.
+    let closed = super::closed_form(&poly.to_scalar()).ok();
+    match closed {
+        Some(c) if shorter(&c, &poly) => Some((negated, c)),
+        _ => Some((negated, poly)),
+    }
+}
+
+/// A polynomial as its sum of monomials, with no more negative terms than positive ones, and
+/// whether it was negated for that.
+fn poly_expr(g: &MPoly, vars: &[Var]) -> Option<(bool, Expr)> {
     let negative = g.terms.values().filter(|c| c.is_negative()).count();
     let negated = 2 * negative > g.terms.len();
     // Leading monomials first among equals (reverse order of the keys).
@@ -270,7 +326,12 @@ fn factor_expr(g: &MPoly, vars: &[Var]) -> Option<(bool, Expr)> {
     let mut sum: Vec<Expr> = Vec::new();
     for (e, c) in &mons {
         let mut m = num(Rat::from_integer(c.abs()));
-        for (i, &x) in e.iter().enumerate() {
+        // Symbols first, then cosines and sines: `l2 cos(b)`.
+        let order = (0..e.len()).filter(|&i| matches!(vars[i], Var::Sym(_))).chain(
+            (0..e.len()).filter(|&i| !matches!(vars[i], Var::Sym(_))),
+        );
+        for i in order {
+            let x = e[i];
             if x == 0 {
                 continue;
             }
@@ -290,14 +351,5 @@ fn factor_expr(g: &MPoly, vars: &[Var]) -> Option<(bool, Expr)> {
         sum.sort_by_key(|e| matches!(e, Expr::Neg(_)));
         Expr::Add(sum)
     };
-    if g.terms.len() < 2 {
-        return Some((negated, poly));
-    }
-    // Its own closed form (of the factor shown), when cheaper: `cos(x + y)` for
-    // `c_x c_y - s_x s_y`.
-    let closed = super::closed_form(&poly.to_scalar()).ok();
-    match closed {
-        Some(c) if shorter(&c, &poly) => Some((negated, c)),
-        _ => Some((negated, poly)),
-    }
+    Some((negated, poly))
 }
