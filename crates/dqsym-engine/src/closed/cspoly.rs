@@ -23,7 +23,10 @@ const MAX_TERMS: usize = 24;
 /// The largest multiple of an angle's unit expanded.
 const MAX_MULTIPLE: i64 = 8;
 /// The most variables (cosines, sines and monomial symbols) of the polynomial.
-const MAX_VARS: usize = 12;
+const MAX_VARS: usize = 9;
+/// The most angle symbols: sums in more angles (the entries of a 6-joint chain) are left to
+/// the regrouping, which this search would only slow down.
+const MAX_ANGLES: usize = 3;
 
 #[derive(Clone, PartialEq, Eq, PartialOrd, Ord)]
 enum Var {
@@ -35,7 +38,9 @@ enum Var {
 type CPoly = BTreeMap<Vec<u32>, (Rat, Rat)>;
 
 fn c_add(p: &mut CPoly, e: Vec<u32>, re: Rat, im: Rat) {
-    let v = p.entry(e.clone()).or_insert_with(|| (Rat::zero(), Rat::zero()));
+    let v = p
+        .entry(e.clone())
+        .or_insert_with(|| (Rat::zero(), Rat::zero()));
     v.0 += re;
     v.1 += im;
     if v.0.is_zero() && v.1.is_zero() {
@@ -61,6 +66,9 @@ fn candidates(t: &[Term]) -> Option<Vec<Expr>> {
             return None;
         }
         for (s, k) in u.mode.freq.iter() {
+            if unit.len() == MAX_ANGLES && !unit.contains_key(s) {
+                return None;
+            }
             let e = unit.entry(s.clone()).or_insert(Small::one());
             *e = Small::new(1, e.denom().lcm(k.denom()));
         }
@@ -77,7 +85,7 @@ fn candidates(t: &[Term]) -> Option<Vec<Expr>> {
         vars.push(Var::Sin(s.clone(), *k));
     }
     vars.extend(syms.iter().cloned().map(Var::Sym));
-    if vars.is_empty() || vars.len() > MAX_VARS || unit.is_empty() {
+    if vars.is_empty() || vars.len() > MAX_VARS || unit.is_empty() || unit.len() > MAX_ANGLES {
         return None;
     }
     let n = vars.len();
@@ -198,9 +206,7 @@ fn reduce(
 
 /// The polynomial over Z times `1/den`.
 fn integral(p: &BTreeMap<Vec<u32>, Rat>, n: usize) -> (MPoly, BigInt) {
-    let den = p
-        .values()
-        .fold(BigInt::one(), |acc, q| acc.lcm(q.denom()));
+    let den = p.values().fold(BigInt::one(), |acc, q| acc.lcm(q.denom()));
     let terms: BTreeMap<Vec<u32>, BigInt> = p
         .iter()
         .map(|(e, q)| (e.clone(), (q * Rat::from_integer(den.clone())).to_integer()))
@@ -234,10 +240,15 @@ fn factored_expr(p: &BTreeMap<Vec<u32>, Rat>, vars: &[Var]) -> Option<Expr> {
     let mut k = Rat::new(f.content, den);
     // A negative number in front is absorbed by a factor of odd multiplicity with as many
     // negative terms as positive ones (`-(c - 1)` read `1 - c`).
-    let balanced = |g: &MPoly| 2 * g.terms.values().filter(|c| c.is_negative()).count() == g.terms.len();
+    let balanced =
+        |g: &MPoly| 2 * g.terms.values().filter(|c| c.is_negative()).count() == g.terms.len();
     let mut absorb = k
         .is_negative()
-        .then(|| f.factors.iter().position(|(g, m)| m % 2 == 1 && balanced(g)))
+        .then(|| {
+            f.factors
+                .iter()
+                .position(|(g, m)| m % 2 == 1 && balanced(g))
+        })
         .flatten();
     let mut parts: Vec<Expr> = Vec::new();
     for (i, (g, m)) in f.factors.iter().enumerate() {
@@ -327,9 +338,9 @@ fn poly_expr(g: &MPoly, vars: &[Var]) -> Option<(bool, Expr)> {
     for (e, c) in &mons {
         let mut m = num(Rat::from_integer(c.abs()));
         // Symbols first, then cosines and sines: `l2 cos(b)`.
-        let order = (0..e.len()).filter(|&i| matches!(vars[i], Var::Sym(_))).chain(
-            (0..e.len()).filter(|&i| !matches!(vars[i], Var::Sym(_))),
-        );
+        let order = (0..e.len())
+            .filter(|&i| matches!(vars[i], Var::Sym(_)))
+            .chain((0..e.len()).filter(|&i| !matches!(vars[i], Var::Sym(_))));
         for i in order {
             let x = e[i];
             if x == 0 {

@@ -336,9 +336,7 @@ pub fn closed_form_traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarEr
         (e.clone(), TraceStep::KeptWhole(e))
     };
     let (best, last) = match alt::best_alternative(x) {
-        Some(a) if alt::shorter(&a, &best) => {
-            (a.clone(), TraceStep::Shorter(a))
-        }
+        Some(a) if alt::shorter(&a, &best) => (a.clone(), TraceStep::Shorter(a)),
         _ => (best, last),
     };
     if best.to_scalar() == *x {

@@ -51,7 +51,11 @@ pub fn angle_text(angle: &Angle) -> String {
         Some(d) => {
             let scale = Small::from_integer(d);
             let whole = Angle {
-                terms: angle.terms.iter().map(|(s, k)| (s.clone(), *k * scale)).collect(),
+                terms: angle
+                    .terms
+                    .iter()
+                    .map(|(s, k)| (s.clone(), *k * scale))
+                    .collect(),
                 pi: angle.pi * scale,
             };
             format!("({})/{d}", sum_text(&whole))
