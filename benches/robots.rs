@@ -39,7 +39,7 @@ fn loading(c: &mut Criterion) {
             b.iter(|| black_box(parse(&text)))
         });
     }
-    let o = dqsym::UrdfOptions::default();
+    let o = dqsym::kin::UrdfOptions::default();
     g.bench_function("urdf_ur5", |b| {
         b.iter(|| black_box(dqsym::parse_urdf(UR5_URDF, "ur5.urdf", &o).expect("urdf")))
     });
@@ -47,7 +47,7 @@ fn loading(c: &mut Criterion) {
         .expect("urdf")
         .robot;
     g.bench_function("convert_ur5_to_dh", |b| {
-        b.iter(|| black_box(dqsym::robot_toml(&ur5, "ur5.urdf").expect("toml")))
+        b.iter(|| black_box(dqsym::app::robot_toml(&ur5, "ur5.urdf").expect("toml")))
     });
     g.finish();
 }

@@ -13,7 +13,10 @@
 //! must stop with a size error.
 
 use dqsym::{
-    closed_form, closed_form_cos_sin, dh_link, expanded_form, Cost, DualQuat, Scalar, ScalarError,
+    closed::{closed_form_cos_sin, expanded_form, Cost},
+    closed_form,
+    kin::dh_link,
+    DualQuat, Scalar, ScalarError,
 };
 use std::time::{Duration, Instant};
 

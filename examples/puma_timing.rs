@@ -2,7 +2,7 @@
 //! closed forms. `cargo run --release --example puma_timing [-- --dump]`; `--dump` prints every
 //! result (canonical forms and closed forms) so two builds can be compared textually.
 
-use dqsym::{closed_form, dh_link, plain, DualQuat, PlainOptions, Ring, Scalar};
+use dqsym::{closed_form, kin::dh_link, plain, DualQuat, PlainOptions, Ring, Scalar};
 use std::time::{Duration, Instant};
 
 fn links() -> Vec<DualQuat<Scalar>> {

@@ -10,6 +10,11 @@
 //! - [`walk`]: walkthroughs of a script or a robot file, as text, Markdown or an HTML page;
 //! - [`paper`]: the paper's worked examples, derived from the files of `examples/`.
 //!
+//! The core nouns are re-exported here; everything else is reached through its module
+//! (`dqsym::lang::parse_with`, `dqsym::walk::Config`, `dqsym::emit::rust_function`). The
+//! binary's dependencies (clap, rustyline, ctrlc) come with the default feature `cli`; a
+//! library user depends on `dqsym = { ..., default-features = false }` and builds none of them.
+//!
 //! ```
 //! use dqsym::{parse, Scalar, Session, Value};
 //!
@@ -29,23 +34,7 @@ pub mod walk;
 
 // The core nouns of the language, the walkthroughs and the paper.
 pub use lang::{
-    eval_scalar_text, parse, show, EvalError, Format, ParseError, Program, Session, ShowOptions,
-    Value,
+    eval_scalar_text, parse, show, EvalError, ParseError, Program, Session, ShowOptions, Value,
 };
 pub use paper::paper;
 pub use walk::{walk_html, walk_markdown, walk_robot, walk_script, walk_text, Walkthrough};
-
-// Everything else, kept at the top for the callers written before the modules were public;
-// its documented home is its module.
-#[doc(hidden)]
-pub use lang::{
-    builtin, continues, eval_point_text, parse_expr, parse_expr_with, parse_with, show_value,
-    AddOp, Binding, BindingKind, Builtin, Displayed, EvalErrorKind, Expr as AstExpr, ExprKind,
-    Ident, MulOp, ParseErrorKind, ParseOptions, ShowError, Span, Stmt, StmtKind, UnaryOp, BUILTINS,
-    CONSTANTS, MAX_EXPONENT,
-};
-#[doc(hidden)]
-pub use walk::{
-    ik_walk_html, mechanism_svg, walk_robot_chain, ComponentTrace, Config, HalfAngle, KatexAssets,
-    Mechanism, Motion, Step, SvgOptions, WalkError, Word, Words,
-};

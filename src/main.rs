@@ -2,8 +2,8 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 use dqsym::{
-    parse_with, show, show_value, Context, Format, ParseOptions, PlainOptions, Session,
-    ShowOptions, StmtKind,
+    lang::{parse_with, show_value, ParseOptions, StmtKind},
+    show, Context, Format, PlainOptions, Session, ShowOptions,
 };
 use std::process::ExitCode;
 
@@ -36,11 +36,11 @@ struct Cli {
           value_parser = clap::value_parser!(u16).range(1..=MAX_MAX_DEPTH))]
     max_depth: u16,
     /// The largest exponent `^` accepts, in absolute value.
-    #[arg(long, value_name = "N", default_value_t = dqsym::DEFAULT_MAX_EXPONENT, global = true)]
+    #[arg(long, value_name = "N", default_value_t = dqsym::scalar::DEFAULT_MAX_EXPONENT, global = true)]
     max_exponent: u64,
     /// The largest degree of the cyclotomic field in which constants at rational multiples
     /// of pi (cos(pi/7), x + 3 pi/29) are computed exactly; a larger one is an error.
-    #[arg(long, value_name = "N", default_value_t = dqsym::DEFAULT_MAX_CYCLOTOMIC_DEGREE, global = true)]
+    #[arg(long, value_name = "N", default_value_t = dqsym::scalar::DEFAULT_MAX_CYCLOTOMIC_DEGREE, global = true)]
     max_cyclotomic_degree: u64,
     /// The most term operations (terms of sums, term pairs of products) one statement, one
     /// robot file field or the whole fk derivation may do; more is an error, not a hang.
@@ -174,7 +174,7 @@ fn load_robot(path: &std::path::Path, urdf: &UrdfArgs) -> Result<dqsym::Robot, S
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let name = path.display().to_string();
     if is_urdf(path) {
-        let o = dqsym::UrdfOptions {
+        let o = dqsym::kin::UrdfOptions {
             tip: urdf.tip.clone(),
             base: urdf.base.clone(),
             snap_angles: !urdf.exact_angles,
@@ -543,15 +543,15 @@ fn walk_ik(
             let text = std::fs::read_to_string(path)
                 .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
             let w = if is_urdf(path) {
-                dqsym::walk_robot_chain(&robot)
+                dqsym::walk::walk_robot_chain(&robot)
             } else {
                 dqsym::walk_robot(&text, &path.display().to_string(), &dqsym::eval_scalar_text)
             }
             .map_err(|e| e.to_string())?;
-            let cfg =
-                dqsym::Config::parse(config.unwrap_or("")).map_err(|e| format!("--config: {e}"))?;
+            let cfg = dqsym::walk::Config::parse(config.unwrap_or(""))
+                .map_err(|e| format!("--config: {e}"))?;
             let assets = katex_assets()?;
-            dqsym::ik_walk_html(&w, &sol, &md, &assets, &cfg).map_err(|e| e.to_string())
+            dqsym::walk::ik_walk_html(&w, &sol, &md, &assets, &cfg).map_err(|e| e.to_string())
         })();
         return match page.and_then(|p| {
             std::fs::write(out, p).map_err(|e| format!("cannot write {}: {e}", out.display()))
@@ -589,8 +589,8 @@ fn fk(
     // other kind is a task Jacobian with the pose.
     let task = match jacobian {
         None | Some("") => None,
-        Some(k) => match dqsym::TaskJacobian::parse(k, &|v| dqsym::eval_point_text(v)) {
-            Ok(dqsym::TaskJacobian::Pose) => None,
+        Some(k) => match dqsym::app::TaskJacobian::parse(k, &|v| dqsym::lang::eval_point_text(v)) {
+            Ok(dqsym::app::TaskJacobian::Pose) => None,
             Ok(t) => Some(t),
             Err(m) => return fail(format!("--jacobian: {m}")),
         },
@@ -600,35 +600,24 @@ fn fk(
         Ok(r) => r,
         Err(m) => return fail(m),
     };
-    let point = match point.map(dqsym::eval_point_text) {
+    let point = match point.map(dqsym::lang::eval_point_text) {
         Some(Err(m)) => return fail(format!("--point: {m}")),
         Some(Ok(p)) => Some(p),
         None => robot.tool.clone(),
-    };
-    let format = match format {
-        OutputFormat::Plain => dqsym::ReportFormat::Plain {
-            shorthand: !explicit,
-        },
-        OutputFormat::Latex => dqsym::ReportFormat::Latex {
-            shorthand: !explicit,
-        },
-        OutputFormat::Sympy => dqsym::ReportFormat::Sympy,
-        OutputFormat::Rust => dqsym::ReportFormat::Rust,
-        OutputFormat::C => dqsym::ReportFormat::C,
-        OutputFormat::Python => dqsym::ReportFormat::Python,
     };
     // The fields were evaluated each with its own budget; the derivation gets a whole one.
     let derivation = Context::entered();
     let _derivation = derivation.enter();
     let options = dqsym::FkOptions {
-        format,
+        format: format.into(),
+        shorthand: !explicit,
         point,
         jacobian,
         // Past the evaluation's term limit, the pose is printed as a recurrence.
         max_terms: derivation.term_limit(),
     };
     let report = match &task {
-        Some(t) => dqsym::task_report(&robot, &options, t),
+        Some(t) => dqsym::app::task_report(&robot, &options, t),
         None => dqsym::fk_report(&robot, &options),
     };
     match report {
@@ -642,7 +631,7 @@ fn fk(
 
 /// `dqsym ops [ROBOT]`: the paper's tables, then the robot's generated code.
 fn ops(path: Option<&std::path::Path>, jacobian: bool, urdf: &UrdfArgs) -> ExitCode {
-    print!("{}", dqsym::ops_tables());
+    print!("{}", dqsym::app::ops_tables());
     let Some(path) = path else {
         return ExitCode::SUCCESS;
     };
@@ -658,12 +647,12 @@ fn ops(path: Option<&std::path::Path>, jacobian: bool, urdf: &UrdfArgs) -> ExitC
     let derivation = Context::entered();
     let _derivation = derivation.enter();
     let o = dqsym::FkOptions {
-        format: dqsym::ReportFormat::Ops,
         jacobian,
         point: robot.tool.clone(),
         max_terms: derivation.term_limit(),
+        ..dqsym::FkOptions::default()
     };
-    match dqsym::fk_report(&robot, &o) {
+    match dqsym::app::fk_ops(&robot, &o) {
         Ok(t) => {
             print!("{t}");
             ExitCode::SUCCESS
@@ -690,10 +679,10 @@ fn convert(path: &std::path::Path, to: ConvertTo, urdf: &UrdfArgs) -> ExitCode {
             || path.display().to_string(),
             |n| n.to_string_lossy().into_owned(),
         );
-        if let Some(why) = dqsym::dh_refusal(&robot) {
+        if let Some(why) = dqsym::app::dh_refusal(&robot) {
             eprintln!("note: written in screw form, not DH: {why}");
         }
-        dqsym::robot_toml(&robot, &name).map_err(|e| e.to_string())
+        dqsym::app::robot_toml(&robot, &name).map_err(|e| e.to_string())
     });
     match r {
         Ok(t) => {
@@ -726,7 +715,7 @@ fn walk(
     let name = path.display().to_string();
     let w = if is_urdf(path) {
         match load_robot(path, urdf) {
-            Ok(r) => dqsym::walk_robot_chain(&r),
+            Ok(r) => dqsym::walk::walk_robot_chain(&r),
             Err(m) => return fail(m),
         }
     } else if path.extension().is_some_and(|e| e == "toml") {
@@ -736,14 +725,14 @@ fn walk(
     };
     let w = match w {
         Ok(w) => w,
-        Err(dqsym::WalkError::Script(m)) => {
+        Err(dqsym::walk::WalkError::Script(m)) => {
             eprintln!("{}", with_origin(&m, &name));
             return ExitCode::FAILURE;
         }
         Err(e) => return fail(e.to_string()),
     };
     if let Some(out) = html {
-        let cfg = match dqsym::Config::parse(config.unwrap_or("")) {
+        let cfg = match dqsym::walk::Config::parse(config.unwrap_or("")) {
             Ok(c) => c,
             Err(e) => return fail(format!("--config: {e}")),
         };
@@ -781,7 +770,7 @@ fn walk(
 
 /// KaTeX's stylesheet, script and fonts from `node_modules/katex/dist`, looked for in the
 /// current directory and then in the source tree this binary was built from.
-fn katex_assets() -> Result<dqsym::KatexAssets, String> {
+fn katex_assets() -> Result<dqsym::walk::KatexAssets, String> {
     let candidates = [
         std::path::PathBuf::from("node_modules/katex/dist"),
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("node_modules/katex/dist"),
@@ -801,7 +790,7 @@ fn katex_assets() -> Result<dqsym::KatexAssets, String> {
     let css = read("katex.min.css")?;
     let js = read("katex.min.js")?;
     let font = |name: &str| std::fs::read(dir.join("fonts").join(name)).ok();
-    dqsym::KatexAssets::new(&css, &js, &font).map_err(|e| e.to_string())
+    dqsym::walk::KatexAssets::new(&css, &js, &font).map_err(|e| e.to_string())
 }
 
 /// `dqsym run FILE`: prints results as statements complete; stops at the first error.

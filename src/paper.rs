@@ -4,8 +4,8 @@
 //! shown as its closed form in plain text, with the shorthand legend.
 
 use crate::{
-    closed_form, eval_scalar_text, legend, parse, parse_robot, plain, DualQuat, Expr, PlainOptions,
-    Scalar, Session, Value,
+    closed_form, eval_scalar_text, parse, parse_robot, plain, print::legend, DualQuat, Expr,
+    PlainOptions, Scalar, Session, Value,
 };
 
 /// Appendix III: the planar RRR arm, one link at a time (sec 6.1).

@@ -9,7 +9,8 @@
 
 use crate::Limits;
 use dqsym::{
-    parse_with, show, BindingKind, EvalErrorKind, Session, ShowOptions, BUILTINS, CONSTANTS,
+    lang::{parse_with, BindingKind, EvalErrorKind, BUILTINS, CONSTANTS},
+    show, Session, ShowOptions,
 };
 use rustyline::completion::{Completer, Pair};
 use rustyline::error::ReadlineError;
@@ -345,7 +346,7 @@ impl Repl<'_> {
         }
         self.buffer.push_str(line);
         self.buffer.push('\n');
-        if dqsym::continues(&self.buffer) {
+        if dqsym::lang::continues(&self.buffer) {
             return Next::Continue;
         }
         let src = std::mem::take(&mut self.buffer);
@@ -379,7 +380,7 @@ impl Repl<'_> {
                     let _entered = ctx.enter();
                     let result = match work.exec(&stmt) {
                         Ok(Some(d)) => show(&d, &opts).map(Some).map_err(|e| match e {
-                            dqsym::ShowError::Scalar(dqsym::ScalarError::Cancelled) => {
+                            dqsym::lang::ShowError::Scalar(dqsym::ScalarError::Cancelled) => {
                                 Failure::Interrupted
                             }
                             e => Failure::Error(format!("error: {e}")),

@@ -2,7 +2,8 @@
 //! `examples/bench_workloads.rs` (which `bench/compare` runs), so both measure the same thing.
 
 use dqsym::{
-    closed_form_of_derivative, closed_form_prepared, dh_link, dh_link_matrix, dq_jacobian,
+    closed::{closed_form_of_derivative, closed_form_prepared},
+    kin::{dh_link, dh_link_matrix, dq_jacobian},
     DualQuat, Expr, Matrix4, Ring, Scalar, ScalarError,
 };
 

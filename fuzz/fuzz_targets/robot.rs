@@ -2,7 +2,7 @@
 //! forward-kinematics report (without the Jacobian) under small limits.
 #![no_main]
 
-use dqsym::{eval_scalar_text, fk_report, parse_robot, FkOptions, ReportFormat};
+use dqsym::{eval_scalar_text, fk_report, parse_robot, FkOptions, Format};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
@@ -24,7 +24,8 @@ fuzz_target!(|data: &[u8]| {
     // The fields were evaluated each with its own budget; the derivation gets a whole one.
     let _derivation = ctx.enter();
     let options = FkOptions {
-        format: ReportFormat::Plain { shorthand: true },
+        format: Format::Plain,
+        shorthand: true,
         point: robot.tool.clone(),
         jacobian: false,
         max_terms: ctx.term_limit(),

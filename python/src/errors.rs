@@ -5,7 +5,9 @@
 //! attribute (None where it does not apply), set from one table ([`Attrs::table`]); which
 //! class a library error becomes is decided in one place per error type.
 
-use dqsym::{EvalError as LibEvalError, EvalErrorKind, ParseError as LibParseError, ScalarError};
+use dqsym::{
+    lang::EvalErrorKind, EvalError as LibEvalError, ParseError as LibParseError, ScalarError,
+};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyException, PyKeyboardInterrupt};
 use pyo3::prelude::*;
@@ -170,12 +172,12 @@ pub(crate) fn scalar_error(py: Python<'_>, e: &ScalarError) -> PyErr {
 
 /// A robot file error, with its file, joint and field (and the line and column of a TOML
 /// syntax error).
-pub(crate) fn robot_error(py: Python<'_>, e: &dqsym::RobotError) -> PyErr {
+pub(crate) fn robot_error(py: Python<'_>, e: &dqsym::kin::RobotError) -> PyErr {
     let (file, joint, field, message) = match e {
-        dqsym::RobotError::File { file, message } => {
+        dqsym::kin::RobotError::File { file, message } => {
             (Some(file.as_str()), None, None, message.clone())
         }
-        dqsym::RobotError::Field {
+        dqsym::kin::RobotError::Field {
             file,
             joint,
             field,
@@ -226,9 +228,9 @@ pub(crate) fn other(py: Python<'_>, message: String) -> PyErr {
 }
 
 /// A report error: limits as [`LimitError`], the rest as [`DqsymError`].
-pub(crate) fn report_error(py: Python<'_>, e: &dqsym::ReportError) -> PyErr {
+pub(crate) fn report_error(py: Python<'_>, e: &dqsym::app::ReportError) -> PyErr {
     match e {
-        dqsym::ReportError::Scalar(s) => scalar_error(py, s),
+        dqsym::app::ReportError::Scalar(s) => scalar_error(py, s),
         other_err => other(py, other_err.to_string()),
     }
 }

@@ -6,7 +6,7 @@ use crate::convert::{FromPython, ToSympy};
 use crate::errors;
 use crate::walk::Walkthrough;
 use crate::work::{self, Limits};
-use dqsym::{Convention, FkEntries, FkOptions, ReportFormat, Scalar, Value};
+use dqsym::{app::FkEntries, kin::Convention, FkOptions, Format, Scalar, Value};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyModule};
@@ -50,7 +50,7 @@ fn read_urdf(
     py: Python<'_>,
     text: &str,
     file: &str,
-    o: dqsym::UrdfOptions,
+    o: dqsym::kin::UrdfOptions,
     limits: Limits,
 ) -> PyResult<(dqsym::Robot, Vec<String>)> {
     let (t, f) = (text.to_owned(), file.to_owned());
@@ -114,7 +114,7 @@ impl Robot {
             return Ok(self.robot.tool.clone());
         }
         if let Ok(s) = p.extract::<String>() {
-            return dqsym::eval_point_text(&s)
+            return dqsym::lang::eval_point_text(&s)
                 .map(Some)
                 .map_err(|m| PyValueError::new_err(format!("point: {m}")));
         }
@@ -144,13 +144,14 @@ impl Robot {
         }
         let robot = self.robot.clone();
         let opts = FkOptions {
-            format: ReportFormat::Sympy,
+            format: Format::Sympy,
+            shorthand: true,
             point: point.clone(),
             jacobian,
             max_terms: self.limits.term_limit,
         };
         let (r, interrupted) = work::run(py, self.limits, None, move || {
-            dqsym::fk_entries(&robot, &opts)
+            dqsym::app::fk_entries(&robot, &opts)
         })?;
         if let Some(e) = interrupted {
             return Err(e);
@@ -213,7 +214,8 @@ impl Robot {
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("urdf") || e.eq_ignore_ascii_case("xml"));
         if urdf {
-            let (r, notes) = read_urdf(py, &text, &name, dqsym::UrdfOptions::default(), limits)?;
+            let (r, notes) =
+                read_urdf(py, &text, &name, dqsym::kin::UrdfOptions::default(), limits)?;
             return Ok(Robot::of(r, &text, &name, limits, notes));
         }
         Robot::new(py, &text, &name, limits)
@@ -240,7 +242,7 @@ impl Robot {
             work_budget,
             ..Limits::FK
         };
-        let o = dqsym::UrdfOptions {
+        let o = dqsym::kin::UrdfOptions {
             tip,
             base,
             snap_angles: !exact_angles,
@@ -471,18 +473,15 @@ impl Robot {
         point: Option<&Bound<'_, PyAny>>,
         explicit: bool,
     ) -> PyResult<String> {
+        // None: the operation counts of the generated code.
         let format = match format {
-            "plain" => ReportFormat::Plain {
-                shorthand: !explicit,
-            },
-            "latex" => ReportFormat::Latex {
-                shorthand: !explicit,
-            },
-            "sympy" => ReportFormat::Sympy,
-            "rust" => ReportFormat::Rust,
-            "c" => ReportFormat::C,
-            "python" | "numpy" => ReportFormat::Python,
-            "ops" => ReportFormat::Ops,
+            "plain" => Some(Format::Plain),
+            "latex" => Some(Format::Latex),
+            "sympy" => Some(Format::Sympy),
+            "rust" => Some(Format::Rust),
+            "c" => Some(Format::C),
+            "python" | "numpy" => Some(Format::Python),
+            "ops" => None,
             other => {
                 return Err(PyValueError::new_err(format!(
                     "unknown format `{other}` (plain, latex, sympy, rust, c, python, ops)"
@@ -493,15 +492,17 @@ impl Robot {
         let robot = self.robot.clone();
         let max_terms = self.limits.term_limit;
         let (r, interrupted) = work::run(py, self.limits, None, move || {
-            dqsym::fk_report(
-                &robot,
-                &FkOptions {
-                    format,
-                    point,
-                    jacobian,
-                    max_terms,
-                },
-            )
+            let o = FkOptions {
+                format: format.unwrap_or_default(),
+                shorthand: !explicit,
+                point,
+                jacobian,
+                max_terms,
+            };
+            match format {
+                Some(_) => dqsym::fk_report(&robot, &o),
+                None => dqsym::app::fk_ops(&robot, &o),
+            }
         })?;
         if let Some(e) = interrupted {
             return Err(e);

@@ -5,7 +5,8 @@ use crate::convert::{Forms, FromPython, ToSympy};
 use crate::errors;
 use crate::work::{self, Limits};
 use dqsym::{
-    parse_with, show, show_value, Displayed, Format, Session as LibSession, ShowOptions, Value,
+    lang::{parse_with, show_value, Displayed},
+    show, Format, Session as LibSession, ShowOptions, Value,
 };
 use pyo3::exceptions::{PyKeyError, PyValueError};
 use pyo3::prelude::*;
@@ -25,7 +26,7 @@ pub(crate) struct Output {
 }
 
 /// `label = value` in one format, or the value alone when the label is an expression.
-fn shown_text(d: &Displayed, format: Format) -> Result<String, dqsym::ShowError> {
+fn shown_text(d: &Displayed, format: Format) -> Result<String, dqsym::lang::ShowError> {
     let opts = ShowOptions {
         format,
         explicit: false,
@@ -303,9 +304,9 @@ impl Session {
         let d = PyDict::new(py);
         for (k, b) in self.inner.bindings() {
             let kind = match &b.kind {
-                dqsym::BindingKind::Variable => "variable",
-                dqsym::BindingKind::Symbol => "symbol",
-                dqsym::BindingKind::HalfAngle { .. } => "halfangle",
+                dqsym::lang::BindingKind::Variable => "variable",
+                dqsym::lang::BindingKind::Symbol => "symbol",
+                dqsym::lang::BindingKind::HalfAngle { .. } => "halfangle",
                 _ => "other",
             };
             d.set_item(k, kind)?;

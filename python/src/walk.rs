@@ -42,7 +42,7 @@ fn katex_dir(given: Option<PathBuf>) -> Result<PathBuf, String> {
         })
 }
 
-fn katex_assets(given: Option<PathBuf>) -> Result<dqsym::KatexAssets, String> {
+fn katex_assets(given: Option<PathBuf>) -> Result<dqsym::walk::KatexAssets, String> {
     let dir = katex_dir(given)?;
     let read = |name: &str| {
         std::fs::read_to_string(dir.join(name))
@@ -51,7 +51,7 @@ fn katex_assets(given: Option<PathBuf>) -> Result<dqsym::KatexAssets, String> {
     let css = read("katex.min.css")?;
     let js = read("katex.min.js")?;
     let font = |name: &str| std::fs::read(dir.join("fonts").join(name)).ok();
-    dqsym::KatexAssets::new(&css, &js, &font).map_err(|e| e.to_string())
+    dqsym::walk::KatexAssets::new(&css, &js, &font).map_err(|e| e.to_string())
 }
 
 fn attr_escape(s: &str) -> String {
@@ -85,8 +85,8 @@ impl Walkthrough {
     /// (`"theta2=-0.4,a2=0.43"`); KaTeX is read from `katex_dir` or found as `katex_dir` says.
     #[pyo3(signature = (config="", katex_dir=None))]
     fn html(&self, py: Python<'_>, config: &str, katex_dir: Option<PathBuf>) -> PyResult<String> {
-        let cfg =
-            dqsym::Config::parse(config).map_err(|e| errors::other(py, format!("config: {e}")))?;
+        let cfg = dqsym::walk::Config::parse(config)
+            .map_err(|e| errors::other(py, format!("config: {e}")))?;
         let assets = katex_assets(katex_dir).map_err(|m| errors::other(py, m))?;
         dqsym::walk_html(&self.inner, &assets, &cfg).map_err(|e| errors::other(py, e.to_string()))
     }
@@ -136,7 +136,7 @@ pub(crate) fn walk(py: Python<'_>, src: &str, title: &str) -> PyResult<Walkthrou
     }
     r.map(Walkthrough::new).map_err(|e| match e {
         // Already rendered with line, column and caret.
-        dqsym::WalkError::Script(m) => errors::rendered(py, m),
+        dqsym::walk::WalkError::Script(m) => errors::rendered(py, m),
         other => errors::other(py, other.to_string()),
     })
 }

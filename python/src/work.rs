@@ -37,7 +37,7 @@ impl Limits {
     pub(crate) const SCRIPT: Limits = Limits {
         term_limit: 20_000,
         max_depth: 256,
-        max_exponent: dqsym::DEFAULT_MAX_EXPONENT,
+        max_exponent: dqsym::scalar::DEFAULT_MAX_EXPONENT,
         work_budget: 3_000_000,
     };
 
@@ -58,15 +58,15 @@ impl Limits {
 
     /// Enters these limits on the calling thread (for conversions done on the Python thread)
     /// until the guard is dropped.
-    pub(crate) fn enter(&self) -> dqsym::Entered {
+    pub(crate) fn enter(&self) -> dqsym::scalar::Entered {
         self.context(Arc::new(AtomicBool::new(false))).enter()
     }
 
     /// The parser's options.
-    pub(crate) fn parse_options(&self) -> dqsym::ParseOptions {
-        dqsym::ParseOptions {
+    pub(crate) fn parse_options(&self) -> dqsym::lang::ParseOptions {
+        dqsym::lang::ParseOptions {
             max_depth: self.max_depth,
-            ..dqsym::ParseOptions::default()
+            ..dqsym::lang::ParseOptions::default()
         }
     }
 }

@@ -5,7 +5,9 @@ use super::ast::{Expr, Ident, Span};
 use super::eval::{op_error, scalar_error, EvalError, EvalErrorKind, Evaluator, Event, Result};
 use super::value::{self, Value};
 use crate::{
-    closed_form, dh_link, mdh_link, plain, DualQuat, Frac, Matrix4, PlainOptions, Quat, Scalar,
+    closed_form,
+    kin::{dh_link, mdh_link},
+    plain, DualQuat, Frac, Matrix4, PlainOptions, Quat, Scalar,
 };
 use num_traits::{One, Zero};
 
@@ -572,7 +574,7 @@ fn run_gjacobian(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value>
         let q = unit_dq(name, &vals[0])?;
         let names = symbol_list(name, &vals[1])?;
         let refs: Vec<&str> = names.iter().map(String::as_str).collect();
-        Value::Matrix(crate::geometric_jacobian(&q, &refs))
+        Value::Matrix(crate::kin::geometric_jacobian(&q, &refs))
     })
 }
 
@@ -808,8 +810,8 @@ fn symbol_name(func: &str, v: &Value, span: Span) -> Result<String> {
 /// of planar displacements) are quotients, so the matrix then has quotient entries.
 fn screw_params(a: &Arg) -> Result<Value> {
     let q = unit_dq("screwparams", a)?;
-    let sp =
-        crate::screw_parameters(&q).map_err(|e| invalid(&format!("screwparams: {e}"), a.span))?;
+    let sp = crate::kin::screw_parameters(&q)
+        .map_err(|e| invalid(&format!("screwparams: {e}"), a.span))?;
     Ok(value::quotient_matrix(vec![
         vec![Frac::from(sp.angle), sp.slide, Frac::from(Scalar::int(0))],
         sp.axis.to_vec(),

@@ -15,7 +15,7 @@ use super::eval::{op_error, EvalError, Result};
 use super::value::{self, Value};
 use crate::algebra::dqr;
 use crate::kin::dqexp::{self, DqError};
-use crate::{DualQuat, Frac, Quat, Scalar, TaskJacobian};
+use crate::{app::TaskJacobian, DualQuat, Frac, Quat, Scalar};
 use num_traits::Zero;
 
 /// The DQ Robotics built-ins, in the order `:help` lists them (after the core ones).
@@ -622,7 +622,7 @@ fn task_jacobian(name: &'static str, v: &[Arg], kind: TaskKind, derivative: bool
         task
     };
     let refs: Vec<&str> = vars.iter().map(String::as_str).collect();
-    let m = crate::task_jacobian(&x, &refs, &task);
+    let m = crate::app::task_jacobian(&x, &refs, &task);
     Ok(match m.as_polynomial() {
         Some(rows) => Value::Matrix(rows.clone()),
         None => {

@@ -14,8 +14,8 @@ use super::ast::{AddOp, Expr, ExprKind, MulOp, Program, Span, Stmt, StmtKind, Un
 use super::builtins;
 use super::error::render;
 use super::scan::SourceMap;
-use super::show::Format;
 use super::value::{self, OpError, Value};
+use crate::print::Format;
 use crate::{Context, DualQuat, Quat, Scalar, ScalarError, Trig};
 use std::collections::BTreeMap;
 use thiserror::Error;

@@ -36,5 +36,5 @@ pub(crate) use eval::{Event, Observer};
 pub use field::{eval_point_text, eval_scalar_text};
 pub use parse::{parse, parse_expr, parse_expr_with, parse_with, ParseOptions};
 pub use scan::continues;
-pub use show::{show, show_value, Format, ShowError, ShowOptions};
+pub use show::{show, show_value, ShowError, ShowOptions};
 pub use value::{Value, MAX_EXPONENT};

@@ -23,10 +23,14 @@
 use super::eval::Displayed;
 use super::value::Value;
 use crate::{
-    arguments, closed_form, latex, latex_dual_quat, latex_matrix, latex_quotient_matrix,
-    latex_symbol, latex_tuple, legend, plain, plain_quotient, rust_function, sympy, sympy_quotient,
-    CodegenError, CodegenOptions, Expr, Frac, LatexOptions, Output, PlainOptions, Quat, Scalar,
-    ScalarError,
+    closed_form,
+    emit::{
+        arguments, latex_dual_quat, latex_matrix, latex_quotient_matrix, latex_symbol, latex_tuple,
+        rust_function, sympy, sympy_quotient, CodegenError, CodegenOptions, Output,
+    },
+    latex, plain,
+    print::{legend, plain_quotient},
+    Expr, Frac, LatexOptions, PlainOptions, Quat, Scalar, ScalarError,
 };
 use num_traits::Zero;
 use thiserror::Error;
@@ -43,7 +47,7 @@ pub enum ShowError {
     Codegen(#[from] CodegenError),
 }
 
-pub use crate::print::Format;
+use crate::print::Format;
 
 /// How results are shown.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -248,8 +252,8 @@ type Emitter =
 fn emitter(format: Format) -> Option<Emitter> {
     match format {
         Format::Rust => Some(rust_function),
-        Format::C => Some(crate::c_function),
-        Format::Python => Some(crate::python_function),
+        Format::C => Some(crate::emit::c_function),
+        Format::Python => Some(crate::emit::python_function),
         Format::Plain | Format::Latex | Format::Sympy => None,
     }
 }

@@ -5,7 +5,7 @@
 use super::notation::scalars;
 use super::svg::Scene;
 use super::{Config, Step, WalkError, Walkthrough, Word};
-use crate::{closed_form, Expr, Scalar, ScalarError, TraceStep};
+use crate::{closed::TraceStep, closed_form, Expr, Scalar, ScalarError};
 use std::collections::HashMap;
 
 /// The closed forms of the scalars of a walkthrough, each computed once (or why it failed).

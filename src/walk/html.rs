@@ -5,7 +5,10 @@
 use super::svg::{number, range, scene_svg, slides, xml_escape, Config, Scene, SvgOptions, Symbol};
 use super::text::{page, Piece};
 use super::{Forms, Mechanism, WalkError, Walkthrough};
-use crate::{javascript_function, latex_symbol, CodegenOptions, Expr, Output, Scalar};
+use crate::{
+    emit::{javascript_function, latex_symbol, CodegenOptions, Output},
+    Expr, Scalar,
+};
 
 /// KaTeX ready to inline: its stylesheet with the fonts embedded, and its script.
 #[derive(Clone, Debug, PartialEq, Eq)]

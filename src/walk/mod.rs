@@ -33,7 +33,7 @@ pub use script::walk_script;
 pub use svg::{mechanism_svg, Config, SvgOptions};
 pub use text::{walk_markdown, walk_text};
 
-use crate::{TraceStep, Value};
+use crate::{closed::TraceStep, Value};
 use thiserror::Error;
 
 /// A derivation as a list of typed steps.
@@ -137,7 +137,7 @@ pub struct HalfAngle {
 pub struct ComponentTrace {
     /// `v2.y`.
     pub label: String,
-    /// The steps of [`closed_form_traced`](crate::closed_form_traced).
+    /// The steps of [`closed_form_traced`](crate::closed::closed_form_traced).
     pub steps: Vec<TraceStep>,
 }
 
@@ -161,10 +161,10 @@ pub enum WalkError {
     Script(String),
     /// The robot file is invalid.
     #[error(transparent)]
-    Robot(#[from] crate::RobotError),
+    Robot(#[from] crate::kin::RobotError),
     /// A value could not be shown.
     #[error(transparent)]
-    Show(#[from] crate::ShowError),
+    Show(#[from] crate::lang::ShowError),
     /// An exact operation failed.
     #[error(transparent)]
     Scalar(#[from] crate::ScalarError),

@@ -3,8 +3,8 @@
 //! quaternion), which is the oracle of a walkthrough's check.
 
 use crate::{
-    dh_link_matrix, mdh_link_matrix, screw_parameters, DualQuat, Frac, Matrix4, Quat, Scalar,
-    ScalarError,
+    kin::{dh_link_matrix, mdh_link_matrix, screw_parameters},
+    DualQuat, Frac, Matrix4, Quat, Scalar, ScalarError,
 };
 use num_traits::Zero;
 

@@ -8,7 +8,7 @@
 //! legend at the top of the page lists exactly those.
 
 use super::{Step, Walkthrough};
-use crate::{latex_symbol, shorthand_name, Angle, Scalar, Trig, Value};
+use crate::{closed::shorthand_name, emit::latex_symbol, Angle, Scalar, Trig, Value};
 use num_traits::Zero;
 use std::cell::RefCell;
 use std::collections::{BTreeMap, BTreeSet};

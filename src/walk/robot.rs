@@ -7,7 +7,8 @@ use super::motion::{Word, Words};
 use super::script::traces;
 use super::{Mechanism, Step, WalkError, Walkthrough};
 use crate::{
-    parse_robot, DualQuat, FieldEval, Frame, JointGeometry, JointKind, Robot, Scalar, Value,
+    kin::{FieldEval, Frame, JointGeometry},
+    parse_robot, DualQuat, JointKind, Robot, Scalar, Value,
 };
 
 /// The largest pose component, in terms, a robot walkthrough expands.

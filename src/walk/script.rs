@@ -5,7 +5,9 @@ use super::motion::{is_point, Motion, Words};
 use super::{ComponentTrace, HalfAngle, Mechanism, Step, WalkError, Walkthrough};
 use crate::lang::{Event, Observer};
 use crate::{
-    closed_form_traced, parse, BindingKind, DualQuat, Scalar, Session, StmtKind, Trig, Value,
+    closed::closed_form_traced,
+    lang::{BindingKind, StmtKind},
+    parse, DualQuat, Scalar, Session, Trig, Value,
 };
 use std::cell::RefCell;
 use std::collections::{BTreeMap, BTreeSet};
@@ -427,7 +429,7 @@ fn velocity_words(func: &str, args: &[(String, Value)], v: &Value) -> Option<Wor
             let q = as_dq(&args.first()?.1)?;
             let xi = as_dq(v)?;
             let omega = xi.real.vector_part();
-            let t = crate::dqr::translation(&q).vector_part();
+            let t = crate::algebra::dqr::translation(&q).vector_part();
             let txo = cross(&t, &omega);
             let d = xi.dual.vector_part();
             let tdot: Vec<Scalar> = (0..3).map(|k| &d[k] - &txo[k]).collect();
@@ -473,7 +475,7 @@ fn velocity_words(func: &str, args: &[(String, Value)], v: &Value) -> Option<Wor
         }
         "sclerpdot" => {
             let (q0, q1) = (as_dq(&args.first()?.1)?, as_dq(&args.get(1)?.1)?);
-            let xi = crate::dqexp::screw_log(&(q0.conjugate() * q1)).ok()?;
+            let xi = crate::kin::dqexp::screw_log(&(q0.conjugate() * q1)).ok()?;
             let two = Scalar::int(2);
             let body: Vec<Scalar> = xi.components().iter().map(|c| c * &two).collect();
             vec![

@@ -13,7 +13,10 @@
 
 use super::motion::Motion;
 use super::{Mechanism, WalkError};
-use crate::{dh_link, dh_link_matrix, mdh_link, mdh_link_matrix, DualQuat, Matrix4, Scalar};
+use crate::{
+    kin::{dh_link, dh_link_matrix, mdh_link, mdh_link_matrix},
+    DualQuat, Matrix4, Scalar,
+};
 use std::fmt::Write as _;
 
 /// Values of symbols for the drawn configuration: joint variables and lengths.

@@ -9,8 +9,10 @@ use super::{ComponentTrace, Forms, HalfAngle, Step, WalkError, Walkthrough, Word
 use crate::closed::angle_text;
 use crate::emit::visual_len;
 use crate::{
-    latex_aligned_named, latex_named, latex_symbol, plain_named, plain_quotient_named, Expr,
-    LatexOptions, PlainOptions, Scalar, TraceStep, Value,
+    closed::TraceStep,
+    emit::{latex_aligned_named, latex_named, latex_symbol},
+    print::{plain_named, plain_quotient_named},
+    Expr, LatexOptions, PlainOptions, Scalar, Value,
 };
 
 /// Expanded sums longer than this are listed in rows of this many terms.

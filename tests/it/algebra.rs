@@ -3,8 +3,9 @@
 //! plain 4×4 elementary matrices, and the paper's worked examples of sec 2–3 and 6.1.
 
 use dqsym::{
-    dh_link, dh_link_matrix, mdh_link, mdh_link_matrix, Chain, DualNumber, DualQuat, Joint,
-    Matrix4, Quat,
+    algebra::DualNumber,
+    kin::{dh_link, dh_link_matrix, mdh_link, mdh_link_matrix},
+    Chain, DualQuat, Joint, Matrix4, Quat,
 };
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};

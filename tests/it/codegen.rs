@@ -4,7 +4,7 @@
 
 use crate::paper_support::*;
 use crate::tools;
-use dqsym::{
+use dqsym::emit::{
     arguments, c_function, javascript_function, python_function, rust_function, CodegenOptions,
     Output,
 };

@@ -3,14 +3,14 @@
 //! rows, 36/27 exploiting the constant last row, 64/48 in full; ERRATA 11: a chain of n 3x3
 //! rotations costs 27(n - 1) multiplications and 18(n - 1) additions).
 
-use dqsym::{generated_ops, OpCount};
+use dqsym::emit::{generated_ops, OpCount};
 
 fn ops(c: OpCount) -> (usize, usize) {
     (c.mul, c.add)
 }
 
 fn table() -> Vec<(&'static str, OpCount)> {
-    dqsym::product_table()
+    dqsym::emit::product_table()
 }
 
 #[test]
@@ -33,7 +33,7 @@ fn table2_rigid_dq_is_48_40_and_homogeneous_64_48_or_48_36_or_36_27() {
 #[test]
 fn sec7_chains_of_n_rotations_cost_27_and_18_per_product() {
     for n in [2usize, 3, 6] {
-        let c = dqsym::rotation_chain_ops(n);
+        let c = dqsym::emit::rotation_chain_ops(n);
         assert_eq!(ops(c), (27 * (n - 1), 18 * (n - 1)), "ERRATA 11, n = {n}");
     }
 }
@@ -41,7 +41,7 @@ fn sec7_chains_of_n_rotations_cost_27_and_18_per_product() {
 #[test]
 fn generated_puma560_pose_costs_fewer_products_than_the_dq_chain() {
     let outs = crate::codegen::puma_outputs();
-    let args = dqsym::arguments(
+    let args = dqsym::emit::arguments(
         &outs,
         &["theta1", "theta2", "theta3", "theta4", "theta5", "theta6"],
     );

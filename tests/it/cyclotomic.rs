@@ -336,7 +336,7 @@ fn exact_or_limit(e: &E, degree: i64) -> Option<S> {
         Err(dqsym::ScalarError::CyclotomicDegree {
             degree: d, limit, ..
         }) => {
-            assert_eq!(limit, dqsym::DEFAULT_MAX_CYCLOTOMIC_DEGREE);
+            assert_eq!(limit, dqsym::scalar::DEFAULT_MAX_CYCLOTOMIC_DEGREE);
             assert!(
                 d > limit && degree > limit as i64,
                 "{e:?}: refused at degree {d}"
@@ -408,7 +408,7 @@ proptest! {
     fn mixed_denominators_are_decided_or_refused((dens, a, b, seed) in case_mix()) {
         let n = dens.iter().fold(4, |acc, d| lcm(acc, 2 * d));
         let degree = totient(lcm(24, n));
-        let within = degree <= dqsym::DEFAULT_MAX_CYCLOTOMIC_DEGREE as i64;
+        let within = degree <= dqsym::scalar::DEFAULT_MAX_CYCLOTOMIC_DEGREE as i64;
         let mut seed = seed;
         let e = dens[(seed % dens.len() as u64) as usize];
         let a2 = a.rewrite(&mut seed, e);

@@ -4,7 +4,7 @@
 //! scripts/test.sh); exact identities; snapshots of the closed forms on a symbolic screw.
 
 use super::tools::run_python;
-use dqsym::{dqexp, dqr, DualQuat, Quat, Scalar};
+use dqsym::{algebra::dqr, kin::dqexp, DualQuat, Quat, Scalar};
 use std::process::Command;
 
 fn s(x: &str) -> Scalar {
@@ -712,7 +712,7 @@ mod exact {
         let l2 = dqr::line(&ax(3), &[s("e"), s("f"), Scalar::int(1)]);
         let (p1, p2, den) = dqr::closest_points_between_lines(&l1, &l2).unwrap();
         let on = |p: &[Scalar; 3], l: &DualQuat<Scalar>, k: &Scalar| {
-            let c = dqsym::dqr::cross(&DualQuat::from_real(Quat::from_vector(p)), l).real;
+            let c = dqsym::algebra::dqr::cross(&DualQuat::from_real(Quat::from_vector(p)), l).real;
             // p x l = k m (cross of pure quaternions is the vector cross product).
             assert_eq!(c.vector_part(), l.dual.vector_part().map(|x| x * k));
         };
@@ -875,8 +875,8 @@ distance_jacobian_derivative(q, [theta, d])
 
 /// The task quantity of an f64 pose, written here with the f64 algebra (a quotient as its
 /// value).
-fn task_f64(p: &[f64], t: &dqsym::TaskJacobian) -> Vec<f64> {
-    use dqsym::TaskJacobian as T;
+fn task_f64(p: &[f64], t: &dqsym::app::TaskJacobian) -> Vec<f64> {
+    use dqsym::app::TaskJacobian as T;
     let q = DualQuat::from_components([p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7]]);
     let tr = dqr::translation(&q);
     let tv = tr.vector_part();
@@ -919,7 +919,7 @@ fn task_jacobians_match_finite_differences() {
     // The exact task Jacobians of two robots (quotients divided out), evaluated at random
     // configurations, against central differences of the task quantities computed in f64 from
     // the evaluated pose; and every time derivative against d/ds J(q + s qdot) at s = 0.
-    use dqsym::{task_jacobian, TaskJacobian};
+    use dqsym::app::{task_jacobian, TaskJacobian};
     let v = |a: (i64, i64), b: (i64, i64), c: (i64, i64)| [r(a.0, a.1), r(b.0, b.1), r(c.0, c.1)];
     let k = [Scalar::int(0), Scalar::int(1), Scalar::int(0)];
     let (wd, wp) = (v((2, 3), (-2, 3), (1, 3)), v((1, 2), (1, 3), (-1, 1)));
@@ -983,7 +983,7 @@ fn task_jacobians_match_finite_differences() {
         with_rates.extend(
             vars.iter()
                 .zip(&rates)
-                .map(|(v, r)| (dqsym::rate_name(v), *r)),
+                .map(|(v, r)| (dqsym::app::rate_name(v), *r)),
         );
         // The pose at q +- h e_j, once per robot.
         let shifted: Vec<(Vec<f64>, Vec<f64>)> = (0..vars.len())
@@ -1073,10 +1073,13 @@ fn generated_task_jacobians_match_dqrobotics() {
     // Every `--jacobian=KIND` as a generated NumPy function, run at random configurations and
     // rates, against DQ Robotics' numeric pose, pose Jacobian and its derivative, and the
     // rotation, translation, line, plane and distance Jacobians built from them.
-    use dqsym::{task_report, FkOptions, ReportFormat, TaskJacobian};
+    use dqsym::{
+        app::{task_report, TaskJacobian},
+        FkOptions, Format,
+    };
     let robot = dqsym::parse_robot(RRPR, "rrpr.toml", &dqsym::eval_scalar_text).expect("robot");
     let o = FkOptions {
-        format: ReportFormat::Python,
+        format: Format::Python,
         ..FkOptions::default()
     };
     let k = [Scalar::int(0), Scalar::int(0), Scalar::int(1)];
@@ -1290,7 +1293,7 @@ fn twists_give_the_geometric_jacobian() {
     let robot = crate::robots::load(&path);
     let q = robot.forward();
     let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
-    let gj = dqsym::geometric_jacobian(&q, &vars);
+    let gj = dqsym::kin::geometric_jacobian(&q, &vars);
     let t = dqr::translation(&q).vector_part();
     for (j, v) in vars.iter().enumerate() {
         let qd = DualQuat::from_components(q.components().map(|c| c.diff(v)));
@@ -1321,7 +1324,10 @@ fn twists_give_the_geometric_jacobian() {
 fn language_task_jacobians_are_the_library_ones() {
     // Each Jacobian built-in of the language (DQ Robotics' names) on a spatial two-joint arm is
     // the library's task Jacobian of that kind, exactly; the line-to-line one is a quotient.
-    use dqsym::{task_jacobian, Frac, TaskJacobian as T, Value};
+    use dqsym::{
+        app::{task_jacobian, TaskJacobian as T},
+        Frac, Value,
+    };
     let mut session = dqsym::Session::new();
     let src = "syms theta1 theta2 a d
 x = dh(theta1, 1/2, a, pi/3) * dh(theta2, d, 0, pi/2)
@@ -1704,7 +1710,7 @@ fn task_jacobians_are_dq_robotics_chain_rule_exactly() {
     // hamiplus4(r l0) C4 J_P; the line's moment rows crossmatrix4(lx)^T Jt + crossmatrix4(t) Jrx;
     // the plane's distance row vec4(nz)^T Jt + vec4(t)^T Jrz. Written here with the exact
     // Hamilton matrices on the spatial RRPR arm, they equal the task Jacobians entry for entry.
-    use dqsym::{task_jacobian, TaskJacobian};
+    use dqsym::app::{task_jacobian, TaskJacobian};
     let robot = dqsym::parse_robot(RRPR, "rrpr.toml", &dqsym::eval_scalar_text).expect("robot");
     let x = robot.forward();
     let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
@@ -1798,7 +1804,7 @@ fn walkthrough_explains_twists_with_the_geometric_jacobian() {
     // t-dot = D(xi) - t x omega, exactly the joint's column (t-dot; omega) of the geometric
     // Jacobian; the body twist step gives P and D of 2 q* qdot; the ScLERP derivative step gives
     // the constant body twist 2 screwlog(home* goal). Snapshot of the text.
-    use dqsym::{Step, Word};
+    use dqsym::walk::{Step, Word};
     let path = format!("{}/examples/twists.dq", env!("CARGO_MANIFEST_DIR"));
     let src = std::fs::read_to_string(&path).expect("example");
     let w = dqsym::walk_script(&src, "examples/twists.dq").expect("walkthrough");
@@ -1809,7 +1815,7 @@ fn walkthrough_explains_twists_with_the_geometric_jacobian() {
         other => panic!("{n}: {other:?}"),
     };
     let q = dq("q");
-    let gj = dqsym::geometric_jacobian(&q, &["theta1", "theta2"]);
+    let gj = dqsym::kin::geometric_jacobian(&q, &["theta1", "theta2"]);
     let tuples = |name: &str| -> Vec<Vec<Scalar>> {
         let meaning = w
             .steps

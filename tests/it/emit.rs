@@ -4,8 +4,8 @@
 use crate::paper_support::*;
 use crate::tools;
 use dqsym::{
-    latex, latex_aligned, latex_dual_quat, latex_matrix, latex_symbol, latex_tuple, sympy,
-    DualQuat, Expr, LatexOptions,
+    emit::{latex_aligned, latex_dual_quat, latex_matrix, latex_symbol, latex_tuple, sympy},
+    latex, DualQuat, Expr, LatexOptions,
 };
 
 fn t(i: usize) -> S {

@@ -3,8 +3,8 @@
 
 use crate::paper_support::*;
 use dqsym::{
-    dq_jacobian, geometric_jacobian, plain, screw_parameters, DualQuat, Frac, PlainOptions,
-    ScrewError,
+    kin::{dq_jacobian, geometric_jacobian, screw_parameters, ScrewError},
+    plain, DualQuat, Frac, PlainOptions,
 };
 
 fn frac_text(f: &Frac) -> String {

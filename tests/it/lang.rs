@@ -3,8 +3,8 @@
 
 use crate::common::snapshot_settings;
 use dqsym::{
-    closed_form, parse, plain, show, DualQuat, PlainOptions, Quat, Scalar, Session, ShowOptions,
-    Value, BUILTINS,
+    closed_form, lang::BUILTINS, parse, plain, show, DualQuat, PlainOptions, Quat, Scalar, Session,
+    ShowOptions, Value,
 };
 use std::io::Write;
 use std::path::Path;

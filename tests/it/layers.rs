@@ -200,9 +200,69 @@ fn the_import_reader_sees_groups_and_paths() {
     let paths =
         crate_paths("use crate::{a, b::{c, d}, e as f};\nlet x = crate::g::h();\n$crate::i");
     assert_eq!(paths, ["a", "b", "e", "g"]);
-    let map = reexports(Path::new(concat!(
+    let lib = Path::new(env!("CARGO_TARGET_TMPDIR")).join("layers_lib.rs");
+    std::fs::write(
+        &lib,
+        "//! doc\npub mod a;\n#[doc(hidden)]\npub use a::{B as C, d};\npub use e::f::G;\n",
+    )
+    .expect("write a lib.rs");
+    let map = reexports(&lib);
+    let map: Vec<(&str, &str)> = map.iter().map(|(k, v)| (&k[..], &v[..])).collect();
+    assert_eq!(map, [("C", "a"), ("G", "e"), ("d", "a")]);
+    let library = reexports(Path::new(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/src/lib.rs"
     )));
-    assert_eq!(map.get("AstExpr").map(String::as_str), Some("lang"));
+    assert_eq!(library.get("Session").map(String::as_str), Some("lang"));
+}
+
+/// The engine, and the library without its default `cli` feature, have none of the command
+/// line's dependencies (`cargo tree`, normal edges only): python/ and fuzz/ build without them.
+#[test]
+fn the_library_has_no_command_line_dependencies() {
+    let cli = ["clap", "rustyline", "ctrlc"];
+    for args in [
+        &["-p", "dqsym-engine"][..],
+        &["-p", "dqsym", "--no-default-features"][..],
+        &["-p", "dqsym"][..],
+    ] {
+        let out = std::process::Command::new(env!("CARGO"))
+            .args([
+                "tree",
+                "--locked",
+                "--offline",
+                "-e",
+                "normal",
+                "--prefix",
+                "none",
+            ])
+            .args(args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .expect("cargo runs");
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "cargo tree {args:?} failed: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let crates: Vec<&str> = text
+            .lines()
+            .filter_map(|l| l.split_whitespace().next())
+            .collect();
+        assert!(
+            crates.contains(&"num-bigint"),
+            "cargo tree {args:?}:\n{text}"
+        );
+        let found: Vec<&str> = cli.into_iter().filter(|c| crates.contains(c)).collect();
+        if args.len() == 2 && args[1] == "dqsym" {
+            // The control: with the default features the binary's dependencies are there.
+            assert_eq!(found, cli, "cargo tree {args:?}:\n{text}");
+        } else {
+            assert!(
+                found.is_empty(),
+                "cargo tree {args:?} lists {found:?}:\n{text}"
+            );
+        }
+    }
 }

@@ -3,7 +3,10 @@
 #![allow(clippy::needless_range_loop)] // Matrix entries read best as (i, j).
 
 use crate::paper_support::*;
-use dqsym::{dh_link, dh_link_matrix, DualQuat, Matrix4, Quat};
+use dqsym::{
+    kin::{dh_link, dh_link_matrix},
+    DualQuat, Matrix4, Quat,
+};
 
 fn t(i: usize) -> S {
     sym(&format!("theta{i}"))

@@ -4,7 +4,7 @@
 
 use crate::common::Rng;
 use dqsym::{
-    closed_form, legend, plain, DualQuat, Expr, Matrix4, PlainOptions, Quat, Ring, Scalar,
+    closed_form, plain, print::legend, DualQuat, Expr, Matrix4, PlainOptions, Quat, Ring, Scalar,
 };
 
 pub type S = Scalar;

@@ -2,8 +2,11 @@
 //! hostile input, and one snapshot per bad input in tests/data/bad.
 
 use dqsym::{
-    parse, parse_expr, parse_with, AddOp, AstExpr, ExprKind, MulOp, ParseErrorKind, ParseOptions,
-    Session, StmtKind, UnaryOp,
+    lang::{
+        parse_expr, parse_with, AddOp, Expr as AstExpr, ExprKind, MulOp, ParseErrorKind,
+        ParseOptions, StmtKind, UnaryOp,
+    },
+    parse, Session,
 };
 use proptest::prelude::*;
 
@@ -355,7 +358,7 @@ fn arb_expr() -> impl Strategy<Value = AstExpr> {
         (0u64..100_000, 1u32..5, any::<bool>()).prop_map(|(n, places, degrees)| {
             let den = 10u64.pow(places);
             let text = format!("{}.{:0w$}", n / den, n % den, w = places as usize);
-            let value = dqsym::parse_decimal(&text, 100).unwrap();
+            let value = dqsym::scalar::parse_decimal(&text, 100).unwrap();
             AstExpr::new(if degrees {
                 ExprKind::Degrees { text, value }
             } else {
@@ -398,7 +401,7 @@ fn arb_expr() -> impl Strategy<Value = AstExpr> {
                 .prop_map(|v| AstExpr::new(ExprKind::Tuple(v))),
             prop::collection::vec(inner.clone(), 0..3).prop_map(|args| AstExpr::new(
                 ExprKind::Call {
-                    func: dqsym::Ident {
+                    func: dqsym::lang::Ident {
                         name: "rot".into(),
                         span: Default::default()
                     },

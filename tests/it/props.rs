@@ -4,7 +4,11 @@
 //! 10,000 cases per run.
 
 use crate::paper_support::{closed, int, sym, S};
-use dqsym::{arguments, closed_form, DualQuat, Output, Ring};
+use dqsym::{
+    closed_form,
+    emit::{arguments, Output},
+    DualQuat, Ring,
+};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;

@@ -4,7 +4,7 @@
 
 use crate::paper_support::{get, half, int, mat_rot_about, points, sym};
 use crate::tools;
-use dqsym::{dh_link_matrix, parse, Frac, Matrix4, Session, Value};
+use dqsym::{kin::dh_link_matrix, parse, Frac, Matrix4, Session, Value};
 use std::process::Command;
 
 type Env = [(String, f64)];

@@ -6,8 +6,8 @@ use crate::paper_support::points;
 use crate::robots::{load, numeric_chain};
 use crate::tools;
 use dqsym::{
-    dq_jacobian, fk_recurrence, fk_report, sympy, DualQuat, Expr, FkOptions, ReportFormat, Robot,
-    Scalar,
+    app::fk_recurrence, emit::sympy, fk_report, kin::dq_jacobian, DualQuat, Expr, FkOptions,
+    Format, Robot, Scalar,
 };
 use std::collections::HashMap;
 use std::process::Command;
@@ -23,9 +23,10 @@ fn example(name: &str) -> String {
 
 /// Options that force the recurrence (no expansion fits in one term), with the Jacobian and a
 /// point.
-fn forced(format: ReportFormat, point: [Scalar; 3]) -> FkOptions {
+fn forced(format: Format, point: [Scalar; 3]) -> FkOptions {
     FkOptions {
         format,
+        shorthand: true,
         point: Some(point),
         jacobian: true,
         max_terms: 1,
@@ -33,7 +34,7 @@ fn forced(format: ReportFormat, point: [Scalar; 3]) -> FkOptions {
 }
 
 fn some_point() -> [Scalar; 3] {
-    dqsym::eval_point_text("1/2, -1, 2").expect("a point")
+    dqsym::lang::eval_point_text("1/2, -1, 2").expect("a point")
 }
 
 /// `Q2[3]` -> `Q2_3`, `T[1][2]` -> `T_1_2`: the symbol later entries read an entry by.
@@ -137,7 +138,8 @@ fn generic_6r_recurrence_prints_the_matrix_from_its_cos_sin_polynomial() {
     let file = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/generic_6r.toml");
     let r = load(file);
     let o = FkOptions {
-        format: ReportFormat::Plain { shorthand: true },
+        format: Format::Plain,
+        shorthand: true,
         point: Some(some_point()),
         jacobian: true,
         max_terms: 5_000,
@@ -159,7 +161,7 @@ fn generic_6r_recurrence_prints_the_matrix_from_its_cos_sin_polynomial() {
 #[test]
 fn chain20_recurrence_with_jacobian_matches_the_f64_chain_and_finite_differences() {
     let r = load(CHAIN20);
-    let o = forced(ReportFormat::Sympy, some_point());
+    let o = forced(Format::Sympy, some_point());
     let entries = fk_recurrence(&r, &o).expect("a recurrence");
     assert_eq!(
         entries.iter().filter(|(n, _)| n.starts_with("J[")).count(),
@@ -181,7 +183,7 @@ fn every_example_robot_forced_into_a_recurrence_matches_its_expansion() {
     ] {
         let file = example(name);
         let r = load(&file);
-        let o = forced(ReportFormat::Sympy, some_point());
+        let o = forced(Format::Sympy, some_point());
         let entries = fk_recurrence(&r, &o).expect("a recurrence");
         // The report prints exactly these entries, one SymPy line each.
         let text = fk_report(&r, &o).expect("a report");
@@ -301,7 +303,7 @@ fn chain20_recurrence_as_rust_compiles_clean_and_agrees_with_the_recurrence() {
         "locals named after the entries"
     );
     let r = load(CHAIN20);
-    let entries = fk_recurrence(&r, &forced(ReportFormat::Sympy, some_point())).expect("entries");
+    let entries = fk_recurrence(&r, &forced(Format::Sympy, some_point())).expect("entries");
     let args = signature_args(&code, "pub fn ");
     assert_eq!(args.len(), 80, "{args:?}");
     let call: Vec<String> = (0..args.len()).map(|i| format!("v[{i}]")).collect();
@@ -327,9 +329,8 @@ fn chain20_recurrence_as_rust_compiles_clean_and_agrees_with_the_recurrence() {
 fn recurrences_as_c_compile_with_werror_and_agree_with_the_recurrence() {
     for file in [CHAIN20.to_string(), example("puma560")] {
         let r = load(&file);
-        let entries =
-            fk_recurrence(&r, &forced(ReportFormat::Sympy, some_point())).expect("entries");
-        let code = fk_report(&r, &forced(ReportFormat::C, some_point())).expect("C code");
+        let entries = fk_recurrence(&r, &forced(Format::Sympy, some_point())).expect("entries");
+        let code = fk_report(&r, &forced(Format::C, some_point())).expect("C code");
         let name = code
             .lines()
             .find_map(|l| l.strip_prefix("void "))
@@ -369,9 +370,8 @@ fn recurrences_as_c_compile_with_werror_and_agree_with_the_recurrence() {
 fn recurrences_as_numpy_agree_with_the_recurrence() {
     for file in [CHAIN20.to_string(), example("puma560")] {
         let r = load(&file);
-        let entries =
-            fk_recurrence(&r, &forced(ReportFormat::Sympy, some_point())).expect("entries");
-        let code = fk_report(&r, &forced(ReportFormat::Python, some_point())).expect("Python code");
+        let entries = fk_recurrence(&r, &forced(Format::Sympy, some_point())).expect("entries");
+        let code = fk_report(&r, &forced(Format::Python, some_point())).expect("Python code");
         let name = code
             .lines()
             .find_map(|l| l.strip_prefix("def "))
@@ -392,7 +392,7 @@ fn recurrences_as_numpy_agree_with_the_recurrence() {
 #[test]
 fn recurrence_latex_renders_in_katex() {
     let r = load(&example("rrr"));
-    let o = forced(ReportFormat::Latex { shorthand: true }, some_point());
+    let o = forced(Format::Latex, some_point());
     let report = fk_report(&r, &o).expect("a report");
     assert!(report.contains("\\mathit{Q2}_{0} &="), "{report}");
     let body: String = report
@@ -412,7 +412,7 @@ fn recurrence_latex_renders_in_katex() {
 fn a_robot_symbol_named_like_a_recurrence_entry_is_refused() {
     let text = "name = \"clash\"\nconvention = \"dh\"\n[[joint]]\ntype = \"revolute\"\ntheta = \"theta1\"\nd = \"Q2_3\"\na = \"1\"\nalpha = \"0\"\n[[joint]]\ntype = \"revolute\"\ntheta = \"theta2\"\nd = \"0\"\na = \"1\"\nalpha = \"0\"\n";
     let r = dqsym::parse_robot(text, "clash.toml", &dqsym::eval_scalar_text).expect("a robot");
-    let err = fk_recurrence(&r, &forced(ReportFormat::Sympy, some_point())).unwrap_err();
+    let err = fk_recurrence(&r, &forced(Format::Sympy, some_point())).unwrap_err();
     assert_eq!(
         err.to_string(),
         "symbol `Q2_3` is also an entry of the recurrence; rename it"
@@ -424,7 +424,7 @@ fn rrr_forced_into_a_recurrence_reads_as_a_recurrence() {
     // The shape of the report: factors, derivatives, prefix products, the pose, suffix
     // products, matrix, point and Jacobian, each line over the symbols of the lines before.
     let r = load(&example("rrr"));
-    let o = forced(ReportFormat::Plain { shorthand: true }, some_point());
+    let o = forced(Format::Plain, some_point());
     let text = fk_report(&r, &o).expect("a report");
     crate::common::snapshot_settings()
         .bind(|| insta::assert_snapshot!("fk_recurrence_rrr_plain", text));

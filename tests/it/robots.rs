@@ -3,7 +3,9 @@
 
 use crate::paper_support::{ev, points};
 use dqsym::{
-    dq_jacobian, eval_scalar_text, parse_robot, Chain, Joint, JointGeometry, Robot, Scalar,
+    eval_scalar_text,
+    kin::{dq_jacobian, JointGeometry},
+    parse_robot, Chain, Joint, Robot, Scalar,
 };
 use std::process::Command;
 
@@ -311,7 +313,7 @@ fn chain_of_20_symbolic_joints_is_reported_as_an_exact_recurrence() {
     let r = load(file);
     // A small term limit keeps the debug-build test quick; the default (20,000) behaves alike.
     let o = dqsym::FkOptions {
-        format: dqsym::ReportFormat::Sympy,
+        format: dqsym::Format::Sympy,
         max_terms: 2_000,
         jacobian: true,
         ..dqsym::FkOptions::default()
@@ -345,7 +347,8 @@ for line in sys.stdin:
     let want = plain_pose(&r, &env);
     // The Jacobian against the recurrence's own entries in f64 (which a test checks against
     // finite differences).
-    let vals = crate::recurrence::evaluate(&dqsym::fk_recurrence(&r, &o).expect("entries"), &env);
+    let vals =
+        crate::recurrence::evaluate(&dqsym::app::fk_recurrence(&r, &o).expect("entries"), &env);
     let mut seen = 0;
     for line in out.lines() {
         let (name, v) = line.split_once(' ').expect("name value");
@@ -390,7 +393,7 @@ fn generic_6r_pose_as_a_cos_sin_polynomial_matches_plain_matrix_products() {
     let forms: Vec<Vec<dqsym::Expr>> = (0..3)
         .map(|i| {
             (0..4)
-                .map(|j| dqsym::closed_form_cos_sin(&m.rows[i][j]).expect("closed form"))
+                .map(|j| dqsym::closed::closed_form_cos_sin(&m.rows[i][j]).expect("closed form"))
                 .collect()
         })
         .collect();
@@ -399,7 +402,7 @@ fn generic_6r_pose_as_a_cos_sin_polynomial_matches_plain_matrix_products() {
         .iter()
         .flatten()
         .map(|x| {
-            dqsym::expanded_form(x)
+            dqsym::closed::expanded_form(x)
                 .expect("expanded")
                 .with_placeholders_as_trig()
                 .cost()
@@ -416,7 +419,7 @@ fn generic_6r_pose_as_a_cos_sin_polynomial_matches_plain_matrix_products() {
     for env in points(&refs, 3) {
         let want = plain_pose(&r, &env);
         let value = |n: &str| -> Option<f64> {
-            if let Some((x, f)) = dqsym::parse_trig_placeholder(n) {
+            if let Some((x, f)) = dqsym::scalar::parse_trig_placeholder(n) {
                 let v = env.iter().find(|(k, _)| k == x)?.1;
                 return Some(f.f64(v));
             }
@@ -453,7 +456,7 @@ fn cos_sin_polynomial_of_the_puma_pose_is_the_fourier_pose() {
     let poly = r.forward_matrix_cos_sin(5_000).expect("fits");
     for i in 0..3 {
         for j in 0..4 {
-            let e = dqsym::closed_form_cos_sin(&poly.rows[i][j]).expect("closed form");
+            let e = dqsym::closed::closed_form_cos_sin(&poly.rows[i][j]).expect("closed form");
             assert_eq!(e.to_scalar(), fourier.rows[i][j], "T[{i}][{j}]");
         }
     }
@@ -467,12 +470,12 @@ fn jacobian_closed_forms_from_the_prepared_components_equal_the_jacobian() {
         let r = load(&f);
         let q = r.forward();
         let vars: Vec<&str> = r.variables.iter().map(String::as_str).collect();
-        let jac = dqsym::dq_jacobian(&q, &vars);
+        let jac = dqsym::kin::dq_jacobian(&q, &vars);
         for (i, c) in q.components().iter().enumerate() {
-            let (form, prepared) = dqsym::closed_form_prepared(c);
+            let (form, prepared) = dqsym::closed::closed_form_prepared(c);
             assert_eq!(form.expect("closed form").to_scalar(), *c, "{f}: dq[{i}]");
             for (k, v) in vars.iter().enumerate() {
-                let e = dqsym::closed_form_of_derivative(&prepared, v, &jac[i][k])
+                let e = dqsym::closed::closed_form_of_derivative(&prepared, v, &jac[i][k])
                     .expect("closed form");
                 assert_eq!(e.to_scalar(), jac[i][k], "{f}: J[{i}][{k}]");
             }

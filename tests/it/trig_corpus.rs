@@ -6,7 +6,7 @@
 //! hand form and with SymPy's `trigsimp` and `fu` by `count_ops`.
 
 use crate::tools::{json_string, run_python};
-use dqsym::{closed_form, eval_scalar_text, sympy};
+use dqsym::{closed_form, emit::sympy, eval_scalar_text};
 
 const ROOT: &str = env!("CARGO_MANIFEST_DIR");
 

@@ -4,8 +4,8 @@
 //! conversion back to a robot file, and malformed files.
 
 use dqsym::{
-    eval_scalar_text, fk_report, parse_robot, parse_urdf, robot_toml, DualQuat, FkOptions, Robot,
-    UrdfOptions,
+    app::robot_toml, eval_scalar_text, fk_report, kin::UrdfOptions, parse_robot, parse_urdf,
+    DualQuat, FkOptions, Robot,
 };
 
 type M = [[f64; 4]; 4];
@@ -234,7 +234,7 @@ fn check_against_oracle(r: &Robot, joints: &[J], seed: u64) {
     }
 }
 
-fn read(name: &str, joints: &[J], o: &UrdfOptions) -> dqsym::UrdfRobot {
+fn read(name: &str, joints: &[J], o: &UrdfOptions) -> dqsym::kin::UrdfRobot {
     parse_urdf(&urdf_text(name, joints), name, o).unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -812,7 +812,7 @@ axis = [1, 0, 0]
     check_against_oracle(&r, &joints, 3);
     // Exact: 0.4318 is 2159/5000, not the nearest binary float.
     let x = r.chain.joints[1].geometry.clone();
-    let dqsym::JointGeometry::Screw { point, .. } = x else {
+    let dqsym::kin::JointGeometry::Screw { point, .. } = x else {
         panic!()
     };
     assert_eq!(point[0], eval_scalar_text("2159/5000").unwrap());
@@ -881,16 +881,16 @@ fn recurrence_with_frames_and_coupled_joints_matches_the_expansion() {
     .unwrap_or_else(|e| panic!("{e}"));
     for r in [&coupled, &framed] {
         let o = FkOptions {
-            format: dqsym::ReportFormat::Sympy,
+            format: dqsym::Format::Sympy,
             jacobian: true,
             max_terms: 1,
             ..FkOptions::default()
         };
-        let entries = dqsym::fk_recurrence(r, &o).expect("a recurrence");
+        let entries = dqsym::app::fk_recurrence(r, &o).expect("a recurrence");
         let q = r.forward();
         let m = r.forward_matrix();
         let vars: Vec<&str> = r.variables.iter().map(String::as_str).collect();
-        let jac = dqsym::dq_jacobian(&q, &vars);
+        let jac = dqsym::kin::dq_jacobian(&q, &vars);
         let mut seed = 5;
         // The joint variables at random, the parameters (angles kept as names) at their
         // nominal values, which are the file's decimals.
@@ -1036,11 +1036,11 @@ fn convert_writes_dh_when_the_axes_allow_it_with_the_same_pose() {
         match refusal {
             None => {
                 assert!(toml.contains("convention = \"dh\""), "{name}:\n{toml}");
-                assert_eq!(dqsym::dh_refusal(&r), None);
+                assert_eq!(dqsym::app::dh_refusal(&r), None);
             }
             Some(why) => {
                 assert!(toml.contains("convention = \"screw\""), "{name}:\n{toml}");
-                let said = dqsym::dh_refusal(&r).expect("a reason");
+                let said = dqsym::app::dh_refusal(&r).expect("a reason");
                 assert!(said.contains(why), "{name}: {said}");
                 assert!(toml.contains(&format!("# Not DH: {said}.")), "{toml}");
             }

@@ -6,8 +6,10 @@ use crate::common::snapshot_settings;
 use crate::tools::{chromium, headless, katex_all};
 use dqsym::Matrix4;
 use dqsym::{
-    closed_form, closed_form_traced, walk_markdown, walk_robot, walk_script, walk_text, Scalar,
-    Step, TraceStep, Walkthrough,
+    closed::{closed_form_traced, TraceStep},
+    closed_form,
+    walk::Step,
+    walk_markdown, walk_robot, walk_script, walk_text, Scalar, Walkthrough,
 };
 use std::path::Path;
 use std::process::Command;
@@ -277,7 +279,7 @@ fn html_walkthrough_renders_in_headless_chromium() {
 /// The product of the mechanism's elementary 4x4 matrices (no dual quaternion code) at `env`,
 /// up to motion `upto` (exclusive).
 fn chain(
-    motions: &[dqsym::Motion],
+    motions: &[dqsym::walk::Motion],
     upto: usize,
     env: &dyn Fn(&str) -> Option<f64>,
 ) -> Matrix4<f64> {
@@ -539,7 +541,7 @@ fn check_page_in_chromium(file: &str, w: &Walkthrough) {
             .iter()
             .enumerate()
             .filter(|(_, x)| {
-                !matches!(x, dqsym::Motion::Translation { .. }) && !x.variables().is_empty()
+                !matches!(x, dqsym::walk::Motion::Translation { .. }) && !x.variables().is_empty()
             })
             .map(|(i, _)| i)
             .collect();
@@ -627,8 +629,12 @@ fn drawings_are_to_scale_with_labels_apart_for_every_example() {
             walk(file)
         };
         let m = w.mechanism.as_ref().expect("a mechanism");
-        let svg = dqsym::mechanism_svg(m, &dqsym::Config::default(), &dqsym::SvgOptions::default())
-            .expect("svg");
+        let svg = dqsym::walk::mechanism_svg(
+            m,
+            &dqsym::walk::Config::default(),
+            &dqsym::walk::SvgOptions::default(),
+        )
+        .expect("svg");
         assert!(svg.contains("class=\"base\""), "{file}: no base marker");
         assert!(svg.contains("class=\"triad\""), "{file}: no triad");
         for axis in [">x</text>", ">y</text>", ">z</text>"] {
@@ -688,10 +694,10 @@ fn the_rrr_drawing_has_the_robot_files_proportions() {
     let text =
         std::fs::read_to_string(Path::new(ROOT).join("examples/robots/rrr.toml")).expect("robot");
     let w = walk_robot(&text, "rrr.toml", &dqsym::eval_scalar_text).expect("walk");
-    let svg = dqsym::mechanism_svg(
+    let svg = dqsym::walk::mechanism_svg(
         w.mechanism.as_ref().expect("mechanism"),
-        &dqsym::Config::default(),
-        &dqsym::SvgOptions::default(),
+        &dqsym::walk::Config::default(),
+        &dqsym::walk::SvgOptions::default(),
     )
     .expect("svg");
     // The home pose: base, joints 1 to 3 (joint 1 at the base), tool; links l1, l2, l3 as

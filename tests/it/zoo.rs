@@ -5,7 +5,7 @@
 
 use crate::recurrence::check_against_f64_chain;
 use crate::robots::load;
-use dqsym::{eval_scalar_text, fk_entries, fk_report, parse_robot, Context, FkOptions, Robot};
+use dqsym::{app::fk_entries, eval_scalar_text, fk_report, parse_robot, Context, FkOptions, Robot};
 use std::process::Command;
 
 const RTB: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/robots/rtb/");
@@ -18,7 +18,7 @@ fn fk_defaults() -> (Context, FkOptions) {
     let o = FkOptions {
         jacobian: true,
         max_terms: 5_000,
-        point: Some(dqsym::eval_point_text("1/2, -1, 2").expect("a point")),
+        point: Some(dqsym::lang::eval_point_text("1/2, -1, 2").expect("a point")),
         ..FkOptions::default()
     };
     (ctx, o)

@@ -43,50 +43,10 @@ pub mod scalar;
 
 // The core nouns.
 pub use algebra::{DualQuat, Matrix4, Quat};
-pub use app::{fk_report, FkOptions, ReportFormat};
+pub use app::{fk_report, FkOptions};
 pub use closed::{closed_form, Angle, Expr};
 pub use emit::{latex, LatexOptions};
 pub use kin::{parse_robot, parse_urdf, Chain, Joint, JointKind, Robot};
-pub use print::{plain, PlainOptions};
+pub use print::{plain, Format, PlainOptions};
 pub use ring::Ring;
 pub use scalar::{Context, Frac, Scalar, ScalarError, Sym, Trig};
-
-// Everything else, kept at the top for the callers written before the modules were public;
-// its documented home is its module.
-#[doc(hidden)]
-pub use algebra::dqr;
-#[doc(hidden)]
-pub use algebra::{DualNumber, UnitConstraints};
-#[doc(hidden)]
-pub use app::{
-    dh_refusal, fk_entries, fk_recurrence, ops_tables, rate_name, robot_toml, task_jacobian,
-    task_report, FkEntries, ReportError, TaskJacobian, TaskMatrix,
-};
-#[doc(hidden)]
-pub use closed::{
-    closed_form_cos_sin, closed_form_of_derivative, closed_form_prepared, closed_form_traced,
-    expanded_form, shorthand_name, Cost, Identity, Prepared, TraceStep, TrigNames,
-};
-#[doc(hidden)]
-pub use emit::{
-    arguments, c_function, count_ops, generated_ops, javascript_function, latex_aligned,
-    latex_aligned_named, latex_dual_quat, latex_matrix, latex_named, latex_quotient,
-    latex_quotient_matrix, latex_symbol, latex_tuple, product_table, python_function,
-    rotation_chain_ops, rust_function, sympy, sympy_quotient, CodegenError, CodegenOptions,
-    Counted, OpCount, Output,
-};
-#[doc(hidden)]
-pub use kin::dqexp;
-#[doc(hidden)]
-pub use kin::{
-    dh_link, dh_link_matrix, dq_jacobian, geometric_jacobian, mdh_link, mdh_link_matrix,
-    screw_parameters, ChainError, Convention, FieldEval, Frame, JointGeometry, RobotError,
-    ScrewError, ScrewParams, UrdfError, UrdfOptions, UrdfRobot, SNAP_TOLERANCE,
-};
-#[doc(hidden)]
-pub use print::{legend, plain_named, plain_quotient, plain_quotient_named};
-#[doc(hidden)]
-pub use scalar::{
-    parse_decimal, parse_trig_placeholder, trig_placeholder, Entered,
-    DEFAULT_MAX_CYCLOTOMIC_DEGREE, DEFAULT_MAX_EXPONENT,
-};

@@ -18,8 +18,10 @@
 
 use crate::algebra::cross;
 use crate::{
-    closed_form, sympy, DualQuat, Frame, Joint, JointGeometry, JointKind, Robot, Scalar,
-    ScalarError,
+    closed_form,
+    emit::sympy,
+    kin::{Frame, JointGeometry},
+    DualQuat, Joint, JointKind, Robot, Scalar, ScalarError,
 };
 
 type V = [Scalar; 3];

@@ -14,7 +14,7 @@ use crate::emit::{
     Counted, LatexOptions, Output,
 };
 use crate::kin::{dq_jacobian, Robot};
-use crate::print::{legend, plain, PlainOptions};
+use crate::print::{legend, plain, Format, PlainOptions};
 use crate::scalar::FxHasher;
 use crate::scalar::{join, par_map, with_own_budget};
 use std::collections::HashMap;
@@ -23,40 +23,21 @@ use std::sync::atomic::AtomicBool;
 
 type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
 use crate::{
-    closed_form, closed_form_of_derivative, closed_form_prepared, Context, DualQuat, Expr, Scalar,
-    ScalarError,
+    closed::{closed_form_of_derivative, closed_form_prepared},
+    closed_form, Context, DualQuat, Expr, Scalar, ScalarError,
 };
-
-/// The text format of a report.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ReportFormat {
-    /// Plain text; `shorthand` selects `c12` over `cos(theta1 + theta2)`.
-    Plain {
-        /// `c12` rather than `cos(theta1 + theta2)`.
-        shorthand: bool,
-    },
-    /// LaTeX (an `aligned` block per section).
-    Latex {
-        /// `c_{12}` rather than `\cos(\theta_1 + \theta_2)`.
-        shorthand: bool,
-    },
-    /// Exactly one line per entry, `NAME = EXPR`, EXPR parsable by SymPy's sympify.
-    Sympy,
-    /// A self-contained Rust function (common subexpressions shared, one `sin_cos` per angle).
-    Rust,
-    /// A C99 function with out-parameters.
-    C,
-    /// A NumPy function, vectorized over arrays of configurations.
-    Python,
-    /// Operation counts of the generated code (see [`ops_tables`] for the paper's tables).
-    Ops,
-}
 
 /// What the report contains.
 #[derive(Clone, Debug)]
 pub struct FkOptions {
-    /// The text format.
-    pub format: ReportFormat,
+    /// The text format. Every [`Format`] is a report: plain text and LaTeX with a comment
+    /// header and one section per part, SymPy one `NAME = EXPR` line per entry, Rust, C and
+    /// NumPy one generated function. The operation counts of the generated code are
+    /// [`fk_ops`].
+    pub format: Format,
+    /// Plain text and LaTeX: `c12` rather than `cos(theta1 + theta2)` (and a legend); the
+    /// other formats do not read it.
+    pub shorthand: bool,
     /// A point of the last link (home pose for screw robots, last frame for DH) to transform.
     pub point: Option<[Scalar; 3]>,
     /// Add the 8 x n Jacobian of the DQ components.
@@ -69,7 +50,8 @@ pub struct FkOptions {
 impl Default for FkOptions {
     fn default() -> Self {
         FkOptions {
-            format: ReportFormat::Plain { shorthand: true },
+            format: Format::Plain,
+            shorthand: true,
             point: None,
             jacobian: false,
             max_terms: 20_000,
@@ -100,7 +82,7 @@ pub enum ReportError {
 /// When the expanded pose exceeds `max_terms` terms per entry (a long chain with every
 /// parameter symbolic grows exponentially: k 4^k terms after k DH links), the report is exact
 /// but a recurrence over the joint factors, linear in the number of joints (see
-/// [`fk_recurrence`](crate::fk_recurrence) for its entries): the joint factors `L{i}[k]` and,
+/// [`fk_recurrence`](crate::app::fk_recurrence) for its entries): the joint factors `L{i}[k]` and,
 /// with the Jacobian, their derivatives `dL{i}[k]` in closed form; the prefix products
 /// `Q{i}[k]` of `Q{i} = Q{i-1} L{i}` in the symbols `Q{i-1}_k` and `L{i}_k`; `dq[k]` (the last
 /// Q); with the Jacobian, the suffix products `P{i}[k]` of `P{i} = L{i} P{i+1}`; `T[i][j]` and
@@ -112,16 +94,29 @@ pub enum ReportError {
 pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
     let entries = fk_entries(robot, o)?;
     if !entries.recurrence {
-        return render(robot, &entries.sections, o.format, &[]);
+        return render(robot, &entries.sections, o, &[]);
     }
     let notes = [format!(
         "the expanded pose exceeds {} terms per entry: it is given exactly, as a recurrence over the joint factors (entry X[k] is the symbol X_k of later entries)",
         o.max_terms
     )];
-    render(robot, &entries.sections, o.format, &notes)
+    render(robot, &entries.sections, o, &notes)
 }
 
-/// The entries of [`fk_report`] before any formatting (`o.format` is not read), for callers
+/// The operation counts of the code [`fk_report`] generates for `robot` (`dqsym ops ROBOT`):
+/// the numeric product of the joints' dual quaternions, then the generated function's
+/// multiplications, additions, negations and sin/cos calls, for the dual quaternion alone and
+/// for every output (`o.point`, `o.jacobian`). `o.format` and `o.shorthand` are not read.
+///
+/// # Errors
+/// As [`fk_report`].
+pub fn fk_ops(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
+    let entries = fk_entries(robot, o)?;
+    Ok(code(robot, &entries.sections, Generated::Ops)?)
+}
+
+/// The entries of [`fk_report`] before any formatting (`o.format` and `o.shorthand` are not
+/// read), for callers
 /// that take closed forms rather than text (the Python package).
 #[derive(Clone, Debug)]
 pub struct FkEntries {
@@ -239,7 +234,7 @@ fn expanded_sections(
     o: &FkOptions,
     q: DualQuat<Scalar>,
     dq_forms: Vec<Result<Expr, ScalarError>>,
-    prepared: Vec<crate::Prepared>,
+    prepared: Vec<crate::closed::Prepared>,
     t_forms: Vec<Result<Expr, ScalarError>>,
     m: crate::Matrix4<Scalar>,
 ) -> Result<Sections, ReportError> {
@@ -338,22 +333,24 @@ fn matrix_cells(m: &crate::Matrix4<Scalar>) -> Vec<&Scalar> {
     m.rows[..3].iter().flatten().collect()
 }
 
-/// The sections in the chosen format, after `notes` (comment lines in plain and LaTeX).
+/// The sections in `o.format` (plain and LaTeX with `o.shorthand`), after `notes` (comment
+/// lines in plain and LaTeX).
 pub(super) fn render<S: AsRef<str>>(
     robot: &Robot,
     sections: &[(S, Vec<(String, Expr)>)],
-    format: ReportFormat,
+    o: &FkOptions,
     notes: &[String],
 ) -> Result<String, ReportError> {
-    Ok(match format {
-        ReportFormat::Rust | ReportFormat::C | ReportFormat::Python | ReportFormat::Ops => {
-            code(robot, sections, format)?
-        }
-        ReportFormat::Sympy => sections
+    let shorthand = o.shorthand;
+    Ok(match o.format {
+        Format::Rust => code(robot, sections, Generated::Rust)?,
+        Format::C => code(robot, sections, Generated::C)?,
+        Format::Python => code(robot, sections, Generated::Python)?,
+        Format::Sympy => sections
             .iter()
             .flat_map(|(_, rows)| rows.iter().map(|(n, e)| format!("{n} = {}\n", sympy(e))))
             .collect(),
-        ReportFormat::Plain { shorthand } => {
+        Format::Plain => {
             let po = PlainOptions { shorthand };
             let mut out = header(robot);
             for n in notes {
@@ -375,7 +372,7 @@ pub(super) fn render<S: AsRef<str>>(
             }
             out
         }
-        ReportFormat::Latex { shorthand } => {
+        Format::Latex => {
             let lo = LatexOptions {
                 shorthand,
                 ..LatexOptions::default()
@@ -398,6 +395,15 @@ pub(super) fn render<S: AsRef<str>>(
     })
 }
 
+/// What [`code`] writes: a function in one language, or the operation counts of the Rust one.
+#[derive(Clone, Copy)]
+enum Generated {
+    Rust,
+    C,
+    Python,
+    Ops,
+}
+
 /// The report's sections as one generated function: `dq` (8), `t` (3 x 4), `p` (3) and `j`
 /// (8 x n), arguments the joint variables in joint order, then the parameters alphabetically.
 /// The entries of a recurrence (`L1[k]`, `Q2[k]`, ...) are intermediate outputs: locals the
@@ -405,7 +411,7 @@ pub(super) fn render<S: AsRef<str>>(
 fn code<S>(
     robot: &Robot,
     sections: &[(S, Vec<(String, Expr)>)],
-    f: ReportFormat,
+    f: Generated,
 ) -> Result<String, CodegenError> {
     let n = robot.variables.len();
     // Consecutive entries with one base name (`T` of `T[1][2]`) make one output.
@@ -452,7 +458,7 @@ fn code<S>(
     );
     let o = CodegenOptions::default();
     match f {
-        ReportFormat::Ops => {
+        Generated::Ops => {
             let mut out = header(robot);
             let n = robot.variables.len();
             let dq = count_ops(|| {
@@ -496,9 +502,9 @@ fn code<S>(
             }
             Ok(out)
         }
-        ReportFormat::C => c_function(&name, &doc, &outputs, &args, &o),
-        ReportFormat::Python => python_function(&name, &doc, &outputs, &args, &o),
-        _ => rust_function(&name, &doc, &outputs, &args, &o),
+        Generated::C => c_function(&name, &doc, &outputs, &args, &o),
+        Generated::Python => python_function(&name, &doc, &outputs, &args, &o),
+        Generated::Rust => rust_function(&name, &doc, &outputs, &args, &o),
     }
 }
 

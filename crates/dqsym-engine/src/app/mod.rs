@@ -1,6 +1,15 @@
 //! The application layer: whole derivations built from the layers below (kinematics, closed
-//! forms, printers, emitters): the `fk` report and its recurrence, the task Jacobians, the ops
-//! tables, a robot written back as a screw-form file.
+//! forms, printers, emitters).
+//!
+//! - [`fk_report`]: the `dqsym fk` report of a [`Robot`](crate::Robot) in any
+//!   [`Format`](crate::Format) ([`FkOptions`]); [`fk_entries`] its closed forms before any
+//!   formatting; [`fk_recurrence`] the recurrence over the joint factors it prints past the
+//!   term limit; [`fk_ops`] the operation counts of its generated code (`dqsym ops ROBOT`).
+//! - [`task_report`], [`task_jacobian`]: the task Jacobians of `fk --jacobian=KIND`
+//!   ([`TaskJacobian`]).
+//! - [`ops_tables`]: the paper's operation-count tables.
+//! - [`robot_toml`]: a robot written back as a robot file (classic DH when the axes allow,
+//!   screw form otherwise, [`dh_refusal`] says why).
 
 mod convert;
 mod fk;
@@ -8,6 +17,6 @@ mod recurrence;
 mod task;
 
 pub use convert::{dh_refusal, robot_toml};
-pub use fk::{fk_entries, fk_report, ops_tables, FkEntries, FkOptions, ReportError, ReportFormat};
+pub use fk::{fk_entries, fk_ops, fk_report, ops_tables, FkEntries, FkOptions, ReportError};
 pub use recurrence::fk_recurrence;
 pub use task::{rate_name, task_jacobian, task_report, TaskJacobian, TaskMatrix};

@@ -47,7 +47,7 @@ const COS_SIN_FORMS_BUDGET: u64 = 4_000_000;
 
 /// The most bytes of plain text the closed forms of that matrix may take (RTB's Ball: 10 kB).
 const MAX_COS_SIN_TEXT: usize = 40_000;
-use crate::{closed_form_cos_sin, DualQuat, Expr, Robot, Scalar, ScalarError};
+use crate::{closed::closed_form_cos_sin, DualQuat, Expr, Robot, Scalar, ScalarError};
 use std::cell::RefCell;
 use std::collections::HashMap;
 
@@ -349,7 +349,10 @@ fn shape(x: &Scalar) -> Option<Shape> {
     names.sort();
     names.dedup();
     let special = |n: &String| {
-        n == "pi" || n == "1" || n.starts_with('~') || crate::parse_trig_placeholder(n).is_some()
+        n == "pi"
+            || n == "1"
+            || n.starts_with('~')
+            || crate::scalar::parse_trig_placeholder(n).is_some()
     };
     if names.iter().any(special) {
         return None;

@@ -497,7 +497,7 @@ fn task_report_inner(
             )],
         ));
     }
-    render(robot, &sections, o.format, &[])
+    render(robot, &sections, o, &[])
 }
 
 /// `D(l . lz)` and `|P(l x lz)|^2` of the line-to-line distance (`b` and `a`: the squared
@@ -594,5 +594,5 @@ fn line_to_line_report(
         ),
         ("the common denominator Jd_den = a^2".to_owned(), den_row),
     ];
-    render(robot, &sections, o.format, &[])
+    render(robot, &sections, o, &[])
 }

@@ -3,13 +3,13 @@
 use super::codegen::{float_literal, lower, CodegenError, CodegenOptions, Output};
 
 /// A C99 function `void name(double arg..., double out[n]...)` computing `outputs` from `args`
-/// with the same common subexpressions as [`rust_function`](crate::rust_function). A scalar
+/// with the same common subexpressions as [`rust_function`](crate::emit::rust_function). A scalar
 /// output is a `double *`, a vector `double name[n]`, a matrix `double name[rows][cols]`. The
 /// text starts with `#include <math.h>`, needs `-lm`, and compiles under
 /// `gcc -std=c99 -Wall -Wextra -Werror`. Intermediate outputs are locals, not parameters.
 ///
 /// # Errors
-/// As [`rust_function`](crate::rust_function).
+/// As [`rust_function`](crate::emit::rust_function).
 pub fn c_function(
     name: &str,
     doc: &str,

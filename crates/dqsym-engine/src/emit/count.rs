@@ -50,7 +50,7 @@ pub fn count_ops<R>(f: impl FnOnce() -> R) -> (R, OpCount) {
 /// shared subexpressions counted once).
 ///
 /// # Errors
-/// As [`rust_function`](crate::rust_function).
+/// As [`rust_function`](crate::emit::rust_function).
 pub fn generated_ops(
     outputs: &[Output],
     args: &[String],

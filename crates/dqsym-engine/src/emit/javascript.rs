@@ -60,13 +60,13 @@ const RESERVED: &[&str] = &[
 ];
 
 /// A JavaScript function `function name(arg, ...)` computing `outputs` from `args` with the same
-/// common subexpressions as [`rust_function`](crate::rust_function), in strict mode, with no
+/// common subexpressions as [`rust_function`](crate::emit::rust_function), in strict mode, with no
 /// dependencies (only `Math.sin` and `Math.cos`). It returns an object from output name to a
 /// number (scalar), an array (vector) or an array of row arrays (matrix). Intermediate outputs
 /// are locals, not in the object.
 ///
 /// # Errors
-/// As [`rust_function`](crate::rust_function); also a name JavaScript reserves
+/// As [`rust_function`](crate::emit::rust_function); also a name JavaScript reserves
 /// ([`CodegenError::BadName`]).
 pub fn javascript_function(
     name: &str,

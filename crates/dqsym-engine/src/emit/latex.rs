@@ -14,7 +14,7 @@ use num_traits::{One, Signed, Zero};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LatexOptions {
     /// `c_{12}` for `\cos(\theta_{1} + \theta_{2})` where the angle allows it (a plain sum of
-    /// numbered symbols, see [`shorthand_name`](crate::shorthand_name)).
+    /// numbered symbols, see [`shorthand_name`](crate::closed::shorthand_name)).
     pub shorthand: bool,
     /// [`latex_aligned`] breaks a line longer than this many characters (a command counting as one) at a
     /// `+` or `-` of the outermost sum it can; 0 never breaks.

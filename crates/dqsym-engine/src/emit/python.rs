@@ -3,13 +3,13 @@
 use super::codegen::{float_literal, lower, CodegenError, CodegenOptions, Output};
 
 /// A Python module text (`import numpy as np` and one function) computing `outputs` from
-/// `args` with the same common subexpressions as [`rust_function`](crate::rust_function). The
+/// `args` with the same common subexpressions as [`rust_function`](crate::emit::rust_function). The
 /// arguments are floats or NumPy arrays, broadcast together to a shape `S`; the function
 /// returns a dict from output name to an array of shape `S` (scalar), `S + (n,)` (vector) or
 /// `S + (rows, cols)` (matrix). Intermediate outputs are locals, not in the dict.
 ///
 /// # Errors
-/// As [`rust_function`](crate::rust_function).
+/// As [`rust_function`](crate::emit::rust_function).
 pub fn python_function(
     name: &str,
     doc: &str,

@@ -29,7 +29,7 @@ fn best_form(s: &Scalar) -> Result<Expr, ScalarError> {
     let e = closed_form(s)?;
     let alt = s
         .to_cos_sin_polynomial()
-        .and_then(|p| crate::closed_form_cos_sin(&p).ok());
+        .and_then(|p| crate::closed::closed_form_cos_sin(&p).ok());
     Ok(match alt {
         Some(a) if a.cost() < e.cost() => a,
         _ => e,

@@ -466,7 +466,7 @@ pub fn sclerp_derivative(
 /// The twist `xi` with `q-dot = 1/2 xi q` (spatial, `body = false`) or `q-dot = 1/2 q xi`
 /// (body, `body = true`) of a unit DQ `q = r + ε (1/2) t r` and its derivative: `2 q-dot q*` or
 /// `2 q* q-dot`. The spatial twist is `omega + ε (t-dot + t × omega)` (DQ Robotics'
-/// convention), so a column of the geometric Jacobian ([`crate::geometric_jacobian`], rows
+/// convention), so a column of the geometric Jacobian ([`crate::kin::geometric_jacobian`], rows
 /// `(t-dot, omega)`) is read from it as `omega = P(xi)` and `t-dot = D(xi) − t × omega`; the body
 /// twist is the spatial one expressed in the moving frame, `conj(q) xi q`.
 pub fn twist(q: &DualQuat<Scalar>, q_dot: &DualQuat<Scalar>, body: bool) -> DualQuat<Scalar> {

@@ -748,7 +748,7 @@ impl Robot {
     /// factor's matrix holds a half or multiple angle, or an entry exceeds `max_terms`.
     /// For chains whose Fourier form explodes (a 6R with every DH parameter symbolic: 1,595
     /// monomials against about 300,000 Fourier terms); put it in closed form with
-    /// [`crate::closed_form_cos_sin`].
+    /// [`crate::closed::closed_form_cos_sin`].
     pub fn forward_matrix_cos_sin(&self, max_terms: usize) -> Option<Matrix4<Scalar>> {
         self.matrix_product(Some(max_terms), Scalar::to_cos_sin_polynomial)
     }

@@ -1,10 +1,16 @@
-//! Printers: pure functions from display expressions to text. They never simplify.
+//! Printers: pure functions from display expressions ([`Expr`](crate::Expr)) to plain text in
+//! robotics notation. [`plain`] writes `c12` or `cos(theta1 + theta2)` ([`PlainOptions`]),
+//! [`plain_named`] with the caller's names for angles, [`plain_quotient`] a quotient of two
+//! closed forms, and [`legend`] lists the shorthand a text used. [`Format`] is the one output
+//! format of every report; LaTeX, SymPy and code are written by [`emit`](crate::emit).
+//! Printers never simplify: the text is the expression they were given.
 
 mod plain;
 
 pub use plain::{legend, plain, plain_named, plain_quotient, plain_quotient_named, PlainOptions};
 
-/// The output language of `--format`, one for the language's results and the `ik` report.
+/// The output language of `--format`, one for the language's results, the `fk` report
+/// ([`FkOptions`](crate::FkOptions), with `shorthand` a separate flag) and the `ik` report.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Format {
     /// Plain text in robotics notation.

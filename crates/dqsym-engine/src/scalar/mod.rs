@@ -11,8 +11,10 @@
 //! symbolic angles may carry them as offsets (`cos(x + pi/7)`); every group of terms holding
 //! such a mode is rewritten in a canonical basis of the cyclotomic field it lives in
 //! (`cyclo.rs`), so `cos(3 pi/8) = sin(pi/8)`, `cos(pi/5) = (1 + sqrt 5)/4` and
-//! `cos(x + 6 pi/5) = -cos(x + pi/5)` hold as equal term vectors. The boundary is the degree
-//! bound of `cyclo.rs` (denominators up to 30, whole degrees): past it a group stays as it is.
+//! `cos(x + 6 pi/5) = -cos(x + pi/5)` hold as equal term vectors. The boundary is the field's
+//! degree: past the [`Context`]'s `max_cyclotomic_degree` (192 by default: any one denominator
+//! up to 28, whole degrees) the result is the error [`ScalarError::CyclotomicDegree`], never a
+//! value left in a non-canonical form.
 //!
 //! Arithmetic goes through `std::ops` so the generic quaternion algebra can use it. An
 //! operation that cannot be done exactly (a result over the size limit, `cos` of a non-angle)
