@@ -913,11 +913,7 @@ mod tests {
         // (1 + c1)(1 - c2) as (c1 + 1)(c2 - 1) with the sign in the content.
         check(2, &[("x0 + 1", 1), ("x1 - 1", 1)], -1);
         // Three factors in two angles (cosines and sines), one squared.
-        check(
-            4,
-            &[("x0*x1 - x2*x3", 1), ("x0 + 2", 2), ("x1 + 3", 1)],
-            6,
-        );
+        check(4, &[("x0*x1 - x2*x3", 1), ("x0 + 2", 2), ("x1 + 3", 1)], 6);
         // Shared univariate factors between the images: (t - 1), (t + 1).
         check(6, &[("x0 - x2", 1), ("x0 + x2", 1), ("x5 + x0", 1)], 1);
         // Irreducible quadratics with no rational root, and a monomial factor.
