@@ -49,7 +49,11 @@ pub(super) fn best_alternative(x: &Scalar) -> Option<Expr> {
     }
     cands.extend(product(t));
     cands.extend(constant_trig(x, t));
-    cands.sort_by_key(full_cost);
+    // Last, so that on ties the candidates above are kept.
+    if t.len() <= MAX_TERMS {
+        cands.extend(super::cspoly::factored_forms(t));
+    }
+    cands.sort_by_key(choice_key);
     cands.into_iter().find(|e| e.to_scalar() == *x)
 }
 
@@ -63,12 +67,17 @@ pub(super) fn full_cost(e: &Expr) -> (usize, usize, usize) {
                 let terms = angle.terms.len()
                     + usize::from(!angle.constant.is_zero())
                     + usize::from(!angle.pi.is_zero());
+                // Over a common denominator `(q1 + q2)/2` (see `angle_text`): one division,
+                // and a multiplication per numerator other than 1.
+                let d = super::notation::common_denominator(angle).unwrap_or(1);
+                let scale = Small::from_integer(d);
                 let coefs = angle
                     .terms
                     .iter()
-                    .filter(|(_, k)| !k.abs().is_one())
+                    .filter(|(_, k)| !(*k * scale).abs().is_one())
                     .count()
-                    + usize::from(!angle.pi.abs().is_one() && !angle.pi.is_zero());
+                    + usize::from(!(angle.pi * scale).abs().is_one() && !angle.pi.is_zero())
+                    + usize::from(d > 1);
                 terms.saturating_sub(1) + coefs
             }
             Expr::Add(v) | Expr::Mul(v) => v.iter().map(angle_ops).sum(),
@@ -78,6 +87,28 @@ pub(super) fn full_cost(e: &Expr) -> (usize, usize, usize) {
     }
     let c = e.cost();
     (c.ops + angle_ops(e), c.ops, c.calls)
+}
+
+/// The order candidates are chosen in: [`full_cost`]'s operations, then the operations with
+/// a power counted once as SymPy's `count_ops` counts it (`sin(x)^4` one operation, not three),
+/// then the rest of [`full_cost`].
+pub(super) fn choice_key(e: &Expr) -> (usize, usize, usize, usize) {
+    fn extra_pow(e: &Expr) -> usize {
+        match e {
+            Expr::Pow(x, n) => (*n as usize).saturating_sub(2) + extra_pow(x),
+            Expr::Add(v) | Expr::Mul(v) => v.iter().map(extra_pow).sum(),
+            Expr::Neg(x) => extra_pow(x),
+            _ => 0,
+        }
+    }
+    let (all, ops, calls) = full_cost(e);
+    (all, all - extra_pow(e), ops, calls)
+}
+
+/// Whether `a` is chosen over `b` ([`choice_key`]).
+pub(super) fn shorter(a: &Expr, b: &Expr) -> bool {
+    let (ka, kb) = (choice_key(a), choice_key(b));
+    (ka.0, ka.1) < (kb.0, kb.1)
 }
 
 pub(super) fn mul(a: Expr, b: Expr) -> Expr {
@@ -100,7 +131,7 @@ pub(super) fn mul(a: Expr, b: Expr) -> Expr {
     }
 }
 
-fn neg(e: Expr) -> Expr {
+pub(super) fn neg(e: Expr) -> Expr {
     match e {
         Expr::Neg(e) => *e,
         e => Expr::Neg(Box::new(e)),

@@ -9,12 +9,14 @@
 
 mod alt;
 mod cprod;
+mod cspoly;
 mod expr;
 mod factor;
 mod mon;
 mod notation;
 mod recombine;
 mod trace;
+mod zfactor;
 
 pub use crate::scalar::Trig;
 pub use expr::{Angle, Cost, Expr};
@@ -118,7 +120,7 @@ fn disjoint_parts(x: &Scalar) -> bool {
 fn best_whole(x: &Scalar) -> Result<Expr, ScalarError> {
     let (w, _) = whole_form(x)?;
     let best = match alt::best_alternative(x) {
-        Some(a) if alt::full_cost(&a).0 < alt::full_cost(&w).0 => a,
+        Some(a) if alt::shorter(&a, &w) => a,
         _ => w,
     };
     if !cfg!(debug_assertions) && agrees_numerically(&best, x) {
@@ -167,7 +169,7 @@ fn best_of(
     };
     // A shorter form of another kind (checked exactly by `best_alternative`).
     let best = match alt::best_alternative(x) {
-        Some(a) if alt::full_cost(&a).0 < alt::full_cost(&best).0 => a,
+        Some(a) if alt::shorter(&a, &best) => a,
         _ => best,
     };
     if !cfg!(debug_assertions) && agrees_numerically(&best, x) {
@@ -330,9 +332,7 @@ pub fn closed_form_traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarEr
         (e.clone(), TraceStep::KeptWhole(e))
     };
     let (best, last) = match alt::best_alternative(x) {
-        Some(a) if alt::full_cost(&a).0 < alt::full_cost(&best).0 => {
-            (a.clone(), TraceStep::Shorter(a))
-        }
+        Some(a) if alt::shorter(&a, &best) => (a.clone(), TraceStep::Shorter(a)),
         _ => (best, last),
     };
     if best.to_scalar() == *x {

@@ -43,8 +43,47 @@ pub fn shorthand_name(f: Trig, angle: &Angle) -> Option<String> {
     Some(format!("{}{shown}{}", &f.name()[..1], body.join(sep)))
 }
 
-/// The angle in explicit form: `theta1 + theta2`, `theta3/2`, `t - pi/7`.
+/// The angle in explicit form: `theta1 + theta2`, `theta3/2`, `t - pi/7`; a sum whose
+/// coefficients (the pi part included) all have one denominator `d > 1` is written over it once,
+/// `(q1 + q2)/2` for `q1/2 + q2/2` (as the LaTeX printer writes `\frac{q_1 + q_2}{2}`).
 pub fn angle_text(angle: &Angle) -> String {
+    match common_denominator(angle) {
+        Some(d) => {
+            let scale = Small::from_integer(d);
+            let whole = Angle::new(
+                angle
+                    .terms
+                    .iter()
+                    .map(|(s, k)| (s.clone(), *k * scale))
+                    .collect(),
+                angle.constant * scale,
+                angle.pi * scale,
+            );
+            format!("({})/{d}", sum_text(&whole))
+        }
+        None => sum_text(angle),
+    }
+}
+
+/// The denominator `d > 1` shared by every coefficient of an angle of two or more parts.
+pub(crate) fn common_denominator(angle: &Angle) -> Option<i64> {
+    let mut ks = (!angle.constant.is_zero())
+        .then_some(angle.constant)
+        .into_iter()
+        .chain(angle.terms.iter().map(|(_, k)| *k))
+        .chain((!angle.pi.is_zero()).then_some(angle.pi));
+    let d = *ks.next()?.denom();
+    let mut parts = 1;
+    for k in ks {
+        if *k.denom() != d {
+            return None;
+        }
+        parts += 1;
+    }
+    (d > 1 && parts > 1).then_some(d)
+}
+
+fn sum_text(angle: &Angle) -> String {
     let mut s = String::new();
     let mut first = true;
     let mut push = |k: Small, name: &str, s: &mut String| {

@@ -1,0 +1,366 @@
+//! A sum of Fourier terms as a polynomial in `c_x = cos(u_x x)`, `s_x = sin(u_x x)` and the
+//! monomial symbols (`u_x` the largest unit the angles of `x` are whole multiples of), factored
+//! over the integers (`zfactor.rs`) in three readings: as it expands, with `s_x^2 = 1 - c_x^2`
+//! and with `c_x^2 = 1 - s_x^2` (each reading a polynomial of its own; equal on the circle).
+//! Each factorization with at least two factors is offered as a closed form, each factor shown
+//! as its polynomial or as its own closed form, whichever is cheaper
+//! (`cos(a)^2 - cos(b)^2 = (cos a - cos b)(cos a + cos b)`,
+//! `(1 + cos x)(1 - cos y)` from its expansion in `x + y` and `x - y`).
+
+use super::alt::{mul, neg, num, shorter, trig};
+use super::expr::Expr;
+use super::zfactor::{factor, MPoly};
+use crate::scalar::atoms::Small;
+use crate::scalar::{charge, Sym, Term};
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational as Rat;
+use num_traits::{One, Signed, Zero};
+use std::collections::BTreeMap;
+
+/// The largest number of terms a sum may have for its factorization to be tried.
+const MAX_TERMS: usize = 24;
+/// The largest multiple of an angle's unit expanded.
+const MAX_MULTIPLE: i64 = 8;
+/// The most variables (cosines, sines and monomial symbols) of the polynomial.
+const MAX_VARS: usize = 9;
+/// The most angle symbols: sums in more angles (the entries of a 6-joint chain) are left to
+/// the regrouping, which this search would only slow down.
+const MAX_ANGLES: usize = 3;
+
+#[derive(Clone, PartialEq, Eq, PartialOrd, Ord)]
+enum Var {
+    Cos(Sym, Small),
+    Sin(Sym, Small),
+    Sym(Sym),
+}
+
+type CPoly = BTreeMap<Vec<u32>, (Rat, Rat)>;
+
+fn c_add(p: &mut CPoly, e: Vec<u32>, re: Rat, im: Rat) {
+    let v = p
+        .entry(e.clone())
+        .or_insert_with(|| (Rat::zero(), Rat::zero()));
+    v.0 += re;
+    v.1 += im;
+    if v.0.is_zero() && v.1.is_zero() {
+        p.remove(&e);
+    }
+}
+
+/// The factored forms of the sum of `t` (see the module text); empty when none applies.
+pub(super) fn factored_forms(t: &[Term]) -> Vec<Expr> {
+    candidates(t).unwrap_or_default()
+}
+
+fn candidates(t: &[Term]) -> Option<Vec<Expr>> {
+    if t.len() < 2 || t.len() > MAX_TERMS {
+        return None;
+    }
+    // Each angle symbol's unit: one over the common denominator of its coefficients
+    // (`cos(2 b)` read as `c_b^2 - s_b^2`, `cos(q/2)` as `c`).
+    let mut unit: BTreeMap<Sym, Small> = BTreeMap::new();
+    let mut syms: Vec<Sym> = Vec::new();
+    for u in t {
+        if u.rad != 1 || !(u.mode.pi * Small::from_integer(2)).is_integer() {
+            return None;
+        }
+        for (s, k) in u.mode.freq.iter() {
+            if unit.len() == MAX_ANGLES && !unit.contains_key(s) {
+                return None;
+            }
+            let e = unit.entry(s.clone()).or_insert(Small::one());
+            *e = Small::new(1, e.denom().lcm(k.denom()));
+        }
+        for (s, _) in u.mono.iter() {
+            if !syms.contains(s) {
+                syms.push(s.clone());
+            }
+        }
+    }
+    syms.sort();
+    let mut vars: Vec<Var> = Vec::new();
+    for (s, k) in &unit {
+        vars.push(Var::Cos(s.clone(), *k));
+        vars.push(Var::Sin(s.clone(), *k));
+    }
+    vars.extend(syms.iter().cloned().map(Var::Sym));
+    if vars.is_empty() || vars.len() > MAX_VARS || unit.is_empty() || unit.len() > MAX_ANGLES {
+        return None;
+    }
+    let n = vars.len();
+    let pos = |v: &Var| vars.iter().position(|w| w == v);
+    // The expansion: cos and sin of sum k_x u_x x + p pi are the real and imaginary parts of
+    // i^(2p) prod (c_x + i s_x)^(k_x).
+    let mut poly: BTreeMap<Vec<u32>, Rat> = BTreeMap::new();
+    for u in t {
+        let mut base = vec![0u32; n];
+        for (s, e) in u.mono.iter() {
+            base[pos(&Var::Sym(s.clone()))?] += e;
+        }
+        let mut p: CPoly = BTreeMap::from([(base, (u.coef.to_big(), Rat::zero()))]);
+        for (s, k) in u.mode.freq.iter() {
+            let unit_k = unit[s];
+            let m = (*k / unit_k).to_integer();
+            if m.abs() > MAX_MULTIPLE {
+                return None;
+            }
+            let (ci, si) = (
+                pos(&Var::Cos(s.clone(), unit_k))?,
+                pos(&Var::Sin(s.clone(), unit_k))?,
+            );
+            let sigma = Rat::from_integer(BigInt::from(m.signum()));
+            for _ in 0..m.abs() {
+                charge(p.len() as u64).ok()?;
+                let mut q = CPoly::new();
+                for (e, (a, b)) in &p {
+                    let mut ec = e.clone();
+                    ec[ci] += 1;
+                    c_add(&mut q, ec, a.clone(), b.clone());
+                    let mut es = e.clone();
+                    es[si] += 1;
+                    c_add(&mut q, es, -b * &sigma, a * &sigma);
+                }
+                p = q;
+            }
+        }
+        // i^(2p): 1, i, -1, -i.
+        let quarter = (u.mode.pi * Small::from_integer(2))
+            .to_integer()
+            .rem_euclid(4);
+        for (e, (a, b)) in p {
+            let (re, im) = match quarter {
+                0 => (a, b),
+                1 => (-b, a),
+                2 => (-a, -b),
+                _ => (b, -a),
+            };
+            let c = if u.mode.sin { im } else { re };
+            if !c.is_zero() {
+                let v = poly.entry(e).or_insert_with(Rat::zero);
+                *v += c;
+            }
+        }
+    }
+    poly.retain(|_, c| !c.is_zero());
+    if poly.is_empty() {
+        return None;
+    }
+    let pairs: Vec<(usize, usize)> = (0..unit.len()).map(|i| (2 * i, 2 * i + 1)).collect();
+    let mut readings = vec![poly.clone()];
+    for sin_reduced in [true, false] {
+        let r = reduce(&poly, &pairs, sin_reduced)?;
+        if !readings.contains(&r) {
+            readings.push(r);
+        }
+    }
+    let mut out = Vec::new();
+    for r in readings {
+        out.extend(expanded_expr(&r, &vars));
+        if let Some(e) = factored_expr(&r, &vars) {
+            out.push(e);
+        }
+    }
+    Some(out)
+}
+
+/// The polynomial with `s^2 = 1 - c^2` (or `c^2 = 1 - s^2`) applied for every pair of
+/// variables `(c, s)` until each term has the reduced one at most to the first power.
+fn reduce(
+    p: &BTreeMap<Vec<u32>, Rat>,
+    pairs: &[(usize, usize)],
+    sin_reduced: bool,
+) -> Option<BTreeMap<Vec<u32>, Rat>> {
+    let mut out: BTreeMap<Vec<u32>, Rat> = BTreeMap::new();
+    for (e, c) in p {
+        let mut parts: Vec<(Vec<u32>, Rat)> = vec![(e.clone(), c.clone())];
+        for &(ci, si) in pairs {
+            let (r, o) = if sin_reduced { (si, ci) } else { (ci, si) };
+            let k = e[r] / 2;
+            if k == 0 {
+                continue;
+            }
+            // (1 - o^2)^k.
+            let mut next = Vec::new();
+            for (pe, pc) in &parts {
+                let mut binom = BigInt::one();
+                for j in 0..=k {
+                    let mut ne = pe.clone();
+                    ne[r] = e[r] % 2;
+                    ne[o] += 2 * j;
+                    let sign = if j % 2 == 0 { 1 } else { -1 };
+                    next.push((ne, pc * Rat::from_integer(&binom * BigInt::from(sign))));
+                    binom = binom * BigInt::from(k - j) / BigInt::from(j + 1);
+                }
+            }
+            parts = next;
+        }
+        charge(parts.len() as u64).ok()?;
+        for (pe, pc) in parts {
+            *out.entry(pe).or_insert_with(Rat::zero) += pc;
+        }
+    }
+    out.retain(|_, c| !c.is_zero());
+    Some(out)
+}
+
+/// The polynomial over Z times `1/den`.
+fn integral(p: &BTreeMap<Vec<u32>, Rat>, n: usize) -> (MPoly, BigInt) {
+    let den = p.values().fold(BigInt::one(), |acc, q| acc.lcm(q.denom()));
+    let terms: BTreeMap<Vec<u32>, BigInt> = p
+        .iter()
+        .map(|(e, q)| (e.clone(), (q * Rat::from_integer(den.clone())).to_integer()))
+        .collect();
+    (MPoly { n, terms }, den)
+}
+
+/// The reading itself, expanded: `l1^2 - l2^2 cos(b)^2`.
+fn expanded_expr(p: &BTreeMap<Vec<u32>, Rat>, vars: &[Var]) -> Option<Expr> {
+    let (g, den) = integral(p, vars.len());
+    let c = g.terms.values().fold(BigInt::zero(), |acc, c| acc.gcd(c));
+    let g = MPoly {
+        n: g.n,
+        terms: g.terms.iter().map(|(e, x)| (e.clone(), x / &c)).collect(),
+    };
+    let (negated, e) = poly_expr(&g, vars)?;
+    let k = Rat::new(if negated { -c } else { c }, den);
+    Some(mul(num(k), e))
+}
+
+/// The factored polynomial as an expression, when it has at least two factors; two factors
+/// whose product has a cheaper closed form of its own are shown as that
+/// (`(cos(2a) - cos(2b)) (1 + cos(c))` for `2 (cos a - cos b) (cos a + cos b) (1 + cos c)`).
+fn factored_expr(p: &BTreeMap<Vec<u32>, Rat>, vars: &[Var]) -> Option<Expr> {
+    let (poly, den) = integral(p, vars.len());
+    let f = factor(&poly)?;
+    let count: u32 = f.factors.iter().map(|(_, m)| m).sum();
+    if count < 2 {
+        return None;
+    }
+    let mut k = Rat::new(f.content, den);
+    // A negative number in front is absorbed by a factor of odd multiplicity with as many
+    // negative terms as positive ones (`-(c - 1)` read `1 - c`).
+    let balanced =
+        |g: &MPoly| 2 * g.terms.values().filter(|c| c.is_negative()).count() == g.terms.len();
+    let mut absorb = k
+        .is_negative()
+        .then(|| {
+            f.factors
+                .iter()
+                .position(|(g, m)| m % 2 == 1 && balanced(g))
+        })
+        .flatten();
+    let mut parts: Vec<Expr> = Vec::new();
+    for (i, (g, m)) in f.factors.iter().enumerate() {
+        let flip = absorb == Some(i);
+        if flip {
+            absorb = None;
+            k = -k;
+        }
+        let (negated, e) = factor_expr(&if flip { g.neg() } else { g.clone() }, vars)?;
+        if negated && m % 2 == 1 {
+            k = -k;
+        }
+        parts.push(if *m == 1 {
+            e
+        } else {
+            Expr::Pow(Box::new(e), *m)
+        });
+    }
+    // Symbols first, then cosines and sines by angle, then sums.
+    fn rank(e: &Expr) -> (u8, Option<&super::expr::Angle>) {
+        match e {
+            Expr::Sym(_) => (0, None),
+            Expr::Trig { angle, .. } => (1, Some(angle)),
+            Expr::Pow(b, _) => (rank(b).0, rank(b).1),
+            _ => (2, None),
+        }
+    }
+    parts.sort_by(|a, b| rank(a).cmp(&rank(b)));
+    while parts.len() >= 3 {
+        let mut best: Option<(usize, usize, Expr)> = None;
+        for i in 0..parts.len() {
+            for j in i + 1..parts.len() {
+                let pair = mul(num(k.clone()), mul(parts[i].clone(), parts[j].clone()));
+                let Ok(c) = super::closed_form(&pair.to_scalar()) else {
+                    continue;
+                };
+                let bar = best.as_ref().map_or(&pair, |(_, _, b)| b);
+                if shorter(&c, &pair) && (best.is_none() || shorter(&c, bar)) {
+                    best = Some((i, j, c));
+                }
+            }
+        }
+        let Some((i, j, c)) = best else { break };
+        parts.remove(j);
+        parts[i] = c;
+        k = Rat::one();
+    }
+    let mut e = num(k);
+    for part in parts {
+        e = mul(e, part);
+    }
+    Some(e)
+}
+
+/// One factor as an expression, and whether it is shown negated (as `-g`, its sign then
+/// moved into the number in front): as its polynomial, with no more negative terms than
+/// positive ones, or as its closed form when that is cheaper.
+fn factor_expr(g: &MPoly, vars: &[Var]) -> Option<(bool, Expr)> {
+    let (negated, poly) = poly_expr(g, vars)?;
+    if g.terms.len() < 2 {
+        return Some((negated, poly));
+    }
+    // Its own closed form (of the factor shown), when cheaper: `cos(x + y)` for
+    // `c_x c_y - s_x s_y`.
+    let closed = super::closed_form(&poly.to_scalar()).ok();
+    match closed {
+        Some(c) if shorter(&c, &poly) => Some((negated, c)),
+        _ => Some((negated, poly)),
+    }
+}
+
+/// A polynomial as its sum of monomials, with no more negative terms than positive ones, and
+/// whether it was negated for that.
+fn poly_expr(g: &MPoly, vars: &[Var]) -> Option<(bool, Expr)> {
+    let negative = g.terms.values().filter(|c| c.is_negative()).count();
+    let negated = 2 * negative > g.terms.len();
+    // Leading monomials first among equals (reverse order of the keys).
+    let mut mons: Vec<(Vec<u32>, BigInt)> = g
+        .terms
+        .iter()
+        .rev()
+        .map(|(e, c)| (e.clone(), if negated { -c } else { c.clone() }))
+        .collect();
+    // Higher degree first; positive terms first among equals.
+    mons.sort_by_key(|(e, c)| (std::cmp::Reverse(e.iter().sum::<u32>()), c.is_negative()));
+    let mut sum: Vec<Expr> = Vec::new();
+    for (e, c) in &mons {
+        let mut m = num(Rat::from_integer(c.abs()));
+        // Symbols first, then cosines and sines: `l2 cos(b)`.
+        let order = (0..e.len())
+            .filter(|&i| matches!(vars[i], Var::Sym(_)))
+            .chain((0..e.len()).filter(|&i| !matches!(vars[i], Var::Sym(_))));
+        for i in order {
+            let x = e[i];
+            if x == 0 {
+                continue;
+            }
+            let a = match &vars[i] {
+                Var::Cos(s, k) => trig(false, vec![(s.clone(), *k)], Small::zero()),
+                Var::Sin(s, k) => trig(true, vec![(s.clone(), *k)], Small::zero()),
+                Var::Sym(s) => Expr::Sym(s.clone()),
+            };
+            m = mul(m, if x == 1 { a } else { Expr::Pow(Box::new(a), x) });
+        }
+        sum.push(if c.is_negative() { neg(m) } else { m });
+    }
+    let poly = if sum.len() == 1 {
+        sum.pop()?
+    } else {
+        // Positive terms first.
+        sum.sort_by_key(|e| matches!(e, Expr::Neg(_)));
+        Expr::Add(sum)
+    };
+    Some((negated, poly))
+}
