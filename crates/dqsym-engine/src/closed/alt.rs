@@ -155,7 +155,7 @@ pub(super) fn trig(sin: bool, freq: Vec<(Sym, Small)>, pi: Small) -> Expr {
     }
     Expr::Trig {
         f: crate::scalar::Trig::of(sin),
-        angle: Angle::from_freq(&freq, pi),
+        angle: Angle::from_freq(&freq, pi).offset_reduced(),
     }
 }
 

@@ -104,6 +104,22 @@ impl Angle {
         }
     }
 
+    /// The angle with its offset in `(-pi, pi]` when it has symbols or a constant: the canonical
+    /// form stores offsets in `[0, 2 pi)`, and `x - pi/7` reads better than `x + 13*pi/7` (cos
+    /// and sin have period `2 pi`, so the value is the same).
+    pub fn offset_reduced(mut self) -> Angle {
+        if !self.is_pi_multiple() {
+            let (one, two) = (Small::one(), Small::from_integer(2));
+            while self.pi > one {
+                self.pi -= two;
+            }
+            while self.pi <= -one {
+                self.pi += two;
+            }
+        }
+        self
+    }
+
     /// Whether the angle has no symbols and no constant (a multiple of pi, zero included).
     pub fn is_pi_multiple(&self) -> bool {
         self.terms.is_empty() && self.constant.is_zero()

@@ -260,7 +260,7 @@ pub(crate) fn whole_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
         .map(|t| {
             let mut m = base_mon(&ctx, t);
             if !t.mode.is_unit() {
-                let id = ctx.intern(Angle::from_freq(&t.mode.freq, t.mode.pi));
+                let id = ctx.intern(Angle::from_freq(&t.mode.freq, t.mode.pi).offset_reduced());
                 m.atoms.push(atom(id, t.mode.sin));
             }
             m
@@ -277,12 +277,15 @@ pub(crate) fn whole_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
 /// Flips an angle to a positive leading coefficient (`cos(-x) = cos x`, `sin(-x) = -sin x`);
 /// true when it was flipped.
 fn normalize(a: &mut Angle) -> bool {
-    if a.leading().map_or(a.pi.is_negative(), |k| k.is_negative()) {
+    let flipped = if a.leading().map_or(a.pi.is_negative(), |k| k.is_negative()) {
         a.negate();
         true
     } else {
         false
-    }
+    };
+    *a =
+        std::mem::replace(a, Angle::new(Vec::new(), Small::zero(), Small::zero())).offset_reduced();
+    flipped
 }
 
 /// A part `coef * sym + pi * pi` (no symbol: a pure multiple of pi) with its interned,
