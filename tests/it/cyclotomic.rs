@@ -673,6 +673,19 @@ fn constant_products_print_as_products() {
         ("x*sin(pi/59)^2", "x sin(pi/59)^2", x * s(1., 59.).powi(2)),
         ("sin(-pi/13)", "-sin(pi/13)", -s(1., 13.)),
         ("cos(-3*pi/7)", "cos(3*pi/7)", c(3., 7.)),
+        // A symbolic angle's offset is shown in (-pi, pi] (stored in [0, 2 pi)).
+        ("cos(x - pi/7)", "cos(x - pi/7)", (x - PI / 7.).cos()),
+        ("sin(x + 13*pi/7)", "sin(x - pi/7)", (x - PI / 7.).sin()),
+        (
+            "sin(y - 5*pi/9)",
+            "sin(y - 5*pi/9)",
+            (y - 5. * PI / 9.).sin(),
+        ),
+        (
+            "cos(-x - 3*pi/5)",
+            "cos(x + 3*pi/5)",
+            (x + 3. * PI / 5.).cos(),
+        ),
         ("cos(pi/9)*cos(2*pi/9)*cos(4*pi/9)", "1/8", 0.125),
         (
             "cos(pi/7)*cos(2*pi/7)*cos(pi/9)",
