@@ -108,6 +108,12 @@ impl Angle {
     /// form stores offsets in `[0, 2 pi)`, and `x - pi/7` reads better than `x + 13*pi/7` (cos
     /// and sin have period `2 pi`, so the value is the same).
     pub fn offset_reduced(mut self) -> Angle {
+        self.reduce_offset();
+        self
+    }
+
+    /// [`Angle::offset_reduced`] in place.
+    pub fn reduce_offset(&mut self) {
         if !self.is_pi_multiple() {
             let (one, two) = (Small::one(), Small::from_integer(2));
             while self.pi > one {
@@ -117,7 +123,6 @@ impl Angle {
                 self.pi += two;
             }
         }
-        self
     }
 
     /// Whether the angle has no symbols and no constant (a multiple of pi, zero included).

@@ -283,8 +283,7 @@ fn normalize(a: &mut Angle) -> bool {
     } else {
         false
     };
-    *a =
-        std::mem::replace(a, Angle::new(Vec::new(), Small::zero(), Small::zero())).offset_reduced();
+    a.reduce_offset();
     flipped
 }
 

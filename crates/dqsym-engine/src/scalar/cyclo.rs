@@ -572,22 +572,28 @@ fn rank(k: i64, n: u64) -> (u64, u64) {
     (reduced(o), if o.is_multiple_of(2) { o / 2 } else { o })
 }
 
-impl Basis {
-    /// `R_M` (real) or `C_M` (complex, `4 | M`) inside `Q(zeta_W)`, with `sqrt(h)` (and
-    /// `i sqrt(h)`) multiples for every square root of the field.
-    /// `None` when the work budget runs out on the way (nothing is cached then).
-    fn new(f: &Field, m: u64, real: bool) -> Result<Basis, ScalarError> {
-        let w = f.w;
-        let mut span = Span::new();
-        let mut cols = Vec::new();
-        if real {
-            let l = lcm(2, m);
-            // theta = 2 pi k / l in [0, pi/2): 4k < l.
-            let mut cands: Vec<i64> = (0..).take_while(|k| 4 * k < l as i64).collect();
-            cands.sort_by_key(|&k| (rank(k, l), k));
-            for k in cands {
+/// A candidate column of a level-`m` basis: the angle `2 pi k / l` and the candidate's parts
+/// in `Q(zeta_w)` (for a real basis `cos(2 pi k / l)`; for a complex one `e^{2 pi i k / l}` and
+/// `i e^{2 pi i k / l}`).
+struct Candidate {
+    k: i64,
+    l: i64,
+    parts: Vec<Sparse>,
+}
+
+/// The candidates of `R_M` (real) or `C_M` (complex), in the order the greedy basis takes
+/// them ([`rank`]): real angles `2 pi k / l` in `[0, pi/2)` with `l = lcm(2, m)`, complex ones
+/// `2 pi k / m` in `(-pi/4, pi/4]`. The exact and the fast basis both walk this list, so they
+/// choose from the same columns in the same order.
+fn candidates(m: u64, w: u64, real: bool) -> Vec<Candidate> {
+    if real {
+        let l = lcm(2, m);
+        // theta = 2 pi k / l in [0, pi/2): 4k < l.
+        let mut ks: Vec<i64> = (0..).take_while(|k| 4 * k < l as i64).collect();
+        ks.sort_by_key(|&k| (rank(k, l), k));
+        ks.into_iter()
+            .map(|k| {
                 let a = k as u64 * (w / l);
-                super::charge((span.rows.len() * f.phi) as u64 + 1)?;
                 let c = if a == 0 {
                     mono(0, Rat::one())
                 } else {
@@ -596,43 +602,57 @@ impl Basis {
                     s.insert(w - a, half);
                     s
                 };
-                if !span.independent(&f.reduce(&c)?) {
-                    continue;
+                Candidate {
+                    k,
+                    l: l as i64,
+                    parts: vec![c],
                 }
-                for (h, r) in &f.sqrts {
-                    span.push(f.reduce(&sparse_mul(r, &c, w))?);
+            })
+            .collect()
+    } else {
+        let bound = m as i64;
+        // theta = 2 pi k / m in (-pi/4, pi/4]: -m < 8k <= m.
+        let mut ks: Vec<i64> = (-(bound / 8)..=bound / 8)
+            .filter(|k| 8 * k > -bound)
+            .collect();
+        ks.sort_by_key(|&k| (rank(k, m), k.abs(), k < 0));
+        let i = mono(w / 4, Rat::one());
+        ks.into_iter()
+            .map(|k| {
+                let a = (k.rem_euclid(bound) as u64) * (w / m);
+                let c = mono(a, Rat::one());
+                let ic = sparse_mul(&i, &c, w);
+                Candidate {
+                    k,
+                    l: bound,
+                    parts: vec![c, ic],
+                }
+            })
+            .collect()
+    }
+}
+
+impl Basis {
+    /// `R_M` (real) or `C_M` (complex, `4 | M`) inside `Q(zeta_W)`, with `sqrt(h)` (and
+    /// `i sqrt(h)`) multiples for every square root of the field.
+    /// `None` when the work budget runs out on the way (nothing is cached then).
+    fn new(f: &Field, m: u64, real: bool) -> Result<Basis, ScalarError> {
+        let w = f.w;
+        let mut span = Span::new();
+        let mut cols = Vec::new();
+        for Candidate { k, l, parts } in candidates(m, w, real) {
+            super::charge((span.rows.len() * f.phi) as u64 + 1)?;
+            if !span.independent(&f.reduce(&parts[0])?) {
+                continue;
+            }
+            for (h, r) in &f.sqrts {
+                for (imag, x) in parts.iter().enumerate() {
+                    span.push(f.reduce(&sparse_mul(r, x, w))?);
                     cols.push(Col {
                         h: *h,
-                        angle: Small::new(2 * k, l as i64),
-                        imag: false,
+                        angle: Small::new(2 * k, l),
+                        imag: imag == 1,
                     });
-                }
-            }
-        } else {
-            let bound = m as i64;
-            // theta = 2 pi k / m in (-pi/4, pi/4]: -m < 8k <= m.
-            let mut cands: Vec<i64> = (-(bound / 8)..=bound / 8)
-                .filter(|k| 8 * k > -bound)
-                .collect();
-            cands.sort_by_key(|&k| (rank(k, m), k.abs(), k < 0));
-            let i = mono(w / 4, Rat::one());
-            for k in cands {
-                let a = (k.rem_euclid(m as i64) as u64) * (w / m);
-                super::charge((span.rows.len() * f.phi) as u64 + 1)?;
-                let c = mono(a, Rat::one());
-                if !span.independent(&f.reduce(&c)?) {
-                    continue;
-                }
-                let ic = sparse_mul(&i, &c, w);
-                for (h, r) in &f.sqrts {
-                    for (imag, x) in [(false, &c), (true, &ic)] {
-                        span.push(f.reduce(&sparse_mul(r, x, w))?);
-                        cols.push(Col {
-                            h: *h,
-                            angle: Small::new(2 * k, m as i64),
-                            imag,
-                        });
-                    }
                 }
             }
         }
@@ -721,41 +741,10 @@ impl FastBasis {
             vecs: Vec::new(),
             units: Mutex::new(HashMap::new()),
         };
-        // Candidates in the order of `Basis::new`: (angle numerator over l, value).
-        let mut cands: Vec<(i64, i64, Sparse, Vec<Sparse>)> = Vec::new();
-        let l = if real { lcm(2, m) } else { m };
-        let i = mono(w / 4, Rat::one());
-        if real {
-            let mut ks: Vec<i64> = (0..).take_while(|k| 4 * k < l as i64).collect();
-            ks.sort_by_key(|&k| (rank(k, l), k));
-            for k in ks {
-                let a = k as u64 * (w / l);
-                let c = if a == 0 {
-                    mono(0, Rat::one())
-                } else {
-                    let half = Rat::new(1.into(), 2.into());
-                    let mut s = mono(a, half.clone());
-                    s.insert(w - a, half);
-                    s
-                };
-                cands.push((k, l as i64, c.clone(), vec![c]));
-            }
-        } else {
-            let bound = m as i64;
-            let mut ks: Vec<i64> = (-(bound / 8)..=bound / 8)
-                .filter(|k| 8 * k > -bound)
-                .collect();
-            ks.sort_by_key(|&k| (rank(k, m), k.abs(), k < 0));
-            for k in ks {
-                let a = (k.rem_euclid(m as i64) as u64) * (w / m);
-                let c = mono(a, Rat::one());
-                let ic = sparse_mul(&i, &c, w);
-                cands.push((k, m as i64, c.clone(), vec![c, ic]));
-            }
-        }
-        for (k, l, c, parts) in cands {
+        for Candidate { k, l, parts } in candidates(m, w, real) {
+            let c = &parts[0];
             super::charge((fb.span.rank() * f.phi) as u64 / 256 + 1)?;
-            let Some(v) = f.reduce_mod(&c) else {
+            let Some(v) = f.reduce_mod(c) else {
                 return Ok(None);
             };
             if let Some(xs) = fb.span.solve(v) {
@@ -769,7 +758,7 @@ impl FastBasis {
                 else {
                     return Ok(None);
                 };
-                if f.combination_is(&xs, &fb.vecs, &c) != Some(true) {
+                if f.combination_is(&xs, &fb.vecs, c) != Some(true) {
                     return Ok(None);
                 }
                 continue;
