@@ -126,6 +126,12 @@ fn product_expr(v: &[E], ctx: &Ctx) -> Expr {
         E::Trig(a) => Some((Key::Atom(*a), 1)),
         _ => None,
     };
+    let repeated = v.iter().enumerate().any(|(i, e)| {
+        key(e).is_some_and(|(k, _)| v[..i].iter().any(|f| key(f).is_some_and(|(j, _)| j == k)))
+    });
+    if !repeated {
+        return Expr::Mul(v.iter().map(|e| e.to_expr(ctx)).collect());
+    }
     let mut merged: Vec<(Option<Key>, u32, &E)> = Vec::with_capacity(v.len());
     for e in v {
         match key(e) {
@@ -135,9 +141,6 @@ fn product_expr(v: &[E], ctx: &Ctx) -> Expr {
             },
             None => merged.push((None, 1, e)),
         }
-    }
-    if merged.len() == v.len() {
-        return Expr::Mul(v.iter().map(|e| e.to_expr(ctx)).collect());
     }
     let parts: Vec<Expr> = merged
         .into_iter()
