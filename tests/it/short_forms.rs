@@ -174,7 +174,7 @@ fn random_constant_products_are_exact_and_no_longer_than_expanded() {
             };
             chosen.push(d);
             let k = 1 + (g.next() % (d as u64 - 1)) as i64;
-            let sin = g.next() % 2 == 0;
+            let sin = g.next().is_multiple_of(2);
             if i > 0 {
                 text.push('*');
             }
