@@ -83,15 +83,27 @@ pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
     if t.iter().any(|u| u.rad != 1) {
         out.extend(products(t, true));
     }
-    let (plain, rest): (Vec<Term>, Vec<Term>) = t.iter().cloned().partition(|u| u.mode.is_unit());
-    if !plain.is_empty() && !rest.is_empty() {
-        if let Ok(c) = super::closed_form(&Scalar::from_terms(plain)) {
-            // A negative constant after the product: `P - 3/4`.
-            out.extend(products(&rest, false).into_iter().map(|p| match (&c, p) {
-                (Expr::Neg(_), p) => Expr::Add(vec![p, c.clone()]),
-                (_, p) => Expr::Add(vec![c.clone(), p]),
-            }));
+    // The constant is every term without a mode, or only the rational number (the radicals
+    // may belong to the product: `sqrt(2) sin(pi/7)^2 - 1/2` holds `sqrt(2)/2 - 1/2`).
+    let splits: [fn(&Term) -> bool; 2] = [
+        |u| u.mode.is_unit(),
+        |u| u.mode.is_unit() && u.rad == 1 && u.mono.is_empty(),
+    ];
+    let mut seen = 0;
+    for split in splits {
+        let (plain, rest): (Vec<Term>, Vec<Term>) = t.iter().cloned().partition(split);
+        if plain.is_empty() || rest.is_empty() || plain.len() == seen {
+            continue;
         }
+        seen = plain.len();
+        let Ok(c) = super::closed_form(&Scalar::from_terms(plain)) else {
+            continue;
+        };
+        // A negative constant after the product: `P - 3/4`.
+        out.extend(products(&rest, false).into_iter().map(|p| match (&c, p) {
+            (Expr::Neg(_), p) => Expr::Add(vec![p, c.clone()]),
+            (_, p) => Expr::Add(vec![c.clone(), p]),
+        }));
     }
     out
 }

@@ -126,9 +126,22 @@ fn product_expr(v: &[E], ctx: &Ctx) -> Expr {
         E::Trig(a) => Some((Key::Atom(*a), 1)),
         _ => None,
     };
-    let repeated = v.iter().enumerate().any(|(i, e)| {
-        key(e).is_some_and(|(k, _)| v[..i].iter().any(|f| key(f).is_some_and(|(j, _)| j == k)))
-    });
+    // A first pass on 64-bit masks (every product is converted, so this stays cheap): only
+    // when two factors share a bit are they compared.
+    let (mut syms, mut atoms, mut clash) = (0u64, 0u64, false);
+    for e in v {
+        let (mask, bit) = match e {
+            E::Sym(s) | E::Pow(s, _) => (&mut syms, 1u64 << (s % 64)),
+            E::Trig(a) => (&mut atoms, 1u64 << (*a as u64 % 64)),
+            _ => continue,
+        };
+        clash |= *mask & bit != 0;
+        *mask |= bit;
+    }
+    let repeated = clash
+        && v.iter().enumerate().any(|(i, e)| {
+            key(e).is_some_and(|(k, _)| v[..i].iter().any(|f| key(f).is_some_and(|(j, _)| j == k)))
+        });
     if !repeated {
         return Expr::Mul(v.iter().map(|e| e.to_expr(ctx)).collect());
     }
