@@ -24,6 +24,7 @@ mod quotients;
 mod recurrence;
 mod robots;
 mod scalar;
+mod short_forms;
 mod tools;
 mod trig_corpus;
 mod urdf;

@@ -22,14 +22,17 @@ use std::collections::BTreeMap;
 const MAX_PAIRS: usize = 700;
 const MAX_TRIPLES: usize = 96;
 
+/// The most square roots tried as a product's cofactor (1 included).
+const MAX_ROOTS: usize = 6;
+
 /// The most products returned (the caller keeps the cheapest one that checks).
 const MAX_FOUND: usize = 12;
 
-/// The rational `c_m / P` of each monomial.
-type Ratios = Vec<(MonoRc, Rat)>;
+/// The rational `c_m / P` of each monomial and radicand.
+type Ratios = Vec<((MonoRc, u64), Rat)>;
 
-/// The value of a term without its monomial.
-fn value(t: &Term) -> Option<f64> {
+/// The value of a term without its monomial (and without its radical, with `split`).
+fn value(t: &Term, split: bool) -> Option<f64> {
     let a = std::f64::consts::PI * (*t.mode.pi.numer() as f64) / (*t.mode.pi.denom() as f64);
     let f = if t.mode.is_unit() {
         1.0
@@ -38,7 +41,8 @@ fn value(t: &Term) -> Option<f64> {
     } else {
         a.cos()
     };
-    Some(t.coef.to_f64()? * (t.rad as f64).sqrt() * f)
+    let r = if split { 1.0 } else { (t.rad as f64).sqrt() };
+    Some(t.coef.to_f64()? * r * f)
 }
 
 /// A rational with a denominator up to 1000 within `1e-13` (relative) of `v`: the
@@ -68,23 +72,60 @@ fn rational(v: f64) -> Option<Rat> {
 }
 
 /// Candidates `P sum_m r_m m` (see the module docs); empty when the scalar has symbolic
-/// angles or no constant outside the multiples of `pi/12`.
+/// angles or no constant outside the multiples of `pi/12`. With terms of no mode (rationals
+/// and radicals, times monomials) beside the others, also `C + P sum_m r_m m` with `C` those
+/// terms: `1 - cos(pi/7) cos(pi/9)`.
 pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
     if t.iter().any(|u| !u.mode.freq.is_empty()) {
         return Vec::new();
     }
+    let mut out = products(t, false);
+    if t.iter().any(|u| u.rad != 1) {
+        out.extend(products(t, true));
+    }
+    // The constant is every term without a mode, or only the rational number (the radicals
+    // may belong to the product: `sqrt(2) sin(pi/7)^2 - 1/2` holds `sqrt(2)/2 - 1/2`).
+    let splits: [fn(&Term) -> bool; 2] = [
+        |u| u.mode.is_unit(),
+        |u| u.mode.is_unit() && u.rad == 1 && u.mono.is_empty(),
+    ];
+    let mut seen = 0;
+    for split in splits {
+        let (plain, rest): (Vec<Term>, Vec<Term>) = t.iter().cloned().partition(split);
+        if plain.is_empty() || rest.is_empty() || plain.len() == seen {
+            continue;
+        }
+        seen = plain.len();
+        let Ok(c) = super::closed_form(&Scalar::from_terms(plain)) else {
+            continue;
+        };
+        // A negative constant after the product: `P - 3/4`.
+        out.extend(products(&rest, false).into_iter().map(|p| match (&c, p) {
+            (Expr::Neg(_), p) => Expr::Add(vec![p, c.clone()]),
+            (_, p) => Expr::Add(vec![c.clone(), p]),
+        }));
+    }
+    out
+}
+
+/// [`constant_products`] without the split-off constant; with `split`, the terms of each
+/// radicand apart, each a rational multiple of the product (`sin(pi/11)^2 cos(pi/5)` is
+/// `sin(pi/11)^2 (1 + sqrt(5))/4`), else each monomial's whole coefficient (`cos(pi/7)
+/// cos(pi/9)`, whose terms over `pi/63` carry `sqrt(21)`).
+fn products(t: &[Term], split: bool) -> Vec<Expr> {
     let n = t
         .iter()
         .fold(24i64, |acc, u| acc.lcm(&(2 * u.mode.pi.denom())));
     if n == 24 || n > 20_000 {
         return Vec::new();
     }
-    let mut coefs: BTreeMap<&MonoRc, f64> = BTreeMap::new();
+    let mut coefs: BTreeMap<(&MonoRc, u64), f64> = BTreeMap::new();
     for u in t {
-        let Some(v) = value(u) else {
+        let Some(v) = value(u, split) else {
             return Vec::new();
         };
-        *coefs.entry(&u.mono).or_insert(0.0) += v;
+        let rad = if split { u.rad } else { 1 };
+        *coefs.entry((&u.mono, rad)).or_insert(0.0) += v;
     }
     if coefs.values().any(|c| c.abs() < 1e-12) {
         return Vec::new();
@@ -106,11 +147,33 @@ pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
         .collect();
     factors.sort_by_key(|(_, sin, a)| (*a.denom(), *a.numer(), *sin));
     let f = factors.len();
-    let fits = |p: f64| -> Option<Ratios> {
-        coefs
+    // Radical cofactors: with the coefficients whole, the product may stand beside the square
+    // root of one of the terms' radicands (`sqrt(2) sin(pi/7)^2 cos(pi/9)`, whose terms over
+    // `pi/63` carry `sqrt(2)` and `sqrt(42)`); a few at most.
+    // Their common divisors too: `sqrt(3) cos(pi/7) sin(pi/11)` carries `sqrt(21)`, `sqrt(33)`.
+    let mut roots: Vec<u64> = vec![1];
+    if !split {
+        let mut rads: Vec<u64> = t.iter().map(|u| u.rad).filter(|&r| r != 1).collect();
+        rads.sort_unstable();
+        rads.dedup();
+        let pairs = rads
             .iter()
-            .map(|(m, c)| rational(c / p).map(|r| ((*m).clone(), r)))
-            .collect()
+            .enumerate()
+            .flat_map(|(i, a)| rads[i + 1..].iter().map(move |b| a.gcd(b)));
+        for r in rads.iter().copied().chain(pairs) {
+            if roots.len() < MAX_ROOTS && !roots.contains(&r) {
+                roots.push(r);
+            }
+        }
+    }
+    let fits = |p: f64| -> Option<Ratios> {
+        roots.iter().find_map(|&root| {
+            let q = p * (root as f64).sqrt();
+            coefs
+                .iter()
+                .map(|((m, d), c)| rational(c / q).map(|r| (((*m).clone(), *d * root), r)))
+                .collect()
+        })
     };
     let mut found: Vec<(Vec<usize>, Ratios)> = Vec::new();
     let search = |idx: &[usize], found: &mut Vec<_>| {
@@ -152,10 +215,10 @@ pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
         .filter_map(|(idx, r)| {
             let rest = Scalar::from_terms(
                 r.into_iter()
-                    .map(|(mono, q)| Term {
+                    .map(|((mono, rad), q)| Term {
                         mode: crate::scalar::Mode::unit(),
                         mono,
-                        rad: 1,
+                        rad,
                         coef: Q::big(q),
                     })
                     .collect(),

@@ -2,6 +2,10 @@
 //! monomial symbols (`u_x` the largest unit the angles of `x` are whole multiples of), factored
 //! over the integers (`zfactor.rs`) in three readings: as it expands, with `s_x^2 = 1 - c_x^2`
 //! and with `c_x^2 = 1 - s_x^2` (each reading a polynomial of its own; equal on the circle).
+//! The same is done with the modes' directions as the variables in place of the symbols
+//! (`c_g = cos(u_g g)` for `g = a + b`), when some mode is a multiple of two or more of its
+//! direction's unit: `a2^2 cos(a)^2 - a3^2 cos(a + b)^2` is a polynomial of degree 2 in
+//! `cos(a)`, `cos(a + b)`, but of degree 4 in the cosines and sines of `a` and `b`.
 //! Each factorization with at least two factors is offered as a closed form, each factor shown
 //! as its polynomial or as its own closed form, whichever is cheaper
 //! (`cos(a)^2 - cos(b)^2 = (cos a - cos b)(cos a + cos b)`,
@@ -24,14 +28,21 @@ const MAX_TERMS: usize = 24;
 const MAX_MULTIPLE: i64 = 8;
 /// The most variables (cosines, sines and monomial symbols) of the polynomial.
 const MAX_VARS: usize = 9;
+/// The largest number of terms a sum may have to be read by its modes' directions: a
+/// polynomial of degree two in two or three angle sums and a few lengths has few Fourier
+/// terms, and the entries of a 6-joint chain, which this reading would only slow down, have
+/// more.
+const MAX_DIRECTION_TERMS: usize = 12;
 /// The most angle symbols: sums in more angles (the entries of a 6-joint chain) are left to
 /// the regrouping, which this search would only slow down.
 const MAX_ANGLES: usize = 3;
 
+/// A variable of the polynomial: the cosine or sine of an angle (its frequency vector), or a
+/// monomial symbol.
 #[derive(Clone, PartialEq, Eq, PartialOrd, Ord)]
 enum Var {
-    Cos(Sym, Small),
-    Sin(Sym, Small),
+    Cos(Vec<(Sym, Small)>),
+    Sin(Vec<(Sym, Small)>),
     Sym(Sym),
 }
 
@@ -53,18 +64,21 @@ pub(super) fn factored_forms(t: &[Term]) -> Vec<Expr> {
     candidates(t).unwrap_or_default()
 }
 
-fn candidates(t: &[Term]) -> Option<Vec<Expr>> {
-    if t.len() < 2 || t.len() > MAX_TERMS {
-        return None;
-    }
-    // Each angle symbol's unit: one over the common denominator of its coefficients
-    // (`cos(2 b)` read as `c_b^2 - s_b^2`, `cos(q/2)` as `c`).
+/// How a sum is read as a polynomial: the angles whose cosine and sine are its variables
+/// (unit angles, each a pair `c`, `s`), and each term's mode as whole multiples of them.
+struct Reading {
+    /// The unit angles' frequency vectors.
+    units: Vec<Vec<(Sym, Small)>>,
+    /// Per term, `(unit, multiple)`: the mode's angle is the sum of the multiples.
+    parts: Vec<Vec<(usize, i64)>>,
+}
+
+/// Each angle symbol its own unit: one over the common denominator of its coefficients
+/// (`cos(2 b)` read as `c_b^2 - s_b^2`, `cos(q/2)` as `c`); `None` past [`MAX_ANGLES`]
+/// symbols.
+fn by_symbols(t: &[Term]) -> Option<Reading> {
     let mut unit: BTreeMap<Sym, Small> = BTreeMap::new();
-    let mut syms: Vec<Sym> = Vec::new();
     for u in t {
-        if u.rad != 1 || !(u.mode.pi * Small::from_integer(2)).is_integer() {
-            return None;
-        }
         for (s, k) in u.mode.freq.iter() {
             if unit.len() == MAX_ANGLES && !unit.contains_key(s) {
                 return None;
@@ -72,6 +86,121 @@ fn candidates(t: &[Term]) -> Option<Vec<Expr>> {
             let e = unit.entry(s.clone()).or_insert(Small::one());
             *e = Small::new(1, e.denom().lcm(k.denom()));
         }
+    }
+    let index: BTreeMap<&Sym, usize> = unit.keys().enumerate().map(|(i, s)| (s, i)).collect();
+    let parts = t
+        .iter()
+        .map(|u| {
+            u.mode
+                .freq
+                .iter()
+                .map(|(s, k)| (index[s], (*k / unit[s]).to_integer()))
+                .collect()
+        })
+        .collect();
+    Some(Reading {
+        units: unit.iter().map(|(s, k)| vec![(s.clone(), *k)]).collect(),
+        parts,
+    })
+}
+
+/// Each mode's direction its own unit, as the angle sums of a regrouped form read
+/// (`a2^2 cos(a)^2 - a3^2 cos(a + b)^2` from its modes `2 a` and `2 a + 2 b`: variables
+/// `cos(a)`, `cos(a + b)`): a mode `k g`, `g` with coprime integer coefficients and a positive
+/// first one, is the multiple `k / u_g` of the unit `u_g g`, `u_g` one over the common
+/// denominator of the `k` of that direction. `None` when it would be the reading by symbols
+/// (every direction a single symbol), past [`MAX_ANGLES`] directions, or when no mode is a
+/// multiple of two or more of its unit (without a square or a product of equal angles there
+/// is nothing for this reading to find that the regrouping does not).
+fn by_directions(t: &[Term]) -> Option<Reading> {
+    if t.len() > MAX_DIRECTION_TERMS {
+        return None;
+    }
+    // First without arithmetic: modes on different sets of symbols are different directions,
+    // and a sum with a mode of two or more symbols is needed.
+    let mut supports: Vec<&[(Sym, Small)]> = Vec::with_capacity(MAX_ANGLES);
+    let same = |a: &[(Sym, Small)], b: &[(Sym, Small)]| {
+        a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.0 == y.0)
+    };
+    for u in t {
+        let f = &u.mode.freq[..];
+        if !f.is_empty() && !supports.iter().any(|g| same(g, f)) {
+            if supports.len() == MAX_ANGLES {
+                return None;
+            }
+            supports.push(f);
+        }
+    }
+    if supports.iter().all(|g| g.len() < 2) {
+        return None;
+    }
+    // Per term its direction (coprime integers, the first positive) and the scale `num/den`
+    // of its mode along it, in integers.
+    let mut dirs: Vec<(Vec<(Sym, i64)>, i64)> = Vec::new();
+    let mut scaled: Vec<Option<(usize, i64, i64)>> = Vec::with_capacity(t.len());
+    for u in t {
+        let f = &u.mode.freq;
+        if f.is_empty() {
+            scaled.push(None);
+            continue;
+        }
+        let mut num = f.iter().fold(0i64, |g, (_, k)| g.gcd(k.numer()));
+        let den = f.iter().fold(1i64, |l, (_, k)| l.lcm(k.denom()));
+        if *f[0].1.numer() < 0 {
+            num = -num;
+        }
+        let g: Vec<(Sym, i64)> = f
+            .iter()
+            .map(|(s, k)| (s.clone(), k.numer() * (den / k.denom()) / num))
+            .collect();
+        let i = match dirs.iter().position(|(h, _)| *h == g) {
+            Some(i) => i,
+            None => {
+                if dirs.len() == MAX_ANGLES {
+                    return None;
+                }
+                dirs.push((g, 1));
+                dirs.len() - 1
+            }
+        };
+        dirs[i].1 = dirs[i].1.lcm(&den);
+        scaled.push(Some((i, num, den)));
+    }
+    // The multiple of the unit `g / lcm_den`: `num/den * lcm_den`.
+    let parts: Vec<Vec<(usize, i64)>> = scaled
+        .iter()
+        .map(|p| match *p {
+            Some((i, num, den)) => vec![(i, num * (dirs[i].1 / den))],
+            None => Vec::new(),
+        })
+        .collect();
+    if dirs.iter().all(|(g, _)| g.len() == 1) || !parts.iter().flatten().any(|(_, m)| m.abs() >= 2)
+    {
+        return None;
+    }
+    let units = dirs
+        .into_iter()
+        .map(|(g, d)| g.into_iter().map(|(s, k)| (s, Small::new(k, d))).collect())
+        .collect();
+    Some(Reading { units, parts })
+}
+
+fn candidates(t: &[Term]) -> Option<Vec<Expr>> {
+    if t.len() < 2 || t.len() > MAX_TERMS {
+        return None;
+    }
+    if t.iter().any(|u| u.rad != 1 || *u.mode.pi.denom() > 2) {
+        return None;
+    }
+    let readings: Vec<Reading> = [by_symbols(t), by_directions(t)]
+        .into_iter()
+        .flatten()
+        .collect();
+    if readings.is_empty() {
+        return None;
+    }
+    let mut syms: Vec<Sym> = Vec::new();
+    for u in t {
         for (s, _) in u.mono.iter() {
             if !syms.contains(s) {
                 syms.push(s.clone());
@@ -79,36 +208,42 @@ fn candidates(t: &[Term]) -> Option<Vec<Expr>> {
         }
     }
     syms.sort();
+    let mut out = Vec::new();
+    for reading in &readings {
+        if let Some(found) = read(t, reading, &syms) {
+            out.extend(found);
+        }
+    }
+    Some(out)
+}
+
+/// The candidates of one reading: each of its three polynomials expanded and factored.
+fn read(t: &[Term], reading: &Reading, syms: &[Sym]) -> Option<Vec<Expr>> {
     let mut vars: Vec<Var> = Vec::new();
-    for (s, k) in &unit {
-        vars.push(Var::Cos(s.clone(), *k));
-        vars.push(Var::Sin(s.clone(), *k));
+    for g in &reading.units {
+        vars.push(Var::Cos(g.clone()));
+        vars.push(Var::Sin(g.clone()));
     }
     vars.extend(syms.iter().cloned().map(Var::Sym));
-    if vars.is_empty() || vars.len() > MAX_VARS || unit.is_empty() || unit.len() > MAX_ANGLES {
+    if vars.len() > MAX_VARS || reading.units.is_empty() || reading.units.len() > MAX_ANGLES {
         return None;
     }
     let n = vars.len();
     let pos = |v: &Var| vars.iter().position(|w| w == v);
-    // The expansion: cos and sin of sum k_x u_x x + p pi are the real and imaginary parts of
-    // i^(2p) prod (c_x + i s_x)^(k_x).
+    // The expansion: cos and sin of sum m_g u_g + p pi are the real and imaginary parts of
+    // i^(2p) prod (c_g + i s_g)^(m_g).
     let mut poly: BTreeMap<Vec<u32>, Rat> = BTreeMap::new();
-    for u in t {
+    for (u, parts) in t.iter().zip(&reading.parts) {
         let mut base = vec![0u32; n];
         for (s, e) in u.mono.iter() {
             base[pos(&Var::Sym(s.clone()))?] += e;
         }
         let mut p: CPoly = BTreeMap::from([(base, (u.coef.to_big(), Rat::zero()))]);
-        for (s, k) in u.mode.freq.iter() {
-            let unit_k = unit[s];
-            let m = (*k / unit_k).to_integer();
+        for &(g, m) in parts {
             if m.abs() > MAX_MULTIPLE {
                 return None;
             }
-            let (ci, si) = (
-                pos(&Var::Cos(s.clone(), unit_k))?,
-                pos(&Var::Sin(s.clone(), unit_k))?,
-            );
+            let (ci, si) = (2 * g, 2 * g + 1);
             let sigma = Rat::from_integer(BigInt::from(m.signum()));
             for _ in 0..m.abs() {
                 charge(p.len() as u64).ok()?;
@@ -146,7 +281,9 @@ fn candidates(t: &[Term]) -> Option<Vec<Expr>> {
     if poly.is_empty() {
         return None;
     }
-    let pairs: Vec<(usize, usize)> = (0..unit.len()).map(|i| (2 * i, 2 * i + 1)).collect();
+    let pairs: Vec<(usize, usize)> = (0..reading.units.len())
+        .map(|i| (2 * i, 2 * i + 1))
+        .collect();
     let mut readings = vec![poly.clone()];
     for sin_reduced in [true, false] {
         let r = reduce(&poly, &pairs, sin_reduced)?;
@@ -347,8 +484,8 @@ fn poly_expr(g: &MPoly, vars: &[Var]) -> Option<(bool, Expr)> {
                 continue;
             }
             let a = match &vars[i] {
-                Var::Cos(s, k) => trig(false, vec![(s.clone(), *k)], Small::zero()),
-                Var::Sin(s, k) => trig(true, vec![(s.clone(), *k)], Small::zero()),
+                Var::Cos(g) => trig(false, g.clone(), Small::zero()),
+                Var::Sin(g) => trig(true, g.clone(), Small::zero()),
                 Var::Sym(s) => Expr::Sym(s.clone()),
             };
             m = mul(m, if x == 1 { a } else { Expr::Pow(Box::new(a), x) });

@@ -453,6 +453,84 @@ impl Expr {
     pub fn zero() -> Expr {
         Expr::Num(BigRational::zero())
     }
+
+    /// The expression with every angle that holds a rational constant shown with its first
+    /// symbol's coefficient positive, as angles without a constant are: the canonical form
+    /// keeps the constant's sign (it leads the frequency vector), the text puts the symbols
+    /// first (`t/2 - 1/3`), so `sin(1/3 - t/2)` is shown `-sin(t/2 - 1/3)` and `cos(1/3 - t/2)`
+    /// `cos(t/2 - 1/3)` (cos is even, sin odd). The signs met are moved out of products and
+    /// powers. Unchanged (and not rebuilt) when no angle needs it.
+    pub(crate) fn symbols_leading(self) -> Expr {
+        fn needs(a: &Angle) -> bool {
+            !a.constant.is_zero() && a.terms.first().is_some_and(|(_, k)| *k < Small::zero())
+        }
+        fn any(e: &Expr) -> bool {
+            match e {
+                Expr::Trig { angle, .. } => needs(angle),
+                Expr::Add(v) | Expr::Mul(v) => v.iter().any(any),
+                Expr::Neg(x) | Expr::Pow(x, _) => any(x),
+                _ => false,
+            }
+        }
+        fn negated(e: Expr) -> Expr {
+            match e {
+                Expr::Neg(x) => *x,
+                e => Expr::Neg(Box::new(e)),
+            }
+        }
+        fn walk(e: Expr) -> Expr {
+            match e {
+                Expr::Trig { f, mut angle } if needs(&angle) => {
+                    angle.negate();
+                    angle.reduce_offset();
+                    let t = Expr::Trig { f, angle };
+                    if f.is_sin() {
+                        Expr::Neg(Box::new(t))
+                    } else {
+                        t
+                    }
+                }
+                Expr::Add(v) => Expr::Add(
+                    v.into_iter()
+                        .map(|x| match walk(x) {
+                            Expr::Neg(y) => negated(*y),
+                            y => y,
+                        })
+                        .collect(),
+                ),
+                Expr::Mul(v) => {
+                    let mut neg = false;
+                    let parts = v
+                        .into_iter()
+                        .map(|x| match walk(x) {
+                            Expr::Neg(y) => {
+                                neg = !neg;
+                                *y
+                            }
+                            y => y,
+                        })
+                        .collect();
+                    if neg {
+                        Expr::Neg(Box::new(Expr::Mul(parts)))
+                    } else {
+                        Expr::Mul(parts)
+                    }
+                }
+                Expr::Neg(x) => negated(walk(*x)),
+                Expr::Pow(x, n) => match walk(*x) {
+                    Expr::Neg(y) if n % 2 == 0 => Expr::Pow(y, n),
+                    Expr::Neg(y) => Expr::Neg(Box::new(Expr::Pow(y, n))),
+                    y => Expr::Pow(Box::new(y), n),
+                },
+                e => e,
+            }
+        }
+        if any(&self) {
+            walk(self)
+        } else {
+            self
+        }
+    }
 }
 
 #[cfg(test)]

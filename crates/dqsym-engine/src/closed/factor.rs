@@ -103,9 +103,73 @@ impl E {
                 angle: ctx.angles[angle_of(*a) as usize].clone(),
             },
             E::Add(v) => Expr::Add(v.iter().map(|e| e.to_expr(ctx)).collect()),
-            E::Mul(v) => Expr::Mul(v.iter().map(|e| e.to_expr(ctx)).collect()),
+            E::Mul(v) => product_expr(v, ctx),
             E::Neg(e) => Expr::Neg(Box::new(e.to_expr(ctx))),
         }
+    }
+}
+
+/// A product as a display expression, with equal symbols and equal atoms merged into one
+/// power: a factor pulled out of a sum meets its own power inside it (`a2 (a2 x + ..)` where
+/// the sum had one term, `a2 a2 x`), and `a2^2` is what a reader expects. The merged power
+/// stands where the first of its factors stood; the cost is the same or lower (`cos(a)^2`
+/// calls cos once).
+fn product_expr(v: &[E], ctx: &Ctx) -> Expr {
+    #[derive(PartialEq)]
+    enum Key {
+        Sym(u32),
+        Atom(Atom),
+    }
+    let key = |e: &E| match e {
+        E::Sym(s) => Some((Key::Sym(*s), 1)),
+        E::Pow(s, n) => Some((Key::Sym(*s), *n)),
+        E::Trig(a) => Some((Key::Atom(*a), 1)),
+        _ => None,
+    };
+    // A first pass on 64-bit masks (every product is converted, so this stays cheap): only
+    // when two factors share a bit are they compared.
+    let (mut syms, mut atoms, mut clash) = (0u64, 0u64, false);
+    for e in v {
+        let (mask, bit) = match e {
+            E::Sym(s) | E::Pow(s, _) => (&mut syms, 1u64 << (s % 64)),
+            E::Trig(a) => (&mut atoms, 1u64 << (*a as u64 % 64)),
+            _ => continue,
+        };
+        clash |= *mask & bit != 0;
+        *mask |= bit;
+    }
+    let repeated = clash
+        && v.iter().enumerate().any(|(i, e)| {
+            key(e).is_some_and(|(k, _)| v[..i].iter().any(|f| key(f).is_some_and(|(j, _)| j == k)))
+        });
+    if !repeated {
+        return Expr::Mul(v.iter().map(|e| e.to_expr(ctx)).collect());
+    }
+    let mut merged: Vec<(Option<Key>, u32, &E)> = Vec::with_capacity(v.len());
+    for e in v {
+        match key(e) {
+            Some((k, n)) => match merged.iter_mut().find(|(m, _, _)| m.as_ref() == Some(&k)) {
+                Some((_, m, _)) => *m += n,
+                None => merged.push((Some(k), n, e)),
+            },
+            None => merged.push((None, 1, e)),
+        }
+    }
+    let parts: Vec<Expr> = merged
+        .into_iter()
+        .map(|(k, n, e)| match (k, e) {
+            (Some(Key::Sym(s)), _) => E::Pow(s, n).to_expr(ctx),
+            (_, e) if n == 1 => e.to_expr(ctx),
+            (_, e) => Expr::Pow(Box::new(e.to_expr(ctx)), n),
+        })
+        .map(|e| match e {
+            Expr::Pow(b, 1) => *b,
+            e => e,
+        })
+        .collect();
+    match parts.len() {
+        1 => parts.into_iter().next().unwrap_or_else(Expr::zero),
+        _ => Expr::Mul(parts),
     }
 }
 

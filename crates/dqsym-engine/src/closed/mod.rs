@@ -54,17 +54,20 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
         .map(|t| t.iter().map(|t| 1usize << t.mode.freq.len().min(30)).sum())
         .unwrap_or(0);
     if split_size > SPLIT_LIMIT {
-        return (whole_form(x).map(|(e, _)| e), Prepared(None));
+        return (
+            whole_form(x).map(|(e, _)| e.symbols_leading()),
+            Prepared(None),
+        );
     }
     if skip_split(x, split_size) {
-        return (best_whole(x), Prepared(None));
+        return (best_whole(x).map(Expr::symbols_leading), Prepared(None));
     }
     let (mut sctx, smons) = mon::split_modes(x);
     let smons = recombine::recombine(&mut sctx, smons);
     let result = best_of(x, &sctx, &smons, true);
     let split_won = result.as_ref().is_ok_and(|(_, split)| *split);
     (
-        result.map(|(e, _)| e),
+        result.map(|(e, _)| e.symbols_leading()),
         Prepared(Some((sctx, smons, split_won))),
     )
 }
@@ -225,7 +228,7 @@ pub fn closed_form_of_derivative(
     let dmons = recombine::recombine(&mut ctx, mon::merge(dmons));
     // Where the regrouped shape won for the scalar, it is kept for its derivatives (which have
     // the same modes) without factoring the whole modes again.
-    best_of(dx, &ctx, &dmons, !split_won).map(|(e, _)| e)
+    best_of(dx, &ctx, &dmons, !split_won).map(|(e, _)| e.symbols_leading())
 }
 
 /// The closed form of a polynomial in cosine and sine placeholders (see
@@ -297,6 +300,17 @@ fn point_value(s: &Sym, seed: u64) -> f64 {
 /// # Errors
 /// When `x` is an error value, or the work budget runs out.
 pub fn closed_form_traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarError> {
+    let (e, mut steps) = traced(x)?;
+    // The last step is the closed form; it is shown as `closed_form` shows it.
+    if let Some(TraceStep::Factored(last) | TraceStep::KeptWhole(last) | TraceStep::Shorter(last)) =
+        steps.last_mut()
+    {
+        *last = std::mem::replace(last, Expr::zero()).symbols_leading();
+    }
+    Ok((e.symbols_leading(), steps))
+}
+
+fn traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarError> {
     if let Err(e) = x.terms() {
         return Err(e.clone());
     }

@@ -43,7 +43,8 @@ pub fn shorthand_name(f: Trig, angle: &Angle) -> Option<String> {
     Some(format!("{}{shown}{}", &f.name()[..1], body.join(sep)))
 }
 
-/// The angle in explicit form: `theta1 + theta2`, `theta3/2`, `t - pi/7`; a sum whose
+/// The angle in explicit form: `theta1 + theta2`, `theta3/2`, `t - pi/7`, `t/2 - 1/3` (the
+/// symbols first, then the rational constant, then the multiple of pi); a sum whose
 /// coefficients (the pi part included) all have one denominator `d > 1` is written over it once,
 /// `(q1 + q2)/2` for `q1/2 + q2/2` (as the LaTeX printer writes `\frac{q_1 + q_2}{2}`).
 pub fn angle_text(angle: &Angle) -> String {
@@ -109,11 +110,13 @@ fn sum_text(angle: &Angle) -> String {
             s.push_str(&format!("{}*{name}/{}", a.numer(), a.denom()));
         }
     };
-    if !angle.constant.is_zero() {
-        push(angle.constant, "", &mut s);
-    }
+    // Symbols first, then the rational constant and the multiple of pi: `t/2 - 1/3`, as the
+    // pi offset reads in `x - pi/7`.
     for (sym, k) in &angle.terms {
         push(*k, sym.name(), &mut s);
+    }
+    if !angle.constant.is_zero() {
+        push(angle.constant, "", &mut s);
     }
     if !angle.pi.is_zero() {
         push(angle.pi, "pi", &mut s);

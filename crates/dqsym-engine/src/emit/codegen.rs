@@ -289,7 +289,8 @@ impl Builder<'_> {
     fn neg(&mut self, a: Id) -> Id {
         match self.nodes[a] {
             Node::Neg(x) => x,
-            Node::Sub(x, y) => self.node(Node::Sub(y, x)),
+            // Through `sub`, so that `-(-y - x)` is `x + y`, never `x - -y`.
+            Node::Sub(x, y) => self.sub(y, x),
             _ => self.node(Node::Neg(a)),
         }
     }

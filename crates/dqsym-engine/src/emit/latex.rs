@@ -450,15 +450,16 @@ fn rational(q: &BigRational) -> String {
 /// over it once.
 fn latex_angle(angle: &Angle) -> String {
     let mut items: Vec<(Small, Option<String>)> = Vec::with_capacity(angle.terms.len() + 2);
-    if !angle.constant.is_zero() {
-        items.push((angle.constant, None));
-    }
+    // Symbols first, then the constant and pi, as `angle_text` writes them.
     items.extend(
         angle
             .terms
             .iter()
             .map(|(sym, k)| (*k, Some(latex_symbol(sym.name())))),
     );
+    if !angle.constant.is_zero() {
+        items.push((angle.constant, None));
+    }
     if !angle.pi.is_zero() {
         items.push((angle.pi, Some("\\pi".to_string())));
     }

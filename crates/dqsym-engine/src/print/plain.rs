@@ -97,7 +97,13 @@ fn write(e: &Expr, o: &PlainOptions, names: TrigNames, prec: u8, out: &mut Strin
                 match t {
                     Expr::Neg(inner) => {
                         out.push_str(if i == 0 { "-" } else { " - " });
-                        write(inner, o, names, 2, out);
+                        // A fraction after the minus reads without brackets: `x - 3/4`.
+                        let p = if matches!(**inner, Expr::Num(_)) {
+                            1
+                        } else {
+                            2
+                        };
+                        write(inner, o, names, p, out);
                     }
                     t => {
                         if i > 0 {
