@@ -14,6 +14,7 @@ mod expr;
 mod factor;
 mod mon;
 mod notation;
+mod offsets;
 mod recombine;
 mod trace;
 mod zfactor;
@@ -42,22 +43,54 @@ pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
 /// its derivatives start from them ([`closed_form_of_derivative`]) instead of from the
 /// expanded Fourier series, and whether that regrouped shape won over the whole modes. `None`
 /// when the split shape was skipped (too large) or failed.
-pub struct Prepared(Option<(mon::Ctx, Vec<mon::Mon>, bool)>);
+pub struct Prepared(
+    Option<(mon::Ctx, Vec<mon::Mon>, bool)>,
+    Option<offsets::Shift>,
+);
 
 /// [`closed_form`], and what it found on the way (see [`Prepared`]).
+///
+/// A scalar whose symbolic modes carry offsets outside the multiples of pi/12 is also tried
+/// with the offsets absorbed into its symbols (`offsets.rs`: `cos(q2 + 5*pi/9)` regrouped
+/// and factored like `cos(q2)`), the shorter of the two kept ([`alt::shorter`]).
 pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+    let (plain, prepared) = prepared_unshifted(x);
+    let Some(shift) = offsets::find(x) else {
+        return (plain, prepared);
+    };
+    let Some(y) = shift.apply(x) else {
+        return (plain, prepared);
+    };
+    let (shifted, yprep) = prepared_unshifted(&y);
+    let Ok(e) = shifted.map(|e| shift.unshift(e)) else {
+        return (plain, prepared);
+    };
+    if plain.as_ref().is_ok_and(|p| !alt::shorter(&e, p)) || !verified(&e, x) {
+        return (plain, prepared);
+    }
+    (Ok(e), Prepared(yprep.0, Some(shift)))
+}
+
+/// Whether `e` equals `x`: exactly in debug builds, numerically first in release builds (as
+/// [`best_of`] checks).
+fn verified(e: &Expr, x: &Scalar) -> bool {
+    (!cfg!(debug_assertions) && agrees_numerically(e, x)) || e.to_scalar() == *x
+}
+
+/// [`closed_form_prepared`] without the offsets absorbed.
+fn prepared_unshifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     if let Err(e) = x.terms() {
-        return (Err(e.clone()), Prepared(None));
+        return (Err(e.clone()), Prepared(None, None));
     }
     let split_size: usize = x
         .terms()
         .map(|t| t.iter().map(|t| 1usize << t.mode.freq.len().min(30)).sum())
         .unwrap_or(0);
     if split_size > SPLIT_LIMIT {
-        return (whole_form(x).map(|(e, _)| e), Prepared(None));
+        return (whole_form(x).map(|(e, _)| e), Prepared(None, None));
     }
     if skip_split(x, split_size) {
-        return (best_whole(x), Prepared(None));
+        return (best_whole(x), Prepared(None, None));
     }
     let (mut sctx, smons) = mon::split_modes(x);
     let smons = recombine::recombine(&mut sctx, smons);
@@ -65,7 +98,7 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
     let split_won = result.as_ref().is_ok_and(|(_, split)| *split);
     (
         result.map(|(e, _)| e),
-        Prepared(Some((sctx, smons, split_won))),
+        Prepared(Some((sctx, smons, split_won)), None),
     )
 }
 
@@ -217,6 +250,24 @@ pub fn closed_form_of_derivative(
     if let Err(e) = dx.terms() {
         return Err(e.clone());
     }
+    // Prepared with its offsets absorbed: the derivative (with respect to the same symbol,
+    // d/dx = d/dy) is shifted alike, its closed form shifted back.
+    if let Some(shift) = &p.1 {
+        let Some(dy) = shift.apply(dx) else {
+            return closed_form(dx);
+        };
+        let e = shift.unshift(derivative_unshifted(p, var, &dy)?);
+        return if verified(&e, dx) {
+            Ok(e)
+        } else {
+            closed_form(dx)
+        };
+    }
+    derivative_unshifted(p, var, dx)
+}
+
+/// [`closed_form_of_derivative`] for a scalar and monomials in the same symbols.
+fn derivative_unshifted(p: &Prepared, var: &str, dx: &Scalar) -> Result<Expr, ScalarError> {
     let Some((ctx, mons, split_won)) = &p.0 else {
         return closed_form(dx);
     };
@@ -300,6 +351,22 @@ pub fn closed_form_traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarEr
     if let Err(e) = x.terms() {
         return Err(e.clone());
     }
+    // With offsets absorbed into the symbols the form is found in other symbols: it is
+    // recorded as one step when it is not the traced one.
+    if offsets::find(x).is_some() {
+        let e = closed_form(x)?;
+        let (t, steps) = traced_unshifted(x)?;
+        return Ok(if t == e {
+            (t, steps)
+        } else {
+            (e.clone(), vec![TraceStep::Shorter(e)])
+        });
+    }
+    traced_unshifted(x)
+}
+
+/// [`closed_form_traced`] without the offsets absorbed.
+fn traced_unshifted(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarError> {
     let (wctx, wmons) = mon::whole_modes(x);
     let (whole, wc) = factor::build(&wmons)?;
     let split_size: usize = x
