@@ -182,7 +182,7 @@ fn solve(
     n: i64,
     fixed: &[Option<Small>],
     found: &mut dyn FnMut(&[Small]) -> bool,
-) -> Option<()> {
+) -> Option<bool> {
     let mut cons: Vec<Constraint> = rows
         .iter()
         .zip(targets)
@@ -279,9 +279,9 @@ fn solve(
         }
         true
     }
-    dfs(0, &mut o, &cands, &by_last, &mut visits, found);
+    let complete = dfs(0, &mut o, &cands, &by_last, &mut visits, found);
     crate::scalar::charge(visits as u64).ok()?;
-    Some(())
+    Some(complete)
 }
 
 /// The most candidate offsets the search of [`solve`] looks at.
@@ -348,6 +348,47 @@ fn representatives(
         }
         (parts, neg)
     };
+    let run = |fixed: &[Option<Small>]| -> Option<(bool, Option<Vec<Small>>)> {
+        let mut best: Option<((usize, i64, usize, Small, usize), Vec<Small>)> = None;
+        let mut seen = 0usize;
+        let complete = solve(syms, rows, targets, n, fixed, &mut |o| {
+            // Centred into (-D, D] for a period 2 D.
+            let o: Vec<Small> = o
+                .iter()
+                .enumerate()
+                .map(|(i, &v)| {
+                    let den = rows
+                        .iter()
+                        .filter_map(|r| r.iter().find(|(x, _)| *x == i))
+                        .fold(1i64, |acc, (_, k)| acc.lcm(k.denom()));
+                    let period = Small::from_integer(2 * den);
+                    let v = v - (v / period).floor() * period;
+                    if v > Small::from_integer(den) {
+                        v - period
+                    } else {
+                        v
+                    }
+                })
+                .collect();
+            let (parts, neg) = score(&o);
+            let den = o.iter().map(|v| *v.denom()).max().unwrap_or(1);
+            let size: Small = o.iter().map(|v| v.abs()).sum();
+            let negatives = o.iter().filter(|v| v.is_negative()).count();
+            let key = (parts, den, neg, size, negatives);
+            if best.as_ref().is_none_or(|(k, _)| key < *k) {
+                best = Some((key, o));
+            }
+            seen += 1;
+            seen < MAX_SOLUTIONS
+        })?;
+        Some((complete, best.map(|(_, o)| o)))
+    };
+    // Every solution when they are few; else the symbols whose offset in `base` is a multiple
+    // of their own steps keep none, and the others range over the solutions.
+    let free = vec![None; syms.len()];
+    if let (true, Some(o)) = run(&free)? {
+        return Some(o);
+    }
     let fixed: Vec<Option<Small>> = (0..syms.len())
         .map(|i| {
             // The rational lcm of (1/12) / k over the groups holding the symbol.
@@ -365,39 +406,7 @@ fn representatives(
                 .then(Small::zero)
         })
         .collect();
-    let mut best: Option<((usize, i64, usize, Small, usize), Vec<Small>)> = None;
-    let mut seen = 0usize;
-    solve(syms, rows, targets, n, &fixed, &mut |o| {
-        // Centred into (-D, D] for a period 2 D.
-        let o: Vec<Small> = o
-            .iter()
-            .enumerate()
-            .map(|(i, &v)| {
-                let den = rows
-                    .iter()
-                    .filter_map(|r| r.iter().find(|(x, _)| *x == i))
-                    .fold(1i64, |acc, (_, k)| acc.lcm(k.denom()));
-                let period = Small::from_integer(2 * den);
-                let v = v - (v / period).floor() * period;
-                if v > Small::from_integer(den) {
-                    v - period
-                } else {
-                    v
-                }
-            })
-            .collect();
-        let (parts, neg) = score(&o);
-        let den = o.iter().map(|v| *v.denom()).max().unwrap_or(1);
-        let size: Small = o.iter().map(|v| v.abs()).sum();
-        let negatives = o.iter().filter(|v| v.is_negative()).count();
-        let key = (parts, den, neg, size, negatives);
-        if best.as_ref().is_none_or(|(k, _)| key < *k) {
-            best = Some((key, o));
-        }
-        seen += 1;
-        seen < MAX_SOLUTIONS
-    })?;
-    best.map(|(_, o)| o)
+    run(&fixed)?.1
 }
 
 /// The most solutions [`representatives`] compares.
