@@ -5,7 +5,10 @@
 //! (a) every mode split into single-symbol atoms, then regrouped by the angle-sum identities
 //! (`recombine.rs`) and factored (`factor.rs`); (b) the Fourier modes kept whole and factored;
 //! then (c) the candidates of `alt.rs` (harmonic form, sum to product, a polynomial in one
-//! cosine or sine factored by its rational roots) when one is cheaper still. The result is re-canonicalized and compared with the input before it is returned.
+//! cosine or sine factored by its rational roots) when one is cheaper still; (d) for a scalar
+//! whose symbolic modes carry pi offsets outside the multiples of pi/12, the same with the
+//! offsets absorbed into the symbols (`offsets.rs`) when that is shorter. The result is
+//! re-canonicalized and compared with the input before it is returned.
 
 mod alt;
 mod cprod;

@@ -10,16 +10,18 @@
 //! `d` of `pi / N` (`N = lcm(12, the offsets' denominators)`), taken modulo `1/12`, for
 //! which the group shifted by `-d` has no offset (tried exactly, one small canonicalization
 //! per candidate); a group with no such `d` (a sum of two unrelated phases) means no shift
-//! exists. The offsets must then satisfy `f . o = d_f (mod 1/12)` for every group. Each
-//! symbol's candidates (multiples of `pi / (N a)`, `a` its largest coefficient's numerator, over
-//! one period) are narrowed by the pairs of groups that differ in that symbol only, and the
-//! remaining combinations (at most [`MAX_COMBINATIONS`]) are checked against every group.
+//! exists. The offsets must then satisfy `f . o = d_f (mod 1/12)` for every group: each
+//! symbol's candidates (multiples of `pi / (N a)`, `a` the lcm of its coefficients'
+//! numerators, over one period) are narrowed by the sums and differences of two groups that
+//! hold that symbol alone, and a depth-first search checks every constraint as soon as its
+//! symbols are chosen (at most [`MAX_VISITS`] candidates, [`MAX_SOLUTIONS`] solutions).
 //!
-//! Which representative of `o_s` modulo the multiples of pi/12 is shown (`5 pi/9` or
-//! `-4 pi/9`): the one for which the shifted scalar has the fewest cosine and sine parts, then
-//! the fewest negative ones (`cos(t + 5*pi/9)`, not `-cos(t - 4*pi/9)`), then the smallest
-//! `|o_s|`, then the positive one. A symbol whose offsets are all multiples of pi/12 keeps
-//! offset 0. The shifted scalar is computed exactly and must have no offset left on a
+//! Which solution is shown (`5 pi/9` or `-4 pi/9`, or `1/18 pi` with the cosine turned into
+//! a sine): among every solution (when the search finds them all; else with the symbols whose
+//! first offset is a multiple of their own pi/12 steps kept at 0), the one for which the
+//! shifted scalar has the fewest cosine and sine parts, then the smallest denominator, then
+//! the fewest nonzero offsets (no `q1 - pi` for a sign), then the fewest negative parts (`cos(t + 5*pi/9)`, not `-cos(t - 4*pi/9)`), then the smallest
+//! sum of `|o_s|`, then the fewest negative offsets. The shifted scalar is computed exactly and must have no offset left on a
 //! symbolic mode; the closed form built from it is checked against the input like every
 //! other.
 
@@ -349,7 +351,7 @@ fn representatives(
         (parts, neg)
     };
     let run = |fixed: &[Option<Small>]| -> Option<(bool, Option<Vec<Small>>)> {
-        let mut best: Option<((usize, i64, usize, Small, usize), Vec<Small>)> = None;
+        let mut best: Option<(Key, Vec<Small>)> = None;
         let mut seen = 0usize;
         let complete = solve(syms, rows, targets, n, fixed, &mut |o| {
             // Centred into (-D, D] for a period 2 D.
@@ -374,7 +376,8 @@ fn representatives(
             let den = o.iter().map(|v| *v.denom()).max().unwrap_or(1);
             let size: Small = o.iter().map(|v| v.abs()).sum();
             let negatives = o.iter().filter(|v| v.is_negative()).count();
-            let key = (parts, den, neg, size, negatives);
+            let nonzero = o.iter().filter(|v| !v.is_zero()).count();
+            let key = (parts, den, nonzero, neg, size, negatives);
             if best.as_ref().is_none_or(|(k, _)| key < *k) {
                 best = Some((key, o));
             }
@@ -408,6 +411,10 @@ fn representatives(
         .collect();
     run(&fixed)?.1
 }
+
+/// The order of solutions: parts, largest denominator, offsets, negative parts, sum of
+/// `|o|`, negative offsets.
+type Key = (usize, i64, usize, usize, Small, usize);
 
 /// The most solutions [`representatives`] compares.
 const MAX_SOLUTIONS: usize = 4096;
