@@ -167,7 +167,7 @@ fn offsets_outside_twelfths_print_as_one_angle_or_a_product() {
 fn random_offsets_in_sums_products_and_powers() {
     let mut rng = Rng(0x0ff5_e7ed);
     let dens = [5i64, 7, 8, 9, 10, 16, 18, 24];
-    let mut offset = |rng: &mut Rng| loop {
+    let offset = |rng: &mut Rng| loop {
         let n = dens[rng.below(dens.len() as u64) as usize];
         let k = rng.below(2 * n as u64) as i64 - n + 1;
         // Multiples of pi/12 take the canonical radicals: not this case.
@@ -183,7 +183,7 @@ fn random_offsets_in_sums_products_and_powers() {
         }
     };
     let val = |(k, n): (i64, i64)| k as f64 * PI / n as f64;
-    for round in 0..12 {
+    for round in 0..12i32 {
         let (o1, o2) = (offset(&mut rng), offset(&mut rng));
         // A chain: l1 cos(t + o1) + l2 cos(t + q + o1 + o2) (+ l3 sin(t + q + r + o1 + o2)).
         let sum = format!(
@@ -205,7 +205,7 @@ fn random_offsets_in_sums_products_and_powers() {
         );
         assert!(one_angle_per_mode(&e), "{sum} => {}", show(&e));
         // Products and powers of single angles.
-        let k = 2 + (round % 2) as i32;
+        let k = 2 + round % 2;
         // An offset whose multiple by k is a multiple of pi/12 (`cos(x + 5 pi/8)^2`) leaves
         // no offset in the canonical form, which is then radicals only: not this case.
         let mut o1 = o1;

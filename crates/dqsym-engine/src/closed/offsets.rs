@@ -95,8 +95,8 @@ pub(crate) fn find(x: &Scalar) -> Option<Shift> {
         return None;
     }
     // Groups by (frequency vector, monomial).
-    let mut index: BTreeMap<(&[(Sym, Small)], &crate::scalar::atoms::MonoRc), usize> =
-        BTreeMap::new();
+    type GroupKey<'a> = (&'a [(Sym, Small)], &'a crate::scalar::MonoRc);
+    let mut index: BTreeMap<GroupKey, usize> = BTreeMap::new();
     let mut groups: Vec<Group> = Vec::new();
     for t in terms.iter().filter(|t| symbolic(t)) {
         let k = (&*t.mode.freq, &t.mono);
@@ -211,7 +211,7 @@ fn solve(
     }
     crate::scalar::charge(cons.len() as u64).ok()?;
     let mut cands: Vec<Vec<Small>> = Vec::with_capacity(syms.len());
-    for s in 0..syms.len() {
+    for (s, fixed_s) in fixed.iter().enumerate().take(syms.len()) {
         let (mut num, mut den) = (1i64, 1i64);
         for r in rows {
             if let Some((_, k)) = r.iter().find(|(x, _)| *x == s) {
@@ -219,8 +219,8 @@ fn solve(
                 den = den.lcm(k.denom());
             }
         }
-        let mut c: Vec<Small> = if let Some(v) = fixed[s] {
-            vec![v]
+        let mut c: Vec<Small> = if let Some(v) = fixed_s {
+            vec![*v]
         } else {
             let count = n.checked_mul(num)?.checked_mul(den)?.checked_mul(2)?;
             if count > MAX_CANDIDATES {
