@@ -65,9 +65,18 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
         return (plain, prepared);
     };
     let (shifted, yprep) = prepared_unshifted(&y);
-    let Ok(e) = shifted.map(|e| shift.unshift(e)) else {
+    let Ok(mut e) = shifted.map(|e| shift.unshift(e)) else {
         return (plain, prepared);
     };
+    // The shift changes what an angle costs (`cos(y - pi/7) cos(y + pi/7)` ties with the sum in
+    // `y`, `cos(x) cos(x + 2*pi/7)` beats it in `x`): the candidates of `alt.rs` for the
+    // shifted scalar are compared again once shifted back.
+    for a in alt::candidates(&y).into_iter().map(|a| shift.unshift(a)) {
+        if alt::shorter(&a, &e) && a.to_scalar() == *x {
+            e = a;
+            break;
+        }
+    }
     if plain.as_ref().is_ok_and(|p| !alt::shorter(&e, p)) || !verified(&e, x) {
         return (plain, prepared);
     }
