@@ -122,6 +122,13 @@ fn offsets_outside_twelfths_print_as_one_angle_or_a_product() {
             }),
         ),
         (
+            "l1*cos(t + 5*pi/9) + l2*cos(2*t + 5*pi/9)",
+            "l1 cos(t + 5*pi/9) + l2 cos(2*t + 5*pi/9)",
+            Box::new(move |e| {
+                e["l1"] * (e["t"] + a(5., 9.)).cos() + e["l2"] * (2. * e["t"] + a(5., 9.)).cos()
+            }),
+        ),
+        (
             "sin(x - 2*pi/7)^2",
             "sin(x - 2*pi/7)^2",
             Box::new(move |e| (e["x"] - a(2., 7.)).sin().powi(2)),
@@ -206,6 +213,14 @@ fn random_offsets_in_sums_products_and_powers() {
             &mut rng,
         );
         assert!(one_angle_per_mode(&e), "{sum} => {}", show(&e));
+        // Offsets that no shift of the symbols removes (one per frequency): each mode joined.
+        let mixed = format!("l1*cos(t {}) + l2*sin(2*t {})", text(o1), text(o2));
+        let e = checked(
+            &mixed,
+            &|e| e["l1"] * (e["t"] + val(o1)).cos() + e["l2"] * (2. * e["t"] + val(o2)).sin(),
+            &mut rng,
+        );
+        assert!(one_angle_per_mode(&e), "{mixed} => {}", show(&e));
         // Products and powers of single angles.
         let k = 2 + round % 2;
         // An offset whose multiple by k is a multiple of pi/12 (`cos(x + 5 pi/8)^2`) leaves

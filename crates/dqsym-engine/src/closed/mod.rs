@@ -55,7 +55,8 @@ pub struct Prepared(
 ///
 /// A scalar whose symbolic modes carry offsets outside the multiples of pi/12 is also tried
 /// with the offsets absorbed into its symbols (`offsets.rs`: `cos(q2 + 5*pi/9)` regrouped
-/// and factored like `cos(q2)`), the shorter of the two kept ([`alt::shorter`]).
+/// and factored like `cos(q2)`), the shorter of the two kept ([`alt::shorter`]; the shifted
+/// one on ties).
 pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     let (plain, prepared) = prepared_unshifted(x);
     let Some(shift) = offsets::find(x) else {
@@ -77,7 +78,8 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
             break;
         }
     }
-    if plain.as_ref().is_ok_and(|p| !alt::shorter(&e, p)) || !verified(&e, x) {
+    // On equal cost the shifted form: its angles are the ones the user wrote.
+    if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) || !verified(&e, x) {
         return (plain, prepared);
     }
     (Ok(e), Prepared(yprep.0, Some(shift)))
@@ -185,7 +187,7 @@ fn best_whole(x: &Scalar) -> Result<Expr, ScalarError> {
 
 /// The whole-modes shape: each Fourier mode one factor, factored.
 fn whole_form(x: &Scalar) -> Result<(Expr, Cost), ScalarError> {
-    let (wctx, wmons) = mon::whole_modes(x);
+    let (wctx, wmons) = mon::whole_modes_joined(x);
     let (whole, wc) = factor::build(&wmons)?;
     Ok((whole.to_expr(&wctx), wc))
 }
@@ -379,7 +381,7 @@ pub fn closed_form_traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarEr
 
 /// [`closed_form_traced`] without the offsets absorbed.
 fn traced_unshifted(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarError> {
-    let (wctx, wmons) = mon::whole_modes(x);
+    let (wctx, wmons) = mon::whole_modes_joined(x);
     let (whole, wc) = factor::build(&wmons)?;
     let split_size: usize = x
         .terms()
