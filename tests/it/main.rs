@@ -15,6 +15,7 @@ mod lang;
 mod laws;
 mod layers;
 mod limits;
+mod offsets;
 mod paper;
 mod paper_arms;
 mod paper_support;

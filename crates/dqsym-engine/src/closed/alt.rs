@@ -35,9 +35,16 @@ const MAX_PRODUCT_TERMS: usize = 4096;
 
 /// The cheapest candidate that equals `x`, if any.
 pub(super) fn best_alternative(x: &Scalar) -> Option<Expr> {
-    let t = x.terms().ok()?;
+    candidates(x).into_iter().find(|e| e.to_scalar() == *x)
+}
+
+/// Every candidate for `x`, cheapest first ([`choice_key`]), not yet checked against it.
+pub(super) fn candidates(x: &Scalar) -> Vec<Expr> {
+    let Ok(t) = x.terms() else {
+        return Vec::new();
+    };
     if t.is_empty() || t.len() > MAX_PRODUCT_TERMS || t.iter().all(|t| t.mode.is_unit()) {
-        return None;
+        return Vec::new();
     }
     // First: on equal cost, constant factors in the order of their angles win.
     let mut cands = super::cprod::constant_products(t);
@@ -54,7 +61,7 @@ pub(super) fn best_alternative(x: &Scalar) -> Option<Expr> {
         cands.extend(super::cspoly::factored_forms(t));
     }
     cands.sort_by_key(choice_key);
-    cands.into_iter().find(|e| e.to_scalar() == *x)
+    cands
 }
 
 /// Operations counted as a CAS counts them (SymPy's `count_ops`): [`Expr::cost`] plus the

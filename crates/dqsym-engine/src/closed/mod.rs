@@ -5,7 +5,10 @@
 //! (a) every mode split into single-symbol atoms, then regrouped by the angle-sum identities
 //! (`recombine.rs`) and factored (`factor.rs`); (b) the Fourier modes kept whole and factored;
 //! then (c) the candidates of `alt.rs` (harmonic form, sum to product, a polynomial in one
-//! cosine or sine factored by its rational roots) when one is cheaper still. The result is re-canonicalized and compared with the input before it is returned.
+//! cosine or sine factored by its rational roots) when one is cheaper still; (d) for a scalar
+//! whose symbolic modes carry pi offsets outside the multiples of pi/12, the same with the
+//! offsets absorbed into the symbols (`offsets.rs`) when that is shorter. The result is
+//! re-canonicalized and compared with the input before it is returned.
 
 mod alt;
 mod cprod;
@@ -14,6 +17,7 @@ mod expr;
 mod factor;
 mod mon;
 mod notation;
+mod offsets;
 mod recombine;
 mod trace;
 mod zfactor;
@@ -42,12 +46,55 @@ pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
 /// its derivatives start from them ([`closed_form_of_derivative`]) instead of from the
 /// expanded Fourier series, and whether that regrouped shape won over the whole modes. `None`
 /// when the split shape was skipped (too large) or failed.
-pub struct Prepared(Option<(mon::Ctx, Vec<mon::Mon>, bool)>);
+pub struct Prepared(
+    Option<(mon::Ctx, Vec<mon::Mon>, bool)>,
+    Option<offsets::Shift>,
+);
 
 /// [`closed_form`], and what it found on the way (see [`Prepared`]).
+///
+/// A scalar whose symbolic modes carry offsets outside the multiples of pi/12 is also tried
+/// with the offsets absorbed into its symbols (`offsets.rs`: `cos(q2 + 5*pi/9)` regrouped
+/// and factored like `cos(q2)`), the shorter of the two kept ([`alt::shorter`]; the shifted
+/// one on ties).
 pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+    let (plain, prepared) = prepared_unshifted(x);
+    let Some(shift) = offsets::find(x) else {
+        return (plain, prepared);
+    };
+    let Some(y) = shift.apply(x) else {
+        return (plain, prepared);
+    };
+    let (shifted, yprep) = prepared_unshifted(&y);
+    let Ok(mut e) = shifted.map(|e| shift.unshift(e)) else {
+        return (plain, prepared);
+    };
+    // The shift changes what an angle costs (`cos(y - pi/7) cos(y + pi/7)` ties with the sum in
+    // `y`, `cos(x) cos(x + 2*pi/7)` beats it in `x`): the candidates of `alt.rs` for the
+    // shifted scalar are compared again once shifted back.
+    for a in alt::candidates(&y).into_iter().map(|a| shift.unshift(a)) {
+        if alt::shorter(&a, &e) && a.to_scalar() == *x {
+            e = a;
+            break;
+        }
+    }
+    // On equal cost the shifted form: its angles are the ones the user wrote.
+    if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) || !verified(&e, x) {
+        return (plain, prepared);
+    }
+    (Ok(e.symbols_leading()), Prepared(yprep.0, Some(shift)))
+}
+
+/// Whether `e` equals `x`: exactly in debug builds, numerically first in release builds (as
+/// [`best_of`] checks).
+fn verified(e: &Expr, x: &Scalar) -> bool {
+    (!cfg!(debug_assertions) && agrees_numerically(e, x)) || e.to_scalar() == *x
+}
+
+/// [`closed_form_prepared`] without the offsets absorbed.
+fn prepared_unshifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     if let Err(e) = x.terms() {
-        return (Err(e.clone()), Prepared(None));
+        return (Err(e.clone()), Prepared(None, None));
     }
     let split_size: usize = x
         .terms()
@@ -56,11 +103,14 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
     if split_size > SPLIT_LIMIT {
         return (
             whole_form(x).map(|(e, _)| e.symbols_leading()),
-            Prepared(None),
+            Prepared(None, None),
         );
     }
     if skip_split(x, split_size) {
-        return (best_whole(x).map(Expr::symbols_leading), Prepared(None));
+        return (
+            best_whole(x).map(Expr::symbols_leading),
+            Prepared(None, None),
+        );
     }
     let (mut sctx, smons) = mon::split_modes(x);
     let smons = recombine::recombine(&mut sctx, smons);
@@ -68,7 +118,7 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
     let split_won = result.as_ref().is_ok_and(|(_, split)| *split);
     (
         result.map(|(e, _)| e.symbols_leading()),
-        Prepared(Some((sctx, smons, split_won))),
+        Prepared(Some((sctx, smons, split_won)), None),
     )
 }
 
@@ -143,7 +193,7 @@ fn best_whole(x: &Scalar) -> Result<Expr, ScalarError> {
 
 /// The whole-modes shape: each Fourier mode one factor, factored.
 fn whole_form(x: &Scalar) -> Result<(Expr, Cost), ScalarError> {
-    let (wctx, wmons) = mon::whole_modes(x);
+    let (wctx, wmons) = mon::whole_modes_joined(x);
     let (whole, wc) = factor::build(&wmons)?;
     Ok((whole.to_expr(&wctx), wc))
 }
@@ -220,6 +270,24 @@ pub fn closed_form_of_derivative(
     if let Err(e) = dx.terms() {
         return Err(e.clone());
     }
+    // Prepared with its offsets absorbed: the derivative (with respect to the same symbol,
+    // d/dx = d/dy) is shifted alike, its closed form shifted back.
+    if let Some(shift) = &p.1 {
+        let Some(dy) = shift.apply(dx) else {
+            return closed_form(dx);
+        };
+        let e = shift.unshift(derivative_unshifted(p, var, &dy)?);
+        return if verified(&e, dx) {
+            Ok(e)
+        } else {
+            closed_form(dx)
+        };
+    }
+    derivative_unshifted(p, var, dx)
+}
+
+/// [`closed_form_of_derivative`] for a scalar and monomials in the same symbols.
+fn derivative_unshifted(p: &Prepared, var: &str, dx: &Scalar) -> Result<Expr, ScalarError> {
     let Some((ctx, mons, split_won)) = &p.0 else {
         return closed_form(dx);
     };
@@ -314,7 +382,23 @@ fn traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarError> {
     if let Err(e) = x.terms() {
         return Err(e.clone());
     }
-    let (wctx, wmons) = mon::whole_modes(x);
+    // With offsets absorbed into the symbols the form is found in other symbols: it is
+    // recorded as one step when it is not the traced one.
+    if offsets::find(x).is_some() {
+        let e = closed_form(x)?;
+        let (t, steps) = traced_unshifted(x)?;
+        return Ok(if t == e {
+            (t, steps)
+        } else {
+            (e.clone(), vec![TraceStep::Shorter(e)])
+        });
+    }
+    traced_unshifted(x)
+}
+
+/// [`closed_form_traced`] without the offsets absorbed.
+fn traced_unshifted(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarError> {
+    let (wctx, wmons) = mon::whole_modes_joined(x);
     let (whole, wc) = factor::build(&wmons)?;
     let split_size: usize = x
         .terms()

@@ -251,10 +251,106 @@ fn base_mon(ctx: &Ctx, t: &crate::scalar::Term) -> Mon {
 
 /// The canonical form as monomials, each mode kept whole (`cos(t1 + t2)` is one atom).
 pub(crate) fn whole_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
+    whole_modes_of(x, false)
+}
+
+/// [`whole_modes`] with each group of terms that share a monomial and a symbolic frequency
+/// vector `F` and hold a pi offset outside the multiples of pi/12 joined into one angle when
+/// it is one: `R cos(F + phi)` (`-1/2 cos(t - pi/9) - sqrt(3)/2 sin(t - pi/9) = cos(t +
+/// 5*pi/9)`), `R` a rational times a square root, found numerically and checked exactly
+/// (see [`single_angle`]).
+pub(crate) fn whole_modes_joined(x: &Scalar) -> (Ctx, Vec<Mon>) {
+    whole_modes_of(x, true)
+}
+
+/// The group `g` (terms of one monomial and one frequency vector) as one term `R cos(F + phi)`
+/// (or `R sin(F + phi')`, whichever offset has the smaller denominator, cos on ties), `R > 0`
+/// a rational times the square root of a square-free integer and `phi` a rational multiple of
+/// pi; `None` when the group is not one angle (or the exact check fails).
+fn single_angle(g: &[&crate::scalar::Term]) -> Option<crate::scalar::Term> {
+    use num_traits::ToPrimitive;
+    let (mut re, mut im) = (0.0f64, 0.0f64);
+    let mut den: i64 = 12;
+    for t in g {
+        let c = t.coef.to_f64()? * (t.rad as f64).sqrt();
+        let p = std::f64::consts::PI * t.mode.pi.numer().to_f64()? / t.mode.pi.denom().to_f64()?;
+        let (a, b) = if t.mode.sin {
+            (p.sin(), -p.cos())
+        } else {
+            (p.cos(), p.sin())
+        };
+        re += c * a;
+        im += c * b;
+        den = den.lcm(t.mode.pi.denom());
+    }
+    let r2 = re * re + im * im;
+    // R^2 = n / d with a small d: R = sqrt(n d) / d.
+    let (n, d) = (1..=4096i64).find_map(|d| {
+        let n = (r2 * d as f64).round();
+        ((r2 * d as f64 - n).abs() < 1e-9 * (1.0 + r2 * d as f64) && n >= 1.0)
+            .then_some((n as i64, d))
+    })?;
+    let nd = u64::try_from(n.checked_mul(d)?).ok()?;
+    let (square, free) = crate::scalar::atoms::split_square(&BigInt::from(nd))?;
+    let square = square.to_i64()?;
+    let phi = im.atan2(re) / std::f64::consts::PI * den as f64;
+    let k = phi.round();
+    if (phi - k).abs() > 1e-7 {
+        return None;
+    }
+    let p = Small::new(k as i64, den);
+    // cos(F + p) or sin(F + p + 1/2), each offset in [0, 2).
+    let two = Small::from_integer(2);
+    let wrap = |v: Small| v - (v / two).floor() * two;
+    let (c, s) = (wrap(p), wrap(p + Small::new(1, 2)));
+    let (sin, pi) = if c.denom() <= s.denom() {
+        (false, c)
+    } else {
+        (true, s)
+    };
+    let term = crate::scalar::Term {
+        mode: crate::scalar::Mode {
+            sin,
+            freq: g[0].mode.freq.clone(),
+            pi,
+        },
+        mono: g[0].mono.clone(),
+        rad: free,
+        coef: Q::new(square, d),
+    };
+    let group = Scalar::from_terms(g.iter().map(|t| (*t).clone()).collect());
+    (Scalar::from_terms(vec![term.clone()]) == group).then_some(term)
+}
+
+fn whole_modes_of(x: &Scalar, join: bool) -> (Ctx, Vec<Mon>) {
     let mut ctx = Ctx::new(x);
     let Ok(terms) = x.terms() else {
         return (ctx, Vec::new());
     };
+    let symbolic = |t: &crate::scalar::Term| t.mode.freq.iter().any(|(s, _)| !s.is_one());
+    let joined: Vec<crate::scalar::Term>;
+    let terms: &[crate::scalar::Term] =
+        if join && terms.iter().any(|t| !t.mode.pi.is_zero() && symbolic(t)) {
+            let mut groups: std::collections::BTreeMap<_, Vec<&crate::scalar::Term>> =
+                std::collections::BTreeMap::new();
+            for t in terms {
+                groups.entry((&*t.mode.freq, &t.mono)).or_default().push(t);
+            }
+            let mut out = Vec::with_capacity(terms.len());
+            for g in groups.values() {
+                let one = (g.len() > 1 && g.iter().any(|t| !t.mode.pi.is_zero()) && symbolic(g[0]))
+                    .then(|| single_angle(g))
+                    .flatten();
+                match one {
+                    Some(t) => out.push(t),
+                    None => out.extend(g.iter().map(|t| (*t).clone())),
+                }
+            }
+            joined = out;
+            &joined
+        } else {
+            terms
+        };
     let mut mons: Vec<Mon> = terms
         .iter()
         .map(|t| {

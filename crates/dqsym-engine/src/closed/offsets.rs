@@ -1,0 +1,510 @@
+//! Offsets absorbed into the symbols: a scalar whose modes carry pi offsets outside the
+//! multiples of pi/12 (`cos(q2 + 5 pi/9)`, the joint offset of a Kinova arm) is written in
+//! shifted symbols `y_s = x_s + o_s`, one rational multiple of pi `o_s` per symbol, chosen so
+//! that the scalar in `y` has no such offset left. Its closed form is then found on the
+//! path every offset-free scalar takes (angle sums regrouped, factored, products and powers),
+//! and every angle of it is shifted back (`cos(y2 + y3)` prints `cos(q2 + q3 + 5*pi/9)`).
+//!
+//! How the offsets are found, for the terms that share a monomial and a frequency vector `f`
+//! (a group, whose value is `Re(z e^{i f.x})`): the group's phase class `d_f` is the multiple
+//! `d` of `pi / N` (`N = lcm(12, the offsets' denominators)`), taken modulo `1/12`, for
+//! which the group shifted by `-d` has no offset (tried exactly, one small canonicalization
+//! per candidate); a group with no such `d` (a sum of two unrelated phases) means no shift
+//! exists. The offsets must then satisfy `f . o = d_f (mod 1/12)` for every group: each
+//! symbol's candidates (multiples of `pi / (N a)`, `a` the lcm of its coefficients'
+//! numerators, over one period) are narrowed by the sums and differences of two groups that
+//! hold that symbol alone, and a depth-first search checks every constraint as soon as its
+//! symbols are chosen (at most [`MAX_VISITS`] candidates, [`MAX_SOLUTIONS`] solutions).
+//!
+//! Which solution is shown (`5 pi/9` or `-4 pi/9`, or `1/18 pi` with the cosine turned into
+//! a sine): among every solution (when the search finds them all; else with the symbols whose
+//! first offset is a multiple of their own pi/12 steps kept at 0), the one for which the
+//! shifted scalar has the fewest cosine and sine parts, then the smallest denominator, then
+//! the fewest nonzero offsets (no `q1 - pi` for a sign), then the fewest negative parts (`cos(t + 5*pi/9)`, not `-cos(t - 4*pi/9)`), then the smallest
+//! sum of `|o_s|`, then the fewest negative offsets. The shifted scalar is computed exactly and must have no offset left on a
+//! symbolic mode; the closed form built from it is checked against the input like every
+//! other.
+
+use super::expr::{Angle, Expr};
+use crate::scalar::{Small, Sym, Term};
+use crate::Scalar;
+use num_integer::Integer;
+use num_traits::{Signed, ToPrimitive, Zero};
+use std::collections::BTreeMap;
+
+/// The most terms a scalar may have for offsets to be looked for.
+const MAX_TERMS: usize = 20_000;
+
+/// The most candidates one symbol's offset may have before narrowing.
+const MAX_CANDIDATES: i64 = 1024;
+
+/// One offset per symbol (a multiple of pi), absorbed into it: `y_s = x_s + o_s`.
+#[derive(Clone, Debug)]
+pub(crate) struct Shift(Vec<(Sym, Small)>);
+
+/// A group of terms sharing a monomial and a symbolic frequency vector.
+struct Group<'a> {
+    /// The frequency vector without the constant entry.
+    freq: Vec<(Sym, Small)>,
+    terms: Vec<&'a Term>,
+}
+
+fn reduce2(p: Small) -> Small {
+    let two = Small::from_integer(2);
+    p - (p / two).floor() * two
+}
+
+/// The group's terms with their offsets lowered by `d`, canonical.
+fn shifted_group(g: &Group, d: Small) -> Scalar {
+    Scalar::from_terms(
+        g.terms
+            .iter()
+            .map(|t| {
+                let mut t = (*t).clone();
+                t.mode.pi = reduce2(t.mode.pi - d);
+                t
+            })
+            .collect(),
+    )
+}
+
+fn no_offset(s: &Scalar) -> bool {
+    s.terms().is_ok_and(|t| {
+        t.iter()
+            .all(|t| t.mode.pi.is_zero() || t.mode.freq.is_empty())
+    })
+}
+
+/// The shift that leaves `x` without offsets outside the multiples of pi/12 on its symbolic
+/// modes, when `x` has such offsets and one exists (see the module docs).
+pub(crate) fn find(x: &Scalar) -> Option<Shift> {
+    let terms = x.terms().ok()?;
+    let symbolic = |t: &Term| t.mode.freq.iter().any(|(s, _)| !s.is_one());
+    // The gate every offset-free scalar (the PUMA's) fails at once.
+    if !terms.iter().any(|t| !t.mode.pi.is_zero() && symbolic(t)) {
+        return None;
+    }
+    if terms.len() > MAX_TERMS {
+        return None;
+    }
+    let mut n: i64 = 12;
+    for t in terms {
+        n = n.lcm(t.mode.pi.denom());
+    }
+    if n > 100_000 {
+        return None;
+    }
+    // Groups by (frequency vector, monomial).
+    type GroupKey<'a> = (&'a [(Sym, Small)], &'a crate::scalar::MonoRc);
+    let mut index: BTreeMap<GroupKey, usize> = BTreeMap::new();
+    let mut groups: Vec<Group> = Vec::new();
+    for t in terms.iter().filter(|t| symbolic(t)) {
+        let k = (&*t.mode.freq, &t.mono);
+        let i = *index.entry(k).or_insert_with(|| {
+            groups.push(Group {
+                freq: t
+                    .mode
+                    .freq
+                    .iter()
+                    .filter(|(s, _)| !s.is_one())
+                    .cloned()
+                    .collect(),
+                terms: Vec::new(),
+            });
+            groups.len() - 1
+        });
+        groups[i].terms.push(t);
+    }
+    crate::scalar::charge(groups.len() as u64).ok()?;
+    // Each group's phase class d_f (mod 1/12).
+    let step = Small::new(1, n);
+    let classes = n / 12;
+    let mut phase: Vec<Small> = Vec::with_capacity(groups.len());
+    for g in &groups {
+        if g.terms.iter().all(|t| t.mode.pi.is_zero()) {
+            phase.push(Small::zero());
+            continue;
+        }
+        let d = (1..classes)
+            .map(|j| step * Small::from_integer(j))
+            .find(|&d| no_offset(&shifted_group(g, d)))?;
+        phase.push(d);
+    }
+    let mut syms: Vec<Sym> = groups
+        .iter()
+        .flat_map(|g| g.freq.iter().map(|(s, _)| s.clone()))
+        .collect();
+    syms.sort();
+    syms.dedup();
+    let rows: Vec<Vec<(usize, Small)>> = groups
+        .iter()
+        .map(|g| {
+            g.freq
+                .iter()
+                .map(|(s, k)| (syms.binary_search(s).unwrap_or(0), *k))
+                .collect()
+        })
+        .collect();
+    let targets: Vec<(Small, Small)> = phase.iter().map(|d| (*d, Small::new(1, 12))).collect();
+    let free = vec![None; syms.len()];
+    let mut base: Option<Vec<Small>> = None;
+    solve(&syms, &rows, &targets, n, &free, &mut |o| {
+        base = Some(o.to_vec());
+        false
+    })?;
+    let base = base?;
+    let offsets = representatives(&groups, &syms, &rows, &targets, n, base)?;
+    let shift = Shift(
+        syms.into_iter()
+            .zip(offsets)
+            .filter(|(_, o)| !o.is_zero())
+            .collect(),
+    );
+    (!shift.0.is_empty()).then_some(shift)
+}
+
+/// A constraint `sum k_s o_s = rhs (mod m)`.
+type Constraint = (Vec<(usize, Small)>, Small, Small);
+
+/// Whether `v` is a multiple of `m`.
+fn multiple(v: Small, m: Small) -> bool {
+    (v / m).is_integer()
+}
+
+/// Offsets (multiples of pi, one per symbol) with `rows[g] . o = targets[g].0` modulo
+/// `targets[g].1` for every group: each symbol's candidates (multiples of `1/(n a)` over one
+/// period `2 D`, `a` the lcm of its coefficients' numerators, `D` of their denominators)
+/// narrowed by the constraints on it alone, then a depth-first search that checks each
+/// constraint (the groups', and the sums and differences of two groups') as soon as its
+/// symbols are chosen. `None` past the search bounds.
+fn solve(
+    syms: &[Sym],
+    rows: &[Vec<(usize, Small)>],
+    targets: &[(Small, Small)],
+    n: i64,
+    fixed: &[Option<Small>],
+    found: &mut dyn FnMut(&[Small]) -> bool,
+) -> Option<bool> {
+    let mut cons: Vec<Constraint> = rows
+        .iter()
+        .zip(targets)
+        .map(|(r, (t, m))| (r.clone(), *t, *m))
+        .collect();
+    if rows.len() <= 96 {
+        for i in 0..rows.len() {
+            for j in i + 1..rows.len() {
+                for sign in [1i64, -1] {
+                    let sg = Small::from_integer(sign);
+                    let mut h: BTreeMap<usize, Small> = BTreeMap::new();
+                    for (s, k) in &rows[i] {
+                        *h.entry(*s).or_insert_with(Small::zero) += *k;
+                    }
+                    for (s, k) in &rows[j] {
+                        *h.entry(*s).or_insert_with(Small::zero) -= *k * sg;
+                    }
+                    h.retain(|_, k| !k.is_zero());
+                    let m = targets[i].1.max(targets[j].1);
+                    cons.push((h.into_iter().collect(), targets[i].0 - targets[j].0 * sg, m));
+                }
+            }
+        }
+    }
+    crate::scalar::charge(cons.len() as u64).ok()?;
+    let mut cands: Vec<Vec<Small>> = Vec::with_capacity(syms.len());
+    for (s, fixed_s) in fixed.iter().enumerate().take(syms.len()) {
+        let (mut num, mut den) = (1i64, 1i64);
+        for r in rows {
+            if let Some((_, k)) = r.iter().find(|(x, _)| *x == s) {
+                num = num.lcm(&k.numer().abs());
+                den = den.lcm(k.denom());
+            }
+        }
+        let mut c: Vec<Small> = if let Some(v) = fixed_s {
+            vec![*v]
+        } else {
+            let count = n.checked_mul(num)?.checked_mul(den)?.checked_mul(2)?;
+            if count > MAX_CANDIDATES {
+                return None;
+            }
+            let unit = Small::new(1, n * num);
+            (0..count).map(|u| unit * Small::from_integer(u)).collect()
+        };
+        for (h, rhs, m) in &cons {
+            if let [(x, k)] = h[..] {
+                if x == s {
+                    c.retain(|o| multiple(k * *o - *rhs, *m));
+                }
+            }
+        }
+        cands.push(c);
+    }
+    // Constraints by the last symbol they hold.
+    let mut by_last: Vec<Vec<&Constraint>> = vec![Vec::new(); syms.len()];
+    for c in &cons {
+        if let Some((last, _)) = c.0.last() {
+            by_last[*last].push(c);
+        } else if !multiple(c.1, c.2) {
+            return None;
+        }
+    }
+    let mut o = vec![Small::zero(); syms.len()];
+    let mut visits = 0usize;
+    /// Calls `found` on each solution until it returns false; false when stopped (by it or
+    /// by the bound).
+    fn dfs(
+        i: usize,
+        o: &mut Vec<Small>,
+        cands: &[Vec<Small>],
+        by_last: &[Vec<&Constraint>],
+        visits: &mut usize,
+        found: &mut dyn FnMut(&[Small]) -> bool,
+    ) -> bool {
+        if i == o.len() {
+            return found(o);
+        }
+        for &v in &cands[i] {
+            *visits += 1;
+            if *visits > MAX_VISITS {
+                return false;
+            }
+            o[i] = v;
+            let fits = by_last[i].iter().all(|(h, rhs, m)| {
+                let mut f = Small::zero();
+                for (s, k) in h {
+                    f += *k * o[*s];
+                }
+                multiple(f - *rhs, *m)
+            });
+            if fits && !dfs(i + 1, o, cands, by_last, visits, found) {
+                return false;
+            }
+        }
+        true
+    }
+    let complete = dfs(0, &mut o, &cands, &by_last, &mut visits, found);
+    crate::scalar::charge(visits as u64).ok()?;
+    Some(complete)
+}
+
+/// The most candidate offsets the search of [`solve`] looks at.
+const MAX_VISITS: usize = 200_000;
+
+/// The value of a group as the complex amplitude `z` of `e^{i f.x}`: `(re, im)` in f64.
+fn amplitude(g: &Group) -> Option<(f64, f64)> {
+    let (mut re, mut im) = (0.0, 0.0);
+    for t in &g.terms {
+        let c = t.coef.to_f64()? * (t.rad as f64).sqrt();
+        let p = std::f64::consts::PI * t.mode.pi.numer().to_f64()? / t.mode.pi.denom().to_f64()?;
+        // cos(F + p) = Re(e^{ip} e^{iF}), sin(F + p) = Re(-i e^{ip} e^{iF}).
+        let (a, b) = if t.mode.sin {
+            (p.sin(), -p.cos())
+        } else {
+            (p.cos(), p.sin())
+        };
+        re += c * a;
+        im += c * b;
+    }
+    Some((re, im))
+}
+
+/// The offsets shown (see the module docs): a symbol whose offset in `base` is a multiple
+/// of its own steps (each keeping every group's phase modulo 1/12) keeps none; the others
+/// range over every solution with those fixed at 0, the best by (fewest cosine and sine
+/// parts of the shifted scalar, smallest denominator, fewest negative parts, smallest
+/// `|o|`, positive).
+fn representatives(
+    groups: &[Group],
+    syms: &[Sym],
+    rows: &[Vec<(usize, Small)>],
+    targets: &[(Small, Small)],
+    n: i64,
+    base: Vec<Small>,
+) -> Option<Vec<Small>> {
+    let amps: Vec<(f64, f64)> = groups
+        .iter()
+        .map(|g| amplitude(g).unwrap_or((0.0, 0.0)))
+        .collect();
+    // The number of cosine and sine parts of the shifted scalar, and of negative ones.
+    let score = |o: &[Small]| -> (usize, usize) {
+        let (mut parts, mut neg) = (0, 0);
+        for (r, (re, im)) in rows.iter().zip(&amps) {
+            let mut f = Small::zero();
+            for (s, k) in r {
+                f += *k * o[*s];
+            }
+            let f = f.numer().to_f64().unwrap_or(0.0) / f.denom().to_f64().unwrap_or(1.0);
+            let (c, s) = (
+                (f * std::f64::consts::PI).cos(),
+                (f * std::f64::consts::PI).sin(),
+            );
+            // z e^{-i pi f}: the cosine part is its real part, the sine part minus its
+            // imaginary part.
+            let (a, b) = (re * c + im * s, -(im * c - re * s));
+            let scale = re.abs() + im.abs();
+            for v in [a, b] {
+                if v.abs() > 1e-9 * scale.max(1e-300) {
+                    parts += 1;
+                    neg += usize::from(v < 0.0);
+                }
+            }
+        }
+        (parts, neg)
+    };
+    let run = |fixed: &[Option<Small>]| -> Option<(bool, Option<Vec<Small>>)> {
+        let mut best: Option<(Key, Vec<Small>)> = None;
+        let mut seen = 0usize;
+        let complete = solve(syms, rows, targets, n, fixed, &mut |o| {
+            // Centred into (-D, D] for a period 2 D.
+            let o: Vec<Small> = o
+                .iter()
+                .enumerate()
+                .map(|(i, &v)| {
+                    let den = rows
+                        .iter()
+                        .filter_map(|r| r.iter().find(|(x, _)| *x == i))
+                        .fold(1i64, |acc, (_, k)| acc.lcm(k.denom()));
+                    let period = Small::from_integer(2 * den);
+                    let v = v - (v / period).floor() * period;
+                    if v > Small::from_integer(den) {
+                        v - period
+                    } else {
+                        v
+                    }
+                })
+                .collect();
+            let (parts, neg) = score(&o);
+            let den = o.iter().map(|v| *v.denom()).max().unwrap_or(1);
+            let size: Small = o.iter().map(|v| v.abs()).sum();
+            let negatives = o.iter().filter(|v| v.is_negative()).count();
+            let nonzero = o.iter().filter(|v| !v.is_zero()).count();
+            let key = (parts, den, nonzero, neg, size, negatives);
+            if best.as_ref().is_none_or(|(k, _)| key < *k) {
+                best = Some((key, o));
+            }
+            seen += 1;
+            seen < MAX_SOLUTIONS
+        })?;
+        Some((complete, best.map(|(_, o)| o)))
+    };
+    // Every solution when they are few; else the symbols whose offset in `base` is a multiple
+    // of their own steps keep none, and the others range over the solutions.
+    let free = vec![None; syms.len()];
+    if let (true, Some(o)) = run(&free)? {
+        return Some(o);
+    }
+    let fixed: Vec<Option<Small>> = (0..syms.len())
+        .map(|i| {
+            // The rational lcm of (1/12) / k over the groups holding the symbol.
+            let mut step: Option<Small> = None;
+            for (r, (_, m)) in rows.iter().zip(targets) {
+                if let Some((_, k)) = r.iter().find(|(x, _)| *x == i) {
+                    let q = (*m / *k).abs();
+                    step = Some(match step {
+                        None => q,
+                        Some(p) => Small::new(p.numer().lcm(q.numer()), p.denom().gcd(q.denom())),
+                    });
+                }
+            }
+            step.is_none_or(|st| multiple(base[i], st))
+                .then(Small::zero)
+        })
+        .collect();
+    run(&fixed)?.1
+}
+
+/// The order of solutions: parts, largest denominator, offsets, negative parts, sum of
+/// `|o|`, negative offsets.
+type Key = (usize, i64, usize, usize, Small, usize);
+
+/// The most solutions [`representatives`] compares.
+const MAX_SOLUTIONS: usize = 4096;
+
+impl Shift {
+    /// `x` in the shifted symbols: each mode `trig(f.x + p)` becomes `trig(f.y + p - f.o)`;
+    /// `None` when a symbolic mode keeps an offset (or `x` is an error value).
+    pub(crate) fn apply(&self, x: &Scalar) -> Option<Scalar> {
+        let terms = x.terms().ok()?;
+        let y = Scalar::from_terms(
+            terms
+                .iter()
+                .map(|t| {
+                    let d = self.phase(&t.mode.freq);
+                    let mut t = t.clone();
+                    if !d.is_zero() {
+                        t.mode.pi = reduce2(t.mode.pi - d);
+                    }
+                    t
+                })
+                .collect(),
+        );
+        no_offset(&y).then_some(y)
+    }
+
+    /// `f . o` for a frequency vector.
+    fn phase(&self, freq: &[(Sym, Small)]) -> Small {
+        let mut d = Small::zero();
+        for (s, k) in freq {
+            if let Some((_, o)) = self.0.iter().find(|(x, _)| x == s) {
+                d += *k * *o;
+            }
+        }
+        d
+    }
+
+    /// The expression `e` (in the shifted symbols) in the original ones: every angle gets its
+    /// offset back.
+    pub(crate) fn unshift(&self, e: Expr) -> Expr {
+        match e {
+            Expr::Trig { f, angle } => {
+                let d = self.phase(&angle.terms);
+                if d.is_zero() {
+                    return Expr::Trig { f, angle };
+                }
+                let mut a = Angle::new(angle.terms, angle.constant, angle.pi + d);
+                a.reduce_offset();
+                Expr::Trig { f, angle: a }
+            }
+            Expr::Add(v) => Expr::Add(v.into_iter().map(|e| self.unshift(e)).collect()),
+            Expr::Mul(v) => Expr::Mul(v.into_iter().map(|e| self.unshift(e)).collect()),
+            Expr::Neg(e) => Expr::Neg(Box::new(self.unshift(*e))),
+            Expr::Pow(e, n) => Expr::Pow(Box::new(self.unshift(*e)), n),
+            e => e,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse_pi(k: i64, n: i64) -> Scalar {
+        Scalar::pi() * Scalar::rational(num_rational::BigRational::new(k.into(), n.into()))
+    }
+
+    #[test]
+    fn a_joint_offset_of_five_ninths_of_pi_is_absorbed_into_its_symbol() {
+        let (t, q, l1, l2) = (
+            Scalar::sym("t"),
+            Scalar::sym("q"),
+            Scalar::sym("l1"),
+            Scalar::sym("l2"),
+        );
+        let off = parse_pi(5, 9);
+        let x = l1 * (t.clone() + off.clone()).cos() + l2 * (t + off + q).cos();
+        let shift = find(&x).expect("a shift");
+        assert_eq!(shift.0.len(), 1);
+        assert_eq!(shift.0[0].0.name(), "t");
+        assert_eq!(shift.0[0].1, Small::new(5, 9));
+        let y = shift.apply(&x).expect("shifted");
+        assert!(y
+            .terms()
+            .is_ok_and(|t| t.iter().all(|t| t.mode.pi.is_zero())));
+    }
+
+    #[test]
+    fn unrelated_phases_in_one_mode_have_no_shift() {
+        let x = Scalar::sym("x");
+        let e = (x.clone() + parse_pi(1, 7)).cos() + (x + parse_pi(2, 7)).cos();
+        assert!(find(&e).is_none());
+    }
+}
