@@ -23,8 +23,9 @@ pub use expr::{Angle, Cost, Expr};
 pub use notation::{angle_text, shorthand_name, TrigNames};
 pub use trace::{Identity, TraceStep};
 
-use crate::scalar::Small;
+use crate::scalar::FxHasher;
 use crate::{Scalar, ScalarError, Sym};
+use std::hash::{Hash, Hasher};
 
 /// The largest number of monomials the split shape may have before it is skipped.
 const SPLIT_LIMIT: usize = 100_000;
@@ -98,21 +99,50 @@ fn disjoint_parts(x: &Scalar) -> bool {
     let Ok(terms) = x.terms() else {
         return false;
     };
-    type Key<'a> = (u64, &'a [(Sym, u32)], Vec<(&'a Sym, Small)>);
-    let mut keys: Vec<Key> = terms
+    // The keys are hashed, not built: one word per term, sorted, and the keys themselves
+    // compared only within a run of equal hashes (every pair of it, so a collision never
+    // hides a match). The same answer as sorting the keys, without a vector per term.
+    let mut hashed: Vec<(u64, usize)> = terms
         .iter()
-        .map(|t| {
-            let freq = t
-                .mode
-                .freq
-                .iter()
-                .map(|(s, c)| (s, if *c < Small::default() { -*c } else { *c }))
-                .collect();
-            (t.rad, &t.mono[..], freq)
+        .enumerate()
+        .map(|(i, t)| {
+            let mut h = FxHasher::default();
+            t.rad.hash(&mut h);
+            t.mono.hash(&mut h);
+            for (s, c) in t.mode.freq.iter() {
+                s.hash(&mut h);
+                h.write_i64(c.numer().abs());
+                h.write_i64(*c.denom());
+            }
+            (h.finish(), i)
         })
         .collect();
-    keys.sort_unstable();
-    keys.windows(2).all(|w| w[0] != w[1])
+    hashed.sort_unstable();
+    let same_key = |a: &crate::scalar::Term, b: &crate::scalar::Term| {
+        a.rad == b.rad
+            && a.mono == b.mono
+            && a.mode.freq.len() == b.mode.freq.len()
+            && a.mode
+                .freq
+                .iter()
+                .zip(b.mode.freq.iter())
+                .all(|((s, c), (r, d))| {
+                    s == r && c.numer().abs() == d.numer().abs() && c.denom() == d.denom()
+                })
+    };
+    let mut run = 0;
+    while run < hashed.len() {
+        let end = run + hashed[run..].partition_point(|&(h, _)| h == hashed[run].0);
+        for i in run..end {
+            for j in i + 1..end {
+                if same_key(&terms[hashed[i].1], &terms[hashed[j].1]) {
+                    return false;
+                }
+            }
+        }
+        run = end;
+    }
+    true
 }
 
 /// The whole-modes shape or, when strictly shorter, a candidate of `alt.rs`, checked against
