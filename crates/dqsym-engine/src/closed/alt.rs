@@ -33,8 +33,16 @@ const MAX_TERMS: usize = 48;
 /// The largest number of terms a sum may have to be tried as a product of cosines and sines.
 const MAX_PRODUCT_TERMS: usize = 4096;
 
-/// The cheapest candidate that equals `x`, if any.
-pub(super) fn best_alternative(x: &Scalar) -> Option<Expr> {
+/// The cheapest candidate that equals `x`, if it is [`shorter`] than `than` (the form found
+/// before).
+///
+/// Candidates are taken in the order of [`choice_key`], the first that equals `x` wins; only
+/// those shorter than `than` are checked against `x`: the keys are sorted, so when the first
+/// candidate equal to `x` is not shorter than `than`, no candidate shorter than `than` equals
+/// `x`, and both ways give `than`.
+pub(super) fn best_alternative(x: &Scalar, than: &Expr) -> Option<Expr> {
+    let bound = choice_key(than);
+    let bound = (bound.0, bound.1);
     let t = x.terms().ok()?;
     if t.is_empty() || t.len() > MAX_PRODUCT_TERMS || t.iter().all(|t| t.mode.is_unit()) {
         return None;
@@ -53,8 +61,17 @@ pub(super) fn best_alternative(x: &Scalar) -> Option<Expr> {
     if t.len() <= MAX_TERMS {
         cands.extend(super::cspoly::factored_forms(t));
     }
-    cands.sort_by_key(choice_key);
-    cands.into_iter().find(|e| e.to_scalar() == *x)
+    let mut cands: Vec<_> = cands
+        .into_iter()
+        .map(|e| (choice_key(&e), e))
+        .filter(|(k, _)| (k.0, k.1) < bound)
+        .collect();
+    // Stable: on equal keys the earlier candidate is taken.
+    cands.sort_by_key(|(k, _)| *k);
+    cands
+        .into_iter()
+        .map(|(_, e)| e)
+        .find(|e| e.to_scalar() == *x)
 }
 
 /// Operations counted as a CAS counts them (SymPy's `count_ops`): [`Expr::cost`] plus the

@@ -149,10 +149,7 @@ fn disjoint_parts(x: &Scalar) -> bool {
 /// `x` like [`best_of`]'s result.
 fn best_whole(x: &Scalar) -> Result<Expr, ScalarError> {
     let (w, _) = whole_form(x)?;
-    let best = match alt::best_alternative(x) {
-        Some(a) if alt::shorter(&a, &w) => a,
-        _ => w,
-    };
+    let best = alt::best_alternative(x, &w).unwrap_or(w);
     if !cfg!(debug_assertions) && agrees_numerically(&best, x) {
         return Ok(best);
     }
@@ -198,10 +195,7 @@ fn best_of(
         _ => (split.to_expr(sctx), true),
     };
     // A shorter form of another kind (checked exactly by `best_alternative`).
-    let best = match alt::best_alternative(x) {
-        Some(a) if alt::shorter(&a, &best) => a,
-        _ => best,
-    };
+    let best = alt::best_alternative(x, &best).unwrap_or(best);
     if !cfg!(debug_assertions) && agrees_numerically(&best, x) {
         return Ok((best, split_won));
     }
@@ -361,9 +355,9 @@ pub fn closed_form_traced(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarEr
         let e = whole.to_expr(&wctx);
         (e.clone(), TraceStep::KeptWhole(e))
     };
-    let (best, last) = match alt::best_alternative(x) {
-        Some(a) if alt::shorter(&a, &best) => (a.clone(), TraceStep::Shorter(a)),
-        _ => (best, last),
+    let (best, last) = match alt::best_alternative(x, &best) {
+        Some(a) => (a.clone(), TraceStep::Shorter(a)),
+        None => (best, last),
     };
     if best.to_scalar() == *x {
         Ok((best, rec.finish(last)))

@@ -148,6 +148,8 @@ pub(crate) struct Term {
 }
 
 impl Term {
+    // Inlined: the comparator of every sort of a term vector.
+    #[inline]
     pub(crate) fn key_cmp(&self, other: &Term) -> std::cmp::Ordering {
         self.mode
             .cmp(&other.mode)
