@@ -41,8 +41,6 @@ const MAX_PRODUCT_TERMS: usize = 4096;
 /// candidate equal to `x` is not shorter than `than`, no candidate shorter than `than` equals
 /// `x`, and both ways give `than`.
 pub(super) fn best_alternative(x: &Scalar, than: &Expr) -> Option<Expr> {
-    let bound = choice_key(than);
-    let bound = (bound.0, bound.1);
     let t = x.terms().ok()?;
     if t.is_empty() || t.len() > MAX_PRODUCT_TERMS || t.iter().all(|t| t.mode.is_unit()) {
         return None;
@@ -61,6 +59,11 @@ pub(super) fn best_alternative(x: &Scalar, than: &Expr) -> Option<Expr> {
     if t.len() <= MAX_TERMS {
         cands.extend(super::cspoly::factored_forms(t));
     }
+    if cands.is_empty() {
+        return None;
+    }
+    let bound = choice_key(than);
+    let bound = (bound.0, bound.1);
     let mut cands: Vec<_> = cands
         .into_iter()
         .map(|e| (choice_key(&e), e))
