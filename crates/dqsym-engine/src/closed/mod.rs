@@ -25,7 +25,8 @@ pub use trace::{Identity, TraceStep};
 
 use crate::scalar::FxHasher;
 use crate::{Scalar, ScalarError, Sym};
-use std::hash::{Hash, Hasher};
+use std::collections::hash_map::Entry;
+use std::hash::{BuildHasherDefault, Hasher};
 
 /// The largest number of monomials the split shape may have before it is skipped.
 const SPLIT_LIMIT: usize = 100_000;
@@ -99,37 +100,38 @@ fn disjoint_parts(x: &Scalar) -> bool {
     let Ok(terms) = x.terms() else {
         return false;
     };
-    // The keys are hashed, not built: one word per term, sorted, and the keys themselves
-    // compared only within a run of equal hashes (every pair of it, so a collision never
-    // hides a match). The same answer as sorting the keys, without a vector per term.
+    // The keys are hashed, not built (one word per term), and compared when their hashes
+    // meet: the first two terms with equal keys end the search. A collision of different
+    // keys leaves the answer to `disjoint_by_sorting`, which compares every pair of equal
+    // hashes.
+    let mut seen: std::collections::HashMap<u64, usize, BuildHasherDefault<FxHasher>> =
+        std::collections::HashMap::with_capacity_and_hasher(terms.len(), Default::default());
+    let mut collided = false;
+    for (i, t) in terms.iter().enumerate() {
+        match seen.entry(key_hash(t)) {
+            Entry::Occupied(o) => {
+                if same_key(&terms[*o.get()], t) {
+                    return false;
+                }
+                collided = true;
+            }
+            Entry::Vacant(v) => {
+                v.insert(i);
+            }
+        }
+    }
+    !collided || disjoint_by_sorting(terms)
+}
+
+/// [`disjoint_parts`] by sorting the hashes of the keys and comparing every pair within a run
+/// of equal hashes.
+fn disjoint_by_sorting(terms: &[crate::scalar::Term]) -> bool {
     let mut hashed: Vec<(u64, usize)> = terms
         .iter()
         .enumerate()
-        .map(|(i, t)| {
-            let mut h = FxHasher::default();
-            t.rad.hash(&mut h);
-            t.mono.hash(&mut h);
-            for (s, c) in t.mode.freq.iter() {
-                s.hash(&mut h);
-                h.write_i64(c.numer().abs());
-                h.write_i64(*c.denom());
-            }
-            (h.finish(), i)
-        })
+        .map(|(i, t)| (key_hash(t), i))
         .collect();
     hashed.sort_unstable();
-    let same_key = |a: &crate::scalar::Term, b: &crate::scalar::Term| {
-        a.rad == b.rad
-            && a.mono == b.mono
-            && a.mode.freq.len() == b.mode.freq.len()
-            && a.mode
-                .freq
-                .iter()
-                .zip(b.mode.freq.iter())
-                .all(|((s, c), (r, d))| {
-                    s == r && c.numer().abs() == d.numer().abs() && c.denom() == d.denom()
-                })
-    };
     let mut run = 0;
     while run < hashed.len() {
         let end = run + hashed[run..].partition_point(|&(h, _)| h == hashed[run].0);
@@ -143,6 +145,46 @@ fn disjoint_parts(x: &Scalar) -> bool {
         run = end;
     }
     true
+}
+
+/// A hash of a term's key for [`disjoint_parts`]: its radicand, monomial and frequencies
+/// without their signs. A symbol counts by the length and last eight bytes of its name: a
+/// function of the name, so equal keys hash alike, in one word.
+fn key_hash(t: &crate::scalar::Term) -> u64 {
+    let name = |s: &Sym| {
+        let b = s.name().as_bytes();
+        let tail = &b[b.len().saturating_sub(8)..];
+        let mut w = [0u8; 8];
+        w[..tail.len()].copy_from_slice(tail);
+        u64::from_le_bytes(w) ^ (b.len() as u64).rotate_right(8)
+    };
+    let mut h = FxHasher::default();
+    h.write_u64(t.rad);
+    for (s, e) in t.mono.iter() {
+        h.write_u64(name(s));
+        h.write_u32(*e);
+    }
+    h.write_usize(t.mono.len());
+    for (s, c) in t.mode.freq.iter() {
+        h.write_u64(name(s));
+        h.write_i64(c.numer().abs());
+        h.write_i64(*c.denom());
+    }
+    h.finish()
+}
+
+/// Whether two terms have the same key for [`disjoint_parts`].
+fn same_key(a: &crate::scalar::Term, b: &crate::scalar::Term) -> bool {
+    a.rad == b.rad
+        && a.mono == b.mono
+        && a.mode.freq.len() == b.mode.freq.len()
+        && a.mode
+            .freq
+            .iter()
+            .zip(b.mode.freq.iter())
+            .all(|((s, c), (r, d))| {
+                s == r && c.numer().abs() == d.numer().abs() && c.denom() == d.denom()
+            })
 }
 
 /// The whole-modes shape or, when strictly shorter, a candidate of `alt.rs`, checked against
@@ -185,7 +227,18 @@ fn best_of(
     // placeholders, say): the whole shape would be factored again to the same cost.
     let try_whole = try_whole && !same_monomials(x, smons);
     let whole = if try_whole {
-        Some(whole_form(x)?)
+        let (wctx, wmons) = mon::whole_modes(x);
+        // The whole shape is taken only when strictly cheaper: not searched when even a lower
+        // bound of its cost is not (the common case: many more distinct modes than the
+        // regrouped shape has calls).
+        let bound = factor::cost_lower_bound(&wmons);
+        if bound >= sc {
+            debug_assert!(factor::build(&wmons).map_or(true, |(_, wc)| wc >= bound));
+            None
+        } else {
+            let (w, wc) = factor::build(&wmons)?;
+            Some((w.to_expr(&wctx), wc))
+        }
     } else {
         None
     };
