@@ -14,7 +14,7 @@ use crate::emit::{
     Counted, LatexOptions, Output,
 };
 use crate::kin::{dq_jacobian, Robot};
-use crate::print::{legend, plain, Format, PlainOptions};
+use crate::print::{legend, plain, plain_len_bound, Format, PlainOptions};
 use crate::scalar::FxHasher;
 use crate::scalar::{join, par_map, with_own_budget};
 use std::collections::HashMap;
@@ -147,7 +147,7 @@ pub fn fk_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError
             ScalarError::TooLarge { .. } | ScalarError::Budget { .. },
         )))
         | None => recurrence_entries(robot, o),
-        Some(Ok(sections)) if text_length(&sections) > MAX_EXPANDED_TEXT => {
+        Some(Ok(sections)) if text_exceeds(&sections, MAX_EXPANDED_TEXT) => {
             recurrence_entries(robot, o)
         }
         Some(r) => r.map(|sections| FkEntries {
@@ -162,14 +162,19 @@ pub fn fk_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError
 /// whose expansion fits the term limit can print 650 kB; its recurrence about 50 kB).
 const MAX_EXPANDED_TEXT: usize = 100_000;
 
-/// The plain text length of the closed forms of `sections`.
-pub(super) fn text_length(sections: &[(String, Vec<(String, Expr)>)]) -> usize {
+/// Whether the plain text of the closed forms of `sections` is longer than `max` bytes. The
+/// text is only written when a bound of its length ([`plain_len_bound`], a few times the
+/// length) exceeds `max`: a report well within `max` is not printed twice.
+pub(super) fn text_exceeds(sections: &[(String, Vec<(String, Expr)>)], max: usize) -> bool {
+    let rows = || sections.iter().flat_map(|(_, rows)| rows);
     let po = PlainOptions { shorthand: true };
-    sections
-        .iter()
-        .flat_map(|(_, rows)| rows)
-        .map(|(_, e)| plain(e, &po).len())
-        .sum()
+    let length = || rows().map(|(_, e)| plain(e, &po).len()).sum::<usize>();
+    let bound: usize = rows().map(|(_, e)| plain_len_bound(e)).sum();
+    if bound > max {
+        return length() > max;
+    }
+    debug_assert!(length() <= bound, "plain_len_bound is not a bound");
+    false
 }
 
 fn recurrence_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError> {

@@ -33,13 +33,42 @@ const MAX_TERMS: usize = 48;
 /// The largest number of terms a sum may have to be tried as a product of cosines and sines.
 const MAX_PRODUCT_TERMS: usize = 4096;
 
-/// The cheapest candidate that equals `x`, if any.
-pub(super) fn best_alternative(x: &Scalar) -> Option<Expr> {
-    candidates(x).into_iter().find(|e| e.to_scalar() == *x)
+/// The cheapest candidate that equals `x`, if it is [`shorter`] than `than` (the form found
+/// before).
+///
+/// Candidates are taken in the order of [`choice_key`], the first that equals `x` wins; only
+/// those shorter than `than` are checked against `x`: the keys are sorted, so when the first
+/// candidate equal to `x` is not shorter than `than`, no candidate shorter than `than` equals
+/// `x`, and both ways give `than`.
+pub(super) fn best_alternative(x: &Scalar, than: &Expr) -> Option<Expr> {
+    let cands = unsorted_candidates(x);
+    if cands.is_empty() {
+        return None;
+    }
+    let bound = choice_key(than);
+    let bound = (bound.0, bound.1);
+    let mut cands: Vec<_> = cands
+        .into_iter()
+        .map(|e| (choice_key(&e), e))
+        .filter(|(k, _)| (k.0, k.1) < bound)
+        .collect();
+    // Stable: on equal keys the earlier candidate is taken.
+    cands.sort_by_key(|(k, _)| *k);
+    cands
+        .into_iter()
+        .map(|(_, e)| e)
+        .find(|e| e.to_scalar() == *x)
 }
 
 /// Every candidate for `x`, cheapest first ([`choice_key`]), not yet checked against it.
 pub(super) fn candidates(x: &Scalar) -> Vec<Expr> {
+    let mut cands = unsorted_candidates(x);
+    cands.sort_by_cached_key(choice_key);
+    cands
+}
+
+/// Every candidate for `x` in the order they are made (on equal keys the earlier is taken).
+fn unsorted_candidates(x: &Scalar) -> Vec<Expr> {
     let Ok(t) = x.terms() else {
         return Vec::new();
     };
@@ -60,7 +89,6 @@ pub(super) fn candidates(x: &Scalar) -> Vec<Expr> {
     if t.len() <= MAX_TERMS {
         cands.extend(super::cspoly::factored_forms(t));
     }
-    cands.sort_by_key(choice_key);
     cands
 }
 

@@ -114,7 +114,8 @@ impl Angle {
 
     /// [`Angle::offset_reduced`] in place.
     pub fn reduce_offset(&mut self) {
-        if !self.is_pi_multiple() {
+        // No offset (the common case) is in range already.
+        if !self.pi.is_zero() && !self.is_pi_multiple() {
             let (one, two) = (Small::one(), Small::from_integer(2));
             while self.pi > one {
                 self.pi -= two;

@@ -185,6 +185,27 @@ struct Search {
 ///
 /// The search counts against the work budget like scalar arithmetic (one unit per monomial
 /// and per factor of it looked at); when the budget runs out it stops with the budget error.
+/// A lower bound of the cost [`build`] finds for `mons`, without the search: the factoring
+/// only pulls common factors out of the given monomials, so every distinct atom and symbol
+/// of them is a leaf of its result at least once; each atom is a call, and `n` leaves take
+/// at least `n - 1` additions and multiplications to combine (a sum or product of `k` parts
+/// costs `k - 1`; negations and powers only add).
+pub(crate) fn cost_lower_bound(mons: &[Mon]) -> Cost {
+    let mut atoms: Vec<Atom> = mons.iter().flat_map(|m| m.atoms.iter().copied()).collect();
+    atoms.sort_unstable();
+    atoms.dedup();
+    let mut syms: Vec<u32> = mons
+        .iter()
+        .flat_map(|m| m.syms.iter().map(|&(s, _)| s))
+        .collect();
+    syms.sort_unstable();
+    syms.dedup();
+    Cost {
+        ops: (atoms.len() + syms.len()).saturating_sub(1) + atoms.len(),
+        calls: atoms.len(),
+    }
+}
+
 pub(crate) fn build(mons: &[Mon]) -> Result<(E, Cost), ScalarError> {
     let mut s = Search::default();
     let e = s.build_at(mons, 0);

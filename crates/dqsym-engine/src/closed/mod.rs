@@ -27,8 +27,10 @@ pub use expr::{Angle, Cost, Expr};
 pub use notation::{angle_text, shorthand_name, TrigNames};
 pub use trace::{Identity, TraceStep};
 
-use crate::scalar::Small;
+use crate::scalar::FxHasher;
 use crate::{Scalar, ScalarError, Sym};
+use std::collections::hash_map::Entry;
+use std::hash::{BuildHasherDefault, Hasher};
 
 /// The largest number of monomials the split shape may have before it is skipped.
 const SPLIT_LIMIT: usize = 100_000;
@@ -151,31 +153,98 @@ fn disjoint_parts(x: &Scalar) -> bool {
     let Ok(terms) = x.terms() else {
         return false;
     };
-    type Key<'a> = (u64, &'a [(Sym, u32)], Vec<(&'a Sym, Small)>);
-    let mut keys: Vec<Key> = terms
+    // The keys are hashed, not built (one word per term), and compared when their hashes
+    // meet: the first two terms with equal keys end the search. A collision of different
+    // keys leaves the answer to `disjoint_by_sorting`, which compares every pair of equal
+    // hashes.
+    let mut seen: std::collections::HashMap<u64, usize, BuildHasherDefault<FxHasher>> =
+        std::collections::HashMap::with_capacity_and_hasher(terms.len(), Default::default());
+    let mut collided = false;
+    for (i, t) in terms.iter().enumerate() {
+        match seen.entry(key_hash(t)) {
+            Entry::Occupied(o) => {
+                if same_key(&terms[*o.get()], t) {
+                    return false;
+                }
+                collided = true;
+            }
+            Entry::Vacant(v) => {
+                v.insert(i);
+            }
+        }
+    }
+    !collided || disjoint_by_sorting(terms)
+}
+
+/// [`disjoint_parts`] by sorting the hashes of the keys and comparing every pair within a run
+/// of equal hashes.
+fn disjoint_by_sorting(terms: &[crate::scalar::Term]) -> bool {
+    let mut hashed: Vec<(u64, usize)> = terms
         .iter()
-        .map(|t| {
-            let freq = t
-                .mode
-                .freq
-                .iter()
-                .map(|(s, c)| (s, if *c < Small::default() { -*c } else { *c }))
-                .collect();
-            (t.rad, &t.mono[..], freq)
-        })
+        .enumerate()
+        .map(|(i, t)| (key_hash(t), i))
         .collect();
-    keys.sort_unstable();
-    keys.windows(2).all(|w| w[0] != w[1])
+    hashed.sort_unstable();
+    let mut run = 0;
+    while run < hashed.len() {
+        let end = run + hashed[run..].partition_point(|&(h, _)| h == hashed[run].0);
+        for i in run..end {
+            for j in i + 1..end {
+                if same_key(&terms[hashed[i].1], &terms[hashed[j].1]) {
+                    return false;
+                }
+            }
+        }
+        run = end;
+    }
+    true
+}
+
+/// A hash of a term's key for [`disjoint_parts`]: its radicand, monomial and frequencies
+/// without their signs. A symbol counts by the length and last eight bytes of its name: a
+/// function of the name, so equal keys hash alike, in one word.
+fn key_hash(t: &crate::scalar::Term) -> u64 {
+    let name = |s: &Sym| {
+        let b = s.name().as_bytes();
+        let tail = &b[b.len().saturating_sub(8)..];
+        let mut w = [0u8; 8];
+        w[..tail.len()].copy_from_slice(tail);
+        u64::from_le_bytes(w) ^ (b.len() as u64).rotate_right(8)
+    };
+    let mut h = FxHasher::default();
+    h.write_u64(t.rad);
+    for (s, e) in t.mono.iter() {
+        h.write_u64(name(s));
+        h.write_u32(*e);
+    }
+    h.write_usize(t.mono.len());
+    for (s, c) in t.mode.freq.iter() {
+        h.write_u64(name(s));
+        h.write_i64(c.numer().abs());
+        h.write_i64(*c.denom());
+    }
+    h.finish()
+}
+
+/// Whether two terms have the same key for [`disjoint_parts`].
+fn same_key(a: &crate::scalar::Term, b: &crate::scalar::Term) -> bool {
+    a.rad == b.rad
+        && a.mono == b.mono
+        && a.mode.freq.len() == b.mode.freq.len()
+        && a.mode
+            .freq
+            .iter()
+            .zip(b.mode.freq.iter())
+            .all(|((s, c), (r, d))| {
+                s == r && c.numer().abs() == d.numer().abs() && c.denom() == d.denom()
+            })
 }
 
 /// The whole-modes shape or, when strictly shorter, a candidate of `alt.rs`, checked against
 /// `x` like [`best_of`]'s result.
 fn best_whole(x: &Scalar) -> Result<Expr, ScalarError> {
     let (w, _) = whole_form(x)?;
-    let best = match alt::best_alternative(x) {
-        Some(a) if alt::shorter(&a, &w) => a,
-        _ => w,
-    };
+    let best = alt::best_alternative(x, &w).unwrap_or(w);
     if !cfg!(debug_assertions) && agrees_numerically(&best, x) {
         return Ok(best);
     }
@@ -211,7 +280,18 @@ fn best_of(
     // placeholders, say): the whole shape would be factored again to the same cost.
     let try_whole = try_whole && !same_monomials(x, smons);
     let whole = if try_whole {
-        Some(whole_form(x)?)
+        let (wctx, wmons) = mon::whole_modes(x);
+        // The whole shape is taken only when strictly cheaper: not searched when even a lower
+        // bound of its cost is not (the common case: many more distinct modes than the
+        // regrouped shape has calls).
+        let bound = factor::cost_lower_bound(&wmons);
+        if bound >= sc {
+            debug_assert!(factor::build(&wmons).map_or(true, |(_, wc)| wc >= bound));
+            None
+        } else {
+            let (w, wc) = factor::build(&wmons)?;
+            Some((w.to_expr(&wctx), wc))
+        }
     } else {
         None
     };
@@ -221,10 +301,7 @@ fn best_of(
         _ => (split.to_expr(sctx), true),
     };
     // A shorter form of another kind (checked exactly by `best_alternative`).
-    let best = match alt::best_alternative(x) {
-        Some(a) if alt::shorter(&a, &best) => a,
-        _ => best,
-    };
+    let best = alt::best_alternative(x, &best).unwrap_or(best);
     if !cfg!(debug_assertions) && agrees_numerically(&best, x) {
         return Ok((best, split_won));
     }
@@ -429,9 +506,9 @@ fn traced_unshifted(x: &Scalar) -> Result<(Expr, Vec<TraceStep>), ScalarError> {
         let e = whole.to_expr(&wctx);
         (e.clone(), TraceStep::KeptWhole(e))
     };
-    let (best, last) = match alt::best_alternative(x) {
-        Some(a) if alt::shorter(&a, &best) => (a.clone(), TraceStep::Shorter(a)),
-        _ => (best, last),
+    let (best, last) = match alt::best_alternative(x, &best) {
+        Some(a) => (a.clone(), TraceStep::Shorter(a)),
+        None => (best, last),
     };
     if best.to_scalar() == *x {
         Ok((best, rec.finish(last)))

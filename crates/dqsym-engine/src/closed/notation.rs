@@ -50,15 +50,15 @@ pub fn shorthand_name(f: Trig, angle: &Angle) -> Option<String> {
 pub fn angle_text(angle: &Angle) -> String {
     match common_denominator(angle) {
         Some(d) => {
-            let scale = Small::from_integer(d);
+            // Every nonzero part has the denominator `d`: times `d`, its numerator.
             let whole = Angle::new(
                 angle
                     .terms
                     .iter()
-                    .map(|(s, k)| (s.clone(), *k * scale))
+                    .map(|(s, k)| (s.clone(), Small::from_integer(*k.numer())))
                     .collect(),
-                angle.constant * scale,
-                angle.pi * scale,
+                Small::from_integer(*angle.constant.numer()),
+                Small::from_integer(*angle.pi.numer()),
             );
             format!("({})/{d}", sum_text(&whole))
         }

@@ -7,6 +7,7 @@
 
 mod plain;
 
+pub(crate) use plain::plain_len_bound;
 pub use plain::{legend, plain, plain_named, plain_quotient, plain_quotient_named, PlainOptions};
 
 /// The output language of `--format`, one for the language's results, the `fk` report

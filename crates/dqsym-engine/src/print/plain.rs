@@ -162,6 +162,55 @@ fn write(e: &Expr, o: &PlainOptions, names: TrigNames, prec: u8, out: &mut Strin
     }
 }
 
+/// An upper bound of the length of [`plain`]`(e, opts)` for either setting of
+/// `opts.shorthand`, found without writing the text: every number counted with as many
+/// digits as its bits allow, every coefficient of an angle with its sign, `*`, `/` and
+/// denominator, every bracket a precedence could add. For deciding that a report is short
+/// (`app::fk::text_exceeds`) without printing it twice.
+pub(crate) fn plain_len_bound(e: &Expr) -> usize {
+    // Decimal digits of an integer of `bits` bits: at most bits * log10(2) + 1 <= bits/3 + 1.
+    fn big_digits(bits: u64) -> usize {
+        usize::try_from(bits / 3).unwrap_or(usize::MAX) + 1
+    }
+    fn digits(n: i64) -> usize {
+        n.unsigned_abs()
+            .checked_ilog10()
+            .map_or(1, |d| d as usize + 1)
+    }
+    fn part(k: &crate::scalar::Small, name: &str) -> usize {
+        // ` - 3*name/4`, or the number alone for the constant.
+        3 + digits(*k.numer()) + 1 + name.len() + 1 + digits(*k.denom())
+    }
+    match e {
+        // The sign, `(`, numerator, `/`, denominator, `)`.
+        Expr::Num(q) => 4 + big_digits(q.numer().bits()) + big_digits(q.denom().bits()),
+        Expr::Sqrt(_) => "sqrt()".len() + digits(i64::MAX) + 1,
+        Expr::Sym(s) => s.name().len(),
+        Expr::Trig { f, angle } => {
+            // The shorthand: a letter, the symbols' names (their prefix and digits) and
+            // separators.
+            let short = 1 + angle
+                .terms
+                .iter()
+                .map(|(s, _)| s.name().len() + 1)
+                .sum::<usize>();
+            // `cos(`, `(`, the parts, `)/d`, `)`, or `0`.
+            let d = angle
+                .terms
+                .iter()
+                .map(|(s, k)| part(k, s.name()))
+                .sum::<usize>()
+                + part(&angle.constant, "")
+                + part(&angle.pi, "pi");
+            let explicit = f.name().len() + 2 + 3 + digits(i64::MAX) + d + 1;
+            short.max(explicit)
+        }
+        Expr::Add(v) | Expr::Mul(v) => 2 + v.iter().map(|x| 3 + plain_len_bound(x)).sum::<usize>(),
+        Expr::Neg(x) => 3 + plain_len_bound(x),
+        Expr::Pow(x, n) => plain_len_bound(x) + 1 + digits(i64::from(*n)),
+    }
+}
+
 /// The shorthand names used in `exprs`, with their meaning, sorted:
 /// `c12 = cos(theta1 + theta2)`.
 pub fn legend(exprs: &[&Expr]) -> Vec<String> {
@@ -184,5 +233,43 @@ fn collect(e: &Expr, seen: &mut BTreeSet<(String, Trig, String)>) {
         Expr::Add(v) | Expr::Mul(v) => v.iter().for_each(|x| collect(x, seen)),
         Expr::Neg(x) | Expr::Pow(x, _) => collect(x, seen),
         _ => {}
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{closed_form, Scalar};
+
+    #[test]
+    fn the_length_bound_is_never_below_the_text() {
+        let s = Scalar::sym;
+        let q =
+            |n: i64, d: i64| Scalar::rational(num_rational::BigRational::new(n.into(), d.into()));
+        let (t1, t2, alpha5) = (s("theta1"), s("theta2"), s("alpha5"));
+        let xs = [
+            t1.cos() * s("l1") + (t1.clone() + t2.clone()).cos() * s("l2"),
+            (t1.clone() * q(1, 2) + t2.clone() * q(1, 2)).sin().pow(3) * q(-123_456_789, 7),
+            (t1.clone() + Scalar::pi() * q(2, 7)).cos() * Scalar::int(2).sqrt()
+                - (t2.clone() * q(3, 4) + Scalar::int(5)).sin(),
+            (alpha5.clone() - t1.clone() * q(5, 3) + Scalar::pi() * q(1, 5)).cos()
+                * s("a").pow(4)
+                * q(1, 1 << 40),
+            (s("q12") + s("q3")).sin() * alpha5.cos() - Scalar::int(10).pow(30),
+        ];
+        for x in &xs {
+            let e = closed_form(x).expect("closed form");
+            // The bound is checked, and the closed form is the value it shows.
+            assert_eq!(e.to_scalar(), *x);
+            for shorthand in [true, false] {
+                let text = plain(&e, &PlainOptions { shorthand });
+                assert!(
+                    text.len() <= plain_len_bound(&e),
+                    "{text}: {} over the bound {}",
+                    text.len(),
+                    plain_len_bound(&e)
+                );
+            }
+        }
     }
 }

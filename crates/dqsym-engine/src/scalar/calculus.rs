@@ -17,7 +17,7 @@ impl Scalar {
             Ok(t) => t,
             Err(e) => return Scalar::error(e.clone()),
         };
-        let mut out = Vec::new();
+        let mut out = Vec::with_capacity(t.len());
         for term in t {
             if let Some(pos) = term.mono.iter().position(|(s, _)| s.name() == x) {
                 let e = term.mono[pos].1;

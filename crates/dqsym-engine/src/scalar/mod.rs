@@ -148,6 +148,8 @@ pub(crate) struct Term {
 }
 
 impl Term {
+    // Inlined: the comparator of every sort of a term vector.
+    #[inline]
     pub(crate) fn key_cmp(&self, other: &Term) -> std::cmp::Ordering {
         self.mode
             .cmp(&other.mode)
@@ -199,7 +201,14 @@ fn canonical_terms(mut terms: Vec<Term>) -> Result<Vec<Term>, ScalarError> {
 /// Sorted terms with equal keys merged and zero coefficients dropped (looking at the cancel
 /// flag every few terms).
 fn merge_sorted(terms: Vec<Term>) -> Result<Vec<Term>, ScalarError> {
+    merge_sorted_counting(terms).map(|(t, _)| t)
+}
+
+/// [`merge_sorted`], and how many of the merged terms have a pi offset (counted as they are
+/// kept, so that [`Scalar::from_terms`] need not scan them again).
+fn merge_sorted_counting(terms: Vec<Term>) -> Result<(Vec<Term>, usize), ScalarError> {
     let mut out: Vec<Term> = Vec::with_capacity(terms.len());
+    let mut offsets = 0;
     let mut poll = Poll::default();
     for t in terms {
         poll.step()?;
@@ -207,16 +216,17 @@ fn merge_sorted(terms: Vec<Term>) -> Result<Vec<Term>, ScalarError> {
             Some(last) if last.key_cmp(&t).is_eq() => last.coef += &t.coef,
             _ => {
                 if out.last().is_some_and(|l| l.coef.is_zero()) {
-                    out.pop();
+                    offsets -= out.pop().map_or(0, |l| usize::from(!l.mode.pi.is_zero()));
                 }
+                offsets += usize::from(!t.mode.pi.is_zero());
                 out.push(t)
             }
         }
     }
     if out.last().is_some_and(|l| l.coef.is_zero()) {
-        out.pop();
+        offsets -= out.pop().map_or(0, |l| usize::from(!l.mode.pi.is_zero()));
     }
-    Ok(out)
+    Ok((out, offsets))
 }
 
 /// Two runs of [`merge_sorted`] as one, looking at the cancel flag every few terms.
@@ -268,9 +278,15 @@ pub struct Scalar(Repr);
 
 impl Scalar {
     pub(crate) fn from_terms_sorted(terms: Vec<Term>) -> Scalar {
+        let offsets = terms.iter().any(|t| !t.mode.pi.is_zero());
+        Scalar::from_canonical(terms, offsets)
+    }
+
+    /// [`Scalar::from_terms_sorted`] told whether a term has a pi offset.
+    fn from_canonical(terms: Vec<Term>, offsets: bool) -> Scalar {
         // Constants at rational multiples of pi other than pi/12 (and symbolic angles offset
-        // by them) take their canonical basis; the common case only pays for this scan.
-        let terms = if terms.iter().any(|t| !t.mode.pi.is_zero()) {
+        // by them) take their canonical basis; the common case only pays for a scan.
+        let terms = if offsets {
             match cyclo::canonicalize(&terms).and_then(canonical_terms) {
                 Ok(t) => t,
                 Err(e) => return Scalar::error(e),
@@ -290,7 +306,15 @@ impl Scalar {
 
     /// Sorts, merges equal keys and drops zero coefficients; an error value when the context
     /// is cancelled meanwhile (see [`canonical_terms`]).
-    pub(crate) fn from_terms(terms: Vec<Term>) -> Scalar {
+    pub(crate) fn from_terms(mut terms: Vec<Term>) -> Scalar {
+        if terms.len() <= RUN {
+            // As `canonical_terms`, counting the pi offsets on the way.
+            terms.sort_unstable_by(Term::key_cmp);
+            return match merge_sorted_counting(terms) {
+                Ok((t, offsets)) => Scalar::from_canonical(t, offsets > 0),
+                Err(e) => Scalar::error(e),
+            };
+        }
         match canonical_terms(terms) {
             Ok(t) => Scalar::from_terms_sorted(t),
             Err(e) => Scalar::error(e),
