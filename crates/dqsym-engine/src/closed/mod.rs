@@ -280,7 +280,8 @@ fn best_of(
     // placeholders, say): the whole shape would be factored again to the same cost.
     let try_whole = try_whole && !same_monomials(x, smons);
     let whole = if try_whole {
-        let (wctx, wmons) = mon::whole_modes(x);
+        // The same monomials as `whole_form`'s (modes joined into one angle where they are one).
+        let (wctx, wmons) = mon::whole_modes_joined(x);
         // The whole shape is taken only when strictly cheaper: not searched when even a lower
         // bound of its cost is not (the common case: many more distinct modes than the
         // regrouped shape has calls).
