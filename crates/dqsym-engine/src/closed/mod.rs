@@ -57,7 +57,7 @@ pub struct Prepared(
 ///
 /// A scalar whose symbolic modes carry offsets outside the multiples of pi/12 is also tried
 /// with the offsets absorbed into its symbols (`offsets.rs`: `cos(q2 + 5*pi/9)` regrouped
-/// and factored like `cos(q2)`), the shorter of the two kept ([`alt::shorter`]; the shifted
+/// and factored like `cos(q2)`), the shorter of the two kept (`alt::shorter`; the shifted
 /// one on ties).
 pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     let (plain, prepared) = prepared_unshifted(x);
