@@ -59,21 +59,19 @@ if [ "$#" -eq 0 ]; then
 fi
 
 # The Python package: `pip wheel ./python` builds its wheel once, with the venv's maturin
-# (hence --no-build-isolation), for the tests in the dev profile (MATURIN_PEP517_ARGS) and in
-# this target directory, so that it reuses the dependencies `cargo test` compiled above (a user's
-# `pip install ./python` builds the release profile of python/Cargo.toml); cargo's progress is
-# shown. The wheel goes into .venv, and python/tests/test_install.py installs the same wheel into
-# a fresh venv ($DQSYM_WHEEL), so the package is compiled once. Then its tests, with the binary
+# (hence --no-build-isolation) in its own target directory, python/target, with its release
+# profile at opt-level 2 (python/Cargo.toml); cargo's progress is shown. The wheel goes into
+# .venv, and python/tests/test_install.py installs the same wheel into a fresh venv
+# ($DQSYM_WHEEL), so the package is compiled once. Then its tests, with the binary
 # `cargo test` built as the oracle of "what the command line prints".
 echo "building the Python package: pip wheel ./python" >&2
 start=$SECONDS
 log="$(mktemp)"
-wheels="target/wheels"
+wheels="python/target/wheels"
 trap 'rm -f "$refs" "$log"' EXIT
 rm -f "$wheels"/dqsym-*.whl
 set +o pipefail
-PATH="$PWD/.venv/bin:$PATH" CARGO_TARGET_DIR="$PWD/target" MATURIN_PEP517_ARGS="--profile dev" \
-    .venv/bin/python -m pip wheel --disable-pip-version-check \
+PATH="$PWD/.venv/bin:$PATH" .venv/bin/python -m pip wheel --disable-pip-version-check \
     --no-build-isolation --no-deps -v -w "$wheels" ./python 2>&1 | tee "$log" |
     { grep --line-buffered -E '^ *(Compiling|Finished|Created wheel|Saved)' >&2 || true; }
 status=${PIPESTATUS[0]}

@@ -14,12 +14,12 @@ from conftest import ROOT
 
 
 def wheel():
-    """$DQSYM_WHEEL, else the newest wheel in target/wheels (where scripts/test.sh builds it)."""
+    """$DQSYM_WHEEL, else the newest wheel in python/target/wheels."""
     path = os.environ.get("DQSYM_WHEEL")
     if path:
         return pathlib.Path(path)
     found = sorted(
-        (ROOT / "target" / "wheels").glob("dqsym-*.whl"),
+        (ROOT / "python" / "target" / "wheels").glob("dqsym-*.whl"),
         key=lambda p: p.stat().st_mtime,
     )
     if not found:
