@@ -242,7 +242,7 @@ fn random_offsets_in_sums_products_and_powers() {
     }
 }
 
-/// The Jaco-style arm of `examples/robots/jaco.toml` (elbow offset 5 pi/9, wrist tilted by
+/// The Jaco-style arm of `tests/data/jaco_style.toml` (elbow offset 5 pi/9, wrist tilted by
 /// pi/3): every entry of its pose matrix shows the elbow's angles with the offset `5 pi/9`
 /// (as `cos(q2 + 5*pi/9)`, or the same angle less pi or turned by pi/2), never a basis sum at
 /// `pi/9`; each entry equals the matrix entry exactly (its value against plain DH matrices is
@@ -251,7 +251,7 @@ fn random_offsets_in_sums_products_and_powers() {
 fn jaco_pose_prints_its_joint_offset() {
     let r = crate::robots::load(concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/examples/robots/jaco.toml"
+        "/tests/data/jaco_style.toml"
     ));
     let m = r.forward_matrix();
     for i in 0..3 {
