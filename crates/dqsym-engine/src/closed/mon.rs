@@ -269,20 +269,8 @@ pub(crate) fn whole_modes_joined(x: &Scalar) -> (Ctx, Vec<Mon>) {
 /// pi; `None` when the group is not one angle (or the exact check fails).
 fn single_angle(g: &[&crate::scalar::Term]) -> Option<crate::scalar::Term> {
     use num_traits::ToPrimitive;
-    let (mut re, mut im) = (0.0f64, 0.0f64);
-    let mut den: i64 = 12;
-    for t in g {
-        let c = t.coef.to_f64()? * (t.rad as f64).sqrt();
-        let p = std::f64::consts::PI * t.mode.pi.numer().to_f64()? / t.mode.pi.denom().to_f64()?;
-        let (a, b) = if t.mode.sin {
-            (p.sin(), -p.cos())
-        } else {
-            (p.cos(), p.sin())
-        };
-        re += c * a;
-        im += c * b;
-        den = den.lcm(t.mode.pi.denom());
-    }
+    let (re, im) = super::offsets::amplitude(g.iter().copied())?;
+    let den = g.iter().fold(12i64, |d, t| d.lcm(t.mode.pi.denom()));
     let r2 = re * re + im * im;
     // R^2 = n / d with a small d: R = sqrt(n d) / d.
     let (n, d) = (1..=4096i64).find_map(|d| {

@@ -289,10 +289,11 @@ fn solve(
 /// The most candidate offsets the search of [`solve`] looks at.
 const MAX_VISITS: usize = 200_000;
 
-/// The value of a group as the complex amplitude `z` of `e^{i f.x}`: `(re, im)` in f64.
-fn amplitude(g: &Group) -> Option<(f64, f64)> {
+/// The value of terms of one frequency vector `F` (a group) as the complex amplitude `z` of
+/// `e^{i F}`: `(re, im)` in f64.
+pub(super) fn amplitude<'a>(terms: impl IntoIterator<Item = &'a Term>) -> Option<(f64, f64)> {
     let (mut re, mut im) = (0.0, 0.0);
-    for t in &g.terms {
+    for t in terms {
         let c = t.coef.to_f64()? * (t.rad as f64).sqrt();
         let p = std::f64::consts::PI * t.mode.pi.numer().to_f64()? / t.mode.pi.denom().to_f64()?;
         // cos(F + p) = Re(e^{ip} e^{iF}), sin(F + p) = Re(-i e^{ip} e^{iF}).
@@ -322,7 +323,7 @@ fn representatives(
 ) -> Option<Vec<Small>> {
     let amps: Vec<(f64, f64)> = groups
         .iter()
-        .map(|g| amplitude(g).unwrap_or((0.0, 0.0)))
+        .map(|g| amplitude(g.terms.iter().copied()).unwrap_or((0.0, 0.0)))
         .collect();
     // The number of cosine and sine parts of the shifted scalar, and of negative ones.
     let score = |o: &[Small]| -> (usize, usize) {
