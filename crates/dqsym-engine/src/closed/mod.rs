@@ -11,6 +11,7 @@
 //! re-canonicalized and compared with the input before it is returned.
 
 mod alt;
+pub mod congruence;
 mod cprod;
 mod cspoly;
 mod expr;
