@@ -309,19 +309,42 @@ fn representatives(
         .iter()
         .map(|g| amplitude(g.terms.iter().copied()).unwrap_or((0.0, 0.0)))
         .collect();
+    // Groups of one frequency vector (and other monomials) share their phase: each distinct
+    // vector's `e^{-i pi f}` is computed once per solution.
+    let mut freqs: Vec<&[(usize, Small)]> = rows.iter().map(Vec::as_slice).collect();
+    freqs.sort_unstable();
+    freqs.dedup();
+    let row_freq: Vec<usize> = rows
+        .iter()
+        .map(|r| freqs.binary_search(&r.as_slice()).unwrap_or(0))
+        .collect();
+    // Each symbol's half period `D` (the lcm of its coefficients' denominators).
+    let halves: Vec<Small> = (0..syms.len())
+        .map(|i| {
+            Small::from_integer(
+                rows.iter()
+                    .filter_map(|r| r.iter().find(|(x, _)| *x == i))
+                    .fold(1i64, |acc, (_, k)| acc.lcm(k.denom())),
+            )
+        })
+        .collect();
+    let mut phases: Vec<(f64, f64)> = vec![(0.0, 0.0); freqs.len()];
     // The number of cosine and sine parts of the shifted scalar, and of negative ones.
-    let score = |o: &[Small]| -> (usize, usize) {
-        let (mut parts, mut neg) = (0, 0);
-        for (r, (re, im)) in rows.iter().zip(&amps) {
+    let mut score = |o: &[Small]| -> (usize, usize) {
+        for (p, r) in phases.iter_mut().zip(&freqs) {
             let mut f = Small::zero();
-            for (s, k) in r {
+            for (s, k) in r.iter() {
                 f += *k * o[*s];
             }
             let f = f.numer().to_f64().unwrap_or(0.0) / f.denom().to_f64().unwrap_or(1.0);
-            let (c, s) = (
+            *p = (
                 (f * std::f64::consts::PI).cos(),
                 (f * std::f64::consts::PI).sin(),
             );
+        }
+        let (mut parts, mut neg) = (0, 0);
+        for (i, (re, im)) in row_freq.iter().zip(&amps) {
+            let (c, s) = phases[*i];
             // z e^{-i pi f}: the cosine part is its real part, the sine part minus its
             // imaginary part.
             let (a, b) = (re * c + im * s, -(im * c - re * s));
@@ -335,22 +358,30 @@ fn representatives(
         }
         (parts, neg)
     };
-    let run = |fixed: &[Option<Small>]| -> Option<(bool, Option<Vec<Small>>)> {
+    let mut run = |fixed: &[Option<Small>], all: bool| -> Option<(bool, Option<Vec<Small>>)> {
+        // Whether the solutions are fewer than the bound, counted first: when they are not,
+        // none of the first run (`all`) is shown.
+        if all {
+            let mut seen = 0usize;
+            let complete = solve(syms, rows, targets, n, fixed, &mut |_| {
+                seen += 1;
+                seen < MAX_SOLUTIONS
+            })?;
+            if !complete {
+                return Some((false, None));
+            }
+        }
         let mut best: Option<(Key, Vec<Small>)> = None;
         let mut seen = 0usize;
         let complete = solve(syms, rows, targets, n, fixed, &mut |o| {
             // Centred into (-D, D] for a period 2 D.
             let o: Vec<Small> = o
                 .iter()
-                .enumerate()
-                .map(|(i, &v)| {
-                    let den = rows
-                        .iter()
-                        .filter_map(|r| r.iter().find(|(x, _)| *x == i))
-                        .fold(1i64, |acc, (_, k)| acc.lcm(k.denom()));
-                    let period = Small::from_integer(2 * den);
+                .zip(&halves)
+                .map(|(&v, &den)| {
+                    let period = den * Small::from_integer(2);
                     let v = v - (v / period).floor() * period;
-                    if v > Small::from_integer(den) {
+                    if v > den {
                         v - period
                     } else {
                         v
@@ -374,7 +405,7 @@ fn representatives(
     // Every solution when they are few; else the symbols whose offset in `base` is a multiple
     // of their own steps keep none, and the others range over the solutions.
     let free = vec![None; syms.len()];
-    if let (true, Some(o)) = run(&free)? {
+    if let (true, Some(o)) = run(&free, true)? {
         return Some(o);
     }
     let fixed: Vec<Option<Small>> = (0..syms.len())
@@ -394,7 +425,7 @@ fn representatives(
                 .then(Small::zero)
         })
         .collect();
-    run(&fixed)?.1
+    run(&fixed, false)?.1
 }
 
 /// The order of solutions: parts, largest denominator, offsets, negative parts, sum of
