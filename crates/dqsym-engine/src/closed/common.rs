@@ -42,7 +42,8 @@ fn centred(t: Small) -> Small {
 /// `(g, l, t)` for an angle with symbols whose offset is not a multiple of 1/12: `f = l g`,
 /// `g` primitive with integer coefficients, the first positive, `t = c / l` modulo 2.
 fn direction(a: &Angle) -> Option<(Direction, Small, Small)> {
-    if a.terms.is_empty() || (a.pi * Small::from_integer(12)).is_integer() {
+    // Offsets at multiples of pi/12 (zero included: every angle of the PUMA's) first, cheaply.
+    if 12 % a.pi.denom() == 0 || a.terms.is_empty() {
         return None;
     }
     let den = a.terms.iter().fold(1i64, |d, (_, k)| d.lcm(k.denom()));
