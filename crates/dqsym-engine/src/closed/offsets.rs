@@ -11,19 +11,20 @@
 //! which the group shifted by `-d` has no offset (tried exactly, one small canonicalization
 //! per candidate); a group with no such `d` (a sum of two unrelated phases) means no shift
 //! exists. The offsets must then satisfy `f . o = d_f (mod 1/12)` for every group: each
-//! symbol's candidates (multiples of `pi / (N a)`, `a` the lcm of its coefficients'
-//! numerators, over one period) are narrowed by the sums and differences of two groups that
-//! hold that symbol alone, and a depth-first search checks every constraint as soon as its
-//! symbols are chosen (at most [`MAX_VISITS`] candidates, [`MAX_SOLUTIONS`] solutions).
+//! symbol's candidates are the multiples of `pi / (N a)` (`a` the lcm of its coefficients'
+//! numerators) over one period; scaled to integers modulo one common modulus, the
+//! congruences are solved in echelon form (`congruence.rs`), which lists the solutions in
+//! lexicographic order without a search (the first [`MAX_SOLUTIONS`] are compared, every
+//! value listed charged to the Context).
 //!
 //! Which solution is shown (`5 pi/9` or `-4 pi/9`, or `1/18 pi` with the cosine turned into
-//! a sine): among every solution (when the search finds them all; else with the symbols whose
+//! a sine): among every solution (when there are fewer than [`MAX_SOLUTIONS`]; else with the symbols whose
 //! first offset is a multiple of their own pi/12 steps kept at 0), the one for which the
 //! shifted scalar has the fewest cosine and sine parts, then the smallest denominator, then
 //! the fewest nonzero offsets (no `q1 - pi` for a sign), then the fewest negative parts (`cos(t + 5*pi/9)`, not `-cos(t - 4*pi/9)`), then the smallest
 //! sum of `|o_s|`, then the fewest negative offsets. The shifted scalar is computed exactly and must have no offset left on a
 //! symbolic mode; the closed form built from it is checked against the input like every
-//! other.
+//! other. Across an `fk` report the offsets shown are then made to agree (`common.rs`).
 
 use super::expr::{Angle, Expr};
 use crate::scalar::{Small, Sym, Term};
