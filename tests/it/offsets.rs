@@ -289,3 +289,184 @@ fn e_coefficient(_e: &Expr, key: &str) -> num_rational::Ratio<i64> {
     }
     num_rational::Ratio::zero()
 }
+
+/// The Jaco-style arm's pose entries (DQ components and matrix entries).
+fn jaco_pose() -> (dqsym::Robot, Vec<dqsym::Scalar>) {
+    let r = crate::robots::load(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/jaco_style.toml"
+    ));
+    let q = r.forward();
+    let m = r.forward_matrix();
+    let mut v: Vec<dqsym::Scalar> = q.components().to_vec();
+    v.extend(m.rows[..3].iter().flatten().cloned());
+    (r, v)
+}
+
+/// The closed forms of the Jaco-style pose (20 entries) stay within a work budget: the offsets
+/// are found by solving their congruences (`closed/congruence.rs`), not by a search bounded
+/// by visits. Each form equals its entry exactly.
+#[test]
+fn jaco_pose_closed_forms_fit_a_work_budget() {
+    let (_, entries) = jaco_pose();
+    let ctx = dqsym::Context::new().with_work_budget(u64::MAX / 2);
+    let g = ctx.enter();
+    for x in &entries {
+        let e = closed_form(x).expect("closed form");
+        assert_eq!(e.to_scalar(), *x);
+    }
+    let used = g.work_used();
+    // About 450,000 units when written.
+    assert!(used < 1_000_000, "work used: {used}");
+}
+
+/// Random systems of linear congruences in two to four unknowns (the shape of the offsets'
+/// equations `f . o = d_f`, scaled to integers) solved by `closed::congruence::solutions`
+/// have the solutions a brute force over every candidate finds, in the same (lexicographic)
+/// order.
+#[test]
+fn random_congruence_systems_match_a_brute_force() {
+    use dqsym::closed::congruence::solutions;
+    let mut rng = Rng(0x5eed_0ff5);
+    for case in 0..300 {
+        let n = 2 + rng.below(3) as usize;
+        let m = [4i64, 6, 12, 18, 24, 36, 72][rng.below(7) as usize];
+        let rows = 1 + rng.below(5) as usize;
+        let mut ranges: Vec<i64> = (0..n)
+            .map(|_| [m, 2 * m, m / 2 + 1][rng.below(3) as usize])
+            .collect();
+        // At most 50,000 candidates for the brute force.
+        while ranges.iter().product::<i64>() > 50_000 {
+            let i = rng.below(n as u64) as usize;
+            ranges[i] = (ranges[i] / 2).max(1);
+        }
+        let a: Vec<Vec<i64>> = (0..rows)
+            .map(|_| (0..n).map(|_| rng.below(9) as i64 - 4).collect())
+            .collect();
+        // Right-hand sides of a point when the case number is even (a solvable system).
+        let point: Vec<i64> = ranges.iter().map(|r| rng.below(*r as u64) as i64).collect();
+        let b: Vec<i64> = a
+            .iter()
+            .map(|r| {
+                if case % 2 == 0 {
+                    r.iter().zip(&point).map(|(x, y)| x * y).sum()
+                } else {
+                    rng.below(m as u64) as i64
+                }
+            })
+            .collect();
+        let mut got = Vec::new();
+        solutions(&a, &b, m, &ranges, &mut |z| {
+            got.push(z.to_vec());
+            true
+        })
+        .expect("every solution listed");
+        let mut want = Vec::new();
+        let mut z = vec![0i64; n];
+        'all: loop {
+            if a.iter().zip(&b).all(|(r, c)| {
+                (r.iter().zip(&z).map(|(x, y)| x * y).sum::<i64>() - c).rem_euclid(m) == 0
+            }) {
+                want.push(z.clone());
+            }
+            let mut i = n;
+            loop {
+                if i == 0 {
+                    break 'all;
+                }
+                i -= 1;
+                z[i] += 1;
+                if z[i] < ranges[i] {
+                    break;
+                }
+                z[i] = 0;
+            }
+        }
+        assert_eq!(
+            got, want,
+            "case {case}: {a:?} z = {b:?} mod {m}, ranges {ranges:?}"
+        );
+        if case % 2 == 0 {
+            assert!(got.contains(&point), "case {case}: the point is a solution");
+        }
+    }
+}
+
+/// Every entry of the Jaco-style arm's `fk --jacobian` report shows the elbow's offset the
+/// same way: an angle with `k q2` (and `q3`) carries exactly `k 5 pi/9` (reduced into
+/// `(-pi, pi]`), never `-4 pi/9` or `-2 pi/9` beside it; and every entry still evaluates, at
+/// random points, to plain DH matrices (the matrix) or to the exact pose (the DQ and the
+/// Jacobian, checked against plain matrices in `robots.rs`).
+#[test]
+fn jaco_report_shows_one_offset_per_symbol() {
+    let (r, _) = jaco_pose();
+    let o = dqsym::FkOptions {
+        jacobian: true,
+        ..Default::default()
+    };
+    let entries = dqsym::app::fk_entries(&r, &o).expect("report");
+    assert!(!entries.recurrence);
+    let q = r.forward();
+    let comps = q.components();
+    let vars: Vec<&str> = r.variables.iter().map(String::as_str).collect();
+    let jac = dqsym::kin::dq_jacobian(&q, &vars);
+    let mut names: Vec<String> = r.variables.clone();
+    names.extend(r.parameters());
+    let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+    let envs = crate::paper_support::points(&refs, 3);
+    let mut carried = 0;
+    for (_, rows) in &entries.sections {
+        for (name, e) in rows {
+            let mut offs = BTreeMap::new();
+            let mut sqrt = false;
+            angles(e, &mut offs, &mut sqrt);
+            for (key, ps) in &offs {
+                let c2 = e_coefficient(e, key);
+                for p in ps {
+                    let p: num_rational::Ratio<i64> = p.parse().expect("a rational");
+                    if (p * num_rational::Ratio::from_integer(12)).is_integer() {
+                        continue;
+                    }
+                    let mut want = c2 * num_rational::Ratio::new(5, 9);
+                    let two = num_rational::Ratio::from_integer(2);
+                    want -= (want / two).floor() * two;
+                    if want > num_rational::Ratio::from_integer(1) {
+                        want -= two;
+                    }
+                    assert_eq!(p, want, "{name} = {}: angle {key}", show(e));
+                    carried += 1;
+                }
+            }
+            // The entry's value.
+            for env in &envs {
+                let vals: Vec<(&str, f64)> = env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+                let got = e.value_at(&vals).expect("a value");
+                let want = if let Some(k) = name.strip_prefix("dq[") {
+                    let k: usize = k.trim_end_matches(']').parse().expect("index");
+                    crate::paper_support::ev(&comps[k], env)
+                } else if let Some(ij) = name.strip_prefix("T[") {
+                    let ij: Vec<usize> = ij
+                        .trim_end_matches(']')
+                        .split("][")
+                        .map(|x| x.parse().expect("index"))
+                        .collect();
+                    crate::robots::plain_pose(&r, env).rows[ij[0]][ij[1]]
+                } else {
+                    let ij: Vec<usize> = name
+                        .trim_start_matches("J[")
+                        .trim_end_matches(']')
+                        .split("][")
+                        .map(|x| x.parse().expect("index"))
+                        .collect();
+                    crate::paper_support::ev(&jac[ij[0]][ij[1]], env)
+                };
+                assert!(
+                    (got - want).abs() < 1e-9 * (1.0 + want.abs()),
+                    "{name} = {}: {got} != {want}",
+                    show(e)
+                );
+            }
+        }
+    }
+    assert!(carried >= 40, "angles carrying the offset: {carried}");
+}

@@ -70,7 +70,7 @@ pub(crate) fn numeric_chain(r: &Robot, env: &[(String, f64)]) -> Chain<f64> {
 }
 
 /// The pose matrix of `r` at `env` from the f64 chain (joints not bound are 0).
-fn plain_pose(r: &Robot, env: &[(String, f64)]) -> dqsym::Matrix4<f64> {
+pub(crate) fn plain_pose(r: &Robot, env: &[(String, f64)]) -> dqsym::Matrix4<f64> {
     let qs: Vec<f64> = r
         .variables
         .iter()

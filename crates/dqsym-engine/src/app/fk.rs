@@ -23,7 +23,7 @@ use std::sync::atomic::AtomicBool;
 
 type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
 use crate::{
-    closed::{closed_form_of_derivative, closed_form_prepared},
+    closed::{closed_form_of_derivative, closed_form_prepared, CommonOffsets},
     closed_form, Context, DualQuat, Expr, Scalar, ScalarError,
 };
 
@@ -227,9 +227,23 @@ fn expanded_entries(robot: &Robot, o: &FkOptions) -> Option<Result<Sections, Rep
         .map(|(e, p)| (e, p.expect("a DQ entry is prepared")))
         .unzip();
     let t_forms: Vec<_> = forms.map(|(e, _)| e).collect();
-    Some(expanded_sections(
-        robot, o, q, dq_forms, prepared, t_forms, m,
-    ))
+    // One offset per angle across the report (`closed/common.rs`), chosen from the pose's
+    // entries and shown in every entry.
+    let common = CommonOffsets::from_forms(dq_forms.iter().chain(&t_forms).flatten());
+    Some(
+        expanded_sections(robot, o, q, dq_forms, prepared, t_forms, m).map(|sections| {
+            sections
+                .into_iter()
+                .map(|(t, rows)| {
+                    let rows = rows
+                        .into_iter()
+                        .map(|(n, e)| (n, common.apply(e)))
+                        .collect();
+                    (t, rows)
+                })
+                .collect()
+        }),
+    )
 }
 
 /// The report from the expanded DQ and matrix and their closed forms.

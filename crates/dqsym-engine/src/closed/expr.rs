@@ -244,6 +244,9 @@ pub enum Expr {
     Pow(Box<Expr>, u32),
 }
 
+/// A rewrite of one call `f(angle)`: the new call, its angle and whether it is negated.
+pub(crate) type TrigMap<'a> = dyn FnMut(Trig, &Angle) -> Option<(Trig, Angle, bool)> + 'a;
+
 /// What a closed form costs to read or to evaluate.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Debug, Default)]
 pub struct Cost {
@@ -453,6 +456,76 @@ impl Expr {
     /// The number zero.
     pub fn zero() -> Expr {
         Expr::Num(BigRational::zero())
+    }
+
+    /// The expression with each call `f(angle)` for which `map` returns `Some((g, b, neg))`
+    /// replaced by `g(b)`, negated when `neg`: the signs met are moved out of products and
+    /// powers (as [`Expr::symbols_leading`] moves them), kept on the terms of sums, and a
+    /// sign left at the top of a product that holds a sum is taken into that sum.
+    pub(crate) fn map_trig_signed(self, map: &mut TrigMap) -> Expr {
+        fn negated(e: Expr) -> Expr {
+            match e {
+                Expr::Neg(x) => *x,
+                e => Expr::Neg(Box::new(e)),
+            }
+        }
+        fn walk(e: Expr, map: &mut TrigMap) -> Expr {
+            match e {
+                Expr::Trig { f, angle } => match map(f, &angle) {
+                    Some((g, b, true)) => Expr::Neg(Box::new(Expr::Trig { f: g, angle: b })),
+                    Some((g, b, false)) => Expr::Trig { f: g, angle: b },
+                    None => Expr::Trig { f, angle },
+                },
+                Expr::Add(v) => Expr::Add(
+                    v.into_iter()
+                        .map(|x| match walk(x, map) {
+                            Expr::Neg(y) => negated(*y),
+                            y => y,
+                        })
+                        .collect(),
+                ),
+                Expr::Mul(v) => {
+                    let mut neg = false;
+                    let parts = v
+                        .into_iter()
+                        .map(|x| match walk(x, map) {
+                            Expr::Neg(y) => {
+                                neg = !neg;
+                                *y
+                            }
+                            y => y,
+                        })
+                        .collect();
+                    if neg {
+                        Expr::Neg(Box::new(Expr::Mul(parts)))
+                    } else {
+                        Expr::Mul(parts)
+                    }
+                }
+                Expr::Neg(x) => negated(walk(*x, map)),
+                Expr::Pow(x, n) => match walk(*x, map) {
+                    Expr::Neg(y) if n % 2 == 0 => Expr::Pow(y, n),
+                    Expr::Neg(y) => Expr::Neg(Box::new(Expr::Pow(y, n))),
+                    y => Expr::Pow(Box::new(y), n),
+                },
+                e => e,
+            }
+        }
+        match walk(self, map) {
+            // `-(1/4 (a - b))` is `1/4 (b - a)`, one negation fewer.
+            Expr::Neg(x) => match *x {
+                Expr::Mul(mut v) if v.iter().any(|f| matches!(f, Expr::Add(_))) => {
+                    if let Some(Expr::Add(terms)) = v.iter_mut().find(|f| matches!(f, Expr::Add(_)))
+                    {
+                        *terms = std::mem::take(terms).into_iter().map(negated).collect();
+                    }
+                    Expr::Mul(v)
+                }
+                Expr::Add(terms) => Expr::Add(terms.into_iter().map(negated).collect()),
+                x => Expr::Neg(Box::new(x)),
+            },
+            e => e,
+        }
     }
 
     /// The expression with every angle that holds a rational constant shown with its first

@@ -11,6 +11,8 @@
 //! re-canonicalized and compared with the input before it is returned.
 
 mod alt;
+mod common;
+pub mod congruence;
 mod cprod;
 mod cspoly;
 mod expr;
@@ -23,6 +25,7 @@ mod trace;
 mod zfactor;
 
 pub use crate::scalar::Trig;
+pub use common::CommonOffsets;
 pub use expr::{Angle, Cost, Expr};
 pub use notation::{angle_text, shorthand_name, TrigNames};
 pub use trace::{Identity, TraceStep};

@@ -11,19 +11,20 @@
 //! which the group shifted by `-d` has no offset (tried exactly, one small canonicalization
 //! per candidate); a group with no such `d` (a sum of two unrelated phases) means no shift
 //! exists. The offsets must then satisfy `f . o = d_f (mod 1/12)` for every group: each
-//! symbol's candidates (multiples of `pi / (N a)`, `a` the lcm of its coefficients'
-//! numerators, over one period) are narrowed by the sums and differences of two groups that
-//! hold that symbol alone, and a depth-first search checks every constraint as soon as its
-//! symbols are chosen (at most [`MAX_VISITS`] candidates, [`MAX_SOLUTIONS`] solutions).
+//! symbol's candidates are the multiples of `pi / (N a)` (`a` the lcm of its coefficients'
+//! numerators) over one period; scaled to integers modulo one common modulus, the
+//! congruences are solved in echelon form (`congruence.rs`), which lists the solutions in
+//! lexicographic order without a search (the first [`MAX_SOLUTIONS`] are compared, every
+//! value listed charged to the Context).
 //!
 //! Which solution is shown (`5 pi/9` or `-4 pi/9`, or `1/18 pi` with the cosine turned into
-//! a sine): among every solution (when the search finds them all; else with the symbols whose
+//! a sine): among every solution (when there are fewer than [`MAX_SOLUTIONS`]; else with the symbols whose
 //! first offset is a multiple of their own pi/12 steps kept at 0), the one for which the
 //! shifted scalar has the fewest cosine and sine parts, then the smallest denominator, then
 //! the fewest nonzero offsets (no `q1 - pi` for a sign), then the fewest negative parts (`cos(t + 5*pi/9)`, not `-cos(t - 4*pi/9)`), then the smallest
 //! sum of `|o_s|`, then the fewest negative offsets. The shifted scalar is computed exactly and must have no offset left on a
 //! symbolic mode; the closed form built from it is checked against the input like every
-//! other.
+//! other. Across an `fk` report the offsets shown are then made to agree (`common.rs`).
 
 use super::expr::{Angle, Expr};
 use crate::scalar::{Small, Sym, Term};
@@ -163,20 +164,19 @@ pub(crate) fn find(x: &Scalar) -> Option<Shift> {
     (!shift.0.is_empty()).then_some(shift)
 }
 
-/// A constraint `sum k_s o_s = rhs (mod m)`.
-type Constraint = (Vec<(usize, Small)>, Small, Small);
-
 /// Whether `v` is a multiple of `m`.
 fn multiple(v: Small, m: Small) -> bool {
     (v / m).is_integer()
 }
 
 /// Offsets (multiples of pi, one per symbol) with `rows[g] . o = targets[g].0` modulo
-/// `targets[g].1` for every group: each symbol's candidates (multiples of `1/(n a)` over one
-/// period `2 D`, `a` the lcm of its coefficients' numerators, `D` of their denominators)
-/// narrowed by the constraints on it alone, then a depth-first search that checks each
-/// constraint (the groups', and the sums and differences of two groups') as soon as its
-/// symbols are chosen. `None` past the search bounds.
+/// `targets[g].1` for every group, each free symbol's over the multiples of `1/(n a)` in one
+/// period `[0, 2 D)` (`a` the lcm of its coefficients' numerators, `D` of their
+/// denominators), the `fixed` ones at their value: passed to `found` in lexicographic order
+/// (by symbol, then value) until it returns false. Every phase is scaled to an integer
+/// residue modulo one common modulus and the system solved by `congruence.rs`, which lists
+/// the solutions without a search. `Some(true)` when every solution was passed; `None` past
+/// the bounds (too many candidates, numbers too large, the work budget).
 fn solve(
     syms: &[Sym],
     rows: &[Vec<(usize, Small)>],
@@ -185,33 +185,12 @@ fn solve(
     fixed: &[Option<Small>],
     found: &mut dyn FnMut(&[Small]) -> bool,
 ) -> Option<bool> {
-    let mut cons: Vec<Constraint> = rows
-        .iter()
-        .zip(targets)
-        .map(|(r, (t, m))| (r.clone(), *t, *m))
-        .collect();
-    if rows.len() <= 96 {
-        for i in 0..rows.len() {
-            for j in i + 1..rows.len() {
-                for sign in [1i64, -1] {
-                    let sg = Small::from_integer(sign);
-                    let mut h: BTreeMap<usize, Small> = BTreeMap::new();
-                    for (s, k) in &rows[i] {
-                        *h.entry(*s).or_insert_with(Small::zero) += *k;
-                    }
-                    for (s, k) in &rows[j] {
-                        *h.entry(*s).or_insert_with(Small::zero) -= *k * sg;
-                    }
-                    h.retain(|_, k| !k.is_zero());
-                    let m = targets[i].1.max(targets[j].1);
-                    cons.push((h.into_iter().collect(), targets[i].0 - targets[j].0 * sg, m));
-                }
-            }
-        }
-    }
-    crate::scalar::charge(cons.len() as u64).ok()?;
-    let mut cands: Vec<Vec<Small>> = Vec::with_capacity(syms.len());
+    // Each free symbol's unit `1/(n a)` and number of candidates.
+    let mut free: Vec<(usize, Small, i64)> = Vec::new();
     for (s, fixed_s) in fixed.iter().enumerate().take(syms.len()) {
+        if fixed_s.is_some() {
+            continue;
+        }
         let (mut num, mut den) = (1i64, 1i64);
         for r in rows {
             if let Some((_, k)) = r.iter().find(|(x, _)| *x == s) {
@@ -219,75 +198,81 @@ fn solve(
                 den = den.lcm(k.denom());
             }
         }
-        let mut c: Vec<Small> = if let Some(v) = fixed_s {
-            vec![*v]
-        } else {
-            let count = n.checked_mul(num)?.checked_mul(den)?.checked_mul(2)?;
-            if count > MAX_CANDIDATES {
-                return None;
-            }
-            let unit = Small::new(1, n * num);
-            (0..count).map(|u| unit * Small::from_integer(u)).collect()
-        };
-        for (h, rhs, m) in &cons {
-            if let [(x, k)] = h[..] {
-                if x == s {
-                    c.retain(|o| multiple(k * *o - *rhs, *m));
-                }
-            }
-        }
-        cands.push(c);
-    }
-    // Constraints by the last symbol they hold.
-    let mut by_last: Vec<Vec<&Constraint>> = vec![Vec::new(); syms.len()];
-    for c in &cons {
-        if let Some((last, _)) = c.0.last() {
-            by_last[*last].push(c);
-        } else if !multiple(c.1, c.2) {
+        let count = n.checked_mul(num)?.checked_mul(den)?.checked_mul(2)?;
+        if count > MAX_CANDIDATES {
             return None;
         }
+        free.push((s, Small::new(1, n.checked_mul(num)?), count));
     }
-    let mut o = vec![Small::zero(); syms.len()];
-    let mut visits = 0usize;
-    /// Calls `found` on each solution until it returns false; false when stopped (by it or
-    /// by the bound).
-    fn dfs(
-        i: usize,
-        o: &mut Vec<Small>,
-        cands: &[Vec<Small>],
-        by_last: &[Vec<&Constraint>],
-        visits: &mut usize,
-        found: &mut dyn FnMut(&[Small]) -> bool,
-    ) -> bool {
-        if i == o.len() {
-            return found(o);
+    let column: Vec<Option<usize>> = {
+        let mut c = vec![None; syms.len()];
+        for (j, (s, _, _)) in free.iter().enumerate() {
+            c[*s] = Some(j);
         }
-        for &v in &cands[i] {
-            *visits += 1;
-            if *visits > MAX_VISITS {
-                return false;
-            }
-            o[i] = v;
-            let fits = by_last[i].iter().all(|(h, rhs, m)| {
-                let mut f = Small::zero();
-                for (s, k) in h {
-                    f += *k * o[*s];
-                }
-                multiple(f - *rhs, *m)
-            });
-            if fits && !dfs(i + 1, o, cands, by_last, visits, found) {
-                return false;
+        c
+    };
+    // Each row as rationals: coefficients of the free symbols' integers, right-hand side
+    // (the fixed symbols moved to it), modulus.
+    let mut rational: Vec<(Vec<Small>, Small, Small)> = Vec::with_capacity(rows.len());
+    let mut lcm: i64 = 1;
+    let mut take = |q: Small| -> Option<Small> {
+        lcm = lcm.checked_mul(q.denom() / lcm.gcd(q.denom()))?;
+        Some(q)
+    };
+    for (r, (t, m)) in rows.iter().zip(targets) {
+        let mut a = vec![Small::zero(); free.len()];
+        let mut rhs = *t;
+        for (s, k) in r {
+            match (column[*s], fixed[*s]) {
+                (Some(j), _) => a[j] = take(*k * free[j].1)?,
+                (None, Some(v)) => rhs -= *k * v,
+                (None, None) => {}
             }
         }
-        true
+        rational.push((a, take(rhs)?, take(*m)?));
     }
-    let complete = dfs(0, &mut o, &cands, &by_last, &mut visits, found);
-    crate::scalar::charge(visits as u64).ok()?;
-    Some(complete)
+    if lcm > 1 << 40 {
+        return None;
+    }
+    // One common modulus: each row scaled by `L` (integers), then by `M / (L m)`.
+    let l = Small::from_integer(lcm);
+    let mut modulus: i64 = 1;
+    for (_, _, m) in &rational {
+        let mg = (*m * l).to_integer();
+        modulus = modulus.checked_mul(mg / modulus.gcd(&mg))?;
+    }
+    if modulus > 1 << 40 {
+        return None;
+    }
+    let mut a: Vec<Vec<i64>> = Vec::with_capacity(rational.len());
+    let mut b: Vec<i64> = Vec::with_capacity(rational.len());
+    for (coef, rhs, m) in &rational {
+        let scale = modulus / (*m * l).to_integer();
+        let int = |q: Small| -> i64 {
+            let v = i128::from((q * l).to_integer()) * i128::from(scale);
+            v.rem_euclid(i128::from(modulus)) as i64
+        };
+        a.push(coef.iter().map(|q| int(*q)).collect());
+        b.push(int(*rhs));
+    }
+    let ranges: Vec<i64> = free.iter().map(|(_, _, c)| *c).collect();
+    let mut o: Vec<Small> = fixed
+        .iter()
+        .take(syms.len())
+        .map(|v| v.unwrap_or_else(Small::zero))
+        .collect();
+    let result = super::congruence::solutions(&a, &b, modulus, &ranges, &mut |z| {
+        for ((s, unit, _), v) in free.iter().zip(z) {
+            o[*s] = *unit * Small::from_integer(*v);
+        }
+        found(&o)
+    });
+    match result {
+        Ok(()) => Some(true),
+        Err(super::congruence::Stop::Work(_)) => None,
+        Err(_) => Some(false),
+    }
 }
-
-/// The most candidate offsets the search of [`solve`] looks at.
-const MAX_VISITS: usize = 200_000;
 
 /// The value of terms of one frequency vector `F` (a group) as the complex amplitude `z` of
 /// `e^{i F}`: `(re, im)` in f64.
@@ -325,19 +310,42 @@ fn representatives(
         .iter()
         .map(|g| amplitude(g.terms.iter().copied()).unwrap_or((0.0, 0.0)))
         .collect();
+    // Groups of one frequency vector (and other monomials) share their phase: each distinct
+    // vector's `e^{-i pi f}` is computed once per solution.
+    let mut freqs: Vec<&[(usize, Small)]> = rows.iter().map(Vec::as_slice).collect();
+    freqs.sort_unstable();
+    freqs.dedup();
+    let row_freq: Vec<usize> = rows
+        .iter()
+        .map(|r| freqs.binary_search(&r.as_slice()).unwrap_or(0))
+        .collect();
+    // Each symbol's half period `D` (the lcm of its coefficients' denominators).
+    let halves: Vec<Small> = (0..syms.len())
+        .map(|i| {
+            Small::from_integer(
+                rows.iter()
+                    .filter_map(|r| r.iter().find(|(x, _)| *x == i))
+                    .fold(1i64, |acc, (_, k)| acc.lcm(k.denom())),
+            )
+        })
+        .collect();
+    let mut phases: Vec<(f64, f64)> = vec![(0.0, 0.0); freqs.len()];
     // The number of cosine and sine parts of the shifted scalar, and of negative ones.
-    let score = |o: &[Small]| -> (usize, usize) {
-        let (mut parts, mut neg) = (0, 0);
-        for (r, (re, im)) in rows.iter().zip(&amps) {
+    let mut score = |o: &[Small]| -> (usize, usize) {
+        for (p, r) in phases.iter_mut().zip(&freqs) {
             let mut f = Small::zero();
-            for (s, k) in r {
+            for (s, k) in r.iter() {
                 f += *k * o[*s];
             }
             let f = f.numer().to_f64().unwrap_or(0.0) / f.denom().to_f64().unwrap_or(1.0);
-            let (c, s) = (
+            *p = (
                 (f * std::f64::consts::PI).cos(),
                 (f * std::f64::consts::PI).sin(),
             );
+        }
+        let (mut parts, mut neg) = (0, 0);
+        for (i, (re, im)) in row_freq.iter().zip(&amps) {
+            let (c, s) = phases[*i];
             // z e^{-i pi f}: the cosine part is its real part, the sine part minus its
             // imaginary part.
             let (a, b) = (re * c + im * s, -(im * c - re * s));
@@ -351,22 +359,30 @@ fn representatives(
         }
         (parts, neg)
     };
-    let run = |fixed: &[Option<Small>]| -> Option<(bool, Option<Vec<Small>>)> {
+    let mut run = |fixed: &[Option<Small>], all: bool| -> Option<(bool, Option<Vec<Small>>)> {
+        // Whether the solutions are fewer than the bound, counted first: when they are not,
+        // none of the first run (`all`) is shown.
+        if all {
+            let mut seen = 0usize;
+            let complete = solve(syms, rows, targets, n, fixed, &mut |_| {
+                seen += 1;
+                seen < MAX_SOLUTIONS
+            })?;
+            if !complete {
+                return Some((false, None));
+            }
+        }
         let mut best: Option<(Key, Vec<Small>)> = None;
         let mut seen = 0usize;
         let complete = solve(syms, rows, targets, n, fixed, &mut |o| {
             // Centred into (-D, D] for a period 2 D.
             let o: Vec<Small> = o
                 .iter()
-                .enumerate()
-                .map(|(i, &v)| {
-                    let den = rows
-                        .iter()
-                        .filter_map(|r| r.iter().find(|(x, _)| *x == i))
-                        .fold(1i64, |acc, (_, k)| acc.lcm(k.denom()));
-                    let period = Small::from_integer(2 * den);
+                .zip(&halves)
+                .map(|(&v, &den)| {
+                    let period = den * Small::from_integer(2);
                     let v = v - (v / period).floor() * period;
-                    if v > Small::from_integer(den) {
+                    if v > den {
                         v - period
                     } else {
                         v
@@ -390,7 +406,7 @@ fn representatives(
     // Every solution when they are few; else the symbols whose offset in `base` is a multiple
     // of their own steps keep none, and the others range over the solutions.
     let free = vec![None; syms.len()];
-    if let (true, Some(o)) = run(&free)? {
+    if let (true, Some(o)) = run(&free, true)? {
         return Some(o);
     }
     let fixed: Vec<Option<Small>> = (0..syms.len())
@@ -410,7 +426,7 @@ fn representatives(
                 .then(Small::zero)
         })
         .collect();
-    run(&fixed)?.1
+    run(&fixed, false)?.1
 }
 
 /// The order of solutions: parts, largest denominator, offsets, negative parts, sum of

@@ -1,0 +1,287 @@
+//! Systems of linear congruences over the integers, `sum_s a[g][s] z_s = b[g] (mod m)` with
+//! each `z_s` in `0..range[s]`, their solutions enumerated in lexicographic order without a
+//! search: the offsets of `offsets.rs` are found with it (each phase scaled to an integer
+//! residue modulo the lcm of the denominators).
+//!
+//! How: the rows are put in echelon form from the last unknown to the first by unimodular
+//! row operations modulo `m` (an extended gcd merges every row that holds an unknown into one
+//! pivot row `p z_j + r . z_{<j} = c`). A pivot row is solvable in `z_j` exactly when
+//! `g = gcd(p, m)` divides `c - r . z_{<j}`, a congruence in the earlier unknowns alone
+//! (the pivot row times `m / g`) that joins the rows still to eliminate; then `z_j` is one
+//! residue modulo `m / g`. Forward, each unknown takes the values of its residue class in its
+//! range given the earlier ones, so every prefix met extends to a solution when the ranges are
+//! multiples of the steps (as the periods of the offsets are), and the enumeration costs one
+//! step per value it lists.
+
+use crate::scalar::charge;
+use crate::ScalarError;
+
+/// The most values [`solutions`] lists (every unknown's value in every prefix) before it
+/// stops.
+pub const MAX_VISITS: usize = 200_000;
+
+/// Work charged to the Context every this many values listed.
+const CHARGE_EVERY: usize = 256;
+
+/// One unknown's pivot: `z_j = inv ((c - r . z_{<j}) / g) (mod step)`, solvable when `g`
+/// divides `c - r . z_{<j}`.
+struct Pivot {
+    r: Vec<i64>,
+    c: i64,
+    g: i64,
+    step: i64,
+    inv: i64,
+}
+
+/// Why [`solutions`] stopped before listing every solution.
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Stop {
+    /// The visitor asked to stop.
+    Visitor,
+    /// [`MAX_VISITS`] values listed.
+    Visits,
+    /// The Context's work budget ran out, or it was cancelled.
+    Work(ScalarError),
+}
+
+fn gcd(a: i64, b: i64) -> i64 {
+    let (mut a, mut b) = (a.abs(), b.abs());
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a
+}
+
+/// `(g, x, y)` with `g = gcd(a, b) = x a + y b`, for `a, b >= 0`.
+fn ext_gcd(a: i64, b: i64) -> (i64, i64, i64) {
+    let (mut r0, mut r1, mut x0, mut x1, mut y0, mut y1) = (a, b, 1i64, 0i64, 0i64, 1i64);
+    while r1 != 0 {
+        let q = r0 / r1;
+        (r0, r1) = (r1, r0 - q * r1);
+        (x0, x1) = (x1, x0 - q * x1);
+        (y0, y1) = (y1, y0 - q * y1);
+    }
+    (r0, x0, y0)
+}
+
+fn md(v: i128, m: i64) -> i64 {
+    v.rem_euclid(i128::from(m)) as i64
+}
+
+/// `x p + y q (mod m)`, rows with their right-hand side last.
+fn combine(x: i64, p: &[i64], y: i64, q: &[i64], m: i64) -> Vec<i64> {
+    p.iter()
+        .zip(q)
+        .map(|(a, b)| {
+            md(
+                i128::from(x) * i128::from(*a) + i128::from(y) * i128::from(*b),
+                m,
+            )
+        })
+        .collect()
+}
+
+/// Calls `visit` on every `z` with `0 <= z[s] < ranges[s]` and `a[g] . z = b[g] (mod m)` for
+/// every row `g` (each row `ranges.len()` long), in lexicographic order, until it returns
+/// false. `Ok(())` when every solution was listed; [`Stop`] says why not. Charges the
+/// Context's work budget for the elimination and every value listed.
+///
+/// # Errors
+/// [`Stop::Visitor`] when `visit` returned false, [`Stop::Visits`] past [`MAX_VISITS`],
+/// [`Stop::Work`] when the work budget ran out or the Context was cancelled.
+///
+/// # Panics
+/// When `m < 1` or a row's length is not `ranges.len()`.
+pub fn solutions(
+    a: &[Vec<i64>],
+    b: &[i64],
+    m: i64,
+    ranges: &[i64],
+    visit: &mut dyn FnMut(&[i64]) -> bool,
+) -> Result<(), Stop> {
+    assert!(m >= 1, "a modulus is positive");
+    let n = ranges.len();
+    let mut rows: Vec<Vec<i64>> = a
+        .iter()
+        .zip(b)
+        .map(|(r, c)| {
+            assert_eq!(r.len(), n, "one coefficient per unknown");
+            r.iter()
+                .chain(std::iter::once(c))
+                .map(|v| md(i128::from(*v), m))
+                .collect()
+        })
+        .collect();
+    rows.sort_unstable();
+    rows.dedup();
+    let mut pivots: Vec<Option<Pivot>> = (0..n).map(|_| None).collect();
+    for j in (0..n).rev() {
+        charge((rows.len() * (n + 1)) as u64).map_err(Stop::Work)?;
+        let mut pivot: Option<Vec<i64>> = None;
+        let mut rest: Vec<Vec<i64>> = Vec::with_capacity(rows.len() + 1);
+        for row in rows {
+            if row[j] == 0 {
+                rest.push(row);
+                continue;
+            }
+            let Some(p) = pivot.take() else {
+                pivot = Some(row);
+                continue;
+            };
+            // Unimodular: [x y; e/g -a/g] has determinant -1.
+            let (pa, e) = (p[j], row[j]);
+            let (g, x, y) = ext_gcd(pa, e);
+            pivot = Some(combine(x, &p, y, &row, m));
+            rest.push(combine(e / g, &p, -(pa / g), &row, m));
+        }
+        if let Some(p) = pivot {
+            let g = gcd(p[j], m);
+            let step = m / g;
+            // The rows in the earlier unknowns that make the pivot row solvable in z_j.
+            rest.push(
+                p.iter()
+                    .map(|v| md(i128::from(*v) * i128::from(step), m))
+                    .collect(),
+            );
+            let (_, inv, _) = ext_gcd((p[j] / g) % step, step);
+            pivots[j] = Some(Pivot {
+                r: p[..j].to_vec(),
+                c: p[n],
+                g,
+                step,
+                inv: inv.rem_euclid(step),
+            });
+        }
+        rest.retain(|r| r.iter().any(|v| *v != 0));
+        rest.sort_unstable();
+        rest.dedup();
+        rows = rest;
+    }
+    // What is left has no unknown: `0 = c` with `c != 0`, no solution.
+    if !rows.is_empty() {
+        return Ok(());
+    }
+    let mut walk = Walk {
+        pivots,
+        ranges,
+        m,
+        visits: 0,
+        charged: 0,
+        z: vec![0; n],
+    };
+    let done = walk.go(0, visit);
+    charge((walk.visits - walk.charged) as u64).map_err(Stop::Work)?;
+    done
+}
+
+struct Walk<'a> {
+    pivots: Vec<Option<Pivot>>,
+    ranges: &'a [i64],
+    m: i64,
+    visits: usize,
+    charged: usize,
+    z: Vec<i64>,
+}
+
+impl Walk<'_> {
+    fn go(&mut self, i: usize, visit: &mut dyn FnMut(&[i64]) -> bool) -> Result<(), Stop> {
+        if i == self.z.len() {
+            return if visit(&self.z) {
+                Ok(())
+            } else {
+                Err(Stop::Visitor)
+            };
+        }
+        let (start, step) = match &self.pivots[i] {
+            None => (0, 1),
+            Some(p) => {
+                let mut v = i128::from(p.c);
+                for (r, z) in p.r.iter().zip(&self.z) {
+                    v -= i128::from(*r) * i128::from(*z);
+                }
+                let v = md(v, self.m);
+                if v % p.g != 0 {
+                    return Ok(());
+                }
+                let r = md(i128::from(v / p.g) * i128::from(p.inv), p.step);
+                (r, p.step)
+            }
+        };
+        let mut v = start;
+        while v < self.ranges[i] {
+            self.visits += 1;
+            if self.visits > MAX_VISITS {
+                return Err(Stop::Visits);
+            }
+            if self.visits - self.charged >= CHARGE_EVERY {
+                charge((self.visits - self.charged) as u64).map_err(Stop::Work)?;
+                self.charged = self.visits;
+            }
+            self.z[i] = v;
+            self.go(i + 1, visit)?;
+            v += step;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn all(a: &[Vec<i64>], b: &[i64], m: i64, ranges: &[i64]) -> Vec<Vec<i64>> {
+        let mut out = Vec::new();
+        solutions(a, b, m, ranges, &mut |z| {
+            out.push(z.to_vec());
+            true
+        })
+        .expect("complete");
+        out
+    }
+
+    fn brute(a: &[Vec<i64>], b: &[i64], m: i64, ranges: &[i64]) -> Vec<Vec<i64>> {
+        let mut out = Vec::new();
+        let mut z = vec![0i64; ranges.len()];
+        loop {
+            if a.iter().zip(b).all(|(r, c)| {
+                (r.iter().zip(&z).map(|(x, y)| x * y).sum::<i64>() - c).rem_euclid(m) == 0
+            }) {
+                out.push(z.clone());
+            }
+            // The next z in lexicographic order.
+            let mut i = ranges.len();
+            loop {
+                if i == 0 {
+                    return out;
+                }
+                i -= 1;
+                z[i] += 1;
+                if z[i] < ranges[i] {
+                    break;
+                }
+                z[i] = 0;
+            }
+        }
+    }
+
+    #[test]
+    fn a_sum_and_a_difference_fix_both_unknowns_modulo_the_odd_part() {
+        // z0 + z1 = 3, z0 - z1 = 1 (mod 12): 2 z0 = 4, so z0 = 2 or 8.
+        let a = vec![vec![1, 1], vec![1, -1]];
+        assert_eq!(
+            all(&a, &[3, 1], 12, &[12, 12]),
+            brute(&a, &[3, 1], 12, &[12, 12])
+        );
+        assert_eq!(
+            all(&a, &[3, 1], 12, &[12, 12]),
+            vec![vec![2, 1], vec![8, 7]]
+        );
+    }
+
+    #[test]
+    fn contradictory_rows_have_no_solution() {
+        let a = vec![vec![2, 4], vec![1, 2]];
+        assert!(all(&a, &[1, 0], 6, &[6, 6]).is_empty());
+    }
+}
