@@ -82,6 +82,7 @@ fn unsorted_candidates(x: &Scalar) -> Vec<Expr> {
         cands.extend(sum_to_product(t));
         cands.extend(single_angle(t));
         cands.extend(separable(t));
+        cands.extend(super::roots::root_products(t));
     }
     cands.extend(product(t));
     cands.extend(constant_trig(x, t));
@@ -200,7 +201,7 @@ fn plain(x: &Scalar) -> Option<Expr> {
 }
 
 /// The term's coefficient, radical and monomial as a scalar (its mode dropped).
-fn weight(t: &Term) -> Scalar {
+pub(super) fn weight(t: &Term) -> Scalar {
     Scalar::from_terms_sorted(vec![Term {
         mode: crate::scalar::Mode::unit(),
         ..t.clone()

@@ -19,6 +19,7 @@ mod mon;
 mod notation;
 mod offsets;
 mod recombine;
+mod roots;
 mod trace;
 mod zfactor;
 
