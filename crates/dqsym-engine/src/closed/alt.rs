@@ -201,7 +201,7 @@ fn plain(x: &Scalar) -> Option<Expr> {
 }
 
 /// The term's coefficient, radical and monomial as a scalar (its mode dropped).
-pub(super) fn weight(t: &Term) -> Scalar {
+fn weight(t: &Term) -> Scalar {
     Scalar::from_terms_sorted(vec![Term {
         mode: crate::scalar::Mode::unit(),
         ..t.clone()

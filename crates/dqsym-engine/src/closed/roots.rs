@@ -395,6 +395,14 @@ fn best_shape(a: Small) -> Shape {
         .expect("four shapes")
 }
 
+/// The term's coefficient, radical and monomial as a scalar (its mode dropped).
+fn weight(t: &Term) -> Scalar {
+    Scalar::from_terms_sorted(vec![Term {
+        mode: crate::scalar::Mode::unit(),
+        ..t.clone()
+    }])
+}
+
 /// The scalar's coefficient of `z^N` as `(Re, Im)` exact scalars (times its monomial).
 fn top_coefficient(t: &[Term], ks: &[i64], n: i64) -> (Scalar, Scalar) {
     let (mut re, mut im) = (Scalar::zero(), Scalar::zero());
@@ -405,8 +413,7 @@ fn top_coefficient(t: &[Term], ks: &[i64], n: i64) -> (Scalar, Scalar) {
         } else {
             u.mode.pi
         };
-        let w = super::alt::weight(u)
-            * Scalar::rational(num_rational::BigRational::new(1.into(), 2.into()));
+        let w = weight(u) * Scalar::rational(num_rational::BigRational::new(1.into(), 2.into()));
         re = re + &w * &Scalar::trig_of_parts(false, Vec::new(), psi);
         im = im + &w * &Scalar::trig_of_parts(true, Vec::new(), psi);
     }
