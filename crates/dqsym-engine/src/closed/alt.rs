@@ -82,8 +82,8 @@ fn unsorted_candidates(x: &Scalar) -> Vec<Expr> {
         cands.extend(sum_to_product(t));
         cands.extend(single_angle(t));
         cands.extend(separable(t));
-        cands.extend(super::roots::root_products(t));
     }
+    cands.extend(super::roots::root_products(t));
     cands.extend(product(t));
     cands.extend(constant_trig(x, t));
     // Last, so that on ties the candidates above are kept.

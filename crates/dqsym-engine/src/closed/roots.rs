@@ -35,7 +35,7 @@ use num_traits::{One, Signed, Zero};
 use std::collections::BTreeMap;
 
 /// The most terms a scalar may have for its roots to be looked for.
-const MAX_TERMS: usize = 64;
+const MAX_TERMS: usize = 4096;
 
 /// The largest multiple `N` of the base angle (the polynomial has degree `2N`).
 const MAX_DEGREE: i64 = 24;
@@ -330,10 +330,16 @@ struct Shape {
 }
 
 impl Shape {
-    /// The display rule's key: smallest denominator, no offset before one, smallest `|phi|`,
-    /// positive, cosine first.
-    fn key(&self) -> (i64, bool, Small, bool, bool) {
+    /// The display rule's key: fewest operations in the offset (`pi/10` before `2*pi/5`),
+    /// smallest denominator, no offset before one, smallest `|phi|`, positive, cosine first.
+    fn key(&self) -> (usize, i64, bool, Small, bool, bool) {
+        let ops = if self.phi.is_zero() {
+            0
+        } else {
+            1 + usize::from(self.phi.numer().abs() != 1) + usize::from(*self.phi.denom() != 1)
+        };
         (
+            ops,
             *self.phi.denom(),
             !self.phi.is_zero(),
             self.phi.abs(),
@@ -649,7 +655,22 @@ fn product_expr(
                 let v = trig(sin, scaled(kk), Small::zero());
                 let k = Scalar::trig_of_parts(sin, Vec::new(), b * kk);
                 let kv = k.eval(&|_| None).ok()?;
+                // |k| as its closed form or as the cosine or sine itself, the cheaper
+                // (`cos(pi/5)`, not `1/4 (1 + sqrt(5))`).
+                let kb = b * kk;
+                let direct = if sin {
+                    trig(true, Vec::new(), kb.abs())
+                } else if kb > Small::new(1, 2) {
+                    trig(false, Vec::new(), Small::one() - kb)
+                } else {
+                    trig(false, Vec::new(), kb)
+                };
                 let kexpr = super::closed_form(&if kv < 0.0 { -k } else { k }).ok()?;
+                let kexpr = if direct.cost() < kexpr.cost() {
+                    direct
+                } else {
+                    kexpr
+                };
                 let lin = |neg_v: bool| {
                     // v - k (or k - v); the constant's sign folded into the operation.
                     let (vv, kk) = if neg_v {
