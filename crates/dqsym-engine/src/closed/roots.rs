@@ -518,9 +518,7 @@ fn found(t: &[Term]) -> Option<Vec<Expr>> {
             if seen.contains(&g) {
                 continue;
             }
-            if let Some(e) = product_expr(&g, &theta, &re, &im) {
-                out.push(e);
-            }
+            out.extend(product_expr(&g, &theta, &re, &im).unwrap_or_default());
             seen.push(g);
         }
     }
@@ -606,22 +604,23 @@ fn factorization_agrees(p: &[C], roots: &BTreeMap<Small, u32>) -> bool {
         })
 }
 
-/// The candidate `c prod f^m` for one grouping: each factor in its best shape, the constant
+/// A factor of a candidate: its expression, the multiple of pi of its leading coefficient's
+/// phase, the flipped (negated) form when it has one, and its power.
+struct Built {
+    expr: Expr,
+    beta: Small,
+    flip: Option<(Expr, Small, Small)>,
+    power: u32,
+}
+
+/// The candidates `c prod f^m` for one grouping: each factor in its best shape, the constant
 /// exact from the top coefficient `re + i im` of the scalar.
 fn product_expr(
     g: &BTreeMap<Factor, u32>,
     theta: &[(Sym, Small)],
     re: &Scalar,
     im: &Scalar,
-) -> Option<Expr> {
-    // Each factor: its expression, the multiple of pi of its leading coefficient's phase, and
-    // the flipped (negated) form when it has one of equal standing.
-    struct Built {
-        expr: Expr,
-        beta: Small,
-        flip: Option<(Expr, Small, Small)>,
-        power: u32,
-    }
+) -> Option<Vec<Expr>> {
     // The angle k phi = k theta / 2.
     let scaled = |k: Small| -> Vec<(Sym, Small)> {
         theta
@@ -719,9 +718,10 @@ fn product_expr(
     let mut c = constant(beta_sum(&built));
     let point = |s: &Sym| if s.is_pi() { std::f64::consts::PI } else { 0.7 };
     let cv = c.eval_symbols(&|s| Some(point(s))).ok()?;
+    let mut out = vec![assemble(&c, &built)?];
     if cv < 0.0 {
-        // A negative constant: negate an odd power instead, the one whose offset moves least
-        // (a difference of a cosine before any offset).
+        // A negative constant: also with an odd power negated instead, the one whose offset
+        // moves least (a difference of a cosine before any offset); the cheaper is kept.
         let pick = built
             .iter()
             .enumerate()
@@ -733,18 +733,24 @@ fn product_expr(
             built[i].expr = e;
             built[i].beta = beta;
             c = constant(beta_sum(&built));
+            out.extend(assemble(&c, &built));
         }
     }
-    let c = c.check().ok()?;
+    Some(out)
+}
+
+/// The constant `c` times the factors' powers.
+fn assemble(c: &Scalar, built: &[Built]) -> Option<Expr> {
+    let c = c.clone().check().ok()?;
     if c.is_zero_value() {
         return None;
     }
     let mut e = super::closed_form(&c).ok()?;
     for b in built {
         let f = if b.power == 1 {
-            b.expr
+            b.expr.clone()
         } else {
-            Expr::Pow(Box::new(b.expr), b.power)
+            Expr::Pow(Box::new(b.expr.clone()), b.power)
         };
         e = mul(e, f);
     }
