@@ -24,6 +24,7 @@ mod props;
 mod quotients;
 mod recurrence;
 mod robots;
+mod roots;
 mod scalar;
 mod short_forms;
 mod tools;

@@ -10,7 +10,9 @@
 //! - a sum of such polynomials in distinct angles, each in cos or sin, constants merged
 //!   (`cos(a + b) cos(a - b) = cos(a)^2 - sin(b)^2`);
 //! - a product of cosines and sines of multiples of one angle, peeled off by exact division
-//!   of the Fourier sum (`cos(1) cos(2) ... cos(512)`, Morrie's `cos x cos 2x cos 4x`).
+//!   of the Fourier sum (`cos(1) cos(2) ... cos(512)`, Morrie's `cos x cos 2x cos 4x`);
+//! - products of cosines and sines of one angle with different offsets, from the roots of the
+//!   sum as a polynomial in `e^{i x}` (`roots.rs`: `cos(x) cos(x - pi/14)`).
 //!
 //! Every candidate is checked exactly against its input before it is offered.
 
@@ -83,6 +85,7 @@ fn unsorted_candidates(x: &Scalar) -> Vec<Expr> {
         cands.extend(single_angle(t));
         cands.extend(separable(t));
     }
+    cands.extend(super::roots::root_products(t));
     cands.extend(product(t));
     cands.extend(constant_trig(x, t));
     // Last, so that on ties the candidates above are kept.

@@ -5,7 +5,8 @@
 //! (a) every mode split into single-symbol atoms, then regrouped by the angle-sum identities
 //! (`recombine.rs`) and factored (`factor.rs`); (b) the Fourier modes kept whole and factored;
 //! then (c) the candidates of `alt.rs` (harmonic form, sum to product, a polynomial in one
-//! cosine or sine factored by its rational roots) when one is cheaper still; (d) for a scalar
+//! cosine or sine factored by its rational roots, products of one angle's cosines and sines
+//! found from the roots on the unit circle, `roots.rs`) when one is cheaper still; (d) for a scalar
 //! whose symbolic modes carry pi offsets outside the multiples of pi/12, the same with the
 //! offsets absorbed into the symbols (`offsets.rs`) when that is shorter. The result is
 //! re-canonicalized and compared with the input before it is returned.
@@ -21,6 +22,7 @@ mod mon;
 mod notation;
 mod offsets;
 mod recombine;
+mod roots;
 mod trace;
 mod zfactor;
 

@@ -1,0 +1,200 @@
+//! Products of cosines and sines of one angle whose factors carry different constant offsets
+//! (`cos(x) sin(x + 3*pi/7)`, `(cos(x) - cos(pi/7)) (sin(x) + 1)`): the canonical form holds
+//! their multiple-angle sums over the offsets' cyclotomic field, and the closed form finds the
+//! product again from the roots of the sum as a polynomial in `e^{i x}` (`closed/roots.rs`).
+//! Every printed form is parsed back and compared exactly with its input, evaluated in f64 at
+//! random points against the product computed here, and is no longer than the input.
+
+use crate::common::Rng;
+use dqsym::closed::Angle;
+use dqsym::{closed_form, eval_scalar_text, plain, Expr, PlainOptions, Sym, Trig};
+use num_rational::{BigRational, Ratio};
+use num_traits::Zero;
+use std::f64::consts::PI;
+
+/// Operations in the language's text as a CAS counts them (SymPy's `count_ops`, roughly):
+/// every operator and every call.
+fn ops(text: &str) -> usize {
+    text.chars().filter(|c| "+-*/^".contains(*c)).count()
+        + ["cos(", "sin(", "sqrt("]
+            .iter()
+            .map(|f| text.matches(f).count())
+            .sum::<usize>()
+}
+
+/// A value as a function of `x` and `l`.
+type Value<'a> = dyn Fn(f64, f64) -> f64 + 'a;
+
+/// The language's syntax for printed text, which writes products by juxtaposition.
+fn source(text: &str) -> String {
+    text.replace(' ', "*")
+        .replace("*+*", "+")
+        .replace("*-*", "-")
+}
+
+/// The closed form of `input`: its printed text parsed back equals the input exactly, its
+/// value at random points is `value(x, l)`, and it costs no more operations than `cost`.
+fn checked(input: &str, value: &Value, rng: &mut Rng) -> String {
+    let v = eval_scalar_text(input).unwrap_or_else(|e| panic!("{input}: {e}"));
+    let e = closed_form(&v).expect("closed form");
+    let text = plain(&e, &PlainOptions::default());
+    let back = eval_scalar_text(&source(&text)).unwrap_or_else(|err| panic!("{text}: {err}"));
+    assert_eq!(back, v, "{input} => {text}");
+    for _ in 0..4 {
+        let (x, l) = (rng.range(-3.0, 3.0), rng.range(0.5, 2.0));
+        let got = e.value_at(&[("x", x), ("l", l)]).expect("a value");
+        let want = value(x, l);
+        assert!(
+            (got - want).abs() <= 1e-9 * (1.0 + want.abs()),
+            "{input} => {text}: {got} against {want} at x = {x}"
+        );
+    }
+    text
+}
+
+#[test]
+fn products_with_different_offsets_print_as_products() {
+    let mut rng = Rng::new(18);
+    let c = |a: f64| a.cos();
+    let s = |a: f64| a.sin();
+    let cases: [(&str, &Value<'_>, &str); 5] = [
+        (
+            "cos(x + 5*pi/8)^2",
+            &|x, _| c(x + 5.0 * PI / 8.0).powi(2),
+            "sin(x + pi/8)^2",
+        ),
+        (
+            "cos(x)*sin(x+3*pi/7)*l",
+            &|x, l| c(x) * s(x + 3.0 * PI / 7.0) * l,
+            "l cos(x) cos(x - pi/14)",
+        ),
+        (
+            "cos(x+pi/7)*cos(x-2*pi/9)",
+            &|x, _| c(x + PI / 7.0) * c(x - 2.0 * PI / 9.0),
+            "cos(x - 2*pi/9) cos(x + pi/7)",
+        ),
+        (
+            "sin(x+pi/5)^2*cos(x-pi/3)",
+            &|x, _| s(x + PI / 5.0).powi(2) * c(x - PI / 3.0),
+            "sin(x + pi/5)^2 cos(x - pi/3)",
+        ),
+        (
+            "(cos(x)-cos(pi/7))*(sin(x)+1)",
+            &|x, _| (c(x) - c(PI / 7.0)) * (s(x) + 1.0),
+            "(cos(x) - cos(pi/7)) (sin(x) + 1)",
+        ),
+    ];
+    for (input, value, want) in cases {
+        let text = checked(input, value, &mut rng);
+        assert_eq!(text, want, "{input}");
+        assert!(ops(&source(&text)) <= ops(input), "{input} => {text}");
+    }
+}
+
+/// `cos` or `sin` of `k x + (p/q) pi`.
+fn trig(sin: bool, k: i64, p: i64, q: i64) -> Expr {
+    Expr::Trig {
+        f: if sin { Trig::Sin } else { Trig::Cos },
+        angle: Angle::new(
+            vec![(Sym::new("x"), Ratio::from_integer(k))],
+            Ratio::zero(),
+            Ratio::new(p, q),
+        ),
+    }
+}
+
+/// A random factor: `cos`/`sin(k x + p pi/q)` to a small power, or `cos(x) - cos(p pi/q)`; its
+/// expression and its value at `x`.
+fn factor(rng: &mut Rng) -> (Expr, Box<dyn Fn(f64) -> f64>) {
+    let pick = |rng: &mut Rng, n: usize| (rng.range(0.0, n as f64) as usize).min(n - 1);
+    let q = [5, 7, 8, 9, 10, 12, 16, 24][pick(rng, 8)];
+    // An offset in (-1, 1), not 0, as p/q.
+    let mut p = pick(rng, 2 * q as usize - 1) as i64 - (q - 1);
+    if p == 0 {
+        p = 1;
+    }
+    let r = Ratio::new(p, q);
+    let (p, q) = (*r.numer(), *r.denom());
+    let phase = PI * p as f64 / q as f64;
+    if pick(rng, 5) == 0 {
+        // cos(x) - cos(|p| pi/q).
+        let (p, phase) = (p.abs(), phase.abs());
+        let e = Expr::Add(vec![
+            trig(false, 1, 0, 1),
+            Expr::Neg(Box::new(Expr::Trig {
+                f: Trig::Cos,
+                angle: Angle::new(Vec::new(), Ratio::zero(), Ratio::new(p, q)),
+            })),
+        ]);
+        return (e, Box::new(move |x: f64| x.cos() - phase.cos()));
+    }
+    let sin = pick(rng, 2) == 1;
+    let k = 1 + pick(rng, 3) as i64;
+    let power = 1 + pick(rng, 2) as u32;
+    let base = trig(sin, k, p, q);
+    let e = if power == 1 {
+        base
+    } else {
+        Expr::Pow(Box::new(base), power)
+    };
+    let f = move |x: f64| {
+        let a = k as f64 * x + phase;
+        (if sin { a.sin() } else { a.cos() }).powi(power as i32)
+    };
+    (e, Box::new(f))
+}
+
+#[test]
+fn random_products_of_offset_factors_come_back_no_longer() {
+    let mut rng = Rng::new(1801);
+    let mut longer = Vec::new();
+    for _ in 0..40 {
+        // Two to four factors (one alone is the offsets' business, `offsets.rs`).
+        let count = 2 + (rng.range(0.0, 3.0) as usize).min(2);
+        let mut factors: Vec<Expr> = Vec::new();
+        let mut values: Vec<Box<dyn Fn(f64) -> f64>> = Vec::new();
+        // Times `l` or a rational.
+        let by_symbol = rng.range(0.0, 1.0) < 0.5;
+        let r = (
+            1 + (rng.range(0.0, 5.0) as i64),
+            1 + (rng.range(0.0, 3.0) as i64),
+        );
+        factors.push(if by_symbol {
+            Expr::Sym(Sym::new("l"))
+        } else {
+            Expr::Num(BigRational::new(r.0.into(), r.1.into()))
+        });
+        for _ in 0..count {
+            let (e, v) = factor(&mut rng);
+            factors.push(e);
+            values.push(v);
+        }
+        let input = Expr::Mul(factors);
+        let text = plain(&input, &PlainOptions::default());
+        let value = |x: f64, l: f64| {
+            let m = if by_symbol {
+                l
+            } else {
+                r.0 as f64 / r.1 as f64
+            };
+            values.iter().map(|f| f(x)).product::<f64>() * m
+        };
+        let input = source(&text);
+        // Offsets whose field is past the cyclotomic degree limit are an error, not a form.
+        if eval_scalar_text(&input).is_err() {
+            continue;
+        }
+        let out = checked(&input, &value, &mut rng);
+        if ops(&source(&out)) > ops(&input) {
+            longer.push(format!("{input} => {out}"));
+        }
+    }
+    // The text count differs from the closed forms' own cost (which counts an angle over a
+    // common denominator as one division, a power once): a few forms may read one operation
+    // longer by it; they are printed.
+    assert!(
+        longer.len() <= 2,
+        "longer than the input:\n{}",
+        longer.join("\n")
+    );
+}
