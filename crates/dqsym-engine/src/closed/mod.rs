@@ -11,6 +11,7 @@
 //! re-canonicalized and compared with the input before it is returned.
 
 mod alt;
+mod coefs;
 mod cprod;
 mod cspoly;
 mod expr;
@@ -60,6 +61,32 @@ pub struct Prepared(
 /// and factored like `cos(q2)`), the shorter of the two kept (`alt::shorter`; the shifted
 /// one on ties).
 pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+    let (e, prepared) = prepared_shifted(x);
+    let Ok(found) = e else {
+        return (e, prepared);
+    };
+    // Constants lifted out of the angles, when shorter still (`coefs.rs`); derivatives then
+    // start from the expanded series.
+    let mut best: Option<Expr> = None;
+    for phased in [true, false] {
+        let Some(l) = coefs::lift(x, phased) else {
+            continue;
+        };
+        let Ok(c) = prepared_shifted(&l.scalar).0.map(|c| l.substitute(c)) else {
+            continue;
+        };
+        if alt::shorter(&c, best.as_ref().unwrap_or(&found)) && verified(&c, x) {
+            best = Some(c);
+        }
+    }
+    match best {
+        Some(c) => (Ok(c.symbols_leading()), Prepared(None, None)),
+        None => (Ok(found), prepared),
+    }
+}
+
+/// [`closed_form_prepared`] without the constants lifted.
+fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     let (plain, prepared) = prepared_unshifted(x);
     let Some(shift) = offsets::find(x) else {
         return (plain, prepared);
