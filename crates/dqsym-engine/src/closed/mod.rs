@@ -7,8 +7,10 @@
 //! then (c) the candidates of `alt.rs` (harmonic form, sum to product, a polynomial in one
 //! cosine or sine factored by its rational roots) when one is cheaper still; (d) for a scalar
 //! whose symbolic modes carry pi offsets outside the multiples of pi/12, the same with the
-//! offsets absorbed into the symbols (`offsets.rs`) when that is shorter. The result is
-//! re-canonicalized and compared with the input before it is returned.
+//! offsets absorbed into the symbols (`offsets.rs`) when that is shorter; (e) for such a scalar,
+//! also the same with its constant coefficients lifted out of the angles into symbols of
+//! their own (`coefs.rs`: `sin(pi/7) cos(pi/9) cos(q)`). The result is re-canonicalized and
+//! compared with the input before it is returned.
 
 mod alt;
 mod coefs;
