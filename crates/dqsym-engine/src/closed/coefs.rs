@@ -23,7 +23,7 @@ use std::collections::BTreeMap;
 const MAX_TERMS: usize = 4096;
 
 /// The most distinct constants lifted into symbols.
-const MAX_CONSTANTS: usize = 64;
+const MAX_CONSTANTS: usize = 8;
 
 /// The prefix of the fresh symbols' names (not a name the parser reads).
 const PREFIX: &str = "~K";
@@ -32,6 +32,49 @@ const PREFIX: &str = "~K";
 pub(crate) struct Lifted {
     pub(crate) scalar: Scalar,
     constants: Vec<(Sym, Expr, BigRational)>,
+}
+
+/// Whether some coefficient of `cos F` or `sin F` (or the amplitude of the two) may be a
+/// short product of constant cosines and sines, tested in f64 before the constants are
+/// computed exactly (which costs arithmetic in a large field for every term).
+fn worth_lifting(terms: &[Term]) -> bool {
+    type Key<'a> = (&'a MonoRc, &'a [(Sym, Small)], bool);
+    let mut values: BTreeMap<Key, f64> = BTreeMap::new();
+    let (mut n, mut l) = (24i64, 1i64);
+    for t in terms {
+        let Some(c) = t.coef.to_f64() else {
+            return false;
+        };
+        let v = c * (t.rad as f64).sqrt();
+        let p = *t.mode.pi.numer() as f64 / *t.mode.pi.denom() as f64;
+        let (ca, sa) = (
+            (p * std::f64::consts::PI).cos(),
+            (p * std::f64::consts::PI).sin(),
+        );
+        n = n.lcm(&(2 * t.mode.pi.denom()));
+        l = l.lcm(t.mode.pi.denom());
+        let key = |sin: bool| (&t.mono, &*t.mode.freq, sin);
+        if t.mode.freq.is_empty() {
+            *values.entry(key(false)).or_default() += v * if t.mode.sin { sa } else { ca };
+        } else if t.mode.sin {
+            *values.entry(key(true)).or_default() += v * ca;
+            *values.entry(key(false)).or_default() += v * sa;
+        } else {
+            *values.entry(key(false)).or_default() += v * ca;
+            *values.entry(key(true)).or_default() -= v * sa;
+        }
+    }
+    if n > 20_000 {
+        return false;
+    }
+    let mut all: Vec<f64> = values.values().copied().collect();
+    let keys: Vec<_> = values.keys().collect();
+    for w in keys.windows(2) {
+        if !w[0].2 && w[1].2 && w[0].0 == w[1].0 && w[0].1 == w[1].1 {
+            all.push(values[w[0]].hypot(values[w[1]]));
+        }
+    }
+    super::cprod::may_be_small_product(&all, n, l)
 }
 
 /// `cos(p pi)` (or `sin`), canonical.
@@ -101,6 +144,9 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
     let n = terms
         .iter()
         .fold(12i64, |acc, t| acc.lcm(t.mode.pi.denom()));
+    if !worth_lifting(terms) {
+        return None;
+    }
     // The constant coefficient of each (monomial, angle, cos or sin).
     type Key = (MonoRc, Freq, bool);
     let mut coefs: BTreeMap<Key, Scalar> = BTreeMap::new();
@@ -185,64 +231,105 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
         }
         items.push((mono, trig(sin), c));
     }
-    // Each constant outside the multiples of pi/12, up to a rational factor, one symbol.
-    let mut constants: Vec<(Sym, Expr, BigRational)> = Vec::new();
+    // Each constant outside the multiples of pi/12, up to a rational factor, one symbol:
+    // normalized by its first term's rational coefficient (`lead`).
+    let mut norms: Vec<Vec<Term>> = Vec::new();
     let mut index: std::collections::HashMap<Vec<Term>, usize> = Default::default();
-    let mut out = Scalar::int(0);
-    let mut lifted_any = false;
+    let mut uses: Vec<(MonoRc, Scalar, Result<(usize, BigRational), Scalar>)> = Vec::new();
     for (mono, trig, c) in items {
         let ct = c.terms().ok()?;
         if ct.is_empty() {
             continue;
         }
+        if !outside_twelfths(&c) {
+            uses.push((mono, trig, Err(c)));
+            continue;
+        }
+        let lead = ct[0].coef.to_big();
+        let norm: Vec<Term> = ct
+            .iter()
+            .map(|u| {
+                let mut u = u.clone();
+                u.coef = Q::big(u.coef.to_big() / &lead);
+                u
+            })
+            .collect();
+        let i = *index.entry(norm).or_insert_with_key(|norm| {
+            norms.push(norm.clone());
+            norms.len() - 1
+        });
+        uses.push((mono, trig, Ok((i, lead))));
+    }
+    // Many distinct constants: nothing reads shorter (each would be a sum of its own).
+    if norms.is_empty() || norms.len() > MAX_CONSTANTS {
+        return None;
+    }
+    // The constants that are products of one or two cosines and sines (with a rational and
+    // radical factor) are lifted, each symbol standing for its product without the rational
+    // factor (`sin(pi/7) cos(pi/9)`, not `-12/17 sin(pi/7) cos(pi/9)`); the others stay.
+    let mut constants: Vec<(Sym, Expr, BigRational)> = Vec::with_capacity(norms.len());
+    let mut symbol: Vec<Option<usize>> = Vec::with_capacity(norms.len());
+    for norm in &norms {
+        crate::scalar::charge(norm.len() as u64).ok()?;
+        symbol.push(product_form(norm).map(|e| {
+            let (r, form) = rational_factor(e);
+            constants.push((Sym::new(&format!("{PREFIX}{}", constants.len())), form, r));
+            constants.len() - 1
+        }));
+    }
+    if constants.is_empty() {
+        return None;
+    }
+    let mut out = Scalar::int(0);
+    for (mono, trig, c) in uses {
         let m = Scalar::from_terms(vec![Term {
             mode: Mode::unit(),
             mono,
             rad: 1,
             coef: Q::ONE,
         }]);
-        let k = if outside_twelfths(&c) {
-            // Normalized by its first term's rational coefficient, then by the rational factor
-            // of its closed form: the symbol stands for `sin(pi/7) cos(pi/9)`, not for
-            // `-12/17 sin(pi/7) cos(pi/9)`.
-            let lead = ct[0].coef.to_big();
-            let norm: Vec<Term> = ct
-                .iter()
-                .map(|u| {
-                    let mut u = u.clone();
-                    u.coef = Q::big(u.coef.to_big() / &lead);
-                    u
-                })
-                .collect();
-            let i = match index.get(&norm) {
-                Some(&i) => i,
-                None => {
-                    if constants.len() >= MAX_CONSTANTS {
-                        return None;
-                    }
-                    let form = super::closed_form(&Scalar::from_terms(norm.clone())).ok()?;
-                    let (r, form) = rational_factor(form);
-                    let name = format!("{PREFIX}{}", constants.len());
-                    constants.push((Sym::new(&name), form, r));
-                    index.insert(norm, constants.len() - 1);
-                    constants.len() - 1
+        let k = match c {
+            Err(c) => c,
+            Ok((i, lead)) => match symbol[i] {
+                Some(k) => {
+                    let (sym, _, r) = &constants[k];
+                    Scalar::rational(lead * r) * Scalar::sym(sym.name())
                 }
-            };
-            lifted_any = true;
-            Scalar::rational(lead * &constants[i].2) * Scalar::sym(constants[i].0.name())
-        } else {
-            c
+                None => Scalar::rational(lead) * Scalar::from_terms(norms[i].clone()),
+            },
         };
         out = out + k * m * trig;
-    }
-    if !lifted_any {
-        return None;
     }
     let out = out.check().ok()?;
     Some(Lifted {
         scalar: out,
         constants,
     })
+}
+
+/// The most product forms of constants remembered per thread.
+const MEMO: usize = 256;
+
+thread_local! {
+    static FORMS: std::cell::RefCell<std::collections::HashMap<Vec<Term>, Option<Expr>>> =
+        Default::default();
+}
+
+/// [`super::cprod::small_product`] of the constant of canonical terms `t`, remembered: the
+/// entries of one robot's pose share their constants.
+fn product_form(t: &[Term]) -> Option<Expr> {
+    if let Some(e) = FORMS.with(|m| m.borrow().get(t).cloned()) {
+        return e;
+    }
+    let e = super::cprod::small_product(t);
+    FORMS.with(|m| {
+        let mut m = m.borrow_mut();
+        if m.len() >= MEMO {
+            m.clear();
+        }
+        m.insert(t.to_vec(), e.clone());
+    });
+    e
 }
 
 impl Lifted {
