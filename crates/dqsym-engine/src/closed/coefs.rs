@@ -235,7 +235,10 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
     // normalized by its first term's rational coefficient (`lead`).
     let mut norms: Vec<Vec<Term>> = Vec::new();
     let mut index: std::collections::HashMap<Vec<Term>, usize> = Default::default();
-    let mut uses: Vec<(MonoRc, Scalar, Result<(usize, BigRational), Scalar>)> = Vec::new();
+    // (monomial, trigonometric factor, the constant's symbol and rational factor or the
+    // constant itself).
+    type Use = (MonoRc, Scalar, Result<(usize, BigRational), Scalar>);
+    let mut uses: Vec<Use> = Vec::new();
     for (mono, trig, c) in items {
         let ct = c.terms().ok()?;
         if ct.is_empty() {
