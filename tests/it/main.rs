@@ -3,6 +3,7 @@
 mod algebra;
 mod cli;
 mod codegen;
+mod coefs;
 mod common;
 mod counts;
 mod cyclotomic;

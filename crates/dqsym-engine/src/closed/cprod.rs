@@ -79,9 +79,9 @@ pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
     if t.iter().any(|u| !u.mode.freq.is_empty()) {
         return Vec::new();
     }
-    let mut out = products(t, false);
+    let mut out = products(t, false, false);
     if t.iter().any(|u| u.rad != 1) {
-        out.extend(products(t, true));
+        out.extend(products(t, true, false));
     }
     // The constant is every term without a mode, or only the rational number (the radicals
     // may belong to the product: `sqrt(2) sin(pi/7)^2 - 1/2` holds `sqrt(2)/2 - 1/2`).
@@ -100,19 +100,83 @@ pub(super) fn constant_products(t: &[Term]) -> Vec<Expr> {
             continue;
         };
         // A negative constant after the product: `P - 3/4`.
-        out.extend(products(&rest, false).into_iter().map(|p| match (&c, p) {
-            (Expr::Neg(_), p) => Expr::Add(vec![p, c.clone()]),
-            (_, p) => Expr::Add(vec![c.clone(), p]),
-        }));
+        out.extend(
+            products(&rest, false, false)
+                .into_iter()
+                .map(|p| match (&c, p) {
+                    (Expr::Neg(_), p) => Expr::Add(vec![p, c.clone()]),
+                    (_, p) => Expr::Add(vec![c.clone(), p]),
+                }),
+        );
     }
     out
+}
+
+/// `cos(k pi/n)` for `0 < k < n/2` off the multiples of pi/12, each with its value, named by
+/// the smallest denominator (`cos(k pi/n) = sin((n/2 - k) pi/n)`, cosine first).
+fn factor_angles(n: i64) -> Vec<(f64, bool, Small)> {
+    let mut factors: Vec<(f64, bool, Small)> = (1..n / 2)
+        .filter(|k| (12 * k) % n != 0)
+        .map(|k| {
+            let c = Small::new(k, n);
+            let s = Small::new(n / 2 - k, n);
+            let v = (std::f64::consts::PI * k as f64 / n as f64).cos();
+            if s.denom() < c.denom() {
+                (v, true, s)
+            } else {
+                (v, false, c)
+            }
+        })
+        .collect();
+    factors.sort_by_key(|(_, sin, a)| (*a.denom(), *a.numer(), *sin));
+    factors
+}
+
+/// Whether some value of `values` may be a rational times a square root of 1, 2, 3 or 6
+/// times one or two cosines or sines at angles whose denominators divide `l` (a multiple of
+/// `pi/n`): the numeric test `coefs.rs` makes before computing its constants exactly.
+pub(super) fn may_be_small_product(values: &[f64], n: i64, l: i64) -> bool {
+    let factors: Vec<f64> = factor_angles(n)
+        .into_iter()
+        .filter(|(_, _, a)| l % a.denom() == 0)
+        .map(|(v, _, _)| v)
+        .collect();
+    let fits = |v: f64, p: f64| {
+        [1.0f64, 2.0, 3.0, 6.0]
+            .iter()
+            .any(|r| rational(v / (p * r.sqrt())).is_some())
+    };
+    values.iter().filter(|v| v.abs() > 1e-12).any(|&v| {
+        factors
+            .iter()
+            .enumerate()
+            .any(|(i, &p)| fits(v, p) || factors[i..].iter().any(|&q| fits(v, p * q)))
+    })
+}
+
+/// The constant of canonical terms `t` as a rational (and radical) multiple of one or two
+/// cosines and sines at its own denominators, checked exactly: the quick search `coefs.rs`
+/// makes for each constant it lifts.
+pub(super) fn small_product(t: &[Term]) -> Option<Expr> {
+    if t.iter()
+        .any(|u| !u.mode.freq.is_empty() || !u.mono.is_empty())
+    {
+        return None;
+    }
+    let x = Scalar::from_terms(t.to_vec());
+    let mut cands = products(t, false, true);
+    if t.iter().any(|u| u.rad != 1) {
+        cands.extend(products(t, true, true));
+    }
+    cands.into_iter().find(|e| e.to_scalar() == x)
 }
 
 /// [`constant_products`] without the split-off constant; with `split`, the terms of each
 /// radicand apart, each a rational multiple of the product (`sin(pi/11)^2 cos(pi/5)` is
 /// `sin(pi/11)^2 (1 + sqrt(5))/4`), else each monomial's whole coefficient (`cos(pi/7)
-/// cos(pi/9)`, whose terms over `pi/63` carry `sqrt(21)`).
-fn products(t: &[Term], split: bool) -> Vec<Expr> {
+/// cos(pi/9)`, whose terms over `pi/63` carry `sqrt(21)`). With `quick`, pairs only among
+/// the angles at the terms' own denominators, and no triples.
+fn products(t: &[Term], split: bool, quick: bool) -> Vec<Expr> {
     let n = t
         .iter()
         .fold(24i64, |acc, u| acc.lcm(&(2 * u.mode.pi.denom())));
@@ -130,22 +194,7 @@ fn products(t: &[Term], split: bool) -> Vec<Expr> {
     if coefs.values().any(|c| c.abs() < 1e-12) {
         return Vec::new();
     }
-    // cos(k pi/n) for 0 < k < n/2 off the multiples of pi/12, named by the smallest
-    // denominator (cos(k pi/n) = sin((n/2 - k) pi/n)), cosine first.
-    let mut factors: Vec<(f64, bool, Small)> = (1..n / 2)
-        .filter(|k| (12 * k) % n != 0)
-        .map(|k| {
-            let c = Small::new(k, n);
-            let s = Small::new(n / 2 - k, n);
-            let v = (std::f64::consts::PI * k as f64 / n as f64).cos();
-            if s.denom() < c.denom() {
-                (v, true, s)
-            } else {
-                (v, false, c)
-            }
-        })
-        .collect();
-    factors.sort_by_key(|(_, sin, a)| (*a.denom(), *a.numer(), *sin));
+    let factors = factor_angles(n);
     let f = factors.len();
     // Radical cofactors: with the coefficients whole, the product may stand beside the square
     // root of one of the terms' radicands (`sqrt(2) sin(pi/7)^2 cos(pi/9)`, whose terms over
@@ -190,7 +239,11 @@ fn products(t: &[Term], split: bool) -> Vec<Expr> {
     let l = t.iter().fold(1i64, |acc, u| acc.lcm(u.mode.pi.denom()));
     let near: Vec<usize> = (0..f).filter(|&i| l % factors[i].2.denom() == 0).collect();
     let all: Vec<usize> = (0..f).collect();
-    let pairs = if f <= MAX_PAIRS { &all } else { &near };
+    let pairs = if f <= MAX_PAIRS && !quick {
+        &all
+    } else {
+        &near
+    };
     if pairs.len() <= MAX_PAIRS {
         for (a, &i) in pairs.iter().enumerate() {
             for &j in &pairs[a..] {
@@ -198,7 +251,7 @@ fn products(t: &[Term], split: bool) -> Vec<Expr> {
             }
         }
     }
-    if near.len() <= MAX_TRIPLES {
+    if near.len() <= MAX_TRIPLES && !quick {
         for (a, &i) in near.iter().enumerate() {
             for (b, &j) in near.iter().enumerate().skip(a) {
                 for &k in &near[b..] {

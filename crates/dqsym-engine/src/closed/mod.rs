@@ -8,10 +8,13 @@
 //! cosine or sine factored by its rational roots, products of one angle's cosines and sines
 //! found from the roots on the unit circle, `roots.rs`) when one is cheaper still; (d) for a scalar
 //! whose symbolic modes carry pi offsets outside the multiples of pi/12, the same with the
-//! offsets absorbed into the symbols (`offsets.rs`) when that is shorter. The result is
-//! re-canonicalized and compared with the input before it is returned.
+//! offsets absorbed into the symbols (`offsets.rs`) when that is shorter; (e) for such a scalar,
+//! also the same with its constant coefficients lifted out of the angles into symbols of
+//! their own (`coefs.rs`: `sin(pi/7) cos(pi/9) cos(q)`). The result is re-canonicalized and
+//! compared with the input before it is returned.
 
 mod alt;
+mod coefs;
 mod common;
 pub mod congruence;
 mod cprod;
@@ -65,6 +68,32 @@ pub struct Prepared(
 /// and factored like `cos(q2)`), the shorter of the two kept (`alt::shorter`; the shifted
 /// one on ties).
 pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+    let (e, prepared) = prepared_shifted(x);
+    let Ok(found) = e else {
+        return (e, prepared);
+    };
+    // Constants lifted out of the angles, when shorter still (`coefs.rs`); derivatives then
+    // start from the expanded series.
+    let mut best: Option<Expr> = None;
+    for phased in [true, false] {
+        let Some(l) = coefs::lift(x, phased) else {
+            continue;
+        };
+        let Ok(c) = prepared_shifted(&l.scalar).0.map(|c| l.substitute(c)) else {
+            continue;
+        };
+        if alt::shorter(&c, best.as_ref().unwrap_or(&found)) && verified(&c, x) {
+            best = Some(c);
+        }
+    }
+    match best {
+        Some(c) => (Ok(c.symbols_leading()), Prepared(None, None)),
+        None => (Ok(found), prepared),
+    }
+}
+
+/// [`closed_form_prepared`] without the constants lifted.
+fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     let (plain, prepared) = prepared_unshifted(x);
     let Some(shift) = offsets::find(x) else {
         return (plain, prepared);

@@ -1,0 +1,382 @@
+//! Constant coefficients lifted out of the angles: a scalar whose symbolic modes carry pi
+//! offsets outside the multiples of pi/12 and no common shift (`offsets.rs`) that absorbs them
+//! holds its constants inside its angles: `sin(pi/7) cos(pi/9) cos(q)` is canonically a sum of
+//! `cos(q +- k pi/63)` and `sin(q +- k pi/63)` with radical coefficients. Written back in
+//! `cos F` and `sin F` of the offset-free angles `F` (`cos(F + a) = cos F cos a - sin F sin a`),
+//! its coefficients are constants of the cyclotomic field; each distinct one (up to a rational
+//! factor) outside the multiples of pi/12 stands in for a fresh symbol `K_i`, the scalar in
+//! those symbols goes through the offset-free path (regrouped, factored), and each `K_i` is
+//! replaced by the closed form of its constant (a product `sin(pi/7) cos(pi/9)` where the
+//! constant is one, see `cprod.rs`). The result is kept when shorter, after the exact check
+//! every closed form gets.
+
+use super::expr::Expr;
+use crate::scalar::atoms::{empty_mono, Freq};
+use crate::scalar::{Mode, MonoRc, Small, Sym, Term, Q};
+use crate::Scalar;
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::{One, Zero};
+use std::collections::BTreeMap;
+
+/// The most terms a scalar may have for its constants to be lifted.
+const MAX_TERMS: usize = 4096;
+
+/// The most distinct constants lifted into symbols.
+const MAX_CONSTANTS: usize = 8;
+
+/// The prefix of the fresh symbols' names (not a name the parser reads).
+const PREFIX: &str = "~K";
+
+/// A scalar in fresh symbols and the constant each symbol stands for.
+pub(crate) struct Lifted {
+    pub(crate) scalar: Scalar,
+    constants: Vec<(Sym, Expr, BigRational)>,
+}
+
+/// Whether some coefficient of `cos F` or `sin F` (or the amplitude of the two) may be a
+/// short product of constant cosines and sines, tested in f64 before the constants are
+/// computed exactly (which costs arithmetic in a large field for every term).
+fn worth_lifting(terms: &[Term]) -> bool {
+    type Key<'a> = (&'a MonoRc, &'a [(Sym, Small)], bool);
+    let mut values: BTreeMap<Key, f64> = BTreeMap::new();
+    let (mut n, mut l) = (24i64, 1i64);
+    for t in terms {
+        let Some(c) = t.coef.to_f64() else {
+            return false;
+        };
+        let v = c * (t.rad as f64).sqrt();
+        let p = *t.mode.pi.numer() as f64 / *t.mode.pi.denom() as f64;
+        let (ca, sa) = (
+            (p * std::f64::consts::PI).cos(),
+            (p * std::f64::consts::PI).sin(),
+        );
+        n = n.lcm(&(2 * t.mode.pi.denom()));
+        l = l.lcm(t.mode.pi.denom());
+        let key = |sin: bool| (&t.mono, &*t.mode.freq, sin);
+        if t.mode.freq.is_empty() {
+            *values.entry(key(false)).or_default() += v * if t.mode.sin { sa } else { ca };
+        } else if t.mode.sin {
+            *values.entry(key(true)).or_default() += v * ca;
+            *values.entry(key(false)).or_default() += v * sa;
+        } else {
+            *values.entry(key(false)).or_default() += v * ca;
+            *values.entry(key(true)).or_default() -= v * sa;
+        }
+    }
+    if n > 20_000 {
+        return false;
+    }
+    let mut all: Vec<f64> = values.values().copied().collect();
+    let keys: Vec<_> = values.keys().collect();
+    for w in keys.windows(2) {
+        if !w[0].2 && w[1].2 && w[0].0 == w[1].0 && w[0].1 == w[1].1 {
+            all.push(values[w[0]].hypot(values[w[1]]));
+        }
+    }
+    super::cprod::may_be_small_product(&all, n, l)
+}
+
+/// `cos(p pi)` (or `sin`), canonical.
+fn trig_pi(p: Small, sin: bool) -> Scalar {
+    let a = Scalar::pi() * Scalar::from_q(Q::new(*p.numer(), *p.denom()));
+    if sin {
+        a.sin()
+    } else {
+        a.cos()
+    }
+}
+
+/// The angle `F - phi pi`, `F` a frequency vector (its constant entry included).
+fn angle(freq: &Freq, phi: Small) -> Scalar {
+    let mut a = -(Scalar::pi() * Scalar::from_q(Q::new(*phi.numer(), *phi.denom())));
+    for (s, k) in freq.iter() {
+        let k = Scalar::from_q(Q::new(*k.numer(), *k.denom()));
+        a = a + if s.is_one() {
+            k
+        } else {
+            Scalar::sym(s.name()) * k
+        };
+    }
+    a
+}
+
+/// `phi` (a multiple of `pi/(2n)`, over `pi`) and `R` with `A = R cos(phi pi)`,
+/// `B = R sin(phi pi)`, when there is one: `phi` found numerically from `atan2(B, A)` and
+/// checked exactly (`A sin phi = B cos phi`); `R = A cos phi + B sin phi`.
+fn phase(a: &Scalar, b: &Scalar, n: i64) -> Option<(Small, Scalar)> {
+    let value = |c: &Scalar| c.eval_symbols(&|_| None).ok();
+    let (va, vb) = (value(a)?, value(b)?);
+    if va.hypot(vb) < 1e-12 {
+        return None;
+    }
+    let m = 2 * n;
+    let k = (vb.atan2(va) / std::f64::consts::PI * m as f64).round() as i64;
+    let phi = Small::new(k, m);
+    let (c, s) = (trig_pi(phi, false), trig_pi(phi, true));
+    crate::scalar::charge(a.len() as u64 + b.len() as u64).ok()?;
+    if a.clone() * s.clone() != b.clone() * c.clone() {
+        return None;
+    }
+    Some((phi, a.clone() * c + b.clone() * s))
+}
+
+/// Whether the canonical constant `c` lies outside the field of the multiples of pi/12 (it
+/// has a term with a pi offset).
+fn outside_twelfths(c: &Scalar) -> bool {
+    c.terms()
+        .is_ok_and(|t| t.iter().any(|t| !t.mode.pi.is_zero()))
+}
+
+/// `x` with its constants lifted (see the module docs), when it has a symbolic mode with a pi
+/// offset, and at least one constant outside the multiples of pi/12 is left once the offsets
+/// are taken out of the angles.
+pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
+    let terms = x.terms().ok()?;
+    let symbolic = |t: &Term| t.mode.freq.iter().any(|(s, _)| !s.is_one());
+    // Not for a constant (whose closed form is the one each lifted symbol is replaced by).
+    let offsets = terms.iter().any(|t| !t.mode.pi.is_zero());
+    let symbols = terms.iter().any(|t| symbolic(t) || !t.mono.is_empty());
+    if !offsets || !symbols || terms.len() > MAX_TERMS {
+        return None;
+    }
+    crate::scalar::charge(terms.len() as u64).ok()?;
+    let n = terms
+        .iter()
+        .fold(12i64, |acc, t| acc.lcm(t.mode.pi.denom()));
+    if !worth_lifting(terms) {
+        return None;
+    }
+    // The constant coefficient of each (monomial, angle, cos or sin).
+    type Key = (MonoRc, Freq, bool);
+    let mut coefs: BTreeMap<Key, Scalar> = BTreeMap::new();
+    for t in terms {
+        let c = Scalar::from_terms(vec![Term {
+            mode: Mode::unit(),
+            mono: empty_mono(),
+            rad: t.rad,
+            coef: t.coef.clone(),
+        }]);
+        let mut add = |sin: bool, k: Scalar| {
+            let e = coefs
+                .entry((t.mono.clone(), t.mode.freq.clone(), sin))
+                .or_insert_with(|| Scalar::int(0));
+            *e = e.clone() + k;
+        };
+        if t.mode.freq.is_empty() || t.mode.pi.is_zero() {
+            let k = if t.mode.freq.is_empty() {
+                // A constant term: its mode is the constant cos/sin.
+                let mut u = t.clone();
+                u.mono = empty_mono();
+                Scalar::from_terms(vec![u])
+            } else {
+                c
+            };
+            add(t.mode.sin && !t.mode.freq.is_empty(), k);
+            continue;
+        }
+        // cos(F + a) = cos F cos a - sin F sin a; sin(F + a) = sin F cos a + cos F sin a.
+        let (ca, sa) = (trig_pi(t.mode.pi, false), trig_pi(t.mode.pi, true));
+        if t.mode.sin {
+            add(true, c.clone() * ca);
+            add(false, c * sa);
+        } else {
+            add(false, c.clone() * ca);
+            add(true, -(c * sa));
+        }
+    }
+    // Each (monomial, angle) as one cosine `cos(F - phi)` when its two coefficients are
+    // `R cos(phi)` and `R sin(phi)` with `phi` a rational multiple of pi (`phased`), else as
+    // `A cos F + B sin F`: (monomial, trigonometric factor, constant).
+    let mut items: Vec<(MonoRc, Scalar, Scalar)> = Vec::with_capacity(coefs.len());
+    let mut coefs = coefs.into_iter().peekable();
+    while let Some(((mono, freq, sin), c)) = coefs.next() {
+        if freq.is_empty() {
+            items.push((mono, Scalar::int(1), c));
+            continue;
+        }
+        let trig = |sin: bool| {
+            Scalar::from_terms(vec![Term {
+                mode: Mode {
+                    sin,
+                    freq: freq.clone(),
+                    pi: Small::zero(),
+                },
+                mono: empty_mono(),
+                rad: 1,
+                coef: Q::ONE,
+            }])
+        };
+        // The keys are sorted: the sine of the same angle and monomial follows the cosine.
+        let pair = !sin
+            && coefs
+                .peek()
+                .is_some_and(|((m, f, s), _)| *s && *m == mono && *f == freq);
+        if phased && (pair || outside_twelfths(&c)) {
+            let (a, b) = if pair {
+                let (_, b) = coefs.next()?;
+                (c, b)
+            } else if sin {
+                (Scalar::int(0), c)
+            } else {
+                (c, Scalar::int(0))
+            };
+            if let Some((phi, r)) = phase(&a, &b, n) {
+                items.push((mono, angle(&freq, phi).cos(), r));
+            } else {
+                items.push((mono.clone(), trig(false), a));
+                items.push((mono, trig(true), b));
+            }
+            continue;
+        }
+        items.push((mono, trig(sin), c));
+    }
+    // Each constant outside the multiples of pi/12, up to a rational factor, one symbol:
+    // normalized by its first term's rational coefficient (`lead`).
+    let mut norms: Vec<Vec<Term>> = Vec::new();
+    let mut index: std::collections::HashMap<Vec<Term>, usize> = Default::default();
+    // (monomial, trigonometric factor, the constant's symbol and rational factor or the
+    // constant itself).
+    type Use = (MonoRc, Scalar, Result<(usize, BigRational), Scalar>);
+    let mut uses: Vec<Use> = Vec::new();
+    for (mono, trig, c) in items {
+        let ct = c.terms().ok()?;
+        if ct.is_empty() {
+            continue;
+        }
+        if !outside_twelfths(&c) {
+            uses.push((mono, trig, Err(c)));
+            continue;
+        }
+        let lead = ct[0].coef.to_big();
+        let norm: Vec<Term> = ct
+            .iter()
+            .map(|u| {
+                let mut u = u.clone();
+                u.coef = Q::big(u.coef.to_big() / &lead);
+                u
+            })
+            .collect();
+        let i = *index.entry(norm).or_insert_with_key(|norm| {
+            norms.push(norm.clone());
+            norms.len() - 1
+        });
+        uses.push((mono, trig, Ok((i, lead))));
+    }
+    // Many distinct constants: nothing reads shorter (each would be a sum of its own).
+    if norms.is_empty() || norms.len() > MAX_CONSTANTS {
+        return None;
+    }
+    // The constants that are products of one or two cosines and sines (with a rational and
+    // radical factor) are lifted, each symbol standing for its product without the rational
+    // factor (`sin(pi/7) cos(pi/9)`, not `-12/17 sin(pi/7) cos(pi/9)`); the others stay.
+    let mut constants: Vec<(Sym, Expr, BigRational)> = Vec::with_capacity(norms.len());
+    let mut symbol: Vec<Option<usize>> = Vec::with_capacity(norms.len());
+    for norm in &norms {
+        crate::scalar::charge(norm.len() as u64).ok()?;
+        symbol.push(product_form(norm).map(|e| {
+            let (r, form) = rational_factor(e);
+            constants.push((Sym::new(&format!("{PREFIX}{}", constants.len())), form, r));
+            constants.len() - 1
+        }));
+    }
+    if constants.is_empty() {
+        return None;
+    }
+    let mut out = Scalar::int(0);
+    for (mono, trig, c) in uses {
+        let m = Scalar::from_terms(vec![Term {
+            mode: Mode::unit(),
+            mono,
+            rad: 1,
+            coef: Q::ONE,
+        }]);
+        let k = match c {
+            Err(c) => c,
+            Ok((i, lead)) => match symbol[i] {
+                Some(k) => {
+                    let (sym, _, r) = &constants[k];
+                    Scalar::rational(lead * r) * Scalar::sym(sym.name())
+                }
+                None => Scalar::rational(lead) * Scalar::from_terms(norms[i].clone()),
+            },
+        };
+        out = out + k * m * trig;
+    }
+    let out = out.check().ok()?;
+    Some(Lifted {
+        scalar: out,
+        constants,
+    })
+}
+
+/// The most product forms of constants remembered per thread.
+const MEMO: usize = 256;
+
+thread_local! {
+    static FORMS: std::cell::RefCell<std::collections::HashMap<Vec<Term>, Option<Expr>>> =
+        Default::default();
+}
+
+/// [`super::cprod::small_product`] of the constant of canonical terms `t`, remembered: the
+/// entries of one robot's pose share their constants.
+fn product_form(t: &[Term]) -> Option<Expr> {
+    if let Some(e) = FORMS.with(|m| m.borrow().get(t).cloned()) {
+        return e;
+    }
+    let e = super::cprod::small_product(t);
+    FORMS.with(|m| {
+        let mut m = m.borrow_mut();
+        if m.len() >= MEMO {
+            m.clear();
+        }
+        m.insert(t.to_vec(), e.clone());
+    });
+    e
+}
+
+impl Lifted {
+    /// `e` (in the fresh symbols) with each symbol replaced by the closed form of its constant.
+    pub(crate) fn substitute(&self, e: Expr) -> Expr {
+        replace(e, &self.constants)
+    }
+}
+
+/// `e` as a rational times an expression without a rational factor.
+fn rational_factor(e: Expr) -> (BigRational, Expr) {
+    match e {
+        Expr::Neg(x) => {
+            let (r, x) = rational_factor(*x);
+            (-r, x)
+        }
+        Expr::Mul(v) => {
+            let (nums, rest): (Vec<Expr>, Vec<Expr>) =
+                v.into_iter().partition(|x| matches!(x, Expr::Num(_)));
+            let r = nums.into_iter().fold(BigRational::one(), |acc, x| match x {
+                Expr::Num(q) => acc * q,
+                _ => acc,
+            });
+            let rest = match rest.len() {
+                0 => Expr::Num(BigRational::one()),
+                1 => rest.into_iter().next().unwrap_or_else(Expr::zero),
+                _ => Expr::Mul(rest),
+            };
+            (r, rest)
+        }
+        e => (BigRational::one(), e),
+    }
+}
+
+fn replace(e: Expr, forms: &[(Sym, Expr, BigRational)]) -> Expr {
+    match e {
+        Expr::Sym(s) => match forms.iter().find(|(k, _, _)| *k == s) {
+            Some((_, f, _)) => f.clone(),
+            None => Expr::Sym(s),
+        },
+        Expr::Add(v) => Expr::Add(v.into_iter().map(|e| replace(e, forms)).collect()),
+        Expr::Mul(v) => Expr::Mul(v.into_iter().map(|e| replace(e, forms)).collect()),
+        Expr::Neg(e) => Expr::Neg(Box::new(replace(*e, forms))),
+        Expr::Pow(e, n) => Expr::Pow(Box::new(replace(*e, forms)), n),
+        e => e,
+    }
+}
