@@ -26,6 +26,7 @@ mod recurrence;
 mod robots;
 mod scalar;
 mod short_forms;
+mod stress;
 mod tools;
 mod trig_corpus;
 mod urdf;
