@@ -44,4 +44,21 @@ impl Rng {
         let u = (self.0 >> 11) as f64 / (1u64 << 53) as f64;
         lo + (hi - lo) * u
     }
+    /// A uniform integer in [0, n), n > 0.
+    pub fn below(&mut self, n: u64) -> u64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        // The high bits: the low bits of a power-of-two LCG have short periods.
+        (((self.0 >> 32) * n) >> 32) % n.max(1)
+    }
+    /// An element of `v` (not empty), uniformly.
+    pub fn pick<T: Copy>(&mut self, v: &[T]) -> T {
+        v[self.below(v.len() as u64) as usize]
+    }
+    /// True with probability `p`.
+    pub fn chance(&mut self, p: f64) -> bool {
+        self.range(0.0, 1.0) < p
+    }
 }

@@ -28,6 +28,7 @@ mod robots;
 mod roots;
 mod scalar;
 mod short_forms;
+mod stress;
 mod tools;
 mod trig_corpus;
 mod urdf;

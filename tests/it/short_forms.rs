@@ -4,26 +4,9 @@
 //! case: the printed text, exact equality with the input, the f64 value at random points
 //! against a formula written here, and the explicit text parsed back to the input.
 
+use crate::common::Rng;
 use dqsym::{closed_form, emit::sympy, eval_scalar_text, plain, PlainOptions};
 use std::f64::consts::PI;
-
-/// A small deterministic generator (xorshift) of values in [-2, 2).
-struct Gen(u64);
-
-impl Gen {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn uniform(&mut self) -> f64 {
-        -2.0 + 4.0 * (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn pick<T: Copy>(&mut self, v: &[T]) -> T {
-        v[(self.next() % v.len() as u64) as usize]
-    }
-}
 
 type F = fn(&dyn Fn(&str) -> f64) -> f64;
 
@@ -36,12 +19,12 @@ fn check(input: &str, want: &str, direct: F) {
     let explicit = plain(&e, &PlainOptions { shorthand: false });
     let back = eval_scalar_text(&explicit).unwrap_or_else(|err| panic!("{explicit}: {err}"));
     assert_eq!(back, x, "{input}: {explicit} reads back to another value");
-    let mut g = Gen(0x9e37_79b9_7f4a_7c15 ^ input.len() as u64);
+    let mut g = Rng::new(0x9e37_79b9_7f4a_7c15 ^ input.len() as u64);
     for _ in 0..10 {
         let vals: Vec<(String, f64)> = e
             .symbol_names()
             .into_iter()
-            .map(|n| (n, g.uniform()))
+            .map(|n| (n, g.range(-2.0, 2.0)))
             .collect();
         let env = |n: &str| {
             vals.iter()
@@ -156,12 +139,12 @@ fn an_angles_constant_prints_after_its_symbols() {
 /// agrees with the product in f64, and is no longer than the expanded form.
 #[test]
 fn random_constant_products_are_exact_and_no_longer_than_expanded() {
-    let mut g = Gen(0x2545_f491_4f6c_dd1d);
+    let mut g = Rng::new(0x2545_f491_4f6c_dd1d);
     let dens = [5i64, 7, 8, 9, 11, 12, 16];
     let roots = [1u64, 1, 2, 3, 5];
     let consts = [(0i64, 1i64), (0, 1), (1, 1), (-3, 4), (1, 2)];
     for _ in 0..24 {
-        let n = 1 + (g.next() % 3) as usize;
+        let n = 1 + g.below(3) as usize;
         let mut text = String::new();
         let mut value = 1.0;
         let mut chosen: Vec<i64> = Vec::new();
@@ -173,8 +156,8 @@ fn random_constant_products_are_exact_and_no_longer_than_expanded() {
                 g.pick(&dens)
             };
             chosen.push(d);
-            let k = 1 + (g.next() % (d as u64 - 1)) as i64;
-            let sin = g.next().is_multiple_of(2);
+            let k = 1 + g.below(d as u64 - 1) as i64;
+            let sin = g.below(2) == 0;
             if i > 0 {
                 text.push('*');
             }

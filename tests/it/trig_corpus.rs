@@ -225,13 +225,8 @@ fn polynomials_in_several_angles_are_factored_over_the_integers() {
             |a, b, c| (3.0 * a.cos().powi(2) + b.cos() + 1.0) * (c.cos() - a.cos() + 2.0),
         ),
     ];
-    let mut rng = 0x853c_49e6_748f_ea9bu64;
-    let mut uniform = || {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
-        -3.0 + 6.0 * (rng >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = crate::common::Rng::new(0x853c_49e6_748f_ea9b);
+    let mut uniform = || rng.range(-3.0, 3.0);
     for (text, factors, direct) in cases {
         let x = eval_scalar_text(text).unwrap_or_else(|e| panic!("{e}"));
         let e = closed_form(&x).expect("closed form");

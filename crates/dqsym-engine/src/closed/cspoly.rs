@@ -364,10 +364,57 @@ fn expanded_expr(p: &BTreeMap<Vec<u32>, Rat>, vars: &[Var]) -> Option<Expr> {
     Some(mul(num(k), e))
 }
 
+/// Whether `p` has no factorization into two non-constant factors, by a test that costs one
+/// pass over its terms (the PUMA 560's `d4 c23 - a2 s2 - a3 s23`, which the factorization
+/// would only confirm). When every term holds exactly one monomial symbol, to the first
+/// power, and there are two or more such symbols, `p = sum_j x_j T_j` is of degree 1 in them:
+/// of two factors, one is free of them and divides every coefficient `T_j`. That factor is a
+/// constant when some `T_j` is a single term that is a constant, or a single variable `v`
+/// (irreducible) that some term of another `T_k` lacks (so `v` does not divide `T_k`).
+fn plainly_irreducible(p: &BTreeMap<Vec<u32>, Rat>, vars: &[Var]) -> bool {
+    let is_sym: Vec<bool> = vars.iter().map(|v| matches!(v, Var::Sym(_))).collect();
+    // Per monomial symbol, the exponent vectors of its coefficient's terms.
+    let mut groups: BTreeMap<usize, Vec<&Vec<u32>>> = BTreeMap::new();
+    for e in p.keys() {
+        let mut which = None;
+        for (i, &x) in e.iter().enumerate() {
+            if is_sym[i] && x > 0 {
+                if x > 1 || which.is_some() {
+                    return false;
+                }
+                which = Some(i);
+            }
+        }
+        let Some(i) = which else {
+            return false;
+        };
+        groups.entry(i).or_default().push(e);
+    }
+    if groups.len() < 2 {
+        return false;
+    }
+    groups.iter().any(|(i, g)| {
+        let [e] = g[..] else {
+            return false;
+        };
+        let mut trig = e.iter().enumerate().filter(|&(k, &x)| !is_sym[k] && x > 0);
+        match (trig.next(), trig.next()) {
+            (None, _) => true,
+            (Some((v, 1)), None) => groups
+                .iter()
+                .any(|(j, h)| j != i && h.iter().any(|f| f[v] == 0)),
+            _ => false,
+        }
+    })
+}
+
 /// The factored polynomial as an expression, when it has at least two factors; two factors
 /// whose product has a cheaper closed form of its own are shown as that
 /// (`(cos(2a) - cos(2b)) (1 + cos(c))` for `2 (cos a - cos b) (cos a + cos b) (1 + cos c)`).
 fn factored_expr(p: &BTreeMap<Vec<u32>, Rat>, vars: &[Var]) -> Option<Expr> {
+    if plainly_irreducible(p, vars) {
+        return None;
+    }
     let (poly, den) = integral(p, vars.len());
     let f = factor(&poly)?;
     let count: u32 = f.factors.iter().map(|(_, m)| m).sum();
@@ -500,4 +547,59 @@ fn poly_expr(g: &MPoly, vars: &[Var]) -> Option<(bool, Expr)> {
         Expr::Add(sum)
     };
     Some((negated, poly))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn poly(terms: &[(&[u32], i64)]) -> BTreeMap<Vec<u32>, Rat> {
+        terms
+            .iter()
+            .map(|(e, c)| (e.to_vec(), Rat::from_integer(BigInt::from(*c))))
+            .collect()
+    }
+
+    /// The test that skips the factorization agrees with it: `d4 (c2 c3 - s2 s3) - a2 s2 -
+    /// a3 (s2 c3 + c2 s3)` (the PUMA 560's T[2][3]) is skipped and has no two factors; `a2 s c
+    /// plus a3 s` (every coefficient divisible by `s`) and `a2 (c - 1) plus a3 (c - 1)` are
+    /// not skipped and factor.
+    #[test]
+    fn plainly_irreducible_only_where_nothing_factors() {
+        let trig = |n: &str| Var::Cos(vec![(Sym::new(n), Small::one())]);
+        let sin = |n: &str| Var::Sin(vec![(Sym::new(n), Small::one())]);
+        let sym = |n: &str| Var::Sym(Sym::new(n));
+        // c2 s2 c3 s3 d4 a2 a3
+        let vars = [
+            trig("t2"),
+            sin("t2"),
+            trig("t3"),
+            sin("t3"),
+            sym("a2"),
+            sym("a3"),
+            sym("d4"),
+        ];
+        let puma = poly(&[
+            (&[1, 0, 1, 0, 0, 0, 1], 1),
+            (&[0, 1, 0, 1, 0, 0, 1], -1),
+            (&[0, 1, 0, 0, 1, 0, 0], -1),
+            (&[0, 1, 1, 0, 0, 1, 0], -1),
+            (&[1, 0, 0, 1, 0, 1, 0], -1),
+        ]);
+        assert!(plainly_irreducible(&puma, &vars));
+        let (p, _) = integral(&puma, vars.len());
+        assert!(factor(&p).is_none_or(|f| f.factors.iter().map(|(_, m)| m).sum::<u32>() < 2));
+        // l1 = a2, l2 = a3: a2 s2 c2 + a3 s2.
+        let common = poly(&[(&[1, 1, 0, 0, 1, 0, 0], 1), (&[0, 1, 0, 0, 0, 1, 0], 1)]);
+        assert!(!plainly_irreducible(&common, &vars));
+        assert!(factored_expr(&common, &vars).is_some());
+        let shared = poly(&[
+            (&[1, 0, 0, 0, 1, 0, 0], 1),
+            (&[0, 0, 0, 0, 1, 0, 0], -1),
+            (&[1, 0, 0, 0, 0, 1, 0], 1),
+            (&[0, 0, 0, 0, 0, 1, 0], -1),
+        ]);
+        assert!(!plainly_irreducible(&shared, &vars));
+        assert!(factored_expr(&shared, &vars).is_some());
+    }
 }

@@ -201,7 +201,9 @@ pub(crate) fn factor(p: &MPoly) -> Option<Factored> {
                 .map(|(_, c)| c.clone())?;
             let mut found = None;
             for_each_subset(pieces.len(), size, &mut |idx| {
-                if charge(1 + shifts as u64).is_err() {
+                // Each try builds and maps back a product of up to `f.len()` coefficients
+                // per shift: charged so, or the budget would stand for seconds of work.
+                if charge((1 + shifts as u64) * f.len() as u64).is_err() {
                     return true;
                 }
                 let mut g = vec![l.clone()];

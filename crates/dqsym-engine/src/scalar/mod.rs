@@ -12,9 +12,9 @@
 //! such a mode is rewritten in a canonical basis of the cyclotomic field it lives in
 //! (`cyclo.rs`), so `cos(3 pi/8) = sin(pi/8)`, `cos(pi/5) = (1 + sqrt 5)/4` and
 //! `cos(x + 6 pi/5) = -cos(x + pi/5)` hold as equal term vectors. The boundary is the field's
-//! degree: past the [`Context`]'s `max_cyclotomic_degree` (192 by default: any one denominator
-//! up to 28, whole degrees) the result is the error [`ScalarError::CyclotomicDegree`], never a
-//! value left in a non-canonical form.
+//! degree: past the [`Context`]'s `max_cyclotomic_degree` (768 by default: any one denominator
+//! up to 100, whole degrees, sevenths with ninths or fifths) the result is the error
+//! [`ScalarError::CyclotomicDegree`], never a value left in a non-canonical form.
 //!
 //! Arithmetic goes through `std::ops` so the generic quaternion algebra can use it. An
 //! operation that cannot be done exactly (a result over the size limit, `cos` of a non-angle)
