@@ -321,7 +321,7 @@ fn jaco_pose_closed_forms_fit_a_work_budget() {
 #[test]
 fn random_congruence_systems_match_a_brute_force() {
     use dqsym::closed::congruence::solutions;
-    let mut rng = Rng(0x5eed_0ff5);
+    let mut rng = Rng::new(0x5eed_0ff5);
     for case in 0..300 {
         let n = 2 + rng.below(3) as usize;
         let m = [4i64, 6, 12, 18, 24, 36, 72][rng.below(7) as usize];
