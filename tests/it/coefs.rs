@@ -252,7 +252,7 @@ fn offsets_at_twelfths_print_as_angles_not_radicals() {
         let n = 1 + rng.below(3) as usize;
         let mut text = Vec::new();
         let mut parts: Vec<(usize, bool, i64, i64)> = Vec::new();
-        for i in 0..n {
+        for (i, angle) in angles.iter().enumerate().take(n) {
             let k = loop {
                 let k = rng.below(23) as i64 - 11;
                 if k % 6 != 0 {
@@ -262,7 +262,7 @@ fn offsets_at_twelfths_print_as_angles_not_radicals() {
             let sin = rng.chance(0.5);
             let r = [1i64, 2, -3][rng.below(3) as usize];
             let f = if sin { "sin" } else { "cos" };
-            text.push(format!("{r}*l{}*{f}({} + {k}*pi/12)", i + 1, angles[i]));
+            text.push(format!("{r}*l{}*{f}({angle} + {k}*pi/12)", i + 1));
             parts.push((i, sin, k, r));
         }
         let text = text.join(" + ");
