@@ -206,3 +206,86 @@ fn random_constant_coefficients_print_in_the_input_angles() {
         }
     }
 }
+
+/// Angles at offsets that are multiples of pi/12 (which the canonical form holds as radicals)
+/// print as angles again: each `l cos(F + k pi/12)` of its own monomial is one call, no
+/// square root.
+#[test]
+fn offsets_at_twelfths_print_as_angles_not_radicals() {
+    let mut rng = Rng::new(0x7e1f);
+    type Case = (&'static str, &'static str, Box<dyn Fn(Env) -> f64>);
+    let cases: Vec<Case> = vec![
+        (
+            "l1*sin(x + pi/6) + l2*sin(x + y - pi/6)",
+            "l1 cos(x - pi/3) + l2 cos(x + y - 2*pi/3)",
+            Box::new(|v| {
+                v("l1") * (v("x") + a(1., 6.)).sin() + v("l2") * (v("x") + v("y") - a(1., 6.)).sin()
+            }),
+        ),
+        (
+            "l1*cos(x - pi/4) + l2*cos(x + y - 11*pi/5) + l3*cos(x + y + t - pi/4)",
+            "l1 cos(x - pi/4) + l2 cos(x + y - pi/5) + l3 cos(t + x + y - pi/4)",
+            Box::new(|v| {
+                v("l1") * (v("x") - a(1., 4.)).cos()
+                    + v("l2") * (v("x") + v("y") - a(11., 5.)).cos()
+                    + v("l3") * (v("x") + v("y") + v("t") - a(1., 4.)).cos()
+            }),
+        ),
+        (
+            "sqrt(5)*sin(t/2 + 3*pi/4) - 3",
+            "-3 + sqrt(5) cos(t/2 + pi/4)",
+            Box::new(|v| 5f64.sqrt() * (v("t") / 2. + a(3., 4.)).sin() - 3.),
+        ),
+    ];
+    for (input, want, direct) in &cases {
+        assert_eq!(checked(input, direct.as_ref(), &mut rng), *want, "{input}");
+    }
+    // Generated: one monomial per angle, offsets k pi/12 off the multiples of pi/2.
+    let angles = ["x", "x + y", "2*x - y", "x/2 + t"];
+    let value = |i: usize, v: Env| match i {
+        0 => v("x"),
+        1 => v("x") + v("y"),
+        2 => 2. * v("x") - v("y"),
+        _ => v("x") / 2. + v("t"),
+    };
+    for case in 0..16 {
+        let n = 1 + rng.below(3) as usize;
+        let mut text = Vec::new();
+        let mut parts: Vec<(usize, bool, i64, i64)> = Vec::new();
+        for (i, angle) in angles.iter().enumerate().take(n) {
+            let k = loop {
+                let k = rng.below(23) as i64 - 11;
+                if k % 6 != 0 {
+                    break k;
+                }
+            };
+            let sin = rng.chance(0.5);
+            let r = [1i64, 2, -3][rng.below(3) as usize];
+            let f = if sin { "sin" } else { "cos" };
+            text.push(format!("{r}*l{}*{f}({angle} + {k}*pi/12)", i + 1));
+            parts.push((i, sin, k, r));
+        }
+        let text = text.join(" + ");
+        let direct = |v: Env| {
+            parts
+                .iter()
+                .map(|&(i, sin, k, r)| {
+                    let g = value(i, v) + a(k as f64, 12.);
+                    r as f64 * v(&format!("l{}", i + 1)) * if sin { g.sin() } else { g.cos() }
+                })
+                .sum::<f64>()
+        };
+        let shown = checked(&text, &direct, &mut rng);
+        assert!(
+            !shown.contains("sqrt"),
+            "case {case}: {text} -> {shown} keeps a radical"
+        );
+        let x = eval_scalar_text(&text).expect("input");
+        let e = closed_form(&x).expect("closed form");
+        let expanded = dqsym::closed::expanded_form(&x).expect("expanded");
+        assert!(
+            e.cost() <= expanded.cost(),
+            "case {case}: {text} -> {shown}"
+        );
+    }
+}

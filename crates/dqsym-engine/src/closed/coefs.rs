@@ -380,3 +380,179 @@ fn replace(e: Expr, forms: &[(Sym, Expr, BigRational)]) -> Expr {
         e => e,
     }
 }
+
+/// The prefix of the fresh angle symbols of [`phase_angles`].
+const ANGLE_PREFIX: &str = "~W";
+
+/// A scalar whose angles at offsets that are multiples of pi/12 hide in radicals, with each
+/// such angle a fresh symbol: `l1 sin(x + pi/6)` is canonically `l1 (cos(x) + sqrt(3)
+/// sin(x))/2`; the two coefficients of `cos F` and `sin F` of one monomial, `R cos(phi)` and
+/// `R sin(phi)` with `phi` a multiple of pi/24 other than of pi/2, make `R cos(W)` with
+/// `W = F - phi` a fresh symbol (one per angle, shared by the monomials).
+pub(crate) struct Angles {
+    pub(crate) scalar: Scalar,
+    angles: Vec<(Sym, super::expr::Angle)>,
+}
+
+/// [`Angles`] for `x`, when `x` has a radical beside a symbolic mode without an offset, and
+/// some monomial's `cos F` and `sin F` at such a phase; `None` otherwise. Terms at offsets
+/// outside pi/12 are kept as they are.
+pub(crate) fn phase_angles(x: &Scalar) -> Option<Angles> {
+    let terms = x.terms().ok()?;
+    let symbolic = |t: &Term| t.mode.freq.iter().any(|(s, _)| !s.is_one());
+    if terms.len() > 256
+        || !terms
+            .iter()
+            .any(|t| t.rad != 1 && t.mode.pi.is_zero() && symbolic(t))
+    {
+        return None;
+    }
+    crate::scalar::charge(terms.len() as u64).ok()?;
+    type Key = (MonoRc, Freq, bool);
+    let mut coefs: BTreeMap<Key, Scalar> = BTreeMap::new();
+    // Terms at offsets outside pi/12 are kept as they are.
+    let mut out = Scalar::from_terms(
+        terms
+            .iter()
+            .filter(|t| !t.mode.pi.is_zero())
+            .cloned()
+            .collect(),
+    );
+    for t in terms.iter().filter(|t| t.mode.pi.is_zero()) {
+        let c = Scalar::from_terms(vec![Term {
+            mode: Mode::unit(),
+            mono: empty_mono(),
+            rad: t.rad,
+            coef: t.coef.clone(),
+        }]);
+        let e = coefs
+            .entry((t.mono.clone(), t.mode.freq.clone(), t.mode.sin))
+            .or_insert_with(|| Scalar::int(0));
+        *e = e.clone() + c;
+    }
+    let unit = |mono: MonoRc| {
+        Scalar::from_terms(vec![Term {
+            mode: Mode::unit(),
+            mono,
+            rad: 1,
+            coef: Q::ONE,
+        }])
+    };
+    let trig = |freq: &Freq, sin: bool| {
+        if freq.is_empty() {
+            return Scalar::int(1);
+        }
+        Scalar::from_terms(vec![Term {
+            mode: Mode {
+                sin,
+                freq: freq.clone(),
+                pi: Small::zero(),
+            },
+            mono: empty_mono(),
+            rad: 1,
+            coef: Q::ONE,
+        }])
+    };
+    let mut angles: Vec<(Sym, super::expr::Angle)> = Vec::new();
+    let mut coefs = coefs.into_iter().peekable();
+    while let Some(((mono, freq, sin), a)) = coefs.next() {
+        let pair = !sin
+            && !freq.is_empty()
+            && coefs
+                .peek()
+                .is_some_and(|((m, f, s), _)| *s && *m == mono && *f == freq);
+        if !pair {
+            out = out + a * unit(mono) * trig(&freq, sin);
+            continue;
+        }
+        let (_, b) = coefs.next()?;
+        match phase(&a, &b, 24).filter(|(phi, _)| !(*phi * Small::from_integer(2)).is_integer()) {
+            Some((phi, r)) => {
+                let angle = super::expr::Angle::from_freq(&freq, -phi);
+                let i = match angles.iter().position(|(_, g)| *g == angle) {
+                    Some(i) => i,
+                    None => {
+                        let name = format!("{ANGLE_PREFIX}{}", angles.len());
+                        angles.push((Sym::new(&name), angle));
+                        angles.len() - 1
+                    }
+                };
+                out = out + r * unit(mono) * Scalar::sym(angles[i].0.name()).cos();
+            }
+            None => {
+                out = out + a * unit(mono.clone()) * trig(&freq, false);
+                out = out + b * unit(mono) * trig(&freq, true);
+            }
+        }
+    }
+    if angles.is_empty() {
+        return None;
+    }
+    Some(Angles {
+        scalar: out.check().ok()?,
+        angles,
+    })
+}
+
+impl Angles {
+    /// `e` (in the fresh angle symbols) with each angle symbol replaced by its angle, each
+    /// call shown as the cosine or sine with the fewer operations in its angle; `None` when a
+    /// fresh symbol is left outside an angle.
+    pub(crate) fn substitute(&self, e: Expr) -> Option<Expr> {
+        use super::expr::Angle;
+        Some(match e {
+            Expr::Sym(s) => {
+                if self.angles.iter().any(|(w, _)| *w == s) {
+                    return None;
+                }
+                Expr::Sym(s)
+            }
+            Expr::Trig { f, angle } => {
+                let mut terms: BTreeMap<Sym, Small> = BTreeMap::new();
+                let (mut constant, mut pi) = (angle.constant, angle.pi);
+                for (s, k) in angle.terms {
+                    match self.angles.iter().find(|(w, _)| *w == s) {
+                        Some((_, g)) => {
+                            for (t, m) in &g.terms {
+                                *terms.entry(t.clone()).or_insert_with(Small::zero) += k * m;
+                            }
+                            constant += k * g.constant;
+                            pi += k * g.pi;
+                        }
+                        None => *terms.entry(s).or_insert_with(Small::zero) += k,
+                    }
+                }
+                let terms: Vec<(Sym, Small)> =
+                    terms.into_iter().filter(|(_, k)| !k.is_zero()).collect();
+                let a = Angle::new(terms, constant, pi).offset_reduced();
+                // cos(a) = sin(a + pi/2), sin(a) = cos(a - pi/2): the cheaper angle.
+                let half = Small::new(1, 2);
+                let (g, other) = match f {
+                    super::Trig::Cos => (super::Trig::Sin, half),
+                    super::Trig::Sin => (super::Trig::Cos, -half),
+                };
+                let b = Angle::new(a.terms.clone(), a.constant, a.pi + other).offset_reduced();
+                let first = Expr::Trig { f, angle: a };
+                let second = Expr::Trig { f: g, angle: b };
+                if super::alt::full_cost(&second) < super::alt::full_cost(&first) {
+                    second
+                } else {
+                    first
+                }
+            }
+            Expr::Add(v) => Expr::Add(
+                v.into_iter()
+                    .map(|e| self.substitute(e))
+                    .collect::<Option<_>>()?,
+            ),
+            Expr::Mul(v) => Expr::Mul(
+                v.into_iter()
+                    .map(|e| self.substitute(e))
+                    .collect::<Option<_>>()?,
+            ),
+            Expr::Neg(e) => Expr::Neg(Box::new(self.substitute(*e)?)),
+            Expr::Pow(e, n) => Expr::Pow(Box::new(self.substitute(*e)?), n),
+            e => e,
+        })
+    }
+}

@@ -86,6 +86,19 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
             best = Some(c);
         }
     }
+    // Angles at offsets that are multiples of pi/12, hidden in radicals, as angles again
+    // (`l1 sin(x + pi/6)`, canonically `l1 (cos(x) + sqrt(3) sin(x))/2`).
+    if let Some(a) = coefs::phase_angles(x) {
+        if let Some(c) = prepared_shifted(&a.scalar)
+            .0
+            .ok()
+            .and_then(|c| a.substitute(c))
+        {
+            if alt::shorter(&c, best.as_ref().unwrap_or(&found)) && verified(&c, x) {
+                best = Some(c);
+            }
+        }
+    }
     match best {
         Some(c) => (Ok(c.symbols_leading()), Prepared(None, None)),
         None => (Ok(found), prepared),
