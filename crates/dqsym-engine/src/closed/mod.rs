@@ -12,8 +12,7 @@
 //! also the same with its constant coefficients lifted out of the angles into symbols of
 //! their own (`coefs.rs`: `sin(pi/7) cos(pi/9) cos(q)`), and with angles at multiples of pi/12
 //! that the canonical form holds as radicals made angles again (`l1 cos(x - pi/3)`). The result
-//! is re-canonicalized and
-//! compared with the input before it is returned.
+//! is re-canonicalized and compared with the input before it is returned.
 
 mod alt;
 mod coefs;
