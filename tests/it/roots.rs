@@ -199,24 +199,30 @@ fn random_products_of_offset_factors_come_back_no_longer() {
     );
 }
 
-/// A value as a function of `x` and `y`.
-type Value2<'a> = dyn Fn(f64, f64) -> f64 + 'a;
+/// A value as a function of `x`, `y` and `z`.
+type Value3<'a> = dyn Fn(f64, f64, f64) -> f64 + 'a;
 
-/// [`checked`] for a scalar in `x` and `y`: the printed text parsed back equals the input
-/// exactly, and its value at random points is `value(x, y)`.
-fn checked_xy(input: &str, value: &Value2, rng: &mut Rng) -> String {
+/// [`checked`] for a scalar in `x`, `y` and `z`: the printed text parsed back equals the input
+/// exactly, and its value at random points is `value(x, y, z)`.
+fn checked_xyz(input: &str, value: &Value3, rng: &mut Rng) -> String {
     let v = eval_scalar_text(input).unwrap_or_else(|e| panic!("{input}: {e}"));
     let e = closed_form(&v).expect("closed form");
     let text = plain(&e, &PlainOptions::default());
     let back = eval_scalar_text(&source(&text)).unwrap_or_else(|err| panic!("{text}: {err}"));
     assert_eq!(back, v, "{input} => {text}");
     for _ in 0..4 {
-        let (x, y) = (rng.range(-3.0, 3.0), rng.range(-3.0, 3.0));
-        let got = e.value_at(&[("x", x), ("y", y)]).expect("a value");
-        let want = value(x, y);
+        let (x, y, z) = (
+            rng.range(-3.0, 3.0),
+            rng.range(-3.0, 3.0),
+            rng.range(-3.0, 3.0),
+        );
+        let got = e
+            .value_at(&[("x", x), ("y", y), ("z", z)])
+            .expect("a value");
+        let want = value(x, y, z);
         assert!(
             (got - want).abs() <= 1e-9 * (1.0 + want.abs()),
-            "{input} => {text}: {got} against {want} at x = {x}, y = {y}"
+            "{input} => {text}: {got} against {want} at x = {x}, y = {y}, z = {z}"
         );
     }
     text
@@ -229,20 +235,31 @@ fn products_in_two_symbols_print_as_products() {
     let mut rng = Rng::new(1802);
     let c = |a: f64| a.cos();
     let s = |a: f64| a.sin();
-    let cases: [(&str, &Value2<'_>, &str); 2] = [
+    let cases: [(&str, &Value3<'_>, &str); 4] = [
         (
             "sin(x - 5*pi/8)*cos(y + 3*pi/8)",
-            &|x, y| s(x - 5.0 * PI / 8.0) * c(y + 3.0 * PI / 8.0),
+            &|x, y, _| s(x - 5.0 * PI / 8.0) * c(y + 3.0 * PI / 8.0),
             "cos(x - pi/8) sin(y - pi/8)",
         ),
         (
             "cos(x+pi/7)*cos(y-2*pi/9)*sin(x)",
-            &|x, y| c(x + PI / 7.0) * c(y - 2.0 * PI / 9.0) * s(x),
+            &|x, y, _| c(x + PI / 7.0) * c(y - 2.0 * PI / 9.0) * s(x),
             "sin(x) cos(x + pi/7) cos(y - 2*pi/9)",
+        ),
+        // Three parts; two, one of them in the angle x + z.
+        (
+            "cos(x+pi/7)*sin(y-2*pi/9)*sin(z+pi/5)",
+            &|x, y, z| c(x + PI / 7.0) * s(y - 2.0 * PI / 9.0) * s(z + PI / 5.0),
+            "cos(x + pi/7) sin(y - 2*pi/9) sin(z + pi/5)",
+        ),
+        (
+            "cos(x+z-pi/7)*sin(y+3*pi/8)",
+            &|x, y, z| c(x + z - PI / 7.0) * s(y + 3.0 * PI / 8.0),
+            "cos(x + z - pi/7) cos(y - pi/8)",
         ),
     ];
     for (input, value, want) in cases {
-        let text = checked_xy(input, value, &mut rng);
+        let text = checked_xyz(input, value, &mut rng);
         assert_eq!(text, want, "{input}");
         assert!(ops(&source(&text)) <= ops(input), "{input} => {text}");
     }
@@ -292,7 +309,7 @@ fn random_products_in_two_symbols_come_back_no_longer() {
             continue;
         }
         tried += 1;
-        let value = |x: f64, y: f64| {
+        let value = |x: f64, y: f64, _: f64| {
             parts
                 .iter()
                 .map(|&(i, sin, k, p)| {
@@ -305,7 +322,7 @@ fn random_products_in_two_symbols_come_back_no_longer() {
                 })
                 .product::<f64>()
         };
-        let out = checked_xy(&input, &value, &mut rng);
+        let out = checked_xyz(&input, &value, &mut rng);
         if ops(&source(&out)) > ops(&input) {
             longer.push(format!("{input} => {out}"));
         }
