@@ -198,3 +198,139 @@ fn random_products_of_offset_factors_come_back_no_longer() {
         longer.join("\n")
     );
 }
+
+/// A value as a function of `x`, `y` and `z`.
+type Value3<'a> = dyn Fn(f64, f64, f64) -> f64 + 'a;
+
+/// [`checked`] for a scalar in `x`, `y` and `z`: the printed text parsed back equals the input
+/// exactly, and its value at random points is `value(x, y, z)`.
+fn checked_xyz(input: &str, value: &Value3, rng: &mut Rng) -> String {
+    let v = eval_scalar_text(input).unwrap_or_else(|e| panic!("{input}: {e}"));
+    let e = closed_form(&v).expect("closed form");
+    let text = plain(&e, &PlainOptions::default());
+    let back = eval_scalar_text(&source(&text)).unwrap_or_else(|err| panic!("{text}: {err}"));
+    assert_eq!(back, v, "{input} => {text}");
+    for _ in 0..4 {
+        let (x, y, z) = (
+            rng.range(-3.0, 3.0),
+            rng.range(-3.0, 3.0),
+            rng.range(-3.0, 3.0),
+        );
+        let got = e
+            .value_at(&[("x", x), ("y", y), ("z", z)])
+            .expect("a value");
+        let want = value(x, y, z);
+        assert!(
+            (got - want).abs() <= 1e-9 * (1.0 + want.abs()),
+            "{input} => {text}: {got} against {want} at x = {x}, y = {y}, z = {z}"
+        );
+    }
+    text
+}
+
+#[test]
+fn products_in_two_symbols_print_as_products() {
+    // No common shift of the offsets exists (the modes x - y and x + y both appear), so
+    // only the parts' roots find the product.
+    let mut rng = Rng::new(1802);
+    let c = |a: f64| a.cos();
+    let s = |a: f64| a.sin();
+    let cases: [(&str, &Value3<'_>, &str); 4] = [
+        (
+            "sin(x - 5*pi/8)*cos(y + 3*pi/8)",
+            &|x, y, _| s(x - 5.0 * PI / 8.0) * c(y + 3.0 * PI / 8.0),
+            "cos(x - pi/8) sin(y - pi/8)",
+        ),
+        (
+            "cos(x+pi/7)*cos(y-2*pi/9)*sin(x)",
+            &|x, y, _| c(x + PI / 7.0) * c(y - 2.0 * PI / 9.0) * s(x),
+            "sin(x) cos(x + pi/7) cos(y - 2*pi/9)",
+        ),
+        // Three parts; two, one of them in the angle x + z.
+        (
+            "cos(x+pi/7)*sin(y-2*pi/9)*sin(z+pi/5)",
+            &|x, y, z| c(x + PI / 7.0) * s(y - 2.0 * PI / 9.0) * s(z + PI / 5.0),
+            "cos(x + pi/7) sin(y - 2*pi/9) sin(z + pi/5)",
+        ),
+        (
+            "cos(x+z-pi/7)*sin(y+3*pi/8)",
+            &|x, y, z| c(x + z - PI / 7.0) * s(y + 3.0 * PI / 8.0),
+            "cos(x + z - pi/7) cos(y - pi/8)",
+        ),
+    ];
+    for (input, value, want) in cases {
+        let text = checked_xyz(input, value, &mut rng);
+        assert_eq!(text, want, "{input}");
+        assert!(ops(&source(&text)) <= ops(input), "{input} => {text}");
+    }
+}
+
+/// `cos` or `sin` of `k v + (p/q) pi`.
+fn trig_in(v: &str, sin: bool, k: i64, p: i64, q: i64) -> Expr {
+    Expr::Trig {
+        f: if sin { Trig::Sin } else { Trig::Cos },
+        angle: Angle::new(
+            vec![(Sym::new(v), Ratio::from_integer(k))],
+            Ratio::zero(),
+            Ratio::new(p, q),
+        ),
+    }
+}
+
+#[test]
+fn random_products_in_two_symbols_come_back_no_longer() {
+    let mut rng = Rng::new(1803);
+    let pick = |rng: &mut Rng, n: usize| (rng.range(0.0, n as f64) as usize).min(n - 1);
+    let (mut tried, mut longer) = (0, Vec::new());
+    for _ in 0..40 {
+        let mut factors: Vec<Expr> = Vec::new();
+        // (symbol index, sine, multiple, offset in pi).
+        let mut parts: Vec<(usize, bool, i64, f64)> = Vec::new();
+        for (i, v) in ["x", "y"].into_iter().enumerate() {
+            for _ in 0..1 + pick(&mut rng, 2) {
+                // An offset p pi/q in (-pi, pi) in lowest terms (offsets in pi/12 are the
+                // offsets' business, `offsets.rs`).
+                let q: i64 = [5, 7, 8, 9, 16][pick(&mut rng, 5)];
+                let p = loop {
+                    let p = pick(&mut rng, 2 * q as usize - 1) as i64 - (q - 1);
+                    if *Ratio::new(p, q).denom() == q {
+                        break p;
+                    }
+                };
+                let sin = pick(&mut rng, 2) == 1;
+                let k = 1 + pick(&mut rng, 2) as i64;
+                factors.push(trig_in(v, sin, k, p, q));
+                parts.push((i, sin, k, p as f64 / q as f64));
+            }
+        }
+        let input = source(&plain(&Expr::Mul(factors), &PlainOptions::default()));
+        // Offsets whose field is past the cyclotomic degree limit are an error, not a form.
+        if eval_scalar_text(&input).is_err() {
+            continue;
+        }
+        tried += 1;
+        let value = |x: f64, y: f64, _: f64| {
+            parts
+                .iter()
+                .map(|&(i, sin, k, p)| {
+                    let a = k as f64 * [x, y][i] + p * PI;
+                    if sin {
+                        a.sin()
+                    } else {
+                        a.cos()
+                    }
+                })
+                .product::<f64>()
+        };
+        let out = checked_xyz(&input, &value, &mut rng);
+        if ops(&source(&out)) > ops(&input) {
+            longer.push(format!("{input} => {out}"));
+        }
+    }
+    assert!(tried >= 16, "only {tried} products in the cyclotomic limit");
+    assert!(
+        longer.is_empty(),
+        "longer than the input:\n{}",
+        longer.join("\n")
+    );
+}

@@ -25,6 +25,12 @@
 //! product of the factors' leading coefficients, each a power of 2 times a root of unity,
 //! so `c = 2^E Re(A_N e^{-i B pi})` is built from the scalar's own top terms. Floats only find
 //! the roots: the caller checks every candidate exactly against the scalar.
+//!
+//! A scalar whose modes hold several symbols may still be a product `f(x) g(y)` of one-angle
+//! parts (`sin(x - 5*pi/8) cos(y + 3*pi/8)` expands to the modes `x - y` and `x + y`):
+//! [`separable`] splits the symbols where the scalar is numerically of rank one, finds each
+//! part's roots from its restriction to a point of the other symbols, and takes the constant
+//! exactly from the coefficient of the product of the parts' top modes.
 
 use super::alt::{mul, neg, trig};
 use super::expr::Expr;
@@ -195,10 +201,16 @@ type Freq = Vec<(Sym, Small)>;
 /// The base angle (a frequency vector) of which every symbolic mode is a whole multiple, and
 /// each term's multiple (0 for a constant term).
 fn base(t: &[Term]) -> Option<(Freq, Vec<i64>)> {
-    let v = &t.iter().find(|u| !u.mode.freq.is_empty())?.mode.freq;
-    let mut ratios = Vec::with_capacity(t.len());
-    for u in t {
-        let f = &u.mode.freq;
+    let fs: Vec<&[(Sym, Small)]> = t.iter().map(|u| &u.mode.freq[..]).collect();
+    base_of(&fs)
+}
+
+/// [`base`] of the frequencies `fs` (the multiples may be negative when the first nonzero
+/// frequency is not the largest's direction).
+fn base_of(fs: &[&[(Sym, Small)]]) -> Option<(Freq, Vec<i64>)> {
+    let v = *fs.iter().find(|f| !f.is_empty())?;
+    let mut ratios = Vec::with_capacity(fs.len());
+    for f in fs {
         if f.is_empty() {
             ratios.push(Small::zero());
             continue;
@@ -411,14 +423,26 @@ fn weight(t: &Term) -> Scalar {
 
 /// The scalar's coefficient of `z^N` as `(Re, Im)` exact scalars (times its monomial).
 fn top_coefficient(t: &[Term], ks: &[i64], n: i64) -> (Scalar, Scalar) {
+    top_of(
+        t.iter()
+            .zip(ks)
+            .filter(|(_, &k)| k == n)
+            .map(|(u, _)| (u, false)),
+    )
+}
+
+/// The coefficient of `e^{i T}` of the terms whose mode is `T` (`false`) or `-T` (`true`), as
+/// `(Re, Im)` exact scalars (times their monomial).
+fn top_of<'a>(terms: impl Iterator<Item = (&'a Term, bool)>) -> (Scalar, Scalar) {
     let (mut re, mut im) = (Scalar::zero(), Scalar::zero());
-    for (u, _) in t.iter().zip(ks).filter(|(_, &k)| k == n) {
-        // (w/2) e^{i psi pi}, psi the offset (less 1/2 for a sine).
+    for (u, negated) in terms {
+        // (w/2) e^{i psi pi}, psi the offset (less 1/2 for a sine), negated for -T.
         let psi = if u.mode.sin {
             u.mode.pi - Small::new(1, 2)
         } else {
             u.mode.pi
         };
+        let psi = if negated { -psi } else { psi };
         let w = weight(u) * Scalar::rational(num_rational::BigRational::new(1.into(), 2.into()));
         re = re + &w * &Scalar::trig_of_parts(false, Vec::new(), psi);
         im = im + &w * &Scalar::trig_of_parts(true, Vec::new(), psi);
@@ -430,7 +454,10 @@ fn top_coefficient(t: &[Term], ks: &[i64], n: i64) -> (Scalar, Scalar) {
 /// empty unless the scalar has a constant outside the rationals (a pi offset or a square root),
 /// one monomial, at most [`MAX_TERMS`] terms and its modes multiples of one angle.
 pub(super) fn root_products(t: &[Term]) -> Vec<Expr> {
-    found(t).unwrap_or_default()
+    match found(t) {
+        Some(out) => out,
+        None => separable(t).unwrap_or_default(),
+    }
 }
 
 fn found(t: &[Term]) -> Option<Vec<Expr>> {
@@ -474,29 +501,19 @@ fn found(t: &[Term]) -> Option<Vec<Expr>> {
             p[n - k] = p[n - k].add(C::polar(v / 2.0, -a));
         }
     }
-    let scale: f64 = p.iter().map(|c| c.abs()).sum();
-    if p[0].abs() <= 1e-12 * scale {
-        return None;
-    }
-    let zs = aberth(&p)?;
-    let roots = unit_roots(&p, &zs, max_denominator(w, 2 * n))?;
-    // The factorization numerically, before any exact work.
-    if !factorization_agrees(&p, &roots) {
-        return None;
-    }
+    let half = half_roots(&p, w)?;
     let (re, im) = top_coefficient(t, &ks, n);
-    // The roots in the half angle phi = theta/2: each root a of theta is a/2 and a/2 + 1.
-    let mut half: BTreeMap<Small, u32> = BTreeMap::new();
-    for (a, m) in &roots {
-        for r in [
-            *a / Small::from_integer(2),
-            *a / Small::from_integer(2) + Small::one(),
-        ] {
-            *half.entry(r).or_insert(0) += m;
-        }
+    let mut out = Vec::new();
+    for g in groupings(&half) {
+        out.extend(product_expr(&g, &theta, &re, &im).unwrap_or_default());
     }
-    // Groupings: the largest multipliers first, or the angle theta itself (k = 2) before the
-    // half angle, or the half angle alone; each with the kinds in every order.
+    Some(out)
+}
+
+/// The distinct groupings of the half-angle roots into factors: the largest multipliers
+/// first, or the angle theta itself (k = 2) before the half angle, or the half angle alone;
+/// each with the kinds in every order.
+fn groupings(half: &BTreeMap<Small, u32>) -> Vec<BTreeMap<Factor, u32>> {
     let kmax = i64::from(half.values().sum::<u32>() / 2);
     let descending: Vec<i64> = (1..=kmax).rev().collect();
     let multipliers: [&[i64]; 3] = [&descending, &[2, 1], &[1]];
@@ -509,20 +526,44 @@ fn found(t: &[Term]) -> Option<Vec<Expr>> {
         [2, 1, 0],
     ];
     let mut seen: Vec<BTreeMap<Factor, u32>> = Vec::new();
-    let mut out = Vec::new();
     for ks in multipliers {
         for order in &kinds {
-            let Some(g) = group(&half, ks, order) else {
-                continue;
-            };
-            if seen.contains(&g) {
-                continue;
+            if let Some(g) = group(half, ks, order) {
+                if !seen.contains(&g) {
+                    seen.push(g);
+                }
             }
-            out.extend(product_expr(&g, &theta, &re, &im).unwrap_or_default());
-            seen.push(g);
         }
     }
-    Some(out)
+    seen
+}
+
+/// The roots of `p` (a polynomial in `e^{i theta}` over `Q(zeta_w)`, from the constant up) as
+/// multiples of pi of the half angle `theta/2`, with multiplicities; `None` unless every root
+/// is a checked root of unity and their product is `p` numerically.
+fn half_roots(p: &[C], w: i64) -> Option<BTreeMap<Small, u32>> {
+    let n = (p.len() as i64 - 1) / 2;
+    let scale: f64 = p.iter().map(|c| c.abs()).sum();
+    if p[0].abs() <= 1e-12 * scale {
+        return None;
+    }
+    let zs = aberth(p)?;
+    let roots = unit_roots(p, &zs, max_denominator(w, 2 * n))?;
+    // The factorization numerically, before any exact work.
+    if !factorization_agrees(p, &roots) {
+        return None;
+    }
+    // The roots in the half angle phi = theta/2: each root a of theta is a/2 and a/2 + 1.
+    let mut half: BTreeMap<Small, u32> = BTreeMap::new();
+    for (a, m) in &roots {
+        for r in [
+            *a / Small::from_integer(2),
+            *a / Small::from_integer(2) + Small::one(),
+        ] {
+            *half.entry(r).or_insert(0) += m;
+        }
+    }
+    Some(half)
 }
 
 /// The clusters of the approximations `zs` of the roots of `p`, each snapped to `e^{i a pi}`
@@ -606,6 +647,7 @@ fn factorization_agrees(p: &[C], roots: &BTreeMap<Small, u32>) -> bool {
 
 /// A factor of a candidate: its expression, the multiple of pi of its leading coefficient's
 /// phase, the flipped (negated) form when it has one, and its power.
+#[derive(Clone)]
 struct Built {
     expr: Expr,
     beta: Small,
@@ -621,6 +663,11 @@ fn product_expr(
     re: &Scalar,
     im: &Scalar,
 ) -> Option<Vec<Expr>> {
+    finish(built_factors(g, theta)?, re, im)
+}
+
+/// The factors of one grouping, each in its best shape, in the angle `theta`.
+fn built_factors(g: &BTreeMap<Factor, u32>, theta: &[(Sym, Small)]) -> Option<Vec<Built>> {
     // The angle k phi = k theta / 2.
     let scaled = |k: Small| -> Vec<(Sym, Small)> {
         theta
@@ -702,6 +749,13 @@ fn product_expr(
         };
         built.push(b);
     }
+    Some(built)
+}
+
+/// The candidates `c prod f^m` for the factors `built`, the constant exact from the top
+/// coefficient `re + i im` of the scalar (the coefficient of the product of the factors' top
+/// modes).
+fn finish(mut built: Vec<Built>, re: &Scalar, im: &Scalar) -> Option<Vec<Expr>> {
     let exps: u64 = built.iter().map(|b| u64::from(b.power)).sum();
     let beta_sum = |bs: &[Built]| -> Small {
         bs.iter()
@@ -755,6 +809,255 @@ fn assemble(c: &Scalar, built: &[Built]) -> Option<Expr> {
         e = mul(e, f);
     }
     Some(e)
+}
+
+/// The most terms a scalar may have to be tried as a product of one-angle parts.
+const MAX_SEPARABLE_TERMS: usize = 1024;
+
+/// The most symbols the modes of a scalar may hold to be tried as a product of one-angle parts.
+const MAX_SEPARABLE_SYMBOLS: usize = 4;
+
+/// The groupings kept per part (the cheapest), so that at most `2^4` products are built.
+const KEPT_PER_PART: usize = 2;
+
+/// A term in f64: `v cos(k . X + a)`.
+struct Wave {
+    v: f64,
+    k: Vec<f64>,
+    a: f64,
+}
+
+/// The value of the waves at `x`.
+fn wave_value(ws: &[Wave], x: &[f64]) -> f64 {
+    ws.iter()
+        .map(|w| w.v * (w.k.iter().zip(x).map(|(k, x)| k * x).sum::<f64>() + w.a).cos())
+        .sum()
+}
+
+/// Points in `[-3, 3)^n` from a fixed xorshift sequence (only candidates depend on them).
+struct Points(u64);
+
+impl Points {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 6.0 - 3.0
+    }
+    fn point(&mut self, n: usize) -> Vec<f64> {
+        (0..n).map(|_| self.next()).collect()
+    }
+}
+
+/// Whether the waves are numerically `f(S) g(rest)`, `S` the symbols in `mask`: `p(a1, b1)
+/// p(a2, b2) = p(a1, b2) p(a2, b1)` at three sets of points (rank one in the split).
+fn splits(ws: &[Wave], n: usize, mask: u32, pts: &mut Points, scale: f64) -> Option<bool> {
+    for _ in 0..3 {
+        charge((ws.len() / 4 + 1) as u64).ok()?;
+        let (a1, a2, b1, b2) = (pts.point(n), pts.point(n), pts.point(n), pts.point(n));
+        let at = |a: &[f64], b: &[f64]| -> f64 {
+            let x: Vec<f64> = (0..n)
+                .map(|i| if mask >> i & 1 == 1 { a[i] } else { b[i] })
+                .collect();
+            wave_value(ws, &x)
+        };
+        let d = at(&a1, &b1) * at(&a2, &b2) - at(&a1, &b2) * at(&a2, &b1);
+        if d.abs() > 1e-9 * scale * scale {
+            return Some(false);
+        }
+    }
+    Some(true)
+}
+
+/// Candidates for `t` as a product `f(x) g(y) ...` of one-angle products in disjoint sets of
+/// symbols (`sin(x - 5*pi/8) cos(y + 3*pi/8)`, whose expansion has the modes `x - y` and `x +
+/// y`, so no look at the modes sees it): the symbols are split where the scalar is numerically
+/// of rank one across the split; each part's roots are found as [`found`] finds them, from its
+/// restriction to a point of the other symbols (which only moves the constant); the constant
+/// is exact, from the scalar's coefficient of the product of the parts' top modes. Empty unless
+/// the scalar has a pi offset or a square root, one monomial, at most [`MAX_SEPARABLE_TERMS`]
+/// terms and 2 to [`MAX_SEPARABLE_SYMBOLS`] symbols in its modes. The caller checks every
+/// candidate exactly.
+fn separable(t: &[Term]) -> Option<Vec<Expr>> {
+    if t.len() < 2 || t.len() > MAX_SEPARABLE_TERMS {
+        return None;
+    }
+    if t.iter().all(|u| u.mode.pi.is_zero() && u.rad == 1) {
+        return None;
+    }
+    let mono = &t[0].mono;
+    if t.iter().any(|u| u.mono != *mono) {
+        return None;
+    }
+    let mut syms: Vec<Sym> = Vec::new();
+    for u in t {
+        for (s, _) in u.mode.freq.iter() {
+            if !syms.contains(s) {
+                if syms.len() == MAX_SEPARABLE_SYMBOLS {
+                    return None;
+                }
+                syms.push(s.clone());
+            }
+        }
+    }
+    let n = syms.len();
+    if n < 2 {
+        return None;
+    }
+    charge(t.len() as u64).ok()?;
+    let mut w: i64 = 24;
+    let mut ws = Vec::with_capacity(t.len());
+    for u in t {
+        w = w.lcm(&(2 * u.mode.pi.denom()));
+        if u.rad != 1 {
+            w = w.lcm(&(4 * i64::try_from(u.rad).ok()?));
+        }
+        let psi = if u.mode.sin {
+            u.mode.pi - Small::new(1, 2)
+        } else {
+            u.mode.pi
+        };
+        let mut k = vec![0.0; n];
+        for (s, c) in u.mode.freq.iter() {
+            let i = syms.iter().position(|x| x == s)?;
+            k[i] = *c.numer() as f64 / *c.denom() as f64;
+        }
+        ws.push(Wave {
+            v: u.coef.to_f64()? * (u.rad as f64).sqrt(),
+            k,
+            a: std::f64::consts::PI * (*psi.numer() as f64 / *psi.denom() as f64),
+        });
+    }
+    let scale: f64 = ws.iter().map(|w| w.v.abs()).sum();
+    let mut pts = Points(0x9E37_79B9_7F4A_7C15);
+    // The finest split: each symbol's part is the intersection of the sets that split.
+    let full: u32 = (1 << n) - 1;
+    let mut passing = vec![full];
+    for mask in (1..full).filter(|m| m & 1 == 1) {
+        if splits(&ws, n, mask, &mut pts, scale)? {
+            passing.extend([mask, full ^ mask]);
+        }
+    }
+    let mut parts: Vec<u32> = Vec::new();
+    for i in 0..n {
+        let b = passing
+            .iter()
+            .filter(|m| *m >> i & 1 == 1)
+            .fold(full, |acc, m| acc & m);
+        if !parts.contains(&b) {
+            parts.push(b);
+        }
+    }
+    if parts.len() < 2 {
+        return None;
+    }
+    // A point where the scalar is far from 0 (the other parts' values there scale each part).
+    let x = (0..4).map(|_| pts.point(n)).max_by(|a, b| {
+        wave_value(&ws, a)
+            .abs()
+            .total_cmp(&wave_value(&ws, b).abs())
+    })?;
+    if wave_value(&ws, &x).abs() < 1e-3 * scale {
+        return None;
+    }
+    let mut options: Vec<Vec<Vec<Built>>> = Vec::with_capacity(parts.len());
+    let mut top: BTreeMap<Sym, Small> = BTreeMap::new();
+    for &part in &parts {
+        charge((t.len() / 4 + 1) as u64).ok()?;
+        let inside = |s: &Sym| {
+            syms.iter()
+                .position(|x| x == s)
+                .is_some_and(|i| part >> i & 1 == 1)
+        };
+        let fs: Vec<Vec<(Sym, Small)>> = t
+            .iter()
+            .map(|u| {
+                u.mode
+                    .freq
+                    .iter()
+                    .filter(|(s, _)| inside(s))
+                    .cloned()
+                    .collect()
+            })
+            .collect();
+        let refs: Vec<&[(Sym, Small)]> = fs.iter().map(|f| &f[..]).collect();
+        let (theta, ks) = base_of(&refs)?;
+        // The angle with a positive first coefficient (`cos(y + pi/9)`, not `cos(-y - pi/9)`).
+        let (theta, ks): (Vec<(Sym, Small)>, Vec<i64>) = if theta.first()?.1.is_negative() {
+            (
+                theta.iter().map(|(s, c)| (s.clone(), -*c)).collect(),
+                ks.iter().map(|k| -k).collect(),
+            )
+        } else {
+            (theta.to_vec(), ks)
+        };
+        let m = ks.iter().map(|k| k.abs()).max()?;
+        if !(1..=MAX_DEGREE).contains(&m) {
+            return None;
+        }
+        // The part's polynomial in z = e^{i theta} at the point x of the other symbols.
+        let mut p = vec![C(0.0, 0.0); 2 * m as usize + 1];
+        for (wave, &k) in ws.iter().zip(&ks) {
+            let rest: f64 = (0..n)
+                .filter(|i| part >> i & 1 == 0)
+                .map(|i| wave.k[i] * x[i])
+                .sum::<f64>()
+                + wave.a;
+            p[(m + k) as usize] = p[(m + k) as usize].add(C::polar(wave.v / 2.0, rest));
+            p[(m - k) as usize] = p[(m - k) as usize].add(C::polar(wave.v / 2.0, -rest));
+        }
+        let half = half_roots(&p, w)?;
+        let mut found: Vec<(usize, Vec<Built>)> = groupings(&half)
+            .iter()
+            .filter_map(|g| built_factors(g, &theta))
+            .map(|b| (b.iter().map(|f| f.expr.cost().ops).sum(), b))
+            .collect();
+        found.sort_by_key(|(c, _)| *c);
+        found.truncate(KEPT_PER_PART);
+        if found.is_empty() {
+            return None;
+        }
+        options.push(found.into_iter().map(|(_, b)| b).collect());
+        for (s, c) in theta.iter() {
+            top.insert(s.clone(), *c * Small::from_integer(m));
+        }
+    }
+    // The coefficient of e^{i T}, T the sum of the parts' top modes: from the terms of mode T
+    // or -T.
+    let sign = |u: &Term| -> Option<bool> {
+        let f = &u.mode.freq;
+        if f.len() != top.len() {
+            return None;
+        }
+        if f.iter().all(|(s, c)| top.get(s) == Some(c)) {
+            Some(false)
+        } else if f.iter().all(|(s, c)| top.get(s) == Some(&-*c)) {
+            Some(true)
+        } else {
+            None
+        }
+    };
+    let (re, im) = top_of(t.iter().filter_map(|u| sign(u).map(|neg| (u, neg))));
+    // Every choice of grouping per part.
+    let mut combos: Vec<Vec<Built>> = vec![Vec::new()];
+    for opts in &options {
+        combos = combos
+            .iter()
+            .flat_map(|c| {
+                opts.iter().map(move |o| {
+                    let mut c = c.clone();
+                    c.extend(o.iter().cloned());
+                    c
+                })
+            })
+            .collect();
+    }
+    let mut out = Vec::new();
+    for built in combos {
+        charge(1).ok()?;
+        out.extend(finish(built, &re, &im).unwrap_or_default());
+    }
+    Some(out)
 }
 
 #[cfg(test)]
