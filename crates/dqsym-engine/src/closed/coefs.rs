@@ -77,6 +77,43 @@ fn worth_lifting(terms: &[Term]) -> bool {
     super::cprod::may_be_small_product(&all, n, l)
 }
 
+/// A term's rational and radical, `coef sqrt(rad)`, as a constant scalar.
+fn constant_of(t: &Term) -> Scalar {
+    Scalar::from_terms(vec![Term {
+        mode: Mode::unit(),
+        mono: empty_mono(),
+        rad: t.rad,
+        coef: t.coef.clone(),
+    }])
+}
+
+/// The monomial `mono` as a scalar.
+fn monomial(mono: MonoRc) -> Scalar {
+    Scalar::from_terms(vec![Term {
+        mode: Mode::unit(),
+        mono,
+        rad: 1,
+        coef: Q::ONE,
+    }])
+}
+
+/// `cos F` (or `sin F`) of an offset-free frequency vector `F`; `1` for the empty one.
+fn offset_free(freq: &Freq, sin: bool) -> Scalar {
+    if freq.is_empty() {
+        return Scalar::int(1);
+    }
+    Scalar::from_terms(vec![Term {
+        mode: Mode {
+            sin,
+            freq: freq.clone(),
+            pi: Small::zero(),
+        },
+        mono: empty_mono(),
+        rad: 1,
+        coef: Q::ONE,
+    }])
+}
+
 /// `cos(p pi)` (or `sin`), canonical.
 fn trig_pi(p: Small, sin: bool) -> Scalar {
     let a = Scalar::pi() * Scalar::from_q(Q::new(*p.numer(), *p.denom()));
@@ -151,12 +188,7 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
     type Key = (MonoRc, Freq, bool);
     let mut coefs: BTreeMap<Key, Scalar> = BTreeMap::new();
     for t in terms {
-        let c = Scalar::from_terms(vec![Term {
-            mode: Mode::unit(),
-            mono: empty_mono(),
-            rad: t.rad,
-            coef: t.coef.clone(),
-        }]);
+        let c = constant_of(t);
         let mut add = |sin: bool, k: Scalar| {
             let e = coefs
                 .entry((t.mono.clone(), t.mode.freq.clone(), sin))
@@ -195,18 +227,7 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
             items.push((mono, Scalar::int(1), c));
             continue;
         }
-        let trig = |sin: bool| {
-            Scalar::from_terms(vec![Term {
-                mode: Mode {
-                    sin,
-                    freq: freq.clone(),
-                    pi: Small::zero(),
-                },
-                mono: empty_mono(),
-                rad: 1,
-                coef: Q::ONE,
-            }])
-        };
+        let trig = |sin: bool| offset_free(&freq, sin);
         // The keys are sorted: the sine of the same angle and monomial follows the cosine.
         let pair = !sin
             && coefs
@@ -285,12 +306,7 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
     }
     let mut out = Scalar::int(0);
     for (mono, trig, c) in uses {
-        let m = Scalar::from_terms(vec![Term {
-            mode: Mode::unit(),
-            mono,
-            rad: 1,
-            coef: Q::ONE,
-        }]);
+        let m = monomial(mono);
         let k = match c {
             Err(c) => c,
             Ok((i, lead)) => match symbol[i] {
@@ -419,40 +435,13 @@ pub(crate) fn phase_angles(x: &Scalar) -> Option<Angles> {
             .collect(),
     );
     for t in terms.iter().filter(|t| t.mode.pi.is_zero()) {
-        let c = Scalar::from_terms(vec![Term {
-            mode: Mode::unit(),
-            mono: empty_mono(),
-            rad: t.rad,
-            coef: t.coef.clone(),
-        }]);
+        let c = constant_of(t);
         let e = coefs
             .entry((t.mono.clone(), t.mode.freq.clone(), t.mode.sin))
             .or_insert_with(|| Scalar::int(0));
         *e = e.clone() + c;
     }
-    let unit = |mono: MonoRc| {
-        Scalar::from_terms(vec![Term {
-            mode: Mode::unit(),
-            mono,
-            rad: 1,
-            coef: Q::ONE,
-        }])
-    };
-    let trig = |freq: &Freq, sin: bool| {
-        if freq.is_empty() {
-            return Scalar::int(1);
-        }
-        Scalar::from_terms(vec![Term {
-            mode: Mode {
-                sin,
-                freq: freq.clone(),
-                pi: Small::zero(),
-            },
-            mono: empty_mono(),
-            rad: 1,
-            coef: Q::ONE,
-        }])
-    };
+    let (unit, trig) = (monomial, offset_free);
     let mut angles: Vec<(Sym, super::expr::Angle)> = Vec::new();
     let mut coefs = coefs.into_iter().peekable();
     while let Some(((mono, freq, sin), a)) = coefs.next() {
