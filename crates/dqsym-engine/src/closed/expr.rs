@@ -463,55 +463,7 @@ impl Expr {
     /// powers (as [`Expr::symbols_leading`] moves them), kept on the terms of sums, and a
     /// sign left at the top of a product that holds a sum is taken into that sum.
     pub(crate) fn map_trig_signed(self, map: &mut TrigMap) -> Expr {
-        fn negated(e: Expr) -> Expr {
-            match e {
-                Expr::Neg(x) => *x,
-                e => Expr::Neg(Box::new(e)),
-            }
-        }
-        fn walk(e: Expr, map: &mut TrigMap) -> Expr {
-            match e {
-                Expr::Trig { f, angle } => match map(f, &angle) {
-                    Some((g, b, true)) => Expr::Neg(Box::new(Expr::Trig { f: g, angle: b })),
-                    Some((g, b, false)) => Expr::Trig { f: g, angle: b },
-                    None => Expr::Trig { f, angle },
-                },
-                Expr::Add(v) => Expr::Add(
-                    v.into_iter()
-                        .map(|x| match walk(x, map) {
-                            Expr::Neg(y) => negated(*y),
-                            y => y,
-                        })
-                        .collect(),
-                ),
-                Expr::Mul(v) => {
-                    let mut neg = false;
-                    let parts = v
-                        .into_iter()
-                        .map(|x| match walk(x, map) {
-                            Expr::Neg(y) => {
-                                neg = !neg;
-                                *y
-                            }
-                            y => y,
-                        })
-                        .collect();
-                    if neg {
-                        Expr::Neg(Box::new(Expr::Mul(parts)))
-                    } else {
-                        Expr::Mul(parts)
-                    }
-                }
-                Expr::Neg(x) => negated(walk(*x, map)),
-                Expr::Pow(x, n) => match walk(*x, map) {
-                    Expr::Neg(y) if n % 2 == 0 => Expr::Pow(y, n),
-                    Expr::Neg(y) => Expr::Neg(Box::new(Expr::Pow(y, n))),
-                    y => Expr::Pow(Box::new(y), n),
-                },
-                e => e,
-            }
-        }
-        match walk(self, map) {
+        match walk_signed(self, map) {
             // `-(1/4 (a - b))` is `1/4 (b - a)`, one negation fewer.
             Expr::Neg(x) => match *x {
                 Expr::Mul(mut v) if v.iter().any(|f| matches!(f, Expr::Add(_))) => {
@@ -546,64 +498,72 @@ impl Expr {
                 _ => false,
             }
         }
-        fn negated(e: Expr) -> Expr {
-            match e {
-                Expr::Neg(x) => *x,
-                e => Expr::Neg(Box::new(e)),
-            }
-        }
-        fn walk(e: Expr) -> Expr {
-            match e {
-                Expr::Trig { f, mut angle } if needs(&angle) => {
+        if any(&self) {
+            walk_signed(self, &mut |f, angle| {
+                needs(angle).then(|| {
+                    let mut angle = angle.clone();
                     angle.negate();
                     angle.reduce_offset();
-                    let t = Expr::Trig { f, angle };
-                    if f.is_sin() {
-                        Expr::Neg(Box::new(t))
-                    } else {
-                        t
-                    }
-                }
-                Expr::Add(v) => Expr::Add(
-                    v.into_iter()
-                        .map(|x| match walk(x) {
-                            Expr::Neg(y) => negated(*y),
-                            y => y,
-                        })
-                        .collect(),
-                ),
-                Expr::Mul(v) => {
-                    let mut neg = false;
-                    let parts = v
-                        .into_iter()
-                        .map(|x| match walk(x) {
-                            Expr::Neg(y) => {
-                                neg = !neg;
-                                *y
-                            }
-                            y => y,
-                        })
-                        .collect();
-                    if neg {
-                        Expr::Neg(Box::new(Expr::Mul(parts)))
-                    } else {
-                        Expr::Mul(parts)
-                    }
-                }
-                Expr::Neg(x) => negated(walk(*x)),
-                Expr::Pow(x, n) => match walk(*x) {
-                    Expr::Neg(y) if n % 2 == 0 => Expr::Pow(y, n),
-                    Expr::Neg(y) => Expr::Neg(Box::new(Expr::Pow(y, n))),
-                    y => Expr::Pow(Box::new(y), n),
-                },
-                e => e,
-            }
-        }
-        if any(&self) {
-            walk(self)
+                    (f, angle, f.is_sin())
+                })
+            })
         } else {
             self
         }
+    }
+}
+
+/// `-e`, without a double negation.
+fn negated(e: Expr) -> Expr {
+    match e {
+        Expr::Neg(x) => *x,
+        e => Expr::Neg(Box::new(e)),
+    }
+}
+
+/// `e` with each call `f(angle)` for which `map` returns `Some((g, b, neg))` replaced by
+/// `g(b)`, negated when `neg`; the signs met are moved out of products and powers and kept on
+/// the terms of sums (a sign may be left at the top).
+fn walk_signed(e: Expr, map: &mut TrigMap) -> Expr {
+    match e {
+        Expr::Trig { f, angle } => match map(f, &angle) {
+            Some((g, b, true)) => Expr::Neg(Box::new(Expr::Trig { f: g, angle: b })),
+            Some((g, b, false)) => Expr::Trig { f: g, angle: b },
+            None => Expr::Trig { f, angle },
+        },
+        Expr::Add(v) => Expr::Add(
+            v.into_iter()
+                .map(|x| match walk_signed(x, map) {
+                    Expr::Neg(y) => negated(*y),
+                    y => y,
+                })
+                .collect(),
+        ),
+        Expr::Mul(v) => {
+            let mut neg = false;
+            let parts = v
+                .into_iter()
+                .map(|x| match walk_signed(x, map) {
+                    Expr::Neg(y) => {
+                        neg = !neg;
+                        *y
+                    }
+                    y => y,
+                })
+                .collect();
+            if neg {
+                Expr::Neg(Box::new(Expr::Mul(parts)))
+            } else {
+                Expr::Mul(parts)
+            }
+        }
+        Expr::Neg(x) => negated(walk_signed(*x, map)),
+        Expr::Pow(x, n) => match walk_signed(*x, map) {
+            Expr::Neg(y) if n % 2 == 0 => Expr::Pow(y, n),
+            Expr::Neg(y) => Expr::Neg(Box::new(Expr::Pow(y, n))),
+            y => Expr::Pow(Box::new(y), n),
+        },
+        e => e,
     }
 }
 

@@ -460,17 +460,17 @@ pub(super) fn root_products(t: &[Term]) -> Vec<Expr> {
     }
 }
 
+/// The gate both searches share: 2 to `max_terms` terms over one monomial, with a pi offset
+/// or a square root (an offset-free rational scalar, the PUMA's entries, is left to the
+/// rational roots of `alt.rs`).
+fn gate(t: &[Term], max_terms: usize) -> bool {
+    (2..=max_terms).contains(&t.len())
+        && !t.iter().all(|u| u.mode.pi.is_zero() && u.rad == 1)
+        && t.iter().all(|u| u.mono == t[0].mono)
+}
+
 fn found(t: &[Term]) -> Option<Vec<Expr>> {
-    // The gates, cheapest first: an offset-free rational scalar (the PUMA's entries) is left
-    // to the rational roots of `alt.rs`.
-    if t.len() < 2 || t.len() > MAX_TERMS {
-        return None;
-    }
-    if t.iter().all(|u| u.mode.pi.is_zero() && u.rad == 1) {
-        return None;
-    }
-    let mono = &t[0].mono;
-    if t.iter().any(|u| u.mono != *mono) {
+    if !gate(t, MAX_TERMS) {
         return None;
     }
     let (theta, ks) = base(t)?;
@@ -879,14 +879,7 @@ fn splits(ws: &[Wave], n: usize, mask: u32, pts: &mut Points, scale: f64) -> Opt
 /// terms and 2 to [`MAX_SEPARABLE_SYMBOLS`] symbols in its modes. The caller checks every
 /// candidate exactly.
 fn separable(t: &[Term]) -> Option<Vec<Expr>> {
-    if t.len() < 2 || t.len() > MAX_SEPARABLE_TERMS {
-        return None;
-    }
-    if t.iter().all(|u| u.mode.pi.is_zero() && u.rad == 1) {
-        return None;
-    }
-    let mono = &t[0].mono;
-    if t.iter().any(|u| u.mono != *mono) {
+    if !gate(t, MAX_SEPARABLE_TERMS) {
         return None;
     }
     let mut syms: Vec<Sym> = Vec::new();
