@@ -7,7 +7,7 @@ use super::value::{self, Value};
 use crate::{
     closed_form,
     kin::{dh_link, mdh_link},
-    plain, DualQuat, Frac, Matrix4, PlainOptions, Quat, Scalar,
+    plain, DualQuat, Frac, Matrix4, PlainOptions, Quat, Scalar, ScalarError,
 };
 use num_traits::{One, Zero};
 
@@ -547,15 +547,40 @@ fn run_matrix(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
 fn run_frommatrix(name: &'static str, vals: &[Arg], _span: Span) -> Result<Value> {
     Ok({
         let m = matrix4(name, &vals[0])?;
-        let q = DualQuat::from_matrix(&m).ok_or_else(|| {
+        let not_rigid = || {
             invalid(
                 "`frommatrix` needs a rigid-motion matrix: last row 0 0 0 1 and a rotation \
-                 block whose quaternion has an exact square root",
+                 block (R^T R = I and det R = 1 exactly) whose quaternion has an exact square root",
                 vals[0].span,
             )
-        })?;
+        };
+        if !is_rotation(&m.rotation_block()).map_err(|e| scalar_error(e, vals[0].span))? {
+            return Err(not_rigid());
+        }
+        let q = DualQuat::from_matrix(&m).ok_or_else(not_rigid)?;
         Value::DualQuat(q)
     })
+}
+
+/// Whether `r` is a rotation, exactly: `R^T R = I` and `det R = 1` (a scaling or a reflection
+/// is not). A limit reached on the way is the error, never a "no".
+fn is_rotation(r: &[[Scalar; 3]; 3]) -> std::result::Result<bool, ScalarError> {
+    let zero = |x: Scalar| match x.as_error() {
+        Some(e) => Err(e.clone()),
+        None => Ok(x.is_zero_value()),
+    };
+    for i in 0..3 {
+        for j in i..3 {
+            let dot = (0..3).fold(Scalar::int(0), |acc, k| acc + r[k][i].clone() * &r[k][j]);
+            if !zero(dot - Scalar::int(i64::from(i == j)))? {
+                return Ok(false);
+            }
+        }
+    }
+    let minor = |a: usize, b: usize| r[1][a].clone() * &r[2][b] - r[1][b].clone() * &r[2][a];
+    let det = r[0][0].clone() * minor(1, 2) - r[0][1].clone() * minor(0, 2)
+        + r[0][2].clone() * minor(0, 1);
+    zero(det - Scalar::int(1))
 }
 
 /// The built-in `closed`, `latex`, `sympy`, `rust`, `plain`.

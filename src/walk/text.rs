@@ -269,7 +269,7 @@ pub fn walk_text(w: &Walkthrough) -> Result<String, WalkError> {
     }
     Ok(format!(
         "Walkthrough: {}\n{}{out}",
-        w.title,
+        crate::emit::names::printable(&w.title),
         legend_text(w, &names)
     ))
 }
@@ -901,7 +901,11 @@ fn angle_tex(a: &crate::Angle, st: &Tex) -> String {
 /// When a value cannot be shown (never for a walkthrough this crate built).
 pub fn walk_markdown(w: &Walkthrough) -> Result<String, WalkError> {
     let p = page(w)?;
-    let mut out = format!("# Walkthrough: {}\n", w.title);
+    // The title is a robot's name or a file's: text from outside, inert in the heading.
+    let mut out = format!(
+        "# Walkthrough: {}\n",
+        crate::emit::names::html_text(&w.title)
+    );
     for l in &p.legend {
         out += &format!("\n{l}\n");
     }

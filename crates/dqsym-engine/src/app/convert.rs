@@ -19,7 +19,8 @@
 use crate::algebra::cross;
 use crate::{
     closed_form,
-    emit::sympy,
+    emit::names::{line_comment, toml_string, Comment},
+    emit::sympy::dqsym_text,
     kin::{Frame, JointGeometry},
     DualQuat, Joint, JointKind, Robot, Scalar, ScalarError,
 };
@@ -59,7 +60,7 @@ fn value_text(x: &Scalar) -> Result<String, ScalarError> {
             return Ok(d);
         }
     }
-    Ok(format!("\"{}\"", sympy(&closed_form(x)?)))
+    Ok(format!("\"{}\"", dqsym_text(&closed_form(x)?)))
 }
 
 /// The decimal text of a rational whose denominator has no prime factors but 2 and 5.
@@ -94,7 +95,7 @@ fn decimal_text(q: &num_rational::BigRational) -> Option<String> {
 }
 
 fn expr_text(x: &Scalar) -> Result<String, ScalarError> {
-    Ok(sympy(&closed_form(x)?))
+    Ok(dqsym_text(&closed_form(x)?))
 }
 
 fn v3_text(v: &V) -> Result<String, ScalarError> {
@@ -120,13 +121,21 @@ fn frames_text(name: &str, frames: &[Frame]) -> Result<String, ScalarError> {
 
 /// The screw-form robot file, with `why` (the reason it is not DH) in its header.
 fn screw_toml(robot: &Robot, source: &str, why: &str) -> Result<String, ScalarError> {
-    let mut out = format!(
-        "# {} in screw form, converted by dqsym from {source}: each joint turns about (or slides\n\
-         # along) its axis in the home pose, in base coordinates; the tool frames, in order,\n\
-         # give the last link's home pose.\n# Not DH: {why}.\n",
-        robot.name
+    // The name and the file's path are text from outside: every line of them commented.
+    let mut out = line_comment(
+        Comment::Hash,
+        "#",
+        &format!(
+            "{} in screw form, converted by dqsym from {source}: each joint turns about (or slides\n\
+             along) its axis in the home pose, in base coordinates; the tool frames, in order,\n\
+             give the last link's home pose.\nNot DH: {why}.",
+            robot.name
+        ),
     );
-    out += &format!("name = {:?}\nconvention = \"screw\"\n", robot.name);
+    out += &format!(
+        "name = {}\nconvention = \"screw\"\n",
+        toml_string(&robot.name)
+    );
     out += &frames_text("base", &robot.base_frames)?;
     out += &frames_text("tool", &robot.tool_frames)?;
     for (i, (j, value)) in robot
@@ -170,13 +179,17 @@ struct Dh {
 }
 
 fn dh_toml(robot: &Robot, dh: &Dh, source: &str) -> Result<String, ScalarError> {
-    let mut out = format!(
-        "# {} in classic DH form (Rz(theta) Tz(d) Tx(a) Rx(alpha) per joint), converted by dqsym\n\
-         # from {source}; a base frame puts frame 0's z axis on joint 1's axis, the tool frame\n\
-         # is the tip in the last joint's frame.\n",
-        robot.name
+    let mut out = line_comment(
+        Comment::Hash,
+        "#",
+        &format!(
+            "{} in classic DH form (Rz(theta) Tz(d) Tx(a) Rx(alpha) per joint), converted by dqsym\n\
+             from {source}; a base frame puts frame 0's z axis on joint 1's axis, the tool frame\n\
+             is the tip in the last joint's frame.",
+            robot.name
+        ),
     );
-    out += &format!("name = {:?}\nconvention = \"dh\"\n", robot.name);
+    out += &format!("name = {}\nconvention = \"dh\"\n", toml_string(&robot.name));
     out += &frames_text("base", &dh.base)?;
     out += &frames_text("tool", &dh.tool)?;
     for (kind, value, [theta, d, a, alpha]) in &dh.rows {

@@ -8,6 +8,7 @@
 //! each read by later entries as the symbol `L{i}_k`, ...
 
 use super::recurrence::recurrence_sections;
+use crate::emit::names::{line_comment, Comment};
 use crate::emit::{
     arguments, c_function, count_ops, generated_ops, latex_aligned, latex_symbol, product_table,
     python_function, rotation_chain_ops, rust_function, sympy, CodegenError, CodegenOptions,
@@ -371,9 +372,9 @@ pub(super) fn render<S: AsRef<str>>(
             .collect(),
         Format::Plain => {
             let po = PlainOptions { shorthand };
-            let mut out = header(robot);
+            let mut out = header(robot, Comment::Hash, "#");
             for n in notes {
-                out.push_str(&format!("# {n}\n"));
+                out.push_str(&line_comment(Comment::Hash, "#", n));
             }
             for (title, rows) in sections {
                 out.push_str(&format!("# {}\n", title.as_ref()));
@@ -396,9 +397,9 @@ pub(super) fn render<S: AsRef<str>>(
                 shorthand,
                 ..LatexOptions::default()
             };
-            let mut out = format!("% {}", header(robot));
+            let mut out = header(robot, Comment::Latex, "% #");
             for n in notes {
-                out.push_str(&format!("% {n}\n"));
+                out.push_str(&line_comment(Comment::Latex, "%", n));
             }
             for (title, rows) in sections {
                 out.push_str(&format!("% {}\n", title.as_ref()));
@@ -478,7 +479,7 @@ fn code<S>(
     let o = CodegenOptions::default();
     match f {
         Generated::Ops => {
-            let mut out = header(robot);
+            let mut out = header(robot, Comment::Hash, "#");
             let n = robot.variables.len();
             let dq = count_ops(|| {
                 let mk = |k: f64| Counted(k);
@@ -551,10 +552,12 @@ fn snake(name: &str) -> String {
     format!("{s}_fk")
 }
 
-fn header(robot: &Robot) -> String {
+/// The report's first comment: the robot's name (every line of it commented, control
+/// characters escaped), its joints and parameters; `prefix` is `#`, or `% #` in LaTeX.
+fn header(robot: &Robot, syntax: Comment, prefix: &str) -> String {
     let params = robot.parameters();
-    format!(
-        "# {} ({} joint{}: {}; parameters: {})\n",
+    let text = format!(
+        "{} ({} joint{}: {}; parameters: {})",
         robot.name,
         robot.variables.len(),
         if robot.variables.len() == 1 { "" } else { "s" },
@@ -564,7 +567,8 @@ fn header(robot: &Robot) -> String {
         } else {
             params.join(", ")
         }
-    )
+    );
+    line_comment(syntax, prefix, &text)
 }
 
 /// `T[1][2]` -> `T_{1,2}`, `dq[3]` -> `q_{3}` style subscripts; `Q2[3]` like the symbol `Q2_3`.

@@ -33,7 +33,7 @@ mod zfactor;
 pub use crate::scalar::Trig;
 pub use common::CommonOffsets;
 pub use expr::{Angle, Cost, Expr};
-pub use notation::{angle_text, shorthand_name, TrigNames};
+pub use notation::{angle_text, angle_text_with, shorthand_name, TrigNames};
 pub use trace::{Identity, TraceStep};
 
 use crate::scalar::FxHasher;

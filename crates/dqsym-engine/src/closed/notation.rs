@@ -48,6 +48,11 @@ pub fn shorthand_name(f: Trig, angle: &Angle) -> Option<String> {
 /// coefficients (the pi part included) all have one denominator `d > 1` is written over it once,
 /// `(q1 + q2)/2` for `q1/2 + q2/2` (as the LaTeX printer writes `\frac{q_1 + q_2}{2}`).
 pub fn angle_text(angle: &Angle) -> String {
+    angle_text_with(angle, &str::to_owned)
+}
+
+/// [`angle_text`] with each symbol written as `name` gives it (SymPy's `Symbol('E')`).
+pub fn angle_text_with(angle: &Angle, name: &dyn Fn(&str) -> String) -> String {
     match common_denominator(angle) {
         Some(d) => {
             // Every nonzero part has the denominator `d`: times `d`, its numerator.
@@ -60,9 +65,9 @@ pub fn angle_text(angle: &Angle) -> String {
                 Small::from_integer(*angle.constant.numer()),
                 Small::from_integer(*angle.pi.numer()),
             );
-            format!("({})/{d}", sum_text(&whole))
+            format!("({})/{d}", sum_text(&whole, name))
         }
-        None => sum_text(angle),
+        None => sum_text(angle, name),
     }
 }
 
@@ -84,7 +89,7 @@ pub(crate) fn common_denominator(angle: &Angle) -> Option<i64> {
     (d > 1 && parts > 1).then_some(d)
 }
 
-fn sum_text(angle: &Angle) -> String {
+fn sum_text(angle: &Angle, name: &dyn Fn(&str) -> String) -> String {
     let mut s = String::new();
     let mut first = true;
     let mut push = |k: Small, name: &str, s: &mut String| {
@@ -113,7 +118,7 @@ fn sum_text(angle: &Angle) -> String {
     // Symbols first, then the rational constant and the multiple of pi: `t/2 - 1/3`, as the
     // pi offset reads in `x - pi/7`.
     for (sym, k) in &angle.terms {
-        push(*k, sym.name(), &mut s);
+        push(*k, &name(sym.name()), &mut s);
     }
     if !angle.constant.is_zero() {
         push(angle.constant, "", &mut s);

@@ -172,6 +172,8 @@ pub(crate) struct Atom {
 /// A straight-line program computing every output.
 pub(crate) struct Program {
     pub args: Vec<String>,
+    /// The identifiers the arguments are written as (see [`super::names::safe_names`]).
+    pub names: Vec<String>,
     pub atoms: Vec<Atom>,
     pub nodes: Vec<Node>,
     /// How many times each node is read by reachable nodes and outputs; 0 when unreachable.
@@ -206,13 +208,29 @@ fn is_ident(s: &str) -> bool {
         && c.all(|x| x.is_ascii_alphanumeric() || x == '_')
 }
 
-/// Lowers the outputs into one program over `args`.
+/// Lowers the outputs into one program over `args`, each written as itself.
 pub(crate) fn lower(
     outputs: &[Output],
     args: &[String],
     o: &CodegenOptions,
 ) -> Result<Program, CodegenError> {
-    for a in args.iter().chain(outputs.iter().map(|o| &o.name)) {
+    lower_named(outputs, args, args, o)
+}
+
+/// Lowers the outputs into one program over `args`, argument `i` written as `names[i]`
+/// (its name in the target language, see [`super::names::safe_names`]); the locals' names
+/// are chosen apart from `names`.
+pub(crate) fn lower_named(
+    outputs: &[Output],
+    args: &[String],
+    names: &[String],
+    o: &CodegenOptions,
+) -> Result<Program, CodegenError> {
+    for a in args
+        .iter()
+        .chain(names)
+        .chain(outputs.iter().map(|o| &o.name))
+    {
         if !is_ident(a) {
             return Err(CodegenError::BadName(a.clone()));
         }
@@ -257,7 +275,7 @@ pub(crate) fn lower(
             outs.push((out.clone(), ids));
         }
     }
-    Ok(b.finish(outs))
+    Ok(b.finish(outs, names))
 }
 
 impl Builder<'_> {
@@ -541,7 +559,7 @@ impl Builder<'_> {
         Ok(cs)
     }
 
-    fn finish(self, outputs: Vec<(Output, Vec<Id>)>) -> Program {
+    fn finish(self, outputs: Vec<(Output, Vec<Id>)>, names: &[String]) -> Program {
         let mut uses = vec![0usize; self.nodes.len()];
         let mut reached = vec![false; self.nodes.len()];
         let mut stack: Vec<Id> = Vec::new();
@@ -565,7 +583,7 @@ impl Builder<'_> {
                 stack.push(k);
             }
         }
-        let mut taken: HashSet<String> = self.args.iter().cloned().collect();
+        let mut taken: HashSet<String> = self.args.iter().chain(names).cloned().collect();
         let atoms: Vec<Atom> = self
             .atoms
             .iter()
@@ -625,6 +643,7 @@ impl Builder<'_> {
         }
         Program {
             args: self.args.to_vec(),
+            names: names.to_vec(),
             atoms,
             nodes: self.nodes,
             uses,
@@ -707,14 +726,15 @@ impl Program {
                 (_, false) => " + ",
             });
             let c = c.abs();
+            let name = self
+                .args
+                .iter()
+                .position(|a| a == sym.name())
+                .map_or(sym.name(), |i| self.names[i].as_str());
             if c.is_one() {
-                s.push_str(sym.name());
+                s.push_str(name);
             } else {
-                s.push_str(&format!(
-                    "{} * {}",
-                    lit(c.to_f64().unwrap_or(f64::NAN)),
-                    sym.name()
-                ));
+                s.push_str(&format!("{} * {name}", lit(c.to_f64().unwrap_or(f64::NAN))));
             }
         }
         s
@@ -742,7 +762,7 @@ impl Program {
             }
         }
         let (text, p) = match &self.nodes[id] {
-            Node::Arg(i) => (self.args[*i].clone(), 9),
+            Node::Arg(i) => (self.names[*i].clone(), 9),
             Node::Const(b) => (lit(f64::from_bits(*b)), 9),
             Node::Sin(i) => (self.atoms[*i].sin_name.clone(), 9),
             Node::Cos(i) => (self.atoms[*i].cos_name.clone(), 9),

@@ -9,9 +9,10 @@ mod count;
 mod javascript;
 pub use latex::visual_len;
 mod latex;
+pub mod names;
 mod python;
 mod rust;
-mod sympy;
+pub(crate) mod sympy;
 
 pub use c::c_function;
 pub use codegen::{arguments, CodegenError, CodegenOptions, OpCount, Output};
@@ -21,6 +22,6 @@ pub use latex::{
     latex, latex_aligned, latex_aligned_named, latex_dual_quat, latex_matrix, latex_named,
     latex_quotient, latex_quotient_matrix, latex_symbol, latex_tuple, LatexOptions,
 };
-pub use python::python_function;
+pub use python::{python_function, python_names};
 pub use rust::rust_function;
 pub use sympy::{sympy, sympy_quotient};

@@ -1,12 +1,13 @@
 //! Rust source: a self-contained, documented function returning a struct of the outputs.
 
-use super::codegen::{float_literal, lower, CodegenError, CodegenOptions, Output, STD_CONSTS};
+use super::codegen::{lower_named, CodegenError, CodegenOptions, Output, STD_CONSTS};
+use super::names::{comment_lines, float_literal, safe_name, safe_names, Comment, Lang};
 
 /// The literal for `v`, through `std::f64::consts` where one matches.
 fn lit(v: f64) -> String {
     match STD_CONSTS.iter().find(|(_, c)| *c == v) {
         Some((name, _)) => format!("std::f64::consts::{name}"),
-        None => float_literal(v),
+        None => float_literal(Lang::Rust, v),
     }
 }
 
@@ -37,7 +38,9 @@ fn rust_type(o: &Output) -> String {
 /// but `std` and compiles without warnings under `rustc -D warnings` and clippy; an argument no
 /// output reads is written `_name`. An intermediate output (a step of a recurrence, see
 /// [`Output::intermediate()`]) has no field: its entries are locals, named after their symbols
-/// (`q2_3` for `Q2_3`) when read more than once.
+/// (`q2_3` for `Q2_3`) when read more than once. A name Rust reserves (a keyword, `None`,
+/// `std`, `f64`) gets `_` appended ([`safe_names`](crate::emit::names::safe_names)): `fn_:
+/// f64`; `doc` is escaped into doc comments that rustdoc reads as text.
 ///
 /// # Errors
 /// When an output reads a symbol that is not an argument, a name is not an identifier, or an
@@ -49,23 +52,36 @@ pub fn rust_function(
     args: &[String],
     o: &CodegenOptions,
 ) -> Result<String, CodegenError> {
-    let p = lower(outputs, args, o)?;
-    let ty = camel(name);
+    let name = safe_name(Lang::Rust, name, &[]);
+    let ty = safe_name(Lang::Rust, &camel(&name), &[]);
+    let returned: Vec<String> = outputs
+        .iter()
+        .filter(|o| !o.intermediate)
+        .map(|o| o.name.clone())
+        .collect();
+    let fields = safe_names(Lang::Rust, &returned, &[]);
+    let names = safe_names(Lang::Rust, args, &[ty.as_str()]);
+    let p = lower_named(outputs, args, &names, o)?;
     let count = p.count();
+    let doc_line = |s: &mut String, text: &str| {
+        for line in comment_lines(Comment::RustDoc, text) {
+            s.push_str(&format!("/// {line}\n").replace("/// \n", "///\n"));
+        }
+    };
     let mut s = String::new();
     s.push_str(&format!("/// The results of [`{name}`].\n"));
     s.push_str("#[derive(Clone, Copy, Debug, PartialEq)]\n");
     s.push_str(&format!("pub struct {ty} {{\n"));
-    for out in outputs.iter().filter(|o| !o.intermediate) {
-        s.push_str(&format!("    /// {}\n", out.doc));
-        s.push_str(&format!("    pub {}: {},\n", out.name, rust_type(out)));
+    for (out, field) in outputs.iter().filter(|o| !o.intermediate).zip(&fields) {
+        for line in comment_lines(Comment::RustDoc, &out.doc) {
+            s.push_str(&format!("    /// {line}\n"));
+        }
+        s.push_str(&format!("    pub {field}: {},\n", rust_type(out)));
     }
     s.push_str("}\n\n");
-    for line in doc.lines() {
-        s.push_str(&format!("/// {line}\n").replace("/// \n", "///\n"));
-    }
+    doc_line(&mut s, doc);
     s.push_str("///\n");
-    let arg_list: Vec<String> = args.iter().map(|a| format!("`{a}`")).collect();
+    let arg_list: Vec<String> = names.iter().map(|a| format!("`{a}`")).collect();
     s.push_str(&format!(
         "/// Arguments, in order: {}.\n",
         arg_list.join(", ")
@@ -77,13 +93,13 @@ pub fn rust_function(
     if args.len() > 7 {
         s.push_str("#[allow(clippy::too_many_arguments)]\n");
     }
-    if args
+    if names
         .iter()
         .any(|a| a.chars().any(|c| c.is_ascii_uppercase()))
     {
         s.push_str("#[allow(non_snake_case)]\n");
     }
-    let params: Vec<String> = args
+    let params: Vec<String> = names
         .iter()
         .enumerate()
         .map(|(i, a)| {
@@ -126,11 +142,11 @@ pub fn rust_function(
         s.push_str(&format!("    let {t} = {};\n", p.definition(id, &lit)));
     }
     s.push_str(&format!("    {ty} {{\n"));
-    for (out, ids) in &p.outputs {
+    for ((out, ids), field) in p.outputs.iter().zip(&fields) {
         let vals: Vec<String> = ids.iter().map(|&id| p.code(id, &lit)).collect();
         let value = match out.shape {
-            None if vals[0] == out.name => {
-                s.push_str(&format!("        {},\n", out.name));
+            None if vals[0] == *field => {
+                s.push_str(&format!("        {field},\n"));
                 continue;
             }
             None => vals[0].clone(),
@@ -146,7 +162,7 @@ pub fn rust_function(
                 )
             }
         };
-        s.push_str(&format!("        {}: {value},\n", out.name));
+        s.push_str(&format!("        {field}: {value},\n"));
     }
     s.push_str("    }\n}\n");
     Ok(s)

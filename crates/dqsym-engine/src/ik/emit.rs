@@ -6,6 +6,7 @@ use super::{Formula, IkSolution, TARGET_SYMBOLS};
 use crate::emit::codegen::{
     float_literal, lower, CodegenOptions, Id, Node, Output, Program, STD_CONSTS,
 };
+use crate::emit::names::{self, comment_lines, Comment};
 use crate::scalar::Trig;
 use crate::{Scalar, ScalarError};
 
@@ -394,7 +395,9 @@ fn helpers(sol: &IkSolution, texts: &[&str]) -> String {
     format!("{}\n", out.join(sep))
 }
 
-fn doc_lines(sol: &IkSolution) -> Vec<String> {
+/// The solver's documentation, one comment line each, escaped for `syntax` (the robot's name
+/// is text from outside: every line of it commented).
+fn doc_lines(sol: &IkSolution, syntax: Comment) -> Vec<String> {
     let mut v = vec![
         format!(
             "Inverse kinematics of {}: every closed-form solution.",
@@ -415,7 +418,7 @@ fn doc_lines(sol: &IkSolution) -> Vec<String> {
     if sol.position_only {
         v.push("Only the position column of the target is used.".into());
     }
-    v
+    v.iter().flat_map(|l| comment_lines(syntax, l)).collect()
 }
 
 /// The solver as Rust: `ik_into(out: &mut IkSolutions, t: &[[f64; 4]; 4], params...)` (no
@@ -425,13 +428,14 @@ fn doc_lines(sol: &IkSolution) -> Vec<String> {
 /// # Errors
 /// A closed form that fails.
 pub fn ik_rust(sol: &IkSolution) -> Result<String, ScalarError> {
+    let sol = &*super::safe::solution(sol, names::Lang::Rust);
     let c = ctx(sol, Lang::Rust)?;
     let n = sol.variables.len();
     let max = max_solutions(sol);
     let params: String = sol.params.iter().map(|p| format!(", {p}: f64")).collect();
     let pnames: String = sol.params.iter().map(|p| format!(", {p}")).collect();
     let mut s = String::new();
-    for l in doc_lines(sol) {
+    for l in doc_lines(sol, Comment::Slashes) {
         s.push_str(&format!("// {l}\n"));
     }
     s.push_str(&format!(
@@ -621,13 +625,14 @@ fn ik_dq_matrix(q: &[f64; 8]) -> [[f64; 4]; 4] {
 /// # Errors
 /// A closed form that fails.
 pub fn ik_c(sol: &IkSolution) -> Result<String, ScalarError> {
+    let sol = &*super::safe::solution(sol, names::Lang::C);
     let c = ctx(sol, Lang::C)?;
     let n = sol.variables.len();
     let max = max_solutions(sol);
     let params: String = sol.params.iter().map(|p| format!(", double {p}")).collect();
     let pnames: String = sol.params.iter().map(|p| format!(", {p}")).collect();
     let mut s = String::new();
-    for l in doc_lines(sol) {
+    for l in doc_lines(sol, Comment::Block) {
         s.push_str(&format!("/* {l} */\n"));
     }
     s.push_str(&format!(
@@ -794,6 +799,7 @@ static void ik_dq_matrix(const double q[8], double T[4][4]) {
 /// # Errors
 /// A closed form that fails.
 pub fn ik_python(sol: &IkSolution) -> Result<String, ScalarError> {
+    let sol = &*super::safe::solution(sol, names::Lang::Python);
     let c = ctx(sol, Lang::Python)?;
     let kw = if sol.params.is_empty() {
         String::new()
@@ -802,7 +808,7 @@ pub fn ik_python(sol: &IkSolution) -> Result<String, ScalarError> {
     };
     let pass: String = sol.params.iter().map(|p| format!(", {p}={p}")).collect();
     let mut s = String::new();
-    for l in doc_lines(sol) {
+    for l in doc_lines(sol, Comment::Python) {
         s.push_str(&format!("# {l}\n"));
     }
     s.push_str("import math\n\nimport numpy as np\n\n\n");

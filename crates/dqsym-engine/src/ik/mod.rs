@@ -12,6 +12,7 @@ pub mod axes;
 mod emit;
 mod plan;
 mod report;
+mod safe;
 mod walk;
 
 pub use axes::{home_axes, intersection, relation, Axis, Relation, V3};

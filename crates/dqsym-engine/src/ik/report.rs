@@ -2,6 +2,7 @@
 
 use super::{Formula, IkSolution, IkStep};
 use crate::closed::Expr;
+use crate::emit::names::{line_comment, Comment};
 use crate::emit::{latex, latex_symbol, sympy, LatexOptions};
 use crate::print::{plain, Format, PlainOptions};
 use crate::{closed_form, Scalar, ScalarError};
@@ -130,7 +131,7 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
         Format::Plain => {
             let o = PlainOptions { shorthand };
             for l in header(sol) {
-                out.push_str(&l);
+                out.push_str(&crate::emit::names::printable(&l));
                 out.push('\n');
             }
             for (step, parts) in sol.steps.iter().zip(all) {
@@ -174,7 +175,7 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
                 ..LatexOptions::default()
             };
             for l in header(sol) {
-                out.push_str(&format!("% {l}\n"));
+                out.push_str(&line_comment(Comment::Latex, "%", &l));
             }
             for (step, parts) in sol.steps.iter().zip(all) {
                 let q = latex_symbol(&step.variable);
@@ -212,7 +213,7 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
         }
         _ => {
             for l in header(sol) {
-                out.push_str(&format!("# {l}\n"));
+                out.push_str(&line_comment(Comment::Hash, "#", &l));
             }
             for (step, parts) in sol.steps.iter().zip(all) {
                 let q = &step.variable;

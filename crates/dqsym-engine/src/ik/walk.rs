@@ -77,7 +77,14 @@ pub fn ik_walk(robot: &Robot, sol: &IkSolution, markdown: bool) -> Result<String
     let mut out = String::new();
     out.push_str(&h(
         1,
-        &format!("Inverse kinematics of {}, step by step", sol.robot),
+        &format!(
+            "Inverse kinematics of {}, step by step",
+            if markdown {
+                crate::emit::names::html_text(&sol.robot)
+            } else {
+                crate::emit::names::printable(&sol.robot)
+            }
+        ),
     ));
     out.push_str(&h(2, "1. The joint axes as Plücker lines (home pose)"));
     out.push_str(

@@ -293,6 +293,7 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
                     // The same name twice is a mistake; a coupling is written as an
                     // expression in the other joint's variable.
                     check_distinct(&variables, &text).map_err(|m| err("variable", m))?;
+                    builtin_name(&text, eval).map_err(|m| err("variable", m))?;
                     (text.clone(), Scalar::sym(&text))
                 } else {
                     let value = eval(&text).map_err(|m| err("variable", m))?;
@@ -906,6 +907,21 @@ fn check_distinct(earlier: &[String], var: &str) -> Result<(), String> {
             k + 1
         )),
         None => Ok(()),
+    }
+}
+
+/// Refuses a joint variable that the language reads as something else than that symbol: the
+/// constant `pi` (a joint `pi` would be a fixed half turn with a zero Jacobian column), the
+/// dual unit `eps`, the quaternion units, any built-in name.
+fn builtin_name(name: &str, eval: FieldEval) -> Result<(), String> {
+    let sym = Scalar::sym(name);
+    let own = !crate::scalar::Sym::new(name).is_pi() && eval(name).is_ok_and(|v| v == sym);
+    if own {
+        Ok(())
+    } else {
+        Err(format!(
+            "`{name}` is a constant or a built-in name of the language, not a joint variable"
+        ))
     }
 }
 
