@@ -532,17 +532,32 @@ impl Robot {
         let file = CString::new(format!("<dqsym {}>", self.robot.name)).unwrap_or_default();
         let module_name = CString::new("dqsym_generated").unwrap_or_default();
         let m = PyModule::from_code(py, &code, &file, &module_name)?;
-        let f = m.getattr(name.as_str())?;
-        let args: Vec<String> = src
+        let mut f = m.getattr(name.as_str())?;
+        // The parameters are the symbols, a name Python or the function reserves renamed
+        // (`shape` -> `shape_`, `lambda` -> `lambda_`); the docstring lists each renamed one
+        // as `shape_ (the symbol shape)`. The function returned takes the symbols' names.
+        let listed = src
             .lines()
-            .find_map(|l| l.strip_prefix("def ")?.split_once('(')?.1.split_once(')'))
-            .map(|(a, _)| {
-                a.split(',')
-                    .map(|s| s.trim().to_owned())
-                    .filter(|s| !s.is_empty())
-                    .collect()
-            })
+            .find_map(|l| l.trim().strip_prefix("Arguments (floats or arrays"))
+            .and_then(|l| l.split_once(": "))
+            .map(|(_, l)| l.trim_end_matches('.'))
             .unwrap_or_default();
+        let mut args: Vec<String> = Vec::new();
+        let renamed = PyDict::new(py);
+        for item in listed.split(", ").filter(|s| !s.is_empty()) {
+            match item.split_once(" (the symbol ") {
+                Some((param, sym)) => {
+                    let sym = sym.trim_end_matches(')');
+                    renamed.set_item(sym, param)?;
+                    args.push(sym.to_owned());
+                }
+                None => args.push(item.to_owned()),
+            }
+        }
+        if !renamed.is_empty() {
+            let wrap = PyModule::from_code(py, WRAP_KEYWORDS, c"<dqsym wrap>", c"dqsym_wrap")?;
+            f = wrap.getattr("wrap")?.call1((f, renamed))?;
+        }
         f.setattr("source", src)?;
         f.setattr("args", args)?;
         Ok(f.unbind())
@@ -585,3 +600,16 @@ impl Robot {
         )
     }
 }
+
+/// A wrapper that passes keyword arguments named after the symbols to the generated
+/// function's renamed parameters. Fixed text: no name from a robot is executed.
+const WRAP_KEYWORDS: &std::ffi::CStr = c"import functools
+
+
+def wrap(f, renamed):
+    @functools.wraps(f)
+    def call(*args, **kwargs):
+        return f(*args, **{renamed.get(k, k): v for k, v in kwargs.items()})
+
+    return call
+";

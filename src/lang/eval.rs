@@ -178,7 +178,8 @@ impl EvalError {
 
     /// The one-line message, without location.
     pub fn message(&self) -> String {
-        self.kind.to_string()
+        // A huge number in a message (a base, an exponent) is shown abbreviated.
+        crate::scalar::short_numbers(&self.kind.to_string())
     }
 
     /// The full message with location, source line and caret, `src` being the text the

@@ -16,6 +16,7 @@ mod lang;
 mod laws;
 mod layers;
 mod limits;
+mod names;
 mod offsets;
 mod paper;
 mod paper_arms;

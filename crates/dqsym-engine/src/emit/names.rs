@@ -400,7 +400,7 @@ const C_MATH_MACROS: &[&str] = &[
 /// Rust's strict, reserved and 2024 keywords, the prelude's variants and the paths the
 /// generated code names.
 const RUST_RESERVED: &[&str] = &[
-    "Err", "None", "Ok", "Self", "Some", "_", "abstract", "as", "async", "await", "become", "box",
+    "Err", "None", "Ok", "Self", "Some", "abstract", "as", "async", "await", "become", "box",
     "break", "const", "continue", "core", "crate", "do", "dyn", "else", "enum", "extern", "f64",
     "false", "final", "fn", "for", "gen", "if", "impl", "in", "let", "loop", "macro", "match",
     "mod", "move", "mut", "override", "priv", "pub", "ref", "return", "self", "static", "std",

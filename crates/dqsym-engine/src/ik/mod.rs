@@ -37,7 +37,7 @@ pub const TARGET_SYMBOLS: [[&str; 4]; 3] = [
 #[non_exhaustive]
 pub enum IkError {
     /// The axes' geometry is not one of the supported families.
-    #[error("{robot}: no closed-form inverse kinematics for this geometry.\n{geometry}\nSupported families: {families}")]
+    #[error("{}: no closed-form inverse kinematics for this geometry.\n{geometry}\nSupported families: {families}", crate::emit::names::printable(robot))]
     Unsupported {
         /// The robot's name.
         robot: String,

@@ -88,3 +88,35 @@ mod tests {
         assert_eq!(parse_decimal("1e-99999999999999999999", 10_000), None);
     }
 }
+
+/// `text` with every run of more than 40 digits abbreviated to its first 12 and last 6 digits
+/// and its length, `199506311688...709376 (3011 digits)`: a message about a huge number stays
+/// a line long.
+pub fn short_numbers(text: &str) -> String {
+    const LONG: usize = 40;
+    let mut out = String::with_capacity(text.len().min(1024));
+    let mut digits = String::new();
+    let flush = |digits: &mut String, out: &mut String| {
+        if digits.len() > LONG {
+            let n = digits.len();
+            out.push_str(&format!(
+                "{}...{} ({n} digits)",
+                &digits[..12],
+                &digits[n - 6..]
+            ));
+        } else {
+            out.push_str(digits);
+        }
+        digits.clear();
+    };
+    for c in text.chars() {
+        if c.is_ascii_digit() {
+            digits.push(c);
+        } else {
+            flush(&mut digits, &mut out);
+            out.push(c);
+        }
+    }
+    flush(&mut digits, &mut out);
+    out
+}

@@ -40,7 +40,7 @@ pub use atoms::{Sym, Trig};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
 pub(crate) use ctx::{charge, check_cancelled, term_limit, work_used, Poll};
 pub use ctx::{Context, Entered, DEFAULT_MAX_CYCLOTOMIC_DEGREE, DEFAULT_MAX_EXPONENT};
-pub use decimal::parse_decimal;
+pub use decimal::{parse_decimal, short_numbers};
 pub use frac::Frac;
 pub(crate) use par::{join, par_map, with_own_budget};
 pub(crate) use q::Q;
@@ -100,7 +100,7 @@ pub enum ScalarError {
     #[error("cannot take an exact square root of {0}")]
     BadSqrt(String),
     /// An exponent or coefficient outside the supported range.
-    #[error("number out of range: {0}")]
+    #[error("number out of range: {}", decimal::short_numbers(.0))]
     OutOfRange(String),
     /// A symbol without a value during numeric evaluation.
     #[error("no value for symbol {0}")]
