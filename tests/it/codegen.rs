@@ -264,8 +264,18 @@ fn javascript_puma560_and_rrr_run_in_node_and_match_eval() {
         code.contains("Math.sin(") && code.contains("\"use strict\";"),
         "{code}"
     );
-    let bad = vec![Output::scalar("x", "X.", closed(&sym("new")))];
-    assert!(javascript_function("f", "", &bad, &["new".to_owned()], &Default::default()).is_err());
+    // A reserved word is renamed (`new` -> `new_`), the function called by position.
+    let reserved = vec![Output::scalar("x", "X.", closed(&sym("new")))];
+    let code = javascript_function(
+        "new",
+        "",
+        &reserved,
+        &["new".to_owned()],
+        &Default::default(),
+    )
+    .unwrap();
+    assert!(code.contains("function new_(new_) {"), "{code}");
+    assert!(code.contains("x: new_,"), "{code}");
 }
 
 #[test]

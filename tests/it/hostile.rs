@@ -1,7 +1,9 @@
 //! A corpus of hostile inputs (tests/data/hostile), each run through the binary the way a user
 //! would give it, with its whole answer snapshot-tested: `e/` one-liners (`dqsym -e TEXT`),
 //! `run/` scripts (`dqsym run`), `repl/` sessions typed into the REPL, `robot/` robot files
-//! (`dqsym fk`), `walk/` files (`dqsym walk`), `args/` command lines. None may panic, print a
+//! (`dqsym fk`), `walk/` files (`dqsym walk`), `args/` command lines, `names/` robot files
+//! with hostile names (`fk` in every format, `ik` in code for files named `ik_*`, `convert`
+//! for URDF, `walk --markdown`, answers one after another). None may panic, print a
 //! backtrace or end with a status other than 0, 1 or 2; every one ends under the default limits.
 
 use std::io::Write;
@@ -70,6 +72,25 @@ fn answer(dir: &Path, args: &[String], stdin: &[u8]) -> String {
     )
 }
 
+/// The commands a `names/` file is given: `fk` in every format, `walk --markdown`, `ik` in
+/// code for `ik_*` files, `convert` for URDF files.
+fn names_commands(file: &str) -> Vec<Vec<String>> {
+    let mut v: Vec<Vec<String>> = ["plain", "latex", "sympy", "c", "rust", "python"]
+        .iter()
+        .map(|f| vec!["fk".into(), file.into(), "--format".into(), f.to_string()])
+        .collect();
+    v.push(vec!["walk".into(), file.into(), "--markdown".into()]);
+    if file.starts_with("ik_") {
+        for f in ["c", "python", "rust"] {
+            v.push(vec!["ik".into(), file.into(), "--format".into(), f.into()]);
+        }
+    }
+    if file.ends_with(".urdf") {
+        v.push(vec!["convert".into(), file.into()]);
+    }
+    v
+}
+
 #[test]
 fn hostile_inputs_get_clear_answers() {
     let mut settings = insta::Settings::clone_current();
@@ -89,6 +110,15 @@ fn hostile_inputs_get_clear_answers() {
             let bytes = std::fs::read(path).unwrap();
             let text = String::from_utf8_lossy(&bytes).into_owned();
             let s = |x: &str| x.to_owned();
+            if kind == "names" {
+                let answers: Vec<String> = names_commands(&name)
+                    .iter()
+                    .map(|args| format!("=== dqsym {}\n{}", args.join(" "), answer(dir, args, &[])))
+                    .collect();
+                insta::assert_snapshot!(answers.join("\n"));
+                count.set(count.get() + 1);
+                return;
+            }
             let (args, stdin): (Vec<String>, Vec<u8>) = match kind.as_str() {
                 "e" => (vec![s("-e"), text.clone()], Vec::new()),
                 "run" => (vec![s("run"), name], Vec::new()),

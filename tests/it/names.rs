@@ -560,3 +560,122 @@ fn python_function_names_are_available_for_keyword_callers() {
     let names = dqsym::emit::python_names(&args);
     assert_eq!(names, ["shape__", "x", "shape_", "lambda_"]);
 }
+
+/// Names the solver code writes itself, besides each language's table.
+const IK_OWN: &[&str] = &[
+    "T", "q", "ik", "ik_out", "ik_t0", "IK_MAX", "IkMemo", "math", "np",
+];
+
+/// Planar 2R robots whose joint variables and link lengths take the names of `lang`'s table
+/// (four names each) and the solver's own names.
+fn ik_robots(lang: Lang) -> Vec<(dqsym::Robot, [String; 4])> {
+    let mut names = robot_names(lang);
+    names.extend(IK_OWN.iter().map(|s| s.to_string()));
+    names.sort();
+    names.dedup();
+    names
+        .chunks(4)
+        .filter(|c| c.len() == 4)
+        .enumerate()
+        .map(|(i, c)| {
+            let [v1, v2, p1, p2] = [&c[0], &c[1], &c[2], &c[3]];
+            let text = format!(
+                "name = \"k{i} */ x\"\nconvention = \"dh\"\n\
+                 [[joint]]\ntype = \"revolute\"\ntheta = \"{v1}\"\nd = \"0\"\na = \"{p1}\"\nalpha = \"0\"\n\
+                 [[joint]]\ntype = \"revolute\"\ntheta = \"{v2}\"\nd = \"0\"\na = \"{p2}\"\nalpha = \"0\"\n"
+            );
+            let r = parse_robot(&text, "k.toml", &eval_scalar_text).expect("robot");
+            (r, [v1.clone(), v2.clone(), p1.clone(), p2.clone()])
+        })
+        .collect()
+}
+
+fn ik_solution(r: &dqsym::Robot) -> dqsym::ik::IkSolution {
+    dqsym::ik::solve(r, &Default::default()).expect("planar 2R solves")
+}
+
+/// The IK solvers' parameters and joint variables named after every name of C's and Rust's
+/// tables (and the solver's own names): each solver compiles (-Werror, -D warnings).
+#[test]
+fn ik_code_with_reserved_parameter_and_joint_names_compiles() {
+    let dir = temp_dir("names_ik");
+    for (k, (r, _)) in ik_robots(Lang::C).iter().enumerate() {
+        let file = dir.join(format!("k{k}.c"));
+        std::fs::write(&file, dqsym::ik::ik_c(&ik_solution(r)).unwrap()).unwrap();
+        let mut gcc = Command::new("gcc");
+        gcc.args(["-std=c99", "-Wall", "-Wextra", "-Werror", "-c", "-o"])
+            .arg(dir.join(format!("k{k}.o")))
+            .arg(&file);
+        run(gcc, "", &format!("gcc -Werror on {}", file.display()));
+    }
+    // One crate, a module per robot.
+    let mut src = String::from("#![allow(dead_code)]\n");
+    for (k, (r, _)) in ik_robots(Lang::Rust).iter().enumerate() {
+        let code = dqsym::ik::ik_rust(&ik_solution(r)).unwrap();
+        src.push_str(&format!("pub mod k{k} {{\n{code}\n}}\n"));
+    }
+    let lib = dir.join("k.rs");
+    std::fs::write(&lib, &src).unwrap();
+    let mut rustc = Command::new("rustc");
+    rustc
+        .args([
+            "--edition",
+            "2021",
+            "-D",
+            "warnings",
+            "--crate-type",
+            "lib",
+            "-o",
+        ])
+        .arg(dir.join("libk.rlib"))
+        .arg(&lib);
+    run(rustc, "", "rustc -D warnings on IK with reserved names");
+}
+
+/// The Python solvers for every name of Python's table: each solution reaches the target
+/// (planar 2R: the position `l1 (cos q1, sin q1) + l2 (cos q12, sin q12)`).
+#[test]
+fn ik_python_with_reserved_names_reaches_the_target() {
+    let robots = ik_robots(Lang::Python);
+    let pts = values(31, 4 * robots.len());
+    let mut script = String::from("import importlib.util, math, sys\nimport numpy as np\n");
+    let dir = temp_dir("names_ik_py");
+    for (k, (r, [_, _, p1, p2])) in robots.iter().enumerate() {
+        let code = dqsym::ik::ik_python(&ik_solution(r)).unwrap();
+        let file = dir.join(format!("k{k}.py"));
+        std::fs::write(&file, &code).unwrap();
+        // The keyword parameters in sorted order of the names they stand for.
+        let def = code.lines().find(|l| l.starts_with("def ik(")).unwrap();
+        let params: Vec<&str> = def.trim_end_matches("):").split(", ").skip(2).collect();
+        let mut sorted = [p1, p2];
+        sorted.sort();
+        let (l1, l2) = (0.5 + pts[4 * k].abs(), 0.5 + pts[4 * k + 1].abs());
+        let value = |p: &String| if p == p1 { l1 } else { l2 };
+        let kw: Vec<String> = params
+            .iter()
+            .zip(sorted)
+            .map(|(name, p)| format!("{name}={:?}", value(p)))
+            .collect();
+        let (q1, q2) = (pts[4 * k + 2], pts[4 * k + 3]);
+        // Each solution's position within 1e-9 of the target: the atan2 forms are accurate
+        // to a few ulps of the lengths (< 2.5); near the straight elbow an angle may be off
+        // by sqrt(ulp) ~ 1e-8, which moves the tip only to second order.
+        script.push_str(&format!(
+            "spec = importlib.util.spec_from_file_location('k{k}', {file:?})\n\
+             m = importlib.util.module_from_spec(spec)\nspec.loader.exec_module(m)\n\
+             px = {l1:?} * math.cos({q1:?}) + {l2:?} * math.cos({q1:?} + {q2:?})\n\
+             py = {l1:?} * math.sin({q1:?}) + {l2:?} * math.sin({q1:?} + {q2:?})\n\
+             T = np.eye(4)\nT[0, 3], T[1, 3] = px, py\n\
+             sols = m.ik(T, {kw})\nassert sols, {k}\n\
+             for a, b in sols:\n\
+             \x20   x = {l1:?} * math.cos(a) + {l2:?} * math.cos(a + b)\n\
+             \x20   y = {l1:?} * math.sin(a) + {l2:?} * math.sin(a + b)\n\
+             \x20   assert abs(x - px) < 1e-9 and abs(y - py) < 1e-9, ({k}, a, b, x, y, px, py)\n",
+            kw = kw.join(", "),
+            file = file.display().to_string(),
+        ));
+    }
+    script.push_str(&format!("print({})\n", robots.len()));
+    let out = run_py_file("ik", &script, "");
+    assert_eq!(out.trim(), robots.len().to_string());
+}
