@@ -697,3 +697,43 @@ pub(crate) fn float_literal(lang: Lang, v: f64) -> String {
         _ => format!("(-{inf})"),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn renamed_names_avoid_each_other_and_the_fixed_ones() {
+        let names: Vec<String> = ["int", "int_", "x", "value"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        assert_eq!(
+            safe_names(Lang::C, &names, &["value"]),
+            ["int__", "int_", "x", "value_"]
+        );
+        assert_eq!(safe_name(Lang::Rust, "self", &[]), "self_");
+        assert!(reserved(Lang::C, "cosf") && reserved(Lang::C, "sqrtl") && !reserved(Lang::C, "x"));
+    }
+
+    #[test]
+    fn comment_lines_break_every_terminator() {
+        let l = comment_lines(Comment::Block, "a*/b/*c??/\nd\u{1b}");
+        assert_eq!(l, ["a* /b/ *c? ?/", "d\\u{1b}"]);
+        assert_eq!(comment_lines(Comment::CLine, "x \\ "), ["x \\."]);
+        assert_eq!(
+            comment_lines(Comment::Docstring, "\"\"\" \\N"),
+            ["\\\"\\\"\\\" \\\\N"]
+        );
+        assert_eq!(
+            comment_lines(Comment::RustDoc, "   ```rust  <b>`x`"),
+            ["\\`\\`\\`rust \\<b\\>`x`"]
+        );
+        assert_eq!(line_comment(Comment::Hash, "#", "a\n\nb"), "# a\n#\n# b\n");
+        assert_eq!(toml_string("a\"\\\n\u{1b}"), "\"a\\\"\\\\\\n\\u001B\"");
+        assert_eq!(
+            html_text("<a href='x'>&"),
+            "&lt;a href=&#39;x&#39;&gt;&amp;"
+        );
+    }
+}

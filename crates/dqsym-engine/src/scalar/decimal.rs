@@ -57,38 +57,6 @@ pub fn parse_decimal(text: &str, max_digits: usize) -> Option<BigRational> {
     Some(BigRational::new(num, BigInt::from(den)))
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(n.into(), d.into())
-    }
-
-    #[test]
-    fn decimals_are_read_exactly() {
-        assert_eq!(parse_decimal("0.4318", 100), Some(q(2159, 5000)));
-        assert_eq!(parse_decimal("-0.39225", 100), Some(q(-1569, 4000)));
-        assert_eq!(parse_decimal("1e-3", 100), Some(q(1, 1000)));
-        assert_eq!(parse_decimal("1.5E2", 100), Some(q(150, 1)));
-        assert_eq!(parse_decimal(".25", 100), Some(q(1, 4)));
-        assert_eq!(parse_decimal("3.", 100), Some(q(3, 1)));
-        assert_eq!(parse_decimal("+0.0", 100), Some(q(0, 1)));
-        assert_eq!(parse_decimal("0e999999999999", 100), Some(q(0, 1)));
-    }
-
-    #[test]
-    fn malformed_or_huge_literals_are_refused() {
-        for bad in [
-            "", ".", "e3", "1e", "1e+", "1.2.3", "inf", "nan", "0x10", "1_0", "--1",
-        ] {
-            assert_eq!(parse_decimal(bad, 100), None, "{bad}");
-        }
-        assert_eq!(parse_decimal("1e999999999", 10_000), None);
-        assert_eq!(parse_decimal("1e-99999999999999999999", 10_000), None);
-    }
-}
-
 /// `text` with every run of more than 40 digits abbreviated to its first 12 and last 6 digits
 /// and its length, `199506311688...709376 (3011 digits)`: a message about a huge number stays
 /// a line long.
@@ -119,4 +87,47 @@ pub fn short_numbers(text: &str) -> String {
     }
     flush(&mut digits, &mut out);
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(n: i64, d: i64) -> BigRational {
+        BigRational::new(n.into(), d.into())
+    }
+
+    #[test]
+    fn decimals_are_read_exactly() {
+        assert_eq!(parse_decimal("0.4318", 100), Some(q(2159, 5000)));
+        assert_eq!(parse_decimal("-0.39225", 100), Some(q(-1569, 4000)));
+        assert_eq!(parse_decimal("1e-3", 100), Some(q(1, 1000)));
+        assert_eq!(parse_decimal("1.5E2", 100), Some(q(150, 1)));
+        assert_eq!(parse_decimal(".25", 100), Some(q(1, 4)));
+        assert_eq!(parse_decimal("3.", 100), Some(q(3, 1)));
+        assert_eq!(parse_decimal("+0.0", 100), Some(q(0, 1)));
+        assert_eq!(parse_decimal("0e999999999999", 100), Some(q(0, 1)));
+    }
+
+    #[test]
+    fn malformed_or_huge_literals_are_refused() {
+        for bad in [
+            "", ".", "e3", "1e", "1e+", "1.2.3", "inf", "nan", "0x10", "1_0", "--1",
+        ] {
+            assert_eq!(parse_decimal(bad, 100), None, "{bad}");
+        }
+        assert_eq!(parse_decimal("1e999999999", 10_000), None);
+        assert_eq!(parse_decimal("1e-99999999999999999999", 10_000), None);
+    }
+
+    #[test]
+    fn short_numbers_abbreviates_long_digit_runs_only() {
+        let big = num_bigint::BigInt::from(7).pow(100u32).to_string();
+        let text = format!("power 3 of {big} is 12345 and x{big}y");
+        let short = super::short_numbers(&text);
+        let n = big.len();
+        let abbr = format!("{}...{} ({n} digits)", &big[..12], &big[n - 6..]);
+        assert_eq!(short, format!("power 3 of {abbr} is 12345 and x{abbr}y"));
+        assert_eq!(super::short_numbers("1/3 of 40 digits"), "1/3 of 40 digits");
+    }
 }
