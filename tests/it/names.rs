@@ -194,10 +194,22 @@ fn rust_reserved_names_are_renamed_compile_clean_and_match_eval() {
 /// constant in dqsym too.
 #[test]
 fn sympy_names_read_back_by_plain_sympify_as_symbols() {
-    let names: Vec<String> = reserved_names(Lang::Sympy)
+    // The table, and every name the installed SymPy binds (a newer SymPy's new names too).
+    let live = run_python(
+        "import keyword, sympy\ng = {}\nexec('from sympy import *', g)\n\
+         print('\\n'.join(sorted(set(g) | set(keyword.kwlist))))",
+        "",
+        "sympy",
+    );
+    let mut names: Vec<String> = reserved_names(Lang::Sympy)
         .into_iter()
+        .chain(live.lines().map(str::to_owned))
         .filter(|n| n != "pi" && n != "x")
+        .filter(|n| n.starts_with(|c: char| c.is_ascii_alphabetic()))
+        .filter(|n| n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
         .collect();
+    names.sort();
+    names.dedup();
     assert!(names.len() > 900, "{} SymPy names", names.len());
     let pts = values(14, 2 * names.len());
     let mut input = String::new();
