@@ -98,6 +98,15 @@ pub fn printable(text: &str) -> String {
         .collect()
 }
 
+/// `text` for a terminal, lines kept: every hidden character but `\n` and `\t` escaped as
+/// [`printable`] does. For messages that quote a file's text (a field, a name, a path).
+pub fn terminal_text(text: &str) -> String {
+    text.split('\n')
+        .map(|l| l.split('\t').map(printable).collect::<Vec<_>>().join("\t"))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 /// The lines of `text` (split at `\n`), each escaped for the comment syntax: one comment line
 /// each, or one line of a block or docstring, with the comment markers the caller adds.
 pub fn comment_lines(syntax: Comment, text: &str) -> Vec<String> {

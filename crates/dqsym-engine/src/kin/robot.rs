@@ -13,6 +13,7 @@
 //! frame being `Trans(xyz) R`. `tool = ["x", "y", "z"]` (or `"x, y, z"`) is a point instead.
 
 use super::{Chain, Joint, JointGeometry, JointKind};
+use crate::emit::names::terminal_text;
 use crate::{DualQuat, Matrix4, Quat, Scalar};
 use serde::Deserialize;
 use std::sync::atomic::{AtomicBool, Ordering as AtomicOrdering};
@@ -95,7 +96,7 @@ impl Frame {
 #[non_exhaustive]
 pub enum RobotError {
     /// The file is not valid TOML or misses a top-level field.
-    #[error("{file}: {message}")]
+    #[error("{}: {}", terminal_text(file), terminal_text(message))]
     File {
         /// The file's name.
         file: String,
@@ -103,7 +104,11 @@ pub enum RobotError {
         message: String,
     },
     /// A joint field is missing or wrong.
-    #[error("{file}: joint {joint}, field `{field}`: {message}")]
+    #[error(
+        "{}: joint {joint}, field `{field}`: {}",
+        terminal_text(file),
+        terminal_text(message)
+    )]
     Field {
         /// The file's name.
         file: String,

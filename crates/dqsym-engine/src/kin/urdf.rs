@@ -19,6 +19,7 @@
 
 use super::robot::{frame_dq, unit_numeric};
 use super::{Chain, Convention, Frame, Joint, JointKind, Robot};
+use crate::emit::names::terminal_text;
 use crate::{DualQuat, Scalar};
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
@@ -69,7 +70,7 @@ pub struct UrdfRobot {
 #[non_exhaustive]
 pub enum UrdfError {
     /// Not well-formed XML, or not a `<robot>`.
-    #[error("{file}: {message}")]
+    #[error("{}: {}", terminal_text(file), terminal_text(message))]
     Xml {
         /// The file name.
         file: String,
@@ -77,7 +78,12 @@ pub enum UrdfError {
         message: String,
     },
     /// An element is missing, wrong or unsupported.
-    #[error("{file}: {element}: {message}")]
+    #[error(
+        "{}: {}: {}",
+        terminal_text(file),
+        terminal_text(element),
+        terminal_text(message)
+    )]
     Element {
         /// The file name.
         file: String,
