@@ -691,3 +691,50 @@ fn ik_python_with_reserved_names_reaches_the_target() {
     let out = run_py_file("ik", &script, "");
     assert_eq!(out.trim(), robots.len().to_string());
 }
+
+/// A URDF's joint names become its variables without the language in between: every name of
+/// C's table (`cos`, `sqrt`, `int`, `M_PI`) names a joint of a planar 2R URDF, `fk --format c`
+/// of each in one file (-Werror), against `Tx(1) Rz(q1) Tx(1) Rz(q2)` by plain matrices.
+#[test]
+fn c_fk_of_urdf_joints_named_after_c_names_matches_matrices() {
+    let names = reserved_names(Lang::C);
+    let pts = values(41, names.len() + 1);
+    let mut src = String::new();
+    let mut calls = String::new();
+    let mut want = Vec::new();
+    for (i, pair) in names.chunks(2).enumerate() {
+        let (j1, j2) = (&pair[0], pair.get(1).unwrap_or(&names[0]));
+        let urdf = format!(
+            "<robot name=\"u{i}\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/>\
+             <joint name=\"{j1}\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/>\
+             <origin xyz=\"1 0 0\"/><axis xyz=\"0 0 1\"/></joint>\
+             <joint name=\"{j2}\" type=\"revolute\"><parent link=\"b\"/><child link=\"c\"/>\
+             <origin xyz=\"1 0 0\"/><axis xyz=\"0 0 1\"/></joint></robot>"
+        );
+        let r = dqsym::parse_urdf(&urdf, "u.urdf", &Default::default())
+            .expect("urdf")
+            .robot;
+        let code = fk_code(&r, Format::C);
+        let f = fn_name(&code, "void ");
+        src.push_str(&code);
+        let (q1, q2) = (pts[2 * i], pts[2 * i + 1]);
+        calls.push_str(&format!(
+            "    {{ double dq[8], t[3][4]; {f}({q1:?}, {q2:?}, dq, t); \
+             printf(\"%.17g %.17g %.17g\\n\", t[0][3], t[1][3], t[0][0]); }}\n"
+        ));
+        // Tx(1) Rz(q1) Tx(1) Rz(q2): the tip (1 + cos q1, sin q1), T[0][0] = cos(q1 + q2).
+        want.push([1.0 + q1.cos(), q1.sin(), (q1 + q2).cos()]);
+    }
+    src.push_str(&format!(
+        "#include <stdio.h>\nint main(void)\n{{\n{calls}    return 0;\n}}\n"
+    ));
+    let out = compile_and_run_c("urdf", &src);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), want.len());
+    for (l, w) in lines.iter().zip(&want) {
+        let got: Vec<f64> = l.split(' ').map(|x| x.parse().unwrap()).collect();
+        for k in 0..3 {
+            close(l, got[k], w[k]);
+        }
+    }
+}
