@@ -9,7 +9,8 @@
 //!   trailing backslash in C line comments, `"""`, `\` and `"` in Python docstrings (`\"`, `\\`),
 //!   a `coding:` declaration in Python comments, Markdown that rustdoc would run or render in
 //!   Rust doc comments (code fences, indented code, HTML, links). [`html_text`] escapes text for
-//!   Markdown headings and HTML, [`toml_string`] writes a TOML basic string.
+//!   Markdown headings and HTML, [`toml_string`] writes a TOML basic string, [`terminal_text`]
+//!   keeps an error message's lines but escapes the rest (a robot file's quoted text).
 //! - **Symbols never become keywords.** A name the target language reserves gets `_` appended
 //!   (`int` -> `int_`, `fn` -> `fn_`, `lambda` -> `lambda_`), again until it is neither reserved
 //!   nor another name of the same function ([`safe_names`]). What a language reserves is one
