@@ -416,7 +416,7 @@ pub fn ik_walk_html(
 /// [`crate::ik::candidates`] does.
 fn ik_script(sol: &crate::ik::IkSolution) -> Result<String, WalkError> {
     use crate::ik::{Formula, TARGET_SYMBOLS};
-    let forms = sol.forms().map_err(WalkError::Config)?;
+    let forms = sol.forms()?;
     let target: Vec<String> = TARGET_SYMBOLS
         .iter()
         .flatten()

@@ -20,7 +20,7 @@ pub use report::ik_report;
 pub use walk::ik_walk;
 
 use crate::kin::Robot;
-use crate::{Matrix4, Scalar};
+use crate::{Matrix4, Scalar, ScalarError};
 use thiserror::Error;
 
 /// The names of the target pose's entries: `T = [[r11 r12 r13 px] [r21 r22 r23 py] [r31 r32 r33
@@ -48,9 +48,10 @@ pub enum IkError {
     /// A bad option (`--free`) or a name clash.
     #[error("{0}")]
     Option(String),
-    /// An exact computation failed (term limit, work budget).
-    #[error("{0}")]
-    Scalar(String),
+    /// An exact computation failed (term limit, work budget): the limit with the option that
+    /// raises it, never taken for a property of the geometry.
+    #[error(transparent)]
+    Scalar(#[from] ScalarError),
 }
 
 /// What to derive.
@@ -144,8 +145,39 @@ pub struct IkSolution {
     pub position_only: bool,
     /// The home pose `M` of the end effector.
     pub home: Matrix4<Scalar>,
+    /// The frame solved for: the end `fk` reports.
+    pub end: EndFrame,
     /// The closed forms of every step's parts, computed on first use.
-    pub(crate) forms: std::sync::OnceLock<Result<Vec<Parts>, String>>,
+    pub(crate) forms: std::sync::OnceLock<Result<Vec<Parts>, ScalarError>>,
+}
+
+/// The frame `ik` solves for, the same `fk` reports as the end: the base frames, the joints,
+/// the tool frames and the tool point, in this order (the report states the parts present).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct EndFrame {
+    /// Constant frames before the first joint (`[base]`).
+    pub base_frames: usize,
+    /// Constant frames after the last joint (`[tool]`, or a URDF tip's joint origins).
+    pub tool_frames: usize,
+    /// The tool point in the last frame (`tool = [x, y, z]`): the end frame's origin, with the
+    /// last frame's axes.
+    pub tool_point: Option<[Scalar; 3]>,
+}
+
+impl EndFrame {
+    /// The end frame of `robot`, as `fk` reads it.
+    pub fn of(robot: &Robot) -> EndFrame {
+        EndFrame {
+            base_frames: robot.base_frames.len(),
+            tool_frames: robot.tool_frames.len(),
+            tool_point: robot.tool.clone(),
+        }
+    }
+
+    /// Only the joints' own frames: nothing to state.
+    pub fn is_plain(&self) -> bool {
+        *self == EndFrame::default()
+    }
 }
 
 type Parts = Vec<(&'static str, crate::Expr)>;
@@ -156,6 +188,25 @@ type Parts = Vec<(&'static str, crate::Expr)>;
 /// [`IkError::Unsupported`] naming the geometry found when no family applies;
 /// [`IkError::Option`] for a bad `--free`; [`IkError::Scalar`] when a limit is reached.
 pub fn solve(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkError> {
+    let end = EndFrame::of(robot);
+    let mut sol = solve_end(&with_tool_point(robot), opts)?;
+    sol.end = end;
+    Ok(sol)
+}
+
+/// `robot` with its tool point (if any) folded into the tool motion: the end frame `fk` maps
+/// the point with is `forward · Trans(p)`, the last frame moved to the point.
+fn with_tool_point(robot: &Robot) -> std::borrow::Cow<'_, Robot> {
+    let Some(p) = &robot.tool else {
+        return std::borrow::Cow::Borrowed(robot);
+    };
+    let mut r = robot.clone();
+    r.chain.tool = &r.chain.tool * &crate::DualQuat::translation(p);
+    r.tool = None;
+    std::borrow::Cow::Owned(r)
+}
+
+fn solve_end(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkError> {
     // A base frame, or joints coupled to another's variable (URDF mimic joints), leave the
     // joints' own geometry: the axes are read from the whole pose instead.
     let plain = robot.chain.base == crate::DualQuat::identity()
@@ -233,14 +284,9 @@ impl IkSolution {
     ///
     /// # Errors
     /// A closed form that fails (term limit, work budget).
-    pub fn forms(&self) -> Result<&[Vec<(&'static str, crate::Expr)>], String> {
+    pub fn forms(&self) -> Result<&[Vec<(&'static str, crate::Expr)>], ScalarError> {
         self.forms
-            .get_or_init(|| {
-                self.steps
-                    .iter()
-                    .map(|s| report::parts(&s.formula).map_err(|e| e.to_string()))
-                    .collect()
-            })
+            .get_or_init(|| self.steps.iter().map(|s| report::parts(&s.formula)).collect())
             .as_ref()
             .map(|v| v.as_slice())
             .map_err(Clone::clone)
@@ -291,7 +337,7 @@ impl IkSolution {
             });
             return Ok(());
         };
-        let forms = self.forms()?;
+        let forms = self.forms().map_err(|e| e.to_string())?;
         let mut vals = [0.0; 3];
         for (i, (_, e)) in forms[k].iter().enumerate() {
             vals[i] = e

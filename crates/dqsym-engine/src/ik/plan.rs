@@ -8,7 +8,36 @@ use super::axes::{
 };
 use super::{Formula, IkError, IkOptions, IkSolution, IkStep, TARGET_SYMBOLS};
 use crate::kin::{JointKind, Robot};
-use crate::{Matrix4, Scalar};
+use crate::{Matrix4, Scalar, ScalarError};
+use thiserror::Error;
+
+/// Why a family's derivation stopped: a limit (reported as the limit), or a fact of the
+/// geometry (reported with the geometry found).
+#[derive(Clone, Debug, Error)]
+pub(crate) enum PlanError {
+    /// An exact computation reached a limit or failed.
+    #[error(transparent)]
+    Scalar(#[from] ScalarError),
+    /// A subproblem's coefficients vanish for every target.
+    #[error("the subproblem for {variable} is degenerate for every target ({method})")]
+    Degenerate {
+        /// The joint variable.
+        variable: String,
+        /// The subproblem, in words.
+        method: String,
+    },
+    /// A point the family needs has no exact form here.
+    #[error("{0} is not exact")]
+    NotExact(&'static str),
+}
+
+/// The first error among exact values: a limit reached while they were computed.
+fn first_error<'a>(xs: impl IntoIterator<Item = &'a Scalar>) -> Result<(), ScalarError> {
+    match xs.into_iter().find_map(Scalar::as_error) {
+        Some(e) => Err(e.clone()),
+        None => Ok(()),
+    }
+}
 
 pub(crate) const FAMILIES: &str = "planar 2R (position) and 3R; SCARA-type RRPR (three parallel \
 revolute axes, a prismatic joint along them); 6 joints with a spherical wrist (axes 4, 5, 6 \
@@ -235,7 +264,7 @@ impl Builder<'_> {
         method: String,
         branch: Option<(&str, &str, &str)>,
         singular: &str,
-    ) -> Result<(), String> {
+    ) -> Result<(), PlanError> {
         let degenerate = match &formula {
             Formula::Atan2 { y, x } => y.is_zero_value() && x.is_zero_value(),
             Formula::Trig { a, b, .. } => a.is_zero_value() && b.is_zero_value(),
@@ -247,14 +276,12 @@ impl Builder<'_> {
             Formula::Value { v } => vec![v],
             Formula::Quadratic { beta, gamma } => vec![beta, gamma],
         };
-        if let Some(e) = all.iter().find_map(|x| x.as_error()) {
-            return Err(format!("scalar: {e}"));
-        }
+        first_error(all)?;
         if degenerate {
-            return Err(format!(
-                "the subproblem for {} is degenerate for every target ({method})",
-                self.axes[j].variable
-            ));
+            return Err(PlanError::Degenerate {
+                variable: self.axes[j].variable.clone(),
+                method,
+            });
         }
         let branch = if formula.branches() == 2 {
             branch.map(|(n, p, m)| (n.to_string(), p.to_string(), m.to_string()))
@@ -299,7 +326,7 @@ fn rel_text(rel: &Relation) -> String {
     }
 }
 
-fn geometry_lines(axes: &[Axis]) -> Vec<String> {
+fn geometry_lines(axes: &[Axis]) -> Result<Vec<String>, ScalarError> {
     let mut out = Vec::new();
     let kinds: Vec<&str> = axes
         .iter()
@@ -321,12 +348,11 @@ fn geometry_lines(axes: &[Axis]) -> Vec<String> {
                 ));
                 continue;
             }
-            out.push(format!(
-                "axes {} and {} {}",
-                name(i),
-                name(j),
-                rel_text(&relation(&axes[i], &axes[j]))
-            ));
+            let rel = relation(&axes[i], &axes[j]);
+            if let Relation::SkewUnless(r) = &rel {
+                first_error([r])?;
+            }
+            out.push(format!("axes {} and {} {}", name(i), name(j), rel_text(&rel)));
         }
     }
     let n = axes.len();
@@ -340,7 +366,7 @@ fn geometry_lines(axes: &[Axis]) -> Vec<String> {
             if w.is_some() { "yes" } else { "no" }
         ));
     }
-    out
+    Ok(out)
 }
 
 /// The point common to three revolute axes, when there is one (exactly).
@@ -529,7 +555,7 @@ fn derive_fixed(
         params.push(f.clone());
         params.sort();
     }
-    let mut geometry = geometry_lines(&axes);
+    let mut geometry = geometry_lines(&axes)?;
     if opts.free.is_some() {
         geometry.insert(
             0,
@@ -563,11 +589,17 @@ fn derive_fixed(
         },
         families: FAMILIES.into(),
     };
+    // A limit reached anywhere on the way (a decision on an error value reads as "no") is the
+    // outcome, whatever the family search concluded: the work budget is spent for good once
+    // exceeded, and a term limit leaves an error value in the axes or the steps.
+    crate::scalar::charge(0)?;
+    first_error(axes.iter().flat_map(|a| a.dir.iter().chain(&a.point)))?;
+    first_error(home.rows.iter().flatten())?;
     let (family, position_only) = match attempt {
         Ok(Some(f)) => f,
         Ok(None) => return Err(unsupported(None)),
-        Err(m) if m.starts_with("scalar: ") => return Err(IkError::Scalar(m[8..].to_string())),
-        Err(m) => return Err(unsupported(Some(m))),
+        Err(PlanError::Scalar(e)) => return Err(IkError::Scalar(e)),
+        Err(m) => return Err(unsupported(Some(m.to_string()))),
     };
     let mut conditions = Vec::new();
     for s in &b.steps {
@@ -600,12 +632,13 @@ fn derive_fixed(
         free: opts.free.clone(),
         position_only,
         home,
+        end: super::EndFrame::default(),
         forms: std::sync::OnceLock::new(),
     })
 }
 
 /// Tries every family in turn; `Ok(None)` when none applies.
-fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, String> {
+fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, PlanError> {
     let ax = b.axes;
     let n = ax.len();
     if (n == 2 || n == 3) && revolute(ax) && ax.iter().all(|a| parallel(a, &ax[0])) {
@@ -707,7 +740,7 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, String>
     Ok(None)
 }
 
-fn planar(b: &mut Builder, t: &Target) -> Result<(), String> {
+fn planar(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
     let ax = b.axes;
     let n = ax.len();
     let w = ax[0].dir.clone();
@@ -757,15 +790,14 @@ fn planar(b: &mut Builder, t: &Target) -> Result<(), String> {
     Ok(())
 }
 
-fn scara(b: &mut Builder, t: &Target) -> Result<(), String> {
+fn scara(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
     let ax = b.axes;
     let w = ax[0].dir.clone();
     let x4 = ax[3].point.clone();
     let g4 = t.point(&x4);
     let wv = dot(&w, &ax[2].dir);
     let d = dot(&w, &sub(&g4, &x4))
-        .try_div(&wv)
-        .map_err(|e| format!("scalar: {e}"))?;
+        .try_div(&wv)?;
     b.push(
         2,
         Formula::Value { v: d },
@@ -807,7 +839,7 @@ fn scara(b: &mut Builder, t: &Target) -> Result<(), String> {
 }
 
 /// Joints 1-3 of a spherical-wrist arm from the wrist centre; the method in words, or `None`.
-fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<String>, String> {
+fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<String>, PlanError> {
     let ax = b.axes;
     let pw = t.point(w);
     let (a1, a2, a3) = (&ax[0], &ax[1], &ax[2]);
@@ -864,7 +896,7 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
     {
         return Ok(None);
     }
-    let o = intersection(a1, a2).ok_or("the intersection of axes 1 and 2 is not exact")?;
+    let o = intersection(a1, a2).ok_or(PlanError::NotExact("the intersection of axes 1 and 2"))?;
     let x3 = match a3.kind {
         JointKind::Revolute => {
             if on_line(&o, a3) {
@@ -928,7 +960,7 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
     )))
 }
 
-fn wrist_orientation(b: &mut Builder, t: &Target) -> Result<(), String> {
+fn wrist_orientation(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
     let ax = b.axes;
     let back = |v: &V3| -> V3 {
         let v = ax[0].move_dir(&t.dir(v), -1);
@@ -968,9 +1000,9 @@ fn wrist_orientation(b: &mut Builder, t: &Target) -> Result<(), String> {
     Ok(())
 }
 
-fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), String> {
+fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
     let ax = b.axes;
-    let x56 = intersection(&ax[4], &ax[5]).ok_or("the intersection of axes 5 and 6")?;
+    let x56 = intersection(&ax[4], &ax[5]).ok_or(PlanError::NotExact("the intersection of axes 5 and 6"))?;
     let p1 = &ax[0].point;
     let k = &ax[1].dir;
     let p56 = t.point(&x56);

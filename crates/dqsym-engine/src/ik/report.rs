@@ -1,6 +1,6 @@
 //! The derivation as text: plain (the field's `c1`, `s23` notation), LaTeX, SymPy lines.
 
-use super::{Formula, IkSolution, IkStep};
+use super::{EndFrame, Formula, IkSolution, IkStep};
 use crate::closed::Expr;
 use crate::emit::{latex, latex_symbol, sympy, LatexOptions};
 use crate::print::{plain, Format, PlainOptions};
@@ -62,6 +62,39 @@ fn branch_count(sol: &IkSolution) -> usize {
     sol.steps.iter().map(|s| s.formula.branches()).product()
 }
 
+/// The parts of the end frame, base first: `[base] frame, the joints, ...`.
+fn end_text(end: &EndFrame) -> String {
+    let frames = |n: usize, what: &str| match n {
+        0 => None,
+        1 => Some(format!("1 constant frame {what}")),
+        n => Some(format!("{n} constant frames {what}")),
+    };
+    let point = end.tool_point.as_ref().map(|p| {
+        let text: Vec<String> = p.iter().map(scalar_text).collect();
+        format!(
+            "the tool point ({}) of the last frame, with its axes",
+            text.join(", ")
+        )
+    });
+    [
+        frames(end.base_frames, "before the first joint"),
+        Some("the joints".to_string()),
+        frames(end.tool_frames, "after the last joint"),
+        point,
+    ]
+    .into_iter()
+    .flatten()
+    .collect::<Vec<_>>()
+    .join(", then ")
+}
+
+/// A scalar in closed form, plain text.
+fn scalar_text(x: &Scalar) -> String {
+    closed_form(x)
+        .map(|e| plain(&e, &PlainOptions::default()))
+        .unwrap_or_else(|_| x.to_string())
+}
+
 fn header(sol: &IkSolution) -> Vec<String> {
     let mut out = vec![
         format!("Inverse kinematics of {}", sol.robot),
@@ -74,6 +107,9 @@ fn header(sol: &IkSolution) -> Vec<String> {
     } else {
         "target: T = [r11 r12 r13 px; r21 r22 r23 py; r31 r32 r33 pz; 0 0 0 1]".into()
     });
+    if !sol.end.is_plain() {
+        out.push(format!("end frame (the end fk reports): {}", end_text(&sol.end)));
+    }
     if let Some(f) = &sol.free {
         out.push(format!("free joint (a parameter): {f}"));
     }
@@ -124,7 +160,7 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
         Format::Python => return super::ik_python(sol),
         _ => {}
     }
-    let all = sol.forms().map_err(ScalarError::Unbound)?;
+    let all = sol.forms()?;
     let mut out = String::new();
     match format {
         Format::Plain => {

@@ -123,7 +123,7 @@ pub fn ik_walk(robot: &Robot, sol: &IkSolution, markdown: bool) -> Result<String
          (two branches; none when the radicand is negative: out of reach);\n\
          - Rot(k, q) u = v  has  q = atan2(k·(u x v), u·v − (k·u)(k·v)).\n\n",
     );
-    let forms = sol.forms().map_err(ScalarError::Unbound)?;
+    let forms = sol.forms()?;
     for (i, step) in sol.steps.iter().enumerate() {
         out.push_str(&h(3, &format!("Step {}: {}", i + 1, step.variable)));
         out.push_str(&format!("{}.\n\n", step.method));
