@@ -143,12 +143,39 @@ pub struct IkSolution {
     pub free: Option<String>,
     /// Only the position of the end effector is solved for (planar 2R).
     pub position_only: bool,
+    /// The part of the target pose the arm controls (all of it for six joints).
+    pub reach: Reach,
     /// The home pose `M` of the end effector.
     pub home: Matrix4<Scalar>,
     /// The frame solved for: the end `fk` reports.
     pub end: EndFrame,
     /// The closed forms of every step's parts, computed on first use.
     pub(crate) forms: std::sync::OnceLock<Result<Vec<Parts>, ScalarError>>,
+}
+
+/// The part of a target pose an arm with fewer than six joints controls; the rest of the
+/// target must agree with the arm (a pose `fk` gives), else the solutions reproduce only this
+/// part.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Reach {
+    /// The whole pose.
+    #[default]
+    Pose,
+    /// The position of the end frame's origin (planar 2R).
+    Position,
+    /// The position and one angle: the rotation about the parallel axes `axes` (numbered from
+    /// 1 among the solved joints) after the first joint's turn, `R = Rot(axis 1) Rot(k, φ)`.
+    PositionAndAngle {
+        /// The parallel axes.
+        axes: Vec<usize>,
+    },
+    /// The position and the approach axis: the direction `approach` of the end frame (in its
+    /// own coordinates, `T · approach`); the turn about it is not controlled.
+    PositionAndApproach {
+        /// The approach direction in the end frame.
+        approach: [Scalar; 3],
+    },
 }
 
 /// The frame `ik` solves for, the same `fk` reports as the end: the base frames, the joints,

@@ -6,7 +6,7 @@ use super::axes::{
     add, cross, dot, home_axes, intersection, is_zero3, on_line, relation, scale, sub, zero3, Axis,
     Relation, V3,
 };
-use super::{Formula, IkError, IkOptions, IkSolution, IkStep, TARGET_SYMBOLS};
+use super::{Formula, IkError, IkOptions, IkSolution, IkStep, Reach, TARGET_SYMBOLS};
 use crate::kin::{JointKind, Robot};
 use crate::{Matrix4, Scalar, ScalarError};
 use thiserror::Error;
@@ -249,6 +249,89 @@ fn renumber(text: &str, n: usize) -> String {
 struct Builder<'a> {
     axes: &'a [Axis],
     steps: Vec<IkStep>,
+    /// `D` when a point is known only as `N / D` (see [`meet`]): the steps on it are
+    /// multiplied through by a power of `D`.
+    scale: Option<Scalar>,
+    /// The part of the target the family controls.
+    reach: Reach,
+}
+
+/// The name of `λ = 1/D` in the steps built on a point `N λ` (see [`meet`]); [`Builder::push`]
+/// multiplies it out, so it never reaches a formula.
+const INV_SCALE: &str = "ik__inverse_scale";
+
+/// The point where two intersecting, non-parallel axes meet: exact when the parameters allow
+/// (a numeric divisor), else `N λ` with `λ = 1/D`, `D = |d1 × d2|²`, recorded in the builder.
+/// `D` is positive wherever the axes are not parallel (a free joint's value can make them
+/// parallel: there the steps built on the point vanish, a singular set).
+fn meet(b: &mut Builder, a: &Axis, c: &Axis) -> Result<V3, PlanError> {
+    if let Some(p) = intersection(a, c) {
+        return Ok(p);
+    }
+    let n = cross(&a.dir, &c.dir);
+    let d = dot(&n, &n);
+    let t = dot(&cross(&sub(&c.point, &a.point), &c.dir), &n);
+    let num = add(&scale(&d, &a.point), &scale(&t, &a.dir));
+    first_error(num.iter().chain([&d]))?;
+    if b.scale.as_ref().is_some_and(|s| *s != d) {
+        return Err(PlanError::NotExact("a second point with a symbolic divisor"));
+    }
+    b.scale = Some(d);
+    Ok(scale(&Scalar::sym(INV_SCALE), &num))
+}
+
+/// The parts of a formula, to rewrite in place.
+fn parts_mut(f: &mut Formula) -> Vec<&mut Scalar> {
+    match f {
+        Formula::Atan2 { y, x } => vec![y, x],
+        Formula::Trig { a, b, c } => vec![a, b, c],
+        Formula::Value { v } => vec![v],
+        Formula::Quadratic { beta, gamma } => vec![beta, gamma],
+    }
+}
+
+/// A formula on a point `N λ` multiplied through by `D^k`, `k` the highest power of `λ = 1/D`
+/// in its parts: each part `Σ pᵢ λⁱ` becomes `Σ pᵢ D^(k−i)`, a polynomial again. The solution
+/// is unchanged because `D > 0`: `atan2(y, x)` and `a cos q + b sin q = c` (with its radicand
+/// `a² + b² − c²` and `atan2(sqrt(.), c)`) are invariant under one positive factor on every
+/// part. A quadratic's parts are not (its leading coefficient is 1): refused.
+fn homogenize(f: &mut Formula, d: &Scalar) -> Result<(), PlanError> {
+    if matches!(f, Formula::Quadratic { .. } | Formula::Value { .. }) {
+        return Err(PlanError::NotExact("a slide on a point with a symbolic divisor"));
+    }
+    let zero = Scalar::int(0);
+    let mut coefs: Vec<Vec<Scalar>> = Vec::new();
+    for p in parts_mut(f) {
+        // pᵢ = (dⁱ p / dλⁱ)(0) / i!; the parts are polynomials of degree at most 4 in λ (a
+        // squared distance to the point, times a distance), so the loop ends.
+        let mut cs = Vec::new();
+        let mut q = p.clone();
+        let mut fact = 1i64;
+        while !q.is_zero_value() {
+            first_error([&q])?;
+            if cs.len() > 8 {
+                return Err(PlanError::NotExact("a step on a point with a symbolic divisor"));
+            }
+            let c = q.subs(INV_SCALE, &zero);
+            cs.push(c.try_div(&Scalar::int(fact))?);
+            q = q.diff(INV_SCALE);
+            fact *= cs.len() as i64;
+        }
+        coefs.push(cs);
+    }
+    let k = coefs.iter().map(Vec::len).max().unwrap_or(0).saturating_sub(1);
+    for (p, cs) in parts_mut(f).into_iter().zip(coefs) {
+        let mut acc = Scalar::int(0);
+        for (i, c) in cs.iter().enumerate() {
+            let mut t = c.clone();
+            for _ in i..k {
+                t = &t * d;
+            }
+            acc = &acc + &t;
+        }
+        *p = acc;
+    }
+    Ok(())
 }
 
 const SHOULDER: (&str, &str, &str) = ("shoulder", "left", "right");
@@ -260,11 +343,21 @@ impl Builder<'_> {
     fn push(
         &mut self,
         j: usize,
-        formula: Formula,
+        mut formula: Formula,
         method: String,
         branch: Option<(&str, &str, &str)>,
         singular: &str,
     ) -> Result<(), PlanError> {
+        let scaled = parts_mut(&mut formula)
+            .iter()
+            .any(|p| p.symbols().iter().any(|s| s.name() == INV_SCALE));
+        if scaled {
+            let d = self
+                .scale
+                .clone()
+                .ok_or(PlanError::NotExact("a point with a symbolic divisor"))?;
+            homogenize(&mut formula, &d)?;
+        }
         let degenerate = match &formula {
             Formula::Atan2 { y, x } => y.is_zero_value() && x.is_zero_value(),
             Formula::Trig { a, b, .. } => a.is_zero_value() && b.is_zero_value(),
@@ -416,7 +509,8 @@ pub(crate) fn derive(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkEr
 }
 
 /// The derivation from the axes and the home pose. A 7-joint chain without `--free` gets the
-/// first joint whose value as a parameter leaves a supported family (said in the geometry); a
+/// first end joint, else the first inner joint, whose value as a parameter leaves a supported
+/// family (said in the geometry); a
 /// `--free` that leaves none gets an error naming the joints that would.
 pub(crate) fn derive_axes(
     name: &str,
@@ -452,14 +546,28 @@ pub(crate) fn derive_axes(
     };
     match &opts.free {
         None => {
-            for v in variables {
+            // An end joint first (the other six are then an arm of their own with the whole
+            // target), then the inner joints in order.
+            let n = variables.len();
+            let order = [0, n - 1].into_iter().chain(1..n - 1);
+            for k in order {
+                let v = &variables[k];
                 match try_free(v) {
                     Ok(mut sol) => {
+                        let which = if k == 0 {
+                            "the first joint whose value leaves a supported family"
+                        } else if k == n - 1 {
+                            "the last joint: the first joint's value leaves no supported family, \
+                             the last joint's does (an end joint is preferred)"
+                        } else {
+                            "the first inner joint whose value leaves a supported family (neither \
+                             end joint's does)"
+                        };
                         sol.geometry.insert(
                             0,
                             format!(
                                 "7 joints, no --free given: {v} chosen as the free joint (a \
-                                 parameter), the first joint whose value leaves a supported family"
+                                 parameter), {which}"
                             ),
                         );
                         return Ok(sol);
@@ -573,6 +681,8 @@ fn derive_fixed(
     let mut b = Builder {
         axes: &axes,
         steps: Vec::new(),
+        scale: None,
+        reach: Reach::Pose,
     };
     let attempt = family(&mut b, &target);
     let unsupported = |why: Option<String>| IkError::Unsupported {
@@ -616,6 +726,11 @@ fn derive_fixed(
         }
     }
     let steps = b.steps;
+    let reach = if position_only {
+        Reach::Position
+    } else {
+        b.reach
+    };
     let variables = variables
         .iter()
         .filter(|v| Some(*v) != opts.free.as_ref())
@@ -631,6 +746,7 @@ fn derive_fixed(
         params,
         free: opts.free.clone(),
         position_only,
+        reach,
         home,
         end: super::EndFrame::default(),
         forms: std::sync::OnceLock::new(),
@@ -660,6 +776,17 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, PlanErr
         scara(b, t)?;
         return Ok(Some(("SCARA (RRPR)".into(), false)));
     }
+    if n == 4 && pitch_arm_axes(ax) {
+        pitch_arm(b, t)?;
+        return Ok(Some((
+            "4R: a base axis, then three parallel axes 2, 3, 4 (base yaw and three pitch joints)"
+                .into(),
+            false,
+        )));
+    }
+    if n == 5 {
+        return five_joints(b, t);
+    }
     if n != 6 {
         return Ok(None);
     }
@@ -684,6 +811,8 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, PlanErr
             let mut rb = Builder {
                 axes: &rev,
                 steps: Vec::new(),
+                scale: None,
+                reach: Reach::Pose,
             };
             if let Some(pos) = spherical_position(&mut rb, &tr, &o)? {
                 wrist_orientation(&mut rb, &tr)?;
@@ -889,17 +1018,17 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
         )?;
         return Ok(Some("axes 2 and 3 parallel".into()));
     }
-    if a1.kind != JointKind::Revolute
-        || a2.kind != JointKind::Revolute
-        || parallel(a1, a2)
-        || relation(a1, a2) != Relation::Intersecting
-    {
-        return Ok(None);
+    let shoulder = a1.kind == JointKind::Revolute
+        && a2.kind == JointKind::Revolute
+        && !parallel(a1, a2)
+        && relation(a1, a2) == Relation::Intersecting;
+    if !shoulder {
+        return elbow_point(b, t, w);
     }
-    let o = intersection(a1, a2).ok_or(PlanError::NotExact("the intersection of axes 1 and 2"))?;
+    let o = meet(b, a1, a2)?;
     let x3 = match a3.kind {
         JointKind::Revolute => {
-            if on_line(&o, a3) {
+            if on_line_scaled(b, &o, a3) {
                 return Ok(None);
             }
             b.push(
@@ -958,6 +1087,64 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
             "prismatic"
         }
     )))
+}
+
+/// Whether a point (`N λ` when it has a symbolic divisor, see [`meet`]) lies on the axis.
+fn on_line_scaled(b: &Builder, p: &V3, a: &Axis) -> bool {
+    match &b.scale {
+        Some(d) if p.iter().any(|x| x.symbols().iter().any(|s| s.name() == INV_SCALE)) => {
+            let one = Scalar::int(1);
+            let n: V3 = std::array::from_fn(|i| p[i].subs(INV_SCALE, &one));
+            is_zero3(&cross(&sub(&n, &scale(d, &a.point)), &a.dir))
+        }
+        _ => on_line(p, a),
+    }
+}
+
+/// Joints 1-3 when axes 2 and 3 meet at a point Q off axis 1 (an elbow point): joints 2 and 3
+/// keep Q, so joint 1 alone sets the distance of Q from the wrist centre (subproblem 3), then
+/// joints 3 and 2 take the wrist centre to its place about Q (subproblem 2).
+fn elbow_point(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<String>, PlanError> {
+    let ax = b.axes;
+    let (a1, a2, a3) = (&ax[0], &ax[1], &ax[2]);
+    if !revolute(&ax[0..3]) || parallel(a2, a3) || relation(a2, a3) != Relation::Intersecting {
+        return Ok(None);
+    }
+    let q0 = meet(b, a2, a3)?;
+    if on_line_scaled(b, &q0, a1) || on_line_scaled(b, w, a2) {
+        return Ok(None);
+    }
+    let pw = t.point(w);
+    b.push(
+        0,
+        sp3(a1, &q0, &pw, &norm2(&sub(w, &q0))),
+        "subproblem 3 (distance): joints 2 and 3 turn about the elbow point Q where axes 2 and          3 meet, so joint 1 alone sets the distance of Q from the wrist centre,          |Rot(axis 1, theta) Q − wc| = |C − Q|"
+            .into(),
+        Some(SHOULDER),
+        "radicand zero (left and right merge): the wrist centre at its nearest or farthest          from the circle joint 1 turns Q on",
+    )?;
+    let q = a1.move_point(&pw, -1);
+    let u = sub(w, &q0);
+    let v = sub(&q, &q0);
+    b.push(
+        2,
+        sp4(&a2.dir, a3, &u, &dot(&a2.dir, &v)),
+        "subproblem 2, first half (subproblem 4): joint 2 keeps the component along axis 2,          k2·Rot(axis 3, theta) (C − Q) = k2·(R1ᵀ wc − Q)"
+            .into(),
+        Some(ELBOW),
+        "radicand zero (up and down merge): joint 3 at the extreme of the height along axis 2",
+    )?;
+    b.push(
+        1,
+        sp1(a2, &a3.move_dir(&u, 1), &v),
+        "subproblem 2, second half (subproblem 1): joint 2 turns the wrist centre onto the          target"
+            .into(),
+        None,
+        "the wrist centre on axis 2: any theta2, 0 is returned",
+    )?;
+    Ok(Some(
+        "axes 2 and 3 intersect (elbow point), off axis 1".into(),
+    ))
 }
 
 fn wrist_orientation(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
@@ -1072,4 +1259,129 @@ fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
         "never",
     )?;
     Ok(())
+}
+
+/// Axis 1, then axes 2, 3, 4 parallel to one another and not to axis 1, none two on one line.
+fn pitch_arm_axes(ax: &[Axis]) -> bool {
+    let apart = |a: &Axis, b: &Axis| !matches!(relation(a, b), Relation::Parallel { same_line: true });
+    revolute(ax)
+        && !parallel(&ax[0], &ax[1])
+        && parallel(&ax[1], &ax[2])
+        && parallel(&ax[1], &ax[3])
+        && apart(&ax[1], &ax[2])
+        && apart(&ax[2], &ax[3])
+}
+
+/// A base joint and three parallel pitch joints (an AL5D): the reach is the position and the
+/// angle about the pitch axes. Joint 1 from the end's component along the pitch axes (which
+/// joints 2-4 keep), joints 3 and 2 a planar 2R to axis 4's place, joint 4 the rest of the
+/// angle.
+fn pitch_arm(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
+    let ax = b.axes;
+    let k = &ax[1].dir;
+    let p1 = &ax[0].point;
+    b.reach = Reach::PositionAndAngle {
+        axes: vec![2, 3, 4],
+    };
+    b.push(
+        0,
+        sp4(&sub(&t.p, p1), &ax[0], k, &dot(k, &sub(&t.tm, p1))),
+        "subproblem 4 (height): rotations about the parallel axes 2, 3, 4 keep the end's \
+         component along them, so (Rot(axis 1, theta) k2)·(p − p1) = k2·(t_M − p1)"
+            .into(),
+        Some(SHOULDER),
+        &format!(
+            "radicand zero (left and right merge): the end at distance |k2·(t_M − p1)| = |{}| \
+             from axis 1",
+            scalar_text(&dot(k, &sub(&t.tm, p1)))
+        ),
+    )?;
+    let x4 = ax[3].point.clone();
+    // Joint 4 keeps the points of its axis: G x4 = E1 E2 E3 x4.
+    let q = ax[0].move_point(&t.point(&x4), -1);
+    let centre = shoulder_centre(&ax[0], &ax[1]);
+    b.push(
+        2,
+        sp3(&ax[2], &x4, &centre, &norm2(&sub(&q, &centre))),
+        "subproblem 3 (distance): joint 3 sets the distance of axis 4 from a point of axis 2 \
+         (their components along k2 agree by theta1's equation)"
+            .into(),
+        Some(ELBOW),
+        "elbow straight (radicand zero)",
+    )?;
+    let x3 = ax[2].move_point(&x4, 1);
+    b.push(
+        1,
+        sp1(&ax[1], &sub(&x3, &centre), &sub(&q, &centre)),
+        "subproblem 1 (rotation): joint 2 turns axis 4 onto its target place".into(),
+        None,
+        "axis 4 on axis 2",
+    )?;
+    let e = perpendicular(&ax[3].dir);
+    let v = ax[2].move_dir(&ax[1].move_dir(&ax[0].move_dir(&t.dir(&e), -1), -1), -1);
+    b.push(
+        3,
+        sp1(&ax[3], &e, &v),
+        "subproblem 1 (rotation): joint 4 completes the angle, R4 = R3ᵀ R2ᵀ R1ᵀ R".into(),
+        None,
+        "never",
+    )
+}
+
+/// Five joints: a position group (joints 1-3 as in a spherical-wrist arm) and a two-axis
+/// wrist (axes 4 and 5 meeting at W). The reach is the position and the approach axis: the
+/// direction `e` from W to the end's origin (the end frame's z axis when the origin is W),
+/// which the wrist turns with two joints; the turn about it is not controlled.
+fn five_joints(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, PlanError> {
+    let ax = b.axes;
+    let (a4, a5) = (&ax[3], &ax[4]);
+    if !revolute(&ax[3..5]) || parallel(a4, a5) || relation(a4, a5) != Relation::Intersecting {
+        return Ok(None);
+    }
+    let Some(w) = intersection(a4, a5) else {
+        return Ok(None);
+    };
+    let from_w = sub(&t.tm, &w);
+    let e = if is_zero3(&from_w) {
+        std::array::from_fn(|i| t.rm[i][2].clone())
+    } else {
+        from_w
+    };
+    if is_zero3(&cross(&e, &a5.dir)) {
+        return Ok(None);
+    }
+    let Some(pos) = spherical_position(b, t, &w)? else {
+        return Ok(None);
+    };
+    let back = |v: &V3| -> V3 {
+        let v = ax[0].move_dir(&t.dir(v), -1);
+        let v = ax[1].move_dir(&v, -1);
+        ax[2].move_dir(&v, -1)
+    };
+    let v = back(&e);
+    b.push(
+        4,
+        sp4(&a4.dir, a5, &e, &dot(&a4.dir, &v)),
+        "subproblem 2, first half (subproblem 4): joint 4 keeps the approach's component along \
+         axis 4, k4·Rot(axis 5, theta) e = k4·(R3ᵀ R2ᵀ R1ᵀ R e)"
+            .into(),
+        Some(WRIST),
+        "radicand zero (the two wrist branches merge)",
+    )?;
+    b.push(
+        3,
+        sp1(a4, &a5.move_dir(&e, 1), &v),
+        "subproblem 2, second half (subproblem 1): joint 4 turns the approach onto the target's"
+            .into(),
+        None,
+        "the approach along axis 4: any theta4, 0 is returned",
+    )?;
+    // The approach in the end frame's own coordinates: R_Mᵀ e.
+    b.reach = Reach::PositionAndApproach {
+        approach: Target::mat_t(&t.rm, &e),
+    };
+    Ok(Some((
+        format!("5 joints, a two-axis wrist (axes 4 and 5 intersect) reaching a position and an approach axis: {pos}"),
+        false,
+    )))
 }

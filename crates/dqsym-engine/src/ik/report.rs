@@ -1,6 +1,6 @@
 //! The derivation as text: plain (the field's `c1`, `s23` notation), LaTeX, SymPy lines.
 
-use super::{EndFrame, Formula, IkSolution, IkStep};
+use super::{EndFrame, Formula, IkSolution, IkStep, Reach};
 use crate::closed::Expr;
 use crate::emit::{latex, latex_symbol, sympy, LatexOptions};
 use crate::print::{plain, Format, PlainOptions};
@@ -107,6 +107,23 @@ fn header(sol: &IkSolution) -> Vec<String> {
     } else {
         "target: T = [r11 r12 r13 px; r21 r22 r23 py; r31 r32 r33 pz; 0 0 0 1]".into()
     });
+    match &sol.reach {
+        Reach::PositionAndAngle { axes } => out.push(format!(
+            "reachable: the position (px, py, pz) and one angle, the turn about the parallel \
+             axes {} (R = Rot(axis 1, theta1) Rot(axis 2, phi)); the rest of the target's \
+             orientation must agree",
+            axes.iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+        Reach::PositionAndApproach { approach } => out.push(format!(
+            "reachable: the position (px, py, pz) and the approach axis, the end frame's \
+             direction ({}) (R times it); the turn about it is not controlled",
+            approach.iter().map(scalar_text).collect::<Vec<_>>().join(", ")
+        )),
+        _ => {}
+    }
     if !sol.end.is_plain() {
         out.push(format!("end frame (the end fk reports): {}", end_text(&sol.end)));
     }
