@@ -670,10 +670,15 @@ fn fk(
 
 /// `dqsym ops [ROBOT]`: the paper's tables, then the robot's generated code.
 fn ops(path: Option<&std::path::Path>, jacobian: bool, robot_args: &RobotArgs) -> ExitCode {
-    print!("{}", dqsym::app::ops_tables());
     let Some(path) = path else {
+        if let Err(m) = urdf_only(robot_args) {
+            eprintln!("error: {m}");
+            return ExitCode::FAILURE;
+        }
+        print!("{}", dqsym::app::ops_tables());
         return ExitCode::SUCCESS;
     };
+    print!("{}", dqsym::app::ops_tables());
     let robot = match load_robot(path, robot_args) {
         Ok(r) => r,
         Err(m) => {

@@ -1273,28 +1273,25 @@ fn pitch_arm_axes(ax: &[Axis]) -> bool {
 }
 
 /// A base joint and three parallel pitch joints (an AL5D): the reach is the position and the
-/// angle about the pitch axes. Joint 1 from the end's component along the pitch axes (which
-/// joints 2-4 keep), joints 3 and 2 a planar 2R to axis 4's place, joint 4 the rest of the
-/// angle.
+/// angle about the pitch axes. Joint 1 from the direction of the pitch axes, joints 3 and 2 a
+/// planar 2R to axis 4's place, joint 4 the rest of the angle.
 fn pitch_arm(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
     let ax = b.axes;
     let k = &ax[1].dir;
-    let p1 = &ax[0].point;
     b.reach = Reach::PositionAndAngle {
         axes: vec![2, 3, 4],
     };
+    // The position alone leaves theta1 and theta1 + pi (the arm reaching over backwards),
+    // only one of which turns the pitch axes as the target does: theta1 is read from the
+    // direction of the pitch axes, R k2 = Rot(axis 1, theta1) k2.
     b.push(
         0,
-        sp4(&sub(&t.p, p1), &ax[0], k, &dot(k, &sub(&t.tm, p1))),
-        "subproblem 4 (height): rotations about the parallel axes 2, 3, 4 keep the end's \
-         component along them, so (Rot(axis 1, theta) k2)·(p − p1) = k2·(t_M − p1)"
+        sp1(&ax[0], k, &t.dir(k)),
+        "subproblem 1 (rotation): rotations about the parallel axes 2, 3, 4 keep their \
+         direction, so joint 1 turns k2 onto R k2"
             .into(),
-        Some(SHOULDER),
-        &format!(
-            "radicand zero (left and right merge): the end at distance |k2·(t_M − p1)| = |{}| \
-             from axis 1",
-            scalar_text(&dot(k, &sub(&t.tm, p1)))
-        ),
+        None,
+        "never (the pitch axes are not parallel to axis 1)",
     )?;
     let x4 = ax[3].point.clone();
     // Joint 4 keeps the points of its axis: G x4 = E1 E2 E3 x4.

@@ -110,8 +110,8 @@ fn header(sol: &IkSolution) -> Vec<String> {
     match &sol.reach {
         Reach::PositionAndAngle { axes } => out.push(format!(
             "reachable: the position (px, py, pz) and one angle, the turn about the parallel \
-             axes {} (R = Rot(axis 1, theta1) Rot(axis 2, phi)); the rest of the target's \
-             orientation must agree",
+             axes {} (the target's orientation must be Rot(axis 1, theta1) Rot(axis 2, phi), \
+             theta1 read from it)",
             axes.iter()
                 .map(usize::to_string)
                 .collect::<Vec<_>>()
