@@ -87,7 +87,17 @@ pub(crate) fn derive(file: &str, free: Option<&str>) -> Result<IkSolution, IkErr
 /// The plain f64 chain of `file` at its published parameters.
 pub(crate) fn chain(file: &str) -> Chain<f64> {
     let r = load(&format!("{ROBOTS}{file}.toml"));
-    numeric_chain(&r, &params(file))
+    let env = params(file);
+    let mut c = numeric_chain(&r, &env);
+    // The end ik solves for is the one fk reports: moved to the tool point, if the file has one.
+    if let Some(p) = &r.tool {
+        let p = p.clone().map(|x| {
+            x.eval(&|n| env.iter().find(|(k, _)| k == n).map(|(_, v)| *v))
+                .expect("tool point")
+        });
+        c.tool = &c.tool * &dqsym::DualQuat::translation(&p);
+    }
+    c
 }
 
 /// The pose of the chain at `q` (all joints, the free one included).
@@ -416,7 +426,8 @@ fn robots_outside_the_families_get_the_clear_error() {
         (
             "panda",
             Some("theta3"),
-            "--free theta3 leaves no supported family; --free theta7 does",
+            "--free theta3 leaves no supported family; --free theta4 or --free theta6 or \
+             --free theta7 does",
         ),
     ] {
         let e = derive(file, free).expect_err(file).to_string();
