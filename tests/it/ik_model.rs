@@ -516,16 +516,65 @@ type UrdfJoint = (
 fn ur5_urdf() -> (String, Vec<UrdfJoint>) {
     let h = PI / 2.0;
     let joints: Vec<UrdfJoint> = vec![
-        ("mount", "world", "base_link", None, [0.1, 0.0, 0.2], [0.0, 0.0, h]),
-        ("j1", "base_link", "l1", Some(ZA), [0.0, 0.0, 0.089159], [0.0; 3]),
-        ("j2", "l1", "l2", Some(Y), [0.0, 0.13585, 0.0], [0.0, h, 0.0]),
+        (
+            "mount",
+            "world",
+            "base_link",
+            None,
+            [0.1, 0.0, 0.2],
+            [0.0, 0.0, h],
+        ),
+        (
+            "j1",
+            "base_link",
+            "l1",
+            Some(ZA),
+            [0.0, 0.0, 0.089159],
+            [0.0; 3],
+        ),
+        (
+            "j2",
+            "l1",
+            "l2",
+            Some(Y),
+            [0.0, 0.13585, 0.0],
+            [0.0, h, 0.0],
+        ),
         ("j3", "l2", "l3", Some(Y), [0.0, -0.1197, 0.425], [0.0; 3]),
-        ("j4", "l3", "l4", Some(Y), [0.0, 0.0, 0.39225], [0.0, h, 0.0]),
+        (
+            "j4",
+            "l3",
+            "l4",
+            Some(Y),
+            [0.0, 0.0, 0.39225],
+            [0.0, h, 0.0],
+        ),
         ("j5", "l4", "l5", Some(ZA), [0.0, 0.093, 0.0], [0.0; 3]),
         ("j6", "l5", "l6", Some(Y), [0.0, 0.0, 0.09465], [0.0; 3]),
-        ("flange_fixed", "l6", "flange", None, [0.0, 0.0823, 0.0], [0.0, 0.0, h]),
-        ("tool_fixed", "flange", "tool0", None, [0.03, 0.0, 0.05], [0.0; 3]),
-        ("camera_fixed", "l3", "camera", None, [0.0, 0.05, 0.1], [0.0; 3]),
+        (
+            "flange_fixed",
+            "l6",
+            "flange",
+            None,
+            [0.0, 0.0823, 0.0],
+            [0.0, 0.0, h],
+        ),
+        (
+            "tool_fixed",
+            "flange",
+            "tool0",
+            None,
+            [0.03, 0.0, 0.05],
+            [0.0; 3],
+        ),
+        (
+            "camera_fixed",
+            "l3",
+            "camera",
+            None,
+            [0.0, 0.05, 0.1],
+            [0.0; 3],
+        ),
     ];
     let mut s = String::from("<robot name=\"ur5x\">\n");
     let mut links = vec!["world"];
@@ -629,7 +678,9 @@ fn a_limit_is_reported_as_the_limit_at_every_budget() {
     .expect("file");
     let robot = parse_robot(&text, "puma560", &eval_scalar_text).expect("robot");
     let mut outcomes = (0, 0);
-    for budget in [50, 200, 500, 2_000, 5_000, 20_000, 60_000, 200_000, 3_000_000] {
+    for budget in [
+        50, 200, 500, 2_000, 5_000, 20_000, 60_000, 200_000, 3_000_000,
+    ] {
         let ctx = Context::new().with_work_budget(budget);
         let _g = ctx.enter();
         let r = solve(&robot, &IkOptions::default()).and_then(|sol| {
@@ -655,13 +706,22 @@ fn a_limit_is_reported_as_the_limit_at_every_budget() {
         let out = Command::new(env!("CARGO_BIN_EXE_dqsym"))
             .env("DQSYM_THREADS", "1")
             .args(["--work-budget", budget, "ik"])
-            .arg(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/robots/puma560.toml"))
+            .arg(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/examples/robots/puma560.toml"
+            ))
             .output()
             .expect("runs");
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "{err}");
-        assert!(err.contains("work budget exceeded") && err.contains("--work-budget"), "{err}");
-        assert!(!err.contains("no value for symbol") && !err.contains("geometry"), "{err}");
+        assert!(
+            err.contains("work budget exceeded") && err.contains("--work-budget"),
+            "{err}"
+        );
+        assert!(
+            !err.contains("no value for symbol") && !err.contains("geometry"),
+            "{err}"
+        );
     }
 }
 
@@ -680,7 +740,9 @@ fn a_term_limit_is_reported_as_the_limit() {
         });
         match r {
             Ok(_) => {}
-            Err(IkError::Scalar(ScalarError::TooLarge { .. } | ScalarError::TooManyPairs { .. })) => {}
+            Err(IkError::Scalar(
+                ScalarError::TooLarge { .. } | ScalarError::TooManyPairs { .. },
+            )) => {}
             Err(e) => panic!("term limit {limit}: {e}"),
         }
     }

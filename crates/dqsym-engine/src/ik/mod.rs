@@ -313,7 +313,12 @@ impl IkSolution {
     /// A closed form that fails (term limit, work budget).
     pub fn forms(&self) -> Result<&[Vec<(&'static str, crate::Expr)>], ScalarError> {
         self.forms
-            .get_or_init(|| self.steps.iter().map(|s| report::parts(&s.formula)).collect())
+            .get_or_init(|| {
+                self.steps
+                    .iter()
+                    .map(|s| report::parts(&s.formula))
+                    .collect()
+            })
             .as_ref()
             .map(|v| v.as_slice())
             .map_err(Clone::clone)

@@ -274,7 +274,9 @@ fn meet(b: &mut Builder, a: &Axis, c: &Axis) -> Result<V3, PlanError> {
     let num = add(&scale(&d, &a.point), &scale(&t, &a.dir));
     first_error(num.iter().chain([&d]))?;
     if b.scale.as_ref().is_some_and(|s| *s != d) {
-        return Err(PlanError::NotExact("a second point with a symbolic divisor"));
+        return Err(PlanError::NotExact(
+            "a second point with a symbolic divisor",
+        ));
     }
     b.scale = Some(d);
     Ok(scale(&Scalar::sym(INV_SCALE), &num))
@@ -297,7 +299,9 @@ fn parts_mut(f: &mut Formula) -> Vec<&mut Scalar> {
 /// part. A quadratic's parts are not (its leading coefficient is 1): refused.
 fn homogenize(f: &mut Formula, d: &Scalar) -> Result<(), PlanError> {
     if matches!(f, Formula::Quadratic { .. } | Formula::Value { .. }) {
-        return Err(PlanError::NotExact("a slide on a point with a symbolic divisor"));
+        return Err(PlanError::NotExact(
+            "a slide on a point with a symbolic divisor",
+        ));
     }
     let zero = Scalar::int(0);
     let mut coefs: Vec<Vec<Scalar>> = Vec::new();
@@ -310,7 +314,9 @@ fn homogenize(f: &mut Formula, d: &Scalar) -> Result<(), PlanError> {
         while !q.is_zero_value() {
             first_error([&q])?;
             if cs.len() > 8 {
-                return Err(PlanError::NotExact("a step on a point with a symbolic divisor"));
+                return Err(PlanError::NotExact(
+                    "a step on a point with a symbolic divisor",
+                ));
             }
             let c = q.subs(INV_SCALE, &zero);
             cs.push(c.try_div(&Scalar::int(fact))?);
@@ -319,7 +325,12 @@ fn homogenize(f: &mut Formula, d: &Scalar) -> Result<(), PlanError> {
         }
         coefs.push(cs);
     }
-    let k = coefs.iter().map(Vec::len).max().unwrap_or(0).saturating_sub(1);
+    let k = coefs
+        .iter()
+        .map(Vec::len)
+        .max()
+        .unwrap_or(0)
+        .saturating_sub(1);
     for (p, cs) in parts_mut(f).into_iter().zip(coefs) {
         let mut acc = Scalar::int(0);
         for (i, c) in cs.iter().enumerate() {
@@ -445,7 +456,12 @@ fn geometry_lines(axes: &[Axis]) -> Result<Vec<String>, ScalarError> {
             if let Relation::SkewUnless(r) = &rel {
                 first_error([r])?;
             }
-            out.push(format!("axes {} and {} {}", name(i), name(j), rel_text(&rel)));
+            out.push(format!(
+                "axes {} and {} {}",
+                name(i),
+                name(j),
+                rel_text(&rel)
+            ));
         }
     }
     let n = axes.len();
@@ -925,8 +941,7 @@ fn scara(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
     let x4 = ax[3].point.clone();
     let g4 = t.point(&x4);
     let wv = dot(&w, &ax[2].dir);
-    let d = dot(&w, &sub(&g4, &x4))
-        .try_div(&wv)?;
+    let d = dot(&w, &sub(&g4, &x4)).try_div(&wv)?;
     b.push(
         2,
         Formula::Value { v: d },
@@ -1092,7 +1107,10 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
 /// Whether a point (`N λ` when it has a symbolic divisor, see [`meet`]) lies on the axis.
 fn on_line_scaled(b: &Builder, p: &V3, a: &Axis) -> bool {
     match &b.scale {
-        Some(d) if p.iter().any(|x| x.symbols().iter().any(|s| s.name() == INV_SCALE)) => {
+        Some(d)
+            if p.iter()
+                .any(|x| x.symbols().iter().any(|s| s.name() == INV_SCALE)) =>
+        {
             let one = Scalar::int(1);
             let n: V3 = std::array::from_fn(|i| p[i].subs(INV_SCALE, &one));
             is_zero3(&cross(&sub(&n, &scale(d, &a.point)), &a.dir))
@@ -1189,7 +1207,8 @@ fn wrist_orientation(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
 
 fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
     let ax = b.axes;
-    let x56 = intersection(&ax[4], &ax[5]).ok_or(PlanError::NotExact("the intersection of axes 5 and 6"))?;
+    let x56 = intersection(&ax[4], &ax[5])
+        .ok_or(PlanError::NotExact("the intersection of axes 5 and 6"))?;
     let p1 = &ax[0].point;
     let k = &ax[1].dir;
     let p56 = t.point(&x56);
@@ -1263,7 +1282,8 @@ fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
 
 /// Axis 1, then axes 2, 3, 4 parallel to one another and not to axis 1, none two on one line.
 fn pitch_arm_axes(ax: &[Axis]) -> bool {
-    let apart = |a: &Axis, b: &Axis| !matches!(relation(a, b), Relation::Parallel { same_line: true });
+    let apart =
+        |a: &Axis, b: &Axis| !matches!(relation(a, b), Relation::Parallel { same_line: true });
     revolute(ax)
         && !parallel(&ax[0], &ax[1])
         && parallel(&ax[1], &ax[2])

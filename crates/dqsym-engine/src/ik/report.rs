@@ -120,12 +120,19 @@ fn header(sol: &IkSolution) -> Vec<String> {
         Reach::PositionAndApproach { approach } => out.push(format!(
             "reachable: the position (px, py, pz) and the approach axis, the end frame's \
              direction ({}) (R times it); the turn about it is not controlled",
-            approach.iter().map(scalar_text).collect::<Vec<_>>().join(", ")
+            approach
+                .iter()
+                .map(scalar_text)
+                .collect::<Vec<_>>()
+                .join(", ")
         )),
         _ => {}
     }
     if !sol.end.is_plain() {
-        out.push(format!("end frame (the end fk reports): {}", end_text(&sol.end)));
+        out.push(format!(
+            "end frame (the end fk reports): {}",
+            end_text(&sol.end)
+        ));
     }
     if let Some(f) = &sol.free {
         out.push(format!("free joint (a parameter): {f}"));
