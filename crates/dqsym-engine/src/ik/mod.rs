@@ -223,7 +223,7 @@ pub fn solve(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkError> {
 
 /// `robot` with its tool point (if any) folded into the tool motion: the end frame `fk` maps
 /// the point with is `forward · Trans(p)`, the last frame moved to the point.
-fn with_tool_point(robot: &Robot) -> std::borrow::Cow<'_, Robot> {
+pub(crate) fn with_tool_point(robot: &Robot) -> std::borrow::Cow<'_, Robot> {
     let Some(p) = &robot.tool else {
         return std::borrow::Cow::Borrowed(robot);
     };
@@ -307,6 +307,37 @@ pub fn radicand(rad: f64, n: f64) -> Option<(f64, bool, bool)> {
 }
 
 impl IkSolution {
+    /// How far the pose `got` is from `target` (row-major 4x4 matrices) in what the solution
+    /// controls ([`IkSolution::reach`]): the largest difference of a position entry or of an
+    /// entry of the rotation (all of it, or the approach direction's image), absolute.
+    pub fn deviation(&self, target: &[[f64; 4]; 4], got: &[[f64; 4]; 4]) -> f64 {
+        let mut dev: f64 = (0..3)
+            .map(|r| (target[r][3] - got[r][3]).abs())
+            .fold(0.0, f64::max);
+        match &self.reach {
+            Reach::Position => {}
+            Reach::PositionAndApproach { approach } => {
+                let a: Vec<f64> = approach
+                    .iter()
+                    .map(|x| x.eval(&|_| None).unwrap_or(f64::NAN))
+                    .collect();
+                let norm = a.iter().map(|x| x * x).sum::<f64>().sqrt();
+                for r in 0..3 {
+                    let image = |m: &[[f64; 4]; 4]| (0..3).map(|k| m[r][k] * a[k]).sum::<f64>();
+                    dev = dev.max((image(target) - image(got)).abs() / norm);
+                }
+            }
+            _ => {
+                for r in 0..3 {
+                    for c in 0..3 {
+                        dev = dev.max((target[r][c] - got[r][c]).abs());
+                    }
+                }
+            }
+        }
+        dev
+    }
+
     /// The closed forms of every step's parts (`a`, `b`, `c`; `y`, `x`; ...), computed once.
     ///
     /// # Errors

@@ -166,7 +166,8 @@ pub fn ik_walk(robot: &Robot, sol: &IkSolution, markdown: bool) -> Result<String
             env.push((v.clone(), *x));
         }
     }
-    let chain = numeric_chain(robot, &env)?;
+    // The end ik solves for: the tool point folded into the tool motion.
+    let chain = numeric_chain(&super::with_tool_point(robot), &env)?;
     let t = chain
         .forward_matrix(&q0)
         .map_err(|e| ScalarError::Unbound(e.to_string()))?
@@ -199,14 +200,7 @@ pub fn ik_walk(robot: &Robot, sol: &IkSolution, markdown: bool) -> Result<String
             .forward_matrix(&q)
             .map_err(|e| ScalarError::Unbound(e.to_string()))?
             .rows;
-        let mut dev: f64 = 0.0;
-        for r in 0..3 {
-            for c in 0..4 {
-                if !(sol.position_only && c < 3) {
-                    dev = dev.max((back[r][c] - t[r][c]).abs());
-                }
-            }
-        }
+        let dev = sol.deviation(&t, &back);
         let dev = if dev < 1e-12 {
             "below 1e-12".to_string()
         } else {
