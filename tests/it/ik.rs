@@ -1064,7 +1064,13 @@ fn walk_ik_html_page_solves_in_the_browser() {
     let root = env!("CARGO_MANIFEST_DIR");
     let artifacts = std::path::Path::new(root).join("artifacts");
     std::fs::create_dir_all(&artifacts).expect("artifacts dir");
-    for (file, free) in [("puma560", None), ("ur5", None), ("panda", Some("theta7"))] {
+    // puma_like has a tool point: the page solves for it, as fk reports it.
+    for (file, free) in [
+        ("puma560", None),
+        ("ur5", None),
+        ("panda", Some("theta7")),
+        ("puma_like", None),
+    ] {
         let page = artifacts.join(format!("walk_ik_{file}.html"));
         let mut args = vec![
             "walk".to_string(),

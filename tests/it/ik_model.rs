@@ -882,6 +882,9 @@ fn every_free_joint_of_a_seven_joint_arm_that_leaves_a_family_is_found_and_solve
     }
     // The Panda's elbow and lower wrist joints were refused before (an intersection with a
     // symbolic divisor, an elbow point not yet a family).
-    assert!(found[0].1.contains("theta4") && found[0].1.contains("theta6"), "{found:?}");
+    assert!(
+        found[0].1.contains("theta4") && found[0].1.contains("theta6"),
+        "{found:?}"
+    );
     eprintln!("free joints solved: {found:?}");
 }

@@ -42,9 +42,12 @@ fn first_error<'a>(xs: impl IntoIterator<Item = &'a Scalar>) -> Result<(), Scala
 pub(crate) const FAMILIES: &str = "planar 2R (position) and 3R; SCARA-type RRPR (three parallel \
 revolute axes, a prismatic joint along them); 6 joints with a spherical wrist (axes 4, 5, 6 \
 through one point) and either axes 2 and 3 parallel, or axes 1 and 2 intersecting (joint 3 \
-revolute or prismatic); the same read backwards (a spherical shoulder: axes 1, 2, 3 through one \
-point, with axes 4 and 5 parallel or axes 5 and 6 intersecting); 6R with axes 2, 3, 4 parallel \
-and axes 5 and 6 intersecting (UR type); 7 joints with one joint given by --free reducing to one of these";
+revolute or prismatic), or axes 2 and 3 intersecting off axis 1; the same read backwards (a \
+spherical shoulder: axes 1, 2, 3 through one point, with axes 4 and 5 parallel, axes 5 and 6 \
+intersecting, or axes 4 and 5 intersecting off axis 6); 6R with axes 2, 3, 4 parallel and axes \
+5 and 6 intersecting (UR type); 4R with axes 2, 3, 4 parallel (position and one angle); 5 \
+joints with axes 1-3 as in a spherical-wrist arm and axes 4 and 5 intersecting (position and \
+approach axis); 7 joints with one joint given by --free reducing to one of these";
 
 /// The target pose and the home pose: `G = T M⁻¹`, the motion `E1 ... En`.
 struct Target {
