@@ -114,12 +114,117 @@ pub struct IkStep {
     pub variable: String,
     /// The closed form.
     pub formula: Formula,
-    /// The subproblem and the identity it uses, in words.
-    pub method: String,
+    /// The subproblem and the identity it uses.
+    pub method: Phrase,
     /// The branch's name and the names of its `+` and `−` signs (shoulder left/right, ...).
-    pub branch: Option<(String, String, String)>,
-    /// Where the step is singular, in words.
-    pub singular: String,
+    pub branch: Option<Branch>,
+    /// Where the step is singular.
+    pub singular: Phrase,
+}
+
+/// A sentence of a derivation whose joint numbers are data: `{0}`, `{1}`, ... in `template`
+/// stand for the numbers in `axes` (1-based, among the solved joints), `{v}` for the closed
+/// form of `value`, `{p}` for the phrase `inner`. A step derived on the reversed chain maps its
+/// numbers ([`Phrase::renumbered`]) instead of rewriting words; `ik/report.rs` writes it out
+/// (`Display`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Phrase {
+    /// The words with their placeholders.
+    pub template: &'static str,
+    /// The joint numbers of the placeholders `{0}`, `{1}`, ...
+    pub axes: Vec<usize>,
+    /// The value of `{v}`.
+    pub value: Option<Scalar>,
+    /// The phrase of `{p}`.
+    pub inner: Option<Box<Phrase>>,
+    /// Derived on the chain read backwards (written with the prefix `chain reversed: `).
+    pub reversed: bool,
+}
+
+impl Phrase {
+    /// A phrase with the joint numbers `axes`.
+    pub fn new(template: &'static str, axes: &[usize]) -> Phrase {
+        Phrase {
+            template,
+            axes: axes.to_vec(),
+            value: None,
+            inner: None,
+            reversed: false,
+        }
+    }
+
+    /// Fixed words.
+    pub fn text(template: &'static str) -> Phrase {
+        Phrase::new(template, &[])
+    }
+
+    /// With the value of `{v}`.
+    pub fn with_value(mut self, v: Scalar) -> Phrase {
+        self.value = Some(v);
+        self
+    }
+
+    /// With the phrase of `{p}`.
+    pub fn with_inner(mut self, p: Phrase) -> Phrase {
+        self.inner = Some(Box::new(p));
+        self
+    }
+
+    /// The phrase of a chain of `n` joints read backwards in the arm's own numbering: joint
+    /// `j` of the reversed chain is joint `n + 1 − j`.
+    pub fn renumbered(mut self, n: usize) -> Phrase {
+        for a in &mut self.axes {
+            if (1..=n).contains(a) {
+                *a = n + 1 - *a;
+            }
+        }
+        self.inner = self.inner.map(|p| Box::new(p.renumbered(n)));
+        self
+    }
+}
+
+impl From<&'static str> for Phrase {
+    fn from(t: &'static str) -> Phrase {
+        Phrase::text(t)
+    }
+}
+
+/// Which part of the arm a two-branch step chooses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum BranchPart {
+    /// The shoulder.
+    Shoulder,
+    /// The elbow.
+    Elbow,
+    /// The wrist.
+    Wrist,
+    /// The reach of a slide (far or near).
+    Reach,
+}
+
+/// The names of a branch's `+` and `−` signs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum BranchSigns {
+    /// Left, right.
+    LeftRight,
+    /// Up, down.
+    UpDown,
+    /// No flip, flip.
+    NoFlipFlip,
+    /// Far, near.
+    FarNear,
+}
+
+/// A two-branch step's branch: the part it chooses and the names of its signs (a reversed
+/// chain's shoulder is the arm's wrist, with the shoulder's sign names).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Branch {
+    /// The part.
+    pub part: BranchPart,
+    /// The signs' names.
+    pub signs: BranchSigns,
 }
 
 /// A derived closed-form inverse kinematics.
@@ -128,7 +233,7 @@ pub struct IkSolution {
     /// The robot's name.
     pub robot: String,
     /// The family found.
-    pub family: String,
+    pub family: Phrase,
     /// The geometry facts decided, one per line.
     pub geometry: Vec<String>,
     /// Conditions the derivation assumes on the parameters.

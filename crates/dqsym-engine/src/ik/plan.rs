@@ -6,7 +6,10 @@ use super::axes::{
     add, cross, dot, home_axes, intersection, is_zero3, on_line, relation, scale, sub, zero3, Axis,
     Relation, V3,
 };
-use super::{Formula, IkError, IkOptions, IkSolution, IkStep, Reach, TARGET_SYMBOLS};
+use super::{
+    Branch, BranchPart, BranchSigns, Formula, IkError, IkOptions, IkSolution, IkStep, Phrase,
+    Reach, TARGET_SYMBOLS,
+};
 use crate::kin::{JointKind, Robot};
 use crate::{Matrix4, Scalar, ScalarError};
 use thiserror::Error;
@@ -181,74 +184,6 @@ fn sp1(axis: &Axis, u: &V3, v: &V3) -> Formula {
     }
 }
 
-/// A step's text written for the reversed chain (axis j' is axis n + 1 − j) in the arm's own
-/// numbering: the numbers after `axis`, `axes`, `joint`, `joints` (lists joined by `, `, ` and `,
-/// `-`), and the digits of `k2`, `p1`, `R4`, `R456`, `theta4` (each digit one axis).
-fn renumber(text: &str, n: usize) -> String {
-    let map = |d: usize| if (1..=n).contains(&d) { n + 1 - d } else { d };
-    let chars: Vec<char> = text.chars().collect();
-    let mut out = String::new();
-    let mut i = 0;
-    let word_start = |i: usize| i == 0 || !chars[i - 1].is_alphanumeric();
-    let starts = |i: usize, w: &str| {
-        chars[i..]
-            .iter()
-            .take(w.chars().count())
-            .copied()
-            .eq(w.chars())
-    };
-    while i < chars.len() {
-        if word_start(i) {
-            if let Some(w) = ["axis ", "axes ", "joint ", "joints "]
-                .into_iter()
-                .find(|w| starts(i, w))
-            {
-                out.push_str(w);
-                i += w.len();
-                // A list of numbers: 1, 2 and 3; 2-6.
-                loop {
-                    let j = i;
-                    while i < chars.len() && chars[i].is_ascii_digit() {
-                        i += 1;
-                    }
-                    if i == j {
-                        break;
-                    }
-                    let d: String = chars[j..i].iter().collect();
-                    out.push_str(&d.parse().map_or(d.clone(), |d| map(d).to_string()));
-                    let sep = [", ", " and ", "-"].into_iter().find(|sep| {
-                        starts(i, sep) && chars.get(i + sep.len()).is_some_and(char::is_ascii_digit)
-                    });
-                    match sep {
-                        Some(sep) => {
-                            out.push_str(sep);
-                            i += sep.len();
-                        }
-                        None => break,
-                    }
-                }
-                continue;
-            }
-            if let Some(w) = ["theta", "k", "p", "R"]
-                .into_iter()
-                .find(|w| starts(i, w) && chars.get(i + w.len()).is_some_and(char::is_ascii_digit))
-            {
-                out.push_str(w);
-                i += w.len();
-                while i < chars.len() && chars[i].is_ascii_digit() {
-                    let d = chars[i].to_digit(10).unwrap_or(0) as usize;
-                    out.push_str(&map(d).to_string());
-                    i += 1;
-                }
-                continue;
-            }
-        }
-        out.push(chars[i]);
-        i += 1;
-    }
-    out
-}
-
 struct Builder<'a> {
     axes: &'a [Axis],
     steps: Vec<IkStep>,
@@ -348,19 +283,31 @@ fn homogenize(f: &mut Formula, d: &Scalar) -> Result<(), PlanError> {
     Ok(())
 }
 
-const SHOULDER: (&str, &str, &str) = ("shoulder", "left", "right");
-const ELBOW: (&str, &str, &str) = ("elbow", "up", "down");
-const WRIST: (&str, &str, &str) = ("wrist", "no flip", "flip");
-const REACH: (&str, &str, &str) = ("reach", "far", "near");
+const SHOULDER: Branch = Branch {
+    part: BranchPart::Shoulder,
+    signs: BranchSigns::LeftRight,
+};
+const ELBOW: Branch = Branch {
+    part: BranchPart::Elbow,
+    signs: BranchSigns::UpDown,
+};
+const WRIST: Branch = Branch {
+    part: BranchPart::Wrist,
+    signs: BranchSigns::NoFlipFlip,
+};
+const REACH: Branch = Branch {
+    part: BranchPart::Reach,
+    signs: BranchSigns::FarNear,
+};
 
 impl Builder<'_> {
     fn push(
         &mut self,
         j: usize,
         mut formula: Formula,
-        method: String,
-        branch: Option<(&str, &str, &str)>,
-        singular: &str,
+        method: Phrase,
+        branch: Option<Branch>,
+        singular: impl Into<Phrase>,
     ) -> Result<(), PlanError> {
         let scaled = parts_mut(&mut formula)
             .iter()
@@ -387,11 +334,11 @@ impl Builder<'_> {
         if degenerate {
             return Err(PlanError::Degenerate {
                 variable: self.axes[j].variable.clone(),
-                method,
+                method: method.to_string(),
             });
         }
         let branch = if formula.branches() == 2 {
-            branch.map(|(n, p, m)| (n.to_string(), p.to_string(), m.to_string()))
+            branch
         } else {
             None
         };
@@ -401,7 +348,7 @@ impl Builder<'_> {
             formula,
             method,
             branch,
-            singular: singular.to_string(),
+            singular: singular.into(),
         });
         Ok(())
     }
@@ -409,13 +356,6 @@ impl Builder<'_> {
 
 fn name(i: usize) -> usize {
     i + 1
-}
-
-/// A scalar in closed form, plain text.
-fn scalar_text(x: &Scalar) -> String {
-    crate::closed_form(x)
-        .map(|e| crate::plain(&e, &crate::PlainOptions::default()))
-        .unwrap_or_else(|_| x.to_string())
 }
 
 fn rel_text(rel: &Relation) -> String {
@@ -773,12 +713,13 @@ fn derive_fixed(
 }
 
 /// Tries every family in turn; `Ok(None)` when none applies.
-fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, PlanError> {
+fn family(b: &mut Builder, t: &Target) -> Result<Option<(Phrase, bool)>, PlanError> {
     let ax = b.axes;
     let n = ax.len();
     if (n == 2 || n == 3) && revolute(ax) && ax.iter().all(|a| parallel(a, &ax[0])) {
         planar(b, t)?;
-        return Ok(Some((format!("planar {n}R"), n == 2)));
+        let name = if n == 2 { "planar 2R" } else { "planar 3R" };
+        return Ok(Some((name.into(), n == 2)));
     }
     if n == 4
         && revolute(&ax[0..2])
@@ -814,7 +755,7 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, PlanErr
             if let Some(pos) = spherical_position(b, t, &w)? {
                 wrist_orientation(b, t)?;
                 return Ok(Some((
-                    format!("6 joints with a spherical wrist (Pieper): {pos}"),
+                    Phrase::text("6 joints with a spherical wrist (Pieper): {p}").with_inner(pos),
                     false,
                 )));
             }
@@ -837,32 +778,40 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, PlanErr
                 wrist_orientation(&mut rb, &tr)?;
                 for mut s in rb.steps {
                     s.joint = n - 1 - s.joint;
-                    s.method = format!("chain reversed: {}", renumber(&s.method, n));
-                    s.singular = format!("chain reversed: {}", renumber(&s.singular, n));
+                    s.method = Phrase {
+                        reversed: true,
+                        ..s.method.renumbered(n)
+                    };
+                    s.singular = Phrase {
+                        reversed: true,
+                        ..s.singular.renumbered(n)
+                    };
                     // The reversed chain's shoulder is the arm's wrist and the other way round.
                     if let Some(br) = &mut s.branch {
-                        br.0 = match br.0.as_str() {
-                            "shoulder" => "wrist".into(),
-                            "wrist" => {
+                        br.part = match br.part {
+                            BranchPart::Shoulder => BranchPart::Wrist,
+                            BranchPart::Wrist => {
                                 // Axes 4' and 6' are axes 3 and 1.
-                                s.singular = "shoulder singularity (radicand zero, the two \
-                                              branches merge): axes 1 and 3 in line"
-                                    .into();
-                                "shoulder".into()
+                                s.singular = Phrase::new(
+                                    "shoulder singularity (radicand zero, the two branches \
+                                     merge): axes {0} and {1} in line",
+                                    &[1, 3],
+                                );
+                                BranchPart::Shoulder
                             }
-                            x => x.into(),
+                            x => x,
                         };
                     }
                     b.steps.push(s);
                 }
                 return Ok(Some((
-                    format!(
+                    Phrase::text(
                         "6 joints with a spherical shoulder (axes 1, 2, 3 through one point): \
                          the chain reversed, G⁻¹ = E6⁻¹ ⋯ E1⁻¹ about the reversed axes \
                          1' = 6, ..., 6' = 1, is a spherical-wrist arm (Pieper); in the arm's own \
-                         numbering: {}",
-                        renumber(&pos, n)
-                    ),
+                         numbering: {p}",
+                    )
+                    .with_inner(pos.renumbered(n)),
                     false,
                 )));
             }
@@ -904,15 +853,14 @@ fn planar(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
     b.push(
         1,
         sp3(&ax[1], &x, p1, &delta2),
-        format!(
-            "subproblem 3 (distance): joint 2 turns the {} about axis 2; its distance to axis 1 \
-             must equal the target's",
-            if n == 2 {
-                "tool point"
-            } else {
-                "point of axis 3"
-            }
-        ),
+        if n == 2 {
+            "subproblem 3 (distance): joint 2 turns the tool point about axis 2; its distance to \
+             axis 1 must equal the target's"
+        } else {
+            "subproblem 3 (distance): joint 2 turns the point of axis 3 about axis 2; its \
+             distance to axis 1 must equal the target's"
+        }
+        .into(),
         Some(ELBOW),
         "elbow straight or folded (radicand zero)",
     )?;
@@ -986,7 +934,7 @@ fn scara(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
 }
 
 /// Joints 1-3 of a spherical-wrist arm from the wrist centre; the method in words, or `None`.
-fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<String>, PlanError> {
+fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Phrase>, PlanError> {
     let ax = b.axes;
     let pw = t.point(w);
     let (a1, a2, a3) = (&ax[0], &ax[1], &ax[2]);
@@ -999,16 +947,20 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
         b.push(
             0,
             sp4(&sub(&pw, p1), a1, &a2.dir, &dot(&a2.dir, &sub(w, p1))),
-            "subproblem 4 (height): rotations about the parallel axes 2 and 3 keep the wrist \
-             centre's component along them, so (Rot(axis 1, theta) k2)·(wc − p1) = k2·(C − p1)"
-                .into(),
-            Some(SHOULDER),
-            &format!(
-                "radicand zero (shoulder singularity, left and right merge): the wrist centre's \
-                 distance from axis 1 equals the shoulder offset |k2·(C − p1)| = |{}| (the \
-                 wrist centre on axis 1 when it is 0)",
-                scalar_text(&dot(&a2.dir, &sub(w, p1)))
+            Phrase::new(
+                "subproblem 4 (height): rotations about the parallel axes {1} and {2} keep the \
+                 wrist centre's component along them, so (Rot(axis {0}, theta) k{1})·(wc − p{0}) \
+                 = k{1}·(C − p{0})",
+                &[1, 2, 3],
             ),
+            Some(SHOULDER),
+            Phrase::new(
+                "radicand zero (shoulder singularity, left and right merge): the wrist centre's \
+                 distance from axis {0} equals the shoulder offset |k{1}·(C − p{0})| = |{v}| (the \
+                 wrist centre on axis {0} when it is 0)",
+                &[1, 2],
+            )
+            .with_value(dot(&a2.dir, &sub(w, p1))),
         )?;
         let q = a1.move_point(&pw, -1);
         // The centre: where axes 1 and 2 meet when they do (then |q - O| = |wc - O|), else the
@@ -1019,9 +971,11 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
         b.push(
             2,
             sp3(a3, w, &centre, &delta2),
-            "subproblem 3 (distance): joint 3 sets the wrist centre's distance from a point of \
-             axis 2, which joint 2 keeps"
-                .into(),
+            Phrase::new(
+                "subproblem 3 (distance): joint {1} sets the wrist centre's distance from a point \
+                 of axis {0}, which joint {0} keeps",
+                &[2, 3],
+            ),
             Some(ELBOW),
             "elbow straight (radicand zero)",
         )?;
@@ -1030,11 +984,14 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
         b.push(
             1,
             sp1(a2, &sub(&x3, p2), &sub(&q, p2)),
-            "subproblem 1 (rotation): joint 2 turns the wrist centre onto the target's".into(),
+            Phrase::new(
+                "subproblem 1 (rotation): joint {0} turns the wrist centre onto the target's",
+                &[2],
+            ),
             None,
-            "never (the wrist centre off axis 2)",
+            Phrase::new("never (the wrist centre off axis {0})", &[2]),
         )?;
-        return Ok(Some("axes 2 and 3 parallel".into()));
+        return Ok(Some(Phrase::new("axes {0} and {1} parallel", &[2, 3])));
     }
     let shoulder = a1.kind == JointKind::Revolute
         && a2.kind == JointKind::Revolute
@@ -1052,9 +1009,11 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
             b.push(
                 2,
                 sp3(a3, w, &o, &norm2(&sub(&pw, &o))),
-                "subproblem 3 (distance): joints 1 and 2 turn about the shoulder point O where \
-                 axes 1 and 2 meet, so joint 3 alone sets |wc − O|"
-                    .into(),
+                Phrase::new(
+                    "subproblem 3 (distance): joints {0} and {1} turn about the shoulder point O \
+                     where axes {0} and {1} meet, so joint {2} alone sets |wc − O|",
+                    &[1, 2, 3],
+                ),
                 Some(ELBOW),
                 "elbow straight (radicand zero)",
             )?;
@@ -1068,9 +1027,11 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
                     beta: dot(v, &sub(w, &o)),
                     gamma: norm2(&sub(w, &o)) - norm2(&sub(&pw, &o)),
                 },
-                "distance: joints 1 and 2 turn about the shoulder point O, so the slide alone \
-                 sets |wc − O|: |C + d v − O|² = |wc − O|²"
-                    .into(),
+                Phrase::new(
+                    "distance: joints {0} and {1} turn about the shoulder point O, so the slide \
+                     alone sets |wc − O|: |C + d v − O|² = |wc − O|²",
+                    &[1, 2],
+                ),
                 Some(REACH),
                 "the slide's line through O's nearest point (double root)",
             )?;
@@ -1082,29 +1043,38 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
     b.push(
         1,
         sp4(&a1.dir, a2, &u, &dot(&a1.dir, &v)),
-        "subproblem 2, first half (subproblem 4): joint 1 keeps the component along axis 1, \
-         k1·Rot(axis 2, theta) u = k1·(wc − O)"
-            .into(),
+        Phrase::new(
+            "subproblem 2, first half (subproblem 4): joint {0} keeps the component along axis \
+             {0}, k{0}·Rot(axis {1}, theta) u = k{0}·(wc − O)",
+            &[1, 2],
+        ),
         Some(SHOULDER),
-        "radicand zero (left and right merge): joint 2 at the extreme of the height \
-         k1·Rot(axis 2, theta) u, the wrist centre as high along axis 1 as it can be",
+        Phrase::new(
+            "radicand zero (left and right merge): joint {1} at the extreme of the height \
+             k{0}·Rot(axis {1}, theta) u, the wrist centre as high along axis {0} as it can be",
+            &[1, 2],
+        ),
     )?;
     b.push(
         0,
         sp1(a1, &a2.move_dir(&u, 1), &v),
-        "subproblem 2, second half (subproblem 1): joint 1 turns the wrist centre onto the target"
-            .into(),
+        Phrase::new(
+            "subproblem 2, second half (subproblem 1): joint {0} turns the wrist centre onto the \
+             target",
+            &[1],
+        ),
         None,
-        "the wrist centre on axis 1: any theta1, 0 is returned",
+        Phrase::new(
+            "the wrist centre on axis {0}: any theta{0}, 0 is returned",
+            &[1],
+        ),
     )?;
-    Ok(Some(format!(
-        "axes 1 and 2 intersect (shoulder point), joint 3 {}",
-        if a3.kind == JointKind::Revolute {
-            "revolute"
-        } else {
-            "prismatic"
-        }
-    )))
+    let family = if a3.kind == JointKind::Revolute {
+        "axes {0} and {1} intersect (shoulder point), joint {2} revolute"
+    } else {
+        "axes {0} and {1} intersect (shoulder point), joint {2} prismatic"
+    };
+    Ok(Some(Phrase::new(family, &[1, 2, 3])))
 }
 
 /// Whether a point (`N λ` when it has a symbolic divisor, see [`meet`]) lies on the axis.
@@ -1125,7 +1095,7 @@ fn on_line_scaled(b: &Builder, p: &V3, a: &Axis) -> bool {
 /// Joints 1-3 when axes 2 and 3 meet at a point Q off axis 1 (an elbow point): joints 2 and 3
 /// keep Q, so joint 1 alone sets the distance of Q from the wrist centre (subproblem 3), then
 /// joints 3 and 2 take the wrist centre to its place about Q (subproblem 2).
-fn elbow_point(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<String>, PlanError> {
+fn elbow_point(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Phrase>, PlanError> {
     let ax = b.axes;
     let (a1, a2, a3) = (&ax[0], &ax[1], &ax[2]);
     if !revolute(&ax[0..3]) || parallel(a2, a3) || relation(a2, a3) != Relation::Intersecting {
@@ -1139,10 +1109,18 @@ fn elbow_point(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<String>, Pl
     b.push(
         0,
         sp3(a1, &q0, &pw, &norm2(&sub(w, &q0))),
-        "subproblem 3 (distance): joints 2 and 3 turn about the elbow point Q where axes 2 and          3 meet, so joint 1 alone sets the distance of Q from the wrist centre,          |Rot(axis 1, theta) Q − wc| = |C − Q|"
-            .into(),
+        Phrase::new(
+            "subproblem 3 (distance): joints {1} and {2} turn about the elbow point Q where axes \
+             {1} and {2} meet, so joint {0} alone sets the distance of Q from the wrist centre, \
+             |Rot(axis {0}, theta) Q − wc| = |C − Q|",
+            &[1, 2, 3],
+        ),
         Some(SHOULDER),
-        "radicand zero (left and right merge): the wrist centre at its nearest or farthest          from the circle joint 1 turns Q on",
+        Phrase::new(
+            "radicand zero (left and right merge): the wrist centre at its nearest or farthest \
+             from the circle joint {0} turns Q on",
+            &[1],
+        ),
     )?;
     let q = a1.move_point(&pw, -1);
     let u = sub(w, &q0);
@@ -1150,22 +1128,36 @@ fn elbow_point(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<String>, Pl
     b.push(
         2,
         sp4(&a2.dir, a3, &u, &dot(&a2.dir, &v)),
-        "subproblem 2, first half (subproblem 4): joint 2 keeps the component along axis 2,          k2·Rot(axis 3, theta) (C − Q) = k2·(R1ᵀ wc − Q)"
-            .into(),
+        Phrase::new(
+            "subproblem 2, first half (subproblem 4): joint {0} keeps the component along axis \
+             {0}, k{0}·Rot(axis {1}, theta) (C − Q) = k{0}·(R{2}ᵀ wc − Q)",
+            &[2, 3, 1],
+        ),
         Some(ELBOW),
-        "radicand zero (up and down merge): joint 3 at the extreme of the height along axis 2",
+        Phrase::new(
+            "radicand zero (up and down merge): joint {1} at the extreme of the height along \
+             axis {0}",
+            &[2, 3],
+        ),
     )?;
     b.push(
         1,
         sp1(a2, &a3.move_dir(&u, 1), &v),
-        "subproblem 2, second half (subproblem 1): joint 2 turns the wrist centre onto the          target"
-            .into(),
+        Phrase::new(
+            "subproblem 2, second half (subproblem 1): joint {0} turns the wrist centre onto \
+             the target",
+            &[2],
+        ),
         None,
-        "the wrist centre on axis 2: any theta2, 0 is returned",
+        Phrase::new(
+            "the wrist centre on axis {0}: any theta{0}, 0 is returned",
+            &[2],
+        ),
     )?;
-    Ok(Some(
-        "axes 2 and 3 intersect (elbow point), off axis 1".into(),
-    ))
+    Ok(Some(Phrase::new(
+        "axes {0} and {1} intersect (elbow point), off axis {2}",
+        &[2, 3, 1],
+    )))
 }
 
 fn wrist_orientation(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
@@ -1180,28 +1172,42 @@ fn wrist_orientation(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
     b.push(
         4,
         sp4(&a4.dir, a5, &a6.dir, &dot(&a4.dir, &r6)),
-        "subproblem 4 (height): R4 R5 R6 = R3ᵀ R2ᵀ R1ᵀ R; joint 4 keeps the component along \
-         axis 4 and joint 6 fixes k6, so k4·Rot(axis 5, theta) k6 = k4·(R456 k6)"
-            .into(),
+        Phrase::new(
+            "subproblem 4 (height): R{3} R{4} R{5} = R{2}ᵀ R{1}ᵀ R{0}ᵀ R; joint {3} keeps the \
+             component along axis {3} and joint {5} fixes k{5}, so k{3}·Rot(axis {4}, theta) \
+             k{5} = k{3}·(R{3}{4}{5} k{5})",
+            &[1, 2, 3, 4, 5, 6],
+        ),
         Some(WRIST),
-        "wrist singularity: axes 4 and 6 in line (radicand zero)",
+        Phrase::new(
+            "wrist singularity: axes {0} and {1} in line (radicand zero)",
+            &[4, 6],
+        ),
     )?;
     b.push(
         3,
         sp1(a4, &a5.move_dir(&a6.dir, 1), &r6),
-        "subproblem 1 (rotation): joint 4 turns Rot(axis 5) k6 onto R456 k6".into(),
+        Phrase::new(
+            "subproblem 1 (rotation): joint {0} turns Rot(axis {1}) k{2} onto R{0}{1}{2} k{2}",
+            &[4, 5, 6],
+        ),
         None,
-        "wrist singularity: axes 4 and 6 in line, only theta4 + theta6 is fixed; theta4 = 0 \
-         is returned",
+        Phrase::new(
+            "wrist singularity: axes {0} and {1} in line, only theta{0} + theta{1} is fixed; \
+             theta{0} = 0 is returned",
+            &[4, 6],
+        ),
     )?;
     let e = perpendicular(&a6.dir);
     let v = a5.move_dir(&a4.move_dir(&back(&e), -1), -1);
     b.push(
         5,
         sp1(a6, &e, &v),
-        "subproblem 1 (rotation): joint 6 turns a vector normal to axis 6 onto R5ᵀ R4ᵀ R456 \
-         of it"
-            .into(),
+        Phrase::new(
+            "subproblem 1 (rotation): joint {2} turns a vector normal to axis {2} onto R{1}ᵀ \
+             R{0}ᵀ R{0}{1}{2} of it",
+            &[4, 5, 6],
+        ),
         None,
         "never",
     )?;
@@ -1223,11 +1229,11 @@ fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
          k2·(C56 − p1)"
             .into(),
         Some(SHOULDER),
-        &format!(
+        Phrase::text(
             "radicand zero (shoulder singularity, left and right merge): the point where axes 5 \
-             and 6 meet at distance |k2·(C56 − p1)| = |{}| from axis 1",
-            scalar_text(&dot(k, &sub(&x56, p1)))
-        ),
+             and 6 meet at distance |k2·(C56 − p1)| = |{v}| from axis 1",
+        )
+        .with_value(dot(k, &sub(&x56, p1))),
     )?;
     let g6 = t.dir(&ax[5].dir);
     b.push(
@@ -1352,7 +1358,7 @@ fn pitch_arm(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
 /// wrist (axes 4 and 5 meeting at W). The reach is the position and the approach axis: the
 /// direction `e` from W to the end's origin (the end frame's z axis when the origin is W),
 /// which the wrist turns with two joints; the turn about it is not controlled.
-fn five_joints(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, PlanError> {
+fn five_joints(b: &mut Builder, t: &Target) -> Result<Option<(Phrase, bool)>, PlanError> {
     let ax = b.axes;
     let (a4, a5) = (&ax[3], &ax[4]);
     if !revolute(&ax[3..5]) || parallel(a4, a5) || relation(a4, a5) != Relation::Intersecting {
@@ -1401,7 +1407,11 @@ fn five_joints(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, Pl
         approach: Target::mat_t(&t.rm, &e),
     };
     Ok(Some((
-        format!("5 joints, a two-axis wrist (axes 4 and 5 intersect) reaching a position and an approach axis: {pos}"),
+        Phrase::text(
+            "5 joints, a two-axis wrist (axes 4 and 5 intersect) reaching a position and an \
+             approach axis: {p}",
+        )
+        .with_inner(pos),
         false,
     )))
 }

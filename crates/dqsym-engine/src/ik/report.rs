@@ -1,6 +1,8 @@
 //! The derivation as text: plain (the field's `c1`, `s23` notation), LaTeX, SymPy lines.
 
-use super::{EndFrame, Formula, IkSolution, IkStep, Reach};
+use super::{
+    Branch, BranchPart, BranchSigns, EndFrame, Formula, IkSolution, IkStep, Phrase, Reach,
+};
 use crate::closed::Expr;
 use crate::emit::{latex, latex_symbol, sympy, LatexOptions};
 use crate::print::{plain, Format, PlainOptions};
@@ -60,6 +62,55 @@ fn equation_text(step: &IkStep) -> Option<String> {
 
 fn branch_count(sol: &IkSolution) -> usize {
     sol.steps.iter().map(|s| s.formula.branches()).product()
+}
+
+impl std::fmt::Display for Phrase {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.reversed {
+            f.write_str("chain reversed: ")?;
+        }
+        let mut rest = self.template;
+        while let Some(i) = rest.find('{') {
+            f.write_str(&rest[..i])?;
+            let j = i + rest[i..].find('}').unwrap_or(rest.len() - i);
+            match &rest[i + 1..j] {
+                "v" => f.write_str(&self.value.as_ref().map(scalar_text).unwrap_or_default())?,
+                "p" => {
+                    if let Some(p) = &self.inner {
+                        write!(f, "{p}")?;
+                    }
+                }
+                k => {
+                    let a = k.parse::<usize>().ok().and_then(|k| self.axes.get(k));
+                    match a {
+                        Some(a) => write!(f, "{a}")?,
+                        None => f.write_str(&rest[i..=j.min(rest.len() - 1)])?,
+                    }
+                }
+            }
+            rest = rest.get(j + 1..).unwrap_or("");
+        }
+        f.write_str(rest)
+    }
+}
+
+impl Branch {
+    /// The branch's name and the names of its `+` and `−` signs.
+    pub fn words(&self) -> (&'static str, &'static str, &'static str) {
+        let name = match self.part {
+            BranchPart::Shoulder => "shoulder",
+            BranchPart::Elbow => "elbow",
+            BranchPart::Wrist => "wrist",
+            BranchPart::Reach => "reach",
+        };
+        let (p, m) = match self.signs {
+            BranchSigns::LeftRight => ("left", "right"),
+            BranchSigns::UpDown => ("up", "down"),
+            BranchSigns::NoFlipFlip => ("no flip", "flip"),
+            BranchSigns::FarNear => ("far", "near"),
+        };
+        (name, p, m)
+    }
 }
 
 /// The parts of the end frame, base first: `[base] frame, the joints, ...`.
@@ -148,7 +199,7 @@ fn header(sol: &IkSolution) -> Vec<String> {
     let names: Vec<String> = sol
         .steps
         .iter()
-        .filter_map(|s| s.branch.as_ref().map(|b| b.0.clone()))
+        .filter_map(|s| s.branch.as_ref().map(|b| b.words().0.to_string()))
         .collect();
     out.push(format!(
         "branches: {}{}",
@@ -196,7 +247,7 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
             for (step, parts) in sol.steps.iter().zip(all) {
                 out.push('\n');
                 out.push_str(&step.variable);
-                if let Some((n, p, m)) = &step.branch {
+                if let Some((n, p, m)) = step.branch.as_ref().map(Branch::words) {
                     out.push_str(&format!(" ({n}: + {p}, - {m})"));
                 }
                 out.push('\n');

@@ -142,7 +142,7 @@ pub fn ik_walk(robot: &Robot, sol: &IkSolution, markdown: bool) -> Result<String
                 "{q}² + 2 beta {q} + gamma = 0: {q} = −beta ± sqrt(beta² − gamma); exists where beta² ≥ gamma.\n"
             ),
         });
-        if let Some((n, p, m)) = &step.branch {
+        if let Some((n, p, m)) = step.branch.as_ref().map(super::Branch::words) {
             out.push_str(&format!("Branch {n}: + is {p}, − is {m}.\n"));
         }
         out.push_str(&format!("Singular: {}.\n\n", step.singular));
