@@ -287,7 +287,9 @@ fn a_seven_joint_arm_without_free_gets_a_free_joint_chosen_from_its_geometry() {
         let sol = derive(file, None).unwrap_or_else(|e| panic!("{file}: {e}"));
         assert_eq!(sol.free.as_deref(), Some(want), "{file}");
         assert!(
-            sol.geometry[0].contains(&format!("{want} chosen as the free joint")),
+            sol.geometry[0]
+                .to_string()
+                .contains(&format!("{want} chosen as the free joint")),
             "{file}: {:?}",
             sol.geometry
         );

@@ -189,6 +189,56 @@ impl From<&'static str> for Phrase {
     }
 }
 
+/// A fact about the axes, decided exactly; axes numbered from 1 among the solved joints.
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Fact {
+    /// The joints' kinds in order.
+    Joints(Vec<crate::kin::JointKind>),
+    /// How two revolute axes lie.
+    Pair {
+        /// The two axes.
+        axes: [usize; 2],
+        /// Their relation.
+        relation: Relation,
+    },
+    /// Two axes of which one slides: whether their directions are parallel.
+    Directions {
+        /// The two axes.
+        axes: [usize; 2],
+        /// Parallel directions.
+        parallel: bool,
+    },
+    /// Whether the last three axes pass through one point (a spherical wrist).
+    SphericalWrist {
+        /// The three axes.
+        axes: [usize; 3],
+        /// They do.
+        yes: bool,
+    },
+    /// The solved joints' variables in order, the free joint left out.
+    Numbering(Vec<String>),
+    /// The free joint chosen for a 7-joint arm without `--free`.
+    FreeChosen {
+        /// Its variable.
+        variable: String,
+        /// Why this one.
+        which: FreeChoice,
+    },
+}
+
+/// Which free joint was chosen: end joints are preferred.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum FreeChoice {
+    /// The first joint.
+    First,
+    /// The last joint (the first leaves no family).
+    Last,
+    /// An inner joint (neither end joint leaves a family).
+    Inner,
+}
+
 /// Which part of the arm a two-branch step chooses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
@@ -234,8 +284,8 @@ pub struct IkSolution {
     pub robot: String,
     /// The family found.
     pub family: Phrase,
-    /// The geometry facts decided, one per line.
-    pub geometry: Vec<String>,
+    /// The geometry facts decided (the report writes one line each).
+    pub geometry: Vec<Fact>,
     /// Conditions the derivation assumes on the parameters.
     pub conditions: Vec<String>,
     /// The joints in the order they are solved.

@@ -7,8 +7,8 @@ use super::axes::{
     Relation, V3,
 };
 use super::{
-    Branch, BranchPart, BranchSigns, Formula, IkError, IkOptions, IkSolution, IkStep, Phrase,
-    Reach, TARGET_SYMBOLS,
+    Branch, BranchPart, BranchSigns, Fact, Formula, FreeChoice, IkError, IkOptions, IkSolution,
+    IkStep, Phrase, Reach, TARGET_SYMBOLS,
 };
 use crate::kin::{JointKind, Robot};
 use crate::{Matrix4, Scalar, ScalarError};
@@ -354,69 +354,33 @@ impl Builder<'_> {
     }
 }
 
-fn name(i: usize) -> usize {
-    i + 1
-}
-
-fn rel_text(rel: &Relation) -> String {
-    match rel {
-        Relation::Parallel { same_line: true } => "coincide".into(),
-        Relation::Parallel { .. } => "are parallel".into(),
-        Relation::Intersecting => "intersect".into(),
-        Relation::Skew => "are skew (neither parallel nor intersecting)".into(),
-        Relation::SkewUnless(r) => format!(
-            "are skew unless {} = 0 (their reciprocal product)",
-            crate::closed_form(r)
-                .map(|e| crate::plain(&e, &crate::PlainOptions::default()))
-                .unwrap_or_else(|_| r.to_string())
-        ),
-    }
-}
-
-fn geometry_lines(axes: &[Axis]) -> Result<Vec<String>, ScalarError> {
-    let mut out = Vec::new();
-    let kinds: Vec<&str> = axes
-        .iter()
-        .map(|a| match a.kind {
-            JointKind::Revolute => "R",
-            JointKind::Prismatic => "P",
-        })
-        .collect();
-    out.push(format!("joints: {} ({})", kinds.concat(), axes.len()));
+fn geometry_lines(axes: &[Axis]) -> Result<Vec<Fact>, ScalarError> {
+    let mut out = vec![Fact::Joints(axes.iter().map(|a| a.kind).collect())];
     for i in 0..axes.len() {
         for j in i + 1..axes.len().min(i + 3) {
             if axes[i].kind == JointKind::Prismatic || axes[j].kind == JointKind::Prismatic {
-                let par = is_zero3(&cross(&axes[i].dir, &axes[j].dir));
-                out.push(format!(
-                    "axes {} and {}: directions {}",
-                    name(i),
-                    name(j),
-                    if par { "parallel" } else { "not parallel" }
-                ));
+                out.push(Fact::Directions {
+                    axes: [i + 1, j + 1],
+                    parallel: is_zero3(&cross(&axes[i].dir, &axes[j].dir)),
+                });
                 continue;
             }
-            let rel = relation(&axes[i], &axes[j]);
-            if let Relation::SkewUnless(r) = &rel {
+            let relation = relation(&axes[i], &axes[j]);
+            if let Relation::SkewUnless(r) = &relation {
                 first_error([r])?;
             }
-            out.push(format!(
-                "axes {} and {} {}",
-                name(i),
-                name(j),
-                rel_text(&rel)
-            ));
+            out.push(Fact::Pair {
+                axes: [i + 1, j + 1],
+                relation,
+            });
         }
     }
     let n = axes.len();
     if n >= 3 {
-        let w = common_point(&axes[n - 3..]);
-        out.push(format!(
-            "axes {}, {}, {} through one point (spherical wrist): {}",
-            n - 2,
-            n - 1,
-            n,
-            if w.is_some() { "yes" } else { "no" }
-        ));
+        out.push(Fact::SphericalWrist {
+            axes: [n - 2, n - 1, n],
+            yes: common_point(&axes[n - 3..]).is_some(),
+        });
     }
     Ok(out)
 }
@@ -514,20 +478,18 @@ pub(crate) fn derive_axes(
                 match try_free(v) {
                     Ok(mut sol) => {
                         let which = if k == 0 {
-                            "the first joint whose value leaves a supported family"
+                            FreeChoice::First
                         } else if k == n - 1 {
-                            "the last joint: the first joint's value leaves no supported family, \
-                             the last joint's does (an end joint is preferred)"
+                            FreeChoice::Last
                         } else {
-                            "the first inner joint whose value leaves a supported family (neither \
-                             end joint's does)"
+                            FreeChoice::Inner
                         };
                         sol.geometry.insert(
                             0,
-                            format!(
-                                "7 joints, no --free given: {v} chosen as the free joint (a \
-                                 parameter), {which}"
-                            ),
+                            Fact::FreeChosen {
+                                variable: v.clone(),
+                                which,
+                            },
                         );
                         return Ok(sol);
                     }
@@ -626,14 +588,7 @@ fn derive_fixed(
     if opts.free.is_some() {
         geometry.insert(
             0,
-            format!(
-                "axes numbered without the free joint: {}",
-                axes.iter()
-                    .enumerate()
-                    .map(|(i, a)| format!("{} = {}", i + 1, a.variable))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
+            Fact::Numbering(axes.iter().map(|a| a.variable.clone()).collect()),
         );
     }
     let target = Target::new(&home);
@@ -647,10 +602,8 @@ fn derive_fixed(
     let unsupported = |why: Option<String>| IkError::Unsupported {
         robot: name.to_string(),
         geometry: {
-            let mut g = geometry.clone();
-            if let Some(w) = why {
-                g.push(w);
-            }
+            let mut g: Vec<String> = geometry.iter().map(Fact::to_string).collect();
+            g.extend(why);
             g.iter()
                 .map(|l| format!("  {l}"))
                 .collect::<Vec<_>>()

@@ -1,10 +1,12 @@
 //! The derivation as text: plain (the field's `c1`, `s23` notation), LaTeX, SymPy lines.
 
 use super::{
-    Branch, BranchPart, BranchSigns, EndFrame, Formula, IkSolution, IkStep, Phrase, Reach,
+    Branch, BranchPart, BranchSigns, EndFrame, Fact, Formula, FreeChoice, IkSolution, IkStep,
+    Phrase, Reach, Relation,
 };
 use crate::closed::Expr;
 use crate::emit::{latex, latex_symbol, sympy, LatexOptions};
+use crate::kin::JointKind;
 use crate::print::{plain, Format, PlainOptions};
 use crate::{closed_form, Scalar, ScalarError};
 
@@ -91,6 +93,89 @@ impl std::fmt::Display for Phrase {
             rest = rest.get(j + 1..).unwrap_or("");
         }
         f.write_str(rest)
+    }
+}
+
+fn rel_text(rel: &Relation) -> String {
+    match rel {
+        Relation::Parallel { same_line: true } => "coincide".into(),
+        Relation::Parallel { .. } => "are parallel".into(),
+        Relation::Intersecting => "intersect".into(),
+        Relation::Skew => "are skew (neither parallel nor intersecting)".into(),
+        Relation::SkewUnless(r) => format!(
+            "are skew unless {} = 0 (their reciprocal product)",
+            scalar_text(r)
+        ),
+    }
+}
+
+impl std::fmt::Display for Fact {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Fact::Joints(kinds) => {
+                let k: String = kinds
+                    .iter()
+                    .map(|k| match k {
+                        JointKind::Revolute => 'R',
+                        JointKind::Prismatic => 'P',
+                    })
+                    .collect();
+                write!(f, "joints: {k} ({})", kinds.len())
+            }
+            Fact::Pair {
+                axes: [i, j],
+                relation,
+            } => {
+                write!(f, "axes {i} and {j} {}", rel_text(relation))
+            }
+            Fact::Directions {
+                axes: [i, j],
+                parallel,
+            } => {
+                let p = if *parallel {
+                    "parallel"
+                } else {
+                    "not parallel"
+                };
+                write!(f, "axes {i} and {j}: directions {p}")
+            }
+            Fact::SphericalWrist {
+                axes: [a, b, c],
+                yes,
+            } => {
+                let y = if *yes { "yes" } else { "no" };
+                write!(
+                    f,
+                    "axes {a}, {b}, {c} through one point (spherical wrist): {y}"
+                )
+            }
+            Fact::Numbering(vars) => {
+                let v: Vec<String> = vars
+                    .iter()
+                    .enumerate()
+                    .map(|(i, v)| format!("{} = {v}", i + 1))
+                    .collect();
+                write!(f, "axes numbered without the free joint: {}", v.join(", "))
+            }
+            Fact::FreeChosen { variable, which } => {
+                let why = match which {
+                    FreeChoice::First => "the first joint whose value leaves a supported family",
+                    FreeChoice::Last => {
+                        "the last joint: the first joint's value leaves no supported family, the \
+                         last joint's does (an end joint is preferred)"
+                    }
+                    FreeChoice::Inner => {
+                        "the first inner joint whose value leaves a supported family (neither end \
+                         joint's does)"
+                    }
+                };
+                write!(
+                    f,
+                    "7 joints, no --free given: {variable} chosen as the free joint (a \
+                     parameter), {why}"
+                )
+            }
+        }
     }
 }
 
