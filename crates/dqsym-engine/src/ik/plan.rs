@@ -14,6 +14,12 @@ use crate::kin::{JointKind, Robot};
 use crate::{Matrix4, Scalar, ScalarError};
 use thiserror::Error;
 
+mod divisor;
+mod short;
+
+use divisor::{homogenize, meet, on_line_scaled, parts_mut, INV_SCALE};
+use short::{five_joints, pitch_arm, pitch_arm_axes};
+
 /// Why a family's derivation stopped: a limit (reported as the limit), or a fact of the
 /// geometry (reported with the geometry found).
 #[derive(Clone, Debug, Error)]
@@ -192,95 +198,6 @@ struct Builder<'a> {
     scale: Option<Scalar>,
     /// The part of the target the family controls.
     reach: Reach,
-}
-
-/// The name of `λ = 1/D` in the steps built on a point `N λ` (see [`meet`]); [`Builder::push`]
-/// multiplies it out, so it never reaches a formula.
-const INV_SCALE: &str = "ik__inverse_scale";
-
-/// The point where two intersecting, non-parallel axes meet: exact when the parameters allow
-/// (a numeric divisor), else `N λ` with `λ = 1/D`, `D = |d1 × d2|²`, recorded in the builder.
-/// `D` is positive wherever the axes are not parallel (a free joint's value can make them
-/// parallel: there the steps built on the point vanish, a singular set).
-fn meet(b: &mut Builder, a: &Axis, c: &Axis) -> Result<V3, PlanError> {
-    if let Some(p) = intersection(a, c) {
-        return Ok(p);
-    }
-    let n = cross(&a.dir, &c.dir);
-    let d = dot(&n, &n);
-    let t = dot(&cross(&sub(&c.point, &a.point), &c.dir), &n);
-    let num = add(&scale(&d, &a.point), &scale(&t, &a.dir));
-    first_error(num.iter().chain([&d]))?;
-    if b.scale.as_ref().is_some_and(|s| *s != d) {
-        return Err(PlanError::NotExact(
-            "a second point with a symbolic divisor",
-        ));
-    }
-    b.scale = Some(d);
-    Ok(scale(&Scalar::sym(INV_SCALE), &num))
-}
-
-/// The parts of a formula, to rewrite in place.
-fn parts_mut(f: &mut Formula) -> Vec<&mut Scalar> {
-    match f {
-        Formula::Atan2 { y, x } => vec![y, x],
-        Formula::Trig { a, b, c } => vec![a, b, c],
-        Formula::Value { v } => vec![v],
-        Formula::Quadratic { beta, gamma } => vec![beta, gamma],
-    }
-}
-
-/// A formula on a point `N λ` multiplied through by `D^k`, `k` the highest power of `λ = 1/D`
-/// in its parts: each part `Σ pᵢ λⁱ` becomes `Σ pᵢ D^(k−i)`, a polynomial again. The solution
-/// is unchanged because `D > 0`: `atan2(y, x)` and `a cos q + b sin q = c` (with its radicand
-/// `a² + b² − c²` and `atan2(sqrt(.), c)`) are invariant under one positive factor on every
-/// part. A quadratic's parts are not (its leading coefficient is 1): refused.
-fn homogenize(f: &mut Formula, d: &Scalar) -> Result<(), PlanError> {
-    if matches!(f, Formula::Quadratic { .. } | Formula::Value { .. }) {
-        return Err(PlanError::NotExact(
-            "a slide on a point with a symbolic divisor",
-        ));
-    }
-    let zero = Scalar::int(0);
-    let mut coefs: Vec<Vec<Scalar>> = Vec::new();
-    for p in parts_mut(f) {
-        // pᵢ = (dⁱ p / dλⁱ)(0) / i!; the parts are polynomials of degree at most 4 in λ (a
-        // squared distance to the point, times a distance), so the loop ends.
-        let mut cs = Vec::new();
-        let mut q = p.clone();
-        let mut fact = 1i64;
-        while !q.is_zero_value() {
-            first_error([&q])?;
-            if cs.len() > 8 {
-                return Err(PlanError::NotExact(
-                    "a step on a point with a symbolic divisor",
-                ));
-            }
-            let c = q.subs(INV_SCALE, &zero);
-            cs.push(c.try_div(&Scalar::int(fact))?);
-            q = q.diff(INV_SCALE);
-            fact *= cs.len() as i64;
-        }
-        coefs.push(cs);
-    }
-    let k = coefs
-        .iter()
-        .map(Vec::len)
-        .max()
-        .unwrap_or(0)
-        .saturating_sub(1);
-    for (p, cs) in parts_mut(f).into_iter().zip(coefs) {
-        let mut acc = Scalar::int(0);
-        for (i, c) in cs.iter().enumerate() {
-            let mut t = c.clone();
-            for _ in i..k {
-                t = &t * d;
-            }
-            acc = &acc + &t;
-        }
-        *p = acc;
-    }
-    Ok(())
 }
 
 const SHOULDER: Branch = Branch {
@@ -1030,21 +947,6 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Phra
     Ok(Some(Phrase::new(family, &[1, 2, 3])))
 }
 
-/// Whether a point (`N λ` when it has a symbolic divisor, see [`meet`]) lies on the axis.
-fn on_line_scaled(b: &Builder, p: &V3, a: &Axis) -> bool {
-    match &b.scale {
-        Some(d)
-            if p.iter()
-                .any(|x| x.symbols().iter().any(|s| s.name() == INV_SCALE)) =>
-        {
-            let one = Scalar::int(1);
-            let n: V3 = std::array::from_fn(|i| p[i].subs(INV_SCALE, &one));
-            is_zero3(&cross(&sub(&n, &scale(d, &a.point)), &a.dir))
-        }
-        _ => on_line(p, a),
-    }
-}
-
 /// Joints 1-3 when axes 2 and 3 meet at a point Q off axis 1 (an elbow point): joints 2 and 3
 /// keep Q, so joint 1 alone sets the distance of Q from the wrist centre (subproblem 3), then
 /// joints 3 and 2 take the wrist centre to its place about Q (subproblem 2).
@@ -1240,131 +1142,4 @@ fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
         "never",
     )?;
     Ok(())
-}
-
-/// Axis 1, then axes 2, 3, 4 parallel to one another and not to axis 1, none two on one line.
-fn pitch_arm_axes(ax: &[Axis]) -> bool {
-    let apart =
-        |a: &Axis, b: &Axis| !matches!(relation(a, b), Relation::Parallel { same_line: true });
-    revolute(ax)
-        && !parallel(&ax[0], &ax[1])
-        && parallel(&ax[1], &ax[2])
-        && parallel(&ax[1], &ax[3])
-        && apart(&ax[1], &ax[2])
-        && apart(&ax[2], &ax[3])
-}
-
-/// A base joint and three parallel pitch joints (an AL5D): the reach is the position and the
-/// angle about the pitch axes. Joint 1 from the direction of the pitch axes, joints 3 and 2 a
-/// planar 2R to axis 4's place, joint 4 the rest of the angle.
-fn pitch_arm(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
-    let ax = b.axes;
-    let k = &ax[1].dir;
-    b.reach = Reach::PositionAndAngle {
-        axes: vec![2, 3, 4],
-    };
-    // The position alone leaves theta1 and theta1 + pi (the arm reaching over backwards),
-    // only one of which turns the pitch axes as the target does: theta1 is read from the
-    // direction of the pitch axes, R k2 = Rot(axis 1, theta1) k2.
-    b.push(
-        0,
-        sp1(&ax[0], k, &t.dir(k)),
-        "subproblem 1 (rotation): rotations about the parallel axes 2, 3, 4 keep their \
-         direction, so joint 1 turns k2 onto R k2"
-            .into(),
-        None,
-        "never (the pitch axes are not parallel to axis 1)",
-    )?;
-    let x4 = ax[3].point.clone();
-    // Joint 4 keeps the points of its axis: G x4 = E1 E2 E3 x4.
-    let q = ax[0].move_point(&t.point(&x4), -1);
-    let centre = shoulder_centre(&ax[0], &ax[1]);
-    b.push(
-        2,
-        sp3(&ax[2], &x4, &centre, &norm2(&sub(&q, &centre))),
-        "subproblem 3 (distance): joint 3 sets the distance of axis 4 from a point of axis 2 \
-         (their components along k2 agree by theta1's equation)"
-            .into(),
-        Some(ELBOW),
-        "elbow straight (radicand zero)",
-    )?;
-    let x3 = ax[2].move_point(&x4, 1);
-    b.push(
-        1,
-        sp1(&ax[1], &sub(&x3, &centre), &sub(&q, &centre)),
-        "subproblem 1 (rotation): joint 2 turns axis 4 onto its target place".into(),
-        None,
-        "axis 4 on axis 2",
-    )?;
-    let e = perpendicular(&ax[3].dir);
-    let v = ax[2].move_dir(&ax[1].move_dir(&ax[0].move_dir(&t.dir(&e), -1), -1), -1);
-    b.push(
-        3,
-        sp1(&ax[3], &e, &v),
-        "subproblem 1 (rotation): joint 4 completes the angle, R4 = R3ᵀ R2ᵀ R1ᵀ R".into(),
-        None,
-        "never",
-    )
-}
-
-/// Five joints: a position group (joints 1-3 as in a spherical-wrist arm) and a two-axis
-/// wrist (axes 4 and 5 meeting at W). The reach is the position and the approach axis: the
-/// direction `e` from W to the end's origin (the end frame's z axis when the origin is W),
-/// which the wrist turns with two joints; the turn about it is not controlled.
-fn five_joints(b: &mut Builder, t: &Target) -> Result<Option<(Phrase, bool)>, PlanError> {
-    let ax = b.axes;
-    let (a4, a5) = (&ax[3], &ax[4]);
-    if !revolute(&ax[3..5]) || parallel(a4, a5) || relation(a4, a5) != Relation::Intersecting {
-        return Ok(None);
-    }
-    let Some(w) = intersection(a4, a5) else {
-        return Ok(None);
-    };
-    let from_w = sub(&t.tm, &w);
-    let e = if is_zero3(&from_w) {
-        std::array::from_fn(|i| t.rm[i][2].clone())
-    } else {
-        from_w
-    };
-    if is_zero3(&cross(&e, &a5.dir)) {
-        return Ok(None);
-    }
-    let Some(pos) = spherical_position(b, t, &w)? else {
-        return Ok(None);
-    };
-    let back = |v: &V3| -> V3 {
-        let v = ax[0].move_dir(&t.dir(v), -1);
-        let v = ax[1].move_dir(&v, -1);
-        ax[2].move_dir(&v, -1)
-    };
-    let v = back(&e);
-    b.push(
-        4,
-        sp4(&a4.dir, a5, &e, &dot(&a4.dir, &v)),
-        "subproblem 2, first half (subproblem 4): joint 4 keeps the approach's component along \
-         axis 4, k4·Rot(axis 5, theta) e = k4·(R3ᵀ R2ᵀ R1ᵀ R e)"
-            .into(),
-        Some(WRIST),
-        "radicand zero (the two wrist branches merge)",
-    )?;
-    b.push(
-        3,
-        sp1(a4, &a5.move_dir(&e, 1), &v),
-        "subproblem 2, second half (subproblem 1): joint 4 turns the approach onto the target's"
-            .into(),
-        None,
-        "the approach along axis 4: any theta4, 0 is returned",
-    )?;
-    // The approach in the end frame's own coordinates: R_Mᵀ e.
-    b.reach = Reach::PositionAndApproach {
-        approach: Target::mat_t(&t.rm, &e),
-    };
-    Ok(Some((
-        Phrase::text(
-            "5 joints, a two-axis wrist (axes 4 and 5 intersect) reaching a position and an \
-             approach axis: {p}",
-        )
-        .with_inner(pos),
-        false,
-    )))
 }
