@@ -84,7 +84,7 @@ enum Command {
         #[arg(long, value_name = "VARIABLE", requires = "ik")]
         free: Option<String>,
         #[command(flatten)]
-        urdf: UrdfArgs,
+        robot_args: RobotArgs,
     },
     /// Forward kinematics of a robot file (TOML: dh, mdh or screw convention; or URDF) in closed form:
     /// the unit DQ and the 4x4 matrix; with --point the image of a point, with --jacobian the
@@ -104,7 +104,7 @@ enum Command {
         #[arg(long, value_name = "KIND", num_args = 0..=1, require_equals = true, default_missing_value = "")]
         jacobian: Option<String>,
         #[command(flatten)]
-        urdf: UrdfArgs,
+        robot_args: RobotArgs,
     },
     /// Convert a URDF file to a robot file (screw form) that fk reads to the same pose.
     Convert {
@@ -114,7 +114,7 @@ enum Command {
         #[arg(long, value_enum, default_value_t = ConvertTo::Toml)]
         to: ConvertTo,
         #[command(flatten)]
-        urdf: UrdfArgs,
+        robot_args: RobotArgs,
     },
     /// Inverse kinematics of a robot file in closed form: the family decided exactly from the
     /// axes, every joint as atan2 of closed forms, every branch; --format rust, c or python
@@ -125,6 +125,8 @@ enum Command {
         /// A joint variable given as a parameter (7-joint arms): `--free theta3`.
         #[arg(long, value_name = "VARIABLE")]
         free: Option<String>,
+        #[command(flatten)]
+        robot_args: RobotArgs,
     },
     /// Operation counts: the paper's Tables 1 and 2, counted by running the products (with the
     /// corrections of ERRATA 10 and 11); with a robot file, also its generated forward kinematics.
@@ -135,13 +137,15 @@ enum Command {
         #[arg(long)]
         jacobian: bool,
         #[command(flatten)]
-        urdf: UrdfArgs,
+        robot_args: RobotArgs,
     },
 }
 
-/// How a URDF file is read (robot files ignore these).
+/// How a robot is read: the one argument group of every command that reads a robot (`fk`,
+/// `ik`, `walk` with or without `--ik`, `ops`, `convert`), passed whole to [`load_robot`] so
+/// that each option means the same everywhere (the URDF options are errors on a TOML file).
 #[derive(clap::Args, Clone, Debug, Default)]
-struct UrdfArgs {
+struct RobotArgs {
     /// URDF: the last link of the chain (default: the only leaf link).
     #[arg(long, value_name = "LINK")]
     tip: Option<String>,
@@ -169,15 +173,15 @@ fn is_urdf(path: &std::path::Path) -> bool {
 }
 
 /// Reads a robot file or a URDF file; the angles a URDF file rounds are reported on stderr.
-fn load_robot(path: &std::path::Path, urdf: &UrdfArgs) -> Result<dqsym::Robot, String> {
+fn load_robot(path: &std::path::Path, args: &RobotArgs) -> Result<dqsym::Robot, String> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let name = path.display().to_string();
     if is_urdf(path) {
         let o = dqsym::kin::UrdfOptions {
-            tip: urdf.tip.clone(),
-            base: urdf.base.clone(),
-            snap_angles: !urdf.exact_angles,
+            tip: args.tip.clone(),
+            base: args.base.clone(),
+            snap_angles: !args.exact_angles,
         };
         let r = dqsym::parse_urdf(&text, &name, &o).map_err(|e| e.to_string())?;
         for n in &r.notes {
@@ -185,11 +189,17 @@ fn load_robot(path: &std::path::Path, urdf: &UrdfArgs) -> Result<dqsym::Robot, S
         }
         Ok(r.robot)
     } else {
-        if urdf.tip.is_some() || urdf.base.is_some() || urdf.exact_angles {
-            return Err("--tip, --base and --exact-angles apply to URDF files only".into());
-        }
+        urdf_only(args)?;
         dqsym::parse_robot(&text, &name, &dqsym::eval_scalar_text).map_err(|e| e.to_string())
     }
+}
+
+/// The URDF options are errors on any other file (never silently dropped).
+fn urdf_only(args: &RobotArgs) -> Result<(), String> {
+    if args.tip.is_some() || args.base.is_some() || args.exact_angles {
+        return Err("--tip, --base and --exact-angles apply to URDF files only".into());
+    }
+    Ok(())
 }
 
 /// The output formats of `--format`.
@@ -419,16 +429,16 @@ fn dispatch(cli: Cli) -> ExitCode {
             Some(Command::Ops {
                 robot,
                 jacobian,
-                urdf,
+                robot_args,
             }),
             _,
-        ) => ops(robot.as_deref(), jacobian, &urdf),
+        ) => ops(robot.as_deref(), jacobian, &robot_args),
         (
             Some(Command::Fk {
                 robot,
                 point,
                 jacobian,
-                urdf,
+                robot_args,
             }),
             _,
         ) => fk(
@@ -437,10 +447,24 @@ fn dispatch(cli: Cli) -> ExitCode {
             jacobian.as_deref(),
             format,
             cli.explicit,
-            &urdf,
+            &robot_args,
         ),
-        (Some(Command::Convert { robot, to, urdf }), _) => convert(&robot, to, &urdf),
-        (Some(Command::Ik { robot, free }), _) => ik(&robot, free, format, cli.explicit),
+        (
+            Some(Command::Convert {
+                robot,
+                to,
+                robot_args,
+            }),
+            _,
+        ) => convert(&robot, to, &robot_args),
+        (
+            Some(Command::Ik {
+                robot,
+                free,
+                robot_args,
+            }),
+            _,
+        ) => ik(&robot, free, &robot_args, format, cli.explicit),
         (Some(Command::Paper), _) => match dqsym::paper(&PlainOptions {
             shorthand: !cli.explicit,
         }) {
@@ -462,21 +486,34 @@ fn dispatch(cli: Cli) -> ExitCode {
                 config,
                 ik: true,
                 free,
-                ..
+                robot_args,
             }),
             _,
-        ) => walk_ik(&file, markdown, html.as_deref(), config.as_deref(), free),
+        ) => walk_ik(
+            &file,
+            markdown,
+            html.as_deref(),
+            config.as_deref(),
+            free,
+            &robot_args,
+        ),
         (
             Some(Command::Walk {
                 file,
                 markdown,
                 html,
                 config,
-                urdf,
+                robot_args,
                 ..
             }),
             _,
-        ) => walk(&file, markdown, html.as_deref(), config.as_deref(), &urdf),
+        ) => walk(
+            &file,
+            markdown,
+            html.as_deref(),
+            config.as_deref(),
+            &robot_args,
+        ),
         (None, Some(expr)) => one_liner(&expr, &opts, &limits),
         (None, None) => repl::run(&opts, &limits),
     }
@@ -487,6 +524,7 @@ fn dispatch(cli: Cli) -> ExitCode {
 fn ik(
     path: &std::path::Path,
     free: Option<String>,
+    robot_args: &RobotArgs,
     format: OutputFormat,
     explicit: bool,
 ) -> ExitCode {
@@ -494,7 +532,7 @@ fn ik(
         eprintln!("error: {m}");
         ExitCode::FAILURE
     };
-    let robot = match load_robot(path, &UrdfArgs::default()) {
+    let robot = match load_robot(path, robot_args) {
         Ok(r) => r,
         Err(m) => return fail(m),
     };
@@ -520,6 +558,7 @@ fn walk_ik(
     html: Option<&std::path::Path>,
     config: Option<&str>,
     free: Option<String>,
+    robot_args: &RobotArgs,
 ) -> ExitCode {
     let fail = |m: String| {
         eprintln!("error: {m}");
@@ -528,7 +567,7 @@ fn walk_ik(
     if config.is_some() && html.is_none() {
         return fail("--config only applies to the --html page".to_owned());
     }
-    let robot = match load_robot(path, &UrdfArgs::default()) {
+    let robot = match load_robot(path, robot_args) {
         Ok(r) => r,
         Err(m) => return fail(m),
     };
@@ -579,7 +618,7 @@ fn fk(
     jacobian: Option<&str>,
     format: OutputFormat,
     explicit: bool,
-    urdf: &UrdfArgs,
+    robot_args: &RobotArgs,
 ) -> ExitCode {
     let fail = |m: String| {
         eprintln!("error: {m}");
@@ -596,7 +635,7 @@ fn fk(
         },
     };
     let jacobian = jacobian.is_some();
-    let robot = match load_robot(path, urdf) {
+    let robot = match load_robot(path, robot_args) {
         Ok(r) => r,
         Err(m) => return fail(m),
     };
@@ -630,12 +669,17 @@ fn fk(
 }
 
 /// `dqsym ops [ROBOT]`: the paper's tables, then the robot's generated code.
-fn ops(path: Option<&std::path::Path>, jacobian: bool, urdf: &UrdfArgs) -> ExitCode {
-    print!("{}", dqsym::app::ops_tables());
+fn ops(path: Option<&std::path::Path>, jacobian: bool, robot_args: &RobotArgs) -> ExitCode {
     let Some(path) = path else {
+        if let Err(m) = urdf_only(robot_args) {
+            eprintln!("error: {m}");
+            return ExitCode::FAILURE;
+        }
+        print!("{}", dqsym::app::ops_tables());
         return ExitCode::SUCCESS;
     };
-    let robot = match load_robot(path, urdf) {
+    print!("{}", dqsym::app::ops_tables());
+    let robot = match load_robot(path, robot_args) {
         Ok(r) => r,
         Err(m) => {
             eprintln!("error: {m}");
@@ -665,7 +709,7 @@ fn ops(path: Option<&std::path::Path>, jacobian: bool, urdf: &UrdfArgs) -> ExitC
 }
 
 /// `dqsym convert ROBOT.urdf --to toml`: the robot file on stdout.
-fn convert(path: &std::path::Path, to: ConvertTo, urdf: &UrdfArgs) -> ExitCode {
+fn convert(path: &std::path::Path, to: ConvertTo, robot_args: &RobotArgs) -> ExitCode {
     let ConvertTo::Toml = to;
     if !is_urdf(path) {
         eprintln!(
@@ -674,7 +718,7 @@ fn convert(path: &std::path::Path, to: ConvertTo, urdf: &UrdfArgs) -> ExitCode {
         );
         return ExitCode::FAILURE;
     }
-    let r = load_robot(path, urdf).and_then(|robot| {
+    let r = load_robot(path, robot_args).and_then(|robot| {
         let name = path.file_name().map_or_else(
             || path.display().to_string(),
             |n| n.to_string_lossy().into_owned(),
@@ -702,7 +746,7 @@ fn walk(
     markdown: bool,
     html: Option<&std::path::Path>,
     config: Option<&str>,
-    urdf: &UrdfArgs,
+    robot_args: &RobotArgs,
 ) -> ExitCode {
     let fail = |m: String| {
         eprintln!("error: {m}");
@@ -714,10 +758,12 @@ fn walk(
     };
     let name = path.display().to_string();
     let w = if is_urdf(path) {
-        match load_robot(path, urdf) {
+        match load_robot(path, robot_args) {
             Ok(r) => dqsym::walk::walk_robot_chain(&r),
             Err(m) => return fail(m),
         }
+    } else if let Err(m) = urdf_only(robot_args) {
+        return fail(m);
     } else if path.extension().is_some_and(|e| e == "toml") {
         dqsym::walk_robot(&text, &name, &dqsym::eval_scalar_text)
     } else {

@@ -416,7 +416,7 @@ pub fn ik_walk_html(
 /// [`crate::ik::candidates`] does.
 fn ik_script(sol: &crate::ik::IkSolution) -> Result<String, WalkError> {
     use crate::ik::{Formula, TARGET_SYMBOLS};
-    let forms = sol.forms().map_err(WalkError::Config)?;
+    let forms = sol.forms()?;
     let target: Vec<String> = TARGET_SYMBOLS
         .iter()
         .flatten()
@@ -530,10 +530,15 @@ const IK_JS: &str = r#"(function () {
         return out;
     }
     const run = (v) => dqsym_walk(...D.args.map((n) => v[n]));
+    // The end ik solves for is the one fk reports: at the tool point, with the last frame's axes.
+    const pose = (v) => {
+        const w = run(v);
+        return w.T.map((row, r) => (r < 3 ? [row[0], row[1], row[2], w.tool[r]] : row));
+    };
     function update() {
         const v = {};
         for (const i of inputs) v[i.dataset.name] = Number(i.value);
-        const T = run(v).T;
+        const T = pose(v);
         const env = Object.assign({}, v);
         TARGET.forEach((n, i) => { env[n] = T[Math.floor(i / 4)][i % 4]; });
         for (const n of IK.vars) delete env[n];
@@ -543,7 +548,7 @@ const IK_JS: &str = r#"(function () {
         let h = cap + "<tr><td>#</td>" + IK.vars.map((n) => `<td>${n}</td>`).join("") +
             "<td>singular</td><td>deviation</td></tr>";
         sols.forEach(([s, sing], k) => {
-            const back = run(Object.assign({}, v, s)).T;
+            const back = pose(Object.assign({}, v, s));
             let dev = 0;
             for (let r = 0; r < 3; r++) for (let c = 0; c < 4; c++) {
                 if (IK.position_only && c < 3) continue;

@@ -55,7 +55,7 @@ struct Ctx<'a> {
 }
 
 fn ctx(sol: &IkSolution, lang: Lang) -> Result<Ctx<'_>, ScalarError> {
-    let forms = sol.forms().map_err(ScalarError::Unbound)?;
+    let forms = sol.forms()?;
     let n = sol.steps.len();
     let fixed = TARGET_SYMBOLS.iter().flatten().count() + sol.params.len();
     let args: Vec<String> = TARGET_SYMBOLS

@@ -21,7 +21,7 @@ pub use report::ik_report;
 pub use walk::ik_walk;
 
 use crate::kin::Robot;
-use crate::{Matrix4, Scalar};
+use crate::{Matrix4, Scalar, ScalarError};
 use thiserror::Error;
 
 /// The names of the target pose's entries: `T = [[r11 r12 r13 px] [r21 r22 r23 py] [r31 r32 r33
@@ -49,9 +49,10 @@ pub enum IkError {
     /// A bad option (`--free`) or a name clash.
     #[error("{0}")]
     Option(String),
-    /// An exact computation failed (term limit, work budget).
-    #[error("{0}")]
-    Scalar(String),
+    /// An exact computation failed (term limit, work budget): the limit with the option that
+    /// raises it, never taken for a property of the geometry.
+    #[error(transparent)]
+    Scalar(#[from] ScalarError),
 }
 
 /// What to derive.
@@ -114,12 +115,167 @@ pub struct IkStep {
     pub variable: String,
     /// The closed form.
     pub formula: Formula,
-    /// The subproblem and the identity it uses, in words.
-    pub method: String,
+    /// The subproblem and the identity it uses.
+    pub method: Phrase,
     /// The branch's name and the names of its `+` and `−` signs (shoulder left/right, ...).
-    pub branch: Option<(String, String, String)>,
-    /// Where the step is singular, in words.
-    pub singular: String,
+    pub branch: Option<Branch>,
+    /// Where the step is singular.
+    pub singular: Phrase,
+}
+
+/// A sentence of a derivation whose joint numbers are data: `{0}`, `{1}`, ... in `template`
+/// stand for the numbers in `axes` (1-based, among the solved joints), `{v}` for the closed
+/// form of `value`, `{p}` for the phrase `inner`. A step derived on the reversed chain maps its
+/// numbers ([`Phrase::renumbered`]) instead of rewriting words; `ik/report.rs` writes it out
+/// (`Display`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Phrase {
+    /// The words with their placeholders.
+    pub template: &'static str,
+    /// The joint numbers of the placeholders `{0}`, `{1}`, ...
+    pub axes: Vec<usize>,
+    /// The value of `{v}`.
+    pub value: Option<Scalar>,
+    /// The phrase of `{p}`.
+    pub inner: Option<Box<Phrase>>,
+    /// Derived on the chain read backwards (written with the prefix `chain reversed: `).
+    pub reversed: bool,
+}
+
+impl Phrase {
+    /// A phrase with the joint numbers `axes`.
+    pub fn new(template: &'static str, axes: &[usize]) -> Phrase {
+        Phrase {
+            template,
+            axes: axes.to_vec(),
+            value: None,
+            inner: None,
+            reversed: false,
+        }
+    }
+
+    /// Fixed words.
+    pub fn text(template: &'static str) -> Phrase {
+        Phrase::new(template, &[])
+    }
+
+    /// With the value of `{v}`.
+    pub fn with_value(mut self, v: Scalar) -> Phrase {
+        self.value = Some(v);
+        self
+    }
+
+    /// With the phrase of `{p}`.
+    pub fn with_inner(mut self, p: Phrase) -> Phrase {
+        self.inner = Some(Box::new(p));
+        self
+    }
+
+    /// The phrase of a chain of `n` joints read backwards in the arm's own numbering: joint
+    /// `j` of the reversed chain is joint `n + 1 − j`.
+    pub fn renumbered(mut self, n: usize) -> Phrase {
+        for a in &mut self.axes {
+            if (1..=n).contains(a) {
+                *a = n + 1 - *a;
+            }
+        }
+        self.inner = self.inner.map(|p| Box::new(p.renumbered(n)));
+        self
+    }
+}
+
+impl From<&'static str> for Phrase {
+    fn from(t: &'static str) -> Phrase {
+        Phrase::text(t)
+    }
+}
+
+/// A fact about the axes, decided exactly; axes numbered from 1 among the solved joints.
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Fact {
+    /// The joints' kinds in order.
+    Joints(Vec<crate::kin::JointKind>),
+    /// How two revolute axes lie.
+    Pair {
+        /// The two axes.
+        axes: [usize; 2],
+        /// Their relation.
+        relation: Relation,
+    },
+    /// Two axes of which one slides: whether their directions are parallel.
+    Directions {
+        /// The two axes.
+        axes: [usize; 2],
+        /// Parallel directions.
+        parallel: bool,
+    },
+    /// Whether the last three axes pass through one point (a spherical wrist).
+    SphericalWrist {
+        /// The three axes.
+        axes: [usize; 3],
+        /// They do.
+        yes: bool,
+    },
+    /// The solved joints' variables in order, the free joint left out.
+    Numbering(Vec<String>),
+    /// The free joint chosen for a 7-joint arm without `--free`.
+    FreeChosen {
+        /// Its variable.
+        variable: String,
+        /// Why this one.
+        which: FreeChoice,
+    },
+}
+
+/// Which free joint was chosen: end joints are preferred.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum FreeChoice {
+    /// The first joint.
+    First,
+    /// The last joint (the first leaves no family).
+    Last,
+    /// An inner joint (neither end joint leaves a family).
+    Inner,
+}
+
+/// Which part of the arm a two-branch step chooses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum BranchPart {
+    /// The shoulder.
+    Shoulder,
+    /// The elbow.
+    Elbow,
+    /// The wrist.
+    Wrist,
+    /// The reach of a slide (far or near).
+    Reach,
+}
+
+/// The names of a branch's `+` and `−` signs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum BranchSigns {
+    /// Left, right.
+    LeftRight,
+    /// Up, down.
+    UpDown,
+    /// No flip, flip.
+    NoFlipFlip,
+    /// Far, near.
+    FarNear,
+}
+
+/// A two-branch step's branch: the part it chooses and the names of its signs (a reversed
+/// chain's shoulder is the arm's wrist, with the shoulder's sign names).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Branch {
+    /// The part.
+    pub part: BranchPart,
+    /// The signs' names.
+    pub signs: BranchSigns,
 }
 
 /// A derived closed-form inverse kinematics.
@@ -128,9 +284,9 @@ pub struct IkSolution {
     /// The robot's name.
     pub robot: String,
     /// The family found.
-    pub family: String,
-    /// The geometry facts decided, one per line.
-    pub geometry: Vec<String>,
+    pub family: Phrase,
+    /// The geometry facts decided (the report writes one line each).
+    pub geometry: Vec<Fact>,
     /// Conditions the derivation assumes on the parameters.
     pub conditions: Vec<String>,
     /// The joints in the order they are solved.
@@ -143,10 +299,68 @@ pub struct IkSolution {
     pub free: Option<String>,
     /// Only the position of the end effector is solved for (planar 2R).
     pub position_only: bool,
+    /// The part of the target pose the arm controls (all of it for six joints).
+    pub reach: Reach,
     /// The home pose `M` of the end effector.
     pub home: Matrix4<Scalar>,
+    /// The frame solved for: the end `fk` reports.
+    pub end: EndFrame,
     /// The closed forms of every step's parts, computed on first use.
-    pub(crate) forms: std::sync::OnceLock<Result<Vec<Parts>, String>>,
+    pub(crate) forms: std::sync::OnceLock<Result<Vec<Parts>, ScalarError>>,
+}
+
+/// The part of a target pose an arm with fewer than six joints controls; the rest of the
+/// target must agree with the arm (a pose `fk` gives), else the solutions reproduce only this
+/// part.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Reach {
+    /// The whole pose.
+    #[default]
+    Pose,
+    /// The position of the end frame's origin (planar 2R).
+    Position,
+    /// The position and one angle: the rotation about the parallel axes `axes` (numbered from
+    /// 1 among the solved joints) after the first joint's turn, `R = Rot(axis 1) Rot(k, φ)`.
+    PositionAndAngle {
+        /// The parallel axes.
+        axes: Vec<usize>,
+    },
+    /// The position and the approach axis: the direction `approach` of the end frame (in its
+    /// own coordinates, `T · approach`); the turn about it is not controlled.
+    PositionAndApproach {
+        /// The approach direction in the end frame.
+        approach: [Scalar; 3],
+    },
+}
+
+/// The frame `ik` solves for, the same `fk` reports as the end: the base frames, the joints,
+/// the tool frames and the tool point, in this order (the report states the parts present).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct EndFrame {
+    /// Constant frames before the first joint (`[base]`).
+    pub base_frames: usize,
+    /// Constant frames after the last joint (`[tool]`, or a URDF tip's joint origins).
+    pub tool_frames: usize,
+    /// The tool point in the last frame (`tool = [x, y, z]`): the end frame's origin, with the
+    /// last frame's axes.
+    pub tool_point: Option<[Scalar; 3]>,
+}
+
+impl EndFrame {
+    /// The end frame of `robot`, as `fk` reads it.
+    pub fn of(robot: &Robot) -> EndFrame {
+        EndFrame {
+            base_frames: robot.base_frames.len(),
+            tool_frames: robot.tool_frames.len(),
+            tool_point: robot.tool.clone(),
+        }
+    }
+
+    /// Only the joints' own frames: nothing to state.
+    pub fn is_plain(&self) -> bool {
+        *self == EndFrame::default()
+    }
 }
 
 type Parts = Vec<(&'static str, crate::Expr)>;
@@ -157,6 +371,25 @@ type Parts = Vec<(&'static str, crate::Expr)>;
 /// [`IkError::Unsupported`] naming the geometry found when no family applies;
 /// [`IkError::Option`] for a bad `--free`; [`IkError::Scalar`] when a limit is reached.
 pub fn solve(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkError> {
+    let end = EndFrame::of(robot);
+    let mut sol = solve_end(&with_tool_point(robot), opts)?;
+    sol.end = end;
+    Ok(sol)
+}
+
+/// `robot` with its tool point (if any) folded into the tool motion: the end frame `fk` maps
+/// the point with is `forward · Trans(p)`, the last frame moved to the point.
+pub(crate) fn with_tool_point(robot: &Robot) -> std::borrow::Cow<'_, Robot> {
+    let Some(p) = &robot.tool else {
+        return std::borrow::Cow::Borrowed(robot);
+    };
+    let mut r = robot.clone();
+    r.chain.tool = &r.chain.tool * &crate::DualQuat::translation(p);
+    r.tool = None;
+    std::borrow::Cow::Owned(r)
+}
+
+fn solve_end(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkError> {
     // A base frame, or joints coupled to another's variable (URDF mimic joints), leave the
     // joints' own geometry: the axes are read from the whole pose instead.
     let plain = robot.chain.base == crate::DualQuat::identity()
@@ -230,16 +463,47 @@ pub fn radicand(rad: f64, n: f64) -> Option<(f64, bool, bool)> {
 }
 
 impl IkSolution {
+    /// How far the pose `got` is from `target` (row-major 4x4 matrices) in what the solution
+    /// controls ([`IkSolution::reach`]): the largest difference of a position entry or of an
+    /// entry of the rotation (all of it, or the approach direction's image), absolute.
+    pub fn deviation(&self, target: &[[f64; 4]; 4], got: &[[f64; 4]; 4]) -> f64 {
+        let mut dev: f64 = (0..3)
+            .map(|r| (target[r][3] - got[r][3]).abs())
+            .fold(0.0, f64::max);
+        match &self.reach {
+            Reach::Position => {}
+            Reach::PositionAndApproach { approach } => {
+                let a: Vec<f64> = approach
+                    .iter()
+                    .map(|x| x.eval(&|_| None).unwrap_or(f64::NAN))
+                    .collect();
+                let norm = a.iter().map(|x| x * x).sum::<f64>().sqrt();
+                for r in 0..3 {
+                    let image = |m: &[[f64; 4]; 4]| (0..3).map(|k| m[r][k] * a[k]).sum::<f64>();
+                    dev = dev.max((image(target) - image(got)).abs() / norm);
+                }
+            }
+            _ => {
+                for r in 0..3 {
+                    for c in 0..3 {
+                        dev = dev.max((target[r][c] - got[r][c]).abs());
+                    }
+                }
+            }
+        }
+        dev
+    }
+
     /// The closed forms of every step's parts (`a`, `b`, `c`; `y`, `x`; ...), computed once.
     ///
     /// # Errors
     /// A closed form that fails (term limit, work budget).
-    pub fn forms(&self) -> Result<&[Vec<(&'static str, crate::Expr)>], String> {
+    pub fn forms(&self) -> Result<&[Vec<(&'static str, crate::Expr)>], ScalarError> {
         self.forms
             .get_or_init(|| {
                 self.steps
                     .iter()
-                    .map(|s| report::parts(&s.formula).map_err(|e| e.to_string()))
+                    .map(|s| report::parts(&s.formula))
                     .collect()
             })
             .as_ref()
@@ -292,7 +556,7 @@ impl IkSolution {
             });
             return Ok(());
         };
-        let forms = self.forms()?;
+        let forms = self.forms().map_err(|e| e.to_string())?;
         let mut vals = [0.0; 3];
         for (i, (_, e)) in forms[k].iter().enumerate() {
             vals[i] = e

@@ -6,16 +6,57 @@ use super::axes::{
     add, cross, dot, home_axes, intersection, is_zero3, on_line, relation, scale, sub, zero3, Axis,
     Relation, V3,
 };
-use super::{Formula, IkError, IkOptions, IkSolution, IkStep, TARGET_SYMBOLS};
+use super::{
+    Branch, BranchPart, BranchSigns, Fact, Formula, FreeChoice, IkError, IkOptions, IkSolution,
+    IkStep, Phrase, Reach, TARGET_SYMBOLS,
+};
 use crate::kin::{JointKind, Robot};
-use crate::{Matrix4, Scalar};
+use crate::{Matrix4, Scalar, ScalarError};
+use thiserror::Error;
+
+mod divisor;
+mod short;
+
+use divisor::{homogenize, meet, on_line_scaled, parts_mut, INV_SCALE};
+use short::{five_joints, pitch_arm, pitch_arm_axes};
+
+/// Why a family's derivation stopped: a limit (reported as the limit), or a fact of the
+/// geometry (reported with the geometry found).
+#[derive(Clone, Debug, Error)]
+pub(crate) enum PlanError {
+    /// An exact computation reached a limit or failed.
+    #[error(transparent)]
+    Scalar(#[from] ScalarError),
+    /// A subproblem's coefficients vanish for every target.
+    #[error("the subproblem for {variable} is degenerate for every target ({method})")]
+    Degenerate {
+        /// The joint variable.
+        variable: String,
+        /// The subproblem, in words.
+        method: String,
+    },
+    /// A point the family needs has no exact form here.
+    #[error("{0} is not exact")]
+    NotExact(&'static str),
+}
+
+/// The first error among exact values: a limit reached while they were computed.
+fn first_error<'a>(xs: impl IntoIterator<Item = &'a Scalar>) -> Result<(), ScalarError> {
+    match xs.into_iter().find_map(Scalar::as_error) {
+        Some(e) => Err(e.clone()),
+        None => Ok(()),
+    }
+}
 
 pub(crate) const FAMILIES: &str = "planar 2R (position) and 3R; SCARA-type RRPR (three parallel \
 revolute axes, a prismatic joint along them); 6 joints with a spherical wrist (axes 4, 5, 6 \
 through one point) and either axes 2 and 3 parallel, or axes 1 and 2 intersecting (joint 3 \
-revolute or prismatic); the same read backwards (a spherical shoulder: axes 1, 2, 3 through one \
-point, with axes 4 and 5 parallel or axes 5 and 6 intersecting); 6R with axes 2, 3, 4 parallel \
-and axes 5 and 6 intersecting (UR type); 7 joints with one joint given by --free reducing to one of these";
+revolute or prismatic), or axes 2 and 3 intersecting off axis 1; the same read backwards (a \
+spherical shoulder: axes 1, 2, 3 through one point, with axes 4 and 5 parallel, axes 5 and 6 \
+intersecting, or axes 4 and 5 intersecting off axis 6); 6R with axes 2, 3, 4 parallel and axes \
+5 and 6 intersecting (UR type); 4R with axes 2, 3, 4 parallel (position and one angle); 5 \
+joints with axes 1-3 as in a spherical-wrist arm and axes 4 and 5 intersecting (position and \
+approach axis); 7 joints with one joint given by --free reducing to one of these";
 
 /// The target pose and the home pose: `G = T M⁻¹`, the motion `E1 ... En`.
 struct Target {
@@ -149,93 +190,52 @@ fn sp1(axis: &Axis, u: &V3, v: &V3) -> Formula {
     }
 }
 
-/// A step's text written for the reversed chain (axis j' is axis n + 1 − j) in the arm's own
-/// numbering: the numbers after `axis`, `axes`, `joint`, `joints` (lists joined by `, `, ` and `,
-/// `-`), and the digits of `k2`, `p1`, `R4`, `R456`, `theta4` (each digit one axis).
-fn renumber(text: &str, n: usize) -> String {
-    let map = |d: usize| if (1..=n).contains(&d) { n + 1 - d } else { d };
-    let chars: Vec<char> = text.chars().collect();
-    let mut out = String::new();
-    let mut i = 0;
-    let word_start = |i: usize| i == 0 || !chars[i - 1].is_alphanumeric();
-    let starts = |i: usize, w: &str| {
-        chars[i..]
-            .iter()
-            .take(w.chars().count())
-            .copied()
-            .eq(w.chars())
-    };
-    while i < chars.len() {
-        if word_start(i) {
-            if let Some(w) = ["axis ", "axes ", "joint ", "joints "]
-                .into_iter()
-                .find(|w| starts(i, w))
-            {
-                out.push_str(w);
-                i += w.len();
-                // A list of numbers: 1, 2 and 3; 2-6.
-                loop {
-                    let j = i;
-                    while i < chars.len() && chars[i].is_ascii_digit() {
-                        i += 1;
-                    }
-                    if i == j {
-                        break;
-                    }
-                    let d: String = chars[j..i].iter().collect();
-                    out.push_str(&d.parse().map_or(d.clone(), |d| map(d).to_string()));
-                    let sep = [", ", " and ", "-"].into_iter().find(|sep| {
-                        starts(i, sep) && chars.get(i + sep.len()).is_some_and(char::is_ascii_digit)
-                    });
-                    match sep {
-                        Some(sep) => {
-                            out.push_str(sep);
-                            i += sep.len();
-                        }
-                        None => break,
-                    }
-                }
-                continue;
-            }
-            if let Some(w) = ["theta", "k", "p", "R"]
-                .into_iter()
-                .find(|w| starts(i, w) && chars.get(i + w.len()).is_some_and(char::is_ascii_digit))
-            {
-                out.push_str(w);
-                i += w.len();
-                while i < chars.len() && chars[i].is_ascii_digit() {
-                    let d = chars[i].to_digit(10).unwrap_or(0) as usize;
-                    out.push_str(&map(d).to_string());
-                    i += 1;
-                }
-                continue;
-            }
-        }
-        out.push(chars[i]);
-        i += 1;
-    }
-    out
-}
-
 struct Builder<'a> {
     axes: &'a [Axis],
     steps: Vec<IkStep>,
+    /// `D` when a point is known only as `N / D` (see [`meet`]): the steps on it are
+    /// multiplied through by a power of `D`.
+    scale: Option<Scalar>,
+    /// The part of the target the family controls.
+    reach: Reach,
 }
 
-const SHOULDER: (&str, &str, &str) = ("shoulder", "left", "right");
-const ELBOW: (&str, &str, &str) = ("elbow", "up", "down");
-const WRIST: (&str, &str, &str) = ("wrist", "no flip", "flip");
-const REACH: (&str, &str, &str) = ("reach", "far", "near");
+const SHOULDER: Branch = Branch {
+    part: BranchPart::Shoulder,
+    signs: BranchSigns::LeftRight,
+};
+const ELBOW: Branch = Branch {
+    part: BranchPart::Elbow,
+    signs: BranchSigns::UpDown,
+};
+const WRIST: Branch = Branch {
+    part: BranchPart::Wrist,
+    signs: BranchSigns::NoFlipFlip,
+};
+const REACH: Branch = Branch {
+    part: BranchPart::Reach,
+    signs: BranchSigns::FarNear,
+};
 
 impl Builder<'_> {
     fn push(
         &mut self,
         j: usize,
-        formula: Formula,
-        method: String,
-        branch: Option<(&str, &str, &str)>,
-        singular: &str,
-    ) -> Result<(), String> {
+        mut formula: Formula,
+        method: Phrase,
+        branch: Option<Branch>,
+        singular: impl Into<Phrase>,
+    ) -> Result<(), PlanError> {
+        let scaled = parts_mut(&mut formula)
+            .iter()
+            .any(|p| p.symbols().iter().any(|s| s.name() == INV_SCALE));
+        if scaled {
+            let d = self
+                .scale
+                .clone()
+                .ok_or(PlanError::NotExact("a point with a symbolic divisor"))?;
+            homogenize(&mut formula, &d)?;
+        }
         let degenerate = match &formula {
             Formula::Atan2 { y, x } => y.is_zero_value() && x.is_zero_value(),
             Formula::Trig { a, b, .. } => a.is_zero_value() && b.is_zero_value(),
@@ -247,17 +247,15 @@ impl Builder<'_> {
             Formula::Value { v } => vec![v],
             Formula::Quadratic { beta, gamma } => vec![beta, gamma],
         };
-        if let Some(e) = all.iter().find_map(|x| x.as_error()) {
-            return Err(format!("scalar: {e}"));
-        }
+        first_error(all)?;
         if degenerate {
-            return Err(format!(
-                "the subproblem for {} is degenerate for every target ({method})",
-                self.axes[j].variable
-            ));
+            return Err(PlanError::Degenerate {
+                variable: self.axes[j].variable.clone(),
+                method: method.to_string(),
+            });
         }
         let branch = if formula.branches() == 2 {
-            branch.map(|(n, p, m)| (n.to_string(), p.to_string(), m.to_string()))
+            branch
         } else {
             None
         };
@@ -267,80 +265,41 @@ impl Builder<'_> {
             formula,
             method,
             branch,
-            singular: singular.to_string(),
+            singular: singular.into(),
         });
         Ok(())
     }
 }
 
-fn name(i: usize) -> usize {
-    i + 1
-}
-
-/// A scalar in closed form, plain text.
-fn scalar_text(x: &Scalar) -> String {
-    crate::closed_form(x)
-        .map(|e| crate::plain(&e, &crate::PlainOptions::default()))
-        .unwrap_or_else(|_| x.to_string())
-}
-
-fn rel_text(rel: &Relation) -> String {
-    match rel {
-        Relation::Parallel { same_line: true } => "coincide".into(),
-        Relation::Parallel { .. } => "are parallel".into(),
-        Relation::Intersecting => "intersect".into(),
-        Relation::Skew => "are skew (neither parallel nor intersecting)".into(),
-        Relation::SkewUnless(r) => format!(
-            "are skew unless {} = 0 (their reciprocal product)",
-            crate::closed_form(r)
-                .map(|e| crate::plain(&e, &crate::PlainOptions::default()))
-                .unwrap_or_else(|_| r.to_string())
-        ),
-    }
-}
-
-fn geometry_lines(axes: &[Axis]) -> Vec<String> {
-    let mut out = Vec::new();
-    let kinds: Vec<&str> = axes
-        .iter()
-        .map(|a| match a.kind {
-            JointKind::Revolute => "R",
-            JointKind::Prismatic => "P",
-        })
-        .collect();
-    out.push(format!("joints: {} ({})", kinds.concat(), axes.len()));
+fn geometry_lines(axes: &[Axis]) -> Result<Vec<Fact>, ScalarError> {
+    let mut out = vec![Fact::Joints(axes.iter().map(|a| a.kind).collect())];
     for i in 0..axes.len() {
         for j in i + 1..axes.len().min(i + 3) {
             if axes[i].kind == JointKind::Prismatic || axes[j].kind == JointKind::Prismatic {
-                let par = is_zero3(&cross(&axes[i].dir, &axes[j].dir));
-                out.push(format!(
-                    "axes {} and {}: directions {}",
-                    name(i),
-                    name(j),
-                    if par { "parallel" } else { "not parallel" }
-                ));
+                out.push(Fact::Directions {
+                    axes: [i + 1, j + 1],
+                    parallel: is_zero3(&cross(&axes[i].dir, &axes[j].dir)),
+                });
                 continue;
             }
-            out.push(format!(
-                "axes {} and {} {}",
-                name(i),
-                name(j),
-                rel_text(&relation(&axes[i], &axes[j]))
-            ));
+            let relation = relation(&axes[i], &axes[j]);
+            if let Relation::SkewUnless(r) = &relation {
+                first_error([r])?;
+            }
+            out.push(Fact::Pair {
+                axes: [i + 1, j + 1],
+                relation,
+            });
         }
     }
     let n = axes.len();
     if n >= 3 {
-        let w = common_point(&axes[n - 3..]);
-        out.push(format!(
-            "axes {}, {}, {} through one point (spherical wrist): {}",
-            n - 2,
-            n - 1,
-            n,
-            if w.is_some() { "yes" } else { "no" }
-        ));
+        out.push(Fact::SphericalWrist {
+            axes: [n - 2, n - 1, n],
+            yes: common_point(&axes[n - 3..]).is_some(),
+        });
     }
-    out
+    Ok(out)
 }
 
 /// The point common to three revolute axes, when there is one (exactly).
@@ -390,7 +349,8 @@ pub(crate) fn derive(robot: &Robot, opts: &IkOptions) -> Result<IkSolution, IkEr
 }
 
 /// The derivation from the axes and the home pose. A 7-joint chain without `--free` gets the
-/// first joint whose value as a parameter leaves a supported family (said in the geometry); a
+/// first end joint, else the first inner joint, whose value as a parameter leaves a supported
+/// family (said in the geometry); a
 /// `--free` that leaves none gets an error naming the joints that would.
 pub(crate) fn derive_axes(
     name: &str,
@@ -426,15 +386,27 @@ pub(crate) fn derive_axes(
     };
     match &opts.free {
         None => {
-            for v in variables {
+            // An end joint first (the other six are then an arm of their own with the whole
+            // target), then the inner joints in order.
+            let n = variables.len();
+            let order = [0, n - 1].into_iter().chain(1..n - 1);
+            for k in order {
+                let v = &variables[k];
                 match try_free(v) {
                     Ok(mut sol) => {
+                        let which = if k == 0 {
+                            FreeChoice::First
+                        } else if k == n - 1 {
+                            FreeChoice::Last
+                        } else {
+                            FreeChoice::Inner
+                        };
                         sol.geometry.insert(
                             0,
-                            format!(
-                                "7 joints, no --free given: {v} chosen as the free joint (a \
-                                 parameter), the first joint whose value leaves a supported family"
-                            ),
+                            Fact::FreeChosen {
+                                variable: v.clone(),
+                                which,
+                            },
                         );
                         return Ok(sol);
                     }
@@ -529,33 +501,26 @@ fn derive_fixed(
         params.push(f.clone());
         params.sort();
     }
-    let mut geometry = geometry_lines(&axes);
+    let mut geometry = geometry_lines(&axes)?;
     if opts.free.is_some() {
         geometry.insert(
             0,
-            format!(
-                "axes numbered without the free joint: {}",
-                axes.iter()
-                    .enumerate()
-                    .map(|(i, a)| format!("{} = {}", i + 1, a.variable))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
+            Fact::Numbering(axes.iter().map(|a| a.variable.clone()).collect()),
         );
     }
     let target = Target::new(&home);
     let mut b = Builder {
         axes: &axes,
         steps: Vec::new(),
+        scale: None,
+        reach: Reach::Pose,
     };
     let attempt = family(&mut b, &target);
     let unsupported = |why: Option<String>| IkError::Unsupported {
         robot: name.to_string(),
         geometry: {
-            let mut g = geometry.clone();
-            if let Some(w) = why {
-                g.push(w);
-            }
+            let mut g: Vec<String> = geometry.iter().map(Fact::to_string).collect();
+            g.extend(why);
             g.iter()
                 .map(|l| format!("  {l}"))
                 .collect::<Vec<_>>()
@@ -563,11 +528,17 @@ fn derive_fixed(
         },
         families: FAMILIES.into(),
     };
+    // A limit reached anywhere on the way (a decision on an error value reads as "no") is the
+    // outcome, whatever the family search concluded: the work budget is spent for good once
+    // exceeded, and a term limit leaves an error value in the axes or the steps.
+    crate::scalar::charge(0)?;
+    first_error(axes.iter().flat_map(|a| a.dir.iter().chain(&a.point)))?;
+    first_error(home.rows.iter().flatten())?;
     let (family, position_only) = match attempt {
         Ok(Some(f)) => f,
         Ok(None) => return Err(unsupported(None)),
-        Err(m) if m.starts_with("scalar: ") => return Err(IkError::Scalar(m[8..].to_string())),
-        Err(m) => return Err(unsupported(Some(m))),
+        Err(PlanError::Scalar(e)) => return Err(IkError::Scalar(e)),
+        Err(m) => return Err(unsupported(Some(m.to_string()))),
     };
     let mut conditions = Vec::new();
     for s in &b.steps {
@@ -584,6 +555,11 @@ fn derive_fixed(
         }
     }
     let steps = b.steps;
+    let reach = if position_only {
+        Reach::Position
+    } else {
+        b.reach
+    };
     let variables = variables
         .iter()
         .filter(|v| Some(*v) != opts.free.as_ref())
@@ -599,18 +575,21 @@ fn derive_fixed(
         params,
         free: opts.free.clone(),
         position_only,
+        reach,
         home,
+        end: super::EndFrame::default(),
         forms: std::sync::OnceLock::new(),
     })
 }
 
 /// Tries every family in turn; `Ok(None)` when none applies.
-fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, String> {
+fn family(b: &mut Builder, t: &Target) -> Result<Option<(Phrase, bool)>, PlanError> {
     let ax = b.axes;
     let n = ax.len();
     if (n == 2 || n == 3) && revolute(ax) && ax.iter().all(|a| parallel(a, &ax[0])) {
         planar(b, t)?;
-        return Ok(Some((format!("planar {n}R"), n == 2)));
+        let name = if n == 2 { "planar 2R" } else { "planar 3R" };
+        return Ok(Some((name.into(), n == 2)));
     }
     if n == 4
         && revolute(&ax[0..2])
@@ -627,6 +606,17 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, String>
         scara(b, t)?;
         return Ok(Some(("SCARA (RRPR)".into(), false)));
     }
+    if n == 4 && pitch_arm_axes(ax) {
+        pitch_arm(b, t)?;
+        return Ok(Some((
+            "4R: a base axis, then three parallel axes 2, 3, 4 (base yaw and three pitch joints)"
+                .into(),
+            false,
+        )));
+    }
+    if n == 5 {
+        return five_joints(b, t);
+    }
     if n != 6 {
         return Ok(None);
     }
@@ -635,7 +625,7 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, String>
             if let Some(pos) = spherical_position(b, t, &w)? {
                 wrist_orientation(b, t)?;
                 return Ok(Some((
-                    format!("6 joints with a spherical wrist (Pieper): {pos}"),
+                    Phrase::text("6 joints with a spherical wrist (Pieper): {p}").with_inner(pos),
                     false,
                 )));
             }
@@ -651,37 +641,47 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, String>
             let mut rb = Builder {
                 axes: &rev,
                 steps: Vec::new(),
+                scale: None,
+                reach: Reach::Pose,
             };
             if let Some(pos) = spherical_position(&mut rb, &tr, &o)? {
                 wrist_orientation(&mut rb, &tr)?;
                 for mut s in rb.steps {
                     s.joint = n - 1 - s.joint;
-                    s.method = format!("chain reversed: {}", renumber(&s.method, n));
-                    s.singular = format!("chain reversed: {}", renumber(&s.singular, n));
+                    s.method = Phrase {
+                        reversed: true,
+                        ..s.method.renumbered(n)
+                    };
+                    s.singular = Phrase {
+                        reversed: true,
+                        ..s.singular.renumbered(n)
+                    };
                     // The reversed chain's shoulder is the arm's wrist and the other way round.
                     if let Some(br) = &mut s.branch {
-                        br.0 = match br.0.as_str() {
-                            "shoulder" => "wrist".into(),
-                            "wrist" => {
+                        br.part = match br.part {
+                            BranchPart::Shoulder => BranchPart::Wrist,
+                            BranchPart::Wrist => {
                                 // Axes 4' and 6' are axes 3 and 1.
-                                s.singular = "shoulder singularity (radicand zero, the two \
-                                              branches merge): axes 1 and 3 in line"
-                                    .into();
-                                "shoulder".into()
+                                s.singular = Phrase::new(
+                                    "shoulder singularity (radicand zero, the two branches \
+                                     merge): axes {0} and {1} in line",
+                                    &[1, 3],
+                                );
+                                BranchPart::Shoulder
                             }
-                            x => x.into(),
+                            x => x,
                         };
                     }
                     b.steps.push(s);
                 }
                 return Ok(Some((
-                    format!(
+                    Phrase::text(
                         "6 joints with a spherical shoulder (axes 1, 2, 3 through one point): \
                          the chain reversed, G⁻¹ = E6⁻¹ ⋯ E1⁻¹ about the reversed axes \
                          1' = 6, ..., 6' = 1, is a spherical-wrist arm (Pieper); in the arm's own \
-                         numbering: {}",
-                        renumber(&pos, n)
-                    ),
+                         numbering: {p}",
+                    )
+                    .with_inner(pos.renumbered(n)),
                     false,
                 )));
             }
@@ -707,7 +707,7 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(String, bool)>, String>
     Ok(None)
 }
 
-fn planar(b: &mut Builder, t: &Target) -> Result<(), String> {
+fn planar(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
     let ax = b.axes;
     let n = ax.len();
     let w = ax[0].dir.clone();
@@ -723,15 +723,14 @@ fn planar(b: &mut Builder, t: &Target) -> Result<(), String> {
     b.push(
         1,
         sp3(&ax[1], &x, p1, &delta2),
-        format!(
-            "subproblem 3 (distance): joint 2 turns the {} about axis 2; its distance to axis 1 \
-             must equal the target's",
-            if n == 2 {
-                "tool point"
-            } else {
-                "point of axis 3"
-            }
-        ),
+        if n == 2 {
+            "subproblem 3 (distance): joint 2 turns the tool point about axis 2; its distance to \
+             axis 1 must equal the target's"
+        } else {
+            "subproblem 3 (distance): joint 2 turns the point of axis 3 about axis 2; its \
+             distance to axis 1 must equal the target's"
+        }
+        .into(),
         Some(ELBOW),
         "elbow straight or folded (radicand zero)",
     )?;
@@ -757,15 +756,13 @@ fn planar(b: &mut Builder, t: &Target) -> Result<(), String> {
     Ok(())
 }
 
-fn scara(b: &mut Builder, t: &Target) -> Result<(), String> {
+fn scara(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
     let ax = b.axes;
     let w = ax[0].dir.clone();
     let x4 = ax[3].point.clone();
     let g4 = t.point(&x4);
     let wv = dot(&w, &ax[2].dir);
-    let d = dot(&w, &sub(&g4, &x4))
-        .try_div(&wv)
-        .map_err(|e| format!("scalar: {e}"))?;
+    let d = dot(&w, &sub(&g4, &x4)).try_div(&wv)?;
     b.push(
         2,
         Formula::Value { v: d },
@@ -807,7 +804,7 @@ fn scara(b: &mut Builder, t: &Target) -> Result<(), String> {
 }
 
 /// Joints 1-3 of a spherical-wrist arm from the wrist centre; the method in words, or `None`.
-fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<String>, String> {
+fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Phrase>, PlanError> {
     let ax = b.axes;
     let pw = t.point(w);
     let (a1, a2, a3) = (&ax[0], &ax[1], &ax[2]);
@@ -820,16 +817,20 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
         b.push(
             0,
             sp4(&sub(&pw, p1), a1, &a2.dir, &dot(&a2.dir, &sub(w, p1))),
-            "subproblem 4 (height): rotations about the parallel axes 2 and 3 keep the wrist \
-             centre's component along them, so (Rot(axis 1, theta) k2)·(wc − p1) = k2·(C − p1)"
-                .into(),
-            Some(SHOULDER),
-            &format!(
-                "radicand zero (shoulder singularity, left and right merge): the wrist centre's \
-                 distance from axis 1 equals the shoulder offset |k2·(C − p1)| = |{}| (the \
-                 wrist centre on axis 1 when it is 0)",
-                scalar_text(&dot(&a2.dir, &sub(w, p1)))
+            Phrase::new(
+                "subproblem 4 (height): rotations about the parallel axes {1} and {2} keep the \
+                 wrist centre's component along them, so (Rot(axis {0}, theta) k{1})·(wc − p{0}) \
+                 = k{1}·(C − p{0})",
+                &[1, 2, 3],
             ),
+            Some(SHOULDER),
+            Phrase::new(
+                "radicand zero (shoulder singularity, left and right merge): the wrist centre's \
+                 distance from axis {0} equals the shoulder offset |k{1}·(C − p{0})| = |{v}| (the \
+                 wrist centre on axis {0} when it is 0)",
+                &[1, 2],
+            )
+            .with_value(dot(&a2.dir, &sub(w, p1))),
         )?;
         let q = a1.move_point(&pw, -1);
         // The centre: where axes 1 and 2 meet when they do (then |q - O| = |wc - O|), else the
@@ -840,9 +841,11 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
         b.push(
             2,
             sp3(a3, w, &centre, &delta2),
-            "subproblem 3 (distance): joint 3 sets the wrist centre's distance from a point of \
-             axis 2, which joint 2 keeps"
-                .into(),
+            Phrase::new(
+                "subproblem 3 (distance): joint {1} sets the wrist centre's distance from a point \
+                 of axis {0}, which joint {0} keeps",
+                &[2, 3],
+            ),
             Some(ELBOW),
             "elbow straight (radicand zero)",
         )?;
@@ -851,31 +854,36 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
         b.push(
             1,
             sp1(a2, &sub(&x3, p2), &sub(&q, p2)),
-            "subproblem 1 (rotation): joint 2 turns the wrist centre onto the target's".into(),
+            Phrase::new(
+                "subproblem 1 (rotation): joint {0} turns the wrist centre onto the target's",
+                &[2],
+            ),
             None,
-            "never (the wrist centre off axis 2)",
+            Phrase::new("never (the wrist centre off axis {0})", &[2]),
         )?;
-        return Ok(Some("axes 2 and 3 parallel".into()));
+        return Ok(Some(Phrase::new("axes {0} and {1} parallel", &[2, 3])));
     }
-    if a1.kind != JointKind::Revolute
-        || a2.kind != JointKind::Revolute
-        || parallel(a1, a2)
-        || relation(a1, a2) != Relation::Intersecting
-    {
-        return Ok(None);
+    let shoulder = a1.kind == JointKind::Revolute
+        && a2.kind == JointKind::Revolute
+        && !parallel(a1, a2)
+        && relation(a1, a2) == Relation::Intersecting;
+    if !shoulder {
+        return elbow_point(b, t, w);
     }
-    let o = intersection(a1, a2).ok_or("the intersection of axes 1 and 2 is not exact")?;
+    let o = meet(b, a1, a2)?;
     let x3 = match a3.kind {
         JointKind::Revolute => {
-            if on_line(&o, a3) {
+            if on_line_scaled(b, &o, a3) {
                 return Ok(None);
             }
             b.push(
                 2,
                 sp3(a3, w, &o, &norm2(&sub(&pw, &o))),
-                "subproblem 3 (distance): joints 1 and 2 turn about the shoulder point O where \
-                 axes 1 and 2 meet, so joint 3 alone sets |wc − O|"
-                    .into(),
+                Phrase::new(
+                    "subproblem 3 (distance): joints {0} and {1} turn about the shoulder point O \
+                     where axes {0} and {1} meet, so joint {2} alone sets |wc − O|",
+                    &[1, 2, 3],
+                ),
                 Some(ELBOW),
                 "elbow straight (radicand zero)",
             )?;
@@ -889,9 +897,11 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
                     beta: dot(v, &sub(w, &o)),
                     gamma: norm2(&sub(w, &o)) - norm2(&sub(&pw, &o)),
                 },
-                "distance: joints 1 and 2 turn about the shoulder point O, so the slide alone \
-                 sets |wc − O|: |C + d v − O|² = |wc − O|²"
-                    .into(),
+                Phrase::new(
+                    "distance: joints {0} and {1} turn about the shoulder point O, so the slide \
+                     alone sets |wc − O|: |C + d v − O|² = |wc − O|²",
+                    &[1, 2],
+                ),
                 Some(REACH),
                 "the slide's line through O's nearest point (double root)",
             )?;
@@ -903,32 +913,109 @@ fn spherical_position(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Stri
     b.push(
         1,
         sp4(&a1.dir, a2, &u, &dot(&a1.dir, &v)),
-        "subproblem 2, first half (subproblem 4): joint 1 keeps the component along axis 1, \
-         k1·Rot(axis 2, theta) u = k1·(wc − O)"
-            .into(),
+        Phrase::new(
+            "subproblem 2, first half (subproblem 4): joint {0} keeps the component along axis \
+             {0}, k{0}·Rot(axis {1}, theta) u = k{0}·(wc − O)",
+            &[1, 2],
+        ),
         Some(SHOULDER),
-        "radicand zero (left and right merge): joint 2 at the extreme of the height \
-         k1·Rot(axis 2, theta) u, the wrist centre as high along axis 1 as it can be",
+        Phrase::new(
+            "radicand zero (left and right merge): joint {1} at the extreme of the height \
+             k{0}·Rot(axis {1}, theta) u, the wrist centre as high along axis {0} as it can be",
+            &[1, 2],
+        ),
     )?;
     b.push(
         0,
         sp1(a1, &a2.move_dir(&u, 1), &v),
-        "subproblem 2, second half (subproblem 1): joint 1 turns the wrist centre onto the target"
-            .into(),
+        Phrase::new(
+            "subproblem 2, second half (subproblem 1): joint {0} turns the wrist centre onto the \
+             target",
+            &[1],
+        ),
         None,
-        "the wrist centre on axis 1: any theta1, 0 is returned",
+        Phrase::new(
+            "the wrist centre on axis {0}: any theta{0}, 0 is returned",
+            &[1],
+        ),
     )?;
-    Ok(Some(format!(
-        "axes 1 and 2 intersect (shoulder point), joint 3 {}",
-        if a3.kind == JointKind::Revolute {
-            "revolute"
-        } else {
-            "prismatic"
-        }
+    let family = if a3.kind == JointKind::Revolute {
+        "axes {0} and {1} intersect (shoulder point), joint {2} revolute"
+    } else {
+        "axes {0} and {1} intersect (shoulder point), joint {2} prismatic"
+    };
+    Ok(Some(Phrase::new(family, &[1, 2, 3])))
+}
+
+/// Joints 1-3 when axes 2 and 3 meet at a point Q off axis 1 (an elbow point): joints 2 and 3
+/// keep Q, so joint 1 alone sets the distance of Q from the wrist centre (subproblem 3), then
+/// joints 3 and 2 take the wrist centre to its place about Q (subproblem 2).
+fn elbow_point(b: &mut Builder, t: &Target, w: &V3) -> Result<Option<Phrase>, PlanError> {
+    let ax = b.axes;
+    let (a1, a2, a3) = (&ax[0], &ax[1], &ax[2]);
+    if !revolute(&ax[0..3]) || parallel(a2, a3) || relation(a2, a3) != Relation::Intersecting {
+        return Ok(None);
+    }
+    let q0 = meet(b, a2, a3)?;
+    if on_line_scaled(b, &q0, a1) || on_line_scaled(b, w, a2) {
+        return Ok(None);
+    }
+    let pw = t.point(w);
+    b.push(
+        0,
+        sp3(a1, &q0, &pw, &norm2(&sub(w, &q0))),
+        Phrase::new(
+            "subproblem 3 (distance): joints {1} and {2} turn about the elbow point Q where axes \
+             {1} and {2} meet, so joint {0} alone sets the distance of Q from the wrist centre, \
+             |Rot(axis {0}, theta) Q − wc| = |C − Q|",
+            &[1, 2, 3],
+        ),
+        Some(SHOULDER),
+        Phrase::new(
+            "radicand zero (left and right merge): the wrist centre at its nearest or farthest \
+             from the circle joint {0} turns Q on",
+            &[1],
+        ),
+    )?;
+    let q = a1.move_point(&pw, -1);
+    let u = sub(w, &q0);
+    let v = sub(&q, &q0);
+    b.push(
+        2,
+        sp4(&a2.dir, a3, &u, &dot(&a2.dir, &v)),
+        Phrase::new(
+            "subproblem 2, first half (subproblem 4): joint {0} keeps the component along axis \
+             {0}, k{0}·Rot(axis {1}, theta) (C − Q) = k{0}·(R{2}ᵀ wc − Q)",
+            &[2, 3, 1],
+        ),
+        Some(ELBOW),
+        Phrase::new(
+            "radicand zero (up and down merge): joint {1} at the extreme of the height along \
+             axis {0}",
+            &[2, 3],
+        ),
+    )?;
+    b.push(
+        1,
+        sp1(a2, &a3.move_dir(&u, 1), &v),
+        Phrase::new(
+            "subproblem 2, second half (subproblem 1): joint {0} turns the wrist centre onto \
+             the target",
+            &[2],
+        ),
+        None,
+        Phrase::new(
+            "the wrist centre on axis {0}: any theta{0}, 0 is returned",
+            &[2],
+        ),
+    )?;
+    Ok(Some(Phrase::new(
+        "axes {0} and {1} intersect (elbow point), off axis {2}",
+        &[2, 3, 1],
     )))
 }
 
-fn wrist_orientation(b: &mut Builder, t: &Target) -> Result<(), String> {
+fn wrist_orientation(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
     let ax = b.axes;
     let back = |v: &V3| -> V3 {
         let v = ax[0].move_dir(&t.dir(v), -1);
@@ -940,37 +1027,52 @@ fn wrist_orientation(b: &mut Builder, t: &Target) -> Result<(), String> {
     b.push(
         4,
         sp4(&a4.dir, a5, &a6.dir, &dot(&a4.dir, &r6)),
-        "subproblem 4 (height): R4 R5 R6 = R3ᵀ R2ᵀ R1ᵀ R; joint 4 keeps the component along \
-         axis 4 and joint 6 fixes k6, so k4·Rot(axis 5, theta) k6 = k4·(R456 k6)"
-            .into(),
+        Phrase::new(
+            "subproblem 4 (height): R{3} R{4} R{5} = R{2}ᵀ R{1}ᵀ R{0}ᵀ R; joint {3} keeps the \
+             component along axis {3} and joint {5} fixes k{5}, so k{3}·Rot(axis {4}, theta) \
+             k{5} = k{3}·(R{3}{4}{5} k{5})",
+            &[1, 2, 3, 4, 5, 6],
+        ),
         Some(WRIST),
-        "wrist singularity: axes 4 and 6 in line (radicand zero)",
+        Phrase::new(
+            "wrist singularity: axes {0} and {1} in line (radicand zero)",
+            &[4, 6],
+        ),
     )?;
     b.push(
         3,
         sp1(a4, &a5.move_dir(&a6.dir, 1), &r6),
-        "subproblem 1 (rotation): joint 4 turns Rot(axis 5) k6 onto R456 k6".into(),
+        Phrase::new(
+            "subproblem 1 (rotation): joint {0} turns Rot(axis {1}) k{2} onto R{0}{1}{2} k{2}",
+            &[4, 5, 6],
+        ),
         None,
-        "wrist singularity: axes 4 and 6 in line, only theta4 + theta6 is fixed; theta4 = 0 \
-         is returned",
+        Phrase::new(
+            "wrist singularity: axes {0} and {1} in line, only theta{0} + theta{1} is fixed; \
+             theta{0} = 0 is returned",
+            &[4, 6],
+        ),
     )?;
     let e = perpendicular(&a6.dir);
     let v = a5.move_dir(&a4.move_dir(&back(&e), -1), -1);
     b.push(
         5,
         sp1(a6, &e, &v),
-        "subproblem 1 (rotation): joint 6 turns a vector normal to axis 6 onto R5ᵀ R4ᵀ R456 \
-         of it"
-            .into(),
+        Phrase::new(
+            "subproblem 1 (rotation): joint {2} turns a vector normal to axis {2} onto R{1}ᵀ \
+             R{0}ᵀ R{0}{1}{2} of it",
+            &[4, 5, 6],
+        ),
         None,
         "never",
     )?;
     Ok(())
 }
 
-fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), String> {
+fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
     let ax = b.axes;
-    let x56 = intersection(&ax[4], &ax[5]).ok_or("the intersection of axes 5 and 6")?;
+    let x56 = intersection(&ax[4], &ax[5])
+        .ok_or(PlanError::NotExact("the intersection of axes 5 and 6"))?;
     let p1 = &ax[0].point;
     let k = &ax[1].dir;
     let p56 = t.point(&x56);
@@ -982,11 +1084,11 @@ fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), String> {
          k2·(C56 − p1)"
             .into(),
         Some(SHOULDER),
-        &format!(
+        Phrase::text(
             "radicand zero (shoulder singularity, left and right merge): the point where axes 5 \
-             and 6 meet at distance |k2·(C56 − p1)| = |{}| from axis 1",
-            scalar_text(&dot(k, &sub(&x56, p1)))
-        ),
+             and 6 meet at distance |k2·(C56 − p1)| = |{v}| from axis 1",
+        )
+        .with_value(dot(k, &sub(&x56, p1))),
     )?;
     let g6 = t.dir(&ax[5].dir);
     b.push(

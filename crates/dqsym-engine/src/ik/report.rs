@@ -1,9 +1,13 @@
 //! The derivation as text: plain (the field's `c1`, `s23` notation), LaTeX, SymPy lines.
 
-use super::{Formula, IkSolution, IkStep};
+use super::{
+    Branch, BranchPart, BranchSigns, EndFrame, Fact, Formula, FreeChoice, IkSolution, IkStep,
+    Phrase, Reach, Relation,
+};
 use crate::closed::Expr;
 use crate::emit::names::{line_comment, Comment};
 use crate::emit::{latex, latex_symbol, sympy, LatexOptions};
+use crate::kin::JointKind;
 use crate::print::{plain, Format, PlainOptions};
 use crate::{closed_form, Scalar, ScalarError};
 
@@ -63,6 +67,171 @@ fn branch_count(sol: &IkSolution) -> usize {
     sol.steps.iter().map(|s| s.formula.branches()).product()
 }
 
+impl std::fmt::Display for Phrase {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.reversed {
+            f.write_str("chain reversed: ")?;
+        }
+        let mut rest = self.template;
+        while let Some(i) = rest.find('{') {
+            f.write_str(&rest[..i])?;
+            let j = i + rest[i..].find('}').unwrap_or(rest.len() - i);
+            match &rest[i + 1..j] {
+                "v" => f.write_str(&self.value.as_ref().map(scalar_text).unwrap_or_default())?,
+                "p" => {
+                    if let Some(p) = &self.inner {
+                        write!(f, "{p}")?;
+                    }
+                }
+                k => {
+                    let a = k.parse::<usize>().ok().and_then(|k| self.axes.get(k));
+                    match a {
+                        Some(a) => write!(f, "{a}")?,
+                        None => f.write_str(&rest[i..=j.min(rest.len() - 1)])?,
+                    }
+                }
+            }
+            rest = rest.get(j + 1..).unwrap_or("");
+        }
+        f.write_str(rest)
+    }
+}
+
+fn rel_text(rel: &Relation) -> String {
+    match rel {
+        Relation::Parallel { same_line: true } => "coincide".into(),
+        Relation::Parallel { .. } => "are parallel".into(),
+        Relation::Intersecting => "intersect".into(),
+        Relation::Skew => "are skew (neither parallel nor intersecting)".into(),
+        Relation::SkewUnless(r) => format!(
+            "are skew unless {} = 0 (their reciprocal product)",
+            scalar_text(r)
+        ),
+    }
+}
+
+impl std::fmt::Display for Fact {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Fact::Joints(kinds) => {
+                let k: String = kinds
+                    .iter()
+                    .map(|k| match k {
+                        JointKind::Revolute => 'R',
+                        JointKind::Prismatic => 'P',
+                    })
+                    .collect();
+                write!(f, "joints: {k} ({})", kinds.len())
+            }
+            Fact::Pair {
+                axes: [i, j],
+                relation,
+            } => {
+                write!(f, "axes {i} and {j} {}", rel_text(relation))
+            }
+            Fact::Directions {
+                axes: [i, j],
+                parallel,
+            } => {
+                let p = if *parallel {
+                    "parallel"
+                } else {
+                    "not parallel"
+                };
+                write!(f, "axes {i} and {j}: directions {p}")
+            }
+            Fact::SphericalWrist {
+                axes: [a, b, c],
+                yes,
+            } => {
+                let y = if *yes { "yes" } else { "no" };
+                write!(
+                    f,
+                    "axes {a}, {b}, {c} through one point (spherical wrist): {y}"
+                )
+            }
+            Fact::Numbering(vars) => {
+                let v: Vec<String> = vars
+                    .iter()
+                    .enumerate()
+                    .map(|(i, v)| format!("{} = {v}", i + 1))
+                    .collect();
+                write!(f, "axes numbered without the free joint: {}", v.join(", "))
+            }
+            Fact::FreeChosen { variable, which } => {
+                let why = match which {
+                    FreeChoice::First => "the first joint whose value leaves a supported family",
+                    FreeChoice::Last => {
+                        "the last joint: the first joint's value leaves no supported family, the \
+                         last joint's does (an end joint is preferred)"
+                    }
+                    FreeChoice::Inner => {
+                        "the first inner joint whose value leaves a supported family (neither end \
+                         joint's does)"
+                    }
+                };
+                write!(
+                    f,
+                    "7 joints, no --free given: {variable} chosen as the free joint (a \
+                     parameter), {why}"
+                )
+            }
+        }
+    }
+}
+
+impl Branch {
+    /// The branch's name and the names of its `+` and `−` signs.
+    pub fn words(&self) -> (&'static str, &'static str, &'static str) {
+        let name = match self.part {
+            BranchPart::Shoulder => "shoulder",
+            BranchPart::Elbow => "elbow",
+            BranchPart::Wrist => "wrist",
+            BranchPart::Reach => "reach",
+        };
+        let (p, m) = match self.signs {
+            BranchSigns::LeftRight => ("left", "right"),
+            BranchSigns::UpDown => ("up", "down"),
+            BranchSigns::NoFlipFlip => ("no flip", "flip"),
+            BranchSigns::FarNear => ("far", "near"),
+        };
+        (name, p, m)
+    }
+}
+
+/// The parts of the end frame, base first: `[base] frame, the joints, ...`.
+fn end_text(end: &EndFrame) -> String {
+    let frames = |n: usize, what: &str| match n {
+        0 => None,
+        1 => Some(format!("1 constant frame {what}")),
+        n => Some(format!("{n} constant frames {what}")),
+    };
+    let point = end.tool_point.as_ref().map(|p| {
+        let text: Vec<String> = p.iter().map(scalar_text).collect();
+        format!(
+            "the tool point ({}) of the last frame, with its axes",
+            text.join(", ")
+        )
+    });
+    [
+        frames(end.base_frames, "before the first joint"),
+        Some("the joints".to_string()),
+        frames(end.tool_frames, "after the last joint"),
+        point,
+    ]
+    .into_iter()
+    .flatten()
+    .collect::<Vec<_>>()
+    .join(", then ")
+}
+
+/// A scalar in closed form, plain text.
+fn scalar_text(x: &Scalar) -> String {
+    closed_form(x)
+        .map(|e| plain(&e, &PlainOptions::default()))
+        .unwrap_or_else(|_| x.to_string())
+}
+
 fn header(sol: &IkSolution) -> Vec<String> {
     let mut out = vec![
         format!("Inverse kinematics of {}", sol.robot),
@@ -75,6 +244,33 @@ fn header(sol: &IkSolution) -> Vec<String> {
     } else {
         "target: T = [r11 r12 r13 px; r21 r22 r23 py; r31 r32 r33 pz; 0 0 0 1]".into()
     });
+    match &sol.reach {
+        Reach::PositionAndAngle { axes } => out.push(format!(
+            "reachable: the position (px, py, pz) and one angle, the turn about the parallel \
+             axes {} (the target's orientation must be Rot(axis 1, theta1) Rot(axis 2, phi), \
+             theta1 read from it)",
+            axes.iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+        Reach::PositionAndApproach { approach } => out.push(format!(
+            "reachable: the position (px, py, pz) and the approach axis, the end frame's \
+             direction ({}) (R times it); the turn about it is not controlled",
+            approach
+                .iter()
+                .map(scalar_text)
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+        _ => {}
+    }
+    if !sol.end.is_plain() {
+        out.push(format!(
+            "end frame (the end fk reports): {}",
+            end_text(&sol.end)
+        ));
+    }
     if let Some(f) = &sol.free {
         out.push(format!("free joint (a parameter): {f}"));
     }
@@ -89,7 +285,7 @@ fn header(sol: &IkSolution) -> Vec<String> {
     let names: Vec<String> = sol
         .steps
         .iter()
-        .filter_map(|s| s.branch.as_ref().map(|b| b.0.clone()))
+        .filter_map(|s| s.branch.as_ref().map(|b| b.words().0.to_string()))
         .collect();
     out.push(format!(
         "branches: {}{}",
@@ -125,7 +321,7 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
         Format::Python => return super::ik_python(sol),
         _ => {}
     }
-    let all = sol.forms().map_err(ScalarError::Unbound)?;
+    let all = sol.forms()?;
     let mut out = String::new();
     match format {
         Format::Plain => {
@@ -137,7 +333,7 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
             for (step, parts) in sol.steps.iter().zip(all) {
                 out.push('\n');
                 out.push_str(&step.variable);
-                if let Some((n, p, m)) = &step.branch {
+                if let Some((n, p, m)) = step.branch.as_ref().map(Branch::words) {
                     out.push_str(&format!(" ({n}: + {p}, - {m})"));
                 }
                 out.push('\n');

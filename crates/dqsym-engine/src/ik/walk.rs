@@ -130,7 +130,7 @@ pub fn ik_walk(robot: &Robot, sol: &IkSolution, markdown: bool) -> Result<String
          (two branches; none when the radicand is negative: out of reach);\n\
          - Rot(k, q) u = v  has  q = atan2(k·(u x v), u·v − (k·u)(k·v)).\n\n",
     );
-    let forms = sol.forms().map_err(ScalarError::Unbound)?;
+    let forms = sol.forms()?;
     for (i, step) in sol.steps.iter().enumerate() {
         out.push_str(&h(3, &format!("Step {}: {}", i + 1, step.variable)));
         out.push_str(&format!("{}.\n\n", step.method));
@@ -149,7 +149,7 @@ pub fn ik_walk(robot: &Robot, sol: &IkSolution, markdown: bool) -> Result<String
                 "{q}² + 2 beta {q} + gamma = 0: {q} = −beta ± sqrt(beta² − gamma); exists where beta² ≥ gamma.\n"
             ),
         });
-        if let Some((n, p, m)) = &step.branch {
+        if let Some((n, p, m)) = step.branch.as_ref().map(super::Branch::words) {
             out.push_str(&format!("Branch {n}: + is {p}, − is {m}.\n"));
         }
         out.push_str(&format!("Singular: {}.\n\n", step.singular));
@@ -173,7 +173,8 @@ pub fn ik_walk(robot: &Robot, sol: &IkSolution, markdown: bool) -> Result<String
             env.push((v.clone(), *x));
         }
     }
-    let chain = numeric_chain(robot, &env)?;
+    // The end ik solves for: the tool point folded into the tool motion.
+    let chain = numeric_chain(&super::with_tool_point(robot), &env)?;
     let t = chain
         .forward_matrix(&q0)
         .map_err(|e| ScalarError::Unbound(e.to_string()))?
@@ -206,14 +207,7 @@ pub fn ik_walk(robot: &Robot, sol: &IkSolution, markdown: bool) -> Result<String
             .forward_matrix(&q)
             .map_err(|e| ScalarError::Unbound(e.to_string()))?
             .rows;
-        let mut dev: f64 = 0.0;
-        for r in 0..3 {
-            for c in 0..4 {
-                if !(sol.position_only && c < 3) {
-                    dev = dev.max((back[r][c] - t[r][c]).abs());
-                }
-            }
-        }
+        let dev = sol.deviation(&t, &back);
         let dev = if dev < 1e-12 {
             "below 1e-12".to_string()
         } else {
