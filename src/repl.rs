@@ -261,6 +261,7 @@ pub(crate) fn run(opts: &ShowOptions, limits: &Limits) -> ExitCode {
         ctx: limits.context().clone().with_cancel_flag(interrupt.clone()),
         interrupt,
     };
+    let mut status = ExitCode::SUCCESS;
     'read: loop {
         let prompt = if repl.buffer.is_empty() { PROMPT } else { MORE };
         let input = match editor.readline(prompt) {
@@ -271,7 +272,9 @@ pub(crate) fn run(opts: &ShowOptions, limits: &Limits) -> ExitCode {
             }
             Err(ReadlineError::Eof) => break,
             Err(e) => {
+                // The terminal cannot be read or written (the prompt goes to stdout).
                 eprintln!("error: {e}");
+                status = ExitCode::FAILURE;
                 break;
             }
         };
@@ -295,7 +298,7 @@ pub(crate) fn run(opts: &ShowOptions, limits: &Limits) -> ExitCode {
     if let Some(h) = &history {
         let _ = editor.save_history(h);
     }
-    ExitCode::SUCCESS
+    status
 }
 
 impl Repl<'_> {
