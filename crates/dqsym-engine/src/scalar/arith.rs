@@ -19,9 +19,6 @@ use std::rc::Rc;
 /// How many term pairs one product may form, as a multiple of the term limit.
 const PRODUCT_FACTOR: usize = 2;
 
-/// The largest result, in bits, a power of a number may have.
-const MAX_POW_BITS: u64 = 1 << 20;
-
 /// Propagates error values: the first operand's error wins.
 macro_rules! terms_or_return {
     ($a:expr, $b:expr) => {
@@ -34,7 +31,11 @@ macro_rules! terms_or_return {
 
 pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
     let (x, y) = terms_or_return!(a, b);
-    if let Err(e) = charge((x.len() + y.len()) as u64) {
+    // Adding two coefficients of `a` and `b` words and reducing the sum costs like
+    // `(a + b)^2`; at most `2 (a^2 + b^2)`.
+    let words = coefficient_words(x).1.saturating_add(coefficient_words(y).1);
+    if let Err(e) = charge(((x.len() + y.len()) as u64).saturating_add(words / (WORDS_PER_UNIT / 2)))
+    {
         return Scalar::error(e);
     }
     let mut out = Vec::with_capacity(x.len() + y.len());
@@ -171,10 +172,36 @@ fn mode_runs(t: &[Term]) -> Vec<&[Term]> {
 /// The work of a product, for the budget: one unit per pair of terms plus one per symbol of the
 /// pair's monomials, since merging monomials is what a pair costs when symbols are many (a chain
 /// of fully symbolic links spends most of its time there).
+///
+/// Big coefficients add their own work: multiplying two rationals of `a` and `b` words and
+/// reducing the result (a binary gcd) takes time like `(a + b)^2` word operations, and a term
+/// operation on small terms is worth about [`WORDS_PER_UNIT`] of them. Summed over all pairs
+/// before any is formed: `ny sum(a^2) + nx sum(b^2) + 2 sum(a) sum(b)`, so products of
+/// huge numbers (`cos(1) * ... * cos(512)`'s coefficients, repeated squaring) run out of the
+/// budget at once instead of after minutes.
 fn product_work(x: &[Term], y: &[Term]) -> u64 {
     let syms = |t: &[Term]| t.iter().map(|t| t.mono.len() as u64).sum::<u64>();
     let (nx, ny) = (x.len() as u64, y.len() as u64);
-    nx * ny + ny * syms(x) + nx * syms(y)
+    let (sx, qx) = coefficient_words(x);
+    let (sy, qy) = coefficient_words(y);
+    let words = ny
+        .saturating_mul(qx)
+        .saturating_add(nx.saturating_mul(qy))
+        .saturating_add(sx.saturating_mul(sy).saturating_mul(2));
+    (nx * ny + ny * syms(x) + nx * syms(y)).saturating_add(words / WORDS_PER_UNIT)
+}
+
+/// How many word operations on big coefficients count as one unit of work: a term pair of
+/// small coefficients costs a few hundred nanoseconds (merging monomials, hashing modes), a
+/// word operation of a binary gcd about a nanosecond, and the gcd takes some 64 steps per
+/// word (this undercharges numbers of a few words, which cost about as much as small ones).
+const WORDS_PER_UNIT: u64 = 4;
+
+/// The sum of the words of the big coefficients of `t`, and of their squares.
+fn coefficient_words(t: &[Term]) -> (u64, u64) {
+    t.iter().map(|t| t.coef.words()).filter(|&w| w > 0).fold((0, 0), |(s, q), w| {
+        (s.saturating_add(w), q.saturating_add(w.saturating_mul(w)))
+    })
 }
 
 pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
@@ -250,11 +277,12 @@ impl Scalar {
             return Scalar::int(1);
         }
         if let Some(q) = self.as_rational() {
+            // `q^n` has about `n` times the bits of `q`: refused before it is computed.
             let bits = q.numer().bits().max(q.denom().bits());
-            if bits > 1 && bits.saturating_mul(n) > MAX_POW_BITS {
-                return Scalar::error(ScalarError::OutOfRange(format!(
-                    "power {n} of {q} is too large"
-                )));
+            let digits = super::digits_of_bits(bits.saturating_sub(1).saturating_mul(n));
+            let limit = super::max_digits();
+            if bits > 1 && digits > limit {
+                return Scalar::error(ScalarError::TooManyDigits { digits, limit });
             }
         }
         if n > u32::MAX as u64 {

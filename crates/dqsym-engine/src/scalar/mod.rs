@@ -38,8 +38,10 @@ pub(crate) use arith::FxHasher;
 pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use atoms::{Sym, Trig};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
-pub(crate) use ctx::{charge, check_cancelled, term_limit, work_used, Poll};
-pub use ctx::{Context, Entered, DEFAULT_MAX_CYCLOTOMIC_DEGREE, DEFAULT_MAX_EXPONENT};
+pub(crate) use ctx::{charge, check_cancelled, max_digits, term_limit, work_used, Poll};
+pub use ctx::{
+    Context, Entered, DEFAULT_MAX_CYCLOTOMIC_DEGREE, DEFAULT_MAX_DIGITS, DEFAULT_MAX_EXPONENT,
+};
 pub use decimal::parse_decimal;
 pub use frac::Frac;
 pub(crate) use par::{join, par_map, with_own_budget};
@@ -133,6 +135,19 @@ pub enum ScalarError {
         /// The limit.
         limit: u64,
     },
+    /// A computed number would have more decimal digits than the context allows (see
+    /// [`Context::with_max_digits`]).
+    #[error(
+        "number too large: a computed number of about {digits} digits, over the limit of \
+         {limit} digits (--max-digits raises it)"
+    )]
+    TooManyDigits {
+        /// Its decimal digits (of the numerator or the denominator, whichever is longer;
+        /// from its size in bits, so within one of the exact count).
+        digits: u64,
+        /// The limit.
+        limit: u64,
+    },
     /// The computation was cancelled through its context's cancel flag (Ctrl-C).
     #[error("interrupted")]
     Cancelled,
@@ -156,6 +171,27 @@ impl Term {
             .then_with(|| self.mono.cmp(&other.mono))
             .then_with(|| self.rad.cmp(&other.rad))
     }
+}
+
+/// Every scalar built from terms passes here: a coefficient past the context's digit limit
+/// makes it [`ScalarError::TooManyDigits`] (repeated squaring grew numbers until the
+/// allocator failed). Only big coefficients are looked at.
+fn check_digits(terms: &[Term]) -> Result<(), ScalarError> {
+    let Some(bits) = terms.iter().map(|t| t.coef.bits()).filter(|&b| b > 63).max() else {
+        return Ok(());
+    };
+    let limit = max_digits();
+    let digits = digits_of_bits(bits);
+    if digits > limit {
+        return Err(ScalarError::TooManyDigits { digits, limit });
+    }
+    Ok(())
+}
+
+/// The decimal digits of a positive integer of `bits` bits, within one (from above: the
+/// count of the largest such integer, `2^bits - 1`).
+pub(crate) fn digits_of_bits(bits: u64) -> u64 {
+    (bits as f64 * std::f64::consts::LOG10_2).ceil() as u64
 }
 
 /// The terms of one sorted run.
@@ -300,6 +336,9 @@ impl Scalar {
                 terms: terms.len(),
                 limit,
             });
+        }
+        if let Err(e) = check_digits(&terms) {
+            return Scalar::error(e);
         }
         Scalar(Repr::Terms(terms))
     }
