@@ -106,6 +106,14 @@ struct Cli {
     /// of pi (cos(pi/7), x + 3 pi/29) are computed exactly; a larger one is an error.
     #[arg(long, value_name = "N", default_value_t = dqsym::scalar::DEFAULT_MAX_CYCLOTOMIC_DEGREE, global = true)]
     max_cyclotomic_degree: u64,
+    /// The most decimal digits a computed number (a numerator or denominator) may have; a
+    /// larger one is an error, not a computation that eats memory.
+    #[arg(long, value_name = "N", default_value_t = dqsym::scalar::DEFAULT_MAX_DIGITS, global = true)]
+    max_digits: u64,
+    /// The most symbols one angle may hold (`cos(q1 + ... + qn)` of a chain of collinear
+    /// joints); more is an error (fk then prints a recurrence).
+    #[arg(long, value_name = "N", default_value_t = dqsym::scalar::DEFAULT_MAX_ANGLE_SYMBOLS, global = true)]
+    max_angle_symbols: usize,
     /// The most term operations (terms of sums, term pairs of products) one statement, one
     /// robot file field or the whole fk derivation may do; more is an error, not a hang.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_WORK_BUDGET, global = true)]
@@ -506,6 +514,8 @@ fn dispatch(cli: Cli) -> ExitCode {
             .with_term_limit(cli.term_limit.unwrap_or(default_terms))
             .with_max_exponent(cli.max_exponent)
             .with_max_cyclotomic_degree(cli.max_cyclotomic_degree)
+            .with_max_digits(cli.max_digits)
+            .with_max_angle_symbols(cli.max_angle_symbols)
             .with_work_budget(cli.work_budget),
     };
     // The limits guard scripts, one-liners and robot files; paper keeps the library defaults.

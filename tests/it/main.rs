@@ -33,4 +33,5 @@ mod tools;
 mod trig_corpus;
 mod urdf;
 mod walk;
+mod writes;
 mod zoo;

@@ -38,9 +38,12 @@ pub(crate) use arith::FxHasher;
 pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use atoms::{Sym, Trig};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
-pub(crate) use ctx::{charge, check_cancelled, max_digits, term_limit, work_used, Poll};
+pub(crate) use ctx::{
+    charge, check_cancelled, max_angle_symbols, max_digits, term_limit, work_used, Poll,
+};
 pub use ctx::{
-    Context, Entered, DEFAULT_MAX_CYCLOTOMIC_DEGREE, DEFAULT_MAX_DIGITS, DEFAULT_MAX_EXPONENT,
+    Context, Entered, DEFAULT_MAX_ANGLE_SYMBOLS, DEFAULT_MAX_CYCLOTOMIC_DEGREE, DEFAULT_MAX_DIGITS,
+    DEFAULT_MAX_EXPONENT,
 };
 pub use decimal::parse_decimal;
 pub use frac::Frac;
@@ -148,6 +151,18 @@ pub enum ScalarError {
         /// The limit.
         limit: u64,
     },
+    /// A result would hold an angle with more symbols than the context allows (see
+    /// [`Context::with_max_angle_symbols`]).
+    #[error(
+        "expression too large: an angle of {symbols} symbols, over the limit of {limit} \
+         symbols in one angle (--max-angle-symbols raises it)"
+    )]
+    AngleSymbols {
+        /// The symbols of the angle.
+        symbols: usize,
+        /// The limit.
+        limit: usize,
+    },
     /// The computation was cancelled through its context's cancel flag (Ctrl-C).
     #[error("interrupted")]
     Cancelled,
@@ -184,6 +199,19 @@ fn check_digits(terms: &[Term]) -> Result<(), ScalarError> {
     let digits = digits_of_bits(bits);
     if digits > limit {
         return Err(ScalarError::TooManyDigits { digits, limit });
+    }
+    Ok(())
+}
+
+/// A scalar with an angle of more symbols than the context allows is an error (a chain of
+/// thousands of collinear joints grew memory quadratically with no limit reached).
+fn check_angles(terms: &[Term]) -> Result<(), ScalarError> {
+    let Some(symbols) = terms.iter().map(|t| t.mode.freq.len()).max() else {
+        return Ok(());
+    };
+    let limit = max_angle_symbols();
+    if symbols > limit {
+        return Err(ScalarError::AngleSymbols { symbols, limit });
     }
     Ok(())
 }
@@ -337,7 +365,7 @@ impl Scalar {
                 limit,
             });
         }
-        if let Err(e) = check_digits(&terms) {
+        if let Err(e) = check_digits(&terms).and_then(|()| check_angles(&terms)) {
             return Scalar::error(e);
         }
         Scalar(Repr::Terms(terms))
