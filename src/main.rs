@@ -834,7 +834,13 @@ fn convert(path: &std::path::Path, to: ConvertTo, urdf: &UrdfArgs) -> ExitCode {
         if let Some(why) = dqsym::app::dh_refusal(&robot) {
             eprintln!("note: written in screw form, not DH: {why}");
         }
-        dqsym::app::robot_toml(&robot, &name).map_err(|e| e.to_string())
+        let text = dqsym::app::robot_toml(&robot, &name).map_err(|e| e.to_string())?;
+        // Nothing is written that `fk` would refuse (a chain without a moving joint, a
+        // symbolic axis whose unit length the reader cannot confirm within the limits): the
+        // file is read back as `fk` reads it first.
+        dqsym::parse_robot(&text, &name, &dqsym::eval_scalar_text)
+            .map_err(|e| format!("no robot file written: fk would not read it back: {e}"))?;
+        Ok(text)
     });
     match r {
         Ok(t) => {

@@ -196,8 +196,8 @@ fn walk_html(dir: &Path, out: &str, extra: &[&str]) -> Output {
 #[test]
 fn walk_html_never_writes_over_its_input_or_a_file_it_did_not_write() {
     let dir = scratch("html");
-    let robot = std::fs::read_to_string(format!("{ROOT}/examples/robots/planar2r.toml"))
-        .expect("reads");
+    let robot =
+        std::fs::read_to_string(format!("{ROOT}/examples/robots/planar2r.toml")).expect("reads");
     std::fs::write(dir.join("p.toml"), &robot).expect("writes");
     std::os::unix::fs::symlink("p.toml", dir.join("link.html")).expect("symlink");
     std::fs::hard_link(dir.join("p.toml"), dir.join("hard.html")).expect("hard link");
@@ -206,7 +206,11 @@ fn walk_html_never_writes_over_its_input_or_a_file_it_did_not_write() {
         for force in [&[][..], &["--force"][..]] {
             let o = walk_html(&dir, out, force);
             assert_eq!(o.status.code(), Some(1), "{out}");
-            assert!(stderr(&o).contains("is the input file"), "{out}: {}", stderr(&o));
+            assert!(
+                stderr(&o).contains("is the input file"),
+                "{out}: {}",
+                stderr(&o)
+            );
         }
     }
     assert_eq!(

@@ -423,8 +423,11 @@ fn shared_closed_forms(all: &[&Scalar]) -> Vec<Result<Expr, ScalarError>> {
                 None => e,
                 Some((_, map)) => {
                     let e = unshape(e, map);
+                    // A limit reached by the check itself (the budget is shared) proves
+                    // nothing either way.
+                    let d = e.to_scalar() - *x;
                     debug_assert!(
-                        (e.to_scalar() - *x).is_zero_value(),
+                        d.as_error().is_some() || d.is_zero_value(),
                         "a shared closed form differs from its entry"
                     );
                     e

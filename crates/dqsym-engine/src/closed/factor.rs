@@ -395,11 +395,7 @@ fn candidates(mons: &[Mon]) -> Vec<Factor> {
 /// The power of `f` in `m` (0 when `m` lacks it).
 fn multiplicity(m: &Mon, f: Factor) -> u32 {
     match f {
-        Factor::Sym(s) => m
-            .syms
-            .iter()
-            .find(|&&(x, _)| x == s)
-            .map_or(0, |&(_, e)| e),
+        Factor::Sym(s) => m.syms.iter().find(|&&(x, _)| x == s).map_or(0, |&(_, e)| e),
         Factor::Atom(a) => m.atoms.iter().filter(|&&x| x == a).count() as u32,
     }
 }

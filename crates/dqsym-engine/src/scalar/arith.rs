@@ -33,8 +33,11 @@ pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
     let (x, y) = terms_or_return!(a, b);
     // Adding two coefficients of `a` and `b` words and reducing the sum costs like
     // `(a + b)^2`; at most `2 (a^2 + b^2)`.
-    let words = coefficient_words(x).1.saturating_add(coefficient_words(y).1);
-    if let Err(e) = charge(((x.len() + y.len()) as u64).saturating_add(words / (WORDS_PER_UNIT / 2)))
+    let words = coefficient_words(x)
+        .1
+        .saturating_add(coefficient_words(y).1);
+    if let Err(e) =
+        charge(((x.len() + y.len()) as u64).saturating_add(words / (WORDS_PER_UNIT / 2)))
     {
         return Scalar::error(e);
     }
@@ -199,9 +202,12 @@ const WORDS_PER_UNIT: u64 = 4;
 
 /// The sum of the words of the big coefficients of `t`, and of their squares.
 fn coefficient_words(t: &[Term]) -> (u64, u64) {
-    t.iter().map(|t| t.coef.words()).filter(|&w| w > 0).fold((0, 0), |(s, q), w| {
-        (s.saturating_add(w), q.saturating_add(w.saturating_mul(w)))
-    })
+    t.iter()
+        .map(|t| t.coef.words())
+        .filter(|&w| w > 0)
+        .fold((0, 0), |(s, q), w| {
+            (s.saturating_add(w), q.saturating_add(w.saturating_mul(w)))
+        })
 }
 
 pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {

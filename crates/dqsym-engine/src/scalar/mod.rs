@@ -192,7 +192,12 @@ impl Term {
 /// makes it [`ScalarError::TooManyDigits`] (repeated squaring grew numbers until the
 /// allocator failed). Only big coefficients are looked at.
 fn check_digits(terms: &[Term]) -> Result<(), ScalarError> {
-    let Some(bits) = terms.iter().map(|t| t.coef.bits()).filter(|&b| b > 63).max() else {
+    let Some(bits) = terms
+        .iter()
+        .map(|t| t.coef.bits())
+        .filter(|&b| b > 63)
+        .max()
+    else {
         return Ok(());
     };
     let limit = max_digits();
@@ -460,6 +465,15 @@ impl Scalar {
     /// True for the zero scalar (no terms).
     pub fn is_empty(&self) -> bool {
         self.is_zero_value()
+    }
+
+    /// Whether the scalar is zero, or the error it holds: a check whose own arithmetic
+    /// reached a limit has no answer, and must not read as "not zero".
+    pub fn try_is_zero(&self) -> Result<bool, ScalarError> {
+        match &self.0 {
+            Repr::Terms(t) => Ok(t.is_empty()),
+            Repr::Error(e) => Err(e.clone()),
+        }
     }
 
     /// True for the zero scalar.
