@@ -5,6 +5,7 @@ mod cli;
 mod codegen;
 mod coefs;
 mod common;
+mod costs;
 mod counts;
 mod cyclotomic;
 mod dqr;
