@@ -98,3 +98,19 @@ def test_setitem_refuses_exactly_what_assignment_refuses(name):
         refused = True
     assert refused == language_refuses, name
     assert (name in s) == (not refused)
+
+
+def test_an_interrupted_statement_binds_nothing_and_the_ones_before_it_stay():
+    import _thread
+
+    s = dqsym.Session(implicit_symbols=True, term_limit=10**7, work_budget=10**18)
+    huge = " + ".join(f"(a{i} + b + c + d)^18" for i in range(1500))
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            s.run(f"first = 6*7\nsecond = {huge}\n")
+    finally:
+        timer.cancel()
+    assert "second" not in s
+    assert s.eval("first") == 42
