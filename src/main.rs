@@ -954,7 +954,8 @@ fn write_page(
             let readable = std::fs::File::open(out)
                 .and_then(|f| f.take(4096).read_to_string(&mut head))
                 .is_ok();
-            if !force && !(readable && dqsym::walk::is_walk_page(&head)) {
+            let ours = readable && dqsym::walk::is_walk_page(&head);
+            if !(force || ours) {
                 return Err(format!(
                     "{shown} exists and is not a page dqsym wrote; pass --force to write over it"
                 ));

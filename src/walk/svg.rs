@@ -409,7 +409,7 @@ impl Scene {
             .iter()
             .chain(&axes)
             .flatten()
-            .any(|c| !(c.abs() < 1e150))
+            .any(|c| !c.is_finite() || c.abs() >= 1e150)
         {
             let values: Vec<String> = self
                 .symbols
