@@ -408,3 +408,142 @@ fn the_repl_keeps_every_binding_of_a_long_session() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains(&format!("= {}", 1234 + 2999)), "{text}");
 }
+
+/// A small deterministic generator (SplitMix64): the mutations are the same on every run.
+struct Mix(u64);
+
+impl Mix {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+}
+
+/// One mutation of `text`: a cut, a copied stretch, a hostile number, a swapped word, or a
+/// truncation (always at a character boundary).
+fn mutate(text: &str, r: &mut Mix) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    let (a, b) = {
+        let x = r.below(chars.len());
+        (x, (x + 1 + r.below(40)).min(chars.len()))
+    };
+    let s = |v: &[char]| v.iter().collect::<String>();
+    const NUMBERS: [&str; 9] = [
+        "1e309",
+        "-0",
+        "nan",
+        "1e-400",
+        "0.30000000000000004",
+        "99999999999999999999999",
+        "1.5707963",
+        "",
+        "3 4",
+    ];
+    const WORDS: [&str; 8] = [
+        "revolute",
+        "prismatic",
+        "fixed",
+        "continuous",
+        "mimic",
+        "axis",
+        "origin",
+        "joint",
+    ];
+    match r.below(6) {
+        0 => s(&chars[..a]) + &s(&chars[b..]),
+        1 => s(&chars[..b]) + &s(&chars[a..]),
+        2 => {
+            // A number attribute's value replaced.
+            let quoted: Vec<usize> = text.match_indices("=\"").map(|(i, _)| i + 2).collect();
+            let Some(&at) = quoted.get(r.below(quoted.len())) else {
+                return text.to_owned();
+            };
+            let end = at + text[at..].find('"').unwrap_or(0);
+            format!(
+                "{}{}{}",
+                &text[..at],
+                NUMBERS[r.below(NUMBERS.len())],
+                &text[end..]
+            )
+        }
+        3 => {
+            let w = WORDS[r.below(WORDS.len())];
+            let v = WORDS[r.below(WORDS.len())];
+            text.replacen(w, v, 1)
+        }
+        4 => s(&chars[..a]),
+        _ => s(&chars[..a]) + "<joint name=\"x\" type=\"revolute\">" + &s(&chars[a..]),
+    }
+}
+
+#[test]
+fn random_urdf_mutations_end_in_a_result_or_a_typed_error_within_their_limits() {
+    // The bounded in-suite stand-in for the `urdf` fuzz target (cargo-fuzz needs a nightly
+    // toolchain the test command does not use): 600 mutated files, each read both ways and
+    // derived under small limits; a panic fails the test, every error has a message.
+    let seeds = [
+        collinear_urdf(3),
+        "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/>\
+         <joint name=\"j1\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/>\
+         <origin xyz=\"0.1 0.2 0.3\" rpy=\"0.3 0.7 0\"/><axis xyz=\"0 1 0\"/></joint>\
+         <joint name=\"j2\" type=\"prismatic\"><parent link=\"b\"/><child link=\"c\"/>\
+         <origin xyz=\"0.4 0 0.1\" rpy=\"0 1.5708 0\"/><axis xyz=\"1 0 0\"/>\
+         <limit lower=\"0\" upper=\"1\"/></joint></robot>"
+            .to_owned(),
+        "<robot name=\"m\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/>\
+         <joint name=\"j1\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/>\
+         <axis xyz=\"0 0 1\"/></joint><joint name=\"j2\" type=\"revolute\"><parent link=\"b\"/>\
+         <child link=\"c\"/><origin xyz=\"1 0 0\"/><axis xyz=\"0 0 1\"/>\
+         <mimic joint=\"j1\" multiplier=\"2\" offset=\"0.5\"/></joint></robot>"
+            .to_owned(),
+    ];
+    let ctx = Context::new()
+        .with_term_limit(1_000)
+        .with_work_budget(50_000)
+        .with_max_exponent(1_000);
+    let mut r = Mix(31);
+    let (mut read, mut refused) = (0, 0);
+    for case in 0..600 {
+        let mut text = seeds[case % seeds.len()].clone();
+        for _ in 0..1 + r.below(3) {
+            text = mutate(&text, &mut r);
+        }
+        for snap_angles in [true, false] {
+            let _in = ctx.enter();
+            let o = dqsym::kin::UrdfOptions {
+                tip: None,
+                base: None,
+                snap_angles,
+            };
+            match dqsym::parse_urdf(&text, "m.urdf", &o) {
+                Err(e) => {
+                    refused += 1;
+                    assert!(!e.to_string().is_empty(), "{text}");
+                }
+                Ok(u) => {
+                    read += 1;
+                    let options = dqsym::FkOptions {
+                        point: u.robot.tool.clone(),
+                        max_terms: ctx.term_limit(),
+                        ..dqsym::FkOptions::default()
+                    };
+                    if let Err(e) = dqsym::fk_report(&u.robot, &options) {
+                        assert!(!e.to_string().is_empty(), "{text}");
+                    }
+                    if let Err(e) = dqsym::app::robot_toml(&u.robot, "m.urdf") {
+                        assert!(!e.to_string().is_empty(), "{text}");
+                    }
+                }
+            }
+        }
+    }
+    // Both outcomes occur: the mutations are neither all harmless nor all fatal.
+    assert!(read > 40 && refused > 100, "{read} read, {refused} refused");
+}
