@@ -32,13 +32,12 @@ macro_rules! terms_or_return {
 pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
     let (x, y) = terms_or_return!(a, b);
     // Adding two coefficients of `a` and `b` words and reducing the sum costs like
-    // `(a + b)^2`; at most `2 (a^2 + b^2)`.
-    let words = coefficient_words(x)
-        .1
-        .saturating_add(coefficient_words(y).1);
-    if let Err(e) =
-        charge(((x.len() + y.len()) as u64).saturating_add(words / (WORDS_PER_UNIT / 2)))
-    {
+    // `(a + b)^2`, at most `2 (a^2 + b^2)`; a big term, [`BIG_PAIR`] more.
+    let ((bx, _, qx), (by, _, qy)) = (coefficient_words(x), coefficient_words(y));
+    let big = (bx + by)
+        .saturating_mul(BIG_PAIR)
+        .saturating_add(qx.saturating_add(qy).saturating_mul(2));
+    if let Err(e) = charge(((x.len() + y.len()) as u64).saturating_add(big)) {
         return Scalar::error(e);
     }
     let mut out = Vec::with_capacity(x.len() + y.len());
@@ -176,37 +175,44 @@ fn mode_runs(t: &[Term]) -> Vec<&[Term]> {
 /// pair's monomials, since merging monomials is what a pair costs when symbols are many (a chain
 /// of fully symbolic links spends most of its time there).
 ///
-/// Big coefficients add their own work: multiplying two rationals of `a` and `b` words and
-/// reducing the result (a binary gcd) takes time like `(a + b)^2` word operations, and a term
-/// operation on small terms is worth about [`WORDS_PER_UNIT`] of them. Summed over all pairs
-/// before any is formed: `ny sum(a^2) + nx sum(b^2) + 2 sum(a) sum(b)`, so products of
-/// huge numbers (`cos(1) * ... * cos(512)`'s coefficients, repeated squaring) run out of the
-/// budget at once instead of after minutes.
+/// Big coefficients add their own work: a pair with a big coefficient costs [`BIG_PAIR`]
+/// units (the big rationals' allocation and reduction), and multiplying two rationals of `a`
+/// and `b` words and reducing the result (a binary gcd, some 64 steps per word) takes time
+/// like `(a + b)^2` word operations, counted one unit each. Summed over all pairs before any
+/// is formed: `ny sum(a^2) + nx sum(b^2) + 2 sum(a) sum(b)`, so products of huge numbers
+/// (`cos(1) * ... * cos(512)`'s coefficients, repeated squaring) run out of the budget at
+/// once instead of after minutes. (Calibrated on the product of 512 constant cosines, whose
+/// pairs of three-word coefficients took some eight times a small pair's time.)
 fn product_work(x: &[Term], y: &[Term]) -> u64 {
     let syms = |t: &[Term]| t.iter().map(|t| t.mono.len() as u64).sum::<u64>();
     let (nx, ny) = (x.len() as u64, y.len() as u64);
-    let (sx, qx) = coefficient_words(x);
-    let (sy, qy) = coefficient_words(y);
+    let (bx, sx, qx) = coefficient_words(x);
+    let (by, sy, qy) = coefficient_words(y);
+    let big_pairs = nx * ny - (nx - bx) * (ny - by);
     let words = ny
         .saturating_mul(qx)
         .saturating_add(nx.saturating_mul(qy))
         .saturating_add(sx.saturating_mul(sy).saturating_mul(2));
-    (nx * ny + ny * syms(x) + nx * syms(y)).saturating_add(words / WORDS_PER_UNIT)
+    (nx * ny + ny * syms(x) + nx * syms(y))
+        .saturating_add(big_pairs.saturating_mul(BIG_PAIR))
+        .saturating_add(words)
 }
 
-/// How many word operations on big coefficients count as one unit of work: a term pair of
-/// small coefficients costs a few hundred nanoseconds (merging monomials, hashing modes), a
-/// word operation of a binary gcd about a nanosecond, and the gcd takes some 64 steps per
-/// word (this undercharges numbers of a few words, which cost about as much as small ones).
-const WORDS_PER_UNIT: u64 = 4;
+/// The work of one term operation with a big coefficient beyond its words (see
+/// [`product_work`]).
+const BIG_PAIR: u64 = 8;
 
-/// The sum of the words of the big coefficients of `t`, and of their squares.
-fn coefficient_words(t: &[Term]) -> (u64, u64) {
+/// The number of big coefficients of `t`, the sum of their words, and of their squares.
+fn coefficient_words(t: &[Term]) -> (u64, u64, u64) {
     t.iter()
         .map(|t| t.coef.words())
         .filter(|&w| w > 0)
-        .fold((0, 0), |(s, q), w| {
-            (s.saturating_add(w), q.saturating_add(w.saturating_mul(w)))
+        .fold((0, 0, 0), |(n, s, q), w| {
+            (
+                n + 1,
+                s.saturating_add(w),
+                q.saturating_add(w.saturating_mul(w)),
+            )
         })
 }
 
