@@ -148,9 +148,10 @@ struct UrdfArgs {
     /// URDF: the first link of the chain (default: the root link).
     #[arg(long, value_name = "LINK")]
     base: Option<String>,
-    /// URDF: keep every nonzero angle as a named parameter (its decimal the nominal value)
-    /// instead of reading those within 0.001 of a multiple of pi/12 (1.5708, 3.14159) as that
-    /// multiple.
+    /// Take angles as written, in radians: a robot file's decimals and URDF angles are not
+    /// read as multiples of pi/12 (1.5708 as pi/2, within the tolerance of their decimals),
+    /// a robot file's bare angle past 2 pi is not refused (URDF: every nonzero angle becomes
+    /// a named parameter, its decimal the nominal value).
     #[arg(long)]
     exact_angles: bool,
 }
@@ -185,10 +186,18 @@ fn load_robot(path: &std::path::Path, urdf: &UrdfArgs) -> Result<dqsym::Robot, S
         }
         Ok(r.robot)
     } else {
-        if urdf.tip.is_some() || urdf.base.is_some() || urdf.exact_angles {
-            return Err("--tip, --base and --exact-angles apply to URDF files only".into());
+        if urdf.tip.is_some() || urdf.base.is_some() {
+            return Err("--tip and --base apply to URDF files only".into());
         }
-        dqsym::parse_robot(&text, &name, &dqsym::eval_scalar_text).map_err(|e| e.to_string())
+        let o = dqsym::kin::RobotOptions {
+            exact_angles: urdf.exact_angles,
+        };
+        let r = dqsym::kin::parse_robot_with(&text, &name, &dqsym::eval_scalar_text, &o)
+            .map_err(|e| e.to_string())?;
+        for n in &r.notes {
+            eprintln!("note: {n}");
+        }
+        Ok(r)
     }
 }
 
