@@ -96,7 +96,9 @@ enum Command {
         #[arg(long, value_name = "X, Y, Z")]
         point: Option<String>,
         /// Add the 8 x n Jacobian d dq[i] / d q[j]; `--jacobian=KIND` gives instead a task
-        /// Jacobian of DQ Robotics: pose (the same 8 x n), rotation, translation,
+        /// Jacobian: geometric (6 x n: the end-effector origin's velocity over the angular
+        /// velocity, base frame), geometric_body (the same in the end-effector frame), or one
+        /// of DQ Robotics: pose (the same 8 x n), rotation, translation,
         /// line[:X,Y,Z], plane[:X,Y,Z] (end-effector direction, default z), distance,
         /// point_to_point:X,Y,Z, point_to_line:DX,DY,DZ,PX,PY,PZ, point_to_plane:NX,NY,NZ,PX,PY,PZ
         /// (workspace point, line, plane), or pose_derivative (a function of q and the rates

@@ -7,6 +7,7 @@ mod coefs;
 mod common;
 mod counts;
 mod cyclotomic;
+mod datasheet;
 mod dqr;
 mod emit;
 mod hostile;

@@ -574,7 +574,7 @@ fn latex_name(n: &str) -> String {
     match base {
         "dq" => format!("q_{{{}}}", idx.join(",")),
         "T" | "p" | "J" => format!("{}_{{{}}}", latex_symbol(base), idx.join(",")),
-        "Jr" | "Jt" | "Jl" | "Jpi" | "Jd" => {
+        "Jr" | "Jt" | "Jl" | "Jpi" | "Jd" | "Jg" | "Jb" => {
             format!("J^{{{}}}_{{{}}}", latex_symbol(&base[1..]), idx.join(","))
         }
         "Jdot" => format!("\\dot{{J}}_{{{}}}", idx.join(",")),

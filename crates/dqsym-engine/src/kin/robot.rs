@@ -490,7 +490,10 @@ fn angle_field(x: Scalar, opts: &RobotOptions) -> Result<(Scalar, Option<String>
             }
             let why = match near {
                 Some(k) => angles::near_note(&c, k),
-                None => format!("not near a multiple of pi/12 (for degrees write \"{t}deg\")"),
+                None if c.is_integer() => {
+                    format!("not near a multiple of pi/12 (for degrees write \"{t}deg\")")
+                }
+                None => "not near a multiple of pi/12".to_owned(),
             };
             Ok((x, Some(format!("{t} read as {t} rad: {why}"))))
         }
