@@ -10,6 +10,7 @@ mod cyclotomic;
 mod datasheet;
 mod dqr;
 mod emit;
+mod geometric;
 mod hostile;
 mod ik;
 mod kinematics;
