@@ -396,6 +396,7 @@ pub(super) fn render<S: AsRef<str>>(
                 shorthand,
                 ..LatexOptions::default()
             };
+            let letters = Letters::of(robot);
             let mut out = format!("% {}", header(robot));
             for n in notes {
                 out.push_str(&format!("% {n}\n"));
@@ -404,7 +405,7 @@ pub(super) fn render<S: AsRef<str>>(
                 out.push_str(&format!("% {}\n", title.as_ref()));
                 let rows: Vec<(String, Expr)> = rows
                     .iter()
-                    .map(|(n, e)| (latex_name(n), e.clone()))
+                    .map(|(n, e)| (latex_name(n, &letters), e.clone()))
                     .collect();
                 out.push_str(&latex_aligned(&rows, &lo));
                 out.push('\n');
@@ -567,17 +568,59 @@ fn header(robot: &Robot) -> String {
     )
 }
 
-/// `T[1][2]` -> `T_{1,2}`, `dq[3]` -> `q_{3}` style subscripts; `Q2[3]` like the symbol `Q2_3`.
-fn latex_name(n: &str) -> String {
+/// The LaTeX letters of a report's entries (the DQ components, the matrix, the point, the
+/// Jacobians), each the first of its candidates that no symbol of the robot is written with:
+/// `q_{k}` for the DQ, but `x_{k}` for a robot whose joints are `q1 ... q7`, so no entry is
+/// defined in terms of a symbol that looks like itself.
+struct Letters {
+    dq: &'static str,
+    t: &'static str,
+    p: &'static str,
+    j: &'static str,
+}
+
+impl Letters {
+    fn of(robot: &Robot) -> Letters {
+        // The LaTeX base of every symbol: `q` of `q_{1}`, `\theta` of `\theta_{1}`.
+        let taken: std::collections::BTreeSet<String> = robot
+            .variables
+            .iter()
+            .cloned()
+            .chain(robot.parameters())
+            .map(|n| {
+                let t = latex_symbol(&n);
+                t.split("_{").next().unwrap_or_default().to_owned()
+            })
+            .collect();
+        let pick = |c: &[&'static str]| {
+            c.iter()
+                .copied()
+                .find(|l| !taken.contains(*l))
+                .unwrap_or(c[c.len() - 1])
+        };
+        Letters {
+            dq: pick(&["q", "x", "\\xi", "\\eta", "\\mathsf{q}"]),
+            t: pick(&["T", "A", "M", "\\mathsf{T}"]),
+            p: pick(&["p", "y", "\\rho", "\\mathsf{p}"]),
+            j: pick(&["J", "G", "\\mathcal{J}", "\\mathsf{J}"]),
+        }
+    }
+}
+
+/// `T[1][2]` -> `T_{1,2}`, `dq[3]` -> `q_{3}` style subscripts (the letters of `l`); `Q2[3]`
+/// like the symbol `Q2_3`.
+fn latex_name(n: &str, l: &Letters) -> String {
     let (base, rest) = n.split_once('[').unwrap_or((n, ""));
     let idx: Vec<&str> = rest.split(['[', ']']).filter(|s| !s.is_empty()).collect();
     match base {
-        "dq" => format!("q_{{{}}}", idx.join(",")),
-        "T" | "p" | "J" => format!("{}_{{{}}}", latex_symbol(base), idx.join(",")),
+        "dq" => format!("{}_{{{}}}", l.dq, idx.join(",")),
+        "T" => format!("{}_{{{}}}", l.t, idx.join(",")),
+        "p" => format!("{}_{{{}}}", l.p, idx.join(",")),
+        "J" => format!("{}_{{{}}}", l.j, idx.join(",")),
         "Jr" | "Jt" | "Jl" | "Jpi" | "Jd" | "Jg" | "Jb" => {
-            format!("J^{{{}}}_{{{}}}", latex_symbol(&base[1..]), idx.join(","))
+            format!("{}^{{{}}}_{{{}}}", l.j, latex_symbol(&base[1..]), idx.join(","))
         }
-        "Jdot" => format!("\\dot{{J}}_{{{}}}", idx.join(",")),
+        "Jdot" => format!("\\dot{{{}}}_{{{}}}", l.j, idx.join(",")),
         // A recurrence entry `Q2[3]` is written as its symbol `Q2_3` is in later entries.
         b => latex_symbol(&format!("{b}_{}", idx.join("_"))),
     }

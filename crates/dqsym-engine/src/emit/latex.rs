@@ -96,6 +96,26 @@ pub fn latex_symbol(name: &str) -> String {
     s
 }
 
+/// A shorthand name in LaTeX: the letter `c` (or `s`, `C`, `S`) with the rest of the name
+/// (`12`, `alpha5`, `q_1`, `joint_a1`) as its subscript: `c_{12}`, `c_{\alpha_{5}}`,
+/// `c_{q_{1}}`, `c_{{\mathit{joint}_{a}}_{1}}` (a prefix with a subscript of its own in
+/// braces, so no subscript is doubled).
+pub fn latex_shorthand(letter: &str, rest: &str) -> String {
+    let cut = rest.find(|ch: char| ch.is_ascii_digit()).unwrap_or(0);
+    let (prefix, idx) = rest.split_at(cut);
+    // `q_1`: the prefix `q_` is the symbol `q`.
+    let prefix = prefix.trim_end_matches('_');
+    if prefix.is_empty() {
+        return format!("{letter}_{{{idx}}}");
+    }
+    let p = latex_symbol(prefix);
+    if p.contains('_') {
+        format!("{letter}_{{{{{p}}}_{{{idx}}}}}")
+    } else {
+        format!("{letter}_{{{p}_{{{idx}}}}}")
+    }
+}
+
 fn base_text(base: &str) -> String {
     if GREEK.contains(&base) {
         format!("\\{base}")
@@ -303,14 +323,7 @@ impl<'a> Writer<'a> {
                 .flatten()
                 .map(|name| {
                     let (c, rest) = name.split_at(1);
-                    // `calpha5` (a prefix kept, see `shorthand_name`) is c_{\alpha_{5}}.
-                    let cut = rest.find(|ch: char| ch.is_ascii_digit()).unwrap_or(0);
-                    let (prefix, idx) = rest.split_at(cut);
-                    if prefix.is_empty() {
-                        format!("{c}_{{{idx}}}")
-                    } else {
-                        format!("{c}_{{{}_{{{idx}}}}}", latex_symbol(prefix))
-                    }
+                    latex_shorthand(c, rest)
                 }),
         };
         let pow = pow.map(|n| format!("^{{{n}}}")).unwrap_or_default();
