@@ -18,6 +18,7 @@ mod lang;
 mod laws;
 mod layers;
 mod limits;
+mod notation;
 mod offsets;
 mod paper;
 mod paper_arms;
