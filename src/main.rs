@@ -454,6 +454,7 @@ fn dispatch(cli: Cli) -> ExitCode {
         (Some(Command::Ik { robot, free }), _) => ik(&robot, free, format, cli.explicit),
         (Some(Command::Paper), _) => match dqsym::paper(&PlainOptions {
             shorthand: !cli.explicit,
+            decimals: false,
         }) {
             Ok(text) => {
                 print!("{text}");

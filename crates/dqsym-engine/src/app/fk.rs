@@ -10,7 +10,8 @@
 use super::recurrence::recurrence_sections;
 use crate::emit::{
     arguments, c_function, count_ops, generated_ops, latex_aligned, latex_symbol, product_table,
-    python_function, rotation_chain_ops, rust_function, sympy, CodegenError, CodegenOptions,
+    python_function, rotation_chain_ops, rust_function, sympy, sympy_decimals, CodegenError,
+    CodegenOptions,
     Counted, LatexOptions, Output,
 };
 use crate::kin::{dq_jacobian, Robot};
@@ -23,7 +24,7 @@ use std::sync::atomic::AtomicBool;
 
 type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
 use crate::{
-    closed::{closed_form_of_derivative, closed_form_prepared, CommonOffsets},
+    closed::{closed_form_of_derivative, closed_form_prepared, decimal_form, CommonOffsets},
     closed_form, Context, DualQuat, Expr, Scalar, ScalarError,
 };
 
@@ -167,7 +168,7 @@ const MAX_EXPANDED_TEXT: usize = 100_000;
 /// length) exceeds `max`: a report well within `max` is not printed twice.
 pub(super) fn text_exceeds(sections: &[(String, Vec<(String, Expr)>)], max: usize) -> bool {
     let rows = || sections.iter().flat_map(|(_, rows)| rows);
-    let po = PlainOptions { shorthand: true };
+    let po = PlainOptions { shorthand: true, decimals: false };
     let length = || rows().map(|(_, e)| plain(e, &po).len()).sum::<usize>();
     let bound: usize = rows().map(|(_, e)| plain_len_bound(e)).sum();
     if bound > max {
@@ -361,22 +362,51 @@ pub(super) fn render<S: AsRef<str>>(
     notes: &[String],
 ) -> Result<String, ReportError> {
     let shorthand = o.shorthand;
+    // A robot whose file wrote decimals reads in decimals (`0.425 c2`), exactly: the
+    // denominators pulled out of sums put back, decimal fractions printed as decimals.
+    let decimals = robot.decimals;
+    let sections: Vec<(&str, Vec<(String, Expr)>)> = sections
+        .iter()
+        .map(|(t, rows)| {
+            let rows = rows
+                .iter()
+                .map(|(n, e)| {
+                    let e = if decimals {
+                        decimal_form(e)
+                    } else {
+                        e.clone()
+                    };
+                    (n.clone(), e)
+                })
+                .collect();
+            (t.as_ref(), rows)
+        })
+        .collect();
+    let sections = &sections[..];
     Ok(match o.format {
         Format::Rust => code(robot, sections, Generated::Rust)?,
         Format::C => code(robot, sections, Generated::C)?,
         Format::Python => code(robot, sections, Generated::Python)?,
         Format::Sympy => sections
             .iter()
-            .flat_map(|(_, rows)| rows.iter().map(|(n, e)| format!("{n} = {}\n", sympy(e))))
+            .flat_map(|(_, rows)| {
+                rows.iter().map(|(n, e)| {
+                    let text = if decimals { sympy_decimals(e) } else { sympy(e) };
+                    format!("{n} = {text}\n")
+                })
+            })
             .collect(),
         Format::Plain => {
-            let po = PlainOptions { shorthand };
+            let po = PlainOptions {
+                shorthand,
+                decimals,
+            };
             let mut out = header(robot);
             for n in notes {
                 out.push_str(&format!("# {n}\n"));
             }
             for (title, rows) in sections {
-                out.push_str(&format!("# {}\n", title.as_ref()));
+                out.push_str(&format!("# {title}\n"));
                 for (n, e) in rows {
                     out.push_str(&format!("{n} = {}\n", plain(e, &po)));
                 }
@@ -394,6 +424,7 @@ pub(super) fn render<S: AsRef<str>>(
         Format::Latex => {
             let lo = LatexOptions {
                 shorthand,
+                decimals,
                 ..LatexOptions::default()
             };
             let letters = Letters::of(robot);
@@ -402,7 +433,7 @@ pub(super) fn render<S: AsRef<str>>(
                 out.push_str(&format!("% {n}\n"));
             }
             for (title, rows) in sections {
-                out.push_str(&format!("% {}\n", title.as_ref()));
+                out.push_str(&format!("% {title}\n"));
                 let rows: Vec<(String, Expr)> = rows
                     .iter()
                     .map(|(n, e)| (latex_name(n, &letters), e.clone()))

@@ -5,7 +5,7 @@
 //! Every string written here is valid KaTeX input; the tests render each snapshot with KaTeX
 //! (`throwOnError: true`).
 
-use crate::closed::{shorthand_name, Angle, Expr, Trig, TrigNames};
+use crate::closed::{shorthand_name, shows_as_decimal, Angle, Expr, Trig, TrigNames};
 use crate::scalar::Small;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
@@ -19,6 +19,9 @@ pub struct LatexOptions {
     /// [`latex_aligned`] breaks a line longer than this many characters (a command counting as one) at a
     /// `+` or `-` of the outermost sum it can; 0 never breaks.
     pub width: usize,
+    /// Decimal fractions (a factor 5 in the denominator) as exact decimals, `0.425` for
+    /// `\frac{17}{40}` (see [`decimal_form`](crate::closed::decimal_form)).
+    pub decimals: bool,
 }
 
 impl Default for LatexOptions {
@@ -26,6 +29,7 @@ impl Default for LatexOptions {
         LatexOptions {
             shorthand: true,
             width: 80,
+            decimals: false,
         }
     }
 }
@@ -345,11 +349,21 @@ impl<'a> Writer<'a> {
         }
     }
 
+    /// A number: an exact decimal under `decimals`, else an integer or `\frac`.
+    fn number(&self, q: &BigRational) -> String {
+        if self.o.decimals && shows_as_decimal(q) {
+            if let Some(t) = crate::scalar::decimal_text(q, 1_000) {
+                return t;
+            }
+        }
+        rational(q)
+    }
+
     /// Precedence levels: 0 top, 1 sum term, 2 product factor, 3 power base.
     fn expr(&mut self, e: &Expr, prec: u8) {
         match e {
             Expr::Num(q) => {
-                let t = rational(q);
+                let t = self.number(q);
                 let paren = prec >= 3 && !q.denom().is_one();
                 if paren {
                     self.open();
@@ -393,7 +407,9 @@ impl<'a> Writer<'a> {
                 // reads as a quotient, as in plain text.
                 if let [Expr::Num(q), Expr::Sym(s)] = v.as_slice() {
                     let unit = q.numer().is_one() || s.is_pi();
-                    if unit && !q.denom().is_one() && q.numer() > &0.into() && prec <= 2 {
+                    let decimal = self.o.decimals && shows_as_decimal(q);
+                    if unit && !decimal && !q.denom().is_one() && q.numer() > &0.into() && prec <= 2
+                    {
                         let k = if q.numer().is_one() {
                             String::new()
                         } else {
@@ -417,7 +433,8 @@ impl<'a> Writer<'a> {
                     }
                     // A leading fraction reads as a coefficient: `\frac{3}{8} \cos(\theta)`.
                     if let (0, Expr::Num(q)) = (i, t) {
-                        self.out.push_str(&rational(q));
+                        let t = self.number(q);
+                        self.out.push_str(&t);
                         continue;
                     }
                     self.expr(t, 2);

@@ -24,4 +24,4 @@ pub use latex::{
 };
 pub use python::python_function;
 pub use rust::rust_function;
-pub use sympy::{sympy, sympy_quotient};
+pub use sympy::{sympy, sympy_decimals, sympy_quotient};

@@ -5,14 +5,23 @@
 //! `I`, `N`, `O`, `Q`, `S`, `beta`, `gamma`, `zeta`, `lambda`, ...), so a reader should bind every
 //! symbol explicitly: `sympify(text, locals={n: Symbol(n) for n in names})`.
 
-use crate::closed::{angle_text, Expr};
+use crate::closed::{angle_text, shows_as_decimal, Expr};
 use num_traits::One;
 
 /// The expression as SymPy input: `l1*cos(theta1) + l2*cos(theta1 + theta2)`, `(3/8)*x`,
 /// `sqrt(2)*sin(theta/2)`; the canonical 1 is `1`.
 pub fn sympy(e: &Expr) -> String {
     let mut out = String::new();
-    write(e, 0, &mut out);
+    write(e, 0, false, &mut out);
+    out
+}
+
+/// [`sympy`] with decimal fractions (a factor 5 in the denominator) written as exact decimals,
+/// `Rational('0.425')` (a bare `0.425` would be a float to `sympify`), for robots whose file
+/// wrote decimals (see [`decimal_form`](crate::closed::decimal_form)).
+pub fn sympy_decimals(e: &Expr) -> String {
+    let mut out = String::new();
+    write(e, 0, true, &mut out);
     out
 }
 
@@ -25,8 +34,21 @@ pub fn sympy_quotient(num: &Expr, den: &Expr) -> String {
 }
 
 /// Precedence levels: 0 top, 1 sum term, 2 product factor, 3 power base.
-fn write(e: &Expr, prec: u8, out: &mut String) {
+fn write(e: &Expr, prec: u8, dec: bool, out: &mut String) {
+    let write = |e: &Expr, prec: u8, out: &mut String| write(e, prec, dec, out);
     match e {
+        Expr::Num(q) if dec && shows_as_decimal(q) => {
+            match crate::scalar::decimal_text(q, 1_000) {
+                Some(t) if t.starts_with('-') && prec > 1 => {
+                    out.push_str(&format!("(-Rational('{}'))", &t[1..]))
+                }
+                Some(t) if t.starts_with('-') => {
+                    out.push_str(&format!("-Rational('{}')", &t[1..]))
+                }
+                Some(t) => out.push_str(&format!("Rational('{t}')")),
+                None => out.push_str(&format!("({q})")),
+            }
+        }
         Expr::Num(q) => {
             // `(3/8)` keeps the division from binding to a neighbour in `x*(3/8)`.
             if q.denom().is_one() || prec == 0 {
