@@ -124,7 +124,7 @@ fn ur5e_from_its_datasheet_reads_alpha_1_5708_as_pi_over_2() {
         ])
     });
     assert_eq!(r.notes.len(), 3, "{:?}", r.notes);
-    assert!(r.decimals);
+    assert!(!r.decimals.is_empty());
     // Exact: no constant angle is left in the pose (1.5708 would leave cos(3927/2500)).
     assert!(r.parameters().is_empty());
     let t = dqsym::fk_report(&r, &dqsym::FkOptions::default()).expect("report");
@@ -239,5 +239,106 @@ fn degrees_are_refused_with_the_deg_suggestion_and_exact_angles_keeps_them() {
             let got = m.rows[i][j].eval_at(&env).expect("numeric");
             assert!((got - want[i][j]).abs() < 1e-12, "T[{i}][{j}]");
         }
+    }
+}
+
+/// The UR5 example with its nominal lengths typed in as decimals, as a datasheet prints them.
+fn ur5_with_decimals() -> String {
+    let path = format!("{}/examples/robots/ur5.toml", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(path).expect("ur5.toml");
+    let text = text.split("[values]").next().expect("joints").to_owned();
+    [
+        ("\"d1\"", "0.089159"),
+        ("\"a2\"", "-0.425"),
+        ("\"a3\"", "-0.39225"),
+        ("\"d4\"", "0.10915"),
+        ("\"d5\"", "0.09465"),
+        ("\"d6\"", "0.0823"),
+    ]
+    .iter()
+    .fold(text, |t, (from, to)| t.replace(from, to))
+}
+
+#[test]
+fn decimals_print_as_decimals_and_read_back_exactly() {
+    use dqsym::{fk_report, FkOptions, Format};
+    let ur5e_path = format!(
+        "{}/tests/data/hostile/robot/datasheet_ur5e.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let ur5e = std::fs::read_to_string(ur5e_path).expect("ur5e");
+    for (file, text, want) in [
+        (
+            "ur5e.toml",
+            ur5e,
+            "T[0][3] = c1 (-0.425 c2 - 0.3922 c23 - 0.0996 c234 s5 + 0.0997 s234) + s1 (0.1333 + 0.0996 c5)",
+        ),
+        (
+            "ur5.toml",
+            ur5_with_decimals(),
+            "T[2][3] = 0.089159 - 0.425 s2 - 0.39225 s23 - 0.09465 c234 - 0.0823 s234 s5",
+        ),
+    ] {
+        let r = dqsym::parse_robot(&text, file, &eval_scalar_text).expect("robot");
+        assert!(!r.decimals.is_empty(), "{file}");
+        let report = |format, shorthand| {
+            let o = FkOptions {
+                format,
+                shorthand,
+                ..FkOptions::default()
+            };
+            fk_report(&r, &o).expect("report")
+        };
+        let plain = report(Format::Plain, true);
+        assert!(plain.lines().any(|l| l == want), "{file}:\n{plain}");
+        assert!(!plain.contains("/10000") && !plain.contains("/20000"), "{plain}");
+        // The explicit text reads back, through the language, to the exact pose.
+        let explicit = report(Format::Plain, false);
+        let m = r.forward_matrix();
+        let mut read = 0;
+        for line in explicit.lines().filter(|l| l.starts_with("T[")) {
+            let (name, expr) = line.split_once(" = ").expect("an entry");
+            let (i, j) = (
+                name.as_bytes()[2] - b'0',
+                name.as_bytes()[5] - b'0',
+            );
+            let back = eval_scalar_text(expr).expect("the text reads back");
+            assert_eq!(back, m.rows[i as usize][j as usize], "{file} {name}: {expr}");
+            read += 1;
+        }
+        assert_eq!(read, 12);
+        // LaTeX in decimals too, and KaTeX renders it.
+        let tex = report(Format::Latex, true);
+        assert!(tex.contains("0.425 c_{2}") && !tex.contains("\\frac{1}{10000}"), "{tex}");
+        let blocks: Vec<String> = tex
+            .split("\\begin{aligned}")
+            .skip(1)
+            .map(|b| format!("\\begin{{aligned}}{}", b.split("\\end{aligned}").next().unwrap_or_default()) + "\\end{aligned}")
+            .collect();
+        crate::tools::katex_all(&blocks, file);
+        // SymPy: exact decimals (`Rational('0.425')`), equal to the fractions of the pose.
+        let sympy = report(Format::Sympy, true);
+        assert!(sympy.contains("Rational('0.425')"), "{sympy}");
+        let exact: String = m.rows[..3]
+            .iter()
+            .flatten()
+            .enumerate()
+            .map(|(c, x)| {
+                let e = dqsym::closed_form(x).expect("closed form");
+                format!("T[{}][{}] = {}\n", c / 4, c % 4, dqsym::emit::sympy(&e))
+            })
+            .collect();
+        let script = format!(
+            "import sympy, sys\nfrom sympy import Rational\n\
+             a = dict(l.split(' = ', 1) for l in sys.stdin.read().split('@@')[0].splitlines() if l.startswith('T['))\n\
+             b = dict(l.split(' = ', 1) for l in {exact:?}.splitlines())\n\
+             for k in b:\n    d = sympy.expand(sympy.expand_trig(sympy.sympify(a[k]) - sympy.sympify(b[k])))\n    assert d == 0, (k, d)\n\
+             print(len(b))\n"
+        );
+        let out = crate::tools::run_python(&script, &format!("{sympy}@@"), "sympy");
+        assert_eq!(out.trim(), "12", "{file}");
+        // Generated code reads the lengths as typed.
+        let py = report(Format::Python, true);
+        assert!(py.contains("0.425"), "{py}");
     }
 }

@@ -364,7 +364,7 @@ pub(super) fn render<S: AsRef<str>>(
     let shorthand = o.shorthand;
     // A robot whose file wrote decimals reads in decimals (`0.425 c2`), exactly: the
     // denominators pulled out of sums put back, decimal fractions printed as decimals.
-    let decimals = robot.decimals;
+    let decimals = !robot.decimals.is_empty();
     let sections: Vec<(&str, Vec<(String, Expr)>)> = sections
         .iter()
         .map(|(t, rows)| {
@@ -372,7 +372,7 @@ pub(super) fn render<S: AsRef<str>>(
                 .iter()
                 .map(|(n, e)| {
                     let e = if decimals {
-                        decimal_form(e)
+                        decimal_form(e, &robot.decimals)
                     } else {
                         e.clone()
                     };

@@ -64,9 +64,10 @@ pub struct Robot {
     /// What the reader read other than as written, one line each (`joint 1, field `alpha`:
     /// 1.5708 read as pi/2`), for the caller to show.
     pub notes: Vec<String>,
-    /// Whether the file wrote its numbers as decimals (`0.425`): reports then print exact
-    /// decimals as decimals (`0.425 c2`, not `1/10000 (4250 c2 ...)`).
-    pub decimals: bool,
+    /// The decimals the file wrote (`0.425`; their magnitudes, sorted), none when it wrote
+    /// none: reports then print exact decimals as decimals (`0.425 c2`, not `1/10000 (4250 c2
+    /// ...)`), showing these as typed where they can.
+    pub decimals: Vec<num_rational::BigRational>,
 }
 
 /// How a robot file is read.
@@ -537,13 +538,14 @@ fn frames(v: &toml::Value, eval: FieldEval) -> Result<Vec<Frame>, (String, Strin
 /// for the TOML reader to report.
 /// Also says whether a field (other than `name` and `[values]`) holds a decimal (`0.425`,
 /// `"q1 + 0.5"`).
-fn numbers_as_text(text: &str) -> Result<(String, bool), String> {
+fn numbers_as_text(text: &str) -> Result<(String, Vec<num_rational::BigRational>), String> {
     let Ok(mut doc) = text.parse::<toml_edit::DocumentMut>() else {
-        return Ok((text.to_string(), false));
+        return Ok((text.to_string(), Vec::new()));
     };
     let mut changed = Visit::default();
     visit_table(doc.as_table_mut(), "", &mut changed)?;
-    let decimals = changed.decimals;
+    let mut decimals = changed.decimals;
+    decimals.sort();
     Ok(if changed.changed {
         (doc.to_string(), decimals)
     } else {
@@ -556,8 +558,40 @@ fn numbers_as_text(text: &str) -> Result<(String, bool), String> {
 struct Visit {
     /// A number was turned into text.
     changed: bool,
-    /// A field holds a decimal.
-    decimals: bool,
+    /// The decimals of the fields (magnitudes).
+    decimals: Vec<num_rational::BigRational>,
+}
+
+impl Visit {
+    /// Records the decimal literals of a field's text (`0.425`, `q1 + 0.5`).
+    fn note_decimals(&mut self, text: &str) {
+        if !has_decimal(text) {
+            return;
+        }
+        let b = text.as_bytes();
+        let mut i = 0;
+        while i < b.len() {
+            let starts = (b[i].is_ascii_digit() || b[i] == b'.')
+                && (i == 0 || !(b[i - 1].is_ascii_alphanumeric() || b[i - 1] == b'_'));
+            if !starts {
+                i += 1;
+                continue;
+            }
+            let mut j = i;
+            while j < b.len() && (b[j].is_ascii_digit() || b[j] == b'.') {
+                j += 1;
+            }
+            if let Some(x) = crate::scalar::parse_decimal(&text[i..j], 1_000) {
+                if text[i..j].contains('.') {
+                    let x = num_traits::Signed::abs(&x);
+                    if !self.decimals.contains(&x) {
+                        self.decimals.push(x);
+                    }
+                }
+            }
+            i = j;
+        }
+    }
 }
 
 /// Whether `text` holds a decimal literal: a point followed by a digit, not inside a name.
@@ -618,15 +652,15 @@ fn visit_value(v: &mut toml_edit::Value, path: &str, ch: &mut Visit) -> Result<(
         }
         toml_edit::Value::InlineTable(t) => return visit_table(t, path, ch),
         toml_edit::Value::String(t) => {
-            if is_field(path) && has_decimal(t.value()) {
-                ch.decimals = true;
+            if is_field(path) {
+                ch.note_decimals(t.value());
             }
             return Ok(());
         }
         _ => return Ok(()),
     };
-    if is_field(path) && has_decimal(&text) {
-        ch.decimals = true;
+    if is_field(path) {
+        ch.note_decimals(&text);
     }
     let decor = v.decor().clone();
     *v = toml_edit::Value::from(text);

@@ -402,6 +402,15 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
     }
     let name = root.attribute("name").unwrap_or(file).to_string();
     let chain = Chain::new(chain_joints).with_tool(home);
+    // URDF numbers are decimals by the format: the lengths of the chain's origins.
+    let mut decimals: Vec<BigRational> = frames
+        .iter()
+        .flat_map(|f| f.xyz.iter().filter_map(Scalar::as_rational))
+        .map(|x| num_traits::Signed::abs(&x))
+        .filter(|x| !num_traits::Zero::is_zero(x))
+        .collect();
+    decimals.sort();
+    decimals.dedup();
     Ok(UrdfRobot {
         robot: Robot {
             name: format!("{name} ({base_link} to {tip})"),
@@ -414,8 +423,7 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
             tool: None,
             values: params,
             notes: notes.clone(),
-            // URDF numbers are decimals by the format.
-            decimals: true,
+            decimals,
         },
         notes,
     })
