@@ -70,8 +70,7 @@ fn screw(u: [f64; 3], p: [f64; 3], t: f64) -> M {
 }
 
 fn chain(ms: &[M]) -> M {
-    ms.iter()
-        .fold(trans(0.0, 0.0, 0.0), |acc, m| mul(&acc, m))
+    ms.iter().fold(trans(0.0, 0.0, 0.0), |acc, m| mul(&acc, m))
 }
 
 fn read(file: &str, o: &RobotOptions) -> Robot {
@@ -80,7 +79,8 @@ fn read(file: &str, o: &RobotOptions) -> Robot {
         env!("CARGO_MANIFEST_DIR")
     );
     let text = std::fs::read_to_string(&path).expect("datasheet file");
-    dqsym::kin::parse_robot_with(&text, file, &eval_scalar_text, o).unwrap_or_else(|e| panic!("{e}"))
+    dqsym::kin::parse_robot_with(&text, file, &eval_scalar_text, o)
+        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The robot's exact pose matrix against `oracle` at random configurations.

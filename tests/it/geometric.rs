@@ -54,7 +54,12 @@ const Z: [f64; 3] = [0.0, 0.0, 1.0];
 /// (DH, modified DH or a screw motion about its home-pose axis), tool frames.
 fn pose(r: &Robot, env: &[(String, f64)], q: &[f64]) -> M {
     let mut all: Vec<(&str, f64)> = env.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-    all.extend(r.variables.iter().map(String::as_str).zip(q.iter().copied()));
+    all.extend(
+        r.variables
+            .iter()
+            .map(String::as_str)
+            .zip(q.iter().copied()),
+    );
     let f = |x: &Scalar| x.eval_at(&all).expect("numeric");
     let f3 = |v: &[Scalar; 3]| [f(&v[0]), f(&v[1]), f(&v[2])];
     let frame = |fr: &dqsym::kin::Frame| {
@@ -79,7 +84,10 @@ fn pose(r: &Robot, env: &[(String, f64)], q: &[f64]) -> M {
             }
             JointGeometry::Mdh { alpha, a, theta, d } => {
                 let m = mul(&rot(X, f(alpha)), &trans([f(a), 0.0, 0.0]));
-                mul(&mul(&m, &rot(Z, f(theta) + rv)), &trans([0.0, 0.0, f(d) + pv]))
+                mul(
+                    &mul(&m, &rot(Z, f(theta) + rv)),
+                    &trans([0.0, 0.0, f(d) + pv]),
+                )
             }
             JointGeometry::Screw { axis, point } => {
                 let (u, p) = (f3(axis), f3(point));
@@ -143,7 +151,11 @@ fn robots() -> Vec<Robot> {
     .collect();
     let urdf = std::fs::read_to_string(format!("{root}/benches/support/ur5.urdf")).expect("urdf");
     let o = dqsym::kin::UrdfOptions::default();
-    v.push(dqsym::parse_urdf(&urdf, "ur5.urdf", &o).expect("urdf").robot);
+    v.push(
+        dqsym::parse_urdf(&urdf, "ur5.urdf", &o)
+            .expect("urdf")
+            .robot,
+    );
     v
 }
 
@@ -186,8 +198,7 @@ fn geometric_jacobians_match_differences_of_plain_matrices() {
                 let env = parameters(&r, &mut rng);
                 let q: Vec<f64> = vars.iter().map(|_| rng.range(-3.0, 3.0)).collect();
                 let want = numeric_jacobian(&r, &env, &q, body);
-                let mut all: Vec<(&str, f64)> =
-                    env.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+                let mut all: Vec<(&str, f64)> = env.iter().map(|(n, v)| (n.as_str(), *v)).collect();
                 all.extend(vars.iter().copied().zip(q.iter().copied()));
                 for (i, row) in j.num.iter().enumerate() {
                     assert_eq!(row.len(), vars.len());
@@ -236,7 +247,12 @@ fn generated_numpy_and_sympy_geometric_jacobians_match_plain_matrices() {
             let values: Vec<String> = env
                 .iter()
                 .map(|(n, v)| (n.as_str(), *v))
-                .chain(r.variables.iter().map(String::as_str).zip(q.iter().copied()))
+                .chain(
+                    r.variables
+                        .iter()
+                        .map(String::as_str)
+                        .zip(q.iter().copied()),
+                )
                 .map(|(n, v)| format!("'{n}': {v:e}"))
                 .collect();
             let base = if body { "Jb" } else { "Jg" };

@@ -181,7 +181,10 @@ fn every_example_robot_in_every_name_style_renders_in_katex_without_collisions()
     }
     all.sort();
     all.dedup();
-    katex_all(&all, "fk --format latex and walkthroughs of every example robot in every name style");
+    katex_all(
+        &all,
+        "fk --format latex and walkthroughs of every example robot in every name style",
+    );
     assert_eq!(reports, files.len() * STYLES);
     assert!(walks >= (files.len() - 5) * STYLES, "{walks} walkthroughs");
 }

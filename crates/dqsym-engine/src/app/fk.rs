@@ -11,8 +11,7 @@ use super::recurrence::recurrence_sections;
 use crate::emit::{
     arguments, c_function, count_ops, generated_ops, latex_aligned, latex_symbol, product_table,
     python_function, rotation_chain_ops, rust_function, sympy, sympy_decimals, CodegenError,
-    CodegenOptions,
-    Counted, LatexOptions, Output,
+    CodegenOptions, Counted, LatexOptions, Output,
 };
 use crate::kin::{dq_jacobian, Robot};
 use crate::print::{legend, plain, plain_len_bound, Format, PlainOptions};
@@ -168,7 +167,10 @@ const MAX_EXPANDED_TEXT: usize = 100_000;
 /// length) exceeds `max`: a report well within `max` is not printed twice.
 pub(super) fn text_exceeds(sections: &[(String, Vec<(String, Expr)>)], max: usize) -> bool {
     let rows = || sections.iter().flat_map(|(_, rows)| rows);
-    let po = PlainOptions { shorthand: true, decimals: false };
+    let po = PlainOptions {
+        shorthand: true,
+        decimals: false,
+    };
     let length = || rows().map(|(_, e)| plain(e, &po).len()).sum::<usize>();
     let bound: usize = rows().map(|(_, e)| plain_len_bound(e)).sum();
     if bound > max {
@@ -391,7 +393,11 @@ pub(super) fn render<S: AsRef<str>>(
             .iter()
             .flat_map(|(_, rows)| {
                 rows.iter().map(|(n, e)| {
-                    let text = if decimals { sympy_decimals(e) } else { sympy(e) };
+                    let text = if decimals {
+                        sympy_decimals(e)
+                    } else {
+                        sympy(e)
+                    };
                     format!("{n} = {text}\n")
                 })
             })
@@ -649,7 +655,12 @@ fn latex_name(n: &str, l: &Letters) -> String {
         "p" => format!("{}_{{{}}}", l.p, idx.join(",")),
         "J" => format!("{}_{{{}}}", l.j, idx.join(",")),
         "Jr" | "Jt" | "Jl" | "Jpi" | "Jd" | "Jg" | "Jb" => {
-            format!("{}^{{{}}}_{{{}}}", l.j, latex_symbol(&base[1..]), idx.join(","))
+            format!(
+                "{}^{{{}}}_{{{}}}",
+                l.j,
+                latex_symbol(&base[1..]),
+                idx.join(",")
+            )
         }
         "Jdot" => format!("\\dot{{{}}}_{{{}}}", l.j, idx.join(",")),
         // A recurrence entry `Q2[3]` is written as its symbol `Q2_3` is in later entries.

@@ -37,18 +37,14 @@ pub fn sympy_quotient(num: &Expr, den: &Expr) -> String {
 fn write(e: &Expr, prec: u8, dec: bool, out: &mut String) {
     let write = |e: &Expr, prec: u8, out: &mut String| write(e, prec, dec, out);
     match e {
-        Expr::Num(q) if dec && shows_as_decimal(q) => {
-            match crate::scalar::decimal_text(q, 1_000) {
-                Some(t) if t.starts_with('-') && prec > 1 => {
-                    out.push_str(&format!("(-Rational('{}'))", &t[1..]))
-                }
-                Some(t) if t.starts_with('-') => {
-                    out.push_str(&format!("-Rational('{}')", &t[1..]))
-                }
-                Some(t) => out.push_str(&format!("Rational('{t}')")),
-                None => out.push_str(&format!("({q})")),
+        Expr::Num(q) if dec && shows_as_decimal(q) => match crate::scalar::decimal_text(q, 1_000) {
+            Some(t) if t.starts_with('-') && prec > 1 => {
+                out.push_str(&format!("(-Rational('{}'))", &t[1..]))
             }
-        }
+            Some(t) if t.starts_with('-') => out.push_str(&format!("-Rational('{}')", &t[1..])),
+            Some(t) => out.push_str(&format!("Rational('{t}')")),
+            None => out.push_str(&format!("({q})")),
+        },
         Expr::Num(q) => {
             // `(3/8)` keeps the division from binding to a neighbour in `x*(3/8)`.
             if q.denom().is_one() || prec == 0 {

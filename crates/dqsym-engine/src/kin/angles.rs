@@ -80,9 +80,7 @@ pub fn read_angle(x: &BigRational) -> AngleReading {
     let k = (xf / step).round();
     let off = (xf - k * step).abs();
     match snap_tolerance(places) {
-        Some(tol) if off <= tol => AngleReading::Multiple {
-            twelfths: k as i64,
-        },
+        Some(tol) if off <= tol => AngleReading::Multiple { twelfths: k as i64 },
         // One digit after the point is within 0.1 of some multiple for 76% of all values:
         // only two digits make a near miss worth a word.
         None if places + 1 == MIN_PLACES && off <= 10f64.powi(-(places as i32)) => {

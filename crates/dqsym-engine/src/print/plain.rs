@@ -281,7 +281,13 @@ mod tests {
             // The bound is checked, and the closed form is the value it shows.
             assert_eq!(e.to_scalar(), *x);
             for shorthand in [true, false] {
-                let text = plain(&e, &PlainOptions { shorthand, decimals: false });
+                let text = plain(
+                    &e,
+                    &PlainOptions {
+                        shorthand,
+                        decimals: false,
+                    },
+                );
                 assert!(
                     text.len() <= plain_len_bound(&e),
                     "{text}: {} over the bound {}",
