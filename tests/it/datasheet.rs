@@ -73,6 +73,19 @@ fn chain(ms: &[M]) -> M {
     ms.iter().fold(trans(0.0, 0.0, 0.0), |acc, m| mul(&acc, m))
 }
 
+/// The first three rows of `m` at `env` against `want`, entry by entry.
+fn assert_close(m: &dqsym::Matrix4<dqsym::Scalar>, env: &[(&str, f64)], want: &M, what: &str) {
+    for (i, (row, wrow)) in m.rows.iter().zip(want).take(3).enumerate() {
+        for (j, (x, w)) in row.iter().zip(wrow).enumerate() {
+            let got = x.eval_at(env).expect("numeric entry");
+            assert!(
+                (got - w).abs() < 1e-12,
+                "{what}: T[{i}][{j}] = {got}, expected {w} at {env:?}"
+            );
+        }
+    }
+}
+
 fn read(file: &str, o: &RobotOptions) -> Robot {
     let path = format!(
         "{}/tests/data/hostile/robot/{file}",
@@ -96,17 +109,7 @@ fn check(file: &str, oracle: &dyn Fn(&[f64]) -> M) -> Robot {
             .map(String::as_str)
             .zip(q.iter().copied())
             .collect();
-        let want = oracle(&q);
-        for i in 0..3 {
-            for j in 0..4 {
-                let got = m.rows[i][j].eval_at(&env).expect("numeric entry");
-                assert!(
-                    (got - want[i][j]).abs() < 1e-12,
-                    "{file}: T[{i}][{j}] = {got}, expected {} at {q:?}",
-                    want[i][j]
-                );
-            }
-        }
+        assert_close(&m, &env, &oracle(&q), file);
     }
     r
 }
@@ -212,12 +215,7 @@ fn degrees_are_refused_with_the_deg_suggestion_and_exact_angles_keeps_them() {
         dh(q[1], 0.0, -0.425, 0.0),
         dh(q[2], 0.0, -0.3922, -90.0),
     ]);
-    for i in 0..3 {
-        for j in 0..4 {
-            let got = m.rows[i][j].eval_at(&env).expect("numeric");
-            assert!((got - want[i][j]).abs() < 1e-12, "T[{i}][{j}]");
-        }
-    }
+    assert_close(&m, &env, &want, "alpha in degrees");
     // The same file with "90deg" reads as the robot meant.
     let path = format!(
         "{}/tests/data/hostile/robot/datasheet_degrees.toml",
@@ -234,12 +232,7 @@ fn degrees_are_refused_with_the_deg_suggestion_and_exact_angles_keeps_them() {
         dh(q[1], 0.0, -0.425, 0.0),
         dh(q[2], 0.0, -0.3922, -PI / 2.0),
     ]);
-    for i in 0..3 {
-        for j in 0..4 {
-            let got = m.rows[i][j].eval_at(&env).expect("numeric");
-            assert!((got - want[i][j]).abs() < 1e-12, "T[{i}][{j}]");
-        }
-    }
+    assert_close(&m, &env, &want, "alpha in degrees");
 }
 
 /// The UR5 example with its nominal lengths typed in as decimals, as a datasheet prints them.

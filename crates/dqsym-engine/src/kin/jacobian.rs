@@ -46,15 +46,17 @@ pub fn geometric_jacobian_body(q: &DualQuat<Scalar>, vars: &[&str]) -> Vec<Vec<S
     let r = &q.real;
     let back = |v: [Scalar; 3]| (r.conjugate() * Quat::from_vector(&v) * r.clone()).vector_part();
     let mut rows: Vec<Vec<Scalar>> = (0..6).map(|_| Vec::with_capacity(vars.len())).collect();
-    for j in 0..vars.len() {
-        let col = |k0: usize| {
-            [
-                base[k0][j].clone(),
-                base[k0 + 1][j].clone(),
-                base[k0 + 2][j].clone(),
-            ]
-        };
-        let (l, w) = (back(col(0)), back(col(3)));
+    let col = |k0: usize, j: usize| {
+        [
+            base[k0][j].clone(),
+            base[k0 + 1][j].clone(),
+            base[k0 + 2][j].clone(),
+        ]
+    };
+    let cols: Vec<([Scalar; 3], [Scalar; 3])> = (0..vars.len())
+        .map(|j| (back(col(0, j)), back(col(3, j))))
+        .collect();
+    for (l, w) in cols {
         for k in 0..3 {
             rows[k].push(l[k].clone());
             rows[k + 3].push(w[k].clone());
