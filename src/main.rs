@@ -731,7 +731,11 @@ fn walk(
             Err(m) => return fail(m),
         }
     } else if path.extension().is_some_and(|e| e == "toml") {
-        dqsym::walk_robot(&text, &name, &dqsym::eval_scalar_text)
+        // Read here, so that its notes are printed and --exact-angles is honoured.
+        match load_robot(path, urdf) {
+            Ok(r) => dqsym::walk::walk_robot_read(&r, &name),
+            Err(m) => return fail(m),
+        }
     } else {
         dqsym::walk_script(&text, &name)
     };
