@@ -309,9 +309,9 @@ fn decimals_print_as_decimals_and_read_back_exactly() {
             .map(|b| format!("\\begin{{aligned}}{}", b.split("\\end{aligned}").next().unwrap_or_default()) + "\\end{aligned}")
             .collect();
         crate::tools::katex_all(&blocks, file);
-        // SymPy: exact decimals (`Rational('0.425')`), equal to the fractions of the pose.
+        // SymPy: exact decimals (`(425/1000)`), equal to the fractions of the pose.
         let sympy = report(Format::Sympy, true);
-        assert!(sympy.contains("Rational('0.425')"), "{sympy}");
+        assert!(sympy.contains("(425/1000)"), "{sympy}");
         let exact: String = m.rows[..3]
             .iter()
             .flatten()
@@ -322,7 +322,7 @@ fn decimals_print_as_decimals_and_read_back_exactly() {
             })
             .collect();
         let script = format!(
-            "import sympy, sys\nfrom sympy import Rational\n\
+            "import sympy, sys\n\
              a = dict(l.split(' = ', 1) for l in sys.stdin.read().split('@@')[0].splitlines() if l.startswith('T['))\n\
              b = dict(l.split(' = ', 1) for l in {exact:?}.splitlines())\n\
              for k in b:\n    d = sympy.expand(sympy.expand_trig(sympy.sympify(a[k]) - sympy.sympify(b[k])))\n    assert d == 0, (k, d)\n\

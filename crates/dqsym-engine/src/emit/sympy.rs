@@ -16,9 +16,10 @@ pub fn sympy(e: &Expr) -> String {
     out
 }
 
-/// [`sympy`] with decimal fractions (a factor 5 in the denominator) written as exact decimals,
-/// `Rational('0.425')` (a bare `0.425` would be a float to `sympify`), for robots whose file
-/// wrote decimals (see [`decimal_form`](crate::closed::decimal_form)).
+/// [`sympy`] with decimal fractions (a factor 5 in the denominator) written as their digits
+/// over a power of ten, `(425/1000)` for 0.425 (exact; a bare `0.425` would be a float to
+/// `sympify`), for robots whose file wrote decimals (see
+/// [`decimal_form`](crate::closed::decimal_form)).
 pub fn sympy_decimals(e: &Expr) -> String {
     let mut out = String::new();
     write(e, 0, true, &mut out);
@@ -37,14 +38,14 @@ pub fn sympy_quotient(num: &Expr, den: &Expr) -> String {
 fn write(e: &Expr, prec: u8, dec: bool, out: &mut String) {
     let write = |e: &Expr, prec: u8, out: &mut String| write(e, prec, dec, out);
     match e {
-        Expr::Num(q) if dec && shows_as_decimal(q) => match crate::scalar::decimal_text(q, 1_000) {
-            Some(t) if t.starts_with('-') && prec > 1 => {
-                out.push_str(&format!("(-Rational('{}'))", &t[1..]))
-            }
-            Some(t) if t.starts_with('-') => out.push_str(&format!("-Rational('{}')", &t[1..])),
-            Some(t) => out.push_str(&format!("Rational('{t}')")),
-            None => out.push_str(&format!("({q})")),
-        },
+        Expr::Num(q) if dec && shows_as_decimal(q) => {
+            // The decimal's digits over its power of ten, `(425/1000)` for 0.425: exact for
+            // `sympify` with no name to bind (a bare `0.425` would be a float).
+            let places = crate::scalar::decimal_places(q).unwrap_or(0);
+            let scale = num_bigint::BigInt::from(10u32).pow(u32::try_from(places).unwrap_or(0));
+            let digits = (q * num_rational::BigRational::from_integer(scale.clone())).to_integer();
+            out.push_str(&format!("({digits}/{scale})"));
+        }
         Expr::Num(q) => {
             // `(3/8)` keeps the division from binding to a neighbour in `x*(3/8)`.
             if q.denom().is_one() || prec == 0 {
