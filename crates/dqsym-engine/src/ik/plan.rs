@@ -600,7 +600,9 @@ fn derive_fixed(
         free: opts.free.clone(),
         position_only,
         home,
+        axes,
         forms: std::sync::OnceLock::new(),
+        degrees: std::sync::OnceLock::new(),
     })
 }
 
