@@ -4,9 +4,9 @@
 //!
 //! # Tolerances
 //!
-//! Every tolerance is relative to the robot's scale `L`: the sum of the absolute coordinates
-//! of the joint axes' points and of the home and target positions (a bound on every length the
-//! solver adds or subtracts). A step's parts (`a`, `b`, `c`; `y`, `x`; `β`, `γ`) are
+//! Every tolerance is relative to the robot's scale `L`: the largest sum of absolute
+//! coordinates of a joint axis' point, the home position or the target position (every length
+//! the solver adds or subtracts is a difference of such points, at most `2 L`). A step's parts (`a`, `b`, `c`; `y`, `x`; `β`, `γ`) are
 //! homogeneous polynomials of some degree `d` in lengths (found once per solver,
 //! [`step_degrees`]), so their size is of order `S = L^d` and the rounding of their evaluation
 //! (a few dozen operations, each adding at most `eps` times the sum of the absolute values of
@@ -29,20 +29,20 @@
 //! it is (the common case, kept as fast as before); every other solution, and every singular
 //! one, is checked by forward kinematics: its residual (the largest deviation of an entry of
 //! its pose from the target, rotation entries as they are, positions over `L`) above
-//! `CHECK_TOL` (about 1,000 times the rounding of an exact solution's pose, `3 (n + 1) eps`)
-//! starts a damped Gauss–Newton refinement on the pose residual, and a residual still above
+//! `CHECK_TOL` (a tenth of `POSE_TOL`, and about 2,000 times the rounding of an exact
+//! solution's pose, `3 (n + 1) eps`, so that exact solutions are never refined) starts a damped Gauss–Newton refinement on the pose residual, and a residual still above
 //! `POSE_TOL` after it (a target out of reach, a sample of a singular set the pose is only
 //! near) flags the solution approximate with that residual. Samples of a singular set whose
 //! own atan2 value was kept are dropped instead when they stay off the pose: the pose is only
 //! near the set, and the kept value is its solution.
 
 /// Rounding of a step's parts, relative to their scale `L^d` (256 eps; see the module docs).
-pub const ZERO_TOL: f64 = 256.0 * f64::EPSILON;
+pub const ZERO_TOL: f64 = 64.0 * f64::EPSILON;
 /// How far below zero (relative to `a² + b²`) a radicand is still the closest reach.
 pub const REACH_TOL: f64 = 1e-8;
 /// The error bound of a step's root (radians, or relative to the scale) above which a
 /// solution is checked by forward kinematics, and the residual above which it is refined.
-pub const CHECK_TOL: f64 = 1e-12;
+pub const CHECK_TOL: f64 = 1e-11;
 /// The residual (relative) above which a checked solution is flagged approximate.
 pub const POSE_TOL: f64 = 1e-10;
 /// Gauss–Newton iterations at most.
@@ -135,13 +135,12 @@ pub type AxisData = [f64; 7];
 
 /// The robot's scale `L` (see the module docs): never 0.
 pub fn scale(axes: &[AxisData], home: &[[f64; 4]; 3], target: &[[f64; 4]; 4]) -> f64 {
-    let mut l = 0.0;
+    let mut l: f64 = 0.0;
     for a in axes {
-        l += a[4].abs() + a[5].abs() + a[6].abs();
+        l = l.max(a[4].abs() + a[5].abs() + a[6].abs());
     }
-    for r in 0..3 {
-        l += home[r][3].abs() + target[r][3].abs();
-    }
+    l = l.max(home[0][3].abs() + home[1][3].abs() + home[2][3].abs());
+    l = l.max(target[0][3].abs() + target[1][3].abs() + target[2][3].abs());
     if l > 0.0 && l.is_finite() {
         l
     } else {

@@ -16,7 +16,7 @@ mod report;
 mod walk;
 
 pub use axes::{home_axes, intersection, relation, Axis, Relation, V3};
-pub use emit::{ik_c, ik_python, ik_rust};
+pub use emit::{ik_c, ik_javascript_helpers, ik_python, ik_rust, ik_step_degrees};
 pub use report::ik_report;
 pub use walk::ik_walk;
 
