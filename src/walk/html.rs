@@ -469,15 +469,24 @@ fn ik_script(sol: &crate::ik::IkSolution) -> Result<String, WalkError> {
     }
     // The axes and the home pose from the parameters, for the check of each solution.
     let mut chain = Vec::new();
-    let closed = |x: &crate::Scalar| crate::closed_form(x).map_err(|e| WalkError::Config(e.to_string()));
+    let closed =
+        |x: &crate::Scalar| crate::closed_form(x).map_err(|e| WalkError::Config(e.to_string()));
     for (i, a) in sol.axes.iter().enumerate() {
         for (k, x) in a.dir.iter().chain(&a.point).enumerate() {
-            chain.push(Output::scalar(&format!("ax{i}_{k}"), "An axis entry.", closed(x)?));
+            chain.push(Output::scalar(
+                &format!("ax{i}_{k}"),
+                "An axis entry.",
+                closed(x)?,
+            ));
         }
     }
     for (r, row) in sol.home.rows.iter().take(3).enumerate() {
         for (c, x) in row.iter().enumerate() {
-            chain.push(Output::scalar(&format!("home{r}{c}"), "A home pose entry.", closed(x)?));
+            chain.push(Output::scalar(
+                &format!("home{r}{c}"),
+                "A home pose entry.",
+                closed(x)?,
+            ));
         }
     }
     code += &javascript_function(
@@ -495,7 +504,10 @@ fn ik_script(sol: &crate::ik::IkSolution) -> Result<String, WalkError> {
         .map(|a| u8::from(a.kind == crate::JointKind::Prismatic).to_string())
         .collect();
     let quoted = |v: &[String]| -> String {
-        v.iter().map(|x| format!("\"{x}\"")).collect::<Vec<_>>().join(",")
+        v.iter()
+            .map(|x| format!("\"{x}\""))
+            .collect::<Vec<_>>()
+            .join(",")
     };
     let degrees: Vec<String> = degrees.iter().map(i32::to_string).collect();
     let data = format!(

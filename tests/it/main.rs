@@ -11,6 +11,7 @@ mod dqr;
 mod emit;
 mod hostile;
 mod ik;
+mod ik_edges;
 mod kinematics;
 mod lang;
 mod laws;

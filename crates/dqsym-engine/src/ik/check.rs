@@ -9,9 +9,9 @@
 //! the solver adds or subtracts is a difference of such points, at most `2 L`). A step's parts (`a`, `b`, `c`; `y`, `x`; `β`, `γ`) are
 //! homogeneous polynomials of some degree `d` in lengths (found once per solver,
 //! [`step_degrees`]), so their size is of order `S = L^d` and the rounding of their evaluation
-//! (a few dozen operations, each adding at most `eps` times the sum of the absolute values of
-//! the terms, at most a handful of terms of size `S`) is below `σ = ZERO_TOL · S` with
-//! `ZERO_TOL = 256 eps`:
+//! (at most a few dozen operations, each adding at most `eps` times the sum of the absolute
+//! values of the terms, a handful of terms of size `S`: about 32 eps S, with a factor 2 to
+//! spare) is below `σ = ZERO_TOL · S` with `ZERO_TOL = 64 eps`:
 //! - a part below `σ` is zero within rounding: an atan2 whose arguments are both below it is
 //!   on a singular set (any value; the twelve samples `k π/6`), but the value `atan2(y, x)`
 //!   itself is kept beside them where it is not exactly `0/0` (close to the set the arguments
@@ -29,20 +29,25 @@
 //! it is (the common case, kept as fast as before); every other solution, and every singular
 //! one, is checked by forward kinematics: its residual (the largest deviation of an entry of
 //! its pose from the target, rotation entries as they are, positions over `L`) above
-//! `CHECK_TOL` (a tenth of `POSE_TOL`, and about 2,000 times the rounding of an exact
-//! solution's pose, `3 (n + 1) eps`, so that exact solutions are never refined) starts a damped Gauss–Newton refinement on the pose residual, and a residual still above
+//! `REFINE_TOL` (twenty times the rounding of an exact solution's pose, `3 (n + 1) eps`, so
+//! that exact solutions are not refined) starts a damped Gauss–Newton refinement on the pose residual, and a residual still above
 //! `POSE_TOL` after it (a target out of reach, a sample of a singular set the pose is only
 //! near) flags the solution approximate with that residual. Samples of a singular set whose
 //! own atan2 value was kept are dropped instead when they stay off the pose: the pose is only
 //! near the set, and the kept value is its solution.
 
-/// Rounding of a step's parts, relative to their scale `L^d` (256 eps; see the module docs).
+/// Rounding of a step's parts, relative to their scale `L^d` (see the module docs).
 pub const ZERO_TOL: f64 = 64.0 * f64::EPSILON;
 /// How far below zero (relative to `a² + b²`) a radicand is still the closest reach.
 pub const REACH_TOL: f64 = 1e-8;
 /// The error bound of a step's root (radians, or relative to the scale) above which a
-/// solution is checked by forward kinematics, and the residual above which it is refined.
+/// solution is checked by forward kinematics (a tenth of `POSE_TOL`).
 pub const CHECK_TOL: f64 = 1e-11;
+/// The residual (relative) above which a checked solution is refined: twenty times the
+/// rounding of an exact solution's pose, `3 (n + 1) eps` for six joints, so that only a
+/// solution off its pose is refined (near a singular set the joints beside it may err by the
+/// residual over the distance to the set, so it is refined as far as rounding allows).
+pub const REFINE_TOL: f64 = 1e-13;
 /// The residual (relative) above which a checked solution is flagged approximate.
 pub const POSE_TOL: f64 = 1e-10;
 /// Gauss–Newton iterations at most.
@@ -86,7 +91,7 @@ pub(crate) fn radicand(rad: f64, n: f64, nu: f64) -> Option<(f64, bool, bool)> {
     if rad < -REACH_TOL * n - nu {
         None
     } else if rad <= nu {
-        Some((rad.max(0.0), true, true))
+        Some((0.0, true, true))
     } else {
         // The roots err by nu / (2 sqrt(rad n)) (trig) or nu / (2 sqrt(rad)) over the scale.
         Some((rad, false, nu * nu > 4.0 * CHECK_TOL * CHECK_TOL * rad * n))
@@ -109,18 +114,28 @@ pub(crate) fn trig_cands(a: f64, b: f64, c: f64, sigma: f64) -> Vec<Cand> {
         return vec![];
     };
     let phi = b.atan2(a);
+    if sg {
+        // The double root, and the pair at the edge of the rounding, sqrt(nu) (sampled: kept
+        // where refinement takes them onto the pose, which the double root may miss by up to
+        // sqrt(nu / n) when the pose is only near the set).
+        let w = nu.sqrt().atan2(c);
+        return vec![
+            (phi + rad.sqrt().atan2(c), true, true, false),
+            (phi + w, true, true, true),
+            (phi - w, true, true, true),
+        ];
+    }
     let w = rad.sqrt().atan2(c);
-    vec![(phi + w, sg, ck), (phi - w, sg, ck)]
-        .into_iter()
-        .map(|(v, s, k)| (v, s, k, false))
-        .collect()
+    vec![(phi + w, sg, ck, false), (phi - w, sg, ck, false)]
 }
 
-/// `q² + 2 β q + γ = 0` with the rounding `sigma` of `β` (that of `γ` is `sigma` times the
-/// scale of `β`).
+/// `q² + 2 β q + γ = 0` with the rounding `sigma` of `γ` (the step's degree is that of `γ`,
+/// twice that of `β`, whose rounding is then `sqrt(sigma ZERO_TOL)`).
 pub(crate) fn quadratic_cands(beta: f64, gamma: f64, sigma: f64) -> Vec<Cand> {
     let s = beta.abs().max(gamma.abs().sqrt());
-    let nu = 2.0 * sigma * (2.0 * beta.abs() + s) + 4.0 * f64::EPSILON * (beta * beta + gamma.abs());
+    let nu = sigma
+        + 2.0 * (sigma * ZERO_TOL).sqrt() * (2.0 * beta.abs() + s)
+        + 4.0 * f64::EPSILON * (beta * beta + gamma.abs());
     let scale = (beta * beta).max(gamma.abs());
     let Some((rad, sg, ck)) = radicand(beta * beta - gamma, scale, nu) else {
         return vec![];
@@ -190,8 +205,16 @@ fn motion(a: &AxisData, q: f64) -> [[f64; 4]; 3] {
 }
 
 /// The pose `E1(q1) ⋯ En(qn) M` and each joint's current axis `(w, p)`.
-pub fn forward(axes: &[AxisData], home: &[[f64; 4]; 3], q: &[f64]) -> ([[f64; 4]; 3], Vec<[f64; 6]>) {
-    let mut p = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]];
+pub fn forward(
+    axes: &[AxisData],
+    home: &[[f64; 4]; 3],
+    q: &[f64],
+) -> ([[f64; 4]; 3], Vec<[f64; 6]>) {
+    let mut p = [
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 0.0],
+    ];
     let mut cur = Vec::with_capacity(axes.len());
     for (a, &qi) in axes.iter().zip(q) {
         let w: [f64; 3] = std::array::from_fn(|r| p[r][0] * a[1] + p[r][1] * a[2] + p[r][2] * a[3]);
@@ -220,7 +243,13 @@ fn error(f: &[[f64; 4]; 3], t: &[[f64; 4]; 4], len: f64, position_only: bool) ->
 }
 
 fn max_abs(e: &[f64]) -> f64 {
-    e.iter().fold(0.0, |m, x| if x.abs() > m || x.is_nan() { x.abs() } else { m })
+    e.iter().fold(0.0, |m, x| {
+        if x.abs() > m || x.is_nan() {
+            x.abs()
+        } else {
+            m
+        }
+    })
 }
 
 /// The residual of `q`: the largest entry of `T − F(q)`, positions over `len`.
@@ -260,7 +289,13 @@ pub fn refine(
         let cols: Vec<Vec<f64>> = (0..n)
             .map(|i| {
                 let [wx, wy, wz, px, py, pz] = cur[i];
-                let cross = |v: [f64; 3]| [wy * v[2] - wz * v[1], wz * v[0] - wx * v[2], wx * v[1] - wy * v[0]];
+                let cross = |v: [f64; 3]| {
+                    [
+                        wy * v[2] - wz * v[1],
+                        wz * v[0] - wx * v[2],
+                        wx * v[1] - wy * v[0],
+                    ]
+                };
                 let dt = if axes[i][0] != 0.0 {
                     [wx, wy, wz]
                 } else {
@@ -270,7 +305,8 @@ pub fn refine(
                 let dr: [[f64; 3]; 3] = if axes[i][0] != 0.0 {
                     [[0.0; 3]; 3]
                 } else {
-                    let c: [[f64; 3]; 3] = std::array::from_fn(|k| cross([f[0][k], f[1][k], f[2][k]]));
+                    let c: [[f64; 3]; 3] =
+                        std::array::from_fn(|k| cross([f[0][k], f[1][k], f[2][k]]));
                     std::array::from_fn(|r| std::array::from_fn(|k| c[k][r]))
                 };
                 for r in 0..3 {
@@ -379,7 +415,11 @@ pub(crate) fn step_degrees(sol: &super::IkSolution) -> Result<Vec<i32>, String> 
     let rot = [0.36, -0.48, 0.8, 0.64, 0.6, 0.0, -0.68, 0.64, 0.36];
     for (r, row) in super::TARGET_SYMBOLS.iter().enumerate() {
         for (c, name) in row.iter().enumerate() {
-            let v = if c == 3 { [0.41, -0.23, 0.37][r] } else { rot[3 * r + c] };
+            let v = if c == 3 {
+                [0.41, -0.23, 0.37][r]
+            } else {
+                rot[3 * r + c]
+            };
             env.push((name.to_string(), v, c == 3));
         }
     }
@@ -395,10 +435,20 @@ pub(crate) fn step_degrees(sol: &super::IkSolution) -> Result<Vec<i32>, String> 
             if s.is_pi() {
                 return std::f64::consts::PI;
             }
-            env.iter().find(|(n, _, _)| n == s.name()).map_or(f64::NAN, |(n, v, len)| {
-                let v = if Some(n.as_str()) == shift { v + std::f64::consts::TAU } else { *v };
-                if *len { v * k } else { v }
-            })
+            env.iter()
+                .find(|(n, _, _)| n == s.name())
+                .map_or(f64::NAN, |(n, v, len)| {
+                    let v = if Some(n.as_str()) == shift {
+                        v + std::f64::consts::TAU
+                    } else {
+                        *v
+                    };
+                    if *len {
+                        v * k
+                    } else {
+                        v
+                    }
+                })
         })
         .0
     };

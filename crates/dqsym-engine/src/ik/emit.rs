@@ -31,7 +31,11 @@ fn max_solutions(sol: &IkSolution) -> usize {
     13 * sol
         .steps
         .iter()
-        .map(|s| s.formula.branches())
+        .map(|s| match s.formula {
+            // A double root with the pair beside it (see `ik_trig`).
+            Formula::Trig { .. } => 3,
+            _ => s.formula.branches(),
+        })
         .product::<usize>()
 }
 
@@ -93,12 +97,20 @@ fn ctx(sol: &IkSolution, lang: Lang) -> Result<Ctx<'_>, ScalarError> {
     let n_trig = outputs.len();
     for (i, a) in sol.axes.iter().enumerate() {
         for (k, x) in a.dir.iter().chain(&a.point).enumerate() {
-            outputs.push(Output::scalar(&format!("ik_ax{i}_{k}"), "", crate::closed_form(x)?));
+            outputs.push(Output::scalar(
+                &format!("ik_ax{i}_{k}"),
+                "",
+                crate::closed_form(x)?,
+            ));
         }
     }
     for (r, row) in sol.home.rows.iter().take(3).enumerate() {
         for (c, x) in row.iter().enumerate() {
-            outputs.push(Output::scalar(&format!("ik_home{r}{c}"), "", crate::closed_form(x)?));
+            outputs.push(Output::scalar(
+                &format!("ik_home{r}{c}"),
+                "",
+                crate::closed_form(x)?,
+            ));
         }
     }
     let degrees = sol.degrees().map_err(ScalarError::Unbound)?.to_vec();
@@ -185,7 +197,10 @@ fn ctx(sol: &IkSolution, lang: Lang) -> Result<Ctx<'_>, ScalarError> {
         }
     }
     prog.temp = temp;
-    let chain = prog.outputs[n_trig..].iter().map(|(_, ids)| ids[0]).collect();
+    let chain = prog.outputs[n_trig..]
+        .iter()
+        .map(|(_, ids)| ids[0])
+        .collect();
     Ok(Ctx {
         sol,
         lang,
@@ -325,7 +340,11 @@ impl Ctx<'_> {
         let n = self.sol.axes.len();
         let kind = |i: usize| {
             let k = self.sol.axes[i].kind == crate::kin::JointKind::Prismatic;
-            if k { "1.0" } else { "0.0" }
+            if k {
+                "1.0"
+            } else {
+                "0.0"
+            }
         };
         let axis = |i: usize, open: &str, close: &str| {
             let v: Vec<String> = self.chain[6 * i..6 * i + 6].iter().map(code).collect();
@@ -383,10 +402,10 @@ impl Ctx<'_> {
         let q = self.sol.variables.join(", ");
         let (sg, ck) = (self.flags(n, "sg"), self.flags(n, "ck"));
         let smp: Vec<String> = (0..n)
-            .filter(|&i| matches!(self.sol.steps[i].formula, Formula::Atan2 { .. }))
+            .filter(|&i| !matches!(self.sol.steps[i].formula, Formula::Value { .. }))
             .map(|i| match self.lang {
                 Lang::Rust => format!("ik_r{i}.sampled(ik_i{i})"),
-                Lang::C => format!("(ik_r{i}.n == 13 && ik_i{i} > 0)"),
+                Lang::C => format!("ik_i{i} >= ik_r{i}.smp"),
                 Lang::Python => format!("ik_x{i}"),
             })
             .collect();
@@ -448,7 +467,9 @@ impl Ctx<'_> {
                 ));
             }
             Lang::Python => {
-                out.push_str(&format!("{pad}for {q}, s_{q}, c_{q}, ik_x{k} in ik_r{k}[0]:\n"));
+                out.push_str(&format!(
+                    "{pad}for {q}, s_{q}, c_{q}, ik_x{k} in ik_r{k}[0]:\n"
+                ));
             }
         }
         self.level(k + 1, ind + 4, out);
@@ -500,13 +521,13 @@ fn helpers(sol: &IkSolution, texts: &[&str]) -> String {
 /// The tolerances of [`super::check`] (where they are derived) as constants of the solver's
 /// language, and the solver's shape (`IK_DOF`, `IK_POSITION_ONLY`) where its helpers need it.
 fn tolerances(sol: &IkSolution, lang: Option<Lang>) -> String {
-    use super::check::{CHECK_TOL, POSE_TOL, REACH_TOL, REFINE_STEPS, ZERO_TOL};
+    use super::check::{CHECK_TOL, POSE_TOL, REACH_TOL, REFINE_STEPS, REFINE_TOL, ZERO_TOL};
     let text = [
         "Tolerances (derived in dqsym's ik/check.rs), relative to the robot's scale L (the largest",
         "sum of absolute coordinates of an axis' point, the home or the target position):",
         "a step's parts are zero within IK_ZERO_TOL L^d (d their degree in lengths); a solution",
         "whose roots may err by more than IK_CHECK_TOL, or met a singular set, is checked by",
-        "forward kinematics, refined (Gauss-Newton) where its residual exceeds IK_CHECK_TOL and",
+        "forward kinematics, refined (Gauss-Newton) where its residual exceeds IK_REFINE_TOL and",
         "flagged approximate where it stays above IK_POSE_TOL; radicands down to -IK_REACH_TOL",
         "(relative) are the closest reach.",
     ];
@@ -516,6 +537,7 @@ fn tolerances(sol: &IkSolution, lang: Option<Lang>) -> String {
         ("IK_ZERO_TOL", f(ZERO_TOL), "f64"),
         ("IK_REACH_TOL", f(REACH_TOL), "f64"),
         ("IK_CHECK_TOL", f(CHECK_TOL), "f64"),
+        ("IK_REFINE_TOL", f(REFINE_TOL), "f64"),
         ("IK_POSE_TOL", f(POSE_TOL), "f64"),
         ("IK_REFINE_STEPS", i(REFINE_STEPS), "usize"),
     ];
@@ -657,19 +679,21 @@ pub fn ik_dq(ik_q: &[f64; 8]{params}) -> IkSolutions {{\n    ik(&ik_dq_matrix(ik
 
 const RUST_HELPERS: &str = r#"/// The roots of one step: `n` joint values with their sines and cosines (known without a
 /// call), and the flags (singular, checked); `n = 12` on a singular set of an atan2 (the
-/// samples of `ik_any`), `n = 13` with the atan2 value first.
+/// samples of `ik_any`), `n = 13` with the atan2 value first; roots from `smp` on are samples
+/// beside a kept value.
 #[derive(Clone, Copy)]
 struct IkRoots {
     n: usize,
-    q: [f64; 2],
-    s: [f64; 2],
-    c: [f64; 2],
+    q: [f64; 3],
+    s: [f64; 3],
+    c: [f64; 3],
     sg: bool,
     ck: bool,
+    smp: usize,
 }
 
 impl IkRoots {
-    const NONE: IkRoots = IkRoots { n: 0, q: [0.0; 2], s: [0.0; 2], c: [1.0; 2], sg: false, ck: false };
+    const NONE: IkRoots = IkRoots { n: 0, q: [0.0; 3], s: [0.0; 3], c: [1.0; 3], sg: false, ck: false, smp: 99 };
     /// Root `i`: `(q, sin q, cos q)`.
     #[inline(always)]
     fn root(&self, i: usize) -> (f64, f64, f64) {
@@ -683,7 +707,7 @@ impl IkRoots {
     #[inline(always)]
     #[allow(dead_code)]
     fn sampled(&self, i: usize) -> bool {
-        self.n == 13 && i > 0
+        i >= self.smp
     }
 }
 
@@ -734,7 +758,7 @@ fn ik_atan2(y: f64, x: f64, sg: f64, m: &mut IkMemo) -> IkRoots {
         let ck = sg * sg > IK_CHECK_TOL * IK_CHECK_TOL * h2;
         *m = IkMemo { y, x, q: y.atan2(x), s: y / h, c: x / h, ck };
     }
-    IkRoots { n: 1, q: [m.q, 0.0], s: [m.s, 0.0], c: [m.c, 1.0], sg: false, ck: m.ck }
+    IkRoots { n: 1, q: [m.q, 0.0, 0.0], s: [m.s, 0.0, 0.0], c: [m.c, 1.0, 1.0], sg: false, ck: m.ck, smp: 99 }
 }
 
 #[cold]
@@ -742,7 +766,7 @@ fn ik_atan2(y: f64, x: f64, sg: f64, m: &mut IkMemo) -> IkRoots {
 fn ik_atan2_singular(y: f64, x: f64, h2: f64) -> IkRoots {
     if h2 > 0.0 {
         let h = h2.sqrt();
-        return IkRoots { n: 13, q: [y.atan2(x), 0.0], s: [y / h, 0.0], c: [x / h, 1.0], sg: true, ck: true };
+        return IkRoots { n: 13, q: [y.atan2(x), 0.0, 0.0], s: [y / h, 0.0, 0.0], c: [x / h, 1.0, 1.0], sg: true, ck: true, smp: 1 };
     }
     IkRoots { n: 12, sg: true, ck: true, ..IkRoots::NONE }
 }
@@ -755,7 +779,7 @@ fn ik_radicand(rad: f64, n: f64, nu: f64) -> Option<(f64, bool, bool)> {
     if rad < -IK_REACH_TOL * n - nu {
         None
     } else if rad <= nu {
-        Some((rad.max(0.0), true, true))
+        Some((0.0, true, true))
     } else {
         Some((rad, false, nu * nu > 4.0 * IK_CHECK_TOL * IK_CHECK_TOL * rad * n))
     }
@@ -787,19 +811,28 @@ fn ik_trig(a: f64, b: f64, c: f64, sg: f64) -> IkRoots {
     } else {
         y1.atan2(x1)
     };
-    IkRoots { n: 2, q: [q0, q1], s: [y0 / d, y1 / d], c: [x0 / d, x1 / d], sg, ck }
+    if sg {
+        // Beside the double root, the pair of the radicand nu (sampled: kept where refinement
+        // takes it onto the pose, which the double root may miss when the pose is only near).
+        let w = nu.sqrt();
+        let e = (n * (c * c + nu)).sqrt();
+        let (y1, x1, y2, x2) = (b * c + a * w, a * c - b * w, b * c - a * w, a * c + b * w);
+        return IkRoots { n: 3, q: [q0, y1.atan2(x1), y2.atan2(x2)], s: [y0 / d, y1 / e, y2 / e], c: [x0 / d, x1 / e, x2 / e], sg, ck, smp: 1 };
+    }
+    IkRoots { n: 2, q: [q0, q1, 0.0], s: [y0 / d, y1 / d, 0.0], c: [x0 / d, x1 / d, 1.0], sg, ck, smp: 99 }
 }
 
-/// `q^2 + 2 beta q + gamma = 0` (`beta` rounded by `sg`): up to two roots.
+/// `q^2 + 2 beta q + gamma = 0` (`gamma` rounded by `sg`, `beta` by `sqrt(sg IK_ZERO_TOL)`):
+/// up to two roots.
 #[inline(always)]
 fn ik_quadratic(beta: f64, gamma: f64, sg: f64) -> IkRoots {
     let s = beta.abs().max(gamma.abs().sqrt());
-    let nu = 2.0 * sg * (2.0 * beta.abs() + s) + 4.0 * f64::EPSILON * (beta * beta + gamma.abs());
+    let nu = sg + 2.0 * (sg * IK_ZERO_TOL).sqrt() * (2.0 * beta.abs() + s) + 4.0 * f64::EPSILON * (beta * beta + gamma.abs());
     let Some((rad, sg, ck)) = ik_radicand(beta * beta - gamma, (beta * beta).max(gamma.abs()), nu) else {
         return IkRoots::NONE;
     };
     let r = rad.sqrt();
-    IkRoots { n: 2, q: [-beta + r, -beta - r], sg, ck, ..IkRoots::NONE }
+    IkRoots { n: 2, q: [-beta + r, -beta - r, 0.0], sg, ck, ..IkRoots::NONE }
 }
 
 /// What the check of a solution needs: the joint axes in the home pose `[kind, w, p]` (kind 1:
@@ -837,14 +870,14 @@ fn ik_push(out: &mut IkSolutions, q: [f64; IK_DOF], sg: bool, ck: bool, smp: boo
 }
 
 /// A solution checked by forward kinematics: refined where its residual exceeds
-/// IK_CHECK_TOL, flagged approximate where it stays above IK_POSE_TOL, dropped when it is a
+/// IK_REFINE_TOL, flagged approximate where it stays above IK_POSE_TOL, dropped when it is a
 /// sample off the pose or a singular duplicate.
 #[cold]
 #[inline(never)]
 #[allow(clippy::needless_range_loop)]
 fn ik_checked(out: &mut IkSolutions, mut q: [f64; IK_DOF], sg: bool, smp: bool, ch: &IkChain) {
     let mut res = ik_residual(ch, &q);
-    if res > IK_CHECK_TOL {
+    if res > IK_REFINE_TOL {
         let mut r = q;
         let rr = ik_refine(ch, &mut r);
         if rr < res {
@@ -1149,12 +1182,12 @@ const C_HELPERS: &str = r#"/* The roots of one step: n joint values with their s
    n = 13 with the atan2 value first. */
 typedef struct {
     int n;
-    double q[2], s[2], c[2];
-    int sg, ck;
+    double q[3], s[3], c[3];
+    int sg, ck, smp;
 } ik_roots;
 
 static ik_roots ik_none(void) {
-    ik_roots r = {0, {0.0, 0.0}, {0.0, 0.0}, {1.0, 1.0}, 0, 0};
+    ik_roots r = {0, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, 0, 0, 99};
     return r;
 }
 
@@ -1207,6 +1240,7 @@ static ik_roots ik_atan2(double y, double x, double sg, ik_memo *m) {
         if (h2 > 0.0) {
             h = sqrt(h2);
             r.n = 13;
+            r.smp = 1;
             r.q[0] = atan2(y, x);
             r.s[0] = y / h;
             r.c[0] = x / h;
@@ -1233,7 +1267,7 @@ static int ik_radicand(double *rad, double n, double nu, int *sg, int *ck) {
     if (*rad <= nu) {
         *sg = 1;
         *ck = 1;
-        *rad = *rad > 0.0 ? *rad : 0.0;
+        *rad = 0.0;
     } else {
         *ck = nu * nu > 4.0 * IK_CHECK_TOL * IK_CHECK_TOL * *rad * n;
     }
@@ -1243,7 +1277,7 @@ static int ik_radicand(double *rad, double n, double nu, int *sg, int *ck) {
 static ik_roots ik_trig(double a, double b, double c, double sg) {
     ik_roots r = ik_none();
     const double n = a * a + b * b;
-    double rad, w, d, y0, x0, y1, x1;
+    double rad, nu, w, d, y0, x0, y1, x1;
     if (n <= sg * sg) {
         if (fabs(c) <= sg) {
             r.n = 1;
@@ -1253,7 +1287,8 @@ static ik_roots ik_trig(double a, double b, double c, double sg) {
         return r;
     }
     rad = n - c * c;
-    if (!ik_radicand(&rad, n, 2.0 * sg * (fabs(a) + fabs(b) + fabs(c)) + 4.0 * DBL_EPSILON * n, &r.sg, &r.ck)) return r;
+    nu = 2.0 * sg * (fabs(a) + fabs(b) + fabs(c)) + 4.0 * DBL_EPSILON * n;
+    if (!ik_radicand(&rad, n, nu, &r.sg, &r.ck)) return r;
     w = sqrt(rad);
     d = r.sg ? sqrt(n * (c * c + rad)) : n;
     y0 = b * c + a * w; x0 = a * c - b * w; y1 = b * c - a * w; x1 = a * c + b * w;
@@ -1262,6 +1297,16 @@ static ik_roots ik_trig(double a, double b, double c, double sg) {
     r.q[1] = b == 0.0 ? -r.q[0] : a == 0.0 ? copysign(M_PI, y0) - r.q[0] : atan2(y1, x1);
     r.s[0] = y0 / d; r.s[1] = y1 / d;
     r.c[0] = x0 / d; r.c[1] = x1 / d;
+    if (r.sg) {
+        /* Beside the double root, the pair of the radicand nu (sampled: kept where refinement
+           takes it onto the pose). */
+        const double wn = sqrt(nu), e = sqrt(n * (c * c + nu));
+        const double y2 = b * c + a * wn, x2 = a * c - b * wn, y3 = b * c - a * wn, x3 = a * c + b * wn;
+        r.n = 3;
+        r.smp = 1;
+        r.q[1] = atan2(y2, x2); r.s[1] = y2 / e; r.c[1] = x2 / e;
+        r.q[2] = atan2(y3, x3); r.s[2] = y3 / e; r.c[2] = x3 / e;
+    }
     return r;
 }
 
@@ -1269,7 +1314,7 @@ static ik_roots ik_quadratic(double beta, double gamma, double sg) {
     ik_roots r = ik_none();
     double rad = beta * beta - gamma, w;
     const double s = fmax(fabs(beta), sqrt(fabs(gamma)));
-    const double nu = 2.0 * sg * (2.0 * fabs(beta) + s) + 4.0 * DBL_EPSILON * (beta * beta + fabs(gamma));
+    const double nu = sg + 2.0 * sqrt(sg * IK_ZERO_TOL) * (2.0 * fabs(beta) + s) + 4.0 * DBL_EPSILON * (beta * beta + fabs(gamma));
     if (!ik_radicand(&rad, fmax(beta * beta, fabs(gamma)), nu, &r.sg, &r.ck)) return r;
     w = sqrt(rad);
     r.n = 2;
@@ -1477,7 +1522,7 @@ static int ik_same(const double *a, const double *b) {
 }
 
 /* Writes a solution; one a step asks to check is checked by forward kinematics: refined
-   where its residual exceeds IK_CHECK_TOL, flagged approximate where it stays above
+   where its residual exceeds IK_REFINE_TOL, flagged approximate where it stays above
    IK_POSE_TOL, dropped when it is a sample off the pose or a singular duplicate. */
 static void ik_push(ik_solutions *out, const double q0[IK_DOF], int sg, int ck, int smp, const ik_chain *ch) {
     double q[IK_DOF], res = 0.0;
@@ -1485,7 +1530,7 @@ static void ik_push(ik_solutions *out, const double q0[IK_DOF], int sg, int ck, 
     for (i = 0; i < IK_DOF; i++) q[i] = q0[i];
     if (sg || ck) {
         res = ik_residual(ch, q);
-        if (res > IK_CHECK_TOL) {
+        if (res > IK_REFINE_TOL) {
             double r[IK_DOF], rr;
             for (i = 0; i < IK_DOF; i++) r[i] = q[i];
             rr = ik_refine(ch, r);
@@ -1571,7 +1616,7 @@ const PY_HELPERS: &str = r#"def _ik_radicand(rad, n, nu):
     if rad < -IK_REACH_TOL * n - nu:
         return None
     if rad <= nu:
-        return max(rad, 0.0), True, True
+        return 0.0, True, True
     return rad, False, nu * nu > 4.0 * IK_CHECK_TOL * IK_CHECK_TOL * rad * n
 
 
@@ -1623,12 +1668,20 @@ def _ik_trig(a, b, c, sg):
         q1 = math.copysign(math.pi, y0) - q0
     else:
         q1 = math.atan2(y1, x1)
-    return [(q0, y0 / d, x0 / d, False), (q1, y1 / d, x1 / d, False)], sing, ck
+    roots = [(q0, y0 / d, x0 / d, False), (q1, y1 / d, x1 / d, False)]
+    if sing:
+        # Beside the double root, the pair of the radicand nu (sampled: kept where refinement
+        # takes it onto the pose).
+        w, e = math.sqrt(nu), math.sqrt(n * (c * c + nu))
+        y2, x2, y3, x3 = b * c + a * w, a * c - b * w, b * c - a * w, a * c + b * w
+        roots = [roots[0], (math.atan2(y2, x2), y2 / e, x2 / e, True),
+                 (math.atan2(y3, x3), y3 / e, x3 / e, True)]
+    return roots, sing, ck
 
 
 def _ik_quadratic(beta, gamma, sg):
     s = max(abs(beta), math.sqrt(abs(gamma)))
-    nu = 2.0 * sg * (2.0 * abs(beta) + s) + 4.0 * IK_EPS * (beta * beta + abs(gamma))
+    nu = sg + 2.0 * math.sqrt(sg * IK_ZERO_TOL) * (2.0 * abs(beta) + s) + 4.0 * IK_EPS * (beta * beta + abs(gamma))
     r = _ik_radicand(beta * beta - gamma, max(beta * beta, abs(gamma)), nu)
     if r is None:
         return [], False, False
@@ -1729,7 +1782,7 @@ def _ik_refine(ax, home, T, n, q):
 
 def _ik_push(out, q, sg, ck, smp, ax, home, T, n):
     # Writes a solution (q, singular, approximate, residual); one a step asks to check is
-    # checked by forward kinematics: refined where its residual exceeds IK_CHECK_TOL, flagged
+    # checked by forward kinematics: refined where its residual exceeds IK_REFINE_TOL, flagged
     # approximate where it stays above IK_POSE_TOL, dropped when it is a sample off the pose or
     # a singular duplicate.
     q = [float(x) for x in q]
@@ -1737,7 +1790,7 @@ def _ik_push(out, q, sg, ck, smp, ax, home, T, n):
     if sg or ck:
         f, _ = _ik_fk(ax, home, q)
         res = _ik_max_abs(_ik_error(f, T, n))
-        if res > IK_CHECK_TOL:
+        if res > IK_REFINE_TOL:
             r, rr = _ik_refine(ax, home, T, n, q)
             if rr < res:
                 q, res = [float(x) for x in r], rr
@@ -1772,7 +1825,7 @@ function ik_cands(kind, v, sg) {
     };
     const radicand = (rad, n, nu) => {
         if (rad < -IK_REACH_TOL * n - nu) return null;
-        if (rad <= nu) return [Math.max(rad, 0), true, true];
+        if (rad <= nu) return [0, true, true];
         return [rad, false, nu * nu > 4 * IK_CHECK_TOL * IK_CHECK_TOL * rad * n];
     };
     if (kind === "atan2") {
@@ -1791,11 +1844,19 @@ function ik_cands(kind, v, sg) {
         if (r === null) return [];
         // atan2(b, a) +- atan2(w, c) as atan2(b c +- a w, a c -+ b w), as the solvers do.
         const w = Math.sqrt(r[0]);
+        if (r[1]) {
+            // Beside the double root, the pair of the radicand nu (sampled: kept where
+            // refinement takes it onto the pose).
+            const e = Math.sqrt(nu);
+            return [[Math.atan2(b * c, a * c), true, true, false],
+                [Math.atan2(b * c + a * e, a * c - b * e), true, true, true],
+                [Math.atan2(b * c - a * e, a * c + b * e), true, true, true]];
+        }
         return [[Math.atan2(b * c + a * w, a * c - b * w), r[1], r[2], false],
             [Math.atan2(b * c - a * w, a * c + b * w), r[1], r[2], false]];
     }
     const [b, g] = v, s = Math.max(Math.abs(b), Math.sqrt(Math.abs(g)));
-    const nu = 2 * sg * (2 * Math.abs(b) + s) + 4 * IK_EPS * (b * b + Math.abs(g));
+    const nu = sg + 2 * Math.sqrt(sg * IK_ZERO_TOL) * (2 * Math.abs(b) + s) + 4 * IK_EPS * (b * b + Math.abs(g));
     const r = radicand(b * b - g, Math.max(b * b, Math.abs(g)), nu);
     if (r === null) return [];
     const w = Math.sqrt(r[0]);
@@ -1934,14 +1995,14 @@ function ik_refine(ax, home, T, len, po, q) {
 }
 
 // Adds a solution [q, singular, approximate, residual] to out; one a step asks to check is
-// checked by forward kinematics: refined where its residual exceeds IK_CHECK_TOL, flagged
+// checked by forward kinematics: refined where its residual exceeds IK_REFINE_TOL, flagged
 // approximate where it stays above IK_POSE_TOL, dropped when it is a sample off the pose or a
 // singular duplicate.
 function ik_push(out, q, sg, ck, smp, ax, home, T, len, po) {
     let res = 0;
     if (sg || ck) {
         res = ik_max_abs(ik_error(ik_fk(ax, home, q)[0], T, len, po));
-        if (res > IK_CHECK_TOL) {
+        if (res > IK_REFINE_TOL) {
             const [r, rr] = ik_refine(ax, home, T, len, po, q);
             if (rr < res) [q, res] = [r, rr];
         }

@@ -355,7 +355,7 @@ impl Branching<'_> {
         if singular || checked {
             let po = self.sol.position_only;
             residual = check::residual(&self.axes, &self.home, &self.target, self.len, po, &q);
-            if residual > check::CHECK_TOL {
+            if residual > check::REFINE_TOL {
                 let mut r = q.clone();
                 let res = check::refine(&self.axes, &self.home, &self.target, self.len, po, &mut r);
                 if res < residual {
@@ -365,7 +365,12 @@ impl Branching<'_> {
             if sampled && residual > check::POSE_TOL {
                 return;
             }
-            if singular && self.out.iter().any(|s| s.singular && check::same_row(&s.q, &q)) {
+            if singular
+                && self
+                    .out
+                    .iter()
+                    .any(|s| s.singular && check::same_row(&s.q, &q))
+            {
                 return;
             }
         }
