@@ -267,6 +267,7 @@ pub fn residual(
 /// Damped Gauss–Newton on the pose residual from `q` (updated in place): at most
 /// [`REFINE_STEPS`] steps, each kept only when it lowers the residual (else the damping grows
 /// a hundredfold). Returns the final residual.
+#[allow(clippy::needless_range_loop)] // Jacobian and normal-equation entries by index
 pub fn refine(
     axes: &[AxisData],
     home: &[[f64; 4]; 3],
@@ -363,6 +364,7 @@ pub fn refine(
 }
 
 /// Solves `m x = b` for a symmetric positive definite `m`; `None` when it is not.
+#[allow(clippy::needless_range_loop)] // triangular loops over matrix entries by index
 fn cholesky_solve(mut m: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
     let n = b.len();
     for j in 0..n {
