@@ -205,6 +205,11 @@ fn ik_trig(a: f64, b: f64, c: f64, sg: f64) -> IkRoots {
     IkRoots { n: 2, q: [q0, q1, 0.0], s: [y0 / d, y1 / d, 0.0], c: [x0 / d, x1 / d, 1.0], sg, ck, smp: 99 }
 }
 
+/// Beside the double root of `ik_trig(...)`: a solution from `from` on reproduces the pose.
+fn ik_exact(out: &IkSolutions, from: usize) -> bool {
+    out.approximate[from..out.n].iter().any(|a| !a)
+}
+
 /// What the check of a solution needs: the joint axes in the home pose `[kind, w, p]` (kind 1:
 /// prismatic), the home pose, the target and the robot's scale.
 struct IkChain<'a> {
@@ -543,7 +548,11 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4], a2: f64, a3:
     let ik_theta3_b = a2 * d4;
     let ik_theta3_c = (d4 * d4 + d3 * d3 + a2 * a2 + a3 * a3 - px * px - py * py - pz * pz) * 0.5;
     let ik_r1 = ik_trig(ik_theta3_a, ik_theta3_b, ik_theta3_c, ik_sg1);
+    let ik_n0 = ik_out.n;
     for ik_i0 in 0..ik_r0.n {
+        if ik_r0.sampled(ik_i0) && ik_exact(ik_out, ik_n0) {
+            continue;
+        }
         let (theta1, s_theta1, c_theta1) = ik_r0.root(ik_i0);
         let ik_t1 = px * c_theta1;
         let ik_t2 = py * s_theta1;
@@ -557,7 +566,11 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4], a2: f64, a3:
         let ik_t17 = c_theta1 * r22;
         let ik_t18 = ik_t16 - ik_t17;
         let ik_t21 = ik_t17 - ik_t16;
+        let ik_n1 = ik_out.n;
         for ik_i1 in 0..ik_r1.n {
+            if ik_r1.sampled(ik_i1) && ik_exact(ik_out, ik_n1) {
+                continue;
+            }
             let (theta3, s_theta3, c_theta3) = ik_r1.root(ik_i1);
             let ik_t8 = a2 + a3 * c_theta3 - d4 * s_theta3;
             // theta2: subproblem 1 (rotation): joint 2 turns the wrist centre onto the target's
@@ -576,7 +589,11 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4], a2: f64, a3:
                 let ik_theta5_b = 0.0;
                 let ik_theta5_c = ik_t9 * r33 - ik_t10 * ik_t11;
                 let ik_r3 = ik_trig(ik_theta5_a, ik_theta5_b, ik_theta5_c, ik_sg3);
+                let ik_n3 = ik_out.n;
                 for ik_i3 in 0..ik_r3.n {
+                    if ik_r3.sampled(ik_i3) && ik_exact(ik_out, ik_n3) {
+                        continue;
+                    }
                     let (theta5, s_theta5, c_theta5) = ik_r3.root(ik_i3);
                     let ik_t20 = s_theta5 * ik_t19;
                     // theta4: subproblem 1 (rotation): joint 4 turns Rot(axis 5) k6 onto R456 k6

@@ -205,6 +205,11 @@ fn ik_trig(a: f64, b: f64, c: f64, sg: f64) -> IkRoots {
     IkRoots { n: 2, q: [q0, q1, 0.0], s: [y0 / d, y1 / d, 0.0], c: [x0 / d, x1 / d, 1.0], sg, ck, smp: 99 }
 }
 
+/// Beside the double root of `ik_trig(...)`: a solution from `from` on reproduces the pose.
+fn ik_exact(out: &IkSolutions, from: usize) -> bool {
+    out.approximate[from..out.n].iter().any(|a| !a)
+}
+
 /// What the check of a solution needs: the joint axes in the home pose `[kind, w, p]` (kind 1:
 /// prismatic), the home pose, the target and the robot's scale.
 struct IkChain<'a> {
@@ -572,7 +577,11 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4], a2: f64, a3:
     let ik_theta1_b = px - ik_t1;
     let ik_theta1_c = d4;
     let ik_r0 = ik_trig(ik_theta1_a, ik_theta1_b, ik_theta1_c, ik_sg0);
+    let ik_n0 = ik_out.n;
     for ik_i0 in 0..ik_r0.n {
+        if ik_r0.sampled(ik_i0) && ik_exact(ik_out, ik_n0) {
+            continue;
+        }
         let (theta1, s_theta1, c_theta1) = ik_r0.root(ik_i0);
         let ik_t2 = c_theta1 * r22 - s_theta1 * r12;
         let ik_t3 = s_theta1 * r11 - c_theta1 * r21;
@@ -581,7 +590,11 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4], a2: f64, a3:
         let ik_theta5_b = 0.0;
         let ik_theta5_c = r13 * s_theta1 - r23 * c_theta1;
         let ik_r1 = ik_trig(ik_theta5_a, ik_theta5_b, ik_theta5_c, ik_sg1);
+        let ik_n1 = ik_out.n;
         for ik_i1 in 0..ik_r1.n {
+            if ik_r1.sampled(ik_i1) && ik_exact(ik_out, ik_n1) {
+                continue;
+            }
             let (theta5, s_theta5, c_theta5) = ik_r1.root(ik_i1);
             let ik_t4 = c_theta5 * s_theta5;
             let ik_t5 = c_theta5 * c_theta5 - s_theta5 * s_theta5;
@@ -623,7 +636,11 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4], a2: f64, a3:
                 let ik_theta3_b = 0.0;
                 let ik_theta3_c = (d4 * (d4 * (ik_t8 * ik_t29 + ik_t6 * (s_theta6 * ik_t28 - c_theta6 * ik_t27) * 4.0 + ik_t19 + ik_t5 * (ik_t17 + ik_t26 - ik_t19 - ik_t21 - ik_t23 - ik_t25) - ik_t30) + 4.0 * (s_theta5 * (d5 * (ik_t9 * ik_t16 + 2.0 * ik_t8 * ik_t18) + 2.0 * (c_theta6 * ik_t35 + s_theta6 * ik_t37)) + 2.0 * c_theta5 * (ik_t41 + ik_t40 + d5 * (c_theta6 * ik_t28 + s_theta6 * ik_t27) + ik_t39 - ik_t38))) + 2.0 * (d5 * (d5 * (ik_t17 - (ik_t19 + ik_t26)) + 4.0 * (c_theta6 * ik_t37 + s_theta6 * ik_t42)) + ik_t43)) * 0.125;
                 let ik_r3 = ik_trig(ik_theta3_a, ik_theta3_b, ik_theta3_c, ik_sg3);
+                let ik_n3 = ik_out.n;
                 for ik_i3 in 0..ik_r3.n {
+                    if ik_r3.sampled(ik_i3) && ik_exact(ik_out, ik_n3) {
+                        continue;
+                    }
                     let (theta3, s_theta3, c_theta3) = ik_r3.root(ik_i3);
                     // theta2: subproblem 1 (rotation): joint 2 turns axis 4 onto its target place
                     let ik_theta2_y = a3 * (c_theta3 * ik_t50 + s_theta3 * ik_t61) + ik_t62;

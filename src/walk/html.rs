@@ -552,7 +552,10 @@ const IK_JS: &str = r#"(function () {
             const s = IK.steps[k];
             const r = s.f(...s.args.map((n) => env[n]));
             const sig = IK_ZERO_TOL * Math.pow(len, IK.degrees[k]);
+            const n0 = out.length;
             for (const [v, s1, c1, m1] of ik_cands(s.kind, s.parts.map((p) => r[p]), sig)) {
+                // The pair beside a double root, for poses only near the singular set.
+                if (m1 && s.kind === "trig" && out.slice(n0).some((row) => !row[2])) continue;
                 env[s.var] = v;
                 go(k + 1, env, sg || s1, ck || c1, smp || m1);
             }

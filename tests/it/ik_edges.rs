@@ -640,3 +640,59 @@ for q, sg, ap, res in sols:\n        print(' '.join(repr(x) for x in q), int(sg)
         check_generated(&arm, "Python", &out, &qs);
     }
 }
+
+/// The IK page at a wrist singularity (PUMA 560's theta5 slider at 0): the live table lists
+/// the singular family once (no two rows alike to the four decimals shown), every row's own
+/// pose on the target.
+#[test]
+fn ik_page_at_a_wrist_singularity_lists_each_solution_once() {
+    let dir = crate::tools::temp_dir("ik-edges-page");
+    let page = dir.join("walk_ik_puma560.html");
+    let robot = format!("{ROBOTS}puma560.toml");
+    crate::tools::dqsym_ok(&[
+        "walk",
+        &robot,
+        "--ik",
+        "--html",
+        &page.display().to_string(),
+    ]);
+    let html = std::fs::read_to_string(&page).expect("page");
+    let slider = "data-name=\"theta5\" data-joint=\"1\" min=\"-3.141592653589793\" \
+                  max=\"3.141592653589793\" step=\"any\" value=\"";
+    let at = html.find(slider).expect("the theta5 slider") + slider.len();
+    let end = at + html[at..].find('"').expect("value");
+    let singular = format!("{}0{}", &html[..at], &html[end..]);
+    let sing = dir.join("singular.html");
+    std::fs::write(&sing, singular).expect("write");
+    let d = crate::tools::headless(&dir.join("chromium"))
+        .args(["--virtual-time-budget=5000", "--dump-dom"])
+        .arg(format!("file://{}", sing.display()))
+        .output()
+        .expect("chromium runs");
+    assert!(d.status.success(), "{}", String::from_utf8_lossy(&d.stderr));
+    let dom = String::from_utf8_lossy(&d.stdout);
+    let table = dom.split("id=\"ik-solutions\"").nth(1).expect("the table");
+    let table = table.split("</table>").next().expect("table end");
+    let mut rows = Vec::new();
+    let mut singular_rows = 0;
+    for row in table.split("<tr data-dev=\"").skip(1) {
+        let dev: f64 = row.split('"').next().expect("dev").parse().expect("dev");
+        assert!(dev < 1e-9, "a row misses the target by {dev:e}");
+        let cells: Vec<&str> = row
+            .split("<td>")
+            .skip(2)
+            .map(|c| c.split("</td>").next().unwrap_or(""))
+            .collect();
+        // The joints (six), then singular, approximate, deviation.
+        let joints: Vec<String> = cells[..6]
+            .iter()
+            .map(|c| c.replace("-0.0000", "0.0000"))
+            .collect();
+        singular_rows += usize::from(cells[6] == "yes");
+        assert!(!rows.contains(&joints), "the row {joints:?} twice");
+        rows.push(joints);
+    }
+    // The family k pi/6 of theta4 (with theta6 following), once.
+    assert!(singular_rows >= 12, "{singular_rows} singular rows");
+    assert!(rows.len() <= 24, "{} rows", rows.len());
+}

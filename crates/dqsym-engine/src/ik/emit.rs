@@ -451,25 +451,52 @@ impl Ctx<'_> {
             return;
         }
         let inner = " ".repeat(ind + 4);
+        // A trig step's pair beside its double root is skipped where the double root already
+        // gave a solution on the pose (it is there for poses only near the singular set).
+        let trig = matches!(step.formula, Formula::Trig { .. });
         match self.lang {
             Lang::Rust => {
+                if trig {
+                    out.push_str(&format!("{pad}let ik_n{k} = ik_out.n;\n"));
+                }
                 out.push_str(&format!("{pad}for ik_i{k} in 0..ik_r{k}.n {{\n"));
+                if trig {
+                    out.push_str(&format!(
+                        "{inner}if ik_r{k}.sampled(ik_i{k}) && ik_exact(ik_out, ik_n{k}) {{\n{inner}    continue;\n{inner}}}\n"
+                    ));
+                }
                 out.push_str(&format!(
                     "{inner}let ({q}, s_{q}, c_{q}) = ik_r{k}.root(ik_i{k});\n"
                 ));
             }
             Lang::C => {
+                if trig {
+                    out.push_str(&format!("{pad}const int ik_n{k} = ik_out->n;\n"));
+                }
                 out.push_str(&format!(
                     "{pad}for (int ik_i{k} = 0; ik_i{k} < ik_r{k}.n; ik_i{k}++) {{\n"
                 ));
+                if trig {
+                    out.push_str(&format!(
+                        "{inner}if (ik_i{k} >= ik_r{k}.smp && ik_exact(ik_out, ik_n{k})) continue;\n"
+                    ));
+                }
                 out.push_str(&format!(
                     "{inner}double {q}, s_{q}, c_{q};\n{inner}ik_root(&ik_r{k}, ik_i{k}, &{q}, &s_{q}, &c_{q});\n{inner}(void)s_{q};\n{inner}(void)c_{q};\n"
                 ));
             }
             Lang::Python => {
+                if trig {
+                    out.push_str(&format!("{pad}ik_n{k} = len(ik_out)\n"));
+                }
                 out.push_str(&format!(
                     "{pad}for {q}, s_{q}, c_{q}, ik_x{k} in ik_r{k}[0]:\n"
                 ));
+                if trig {
+                    out.push_str(&format!(
+                        "{inner}if ik_x{k} and any(not r[2] for r in ik_out[ik_n{k}:]):\n{inner}    continue\n"
+                    ));
+                }
             }
         }
         self.level(k + 1, ind + 4, out);
@@ -820,6 +847,11 @@ fn ik_trig(a: f64, b: f64, c: f64, sg: f64) -> IkRoots {
         return IkRoots { n: 3, q: [q0, y1.atan2(x1), y2.atan2(x2)], s: [y0 / d, y1 / e, y2 / e], c: [x0 / d, x1 / e, x2 / e], sg, ck, smp: 1 };
     }
     IkRoots { n: 2, q: [q0, q1, 0.0], s: [y0 / d, y1 / d, 0.0], c: [x0 / d, x1 / d, 1.0], sg, ck, smp: 99 }
+}
+
+/// Beside the double root of `ik_trig(...)`: a solution from `from` on reproduces the pose.
+fn ik_exact(out: &IkSolutions, from: usize) -> bool {
+    out.approximate[from..out.n].iter().any(|a| !a)
 }
 
 /// `q^2 + 2 beta q + gamma = 0` (`gamma` rounded by `sg`, `beta` by `sqrt(sg IK_ZERO_TOL)`):
@@ -1308,6 +1340,14 @@ static ik_roots ik_trig(double a, double b, double c, double sg) {
         r.q[2] = atan2(y3, x3); r.s[2] = y3 / e; r.c[2] = x3 / e;
     }
     return r;
+}
+
+/* Beside the double root of ik_trig(...): a solution from `from` on reproduces the pose. */
+static int ik_exact(const ik_solutions *out, int from) {
+    int i;
+    for (i = from; i < out->n; i++)
+        if (!out->approximate[i]) return 1;
+    return 0;
 }
 
 static ik_roots ik_quadratic(double beta, double gamma, double sg) {

@@ -337,7 +337,14 @@ impl Branching<'_> {
                 })
                 .0;
         }
+        let before = self.out.len();
+        let trig = matches!(step.formula, Formula::Trig { .. });
         for (v, sg, ck, smp) in from_values(&step.formula, &vals, self.sigma[k]) {
+            // The pair beside a double root is for poses only near the singular set: skipped
+            // where the double root gave a solution on the pose.
+            if trig && smp && self.out[before..].iter().any(|s| !s.approximate) {
+                continue;
+            }
             self.env.push((step.variable.clone(), v));
             self.q[step.joint] = v;
             let r = self.branch(k + 1, (flags.0 || sg, flags.1 || ck, flags.2 || smp));
