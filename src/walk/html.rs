@@ -107,27 +107,49 @@ fn inline(t: &str) -> String {
     out
 }
 
-const STYLE: &str = "body{font-family:Georgia,serif;margin:0;color:#222;line-height:1.45}\
-main{max-width:1560px;margin:0 auto;padding:1em 16px}h1{font-size:1.6em}h2{font-size:1.15em;\
-margin-top:1.6em;border-bottom:1px solid #ddd}.display{overflow-x:auto;margin:.6em 0 .6em 1em}\
-figure{margin:0;flex:0 1 600px;max-width:600px}figcaption{font-size:.9em;color:#555}code{font-size:.9em}\
-.layout{display:grid;grid-template-columns:minmax(0,1fr);gap:24px}.steps{min-width:0}\
-.live{display:flex;flex-wrap:wrap;gap:16px;align-items:flex-start;min-width:0}\
-.controls{flex:1 1 340px;min-width:0;font-family:sans-serif;font-size:14px}\
-svg.mechanism{max-width:100%;height:auto}\
+/// The page's style. Display formulas scroll sideways inside their own box when wider than
+/// the column, with shadows at the edges that have more to show (the scroll cue; the
+/// backgrounds attached `local` cover the shadows when scrolled to that end); nothing makes the
+/// page itself wider than the window, down to a phone's 390 px.
+const STYLE: &str = "body{font-family:Georgia,serif;margin:0;color:#222;line-height:1.45;\
+overflow-wrap:anywhere}main{max-width:1560px;margin:0 auto;padding:1em 16px}h1{font-size:1.6em}\
+h2{font-size:1.15em;margin-top:1.6em;border-bottom:1px solid #ddd}\
+.display{overflow-x:auto;overflow-y:hidden;margin:.6em 0 .6em 1em;padding:0 2px;\
+scrollbar-width:thin;overflow-wrap:normal;\
+background:linear-gradient(to right,#fff 30%,rgba(255,255,255,0)) left/32px 100% no-repeat local,\
+linear-gradient(to left,#fff 30%,rgba(255,255,255,0)) right/32px 100% no-repeat local,\
+radial-gradient(farthest-side at 0 50%,rgba(0,0,0,.28),rgba(0,0,0,0)) left/12px 100% no-repeat scroll,\
+radial-gradient(farthest-side at 100% 50%,rgba(0,0,0,.28),rgba(0,0,0,0)) right/12px 100% no-repeat scroll}\
+.display.scrolls{border-bottom:1px dashed #b8c4d8}\
+p.legend .tex,li .tex{overflow-wrap:normal}\
+figure{margin:0;flex:0 1 600px;max-width:600px;min-width:0}figcaption{font-size:.9em;color:#555}\
+code{font-size:.9em}.layout{display:grid;grid-template-columns:minmax(0,1fr);gap:24px}\
+.steps{min-width:0}.live{display:flex;flex-wrap:wrap;gap:16px;align-items:flex-start;min-width:0}\
+.controls{flex:1 1 300px;min-width:0;font-family:sans-serif;font-size:14px}\
+.drawing-legend{font-family:sans-serif;font-size:13px;line-height:1.35;margin-bottom:4px}\
+.drawing-legend p{margin:0 0 2px}.drawing-legend .swatch{vertical-align:middle}\
+svg.mechanism{max-width:100%;height:auto;display:block;touch-action:pan-y;cursor:grab}\
 .slider{display:grid;grid-template-columns:4.5em minmax(0,1fr) 4.5em;align-items:center;gap:6px}\
 .slider output{font-variant-numeric:tabular-nums;text-align:right}\
-table.num{border-collapse:collapse;margin:.4em 0 .8em}table.num td{padding:1px 6px;\
-text-align:right;font-variant-numeric:tabular-nums;border-left:1px solid #ccc}\
+.table-scroll{overflow-x:auto;max-width:100%}\
+table.num{border-collapse:collapse;margin:.4em 0 .8em}table.num td,table.num th{padding:1px 5px;\
+text-align:right;font-variant-numeric:tabular-nums;border-left:1px solid #ccc;font-weight:normal}\
 table.num caption{text-align:left;font-weight:bold;padding-bottom:2px}\
+table.ik{font-size:13px}table.ik tr:first-child td{border-bottom:1px solid #ccc}\
 details.code pre{font-size:11px;max-height:24em;overflow:auto;background:#f6f6f2;padding:6px}\
+@media (max-width:600px){.display{margin-left:0}table.ik{font-size:12px}\
+table.num td,table.num th{padding:1px 3px}}\
 @media (min-width:1400px){.layout{grid-template-columns:minmax(0,1fr) 620px}\
 .live{grid-column:2;grid-row:1;position:sticky;top:8px;align-self:start;max-height:calc(100vh - 16px);\
 overflow-y:auto}.steps{grid-column:1;grid-row:1}.controls{flex-basis:100%}figure{flex-basis:100%}}";
 
+/// KaTeX fills in every formula; a display wider than its box is marked (`scrolls`: a dashed
+/// rule under it beside the edge shadows).
 const RENDER: &str = "document.querySelectorAll('[data-tex]').forEach(function(el){\
 katex.render(el.getAttribute('data-tex'),el,{displayMode:el.classList.contains('display'),\
-throwOnError:false});});";
+throwOnError:false});});function dqMarkScrolls(){document.querySelectorAll('.display').forEach(\
+function(el){el.classList.toggle('scrolls',el.scrollWidth>el.clientWidth+1);});}dqMarkScrolls();\
+window.addEventListener('resize',dqMarkScrolls);";
 
 /// The page's script: sliders, redrawing, numbers (see the file's first comment).
 const PAGE_JS: &str = include_str!("page.js");
@@ -145,24 +167,56 @@ fn bold(t: &str) -> String {
     out
 }
 
+/// The drawing's legend as HTML (text that wraps at any width), with the ids the page's
+/// script updates.
+fn legend_html(lines: &[super::svg::LegendLine]) -> String {
+    let mut s = String::from("<div class=\"drawing-legend\">\n");
+    for l in lines {
+        let swatch = l.swatch.map_or(String::new(), |(colour, w, dash)| {
+            format!(
+                "<svg class=\"swatch\" width=\"30\" height=\"8\" aria-hidden=\"true\"><line x1=\"0\" \
+                 y1=\"4\" x2=\"30\" y2=\"4\" stroke=\"{colour}\" stroke-width=\"{w}\" \
+                 stroke-dasharray=\"{dash}\"/></svg> "
+            )
+        });
+        let id = l.id.map(|i| format!(" id=\"{i}\"")).unwrap_or_default();
+        s += &format!("<p>{swatch}<span{id}>{}</span></p>\n", xml_escape(&l.text));
+    }
+    s + "</div>\n"
+}
+
 /// The live part of the page: the drawing, a slider per symbol, the numbers, and the
 /// generated function; `None` when the closed forms cannot be compiled to JavaScript.
 fn live(m: &Mechanism, cfg: &Config, forms: &Forms) -> Result<(String, Option<String>), WalkError> {
     let scene = Scene::new(m, cfg)?;
-    let drawing = scene_svg(&scene, &SvgOptions::default())?;
+    let opts = SvgOptions {
+        legend: false,
+        ..SvgOptions::default()
+    };
+    let layout = scene.layout()?;
+    let scale = (opts.width / 2.0 - 24.0) / layout.reach;
+    let legend = legend_html(&super::svg::legend_lines(&scene, &layout, scale));
+    let drawing = scene_svg(&scene, &opts)?;
     let Ok(code) = live_function(&scene, forms) else {
         let mut s = String::from("<aside class=\"live\">\n<figure>\n");
+        s += &legend;
         s += &drawing;
         s += "<figcaption>The mechanism drawn to scale at the configuration in the legend.</figcaption>\n</figure>\n</aside>\n";
         return Ok((s, None));
     };
-    let frame_legend = 18.0 * super::svg::LEGEND_LINES + 8.0;
-    let planar = drawing.contains("yz-plane view");
+    let view = layout.view;
     let mut s = String::from("<aside class=\"live\" id=\"live\">\n<figure>\n");
+    s += &legend;
     s += &drawing;
-    s += "<figcaption>The mechanism to scale. Move the sliders: the arm and the numbers are \
-          recomputed by the function below, generated from the closed forms.</figcaption>\n\
-          </figure>\n<div class=\"controls\">\n";
+    s += if view.planar {
+        "<figcaption>The mechanism to scale. Move the sliders: the arm and the numbers are \
+          recomputed by the function below, generated from the closed forms.</figcaption>\n"
+    } else {
+        "<figcaption>The mechanism to scale. Move the sliders: the arm and the numbers are \
+          recomputed by the function below, generated from the closed forms. Drag the drawing \
+          to turn the view.</figcaption>\n"
+    };
+    s += "</figure>\n<div class=\"controls\">\n";
     for (joint, what) in [(true, "Joints"), (false, "Lengths")] {
         let items: Vec<&Symbol> = scene
             .symbols
@@ -217,9 +271,13 @@ fn live(m: &Mechanism, cfg: &Config, forms: &Forms) -> Result<(String, Option<St
         .map(|x| format!("\"{}\"", x.name))
         .collect();
     let data = format!(
-        "{{\"args\":[{}],\"planar\":{planar},\"width\":{},\"legend\":{frame_legend},\"slides\":{}}}",
+        "{{\"args\":[{}],\"planar\":{},\"azimuth\":{},\"elevation\":{},\"width\":{},\
+         \"legend\":0,\"slides\":{}}}",
         args.join(","),
-        SvgOptions::default().width,
+        view.planar,
+        view.azimuth,
+        view.elevation,
+        opts.width,
         slides(&scene.symbols)
     );
     let scripts = format!(

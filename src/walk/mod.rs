@@ -7,7 +7,8 @@
 //! - `script.rs`: a [`Walkthrough`] from a `.dq` script, by listening to the evaluator.
 //! - `robot.rs`: a [`Walkthrough`] from a robot file.
 //! - `text.rs`: [`walk_text`] and [`walk_markdown`].
-//! - `svg.rs`: [`mechanism_svg`], the drawing of the mechanism.
+//! - `svg.rs`: [`mechanism_svg`], the drawing of the mechanism; `view.rs`: the view it is
+//!   seen from (chosen so no link is foreshortened) and where its labels go.
 //! - `html.rs`: [`walk_html`], a self-contained page (KaTeX inlined).
 //! - `forms.rs`: [`Forms`], the closed form of every scalar shown, computed once by the
 //!   builders ([`Walkthrough::prepare`]).
@@ -24,6 +25,7 @@ mod robot;
 mod script;
 mod svg;
 mod text;
+mod view;
 
 pub use forms::Forms;
 pub use html::{ik_walk_html, walk_html, KatexAssets};
