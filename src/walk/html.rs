@@ -348,8 +348,19 @@ fn live_function(scene: &Scene, forms: &Forms) -> Result<String, WalkError> {
 /// When a value cannot be shown or the mechanism cannot be evaluated.
 pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<String, WalkError> {
     let title = format!("Walkthrough: {}", w.title);
+    page_html(w, &title, katex, cfg, None)
+}
+
+/// The page of a walkthrough; `ik` adds the solver's panel beside the drawing and its script.
+fn page_html(
+    w: &Walkthrough,
+    title: &str,
+    katex: &KatexAssets,
+    cfg: &Config,
+    ik: Option<&crate::ik::IkSolution>,
+) -> Result<String, WalkError> {
     let p = page(w)?;
-    let mut body = format!("<h1>{}</h1>\n", xml_escape(&title));
+    let mut body = format!("<h1>{}</h1>\n", xml_escape(title));
     for l in &p.legend {
         body += &format!("<p class=\"legend\">{}</p>\n", bold(&inline(l)));
     }
@@ -357,8 +368,18 @@ pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<S
     let mut scripts = None;
     if let Some(m) = &w.mechanism {
         let (aside, js) = live(m, cfg, &w.forms)?;
-        body += &aside;
-        scripts = js;
+        match ik {
+            Some(sol) => {
+                body += &aside.replacen("</aside>\n", &ik_panel(sol), 1);
+                if let Some(js) = js {
+                    scripts = Some(js + &ik_script(sol)?);
+                }
+            }
+            None => {
+                body += &aside;
+                scripts = js;
+            }
+        }
     } else if let Some((name, _)) = cfg.values.first() {
         // No drawing, so no configuration: a --config name would be silently ignored.
         return Err(WalkError::Config(format!(
@@ -370,103 +391,86 @@ pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<S
     for (head, parts) in p.sections {
         body += &format!("<section class=\"step\">\n<h2>{}</h2>\n", inline(&head));
         for p in parts {
-            match p {
-                Piece::Text(t) => body += &format!("<p>{}</p>\n", inline(&t)),
-                Piece::Display(d) => {
-                    body += &format!(
-                        "<div class=\"tex display\" data-tex=\"{}\"></div>\n",
-                        xml_escape(&d)
-                    )
-                }
-                Piece::Folded(summary, d) => {
-                    body += &format!(
-                        "<details><summary>{}</summary>\n<div class=\"tex display\" data-tex=\"{}\"></div>\n</details>\n",
-                        inline(&summary),
-                        xml_escape(&d)
-                    )
-                }
-            }
+            body += &piece_html(p);
         }
         body += "</section>\n";
     }
     body += "</div>\n</div>\n";
-    Ok(html_page(&title, katex, &body, scripts.as_deref()))
+    Ok(html_page(title, katex, &body, scripts.as_deref()))
 }
 
-/// The inverse kinematics walkthrough as a self-contained page: the derivation (`markdown`, as
-/// `dqsym walk --ik --markdown` writes it) beside the mechanism of `w` with its sliders; each
-/// slider move recomputes the pose and runs the derived solver on it (JavaScript generated
-/// from the same closed forms), listing every solution with its flags and the deviation of
-/// its own pose from the target.
+/// One piece of a step as HTML.
+fn piece_html(p: Piece) -> String {
+    match p {
+        Piece::Text(t) => format!("<p>{}</p>\n", inline(&t)),
+        Piece::Display(d) => format!(
+            "<div class=\"tex display\" data-tex=\"{}\"></div>\n",
+            xml_escape(&d)
+        ),
+        Piece::Folded(summary, d) => format!(
+            "<details><summary>{}</summary>\n<div class=\"tex display\" data-tex=\"{}\"></div>\n</details>\n",
+            inline(&summary),
+            xml_escape(&d)
+        ),
+        Piece::List(items) => {
+            let items: String = items
+                .iter()
+                .map(|i| format!("<li>{}</li>", inline(i)))
+                .collect();
+            format!("<ul>{items}</ul>\n")
+        }
+        Piece::Table(head, rows) => {
+            let mut t = String::from("<div class=\"table-scroll\"><table class=\"num ik\"><tr>");
+            for h in head {
+                t += &format!("<th>{}</th>", inline(&h));
+            }
+            t += "</tr>";
+            for r in rows {
+                t += "<tr>";
+                for c in r {
+                    t += &format!("<td>{}</td>", inline(&c));
+                }
+                t += "</tr>";
+            }
+            t + "</table></div>\n"
+        }
+    }
+}
+
+/// The inverse kinematics walkthrough ([`super::walk_ik`]) as a self-contained page: the
+/// derivation beside the mechanism with its sliders; each slider move recomputes the pose and
+/// runs the derived solver on it (JavaScript generated from the same closed forms), listing
+/// every distinct solution with its flags and the deviation of its own pose from the target.
 ///
 /// # Errors
 /// When a closed form cannot be written or the mechanism cannot be evaluated.
 pub fn ik_walk_html(
     w: &Walkthrough,
     sol: &crate::ik::IkSolution,
-    markdown: &str,
     katex: &KatexAssets,
     cfg: &Config,
 ) -> Result<String, WalkError> {
-    let mut body = String::new();
-    // The Markdown's blocks as HTML: headings, `$$` displays, lists, paragraphs.
-    let mut sections: Vec<(String, Vec<String>)> = Vec::new();
-    for block in markdown.split("\n\n") {
-        let block = block.trim();
-        if block.is_empty() {
-            continue;
-        }
-        if let Some(t) = block.strip_prefix("# ") {
-            body += &format!("<h1>{}</h1>\n", inline(t));
-            continue;
-        }
-        if let Some(t) = block.strip_prefix("## ").or(block.strip_prefix("### ")) {
-            sections.push((t.to_string(), Vec::new()));
-            continue;
-        }
-        let html = if let Some(d) = block.strip_prefix("$$").and_then(|b| b.strip_suffix("$$")) {
-            format!(
-                "<div class=\"tex display\" data-tex=\"{}\"></div>\n",
-                xml_escape(d.trim())
-            )
-        } else if block.lines().all(|l| l.starts_with("- ")) {
-            let items: String = block
-                .lines()
-                .map(|l| format!("<li>{}</li>", inline(&l[2..])))
-                .collect();
-            format!("<ul>{items}</ul>\n")
-        } else {
-            let lines: Vec<String> = block.lines().map(inline).collect();
-            format!("<p>{}</p>\n", lines.join("<br>\n"))
-        };
-        if sections.is_empty() {
-            sections.push((String::new(), Vec::new()));
-        }
-        if let Some(s) = sections.last_mut() {
-            s.1.push(html);
-        }
-    }
-    body += "<div class=\"layout\">\n";
-    let mut scripts = None;
-    if let Some(m) = &w.mechanism {
-        let (aside, js) = live(m, cfg, &w.forms)?;
-        let panel = "<div class=\"controls\"><table class=\"num\" id=\"ik-solutions\"><caption>\
-                     The solver on this pose: every solution, its flags and how far its own pose \
-                     is from the target</caption></table></div>\n</aside>\n";
-        body += &aside.replacen("</aside>\n", panel, 1);
-        if let Some(js) = js {
-            scripts = Some(js + &ik_script(sol)?);
-        }
-    }
-    body += "<div class=\"steps\">\n";
-    for (head, parts) in sections {
-        body += &format!("<section class=\"step\">\n<h2>{}</h2>\n", inline(&head));
-        body += &parts.concat();
-        body += "</section>\n";
-    }
-    body += "</div>\n</div>\n";
     let title = format!("Inverse kinematics walkthrough: {}", sol.robot);
-    Ok(html_page(&title, katex, &body, scripts.as_deref()))
+    page_html(w, &title, katex, cfg, Some(sol))
+}
+
+/// The solver's table beside the drawing: a head with the joint variables typeset, the rows
+/// written by the page's script.
+fn ik_panel(sol: &crate::ik::IkSolution) -> String {
+    let mut head = String::from("<tr><th>#</th>");
+    for v in &sol.variables {
+        head += &format!(
+            "<th><span class=\"tex\" data-tex=\"{}\"></span></th>",
+            xml_escape(&latex_symbol(v))
+        );
+    }
+    head += "<th>branches</th><th>deviation</th></tr>";
+    format!(
+        "<div class=\"controls\"><div class=\"table-scroll\"><table class=\"num ik\" \
+         id=\"ik-solutions\"><caption>The solver on this pose: every distinct solution (branches \
+         that meet at a singularity counted once), and how far its own pose is from the \
+         target</caption><thead>{head}</thead><tbody></tbody></table></div></div>\n</aside>\n"
+    )
 }
 
 /// The solver of the page: one generated function per step (its parts from the target, the
@@ -596,23 +600,32 @@ const IK_JS: &str = r#"(function () {
         TARGET.forEach((n, i) => { env[n] = T[Math.floor(i / 4)][i % 4]; });
         for (const n of IK.vars) delete env[n];
         const sols = solve(env);
+        // Branches that meet at a singularity are one solution (ik.rs `merge`, SAME_SOLUTION).
+        const rows = [];
+        const same = (a, b) => IK.vars.every((n) => {
+            const d = Math.abs(a[n] - b[n]) % (2 * Math.PI);
+            return Math.min(d, 2 * Math.PI - d) < 1e-9;
+        });
+        for (const [s, sing] of sols) {
+            const r = rows.find((r) => same(r.s, s));
+            if (r) { r.n += 1; r.sing = r.sing || sing; } else rows.push({ s, sing, n: 1 });
+        }
         const table = document.getElementById("ik-solutions");
-        const cap = table.querySelector("caption").outerHTML;
-        let h = cap + "<tr><td>#</td>" + IK.vars.map((n) => `<td>${n}</td>`).join("") +
-            "<td>singular</td><td>deviation</td></tr>";
-        sols.forEach(([s, sing], k) => {
+        let h = "";
+        rows.forEach(({ s, sing, n }, k) => {
             const back = run(Object.assign({}, v, s)).T;
             let dev = 0;
             for (let r = 0; r < 3; r++) for (let c = 0; c < 4; c++) {
                 if (IK.position_only && c < 3) continue;
                 dev = Math.max(dev, Math.abs(back[r][c] - T[r][c]));
             }
-            h += `<tr data-dev="${dev}"><td>${k + 1}</td>` +
-                IK.vars.map((n) => `<td>${s[n].toFixed(4)}</td>`).join("") +
-                `<td>${sing ? "yes" : ""}</td><td>${dev.toExponential(1)}</td></tr>`;
+            h += `<tr data-dev="${dev}" data-q="${IK.vars.map((n) => s[n]).join(",")}"><td>${k + 1}</td>` +
+                IK.vars.map((n) => `<td>${s[n].toFixed(3)}</td>`).join("") +
+                `<td>${n}${sing ? " singular" : ""}</td><td>${dev.toExponential(0)}</td></tr>`;
         });
-        table.innerHTML = h;
-        table.dataset.count = String(sols.length);
+        table.querySelector("tbody").innerHTML = h;
+        table.dataset.count = String(rows.length);
+        table.dataset.branches = String(sols.length);
     }
     inputs.forEach((i) => i.addEventListener("input", update));
     update();

@@ -12,12 +12,10 @@ pub mod axes;
 mod emit;
 mod plan;
 mod report;
-mod walk;
 
 pub use axes::{home_axes, intersection, relation, Axis, Relation, V3};
 pub use emit::{ik_c, ik_python, ik_rust};
 pub use report::ik_report;
-pub use walk::ik_walk;
 
 use crate::kin::Robot;
 use crate::{Matrix4, Scalar};
