@@ -121,6 +121,8 @@ linear-gradient(to left,#fff 30%,rgba(255,255,255,0)) right/32px 100% no-repeat 
 radial-gradient(farthest-side at 0 50%,rgba(0,0,0,.28),rgba(0,0,0,0)) left/12px 100% no-repeat scroll,\
 radial-gradient(farthest-side at 100% 50%,rgba(0,0,0,.28),rgba(0,0,0,0)) right/12px 100% no-repeat scroll}\
 .display.scrolls{border-bottom:1px dashed #b8c4d8}\
+span.tex.wide{display:inline-block;max-width:100%;overflow-x:auto;overflow-y:hidden;\
+vertical-align:bottom;border-bottom:1px dashed #b8c4d8}\
 p.legend .tex,li .tex{overflow-wrap:normal}\
 figure{margin:0;flex:0 1 600px;max-width:600px;min-width:0}figcaption{font-size:.9em;color:#555}\
 code{font-size:.9em}.layout{display:grid;grid-template-columns:minmax(0,1fr);gap:24px}\
@@ -144,11 +146,15 @@ table.num td,table.num th{padding:1px 3px}}\
 overflow-y:auto}.steps{grid-column:1;grid-row:1}.controls{flex-basis:100%}figure{flex-basis:100%}}";
 
 /// KaTeX fills in every formula; a display wider than its box is marked (`scrolls`: a dashed
-/// rule under it beside the edge shadows).
+/// rule under it beside the edge shadows), and an inline formula that cannot break to fit
+/// (`wide`) becomes a box of the column's width that scrolls, with the same rule.
 const RENDER: &str = "document.querySelectorAll('[data-tex]').forEach(function(el){\
 katex.render(el.getAttribute('data-tex'),el,{displayMode:el.classList.contains('display'),\
 throwOnError:false});});function dqMarkScrolls(){document.querySelectorAll('.display').forEach(\
-function(el){el.classList.toggle('scrolls',el.scrollWidth>el.clientWidth+1);});}dqMarkScrolls();\
+function(el){el.classList.toggle('scrolls',el.scrollWidth>el.clientWidth+1);});\
+document.querySelectorAll('span.tex').forEach(function(el){el.classList.remove('wide');\
+var p=el.parentElement.getBoundingClientRect(),r=el.getBoundingClientRect();\
+if(r.right>p.right+1||r.left<p.left-1)el.classList.add('wide');});}dqMarkScrolls();\
 window.addEventListener('resize',dqMarkScrolls);";
 
 /// The page's script: sliders, redrawing, numbers (see the file's first comment).

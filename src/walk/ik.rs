@@ -51,7 +51,10 @@ pub fn walk_ik(robot: &Robot, sol: &IkSolution) -> Result<Walkthrough, WalkError
                 "Branch {n}: + is {p}, − is {m}."
             ))));
         }
-        blocks.push(Block::Text(marked(&format!("Singular: {}.", step.singular))));
+        blocks.push(Block::Text(marked(&format!(
+            "Singular: {}.",
+            step.singular
+        ))));
         steps.push(Step::Explain {
             title: Prose {
                 tex: format!("Step {}: ${}$", i + 1, latex_symbol(q)),
@@ -356,11 +359,7 @@ fn pose(motions: &[Motion], env: &[(String, f64)]) -> Result<Matrix4<f64>, WalkE
 }
 
 /// The solver on the pose of the drawing's configuration, at the robot's values.
-fn solutions_step(
-    sol: &IkSolution,
-    motions: &[Motion],
-    scene: &Scene,
-) -> Result<Step, WalkError> {
+fn solutions_step(sol: &IkSolution, motions: &[Motion], scene: &Scene) -> Result<Step, WalkError> {
     let env: Vec<(String, f64)> = scene
         .symbols
         .iter()
@@ -484,7 +483,10 @@ mod tests {
             "$R_{6}$ ($R^{T}$ $R_{1}$ $k_{2}$) = $R_{5}^{T}$ $k_{2}$, where $\\theta_{1}$ = 0 \
              and $p_{x}$$\\cdot$$k_{2}$"
         );
-        assert_eq!(p.plain, "R6 (Rᵀ R1 k2) = R5ᵀ k2, where theta1 = 0 and px·k2");
+        assert_eq!(
+            p.plain,
+            "R6 (Rᵀ R1 k2) = R5ᵀ k2, where theta1 = 0 and px·k2"
+        );
     }
 
     #[test]

@@ -33,7 +33,7 @@ pub use forms::Forms;
 pub use html::{ik_walk_html, walk_html, KatexAssets};
 pub use ik::walk_ik;
 pub use motion::{Motion, Word, Words};
-pub use robot::{walk_robot, walk_robot_chain};
+pub use robot::{robot_mechanism, walk_robot, walk_robot_chain};
 pub use script::walk_script;
 pub use svg::{mechanism_svg, Config, SvgOptions};
 pub use text::{walk_markdown, walk_text};

@@ -97,7 +97,7 @@ fn joint_motion(joint: &crate::kin::Joint<Scalar>, v: &Scalar) -> Motion {
 
 /// The mechanism of a robot for the drawing: its base frames, joints and tool frames as
 /// motions, without the walkthrough's products.
-pub(crate) fn robot_mechanism(robot: &Robot) -> Mechanism {
+pub fn robot_mechanism(robot: &Robot) -> Mechanism {
     let mut motions: Vec<Motion> = robot.base_frames.iter().flat_map(frame_motions).collect();
     for (joint, v) in robot.chain.joints.iter().zip(&robot.joint_values) {
         motions.push(joint_motion(joint, v));

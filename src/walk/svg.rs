@@ -540,7 +540,11 @@ pub(crate) fn legend_lines(scene: &Scene, l: &Layout, scale: f64) -> Vec<LegendL
     let lengths_text = values_text(&scene.symbols, false);
     let line = |id, swatch, text: String| LegendLine { id, swatch, text };
     let mut out = vec![
-        line(None, Some(HOME), "home pose (every joint variable 0)".into()),
+        line(
+            None,
+            Some(HOME),
+            "home pose (every joint variable 0)".into(),
+        ),
         line(None, Some(ARM), "the configuration:".into()),
         line(Some("dq-config"), None, joints_text),
         line(
@@ -595,20 +599,32 @@ fn base_offset(line: &[V3]) -> bool {
     line.len() > 2 && line[1].iter().any(|x| x.abs() > 1e-9)
 }
 
-/// Words broken into lines of at most `max` characters (a longer word keeps its own line).
+/// Text broken into lines of at most `max` characters after a `,` or `;` (so `a2 = -0.425`
+/// stays on one line); a longer piece keeps its own line.
 fn wrap(text: &str, max: usize) -> Vec<String> {
-    let mut out: Vec<String> = Vec::new();
+    let mut pieces: Vec<String> = Vec::new();
     let mut cur = String::new();
-    for word in text.split(' ') {
-        if !cur.is_empty() && cur.chars().count() + 1 + word.chars().count() > max {
-            out.push(std::mem::take(&mut cur));
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        cur.push(c);
+        if matches!(c, ',' | ';') && chars.peek() == Some(&' ') {
+            chars.next();
+            pieces.push(std::mem::take(&mut cur));
         }
-        if !cur.is_empty() {
-            cur.push(' ');
-        }
-        cur.push_str(word);
     }
-    out.push(cur);
+    pieces.push(cur);
+    let mut out: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for p in pieces {
+        if !line.is_empty() && line.chars().count() + 1 + p.chars().count() > max {
+            out.push(std::mem::take(&mut line));
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(&p);
+    }
+    out.push(line);
     out
 }
 
@@ -761,7 +777,9 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
         view: l.view,
     };
     let scale = probe.scale(l.reach);
-    let legend = o.legend.then(|| svg_legend(&legend_lines(scene, &l, scale), o.width));
+    let legend = o
+        .legend
+        .then(|| svg_legend(&legend_lines(scene, &l, scale), o.width));
     let frame = Frame {
         legend: legend.as_ref().map_or(0.0, |(_, h)| *h),
         ..probe
@@ -831,10 +849,8 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
         f(first.0),
         f(first.1)
     );
-    for (id, line, (colour, width, dash)) in [
-        ("dq-home", &l.home, HOME),
-        ("dq-arm", &l.conf, ARM),
-    ] {
+    for (id, line, (colour, width, dash)) in [("dq-home", &l.home, HOME), ("dq-arm", &l.conf, ARM)]
+    {
         let _ = writeln!(
             s,
             "<polyline id=\"{id}\" points=\"{}\" fill=\"none\" stroke=\"{colour}\" \
