@@ -134,9 +134,9 @@ svg.mechanism{max-width:100%;height:auto;display:block;touch-action:pan-y;cursor
 .slider{display:grid;grid-template-columns:4.5em minmax(0,1fr) 4.5em;align-items:center;gap:6px}\
 .slider output{font-variant-numeric:tabular-nums;text-align:right}\
 .table-scroll{overflow-x:auto;max-width:100%}\
-table.num{border-collapse:collapse;margin:.4em 0 .8em}table.num td,table.num th{padding:1px 5px;\
+table.num{border-collapse:collapse;margin:.4em 0 .8em;white-space:nowrap;overflow-wrap:normal}table.num td,table.num th{padding:1px 5px;\
 text-align:right;font-variant-numeric:tabular-nums;border-left:1px solid #ccc;font-weight:normal}\
-table.num caption{text-align:left;font-weight:bold;padding-bottom:2px}\
+table.num caption{text-align:left;font-weight:bold;padding-bottom:2px;white-space:normal}\
 table.ik{font-size:13px}table.ik tr:first-child td{border-bottom:1px solid #ccc}\
 details.code pre{font-size:11px;max-height:24em;overflow:auto;background:#f6f6f2;padding:6px}\
 @media (max-width:600px){.display{margin-left:0}table.ik{font-size:12px}\
@@ -155,7 +155,8 @@ function(el){el.classList.toggle('scrolls',el.scrollWidth>el.clientWidth+1);});\
 document.querySelectorAll('span.tex').forEach(function(el){el.classList.remove('wide');\
 var p=el.parentElement.getBoundingClientRect(),r=el.getBoundingClientRect();\
 if(r.right>p.right+1||r.left<p.left-1)el.classList.add('wide');});}dqMarkScrolls();\
-window.addEventListener('resize',dqMarkScrolls);";
+window.addEventListener('resize',dqMarkScrolls);document.fonts.ready.then(dqMarkScrolls);\
+document.querySelectorAll('details').forEach(function(d){d.addEventListener('toggle',dqMarkScrolls);});";
 
 /// The page's script: sliders, redrawing, numbers (see the file's first comment).
 const PAGE_JS: &str = include_str!("page.js");
@@ -470,12 +471,12 @@ fn ik_panel(sol: &crate::ik::IkSolution) -> String {
             xml_escape(&latex_symbol(v))
         );
     }
-    head += "<th>branches</th><th>deviation</th></tr>";
+    head += "<th title=\"branches that give it\">×</th><th title=\"deviation of its pose\">dev.</th></tr>";
     format!(
         "<div class=\"controls\"><div class=\"table-scroll\"><table class=\"num ik\" \
-         id=\"ik-solutions\"><caption>The solver on this pose: every distinct solution (branches \
-         that meet at a singularity counted once), and how far its own pose is from the \
-         target</caption><thead>{head}</thead><tbody></tbody></table></div></div>\n</aside>\n"
+         id=\"ik-solutions\"><caption>The solver on this pose: every distinct solution; ×: how \
+         many branches give it (more than one where they meet at a singularity), * singular; \
+         dev.: how far its own pose is from the target</caption><thead>{head}</thead><tbody></tbody></table></div></div>\n</aside>\n"
     )
 }
 
@@ -627,7 +628,7 @@ const IK_JS: &str = r#"(function () {
             }
             h += `<tr data-dev="${dev}" data-q="${IK.vars.map((n) => s[n]).join(",")}"><td>${k + 1}</td>` +
                 IK.vars.map((n) => `<td>${s[n].toFixed(3)}</td>`).join("") +
-                `<td>${n}${sing ? " singular" : ""}</td><td>${dev.toExponential(0)}</td></tr>`;
+                `<td>${n}${sing ? "*" : ""}</td><td>${dev.toExponential(0)}</td></tr>`;
         });
         table.querySelector("tbody").innerHTML = h;
         table.dataset.count = String(rows.length);

@@ -938,29 +938,38 @@ fn target_names(tex: &str) -> String {
 
 /// A solver's check on a page: the words, then a table of the distinct solutions.
 fn solutions_tex(what: &Prose, variables: &[String], rows: &[SolutionRow]) -> Vec<Piece> {
-    let mut head = vec!["solution".to_owned()];
+    let mut head = vec!["#".to_owned()];
     head.extend(variables.iter().map(|v| format!("${}$", latex_symbol(v))));
-    head.extend(["branches".to_owned(), "deviation".to_owned()]);
+    head.extend(["×".to_owned(), "dev.".to_owned()]);
     let cells = rows
         .iter()
         .enumerate()
         .map(|(k, r)| {
             let mut c = vec![(k + 1).to_string()];
-            c.extend(r.q.iter().map(|x| format!("{x:.4}")));
+            c.extend(r.q.iter().map(|x| format!("{x:.3}")));
             c.push(format!(
                 "{}{}",
                 r.branches,
-                if r.singular { " (singular)" } else { "" }
+                if r.singular { "*" } else { "" }
             ));
             c.push(if r.deviation < 1e-12 {
-                "below 1e-12".to_owned()
+                "< 1e-12".to_owned()
             } else {
-                format!("{:.1e}", r.deviation)
+                format!("{:.0e}", r.deviation)
             });
             c
         })
         .collect();
-    vec![Piece::Text(what.tex.clone()), Piece::Table(head, cells)]
+    vec![
+        Piece::Text(what.tex.clone()),
+        Piece::Table(head, cells),
+        Piece::Text(
+            "×: how many of the solver's branches give the solution (more than one where \
+             branches meet, at a singularity); * a singular set was met; dev.: the largest \
+             difference of an entry of its pose from the target's."
+                .to_owned(),
+        ),
+    ]
 }
 
 fn capitalize(s: &str) -> String {

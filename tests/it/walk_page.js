@@ -1,6 +1,6 @@
 // Drives walkthrough pages in headless Chromium (playwright-core, Debian's chromium) for
 // tests/it/walk.rs, all in one browser: for each page of the jobs file (JSON: [{url, shots,
-// values, ik}]) at 390 and 1600 px, reads the page at its initial state, at the home pose
+// values, ik}]), loaded once, at 390 and then 1600 px, reads the page at its initial state, at the home pose
 // (every joint 0) at the given lengths, and after setting the sliders to the given values;
 // measures the layout (formulas clipped without a scroll container, the page's width, the
 // legend's and labels' font sizes, labels crossing a drawn link, tables wider than the
@@ -26,10 +26,10 @@ function read() {
             return true;
         })
         .map((e) => e.getAttribute("data-tex").slice(0, 80));
-    // Scroll containers that scroll must show a cue: the edge shadows of the page's style.
+    // Displays that scroll must show a cue: the edge shadows of the page's style.
     const noCue = [...document.querySelectorAll(".display")]
         .filter((e) => e.scrollWidth > e.clientWidth + 1 &&
-            !(getComputedStyle(e).backgroundImage.includes("gradient") && e.classList.contains("scrolls")))
+            !getComputedStyle(e).backgroundImage.includes("gradient"))
         .length;
     const svg = document.querySelector("svg.mechanism");
     const k = svg ? svg.getBoundingClientRect().width / Number(svg.getAttribute("width")) : 1;
@@ -103,24 +103,29 @@ async function main() {
     });
     const out = {};
     try {
+        // One load per page: read at 390 px, then the window widened to 1600 px and read again
+        // (the page lays out again on resize; KaTeX renders once).
         for (const job of jobs) {
             out[job.url] = {};
+            const page = await browser.newPage({ viewport: { width: 390, height: 1000 } });
+            const problems = [];
+            page.on("pageerror", (e) => problems.push(`script error: ${e}`));
+            page.on("request", (r) => {
+                if (!/^(file|data|about):/.test(r.url())) problems.push(`network: ${r.url()}`);
+            });
+            await page.goto(job.url);
+            await page.waitForFunction(() => document.querySelectorAll("[data-tex] .katex").length > 0);
+            await page.evaluate(() => document.fonts.ready);
+            const set = async (vals) => {
+                for (const [n, v] of Object.entries(vals)) {
+                    await page.locator(`input[data-name="${n}"]`).fill(String(v));
+                }
+            };
+            const zero = Object.fromEntries(
+                await page.$$eval("input[data-joint]", (is) => is.map((i) => [i.dataset.name, 0])));
             for (const width of [390, 1600]) {
-                const page = await browser.newPage({ viewport: { width, height: 1000 } });
-                const problems = [];
-                page.on("pageerror", (e) => problems.push(`script error: ${e}`));
-                page.on("request", (r) => {
-                    if (!/^(file|data|about):/.test(r.url())) problems.push(`network: ${r.url()}`);
-                });
-                await page.goto(job.url);
-                await page.waitForFunction(() => document.querySelectorAll("[data-tex] .katex").length > 0);
-                const set = async (vals) => {
-                    for (const [n, v] of Object.entries(vals)) {
-                        await page.locator(`input[data-name="${n}"]`).fill(String(v));
-                    }
-                };
-                const zero = Object.fromEntries(
-                    await page.$$eval("input[data-joint]", (is) => is.map((i) => [i.dataset.name, 0])));
+                await page.setViewportSize({ width, height: 1000 });
+                await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => r())));
                 const initial = await page.evaluate(read);
                 await set(job.values);
                 await set(zero);
@@ -129,9 +134,9 @@ async function main() {
                 const moved = await page.evaluate(read);
                 await page.evaluate(() => window.scrollTo(0, 0));
                 await page.screenshot({ path: `${job.shots}-${width}.png`, fullPage: false });
-                out[job.url][width] = { initial, home, moved, problems };
-                await page.close();
+                out[job.url][width] = { initial, home, moved, problems: problems.slice() };
             }
+            await page.close();
         }
     } finally {
         await browser.close();
