@@ -906,3 +906,149 @@ fn repl_steps_use_the_pages_notation() {
     assert!(text.contains("c1^2 - s1^2 = C1, 2 s1 c1 = S1"), "{text}");
     assert!(!text.contains("where c1 = cos(theta1)"), "{text}");
 }
+
+/// The `points="x,y x,y ..."` of an element with the given id.
+fn polyline(svg: &str, id: &str) -> Vec<(f64, f64)> {
+    svg.split(&format!("id=\"{id}\" points=\""))
+        .nth(1)
+        .and_then(|s| s.split('"').next())
+        .expect("polyline")
+        .split(' ')
+        .map(|p| {
+            let (x, y) = p.split_once(',').expect("x,y");
+            (x.parse().expect("x"), y.parse().expect("y"))
+        })
+        .collect()
+}
+
+/// The chosen view shows every link of every example robot at its default configuration at
+/// least 0.55 of its true length (the fixed isometric view drew a UR5's upper arm, pointing
+/// at the viewer, as a point); the lengths are measured from the drawing against the joints'
+/// 3D positions it carries and the scale its legend states.
+#[test]
+fn no_link_of_an_example_is_drawn_foreshortened() {
+    let mut robots: Vec<String> = std::fs::read_dir(Path::new(ROOT).join("examples/robots"))
+        .expect("examples/robots")
+        .filter_map(|e| e.ok())
+        .map(|e| format!("examples/robots/{}", e.file_name().to_string_lossy()))
+        .filter(|p| p.ends_with(".toml"))
+        .collect();
+    robots.sort();
+    for file in &robots {
+        let text = std::fs::read_to_string(Path::new(ROOT).join(file)).expect("robot");
+        let robot = dqsym::parse_robot(&text, file, &dqsym::eval_scalar_text).expect("robot");
+        let svg = dqsym::walk::mechanism_svg(
+            &dqsym::walk::robot_mechanism(&robot),
+            &dqsym::walk::Config::default(),
+            &dqsym::walk::SvgOptions::default(),
+        )
+        .expect("svg");
+        let scale: f64 = svg
+            .split(", to scale: ")
+            .nth(1)
+            .and_then(|s| s.split(' ').next())
+            .and_then(|s| s.parse().ok())
+            .expect("the legend states the scale");
+        let mut xyz: Vec<[f64; 3]> = svg_elements(&svg, "circle", "dq-joint")
+            .iter()
+            .map(|e| {
+                let v: Vec<f64> = e
+                    .split("data-xyz=\"")
+                    .nth(1)
+                    .and_then(|s| s.split('"').next())
+                    .expect("xyz")
+                    .split(',')
+                    .map(|x| x.parse().expect("number"))
+                    .collect();
+                [v[0], v[1], v[2]]
+            })
+            .collect();
+        let tool: Vec<f64> = svg
+            .split("id=\"dq-tool\" data-xyz=\"")
+            .nth(1)
+            .and_then(|s| s.split('"').next())
+            .expect("tool")
+            .split(',')
+            .map(|x| x.parse().expect("number"))
+            .collect();
+        xyz.push([tool[0], tool[1], tool[2]]);
+        let drawn = polyline(&svg, "dq-arm");
+        assert_eq!(
+            drawn.len(),
+            xyz.len(),
+            "{file}: one point per joint and the tool"
+        );
+        let total: f64 = xyz
+            .windows(2)
+            .map(|w| {
+                (0..3)
+                    .map(|k| (w[1][k] - w[0][k]).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            })
+            .sum();
+        for k in 1..xyz.len() {
+            let true_len = (0..3)
+                .map(|c| (xyz[k][c] - xyz[k - 1][c]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            // Links shorter than 2% of the arm are a few pixels whatever the view.
+            if true_len < 0.02 * total {
+                continue;
+            }
+            let (a, b) = (drawn[k - 1], drawn[k]);
+            let px = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+            // The drawing rounds to 0.1 px.
+            let ratio = (px + 0.15) / (true_len * scale);
+            assert!(
+                ratio >= 0.55,
+                "{file}: link {k} drawn at {ratio:.2} of its length"
+            );
+        }
+    }
+}
+
+/// Long joint names (as URDF files have) are never cut from the drawing's legend: the legend
+/// wraps at the drawing's width between values, and every `name = value` stays whole.
+#[test]
+fn long_joint_names_wrap_in_the_drawings_legend() {
+    let mut text = String::from("name = \"long names\"\nconvention = \"dh\"\n");
+    let names: Vec<String> = (1..=6)
+        .map(|i| format!("shoulder_and_elbow_revolute_joint_number_{i}"))
+        .collect();
+    for n in &names {
+        text += &format!(
+            "[[joint]]\ntype = \"revolute\"\ntheta = \"{n}\"\nd = \"0.1\"\na = \"0.3\"\nalpha = \"pi/2\"\n"
+        );
+    }
+    let w = walk_robot(&text, "long.toml", &dqsym::eval_scalar_text).expect("walk");
+    let svg = dqsym::walk::mechanism_svg(
+        w.mechanism.as_ref().expect("mechanism"),
+        &dqsym::walk::Config::default(),
+        &dqsym::walk::SvgOptions::default(),
+    )
+    .expect("svg");
+    let lines: Vec<&str> = svg
+        .split("<tspan ")
+        .skip(1)
+        .map(|s| {
+            s.split('>')
+                .nth(1)
+                .and_then(|t| t.split('<').next())
+                .unwrap_or_default()
+        })
+        .collect();
+    for l in &lines {
+        // 12 px sans-serif averages under 7 px a character; the text starts 14 px in.
+        assert!(
+            14.0 + 7.0 * l.chars().count() as f64 <= 600.0,
+            "a legend line wider than the drawing: {l}"
+        );
+    }
+    for n in &names {
+        assert!(
+            lines.iter().any(|l| l.contains(&format!("{n} = "))),
+            "{n} is cut from the legend: {lines:?}"
+        );
+    }
+}
