@@ -131,7 +131,8 @@ code{font-size:.9em}.layout{display:grid;grid-template-columns:minmax(0,1fr);gap
 .drawing-legend{font-family:sans-serif;font-size:13px;line-height:1.35;margin-bottom:4px}\
 .drawing-legend p{margin:0 0 2px}.drawing-legend .swatch{vertical-align:middle}\
 svg.mechanism{max-width:100%;height:auto;display:block;touch-action:pan-y;cursor:grab}\
-.slider{display:grid;grid-template-columns:4.5em minmax(0,1fr) 4.5em;align-items:center;gap:6px}\
+.slider{display:grid;grid-template-columns:fit-content(40%) minmax(0,1fr) 4.5em;align-items:center;\
+gap:6px}.slider>.tex{min-width:3em;overflow-x:auto;overflow-y:hidden}\
 .slider output{font-variant-numeric:tabular-nums;text-align:right}\
 .table-scroll{overflow-x:auto;max-width:100%}\
 table.num{border-collapse:collapse;margin:.4em 0 .8em;white-space:nowrap;overflow-wrap:normal}table.num td,table.num th{padding:1px 5px;\
@@ -465,10 +466,11 @@ pub fn ik_walk_html(
 /// written by the page's script.
 fn ik_panel(sol: &crate::ik::IkSolution) -> String {
     let mut head = String::from("<tr><th>#</th>");
-    for v in &sol.variables {
+    for (k, v) in sol.variables.iter().enumerate() {
         head += &format!(
-            "<th><span class=\"tex\" data-tex=\"{}\"></span></th>",
-            xml_escape(&latex_symbol(v))
+            "<th title=\"{}\">{}</th>",
+            xml_escape(v),
+            inline(&super::ik::column_head(v, k))
         );
     }
     head += "<th title=\"branches that give it\">×</th><th title=\"deviation of its pose\">dev.</th></tr>";
@@ -476,7 +478,10 @@ fn ik_panel(sol: &crate::ik::IkSolution) -> String {
         "<div class=\"controls\"><div class=\"table-scroll\"><table class=\"num ik\" \
          id=\"ik-solutions\"><caption>The solver on this pose: every distinct solution; ×: how \
          many branches give it (more than one where they meet at a singularity), * singular; \
-         dev.: how far its own pose is from the target</caption><thead>{head}</thead><tbody></tbody></table></div></div>\n</aside>\n"
+         dev.: how far its own pose is from the target</caption><thead>{head}</thead><tbody></tbody></table></div>{key}</div>\n</aside>\n",
+        key = super::ik::column_key(&sol.variables)
+            .map(|k| format!("<p>{}</p>", inline(&k)))
+            .unwrap_or_default()
     )
 }
 

@@ -206,6 +206,28 @@ pub(crate) fn marked(t: &str) -> Prose {
     }
 }
 
+/// The head of a joint's column in a table of solutions: the variable typeset when it is
+/// short, else `j1`, `j2`, ... (a URDF joint name would widen the table past a phone's width;
+/// [`column_key`] lists them under the table).
+pub(crate) fn column_head(v: &str, k: usize) -> String {
+    if v.chars().count() <= 8 {
+        format!("${}$", latex_symbol(v))
+    } else {
+        format!("$j_{{{}}}$", k + 1)
+    }
+}
+
+/// What the `j1`, `j2`, ... columns of [`column_head`] are, when there are any.
+pub(crate) fn column_key(vars: &[String]) -> Option<String> {
+    let long: Vec<String> = vars
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| v.chars().count() > 8)
+        .map(|(k, v)| format!("$j_{{{}}}$: `{v}`", k + 1))
+        .collect();
+    (!long.is_empty()).then(|| format!("Columns: {}.", long.join(", ")))
+}
+
 fn target_symbol(name: &str) -> bool {
     TARGET_SYMBOLS.iter().flatten().any(|s| *s == name)
 }

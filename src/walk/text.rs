@@ -939,7 +939,12 @@ fn target_names(tex: &str) -> String {
 /// A solver's check on a page: the words, then a table of the distinct solutions.
 fn solutions_tex(what: &Prose, variables: &[String], rows: &[SolutionRow]) -> Vec<Piece> {
     let mut head = vec!["#".to_owned()];
-    head.extend(variables.iter().map(|v| format!("${}$", latex_symbol(v))));
+    head.extend(
+        variables
+            .iter()
+            .enumerate()
+            .map(|(k, v)| super::ik::column_head(v, k)),
+    );
     head.extend(["×".to_owned(), "dev.".to_owned()]);
     let cells = rows
         .iter()
@@ -960,16 +965,15 @@ fn solutions_tex(what: &Prose, variables: &[String], rows: &[SolutionRow]) -> Ve
             c
         })
         .collect();
-    vec![
-        Piece::Text(what.tex.clone()),
-        Piece::Table(head, cells),
-        Piece::Text(
-            "×: how many of the solver's branches give the solution (more than one where \
+    let mut out = vec![Piece::Text(what.tex.clone()), Piece::Table(head, cells)];
+    out.extend(super::ik::column_key(variables).map(Piece::Text));
+    out.push(Piece::Text(
+        "×: how many of the solver's branches give the solution (more than one where \
              branches meet, at a singularity); * a singular set was met; dev.: the largest \
              difference of an entry of its pose from the target's."
-                .to_owned(),
-        ),
-    ]
+            .to_owned(),
+    ));
+    out
 }
 
 fn capitalize(s: &str) -> String {

@@ -711,6 +711,15 @@ fn every_example_page_works_at_phone_and_desktop_width_in_chromium() {
             Err(e) => panic!("{file}: {e}"),
         }
     }
+    // A URDF arm: long joint names in the legend, the sliders and the IK table.
+    let urdf = "benches/support/ur5.urdf";
+    let text = std::fs::read_to_string(Path::new(ROOT).join(urdf)).expect("urdf");
+    let robot = dqsym::parse_urdf(&text, urdf, &dqsym::kin::UrdfOptions::default())
+        .expect("urdf")
+        .robot;
+    let m = dqsym::walk::robot_mechanism(&robot);
+    jobs.push((page_job(urdf, false), m.clone()));
+    jobs.push((page_job(urdf, true), m));
     assert!(jobs.iter().filter(|(j, _)| j.ik).count() >= 10);
     let spec: Vec<serde_json::Value> = jobs
         .iter()
