@@ -441,8 +441,26 @@ fn check_layout(job: &PageJob, width: &str, r: &serde_json::Value) {
         "{file}: no screenshot at {width}px"
     );
     let w: f64 = width.parse().expect("width");
-    for state in ["initial", "home", "moved"] {
+    if !r["orbited"].is_null() {
+        // A drag turned the view: the drawing changed, the legend says the new view.
+        assert_ne!(
+            r["orbited"]["arm"], r["moved"]["arm"],
+            "{file} {width}px: dragging the drawing turns the view"
+        );
+        assert!(
+            r["orbited"]["view"]
+                .as_str()
+                .is_some_and(|v| v.starts_with("view from azimuth")),
+            "{file}: {}",
+            r["orbited"]["view"]
+        );
+    }
+    for state in ["initial", "home", "moved", "orbited"] {
         let s = &r[state];
+        if s.is_null() {
+            // Only a drawing that is not planar can be turned.
+            continue;
+        }
         let at = format!("{file} (ik: {}) {width}px {state}", job.ik);
         assert_eq!(s["katexErrors"], 0, "{at}: KaTeX errors");
         assert_eq!(s["rendered"], s["formulas"], "{at}: every formula renders");

@@ -132,9 +132,22 @@ async function main() {
                 const home = await page.evaluate(read);
                 await set(job.values);
                 const moved = await page.evaluate(read);
+                // Drag the drawing sideways and down: the view turns (not a planar drawing).
+                let orbited = null;
+                if (!(await page.evaluate(() => JSON.parse(document.getElementById("dq-data").textContent).planar))) {
+                    await page.locator("svg.mechanism").scrollIntoViewIfNeeded();
+                    const b = await page.locator("svg.mechanism").boundingBox();
+                    const [x, y] = [b.x + b.width / 2, b.y + b.height / 2];
+                    await page.mouse.move(x, y);
+                    await page.mouse.down();
+                    await page.mouse.move(x + 60, y + 30, { steps: 4 });
+                    await page.mouse.up();
+                    orbited = await page.evaluate(read);
+                    orbited.view = await page.evaluate(() => document.getElementById("dq-scale").textContent);
+                }
                 await page.evaluate(() => window.scrollTo(0, 0));
                 await page.screenshot({ path: `${job.shots}-${width}.png`, fullPage: false });
-                out[job.url][width] = { initial, home, moved, problems: problems.slice() };
+                out[job.url][width] = { initial, home, moved, orbited, problems: problems.slice() };
             }
             await page.close();
         }
