@@ -363,6 +363,12 @@ fn page_job(file: &str, ik: bool) -> PageJob {
         .and_then(|s| s.to_str())
         .expect("stem")
         .to_owned();
+    // `ur5.urdf` beside `ur5.toml`: the URDF's page gets a name of its own.
+    let stem = if file.ends_with(".urdf") {
+        format!("{stem}_urdf")
+    } else {
+        stem
+    };
     let stem = if ik { format!("ik_{stem}") } else { stem };
     let page = artifacts.join(format!("walk_{stem}.html"));
     let _ = std::fs::remove_file(&page);
