@@ -148,14 +148,18 @@ overflow-y:auto}.steps{grid-column:1;grid-row:1}.controls{flex-basis:100%}figure
 
 /// KaTeX fills in every formula; a display wider than its box is marked (`scrolls`: a dashed
 /// rule under it beside the edge shadows), and an inline formula that cannot break to fit
-/// (`wide`) becomes a box of the column's width that scrolls, with the same rule.
+/// (`wide`) becomes a box of the column's width that scrolls, with the same rule. Every
+/// measurement is read before any class is written, so the page is laid out once, not once
+/// per formula.
 const RENDER: &str = "document.querySelectorAll('[data-tex]').forEach(function(el){\
 katex.render(el.getAttribute('data-tex'),el,{displayMode:el.classList.contains('display'),\
-throwOnError:false});});function dqMarkScrolls(){document.querySelectorAll('.display').forEach(\
-function(el){el.classList.toggle('scrolls',el.scrollWidth>el.clientWidth+1);});\
-document.querySelectorAll('span.tex').forEach(function(el){el.classList.remove('wide');\
+throwOnError:false});});function dqMarkScrolls(){var ds=document.querySelectorAll('.display'),\
+ts=document.querySelectorAll('span.tex.wide');ts.forEach(function(el){el.classList.remove('wide');});\
+var wide=[].filter.call(document.querySelectorAll('span.tex'),function(el){\
 var p=el.parentElement.getBoundingClientRect(),r=el.getBoundingClientRect();\
-if(r.right>p.right+1||r.left<p.left-1)el.classList.add('wide');});}dqMarkScrolls();\
+return r.right>p.right+1||r.left<p.left-1;});var sc=[].map.call(ds,function(el){\
+return el.scrollWidth>el.clientWidth+1;});wide.forEach(function(el){el.classList.add('wide');});\
+ds.forEach(function(el,i){el.classList.toggle('scrolls',sc[i]);});}dqMarkScrolls();\
 window.addEventListener('resize',dqMarkScrolls);document.fonts.ready.then(dqMarkScrolls);\
 document.querySelectorAll('details').forEach(function(d){d.addEventListener('toggle',dqMarkScrolls);});";
 
