@@ -5,9 +5,73 @@ use dqsym::{
     lang::{parse_with, show_value, ParseOptions, StmtKind},
     show, Context, Format, PlainOptions, Session, ShowOptions,
 };
+use std::io::Write;
 use std::process::ExitCode;
 
+/// Every write of the binary to stdout goes through [`write_out`], so these shadow the standard
+/// macros in this crate (`repl.rs` included: it is declared below them): a write error (a full
+/// disk, an I/O error) ends the process with `error: cannot write output: ...` and status 1,
+/// never a panic. A closed pipe ends it quietly before that (see [`quiet_on_closed_pipe`]).
+macro_rules! print {
+    ($($arg:tt)*) => { $crate::write_out(format_args!($($arg)*)) };
+}
+
+/// [`print!`] with a line break (none is written today; the shadow keeps any new one safe).
+#[allow(unused_macros)]
+macro_rules! println {
+    () => { $crate::write_out(format_args!("\n")) };
+    ($($arg:tt)*) => { $crate::write_out(format_args!("{}\n", format_args!($($arg)*))) };
+}
+
+/// Messages to stderr: a stderr that cannot be written to loses them, but the status the
+/// command chose stays (an error's 1), never a panic's 101.
+macro_rules! eprintln {
+    ($($arg:tt)*) => { $crate::write_err(format_args!("{}\n", format_args!($($arg)*))) };
+}
+
 mod repl;
+
+/// Writes to stdout; a failed write ends the process (see [`print!`]).
+pub(crate) fn write_out(args: std::fmt::Arguments<'_>) {
+    if let Err(e) = std::io::stdout().lock().write_fmt(args) {
+        output_failed(&e);
+    }
+}
+
+/// Writes to stderr, ignoring a failure: there is nowhere left to report it.
+pub(crate) fn write_err(args: std::fmt::Arguments<'_>) {
+    let _ = std::io::stderr().lock().write_fmt(args);
+}
+
+/// Flushes stdout (what is left after the last line break): a failure is the same error as
+/// a failed write.
+pub(crate) fn flush_out() {
+    if let Err(e) = std::io::stdout().lock().flush() {
+        output_failed(&e);
+    }
+}
+
+/// Ends the process after stdout failed: the message on stderr (if it can still be written),
+/// status 1. Called from the worker thread too; nothing else is pending then, since every
+/// command writes its output last.
+pub(crate) fn output_failed(e: &std::io::Error) -> ! {
+    if e.kind() != std::io::ErrorKind::BrokenPipe {
+        write_err(format_args!(
+            "error: cannot write output: {}\n",
+            os_message(e)
+        ));
+    }
+    std::process::exit(1)
+}
+
+/// An I/O error's message without the ` (os error N)` suffix the standard library adds.
+fn os_message(e: &std::io::Error) -> String {
+    let m = e.to_string();
+    match m.rfind(" (os error ") {
+        Some(i) if m.ends_with(')') => m[..i].to_owned(),
+        _ => m,
+    }
+}
 
 #[derive(Parser)]
 #[command(
@@ -42,12 +106,67 @@ struct Cli {
     /// of pi (cos(pi/7), x + 3 pi/29) are computed exactly; a larger one is an error.
     #[arg(long, value_name = "N", default_value_t = dqsym::scalar::DEFAULT_MAX_CYCLOTOMIC_DEGREE, global = true)]
     max_cyclotomic_degree: u64,
+    /// The most decimal digits a computed number (a numerator or denominator) may have; a
+    /// larger one is an error, not a computation that eats memory.
+    #[arg(long, value_name = "N", default_value_t = dqsym::scalar::DEFAULT_MAX_DIGITS, global = true)]
+    max_digits: u64,
+    /// The most symbols one angle may hold (`cos(q1 + ... + qn)` of a chain of collinear
+    /// joints); more is an error (fk then prints a recurrence).
+    #[arg(long, value_name = "N", default_value_t = dqsym::scalar::DEFAULT_MAX_ANGLE_SYMBOLS, global = true)]
+    max_angle_symbols: usize,
     /// The most term operations (terms of sums, term pairs of products) one statement, one
     /// robot file field or the whole fk derivation may do; more is an error, not a hang.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_WORK_BUDGET, global = true)]
     work_budget: u64,
+    /// The largest input file (script, robot file, URDF) read, in bytes; a larger one is an
+    /// error before it is read whole.
+    #[arg(long, value_name = "BYTES", default_value_t = DEFAULT_MAX_INPUT_SIZE, global = true)]
+    max_input_size: u64,
     #[command(subcommand)]
     command: Option<Command>,
+}
+
+/// The default `--max-input-size`: 16 MB, ten times a URDF of 10,000 joints (1.5 MB), which is
+/// already past what the derivation takes at the default limits.
+const DEFAULT_MAX_INPUT_SIZE: u64 = 16 << 20;
+
+/// `--max-input-size`, set once by [`dispatch`] before any file is read (a setting of this
+/// binary's one run, so that every reader sees it without threading it through each command).
+static MAX_INPUT_SIZE: std::sync::OnceLock<u64> = std::sync::OnceLock::new();
+
+/// Reads an input file as text, at most `--max-input-size` bytes: a device (`/dev/zero`) or a
+/// huge file is an error after that many bytes, not a read until memory runs out.
+fn read_input(path: &std::path::Path) -> Result<String, String> {
+    use std::io::Read;
+    let limit = *MAX_INPUT_SIZE.get_or_init(|| DEFAULT_MAX_INPUT_SIZE);
+    let cannot = |e: std::io::Error| format!("cannot read {}: {}", path.display(), os_message(&e));
+    let file = std::fs::File::open(path).map_err(cannot)?;
+    let too_large = || {
+        format!(
+            "{}: larger than the input size limit of {limit} bytes (--max-input-size)",
+            path.display()
+        )
+    };
+    if file
+        .metadata()
+        .is_ok_and(|m| m.is_file() && m.len() > limit)
+    {
+        return Err(too_large());
+    }
+    let mut bytes = Vec::new();
+    file.take(limit.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(cannot)?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large());
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        format!(
+            "cannot read {}: not UTF-8 text (byte {})",
+            path.display(),
+            e.utf8_error().valid_up_to()
+        )
+    })
 }
 
 #[derive(Subcommand)]
@@ -72,6 +191,10 @@ enum Command {
         /// drawing of the mechanism) to OUT.html.
         #[arg(long, value_name = "OUT.html")]
         html: Option<std::path::PathBuf>,
+        /// With --html: write over an existing OUT.html that is not a page dqsym wrote (or is a
+        /// symbolic link). The input file is never written over.
+        #[arg(long, requires = "html")]
+        force: bool,
         /// The configuration drawn on the page: `theta1=0.3,theta2=-0.5,l1=2`; joints not
         /// given take a fixed default, lengths 1.
         #[arg(long, value_name = "NAME=VALUE,...")]
@@ -174,8 +297,7 @@ fn is_urdf(path: &std::path::Path) -> bool {
 
 /// Reads a robot file or a URDF file; the angles a URDF file rounds are reported on stderr.
 fn load_robot(path: &std::path::Path, args: &RobotArgs) -> Result<dqsym::Robot, String> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let text = read_input(path)?;
     let name = path.display().to_string();
     if is_urdf(path) {
         let o = dqsym::kin::UrdfOptions {
@@ -359,10 +481,26 @@ fn main() -> ExitCode {
     tune_allocator(cli.command.is_none() && cli.expr.is_none());
     let worker = std::thread::Builder::new()
         .stack_size(STACK)
-        .spawn(move || dispatch(cli));
-    match worker.map(|h| h.join()) {
-        Ok(Ok(code)) => code,
-        _ => {
+        .spawn(move || {
+            let code = dispatch(cli);
+            flush_out();
+            code
+        });
+    let worker = match worker {
+        Ok(w) => w,
+        Err(e) => {
+            eprintln!(
+                "error: cannot start the evaluation thread with its {} MB stack: {} (the \
+                 address-space limit, `ulimit -v`, must leave room for it)",
+                STACK >> 20,
+                os_message(&e)
+            );
+            return ExitCode::FAILURE;
+        }
+    };
+    match worker.join() {
+        Ok(code) => code,
+        Err(_) => {
             eprintln!("error: internal failure");
             ExitCode::FAILURE
         }
@@ -370,6 +508,7 @@ fn main() -> ExitCode {
 }
 
 fn dispatch(cli: Cli) -> ExitCode {
+    let _ = MAX_INPUT_SIZE.set(cli.max_input_size);
     let default_terms = match cli.command {
         Some(Command::Fk { .. } | Command::Ops { .. }) => DEFAULT_FK_TERM_LIMIT,
         _ => DEFAULT_TERM_LIMIT,
@@ -385,6 +524,8 @@ fn dispatch(cli: Cli) -> ExitCode {
             .with_term_limit(cli.term_limit.unwrap_or(default_terms))
             .with_max_exponent(cli.max_exponent)
             .with_max_cyclotomic_degree(cli.max_cyclotomic_degree)
+            .with_max_digits(cli.max_digits)
+            .with_max_angle_symbols(cli.max_angle_symbols)
             .with_work_budget(cli.work_budget),
     };
     // The limits guard scripts, one-liners and robot files; paper keeps the library defaults.
@@ -487,12 +628,13 @@ fn dispatch(cli: Cli) -> ExitCode {
                 ik: true,
                 free,
                 robot_args,
+                force,
             }),
             _,
         ) => walk_ik(
             &file,
             markdown,
-            html.as_deref(),
+            html.as_deref().map(|h| (h, force)),
             config.as_deref(),
             free,
             &robot_args,
@@ -504,13 +646,14 @@ fn dispatch(cli: Cli) -> ExitCode {
                 html,
                 config,
                 robot_args,
+                force,
                 ..
             }),
             _,
         ) => walk(
             &file,
             markdown,
-            html.as_deref(),
+            html.as_deref().map(|h| (h, force)),
             config.as_deref(),
             &robot_args,
         ),
@@ -555,7 +698,7 @@ fn ik(
 fn walk_ik(
     path: &std::path::Path,
     markdown: bool,
-    html: Option<&std::path::Path>,
+    html: Option<(&std::path::Path, bool)>,
     config: Option<&str>,
     free: Option<String>,
     robot_args: &RobotArgs,
@@ -576,11 +719,10 @@ fn walk_ik(
         Ok(s) => s,
         Err(e) => return fail(e.to_string()),
     };
-    if let Some(out) = html {
+    if let Some((out, force)) = html {
         let page = (|| -> Result<String, String> {
             let md = dqsym::ik::ik_walk(&robot, &sol, true).map_err(|e| e.to_string())?;
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+            let text = read_input(path)?;
             let w = if is_urdf(path) {
                 dqsym::walk::walk_robot_chain(&robot)
             } else {
@@ -592,9 +734,7 @@ fn walk_ik(
             let assets = katex_assets()?;
             dqsym::walk::ik_walk_html(&w, &sol, &md, &assets, &cfg).map_err(|e| e.to_string())
         })();
-        return match page.and_then(|p| {
-            std::fs::write(out, p).map_err(|e| format!("cannot write {}: {e}", out.display()))
-        }) {
+        return match page.and_then(|p| write_page(out, path, &p, force)) {
             Ok(()) => {
                 eprintln!("wrote {}", out.display());
                 ExitCode::SUCCESS
@@ -726,7 +866,13 @@ fn convert(path: &std::path::Path, to: ConvertTo, robot_args: &RobotArgs) -> Exi
         if let Some(why) = dqsym::app::dh_refusal(&robot) {
             eprintln!("note: written in screw form, not DH: {why}");
         }
-        dqsym::app::robot_toml(&robot, &name).map_err(|e| e.to_string())
+        let text = dqsym::app::robot_toml(&robot, &name).map_err(|e| e.to_string())?;
+        // Nothing is written that `fk` would refuse (a chain without a moving joint, a
+        // symbolic axis whose unit length the reader cannot confirm within the limits): the
+        // file is read back as `fk` reads it first.
+        dqsym::parse_robot(&text, &name, &dqsym::eval_scalar_text)
+            .map_err(|e| format!("no robot file written: fk would not read it back: {e}"))?;
+        Ok(text)
     });
     match r {
         Ok(t) => {
@@ -744,7 +890,7 @@ fn convert(path: &std::path::Path, to: ConvertTo, robot_args: &RobotArgs) -> Exi
 fn walk(
     path: &std::path::Path,
     markdown: bool,
-    html: Option<&std::path::Path>,
+    html: Option<(&std::path::Path, bool)>,
     config: Option<&str>,
     robot_args: &RobotArgs,
 ) -> ExitCode {
@@ -752,9 +898,9 @@ fn walk(
         eprintln!("error: {m}");
         ExitCode::FAILURE
     };
-    let text = match std::fs::read_to_string(path) {
+    let text = match read_input(path) {
         Ok(t) => t,
-        Err(e) => return fail(format!("cannot read {}: {e}", path.display())),
+        Err(m) => return fail(m),
     };
     let name = path.display().to_string();
     let w = if is_urdf(path) {
@@ -777,7 +923,7 @@ fn walk(
         }
         Err(e) => return fail(e.to_string()),
     };
-    if let Some(out) = html {
+    if let Some((out, force)) = html {
         let cfg = match dqsym::walk::Config::parse(config.unwrap_or("")) {
             Ok(c) => c,
             Err(e) => return fail(format!("--config: {e}")),
@@ -787,12 +933,12 @@ fn walk(
             Err(m) => return fail(m),
         };
         return match dqsym::walk_html(&w, &assets, &cfg) {
-            Ok(page) => match std::fs::write(out, page) {
+            Ok(page) => match write_page(out, path, &page, force) {
                 Ok(()) => {
                     eprintln!("wrote {}", out.display());
                     ExitCode::SUCCESS
                 }
-                Err(e) => fail(format!("cannot write {}: {e}", out.display())),
+                Err(m) => fail(m),
             },
             Err(e) => fail(e.to_string()),
         };
@@ -811,6 +957,94 @@ fn walk(
             ExitCode::SUCCESS
         }
         Err(e) => fail(e.to_string()),
+    }
+}
+
+/// Writes the page of `walk --html` to `out`. The rule: never over the input file (whatever
+/// the path says: the same file through another name or a link counts); over an existing
+/// regular file only when it is a page dqsym wrote ([`dqsym::walk::is_walk_page`]) or with
+/// `--force` (a link is judged by the file it points to, and stays a link); a device or pipe
+/// (`/dev/stdout`) is written to as it is. A regular file is written to a temporary file
+/// beside it first and renamed over it, so a failed write (a full disk) leaves it as it was.
+fn write_page(
+    out: &std::path::Path,
+    input: &std::path::Path,
+    page: &str,
+    force: bool,
+) -> Result<(), String> {
+    use std::io::Read;
+    let shown = out.display();
+    let cannot = |e: std::io::Error| format!("cannot write {shown}: {}", os_message(&e));
+    if same_file(out, input) {
+        return Err(format!(
+            "{shown} is the input file; give the page another name"
+        ));
+    }
+    let target = match std::fs::metadata(out) {
+        Ok(m) if m.is_dir() => return Err(format!("{shown} is a directory")),
+        Ok(m) if !m.is_file() => return std::fs::write(out, page).map_err(cannot),
+        Ok(_) => {
+            let mut head = String::new();
+            let readable = std::fs::File::open(out)
+                .and_then(|f| f.take(4096).read_to_string(&mut head))
+                .is_ok();
+            let ours = readable && dqsym::walk::is_walk_page(&head);
+            if !(force || ours) {
+                return Err(format!(
+                    "{shown} exists and is not a page dqsym wrote; pass --force to write over it"
+                ));
+            }
+            std::fs::canonicalize(out).map_err(cannot)?
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            if std::fs::symlink_metadata(out).is_ok() && !force {
+                return Err(format!(
+                    "{shown} is a link to a file that does not exist; pass --force to replace it"
+                ));
+            }
+            out.to_path_buf()
+        }
+        Err(e) => return Err(cannot(e)),
+    };
+    let dir = match target.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => std::path::PathBuf::from("."),
+    };
+    let file_name = target
+        .file_name()
+        .map_or_else(|| "page".into(), |n| n.to_string_lossy().into_owned());
+    let tmp = dir.join(format!(".{file_name}.{}.tmp", std::process::id()));
+    let written = std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&tmp)
+        .and_then(|mut f| {
+            f.write_all(page.as_bytes())?;
+            f.sync_all()
+        })
+        .and_then(|()| std::fs::rename(&tmp, &target));
+    if let Err(e) = written {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(cannot(e));
+    }
+    Ok(())
+}
+
+/// Whether two paths name one existing file (device and inode on Unix; the canonical paths
+/// elsewhere).
+fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        match (std::fs::metadata(a), std::fs::metadata(b)) {
+            (Ok(x), Ok(y)) => x.dev() == y.dev() && x.ino() == y.ino(),
+            _ => false,
+        }
+    }
+    #[cfg(not(unix))]
+    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => false,
     }
 }
 
@@ -841,10 +1075,10 @@ fn katex_assets() -> Result<dqsym::walk::KatexAssets, String> {
 
 /// `dqsym run FILE`: prints results as statements complete; stops at the first error.
 fn run_file(path: &std::path::Path, opts: &ShowOptions, limits: &Limits) -> ExitCode {
-    let src = match std::fs::read_to_string(path) {
+    let src = match read_input(path) {
         Ok(s) => s,
-        Err(e) => {
-            eprintln!("error: cannot read {}: {e}", path.display());
+        Err(m) => {
+            eprintln!("error: {m}");
             return ExitCode::FAILURE;
         }
     };

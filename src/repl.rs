@@ -1,8 +1,8 @@
 //! The interactive session: rustyline for editing, history and completion; evaluation on a
 //! worker thread so that Ctrl-C can abandon a long computation while the bindings stay.
 //!
-//! Each statement runs on a clone of the session in its own thread; the clone replaces the
-//! session only when the statement succeeds. Ctrl-C sets the cancel flag of the statement's
+//! Each statement runs in its own thread, the session moved there and back; what the
+//! statement binds is undone unless it succeeds, uninterrupted (`Session::checkpoint`). Ctrl-C sets the cancel flag of the statement's
 //! execution context, which every scalar operation, closed form and worker thread checks where
 //! it charges work: the worker ends within milliseconds, is joined, and its memory is returned
 //! before the prompt comes back.
@@ -19,6 +19,7 @@ use rustyline::hint::Hinter;
 use rustyline::history::DefaultHistory;
 use rustyline::validate::Validator;
 use rustyline::{Context, Editor, Helper};
+use std::collections::BTreeSet;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
@@ -30,7 +31,7 @@ const COMMANDS: [&str; 6] = [":help", ":quit", ":vars", ":q", ":steps", ":ik"];
 
 /// Completes commands, built-ins, constants and the names bound so far.
 struct DqHelper {
-    names: Arc<Mutex<Vec<String>>>,
+    names: Arc<Mutex<BTreeSet<String>>>,
 }
 
 impl Completer for DqHelper {
@@ -205,8 +206,9 @@ enum Failure {
     Error(String),
 }
 
-/// What a worker sends back for one statement.
-type Outcome = (Session, Result<Option<String>, Failure>);
+/// What a worker sends back for one statement: the session, the names it newly bound, and
+/// the result.
+type Outcome = (Session, Vec<String>, Result<Option<String>, Failure>);
 
 /// The state of one interactive session.
 struct Repl<'a> {
@@ -220,6 +222,9 @@ struct Repl<'a> {
     /// The context statements run in: the command line's limits and the Ctrl-C flag.
     ctx: dqsym::Context,
     interrupt: Arc<AtomicBool>,
+    /// The bound names, for completion: grown by each statement's new names (never a copy
+    /// of every name per statement).
+    names: Arc<Mutex<BTreeSet<String>>>,
 }
 
 /// What to do after one line.
@@ -237,7 +242,7 @@ pub(crate) fn run(opts: &ShowOptions, limits: &Limits) -> ExitCode {
         // be installed the REPL still works, only without that.
         let _ = ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst));
     }
-    let names = Arc::new(Mutex::new(Vec::new()));
+    let names = Arc::new(Mutex::new(BTreeSet::new()));
     let mut editor: Editor<DqHelper, DefaultHistory> = match Editor::new() {
         Ok(e) => e,
         Err(e) => {
@@ -260,7 +265,9 @@ pub(crate) fn run(opts: &ShowOptions, limits: &Limits) -> ExitCode {
         limits,
         ctx: limits.context().clone().with_cancel_flag(interrupt.clone()),
         interrupt,
+        names,
     };
+    let mut status = ExitCode::SUCCESS;
     'read: loop {
         let prompt = if repl.buffer.is_empty() { PROMPT } else { MORE };
         let input = match editor.readline(prompt) {
@@ -271,7 +278,9 @@ pub(crate) fn run(opts: &ShowOptions, limits: &Limits) -> ExitCode {
             }
             Err(ReadlineError::Eof) => break,
             Err(e) => {
+                // The terminal cannot be read or written (the prompt goes to stdout).
                 eprintln!("error: {e}");
+                status = ExitCode::FAILURE;
                 break;
             }
         };
@@ -283,9 +292,6 @@ pub(crate) fn run(opts: &ShowOptions, limits: &Limits) -> ExitCode {
                 break 'read;
             }
         }
-        if let Ok(mut n) = names.lock() {
-            *n = repl.session.bindings().keys().cloned().collect();
-        }
     }
     // Input that ended inside a statement (an open bracket) gets its message, not silence.
     if !repl.buffer.is_empty() {
@@ -295,7 +301,7 @@ pub(crate) fn run(opts: &ShowOptions, limits: &Limits) -> ExitCode {
     if let Some(h) = &history {
         let _ = editor.save_history(h);
     }
-    ExitCode::SUCCESS
+    status
 }
 
 impl Repl<'_> {
@@ -370,7 +376,10 @@ impl Repl<'_> {
         self.interrupt.store(false, Ordering::SeqCst);
         for stmt in program.statements {
             let (tx, rx) = mpsc::channel::<Outcome>();
-            let mut work = self.session.clone();
+            // The session moves to the worker and back (a copy per statement would cost time
+            // in proportion to every binding's size); what the statement binds is recorded and
+            // undone unless it succeeds, uninterrupted.
+            let mut work = std::mem::take(&mut self.session);
             let opts = *self.opts;
             let ctx = self.ctx.clone();
             let source = src.to_owned();
@@ -378,20 +387,29 @@ impl Repl<'_> {
                 .stack_size(crate::STACK)
                 .spawn(move || {
                     let _entered = ctx.enter();
-                    let result = match work.exec(&stmt) {
-                        Ok(Some(d)) => show(&d, &opts).map(Some).map_err(|e| match e {
-                            dqsym::lang::ShowError::Scalar(dqsym::ScalarError::Cancelled) => {
-                                Failure::Interrupted
-                            }
-                            e => Failure::Error(format!("error: {e}")),
-                        }),
-                        Ok(None) => Ok(None),
-                        Err(e) if matches!(e.kind(), EvalErrorKind::Interrupted) => {
-                            Err(Failure::Interrupted)
-                        }
-                        Err(e) => Err(Failure::Error(e.render(&source))),
+                    work.checkpoint();
+                    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                        statement(&mut work, &stmt, &opts, &source)
+                    }))
+                    .unwrap_or_else(|_| {
+                        Err(Failure::Error(
+                            "error: internal failure in the evaluation".to_owned(),
+                        ))
+                    });
+                    // A computation that finished although Ctrl-C came (a step that does not
+                    // look at the flag) still counts as interrupted: it binds nothing.
+                    let result = match result {
+                        Ok(_) if ctx.is_cancelled() => Err(Failure::Interrupted),
+                        r => r,
                     };
-                    let _ = tx.send((work, result));
+                    let added = match result {
+                        Ok(_) => work.commit(),
+                        Err(_) => {
+                            work.rollback();
+                            Vec::new()
+                        }
+                    };
+                    let _ = tx.send((work, added, result));
                 });
             let worker = match spawned {
                 Ok(w) => w,
@@ -405,29 +423,50 @@ impl Repl<'_> {
             // always answers soon; it is joined so that its memory is gone before the prompt.
             let outcome = rx.recv().ok();
             let _ = worker.join();
-            match outcome {
-                Some((next, Ok(shown))) => {
-                    self.session = next;
+            let Some((next, added, result)) = outcome else {
+                eprintln!("error: internal failure in the evaluation; the bindings are lost");
+                return false;
+            };
+            self.session = next;
+            if let Ok(mut names) = self.names.lock() {
+                names.extend(added);
+            }
+            match result {
+                Ok(shown) => {
                     if let Some(text) = shown {
                         print!("{text}");
                     }
                 }
-                Some((_, Err(Failure::Interrupted))) => {
+                Err(Failure::Interrupted) => {
                     release_freed_memory();
                     eprintln!("{INTERRUPTED}");
                     return false;
                 }
-                Some((_, Err(Failure::Error(message)))) => {
+                Err(Failure::Error(message)) => {
                     eprintln!("{message}");
-                    return false;
-                }
-                None => {
-                    eprintln!("error: internal failure in the evaluation");
                     return false;
                 }
             }
         }
         true
+    }
+}
+
+/// Runs one statement and shows its result.
+fn statement(
+    work: &mut Session,
+    stmt: &dqsym::lang::Stmt,
+    opts: &ShowOptions,
+    source: &str,
+) -> Result<Option<String>, Failure> {
+    match work.exec(stmt) {
+        Ok(Some(d)) => show(&d, opts).map(Some).map_err(|e| match e {
+            dqsym::lang::ShowError::Scalar(dqsym::ScalarError::Cancelled) => Failure::Interrupted,
+            e => Failure::Error(format!("error: {e}")),
+        }),
+        Ok(None) => Ok(None),
+        Err(e) if matches!(e.kind(), EvalErrorKind::Interrupted) => Err(Failure::Interrupted),
+        Err(e) => Err(Failure::Error(e.render(source))),
     }
 }
 

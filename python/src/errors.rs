@@ -72,6 +72,8 @@ impl Class {
             | ScalarError::TooManyPairs { .. }
             | ScalarError::Budget { .. }
             | ScalarError::CyclotomicDegree { .. }
+            | ScalarError::TooManyDigits { .. }
+            | ScalarError::AngleSymbols { .. }
             | ScalarError::OutOfRange(_) => Class::Limit,
             _ => Class::Eval,
         }

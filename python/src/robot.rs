@@ -11,13 +11,17 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyModule};
 use std::ffi::CString;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, PoisonError};
 
 /// What a derivation was asked for: the Jacobian, and the point.
 type CacheKey = (bool, Option<[Scalar; 3]>);
 
 /// A robot read from a file: its joints with symbolic variables.
-#[pyclass(module = "dqsym")]
+///
+/// Safe to share between threads: the robot is immutable, and the one piece of state, the
+/// last derivation, is behind a lock held only to read or replace it (two threads asking for
+/// the same derivation at once may both compute it; neither waits for the other's).
+#[pyclass(module = "dqsym", frozen)]
 pub(crate) struct Robot {
     robot: Arc<dqsym::Robot>,
     /// The file's text and name, for walkthroughs.
@@ -25,7 +29,7 @@ pub(crate) struct Robot {
     file: String,
     limits: Limits,
     /// The last derivation, by (Jacobian, point): fk() and fk_matrix() share one.
-    cache: Option<(CacheKey, Arc<FkEntries>)>,
+    cache: Mutex<Option<(CacheKey, Arc<FkEntries>)>>,
     /// What reading a URDF file rounded.
     notes: Vec<String>,
 }
@@ -80,7 +84,7 @@ impl Robot {
             text: Arc::from(text),
             file: file.to_owned(),
             limits,
-            cache: None,
+            cache: Mutex::new(None),
             notes,
         }
     }
@@ -130,13 +134,13 @@ impl Robot {
 
     /// The closed forms of the report with or without the Jacobian and a point.
     fn entries_of(
-        &mut self,
+        &self,
         py: Python<'_>,
         jacobian: bool,
         point: Option<[Scalar; 3]>,
     ) -> PyResult<Arc<FkEntries>> {
         let key = (jacobian, point.clone());
-        if let Some((k, e)) = &self.cache {
+        if let Some((k, e)) = &*self.cache.lock().unwrap_or_else(PoisonError::into_inner) {
             // A report with the Jacobian holds everything one without it does.
             if *k == key || (k.0 && !key.0 && k.1 == key.1) {
                 return Ok(e.clone());
@@ -157,12 +161,12 @@ impl Robot {
             return Err(e);
         }
         let e = Arc::new(r.map_err(|e| errors::report_error(py, &e))?);
-        self.cache = Some((key, e.clone()));
+        *self.cache.lock().unwrap_or_else(PoisonError::into_inner) = Some((key, e.clone()));
         Ok(e)
     }
 
     fn expanded(
-        &mut self,
+        &self,
         py: Python<'_>,
         jacobian: bool,
         point: Option<[Scalar; 3]>,
@@ -386,7 +390,7 @@ impl Robot {
     }
 
     /// The forward kinematics: the unit dual quaternion (a `dqsym.DQ`) in closed form.
-    fn fk(&mut self, py: Python<'_>) -> PyResult<PyObject> {
+    fn fk(&self, py: Python<'_>) -> PyResult<PyObject> {
         let e = self.expanded(py, false, None)?;
         let rows: Vec<dqsym::Expr> = Robot::rows(&e, "dq")
             .into_iter()
@@ -397,7 +401,7 @@ impl Robot {
 
     /// The forward kinematics as the 4x4 homogeneous matrix (a SymPy Matrix) in closed form:
     /// the product of the joint factors' matrices, as `dqsym fk` prints it.
-    fn fk_matrix(&mut self, py: Python<'_>) -> PyResult<PyObject> {
+    fn fk_matrix(&self, py: Python<'_>) -> PyResult<PyObject> {
         let e = self.expanded(py, false, None)?;
         let cells: Vec<dqsym::Expr> = Robot::rows(&e, "T")
             .into_iter()
@@ -412,7 +416,7 @@ impl Robot {
 
     /// The 8 x n Jacobian of the DQ components with respect to the joint variables (a SymPy
     /// Matrix), as `dqsym fk --jacobian` prints it.
-    fn jacobian(&mut self, py: Python<'_>) -> PyResult<PyObject> {
+    fn jacobian(&self, py: Python<'_>) -> PyResult<PyObject> {
         let e = self.expanded(py, true, None)?;
         let n = self.robot.variables.len().max(1);
         let cells: Vec<dqsym::Expr> = Robot::rows(&e, "J")
@@ -426,7 +430,7 @@ impl Robot {
     /// The image of a point of the last link (a 3x1 Matrix): `p` as three values or the text
     /// "x, y, z"; by default the file's `tool`.
     #[pyo3(signature = (p=None))]
-    fn point(&mut self, py: Python<'_>, p: Option<&Bound<'_, PyAny>>) -> PyResult<PyObject> {
+    fn point(&self, py: Python<'_>, p: Option<&Bound<'_, PyAny>>) -> PyResult<PyObject> {
         let p = self.point_arg(py, p)?;
         if p.is_none() {
             return Err(PyValueError::new_err(
@@ -447,7 +451,7 @@ impl Robot {
     /// expression.
     #[pyo3(signature = (jacobian=false, point=None))]
     fn entries<'py>(
-        &mut self,
+        &self,
         py: Python<'py>,
         jacobian: bool,
         point: Option<&Bound<'py, PyAny>>,

@@ -12,7 +12,8 @@ use pyo3::exceptions::{PyKeyError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::sync::atomic::AtomicBool;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, MutexGuard, TryLockError};
+use std::time::Duration;
 
 /// A displayed result: its label, its value as a SymPy object (`value`), and the project's
 /// plain text and LaTeX of the value (`text`, `latex`; `_repr_latex_` for Jupyter).
@@ -105,6 +106,10 @@ fn run_statements(session: &mut LibSession, src: &str, limits: &Limits) -> Run {
         }
     };
     for stmt in &program.statements {
+        // What the statement binds is undone unless it completes, closed forms included, and
+        // uninterrupted: a step that does not look at the cancel flag may finish after
+        // KeyboardInterrupt set it, and its binding must not stay.
+        session.checkpoint();
         let r: Result<Computed, RunError> = match session.exec(stmt) {
             Ok(Some(d)) => match Forms::of(&d.value) {
                 Ok(f) => Ok(Some((d, f))),
@@ -113,14 +118,24 @@ fn run_statements(session: &mut LibSession, src: &str, limits: &Limits) -> Run {
             Ok(None) => Ok(None),
             Err(e) => Err(RunError::Eval(e)),
         };
+        let r = match (r, dqsym::Context::check_cancelled()) {
+            (Ok(_), Err(e)) => Err(RunError::Scalar(e)),
+            (r, _) => r,
+        };
         match r {
-            Ok(Some(x)) => shown.push(x),
-            Ok(None) => {}
+            Ok(Some(x)) => {
+                session.commit();
+                shown.push(x)
+            }
+            Ok(None) => {
+                session.commit();
+            }
             Err(e) => {
+                session.rollback();
                 return Run {
                     shown,
                     error: Some(e),
-                }
+                };
             }
         }
     }
@@ -155,24 +170,50 @@ fn run_error(py: Python<'_>, e: &RunError, src: &str) -> PyErr {
 /// `Session()` requires names to be declared (`syms l1 l2`) or assigned before use, as scripts
 /// do; `Session(implicit_symbols=True)` makes every free name a symbol, as `dqsym -e` does.
 /// The limits are the command line's options (defaults as there).
-#[pyclass(module = "dqsym")]
+///
+/// Safe to share between threads: calls are serialized by a lock (a thread waits, with the
+/// GIL released, while another runs statements), so statements from several threads run one
+/// after another, each whole.
+#[pyclass(module = "dqsym", frozen)]
 pub(crate) struct Session {
-    inner: LibSession,
+    inner: Mutex<LibSession>,
     limits: Limits,
     cancel: Arc<AtomicBool>,
 }
 
+/// How long a thread waiting for a session in use sleeps between looks (with the GIL
+/// released, and looking for KeyboardInterrupt in between).
+const LOCK_POLL: Duration = Duration::from_millis(1);
+
 impl Session {
+    /// The session's bindings, once no other thread uses them. The lock is taken with the
+    /// GIL held but never waited for with it: a thread holding the lock releases the GIL
+    /// while it computes, and one waiting must not keep it meanwhile.
+    fn lock(&self, py: Python<'_>) -> PyResult<MutexGuard<'_, LibSession>> {
+        loop {
+            match self.inner.try_lock() {
+                Ok(g) => return Ok(g),
+                Err(TryLockError::Poisoned(p)) => return Ok(p.into_inner()),
+                Err(TryLockError::WouldBlock) => {
+                    py.allow_threads(|| std::thread::sleep(LOCK_POLL));
+                    py.check_signals()?;
+                }
+            }
+        }
+    }
+
     /// Runs `src` on the worker, with the session moved there and back.
-    fn run_src(&mut self, py: Python<'_>, src: &str) -> PyResult<Vec<Output>> {
-        let mut session = std::mem::take(&mut self.inner);
+    fn run_src(&self, py: Python<'_>, src: &str) -> PyResult<Vec<Output>> {
+        let mut guard = self.lock(py)?;
+        let mut session = std::mem::take(&mut *guard);
         let limits = self.limits;
         let text = src.to_owned();
         let ((session, run), interrupted) = work::run(py, limits, Some(&self.cancel), move || {
             let run = run_statements(&mut session, &text, &limits);
             (session, run)
         })?;
-        self.inner = session;
+        *guard = session;
+        drop(guard);
         if let Some(e) = interrupted {
             return Err(e);
         }
@@ -220,8 +261,8 @@ impl Session {
             LibSession::new()
         };
         let cancel = Arc::new(AtomicBool::new(false));
-        let mut s = Session {
-            inner,
+        let s = Session {
+            inner: Mutex::new(inner),
             limits: Limits {
                 term_limit,
                 max_depth,
@@ -244,12 +285,12 @@ impl Session {
     /// and `column`, at the first failing statement; the ones before it keep their effect and
     /// the failing one changes nothing. KeyboardInterrupt stops a long statement and leaves the
     /// bindings as they were before it.
-    fn run(&mut self, py: Python<'_>, src: &str) -> PyResult<Vec<Output>> {
+    fn run(&self, py: Python<'_>, src: &str) -> PyResult<Vec<Output>> {
         self.run_src(py, src)
     }
 
     /// Runs `src` and returns the value (a SymPy object) of its last displayed result, or None.
-    fn eval(&mut self, py: Python<'_>, src: &str) -> PyResult<PyObject> {
+    fn eval(&self, py: Python<'_>, src: &str) -> PyResult<PyObject> {
         let mut out = self.run_src(py, src)?;
         Ok(match out.pop() {
             Some(o) => o.value,
@@ -260,7 +301,7 @@ impl Session {
     /// The value bound to `name`, as a SymPy object.
     fn __getitem__(&self, py: Python<'_>, name: &str) -> PyResult<PyObject> {
         let v = self
-            .inner
+            .lock(py)?
             .get(name)
             .ok_or_else(|| PyKeyError::new_err(name.to_owned()))?
             .clone();
@@ -272,7 +313,7 @@ impl Session {
     /// Binds `name` to a SymPy expression, a Matrix, a Quaternion, a DQ, a tuple (3: vector,
     /// 4: quaternion, 8: dual quaternion) or a number (exact: ints, Fractions, Rationals).
     fn __setitem__(
-        &mut self,
+        &self,
         py: Python<'_>,
         name: &str,
         value: &Bound<'_, PyAny>,
@@ -281,28 +322,28 @@ impl Session {
             return Err(PyValueError::new_err(format!("`{name}` is not a name")));
         }
         let v = self.convert_in(py, value, name)?;
-        self.inner
+        self.lock(py)?
             .define(name, v)
             .map_err(|e| errors::eval_error(py, &e, ""))
     }
 
-    fn __contains__(&self, name: &str) -> bool {
-        self.inner.get(name).is_some()
+    fn __contains__(&self, py: Python<'_>, name: &str) -> PyResult<bool> {
+        Ok(self.lock(py)?.get(name).is_some())
     }
 
-    fn __len__(&self) -> usize {
-        self.inner.bindings().len()
+    fn __len__(&self, py: Python<'_>) -> PyResult<usize> {
+        Ok(self.lock(py)?.bindings().len())
     }
 
     /// The bound names, sorted.
-    fn keys(&self) -> Vec<String> {
-        self.inner.bindings().keys().cloned().collect()
+    fn keys(&self, py: Python<'_>) -> PyResult<Vec<String>> {
+        Ok(self.lock(py)?.bindings().keys().cloned().collect())
     }
 
     /// How each name was bound: "variable", "symbol" or "halfangle".
     fn kinds<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
-        for (k, b) in self.inner.bindings() {
+        for (k, b) in self.lock(py)?.bindings() {
             let kind = match &b.kind {
                 dqsym::lang::BindingKind::Variable => "variable",
                 dqsym::lang::BindingKind::Symbol => "symbol",
@@ -314,8 +355,11 @@ impl Session {
         Ok(d)
     }
 
-    fn __repr__(&self) -> String {
-        format!("dqsym.Session({} bindings)", self.inner.bindings().len())
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        Ok(format!(
+            "dqsym.Session({} bindings)",
+            self.lock(py)?.bindings().len()
+        ))
     }
 }
 
@@ -329,7 +373,7 @@ pub(crate) fn evaluate(
     src: &str,
     bindings: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyObject> {
-    let mut s = Session::new(
+    let s = Session::new(
         py,
         true,
         Limits::SCRIPT.term_limit,

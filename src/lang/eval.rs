@@ -214,7 +214,12 @@ pub(crate) fn op_error(e: OpError, span: Span) -> EvalError {
 pub struct Session {
     bindings: BTreeMap<String, Binding>,
     implicit_symbols: bool,
+    /// Since [`Session::checkpoint`]: each name bound, with what it was bound to before.
+    journal: Option<Vec<(String, Option<Binding>)>>,
 }
+
+/// The language's keywords: never names (the grammar's `keyword` rule).
+pub const KEYWORDS: [&str; 2] = ["syms", "halfangle"];
 
 impl Session {
     /// An empty session in which names must be declared (`syms`) or assigned before use.
@@ -235,10 +240,48 @@ impl Session {
     /// than text (the Python package). Constants and `halfangle` names are refused with the
     /// error that assignment gives, at the default span.
     pub fn define(&mut self, name: &str, value: Value) -> Result<()> {
+        if KEYWORDS.contains(&name) {
+            return Err(EvalError::new(
+                EvalErrorKind::Reserved {
+                    name: name.to_owned(),
+                    meaning: "a keyword".to_owned(),
+                },
+                Span::default(),
+            ));
+        }
         check_not_constant(name, Span::default())?;
         self.check_not_half_angle(name, Span::default())?;
         self.bind(name, value, BindingKind::Variable);
         Ok(())
+    }
+
+    /// Starts recording what statements bind, so that [`Session::rollback`] can undo them
+    /// (an interrupted statement whose result was computed but must not count); costs one
+    /// entry per binding made, never a copy of the session.
+    pub fn checkpoint(&mut self) {
+        self.journal = Some(Vec::new());
+    }
+
+    /// Keeps what was bound since [`Session::checkpoint`] and stops recording; returns the
+    /// names that were not bound before (a REPL's completion list grows by them).
+    pub fn commit(&mut self) -> Vec<String> {
+        self.journal
+            .take()
+            .unwrap_or_default()
+            .into_iter()
+            .filter_map(|(name, old)| old.is_none().then_some(name))
+            .collect()
+    }
+
+    /// Puts every binding made since [`Session::checkpoint`] back as it was, and stops
+    /// recording (nothing happens without a checkpoint).
+    pub fn rollback(&mut self) {
+        for (name, old) in self.journal.take().unwrap_or_default().into_iter().rev() {
+            match old {
+                Some(b) => self.bindings.insert(name, b),
+                None => self.bindings.remove(&name),
+            };
+        }
     }
 
     /// The bindings, sorted by name.
@@ -407,8 +450,12 @@ impl Session {
     }
 
     fn bind(&mut self, name: &str, value: Value, kind: BindingKind) {
-        self.bindings
+        let old = self
+            .bindings
             .insert(name.to_owned(), Binding { value, kind });
+        if let Some(j) = &mut self.journal {
+            j.push((name.to_owned(), old));
+        }
     }
 
     fn check_not_half_angle(&self, name: &str, span: Span) -> Result<()> {

@@ -31,7 +31,9 @@ mod value;
 pub use ast::{AddOp, Expr, ExprKind, Ident, MulOp, Program, Span, Stmt, StmtKind, UnaryOp};
 pub use builtins::{lookup as builtin, Builtin, BUILTINS};
 pub use error::{ParseError, ParseErrorKind};
-pub use eval::{Binding, BindingKind, Displayed, EvalError, EvalErrorKind, Session, CONSTANTS};
+pub use eval::{
+    Binding, BindingKind, Displayed, EvalError, EvalErrorKind, Session, CONSTANTS, KEYWORDS,
+};
 pub(crate) use eval::{Event, Observer};
 pub use field::{eval_point_text, eval_scalar_text};
 pub use parse::{parse, parse_expr, parse_expr_with, parse_with, ParseOptions};

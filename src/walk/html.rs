@@ -566,13 +566,28 @@ const IK_JS: &str = r#"(function () {
 })();
 "#;
 
+/// The tag every page carries in its head: how `dqsym walk --html` recognizes a file it wrote
+/// (one it may write over without `--force`).
+pub const PAGE_MARKER: &str = "<meta name=\"generator\" content=\"dqsym walk\">";
+
+/// Whether `head`, the start of a file (its first kilobytes), is a page `dqsym walk --html`
+/// wrote: it starts with the doctype and carries [`PAGE_MARKER`] in its head.
+pub fn is_walk_page(head: &str) -> bool {
+    let head = head.trim_start_matches('\u{feff}');
+    head.starts_with("<!DOCTYPE html>")
+        && head
+            .split("</head>")
+            .next()
+            .is_some_and(|h| h.contains(PAGE_MARKER))
+}
+
 /// The page around a walkthrough's body: KaTeX's style and script inlined, the page's own
 /// style and renderer, and the mechanism's scripts (if any) last.
 fn html_page(title: &str, katex: &KatexAssets, body: &str, scripts: Option<&str>) -> String {
     format!(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
-         <title>{}</title>\n<style>{}</style>\n<style>{STYLE}</style>\n</head>\n<body>\n<main>\n\
+         {PAGE_MARKER}\n<title>{}</title>\n<style>{}</style>\n<style>{STYLE}</style>\n</head>\n<body>\n<main>\n\
          {body}</main>\n<script>{}</script>\n<script>{RENDER}</script>\n{}</body>\n</html>\n",
         xml_escape(title),
         katex.css,

@@ -26,7 +26,7 @@ mod svg;
 mod text;
 
 pub use forms::Forms;
-pub use html::{ik_walk_html, walk_html, KatexAssets};
+pub use html::{ik_walk_html, is_walk_page, walk_html, KatexAssets, PAGE_MARKER};
 pub use motion::{Motion, Word, Words};
 pub use robot::{walk_robot, walk_robot_chain};
 pub use script::walk_script;

@@ -402,6 +402,31 @@ impl Scene {
             axes.push(eval3(n, &env)?);
         }
         line.push(eval3(&self.tool, &env)?);
+        // Values near the end of f64's range (`l1=-1e308`) make coordinates infinite or NaN;
+        // the drawing would hold `NaN`. Every coordinate finite, and below 1e150 so that the
+        // reach's squares stay finite too, or an error naming the values.
+        if line
+            .iter()
+            .chain(&axes)
+            .flatten()
+            .any(|c| !c.is_finite() || c.abs() >= 1e150)
+        {
+            let values: Vec<String> = self
+                .symbols
+                .iter()
+                .filter(|s| s.value.abs() >= 1e6)
+                .map(|s| format!("{} = {:e}", s.name, s.value))
+                .collect();
+            return Err(WalkError::Config(format!(
+                "the mechanism cannot be drawn: its coordinates leave the range of floating point \
+                 numbers ({}); give smaller values with --config",
+                if values.is_empty() {
+                    "some values are too large".to_owned()
+                } else {
+                    values.join(", ")
+                }
+            )));
+        }
         Ok((line, axes))
     }
 

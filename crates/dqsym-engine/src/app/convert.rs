@@ -230,8 +230,19 @@ fn dot(a: &V, b: &V) -> Scalar {
     &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]
 }
 
-fn is_zero(v: &V) -> bool {
-    v.iter().all(Scalar::is_zero_value)
+fn is_zero(v: &V) -> Result<bool, String> {
+    let mut all = true;
+    for x in v {
+        all &= vanishes(x)?;
+    }
+    Ok(all)
+}
+
+/// Whether `x` is zero; a limit reached by the arithmetic of the check is the refusal's
+/// reason itself, never a "no" (it once read as "a mimic joint").
+fn vanishes(x: &Scalar) -> Result<bool, String> {
+    x.try_is_zero()
+        .map_err(|e| format!("a size limit was reached while checking it ({e})"))
 }
 
 fn num(x: &Scalar) -> f64 {
@@ -258,8 +269,8 @@ fn angle_of(c: &Scalar, s: &Scalar, what: &str) -> Result<Scalar, String> {
         return Err(refuse());
     }
     let a = Scalar::pi() * <Scalar as crate::Ring>::from_ratio(k as i64, 12);
-    let exact = |x: Scalar, y: &Scalar| (x - y).is_zero_value();
-    if exact(a.cos(), c) && exact(a.sin(), s) {
+    let exact = |x: Scalar, y: &Scalar| vanishes(&(x - y)).map_err(|m| format!("{what}: {m}"));
+    if exact(a.cos(), c)? && exact(a.sin(), s)? {
         Ok(a)
     } else {
         Err(refuse())
@@ -290,11 +301,10 @@ fn frame_of(f: &DualQuat<Scalar>, what: &str) -> Result<Frame, String> {
         rpy: [snap(roll), snap(pitch), snap(yaw)],
     };
     let back = frame.dq()?.to_matrix().rows;
-    let same = back
-        .iter()
-        .flatten()
-        .zip(m.iter().flatten())
-        .all(|(x, y)| (x - y).is_zero_value());
+    let mut same = true;
+    for (x, y) in back.iter().flatten().zip(m.iter().flatten()) {
+        same &= vanishes(&(x - y)).map_err(|m| format!("{what}: {m}"))?;
+    }
     if same {
         Ok(frame)
     } else {
@@ -319,10 +329,11 @@ fn dh_form(robot: &Robot) -> Result<Dh, String> {
         .zip(&robot.joint_values)
         .enumerate()
     {
-        let plain = robot
-            .variables
-            .iter()
-            .any(|v| (value - &Scalar::sym(v)).is_zero_value());
+        let mut plain = false;
+        for v in &robot.variables {
+            plain |= vanishes(&(value - &Scalar::sym(v)))
+                .map_err(|m| format!("joint {}: {m}", i + 1))?;
+        }
         let shared = lines.iter().any(|l| l.3 == *value);
         if !plain || shared {
             return Err(format!(
@@ -344,7 +355,7 @@ fn dh_form(robot: &Robot) -> Result<Dh, String> {
         "the sine of joint 1's polar angle",
     )?;
     let polar = angle_of(&u[2], &sin_polar, "joint 1's polar angle")?;
-    let azimuth = if sin_polar.is_zero_value() {
+    let azimuth = if vanishes(&sin_polar)? {
         zero()
     } else {
         angle_of(
@@ -378,7 +389,7 @@ fn dh_form(robot: &Robot) -> Result<Dh, String> {
         let p2 = match (next_kind, lines.get(i + 2)) {
             (JointKind::Revolute, _) => p2.clone(),
             (JointKind::Prismatic, Some((JointKind::Revolute, u3, p3, _)))
-                if is_zero(&cross(u2, u3)) =>
+                if is_zero(&cross(u2, u3))? =>
             {
                 p3.clone()
             }
@@ -387,7 +398,7 @@ fn dh_form(robot: &Robot) -> Result<Dh, String> {
         let w = sub(&p2, &origin);
         let c = cross(u, u2);
         let j = i + 1;
-        let (d, a, xn) = if !is_zero(&c) {
+        let (d, a, xn) = if !is_zero(&c).map_err(|m| format!("joint {j}: {m}"))? {
             let s2 = dot(&c, &c);
             let s = root(
                 &s2,
@@ -403,7 +414,7 @@ fn dh_form(robot: &Robot) -> Result<Dh, String> {
             (d, a, xn)
         } else {
             let perp = sub(&w, &scale(&dot(&w, u), u));
-            if is_zero(&perp) {
+            if is_zero(&perp).map_err(|m| format!("joint {j}: {m}"))? {
                 (zero(), zero(), x.clone())
             } else {
                 let a = root(
@@ -437,8 +448,8 @@ fn dh_form(robot: &Robot) -> Result<Dh, String> {
         let z =
             DualQuat::from_real(home.real.clone()).transform_point(&[zero(), zero(), one.clone()]);
         let at = home.translation_part();
-        let on_line = *kind == JointKind::Prismatic || is_zero(&cross(&sub(&at, p), u));
-        if !is_zero(&sub(&z, u)) || !on_line {
+        let on_line = *kind == JointKind::Prismatic || is_zero(&cross(&sub(&at, p), u))?;
+        if !is_zero(&sub(&z, u))? || !on_line {
             return Err(format!(
                 "joint {}'s DH frame misses its axis (a bug)",
                 i + 1
@@ -450,22 +461,24 @@ fn dh_form(robot: &Robot) -> Result<Dh, String> {
     let tool = home.conjugate() * &robot.chain.tool;
     let tool = frame_of(&tool, "the tip in the last joint's frame")?;
     let tool_dq = tool.dq()?;
-    let same = (home * tool_dq)
+    let mut same = true;
+    for (x, y) in (home * tool_dq)
         .to_matrix()
         .rows
         .iter()
         .flatten()
         .zip(robot.chain.tool.to_matrix().rows.iter().flatten())
-        .all(|(x, y)| (x - y).is_zero_value());
+    {
+        same &= vanishes(&(x - y)).map_err(|m| format!("the tip's home pose: {m}"))?;
+    }
     if !same {
         return Err("the tip's home pose differs (a bug)".into());
     }
     let mut base = robot.base_frames.clone();
-    let identity = base_frame
-        .xyz
-        .iter()
-        .chain(&base_frame.rpy)
-        .all(Scalar::is_zero_value);
+    let mut identity = true;
+    for x in base_frame.xyz.iter().chain(&base_frame.rpy) {
+        identity &= vanishes(x)?;
+    }
     if !identity {
         base.push(base_frame);
     }

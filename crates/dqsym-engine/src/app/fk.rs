@@ -144,8 +144,15 @@ pub fn fk_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError
         .saturating_sub(crate::scalar::work_used());
     let expanded = with_own_budget(left, || expanded_entries(robot, o));
     match expanded {
+        // Every size limit: too many terms, term pairs (a product of the constant frames of
+        // a URDF with angles off the pi/12 grid), digits or symbols in one angle (a long chain
+        // of collinear axes), or work.
         Some(Err(ReportError::Scalar(
-            ScalarError::TooLarge { .. } | ScalarError::Budget { .. },
+            ScalarError::TooLarge { .. }
+            | ScalarError::TooManyPairs { .. }
+            | ScalarError::TooManyDigits { .. }
+            | ScalarError::AngleSymbols { .. }
+            | ScalarError::Budget { .. },
         )))
         | None => recurrence_entries(robot, o),
         Some(Ok(sections)) if text_exceeds(&sections, MAX_EXPANDED_TEXT) => {

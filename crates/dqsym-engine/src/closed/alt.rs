@@ -734,11 +734,18 @@ fn c_add(p: &mut Laurent, e: i64, c: &C) {
 }
 
 /// `p / ((z^a + z^-a)/2)` (cosine) or `p / ((z^a - z^-a)/(2i))` (sine) when exact.
+///
+/// Each step charges its work (one unit, and the size of its coefficients: a product of many
+/// constant cosines has coefficients of hundreds of digits); out of budget or cancelled, the
+/// division gives up (`None`), and the error comes from the next charge of the closed form.
 fn divide_trig(p: &Laurent, a: i64, sin: bool) -> Option<Laurent> {
     let mut r = p.clone();
     let lo = *p.keys().next()?;
     let mut q = Laurent::new();
     while let Some((&t, c)) = r.iter().next_back() {
+        let words = |x: &Rat| (x.numer().bits() + x.denom().bits()) / 64;
+        let w = words(&c.0) + words(&c.1);
+        crate::scalar::charge(1 + w * w / 4).ok()?;
         let c = c.clone();
         let e = t - a;
         if e - a < lo {

@@ -197,6 +197,11 @@ fn round(ctx: &mut Ctx, mons: &[Mon], rec: &mut Option<&mut Recorder>) -> (Vec<M
         .iter()
         .map(|m| m.atoms.len() * m.atoms.len().saturating_sub(1) / 2)
         .sum();
+    // The round's work, charged before it is done; out of budget or cancelled, the round
+    // changes nothing and the error comes from the closed form's next charge.
+    if crate::scalar::charge((mons.len() + pairs) as u64).is_err() {
+        return (mons.to_vec(), false);
+    }
     let mut index: Vec<Entry> = Vec::with_capacity(pairs);
     for (i, m) in mons.iter().enumerate() {
         for p in 0..m.atoms.len() {

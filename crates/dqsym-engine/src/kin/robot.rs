@@ -966,10 +966,15 @@ fn vec3(v: Option<&Vec<String>>, name: &str, eval: FieldEval) -> Result<[Scalar;
 pub(crate) fn unit_numeric(a: &[Scalar; 3]) -> Result<[Scalar; 3], String> {
     let n2 = &a[0] * &a[0] + &a[1] * &a[1] + &a[2] * &a[2];
     if !a.iter().all(Scalar::is_constant) {
-        return if (&n2 - &Scalar::int(1)).is_zero_value() {
-            Ok(a.clone())
-        } else {
-            Err("a symbolic axis must have unit length (x^2 + y^2 + z^2 = 1 exactly)".into())
+        // A limit reached by the check is that limit, not a "no".
+        return match (&n2 - &Scalar::int(1)).try_is_zero() {
+            Ok(true) => Ok(a.clone()),
+            Ok(false) => {
+                Err("a symbolic axis must have unit length (x^2 + y^2 + z^2 = 1 exactly)".into())
+            }
+            Err(e) => Err(format!(
+                "a size limit was reached while checking that the axis has unit length: {e}"
+            )),
         };
     }
     if n2.is_zero_value() {

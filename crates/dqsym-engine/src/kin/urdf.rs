@@ -133,8 +133,20 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
     };
     let mut links: BTreeSet<String> = BTreeSet::new();
     let mut joints: Vec<UrdfJoint> = Vec::new();
+    // Line numbers counted as the elements come, in document order: `text_pos_at` scans the
+    // text from its start at each call, quadratic in the elements (most of the time of a URDF
+    // of 2,000 joints).
+    let (mut counted, mut row) = (0usize, 1u32);
     for node in root.children().filter(|n| n.is_element()) {
-        let line = doc.text_pos_at(node.range().start).row;
+        let start = node.range().start;
+        if start >= counted {
+            row += text.as_bytes()[counted..start]
+                .iter()
+                .filter(|&&b| b == b'\n')
+                .count() as u32;
+            counted = start;
+        }
+        let line = row;
         match node.tag_name().name() {
             "link" => {
                 let name = node

@@ -19,9 +19,6 @@ use std::rc::Rc;
 /// How many term pairs one product may form, as a multiple of the term limit.
 const PRODUCT_FACTOR: usize = 2;
 
-/// The largest result, in bits, a power of a number may have.
-const MAX_POW_BITS: u64 = 1 << 20;
-
 /// Propagates error values: the first operand's error wins.
 macro_rules! terms_or_return {
     ($a:expr, $b:expr) => {
@@ -34,7 +31,13 @@ macro_rules! terms_or_return {
 
 pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
     let (x, y) = terms_or_return!(a, b);
-    if let Err(e) = charge((x.len() + y.len()) as u64) {
+    // Adding two coefficients of `a` and `b` words and reducing the sum costs like
+    // `(a + b)^2`, at most `2 (a^2 + b^2)`; a big term, [`BIG_PAIR`] more.
+    let ((bx, _, qx), (by, _, qy)) = (coefficient_words(x), coefficient_words(y));
+    let big = (bx + by)
+        .saturating_mul(BIG_PAIR)
+        .saturating_add(qx.saturating_add(qy).saturating_mul(2));
+    if let Err(e) = charge(((x.len() + y.len()) as u64).saturating_add(big)) {
         return Scalar::error(e);
     }
     let mut out = Vec::with_capacity(x.len() + y.len());
@@ -171,10 +174,46 @@ fn mode_runs(t: &[Term]) -> Vec<&[Term]> {
 /// The work of a product, for the budget: one unit per pair of terms plus one per symbol of the
 /// pair's monomials, since merging monomials is what a pair costs when symbols are many (a chain
 /// of fully symbolic links spends most of its time there).
+///
+/// Big coefficients add their own work: a pair with a big coefficient costs [`BIG_PAIR`]
+/// units (the big rationals' allocation and reduction), and multiplying two rationals of `a`
+/// and `b` words and reducing the result (a binary gcd, some 64 steps per word) takes time
+/// like `(a + b)^2` word operations, counted one unit each. Summed over all pairs before any
+/// is formed: `ny sum(a^2) + nx sum(b^2) + 2 sum(a) sum(b)`, so products of huge numbers
+/// (`cos(1) * ... * cos(512)`'s coefficients, repeated squaring) run out of the budget at
+/// once instead of after minutes. (Calibrated on the product of 512 constant cosines, whose
+/// pairs of three-word coefficients took some eight times a small pair's time.)
 fn product_work(x: &[Term], y: &[Term]) -> u64 {
     let syms = |t: &[Term]| t.iter().map(|t| t.mono.len() as u64).sum::<u64>();
     let (nx, ny) = (x.len() as u64, y.len() as u64);
-    nx * ny + ny * syms(x) + nx * syms(y)
+    let (bx, sx, qx) = coefficient_words(x);
+    let (by, sy, qy) = coefficient_words(y);
+    let big_pairs = nx * ny - (nx - bx) * (ny - by);
+    let words = ny
+        .saturating_mul(qx)
+        .saturating_add(nx.saturating_mul(qy))
+        .saturating_add(sx.saturating_mul(sy).saturating_mul(2));
+    (nx * ny + ny * syms(x) + nx * syms(y))
+        .saturating_add(big_pairs.saturating_mul(BIG_PAIR))
+        .saturating_add(words)
+}
+
+/// The work of one term operation with a big coefficient beyond its words (see
+/// [`product_work`]).
+const BIG_PAIR: u64 = 8;
+
+/// The number of big coefficients of `t`, the sum of their words, and of their squares.
+fn coefficient_words(t: &[Term]) -> (u64, u64, u64) {
+    t.iter()
+        .map(|t| t.coef.words())
+        .filter(|&w| w > 0)
+        .fold((0, 0, 0), |(n, s, q), w| {
+            (
+                n + 1,
+                s.saturating_add(w),
+                q.saturating_add(w.saturating_mul(w)),
+            )
+        })
 }
 
 pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
@@ -250,11 +289,12 @@ impl Scalar {
             return Scalar::int(1);
         }
         if let Some(q) = self.as_rational() {
+            // `q^n` has about `n` times the bits of `q`: refused before it is computed.
             let bits = q.numer().bits().max(q.denom().bits());
-            if bits > 1 && bits.saturating_mul(n) > MAX_POW_BITS {
-                return Scalar::error(ScalarError::OutOfRange(format!(
-                    "power {n} of {q} is too large"
-                )));
+            let digits = super::digits_of_bits(bits.saturating_sub(1).saturating_mul(n));
+            let limit = super::max_digits();
+            if bits > 1 && digits > limit {
+                return Scalar::error(ScalarError::TooManyDigits { digits, limit });
             }
         }
         if n > u32::MAX as u64 {

@@ -1,7 +1,8 @@
 //! The execution context: the limits of a computation and its cancel flag, as one value.
 //!
 //! A [`Context`] says how large a scalar may grow (`term_limit`), the largest exponent `^`
-//! accepts (`max_exponent`), how much work one unit of evaluation may do (`work_budget`, in
+//! accepts (`max_exponent`), the most decimal digits a computed number may have
+//! (`max_digits`), the most symbols inside one angle (`max_angle_symbols`), how much work one unit of evaluation may do (`work_budget`, in
 //! term operations), how many threads parallel maps use (`threads`), and carries a cancel flag
 //! shared with whoever may want to stop the computation (a Ctrl-C handler).
 //!
@@ -38,6 +39,17 @@ pub const DEFAULT_MAX_EXPONENT: u64 = 10_000;
 /// The default term limit.
 const DEFAULT_TERM_LIMIT: usize = 200_000;
 
+/// The default largest number of decimal digits of a computed rational's numerator or
+/// denominator: the language's limit for an integer literal. A product of two such numbers
+/// takes microseconds, a term limit's worth of them tens of megabytes.
+pub const DEFAULT_MAX_DIGITS: u64 = 10_000;
+
+/// The default largest number of symbols inside one angle: a chain of that many joints with
+/// collinear axes adds every joint variable into one `cos(q1 + ... + qn)`, and each partial
+/// product holds its own prefix of the sum (memory quadratic in the joints: 1,000 of them
+/// about 200 MB, 10,000 past any machine).
+pub const DEFAULT_MAX_ANGLE_SYMBOLS: usize = 1_000;
+
 /// The default largest degree `phi(W)` of the cyclotomic field `Q(zeta_W)` in which the
 /// constants at rational multiples of pi of one group of terms are made canonical: every
 /// denominator up to 100 alone (`pi/97`, degree 768), with thirds and quarters too (`pi/59`
@@ -50,6 +62,8 @@ pub struct Context {
     term_limit: usize,
     max_exponent: u64,
     max_cyclotomic_degree: u64,
+    max_digits: u64,
+    max_angle_symbols: usize,
     work_budget: u64,
     threads: usize,
     cancel: Option<Arc<AtomicBool>>,
@@ -61,6 +75,8 @@ impl Default for Context {
             term_limit: DEFAULT_TERM_LIMIT,
             max_exponent: DEFAULT_MAX_EXPONENT,
             max_cyclotomic_degree: DEFAULT_MAX_CYCLOTOMIC_DEGREE,
+            max_digits: DEFAULT_MAX_DIGITS,
+            max_angle_symbols: DEFAULT_MAX_ANGLE_SYMBOLS,
             work_budget: u64::MAX,
             threads: available_threads(),
             cancel: None,
@@ -129,6 +145,21 @@ impl Context {
         self
     }
 
+    /// A computed rational whose numerator or denominator has more than `n` decimal digits
+    /// (at least 1) makes the result a [`ScalarError::TooManyDigits`]: products and sums
+    /// check what they form, powers before they start.
+    pub fn with_max_digits(mut self, n: u64) -> Context {
+        self.max_digits = n.max(1);
+        self
+    }
+
+    /// A result with more than `n` symbols (at least 1) inside one angle becomes a
+    /// [`ScalarError::AngleSymbols`]: the term limit counts terms, not what is inside them.
+    pub fn with_max_angle_symbols(mut self, n: usize) -> Context {
+        self.max_angle_symbols = n.max(1);
+        self
+    }
+
     /// Once more than `units` term operations (one per term of a sum; one per pair of terms of
     /// a product, plus one per symbol of the pair's monomials) have been charged since the
     /// context was entered, every further operation yields [`ScalarError::Budget`]. The term
@@ -165,6 +196,16 @@ impl Context {
     /// The largest degree of a cyclotomic field the exact constants are computed in.
     pub fn max_cyclotomic_degree(&self) -> u64 {
         self.max_cyclotomic_degree
+    }
+
+    /// The largest number of decimal digits of a computed number.
+    pub fn max_digits(&self) -> u64 {
+        self.max_digits
+    }
+
+    /// The largest number of symbols inside one angle.
+    pub fn max_angle_symbols(&self) -> usize {
+        self.max_angle_symbols
     }
 
     /// The work budget, in term operations.
@@ -265,6 +306,24 @@ pub(crate) fn max_cyclotomic_degree() -> u64 {
             .map_or(DEFAULT_MAX_CYCLOTOMIC_DEGREE, |st| {
                 st.ctx.max_cyclotomic_degree
             })
+    })
+}
+
+/// The largest number of decimal digits of a computed number in the entered context.
+pub(crate) fn max_digits() -> u64 {
+    STATE.with(|s| {
+        s.borrow()
+            .as_ref()
+            .map_or(DEFAULT_MAX_DIGITS, |st| st.ctx.max_digits)
+    })
+}
+
+/// The largest number of symbols inside one angle in the entered context.
+pub(crate) fn max_angle_symbols() -> usize {
+    STATE.with(|s| {
+        s.borrow()
+            .as_ref()
+            .map_or(DEFAULT_MAX_ANGLE_SYMBOLS, |st| st.ctx.max_angle_symbols)
     })
 }
 

@@ -38,8 +38,13 @@ pub(crate) use arith::FxHasher;
 pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use atoms::{Sym, Trig};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
-pub(crate) use ctx::{charge, check_cancelled, term_limit, work_used, Poll};
-pub use ctx::{Context, Entered, DEFAULT_MAX_CYCLOTOMIC_DEGREE, DEFAULT_MAX_EXPONENT};
+pub(crate) use ctx::{
+    charge, check_cancelled, max_angle_symbols, max_digits, term_limit, work_used, Poll,
+};
+pub use ctx::{
+    Context, Entered, DEFAULT_MAX_ANGLE_SYMBOLS, DEFAULT_MAX_CYCLOTOMIC_DEGREE, DEFAULT_MAX_DIGITS,
+    DEFAULT_MAX_EXPONENT,
+};
 pub use decimal::{parse_decimal, short_numbers};
 pub use frac::Frac;
 pub(crate) use par::{join, par_map, with_own_budget};
@@ -133,6 +138,31 @@ pub enum ScalarError {
         /// The limit.
         limit: u64,
     },
+    /// A computed number would have more decimal digits than the context allows (see
+    /// [`Context::with_max_digits`]).
+    #[error(
+        "number too large: a computed number of about {digits} digits, over the limit of \
+         {limit} digits (--max-digits raises it)"
+    )]
+    TooManyDigits {
+        /// Its decimal digits (of the numerator or the denominator, whichever is longer;
+        /// from its size in bits, so within one of the exact count).
+        digits: u64,
+        /// The limit.
+        limit: u64,
+    },
+    /// A result would hold an angle with more symbols than the context allows (see
+    /// [`Context::with_max_angle_symbols`]).
+    #[error(
+        "expression too large: an angle of {symbols} symbols, over the limit of {limit} \
+         symbols in one angle (--max-angle-symbols raises it)"
+    )]
+    AngleSymbols {
+        /// The symbols of the angle.
+        symbols: usize,
+        /// The limit.
+        limit: usize,
+    },
     /// The computation was cancelled through its context's cancel flag (Ctrl-C).
     #[error("interrupted")]
     Cancelled,
@@ -156,6 +186,45 @@ impl Term {
             .then_with(|| self.mono.cmp(&other.mono))
             .then_with(|| self.rad.cmp(&other.rad))
     }
+}
+
+/// Every scalar built from terms passes here: a coefficient past the context's digit limit
+/// makes it [`ScalarError::TooManyDigits`] (repeated squaring grew numbers until the
+/// allocator failed). Only big coefficients are looked at.
+fn check_digits(terms: &[Term]) -> Result<(), ScalarError> {
+    let Some(bits) = terms
+        .iter()
+        .map(|t| t.coef.bits())
+        .filter(|&b| b > 63)
+        .max()
+    else {
+        return Ok(());
+    };
+    let limit = max_digits();
+    let digits = digits_of_bits(bits);
+    if digits > limit {
+        return Err(ScalarError::TooManyDigits { digits, limit });
+    }
+    Ok(())
+}
+
+/// A scalar with an angle of more symbols than the context allows is an error (a chain of
+/// thousands of collinear joints grew memory quadratically with no limit reached).
+fn check_angles(terms: &[Term]) -> Result<(), ScalarError> {
+    let Some(symbols) = terms.iter().map(|t| t.mode.freq.len()).max() else {
+        return Ok(());
+    };
+    let limit = max_angle_symbols();
+    if symbols > limit {
+        return Err(ScalarError::AngleSymbols { symbols, limit });
+    }
+    Ok(())
+}
+
+/// The decimal digits of a positive integer of `bits` bits, within one (from above: the
+/// count of the largest such integer, `2^bits - 1`).
+pub(crate) fn digits_of_bits(bits: u64) -> u64 {
+    (bits as f64 * std::f64::consts::LOG10_2).ceil() as u64
 }
 
 /// The terms of one sorted run.
@@ -301,6 +370,9 @@ impl Scalar {
                 limit,
             });
         }
+        if let Err(e) = check_digits(&terms).and_then(|()| check_angles(&terms)) {
+            return Scalar::error(e);
+        }
         Scalar(Repr::Terms(terms))
     }
 
@@ -393,6 +465,15 @@ impl Scalar {
     /// True for the zero scalar (no terms).
     pub fn is_empty(&self) -> bool {
         self.is_zero_value()
+    }
+
+    /// Whether the scalar is zero, or the error it holds: a check whose own arithmetic
+    /// reached a limit has no answer, and must not read as "not zero".
+    pub fn try_is_zero(&self) -> Result<bool, ScalarError> {
+        match &self.0 {
+            Repr::Terms(t) => Ok(t.is_empty()),
+            Repr::Error(e) => Err(e.clone()),
+        }
     }
 
     /// True for the zero scalar.

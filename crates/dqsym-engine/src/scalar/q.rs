@@ -149,6 +149,23 @@ impl Q {
         Q::B(Box::new(q))
     }
 
+    /// The size in bits of the longer of the numerator and the denominator.
+    pub(crate) fn bits(&self) -> u64 {
+        match self {
+            Q::S(n, d) => u64::from(64 - n.unsigned_abs().max(d.unsigned_abs()).leading_zeros()),
+            Q::B(b) => b.numer().bits().max(b.denom().bits()),
+        }
+    }
+
+    /// The 64-bit words of a big value's numerator and denominator together (0 for a small
+    /// one): what the work of an operation on it grows with.
+    pub(crate) fn words(&self) -> u64 {
+        match self {
+            Q::S(..) => 0,
+            Q::B(b) => (b.numer().bits() + b.denom().bits()).div_ceil(64),
+        }
+    }
+
     /// The value as a big rational.
     pub(crate) fn to_big(&self) -> BigRational {
         match self {
