@@ -219,7 +219,9 @@ enum Command {
         #[arg(long, value_name = "X, Y, Z")]
         point: Option<String>,
         /// Add the 8 x n Jacobian d dq[i] / d q[j]; `--jacobian=KIND` gives instead a task
-        /// Jacobian of DQ Robotics: pose (the same 8 x n), rotation, translation,
+        /// Jacobian: geometric (6 x n: the end-effector origin's velocity over the angular
+        /// velocity, base frame), geometric_body (the same in the end-effector frame), or one
+        /// of DQ Robotics: pose (the same 8 x n), rotation, translation,
         /// line[:X,Y,Z], plane[:X,Y,Z] (end-effector direction, default z), distance,
         /// point_to_point:X,Y,Z, point_to_line:DX,DY,DZ,PX,PY,PZ, point_to_plane:NX,NY,NZ,PX,PY,PZ
         /// (workspace point, line, plane), or pose_derivative (a function of q and the rates
@@ -275,9 +277,10 @@ struct RobotArgs {
     /// URDF: the first link of the chain (default: the root link).
     #[arg(long, value_name = "LINK")]
     base: Option<String>,
-    /// URDF: keep every nonzero angle as a named parameter (its decimal the nominal value)
-    /// instead of reading those within 0.001 of a multiple of pi/12 (1.5708, 3.14159) as that
-    /// multiple.
+    /// Take angles as written, in radians: a robot file's decimals and URDF angles are not
+    /// read as multiples of pi/12 (1.5708 as pi/2, within the tolerance of their decimals),
+    /// a robot file's bare angle past 2 pi is not refused (URDF: every nonzero angle becomes
+    /// a named parameter, its decimal the nominal value).
     #[arg(long)]
     exact_angles: bool,
 }
@@ -312,14 +315,22 @@ fn load_robot(path: &std::path::Path, args: &RobotArgs) -> Result<dqsym::Robot, 
         Ok(r.robot)
     } else {
         urdf_only(args)?;
-        dqsym::parse_robot(&text, &name, &dqsym::eval_scalar_text).map_err(|e| e.to_string())
+        let o = dqsym::kin::RobotOptions {
+            exact_angles: args.exact_angles,
+        };
+        let r = dqsym::kin::parse_robot_with(&text, &name, &dqsym::eval_scalar_text, &o)
+            .map_err(|e| e.to_string())?;
+        for n in &r.notes {
+            eprintln!("note: {n}");
+        }
+        Ok(r)
     }
 }
 
 /// The URDF options are errors on any other file (never silently dropped).
 fn urdf_only(args: &RobotArgs) -> Result<(), String> {
-    if args.tip.is_some() || args.base.is_some() || args.exact_angles {
-        return Err("--tip, --base and --exact-angles apply to URDF files only".into());
+    if args.tip.is_some() || args.base.is_some() {
+        return Err("--tip and --base apply to URDF files only".into());
     }
     Ok(())
 }
@@ -608,6 +619,7 @@ fn dispatch(cli: Cli) -> ExitCode {
         ) => ik(&robot, free, &robot_args, format, cli.explicit),
         (Some(Command::Paper), _) => match dqsym::paper(&PlainOptions {
             shorthand: !cli.explicit,
+            decimals: false,
         }) {
             Ok(text) => {
                 print!("{text}");
@@ -911,7 +923,11 @@ fn walk(
     } else if let Err(m) = urdf_only(robot_args) {
         return fail(m);
     } else if path.extension().is_some_and(|e| e == "toml") {
-        dqsym::walk_robot(&text, &name, &dqsym::eval_scalar_text)
+        // Read here, so that its notes are printed and --exact-angles is honoured.
+        match load_robot(path, robot_args) {
+            Ok(r) => dqsym::walk::walk_robot_read(&r, &name),
+            Err(m) => return fail(m),
+        }
     } else {
         dqsym::walk_script(&text, &name)
     };

@@ -975,7 +975,13 @@ fn jacobian(q: &Arg, vars: &Arg) -> Result<Value> {
 /// A scalar in closed form, for messages.
 pub(super) fn text(s: &Scalar) -> String {
     match closed_form(s) {
-        Ok(e) => plain(&e, &PlainOptions { shorthand: false }),
+        Ok(e) => plain(
+            &e,
+            &PlainOptions {
+                shorthand: false,
+                decimals: false,
+            },
+        ),
         Err(e) => e.to_string(),
     }
 }

@@ -147,6 +147,7 @@ fn lay_out(v: &Value, opts: &ShowOptions) -> Result<Laid, ScalarError> {
     let mut w = Writer {
         opts: PlainOptions {
             shorthand: !opts.explicit,
+            decimals: false,
         },
         exprs: Vec::new(),
     };

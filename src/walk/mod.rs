@@ -28,7 +28,7 @@ mod text;
 pub use forms::Forms;
 pub use html::{ik_walk_html, is_walk_page, walk_html, KatexAssets, PAGE_MARKER};
 pub use motion::{Motion, Word, Words};
-pub use robot::{walk_robot, walk_robot_chain};
+pub use robot::{walk_robot, walk_robot_chain, walk_robot_read};
 pub use script::walk_script;
 pub use svg::{mechanism_svg, Config, SvgOptions};
 pub use text::{walk_markdown, walk_text};

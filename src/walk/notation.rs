@@ -8,7 +8,11 @@
 //! legend at the top of the page lists exactly those.
 
 use super::{Step, Walkthrough};
-use crate::{closed::shorthand_name, emit::latex_symbol, Angle, Scalar, Trig, Value};
+use crate::{
+    closed::shorthand_name,
+    emit::{latex_shorthand, latex_symbol},
+    Angle, Scalar, Trig, Value,
+};
 use num_traits::Zero;
 use std::cell::RefCell;
 use std::collections::{BTreeMap, BTreeSet};
@@ -105,20 +109,20 @@ impl Names {
         if self.taken.contains(&plain) {
             return None;
         }
-        let cut = rest.find(|ch: char| ch.is_ascii_digit()).unwrap_or(0);
-        let (prefix, idx) = rest.split_at(cut);
-        let tex = if prefix.is_empty() {
-            format!("{letter}_{{{idx}}}")
-        } else {
-            format!("{letter}_{{{}_{{{idx}}}}}", latex_symbol(prefix))
-        };
+        let tex = latex_shorthand(letter, rest);
         let f = f.name();
         let names: Vec<&str> = whole.terms.iter().map(|(s, _)| s.name()).collect();
         let tex_names: Vec<String> = names.iter().map(|n| latex_symbol(n)).collect();
         let (plain_meaning, tex_meaning) = match (full, names.len()) {
+            // `\cos q_{1}`, never `\cosq_{1}`: a space ends the command before a letter
+            // (`\cos\theta_{1}` needs none).
             (true, 1) => (
                 format!("{f}({})", names[0]),
-                format!("\\{f}{}", tex_names[0]),
+                if tex_names[0].starts_with('\\') {
+                    format!("\\{f}{}", tex_names[0])
+                } else {
+                    format!("\\{f} {}", tex_names[0])
+                },
             ),
             (true, _) => (
                 format!("{f}({})", names.join(" + ")),

@@ -25,6 +25,15 @@ const WALK_PROBE_BUDGET: u64 = 2_000_000;
 /// value cannot be shown.
 pub fn walk_robot(text: &str, file: &str, eval: FieldEval) -> Result<Walkthrough, WalkError> {
     let robot = parse_robot(text, file, eval)?;
+    walk_robot_read(&robot, file)
+}
+
+/// The walkthrough of a robot file already read (with its options: `--exact-angles`); `file`
+/// names it in messages.
+///
+/// # Errors
+/// As [`walk_robot`], but for reading the file.
+pub fn walk_robot_read(robot: &Robot, file: &str) -> Result<Walkthrough, WalkError> {
     // Decide at once whether the chain can be shown expanded: the pose under a small term
     // limit and work budget (a fully symbolic chain grows exponentially and is noticed after a
     // few products), instead of failing after seconds of closed forms.
@@ -41,7 +50,7 @@ pub fn walk_robot(text: &str, file: &str, eval: FieldEval) -> Result<Walkthrough
             budget: WALK_PROBE_BUDGET,
         });
     }
-    walk_robot_chain(&robot)
+    walk_robot_chain(robot)
 }
 
 /// The motions of a constant frame `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)`, zero parts left out.

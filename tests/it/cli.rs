@@ -322,6 +322,9 @@ fn fk_task_jacobians_from_the_command_line() {
     for (kind, base, rows) in [
         ("rotation", "Jr", 4),
         ("translation", "Jt", 4),
+        ("geometric", "Jg", 6),
+        ("geometric_body", "Jb", 6),
+        ("geometric_derivative", "Jgdot", 6),
         ("line:0,1,0", "Jl", 8),
         ("plane", "Jpi", 8),
         ("distance", "Jd", 1),

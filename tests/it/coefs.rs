@@ -16,7 +16,13 @@ fn checked(input: &str, direct: &dyn Fn(Env) -> f64, rng: &mut Rng) -> String {
     let x = eval_scalar_text(input).unwrap_or_else(|e| panic!("{input}: {e}"));
     let e = closed_form(&x).unwrap_or_else(|err| panic!("{input}: {err}"));
     assert_eq!(e.to_scalar(), x, "{input}");
-    let explicit = plain(&e, &PlainOptions { shorthand: false });
+    let explicit = plain(
+        &e,
+        &PlainOptions {
+            shorthand: false,
+            decimals: false,
+        },
+    );
     let back = eval_scalar_text(&explicit).unwrap_or_else(|err| panic!("{explicit}: {err}"));
     assert_eq!(back, x, "{input}: {explicit} reads back to another value");
     for _ in 0..10 {

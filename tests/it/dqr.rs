@@ -911,6 +911,8 @@ fn task_f64(p: &[f64], t: &dqsym::app::TaskJacobian) -> Vec<f64> {
             let (l, d) = (moved(l0), f(d));
             vec![(0..3).map(|k| (l[k] - d[k]).powi(2)).sum()]
         }
+        // Velocities, not the gradient of a quantity: tests/it/geometric.rs checks them.
+        T::Geometric | T::GeometricBody => Vec::new(),
     }
 }
 

@@ -48,10 +48,12 @@ fn latex_snap(name: &str, tex: &str) {
 const SHORT: LatexOptions = LatexOptions {
     shorthand: true,
     width: 80,
+    decimals: false,
 };
 const EXPLICIT: LatexOptions = LatexOptions {
     shorthand: false,
     width: 80,
+    decimals: false,
 };
 
 #[test]

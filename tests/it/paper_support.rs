@@ -80,6 +80,7 @@ impl Report {
         let e = closed(x);
         let o = PlainOptions {
             shorthand: self.shorthand,
+            decimals: false,
         };
         self.lines.push(format!("{name} = {}", plain(&e, &o)));
         self.exprs.push(e);
@@ -88,6 +89,7 @@ impl Report {
     pub fn vector(&mut self, name: &str, v: &[S]) -> &mut Self {
         let o = PlainOptions {
             shorthand: self.shorthand,
+            decimals: false,
         };
         let parts: Vec<String> = v
             .iter()

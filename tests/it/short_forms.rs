@@ -16,7 +16,13 @@ fn check(input: &str, want: &str, direct: F) {
     let e = closed_form(&x).expect("closed form");
     assert_eq!(e.to_scalar(), x, "{input}");
     assert_eq!(plain(&e, &PlainOptions::default()), want, "{input}");
-    let explicit = plain(&e, &PlainOptions { shorthand: false });
+    let explicit = plain(
+        &e,
+        &PlainOptions {
+            shorthand: false,
+            decimals: false,
+        },
+    );
     let back = eval_scalar_text(&explicit).unwrap_or_else(|err| panic!("{explicit}: {err}"));
     assert_eq!(back, x, "{input}: {explicit} reads back to another value");
     let mut g = Rng::new(0x9e37_79b9_7f4a_7c15 ^ input.len() as u64);

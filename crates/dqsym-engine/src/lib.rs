@@ -24,8 +24,8 @@
 //!     * DualQuat::rotation(&x, &Scalar::sym("theta2"));
 //! let m = q.to_matrix();
 //! let e = closed_form(&m.rows[1][1])?;
-//! assert_eq!(plain(&e, &PlainOptions { shorthand: true }), "c12");
-//! assert_eq!(plain(&e, &PlainOptions { shorthand: false }), "cos(theta1 + theta2)");
+//! assert_eq!(plain(&e, &PlainOptions { shorthand: true, decimals: false }), "c12");
+//! assert_eq!(plain(&e, &PlainOptions { shorthand: false, decimals: false }), "cos(theta1 + theta2)");
 //! # Ok::<(), dqsym_engine::ScalarError>(())
 //! ```
 

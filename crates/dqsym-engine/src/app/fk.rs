@@ -11,8 +11,8 @@ use super::recurrence::recurrence_sections;
 use crate::emit::names::{line_comment, Comment};
 use crate::emit::{
     arguments, c_function, count_ops, generated_ops, latex_aligned, latex_symbol, product_table,
-    python_function, rotation_chain_ops, rust_function, sympy, CodegenError, CodegenOptions,
-    Counted, LatexOptions, Output,
+    python_function, rotation_chain_ops, rust_function, sympy, sympy_decimals, CodegenError,
+    CodegenOptions, Counted, LatexOptions, Output,
 };
 use crate::kin::{dq_jacobian, Robot};
 use crate::print::{legend, plain, plain_len_bound, Format, PlainOptions};
@@ -24,7 +24,7 @@ use std::sync::atomic::AtomicBool;
 
 type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
 use crate::{
-    closed::{closed_form_of_derivative, closed_form_prepared, CommonOffsets},
+    closed::{closed_form_of_derivative, closed_form_prepared, decimal_form, CommonOffsets},
     closed_form, Context, DualQuat, Expr, Scalar, ScalarError,
 };
 
@@ -175,7 +175,10 @@ const MAX_EXPANDED_TEXT: usize = 100_000;
 /// length) exceeds `max`: a report well within `max` is not printed twice.
 pub(super) fn text_exceeds(sections: &[(String, Vec<(String, Expr)>)], max: usize) -> bool {
     let rows = || sections.iter().flat_map(|(_, rows)| rows);
-    let po = PlainOptions { shorthand: true };
+    let po = PlainOptions {
+        shorthand: true,
+        decimals: false,
+    };
     let length = || rows().map(|(_, e)| plain(e, &po).len()).sum::<usize>();
     let bound: usize = rows().map(|(_, e)| plain_len_bound(e)).sum();
     if bound > max {
@@ -369,22 +372,55 @@ pub(super) fn render<S: AsRef<str>>(
     notes: &[String],
 ) -> Result<String, ReportError> {
     let shorthand = o.shorthand;
+    // A robot whose file wrote decimals reads in decimals (`0.425 c2`), exactly: the
+    // denominators pulled out of sums put back, decimal fractions printed as decimals.
+    let decimals = !robot.decimals.is_empty();
+    let sections: Vec<(&str, Vec<(String, Expr)>)> = sections
+        .iter()
+        .map(|(t, rows)| {
+            let rows = rows
+                .iter()
+                .map(|(n, e)| {
+                    let e = if decimals {
+                        decimal_form(e, &robot.decimals)
+                    } else {
+                        e.clone()
+                    };
+                    (n.clone(), e)
+                })
+                .collect();
+            (t.as_ref(), rows)
+        })
+        .collect();
+    let sections = &sections[..];
     Ok(match o.format {
         Format::Rust => code(robot, sections, Generated::Rust)?,
         Format::C => code(robot, sections, Generated::C)?,
         Format::Python => code(robot, sections, Generated::Python)?,
         Format::Sympy => sections
             .iter()
-            .flat_map(|(_, rows)| rows.iter().map(|(n, e)| format!("{n} = {}\n", sympy(e))))
+            .flat_map(|(_, rows)| {
+                rows.iter().map(|(n, e)| {
+                    let text = if decimals {
+                        sympy_decimals(e)
+                    } else {
+                        sympy(e)
+                    };
+                    format!("{n} = {text}\n")
+                })
+            })
             .collect(),
         Format::Plain => {
-            let po = PlainOptions { shorthand };
+            let po = PlainOptions {
+                shorthand,
+                decimals,
+            };
             let mut out = header(robot, Comment::Hash, "#");
             for n in notes {
                 out.push_str(&line_comment(Comment::Hash, "#", n));
             }
             for (title, rows) in sections {
-                out.push_str(&format!("# {}\n", title.as_ref()));
+                out.push_str(&format!("# {title}\n"));
                 for (n, e) in rows {
                     out.push_str(&format!("{n} = {}\n", plain(e, &po)));
                 }
@@ -402,17 +438,19 @@ pub(super) fn render<S: AsRef<str>>(
         Format::Latex => {
             let lo = LatexOptions {
                 shorthand,
+                decimals,
                 ..LatexOptions::default()
             };
+            let letters = Letters::of(robot);
             let mut out = header(robot, Comment::Latex, "% #");
             for n in notes {
                 out.push_str(&line_comment(Comment::Latex, "%", n));
             }
             for (title, rows) in sections {
-                out.push_str(&format!("% {}\n", title.as_ref()));
+                out.push_str(&format!("% {title}\n"));
                 let rows: Vec<(String, Expr)> = rows
                     .iter()
-                    .map(|(n, e)| (latex_name(n), e.clone()))
+                    .map(|(n, e)| (latex_name(n, &letters), e.clone()))
                     .collect();
                 out.push_str(&latex_aligned(&rows, &lo));
                 out.push('\n');
@@ -578,17 +616,64 @@ fn header(robot: &Robot, syntax: Comment, prefix: &str) -> String {
     line_comment(syntax, prefix, &text)
 }
 
-/// `T[1][2]` -> `T_{1,2}`, `dq[3]` -> `q_{3}` style subscripts; `Q2[3]` like the symbol `Q2_3`.
-fn latex_name(n: &str) -> String {
+/// The LaTeX letters of a report's entries (the DQ components, the matrix, the point, the
+/// Jacobians), each the first of its candidates that no symbol of the robot is written with:
+/// `q_{k}` for the DQ, but `x_{k}` for a robot whose joints are `q1 ... q7`, so no entry is
+/// defined in terms of a symbol that looks like itself.
+struct Letters {
+    dq: &'static str,
+    t: &'static str,
+    p: &'static str,
+    j: &'static str,
+}
+
+impl Letters {
+    fn of(robot: &Robot) -> Letters {
+        // The LaTeX base of every symbol: `q` of `q_{1}`, `\theta` of `\theta_{1}`.
+        let taken: std::collections::BTreeSet<String> = robot
+            .variables
+            .iter()
+            .cloned()
+            .chain(robot.parameters())
+            .map(|n| {
+                let t = latex_symbol(&n);
+                t.split("_{").next().unwrap_or_default().to_owned()
+            })
+            .collect();
+        let pick = |c: &[&'static str]| {
+            c.iter()
+                .copied()
+                .find(|l| !taken.contains(*l))
+                .unwrap_or(c[c.len() - 1])
+        };
+        Letters {
+            dq: pick(&["q", "x", "\\xi", "\\eta", "\\mathsf{q}"]),
+            t: pick(&["T", "A", "M", "\\mathsf{T}"]),
+            p: pick(&["p", "y", "\\rho", "\\mathsf{p}"]),
+            j: pick(&["J", "G", "\\mathcal{J}", "\\mathsf{J}"]),
+        }
+    }
+}
+
+/// `T[1][2]` -> `T_{1,2}`, `dq[3]` -> `q_{3}` style subscripts (the letters of `l`); `Q2[3]`
+/// like the symbol `Q2_3`.
+fn latex_name(n: &str, l: &Letters) -> String {
     let (base, rest) = n.split_once('[').unwrap_or((n, ""));
     let idx: Vec<&str> = rest.split(['[', ']']).filter(|s| !s.is_empty()).collect();
     match base {
-        "dq" => format!("q_{{{}}}", idx.join(",")),
-        "T" | "p" | "J" => format!("{}_{{{}}}", latex_symbol(base), idx.join(",")),
-        "Jr" | "Jt" | "Jl" | "Jpi" | "Jd" => {
-            format!("J^{{{}}}_{{{}}}", latex_symbol(&base[1..]), idx.join(","))
+        "dq" => format!("{}_{{{}}}", l.dq, idx.join(",")),
+        "T" => format!("{}_{{{}}}", l.t, idx.join(",")),
+        "p" => format!("{}_{{{}}}", l.p, idx.join(",")),
+        "J" => format!("{}_{{{}}}", l.j, idx.join(",")),
+        "Jr" | "Jt" | "Jl" | "Jpi" | "Jd" | "Jg" | "Jb" => {
+            format!(
+                "{}^{{{}}}_{{{}}}",
+                l.j,
+                latex_symbol(&base[1..]),
+                idx.join(",")
+            )
         }
-        "Jdot" => format!("\\dot{{J}}_{{{}}}", idx.join(",")),
+        "Jdot" => format!("\\dot{{{}}}_{{{}}}", l.j, idx.join(",")),
         // A recurrence entry `Q2[3]` is written as its symbol `Q2_3` is in later entries.
         b => latex_symbol(&format!("{b}_{}", idx.join("_"))),
     }

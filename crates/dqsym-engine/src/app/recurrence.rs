@@ -225,7 +225,10 @@ pub(crate) fn recurrence_sections(
         if forms.iter().any(Result::is_err) {
             return None;
         }
-        let po = crate::print::PlainOptions { shorthand: true };
+        let po = crate::print::PlainOptions {
+            shorthand: true,
+            decimals: false,
+        };
         let len: usize = forms
             .iter()
             .map(|e| e.as_ref().map_or(0, |e| crate::print::plain(e, &po).len()))

@@ -70,6 +70,13 @@ pub enum TaskJacobian {
     /// `line_to_line_angle_jacobian`: d |l - lz|² / dq of the directions of the robot line
     /// (`l0` in the end-effector frame) and a workspace line (unit direction, point), 1 x n.
     LineToLineAngle([Scalar; 3], [Scalar; 3], [Scalar; 3]),
+    /// The geometric Jacobian, 6 x n: the end-effector origin's linear velocity (x, y, z) over
+    /// the angular velocity (x, y, z), both in the base frame, per unit rate of each joint
+    /// variable (Siciliano's `J = [J_P; J_O]`; [`crate::kin::geometric_jacobian`]).
+    Geometric,
+    /// The same velocities in the end-effector frame, 6 x n (`R^T v` over `R^T omega`: the body
+    /// twist, [`crate::kin::geometric_jacobian_body`]).
+    GeometricBody,
     /// The time derivative `sum_k dJ/dq_k qdot_k` of another task Jacobian (DQ Robotics'
     /// `pose_jacobian_derivative`, `rotation_jacobian_derivative`, ...), a function of `q` and
     /// the joint rates `<q>_dot`.
@@ -93,7 +100,8 @@ impl TaskMatrix {
     }
 }
 
-const KINDS: &str = "pose, rotation, translation, line[:X,Y,Z], plane[:X,Y,Z], distance, \
+const KINDS: &str = "pose, rotation, translation, geometric, geometric_body, line[:X,Y,Z], \
+    plane[:X,Y,Z], distance, \
     point_to_point:X,Y,Z, point_to_line:DX,DY,DZ,PX,PY,PZ, point_to_plane:NX,NY,NZ,PX,PY,PZ, \
     line_to_point:[LX,LY,LZ,]PX,PY,PZ, plane_to_point:[NX,NY,NZ,]PX,PY,PZ, \
     line_to_line:[LX,LY,LZ,]DX,DY,DZ,PX,PY,PZ, line_to_line_angle:[LX,LY,LZ,]DX,DY,DZ,PX,PY,PZ, \
@@ -198,6 +206,8 @@ impl TaskJacobian {
             "rotation" => plain(TaskJacobian::Rotation),
             "translation" => plain(TaskJacobian::Translation),
             "distance" => plain(TaskJacobian::Distance),
+            "geometric" => plain(TaskJacobian::Geometric),
+            "geometric_body" | "geometric-body" => plain(TaskJacobian::GeometricBody),
             "line" => Ok(TaskJacobian::Line(dir()?)),
             "plane" => Ok(TaskJacobian::Plane(dir()?)),
             other => Err(format!("unknown Jacobian `{other}`: expected {KINDS}")),
@@ -210,6 +220,8 @@ impl TaskJacobian {
             TaskJacobian::Pose => ("J", "Jacobian d dq[i] / d q[j]"),
             TaskJacobian::Rotation => ("Jr", "rotation Jacobian d r[i] / d q[j] (DQ Robotics' rotation_jacobian)"),
             TaskJacobian::Translation => ("Jt", "translation Jacobian d t[i] / d q[j], t = (0, x, y, z) = 2 D P* (DQ Robotics' translation_jacobian)"),
+            TaskJacobian::Geometric => ("Jg", "geometric Jacobian: rows 0..2 the end-effector origin's velocity v, rows 3..5 the angular velocity omega, per unit rate of q[j], in the base frame"),
+            TaskJacobian::GeometricBody => ("Jb", "body geometric Jacobian: rows 0..2 the end-effector origin's velocity R^T v, rows 3..5 the angular velocity R^T omega, per unit rate of q[j], in the end-effector frame"),
             TaskJacobian::Line(_) => ("Jl", "line Jacobian d vec8(l + eps t x l)[i] / d q[j] (DQ Robotics' line_jacobian)"),
             TaskJacobian::Plane(_) => ("Jpi", "plane Jacobian d vec8(n + eps t . n)[i] / d q[j] (DQ Robotics' plane_jacobian)"),
             TaskJacobian::Distance => ("Jd", "distance Jacobian d |t|^2 / d q[j] (DQ Robotics' distance_jacobian)"),
@@ -247,6 +259,8 @@ pub(super) fn output_doc(base: &str) -> Option<String> {
         "J" => "Jacobian d dq[i] / d q[j] (8 x n).",
         "Jr" => "Rotation Jacobian d r[i] / d q[j] (4 x n).",
         "Jt" => "Translation Jacobian d t[i] / d q[j], t = (0, x, y, z) (4 x n).",
+        "Jg" => "Geometric Jacobian (v; omega), base frame (6 x n).",
+        "Jb" => "Body geometric Jacobian (R^T v; R^T omega), end-effector frame (6 x n).",
         "Jl" => "Line Jacobian d vec8(l + eps t x l)[i] / d q[j] (8 x n).",
         "Jpi" => "Plane Jacobian d vec8(n + eps t . n)[i] / d q[j] (8 x n).",
         "Jd" => "Distance Jacobian d (squared) distance / d q[j] (1 x n).",
@@ -344,6 +358,9 @@ fn task_quantity(x: &DualQuat<Scalar>, task: &TaskJacobian) -> (Vec<Scalar>, Sca
             poly(vec![dqr::dot3(&diff, &diff)])
         }
         TaskJacobian::Derivative(inner) => task_quantity(x, inner),
+        // Not the gradient of a quantity: `task_jacobian` builds them from the pose's
+        // derivatives, and never asks for a quantity.
+        TaskJacobian::Geometric | TaskJacobian::GeometricBody => poly(Vec::new()),
     }
 }
 
@@ -358,6 +375,17 @@ pub fn task_jacobian(x: &DualQuat<Scalar>, vars: &[&str], task: &TaskJacobian) -
             })
         };
         return over(&j.num, &j.den, rate);
+    }
+    let velocities = match task {
+        TaskJacobian::Geometric => Some(crate::kin::geometric_jacobian(x, vars)),
+        TaskJacobian::GeometricBody => Some(crate::kin::geometric_jacobian_body(x, vars)),
+        _ => None,
+    };
+    if let Some(num) = velocities {
+        return TaskMatrix {
+            num,
+            den: Scalar::int(1),
+        };
     }
     let (v, den) = task_quantity(x, task);
     gradient(&v, &den, vars)

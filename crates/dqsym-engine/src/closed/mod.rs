@@ -20,6 +20,7 @@ mod common;
 pub mod congruence;
 mod cprod;
 mod cspoly;
+mod decimals;
 mod expr;
 mod factor;
 mod mon;
@@ -32,6 +33,7 @@ mod zfactor;
 
 pub use crate::scalar::Trig;
 pub use common::CommonOffsets;
+pub use decimals::{decimal_form, shows_as_decimal};
 pub use expr::{Angle, Cost, Expr};
 pub use notation::{angle_text, angle_text_with, shorthand_name, TrigNames};
 pub use trace::{Identity, TraceStep};

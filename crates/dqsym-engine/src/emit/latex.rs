@@ -5,7 +5,7 @@
 //! Every string written here is valid KaTeX input; the tests render each snapshot with KaTeX
 //! (`throwOnError: true`).
 
-use crate::closed::{shorthand_name, Angle, Expr, Trig, TrigNames};
+use crate::closed::{shorthand_name, shows_as_decimal, Angle, Expr, Trig, TrigNames};
 use crate::scalar::Small;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
@@ -19,6 +19,9 @@ pub struct LatexOptions {
     /// [`latex_aligned`] breaks a line longer than this many characters (a command counting as one) at a
     /// `+` or `-` of the outermost sum it can; 0 never breaks.
     pub width: usize,
+    /// Decimal fractions (a factor 5 in the denominator) as exact decimals, `0.425` for
+    /// `\frac{17}{40}` (see [`decimal_form`](crate::closed::decimal_form)).
+    pub decimals: bool,
 }
 
 impl Default for LatexOptions {
@@ -26,6 +29,7 @@ impl Default for LatexOptions {
         LatexOptions {
             shorthand: true,
             width: 80,
+            decimals: false,
         }
     }
 }
@@ -94,6 +98,26 @@ pub fn latex_symbol(name: &str) -> String {
         s.push_str(&format!("_{{{sub}}}"));
     }
     s
+}
+
+/// A shorthand name in LaTeX: the letter `c` (or `s`, `C`, `S`) with the rest of the name
+/// (`12`, `alpha5`, `q_1`, `joint_a1`) as its subscript: `c_{12}`, `c_{\alpha_{5}}`,
+/// `c_{q_{1}}`, `c_{{\mathit{joint}_{a}}_{1}}` (a prefix with a subscript of its own in
+/// braces, so no subscript is doubled).
+pub fn latex_shorthand(letter: &str, rest: &str) -> String {
+    let cut = rest.find(|ch: char| ch.is_ascii_digit()).unwrap_or(0);
+    let (prefix, idx) = rest.split_at(cut);
+    // `q_1`: the prefix `q_` is the symbol `q`.
+    let prefix = prefix.trim_end_matches('_');
+    if prefix.is_empty() {
+        return format!("{letter}_{{{idx}}}");
+    }
+    let p = latex_symbol(prefix);
+    if p.contains('_') {
+        format!("{letter}_{{{{{p}}}_{{{idx}}}}}")
+    } else {
+        format!("{letter}_{{{p}_{{{idx}}}}}")
+    }
 }
 
 fn base_text(base: &str) -> String {
@@ -303,14 +327,7 @@ impl<'a> Writer<'a> {
                 .flatten()
                 .map(|name| {
                     let (c, rest) = name.split_at(1);
-                    // `calpha5` (a prefix kept, see `shorthand_name`) is c_{\alpha_{5}}.
-                    let cut = rest.find(|ch: char| ch.is_ascii_digit()).unwrap_or(0);
-                    let (prefix, idx) = rest.split_at(cut);
-                    if prefix.is_empty() {
-                        format!("{c}_{{{idx}}}")
-                    } else {
-                        format!("{c}_{{{}_{{{idx}}}}}", latex_symbol(prefix))
-                    }
+                    latex_shorthand(c, rest)
                 }),
         };
         let pow = pow.map(|n| format!("^{{{n}}}")).unwrap_or_default();
@@ -332,11 +349,21 @@ impl<'a> Writer<'a> {
         }
     }
 
+    /// A number: an exact decimal under `decimals`, else an integer or `\frac`.
+    fn number(&self, q: &BigRational) -> String {
+        if self.o.decimals && shows_as_decimal(q) {
+            if let Some(t) = crate::scalar::decimal_text(q, 1_000) {
+                return t;
+            }
+        }
+        rational(q)
+    }
+
     /// Precedence levels: 0 top, 1 sum term, 2 product factor, 3 power base.
     fn expr(&mut self, e: &Expr, prec: u8) {
         match e {
             Expr::Num(q) => {
-                let t = rational(q);
+                let t = self.number(q);
                 let paren = prec >= 3 && !q.denom().is_one();
                 if paren {
                     self.open();
@@ -380,7 +407,9 @@ impl<'a> Writer<'a> {
                 // reads as a quotient, as in plain text.
                 if let [Expr::Num(q), Expr::Sym(s)] = v.as_slice() {
                     let unit = q.numer().is_one() || s.is_pi();
-                    if unit && !q.denom().is_one() && q.numer() > &0.into() && prec <= 2 {
+                    let decimal = self.o.decimals && shows_as_decimal(q);
+                    if unit && !decimal && !q.denom().is_one() && q.numer() > &0.into() && prec <= 2
+                    {
                         let k = if q.numer().is_one() {
                             String::new()
                         } else {
@@ -404,7 +433,8 @@ impl<'a> Writer<'a> {
                     }
                     // A leading fraction reads as a coefficient: `\frac{3}{8} \cos(\theta)`.
                     if let (0, Expr::Num(q)) = (i, t) {
-                        self.out.push_str(&rational(q));
+                        let t = self.number(q);
+                        self.out.push_str(&t);
                         continue;
                     }
                     self.expr(t, 2);

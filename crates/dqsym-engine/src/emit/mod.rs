@@ -20,8 +20,9 @@ pub use count::{count_ops, generated_ops, product_table, rotation_chain_ops, Cou
 pub use javascript::javascript_function;
 pub use latex::{
     latex, latex_aligned, latex_aligned_named, latex_dual_quat, latex_matrix, latex_named,
-    latex_quotient, latex_quotient_matrix, latex_symbol, latex_tuple, LatexOptions,
+    latex_quotient, latex_quotient_matrix, latex_shorthand, latex_symbol, latex_tuple,
+    LatexOptions,
 };
 pub use python::{python_function, python_names};
 pub use rust::rust_function;
-pub use sympy::{sympy, sympy_quotient};
+pub use sympy::{sympy, sympy_decimals, sympy_quotient};

@@ -7,14 +7,14 @@
 //! plain `sympify(text)` reads every symbol back as the symbol.
 
 use super::names::sympy_symbol;
-use crate::closed::{angle_text_with, Expr};
+use crate::closed::{angle_text_with, shows_as_decimal, Expr};
 use num_traits::One;
 
 /// The expression as SymPy input: `l1*cos(theta1) + l2*cos(theta1 + theta2)`, `(3/8)*x`,
 /// `sqrt(2)*sin(theta/2)`, `Symbol('E')*x`; the canonical 1 is `1`.
 pub fn sympy(e: &Expr) -> String {
     let mut out = String::new();
-    write(e, 0, &sympy_symbol, &mut out);
+    write(e, 0, &sympy_symbol, false, &mut out);
     out
 }
 
@@ -22,7 +22,17 @@ pub fn sympy(e: &Expr) -> String {
 /// reads (robot files written by `convert`).
 pub(crate) fn dqsym_text(e: &Expr) -> String {
     let mut out = String::new();
-    write(e, 0, &str::to_owned, &mut out);
+    write(e, 0, &str::to_owned, false, &mut out);
+    out
+}
+
+/// [`sympy`] with decimal fractions (a factor 5 in the denominator) written as their digits
+/// over a power of ten, `(425/1000)` for 0.425 (exact; a bare `0.425` would be a float to
+/// `sympify`), for robots whose file wrote decimals (see
+/// [`decimal_form`](crate::closed::decimal_form)).
+pub fn sympy_decimals(e: &Expr) -> String {
+    let mut out = String::new();
+    write(e, 0, &sympy_symbol, true, &mut out);
     out
 }
 
@@ -35,8 +45,17 @@ pub fn sympy_quotient(num: &Expr, den: &Expr) -> String {
 }
 
 /// Precedence levels: 0 top, 1 sum term, 2 product factor, 3 power base.
-fn write(e: &Expr, prec: u8, sym: &dyn Fn(&str) -> String, out: &mut String) {
+fn write(e: &Expr, prec: u8, sym: &dyn Fn(&str) -> String, dec: bool, out: &mut String) {
+    let write = |e: &Expr, prec: u8, out: &mut String| write(e, prec, sym, dec, out);
     match e {
+        Expr::Num(q) if dec && shows_as_decimal(q) => {
+            // The decimal's digits over its power of ten, `(425/1000)` for 0.425: exact for
+            // `sympify` with no name to bind (a bare `0.425` would be a float).
+            let places = crate::scalar::decimal_places(q).unwrap_or(0);
+            let scale = num_bigint::BigInt::from(10u32).pow(u32::try_from(places).unwrap_or(0));
+            let digits = (q * num_rational::BigRational::from_integer(scale.clone())).to_integer();
+            out.push_str(&format!("({digits}/{scale})"));
+        }
         Expr::Num(q) => {
             // `(3/8)` keeps the division from binding to a neighbour in `x*(3/8)`.
             if q.denom().is_one() || prec == 0 {
@@ -62,13 +81,13 @@ fn write(e: &Expr, prec: u8, sym: &dyn Fn(&str) -> String, out: &mut String) {
                 match t {
                     Expr::Neg(inner) => {
                         out.push_str(if i == 0 { "-" } else { " - " });
-                        write(inner, 2, sym, out);
+                        write(inner, 2, out);
                     }
                     t => {
                         if i > 0 {
                             out.push_str(" + ");
                         }
-                        write(t, 1, sym, out);
+                        write(t, 1, out);
                     }
                 }
             }
@@ -84,7 +103,7 @@ fn write(e: &Expr, prec: u8, sym: &dyn Fn(&str) -> String, out: &mut String) {
                 if i > 0 {
                     out.push('*');
                 }
-                write(t, 2, sym, out);
+                write(t, 2, out);
             }
             if prec > 2 {
                 out.push(')');
@@ -96,13 +115,13 @@ fn write(e: &Expr, prec: u8, sym: &dyn Fn(&str) -> String, out: &mut String) {
                 out.push('(');
             }
             out.push('-');
-            write(inner, 2, sym, out);
+            write(inner, 2, out);
             if prec > 1 {
                 out.push(')');
             }
         }
         Expr::Pow(b, n) => {
-            write(b, 3, sym, out);
+            write(b, 3, out);
             out.push_str(&format!("**{n}"));
         }
     }

@@ -325,7 +325,10 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
     let mut out = String::new();
     match format {
         Format::Plain => {
-            let o = PlainOptions { shorthand };
+            let o = PlainOptions {
+                shorthand,
+                decimals: false,
+            };
             for l in header(sol) {
                 out.push_str(&crate::emit::names::printable(&l));
                 out.push('\n');

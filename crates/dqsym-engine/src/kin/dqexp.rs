@@ -72,7 +72,15 @@ type Result<T> = std::result::Result<T, DqError>;
 
 fn text(s: &Scalar) -> String {
     crate::closed_form(s)
-        .map(|e| crate::plain(&e, &crate::PlainOptions { shorthand: false }))
+        .map(|e| {
+            crate::plain(
+                &e,
+                &crate::PlainOptions {
+                    shorthand: false,
+                    decimals: false,
+                },
+            )
+        })
         .unwrap_or_else(|_| s.to_string())
 }
 

@@ -37,6 +37,34 @@ pub fn geometric_jacobian(q: &DualQuat<Scalar>, vars: &[&str]) -> Vec<Vec<Scalar
     rows
 }
 
+/// The body form of [`geometric_jacobian`]: the same velocities, the end-effector origin's
+/// linear velocity over the angular velocity, expressed in the end-effector frame (`R^T v`,
+/// `R^T omega`; with `q = r + eps d`, `R^T x` is `r* x r`). Its rows are the body twist
+/// `(v_b, omega_b)` of `T^-1 dT/dq` (Lynch and Park's `V_b` with its halves swapped).
+pub fn geometric_jacobian_body(q: &DualQuat<Scalar>, vars: &[&str]) -> Vec<Vec<Scalar>> {
+    let base = geometric_jacobian(q, vars);
+    let r = &q.real;
+    let back = |v: [Scalar; 3]| (r.conjugate() * Quat::from_vector(&v) * r.clone()).vector_part();
+    let mut rows: Vec<Vec<Scalar>> = (0..6).map(|_| Vec::with_capacity(vars.len())).collect();
+    let col = |k0: usize, j: usize| {
+        [
+            base[k0][j].clone(),
+            base[k0 + 1][j].clone(),
+            base[k0 + 2][j].clone(),
+        ]
+    };
+    let cols: Vec<([Scalar; 3], [Scalar; 3])> = (0..vars.len())
+        .map(|j| (back(col(0, j)), back(col(3, j))))
+        .collect();
+    for (l, w) in cols {
+        for k in 0..3 {
+            rows[k].push(l[k].clone());
+            rows[k + 3].push(w[k].clone());
+        }
+    }
+    rows
+}
+
 fn diff_quat(q: &Quat<Scalar>, v: &str) -> Quat<Scalar> {
     Quat::new(q.w.diff(v), q.x.diff(v), q.y.diff(v), q.z.diff(v))
 }

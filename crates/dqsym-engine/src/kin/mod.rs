@@ -5,6 +5,7 @@
 //! [`Matrix4`](crate::Matrix4) and never from a dual quaternion, so the two agree only if
 //! both are right: tests compare them.
 
+pub mod angles;
 mod chain;
 mod dh;
 pub mod dqexp;
@@ -16,8 +17,11 @@ mod urdf;
 
 pub use chain::{Chain, ChainError};
 pub use dh::{dh_link, dh_link_matrix, mdh_link, mdh_link_matrix};
-pub use jacobian::{dq_jacobian, geometric_jacobian};
+pub use jacobian::{dq_jacobian, geometric_jacobian, geometric_jacobian_body};
 pub use joint::{Joint, JointGeometry, JointKind};
-pub use robot::{parse_robot, split_top_level, Convention, FieldEval, Frame, Robot, RobotError};
+pub use robot::{
+    parse_robot, parse_robot_with, split_top_level, Convention, FieldEval, Frame, Robot,
+    RobotError, RobotOptions,
+};
 pub use screw::{screw_parameters, ScrewError, ScrewParams};
 pub use urdf::{parse_urdf, UrdfError, UrdfOptions, UrdfRobot, SNAP_TOLERANCE};

@@ -62,6 +62,21 @@ pub struct Robot {
     /// The `[values]` table: nominal numbers for symbolic parameters (`a2 = 0.4318`), used
     /// where a number is needed (the walkthrough's drawing); results stay symbolic.
     pub values: Vec<(String, f64)>,
+    /// What the reader read other than as written, one line each (`joint 1, field `alpha`:
+    /// 1.5708 read as pi/2`), for the caller to show.
+    pub notes: Vec<String>,
+    /// The decimals the file wrote (`0.425`; their magnitudes, sorted), none when it wrote
+    /// none: reports then print exact decimals as decimals (`0.425 c2`, not `1/10000 (4250 c2
+    /// ...)`), showing these as typed where they can.
+    pub decimals: Vec<num_rational::BigRational>,
+}
+
+/// How a robot file is read.
+#[derive(Clone, Debug, Default)]
+pub struct RobotOptions {
+    /// Take every angle as written (in radians): no decimal read as a multiple of pi/12 and
+    /// no refusal of a bare angle past 2 pi (see [`super::angles`]).
+    pub exact_angles: bool,
 }
 
 /// A constant frame `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)`, with `rpy = [roll, pitch, yaw]`
@@ -172,11 +187,24 @@ struct JointFile {
 pub type FieldEval<'a> = &'a dyn Fn(&str) -> Result<Scalar, String>;
 
 /// Reads a robot file. `file` names it in messages; `eval` evaluates one field expression.
+/// Angles are read by the rule of [`super::angles`] (notes in [`Robot::notes`]).
 pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, RobotError> {
-    let text = &numbers_as_text(text).map_err(|message| RobotError::File {
+    parse_robot_with(text, file, eval, &RobotOptions::default())
+}
+
+/// [`parse_robot`] with options.
+pub fn parse_robot_with(
+    text: &str,
+    file: &str,
+    eval: FieldEval,
+    opts: &RobotOptions,
+) -> Result<Robot, RobotError> {
+    let (text, decimals) = numbers_as_text(text).map_err(|message| RobotError::File {
         file: file.to_string(),
         message,
     })?;
+    let text = &text;
+    let mut notes: Vec<String> = Vec::new();
     let f: RobotFile = toml::from_str(text).map_err(|e| {
         let at = e.span().map(|s| {
             let before = &text[..s.start.min(text.len())];
@@ -240,6 +268,15 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
                     field("a", &j.a)?,
                     field("alpha", &j.alpha)?,
                 );
+                let mut angle = |name: &str, x: Scalar| -> Result<Scalar, RobotError> {
+                    let (x, note) = angle_field(x, opts).map_err(|m| err(name, m))?;
+                    if let Some(note) = note {
+                        notes.push(format!("joint {n}, field `{name}`: {note}"));
+                    }
+                    Ok(x)
+                };
+                let theta = angle("theta", theta)?;
+                let alpha = angle("alpha", alpha)?;
                 // The variable is the one symbol of theta (revolute) or d (prismatic); the rest
                 // of that field is a constant offset.
                 let (vname, vfield) = match kind {
@@ -302,6 +339,15 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
                     (text.clone(), Scalar::sym(&text))
                 } else {
                     let value = eval(&text).map_err(|m| err("variable", m))?;
+                    let value = if kind == JointKind::Revolute {
+                        let (v, note) = angle_field(value, opts).map_err(|m| err("variable", m))?;
+                        if let Some(note) = note {
+                            notes.push(format!("joint {n}, field `variable`: {note}"));
+                        }
+                        v
+                    } else {
+                        value
+                    };
                     let var = joint_variable(&value, &f.values).map_err(|m| err("variable", m))?;
                     (var, value)
                 };
@@ -381,6 +427,27 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
             ))
         }
     };
+    let (mut base_frames, mut tool_frames) = (base_frames, tool_frames);
+    for (name, v, fs) in [
+        ("base", &f.base, &mut base_frames),
+        ("tool", &f.tool, &mut tool_frames),
+    ] {
+        let single = matches!(v, Some(toml::Value::Table(_)));
+        for (k, fr) in fs.iter_mut().enumerate() {
+            for (i, x) in fr.rpy.iter_mut().enumerate() {
+                let at = if single {
+                    format!("{name}.rpy[{i}]")
+                } else {
+                    format!("{name}[{}].rpy[{i}]", k + 1)
+                };
+                let (y, note) = angle_field(x.clone(), opts).map_err(|m| file_err(&at, m))?;
+                if let Some(note) = note {
+                    notes.push(format!("field `{at}`: {note}"));
+                }
+                *x = y;
+            }
+        }
+    }
     let product = |fs: &[Frame], name: &str| {
         Frame::product(fs).map_err(|m| file_err(&format!("{name}.rpy"), m))
     };
@@ -397,7 +464,47 @@ pub fn parse_robot(text: &str, file: &str, eval: FieldEval) -> Result<Robot, Rob
         tool_frames,
         tool,
         values: nominal,
+        notes,
+        decimals,
     })
+}
+
+/// An angle field by the rule of [`super::angles`]: its rational term (`1.5708` of `q2 +
+/// 1.5708`) read as a multiple of pi/12 when within the tolerance of its decimals, refused
+/// when past 2 pi (degrees, most likely), else kept; with a note when it is not read as
+/// written or may not mean what it says. `opts.exact_angles` keeps every angle as written.
+fn angle_field(x: Scalar, opts: &RobotOptions) -> Result<(Scalar, Option<String>), String> {
+    use super::angles::{self, AngleReading};
+    if opts.exact_angles {
+        return Ok((x, None));
+    }
+    let c = x.rational_term();
+    match angles::read_angle(&c) {
+        AngleReading::Zero => Ok((x, None)),
+        AngleReading::Multiple { twelfths } => Ok((
+            x - Scalar::rational(c.clone()) + angles::pi_twelfths(twelfths),
+            Some(angles::snapped_note(&c, twelfths)),
+        )),
+        AngleReading::Literal { near } => {
+            let t = angles::number_text(&c);
+            let past = num_traits::ToPrimitive::to_f64(&c)
+                .is_none_or(|v| v.abs() > 2.0 * std::f64::consts::PI);
+            if past {
+                return Err(format!(
+                    "{t} is past 2*pi as an angle in radians: for degrees write \"{t}deg\" \
+                     (or keep it in radians with --exact-angles)"
+                ));
+            }
+            let why = match near {
+                Some(k) => angles::near_note(&c, k),
+                None if c.is_integer() => {
+                    format!("not near a multiple of pi/12 (for degrees write \"{t}deg\")")
+                }
+                None => "not near a multiple of pi/12".to_owned(),
+            };
+            Ok((x, Some(format!("{t} read as {t} rad: {why}"))))
+        }
+    }
 }
 
 /// Whether a `base` or `tool` value is a frame table `[tool]` or an array of them `[[tool]]`.
@@ -435,20 +542,75 @@ fn frames(v: &toml::Value, eval: FieldEval) -> Result<Vec<Frame>, (String, Strin
 /// `"0.4318"`, `0x10` into `"16"`), so that every field reads as an expression and no value
 /// passes through binary floating point. Text that is not valid TOML is returned unchanged,
 /// for the TOML reader to report.
-fn numbers_as_text(text: &str) -> Result<String, String> {
+/// Also says whether a field (other than `name` and `[values]`) holds a decimal (`0.425`,
+/// `"q1 + 0.5"`).
+fn numbers_as_text(text: &str) -> Result<(String, Vec<num_rational::BigRational>), String> {
     let Ok(mut doc) = text.parse::<toml_edit::DocumentMut>() else {
-        return Ok(text.to_string());
+        return Ok((text.to_string(), Vec::new()));
     };
-    let mut changed = false;
+    let mut changed = Visit::default();
     visit_table(doc.as_table_mut(), "", &mut changed)?;
-    Ok(if changed {
-        doc.to_string()
+    let mut decimals = changed.decimals;
+    decimals.sort();
+    Ok(if changed.changed {
+        (doc.to_string(), decimals)
     } else {
-        text.to_string()
+        (text.to_string(), decimals)
     })
 }
 
-fn visit_table(t: &mut dyn toml_edit::TableLike, path: &str, ch: &mut bool) -> Result<(), String> {
+/// What [`numbers_as_text`] saw.
+#[derive(Default)]
+struct Visit {
+    /// A number was turned into text.
+    changed: bool,
+    /// The decimals of the fields (magnitudes).
+    decimals: Vec<num_rational::BigRational>,
+}
+
+impl Visit {
+    /// Records the decimal literals of a field's text (`0.425`, `q1 + 0.5`).
+    fn note_decimals(&mut self, text: &str) {
+        if !has_decimal(text) {
+            return;
+        }
+        let b = text.as_bytes();
+        let mut i = 0;
+        while i < b.len() {
+            let starts = (b[i].is_ascii_digit() || b[i] == b'.')
+                && (i == 0 || !(b[i - 1].is_ascii_alphanumeric() || b[i - 1] == b'_'));
+            if !starts {
+                i += 1;
+                continue;
+            }
+            let mut j = i;
+            while j < b.len() && (b[j].is_ascii_digit() || b[j] == b'.') {
+                j += 1;
+            }
+            if let Some(x) = crate::scalar::parse_decimal(&text[i..j], 1_000) {
+                if text[i..j].contains('.') {
+                    let x = num_traits::Signed::abs(&x);
+                    if !self.decimals.contains(&x) {
+                        self.decimals.push(x);
+                    }
+                }
+            }
+            i = j;
+        }
+    }
+}
+
+/// Whether `text` holds a decimal literal: a point followed by a digit, not inside a name.
+fn has_decimal(text: &str) -> bool {
+    let b = text.as_bytes();
+    (0..b.len()).any(|i| {
+        b[i] == b'.'
+            && b.get(i + 1).is_some_and(u8::is_ascii_digit)
+            && (i == 0 || !(b[i - 1].is_ascii_alphabetic() || b[i - 1] == b'_'))
+    })
+}
+
+fn visit_table(t: &mut dyn toml_edit::TableLike, path: &str, ch: &mut Visit) -> Result<(), String> {
     for (k, item) in t.iter_mut() {
         let path = if path.is_empty() {
             k.get().to_string()
@@ -460,7 +622,7 @@ fn visit_table(t: &mut dyn toml_edit::TableLike, path: &str, ch: &mut bool) -> R
     Ok(())
 }
 
-fn visit_item(item: &mut toml_edit::Item, path: &str, ch: &mut bool) -> Result<(), String> {
+fn visit_item(item: &mut toml_edit::Item, path: &str, ch: &mut Visit) -> Result<(), String> {
     match item {
         toml_edit::Item::Value(v) => visit_value(v, path, ch),
         toml_edit::Item::Table(t) => visit_table(t, path, ch),
@@ -474,7 +636,7 @@ fn visit_item(item: &mut toml_edit::Item, path: &str, ch: &mut bool) -> Result<(
     }
 }
 
-fn visit_value(v: &mut toml_edit::Value, path: &str, ch: &mut bool) -> Result<(), String> {
+fn visit_value(v: &mut toml_edit::Value, path: &str, ch: &mut Visit) -> Result<(), String> {
     let text = match v {
         toml_edit::Value::Integer(i) => i.value().to_string(),
         toml_edit::Value::Float(f) => {
@@ -495,13 +657,28 @@ fn visit_value(v: &mut toml_edit::Value, path: &str, ch: &mut bool) -> Result<()
             return Ok(());
         }
         toml_edit::Value::InlineTable(t) => return visit_table(t, path, ch),
+        toml_edit::Value::String(t) => {
+            if is_field(path) {
+                ch.note_decimals(t.value());
+            }
+            return Ok(());
+        }
         _ => return Ok(()),
     };
+    if is_field(path) {
+        ch.note_decimals(&text);
+    }
     let decor = v.decor().clone();
     *v = toml_edit::Value::from(text);
     *v.decor_mut() = decor;
-    *ch = true;
+    ch.changed = true;
     Ok(())
+}
+
+/// Whether the value at `path` is a field of the kinematics (not the name, nor a nominal
+/// value of `[values]`, which only the drawing reads).
+fn is_field(path: &str) -> bool {
+    path != "name" && !path.starts_with("values.")
 }
 
 /// A point: an array of three fields, or one text `"x, y, z"`.

@@ -10,13 +10,15 @@
 //! variable q of the joint it follows.
 //!
 //! Lengths are exact decimals read from the text (`0.4318` is 2159/5000). Angles are exact
-//! too: an `rpy` angle (or a mimic offset of a revolute joint) within [`SNAP_TOLERANCE`] of a
-//! multiple of pi/12 (1.5708, 3.14159) is read as that multiple, reported in
+//! too: an `rpy` angle (or a mimic offset of a revolute joint) within the tolerance of its
+//! decimals of a multiple of pi/12 (1.5708, 3.14159; the rule robot files share,
+//! [`super::angles`]) is read as that multiple, reported in
 //! [`UrdfRobot::notes`]. Any other angle (-1.42889927219074, -0.17453), and every angle when
 //! [`UrdfOptions::snap_angles`] is off, becomes a named parameter of the robot
 //! (`ELBOW_yaw`): the results are exact in it, and its decimal is the robot's nominal value
 //! ([`Robot::values`]), as a hand derivation names a constant angle.
 
+use super::angles::{self, AngleReading};
 use super::robot::{frame_dq, unit_numeric};
 use super::{Chain, Convention, Frame, Joint, JointKind, Robot};
 use crate::emit::names::terminal_text;
@@ -26,7 +28,8 @@ use num_traits::ToPrimitive;
 use std::collections::{BTreeMap, BTreeSet};
 use thiserror::Error;
 
-/// How far (radians) an angle may be from a multiple of pi/12 to be read as it.
+/// How far (radians) an angle with 3 decimals may be from a multiple of pi/12 to be read as
+/// it; with more decimals the tolerance is smaller ([`angles::snap_tolerance`]).
 pub const SNAP_TOLERANCE: f64 = 1e-3;
 
 /// The longest decimal literal, in digits, a URDF number may need.
@@ -306,10 +309,12 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
                 notes.push(format!(
                     "{what}: {} kept as the parameter `{name}`{}",
                     decimal_text(x),
-                    if o.snap_angles {
-                        " (not near a multiple of pi/12)"
-                    } else {
-                        ""
+                    match (o.snap_angles, angles::read_angle(x)) {
+                        (false, _) => String::new(),
+                        (true, AngleReading::Literal { near: Some(k) }) => {
+                            format!(" ({})", angles::near_note(x, k))
+                        }
+                        (true, _) => " (not near a multiple of pi/12)".to_owned(),
                     }
                 ));
                 params.push((name.clone(), v));
@@ -415,6 +420,15 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
     }
     let name = root.attribute("name").unwrap_or(file).to_string();
     let chain = Chain::new(chain_joints).with_tool(home);
+    // URDF numbers are decimals by the format: the lengths of the chain's origins.
+    let mut decimals: Vec<BigRational> = frames
+        .iter()
+        .flat_map(|f| f.xyz.iter().filter_map(Scalar::as_rational))
+        .map(|x| num_traits::Signed::abs(&x))
+        .filter(|x| !num_traits::Zero::is_zero(x))
+        .collect();
+    decimals.sort();
+    decimals.dedup();
     Ok(UrdfRobot {
         robot: Robot {
             name: format!("{name} ({base_link} to {tip})"),
@@ -426,6 +440,8 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
             tool_frames: frames,
             tool: None,
             values: params,
+            notes: notes.clone(),
+            decimals,
         },
         notes,
     })
@@ -531,49 +547,22 @@ fn number(text: &str) -> Option<BigRational> {
 }
 
 /// The exact angle an URDF angle stands for: itself when it is 0, else (when `snap`) the
-/// multiple of pi/12 within [`SNAP_TOLERANCE`], with a note saying so; `None` when it is
-/// neither: the caller names it.
+/// multiple of pi/12 the shared rule reads it as ([`super::angles`]), with a note saying so;
+/// `None` when it is neither: the caller names it (`near` the advice for a decimal with too
+/// few digits near a multiple).
 fn snap_angle(x: &BigRational, snap: bool) -> Result<Option<(Scalar, Option<String>)>, String> {
-    if x == &BigRational::from_integer(0.into()) {
-        return Ok(Some((Scalar::int(0), None)));
-    }
-    let xf = x.to_f64().unwrap_or(f64::NAN);
-    if !snap || !xf.is_finite() || xf.abs() > 1e6 {
-        return Ok(None);
-    }
-    let pi = std::f64::consts::PI;
-    let k = (xf / (pi / 12.0)).round();
-    if (xf - k * pi / 12.0).abs() <= SNAP_TOLERANCE {
-        let k = k as i64;
-        let exact = Scalar::rational(BigRational::new(k.into(), 12.into())) * Scalar::pi();
-        let shown = pi_multiple_text(k, 12);
-        return Ok(Some((
-            exact,
-            Some(format!("{} read as {shown}", decimal_text(x))),
-        )));
-    }
-    Ok(None)
-}
-
-/// `k pi/n` as text: `pi/2`, `-pi/4`, `5*pi/12`, `pi`, `0`.
-fn pi_multiple_text(k: i64, n: i64) -> String {
-    let g = num_integer::gcd(k, n);
-    let (k, d) = if g == 0 { (0, 1) } else { (k / g, n / g) };
-    let num = match k {
-        0 => return "0".into(),
-        1 => "pi".to_string(),
-        -1 => "-pi".to_string(),
-        k => format!("{k}*pi"),
-    };
-    if d == 1 {
-        num
-    } else {
-        format!("{num}/{d}")
+    match angles::read_angle(x) {
+        AngleReading::Zero => Ok(Some((Scalar::int(0), None))),
+        AngleReading::Multiple { twelfths } if snap => Ok(Some((
+            angles::pi_twelfths(twelfths),
+            Some(angles::snapped_note(x, twelfths)),
+        ))),
+        _ => Ok(None),
     }
 }
 
 fn decimal_text(x: &BigRational) -> String {
-    x.to_f64().map_or_else(|| x.to_string(), |f| format!("{f}"))
+    angles::number_text(x)
 }
 
 /// The names a URDF chain gives: variables after joints, parameters after angles, all distinct.

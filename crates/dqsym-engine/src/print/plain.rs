@@ -1,7 +1,7 @@
 //! Plain text in the field's notation: robotics shorthand (`l1 c1 + l2 c12`) or explicit
 //! (`l1*cos(theta1) + l2*cos(theta1 + theta2)`).
 
-use crate::closed::{angle_text, shorthand_name, Angle, Expr, Trig, TrigNames};
+use crate::closed::{angle_text, shorthand_name, shows_as_decimal, Angle, Expr, Trig, TrigNames};
 use num_traits::One;
 use std::collections::BTreeSet;
 
@@ -10,11 +10,27 @@ use std::collections::BTreeSet;
 pub struct PlainOptions {
     /// `c12` for `cos(theta1 + theta2)` where the angle allows it (see [`shorthand_name`]).
     pub shorthand: bool,
+    /// Numbers that are decimal fractions (a factor 5 in the denominator) as exact decimals:
+    /// `0.425`, not `17/40` (for robots whose file wrote decimals; see
+    /// [`decimal_form`](crate::closed::decimal_form)).
+    pub decimals: bool,
 }
 
 impl Default for PlainOptions {
     fn default() -> Self {
-        PlainOptions { shorthand: true }
+        PlainOptions {
+            shorthand: true,
+            decimals: false,
+        }
+    }
+}
+
+/// `q` as an exact decimal when `o.decimals` and it is a decimal fraction.
+fn decimal(q: &num_rational::BigRational, o: &PlainOptions) -> Option<String> {
+    if o.decimals && shows_as_decimal(q) {
+        crate::scalar::decimal_text(q, 1_000)
+    } else {
+        None
     }
 }
 
@@ -70,7 +86,9 @@ fn write(e: &Expr, o: &PlainOptions, names: TrigNames, prec: u8, out: &mut Strin
     let times = if o.shorthand { " " } else { "*" };
     match e {
         Expr::Num(q) => {
-            if q.denom().is_one() || prec < 2 {
+            if let Some(t) = decimal(q, o) {
+                out.push_str(&t);
+            } else if q.denom().is_one() || prec < 2 {
                 out.push_str(&q.to_string());
             } else {
                 out.push('(');
@@ -120,7 +138,8 @@ fn write(e: &Expr, o: &PlainOptions, names: TrigNames, prec: u8, out: &mut Strin
         Expr::Mul(v) => {
             // `pi/2`, `l/3`: a unit fraction times one symbol reads as a quotient.
             if let [Expr::Num(q), Expr::Sym(s)] = v.as_slice() {
-                if q.numer().is_one() && !q.denom().is_one() && prec <= 2 {
+                if q.numer().is_one() && !q.denom().is_one() && prec <= 2 && decimal(q, o).is_none()
+                {
                     out.push_str(&format!("{}/{}", s.name(), q.denom()));
                     return;
                 }
@@ -135,7 +154,7 @@ fn write(e: &Expr, o: &PlainOptions, names: TrigNames, prec: u8, out: &mut Strin
                 // A leading fraction reads as a coefficient: `3/8 cos(t)`.
                 if i == 0 && matches!(t, Expr::Num(_)) {
                     if let Expr::Num(q) = t {
-                        out.push_str(&q.to_string());
+                        out.push_str(&decimal(q, o).unwrap_or_else(|| q.to_string()));
                     }
                     continue;
                 }
@@ -262,7 +281,13 @@ mod tests {
             // The bound is checked, and the closed form is the value it shows.
             assert_eq!(e.to_scalar(), *x);
             for shorthand in [true, false] {
-                let text = plain(&e, &PlainOptions { shorthand });
+                let text = plain(
+                    &e,
+                    &PlainOptions {
+                        shorthand,
+                        decimals: false,
+                    },
+                );
                 assert!(
                     text.len() <= plain_len_bound(&e),
                     "{text}: {} over the bound {}",

@@ -89,6 +89,47 @@ pub fn short_numbers(text: &str) -> String {
     out
 }
 
+/// The number of digits after the point of `x` written as a terminating decimal (0 for an
+/// integer, 4 for 2159/5000 = 0.4318), or `None` when `x` is not one (its reduced denominator
+/// has a prime factor other than 2 and 5, as 1/3 has).
+pub fn decimal_places(x: &BigRational) -> Option<u64> {
+    let mut d = x.denom().magnitude().clone();
+    let (two, five) = (BigUint::from(2u32), BigUint::from(5u32));
+    let (mut a, mut b) = (0u64, 0u64);
+    while !d.is_zero() && (&d % &two).is_zero() {
+        d /= &two;
+        a += 1;
+    }
+    while !d.is_zero() && (&d % &five).is_zero() {
+        d /= &five;
+        b += 1;
+    }
+    d.is_one().then_some(a.max(b))
+}
+
+/// `x` as an exact decimal (`0.4318`, `-0.0996`, `12`), the inverse of [`parse_decimal`];
+/// `None` when `x` is not a terminating decimal or needs more than `max_digits` digits.
+pub fn decimal_text(x: &BigRational, max_digits: usize) -> Option<String> {
+    let places = decimal_places(x)?;
+    let places = usize::try_from(places).ok()?;
+    if places > max_digits {
+        return None;
+    }
+    let scaled = x * BigRational::from_integer(BigInt::from(10u32).pow(places as u32));
+    let n = scaled.to_integer();
+    let digits = n.magnitude().to_string();
+    if digits.len() > max_digits + 1 {
+        return None;
+    }
+    let sign = if n < BigInt::zero() { "-" } else { "" };
+    if places == 0 {
+        return Some(format!("{sign}{digits}"));
+    }
+    let padded = format!("{digits:0>width$}", width = places + 1);
+    let (whole, frac) = padded.split_at(padded.len() - places);
+    Some(format!("{sign}{whole}.{frac}"))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -107,6 +148,26 @@ mod tests {
         assert_eq!(parse_decimal("3.", 100), Some(q(3, 1)));
         assert_eq!(parse_decimal("+0.0", 100), Some(q(0, 1)));
         assert_eq!(parse_decimal("0e999999999999", 100), Some(q(0, 1)));
+    }
+
+    #[test]
+    fn decimals_are_written_exactly_and_read_back() {
+        for (x, text) in [
+            (q(2159, 5000), "0.4318"),
+            (q(-1569, 4000), "-0.39225"),
+            (q(-249, 2500), "-0.0996"),
+            (q(1, 1000), "0.001"),
+            (q(150, 1), "150"),
+            (q(-1, 4), "-0.25"),
+            (q(0, 1), "0"),
+        ] {
+            assert_eq!(decimal_text(&x, 100).as_deref(), Some(text));
+            assert_eq!(parse_decimal(text, 100), Some(x));
+        }
+        assert_eq!(decimal_places(&q(3927, 2500)), Some(4));
+        assert_eq!(decimal_places(&q(1, 3)), None);
+        assert_eq!(decimal_text(&q(1, 3), 100), None);
+        assert_eq!(decimal_text(&q(1, 1 << 40), 10), None);
     }
 
     #[test]

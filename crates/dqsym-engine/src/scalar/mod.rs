@@ -45,7 +45,7 @@ pub use ctx::{
     Context, Entered, DEFAULT_MAX_ANGLE_SYMBOLS, DEFAULT_MAX_CYCLOTOMIC_DEGREE, DEFAULT_MAX_DIGITS,
     DEFAULT_MAX_EXPONENT,
 };
-pub use decimal::{parse_decimal, short_numbers};
+pub use decimal::{decimal_places, decimal_text, parse_decimal, short_numbers};
 pub use frac::Frac;
 pub(crate) use par::{join, par_map, with_own_budget};
 pub(crate) use q::Q;
@@ -479,6 +479,16 @@ impl Scalar {
     /// True for the zero scalar.
     pub fn is_zero_value(&self) -> bool {
         matches!(&self.0, Repr::Terms(t) if t.is_empty())
+    }
+
+    /// The rational term of the value, without symbols, radicals or angles (`-3927/2500` of
+    /// `q2 - 3927/2500`, `0` of `pi/2`); zero for an error value.
+    pub fn rational_term(&self) -> BigRational {
+        self.terms()
+            .unwrap_or(&[])
+            .iter()
+            .find(|x| x.mode.is_unit() && x.mono.is_empty() && x.rad == 1)
+            .map_or_else(BigRational::zero, |x| x.coef.to_big())
     }
 
     /// The value as a rational, when it is one.
