@@ -412,7 +412,9 @@ pub fn ik_walk_html(
 }
 
 /// The solver of the page: one generated function per step (its parts from the target, the
-/// parameters and the joints solved before), and a driver that branches as
+/// parameters and the joints solved before), the axes and home pose (`dqsym_ik_chain`), the
+/// numeric helpers every solver shares ([`crate::ik::ik_javascript_helpers`]: tolerances,
+/// candidates, the check by forward kinematics) and a driver that branches as
 /// [`crate::ik::candidates`] does.
 fn ik_script(sol: &crate::ik::IkSolution) -> Result<String, WalkError> {
     use crate::ik::{Formula, TARGET_SYMBOLS};
@@ -465,16 +467,62 @@ fn ik_script(sol: &crate::ik::IkSolution) -> Result<String, WalkError> {
         ));
         solved.push(step.variable.clone());
     }
-    let vars: Vec<String> = sol.variables.iter().map(|v| format!("\"{v}\"")).collect();
+    // The axes and the home pose from the parameters, for the check of each solution.
+    let mut chain = Vec::new();
+    let closed =
+        |x: &crate::Scalar| crate::closed_form(x).map_err(|e| WalkError::Config(e.to_string()));
+    for (i, a) in sol.axes.iter().enumerate() {
+        for (k, x) in a.dir.iter().chain(&a.point).enumerate() {
+            chain.push(Output::scalar(
+                &format!("ax{i}_{k}"),
+                "An axis entry.",
+                closed(x)?,
+            ));
+        }
+    }
+    for (r, row) in sol.home.rows.iter().take(3).enumerate() {
+        for (c, x) in row.iter().enumerate() {
+            chain.push(Output::scalar(
+                &format!("home{r}{c}"),
+                "A home pose entry.",
+                closed(x)?,
+            ));
+        }
+    }
+    code += &javascript_function(
+        "dqsym_ik_chain",
+        "The joint axes (direction, point) and the home pose.",
+        &chain,
+        &sol.params,
+        &CodegenOptions::default(),
+    )
+    .map_err(|e| WalkError::Config(e.to_string()))?;
+    let degrees = crate::ik::ik_step_degrees(sol).map_err(|e| WalkError::Config(e.to_string()))?;
+    let kinds: Vec<String> = sol
+        .axes
+        .iter()
+        .map(|a| u8::from(a.kind == crate::JointKind::Prismatic).to_string())
+        .collect();
+    let quoted = |v: &[String]| -> String {
+        v.iter()
+            .map(|x| format!("\"{x}\""))
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    let degrees: Vec<String> = degrees.iter().map(i32::to_string).collect();
     let data = format!(
-        "const IK = {{\"steps\":[{}],\"vars\":[{}],\"position_only\":{}}};\n",
+        "const IK = {{\"steps\":[{}],\"vars\":[{}],\"params\":[{}],\"kinds\":[{}],\"degrees\":[{}],\"position_only\":{}}};\n",
         steps.join(","),
-        vars.join(","),
+        quoted(&sol.variables),
+        quoted(&sol.params),
+        kinds.join(","),
+        degrees.join(","),
         sol.position_only
     );
     Ok(format!(
-        "<script>{}{data}{}</script>\n",
+        "<script>{}{data}{}{}</script>\n",
         code.replace("</script", "<\\/script"),
+        crate::ik::ik_javascript_helpers(sol).replace("</script", "<\\/script"),
         IK_JS
     ))
 }
@@ -486,47 +534,33 @@ const IK_JS: &str = r#"(function () {
     const D = JSON.parse(document.getElementById("dq-data").textContent);
     const inputs = Array.from(document.querySelectorAll("input[data-name]"));
     const TARGET = ["r11","r12","r13","px","r21","r22","r23","py","r31","r32","r33","pz"];
-    function cands(kind, v) {
-        if (kind === "atan2") {
-            if (Math.hypot(v[0], v[1]) < 1e-10) {
-                const out = [];
-                for (let k = -5; k <= 6; k++) out.push([k * Math.PI / 6, true]);
-                return out;
-            }
-            return [[Math.atan2(v[0], v[1]), false]];
-        }
-        if (kind === "value") return [[v[0], false]];
-        if (kind === "trig") {
-            const [a, b, c] = v, n = a * a + b * b;
-            if (n < 1e-20) return Math.abs(c) < 1e-9 ? [[0, true]] : [];
-            let rad = n - c * c;
-            if (rad < -1e-8 * n) return [];
-            const sing = rad <= 1e-12 * n;
-            if (sing) rad = 0;
-            // atan2(b, a) +- atan2(r, c) as atan2(b c +- a r, a c -+ b r), as the solvers do.
-            const r = Math.sqrt(rad);
-            return [[Math.atan2(b * c + a * r, a * c - b * r), sing],
-                [Math.atan2(b * c - a * r, a * c + b * r), sing]];
-        }
-        const [b, g] = v, scale = Math.max(b * b, Math.abs(g), 1);
-        let rad = b * b - g;
-        if (rad < -1e-8 * scale) return [];
-        const sing = rad <= 1e-12 * scale;
-        if (sing) rad = 0;
-        return [[-b + Math.sqrt(rad), sing], [-b - Math.sqrt(rad), sing]];
-    }
-    function solve(env) {
+    // Every branch, as the other solvers do: each step's candidates with its rounding
+    // IK_ZERO_TOL L^d, each complete solution through ik_push (checked by forward kinematics
+    // where a step asks for it, refined, flagged, de-duplicated).
+    function solve(env, T) {
+        const ch = dqsym_ik_chain(...IK.params.map((n) => env[n]));
+        const ax = IK.kinds.map((k, i) => [k].concat([0, 1, 2, 3, 4, 5].map((j) => ch[`ax${i}_${j}`])));
+        const home = [0, 1, 2].map((r) => [0, 1, 2, 3].map((c) => ch[`home${r}${c}`]));
+        const len = ik_scale(ax, home, T);
         const out = [];
-        (function go(k, env, sing) {
-            if (k === IK.steps.length) { out.push([Object.assign({}, env), sing]); return; }
+        (function go(k, env, sg, ck, smp) {
+            if (k === IK.steps.length) {
+                const q = IK.vars.map((n) => env[n]);
+                ik_push(out, q, sg, ck, smp, ax, home, T, len, IK.position_only);
+                return;
+            }
             const s = IK.steps[k];
             const r = s.f(...s.args.map((n) => env[n]));
-            for (const [v, sg] of cands(s.kind, s.parts.map((p) => r[p]))) {
+            const sig = IK_ZERO_TOL * Math.pow(len, IK.degrees[k]);
+            const n0 = out.length;
+            for (const [v, s1, c1, m1] of ik_cands(s.kind, s.parts.map((p) => r[p]), sig)) {
+                // The pair beside a double root, for poses only near the singular set.
+                if (m1 && s.kind === "trig" && out.slice(n0).some((row) => !row[2])) continue;
                 env[s.var] = v;
-                go(k + 1, env, sing || sg);
+                go(k + 1, env, sg || s1, ck || c1, smp || m1);
             }
             delete env[s.var];
-        })(0, Object.assign({}, env), false);
+        })(0, Object.assign({}, env), false, false, false);
         return out;
     }
     const run = (v) => dqsym_walk(...D.args.map((n) => v[n]));
@@ -542,12 +576,14 @@ const IK_JS: &str = r#"(function () {
         const env = Object.assign({}, v);
         TARGET.forEach((n, i) => { env[n] = T[Math.floor(i / 4)][i % 4]; });
         for (const n of IK.vars) delete env[n];
-        const sols = solve(env);
+        const sols = solve(env, T);
         const table = document.getElementById("ik-solutions");
         const cap = table.querySelector("caption").outerHTML;
         let h = cap + "<tr><td>#</td>" + IK.vars.map((n) => `<td>${n}</td>`).join("") +
-            "<td>singular</td><td>deviation</td></tr>";
-        sols.forEach(([s, sing], k) => {
+            "<td>singular</td><td>approximate</td><td>deviation</td></tr>";
+        sols.forEach(([q, sing, approx, res], k) => {
+            const s = {};
+            IK.vars.forEach((n, i) => { s[n] = q[i]; });
             const back = pose(Object.assign({}, v, s));
             let dev = 0;
             for (let r = 0; r < 3; r++) for (let c = 0; c < 4; c++) {
@@ -556,7 +592,8 @@ const IK_JS: &str = r#"(function () {
             }
             h += `<tr data-dev="${dev}"><td>${k + 1}</td>` +
                 IK.vars.map((n) => `<td>${s[n].toFixed(4)}</td>`).join("") +
-                `<td>${sing ? "yes" : ""}</td><td>${dev.toExponential(1)}</td></tr>`;
+                `<td>${sing ? "yes" : ""}</td><td>${approx ? res.toExponential(1) : ""}</td>` +
+                `<td>${dev.toExponential(1)}</td></tr>`;
         });
         table.innerHTML = h;
         table.dataset.count = String(sols.length);

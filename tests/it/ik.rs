@@ -625,8 +625,8 @@ fn generated_python_runs_and_solves() {
         let script = format!(
             "{code}\n\nimport sys\nNAMES = [{}]\nfor line in sys.stdin:\n    v = [float(x) for x in line.split()]\n    \
 T = np.array(v[:16]).reshape(4, 4)\n    params = dict(zip(NAMES, v[24:]))\n    sols = ik_full(T, **params)\n    \
-plain = ik(T, **params)\n    assert [list(q) for q, _, _ in sols] == plain\n    d = ik_dq(v[16:24], **params)\n    \
-print(len(sols), len(d))\n    for q, sg, ap in sols:\n        assert all(isinstance(x, float) for x in q)\n        \
+plain = ik(T, **params)\n    assert [list(q) for q, _, _, _ in sols] == plain\n    d = ik_dq(v[16:24], **params)\n    \
+print(len(sols), len(d))\n    for q, sg, ap, _ in sols:\n        assert all(isinstance(x, float) for x in q)\n        \
 print(' '.join(repr(x) for x in q), int(sg), int(ap))\n",
             names.join(", ")
         );

@@ -14,6 +14,7 @@ mod emit;
 mod geometric;
 mod hostile;
 mod ik;
+mod ik_edges;
 mod ik_model;
 mod kinematics;
 mod lang;

@@ -9,6 +9,7 @@
 //! robot's parameters and the joints solved before it (`c1`, `s23`, ...).
 
 pub mod axes;
+pub mod check;
 mod emit;
 mod plan;
 mod report;
@@ -16,7 +17,7 @@ mod safe;
 mod walk;
 
 pub use axes::{home_axes, intersection, relation, Axis, Relation, V3};
-pub use emit::{ik_c, ik_python, ik_rust};
+pub use emit::{ik_c, ik_javascript_helpers, ik_python, ik_rust, ik_step_degrees};
 pub use report::ik_report;
 pub use walk::ik_walk;
 
@@ -305,8 +306,13 @@ pub struct IkSolution {
     pub home: Matrix4<Scalar>,
     /// The frame solved for: the end `fk` reports.
     pub end: EndFrame,
+    /// The solved joints' axes in the home pose, in joint order (`FK = E1 ⋯ En M`): what the
+    /// solvers check their solutions with.
+    pub axes: Vec<Axis>,
     /// The closed forms of every step's parts, computed on first use.
     pub(crate) forms: std::sync::OnceLock<Result<Vec<Parts>, ScalarError>>,
+    /// Each step's degree in lengths ([`check::step_degrees`]), computed on first use.
+    pub(crate) degrees: std::sync::OnceLock<Result<Vec<i32>, ScalarError>>,
 }
 
 /// The part of a target pose an arm with fewer than six joints controls; the rest of the
@@ -441,25 +447,15 @@ pub fn solve_dq(
 pub struct NumSolution {
     /// Joint values in joint order (the free joint excluded).
     pub q: Vec<f64>,
-    /// A singular set was met (a joint chosen as 0 or a double root).
+    /// A singular set was met (a joint chosen on it, or a double root).
     pub singular: bool,
-    /// A radicand slightly below zero was clamped (least-squares closest).
+    /// The solution does not reproduce the target to [`check::POSE_TOL`] (a target out of
+    /// reach: the closest reach); its residual says by how much.
     pub approximate: bool,
-}
-
-const SINGULAR_TOL: f64 = 1e-10;
-
-/// A radicand `rad` of scale `n`: `None` below `-1e-8 n` (out of reach); within `1e-12 n` of
-/// zero a double root (singular; approximate when beyond rounding, `1e-14 n`, or negative
-/// beyond it: the closest reach); otherwise itself.
-pub fn radicand(rad: f64, n: f64) -> Option<(f64, bool, bool)> {
-    if rad < -1e-8 * n {
-        None
-    } else if rad <= 1e-12 * n {
-        Some((0.0, true, rad.abs() > 1e-14 * n))
-    } else {
-        Some((rad, false, false))
-    }
+    /// The largest deviation of the solution's pose from the target (positions over the
+    /// robot's scale) where it was checked by forward kinematics; 0 where every step was
+    /// well-conditioned (exact to rounding, not checked).
+    pub residual: f64,
 }
 
 impl IkSolution {
@@ -511,9 +507,21 @@ impl IkSolution {
             .map_err(Clone::clone)
     }
 
+    /// Each step's degree in lengths, computed once.
+    ///
+    /// # Errors
+    /// A closed form that fails.
+    pub fn degrees(&self) -> Result<&[i32], ScalarError> {
+        self.degrees
+            .get_or_init(|| check::step_degrees(self))
+            .as_ref()
+            .map(|v| v.as_slice())
+            .map_err(Clone::clone)
+    }
+
     /// Every solution for a numeric target pose (row-major 4x4), the parameters given by name.
     /// Evaluates the exact formulas in f64 (the reference the generated code is checked
-    /// against).
+    /// against), with the tolerances, checks and refinement of [`check`].
     ///
     /// # Errors
     /// A parameter without a value.
@@ -528,37 +536,60 @@ impl IkSolution {
             }
         }
         let mut env: Vec<(String, f64)> = params.iter().map(|(n, v)| (n.to_string(), *v)).collect();
+        let (axes, home) =
+            check::axis_data(self, &|n| env.iter().find(|(k, _)| k == n).map(|(_, v)| *v))?;
+        let len = check::scale(&axes, &home, target);
         for (r, row) in TARGET_SYMBOLS.iter().enumerate() {
             for (c, name) in row.iter().enumerate() {
                 env.push((name.to_string(), target[r][c]));
             }
         }
-        let mut out = Vec::new();
-        let mut q = vec![0.0; self.variables.len()];
-        self.branch(0, &mut env, &mut q, false, false, &mut out)?;
-        Ok(out)
+        let sigma: Vec<f64> = self
+            .degrees()
+            .map_err(|e| e.to_string())?
+            .iter()
+            .map(|d| check::ZERO_TOL * len.powi(*d))
+            .collect();
+        let mut b = Branching {
+            sol: self,
+            sigma,
+            env,
+            q: vec![0.0; self.variables.len()],
+            out: Vec::new(),
+            axes,
+            home,
+            target: *target,
+            len,
+        };
+        b.branch(0, (false, false, false))?;
+        Ok(b.out)
     }
+}
 
-    fn branch(
-        &self,
-        k: usize,
-        env: &mut Vec<(String, f64)>,
-        q: &mut Vec<f64>,
-        singular: bool,
-        approximate: bool,
-        out: &mut Vec<NumSolution>,
-    ) -> Result<(), String> {
-        let Some(step) = self.steps.get(k) else {
-            out.push(NumSolution {
-                q: q.clone(),
-                singular,
-                approximate,
-            });
+/// The reference solver's walk through the branches.
+struct Branching<'a> {
+    sol: &'a IkSolution,
+    sigma: Vec<f64>,
+    env: Vec<(String, f64)>,
+    q: Vec<f64>,
+    out: Vec<NumSolution>,
+    axes: Vec<check::AxisData>,
+    home: [[f64; 4]; 3],
+    target: [[f64; 4]; 4],
+    len: f64,
+}
+
+impl Branching<'_> {
+    /// Step `k` on; `flags` are (singular, checked, sampled) of the steps before.
+    fn branch(&mut self, k: usize, flags: (bool, bool, bool)) -> Result<(), String> {
+        let Some(step) = self.sol.steps.get(k) else {
+            self.finish(flags);
             return Ok(());
         };
-        let forms = self.forms().map_err(|e| e.to_string())?;
+        let forms = self.sol.forms().map_err(|e| e.to_string())?;
         let mut vals = [0.0; 3];
         for (i, (_, e)) in forms[k].iter().enumerate() {
+            let env = &self.env;
             vals[i] = e
                 .eval_f64(&|s: &crate::Sym| {
                     if s.is_pi() {
@@ -572,74 +603,85 @@ impl IkSolution {
                 })
                 .0;
         }
-        let cands = from_values(&step.formula, &vals);
-        for (v, sing, approx) in cands {
-            env.push((step.variable.clone(), v));
-            q[step.joint] = v;
-            let r = self.branch(k + 1, env, q, singular || sing, approximate || approx, out);
-            env.pop();
+        let before = self.out.len();
+        let trig = matches!(step.formula, Formula::Trig { .. });
+        for (v, sg, ck, smp) in from_values(&step.formula, &vals, self.sigma[k]) {
+            // The pair beside a double root is for poses only near the singular set: skipped
+            // where the double root gave a solution on the pose.
+            if trig && smp && self.out[before..].iter().any(|s| !s.approximate) {
+                continue;
+            }
+            self.env.push((step.variable.clone(), v));
+            self.q[step.joint] = v;
+            let r = self.branch(k + 1, (flags.0 || sg, flags.1 || ck, flags.2 || smp));
+            self.env.pop();
             r?;
         }
         Ok(())
     }
+
+    /// A complete solution: checked (and refined) where a step asks for it, dropped when it
+    /// is a sample off the pose or a duplicate.
+    fn finish(&mut self, (singular, checked, sampled): (bool, bool, bool)) {
+        let mut q = self.q.clone();
+        let mut residual = 0.0;
+        if singular || checked {
+            let po = self.sol.position_only;
+            residual = check::residual(&self.axes, &self.home, &self.target, self.len, po, &q);
+            if residual > check::REFINE_TOL {
+                let mut r = q.clone();
+                let res = check::refine(&self.axes, &self.home, &self.target, self.len, po, &mut r);
+                if res < residual {
+                    (q, residual) = (r, res);
+                }
+            }
+            if sampled && residual > check::POSE_TOL {
+                return;
+            }
+            if singular
+                && self
+                    .out
+                    .iter()
+                    .any(|s| s.singular && check::same_row(&s.q, &q))
+            {
+                return;
+            }
+        }
+        self.out.push(NumSolution {
+            q,
+            singular,
+            approximate: residual > check::POSE_TOL || residual.is_nan(),
+            residual,
+        });
+    }
 }
 
-/// The numeric candidates of one formula: `(value, singular, approximate)`; none when the
-/// radicand is negative (unreachable).
+/// The numeric candidates of one formula: `(value, singular, checked, sampled)` (see
+/// [`check`]); none when the radicand is negative (unreachable). `sigma` is the rounding of
+/// the formula's parts.
+///
+/// # Errors
+/// A part that cannot be evaluated.
 pub fn candidates(
     f: &Formula,
     ev: &dyn Fn(&Scalar) -> Result<f64, String>,
-) -> Result<Vec<(f64, bool, bool)>, String> {
+    sigma: f64,
+) -> Result<Vec<(f64, bool, bool, bool)>, String> {
     let v: Vec<f64> = match f {
         Formula::Atan2 { y, x } => vec![ev(y)?, ev(x)?],
         Formula::Trig { a, b, c } => vec![ev(a)?, ev(b)?, ev(c)?],
         Formula::Value { v } => vec![ev(v)?],
         Formula::Quadratic { beta, gamma } => vec![ev(beta)?, ev(gamma)?],
     };
-    Ok(from_values(f, &v))
+    Ok(from_values(f, &v, sigma))
 }
 
 /// The candidates of a formula from the values of its parts (in the order of its fields).
-fn from_values(f: &Formula, v: &[f64]) -> Vec<(f64, bool, bool)> {
+fn from_values(f: &Formula, v: &[f64], sigma: f64) -> Vec<check::Cand> {
     match f {
-        Formula::Atan2 { .. } => {
-            let (y, x) = (v[0], v[1]);
-            if y.hypot(x) < SINGULAR_TOL {
-                // Any value: twelve, k pi/6, so that a later joint can still reach (the
-                // generated code does the same).
-                (-5..=6)
-                    .map(|k| (f64::from(k) * std::f64::consts::FRAC_PI_6, true, false))
-                    .collect()
-            } else {
-                vec![(y.atan2(x), false, false)]
-            }
-        }
-        Formula::Value { .. } => vec![(v[0], false, false)],
-        Formula::Trig { .. } => {
-            let (a, b, c) = (v[0], v[1], v[2]);
-            let n = a * a + b * b;
-            if n < SINGULAR_TOL * SINGULAR_TOL {
-                return if c.abs() < 1e-9 {
-                    vec![(0.0, true, false)]
-                } else {
-                    vec![]
-                };
-            }
-            let Some((rad, sing, approx)) = radicand(n - c * c, n) else {
-                return vec![];
-            };
-            let phi = b.atan2(a);
-            let w = rad.sqrt().atan2(c);
-            vec![(phi + w, sing, approx), (phi - w, sing, approx)]
-        }
-        Formula::Quadratic { .. } => {
-            let (b, g) = (v[0], v[1]);
-            let scale = (b * b).max(g.abs()).max(1.0);
-            let Some((rad, sing, approx)) = radicand(b * b - g, scale) else {
-                return vec![];
-            };
-            let r = rad.sqrt();
-            vec![(-b + r, sing, approx), (-b - r, sing, approx)]
-        }
+        Formula::Atan2 { .. } => check::atan2_cands(v[0], v[1], sigma),
+        Formula::Value { .. } => vec![(v[0], false, false, false)],
+        Formula::Trig { .. } => check::trig_cands(v[0], v[1], v[2], sigma),
+        Formula::Quadratic { .. } => check::quadratic_cands(v[0], v[1], sigma),
     }
 }

@@ -578,7 +578,9 @@ fn derive_fixed(
         reach,
         home,
         end: super::EndFrame::default(),
+        axes,
         forms: std::sync::OnceLock::new(),
+        degrees: std::sync::OnceLock::new(),
     })
 }
 

@@ -77,5 +77,14 @@ pub(super) fn solution(sol: &IkSolution, lang: Lang) -> Cow<'_, IkSolution> {
             *x = subs(x);
         }
     }
+    // The axes the solver checks its solutions with are written with the same names.
+    for a in &mut out.axes {
+        a.variable = name(&a.variable);
+        for v in [&mut a.dir, &mut a.point, &mut a.moment] {
+            for x in v.iter_mut() {
+                *x = subs(x);
+            }
+        }
+    }
     Cow::Owned(out)
 }
