@@ -731,20 +731,16 @@ fn walk_ik(
         Ok(s) => s,
         Err(e) => return fail(e.to_string()),
     };
+    let w = match dqsym::walk::walk_ik(&robot, &sol) {
+        Ok(w) => w,
+        Err(e) => return fail(e.to_string()),
+    };
     if let Some((out, force)) = html {
         let page = (|| -> Result<String, String> {
-            let md = dqsym::ik::ik_walk(&robot, &sol, true).map_err(|e| e.to_string())?;
-            let text = read_input(path)?;
-            let w = if is_urdf(path) {
-                dqsym::walk::walk_robot_chain(&robot)
-            } else {
-                dqsym::walk_robot(&text, &path.display().to_string(), &dqsym::eval_scalar_text)
-            }
-            .map_err(|e| e.to_string())?;
             let cfg = dqsym::walk::Config::parse(config.unwrap_or(""))
                 .map_err(|e| format!("--config: {e}"))?;
             let assets = katex_assets()?;
-            dqsym::walk::ik_walk_html(&w, &sol, &md, &assets, &cfg).map_err(|e| e.to_string())
+            dqsym::walk::ik_walk_html(&w, &sol, &assets, &cfg).map_err(|e| e.to_string())
         })();
         return match page.and_then(|p| write_page(out, path, &p, force)) {
             Ok(()) => {
@@ -754,7 +750,12 @@ fn walk_ik(
             Err(m) => fail(m),
         };
     }
-    match dqsym::ik::ik_walk(&robot, &sol, markdown) {
+    let text = if markdown {
+        dqsym::walk_markdown(&w)
+    } else {
+        dqsym::walk_text(&w)
+    };
+    match text {
         Ok(t) => {
             print!("{t}");
             ExitCode::SUCCESS

@@ -83,7 +83,11 @@ impl Walkthrough {
                         }
                     }
                 }
-                Step::Notation { .. } | Step::Check { .. } => {}
+                Step::Notation { .. }
+                | Step::Check { .. }
+                | Step::Explain { .. }
+                | Step::Legend(_)
+                | Step::Solutions { .. } => {}
             }
         }
         // The exact scene of the page's drawing and live function (its symbolic parts do not

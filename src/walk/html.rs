@@ -107,27 +107,61 @@ fn inline(t: &str) -> String {
     out
 }
 
-const STYLE: &str = "body{font-family:Georgia,serif;margin:0;color:#222;line-height:1.45}\
-main{max-width:1560px;margin:0 auto;padding:1em 16px}h1{font-size:1.6em}h2{font-size:1.15em;\
-margin-top:1.6em;border-bottom:1px solid #ddd}.display{overflow-x:auto;margin:.6em 0 .6em 1em}\
-figure{margin:0;flex:0 1 600px;max-width:600px}figcaption{font-size:.9em;color:#555}code{font-size:.9em}\
-.layout{display:grid;grid-template-columns:minmax(0,1fr);gap:24px}.steps{min-width:0}\
-.live{display:flex;flex-wrap:wrap;gap:16px;align-items:flex-start;min-width:0}\
-.controls{flex:1 1 340px;min-width:0;font-family:sans-serif;font-size:14px}\
-svg.mechanism{max-width:100%;height:auto}\
-.slider{display:grid;grid-template-columns:4.5em minmax(0,1fr) 4.5em;align-items:center;gap:6px}\
+/// The page's style. Display formulas scroll sideways inside their own box when wider than
+/// the column, with shadows at the edges that have more to show (the scroll cue; the
+/// backgrounds attached `local` cover the shadows when scrolled to that end); nothing makes the
+/// page itself wider than the window, down to a phone's 390 px.
+const STYLE: &str = "body{font-family:Georgia,serif;margin:0;color:#222;line-height:1.45;\
+overflow-wrap:anywhere}main{max-width:1560px;margin:0 auto;padding:1em 16px}h1{font-size:1.6em}\
+h2{font-size:1.15em;margin-top:1.6em;border-bottom:1px solid #ddd}\
+.display{overflow-x:auto;overflow-y:hidden;margin:.6em 0 .6em 1em;padding:0 2px;\
+scrollbar-width:thin;overflow-wrap:normal;\
+background:linear-gradient(to right,#fff 30%,rgba(255,255,255,0)) left/32px 100% no-repeat local,\
+linear-gradient(to left,#fff 30%,rgba(255,255,255,0)) right/32px 100% no-repeat local,\
+radial-gradient(farthest-side at 0 50%,rgba(0,0,0,.28),rgba(0,0,0,0)) left/12px 100% no-repeat scroll,\
+radial-gradient(farthest-side at 100% 50%,rgba(0,0,0,.28),rgba(0,0,0,0)) right/12px 100% no-repeat scroll}\
+.display.scrolls{border-bottom:1px dashed #b8c4d8}\
+span.tex.wide{display:inline-block;max-width:100%;overflow-x:auto;overflow-y:hidden;\
+vertical-align:bottom;border-bottom:1px dashed #b8c4d8}\
+p.legend .tex,li .tex{overflow-wrap:normal}\
+figure{margin:0;flex:0 1 600px;max-width:600px;min-width:0}figcaption{font-size:.9em;color:#555}\
+code{font-size:.9em}.layout{display:grid;grid-template-columns:minmax(0,1fr);gap:24px}\
+.steps{min-width:0}.live{display:flex;flex-wrap:wrap;gap:16px;align-items:flex-start;min-width:0}\
+.controls{flex:1 1 300px;min-width:0;font-family:sans-serif;font-size:14px}\
+.drawing-legend{font-family:sans-serif;font-size:13px;line-height:1.35;margin-bottom:4px}\
+.drawing-legend p{margin:0 0 2px}.drawing-legend .swatch{vertical-align:middle}\
+svg.mechanism{max-width:100%;height:auto;display:block;touch-action:pan-y;cursor:grab}\
+.slider{display:grid;grid-template-columns:fit-content(40%) minmax(0,1fr) 4.5em;align-items:center;\
+gap:6px}.slider>.tex{min-width:3em;overflow-x:auto;overflow-y:hidden}\
 .slider output{font-variant-numeric:tabular-nums;text-align:right}\
-table.num{border-collapse:collapse;margin:.4em 0 .8em}table.num td{padding:1px 6px;\
-text-align:right;font-variant-numeric:tabular-nums;border-left:1px solid #ccc}\
-table.num caption{text-align:left;font-weight:bold;padding-bottom:2px}\
+.table-scroll{overflow-x:auto;max-width:100%}\
+table.num{border-collapse:collapse;margin:.4em 0 .8em;white-space:nowrap;overflow-wrap:normal}table.num td,table.num th{padding:1px 5px;\
+text-align:right;font-variant-numeric:tabular-nums;border-left:1px solid #ccc;font-weight:normal}\
+table.num caption{text-align:left;font-weight:bold;padding-bottom:2px;white-space:normal}\
+table.ik{font-size:13px}table.ik tr:first-child td{border-bottom:1px solid #ccc}\
 details.code pre{font-size:11px;max-height:24em;overflow:auto;background:#f6f6f2;padding:6px}\
+@media (max-width:600px){.display{margin-left:0}table.ik{font-size:12px}\
+table.num td,table.num th{padding:1px 3px}}\
 @media (min-width:1400px){.layout{grid-template-columns:minmax(0,1fr) 620px}\
 .live{grid-column:2;grid-row:1;position:sticky;top:8px;align-self:start;max-height:calc(100vh - 16px);\
 overflow-y:auto}.steps{grid-column:1;grid-row:1}.controls{flex-basis:100%}figure{flex-basis:100%}}";
 
+/// KaTeX fills in every formula; a display wider than its box is marked (`scrolls`: a dashed
+/// rule under it beside the edge shadows), and an inline formula that cannot break to fit
+/// (`wide`) becomes a box of the column's width that scrolls, with the same rule. Every
+/// measurement is read before any class is written, so the page is laid out once, not once
+/// per formula.
 const RENDER: &str = "document.querySelectorAll('[data-tex]').forEach(function(el){\
 katex.render(el.getAttribute('data-tex'),el,{displayMode:el.classList.contains('display'),\
-throwOnError:false});});";
+throwOnError:false});});function dqMarkScrolls(){var ds=document.querySelectorAll('.display'),\
+ts=document.querySelectorAll('span.tex.wide');ts.forEach(function(el){el.classList.remove('wide');});\
+var wide=[].filter.call(document.querySelectorAll('span.tex'),function(el){\
+var p=el.parentElement.getBoundingClientRect(),r=el.getBoundingClientRect();\
+return r.right>p.right+1||r.left<p.left-1;});var sc=[].map.call(ds,function(el){\
+return el.scrollWidth>el.clientWidth+1;});wide.forEach(function(el){el.classList.add('wide');});\
+ds.forEach(function(el,i){el.classList.toggle('scrolls',sc[i]);});}dqMarkScrolls();\
+window.addEventListener('resize',dqMarkScrolls);document.fonts.ready.then(dqMarkScrolls);\
+document.querySelectorAll('details').forEach(function(d){d.addEventListener('toggle',dqMarkScrolls);});";
 
 /// The page's script: sliders, redrawing, numbers (see the file's first comment).
 const PAGE_JS: &str = include_str!("page.js");
@@ -145,24 +179,56 @@ fn bold(t: &str) -> String {
     out
 }
 
+/// The drawing's legend as HTML (text that wraps at any width), with the ids the page's
+/// script updates.
+fn legend_html(lines: &[super::svg::LegendLine]) -> String {
+    let mut s = String::from("<div class=\"drawing-legend\">\n");
+    for l in lines {
+        let swatch = l.swatch.map_or(String::new(), |(colour, w, dash)| {
+            format!(
+                "<svg class=\"swatch\" width=\"30\" height=\"8\" aria-hidden=\"true\"><line x1=\"0\" \
+                 y1=\"4\" x2=\"30\" y2=\"4\" stroke=\"{colour}\" stroke-width=\"{w}\" \
+                 stroke-dasharray=\"{dash}\"/></svg> "
+            )
+        });
+        let id = l.id.map(|i| format!(" id=\"{i}\"")).unwrap_or_default();
+        s += &format!("<p>{swatch}<span{id}>{}</span></p>\n", xml_escape(&l.text));
+    }
+    s + "</div>\n"
+}
+
 /// The live part of the page: the drawing, a slider per symbol, the numbers, and the
 /// generated function; `None` when the closed forms cannot be compiled to JavaScript.
 fn live(m: &Mechanism, cfg: &Config, forms: &Forms) -> Result<(String, Option<String>), WalkError> {
     let scene = Scene::new(m, cfg)?;
-    let drawing = scene_svg(&scene, &SvgOptions::default())?;
+    let opts = SvgOptions {
+        legend: false,
+        ..SvgOptions::default()
+    };
+    let layout = scene.layout()?;
+    let scale = (opts.width / 2.0 - 24.0) / layout.reach;
+    let legend = legend_html(&super::svg::legend_lines(&scene, &layout, scale));
+    let drawing = scene_svg(&scene, &opts)?;
     let Ok(code) = live_function(&scene, forms) else {
         let mut s = String::from("<aside class=\"live\">\n<figure>\n");
+        s += &legend;
         s += &drawing;
         s += "<figcaption>The mechanism drawn to scale at the configuration in the legend.</figcaption>\n</figure>\n</aside>\n";
         return Ok((s, None));
     };
-    let frame_legend = 18.0 * super::svg::LEGEND_LINES + 8.0;
-    let planar = drawing.contains("yz-plane view");
+    let view = layout.view;
     let mut s = String::from("<aside class=\"live\" id=\"live\">\n<figure>\n");
+    s += &legend;
     s += &drawing;
-    s += "<figcaption>The mechanism to scale. Move the sliders: the arm and the numbers are \
-          recomputed by the function below, generated from the closed forms.</figcaption>\n\
-          </figure>\n<div class=\"controls\">\n";
+    s += if view.planar {
+        "<figcaption>The mechanism to scale. Move the sliders: the arm and the numbers are \
+          recomputed by the function below, generated from the closed forms.</figcaption>\n"
+    } else {
+        "<figcaption>The mechanism to scale. Move the sliders: the arm and the numbers are \
+          recomputed by the function below, generated from the closed forms. Drag the drawing \
+          to turn the view.</figcaption>\n"
+    };
+    s += "</figure>\n<div class=\"controls\">\n";
     for (joint, what) in [(true, "Joints"), (false, "Lengths")] {
         let items: Vec<&Symbol> = scene
             .symbols
@@ -217,9 +283,13 @@ fn live(m: &Mechanism, cfg: &Config, forms: &Forms) -> Result<(String, Option<St
         .map(|x| format!("\"{}\"", x.name))
         .collect();
     let data = format!(
-        "{{\"args\":[{}],\"planar\":{planar},\"width\":{},\"legend\":{frame_legend},\"slides\":{}}}",
+        "{{\"args\":[{}],\"planar\":{},\"azimuth\":{},\"elevation\":{},\"width\":{},\
+         \"legend\":0,\"slides\":{}}}",
         args.join(","),
-        SvgOptions::default().width,
+        view.planar,
+        view.azimuth,
+        view.elevation,
+        opts.width,
         slides(&scene.symbols)
     );
     let scripts = format!(
@@ -290,8 +360,19 @@ fn live_function(scene: &Scene, forms: &Forms) -> Result<String, WalkError> {
 /// When a value cannot be shown or the mechanism cannot be evaluated.
 pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<String, WalkError> {
     let title = format!("Walkthrough: {}", w.title);
+    page_html(w, &title, katex, cfg, None)
+}
+
+/// The page of a walkthrough; `ik` adds the solver's panel beside the drawing and its script.
+fn page_html(
+    w: &Walkthrough,
+    title: &str,
+    katex: &KatexAssets,
+    cfg: &Config,
+    ik: Option<&crate::ik::IkSolution>,
+) -> Result<String, WalkError> {
     let p = page(w)?;
-    let mut body = format!("<h1>{}</h1>\n", xml_escape(&title));
+    let mut body = format!("<h1>{}</h1>\n", xml_escape(title));
     for l in &p.legend {
         body += &format!("<p class=\"legend\">{}</p>\n", bold(&inline(l)));
     }
@@ -299,8 +380,18 @@ pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<S
     let mut scripts = None;
     if let Some(m) = &w.mechanism {
         let (aside, js) = live(m, cfg, &w.forms)?;
-        body += &aside;
-        scripts = js;
+        match ik {
+            Some(sol) => {
+                body += &aside.replacen("</aside>\n", &ik_panel(sol), 1);
+                if let Some(js) = js {
+                    scripts = Some(js + &ik_script(sol)?);
+                }
+            }
+            None => {
+                body += &aside;
+                scripts = js;
+            }
+        }
     } else if let Some((name, _)) = cfg.values.first() {
         // No drawing, so no configuration: a --config name would be silently ignored.
         return Err(WalkError::Config(format!(
@@ -312,103 +403,90 @@ pub fn walk_html(w: &Walkthrough, katex: &KatexAssets, cfg: &Config) -> Result<S
     for (head, parts) in p.sections {
         body += &format!("<section class=\"step\">\n<h2>{}</h2>\n", inline(&head));
         for p in parts {
-            match p {
-                Piece::Text(t) => body += &format!("<p>{}</p>\n", inline(&t)),
-                Piece::Display(d) => {
-                    body += &format!(
-                        "<div class=\"tex display\" data-tex=\"{}\"></div>\n",
-                        xml_escape(&d)
-                    )
-                }
-                Piece::Folded(summary, d) => {
-                    body += &format!(
-                        "<details><summary>{}</summary>\n<div class=\"tex display\" data-tex=\"{}\"></div>\n</details>\n",
-                        inline(&summary),
-                        xml_escape(&d)
-                    )
-                }
-            }
+            body += &piece_html(p);
         }
         body += "</section>\n";
     }
     body += "</div>\n</div>\n";
-    Ok(html_page(&title, katex, &body, scripts.as_deref()))
+    Ok(html_page(title, katex, &body, scripts.as_deref()))
 }
 
-/// The inverse kinematics walkthrough as a self-contained page: the derivation (`markdown`, as
-/// `dqsym walk --ik --markdown` writes it) beside the mechanism of `w` with its sliders; each
-/// slider move recomputes the pose and runs the derived solver on it (JavaScript generated
-/// from the same closed forms), listing every solution with its flags and the deviation of
-/// its own pose from the target.
+/// One piece of a step as HTML.
+fn piece_html(p: Piece) -> String {
+    match p {
+        Piece::Text(t) => format!("<p>{}</p>\n", inline(&t)),
+        Piece::Display(d) => format!(
+            "<div class=\"tex display\" data-tex=\"{}\"></div>\n",
+            xml_escape(&d)
+        ),
+        Piece::Folded(summary, d) => format!(
+            "<details><summary>{}</summary>\n<div class=\"tex display\" data-tex=\"{}\"></div>\n</details>\n",
+            inline(&summary),
+            xml_escape(&d)
+        ),
+        Piece::List(items) => {
+            let items: String = items
+                .iter()
+                .map(|i| format!("<li>{}</li>", inline(i)))
+                .collect();
+            format!("<ul>{items}</ul>\n")
+        }
+        Piece::Table(head, rows) => {
+            let mut t = String::from("<div class=\"table-scroll\"><table class=\"num ik\"><tr>");
+            for h in head {
+                t += &format!("<th>{}</th>", inline(&h));
+            }
+            t += "</tr>";
+            for r in rows {
+                t += "<tr>";
+                for c in r {
+                    t += &format!("<td>{}</td>", inline(&c));
+                }
+                t += "</tr>";
+            }
+            t + "</table></div>\n"
+        }
+    }
+}
+
+/// The inverse kinematics walkthrough ([`super::walk_ik`]) as a self-contained page: the
+/// derivation beside the mechanism with its sliders; each slider move recomputes the pose and
+/// runs the derived solver on it (JavaScript generated from the same closed forms), listing
+/// every distinct solution with its flags and the deviation of its own pose from the target.
 ///
 /// # Errors
 /// When a closed form cannot be written or the mechanism cannot be evaluated.
 pub fn ik_walk_html(
     w: &Walkthrough,
     sol: &crate::ik::IkSolution,
-    markdown: &str,
     katex: &KatexAssets,
     cfg: &Config,
 ) -> Result<String, WalkError> {
-    let mut body = String::new();
-    // The Markdown's blocks as HTML: headings, `$$` displays, lists, paragraphs.
-    let mut sections: Vec<(String, Vec<String>)> = Vec::new();
-    for block in markdown.split("\n\n") {
-        let block = block.trim();
-        if block.is_empty() {
-            continue;
-        }
-        if let Some(t) = block.strip_prefix("# ") {
-            body += &format!("<h1>{}</h1>\n", inline(t));
-            continue;
-        }
-        if let Some(t) = block.strip_prefix("## ").or(block.strip_prefix("### ")) {
-            sections.push((t.to_string(), Vec::new()));
-            continue;
-        }
-        let html = if let Some(d) = block.strip_prefix("$$").and_then(|b| b.strip_suffix("$$")) {
-            format!(
-                "<div class=\"tex display\" data-tex=\"{}\"></div>\n",
-                xml_escape(d.trim())
-            )
-        } else if block.lines().all(|l| l.starts_with("- ")) {
-            let items: String = block
-                .lines()
-                .map(|l| format!("<li>{}</li>", inline(&l[2..])))
-                .collect();
-            format!("<ul>{items}</ul>\n")
-        } else {
-            let lines: Vec<String> = block.lines().map(inline).collect();
-            format!("<p>{}</p>\n", lines.join("<br>\n"))
-        };
-        if sections.is_empty() {
-            sections.push((String::new(), Vec::new()));
-        }
-        if let Some(s) = sections.last_mut() {
-            s.1.push(html);
-        }
-    }
-    body += "<div class=\"layout\">\n";
-    let mut scripts = None;
-    if let Some(m) = &w.mechanism {
-        let (aside, js) = live(m, cfg, &w.forms)?;
-        let panel = "<div class=\"controls\"><table class=\"num\" id=\"ik-solutions\"><caption>\
-                     The solver on this pose: every solution, its flags and how far its own pose \
-                     is from the target</caption></table></div>\n</aside>\n";
-        body += &aside.replacen("</aside>\n", panel, 1);
-        if let Some(js) = js {
-            scripts = Some(js + &ik_script(sol)?);
-        }
-    }
-    body += "<div class=\"steps\">\n";
-    for (head, parts) in sections {
-        body += &format!("<section class=\"step\">\n<h2>{}</h2>\n", inline(&head));
-        body += &parts.concat();
-        body += "</section>\n";
-    }
-    body += "</div>\n</div>\n";
     let title = format!("Inverse kinematics walkthrough: {}", sol.robot);
-    Ok(html_page(&title, katex, &body, scripts.as_deref()))
+    page_html(w, &title, katex, cfg, Some(sol))
+}
+
+/// The solver's table beside the drawing: a head with the joint variables typeset, the rows
+/// written by the page's script.
+fn ik_panel(sol: &crate::ik::IkSolution) -> String {
+    let mut head = String::from("<tr><th>#</th>");
+    for (k, v) in sol.variables.iter().enumerate() {
+        head += &format!(
+            "<th title=\"{}\">{}</th>",
+            xml_escape(v),
+            inline(&super::ik::column_head(v, k))
+        );
+    }
+    head += "<th title=\"branches that give it\">×</th><th title=\"deviation of its pose\">dev.</th></tr>";
+    format!(
+        "<div class=\"controls\"><div class=\"table-scroll\"><table class=\"num ik\" \
+         id=\"ik-solutions\"><caption>The solver on this pose: every distinct solution; ×: how \
+         many branches give it (more than one where they meet at a singularity), * singular, \
+         ~ approximate (the closest reach); dev.: how far its own pose is from the target</caption><thead>{head}</thead><tbody></tbody></table></div>{key}</div>\n</aside>\n",
+        key = super::ik::column_key(&sol.variables)
+            .map(|k| format!("<p>{}</p>", inline(&k)))
+            .unwrap_or_default()
+    )
 }
 
 /// The solver of the page: one generated function per step (its parts from the target, the
@@ -577,26 +655,38 @@ const IK_JS: &str = r#"(function () {
         TARGET.forEach((n, i) => { env[n] = T[Math.floor(i / 4)][i % 4]; });
         for (const n of IK.vars) delete env[n];
         const sols = solve(env, T);
-        const table = document.getElementById("ik-solutions");
-        const cap = table.querySelector("caption").outerHTML;
-        let h = cap + "<tr><td>#</td>" + IK.vars.map((n) => `<td>${n}</td>`).join("") +
-            "<td>singular</td><td>approximate</td><td>deviation</td></tr>";
-        sols.forEach(([q, sing, approx, res], k) => {
+        // Branches that meet at a singularity are one solution (ik.rs `merge`, SAME_SOLUTION).
+        const rows = [];
+        const same = (a, b) => IK.vars.every((n) => {
+            const d = Math.abs(a[n] - b[n]) % (2 * Math.PI);
+            return Math.min(d, 2 * Math.PI - d) < 1e-9;
+        });
+        for (const [q, sing, approx] of sols) {
             const s = {};
             IK.vars.forEach((n, i) => { s[n] = q[i]; });
+            const r = rows.find((r) => same(r.s, s));
+            if (r) {
+                r.n += 1;
+                r.sing = r.sing || sing;
+                r.approx = r.approx || approx;
+            } else rows.push({ s, sing, approx, n: 1 });
+        }
+        const table = document.getElementById("ik-solutions");
+        let h = "";
+        rows.forEach(({ s, sing, approx, n }, k) => {
             const back = pose(Object.assign({}, v, s));
             let dev = 0;
             for (let r = 0; r < 3; r++) for (let c = 0; c < 4; c++) {
                 if (IK.position_only && c < 3) continue;
                 dev = Math.max(dev, Math.abs(back[r][c] - T[r][c]));
             }
-            h += `<tr data-dev="${dev}"><td>${k + 1}</td>` +
-                IK.vars.map((n) => `<td>${s[n].toFixed(4)}</td>`).join("") +
-                `<td>${sing ? "yes" : ""}</td><td>${approx ? res.toExponential(1) : ""}</td>` +
-                `<td>${dev.toExponential(1)}</td></tr>`;
+            h += `<tr data-dev="${dev}" data-q="${IK.vars.map((n) => s[n]).join(",")}"><td>${k + 1}</td>` +
+                IK.vars.map((n) => `<td>${s[n].toFixed(3)}</td>`).join("") +
+                `<td>${n}${sing ? "*" : ""}${approx ? "~" : ""}</td><td>${dev.toExponential(0)}</td></tr>`;
         });
-        table.innerHTML = h;
-        table.dataset.count = String(sols.length);
+        table.querySelector("tbody").innerHTML = h;
+        table.dataset.count = String(rows.length);
+        table.dataset.branches = String(sols.length);
     }
     inputs.forEach((i) => i.addEventListener("input", update));
     update();

@@ -6,8 +6,10 @@
 //!   independent 4x4 matrix (the check's oracle); reading the motion of a unit DQ.
 //! - `script.rs`: a [`Walkthrough`] from a `.dq` script, by listening to the evaluator.
 //! - `robot.rs`: a [`Walkthrough`] from a robot file.
+//! - `ik.rs`: [`walk_ik`], the [`Walkthrough`] of a derived inverse kinematics.
 //! - `text.rs`: [`walk_text`] and [`walk_markdown`].
-//! - `svg.rs`: [`mechanism_svg`], the drawing of the mechanism.
+//! - `svg.rs`: [`mechanism_svg`], the drawing of the mechanism; `view.rs`: the view it is
+//!   seen from (chosen so no link is foreshortened) and where its labels go.
 //! - `html.rs`: [`walk_html`], a self-contained page (KaTeX inlined).
 //! - `forms.rs`: [`Forms`], the closed form of every scalar shown, computed once by the
 //!   builders ([`Walkthrough::prepare`]).
@@ -18,17 +20,20 @@
 mod check;
 mod forms;
 mod html;
+mod ik;
 mod motion;
 mod notation;
 mod robot;
 mod script;
 mod svg;
 mod text;
+mod view;
 
 pub use forms::Forms;
 pub use html::{ik_walk_html, is_walk_page, walk_html, KatexAssets, PAGE_MARKER};
+pub use ik::walk_ik;
 pub use motion::{Motion, Word, Words};
-pub use robot::{walk_robot, walk_robot_chain, walk_robot_read};
+pub use robot::{robot_mechanism, walk_robot, walk_robot_chain, walk_robot_read};
 pub use script::walk_script;
 pub use svg::{mechanism_svg, Config, SvgOptions};
 pub use text::{walk_markdown, walk_text};
@@ -110,6 +115,26 @@ pub enum Step {
         /// The value.
         value: Value,
     },
+    /// A part of a derivation told in prose and formulas (the inverse kinematics walkthrough).
+    Explain {
+        /// Its heading.
+        title: Prose,
+        /// Prose, lists and formulas, in order.
+        blocks: Vec<Block>,
+    },
+    /// Lines of the page's notation legend beside the shorthands it hands out (what the
+    /// target's entries and the parameters are).
+    Legend(Vec<Prose>),
+    /// A solver run on one pose: every distinct solution with the deviation of its own pose
+    /// from the target, computed with independent 4x4 matrices.
+    Solutions {
+        /// The pose and where its numbers come from.
+        what: Prose,
+        /// The joint variables, in joint order.
+        variables: Vec<String>,
+        /// The distinct solutions.
+        rows: Vec<SolutionRow>,
+    },
     /// The result evaluated at random configurations against plain 4x4 homogeneous matrices.
     Check {
         /// What was compared.
@@ -121,6 +146,63 @@ pub enum Step {
         /// The largest absolute difference of a coordinate.
         max_deviation: f64,
     },
+}
+
+/// Prose in two forms: LaTeX math in `$...$` for Markdown and pages, plain text for terminals.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Prose {
+    /// With `$...$` math and `` `code` ``.
+    pub tex: String,
+    /// Plain text.
+    pub plain: String,
+}
+
+impl Prose {
+    /// Prose with no math: the same text in both forms.
+    pub fn text(t: impl Into<String>) -> Prose {
+        let t = t.into();
+        Prose {
+            tex: t.clone(),
+            plain: t,
+        }
+    }
+}
+
+/// A piece of an [`Step::Explain`].
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub enum Block {
+    /// A paragraph.
+    Text(Prose),
+    /// A bulleted list.
+    List(Vec<Prose>),
+    /// A display formula (LaTeX, and its plain twin).
+    Display(Prose),
+    /// Named values, one per row: `a = ...`, or a tuple `k1 = (0, 0, 1)`.
+    Formulas(Vec<Shown>),
+}
+
+/// A named value of an [`Block::Formulas`]: one closed form or a tuple of them.
+#[derive(Clone, Debug)]
+pub struct Shown {
+    /// A symbol-like name (`a`, `k1`, `beta`).
+    pub label: String,
+    /// One part, or the entries of a tuple.
+    pub parts: Vec<crate::Expr>,
+}
+
+/// One distinct solution of a [`Step::Solutions`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolutionRow {
+    /// The joint values, in joint order.
+    pub q: Vec<f64>,
+    /// How many of the solver's branches gave it (more than 1 where branches merge, at a
+    /// singularity).
+    pub branches: usize,
+    /// A singular set was met.
+    pub singular: bool,
+    /// The largest difference of an entry of its pose from the target's.
+    pub deviation: f64,
 }
 
 /// A half angle of a motion, and the names the script gave its cosine and sine.

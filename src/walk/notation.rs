@@ -69,7 +69,11 @@ impl Names {
                 | Step::Product { value, .. }
                 | Step::Transform { value, .. }
                 | Step::Result { value, .. } => add(value),
-                Step::Notation { .. } | Step::Check { .. } => {}
+                Step::Notation { .. }
+                | Step::Check { .. }
+                | Step::Explain { .. }
+                | Step::Legend(_)
+                | Step::Solutions { .. } => {}
             }
         }
         Names {

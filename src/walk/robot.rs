@@ -78,6 +78,47 @@ fn frame_motions(f: &Frame) -> Vec<Motion> {
     out
 }
 
+/// The motion of a joint at the value `v` of its variable.
+fn joint_motion(joint: &crate::kin::Joint<Scalar>, v: &Scalar) -> Motion {
+    let revolute = joint.kind == JointKind::Revolute;
+    let add = |x: &Scalar, on: bool| if on { x + v } else { x.clone() };
+    match &joint.geometry {
+        JointGeometry::Screw { axis, point } => Motion::Screw {
+            axis: axis.clone(),
+            point: point.clone(),
+            angle: if revolute { v.clone() } else { Scalar::int(0) },
+            slide: if revolute { Scalar::int(0) } else { v.clone() },
+        },
+        JointGeometry::Dh { theta, d, a, alpha } => Motion::Dh {
+            theta: add(theta, revolute),
+            d: add(d, !revolute),
+            a: a.clone(),
+            alpha: alpha.clone(),
+        },
+        JointGeometry::Mdh { alpha, a, theta, d } => Motion::Mdh {
+            alpha: alpha.clone(),
+            a: a.clone(),
+            theta: add(theta, revolute),
+            d: add(d, !revolute),
+        },
+    }
+}
+
+/// The mechanism of a robot for the drawing: its base frames, joints and tool frames as
+/// motions, without the walkthrough's products.
+pub fn robot_mechanism(robot: &Robot) -> Mechanism {
+    let mut motions: Vec<Motion> = robot.base_frames.iter().flat_map(frame_motions).collect();
+    for (joint, v) in robot.chain.joints.iter().zip(&robot.joint_values) {
+        motions.push(joint_motion(joint, v));
+    }
+    motions.extend(robot.tool_frames.iter().flat_map(frame_motions));
+    Mechanism {
+        motions,
+        tool: robot.tool.clone(),
+        values: robot.values.clone(),
+    }
+}
+
 /// The walkthrough of a robot already read (from a robot file or a URDF file).
 ///
 /// # Errors
@@ -132,30 +173,8 @@ pub fn walk_robot_chain(robot: &Robot) -> Result<Walkthrough, WalkError> {
         .zip(&robot.joint_values)
         .enumerate()
     {
-        let v = v.clone();
-        let revolute = joint.kind == JointKind::Revolute;
-        let add = |x: &Scalar, on: bool| if on { x + &v } else { x.clone() };
-        let m = match &joint.geometry {
-            JointGeometry::Screw { axis, point } => Motion::Screw {
-                axis: axis.clone(),
-                point: point.clone(),
-                angle: if revolute { v.clone() } else { Scalar::int(0) },
-                slide: if revolute { Scalar::int(0) } else { v.clone() },
-            },
-            JointGeometry::Dh { theta, d, a, alpha } => Motion::Dh {
-                theta: add(theta, revolute),
-                d: add(d, !revolute),
-                a: a.clone(),
-                alpha: alpha.clone(),
-            },
-            JointGeometry::Mdh { alpha, a, theta, d } => Motion::Mdh {
-                alpha: alpha.clone(),
-                a: a.clone(),
-                theta: add(theta, revolute),
-                d: add(d, !revolute),
-            },
-        };
-        let q = joint.dq(&v);
+        let m = joint_motion(joint, v);
+        let q = joint.dq(v);
         let meaning = m.describe();
         motions.push(m);
         push(

@@ -12,6 +12,7 @@
 //! Joint labels are placed where their boxes meet no other label and no joint.
 
 use super::motion::Motion;
+use super::view::{choose_view, place_labels, Segment, View, V3};
 use super::{Mechanism, WalkError};
 use crate::{
     kin::{dh_link, dh_link_matrix, mdh_link, mdh_link_matrix},
@@ -70,15 +71,18 @@ impl Config {
 pub struct SvgOptions {
     /// The width in pixels; the drawing area is square below the legend.
     pub width: f64,
+    /// The legend inside the drawing (a page sets its own beside it, as text that wraps).
+    pub legend: bool,
 }
 
 impl Default for SvgOptions {
     fn default() -> Self {
-        SvgOptions { width: 600.0 }
+        SvgOptions {
+            width: 600.0,
+            legend: true,
+        }
     }
 }
-
-type V3 = [f64; 3];
 
 /// Where a value of the drawing comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -475,37 +479,29 @@ pub(crate) fn slides(symbols: &[Symbol]) -> f64 {
         .sum()
 }
 
-/// The layout of the drawing, shared with the page's script: the legend's height, the
-/// drawing's centre and the pixels per unit length.
+/// The layout of the drawing, shared with the page's script: the legend's height above the
+/// square drawing area, and the view.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Frame {
     pub width: f64,
     pub legend: f64,
-    pub planar: bool,
+    pub view: View,
 }
-
-/// Lines of legend text at the top.
-pub(crate) const LEGEND_LINES: f64 = 6.0;
 
 impl Frame {
     pub(crate) fn height(&self) -> f64 {
         self.legend + self.width
     }
 
-    /// Pixels per unit of length for a mechanism of reach `r`.
+    /// Pixels per unit of length for a mechanism of reach `r` (an orthographic projection
+    /// draws every point within `r` of the base within `r` of the centre).
     pub(crate) fn scale(&self, r: f64) -> f64 {
-        let k = if self.planar { 1.0 } else { 1.2248 };
-        (self.width / 2.0 - 24.0) / (r * k)
+        (self.width / 2.0 - 24.0) / r
     }
 
     /// A point on the screen (y down), the base at the centre of the square.
     pub(crate) fn at(&self, p: V3, scale: f64) -> (f64, f64) {
-        let (u, v) = if self.planar {
-            (p[1], -p[2])
-        } else {
-            let (c, s) = (0.866_025_403_784_438_6, 0.5);
-            ((p[1] - p[0]) * c, -(p[2] - (p[0] + p[1]) * s))
-        };
+        let (u, v) = self.view.project(p);
         (
             self.width / 2.0 + u * scale,
             self.legend + self.width / 2.0 + v * scale,
@@ -513,42 +509,238 @@ impl Frame {
     }
 }
 
-/// A label's box: x, y, width, height.
-pub(crate) type LabelBox = [f64; 4];
-
-fn meets(a: &LabelBox, b: &LabelBox) -> bool {
-    a[0] < b[0] + b[2] && b[0] < a[0] + a[2] && a[1] < b[1] + b[3] && b[1] < a[1] + a[3]
+/// The numbers of a drawing: the polylines at the home pose and the configuration (base,
+/// joints, tool), the joints' axes, the view and the scale.
+pub(crate) struct Layout {
+    pub home: Vec<V3>,
+    pub conf: Vec<V3>,
+    pub axes: Vec<V3>,
+    pub view: View,
+    pub reach: f64,
 }
 
-/// Boxes for the labels of joints at screen points `pts` (texts `1`, `2`, ...): for each, the
-/// first place around its joint (8 directions, growing distance) whose box meets no label
-/// placed before, no joint and not the tool at `tool`. The page's script runs the same rule.
-pub(crate) fn place_labels(pts: &[(f64, f64)], tool: (f64, f64)) -> Vec<LabelBox> {
-    let mut joints: Vec<LabelBox> = pts
-        .iter()
-        .map(|(x, y)| [x - 7.0, y - 7.0, 14.0, 14.0])
-        .collect();
-    joints.push([tool.0 - 6.0, tool.1 - 6.0, 12.0, 12.0]);
-    let mut placed: Vec<LabelBox> = Vec::new();
-    for (i, (x, y)) in pts.iter().enumerate() {
-        let w = 8.0 * (i + 1).to_string().len() as f64 + 4.0;
-        let h = 16.0;
-        let mut best = None;
-        'search: for step in 0..8 {
-            let r = 14.0 + 8.0 * f64::from(step);
-            for k in 0..8 {
-                let a = (-45.0 + 45.0 * f64::from(k)).to_radians();
-                let (cx, cy) = (x + r * a.cos(), y + r * a.sin());
-                let b = [cx - w / 2.0, cy - h / 2.0, w, h];
-                if !placed.iter().chain(&joints).any(|o| meets(&b, o)) {
-                    best = Some(b);
-                    break 'search;
-                }
-            }
-        }
-        placed.push(best.unwrap_or([x + 10.0, y - 24.0, w, h]));
+impl Scene {
+    /// The numbers of the drawing, the view chosen from both poses.
+    pub(crate) fn layout(&self) -> Result<Layout, WalkError> {
+        let (home, _) = self.numbers(true)?;
+        let (conf, axes) = self.numbers(false)?;
+        let view = choose_view(&[&home, &conf], self.planar()?);
+        let reach = reach(&home, slides(&self.symbols));
+        Ok(Layout {
+            home,
+            conf,
+            axes,
+            view,
+            reach,
+        })
     }
-    placed
+}
+
+/// The part of a polyline (base, joints, tool) drawn as links: from the first joint on (the
+/// base to the first joint is a fixed offset, drawn apart).
+fn links(line: &[V3]) -> &[V3] {
+    if line.len() > 2 {
+        &line[1..]
+    } else {
+        line
+    }
+}
+
+/// One line of the drawing's legend, with the id the page's script updates it by.
+pub(crate) struct LegendLine {
+    pub id: Option<&'static str>,
+    /// A sample of the stroke it explains: (colour, width, dash pattern).
+    pub swatch: Option<(&'static str, f64, &'static str)>,
+    pub text: String,
+}
+
+/// The colour, width and dashes of the fixed offset from the base to the first joint.
+pub(crate) const BASE_LINK: (&str, f64, &str) = ("#a0703c", 2.5, "2 3");
+const HOME: (&str, f64, &str) = ("#999999", 2.0, "6 4");
+const ARM: (&str, f64, &str) = ("#1f5fbf", 3.5, "");
+
+/// The legend of a drawing, line by line.
+pub(crate) fn legend_lines(scene: &Scene, l: &Layout, scale: f64) -> Vec<LegendLine> {
+    let joints_text = values_text(&scene.symbols, true);
+    let lengths_text = values_text(&scene.symbols, false);
+    let line = |id, swatch, text: String| LegendLine { id, swatch, text };
+    let mut out = vec![
+        line(
+            None,
+            Some(HOME),
+            "home pose (every joint variable 0)".into(),
+        ),
+        line(None, Some(ARM), "the configuration:".into()),
+        line(Some("dq-config"), None, joints_text),
+        line(
+            Some("dq-lengths"),
+            None,
+            if lengths_text.is_empty() {
+                "no length parameters".to_owned()
+            } else {
+                format!("lengths: {lengths_text}")
+            },
+        ),
+        line(
+            None,
+            None,
+            format!(
+                "circles: joints 1 to {}, {}; square: the {}; triangle: the base",
+                scene.joints.len(),
+                if l.view.planar {
+                    "axes (x) out of the page"
+                } else {
+                    "arrows: joint axes"
+                },
+                if scene.has_tool {
+                    "tool point"
+                } else {
+                    "last frame's origin"
+                }
+            ),
+        ),
+    ];
+    if base_offset(&l.conf) {
+        out.push(line(
+            None,
+            Some(BASE_LINK),
+            "the fixed offset from the base to joint 1 (not a link)".into(),
+        ));
+    }
+    out.push(line(
+        Some("dq-scale"),
+        None,
+        format!(
+            "{}, to scale: {} px per unit length",
+            l.view.words(),
+            number(scale)
+        ),
+    ));
+    out
+}
+
+/// Whether the first joint is away from the base (a fixed offset to draw).
+fn base_offset(line: &[V3]) -> bool {
+    line.len() > 2 && line[1].iter().any(|x| x.abs() > 1e-9)
+}
+
+/// Text broken into lines of at most `max` characters after a `,` or `;` (so `a2 = -0.425`
+/// stays on one line); a longer piece keeps its own line.
+fn wrap(text: &str, max: usize) -> Vec<String> {
+    let mut pieces: Vec<String> = Vec::new();
+    let mut cur = String::new();
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        cur.push(c);
+        if matches!(c, ',' | ';') && chars.peek() == Some(&' ') {
+            chars.next();
+            pieces.push(std::mem::take(&mut cur));
+        }
+    }
+    pieces.push(cur);
+    let mut out: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for p in pieces {
+        if !line.is_empty() && line.chars().count() + 1 + p.chars().count() > max {
+            out.push(std::mem::take(&mut line));
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(&p);
+    }
+    out.push(line);
+    out
+}
+
+/// A legend of `lines` at the top of an SVG drawing `width` wide: its text and its height.
+/// Lines wrap at the drawing's width (12 px sans-serif is under 7 px a character on average),
+/// so long URDF joint names are never cut.
+fn svg_legend(lines: &[LegendLine], width: f64) -> (String, f64) {
+    let max = ((width - 28.0) / 7.0).max(20.0) as usize;
+    let mut s = String::from("<g class=\"legend\" font-size=\"12\">\n");
+    let mut y = 20.0;
+    for l in lines {
+        let x = if let Some((colour, w, dash)) = l.swatch {
+            let _ = writeln!(
+                s,
+                "<line x1=\"14\" y1=\"{}\" x2=\"44\" y2=\"{}\" stroke=\"{colour}\" \
+                 stroke-width=\"{w}\" stroke-dasharray=\"{dash}\"/>",
+                f(y - 4.0),
+                f(y - 4.0)
+            );
+            52.0
+        } else {
+            14.0
+        };
+        let id = l.id.map(|i| format!(" id=\"{i}\"")).unwrap_or_default();
+        let _ = write!(s, "<text{id} x=\"{}\" y=\"{}\">", f(x), f(y));
+        for (k, part) in wrap(&l.text, max).iter().enumerate() {
+            if k > 0 {
+                y += 16.0;
+            }
+            let _ = write!(
+                s,
+                "<tspan x=\"{}\" y=\"{}\">{}</tspan>",
+                f(x),
+                f(y),
+                xml_escape(part)
+            );
+        }
+        s += "</text>\n";
+        y += 18.0;
+    }
+    s += "</g>\n";
+    (s, y - 10.0)
+}
+
+/// The triad, bottom left: x, y, z of the base frame as drawn (each line has an id the page's
+/// script turns with the view).
+fn triad(frame: &Frame, h: f64) -> String {
+    let (ox, oy) = (34.0, h - 34.0);
+    let mut s = String::from("<g class=\"triad\">\n");
+    for (k, name) in ["x", "y", "z"].iter().enumerate() {
+        let mut e = [0.0; 3];
+        e[k] = 1.0;
+        let (dx, dy) = frame.view.project(e);
+        let (dx, dy) = (dx * 22.0, dy * 22.0);
+        let out = dx.abs() + dy.abs() < 1e-9;
+        // Along the line of sight (x of a planar drawing): out of the page.
+        let _ = writeln!(
+            s,
+            "<circle id=\"dq-triad-o{name}\" cx=\"{}\" cy=\"{}\" r=\"4\" fill=\"none\" \
+             stroke=\"#444444\"{}/><line id=\"dq-triad-{name}\" x1=\"{}\" y1=\"{}\" x2=\"{}\" \
+             y2=\"{}\" stroke=\"#444444\" stroke-width=\"1.5\" marker-end=\"url(#triad-head)\"{}/>\
+             <text id=\"dq-triad-t{name}\" x=\"{}\" y=\"{}\" fill=\"#444444\" text-anchor=\"middle\" \
+             dominant-baseline=\"central\">{name}</text>",
+            f(ox),
+            f(oy),
+            if out { "" } else { " visibility=\"hidden\"" },
+            f(ox),
+            f(oy),
+            f(ox + dx),
+            f(oy + dy),
+            if out { " visibility=\"hidden\"" } else { "" },
+            f(if out { ox - 14.0 } else { ox + dx * 1.5 }),
+            f(if out { oy + 12.0 } else { oy + dy * 1.5 }),
+        );
+    }
+    s += "</g>\n";
+    s
+}
+
+/// The segments a label must keep off: links (both poses), the base offset and the axes.
+pub(crate) fn drawn_segments(
+    home: &[(f64, f64)],
+    conf: &[(f64, f64)],
+    axes: &[Segment],
+) -> Vec<Segment> {
+    let mut out: Vec<Segment> = Vec::new();
+    for l in [home, conf] {
+        out.extend(l.windows(2).map(|w| (w[0], w[1])));
+    }
+    out.extend(axes);
+    out
 }
 
 /// One decimal, never `-0.0`: the same text on every run.
@@ -603,14 +795,20 @@ pub fn mechanism_svg(m: &Mechanism, cfg: &Config, o: &SvgOptions) -> Result<Stri
 
 /// The drawing of a scene.
 pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkError> {
-    let frame = Frame {
+    let l = scene.layout()?;
+    let probe = Frame {
         width: o.width,
-        legend: 18.0 * LEGEND_LINES + 8.0,
-        planar: scene.planar()?,
+        legend: 0.0,
+        view: l.view,
     };
-    let (home, _) = scene.numbers(true)?;
-    let (conf, axes) = scene.numbers(false)?;
-    let scale = frame.scale(reach(&home, slides(&scene.symbols)));
+    let scale = probe.scale(l.reach);
+    let legend = o
+        .legend
+        .then(|| svg_legend(&legend_lines(scene, &l, scale), o.width));
+    let frame = Frame {
+        legend: legend.as_ref().map_or(0.0, |(_, h)| *h),
+        ..probe
+    };
     let at = |p: V3| frame.at(p, scale);
     let pts = |line: &[V3]| -> String {
         line.iter()
@@ -634,12 +832,8 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
     );
     let _ = writeln!(
         s,
-        "<title>The mechanism to scale, {} view: home pose dashed, configuration solid</title>",
-        if frame.planar {
-            "yz-plane"
-        } else {
-            "isometric"
-        }
+        "<title>The mechanism to scale, {}: home pose dashed, configuration solid</title>",
+        l.view.words()
     );
     s += "<defs><marker id=\"axis-head\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" \
           markerWidth=\"7\" markerHeight=\"7\" orient=\"auto\"><path d=\"M0,0 L10,5 L0,10 z\" \
@@ -652,97 +846,11 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
         f(w - 1.0),
         f(h - 1.0)
     );
-    // Legend.
-    let joints_text = values_text(&scene.symbols, true);
-    let lengths_text = values_text(&scene.symbols, false);
-    s += "<g class=\"legend\" font-size=\"12\">\n";
-    s += "<line x1=\"14\" y1=\"16\" x2=\"44\" y2=\"16\" stroke=\"#999999\" stroke-width=\"2\" \
-          stroke-dasharray=\"6 4\"/>\n<text x=\"52\" y=\"20\">home pose (every joint variable 0)</text>\n";
-    s +=
-        "<line x1=\"14\" y1=\"34\" x2=\"44\" y2=\"34\" stroke=\"#1f5fbf\" stroke-width=\"3.5\"/>\n\
-          <text x=\"52\" y=\"38\">the configuration:</text>\n";
-    let _ = writeln!(
-        s,
-        "<text id=\"dq-config\" x=\"14\" y=\"56\">{}</text>",
-        xml_escape(&joints_text)
-    );
-    let _ = writeln!(
-        s,
-        "<text id=\"dq-lengths\" x=\"14\" y=\"74\">{}</text>",
-        xml_escape(&if lengths_text.is_empty() {
-            "no length parameters".to_owned()
-        } else {
-            format!("lengths: {lengths_text}")
-        })
-    );
-    let _ = writeln!(
-        s,
-        "<text x=\"14\" y=\"92\">circles: joints 1 to {}, {}; square: the {}; triangle: the base</text>",
-        scene.joints.len(),
-        if frame.planar {
-            "axes (x) out of the page"
-        } else {
-            "arrows: joint axes"
-        },
-        if scene.has_tool {
-            "tool point"
-        } else {
-            "last frame's origin"
-        }
-    );
-    let _ = writeln!(
-        s,
-        "<text id=\"dq-scale\" x=\"14\" y=\"110\">{}, to scale: {} px per unit length</text>",
-        if frame.planar {
-            "view of the yz plane"
-        } else {
-            "isometric view"
-        },
-        number(scale)
-    );
-    s += "</g>\n";
-    // The triad, bottom left: x, y, z of the base frame as drawn.
-    let (ox, oy) = (34.0, h - 34.0);
-    s += "<g class=\"triad\">\n";
-    for (k, name) in ["x", "y", "z"].iter().enumerate() {
-        let mut e = [0.0; 3];
-        e[k] = 1.0;
-        let (ex, ey) = frame.at(e, 22.0);
-        let (dx, dy) = (
-            ex - frame.width / 2.0,
-            ey - frame.legend - frame.width / 2.0,
-        );
-        if dx.abs() + dy.abs() < 1e-9 {
-            // Along the line of sight: out of the page.
-            let _ = writeln!(
-                s,
-                "<circle cx=\"{}\" cy=\"{}\" r=\"4\" fill=\"none\" stroke=\"#444444\"/>\
-                 <circle cx=\"{}\" cy=\"{}\" r=\"1.5\" fill=\"#444444\"/>\
-                 <text x=\"{}\" y=\"{}\" fill=\"#444444\">{name}</text>",
-                f(ox),
-                f(oy),
-                f(ox),
-                f(oy),
-                f(ox - 16.0),
-                f(oy + 14.0)
-            );
-            continue;
-        }
-        let _ = writeln!(
-            s,
-            "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#444444\" stroke-width=\"1.5\" \
-             marker-end=\"url(#triad-head)\"/><text x=\"{}\" y=\"{}\" fill=\"#444444\" \
-             text-anchor=\"middle\" dominant-baseline=\"central\">{name}</text>",
-            f(ox),
-            f(oy),
-            f(ox + dx),
-            f(oy + dy),
-            f(ox + dx * 1.5),
-            f(oy + dy * 1.5)
-        );
+    if let Some((text, _)) = &legend {
+        s += text;
     }
-    s += "</g>\n";
-    // The base.
+    s += &triad(&frame, h);
+    // The base, and the fixed offset from it to the first joint (not a link).
     let (bx, by) = at([0.0; 3]);
     let _ = writeln!(
         s,
@@ -755,29 +863,40 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
         f(bx + 18.0),
         f(by + 17.0)
     );
-    // Home pose.
+    let first = at(l.conf[if l.conf.len() > 2 { 1 } else { 0 }]);
+    let (colour, width, dash) = BASE_LINK;
     let _ = writeln!(
         s,
-        "<polyline id=\"dq-home\" points=\"{}\" fill=\"none\" stroke=\"#999999\" \
-         stroke-width=\"2\" stroke-dasharray=\"6 4\" stroke-linejoin=\"round\"/>",
-        pts(&home)
+        "<line id=\"dq-base-link\" x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{colour}\" \
+         stroke-width=\"{width}\" stroke-dasharray=\"{dash}\"/>",
+        f(bx),
+        f(by),
+        f(first.0),
+        f(first.1)
     );
-    // Configuration.
-    let _ = writeln!(
-        s,
-        "<polyline id=\"dq-arm\" points=\"{}\" fill=\"none\" stroke=\"#1f5fbf\" \
-         stroke-width=\"3.5\" stroke-linejoin=\"round\"/>",
-        pts(&conf)
-    );
-    let arrow = 0.16 * reach(&home, slides(&scene.symbols)) * scale;
+    for (id, line, (colour, width, dash)) in [("dq-home", &l.home, HOME), ("dq-arm", &l.conf, ARM)]
+    {
+        let _ = writeln!(
+            s,
+            "<polyline id=\"{id}\" points=\"{}\" fill=\"none\" stroke=\"{colour}\" \
+             stroke-width=\"{width}\" stroke-dasharray=\"{dash}\" stroke-linejoin=\"round\"/>",
+            pts(links(line))
+        );
+    }
+    let conf = &l.conf;
+    let arrow = 0.16 * l.reach;
     let screen: Vec<(f64, f64)> = conf[1..conf.len() - 1].iter().map(|p| at(*p)).collect();
-    for (i, ((x, y), n)) in screen.iter().zip(&axes).enumerate() {
+    let mut axis_segments = Vec::new();
+    for (i, ((x, y), n)) in screen.iter().zip(&l.axes).enumerate() {
         let p = conf[i + 1];
         let (tx, ty) = at([
-            p[0] + n[0] * arrow / scale,
-            p[1] + n[1] * arrow / scale,
-            p[2] + n[2] * arrow / scale,
+            p[0] + n[0] * arrow,
+            p[1] + n[1] * arrow,
+            p[2] + n[2] * arrow,
         ]);
+        if !l.view.planar {
+            axis_segments.push(((*x, *y), (tx, ty)));
+        }
         let _ = writeln!(
             s,
             "<line class=\"dq-axis\" data-i=\"{i}\" x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" \
@@ -786,7 +905,7 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
             f(*y),
             f(tx),
             f(ty),
-            if frame.planar {
+            if l.view.planar {
                 " visibility=\"hidden\""
             } else {
                 ""
@@ -805,7 +924,7 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
             f(*x),
             f(*y)
         );
-        if frame.planar {
+        if l.view.planar {
             let _ = writeln!(
                 s,
                 "<circle class=\"dq-dot\" data-i=\"{i}\" cx=\"{}\" cy=\"{}\" r=\"2\" fill=\"#c0392b\"/>",
@@ -826,7 +945,20 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
         f(tx - 4.5),
         f(ty - 4.5)
     );
-    for (i, b) in place_labels(&screen, (tx, ty)).iter().enumerate() {
+    let on_screen = |line: &[V3]| -> Vec<(f64, f64)> { line.iter().map(|p| at(*p)).collect() };
+    let mut avoid = drawn_segments(
+        &on_screen(links(&l.home)),
+        &on_screen(links(conf)),
+        &axis_segments,
+    );
+    if base_offset(conf) {
+        avoid.push(((bx, by), first));
+    }
+    let area = [0.0, frame.legend, w, w];
+    for (i, b) in place_labels(&screen, (tx, ty), &avoid, area)
+        .iter()
+        .enumerate()
+    {
         let _ = writeln!(
             s,
             "<text class=\"dq-label\" data-i=\"{i}\" x=\"{}\" y=\"{}\" fill=\"#1f5fbf\" \

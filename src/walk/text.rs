@@ -5,7 +5,10 @@
 
 use super::forms::half;
 use super::notation::Names;
-use super::{ComponentTrace, Forms, HalfAngle, Step, WalkError, Walkthrough, Word, Words};
+use super::{
+    Block, ComponentTrace, Forms, HalfAngle, Prose, Shown, SolutionRow, Step, WalkError,
+    Walkthrough, Word, Words,
+};
 use crate::closed::angle_text;
 use crate::emit::visual_len;
 use crate::{
@@ -166,6 +169,9 @@ fn shown(label: &str, value: &Value, st: &Plain, pad: &str) -> Result<String, Wa
 /// The legend of a page in plain text: the notation, and the script's own `halfangle` names.
 fn legend_text(w: &Walkthrough, names: &Names) -> String {
     let mut out = String::new();
+    for l in legend_prose(w) {
+        out += &format!("\n{}\n", l.plain);
+    }
     let lines = names.legend_plain();
     if !lines.is_empty() {
         out += "\nNotation (each symbol has one meaning on this page):\n";
@@ -177,6 +183,18 @@ fn legend_text(w: &Walkthrough, names: &Names) -> String {
         out += &format!("  the script's halfangle names: {s}\n");
     }
     out
+}
+
+/// The legend lines a builder gave ([`Step::Legend`]).
+fn legend_prose(w: &Walkthrough) -> Vec<&Prose> {
+    w.steps
+        .iter()
+        .filter_map(|s| match s {
+            Step::Legend(l) => Some(l),
+            _ => None,
+        })
+        .flatten()
+        .collect()
 }
 
 /// The script's `halfangle` names, in words.
@@ -203,13 +221,30 @@ pub fn walk_text(w: &Walkthrough) -> Result<String, WalkError> {
     let pad = "   ";
     let mut n = 0;
     for step in &w.steps {
-        if matches!(step, Step::Notation { .. }) {
+        if matches!(step, Step::Notation { .. } | Step::Legend(_)) {
             continue;
         }
         n += 1;
         out.push('\n');
         match step {
-            Step::Notation { .. } => {}
+            Step::Notation { .. } | Step::Legend(_) => {}
+            Step::Explain { title, blocks } => {
+                out += &format!("{n}. {}\n", title.plain);
+                for b in blocks {
+                    out += &block_text(b, &st, pad);
+                }
+            }
+            Step::Solutions {
+                what,
+                variables,
+                rows,
+            } => {
+                out += &format!("{n}. Check: {}\n", what.plain);
+                out += &format!("{pad}({})\n", variables.join(", "));
+                for r in rows {
+                    out += &format!("{pad}{}\n", solution_text(r));
+                }
+            }
             Step::Factor {
                 name,
                 value,
@@ -272,6 +307,45 @@ pub fn walk_text(w: &Walkthrough) -> Result<String, WalkError> {
         crate::emit::names::printable(&w.title),
         legend_text(w, &names)
     ))
+}
+
+/// A block of an explained step as plain text.
+fn block_text(b: &Block, st: &Plain, pad: &str) -> String {
+    match b {
+        Block::Text(p) => format!("{pad}{}\n", p.plain),
+        Block::List(items) => items
+            .iter()
+            .map(|p| format!("{pad}- {}\n", p.plain))
+            .collect(),
+        Block::Display(p) => format!("{pad}    {}\n", p.plain),
+        Block::Formulas(rows) => rows
+            .iter()
+            .map(|r| {
+                let parts: Vec<String> = r.parts.iter().map(|e| st.expr(e)).collect();
+                if parts.len() == 1 {
+                    format!("{pad}  {} = {}\n", r.label, parts[0])
+                } else {
+                    format!("{pad}  {} = ({})\n", r.label, parts.join(", "))
+                }
+            })
+            .collect(),
+    }
+}
+
+/// One row of a solver's check: the joint values, the merged branches, the deviation.
+fn solution_text(r: &SolutionRow) -> String {
+    let q: Vec<String> = r.q.iter().map(|x| format!("{x:.4}")).collect();
+    format!(
+        "({}){}{}: pose deviation {}",
+        q.join(", "),
+        if r.branches > 1 {
+            format!(", {} branches meet", r.branches)
+        } else {
+            String::new()
+        },
+        if r.singular { " (singular)" } else { "" },
+        deviation(r.deviation)
+    )
 }
 
 /// The deviation, machine-independent when it is rounding noise.
@@ -693,6 +767,10 @@ pub(crate) enum Piece {
     Display(String),
     /// Display math folded away behind a summary (prose), for very long expanded sums.
     Folded(String, String),
+    /// A bulleted list of prose items.
+    List(Vec<String>),
+    /// A table: the head's cells and the rows' cells, prose with inline math.
+    Table(Vec<String>, Vec<Vec<String>>),
 }
 
 /// A walkthrough laid out for Markdown and HTML.
@@ -711,12 +789,24 @@ pub(crate) fn page(w: &Walkthrough) -> Result<Page, WalkError> {
     let mut out = Vec::new();
     let mut n = 0;
     for step in &w.steps {
-        if matches!(step, Step::Notation { .. }) {
+        if matches!(step, Step::Notation { .. } | Step::Legend(_)) {
             continue;
         }
         n += 1;
         let (head, body) = match step {
-            Step::Notation { .. } => continue,
+            Step::Notation { .. } | Step::Legend(_) => continue,
+            Step::Explain { title, blocks } => (
+                format!("{n}. {}", title.tex),
+                blocks.iter().map(|b| block_tex(b, &st)).collect(),
+            ),
+            Step::Solutions {
+                what,
+                variables,
+                rows,
+            } => (
+                format!("{n}. Check at the robot's own values"),
+                solutions_tex(what, variables, rows),
+            ),
             Step::Factor {
                 name,
                 value,
@@ -795,7 +885,7 @@ pub(crate) fn page(w: &Walkthrough) -> Result<Page, WalkError> {
         };
         out.push((head, body));
     }
-    let mut legend = Vec::new();
+    let mut legend: Vec<String> = legend_prose(w).iter().map(|p| p.tex.clone()).collect();
     let lines = names.legend_tex();
     if !lines.is_empty() {
         legend.push("**Notation**, one meaning per symbol on this page.".to_owned());
@@ -808,6 +898,82 @@ pub(crate) fn page(w: &Walkthrough) -> Result<Page, WalkError> {
         legend,
         sections: out,
     })
+}
+
+/// A block of an explained step as a piece of a page.
+fn block_tex(b: &Block, st: &Tex) -> Piece {
+    match b {
+        Block::Text(p) => Piece::Text(p.tex.clone()),
+        Block::List(items) => Piece::List(items.iter().map(|p| p.tex.clone()).collect()),
+        Block::Display(p) => Piece::Display(p.tex.clone()),
+        Block::Formulas(rows) => Piece::Display(target_names(&formulas_tex(rows, st))),
+    }
+}
+
+/// Named values in one `aligned` display; single values broken at [`WIDTH`].
+fn formulas_tex(rows: &[Shown], st: &Tex) -> String {
+    if rows.iter().all(|r| r.parts.len() == 1) {
+        let named: Vec<(String, Expr)> = rows
+            .iter()
+            .map(|r| (label_tex(&r.label), r.parts[0].clone()))
+            .collect();
+        return st.aligned(&named);
+    }
+    let lines: Vec<String> = rows
+        .iter()
+        .map(|r| {
+            let parts: Vec<String> = r.parts.iter().map(|e| st.expr(e)).collect();
+            format!("{} &= ({})", label_tex(&r.label), parts.join(", "))
+        })
+        .collect();
+    format!("\\begin{{aligned}}{}\\end{{aligned}}", lines.join(" \\\\ "))
+}
+
+/// The target's position entries `px`, `py`, `pz` as `p_x`, never the product `p x`.
+fn target_names(tex: &str) -> String {
+    tex.replace("\\mathit{px}", "p_{x}")
+        .replace("\\mathit{py}", "p_{y}")
+        .replace("\\mathit{pz}", "p_{z}")
+}
+
+/// A solver's check on a page: the words, then a table of the distinct solutions.
+fn solutions_tex(what: &Prose, variables: &[String], rows: &[SolutionRow]) -> Vec<Piece> {
+    let mut head = vec!["#".to_owned()];
+    head.extend(
+        variables
+            .iter()
+            .enumerate()
+            .map(|(k, v)| super::ik::column_head(v, k)),
+    );
+    head.extend(["×".to_owned(), "dev.".to_owned()]);
+    let cells = rows
+        .iter()
+        .enumerate()
+        .map(|(k, r)| {
+            let mut c = vec![(k + 1).to_string()];
+            c.extend(r.q.iter().map(|x| format!("{x:.3}")));
+            c.push(format!(
+                "{}{}",
+                r.branches,
+                if r.singular { "*" } else { "" }
+            ));
+            c.push(if r.deviation < 1e-12 {
+                "< 1e-12".to_owned()
+            } else {
+                format!("{:.0e}", r.deviation)
+            });
+            c
+        })
+        .collect();
+    let mut out = vec![Piece::Text(what.tex.clone()), Piece::Table(head, cells)];
+    out.extend(super::ik::column_key(variables).map(Piece::Text));
+    out.push(Piece::Text(
+        "×: how many of the solver's branches give the solution (more than one where \
+             branches meet, at a singularity); * a singular set was met; dev.: the largest \
+             difference of an entry of its pose from the target's."
+            .to_owned(),
+    ));
+    out
 }
 
 fn capitalize(s: &str) -> String {
@@ -919,6 +1085,19 @@ pub fn walk_markdown(w: &Walkthrough) -> Result<String, WalkError> {
                     out += &format!(
                         "\n<details><summary>{summary}</summary>\n\n$$\n{d}\n$$\n\n</details>\n"
                     )
+                }
+                Piece::List(items) => {
+                    out.push('\n');
+                    for i in items {
+                        out += &format!("- {i}\n");
+                    }
+                }
+                Piece::Table(head, rows) => {
+                    out += &format!("\n| {} |\n", head.join(" | "));
+                    out += &format!("|{}\n", " --- |".repeat(head.len()));
+                    for r in rows {
+                        out += &format!("| {} |\n", r.join(" | "));
+                    }
                 }
             }
         }

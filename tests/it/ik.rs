@@ -767,7 +767,10 @@ fn walk_ik_shows_every_step_and_a_check() {
     assert!(out.contains("The joint axes as Plücker lines"), "{out}");
     assert_eq!(out.matches("Step ").count(), 6, "{out}");
     assert!(out.contains("Branch wrist: + is no flip"), "{out}");
-    assert!(out.contains("the solver returns 8 solutions"), "{out}");
+    assert!(
+        out.contains("The solver returns 8 distinct solutions"),
+        "{out}"
+    );
     assert_eq!(
         out.matches("pose deviation below 1e-12").count(),
         8,

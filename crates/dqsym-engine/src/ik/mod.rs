@@ -14,12 +14,10 @@ mod emit;
 mod plan;
 mod report;
 mod safe;
-mod walk;
 
 pub use axes::{home_axes, intersection, relation, Axis, Relation, V3};
 pub use emit::{ik_c, ik_javascript_helpers, ik_python, ik_rust, ik_step_degrees};
 pub use report::ik_report;
-pub use walk::ik_walk;
 
 use crate::kin::Robot;
 use crate::{Matrix4, Scalar, ScalarError};
