@@ -312,12 +312,7 @@ impl Session {
 
     /// Binds `name` to a SymPy expression, a Matrix, a Quaternion, a DQ, a tuple (3: vector,
     /// 4: quaternion, 8: dual quaternion) or a number (exact: ints, Fractions, Rationals).
-    fn __setitem__(
-        &self,
-        py: Python<'_>,
-        name: &str,
-        value: &Bound<'_, PyAny>,
-    ) -> PyResult<()> {
+    fn __setitem__(&self, py: Python<'_>, name: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
         if !is_identifier(name) {
             return Err(PyValueError::new_err(format!("`{name}` is not a name")));
         }

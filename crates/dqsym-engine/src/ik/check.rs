@@ -8,7 +8,7 @@
 //! coordinates of a joint axis' point, the home position or the target position (every length
 //! the solver adds or subtracts is a difference of such points, at most `2 L`). A step's parts (`a`, `b`, `c`; `y`, `x`; `β`, `γ`) are
 //! homogeneous polynomials of some degree `d` in lengths (found once per solver,
-//! [`step_degrees`]), so their size is of order `S = L^d` and the rounding of their evaluation
+//! `step_degrees`), so their size is of order `S = L^d` and the rounding of their evaluation
 //! (at most a few dozen operations, each adding at most `eps` times the sum of the absolute
 //! values of the terms, a handful of terms of size `S`: about 32 eps S, with a factor 2 to
 //! spare) is below `σ = ZERO_TOL · S` with `ZERO_TOL = 64 eps`:

@@ -309,7 +309,7 @@ pub struct IkSolution {
     pub axes: Vec<Axis>,
     /// The closed forms of every step's parts, computed on first use.
     pub(crate) forms: std::sync::OnceLock<Result<Vec<Parts>, ScalarError>>,
-    /// Each step's degree in lengths ([`check::step_degrees`]), computed on first use.
+    /// Each step's degree in lengths (`check::step_degrees`), computed on first use.
     pub(crate) degrees: std::sync::OnceLock<Result<Vec<i32>, ScalarError>>,
 }
 
