@@ -1113,26 +1113,7 @@ fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
     let x4 = ax[3].point.clone();
     let z = ax[5].move_point(&ax[4].move_point(&x4, -1), -1);
     let q = ax[0].move_point(&t.point(&z), -1);
-    let centre = shoulder_centre(&ax[0], &ax[1]);
-    let p2 = &centre;
-    let delta2 = norm2(&sub(&q, p2));
-    b.push(
-        2,
-        sp3(&ax[2], &x4, p2, &delta2),
-        "subproblem 3 (distance): joint 3 sets the distance of axis 4 from a point of axis 2 \
-         (their components along k2 agree by theta1's equation)"
-            .into(),
-        Some(ELBOW),
-        "elbow straight (radicand zero)",
-    )?;
-    let x3 = ax[2].move_point(&x4, 1);
-    b.push(
-        1,
-        sp1(&ax[1], &sub(&x3, p2), &sub(&q, p2)),
-        "subproblem 1 (rotation): joint 2 turns axis 4 onto its target place".into(),
-        None,
-        "axis 4 on axis 2",
-    )?;
+    elbow_steps(b, &x4, &q)?;
     let e = perpendicular(&ax[3].dir);
     let r = ax[5].move_dir(&ax[4].move_dir(&e, -1), -1);
     let r = ax[2].move_dir(&ax[1].move_dir(&ax[0].move_dir(&t.dir(&r), -1), -1), -1);
@@ -1144,4 +1125,29 @@ fn three_parallel(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
         "never",
     )?;
     Ok(())
+}
+
+/// Joints 3 and 2 of an arm whose axes 2, 3 and 4 are parallel: joint 3 sets the distance of
+/// axis 4 (its point `x4` at home) from the shoulder centre to that of `q`, the point where axis
+/// 4 must be in joint 1's frame (`R1ᵀ` of its target place); joint 2 then turns it there.
+fn elbow_steps(b: &mut Builder, x4: &V3, q: &V3) -> Result<(), PlanError> {
+    let ax = b.axes;
+    let centre = shoulder_centre(&ax[0], &ax[1]);
+    b.push(
+        2,
+        sp3(&ax[2], x4, &centre, &norm2(&sub(q, &centre))),
+        "subproblem 3 (distance): joint 3 sets the distance of axis 4 from a point of axis 2 \
+         (their components along k2 agree by theta1's equation)"
+            .into(),
+        Some(ELBOW),
+        "elbow straight (radicand zero)",
+    )?;
+    let x3 = ax[2].move_point(x4, 1);
+    b.push(
+        1,
+        sp1(&ax[1], &sub(&x3, &centre), &sub(q, &centre)),
+        "subproblem 1 (rotation): joint 2 turns axis 4 onto its target place".into(),
+        None,
+        "axis 4 on axis 2",
+    )
 }

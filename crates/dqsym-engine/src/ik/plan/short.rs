@@ -40,24 +40,7 @@ pub(super) fn pitch_arm(b: &mut Builder, t: &Target) -> Result<(), PlanError> {
     let x4 = ax[3].point.clone();
     // Joint 4 keeps the points of its axis: G x4 = E1 E2 E3 x4.
     let q = ax[0].move_point(&t.point(&x4), -1);
-    let centre = shoulder_centre(&ax[0], &ax[1]);
-    b.push(
-        2,
-        sp3(&ax[2], &x4, &centre, &norm2(&sub(&q, &centre))),
-        "subproblem 3 (distance): joint 3 sets the distance of axis 4 from a point of axis 2 \
-         (their components along k2 agree by theta1's equation)"
-            .into(),
-        Some(ELBOW),
-        "elbow straight (radicand zero)",
-    )?;
-    let x3 = ax[2].move_point(&x4, 1);
-    b.push(
-        1,
-        sp1(&ax[1], &sub(&x3, &centre), &sub(&q, &centre)),
-        "subproblem 1 (rotation): joint 2 turns axis 4 onto its target place".into(),
-        None,
-        "axis 4 on axis 2",
-    )?;
+    super::elbow_steps(b, &x4, &q)?;
     let e = perpendicular(&ax[3].dir);
     let v = ax[2].move_dir(&ax[1].move_dir(&ax[0].move_dir(&t.dir(&e), -1), -1), -1);
     b.push(
