@@ -5,72 +5,37 @@
 //! 1.5708, 1.57 for 1.57), at random configurations.
 
 use crate::common::Rng;
+use crate::mat4::{mul, rot, trans, M, X, Y, Z};
 use dqsym::{eval_scalar_text, kin::RobotOptions, Robot};
 use std::f64::consts::PI;
 
-type M = [[f64; 4]; 4];
-
-fn mul(a: &M, b: &M) -> M {
-    let mut c = [[0.0; 4]; 4];
-    for i in 0..4 {
-        for j in 0..4 {
-            c[i][j] = (0..4).map(|k| a[i][k] * b[k][j]).sum();
-        }
-    }
-    c
-}
-
-fn trans(x: f64, y: f64, z: f64) -> M {
-    [
-        [1.0, 0.0, 0.0, x],
-        [0.0, 1.0, 0.0, y],
-        [0.0, 0.0, 1.0, z],
-        [0.0, 0.0, 0.0, 1.0],
-    ]
-}
-
-/// Rotation by `t` about the unit axis `u` (Rodrigues).
-fn rot(u: [f64; 3], t: f64) -> M {
-    let (c, s, v) = (t.cos(), t.sin(), 1.0 - t.cos());
-    let [x, y, z] = u;
-    [
-        [c + x * x * v, x * y * v - z * s, x * z * v + y * s, 0.0],
-        [y * x * v + z * s, c + y * y * v, y * z * v - x * s, 0.0],
-        [z * x * v - y * s, z * y * v + x * s, c + z * z * v, 0.0],
-        [0.0, 0.0, 0.0, 1.0],
-    ]
-}
-
-const X: [f64; 3] = [1.0, 0.0, 0.0];
-const Y: [f64; 3] = [0.0, 1.0, 0.0];
-const Z: [f64; 3] = [0.0, 0.0, 1.0];
-
 /// Classic DH: `Rz(theta) Tz(d) Tx(a) Rx(alpha)`.
 fn dh(theta: f64, d: f64, a: f64, alpha: f64) -> M {
-    let m = mul(&rot(Z, theta), &trans(0.0, 0.0, d));
-    mul(&mul(&m, &trans(a, 0.0, 0.0)), &rot(X, alpha))
+    let m = mul(&rot(Z, theta), &trans([0.0, 0.0, d]));
+    mul(&mul(&m, &trans([a, 0.0, 0.0])), &rot(X, alpha))
 }
 
 /// Modified DH: `Rx(alpha) Tx(a) Rz(theta) Tz(d)`.
 fn mdh(alpha: f64, a: f64, theta: f64, d: f64) -> M {
-    let m = mul(&rot(X, alpha), &trans(a, 0.0, 0.0));
-    mul(&mul(&m, &rot(Z, theta)), &trans(0.0, 0.0, d))
+    let m = mul(&rot(X, alpha), &trans([a, 0.0, 0.0]));
+    mul(&mul(&m, &rot(Z, theta)), &trans([0.0, 0.0, d]))
 }
 
 /// The URDF-style frame `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)`.
 fn frame(xyz: [f64; 3], rpy: [f64; 3]) -> M {
     let r = mul(&rot(Z, rpy[2]), &mul(&rot(Y, rpy[1]), &rot(X, rpy[0])));
-    mul(&trans(xyz[0], xyz[1], xyz[2]), &r)
+    mul(&trans(xyz), &r)
 }
 
 /// A turn by `t` about the axis through `p` with direction `u`.
 fn screw(u: [f64; 3], p: [f64; 3], t: f64) -> M {
-    let m = mul(&trans(p[0], p[1], p[2]), &rot(u, t));
-    mul(&m, &trans(-p[0], -p[1], -p[2]))
+    let m = mul(&trans(p), &rot(u, t));
+    mul(&m, &trans([-p[0], -p[1], -p[2]]))
 }
 
 fn chain(ms: &[M]) -> M {
-    ms.iter().fold(trans(0.0, 0.0, 0.0), |acc, m| mul(&acc, m))
+    ms.iter()
+        .fold(trans([0.0, 0.0, 0.0]), |acc, m| mul(&acc, m))
 }
 
 /// The first three rows of `m` at `env` against `want`, entry by entry.

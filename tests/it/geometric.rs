@@ -6,49 +6,13 @@
 //! robot with base and tool frames. The generated NumPy and the SymPy text are run too.
 
 use crate::common::Rng;
+use crate::mat4::{mul, rot, trans, M, X, Y, Z};
 use crate::tools::run_python;
 use dqsym::{
     app::{task_jacobian, task_report, TaskJacobian},
     kin::JointGeometry,
     FkOptions, Format, JointKind, Robot, Scalar,
 };
-
-type M = [[f64; 4]; 4];
-
-fn mul(a: &M, b: &M) -> M {
-    let mut c = [[0.0; 4]; 4];
-    for i in 0..4 {
-        for j in 0..4 {
-            c[i][j] = (0..4).map(|k| a[i][k] * b[k][j]).sum();
-        }
-    }
-    c
-}
-
-fn trans(v: [f64; 3]) -> M {
-    [
-        [1.0, 0.0, 0.0, v[0]],
-        [0.0, 1.0, 0.0, v[1]],
-        [0.0, 0.0, 1.0, v[2]],
-        [0.0, 0.0, 0.0, 1.0],
-    ]
-}
-
-/// Rotation by `t` about the unit axis `u` (Rodrigues).
-fn rot(u: [f64; 3], t: f64) -> M {
-    let (c, s, v) = (t.cos(), t.sin(), 1.0 - t.cos());
-    let [x, y, z] = u;
-    [
-        [c + x * x * v, x * y * v - z * s, x * z * v + y * s, 0.0],
-        [y * x * v + z * s, c + y * y * v, y * z * v - x * s, 0.0],
-        [z * x * v - y * s, z * y * v + x * s, c + z * z * v, 0.0],
-        [0.0, 0.0, 0.0, 1.0],
-    ]
-}
-
-const X: [f64; 3] = [1.0, 0.0, 0.0];
-const Y: [f64; 3] = [0.0, 1.0, 0.0];
-const Z: [f64; 3] = [0.0, 0.0, 1.0];
 
 /// The pose at joint values `q` with parameters `env`: base frames, one plain matrix per joint
 /// (DH, modified DH or a screw motion about its home-pose axis), tool frames.

@@ -6,46 +6,11 @@
 //! a random configuration must reproduce that pose in the model and contain the configuration.
 
 use crate::common::Rng;
+use crate::mat4::{ident, mul, rot, trans, M as M4, X, Y, Z as ZA};
 use dqsym::ik::{solve, IkError, IkOptions, IkSolution, Reach};
 use dqsym::{eval_scalar_text, parse_robot, Context, ScalarError};
 use std::f64::consts::PI;
 use std::process::Command;
-
-type M4 = [[f64; 4]; 4];
-
-fn ident() -> M4 {
-    std::array::from_fn(|i| std::array::from_fn(|j| if i == j { 1.0 } else { 0.0 }))
-}
-
-fn mul(a: &M4, b: &M4) -> M4 {
-    std::array::from_fn(|i| std::array::from_fn(|j| (0..4).map(|k| a[i][k] * b[k][j]).sum()))
-}
-
-fn trans(v: [f64; 3]) -> M4 {
-    let mut m = ident();
-    for i in 0..3 {
-        m[i][3] = v[i];
-    }
-    m
-}
-
-/// Rotation by `q` about the unit vector `w` (Rodrigues).
-fn rot(w: [f64; 3], q: f64) -> M4 {
-    let (c, s) = (q.cos(), q.sin());
-    let k = [[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]];
-    let mut m = ident();
-    for i in 0..3 {
-        for j in 0..3 {
-            let kk: f64 = (0..3).map(|l| k[i][l] * k[l][j]).sum();
-            m[i][j] = if i == j { 1.0 } else { 0.0 } + s * k[i][j] + (1.0 - c) * kk;
-        }
-    }
-    m
-}
-
-const X: [f64; 3] = [1.0, 0.0, 0.0];
-const Y: [f64; 3] = [0.0, 1.0, 0.0];
-const ZA: [f64; 3] = [0.0, 0.0, 1.0];
 
 /// `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)`.
 fn frame(xyz: [f64; 3], rpy: [f64; 3]) -> M4 {

@@ -21,6 +21,7 @@ mod lang;
 mod laws;
 mod layers;
 mod limits;
+mod mat4;
 mod names;
 mod notation;
 mod offsets;

@@ -3,50 +3,11 @@
 //! as written (pose at random configurations, and its derivatives by finite differences), the
 //! conversion back to a robot file, and malformed files.
 
+use crate::mat4::{ident, mul, rot, trans, M};
 use dqsym::{
     app::robot_toml, eval_scalar_text, fk_report, kin::UrdfOptions, parse_robot, parse_urdf,
     DualQuat, FkOptions, Robot,
 };
-
-type M = [[f64; 4]; 4];
-
-fn mul(a: &M, b: &M) -> M {
-    let mut c = [[0.0; 4]; 4];
-    for i in 0..4 {
-        for j in 0..4 {
-            c[i][j] = (0..4).map(|k| a[i][k] * b[k][j]).sum();
-        }
-    }
-    c
-}
-
-fn trans(t: [f64; 3]) -> M {
-    let mut m = ident();
-    for i in 0..3 {
-        m[i][3] = t[i];
-    }
-    m
-}
-
-fn ident() -> M {
-    let mut m = [[0.0; 4]; 4];
-    for (i, row) in m.iter_mut().enumerate() {
-        row[i] = 1.0;
-    }
-    m
-}
-
-/// Rodrigues' rotation about the unit vector `n`.
-fn rot(n: [f64; 3], t: f64) -> M {
-    let (s, c) = t.sin_cos();
-    let v = 1.0 - c;
-    let [x, y, z] = n;
-    let mut m = ident();
-    m[0][..3].copy_from_slice(&[c + x * x * v, x * y * v - z * s, x * z * v + y * s]);
-    m[1][..3].copy_from_slice(&[y * x * v + z * s, c + y * y * v, y * z * v - x * s]);
-    m[2][..3].copy_from_slice(&[z * x * v - y * s, z * y * v + x * s, c + z * z * v]);
-    m
-}
 
 /// The URDF origin `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)`.
 fn origin(xyz: [f64; 3], rpy: [f64; 3]) -> M {
