@@ -310,8 +310,11 @@ fn jaco_pose_closed_forms_fit_a_work_budget() {
         assert_eq!(e.to_scalar(), *x);
     }
     let used = g.work_used();
-    // About 450,000 units when written.
-    assert!(used < 1_000_000, "work used: {used}");
+    // About 450,000 units of term work when written; since the recombination rounds and the
+    // exact trig divisions charge their own work too (issue 31: every cost charged), about
+    // 1,120,000 (450,000 without those two charges). The bound leaves room for neither a
+    // search bounded by visits nor a doubling.
+    assert!(used < 2_000_000, "work used: {used}");
 }
 
 /// Random systems of linear congruences in two to four unknowns (the shape of the offsets'
