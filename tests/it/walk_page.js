@@ -108,6 +108,11 @@ async function main() {
         for (const job of jobs) {
             out[job.url] = {};
             const page = await browser.newPage({ viewport: { width: 390, height: 1000 } });
+            // Playwright's 30 s default is one page's load and KaTeX run on an idle machine
+            // many times over, but not on two cores shared with the rest of the suite (a
+            // URDF page timed out so): a stuck page still fails, after ten minutes.
+            page.setDefaultTimeout(600000);
+            page.setDefaultNavigationTimeout(600000);
             const problems = [];
             page.on("pageerror", (e) => problems.push(`script error: ${e}`));
             page.on("request", (r) => {
