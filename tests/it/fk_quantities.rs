@@ -363,3 +363,38 @@ fn fk_quantity_names_per_format() {
         "homogeneous matrix (rows 0..2)"
     ));
 }
+
+/// `--jacobian=KIND` errors are a typed enum, each with its message.
+#[test]
+fn fk_task_jacobian_kinds_are_refused_with_typed_errors() {
+    use dqsym::app::{TaskJacobian, TaskParseError};
+    let parse = |s: &str| TaskJacobian::parse(s, &|v| dqsym::lang::eval_point_text(v));
+    assert!(matches!(
+        parse("pose_derivative_derivative"),
+        Err(TaskParseError::DerivativeOfDerivative(_))
+    ));
+    assert!(matches!(
+        parse("line_to_line_derivative:1,0,0,0,0,1"),
+        Err(TaskParseError::LineToLineDerivative(_))
+    ));
+    let e = parse("rotation:1,2,3").unwrap_err();
+    assert_eq!(e.to_string(), "`rotation` takes no `:` argument");
+    let e = parse("point_to_line:1,2,3").unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "`point_to_line` needs 6 numbers (a unit direction, then a point), got `1,2,3`"
+    );
+    assert!(matches!(
+        parse("point_to_point"),
+        Err(TaskParseError::MissingArgument { .. })
+    ));
+    assert!(matches!(parse("line:1,2"), Err(TaskParseError::Vector(_))));
+    assert!(matches!(parse("wobble"), Err(TaskParseError::Unknown(_))));
+    assert_eq!(
+        parse("plane_to_point:1,2,3").expect("a kind"),
+        TaskJacobian::PlaneToPoint(
+            [0, 0, 1].map(dqsym::Scalar::int),
+            [1, 2, 3].map(dqsym::Scalar::int)
+        )
+    );
+}

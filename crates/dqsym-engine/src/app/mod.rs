@@ -24,4 +24,4 @@ pub use quantity::{
     Family, Letters, MatrixFrom, Quantity, Section, SectionKind, Step, TaskBase, TaskName,
 };
 pub use recurrence::fk_recurrence;
-pub use task::{rate_name, task_jacobian, task_report, TaskJacobian, TaskMatrix};
+pub use task::{rate_name, task_jacobian, task_report, TaskJacobian, TaskMatrix, TaskParseError};

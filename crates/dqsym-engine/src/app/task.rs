@@ -107,6 +107,49 @@ const KINDS: &str = "pose, rotation, translation, geometric, geometric_body, lin
     line_to_line:[LX,LY,LZ,]DX,DY,DZ,PX,PY,PZ, line_to_line_angle:[LX,LY,LZ,]DX,DY,DZ,PX,PY,PZ, \
     or any of them followed by _derivative (pose_derivative, line_derivative:X,Y,Z, ...)";
 
+/// Why the text of `--jacobian=KIND` names no task Jacobian.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum TaskParseError {
+    /// `KIND_derivative` of a derivative.
+    #[error("`{0}`: the derivative of a derivative would need the joint accelerations")]
+    DerivativeOfDerivative(String),
+    /// `line_to_line_derivative`.
+    #[error(
+        "`{0}`: DQ Robotics has no derivative of the line-to-line distance Jacobian, and that of its quotient is large: not generated"
+    )]
+    LineToLineDerivative(String),
+    /// A `:` argument to a kind that takes none.
+    #[error("`{0}` takes no `:` argument")]
+    UnexpectedArgument(String),
+    /// No `:` argument to a kind that needs one.
+    #[error("`{kind}` needs `:{what}`")]
+    MissingArgument {
+        /// The kind.
+        kind: String,
+        /// What it needs.
+        what: String,
+    },
+    /// The wrong number of coordinates.
+    #[error("`{kind}` needs {count} numbers ({what}), got `{given}`")]
+    Count {
+        /// The kind.
+        kind: String,
+        /// How many it takes (`6 or 9`).
+        count: String,
+        /// What they are.
+        what: String,
+        /// The argument given.
+        given: String,
+    },
+    /// A vector the caller's reader refused, with its message.
+    #[error("{0}")]
+    Vector(String),
+    /// No such kind.
+    #[error("unknown Jacobian `{0}`: expected {KINDS}")]
+    Unknown(String),
+}
+
 impl TaskJacobian {
     /// Reads `pose`, `rotation`, `translation`, `line`, `line:X,Y,Z`, `plane`, `plane:X,Y,Z`,
     /// `distance`, the distances to workspace primitives (`point_to_point:X,Y,Z`,
@@ -116,10 +159,11 @@ impl TaskJacobian {
     /// optional: default z), and any of them followed by `_derivative` (`line_derivative:0,1,0`).
     /// `line` and `plane` default to the z axis, DQ Robotics' usual `k_`; the vectors are read by
     /// `parse_vec`.
-    pub fn parse(
+    pub fn parse<E: std::fmt::Display>(
         s: &str,
-        parse_vec: &dyn Fn(&str) -> Result<[Scalar; 3], String>,
-    ) -> Result<TaskJacobian, String> {
+        parse_vec: &dyn Fn(&str) -> Result<[Scalar; 3], E>,
+    ) -> Result<TaskJacobian, TaskParseError> {
+        let parse_vec = |a: &str| parse_vec(a).map_err(|e| TaskParseError::Vector(e.to_string()));
         let (kind, arg) = match s.split_once(':') {
             Some((k, a)) => (k, Some(a)),
             None => (s, None),
@@ -129,19 +173,18 @@ impl TaskJacobian {
                 Some(a) => format!("{inner}:{a}"),
                 None => inner.to_owned(),
             };
-            return match TaskJacobian::parse(&inner_s, parse_vec)? {
-                TaskJacobian::Derivative(_) => Err(format!(
-                    "`{kind}`: the derivative of a derivative would need the joint accelerations"
-                )),
-                TaskJacobian::LineToLine(..) => Err(format!(
-                    "`{kind}`: DQ Robotics has no derivative of the line-to-line distance \
-                     Jacobian, and that of its quotient is large: not generated"
-                )),
+            return match TaskJacobian::parse(&inner_s, &parse_vec)? {
+                TaskJacobian::Derivative(_) => {
+                    Err(TaskParseError::DerivativeOfDerivative(kind.to_owned()))
+                }
+                TaskJacobian::LineToLine(..) => {
+                    Err(TaskParseError::LineToLineDerivative(kind.to_owned()))
+                }
                 t => Ok(TaskJacobian::Derivative(Box::new(t))),
             };
         }
         let k = || [Scalar::int(0), Scalar::int(0), Scalar::int(1)];
-        let dir = || -> Result<[Scalar; 3], String> {
+        let dir = || -> Result<[Scalar; 3], TaskParseError> {
             match arg {
                 None => Ok(k()),
                 Some(a) => parse_vec(a),
@@ -149,23 +192,29 @@ impl TaskJacobian {
         };
         let plain = |t: TaskJacobian| match arg {
             None => Ok(t),
-            Some(_) => Err(format!("`{kind}` takes no `:` argument")),
+            Some(_) => Err(TaskParseError::UnexpectedArgument(kind.to_owned())),
         };
         // `n` vectors of three numbers, the first optional when `optional`: (the vectors given,
         // with the default robot direction first when it was left out).
-        let vectors = |n: usize, optional: bool, what: &str| -> Result<Vec<[Scalar; 3]>, String> {
-            let a = arg.ok_or_else(|| format!("`{kind}` needs `:{what}`"))?;
+        let missing = |what: &str| TaskParseError::MissingArgument {
+            kind: kind.to_owned(),
+            what: what.to_owned(),
+        };
+        let vectors = |n: usize, optional: bool, what: &str| {
+            let a = arg.ok_or_else(|| missing(what))?;
             let parts: Vec<&str> = a.split(',').collect();
             let given = parts.len() / 3;
             if !parts.len().is_multiple_of(3) || !(given == n || optional && given == n - 1) {
-                return Err(format!(
-                    "`{kind}` needs {} numbers ({what}), got `{a}`",
-                    if optional {
+                return Err(TaskParseError::Count {
+                    kind: kind.to_owned(),
+                    count: if optional {
                         format!("{} or {}", 3 * (n - 1), 3 * n)
                     } else {
                         (3 * n).to_string()
-                    }
-                ));
+                    },
+                    what: what.to_owned(),
+                    given: a.to_owned(),
+                });
             }
             let mut out: Vec<[Scalar; 3]> = Vec::with_capacity(n);
             if given < n {
@@ -174,7 +223,7 @@ impl TaskJacobian {
             for c in parts.chunks(3) {
                 out.push(parse_vec(&c.join(","))?);
             }
-            Ok(out)
+            Ok::<_, TaskParseError>(out)
         };
         let two = |what: &str| vectors(2, false, what).map(|v| (v[0].clone(), v[1].clone()));
         let robot_two = |what: &str| vectors(2, true, what).map(|v| (v[0].clone(), v[1].clone()));
@@ -183,7 +232,7 @@ impl TaskJacobian {
         match kind {
             "point_to_point" => match arg {
                 Some(a) => Ok(TaskJacobian::PointToPoint(parse_vec(a)?)),
-                None => Err("`point_to_point` needs `:X,Y,Z`".into()),
+                None => Err(missing("X,Y,Z")),
             },
             "point_to_line" => two("a unit direction, then a point")
                 .map(|(d, p)| TaskJacobian::PointToLine(d, p)),
@@ -210,7 +259,7 @@ impl TaskJacobian {
             "geometric_body" | "geometric-body" => plain(TaskJacobian::GeometricBody),
             "line" => Ok(TaskJacobian::Line(dir()?)),
             "plane" => Ok(TaskJacobian::Plane(dir()?)),
-            other => Err(format!("unknown Jacobian `{other}`: expected {KINDS}")),
+            other => Err(TaskParseError::Unknown(other.to_owned())),
         }
     }
 
