@@ -36,5 +36,5 @@ pub mod walk;
 pub use lang::{
     eval_scalar_text, parse, show, EvalError, ParseError, Program, Session, ShowOptions, Value,
 };
-pub use paper::paper;
+pub use paper::{paper, PaperError};
 pub use walk::{walk_html, walk_markdown, walk_robot, walk_script, walk_text, Walkthrough};

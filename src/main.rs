@@ -3,7 +3,7 @@
 use clap::{Parser, Subcommand, ValueEnum};
 use dqsym::{
     lang::{parse_with, show_value, ParseOptions, StmtKind},
-    show, Context, Format, PlainOptions, Session, ShowOptions,
+    show, Context, Format, PlainOptions, Preset, Session, ShowOptions,
 };
 use std::io::Write;
 use std::process::ExitCode;
@@ -378,26 +378,15 @@ fn show_options(format: OutputFormat, explicit: bool) -> Result<ShowOptions, Str
 /// printers; a large stack makes that safe in debug builds too.
 pub(crate) const STACK: usize = 256 << 20;
 
-/// The default `--term-limit`: the paper's largest intermediate scalars have a few thousand
-/// terms, and a product of two scalars this size is still well under a second.
-const DEFAULT_TERM_LIMIT: usize = 20_000;
-
-/// The default `--term-limit` of `fk`: the example robots need at most a few thousand terms
-/// (the KUKA iiwa's Jacobian), and a chain whose terms multiply at every joint (20 fully
-/// symbolic DH links) reaches this size in about a second, where 20,000 would take several.
-const DEFAULT_FK_TERM_LIMIT: usize = 5_000;
-
-/// The default `--max-depth`, the parser's own default.
-const DEFAULT_MAX_DEPTH: u16 = 256;
+/// The default `--max-depth`, the parser's own default (256 fits in a `u16`).
+const DEFAULT_MAX_DEPTH: u16 = dqsym::lang::DEFAULT_MAX_DEPTH as u16;
 
 /// The largest `--max-depth`: the evaluator and printers recurse once per level, and this many
 /// levels fit in [`STACK`] with room to spare even in debug builds.
 const MAX_MAX_DEPTH: i64 = 4096;
 
-/// The default `--work-budget`: over three times what the largest example (`fk` of
-/// `examples/robots/kuka_iiwa7.toml` with `--jacobian`, closed forms included) needs, and a
-/// second or so of work on small terms.
-const DEFAULT_WORK_BUDGET: u64 = 3_000_000;
+/// The default `--work-budget`, that of every [`Preset`] (its docs say why).
+const DEFAULT_WORK_BUDGET: u64 = Preset::Script.work_budget();
 
 /// The limits of the command line: the parser's depth and the execution context every
 /// evaluation runs in.
@@ -520,9 +509,10 @@ fn main() -> ExitCode {
 
 fn dispatch(cli: Cli) -> ExitCode {
     let _ = MAX_INPUT_SIZE.set(cli.max_input_size);
-    let default_terms = match cli.command {
-        Some(Command::Fk { .. } | Command::Ops { .. }) => DEFAULT_FK_TERM_LIMIT,
-        _ => DEFAULT_TERM_LIMIT,
+    // The default `--term-limit` is the command's preset's.
+    let preset = match cli.command {
+        Some(Command::Fk { .. } | Command::Ops { .. }) => Preset::Fk,
+        _ => Preset::Script,
     };
     let mut base = Context::new();
     if let Some(n) = threads_from_env() {
@@ -532,7 +522,7 @@ fn dispatch(cli: Cli) -> ExitCode {
         max_depth: usize::from(cli.max_depth),
         ctx: base
             .clone()
-            .with_term_limit(cli.term_limit.unwrap_or(default_terms))
+            .with_term_limit(cli.term_limit.unwrap_or(preset.term_limit()))
             .with_max_exponent(cli.max_exponent)
             .with_max_cyclotomic_degree(cli.max_cyclotomic_degree)
             .with_max_digits(cli.max_digits)

@@ -15,13 +15,34 @@ const SIX_R: &str = include_str!("../examples/sec6_3_6r.dq");
 /// The PUMA 560 in standard DH.
 const PUMA_560: &str = include_str!("../examples/robots/puma560.toml");
 
+/// Why an example compiled in could not be derived (a bug: neither happens with the files
+/// compiled in).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum PaperError {
+    /// A script failed to parse or run, or did not bind the point.
+    #[error("{file}: {message}")]
+    Script {
+        /// The example's file name.
+        file: &'static str,
+        /// What went wrong, rendered.
+        message: String,
+    },
+    /// The robot file was refused.
+    #[error(transparent)]
+    Robot(#[from] crate::kin::RobotError),
+    /// A closed form could not be found.
+    #[error(transparent)]
+    Closed(#[from] crate::ScalarError),
+}
+
 /// The paper's derivations as plain text (`o.shorthand`: `c12` for `cos(theta1 + theta2)`).
 ///
 /// # Errors
 ///
-/// A message when an example file fails to run or a closed form cannot be found (neither
+/// [`PaperError`] when an example file fails to run or a closed form cannot be found (neither
 /// happens with the files compiled in).
-pub fn paper(o: &PlainOptions) -> Result<String, String> {
+pub fn paper(o: &PlainOptions) -> Result<String, PaperError> {
     let mut out = String::new();
     out += &block(
         "sec 6.1, planar RRR arm: end effector v0",
@@ -33,8 +54,7 @@ pub fn paper(o: &PlainOptions) -> Result<String, String> {
         &named("v0.", &point(SIX_R, "sec6_3_6r.dq", "v0")?),
         o,
     )?;
-    let robot =
-        parse_robot(PUMA_560, "puma560.toml", &eval_scalar_text).map_err(|e| e.to_string())?;
+    let robot = parse_robot(PUMA_560, "puma560.toml", &eval_scalar_text)?;
     let q = robot.forward();
     let m = q.to_matrix();
     let mut entries = Vec::new();
@@ -59,17 +79,16 @@ pub fn paper(o: &PlainOptions) -> Result<String, String> {
 }
 
 /// The point `1 + eps (x, y, z)` bound to `name` after running the script `src`.
-fn point(src: &str, file: &str, name: &str) -> Result<[Scalar; 3], String> {
-    let program = parse(src).map_err(|e| format!("{file}: {}", e.rendered()))?;
+fn point(src: &str, file: &'static str, name: &str) -> Result<[Scalar; 3], PaperError> {
+    let script = |message: String| PaperError::Script { file, message };
+    let program = parse(src).map_err(|e| script(e.rendered().to_owned()))?;
     let mut session = Session::new();
-    session
-        .run(&program)
-        .map_err(|e| format!("{file}: {}", e.render(src)))?;
+    session.run(&program).map_err(|e| script(e.render(src)))?;
     match session.get(name) {
         Some(Value::DualQuat(DualQuat { dual, .. })) => {
             Ok([dual.x.clone(), dual.y.clone(), dual.z.clone()])
         }
-        _ => Err(format!("{file}: `{name}` is not a point 1 + eps v")),
+        _ => Err(script(format!("`{name}` is not a point 1 + eps v"))),
     }
 }
 
@@ -83,11 +102,11 @@ fn named(prefix: &str, v: &[Scalar; 3]) -> Vec<(String, Scalar)> {
 }
 
 /// Closed forms of `values`, one line each, followed by the shorthand legend.
-fn block(title: &str, values: &[(String, Scalar)], o: &PlainOptions) -> Result<String, String> {
+fn block(title: &str, values: &[(String, Scalar)], o: &PlainOptions) -> Result<String, PaperError> {
     let mut out = format!("{title}\n");
     let mut exprs: Vec<Expr> = Vec::new();
     for (name, v) in values {
-        let e = closed_form(v).map_err(|e| e.to_string())?;
+        let e = closed_form(v)?;
         out.push_str(&format!("  {name} = {}\n", plain(&e, o)));
         exprs.push(e);
     }

@@ -6,7 +6,9 @@ use crate::convert::{FromPython, ToSympy};
 use crate::errors;
 use crate::walk::Walkthrough;
 use crate::work::{self, Limits};
-use dqsym::{app::FkEntries, kin::Convention, FkOptions, Format, Scalar, Value};
+use dqsym::{
+    app::{Family, FkEntries, Quantity},
+ kin::Convention, FkOptions, Format, Scalar, Value};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyModule};
@@ -185,12 +187,9 @@ impl Robot {
         Ok(e)
     }
 
-    fn rows<'a>(e: &'a FkEntries, prefix: &str) -> Vec<&'a (String, dqsym::Expr)> {
-        e.sections
-            .iter()
-            .flat_map(|(_, rows)| rows)
-            .filter(|(n, _)| n.split('[').next() == Some(prefix))
-            .collect()
+    /// The entries of one output (`Family::Dq`: `dq[0]` .. `dq[7]`), in order.
+    fn rows<'a>(e: &'a FkEntries, family: Family) -> Vec<&'a (Quantity, dqsym::Expr)> {
+        e.rows().filter(|(n, _)| n.family() == family).collect()
     }
 }
 
@@ -392,7 +391,7 @@ impl Robot {
     /// The forward kinematics: the unit dual quaternion (a `dqsym.DQ`) in closed form.
     fn fk(&self, py: Python<'_>) -> PyResult<PyObject> {
         let e = self.expanded(py, false, None)?;
-        let rows: Vec<dqsym::Expr> = Robot::rows(&e, "dq")
+        let rows: Vec<dqsym::Expr> = Robot::rows(&e, Family::Dq)
             .into_iter()
             .map(|(_, x)| x.clone())
             .collect();
@@ -403,7 +402,7 @@ impl Robot {
     /// the product of the joint factors' matrices, as `dqsym fk` prints it.
     fn fk_matrix(&self, py: Python<'_>) -> PyResult<PyObject> {
         let e = self.expanded(py, false, None)?;
-        let cells: Vec<dqsym::Expr> = Robot::rows(&e, "T")
+        let cells: Vec<dqsym::Expr> = Robot::rows(&e, Family::T)
             .into_iter()
             .map(|(_, x)| x.clone())
             .collect();
@@ -419,7 +418,7 @@ impl Robot {
     fn jacobian(&self, py: Python<'_>) -> PyResult<PyObject> {
         let e = self.expanded(py, true, None)?;
         let n = self.robot.variables.len().max(1);
-        let cells: Vec<dqsym::Expr> = Robot::rows(&e, "J")
+        let cells: Vec<dqsym::Expr> = Robot::rows(&e, Family::JACOBIAN)
             .into_iter()
             .map(|(_, x)| x.clone())
             .collect();
@@ -438,7 +437,7 @@ impl Robot {
             ));
         }
         let e = self.expanded(py, false, p)?;
-        let cells: Vec<Vec<dqsym::Expr>> = Robot::rows(&e, "p")
+        let cells: Vec<Vec<dqsym::Expr>> = Robot::rows(&e, Family::Point)
             .into_iter()
             .map(|(_, x)| vec![x.clone()])
             .collect();
@@ -458,12 +457,7 @@ impl Robot {
     ) -> PyResult<Bound<'py, PyDict>> {
         let p = self.point_arg(py, point)?;
         let e = self.entries_of(py, jacobian, p)?;
-        let rows: Vec<(String, dqsym::Expr)> = e
-            .sections
-            .iter()
-            .flat_map(|(_, r)| r.iter().cloned())
-            .collect();
-        ToSympy::new(py)?.dict(&rows)
+        ToSympy::new(py)?.dict(&e.named_rows())
     }
 
     /// The `dqsym fk` report as text: format "plain", "latex", "sympy", "rust", "c", "python"

@@ -12,6 +12,7 @@
 
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError};
 use pyo3::prelude::*;
+use dqsym::Preset;
 use std::panic::AssertUnwindSafe;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
@@ -34,18 +35,20 @@ pub(crate) struct Limits {
 
 impl Limits {
     /// The command line's defaults for scripts and one-liners.
-    pub(crate) const SCRIPT: Limits = Limits {
-        term_limit: 20_000,
-        max_depth: 256,
-        max_exponent: dqsym::scalar::DEFAULT_MAX_EXPONENT,
-        work_budget: 3_000_000,
-    };
+    pub(crate) const SCRIPT: Limits = Limits::of(Preset::Script);
 
     /// The command line's defaults for `fk`.
-    pub(crate) const FK: Limits = Limits {
-        term_limit: 5_000,
-        ..Limits::SCRIPT
-    };
+    pub(crate) const FK: Limits = Limits::of(Preset::Fk);
+
+    /// The limits of a preset, and the parser's default depth.
+    const fn of(p: Preset) -> Limits {
+        Limits {
+            term_limit: p.term_limit(),
+            max_depth: dqsym::lang::DEFAULT_MAX_DEPTH,
+            max_exponent: p.max_exponent(),
+            work_budget: p.work_budget(),
+        }
+    }
 
     /// The library's execution context with these limits and `cancel` as its cancel flag.
     pub(crate) fn context(&self, cancel: Arc<AtomicBool>) -> dqsym::Context {

@@ -36,7 +36,7 @@ pub use eval::{
 };
 pub(crate) use eval::{Event, Observer};
 pub use field::{eval_point_text, eval_scalar_text};
-pub use parse::{parse, parse_expr, parse_expr_with, parse_with, ParseOptions};
+pub use parse::{parse, parse_expr, parse_expr_with, parse_with, ParseOptions, DEFAULT_MAX_DEPTH};
 pub use scan::continues;
 pub use show::{show, show_value, ShowError, ShowOptions};
 pub use value::{Value, MAX_EXPONENT};

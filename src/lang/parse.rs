@@ -52,10 +52,13 @@ pub struct ParseOptions {
     pub max_line_len: usize,
 }
 
+/// The default [`ParseOptions::max_depth`].
+pub const DEFAULT_MAX_DEPTH: usize = 256;
+
 impl Default for ParseOptions {
     fn default() -> Self {
         ParseOptions {
-            max_depth: 256,
+            max_depth: DEFAULT_MAX_DEPTH,
             max_integer_digits: 10_000,
             max_line_len: 65_536,
         }

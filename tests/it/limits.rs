@@ -359,3 +359,44 @@ fn fuzz_findings_end_within_their_budget_under_small_limits() {
     }
     assert!(count >= 2);
 }
+
+/// The command line's default limits are the presets of `Context`: `fk` switches to the
+/// recurrence past `Preset::Fk`'s term limit (and says so), `run` refuses a scalar past
+/// `Preset::Script`'s, and `--help` states both.
+#[test]
+fn command_line_defaults_are_the_context_presets() {
+    use dqsym::Preset;
+    let (fk, script) = (Preset::Fk.term_limit(), Preset::Script.term_limit());
+    let help = crate::tools::dqsym_ok(&["--help"]);
+    assert!(
+        help.contains(&format!("[default: {script}, and {fk} for fk]")),
+        "{help}"
+    );
+    let chain20 = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/chain20_symbolic.toml"
+    );
+    let out = crate::tools::dqsym_ok(&["fk", chain20]);
+    assert!(
+        out.contains(&format!("the expanded pose exceeds {fk} terms per entry")),
+        "{out}"
+    );
+    // (x1 + ... + x8)^5 has C(12, 5) = 792 terms, ^6 has C(13, 6) = 1,716: the default limit
+    // of scripts passes both, a limit of 1,000 (counted by the library) refuses the second.
+    let sum = (1..=8)
+        .map(|i| format!("x{i}"))
+        .collect::<Vec<_>>()
+        .join("+");
+    let expr = format!("({sum})^6");
+    let ctx = dqsym::Context::preset(Preset::Script);
+    assert_eq!(ctx.term_limit(), script);
+    assert_eq!(ctx.work_budget(), Preset::Script.work_budget());
+    let big = {
+        let _in = ctx.enter();
+        dqsym::eval_scalar_text(&expr).expect("within the script preset")
+    };
+    assert_eq!(big.len(), 1716);
+    let small = dqsym::Context::preset(Preset::Script).with_term_limit(1_000);
+    let _in = small.enter();
+    assert!(dqsym::eval_scalar_text(&expr).is_err());
+}

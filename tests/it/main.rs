@@ -11,6 +11,7 @@ mod cyclotomic;
 mod datasheet;
 mod dqr;
 mod emit;
+mod fk_quantities;
 mod geometric;
 mod hostile;
 mod ik;

@@ -6,7 +6,7 @@
 //! against the input's formula computed here.
 
 use crate::common::Rng;
-use dqsym::{closed_form, eval_scalar_text, plain, Expr, PlainOptions};
+use dqsym::{app::Quantity, closed_form, eval_scalar_text, plain, Expr, PlainOptions};
 use num_traits::Zero;
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
@@ -412,8 +412,8 @@ fn jaco_report_shows_one_offset_per_symbol() {
     let refs: Vec<&str> = names.iter().map(String::as_str).collect();
     let envs = crate::paper_support::points(&refs, 3);
     let mut carried = 0;
-    for (_, rows) in &entries.sections {
-        for (name, e) in rows {
+    for section in &entries.sections {
+        for (name, e) in &section.rows {
             let mut offs = BTreeMap::new();
             let mut sqrt = false;
             angles(e, &mut offs, &mut sqrt);
@@ -430,7 +430,7 @@ fn jaco_report_shows_one_offset_per_symbol() {
                     if want > num_rational::Ratio::from_integer(1) {
                         want -= two;
                     }
-                    assert_eq!(p, want, "{name} = {}: angle {key}", show(e));
+                    assert_eq!(p, want, "{} = {}: angle {key}", name.name(), show(e));
                     carried += 1;
                 }
             }
@@ -438,28 +438,16 @@ fn jaco_report_shows_one_offset_per_symbol() {
             for env in &envs {
                 let vals: Vec<(&str, f64)> = env.iter().map(|(k, v)| (k.as_str(), *v)).collect();
                 let got = e.value_at(&vals).expect("a value");
-                let want = if let Some(k) = name.strip_prefix("dq[") {
-                    let k: usize = k.trim_end_matches(']').parse().expect("index");
-                    crate::paper_support::ev(&comps[k], env)
-                } else if let Some(ij) = name.strip_prefix("T[") {
-                    let ij: Vec<usize> = ij
-                        .trim_end_matches(']')
-                        .split("][")
-                        .map(|x| x.parse().expect("index"))
-                        .collect();
-                    crate::robots::plain_pose(&r, env).rows[ij[0]][ij[1]]
-                } else {
-                    let ij: Vec<usize> = name
-                        .trim_start_matches("J[")
-                        .trim_end_matches(']')
-                        .split("][")
-                        .map(|x| x.parse().expect("index"))
-                        .collect();
-                    crate::paper_support::ev(&jac[ij[0]][ij[1]], env)
+                let want = match *name {
+                    Quantity::Dq(k) => crate::paper_support::ev(&comps[k], env),
+                    Quantity::T(i, j) => crate::robots::plain_pose(&r, env).rows[i][j],
+                    Quantity::J { row, col } => crate::paper_support::ev(&jac[row][col], env),
+                    other => panic!("unexpected entry {}", other.name()),
                 };
                 assert!(
                     (got - want).abs() < 1e-9 * (1.0 + want.abs()),
-                    "{name} = {}: {got} != {want}",
+                    "{} = {}: {got} != {want}",
+                    name.name(),
                     show(e)
                 );
             }

@@ -6,8 +6,11 @@ use crate::paper_support::points;
 use crate::robots::{load, numeric_chain};
 use crate::tools;
 use dqsym::{
-    app::fk_recurrence, emit::sympy, fk_report, kin::dq_jacobian, DualQuat, Expr, FkOptions,
-    Format, Robot, Scalar,
+    app::{fk_recurrence, Quantity},
+    emit::sympy,
+    fk_report,
+    kin::dq_jacobian,
+    DualQuat, Expr, FkOptions, Format, Robot, Scalar,
 };
 use std::collections::HashMap;
 use std::process::Command;
@@ -37,20 +40,19 @@ fn some_point() -> [Scalar; 3] {
     dqsym::lang::eval_point_text("1/2, -1, 2").expect("a point")
 }
 
-/// `Q2[3]` -> `Q2_3`, `T[1][2]` -> `T_1_2`: the symbol later entries read an entry by.
-fn key(name: &str) -> String {
-    name.replace("][", "_").replace('[', "_").replace(']', "")
-}
-
 /// Every entry's value at `env`, in order, each evaluated with the ones before it bound.
-pub(crate) fn evaluate(entries: &[(String, Expr)], env: &[(String, f64)]) -> HashMap<String, f64> {
+/// Values are keyed by the symbol later entries read an entry by (`Q2_3`, `T_1_2`).
+pub(crate) fn evaluate(
+    entries: &[(Quantity, Expr)],
+    env: &[(String, f64)],
+) -> HashMap<String, f64> {
     let mut vals: HashMap<String, f64> = env.iter().cloned().collect();
     for (name, e) in entries {
         let bound: Vec<(&str, f64)> = vals.iter().map(|(k, v)| (k.as_str(), *v)).collect();
         let v = e
             .value_at(&bound)
-            .unwrap_or_else(|| panic!("{name}: a symbol without a value"));
-        vals.insert(key(name), v);
+            .unwrap_or_else(|| panic!("{}: a symbol without a value", name.name()));
+        vals.insert(name.symbol(), v);
     }
     vals
 }
@@ -74,7 +76,7 @@ fn near(a: f64, b: f64, tol: f64) -> bool {
 
 /// The recurrence of `r` at random values of every symbol: `dq` and `T` against the f64
 /// chain, `p` against the f64 matrix, `J` against central differences of the f64 chain.
-pub(crate) fn check_against_f64_chain(file: &str, r: &Robot, entries: &[(String, Expr)]) {
+pub(crate) fn check_against_f64_chain(file: &str, r: &Robot, entries: &[(Quantity, Expr)]) {
     let names = symbols(r);
     let refs: Vec<&str> = names.iter().map(String::as_str).collect();
     let pt = [0.5, -1.0, 2.0];
@@ -147,10 +149,11 @@ fn generic_6r_recurrence_prints_the_matrix_from_its_cos_sin_polynomial() {
     let entries = fk_recurrence(&r, &o).expect("a recurrence");
     let names = symbols(&r);
     let own: Vec<(&str, f64)> = names.iter().map(|s| (s.as_str(), 0.5)).collect();
-    for (name, e) in entries.iter().filter(|(n, _)| n.starts_with("T[")) {
+    for (name, e) in entries.iter().filter(|(n, _)| matches!(n, Quantity::T(..))) {
         assert!(
             e.value_at(&own).is_some(),
-            "{name} reads only the robot's own symbols"
+            "{} reads only the robot's own symbols",
+            name.name()
         );
     }
     check_against_f64_chain(file, &r, &entries);
@@ -164,7 +167,10 @@ fn chain20_recurrence_with_jacobian_matches_the_f64_chain_and_finite_differences
     let o = forced(Format::Sympy, some_point());
     let entries = fk_recurrence(&r, &o).expect("a recurrence");
     assert_eq!(
-        entries.iter().filter(|(n, _)| n.starts_with("J[")).count(),
+        entries
+            .iter()
+            .filter(|(n, _)| matches!(n, Quantity::J { .. }))
+            .count(),
         8 * 20
     );
     check_against_f64_chain("chain20", &r, &entries);
@@ -189,7 +195,7 @@ fn every_example_robot_forced_into_a_recurrence_matches_its_expansion() {
         let text = fk_report(&r, &o).expect("a report");
         let lines: String = entries
             .iter()
-            .map(|(n, e)| format!("{n} = {}\n", sympy(e)))
+            .map(|(n, e)| format!("{} = {}\n", n.name(), sympy(e)))
             .collect();
         assert_eq!(text, lines, "{name}");
         check_against_f64_chain(name, &r, &entries);
@@ -232,7 +238,7 @@ fn signature_args(code: &str, marker: &str) -> Vec<String> {
 
 /// The returned values in the order dq (8), t (12), p (3), j (8 x n), from the recurrence's
 /// own entries evaluated in f64.
-fn expected(entries: &[(String, Expr)], env: &[(String, f64)], n: usize) -> Vec<f64> {
+fn expected(entries: &[(Quantity, Expr)], env: &[(String, f64)], n: usize) -> Vec<f64> {
     let vals = evaluate(entries, env);
     let mut v: Vec<f64> = (0..8).map(|k| vals[&format!("dq_{k}")]).collect();
     for i in 0..3 {
@@ -253,7 +259,7 @@ fn compare_run(
     what: &str,
     out: &str,
     r: &Robot,
-    entries: &[(String, Expr)],
+    entries: &[(Quantity, Expr)],
     envs: &[Vec<(String, f64)>],
 ) {
     let lines: Vec<&str> = out.lines().collect();

@@ -5,7 +5,10 @@
 
 use crate::recurrence::check_against_f64_chain;
 use crate::robots::load;
-use dqsym::{app::fk_entries, eval_scalar_text, fk_report, parse_robot, Context, FkOptions, Robot};
+use dqsym::{
+    app::fk_entries, app::Quantity, eval_scalar_text, fk_report, parse_robot, Context, FkOptions,
+    Robot,
+};
 use std::process::Command;
 
 const RTB: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/robots/rtb/");
@@ -31,12 +34,12 @@ fn check(name: &str, r: &Robot) -> usize {
     let text = fk_report(r, &o).unwrap_or_else(|e| panic!("{name}: {e}"));
     assert!(text.len() <= 100_000, "{name}: {} bytes", text.len());
     let entries = fk_entries(r, &o).unwrap_or_else(|e| panic!("{name}: {e}"));
-    let rows: Vec<(String, dqsym::Expr)> = entries
-        .sections
-        .into_iter()
-        .flat_map(|(_, rows)| rows)
-        .collect();
-    assert!(rows.iter().any(|(n, _)| n == "J[7][9]"), "{name}");
+    let rows: Vec<(Quantity, dqsym::Expr)> = entries.rows().cloned().collect();
+    assert!(
+        rows.iter()
+            .any(|(n, _)| *n == Quantity::J { row: 7, col: 9 }),
+        "{name}"
+    );
     check_against_f64_chain(name, r, &rows);
     text.len()
 }

@@ -49,4 +49,4 @@ pub use emit::{latex, LatexOptions};
 pub use kin::{parse_robot, parse_urdf, Chain, Joint, JointKind, Robot};
 pub use print::{plain, Format, PlainOptions};
 pub use ring::Ring;
-pub use scalar::{Context, Frac, Scalar, ScalarError, Sym, Trig};
+pub use scalar::{Context, Frac, Preset, Scalar, ScalarError, Sym, Trig};

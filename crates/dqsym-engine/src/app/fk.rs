@@ -6,13 +6,18 @@
 //! (i = 0..2, j = 0..3), `p[i]` and `J[i][j]` (i = 0..7, j = 0..n-1). A recurrence (see
 //! [`fk_report`]) adds the names of its steps, `L{i}[k]`, `dL{i}[k]`, `Q{i}[k]` and `P{i}[k]`,
 //! each read by later entries as the symbol `L{i}_k`, ...
+//!
+//! Entries and sections are data ([`Quantity`], [`SectionKind`]); every name, LaTeX letter,
+//! generated output and title is written by `app/quantity.rs`, and no reader here parses one
+//! back.
 
+use super::quantity::{Family, Letters, MatrixFrom, Quantity, Section, SectionKind};
 use super::recurrence::recurrence_sections;
 use crate::emit::names::{line_comment, Comment};
 use crate::emit::{
-    arguments, c_function, count_ops, generated_ops, latex_aligned, latex_symbol, product_table,
-    python_function, rotation_chain_ops, rust_function, sympy, sympy_decimals, CodegenError,
-    CodegenOptions, Counted, LatexOptions, Output,
+    arguments, c_function, count_ops, generated_ops, latex_aligned, product_table, python_function,
+    rotation_chain_ops, rust_function, sympy, sympy_decimals, CodegenError, CodegenOptions,
+    Counted, LatexOptions, Output,
 };
 use crate::kin::{dq_jacobian, Robot};
 use crate::print::{legend, plain, plain_len_bound, Format, PlainOptions};
@@ -121,12 +126,24 @@ pub fn fk_ops(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
 /// that take closed forms rather than text (the Python package).
 #[derive(Clone, Debug)]
 pub struct FkEntries {
-    /// Titled sections of `(name, closed form)` rows, named as in the report: `dq[k]`,
-    /// `T[i][j]`, `p[i]`, `J[i][j]`, and for a recurrence `L{i}[k]`, `Q{i}[k]`, ...
-    pub sections: Vec<(String, Vec<(String, Expr)>)>,
+    /// The sections of `(entry, closed form)` rows: `dq[k]`, `T[i][j]`, `p[i]`, `J[i][j]`, and
+    /// for a recurrence `L{i}[k]`, `Q{i}[k]`, ... ([`Quantity::name`]).
+    pub sections: Vec<Section>,
     /// Whether the pose is a recurrence over the joint factors (a stage exceeded
     /// `o.max_terms`): entry `X[k]` is then the symbol `X_k` of the entries after it.
     pub recurrence: bool,
+}
+
+impl FkEntries {
+    /// Every entry in order, named as in the report (`dq[3]`, `T[1][2]`, `Q2[3]`).
+    pub fn named_rows(&self) -> Vec<(String, Expr)> {
+        self.rows().map(|(q, e)| (q.name(), e.clone())).collect()
+    }
+
+    /// Every entry in order.
+    pub fn rows(&self) -> impl Iterator<Item = &(Quantity, Expr)> {
+        self.sections.iter().flat_map(|s| &s.rows)
+    }
 }
 
 /// The closed forms of [`fk_report`], section by section.
@@ -173,8 +190,8 @@ const MAX_EXPANDED_TEXT: usize = 100_000;
 /// Whether the plain text of the closed forms of `sections` is longer than `max` bytes. The
 /// text is only written when a bound of its length ([`plain_len_bound`], a few times the
 /// length) exceeds `max`: a report well within `max` is not printed twice.
-pub(super) fn text_exceeds(sections: &[(String, Vec<(String, Expr)>)], max: usize) -> bool {
-    let rows = || sections.iter().flat_map(|(_, rows)| rows);
+pub(super) fn text_exceeds(sections: &[Section], max: usize) -> bool {
+    let rows = || sections.iter().flat_map(|s| &s.rows);
     let po = PlainOptions {
         shorthand: true,
         decimals: false,
@@ -195,8 +212,8 @@ fn recurrence_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportE
     })
 }
 
-/// Titled sections of named closed forms.
-type Sections = Vec<(String, Vec<(String, Expr)>)>;
+/// The sections of a report.
+type Sections = Vec<Section>;
 
 /// The expanded entries, or `None` when the DQ or the matrix exceeds `o.max_terms` terms.
 fn expanded_entries(robot: &Robot, o: &FkOptions) -> Option<Result<Sections, ReportError>> {
@@ -245,12 +262,13 @@ fn expanded_entries(robot: &Robot, o: &FkOptions) -> Option<Result<Sections, Rep
         expanded_sections(robot, o, q, dq_forms, prepared, t_forms, m).map(|sections| {
             sections
                 .into_iter()
-                .map(|(t, rows)| {
-                    let rows = rows
+                .map(|s| Section {
+                    kind: s.kind,
+                    rows: s
+                        .rows
                         .into_iter()
                         .map(|(n, e)| (n, common.apply(e)))
-                        .collect();
-                    (t, rows)
+                        .collect(),
                 })
                 .collect()
         }),
@@ -275,17 +293,17 @@ fn expanded_sections(
     let jac = o.jacobian.then(|| dq_jacobian(&q, &vars));
     // Each entry with, for a Jacobian entry, the DQ component it is the derivative of and the
     // variable: its closed form starts from that component's regrouped monomials.
-    type Entry<'a> = (&'static str, String, &'a Scalar, Option<(usize, &'a str)>);
+    type Entry<'a> = (Quantity, &'a Scalar, Option<(usize, &'a str)>);
     let mut rest: Vec<Entry> = Vec::new();
     if let Some(img) = &img {
         for (k, c) in img.iter().enumerate() {
-            rest.push(("p", format!("[{k}]"), c, None));
+            rest.push((Quantity::Point(k), c, None));
         }
     }
     if let Some(jac) = &jac {
         for (i, row) in jac.iter().enumerate() {
             for (k, x) in row.iter().enumerate() {
-                rest.push(("J", format!("[{i}][{k}]"), x, Some((i, vars[k]))));
+                rest.push((Quantity::J { row: i, col: k }, x, Some((i, vars[k]))));
             }
         }
     }
@@ -302,7 +320,7 @@ fn expanded_sections(
     }
     let mut index: FxMap<&Scalar, usize> = FxMap::default();
     let mut distinct: Vec<(&Scalar, Option<(usize, &str)>)> = Vec::new();
-    for (_, _, x, from) in &rest {
+    for (_, x, from) in &rest {
         if !known.contains_key(*x) && !index.contains_key(*x) {
             index.insert(x, distinct.len());
             distinct.push((x, *from));
@@ -318,44 +336,41 @@ fn expanded_sections(
             None => forms[index[x]].clone(),
         }
     };
-    let named = |prefix: &str, n: &str, x: &Scalar| -> Result<(String, Expr), ScalarError> {
-        Ok((format!("{prefix}{n}"), form_of(x)?))
-    };
-    let mut sections: Vec<(&str, Vec<(String, Expr)>)> = vec![
-        (
-            "unit dual quaternion (w, x, y, z, w_e, x_e, y_e, z_e)",
-            dq_forms
+    let mut sections: Vec<Section> = vec![
+        Section {
+            kind: SectionKind::Pose { last_q: false },
+            rows: dq_forms
                 .iter()
                 .enumerate()
-                .map(|(k, e)| Ok((format!("dq[{k}]"), e.clone()?)))
+                .map(|(k, e)| Ok((Quantity::Dq(k), e.clone()?)))
                 .collect::<Result<_, ScalarError>>()?,
-        ),
-        (
-            "homogeneous matrix (rows 0..2)",
-            t_forms
+        },
+        Section {
+            kind: SectionKind::Matrix(MatrixFrom::Expanded),
+            rows: t_forms
                 .iter()
                 .enumerate()
-                .map(|(c, e)| Ok((format!("T[{}][{}]", c / 4, c % 4), e.clone()?)))
+                .map(|(c, e)| Ok((Quantity::T(c / 4, c % 4), e.clone()?)))
                 .collect::<Result<_, ScalarError>>()?,
-        ),
+        },
     ];
-    for (prefix, n, x, _) in &rest {
-        let title = match *prefix {
-            "p" => "image of the point",
-            _ => "Jacobian d dq[i] / d q[j]",
+    for (q, x, _) in &rest {
+        let kind = match q {
+            Quantity::Point(_) => SectionKind::Point,
+            _ => SectionKind::Jacobian { recurrence: false },
         };
-        if sections.last().map(|(t, _)| *t) != Some(title) {
-            sections.push((title, Vec::new()));
+        if sections.last().map(|s| &s.kind) != Some(&kind) {
+            sections.push(Section {
+                kind,
+                rows: Vec::new(),
+            });
         }
-        let row = named(prefix, n, x)?;
-        if let Some((_, rows)) = sections.last_mut() {
-            rows.push(row);
+        let row = (*q, form_of(x)?);
+        if let Some(s) = sections.last_mut() {
+            s.rows.push(row);
         }
     }
-    Ok(sections
-        .into_iter()
-        .map(|(t, rows)| (t.to_owned(), rows))
-        .collect())
+    Ok(sections)
 }
 
 /// Rows 0..2 of a matrix, row by row.
@@ -365,9 +380,9 @@ fn matrix_cells(m: &crate::Matrix4<Scalar>) -> Vec<&Scalar> {
 
 /// The sections in `o.format` (plain and LaTeX with `o.shorthand`), after `notes` (comment
 /// lines in plain and LaTeX).
-pub(super) fn render<S: AsRef<str>>(
+pub(super) fn render(
     robot: &Robot,
-    sections: &[(S, Vec<(String, Expr)>)],
+    sections: &[Section],
     o: &FkOptions,
     notes: &[String],
 ) -> Result<String, ReportError> {
@@ -375,10 +390,12 @@ pub(super) fn render<S: AsRef<str>>(
     // A robot whose file wrote decimals reads in decimals (`0.425 c2`), exactly: the
     // denominators pulled out of sums put back, decimal fractions printed as decimals.
     let decimals = !robot.decimals.is_empty();
-    let sections: Vec<(&str, Vec<(String, Expr)>)> = sections
+    let sections: Vec<Section> = sections
         .iter()
-        .map(|(t, rows)| {
-            let rows = rows
+        .map(|s| Section {
+            kind: s.kind.clone(),
+            rows: s
+                .rows
                 .iter()
                 .map(|(n, e)| {
                     let e = if decimals {
@@ -386,10 +403,9 @@ pub(super) fn render<S: AsRef<str>>(
                     } else {
                         e.clone()
                     };
-                    (n.clone(), e)
+                    (*n, e)
                 })
-                .collect();
-            (t.as_ref(), rows)
+                .collect(),
         })
         .collect();
     let sections = &sections[..];
@@ -399,14 +415,14 @@ pub(super) fn render<S: AsRef<str>>(
         Format::Python => code(robot, sections, Generated::Python)?,
         Format::Sympy => sections
             .iter()
-            .flat_map(|(_, rows)| {
-                rows.iter().map(|(n, e)| {
+            .flat_map(|s| {
+                s.rows.iter().map(|(n, e)| {
                     let text = if decimals {
                         sympy_decimals(e)
                     } else {
                         sympy(e)
                     };
-                    format!("{n} = {text}\n")
+                    format!("{} = {text}\n", n.name())
                 })
             })
             .collect(),
@@ -419,15 +435,15 @@ pub(super) fn render<S: AsRef<str>>(
             for n in notes {
                 out.push_str(&line_comment(Comment::Hash, "#", n));
             }
-            for (title, rows) in sections {
-                out.push_str(&format!("# {title}\n"));
-                for (n, e) in rows {
-                    out.push_str(&format!("{n} = {}\n", plain(e, &po)));
+            for s in sections {
+                out.push_str(&format!("# {}\n", s.kind.title()));
+                for (n, e) in &s.rows {
+                    out.push_str(&format!("{} = {}\n", n.name(), plain(e, &po)));
                 }
             }
             let all: Vec<&Expr> = sections
                 .iter()
-                .flat_map(|(_, r)| r.iter().map(|(_, e)| e))
+                .flat_map(|s| s.rows.iter().map(|(_, e)| e))
                 .collect();
             let leg = legend(&all);
             if shorthand && !leg.is_empty() {
@@ -441,16 +457,18 @@ pub(super) fn render<S: AsRef<str>>(
                 decimals,
                 ..LatexOptions::default()
             };
-            let letters = Letters::of(robot);
+            let letters =
+                Letters::avoiding(robot.variables.iter().cloned().chain(robot.parameters()));
             let mut out = header(robot, Comment::Latex, "% #");
             for n in notes {
                 out.push_str(&line_comment(Comment::Latex, "%", n));
             }
-            for (title, rows) in sections {
-                out.push_str(&format!("% {title}\n"));
-                let rows: Vec<(String, Expr)> = rows
+            for s in sections {
+                out.push_str(&format!("% {}\n", s.kind.title()));
+                let rows: Vec<(String, Expr)> = s
+                    .rows
                     .iter()
-                    .map(|(n, e)| (latex_name(n, &letters), e.clone()))
+                    .map(|(n, e)| (n.latex(&letters), e.clone()))
                     .collect();
                 out.push_str(&latex_aligned(&rows, &lo));
                 out.push('\n');
@@ -473,41 +491,25 @@ enum Generated {
 /// (8 x n), arguments the joint variables in joint order, then the parameters alphabetically.
 /// The entries of a recurrence (`L1[k]`, `Q2[k]`, ...) are intermediate outputs: locals the
 /// function computes in order, each read by the later ones as the symbol `L1_k`, `Q2_k`.
-fn code<S>(
-    robot: &Robot,
-    sections: &[(S, Vec<(String, Expr)>)],
-    f: Generated,
-) -> Result<String, CodegenError> {
+fn code(robot: &Robot, sections: &[Section], f: Generated) -> Result<String, CodegenError> {
     let n = robot.variables.len();
-    // Consecutive entries with one base name (`T` of `T[1][2]`) make one output.
-    let mut groups: Vec<(&str, Vec<Expr>)> = Vec::new();
-    for (name, e) in sections.iter().flat_map(|(_, rows)| rows) {
-        let base = name.split_once('[').map_or(name.as_str(), |(b, _)| b);
+    // Consecutive entries of one family (`T` of `T[1][2]`) make one output.
+    let mut groups: Vec<(Family, Vec<Expr>)> = Vec::new();
+    for (q, e) in sections.iter().flat_map(|s| &s.rows) {
+        let family = q.family();
         match groups.last_mut() {
-            Some((b, v)) if *b == base => v.push(e.clone()),
-            _ => groups.push((base, vec![e.clone()])),
+            Some((b, v)) if *b == family => v.push(e.clone()),
+            _ => groups.push((family, vec![e.clone()])),
         }
     }
+    // The outputs up to the DQ's, for the counts of the DQ alone.
+    let dq_end = groups
+        .iter()
+        .position(|(f, _)| *f == Family::Dq)
+        .map_or(groups.len(), |i| i + 1);
     let outputs: Vec<Output> = groups
         .into_iter()
-        .map(|(base, v)| match base {
-            "dq" => Output::vector(
-                "dq",
-                "Unit dual quaternion (w, x, y, z, w_e, x_e, y_e, z_e), q = r + eps t r / 2.",
-                v,
-            ),
-            "T" => Output::matrix(
-                "t",
-                "Homogeneous matrix, rows 0..2 (the last row is 0 0 0 1).",
-                v.chunks(4).map(<[Expr]>::to_vec).collect(),
-            ),
-            "p" => Output::vector("p", "Image of the point.", v),
-            b if b.starts_with('J') => match super::task::task_output(b, v.clone(), n) {
-                Some(o) => o,
-                None => Output::intermediate(b, "A step of the recurrence.", v),
-            },
-            other => Output::intermediate(other, "A step of the recurrence.", v),
-        })
+        .map(|(family, v)| family.output(v, n))
         .collect();
     let joints: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
     let args = arguments(&outputs, &joints);
@@ -551,10 +553,6 @@ fn code<S>(
                 dq.mul * n.saturating_sub(1),
                 dq.add * n.saturating_sub(1)
             ));
-            let dq_end = outputs
-                .iter()
-                .position(|o| o.name == "dq")
-                .map_or(outputs.len(), |i| i + 1);
             for (label, outs) in [
                 ("generated code, DQ only", &outputs[..dq_end]),
                 ("generated code, all outputs", &outputs[..]),
@@ -614,69 +612,6 @@ fn header(robot: &Robot, syntax: Comment, prefix: &str) -> String {
         }
     );
     line_comment(syntax, prefix, &text)
-}
-
-/// The LaTeX letters of a report's entries (the DQ components, the matrix, the point, the
-/// Jacobians), each the first of its candidates that no symbol of the robot is written with:
-/// `q_{k}` for the DQ, but `x_{k}` for a robot whose joints are `q1 ... q7`, so no entry is
-/// defined in terms of a symbol that looks like itself.
-struct Letters {
-    dq: &'static str,
-    t: &'static str,
-    p: &'static str,
-    j: &'static str,
-}
-
-impl Letters {
-    fn of(robot: &Robot) -> Letters {
-        // The LaTeX base of every symbol: `q` of `q_{1}`, `\theta` of `\theta_{1}`.
-        let taken: std::collections::BTreeSet<String> = robot
-            .variables
-            .iter()
-            .cloned()
-            .chain(robot.parameters())
-            .map(|n| {
-                let t = latex_symbol(&n);
-                t.split("_{").next().unwrap_or_default().to_owned()
-            })
-            .collect();
-        let pick = |c: &[&'static str]| {
-            c.iter()
-                .copied()
-                .find(|l| !taken.contains(*l))
-                .unwrap_or(c[c.len() - 1])
-        };
-        Letters {
-            dq: pick(&["q", "x", "\\xi", "\\eta", "\\mathsf{q}"]),
-            t: pick(&["T", "A", "M", "\\mathsf{T}"]),
-            p: pick(&["p", "y", "\\rho", "\\mathsf{p}"]),
-            j: pick(&["J", "G", "\\mathcal{J}", "\\mathsf{J}"]),
-        }
-    }
-}
-
-/// `T[1][2]` -> `T_{1,2}`, `dq[3]` -> `q_{3}` style subscripts (the letters of `l`); `Q2[3]`
-/// like the symbol `Q2_3`.
-fn latex_name(n: &str, l: &Letters) -> String {
-    let (base, rest) = n.split_once('[').unwrap_or((n, ""));
-    let idx: Vec<&str> = rest.split(['[', ']']).filter(|s| !s.is_empty()).collect();
-    match base {
-        "dq" => format!("{}_{{{}}}", l.dq, idx.join(",")),
-        "T" => format!("{}_{{{}}}", l.t, idx.join(",")),
-        "p" => format!("{}_{{{}}}", l.p, idx.join(",")),
-        "J" => format!("{}_{{{}}}", l.j, idx.join(",")),
-        "Jr" | "Jt" | "Jl" | "Jpi" | "Jd" | "Jg" | "Jb" => {
-            format!(
-                "{}^{{{}}}_{{{}}}",
-                l.j,
-                latex_symbol(&base[1..]),
-                idx.join(",")
-            )
-        }
-        "Jdot" => format!("\\dot{{{}}}_{{{}}}", l.j, idx.join(",")),
-        // A recurrence entry `Q2[3]` is written as its symbol `Q2_3` is in later entries.
-        b => latex_symbol(&format!("{b}_{}", idx.join("_"))),
-    }
 }
 
 /// Tables 1 and 2 of the paper, counted by running each product (with the corrections of

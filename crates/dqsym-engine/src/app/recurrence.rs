@@ -33,6 +33,7 @@
 //! constant, so the zeros propagate instead of being multiplied at run time.
 
 use super::fk::{FkOptions, ReportError};
+use super::quantity::{MatrixFrom, Quantity, Section, SectionKind, Step};
 use crate::scalar::{par_map, with_own_budget};
 
 /// The work budget of the attempt at the matrix as a cos/sin polynomial (the generic 6R needs
@@ -51,9 +52,6 @@ use crate::{closed::closed_form_cos_sin, DualQuat, Expr, Robot, Scalar, ScalarEr
 use std::cell::RefCell;
 use std::collections::HashMap;
 
-/// One titled group of `NAME = EXPR` entries.
-pub(crate) type Section = (String, Vec<(String, Expr)>);
-
 /// The forward kinematics of `robot` as a recurrence (see the module documentation): every
 /// entry in the order of evaluation, named as in the report (`L1[0]`, `Q2[3]`, `dq[0]`,
 /// `T[0][3]`, `J[7][19]`, ...). Entry `X[k]` appears in later entries as the symbol `X_k`.
@@ -64,27 +62,23 @@ pub(crate) type Section = (String, Vec<(String, Expr)>);
 /// # Errors
 /// When an exact operation fails (a size limit or the work budget, say), or a symbol of the
 /// robot or the point has the name of an entry's symbol (`Q2_3`).
-pub fn fk_recurrence(robot: &Robot, o: &FkOptions) -> Result<Vec<(String, Expr)>, ReportError> {
+pub fn fk_recurrence(robot: &Robot, o: &FkOptions) -> Result<Vec<(Quantity, Expr)>, ReportError> {
     Ok(recurrence_sections(robot, o)?
         .into_iter()
-        .flat_map(|(_, rows)| rows)
+        .flat_map(|s| s.rows)
         .collect())
-}
-
-/// The symbol later entries read entry `name` by: `Q2[3]` -> `Q2_3`.
-fn entry_symbol(name: &str) -> String {
-    name.replace("][", "_").replace('[', "_").replace(']', "")
 }
 
 /// The entries whose value is a constant (the zeros of a planar link, say), by symbol: later
 /// entries read the constant instead of the symbol, so the zeros propagate.
 type Known = RefCell<HashMap<String, Scalar>>;
 
-/// A DQ of the symbols `{prefix}_0` .. `{prefix}_7`, or of their constant values.
-fn syms(known: &Known, prefix: &str) -> DualQuat<Scalar> {
+/// The DQ of the symbols of step `step` of joint `joint` (`Q2_0` .. `Q2_7`), or of their
+/// constant values.
+fn syms(known: &Known, step: Step, joint: usize) -> DualQuat<Scalar> {
     let known = known.borrow();
     let c = |k: usize| {
-        let name = format!("{prefix}_{k}");
+        let name = Quantity::Step { step, joint, k }.symbol();
         known
             .get(&name)
             .cloned()
@@ -94,10 +88,10 @@ fn syms(known: &Known, prefix: &str) -> DualQuat<Scalar> {
 }
 
 /// Records the constant entries of `rows` in `known`.
-fn learn(known: &Known, rows: &[(String, Scalar)]) {
+fn learn(known: &Known, rows: &[(Quantity, Scalar)]) {
     for (name, x) in rows {
         if x.symbols().is_empty() && x.as_error().is_none() {
-            known.borrow_mut().insert(entry_symbol(name), x.clone());
+            known.borrow_mut().insert(name.symbol(), x.clone());
         }
     }
 }
@@ -121,11 +115,11 @@ pub(crate) fn recurrence_sections(
     // The prefix product Q{i} and suffix product P{i} as symbols; Q{1} is L{1}, P{n} is L{n},
     // Q{0} and P{n+1} the identity.
     let known = Known::default();
-    let l = |i: usize| syms(&known, &format!("L{i}"));
+    let l = |i: usize| syms(&known, Step::Factor, i);
     let q = |i: usize| match i {
         0 => DualQuat::identity(),
         1 => l(1),
-        _ => syms(&known, &format!("Q{i}")),
+        _ => syms(&known, Step::Prefix, i),
     };
     let p = |i: usize| {
         if i > n {
@@ -133,35 +127,35 @@ pub(crate) fn recurrence_sections(
         } else if i == n {
             l(n)
         } else {
-            syms(&known, &format!("P{i}"))
+            syms(&known, Step::Suffix, i)
         }
     };
-    let comps = |prefix: &str, d: &DualQuat<Scalar>| -> Vec<(String, Scalar)> {
-        d.components()
-            .into_iter()
-            .enumerate()
-            .map(|(k, c)| (format!("{prefix}[{k}]"), c))
-            .collect()
-    };
+    let comps =
+        |name: &dyn Fn(usize) -> Quantity, d: &DualQuat<Scalar>| -> Vec<(Quantity, Scalar)> {
+            d.components()
+                .into_iter()
+                .enumerate()
+                .map(|(k, c)| (name(k), c))
+                .collect()
+        };
+    let step = |step: Step, joint: usize| move |k: usize| Quantity::Step { step, joint, k };
 
-    let mut sections: Vec<(String, Vec<(String, Scalar)>)> = Vec::new();
-    let title = match (has_base, has_tool) {
-        (false, false) => "joint factors L{i} (unit DQs)",
-        (false, true) => "joint factors L{i} (unit DQs; the last one times the tool)",
-        (true, false) => "joint factors L{i} (unit DQs; the first one after the base)",
-        (true, true) => {
-            "joint factors L{i} (unit DQs; the first one after the base, the last one times the tool)"
-        }
-    };
-    let links: Vec<(String, Scalar)> = factors
+    let mut sections: Vec<(SectionKind, Vec<(Quantity, Scalar)>)> = Vec::new();
+    let links: Vec<(Quantity, Scalar)> = factors
         .iter()
         .enumerate()
-        .flat_map(|(i, f)| comps(&format!("L{}", i + 1), f))
+        .flat_map(|(i, f)| comps(&step(Step::Factor, i + 1), f))
         .collect();
     learn(&known, &links);
-    sections.push((title.to_string(), links));
+    sections.push((
+        SectionKind::Factors {
+            base: has_base,
+            tool: has_tool,
+        },
+        links,
+    ));
     if o.jacobian {
-        let derivs: Vec<(String, Scalar)> = factors
+        let derivs: Vec<(Quantity, Scalar)> = factors
             .iter()
             .zip(&joint_var)
             .enumerate()
@@ -170,41 +164,32 @@ pub(crate) fn recurrence_sections(
                 f.components()
                     .iter()
                     .enumerate()
-                    .map(|(k, c)| (format!("dL{}[{k}]", i + 1), c.diff(v)))
+                    .map(|(k, c)| (step(Step::FactorDerivative, i + 1)(k), c.diff(v)))
                     .collect::<Vec<_>>()
             })
             .collect();
         learn(&known, &derivs);
-        sections.push((
-            "derivatives dL{i} = d L{i} / d q_i of the joint factors".to_string(),
-            derivs,
-        ));
+        sections.push((SectionKind::FactorDerivatives, derivs));
     }
-    let mut steps: Vec<(String, Scalar)> = Vec::new();
+    let mut steps: Vec<(Quantity, Scalar)> = Vec::new();
     for i in 2..=n {
-        let rows = comps(&format!("Q{i}"), &(q(i - 1) * l(i)));
+        let rows = comps(&step(Step::Prefix, i), &(q(i - 1) * l(i)));
         learn(&known, &rows);
         steps.extend(rows);
     }
+    sections.push((SectionKind::PrefixProducts, steps));
     sections.push((
-        "prefix products Q{i} = Q{i-1} L{i}, Q{1} = L{1}".to_string(),
-        steps,
-    ));
-    sections.push((
-        "unit dual quaternion (w, x, y, z, w_e, x_e, y_e, z_e): the last Q".to_string(),
-        comps("dq", &q(n)),
+        SectionKind::Pose { last_q: true },
+        comps(&Quantity::Dq, &q(n)),
     ));
     if o.jacobian {
-        let mut suffix: Vec<(String, Scalar)> = Vec::new();
+        let mut suffix: Vec<(Quantity, Scalar)> = Vec::new();
         for i in (2..n).rev() {
-            let rows = comps(&format!("P{i}"), &(l(i) * p(i + 1)));
+            let rows = comps(&step(Step::Suffix, i), &(l(i) * p(i + 1)));
             learn(&known, &rows);
             suffix.extend(rows);
         }
-        sections.push((
-            "suffix products P{i} = L{i} P{i+1}, P{n} = L{n}".to_string(),
-            suffix,
-        ));
+        sections.push((SectionKind::SuffixProducts, suffix));
     }
     let last = q(n);
     // The matrix in the robot's own symbols when it fits as a polynomial in the cosines and
@@ -235,33 +220,25 @@ pub(crate) fn recurrence_sections(
             .sum();
         (len <= MAX_COS_SIN_TEXT).then_some((m, forms))
     });
-    let (m, title, t_forms) = match cos_sin_forms {
-        Some((m, forms)) => (
-            m,
-            "homogeneous matrix (rows 0..2), from the cos/sin polynomial of the joint matrices",
-            Some(forms),
-        ),
-        None => (
-            last.to_matrix(),
-            "homogeneous matrix (rows 0..2) of the last Q",
-            None,
-        ),
+    let (m, from, t_forms) = match cos_sin_forms {
+        Some((m, forms)) => (m, MatrixFrom::CosSin, Some(forms)),
+        None => (last.to_matrix(), MatrixFrom::LastQ, None),
     };
     let mut t = Vec::new();
     for i in 0..3 {
         for j in 0..4 {
-            t.push((format!("T[{i}][{j}]"), m.rows[i][j].clone()));
+            t.push((Quantity::T(i, j), m.rows[i][j].clone()));
         }
     }
-    sections.push((title.to_string(), t));
+    sections.push((SectionKind::Matrix(from), t));
     if let Some(pt) = &o.point {
         let img = last.transform_point(pt);
         let ps = img
             .into_iter()
             .enumerate()
-            .map(|(k, c)| (format!("p[{k}]"), c))
+            .map(|(k, c)| (Quantity::Point(k), c))
             .collect();
-        sections.push(("image of the point".to_string(), ps));
+        sections.push((SectionKind::Point, ps));
     }
     if o.jacobian {
         // Column v is the sum over the joints that move with v (one, except for mimic joints).
@@ -273,7 +250,7 @@ pub(crate) fn recurrence_sections(
                 for (i, jv) in joint_var.iter().enumerate() {
                     if jv.as_ref() == Some(v) {
                         let i = i + 1;
-                        col = col + q(i - 1) * syms(&known, &format!("dL{i}")) * p(i + 1);
+                        col = col + q(i - 1) * syms(&known, Step::FactorDerivative, i) * p(i + 1);
                     }
                 }
                 col.components()
@@ -282,14 +259,10 @@ pub(crate) fn recurrence_sections(
         let mut jac = Vec::new();
         for k in 0..8 {
             for (j, c) in columns.iter().enumerate() {
-                jac.push((format!("J[{k}][{j}]"), c[k].clone()));
+                jac.push((Quantity::J { row: k, col: j }, c[k].clone()));
             }
         }
-        sections.push((
-            "Jacobian d dq[k] / d q[i-1]: component k of Q{i-1} dL{i} P{i+1}, Q{0} = P{n+1} = 1"
-                .to_string(),
-            jac,
-        ));
+        sections.push((SectionKind::Jacobian { recurrence: true }, jac));
     }
 
     // A robot symbol named like an entry (`Q2_3`) would be read as that entry.
@@ -300,7 +273,7 @@ pub(crate) fn recurrence_sections(
     let entries: std::collections::HashSet<String> = sections
         .iter()
         .flat_map(|(_, rows)| rows)
-        .map(|(name, _)| entry_symbol(name))
+        .map(|(name, _)| name.symbol())
         .collect();
     for s in robot_syms.chain(point_syms.map(|s| s.name().to_string())) {
         if entries.contains(&s) {
@@ -309,7 +282,7 @@ pub(crate) fn recurrence_sections(
     }
     // The matrix's closed forms, when already made, are not made again.
     let have_t = t_forms.is_some();
-    let done = |t: &str| t.starts_with("homogeneous matrix") && have_t;
+    let done = |t: &SectionKind| matches!(t, SectionKind::Matrix(_)) && have_t;
     let all: Vec<&Scalar> = sections
         .iter()
         .filter(|(t, _)| !done(t))
@@ -319,9 +292,9 @@ pub(crate) fn recurrence_sections(
     let mut t_forms = t_forms.into_iter().flatten();
     sections
         .into_iter()
-        .map(|(title, rows)| {
+        .map(|(kind, rows)| {
             // `forms` holds one closed form per entry, in the same order.
-            let source: &mut dyn Iterator<Item = Result<Expr, ScalarError>> = if done(&title) {
+            let source: &mut dyn Iterator<Item = Result<Expr, ScalarError>> = if done(&kind) {
                 &mut t_forms
             } else {
                 &mut forms
@@ -331,7 +304,7 @@ pub(crate) fn recurrence_sections(
                 .zip(source)
                 .map(|((name, _), e)| Ok((name, e?)))
                 .collect::<Result<Vec<_>, ScalarError>>()?;
-            Ok((title, rows))
+            Ok(Section { kind, rows })
         })
         .collect()
 }

@@ -22,8 +22,8 @@
 //! is `sum_k dJ/dq_k qdot_k`, the rates named `<q>_dot`; of a quotient `A/E`, `(A' E - A E')/E²`.
 
 use super::fk::{render, FkOptions, ReportError};
+use super::quantity::{Quantity, Section, SectionKind, TaskBase, TaskName};
 use crate::algebra::dqr;
-use crate::emit::Output;
 use crate::kin::Robot;
 use crate::scalar::par_map;
 use crate::{closed_form, DualQuat, Expr, Quat, Scalar, ScalarError};
@@ -107,6 +107,49 @@ const KINDS: &str = "pose, rotation, translation, geometric, geometric_body, lin
     line_to_line:[LX,LY,LZ,]DX,DY,DZ,PX,PY,PZ, line_to_line_angle:[LX,LY,LZ,]DX,DY,DZ,PX,PY,PZ, \
     or any of them followed by _derivative (pose_derivative, line_derivative:X,Y,Z, ...)";
 
+/// Why the text of `--jacobian=KIND` names no task Jacobian.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum TaskParseError {
+    /// `KIND_derivative` of a derivative.
+    #[error("`{0}`: the derivative of a derivative would need the joint accelerations")]
+    DerivativeOfDerivative(String),
+    /// `line_to_line_derivative`.
+    #[error(
+        "`{0}`: DQ Robotics has no derivative of the line-to-line distance Jacobian, and that of its quotient is large: not generated"
+    )]
+    LineToLineDerivative(String),
+    /// A `:` argument to a kind that takes none.
+    #[error("`{0}` takes no `:` argument")]
+    UnexpectedArgument(String),
+    /// No `:` argument to a kind that needs one.
+    #[error("`{kind}` needs `:{what}`")]
+    MissingArgument {
+        /// The kind.
+        kind: String,
+        /// What it needs.
+        what: String,
+    },
+    /// The wrong number of coordinates.
+    #[error("`{kind}` needs {count} numbers ({what}), got `{given}`")]
+    Count {
+        /// The kind.
+        kind: String,
+        /// How many it takes (`6 or 9`).
+        count: String,
+        /// What they are.
+        what: String,
+        /// The argument given.
+        given: String,
+    },
+    /// A vector the caller's reader refused, with its message.
+    #[error("{0}")]
+    Vector(String),
+    /// No such kind.
+    #[error("unknown Jacobian `{0}`: expected {KINDS}")]
+    Unknown(String),
+}
+
 impl TaskJacobian {
     /// Reads `pose`, `rotation`, `translation`, `line`, `line:X,Y,Z`, `plane`, `plane:X,Y,Z`,
     /// `distance`, the distances to workspace primitives (`point_to_point:X,Y,Z`,
@@ -116,10 +159,11 @@ impl TaskJacobian {
     /// optional: default z), and any of them followed by `_derivative` (`line_derivative:0,1,0`).
     /// `line` and `plane` default to the z axis, DQ Robotics' usual `k_`; the vectors are read by
     /// `parse_vec`.
-    pub fn parse(
+    pub fn parse<E: std::fmt::Display>(
         s: &str,
-        parse_vec: &dyn Fn(&str) -> Result<[Scalar; 3], String>,
-    ) -> Result<TaskJacobian, String> {
+        parse_vec: &dyn Fn(&str) -> Result<[Scalar; 3], E>,
+    ) -> Result<TaskJacobian, TaskParseError> {
+        let parse_vec = |a: &str| parse_vec(a).map_err(|e| TaskParseError::Vector(e.to_string()));
         let (kind, arg) = match s.split_once(':') {
             Some((k, a)) => (k, Some(a)),
             None => (s, None),
@@ -129,19 +173,18 @@ impl TaskJacobian {
                 Some(a) => format!("{inner}:{a}"),
                 None => inner.to_owned(),
             };
-            return match TaskJacobian::parse(&inner_s, parse_vec)? {
-                TaskJacobian::Derivative(_) => Err(format!(
-                    "`{kind}`: the derivative of a derivative would need the joint accelerations"
-                )),
-                TaskJacobian::LineToLine(..) => Err(format!(
-                    "`{kind}`: DQ Robotics has no derivative of the line-to-line distance \
-                     Jacobian, and that of its quotient is large: not generated"
-                )),
+            return match TaskJacobian::parse(&inner_s, &parse_vec)? {
+                TaskJacobian::Derivative(_) => {
+                    Err(TaskParseError::DerivativeOfDerivative(kind.to_owned()))
+                }
+                TaskJacobian::LineToLine(..) => {
+                    Err(TaskParseError::LineToLineDerivative(kind.to_owned()))
+                }
                 t => Ok(TaskJacobian::Derivative(Box::new(t))),
             };
         }
         let k = || [Scalar::int(0), Scalar::int(0), Scalar::int(1)];
-        let dir = || -> Result<[Scalar; 3], String> {
+        let dir = || -> Result<[Scalar; 3], TaskParseError> {
             match arg {
                 None => Ok(k()),
                 Some(a) => parse_vec(a),
@@ -149,23 +192,29 @@ impl TaskJacobian {
         };
         let plain = |t: TaskJacobian| match arg {
             None => Ok(t),
-            Some(_) => Err(format!("`{kind}` takes no `:` argument")),
+            Some(_) => Err(TaskParseError::UnexpectedArgument(kind.to_owned())),
         };
         // `n` vectors of three numbers, the first optional when `optional`: (the vectors given,
         // with the default robot direction first when it was left out).
-        let vectors = |n: usize, optional: bool, what: &str| -> Result<Vec<[Scalar; 3]>, String> {
-            let a = arg.ok_or_else(|| format!("`{kind}` needs `:{what}`"))?;
+        let missing = |what: &str| TaskParseError::MissingArgument {
+            kind: kind.to_owned(),
+            what: what.to_owned(),
+        };
+        let vectors = |n: usize, optional: bool, what: &str| {
+            let a = arg.ok_or_else(|| missing(what))?;
             let parts: Vec<&str> = a.split(',').collect();
             let given = parts.len() / 3;
             if !parts.len().is_multiple_of(3) || !(given == n || optional && given == n - 1) {
-                return Err(format!(
-                    "`{kind}` needs {} numbers ({what}), got `{a}`",
-                    if optional {
+                return Err(TaskParseError::Count {
+                    kind: kind.to_owned(),
+                    count: if optional {
                         format!("{} or {}", 3 * (n - 1), 3 * n)
                     } else {
                         (3 * n).to_string()
-                    }
-                ));
+                    },
+                    what: what.to_owned(),
+                    given: a.to_owned(),
+                });
             }
             let mut out: Vec<[Scalar; 3]> = Vec::with_capacity(n);
             if given < n {
@@ -174,7 +223,7 @@ impl TaskJacobian {
             for c in parts.chunks(3) {
                 out.push(parse_vec(&c.join(","))?);
             }
-            Ok(out)
+            Ok::<_, TaskParseError>(out)
         };
         let two = |what: &str| vectors(2, false, what).map(|v| (v[0].clone(), v[1].clone()));
         let robot_two = |what: &str| vectors(2, true, what).map(|v| (v[0].clone(), v[1].clone()));
@@ -183,7 +232,7 @@ impl TaskJacobian {
         match kind {
             "point_to_point" => match arg {
                 Some(a) => Ok(TaskJacobian::PointToPoint(parse_vec(a)?)),
-                None => Err("`point_to_point` needs `:X,Y,Z`".into()),
+                None => Err(missing("X,Y,Z")),
             },
             "point_to_line" => two("a unit direction, then a point")
                 .map(|(d, p)| TaskJacobian::PointToLine(d, p)),
@@ -210,103 +259,68 @@ impl TaskJacobian {
             "geometric_body" | "geometric-body" => plain(TaskJacobian::GeometricBody),
             "line" => Ok(TaskJacobian::Line(dir()?)),
             "plane" => Ok(TaskJacobian::Plane(dir()?)),
-            other => Err(format!("unknown Jacobian `{other}`: expected {KINDS}")),
+            other => Err(TaskParseError::Unknown(other.to_owned())),
         }
     }
 
-    /// The entry base name (`Jt`) and the section title.
-    fn names(&self) -> (String, String) {
-        let (b, t): (&str, &str) = match self {
-            TaskJacobian::Pose => ("J", "Jacobian d dq[i] / d q[j]"),
-            TaskJacobian::Rotation => ("Jr", "rotation Jacobian d r[i] / d q[j] (DQ Robotics' rotation_jacobian)"),
-            TaskJacobian::Translation => ("Jt", "translation Jacobian d t[i] / d q[j], t = (0, x, y, z) = 2 D P* (DQ Robotics' translation_jacobian)"),
-            TaskJacobian::Geometric => ("Jg", "geometric Jacobian: rows 0..2 the end-effector origin's velocity v, rows 3..5 the angular velocity omega, per unit rate of q[j], in the base frame"),
-            TaskJacobian::GeometricBody => ("Jb", "body geometric Jacobian: rows 0..2 the end-effector origin's velocity R^T v, rows 3..5 the angular velocity R^T omega, per unit rate of q[j], in the end-effector frame"),
-            TaskJacobian::Line(_) => ("Jl", "line Jacobian d vec8(l + eps t x l)[i] / d q[j] (DQ Robotics' line_jacobian)"),
-            TaskJacobian::Plane(_) => ("Jpi", "plane Jacobian d vec8(n + eps t . n)[i] / d q[j] (DQ Robotics' plane_jacobian)"),
-            TaskJacobian::Distance => ("Jd", "distance Jacobian d |t|^2 / d q[j] (DQ Robotics' distance_jacobian)"),
-            TaskJacobian::PointToPoint(_) => ("Jd", "point-to-point distance Jacobian d |t - p|^2 / d q[j] (DQ Robotics' point_to_point_distance_jacobian)"),
-            TaskJacobian::PointToLine(..) => ("Jd", "point-to-line distance Jacobian d |t x l - m|^2 / d q[j] (DQ Robotics' point_to_line_distance_jacobian)"),
-            TaskJacobian::PointToPlane(..) => ("Jd", "point-to-plane distance Jacobian d (t . n - d) / d q[j] (DQ Robotics' point_to_plane_distance_jacobian)"),
-            TaskJacobian::LineToPoint(..) => ("Jd", "line-to-point distance Jacobian d |p x l - m|^2 / d q[j], l + eps m the robot line (DQ Robotics' line_to_point_distance_jacobian)"),
-            TaskJacobian::PlaneToPoint(..) => ("Jd", "plane-to-point distance Jacobian d (p . n - d) / d q[j], n + eps d the robot plane (DQ Robotics' plane_to_point_distance_jacobian)"),
-            TaskJacobian::LineToLine(..) => ("Jd", "line-to-line distance Jacobian d (D(l . lz)^2 / |P(l x lz)|^2) / d q[j], l the robot line, lz the workspace line (DQ Robotics' line_to_line_distance_jacobian)"),
-            TaskJacobian::LineToLineAngle(..) => ("Jd", "line-to-line angle Jacobian d |P(l) - P(lz)|^2 / d q[j], l the robot line, lz the workspace line (DQ Robotics' line_to_line_angle_jacobian)"),
+    /// The name of its entries (`Jt`, `Jrdot`).
+    pub fn name(&self) -> TaskName {
+        let base = match self {
+            TaskJacobian::Pose => TaskBase::Pose,
+            TaskJacobian::Rotation => TaskBase::Rotation,
+            TaskJacobian::Translation => TaskBase::Translation,
+            TaskJacobian::Geometric => TaskBase::Geometric,
+            TaskJacobian::GeometricBody => TaskBase::GeometricBody,
+            TaskJacobian::Line(_) => TaskBase::Line,
+            TaskJacobian::Plane(_) => TaskBase::Plane,
+            TaskJacobian::Distance
+            | TaskJacobian::PointToPoint(_)
+            | TaskJacobian::PointToLine(..)
+            | TaskJacobian::PointToPlane(..)
+            | TaskJacobian::LineToPoint(..)
+            | TaskJacobian::PlaneToPoint(..)
+            | TaskJacobian::LineToLine(..)
+            | TaskJacobian::LineToLineAngle(..) => TaskBase::Distance,
             TaskJacobian::Derivative(inner) => {
-                let (b, t) = inner.names();
-                return (
-                    format!("{b}dot"),
-                    format!("time derivative of the {t}: sum_k d/d q[k] of it times q_dot[k] (its *_derivative)"),
+                return TaskName {
+                    derivative: true,
+                    ..inner.name()
+                }
+            }
+        };
+        TaskName {
+            base,
+            derivative: false,
+        }
+    }
+
+    /// The title of its section of the report.
+    pub(super) fn title(&self) -> String {
+        let t: &str = match self {
+            TaskJacobian::Pose => "Jacobian d dq[i] / d q[j]",
+            TaskJacobian::Rotation => "rotation Jacobian d r[i] / d q[j] (DQ Robotics' rotation_jacobian)",
+            TaskJacobian::Translation => "translation Jacobian d t[i] / d q[j], t = (0, x, y, z) = 2 D P* (DQ Robotics' translation_jacobian)",
+            TaskJacobian::Geometric => "geometric Jacobian: rows 0..2 the end-effector origin's velocity v, rows 3..5 the angular velocity omega, per unit rate of q[j], in the base frame",
+            TaskJacobian::GeometricBody => "body geometric Jacobian: rows 0..2 the end-effector origin's velocity R^T v, rows 3..5 the angular velocity R^T omega, per unit rate of q[j], in the end-effector frame",
+            TaskJacobian::Line(_) => "line Jacobian d vec8(l + eps t x l)[i] / d q[j] (DQ Robotics' line_jacobian)",
+            TaskJacobian::Plane(_) => "plane Jacobian d vec8(n + eps t . n)[i] / d q[j] (DQ Robotics' plane_jacobian)",
+            TaskJacobian::Distance => "distance Jacobian d |t|^2 / d q[j] (DQ Robotics' distance_jacobian)",
+            TaskJacobian::PointToPoint(_) => "point-to-point distance Jacobian d |t - p|^2 / d q[j] (DQ Robotics' point_to_point_distance_jacobian)",
+            TaskJacobian::PointToLine(..) => "point-to-line distance Jacobian d |t x l - m|^2 / d q[j] (DQ Robotics' point_to_line_distance_jacobian)",
+            TaskJacobian::PointToPlane(..) => "point-to-plane distance Jacobian d (t . n - d) / d q[j] (DQ Robotics' point_to_plane_distance_jacobian)",
+            TaskJacobian::LineToPoint(..) => "line-to-point distance Jacobian d |p x l - m|^2 / d q[j], l + eps m the robot line (DQ Robotics' line_to_point_distance_jacobian)",
+            TaskJacobian::PlaneToPoint(..) => "plane-to-point distance Jacobian d (p . n - d) / d q[j], n + eps d the robot plane (DQ Robotics' plane_to_point_distance_jacobian)",
+            TaskJacobian::LineToLine(..) => "line-to-line distance Jacobian d (D(l . lz)^2 / |P(l x lz)|^2) / d q[j], l the robot line, lz the workspace line (DQ Robotics' line_to_line_distance_jacobian)",
+            TaskJacobian::LineToLineAngle(..) => "line-to-line angle Jacobian d |P(l) - P(lz)|^2 / d q[j], l the robot line, lz the workspace line (DQ Robotics' line_to_line_angle_jacobian)",
+            TaskJacobian::Derivative(inner) => {
+                return format!(
+                    "time derivative of the {}: sum_k d/d q[k] of it times q_dot[k] (its *_derivative)",
+                    inner.title()
                 );
             }
         };
-        (b.to_owned(), t.to_owned())
+        t.to_owned()
     }
-}
-
-/// The one-line documentation of a generated output named by a task Jacobian's base name
-/// (`Jt`, `Jldot`, `Jd_num`, `Jd_den`, ...), `None` for other names.
-pub(super) fn output_doc(base: &str) -> Option<String> {
-    let (core, part) = match base.split_once('_') {
-        Some((c, p)) => (c, Some(p)),
-        None => (base, None),
-    };
-    let (core, derivative) = match core.strip_suffix("dot") {
-        Some(c) => (c, true),
-        None => (core, false),
-    };
-    let d = match core {
-        "J" => "Jacobian d dq[i] / d q[j] (8 x n).",
-        "Jr" => "Rotation Jacobian d r[i] / d q[j] (4 x n).",
-        "Jt" => "Translation Jacobian d t[i] / d q[j], t = (0, x, y, z) (4 x n).",
-        "Jg" => "Geometric Jacobian (v; omega), base frame (6 x n).",
-        "Jb" => "Body geometric Jacobian (R^T v; R^T omega), end-effector frame (6 x n).",
-        "Jl" => "Line Jacobian d vec8(l + eps t x l)[i] / d q[j] (8 x n).",
-        "Jpi" => "Plane Jacobian d vec8(n + eps t . n)[i] / d q[j] (8 x n).",
-        "Jd" => "Distance Jacobian d (squared) distance / d q[j] (1 x n).",
-        _ => return None,
-    };
-    let d = if derivative {
-        format!(
-            "Time derivative sum_k d/d q[k] q_dot[k] of the {}",
-            lower(d)
-        )
-    } else {
-        d.to_owned()
-    };
-    let whole = base.split_once('_').map_or(base, |(c, _)| c);
-    Some(match part {
-        None => d,
-        Some("num") => format!(
-            "Numerators (over `{}_den`) of the {}",
-            whole.to_lowercase(),
-            lower(&d)
-        ),
-        Some("den") => format!("Common denominator of the {}", lower(&d)),
-        Some(_) => return None,
-    })
-}
-
-fn lower(s: &str) -> String {
-    let mut c = s.chars();
-    c.next()
-        .map_or(String::new(), |f| f.to_lowercase().chain(c).collect())
-}
-
-/// The generated output of a task Jacobian's entries (`None` for other base names): a matrix
-/// with `n` columns, or the scalar denominator `*_den`.
-pub(super) fn task_output(base: &str, v: Vec<Expr>, n: usize) -> Option<Output> {
-    let doc = output_doc(base)?;
-    let name = base.to_lowercase();
-    Some(if base.ends_with("_den") {
-        Output::scalar(&name, &doc, v.into_iter().next()?)
-    } else {
-        Output::matrix(
-            &name,
-            &doc,
-            v.chunks(n.max(1)).map(<[Expr]>::to_vec).collect(),
-        )
-    })
 }
 
 /// The name of the rate of the joint variable `q`.
@@ -485,45 +499,39 @@ fn task_report_inner(
     let mut forms = forms.into_iter();
     let mut pose = Vec::new();
     for k in 0..8 {
-        pose.push((format!("dq[{k}]"), forms.next().expect("8 entries")?));
+        pose.push((Quantity::Dq(k), forms.next().expect("8 entries")?));
     }
-    let (base, title) = task.names();
-    let entries = if quotient {
-        format!("{base}_num")
-    } else {
-        base.clone()
-    };
+    let name = task.name();
     let mut rows = Vec::new();
     for i in 0..jac.num.len() {
         for j in 0..n.min(vars.len()) {
             rows.push((
-                format!("{entries}[{i}][{j}]"),
+                Quantity::task(name, quotient, i, j),
                 forms.next().expect("an entry")?,
             ));
         }
     }
     let mut sections = vec![
-        (
-            "unit dual quaternion (w, x, y, z, w_e, x_e, y_e, z_e)".to_owned(),
-            pose,
-        ),
-        (
-            if quotient {
-                format!("{title}, = {base}_num[i][j] / {base}_den")
-            } else {
-                title
+        Section {
+            kind: SectionKind::Pose { last_q: false },
+            rows: pose,
+        },
+        Section {
+            kind: SectionKind::Task {
+                task: task.clone(),
+                quotient,
             },
             rows,
-        ),
+        },
     ];
     if quotient {
-        sections.push((
-            format!("the common denominator {base}_den"),
-            vec![(
-                format!("{base}_den"),
+        sections.push(Section {
+            kind: SectionKind::TaskDenominator(name),
+            rows: vec![(
+                Quantity::TaskDenominator(name),
                 forms.next().expect("the denominator")?,
             )],
-        ));
+        });
     }
     render(robot, &sections, o, &[])
 }
@@ -558,7 +566,10 @@ fn line_to_line_report(
 ) -> Result<String, ReportError> {
     let n = vars.len();
     for k in 0..=n {
-        for name in [format!("Jd_b_{k}"), format!("Jd_a_{k}")] {
+        for name in [
+            Quantity::DistanceB(k).symbol(),
+            Quantity::DistanceA(k).symbol(),
+        ] {
             if robot.variables.contains(&name) || robot.parameters().contains(&name) {
                 return Err(ReportError::NameClash(name));
             }
@@ -570,10 +581,11 @@ fn line_to_line_report(
             .collect()
     };
     let (bs, as_) = (with_gradient(&b), with_gradient(&a));
-    let sym = |base: &str, k: usize| Scalar::sym(&format!("{base}_{k}"));
-    let (b0, a0) = (sym("Jd_b", 0), sym("Jd_a", 0));
+    let sym = |q: Quantity| Scalar::sym(&q.symbol());
+    let (b_, a_) = (Quantity::DistanceB, Quantity::DistanceA);
+    let (b0, a0) = (sym(b_(0)), sym(a_(0)));
     let nums: Vec<Scalar> = (1..=n)
-        .map(|k| &b0 * sym("Jd_b", k) * &a0 * Scalar::int(2) - &b0 * &b0 * sym("Jd_a", k))
+        .map(|k| &b0 * sym(b_(k)) * &a0 * Scalar::int(2) - &b0 * &b0 * sym(a_(k)))
         .collect();
     let den = &a0 * &a0;
     let comps = x.components();
@@ -586,41 +598,39 @@ fn line_to_line_report(
         .collect();
     let forms: Vec<Result<Expr, ScalarError>> = par_map(&flat, |s| closed_form(s));
     let mut forms = forms.into_iter();
-    let mut take = |names: Vec<String>| -> Result<Vec<(String, Expr)>, ScalarError> {
-        names
+    let mut take = |kind: SectionKind, names: Vec<Quantity>| -> Result<Section, ScalarError> {
+        let rows = names
             .into_iter()
             .map(|nm| Ok((nm, forms.next().expect("an entry")?)))
-            .collect()
+            .collect::<Result<_, ScalarError>>()?;
+        Ok(Section { kind, rows })
     };
-    let pose = take((0..8).map(|k| format!("dq[{k}]")).collect())?;
-    let b_rows = take((0..=n).map(|k| format!("Jd_b[{k}]")).collect())?;
-    let a_rows = take((0..=n).map(|k| format!("Jd_a[{k}]")).collect())?;
-    let num_rows = take((0..n).map(|j| format!("Jd_num[0][{j}]")).collect())?;
-    let den_row = take(vec!["Jd_den".to_owned()])?;
-    let (_, title) = TaskJacobian::LineToLine(
-        [Scalar::int(0), Scalar::int(0), Scalar::int(1)],
-        [Scalar::int(0), Scalar::int(0), Scalar::int(1)],
-        [Scalar::int(0), Scalar::int(0), Scalar::int(0)],
-    )
-    .names();
+    let distance = task_name_of_line_to_line();
     let sections = vec![
-        (
-            "unit dual quaternion (w, x, y, z, w_e, x_e, y_e, z_e)".to_owned(),
-            pose,
-        ),
-        (
-            "b = D(l . lz) and its derivatives d b / d q[j] (entry X[k] is the symbol X_k of later entries)".to_owned(),
-            b_rows,
-        ),
-        (
-            "a = |P(l x lz)|^2 and its derivatives d a / d q[j]; the squared distance is b^2 / a".to_owned(),
-            a_rows,
-        ),
-        (
-            format!("{title} = Jd_num[0][j] / Jd_den, Jd_num[0][j] = 2 b (d b / d q[j]) a - b^2 (d a / d q[j])"),
-            num_rows,
-        ),
-        ("the common denominator Jd_den = a^2".to_owned(), den_row),
+        take(
+            SectionKind::Pose { last_q: false },
+            (0..8).map(Quantity::Dq).collect(),
+        )?,
+        take(SectionKind::DistanceB, (0..=n).map(b_).collect())?,
+        take(SectionKind::DistanceA, (0..=n).map(a_).collect())?,
+        take(
+            SectionKind::DistanceQuotient,
+            (0..n)
+                .map(|j| Quantity::task(distance, true, 0, j))
+                .collect(),
+        )?,
+        take(
+            SectionKind::DistanceDenominator,
+            vec![Quantity::TaskDenominator(distance)],
+        )?,
     ];
     render(robot, &sections, o, &[])
+}
+
+/// The name of the line-to-line distance Jacobian's entries (`Jd`).
+fn task_name_of_line_to_line() -> TaskName {
+    TaskName {
+        base: TaskBase::Distance,
+        derivative: false,
+    }
 }

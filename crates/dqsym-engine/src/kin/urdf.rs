@@ -293,13 +293,13 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
                      names: &mut Names|
      -> Result<Scalar, UrdfError> {
         match snap_angle(x, o.snap_angles) {
-            Ok(Some((s, note))) => {
+            Some((s, note)) => {
                 if let Some(n) = note {
                     notes.push(format!("{what}: {n}"));
                 }
                 Ok(s)
             }
-            Ok(None) => {
+            None => {
                 let v = x
                     .to_f64()
                     .filter(|v| v.is_finite())
@@ -320,7 +320,6 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
                 params.push((name.clone(), v));
                 Ok(Scalar::sym(&name))
             }
-            Err(m) => Err(el_err(what, m)),
         }
     };
 
@@ -550,14 +549,14 @@ fn number(text: &str) -> Option<BigRational> {
 /// multiple of pi/12 the shared rule reads it as ([`super::angles`]), with a note saying so;
 /// `None` when it is neither: the caller names it (`near` the advice for a decimal with too
 /// few digits near a multiple).
-fn snap_angle(x: &BigRational, snap: bool) -> Result<Option<(Scalar, Option<String>)>, String> {
+fn snap_angle(x: &BigRational, snap: bool) -> Option<(Scalar, Option<String>)> {
     match angles::read_angle(x) {
-        AngleReading::Zero => Ok(Some((Scalar::int(0), None))),
-        AngleReading::Multiple { twelfths } if snap => Ok(Some((
+        AngleReading::Zero => Some((Scalar::int(0), None)),
+        AngleReading::Multiple { twelfths } if snap => Some((
             angles::pi_twelfths(twelfths),
             Some(angles::snapped_note(x, twelfths)),
-        ))),
-        _ => Ok(None),
+        )),
+        _ => None,
     }
 }
 

@@ -56,6 +56,46 @@ pub const DEFAULT_MAX_ANGLE_SYMBOLS: usize = 1_000;
 /// with `pi/3`, 464), whole degrees (`pi/180`, 96), sevenths with ninths (144).
 pub const DEFAULT_MAX_CYCLOTOMIC_DEGREE: u64 = 768;
 
+/// A named set of limits: where the command line and the Python package start (`dqsym run`
+/// and Python's `Session` from [`Preset::Script`], `dqsym fk` and Python's `Robot` from
+/// [`Preset::Fk`]), each option then overriding one of them. [`Context::preset`] makes the
+/// context; the other limits are the library's defaults.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Preset {
+    /// Scripts, one-liners and the REPL: 20,000 terms (the paper's largest intermediate
+    /// scalars have a few thousand, and a product of two scalars this size is still well under
+    /// a second) and 3,000,000 units of work (over three times what the largest example, `fk`
+    /// of `examples/robots/kuka_iiwa7.toml` with `--jacobian`, closed forms included, needs:
+    /// a second or so of work on small terms).
+    Script,
+    /// Robot reports (`fk`, `ops`): 5,000 terms, past which the pose is a recurrence (the
+    /// example robots need at most a few thousand, the KUKA iiwa's Jacobian; a chain whose
+    /// terms multiply at every joint, 20 fully symbolic DH links, reaches this size in about a
+    /// second, where 20,000 would take several), and the work budget of [`Preset::Script`].
+    Fk,
+}
+
+impl Preset {
+    /// The most terms of one scalar.
+    pub const fn term_limit(self) -> usize {
+        match self {
+            Preset::Script => 20_000,
+            Preset::Fk => 5_000,
+        }
+    }
+
+    /// The work budget, in term operations.
+    pub const fn work_budget(self) -> u64 {
+        3_000_000
+    }
+
+    /// The largest exponent of `^`.
+    pub const fn max_exponent(self) -> u64 {
+        DEFAULT_MAX_EXPONENT
+    }
+}
+
 /// The limits and the cancel flag of a computation (see the module docs).
 #[derive(Clone, Debug)]
 pub struct Context {
@@ -100,6 +140,14 @@ impl Context {
     /// budget, the available cores (at most 8), no cancel flag.
     pub fn new() -> Context {
         Context::default()
+    }
+
+    /// The default context with the limits of `preset`.
+    pub fn preset(preset: Preset) -> Context {
+        Context::new()
+            .with_term_limit(preset.term_limit())
+            .with_max_exponent(preset.max_exponent())
+            .with_work_budget(preset.work_budget())
     }
 
     /// The context entered on this thread (the default one if none is), with the budget that

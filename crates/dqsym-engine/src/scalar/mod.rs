@@ -42,8 +42,8 @@ pub(crate) use ctx::{
     charge, check_cancelled, max_angle_symbols, max_digits, term_limit, work_used, Poll,
 };
 pub use ctx::{
-    Context, Entered, DEFAULT_MAX_ANGLE_SYMBOLS, DEFAULT_MAX_CYCLOTOMIC_DEGREE, DEFAULT_MAX_DIGITS,
-    DEFAULT_MAX_EXPONENT,
+    Context, Entered, Preset, DEFAULT_MAX_ANGLE_SYMBOLS, DEFAULT_MAX_CYCLOTOMIC_DEGREE,
+    DEFAULT_MAX_DIGITS, DEFAULT_MAX_EXPONENT,
 };
 pub use decimal::{decimal_places, decimal_text, parse_decimal, short_numbers};
 pub use frac::Frac;
