@@ -953,3 +953,31 @@ fn ik_page_at_a_wrist_singularity_lists_each_solution_once() {
     assert!(singular_rows >= 12, "{singular_rows} singular rows");
     assert!(rows.len() <= 24, "{} rows", rows.len());
 }
+
+/// A `[base]` frame at angles off the pi/12 grid (roll, pitch and yaw kept as exact decimals):
+/// the axes are read from the whole pose, whose terms the base multiplies. At the default
+/// limits that reaches a limit, which `ik` names as the limit (never "not a product of joint
+/// motions", the geometry error it was relabelled as); if it is solved, it round trips.
+#[test]
+fn a_base_frame_off_the_angle_grid_is_solved_or_named_as_a_limit() {
+    let text = std::fs::read_to_string(format!("{FRAMES}puma560_base_frame.toml"))
+        .expect("robot file")
+        .replace("rpy = [0, 0, \"pi/6\"]", "rpy = [0.3, -0.2, 0.5]");
+    assert!(text.contains("[0.3, -0.2, 0.5]"), "the base line moved");
+    let dir = crate::tools::temp_dir("ik-edges-base-off-grid");
+    let path = dir.join("puma560_base_off_grid.toml");
+    std::fs::write(&path, text).expect("write");
+    let path = path.display().to_string();
+    let r = load(&path);
+    match dqsym::ik::solve(&r, &dqsym::ik::IkOptions::default()) {
+        Err(dqsym::ik::IkError::Scalar(e)) => {
+            let m = e.to_string();
+            assert!(m.contains("limit") || m.contains("budget"), "{m}");
+        }
+        Err(e) => panic!("{path}: {e}"),
+        Ok(_) => {
+            let arm = Arm::at(&path, "puma560", None);
+            assert!(round_trips(&arm, 20).is_none());
+        }
+    }
+}
