@@ -566,6 +566,8 @@ fn dispatch(cli: Cli) -> ExitCode {
         format: Format::Plain,
         explicit: cli.explicit,
     });
+    // convert reads its file back with the term limit fk will read it with.
+    let fk_terms = cli.term_limit.unwrap_or(DEFAULT_FK_TERM_LIMIT);
     match (cli.command, cli.expr) {
         (
             Some(Command::Ops {
@@ -598,7 +600,7 @@ fn dispatch(cli: Cli) -> ExitCode {
                 robot_args,
             }),
             _,
-        ) => convert(&robot, to, &robot_args),
+        ) => convert(&robot, to, &robot_args, fk_terms),
         (
             Some(Command::Ik {
                 robot,
@@ -852,7 +854,14 @@ fn ops(path: Option<&std::path::Path>, jacobian: bool, robot_args: &RobotArgs) -
 }
 
 /// `dqsym convert ROBOT.urdf --to toml`: the robot file on stdout.
-fn convert(path: &std::path::Path, to: ConvertTo, robot_args: &RobotArgs) -> ExitCode {
+/// The file is read back as `fk` reads it, at `fk_terms`, fk's term limit (convert's own
+/// default is higher).
+fn convert(
+    path: &std::path::Path,
+    to: ConvertTo,
+    robot_args: &RobotArgs,
+    fk_terms: usize,
+) -> ExitCode {
     let ConvertTo::Toml = to;
     if !is_urdf(path) {
         eprintln!(
@@ -872,7 +881,9 @@ fn convert(path: &std::path::Path, to: ConvertTo, robot_args: &RobotArgs) -> Exi
         let text = dqsym::app::robot_toml(&robot, &name).map_err(|e| e.to_string())?;
         // Nothing is written that `fk` would refuse (a chain without a moving joint, a
         // symbolic axis whose unit length the reader cannot confirm within the limits): the
-        // file is read back as `fk` reads it first.
+        // file is read back as `fk` reads it first, with fk's limits.
+        let fk_limits = Context::entered().with_term_limit(fk_terms);
+        let _fk = fk_limits.enter();
         dqsym::parse_robot(&text, &name, &dqsym::eval_scalar_text)
             .map_err(|e| format!("no robot file written: fk would not read it back: {e}"))?;
         Ok(text)

@@ -1060,6 +1060,21 @@ fn angle_tex(a: &crate::Angle, st: &Tex) -> String {
     }
 }
 
+/// Text from outside (a robot's name) inert in Markdown: HTML escaped (no live tag), and the
+/// characters that open inline Markdown (links and images `[`, `]`, `!`; emphasis `*`, `_`;
+/// code spans; GFM tables and strikethrough `|`, `~`) and the backslash itself escaped with a
+/// backslash, which CommonMark allows before any ASCII punctuation.
+fn markdown_text(text: &str) -> String {
+    let mut out = String::new();
+    for c in crate::emit::names::html_text(text).chars() {
+        if "\\`*_[]!|~".contains(c) {
+            out.push('\\');
+        }
+        out.push(c);
+    }
+    out
+}
+
 /// The walkthrough as Markdown: the notation, then a heading per step, formulas in
 /// `$$ ... $$`; very long expanded sums inside `<details>`.
 ///
@@ -1068,10 +1083,7 @@ fn angle_tex(a: &crate::Angle, st: &Tex) -> String {
 pub fn walk_markdown(w: &Walkthrough) -> Result<String, WalkError> {
     let p = page(w)?;
     // The title is a robot's name or a file's: text from outside, inert in the heading.
-    let mut out = format!(
-        "# Walkthrough: {}\n",
-        crate::emit::names::html_text(&w.title)
-    );
+    let mut out = format!("# Walkthrough: {}\n", markdown_text(&w.title));
     for l in &p.legend {
         out += &format!("\n{l}\n");
     }

@@ -549,3 +549,111 @@ fn random_urdf_mutations_end_in_a_result_or_a_typed_error_within_their_limits() 
     // Both outcomes occur: the mutations are neither all harmless nor all fatal.
     assert!(read > 40 && refused > 100, "{read} read, {refused} refused");
 }
+
+/// A product of sums whose terms carry long angles (`cos(q0 + ... + qk)`, as a chain of joints
+/// about one axis gives) charges each angle's symbols past the eight a term pair covers: the
+/// work counted is at least `n * sum over terms of (symbols - 8)` for each factor. Uncharged,
+/// `fk` of a 1,000-joint chain about one axis with offsets off it ran 77 s and 1.3 GB at the
+/// default budget (hostile round 3, a variant of row 9).
+#[test]
+fn long_angles_are_charged_symbol_by_symbol_in_products() {
+    let n: u64 = 60;
+    let names: Vec<String> = (0..n).map(|i| format!("q{i}")).collect();
+    let angle = |k: usize| names[..=k].join(" + ");
+    let sum = |f: &str| -> String {
+        (0..n as usize)
+            .map(|k| format!("{f}({})", angle(k)))
+            .collect::<Vec<_>>()
+            .join(" + ")
+    };
+    let src = format!(
+        "syms {}\nx = {}\ny = {}\nz = x*y\n",
+        names.join(" "),
+        sum("cos"),
+        sum("sin")
+    );
+    // Only the product is measured: the sums are formed first.
+    let setup = src.rsplit_once("z = ").expect("product").0.to_string();
+    let ctx = Context::new()
+        .with_term_limit(1_000_000)
+        .with_work_budget(u64::MAX);
+    let (e0, _, before) = run(&setup, &ctx);
+    assert!(e0.is_none(), "{e0:?}");
+    let (e1, session, all) = run(&src, &ctx);
+    assert!(e1.is_none(), "{e1:?}");
+    let excess: u64 = (1..=n).map(|len| len.saturating_sub(8)).sum();
+    let floor = n * n + 2 * n * excess;
+    assert!(
+        all - before >= floor,
+        "the product charged {} units, under {floor}",
+        all - before
+    );
+    // And it is the product: x*y at a point is cos-sum times sin-sum.
+    let z = session.get("z").expect("z bound");
+    let dqsym::Value::Scalar(z) = z else {
+        panic!("z is a scalar")
+    };
+    let q: Vec<f64> = (0..n).map(|i| 0.1 + 0.37 * i as f64).collect();
+    let partial = |k: usize| q[..=k].iter().sum::<f64>();
+    let (c, s): (f64, f64) = (0..n as usize)
+        .map(|k| (partial(k).cos(), partial(k).sin()))
+        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x, b + y));
+    let got = z
+        .eval(&|v: &str| {
+            v.strip_prefix('q')
+                .and_then(|i| i.parse::<usize>().ok())
+                .map(|i| q[i])
+        })
+        .expect("numeric");
+    assert!(
+        (got - c * s).abs() < 1e-9 * (1.0 + (c * s).abs()),
+        "{got} vs {}",
+        c * s
+    );
+}
+
+/// `convert` reads its file back at fk's term limit (its own default is four times higher):
+/// a URDF whose angles are off the pi/12 grid and whose axis is oblique gives symbolic axes
+/// that fk's unit-length check cannot confirm at its limit, so nothing is written; whatever
+/// convert does write, fk reads (hostile round 3, row 17).
+#[test]
+fn convert_writes_only_what_fk_reads_at_its_own_limits() {
+    let dir = scratch("readback");
+    let urdf = "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/>\
+        <joint name=\"j0\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/>\
+        <origin xyz=\"0.1 0.2 0.3\" rpy=\"0.3 0.7 -0.4\"/><axis xyz=\"0.6 0 0.8\"/></joint>\
+        <joint name=\"j1\" type=\"revolute\"><parent link=\"b\"/><child link=\"c\"/>\
+        <origin xyz=\"0.3 -0.1 0.2\" rpy=\"1.1 -0.2 0.5\"/><axis xyz=\"0 1 0\"/></joint></robot>";
+    std::fs::write(dir.join("r.urdf"), urdf).expect("writes");
+    for extra in [&[][..], &["--term-limit", "100000"][..]] {
+        let out = Command::new(BIN)
+            .args(["convert", "r.urdf"])
+            .args(extra)
+            .current_dir(&dir)
+            .output()
+            .expect("runs");
+        let err = String::from_utf8_lossy(&out.stderr);
+        if out.status.code() != Some(0) {
+            assert!(out.stdout.is_empty(), "{extra:?}");
+            assert!(
+                err.contains("fk would not read it back"),
+                "{extra:?}: {err}"
+            );
+            assert!(err.contains("--term-limit"), "{extra:?}: {err}");
+            continue;
+        }
+        std::fs::write(dir.join("r.toml"), &out.stdout).expect("writes");
+        let fk = Command::new(BIN)
+            .args(["fk", "r.toml"])
+            .args(extra)
+            .current_dir(&dir)
+            .output()
+            .expect("runs");
+        assert_eq!(
+            fk.status.code(),
+            Some(0),
+            "{extra:?}: convert wrote a file fk refuses: {}",
+            String::from_utf8_lossy(&fk.stderr)
+        );
+    }
+}

@@ -12,6 +12,7 @@ use crate::robots::{load, numeric_chain};
 use dqsym::ik::{Formula, IkSolution};
 use dqsym::kin::JointGeometry;
 use dqsym::{Chain, JointKind};
+use std::path::Path;
 
 const ROBOTS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/robots/");
 
@@ -92,28 +93,30 @@ fn dq_matrix(q: [f64; 8]) -> M4 {
 }
 
 /// The independent model: the joints' numeric fields, read back from the parsed robot, put
-/// through plain matrix products (DH: Rz Tz Tx Rx; MDH: Rx Tx Rz Tz; screw: Rodrigues).
+/// through plain matrix products (DH: Rz Tz Tx Rx; MDH: Rx Tx Rz Tz; screw: Rodrigues), between
+/// the base and tool frames read from the robot file's text here (`Frames`).
 struct Model {
     chain: Chain<f64>,
     /// The robot's size: the largest distance of a frame origin from the base at home, at
     /// least 1 mm. Position deviations are measured against it.
     size: f64,
-    /// The robot file's tool point in the last frame (`tool = [x, y, z]`), zero when none: the
-    /// end `fk` reports, and `ik` solves for, is the last frame moved to it.
-    tool_point: [f64; 3],
+    /// The constant frames: `[base]` before the first joint; `[tool]` and the tool point
+    /// (`tool = [x, y, z]`) after the last. The end `fk` reports, and `ik` solves for, is
+    /// `base · joints · tool`.
+    frames: Frames,
 }
 
 impl Model {
-    fn new(c: Chain<f64>, tool_point: [f64; 3]) -> Model {
+    fn new(c: Chain<f64>, frames: Frames) -> Model {
         let mut m = Model {
             chain: c,
             size: 1.0,
-            tool_point,
+            frames,
         };
         let n = m.chain.joints.len();
         let n1 = |t: &M4| t[0][3].abs() + t[1][3].abs() + t[2][3].abs();
         let mut size: f64 = 1e-3;
-        let mut t = dq_matrix(m.chain.base.components());
+        let mut t = m.frames.base;
         for j in &m.chain.joints {
             t = mul(&t, &link(j, 0.0));
             size = size.max(n1(&t));
@@ -126,19 +129,11 @@ impl Model {
     }
 
     fn pose(&self, q: &[f64]) -> M4 {
-        let mut t = dq_matrix(self.chain.base.components());
+        let mut t = self.frames.base;
         for (j, qi) in self.chain.joints.iter().zip(q) {
             t = mul(&t, &link(j, *qi));
         }
-        let t = mul(&t, &dq_matrix(self.chain.tool.components()));
-        let [x, y, z] = self.tool_point;
-        let trans = [
-            [1.0, 0.0, 0.0, x],
-            [0.0, 1.0, 0.0, y],
-            [0.0, 0.0, 1.0, z],
-            [0.0, 0.0, 0.0, 1.0],
-        ];
-        mul(&t, &trans)
+        mul(&t, &self.frames.tool)
     }
 
     /// The largest deviation: rotation entries as they are, positions over the size.
@@ -185,18 +180,35 @@ struct Arm {
 }
 
 impl Arm {
+    /// The example robot `file` (examples/robots), with the free joint the solver picks.
     fn new(file: &str) -> Arm {
-        let sol = derive(file, None).unwrap_or_else(|e| panic!("{file}: {e}"));
-        let r = load(&format!("{ROBOTS}{file}.toml"));
-        let env = params(file);
+        Arm::at(&format!("{ROBOTS}{file}.toml"), file, None)
+    }
+
+    /// The robot file at `path`, its parameters those `params` gives for `known` (an example
+    /// robot's name), with the free joint `free` or the one the solver picks.
+    fn at(path: &str, known: &str, free: Option<&str>) -> Arm {
+        let r = load(path);
+        let opts = dqsym::ik::IkOptions {
+            free: free.map(str::to_string),
+        };
+        let sol = dqsym::ik::solve(&r, &opts).unwrap_or_else(|e| panic!("{path}: {e}"));
+        let env = params(known);
         let free_k = sol
             .free
             .as_ref()
             .map(|f| r.variables.iter().position(|v| v == f).expect("free"));
+        let text = std::fs::read_to_string(path).expect("robot file");
+        let chain = numeric_chain(&r, &env);
+        let frames = Frames::of(&text, path, &chain, tool_point(&r, &env), &env);
+        let name = Path::new(path).file_stem().expect("name").to_string_lossy();
         Arm {
-            file: file.to_string(),
+            file: match free {
+                Some(f) => format!("{name} (free {f})"),
+                None => name.into_owned(),
+            },
             sol,
-            model: Model::new(numeric_chain(&r, &env), tool_point(&r, &env)),
+            model: Model::new(chain, frames),
             env,
             free_k,
             kinds: r.chain.joints.iter().map(|j| j.kind).collect(),
@@ -409,6 +421,133 @@ fn configurations(arm: &Arm, n: usize, near: usize, seed: u64) -> Vec<(Vec<f64>,
     out
 }
 
+/// A robot file's constant frames as 4 x 4 matrices, read from its text here (not through the
+/// robot reader): the `[base]` and `[tool]` tables (`xyz`, `rpy`: `Trans(xyz) Rz(yaw) Ry(pitch)
+/// Rx(roll)`), then the tool point. Checked against the frames the reader built.
+struct Frames {
+    base: M4,
+    tool: M4,
+}
+
+impl Frames {
+    fn of(
+        text: &str,
+        path: &str,
+        chain: &Chain<f64>,
+        point: [f64; 3],
+        env: &[(String, f64)],
+    ) -> Frames {
+        let [x, y, z] = point;
+        let at_point = trans(x, y, z);
+        let mut f = Frames {
+            base: eye(),
+            tool: eye(),
+        };
+        let mut table: Option<(bool, [f64; 3], [f64; 3])> = None;
+        let close = |t: Option<(bool, [f64; 3], [f64; 3])>, f: &mut Frames| {
+            if let Some((base, xyz, rpy)) = t {
+                let r = mul(&mul(&rot(2, rpy[2]), &rot(1, rpy[1])), &rot(0, rpy[0]));
+                let m = mul(&trans(xyz[0], xyz[1], xyz[2]), &r);
+                *if base { &mut f.base } else { &mut f.tool } = m;
+            }
+        };
+        for line in text.lines() {
+            let line = line.split('#').next().unwrap_or("").trim();
+            if line.starts_with('[') {
+                close(table.take(), &mut f);
+                assert!(
+                    !matches!(line, "[[base]]" | "[[tool]]"),
+                    "{path}: arrays of frames are not read by this test's model"
+                );
+                table = match line {
+                    "[base]" => Some((true, [0.0; 3], [0.0; 3])),
+                    "[tool]" => Some((false, [0.0; 3], [0.0; 3])),
+                    _ => None,
+                };
+                continue;
+            }
+            let (Some((_, xyz, rpy)), Some((key, value))) = (table.as_mut(), line.split_once('='))
+            else {
+                continue;
+            };
+            let entries: Vec<&str> = value
+                .trim()
+                .trim_start_matches('[')
+                .trim_end_matches(']')
+                .split(',')
+                .map(|e| e.trim().trim_matches('"').trim_matches('\''))
+                .collect();
+            assert_eq!(entries.len(), 3, "{path}: {line}");
+            match key.trim() {
+                "xyz" => *xyz = std::array::from_fn(|i| length(entries[i], env)),
+                "rpy" => *rpy = std::array::from_fn(|i| angle(entries[i])),
+                other => panic!("{path}: frame key {other}"),
+            }
+        }
+        close(table, &mut f);
+        f.tool = mul(&f.tool, &at_point);
+        // The reader's frames, for comparison: the same matrices to rounding.
+        let tool = mul(&dq_matrix(chain.tool.components()), &at_point);
+        for (what, mine, theirs) in [
+            ("base", &f.base, &dq_matrix(chain.base.components())),
+            ("tool", &f.tool, &tool),
+        ] {
+            let d = (0..3)
+                .flat_map(|r| (0..4).map(move |c| (mine[r][c] - theirs[r][c]).abs()))
+                .fold(0.0, f64::max);
+            assert!(
+                d < 1e-12,
+                "{path}: the {what} frame read two ways differs by {d:e}"
+            );
+        }
+        f
+    }
+}
+
+/// A frame's length entry: a number, or a parameter's value.
+fn length(e: &str, env: &[(String, f64)]) -> f64 {
+    e.parse().unwrap_or_else(|_| {
+        env.iter()
+            .find(|(k, _)| k == e)
+            .unwrap_or_else(|| panic!("length {e}"))
+            .1
+    })
+}
+
+/// A frame's angle entry as the robot-file rules read it: `"90deg"`, `"pi"`, `"-pi/6"`,
+/// `"5*pi/12"`, or radians, where a decimal with d >= 3 digits after the point within
+/// max(10^-d, 1e-6) of a multiple of pi/12 is that multiple (README, angles as datasheets
+/// print them).
+fn angle(e: &str) -> f64 {
+    use std::f64::consts::PI;
+    if let Some(deg) = e.strip_suffix("deg") {
+        return deg.trim().parse::<f64>().expect("degrees").to_radians();
+    }
+    if let Some(i) = e.find("pi") {
+        let (k, n) = (&e[..i], &e[i + 2..]);
+        let k = match k.trim_end_matches('*') {
+            "" => 1.0,
+            "-" => -1.0,
+            k => k.parse().expect("multiple of pi"),
+        };
+        let n: f64 = n
+            .strip_prefix('/')
+            .map_or(1.0, |n| n.parse().expect("pi/n"));
+        return k * PI / n;
+    }
+    let v: f64 = e.parse().expect("angle");
+    let digits = e.split_once('.').map_or(0, |(_, f)| f.len());
+    if digits >= 3 {
+        let tol = 10f64.powi(-(digits as i32)).max(1e-6);
+        let step = PI / 12.0;
+        let near = (v / step).round() * step;
+        if (v - near).abs() <= tol {
+            return near;
+        }
+    }
+    v
+}
+
 /// The robot's tool point at the parameters `env` (zero when it has none).
 fn tool_point(r: &dqsym::Robot, env: &[(String, f64)]) -> [f64; 3] {
     r.tool.as_ref().map_or([0.0; 3], |p| {
@@ -456,38 +595,122 @@ fn edge_cases(file: &str) -> usize {
     }
 }
 
-#[test]
-fn reference_solver_round_trips_at_random_and_near_singular_configurations() {
-    let mut failures = Vec::new();
-    for arm in arms() {
-        let near = if arm
-            .sol
-            .steps
-            .iter()
-            .any(|s| matches!(s.formula, Formula::Trig { .. }))
-        {
-            edge_cases(&arm.file)
-        } else {
-            0
-        };
-        let mut missing = Vec::new();
-        for (q, dist) in configurations(&arm, edge_cases(&arm.file), near, 7) {
-            let sols = arm.solve(&q);
-            let what = format!("{} at {dist:e} from a singular set", arm.file);
-            if !arm.check(&what, &q, dist, &sols) {
-                missing.push((q, dist, sols));
-            }
-        }
-        if !missing.is_empty() {
-            let dists: Vec<f64> = missing.iter().map(|m| m.1).collect();
-            failures.push(format!(
-                "{}: {} configurations not among their solutions (at {dists:?}), first {:?}",
-                arm.file,
-                missing.len(),
-                missing.first()
-            ));
+/// Round trips of the reference solver at `n` random configurations and `n` near its singular
+/// sets (none when it has no trig step); a failure's description, if any.
+fn round_trips(arm: &Arm, n: usize) -> Option<String> {
+    let trig = arm
+        .sol
+        .steps
+        .iter()
+        .any(|s| matches!(s.formula, Formula::Trig { .. }));
+    let near = if trig { n } else { 0 };
+    let mut missing = Vec::new();
+    for (q, dist) in configurations(arm, n, near, 7) {
+        let sols = arm.solve(&q);
+        let what = format!("{} at {dist:e} from a singular set", arm.file);
+        if !arm.check(&what, &q, dist, &sols) {
+            missing.push((q, dist, sols));
         }
     }
+    if missing.is_empty() {
+        return None;
+    }
+    let dists: Vec<f64> = missing.iter().map(|m| m.1).collect();
+    Some(format!(
+        "{}: {} configurations not among their solutions (at {dists:?}), first {:?}",
+        arm.file,
+        missing.len(),
+        missing.first()
+    ))
+}
+
+#[test]
+fn reference_solver_round_trips_at_random_and_near_singular_configurations() {
+    let failures: Vec<String> = arms()
+        .iter()
+        .filter_map(|arm| round_trips(arm, edge_cases(&arm.file)))
+        .collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+const FRAMES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/ik_frames/");
+
+/// The robots of tests/data/ik_frames: PUMA 560 and UR5 with a tool point, a `[tool]` frame, a
+/// `[base]` frame; each file named after the example robot whose parameters it takes.
+fn framed_arms() -> Vec<Arm> {
+    let mut files: Vec<String> = std::fs::read_dir(FRAMES)
+        .expect("tests/data/ik_frames")
+        .map(|e| e.expect("entry").path().display().to_string())
+        .filter(|p| p.ends_with(".toml"))
+        .collect();
+    files.sort();
+    let arms: Vec<Arm> = files
+        .iter()
+        .map(|path| {
+            let stem = Path::new(path).file_stem().expect("name").to_string_lossy();
+            let known = GENERATED
+                .iter()
+                .find(|k| stem.starts_with(&format!("{k}_")))
+                .unwrap_or_else(|| panic!("{path}: named after none of {GENERATED:?}"));
+            Arm::at(path, known, None)
+        })
+        .collect();
+    for want in ["tool_point", "tool_frame", "base_frame"] {
+        assert!(
+            arms.iter().any(|a| a.file.contains(want)),
+            "no robot with a {want} in {FRAMES}"
+        );
+    }
+    arms
+}
+
+/// Random and near-singular configurations per framed robot and per free joint of the Panda:
+/// 300 each (the frames and free joints change where the end is, not the solver's steps,
+/// which the 1,000 configurations of the plain arms cover; the whole file stays near a minute
+/// of CPU in a debug build).
+const VARIANT_CASES: usize = 300;
+
+#[test]
+fn robots_with_a_tool_point_a_tool_frame_or_a_base_frame_round_trip_at_the_edges() {
+    let failures: Vec<String> = framed_arms()
+        .iter()
+        .filter_map(|arm| round_trips(arm, VARIANT_CASES))
+        .collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The Panda's joints that, taken as the free parameter, leave a six-joint arm of a supported
+/// family (each tried: the family is found from the axes, not only for the first such joint).
+fn panda_free_joints() -> Vec<Arm> {
+    let path = format!("{ROBOTS}panda.toml");
+    let r = load(&path);
+    let mut arms = Vec::new();
+    for v in &r.variables {
+        let opts = dqsym::ik::IkOptions {
+            free: Some(v.clone()),
+        };
+        match dqsym::ik::solve(&r, &opts) {
+            Ok(_) => arms.push(Arm::at(&path, "panda", Some(v))),
+            Err(dqsym::ik::IkError::Unsupported { .. }) => {}
+            Err(e) => panic!("panda, free {v}: {e}"),
+        }
+    }
+    // The joints whose removal leaves a spherical shoulder or wrist (axes 1-3 or 5-7 meet).
+    for want in ["theta4", "theta6", "theta7"] {
+        assert!(
+            arms.iter().any(|a| a.sol.free.as_deref() == Some(want)),
+            "the Panda with {want} free is solved"
+        );
+    }
+    arms
+}
+
+#[test]
+fn panda_round_trips_with_each_free_joint_that_leaves_a_supported_family() {
+    let failures: Vec<String> = panda_free_joints()
+        .iter()
+        .filter_map(|arm| round_trips(arm, VARIANT_CASES))
+        .collect();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
@@ -552,8 +775,18 @@ fn generated_cases(arm: &Arm) -> Vec<(Vec<f64>, f64)> {
 
 #[test]
 fn generated_c_is_pedantic_c99_and_round_trips_at_the_edges() {
-    for file in GENERATED {
-        let arm = Arm::new(file);
+    // The named arms, the framed ones and the Panda with each free joint: C compiles fast.
+    let arms = GENERATED
+        .iter()
+        .map(|f| Arm::new(f))
+        .chain(framed_arms())
+        .chain(panda_free_joints());
+    for arm in arms {
+        let file: String = arm
+            .file
+            .chars()
+            .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+            .collect();
         let code = dqsym::ik::ik_c(&arm.sol).expect("c");
         let np = arm.sol.params.len();
         let args: String = (0..np).map(|i| format!(", v[{}]", 16 + i)).collect();
@@ -719,4 +952,32 @@ fn ik_page_at_a_wrist_singularity_lists_each_solution_once() {
     // The family k pi/6 of theta4 (with theta6 following), once.
     assert!(singular_rows >= 12, "{singular_rows} singular rows");
     assert!(rows.len() <= 24, "{} rows", rows.len());
+}
+
+/// A `[base]` frame at angles off the pi/12 grid (roll, pitch and yaw kept as exact decimals):
+/// the axes are read from the whole pose, whose terms the base multiplies. At the default
+/// limits that reaches a limit, which `ik` names as the limit (never "not a product of joint
+/// motions", the geometry error it was relabelled as); if it is solved, it round trips.
+#[test]
+fn a_base_frame_off_the_angle_grid_is_solved_or_named_as_a_limit() {
+    let text = std::fs::read_to_string(format!("{FRAMES}puma560_base_frame.toml"))
+        .expect("robot file")
+        .replace("rpy = [0, 0, \"pi/6\"]", "rpy = [0.3, -0.2, 0.5]");
+    assert!(text.contains("[0.3, -0.2, 0.5]"), "the base line moved");
+    let dir = crate::tools::temp_dir("ik-edges-base-off-grid");
+    let path = dir.join("puma560_base_off_grid.toml");
+    std::fs::write(&path, text).expect("write");
+    let path = path.display().to_string();
+    let r = load(&path);
+    match dqsym::ik::solve(&r, &dqsym::ik::IkOptions::default()) {
+        Err(dqsym::ik::IkError::Scalar(e)) => {
+            let m = e.to_string();
+            assert!(m.contains("limit") || m.contains("budget"), "{m}");
+        }
+        Err(e) => panic!("{path}: {e}"),
+        Ok(_) => {
+            let arm = Arm::at(&path, "puma560", None);
+            assert!(round_trips(&arm, 20).is_none());
+        }
+    }
 }

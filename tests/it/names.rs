@@ -738,3 +738,67 @@ fn c_fk_of_urdf_joints_named_after_c_names_matches_matrices() {
         }
     }
 }
+
+/// Reads a Markdown heading's text as CommonMark does for these characters: a backslash before
+/// ASCII punctuation is that character; the HTML entities of `html_text` decoded. `None` when a
+/// character that opens inline Markdown (a link, an image, emphasis, a code span, a GFM table
+/// cell or strikethrough) or raw HTML stands unescaped.
+fn markdown_heading_text(md: &str) -> Option<String> {
+    let mut out = String::new();
+    let mut chars = md.chars();
+    while let Some(c) = chars.next() {
+        match c {
+            '\\' => match chars.next() {
+                Some(n) if n.is_ascii_punctuation() => out.push(n),
+                Some(n) => {
+                    out.push('\\');
+                    out.push(n);
+                }
+                None => out.push('\\'),
+            },
+            '[' | ']' | '*' | '_' | '`' | '!' | '|' | '~' | '<' | '>' => return None,
+            c => out.push(c),
+        }
+    }
+    Some(
+        out.replace("&lt;", "<")
+            .replace("&gt;", ">")
+            .replace("&quot;", "\"")
+            .replace("&#39;", "'")
+            .replace("&amp;", "&"),
+    )
+}
+
+/// `walk --markdown` writes a robot's name into its first heading as inert text: no link,
+/// image, emphasis, code span or HTML forms, and the name reads back whole (hostile round 3,
+/// row 20, and names written as Markdown).
+#[test]
+fn walk_markdown_heading_shows_any_robot_name_as_text() {
+    let dir = temp_dir("names-markdown");
+    let names = [
+        "<img src=x onerror=alert(1)>",
+        "[x](javascript:alert(1))",
+        "![i](http://e/x.png) *a* _b_ `c` | ~~d~~",
+        "back\\slash \\[not a link\\] & <b>bold</b>",
+        "plain name 2",
+    ];
+    for (i, name) in names.iter().enumerate() {
+        let toml = format!(
+            "name = {}\nconvention = \"dh\"\n[[joint]]\ntype = \"revolute\"\ntheta = \"theta1\"\n\
+             d = \"0\"\na = \"l1\"\nalpha = \"0\"\n",
+            dqsym::emit::names::toml_string(name)
+        );
+        let path = dir.join(format!("m{i}.toml"));
+        std::fs::write(&path, toml).expect("writes");
+        let md = crate::tools::dqsym_ok(&["walk", &path.display().to_string(), "--markdown"]);
+        let heading = md.lines().next().expect("heading");
+        let title = heading
+            .strip_prefix("# Walkthrough: ")
+            .unwrap_or_else(|| panic!("{heading}"));
+        assert_eq!(
+            markdown_heading_text(title).as_deref(),
+            Some(*name),
+            "{name:?} as {title:?}"
+        );
+    }
+}

@@ -1,5 +1,6 @@
 //! Notation that never collides: every example robot, with its joint variables renamed in every
-//! style people and URDF exporters use (`q1`, `q_1`, `joint_a1`, `shoulder_pan_joint`, `theta1`),
+//! style people and URDF exporters use (`q1`, `q_1`, `joint_a1`, `shoulder_pan_joint`, `theta1`)
+//! and in the letters of the reports' own notation (`T`, `p_1`, `J`, `w2`, `x`, `r13`, ...),
 //! through `fk --format latex` and the walkthrough's Markdown, every formula rendered by KaTeX
 //! (no error), and no report entry named with the letter of a robot symbol.
 
@@ -29,10 +30,16 @@ fn styled(style: usize, i: usize) -> String {
         1 => format!("q_{i}"),
         2 => format!("joint_a{i}"),
         3 => URDF[i - 1].to_owned(),
-        _ => format!("theta{i}"),
+        4 => format!("theta{i}"),
+        // The letters the reports name their own entries with (`T`, `p`, `J`, `x` ... `w`
+        // components, `r13` rotation entries), bare and with an index.
+        _ => COMPONENT_LETTERS[i - 1].to_owned(),
     }
 }
-const STYLES: usize = 5;
+const STYLES: usize = 6;
+
+/// Joint names taken from the report's own notation.
+const COMPONENT_LETTERS: [&str; 8] = ["T", "p_1", "J", "w2", "x", "r13", "dq", "y_0"];
 
 /// `text` with every identifier equal to a key of `map` replaced by its value.
 fn rename(text: &str, map: &[(String, String)]) -> String {

@@ -230,6 +230,18 @@ pub fn dq_axes(
     q: &crate::DualQuat<Scalar>,
     variables: &[String],
 ) -> Option<(Vec<Axis>, Matrix4<Scalar>)> {
+    dq_axes_checked(q, variables).ok().flatten()
+}
+
+/// [`dq_axes`], with a limit reached while reading the axes (a base frame at angles off the
+/// pi/12 grid multiplies every component's terms) as that limit, not as "not a line".
+///
+/// # Errors
+/// The [`ScalarError`] of the first component or check that reached a limit.
+pub fn dq_axes_checked(
+    q: &crate::DualQuat<Scalar>,
+    variables: &[String],
+) -> Result<Option<(Vec<Axis>, Matrix4<Scalar>)>, crate::ScalarError> {
     let zero = Scalar::int(0);
     let at_home = |x: &Scalar| -> Scalar {
         let mut y = x.clone();
@@ -248,23 +260,30 @@ pub fn dq_axes(
         let xi = (d * m.conjugate()).components();
         let two = Scalar::int(2);
         let xi: Vec<Scalar> = xi.iter().map(|x| &two * x).collect();
+        for x in &xi {
+            x.try_is_zero()?;
+        }
         if !xi[0].is_zero_value() || !xi[4].is_zero_value() {
-            return None;
+            return Ok(None);
         }
         let w: V3 = [xi[1].clone(), xi[2].clone(), xi[3].clone()];
         let e: V3 = [xi[5].clone(), xi[6].clone(), xi[7].clone()];
         if is_zero3(&w) {
-            if is_zero3(&e) || !dot(&e, &e).is_constant() {
-                return None;
+            let ee = dot(&e, &e);
+            ee.try_is_zero()?;
+            if is_zero3(&e) || !ee.is_constant() {
+                return Ok(None);
             }
             axes.push(Axis::new(JointKind::Prismatic, v, e, zero3()));
         } else {
-            if dot(&w, &w) != Scalar::int(1) || !dot(&w, &e).is_zero_value() {
-                return None;
+            let (ww, we) = (dot(&w, &w), dot(&w, &e));
+            ww.try_is_zero()?;
+            if ww != Scalar::int(1) || !we.try_is_zero()? {
+                return Ok(None);
             }
             let p = cross(&w, &e);
             axes.push(Axis::new(JointKind::Revolute, v, w, p));
         }
     }
-    Some((axes, m.to_matrix()))
+    Ok(Some((axes, m.to_matrix())))
 }

@@ -420,7 +420,7 @@ pub fn solve_dq(
     variables: &[String],
     opts: &IkOptions,
 ) -> Result<IkSolution, IkError> {
-    let (axes, home) = axes::dq_axes(q, variables).ok_or_else(|| {
+    let (axes, home) = axes::dq_axes_checked(q, variables)?.ok_or_else(|| {
         IkError::Option(format!(
             "{name}: not a product of joint motions in {} (each variable must turn about or \
              slide along one line)",
