@@ -182,7 +182,12 @@ pub(super) fn text_exceeds(sections: &[(String, Vec<(String, Expr)>)], max: usiz
     let length = || rows().map(|(_, e)| plain(e, &po).len()).sum::<usize>();
     let bound: usize = rows().map(|(_, e)| plain_len_bound(e)).sum();
     if bound > max {
-        return length() > max;
+        // Printed row by row until past `max` (a symbolic chain's pose prints megabytes).
+        let mut total = 0;
+        return rows().any(|(_, e)| {
+            total += plain(e, &po).len();
+            total > max
+        });
     }
     debug_assert!(length() <= bound, "plain_len_bound is not a bound");
     false
@@ -241,6 +246,12 @@ fn expanded_entries(robot: &Robot, o: &FkOptions) -> Option<Result<Sections, Rep
     // One offset per angle across the report (`closed/common.rs`), chosen from the pose's
     // entries and shown in every entry.
     let common = CommonOffsets::from_forms(dq_forms.iter().chain(&t_forms).flatten());
+    // The pose's rows are rows of the report as they stand: when their text alone is past
+    // `MAX_EXPANDED_TEXT`, the report is the recurrence whatever the Jacobian and the point
+    // add, so their closed forms (most of the work on a fully symbolic chain) are never made.
+    if pose_text_exceeds(&dq_forms, &t_forms, &common) {
+        return None;
+    }
     Some(
         expanded_sections(robot, o, q, dq_forms, prepared, t_forms, m).map(|sections| {
             sections
@@ -255,6 +266,26 @@ fn expanded_entries(robot: &Robot, o: &FkOptions) -> Option<Result<Sections, Rep
                 .collect()
         }),
     )
+}
+
+/// Whether the pose's rows (the DQ's and the matrix's closed forms, shown at the report's
+/// common offsets) alone print more than [`MAX_EXPANDED_TEXT`] bytes, which makes the report
+/// a recurrence whatever follows them. An entry that is an error leaves the decision to the
+/// report (`false`).
+fn pose_text_exceeds(
+    dq_forms: &[Result<Expr, ScalarError>],
+    t_forms: &[Result<Expr, ScalarError>],
+    common: &CommonOffsets,
+) -> bool {
+    let Ok(rows) = dq_forms
+        .iter()
+        .chain(t_forms)
+        .map(|e| e.clone().map(|e| (String::new(), common.apply(e))))
+        .collect::<Result<Vec<_>, _>>()
+    else {
+        return false;
+    };
+    text_exceeds(&[(String::new(), rows)], MAX_EXPANDED_TEXT)
 }
 
 /// The report from the expanded DQ and matrix and their closed forms.
