@@ -52,8 +52,73 @@ const SPLIT_LIMIT: usize = 100_000;
 /// When `x` is an error value, and when the search or the check of its result against `x`
 /// runs out of the work budget or over the term limit (see [`crate::Context::with_work_budget`]).
 pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
-    closed_form_prepared(x).0
+    if let Some(e) = Memo::get(x) {
+        return Ok(e);
+    }
+    let r = closed_form_prepared(x).0;
+    if let Ok(e) = &r {
+        Memo::put(x, e);
+    }
+    r
 }
+
+/// The closed forms found during one outermost search, by scalar: the searches call
+/// [`closed_form`] on their pieces (the factors of `cspoly.rs` and every pair of them, the
+/// rest beside a constant product, ...), and the same pieces come back in each reading and
+/// at every level of that recursion (`sin(1)*sin(2)*sin(3)` asked for the same scalars'
+/// closed forms again and again). A memo lives only while the outermost
+/// [`closed_form_prepared`] of its thread runs, so it never outlives the context (limits,
+/// budget) its entries were found in; errors are never remembered.
+struct Memo;
+
+/// The most closed forms one outermost search remembers.
+const MEMO_LIMIT: usize = 4096;
+
+thread_local! {
+    static MEMO: std::cell::RefCell<Option<FxMap<Scalar, Expr>>> =
+        const { std::cell::RefCell::new(None) };
+}
+
+impl Memo {
+    /// Opens the memo when none is open on this thread; the guard closes the memo it opened.
+    fn open() -> MemoGuard {
+        MemoGuard(MEMO.with(|m| {
+            let mut m = m.borrow_mut();
+            let opened = m.is_none();
+            if opened {
+                *m = Some(FxMap::default());
+            }
+            opened
+        }))
+    }
+
+    fn get(x: &Scalar) -> Option<Expr> {
+        MEMO.with(|m| m.borrow().as_ref().and_then(|m| m.get(x).cloned()))
+    }
+
+    fn put(x: &Scalar, e: &Expr) {
+        MEMO.with(|m| {
+            if let Some(m) = m.borrow_mut().as_mut() {
+                if m.len() < MEMO_LIMIT {
+                    m.insert(x.clone(), e.clone());
+                }
+            }
+        });
+    }
+}
+
+/// Closes the memo of [`Memo::open`] when it opened it.
+struct MemoGuard(bool);
+
+impl Drop for MemoGuard {
+    fn drop(&mut self) {
+        if self.0 {
+            MEMO.with(|m| *m.borrow_mut() = None);
+        }
+    }
+}
+
+type FxMap<K, V> = std::collections::HashMap<K, V, BuildHasherDefault<FxHasher>>;
 
 /// The regrouped monomials [`closed_form`] found for a scalar, kept so that the closed forms of
 /// its derivatives start from them ([`closed_form_of_derivative`]) instead of from the
@@ -71,6 +136,7 @@ pub struct Prepared(
 /// and factored like `cos(q2)`), the shorter of the two kept (`alt::shorter`; the shifted
 /// one on ties).
 pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+    let _memo = Memo::open();
     let (e, prepared) = prepared_shifted(x);
     let Ok(found) = e else {
         return (e, prepared);
