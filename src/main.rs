@@ -567,7 +567,7 @@ fn dispatch(cli: Cli) -> ExitCode {
         explicit: cli.explicit,
     });
     // convert reads its file back with the term limit fk will read it with.
-    let fk_terms = cli.term_limit.unwrap_or(DEFAULT_FK_TERM_LIMIT);
+    let fk_terms = cli.term_limit.unwrap_or(Preset::Fk.term_limit());
     match (cli.command, cli.expr) {
         (
             Some(Command::Ops {

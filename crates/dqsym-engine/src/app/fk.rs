@@ -296,15 +296,24 @@ fn pose_text_exceeds(
     t_forms: &[Result<Expr, ScalarError>],
     common: &CommonOffsets,
 ) -> bool {
+    // Only the rows' text counts: the entries are named as the pose section names them.
+    let names = (0..dq_forms.len())
+        .map(Quantity::Dq)
+        .chain((0..t_forms.len()).map(|k| Quantity::T(k / 4, k % 4)));
     let Ok(rows) = dq_forms
         .iter()
         .chain(t_forms)
-        .map(|e| e.clone().map(|e| (String::new(), common.apply(e))))
+        .zip(names)
+        .map(|(e, n)| e.clone().map(|e| (n, common.apply(e))))
         .collect::<Result<Vec<_>, _>>()
     else {
         return false;
     };
-    text_exceeds(&[(String::new(), rows)], MAX_EXPANDED_TEXT)
+    let pose = Section {
+        kind: SectionKind::Pose { last_q: false },
+        rows,
+    };
+    text_exceeds(&[pose], MAX_EXPANDED_TEXT)
 }
 
 /// The report from the expanded DQ and matrix and their closed forms.
