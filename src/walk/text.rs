@@ -1063,11 +1063,19 @@ fn angle_tex(a: &crate::Angle, st: &Tex) -> String {
 /// Text from outside (a robot's name) inert in Markdown: HTML escaped (no live tag), and the
 /// characters that open inline Markdown (links and images `[`, `]`, `!`; emphasis `*`, `_`;
 /// code spans; GFM tables and strikethrough `|`, `~`) and the backslash itself escaped with a
-/// backslash, which CommonMark allows before any ASCII punctuation.
+/// backslash, which CommonMark allows before any ASCII punctuation. An underscore between two
+/// letters or digits opens nothing (CommonMark: no emphasis inside a word), so file names such
+/// as `appendix2_product.dq` stay as they are.
 fn markdown_text(text: &str) -> String {
+    let chars: Vec<char> = crate::emit::names::html_text(text).chars().collect();
     let mut out = String::new();
-    for c in crate::emit::names::html_text(text).chars() {
-        if "\\`*_[]!|~".contains(c) {
+    for (i, &c) in chars.iter().enumerate() {
+        let word = |j: Option<usize>| {
+            j.and_then(|j| chars.get(j))
+                .is_some_and(|c| c.is_alphanumeric())
+        };
+        let inside_word = c == '_' && word(i.checked_sub(1)) && word(Some(i + 1));
+        if "\\`*_[]!|~".contains(c) && !inside_word {
             out.push('\\');
         }
         out.push(c);

@@ -745,10 +745,17 @@ fn c_fk_of_urdf_joints_named_after_c_names_matches_matrices() {
 /// cell or strikethrough) or raw HTML stands unescaped.
 fn markdown_heading_text(md: &str) -> Option<String> {
     let mut out = String::new();
-    let mut chars = md.chars();
-    while let Some(c) = chars.next() {
+    let all: Vec<char> = md.chars().collect();
+    let mut chars = all.iter().copied().enumerate();
+    // An underscore inside a word opens no emphasis (CommonMark's flanking rules).
+    let word = |j: Option<usize>| {
+        j.and_then(|j| all.get(j))
+            .is_some_and(|c| c.is_alphanumeric())
+    };
+    while let Some((i, c)) = chars.next() {
         match c {
-            '\\' => match chars.next() {
+            '_' if word(i.checked_sub(1)) && word(Some(i + 1)) => out.push(c),
+            '\\' => match chars.next().map(|(_, n)| n) {
                 Some(n) if n.is_ascii_punctuation() => out.push(n),
                 Some(n) => {
                     out.push('\\');
@@ -781,6 +788,7 @@ fn walk_markdown_heading_shows_any_robot_name_as_text() {
         "![i](http://e/x.png) *a* _b_ `c` | ~~d~~",
         "back\\slash \\[not a link\\] & <b>bold</b>",
         "plain name 2",
+        "file_name_with_underscores.toml _emphasis_ a_ _b",
     ];
     for (i, name) in names.iter().enumerate() {
         let toml = format!(

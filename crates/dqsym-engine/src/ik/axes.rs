@@ -233,6 +233,9 @@ pub fn dq_axes(
     dq_axes_checked(q, variables).ok().flatten()
 }
 
+/// The joint axes of a chain and its home pose.
+pub type AxesAndHome = (Vec<Axis>, Matrix4<Scalar>);
+
 /// [`dq_axes`], with a limit reached while reading the axes (a base frame at angles off the
 /// pi/12 grid multiplies every component's terms) as that limit, not as "not a line".
 ///
@@ -241,7 +244,7 @@ pub fn dq_axes(
 pub fn dq_axes_checked(
     q: &crate::DualQuat<Scalar>,
     variables: &[String],
-) -> Result<Option<(Vec<Axis>, Matrix4<Scalar>)>, crate::ScalarError> {
+) -> Result<Option<AxesAndHome>, crate::ScalarError> {
     let zero = Scalar::int(0);
     let at_home = |x: &Scalar| -> Scalar {
         let mut y = x.clone();
