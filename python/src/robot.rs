@@ -8,7 +8,9 @@ use crate::walk::Walkthrough;
 use crate::work::{self, Limits};
 use dqsym::{
     app::{Family, FkEntries, Quantity},
- kin::Convention, FkOptions, Format, Scalar, Value};
+    kin::Convention,
+    FkOptions, Format, Scalar, Value,
+};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyModule};
@@ -162,7 +164,17 @@ impl Robot {
         if let Some(e) = interrupted {
             return Err(e);
         }
-        let e = Arc::new(r.map_err(|e| errors::report_error(py, &e))?);
+        let mut r = r.map_err(|e| errors::report_error(py, &e))?;
+        // A robot whose file wrote decimals reads in decimals, as `dqsym fk` prints it (the
+        // same exact values, the denominators pulled out of sums put back).
+        if !self.robot.decimals.is_empty() {
+            for s in &mut r.sections {
+                for (_, e) in &mut s.rows {
+                    *e = dqsym::closed::decimal_form(e, &self.robot.decimals);
+                }
+            }
+        }
+        let e = Arc::new(r);
         *self.cache.lock().unwrap_or_else(PoisonError::into_inner) = Some((key, e.clone()));
         Ok(e)
     }

@@ -10,9 +10,9 @@
 //! and hands back both the worker's result and the interruption, so that the caller can keep
 //! its state consistent before raising.
 
+use dqsym::Preset;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError};
 use pyo3::prelude::*;
-use dqsym::Preset;
 use std::panic::AssertUnwindSafe;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Condvar, Mutex};

@@ -1,6 +1,7 @@
 """KeyboardInterrupt stops a long computation, the session survives it, and the GIL is
 released while dqsym works."""
 
+import os
 import signal
 import subprocess
 import sys
@@ -32,6 +33,14 @@ CHILD = textwrap.dedent(
 )
 
 
+def cpu_seconds(pid):
+    """The user and system CPU time of process `pid` so far (Linux: /proc/PID/stat)."""
+    with open(f"/proc/{pid}/stat") as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    # utime and stime are fields 14 and 15 of the line, 12 and 13 after the name.
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
 def test_sigint_stops_a_huge_expansion_and_the_session_still_works():
     child = subprocess.Popen(
         [sys.executable, "-c", CHILD],
@@ -41,8 +50,13 @@ def test_sigint_stops_a_huge_expansion_and_the_session_still_works():
     )
     try:
         assert child.stdout.readline().strip() == "started"
-        # Let the expansion get going (the child prints before it calls into dqsym).
-        threading.Event().wait(0.5)
+        # Let the expansion get going: the child prints before it calls into dqsym, so a
+        # fixed wait is a race on a busy machine (the interrupt then lands in the Python
+        # lines before the call). Its CPU time tells instead: after "started" the child does
+        # nothing but dqsym's work, so 0.3 s more of it means dqsym is well inside the sum.
+        start = cpu_seconds(child.pid)
+        while cpu_seconds(child.pid) < start + 0.3 and child.poll() is None:
+            threading.Event().wait(0.01)
         child.send_signal(signal.SIGINT)
         # A guard against a hang only: the child stops in well under a second.
         out, err = child.communicate(timeout=120)
