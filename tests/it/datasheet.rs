@@ -142,6 +142,63 @@ fn two_decimal_angles_stay_as_written() {
     assert!(r.notes[0].contains("pi/2"), "{:?}", r.notes);
 }
 
+/// Angles kept as typed decimals (1.57, 0.3) print as decimals inside the sines and cosines
+/// too (`cos(0.935)`, not `cos(187/200)`), in plain text and LaTeX,
+/// and the text reads back to the exact pose; the LaTeX renders in KaTeX.
+#[test]
+fn angles_typed_as_decimals_print_as_decimals_in_every_entry() {
+    use dqsym::{fk_report, FkOptions, Format};
+    let r = read("datasheet_short_decimals.toml", &RobotOptions::default());
+    let report = |format, shorthand| {
+        let o = FkOptions {
+            format,
+            shorthand,
+            ..FkOptions::default()
+        };
+        fk_report(&r, &o).expect("report")
+    };
+    let explicit = report(Format::Plain, false);
+    // (1.57 - 0.3)/2 = 0.635 and (1.57 + 0.3)/2 = 0.935: decimals, never 127/200, 187/200.
+    assert!(explicit.contains("cos(0.935)"), "{explicit}");
+    for fraction in ["/200", "/100", "/20)", "/10)"] {
+        assert!(!explicit.contains(fraction), "{fraction} in\n{explicit}");
+    }
+    let q = r.forward();
+    let m = r.forward_matrix();
+    let mut read_back = 0;
+    for line in explicit.lines() {
+        let Some((name, expr)) = line.split_once(" = ") else {
+            continue;
+        };
+        let want = if let Some(k) = name.strip_prefix("dq[") {
+            let k: usize = k.trim_end_matches(']').parse().expect("k");
+            q.components()[k].clone()
+        } else if name.starts_with("T[") {
+            let b = name.as_bytes();
+            m.rows[(b[2] - b'0') as usize][(b[5] - b'0') as usize].clone()
+        } else {
+            continue;
+        };
+        let back = eval_scalar_text(expr).expect("the text reads back");
+        assert_eq!(back, want, "{name}: {expr}");
+        read_back += 1;
+    }
+    assert_eq!(read_back, 20);
+    let tex = report(Format::Latex, true);
+    assert!(tex.contains("(0.935)") && !tex.contains("{200}"), "{tex}");
+    let blocks: Vec<String> = tex
+        .split("\\begin{aligned}")
+        .skip(1)
+        .map(|b| {
+            format!(
+                "\\begin{{aligned}}{}\\end{{aligned}}",
+                b.split("\\end{aligned}").next().unwrap_or_default()
+            )
+        })
+        .collect();
+    crate::tools::katex_all(&blocks, "datasheet_short_decimals.toml");
+}
+
 #[test]
 fn a_coupled_screw_offset_of_0_5236_is_pi_over_6() {
     check("datasheet_screw_offset.toml", &|q| {

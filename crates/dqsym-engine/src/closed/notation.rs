@@ -53,6 +53,29 @@ pub fn angle_text(angle: &Angle) -> String {
 
 /// [`angle_text`] with each symbol written as `name` gives it (SymPy's `Symbol('E')`).
 pub fn angle_text_with(angle: &Angle, name: &dyn Fn(&str) -> String) -> String {
+    angle_text_full(angle, name, false)
+}
+
+/// [`angle_text`] with a constant that is a decimal fraction written as its decimal
+/// (`cos(0.785)`, `q1 + 0.3`) when `decimals`: a robot whose file wrote its angles as decimals
+/// reads them so (exactly; see [`shows_as_decimal`](super::shows_as_decimal)).
+pub fn angle_text_decimals(angle: &Angle, decimals: bool) -> String {
+    angle_text_full(angle, &str::to_owned, decimals)
+}
+
+/// The constant `k` of an angle as a decimal, when `decimals` and it is a decimal fraction.
+pub(crate) fn decimal_constant(k: Small, decimals: bool) -> Option<String> {
+    let q = num_rational::BigRational::new((*k.numer()).into(), (*k.denom()).into());
+    (decimals && super::shows_as_decimal(&q))
+        .then(|| crate::scalar::decimal_text(&q.abs(), 40))
+        .flatten()
+}
+
+fn angle_text_full(angle: &Angle, name: &dyn Fn(&str) -> String, decimals: bool) -> String {
+    if decimals && !angle.constant.is_zero() && decimal_constant(angle.constant, true).is_some() {
+        // The decimal stands alone; the other parts keep their own denominators.
+        return sum_text(angle, name, true);
+    }
     match common_denominator(angle) {
         Some(d) => {
             // Every nonzero part has the denominator `d`: times `d`, its numerator.
@@ -65,9 +88,9 @@ pub fn angle_text_with(angle: &Angle, name: &dyn Fn(&str) -> String) -> String {
                 Small::from_integer(*angle.constant.numer()),
                 Small::from_integer(*angle.pi.numer()),
             );
-            format!("({})/{d}", sum_text(&whole, name))
+            format!("({})/{d}", sum_text(&whole, name, false))
         }
-        None => sum_text(angle, name),
+        None => sum_text(angle, name, false),
     }
 }
 
@@ -89,7 +112,7 @@ pub(crate) fn common_denominator(angle: &Angle) -> Option<i64> {
     (d > 1 && parts > 1).then_some(d)
 }
 
-fn sum_text(angle: &Angle, name: &dyn Fn(&str) -> String) -> String {
+fn sum_text(angle: &Angle, name: &dyn Fn(&str) -> String, decimals: bool) -> String {
     let mut s = String::new();
     let mut first = true;
     let mut push = |k: Small, name: &str, s: &mut String| {
@@ -104,7 +127,10 @@ fn sum_text(angle: &Angle, name: &dyn Fn(&str) -> String) -> String {
         }
         first = false;
         if name.is_empty() {
-            s.push_str(&a.to_string());
+            match decimal_constant(a, decimals) {
+                Some(d) => s.push_str(&d),
+                None => s.push_str(&a.to_string()),
+            }
         } else if a.is_one() {
             s.push_str(name);
         } else if a.numer().is_one() {

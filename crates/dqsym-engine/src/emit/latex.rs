@@ -343,7 +343,7 @@ impl<'a> Writer<'a> {
                 });
                 self.out.push_str(&pow);
                 self.out.push('(');
-                self.out.push_str(&latex_angle(angle));
+                self.out.push_str(&latex_angle(angle, self.o.decimals));
                 self.out.push(')');
             }
         }
@@ -478,7 +478,7 @@ fn rational(q: &BigRational) -> String {
 /// The angle: `\theta_{1} + \theta_{2}`, `\frac{\theta_{3}}{2}`, `\frac{\theta_{1} -
 /// \theta_{4}}{2}`, `\theta - \frac{\pi}{2}`. Coefficients sharing one denominator are written
 /// over it once.
-fn latex_angle(angle: &Angle) -> String {
+fn latex_angle(angle: &Angle, decimals: bool) -> String {
     let mut items: Vec<(Small, Option<String>)> = Vec::with_capacity(angle.terms.len() + 2);
     // Symbols first, then the constant and pi, as `angle_text` writes them.
     items.extend(
@@ -492,6 +492,21 @@ fn latex_angle(angle: &Angle) -> String {
     }
     if !angle.pi.is_zero() {
         items.push((angle.pi, Some("\\pi".to_string())));
+    }
+    if let Some(d) = crate::closed::decimal_constant(angle.constant, decimals) {
+        // A decimal constant stands alone (`\theta_{1} + 0.3`); the other parts keep theirs.
+        let sign = if angle.constant.is_negative() {
+            "-"
+        } else {
+            "+"
+        };
+        let rest: Vec<(Small, Option<String>)> =
+            items.iter().filter(|(_, n)| n.is_some()).cloned().collect();
+        return if rest.is_empty() {
+            format!("{}{d}", if sign == "-" { "-" } else { "" })
+        } else {
+            format!("{} {sign} {d}", sum_text(&rest))
+        };
     }
     let den = items.first().map_or(1, |(k, _)| *k.denom());
     if items.len() > 1 && den > 1 && items.iter().all(|(k, _)| *k.denom() == den) {

@@ -1,7 +1,9 @@
 //! Plain text in the field's notation: robotics shorthand (`l1 c1 + l2 c12`) or explicit
 //! (`l1*cos(theta1) + l2*cos(theta1 + theta2)`).
 
-use crate::closed::{angle_text, shorthand_name, shows_as_decimal, Angle, Expr, Trig, TrigNames};
+use crate::closed::{
+    angle_text, angle_text_decimals, shorthand_name, shows_as_decimal, Angle, Expr, Trig, TrigNames,
+};
 use num_traits::One;
 use std::collections::BTreeSet;
 
@@ -103,7 +105,7 @@ fn write(e: &Expr, o: &PlainOptions, names: TrigNames, prec: u8, out: &mut Strin
             None => {
                 out.push_str(f.name());
                 out.push('(');
-                out.push_str(&angle_text(angle));
+                out.push_str(&angle_text_decimals(angle, o.decimals));
                 out.push(')');
             }
         },
