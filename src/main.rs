@@ -507,6 +507,22 @@ fn main() -> ExitCode {
     }
 }
 
+/// An option given to a command it does not apply to: every option applies or is an error
+/// (walk, ops and paper have no output formats; `-e` is a command of its own).
+fn inapplicable_option(cli: &Cli) -> Option<String> {
+    let formatless = match &cli.command {
+        Some(Command::Walk { .. }) => Some("walk (it has --markdown and --html)"),
+        Some(Command::Ops { .. }) => Some("ops (it prints operation counts)"),
+        Some(Command::Paper) => Some("paper (it prints plain text)"),
+        _ => None,
+    };
+    if let (Some(what), Some(_)) = (formatless, cli.format) {
+        return Some(format!("--format does not apply to {what}"));
+    }
+    (cli.command.is_some() && cli.expr.is_some())
+        .then(|| "-e cannot be combined with a command".to_owned())
+}
+
 fn dispatch(cli: Cli) -> ExitCode {
     let _ = MAX_INPUT_SIZE.set(cli.max_input_size);
     // The default `--term-limit` is the command's preset's.
@@ -535,19 +551,8 @@ fn dispatch(cli: Cli) -> ExitCode {
     } else {
         limits.context().enter()
     };
-    // Every option applies or is an error: walk, ops and paper have no output formats.
-    let formatless = match &cli.command {
-        Some(Command::Walk { .. }) => Some("walk (it has --markdown and --html)"),
-        Some(Command::Ops { .. }) => Some("ops (it prints operation counts)"),
-        Some(Command::Paper) => Some("paper (it prints plain text)"),
-        _ => None,
-    };
-    if let (Some(what), Some(_)) = (formatless, cli.format) {
-        eprintln!("error: --format does not apply to {what}");
-        return ExitCode::from(2);
-    }
-    if cli.command.is_some() && cli.expr.is_some() {
-        eprintln!("error: -e cannot be combined with a command");
+    if let Some(message) = inapplicable_option(&cli) {
+        eprintln!("error: {message}");
         return ExitCode::from(2);
     }
     let format = cli.format.unwrap_or(OutputFormat::Plain);

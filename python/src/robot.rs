@@ -200,7 +200,7 @@ impl Robot {
     }
 
     /// The entries of one output (`Family::Dq`: `dq[0]` .. `dq[7]`), in order.
-    fn rows<'a>(e: &'a FkEntries, family: Family) -> Vec<&'a (Quantity, dqsym::Expr)> {
+    fn rows(e: &FkEntries, family: Family) -> Vec<&(Quantity, dqsym::Expr)> {
         e.rows().filter(|(n, _)| n.family() == family).collect()
     }
 }

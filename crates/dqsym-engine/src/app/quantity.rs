@@ -427,7 +427,7 @@ pub enum SectionKind {
     /// A task Jacobian; `quotient` when its entries are numerators over a denominator.
     Task {
         /// The Jacobian.
-        task: TaskJacobian,
+        task: Box<TaskJacobian>,
         /// Numerators over a common denominator.
         quotient: bool,
     },

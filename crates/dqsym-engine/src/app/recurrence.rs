@@ -87,6 +87,9 @@ fn syms(known: &Known, step: Step, joint: usize) -> DualQuat<Scalar> {
     DualQuat::from_components([c(0), c(1), c(2), c(3), c(4), c(5), c(6), c(7)])
 }
 
+/// The sections of the recurrence before their closed forms.
+type Staged = Vec<(SectionKind, Vec<(Quantity, Scalar)>)>;
+
 /// Records the constant entries of `rows` in `known`.
 fn learn(known: &Known, rows: &[(Quantity, Scalar)]) {
     for (name, x) in rows {
@@ -140,7 +143,7 @@ pub(crate) fn recurrence_sections(
         };
     let step = |step: Step, joint: usize| move |k: usize| Quantity::Step { step, joint, k };
 
-    let mut sections: Vec<(SectionKind, Vec<(Quantity, Scalar)>)> = Vec::new();
+    let mut sections: Staged = Vec::new();
     let links: Vec<(Quantity, Scalar)> = factors
         .iter()
         .enumerate()
@@ -192,34 +195,7 @@ pub(crate) fn recurrence_sections(
         sections.push((SectionKind::SuffixProducts, suffix));
     }
     let last = q(n);
-    // The matrix in the robot's own symbols when it fits as a polynomial in the cosines and
-    // sines (a generic 6R: 1,595 monomials), else in the last Q's symbols.
-    // An attempt with its own small budget: a long chain stops early and costs little.
-    let cos_sin = with_own_budget(COS_SIN_BUDGET, || {
-        robot.forward_matrix_cos_sin(o.max_terms.min(COS_SIN_MAX_TERMS))
-    });
-    // Its closed forms are kept when they are short (a numeric 10-joint chain can give 20 kB
-    // per entry); else the matrix is read from the last Q.
-    // They are part of the attempt: made with a budget of their own, and given up when it
-    // runs out.
-    let cos_sin_forms = cos_sin.and_then(|m| {
-        let cells: Vec<&Scalar> = m.rows[..3].iter().flatten().collect();
-        let forms = with_own_budget(COS_SIN_FORMS_BUDGET, || {
-            par_map(&cells, |x| closed_form_cos_sin(x))
-        });
-        if forms.iter().any(Result::is_err) {
-            return None;
-        }
-        let po = crate::print::PlainOptions {
-            shorthand: true,
-            decimals: false,
-        };
-        let len: usize = forms
-            .iter()
-            .map(|e| e.as_ref().map_or(0, |e| crate::print::plain(e, &po).len()))
-            .sum();
-        (len <= MAX_COS_SIN_TEXT).then_some((m, forms))
-    });
+    let cos_sin_forms = cos_sin_matrix(robot, o);
     let (m, from, t_forms) = match cos_sin_forms {
         Some((m, forms)) => (m, MatrixFrom::CosSin, Some(forms)),
         None => (last.to_matrix(), MatrixFrom::LastQ, None),
@@ -265,6 +241,50 @@ pub(crate) fn recurrence_sections(
         sections.push((SectionKind::Jacobian { recurrence: true }, jac));
     }
 
+    check_names(robot, o, &sections)?;
+    with_closed_forms(sections, t_forms)
+}
+
+/// The matrix as a polynomial in the cosines and sines of the joint matrices, with the closed
+/// forms of its rows 0..2, when that fits (see the module docs); `None` past a budget or the
+/// size of text.
+#[allow(clippy::type_complexity)]
+fn cos_sin_matrix(
+    robot: &Robot,
+    o: &FkOptions,
+) -> Option<(crate::Matrix4<Scalar>, Vec<Result<Expr, ScalarError>>)> {
+    // The matrix in the robot's own symbols when it fits as a polynomial in the cosines and
+    // sines (a generic 6R: 1,595 monomials), else in the last Q's symbols.
+    // An attempt with its own small budget: a long chain stops early and costs little.
+    let cos_sin = with_own_budget(COS_SIN_BUDGET, || {
+        robot.forward_matrix_cos_sin(o.max_terms.min(COS_SIN_MAX_TERMS))
+    });
+    // Its closed forms are kept when they are short (a numeric 10-joint chain can give 20 kB
+    // per entry); else the matrix is read from the last Q.
+    // They are part of the attempt: made with a budget of their own, and given up when it
+    // runs out.
+    cos_sin.and_then(|m| {
+        let cells: Vec<&Scalar> = m.rows[..3].iter().flatten().collect();
+        let forms = with_own_budget(COS_SIN_FORMS_BUDGET, || {
+            par_map(&cells, |x| closed_form_cos_sin(x))
+        });
+        if forms.iter().any(Result::is_err) {
+            return None;
+        }
+        let po = crate::print::PlainOptions {
+            shorthand: true,
+            decimals: false,
+        };
+        let len: usize = forms
+            .iter()
+            .map(|e| e.as_ref().map_or(0, |e| crate::print::plain(e, &po).len()))
+            .sum();
+        (len <= MAX_COS_SIN_TEXT).then_some((m, forms))
+    })
+}
+
+/// Refuses a robot or point symbol named like an entry's symbol.
+fn check_names(robot: &Robot, o: &FkOptions, sections: &Staged) -> Result<(), ReportError> {
     // A robot symbol named like an entry (`Q2_3`) would be read as that entry.
     // (One set of the entries' symbols: a scan of every entry per robot symbol was quadratic
     // in the joints.)
@@ -280,6 +300,15 @@ pub(crate) fn recurrence_sections(
             return Err(ReportError::NameClash(s));
         }
     }
+    Ok(())
+}
+
+/// The sections with every entry in closed form: the matrix's `t_forms` when they were made
+/// already, the others each shape's once ([`shared_closed_forms`]).
+fn with_closed_forms(
+    sections: Staged,
+    t_forms: Option<Vec<Result<Expr, ScalarError>>>,
+) -> Result<Vec<Section>, ReportError> {
     // The matrix's closed forms, when already made, are not made again.
     let have_t = t_forms.is_some();
     let done = |t: &SectionKind| matches!(t, SectionKind::Matrix(_)) && have_t;

@@ -518,7 +518,7 @@ fn task_report_inner(
         },
         Section {
             kind: SectionKind::Task {
-                task: task.clone(),
+                task: Box::new(task.clone()),
                 quotient,
             },
             rows,

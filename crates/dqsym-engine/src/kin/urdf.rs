@@ -134,152 +134,10 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
         element,
         message,
     };
-    let mut links: BTreeSet<String> = BTreeSet::new();
-    let mut joints: Vec<UrdfJoint> = Vec::new();
-    // Line numbers counted as the elements come, in document order: `text_pos_at` scans the
-    // text from its start at each call, quadratic in the elements (most of the time of a URDF
-    // of 2,000 joints).
-    let (mut counted, mut row) = (0usize, 1u32);
-    for node in root.children().filter(|n| n.is_element()) {
-        let start = node.range().start;
-        if start >= counted {
-            row += text.as_bytes()[counted..start]
-                .iter()
-                .filter(|&&b| b == b'\n')
-                .count() as u32;
-            counted = start;
-        }
-        let line = row;
-        match node.tag_name().name() {
-            "link" => {
-                let name = node
-                    .attribute("name")
-                    .ok_or_else(|| el_err(format!("<link> at line {line}"), "no `name`".into()))?;
-                links.insert(name.to_string());
-            }
-            "joint" => joints.push(read_joint(node, line, &el_err)?),
-            _ => {}
-        }
-    }
-    // Every joint joins two declared links; every link has at most one parent joint.
-    let mut parent_of: BTreeMap<&str, usize> = BTreeMap::new();
-    let mut names: BTreeSet<&str> = BTreeSet::new();
-    for (i, j) in joints.iter().enumerate() {
-        let el = || format!("joint `{}` (line {})", j.name, j.line);
-        if !names.insert(&j.name) {
-            return Err(el_err(el(), "a second joint with this name".into()));
-        }
-        for (role, l) in [("parent", &j.parent), ("child", &j.child)] {
-            if !links.contains(l) {
-                return Err(el_err(
-                    el(),
-                    format!("{role} link `{l}` is not a <link> of the file"),
-                ));
-            }
-        }
-        if let Some(&k) = parent_of.get(j.child.as_str()) {
-            return Err(el_err(
-                format!("link `{}`", j.child),
-                format!(
-                    "child of two joints, `{}` and `{}`: a URDF is a tree",
-                    joints[k].name, j.name
-                ),
-            ));
-        }
-        parent_of.insert(&j.child, i);
-    }
-    let roots: Vec<&String> = links
-        .iter()
-        .filter(|l| !parent_of.contains_key(l.as_str()))
-        .collect();
-    if roots.is_empty() && !links.is_empty() {
-        let l = links.iter().next().map(String::as_str).unwrap_or("");
-        return Err(el_err(
-            format!("link `{l}`"),
-            "the joints form a loop: no link is the root".into(),
-        ));
-    }
-    let is_parent: BTreeSet<&str> = joints.iter().map(|j| j.parent.as_str()).collect();
-    let tip = match &o.tip {
-        Some(t) => {
-            if !links.contains(t) {
-                return Err(el_err(format!("--tip `{t}`"), "no such <link>".into()));
-            }
-            t.clone()
-        }
-        None => {
-            let leaves: Vec<&String> = links
-                .iter()
-                .filter(|l| !is_parent.contains(l.as_str()))
-                .collect();
-            match leaves.as_slice() {
-                [one] => (*one).clone(),
-                [] => return Err(xml_err("no links".into())),
-                many => {
-                    // Each leaf with the number of joints that move between it and the root
-                    // (most first): the arm's tool is usually among the first.
-                    let moving = |leaf: &str| {
-                        let (mut at, mut n, mut hops) = (leaf, 0usize, 0usize);
-                        while let Some(&k) = parent_of.get(at) {
-                            n += usize::from(joints[k].kind != "fixed");
-                            at = joints[k].parent.as_str();
-                            hops += 1;
-                            if hops > joints.len() {
-                                break;
-                            }
-                        }
-                        n
-                    };
-                    let mut listed: Vec<(usize, &String)> =
-                        many.iter().map(|l| (moving(l), *l)).collect();
-                    listed.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(b.1)));
-                    return Err(xml_err(format!(
-                        "several leaf links ({}): choose the tip with --tip",
-                        listed
-                            .iter()
-                            .map(|(n, s)| format!(
-                                "`{s}` after {n} moving joint{}",
-                                if *n == 1 { "" } else { "s" }
-                            ))
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    )));
-                }
-            }
-        }
-    };
-    // Walk from the tip to the base (or the root), refusing loops.
-    let mut path: Vec<usize> = Vec::new();
-    let mut at = tip.as_str();
-    let mut seen: BTreeSet<&str> = BTreeSet::new();
-    loop {
-        if o.base.as_deref() == Some(at) {
-            break;
-        }
-        if !seen.insert(at) {
-            return Err(el_err(
-                format!("link `{at}`"),
-                "the joints form a loop through this link".into(),
-            ));
-        }
-        match parent_of.get(at) {
-            Some(&k) => {
-                path.push(k);
-                at = joints[k].parent.as_str();
-            }
-            None => {
-                if let Some(b) = &o.base {
-                    return Err(el_err(
-                        format!("--base `{b}`"),
-                        format!("not a link between the root `{at}` and the tip `{tip}`"),
-                    ));
-                }
-                break;
-            }
-        }
-    }
-    let base_link = at.to_string();
-    path.reverse();
+    let (links, joints) = read_elements(text, root, &el_err)?;
+    let parent_of = tree(&links, &joints, &el_err)?;
+    let tip = choose_tip(o, &links, &joints, &parent_of, &xml_err, &el_err)?;
+    let (path, base_link) = path_to_tip(o, &tip, &joints, &parent_of, &el_err)?;
 
     // Names: one variable per moving joint, named after it (a mimic joint uses its
     // leader's), and one parameter per angle that is not read as a multiple of pi.
@@ -332,26 +190,17 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
         let j = &joints[k];
         let el = format!("joint `{}` (line {})", j.name, j.line);
         let stem = sanitize(&j.name);
-        let rpy = [
-            angle(
-                &j.rpy[0],
-                format!("{el}, origin rpy[0]"),
-                format!("{stem}_roll"),
+        let mut rpy = Vec::with_capacity(3);
+        for (k, part) in ["roll", "pitch", "yaw"].into_iter().enumerate() {
+            let what = format!("{el}, origin rpy[{k}]");
+            rpy.push(angle(
+                &j.rpy[k],
+                what,
+                format!("{stem}_{part}"),
                 &mut names,
-            )?,
-            angle(
-                &j.rpy[1],
-                format!("{el}, origin rpy[1]"),
-                format!("{stem}_pitch"),
-                &mut names,
-            )?,
-            angle(
-                &j.rpy[2],
-                format!("{el}, origin rpy[2]"),
-                format!("{stem}_yaw"),
-                &mut names,
-            )?,
-        ];
+            )?);
+        }
+        let rpy: [Scalar; 3] = rpy.try_into().expect("three angles");
         let f = Frame {
             xyz: j.xyz.clone().map(Scalar::rational),
             rpy,
@@ -371,27 +220,9 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
         let value = match &j.mimic {
             None => Scalar::sym(&names.var_of(&j.name)),
             Some((leader, mult, offset)) => {
-                // A leader that itself follows another joint: follow the chain to its end.
-                let (mut lead, mut m, mut off) = (leader.as_str(), mult.clone(), offset.clone());
-                let mut hops = 0;
-                while let Some(Some((l2, m2, o2))) = by_name.get(lead).map(|lj| lj.mimic.as_ref()) {
-                    hops += 1;
-                    if hops > joints.len() {
-                        return Err(el_err(
-                            el.clone(),
-                            "<mimic> joints follow each other in a loop".into(),
-                        ));
-                    }
-                    off = &m * o2 + off;
-                    m = &m * m2;
-                    lead = l2;
-                }
-                if !by_name.contains_key(lead) {
-                    return Err(el_err(
-                        el.clone(),
-                        format!("<mimic> follows `{lead}`, which is not a <joint>"),
-                    ));
-                }
+                let err = |m: String| el_err(el.clone(), m);
+                let (lead, m, off) =
+                    mimic_leader(&by_name, leader, mult, offset, joints.len(), &err)?;
                 let off = match kind {
                     JointKind::Revolute => angle(
                         &off,
@@ -404,12 +235,7 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
                 Scalar::rational(m) * Scalar::sym(&names.var_of(lead)) + off
             }
         };
-        for s in value.symbols().iter().filter(|s| !s.is_pi()) {
-            let n = s.name().to_string();
-            if !variables.contains(&n) && !names.params.contains(&n) {
-                variables.push(n);
-            }
-        }
+        names.add_variables(&value, &mut variables);
         let joint = match kind {
             JointKind::Revolute => Joint::revolute_screw(dir, home.translation_part()),
             JointKind::Prismatic => Joint::prismatic_screw(dir),
@@ -419,15 +245,7 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
     }
     let name = root.attribute("name").unwrap_or(file).to_string();
     let chain = Chain::new(chain_joints).with_tool(home);
-    // URDF numbers are decimals by the format: the lengths of the chain's origins.
-    let mut decimals: Vec<BigRational> = frames
-        .iter()
-        .flat_map(|f| f.xyz.iter().filter_map(Scalar::as_rational))
-        .map(|x| num_traits::Signed::abs(&x))
-        .filter(|x| !num_traits::Zero::is_zero(x))
-        .collect();
-    decimals.sort();
-    decimals.dedup();
+    let decimals = origin_lengths(&frames);
     Ok(UrdfRobot {
         robot: Robot {
             name: format!("{name} ({base_link} to {tip})"),
@@ -444,6 +262,241 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
         },
         notes,
     })
+}
+
+/// URDF numbers are decimals by the format: the lengths of the chain's origins, sorted and
+/// distinct.
+fn origin_lengths(frames: &[Frame]) -> Vec<BigRational> {
+    let mut decimals: Vec<BigRational> = frames
+        .iter()
+        .flat_map(|f| f.xyz.iter().filter_map(Scalar::as_rational))
+        .map(|x| num_traits::Signed::abs(&x))
+        .filter(|x| !num_traits::Zero::is_zero(x))
+        .collect();
+    decimals.sort();
+    decimals.dedup();
+    decimals
+}
+
+/// An element error of the file being read: (element, message).
+type ElErr<'a> = dyn Fn(String, String) -> UrdfError + 'a;
+
+/// The `<link>` names and the `<joint>`s of the document, with their line numbers.
+fn read_elements(
+    text: &str,
+    root: roxmltree::Node,
+    el_err: &ElErr,
+) -> Result<(BTreeSet<String>, Vec<UrdfJoint>), UrdfError> {
+    let mut links: BTreeSet<String> = BTreeSet::new();
+    let mut joints: Vec<UrdfJoint> = Vec::new();
+    // Line numbers counted as the elements come, in document order: `text_pos_at` scans the
+    // text from its start at each call, quadratic in the elements (most of the time of a URDF
+    // of 2,000 joints).
+    let (mut counted, mut row) = (0usize, 1u32);
+    for node in root.children().filter(|n| n.is_element()) {
+        let start = node.range().start;
+        if start >= counted {
+            row += text.as_bytes()[counted..start]
+                .iter()
+                .filter(|&&b| b == b'\n')
+                .count() as u32;
+            counted = start;
+        }
+        let line = row;
+        match node.tag_name().name() {
+            "link" => {
+                let name = node
+                    .attribute("name")
+                    .ok_or_else(|| el_err(format!("<link> at line {line}"), "no `name`".into()))?;
+                links.insert(name.to_string());
+            }
+            "joint" => joints.push(read_joint(node, line, &el_err)?),
+            _ => {}
+        }
+    }
+    Ok((links, joints))
+}
+
+/// The parent joint of each link, checking that every joint joins two declared links, every
+/// link has at most one parent joint and some link is the root.
+fn tree<'a>(
+    links: &BTreeSet<String>,
+    joints: &'a [UrdfJoint],
+    el_err: &ElErr,
+) -> Result<BTreeMap<&'a str, usize>, UrdfError> {
+    // Every joint joins two declared links; every link has at most one parent joint.
+    let mut parent_of: BTreeMap<&str, usize> = BTreeMap::new();
+    let mut names: BTreeSet<&str> = BTreeSet::new();
+    for (i, j) in joints.iter().enumerate() {
+        let el = || format!("joint `{}` (line {})", j.name, j.line);
+        if !names.insert(&j.name) {
+            return Err(el_err(el(), "a second joint with this name".into()));
+        }
+        for (role, l) in [("parent", &j.parent), ("child", &j.child)] {
+            if !links.contains(l) {
+                return Err(el_err(
+                    el(),
+                    format!("{role} link `{l}` is not a <link> of the file"),
+                ));
+            }
+        }
+        if let Some(&k) = parent_of.get(j.child.as_str()) {
+            return Err(el_err(
+                format!("link `{}`", j.child),
+                format!(
+                    "child of two joints, `{}` and `{}`: a URDF is a tree",
+                    joints[k].name, j.name
+                ),
+            ));
+        }
+        parent_of.insert(&j.child, i);
+    }
+    let roots: Vec<&String> = links
+        .iter()
+        .filter(|l| !parent_of.contains_key(l.as_str()))
+        .collect();
+    if roots.is_empty() && !links.is_empty() {
+        let l = links.iter().next().map(String::as_str).unwrap_or("");
+        return Err(el_err(
+            format!("link `{l}`"),
+            "the joints form a loop: no link is the root".into(),
+        ));
+    }
+    Ok(parent_of)
+}
+
+/// The tip link: `o.tip`, or the only leaf (several leaves are refused, listed with the number
+/// of moving joints before each).
+fn choose_tip(
+    o: &UrdfOptions,
+    links: &BTreeSet<String>,
+    joints: &[UrdfJoint],
+    parent_of: &BTreeMap<&str, usize>,
+    xml_err: &dyn Fn(String) -> UrdfError,
+    el_err: &ElErr,
+) -> Result<String, UrdfError> {
+    let is_parent: BTreeSet<&str> = joints.iter().map(|j| j.parent.as_str()).collect();
+    Ok(match &o.tip {
+        Some(t) => {
+            if !links.contains(t) {
+                return Err(el_err(format!("--tip `{t}`"), "no such <link>".into()));
+            }
+            t.clone()
+        }
+        None => {
+            let leaves: Vec<&String> = links
+                .iter()
+                .filter(|l| !is_parent.contains(l.as_str()))
+                .collect();
+            match leaves.as_slice() {
+                [one] => (*one).clone(),
+                [] => return Err(xml_err("no links".into())),
+                many => {
+                    // Each leaf with the number of joints that move between it and the root
+                    // (most first): the arm's tool is usually among the first.
+                    let moving = |leaf: &str| {
+                        let (mut at, mut n, mut hops) = (leaf, 0usize, 0usize);
+                        while let Some(&k) = parent_of.get(at) {
+                            n += usize::from(joints[k].kind != "fixed");
+                            at = joints[k].parent.as_str();
+                            hops += 1;
+                            if hops > joints.len() {
+                                break;
+                            }
+                        }
+                        n
+                    };
+                    let mut listed: Vec<(usize, &String)> =
+                        many.iter().map(|l| (moving(l), *l)).collect();
+                    listed.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(b.1)));
+                    return Err(xml_err(format!(
+                        "several leaf links ({}): choose the tip with --tip",
+                        listed
+                            .iter()
+                            .map(|(n, s)| format!(
+                                "`{s}` after {n} moving joint{}",
+                                if *n == 1 { "" } else { "s" }
+                            ))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    )));
+                }
+            }
+        }
+    })
+}
+
+/// The joints from the base (`o.base`, or the root) to `tip`, in order, and the base link;
+/// loops are refused.
+fn path_to_tip(
+    o: &UrdfOptions,
+    tip: &str,
+    joints: &[UrdfJoint],
+    parent_of: &BTreeMap<&str, usize>,
+    el_err: &ElErr,
+) -> Result<(Vec<usize>, String), UrdfError> {
+    // Walk from the tip to the base (or the root), refusing loops.
+    let mut path: Vec<usize> = Vec::new();
+    let mut at = tip;
+    let mut seen: BTreeSet<&str> = BTreeSet::new();
+    loop {
+        if o.base.as_deref() == Some(at) {
+            break;
+        }
+        if !seen.insert(at) {
+            return Err(el_err(
+                format!("link `{at}`"),
+                "the joints form a loop through this link".into(),
+            ));
+        }
+        match parent_of.get(at) {
+            Some(&k) => {
+                path.push(k);
+                at = joints[k].parent.as_str();
+            }
+            None => {
+                if let Some(b) = &o.base {
+                    return Err(el_err(
+                        format!("--base `{b}`"),
+                        format!("not a link between the root `{at}` and the tip `{tip}`"),
+                    ));
+                }
+                break;
+            }
+        }
+    }
+    let base_link = at.to_string();
+    path.reverse();
+    Ok((path, base_link))
+}
+
+/// The joint a `<mimic>` of `leader` (times `mult`, plus `offset`) finally follows, through
+/// leaders that themselves follow another joint, with the composed factor and offset.
+fn mimic_leader<'a>(
+    by_name: &BTreeMap<&'a str, &'a UrdfJoint>,
+    leader: &'a str,
+    mult: &BigRational,
+    offset: &BigRational,
+    joints: usize,
+    err: &dyn Fn(String) -> UrdfError,
+) -> Result<(&'a str, BigRational, BigRational), UrdfError> {
+    let (mut lead, mut m, mut off) = (leader, mult.clone(), offset.clone());
+    let mut hops = 0;
+    while let Some(Some((l2, m2, o2))) = by_name.get(lead).map(|lj| lj.mimic.as_ref()) {
+        hops += 1;
+        if hops > joints {
+            return Err(err("<mimic> joints follow each other in a loop".into()));
+        }
+        off = &m * o2 + off;
+        m = &m * m2;
+        lead = l2;
+    }
+    if !by_name.contains_key(lead) {
+        return Err(err(format!(
+            "<mimic> follows `{lead}`, which is not a <joint>"
+        )));
+    }
+    Ok((lead, m, off))
 }
 
 /// One `<joint>`: its attributes and children, or what is missing or unsupported.
@@ -581,6 +634,17 @@ impl Names {
         let v = self.fresh(&sanitize(joint));
         self.var_names.insert(joint.to_string(), v.clone());
         v
+    }
+
+    /// Appends the symbols of a joint's value that are neither `pi` nor parameters to
+    /// `variables`, each once.
+    fn add_variables(&self, value: &Scalar, variables: &mut Vec<String>) {
+        for s in value.symbols().iter().filter(|s| !s.is_pi()) {
+            let n = s.name().to_string();
+            if !variables.contains(&n) && !self.params.contains(&n) {
+                variables.push(n);
+            }
+        }
     }
 
     /// `stem`, or `stem_`, `stem__`, ... : a name not given before.
