@@ -262,7 +262,10 @@ impl Q {
         match self {
             Q::S(n, 1) => Some(std::borrow::Cow::Owned(BigInt::from(*n))),
             Q::S(..) => None,
-            Q::B(q) => q.denom().is_one().then(|| std::borrow::Cow::Borrowed(q.numer())),
+            Q::B(q) => q
+                .denom()
+                .is_one()
+                .then(|| std::borrow::Cow::Borrowed(q.numer())),
         }
     }
 }
