@@ -42,5 +42,6 @@ mod tools;
 mod trig_corpus;
 mod urdf;
 mod walk;
+mod work_bounds;
 mod writes;
 mod zoo;

@@ -628,14 +628,36 @@ pub(crate) fn content(mons: &[Mon]) -> Q {
     }
 }
 
+/// [`content`] past machine words. The gcd of the numerators is kept in a machine word as
+/// soon as it fits, and each further numerator `n` enters as `n mod g` (one pass over its
+/// words): `gcd(g, n) = gcd(g, n mod g)`. A big-integer gcd per coefficient was 56% of the
+/// instructions of the closed form of `(x + y + z)^60`.
 fn content_big(mons: &[Mon]) -> Q {
+    use std::borrow::Cow;
+    let mut small: Option<u64> = None;
     let mut num = BigInt::zero();
     let mut den = BigInt::from(1);
     for m in mons {
-        let q = m.q.to_big();
-        num = num.gcd(q.numer());
-        den = den.lcm(q.denom());
+        let (n, d): (Cow<BigInt>, Cow<BigInt>) = match &m.q {
+            Q::S(n, d) => (Cow::Owned(BigInt::from(*n)), Cow::Owned(BigInt::from(*d))),
+            Q::B(b) => (Cow::Borrowed(b.numer()), Cow::Borrowed(b.denom())),
+        };
+        if *d != den && !num_traits::One::is_one(&*d) {
+            den = den.lcm(&d);
+        }
+        match small {
+            Some(1) => {}
+            Some(g) => {
+                let r = num_traits::ToPrimitive::to_u64(&(n.magnitude() % g)).unwrap_or(0);
+                small = Some(g.gcd(&r));
+            }
+            None => {
+                num = num.gcd(&n);
+                small = num_traits::ToPrimitive::to_u64(num.magnitude()).filter(|g| *g != 0);
+            }
+        }
     }
+    let num = small.map_or(num, BigInt::from);
     if num.is_zero() {
         return Q::ONE;
     }
