@@ -80,6 +80,7 @@ pub(crate) fn derive(file: &str, free: Option<&str>) -> Result<IkSolution, IkErr
         &r,
         &IkOptions {
             free: free.map(str::to_string),
+            method: dqsym::ik::IkMethod::Family,
         },
     )
 }

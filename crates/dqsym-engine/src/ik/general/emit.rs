@@ -1,0 +1,1 @@
+//! Generated solvers for the general method.
