@@ -929,7 +929,8 @@ pub fn gen_solve(
         }
         out.arrangements[out.n_arr] = arr;
         out.n_arr += 1;
-        let mut fresh = 0;
+        // The solutions this arrangement's roots reached (exactly).
+        let mut hit = [false; GEN_MAX];
         for k in 0..n {
             let mut q = roots[k];
             let res = refine(&ax, &hm, &tg, &mut q);
@@ -939,30 +940,27 @@ pub fn gen_solve(
             for v in q.iter_mut() {
                 *v = wrap(*v);
             }
-            if let Some(i) = (0..out.n).find(|&i| same(&out.q[i], &q, &prismatic)) {
+            let at = if let Some(i) = (0..out.n).find(|&i| same(&out.q[i], &q, &prismatic)) {
                 if res < out.residual[i] {
                     out.q[i] = q;
                     out.residual[i] = res;
                 }
-                continue;
-            }
-            fresh += 1;
-            if out.n < GEN_MAX {
+                Some(i)
+            } else if out.n < GEN_MAX {
                 out.q[out.n] = q;
                 out.residual[out.n] = res;
                 out.n += 1;
-            } else if let Some(w) = (0..GEN_MAX).max_by(|&a, &b| {
-                out.residual[a].partial_cmp(&out.residual[b]).unwrap_or(std::cmp::Ordering::Equal)
-            }) {
-                if res < out.residual[w] {
-                    out.q[w] = q;
-                    out.residual[w] = res;
-                }
+                Some(out.n - 1)
+            } else {
+                None
+            };
+            if let Some(i) = at {
+                hit[i] |= res <= tol.pose;
             }
         }
-        let exact = (0..out.n).filter(|&i| out.residual[i] <= tol.pose).count();
-        // Every root gave its own exact solution: the set is complete.
-        if fresh == n && exact == out.n {
+        // Every root gave its own exact solution: the set is complete (a double root, two
+        // solutions sharing the hidden joint, gives one of them twice or neither).
+        if hit.iter().filter(|h| **h).count() == n {
             break;
         }
     }
