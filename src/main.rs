@@ -698,7 +698,9 @@ fn ik(
         Err(m) => return fail(m),
     };
     let Some(method) = dqsym::ik::IkMethod::parse(method) else {
-        return fail(format!("--method {method}: expected auto, family or general"));
+        return fail(format!(
+            "--method {method}: expected auto, family or general"
+        ));
     };
     let _derivation = dqsym::Context::entered().enter();
     let sol = match dqsym::ik::solve(&robot, &dqsym::ik::IkOptions { free, method }) {

@@ -756,7 +756,10 @@ fn ik_command_prints_the_derivation_and_fails_clearly() {
         .expect("run");
     assert_eq!(general.status.code(), Some(0));
     let out = String::from_utf8_lossy(&general.stdout);
-    assert!(out.contains("general 6R") && out.contains("det M(x) = 0"), "{out}");
+    assert!(
+        out.contains("general 6R") && out.contains("det M(x) = 0"),
+        "{out}"
+    );
 }
 
 #[test]

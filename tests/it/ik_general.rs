@@ -70,14 +70,7 @@ fn dh_toml(name: &str, rows: &[Row]) -> String {
 fn derive(name: &str, rows: &[Row], method: IkMethod) -> IkSolution {
     let text = dh_toml(name, rows);
     let robot = dqsym::parse_robot(&text, name, &dqsym::eval_scalar_text).expect("robot");
-    solve(
-        &robot,
-        &IkOptions {
-            free: None,
-            method,
-        },
-    )
-    .unwrap_or_else(|e| panic!("{name}: {e}"))
+    solve(&robot, &IkOptions { free: None, method }).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 fn wrapped(a: f64) -> f64 {
@@ -118,11 +111,19 @@ fn check_pose(name: &str, sol: &IkSolution, rows: &[Row], q: &[f64]) -> Vec<NumS
     let t = dh_pose(rows, q);
     let sols = sol.solve_numeric(&t, &[]).expect("solve");
     let len = size(rows);
-    assert!(sols.len() <= 16, "{name}: {} solutions at {q:?}", sols.len());
+    assert!(
+        sols.len() <= 16,
+        "{name}: {} solutions at {q:?}",
+        sols.len()
+    );
     for s in &sols {
         if !s.approximate {
             let dev = deviation(&t, &dh_pose(rows, &s.q), len);
-            assert!(dev <= 1e-9, "{name}: {:?} misses the pose by {dev} (q {q:?})", s.q);
+            assert!(
+                dev <= 1e-9,
+                "{name}: {:?} misses the pose by {dev} (q {q:?})",
+                s.q
+            );
         }
     }
     let found = sols
@@ -291,7 +292,6 @@ fn general_method_on_puma_and_ur5_agrees_with_the_family_solver() {
     }
 }
 
-
 /// The generated Rust solver of Jaco and the skew arm, compiled optimised and clean (rustc and
 /// clippy `-D warnings`), returns the reference solver's solutions at 200 poses; its time per
 /// pose is printed (not asserted).
@@ -349,7 +349,8 @@ let ns = start.elapsed().as_nanos() as f64 / (20.0 * ts.len() as f64);\n    prin
             }
             for r in &reference {
                 assert!(
-                    got.iter().any(|g| dist(&g[..6], &r.q) <= 1e-9 && (g[6] != 0.0) == r.approximate),
+                    got.iter()
+                        .any(|g| dist(&g[..6], &r.q) <= 1e-9 && (g[6] != 0.0) == r.approximate),
                     "{name}: {:?} not in the generated solver's {got:?}",
                     r.q
                 );

@@ -7,8 +7,8 @@ use super::axes::{
     Relation, V3,
 };
 use super::{
-    Branch, BranchPart, BranchSigns, Fact, Formula, FreeChoice, IkError, IkMethod, IkOptions, IkSolution,
-    IkStep, Phrase, Reach, TARGET_SYMBOLS,
+    Branch, BranchPart, BranchSigns, Fact, Formula, FreeChoice, IkError, IkMethod, IkOptions,
+    IkSolution, IkStep, Phrase, Reach, TARGET_SYMBOLS,
 };
 use crate::kin::{JointKind, Robot};
 use crate::{Matrix4, Scalar, ScalarError};
@@ -423,7 +423,14 @@ pub(crate) fn derive_axes(
                     free: Some(variables[0].clone()),
                     method: IkMethod::General,
                 };
-                let g = derive_fixed(name, variables, params.clone(), axes.clone(), home.clone(), &o);
+                let g = derive_fixed(
+                    name,
+                    variables,
+                    params.clone(),
+                    axes.clone(),
+                    home.clone(),
+                    &o,
+                );
                 if let Ok(mut sol) = g {
                     sol.geometry.insert(
                         0,

@@ -142,8 +142,6 @@ struct Arranged {
 struct Elim {
     /// `Am[e][k][m]`: equation `e`, `k` in `(1, cos θ3, sin θ3)`, monomial `m` of X45.
     am: [[[f64; 9]; 3]; 14],
-    /// `Bm[e][m]`: monomial `m` of X12 (the eight non-constant ones).
-    bm: [[f64; 8]; 14],
     /// Householder QR of `Bm` with column pivoting: `qt` is `Qᵀ` (14 x 14), `r` the 8 x 8
     /// triangle, `piv` the column order.
     qt: [[f64; 14]; 14],
@@ -275,7 +273,6 @@ impl Arranged {
         }
         Some(Elim {
             am,
-            bm,
             qt,
             r,
             piv,
@@ -412,6 +409,7 @@ fn matrix_poly(sig: &[[[f64; 9]; 6]; 3], phi: f64) -> [[[f64; 12]; 12]; 3] {
     out
 }
 
+#[allow(clippy::needless_range_loop)]
 /// LU with partial pivoting of an `n x n` block of `a` (in place); `None` when singular.
 /// Returns the pivot order and the smallest pivot over the largest entry.
 fn lu<const N: usize>(a: &mut [[f64; N]; N]) -> ([usize; N], f64) {
@@ -577,7 +575,13 @@ fn wrap(a: f64) -> f64 {
 
 /// The joints of the arranged chain at the root `x` of `det M`.
 #[allow(clippy::needless_range_loop)]
-fn back_substitute(ar: &Arranged, el: &Elim, mp: &[[[f64; 12]; 12]; 3], phi: f64, x: f64) -> [f64; 6] {
+fn back_substitute(
+    ar: &Arranged,
+    el: &Elim,
+    mp: &[[[f64; 12]; 12]; 3],
+    phi: f64,
+    x: f64,
+) -> [f64; 6] {
     let mut m = [[0.0; 12]; 12];
     for r in 0..12 {
         for c in 0..12 {
@@ -636,14 +640,17 @@ fn back_substitute(ar: &Arranged, el: &Elim, mp: &[[[f64; 12]; 12]; 3], phi: f64
         for k in i + 1..8 {
             s -= el.r[i][k] * z[k];
         }
-        z[i] = if el.r[i][i] == 0.0 { 0.0 } else { s / el.r[i][i] };
+        z[i] = if el.r[i][i] == 0.0 {
+            0.0
+        } else {
+            s / el.r[i][i]
+        };
     }
     let mut x12 = [0.0; 9];
     x12[0] = 1.0;
     for i in 0..8 {
         x12[el.piv[i] + 1] = z[i];
     }
-    let _ = &el.bm;
     let t1 = x12[mono(2, 0)].atan2(x12[mono(1, 0)]);
     let t2 = x12[mono(0, 2)].atan2(x12[mono(0, 1)]);
     // θ6 from the rest: E6 = (E1 ⋯ E5)⁻¹ H, read about its axis.
@@ -723,7 +730,11 @@ fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(u
 /// The pose `E1(q1) ⋯ E6(q6) M` and each joint's current axis `(w, p)` (scaled lengths).
 #[allow(clippy::needless_range_loop)]
 fn forward(ax: &[GenAxis; 6], home: &B34, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
-    let mut p: B34 = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]];
+    let mut p: B34 = [
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 0.0],
+    ];
     let mut cur = [[0.0; 6]; 6];
     for i in 0..6 {
         let a = &ax[i];
@@ -895,9 +906,9 @@ pub fn gen_solve(
     }
     let mut hm = *home;
     let mut tg: B34 = [[0.0; 4]; 3];
+    tg.copy_from_slice(&target[..3]);
     for r in 0..3 {
         hm[r][3] /= len;
-        tg[r] = target[r];
         tg[r][3] /= len;
     }
     let prismatic: [bool; 6] = std::array::from_fn(|i| ax[i][0] != 0.0);
@@ -1035,9 +1046,7 @@ fn hessenberg(a: &mut [[f64; 24]; 24]) {
                 a[m][j] = t;
             }
             for j in 0..n {
-                let t = a[j][i];
-                a[j][i] = a[j][m];
-                a[j][m] = t;
+                a[j].swap(i, m);
             }
         }
         if x != 0.0 {
@@ -1085,7 +1094,16 @@ fn eigenvalues(a0: &mut [[f64; 24]; 24]) -> Option<[(f64, f64); 24]> {
     }
     let mut nn = n;
     let mut t = 0.0;
-    let (mut p, mut q, mut r, mut s, mut w, mut x, mut y, mut z): (f64, f64, f64, f64, f64, f64, f64, f64);
+    let (mut p, mut q, mut r, mut s, mut w, mut x, mut y, mut z): (
+        f64,
+        f64,
+        f64,
+        f64,
+        f64,
+        f64,
+        f64,
+        f64,
+    );
     (p, q, r) = (0.0, 0.0, 0.0);
     while nn >= 1 {
         let mut its = 0;
@@ -1179,7 +1197,7 @@ fn eigenvalues(a0: &mut [[f64; 24]; 24]) -> Option<[(f64, f64); 24]> {
                 }
             }
             let mut k = m;
-            while k <= nn - 1 {
+            while k < nn {
                 if k != m {
                     p = a!(k, k - 1);
                     q = a!(k + 1, k - 1);

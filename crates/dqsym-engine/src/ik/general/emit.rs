@@ -54,9 +54,16 @@ fn chain_code(sol: &IkSolution) -> Result<String, ScalarError> {
         }
     }
     for (id, name) in prog.temps() {
-        s.push_str(&format!("    let {name} = {};\n", prog.definition(id, &lit)));
+        s.push_str(&format!(
+            "    let {name} = {};\n",
+            prog.definition(id, &lit)
+        ));
     }
-    let ids: Vec<_> = prog.outputs.iter().flat_map(|(_, ids)| ids.clone()).collect();
+    let ids: Vec<_> = prog
+        .outputs
+        .iter()
+        .flat_map(|(_, ids)| ids.clone())
+        .collect();
     let code = |i: usize| prog.code(ids[i], &lit);
     let ax: Vec<String> = (0..6)
         .map(|i| {

@@ -155,7 +155,12 @@ pub fn elimination_lines(sol: &IkSolution, info: &GeneralInfo) -> Vec<String> {
             v.get(k).map_or("?", String::as_str)
         })
         .collect();
-    let t = TARGET_SYMBOLS.iter().flatten().copied().collect::<Vec<_>>().join(" ");
+    let t = TARGET_SYMBOLS
+        .iter()
+        .flatten()
+        .copied()
+        .collect::<Vec<_>>()
+        .join(" ");
     let mut out = vec![
         format!(
             "loop read as {} (joint order{}), target G = T M^-1 from {t}",
