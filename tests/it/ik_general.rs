@@ -361,3 +361,81 @@ let ns = start.elapsed().as_nanos() as f64 / (20.0 * ts.len() as f64);\n    prin
         eprintln!("generated Rust general solver, {name}: {time} (ns per pose, solutions found)");
     }
 }
+
+/// Near a wrist singular set (PUMA 560 through `--method general`, `θ5` at 1e-12 .. 1e-3 and
+/// on it): nothing that misses the pose is returned unflagged, and some solution reproduces
+/// the pose.
+#[test]
+fn near_a_wrist_singularity_nothing_wrong_is_unflagged() {
+    let rows = puma(0.0);
+    let sol = derive("puma560", &rows, IkMethod::General);
+    let len = size(&rows);
+    let mut rng = Rng::new(41);
+    for delta in [0.0, 1e-12, 1e-9, 1e-6, 1e-3] {
+        for _ in 0..40 {
+            let mut q: Vec<f64> = (0..6).map(|_| rng.range(-PI, PI)).collect();
+            q[4] = delta;
+            let t = dh_pose(&rows, &q);
+            let sols = sol.solve_numeric(&t, &[]).expect("solve");
+            assert!(sols.len() <= 16);
+            for s in &sols {
+                let dev = deviation(&t, &dh_pose(&rows, &s.q), len);
+                assert!(
+                    s.approximate || dev <= 1e-9,
+                    "delta {delta}: {:?} misses by {dev} unflagged",
+                    s.q
+                );
+                assert!(!s.approximate || s.residual > 1e-10, "{s:?}");
+            }
+            assert!(
+                sols.iter().any(|s| !s.approximate),
+                "delta {delta}: no solution at {q:?}: {sols:?}"
+            );
+        }
+    }
+}
+
+/// A 7R arm no free joint reduces to a family: the first joint becomes the free parameter and
+/// the other six are solved by the general method (also with `--free` on an inner joint).
+#[test]
+fn seven_joint_arm_with_a_free_joint_by_the_general_method() {
+    let rows: Vec<Row> = (0..7)
+        .map(|i| row(0.1 + 0.05 * i as f64, 0.2, A60))
+        .collect();
+    let text = dh_toml("skew 7R", &rows);
+    let robot = dqsym::parse_robot(&text, "skew 7R", &dqsym::eval_scalar_text).expect("robot");
+    for free in [None, Some(3usize)] {
+        let opts = IkOptions {
+            free: free.map(|k| format!("q{}", k + 1)),
+            method: IkMethod::Auto,
+        };
+        let sol = solve(&robot, &opts).expect("7R");
+        assert!(sol.general.is_some(), "{}", sol.family);
+        let k = free.unwrap_or(0);
+        let name = format!("q{}", k + 1);
+        assert_eq!(sol.free.as_deref(), Some(name.as_str()));
+        let len = size(&rows);
+        let mut rng = Rng::new(51 + k as u64);
+        for _ in 0..200 {
+            let q: Vec<f64> = (0..7).map(|_| rng.range(-PI, PI)).collect();
+            let t = dh_pose(&rows, &q);
+            let sols = sol
+                .solve_numeric(&t, &[(name.as_str(), q[k])])
+                .expect("solve");
+            assert!(sols.len() <= 16);
+            let mut rest = q.clone();
+            rest.remove(k);
+            for s in sols.iter().filter(|s| !s.approximate) {
+                let mut full = s.q.clone();
+                full.insert(k, q[k]);
+                let dev = deviation(&t, &dh_pose(&rows, &full), len);
+                assert!(dev <= 1e-9, "{full:?} misses by {dev}");
+            }
+            assert!(
+                sols.iter()
+                    .any(|s| !s.approximate && dist(&s.q, &rest) <= 1e-6),
+                "{q:?} not among {sols:?}"
+            );
+        }
+    }
+}

@@ -115,7 +115,8 @@ pub fn ik_rust(sol: &IkSolution) -> Result<String, ScalarError> {
     s.push_str(&format!(
         "\n/// The most solutions the solver returns.\npub const IK_MAX: usize = 16;\n\
 /// The residual above which a solution is flagged approximate.\npub const IK_POSE_TOL: f64 = {};\n\
-/// The residual above which a root of the elimination is dropped (no solution).\npub const IK_KEEP_TOL: f64 = {};\n\n\
+/// The residual above which a root of the elimination is dropped (no solution).\npub const IK_KEEP_TOL: f64 = {};\n\
+/// The arrangement of the loop tried first (the one that served at the derivation).\nconst IK_FIRST_ARRANGEMENT: usize = {};\n\n\
 /// The solutions: `q` in joint order, with their flags.\n\
 #[derive(Clone, Copy, Debug, PartialEq)]\npub struct IkSolutions {{\n    /// Joint vectors.\n    pub q: [[f64; 6]; IK_MAX],\n    \
 /// Never set by the general method.\n    pub singular: [bool; IK_MAX],\n    /// The pose misses the target by more than IK_POSE_TOL.\n    pub approximate: [bool; IK_MAX],\n    \
@@ -123,6 +124,7 @@ pub fn ik_rust(sol: &IkSolution) -> Result<String, ScalarError> {
 impl Default for IkSolutions {{\n    fn default() -> Self {{\n        IkSolutions {{ q: [[0.0; 6]; IK_MAX], singular: [false; IK_MAX], approximate: [false; IK_MAX], residual: [0.0; IK_MAX], n: 0 }}\n    }}\n}}\n\n",
         float_literal(check::POSE_TOL),
         float_literal(super::KEEP_TOL),
+        sol.general.as_ref().map_or(0, super::GeneralInfo::index),
     ));
     s.push_str("/// The numeric core of the general 6R solver.\n#[allow(dead_code, clippy::all)]\nmod ik_general {\n");
     s.push_str(CORE);
@@ -143,7 +145,7 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4]{params}) {{\n
     ik_len = ik_len.max(ik_target[0][3].abs() + ik_target[1][3].abs() + ik_target[2][3].abs());\n\
     if !(ik_len > 0.0 && ik_len.is_finite()) {\n        ik_len = 1.0;\n    }\n\
     let tol = ik_general::GenTol { pose: IK_POSE_TOL, keep: IK_KEEP_TOL };\n\
-    let o = ik_general::gen_solve(&ik_ax, &ik_home, ik_target, ik_len, tol);\n\
+    let o = ik_general::gen_solve(&ik_ax, &ik_home, ik_target, ik_len, tol, IK_FIRST_ARRANGEMENT);\n\
     ik_out.n = o.n;\n\
     for i in 0..o.n {\n        ik_out.q[i] = o.q[i];\n        ik_out.singular[i] = false;\n        \
 ik_out.residual[i] = o.residual[i];\n        ik_out.approximate[i] = o.residual[i] > IK_POSE_TOL || o.residual[i].is_nan();\n    }\n}\n\n",

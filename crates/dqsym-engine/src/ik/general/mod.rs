@@ -62,6 +62,13 @@ pub struct GeneralInfo {
     pub arrangement: (bool, usize),
 }
 
+impl GeneralInfo {
+    /// The arrangement as the core numbers it: `shift + 6 reversed`.
+    pub fn index(&self) -> usize {
+        self.arrangement.1 + 6 * usize::from(self.arrangement.0)
+    }
+}
+
 /// The most residual a candidate may keep and still be returned (flagged approximate): a
 /// thousand times a pose tolerance of `1e-9`, so that a solution near a singular set, whose
 /// refinement stalls at the residual over the distance to the set, is returned flagged rather
@@ -89,7 +96,8 @@ pub(crate) fn solve_numeric(
     let env = |n: &str| params.iter().find(|(k, _)| *k == n).map(|(_, v)| *v);
     let (axes, home) = check::axis_data(sol, &env)?;
     let len = check::scale(&axes, &home, target);
-    let out = run(&axes, &home, target, len)?;
+    let first = sol.general.as_ref().map_or(0, GeneralInfo::index);
+    let out = run(&axes, &home, target, len, first)?;
     Ok((0..out.n)
         .map(|i| NumSolution {
             q: out.q[i].to_vec(),
@@ -105,11 +113,12 @@ fn run(
     home: &[[f64; 4]; 3],
     target: &[[f64; 4]; 4],
     len: f64,
+    first: usize,
 ) -> Result<core::GenOut, String> {
     let ax: [AxisData; 6] = axes
         .try_into()
         .map_err(|_| format!("the general method needs 6 joints, not {}", axes.len()))?;
-    Ok(core::gen_solve(&ax, home, target, len, tol()))
+    Ok(core::gen_solve(&ax, home, target, len, tol(), first))
 }
 
 /// The degree reached and the arrangement at a generic target: the parameters at `0.55 +
@@ -135,7 +144,7 @@ pub(crate) fn info(sol: &IkSolution) -> GeneralInfo {
     t[..3].copy_from_slice(&f);
     t[3][3] = 1.0;
     let len = check::scale(&axes, &home, &t);
-    match run(&axes, &home, &t, len) {
+    match run(&axes, &home, &t, len, 0) {
         Ok(o) if o.n_arr > 0 => GeneralInfo {
             degree: o.degree,
             arrangement: (o.arrangements[0] >= 6, o.arrangements[0] % 6),
