@@ -743,15 +743,23 @@ fn ik_command_prints_the_derivation_and_fails_clearly() {
     assert_eq!(blocks.len(), 6);
     crate::tools::katex_all(&blocks, "ik --format latex");
     let bad = std::process::Command::new(env!("CARGO_BIN_EXE_dqsym"))
-        .args(["ik", &format!("{ROBOTS}six_r.toml"), "--method", "family"])
+        .args(["ik", &format!("{ROBOTS}six_r.toml")])
         .output()
         .expect("run");
     assert_eq!(bad.status.code(), Some(1));
     let err = String::from_utf8_lossy(&bad.stderr);
     assert!(err.contains("no closed-form inverse kinematics"), "{err}");
-    // The default method solves it by the general elimination and says so.
+    // Three parallel axes and a spherical wrist: the general method's elimination is
+    // degenerate in every arrangement, and the error says so.
+    assert!(err.contains("degenerate for this geometry"), "{err}");
+    // The PUMA forced through the general method prints the elimination and its degree.
     let general = std::process::Command::new(env!("CARGO_BIN_EXE_dqsym"))
-        .args(["ik", &format!("{ROBOTS}six_r.toml")])
+        .args([
+            "ik",
+            &format!("{ROBOTS}puma560.toml"),
+            "--method",
+            "general",
+        ])
         .output()
         .expect("run");
     assert_eq!(general.status.code(), Some(0));

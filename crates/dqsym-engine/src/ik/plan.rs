@@ -622,7 +622,26 @@ fn derive_fixed(
         degrees: std::sync::OnceLock::new(),
     };
     if sol.steps.is_empty() && sol.family.template == GENERAL {
-        sol.general = Some(super::general::info(&sol));
+        let info = super::general::info(&sol);
+        if info.degree == 0 {
+            // Every arrangement of the loop is degenerate here (three parallel axes with a
+            // spherical wrist, say): the elimination gives no polynomial.
+            let mut g: Vec<String> = sol.geometry.iter().map(Fact::to_string).collect();
+            g.push(
+                "the general 6R elimination is degenerate for this geometry in every arrangement"
+                    .into(),
+            );
+            return Err(IkError::Unsupported {
+                robot: name.to_string(),
+                geometry: g
+                    .iter()
+                    .map(|l| format!("  {l}"))
+                    .collect::<Vec<_>>()
+                    .join("\n"),
+                families: FAMILIES.into(),
+            });
+        }
+        sol.general = Some(info);
     }
     Ok(sol)
 }

@@ -282,6 +282,13 @@ fn header(sol: &IkSolution) -> Vec<String> {
             sol.params.join(", ")
         }
     ));
+    if let Some(info) = &sol.general {
+        out.push(format!(
+            "solutions: at most 16 (the real roots of one polynomial of degree {}), all at once",
+            info.degree
+        ));
+        return out;
+    }
     let names: Vec<String> = sol
         .steps
         .iter()
