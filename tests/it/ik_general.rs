@@ -439,3 +439,66 @@ fn seven_joint_arm_with_a_free_joint_by_the_general_method() {
         }
     }
 }
+
+/// The generated Python (NumPy) solver of Jaco and the skew arm returns the reference
+/// solver's exact solutions at 40 poses each, the original configuration among them.
+#[test]
+fn generated_python_solver_agrees_with_the_reference() {
+    for (name, rows) in [("jaco", jaco()), ("skew", skew_offset())] {
+        let sol = derive(name, &rows, IkMethod::Auto);
+        let code = dqsym::ik::ik_python(&sol).expect("python");
+        let script = format!(
+            "{code}\n\nimport sys\nfor line in sys.stdin:\n    v = [float(x) for x in line.split()]\n    \
+T = np.array(v[:16]).reshape(4, 4)\n    sols = ik_full(T)\n    assert [list(q) for q, _, _, _ in sols] == ik(T)\n    \
+print(len(sols))\n    for q, sg, ap, _ in sols:\n        print(' '.join(repr(x) for x in q), int(ap))\n"
+        );
+        let mut rng = Rng::new(61);
+        let qs: Vec<Vec<f64>> = (0..40)
+            .map(|_| (0..6).map(|_| rng.range(-PI, PI)).collect())
+            .collect();
+        let input: String = qs
+            .iter()
+            .map(|q| {
+                let t = dh_pose(&rows, q);
+                let v: Vec<String> = t.iter().flatten().map(|x| format!("{x:e}")).collect();
+                v.join(" ") + "\n"
+            })
+            .collect();
+        let out = crate::tools::run_python(&script, &input, "numpy");
+        let mut lines = out.lines();
+        let len = size(&rows);
+        for q in &qs {
+            let t = dh_pose(&rows, q);
+            let reference: Vec<NumSolution> = sol
+                .solve_numeric(&t, &[])
+                .expect("reference")
+                .into_iter()
+                .filter(|s| !s.approximate)
+                .collect();
+            let n: usize = lines.next().expect("count").parse().expect("n");
+            let mut got = Vec::new();
+            for _ in 0..n {
+                let v: Vec<f64> = lines
+                    .next()
+                    .expect("row")
+                    .split_whitespace()
+                    .map(|x| x.parse().expect("number"))
+                    .collect();
+                if v[6] == 0.0 {
+                    let dev = deviation(&t, &dh_pose(&rows, &v[..6]), len);
+                    assert!(dev <= 1e-9, "{name}: Python {v:?} misses by {dev}");
+                    got.push(v);
+                }
+            }
+            for r in &reference {
+                assert!(
+                    got.iter().any(|g| dist(&g[..6], &r.q) <= 1e-7),
+                    "{name}: {:?} not in the Python solver's {got:?}",
+                    r.q
+                );
+            }
+            assert_eq!(got.len(), reference.len(), "{name} at {q:?}");
+            assert!(got.iter().any(|g| dist(&g[..6], q) <= 1e-6));
+        }
+    }
+}

@@ -1623,7 +1623,7 @@ static void ik_dq_matrix(const double q[8], double T[4][4]) {
 /// A closed form that fails.
 pub fn ik_python(sol: &IkSolution) -> Result<String, ScalarError> {
     if sol.general.is_some() {
-        return Err(super::general::emit::not_generated("Python"));
+        return super::general::emit::ik_python(sol);
     }
     let sol = &*super::safe::solution(sol, names::Lang::Python);
     let c = ctx(sol, Lang::Python)?;
