@@ -180,11 +180,11 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4]{params}) {{\n
     ik_len = ik_len.max(ik_home[0][3].abs() + ik_home[1][3].abs() + ik_home[2][3].abs());\n\
     ik_len = ik_len.max(ik_target[0][3].abs() + ik_target[1][3].abs() + ik_target[2][3].abs());\n\
     if !(ik_len > 0.0 && ik_len.is_finite()) {\n        ik_len = 1.0;\n    }\n\
-    let tol = ik_general::GenTol { pose: IK_POSE_TOL, keep: IK_KEEP_TOL };\n\
-    let o = ik_general::gen_solve(&ik_ax, &ik_home, ik_target, ik_len, tol, IK_FIRST_ARRANGEMENT);\n\
-    ik_out.n = o.n;\n\
-    for i in 0..o.n {\n        ik_out.q[i] = o.q[i];\n        ik_out.singular[i] = false;\n        \
-ik_out.residual[i] = o.residual[i];\n        ik_out.approximate[i] = o.residual[i] > IK_POSE_TOL || o.residual[i].is_nan();\n    }\n}\n\n",
+    let ik_tol = ik_general::GenTol { pose: IK_POSE_TOL, keep: IK_KEEP_TOL };\n\
+    let ik_o = ik_general::gen_solve(&ik_ax, &ik_home, ik_target, ik_len, ik_tol, IK_FIRST_ARRANGEMENT);\n\
+    ik_out.n = ik_o.n;\n\
+    for i in 0..ik_o.n {\n        ik_out.q[i] = ik_o.q[i];\n        ik_out.singular[i] = false;\n        \
+ik_out.residual[i] = ik_o.residual[i];\n        ik_out.approximate[i] = ik_o.residual[i] > IK_POSE_TOL || ik_o.residual[i].is_nan();\n    }\n}\n\n",
     );
     s.push_str(&format!(
         "/// Every solution for the target pose `t` (row-major homogeneous matrix).\n\
