@@ -192,7 +192,7 @@ def _refine(ax, home, t, q):
     res = np.max(np.abs(e))
     lam = 1e-12
     for _ in range(16):
-        if not res > 1e-15:
+        if not res > 1e-14:
             break
         cols = []
         for d, o in cur:

@@ -818,7 +818,8 @@ fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -> f64 {
     let (mut e, mut res) = error(&f, t);
     let mut lambda = 1e-12;
     for _ in 0..16 {
-        if res <= 1e-15 || res.is_nan() {
+        // As ik::check::refine: below CHECK_TOL / 1000 the pose is exact to rounding.
+        if res <= 1e-14 || res.is_nan() {
             break;
         }
         let mut cols = [[0.0; 12]; 6];
