@@ -502,3 +502,29 @@ print(len(sols))\n    for q, sg, ap, _ in sols:\n        print(' '.join(repr(x) 
         }
     }
 }
+
+/// The report (plain and LaTeX) and the walkthrough state the elimination and the degree the
+/// derivation reached; C is refused with a clear error.
+#[test]
+fn report_and_walkthrough_state_the_elimination_and_its_degree() {
+    let rows = skew_offset();
+    let text = dh_toml("skew", &rows);
+    let robot = dqsym::parse_robot(&text, "skew", &dqsym::eval_scalar_text).expect("robot");
+    let sol = solve(&robot, &IkOptions::default()).expect("ik");
+    let degree = sol.general.as_ref().expect("general").degree;
+    let plain = dqsym::ik::ik_report(&sol, dqsym::Format::Plain, true).expect("plain");
+    assert!(plain.contains("general 6R"), "{plain}");
+    assert!(
+        plain.contains(&format!("degree reached at a generic target: {degree}")),
+        "{plain}"
+    );
+    let latex = dqsym::ik::ik_report(&sol, dqsym::Format::Latex, true).expect("latex");
+    assert!(latex.contains(&format!("\\deg p = {degree}")), "{latex}");
+    let c = dqsym::ik::ik_c(&sol).expect_err("no C solver").to_string();
+    assert!(c.contains("no C solver"), "{c}");
+    let w = dqsym::walk::walk_ik(&robot, &sol).expect("walk");
+    let t = dqsym::walk_text(&w).expect("text");
+    assert!(t.contains("The general 6R elimination"), "{t}");
+    assert!(t.contains("det M(x) = 0"), "{t}");
+    assert!(t.contains("the results agree"), "{t}");
+}
