@@ -164,7 +164,7 @@ def _candidates(j, h, perm, am, bm, sig):
     k[12:, 12:] = -a_inv @ mp[1]
     out = []
     for z in np.linalg.eigvals(k):
-        if np.isfinite(z) and abs(z.imag) <= 1e-5 * (1 + abs(z.real)):
+        if np.isfinite(z) and abs(z.imag) <= 1e-3 * (1 + abs(z.real)):
             t = _back(j, h, am, bm, mp, phi, float(z.real))
             q = [0.0] * 6
             for i in range(6):
@@ -236,7 +236,7 @@ def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
     used = 0
     order = [first % 12] + [k for k in range(12) if k != first % 12]
     for arr in order:
-        if used == 3:
+        if used == 12:
             break
         j, h, perm = _arranged(js, g, arr)
         am, bm, ratio, sig = _elim(j, h)

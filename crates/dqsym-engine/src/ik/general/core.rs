@@ -37,9 +37,9 @@ pub struct GenOut {
     /// The degree of the univariate polynomial of the first arrangement used (the finite
     /// eigenvalues of the linearisation other than the spurious `±i`); 0 when none was usable.
     pub degree: usize,
-    /// The arrangements used: `(reversed, shift)` packed as `shift + 6 reversed`.
+    /// The first three arrangements used: `(reversed, shift)` packed as `shift + 6 reversed`.
     pub arrangements: [usize; 3],
-    /// How many arrangements were used.
+    /// How many arrangements were used (at most 12).
     pub n_arr: usize,
 }
 
@@ -702,6 +702,12 @@ fn back_substitute(
     [t1, t2, t3, t4, t5, t6]
 }
 
+/// The imaginary part (relative) below which an eigenvalue is taken as a real root: a double
+/// root, or two close real roots of a nearly special arm, split into a complex pair by rounding
+/// with an imaginary part up to the square root of the perturbation; candidates that are no
+/// solution are dropped by the forward-kinematics check after refinement.
+const NEAR_REAL: f64 = 1e-3;
+
 /// The candidates of one arrangement: its real roots, each with the arm's joint vector (not
 /// yet refined), and the degree reached; `None` when the arrangement is degenerate here.
 fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(usize, usize)> {
@@ -735,7 +741,7 @@ fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(u
         }
         // A real root, or a pair split by rounding (a double root near a singular set): the
         // refinement and the check by forward kinematics decide.
-        if im.abs() <= 1e-5 * (1.0 + re.abs()) && re.is_finite() {
+        if im.abs() <= NEAR_REAL * (1.0 + re.abs()) && re.is_finite() {
             let t = back_substitute(ar, el, &mp, phi, re);
             let mut q = [0.0; 6];
             for i in 0..6 {
@@ -954,7 +960,9 @@ pub fn gen_solve(
         } else {
             k
         };
-        if out.n_arr == 3 {
+        // Incomplete sets try every usable arrangement (a nearly special arm has nearly double
+        // roots in several of them).
+        if out.n_arr == 12 {
             break;
         }
         let ar = Arranged::new(&js, &g, arr);
@@ -970,7 +978,9 @@ pub fn gen_solve(
         if out.n_arr == 0 {
             out.degree = degree;
         }
-        out.arrangements[out.n_arr] = arr;
+        if out.n_arr < 3 {
+            out.arrangements[out.n_arr] = arr;
+        }
         out.n_arr += 1;
         // The solutions this arrangement's roots reached (exactly).
         let mut hit = [false; GEN_MAX];
