@@ -30,6 +30,7 @@ fn derive(r: &dqsym::Robot, free: Option<&str>) -> String {
         r,
         &dqsym::ik::IkOptions {
             free: free.map(str::to_string),
+            ..Default::default()
         },
     )
     .expect("ik");

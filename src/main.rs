@@ -250,6 +250,10 @@ enum Command {
         /// A joint variable given as a parameter (7-joint arms): `--free theta3`.
         #[arg(long, value_name = "VARIABLE")]
         free: Option<String>,
+        /// The method: auto (a special family when one applies, else the general 6R
+        /// elimination), family (the special families only), general (the elimination).
+        #[arg(long, value_name = "METHOD", default_value = "auto", value_parser = ["auto", "family", "general"])]
+        method: String,
         #[command(flatten)]
         robot_args: RobotArgs,
     },
@@ -610,10 +614,11 @@ fn dispatch(cli: Cli) -> ExitCode {
             Some(Command::Ik {
                 robot,
                 free,
+                method,
                 robot_args,
             }),
             _,
-        ) => ik(&robot, free, &robot_args, format, cli.explicit),
+        ) => ik(&robot, free, &method, &robot_args, format, cli.explicit),
         (Some(Command::Paper), _) => match dqsym::paper(&PlainOptions {
             shorthand: !cli.explicit,
             decimals: false,
@@ -676,6 +681,7 @@ fn dispatch(cli: Cli) -> ExitCode {
 fn ik(
     path: &std::path::Path,
     free: Option<String>,
+    method: &str,
     robot_args: &RobotArgs,
     format: OutputFormat,
     explicit: bool,
@@ -688,8 +694,13 @@ fn ik(
         Ok(r) => r,
         Err(m) => return fail(m),
     };
+    let Some(method) = dqsym::ik::IkMethod::parse(method) else {
+        return fail(format!(
+            "--method {method}: expected auto, family or general"
+        ));
+    };
     let _derivation = dqsym::Context::entered().enter();
-    let sol = match dqsym::ik::solve(&robot, &dqsym::ik::IkOptions { free }) {
+    let sol = match dqsym::ik::solve(&robot, &dqsym::ik::IkOptions { free, method }) {
         Ok(s) => s,
         Err(e) => return fail(e.to_string()),
     };
@@ -724,7 +735,13 @@ fn walk_ik(
         Err(m) => return fail(m),
     };
     let _derivation = dqsym::Context::entered().enter();
-    let sol = match dqsym::ik::solve(&robot, &dqsym::ik::IkOptions { free }) {
+    let sol = match dqsym::ik::solve(
+        &robot,
+        &dqsym::ik::IkOptions {
+            free,
+            ..Default::default()
+        },
+    ) {
         Ok(s) => s,
         Err(e) => return fail(e.to_string()),
     };

@@ -173,8 +173,16 @@ fn ik_command(session: &Session, cmd: &str, opts: &ShowOptions) -> Result<String
     };
     let vars: Vec<String> = vars.iter().map(|v| v.to_string()).collect();
     let _derivation = dqsym::Context::entered().enter();
-    let sol = dqsym::ik::solve_dq(name, &q, &vars, &dqsym::ik::IkOptions { free })
-        .map_err(|e| e.to_string())?;
+    let sol = dqsym::ik::solve_dq(
+        name,
+        &q,
+        &vars,
+        &dqsym::ik::IkOptions {
+            free,
+            ..Default::default()
+        },
+    )
+    .map_err(|e| e.to_string())?;
     // The report, in LaTeX or SymPy when those are the session's format, else in plain text.
     let format = match opts.format {
         f @ (dqsym::Format::Latex | dqsym::Format::Sympy) => f,

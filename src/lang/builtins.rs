@@ -872,8 +872,16 @@ fn ik(vals: &[Arg]) -> Result<Value> {
             }
         }
     }
-    let sol = crate::ik::solve_dq("chain", &q, &vars, &crate::ik::IkOptions { free })
-        .map_err(|e| invalid(&format!("ik: {e}"), vals[0].span))?;
+    let sol = crate::ik::solve_dq(
+        "chain",
+        &q,
+        &vars,
+        &crate::ik::IkOptions {
+            free,
+            ..Default::default()
+        },
+    )
+    .map_err(|e| invalid(&format!("ik: {e}"), vals[0].span))?;
     let at = |x: &Scalar| -> Scalar {
         let mut y = x.clone();
         if let Some(t) = &target {

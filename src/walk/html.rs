@@ -462,6 +462,12 @@ pub fn ik_walk_html(
     katex: &KatexAssets,
     cfg: &Config,
 ) -> Result<String, WalkError> {
+    if sol.general.is_some() {
+        return Err(WalkError::Config(
+            "the IK page has no solver for the general 6R method yet (the text walkthrough shows its steps)"
+                .to_owned(),
+        ));
+    }
     let title = format!("Inverse kinematics walkthrough: {}", sol.robot);
     page_html(w, &title, katex, cfg, Some(sol))
 }

@@ -63,6 +63,16 @@ pub fn walk_ik(robot: &Robot, sol: &IkSolution) -> Result<Walkthrough, WalkError
             blocks,
         });
     }
+    if let Some(info) = &sol.general {
+        let blocks = crate::ik::general::elimination_lines(sol, info)
+            .into_iter()
+            .map(|l| Block::Text(Prose::text(l)))
+            .collect();
+        steps.push(Step::Explain {
+            title: Prose::text("The general 6R elimination".to_owned()),
+            blocks,
+        });
+    }
     steps.push(solutions_step(sol, &mechanism, &scene)?);
     let mut w = Walkthrough {
         title: format!("inverse kinematics of {}", sol.robot),

@@ -80,6 +80,7 @@ pub(crate) fn derive(file: &str, free: Option<&str>) -> Result<IkSolution, IkErr
         &r,
         &IkOptions {
             free: free.map(str::to_string),
+            method: dqsym::ik::IkMethod::Family,
         },
     )
 }
@@ -466,11 +467,19 @@ fn robots_outside_the_families_get_the_clear_error() {
         (five, "joints: RRRRR (5)"),
     ] {
         let r = dqsym::parse_robot(&text, "inline", &dqsym::eval_scalar_text).expect("robot");
-        let e = solve(&r, &IkOptions::default())
-            .expect_err("unsupported")
-            .to_string();
+        let family = IkOptions {
+            method: dqsym::ik::IkMethod::Family,
+            ..IkOptions::default()
+        };
+        let e = solve(&r, &family).expect_err("unsupported").to_string();
         assert!(e.contains(found), "{e}");
         assert!(e.contains("no closed-form inverse kinematics"), "{e}");
+        // Without --method family, six revolute joints (or seven, one of them free) get the
+        // general method; the spatial RRR and the 5R stay errors.
+        match solve(&r, &IkOptions::default()) {
+            Ok(sol) => assert!(sol.general.is_some() && r.variables.len() >= 6, "{text}"),
+            Err(e) => assert!(r.variables.len() < 6, "{e}"),
+        }
     }
     // A bad --free names the joint variables.
     let e = derive("kuka_iiwa7", Some("theta9"))
@@ -740,6 +749,25 @@ fn ik_command_prints_the_derivation_and_fails_clearly() {
     assert_eq!(bad.status.code(), Some(1));
     let err = String::from_utf8_lossy(&bad.stderr);
     assert!(err.contains("no closed-form inverse kinematics"), "{err}");
+    // Three parallel axes and a spherical wrist: the general method's elimination is
+    // degenerate in every arrangement, and the error says so.
+    assert!(err.contains("degenerate for this geometry"), "{err}");
+    // The PUMA forced through the general method prints the elimination and its degree.
+    let general = std::process::Command::new(env!("CARGO_BIN_EXE_dqsym"))
+        .args([
+            "ik",
+            &format!("{ROBOTS}puma560.toml"),
+            "--method",
+            "general",
+        ])
+        .output()
+        .expect("run");
+    assert_eq!(general.status.code(), Some(0));
+    let out = String::from_utf8_lossy(&general.stdout);
+    assert!(
+        out.contains("general 6R") && out.contains("det M(x) = 0"),
+        "{out}"
+    );
 }
 
 #[test]

@@ -189,8 +189,10 @@ impl Arm {
     /// robot's name), with the free joint `free` or the one the solver picks.
     fn at(path: &str, known: &str, free: Option<&str>) -> Arm {
         let r = load(path);
+        // The families' solvers (the general method has its own tests, tests/it/ik_general.rs).
         let opts = dqsym::ik::IkOptions {
             free: free.map(str::to_string),
+            method: dqsym::ik::IkMethod::Family,
         };
         let sol = dqsym::ik::solve(&r, &opts).unwrap_or_else(|e| panic!("{path}: {e}"));
         let env = params(known);
@@ -688,6 +690,7 @@ fn panda_free_joints() -> Vec<Arm> {
     for v in &r.variables {
         let opts = dqsym::ik::IkOptions {
             free: Some(v.clone()),
+            method: dqsym::ik::IkMethod::Family,
         };
         match dqsym::ik::solve(&r, &opts) {
             Ok(_) => arms.push(Arm::at(&path, "panda", Some(v))),

@@ -191,6 +191,7 @@ impl Spec {
             &robot,
             &IkOptions {
                 free: free.map(str::to_string),
+                method: dqsym::ik::IkMethod::Family,
             },
         )
         .unwrap_or_else(|e| panic!("{} (free {free:?}): {e}", self.name));
@@ -818,6 +819,7 @@ fn every_free_joint_of_a_seven_joint_arm_that_leaves_a_family_is_found_and_solve
                     &robot,
                     &IkOptions {
                         free: Some(v.clone()),
+                        method: dqsym::ik::IkMethod::Family,
                     },
                 )
             })

@@ -16,6 +16,7 @@ mod geometric;
 mod hostile;
 mod ik;
 mod ik_edges;
+mod ik_general;
 mod ik_model;
 mod kinematics;
 mod lang;

@@ -726,7 +726,11 @@ fn every_example_page_works_at_phone_and_desktop_width_in_chromium() {
         // The mechanism alone (the page's own products are what is checked).
         let m = dqsym::walk::robot_mechanism(&robot);
         jobs.push((page_job(file, false), m.clone()));
-        match dqsym::ik::solve(&robot, &dqsym::ik::IkOptions::default()) {
+        let family = dqsym::ik::IkOptions {
+            method: dqsym::ik::IkMethod::Family,
+            ..Default::default()
+        };
+        match dqsym::ik::solve(&robot, &family) {
             Ok(_) => jobs.push((page_job(file, true), m)),
             // A geometry with no closed form has no IK page; the error says so.
             Err(e @ dqsym::ik::IkError::Unsupported { .. }) => {

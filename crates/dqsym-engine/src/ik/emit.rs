@@ -655,6 +655,9 @@ fn doc_lines(sol: &IkSolution, syntax: Comment) -> Vec<String> {
 /// # Errors
 /// A closed form that fails.
 pub fn ik_rust(sol: &IkSolution) -> Result<String, ScalarError> {
+    if sol.general.is_some() {
+        return super::general::emit::ik_rust(sol);
+    }
     let sol = &*super::safe::solution(sol, names::Lang::Rust);
     let c = ctx(sol, Lang::Rust)?;
     let n = sol.variables.len();
@@ -1172,6 +1175,9 @@ fn ik_dq_matrix(q: &[f64; 8]) -> [[f64; 4]; 4] {
 /// # Errors
 /// A closed form that fails.
 pub fn ik_c(sol: &IkSolution) -> Result<String, ScalarError> {
+    if sol.general.is_some() {
+        return Err(super::general::emit::not_generated("C"));
+    }
     let sol = &*super::safe::solution(sol, names::Lang::C);
     let c = ctx(sol, Lang::C)?;
     let n = sol.variables.len();
@@ -1616,6 +1622,9 @@ static void ik_dq_matrix(const double q[8], double T[4][4]) {
 /// # Errors
 /// A closed form that fails.
 pub fn ik_python(sol: &IkSolution) -> Result<String, ScalarError> {
+    if sol.general.is_some() {
+        return super::general::emit::ik_python(sol);
+    }
     let sol = &*super::safe::solution(sol, names::Lang::Python);
     let c = ctx(sol, Lang::Python)?;
     let kw = if sol.params.is_empty() {

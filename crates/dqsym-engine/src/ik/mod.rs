@@ -11,6 +11,7 @@
 pub mod axes;
 pub mod check;
 mod emit;
+pub mod general;
 mod plan;
 mod report;
 mod safe;
@@ -54,11 +55,38 @@ pub enum IkError {
     Scalar(#[from] ScalarError),
 }
 
+/// Which method derives the solver.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum IkMethod {
+    /// A special family when one applies, else the general 6R elimination ([`general`]).
+    #[default]
+    Auto,
+    /// The special families only (a geometry outside them is an error naming it).
+    Family,
+    /// The general 6R elimination, even where a family applies.
+    General,
+}
+
+impl IkMethod {
+    /// `auto`, `family` or `general`.
+    pub fn parse(s: &str) -> Option<IkMethod> {
+        match s {
+            "auto" => Some(IkMethod::Auto),
+            "family" => Some(IkMethod::Family),
+            "general" => Some(IkMethod::General),
+            _ => None,
+        }
+    }
+}
+
 /// What to derive.
 #[derive(Clone, Debug, Default)]
 pub struct IkOptions {
     /// A joint variable given as a parameter (a 7-joint arm becomes a 6-joint one).
     pub free: Option<String>,
+    /// The method.
+    pub method: IkMethod,
 }
 
 /// One joint's closed form.
@@ -307,6 +335,8 @@ pub struct IkSolution {
     /// The solved joints' axes in the home pose, in joint order (`FK = E1 ⋯ En M`): what the
     /// solvers check their solutions with.
     pub axes: Vec<Axis>,
+    /// Solved by the general 6R elimination (no steps): what it found at a generic target.
+    pub general: Option<general::GeneralInfo>,
     /// The closed forms of every step's parts, computed on first use.
     pub(crate) forms: std::sync::OnceLock<Result<Vec<Parts>, ScalarError>>,
     /// Each step's degree in lengths (`check::step_degrees`), computed on first use.
@@ -532,6 +562,9 @@ impl IkSolution {
             if !params.iter().any(|(n, _)| n == p) {
                 return Err(format!("no value for parameter `{p}`"));
             }
+        }
+        if self.general.is_some() {
+            return general::solve_numeric(self, target, params);
         }
         let mut env: Vec<(String, f64)> = params.iter().map(|(n, v)| (n.to_string(), *v)).collect();
         let (axes, home) =

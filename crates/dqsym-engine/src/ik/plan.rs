@@ -7,8 +7,8 @@ use super::axes::{
     Relation, V3,
 };
 use super::{
-    Branch, BranchPart, BranchSigns, Fact, Formula, FreeChoice, IkError, IkOptions, IkSolution,
-    IkStep, Phrase, Reach, TARGET_SYMBOLS,
+    Branch, BranchPart, BranchSigns, Fact, Formula, FreeChoice, IkError, IkMethod, IkOptions,
+    IkSolution, IkStep, Phrase, Reach, TARGET_SYMBOLS,
 };
 use crate::kin::{JointKind, Robot};
 use crate::{Matrix4, Scalar, ScalarError};
@@ -372,8 +372,10 @@ pub(crate) fn derive_axes(
         return first;
     }
     let try_free = |v: &String| {
+        // Families first for every choice of the free joint; the general method below.
         let o = IkOptions {
             free: Some(v.clone()),
+            method: IkMethod::Family,
         };
         derive_fixed(
             name,
@@ -390,6 +392,7 @@ pub(crate) fn derive_axes(
             // target), then the inner joints in order.
             let n = variables.len();
             let order = [0, n - 1].into_iter().chain(1..n - 1);
+            let order = order.filter(|_| opts.method != IkMethod::General);
             for k in order {
                 let v = &variables[k];
                 match try_free(v) {
@@ -412,6 +415,31 @@ pub(crate) fn derive_axes(
                     }
                     Err(IkError::Unsupported { .. }) => {}
                     Err(e) => return Err(e),
+                }
+            }
+            if opts.method != IkMethod::Family {
+                // No family with any free joint: the first joint free, the general method.
+                let o = IkOptions {
+                    free: Some(variables[0].clone()),
+                    method: IkMethod::General,
+                };
+                let g = derive_fixed(
+                    name,
+                    variables,
+                    params.clone(),
+                    axes.clone(),
+                    home.clone(),
+                    &o,
+                );
+                if let Ok(mut sol) = g {
+                    sol.geometry.insert(
+                        0,
+                        Fact::FreeChosen {
+                            variable: variables[0].clone(),
+                            which: FreeChoice::First,
+                        },
+                    );
+                    return Ok(sol);
                 }
             }
             first.map_err(|e| with_line(e, "no joint given as --free leaves a supported family"))
@@ -515,7 +543,11 @@ fn derive_fixed(
         scale: None,
         reach: Reach::Pose,
     };
-    let attempt = family(&mut b, &target);
+    let attempt = if opts.method == IkMethod::General {
+        Ok(None)
+    } else {
+        family(&mut b, &target)
+    };
     let unsupported = |why: Option<String>| IkError::Unsupported {
         robot: name.to_string(),
         geometry: {
@@ -534,10 +566,16 @@ fn derive_fixed(
     crate::scalar::charge(0)?;
     first_error(axes.iter().flat_map(|a| a.dir.iter().chain(&a.point)))?;
     first_error(home.rows.iter().flatten())?;
+    let general = opts.method != IkMethod::Family && super::general::applies(&axes);
     let (family, position_only) = match attempt {
         Ok(Some(f)) => f,
-        Ok(None) => return Err(unsupported(None)),
         Err(PlanError::Scalar(e)) => return Err(IkError::Scalar(e)),
+        Ok(None) | Err(_) if general => {
+            b.steps.clear();
+            b.reach = Reach::Pose;
+            (GENERAL.into(), false)
+        }
+        Ok(None) => return Err(unsupported(None)),
         Err(m) => return Err(unsupported(Some(m.to_string()))),
     };
     let mut conditions = Vec::new();
@@ -565,7 +603,7 @@ fn derive_fixed(
         .filter(|v| Some(*v) != opts.free.as_ref())
         .cloned()
         .collect();
-    Ok(IkSolution {
+    let mut sol = IkSolution {
         robot: name.to_string(),
         family,
         geometry,
@@ -579,10 +617,38 @@ fn derive_fixed(
         home,
         end: super::EndFrame::default(),
         axes,
+        general: None,
         forms: std::sync::OnceLock::new(),
         degrees: std::sync::OnceLock::new(),
-    })
+    };
+    if sol.steps.is_empty() && sol.family.template == GENERAL {
+        let info = super::general::info(&sol);
+        if info.degree == 0 {
+            // Every arrangement of the loop is degenerate here (three parallel axes with a
+            // spherical wrist, say): the elimination gives no polynomial.
+            let mut g: Vec<String> = sol.geometry.iter().map(Fact::to_string).collect();
+            g.push(
+                "the general 6R elimination is degenerate for this geometry in every arrangement"
+                    .into(),
+            );
+            return Err(IkError::Unsupported {
+                robot: name.to_string(),
+                geometry: g
+                    .iter()
+                    .map(|l| format!("  {l}"))
+                    .collect::<Vec<_>>()
+                    .join("\n"),
+                families: FAMILIES.into(),
+            });
+        }
+        sol.general = Some(info);
+    }
+    Ok(sol)
 }
+
+/// The family line of a solution by the general method.
+pub(crate) const GENERAL: &str =
+    "general 6R: Raghavan-Roth elimination to one polynomial in tan(theta/2) (Manocha-Canny matrix form)";
 
 /// Tries every family in turn; `Ok(None)` when none applies.
 fn family(b: &mut Builder, t: &Target) -> Result<Option<(Phrase, bool)>, PlanError> {

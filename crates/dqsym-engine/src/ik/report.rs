@@ -282,6 +282,13 @@ fn header(sol: &IkSolution) -> Vec<String> {
             sol.params.join(", ")
         }
     ));
+    if let Some(info) = &sol.general {
+        out.push(format!(
+            "solutions: at most 16 (the real roots of one polynomial of degree {}), all at once",
+            info.degree
+        ));
+        return out;
+    }
     let names: Vec<String> = sol
         .steps
         .iter()
@@ -333,6 +340,12 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
                 out.push_str(&crate::emit::names::printable(&l));
                 out.push('\n');
             }
+            if let Some(info) = &sol.general {
+                out.push_str("\nelimination\n");
+                for l in super::general::elimination_lines(sol, info) {
+                    out.push_str(&format!("  {}\n", crate::emit::names::printable(&l)));
+                }
+            }
             for (step, parts) in sol.steps.iter().zip(all) {
                 out.push('\n');
                 out.push_str(&step.variable);
@@ -376,6 +389,12 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
             for l in header(sol) {
                 out.push_str(&line_comment(Comment::Latex, "%", &l));
             }
+            if let Some(info) = &sol.general {
+                for l in super::general::elimination_lines(sol, info) {
+                    out.push_str(&line_comment(Comment::Latex, "%", &l));
+                }
+                out.push_str(&general_latex(info));
+            }
             for (step, parts) in sol.steps.iter().zip(all) {
                 let q = latex_symbol(&step.variable);
                 out.push_str(&format!("% {}\n", step.method));
@@ -414,6 +433,11 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
             for l in header(sol) {
                 out.push_str(&line_comment(Comment::Hash, "#", &l));
             }
+            if let Some(info) = &sol.general {
+                for l in super::general::elimination_lines(sol, info) {
+                    out.push_str(&line_comment(Comment::Hash, "#", &l));
+                }
+            }
             for (step, parts) in sol.steps.iter().zip(all) {
                 let q = &step.variable;
                 out.push_str(&format!("# {}\n", step.method));
@@ -436,4 +460,14 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
         }
     }
     Ok(out)
+}
+
+/// The general method's polynomial as a LaTeX block: the matrix polynomial and its degree.
+fn general_latex(info: &super::general::GeneralInfo) -> String {
+    format!(
+        "\\begin{{aligned}}\n\
+M(x) &= A x^2 + B x + C \\in \\mathbb{{R}}^{{12 \\times 12}}, \\quad x = \\tan\\tfrac{{\\theta - \\varphi}}{{2}} \\\\\n\
+\\det M(x) &= (1 + x^2)^4 \\, p(x), \\quad \\deg p = {}\n\\end{{aligned}}\n",
+        info.degree
+    )
 }

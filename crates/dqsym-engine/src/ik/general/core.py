@@ -1,0 +1,265 @@
+# The numeric core of the general 6R solver in Python (NumPy): the algorithm of core.rs
+# (Raghavan-Roth elimination in Manocha-Canny's 12 x 12 form), with NumPy's SVD for the left
+# null space and the null vector, and np.linalg.eigvals for the companion matrix.
+
+_S3 = math.sqrt(3.0)
+_SS = np.array([0.0, _S3 / 2, -_S3 / 2])
+_SC = np.array([1.0, -0.5, -0.5])
+_DFT = np.array([[1 / 3, 1 / 3, 1 / 3], [2 / 3, -1 / 3, -1 / 3], [0.0, 1 / _S3, -1 / _S3]])
+_HALF = np.array([[1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0.0]])
+
+
+def _rod(w, s, c):
+    k = np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+    return c * np.eye(3) + s * k + (1 - c) * np.outer(w, w)
+
+
+def _apply(j, s, c, x, d):
+    r = _rod(j[0], s, c)
+    return j[1] + r @ (x - j[1]), r @ d
+
+
+def _quant(p, l):
+    pp = p @ p
+    pl = p @ l
+    return np.concatenate([l, p, [pp, pl], np.cross(p, l), pp * l - 2 * pl * p])
+
+
+def _inv(g):
+    r = g[:, :3].T
+    return np.hstack([r, (-r @ g[:, 3])[:, None]])
+
+
+def _mapply(g, x, d):
+    return g[:, :3] @ x + g[:, 3], g[:, :3] @ d
+
+
+def _compose(a, b):
+    return np.hstack([a[:, :3] @ b[:, :3], (a[:, :3] @ b[:, 3] + a[:, 3])[:, None]])
+
+
+def _arranged(js, g, arr):
+    rev, shift = arr >= 6, arr % 6
+    base, h, bperm = list(js), g, list(range(6))
+    if rev:
+        base = [(-js[5 - i][0], js[5 - i][1]) for i in range(6)]
+        bperm = [5 - i for i in range(6)]
+        h = _inv(g)
+    hi = _inv(h)
+    j, perm = [], []
+    for i in range(6):
+        k = (shift + i) % 6
+        perm.append(bperm[k])
+        if k < shift:
+            c, w = _mapply(hi, base[k][1], base[k][0])
+            j.append((w, c))
+        else:
+            j.append(base[k])
+    return j, h, perm
+
+
+def _elim(j, h):
+    w6, p6 = j[5]
+    lhs = np.zeros((3, 3, 3, 14))
+    for k5 in range(3):
+        x5, d5 = _apply(j[4], _SS[k5], _SC[k5], p6, w6)
+        for k4 in range(3):
+            x4, d4 = _apply(j[3], _SS[k4], _SC[k4], x5, d5)
+            for k3 in range(3):
+                x3, d3 = _apply(j[2], _SS[k3], _SC[k3], x4, d4)
+                lhs[k3, k4, k5] = _quant(x3, d3)
+    hp, hd = _mapply(h, p6, w6)
+    rhs = np.zeros((3, 3, 14))
+    for k1 in range(3):
+        y1, e1 = _apply(j[0], -_SS[k1], _SC[k1], hp, hd)
+        for k2 in range(3):
+            y2, e2 = _apply(j[1], -_SS[k2], _SC[k2], y1, e1)
+            rhs[k1, k2] = _quant(y2, e2)
+    am = np.einsum('ia,jb,kc,abce->eijk', _DFT, _DFT, _DFT, lhs).reshape(14, 3, 9).copy()
+    r = np.einsum('ia,jb,abe->eij', _DFT, _DFT, rhs).reshape(14, 9)
+    am[:, 0, 0] -= r[:, 0]
+    bm = r[:, 1:]
+    u, sv, _ = np.linalg.svd(bm)
+    ratio = sv[7] / sv[0] if sv[0] > 0 else 0.0
+    sig = np.einsum('re,ekm->krm', u[:, 8:].T, am)
+    return am, bm, ratio, sig
+
+
+def _mpoly(sig, phi):
+    sp, cp = math.sin(phi), math.cos(phi)
+    out = np.zeros((3, 12, 12))
+    for i4 in range(3):
+        for i5 in range(3):
+            m = 3 * i4 + i5
+            s0 = sig[0, :, m]
+            sc = sig[1, :, m] * cp + sig[2, :, m] * sp
+            ss = sig[2, :, m] * cp - sig[1, :, m] * sp
+            coef = (s0 + sc, 2 * ss, s0 - sc)
+            for a in range(3):
+                for b in range(3):
+                    hh = _HALF[i4, a] * _HALF[i5, b]
+                    if hh == 0:
+                        continue
+                    for dd in range(3):
+                        out[dd, :6, 3 * a + b] += hh * coef[dd]
+                        out[dd, 6:, 3 * (a + 1) + b] += hh * coef[dd]
+    return out
+
+
+def _angle(pairs):
+    n, d = max(pairs, key=lambda p: p[0] * p[0] + p[1] * p[1])
+    return _wrap(2 * math.atan2(n, d))
+
+
+def _wrap(a):
+    x = math.fmod(a, 2 * math.pi)
+    if x > math.pi:
+        x -= 2 * math.pi
+    elif x <= -math.pi:
+        x += 2 * math.pi
+    return x
+
+
+def _back(j, h, am, bm, mp, phi, x):
+    m = (mp[2] * x + mp[1]) * x + mp[0]
+    v = np.linalg.svd(m)[2][-1]
+    at = lambda a, b: v[3 * a + b]
+    t3 = _wrap(phi + 2 * math.atan(x))
+    t4 = _angle([(at(a + 1, b), at(a, b)) for a in range(3) for b in range(3)])
+    t5 = _angle([(at(a, b + 1), at(a, b)) for a in range(4) for b in range(2)])
+    f = lambda t: np.array([1.0, math.cos(t), math.sin(t)])
+    x45 = np.outer(f(t4), f(t5)).reshape(9)
+    rhs = np.einsum('ekm,k,m->e', am, f(t3), x45)
+    x12 = np.linalg.lstsq(bm, rhs, rcond=None)[0]
+    t1 = math.atan2(x12[5], x12[2])
+    t2 = math.atan2(x12[1], x12[0])
+    rot = np.eye(3)
+    for k, tk in enumerate([t1, t2, t3, t4, t5]):
+        rot = rot @ _rod(j[k][0], math.sin(tk), math.cos(tk))
+    w6 = j[5][0]
+    e = np.array([1.0, 0.0, 0.0]) if abs(w6[0]) < 0.6 else np.array([0.0, 1.0, 0.0])
+    u = np.cross(w6, e)
+    vv = rot.T @ (h[:, :3] @ u)
+    t6 = math.atan2(w6 @ np.cross(u, vv), u @ vv)
+    return [t1, t2, t3, t4, t5, t6]
+
+
+def _candidates(j, h, perm, am, bm, sig):
+    best = (0.0, -1.0)
+    for phi in (0.0, 2.1, -1.7, 0.9, -2.9):
+        sv = np.linalg.svd(_mpoly(sig, phi)[2], compute_uv=False)
+        ratio = sv[-1] / sv[0] if sv[0] > 0 else 0.0
+        if ratio > best[1]:
+            best = (phi, ratio)
+        if ratio > 1e-3:
+            break
+    if best[1] < 1e-10:
+        return None
+    phi = best[0]
+    mp = _mpoly(sig, phi)
+    a_inv = np.linalg.inv(mp[2])
+    k = np.zeros((24, 24))
+    k[:12, 12:] = np.eye(12)
+    k[12:, :12] = -a_inv @ mp[0]
+    k[12:, 12:] = -a_inv @ mp[1]
+    out = []
+    for z in np.linalg.eigvals(k):
+        if np.isfinite(z) and abs(z.imag) <= 1e-3 * (1 + abs(z.real)):
+            t = _back(j, h, am, bm, mp, phi, float(z.real))
+            q = [0.0] * 6
+            for i in range(6):
+                q[perm[i]] = t[i]
+            out.append(q)
+    return out
+
+
+def _forward(ax, home, q):
+    p = np.hstack([np.eye(3), np.zeros((3, 1))])
+    cur = []
+    for a, qi in zip(ax, q):
+        w, c = a[1:4], a[4:7]
+        o, d = _mapply(p, c, w)
+        cur.append((d, o))
+        r = _rod(w, math.sin(qi), math.cos(qi))
+        p = _compose(p, np.hstack([r, (c - r @ c)[:, None]]))
+    return _compose(p, home), cur
+
+
+def _refine(ax, home, t, q):
+    q = np.array(q, dtype=float)
+    f, cur = _forward(ax, home, q)
+    e = (t - f).reshape(12)
+    res = np.max(np.abs(e))
+    lam = 1e-12
+    for _ in range(16):
+        if not res > 1e-14:
+            break
+        cols = []
+        for d, o in cur:
+            dr = np.cross(d, f[:, :3].T).T
+            dt = np.cross(d, f[:, 3] - o)
+            cols.append(np.hstack([dr, dt[:, None]]).reshape(12))
+        jm = np.array(cols).T
+        a = jm.T @ jm
+        g = jm.T @ e
+        tr = np.trace(a)
+        while True:
+            step = np.linalg.solve(a + lam * max(tr, 1e-300) * np.eye(6), g)
+            nxt = q + step
+            f2, cur2 = _forward(ax, home, nxt)
+            e2 = (t - f2).reshape(12)
+            r2 = np.max(np.abs(e2))
+            if r2 < res:
+                q, f, cur, e, res = nxt, f2, cur2, e2, r2
+                lam = max(lam * 0.01, 1e-15)
+                break
+            lam *= 100
+            if lam > 1:
+                return q, res
+    return q, res
+
+
+def _same(a, b):
+    return all(abs(_wrap(x - y)) <= 1e-6 for x, y in zip(a, b))
+
+
+def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
+    ax = np.array(ax, dtype=float)
+    ax[:, 4:7] /= length
+    home = np.array(home, dtype=float)[:3].copy()
+    home[:, 3] /= length
+    tg = np.array(target, dtype=float)[:3].copy()
+    tg[:, 3] /= length
+    g = _compose(tg, _inv(home))
+    js = [(a[1:4], a[4:7]) for a in ax]
+    sols = []
+    used = 0
+    order = [first % 12] + [k for k in range(12) if k != first % 12]
+    for arr in order:
+        if used == 12:
+            break
+        j, h, perm = _arranged(js, g, arr)
+        am, bm, ratio, sig = _elim(j, h)
+        if ratio < 1e-9:
+            continue
+        cands = _candidates(j, h, perm, am, bm, sig)
+        if cands is None:
+            continue
+        used += 1
+        hit = set()
+        for q0 in cands:
+            q, res = _refine(ax, home, tg, q0)
+            if not res <= keep_tol:
+                continue
+            q = [_wrap(float(x)) for x in q]
+            at = next((i for i, s in enumerate(sols) if _same(s[0], q)), None)
+            if at is None and len(sols) < 16:
+                sols.append([q, res])
+                at = len(sols) - 1
+            elif at is not None and res < sols[at][1]:
+                sols[at] = [q, res]
+            if at is not None and res <= pose_tol:
+                hit.add(at)
+        if len(hit) == len(cands):
+            break
+    return [(q, False, not res <= pose_tol, float(res)) for q, res in sols]

@@ -1,0 +1,1305 @@
+// The numeric core of the general 6R solver (Raghavan–Roth elimination in Manocha–Canny's
+// matrix form). Plain Rust on `f64` arrays with no dependency and no allocation: the engine
+// compiles this file as `ik::general::core`, and the generated Rust solver contains it
+// verbatim (`include_str!`), so the reference and the generated solver are one algorithm.
+//
+// Units: every length is divided by the robot's scale `len` first, so that all the numbers
+// below are of order one (the residual is the one of `ik::check`: rotation entries as they
+// are, positions over `len`).
+
+/// A joint axis in the home pose: `[kind, wx, wy, wz, px, py, pz]` (kind 1: prismatic).
+pub type GenAxis = [f64; 7];
+
+/// The most solutions of a 6R chain.
+pub const GEN_MAX: usize = 16;
+
+/// The tolerances (from `ik::check`): the residual above which a solution is flagged
+/// approximate, and the largest residual kept at all (a candidate further off is a root of the
+/// elimination that is not a solution: a complex root with a small imaginary part, a spurious
+/// root of a degenerate arrangement).
+#[derive(Clone, Copy, Debug)]
+pub struct GenTol {
+    /// Flag approximate above this.
+    pub pose: f64,
+    /// Drop above this.
+    pub keep: f64,
+}
+
+/// Every solution found: joint vectors in joint order with their residuals.
+#[derive(Clone, Copy, Debug)]
+pub struct GenOut {
+    /// Joint vectors.
+    pub q: [[f64; 6]; GEN_MAX],
+    /// Residual of each (relative, as `ik::check::residual`).
+    pub residual: [f64; GEN_MAX],
+    /// How many are valid.
+    pub n: usize,
+    /// The degree of the univariate polynomial of the first arrangement used (the finite
+    /// eigenvalues of the linearisation other than the spurious `±i`); 0 when none was usable.
+    pub degree: usize,
+    /// The first three arrangements used: `(reversed, shift)` packed as `shift + 6 reversed`.
+    pub arrangements: [usize; 3],
+    /// How many arrangements were used (at most 12).
+    pub n_arr: usize,
+}
+
+type V = [f64; 3];
+type M3 = [[f64; 3]; 3];
+/// A rigid motion as a 3 x 4 block `[R | t]`.
+type B34 = [[f64; 4]; 3];
+
+fn dot3(a: &V, b: &V) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross3(a: &V, b: &V) -> V {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Rodrigues: `c I + s [w]x + (1 − c) w wᵀ`.
+fn rodrigues(w: &V, s: f64, c: f64) -> M3 {
+    let k = [[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]];
+    let mut r = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            r[i][j] = if i == j { c } else { 0.0 } + s * k[i][j] + (1.0 - c) * w[i] * w[j];
+        }
+    }
+    r
+}
+
+fn mv(r: &M3, v: &V) -> V {
+    [dot3(&r[0], v), dot3(&r[1], v), dot3(&r[2], v)]
+}
+
+/// One joint of an arranged chain: unit direction `w`, point `c` (scaled), and its motion at
+/// an angle applied to a point and a direction.
+#[derive(Clone, Copy)]
+struct J {
+    w: V,
+    c: V,
+}
+
+impl J {
+    /// `(E x, R d)` at the angle with sine `s`, cosine `co`.
+    fn apply(&self, s: f64, co: f64, x: &V, d: &V) -> (V, V) {
+        let r = rodrigues(&self.w, s, co);
+        let y = [x[0] - self.c[0], x[1] - self.c[1], x[2] - self.c[2]];
+        let ry = mv(&r, &y);
+        (
+            [ry[0] + self.c[0], ry[1] + self.c[1], ry[2] + self.c[2]],
+            mv(&r, d),
+        )
+    }
+}
+
+/// The fourteen Raghavan–Roth quantities of a point `p` and a direction `l`: `l`, `p`, `p·p`,
+/// `p·l`, `p×l`, `(p·p) l − 2 (p·l) p`. Under a rotation about the origin they transform
+/// linearly with coefficients in `(1, cos, sin)`, under a constant translation linearly with
+/// constant coefficients (`t × (l × p)` absorbs the products), so along the chain each
+/// quantity is of degree at most one in the sine and cosine of every joint.
+fn quantities(p: &V, l: &V) -> [f64; 14] {
+    let pp = dot3(p, p);
+    let pl = dot3(p, l);
+    let x = cross3(p, l);
+    let mut o = [0.0; 14];
+    o[..3].copy_from_slice(l);
+    o[3..6].copy_from_slice(p);
+    o[6] = pp;
+    o[7] = pl;
+    o[8..11].copy_from_slice(&x);
+    for i in 0..3 {
+        o[11 + i] = pp * l[i] - 2.0 * pl * p[i];
+    }
+    o
+}
+
+/// The three sample angles `2πk/3` (sine, cosine) and the weights that turn three samples of
+/// `a + b cos θ + c sin θ` into `(a, b, c)` exactly (a three-point DFT).
+const SAMPLE_S: [f64; 3] = [0.0, 0.866_025_403_784_438_6, -0.866_025_403_784_438_6];
+const SAMPLE_C: [f64; 3] = [1.0, -0.5, -0.5];
+const DFT: [[f64; 3]; 3] = [
+    [1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0],
+    [2.0 / 3.0, -1.0 / 3.0, -1.0 / 3.0],
+    [0.0, 0.577_350_269_189_625_8, -0.577_350_269_189_625_8],
+];
+
+/// The arranged problem `E1 ⋯ E6 = H` (home pose the identity), its elimination and solution.
+struct Arranged {
+    j: [J; 6],
+    /// `H` with its translation scaled.
+    h: B34,
+    /// Arranged joint `i` is the arm's joint `perm[i]`.
+    perm: [usize; 6],
+}
+
+/// The elimination of one arrangement: `Bm X12 = Am(θ3) X45` (14 equations), the left null
+/// space `N` of `Bm` (six rows), and `N Am` in the basis `(1, cos θ3, sin θ3)`.
+struct Elim {
+    /// `Am[e][k][m]`: equation `e`, `k` in `(1, cos θ3, sin θ3)`, monomial `m` of X45.
+    am: [[[f64; 9]; 3]; 14],
+    /// Householder QR of `Bm` with column pivoting: `qt` is `Qᵀ` (14 x 14), `r` the 8 x 8
+    /// triangle, `piv` the column order.
+    qt: [[f64; 14]; 14],
+    r: [[f64; 8]; 8],
+    piv: [usize; 8],
+    /// `|r77| / |r00|`: how far `Bm` is from losing rank.
+    rank_ratio: f64,
+    /// `Σ = N Am` in `(1, cos θ3, sin θ3)`: 6 x 9 each.
+    sig: [[[f64; 9]; 6]; 3],
+}
+
+/// The monomial index of `(i, j)` with `i, j` in `(1, cos, sin)`.
+fn mono(i: usize, j: usize) -> usize {
+    3 * i + j
+}
+
+impl Arranged {
+    /// `arr = shift + 6 reversed` of the chain `ax` (scaled) with the target `g = T M⁻¹`.
+    fn new(ax: &[J; 6], g: &B34, arr: usize) -> Arranged {
+        let (rev, shift) = (arr >= 6, arr % 6);
+        let mut base = *ax;
+        let mut h = *g;
+        let mut bperm = [0, 1, 2, 3, 4, 5];
+        if rev {
+            // E6⁻¹ ⋯ E1⁻¹ = G⁻¹, and Ei⁻¹(q) turns about the reversed axis by q.
+            for i in 0..6 {
+                let a = ax[5 - i];
+                base[i] = J {
+                    w: [-a.w[0], -a.w[1], -a.w[2]],
+                    c: a.c,
+                };
+                bperm[i] = 5 - i;
+            }
+            h = inverse(g);
+        }
+        // E_{s+1} ⋯ E6 (H⁻¹ E1 H) ⋯ (H⁻¹ Es H) = H.
+        let hi = inverse(&h);
+        let mut j = base;
+        let mut perm = [0; 6];
+        for i in 0..6 {
+            let k = (shift + i) % 6;
+            perm[i] = bperm[k];
+            j[i] = if k < shift {
+                let (c, w) = motion_apply(&hi, &base[k].c, &base[k].w);
+                J { w, c }
+            } else {
+                base[k]
+            };
+        }
+        Arranged { j, h, perm }
+    }
+
+    /// The equations' coefficients by exact trigonometric interpolation (see [`DFT`]).
+    #[allow(clippy::needless_range_loop)]
+    fn elim(&self) -> Option<Elim> {
+        let (p6, w6) = (self.j[5].c, self.j[5].w);
+        // Left: E3 E4 E5 applied to (p6, w6) on a 3 x 3 x 3 grid.
+        let mut lhs = [[[[0.0; 14]; 3]; 3]; 3];
+        for k5 in 0..3 {
+            let (x5, d5) = self.j[4].apply(SAMPLE_S[k5], SAMPLE_C[k5], &p6, &w6);
+            for k4 in 0..3 {
+                let (x4, d4) = self.j[3].apply(SAMPLE_S[k4], SAMPLE_C[k4], &x5, &d5);
+                for k3 in 0..3 {
+                    let (x3, d3) = self.j[2].apply(SAMPLE_S[k3], SAMPLE_C[k3], &x4, &d4);
+                    lhs[k3][k4][k5] = quantities(&x3, &d3);
+                }
+            }
+        }
+        // Right: E2⁻¹ E1⁻¹ H applied to (p6, w6) on a 3 x 3 grid.
+        let hp = motion_apply(&self.h, &p6, &w6);
+        let mut rhs = [[[0.0; 14]; 3]; 3];
+        for k1 in 0..3 {
+            let (y1, e1) = self.j[0].apply(-SAMPLE_S[k1], SAMPLE_C[k1], &hp.0, &hp.1);
+            for k2 in 0..3 {
+                let (y2, e2) = self.j[1].apply(-SAMPLE_S[k2], SAMPLE_C[k2], &y1, &e1);
+                rhs[k1][k2] = quantities(&y2, &e2);
+            }
+        }
+        let mut am = [[[0.0; 9]; 3]; 14];
+        let mut bm = [[0.0; 8]; 14];
+        // The 3-D transform as three 1-D passes (27 x 3 products each instead of 27 x 27).
+        let mut t1 = [[[[0.0; 14]; 3]; 3]; 3];
+        for i5 in 0..3 {
+            for k3 in 0..3 {
+                for k4 in 0..3 {
+                    for k5 in 0..3 {
+                        let w = DFT[i5][k5];
+                        for e in 0..14 {
+                            t1[k3][k4][i5][e] += w * lhs[k3][k4][k5][e];
+                        }
+                    }
+                }
+            }
+        }
+        let mut t2 = [[[[0.0; 14]; 3]; 3]; 3];
+        for i4 in 0..3 {
+            for k3 in 0..3 {
+                for k4 in 0..3 {
+                    let w = DFT[i4][k4];
+                    for i5 in 0..3 {
+                        for e in 0..14 {
+                            t2[k3][i4][i5][e] += w * t1[k3][k4][i5][e];
+                        }
+                    }
+                }
+            }
+        }
+        for i3 in 0..3 {
+            for k3 in 0..3 {
+                let w = DFT[i3][k3];
+                for i4 in 0..3 {
+                    for i5 in 0..3 {
+                        for e in 0..14 {
+                            am[e][i3][mono(i4, i5)] += w * t2[k3][i4][i5][e];
+                        }
+                    }
+                }
+            }
+        }
+        for e in 0..14 {
+            for i1 in 0..3 {
+                for i2 in 0..3 {
+                    let mut s = 0.0;
+                    for k1 in 0..3 {
+                        for k2 in 0..3 {
+                            s += DFT[i1][k1] * DFT[i2][k2] * rhs[k1][k2][e];
+                        }
+                    }
+                    let m = mono(i1, i2);
+                    if m == 0 {
+                        am[e][0][0] -= s;
+                    } else {
+                        bm[e][m - 1] = s;
+                    }
+                }
+            }
+        }
+        let (qt, r, piv, rank_ratio) = qr_pivot(&bm);
+        let mut sig = [[[0.0; 9]; 6]; 3];
+        for k in 0..3 {
+            for row in 0..6 {
+                for m in 0..9 {
+                    let mut s = 0.0;
+                    for e in 0..14 {
+                        s += qt[8 + row][e] * am[e][k][m];
+                    }
+                    sig[k][row][m] = s;
+                }
+            }
+        }
+        Some(Elim {
+            am,
+            qt,
+            r,
+            piv,
+            rank_ratio,
+            sig,
+        })
+    }
+}
+
+/// `[R | t]⁻¹ = [Rᵀ | −Rᵀ t]`.
+fn inverse(g: &B34) -> B34 {
+    let mut o = [[0.0; 4]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            o[i][j] = g[j][i];
+        }
+        o[i][3] = -(g[0][i] * g[0][3] + g[1][i] * g[1][3] + g[2][i] * g[2][3]);
+    }
+    o
+}
+
+/// A motion applied to a point and a direction.
+fn motion_apply(g: &B34, x: &V, d: &V) -> (V, V) {
+    let mut p = [0.0; 3];
+    let mut v = [0.0; 3];
+    for i in 0..3 {
+        p[i] = g[i][0] * x[0] + g[i][1] * x[1] + g[i][2] * x[2] + g[i][3];
+        v[i] = g[i][0] * d[0] + g[i][1] * d[1] + g[i][2] * d[2];
+    }
+    (p, v)
+}
+
+/// Householder QR with column pivoting of the 14 x 8 matrix `b`: `(Qᵀ, R, order, |r77| /
+/// |r00|)`; the last six rows of `Qᵀ` span the left null space when the ratio is not small.
+#[allow(clippy::needless_range_loop, clippy::type_complexity)]
+fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], f64) {
+    let mut a = *b;
+    let mut qt = [[0.0; 14]; 14];
+    for i in 0..14 {
+        qt[i][i] = 1.0;
+    }
+    let mut piv = [0, 1, 2, 3, 4, 5, 6, 7];
+    for k in 0..8 {
+        // The remaining column of largest norm first.
+        let mut best = k;
+        let mut bn = -1.0;
+        for c in k..8 {
+            let n: f64 = (k..14).map(|r| a[r][c] * a[r][c]).sum();
+            if n > bn {
+                bn = n;
+                best = c;
+            }
+        }
+        if best != k {
+            for r in 0..14 {
+                a[r].swap(k, best);
+            }
+            piv.swap(k, best);
+        }
+        let norm = bn.max(0.0).sqrt();
+        if norm == 0.0 {
+            continue;
+        }
+        let alpha = if a[k][k] > 0.0 { -norm } else { norm };
+        let mut v = [0.0; 14];
+        for r in k..14 {
+            v[r] = a[r][k];
+        }
+        v[k] -= alpha;
+        let vn: f64 = (k..14).map(|r| v[r] * v[r]).sum();
+        if vn == 0.0 {
+            continue;
+        }
+        for c in k..8 {
+            let s: f64 = (k..14).map(|r| v[r] * a[r][c]).sum::<f64>() * 2.0 / vn;
+            for r in k..14 {
+                a[r][c] -= s * v[r];
+            }
+        }
+        for c in 0..14 {
+            let s: f64 = (k..14).map(|r| v[r] * qt[r][c]).sum::<f64>() * 2.0 / vn;
+            for r in k..14 {
+                qt[r][c] -= s * v[r];
+            }
+        }
+    }
+    let mut r = [[0.0; 8]; 8];
+    for i in 0..8 {
+        for j in i..8 {
+            r[i][j] = a[i][j];
+        }
+    }
+    let ratio = if r[0][0] == 0.0 {
+        0.0
+    } else {
+        (r[7][7] / r[0][0]).abs()
+    };
+    (qt, r, piv, ratio)
+}
+
+/// `(1, cos, sin)` of a half-angle tangent times `1 + x²`, as polynomials in `x`.
+const HALF: [[f64; 3]; 3] = [[1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0.0]];
+
+/// The 12 x 12 matrix polynomial `M(x) = A x² + B x + C` of `x = tan((θ3 − φ)/2)`: the six
+/// equations `Σ X45 = 0` with `θ4`, `θ5` by their half-angle tangents (monomials `x4^a x5^b`,
+/// `a, b ≤ 2`), and the same times `x4` (`a ≤ 3`): twelve equations in twelve monomials.
+#[allow(clippy::needless_range_loop)]
+fn matrix_poly(sig: &[[[f64; 9]; 6]; 3], phi: f64) -> [[[f64; 12]; 12]; 3] {
+    let (sp, cp) = phi.sin_cos();
+    let mut out = [[[0.0; 12]; 12]; 3];
+    for row in 0..6 {
+        for i4 in 0..3 {
+            for i5 in 0..3 {
+                let m = mono(i4, i5);
+                let s0 = sig[0][row][m];
+                let sc = sig[1][row][m] * cp + sig[2][row][m] * sp;
+                let ss = sig[2][row][m] * cp - sig[1][row][m] * sp;
+                let coef = [s0 + sc, 2.0 * ss, s0 - sc];
+                for a in 0..3 {
+                    for b in 0..3 {
+                        let h = HALF[i4][a] * HALF[i5][b];
+                        if h == 0.0 {
+                            continue;
+                        }
+                        for (d, cd) in coef.iter().enumerate() {
+                            out[d][row][3 * a + b] += h * cd;
+                            out[d][row + 6][3 * (a + 1) + b] += h * cd;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+#[allow(clippy::needless_range_loop)]
+/// LU with partial pivoting of an `n x n` block of `a` (in place); `None` when singular.
+/// Returns the pivot order and the smallest pivot over the largest entry.
+fn lu<const N: usize>(a: &mut [[f64; N]; N]) -> ([usize; N], f64) {
+    let mut p = [0usize; N];
+    let mut amax: f64 = 0.0;
+    for r in a.iter() {
+        for x in r {
+            amax = amax.max(x.abs());
+        }
+    }
+    let mut minpiv = f64::INFINITY;
+    for (i, pi) in p.iter_mut().enumerate() {
+        *pi = i;
+    }
+    for k in 0..N {
+        let mut best = k;
+        for r in k + 1..N {
+            if a[r][k].abs() > a[best][k].abs() {
+                best = r;
+            }
+        }
+        a.swap(k, best);
+        p.swap(k, best);
+        let d = a[k][k];
+        minpiv = minpiv.min(d.abs());
+        if d == 0.0 {
+            continue;
+        }
+        for r in k + 1..N {
+            let f = a[r][k] / d;
+            a[r][k] = f;
+            if f != 0.0 {
+                for c in k + 1..N {
+                    a[r][c] -= f * a[k][c];
+                }
+            }
+        }
+    }
+    let ratio = if amax > 0.0 { minpiv / amax } else { 0.0 };
+    (p, ratio)
+}
+
+/// Solves `LU x = b[p]` in place.
+fn lu_solve<const N: usize>(lu: &[[f64; N]; N], p: &[usize; N], b: &[f64; N]) -> [f64; N] {
+    let mut x = [0.0; N];
+    for i in 0..N {
+        x[i] = b[p[i]];
+    }
+    for i in 0..N {
+        for k in 0..i {
+            x[i] -= lu[i][k] * x[k];
+        }
+    }
+    for i in (0..N).rev() {
+        for k in i + 1..N {
+            x[i] -= lu[i][k] * x[k];
+        }
+        x[i] /= lu[i][i];
+    }
+    x
+}
+
+/// The eigenvalues of the 24 x 24 companion linearisation of `A x² + B x + C`:
+/// `[[0, I], [−A⁻¹C, −A⁻¹B]]` (`A` invertible). `(re, im)` pairs; `None` when the QR
+/// iteration does not converge.
+#[allow(clippy::needless_range_loop)]
+fn eigen_quadratic(m: &[[[f64; 12]; 12]; 3]) -> Option<[(f64, f64); 24]> {
+    let mut a = m[2];
+    let (p, _) = lu(&mut a);
+    let mut k = [[0.0; 24]; 24];
+    for i in 0..12 {
+        k[i][12 + i] = 1.0;
+    }
+    for col in 0..12 {
+        let cc: [f64; 12] = std::array::from_fn(|r| m[0][r][col]);
+        let cb: [f64; 12] = std::array::from_fn(|r| m[1][r][col]);
+        let xc = lu_solve(&a, &p, &cc);
+        let xb = lu_solve(&a, &p, &cb);
+        for r in 0..12 {
+            k[12 + r][col] = -xc[r];
+            k[12 + r][12 + col] = -xb[r];
+        }
+    }
+    eigenvalues(&mut k)
+}
+
+/// A null vector of the 12 x 12 matrix `m` (Gaussian elimination with complete pivoting, the
+/// last pivot taken as zero).
+#[allow(clippy::needless_range_loop)]
+fn null_vector(m: &[[f64; 12]; 12]) -> [f64; 12] {
+    let mut a = *m;
+    let mut cols = [0usize; 12];
+    for (i, c) in cols.iter_mut().enumerate() {
+        *c = i;
+    }
+    for k in 0..11 {
+        let (mut br, mut bc, mut bv) = (k, k, -1.0);
+        for r in k..12 {
+            for c in k..12 {
+                if a[r][c].abs() > bv {
+                    (br, bc, bv) = (r, c, a[r][c].abs());
+                }
+            }
+        }
+        a.swap(k, br);
+        for row in a.iter_mut() {
+            row.swap(k, bc);
+        }
+        cols.swap(k, bc);
+        let d = a[k][k];
+        if d == 0.0 {
+            continue;
+        }
+        for r in k + 1..12 {
+            let f = a[r][k] / d;
+            for c in k..12 {
+                a[r][c] -= f * a[k][c];
+            }
+        }
+    }
+    let mut y = [0.0; 12];
+    y[11] = 1.0;
+    for i in (0..11).rev() {
+        let mut s = 0.0;
+        for c in i + 1..12 {
+            s -= a[i][c] * y[c];
+        }
+        y[i] = if a[i][i] == 0.0 { 0.0 } else { s / a[i][i] };
+    }
+    let mut v = [0.0; 12];
+    for i in 0..12 {
+        v[cols[i]] = y[i];
+    }
+    v
+}
+
+/// `2 atan2(num, den)` from the pair of monomials of largest size: the half-angle tangent's
+/// ratio `num / den`, well-conditioned for any angle.
+fn angle_from(pairs: &[(f64, f64)]) -> f64 {
+    let mut best = (0.0, 1.0);
+    let mut bn = -1.0;
+    for &(n, d) in pairs {
+        let s = n * n + d * d;
+        if s > bn {
+            bn = s;
+            best = (n, d);
+        }
+    }
+    wrap(2.0 * best.0.atan2(best.1))
+}
+
+/// An angle in `(−π, π]`.
+fn wrap(a: f64) -> f64 {
+    let t = std::f64::consts::TAU;
+    let mut x = a % t;
+    if x > std::f64::consts::PI {
+        x -= t;
+    } else if x <= -std::f64::consts::PI {
+        x += t;
+    }
+    x
+}
+
+/// The joints of the arranged chain at the root `x` of `det M`.
+#[allow(clippy::needless_range_loop)]
+fn back_substitute(
+    ar: &Arranged,
+    el: &Elim,
+    mp: &[[[f64; 12]; 12]; 3],
+    phi: f64,
+    x: f64,
+) -> [f64; 6] {
+    let mut m = [[0.0; 12]; 12];
+    for r in 0..12 {
+        for c in 0..12 {
+            m[r][c] = (mp[2][r][c] * x + mp[1][r][c]) * x + mp[0][r][c];
+        }
+    }
+    let v = null_vector(&m);
+    let at = |a: usize, b: usize| v[3 * a + b];
+    let t3 = wrap(phi + 2.0 * x.atan());
+    let t4 = angle_from(&[
+        (at(1, 0), at(0, 0)),
+        (at(1, 1), at(0, 1)),
+        (at(1, 2), at(0, 2)),
+        (at(2, 0), at(1, 0)),
+        (at(2, 1), at(1, 1)),
+        (at(2, 2), at(1, 2)),
+        (at(3, 0), at(2, 0)),
+        (at(3, 1), at(2, 1)),
+        (at(3, 2), at(2, 2)),
+    ]);
+    let t5 = angle_from(&[
+        (at(0, 1), at(0, 0)),
+        (at(1, 1), at(1, 0)),
+        (at(2, 1), at(2, 0)),
+        (at(3, 1), at(3, 0)),
+        (at(0, 2), at(0, 1)),
+        (at(1, 2), at(1, 1)),
+        (at(2, 2), at(2, 1)),
+        (at(3, 2), at(3, 1)),
+    ]);
+    // θ1, θ2: Bm X12 = Am(θ3) X45 by the QR of Bm.
+    let f = |t: f64| {
+        let (s, c) = t.sin_cos();
+        [1.0, c, s]
+    };
+    let (f3, f4, f5) = (f(t3), f(t4), f(t5));
+    let mut rhs = [0.0; 14];
+    for e in 0..14 {
+        let mut s = 0.0;
+        for k in 0..3 {
+            for i4 in 0..3 {
+                for i5 in 0..3 {
+                    s += el.am[e][k][mono(i4, i5)] * f3[k] * f4[i4] * f5[i5];
+                }
+            }
+        }
+        rhs[e] = s;
+    }
+    let mut y = [0.0; 8];
+    for i in 0..8 {
+        y[i] = (0..14).map(|e| el.qt[i][e] * rhs[e]).sum();
+    }
+    let mut z = [0.0; 8];
+    for i in (0..8).rev() {
+        let mut s = y[i];
+        for k in i + 1..8 {
+            s -= el.r[i][k] * z[k];
+        }
+        z[i] = if el.r[i][i] == 0.0 {
+            0.0
+        } else {
+            s / el.r[i][i]
+        };
+    }
+    let mut x12 = [0.0; 9];
+    x12[0] = 1.0;
+    for i in 0..8 {
+        x12[el.piv[i] + 1] = z[i];
+    }
+    let t1 = x12[mono(2, 0)].atan2(x12[mono(1, 0)]);
+    let t2 = x12[mono(0, 2)].atan2(x12[mono(0, 1)]);
+    // θ6 from the rest: E6 = (E1 ⋯ E5)⁻¹ H, read about its axis.
+    let t = [t1, t2, t3, t4, t5];
+    let mut rot = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for (k, tk) in t.iter().enumerate() {
+        let (s, c) = tk.sin_cos();
+        let r = rodrigues(&ar.j[k].w, s, c);
+        let mut n = [[0.0; 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                n[i][j] = (0..3).map(|l| rot[i][l] * r[l][j]).sum();
+            }
+        }
+        rot = n;
+    }
+    let w6 = ar.j[5].w;
+    let e = if w6[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let u = cross3(&w6, &e);
+    // v = R6 u with R6 = rotᵀ R_H.
+    let hu: V = std::array::from_fn(|i| (0..3).map(|l| ar.h[i][l] * u[l]).sum());
+    let v: V = std::array::from_fn(|i| (0..3).map(|l| rot[l][i] * hu[l]).sum());
+    let t6 = dot3(&w6, &cross3(&u, &v)).atan2(dot3(&u, &v));
+    [t1, t2, t3, t4, t5, t6]
+}
+
+/// The imaginary part (relative) below which an eigenvalue is taken as a real root: a double
+/// root, or two close real roots of a nearly special arm, split into a complex pair by rounding
+/// with an imaginary part up to the square root of the perturbation; candidates that are no
+/// solution are dropped by the forward-kinematics check after refinement.
+const NEAR_REAL: f64 = 1e-3;
+
+/// The candidates of one arrangement: its real roots, each with the arm's joint vector (not
+/// yet refined), and the degree reached; `None` when the arrangement is degenerate here.
+fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(usize, usize)> {
+    // The shift φ of the hidden joint that makes A (θ3 = φ + π) best conditioned.
+    let mut best = (0.0, -1.0);
+    for phi in [0.0, 2.1, -1.7, 0.9, -2.9] {
+        let mp = matrix_poly(&el.sig, phi);
+        let mut a = mp[2];
+        let (_, ratio) = lu(&mut a);
+        if ratio > best.1 {
+            best = (phi, ratio);
+        }
+        if ratio > 1e-3 {
+            break;
+        }
+    }
+    // Below this the leading matrix is singular to rounding for every shift: det M vanishes
+    // identically (a degenerate arrangement for this geometry).
+    if best.1 < 1e-10 {
+        return None;
+    }
+    let phi = best.0;
+    let mp = matrix_poly(&el.sig, phi);
+    let ev = eigen_quadratic(&mp)?;
+    let mut n = 0;
+    let mut degree = 0;
+    for &(re, im) in &ev {
+        let spurious = (re.abs() + (im.abs() - 1.0).abs()) < 1e-6;
+        if re.is_finite() && im.is_finite() && !spurious && re.hypot(im) < 1e8 {
+            degree += 1;
+        }
+        // A real root, or a pair split by rounding (a double root near a singular set): the
+        // refinement and the check by forward kinematics decide.
+        if im.abs() <= NEAR_REAL * (1.0 + re.abs()) && re.is_finite() {
+            let t = back_substitute(ar, el, &mp, phi, re);
+            let mut q = [0.0; 6];
+            for i in 0..6 {
+                q[ar.perm[i]] = t[i];
+            }
+            roots[n] = q;
+            n += 1;
+        }
+    }
+    Some((n, degree))
+}
+
+/// The pose `E1(q1) ⋯ E6(q6) M` and each joint's current axis `(w, p)` (scaled lengths).
+#[allow(clippy::needless_range_loop)]
+fn forward(ax: &[GenAxis; 6], home: &B34, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
+    let mut p: B34 = [
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 0.0],
+    ];
+    let mut cur = [[0.0; 6]; 6];
+    for i in 0..6 {
+        let a = &ax[i];
+        let w = [a[1], a[2], a[3]];
+        let c = [a[4], a[5], a[6]];
+        let (o, d) = motion_apply(&p, &c, &w);
+        cur[i] = [d[0], d[1], d[2], o[0], o[1], o[2]];
+        let mut m: B34 = [[0.0; 4]; 3];
+        if a[0] != 0.0 {
+            for r in 0..3 {
+                m[r][r] = 1.0;
+                m[r][3] = q[i] * w[r];
+            }
+        } else {
+            let (s, co) = q[i].sin_cos();
+            let r = rodrigues(&w, s, co);
+            for rr in 0..3 {
+                m[rr][..3].copy_from_slice(&r[rr]);
+                m[rr][3] = c[rr] - dot3(&r[rr], &c);
+            }
+        }
+        p = compose(&p, &m);
+    }
+    (compose(&p, home), cur)
+}
+
+fn compose(a: &B34, b: &B34) -> B34 {
+    let mut o = [[0.0; 4]; 3];
+    for r in 0..3 {
+        for c in 0..4 {
+            let t = if c == 3 { a[r][3] } else { 0.0 };
+            o[r][c] = t + a[r][0] * b[0][c] + a[r][1] * b[1][c] + a[r][2] * b[2][c];
+        }
+    }
+    o
+}
+
+fn error(f: &B34, t: &B34) -> ([f64; 12], f64) {
+    let mut e = [0.0; 12];
+    let mut m: f64 = 0.0;
+    for r in 0..3 {
+        for c in 0..4 {
+            let d = t[r][c] - f[r][c];
+            e[4 * r + c] = d;
+            if d.is_nan() {
+                m = f64::NAN;
+            } else if !m.is_nan() {
+                m = m.max(d.abs());
+            }
+        }
+    }
+    (e, m)
+}
+
+/// Damped Gauss–Newton from `q` on the pose residual (as `ik::check::refine`, on scaled
+/// lengths); returns the final residual.
+#[allow(clippy::needless_range_loop)]
+fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -> f64 {
+    let (mut f, mut cur) = forward(ax, home, q);
+    let (mut e, mut res) = error(&f, t);
+    let mut lambda = 1e-12;
+    for _ in 0..16 {
+        // As ik::check::refine: below CHECK_TOL / 1000 the pose is exact to rounding.
+        if res <= 1e-14 || res.is_nan() {
+            break;
+        }
+        let mut cols = [[0.0; 12]; 6];
+        for i in 0..6 {
+            let [wx, wy, wz, px, py, pz] = cur[i];
+            let cr = |v: [f64; 3]| {
+                [
+                    wy * v[2] - wz * v[1],
+                    wz * v[0] - wx * v[2],
+                    wx * v[1] - wy * v[0],
+                ]
+            };
+            if ax[i][0] != 0.0 {
+                for r in 0..3 {
+                    cols[i][4 * r + 3] = [wx, wy, wz][r];
+                }
+            } else {
+                let dt = cr([f[0][3] - px, f[1][3] - py, f[2][3] - pz]);
+                for k in 0..3 {
+                    let d = cr([f[0][k], f[1][k], f[2][k]]);
+                    for r in 0..3 {
+                        cols[i][4 * r + k] = d[r];
+                    }
+                }
+                for r in 0..3 {
+                    cols[i][4 * r + 3] = dt[r];
+                }
+            }
+        }
+        let mut a = [[0.0; 6]; 6];
+        let mut g = [0.0; 6];
+        let mut tr = 0.0;
+        for i in 0..6 {
+            for j in 0..6 {
+                a[i][j] = (0..12).map(|k| cols[i][k] * cols[j][k]).sum();
+            }
+            g[i] = (0..12).map(|k| cols[i][k] * e[k]).sum();
+            tr += a[i][i];
+        }
+        loop {
+            let mut m = a;
+            for i in 0..6 {
+                m[i][i] += lambda * tr.max(f64::MIN_POSITIVE);
+            }
+            let (p, ratio) = lu(&mut m);
+            let ok = ratio > 0.0 && ratio.is_finite();
+            if ok {
+                let d = lu_solve(&m, &p, &g);
+                let next: [f64; 6] = std::array::from_fn(|i| q[i] + d[i]);
+                let (f2, cur2) = forward(ax, home, &next);
+                let (e2, r2) = error(&f2, t);
+                if r2 < res {
+                    *q = next;
+                    (f, cur, e, res) = (f2, cur2, e2, r2);
+                    lambda = (lambda * 0.01).max(1e-15);
+                    break;
+                }
+            }
+            lambda *= 100.0;
+            if lambda > 1.0 {
+                return res;
+            }
+        }
+    }
+    res
+}
+
+/// Two joint vectors that are one solution (angles compared on the circle).
+fn same(a: &[f64; 6], b: &[f64; 6], prismatic: &[bool; 6]) -> bool {
+    (0..6).all(|i| {
+        let d = if prismatic[i] {
+            a[i] - b[i]
+        } else {
+            wrap(a[i] - b[i])
+        };
+        d.abs() <= 1e-6
+    })
+}
+
+/// Every solution of `E1 ⋯ E6 M = T` for a 6R chain: the arrangements (a cyclic shift of the
+/// loop, read forwards or backwards) are tried in order; one whose elimination is
+/// nondegenerate gives its real roots, each is back-substituted, refined and checked by
+/// forward kinematics. When a root gave no new solution (a double root: two solutions
+/// sharing the hidden joint), the next arrangement adds its solutions too (at most three).
+#[allow(clippy::needless_range_loop)]
+pub fn gen_solve(
+    axes: &[GenAxis; 6],
+    home: &[[f64; 4]; 3],
+    target: &[[f64; 4]; 4],
+    len: f64,
+    tol: GenTol,
+    first: usize,
+) -> GenOut {
+    let mut out = GenOut {
+        q: [[0.0; 6]; GEN_MAX],
+        residual: [0.0; GEN_MAX],
+        n: 0,
+        degree: 0,
+        arrangements: [0; 3],
+        n_arr: 0,
+    };
+    let mut ax = *axes;
+    for a in ax.iter_mut() {
+        for k in 4..7 {
+            a[k] /= len;
+        }
+    }
+    let mut hm = *home;
+    let mut tg: B34 = [[0.0; 4]; 3];
+    tg.copy_from_slice(&target[..3]);
+    for r in 0..3 {
+        hm[r][3] /= len;
+        tg[r][3] /= len;
+    }
+    let prismatic: [bool; 6] = std::array::from_fn(|i| ax[i][0] != 0.0);
+    if prismatic.iter().any(|p| *p) {
+        return out;
+    }
+    let g = compose(&tg, &inverse(&hm));
+    let js: [J; 6] = std::array::from_fn(|i| J {
+        w: [ax[i][1], ax[i][2], ax[i][3]],
+        c: [ax[i][4], ax[i][5], ax[i][6]],
+    });
+    let mut roots = [[0.0; 6]; 24];
+    // The arrangement that served at the derivation's generic target first (special geometry
+    // makes the same ones degenerate at every target), then the others in order.
+    for k in 0..12 {
+        let arr = if k == 0 {
+            first % 12
+        } else if k <= first % 12 {
+            k - 1
+        } else {
+            k
+        };
+        // Incomplete sets try every usable arrangement (a nearly special arm has nearly double
+        // roots in several of them).
+        if out.n_arr == 12 {
+            break;
+        }
+        let ar = Arranged::new(&js, &g, arr);
+        let Some(el) = ar.elim() else { continue };
+        // Below this ratio the eight monomials of θ1, θ2 are not independent to rounding: the
+        // six eliminated equations would not be the elimination (a degenerate arrangement).
+        if el.rank_ratio < 1e-9 {
+            continue;
+        }
+        let Some((n, degree)) = candidates(&ar, &el, &mut roots) else {
+            continue;
+        };
+        if out.n_arr == 0 {
+            out.degree = degree;
+        }
+        if out.n_arr < 3 {
+            out.arrangements[out.n_arr] = arr;
+        }
+        out.n_arr += 1;
+        // The solutions this arrangement's roots reached (exactly).
+        let mut hit = [false; GEN_MAX];
+        for k in 0..n {
+            let mut q = roots[k];
+            let res = refine(&ax, &hm, &tg, &mut q);
+            if res.is_nan() || res > tol.keep {
+                continue;
+            }
+            for v in q.iter_mut() {
+                *v = wrap(*v);
+            }
+            let at = if let Some(i) = (0..out.n).find(|&i| same(&out.q[i], &q, &prismatic)) {
+                if res < out.residual[i] {
+                    out.q[i] = q;
+                    out.residual[i] = res;
+                }
+                Some(i)
+            } else if out.n < GEN_MAX {
+                out.q[out.n] = q;
+                out.residual[out.n] = res;
+                out.n += 1;
+                Some(out.n - 1)
+            } else {
+                None
+            };
+            if let Some(i) = at {
+                hit[i] |= res <= tol.pose;
+            }
+        }
+        // Every root gave its own exact solution: the set is complete (a double root, two
+        // solutions sharing the hidden joint, gives one of them twice or neither).
+        if hit.iter().filter(|h| **h).count() == n {
+            break;
+        }
+    }
+    out
+}
+
+/// Balancing (Parlett–Reinsch, powers of two): similar matrix with rows and columns of
+/// comparable norm, so that the QR iteration's rounding is relative to the eigenvalues' size.
+#[allow(clippy::needless_range_loop)]
+fn balance(a: &mut [[f64; 24]; 24]) {
+    const RADIX: f64 = 2.0;
+    let n = 24;
+    let mut done = false;
+    let mut sweeps = 0;
+    while !done && sweeps < 100 {
+        done = true;
+        sweeps += 1;
+        for i in 0..n {
+            let (mut c, mut r) = (0.0, 0.0);
+            for j in 0..n {
+                if j != i {
+                    c += a[j][i].abs();
+                    r += a[i][j].abs();
+                }
+            }
+            if c == 0.0 || r == 0.0 || !(c + r).is_finite() {
+                continue;
+            }
+            let s = c + r;
+            let mut f = 1.0;
+            let mut g = r / RADIX;
+            while c < g {
+                f *= RADIX;
+                c *= RADIX * RADIX;
+            }
+            g = r * RADIX;
+            while c > g {
+                f /= RADIX;
+                c /= RADIX * RADIX;
+            }
+            if (c + r) / f < 0.95 * s {
+                done = false;
+                let gi = 1.0 / f;
+                for j in 0..n {
+                    a[i][j] *= gi;
+                }
+                for j in 0..n {
+                    a[j][i] *= f;
+                }
+            }
+        }
+    }
+}
+
+/// Reduction to upper Hessenberg form by stabilised elementary similarity transformations.
+#[allow(clippy::needless_range_loop)]
+fn hessenberg(a: &mut [[f64; 24]; 24]) {
+    let n = 24;
+    for m in 1..n - 1 {
+        let mut x: f64 = 0.0;
+        let mut i = m;
+        for j in m..n {
+            if a[j][m - 1].abs() > x.abs() {
+                x = a[j][m - 1];
+                i = j;
+            }
+        }
+        if i != m {
+            for j in m - 1..n {
+                let t = a[i][j];
+                a[i][j] = a[m][j];
+                a[m][j] = t;
+            }
+            for j in 0..n {
+                a[j].swap(i, m);
+            }
+        }
+        if x != 0.0 {
+            for i in m + 1..n {
+                let mut y = a[i][m - 1];
+                if y != 0.0 {
+                    y /= x;
+                    a[i][m - 1] = 0.0;
+                    for j in m..n {
+                        a[i][j] -= y * a[m][j];
+                    }
+                    for j in 0..n {
+                        a[j][m] += y * a[j][i];
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The eigenvalues of a real 24 x 24 matrix (destroyed): balancing, Hessenberg reduction and
+/// the Francis double-shift QR iteration (the classical `hqr`); `None` when an eigenvalue
+/// takes more than 60 iterations.
+#[allow(clippy::needless_range_loop, clippy::many_single_char_names)]
+fn eigenvalues(a0: &mut [[f64; 24]; 24]) -> Option<[(f64, f64); 24]> {
+    balance(a0);
+    hessenberg(a0);
+    // 1-based indices as in the classical formulation: a[i][j] = a0[i - 1][j - 1].
+    let n: isize = 24;
+    macro_rules! a {
+        ($i:expr, $j:expr) => {
+            a0[($i - 1) as usize][($j - 1) as usize]
+        };
+    }
+    let mut wr = [0.0; 24];
+    let mut wi = [0.0; 24];
+    let mut anorm = 0.0;
+    for i in 1..=n {
+        for j in (i - 1).max(1)..=n {
+            anorm += a!(i, j).abs();
+        }
+    }
+    if !anorm.is_finite() {
+        return None;
+    }
+    let mut nn = n;
+    let mut t = 0.0;
+    let (mut p, mut q, mut r, mut s, mut w, mut x, mut y, mut z): (
+        f64,
+        f64,
+        f64,
+        f64,
+        f64,
+        f64,
+        f64,
+        f64,
+    );
+    (p, q, r) = (0.0, 0.0, 0.0);
+    while nn >= 1 {
+        let mut its = 0;
+        loop {
+            let mut l = nn;
+            while l >= 2 {
+                s = a!(l - 1, l - 1).abs() + a!(l, l).abs();
+                if s == 0.0 {
+                    s = anorm;
+                }
+                if a!(l, l - 1).abs() + s == s {
+                    a!(l, l - 1) = 0.0;
+                    break;
+                }
+                l -= 1;
+            }
+            x = a!(nn, nn);
+            if l == nn {
+                wr[(nn - 1) as usize] = x + t;
+                wi[(nn - 1) as usize] = 0.0;
+                nn -= 1;
+                break;
+            }
+            y = a!(nn - 1, nn - 1);
+            w = a!(nn, nn - 1) * a!(nn - 1, nn);
+            if l == nn - 1 {
+                p = 0.5 * (y - x);
+                q = p * p + w;
+                z = q.abs().sqrt();
+                x += t;
+                let (i1, i2) = ((nn - 2) as usize, (nn - 1) as usize);
+                if q >= 0.0 {
+                    z = p + if p >= 0.0 { z } else { -z };
+                    wr[i1] = x + z;
+                    wr[i2] = x + z;
+                    if z != 0.0 {
+                        wr[i2] = x - w / z;
+                    }
+                    wi[i1] = 0.0;
+                    wi[i2] = 0.0;
+                } else {
+                    wr[i1] = x + p;
+                    wr[i2] = x + p;
+                    wi[i1] = -z;
+                    wi[i2] = z;
+                }
+                nn -= 2;
+                break;
+            }
+            if its == 60 {
+                return None;
+            }
+            if its == 10 || its == 20 || its == 40 {
+                // An exceptional shift.
+                t += x;
+                for i in 1..=nn {
+                    a!(i, i) -= x;
+                }
+                s = a!(nn, nn - 1).abs() + a!(nn - 1, nn - 2).abs();
+                x = 0.75 * s;
+                y = x;
+                w = -0.4375 * s * s;
+            }
+            its += 1;
+            let mut m = nn - 2;
+            while m >= l {
+                z = a!(m, m);
+                r = x - z;
+                s = y - z;
+                p = (r * s - w) / a!(m + 1, m) + a!(m, m + 1);
+                q = a!(m + 1, m + 1) - z - r - s;
+                r = a!(m + 2, m + 1);
+                s = p.abs() + q.abs() + r.abs();
+                p /= s;
+                q /= s;
+                r /= s;
+                if m == l {
+                    break;
+                }
+                let u = a!(m, m - 1).abs() * (q.abs() + r.abs());
+                let v = p.abs() * (a!(m - 1, m - 1).abs() + z.abs() + a!(m + 1, m + 1).abs());
+                if u + v == v {
+                    break;
+                }
+                m -= 1;
+            }
+            for i in m + 2..=nn {
+                a!(i, i - 2) = 0.0;
+                if i != m + 2 {
+                    a!(i, i - 3) = 0.0;
+                }
+            }
+            let mut k = m;
+            while k < nn {
+                if k != m {
+                    p = a!(k, k - 1);
+                    q = a!(k + 1, k - 1);
+                    r = 0.0;
+                    if k != nn - 1 {
+                        r = a!(k + 2, k - 1);
+                    }
+                    x = p.abs() + q.abs() + r.abs();
+                    if x != 0.0 {
+                        p /= x;
+                        q /= x;
+                        r /= x;
+                    }
+                }
+                let norm = (p * p + q * q + r * r).sqrt();
+                s = if p >= 0.0 { norm } else { -norm };
+                if s != 0.0 {
+                    if k == m {
+                        if l != m {
+                            a!(k, k - 1) = -a!(k, k - 1);
+                        }
+                    } else {
+                        a!(k, k - 1) = -s * x;
+                    }
+                    p += s;
+                    x = p / s;
+                    y = q / s;
+                    z = r / s;
+                    q /= p;
+                    r /= p;
+                    for j in k..=nn {
+                        p = a!(k, j) + q * a!(k + 1, j);
+                        if k != nn - 1 {
+                            p += r * a!(k + 2, j);
+                            a!(k + 2, j) -= p * z;
+                        }
+                        a!(k + 1, j) -= p * y;
+                        a!(k, j) -= p * x;
+                    }
+                    let mmin = if nn < k + 3 { nn } else { k + 3 };
+                    for i in l..=mmin {
+                        p = x * a!(i, k) + y * a!(i, k + 1);
+                        if k != nn - 1 {
+                            p += z * a!(i, k + 2);
+                            a!(i, k + 2) -= p * r;
+                        }
+                        a!(i, k + 1) -= p * q;
+                        a!(i, k) -= p;
+                    }
+                }
+                k += 1;
+            }
+            if l >= nn - 1 {
+                break;
+            }
+        }
+    }
+    let mut out = [(0.0, 0.0); 24];
+    for i in 0..24 {
+        out[i] = (wr[i], wi[i]);
+    }
+    Some(out)
+}

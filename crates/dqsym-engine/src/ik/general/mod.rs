@@ -1,0 +1,207 @@
+//! Inverse kinematics of a general 6R chain (no special family applies, or `--method general`)
+//! by the Raghavan–Roth elimination in Manocha and Canny's matrix form.
+//!
+//! # The elimination
+//!
+//! The chain is the product of exponentials on the exact home-pose axes, `E1(q1) ⋯ E6(q6) M =
+//! T`, so with `H = T M⁻¹`:
+//!
+//! 1. `E3 E4 E5 (p6, w6) = E2⁻¹ E1⁻¹ H (p6, w6)`, for a point `p6` and the direction `w6` of
+//!    axis 6 (which `E6` leaves fixed): `θ6` is gone.
+//! 2. The fourteen Raghavan–Roth quantities of the point `p` and direction `l` on both sides:
+//!    `l`, `p`, `p·p`, `p·l`, `p × l`, `(p·p) l − 2 (p·l) p`. A rotation about the origin acts
+//!    on them linearly with entries in `(1, cos, sin)` of its angle; a constant translation
+//!    linearly with constant entries (the products are absorbed by `t × (l × p)`), and every
+//!    joint motion is a rotation between two constant translations. So each quantity is of
+//!    degree at most one in the sine and cosine of each joint: `Bm X12 = Am(θ3) X45`, with
+//!    `X12` the eight products `(1, c1, s1) ⊗ (1, c2, s2)` but the constant, `X45` the nine
+//!    products `(1, c4, s4) ⊗ (1, c5, s5)`, `Am` linear in `(1, c3, s3)`.
+//! 3. The six rows `N` with `N Bm = 0` (the left null space of the 14 x 8 `Bm`, from its
+//!    Householder QR) give six equations `N Am(θ3) X45 = 0` free of `θ1`, `θ2`.
+//! 4. Half-angle tangents `x4`, `x5` (times `(1 + x4²)(1 + x5²)`) turn them into six equations
+//!    in the nine monomials `x4^a x5^b` (`a, b ≤ 2`); with the same six times `x4`: twelve in
+//!    twelve, `M(x3) X = 0`, `M(x3) = A x3² + B x3 + C`, `x3 = tan((θ3 − φ)/2)`.
+//! 5. `det M(x3) = 0` is the univariate polynomial, of degree 24 with the spurious factor
+//!    `(1 + x3²)⁴`: degree 16 for a general 6R. Its roots are the eigenvalues of the 24 x 24
+//!    companion linearisation `[[0, I], [−A⁻¹C, −A⁻¹B]]` (balancing, Hessenberg reduction,
+//!    Francis double-shift QR; the shift `φ` keeps `A` invertible). The degree the solution
+//!    states ([`GeneralInfo::degree`]) is the number of finite eigenvalues other than `±i` at
+//!    a generic target: special geometry lowers it.
+//! 6. Back-substitution: `x4`, `x5` from the null vector of `M(x3)`; `θ1`, `θ2` from `Bm X12 =
+//!    Am(θ3) X45` (least squares by the same QR); `θ6` from `E6 = (E1 ⋯ E5)⁻¹ H` about axis 6.
+//!    Every candidate is polished by damped Gauss–Newton on the forward kinematics and checked
+//!    by it ([`super::check`]'s residual and approximate flag); duplicates are merged.
+//!
+//! Special geometry makes an arrangement degenerate (`Bm` loses rank, or `det M` vanishes
+//! identically, as for a spherical wrist) or gives double roots (two solutions sharing `θ3`):
+//! the loop `E1 ⋯ E6 H⁻¹ = I` is then read from another joint or backwards (twelve
+//! arrangements), and a set with a double root is completed from the next arrangement.
+//!
+//! The coefficients are computed numerically from the exact axes evaluated at the
+//! parameters: each of the fourteen quantities is sampled on a 3 x 3 x 3 grid of angles
+//! `2πk/3` and its coefficients read off by a three-point discrete Fourier transform, exact
+//! for degree one (no symbolic expansion; `A`, `B`, `C` are not printed as exact expressions).
+//! The numeric core (`core.rs`) is plain Rust that the generated solver contains verbatim.
+
+#[allow(clippy::many_single_char_names)]
+pub(crate) mod core;
+pub(crate) mod emit;
+
+use super::check::{self, AxisData};
+use super::{IkSolution, NumSolution, TARGET_SYMBOLS};
+use crate::kin::JointKind;
+
+/// What the general method found about the arm.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct GeneralInfo {
+    /// The degree of the univariate polynomial reached at a generic target (16 for a general
+    /// 6R; special geometry lowers it), 0 when no arrangement was usable there.
+    pub degree: usize,
+    /// The arrangement used at that target: `(reversed, shift)` (the loop read from joint
+    /// `shift + 1`, backwards when `reversed`).
+    pub arrangement: (bool, usize),
+}
+
+impl GeneralInfo {
+    /// The arrangement as the core numbers it: `shift + 6 reversed`.
+    pub fn index(&self) -> usize {
+        self.arrangement.1 + 6 * usize::from(self.arrangement.0)
+    }
+}
+
+/// The most residual a candidate may keep and still be returned (flagged approximate): a
+/// thousand times a pose tolerance of `1e-9`, so that a solution near a singular set, whose
+/// refinement stalls at the residual over the distance to the set, is returned flagged rather
+/// than dropped, while a root that is no solution (far off the pose) is dropped.
+pub const KEEP_TOL: f64 = 1e-6;
+
+/// Six revolute joints: the chains the general method solves.
+pub(crate) fn applies(axes: &[super::Axis]) -> bool {
+    axes.len() == 6 && axes.iter().all(|a| a.kind == JointKind::Revolute)
+}
+
+fn tol() -> core::GenTol {
+    core::GenTol {
+        pose: check::POSE_TOL,
+        keep: KEEP_TOL,
+    }
+}
+
+/// Every solution for a numeric target: the reference solver of a general-method solution.
+pub(crate) fn solve_numeric(
+    sol: &IkSolution,
+    target: &[[f64; 4]; 4],
+    params: &[(&str, f64)],
+) -> Result<Vec<NumSolution>, String> {
+    let env = |n: &str| params.iter().find(|(k, _)| *k == n).map(|(_, v)| *v);
+    let (axes, home) = check::axis_data(sol, &env)?;
+    let len = check::scale(&axes, &home, target);
+    let first = sol.general.as_ref().map_or(0, GeneralInfo::index);
+    let out = run(&axes, &home, target, len, first)?;
+    Ok((0..out.n)
+        .map(|i| NumSolution {
+            q: out.q[i].to_vec(),
+            singular: false,
+            approximate: out.residual[i] > check::POSE_TOL || out.residual[i].is_nan(),
+            residual: out.residual[i],
+        })
+        .collect())
+}
+
+fn run(
+    axes: &[AxisData],
+    home: &[[f64; 4]; 3],
+    target: &[[f64; 4]; 4],
+    len: f64,
+    first: usize,
+) -> Result<core::GenOut, String> {
+    let ax: [AxisData; 6] = axes
+        .try_into()
+        .map_err(|_| format!("the general method needs 6 joints, not {}", axes.len()))?;
+    Ok(core::gen_solve(&ax, home, target, len, tol(), first))
+}
+
+/// The degree reached and the arrangement at a generic target: the parameters at `0.55 +
+/// 0.13 i` (as `check::step_degrees`), the target the pose at joint values `0.31 + 0.17 i`.
+pub(crate) fn info(sol: &IkSolution) -> GeneralInfo {
+    let none = GeneralInfo {
+        degree: 0,
+        arrangement: (false, 0),
+    };
+    let vals: Vec<(String, f64)> = sol
+        .params
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (p.clone(), 0.55 + 0.13 * i as f64))
+        .collect();
+    let env = |n: &str| vals.iter().find(|(k, _)| k == n).map(|(_, v)| *v);
+    let Ok((axes, home)) = check::axis_data(sol, &env) else {
+        return none;
+    };
+    let q: Vec<f64> = (0..axes.len()).map(|i| 0.31 + 0.17 * i as f64).collect();
+    let f = check::forward(&axes, &home, &q).0;
+    let mut t = [[0.0; 4]; 4];
+    t[..3].copy_from_slice(&f);
+    t[3][3] = 1.0;
+    let len = check::scale(&axes, &home, &t);
+    match run(&axes, &home, &t, len, 0) {
+        Ok(o) if o.n_arr > 0 => GeneralInfo {
+            degree: o.degree,
+            arrangement: (o.arrangements[0] >= 6, o.arrangements[0] % 6),
+        },
+        _ => none,
+    }
+}
+
+/// The elimination in words, one line each (the report and the walkthrough).
+pub fn elimination_lines(sol: &IkSolution, info: &GeneralInfo) -> Vec<String> {
+    let v = &sol.variables;
+    let (rev, shift) = info.arrangement;
+    let order: Vec<&str> = (0..6)
+        .map(|i| {
+            let k = (shift + i) % 6;
+            let k = if rev { 5 - k } else { k };
+            v.get(k).map_or("?", String::as_str)
+        })
+        .collect();
+    let t = TARGET_SYMBOLS
+        .iter()
+        .flatten()
+        .copied()
+        .collect::<Vec<_>>()
+        .join(" ");
+    let mut out = vec![
+        format!(
+            "loop read as {} (joint order{}), target G = T M^-1 from {t}",
+            order.join(", "),
+            if rev { ", reversed" } else { "" }
+        ),
+        format!(
+            "1. E({}) E({}) E({}) (p, w) = E({})^-1 E({})^-1 G (p, w) for a point p and the direction w of the axis of {}: {} eliminated",
+            order[2], order[3], order[4], order[1], order[0], order[5], order[5]
+        ),
+        "2. the 14 Raghavan-Roth quantities of both sides: l, p, p.p, p.l, p x l, (p.p) l - 2 (p.l) p; each of degree one in the sine and cosine of every joint: Bm X12 = Am X45".into(),
+        format!(
+            "   X12 = (1, c, s)({}) x (1, c, s)({}) without 1 (8 monomials), X45 = (1, c, s)({}) x (1, c, s)({}) (9), Am linear in (1, c, s)({})",
+            order[0], order[1], order[3], order[4], order[2]
+        ),
+        "3. the left null space of Bm (14 x 8, Householder QR): 6 equations N Am X45 = 0".into(),
+        format!(
+            "4. half-angle tangents of {} and {}, and the same equations times x({}): M(x) X = 0, M(x) = A x^2 + B x + C (12 x 12), x = tan(({} - phi)/2)",
+            order[3], order[4], order[3], order[2]
+        ),
+        format!(
+            "5. det M(x) = 0: degree 24 with the spurious factor (1 + x^2)^4; degree reached at a generic target: {} (roots: eigenvalues of the 24 x 24 companion matrix, Hessenberg + shifted QR)",
+            info.degree
+        ),
+        format!(
+            "6. back-substitution: {}, {} from the null vector of M(x); {}, {} from Bm X12 = Am X45; {} from E({})^-1 ... E({})^-1 G; each solution refined by Gauss-Newton and checked by forward kinematics",
+            order[3], order[4], order[0], order[1], order[5], order[4], order[0]
+        ),
+        "special geometry (a degenerate arrangement, a double root) reads the loop from another joint".into(),
+    ];
+    if info.degree == 0 {
+        out.push("no arrangement was usable at the generic target".into());
+    }
+    out
+}
