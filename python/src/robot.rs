@@ -101,7 +101,14 @@ impl Robot {
     ) -> PyResult<Arc<dqsym::ik::IkSolution>> {
         let robot = self.robot.clone();
         let (r, interrupted) = work::run(py, self.limits, None, move || {
-            dqsym::ik::solve(&robot, &dqsym::ik::IkOptions { free, ..Default::default() }).map(Arc::new)
+            dqsym::ik::solve(
+                &robot,
+                &dqsym::ik::IkOptions {
+                    free,
+                    ..Default::default()
+                },
+            )
+            .map(Arc::new)
         })?;
         if let Some(e) = interrupted {
             return Err(e);

@@ -34,7 +34,7 @@ pub enum TaskBase {
 }
 
 impl TaskBase {
-    /// The letters of its entries: `J` then the superscript ([`TaskBase::superscript`]).
+    /// The letters of its entries: `J` then the superscript (`TaskBase::superscript`).
     pub fn letters(self) -> &'static str {
         match self {
             TaskBase::Pose => "J",

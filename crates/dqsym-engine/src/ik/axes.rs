@@ -240,7 +240,7 @@ pub type AxesAndHome = (Vec<Axis>, Matrix4<Scalar>);
 /// pi/12 grid multiplies every component's terms) as that limit, not as "not a line".
 ///
 /// # Errors
-/// The [`ScalarError`] of the first component or check that reached a limit.
+/// The [`ScalarError`](crate::ScalarError) of the first component or check that reached a limit.
 pub fn dq_axes_checked(
     q: &crate::DualQuat<Scalar>,
     variables: &[String],
