@@ -174,13 +174,7 @@ impl Robot {
         let mut r = r.map_err(|e| errors::report_error(py, &e))?;
         // A robot whose file wrote decimals reads in decimals, as `dqsym fk` prints it (the
         // same exact values, the denominators pulled out of sums put back).
-        if !self.robot.decimals.is_empty() {
-            for s in &mut r.sections {
-                for (_, e) in &mut s.rows {
-                    *e = dqsym::closed::decimal_form(e, &self.robot.decimals);
-                }
-            }
-        }
+        dqsym::app::in_decimals(&self.robot, &mut r.sections);
         let e = Arc::new(r);
         *self.cache.lock().unwrap_or_else(PoisonError::into_inner) = Some((key, e.clone()));
         Ok(e)

@@ -316,6 +316,20 @@ fn pose_text_exceeds(
     text_exceeds(&[pose], MAX_EXPANDED_TEXT)
 }
 
+/// `sections` as a robot whose file wrote decimals reads them (`0.425 c2`), exactly: the
+/// denominators pulled out of sums put back ([`decimal_form`]); unchanged for other robots.
+/// The report and Python's `Robot` both show entries so.
+pub fn in_decimals(robot: &Robot, sections: &mut [Section]) {
+    if robot.decimals.is_empty() {
+        return;
+    }
+    for s in sections {
+        for (_, e) in &mut s.rows {
+            *e = decimal_form(e, &robot.decimals);
+        }
+    }
+}
+
 /// The report from the expanded DQ and matrix and their closed forms.
 #[allow(clippy::too_many_arguments)]
 fn expanded_sections(
@@ -431,24 +445,8 @@ pub(super) fn render(
     // A robot whose file wrote decimals reads in decimals (`0.425 c2`), exactly: the
     // denominators pulled out of sums put back, decimal fractions printed as decimals.
     let decimals = !robot.decimals.is_empty();
-    let sections: Vec<Section> = sections
-        .iter()
-        .map(|s| Section {
-            kind: s.kind.clone(),
-            rows: s
-                .rows
-                .iter()
-                .map(|(n, e)| {
-                    let e = if decimals {
-                        decimal_form(e, &robot.decimals)
-                    } else {
-                        e.clone()
-                    };
-                    (*n, e)
-                })
-                .collect(),
-        })
-        .collect();
+    let mut sections = sections.to_vec();
+    in_decimals(robot, &mut sections);
     let sections = &sections[..];
     Ok(match o.format {
         Format::Rust => code(robot, sections, Generated::Rust)?,

@@ -19,7 +19,9 @@ mod recurrence;
 mod task;
 
 pub use convert::{dh_refusal, robot_toml};
-pub use fk::{fk_entries, fk_ops, fk_report, ops_tables, FkEntries, FkOptions, ReportError};
+pub use fk::{
+    fk_entries, fk_ops, fk_report, in_decimals, ops_tables, FkEntries, FkOptions, ReportError,
+};
 pub use quantity::{
     Family, Letters, MatrixFrom, Quantity, Section, SectionKind, Step, TaskBase, TaskName,
 };

@@ -65,8 +65,13 @@ pub fn angle_text_decimals(angle: &Angle, decimals: bool) -> String {
 
 /// The constant `k` of an angle as a decimal, when `decimals` and it is a decimal fraction.
 pub(crate) fn decimal_constant(k: Small, decimals: bool) -> Option<String> {
+    // Every angle a printer writes passes here: nothing is built unless decimals are asked
+    // for and the denominator could be a decimal's (a factor 5).
+    if !decimals || k.denom() % 5 != 0 {
+        return None;
+    }
     let q = num_rational::BigRational::new((*k.numer()).into(), (*k.denom()).into());
-    (decimals && super::shows_as_decimal(&q))
+    super::shows_as_decimal(&q)
         .then(|| crate::scalar::decimal_text(&q.abs(), 40))
         .flatten()
 }
