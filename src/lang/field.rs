@@ -2,31 +2,32 @@
 //! the `--point` option. Free names are symbols; `pi`, `sqrt`, `cos`, `sin` work as in scripts.
 
 use super::{parse_expr, Session, Value};
-use crate::kin::split_top_level;
+use crate::kin::{split_top_level, ExprError};
 use crate::Scalar;
 
-/// The exact scalar value of `text`, or a one-line message saying why there is none.
-pub fn eval_scalar_text(text: &str) -> Result<Scalar, String> {
-    let e = parse_expr(text).map_err(|e| format!("`{text}`: {}", e.message()))?;
+/// The exact scalar value of `text`, or why there is none (one line).
+pub fn eval_scalar_text(text: &str) -> Result<Scalar, ExprError> {
+    let invalid = |message: String| ExprError::Invalid {
+        text: text.to_string(),
+        message,
+    };
+    let e = parse_expr(text).map_err(|e| invalid(e.message()))?;
     let session = Session::with_implicit_symbols();
     match session.eval(&e) {
         Ok(Value::Scalar(s)) => Ok(s),
-        Ok(v) => Err(format!(
-            "`{text}` is {}, not a number or symbolic expression",
-            v.describe()
-        )),
-        Err(err) => Err(format!("`{text}`: {}", err.message())),
+        Ok(v) => Err(ExprError::NotScalar {
+            text: text.to_string(),
+            kind: v.describe(),
+        }),
+        Err(err) => Err(invalid(err.message())),
     }
 }
 
 /// A comma-separated point `x, y, z`, each coordinate an expression.
-pub fn eval_point_text(text: &str) -> Result<[Scalar; 3], String> {
+pub fn eval_point_text(text: &str) -> Result<[Scalar; 3], ExprError> {
     let parts: Vec<&str> = split_top_level(text);
     if parts.len() != 3 {
-        return Err(format!(
-            "a point needs 3 coordinates separated by commas, found {}",
-            parts.len()
-        ));
+        return Err(ExprError::PointArity { found: parts.len() });
     }
     Ok([
         eval_scalar_text(parts[0])?,

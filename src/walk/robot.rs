@@ -155,7 +155,7 @@ pub fn walk_robot_chain(robot: &Robot) -> Result<Walkthrough, WalkError> {
     };
     for (i, f) in robot.base_frames.iter().enumerate() {
         let ms = frame_motions(f);
-        let q = f.dq().map_err(WalkError::Script)?;
+        let q = f.dq().map_err(|e| WalkError::Script(e.to_string()))?;
         push(
             format!("b{}", i + 1),
             q,
@@ -188,7 +188,7 @@ pub fn walk_robot_chain(robot: &Robot) -> Result<Walkthrough, WalkError> {
     }
     for (i, f) in robot.tool_frames.iter().enumerate() {
         let ms = frame_motions(f);
-        let q = f.dq().map_err(WalkError::Script)?;
+        let q = f.dq().map_err(|e| WalkError::Script(e.to_string()))?;
         push(
             format!("t{}", i + 1),
             q,

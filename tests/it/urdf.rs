@@ -1001,7 +1001,7 @@ fn convert_writes_dh_when_the_axes_allow_it_with_the_same_pose() {
             }
             Some(why) => {
                 assert!(toml.contains("convention = \"screw\""), "{name}:\n{toml}");
-                let said = dqsym::app::dh_refusal(&r).expect("a reason");
+                let said = dqsym::app::dh_refusal(&r).expect("a reason").to_string();
                 assert!(said.contains(why), "{name}: {said}");
                 assert!(toml.contains(&format!("# Not DH: {said}.")), "{toml}");
             }

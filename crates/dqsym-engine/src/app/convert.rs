@@ -48,7 +48,7 @@ pub fn robot_toml(robot: &Robot, source: &str) -> Result<String, ScalarError> {
 }
 
 /// Why `robot` cannot be written in DH form (`None` when it can); the screw-form file says it.
-pub fn dh_refusal(robot: &Robot) -> Option<String> {
+pub fn dh_refusal(robot: &Robot) -> Option<DhRefusal> {
     dh_form(robot).err()
 }
 
@@ -120,7 +120,7 @@ fn frames_text(name: &str, frames: &[Frame]) -> Result<String, ScalarError> {
 }
 
 /// The screw-form robot file, with `why` (the reason it is not DH) in its header.
-fn screw_toml(robot: &Robot, source: &str, why: &str) -> Result<String, ScalarError> {
+fn screw_toml(robot: &Robot, source: &str, why: &DhRefusal) -> Result<String, ScalarError> {
     // The name and the file's path are text from outside: every line of them commented.
     let mut out = line_comment(
         Comment::Hash,
@@ -230,7 +230,7 @@ fn dot(a: &V, b: &V) -> Scalar {
     &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]
 }
 
-fn is_zero(v: &V) -> Result<bool, String> {
+fn is_zero(v: &V) -> Result<bool, DhRefusal> {
     let mut all = true;
     for x in v {
         all &= vanishes(x)?;
@@ -240,9 +240,8 @@ fn is_zero(v: &V) -> Result<bool, String> {
 
 /// Whether `x` is zero; a limit reached by the arithmetic of the check is the refusal's
 /// reason itself, never a "no" (it once read as "a mimic joint").
-fn vanishes(x: &Scalar) -> Result<bool, String> {
-    x.try_is_zero()
-        .map_err(|e| format!("a size limit was reached while checking it ({e})"))
+fn vanishes(x: &Scalar) -> Result<bool, DhRefusal> {
+    x.try_is_zero().map_err(DhRefusal::Limit)
 }
 
 fn num(x: &Scalar) -> f64 {
@@ -250,26 +249,26 @@ fn num(x: &Scalar) -> f64 {
 }
 
 /// `x / y` for a nonzero constant `y`.
-fn div(x: &Scalar, y: &Scalar) -> Result<Scalar, String> {
-    x.try_div(y).map_err(|e| e.to_string())
+fn div(x: &Scalar, y: &Scalar) -> Result<Scalar, DhRefusal> {
+    Ok(x.try_div(y)?)
 }
 
 /// The exact square root of `x`, which must be a rational (a nested radical has none here).
-fn root(x: &Scalar, what: &str) -> Result<Scalar, String> {
+fn root(x: &Scalar, what: &str) -> Result<Scalar, DhRefusal> {
     x.sqrt()
         .check()
-        .map_err(|_| format!("{what} is not the square root of a rational"))
+        .map_err(|_| DhRefusal::NotRationalRoot(what.to_string()))
 }
 
 /// The angle `k pi/12` whose cosine and sine are `c` and `s`.
-fn angle_of(c: &Scalar, s: &Scalar, what: &str) -> Result<Scalar, String> {
+fn angle_of(c: &Scalar, s: &Scalar, what: &str) -> Result<Scalar, DhRefusal> {
     let k = (num(s).atan2(num(c)) / (std::f64::consts::PI / 12.0)).round();
-    let refuse = || format!("{what} is not a multiple of pi/12");
+    let refuse = || DhRefusal::NotTwelfth(what.to_string());
     if !k.is_finite() {
         return Err(refuse());
     }
     let a = Scalar::pi() * <Scalar as crate::Ring>::from_ratio(k as i64, 12);
-    let exact = |x: Scalar, y: &Scalar| vanishes(&(x - y)).map_err(|m| format!("{what}: {m}"));
+    let exact = |x: Scalar, y: &Scalar| vanishes(&(x - y)).map_err(|m| m.at(what));
     if exact(a.cos(), c)? && exact(a.sin(), s)? {
         Ok(a)
     } else {
@@ -279,7 +278,7 @@ fn angle_of(c: &Scalar, s: &Scalar, what: &str) -> Result<Scalar, String> {
 
 /// The frame `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` equal to the unit DQ `f`, with angles
 /// multiples of pi/12.
-fn frame_of(f: &DualQuat<Scalar>, what: &str) -> Result<Frame, String> {
+fn frame_of(f: &DualQuat<Scalar>, what: &str) -> Result<Frame, DhRefusal> {
     let m = f.to_matrix().rows;
     let r = |i: usize, j: usize| num(&m[i][j]);
     let (yaw, pitch, roll) = if r(0, 0).hypot(r(1, 0)) > 1e-9 {
@@ -303,25 +302,80 @@ fn frame_of(f: &DualQuat<Scalar>, what: &str) -> Result<Frame, String> {
     let back = frame.dq()?.to_matrix().rows;
     let mut same = true;
     for (x, y) in back.iter().flatten().zip(m.iter().flatten()) {
-        same &= vanishes(&(x - y)).map_err(|m| format!("{what}: {m}"))?;
+        same &= vanishes(&(x - y)).map_err(|m| m.at(what))?;
     }
     if same {
         Ok(frame)
     } else {
-        Err(format!(
-            "{what} has no roll, pitch and yaw that are multiples of pi/12"
-        ))
+        Err(DhRefusal::NoFrame(what.to_string()))
     }
 }
 
+/// A joint of the screw form: its kind, unit axis, a point of the axis and its value (its
+/// own variable).
+struct Line {
+    kind: JointKind,
+    axis: V,
+    point: V,
+    value: Scalar,
+}
+
 /// The DH form of a screw-form robot, or why there is none.
-fn dh_form(robot: &Robot) -> Result<Dh, String> {
-    let n = robot.chain.joints.len();
-    if n == 0 {
-        return Err("the chain has no moving joint".into());
+fn dh_form(robot: &Robot) -> Result<Dh, DhRefusal> {
+    let lines = screw_lines(robot)?;
+    let (base_frame, mut x, mut origin) = frame_zero(&lines[0])?;
+    let zero = || Scalar::int(0);
+    let mut rows = Vec::new();
+    for (i, line) in lines.iter().enumerate() {
+        let Some(next) = lines.get(i + 1) else {
+            rows.push((
+                line.kind,
+                line.value.clone(),
+                [zero(), zero(), zero(), zero()],
+            ));
+            break;
+        };
+        let j = i + 1;
+        let (d, a, xn) = common_normal(j, line, next, lines.get(i + 2), (&origin, &x))?;
+        let (u, u2) = (&line.axis, &next.axis);
+        let theta = angle_of(
+            &dot(&x, &xn),
+            &dot(&cross(&x, &xn), u),
+            &format!("joint {j}'s angle from the previous common normal"),
+        )?;
+        let alpha = angle_of(
+            &dot(u, u2),
+            &dot(&cross(u, u2), &xn),
+            &format!("the angle between axes {j} and {}", j + 1),
+        )?;
+        origin = add(&add(&origin, &scale(&d, u)), &scale(&a, &xn));
+        x = xn;
+        rows.push((line.kind, line.value.clone(), [theta, d, a, alpha]));
     }
-    // One variable per joint, each its own symbol (DH rows take one variable each).
-    let mut lines: Vec<(JointKind, V, V, Scalar)> = Vec::new();
+    let home = home_checked(&base_frame, &rows, &lines)?;
+    let tool = tool_frame(robot, home)?;
+    let mut base = robot.base_frames.clone();
+    let mut identity = true;
+    for x in base_frame.xyz.iter().chain(&base_frame.rpy) {
+        identity &= vanishes(x)?;
+    }
+    if !identity {
+        base.push(base_frame);
+    }
+    Ok(Dh {
+        base,
+        rows,
+        tool: vec![tool],
+    })
+}
+
+/// The joints of a screw-form robot, each moved by its own variable (DH rows take one
+/// variable each).
+fn screw_lines(robot: &Robot) -> Result<Vec<Line>, DhRefusal> {
+    if robot.chain.joints.is_empty() {
+        return Err(DhRefusal::NoJoint);
+    }
+    let mut lines: Vec<Line> = Vec::new();
     for (i, (j, value)) in robot
         .chain
         .joints
@@ -332,24 +386,31 @@ fn dh_form(robot: &Robot) -> Result<Dh, String> {
         let mut plain = false;
         for v in &robot.variables {
             plain |= vanishes(&(value - &Scalar::sym(v)))
-                .map_err(|m| format!("joint {}: {m}", i + 1))?;
+                .map_err(|m| m.at(&format!("joint {}", i + 1)))?;
         }
-        let shared = lines.iter().any(|l| l.3 == *value);
+        let shared = lines.iter().any(|l| l.value == *value);
         if !plain || shared {
-            return Err(format!(
-                "joint {} moves with another joint's variable (a mimic joint)",
-                i + 1
-            ));
+            return Err(DhRefusal::Mimic(i + 1));
         }
         let JointGeometry::Screw { axis, point } = &j.geometry else {
-            return Err("the robot is not in screw form".into());
+            return Err(DhRefusal::NotScrew);
         };
-        lines.push((j.kind, axis.clone(), point.clone(), value.clone()));
+        lines.push(Line {
+            kind: j.kind,
+            axis: axis.clone(),
+            point: point.clone(),
+            value: value.clone(),
+        });
     }
+    Ok(lines)
+}
+
+/// Frame 0: z on joint 1's axis, `Rz(azimuth) Ry(polar)`, at the foot of the perpendicular
+/// from the base origin; with its x axis and origin.
+fn frame_zero(first: &Line) -> Result<(Frame, V, V), DhRefusal> {
     let zero = || Scalar::int(0);
     let one = Scalar::int(1);
-    // Frame 0: z on joint 1's axis, Rz(azimuth) Ry(polar).
-    let u = &lines[0].1;
+    let u = &first.axis;
     let sin_polar = root(
         &(&one - &(&u[2] * &u[2])),
         "the sine of joint 1's polar angle",
@@ -365,99 +426,109 @@ fn dh_form(robot: &Robot) -> Result<Dh, String> {
         )?
     };
     let (cp, sp, ca, sa) = (polar.cos(), polar.sin(), azimuth.cos(), azimuth.sin());
-    let mut x: V = [&ca * &cp, &sa * &cp, -sp.clone()];
-    let mut origin: V = match lines[0].0 {
+    let x: V = [&ca * &cp, &sa * &cp, -sp.clone()];
+    let origin: V = match first.kind {
         JointKind::Revolute => {
-            let p = &lines[0].2;
+            let p = &first.point;
             sub(p, &scale(&dot(p, u), u))
         }
         JointKind::Prismatic => [zero(), zero(), zero()],
     };
-    let base_frame = Frame {
+    let frame = Frame {
         xyz: origin.clone(),
         rpy: [zero(), polar, azimuth],
     };
-    let mut rows = Vec::new();
-    for i in 0..n {
-        let (kind, u, _, value) = &lines[i];
-        let Some((next_kind, u2, p2, _)) = lines.get(i + 1) else {
-            rows.push((*kind, value.clone(), [zero(), zero(), zero(), zero()]));
-            break;
-        };
-        // A prismatic joint's line is free: on the axis after it when the two are parallel
-        // (so that they coincide, a = 0), else through this frame's origin.
-        let p2 = match (next_kind, lines.get(i + 2)) {
-            (JointKind::Revolute, _) => p2.clone(),
-            (JointKind::Prismatic, Some((JointKind::Revolute, u3, p3, _)))
-                if is_zero(&cross(u2, u3))? =>
-            {
-                p3.clone()
-            }
-            (JointKind::Prismatic, _) => origin.clone(),
-        };
-        let w = sub(&p2, &origin);
-        let c = cross(u, u2);
-        let j = i + 1;
-        let (d, a, xn) = if !is_zero(&c).map_err(|m| format!("joint {j}: {m}"))? {
-            let s2 = dot(&c, &c);
-            let s = root(
-                &s2,
-                &format!("the sine of the angle between axes {j} and {}", j + 1),
-            )?;
-            let mut xn: V = [div(&c[0], &s)?, div(&c[1], &s)?, div(&c[2], &s)?];
-            let mut a = dot(&w, &xn);
-            if num(&a) < 0.0 {
-                xn = scale(&Scalar::int(-1), &xn);
-                a = -a;
-            }
-            let d = div(&dot(&cross(&w, u2), &c), &s2)?;
-            (d, a, xn)
-        } else {
-            let perp = sub(&w, &scale(&dot(&w, u), u));
-            if is_zero(&perp).map_err(|m| format!("joint {j}: {m}"))? {
-                (zero(), zero(), x.clone())
-            } else {
-                let a = root(
-                    &dot(&perp, &perp),
-                    &format!("the distance between axes {j} and {}", j + 1),
-                )?;
-                let xn = [div(&perp[0], &a)?, div(&perp[1], &a)?, div(&perp[2], &a)?];
-                (zero(), a, xn)
-            }
-        };
-        let theta = angle_of(
-            &dot(&x, &xn),
-            &dot(&cross(&x, &xn), u),
-            &format!("joint {j}'s angle from the previous common normal"),
+    Ok((frame, x, origin))
+}
+
+/// `d`, `a` and the new x axis of joint `j` (counted from 1) with axis `line`, the next
+/// joint's `next` and the one after `after`: the common normal of the two axes from frame
+/// `j - 1`'s `origin` and x axis `x`.
+fn common_normal(
+    j: usize,
+    line: &Line,
+    next: &Line,
+    after: Option<&Line>,
+    (origin, x): (&V, &V),
+) -> Result<(Scalar, Scalar, V), DhRefusal> {
+    let zero = || Scalar::int(0);
+    let (u, u2) = (&line.axis, &next.axis);
+    // A prismatic joint's line is free: on the axis after it when the two are parallel
+    // (so that they coincide, a = 0), else through this frame's origin.
+    let p2 = match (next.kind, after) {
+        (JointKind::Revolute, _) => next.point.clone(),
+        (JointKind::Prismatic, Some(l3))
+            if l3.kind == JointKind::Revolute && is_zero(&cross(u2, &l3.axis))? =>
+        {
+            l3.point.clone()
+        }
+        (JointKind::Prismatic, _) => origin.clone(),
+    };
+    let w = sub(&p2, origin);
+    let c = cross(u, u2);
+    let at_joint = |m: DhRefusal| m.at(&format!("joint {j}"));
+    if !is_zero(&c).map_err(at_joint)? {
+        let s2 = dot(&c, &c);
+        let s = root(
+            &s2,
+            &format!("the sine of the angle between axes {j} and {}", j + 1),
         )?;
-        let alpha = angle_of(
-            &dot(u, u2),
-            &dot(&cross(u, u2), &xn),
-            &format!("the angle between axes {j} and {}", j + 1),
-        )?;
-        origin = add(&add(&origin, &scale(&d, u)), &scale(&a, &xn));
-        x = xn;
-        rows.push((*kind, value.clone(), [theta, d, a, alpha]));
+        let mut xn: V = [div(&c[0], &s)?, div(&c[1], &s)?, div(&c[2], &s)?];
+        let mut a = dot(&w, &xn);
+        if num(&a) < 0.0 {
+            xn = scale(&Scalar::int(-1), &xn);
+            a = -a;
+        }
+        let d = div(&dot(&cross(&w, u2), &c), &s2)?;
+        return Ok((d, a, xn));
     }
-    // The DH chain at its home pose, checked against the screw axes.
-    let b0 = base_frame.dq()?;
-    let mut home = b0.clone();
+    let perp = sub(&w, &scale(&dot(&w, u), u));
+    if is_zero(&perp).map_err(at_joint)? {
+        // Parallel axes on one line: no offset; the x axis stays.
+        return Ok((zero(), zero(), x.clone()));
+    }
+    let a = root(
+        &dot(&perp, &perp),
+        &format!("the distance between axes {j} and {}", j + 1),
+    )?;
+    let xn = [div(&perp[0], &a)?, div(&perp[1], &a)?, div(&perp[2], &a)?];
+    Ok((zero(), a, xn))
+}
+
+/// The home pose of the DH chain, checked joint by joint against the screw axes.
+fn home_checked(
+    base_frame: &Frame,
+    rows: &[(JointKind, Scalar, [Scalar; 4])],
+    lines: &[Line],
+) -> Result<DualQuat<Scalar>, DhRefusal> {
+    let zero = || Scalar::int(0);
+    let mut home = base_frame.dq()?;
     for (i, (kind, _, [theta, d, a, alpha])) in rows.iter().enumerate() {
-        let (k, u, p, _) = &lines[i];
+        let Line {
+            kind: k,
+            axis: u,
+            point: p,
+            ..
+        } = &lines[i];
         debug_assert_eq!(k, kind);
-        let z =
-            DualQuat::from_real(home.real.clone()).transform_point(&[zero(), zero(), one.clone()]);
+        let z = DualQuat::from_real(home.real.clone()).transform_point(&[
+            zero(),
+            zero(),
+            Scalar::int(1),
+        ]);
         let at = home.translation_part();
         let on_line = *kind == JointKind::Prismatic || is_zero(&cross(&sub(&at, p), u))?;
         if !is_zero(&sub(&z, u))? || !on_line {
-            return Err(format!(
-                "joint {}'s DH frame misses its axis (a bug)",
-                i + 1
-            ));
+            return Err(DhRefusal::MissesAxis(i + 1));
         }
         home = home
             * Joint::revolute_dh(theta.clone(), d.clone(), a.clone(), alpha.clone()).dq(&zero());
     }
+    Ok(home)
+}
+
+/// The tip in the last joint's frame, checked to give the robot's own tip home pose.
+fn tool_frame(robot: &Robot, home: DualQuat<Scalar>) -> Result<Frame, DhRefusal> {
     let tool = home.conjugate() * &robot.chain.tool;
     let tool = frame_of(&tool, "the tip in the last joint's frame")?;
     let tool_dq = tool.dq()?;
@@ -469,22 +540,64 @@ fn dh_form(robot: &Robot) -> Result<Dh, String> {
         .flatten()
         .zip(robot.chain.tool.to_matrix().rows.iter().flatten())
     {
-        same &= vanishes(&(x - y)).map_err(|m| format!("the tip's home pose: {m}"))?;
+        same &= vanishes(&(x - y)).map_err(|m| m.at("the tip's home pose"))?;
     }
     if !same {
-        return Err("the tip's home pose differs (a bug)".into());
+        return Err(DhRefusal::TipDiffers);
     }
-    let mut base = robot.base_frames.clone();
-    let mut identity = true;
-    for x in base_frame.xyz.iter().chain(&base_frame.rpy) {
-        identity &= vanishes(x)?;
+    Ok(tool)
+}
+
+/// Why a robot has no DH form (the screw-form file's header says it).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum DhRefusal {
+    /// The chain has no joint.
+    #[error("the chain has no moving joint")]
+    NoJoint,
+    /// A joint moves with another joint's variable (counted from 1).
+    #[error("joint {0} moves with another joint's variable (a mimic joint)")]
+    Mimic(usize),
+    /// The joints are not screw motions.
+    #[error("the robot is not in screw form")]
+    NotScrew,
+    /// A length or sine is a nested radical.
+    #[error("{0} is not the square root of a rational")]
+    NotRationalRoot(String),
+    /// An angle is not a multiple of pi/12.
+    #[error("{0} is not a multiple of pi/12")]
+    NotTwelfth(String),
+    /// A constant frame has no roll, pitch and yaw that are multiples of pi/12.
+    #[error("{0} has no roll, pitch and yaw that are multiples of pi/12")]
+    NoFrame(String),
+    /// A limit was reached while checking whether a value is zero.
+    #[error("a size limit was reached while checking it ({0})")]
+    Limit(ScalarError),
+    /// An exact operation failed.
+    #[error(transparent)]
+    Scalar(#[from] ScalarError),
+    /// A reason, at the place named.
+    #[error("{at}: {why}")]
+    At {
+        /// Where (`joint 2`, `the tip's home pose`).
+        at: String,
+        /// Why.
+        why: Box<DhRefusal>,
+    },
+    /// The DH frame of a joint misses its axis (counted from 1): a bug.
+    #[error("joint {0}'s DH frame misses its axis (a bug)")]
+    MissesAxis(usize),
+    /// The DH chain's tip differs from the robot's: a bug.
+    #[error("the tip's home pose differs (a bug)")]
+    TipDiffers,
+}
+
+impl DhRefusal {
+    /// This reason at `at`.
+    fn at(self, at: &str) -> DhRefusal {
+        DhRefusal::At {
+            at: at.to_string(),
+            why: Box::new(self),
+        }
     }
-    if !identity {
-        base.push(base_frame);
-    }
-    Ok(Dh {
-        base,
-        rows,
-        tool: vec![tool],
-    })
 }

@@ -18,7 +18,7 @@ mod quantity;
 mod recurrence;
 mod task;
 
-pub use convert::{dh_refusal, robot_toml};
+pub use convert::{dh_refusal, robot_toml, DhRefusal};
 pub use fk::{
     fk_entries, fk_ops, fk_report, in_decimals, ops_tables, FkEntries, FkOptions, ReportError,
 };

@@ -9,6 +9,7 @@ pub mod angles;
 mod chain;
 mod dh;
 pub mod dqexp;
+mod field_error;
 mod jacobian;
 mod joint;
 mod robot;
@@ -20,8 +21,8 @@ pub use dh::{dh_link, dh_link_matrix, mdh_link, mdh_link_matrix};
 pub use jacobian::{dq_jacobian, geometric_jacobian, geometric_jacobian_body};
 pub use joint::{Joint, JointGeometry, JointKind};
 pub use robot::{
-    parse_robot, parse_robot_with, split_top_level, Convention, FieldEval, Frame, Robot,
-    RobotError, RobotOptions,
+    parse_robot, parse_robot_with, split_top_level, Convention, ExprError, FieldError, FieldEval,
+    Frame, Robot, RobotError, RobotOptions,
 };
 pub use screw::{screw_parameters, ScrewError, ScrewParams};
 pub use urdf::{parse_urdf, UrdfError, UrdfOptions, UrdfRobot, SNAP_TOLERANCE};

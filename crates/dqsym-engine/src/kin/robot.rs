@@ -12,9 +12,10 @@
 //! about x, then pitch about y, then yaw about z, so `R = Rz(yaw) Ry(pitch) Rx(roll)`), the
 //! frame being `Trans(xyz) R`. `tool = ["x", "y", "z"]` (or `"x, y, z"`) is a point instead.
 
+pub use super::field_error::{ExprError, FieldError};
 use super::{Chain, Joint, JointGeometry, JointKind};
 use crate::emit::names::terminal_text;
-use crate::{DualQuat, Matrix4, Quat, Scalar};
+use crate::{DualQuat, Matrix4, Quat, Scalar, ScalarError};
 use serde::Deserialize;
 use std::sync::atomic::{AtomicBool, Ordering as AtomicOrdering};
 use thiserror::Error;
@@ -91,12 +92,12 @@ pub struct Frame {
 
 impl Frame {
     /// The frame as a unit DQ, or why an angle has no exact cosine.
-    pub fn dq(&self) -> Result<DualQuat<Scalar>, String> {
+    pub fn dq(&self) -> Result<DualQuat<Scalar>, ScalarError> {
         frame_dq(&self.xyz, &self.rpy)
     }
 
     /// The product of `frames` in order (the identity for none).
-    pub fn product(frames: &[Frame]) -> Result<DualQuat<Scalar>, String> {
+    pub fn product(frames: &[Frame]) -> Result<DualQuat<Scalar>, ScalarError> {
         let mut acc = DualQuat::identity();
         for f in frames {
             acc = acc * f.dq()?;
@@ -184,7 +185,7 @@ struct JointFile {
 }
 
 /// Evaluates a field's text to an exact scalar, or says why it cannot.
-pub type FieldEval<'a> = &'a dyn Fn(&str) -> Result<Scalar, String>;
+pub type FieldEval<'a> = &'a dyn Fn(&str) -> Result<Scalar, ExprError>;
 
 /// Reads a robot file. `file` names it in messages; `eval` evaluates one field expression.
 /// Angles are read by the rule of [`super::angles`] (notes in [`Robot::notes`]).
@@ -199,13 +200,62 @@ pub fn parse_robot_with(
     eval: FieldEval,
     opts: &RobotOptions,
 ) -> Result<Robot, RobotError> {
-    let (text, decimals) = numbers_as_text(text).map_err(|message| RobotError::File {
+    let file_err = |message: String| RobotError::File {
         file: file.to_string(),
         message,
-    })?;
-    let text = &text;
-    let mut notes: Vec<String> = Vec::new();
-    let f: RobotFile = toml::from_str(text).map_err(|e| {
+    };
+    let (text, decimals) = numbers_as_text(text).map_err(|e| file_err(e.to_string()))?;
+    let f = toml_file(&text, file)?;
+    let convention = match &f.convention {
+        Keyword::Known(c) => *c,
+        Keyword::Unknown(other) => {
+            return Err(file_err(format!(
+                "unknown convention `{other}` (expected \"dh\", \"mdh\" or \"screw\")"
+            )))
+        }
+    };
+    if f.joint.is_empty() {
+        return Err(file_err("no [[joint]] tables".into()));
+    }
+    let mut reader = Reader {
+        file,
+        eval,
+        opts,
+        params: &f.values,
+        notes: Vec::new(),
+        joints: Vec::new(),
+        variables: Vec::new(),
+        values: Vec::new(),
+    };
+    for (i, j) in f.joint.iter().enumerate() {
+        reader.joint(i + 1, j, convention)?;
+    }
+    let nominal = nominal_values(&f.values, &reader.variables, file, eval)?;
+    let ends = reader.end_frames(&f)?;
+    let product = |fs: &[Frame], name: &str| {
+        Frame::product(fs).map_err(|e| file_err(format!("field `{name}.rpy`: {e}")))
+    };
+    let chain = Chain::new(reader.joints)
+        .with_base(product(&ends.base_frames, "base")?)
+        .with_tool(product(&ends.tool_frames, "tool")?);
+    Ok(Robot {
+        name: f.name.unwrap_or_else(|| file.to_string()),
+        convention,
+        joint_values: reader.values,
+        variables: reader.variables,
+        chain,
+        base_frames: ends.base_frames,
+        tool_frames: ends.tool_frames,
+        tool: ends.tool,
+        values: nominal,
+        notes: reader.notes,
+        decimals,
+    })
+}
+
+/// The TOML text read into a [`RobotFile`]; a syntax error names its line and column.
+fn toml_file(text: &str, file: &str) -> Result<RobotFile, RobotError> {
+    toml::from_str(text).map_err(|e| {
         let at = e.span().map(|s| {
             let before = &text[..s.start.min(text.len())];
             let line = before.matches('\n').count() + 1;
@@ -216,172 +266,19 @@ pub fn parse_robot_with(
             file: file.to_string(),
             message: format!("{}{}", at.unwrap_or_default(), e.message()),
         }
-    })?;
-    let convention = match &f.convention {
-        Keyword::Known(c) => *c,
-        Keyword::Unknown(other) => {
-            return Err(RobotError::File {
-                file: file.into(),
-                message: format!(
-                    "unknown convention `{other}` (expected \"dh\", \"mdh\" or \"screw\")"
-                ),
-            })
-        }
-    };
-    if f.joint.is_empty() {
-        return Err(RobotError::File {
-            file: file.into(),
-            message: "no [[joint]] tables".into(),
-        });
-    }
-    let mut joints = Vec::new();
-    let mut variables = Vec::new();
-    let mut values = Vec::new();
-    for (i, j) in f.joint.iter().enumerate() {
-        let n = i + 1;
-        let err = |field: &str, message: String| RobotError::Field {
-            file: file.into(),
-            joint: n,
-            field: field.into(),
-            message,
-        };
-        let kind = match &j.kind {
-            Keyword::Known(k) => *k,
-            Keyword::Unknown(other) => {
-                return Err(err(
-                    "type",
-                    format!(
-                        "unknown joint type `{other}` (expected \"revolute\" or \"prismatic\")"
-                    ),
-                ))
-            }
-        };
-        let field = |name: &str, v: &Option<String>| -> Result<Scalar, RobotError> {
-            let text = v.as_ref().ok_or_else(|| err(name, "missing".into()))?;
-            eval(text).map_err(|m| err(name, m))
-        };
-        match convention {
-            Convention::Dh | Convention::Mdh => {
-                let (theta, d, a, alpha) = (
-                    field("theta", &j.theta)?,
-                    field("d", &j.d)?,
-                    field("a", &j.a)?,
-                    field("alpha", &j.alpha)?,
-                );
-                let mut angle = |name: &str, x: Scalar| -> Result<Scalar, RobotError> {
-                    let (x, note) = angle_field(x, opts).map_err(|m| err(name, m))?;
-                    if let Some(note) = note {
-                        notes.push(format!("joint {n}, field `{name}`: {note}"));
-                    }
-                    Ok(x)
-                };
-                let theta = angle("theta", theta)?;
-                let alpha = angle("alpha", alpha)?;
-                // The variable is the one symbol of theta (revolute) or d (prismatic); the rest
-                // of that field is a constant offset.
-                let (vname, vfield) = match kind {
-                    JointKind::Revolute => ("theta", &theta),
-                    JointKind::Prismatic => ("d", &d),
-                };
-                // theta and alpha are angles (halved in the joint's DQ): say so here, naming
-                // the field as written, rather than deep in the derivation.
-                for (name, value, text) in
-                    [("theta", &theta, &j.theta), ("alpha", &alpha, &j.alpha)]
-                {
-                    if value.cos().check().is_err() {
-                        return Err(err(
-                            name,
-                            format!(
-                                "`{}` is not an angle (a rational combination of symbols plus a \
-                                 rational multiple of pi)",
-                                text.as_deref().unwrap_or_default()
-                            ),
-                        ));
-                    }
-                }
-                let var = joint_variable(vfield, &f.values).map_err(|m| err(vname, m))?;
-                check_distinct(&variables, &var).map_err(|m| err(vname, m))?;
-                let off = |x: &Scalar, is_var: bool| {
-                    if is_var {
-                        x - &Scalar::sym(&var)
-                    } else {
-                        x.clone()
-                    }
-                };
-                let theta = off(&theta, kind == JointKind::Revolute);
-                let d = off(&d, kind == JointKind::Prismatic);
-                let geometry = if convention == Convention::Dh {
-                    JointGeometry::Dh { theta, d, a, alpha }
-                } else {
-                    JointGeometry::Mdh { alpha, a, theta, d }
-                };
-                values.push(Scalar::sym(&var));
-                variables.push(var);
-                joints.push(Joint::new(kind, geometry));
-            }
-            Convention::Screw => {
-                let text = j
-                    .variable
-                    .clone()
-                    .ok_or_else(|| err("variable", "missing".into()))?;
-                // A symbol, or an expression in one symbol for a coupled joint
-                // (`2*q1 + pi/4`, as a converted URDF mimic joint reads).
-                let plain_name =
-                    !text.is_empty() && text.chars().all(|c| c.is_alphanumeric() || c == '_');
-                let (var, value) = if plain_name {
-                    if !text.starts_with(char::is_alphabetic) {
-                        return Err(err("variable", format!("`{text}` is not a symbol name")));
-                    }
-                    // The same name twice is a mistake; a coupling is written as an
-                    // expression in the other joint's variable.
-                    check_distinct(&variables, &text).map_err(|m| err("variable", m))?;
-                    builtin_name(&text, eval).map_err(|m| err("variable", m))?;
-                    (text.clone(), Scalar::sym(&text))
-                } else {
-                    let value = eval(&text).map_err(|m| err("variable", m))?;
-                    let value = if kind == JointKind::Revolute {
-                        let (v, note) = angle_field(value, opts).map_err(|m| err("variable", m))?;
-                        if let Some(note) = note {
-                            notes.push(format!("joint {n}, field `variable`: {note}"));
-                        }
-                        v
-                    } else {
-                        value
-                    };
-                    let var = joint_variable(&value, &f.values).map_err(|m| err("variable", m))?;
-                    (var, value)
-                };
-                let axis = vec3(j.axis.as_ref(), "axis", eval).map_err(|m| err("axis", m))?;
-                let axis = unit_numeric(&axis).map_err(|m| err("axis", m))?;
-                let point = match (kind, j.point.as_ref()) {
-                    (JointKind::Revolute, None) => {
-                        return Err(err(
-                            "point",
-                            "missing (a revolute joint needs a point of its axis)".into(),
-                        ))
-                    }
-                    (JointKind::Prismatic, Some(_)) => {
-                        return Err(err("point", "a prismatic joint has no point".into()))
-                    }
-                    (_, p) => match p {
-                        Some(_) => vec3(p, "point", eval).map_err(|m| err("point", m))?,
-                        None => [Scalar::int(0), Scalar::int(0), Scalar::int(0)],
-                    },
-                };
-                values.push(value);
-                if !variables.contains(&var) {
-                    variables.push(var);
-                }
-                joints.push(Joint::new(kind, JointGeometry::Screw { axis, point }));
-            }
-        }
-    }
-    let file_err = |field: &str, m: String| RobotError::File {
-        file: file.into(),
-        message: format!("field `{field}`: {m}"),
-    };
+    })
+}
+
+/// The nominal numbers of the `[values]` table; each name must be a symbol that is not a
+/// joint variable.
+fn nominal_values(
+    params: &std::collections::BTreeMap<String, toml::Value>,
+    variables: &[String],
+    file: &str,
+    eval: FieldEval,
+) -> Result<Vec<(String, f64)>, RobotError> {
     let mut nominal = Vec::new();
-    for (name, v) in &f.values {
+    for (name, v) in params {
         let bad = |m: &str| RobotError::File {
             file: file.into(),
             message: format!("[values], `{name}`: {m}"),
@@ -404,76 +301,257 @@ pub fn parse_robot_with(
         };
         nominal.push((name.clone(), x));
     }
-    let (tool, tool_frames) = match &f.tool {
-        None => (None, Vec::new()),
-        Some(v @ (toml::Value::Table(_) | toml::Value::Array(_))) if is_frames(v) => (
-            None,
-            frames(v, eval).map_err(|(k, m)| file_err(&format!("tool{k}"), m))?,
-        ),
-        Some(v) => (
-            Some(point(v, eval).map_err(|m| file_err("tool", m))?),
-            Vec::new(),
-        ),
-    };
-    let base_frames = match &f.base {
-        None => Vec::new(),
-        Some(v) if is_frames(v) => {
-            frames(v, eval).map_err(|(k, m)| file_err(&format!("base{k}"), m))?
-        }
-        Some(_) => {
-            return Err(file_err(
-                "base",
-                "expected a table `[base]` with `xyz` and `rpy`".into(),
-            ))
-        }
-    };
-    let (mut base_frames, mut tool_frames) = (base_frames, tool_frames);
-    for (name, v, fs) in [
-        ("base", &f.base, &mut base_frames),
-        ("tool", &f.tool, &mut tool_frames),
-    ] {
-        let single = matches!(v, Some(toml::Value::Table(_)));
-        for (k, fr) in fs.iter_mut().enumerate() {
-            for (i, x) in fr.rpy.iter_mut().enumerate() {
-                let at = if single {
-                    format!("{name}.rpy[{i}]")
-                } else {
-                    format!("{name}[{}].rpy[{i}]", k + 1)
-                };
-                let (y, note) = angle_field(x.clone(), opts).map_err(|m| file_err(&at, m))?;
-                if let Some(note) = note {
-                    notes.push(format!("field `{at}`: {note}"));
-                }
-                *x = y;
-            }
+    Ok(nominal)
+}
+
+/// The constant frames and the tool point of a robot file.
+struct EndFrames {
+    tool: Option<[Scalar; 3]>,
+    base_frames: Vec<Frame>,
+    tool_frames: Vec<Frame>,
+}
+
+/// The state of reading a robot file's joints: what it reads with, and what it has read.
+struct Reader<'a> {
+    file: &'a str,
+    eval: FieldEval<'a>,
+    opts: &'a RobotOptions,
+    /// The `[values]` table: its names are parameters, never joint variables.
+    params: &'a std::collections::BTreeMap<String, toml::Value>,
+    notes: Vec<String>,
+    joints: Vec<Joint<Scalar>>,
+    variables: Vec<String>,
+    values: Vec<Scalar>,
+}
+
+impl Reader<'_> {
+    /// The error of joint `n`'s `field`.
+    fn err(&self, n: usize, field: &str, e: impl Into<FieldError>) -> RobotError {
+        RobotError::Field {
+            file: self.file.into(),
+            joint: n,
+            field: field.into(),
+            message: e.into().to_string(),
         }
     }
-    let product = |fs: &[Frame], name: &str| {
-        Frame::product(fs).map_err(|m| file_err(&format!("{name}.rpy"), m))
-    };
-    let chain = Chain::new(joints)
-        .with_base(product(&base_frames, "base")?)
-        .with_tool(product(&tool_frames, "tool")?);
-    Ok(Robot {
-        name: f.name.unwrap_or_else(|| file.to_string()),
-        convention,
-        joint_values: values,
-        variables,
-        chain,
-        base_frames,
-        tool_frames,
-        tool,
-        values: nominal,
-        notes,
-        decimals,
-    })
+
+    /// A required field's value.
+    fn field(&self, n: usize, name: &str, v: &Option<String>) -> Result<Scalar, RobotError> {
+        let text = v
+            .as_ref()
+            .ok_or_else(|| self.err(n, name, FieldError::Missing))?;
+        (self.eval)(text).map_err(|e| self.err(n, name, e))
+    }
+
+    /// An angle by [`angle_field`], its note (if any) recorded under `at`.
+    fn angle(&mut self, x: Scalar, at: &str) -> Result<Scalar, FieldError> {
+        let (x, note) = angle_field(x, self.opts)?;
+        if let Some(note) = note {
+            self.notes.push(format!("{at}: {note}"));
+        }
+        Ok(x)
+    }
+
+    /// Reads joint `n` and adds it to the chain.
+    fn joint(&mut self, n: usize, j: &JointFile, convention: Convention) -> Result<(), RobotError> {
+        let kind = match &j.kind {
+            Keyword::Known(k) => *k,
+            Keyword::Unknown(other) => {
+                return Err(self.err(n, "type", FieldError::UnknownJointType(other.clone())))
+            }
+        };
+        match convention {
+            Convention::Dh | Convention::Mdh => self.dh_joint(n, j, kind, convention),
+            Convention::Screw => self.screw_joint(n, j, kind),
+        }
+    }
+
+    /// A DH or modified DH joint: four fields, the variable the one symbol of `theta`
+    /// (revolute) or `d` (prismatic).
+    fn dh_joint(
+        &mut self,
+        n: usize,
+        j: &JointFile,
+        kind: JointKind,
+        convention: Convention,
+    ) -> Result<(), RobotError> {
+        let (theta, d, a, alpha) = (
+            self.field(n, "theta", &j.theta)?,
+            self.field(n, "d", &j.d)?,
+            self.field(n, "a", &j.a)?,
+            self.field(n, "alpha", &j.alpha)?,
+        );
+        let theta = self
+            .angle(theta, &format!("joint {n}, field `theta`"))
+            .map_err(|e| self.err(n, "theta", e))?;
+        let alpha = self
+            .angle(alpha, &format!("joint {n}, field `alpha`"))
+            .map_err(|e| self.err(n, "alpha", e))?;
+        // The variable is the one symbol of theta (revolute) or d (prismatic); the rest
+        // of that field is a constant offset.
+        let (vname, vfield) = match kind {
+            JointKind::Revolute => ("theta", &theta),
+            JointKind::Prismatic => ("d", &d),
+        };
+        // theta and alpha are angles (halved in the joint's DQ): say so here, naming
+        // the field as written, rather than deep in the derivation.
+        for (name, value, text) in [("theta", &theta, &j.theta), ("alpha", &alpha, &j.alpha)] {
+            if value.cos().check().is_err() {
+                let text = text.as_deref().unwrap_or_default().to_string();
+                return Err(self.err(n, name, FieldError::NotAngle(text)));
+            }
+        }
+        let var = joint_variable(vfield, self.params).map_err(|e| self.err(n, vname, e))?;
+        check_distinct(&self.variables, &var).map_err(|e| self.err(n, vname, e))?;
+        let off = |x: &Scalar, is_var: bool| {
+            if is_var {
+                x - &Scalar::sym(&var)
+            } else {
+                x.clone()
+            }
+        };
+        let theta = off(&theta, kind == JointKind::Revolute);
+        let d = off(&d, kind == JointKind::Prismatic);
+        let geometry = if convention == Convention::Dh {
+            JointGeometry::Dh { theta, d, a, alpha }
+        } else {
+            JointGeometry::Mdh { alpha, a, theta, d }
+        };
+        self.values.push(Scalar::sym(&var));
+        self.variables.push(var);
+        self.joints.push(Joint::new(kind, geometry));
+        Ok(())
+    }
+
+    /// A screw joint: its variable, and its axis and point in the home pose.
+    fn screw_joint(&mut self, n: usize, j: &JointFile, kind: JointKind) -> Result<(), RobotError> {
+        let text = j
+            .variable
+            .clone()
+            .ok_or_else(|| self.err(n, "variable", FieldError::Missing))?;
+        let (var, value) = self
+            .screw_variable(n, &text, kind)
+            .map_err(|e| self.err(n, "variable", e))?;
+        let eval = self.eval;
+        let axis = vec3(j.axis.as_ref(), "axis", eval)
+            .and_then(|a| unit_numeric(&a))
+            .map_err(|e| self.err(n, "axis", e))?;
+        let point = match (kind, j.point.as_ref()) {
+            (JointKind::Revolute, None) => return Err(self.err(n, "point", FieldError::NoPoint)),
+            (JointKind::Prismatic, Some(_)) => {
+                return Err(self.err(n, "point", FieldError::PrismaticPoint))
+            }
+            (_, p) => match p {
+                Some(_) => vec3(p, "point", eval).map_err(|e| self.err(n, "point", e))?,
+                None => [Scalar::int(0), Scalar::int(0), Scalar::int(0)],
+            },
+        };
+        self.values.push(value);
+        if !self.variables.contains(&var) {
+            self.variables.push(var);
+        }
+        self.joints
+            .push(Joint::new(kind, JointGeometry::Screw { axis, point }));
+        Ok(())
+    }
+
+    /// A screw joint's variable and value: a symbol, or an expression in one symbol for a
+    /// coupled joint (`2*q1 + pi/4`, as a converted URDF mimic joint reads).
+    fn screw_variable(
+        &mut self,
+        n: usize,
+        text: &str,
+        kind: JointKind,
+    ) -> Result<(String, Scalar), FieldError> {
+        let plain_name = !text.is_empty() && text.chars().all(|c| c.is_alphanumeric() || c == '_');
+        if plain_name {
+            if !text.starts_with(char::is_alphabetic) {
+                return Err(FieldError::NotSymbolName(text.to_string()));
+            }
+            // The same name twice is a mistake; a coupling is written as an
+            // expression in the other joint's variable.
+            check_distinct(&self.variables, text)?;
+            builtin_name(text, self.eval)?;
+            return Ok((text.to_string(), Scalar::sym(text)));
+        }
+        let value = (self.eval)(text)?;
+        let value = if kind == JointKind::Revolute {
+            self.angle(value, &format!("joint {n}, field `variable`"))?
+        } else {
+            value
+        };
+        let var = joint_variable(&value, self.params)?;
+        Ok((var, value))
+    }
+
+    /// The `[base]` and `[tool]` frames (their angles read by [`angle_field`]) and the
+    /// `tool` point.
+    fn end_frames(&mut self, f: &RobotFile) -> Result<EndFrames, RobotError> {
+        let file_err = |field: &str, e: FieldError| RobotError::File {
+            file: self.file.into(),
+            message: format!("field `{field}`: {e}"),
+        };
+        let eval = self.eval;
+        let (tool, tool_frames) = match &f.tool {
+            None => (None, Vec::new()),
+            Some(v @ (toml::Value::Table(_) | toml::Value::Array(_))) if is_frames(v) => (
+                None,
+                frames(v, eval).map_err(|(k, e)| file_err(&format!("tool{k}"), e))?,
+            ),
+            Some(v) => (
+                Some(point(v, eval).map_err(|e| file_err("tool", e))?),
+                Vec::new(),
+            ),
+        };
+        let base_frames = match &f.base {
+            None => Vec::new(),
+            Some(v) if is_frames(v) => {
+                frames(v, eval).map_err(|(k, e)| file_err(&format!("base{k}"), e))?
+            }
+            Some(_) => {
+                return Err(RobotError::File {
+                    file: self.file.into(),
+                    message: "field `base`: expected a table `[base]` with `xyz` and `rpy`".into(),
+                })
+            }
+        };
+        let mut ends = EndFrames {
+            tool,
+            base_frames,
+            tool_frames,
+        };
+        for (name, v) in [("base", &f.base), ("tool", &f.tool)] {
+            let single = matches!(v, Some(toml::Value::Table(_)));
+            let fs = if name == "base" {
+                &mut ends.base_frames
+            } else {
+                &mut ends.tool_frames
+            };
+            for (k, fr) in fs.iter_mut().enumerate() {
+                for (i, x) in fr.rpy.iter_mut().enumerate() {
+                    let at = if single {
+                        format!("{name}.rpy[{i}]")
+                    } else {
+                        format!("{name}[{}].rpy[{i}]", k + 1)
+                    };
+                    let (y, note) =
+                        angle_field(x.clone(), self.opts).map_err(|e| file_err(&at, e))?;
+                    if let Some(note) = note {
+                        self.notes.push(format!("field `{at}`: {note}"));
+                    }
+                    *x = y;
+                }
+            }
+        }
+        Ok(ends)
+    }
 }
 
 /// An angle field by the rule of [`super::angles`]: its rational term (`1.5708` of `q2 +
 /// 1.5708`) read as a multiple of pi/12 when within the tolerance of its decimals, refused
 /// when past 2 pi (degrees, most likely), else kept; with a note when it is not read as
 /// written or may not mean what it says. `opts.exact_angles` keeps every angle as written.
-fn angle_field(x: Scalar, opts: &RobotOptions) -> Result<(Scalar, Option<String>), String> {
+fn angle_field(x: Scalar, opts: &RobotOptions) -> Result<(Scalar, Option<String>), FieldError> {
     use super::angles::{self, AngleReading};
     if opts.exact_angles {
         return Ok((x, None));
@@ -490,10 +568,7 @@ fn angle_field(x: Scalar, opts: &RobotOptions) -> Result<(Scalar, Option<String>
             let past = num_traits::ToPrimitive::to_f64(&c)
                 .is_none_or(|v| v.abs() > 2.0 * std::f64::consts::PI);
             if past {
-                return Err(format!(
-                    "{t} is past 2*pi as an angle in radians: for degrees write \"{t}deg\" \
-                     (or keep it in radians with --exact-angles)"
-                ));
+                return Err(FieldError::PastTwoPi { number: t });
             }
             let why = match near {
                 Some(k) => angles::near_note(&c, k),
@@ -518,7 +593,7 @@ fn is_frames(v: &toml::Value) -> bool {
 
 /// One frame table, or an array of frame tables applied in order; errors name the key
 /// (`.rpy`, `[2].xyz`).
-fn frames(v: &toml::Value, eval: FieldEval) -> Result<Vec<Frame>, (String, String)> {
+fn frames(v: &toml::Value, eval: FieldEval) -> Result<Vec<Frame>, (String, FieldError)> {
     match v {
         toml::Value::Table(t) => Ok(vec![frame(t, eval).map_err(|(k, m)| (format!(".{k}"), m))?]),
         toml::Value::Array(a) => a
@@ -528,13 +603,10 @@ fn frames(v: &toml::Value, eval: FieldEval) -> Result<Vec<Frame>, (String, Strin
                 toml::Value::Table(t) => {
                     frame(t, eval).map_err(|(k, m)| (format!("[{}].{k}", i + 1), m))
                 }
-                _ => Err((format!("[{}]", i + 1), "expected a table".to_string())),
+                _ => Err((format!("[{}]", i + 1), FieldError::NotTable)),
             })
             .collect(),
-        _ => Err((
-            String::new(),
-            "expected a table with `xyz` and `rpy`".to_string(),
-        )),
+        _ => Err((String::new(), FieldError::NotFrames)),
     }
 }
 
@@ -544,7 +616,7 @@ fn frames(v: &toml::Value, eval: FieldEval) -> Result<Vec<Frame>, (String, Strin
 /// for the TOML reader to report.
 /// Also says whether a field (other than `name` and `[values]`) holds a decimal (`0.425`,
 /// `"q1 + 0.5"`).
-fn numbers_as_text(text: &str) -> Result<(String, Vec<num_rational::BigRational>), String> {
+fn numbers_as_text(text: &str) -> Result<(String, Vec<num_rational::BigRational>), FieldError> {
     let Ok(mut doc) = text.parse::<toml_edit::DocumentMut>() else {
         return Ok((text.to_string(), Vec::new()));
     };
@@ -610,7 +682,11 @@ fn has_decimal(text: &str) -> bool {
     })
 }
 
-fn visit_table(t: &mut dyn toml_edit::TableLike, path: &str, ch: &mut Visit) -> Result<(), String> {
+fn visit_table(
+    t: &mut dyn toml_edit::TableLike,
+    path: &str,
+    ch: &mut Visit,
+) -> Result<(), FieldError> {
     for (k, item) in t.iter_mut() {
         let path = if path.is_empty() {
             k.get().to_string()
@@ -622,7 +698,7 @@ fn visit_table(t: &mut dyn toml_edit::TableLike, path: &str, ch: &mut Visit) -> 
     Ok(())
 }
 
-fn visit_item(item: &mut toml_edit::Item, path: &str, ch: &mut Visit) -> Result<(), String> {
+fn visit_item(item: &mut toml_edit::Item, path: &str, ch: &mut Visit) -> Result<(), FieldError> {
     match item {
         toml_edit::Item::Value(v) => visit_value(v, path, ch),
         toml_edit::Item::Table(t) => visit_table(t, path, ch),
@@ -636,7 +712,7 @@ fn visit_item(item: &mut toml_edit::Item, path: &str, ch: &mut Visit) -> Result<
     }
 }
 
-fn visit_value(v: &mut toml_edit::Value, path: &str, ch: &mut Visit) -> Result<(), String> {
+fn visit_value(v: &mut toml_edit::Value, path: &str, ch: &mut Visit) -> Result<(), FieldError> {
     let text = match v {
         toml_edit::Value::Integer(i) => i.value().to_string(),
         toml_edit::Value::Float(f) => {
@@ -646,7 +722,10 @@ fn visit_value(v: &mut toml_edit::Value, path: &str, ch: &mut Visit) -> Result<(
                 .map(|r| r.replace('_', ""))
                 .unwrap_or_else(|| f.value().to_string());
             if !f.value().is_finite() {
-                return Err(format!("field `{path}`: `{raw}` is not a finite number"));
+                return Err(FieldError::NotFinite {
+                    path: path.to_string(),
+                    raw,
+                });
             }
             raw
         }
@@ -682,37 +761,35 @@ fn is_field(path: &str) -> bool {
 }
 
 /// A point: an array of three fields, or one text `"x, y, z"`.
-fn point(v: &toml::Value, eval: FieldEval) -> Result<[Scalar; 3], String> {
+fn point(v: &toml::Value, eval: FieldEval) -> Result<[Scalar; 3], FieldError> {
     match v {
         toml::Value::String(s) => {
             let parts = split_top_level(s);
             if parts.len() != 3 {
-                return Err(format!(
-                    "a point needs 3 coordinates separated by commas, found {}",
-                    parts.len()
-                ));
+                return Err(ExprError::PointArity { found: parts.len() }.into());
             }
             Ok([eval(parts[0])?, eval(parts[1])?, eval(parts[2])?])
         }
         toml::Value::Array(_) => vec3(Some(&strings(v)?), "a point", eval),
-        _ => Err("expected a point [\"x\", \"y\", \"z\"] or a table with `xyz` and `rpy`".into()),
+        _ => Err(FieldError::NotPoint),
     }
 }
 
 /// The entries of an array as field texts (numbers were already turned into text).
-fn strings(v: &toml::Value) -> Result<Vec<String>, String> {
+fn strings(v: &toml::Value) -> Result<Vec<String>, FieldError> {
     match v {
         toml::Value::Array(a) => a
             .iter()
             .map(|x| match x {
                 toml::Value::String(s) => Ok(s.clone()),
-                other => Err(format!(
-                    "expected a number or an expression in quotes, found a {}",
-                    other.type_str()
-                )),
+                other => Err(FieldError::NotText {
+                    found: other.type_str(),
+                }),
             })
             .collect(),
-        other => Err(format!("expected an array, found a {}", other.type_str())),
+        other => Err(FieldError::NotArray {
+            found: other.type_str(),
+        }),
     }
 }
 
@@ -721,14 +798,11 @@ fn strings(v: &toml::Value) -> Result<Vec<String>, String> {
 fn frame(
     t: &toml::map::Map<String, toml::Value>,
     eval: FieldEval,
-) -> Result<Frame, (String, String)> {
+) -> Result<Frame, (String, FieldError)> {
     if let Some(k) = t.keys().find(|k| *k != "xyz" && *k != "rpy") {
-        return Err((
-            k.clone(),
-            "unknown key (a frame has `xyz` and `rpy`)".to_string(),
-        ));
+        return Err((k.clone(), FieldError::UnknownFrameKey));
     }
-    let get = |k: &str| -> Result<[Scalar; 3], (String, String)> {
+    let get = |k: &str| -> Result<[Scalar; 3], (String, FieldError)> {
         match t.get(k) {
             None => Ok([Scalar::int(0), Scalar::int(0), Scalar::int(0)]),
             Some(v) => strings(v)
@@ -740,20 +814,23 @@ fn frame(
         xyz: get("xyz")?,
         rpy: get("rpy")?,
     };
-    f.dq().map_err(|m| ("rpy".to_string(), m))?;
+    f.dq().map_err(|e| ("rpy".to_string(), e.into()))?;
     Ok(f)
 }
 
 /// `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` as a unit DQ (the URDF `origin` convention), or why
 /// an angle has no exact cosine (`rpy` entries must be angles: symbols, multiples of pi).
-pub(crate) fn frame_dq(xyz: &[Scalar; 3], rpy: &[Scalar; 3]) -> Result<DualQuat<Scalar>, String> {
+pub(crate) fn frame_dq(
+    xyz: &[Scalar; 3],
+    rpy: &[Scalar; 3],
+) -> Result<DualQuat<Scalar>, ScalarError> {
     let (o, l) = (Scalar::int(0), Scalar::int(1));
     let rx = Quat::rotation(&[l.clone(), o.clone(), o.clone()], &rpy[0]);
     let ry = Quat::rotation(&[o.clone(), l.clone(), o.clone()], &rpy[1]);
     let rz = Quat::rotation(&[o.clone(), o.clone(), l], &rpy[2]);
     let q = DualQuat::from_rotation_and_translation(rz * ry * rx, xyz);
     for c in q.components() {
-        c.check().map_err(|e| e.to_string())?;
+        c.check()?;
     }
     Ok(q)
 }
@@ -1082,12 +1159,12 @@ impl Growth {
 /// Refuses a joint variable an earlier joint already has: each Jacobian column is the
 /// derivative by one joint's variable, so a shared one would make both columns the total
 /// derivative.
-fn check_distinct(earlier: &[String], var: &str) -> Result<(), String> {
+fn check_distinct(earlier: &[String], var: &str) -> Result<(), FieldError> {
     match earlier.iter().position(|v| v == var) {
-        Some(k) => Err(format!(
-            "`{var}` is already the variable of joint {}; every joint needs a variable of its own",
-            k + 1
-        )),
+        Some(k) => Err(FieldError::SharedVariable {
+            variable: var.to_string(),
+            joint: k + 1,
+        }),
         None => Ok(()),
     }
 }
@@ -1095,15 +1172,13 @@ fn check_distinct(earlier: &[String], var: &str) -> Result<(), String> {
 /// Refuses a joint variable that the language reads as something else than that symbol: the
 /// constant `pi` (a joint `pi` would be a fixed half turn with a zero Jacobian column), the
 /// dual unit `eps`, the quaternion units, any built-in name.
-fn builtin_name(name: &str, eval: FieldEval) -> Result<(), String> {
+fn builtin_name(name: &str, eval: FieldEval) -> Result<(), FieldError> {
     let sym = Scalar::sym(name);
     let own = !crate::scalar::Sym::new(name).is_pi() && eval(name).is_ok_and(|v| v == sym);
     if own {
         Ok(())
     } else {
-        Err(format!(
-            "`{name}` is a constant or a built-in name of the language, not a joint variable"
-        ))
+        Err(FieldError::BuiltinName(name.to_string()))
     }
 }
 
@@ -1112,7 +1187,7 @@ fn builtin_name(name: &str, eval: FieldEval) -> Result<(), String> {
 fn joint_variable(
     x: &Scalar,
     params: &std::collections::BTreeMap<String, toml::Value>,
-) -> Result<String, String> {
+) -> Result<String, FieldError> {
     let syms: Vec<String> = x
         .symbols()
         .into_iter()
@@ -1122,42 +1197,38 @@ fn joint_variable(
         .collect();
     match syms.as_slice() {
         [one] => Ok(one.clone()),
-        [] => Err("names no joint variable (it must contain exactly one symbol)".into()),
-        _ => Err(format!(
-            "names several symbols ({}); exactly one must be the joint variable",
-            syms.join(", ")
-        )),
+        [] => Err(FieldError::NoVariable),
+        _ => Err(FieldError::SeveralSymbols(syms.join(", "))),
     }
 }
 
-fn vec3(v: Option<&Vec<String>>, name: &str, eval: FieldEval) -> Result<[Scalar; 3], String> {
-    let v = v.ok_or_else(|| "missing".to_string())?;
+fn vec3(v: Option<&Vec<String>>, name: &str, eval: FieldEval) -> Result<[Scalar; 3], FieldError> {
+    let v = v.ok_or(FieldError::Missing)?;
     if v.len() != 3 {
-        return Err(format!("{name} needs 3 entries, found {}", v.len()));
+        return Err(FieldError::Entries {
+            name: name.to_string(),
+            found: v.len(),
+        });
     }
     Ok([eval(&v[0])?, eval(&v[1])?, eval(&v[2])?])
 }
 
 /// The axis scaled to unit length, exactly; the axis must be numeric and nonzero, or
 /// symbolic (in constant angles such as a URDF angle kept as a parameter) of unit length.
-pub(crate) fn unit_numeric(a: &[Scalar; 3]) -> Result<[Scalar; 3], String> {
+pub(crate) fn unit_numeric(a: &[Scalar; 3]) -> Result<[Scalar; 3], FieldError> {
     let n2 = &a[0] * &a[0] + &a[1] * &a[1] + &a[2] * &a[2];
     if !a.iter().all(Scalar::is_constant) {
         // A limit reached by the check is that limit, not a "no".
         return match (&n2 - &Scalar::int(1)).try_is_zero() {
             Ok(true) => Ok(a.clone()),
-            Ok(false) => {
-                Err("a symbolic axis must have unit length (x^2 + y^2 + z^2 = 1 exactly)".into())
-            }
-            Err(e) => Err(format!(
-                "a size limit was reached while checking that the axis has unit length: {e}"
-            )),
+            Ok(false) => Err(FieldError::AxisNotUnit),
+            Err(e) => Err(FieldError::AxisLimit(e)),
         };
     }
     if n2.is_zero_value() {
-        return Err("the axis is zero".into());
+        return Err(FieldError::AxisZero);
     }
-    let n = n2.sqrt().check().map_err(|e| e.to_string())?;
-    let div = |x: &Scalar| x.try_div(&n).map_err(|e| e.to_string());
+    let n = n2.sqrt().check()?;
+    let div = |x: &Scalar| x.try_div(&n);
     Ok([div(&a[0])?, div(&a[1])?, div(&a[2])?])
 }

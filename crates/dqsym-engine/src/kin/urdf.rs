@@ -205,7 +205,7 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
             xyz: j.xyz.clone().map(Scalar::rational),
             rpy,
         };
-        let fdq = frame_dq(&f.xyz, &f.rpy).map_err(|m| el_err(el.clone(), m))?;
+        let fdq = frame_dq(&f.xyz, &f.rpy).map_err(|e| el_err(el.clone(), e.to_string()))?;
         home = home * fdq;
         frames.push(f);
         let kind = match j.kind.as_str() {
