@@ -1,7 +1,8 @@
 //! C99 source: a function of doubles writing its outputs through array parameters.
 
 use super::codegen::{lower_named, CodegenError, CodegenOptions, Output};
-use super::names::{comment_lines, float_literal, safe_name, safe_names, Comment, Lang};
+use super::names::{comment_lines, safe_name, safe_names, Comment, Lang};
+use super::syntax::{SolverFile, SolverSyntax, Syntax};
 
 /// A C99 function `void name(double arg..., double out[n]...)` computing `outputs` from `args`
 /// with the same common subexpressions as [`rust_function`](crate::emit::rust_function). A scalar
@@ -30,7 +31,7 @@ pub fn c_function(
     let names = safe_names(Lang::C, args, &fixed);
     let name = safe_name(Lang::C, name, &[]);
     let p = lower_named(outputs, args, &names, o)?;
-    let lit = |v: f64| float_literal(Lang::C, v);
+    let lit = |v: f64| C.literal(v);
     let count = p.count();
     let mut s = String::from("#include <math.h>\n\n/*\n");
     for line in comment_lines(Comment::Block, doc) {
@@ -77,10 +78,7 @@ pub fn c_function(
         }
     }
     for (id, t) in p.temps() {
-        s.push_str(&format!(
-            "    const double {t} = {};\n",
-            p.definition(id, &lit)
-        ));
+        s.push_str(&format!("    {}\n", C.local(&t, &p.definition(id, &lit))));
     }
     for ((out, ids), name) in p.outputs.iter().zip(&out_names) {
         for (k, &id) in ids.iter().enumerate() {
@@ -94,4 +92,144 @@ pub fn c_function(
     }
     s.push_str("}\n");
     Ok(s)
+}
+
+/// C99's syntax ([`super::syntax`]).
+pub(crate) struct C;
+
+impl Syntax for C {
+    fn lang(&self) -> Lang {
+        Lang::C
+    }
+
+    fn local(&self, name: &str, value: &str) -> String {
+        format!("const double {name} = {value};")
+    }
+
+    fn inline_comment(&self) -> &'static str {
+        "//"
+    }
+
+    fn comment_line(&self, text: &str) -> String {
+        format!("/* {text} */\n")
+    }
+
+    fn constant(&self, name: &str, value: &str, _ty: &str) -> String {
+        format!("#define {name} {value}\n")
+    }
+
+    fn false_literal(&self) -> &'static str {
+        "0"
+    }
+
+    fn shape_constants(&self, _dof: usize, position_only: bool) -> String {
+        // IK_DOF is defined before the solutions' struct, which needs it.
+        format!("#define IK_POSITION_ONLY {}\n", u8::from(position_only))
+    }
+}
+
+impl SolverSyntax for C {
+    fn runtime(&self) -> &'static str {
+        include_str!("runtime/ik_helpers.c")
+    }
+
+    fn doc_syntax(&self) -> Comment {
+        Comment::Block
+    }
+
+    fn memo(&self, k: usize) -> String {
+        format!("ik_memo ik_m{k} = ik_memo_new();")
+    }
+
+    fn memo_arg(&self, k: usize) -> String {
+        format!("&ik_m{k}")
+    }
+
+    fn sin_cos(&self, pad: &str, s: &str, c: &str, a: &str) -> String {
+        format!(
+            "{pad}const double {s} = sin({a}), {c} = cos({a});\n{pad}(void){s};\n{pad}(void){c};\n"
+        )
+    }
+
+    fn roots(&self, k: usize, call: &str) -> String {
+        format!("const ik_roots ik_r{k} = {call};")
+    }
+
+    fn sampled(&self, i: usize) -> String {
+        format!("ik_i{i} >= ik_r{i}.smp")
+    }
+
+    fn list(&self, items: &str) -> String {
+        format!("{{{items}}}")
+    }
+
+    fn chain(&self, pad: &str, ax: &str, hm: &str) -> String {
+        format!(
+            "{pad}ik_chain ik_ch = {{{{{ax}}}, {{{hm}}}, ik_target, 1.0}};\n\
+             {pad}ik_ch.len = ik_scale(&ik_ch);\n"
+        )
+    }
+
+    fn push(&self, pad: &str, q: &str, sg: &str, ck: &str, smp: &str) -> String {
+        format!(
+            "{pad}if (ik_out->n == IK_MAX) return;\n{pad}{{\n\
+             {pad}    const double ik_q[IK_DOF] = {{{q}}};\n\
+             {pad}    ik_push(ik_out, ik_q, {sg}, {ck}, {smp}, &ik_ch);\n{pad}}}\n"
+        )
+    }
+
+    fn loop_open(&self, pad: &str, inner: &str, k: usize, q: &str, trig: bool) -> String {
+        let mut out = String::new();
+        if trig {
+            out.push_str(&format!("{pad}const int ik_n{k} = ik_out->n;\n"));
+        }
+        out.push_str(&format!(
+            "{pad}for (int ik_i{k} = 0; ik_i{k} < ik_r{k}.n; ik_i{k}++) {{\n"
+        ));
+        if trig {
+            out.push_str(&format!(
+                "{inner}if (ik_i{k} >= ik_r{k}.smp && ik_exact(ik_out, ik_n{k})) continue;\n"
+            ));
+        }
+        out.push_str(&format!(
+            "{inner}double {q}, s_{q}, c_{q};\n{inner}ik_root(&ik_r{k}, ik_i{k}, &{q}, &s_{q}, &c_{q});\n{inner}(void)s_{q};\n{inner}(void)c_{q};\n"
+        ));
+        out
+    }
+
+    fn file(&self, f: &SolverFile) -> String {
+        let (n, max) = (f.dof, f.max);
+        let params: String = f.params.iter().map(|p| format!(", double {p}")).collect();
+        let pnames: String = f.params.iter().map(|p| format!(", {p}")).collect();
+        let mut s = String::new();
+        for l in &f.doc {
+            s.push_str(&format!("/* {l} */\n"));
+        }
+        s.push_str(&format!(
+            "#include <float.h>\n#include <math.h>\n#ifndef M_PI\n#define M_PI 3.14159265358979323846\n#endif\n\n\
+#define IK_MAX {max}\n#define IK_DOF {n}\n\ntypedef struct {{\n    double q[IK_MAX][IK_DOF];\n    int singular[IK_MAX];\n    int approximate[IK_MAX];\n    double residual[IK_MAX];\n    int n;\n}} ik_solutions;\n\n"
+        ));
+        s.push_str(&f.helpers);
+        s.push_str(&format!(
+            "\nvoid ik(const double ik_target[4][4]{params}, ik_solutions *ik_out) {{\n"
+        ));
+        for (r, row) in f.target.iter().enumerate() {
+            for (col, name) in row.iter().enumerate() {
+                s.push_str(&format!(
+                    "    const double {name} = ik_target[{r}][{col}];\n"
+                ));
+                s.push_str(&format!("    (void){name};\n"));
+            }
+        }
+        for p in f.params {
+            s.push_str(&format!("    (void){p};\n"));
+        }
+        s.push_str("    ik_out->n = 0;\n");
+        s.push_str(&f.body);
+        s.push_str("}\n\n");
+        s.push_str(&format!(
+            "void ik_dq(const double ik_q[8]{params}, ik_solutions *ik_out) {{\n    double ik_target[4][4];\n    ik_dq_matrix(ik_q, ik_target);\n    ik((const double (*)[4])ik_target{pnames}, ik_out);\n}}\n"
+        ));
+        s
+    }
 }

@@ -1,7 +1,8 @@
 //! JavaScript source: a plain function of numbers, for the interactive walkthrough page.
 
 use super::codegen::{lower_named, CodegenError, CodegenOptions, Output};
-use super::names::{comment_lines, float_literal, safe_name, safe_names, Comment, Lang};
+use super::names::{comment_lines, safe_name, safe_names, Comment, Lang};
+use super::syntax::Syntax;
 
 /// A JavaScript function `function name(arg, ...)` computing `outputs` from `args` with the same
 /// common subexpressions as [`rust_function`](crate::emit::rust_function), in strict mode, with no
@@ -24,7 +25,7 @@ pub fn javascript_function(
     let names = safe_names(Lang::JavaScript, args, &[]);
     let name = safe_name(Lang::JavaScript, name, &[]);
     let p = lower_named(outputs, args, &names, o)?;
-    let lit = |v: f64| float_literal(Lang::JavaScript, v);
+    let lit = |v: f64| JavaScript.literal(v);
     let count = p.count();
     let mut s = String::from("/**\n");
     for line in comment_lines(Comment::Block, doc) {
@@ -71,7 +72,10 @@ pub fn javascript_function(
         }
     }
     for (id, t) in p.temps() {
-        s.push_str(&format!("    const {t} = {};\n", p.definition(id, &lit)));
+        s.push_str(&format!(
+            "    {}\n",
+            JavaScript.local(&t, &p.definition(id, &lit))
+        ));
     }
     s.push_str("    return {\n");
     for (out, ids) in &p.outputs {
@@ -97,4 +101,37 @@ pub fn javascript_function(
     }
     s.push_str("    };\n}\n");
     Ok(s)
+}
+
+/// JavaScript's syntax ([`super::syntax`]); the IK page's solver is the page's own code over
+/// the helpers of `runtime/ik_helpers.js`, so there is no [`super::syntax::SolverSyntax`].
+pub(crate) struct JavaScript;
+
+impl JavaScript {
+    /// The numeric helpers of the IK page's solver.
+    pub(crate) fn ik_runtime(&self) -> &'static str {
+        include_str!("runtime/ik_helpers.js")
+    }
+}
+
+impl Syntax for JavaScript {
+    fn lang(&self) -> Lang {
+        Lang::JavaScript
+    }
+
+    fn local(&self, name: &str, value: &str) -> String {
+        format!("const {name} = {value};")
+    }
+
+    fn inline_comment(&self) -> &'static str {
+        "//"
+    }
+
+    fn constant(&self, name: &str, value: &str, _ty: &str) -> String {
+        format!("const {name} = {value};\n")
+    }
+
+    fn shape_constants(&self, _dof: usize, _position_only: bool) -> String {
+        format!("const IK_EPS = {};\n", self.literal(f64::EPSILON))
+    }
 }

@@ -6,13 +6,14 @@
 mod c;
 pub(crate) mod codegen;
 mod count;
-mod javascript;
+pub(crate) mod javascript;
 pub use latex::visual_len;
 mod latex;
 pub mod names;
 mod python;
 mod rust;
 pub(crate) mod sympy;
+pub(crate) mod syntax;
 
 pub use c::c_function;
 pub use codegen::{arguments, CodegenError, CodegenOptions, OpCount, Output};

@@ -1,7 +1,8 @@
 //! Python source: a NumPy function vectorized over arrays of configurations.
 
 use super::codegen::{lower_named, CodegenError, CodegenOptions, Output};
-use super::names::{comment_lines, float_literal, safe_name, safe_names, Comment, Lang};
+use super::names::{comment_lines, safe_name, safe_names, Comment, Lang};
+use super::syntax::{SolverFile, SolverSyntax, Syntax};
 
 /// A Python module text (`import numpy as np` and one function) computing `outputs` from
 /// `args` with the same common subexpressions as [`rust_function`](crate::emit::rust_function). The
@@ -23,7 +24,7 @@ pub fn python_function(
     let names = python_names(args);
     let name = safe_name(Lang::Python, name, &[]);
     let p = lower_named(outputs, args, &names, o)?;
-    let lit = |v: f64| float_literal(Lang::Python, v);
+    let lit = |v: f64| Python.literal(v);
     let count = p.count();
     let mut s = String::from("import numpy as np\n\n\n");
     s.push_str(&format!("def {name}({}):\n", names.join(", ")));
@@ -89,7 +90,10 @@ pub fn python_function(
         }
     }
     for (id, t) in p.temps() {
-        s.push_str(&format!("    {t} = {}\n", p.definition(id, &lit)));
+        s.push_str(&format!(
+            "    {}\n",
+            Python.local(&t, &p.definition(id, &lit))
+        ));
     }
     s.push_str("    return {\n");
     for (out, ids) in &p.outputs {
@@ -123,4 +127,153 @@ pub fn python_function(
 /// `Robot.lambdify` does).
 pub fn python_names(args: &[String]) -> Vec<String> {
     safe_names(Lang::Python, args, &[])
+}
+
+/// Python's syntax ([`super::syntax`]).
+pub(crate) struct Python;
+
+impl Syntax for Python {
+    fn lang(&self) -> Lang {
+        Lang::Python
+    }
+
+    fn local(&self, name: &str, value: &str) -> String {
+        format!("{name} = {value}")
+    }
+
+    fn inline_comment(&self) -> &'static str {
+        "#"
+    }
+
+    fn constant(&self, name: &str, value: &str, _ty: &str) -> String {
+        format!("{name} = {value}\n")
+    }
+
+    fn or(&self) -> &'static str {
+        " or "
+    }
+
+    fn false_literal(&self) -> &'static str {
+        "False"
+    }
+
+    fn shape_constants(&self, _dof: usize, position_only: bool) -> String {
+        format!(
+            "IK_EPS = {}\nIK_POSITION_ONLY = {}\n",
+            self.literal(f64::EPSILON),
+            if position_only { "True" } else { "False" }
+        )
+    }
+}
+
+impl SolverSyntax for Python {
+    fn runtime(&self) -> &'static str {
+        include_str!("runtime/ik_helpers.py")
+    }
+
+    fn helper_texts(&self, consts: &str) -> Vec<String> {
+        // One text: its blocks are separated by two blank lines, as PEP 8 asks.
+        vec![format!("{consts}\n\n{}", self.runtime())]
+    }
+
+    fn doc_syntax(&self) -> Comment {
+        Comment::Python
+    }
+
+    fn memo(&self, k: usize) -> String {
+        format!("ik_m{k} = []")
+    }
+
+    fn memo_arg(&self, k: usize) -> String {
+        format!("ik_m{k}")
+    }
+
+    fn sin_cos(&self, pad: &str, s: &str, c: &str, a: &str) -> String {
+        format!("{pad}{s}, {c} = math.sin({a}), math.cos({a})\n")
+    }
+
+    fn helper(&self, name: &str) -> String {
+        format!("_{name}")
+    }
+
+    fn roots(&self, k: usize, call: &str) -> String {
+        format!("ik_r{k} = {call}")
+    }
+
+    fn flag(&self, i: usize, field: &str) -> String {
+        format!("ik_r{i}[{}]", if field == "sg" { 1 } else { 2 })
+    }
+
+    fn sampled(&self, i: usize) -> String {
+        format!("ik_x{i}")
+    }
+
+    fn chain(&self, pad: &str, ax: &str, hm: &str) -> String {
+        format!(
+            "{pad}ik_ax = [{ax}]\n{pad}ik_home = [{hm}]\n\
+             {pad}ik_len = _ik_scale(ik_ax, ik_home, T)\n"
+        )
+    }
+
+    fn scale(&self) -> &'static str {
+        "ik_len"
+    }
+
+    fn push(&self, pad: &str, q: &str, sg: &str, ck: &str, smp: &str) -> String {
+        format!("{pad}_ik_push(ik_out, [{q}], {sg}, {ck}, {smp}, ik_ax, ik_home, T, ik_len)\n")
+    }
+
+    fn loop_open(&self, pad: &str, inner: &str, k: usize, q: &str, trig: bool) -> String {
+        let mut out = String::new();
+        if trig {
+            out.push_str(&format!("{pad}ik_n{k} = len(ik_out)\n"));
+        }
+        out.push_str(&format!(
+            "{pad}for {q}, s_{q}, c_{q}, ik_x{k} in ik_r{k}[0]:\n"
+        ));
+        if trig {
+            out.push_str(&format!(
+                "{inner}if ik_x{k} and any(not r[2] for r in ik_out[ik_n{k}:]):\n{inner}    continue\n"
+            ));
+        }
+        out
+    }
+
+    fn loop_close(&self, _pad: &str) -> String {
+        String::new()
+    }
+
+    fn file(&self, f: &SolverFile) -> String {
+        let kw = if f.params.is_empty() {
+            String::new()
+        } else {
+            format!(", *, {}", f.params.join(", "))
+        };
+        let pass: String = f.params.iter().map(|p| format!(", {p}={p}")).collect();
+        let mut s = String::new();
+        for l in &f.doc {
+            s.push_str(&format!("# {l}\n"));
+        }
+        s.push_str("import math\n\nimport numpy as np\n\n\n");
+        s.push_str(&f.helpers);
+        s.push_str(&format!(
+            "\n\ndef ik_full(T{kw}):\n    \"\"\"Every solution as (q, singular, approximate, residual).\"\"\"\n    T = np.asarray(T, dtype=float)\n"
+        ));
+        for (r, row) in f.target.iter().enumerate() {
+            for (col, name) in row.iter().enumerate() {
+                s.push_str(&format!("    {name} = float(T[{r}, {col}])\n"));
+            }
+        }
+        s.push_str("    ik_out = []\n");
+        s.push_str(&f.body);
+        s.push_str("    return ik_out\n\n\n");
+        s.push_str(&format!(
+            "def ik(T{kw}):\n    \"\"\"Every solution: joint vectors in joint order ({}).\"\"\"\n    return [q for q, _, _, _ in ik_full(T{pass})]\n\n\n",
+            f.variables.join(", ")
+        ));
+        s.push_str(&format!(
+            "def ik_dq(q{kw}):\n    \"\"\"ik for a unit dual quaternion (w, x, y, z) + eps (w, x, y, z).\"\"\"\n    return ik(_ik_dq_matrix(q){pass})\n"
+        ));
+        s
+    }
 }

@@ -2,6 +2,7 @@
 
 use super::codegen::{lower_named, CodegenError, CodegenOptions, Output, STD_CONSTS};
 use super::names::{comment_lines, float_literal, safe_name, safe_names, Comment, Lang};
+use super::syntax::{SolverFile, SolverSyntax, Syntax};
 
 /// The literal for `v`, through `std::f64::consts` where one matches.
 fn lit(v: f64) -> String {
@@ -139,7 +140,10 @@ pub fn rust_function(
         }
     }
     for (id, t) in p.temps() {
-        s.push_str(&format!("    let {t} = {};\n", p.definition(id, &lit)));
+        s.push_str(&format!(
+            "    {}\n",
+            Rust.local(&t, &p.definition(id, &lit))
+        ));
     }
     s.push_str(&format!("    {ty} {{\n"));
     for ((out, ids), field) in p.outputs.iter().zip(&fields) {
@@ -166,4 +170,143 @@ pub fn rust_function(
     }
     s.push_str("    }\n}\n");
     Ok(s)
+}
+
+/// Rust's syntax ([`super::syntax`]).
+pub(crate) struct Rust;
+
+impl Syntax for Rust {
+    fn lang(&self) -> Lang {
+        Lang::Rust
+    }
+
+    fn literal(&self, v: f64) -> String {
+        lit(v)
+    }
+
+    fn local(&self, name: &str, value: &str) -> String {
+        format!("let {name} = {value};")
+    }
+
+    fn inline_comment(&self) -> &'static str {
+        "//"
+    }
+
+    fn constant(&self, name: &str, value: &str, ty: &str) -> String {
+        format!("#[allow(dead_code)]\nconst {name}: {ty} = {value};\n")
+    }
+
+    fn shape_constants(&self, dof: usize, position_only: bool) -> String {
+        format!(
+            "const IK_DOF: usize = {dof};\n#[allow(dead_code)]\nconst IK_POSITION_ONLY: bool = {position_only};\n"
+        )
+    }
+}
+
+impl SolverSyntax for Rust {
+    fn runtime(&self) -> &'static str {
+        include_str!("runtime/ik_helpers.rs")
+    }
+
+    fn doc_syntax(&self) -> Comment {
+        Comment::Slashes
+    }
+
+    fn memo(&self, k: usize) -> String {
+        format!("let mut ik_m{k} = IkMemo::NEW;")
+    }
+
+    fn memo_arg(&self, k: usize) -> String {
+        format!("&mut ik_m{k}")
+    }
+
+    fn sin_cos(&self, pad: &str, s: &str, c: &str, a: &str) -> String {
+        format!("{pad}let ({s}, {c}) = ({a}).sin_cos();\n")
+    }
+
+    fn roots(&self, k: usize, call: &str) -> String {
+        format!("let ik_r{k} = {call};")
+    }
+
+    fn sampled(&self, i: usize) -> String {
+        format!("ik_r{i}.sampled(ik_i{i})")
+    }
+
+    fn chain(&self, pad: &str, ax: &str, hm: &str) -> String {
+        format!(
+            "{pad}let mut ik_ch = IkChain {{ ax: [{ax}], home: [{hm}], t: ik_target, len: 1.0 }};\n\
+             {pad}ik_ch.len = ik_scale(&ik_ch);\n"
+        )
+    }
+
+    fn push(&self, pad: &str, q: &str, sg: &str, ck: &str, smp: &str) -> String {
+        format!(
+            "{pad}if ik_out.n == IK_MAX {{\n{pad}    return;\n{pad}}}\n\
+             {pad}ik_push(ik_out, [{q}], {sg}, {ck}, {smp}, &ik_ch);\n"
+        )
+    }
+
+    fn loop_open(&self, pad: &str, inner: &str, k: usize, q: &str, trig: bool) -> String {
+        let mut out = String::new();
+        if trig {
+            out.push_str(&format!("{pad}let ik_n{k} = ik_out.n;\n"));
+        }
+        out.push_str(&format!("{pad}for ik_i{k} in 0..ik_r{k}.n {{\n"));
+        if trig {
+            out.push_str(&format!(
+                "{inner}if ik_r{k}.sampled(ik_i{k}) && ik_exact(ik_out, ik_n{k}) {{\n{inner}    continue;\n{inner}}}\n"
+            ));
+        }
+        out.push_str(&format!(
+            "{inner}let ({q}, s_{q}, c_{q}) = ik_r{k}.root(ik_i{k});\n"
+        ));
+        out
+    }
+
+    fn file(&self, f: &SolverFile) -> String {
+        let (n, max) = (f.dof, f.max);
+        let params: String = f.params.iter().map(|p| format!(", {p}: f64")).collect();
+        let pnames: String = f.params.iter().map(|p| format!(", {p}")).collect();
+        let mut s = String::new();
+        for l in &f.doc {
+            s.push_str(&format!("// {l}\n"));
+        }
+        s.push_str(&format!(
+            "\n/// The most solutions the solver returns.\npub const IK_MAX: usize = {max};\n\n\
+/// The solutions: `q[..n]` in joint order, with their flags.\n\
+#[derive(Clone, Copy, Debug, PartialEq)]\npub struct IkSolutions {{\n    /// Joint vectors.\n    pub q: [[f64; {n}]; IK_MAX],\n    \
+/// A singular set was met.\n    pub singular: [bool; IK_MAX],\n    /// The pose misses the target (the closest reach).\n    pub approximate: [bool; IK_MAX],\n    \
+/// The residual where the solution was checked, else 0.\n    pub residual: [f64; IK_MAX],\n    \
+/// How many are valid.\n    pub n: usize,\n}}\n\n\
+impl Default for IkSolutions {{\n    fn default() -> Self {{\n        IkSolutions {{\n            q: [[0.0; {n}]; IK_MAX],\n            \
+singular: [false; IK_MAX],\n            approximate: [false; IK_MAX],\n            residual: [0.0; IK_MAX],\n            n: 0,\n        }}\n    }}\n}}\n\n"
+        ));
+        s.push_str(&f.helpers);
+        s.push_str(&format!(
+            "\n/// Every solution for the target pose `t` (row-major homogeneous matrix), written to\n\
+/// `ik_out` (`ik_out.n` of them; the entries beyond are left as they were).\n\
+#[allow(non_snake_case, unused_variables, clippy::too_many_arguments, clippy::excessive_precision, clippy::neg_multiply, clippy::double_parens, unused_parens)]\n\
+pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4]{params}) {{\n"
+        ));
+        for (r, row) in f.target.iter().enumerate() {
+            for (col, name) in row.iter().enumerate() {
+                s.push_str(&format!("    let {name} = ik_target[{r}][{col}];\n"));
+            }
+        }
+        s.push_str("    ik_out.n = 0;\n");
+        s.push_str(&f.body);
+        s.push_str("}\n\n");
+        s.push_str(&format!(
+            "/// Every solution for the target pose `t` (row-major homogeneous matrix).\n\
+#[allow(non_snake_case, clippy::too_many_arguments)]\n\
+pub fn ik(ik_target: &[[f64; 4]; 4]{params}) -> IkSolutions {{\n    let mut ik_out = IkSolutions::default();\n    \
+ik_into(&mut ik_out, ik_target{pnames});\n    ik_out\n}}\n\n"
+        ));
+        s.push_str(&format!(
+            "/// Every solution for the target given as a unit dual quaternion `(w, x, y, z)` +\n\
+/// eps `(w, x, y, z)`.\n#[allow(non_snake_case, clippy::too_many_arguments)]\n\
+pub fn ik_dq(ik_q: &[f64; 8]{params}) -> IkSolutions {{\n    ik(&ik_dq_matrix(ik_q){pnames})\n}}\n"
+        ));
+        s
+    }
 }
