@@ -211,143 +211,10 @@ impl Scene {
 
     /// The scene of `m`, with the values of `cfg`, then of the robot file, then the defaults.
     pub(crate) fn new(m: &Mechanism, cfg: &Config) -> Result<Scene, WalkError> {
-        // The joint variables, in order, and whether each slides.
-        let mut joints: Vec<(String, bool)> = Vec::new();
-        for x in &m.motions {
-            if let Some(v) = x.variables().into_iter().next() {
-                let prismatic = match x {
-                    Motion::Screw { angle, .. } => angle.symbols().iter().all(|s| s.is_pi()),
-                    Motion::Translation { .. } => true,
-                    Motion::Dh { theta, .. } | Motion::Mdh { theta, .. } => {
-                        !theta.symbols().iter().any(|s| s.name() == v)
-                    }
-                };
-                if !joints.iter().any(|(n, _)| *n == v) {
-                    joints.push((v, prismatic));
-                }
-            }
-        }
-        let value_of = |n: &str, k: Option<usize>| -> (f64, Source) {
-            if let Some(v) = cfg.get(n) {
-                return (v, Source::Config);
-            }
-            if let Some((_, v)) = m.values.iter().find(|(x, _)| x == n) {
-                return (*v, Source::File);
-            }
-            match k {
-                Some(i) => (DEFAULT_JOINTS[i % DEFAULT_JOINTS.len()], Source::Default),
-                None => (1.0, Source::Default),
-            }
-        };
-        let mut symbols: Vec<Symbol> = joints
-            .iter()
-            .enumerate()
-            .map(|(i, (n, prismatic))| {
-                let (value, source) = value_of(n, Some(i));
-                Symbol {
-                    name: n.clone(),
-                    value,
-                    source,
-                    joint: Some(*prismatic),
-                }
-            })
-            .collect();
-        // The other symbols: whatever the motions and the tool mention.
-        let mut others = std::collections::BTreeSet::new();
-        let mut note = |x: &Scalar| {
-            for s in x.symbols() {
-                if !s.is_pi() && !s.is_one() && !joints.iter().any(|(n, _)| n == s.name()) {
-                    others.insert(s.name().to_owned());
-                }
-            }
-        };
-        for x in &m.motions {
-            match x {
-                Motion::Screw {
-                    axis,
-                    point,
-                    angle,
-                    slide,
-                } => {
-                    axis.iter().chain(point).for_each(&mut note);
-                    note(angle);
-                    note(slide);
-                }
-                Motion::Translation { t } => t.iter().for_each(&mut note),
-                Motion::Dh { theta, d, a, alpha } | Motion::Mdh { alpha, a, theta, d } => {
-                    [theta, d, a, alpha].into_iter().for_each(&mut note);
-                }
-            }
-        }
-        if let Some(t) = &m.tool {
-            t.iter().for_each(&mut note);
-        }
-        for n in others {
-            let (value, source) = value_of(&n, None);
-            symbols.push(Symbol {
-                name: n,
-                value,
-                source,
-                joint: None,
-            });
-        }
-        // Every --config name must be a symbol of the mechanism: a misspelt name is an error
-        // with the closest name suggested, never silently ignored.
-        if let Some((name, _)) = cfg
-            .values
-            .iter()
-            .find(|(n, _)| !symbols.iter().any(|s| &s.name == n))
-        {
-            let known: Vec<&str> = symbols.iter().map(|s| s.name.as_str()).collect();
-            let closest = known
-                .iter()
-                .min_by_key(|k| edit_distance(k, name))
-                .filter(|k| edit_distance(k, name) <= 2.max(name.len() / 3));
-            let hint = match closest {
-                Some(k) => format!("; did you mean `{k}`?"),
-                None => String::new(),
-            };
-            return Err(WalkError::Config(format!(
-                "`{name}` is not a symbol of this mechanism{hint} (its symbols: {})",
-                known.join(", ")
-            )));
-        }
-        let home_env = |n: &str| -> Option<f64> {
-            let s = symbols.iter().find(|s| s.name == n)?;
-            Some(if s.joint.is_some() { 0.0 } else { s.value })
-        };
-        // Screw joints: where on its axis each is drawn, in the home pose. The point of the
-        // axis nearest the previous joint; when that is the previous joint itself (two axes
-        // meeting, as at a wrist), the point nearest the next joint's given point instead.
-        let screws: Vec<Option<([Scalar; 3], [Scalar; 3])>> = m
-            .motions
-            .iter()
-            .map(|x| match x {
-                // A joint: a screw with a variable (a constant rotation of a base or tool
-                // frame is not drawn as a joint).
-                Motion::Screw { axis, point, .. } if !x.variables().is_empty() => {
-                    Some((point.clone(), axis.clone()))
-                }
-                _ => None,
-            })
-            .collect();
-        let mut anchors: Vec<Option<[Scalar; 3]>> = Vec::new();
-        let mut prev = zero3();
-        for (i, g) in screws.iter().enumerate() {
-            let Some((p, n)) = g else {
-                anchors.push(None);
-                continue;
-            };
-            let mut a = project(&prev, p, n);
-            let gap = eval3(&sub(&a, &prev), &home_env)?;
-            if gap.iter().map(|x| x * x).sum::<f64>() < 1e-18 {
-                if let Some(Some((q, _))) = screws[i + 1..].iter().find(|g| g.is_some()) {
-                    a = project(q, p, n);
-                }
-            }
-            prev = a.clone();
-            anchors.push(Some(a));
-        }
+        let joints = joint_variables(m);
+        let symbols = scene_symbols(m, cfg, &joints);
+        check_config(cfg, &symbols)?;
+        let anchors = screw_anchors(m, &symbols)?;
         let mut acc = Matrix4::identity();
         let mut pose = DualQuat::identity();
         let mut drawn = Vec::new();
@@ -507,6 +374,162 @@ impl Frame {
             self.legend + self.width / 2.0 + v * scale,
         )
     }
+}
+
+/// The joint variables of `m`, in order, and whether each slides.
+fn joint_variables(m: &Mechanism) -> Vec<(String, bool)> {
+    let mut joints: Vec<(String, bool)> = Vec::new();
+    for x in &m.motions {
+        if let Some(v) = x.variables().into_iter().next() {
+            let prismatic = match x {
+                Motion::Screw { angle, .. } => angle.symbols().iter().all(|s| s.is_pi()),
+                Motion::Translation { .. } => true,
+                Motion::Dh { theta, .. } | Motion::Mdh { theta, .. } => {
+                    !theta.symbols().iter().any(|s| s.name() == v)
+                }
+            };
+            if !joints.iter().any(|(n, _)| *n == v) {
+                joints.push((v, prismatic));
+            }
+        }
+    }
+    joints
+}
+
+/// The symbols of the drawing, joints first, each with its value: from `cfg`, then the robot
+/// file, then the defaults.
+fn scene_symbols(m: &Mechanism, cfg: &Config, joints: &[(String, bool)]) -> Vec<Symbol> {
+    let value_of = |n: &str, k: Option<usize>| -> (f64, Source) {
+        if let Some(v) = cfg.get(n) {
+            return (v, Source::Config);
+        }
+        if let Some((_, v)) = m.values.iter().find(|(x, _)| x == n) {
+            return (*v, Source::File);
+        }
+        match k {
+            Some(i) => (DEFAULT_JOINTS[i % DEFAULT_JOINTS.len()], Source::Default),
+            None => (1.0, Source::Default),
+        }
+    };
+    let mut symbols: Vec<Symbol> = joints
+        .iter()
+        .enumerate()
+        .map(|(i, (n, prismatic))| {
+            let (value, source) = value_of(n, Some(i));
+            Symbol {
+                name: n.clone(),
+                value,
+                source,
+                joint: Some(*prismatic),
+            }
+        })
+        .collect();
+    // The other symbols: whatever the motions and the tool mention.
+    let mut others = std::collections::BTreeSet::new();
+    let mut note = |x: &Scalar| {
+        for s in x.symbols() {
+            if !s.is_pi() && !s.is_one() && !joints.iter().any(|(n, _)| n == s.name()) {
+                others.insert(s.name().to_owned());
+            }
+        }
+    };
+    for x in &m.motions {
+        match x {
+            Motion::Screw {
+                axis,
+                point,
+                angle,
+                slide,
+            } => {
+                axis.iter().chain(point).for_each(&mut note);
+                note(angle);
+                note(slide);
+            }
+            Motion::Translation { t } => t.iter().for_each(&mut note),
+            Motion::Dh { theta, d, a, alpha } | Motion::Mdh { alpha, a, theta, d } => {
+                [theta, d, a, alpha].into_iter().for_each(&mut note);
+            }
+        }
+    }
+    if let Some(t) = &m.tool {
+        t.iter().for_each(&mut note);
+    }
+    for n in others {
+        let (value, source) = value_of(&n, None);
+        symbols.push(Symbol {
+            name: n,
+            value,
+            source,
+            joint: None,
+        });
+    }
+    symbols
+}
+
+/// Every --config name must be a symbol of the mechanism: a misspelt name is an error with
+/// the closest name suggested, never silently ignored.
+fn check_config(cfg: &Config, symbols: &[Symbol]) -> Result<(), WalkError> {
+    if let Some((name, _)) = cfg
+        .values
+        .iter()
+        .find(|(n, _)| !symbols.iter().any(|s| &s.name == n))
+    {
+        let known: Vec<&str> = symbols.iter().map(|s| s.name.as_str()).collect();
+        let closest = known
+            .iter()
+            .min_by_key(|k| edit_distance(k, name))
+            .filter(|k| edit_distance(k, name) <= 2.max(name.len() / 3));
+        let hint = match closest {
+            Some(k) => format!("; did you mean `{k}`?"),
+            None => String::new(),
+        };
+        return Err(WalkError::Config(format!(
+            "`{name}` is not a symbol of this mechanism{hint} (its symbols: {})",
+            known.join(", ")
+        )));
+    }
+    Ok(())
+}
+
+/// Where on its axis each screw joint is drawn, in the home pose (`None` for other motions).
+fn screw_anchors(m: &Mechanism, symbols: &[Symbol]) -> Result<Vec<Option<[Scalar; 3]>>, WalkError> {
+    let home_env = |n: &str| -> Option<f64> {
+        let s = symbols.iter().find(|s| s.name == n)?;
+        Some(if s.joint.is_some() { 0.0 } else { s.value })
+    };
+    // Screw joints: where on its axis each is drawn, in the home pose. The point of the
+    // axis nearest the previous joint; when that is the previous joint itself (two axes
+    // meeting, as at a wrist), the point nearest the next joint's given point instead.
+    let screws: Vec<Option<([Scalar; 3], [Scalar; 3])>> = m
+        .motions
+        .iter()
+        .map(|x| match x {
+            // A joint: a screw with a variable (a constant rotation of a base or tool
+            // frame is not drawn as a joint).
+            Motion::Screw { axis, point, .. } if !x.variables().is_empty() => {
+                Some((point.clone(), axis.clone()))
+            }
+            _ => None,
+        })
+        .collect();
+    let mut anchors: Vec<Option<[Scalar; 3]>> = Vec::new();
+    let mut prev = zero3();
+    for (i, g) in screws.iter().enumerate() {
+        let Some((p, n)) = g else {
+            anchors.push(None);
+            continue;
+        };
+        let mut a = project(&prev, p, n);
+        let gap = eval3(&sub(&a, &prev), &home_env)?;
+        if gap.iter().map(|x| x * x).sum::<f64>() < 1e-18 {
+            if let Some(Some((q, _))) = screws[i + 1..].iter().find(|g| g.is_some()) {
+                a = project(q, p, n);
+            }
+        }
+        prev = a.clone();
+        anchors.push(Some(a));
+    }
+    Ok(anchors)
 }
 
 /// The numbers of a drawing: the polylines at the home pose and the configuration (base,
@@ -810,16 +833,41 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
         ..probe
     };
     let at = |p: V3| frame.at(p, scale);
-    let pts = |line: &[V3]| -> String {
-        line.iter()
-            .map(|p| {
-                let (x, y) = at(*p);
-                format!("{},{}", f(x), f(y))
-            })
-            .collect::<Vec<_>>()
-            .join(" ")
-    };
     let (w, h) = (o.width, frame.height());
+    let mut s = svg_open(w, h, &l);
+    if let Some((text, _)) = &legend {
+        s += text;
+    }
+    s += &triad(&frame, h);
+    let (base, first) = draw_base(&mut s, &at, &l);
+    let (screen, axis_segments) = draw_joints(&mut s, &at, &l);
+    let tool = draw_tool(&mut s, &at, &l);
+    let on_screen = |line: &[V3]| -> Vec<(f64, f64)> { line.iter().map(|p| at(*p)).collect() };
+    let mut avoid = drawn_segments(
+        &on_screen(links(&l.home)),
+        &on_screen(links(&l.conf)),
+        &axis_segments,
+    );
+    if base_offset(&l.conf) {
+        avoid.push((base, first));
+    }
+    let area = [0.0, frame.legend, w, w];
+    for (i, b) in place_labels(&screen, tool, &avoid, area).iter().enumerate() {
+        let _ = writeln!(
+            s,
+            "<text class=\"dq-label\" data-i=\"{i}\" x=\"{}\" y=\"{}\" fill=\"#1f5fbf\" \
+             text-anchor=\"middle\" dominant-baseline=\"central\">{}</text>",
+            f(b[0] + b[2] / 2.0),
+            f(b[1] + b[3] / 2.0),
+            i + 1
+        );
+    }
+    s += "</svg>\n";
+    Ok(s)
+}
+
+/// The opening of the drawing: the element, its title, the arrow heads and the background.
+fn svg_open(w: f64, h: f64, l: &Layout) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -846,11 +894,16 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
         f(w - 1.0),
         f(h - 1.0)
     );
-    if let Some((text, _)) = &legend {
-        s += text;
-    }
-    s += &triad(&frame, h);
-    // The base, and the fixed offset from it to the first joint (not a link).
+    s
+}
+
+/// The base, the fixed offset from it to the first joint (not a link), and both poses' links;
+/// the base's and the first joint's places on the screen.
+fn draw_base(
+    s: &mut String,
+    at: &dyn Fn(V3) -> (f64, f64),
+    l: &Layout,
+) -> ((f64, f64), (f64, f64)) {
     let (bx, by) = at([0.0; 3]);
     let _ = writeln!(
         s,
@@ -874,6 +927,15 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
         f(first.0),
         f(first.1)
     );
+    let pts = |line: &[V3]| -> String {
+        line.iter()
+            .map(|p| {
+                let (x, y) = at(*p);
+                format!("{},{}", f(x), f(y))
+            })
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
     for (id, line, (colour, width, dash)) in [("dq-home", &l.home, HOME), ("dq-arm", &l.conf, ARM)]
     {
         let _ = writeln!(
@@ -883,6 +945,16 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
             pts(links(line))
         );
     }
+    ((bx, by), first)
+}
+
+/// The joints of the configuration with their axes (hidden in a planar view); the joints'
+/// places on the screen and the axes' segments.
+fn draw_joints(
+    s: &mut String,
+    at: &dyn Fn(V3) -> (f64, f64),
+    l: &Layout,
+) -> (Vec<(f64, f64)>, Vec<Segment>) {
     let conf = &l.conf;
     let arrow = 0.16 * l.reach;
     let screen: Vec<(f64, f64)> = conf[1..conf.len() - 1].iter().map(|p| at(*p)).collect();
@@ -933,7 +1005,12 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
             );
         }
     }
-    let t = conf[conf.len() - 1];
+    (screen, axis_segments)
+}
+
+/// The tool point; its place on the screen.
+fn draw_tool(s: &mut String, at: &dyn Fn(V3) -> (f64, f64), l: &Layout) -> (f64, f64) {
+    let t = l.conf[l.conf.len() - 1];
     let (tx, ty) = at(t);
     let _ = writeln!(
         s,
@@ -945,31 +1022,7 @@ pub(crate) fn scene_svg(scene: &Scene, o: &SvgOptions) -> Result<String, WalkErr
         f(tx - 4.5),
         f(ty - 4.5)
     );
-    let on_screen = |line: &[V3]| -> Vec<(f64, f64)> { line.iter().map(|p| at(*p)).collect() };
-    let mut avoid = drawn_segments(
-        &on_screen(links(&l.home)),
-        &on_screen(links(conf)),
-        &axis_segments,
-    );
-    if base_offset(conf) {
-        avoid.push(((bx, by), first));
-    }
-    let area = [0.0, frame.legend, w, w];
-    for (i, b) in place_labels(&screen, (tx, ty), &avoid, area)
-        .iter()
-        .enumerate()
-    {
-        let _ = writeln!(
-            s,
-            "<text class=\"dq-label\" data-i=\"{i}\" x=\"{}\" y=\"{}\" fill=\"#1f5fbf\" \
-             text-anchor=\"middle\" dominant-baseline=\"central\">{}</text>",
-            f(b[0] + b[2] / 2.0),
-            f(b[1] + b[3] / 2.0),
-            i + 1
-        );
-    }
-    s += "</svg>\n";
-    Ok(s)
+    (tx, ty)
 }
 
 pub(crate) fn xml_escape(t: &str) -> String {
