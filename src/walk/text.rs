@@ -549,6 +549,27 @@ type Named = (Vec<String>, Vec<(String, Expr)>);
 /// each broken at [`WIDTH`].
 pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piece>, WalkError> {
     let lab = label_tex(label);
+    let line = match value {
+        Value::QuotientMatrix(rows) => {
+            return Ok(vec![Piece::Display(quotient_matrix_tex(&lab, rows, st)?)]);
+        }
+        Value::Matrix(rows) => {
+            if let Some(one) = short_matrix_tex(&lab, rows, st)? {
+                return Ok(vec![Piece::Display(one)]);
+            }
+            String::new()
+        }
+        _ => inline_tex(value, st)?,
+    };
+    if !line.is_empty() && visual_len(&line) + visual_len(&lab) + 3 <= WIDTH {
+        return Ok(vec![Piece::Display(format!("{lab} = {line}"))]);
+    }
+    // Too wide: the entries named, then listed.
+    named_value_tex(label, &lab, value, st)
+}
+
+/// A scalar, quaternion, vector or DQ on one line (empty for a matrix).
+fn inline_tex(value: &Value, st: &Tex) -> Result<String, WalkError> {
     let e = |x: &Scalar| -> Result<String, WalkError> { Ok(st.expr(st.1.of(x)?)) };
     let tuple = |xs: &[&Scalar]| -> Result<String, WalkError> {
         let parts: Result<Vec<String>, WalkError> = xs.iter().map(|x| e(x)).collect();
@@ -568,60 +589,74 @@ pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piec
             None => tuple(&[&q.w, &q.x, &q.y, &q.z]),
         }
     };
-    let line = match value {
+    Ok(match value {
         Value::Scalar(x) => e(x)?,
         Value::Quat(q) => tuple(&[&q.w, &q.x, &q.y, &q.z])?,
         Value::Vector(x) => tuple(&[&x[0], &x[1], &x[2]])?,
         Value::DualQuat(d) => format!("{} + \\varepsilon {}", part(&d.real)?, part(&d.dual)?),
-        Value::Matrix(rows) => {
-            let body: Result<Vec<String>, WalkError> = rows
+        Value::Matrix(_) | Value::QuotientMatrix(_) => String::new(),
+    })
+}
+
+/// A matrix on one line, when its widest row fits.
+fn short_matrix_tex(
+    lab: &str,
+    rows: &[Vec<Scalar>],
+    st: &Tex,
+) -> Result<Option<String>, WalkError> {
+    let e = |x: &Scalar| -> Result<String, WalkError> { Ok(st.expr(st.1.of(x)?)) };
+    let body: Vec<String> = rows
+        .iter()
+        .map(|r| {
+            let cells: Result<Vec<String>, WalkError> = r.iter().map(e).collect();
+            Ok(cells?.join(" & "))
+        })
+        .collect::<Result<_, WalkError>>()?;
+    let widest = body.iter().map(|r| visual_len(r)).max().unwrap_or(0);
+    Ok((widest <= WIDTH).then(|| {
+        format!(
+            "{lab} = \\begin{{pmatrix}} {} \\end{{pmatrix}}",
+            body.join(" \\\\ ")
+        )
+    }))
+}
+
+/// A matrix of quotients, entry by entry as fractions.
+fn quotient_matrix_tex(
+    lab: &str,
+    rows: &[Vec<crate::Frac>],
+    st: &Tex,
+) -> Result<String, WalkError> {
+    let body: Result<Vec<String>, WalkError> = rows
+        .iter()
+        .map(|r| {
+            let cells: Result<Vec<String>, WalkError> = r
                 .iter()
-                .map(|r| {
-                    let cells: Result<Vec<String>, WalkError> = r.iter().map(e).collect();
-                    Ok(cells?.join(" & "))
+                .map(|q| {
+                    let (n, d) = (st.1.of(q.num())?, st.1.of(q.den())?);
+                    Ok(if matches!(d, Expr::Num(x) if num_traits::One::is_one(x)) {
+                        st.expr(n)
+                    } else {
+                        format!("\\frac{{{}}}{{{}}}", st.expr(n), st.expr(d))
+                    })
                 })
                 .collect();
-            let widest = body
-                .as_ref()
-                .map(|b| b.iter().map(|r| visual_len(r)).max().unwrap_or(0))
-                .unwrap_or(0);
-            if widest <= WIDTH {
-                let one = format!(
-                    "{lab} = \\begin{{pmatrix}} {} \\end{{pmatrix}}",
-                    body?.join(" \\\\ ")
-                );
-                return Ok(vec![Piece::Display(one)]);
-            }
-            String::new()
-        }
-        Value::QuotientMatrix(rows) => {
-            let body: Result<Vec<String>, WalkError> = rows
-                .iter()
-                .map(|r| {
-                    let cells: Result<Vec<String>, WalkError> = r
-                        .iter()
-                        .map(|q| {
-                            let (n, d) = (st.1.of(q.num())?, st.1.of(q.den())?);
-                            Ok(if matches!(d, Expr::Num(x) if num_traits::One::is_one(x)) {
-                                st.expr(n)
-                            } else {
-                                format!("\\frac{{{}}}{{{}}}", st.expr(n), st.expr(d))
-                            })
-                        })
-                        .collect();
-                    Ok(cells?.join(" & "))
-                })
-                .collect();
-            return Ok(vec![Piece::Display(format!(
-                "{lab} = \\begin{{pmatrix}} {} \\end{{pmatrix}}",
-                body?.join(" \\\\ ")
-            ))]);
-        }
-    };
-    if !line.is_empty() && visual_len(&line) + visual_len(&lab) + 3 <= WIDTH {
-        return Ok(vec![Piece::Display(format!("{lab} = {line}"))]);
-    }
-    // Too wide: the entries named, then listed.
+            Ok(cells?.join(" & "))
+        })
+        .collect();
+    Ok(format!(
+        "{lab} = \\begin{{pmatrix}} {} \\end{{pmatrix}}",
+        body?.join(" \\\\ ")
+    ))
+}
+
+/// A value too wide for one line: its entries named in place, then listed.
+fn named_value_tex(
+    label: &str,
+    lab: &str,
+    value: &Value,
+    st: &Tex,
+) -> Result<Vec<Piece>, WalkError> {
     let named = |xs: &[(&Scalar, String)]| -> Result<Named, WalkError> {
         let mut shown = Vec::new();
         let mut rows = Vec::new();
@@ -641,7 +676,9 @@ pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piec
     let mut out = Vec::new();
     match value {
         Value::Scalar(x) => {
-            out.push(Piece::Display(st.aligned(&[(lab, st.1.of(x)?.clone())])));
+            out.push(Piece::Display(
+                st.aligned(&[(lab.to_string(), st.1.of(x)?.clone())]),
+            ));
         }
         Value::Quat(q) => {
             let (shown, rows) = named(&[
@@ -668,7 +705,7 @@ pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piec
         }
         Value::DualQuat(d) => {
             let (re, mut rows) = if let Some(w) = dq_part(&d.real) {
-                (e(w)?, Vec::new())
+                (st.expr(st.1.of(w)?), Vec::new())
             } else {
                 let (shown, rows) = named(&[
                     (&d.real.w, c("w")),
@@ -692,34 +729,45 @@ pub(crate) fn value_tex(label: &str, value: &Value, st: &Tex) -> Result<Vec<Piec
             out.push(Piece::Text("where".to_owned()));
             out.push(Piece::Display(st.aligned(&rows)));
         }
-        Value::Matrix(rows) => {
-            let n = rows.first().map_or(0, Vec::len);
-            let mut skeleton = Vec::new();
-            let mut columns: Vec<Vec<(String, Expr)>> = vec![Vec::new(); n];
-            for (i, r) in rows.iter().enumerate() {
-                let mut cells = Vec::new();
-                for (j, x) in r.iter().enumerate() {
-                    let name = component(label, &format!("{}{}", i + 1, j + 1), false);
-                    let (ex, constant) = entry(x, st.1)?;
-                    if constant {
-                        cells.push(st.expr(&ex));
-                    } else {
-                        cells.push(name.clone());
-                        columns[j].push((name, ex));
-                    }
-                }
-                skeleton.push(cells.join(" & "));
-            }
-            out.push(Piece::Display(format!(
-                "{lab} = \\begin{{pmatrix}} {} \\end{{pmatrix}}",
-                skeleton.join(" \\\\ ")
-            )));
-            out.push(Piece::Text("where, column by column:".to_owned()));
-            for col in columns.iter().filter(|c| !c.is_empty()) {
-                out.push(Piece::Display(st.aligned(col)));
+        Value::Matrix(rows) => out.extend(named_matrix_tex(label, lab, rows, st)?),
+        Value::QuotientMatrix(_) => {}
+    }
+    Ok(out)
+}
+
+/// A wide matrix: its skeleton with the entries named, then the entries column by column.
+fn named_matrix_tex(
+    label: &str,
+    lab: &str,
+    rows: &[Vec<Scalar>],
+    st: &Tex,
+) -> Result<Vec<Piece>, WalkError> {
+    let n = rows.first().map_or(0, Vec::len);
+    let mut skeleton = Vec::new();
+    let mut columns: Vec<Vec<(String, Expr)>> = vec![Vec::new(); n];
+    for (i, r) in rows.iter().enumerate() {
+        let mut cells = Vec::new();
+        for (j, x) in r.iter().enumerate() {
+            let name = component(label, &format!("{}{}", i + 1, j + 1), false);
+            let (ex, constant) = entry(x, st.1)?;
+            if constant {
+                cells.push(st.expr(&ex));
+            } else {
+                cells.push(name.clone());
+                columns[j].push((name, ex));
             }
         }
-        Value::QuotientMatrix(_) => {}
+        skeleton.push(cells.join(" & "));
+    }
+    let mut out = vec![
+        Piece::Display(format!(
+            "{lab} = \\begin{{pmatrix}} {} \\end{{pmatrix}}",
+            skeleton.join(" \\\\ ")
+        )),
+        Piece::Text("where, column by column:".to_owned()),
+    ];
+    for col in columns.iter().filter(|c| !c.is_empty()) {
+        out.push(Piece::Display(st.aligned(col)));
     }
     Ok(out)
 }
