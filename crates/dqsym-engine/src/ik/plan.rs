@@ -491,41 +491,9 @@ fn derive_fixed(
     mut home: Matrix4<Scalar>,
     opts: &IkOptions,
 ) -> Result<IkSolution, IkError> {
-    for row in TARGET_SYMBOLS {
-        for s in row {
-            if variables.iter().any(|v| v == s) || params.iter().any(|v| v == s) {
-                return Err(IkError::Option(format!(
-                    "the robot uses the name `{s}`, which ik keeps for the target pose"
-                )));
-            }
-        }
-    }
+    check_target_names(variables, &params)?;
     if let Some(f) = &opts.free {
-        let k = variables.iter().position(|v| v == f).ok_or_else(|| {
-            IkError::Option(format!(
-                "--free {f}: not a joint variable of {name} (joint variables: {})",
-                variables.join(", ")
-            ))
-        })?;
-        let by = axes[k].clone();
-        for a in axes.iter_mut().skip(k + 1) {
-            *a = a.moved_by(&by);
-        }
-        // M' = E_k M.
-        let mut rows = home.rows.clone();
-        for c in 0..4 {
-            let col: V3 = std::array::from_fn(|r| home.rows[r][c].clone());
-            let m = if c < 3 {
-                by.move_dir(&col, 1)
-            } else {
-                by.move_point(&col, 1)
-            };
-            for (row, x) in rows.iter_mut().zip(m) {
-                row[c] = x;
-            }
-        }
-        home = Matrix4::from_rows(rows);
-        axes.remove(k);
+        fix_free(name, variables, f, &mut axes, &mut home)?;
         params.push(f.clone());
         params.sort();
     }
@@ -578,20 +546,7 @@ fn derive_fixed(
         Ok(None) => return Err(unsupported(None)),
         Err(m) => return Err(unsupported(Some(m.to_string()))),
     };
-    let mut conditions = Vec::new();
-    for s in &b.steps {
-        match &s.formula {
-            Formula::Trig { .. } => conditions.push(format!(
-                "{}: exists where a² + b² − c² ≥ 0 (else the target is out of reach)",
-                s.variable
-            )),
-            Formula::Quadratic { .. } => conditions.push(format!(
-                "{}: exists where β² − γ ≥ 0 (else the target is out of reach)",
-                s.variable
-            )),
-            _ => {}
-        }
-    }
+    let conditions = reach_conditions(&b.steps);
     let steps = b.steps;
     let reach = if position_only {
         Reach::Position
@@ -603,7 +558,7 @@ fn derive_fixed(
         .filter(|v| Some(*v) != opts.free.as_ref())
         .cloned()
         .collect();
-    let mut sol = IkSolution {
+    let sol = IkSolution {
         robot: name.to_string(),
         family,
         geometry,
@@ -621,6 +576,83 @@ fn derive_fixed(
         forms: std::sync::OnceLock::new(),
         degrees: std::sync::OnceLock::new(),
     };
+    with_general(sol)
+}
+
+/// Refuses a robot that uses a name of the target pose's entries.
+fn check_target_names(variables: &[String], params: &[String]) -> Result<(), IkError> {
+    for row in TARGET_SYMBOLS {
+        for s in row {
+            if variables.iter().any(|v| v == s) || params.iter().any(|v| v == s) {
+                return Err(IkError::Option(format!(
+                    "the robot uses the name `{s}`, which ik keeps for the target pose"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Fixes the free joint `f` at its (symbolic) value: the axes after it and the home pose
+/// moved by its motion `E_k`, its axis removed.
+fn fix_free(
+    name: &str,
+    variables: &[String],
+    f: &str,
+    axes: &mut Vec<Axis>,
+    home: &mut Matrix4<Scalar>,
+) -> Result<(), IkError> {
+    let k = variables.iter().position(|v| v == f).ok_or_else(|| {
+        IkError::Option(format!(
+            "--free {f}: not a joint variable of {name} (joint variables: {})",
+            variables.join(", ")
+        ))
+    })?;
+    let by = axes[k].clone();
+    for a in axes.iter_mut().skip(k + 1) {
+        *a = a.moved_by(&by);
+    }
+    // M' = E_k M.
+    let mut rows = home.rows.clone();
+    for c in 0..4 {
+        let col: V3 = std::array::from_fn(|r| home.rows[r][c].clone());
+        let m = if c < 3 {
+            by.move_dir(&col, 1)
+        } else {
+            by.move_point(&col, 1)
+        };
+        for (row, x) in rows.iter_mut().zip(m) {
+            row[c] = x;
+        }
+    }
+    *home = Matrix4::from_rows(rows);
+    axes.remove(k);
+    Ok(())
+}
+
+/// Where each step's roots exist (a trig or quadratic step's radicand), one line each.
+fn reach_conditions(steps: &[IkStep]) -> Vec<String> {
+    let mut conditions = Vec::new();
+    for s in steps {
+        match &s.formula {
+            Formula::Trig { .. } => conditions.push(format!(
+                "{}: exists where a² + b² − c² ≥ 0 (else the target is out of reach)",
+                s.variable
+            )),
+            Formula::Quadratic { .. } => conditions.push(format!(
+                "{}: exists where β² − γ ≥ 0 (else the target is out of reach)",
+                s.variable
+            )),
+            _ => {}
+        }
+    }
+    conditions
+}
+
+/// A solution by the general method gets its elimination's data; refused where the
+/// elimination is degenerate.
+fn with_general(mut sol: IkSolution) -> Result<IkSolution, IkError> {
+    let name = sol.robot.clone();
     if sol.steps.is_empty() && sol.family.template == GENERAL {
         let info = super::general::info(&sol);
         if info.degree == 0 {
