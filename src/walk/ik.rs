@@ -425,7 +425,7 @@ fn solutions_step(sol: &IkSolution, mech: &Mechanism, scene: &Scene) -> Result<S
         .collect();
     let found = sol
         .solve_numeric(&target.rows, &params)
-        .map_err(WalkError::Config)?;
+        .map_err(|e| WalkError::Config(e.to_string()))?;
     let mut rows: Vec<SolutionRow> = Vec::new();
     for s in found {
         let mut at = env.clone();

@@ -55,6 +55,21 @@ pub enum IkError {
     Scalar(#[from] ScalarError),
 }
 
+/// Why the numeric reference solver ([`IkSolution::solve_numeric`]) gave no solutions.
+#[derive(Clone, Debug, PartialEq, Eq, Error)]
+#[non_exhaustive]
+pub enum NumericError {
+    /// A parameter of the solution has no value.
+    #[error("no value for parameter `{0}`")]
+    MissingParameter(String),
+    /// An exact computation or an evaluation failed.
+    #[error(transparent)]
+    Scalar(#[from] ScalarError),
+    /// The general method's solver failed (its message).
+    #[error("{0}")]
+    General(String),
+}
+
 /// Which method derives the solver.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
@@ -557,18 +572,19 @@ impl IkSolution {
         &self,
         target: &[[f64; 4]; 4],
         params: &[(&str, f64)],
-    ) -> Result<Vec<NumSolution>, String> {
+    ) -> Result<Vec<NumSolution>, NumericError> {
         for p in &self.params {
             if !params.iter().any(|(n, _)| n == p) {
-                return Err(format!("no value for parameter `{p}`"));
+                return Err(NumericError::MissingParameter(p.clone()));
             }
         }
         if self.general.is_some() {
-            return general::solve_numeric(self, target, params);
+            return general::solve_numeric(self, target, params).map_err(NumericError::General);
         }
         let mut env: Vec<(String, f64)> = params.iter().map(|(n, v)| (n.to_string(), *v)).collect();
         let (axes, home) =
-            check::axis_data(self, &|n| env.iter().find(|(k, _)| k == n).map(|(_, v)| *v))?;
+            check::axis_data(self, &|n| env.iter().find(|(k, _)| k == n).map(|(_, v)| *v))
+                .map_err(NumericError::General)?;
         let len = check::scale(&axes, &home, target);
         for (r, row) in TARGET_SYMBOLS.iter().enumerate() {
             for (c, name) in row.iter().enumerate() {
@@ -576,8 +592,7 @@ impl IkSolution {
             }
         }
         let sigma: Vec<f64> = self
-            .degrees()
-            .map_err(|e| e.to_string())?
+            .degrees()?
             .iter()
             .map(|d| check::ZERO_TOL * len.powi(*d))
             .collect();
@@ -612,12 +627,12 @@ struct Branching<'a> {
 
 impl Branching<'_> {
     /// Step `k` on; `flags` are (singular, checked, sampled) of the steps before.
-    fn branch(&mut self, k: usize, flags: (bool, bool, bool)) -> Result<(), String> {
+    fn branch(&mut self, k: usize, flags: (bool, bool, bool)) -> Result<(), ScalarError> {
         let Some(step) = self.sol.steps.get(k) else {
             self.finish(flags);
             return Ok(());
         };
-        let forms = self.sol.forms().map_err(|e| e.to_string())?;
+        let forms = self.sol.forms()?;
         let mut vals = [0.0; 3];
         for (i, (_, e)) in forms[k].iter().enumerate() {
             let env = &self.env;
@@ -695,9 +710,9 @@ impl Branching<'_> {
 /// A part that cannot be evaluated.
 pub fn candidates(
     f: &Formula,
-    ev: &dyn Fn(&Scalar) -> Result<f64, String>,
+    ev: &dyn Fn(&Scalar) -> Result<f64, ScalarError>,
     sigma: f64,
-) -> Result<Vec<(f64, bool, bool, bool)>, String> {
+) -> Result<Vec<(f64, bool, bool, bool)>, ScalarError> {
     let v: Vec<f64> = match f {
         Formula::Atan2 { y, x } => vec![ev(y)?, ev(x)?],
         Formula::Trig { a, b, c } => vec![ev(a)?, ev(b)?, ev(c)?],
