@@ -65,43 +65,7 @@ fn ctx<'a>(sol: &'a IkSolution, w: &'a dyn SolverSyntax) -> Result<Ctx<'a>, Scal
         .collect();
     let angled =
         |st: &super::IkStep| matches!(st.formula, Formula::Atan2 { .. } | Formula::Trig { .. });
-    let mut outputs: Vec<Output> = Vec::new();
-    for (k, f) in forms.iter().enumerate() {
-        for (name, e) in f {
-            outputs.push(Output::scalar(&format!("p{k}_{name}"), "", e.clone()));
-        }
-    }
-    // sin of every revolute joint, so that its angle's step is 1 (never 2 theta as an atom
-    // when only double angles occur): the joint's sine and cosine are known from its roots.
-    let n_parts = outputs.len();
-    for st in sol.steps.iter().filter(|s| angled(s)) {
-        outputs.push(Output::scalar(
-            &format!("trig_{}", st.variable),
-            "",
-            crate::closed_form(&Scalar::sym(&st.variable).sin())?,
-        ));
-    }
-    // The axes and the home pose, for the check by forward kinematics (level 0: parameters
-    // only).
-    let n_trig = outputs.len();
-    for (i, a) in sol.axes.iter().enumerate() {
-        for (k, x) in a.dir.iter().chain(&a.point).enumerate() {
-            outputs.push(Output::scalar(
-                &format!("ik_ax{i}_{k}"),
-                "",
-                crate::closed_form(x)?,
-            ));
-        }
-    }
-    for (r, row) in sol.home.rows.iter().take(3).enumerate() {
-        for (c, x) in row.iter().enumerate() {
-            outputs.push(Output::scalar(
-                &format!("ik_home{r}{c}"),
-                "",
-                crate::closed_form(x)?,
-            ));
-        }
-    }
+    let (outputs, n_parts, n_trig) = solver_outputs(sol, &forms)?;
     let degrees = sol.degrees()?.to_vec();
     let mut prog = lower(&outputs, &args, &CodegenOptions::default())
         .map_err(|e| ScalarError::Unbound(e.to_string()))?;
@@ -201,6 +165,55 @@ fn ctx<'a>(sol: &'a IkSolution, w: &'a dyn SolverSyntax) -> Result<Ctx<'a>, Scal
         chain,
         degrees,
     })
+}
+
+/// The outputs the solver computes: every step's parts (`p{k}_{name}`), the sine of every
+/// angled joint, then the axes and the home pose's top rows (for the check by forward
+/// kinematics); with the number of parts and where the axes begin.
+fn solver_outputs(
+    sol: &IkSolution,
+    forms: &[Vec<(&'static str, crate::Expr)>],
+) -> Result<(Vec<Output>, usize, usize), ScalarError> {
+    let angled =
+        |st: &super::IkStep| matches!(st.formula, Formula::Atan2 { .. } | Formula::Trig { .. });
+    let mut outputs: Vec<Output> = Vec::new();
+    for (k, f) in forms.iter().enumerate() {
+        for (name, e) in f {
+            outputs.push(Output::scalar(&format!("p{k}_{name}"), "", e.clone()));
+        }
+    }
+    // sin of every revolute joint, so that its angle's step is 1 (never 2 theta as an atom
+    // when only double angles occur): the joint's sine and cosine are known from its roots.
+    let n_parts = outputs.len();
+    for st in sol.steps.iter().filter(|s| angled(s)) {
+        outputs.push(Output::scalar(
+            &format!("trig_{}", st.variable),
+            "",
+            crate::closed_form(&Scalar::sym(&st.variable).sin())?,
+        ));
+    }
+    // The axes and the home pose, for the check by forward kinematics (level 0: parameters
+    // only).
+    let n_trig = outputs.len();
+    for (i, a) in sol.axes.iter().enumerate() {
+        for (k, x) in a.dir.iter().chain(&a.point).enumerate() {
+            outputs.push(Output::scalar(
+                &format!("ik_ax{i}_{k}"),
+                "",
+                crate::closed_form(x)?,
+            ));
+        }
+    }
+    for (r, row) in sol.home.rows.iter().take(3).enumerate() {
+        for (c, x) in row.iter().enumerate() {
+            outputs.push(Output::scalar(
+                &format!("ik_home{r}{c}"),
+                "",
+                crate::closed_form(x)?,
+            ));
+        }
+    }
+    Ok((outputs, n_parts, n_trig))
 }
 
 impl Ctx<'_> {
