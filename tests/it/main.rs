@@ -41,6 +41,7 @@ mod short_forms;
 mod stress;
 mod tools;
 mod trig_corpus;
+mod typed_errors;
 mod urdf;
 mod walk;
 mod work_bounds;
