@@ -78,7 +78,7 @@ pub fn c_function(
         }
     }
     for (id, t) in p.temps() {
-        s.push_str(&format!("    {}\n", C.local(&t, &p.definition(id, &lit))));
+        s.push_str(&format!("    {}\n", C.local(t, &p.definition(id, &lit))));
     }
     for ((out, ids), name) in p.outputs.iter().zip(&out_names) {
         for (k, &id) in ids.iter().enumerate() {

@@ -74,7 +74,7 @@ pub fn javascript_function(
     for (id, t) in p.temps() {
         s.push_str(&format!(
             "    {}\n",
-            JavaScript.local(&t, &p.definition(id, &lit))
+            JavaScript.local(t, &p.definition(id, &lit))
         ));
     }
     s.push_str("    return {\n");

@@ -92,7 +92,7 @@ pub fn python_function(
     for (id, t) in p.temps() {
         s.push_str(&format!(
             "    {}\n",
-            Python.local(&t, &p.definition(id, &lit))
+            Python.local(t, &p.definition(id, &lit))
         ));
     }
     s.push_str("    return {\n");

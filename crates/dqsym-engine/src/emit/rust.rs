@@ -140,10 +140,7 @@ pub fn rust_function(
         }
     }
     for (id, t) in p.temps() {
-        s.push_str(&format!(
-            "    {}\n",
-            Rust.local(&t, &p.definition(id, &lit))
-        ));
+        s.push_str(&format!("    {}\n", Rust.local(t, &p.definition(id, &lit))));
     }
     s.push_str(&format!("    {ty} {{\n"));
     for ((out, ids), field) in p.outputs.iter().zip(&fields) {

@@ -65,7 +65,7 @@ fn ctx<'a>(sol: &'a IkSolution, w: &'a dyn SolverSyntax) -> Result<Ctx<'a>, Scal
         .collect();
     let angled =
         |st: &super::IkStep| matches!(st.formula, Formula::Atan2 { .. } | Formula::Trig { .. });
-    let (outputs, n_parts, n_trig) = solver_outputs(sol, &forms)?;
+    let (outputs, n_parts, n_trig) = solver_outputs(sol, forms)?;
     let degrees = sol.degrees()?.to_vec();
     let mut prog = lower(&outputs, &args, &CodegenOptions::default())
         .map_err(|e| ScalarError::Unbound(e.to_string()))?;
