@@ -492,8 +492,8 @@ pub(crate) fn step_degrees(sol: &super::IkSolution) -> Result<Vec<i32>, crate::S
 pub(crate) fn axis_data(
     sol: &super::IkSolution,
     env: &dyn Fn(&str) -> Option<f64>,
-) -> Result<(Vec<AxisData>, [[f64; 4]; 3]), String> {
-    let ev = |x: &crate::Scalar| x.eval(env).map_err(|e| e.to_string());
+) -> Result<(Vec<AxisData>, [[f64; 4]; 3]), super::NumericError> {
+    let ev = |x: &crate::Scalar| x.eval(env);
     let mut axes = Vec::new();
     for a in &sol.axes {
         let kind = f64::from(u8::from(a.kind == crate::kin::JointKind::Prismatic));

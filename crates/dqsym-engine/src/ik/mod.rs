@@ -70,6 +70,13 @@ pub enum NumericError {
     General(String),
 }
 
+/// The message, for the general method's solver (`general/`), whose errors are still text.
+impl From<NumericError> for String {
+    fn from(e: NumericError) -> String {
+        e.to_string()
+    }
+}
+
 /// Which method derives the solver.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
@@ -583,8 +590,7 @@ impl IkSolution {
         }
         let mut env: Vec<(String, f64)> = params.iter().map(|(n, v)| (n.to_string(), *v)).collect();
         let (axes, home) =
-            check::axis_data(self, &|n| env.iter().find(|(k, _)| k == n).map(|(_, v)| *v))
-                .map_err(NumericError::General)?;
+            check::axis_data(self, &|n| env.iter().find(|(k, _)| k == n).map(|(_, v)| *v))?;
         let len = check::scale(&axes, &home, target);
         for (r, row) in TARGET_SYMBOLS.iter().enumerate() {
             for (c, name) in row.iter().enumerate() {
