@@ -612,6 +612,12 @@ pub fn ik_javascript_helpers(sol: &IkSolution) -> String {
     format!("{}{JS_HELPERS}", tolerances(sol, None))
 }
 
+/// The tolerances block of the C solvers (the general method's C solver states the same
+/// constants as the family solvers).
+pub(super) fn c_tolerances(sol: &IkSolution) -> String {
+    tolerances(sol, Some(Lang::C))
+}
+
 /// Each step's degree in lengths (see [`super::check`]), for the page's solver.
 ///
 /// # Errors
@@ -1176,7 +1182,7 @@ fn ik_dq_matrix(q: &[f64; 8]) -> [[f64; 4]; 4] {
 /// A closed form that fails.
 pub fn ik_c(sol: &IkSolution) -> Result<String, ScalarError> {
     if sol.general.is_some() {
-        return Err(super::general::emit::not_generated("C"));
+        return super::general::emit::ik_c(sol);
     }
     let sol = &*super::safe::solution(sol, names::Lang::C);
     let c = ctx(sol, Lang::C)?;
