@@ -462,12 +462,6 @@ pub fn ik_walk_html(
     katex: &KatexAssets,
     cfg: &Config,
 ) -> Result<String, WalkError> {
-    if sol.general.is_some() {
-        return Err(WalkError::Config(
-            "the IK page has no solver for the general 6R method yet (the text walkthrough shows its steps)"
-                .to_owned(),
-        ));
-    }
     let title = format!("Inverse kinematics walkthrough: {}", sol.robot);
     page_html(w, &title, katex, cfg, Some(sol))
 }
@@ -595,18 +589,26 @@ fn ik_script(sol: &crate::ik::IkSolution) -> Result<String, WalkError> {
     };
     let degrees: Vec<String> = degrees.iter().map(i32::to_string).collect();
     let data = format!(
-        "const IK = {{\"steps\":[{}],\"vars\":[{}],\"params\":[{}],\"kinds\":[{}],\"degrees\":[{}],\"position_only\":{}}};\n",
+        "const IK = {{\"steps\":[{}],\"vars\":[{}],\"params\":[{}],\"kinds\":[{}],\"degrees\":[{}],\"position_only\":{},\"general\":{}}};\n",
         steps.join(","),
         quoted(&sol.variables),
         quoted(&sol.params),
         kinds.join(","),
         degrees.join(","),
-        sol.position_only
+        sol.position_only,
+        sol.general.is_some()
     );
+    // An arm solved by the general 6R method: its numeric core instead of the steps.
+    let general = if sol.general.is_some() {
+        crate::ik::ik_javascript_general(sol)
+    } else {
+        String::new()
+    };
     Ok(format!(
-        "<script>{}{data}{}{}</script>\n",
+        "<script>{}{data}{}{}{}</script>\n",
         code.replace("</script", "<\\/script"),
         crate::ik::ik_javascript_helpers(sol).replace("</script", "<\\/script"),
+        general.replace("</script", "<\\/script"),
         IK_JS
     ))
 }
@@ -625,6 +627,7 @@ const IK_JS: &str = r#"(function () {
         const ch = dqsym_ik_chain(...IK.params.map((n) => env[n]));
         const ax = IK.kinds.map((k, i) => [k].concat([0, 1, 2, 3, 4, 5].map((j) => ch[`ax${i}_${j}`])));
         const home = [0, 1, 2].map((r) => [0, 1, 2, 3].map((c) => ch[`home${r}${c}`]));
+        if (IK.general) return ik_general(ax, home, T);
         const len = ik_scale(ax, home, T);
         const out = [];
         (function go(k, env, sg, ck, smp) {

@@ -398,10 +398,30 @@ static void ik_dq_matrix(const double q[8], double T[4][4]) {
 }
 "#;
 
-/// The error of a language the general method does not generate yet.
-pub(crate) fn not_generated(lang: &'static str) -> ScalarError {
-    ScalarError::NotGenerated(lang)
+/// The general method's JavaScript for the IK page (after [`crate::ik::ik_javascript_helpers`],
+/// whose tolerances and `ik_scale` it reads): the numeric core (`core.js`, a port of
+/// `core.rs`) with its constants written from `core.rs`, and `ik_general(ax, home, T)`, every
+/// solution as `[q, singular, approximate, residual]` as the generated solvers return them.
+pub fn ik_javascript_general(sol: &IkSolution) -> String {
+    let first = sol.general.as_ref().map_or(0, super::GeneralInfo::index);
+    format!(
+        "// The general 6R method: the residual above which a root of the elimination is dropped,\n\
+// the arrangement of the loop tried first, the numeric core's constants (from core.rs).\n\
+const IK_KEEP_TOL = {};\nconst IK_FIRST_ARRANGEMENT = {first};\n{}\n{JS_CORE}\n{JS_DRIVER}",
+        float_literal(super::KEEP_TOL),
+        core_constant_code(false)
+    )
 }
+
+const JS_DRIVER: &str = r#"// Every solution by the general method for the axes [kind, w, p], the home pose and the target
+// (lengths in the robot's): [q, singular (never), approximate, residual] each.
+function ik_general(ax, home, T) {
+    const len = ik_scale(ax, home, T);
+    const tol = { pose: IK_POSE_TOL, keep: IK_KEEP_TOL };
+    const o = ik_gen_solve(ax, home, T, len, tol, IK_FIRST_ARRANGEMENT);
+    return o.q.map((q, i) => [q, false, !(o.residual[i] <= IK_POSE_TOL), o.residual[i]]);
+}
+"#;
 
 /// The solver as Python (NumPy): `ik_full(T, *, params)` with every solution as `(q,
 /// singular, approximate, residual)`, `ik(T, ...)` and `ik_dq(q, ...)`, the interface of the
