@@ -1,0 +1,453 @@
+//! The general 6R method's C and JavaScript solvers (`ik/general/core.c`, `core.js`, ports of
+//! `core.rs`) against the Rust reference solver (`IkSolution::solve_numeric`): the generated C
+//! compiled with `gcc -std=c99 -pedantic -Wall -Wextra -Werror` and run, the IK page's
+//! JavaScript run with node and in the page itself (Chromium), on a Jaco-style arm (60-degree
+//! wrist), a skew-shoulder offset-wrist 6R and a PUMA with a 0.8 mm shoulder offset (through
+//! `--method general`). Every pose is checked by an independent classic-DH 4 x 4 model written
+//! here: every solution not flagged approximate reproduces the pose to 1e-9 (rotation entries,
+//! positions over the arm's size), the original configuration is among them, and the solution
+//! set is the reference's.
+
+use crate::common::Rng;
+use dqsym::ik::{solve, IkMethod, IkOptions, IkSolution, NumSolution};
+use std::path::Path;
+use std::process::Command;
+
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+const PI: f64 = std::f64::consts::PI;
+
+type M4 = [[f64; 4]; 4];
+
+/// One classic DH row `Rz(q) Tz(d) Tx(a) Rx(alpha)`, `alpha` as robot-file text and as a number.
+#[derive(Clone, Copy)]
+struct Dh {
+    d: f64,
+    a: f64,
+    alpha: (&'static str, f64),
+}
+
+const fn dh(d: f64, a: f64, alpha: (&'static str, f64)) -> Dh {
+    Dh { d, a, alpha }
+}
+
+const A0: (&str, f64) = ("0", 0.0);
+const A90: (&str, f64) = ("pi/2", PI / 2.0);
+const AM90: (&str, f64) = ("-pi/2", -PI / 2.0);
+const A180: (&str, f64) = ("pi", PI);
+const A60: (&str, f64) = ("pi/3", PI / 3.0);
+
+/// Kinova Jaco (the Robotics Toolbox DH table without its joint offsets: 60-degree wrist).
+fn jaco() -> Vec<Dh> {
+    let k = 1.0 / 3f64.sqrt();
+    let (d1, d2, d3, d4, d5, d6, e2) = (0.2755, 0.41, 0.2073, 0.0743, 0.0743, 0.1687, 0.0098);
+    vec![
+        dh(d1, 0.0, A90),
+        dh(0.0, d2, A180),
+        dh(-e2, 0.0, A90),
+        dh(-(d3 + k * d4), 0.0, A60),
+        dh(-(k * d4 + k * d5), 0.0, A60),
+        dh(-(k * d5 + d6), 0.0, A180),
+    ]
+}
+
+/// A skew shoulder (axes 1, 2 at 60 degrees with an offset) and an offset wrist.
+fn skew() -> Vec<Dh> {
+    vec![
+        dh(0.3, 0.05, A60),
+        dh(0.02, 0.4, ("pi/6", PI / 6.0)),
+        dh(0.05, 0.03, A90),
+        dh(0.35, 0.02, AM90),
+        dh(0.07, 0.04, ("2*pi/5", 2.0 * PI / 5.0)),
+        dh(0.1, 0.0, A0),
+    ]
+}
+
+/// PUMA 560 at its published lengths with a 0.8 mm shoulder offset `a1`.
+fn puma_offset() -> Vec<Dh> {
+    vec![
+        dh(0.0, 0.0008, A90),
+        dh(0.0, 0.4318, A0),
+        dh(0.15005, 0.0203, AM90),
+        dh(0.4318, 0.0, A90),
+        dh(0.0, 0.0, AM90),
+        dh(0.0, 0.0, A0),
+    ]
+}
+
+/// The arms and how each is derived (the PUMA keeps its family unless the general method is
+/// forced).
+fn arms() -> Vec<(&'static str, Vec<Dh>, IkMethod)> {
+    vec![
+        ("jaco", jaco(), IkMethod::Auto),
+        ("skew", skew(), IkMethod::Auto),
+        ("puma a1", puma_offset(), IkMethod::General),
+    ]
+}
+
+fn mul(a: &M4, b: &M4) -> M4 {
+    std::array::from_fn(|r| std::array::from_fn(|c| (0..4).map(|k| a[r][k] * b[k][c]).sum()))
+}
+
+/// The independent model: the product of the rows' 4 x 4 matrices.
+fn dh_pose(rows: &[Dh], q: &[f64]) -> M4 {
+    let mut t: M4 = std::array::from_fn(|r| std::array::from_fn(|c| f64::from(u8::from(r == c))));
+    for (r, th) in rows.iter().zip(q) {
+        let (st, ct) = th.sin_cos();
+        let (sa, ca) = r.alpha.1.sin_cos();
+        let m = [
+            [ct, -st * ca, st * sa, r.a * ct],
+            [st, ct * ca, -ct * sa, r.a * st],
+            [0.0, sa, ca, r.d],
+            [0.0, 0.0, 0.0, 1.0],
+        ];
+        t = mul(&t, &m);
+    }
+    t
+}
+
+fn dh_toml(name: &str, rows: &[Dh]) -> String {
+    let mut s = format!("name = \"{name}\"\nconvention = \"dh\"\n");
+    for (i, r) in rows.iter().enumerate() {
+        s.push_str(&format!(
+            "\n[[joint]]\ntype = \"revolute\"\ntheta = \"q{}\"\nd = \"{}\"\na = \"{}\"\nalpha = \"{}\"\n",
+            i + 1,
+            r.d,
+            r.a,
+            r.alpha.0
+        ));
+    }
+    s
+}
+
+fn derive(name: &str, rows: &[Dh], method: IkMethod) -> IkSolution {
+    let text = dh_toml(name, rows);
+    let robot = dqsym::parse_robot(&text, name, &dqsym::eval_scalar_text).expect("robot");
+    let sol = solve(&robot, &IkOptions { free: None, method })
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert!(sol.general.is_some(), "{name}: {}", sol.family);
+    sol
+}
+
+/// The largest angle difference on the circle.
+fn dist(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| {
+            let d = (x - y).rem_euclid(2.0 * PI);
+            d.min(2.0 * PI - d)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The largest deviation of `got` from `want`: rotation entries, positions over `len`.
+fn deviation(want: &M4, got: &M4, len: f64) -> f64 {
+    let mut d: f64 = 0.0;
+    for r in 0..3 {
+        for c in 0..4 {
+            let e = (want[r][c] - got[r][c]).abs();
+            d = d.max(if c == 3 { e / len } else { e });
+        }
+    }
+    d
+}
+
+fn size(rows: &[Dh]) -> f64 {
+    rows.iter().map(|r| r.d.abs() + r.a.abs()).sum()
+}
+
+/// Random configurations, and the poses as lines of 16 numbers (row-major, `{:e}` reads back
+/// exactly).
+fn poses(rows: &[Dh], n: usize, seed: u64) -> (Vec<Vec<f64>>, String) {
+    let mut rng = Rng::new(seed);
+    let qs: Vec<Vec<f64>> = (0..n)
+        .map(|_| (0..6).map(|_| rng.range(-PI, PI)).collect())
+        .collect();
+    let input = qs
+        .iter()
+        .map(|q| {
+            let v: Vec<String> = dh_pose(rows, q)
+                .iter()
+                .flatten()
+                .map(|x| format!("{x:e}"))
+                .collect();
+            v.join(" ") + "\n"
+        })
+        .collect();
+    (qs, input)
+}
+
+/// Solutions of one set are more than `SAME_TOL = 1e-6` apart (the core merges closer ones),
+/// so pairing within half of it is unambiguous: a port's solution within `MATCH` of a
+/// reference solution is that solution, and not another of the set. (A port that computes as
+/// the reference does lands within rounding of it; the largest distance seen is printed.)
+const MATCH: f64 = 0.5e-6;
+
+/// Reads one pose's solutions (`n`, then `n` lines `q1 .. q6 approximate residual`) from a
+/// port's output and checks them against the reference; returns the largest distance of a
+/// paired solution.
+fn check_port(
+    port: &str,
+    name: &str,
+    rows: &[Dh],
+    q: &[f64],
+    reference: &[NumSolution],
+    lines: &mut std::str::Lines,
+) -> f64 {
+    let t = dh_pose(rows, q);
+    let len = size(rows);
+    let n: usize = lines.next().expect("count").parse().expect("n");
+    let got: Vec<Vec<f64>> = (0..n)
+        .map(|_| {
+            lines
+                .next()
+                .expect("row")
+                .split_whitespace()
+                .map(|x| x.parse().expect("number"))
+                .collect()
+        })
+        .collect();
+    assert_eq!(
+        n,
+        reference.len(),
+        "{port} {name} at {q:?}: {got:?} vs {reference:?}"
+    );
+    let mut most: f64 = 0.0;
+    for r in reference {
+        let g = got
+            .iter()
+            .find(|g| dist(&g[..6], &r.q) <= MATCH)
+            .unwrap_or_else(|| panic!("{port} {name}: {:?} not among {got:?} at {q:?}", r.q));
+        assert_eq!(g[6] != 0.0, r.approximate, "{port} {name}: flag of {g:?}");
+        most = most.max(dist(&g[..6], &r.q));
+    }
+    for g in got.iter().filter(|g| g[6] == 0.0) {
+        let dev = deviation(&t, &dh_pose(rows, &g[..6]), len);
+        assert!(dev <= 1e-9, "{port} {name}: {g:?} misses the pose by {dev}");
+    }
+    assert!(
+        got.iter().any(|g| g[6] == 0.0 && dist(&g[..6], q) <= 1e-6),
+        "{port} {name}: {q:?} not among {got:?}"
+    );
+    most
+}
+
+const C_MAIN: &str = r#"
+#include <stdio.h>
+#include <time.h>
+
+int main(void) {
+    static double ts[1000][4][4];
+    int n = 0, i, k, rep, total = 0;
+    clock_t start;
+    while (n < 1000) {
+        for (i = 0; i < 16; i++)
+            if (scanf("%lf", &ts[n][i / 4][i % 4]) != 1) break;
+        if (i < 16) break;
+        n++;
+    }
+    for (k = 0; k < n; k++) {
+        ik_solutions s;
+        ik((const double (*)[4])ts[k], &s);
+        printf("%d\n", s.n);
+        for (i = 0; i < s.n; i++) {
+            int j;
+            for (j = 0; j < 6; j++) printf("%.17g ", s.q[i][j]);
+            printf("%d %.17g\n", s.approximate[i], s.residual[i]);
+        }
+    }
+    start = clock();
+    for (rep = 0; rep < 5; rep++) {
+        for (k = 0; k < n; k++) {
+            ik_solutions s;
+            ik((const double (*)[4])ts[k], &s);
+            total += s.n;
+        }
+    }
+    printf("time %g %d\n", 1e6 * (double)(clock() - start) / CLOCKS_PER_SEC / (5.0 * n), total);
+    return 0;
+}
+"#;
+
+/// The generated C solver, compiled clean under `-std=c99 -pedantic -Wall -Wextra -Werror`
+/// (`-O2`), returns the reference's solution set at 300 random poses of each arm; its time per
+/// pose is printed (not asserted).
+#[test]
+fn generated_c_solver_agrees_with_the_reference() {
+    for (k, (name, rows, method)) in arms().into_iter().enumerate() {
+        let sol = derive(name, &rows, method);
+        let code = dqsym::ik::ik_c(&sol).expect("C");
+        assert!(code.contains("ik_gen_solve("), "{name}: not the general solver");
+        let dir = crate::tools::temp_dir(&format!("ik-general-c-{k}"));
+        let src = dir.join("ik.c");
+        let exe = dir.join("ik");
+        std::fs::write(&src, format!("{code}{C_MAIN}")).expect("write");
+        let mut gcc = Command::new("gcc");
+        gcc.args([
+            "-std=c99",
+            "-pedantic",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            "-O2",
+            "-o",
+        ])
+        .arg(&exe)
+        .arg(&src)
+        .arg("-lm");
+        crate::tools::run(gcc, "", &format!("gcc -Werror on the general solver of {name}"));
+        let (qs, input) = poses(&rows, 300, 71 + k as u64);
+        let out = crate::tools::run(Command::new(&exe), &input, "generated C ik");
+        let mut lines = out.lines();
+        let mut most: f64 = 0.0;
+        for q in &qs {
+            let reference = sol
+                .solve_numeric(&dh_pose(&rows, q), &[])
+                .expect("reference");
+            most = most.max(check_port("C", name, &rows, q, &reference, &mut lines));
+        }
+        let time = lines.next().expect("time line");
+        eprintln!(
+            "generated C general solver, {name}: {time} (us per pose, solutions); largest distance to the reference {most:e}"
+        );
+    }
+}
+
+/// The IK page of `file` written by `dqsym walk --ik --html` (extra arguments `args`); returns
+/// its text.
+fn ik_page(file: &Path, page: &Path, args: &[&str]) -> String {
+    let out = Command::new(env!("CARGO_BIN_EXE_dqsym"))
+        .arg("walk")
+        .arg(file)
+        .args(["--ik", "--html"])
+        .arg(page)
+        .args(args)
+        .output()
+        .expect("runs");
+    assert!(
+        out.status.success(),
+        "dqsym walk --ik --html {}: {}",
+        file.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    std::fs::read_to_string(page).expect("page")
+}
+
+/// The page's solver script without its driver (the part that reads the document): the chain,
+/// the IK data, the helpers and the general method's core.
+fn page_solver(html: &str) -> String {
+    let script = html
+        .split("<script>")
+        .filter_map(|s| s.split("</script>").next())
+        .find(|s| s.contains("function dqsym_ik_chain("))
+        .expect("the IK script");
+    assert!(script.contains("\"general\":true"), "not the general method");
+    let at = script
+        .find("function ik_general(")
+        .expect("the general method's driver");
+    let end = at + script[at..].find("\n(function () {").expect("the page's driver");
+    script[..end].to_string()
+}
+
+const NODE_MAIN: &str = r#"
+const lines = require("fs").readFileSync(0, "utf8").trim().split("\n");
+const ch = dqsym_ik_chain();
+const ax = IK.kinds.map((k, i) => [k].concat([0, 1, 2, 3, 4, 5].map((j) => ch[`ax${i}_${j}`])));
+const home = [0, 1, 2].map((r) => [0, 1, 2, 3].map((c) => ch[`home${r}${c}`]));
+const ts = lines.map((l) => {
+    const v = l.split(" ").map(Number);
+    return [0, 1, 2, 3].map((r) => v.slice(4 * r, 4 * r + 4));
+});
+let out = "";
+for (const T of ts) {
+    const sols = ik_general(ax, home, T);
+    out += sols.length + "\n";
+    for (const [q, , ap, res] of sols) out += q.map(String).join(" ") + " " + (ap ? 1 : 0) + " " + res + "\n";
+}
+const start = process.hrtime.bigint();
+let total = 0;
+for (const T of ts) total += ik_general(ax, home, T).length;
+out += `time ${Number(process.hrtime.bigint() - start) / 1e3 / ts.length} ${total}\n`;
+process.stdout.write(out);
+"#;
+
+/// The IK page's JavaScript for arms solved by the general method (the page's own script: its
+/// chain, helpers and `core.js`), run with node, returns the reference's solution set at 300
+/// random poses of each arm.
+#[test]
+fn page_javascript_solver_agrees_with_the_reference() {
+    for (k, (name, rows, method)) in arms().into_iter().enumerate() {
+        if method != IkMethod::Auto {
+            // `walk --ik` takes the method `dqsym ik` picks: the PUMA keeps its family there,
+            // so its general solver's JavaScript is checked through the library below.
+            continue;
+        }
+        let sol = derive(name, &rows, method);
+        let dir = crate::tools::temp_dir(&format!("ik-general-js-{k}"));
+        let file = dir.join("arm.toml");
+        std::fs::write(&file, dh_toml(name, &rows)).expect("write");
+        // The skew arm's drawing needs more than the default work budget.
+        let html = ik_page(&file, &dir.join("page.html"), &["--work-budget", "100000000"]);
+        let script = format!("{}{NODE_MAIN}", page_solver(&html));
+        run_node_check(name, &rows, &sol, &script, 81 + k as u64);
+    }
+    // The PUMA through --method general: the same pieces the page puts together.
+    let (name, rows, method) = arms().pop().expect("puma");
+    let sol = derive(name, &rows, method);
+    let chain = js_chain(&sol);
+    let script = format!(
+        "{chain}{}{}{NODE_MAIN}",
+        dqsym::ik::ik_javascript_helpers(&sol),
+        dqsym::ik::ik_javascript_general(&sol)
+    );
+    run_node_check(name, &rows, &sol, &script, 89);
+}
+
+/// `dqsym_ik_chain()` and `IK` as the page defines them, for an arm without parameters, from
+/// its axes and home pose evaluated by the library.
+fn js_chain(sol: &IkSolution) -> String {
+    let num = |x: &dqsym::Scalar| {
+        x.eval(&|_: &str| None)
+            .unwrap_or_else(|e| panic!("a numeric axis entry: {e}"))
+    };
+    let mut entries = Vec::new();
+    for (i, a) in sol.axes.iter().enumerate() {
+        for (k, x) in a.dir.iter().chain(&a.point).enumerate() {
+            entries.push(format!("ax{i}_{k}: {:e}", num(x)));
+        }
+    }
+    for (r, row) in sol.home.rows.iter().take(3).enumerate() {
+        for (c, x) in row.iter().enumerate() {
+            entries.push(format!("home{r}{c}: {:e}", num(x)));
+        }
+    }
+    format!(
+        "function dqsym_ik_chain() {{ return {{{}}}; }}\nconst IK = {{ kinds: [0, 0, 0, 0, 0, 0] }};\n",
+        entries.join(", ")
+    )
+}
+
+fn run_node_check(name: &str, rows: &[Dh], sol: &IkSolution, script: &str, seed: u64) {
+    let (qs, input) = poses(rows, 300, seed);
+    let mut node = Command::new("node");
+    node.args(["-e", script]);
+    let out = crate::tools::run(node, &input, &format!("node on the page solver of {name}"));
+    let mut lines = out.lines();
+    let mut most: f64 = 0.0;
+    for q in &qs {
+        let reference = sol
+            .solve_numeric(&dh_pose(rows, q), &[])
+            .expect("reference");
+        most = most.max(check_port(
+            "JavaScript",
+            name,
+            rows,
+            q,
+            &reference,
+            &mut lines,
+        ));
+    }
+    let time = lines.next().expect("time line");
+    eprintln!(
+        "page JavaScript general solver, {name}: {time} (us per pose, solutions); largest distance to the reference {most:e}"
+    );
+}
