@@ -451,3 +451,87 @@ fn run_node_check(name: &str, rows: &[Dh], sol: &IkSolution, script: &str, seed:
         "page JavaScript general solver, {name}: {time} (us per pose, solutions); largest distance to the reference {most:e}"
     );
 }
+
+/// The IK page of the Jaco-style arm in Chromium (the page driver of `walk.rs`'s page test):
+/// with the sliders at a configuration, the live table lists the reference's solutions, each
+/// reproducing the pose by the model here, the sliders' configuration among them, and the
+/// page reports no script error.
+#[test]
+fn ik_page_of_a_general_arm_lists_every_solution_in_chromium() {
+    let chromium = crate::tools::chromium();
+    assert!(
+        Path::new(ROOT).join("node_modules/playwright-core").is_dir(),
+        "playwright-core is missing (node_modules/playwright-core): run `bash scripts/test.sh`"
+    );
+    let rows = jaco();
+    let sol = derive("jaco", &rows, IkMethod::Auto);
+    let dir = crate::tools::temp_dir("ik-general-page");
+    let file = dir.join("jaco.toml");
+    std::fs::write(&file, dh_toml("jaco", &rows)).expect("write");
+    let page = dir.join("page.html");
+    ik_page(&file, &page, &[]);
+    let mut rng = Rng::new(91);
+    let q: Vec<f64> = (0..6).map(|_| rng.range(-PI, PI)).collect();
+    let values: serde_json::Map<String, serde_json::Value> = q
+        .iter()
+        .enumerate()
+        .map(|(i, v)| (format!("q{}", i + 1), serde_json::json!(v)))
+        .collect();
+    let url = format!("file://{}", page.display());
+    let spec = serde_json::json!([{"url": url, "shots": dir.join("shot").display().to_string(),
+        "values": values, "ik": true}]);
+    let spec_file = dir.join("jobs.json");
+    std::fs::write(&spec_file, spec.to_string()).expect("jobs");
+    let mut node = Command::new("node");
+    node.arg(Path::new(ROOT).join("tests/it/walk_page.js"))
+        .arg(&spec_file)
+        .env("CHROMIUM", &chromium)
+        .current_dir(ROOT);
+    let text = crate::tools::run(node, "", "playwright on the general IK page");
+    let r: serde_json::Value = serde_json::from_str(&text).expect("json from the page");
+    let len = size(&rows);
+    for width in ["390", "1600"] {
+        let moved = &r[&url][width]["moved"];
+        assert_eq!(
+            r[&url][width]["problems"],
+            serde_json::json!([]),
+            "{width}: {}",
+            r[&url][width]["problems"]
+        );
+        let at: Vec<f64> = (1..=6)
+            .map(|i| moved["sliders"][format!("q{i}")].as_f64().expect("slider"))
+            .collect();
+        let t = dh_pose(&rows, &at);
+        let reference = sol.solve_numeric(&t, &[]).expect("reference");
+        let shown: Vec<Vec<f64>> = moved["ik"]
+            .as_array()
+            .expect("rows")
+            .iter()
+            .map(|row| {
+                row["q"]
+                    .as_array()
+                    .expect("q")
+                    .iter()
+                    .map(|x| x.as_f64().expect("number"))
+                    .collect()
+            })
+            .collect();
+        assert_eq!(shown.len(), reference.len(), "{width}: {shown:?} vs {reference:?}");
+        for s in &reference {
+            assert!(
+                shown.iter().any(|g| dist(g, &s.q) <= MATCH),
+                "{width}: {:?} not in the page's table {shown:?}",
+                s.q
+            );
+            if !s.approximate {
+                let g = shown.iter().find(|g| dist(g, &s.q) <= MATCH).expect("row");
+                let dev = deviation(&t, &dh_pose(&rows, g), len);
+                assert!(dev <= 1e-9, "{width}: the page's {g:?} misses by {dev}");
+            }
+        }
+        assert!(
+            shown.iter().any(|g| dist(g, &at) <= 1e-6),
+            "{width}: the sliders' {at:?} not among {shown:?}"
+        );
+    }
+}
