@@ -122,8 +122,8 @@ fn dh_toml(name: &str, rows: &[Dh]) -> String {
 fn derive(name: &str, rows: &[Dh], method: IkMethod) -> IkSolution {
     let text = dh_toml(name, rows);
     let robot = dqsym::parse_robot(&text, name, &dqsym::eval_scalar_text).expect("robot");
-    let sol = solve(&robot, &IkOptions { free: None, method })
-        .unwrap_or_else(|e| panic!("{name}: {e}"));
+    let sol =
+        solve(&robot, &IkOptions { free: None, method }).unwrap_or_else(|e| panic!("{name}: {e}"));
     assert!(sol.general.is_some(), "{name}: {}", sol.family);
     sol
 }
@@ -247,7 +247,7 @@ int main(void) {
     }
     for (k = 0; k < n; k++) {
         ik_solutions s;
-        ik((const double (*)[4])ts[k], &s);
+        ik((const double (*)[4])ts[k]ARGS, &s);
         printf("%d\n", s.n);
         for (i = 0; i < s.n; i++) {
             int j;
@@ -259,7 +259,7 @@ int main(void) {
     for (rep = 0; rep < 5; rep++) {
         for (k = 0; k < n; k++) {
             ik_solutions s;
-            ik((const double (*)[4])ts[k], &s);
+            ik((const double (*)[4])ts[k]ARGS, &s);
             total += s.n;
         }
     }
@@ -267,6 +267,60 @@ int main(void) {
     return 0;
 }
 "#;
+
+/// Compiles the C solver `code` with a main that reads poses and calls `ik(T{args}, &s)`
+/// (`gcc -std=c99 -pedantic -Wall -Wextra -Werror -O2`), runs it on `input` and returns its
+/// output.
+fn run_c(tag: &str, code: &str, args: &str, input: &str) -> String {
+    let dir = crate::tools::temp_dir(&format!("ik-general-c-{tag}"));
+    let src = dir.join("ik.c");
+    let exe = dir.join("ik");
+    std::fs::write(&src, format!("{code}{}", C_MAIN.replace("ARGS", args))).expect("write");
+    let mut gcc = Command::new("gcc");
+    gcc.args([
+        "-std=c99",
+        "-pedantic",
+        "-Wall",
+        "-Wextra",
+        "-Werror",
+        "-O2",
+        "-o",
+    ])
+    .arg(&exe)
+    .arg(&src)
+    .arg("-lm");
+    crate::tools::run(
+        gcc,
+        "",
+        &format!("gcc -Werror on the general solver of {tag}"),
+    );
+    crate::tools::run(Command::new(&exe), input, "generated C ik")
+}
+
+/// Checks a port's output for the poses of `qs` against the reference at `params`; prints its
+/// time line.
+fn check_output(
+    port: &str,
+    name: &str,
+    rows: &[Dh],
+    sol: &IkSolution,
+    params: &[(&str, f64)],
+    qs: &[Vec<f64>],
+    out: &str,
+) {
+    let mut lines = out.lines();
+    let mut most: f64 = 0.0;
+    for q in qs {
+        let reference = sol
+            .solve_numeric(&dh_pose(rows, q), params)
+            .expect("reference");
+        most = most.max(check_port(port, name, rows, q, &reference, &mut lines));
+    }
+    let time = lines.next().expect("time line");
+    eprintln!(
+        "{port} general solver, {name}: {time} (us per pose, solutions); largest distance to the reference {most:e}"
+    );
+}
 
 /// The generated C solver, compiled clean under `-std=c99 -pedantic -Wall -Wextra -Werror`
 /// (`-O2`), returns the reference's solution set at 300 random poses of each arm; its time per
@@ -276,40 +330,71 @@ fn generated_c_solver_agrees_with_the_reference() {
     for (k, (name, rows, method)) in arms().into_iter().enumerate() {
         let sol = derive(name, &rows, method);
         let code = dqsym::ik::ik_c(&sol).expect("C");
-        assert!(code.contains("ik_gen_solve("), "{name}: not the general solver");
-        let dir = crate::tools::temp_dir(&format!("ik-general-c-{k}"));
-        let src = dir.join("ik.c");
-        let exe = dir.join("ik");
-        std::fs::write(&src, format!("{code}{C_MAIN}")).expect("write");
-        let mut gcc = Command::new("gcc");
-        gcc.args([
-            "-std=c99",
-            "-pedantic",
-            "-Wall",
-            "-Wextra",
-            "-Werror",
-            "-O2",
-            "-o",
-        ])
-        .arg(&exe)
-        .arg(&src)
-        .arg("-lm");
-        crate::tools::run(gcc, "", &format!("gcc -Werror on the general solver of {name}"));
-        let (qs, input) = poses(&rows, 300, 71 + k as u64);
-        let out = crate::tools::run(Command::new(&exe), &input, "generated C ik");
-        let mut lines = out.lines();
-        let mut most: f64 = 0.0;
-        for q in &qs {
-            let reference = sol
-                .solve_numeric(&dh_pose(&rows, q), &[])
-                .expect("reference");
-            most = most.max(check_port("C", name, &rows, q, &reference, &mut lines));
-        }
-        let time = lines.next().expect("time line");
-        eprintln!(
-            "generated C general solver, {name}: {time} (us per pose, solutions); largest distance to the reference {most:e}"
+        assert!(
+            code.contains("ik_gen_solve("),
+            "{name}: not the general solver"
         );
+        let (qs, input) = poses(&rows, 300, 71 + k as u64);
+        let out = run_c(&k.to_string(), &code, "", &input);
+        check_output("C", name, &rows, &sol, &[], &qs, &out);
     }
+}
+
+/// The skew arm with its lengths as parameters named after C's names and the solver's own
+/// (`int`, `fmax`, `NAN`, `memcpy`, `ik_len`, `t0`) and a joint named `sin`: the C solver
+/// renames what it must, compiles clean and solves as the reference does at 100 poses.
+#[test]
+fn generated_c_solver_with_hostile_names_agrees_with_the_reference() {
+    let rows = skew();
+    let names = [
+        ("int", 0, 'd'),
+        ("fmax", 1, 'a'),
+        ("memcpy", 2, 'd'),
+        ("ik_len", 3, 'd'),
+        ("t0", 4, 'd'),
+        ("NAN", 4, 'a'),
+    ];
+    let mut text = dh_toml("hostile", &rows);
+    for (i, r) in rows.iter().enumerate() {
+        let mut block = format!("theta = \"q{}\"\nd = \"{}\"\na = \"{}\"\n", i + 1, r.d, r.a);
+        let fresh = block.clone();
+        for (n, j, field) in names {
+            if j == i {
+                let old = format!("{field} = \"{}\"", if field == 'd' { r.d } else { r.a });
+                block = block.replace(&old, &format!("{field} = \"{n}\""));
+            }
+        }
+        if i == 5 {
+            block = block.replace("theta = \"q6\"", "theta = \"sin\"");
+        }
+        text = text.replace(&fresh, &block);
+    }
+    let robot = dqsym::parse_robot(&text, "hostile", &dqsym::eval_scalar_text).expect("robot");
+    let sol = solve(&robot, &IkOptions::default()).expect("ik");
+    assert!(sol.general.is_some(), "{}", sol.family);
+    let value = |n: &str| {
+        let (_, j, field) = names.iter().find(|(m, _, _)| *m == n).expect("a parameter");
+        if *field == 'd' {
+            rows[*j].d
+        } else {
+            rows[*j].a
+        }
+    };
+    assert_eq!(sol.params.len(), names.len(), "{:?}", sol.params);
+    let params: Vec<(&str, f64)> = sol.params.iter().map(|p| (p.as_str(), value(p))).collect();
+    let args: String = params.iter().map(|(_, v)| format!(", {v:e}")).collect();
+    let code = dqsym::ik::ik_c(&sol).expect("C");
+    for renamed in [
+        "double int_",
+        "double fmax_",
+        "double NAN_",
+        "double ik_len_",
+    ] {
+        assert!(code.contains(renamed), "{renamed} missing");
+    }
+    let (qs, input) = poses(&rows, 100, 79);
+    let out = run_c("hostile", &code, &args, &input);
+    check_output("C", "hostile", &rows, &sol, &params, &qs, &out);
 }
 
 /// The IK page of `file` written by `dqsym walk --ik --html` (extra arguments `args`); returns
@@ -340,11 +425,17 @@ fn page_solver(html: &str) -> String {
         .filter_map(|s| s.split("</script>").next())
         .find(|s| s.contains("function dqsym_ik_chain("))
         .expect("the IK script");
-    assert!(script.contains("\"general\":true"), "not the general method");
+    assert!(
+        script.contains("\"general\":true"),
+        "not the general method"
+    );
     let at = script
         .find("function ik_general(")
         .expect("the general method's driver");
-    let end = at + script[at..].find("\n(function () {").expect("the page's driver");
+    let end = at
+        + script[at..]
+            .find("\n(function () {")
+            .expect("the page's driver");
     script[..end].to_string()
 }
 
@@ -386,7 +477,11 @@ fn page_javascript_solver_agrees_with_the_reference() {
         let file = dir.join("arm.toml");
         std::fs::write(&file, dh_toml(name, &rows)).expect("write");
         // The skew arm's drawing needs more than the default work budget.
-        let html = ik_page(&file, &dir.join("page.html"), &["--work-budget", "100000000"]);
+        let html = ik_page(
+            &file,
+            &dir.join("page.html"),
+            &["--work-budget", "100000000"],
+        );
         let script = format!("{}{NODE_MAIN}", page_solver(&html));
         run_node_check(name, &rows, &sol, &script, 81 + k as u64);
     }
@@ -431,25 +526,7 @@ fn run_node_check(name: &str, rows: &[Dh], sol: &IkSolution, script: &str, seed:
     let mut node = Command::new("node");
     node.args(["-e", script]);
     let out = crate::tools::run(node, &input, &format!("node on the page solver of {name}"));
-    let mut lines = out.lines();
-    let mut most: f64 = 0.0;
-    for q in &qs {
-        let reference = sol
-            .solve_numeric(&dh_pose(rows, q), &[])
-            .expect("reference");
-        most = most.max(check_port(
-            "JavaScript",
-            name,
-            rows,
-            q,
-            &reference,
-            &mut lines,
-        ));
-    }
-    let time = lines.next().expect("time line");
-    eprintln!(
-        "page JavaScript general solver, {name}: {time} (us per pose, solutions); largest distance to the reference {most:e}"
-    );
+    check_output("page JavaScript", name, rows, sol, &[], &qs, &out);
 }
 
 /// The IK page of the Jaco-style arm in Chromium (the page driver of `walk.rs`'s page test):
@@ -460,7 +537,9 @@ fn run_node_check(name: &str, rows: &[Dh], sol: &IkSolution, script: &str, seed:
 fn ik_page_of_a_general_arm_lists_every_solution_in_chromium() {
     let chromium = crate::tools::chromium();
     assert!(
-        Path::new(ROOT).join("node_modules/playwright-core").is_dir(),
+        Path::new(ROOT)
+            .join("node_modules/playwright-core")
+            .is_dir(),
         "playwright-core is missing (node_modules/playwright-core): run `bash scripts/test.sh`"
     );
     let rows = jaco();
@@ -516,7 +595,11 @@ fn ik_page_of_a_general_arm_lists_every_solution_in_chromium() {
                     .collect()
             })
             .collect();
-        assert_eq!(shown.len(), reference.len(), "{width}: {shown:?} vs {reference:?}");
+        assert_eq!(
+            shown.len(),
+            reference.len(),
+            "{width}: {shown:?} vs {reference:?}"
+        );
         for s in &reference {
             assert!(
                 shown.iter().any(|g| dist(g, &s.q) <= MATCH),

@@ -107,7 +107,13 @@ fn core_constant_code(c: bool) -> String {
 /// solver (locals `ik_ax`, `ik_home`), in the parameters `args`.
 fn chain_code(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
     let py = lang == Lang::Python;
-    let lit = |v: f64| if lang == Lang::Rust { lit(v) } else { float_literal(v) };
+    let lit = |v: f64| {
+        if lang == Lang::Rust {
+            lit(v)
+        } else {
+            float_literal(v)
+        }
+    };
     let (letk, end) = match lang {
         Lang::Python => ("", ""),
         Lang::Rust => ("let ", ";"),
@@ -137,12 +143,10 @@ fn chain_code(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
     let mut s = String::new();
     for (k, atom) in prog.atoms.iter().enumerate() {
         let angle = prog.angle_code(k, &lit);
-        let call = |f: &str| {
-            match lang {
-                Lang::Python => format!("math.{f}({angle})"),
-                Lang::Rust => format!("({angle}).{f}()"),
-                Lang::C => format!("{f}({angle})"),
-            }
+        let call = |f: &str| match lang {
+            Lang::Python => format!("math.{f}({angle})"),
+            Lang::Rust => format!("({angle}).{f}()"),
+            Lang::C => format!("{f}({angle})"),
         };
         if prog.atom_used(k, Trig::Sin) {
             s.push_str(&format!(
@@ -333,7 +337,7 @@ pub fn ik_c(sol: &IkSolution) -> Result<String, ScalarError> {
         s.push_str(&format!("/* {l} */\n"));
     }
     s.push_str(
-        "#include <float.h>\n#include <math.h>\n#include <string.h>\n\n#define IK_MAX 16\n#define IK_DOF 6\n\n\
+        "#include <math.h>\n#include <string.h>\n\n#define IK_MAX 16\n#define IK_DOF 6\n\n\
 typedef struct {\n    double q[IK_MAX][IK_DOF];\n    int singular[IK_MAX];\n    int approximate[IK_MAX];\n    double residual[IK_MAX];\n    int n;\n} ik_solutions;\n\n",
     );
     s.push_str(&super::super::emit::c_tolerances(sol));
