@@ -451,8 +451,9 @@ fn piece_html(p: Piece) -> String {
 
 /// The inverse kinematics walkthrough ([`super::walk_ik`]) as a self-contained page: the
 /// derivation beside the mechanism with its sliders; each slider move recomputes the pose and
-/// runs the derived solver on it (JavaScript generated from the same closed forms), listing
-/// every distinct solution with its flags and the deviation of its own pose from the target.
+/// runs the derived solver on it (JavaScript generated from the same closed forms, or for an
+/// arm solved by the general 6R method the JavaScript port of its numeric core), listing every
+/// distinct solution with its flags and the deviation of its own pose from the target.
 ///
 /// # Errors
 /// When a closed form cannot be written or the mechanism cannot be evaluated.
@@ -493,7 +494,8 @@ fn ik_panel(sol: &crate::ik::IkSolution) -> String {
 /// parameters and the joints solved before), the axes and home pose (`dqsym_ik_chain`), the
 /// numeric helpers every solver shares ([`crate::ik::ik_javascript_helpers`]: tolerances,
 /// candidates, the check by forward kinematics) and a driver that branches as
-/// [`crate::ik::candidates`] does.
+/// [`crate::ik::candidates`] does; for the general method ([`crate::ik::ik_javascript_general`])
+/// the driver hands the axes, home pose and target to its core instead of the (absent) steps.
 fn ik_script(sol: &crate::ik::IkSolution) -> Result<String, WalkError> {
     use crate::ik::{Formula, TARGET_SYMBOLS};
     let forms = sol.forms()?;

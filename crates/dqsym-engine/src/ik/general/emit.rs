@@ -1,6 +1,10 @@
-//! The generated Rust solver of a general-method solution: the robot's exact axes and home
-//! pose as expressions in its parameters, and the numeric core (`core.rs`) verbatim, so that
-//! the generated solver and the reference solver are the same algorithm.
+//! The generated solvers of a general-method solution: the robot's exact axes and home pose
+//! as expressions in its parameters, and the numeric core: `core.rs` verbatim in Rust, so that
+//! the generated solver and the reference solver are the same algorithm, and its ports
+//! `core.py` (Python, NumPy), `core.c` (C99) and `core.js` (the IK page's JavaScript). The
+//! ports read the core's tolerances and tables as constants written here from `core.rs`
+//! (`core_constants`), never as copies; the tests of `tests/it/ik_general_ports.rs` hold the
+//! C and JavaScript ports to the reference solver's solution sets.
 
 use super::super::check;
 use super::super::IkSolution;
@@ -36,9 +40,12 @@ enum Lang {
     C,
 }
 
+/// A constant of the core by the name the ports read it by.
+type Named<T> = (&'static str, T);
+
 /// The constants of `core.rs` the C and JavaScript ports read, by name and as literals
 /// (scalars, then the tables), written from their one definition there.
-fn core_constants() -> (Vec<(&'static str, String)>, Vec<(&'static str, Vec<f64>)>) {
+fn core_constants() -> (Vec<Named<String>>, Vec<Named<Vec<f64>>>) {
     use super::core as k;
     let f = float_literal;
     let scalars = vec![
