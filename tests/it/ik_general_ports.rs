@@ -155,9 +155,24 @@ fn size(rows: &[Dh]) -> f64 {
     rows.iter().map(|r| r.d.abs() + r.a.abs()).sum()
 }
 
+/// The model of an arm whose six solved joints are `q`: its DH rows, the first at the fixed
+/// angle `free` when there is one (a 7R arm with its free joint as a parameter).
+#[derive(Clone, Copy)]
+struct Model<'a> {
+    rows: &'a [Dh],
+    free: Option<f64>,
+}
+
+impl Model<'_> {
+    fn pose(&self, q: &[f64]) -> M4 {
+        let all: Vec<f64> = self.free.iter().chain(q).copied().collect();
+        dh_pose(self.rows, &all)
+    }
+}
+
 /// Random configurations, and the poses as lines of 16 numbers (row-major, `{:e}` reads back
 /// exactly).
-fn poses(rows: &[Dh], n: usize, seed: u64) -> (Vec<Vec<f64>>, String) {
+fn poses(m: Model, n: usize, seed: u64) -> (Vec<Vec<f64>>, String) {
     let mut rng = Rng::new(seed);
     let qs: Vec<Vec<f64>> = (0..n)
         .map(|_| (0..6).map(|_| rng.range(-PI, PI)).collect())
@@ -165,7 +180,8 @@ fn poses(rows: &[Dh], n: usize, seed: u64) -> (Vec<Vec<f64>>, String) {
     let input = qs
         .iter()
         .map(|q| {
-            let v: Vec<String> = dh_pose(rows, q)
+            let v: Vec<String> = m
+                .pose(q)
                 .iter()
                 .flatten()
                 .map(|x| format!("{x:e}"))
@@ -188,13 +204,13 @@ const MATCH: f64 = 0.5e-6;
 fn check_port(
     port: &str,
     name: &str,
-    rows: &[Dh],
+    m: Model,
     q: &[f64],
     reference: &[NumSolution],
     lines: &mut std::str::Lines,
 ) -> f64 {
-    let t = dh_pose(rows, q);
-    let len = size(rows);
+    let t = m.pose(q);
+    let len = size(m.rows);
     let n: usize = lines.next().expect("count").parse().expect("n");
     let got: Vec<Vec<f64>> = (0..n)
         .map(|_| {
@@ -221,7 +237,7 @@ fn check_port(
         most = most.max(dist(&g[..6], &r.q));
     }
     for g in got.iter().filter(|g| g[6] == 0.0) {
-        let dev = deviation(&t, &dh_pose(rows, &g[..6]), len);
+        let dev = deviation(&t, &m.pose(&g[..6]), len);
         assert!(dev <= 1e-9, "{port} {name}: {g:?} misses the pose by {dev}");
     }
     assert!(
@@ -302,7 +318,7 @@ fn run_c(tag: &str, code: &str, args: &str, input: &str) -> String {
 fn check_output(
     port: &str,
     name: &str,
-    rows: &[Dh],
+    m: Model,
     sol: &IkSolution,
     params: &[(&str, f64)],
     qs: &[Vec<f64>],
@@ -311,10 +327,8 @@ fn check_output(
     let mut lines = out.lines();
     let mut most: f64 = 0.0;
     for q in qs {
-        let reference = sol
-            .solve_numeric(&dh_pose(rows, q), params)
-            .expect("reference");
-        most = most.max(check_port(port, name, rows, q, &reference, &mut lines));
+        let reference = sol.solve_numeric(&m.pose(q), params).expect("reference");
+        most = most.max(check_port(port, name, m, q, &reference, &mut lines));
     }
     let time = lines.next().expect("time line");
     eprintln!(
@@ -334,9 +348,13 @@ fn generated_c_solver_agrees_with_the_reference() {
             code.contains("ik_gen_solve("),
             "{name}: not the general solver"
         );
-        let (qs, input) = poses(&rows, 300, 71 + k as u64);
+        let m = Model {
+            rows: &rows,
+            free: None,
+        };
+        let (qs, input) = poses(m, 300, 71 + k as u64);
         let out = run_c(&k.to_string(), &code, "", &input);
-        check_output("C", name, &rows, &sol, &[], &qs, &out);
+        check_output("C", name, m, &sol, &[], &qs, &out);
     }
 }
 
@@ -392,9 +410,13 @@ fn generated_c_solver_with_hostile_names_agrees_with_the_reference() {
     ] {
         assert!(code.contains(renamed), "{renamed} missing");
     }
-    let (qs, input) = poses(&rows, 100, 79);
+    let m = Model {
+        rows: &rows,
+        free: None,
+    };
+    let (qs, input) = poses(m, 100, 79);
     let out = run_c("hostile", &code, &args, &input);
-    check_output("C", "hostile", &rows, &sol, &params, &qs, &out);
+    check_output("C", "hostile", m, &sol, &params, &qs, &out);
 }
 
 /// The IK page of `file` written by `dqsym walk --ik --html` (extra arguments `args`); returns
@@ -483,7 +505,7 @@ fn page_javascript_solver_agrees_with_the_reference() {
             &["--work-budget", "100000000"],
         );
         let script = format!("{}{NODE_MAIN}", page_solver(&html));
-        run_node_check(name, &rows, &sol, &script, 81 + k as u64);
+        run_node_check(name, &rows, None, &sol, &script, 81 + k as u64);
     }
     // The PUMA through --method general: the same pieces the page puts together.
     let (name, rows, method) = arms().pop().expect("puma");
@@ -494,7 +516,7 @@ fn page_javascript_solver_agrees_with_the_reference() {
         dqsym::ik::ik_javascript_helpers(&sol),
         dqsym::ik::ik_javascript_general(&sol)
     );
-    run_node_check(name, &rows, &sol, &script, 89);
+    run_node_check(name, &rows, None, &sol, &script, 89);
 }
 
 /// `dqsym_ik_chain()` and `IK` as the page defines them, for an arm without parameters, from
@@ -521,12 +543,28 @@ fn js_chain(sol: &IkSolution) -> String {
     )
 }
 
-fn run_node_check(name: &str, rows: &[Dh], sol: &IkSolution, script: &str, seed: u64) {
-    let (qs, input) = poses(rows, 300, seed);
+/// Runs `script` (the page's solver and [`NODE_MAIN`]) with node on 300 random poses of `rows`
+/// (the first joint at `free` when given) and checks its output against the reference.
+fn run_node_check(
+    name: &str,
+    rows: &[Dh],
+    free: Option<f64>,
+    sol: &IkSolution,
+    script: &str,
+    seed: u64,
+) {
+    let m = Model { rows, free };
+    let (qs, input) = poses(m, 300, seed);
     let mut node = Command::new("node");
     node.args(["-e", script]);
     let out = crate::tools::run(node, &input, &format!("node on the page solver of {name}"));
-    check_output("page JavaScript", name, rows, sol, &[], &qs, &out);
+    let params: Vec<(&str, f64)> = sol
+        .free
+        .iter()
+        .zip(free)
+        .map(|(n, v)| (n.as_str(), v))
+        .collect();
+    check_output("page JavaScript", name, m, sol, &params, &qs, &out);
 }
 
 /// The IK page of the Jaco-style arm in Chromium (the page driver of `walk.rs`'s page test):
@@ -617,4 +655,53 @@ fn ik_page_of_a_general_arm_lists_every_solution_in_chromium() {
             "{width}: the sliders' {at:?} not among {shown:?}"
         );
     }
+}
+
+/// A skew 7R arm (no family for any free joint): the first joint is the free parameter, the
+/// other six are solved by the general method.
+fn skew7() -> Vec<Dh> {
+    (0..7)
+        .map(|i| dh(0.1 + 0.05 * f64::from(i), 0.2, A60))
+        .collect()
+}
+
+/// The 7R arm's C solver takes the free joint as a parameter (`ik(T, q1, &s)`) and returns the
+/// reference's solution set at 200 poses with `q1 = 0.7`; so does the IK page's JavaScript,
+/// whose `dqsym_ik_chain(q1)` reads the free joint's slider.
+#[test]
+fn seven_joint_arm_with_a_free_joint_in_c_and_on_the_page() {
+    let rows = skew7();
+    let free = 0.7;
+    let text = dh_toml("skew 7R", &rows);
+    let robot = dqsym::parse_robot(&text, "skew 7R", &dqsym::eval_scalar_text).expect("robot");
+    let sol = solve(&robot, &IkOptions::default()).expect("7R");
+    assert!(sol.general.is_some(), "{}", sol.family);
+    assert_eq!(sol.free.as_deref(), Some("q1"));
+    assert_eq!(sol.params, ["q1"]);
+    let m = Model {
+        rows: &rows,
+        free: Some(free),
+    };
+    let (qs, input) = poses(m, 200, 97);
+    let out = run_c(
+        "7r",
+        &dqsym::ik::ik_c(&sol).expect("C"),
+        &format!(", {free:e}"),
+        &input,
+    );
+    check_output("C", "skew 7R", m, &sol, &[("q1", free)], &qs, &out);
+    let dir = crate::tools::temp_dir("ik-general-js-7r");
+    let file = dir.join("arm.toml");
+    std::fs::write(&file, &text).expect("write");
+    let html = ik_page(
+        &file,
+        &dir.join("page.html"),
+        &["--work-budget", "100000000"],
+    );
+    let script = format!(
+        "{}{}",
+        page_solver(&html),
+        NODE_MAIN.replace("dqsym_ik_chain()", &format!("dqsym_ik_chain({free:e})"))
+    );
+    run_node_check("skew 7R", &rows, Some(free), &sol, &script, 98);
 }
