@@ -30,8 +30,11 @@ function ik_gen_cross3(a, b) {
 // Rodrigues: c I + s [w]x + (1 - c) w w^T.
 function ik_gen_rodrigues(w, s, c) {
     const k = [[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]];
-    return [0, 1, 2].map((i) => [0, 1, 2].map((j) =>
-        (i === j ? c : 0) + s * k[i][j] + (1 - c) * w[i] * w[j]));
+    const r = [[0, 0, 0], [0, 0, 0], [0, 0, 0]];
+    for (let i = 0; i < 3; i++) {
+        for (let j = 0; j < 3; j++) r[i][j] = (i === j ? c : 0) + s * k[i][j] + (1 - c) * w[i] * w[j];
+    }
+    return r;
 }
 
 function ik_gen_mv(r, v) {
@@ -57,20 +60,31 @@ function ik_gen_quantities(p, l) {
 
 // [R | t]^-1 = [R^T | -R^T t].
 function ik_gen_inverse(g) {
-    return [0, 1, 2].map((i) => [g[0][i], g[1][i], g[2][i],
-        -(g[0][i] * g[0][3] + g[1][i] * g[1][3] + g[2][i] * g[2][3])]);
+    const o = [];
+    for (let i = 0; i < 3; i++) {
+        o.push([g[0][i], g[1][i], g[2][i], -(g[0][i] * g[0][3] + g[1][i] * g[1][3] + g[2][i] * g[2][3])]);
+    }
+    return o;
 }
 
 // A motion applied to a point and a direction: [point, direction].
 function ik_gen_motion_apply(g, x, d) {
-    const p = [0, 1, 2].map((i) => g[i][0] * x[0] + g[i][1] * x[1] + g[i][2] * x[2] + g[i][3]);
-    const v = [0, 1, 2].map((i) => g[i][0] * d[0] + g[i][1] * d[1] + g[i][2] * d[2]);
+    const p = [0, 0, 0], v = [0, 0, 0];
+    for (let i = 0; i < 3; i++) {
+        p[i] = g[i][0] * x[0] + g[i][1] * x[1] + g[i][2] * x[2] + g[i][3];
+        v[i] = g[i][0] * d[0] + g[i][1] * d[1] + g[i][2] * d[2];
+    }
     return [p, v];
 }
 
 function ik_gen_compose(a, b) {
-    return [0, 1, 2].map((r) => [0, 1, 2, 3].map((c) =>
-        (c === 3 ? a[r][3] : 0) + a[r][0] * b[0][c] + a[r][1] * b[1][c] + a[r][2] * b[2][c]));
+    const o = [[0, 0, 0, 0], [0, 0, 0, 0], [0, 0, 0, 0]];
+    for (let r = 0; r < 3; r++) {
+        for (let c = 0; c < 4; c++) {
+            o[r][c] = (c === 3 ? a[r][3] : 0) + a[r][0] * b[0][c] + a[r][1] * b[1][c] + a[r][2] * b[2][c];
+        }
+    }
+    return o;
 }
 
 // The arranged problem E1 ... E6 = H (home pose the identity) for arr = shift + 6 reversed of
@@ -308,9 +322,17 @@ function ik_gen_null_vector(m) {
         for (let r = k; r < 12; r++) for (let c = k; c < 12; c++) {
             if (Math.abs(a[r][c]) > bv) [br, bc, bv] = [r, c, Math.abs(a[r][c])];
         }
-        [a[k], a[br]] = [a[br], a[k]];
-        for (const row of a) [row[k], row[bc]] = [row[bc], row[k]];
-        [cols[k], cols[bc]] = [cols[bc], cols[k]];
+        const row = a[k];
+        a[k] = a[br];
+        a[br] = row;
+        for (const r of a) {
+            const t = r[k];
+            r[k] = r[bc];
+            r[bc] = t;
+        }
+        const ck = cols[k];
+        cols[k] = cols[bc];
+        cols[bc] = ck;
         const d = a[k][k];
         if (d === 0) continue;
         for (let r = k + 1; r < 12; r++) {
