@@ -40,6 +40,14 @@ enum Lang {
     C,
 }
 
+/// The languages of the ports that read the core's constants ([`core_constant_code`]).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Port {
+    C,
+    Python,
+    JavaScript,
+}
+
 /// A constant of the core by the name the ports read it by.
 type Named<T> = (&'static str, T);
 
@@ -77,16 +85,18 @@ fn core_constants() -> (Vec<Named<String>>, Vec<Named<Vec<f64>>>) {
     (scalars, tables)
 }
 
-/// The core's constants as C (`#define`, `static const double` tables) or JavaScript
-/// (`const`); the 3 x 3 tables (nine entries) as nested arrays.
-fn core_constant_code(c: bool) -> String {
+/// The core's constants in `lang` (C, Python or JavaScript): C as `#define` and `static
+/// const double` tables, Python and JavaScript as names bound to numbers and lists; the 3 x 3
+/// tables (nine entries) nested by rows.
+fn core_constant_code(lang: Port) -> String {
     let (scalars, tables) = core_constants();
+    let c = lang == Port::C;
     let mut s = String::new();
     for (name, v) in scalars {
-        s.push_str(&if c {
-            format!("#define {name} {v}\n")
-        } else {
-            format!("const {name} = {v};\n")
+        s.push_str(&match lang {
+            Port::C => format!("#define {name} {v}\n"),
+            Port::Python => format!("{name} = {v}\n"),
+            Port::JavaScript => format!("const {name} = {v};\n"),
         });
     }
     let (open, close) = if c { ("{", "}") } else { ("[", "]") };
@@ -101,10 +111,10 @@ fn core_constant_code(c: bool) -> String {
         } else {
             (format!("[{}]", v.len()), v.join(", "))
         };
-        s.push_str(&if c {
-            format!("static const double {name}{dims} = {{{body}}};\n")
-        } else {
-            format!("const {name} = [{body}];\n")
+        s.push_str(&match lang {
+            Port::C => format!("static const double {name}{dims} = {{{body}}};\n"),
+            Port::Python => format!("{name} = [{body}]\n"),
+            Port::JavaScript => format!("const {name} = [{body}];\n"),
         });
     }
     s
@@ -352,7 +362,7 @@ typedef struct {\n    double q[IK_MAX][IK_DOF];\n    int singular[IK_MAX];\n    
         "/* The residual above which a root of the elimination is dropped (no solution), and the\n   arrangement of the loop tried first (the one that served at the derivation). */\n\
 #define IK_KEEP_TOL {}\n#define IK_FIRST_ARRANGEMENT {first}\n\n/* The constants of the numeric core (from core.rs). */\n{}\n",
         float_literal(super::KEEP_TOL),
-        core_constant_code(true)
+        core_constant_code(Port::C)
     ));
     s.push_str(C_CORE);
     s.push_str(&format!("\n{C_DQ_MATRIX}\n"));
@@ -420,7 +430,7 @@ pub fn ik_javascript_general(sol: &IkSolution) -> String {
 // the arrangement of the loop tried first, the numeric core's constants (from core.rs).\n\
 const IK_KEEP_TOL = {};\nconst IK_FIRST_ARRANGEMENT = {first};\n{}\n{JS_CORE}\n{JS_DRIVER}",
         float_literal(super::KEEP_TOL),
-        core_constant_code(false)
+        core_constant_code(Port::JavaScript)
     )
 }
 
@@ -472,6 +482,8 @@ pub fn ik_python(sol: &IkSolution) -> Result<String, ScalarError> {
         float_literal(check::POSE_TOL),
         float_literal(super::KEEP_TOL)
     ));
+    s.push_str(&core_constant_code(Port::Python));
+    s.push('\n');
     s.push_str(PY_CORE);
     s.push_str(&format!(
         "\n\ndef ik_full(T{kw}):\n    \"\"\"Every solution as (q, singular, approximate, residual).\"\"\"\n    T = np.asarray(T, dtype=float)\n"
