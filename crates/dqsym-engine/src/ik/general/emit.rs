@@ -51,9 +51,12 @@ enum Port {
 /// A constant of the core by the name the ports read it by.
 type Named<T> = (&'static str, T);
 
-/// The constants of `core.rs` the C and JavaScript ports read, by name and as literals
-/// (scalars, then the tables), written from their one definition there.
-fn core_constants() -> (Vec<Named<String>>, Vec<Named<Vec<f64>>>) {
+/// A table of the core by name: its rows (one for a vector).
+type Table = Named<Vec<Vec<f64>>>;
+
+/// The constants of `core.rs` the C, Python and JavaScript ports read, by name: the scalars as
+/// literals, then the tables as rows (one row for a vector), from their one definition there.
+fn core_constants() -> (Vec<Named<String>>, Vec<Table>) {
     use super::core as k;
     let f = float_literal;
     let scalars = vec![
@@ -74,20 +77,20 @@ fn core_constants() -> (Vec<Named<String>>, Vec<Named<Vec<f64>>>) {
         ("IK_GEN_SAME_TOL", f(k::SAME_TOL)),
         ("IK_GEN_MIN_POSITIVE", f(f64::MIN_POSITIVE)),
     ];
-    let flat = |m: &[[f64; 3]; 3]| m.iter().flatten().copied().collect::<Vec<f64>>();
+    let rows = |m: &[[f64; 3]; 3]| m.iter().map(|r| r.to_vec()).collect::<Vec<_>>();
     let tables = vec![
-        ("IK_GEN_SAMPLE_S", k::SAMPLE_S.to_vec()),
-        ("IK_GEN_SAMPLE_C", k::SAMPLE_C.to_vec()),
-        ("IK_GEN_DFT", flat(&k::DFT)),
-        ("IK_GEN_HALF", flat(&k::HALF)),
-        ("IK_GEN_SHIFTS", k::SHIFTS.to_vec()),
+        ("IK_GEN_SAMPLE_S", vec![k::SAMPLE_S.to_vec()]),
+        ("IK_GEN_SAMPLE_C", vec![k::SAMPLE_C.to_vec()]),
+        ("IK_GEN_DFT", rows(&k::DFT)),
+        ("IK_GEN_HALF", rows(&k::HALF)),
+        ("IK_GEN_SHIFTS", vec![k::SHIFTS.to_vec()]),
     ];
     (scalars, tables)
 }
 
 /// The core's constants in `lang` (C, Python or JavaScript): C as `#define` and `static
-/// const double` tables, Python and JavaScript as names bound to numbers and lists; the 3 x 3
-/// tables (nine entries) nested by rows.
+/// const double` tables, Python and JavaScript as names bound to numbers and lists; a table of
+/// several rows nested by rows.
 fn core_constant_code(lang: Port) -> String {
     let (scalars, tables) = core_constants();
     let c = lang == Port::C;
@@ -100,16 +103,24 @@ fn core_constant_code(lang: Port) -> String {
         });
     }
     let (open, close) = if c { ("{", "}") } else { ("[", "]") };
-    for (name, v) in tables {
-        let v: Vec<String> = v.iter().map(|x| float_literal(*x)).collect();
-        let (dims, body) = if v.len() == 9 {
-            let rows: Vec<String> = v
-                .chunks(3)
-                .map(|r| format!("{open}{}{close}", r.join(", ")))
-                .collect();
-            ("[3][3]".to_string(), rows.join(", "))
+    for (name, rows) in tables {
+        let text: Vec<String> = rows
+            .iter()
+            .map(|r| {
+                r.iter()
+                    .map(|x| float_literal(*x))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            })
+            .collect();
+        let (dims, body) = if let [row] = &text[..] {
+            (format!("[{}]", rows[0].len()), row.clone())
         } else {
-            (format!("[{}]", v.len()), v.join(", "))
+            let nested: Vec<String> = text.iter().map(|r| format!("{open}{r}{close}")).collect();
+            (
+                format!("[{}][{}]", rows.len(), rows[0].len()),
+                nested.join(", "),
+            )
         };
         s.push_str(&match lang {
             Port::C => format!("static const double {name}{dims} = {{{body}}};\n"),
