@@ -451,8 +451,9 @@ fn piece_html(p: Piece) -> String {
 
 /// The inverse kinematics walkthrough ([`super::walk_ik`]) as a self-contained page: the
 /// derivation beside the mechanism with its sliders; each slider move recomputes the pose and
-/// runs the derived solver on it (JavaScript generated from the same closed forms), listing
-/// every distinct solution with its flags and the deviation of its own pose from the target.
+/// runs the derived solver on it (JavaScript generated from the same closed forms, or for an
+/// arm solved by the general 6R method the JavaScript port of its numeric core), listing every
+/// distinct solution with its flags and the deviation of its own pose from the target.
 ///
 /// # Errors
 /// When a closed form cannot be written or the mechanism cannot be evaluated.
@@ -462,12 +463,6 @@ pub fn ik_walk_html(
     katex: &KatexAssets,
     cfg: &Config,
 ) -> Result<String, WalkError> {
-    if sol.general.is_some() {
-        return Err(WalkError::Config(
-            "the IK page has no solver for the general 6R method yet (the text walkthrough shows its steps)"
-                .to_owned(),
-        ));
-    }
     let title = format!("Inverse kinematics walkthrough: {}", sol.robot);
     page_html(w, &title, katex, cfg, Some(sol))
 }
@@ -499,7 +494,8 @@ fn ik_panel(sol: &crate::ik::IkSolution) -> String {
 /// parameters and the joints solved before), the axes and home pose (`dqsym_ik_chain`), the
 /// numeric helpers every solver shares ([`crate::ik::ik_javascript_helpers`]: tolerances,
 /// candidates, the check by forward kinematics) and a driver that branches as
-/// [`crate::ik::candidates`] does.
+/// [`crate::ik::candidates`] does; for the general method ([`crate::ik::ik_javascript_general`])
+/// the driver hands the axes, home pose and target to its core instead of the (absent) steps.
 fn ik_script(sol: &crate::ik::IkSolution) -> Result<String, WalkError> {
     use crate::ik::{Formula, TARGET_SYMBOLS};
     let forms = sol.forms()?;
@@ -595,18 +591,26 @@ fn ik_script(sol: &crate::ik::IkSolution) -> Result<String, WalkError> {
     };
     let degrees: Vec<String> = degrees.iter().map(i32::to_string).collect();
     let data = format!(
-        "const IK = {{\"steps\":[{}],\"vars\":[{}],\"params\":[{}],\"kinds\":[{}],\"degrees\":[{}],\"position_only\":{}}};\n",
+        "const IK = {{\"steps\":[{}],\"vars\":[{}],\"params\":[{}],\"kinds\":[{}],\"degrees\":[{}],\"position_only\":{},\"general\":{}}};\n",
         steps.join(","),
         quoted(&sol.variables),
         quoted(&sol.params),
         kinds.join(","),
         degrees.join(","),
-        sol.position_only
+        sol.position_only,
+        sol.general.is_some()
     );
+    // An arm solved by the general 6R method: its numeric core instead of the steps.
+    let general = if sol.general.is_some() {
+        crate::ik::ik_javascript_general(sol)
+    } else {
+        String::new()
+    };
     Ok(format!(
-        "<script>{}{data}{}{}</script>\n",
+        "<script>{}{data}{}{}{}</script>\n",
         code.replace("</script", "<\\/script"),
         crate::ik::ik_javascript_helpers(sol).replace("</script", "<\\/script"),
+        general.replace("</script", "<\\/script"),
         IK_JS
     ))
 }
@@ -625,6 +629,7 @@ const IK_JS: &str = r#"(function () {
         const ch = dqsym_ik_chain(...IK.params.map((n) => env[n]));
         const ax = IK.kinds.map((k, i) => [k].concat([0, 1, 2, 3, 4, 5].map((j) => ch[`ax${i}_${j}`])));
         const home = [0, 1, 2].map((r) => [0, 1, 2, 3].map((c) => ch[`home${r}${c}`]));
+        if (IK.general) return ik_general(ax, home, T);
         const len = ik_scale(ax, home, T);
         const out = [];
         (function go(k, env, sg, ck, smp) {

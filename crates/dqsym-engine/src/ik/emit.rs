@@ -452,6 +452,12 @@ pub fn ik_javascript_helpers(sol: &IkSolution) -> String {
     format!("{}{}", tolerances(sol, &js), js.ik_runtime())
 }
 
+/// The tolerances block of the C solvers (the general method's C solver states the same
+/// constants as the family solvers).
+pub(super) fn c_tolerances(sol: &IkSolution) -> String {
+    tolerances(sol, Some(Lang::C))
+}
+
 /// Each step's degree in lengths (see [`super::check`]), for the page's solver.
 ///
 /// # Errors
@@ -530,7 +536,7 @@ pub fn ik_rust(sol: &IkSolution) -> Result<String, ScalarError> {
 /// A closed form that fails.
 pub fn ik_c(sol: &IkSolution) -> Result<String, ScalarError> {
     if sol.general.is_some() {
-        return Err(super::general::emit::not_generated("C"));
+        return super::general::emit::ik_c(sol);
     }
     solver(sol, names::Lang::C)
 }

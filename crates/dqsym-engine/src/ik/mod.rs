@@ -18,6 +18,7 @@ mod safe;
 
 pub use axes::{home_axes, intersection, relation, Axis, Relation, V3};
 pub use emit::{ik_c, ik_javascript_helpers, ik_python, ik_rust, ik_step_degrees};
+pub use general::emit::ik_javascript_general;
 pub use report::ik_report;
 
 use crate::kin::Robot;

@@ -110,9 +110,6 @@ pub enum ScalarError {
     /// A symbol without a value during numeric evaluation.
     #[error("no value for symbol {0}")]
     Unbound(String),
-    /// A solver language the general inverse-kinematics method does not generate yet.
-    #[error("the general 6R method has no {0} solver yet (--format rust generates one)")]
-    NotGenerated(&'static str),
     /// The evaluation used up its work budget (see [`Context::with_work_budget`]).
     #[error(
         "work budget exceeded: at least {used} term operations in one evaluation, over the \

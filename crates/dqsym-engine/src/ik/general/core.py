@@ -1,12 +1,12 @@
 # The numeric core of the general 6R solver in Python (NumPy): the algorithm of core.rs
 # (Raghavan-Roth elimination in Manocha-Canny's 12 x 12 form), with NumPy's SVD for the left
-# null space and the null vector, and np.linalg.eigvals for the companion matrix.
+# null space and the null vector, and np.linalg.eigvals for the companion matrix. Its
+# constants IK_GEN_* (sample angles, tolerances) are written above this text from core.rs.
 
-_S3 = math.sqrt(3.0)
-_SS = np.array([0.0, _S3 / 2, -_S3 / 2])
-_SC = np.array([1.0, -0.5, -0.5])
-_DFT = np.array([[1 / 3, 1 / 3, 1 / 3], [2 / 3, -1 / 3, -1 / 3], [0.0, 1 / _S3, -1 / _S3]])
-_HALF = np.array([[1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0.0]])
+_SS = np.array(IK_GEN_SAMPLE_S)
+_SC = np.array(IK_GEN_SAMPLE_C)
+_DFT = np.array(IK_GEN_DFT)
+_HALF = np.array(IK_GEN_HALF)
 
 
 def _rod(w, s, c):
@@ -112,11 +112,11 @@ def _angle(pairs):
 
 
 def _wrap(a):
-    x = math.fmod(a, 2 * math.pi)
-    if x > math.pi:
-        x -= 2 * math.pi
-    elif x <= -math.pi:
-        x += 2 * math.pi
+    x = math.fmod(a, IK_GEN_TAU)
+    if x > IK_GEN_PI:
+        x -= IK_GEN_TAU
+    elif x <= -IK_GEN_PI:
+        x += IK_GEN_TAU
     return x
 
 
@@ -146,14 +146,14 @@ def _back(j, h, am, bm, mp, phi, x):
 
 def _candidates(j, h, perm, am, bm, sig):
     best = (0.0, -1.0)
-    for phi in (0.0, 2.1, -1.7, 0.9, -2.9):
+    for phi in IK_GEN_SHIFTS:
         sv = np.linalg.svd(_mpoly(sig, phi)[2], compute_uv=False)
         ratio = sv[-1] / sv[0] if sv[0] > 0 else 0.0
         if ratio > best[1]:
             best = (phi, ratio)
-        if ratio > 1e-3:
+        if ratio > IK_GEN_SHIFT_GOOD:
             break
-    if best[1] < 1e-10:
+    if best[1] < IK_GEN_SHIFT_SINGULAR:
         return None
     phi = best[0]
     mp = _mpoly(sig, phi)
@@ -164,7 +164,7 @@ def _candidates(j, h, perm, am, bm, sig):
     k[12:, 12:] = -a_inv @ mp[1]
     out = []
     for z in np.linalg.eigvals(k):
-        if np.isfinite(z) and abs(z.imag) <= 1e-3 * (1 + abs(z.real)):
+        if np.isfinite(z) and abs(z.imag) <= IK_GEN_NEAR_REAL * (1 + abs(z.real)):
             t = _back(j, h, am, bm, mp, phi, float(z.real))
             q = [0.0] * 6
             for i in range(6):
@@ -190,9 +190,9 @@ def _refine(ax, home, t, q):
     f, cur = _forward(ax, home, q)
     e = (t - f).reshape(12)
     res = np.max(np.abs(e))
-    lam = 1e-12
-    for _ in range(16):
-        if not res > 1e-14:
+    lam = IK_GEN_DAMP_START
+    for _ in range(IK_GEN_REFINE_ITERS):
+        if not res > IK_GEN_EXACT_TOL:
             break
         cols = []
         for d, o in cur:
@@ -204,23 +204,23 @@ def _refine(ax, home, t, q):
         g = jm.T @ e
         tr = np.trace(a)
         while True:
-            step = np.linalg.solve(a + lam * max(tr, 1e-300) * np.eye(6), g)
+            step = np.linalg.solve(a + lam * max(tr, IK_GEN_MIN_POSITIVE) * np.eye(6), g)
             nxt = q + step
             f2, cur2 = _forward(ax, home, nxt)
             e2 = (t - f2).reshape(12)
             r2 = np.max(np.abs(e2))
             if r2 < res:
                 q, f, cur, e, res = nxt, f2, cur2, e2, r2
-                lam = max(lam * 0.01, 1e-15)
+                lam = max(lam * 0.01, IK_GEN_DAMP_MIN)
                 break
             lam *= 100
-            if lam > 1:
+            if lam > IK_GEN_DAMP_MAX:
                 return q, res
     return q, res
 
 
 def _same(a, b):
-    return all(abs(_wrap(x - y)) <= 1e-6 for x, y in zip(a, b))
+    return all(abs(_wrap(x - y)) <= IK_GEN_SAME_TOL for x, y in zip(a, b))
 
 
 def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
@@ -240,7 +240,7 @@ def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
             break
         j, h, perm = _arranged(js, g, arr)
         am, bm, ratio, sig = _elim(j, h)
-        if ratio < 1e-9:
+        if ratio < IK_GEN_RANK_TOL:
             continue
         cands = _candidates(j, h, perm, am, bm, sig)
         if cands is None:
@@ -253,7 +253,7 @@ def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
                 continue
             q = [_wrap(float(x)) for x in q]
             at = next((i for i, s in enumerate(sols) if _same(s[0], q)), None)
-            if at is None and len(sols) < 16:
+            if at is None and len(sols) < IK_GEN_MAX:
                 sols.append([q, res])
                 at = len(sols) - 1
             elif at is not None and res < sols[at][1]:

@@ -1,6 +1,10 @@
-//! The generated Rust solver of a general-method solution: the robot's exact axes and home
-//! pose as expressions in its parameters, and the numeric core (`core.rs`) verbatim, so that
-//! the generated solver and the reference solver are the same algorithm.
+//! The generated solvers of a general-method solution: the robot's exact axes and home pose
+//! as expressions in its parameters, and the numeric core: `core.rs` verbatim in Rust, so that
+//! the generated solver and the reference solver are the same algorithm, and its ports
+//! `core.py` (Python, NumPy), `core.c` (C99) and `core.js` (the IK page's JavaScript). The
+//! ports read the core's tolerances and tables as constants written here from `core.rs`
+//! (`core_constants`), never as copies; the tests of `tests/it/ik_general_ports.rs` hold the
+//! C and JavaScript ports to the reference solver's solution sets.
 
 use super::super::check;
 use super::super::IkSolution;
@@ -22,19 +26,127 @@ fn lit(v: f64) -> String {
 /// The numeric core in Python (NumPy).
 const PY_CORE: &str = include_str!("core.py");
 
+/// The numeric core in C99 (a port of `core.rs`).
+const C_CORE: &str = include_str!("core.c");
+
+/// The numeric core in JavaScript (a port of `core.rs`, for the IK page).
+const JS_CORE: &str = include_str!("core.js");
+
 /// The target language of [`chain_code`].
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Lang {
     Rust,
     Python,
+    C,
 }
 
-/// The axes `[kind, w, p]` and the home pose's top rows as Rust statements at the top of the
+/// The languages of the ports that read the core's constants ([`core_constant_code`]).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Port {
+    C,
+    Python,
+    JavaScript,
+}
+
+/// A constant of the core by the name the ports read it by.
+type Named<T> = (&'static str, T);
+
+/// A table of the core by name: its rows (one for a vector).
+type Table = Named<Vec<Vec<f64>>>;
+
+/// The constants of `core.rs` the C, Python and JavaScript ports read, by name: the scalars as
+/// literals, then the tables as rows (one row for a vector), from their one definition there.
+fn core_constants() -> (Vec<Named<String>>, Vec<Table>) {
+    use super::core as k;
+    let f = float_literal;
+    let scalars = vec![
+        ("IK_GEN_MAX", k::GEN_MAX.to_string()),
+        ("IK_GEN_REFINE_ITERS", k::REFINE_ITERS.to_string()),
+        ("IK_GEN_PI", f(std::f64::consts::PI)),
+        ("IK_GEN_TAU", f(std::f64::consts::TAU)),
+        ("IK_GEN_NEAR_REAL", f(k::NEAR_REAL)),
+        ("IK_GEN_SHIFT_GOOD", f(k::SHIFT_GOOD)),
+        ("IK_GEN_SHIFT_SINGULAR", f(k::SHIFT_SINGULAR)),
+        ("IK_GEN_SPURIOUS_TOL", f(k::SPURIOUS_TOL)),
+        ("IK_GEN_INFINITE_ROOT", f(k::INFINITE_ROOT)),
+        ("IK_GEN_RANK_TOL", f(k::RANK_TOL)),
+        ("IK_GEN_EXACT_TOL", f(k::EXACT_TOL)),
+        ("IK_GEN_DAMP_START", f(k::DAMP_START)),
+        ("IK_GEN_DAMP_MIN", f(k::DAMP_MIN)),
+        ("IK_GEN_DAMP_MAX", f(k::DAMP_MAX)),
+        ("IK_GEN_SAME_TOL", f(k::SAME_TOL)),
+        ("IK_GEN_MIN_POSITIVE", f(f64::MIN_POSITIVE)),
+    ];
+    let rows = |m: &[[f64; 3]; 3]| m.iter().map(|r| r.to_vec()).collect::<Vec<_>>();
+    let tables = vec![
+        ("IK_GEN_SAMPLE_S", vec![k::SAMPLE_S.to_vec()]),
+        ("IK_GEN_SAMPLE_C", vec![k::SAMPLE_C.to_vec()]),
+        ("IK_GEN_DFT", rows(&k::DFT)),
+        ("IK_GEN_HALF", rows(&k::HALF)),
+        ("IK_GEN_SHIFTS", vec![k::SHIFTS.to_vec()]),
+    ];
+    (scalars, tables)
+}
+
+/// The core's constants in `lang` (C, Python or JavaScript): C as `#define` and `static
+/// const double` tables, Python and JavaScript as names bound to numbers and lists; a table of
+/// several rows nested by rows.
+fn core_constant_code(lang: Port) -> String {
+    let (scalars, tables) = core_constants();
+    let c = lang == Port::C;
+    let mut s = String::new();
+    for (name, v) in scalars {
+        s.push_str(&match lang {
+            Port::C => format!("#define {name} {v}\n"),
+            Port::Python => format!("{name} = {v}\n"),
+            Port::JavaScript => format!("const {name} = {v};\n"),
+        });
+    }
+    let (open, close) = if c { ("{", "}") } else { ("[", "]") };
+    for (name, rows) in tables {
+        let text: Vec<String> = rows
+            .iter()
+            .map(|r| {
+                r.iter()
+                    .map(|x| float_literal(*x))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            })
+            .collect();
+        let (dims, body) = if let [row] = &text[..] {
+            (format!("[{}]", rows[0].len()), row.clone())
+        } else {
+            let nested: Vec<String> = text.iter().map(|r| format!("{open}{r}{close}")).collect();
+            (
+                format!("[{}][{}]", rows.len(), rows[0].len()),
+                nested.join(", "),
+            )
+        };
+        s.push_str(&match lang {
+            Port::C => format!("static const double {name}{dims} = {{{body}}};\n"),
+            Port::Python => format!("{name} = [{body}]\n"),
+            Port::JavaScript => format!("const {name} = [{body}];\n"),
+        });
+    }
+    s
+}
+
+/// The axes `[kind, w, p]` and the home pose's top rows as statements at the top of the
 /// solver (locals `ik_ax`, `ik_home`), in the parameters `args`.
 fn chain_code(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
     let py = lang == Lang::Python;
-    let lit = |v: f64| if py { float_literal(v) } else { lit(v) };
-    let (letk, end) = if py { ("", "") } else { ("let ", ";") };
+    let lit = |v: f64| {
+        if lang == Lang::Rust {
+            lit(v)
+        } else {
+            float_literal(v)
+        }
+    };
+    let (letk, end) = match lang {
+        Lang::Python => ("", ""),
+        Lang::Rust => ("let ", ";"),
+        Lang::C => ("const double ", ";"),
+    };
     let mut outputs = Vec::new();
     for (i, a) in sol.axes.iter().enumerate() {
         for (k, x) in a.dir.iter().chain(&a.point).enumerate() {
@@ -59,12 +171,10 @@ fn chain_code(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
     let mut s = String::new();
     for (k, atom) in prog.atoms.iter().enumerate() {
         let angle = prog.angle_code(k, &lit);
-        let call = |f: &str| {
-            if py {
-                format!("math.{f}({angle})")
-            } else {
-                format!("({angle}).{f}()")
-            }
+        let call = |f: &str| match lang {
+            Lang::Python => format!("math.{f}({angle})"),
+            Lang::Rust => format!("({angle}).{f}()"),
+            Lang::C => format!("{f}({angle})"),
         };
         if prog.atom_used(k, Trig::Sin) {
             s.push_str(&format!(
@@ -93,19 +203,30 @@ fn chain_code(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
         .flat_map(|(_, ids)| ids.clone())
         .collect();
     let code = |i: usize| prog.code(ids[i], &lit);
+    let (open, close) = if lang == Lang::C {
+        ("{", "}")
+    } else {
+        ("[", "]")
+    };
     let ax: Vec<String> = (0..6)
         .map(|i| {
             let v: Vec<String> = (0..6).map(|k| code(6 * i + k)).collect();
-            format!("[0.0, {}]", v.join(", "))
+            format!("{open}0.0, {}{close}", v.join(", "))
         })
         .collect();
     let hm: Vec<String> = (0..3)
         .map(|r| {
             let v: Vec<String> = (0..4).map(|c| code(36 + 4 * r + c)).collect();
-            format!("[{}]", v.join(", "))
+            format!("{open}{}{close}", v.join(", "))
         })
         .collect();
-    if py {
+    if lang == Lang::C {
+        s.push_str(&format!(
+            "    const double ik_ax[6][7] = {{{}}};\n    const double ik_home[3][4] = {{{}}};\n",
+            ax.join(", "),
+            hm.join(", ")
+        ));
+    } else if py {
         s.push_str(&format!(
             "    ik_ax = [{}]\n    ik_home = [{}]\n",
             ax.join(", "),
@@ -214,10 +335,125 @@ fn ik_dq_matrix(q: &[f64; 8]) -> [[f64; 4]; 4] {
 }
 "#;
 
-/// The error of a language the general method does not generate yet.
-pub(crate) fn not_generated(lang: &'static str) -> ScalarError {
-    ScalarError::NotGenerated(lang)
+/// The solver as C99, with the interface of the family solvers: `ik_solutions`, `void
+/// ik(const double T[4][4], params..., ik_solutions *out)` and `ik_dq`; the numeric core
+/// (`core.c`, a port of `core.rs`) with its constants written from `core.rs`. No allocation.
+///
+/// # Errors
+/// An axis entry that fails (term limit, work budget).
+pub fn ik_c(sol: &IkSolution) -> Result<String, ScalarError> {
+    let sol = &*super::super::safe::solution(sol, names::Lang::C);
+    let params: String = sol.params.iter().map(|p| format!(", double {p}")).collect();
+    let pnames: String = sol.params.iter().map(|p| format!(", {p}")).collect();
+    let degree = sol.general.as_ref().map_or(0, |g| g.degree);
+    let first = sol.general.as_ref().map_or(0, super::GeneralInfo::index);
+    let mut s = String::new();
+    let doc = [
+        format!(
+            "Inverse kinematics of {}: every solution, by the general 6R elimination.",
+            sol.robot
+        ),
+        format!(
+            "Raghavan-Roth / Manocha-Canny: a 12 x 12 quadratic matrix polynomial, degree {degree} reached at a generic target;"
+        ),
+        "roots by the eigenvalues of its 24 x 24 companion matrix, back-substitution, Gauss-Newton polish,".into(),
+        "each solution checked by forward kinematics (approximate: residual above IK_POSE_TOL).".into(),
+        format!("Joint vector order: {}; at most 16 solutions; singular is never set.", sol.variables.join(", ")),
+        "Generated by dqsym ik.".into(),
+    ];
+    for l in doc.iter().flat_map(|l| comment_lines(Comment::Block, l)) {
+        s.push_str(&format!("/* {l} */\n"));
+    }
+    s.push_str(
+        "#include <math.h>\n#include <string.h>\n\n#define IK_MAX 16\n#define IK_DOF 6\n\n\
+typedef struct {\n    double q[IK_MAX][IK_DOF];\n    int singular[IK_MAX];\n    int approximate[IK_MAX];\n    double residual[IK_MAX];\n    int n;\n} ik_solutions;\n\n",
+    );
+    s.push_str(&super::super::emit::c_tolerances(sol));
+    s.push_str(&format!(
+        "/* The residual above which a root of the elimination is dropped (no solution), and the\n   arrangement of the loop tried first (the one that served at the derivation). */\n\
+#define IK_KEEP_TOL {}\n#define IK_FIRST_ARRANGEMENT {first}\n\n/* The constants of the numeric core (from core.rs). */\n{}\n",
+        float_literal(super::KEEP_TOL),
+        core_constant_code(Port::C)
+    ));
+    s.push_str(C_CORE);
+    s.push_str(&format!("\n{C_DQ_MATRIX}\n"));
+    s.push_str(&format!(
+        "/* Every solution for the target pose ik_target (row-major homogeneous matrix), written to\n   ik_out (ik_out->n of them). */\n\
+void ik(const double ik_target[4][4]{params}, ik_solutions *ik_out) {{\n"
+    ));
+    for p in &sol.params {
+        s.push_str(&format!("    (void){p};\n"));
+    }
+    s.push_str(&chain_code(sol, Lang::C)?);
+    s.push_str(C_TAIL);
+    s.push_str(&format!(
+        "void ik_dq(const double ik_q[8]{params}, ik_solutions *ik_out) {{\n    double ik_target[4][4];\n    ik_dq_matrix(ik_q, ik_target);\n    ik((const double (*)[4])ik_target{pnames}, ik_out);\n}}\n"
+    ));
+    Ok(s)
 }
+
+const C_TAIL: &str = r#"    /* The robot's scale (as ik::check::scale). */
+    double ik_len = 0.0;
+    ik_gen_tol ik_tol;
+    ik_gen_out ik_o;
+    int ik_i, ik_k;
+    for (ik_i = 0; ik_i < 6; ik_i++)
+        ik_len = fmax(ik_len, fabs(ik_ax[ik_i][4]) + fabs(ik_ax[ik_i][5]) + fabs(ik_ax[ik_i][6]));
+    ik_len = fmax(ik_len, fabs(ik_home[0][3]) + fabs(ik_home[1][3]) + fabs(ik_home[2][3]));
+    ik_len = fmax(ik_len, fabs(ik_target[0][3]) + fabs(ik_target[1][3]) + fabs(ik_target[2][3]));
+    if (!(ik_len > 0.0 && isfinite(ik_len))) ik_len = 1.0;
+    ik_tol.pose = IK_POSE_TOL;
+    ik_tol.keep = IK_KEEP_TOL;
+    ik_gen_solve(ik_ax, ik_home, ik_target, ik_len, ik_tol, IK_FIRST_ARRANGEMENT, &ik_o);
+    ik_out->n = ik_o.n;
+    for (ik_i = 0; ik_i < ik_o.n; ik_i++) {
+        for (ik_k = 0; ik_k < 6; ik_k++) ik_out->q[ik_i][ik_k] = ik_o.q[ik_i][ik_k];
+        ik_out->singular[ik_i] = 0;
+        ik_out->residual[ik_i] = ik_o.residual[ik_i];
+        ik_out->approximate[ik_i] = ik_o.residual[ik_i] > IK_POSE_TOL || isnan(ik_o.residual[ik_i]);
+    }
+}
+
+"#;
+
+const C_DQ_MATRIX: &str = r#"/* The homogeneous matrix of a unit dual quaternion (w, x, y, z) + eps (w, x, y, z). */
+static void ik_dq_matrix(const double q[8], double T[4][4]) {
+    const double w = q[0], x = q[1], y = q[2], z = q[3];
+    const double a = q[4], b = q[5], c = q[6], d = q[7];
+    T[0][0] = w * w + x * x - y * y - z * z; T[0][1] = 2 * (x * y - w * z); T[0][2] = 2 * (x * z + w * y);
+    T[1][0] = 2 * (x * y + w * z); T[1][1] = w * w - x * x + y * y - z * z; T[1][2] = 2 * (y * z - w * x);
+    T[2][0] = 2 * (x * z - w * y); T[2][1] = 2 * (y * z + w * x); T[2][2] = w * w - x * x - y * y + z * z;
+    T[0][3] = 2 * (-a * x + b * w - c * z + d * y);
+    T[1][3] = 2 * (-a * y + b * z + c * w - d * x);
+    T[2][3] = 2 * (-a * z - b * y + c * x + d * w);
+    T[3][0] = T[3][1] = T[3][2] = 0.0; T[3][3] = 1.0;
+}
+"#;
+
+/// The general method's JavaScript for the IK page (after [`crate::ik::ik_javascript_helpers`],
+/// whose tolerances and `ik_scale` it reads): the numeric core (`core.js`, a port of
+/// `core.rs`) with its constants written from `core.rs`, and `ik_general(ax, home, T)`, every
+/// solution as `[q, singular, approximate, residual]` as the generated solvers return them.
+pub fn ik_javascript_general(sol: &IkSolution) -> String {
+    let first = sol.general.as_ref().map_or(0, super::GeneralInfo::index);
+    format!(
+        "// The general 6R method: the residual above which a root of the elimination is dropped,\n\
+// the arrangement of the loop tried first, the numeric core's constants (from core.rs).\n\
+const IK_KEEP_TOL = {};\nconst IK_FIRST_ARRANGEMENT = {first};\n{}\n{JS_CORE}\n{JS_DRIVER}",
+        float_literal(super::KEEP_TOL),
+        core_constant_code(Port::JavaScript)
+    )
+}
+
+const JS_DRIVER: &str = r#"// Every solution by the general method for the axes [kind, w, p], the home pose and the target
+// (lengths in the robot's): [q, singular (never), approximate, residual] each.
+function ik_general(ax, home, T) {
+    const len = ik_scale(ax, home, T);
+    const tol = { pose: IK_POSE_TOL, keep: IK_KEEP_TOL };
+    const o = ik_gen_solve(ax, home, T, len, tol, IK_FIRST_ARRANGEMENT);
+    return o.q.map((q, i) => [q, false, !(o.residual[i] <= IK_POSE_TOL), o.residual[i]]);
+}
+"#;
 
 /// The solver as Python (NumPy): `ik_full(T, *, params)` with every solution as `(q,
 /// singular, approximate, residual)`, `ik(T, ...)` and `ik_dq(q, ...)`, the interface of the
@@ -257,6 +493,8 @@ pub fn ik_python(sol: &IkSolution) -> Result<String, ScalarError> {
         float_literal(check::POSE_TOL),
         float_literal(super::KEEP_TOL)
     ));
+    s.push_str(&core_constant_code(Port::Python));
+    s.push('\n');
     s.push_str(PY_CORE);
     s.push_str(&format!(
         "\n\ndef ik_full(T{kw}):\n    \"\"\"Every solution as (q, singular, approximate, residual).\"\"\"\n    T = np.asarray(T, dtype=float)\n"

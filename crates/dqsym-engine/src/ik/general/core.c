@@ -1,0 +1,1094 @@
+/* The numeric core of the general 6R solver in C99: a port of core.rs (Raghavan-Roth
+   elimination in Manocha-Canny's matrix form), function by function, with the same operations
+   in the same order, so that the C solver returns what the Rust reference solver returns. No
+   allocation. The constants IK_GEN_* (sample angles, tolerances) are written above this text by
+   the emitter from core.rs, where they are defined and explained. Every name starts with ik_
+   (the solver's own names; a robot parameter never takes one). Sums that core.rs writes with
+   Rust's iterator sum start at -0.0, as that sum does. */
+
+typedef struct {
+    double q[IK_GEN_MAX][6];
+    double residual[IK_GEN_MAX];
+    int n;
+    int degree;
+    int arrangements[3];
+    int n_arr;
+} ik_gen_out;
+
+typedef struct {
+    double pose, keep;
+} ik_gen_tol;
+
+/* One joint of an arranged chain: unit direction w, point c (scaled). */
+typedef struct {
+    double w[3], c[3];
+} ik_gen_joint;
+
+static double ik_gen_dot3(const double a[3], const double b[3]) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void ik_gen_cross3(const double a[3], const double b[3], double o[3]) {
+    o[0] = a[1] * b[2] - a[2] * b[1];
+    o[1] = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* Rodrigues: c I + s [w]x + (1 - c) w w^T. */
+static void ik_gen_rodrigues(const double w[3], double s, double c, double r[3][3]) {
+    const double k[3][3] = {{0.0, -w[2], w[1]}, {w[2], 0.0, -w[0]}, {-w[1], w[0], 0.0}};
+    int i, j;
+    for (i = 0; i < 3; i++) {
+        for (j = 0; j < 3; j++) {
+            r[i][j] = (i == j ? c : 0.0) + s * k[i][j] + (1.0 - c) * w[i] * w[j];
+        }
+    }
+}
+
+static void ik_gen_mv(const double r[3][3], const double v[3], double o[3]) {
+    o[0] = ik_gen_dot3(r[0], v);
+    o[1] = ik_gen_dot3(r[1], v);
+    o[2] = ik_gen_dot3(r[2], v);
+}
+
+/* (E x, R d) of joint j at the angle with sine s, cosine co. */
+static void ik_gen_apply(const ik_gen_joint *j, double s, double co, const double x[3],
+                         const double d[3], double xo[3], double dout[3]) {
+    double r[3][3], y[3], ry[3];
+    int i;
+    ik_gen_rodrigues(j->w, s, co, r);
+    for (i = 0; i < 3; i++) y[i] = x[i] - j->c[i];
+    ik_gen_mv((const double (*)[3])r, y, ry);
+    for (i = 0; i < 3; i++) xo[i] = ry[i] + j->c[i];
+    ik_gen_mv((const double (*)[3])r, d, dout);
+}
+
+/* The fourteen Raghavan-Roth quantities of a point p and a direction l: l, p, p.p, p.l,
+   p x l, (p.p) l - 2 (p.l) p. */
+static void ik_gen_quantities(const double p[3], const double l[3], double o[14]) {
+    const double pp = ik_gen_dot3(p, p);
+    const double pl = ik_gen_dot3(p, l);
+    int i;
+    for (i = 0; i < 3; i++) {
+        o[i] = l[i];
+        o[3 + i] = p[i];
+    }
+    o[6] = pp;
+    o[7] = pl;
+    ik_gen_cross3(p, l, o + 8);
+    for (i = 0; i < 3; i++) o[11 + i] = pp * l[i] - 2.0 * pl * p[i];
+}
+
+/* [R | t]^-1 = [R^T | -R^T t]. */
+static void ik_gen_inverse(const double g[3][4], double o[3][4]) {
+    int i, j;
+    for (i = 0; i < 3; i++) {
+        for (j = 0; j < 3; j++) o[i][j] = g[j][i];
+        o[i][3] = -(g[0][i] * g[0][3] + g[1][i] * g[1][3] + g[2][i] * g[2][3]);
+    }
+}
+
+/* A motion applied to a point x and a direction d. */
+static void ik_gen_motion_apply(const double g[3][4], const double x[3], const double d[3],
+                                double p[3], double v[3]) {
+    int i;
+    for (i = 0; i < 3; i++) {
+        p[i] = g[i][0] * x[0] + g[i][1] * x[1] + g[i][2] * x[2] + g[i][3];
+        v[i] = g[i][0] * d[0] + g[i][1] * d[1] + g[i][2] * d[2];
+    }
+}
+
+static void ik_gen_compose(const double a[3][4], const double b[3][4], double o[3][4]) {
+    int r, c;
+    for (r = 0; r < 3; r++) {
+        for (c = 0; c < 4; c++) {
+            const double t = c == 3 ? a[r][3] : 0.0;
+            o[r][c] = t + a[r][0] * b[0][c] + a[r][1] * b[1][c] + a[r][2] * b[2][c];
+        }
+    }
+}
+
+/* The arranged problem E1 ... E6 = H (home pose the identity): joint i is the arm's perm[i]. */
+typedef struct {
+    ik_gen_joint j[6];
+    double h[3][4];
+    int perm[6];
+} ik_gen_arranged;
+
+/* arr = shift + 6 reversed of the chain ax (scaled) with the target g = T M^-1. */
+static void ik_gen_arrange(const ik_gen_joint ax[6], const double g[3][4], int arr,
+                           ik_gen_arranged *out) {
+    const int rev = arr >= 6, shift = arr % 6;
+    ik_gen_joint base[6];
+    double hi[3][4];
+    int bperm[6], i, k;
+    for (i = 0; i < 6; i++) {
+        base[i] = ax[i];
+        bperm[i] = i;
+    }
+    memcpy(out->h, g, sizeof out->h);
+    if (rev) {
+        /* E6^-1 ... E1^-1 = G^-1, and Ei^-1(q) turns about the reversed axis by q. */
+        for (i = 0; i < 6; i++) {
+            for (k = 0; k < 3; k++) {
+                base[i].w[k] = -ax[5 - i].w[k];
+                base[i].c[k] = ax[5 - i].c[k];
+            }
+            bperm[i] = 5 - i;
+        }
+        ik_gen_inverse(g, out->h);
+    }
+    /* E_{s+1} ... E6 (H^-1 E1 H) ... (H^-1 Es H) = H. */
+    ik_gen_inverse((const double (*)[4])out->h, hi);
+    for (i = 0; i < 6; i++) {
+        k = (shift + i) % 6;
+        out->perm[i] = bperm[k];
+        if (k < shift) {
+            ik_gen_motion_apply((const double (*)[4])hi, base[k].c, base[k].w, out->j[i].c,
+                                out->j[i].w);
+        } else {
+            out->j[i] = base[k];
+        }
+    }
+}
+
+/* The elimination of one arrangement: Bm X12 = Am(th3) X45 (14 equations), the Householder QR
+   of Bm with column pivoting (qt = Q^T, r, piv), |r77| / |r00|, and Sig = N Am in the basis
+   (1, cos th3, sin th3) with N the last six rows of Q^T. */
+typedef struct {
+    double am[14][3][9];
+    double qt[14][14];
+    double r[8][8];
+    int piv[8];
+    double rank_ratio;
+    double sig[3][6][9];
+} ik_gen_elim;
+
+/* The monomial index of (i, j) with i, j in (1, cos, sin). */
+static int ik_gen_mono(int i, int j) {
+    return 3 * i + j;
+}
+
+/* The quantities on the 3 x 3 x 3 grid of the sample angles: left, E3 E4 E5 applied to (p6,
+   w6); right (3 x 3), E2^-1 E1^-1 H applied to it. */
+static void ik_gen_samples(const ik_gen_arranged *ar, double lhs[3][3][3][14],
+                           double rhs[3][3][14]) {
+    const double *p6 = ar->j[5].c, *w6 = ar->j[5].w;
+    double x5[3], d5[3], x4[3], d4[3], x3[3], d3[3], hp[3], hd[3], y1[3], e1[3], y2[3], e2[3];
+    int k1, k2, k3, k4, k5;
+    for (k5 = 0; k5 < 3; k5++) {
+        ik_gen_apply(&ar->j[4], IK_GEN_SAMPLE_S[k5], IK_GEN_SAMPLE_C[k5], p6, w6, x5, d5);
+        for (k4 = 0; k4 < 3; k4++) {
+            ik_gen_apply(&ar->j[3], IK_GEN_SAMPLE_S[k4], IK_GEN_SAMPLE_C[k4], x5, d5, x4, d4);
+            for (k3 = 0; k3 < 3; k3++) {
+                ik_gen_apply(&ar->j[2], IK_GEN_SAMPLE_S[k3], IK_GEN_SAMPLE_C[k3], x4, d4, x3,
+                             d3);
+                ik_gen_quantities(x3, d3, lhs[k3][k4][k5]);
+            }
+        }
+    }
+    ik_gen_motion_apply((const double (*)[4])ar->h, p6, w6, hp, hd);
+    for (k1 = 0; k1 < 3; k1++) {
+        ik_gen_apply(&ar->j[0], -IK_GEN_SAMPLE_S[k1], IK_GEN_SAMPLE_C[k1], hp, hd, y1, e1);
+        for (k2 = 0; k2 < 3; k2++) {
+            ik_gen_apply(&ar->j[1], -IK_GEN_SAMPLE_S[k2], IK_GEN_SAMPLE_C[k2], y1, e1, y2, e2);
+            ik_gen_quantities(y2, e2, rhs[k1][k2]);
+        }
+    }
+}
+
+/* The left side's coefficients: the 3-D transform as three 1-D passes. */
+static void ik_gen_left_coefficients(double lhs[3][3][3][14], double am[14][3][9]) {
+    double t1[3][3][3][14], t2[3][3][3][14];
+    int i3, i4, i5, k3, k4, k5, e;
+    memset(t1, 0, sizeof t1);
+    memset(t2, 0, sizeof t2);
+    for (i5 = 0; i5 < 3; i5++)
+        for (k3 = 0; k3 < 3; k3++)
+            for (k4 = 0; k4 < 3; k4++)
+                for (k5 = 0; k5 < 3; k5++) {
+                    const double w = IK_GEN_DFT[i5][k5];
+                    for (e = 0; e < 14; e++) t1[k3][k4][i5][e] += w * lhs[k3][k4][k5][e];
+                }
+    for (i4 = 0; i4 < 3; i4++)
+        for (k3 = 0; k3 < 3; k3++)
+            for (k4 = 0; k4 < 3; k4++) {
+                const double w = IK_GEN_DFT[i4][k4];
+                for (i5 = 0; i5 < 3; i5++)
+                    for (e = 0; e < 14; e++) t2[k3][i4][i5][e] += w * t1[k3][k4][i5][e];
+            }
+    for (i3 = 0; i3 < 3; i3++)
+        for (k3 = 0; k3 < 3; k3++) {
+            const double w = IK_GEN_DFT[i3][k3];
+            for (i4 = 0; i4 < 3; i4++)
+                for (i5 = 0; i5 < 3; i5++)
+                    for (e = 0; e < 14; e++)
+                        am[e][i3][ik_gen_mono(i4, i5)] += w * t2[k3][i4][i5][e];
+        }
+}
+
+static void ik_gen_qr_pivot(const double b[14][8], double qt[14][14], double r[8][8],
+                            int piv[8], double *ratio);
+
+/* The equations' coefficients by exact trigonometric interpolation (IK_GEN_DFT). */
+static void ik_gen_eliminate(const ik_gen_arranged *ar, ik_gen_elim *el) {
+    double lhs[3][3][3][14], rhs[3][3][14], bm[14][8];
+    int e, i1, i2, k1, k2, k, row, m;
+    ik_gen_samples(ar, lhs, rhs);
+    memset(el->am, 0, sizeof el->am);
+    memset(bm, 0, sizeof bm);
+    ik_gen_left_coefficients(lhs, el->am);
+    for (e = 0; e < 14; e++) {
+        for (i1 = 0; i1 < 3; i1++) {
+            for (i2 = 0; i2 < 3; i2++) {
+                double s = 0.0;
+                for (k1 = 0; k1 < 3; k1++)
+                    for (k2 = 0; k2 < 3; k2++)
+                        s += IK_GEN_DFT[i1][k1] * IK_GEN_DFT[i2][k2] * rhs[k1][k2][e];
+                m = ik_gen_mono(i1, i2);
+                if (m == 0) {
+                    el->am[e][0][0] -= s;
+                } else {
+                    bm[e][m - 1] = s;
+                }
+            }
+        }
+    }
+    ik_gen_qr_pivot((const double (*)[8])bm, el->qt, el->r, el->piv, &el->rank_ratio);
+    for (k = 0; k < 3; k++) {
+        for (row = 0; row < 6; row++) {
+            for (m = 0; m < 9; m++) {
+                double s = 0.0;
+                for (e = 0; e < 14; e++) s += el->qt[8 + row][e] * el->am[e][k][m];
+                el->sig[k][row][m] = s;
+            }
+        }
+    }
+}
+
+/* Householder QR with column pivoting of the 14 x 8 matrix b: Q^T, R, the column order and
+   |r77| / |r00|; the last six rows of Q^T span the left null space when the ratio is not
+   small. */
+static void ik_gen_qr_pivot(const double b[14][8], double qt[14][14], double r[8][8],
+                            int piv[8], double *ratio) {
+    double a[14][8], v[14], norm, alpha, vn, bn, n, s, t;
+    int i, k, c, rr, best, ti;
+    memcpy(a, b, sizeof a);
+    memset(qt, 0, 14 * sizeof qt[0]);
+    for (i = 0; i < 14; i++) qt[i][i] = 1.0;
+    for (i = 0; i < 8; i++) piv[i] = i;
+    for (k = 0; k < 8; k++) {
+        /* The remaining column of largest norm first. */
+        best = k;
+        bn = -1.0;
+        for (c = k; c < 8; c++) {
+            n = -0.0;
+            for (rr = k; rr < 14; rr++) n += a[rr][c] * a[rr][c];
+            if (n > bn) {
+                bn = n;
+                best = c;
+            }
+        }
+        if (best != k) {
+            for (rr = 0; rr < 14; rr++) {
+                t = a[rr][k];
+                a[rr][k] = a[rr][best];
+                a[rr][best] = t;
+            }
+            ti = piv[k];
+            piv[k] = piv[best];
+            piv[best] = ti;
+        }
+        norm = sqrt(fmax(bn, 0.0));
+        if (norm == 0.0) continue;
+        alpha = a[k][k] > 0.0 ? -norm : norm;
+        memset(v, 0, sizeof v);
+        for (rr = k; rr < 14; rr++) v[rr] = a[rr][k];
+        v[k] -= alpha;
+        vn = -0.0;
+        for (rr = k; rr < 14; rr++) vn += v[rr] * v[rr];
+        if (vn == 0.0) continue;
+        for (c = k; c < 8; c++) {
+            s = -0.0;
+            for (rr = k; rr < 14; rr++) s += v[rr] * a[rr][c];
+            s = s * 2.0 / vn;
+            for (rr = k; rr < 14; rr++) a[rr][c] -= s * v[rr];
+        }
+        for (c = 0; c < 14; c++) {
+            s = -0.0;
+            for (rr = k; rr < 14; rr++) s += v[rr] * qt[rr][c];
+            s = s * 2.0 / vn;
+            for (rr = k; rr < 14; rr++) qt[rr][c] -= s * v[rr];
+        }
+    }
+    memset(r, 0, 8 * sizeof r[0]);
+    for (i = 0; i < 8; i++)
+        for (c = i; c < 8; c++) r[i][c] = a[i][c];
+    *ratio = r[0][0] == 0.0 ? 0.0 : fabs(r[7][7] / r[0][0]);
+}
+
+/* The 12 x 12 matrix polynomial M(x) = A x^2 + B x + C of x = tan((th3 - phi)/2), as out[0] =
+   C, out[1] = B, out[2] = A: the six equations Sig X45 = 0 with th4, th5 by their half-angle
+   tangents, and the same times x4. */
+static void ik_gen_matrix_poly(const double sig[3][6][9], double phi, double out[3][12][12]) {
+    const double sp = sin(phi), cp = cos(phi);
+    int row, i4, i5, a, b, d;
+    memset(out, 0, 3 * sizeof out[0]);
+    for (row = 0; row < 6; row++) {
+        for (i4 = 0; i4 < 3; i4++) {
+            for (i5 = 0; i5 < 3; i5++) {
+                const int m = ik_gen_mono(i4, i5);
+                const double s0 = sig[0][row][m];
+                const double sc = sig[1][row][m] * cp + sig[2][row][m] * sp;
+                const double ss = sig[2][row][m] * cp - sig[1][row][m] * sp;
+                const double coef[3] = {s0 + sc, 2.0 * ss, s0 - sc};
+                for (a = 0; a < 3; a++) {
+                    for (b = 0; b < 3; b++) {
+                        const double h = IK_GEN_HALF[i4][a] * IK_GEN_HALF[i5][b];
+                        if (h == 0.0) continue;
+                        for (d = 0; d < 3; d++) {
+                            out[d][row][3 * a + b] += h * coef[d];
+                            out[d][row + 6][3 * (a + 1) + b] += h * coef[d];
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/* LU with partial pivoting of the n x n matrix a (row-major, in place), the pivot order in p;
+   returns the smallest pivot over the largest entry. */
+static double ik_gen_lu(double *a, int n, int *p) {
+    double amax = 0.0, minpiv = HUGE_VAL, d, f, t;
+    int i, k, r, c, best;
+    for (i = 0; i < n * n; i++) amax = fmax(amax, fabs(a[i]));
+    for (i = 0; i < n; i++) p[i] = i;
+    for (k = 0; k < n; k++) {
+        best = k;
+        for (r = k + 1; r < n; r++) {
+            if (fabs(a[r * n + k]) > fabs(a[best * n + k])) best = r;
+        }
+        for (c = 0; c < n; c++) {
+            t = a[k * n + c];
+            a[k * n + c] = a[best * n + c];
+            a[best * n + c] = t;
+        }
+        i = p[k];
+        p[k] = p[best];
+        p[best] = i;
+        d = a[k * n + k];
+        minpiv = fmin(minpiv, fabs(d));
+        if (d == 0.0) continue;
+        for (r = k + 1; r < n; r++) {
+            f = a[r * n + k] / d;
+            a[r * n + k] = f;
+            if (f != 0.0) {
+                for (c = k + 1; c < n; c++) a[r * n + c] -= f * a[k * n + c];
+            }
+        }
+    }
+    return amax > 0.0 ? minpiv / amax : 0.0;
+}
+
+/* Solves LU x = b[p]. */
+static void ik_gen_lu_solve(const double *lu, int n, const int *p, const double *b, double *x) {
+    int i, k;
+    for (i = 0; i < n; i++) x[i] = b[p[i]];
+    for (i = 0; i < n; i++)
+        for (k = 0; k < i; k++) x[i] -= lu[i * n + k] * x[k];
+    for (i = n - 1; i >= 0; i--) {
+        for (k = i + 1; k < n; k++) x[i] -= lu[i * n + k] * x[k];
+        x[i] /= lu[i * n + i];
+    }
+}
+
+static int ik_gen_eigenvalues(double a[24][24], double wr[24], double wi[24]);
+
+/* The eigenvalues of the 24 x 24 companion linearisation of A x^2 + B x + C: [[0, I], [-A^-1
+   C, -A^-1 B]] (A invertible); 0 when the QR iteration does not converge. */
+static int ik_gen_eigen_quadratic(const double m[3][12][12], double wr[24], double wi[24]) {
+    double a[12][12], k[24][24], cc[12], cb[12], xc[12], xb[12];
+    int p[12], i, r, col;
+    memcpy(a, m[2], sizeof a);
+    ik_gen_lu(&a[0][0], 12, p);
+    memset(k, 0, sizeof k);
+    for (i = 0; i < 12; i++) k[i][12 + i] = 1.0;
+    for (col = 0; col < 12; col++) {
+        for (r = 0; r < 12; r++) {
+            cc[r] = m[0][r][col];
+            cb[r] = m[1][r][col];
+        }
+        ik_gen_lu_solve(&a[0][0], 12, p, cc, xc);
+        ik_gen_lu_solve(&a[0][0], 12, p, cb, xb);
+        for (r = 0; r < 12; r++) {
+            k[12 + r][col] = -xc[r];
+            k[12 + r][12 + col] = -xb[r];
+        }
+    }
+    return ik_gen_eigenvalues(k, wr, wi);
+}
+
+/* A null vector of the 12 x 12 matrix m (Gaussian elimination with complete pivoting, the
+   last pivot taken as zero). */
+static void ik_gen_null_vector(const double m[12][12], double v[12]) {
+    double a[12][12], y[12], bv, d, f, s, t;
+    int cols[12], i, k, r, c, br, bc;
+    memcpy(a, m, sizeof a);
+    for (i = 0; i < 12; i++) cols[i] = i;
+    for (k = 0; k < 11; k++) {
+        br = k;
+        bc = k;
+        bv = -1.0;
+        for (r = k; r < 12; r++) {
+            for (c = k; c < 12; c++) {
+                if (fabs(a[r][c]) > bv) {
+                    br = r;
+                    bc = c;
+                    bv = fabs(a[r][c]);
+                }
+            }
+        }
+        for (c = 0; c < 12; c++) {
+            t = a[k][c];
+            a[k][c] = a[br][c];
+            a[br][c] = t;
+        }
+        for (r = 0; r < 12; r++) {
+            t = a[r][k];
+            a[r][k] = a[r][bc];
+            a[r][bc] = t;
+        }
+        i = cols[k];
+        cols[k] = cols[bc];
+        cols[bc] = i;
+        d = a[k][k];
+        if (d == 0.0) continue;
+        for (r = k + 1; r < 12; r++) {
+            f = a[r][k] / d;
+            for (c = k; c < 12; c++) a[r][c] -= f * a[k][c];
+        }
+    }
+    y[11] = 1.0;
+    for (i = 10; i >= 0; i--) {
+        s = 0.0;
+        for (c = i + 1; c < 12; c++) s -= a[i][c] * y[c];
+        y[i] = a[i][i] == 0.0 ? 0.0 : s / a[i][i];
+    }
+    for (i = 0; i < 12; i++) v[cols[i]] = y[i];
+}
+
+/* An angle in (-pi, pi]. */
+static double ik_gen_wrap(double a) {
+    double x = fmod(a, IK_GEN_TAU);
+    if (x > IK_GEN_PI) {
+        x -= IK_GEN_TAU;
+    } else if (x <= -IK_GEN_PI) {
+        x += IK_GEN_TAU;
+    }
+    return x;
+}
+
+/* 2 atan2(num, den) of the pair (num[k], den[k]) of largest size: the half-angle tangent's
+   ratio, well-conditioned for any angle. */
+static double ik_gen_angle_from(const double *num, const double *den, int n) {
+    double bn = -1.0, bnum = 0.0, bden = 1.0, s;
+    int k;
+    for (k = 0; k < n; k++) {
+        s = num[k] * num[k] + den[k] * den[k];
+        if (s > bn) {
+            bn = s;
+            bnum = num[k];
+            bden = den[k];
+        }
+    }
+    return ik_gen_wrap(2.0 * atan2(bnum, bden));
+}
+
+/* th1, th2 from Bm X12 = Am(th3) X45 by the QR of Bm, given (1, cos, sin) of th3, th4, th5. */
+static void ik_gen_first_two(const ik_gen_elim *el, const double f3[3], const double f4[3],
+                             const double f5[3], double *t1, double *t2) {
+    double rhs[14], y[8], z[8], x12[9], s;
+    int e, k, i4, i5, i;
+    for (e = 0; e < 14; e++) {
+        s = 0.0;
+        for (k = 0; k < 3; k++)
+            for (i4 = 0; i4 < 3; i4++)
+                for (i5 = 0; i5 < 3; i5++)
+                    s += el->am[e][k][ik_gen_mono(i4, i5)] * f3[k] * f4[i4] * f5[i5];
+        rhs[e] = s;
+    }
+    for (i = 0; i < 8; i++) {
+        y[i] = -0.0;
+        for (e = 0; e < 14; e++) y[i] += el->qt[i][e] * rhs[e];
+    }
+    for (i = 7; i >= 0; i--) {
+        s = y[i];
+        for (k = i + 1; k < 8; k++) s -= el->r[i][k] * z[k];
+        z[i] = el->r[i][i] == 0.0 ? 0.0 : s / el->r[i][i];
+    }
+    x12[0] = 1.0;
+    for (i = 0; i < 8; i++) x12[el->piv[i] + 1] = z[i];
+    *t1 = atan2(x12[ik_gen_mono(2, 0)], x12[ik_gen_mono(1, 0)]);
+    *t2 = atan2(x12[ik_gen_mono(0, 2)], x12[ik_gen_mono(0, 1)]);
+}
+
+/* th6 from the rest: E6 = (E1 ... E5)^-1 H, read about its axis. */
+static double ik_gen_last(const ik_gen_arranged *ar, const double t[5]) {
+    double rot[3][3] = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
+    double r[3][3], n[3][3], u[3], hu[3], v[3], uv[3];
+    const double ex[3] = {1.0, 0.0, 0.0}, ey[3] = {0.0, 1.0, 0.0};
+    const double *w6 = ar->j[5].w;
+    int k, i, j, l;
+    for (k = 0; k < 5; k++) {
+        ik_gen_rodrigues(ar->j[k].w, sin(t[k]), cos(t[k]), r);
+        for (i = 0; i < 3; i++) {
+            for (j = 0; j < 3; j++) {
+                n[i][j] = -0.0;
+                for (l = 0; l < 3; l++) n[i][j] += rot[i][l] * r[l][j];
+            }
+        }
+        memcpy(rot, n, sizeof rot);
+    }
+    ik_gen_cross3(w6, fabs(w6[0]) < 0.6 ? ex : ey, u);
+    /* v = R6 u with R6 = rot^T R_H. */
+    for (i = 0; i < 3; i++) {
+        hu[i] = -0.0;
+        for (l = 0; l < 3; l++) hu[i] += ar->h[i][l] * u[l];
+    }
+    for (i = 0; i < 3; i++) {
+        v[i] = -0.0;
+        for (l = 0; l < 3; l++) v[i] += rot[l][i] * hu[l];
+    }
+    ik_gen_cross3(u, v, uv);
+    return atan2(ik_gen_dot3(w6, uv), ik_gen_dot3(u, v));
+}
+
+/* The joints of the arranged chain at the root x of det M. */
+static void ik_gen_back_substitute(const ik_gen_arranged *ar, const ik_gen_elim *el,
+                                   const double mp[3][12][12], double phi, double x,
+                                   double out[6]) {
+    double m[12][12], v[12], num[9], den[9], f3[3], f4[3], f5[3];
+    int r, c, a, b, k;
+    for (r = 0; r < 12; r++)
+        for (c = 0; c < 12; c++) m[r][c] = (mp[2][r][c] * x + mp[1][r][c]) * x + mp[0][r][c];
+    ik_gen_null_vector((const double (*)[12])m, v);
+    out[2] = ik_gen_wrap(phi + 2.0 * atan(x));
+    /* th4: the pairs (x4^(a+1) x5^b, x4^a x5^b), a = 0..2, b = 0..2. */
+    for (k = 0, a = 0; a < 3; a++)
+        for (b = 0; b < 3; b++, k++) {
+            num[k] = v[3 * (a + 1) + b];
+            den[k] = v[3 * a + b];
+        }
+    out[3] = ik_gen_angle_from(num, den, 9);
+    /* th5: the pairs (x4^a x5^(b+1), x4^a x5^b), b = 0..1, a = 0..3. */
+    for (k = 0, b = 0; b < 2; b++)
+        for (a = 0; a < 4; a++, k++) {
+            num[k] = v[3 * a + b + 1];
+            den[k] = v[3 * a + b];
+        }
+    out[4] = ik_gen_angle_from(num, den, 8);
+    f3[0] = f4[0] = f5[0] = 1.0;
+    f3[1] = cos(out[2]);
+    f3[2] = sin(out[2]);
+    f4[1] = cos(out[3]);
+    f4[2] = sin(out[3]);
+    f5[1] = cos(out[4]);
+    f5[2] = sin(out[4]);
+    ik_gen_first_two(el, f3, f4, f5, &out[0], &out[1]);
+    out[5] = ik_gen_last(ar, out);
+}
+
+/* The candidates of one arrangement: its real roots, each with the arm's joint vector (not
+   yet refined) in roots, their number in *n and the degree reached in *degree; 0 when the
+   arrangement is degenerate here. */
+static int ik_gen_candidates(const ik_gen_arranged *ar, const ik_gen_elim *el,
+                             double roots[24][6], int *n, int *degree) {
+    double mp[3][12][12];
+    double a[12][12], wr[24], wi[24], t[6], best_phi = 0.0, best = -1.0, ratio, re, im, phi;
+    int p[12], k, i;
+    for (k = 0; k < (int)(sizeof IK_GEN_SHIFTS / sizeof IK_GEN_SHIFTS[0]); k++) {
+        ik_gen_matrix_poly((const double (*)[6][9])el->sig, IK_GEN_SHIFTS[k], mp);
+        memcpy(a, mp[2], sizeof a);
+        ratio = ik_gen_lu(&a[0][0], 12, p);
+        if (ratio > best) {
+            best_phi = IK_GEN_SHIFTS[k];
+            best = ratio;
+        }
+        if (ratio > IK_GEN_SHIFT_GOOD) break;
+    }
+    if (best < IK_GEN_SHIFT_SINGULAR) return 0;
+    phi = best_phi;
+    ik_gen_matrix_poly((const double (*)[6][9])el->sig, phi, mp);
+    if (!ik_gen_eigen_quadratic((const double (*)[12][12])mp, wr, wi)) return 0;
+    *n = 0;
+    *degree = 0;
+    for (k = 0; k < 24; k++) {
+        const int spurious = (fabs(wr[k]) + fabs(fabs(wi[k]) - 1.0)) < IK_GEN_SPURIOUS_TOL;
+        re = wr[k];
+        im = wi[k];
+        if (isfinite(re) && isfinite(im) && !spurious && hypot(re, im) < IK_GEN_INFINITE_ROOT) {
+            *degree += 1;
+        }
+        /* A real root, or a pair split by rounding (a double root near a singular set): the
+           refinement and the check by forward kinematics decide. */
+        if (fabs(im) <= IK_GEN_NEAR_REAL * (1.0 + fabs(re)) && isfinite(re)) {
+            ik_gen_back_substitute(ar, el, (const double (*)[12][12])mp, phi, re, t);
+            for (i = 0; i < 6; i++) roots[*n][ar->perm[i]] = t[i];
+            *n += 1;
+        }
+    }
+    return 1;
+}
+
+/* The pose E1(q1) ... E6(q6) M and each joint's current axis (w, p) (scaled lengths). */
+static void ik_gen_forward(const double ax[6][7], const double home[3][4], const double q[6],
+                           double pose[3][4], double cur[6][6]) {
+    double p[3][4] = {{1.0, 0.0, 0.0, 0.0}, {0.0, 1.0, 0.0, 0.0}, {0.0, 0.0, 1.0, 0.0}};
+    double m[3][4], r[3][3], np[3][4], o[3], d[3];
+    int i, rr, c;
+    for (i = 0; i < 6; i++) {
+        const double *w = ax[i] + 1, *pc = ax[i] + 4;
+        ik_gen_motion_apply((const double (*)[4])p, pc, w, o, d);
+        for (c = 0; c < 3; c++) {
+            cur[i][c] = d[c];
+            cur[i][3 + c] = o[c];
+        }
+        memset(m, 0, sizeof m);
+        if (ax[i][0] != 0.0) {
+            for (rr = 0; rr < 3; rr++) {
+                m[rr][rr] = 1.0;
+                m[rr][3] = q[i] * w[rr];
+            }
+        } else {
+            ik_gen_rodrigues(w, sin(q[i]), cos(q[i]), r);
+            for (rr = 0; rr < 3; rr++) {
+                for (c = 0; c < 3; c++) m[rr][c] = r[rr][c];
+                m[rr][3] = pc[rr] - ik_gen_dot3(r[rr], pc);
+            }
+        }
+        ik_gen_compose((const double (*)[4])p, (const double (*)[4])m, np);
+        memcpy(p, np, sizeof p);
+    }
+    ik_gen_compose((const double (*)[4])p, home, pose);
+}
+
+/* T - F entry by entry, and its largest size (NaN when any is). */
+static double ik_gen_error(const double f[3][4], const double t[3][4], double e[12]) {
+    double m = 0.0, d;
+    int r, c;
+    for (r = 0; r < 3; r++) {
+        for (c = 0; c < 4; c++) {
+            d = t[r][c] - f[r][c];
+            e[4 * r + c] = d;
+            if (isnan(d)) {
+                m = NAN;
+            } else if (!isnan(m)) {
+                m = fmax(m, fabs(d));
+            }
+        }
+    }
+    return m;
+}
+
+/* The Jacobian's columns (d pose / d q_i, entries as the error's) at the pose f. */
+static void ik_gen_jacobian(const double ax[6][7], const double f[3][4], const double cur[6][6],
+                            double cols[6][12]) {
+    double dt[3], d[3], col[3], rel[3];
+    int i, k, r;
+    memset(cols, 0, 6 * sizeof cols[0]);
+    for (i = 0; i < 6; i++) {
+        const double *w = cur[i], *p = cur[i] + 3;
+        if (ax[i][0] != 0.0) {
+            for (r = 0; r < 3; r++) cols[i][4 * r + 3] = w[r];
+        } else {
+            for (r = 0; r < 3; r++) rel[r] = f[r][3] - p[r];
+            ik_gen_cross3(w, rel, dt);
+            for (k = 0; k < 3; k++) {
+                for (r = 0; r < 3; r++) col[r] = f[r][k];
+                ik_gen_cross3(w, col, d);
+                for (r = 0; r < 3; r++) cols[i][4 * r + k] = d[r];
+            }
+            for (r = 0; r < 3; r++) cols[i][4 * r + 3] = dt[r];
+        }
+    }
+}
+
+/* Damped Gauss-Newton from q on the pose residual (scaled lengths); returns the final
+   residual. */
+static double ik_gen_refine(const double ax[6][7], const double home[3][4], const double t[3][4],
+                            double q[6]) {
+    double f[3][4], cur[6][6], e[12], f2[3][4], cur2[6][6], e2[12], cols[6][12];
+    double a[6][6], m[6][6], g[6], d[6], next[6], res, r2, tr, lambda = IK_GEN_DAMP_START, ratio;
+    int it, i, j, k, p[6], done;
+    ik_gen_forward(ax, home, q, f, cur);
+    res = ik_gen_error((const double (*)[4])f, t, e);
+    for (it = 0; it < IK_GEN_REFINE_ITERS; it++) {
+        if (res <= IK_GEN_EXACT_TOL || isnan(res)) break;
+        ik_gen_jacobian(ax, (const double (*)[4])f, (const double (*)[6])cur, cols);
+        tr = 0.0;
+        for (i = 0; i < 6; i++) {
+            for (j = 0; j < 6; j++) {
+                a[i][j] = -0.0;
+                for (k = 0; k < 12; k++) a[i][j] += cols[i][k] * cols[j][k];
+            }
+            g[i] = -0.0;
+            for (k = 0; k < 12; k++) g[i] += cols[i][k] * e[k];
+            tr += a[i][i];
+        }
+        for (done = 0; !done;) {
+            memcpy(m, a, sizeof m);
+            for (i = 0; i < 6; i++) m[i][i] += lambda * fmax(tr, IK_GEN_MIN_POSITIVE);
+            ratio = ik_gen_lu(&m[0][0], 6, p);
+            if (ratio > 0.0 && isfinite(ratio)) {
+                ik_gen_lu_solve(&m[0][0], 6, p, g, d);
+                for (i = 0; i < 6; i++) next[i] = q[i] + d[i];
+                ik_gen_forward(ax, home, next, f2, cur2);
+                r2 = ik_gen_error((const double (*)[4])f2, t, e2);
+                if (r2 < res) {
+                    memcpy(q, next, 6 * sizeof q[0]);
+                    memcpy(f, f2, sizeof f);
+                    memcpy(cur, cur2, sizeof cur);
+                    memcpy(e, e2, sizeof e);
+                    res = r2;
+                    lambda = fmax(lambda * 0.01, IK_GEN_DAMP_MIN);
+                    done = 1;
+                    continue;
+                }
+            }
+            lambda *= 100.0;
+            if (lambda > IK_GEN_DAMP_MAX) return res;
+        }
+    }
+    return res;
+}
+
+/* Two joint vectors that are one solution (angles compared on the circle). */
+static int ik_gen_same(const double a[6], const double b[6], const int prismatic[6]) {
+    int i;
+    for (i = 0; i < 6; i++) {
+        const double d = prismatic[i] ? a[i] - b[i] : ik_gen_wrap(a[i] - b[i]);
+        if (!(fabs(d) <= IK_GEN_SAME_TOL)) return 0;
+    }
+    return 1;
+}
+
+/* Adds the refined candidate q (residual res) to out, or improves the solution it repeats;
+   returns its index, -1 when out is full. */
+static int ik_gen_add(ik_gen_out *out, const double q[6], double res, const int prismatic[6]) {
+    int i;
+    for (i = 0; i < out->n; i++) {
+        if (ik_gen_same(out->q[i], q, prismatic)) {
+            if (res < out->residual[i]) {
+                memcpy(out->q[i], q, 6 * sizeof q[0]);
+                out->residual[i] = res;
+            }
+            return i;
+        }
+    }
+    if (out->n < IK_GEN_MAX) {
+        memcpy(out->q[out->n], q, 6 * sizeof q[0]);
+        out->residual[out->n] = res;
+        out->n += 1;
+        return out->n - 1;
+    }
+    return -1;
+}
+
+/* Every solution of E1 ... E6 M = T for a 6R chain (axes [kind, w, p], home and target
+   positions in the robot's lengths, len its scale): the arrangements are tried in order from
+   first; each nondegenerate one gives its real roots, each back-substituted, refined and
+   checked by forward kinematics, until one arrangement's roots all gave exact solutions of
+   their own. */
+static void ik_gen_solve(const double axes[6][7], const double home[3][4],
+                         const double target[4][4], double len, ik_gen_tol tol, int first,
+                         ik_gen_out *out) {
+    double roots[24][6];
+    ik_gen_elim el;
+    double ax[6][7], hm[3][4], tg[3][4], g[3][4], ihm[3][4], q[6], res;
+    ik_gen_joint js[6];
+    ik_gen_arranged ar;
+    int prismatic[6], hit[IK_GEN_MAX], i, j, k, n, degree, arr, at, hits;
+    memset(out, 0, sizeof *out);
+    memcpy(ax, axes, sizeof ax);
+    memcpy(hm, home, sizeof hm);
+    memcpy(tg, target, sizeof tg);
+    for (i = 0; i < 6; i++)
+        for (k = 4; k < 7; k++) ax[i][k] /= len;
+    for (i = 0; i < 3; i++) {
+        hm[i][3] /= len;
+        tg[i][3] /= len;
+    }
+    for (i = 0; i < 6; i++) {
+        prismatic[i] = ax[i][0] != 0.0;
+        if (prismatic[i]) return;
+    }
+    ik_gen_inverse((const double (*)[4])hm, ihm);
+    ik_gen_compose((const double (*)[4])tg, (const double (*)[4])ihm, g);
+    for (i = 0; i < 6; i++) {
+        for (k = 0; k < 3; k++) {
+            js[i].w[k] = ax[i][1 + k];
+            js[i].c[k] = ax[i][4 + k];
+        }
+    }
+    /* The arrangement that served at the derivation's generic target first, then the others. */
+    for (k = 0; k < 12; k++) {
+        arr = k == 0 ? first % 12 : k <= first % 12 ? k - 1 : k;
+        if (out->n_arr == 12) break;
+        ik_gen_arrange(js, (const double (*)[4])g, arr, &ar);
+        ik_gen_eliminate(&ar, &el);
+        if (el.rank_ratio < IK_GEN_RANK_TOL) continue;
+        if (!ik_gen_candidates(&ar, &el, roots, &n, &degree)) continue;
+        if (out->n_arr == 0) out->degree = degree;
+        if (out->n_arr < 3) out->arrangements[out->n_arr] = arr;
+        out->n_arr += 1;
+        /* The solutions this arrangement's roots reached (exactly). */
+        memset(hit, 0, sizeof hit);
+        for (i = 0; i < n; i++) {
+            memcpy(q, roots[i], sizeof q);
+            res = ik_gen_refine((const double (*)[7])ax, (const double (*)[4])hm,
+                                (const double (*)[4])tg, q);
+            if (isnan(res) || res > tol.keep) continue;
+            for (j = 0; j < 6; j++) q[j] = ik_gen_wrap(q[j]);
+            at = ik_gen_add(out, q, res, prismatic);
+            if (at >= 0) hit[at] |= res <= tol.pose;
+        }
+        /* Every root gave its own exact solution: the set is complete. */
+        for (hits = 0, i = 0; i < IK_GEN_MAX; i++) hits += hit[i];
+        if (hits == n) break;
+    }
+}
+
+/* Balancing (Parlett-Reinsch, powers of two): a similar matrix with rows and columns of
+   comparable norm. */
+static void ik_gen_balance(double a[24][24]) {
+    const double radix = 2.0;
+    int done = 0, sweeps = 0, i, j;
+    double c, r, s, f, g, gi;
+    while (!done && sweeps < 100) {
+        done = 1;
+        sweeps += 1;
+        for (i = 0; i < 24; i++) {
+            c = 0.0;
+            r = 0.0;
+            for (j = 0; j < 24; j++) {
+                if (j != i) {
+                    c += fabs(a[j][i]);
+                    r += fabs(a[i][j]);
+                }
+            }
+            if (c == 0.0 || r == 0.0 || !isfinite(c + r)) continue;
+            s = c + r;
+            f = 1.0;
+            g = r / radix;
+            while (c < g) {
+                f *= radix;
+                c *= radix * radix;
+            }
+            g = r * radix;
+            while (c > g) {
+                f /= radix;
+                c /= radix * radix;
+            }
+            if ((c + r) / f < 0.95 * s) {
+                done = 0;
+                gi = 1.0 / f;
+                for (j = 0; j < 24; j++) a[i][j] *= gi;
+                for (j = 0; j < 24; j++) a[j][i] *= f;
+            }
+        }
+    }
+}
+
+/* Reduction to upper Hessenberg form by stabilised elementary similarity transformations. */
+static void ik_gen_hessenberg(double a[24][24]) {
+    int m, i, j, ii;
+    double x, y, t;
+    for (m = 1; m < 23; m++) {
+        x = 0.0;
+        i = m;
+        for (j = m; j < 24; j++) {
+            if (fabs(a[j][m - 1]) > fabs(x)) {
+                x = a[j][m - 1];
+                i = j;
+            }
+        }
+        if (i != m) {
+            for (j = m - 1; j < 24; j++) {
+                t = a[i][j];
+                a[i][j] = a[m][j];
+                a[m][j] = t;
+            }
+            for (j = 0; j < 24; j++) {
+                t = a[j][i];
+                a[j][i] = a[j][m];
+                a[j][m] = t;
+            }
+        }
+        if (x != 0.0) {
+            for (ii = m + 1; ii < 24; ii++) {
+                y = a[ii][m - 1];
+                if (y != 0.0) {
+                    y /= x;
+                    a[ii][m - 1] = 0.0;
+                    for (j = m; j < 24; j++) a[ii][j] -= y * a[m][j];
+                    for (j = 0; j < 24; j++) a[j][m] += y * a[j][ii];
+                }
+            }
+        }
+    }
+}
+
+/* One Francis double-shift QR sweep of rows and columns l..nn (1-based) from row m, with the
+   shift's (p, q, r) given: the classical hqr's inner loop. */
+static void ik_gen_qr_sweep(double a[24][24], int l, int m, int nn, double p, double q,
+                            double r) {
+#define IK_GEN_A(i, j) a[(i) - 1][(j) - 1]
+    double s, x = 0.0, y, z, norm;
+    int i, j, k, mmin;
+    for (i = m + 2; i <= nn; i++) {
+        IK_GEN_A(i, i - 2) = 0.0;
+        if (i != m + 2) IK_GEN_A(i, i - 3) = 0.0;
+    }
+    for (k = m; k < nn; k++) {
+        if (k != m) {
+            p = IK_GEN_A(k, k - 1);
+            q = IK_GEN_A(k + 1, k - 1);
+            r = 0.0;
+            if (k != nn - 1) r = IK_GEN_A(k + 2, k - 1);
+            x = fabs(p) + fabs(q) + fabs(r);
+            if (x != 0.0) {
+                p /= x;
+                q /= x;
+                r /= x;
+            }
+        }
+        norm = sqrt(p * p + q * q + r * r);
+        s = p >= 0.0 ? norm : -norm;
+        if (s == 0.0) continue;
+        if (k == m) {
+            if (l != m) IK_GEN_A(k, k - 1) = -IK_GEN_A(k, k - 1);
+        } else {
+            IK_GEN_A(k, k - 1) = -s * x;
+        }
+        p += s;
+        x = p / s;
+        y = q / s;
+        z = r / s;
+        q /= p;
+        r /= p;
+        for (j = k; j <= nn; j++) {
+            p = IK_GEN_A(k, j) + q * IK_GEN_A(k + 1, j);
+            if (k != nn - 1) {
+                p += r * IK_GEN_A(k + 2, j);
+                IK_GEN_A(k + 2, j) -= p * z;
+            }
+            IK_GEN_A(k + 1, j) -= p * y;
+            IK_GEN_A(k, j) -= p * x;
+        }
+        mmin = nn < k + 3 ? nn : k + 3;
+        for (i = l; i <= mmin; i++) {
+            p = x * IK_GEN_A(i, k) + y * IK_GEN_A(i, k + 1);
+            if (k != nn - 1) {
+                p += z * IK_GEN_A(i, k + 2);
+                IK_GEN_A(i, k + 2) -= p * r;
+            }
+            IK_GEN_A(i, k + 1) -= p * q;
+            IK_GEN_A(i, k) -= p;
+        }
+    }
+#undef IK_GEN_A
+}
+
+/* The eigenvalues (wr + i wi) of a real 24 x 24 matrix (destroyed): balancing, Hessenberg
+   reduction and the Francis double-shift QR iteration (the classical hqr, 1-based indices);
+   0 when an eigenvalue takes more than 60 iterations. */
+static int ik_gen_eigenvalues(double a[24][24], double wr[24], double wi[24]) {
+#define IK_GEN_A(i, j) a[(i) - 1][(j) - 1]
+    const int n = 24;
+    double anorm = 0.0, t = 0.0, p = 0.0, q = 0.0, r = 0.0, s, w, x, y, z, u, v;
+    int nn, its, l, m, i, j, i1, i2;
+    ik_gen_balance(a);
+    ik_gen_hessenberg(a);
+    for (i = 1; i <= n; i++)
+        for (j = i - 1 > 1 ? i - 1 : 1; j <= n; j++) anorm += fabs(IK_GEN_A(i, j));
+    if (!isfinite(anorm)) return 0;
+    nn = n;
+    while (nn >= 1) {
+        its = 0;
+        for (;;) {
+            for (l = nn; l >= 2; l--) {
+                s = fabs(IK_GEN_A(l - 1, l - 1)) + fabs(IK_GEN_A(l, l));
+                if (s == 0.0) s = anorm;
+                if (fabs(IK_GEN_A(l, l - 1)) + s == s) {
+                    IK_GEN_A(l, l - 1) = 0.0;
+                    break;
+                }
+            }
+            x = IK_GEN_A(nn, nn);
+            if (l == nn) {
+                wr[nn - 1] = x + t;
+                wi[nn - 1] = 0.0;
+                nn -= 1;
+                break;
+            }
+            y = IK_GEN_A(nn - 1, nn - 1);
+            w = IK_GEN_A(nn, nn - 1) * IK_GEN_A(nn - 1, nn);
+            if (l == nn - 1) {
+                p = 0.5 * (y - x);
+                q = p * p + w;
+                z = sqrt(fabs(q));
+                x += t;
+                i1 = nn - 2;
+                i2 = nn - 1;
+                if (q >= 0.0) {
+                    z = p + (p >= 0.0 ? z : -z);
+                    wr[i1] = x + z;
+                    wr[i2] = x + z;
+                    if (z != 0.0) wr[i2] = x - w / z;
+                    wi[i1] = 0.0;
+                    wi[i2] = 0.0;
+                } else {
+                    wr[i1] = x + p;
+                    wr[i2] = x + p;
+                    wi[i1] = -z;
+                    wi[i2] = z;
+                }
+                nn -= 2;
+                break;
+            }
+            if (its == 60) return 0;
+            if (its == 10 || its == 20 || its == 40) {
+                /* An exceptional shift. */
+                t += x;
+                for (i = 1; i <= nn; i++) IK_GEN_A(i, i) -= x;
+                s = fabs(IK_GEN_A(nn, nn - 1)) + fabs(IK_GEN_A(nn - 1, nn - 2));
+                x = 0.75 * s;
+                y = x;
+                w = -0.4375 * s * s;
+            }
+            its += 1;
+            for (m = nn - 2; m >= l; m--) {
+                z = IK_GEN_A(m, m);
+                r = x - z;
+                s = y - z;
+                p = (r * s - w) / IK_GEN_A(m + 1, m) + IK_GEN_A(m, m + 1);
+                q = IK_GEN_A(m + 1, m + 1) - z - r - s;
+                r = IK_GEN_A(m + 2, m + 1);
+                s = fabs(p) + fabs(q) + fabs(r);
+                p /= s;
+                q /= s;
+                r /= s;
+                if (m == l) break;
+                u = fabs(IK_GEN_A(m, m - 1)) * (fabs(q) + fabs(r));
+                v = fabs(p) *
+                    (fabs(IK_GEN_A(m - 1, m - 1)) + fabs(z) + fabs(IK_GEN_A(m + 1, m + 1)));
+                if (u + v == v) break;
+            }
+            ik_gen_qr_sweep(a, l, m, nn, p, q, r);
+            if (l >= nn - 1) break;
+        }
+    }
+    return 1;
+#undef IK_GEN_A
+}
