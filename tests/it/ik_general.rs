@@ -526,3 +526,115 @@ fn report_and_walkthrough_state_the_elimination_and_its_degree() {
     assert!(t.contains("det M(x) = 0"), "{t}");
     assert!(t.contains("the results agree"), "{t}");
 }
+
+/// A 6R with every length a symbol (`d1 … d6`, `a1 … a6`) and the skew arm's twists.
+fn symbolic_toml() -> String {
+    let alphas = ["pi/3", "pi/6", "pi/2", "-pi/2", "2*pi/5", "0"];
+    let mut s = "name = \"symbolic 6R\"\nconvention = \"dh\"\n".to_string();
+    for (i, al) in alphas.iter().enumerate() {
+        s.push_str(&format!(
+            "\n[[joint]]\ntype = \"revolute\"\ntheta = \"q{k}\"\nd = \"d{k}\"\na = \"a{k}\"\nalpha = \"{al}\"\n",
+            k = i + 1
+        ));
+    }
+    s
+}
+
+/// The exact Raghavan–Roth equations (`ik::general::exact`), evaluated at random parameters
+/// and random targets, equal the coefficients the numeric core samples (3 x 3 x 3 grid and a
+/// three-point DFT in f64) for the skew 6R, the Jaco-style arm, a random numeric 6R and a 6R
+/// with every length a symbol.
+///
+/// Tolerance: both sides are compared in the core's units (lengths over the arm's scale, so
+/// every number is of order one). The core's coefficients are combinations of 27 samples of
+/// about 60 flops each, and `Bm` is read back through a Householder QR of a 14 x 8 matrix:
+/// some 2,000 roundings of 1.1e-16 relative to the equation's largest entry, 2.2e-13; the
+/// exact side's f64 evaluation adds as much again. 1e-10 times the row's largest entry leaves
+/// a margin of several hundred and is still far below any coefficient's size (a wrong
+/// coefficient is off by order one).
+#[test]
+fn exact_equations_equal_the_sampled_coefficients() {
+    let mut rng = Rng::new(71);
+    let random: Vec<Row> = (0..6)
+        .map(|_| row(rng.range(-0.3, 0.3), rng.range(0.0, 0.4), ("7/10", 0.7)))
+        .collect();
+    let mut robots: Vec<(String, String, usize)> = vec![
+        ("skew".into(), dh_toml("skew", &skew_offset()), 0),
+        ("jaco".into(), dh_toml("jaco", &jaco()), 0),
+        ("random".into(), dh_toml("random", &random), 0),
+    ];
+    robots.push(("symbolic".into(), symbolic_toml(), 12));
+    for (name, text, n_params) in robots {
+        let robot = dqsym::parse_robot(&text, &name, &dqsym::eval_scalar_text).expect("robot");
+        let sol = solve(
+            &robot,
+            &IkOptions {
+                free: None,
+                method: IkMethod::General,
+            },
+        )
+        .expect("ik");
+        let info = sol.general.clone().expect("general");
+        let eq = dqsym::ik::general::exact::exact_equations(&sol, &info).expect("exact");
+        assert_eq!(sol.params.len(), n_params, "{name}: {:?}", sol.params);
+        let arr = usize::from(eq.arrangement.0) * 6;
+        for trial in 0..6 {
+            let params: Vec<(String, f64)> = sol
+                .params
+                .iter()
+                .map(|p| {
+                    (
+                        p.clone(),
+                        rng.range(0.05, 0.5) * if trial % 2 == 0 { 1.0 } else { -1.0 },
+                    )
+                })
+                .collect();
+            let pr: Vec<(&str, f64)> = params.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+            // The target: a random rotation (three turns) and a random position.
+            let (a, b, c) = (rng.range(-PI, PI), rng.range(-PI, PI), rng.range(-PI, PI));
+            let rot = |t: f64, axis: usize| -> M4 {
+                let (s, co) = t.sin_cos();
+                let mut m: M4 =
+                    std::array::from_fn(|r| std::array::from_fn(|k| f64::from(u8::from(r == k))));
+                let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+                m[i][i] = co;
+                m[j][j] = co;
+                m[i][j] = -s;
+                m[j][i] = s;
+                m
+            };
+            let mut t = mul(&mul(&rot(a, 2), &rot(b, 1)), &rot(c, 0));
+            for r in 0..3 {
+                t[r][3] = rng.range(-0.8, 0.8);
+            }
+            let env = |n: &str| -> Option<f64> {
+                for (r, row) in dqsym::ik::TARGET_SYMBOLS.iter().enumerate() {
+                    if let Some(c) = row.iter().position(|x| *x == n) {
+                        return Some(t[r][c]);
+                    }
+                }
+                pr.iter().find(|(k, _)| *k == n).map(|(_, v)| *v)
+            };
+            let (am, bm) = eq.eval(&env).expect("eval");
+            let (sam, sbm) =
+                dqsym::ik::general::sampled_equations(&sol, &t, &pr, arr).expect("sampled");
+            assert!(
+                bm.iter().flatten().any(|x| x.abs() > 1e-3),
+                "{name}: Bm vanishes"
+            );
+            // Every entry of one equation has the same degree in lengths, so the comparison
+            // relative to the equation's largest entry is the one in the core's units.
+            for e in 0..14 {
+                let exact: Vec<f64> = am[e].iter().flatten().chain(&bm[e]).copied().collect();
+                let sampled: Vec<f64> = sam[e].iter().flatten().chain(&sbm[e]).copied().collect();
+                let big = exact.iter().fold(1e-300_f64, |m, x| m.max(x.abs()));
+                for (i, (x, y)) in exact.iter().zip(&sampled).enumerate() {
+                    assert!(
+                        (x - y).abs() <= 1e-10 * big,
+                        "{name} trial {trial}: equation {e} entry {i}: exact {x} sampled {y} (largest {big})"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -46,6 +46,7 @@
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod core;
 pub(crate) mod emit;
+pub mod exact;
 
 use super::check::{self, AxisData};
 use super::{IkSolution, NumSolution, TARGET_SYMBOLS};
@@ -119,6 +120,72 @@ fn run(
         .try_into()
         .map_err(|_| format!("the general method needs 6 joints, not {}", axes.len()))?;
     Ok(core::gen_solve(&ax, home, target, len, tol(), first))
+}
+
+/// What [`sampled_equations`] could not do.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SampleError {
+    /// A parameter without a value, or an arm that is not six joints.
+    #[error("{0}")]
+    Input(String),
+}
+
+/// The numeric core's sampled equations of arrangement `arr` (`shift + 6 reversed`) at a
+/// numeric target: `(am, bm)` as [`exact::ExactEquations`] lays them out, with lengths back in
+/// the robot's units (the core divides them by the arm's scale). `bm` is read back from the
+/// core's QR factors (`Bm = Q R Pᵀ`), so it carries their rounding too.
+///
+/// # Errors
+/// A parameter without a value, or not six joints.
+#[allow(clippy::type_complexity)]
+pub fn sampled_equations(
+    sol: &IkSolution,
+    target: &[[f64; 4]; 4],
+    params: &[(&str, f64)],
+    arr: usize,
+) -> Result<([[[f64; 9]; 3]; 14], [[f64; 8]; 14]), SampleError> {
+    let env = |n: &str| params.iter().find(|(k, _)| *k == n).map(|(_, v)| *v);
+    let (axes, home) = check::axis_data(sol, &env).map_err(SampleError::Input)?;
+    if axes.len() != 6 {
+        return Err(SampleError::Input(format!(
+            "the general method needs 6 joints, not {}",
+            axes.len()
+        )));
+    }
+    let len = check::scale(&axes, &home, target);
+    let js: [core::J; 6] = std::array::from_fn(|i| core::J {
+        w: [axes[i][1], axes[i][2], axes[i][3]],
+        c: [axes[i][4] / len, axes[i][5] / len, axes[i][6] / len],
+    });
+    let mut hm = home;
+    let mut tg = [[0.0; 4]; 3];
+    tg.copy_from_slice(&target[..3]);
+    for r in 0..3 {
+        hm[r][3] /= len;
+        tg[r][3] /= len;
+    }
+    let g = core::compose(&tg, &core::inverse(&hm));
+    let el = core::Arranged::new(&js, &g, arr % 12)
+        .elim()
+        .ok_or_else(|| SampleError::Input("no elimination".into()))?;
+    let mut am = el.am;
+    let mut bm = [[0.0; 8]; 14];
+    for (j, &col) in el.piv.iter().enumerate() {
+        for (e, row) in bm.iter_mut().enumerate() {
+            row[col] = (0..8).map(|i| el.qt[i][e] * el.r[i][j]).sum();
+        }
+    }
+    for e in 0..14 {
+        let k = len.powi(exact::LENGTH_DEGREE[e]);
+        for x in am[e].iter_mut().flatten() {
+            *x *= k;
+        }
+        for x in &mut bm[e] {
+            *x *= k;
+        }
+    }
+    Ok((am, bm))
 }
 
 /// The degree reached and the arrangement at a generic target: the parameters at `0.55 +
