@@ -72,6 +72,7 @@ pub fn walk_ik(robot: &Robot, sol: &IkSolution) -> Result<Walkthrough, WalkError
             title: Prose::text("The general 6R elimination".to_owned()),
             blocks,
         });
+        steps.push(exact_step(sol, info)?);
     }
     steps.push(solutions_step(sol, &mechanism, &scene)?);
     let mut w = Walkthrough {
@@ -82,6 +83,33 @@ pub fn walk_ik(robot: &Robot, sol: &IkSolution) -> Result<Walkthrough, WalkError
     };
     w.prepare();
     Ok(w)
+}
+
+/// The general method's equations, exactly: the target's quantities, every equation's `Am`
+/// and `Bm` coefficients and its half-angle polynomial (`ik::general::exact`).
+fn exact_step(sol: &IkSolution, info: &crate::ik::general::GeneralInfo) -> Result<Step, WalkError> {
+    let err = |e: crate::ScalarError| WalkError::Config(e.to_string());
+    let eq = crate::ik::general::exact::exact_equations(sol, info).map_err(err)?;
+    let mut blocks = vec![Block::Text(Prose::text(format!(
+        "Bm X12 = Am X45 with every coefficient exact: {}.",
+        crate::ik::general::exact_scope_text(sol, &eq)
+    )))];
+    for g in eq.shown(sol).map_err(err)? {
+        blocks.push(Block::Text(Prose::text(format!("{}:", g.title))));
+        blocks.push(Block::Formulas(
+            g.items
+                .into_iter()
+                .map(|s| Shown {
+                    label: s.label,
+                    parts: vec![s.expr],
+                })
+                .collect(),
+        ));
+    }
+    Ok(Step::Explain {
+        title: Prose::text("The exact equations".to_owned()),
+        blocks,
+    })
 }
 
 /// What the target's entries, the joint variables and the parameters are.

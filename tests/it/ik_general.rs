@@ -525,6 +525,171 @@ fn report_and_walkthrough_state_the_elimination_and_its_degree() {
     assert!(t.contains("The general 6R elimination"), "{t}");
     assert!(t.contains("det M(x) = 0"), "{t}");
     assert!(t.contains("the results agree"), "{t}");
+    assert!(t.contains("The exact equations"), "{t}");
+    assert!(t.contains("where exact arithmetic stops"), "{t}");
+}
+
+/// Plain text with its products written out: the plain printer writes a product as
+/// juxtaposition (`1/10 (10 px - r13)`), the language wants `*` between the factors.
+fn explicit(plain: &str) -> String {
+    let ops = ["+", "-", "*", "/"];
+    let toks: Vec<&str> = plain.split(' ').collect();
+    let mut out = String::new();
+    for (i, t) in toks.iter().enumerate() {
+        if i > 0 {
+            let joined = !ops.contains(&toks[i - 1]) && !ops.contains(t);
+            out.push_str(if joined { "*" } else { " " });
+        }
+        out.push_str(t);
+    }
+    out
+}
+
+/// The report prints the exact equations: every `A`, `B` and `g` line read back by the
+/// language is, at a random target, the value the exact equations (checked against the
+/// numeric core by `exact_equations_equal_the_sampled_coefficients`) give; the half-angle
+/// polynomials `P` are the Am coefficients combined by the weights of `(1, cos, sin) (1 +
+/// x^2) = (1 + x^2, 1 - x^2, 2 x)`; the LaTeX blocks render in KaTeX.
+#[test]
+fn report_prints_the_exact_equations() {
+    let rows = skew_offset();
+    let text = dh_toml("skew", &rows);
+    let robot = dqsym::parse_robot(&text, "skew", &dqsym::eval_scalar_text).expect("robot");
+    let sol = solve(&robot, &IkOptions::default()).expect("ik");
+    let info = sol.general.clone().expect("general");
+    let eq = dqsym::ik::general::exact::exact_equations(&sol, &info).expect("exact");
+    let plain = dqsym::ik::ik_report(&sol, dqsym::Format::Plain, true).expect("plain");
+    assert!(plain.contains("where exact arithmetic stops"), "{plain}");
+    let mut rng = Rng::new(81);
+    let q: Vec<f64> = (0..6).map(|_| rng.range(-PI, PI)).collect();
+    let t = dh_pose(&rows, &q);
+    let target = |n: &str| -> Option<f64> {
+        dqsym::ik::TARGET_SYMBOLS
+            .iter()
+            .enumerate()
+            .find_map(|(r, row)| row.iter().position(|x| *x == n).map(|c| t[r][c]))
+    };
+    let (am, bm) = eq.eval(&target).expect("eval");
+    let g: Vec<f64> = eq.g.iter().map(|x| x.eval(&target).expect("g")).collect();
+    let env = |n: &str| {
+        eq.g_names
+            .iter()
+            .position(|k| k == n)
+            .map(|i| g[i])
+            .or_else(|| target(n))
+    };
+    // The monomial label of (k3, k4, k5) in (1, cos, sin), as the report writes it.
+    let trig = |k: usize, v: &str| match k {
+        1 => format!("cos {v}"),
+        2 => format!("sin {v}"),
+        _ => String::new(),
+    };
+    let label = |ks: &[(usize, &str)]| {
+        let parts: Vec<String> = ks
+            .iter()
+            .map(|(k, v)| trig(*k, v))
+            .filter(|x| !x.is_empty())
+            .collect();
+        if parts.is_empty() {
+            "1".to_string()
+        } else {
+            parts.join(" ")
+        }
+    };
+    let mut want: Vec<(String, f64)> = Vec::new();
+    for e in 0..14 {
+        want.push((eq.g_names[e].clone(), g[e]));
+        for k in 0..3 {
+            for m in 0..9 {
+                let l = label(&[(k, "q3"), (m / 3, "q4"), (m % 3, "q5")]);
+                want.push((format!("A{}[{l}]", e + 1), am[e][k][m]));
+            }
+        }
+        for m in 1..9 {
+            let l = label(&[(m / 3, "q1"), (m % 3, "q2")]);
+            want.push((format!("B{}[{l}]", e + 1), bm[e][m - 1]));
+        }
+    }
+    let mut seen = 0;
+    for line in plain.lines() {
+        let Some((name, expr)) = line.trim().split_once(" = ") else {
+            continue;
+        };
+        let name = name.split(" (").next().unwrap_or(name);
+        let Some((_, w)) = want.iter().find(|(n, _)| n == name) else {
+            continue;
+        };
+        let v = dqsym::eval_scalar_text(&explicit(expr))
+            .unwrap_or_else(|e| panic!("{line}: {e}"))
+            .eval(&env)
+            .expect("value");
+        assert!(
+            (v - w).abs() <= 1e-12 * (1.0 + w.abs()),
+            "{line}: {v} vs {w}"
+        );
+        seen += 1;
+    }
+    let nonzero = want.iter().filter(|(_, w)| w.abs() > 1e-12).count();
+    assert!(
+        seen >= nonzero,
+        "{seen} lines read back, {nonzero} nonzero coefficients"
+    );
+    // The half-angle polynomial of equation 1 at x = tan(q/2) equals (1 + x^2)^3 times
+    // Am(q3) X45 at those angles.
+    let (x3, x4, x5) = (0.3_f64, -0.7_f64, 1.1_f64);
+    let mut p1 = 0.0;
+    for line in plain.lines() {
+        let Some((name, expr)) = line.trim().split_once(" = ") else {
+            continue;
+        };
+        let Some(mono) = name.strip_prefix("P1[").and_then(|m| m.strip_suffix(']')) else {
+            continue;
+        };
+        let mut term = dqsym::eval_scalar_text(&explicit(expr))
+            .expect("P")
+            .eval(&env)
+            .expect("v");
+        for f in mono.split(' ').filter(|f| *f != "1") {
+            let (v, p) = f
+                .split_once('^')
+                .map_or((f, 1), |(v, p)| (v, p.parse().expect("power")));
+            let x = match v {
+                "x_q3" => x3,
+                "x_q4" => x4,
+                "x_q5" => x5,
+                other => panic!("{other}"),
+            };
+            term *= x.powi(p);
+        }
+        p1 += term;
+    }
+    let cs = |x: f64| [1.0, (1.0 - x * x) / (1.0 + x * x), 2.0 * x / (1.0 + x * x)];
+    let (t3, t4, t5) = (cs(x3), cs(x4), cs(x5));
+    let mut direct = 0.0;
+    for k in 0..3 {
+        for m in 0..9 {
+            direct += am[0][k][m] * t3[k] * t4[m / 3] * t5[m % 3];
+        }
+    }
+    let w = (1.0 + x3 * x3) * (1.0 + x4 * x4) * (1.0 + x5 * x5);
+    assert!(
+        (p1 - w * direct).abs() <= 1e-12 * (1.0 + p1.abs()),
+        "{p1} vs {}",
+        w * direct
+    );
+    let latex = dqsym::ik::ik_report(&sol, dqsym::Format::Latex, true).expect("latex");
+    let blocks: Vec<String> = latex
+        .split("\\begin{aligned}")
+        .skip(1)
+        .map(|b| {
+            format!(
+                "\\begin{{aligned}}{}\\end{{aligned}}",
+                b.split("\\end{aligned}").next().unwrap_or_default()
+            )
+        })
+        .collect();
+    assert!(blocks.len() >= 30, "{} blocks", blocks.len());
+    crate::tools::katex_all(&blocks, "the general method's exact equations");
 }
 
 /// A 6R with every length a symbol (`d1 … d6`, `a1 … a6`) and the skew arm's twists.

@@ -382,3 +382,163 @@ impl ExactEquations {
         Ok((am, bm))
     }
 }
+
+/// One coefficient as the report and the walkthrough show it.
+#[derive(Clone, Debug)]
+pub struct Shown {
+    /// Its name in plain text (`A3[cos q3 sin q5]`).
+    pub label: String,
+    /// Its name in LaTeX.
+    pub tex: String,
+    /// Its closed form.
+    pub expr: crate::Expr,
+}
+
+/// A titled list of coefficients.
+#[derive(Clone, Debug)]
+pub struct ShownGroup {
+    /// The title (plain text).
+    pub title: String,
+    /// The nonzero coefficients.
+    pub items: Vec<Shown>,
+}
+
+/// `(1, cos, sin)` of a variable, plain and LaTeX (`""` for the 1).
+fn trig_factor(k: usize, var: &str) -> (String, String) {
+    let tex = crate::emit::latex_symbol(var);
+    match k {
+        1 => (format!("cos {var}"), format!("\\cos {tex}")),
+        2 => (format!("sin {var}"), format!("\\sin {tex}")),
+        _ => (String::new(), String::new()),
+    }
+}
+
+/// `x^p` of a half-angle tangent `x_var`.
+fn power_factor(p: usize, var: &str) -> (String, String) {
+    let tex = format!("x_{{{}}}", crate::emit::latex_symbol(var));
+    match p {
+        1 => (format!("x_{var}"), tex),
+        2 => (format!("x_{var}^2"), format!("{tex}^{{2}}")),
+        _ => (String::new(), String::new()),
+    }
+}
+
+fn monomial(factors: &[(String, String)]) -> (String, String) {
+    let plain: Vec<&str> = factors
+        .iter()
+        .map(|f| f.0.as_str())
+        .filter(|s| !s.is_empty())
+        .collect();
+    let tex: Vec<&str> = factors
+        .iter()
+        .map(|f| f.1.as_str())
+        .filter(|s| !s.is_empty())
+        .collect();
+    if plain.is_empty() {
+        ("1".into(), "1".into())
+    } else {
+        (plain.join(" "), tex.join(" \\, "))
+    }
+}
+
+impl ExactEquations {
+    /// Every nonzero coefficient in closed form, in groups: the target's quantities, then per
+    /// equation its `Am` and `Bm` coefficients, then per equation its half-angle polynomial.
+    ///
+    /// # Errors
+    /// A closed form that fails (term limit, work budget).
+    pub fn shown(&self, sol: &IkSolution) -> Result<Vec<ShownGroup>, ScalarError> {
+        let var = |i: usize| sol.variables[self.order[i]].as_str();
+        let mut raw: Vec<(String, Vec<(String, String, Scalar)>)> = Vec::new();
+        raw.push((
+            "the target's quantities (u = H p6, v = H w6: the point and direction of the last axis carried by the target)".into(),
+            self.g_names
+                .iter()
+                .zip(&self.g)
+                .zip(QUANTITY_NAMES)
+                .map(|((n, g), q)| {
+                    (
+                        format!("{n} ({q} of u, v)"),
+                        crate::emit::latex_symbol(n),
+                        g.clone(),
+                    )
+                })
+                .collect(),
+        ));
+        for e in 0..14 {
+            let mut items = Vec::new();
+            for k in 0..3 {
+                for m in 0..9 {
+                    let (p, t) = monomial(&[
+                        trig_factor(k, var(2)),
+                        trig_factor(m / 3, var(3)),
+                        trig_factor(m % 3, var(4)),
+                    ]);
+                    items.push((
+                        format!("A{}[{p}]", e + 1),
+                        format!("A_{{{}}}[{t}]", e + 1),
+                        self.am[e][k][m].clone(),
+                    ));
+                }
+            }
+            for m in 1..9 {
+                let (p, t) = monomial(&[trig_factor(m / 3, var(0)), trig_factor(m % 3, var(1))]);
+                items.push((
+                    format!("B{}[{p}]", e + 1),
+                    format!("B_{{{}}}[{t}]", e + 1),
+                    self.bm[e][m - 1].clone(),
+                ));
+            }
+            raw.push((
+                format!(
+                    "equation {} ({}): the Am and Bm coefficients",
+                    e + 1,
+                    QUANTITY_NAMES[e]
+                ),
+                items,
+            ));
+        }
+        for (e, h) in self.half_angle()?.iter().enumerate() {
+            let mut items = Vec::new();
+            for (j, row) in h.iter().enumerate() {
+                for (ab, c) in row.iter().enumerate() {
+                    let (p, t) = monomial(&[
+                        power_factor(j, var(2)),
+                        power_factor(ab / 3, var(3)),
+                        power_factor(ab % 3, var(4)),
+                    ]);
+                    items.push((
+                        format!("P{}[{p}]", e + 1),
+                        format!("P_{{{}}}[{t}]", e + 1),
+                        c.clone(),
+                    ));
+                }
+            }
+            raw.push((
+                format!("equation {} in half-angle tangents: P{} = (1 + x^2) (1 + x^2) (1 + x^2) (Am X45)", e + 1, e + 1),
+                items,
+            ));
+        }
+        let mut out = Vec::new();
+        for (title, items) in raw {
+            let nonzero: Vec<(String, String, Scalar)> = items
+                .into_iter()
+                .filter(|(_, _, s)| !s.is_zero_value())
+                .collect();
+            let forms = crate::scalar::par_map(&nonzero, |(_, _, s)| crate::closed_form(s));
+            let items = nonzero
+                .into_iter()
+                .zip(forms)
+                .map(|((label, tex, _), f)| {
+                    Ok(Shown {
+                        label,
+                        tex,
+                        expr: f?,
+                    })
+                })
+                .collect::<Result<Vec<_>, ScalarError>>()?;
+            out.push(ShownGroup { title, items });
+        }
+        Ok(out)
+    }
+}

@@ -37,10 +37,24 @@
 //! the loop `E1 ⋯ E6 H⁻¹ = I` is then read from another joint or backwards (twelve
 //! arrangements), and a set with a double root is completed from the next arrangement.
 //!
-//! The coefficients are computed numerically from the exact axes evaluated at the
-//! parameters: each of the fourteen quantities is sampled on a 3 x 3 x 3 grid of angles
-//! `2πk/3` and its coefficients read off by a three-point discrete Fourier transform, exact
-//! for degree one (no symbolic expansion; `A`, `B`, `C` are not printed as exact expressions).
+//! # What is exact
+//!
+//! [`exact`] derives the fourteen equations exactly: every coefficient of `Am(θ3)` and `Bm` a
+//! [`crate::Scalar`] in the robot's parameters and the target's entries (through the fourteen
+//! quantities `g1 … g14` of the target's point and direction), by the action of a rigid
+//! motion on the quantities as a 15 x 15 matrix, one joint at a time in `(1, cos, sin)`; and
+//! the half-angle polynomials `P_e(x3, x4, x5) = (1 + x3²)(1 + x4²)(1 + x5²) (Am X45)_e`.
+//! The report and the walkthrough print them. Exact arithmetic stops at step 3: the left
+//! null space `N` of `Bm` is computed per target in f64 (Householder QR), so `A`, `B`, `C`
+//! (`N` times the `P_e`) and everything after are numeric. The exact equations are those of
+//! the loop read from joint 1 (forwards or backwards as at the generic target); an
+//! arrangement read from another joint conjugates axes by the target and is not printed.
+//!
+//! The solver itself (`core.rs`) computes the same coefficients numerically from the axes
+//! evaluated at the parameters: each of the fourteen quantities is sampled on a 3 x 3 x 3
+//! grid of angles `2πk/3` and its coefficients read off by a three-point discrete Fourier
+//! transform, exact for degree one ([`sampled_equations`] returns them; a test checks them
+//! against [`exact`] at random parameters and targets).
 //! The numeric core (`core.rs`) is plain Rust that the generated solver contains verbatim.
 
 #[allow(clippy::many_single_char_names)]
@@ -220,6 +234,34 @@ pub(crate) fn info(sol: &IkSolution) -> GeneralInfo {
     }
 }
 
+/// What the exact equations cover, in words: the arrangement they are derived for, and the
+/// step that leaves exact arithmetic.
+pub fn exact_scope_text(sol: &IkSolution, eq: &exact::ExactEquations) -> String {
+    let first = sol.variables.get(eq.order[0]).map_or("?", String::as_str);
+    let dir = if eq.arrangement.0 {
+        "backwards"
+    } else {
+        "forwards"
+    };
+    let used = sol.general.as_ref().map_or((false, 0), |g| g.arrangement);
+    let note = if used.1 == 0 {
+        String::new()
+    } else {
+        format!(
+            "; at a generic target the solver reads the loop from {} instead (this arrangement is degenerate for the arm)",
+            used_first(sol, used)
+        )
+    };
+    format!(
+        "the loop read {dir} from {first}{note}; Am, Bm and the half-angle polynomials P are exact in the parameters and the target's entries; the left null space N of Bm is computed per target in f64 (Householder QR), so A, B, C = N P (12 x 12) are numeric"
+    )
+}
+
+fn used_first(sol: &IkSolution, (rev, shift): (bool, usize)) -> String {
+    let k = if rev { 5 - shift } else { shift };
+    sol.variables.get(k).cloned().unwrap_or_default()
+}
+
 /// The elimination in words, one line each (the report and the walkthrough).
 pub fn elimination_lines(sol: &IkSolution, info: &GeneralInfo) -> Vec<String> {
     let v = &sol.variables;
@@ -252,7 +294,7 @@ pub fn elimination_lines(sol: &IkSolution, info: &GeneralInfo) -> Vec<String> {
             "   X12 = (1, c, s)({}) x (1, c, s)({}) without 1 (8 monomials), X45 = (1, c, s)({}) x (1, c, s)({}) (9), Am linear in (1, c, s)({})",
             order[0], order[1], order[3], order[4], order[2]
         ),
-        "3. the left null space of Bm (14 x 8, Householder QR): 6 equations N Am X45 = 0".into(),
+        "3. the left null space N of Bm (14 x 8, Householder QR in f64 at the numeric target: where exact arithmetic stops; Am, Bm and the half-angle polynomials are exact): 6 equations N Am X45 = 0".into(),
         format!(
             "4. half-angle tangents of {} and {}, and the same equations times x({}): M(x) X = 0, M(x) = A x^2 + B x + C (12 x 12), x = tan(({} - phi)/2)",
             order[3], order[4], order[3], order[2]
