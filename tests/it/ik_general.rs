@@ -9,34 +9,34 @@
 use crate::common::Rng;
 use dqsym::ik::{solve, IkMethod, IkOptions, IkSolution, NumSolution};
 
-type M4 = [[f64; 4]; 4];
+pub(crate) type M4 = [[f64; 4]; 4];
 
 /// One classic DH row: `Rz(q + offset) Tz(d) Tx(a) Rx(alpha)`; `alpha` as text for the robot
 /// file and as a number for the model here.
 #[derive(Clone, Copy)]
-struct Row {
-    d: f64,
-    a: f64,
-    alpha: (&'static str, f64),
+pub(crate) struct Row {
+    pub(crate) d: f64,
+    pub(crate) a: f64,
+    pub(crate) alpha: (&'static str, f64),
 }
 
-fn row(d: f64, a: f64, alpha: (&'static str, f64)) -> Row {
+pub(crate) fn row(d: f64, a: f64, alpha: (&'static str, f64)) -> Row {
     Row { d, a, alpha }
 }
 
-const PI: f64 = std::f64::consts::PI;
-const A0: (&str, f64) = ("0", 0.0);
-const A90: (&str, f64) = ("pi/2", PI / 2.0);
-const AM90: (&str, f64) = ("-pi/2", -PI / 2.0);
-const A180: (&str, f64) = ("pi", PI);
-const A60: (&str, f64) = ("pi/3", PI / 3.0);
+pub(crate) const PI: f64 = std::f64::consts::PI;
+pub(crate) const A0: (&str, f64) = ("0", 0.0);
+pub(crate) const A90: (&str, f64) = ("pi/2", PI / 2.0);
+pub(crate) const AM90: (&str, f64) = ("-pi/2", -PI / 2.0);
+pub(crate) const A180: (&str, f64) = ("pi", PI);
+pub(crate) const A60: (&str, f64) = ("pi/3", PI / 3.0);
 
-fn mul(a: &M4, b: &M4) -> M4 {
+pub(crate) fn mul(a: &M4, b: &M4) -> M4 {
     std::array::from_fn(|r| std::array::from_fn(|c| (0..4).map(|k| a[r][k] * b[k][c]).sum()))
 }
 
 /// The independent model: the product of the DH rows' 4 x 4 matrices.
-fn dh_pose(rows: &[Row], q: &[f64]) -> M4 {
+pub(crate) fn dh_pose(rows: &[Row], q: &[f64]) -> M4 {
     let mut t: M4 = std::array::from_fn(|r| std::array::from_fn(|c| f64::from(u8::from(r == c))));
     for (r, th) in rows.iter().zip(q) {
         let (st, ct) = th.sin_cos();
@@ -53,7 +53,7 @@ fn dh_pose(rows: &[Row], q: &[f64]) -> M4 {
 }
 
 /// The robot file of the rows, with numeric lengths (shortest exact decimal text).
-fn dh_toml(name: &str, rows: &[Row]) -> String {
+pub(crate) fn dh_toml(name: &str, rows: &[Row]) -> String {
     let mut s = format!("name = \"{name}\"\nconvention = \"dh\"\n");
     for (i, r) in rows.iter().enumerate() {
         s.push_str(&format!(
@@ -67,13 +67,13 @@ fn dh_toml(name: &str, rows: &[Row]) -> String {
     s
 }
 
-fn derive(name: &str, rows: &[Row], method: IkMethod) -> IkSolution {
+pub(crate) fn derive(name: &str, rows: &[Row], method: IkMethod) -> IkSolution {
     let text = dh_toml(name, rows);
     let robot = dqsym::parse_robot(&text, name, &dqsym::eval_scalar_text).expect("robot");
     solve(&robot, &IkOptions { free: None, method }).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
-fn wrapped(a: f64) -> f64 {
+pub(crate) fn wrapped(a: f64) -> f64 {
     let mut x = a % (2.0 * PI);
     if x > PI {
         x -= 2.0 * PI;
@@ -83,7 +83,7 @@ fn wrapped(a: f64) -> f64 {
     x
 }
 
-fn dist(a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn dist(a: &[f64], b: &[f64]) -> f64 {
     a.iter()
         .zip(b)
         .map(|(x, y)| wrapped(x - y).abs())
@@ -91,7 +91,7 @@ fn dist(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// The largest deviation of `got` from `want`: rotation entries, positions over `len`.
-fn deviation(want: &M4, got: &M4, len: f64) -> f64 {
+pub(crate) fn deviation(want: &M4, got: &M4, len: f64) -> f64 {
     let mut d: f64 = 0.0;
     for r in 0..3 {
         for c in 0..4 {
@@ -102,12 +102,17 @@ fn deviation(want: &M4, got: &M4, len: f64) -> f64 {
     d
 }
 
-fn size(rows: &[Row]) -> f64 {
+pub(crate) fn size(rows: &[Row]) -> f64 {
     rows.iter().map(|r| r.d.abs() + r.a.abs()).sum()
 }
 
 /// Checks one pose; returns the solutions.
-fn check_pose(name: &str, sol: &IkSolution, rows: &[Row], q: &[f64]) -> Vec<NumSolution> {
+pub(crate) fn check_pose(
+    name: &str,
+    sol: &IkSolution,
+    rows: &[Row],
+    q: &[f64],
+) -> Vec<NumSolution> {
     let t = dh_pose(rows, q);
     let sols = sol.solve_numeric(&t, &[]).expect("solve");
     let len = size(rows);
@@ -156,7 +161,7 @@ fn trips() -> usize {
 }
 
 /// Kinova Jaco (the Robotics Toolbox DH table without its joint offsets: 60-degree wrist).
-fn jaco() -> Vec<Row> {
+pub(crate) fn jaco() -> Vec<Row> {
     let k = 1.0 / 3f64.sqrt(); // sin 30 / sin 60
     let (d1, d2, d3, d4, d5, d6, e2) = (0.2755, 0.41, 0.2073, 0.0743, 0.0743, 0.1687, 0.0098);
     vec![
@@ -170,7 +175,7 @@ fn jaco() -> Vec<Row> {
 }
 
 /// Kinova Mico (the Robotics Toolbox DH table, offsets left out).
-fn mico() -> Vec<Row> {
+pub(crate) fn mico() -> Vec<Row> {
     let k = 1.0 / 3f64.sqrt();
     let (d1, d2, d3, d4, d5, d6, e2) = (0.2755, 0.29, 0.1233, 0.0741, 0.0741, 0.16, 0.007);
     vec![
@@ -184,7 +189,7 @@ fn mico() -> Vec<Row> {
 }
 
 /// A 6R of our own: skew shoulder (axes 1, 2 at 60 degrees with an offset), offset wrist.
-fn skew_offset() -> Vec<Row> {
+pub(crate) fn skew_offset() -> Vec<Row> {
     vec![
         row(0.3, 0.05, A60),
         row(0.02, 0.4, ("pi/6", PI / 6.0)),
@@ -196,7 +201,7 @@ fn skew_offset() -> Vec<Row> {
 }
 
 /// PUMA 560 at its published lengths, with `a1` a 0.8 mm shoulder offset when given.
-fn puma(a1: f64) -> Vec<Row> {
+pub(crate) fn puma(a1: f64) -> Vec<Row> {
     vec![
         row(0.0, a1, A90),
         row(0.0, 0.4318, A0),
@@ -207,7 +212,7 @@ fn puma(a1: f64) -> Vec<Row> {
     ]
 }
 
-fn ur5() -> Vec<Row> {
+pub(crate) fn ur5() -> Vec<Row> {
     vec![
         row(0.089159, 0.0, A90),
         row(0.0, -0.425, A0),
