@@ -373,3 +373,25 @@ fn multistart_frames_agree_with_the_model() {
     assert!(deviation(&t, &fr[7], 1.0) <= 1e-15);
     assert!(deviation(&mul(&fr[6], &dh_pose(&rows[6..], &q[6..])), &t, 1.0) <= 1e-15);
 }
+
+/// benches/generated/ik_general_skew6r.rs is what `dqsym ik --format rust` writes for
+/// benches/support/skew6r.toml (`DQSYM_BLESS=1` rewrites it).
+#[test]
+fn generated_bench_solver_is_current() {
+    let dir = env!("CARGO_MANIFEST_DIR");
+    let file = format!("{dir}/benches/support/skew6r.toml");
+    let text = std::fs::read_to_string(&file).expect("robot file");
+    let robot = dqsym::parse_robot(&text, &file, &dqsym::eval_scalar_text).expect("robot");
+    let sol = solve(&robot, &IkOptions::default()).expect("ik");
+    assert_eq!(sol.general.as_ref().map(|g| g.degree), Some(16));
+    let want = dqsym::ik::ik_rust(&sol).expect("rust");
+    let path = format!("{dir}/benches/generated/ik_general_skew6r.rs");
+    if std::env::var_os("DQSYM_BLESS").is_some() {
+        std::fs::write(&path, &want).expect("write the bench solver");
+    }
+    let have = std::fs::read_to_string(&path).unwrap_or_default();
+    assert!(
+        have == want,
+        "{path} is out of date: rerun with DQSYM_BLESS=1 to rewrite it"
+    );
+}
