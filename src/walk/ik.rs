@@ -88,13 +88,28 @@ pub fn walk_ik(robot: &Robot, sol: &IkSolution) -> Result<Walkthrough, WalkError
 /// The general method's equations, exactly: the target's quantities, every equation's `Am`
 /// and `Bm` coefficients and its half-angle polynomial (`ik::general::exact`).
 fn exact_step(sol: &IkSolution, info: &crate::ik::general::GeneralInfo) -> Result<Step, WalkError> {
-    let err = |e: crate::ScalarError| WalkError::Config(e.to_string());
-    let eq = crate::ik::general::exact::exact_equations(sol, info).map_err(err)?;
+    let title = Prose::text("The exact equations".to_owned());
+    let shown = crate::ik::general::exact::exact_equations(sol, info).and_then(|eq| {
+        Ok((
+            crate::ik::general::exact_scope_text(sol, &eq),
+            eq.shown(sol)?,
+        ))
+    });
+    let (scope, groups) = match shown {
+        Ok(x) => x,
+        Err(e @ crate::ScalarError::Cancelled) => return Err(WalkError::Config(e.to_string())),
+        // Past the term limit or the work budget the rest of the walkthrough still stands.
+        Err(e) => {
+            return Ok(Step::Explain {
+                title,
+                blocks: vec![Block::Text(Prose::text(format!("Not shown ({e}).")))],
+            })
+        }
+    };
     let mut blocks = vec![Block::Text(Prose::text(format!(
-        "Bm X12 = Am X45 with every coefficient exact: {}.",
-        crate::ik::general::exact_scope_text(sol, &eq)
+        "Bm X12 = Am X45 with every coefficient exact: {scope}."
     )))];
-    for g in eq.shown(sol).map_err(err)? {
+    for g in groups {
         blocks.push(Block::Text(Prose::text(format!("{}:", g.title))));
         blocks.push(Block::Formulas(
             g.items
@@ -106,10 +121,7 @@ fn exact_step(sol: &IkSolution, info: &crate::ik::general::GeneralInfo) -> Resul
                 .collect(),
         ));
     }
-    Ok(Step::Explain {
-        title: Prose::text("The exact equations".to_owned()),
-        blocks,
-    })
+    Ok(Step::Explain { title, blocks })
 }
 
 /// What the target's entries, the joint variables and the parameters are.

@@ -695,6 +695,18 @@ fn report_prints_the_exact_equations() {
         .collect();
     assert!(blocks.len() >= 30, "{} blocks", blocks.len());
     crate::tools::katex_all(&blocks, "the general method's exact equations");
+    // The walkthrough's Markdown: its display formulas (the exact equations among them).
+    let w = dqsym::walk::walk_ik(&robot, &sol).expect("walk");
+    let md = dqsym::walk_markdown(&w).expect("markdown");
+    let at = md.find("The exact equations").expect("the exact step");
+    let shown: Vec<String> = md[at..]
+        .split("$$")
+        .skip(1)
+        .step_by(2)
+        .map(|b| b.trim().to_string())
+        .collect();
+    assert!(shown.len() >= 29, "{} display formulas", shown.len());
+    crate::tools::katex_all(&shown, "the IK walkthrough's exact equations");
 }
 
 /// A 6R with every length a symbol (`d1 … d6`, `a1 … a6`) and the skew arm's twists.

@@ -470,12 +470,18 @@ fn general_plain(
     info: &super::general::GeneralInfo,
     o: &PlainOptions,
 ) -> Result<String, ScalarError> {
-    let eq = super::general::exact::exact_equations(sol, info)?;
-    let mut out = format!(
-        "\nexact equations (Bm X12 = Am X45, every coefficient exact; {})\n",
-        super::general::exact_scope_text(sol, &eq)
-    );
-    for g in eq.shown(sol)? {
+    let shown = super::general::exact::exact_equations(sol, info)
+        .and_then(|eq| Ok((super::general::exact_scope_text(sol, &eq), eq.shown(sol)?)));
+    let (scope, groups) = match shown {
+        Ok(x) => x,
+        // Past the term limit or the work budget (a symbolic arm with symbolic twists), the
+        // rest of the report still stands; an interruption stops it.
+        Err(ScalarError::Cancelled) => return Err(ScalarError::Cancelled),
+        Err(e) => return Ok(format!("\nexact equations: not printed ({e})\n")),
+    };
+    let mut out =
+        format!("\nexact equations (Bm X12 = Am X45, every coefficient exact; {scope})\n");
+    for g in groups {
         out.push_str(&format!("  {}\n", g.title));
         for s in &g.items {
             out.push_str(&format!("    {} = {}\n", s.label, plain(&s.expr, o)));
@@ -494,16 +500,21 @@ fn general_exact_latex(
         shorthand,
         ..LatexOptions::default()
     };
-    let eq = super::general::exact::exact_equations(sol, info)?;
-    let mut out = line_comment(
-        Comment::Latex,
-        "%",
-        &format!(
-            "exact equations: {}",
-            super::general::exact_scope_text(sol, &eq)
-        ),
-    );
-    for g in eq.shown(sol)? {
+    let shown = super::general::exact::exact_equations(sol, info)
+        .and_then(|eq| Ok((super::general::exact_scope_text(sol, &eq), eq.shown(sol)?)));
+    let (scope, groups) = match shown {
+        Ok(x) => x,
+        Err(ScalarError::Cancelled) => return Err(ScalarError::Cancelled),
+        Err(e) => {
+            return Ok(line_comment(
+                Comment::Latex,
+                "%",
+                &format!("exact equations: not printed ({e})"),
+            ))
+        }
+    };
+    let mut out = line_comment(Comment::Latex, "%", &format!("exact equations: {scope}"));
+    for g in groups {
         out.push_str(&line_comment(Comment::Latex, "%", &g.title));
         out.push_str("\\begin{aligned}\n");
         for s in &g.items {
