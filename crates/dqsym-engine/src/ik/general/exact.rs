@@ -403,6 +403,17 @@ pub struct ShownGroup {
     pub items: Vec<Shown>,
 }
 
+/// A coefficient as shown: a constant as its expanded sum (`1/4 - 1/4 sqrt(5)`; the
+/// closed-form search for products of constant cosines costs about a millisecond each and
+/// these are hundreds), anything with symbols in closed form (factored over the parameters).
+fn coefficient_form(s: &Scalar) -> Result<crate::Expr, ScalarError> {
+    if s.is_constant() {
+        crate::closed::expanded_form(s)
+    } else {
+        crate::closed_form(s)
+    }
+}
+
 /// `(1, cos, sin)` of a variable, plain and LaTeX (`""` for the 1).
 fn trig_factor(k: usize, var: &str) -> (String, String) {
     let tex = crate::emit::latex_symbol(var);
@@ -525,7 +536,7 @@ impl ExactEquations {
                 .into_iter()
                 .filter(|(_, _, s)| !s.is_zero_value())
                 .collect();
-            let forms = crate::scalar::par_map(&nonzero, |(_, _, s)| crate::closed_form(s));
+            let forms = crate::scalar::par_map(&nonzero, |(_, _, s)| coefficient_form(s));
             let items = nonzero
                 .into_iter()
                 .zip(forms)
