@@ -3,7 +3,7 @@
 //! the generated Rust solver per pose (degree 16, every solution), and beside it a
 //! Newton–Raphson (Levenberg–Marquardt) multistart written here with 8, 32 and 128 seeds per
 //! pose, whose found-rate (the fraction of the solver's solutions it finds) is printed.
-#![allow(clippy::excessive_precision)]
+#![allow(clippy::excessive_precision, clippy::needless_range_loop)]
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use std::time::Duration;

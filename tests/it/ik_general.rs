@@ -556,6 +556,7 @@ fn explicit(plain: &str) -> String {
 /// polynomials `P` are the Am coefficients combined by the weights of `(1, cos, sin) (1 +
 /// x^2) = (1 + x^2, 1 - x^2, 2 x)`; the LaTeX blocks render in KaTeX.
 #[test]
+#[allow(clippy::needless_range_loop)]
 fn report_prints_the_exact_equations() {
     let rows = skew_offset();
     let text = dh_toml("skew", &rows);
@@ -735,6 +736,7 @@ fn symbolic_toml() -> String {
 /// a margin of several hundred and is still far below any coefficient's size (a wrong
 /// coefficient is off by order one).
 #[test]
+#[allow(clippy::needless_range_loop)]
 fn exact_equations_equal_the_sampled_coefficients() {
     let mut rng = Rng::new(71);
     let random: Vec<Row> = (0..6)

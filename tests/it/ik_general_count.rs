@@ -172,6 +172,7 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 
 /// Solves the 6 x 6 system `a x = b` by Gaussian elimination with partial pivoting.
+#[allow(clippy::needless_range_loop)]
 fn solve6(mut a: [[f64; 6]; 6], mut b: [f64; 6]) -> Option<[f64; 6]> {
     for k in 0..6 {
         let p = (k..6).max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))?;
@@ -294,7 +295,7 @@ fn multistart(
 ) -> Vec<Vec<f64>> {
     let n = rows.len();
     let solved: Vec<usize> = (0..n)
-        .filter(|i| free.map_or(true, |(k, _)| k != *i))
+        .filter(|i| free.is_none_or(|(k, _)| k != *i))
         .collect();
     let len = size(rows);
     let mut found: Vec<Vec<f64>> = Vec::new();

@@ -369,14 +369,14 @@ impl ExactEquations {
         };
         let mut am = [[[0.0; 9]; 3]; 14];
         let mut bm = [[0.0; 8]; 14];
-        for e in 0..14 {
-            for k in 0..3 {
-                for m in 0..9 {
-                    am[e][k][m] = self.am[e][k][m].eval(&full)?;
+        for (e, (ar, br)) in am.iter_mut().zip(bm.iter_mut()).enumerate() {
+            for (k, row) in ar.iter_mut().enumerate() {
+                for (m, x) in row.iter_mut().enumerate() {
+                    *x = self.am[e][k][m].eval(&full)?;
                 }
             }
-            for m in 0..8 {
-                bm[e][m] = self.bm[e][m].eval(&full)?;
+            for (m, x) in br.iter_mut().enumerate() {
+                *x = self.bm[e][m].eval(&full)?;
             }
         }
         Ok((am, bm))
@@ -452,6 +452,9 @@ fn monomial(factors: &[(String, String)]) -> (String, String) {
     }
 }
 
+/// Coefficients with their plain and LaTeX names.
+type Named = Vec<(String, String, Scalar)>;
+
 impl ExactEquations {
     /// Every nonzero coefficient in closed form, in groups: the target's quantities, then per
     /// equation its `Am` and `Bm` coefficients, then per equation its half-angle polynomial.
@@ -460,7 +463,7 @@ impl ExactEquations {
     /// A closed form that fails (term limit, work budget).
     pub fn shown(&self, sol: &IkSolution) -> Result<Vec<ShownGroup>, ScalarError> {
         let var = |i: usize| sol.variables[self.order[i]].as_str();
-        let mut raw: Vec<(String, Vec<(String, String, Scalar)>)> = Vec::new();
+        let mut raw: Vec<(String, Named)> = Vec::new();
         raw.push((
             "the target's quantities (u = H p6, v = H w6: the point and direction of the last axis carried by the target)".into(),
             self.g_names
@@ -476,7 +479,7 @@ impl ExactEquations {
                 })
                 .collect(),
         ));
-        for e in 0..14 {
+        for (e, quantity) in QUANTITY_NAMES.iter().enumerate() {
             let mut items = Vec::new();
             for k in 0..3 {
                 for m in 0..9 {
@@ -502,9 +505,8 @@ impl ExactEquations {
             }
             raw.push((
                 format!(
-                    "equation {} ({}): the Am and Bm coefficients",
-                    e + 1,
-                    QUANTITY_NAMES[e]
+                    "equation {} ({quantity}): the Am and Bm coefficients",
+                    e + 1
                 ),
                 items,
             ));
@@ -532,7 +534,7 @@ impl ExactEquations {
         }
         let mut out = Vec::new();
         for (title, items) in raw {
-            let nonzero: Vec<(String, String, Scalar)> = items
+            let nonzero: Named = items
                 .into_iter()
                 .filter(|(_, _, s)| !s.is_zero_value())
                 .collect();
