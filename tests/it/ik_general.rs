@@ -712,7 +712,10 @@ fn report_prints_the_exact_equations() {
 
 /// A 6R with every length a symbol (`d1 … d6`, `a1 … a6`) and the skew arm's twists.
 fn symbolic_toml() -> String {
-    let alphas = ["pi/3", "pi/6", "pi/2", "-pi/2", "2*pi/5", "0"];
+    symbolic_toml_with(["pi/3", "pi/6", "pi/2", "-pi/2", "2*pi/5", "0"])
+}
+
+fn symbolic_toml_with(alphas: [&str; 6]) -> String {
     let mut s = "name = \"symbolic 6R\"\nconvention = \"dh\"\n".to_string();
     for (i, al) in alphas.iter().enumerate() {
         s.push_str(&format!(
@@ -725,8 +728,8 @@ fn symbolic_toml() -> String {
 
 /// The exact Raghavan–Roth equations (`ik::general::exact`), evaluated at random parameters
 /// and random targets, equal the coefficients the numeric core samples (3 x 3 x 3 grid and a
-/// three-point DFT in f64) for the skew 6R, the Jaco-style arm, a random numeric 6R and a 6R
-/// with every length a symbol.
+/// three-point DFT in f64) for the skew 6R, the Jaco-style arm, a random numeric 6R, a 6R
+/// with every length a symbol and one with every length and twist a symbol.
 ///
 /// Tolerance: both sides are compared in the core's units (lengths over the arm's scale, so
 /// every number is of order one). The core's coefficients are combinations of 27 samples of
@@ -748,6 +751,9 @@ fn exact_equations_equal_the_sampled_coefficients() {
         ("random".into(), dh_toml("random", &random), 0),
     ];
     robots.push(("symbolic".into(), symbolic_toml(), 12));
+    // Every length and every twist a symbol.
+    let twists = symbolic_toml_with(["al1", "al2", "al3", "al4", "al5", "0"]);
+    robots.push(("symbolic twists".into(), twists, 17));
     for (name, text, n_params) in robots {
         let robot = dqsym::parse_robot(&text, &name, &dqsym::eval_scalar_text).expect("robot");
         let sol = solve(
