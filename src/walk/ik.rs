@@ -72,6 +72,7 @@ pub fn walk_ik(robot: &Robot, sol: &IkSolution) -> Result<Walkthrough, WalkError
             title: Prose::text("The general 6R elimination".to_owned()),
             blocks,
         });
+        steps.push(exact_step(sol, info)?);
     }
     steps.push(solutions_step(sol, &mechanism, &scene)?);
     let mut w = Walkthrough {
@@ -82,6 +83,45 @@ pub fn walk_ik(robot: &Robot, sol: &IkSolution) -> Result<Walkthrough, WalkError
     };
     w.prepare();
     Ok(w)
+}
+
+/// The general method's equations, exactly: the target's quantities, every equation's `Am`
+/// and `Bm` coefficients and its half-angle polynomial (`ik::general::exact`).
+fn exact_step(sol: &IkSolution, info: &crate::ik::general::GeneralInfo) -> Result<Step, WalkError> {
+    let title = Prose::text("The exact equations".to_owned());
+    let shown = crate::ik::general::exact::exact_equations(sol, info).and_then(|eq| {
+        Ok((
+            crate::ik::general::exact_scope_text(sol, &eq),
+            eq.shown(sol)?,
+        ))
+    });
+    let (scope, groups) = match shown {
+        Ok(x) => x,
+        Err(e @ crate::ScalarError::Cancelled) => return Err(WalkError::Config(e.to_string())),
+        // Past the term limit or the work budget the rest of the walkthrough still stands.
+        Err(e) => {
+            return Ok(Step::Explain {
+                title,
+                blocks: vec![Block::Text(Prose::text(format!("Not shown ({e}).")))],
+            })
+        }
+    };
+    let mut blocks = vec![Block::Text(Prose::text(format!(
+        "Bm X12 = Am X45 with every coefficient exact: {scope}."
+    )))];
+    for g in groups {
+        blocks.push(Block::Text(Prose::text(format!("{}:", g.title))));
+        blocks.push(Block::Formulas(
+            g.items
+                .into_iter()
+                .map(|s| Shown {
+                    label: s.label,
+                    parts: vec![s.expr],
+                })
+                .collect(),
+        ));
+    }
+    Ok(Step::Explain { title, blocks })
 }
 
 /// What the target's entries, the joint variables and the parameters are.

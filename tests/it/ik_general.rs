@@ -9,34 +9,34 @@
 use crate::common::Rng;
 use dqsym::ik::{solve, IkMethod, IkOptions, IkSolution, NumSolution};
 
-type M4 = [[f64; 4]; 4];
+pub(crate) type M4 = [[f64; 4]; 4];
 
 /// One classic DH row: `Rz(q + offset) Tz(d) Tx(a) Rx(alpha)`; `alpha` as text for the robot
 /// file and as a number for the model here.
 #[derive(Clone, Copy)]
-struct Row {
-    d: f64,
-    a: f64,
-    alpha: (&'static str, f64),
+pub(crate) struct Row {
+    pub(crate) d: f64,
+    pub(crate) a: f64,
+    pub(crate) alpha: (&'static str, f64),
 }
 
-fn row(d: f64, a: f64, alpha: (&'static str, f64)) -> Row {
+pub(crate) fn row(d: f64, a: f64, alpha: (&'static str, f64)) -> Row {
     Row { d, a, alpha }
 }
 
-const PI: f64 = std::f64::consts::PI;
-const A0: (&str, f64) = ("0", 0.0);
-const A90: (&str, f64) = ("pi/2", PI / 2.0);
-const AM90: (&str, f64) = ("-pi/2", -PI / 2.0);
-const A180: (&str, f64) = ("pi", PI);
-const A60: (&str, f64) = ("pi/3", PI / 3.0);
+pub(crate) const PI: f64 = std::f64::consts::PI;
+pub(crate) const A0: (&str, f64) = ("0", 0.0);
+pub(crate) const A90: (&str, f64) = ("pi/2", PI / 2.0);
+pub(crate) const AM90: (&str, f64) = ("-pi/2", -PI / 2.0);
+pub(crate) const A180: (&str, f64) = ("pi", PI);
+pub(crate) const A60: (&str, f64) = ("pi/3", PI / 3.0);
 
-fn mul(a: &M4, b: &M4) -> M4 {
+pub(crate) fn mul(a: &M4, b: &M4) -> M4 {
     std::array::from_fn(|r| std::array::from_fn(|c| (0..4).map(|k| a[r][k] * b[k][c]).sum()))
 }
 
 /// The independent model: the product of the DH rows' 4 x 4 matrices.
-fn dh_pose(rows: &[Row], q: &[f64]) -> M4 {
+pub(crate) fn dh_pose(rows: &[Row], q: &[f64]) -> M4 {
     let mut t: M4 = std::array::from_fn(|r| std::array::from_fn(|c| f64::from(u8::from(r == c))));
     for (r, th) in rows.iter().zip(q) {
         let (st, ct) = th.sin_cos();
@@ -53,7 +53,7 @@ fn dh_pose(rows: &[Row], q: &[f64]) -> M4 {
 }
 
 /// The robot file of the rows, with numeric lengths (shortest exact decimal text).
-fn dh_toml(name: &str, rows: &[Row]) -> String {
+pub(crate) fn dh_toml(name: &str, rows: &[Row]) -> String {
     let mut s = format!("name = \"{name}\"\nconvention = \"dh\"\n");
     for (i, r) in rows.iter().enumerate() {
         s.push_str(&format!(
@@ -67,13 +67,13 @@ fn dh_toml(name: &str, rows: &[Row]) -> String {
     s
 }
 
-fn derive(name: &str, rows: &[Row], method: IkMethod) -> IkSolution {
+pub(crate) fn derive(name: &str, rows: &[Row], method: IkMethod) -> IkSolution {
     let text = dh_toml(name, rows);
     let robot = dqsym::parse_robot(&text, name, &dqsym::eval_scalar_text).expect("robot");
     solve(&robot, &IkOptions { free: None, method }).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
-fn wrapped(a: f64) -> f64 {
+pub(crate) fn wrapped(a: f64) -> f64 {
     let mut x = a % (2.0 * PI);
     if x > PI {
         x -= 2.0 * PI;
@@ -83,7 +83,7 @@ fn wrapped(a: f64) -> f64 {
     x
 }
 
-fn dist(a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn dist(a: &[f64], b: &[f64]) -> f64 {
     a.iter()
         .zip(b)
         .map(|(x, y)| wrapped(x - y).abs())
@@ -91,7 +91,7 @@ fn dist(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// The largest deviation of `got` from `want`: rotation entries, positions over `len`.
-fn deviation(want: &M4, got: &M4, len: f64) -> f64 {
+pub(crate) fn deviation(want: &M4, got: &M4, len: f64) -> f64 {
     let mut d: f64 = 0.0;
     for r in 0..3 {
         for c in 0..4 {
@@ -102,12 +102,17 @@ fn deviation(want: &M4, got: &M4, len: f64) -> f64 {
     d
 }
 
-fn size(rows: &[Row]) -> f64 {
+pub(crate) fn size(rows: &[Row]) -> f64 {
     rows.iter().map(|r| r.d.abs() + r.a.abs()).sum()
 }
 
 /// Checks one pose; returns the solutions.
-fn check_pose(name: &str, sol: &IkSolution, rows: &[Row], q: &[f64]) -> Vec<NumSolution> {
+pub(crate) fn check_pose(
+    name: &str,
+    sol: &IkSolution,
+    rows: &[Row],
+    q: &[f64],
+) -> Vec<NumSolution> {
     let t = dh_pose(rows, q);
     let sols = sol.solve_numeric(&t, &[]).expect("solve");
     let len = size(rows);
@@ -156,7 +161,7 @@ fn trips() -> usize {
 }
 
 /// Kinova Jaco (the Robotics Toolbox DH table without its joint offsets: 60-degree wrist).
-fn jaco() -> Vec<Row> {
+pub(crate) fn jaco() -> Vec<Row> {
     let k = 1.0 / 3f64.sqrt(); // sin 30 / sin 60
     let (d1, d2, d3, d4, d5, d6, e2) = (0.2755, 0.41, 0.2073, 0.0743, 0.0743, 0.1687, 0.0098);
     vec![
@@ -170,7 +175,7 @@ fn jaco() -> Vec<Row> {
 }
 
 /// Kinova Mico (the Robotics Toolbox DH table, offsets left out).
-fn mico() -> Vec<Row> {
+pub(crate) fn mico() -> Vec<Row> {
     let k = 1.0 / 3f64.sqrt();
     let (d1, d2, d3, d4, d5, d6, e2) = (0.2755, 0.29, 0.1233, 0.0741, 0.0741, 0.16, 0.007);
     vec![
@@ -184,7 +189,7 @@ fn mico() -> Vec<Row> {
 }
 
 /// A 6R of our own: skew shoulder (axes 1, 2 at 60 degrees with an offset), offset wrist.
-fn skew_offset() -> Vec<Row> {
+pub(crate) fn skew_offset() -> Vec<Row> {
     vec![
         row(0.3, 0.05, A60),
         row(0.02, 0.4, ("pi/6", PI / 6.0)),
@@ -196,7 +201,7 @@ fn skew_offset() -> Vec<Row> {
 }
 
 /// PUMA 560 at its published lengths, with `a1` a 0.8 mm shoulder offset when given.
-fn puma(a1: f64) -> Vec<Row> {
+pub(crate) fn puma(a1: f64) -> Vec<Row> {
     vec![
         row(0.0, a1, A90),
         row(0.0, 0.4318, A0),
@@ -207,7 +212,7 @@ fn puma(a1: f64) -> Vec<Row> {
     ]
 }
 
-fn ur5() -> Vec<Row> {
+pub(crate) fn ur5() -> Vec<Row> {
     vec![
         row(0.089159, 0.0, A90),
         row(0.0, -0.425, A0),
@@ -525,4 +530,301 @@ fn report_and_walkthrough_state_the_elimination_and_its_degree() {
     assert!(t.contains("The general 6R elimination"), "{t}");
     assert!(t.contains("det M(x) = 0"), "{t}");
     assert!(t.contains("the results agree"), "{t}");
+    assert!(t.contains("The exact equations"), "{t}");
+    assert!(t.contains("where exact arithmetic stops"), "{t}");
+}
+
+/// Plain text with its products written out: the plain printer writes a product as
+/// juxtaposition (`1/10 (10 px - r13)`), the language wants `*` between the factors.
+fn explicit(plain: &str) -> String {
+    let ops = ["+", "-", "*", "/"];
+    let toks: Vec<&str> = plain.split(' ').collect();
+    let mut out = String::new();
+    for (i, t) in toks.iter().enumerate() {
+        if i > 0 {
+            let joined = !ops.contains(&toks[i - 1]) && !ops.contains(t);
+            out.push_str(if joined { "*" } else { " " });
+        }
+        out.push_str(t);
+    }
+    out
+}
+
+/// The report prints the exact equations: every `A`, `B` and `g` line read back by the
+/// language is, at a random target, the value the exact equations (checked against the
+/// numeric core by `exact_equations_equal_the_sampled_coefficients`) give; the half-angle
+/// polynomials `P` are the Am coefficients combined by the weights of `(1, cos, sin) (1 +
+/// x^2) = (1 + x^2, 1 - x^2, 2 x)`; the LaTeX blocks render in KaTeX.
+#[test]
+#[allow(clippy::needless_range_loop)]
+fn report_prints_the_exact_equations() {
+    let rows = skew_offset();
+    let text = dh_toml("skew", &rows);
+    let robot = dqsym::parse_robot(&text, "skew", &dqsym::eval_scalar_text).expect("robot");
+    let sol = solve(&robot, &IkOptions::default()).expect("ik");
+    let info = sol.general.clone().expect("general");
+    let eq = dqsym::ik::general::exact::exact_equations(&sol, &info).expect("exact");
+    let plain = dqsym::ik::ik_report(&sol, dqsym::Format::Plain, true).expect("plain");
+    assert!(plain.contains("where exact arithmetic stops"), "{plain}");
+    let mut rng = Rng::new(81);
+    let q: Vec<f64> = (0..6).map(|_| rng.range(-PI, PI)).collect();
+    let t = dh_pose(&rows, &q);
+    let target = |n: &str| -> Option<f64> {
+        dqsym::ik::TARGET_SYMBOLS
+            .iter()
+            .enumerate()
+            .find_map(|(r, row)| row.iter().position(|x| *x == n).map(|c| t[r][c]))
+    };
+    let (am, bm) = eq.eval(&target).expect("eval");
+    let g: Vec<f64> = eq.g.iter().map(|x| x.eval(&target).expect("g")).collect();
+    let env = |n: &str| {
+        eq.g_names
+            .iter()
+            .position(|k| k == n)
+            .map(|i| g[i])
+            .or_else(|| target(n))
+    };
+    // The monomial label of (k3, k4, k5) in (1, cos, sin), as the report writes it.
+    let trig = |k: usize, v: &str| match k {
+        1 => format!("cos {v}"),
+        2 => format!("sin {v}"),
+        _ => String::new(),
+    };
+    let label = |ks: &[(usize, &str)]| {
+        let parts: Vec<String> = ks
+            .iter()
+            .map(|(k, v)| trig(*k, v))
+            .filter(|x| !x.is_empty())
+            .collect();
+        if parts.is_empty() {
+            "1".to_string()
+        } else {
+            parts.join(" ")
+        }
+    };
+    let mut want: Vec<(String, f64)> = Vec::new();
+    for e in 0..14 {
+        want.push((eq.g_names[e].clone(), g[e]));
+        for k in 0..3 {
+            for m in 0..9 {
+                let l = label(&[(k, "q3"), (m / 3, "q4"), (m % 3, "q5")]);
+                want.push((format!("A{}[{l}]", e + 1), am[e][k][m]));
+            }
+        }
+        for m in 1..9 {
+            let l = label(&[(m / 3, "q1"), (m % 3, "q2")]);
+            want.push((format!("B{}[{l}]", e + 1), bm[e][m - 1]));
+        }
+    }
+    let mut seen = 0;
+    for line in plain.lines() {
+        let Some((name, expr)) = line.trim().split_once(" = ") else {
+            continue;
+        };
+        let name = name.split(" (").next().unwrap_or(name);
+        let Some((_, w)) = want.iter().find(|(n, _)| n == name) else {
+            continue;
+        };
+        let v = dqsym::eval_scalar_text(&explicit(expr))
+            .unwrap_or_else(|e| panic!("{line}: {e}"))
+            .eval(&env)
+            .expect("value");
+        assert!(
+            (v - w).abs() <= 1e-12 * (1.0 + w.abs()),
+            "{line}: {v} vs {w}"
+        );
+        seen += 1;
+    }
+    let nonzero = want.iter().filter(|(_, w)| w.abs() > 1e-12).count();
+    assert!(
+        seen >= nonzero,
+        "{seen} lines read back, {nonzero} nonzero coefficients"
+    );
+    // The half-angle polynomial of equation 1 at x = tan(q/2) equals (1 + x^2)^3 times
+    // Am(q3) X45 at those angles.
+    let (x3, x4, x5) = (0.3_f64, -0.7_f64, 1.1_f64);
+    let mut p1 = 0.0;
+    for line in plain.lines() {
+        let Some((name, expr)) = line.trim().split_once(" = ") else {
+            continue;
+        };
+        let Some(mono) = name.strip_prefix("P1[").and_then(|m| m.strip_suffix(']')) else {
+            continue;
+        };
+        let mut term = dqsym::eval_scalar_text(&explicit(expr))
+            .expect("P")
+            .eval(&env)
+            .expect("v");
+        for f in mono.split(' ').filter(|f| *f != "1") {
+            let (v, p) = f
+                .split_once('^')
+                .map_or((f, 1), |(v, p)| (v, p.parse().expect("power")));
+            let x = match v {
+                "x_q3" => x3,
+                "x_q4" => x4,
+                "x_q5" => x5,
+                other => panic!("{other}"),
+            };
+            term *= x.powi(p);
+        }
+        p1 += term;
+    }
+    let cs = |x: f64| [1.0, (1.0 - x * x) / (1.0 + x * x), 2.0 * x / (1.0 + x * x)];
+    let (t3, t4, t5) = (cs(x3), cs(x4), cs(x5));
+    let mut direct = 0.0;
+    for k in 0..3 {
+        for m in 0..9 {
+            direct += am[0][k][m] * t3[k] * t4[m / 3] * t5[m % 3];
+        }
+    }
+    let w = (1.0 + x3 * x3) * (1.0 + x4 * x4) * (1.0 + x5 * x5);
+    assert!(
+        (p1 - w * direct).abs() <= 1e-12 * (1.0 + p1.abs()),
+        "{p1} vs {}",
+        w * direct
+    );
+    let latex = dqsym::ik::ik_report(&sol, dqsym::Format::Latex, true).expect("latex");
+    let blocks: Vec<String> = latex
+        .split("\\begin{aligned}")
+        .skip(1)
+        .map(|b| {
+            format!(
+                "\\begin{{aligned}}{}\\end{{aligned}}",
+                b.split("\\end{aligned}").next().unwrap_or_default()
+            )
+        })
+        .collect();
+    assert!(blocks.len() >= 30, "{} blocks", blocks.len());
+    crate::tools::katex_all(&blocks, "the general method's exact equations");
+    // The walkthrough's Markdown: its display formulas (the exact equations among them).
+    let w = dqsym::walk::walk_ik(&robot, &sol).expect("walk");
+    let md = dqsym::walk_markdown(&w).expect("markdown");
+    let at = md.find("The exact equations").expect("the exact step");
+    let shown: Vec<String> = md[at..]
+        .split("$$")
+        .skip(1)
+        .step_by(2)
+        .map(|b| b.trim().to_string())
+        .collect();
+    assert!(shown.len() >= 29, "{} display formulas", shown.len());
+    crate::tools::katex_all(&shown, "the IK walkthrough's exact equations");
+}
+
+/// A 6R with every length a symbol (`d1 … d6`, `a1 … a6`) and the skew arm's twists.
+fn symbolic_toml() -> String {
+    symbolic_toml_with(["pi/3", "pi/6", "pi/2", "-pi/2", "2*pi/5", "0"])
+}
+
+fn symbolic_toml_with(alphas: [&str; 6]) -> String {
+    let mut s = "name = \"symbolic 6R\"\nconvention = \"dh\"\n".to_string();
+    for (i, al) in alphas.iter().enumerate() {
+        s.push_str(&format!(
+            "\n[[joint]]\ntype = \"revolute\"\ntheta = \"q{k}\"\nd = \"d{k}\"\na = \"a{k}\"\nalpha = \"{al}\"\n",
+            k = i + 1
+        ));
+    }
+    s
+}
+
+/// The exact Raghavan–Roth equations (`ik::general::exact`), evaluated at random parameters
+/// and random targets, equal the coefficients the numeric core samples (3 x 3 x 3 grid and a
+/// three-point DFT in f64) for the skew 6R, the Jaco-style arm, a random numeric 6R, a 6R
+/// with every length a symbol and one with every length and twist a symbol.
+///
+/// Tolerance: both sides are compared in the core's units (lengths over the arm's scale, so
+/// every number is of order one). The core's coefficients are combinations of 27 samples of
+/// about 60 flops each, and `Bm` is read back through a Householder QR of a 14 x 8 matrix:
+/// some 2,000 roundings of 1.1e-16 relative to the equation's largest entry, 2.2e-13; the
+/// exact side's f64 evaluation adds as much again. 1e-10 times the row's largest entry leaves
+/// a margin of several hundred and is still far below any coefficient's size (a wrong
+/// coefficient is off by order one).
+#[test]
+#[allow(clippy::needless_range_loop)]
+fn exact_equations_equal_the_sampled_coefficients() {
+    let mut rng = Rng::new(71);
+    let random: Vec<Row> = (0..6)
+        .map(|_| row(rng.range(-0.3, 0.3), rng.range(0.0, 0.4), ("7/10", 0.7)))
+        .collect();
+    let mut robots: Vec<(String, String, usize)> = vec![
+        ("skew".into(), dh_toml("skew", &skew_offset()), 0),
+        ("jaco".into(), dh_toml("jaco", &jaco()), 0),
+        ("random".into(), dh_toml("random", &random), 0),
+    ];
+    robots.push(("symbolic".into(), symbolic_toml(), 12));
+    // Every length and every twist a symbol.
+    let twists = symbolic_toml_with(["al1", "al2", "al3", "al4", "al5", "0"]);
+    robots.push(("symbolic twists".into(), twists, 17));
+    for (name, text, n_params) in robots {
+        let robot = dqsym::parse_robot(&text, &name, &dqsym::eval_scalar_text).expect("robot");
+        let sol = solve(
+            &robot,
+            &IkOptions {
+                free: None,
+                method: IkMethod::General,
+            },
+        )
+        .expect("ik");
+        let info = sol.general.clone().expect("general");
+        let eq = dqsym::ik::general::exact::exact_equations(&sol, &info).expect("exact");
+        assert_eq!(sol.params.len(), n_params, "{name}: {:?}", sol.params);
+        let arr = usize::from(eq.arrangement.0) * 6;
+        for trial in 0..6 {
+            let params: Vec<(String, f64)> = sol
+                .params
+                .iter()
+                .map(|p| {
+                    (
+                        p.clone(),
+                        rng.range(0.05, 0.5) * if trial % 2 == 0 { 1.0 } else { -1.0 },
+                    )
+                })
+                .collect();
+            let pr: Vec<(&str, f64)> = params.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+            // The target: a random rotation (three turns) and a random position.
+            let (a, b, c) = (rng.range(-PI, PI), rng.range(-PI, PI), rng.range(-PI, PI));
+            let rot = |t: f64, axis: usize| -> M4 {
+                let (s, co) = t.sin_cos();
+                let mut m: M4 =
+                    std::array::from_fn(|r| std::array::from_fn(|k| f64::from(u8::from(r == k))));
+                let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+                m[i][i] = co;
+                m[j][j] = co;
+                m[i][j] = -s;
+                m[j][i] = s;
+                m
+            };
+            let mut t = mul(&mul(&rot(a, 2), &rot(b, 1)), &rot(c, 0));
+            for r in 0..3 {
+                t[r][3] = rng.range(-0.8, 0.8);
+            }
+            let env = |n: &str| -> Option<f64> {
+                for (r, row) in dqsym::ik::TARGET_SYMBOLS.iter().enumerate() {
+                    if let Some(c) = row.iter().position(|x| *x == n) {
+                        return Some(t[r][c]);
+                    }
+                }
+                pr.iter().find(|(k, _)| *k == n).map(|(_, v)| *v)
+            };
+            let (am, bm) = eq.eval(&env).expect("eval");
+            let (sam, sbm) =
+                dqsym::ik::general::sampled_equations(&sol, &t, &pr, arr).expect("sampled");
+            assert!(
+                bm.iter().flatten().any(|x| x.abs() > 1e-3),
+                "{name}: Bm vanishes"
+            );
+            // Every entry of one equation has the same degree in lengths, so the comparison
+            // relative to the equation's largest entry is the one in the core's units.
+            for e in 0..14 {
+                let exact: Vec<f64> = am[e].iter().flatten().chain(&bm[e]).copied().collect();
+                let sampled: Vec<f64> = sam[e].iter().flatten().chain(&sbm[e]).copied().collect();
+                let big = exact.iter().fold(1e-300_f64, |m, x| m.max(x.abs()));
+                for (i, (x, y)) in exact.iter().zip(&sampled).enumerate() {
+                    assert!(
+                        (x - y).abs() <= 1e-10 * big,
+                        "{name} trial {trial}: equation {e} entry {i}: exact {x} sampled {y} (largest {big})"
+                    );
+                }
+            }
+        }
+    }
 }

@@ -345,6 +345,7 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
                 for l in super::general::elimination_lines(sol, info) {
                     out.push_str(&format!("  {}\n", crate::emit::names::printable(&l)));
                 }
+                out.push_str(&general_plain(sol, info, &o)?);
             }
             for (step, parts) in sol.steps.iter().zip(all) {
                 out.push('\n');
@@ -394,6 +395,7 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
                     out.push_str(&line_comment(Comment::Latex, "%", &l));
                 }
                 out.push_str(&general_latex(info));
+                out.push_str(&general_exact_latex(sol, info, shorthand)?);
             }
             for (step, parts) in sol.steps.iter().zip(all) {
                 let q = latex_symbol(&step.variable);
@@ -458,6 +460,67 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
                 out.push('\n');
             }
         }
+    }
+    Ok(out)
+}
+
+/// The exact equations of the general method in plain text (`ik::general::exact`).
+fn general_plain(
+    sol: &IkSolution,
+    info: &super::general::GeneralInfo,
+    o: &PlainOptions,
+) -> Result<String, ScalarError> {
+    let shown = super::general::exact::exact_equations(sol, info)
+        .and_then(|eq| Ok((super::general::exact_scope_text(sol, &eq), eq.shown(sol)?)));
+    let (scope, groups) = match shown {
+        Ok(x) => x,
+        // Past the term limit or the work budget (a symbolic arm with symbolic twists), the
+        // rest of the report still stands; an interruption stops it.
+        Err(ScalarError::Cancelled) => return Err(ScalarError::Cancelled),
+        Err(e) => return Ok(format!("\nexact equations: not printed ({e})\n")),
+    };
+    let mut out =
+        format!("\nexact equations (Bm X12 = Am X45, every coefficient exact; {scope})\n");
+    for g in groups {
+        out.push_str(&format!("  {}\n", g.title));
+        for s in &g.items {
+            out.push_str(&format!("    {} = {}\n", s.label, plain(&s.expr, o)));
+        }
+    }
+    Ok(out)
+}
+
+/// The exact equations as LaTeX: one `aligned` block per group, its title a comment.
+fn general_exact_latex(
+    sol: &IkSolution,
+    info: &super::general::GeneralInfo,
+    shorthand: bool,
+) -> Result<String, ScalarError> {
+    let o = LatexOptions {
+        shorthand,
+        ..LatexOptions::default()
+    };
+    let shown = super::general::exact::exact_equations(sol, info)
+        .and_then(|eq| Ok((super::general::exact_scope_text(sol, &eq), eq.shown(sol)?)));
+    let (scope, groups) = match shown {
+        Ok(x) => x,
+        Err(ScalarError::Cancelled) => return Err(ScalarError::Cancelled),
+        Err(e) => {
+            return Ok(line_comment(
+                Comment::Latex,
+                "%",
+                &format!("exact equations: not printed ({e})"),
+            ))
+        }
+    };
+    let mut out = line_comment(Comment::Latex, "%", &format!("exact equations: {scope}"));
+    for g in groups {
+        out.push_str(&line_comment(Comment::Latex, "%", &g.title));
+        out.push_str("\\begin{aligned}\n");
+        for s in &g.items {
+            out.push_str(&format!("{} &= {} \\\\\n", s.tex, latex(&s.expr, &o)));
+        }
+        out.push_str("\\end{aligned}\n");
     }
     Ok(out)
 }

@@ -79,9 +79,9 @@ fn mv(r: &M3, v: &V) -> V {
 /// One joint of an arranged chain: unit direction `w`, point `c` (scaled), and its motion at
 /// an angle applied to a point and a direction.
 #[derive(Clone, Copy)]
-struct J {
-    w: V,
-    c: V,
+pub(crate) struct J {
+    pub(crate) w: V,
+    pub(crate) c: V,
 }
 
 impl J {
@@ -129,7 +129,7 @@ pub const DFT: [[f64; 3]; 3] = [
 ];
 
 /// The arranged problem `E1 ⋯ E6 = H` (home pose the identity), its elimination and solution.
-struct Arranged {
+pub(crate) struct Arranged {
     j: [J; 6],
     /// `H` with its translation scaled.
     h: B34,
@@ -139,14 +139,14 @@ struct Arranged {
 
 /// The elimination of one arrangement: `Bm X12 = Am(θ3) X45` (14 equations), the left null
 /// space `N` of `Bm` (six rows), and `N Am` in the basis `(1, cos θ3, sin θ3)`.
-struct Elim {
+pub(crate) struct Elim {
     /// `Am[e][k][m]`: equation `e`, `k` in `(1, cos θ3, sin θ3)`, monomial `m` of X45.
-    am: [[[f64; 9]; 3]; 14],
+    pub(crate) am: [[[f64; 9]; 3]; 14],
     /// Householder QR of `Bm` with column pivoting: `qt` is `Qᵀ` (14 x 14), `r` the 8 x 8
     /// triangle, `piv` the column order.
-    qt: [[f64; 14]; 14],
-    r: [[f64; 8]; 8],
-    piv: [usize; 8],
+    pub(crate) qt: [[f64; 14]; 14],
+    pub(crate) r: [[f64; 8]; 8],
+    pub(crate) piv: [usize; 8],
     /// `|r77| / |r00|`: how far `Bm` is from losing rank.
     rank_ratio: f64,
     /// `Σ = N Am` in `(1, cos θ3, sin θ3)`: 6 x 9 each.
@@ -160,7 +160,7 @@ fn mono(i: usize, j: usize) -> usize {
 
 impl Arranged {
     /// `arr = shift + 6 reversed` of the chain `ax` (scaled) with the target `g = T M⁻¹`.
-    fn new(ax: &[J; 6], g: &B34, arr: usize) -> Arranged {
+    pub(crate) fn new(ax: &[J; 6], g: &B34, arr: usize) -> Arranged {
         let (rev, shift) = (arr >= 6, arr % 6);
         let mut base = *ax;
         let mut h = *g;
@@ -196,7 +196,7 @@ impl Arranged {
 
     /// The equations' coefficients by exact trigonometric interpolation (see [`DFT`]).
     #[allow(clippy::needless_range_loop)]
-    fn elim(&self) -> Option<Elim> {
+    pub(crate) fn elim(&self) -> Option<Elim> {
         let (p6, w6) = (self.j[5].c, self.j[5].w);
         // Left: E3 E4 E5 applied to (p6, w6) on a 3 x 3 x 3 grid.
         let mut lhs = [[[[0.0; 14]; 3]; 3]; 3];
@@ -304,7 +304,7 @@ impl Arranged {
 }
 
 /// `[R | t]⁻¹ = [Rᵀ | −Rᵀ t]`.
-fn inverse(g: &B34) -> B34 {
+pub(crate) fn inverse(g: &B34) -> B34 {
     let mut o = [[0.0; 4]; 3];
     for i in 0..3 {
         for j in 0..3 {
@@ -824,7 +824,7 @@ fn forward(ax: &[GenAxis; 6], home: &B34, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) 
     (compose(&p, home), cur)
 }
 
-fn compose(a: &B34, b: &B34) -> B34 {
+pub(crate) fn compose(a: &B34, b: &B34) -> B34 {
     let mut o = [[0.0; 4]; 3];
     for r in 0..3 {
         for c in 0..4 {

@@ -37,15 +37,30 @@
 //! the loop `E1 ⋯ E6 H⁻¹ = I` is then read from another joint or backwards (twelve
 //! arrangements), and a set with a double root is completed from the next arrangement.
 //!
-//! The coefficients are computed numerically from the exact axes evaluated at the
-//! parameters: each of the fourteen quantities is sampled on a 3 x 3 x 3 grid of angles
-//! `2πk/3` and its coefficients read off by a three-point discrete Fourier transform, exact
-//! for degree one (no symbolic expansion; `A`, `B`, `C` are not printed as exact expressions).
+//! # What is exact
+//!
+//! [`exact`] derives the fourteen equations exactly: every coefficient of `Am(θ3)` and `Bm` a
+//! [`crate::Scalar`] in the robot's parameters and the target's entries (through the fourteen
+//! quantities `g1 … g14` of the target's point and direction), by the action of a rigid
+//! motion on the quantities as a 15 x 15 matrix, one joint at a time in `(1, cos, sin)`; and
+//! the half-angle polynomials `P_e(x3, x4, x5) = (1 + x3²)(1 + x4²)(1 + x5²) (Am X45)_e`.
+//! The report and the walkthrough print them. Exact arithmetic stops at step 3: the left
+//! null space `N` of `Bm` is computed per target in f64 (Householder QR), so `A`, `B`, `C`
+//! (`N` times the `P_e`) and everything after are numeric. The exact equations are those of
+//! the loop read from joint 1 (forwards or backwards as at the generic target); an
+//! arrangement read from another joint conjugates axes by the target and is not printed.
+//!
+//! The solver itself (`core.rs`) computes the same coefficients numerically from the axes
+//! evaluated at the parameters: each of the fourteen quantities is sampled on a 3 x 3 x 3
+//! grid of angles `2πk/3` and its coefficients read off by a three-point discrete Fourier
+//! transform, exact for degree one ([`sampled_equations`] returns them; a test checks them
+//! against [`exact`] at random parameters and targets).
 //! The numeric core (`core.rs`) is plain Rust that the generated solver contains verbatim.
 
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod core;
 pub(crate) mod emit;
+pub mod exact;
 
 use super::check::{self, AxisData};
 use super::{IkSolution, NumSolution, TARGET_SYMBOLS};
@@ -121,6 +136,72 @@ fn run(
     Ok(core::gen_solve(&ax, home, target, len, tol(), first))
 }
 
+/// What [`sampled_equations`] could not do.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SampleError {
+    /// A parameter without a value, or an arm that is not six joints.
+    #[error("{0}")]
+    Input(String),
+}
+
+/// The numeric core's sampled equations of arrangement `arr` (`shift + 6 reversed`) at a
+/// numeric target: `(am, bm)` as [`exact::ExactEquations`] lays them out, with lengths back in
+/// the robot's units (the core divides them by the arm's scale). `bm` is read back from the
+/// core's QR factors (`Bm = Q R Pᵀ`), so it carries their rounding too.
+///
+/// # Errors
+/// A parameter without a value, or not six joints.
+#[allow(clippy::type_complexity)]
+pub fn sampled_equations(
+    sol: &IkSolution,
+    target: &[[f64; 4]; 4],
+    params: &[(&str, f64)],
+    arr: usize,
+) -> Result<([[[f64; 9]; 3]; 14], [[f64; 8]; 14]), SampleError> {
+    let env = |n: &str| params.iter().find(|(k, _)| *k == n).map(|(_, v)| *v);
+    let (axes, home) = check::axis_data(sol, &env).map_err(SampleError::Input)?;
+    if axes.len() != 6 {
+        return Err(SampleError::Input(format!(
+            "the general method needs 6 joints, not {}",
+            axes.len()
+        )));
+    }
+    let len = check::scale(&axes, &home, target);
+    let js: [core::J; 6] = std::array::from_fn(|i| core::J {
+        w: [axes[i][1], axes[i][2], axes[i][3]],
+        c: [axes[i][4] / len, axes[i][5] / len, axes[i][6] / len],
+    });
+    let mut hm = home;
+    let mut tg = [[0.0; 4]; 3];
+    tg.copy_from_slice(&target[..3]);
+    for r in 0..3 {
+        hm[r][3] /= len;
+        tg[r][3] /= len;
+    }
+    let g = core::compose(&tg, &core::inverse(&hm));
+    let el = core::Arranged::new(&js, &g, arr % 12)
+        .elim()
+        .ok_or_else(|| SampleError::Input("no elimination".into()))?;
+    let mut am = el.am;
+    let mut bm = [[0.0; 8]; 14];
+    for (j, &col) in el.piv.iter().enumerate() {
+        for (e, row) in bm.iter_mut().enumerate() {
+            row[col] = (0..8).map(|i| el.qt[i][e] * el.r[i][j]).sum();
+        }
+    }
+    for e in 0..14 {
+        let k = len.powi(exact::LENGTH_DEGREE[e]);
+        for x in am[e].iter_mut().flatten() {
+            *x *= k;
+        }
+        for x in &mut bm[e] {
+            *x *= k;
+        }
+    }
+    Ok((am, bm))
+}
+
 /// The degree reached and the arrangement at a generic target: the parameters at `0.55 +
 /// 0.13 i` (as `check::step_degrees`), the target the pose at joint values `0.31 + 0.17 i`.
 pub(crate) fn info(sol: &IkSolution) -> GeneralInfo {
@@ -151,6 +232,34 @@ pub(crate) fn info(sol: &IkSolution) -> GeneralInfo {
         },
         _ => none,
     }
+}
+
+/// What the exact equations cover, in words: the arrangement they are derived for, and the
+/// step that leaves exact arithmetic.
+pub fn exact_scope_text(sol: &IkSolution, eq: &exact::ExactEquations) -> String {
+    let first = sol.variables.get(eq.order[0]).map_or("?", String::as_str);
+    let dir = if eq.arrangement.0 {
+        "backwards"
+    } else {
+        "forwards"
+    };
+    let used = sol.general.as_ref().map_or((false, 0), |g| g.arrangement);
+    let note = if used.1 == 0 {
+        String::new()
+    } else {
+        format!(
+            "; at a generic target the solver reads the loop from {} instead (this arrangement is degenerate for the arm)",
+            used_first(sol, used)
+        )
+    };
+    format!(
+        "the loop read {dir} from {first}{note}; Am, Bm and the half-angle polynomials P are exact in the parameters and the target's entries; the left null space N of Bm is computed per target in f64 (Householder QR), so A, B, C = N P (12 x 12) are numeric"
+    )
+}
+
+fn used_first(sol: &IkSolution, (rev, shift): (bool, usize)) -> String {
+    let k = if rev { 5 - shift } else { shift };
+    sol.variables.get(k).cloned().unwrap_or_default()
 }
 
 /// The elimination in words, one line each (the report and the walkthrough).
@@ -185,7 +294,7 @@ pub fn elimination_lines(sol: &IkSolution, info: &GeneralInfo) -> Vec<String> {
             "   X12 = (1, c, s)({}) x (1, c, s)({}) without 1 (8 monomials), X45 = (1, c, s)({}) x (1, c, s)({}) (9), Am linear in (1, c, s)({})",
             order[0], order[1], order[3], order[4], order[2]
         ),
-        "3. the left null space of Bm (14 x 8, Householder QR): 6 equations N Am X45 = 0".into(),
+        "3. the left null space N of Bm (14 x 8, Householder QR in f64 at the numeric target: where exact arithmetic stops; Am, Bm and the half-angle polynomials are exact): 6 equations N Am X45 = 0".into(),
         format!(
             "4. half-angle tangents of {} and {}, and the same equations times x({}): M(x) X = 0, M(x) = A x^2 + B x + C (12 x 12), x = tan(({} - phi)/2)",
             order[3], order[4], order[3], order[2]
