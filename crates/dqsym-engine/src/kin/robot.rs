@@ -14,7 +14,7 @@
 
 use super::{Chain, Joint, JointGeometry, JointKind};
 use crate::emit::names::terminal_text;
-use crate::{DualQuat, Matrix4, Quat, Scalar};
+use crate::{DualQuat, Matrix4, Quat, Scalar, ScalarError};
 use serde::Deserialize;
 use std::sync::atomic::{AtomicBool, Ordering as AtomicOrdering};
 use thiserror::Error;
@@ -29,6 +29,11 @@ pub enum Convention {
     Mdh,
     /// A motion about (or along) a home-pose axis in base coordinates.
     Screw,
+    /// A URDF joint as written ([`super::JointGeometry::Local`]): its origin frames, then a
+    /// motion about (or along) its axis in its own frame. Only the URDF reader makes it (a
+    /// file whose origins hold angles kept as parameters); robot files cannot say it.
+    #[serde(skip_deserializing)]
+    Local,
 }
 
 /// A robot read from a file: its chain with symbolic joint variables.
@@ -319,7 +324,8 @@ pub fn parse_robot_with(
                 variables.push(var);
                 joints.push(Joint::new(kind, geometry));
             }
-            Convention::Screw => {
+            // `Local` is never deserialized (only the URDF reader makes it).
+            Convention::Screw | Convention::Local => {
                 let text = j
                     .variable
                     .clone()
@@ -780,6 +786,59 @@ pub fn split_top_level(text: &str) -> Vec<&str> {
 }
 
 impl Robot {
+    /// The same robot in screw form, as a [`Convention::Local`] robot is not: each joint's
+    /// axis carried to the base by the frames before it (the home pose), every origin frame a
+    /// tool frame, their product the tool motion. Other robots are returned as they are.
+    ///
+    /// # Errors
+    /// A size limit reached by the product of the frames (frames at symbolic angles multiply
+    /// the terms of every later axis).
+    pub fn screw_form(&self) -> Result<Robot, ScalarError> {
+        if self.convention != Convention::Local {
+            return Ok(self.clone());
+        }
+        let checked = |q: &DualQuat<Scalar>| -> Result<(), ScalarError> {
+            for c in q.components() {
+                c.check()?;
+            }
+            Ok(())
+        };
+        let mut home = DualQuat::identity();
+        let (mut joints, mut frames) = (Vec::new(), Vec::new());
+        for j in &self.chain.joints {
+            let JointGeometry::Local { frames: fs, axis } = &j.geometry else {
+                return Ok(self.clone());
+            };
+            for f in fs {
+                home = home * super::local_frame_dq(f);
+                checked(&home)?;
+                frames.push(Frame {
+                    xyz: f.0.clone(),
+                    rpy: f.1.clone(),
+                });
+            }
+            let dir = DualQuat::from_real(home.real.clone()).transform_point(axis);
+            for c in &dir {
+                c.clone().check()?;
+            }
+            joints.push(match j.kind {
+                JointKind::Revolute => Joint::revolute_screw(dir, home.translation_part()),
+                JointKind::Prismatic => Joint::prismatic_screw(dir),
+            });
+        }
+        let tool = home * &self.chain.tool;
+        checked(&tool)?;
+        frames.extend(self.tool_frames.iter().cloned());
+        Ok(Robot {
+            convention: Convention::Screw,
+            chain: Chain::new(joints)
+                .with_base(self.chain.base.clone())
+                .with_tool(tool),
+            tool_frames: frames,
+            ..self.clone()
+        })
+    }
+
     /// The forward kinematics at the symbolic joint variables (base and tool frames included).
     pub fn forward(&self) -> DualQuat<Scalar> {
         self.chain
