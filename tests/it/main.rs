@@ -42,6 +42,7 @@ mod stress;
 mod tools;
 mod trig_corpus;
 mod urdf;
+mod urdf_local;
 mod walk;
 mod work_bounds;
 mod writes;

@@ -183,6 +183,8 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
 
     let mut read = Vec::with_capacity(path.len());
     let mut variables: Vec<String> = Vec::new();
+    // Whether an origin angle was kept as a parameter (a symbol other than pi).
+    let mut origin_params = false;
     for &k in &path {
         let j = &joints[k];
         let el = format!("joint `{}` (line {})", j.name, j.line);
@@ -198,6 +200,7 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
             )?);
         }
         let rpy: [Scalar; 3] = rpy.try_into().expect("three angles");
+        origin_params |= rpy.iter().any(|a| a.symbols().iter().any(|s| !s.is_pi()));
         let frame = Frame {
             xyz: j.xyz.clone().map(Scalar::rational),
             rpy,
@@ -247,10 +250,7 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
     // too); an origin at an angle kept as a parameter keeps every joint in its own frame,
     // since carrying the axes to the base multiplies out the frames before them and each
     // symbolic angle doubles the terms of every later axis.
-    let local = read
-        .iter()
-        .any(|r| r.frame.rpy.iter().any(|a| !a.is_constant()));
-    let (chain, frames, values, convention) = if local {
+    let (chain, frames, values, convention) = if origin_params {
         local_chain(read)
     } else {
         screw_chain(read)
