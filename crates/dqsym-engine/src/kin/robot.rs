@@ -47,7 +47,7 @@ pub enum Convention {
 pub struct Robot {
     /// The `name` field, or the file name.
     pub name: String,
-    /// The convention the joints were given in (URDF files become screw form).
+    /// The convention the joints were given in (URDF files become screw or local form).
     pub convention: Convention,
     /// The independent joint variables, in joint order.
     pub variables: Vec<String>,
@@ -58,8 +58,9 @@ pub struct Robot {
     pub chain: Chain<Scalar>,
     /// The constant frames before the first joint, in order (`[base]`).
     pub base_frames: Vec<Frame>,
-    /// The constant frames after the last joint, in order (`[tool]`; for a URDF file, the
-    /// joints' origins, whose product is the tip's home pose).
+    /// The constant frames after the last joint, in order (`[tool]`; for a URDF file in screw
+    /// form, the joints' origins, whose product is the tip's home pose; in local form, the
+    /// origins after the last moving joint).
     pub tool_frames: Vec<Frame>,
     /// The `tool` point, if the file gives one (in the home pose for screw robots, in the last
     /// frame for DH).

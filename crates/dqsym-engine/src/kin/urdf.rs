@@ -1,4 +1,5 @@
-//! URDF import: a serial chain of a URDF file as a screw-form [`Robot`], exactly.
+//! URDF import: a serial chain of a URDF file as a screw-form (or local-form) [`Robot`],
+//! exactly.
 //!
 //! Each joint of the chain from the base link to the tip link has an `origin` (a constant
 //! frame `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` from its parent link) and an `axis` in its
@@ -8,6 +9,15 @@
 //! product is the tip's home pose). Fixed joints are frames like any other origin, so they
 //! fold into the constants; a `mimic` joint's value is `multiplier · q + offset` in the
 //! variable q of the joint it follows.
+//!
+//! That rewriting multiplies the frames out: joint i's axis holds every origin before it.
+//! With numbers that is cheap, but each angle kept as a parameter (below) doubles the terms of
+//! every later axis, and a few such angles put a 4-joint file past the term limit. A file
+//! whose origins hold a parameter is therefore read in local form instead
+//! ([`Convention::Local`]): each moving joint keeps the frames since the previous one and its
+//! axis in its own frame ([`JointGeometry::Local`]), the frames after the last moving joint are
+//! the tool frames, and nothing multiplies the frames together but the pose itself (which
+//! `fk` then gives as its recurrence over the joint factors).
 //!
 //! Lengths are exact decimals read from the text (`0.4318` is 2159/5000). Angles are exact
 //! too: an `rpy` angle (or a mimic offset of a revolute joint) within the tolerance of its
@@ -60,7 +70,7 @@ impl Default for UrdfOptions {
 /// A robot read from a URDF file, with what was rounded on the way.
 #[derive(Clone, Debug)]
 pub struct UrdfRobot {
-    /// The chain, in screw form.
+    /// The chain, in screw form (local form when an origin holds a parameter).
     pub robot: Robot,
     /// One line per angle read as a multiple of pi (`joint `elbow`, origin rpy[0]: 1.5708
     /// read as pi/2`) or kept as a named parameter.
@@ -246,6 +256,28 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
             motion: Some((kind, axis, value)),
         });
     }
+    let name = root.attribute("name").unwrap_or(file);
+    let name = format!("{name} ({base_link} to {tip})");
+    Ok(assemble(
+        read,
+        origin_params,
+        name,
+        variables,
+        params,
+        notes,
+    ))
+}
+
+/// The robot of the joints read: in local form when an origin holds a parameter, else in
+/// screw form.
+fn assemble(
+    read: Vec<ReadJoint>,
+    origin_params: bool,
+    name: String,
+    variables: Vec<String>,
+    params: Vec<(String, f64)>,
+    notes: Vec<String>,
+) -> UrdfRobot {
     // A file whose origins are numbers is written in screw form (its home axes are numbers
     // too); an origin at an angle kept as a parameter keeps every joint in its own frame,
     // since carrying the axes to the base multiplies out the frames before them and each
@@ -255,11 +287,10 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
     } else {
         screw_chain(read)
     };
-    let name = root.attribute("name").unwrap_or(file).to_string();
     let decimals = origin_lengths(&read_frames(&chain, &frames));
-    Ok(UrdfRobot {
+    UrdfRobot {
         robot: Robot {
-            name: format!("{name} ({base_link} to {tip})"),
+            name,
             convention,
             variables,
             joint_values: values,
@@ -272,7 +303,7 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
             decimals,
         },
         notes,
-    })
+    }
 }
 
 /// One joint of the chain as read: its origin frame, that frame as a DQ, and for a moving
