@@ -379,13 +379,15 @@ impl Robot {
         self.robot.name.clone()
     }
 
-    /// "dh", "mdh" or "screw".
+    /// "dh", "mdh", "screw", or "local" (a URDF file whose origins hold angles kept as
+    /// parameters: each joint in its own frame).
     #[getter]
     fn convention(&self) -> &'static str {
         match self.robot.convention {
             Convention::Dh => "dh",
             Convention::Mdh => "mdh",
             Convention::Screw => "screw",
+            Convention::Local => "local",
         }
     }
 

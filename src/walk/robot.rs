@@ -78,7 +78,27 @@ fn frame_motions(f: &Frame) -> Vec<Motion> {
     out
 }
 
-/// The motion of a joint at the value `v` of its variable.
+/// The motions of a joint at the value `v` of its variable: the joint's own motion last,
+/// after the constant frames a [`JointGeometry::Local`] joint holds.
+fn joint_motions(joint: &crate::kin::Joint<Scalar>, v: &Scalar) -> Vec<Motion> {
+    let mut out = Vec::new();
+    if let JointGeometry::Local { frames, .. } = &joint.geometry {
+        out = frames
+            .iter()
+            .flat_map(|(xyz, rpy)| {
+                frame_motions(&Frame {
+                    xyz: xyz.clone(),
+                    rpy: rpy.clone(),
+                })
+            })
+            .collect();
+    }
+    out.push(joint_motion(joint, v));
+    out
+}
+
+/// The motion of a joint at the value `v` of its variable (a local joint's about its axis in
+/// its own frame, without its frames).
 fn joint_motion(joint: &crate::kin::Joint<Scalar>, v: &Scalar) -> Motion {
     let revolute = joint.kind == JointKind::Revolute;
     let add = |x: &Scalar, on: bool| if on { x + v } else { x.clone() };
@@ -86,6 +106,12 @@ fn joint_motion(joint: &crate::kin::Joint<Scalar>, v: &Scalar) -> Motion {
         JointGeometry::Screw { axis, point } => Motion::Screw {
             axis: axis.clone(),
             point: point.clone(),
+            angle: if revolute { v.clone() } else { Scalar::int(0) },
+            slide: if revolute { Scalar::int(0) } else { v.clone() },
+        },
+        JointGeometry::Local { axis, .. } => Motion::Screw {
+            axis: axis.clone(),
+            point: [Scalar::int(0), Scalar::int(0), Scalar::int(0)],
             angle: if revolute { v.clone() } else { Scalar::int(0) },
             slide: if revolute { Scalar::int(0) } else { v.clone() },
         },
@@ -109,7 +135,7 @@ fn joint_motion(joint: &crate::kin::Joint<Scalar>, v: &Scalar) -> Motion {
 pub fn robot_mechanism(robot: &Robot) -> Mechanism {
     let mut motions: Vec<Motion> = robot.base_frames.iter().flat_map(frame_motions).collect();
     for (joint, v) in robot.chain.joints.iter().zip(&robot.joint_values) {
-        motions.push(joint_motion(joint, v));
+        motions.extend(joint_motions(joint, v));
     }
     motions.extend(robot.tool_frames.iter().flat_map(frame_motions));
     Mechanism {
@@ -173,10 +199,10 @@ pub fn walk_robot_chain(robot: &Robot) -> Result<Walkthrough, WalkError> {
         .zip(&robot.joint_values)
         .enumerate()
     {
-        let m = joint_motion(joint, v);
+        let ms = joint_motions(joint, v);
         let q = joint.dq(v);
-        let meaning = m.describe();
-        motions.push(m);
+        let meaning = ms.last().expect("a joint's own motion").describe();
+        motions.extend(ms);
         push(
             format!("q{}", i + 1),
             q,

@@ -63,6 +63,23 @@ fn pose(r: &Robot, env: &[(String, f64)], q: &[f64]) -> M {
                     JointKind::Prismatic => trans([u[0] * v, u[1] * v, u[2] * v]),
                 }
             }
+            // A URDF joint as written: its origin frames, then the motion about its axis
+            // through the last frame's origin.
+            JointGeometry::Local { frames, axis } => {
+                let u = f3(axis);
+                let origin = frames.iter().fold(trans([0.0; 3]), |m, (xyz, rpy)| {
+                    let fr = dqsym::kin::Frame {
+                        xyz: xyz.clone(),
+                        rpy: rpy.clone(),
+                    };
+                    mul(&m, &frame(&fr))
+                });
+                let own = match j.kind {
+                    JointKind::Revolute => rot(u, v),
+                    JointKind::Prismatic => trans([u[0] * v, u[1] * v, u[2] * v]),
+                };
+                mul(&origin, &own)
+            }
         };
         m = mul(&m, &jm);
     }

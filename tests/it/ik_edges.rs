@@ -165,6 +165,16 @@ fn link(j: &dqsym::Joint<f64>, q: f64) -> M4 {
             mul(&mul(&m, &rot(2, theta + tq)), &trans(0.0, 0.0, d + dq))
         }
         JointGeometry::Screw { axis, point } => screw(*axis, *point, q, prismatic),
+        // A URDF joint as written: Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll) per frame, then the
+        // motion about the axis through the frame's origin.
+        JointGeometry::Local { frames, axis } => {
+            let origin = frames.iter().fold(eye(), |m, (x, r)| {
+                let m = mul(&m, &trans(x[0], x[1], x[2]));
+                let m = mul(&mul(&m, &rot(2, r[2])), &rot(1, r[1]));
+                mul(&m, &rot(0, r[0]))
+            });
+            mul(&origin, &screw(*axis, [0.0; 3], q, prismatic))
+        }
     }
 }
 

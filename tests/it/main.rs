@@ -45,6 +45,7 @@ mod tools;
 mod trig_corpus;
 mod typed_errors;
 mod urdf;
+mod urdf_local;
 mod walk;
 mod work_bounds;
 mod writes;

@@ -55,6 +55,10 @@ pub(crate) fn numeric_chain(r: &Robot, env: &[(String, f64)]) -> Chain<f64> {
                     axis: f3(axis),
                     point: f3(point),
                 },
+                JointGeometry::Local { frames, axis } => JointGeometry::Local {
+                    frames: frames.iter().map(|(x, r)| (f3(x), f3(r))).collect(),
+                    axis: f3(axis),
+                },
             };
             Joint::new(j.kind, g)
         })

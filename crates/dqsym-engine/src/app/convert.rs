@@ -33,6 +33,8 @@ type V = [Scalar; 3];
 /// # Errors
 /// When a value has no closed form (a size limit).
 pub fn robot_toml(robot: &Robot, source: &str) -> Result<String, ScalarError> {
+    // A robot file has no local joints: their frames are carried to the base first.
+    let robot = &robot.screw_form()?;
     let mut text = match dh_form(robot) {
         Ok(dh) => dh_toml(robot, &dh, source),
         Err(why) => screw_toml(robot, source, &why),
@@ -49,7 +51,10 @@ pub fn robot_toml(robot: &Robot, source: &str) -> Result<String, ScalarError> {
 
 /// Why `robot` cannot be written in DH form (`None` when it can); the screw-form file says it.
 pub fn dh_refusal(robot: &Robot) -> Option<DhRefusal> {
-    dh_form(robot).err()
+    match robot.screw_form() {
+        Ok(r) => dh_form(&r).err(),
+        Err(e) => Some(DhRefusal::Carry(e)),
+    }
 }
 
 /// A value as text for a robot file: a TOML number when it is an integer or a terminating
@@ -573,6 +578,9 @@ pub enum DhRefusal {
     /// A limit was reached while checking whether a value is zero.
     #[error("a size limit was reached while checking it ({0})")]
     Limit(ScalarError),
+    /// A limit was reached carrying a local-form robot's axes to the base.
+    #[error("a size limit was reached carrying the axes to the base: {0}")]
+    Carry(ScalarError),
     /// An exact operation failed.
     #[error(transparent)]
     Scalar(#[from] ScalarError),

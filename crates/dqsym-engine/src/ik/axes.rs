@@ -216,6 +216,18 @@ pub fn home_axes(robot: &Robot) -> (Vec<Axis>, Matrix4<Scalar>) {
                 axes.push(Axis::new(j.kind, var, axis.clone(), point.clone()));
                 frame = frame.mul_ref(&home);
             }
+            JointGeometry::Local { axis, .. } => {
+                // The joint's frames carried to the base: the axis is the frame's rotation of
+                // the local direction, through the frame's origin (frames at symbolic angles
+                // reach a size limit here, an error value the callers report).
+                frame = frame.mul_ref(&home);
+                let r = |i: usize| -> Scalar {
+                    (0..3)
+                        .map(|k| &frame.rows[i][k] * &axis[k])
+                        .fold(Scalar::int(0), |a, b| a + b)
+                };
+                axes.push(Axis::new(j.kind, var, [r(0), r(1), r(2)], col(&frame, 3)));
+            }
         }
     }
     let m = frame.mul_ref(&robot.chain.tool.to_matrix());

@@ -455,7 +455,7 @@ pub fn ik_javascript_helpers(sol: &IkSolution) -> String {
 /// The tolerances block of the C solvers (the general method's C solver states the same
 /// constants as the family solvers).
 pub(super) fn c_tolerances(sol: &IkSolution) -> String {
-    tolerances(sol, Some(Lang::C))
+    tolerances(sol, syntax(names::Lang::C))
 }
 
 /// Each step's degree in lengths (see [`super::check`]), for the page's solver.

@@ -2,7 +2,7 @@
 
 use super::dh::{dh_link, dh_link_matrix, mdh_link, mdh_link_matrix};
 use crate::algebra::{neg3, scale3};
-use crate::{DualQuat, Matrix4, Ring};
+use crate::{DualQuat, Matrix4, Quat, Ring};
 
 /// Whether the joint variable is an angle or a length. A robot file's joint `type`:
 /// `"revolute"` or `"prismatic"`.
@@ -54,6 +54,39 @@ pub enum JointGeometry<T> {
         /// A point on the joint axis.
         point: [T; 3],
     },
+    /// A URDF joint as written: the constant frames from the previous joint's frame to this
+    /// joint's (each `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)`, in order), then a rotation about
+    /// (or a slide along) the unit direction `axis` through the origin of the joint's own
+    /// frame. The frames stay a factor of this joint: nothing carries an axis to the base, so
+    /// a chain of frames at symbolic angles is never multiplied out (each angle would double
+    /// the terms of every later axis).
+    Local {
+        /// The origin frames `(xyz, [roll, pitch, yaw])`, in order.
+        frames: Vec<LocalFrame<T>>,
+        /// Unit direction of the joint axis, in the joint's frame.
+        axis: [T; 3],
+    },
+}
+
+/// A constant frame of a [`JointGeometry::Local`] joint: `(xyz, [roll, pitch, yaw])`, the
+/// motion `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)`.
+pub type LocalFrame<T> = ([T; 3], [T; 3]);
+
+/// The frame `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` as a unit DQ.
+pub fn local_frame_dq<T: Ring>((xyz, rpy): &LocalFrame<T>) -> DualQuat<T> {
+    let (o, l) = (T::zero(), T::one());
+    let rx = Quat::rotation(&[l.clone(), o.clone(), o.clone()], &rpy[0]);
+    let ry = Quat::rotation(&[o.clone(), l.clone(), o.clone()], &rpy[1]);
+    let rz = Quat::rotation(&[o.clone(), o, l], &rpy[2]);
+    DualQuat::from_rotation_and_translation(rz * ry * rx, xyz)
+}
+
+/// The frame `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` as a product of elementary matrices.
+pub fn local_frame_matrix<T: Ring>((xyz, rpy): &LocalFrame<T>) -> Matrix4<T> {
+    Matrix4::trans(xyz)
+        * Matrix4::rot_z(&rpy[2])
+        * Matrix4::rot_y(&rpy[1])
+        * Matrix4::rot_x(&rpy[0])
 }
 
 /// A one-degree-of-freedom joint: its kind and its geometry.
@@ -141,6 +174,21 @@ impl<T: Ring> Joint<T> {
                 JointKind::Revolute => DualQuat::rotation_about_point(axis, q, point),
                 JointKind::Prismatic => DualQuat::translation(&scale3(q, axis)),
             },
+            JointGeometry::Local { frames, axis } => {
+                let motion = match self.kind {
+                    JointKind::Revolute => DualQuat::rotation(axis, q),
+                    JointKind::Prismatic => DualQuat::translation(&scale3(q, axis)),
+                };
+                match frames.split_first() {
+                    None => motion,
+                    Some((first, rest)) => {
+                        let origin = rest
+                            .iter()
+                            .fold(local_frame_dq(first), |acc, f| acc * local_frame_dq(f));
+                        origin * motion
+                    }
+                }
+            }
         }
     }
 
@@ -165,6 +213,16 @@ impl<T: Ring> Joint<T> {
                 }
                 JointKind::Prismatic => Matrix4::trans(&scale3(q, axis)),
             },
+            JointGeometry::Local { frames, axis } => {
+                let motion = match self.kind {
+                    JointKind::Revolute => Matrix4::rotation(axis, q),
+                    JointKind::Prismatic => Matrix4::trans(&scale3(q, axis)),
+                };
+                frames
+                    .iter()
+                    .rev()
+                    .fold(motion, |acc, f| local_frame_matrix(f) * acc)
+            }
         }
     }
 }

@@ -19,7 +19,7 @@ mod urdf;
 pub use chain::{Chain, ChainError};
 pub use dh::{dh_link, dh_link_matrix, mdh_link, mdh_link_matrix};
 pub use jacobian::{dq_jacobian, geometric_jacobian, geometric_jacobian_body};
-pub use joint::{Joint, JointGeometry, JointKind};
+pub use joint::{local_frame_dq, local_frame_matrix, Joint, JointGeometry, JointKind, LocalFrame};
 pub use robot::{
     parse_robot, parse_robot_with, split_top_level, Convention, ExprError, FieldError, FieldEval,
     Frame, Robot, RobotError, RobotOptions,

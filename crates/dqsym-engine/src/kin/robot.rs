@@ -30,6 +30,11 @@ pub enum Convention {
     Mdh,
     /// A motion about (or along) a home-pose axis in base coordinates.
     Screw,
+    /// A URDF joint as written ([`super::JointGeometry::Local`]): its origin frames, then a
+    /// motion about (or along) its axis in its own frame. Only the URDF reader makes it (a
+    /// file whose origins hold angles kept as parameters); robot files cannot say it.
+    #[serde(skip_deserializing)]
+    Local,
 }
 
 /// A robot read from a file: its chain with symbolic joint variables.
@@ -43,7 +48,7 @@ pub enum Convention {
 pub struct Robot {
     /// The `name` field, or the file name.
     pub name: String,
-    /// The convention the joints were given in (URDF files become screw form).
+    /// The convention the joints were given in (URDF files become screw or local form).
     pub convention: Convention,
     /// The independent joint variables, in joint order.
     pub variables: Vec<String>,
@@ -54,8 +59,9 @@ pub struct Robot {
     pub chain: Chain<Scalar>,
     /// The constant frames before the first joint, in order (`[base]`).
     pub base_frames: Vec<Frame>,
-    /// The constant frames after the last joint, in order (`[tool]`; for a URDF file, the
-    /// joints' origins, whose product is the tip's home pose).
+    /// The constant frames after the last joint, in order (`[tool]`; for a URDF file in screw
+    /// form, the joints' origins, whose product is the tip's home pose; in local form, the
+    /// origins after the last moving joint).
     pub tool_frames: Vec<Frame>,
     /// The `tool` point, if the file gives one (in the home pose for screw robots, in the last
     /// frame for DH).
@@ -362,7 +368,8 @@ impl Reader<'_> {
         };
         match convention {
             Convention::Dh | Convention::Mdh => self.dh_joint(n, j, kind, convention),
-            Convention::Screw => self.screw_joint(n, j, kind),
+            // `Local` is never deserialized (only the URDF reader makes it).
+            Convention::Screw | Convention::Local => self.screw_joint(n, j, kind),
         }
     }
 
@@ -857,6 +864,59 @@ pub fn split_top_level(text: &str) -> Vec<&str> {
 }
 
 impl Robot {
+    /// The same robot in screw form, as a [`Convention::Local`] robot is not: each joint's
+    /// axis carried to the base by the frames before it (the home pose), every origin frame a
+    /// tool frame, their product the tool motion. Other robots are returned as they are.
+    ///
+    /// # Errors
+    /// A size limit reached by the product of the frames (frames at symbolic angles multiply
+    /// the terms of every later axis).
+    pub fn screw_form(&self) -> Result<Robot, ScalarError> {
+        if self.convention != Convention::Local {
+            return Ok(self.clone());
+        }
+        let checked = |q: &DualQuat<Scalar>| -> Result<(), ScalarError> {
+            for c in q.components() {
+                c.check()?;
+            }
+            Ok(())
+        };
+        let mut home = DualQuat::identity();
+        let (mut joints, mut frames) = (Vec::new(), Vec::new());
+        for j in &self.chain.joints {
+            let JointGeometry::Local { frames: fs, axis } = &j.geometry else {
+                return Ok(self.clone());
+            };
+            for f in fs {
+                home = home * super::local_frame_dq(f);
+                checked(&home)?;
+                frames.push(Frame {
+                    xyz: f.0.clone(),
+                    rpy: f.1.clone(),
+                });
+            }
+            let dir = DualQuat::from_real(home.real.clone()).transform_point(axis);
+            for c in &dir {
+                c.clone().check()?;
+            }
+            joints.push(match j.kind {
+                JointKind::Revolute => Joint::revolute_screw(dir, home.translation_part()),
+                JointKind::Prismatic => Joint::prismatic_screw(dir),
+            });
+        }
+        let tool = home * &self.chain.tool;
+        checked(&tool)?;
+        frames.extend(self.tool_frames.iter().cloned());
+        Ok(Robot {
+            convention: Convention::Screw,
+            chain: Chain::new(joints)
+                .with_base(self.chain.base.clone())
+                .with_tool(tool),
+            tool_frames: frames,
+            ..self.clone()
+        })
+    }
+
     /// The forward kinematics at the symbolic joint variables (base and tool frames included).
     pub fn forward(&self) -> DualQuat<Scalar> {
         self.chain

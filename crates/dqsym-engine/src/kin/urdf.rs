@@ -1,4 +1,5 @@
-//! URDF import: a serial chain of a URDF file as a screw-form [`Robot`], exactly.
+//! URDF import: a serial chain of a URDF file as a screw-form (or local-form) [`Robot`],
+//! exactly.
 //!
 //! Each joint of the chain from the base link to the tip link has an `origin` (a constant
 //! frame `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` from its parent link) and an `axis` in its
@@ -8,6 +9,15 @@
 //! product is the tip's home pose). Fixed joints are frames like any other origin, so they
 //! fold into the constants; a `mimic` joint's value is `multiplier · q + offset` in the
 //! variable q of the joint it follows.
+//!
+//! That rewriting multiplies the frames out: joint i's axis holds every origin before it.
+//! With numbers that is cheap, but each angle kept as a parameter (below) doubles the terms of
+//! every later axis, and a few such angles put a 4-joint file past the term limit. A file
+//! whose origins hold a parameter is therefore read in local form instead
+//! ([`Convention::Local`]): each moving joint keeps the frames since the previous one and its
+//! axis in its own frame ([`JointGeometry::Local`]), the frames after the last moving joint are
+//! the tool frames, and nothing multiplies the frames together but the pose itself (which
+//! `fk` then gives as its recurrence over the joint factors).
 //!
 //! Lengths are exact decimals read from the text (`0.4318` is 2159/5000). Angles are exact
 //! too: an `rpy` angle (or a mimic offset of a revolute joint) within the tolerance of its
@@ -20,7 +30,7 @@
 
 use super::angles::{self, AngleReading};
 use super::robot::{frame_dq, unit_numeric};
-use super::{Chain, Convention, Frame, Joint, JointKind, Robot};
+use super::{local_frame_dq, Chain, Convention, Frame, Joint, JointGeometry, JointKind, Robot};
 use crate::emit::names::terminal_text;
 use crate::{DualQuat, Scalar};
 use num_rational::BigRational;
@@ -60,7 +70,7 @@ impl Default for UrdfOptions {
 /// A robot read from a URDF file, with what was rounded on the way.
 #[derive(Clone, Debug)]
 pub struct UrdfRobot {
-    /// The chain, in screw form.
+    /// The chain, in screw form (local form when an origin holds a parameter).
     pub robot: Robot,
     /// One line per angle read as a multiple of pi (`joint `elbow`, origin rpy[0]: 1.5708
     /// read as pi/2`) or kept as a named parameter.
@@ -181,11 +191,10 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
         }
     };
 
-    let mut home = DualQuat::identity();
-    let mut frames = Vec::new();
-    let mut chain_joints = Vec::new();
-    let mut values = Vec::new();
+    let mut read = Vec::with_capacity(path.len());
     let mut variables: Vec<String> = Vec::new();
+    // Whether an origin angle was kept as a parameter (a symbol other than pi).
+    let mut origin_params = false;
     for &k in &path {
         let j = &joints[k];
         let el = format!("joint `{}` (line {})", j.name, j.line);
@@ -201,22 +210,27 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
             )?);
         }
         let rpy: [Scalar; 3] = rpy.try_into().expect("three angles");
-        let f = Frame {
+        origin_params |= rpy.iter().any(|a| a.symbols().iter().any(|s| !s.is_pi()));
+        let frame = Frame {
             xyz: j.xyz.clone().map(Scalar::rational),
             rpy,
         };
-        let fdq = frame_dq(&f.xyz, &f.rpy).map_err(|e| el_err(el.clone(), e.to_string()))?;
-        home = home * fdq;
-        frames.push(f);
+        let fdq = frame_dq(&frame.xyz, &frame.rpy).map_err(|e| el_err(el.clone(), e.to_string()))?;
         let kind = match j.kind.as_str() {
-            "fixed" => continue,
+            "fixed" => {
+                read.push(ReadJoint {
+                    frame,
+                    fdq,
+                    motion: None,
+                });
+                continue;
+            }
             "revolute" | "continuous" => JointKind::Revolute,
             "prismatic" => JointKind::Prismatic,
             _ => unreachable!("read_joint refuses other types"),
         };
         let axis = unit_numeric(&j.axis.clone().map(Scalar::rational))
             .map_err(|m| el_err(el.clone(), format!("<axis>: {m}")))?;
-        let dir = DualQuat::from_real(home.real.clone()).transform_point(&axis);
         let value = match &j.mimic {
             None => Scalar::sym(&names.var_of(&j.name)),
             Some((leader, mult, offset)) => {
@@ -236,20 +250,48 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
             }
         };
         names.add_variables(&value, &mut variables);
-        let joint = match kind {
-            JointKind::Revolute => Joint::revolute_screw(dir, home.translation_part()),
-            JointKind::Prismatic => Joint::prismatic_screw(dir),
-        };
-        chain_joints.push(joint);
-        values.push(value);
+        read.push(ReadJoint {
+            frame,
+            fdq,
+            motion: Some((kind, axis, value)),
+        });
     }
-    let name = root.attribute("name").unwrap_or(file).to_string();
-    let chain = Chain::new(chain_joints).with_tool(home);
-    let decimals = origin_lengths(&frames);
-    Ok(UrdfRobot {
+    let name = root.attribute("name").unwrap_or(file);
+    let name = format!("{name} ({base_link} to {tip})");
+    Ok(assemble(
+        read,
+        origin_params,
+        name,
+        variables,
+        params,
+        notes,
+    ))
+}
+
+/// The robot of the joints read: in local form when an origin holds a parameter, else in
+/// screw form.
+fn assemble(
+    read: Vec<ReadJoint>,
+    origin_params: bool,
+    name: String,
+    variables: Vec<String>,
+    params: Vec<(String, f64)>,
+    notes: Vec<String>,
+) -> UrdfRobot {
+    // A file whose origins are numbers is written in screw form (its home axes are numbers
+    // too); an origin at an angle kept as a parameter keeps every joint in its own frame,
+    // since carrying the axes to the base multiplies out the frames before them and each
+    // symbolic angle doubles the terms of every later axis.
+    let (chain, frames, values, convention) = if origin_params {
+        local_chain(read)
+    } else {
+        screw_chain(read)
+    };
+    let decimals = origin_lengths(&read_frames(&chain, &frames));
+    UrdfRobot {
         robot: Robot {
-            name: format!("{name} ({base_link} to {tip})"),
-            convention: Convention::Screw,
+            name,
+            convention,
             variables,
             joint_values: values,
             chain,
@@ -261,7 +303,80 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
             decimals,
         },
         notes,
-    })
+    }
+}
+
+/// One joint of the chain as read: its origin frame, that frame as a DQ, and for a moving
+/// joint its kind, unit axis (in its own frame) and value.
+struct ReadJoint {
+    frame: Frame,
+    fdq: DualQuat<Scalar>,
+    motion: Option<(JointKind, [Scalar; 3], Scalar)>,
+}
+
+/// The chain, its tool frames, joint values and convention.
+type Built = (Chain<Scalar>, Vec<Frame>, Vec<Scalar>, Convention);
+
+/// The screw form: joint i turns about its axis carried to the base by the frames before it
+/// (the home pose); every frame is a tool frame, their product the tool motion.
+fn screw_chain(read: Vec<ReadJoint>) -> Built {
+    let mut home = DualQuat::identity();
+    let (mut joints, mut frames, mut values) = (Vec::new(), Vec::new(), Vec::new());
+    for r in read {
+        home = home * r.fdq;
+        frames.push(r.frame);
+        let Some((kind, axis, value)) = r.motion else {
+            continue;
+        };
+        let dir = DualQuat::from_real(home.real.clone()).transform_point(&axis);
+        joints.push(match kind {
+            JointKind::Revolute => Joint::revolute_screw(dir, home.translation_part()),
+            JointKind::Prismatic => Joint::prismatic_screw(dir),
+        });
+        values.push(value);
+    }
+    let chain = Chain::new(joints).with_tool(home);
+    (chain, frames, values, Convention::Screw)
+}
+
+/// The local form: each moving joint holds the frames since the previous moving joint and its
+/// axis in its own frame ([`JointGeometry::Local`]); the frames after the last moving joint are
+/// the tool frames.
+fn local_chain(read: Vec<ReadJoint>) -> Built {
+    let (mut joints, mut pending, mut values) = (Vec::new(), Vec::new(), Vec::new());
+    for r in read {
+        pending.push((r.frame.xyz, r.frame.rpy));
+        let Some((kind, axis, value)) = r.motion else {
+            continue;
+        };
+        let frames = std::mem::take(&mut pending);
+        joints.push(Joint::new(kind, JointGeometry::Local { frames, axis }));
+        values.push(value);
+    }
+    let tool: Vec<Frame> = pending
+        .into_iter()
+        .map(|(xyz, rpy)| Frame { xyz, rpy })
+        .collect();
+    let motion = tool.iter().fold(DualQuat::identity(), |acc, f| {
+        acc * local_frame_dq(&(f.xyz.clone(), f.rpy.clone()))
+    });
+    let chain = Chain::new(joints).with_tool(motion);
+    (chain, tool, values, Convention::Local)
+}
+
+/// Every origin frame of the chain: the joints' own (local form) and the tool frames.
+fn read_frames(chain: &Chain<Scalar>, tool: &[Frame]) -> Vec<Frame> {
+    let mut out: Vec<Frame> = chain
+        .joints
+        .iter()
+        .flat_map(|j| match &j.geometry {
+            JointGeometry::Local { frames, .. } => frames.clone(),
+            _ => Vec::new(),
+        })
+        .map(|(xyz, rpy)| Frame { xyz, rpy })
+        .collect();
+    out.extend(tool.iter().cloned());
+    out
 }
 
 /// URDF numbers are decimals by the format: the lengths of the chain's origins, sorted and

@@ -160,7 +160,7 @@ pub fn sampled_equations(
     arr: usize,
 ) -> Result<([[[f64; 9]; 3]; 14], [[f64; 8]; 14]), SampleError> {
     let env = |n: &str| params.iter().find(|(k, _)| *k == n).map(|(_, v)| *v);
-    let (axes, home) = check::axis_data(sol, &env).map_err(SampleError::Input)?;
+    let (axes, home) = check::axis_data(sol, &env).map_err(|e| SampleError::Input(e.into()))?;
     if axes.len() != 6 {
         return Err(SampleError::Input(format!(
             "the general method needs 6 joints, not {}",
