@@ -34,14 +34,40 @@ pub(crate) enum E {
     Pow(u32, u32),
     Trig(Atom),
     /// Children are shared: the search copies and memoizes subtrees without copying them.
-    Add(Rc<[E]>),
-    Mul(Rc<[E]>),
+    /// The cost of the node is kept beside them (see [`E::sum`]).
+    Add(Rc<[E]>, Cost),
+    Mul(Rc<[E]>, Cost),
     Neg(Rc<E>),
 }
 
 impl E {
     fn zero() -> E {
         E::Num(Q::ZERO)
+    }
+
+    /// The sum of `v`, its cost computed once from the children's (each of which is kept
+    /// in its node or is a leaf): the search compares the costs of many candidates whose
+    /// subtrees it shares, and a walk of each candidate's whole tree was quadratic.
+    fn sum(v: Vec<E>) -> E {
+        let c = Self::node_cost(&v, true);
+        E::Add(v.into(), c)
+    }
+
+    /// The product of `v`, its cost computed as [`E::sum`]'s.
+    fn product(v: Vec<E>) -> E {
+        let c = Self::node_cost(&v, false);
+        E::Mul(v.into(), c)
+    }
+
+    fn node_cost(v: &[E], in_sum: bool) -> Cost {
+        let mut c = Cost {
+            ops: v.len().saturating_sub(1),
+            calls: 0,
+        };
+        for e in v {
+            e.add_cost(&mut c, in_sum);
+        }
+        c
     }
 
     /// The cost of the [`Expr`] this becomes (see [`Expr::cost`]).
@@ -67,17 +93,9 @@ impl E {
                 c.calls += 1;
             }
             E::Sym(_) => {}
-            E::Add(v) => {
-                c.ops += v.len().saturating_sub(1);
-                for e in v.iter() {
-                    e.add_cost(c, true);
-                }
-            }
-            E::Mul(v) => {
-                c.ops += v.len().saturating_sub(1);
-                for e in v.iter() {
-                    e.add_cost(c, false);
-                }
+            E::Add(_, k) | E::Mul(_, k) => {
+                c.ops += k.ops;
+                c.calls += k.calls;
             }
             E::Neg(e) => {
                 if !in_sum {
@@ -102,8 +120,8 @@ impl E {
                 f: crate::scalar::Trig::of(is_sin(*a)),
                 angle: ctx.angles[angle_of(*a) as usize].clone(),
             },
-            E::Add(v) => Expr::Add(v.iter().map(|e| e.to_expr(ctx)).collect()),
-            E::Mul(v) => product_expr(v, ctx),
+            E::Add(v, _) => Expr::Add(v.iter().map(|e| e.to_expr(ctx)).collect()),
+            E::Mul(v, _) => product_expr(v, ctx),
             E::Neg(e) => Expr::Neg(Box::new(e.to_expr(ctx))),
         }
     }
@@ -179,6 +197,7 @@ fn product_expr(v: &[E], ctx: &Ctx) -> Expr {
 struct Search {
     memo: FxMap<u64, Vec<(usize, Vec<Mon>, E)>>,
     spent: Option<ScalarError>,
+    counts: Counts,
 }
 
 /// The cheapest nested expression this search finds for the sum of `mons`, with its cost.
@@ -207,7 +226,10 @@ pub(crate) fn cost_lower_bound(mons: &[Mon]) -> Cost {
 }
 
 pub(crate) fn build(mons: &[Mon]) -> Result<(E, Cost), ScalarError> {
-    let mut s = Search::default();
+    let mut s = Search {
+        counts: Counts::for_mons(mons),
+        ..Search::default()
+    };
     let e = s.build_at(mons, 0);
     if let Some(err) = s.spent {
         return Err(err);
@@ -229,7 +251,7 @@ impl Search {
         }
         if self.spent.is_some() {
             // Out of budget: the result is discarded, so stop at once.
-            return E::Add(mons.iter().map(mon_expr).collect());
+            return E::sum(mons.iter().map(mon_expr).collect());
         }
         // A sum whose terms are all negative reads better as the negation of a sum.
         if mons.iter().all(|m| m.q.is_negative()) {
@@ -264,11 +286,11 @@ impl Search {
                 .collect();
             return mul(vec![E::Sqrt(r), self.build_at(&inner, depth)]);
         }
-        let candidates = candidates(mons);
-        if candidates.is_empty() {
-            return E::Add(mons.iter().map(mon_expr).collect());
-        }
         let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
+        let candidates = self.counts.candidates(mons, tries);
+        if candidates.is_empty() {
+            return E::sum(mons.iter().map(mon_expr).collect());
+        }
         // The result depends on the depth only through the branching, so below the branching
         // levels all depths share one entry.
         let level = depth.min(BRANCH_DEPTH);
@@ -286,7 +308,7 @@ impl Search {
             return e.clone();
         }
         let mut best: Option<(Cost, E)> = None;
-        for f in candidates.into_iter().take(tries) {
+        for f in candidates {
             let e = self.split_on(mons, f, depth);
             let c = e.cost();
             if best.as_ref().is_none_or(|(bc, _)| c < *bc) {
@@ -343,7 +365,7 @@ impl Search {
         let rest_expr = self.build_at(&rest, depth + 1);
         // Splice the rest around the factored group in reading order.
         let mut rest_terms = match rest_expr {
-            E::Add(v) => v.to_vec(),
+            E::Add(v, _) => v.to_vec(),
             e => vec![e],
         };
         let mut terms = Vec::with_capacity(rest_terms.len() + 1);
@@ -360,36 +382,83 @@ impl Search {
         if terms.len() == 1 {
             terms.pop().unwrap_or_else(E::zero)
         } else {
-            E::Add(terms.into())
+            E::sum(terms)
         }
     }
 }
 
-/// Factors that occur in at least two monomials, most frequent first, ties by factor order.
-fn candidates(mons: &[Mon]) -> Vec<Factor> {
-    let mut all: Vec<Factor> =
-        Vec::with_capacity(mons.iter().map(|m| m.syms.len() + m.atoms.len()).sum());
-    for m in mons {
-        all.extend(m.syms.iter().map(|&(s, _)| Factor::Sym(s)));
-        let mut last: Option<Atom> = None;
-        for &a in &m.atoms {
-            if last != Some(a) {
-                all.push(Factor::Atom(a));
+/// Counts of the factors of a group of monomials, by a dense index (atoms first, then
+/// symbols: the order of [`Factor`]), reused across the search.
+#[derive(Default)]
+struct Counts {
+    /// The index of symbol 0 (one past the largest atom).
+    sym_base: usize,
+    n: Vec<u32>,
+    touched: Vec<usize>,
+}
+
+impl Counts {
+    fn for_mons(mons: &[Mon]) -> Counts {
+        let atoms = mons.iter().flat_map(|m| m.atoms.iter().map(|&a| a as usize + 1));
+        let syms = mons.iter().flat_map(|m| m.syms.iter().map(|&(s, _)| s as usize + 1));
+        let sym_base = atoms.max().unwrap_or(0);
+        Counts {
+            sym_base,
+            n: vec![0; sym_base + syms.max().unwrap_or(0)],
+            touched: Vec::new(),
+        }
+    }
+
+    fn factor(&self, i: usize) -> Factor {
+        if i < self.sym_base {
+            Factor::Atom(i as Atom)
+        } else {
+            Factor::Sym((i - self.sym_base) as u32)
+        }
+    }
+
+    /// The first `k` factors that occur in at least two monomials, most frequent first, ties
+    /// by factor order (the order a full sort of the counts gave, without the sort: only the
+    /// first few are ever tried).
+    fn candidates(&mut self, mons: &[Mon], k: usize) -> Vec<Factor> {
+        for m in mons {
+            for &(s, _) in &m.syms {
+                self.bump(self.sym_base + s as usize);
             }
-            last = Some(a);
+            let mut last: Option<Atom> = None;
+            for &a in &m.atoms {
+                if last != Some(a) {
+                    self.bump(a as usize);
+                }
+                last = Some(a);
+            }
         }
-    }
-    all.sort_unstable();
-    let mut v: Vec<(Factor, usize)> = Vec::with_capacity(all.len());
-    for f in all {
-        match v.last_mut() {
-            Some((g, n)) if *g == f => *n += 1,
-            _ => v.push((f, 1)),
+        // The best `k` as (count, index), best first: a higher count, then a lower index.
+        let mut best: Vec<(u32, usize)> = Vec::with_capacity(k + 1);
+        for &i in &self.touched {
+            let c = self.n[i];
+            if c < 2 {
+                continue;
+            }
+            let pos = best.partition_point(|&(bc, bi)| bc > c || (bc == c && bi < i));
+            if pos < k {
+                best.insert(pos, (c, i));
+                best.truncate(k);
+            }
         }
+        for &i in &self.touched {
+            self.n[i] = 0;
+        }
+        self.touched.clear();
+        best.into_iter().map(|(_, i)| self.factor(i)).collect()
     }
-    v.retain(|(_, n)| *n >= 2);
-    v.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
-    v.into_iter().map(|(f, _)| f).collect()
+
+    fn bump(&mut self, i: usize) {
+        if self.n[i] == 0 {
+            self.touched.push(i);
+        }
+        self.n[i] += 1;
+    }
 }
 
 /// The power of `f` in `m` (0 when `m` lacks it).
@@ -432,7 +501,7 @@ fn factor_expr(f: Factor, k: u32) -> E {
         (Factor::Sym(s), 1) => E::Sym(s),
         (Factor::Sym(s), k) => E::Pow(s, k),
         (Factor::Atom(a), 1) => E::Trig(a),
-        (Factor::Atom(a), k) => E::Mul(vec![E::Trig(a); k as usize].into()),
+        (Factor::Atom(a), k) => E::product(vec![E::Trig(a); k as usize]),
     }
 }
 
@@ -442,11 +511,11 @@ fn mul(parts: Vec<E>) -> E {
     let mut neg = false;
     for p in parts {
         match p {
-            E::Mul(v) => flat.extend(v.iter().cloned()),
+            E::Mul(v, _) => flat.extend(v.iter().cloned()),
             E::Neg(e) => {
                 neg = !neg;
                 match Rc::unwrap_or_clone(e) {
-                    E::Mul(v) => flat.extend(v.iter().cloned()),
+                    E::Mul(v, _) => flat.extend(v.iter().cloned()),
                     e => flat.push(e),
                 }
             }
@@ -459,7 +528,7 @@ fn mul(parts: Vec<E>) -> E {
     let e = match flat.len() {
         0 => E::Num(Q::ONE),
         1 => flat.pop().unwrap_or_else(E::zero),
-        _ => E::Mul(flat.into()),
+        _ => E::product(flat),
     };
     if neg {
         E::Neg(Rc::new(e))
