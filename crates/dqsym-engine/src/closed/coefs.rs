@@ -124,6 +124,26 @@ fn trig_pi(p: Small, sin: bool) -> Scalar {
     }
 }
 
+/// The values of [`trig_pi`] found during one [`lift`]: its terms share a few offsets (the
+/// Jaco-style arm's pose entries, hundreds of terms at multiples of pi/18), and each value
+/// costs a canonicalization in the cyclotomic field (a quarter of `lift`'s instructions).
+/// Error values (a limit reached) are not kept.
+#[derive(Default)]
+struct TrigPi(std::collections::HashMap<(Small, bool), Scalar>);
+
+impl TrigPi {
+    fn get(&mut self, p: Small, sin: bool) -> Scalar {
+        if let Some(v) = self.0.get(&(p, sin)) {
+            return v.clone();
+        }
+        let v = trig_pi(p, sin);
+        if v.as_error().is_none() {
+            self.0.insert((p, sin), v.clone());
+        }
+        v
+    }
+}
+
 /// The angle `F - phi pi`, `F` a frequency vector (its constant entry included).
 fn angle(freq: &Freq, phi: Small) -> Scalar {
     let mut a = -(Scalar::pi() * Scalar::from_q(Q::new(*phi.numer(), *phi.denom())));
@@ -141,7 +161,7 @@ fn angle(freq: &Freq, phi: Small) -> Scalar {
 /// `phi` (a multiple of `pi/(2n)`, over `pi`) and `R` with `A = R cos(phi pi)`,
 /// `B = R sin(phi pi)`, when there is one: `phi` found numerically from `atan2(B, A)` and
 /// checked exactly (`A sin phi = B cos phi`); `R = A cos phi + B sin phi`.
-fn phase(a: &Scalar, b: &Scalar, n: i64) -> Option<(Small, Scalar)> {
+fn phase(a: &Scalar, b: &Scalar, n: i64, trig: &mut TrigPi) -> Option<(Small, Scalar)> {
     let value = |c: &Scalar| c.eval_symbols(&|_| None).ok();
     let (va, vb) = (value(a)?, value(b)?);
     if va.hypot(vb) < 1e-12 {
@@ -150,7 +170,7 @@ fn phase(a: &Scalar, b: &Scalar, n: i64) -> Option<(Small, Scalar)> {
     let m = 2 * n;
     let k = (vb.atan2(va) / std::f64::consts::PI * m as f64).round() as i64;
     let phi = Small::new(k, m);
-    let (c, s) = (trig_pi(phi, false), trig_pi(phi, true));
+    let (c, s) = (trig.get(phi, false), trig.get(phi, true));
     crate::scalar::charge(a.len() as u64 + b.len() as u64).ok()?;
     if a.clone() * s.clone() != b.clone() * c.clone() {
         return None;
@@ -189,6 +209,7 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
     // adding them one by one rewrote the growing sum in its cyclotomic basis at every step
     // (the Jaco-style arm's `fk --jacobian` spent 43% of its instructions there).
     type Key = (MonoRc, Freq, bool);
+    let mut trig_pi = TrigPi::default();
     let mut parts: BTreeMap<Key, Result<Vec<Term>, Scalar>> = BTreeMap::new();
     for t in terms {
         let c = constant_of(t);
@@ -217,7 +238,7 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
             continue;
         }
         // cos(F + a) = cos F cos a - sin F sin a; sin(F + a) = sin F cos a + cos F sin a.
-        let (ca, sa) = (trig_pi(t.mode.pi, false), trig_pi(t.mode.pi, true));
+        let (ca, sa) = (trig_pi.get(t.mode.pi, false), trig_pi.get(t.mode.pi, true));
         if t.mode.sin {
             add(true, c.clone() * ca);
             add(false, c * sa);
@@ -255,7 +276,7 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
             } else {
                 (c, Scalar::int(0))
             };
-            if let Some((phi, r)) = phase(&a, &b, n) {
+            if let Some((phi, r)) = phase(&a, &b, n, &mut trig_pi) {
                 items.push((mono, angle(&freq, phi).cos(), r));
             } else {
                 items.push((mono.clone(), trig(false), a));
@@ -471,7 +492,9 @@ pub(crate) fn phase_angles(x: &Scalar) -> Option<Angles> {
             continue;
         }
         let (_, b) = coefs.next()?;
-        match phase(&a, &b, 24).filter(|(phi, _)| !(*phi * Small::from_integer(2)).is_integer()) {
+        match phase(&a, &b, 24, &mut TrigPi::default())
+            .filter(|(phi, _)| !(*phi * Small::from_integer(2)).is_integer())
+        {
             Some((phi, r)) => {
                 let angle = super::expr::Angle::from_freq(&freq, -phi);
                 let i = match angles.iter().position(|(_, g)| *g == angle) {

@@ -562,8 +562,12 @@ struct Counts {
 
 impl Counts {
     fn for_mons(mons: &[Mon]) -> Counts {
-        let atoms = mons.iter().flat_map(|m| m.atoms.iter().map(|&a| a as usize + 1));
-        let syms = mons.iter().flat_map(|m| m.syms.iter().map(|&(s, _)| s as usize + 1));
+        let atoms = mons
+            .iter()
+            .flat_map(|m| m.atoms.iter().map(|&a| a as usize + 1));
+        let syms = mons
+            .iter()
+            .flat_map(|m| m.syms.iter().map(|&(s, _)| s as usize + 1));
         let sym_base = atoms.max().unwrap_or(0);
         Counts {
             sym_base,
@@ -681,12 +685,7 @@ fn rank(e: &E) -> u8 {
 
 /// One monomial as an expression: `-2 sqrt(3) l1^2 c1`.
 pub(crate) fn mon_expr(m: &Mon) -> E {
-    mon_parts_expr(
-        &m.q,
-        m.rad,
-        m.syms.iter().copied(),
-        m.atoms.iter().copied(),
-    )
+    mon_parts_expr(&m.q, m.rad, m.syms.iter().copied(), m.atoms.iter().copied())
 }
 
 /// The monomial `q sqrt(rad) syms atoms` as an expression.
