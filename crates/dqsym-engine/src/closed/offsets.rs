@@ -293,6 +293,35 @@ pub(super) fn amplitude<'a>(terms: impl IntoIterator<Item = &'a Term>) -> Option
     Some((re, im))
 }
 
+/// `sum k o[s]` over the row `r`, exactly: summed over a growing common denominator in
+/// machine words and reduced once (the same value as the sum in `Small`, whose every step
+/// reduces by gcds: the Jaco-style arm's offsets spent half their instructions there, scoring
+/// each solution); in `Small` when a word would overflow.
+fn dot(r: &[(usize, Small)], o: &[Small]) -> Small {
+    let fast = || -> Option<Small> {
+        let (mut num, mut den) = (0i64, 1i64);
+        for (s, k) in r {
+            let a = k.numer().checked_mul(*o[*s].numer())?;
+            let b = k.denom().checked_mul(*o[*s].denom())?;
+            if den % b == 0 {
+                num = num.checked_add(a.checked_mul(den / b)?)?;
+            } else {
+                num = num.checked_mul(b)?.checked_add(a.checked_mul(den)?)?;
+                den = den.checked_mul(b)?;
+            }
+        }
+        let g = num.unsigned_abs().gcd(&den.unsigned_abs()) as i64;
+        Some(Small::new_raw(num / g, den / g))
+    };
+    fast().unwrap_or_else(|| {
+        let mut f = Small::zero();
+        for (s, k) in r {
+            f += *k * o[*s];
+        }
+        f
+    })
+}
+
 /// The offsets shown (see the module docs): a symbol whose offset in `base` is a multiple
 /// of its own steps (each keeping every group's phase modulo 1/12) keeps none; the others
 /// range over every solution with those fixed at 0, the best by (fewest cosine and sine
@@ -333,10 +362,7 @@ fn representatives(
     // The number of cosine and sine parts of the shifted scalar, and of negative ones.
     let mut score = |o: &[Small]| -> (usize, usize) {
         for (p, r) in phases.iter_mut().zip(&freqs) {
-            let mut f = Small::zero();
-            for (s, k) in r.iter() {
-                f += *k * o[*s];
-            }
+            let f = dot(r, o);
             let f = f.numer().to_f64().unwrap_or(0.0) / f.denom().to_f64().unwrap_or(1.0);
             *p = (
                 (f * std::f64::consts::PI).cos(),
