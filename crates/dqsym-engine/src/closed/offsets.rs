@@ -544,6 +544,41 @@ mod tests {
             .is_ok_and(|t| t.iter().all(|t| t.mode.pi.is_zero())));
     }
 
+    /// `dot` against the sum in big rationals, on seeded random rows (small denominators, as
+    /// phases have, and larger ones whose common denominator may pass a machine word before
+    /// its reduction and take the `Small` path).
+    #[test]
+    fn dot_is_the_exact_sum_of_the_row_times_the_offsets() {
+        use num_rational::BigRational;
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % m
+        };
+        let big = |q: Small| BigRational::new((*q.numer()).into(), (*q.denom()).into());
+        for round in 0..2000 {
+            let span = if round % 2 == 0 { 37 } else { 360 };
+            let o: Vec<Small> = (0..6)
+                .map(|_| Small::new(next(2 * span) as i64 - span as i64, 1 + next(span) as i64))
+                .collect();
+            let r: Vec<(usize, Small)> = (0..1 + next(3) as usize)
+                .map(|_| {
+                    let k = Small::new(next(25) as i64 - 12, 1 + next(span) as i64);
+                    (next(6) as usize, k)
+                })
+                .collect();
+            let want = r
+                .iter()
+                .fold(BigRational::zero(), |acc, (s, k)| acc + big(*k) * big(o[*s]));
+            assert_eq!(big(dot(&r, &o)), want, "row {r:?}, offsets {o:?}");
+        }
+        // A product past a machine word before its reduction: `Small`'s path.
+        let (k, o) = (Small::new(1 << 62, 3), Small::new(5, 1 << 61));
+        assert_eq!(dot(&[(0, k)], &[o]), Small::new(10, 3));
+    }
+
     #[test]
     fn unrelated_phases_in_one_mode_have_no_shift() {
         let x = Scalar::sym("x");
