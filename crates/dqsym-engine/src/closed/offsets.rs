@@ -569,9 +569,9 @@ mod tests {
                     (next(6) as usize, k)
                 })
                 .collect();
-            let want = r
-                .iter()
-                .fold(BigRational::zero(), |acc, (s, k)| acc + big(*k) * big(o[*s]));
+            let want = r.iter().fold(BigRational::zero(), |acc, (s, k)| {
+                acc + big(*k) * big(o[*s])
+            });
             assert_eq!(big(dot(&r, &o)), want, "row {r:?}, offsets {o:?}");
         }
         // A product past a machine word before its reduction: `Small`'s path.
