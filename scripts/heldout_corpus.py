@@ -126,7 +126,9 @@ def main():
         else:
             longer += 1
             if a.show:
-                print(f"{i}: ours {m} > {how} {best}: {text}  <- {e}")
+                print(f"{i}: ours {m} > {how} {best}: {text}  <- {e}", flush=True)
+        if a.show and (i + 1) % 10 == 0:
+            print(f"after {i + 1}: {ok} no longer, {longer} longer, {failed} failed", flush=True)
     n = ok + longer
     print(f"held-out corpus (seed {a.seed}): {ok}/{n} = {100.0 * ok / max(n, 1):.1f}% no longer than "
           f"SymPy's best; {failed} failed")
