@@ -124,6 +124,26 @@ fn trig_pi(p: Small, sin: bool) -> Scalar {
     }
 }
 
+/// The values of [`trig_pi`] found during one [`lift`]: its terms share a few offsets (the
+/// Jaco-style arm's pose entries, hundreds of terms at multiples of pi/18), and each value
+/// costs a canonicalization in the cyclotomic field (a quarter of `lift`'s instructions).
+/// Error values (a limit reached) are not kept.
+#[derive(Default)]
+struct TrigPi(std::collections::HashMap<(Small, bool), Scalar>);
+
+impl TrigPi {
+    fn get(&mut self, p: Small, sin: bool) -> Scalar {
+        if let Some(v) = self.0.get(&(p, sin)) {
+            return v.clone();
+        }
+        let v = trig_pi(p, sin);
+        if v.as_error().is_none() {
+            self.0.insert((p, sin), v.clone());
+        }
+        v
+    }
+}
+
 /// The angle `F - phi pi`, `F` a frequency vector (its constant entry included).
 fn angle(freq: &Freq, phi: Small) -> Scalar {
     let mut a = -(Scalar::pi() * Scalar::from_q(Q::new(*phi.numer(), *phi.denom())));
@@ -141,7 +161,7 @@ fn angle(freq: &Freq, phi: Small) -> Scalar {
 /// `phi` (a multiple of `pi/(2n)`, over `pi`) and `R` with `A = R cos(phi pi)`,
 /// `B = R sin(phi pi)`, when there is one: `phi` found numerically from `atan2(B, A)` and
 /// checked exactly (`A sin phi = B cos phi`); `R = A cos phi + B sin phi`.
-fn phase(a: &Scalar, b: &Scalar, n: i64) -> Option<(Small, Scalar)> {
+fn phase(a: &Scalar, b: &Scalar, n: i64, trig: &mut TrigPi) -> Option<(Small, Scalar)> {
     let value = |c: &Scalar| c.eval_symbols(&|_| None).ok();
     let (va, vb) = (value(a)?, value(b)?);
     if va.hypot(vb) < 1e-12 {
@@ -150,7 +170,7 @@ fn phase(a: &Scalar, b: &Scalar, n: i64) -> Option<(Small, Scalar)> {
     let m = 2 * n;
     let k = (vb.atan2(va) / std::f64::consts::PI * m as f64).round() as i64;
     let phi = Small::new(k, m);
-    let (c, s) = (trig_pi(phi, false), trig_pi(phi, true));
+    let (c, s) = (trig.get(phi, false), trig.get(phi, true));
     crate::scalar::charge(a.len() as u64 + b.len() as u64).ok()?;
     if a.clone() * s.clone() != b.clone() * c.clone() {
         return None;
@@ -184,11 +204,37 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
     if !worth_lifting(terms) {
         return None;
     }
-    // The constant coefficient of each (monomial, angle, cos or sin).
-    // Each coefficient's parts are gathered as terms and made canonical once, at the end:
-    // adding them one by one rewrote the growing sum in its cyclotomic basis at every step
-    // (the Jaco-style arm's `fk --jacobian` spent 43% of its instructions there).
-    type Key = (MonoRc, Freq, bool);
+    let mut trig_pi = TrigPi::default();
+    let coefs = coefficients(terms, &mut trig_pi);
+    let items = items(coefs, phased, n, &mut trig_pi)?;
+    let (norms, uses) = normalized(items)?;
+    // Many distinct constants: nothing reads shorter (each would be a sum of its own).
+    if norms.is_empty() || norms.len() > MAX_CONSTANTS {
+        return None;
+    }
+    let (constants, symbol) = products(&norms)?;
+    let scalar = assemble(uses, &norms, &constants, &symbol)?;
+    Some(Lifted { scalar, constants })
+}
+
+/// A coefficient's place: (monomial, offset-free angle, sine).
+type Key = (MonoRc, Freq, bool);
+
+/// (monomial, trigonometric factor, constant).
+type Item = (MonoRc, Scalar, Scalar);
+
+/// (monomial, trigonometric factor, the constant's index among the normalized constants and
+/// its rational factor, or the constant itself).
+type Use = (MonoRc, Scalar, Result<(usize, BigRational), Scalar>);
+
+/// A lifted constant: its symbol, closed form and rational factor.
+type Constant = (Sym, Expr, BigRational);
+
+/// The constant coefficient of each (monomial, angle, cos or sin).
+/// Each coefficient's parts are gathered as terms and made canonical once, at the end:
+/// adding them one by one rewrote the growing sum in its cyclotomic basis at every step
+/// (the Jaco-style arm's `fk --jacobian` spent 43% of its instructions there).
+fn coefficients(terms: &[Term], trig_pi: &mut TrigPi) -> BTreeMap<Key, Scalar> {
     let mut parts: BTreeMap<Key, Result<Vec<Term>, Scalar>> = BTreeMap::new();
     for t in terms {
         let c = constant_of(t);
@@ -217,7 +263,7 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
             continue;
         }
         // cos(F + a) = cos F cos a - sin F sin a; sin(F + a) = sin F cos a + cos F sin a.
-        let (ca, sa) = (trig_pi(t.mode.pi, false), trig_pi(t.mode.pi, true));
+        let (ca, sa) = (trig_pi.get(t.mode.pi, false), trig_pi.get(t.mode.pi, true));
         if t.mode.sin {
             add(true, c.clone() * ca);
             add(false, c * sa);
@@ -226,13 +272,21 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
             add(true, -(c * sa));
         }
     }
-    // Each (monomial, angle) as one cosine `cos(F - phi)` when its two coefficients are
-    // `R cos(phi)` and `R sin(phi)` with `phi` a rational multiple of pi (`phased`), else as
-    // `A cos F + B sin F`: (monomial, trigonometric factor, constant).
-    let coefs: BTreeMap<Key, Scalar> = parts
+    parts
         .into_iter()
         .map(|(k, v)| (k, v.map_or_else(|e| e, Scalar::from_terms)))
-        .collect();
+        .collect()
+}
+
+/// Each (monomial, angle) as one cosine `cos(F - phi)` when its two coefficients are
+/// `R cos(phi)` and `R sin(phi)` with `phi` a rational multiple of pi (`phased`), else as
+/// `A cos F + B sin F`: (monomial, trigonometric factor, constant).
+fn items(
+    coefs: BTreeMap<Key, Scalar>,
+    phased: bool,
+    n: i64,
+    trig_pi: &mut TrigPi,
+) -> Option<Vec<Item>> {
     let mut items: Vec<(MonoRc, Scalar, Scalar)> = Vec::with_capacity(coefs.len());
     let mut coefs = coefs.into_iter().peekable();
     while let Some(((mono, freq, sin), c)) = coefs.next() {
@@ -255,7 +309,7 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
             } else {
                 (c, Scalar::int(0))
             };
-            if let Some((phi, r)) = phase(&a, &b, n) {
+            if let Some((phi, r)) = phase(&a, &b, n, trig_pi) {
                 items.push((mono, angle(&freq, phi).cos(), r));
             } else {
                 items.push((mono.clone(), trig(false), a));
@@ -265,13 +319,14 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
         }
         items.push((mono, trig(sin), c));
     }
-    // Each constant outside the multiples of pi/12, up to a rational factor, one symbol:
-    // normalized by its first term's rational coefficient (`lead`).
+    Some(items)
+}
+
+/// Each constant outside the multiples of pi/12, up to a rational factor, one symbol:
+/// normalized by its first term's rational coefficient (`lead`).
+fn normalized(items: Vec<Item>) -> Option<(Vec<Vec<Term>>, Vec<Use>)> {
     let mut norms: Vec<Vec<Term>> = Vec::new();
     let mut index: std::collections::HashMap<Vec<Term>, usize> = Default::default();
-    // (monomial, trigonometric factor, the constant's symbol and rational factor or the
-    // constant itself).
-    type Use = (MonoRc, Scalar, Result<(usize, BigRational), Scalar>);
     let mut uses: Vec<Use> = Vec::new();
     for (mono, trig, c) in items {
         let ct = c.terms().ok()?;
@@ -297,16 +352,17 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
         });
         uses.push((mono, trig, Ok((i, lead))));
     }
-    // Many distinct constants: nothing reads shorter (each would be a sum of its own).
-    if norms.is_empty() || norms.len() > MAX_CONSTANTS {
-        return None;
-    }
-    // The constants that are products of one or two cosines and sines (with a rational and
-    // radical factor) are lifted, each symbol standing for its product without the rational
-    // factor (`sin(pi/7) cos(pi/9)`, not `-12/17 sin(pi/7) cos(pi/9)`); the others stay.
+    Some((norms, uses))
+}
+
+/// The normalized constants that are products of one or two cosines and sines (with a
+/// rational and radical factor), each lifted into a symbol standing for its product without
+/// the rational factor (`sin(pi/7) cos(pi/9)`, not `-12/17 sin(pi/7) cos(pi/9)`), and for each
+/// constant its symbol's index (`None`: the constant stays). `None` when none is lifted.
+fn products(norms: &[Vec<Term>]) -> Option<(Vec<Constant>, Vec<Option<usize>>)> {
     let mut constants: Vec<(Sym, Expr, BigRational)> = Vec::with_capacity(norms.len());
     let mut symbol: Vec<Option<usize>> = Vec::with_capacity(norms.len());
-    for norm in &norms {
+    for norm in norms {
         crate::scalar::charge(norm.len() as u64).ok()?;
         symbol.push(product_form(norm).map(|e| {
             let (r, form) = rational_factor(e);
@@ -314,11 +370,19 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
             constants.len() - 1
         }));
     }
-    if constants.is_empty() {
-        return None;
-    }
-    // The sum's terms gathered and made canonical once (the growing sum was rewritten in
-    // its cyclotomic basis at every step: 29% of the Jaco-style arm's `fk --jacobian`).
+    (!constants.is_empty()).then_some((constants, symbol))
+}
+
+/// The lifted scalar: each use's monomial, trigonometric factor and constant (its symbol
+/// where it has one). The sum's terms are gathered and made canonical once (the growing sum
+/// was rewritten in its cyclotomic basis at every step: 29% of the Jaco-style arm's
+/// `fk --jacobian`).
+fn assemble(
+    uses: Vec<Use>,
+    norms: &[Vec<Term>],
+    constants: &[Constant],
+    symbol: &[Option<usize>],
+) -> Option<Scalar> {
     let mut out: Vec<Term> = Vec::new();
     for (mono, trig, c) in uses {
         let m = monomial(mono);
@@ -335,11 +399,7 @@ pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
         // An error value makes the sum one, which is refused below as before.
         out.extend_from_slice((k * m * trig).terms().ok()?);
     }
-    let out = Scalar::from_terms(out).check().ok()?;
-    Some(Lifted {
-        scalar: out,
-        constants,
-    })
+    Scalar::from_terms(out).check().ok()
 }
 
 /// The most product forms of constants remembered per thread.
@@ -471,7 +531,9 @@ pub(crate) fn phase_angles(x: &Scalar) -> Option<Angles> {
             continue;
         }
         let (_, b) = coefs.next()?;
-        match phase(&a, &b, 24).filter(|(phi, _)| !(*phi * Small::from_integer(2)).is_integer()) {
+        match phase(&a, &b, 24, &mut TrigPi::default())
+            .filter(|(phi, _)| !(*phi * Small::from_integer(2)).is_integer())
+        {
             Some((phi, r)) => {
                 let angle = super::expr::Angle::from_freq(&freq, -phi);
                 let i = match angles.iter().position(|(_, g)| *g == angle) {

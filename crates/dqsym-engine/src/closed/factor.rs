@@ -5,7 +5,7 @@
 //! [`Ctx`]; only the chosen one becomes an [`Expr`].
 
 use super::expr::{Cost, Expr};
-use super::mon::{angle_of, content, div_q, is_sin, Atom, Ctx, FxMap, Mon};
+use super::mon::{angle_of, content_of, div_q, is_sin, Atom, Ctx, FxMap, Mon};
 use crate::scalar::{charge, FxHasher, Q};
 use crate::ScalarError;
 use num_traits::One;
@@ -34,14 +34,40 @@ pub(crate) enum E {
     Pow(u32, u32),
     Trig(Atom),
     /// Children are shared: the search copies and memoizes subtrees without copying them.
-    Add(Rc<[E]>),
-    Mul(Rc<[E]>),
+    /// The cost of the node is kept beside them (see [`E::sum`]).
+    Add(Rc<[E]>, Cost),
+    Mul(Rc<[E]>, Cost),
     Neg(Rc<E>),
 }
 
 impl E {
     fn zero() -> E {
         E::Num(Q::ZERO)
+    }
+
+    /// The sum of `v`, its cost computed once from the children's (each of which is kept
+    /// in its node or is a leaf): the search compares the costs of many candidates whose
+    /// subtrees it shares, and a walk of each candidate's whole tree was quadratic.
+    fn sum(v: Vec<E>) -> E {
+        let c = Self::node_cost(&v, true);
+        E::Add(v.into(), c)
+    }
+
+    /// The product of `v`, its cost computed as [`E::sum`]'s.
+    fn product(v: Vec<E>) -> E {
+        let c = Self::node_cost(&v, false);
+        E::Mul(v.into(), c)
+    }
+
+    fn node_cost(v: &[E], in_sum: bool) -> Cost {
+        let mut c = Cost {
+            ops: v.len().saturating_sub(1),
+            calls: 0,
+        };
+        for e in v {
+            e.add_cost(&mut c, in_sum);
+        }
+        c
     }
 
     /// The cost of the [`Expr`] this becomes (see [`Expr::cost`]).
@@ -67,17 +93,9 @@ impl E {
                 c.calls += 1;
             }
             E::Sym(_) => {}
-            E::Add(v) => {
-                c.ops += v.len().saturating_sub(1);
-                for e in v.iter() {
-                    e.add_cost(c, true);
-                }
-            }
-            E::Mul(v) => {
-                c.ops += v.len().saturating_sub(1);
-                for e in v.iter() {
-                    e.add_cost(c, false);
-                }
+            E::Add(_, k) | E::Mul(_, k) => {
+                c.ops += k.ops;
+                c.calls += k.calls;
             }
             E::Neg(e) => {
                 if !in_sum {
@@ -102,8 +120,8 @@ impl E {
                 f: crate::scalar::Trig::of(is_sin(*a)),
                 angle: ctx.angles[angle_of(*a) as usize].clone(),
             },
-            E::Add(v) => Expr::Add(v.iter().map(|e| e.to_expr(ctx)).collect()),
-            E::Mul(v) => product_expr(v, ctx),
+            E::Add(v, _) => Expr::Add(v.iter().map(|e| e.to_expr(ctx)).collect()),
+            E::Mul(v, _) => product_expr(v, ctx),
             E::Neg(e) => Expr::Neg(Box::new(e.to_expr(ctx))),
         }
     }
@@ -173,11 +191,35 @@ fn product_expr(v: &[E], ctx: &Ctx) -> Expr {
     }
 }
 
-/// The search state: results already found for a monomial list at a depth class, by hash, and
-/// the budget error once the search has used up the work budget.
-#[derive(Default)]
-struct Search {
-    memo: FxMap<u64, Vec<(usize, Vec<Mon>, E)>>,
+/// A group of the search: monomials of the root list by index, each with its coefficient,
+/// divided by the factors pulled out above it ([`Search::div`]). The monomials themselves are
+/// never copied: a group of the search is always the root's monomials divided by one common
+/// monomial, with coefficients scaled alike, so an index, a coefficient and that common
+/// divisor (kept once, in the search) describe each one.
+type Group = Vec<(u32, Q)>;
+
+/// A result found for a group: its depth class, the group, the factors pulled out of it
+/// (sorted counts indices with their powers) and whether its radical was, and the result.
+struct Found {
+    level: usize,
+    group: Group,
+    div: Vec<(usize, u32)>,
+    rad_off: bool,
+    e: E,
+}
+
+/// The search state: the root monomials; the common divisor of the current group and whether
+/// its common radical was pulled out; results already found for a group at a depth class, by
+/// the hash of its monomials; the budget error once the search has used up the work budget.
+struct Search<'a> {
+    root: &'a [Mon],
+    counts: Counts,
+    /// The power of each factor (by [`Counts`] index) pulled out of the current group.
+    div: Vec<u32>,
+    /// The factors of `div`, as pulled out (an index may repeat).
+    path: Vec<(usize, u32)>,
+    rad_off: bool,
+    memo: FxMap<u64, Vec<Found>>,
     spent: Option<ScalarError>,
 }
 
@@ -185,6 +227,30 @@ struct Search {
 ///
 /// The search counts against the work budget like scalar arithmetic (one unit per monomial
 /// and per factor of it looked at); when the budget runs out it stops with the budget error.
+pub(crate) fn build(mons: &[Mon]) -> Result<(E, Cost), ScalarError> {
+    let counts = Counts::for_mons(mons);
+    let mut s = Search {
+        root: mons,
+        div: vec![0; counts.n.len()],
+        counts,
+        path: Vec::new(),
+        rad_off: false,
+        memo: FxMap::default(),
+        spent: None,
+    };
+    let group: Group = mons
+        .iter()
+        .enumerate()
+        .map(|(i, m)| (i as u32, m.q.clone()))
+        .collect();
+    let e = s.build_at(&group, 0);
+    if let Some(err) = s.spent {
+        return Err(err);
+    }
+    let c = e.cost();
+    Ok((e, c))
+}
+
 /// A lower bound of the cost [`build`] finds for `mons`, without the search: the factoring
 /// only pulls common factors out of the given monomials, so every distinct atom and symbol
 /// of them is a leaf of its result at least once; each atom is a call, and `n` leaves take
@@ -206,98 +272,92 @@ pub(crate) fn cost_lower_bound(mons: &[Mon]) -> Cost {
     }
 }
 
-pub(crate) fn build(mons: &[Mon]) -> Result<(E, Cost), ScalarError> {
-    let mut s = Search::default();
-    let e = s.build_at(mons, 0);
-    if let Some(err) = s.spent {
-        return Err(err);
-    }
-    let c = e.cost();
-    Ok((e, c))
+/// The symbols of `m` divided by `div` (indexed as [`Counts`]), those left.
+fn quotient_syms<'m>(
+    m: &'m Mon,
+    div: &'m [u32],
+    sym_base: usize,
+) -> impl Iterator<Item = (u32, u32)> + 'm {
+    m.syms.iter().filter_map(move |&(s, e)| {
+        let e = e - div[sym_base + s as usize];
+        (e > 0).then_some((s, e))
+    })
 }
 
-impl Search {
-    fn build_at(&mut self, mons: &[Mon], depth: usize) -> E {
-        match mons {
+/// The atoms of `m` divided by `div`: the first `div[a]` copies of each atom `a` left out
+/// (the atoms are sorted, so the copies stand together).
+fn quotient_atoms<'m>(m: &'m Mon, div: &'m [u32]) -> impl Iterator<Item = Atom> + 'm {
+    let mut run: (Option<Atom>, u32) = (None, 0);
+    m.atoms.iter().copied().filter(move |&a| {
+        if run.0 != Some(a) {
+            run = (Some(a), 0);
+        }
+        run.1 += 1;
+        run.1 > div[a as usize]
+    })
+}
+
+impl Search<'_> {
+    fn build_at(&mut self, group: &[(u32, Q)], depth: usize) -> E {
+        match group {
             [] => return E::zero(),
-            [m] => return mon_expr(m),
+            [(i, q)] => return self.mon_expr(*i, q),
             _ => {}
         }
-        let work: usize = mons.iter().map(|m| 1 + m.syms.len() + m.atoms.len()).sum();
+        let work: usize = group.iter().map(|(i, _)| 1 + self.quotient_len(*i)).sum();
         if self.spent.is_none() {
             self.spent = charge(work as u64).err();
         }
         if self.spent.is_some() {
             // Out of budget: the result is discarded, so stop at once.
-            return E::Add(mons.iter().map(mon_expr).collect());
+            return self.plain_sum(group);
         }
         // A sum whose terms are all negative reads better as the negation of a sum.
-        if mons.iter().all(|m| m.q.is_negative()) {
-            let neg: Vec<Mon> = mons
-                .iter()
-                .map(|m| Mon {
-                    q: -&m.q,
-                    ..m.clone()
-                })
-                .collect();
+        if group.iter().all(|(_, q)| q.is_negative()) {
+            let neg: Group = group.iter().map(|(i, q)| (*i, -q)).collect();
             return E::Neg(Rc::new(self.build_at(&neg, depth)));
         }
-        let g = content(mons);
+        let g = content_of(group.iter().map(|(_, q)| q));
         if !g.is_one() {
-            let inner: Vec<Mon> = mons
-                .iter()
-                .map(|m| Mon {
-                    q: div_q(&m.q, &g),
-                    ..m.clone()
-                })
-                .collect();
+            let inner: Group = group.iter().map(|(i, q)| (*i, div_q(q, &g))).collect();
             return mul(vec![E::Num(g), self.build_at(&inner, depth)]);
         }
-        let r = mons[0].rad;
-        if r != 1 && mons.iter().all(|m| m.rad == r) {
-            let inner: Vec<Mon> = mons
-                .iter()
-                .map(|m| Mon {
-                    rad: 1,
-                    ..m.clone()
-                })
-                .collect();
-            return mul(vec![E::Sqrt(r), self.build_at(&inner, depth)]);
-        }
-        let candidates = candidates(mons);
-        if candidates.is_empty() {
-            return E::Add(mons.iter().map(mon_expr).collect());
+        let r = self.rad(group[0].0);
+        if r != 1 && group.iter().all(|(i, _)| self.rad(*i) == r) {
+            self.rad_off = true;
+            let e = self.build_at(group, depth);
+            self.rad_off = false;
+            return mul(vec![E::Sqrt(r), e]);
         }
         let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
+        let candidates = self.candidates(group, tries);
+        if candidates.is_empty() {
+            return self.plain_sum(group);
+        }
         // The result depends on the depth only through the branching, so below the branching
         // levels all depths share one entry.
         let level = depth.min(BRANCH_DEPTH);
-        let hash = {
-            let mut h = FxHasher::default();
-            level.hash(&mut h);
-            mons.hash(&mut h);
-            h.finish()
-        };
-        if let Some((_, _, e)) = self
-            .memo
-            .get(&hash)
-            .and_then(|v| v.iter().find(|(l, m, _)| *l == level && m == mons))
-        {
-            return e.clone();
+        let hash = self.hash(level, group);
+        if let Some(e) = self.remembered(hash, level, group) {
+            return e;
         }
         let mut best: Option<(Cost, E)> = None;
-        for f in candidates.into_iter().take(tries) {
-            let e = self.split_on(mons, f, depth);
+        for f in candidates {
+            let e = self.split_on(group, f, depth);
             let c = e.cost();
             if best.as_ref().is_none_or(|(bc, _)| c < *bc) {
                 best = Some((c, e));
             }
         }
         let e = best.map(|(_, e)| e).unwrap_or_else(E::zero);
-        self.memo
-            .entry(hash)
-            .or_default()
-            .push((level, mons.to_vec(), e.clone()));
+        let found = Found {
+            level,
+            group: group.to_vec(),
+            div: self.div_key(),
+            rad_off: self.rad_off,
+            e: e.clone(),
+        };
+        self.memo.entry(hash).or_default().push(found);
         e
     }
 
@@ -306,44 +366,46 @@ impl Search {
     /// would give the same expression (while `f` is in every monomial of the group it stays
     /// the most frequent factor), but at a cost quadratic in `k`: `x^10000 - x^9999` took ten
     /// thousand levels, each copying the product of the levels above.
-    fn split_on(&mut self, mons: &[Mon], f: Factor, depth: usize) -> E {
-        let k = mons
+    fn split_on(&mut self, group: &[(u32, Q)], f: Factor, depth: usize) -> E {
+        let fi = self.counts.index(f);
+        let mult = |s: &Self, i: u32| multiplicity(&s.root[i as usize], f) - s.div[fi];
+        let k = group
             .iter()
-            .map(|m| multiplicity(m, f))
+            .map(|(i, _)| mult(self, *i))
             .filter(|&n| n > 0)
             .min()
             .unwrap_or(1);
-        let mut with = Vec::with_capacity(mons.len());
-        let mut without = Vec::with_capacity(mons.len());
+        let mut with = Vec::with_capacity(group.len());
+        let mut rest = Vec::with_capacity(group.len());
         let mut first_with = None;
-        for (i, m) in mons.iter().enumerate() {
-            match divide(m, f, k) {
-                Some(d) => {
-                    first_with.get_or_insert(i);
-                    with.push(d)
+        let mut n_before = 0;
+        for (pos, m) in group.iter().enumerate() {
+            if mult(self, m.0) >= k {
+                first_with.get_or_insert(pos);
+                with.push(m.clone());
+            } else {
+                if first_with.is_none() {
+                    n_before += 1;
                 }
-                None => without.push(i),
+                rest.push(m.clone());
             }
         }
         // The depth as if `f` had been pulled out `k` times, one level each (the branching
         // stops at the same place).
+        self.div[fi] += k;
+        self.path.push((fi, k));
         let inner = self.build_at(&with, depth.saturating_add(k as usize));
+        self.path.pop();
+        self.div[fi] -= k;
         let factored = mul(vec![factor_expr(f, k), inner]);
-        let first_with = first_with.unwrap_or(0);
-        // Keep the reading order: the factored group stands where its first monomial stood.
-        let n_before = without.iter().filter(|&&i| i < first_with).count();
-        let rest: Vec<Mon> = without
-            .iter()
-            .filter(|&&i| i != first_with)
-            .map(|&i| mons[i].clone())
-            .collect();
         if rest.is_empty() {
             return factored;
         }
         let rest_expr = self.build_at(&rest, depth + 1);
-        // Splice the rest around the factored group in reading order.
+        // Splice the rest around the factored group in reading order: the factored group
+        // stands where its first monomial stood.
         let mut rest_terms = match rest_expr {
-            E::Add(v) => v.to_vec(),
+            E::Add(v, _) => v.to_vec(),
             e => vec![e],
         };
         let mut terms = Vec::with_capacity(rest_terms.len() + 1);
@@ -360,36 +422,205 @@ impl Search {
         if terms.len() == 1 {
             terms.pop().unwrap_or_else(E::zero)
         } else {
-            E::Add(terms.into())
+            E::sum(terms)
         }
+    }
+
+    /// The radicand of monomial `i` of the current group.
+    fn rad(&self, i: u32) -> u64 {
+        if self.rad_off {
+            1
+        } else {
+            self.root[i as usize].rad
+        }
+    }
+
+    /// The number of symbols and atoms of monomial `i` of the current group.
+    fn quotient_len(&self, i: u32) -> usize {
+        let m = &self.root[i as usize];
+        quotient_syms(m, &self.div, self.counts.sym_base).count()
+            + quotient_atoms(m, &self.div).count()
+    }
+
+    /// Monomial `i` of the current group, with coefficient `q`, as an expression.
+    fn mon_expr(&self, i: u32, q: &Q) -> E {
+        let m = &self.root[i as usize];
+        mon_parts_expr(
+            q,
+            self.rad(i),
+            quotient_syms(m, &self.div, self.counts.sym_base),
+            quotient_atoms(m, &self.div),
+        )
+    }
+
+    /// The group as a plain sum of its monomials.
+    fn plain_sum(&self, group: &[(u32, Q)]) -> E {
+        E::sum(group.iter().map(|(i, q)| self.mon_expr(*i, q)).collect())
+    }
+
+    /// The first `k` factors that occur in at least two monomials of the group.
+    fn candidates(&mut self, group: &[(u32, Q)], k: usize) -> Vec<Factor> {
+        let (root, div, c) = (self.root, &self.div, &mut self.counts);
+        for (i, _) in group {
+            let m = &root[*i as usize];
+            for (s, _) in quotient_syms(m, div, c.sym_base) {
+                c.bump(c.sym_base + s as usize);
+            }
+            let mut last: Option<Atom> = None;
+            for a in quotient_atoms(m, div) {
+                if last != Some(a) {
+                    c.bump(a as usize);
+                }
+                last = Some(a);
+            }
+        }
+        c.best(k)
+    }
+
+    /// The factors pulled out of the current group, sorted by index, equal ones merged.
+    fn div_key(&self) -> Vec<(usize, u32)> {
+        let mut v = self.path.clone();
+        v.sort_unstable();
+        v.dedup_by(|b, a| {
+            let same = a.0 == b.0;
+            if same {
+                a.1 += b.1;
+            }
+            same
+        });
+        v
+    }
+
+    /// A hash of the group's monomials (as divided) at a depth class.
+    fn hash(&self, level: usize, group: &[(u32, Q)]) -> u64 {
+        let mut h = FxHasher::default();
+        level.hash(&mut h);
+        group.len().hash(&mut h);
+        for (i, q) in group {
+            let m = &self.root[*i as usize];
+            q.hash(&mut h);
+            self.rad(*i).hash(&mut h);
+            for (s, e) in quotient_syms(m, &self.div, self.counts.sym_base) {
+                h.write_u32(s);
+                h.write_u32(e);
+            }
+            h.write_u8(0xff);
+            for a in quotient_atoms(m, &self.div) {
+                h.write_u32(a);
+            }
+            h.write_u8(0xfe);
+        }
+        h.finish()
+    }
+
+    /// The result found before for a group of the same monomials at the same depth class.
+    fn remembered(&self, hash: u64, level: usize, group: &[(u32, Q)]) -> Option<E> {
+        let entries = self.memo.get(&hash)?;
+        let key = self.div_key();
+        entries
+            .iter()
+            .find(|f| f.level == level && self.same_monomials(f, &key, group))
+            .map(|f| f.e.clone())
+    }
+
+    /// Whether `found`'s group holds the same monomials as `group` does in the current state
+    /// (`key` its [`Search::div_key`]).
+    fn same_monomials(&self, found: &Found, key: &[(usize, u32)], group: &[(u32, Q)]) -> bool {
+        if found.group.len() != group.len() {
+            return false;
+        }
+        if found.div == key && found.rad_off == self.rad_off {
+            // Divided alike: a quotient determines its monomial of the root, which are
+            // distinct.
+            return found.group == group;
+        }
+        // Divided differently: compared monomial by monomial.
+        let mut other = vec![0u32; self.div.len()];
+        for &(i, k) in &found.div {
+            other[i] = k;
+        }
+        let base = self.counts.sym_base;
+        found.group.iter().zip(group).all(|((i, q), (j, r))| {
+            let (m, n) = (&self.root[*i as usize], &self.root[*j as usize]);
+            let rad_m = if found.rad_off { 1 } else { m.rad };
+            q == r
+                && rad_m == self.rad(*j)
+                && quotient_syms(m, &other, base).eq(quotient_syms(n, &self.div, base))
+                && quotient_atoms(m, &other).eq(quotient_atoms(n, &self.div))
+        })
     }
 }
 
-/// Factors that occur in at least two monomials, most frequent first, ties by factor order.
-fn candidates(mons: &[Mon]) -> Vec<Factor> {
-    let mut all: Vec<Factor> =
-        Vec::with_capacity(mons.iter().map(|m| m.syms.len() + m.atoms.len()).sum());
-    for m in mons {
-        all.extend(m.syms.iter().map(|&(s, _)| Factor::Sym(s)));
-        let mut last: Option<Atom> = None;
-        for &a in &m.atoms {
-            if last != Some(a) {
-                all.push(Factor::Atom(a));
+/// Counts of the factors of a group of monomials, by a dense index (atoms first, then
+/// symbols: the order of [`Factor`]), reused across the search.
+struct Counts {
+    /// The index of symbol 0 (one past the largest atom).
+    sym_base: usize,
+    n: Vec<u32>,
+    touched: Vec<usize>,
+}
+
+impl Counts {
+    fn for_mons(mons: &[Mon]) -> Counts {
+        let atoms = mons
+            .iter()
+            .flat_map(|m| m.atoms.iter().map(|&a| a as usize + 1));
+        let syms = mons
+            .iter()
+            .flat_map(|m| m.syms.iter().map(|&(s, _)| s as usize + 1));
+        let sym_base = atoms.max().unwrap_or(0);
+        Counts {
+            sym_base,
+            n: vec![0; sym_base + syms.max().unwrap_or(0)],
+            touched: Vec::new(),
+        }
+    }
+
+    fn index(&self, f: Factor) -> usize {
+        match f {
+            Factor::Atom(a) => a as usize,
+            Factor::Sym(s) => self.sym_base + s as usize,
+        }
+    }
+
+    fn factor(&self, i: usize) -> Factor {
+        if i < self.sym_base {
+            Factor::Atom(i as Atom)
+        } else {
+            Factor::Sym((i - self.sym_base) as u32)
+        }
+    }
+
+    fn bump(&mut self, i: usize) {
+        if self.n[i] == 0 {
+            self.touched.push(i);
+        }
+        self.n[i] += 1;
+    }
+
+    /// The first `k` factors counted at least twice, most frequent first, ties by factor
+    /// order (the order a full sort of the counts gave, without the sort: only the first few
+    /// are ever tried); the counts are cleared.
+    fn best(&mut self, k: usize) -> Vec<Factor> {
+        // The best `k` as (count, index), best first: a higher count, then a lower index.
+        let mut best: Vec<(u32, usize)> = Vec::with_capacity(k + 1);
+        for &i in &self.touched {
+            let c = self.n[i];
+            if c < 2 {
+                continue;
             }
-            last = Some(a);
+            let pos = best.partition_point(|&(bc, bi)| bc > c || (bc == c && bi < i));
+            if pos < k {
+                best.insert(pos, (c, i));
+                best.truncate(k);
+            }
         }
-    }
-    all.sort_unstable();
-    let mut v: Vec<(Factor, usize)> = Vec::with_capacity(all.len());
-    for f in all {
-        match v.last_mut() {
-            Some((g, n)) if *g == f => *n += 1,
-            _ => v.push((f, 1)),
+        for &i in &self.touched {
+            self.n[i] = 0;
         }
+        self.touched.clear();
+        best.into_iter().map(|(_, i)| self.factor(i)).collect()
     }
-    v.retain(|(_, n)| *n >= 2);
-    v.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
-    v.into_iter().map(|(f, _)| f).collect()
 }
 
 /// The power of `f` in `m` (0 when `m` lacks it).
@@ -400,39 +631,13 @@ fn multiplicity(m: &Mon, f: Factor) -> u32 {
     }
 }
 
-/// `m / f^k`, when `f^k` divides `m`.
-fn divide(m: &Mon, f: Factor, k: u32) -> Option<Mon> {
-    match f {
-        Factor::Sym(s) => {
-            let pos = m.syms.iter().position(|&(x, e)| x == s && e >= k)?;
-            let mut m = m.clone();
-            if m.syms[pos].1 == k {
-                m.syms.remove(pos);
-            } else {
-                m.syms[pos].1 -= k;
-            }
-            Some(m)
-        }
-        Factor::Atom(a) => {
-            if multiplicity(m, f) < k {
-                return None;
-            }
-            let mut m = m.clone();
-            // The atoms are sorted: the `k` copies of `a` stand together.
-            let pos = m.atoms.iter().position(|&x| x == a)?;
-            m.atoms.drain(pos..pos + k as usize);
-            Some(m)
-        }
-    }
-}
-
 /// `f^k` as a product.
 fn factor_expr(f: Factor, k: u32) -> E {
     match (f, k) {
         (Factor::Sym(s), 1) => E::Sym(s),
         (Factor::Sym(s), k) => E::Pow(s, k),
         (Factor::Atom(a), 1) => E::Trig(a),
-        (Factor::Atom(a), k) => E::Mul(vec![E::Trig(a); k as usize].into()),
+        (Factor::Atom(a), k) => E::product(vec![E::Trig(a); k as usize]),
     }
 }
 
@@ -442,11 +647,11 @@ fn mul(parts: Vec<E>) -> E {
     let mut neg = false;
     for p in parts {
         match p {
-            E::Mul(v) => flat.extend(v.iter().cloned()),
+            E::Mul(v, _) => flat.extend(v.iter().cloned()),
             E::Neg(e) => {
                 neg = !neg;
                 match Rc::unwrap_or_clone(e) {
-                    E::Mul(v) => flat.extend(v.iter().cloned()),
+                    E::Mul(v, _) => flat.extend(v.iter().cloned()),
                     e => flat.push(e),
                 }
             }
@@ -459,7 +664,7 @@ fn mul(parts: Vec<E>) -> E {
     let e = match flat.len() {
         0 => E::Num(Q::ONE),
         1 => flat.pop().unwrap_or_else(E::zero),
-        _ => E::Mul(flat.into()),
+        _ => E::product(flat),
     };
     if neg {
         E::Neg(Rc::new(e))
@@ -480,19 +685,29 @@ fn rank(e: &E) -> u8 {
 
 /// One monomial as an expression: `-2 sqrt(3) l1^2 c1`.
 pub(crate) fn mon_expr(m: &Mon) -> E {
-    let mut parts = Vec::with_capacity(2 + m.syms.len() + m.atoms.len());
-    let neg = m.q.is_negative();
-    let q = if neg { -&m.q } else { m.q.clone() };
+    mon_parts_expr(&m.q, m.rad, m.syms.iter().copied(), m.atoms.iter().copied())
+}
+
+/// The monomial `q sqrt(rad) syms atoms` as an expression.
+fn mon_parts_expr(
+    q: &Q,
+    rad: u64,
+    syms: impl Iterator<Item = (u32, u32)>,
+    atoms: impl Iterator<Item = Atom>,
+) -> E {
+    let mut parts = Vec::with_capacity(8);
+    let neg = q.is_negative();
+    let q = if neg { -q } else { q.clone() };
     if !q.is_one() {
         parts.push(E::Num(q));
     }
-    if m.rad != 1 {
-        parts.push(E::Sqrt(m.rad));
+    if rad != 1 {
+        parts.push(E::Sqrt(rad));
     }
-    for &(s, e) in &m.syms {
+    for (s, e) in syms {
         parts.push(if e == 1 { E::Sym(s) } else { E::Pow(s, e) });
     }
-    for &a in &m.atoms {
+    for a in atoms {
         parts.push(E::Trig(a));
     }
     let e = mul(parts);

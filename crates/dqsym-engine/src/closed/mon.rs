@@ -606,16 +606,19 @@ pub(crate) fn angle_combine(a: &Angle, b: &Angle, sign: i64) -> Option<(Angle, b
     Some((angle, flipped))
 }
 
-/// The rational gcd of the coefficients (positive), e.g. `1/4` for `3/4 x + 1/2 y`.
-pub(crate) fn content(mons: &[Mon]) -> Q {
+/// The rational gcd of the coefficients `qs` (positive), e.g. `1/4` for `3/4 x + 1/2 y`.
+pub(crate) fn content_of<'a, I>(qs: I) -> Q
+where
+    I: Iterator<Item = &'a Q> + Clone,
+{
     let (mut num, mut den) = (0u64, 1u64);
-    for m in mons {
-        let Q::S(n, d) = m.q else {
-            return content_big(mons);
+    for q in qs.clone() {
+        let Q::S(n, d) = *q else {
+            return content_big(qs);
         };
         num = num.gcd(&n.unsigned_abs());
         let Some(l) = (den / den.gcd(&(d as u64))).checked_mul(d as u64) else {
-            return content_big(mons);
+            return content_big(qs);
         };
         den = l;
     }
@@ -624,21 +627,21 @@ pub(crate) fn content(mons: &[Mon]) -> Q {
     }
     match (i64::try_from(num), i64::try_from(den)) {
         (Ok(n), Ok(d)) => Q::new(n, d),
-        _ => content_big(mons),
+        _ => content_big(qs),
     }
 }
 
-/// [`content`] past machine words. The gcd of the numerators is kept in a machine word as
+/// [`content_of`] past machine words. The gcd of the numerators is kept in a machine word as
 /// soon as it fits, and each further numerator `n` enters as `n mod g` (one pass over its
 /// words): `gcd(g, n) = gcd(g, n mod g)`. A big-integer gcd per coefficient was 56% of the
 /// instructions of the closed form of `(x + y + z)^60`.
-fn content_big(mons: &[Mon]) -> Q {
+fn content_big<'a>(qs: impl Iterator<Item = &'a Q>) -> Q {
     use std::borrow::Cow;
     let mut small: Option<u64> = None;
     let mut num = BigInt::zero();
     let mut den = BigInt::from(1);
-    for m in mons {
-        let (n, d): (Cow<BigInt>, Cow<BigInt>) = match &m.q {
+    for q in qs {
+        let (n, d): (Cow<BigInt>, Cow<BigInt>) = match q {
             Q::S(n, d) => (Cow::Owned(BigInt::from(*n)), Cow::Owned(BigInt::from(*d))),
             Q::B(b) => (Cow::Borrowed(b.numer()), Cow::Borrowed(b.denom())),
         };

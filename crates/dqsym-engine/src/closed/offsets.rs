@@ -293,6 +293,35 @@ pub(super) fn amplitude<'a>(terms: impl IntoIterator<Item = &'a Term>) -> Option
     Some((re, im))
 }
 
+/// `sum k o[s]` over the row `r`, exactly: summed over a growing common denominator in
+/// machine words and reduced once (the same value as the sum in `Small`, whose every step
+/// reduces by gcds: the Jaco-style arm's offsets spent half their instructions there, scoring
+/// each solution); in `Small` when a word would overflow.
+fn dot(r: &[(usize, Small)], o: &[Small]) -> Small {
+    let fast = || -> Option<Small> {
+        let (mut num, mut den) = (0i64, 1i64);
+        for (s, k) in r {
+            let a = k.numer().checked_mul(*o[*s].numer())?;
+            let b = k.denom().checked_mul(*o[*s].denom())?;
+            if den % b == 0 {
+                num = num.checked_add(a.checked_mul(den / b)?)?;
+            } else {
+                num = num.checked_mul(b)?.checked_add(a.checked_mul(den)?)?;
+                den = den.checked_mul(b)?;
+            }
+        }
+        let g = num.unsigned_abs().gcd(&den.unsigned_abs()) as i64;
+        Some(Small::new_raw(num / g, den / g))
+    };
+    fast().unwrap_or_else(|| {
+        let mut f = Small::zero();
+        for (s, k) in r {
+            f += *k * o[*s];
+        }
+        f
+    })
+}
+
 /// The offsets shown (see the module docs): a symbol whose offset in `base` is a multiple
 /// of its own steps (each keeping every group's phase modulo 1/12) keeps none; the others
 /// range over every solution with those fixed at 0, the best by (fewest cosine and sine
@@ -333,10 +362,7 @@ fn representatives(
     // The number of cosine and sine parts of the shifted scalar, and of negative ones.
     let mut score = |o: &[Small]| -> (usize, usize) {
         for (p, r) in phases.iter_mut().zip(&freqs) {
-            let mut f = Small::zero();
-            for (s, k) in r.iter() {
-                f += *k * o[*s];
-            }
+            let f = dot(r, o);
             let f = f.numer().to_f64().unwrap_or(0.0) / f.denom().to_f64().unwrap_or(1.0);
             *p = (
                 (f * std::f64::consts::PI).cos(),
@@ -516,6 +542,41 @@ mod tests {
         assert!(y
             .terms()
             .is_ok_and(|t| t.iter().all(|t| t.mode.pi.is_zero())));
+    }
+
+    /// `dot` against the sum in big rationals, on seeded random rows (small denominators, as
+    /// phases have, and larger ones whose common denominator may pass a machine word before
+    /// its reduction and take the `Small` path).
+    #[test]
+    fn dot_is_the_exact_sum_of_the_row_times_the_offsets() {
+        use num_rational::BigRational;
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % m
+        };
+        let big = |q: Small| BigRational::new((*q.numer()).into(), (*q.denom()).into());
+        for round in 0..2000 {
+            let span = if round % 2 == 0 { 37 } else { 360 };
+            let o: Vec<Small> = (0..6)
+                .map(|_| Small::new(next(2 * span) as i64 - span as i64, 1 + next(span) as i64))
+                .collect();
+            let r: Vec<(usize, Small)> = (0..1 + next(3) as usize)
+                .map(|_| {
+                    let k = Small::new(next(25) as i64 - 12, 1 + next(span) as i64);
+                    (next(6) as usize, k)
+                })
+                .collect();
+            let want = r.iter().fold(BigRational::zero(), |acc, (s, k)| {
+                acc + big(*k) * big(o[*s])
+            });
+            assert_eq!(big(dot(&r, &o)), want, "row {r:?}, offsets {o:?}");
+        }
+        // A product past a machine word before its reduction: `Small`'s path.
+        let (k, o) = (Small::new(1 << 62, 3), Small::new(5, 1 << 61));
+        assert_eq!(dot(&[(0, k)], &[o]), Small::new(10, 3));
     }
 
     #[test]
