@@ -215,7 +215,8 @@ pub fn parse_urdf(text: &str, file: &str, o: &UrdfOptions) -> Result<UrdfRobot, 
             xyz: j.xyz.clone().map(Scalar::rational),
             rpy,
         };
-        let fdq = frame_dq(&frame.xyz, &frame.rpy).map_err(|e| el_err(el.clone(), e.to_string()))?;
+        let fdq =
+            frame_dq(&frame.xyz, &frame.rpy).map_err(|e| el_err(el.clone(), e.to_string()))?;
         let kind = match j.kind.as_str() {
             "fixed" => {
                 read.push(ReadJoint {
