@@ -160,9 +160,9 @@ fn quantities(p: &V, l: &V) -> [f64; 14] {
 
 /// The three sample angles `2πk/3` (sine, cosine) and the weights that turn three samples of
 /// `a + b cos θ + c sin θ` into `(a, b, c)` exactly (a three-point DFT).
-const SAMPLE_S: [f64; 3] = [0.0, 0.866_025_403_784_438_6, -0.866_025_403_784_438_6];
-const SAMPLE_C: [f64; 3] = [1.0, -0.5, -0.5];
-const DFT: [[f64; 3]; 3] = [
+pub const SAMPLE_S: [f64; 3] = [0.0, 0.866_025_403_784_438_6, -0.866_025_403_784_438_6];
+pub const SAMPLE_C: [f64; 3] = [1.0, -0.5, -0.5];
+pub const DFT: [[f64; 3]; 3] = [
     [1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0],
     [2.0 / 3.0, -1.0 / 3.0, -1.0 / 3.0],
     [0.0, 0.577_350_269_189_625_8, -0.577_350_269_189_625_8],
@@ -435,7 +435,7 @@ fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], 
 }
 
 /// `(1, cos, sin)` of a half-angle tangent times `1 + x²`, as polynomials in `x`.
-const HALF: [[f64; 3]; 3] = [[1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0.0]];
+pub const HALF: [[f64; 3]; 3] = [[1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0.0]];
 
 /// The 12 x 12 matrix polynomial `M(x) = A x² + B x + C` of `x = tan((θ3 − φ)/2)`: the six
 /// equations `Σ X45 = 0` with `θ4`, `θ5` by their half-angle tangents (monomials `x4^a x5^b`,
@@ -746,27 +746,63 @@ fn back_substitute(
 /// root, or two close real roots of a nearly special arm, split into a complex pair by rounding
 /// with an imaginary part up to the square root of the perturbation; candidates that are no
 /// solution are dropped by the forward-kinematics check after refinement.
-const NEAR_REAL: f64 = 1e-3;
+pub const NEAR_REAL: f64 = 1e-3;
+
+/// The shifts `φ` of the hidden joint tried in turn, the first that makes the leading matrix
+/// `A` conditioned better than [`SHIFT_GOOD`] is taken (else the best of them).
+pub const SHIFTS: [f64; 5] = [0.0, 2.1, -1.7, 0.9, -2.9];
+
+/// A shift whose leading matrix has a smallest LU pivot above this (relative) is good enough.
+pub const SHIFT_GOOD: f64 = 1e-3;
+
+/// Below this relative pivot the leading matrix is singular to rounding for every shift: `det
+/// M` vanishes identically (a degenerate arrangement for this geometry).
+pub const SHIFT_SINGULAR: f64 = 1e-10;
+
+/// An eigenvalue within this of `±i` is the spurious factor `1 + x²`, not counted in the degree.
+pub const SPURIOUS_TOL: f64 = 1e-6;
+
+/// An eigenvalue larger than this is a root at infinity (the degree drops), not counted.
+pub const INFINITE_ROOT: f64 = 1e8;
+
+/// Below this `|r77| / |r00|` the eight monomials of θ1, θ2 are not independent to rounding:
+/// the six eliminated equations would not be the elimination (a degenerate arrangement).
+pub const RANK_TOL: f64 = 1e-9;
+
+/// As `ik::check::refine`: below `CHECK_TOL / 1000` the pose is exact to rounding.
+pub const EXACT_TOL: f64 = 1e-14;
+
+/// The damping of Gauss–Newton: its start (relative to the normal matrix' trace), its least
+/// value and the largest before the refinement gives up.
+pub const DAMP_START: f64 = 1e-12;
+/// See [`DAMP_START`].
+pub const DAMP_MIN: f64 = 1e-15;
+/// See [`DAMP_START`].
+pub const DAMP_MAX: f64 = 1.0;
+
+/// Gauss–Newton iterations at most.
+pub const REFINE_ITERS: usize = 16;
+
+/// Two joint vectors within this (every angle, on the circle) are one solution.
+pub const SAME_TOL: f64 = 1e-6;
 
 /// The candidates of one arrangement: its real roots, each with the arm's joint vector (not
 /// yet refined), and the degree reached; `None` when the arrangement is degenerate here.
 fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(usize, usize)> {
     // The shift φ of the hidden joint that makes A (θ3 = φ + π) best conditioned.
     let mut best = (0.0, -1.0);
-    for phi in [0.0, 2.1, -1.7, 0.9, -2.9] {
+    for phi in SHIFTS {
         let mp = matrix_poly(&el.sig, phi);
         let mut a = mp[2];
         let (_, ratio) = lu(&mut a);
         if ratio > best.1 {
             best = (phi, ratio);
         }
-        if ratio > 1e-3 {
+        if ratio > SHIFT_GOOD {
             break;
         }
     }
-    // Below this the leading matrix is singular to rounding for every shift: det M vanishes
-    // identically (a degenerate arrangement for this geometry).
-    if best.1 < 1e-10 {
+    if best.1 < SHIFT_SINGULAR {
         return None;
     }
     let phi = best.0;
@@ -775,8 +811,8 @@ fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(u
     let mut n = 0;
     let mut degree = 0;
     for &(re, im) in &ev {
-        let spurious = (re.abs() + (im.abs() - 1.0).abs()) < 1e-6;
-        if re.is_finite() && im.is_finite() && !spurious && re.hypot(im) < 1e8 {
+        let spurious = (re.abs() + (im.abs() - 1.0).abs()) < SPURIOUS_TOL;
+        if re.is_finite() && im.is_finite() && !spurious && re.hypot(im) < INFINITE_ROOT {
             degree += 1;
         }
         // A real root, or a pair split by rounding (a double root near a singular set): the
@@ -862,10 +898,9 @@ fn error(f: &B34, t: &B34) -> ([f64; 12], f64) {
 fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -> f64 {
     let (mut f, mut cur) = forward(ax, home, q);
     let (mut e, mut res) = error(&f, t);
-    let mut lambda = 1e-12;
-    for _ in 0..16 {
-        // As ik::check::refine: below CHECK_TOL / 1000 the pose is exact to rounding.
-        if res <= 1e-14 || res.is_nan() {
+    let mut lambda = DAMP_START;
+    for _ in 0..REFINE_ITERS {
+        if res <= EXACT_TOL || res.is_nan() {
             break;
         }
         let mut cols = [[0.0; 12]; 6];
@@ -920,12 +955,12 @@ fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -> f64 {
                 if r2 < res {
                     *q = next;
                     (f, cur, e, res) = (f2, cur2, e2, r2);
-                    lambda = (lambda * 0.01).max(1e-15);
+                    lambda = (lambda * 0.01).max(DAMP_MIN);
                     break;
                 }
             }
             lambda *= 100.0;
-            if lambda > 1.0 {
+            if lambda > DAMP_MAX {
                 return res;
             }
         }
@@ -941,7 +976,7 @@ fn same(a: &[f64; 6], b: &[f64; 6], prismatic: &[bool; 6]) -> bool {
         } else {
             wrap(a[i] - b[i])
         };
-        d.abs() <= 1e-6
+        d.abs() <= SAME_TOL
     })
 }
 
@@ -1007,9 +1042,7 @@ pub fn gen_solve(
         }
         let ar = Arranged::new(&js, &g, arr);
         let Some(el) = ar.elim() else { continue };
-        // Below this ratio the eight monomials of θ1, θ2 are not independent to rounding: the
-        // six eliminated equations would not be the elimination (a degenerate arrangement).
-        if el.rank_ratio < 1e-9 {
+        if el.rank_ratio < RANK_TOL {
             continue;
         }
         let Some((n, degree)) = candidates(&ar, &el, &mut roots) else {
