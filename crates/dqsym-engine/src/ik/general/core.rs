@@ -148,9 +148,9 @@ pub(crate) struct Elim {
     pub(crate) r: [[f64; 8]; 8],
     pub(crate) piv: [usize; 8],
     /// `|r77| / |r00|`: how far `Bm` is from losing rank.
-    rank_ratio: f64,
+    pub(crate) rank_ratio: f64,
     /// `Σ = N Am` in `(1, cos θ3, sin θ3)`: 6 x 9 each.
-    sig: [[[f64; 9]; 6]; 3],
+    pub(crate) sig: [[[f64; 9]; 6]; 3],
 }
 
 /// The monomial index of `(i, j)` with `i, j` in `(1, cos, sin)`.
@@ -401,7 +401,7 @@ pub const HALF: [[f64; 3]; 3] = [[1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0
 /// equations `Σ X45 = 0` with `θ4`, `θ5` by their half-angle tangents (monomials `x4^a x5^b`,
 /// `a, b ≤ 2`), and the same times `x4` (`a ≤ 3`): twelve equations in twelve monomials.
 #[allow(clippy::needless_range_loop)]
-fn matrix_poly(sig: &[[[f64; 9]; 6]; 3], phi: f64) -> [[[f64; 12]; 12]; 3] {
+pub(crate) fn matrix_poly(sig: &[[[f64; 9]; 6]; 3], phi: f64) -> [[[f64; 12]; 12]; 3] {
     let (sp, cp) = phi.sin_cos();
     let mut out = [[[0.0; 12]; 12]; 3];
     for row in 0..6 {
@@ -433,7 +433,7 @@ fn matrix_poly(sig: &[[[f64; 9]; 6]; 3], phi: f64) -> [[[f64; 12]; 12]; 3] {
 #[allow(clippy::needless_range_loop)]
 /// LU with partial pivoting of an `n x n` block of `a` (in place); `None` when singular.
 /// Returns the pivot order and the smallest pivot over the largest entry.
-fn lu<const N: usize>(a: &mut [[f64; N]; N]) -> ([usize; N], f64) {
+pub(crate) fn lu<const N: usize>(a: &mut [[f64; N]; N]) -> ([usize; N], f64) {
     let mut p = [0usize; N];
     let mut amax: f64 = 0.0;
     for r in a.iter() {
@@ -498,7 +498,7 @@ fn lu_solve<const N: usize>(lu: &[[f64; N]; N], p: &[usize; N], b: &[f64; N]) ->
 /// eigenvalues `±i` that [`deflate_spurious`] removes. `(re, im)` pairs and how many; `None`
 /// when the QR iteration does not converge.
 #[allow(clippy::needless_range_loop)]
-fn eigen_quadratic(
+pub(crate) fn eigen_quadratic(
     m: &[[[f64; 12]; 12]; 3],
     a: &[[f64; 12]; 12],
     p: &[usize; 12],
@@ -1319,11 +1319,12 @@ fn hessenberg(a: &mut [[f64; 24]; 24], n: usize) {
                 if y != 0.0 {
                     y /= x;
                     a[i][m - 1] = 0.0;
-                    for j in m..n {
-                        a[i][j] -= y * a[m][j];
+                    let (top, rest) = a.split_at_mut(i);
+                    for (ai, am) in rest[0][m..n].iter_mut().zip(&top[m][m..n]) {
+                        *ai -= y * am;
                     }
-                    for j in 0..n {
-                        a[j][m] += y * a[j][i];
+                    for row in a[..n].iter_mut() {
+                        row[m] += y * row[i];
                     }
                 }
             }
@@ -1335,7 +1336,7 @@ fn hessenberg(a: &mut [[f64; 24]; 24], n: usize) {
 /// Hessenberg reduction and the Francis double-shift QR iteration (the classical `hqr`); the
 /// first `n` pairs are set. `None` when an eigenvalue takes more than 60 iterations.
 #[allow(clippy::needless_range_loop, clippy::many_single_char_names)]
-fn eigenvalues(a0: &mut [[f64; 24]; 24], size: usize) -> Option<[(f64, f64); 24]> {
+pub(crate) fn eigenvalues(a0: &mut [[f64; 24]; 24], size: usize) -> Option<[(f64, f64); 24]> {
     balance(a0, size);
     hessenberg(a0, size);
     // 1-based indices as in the classical formulation: a[i][j] = a0[i - 1][j - 1].
