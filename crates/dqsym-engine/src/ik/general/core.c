@@ -589,23 +589,25 @@ static int ik_gen_eigen_quadratic(const double m[3][12][12], const double a[12][
 /* A null vector of the 12 x 12 matrix m (Gaussian elimination with complete pivoting, the
    last pivot taken as zero). */
 static void ik_gen_null_vector(const double m[12][12], double v[12]) {
-    double a[12][12], y[12], bv, d, f, s, t;
+    double a[12][12], y[12], bv, d, f, s, t, x;
     int cols[12], i, k, r, c, br, bc;
     memcpy(a, m, sizeof a);
     for (i = 0; i < 12; i++) cols[i] = i;
-    for (k = 0; k < 11; k++) {
-        br = k;
-        bc = k;
-        bv = -1.0;
-        for (r = k; r < 12; r++) {
-            for (c = k; c < 12; c++) {
-                if (fabs(a[r][c]) > bv) {
-                    br = r;
-                    bc = c;
-                    bv = fabs(a[r][c]);
-                }
+    /* The largest entry of the remaining block, tracked while it is updated (the same choice
+       as a search of the block after each step). */
+    br = 0;
+    bc = 0;
+    bv = -1.0;
+    for (r = 0; r < 12; r++) {
+        for (c = 0; c < 12; c++) {
+            if (fabs(a[r][c]) > bv) {
+                br = r;
+                bc = c;
+                bv = fabs(a[r][c]);
             }
         }
+    }
+    for (k = 0; k < 11; k++) {
         for (c = 0; c < 12; c++) {
             t = a[k][c];
             a[k][c] = a[br][c];
@@ -620,10 +622,33 @@ static void ik_gen_null_vector(const double m[12][12], double v[12]) {
         cols[k] = cols[bc];
         cols[bc] = i;
         d = a[k][k];
-        if (d == 0.0) continue;
+        br = k + 1;
+        bc = k + 1;
+        bv = -1.0;
+        if (d == 0.0) {
+            for (r = k + 1; r < 12; r++) {
+                for (c = k + 1; c < 12; c++) {
+                    if (fabs(a[r][c]) > bv) {
+                        br = r;
+                        bc = c;
+                        bv = fabs(a[r][c]);
+                    }
+                }
+            }
+            continue;
+        }
         for (r = k + 1; r < 12; r++) {
             f = a[r][k] / d;
-            for (c = k; c < 12; c++) a[r][c] -= f * a[k][c];
+            a[r][k] -= f * a[k][k];
+            for (c = k + 1; c < 12; c++) {
+                x = a[r][c] - f * a[k][c];
+                a[r][c] = x;
+                if (fabs(x) > bv) {
+                    br = r;
+                    bc = c;
+                    bv = fabs(x);
+                }
+            }
         }
     }
     y[11] = 1.0;
@@ -1142,24 +1167,35 @@ static void ik_gen_qr_sweep(double a[24][24], int l, int m, int nn, double p, do
         z = r / s;
         q /= p;
         r /= p;
-        for (j = k; j <= nn; j++) {
-            p = IK_GEN_A(k, j) + q * IK_GEN_A(k + 1, j);
-            if (k != nn - 1) {
-                p += r * IK_GEN_A(k + 2, j);
-                IK_GEN_A(k + 2, j) -= p * z;
-            }
-            IK_GEN_A(k + 1, j) -= p * y;
-            IK_GEN_A(k, j) -= p * x;
-        }
         mmin = nn < k + 3 ? nn : k + 3;
-        for (i = l; i <= mmin; i++) {
-            p = x * IK_GEN_A(i, k) + y * IK_GEN_A(i, k + 1);
-            if (k != nn - 1) {
-                p += z * IK_GEN_A(i, k + 2);
-                IK_GEN_A(i, k + 2) -= p * r;
+        if (k != nn - 1) {
+            double *r0 = a[k - 1], *r1 = a[k], *r2 = a[k + 1];
+            for (j = k - 1; j < nn; j++) {
+                p = r0[j] + q * r1[j] + r * r2[j];
+                r2[j] -= p * z;
+                r1[j] -= p * y;
+                r0[j] -= p * x;
             }
-            IK_GEN_A(i, k + 1) -= p * q;
-            IK_GEN_A(i, k) -= p;
+            for (i = l - 1; i < mmin; i++) {
+                double *ci = a[i] + (k - 1);
+                p = x * ci[0] + y * ci[1] + z * ci[2];
+                ci[2] -= p * r;
+                ci[1] -= p * q;
+                ci[0] -= p;
+            }
+        } else {
+            double *r0 = a[k - 1], *r1 = a[k];
+            for (j = k - 1; j < nn; j++) {
+                p = r0[j] + q * r1[j];
+                r1[j] -= p * y;
+                r0[j] -= p * x;
+            }
+            for (i = l - 1; i < mmin; i++) {
+                double *ci = a[i] + (k - 1);
+                p = x * ci[0] + y * ci[1];
+                ci[1] -= p * q;
+                ci[0] -= p;
+            }
         }
     }
 #undef IK_GEN_A
