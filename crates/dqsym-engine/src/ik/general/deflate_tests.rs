@@ -2,6 +2,8 @@
 //! undeflated 24 x 24 companion matrix built here, and every eigenvalue it keeps against an
 //! independent check: `M(λ)` is singular there (complex elimination written here).
 
+#![allow(clippy::needless_range_loop)]
+
 use super::core::{
     compose, eigen_quadratic, eigenvalues, inverse, lu, matrix_poly, Arranged, GenAxis, J,
     RANK_TOL, SHIFTS, SHIFT_GOOD, SHIFT_SINGULAR,
