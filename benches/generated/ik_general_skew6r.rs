@@ -603,7 +603,9 @@ fn deflate_spurious(m: &[[[f64; 12]; 12]; 3], k: &mut [[f64; 24]; 24]) -> usize 
     let first = bv;
     let mut rank = 12;
     for s in 0..12 {
-        if !(bv > SPURIOUS_RANK * SPURIOUS_RANK * first) {
+        // Also stops on NaN: no pivot is taken unless it is a number above the threshold.
+        let pivot_ok = bv > SPURIOUS_RANK * SPURIOUS_RANK * first;
+        if !pivot_ok {
             rank = s;
             break;
         }
