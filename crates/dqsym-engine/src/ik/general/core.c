@@ -403,15 +403,171 @@ static void ik_gen_lu_solve(const double *lu, int n, const int *p, const double 
     }
 }
 
-static int ik_gen_eigenvalues(double a[24][24], double wr[24], double wi[24]);
+static int ik_gen_eigenvalues(double a[24][24], int n, double wr[24], double wi[24]);
+
+/* Deflates the spurious eigenvalues +-i of the companion matrix k (see core.rs): the null
+   vectors a + i b of M(i) = C - A + i B (elimination with complete pivoting) span with [a; -b],
+   [b; a] an invariant subspace Z; Gaussian elimination with partial pivoting of Z gives the
+   similarity whose trailing block k'22 - L2 L1^-1 k'12 (k' = P k P^T) has the other
+   eigenvalues. It is left in the leading rows and columns of k; returns its size (24 when
+   nothing is deflated). */
+static int ik_gen_deflate_spurious(const double m[3][12][12], double k[24][24]) {
+    double re[12][12], im[12][12], yr[12], yi[12], pr[12], pi[12], z[24][24], xx[24][24];
+    double out[24][24], row[24];
+    double bv, first, dr, di, d, nr, ni, fr, fi, x, y, v, sr, si, l, f;
+    int cols[12], perm[24], r, c, s, br, bc, rank, nullity, fidx, i, j, best, nz, n, t;
+    for (r = 0; r < 12; r++)
+        for (c = 0; c < 12; c++) {
+            re[r][c] = m[0][r][c] - m[2][r][c];
+            im[r][c] = m[1][r][c];
+        }
+    for (i = 0; i < 12; i++) cols[i] = i;
+    br = 0;
+    bc = 0;
+    bv = -1.0;
+    for (r = 0; r < 12; r++)
+        for (c = 0; c < 12; c++) {
+            v = re[r][c] * re[r][c] + im[r][c] * im[r][c];
+            if (v > bv) {
+                br = r;
+                bc = c;
+                bv = v;
+            }
+        }
+    first = bv;
+    rank = 12;
+    for (s = 0; s < 12; s++) {
+        if (!(bv > IK_GEN_SPURIOUS_RANK * IK_GEN_SPURIOUS_RANK * first)) {
+            rank = s;
+            break;
+        }
+        for (c = 0; c < 12; c++) {
+            x = re[s][c];
+            re[s][c] = re[br][c];
+            re[br][c] = x;
+            x = im[s][c];
+            im[s][c] = im[br][c];
+            im[br][c] = x;
+        }
+        for (r = 0; r < 12; r++) {
+            x = re[r][s];
+            re[r][s] = re[r][bc];
+            re[r][bc] = x;
+            x = im[r][s];
+            im[r][s] = im[r][bc];
+            im[r][bc] = x;
+        }
+        t = cols[s];
+        cols[s] = cols[bc];
+        cols[bc] = t;
+        dr = re[s][s];
+        di = im[s][s];
+        d = bv;
+        memcpy(pr, re[s], sizeof pr);
+        memcpy(pi, im[s], sizeof pi);
+        br = s + 1;
+        bc = s + 1;
+        bv = -1.0;
+        for (r = s + 1; r < 12; r++) {
+            nr = re[r][s];
+            ni = im[r][s];
+            fr = (nr * dr + ni * di) / d;
+            fi = (ni * dr - nr * di) / d;
+            re[r][s] = 0.0;
+            im[r][s] = 0.0;
+            for (c = s + 1; c < 12; c++) {
+                x = re[r][c] - (fr * pr[c] - fi * pi[c]);
+                y = im[r][c] - (fr * pi[c] + fi * pr[c]);
+                re[r][c] = x;
+                im[r][c] = y;
+                v = x * x + y * y;
+                if (v > bv) {
+                    br = r;
+                    bc = c;
+                    bv = v;
+                }
+            }
+        }
+    }
+    nullity = 12 - rank;
+    if (nullity == 0 || nullity >= 12 || !(first > 0.0 && isfinite(first))) return 24;
+    memset(z, 0, sizeof z);
+    for (fidx = 0; fidx < nullity; fidx++) {
+        memset(yr, 0, sizeof yr);
+        memset(yi, 0, sizeof yi);
+        yr[rank + fidx] = 1.0;
+        for (i = rank - 1; i >= 0; i--) {
+            sr = -re[i][rank + fidx];
+            si = -im[i][rank + fidx];
+            for (c = i + 1; c < rank; c++) {
+                sr -= re[i][c] * yr[c] - im[i][c] * yi[c];
+                si -= re[i][c] * yi[c] + im[i][c] * yr[c];
+            }
+            dr = re[i][i];
+            di = im[i][i];
+            d = dr * dr + di * di;
+            yr[i] = (sr * dr + si * di) / d;
+            yi[i] = (si * dr - sr * di) / d;
+        }
+        for (i = 0; i < 12; i++) {
+            c = cols[i];
+            z[2 * fidx][c] = yr[i];
+            z[2 * fidx][12 + c] = -yi[i];
+            z[2 * fidx + 1][c] = yi[i];
+            z[2 * fidx + 1][12 + c] = yr[i];
+        }
+    }
+    nz = 2 * nullity;
+    for (i = 0; i < 24; i++) perm[i] = i;
+    for (j = 0; j < nz; j++) {
+        best = j;
+        for (r = j + 1; r < 24; r++) {
+            if (fabs(z[j][perm[r]]) > fabs(z[j][perm[best]])) best = r;
+        }
+        t = perm[j];
+        perm[j] = perm[best];
+        perm[best] = t;
+        d = z[j][perm[j]];
+        if (!(d != 0.0 && isfinite(d))) return 24;
+        for (r = j + 1; r < 24; r++) {
+            const int q = perm[r];
+            f = z[j][q] / d;
+            z[j][q] = f;
+            for (c = j + 1; c < nz; c++) z[c][q] -= f * z[c][perm[j]];
+        }
+    }
+    n = 24 - nz;
+    memset(xx, 0, sizeof xx);
+    for (i = 0; i < nz; i++) {
+        for (c = 0; c < 24; c++) row[c] = c < n ? k[perm[i]][perm[nz + c]] : 0.0;
+        for (j = 0; j < i; j++) {
+            l = z[j][perm[i]];
+            for (c = 0; c < n; c++) row[c] -= l * xx[j][c];
+        }
+        memcpy(xx[i], row, sizeof row);
+    }
+    memset(out, 0, sizeof out);
+    for (r = 0; r < n; r++) {
+        const int q = perm[nz + r];
+        for (c = 0; c < 24; c++) row[c] = c < n ? k[q][perm[nz + c]] : 0.0;
+        for (j = 0; j < nz; j++) {
+            l = z[j][q];
+            for (c = 0; c < n; c++) row[c] -= l * xx[j][c];
+        }
+        memcpy(out[r], row, sizeof row);
+    }
+    memcpy(k, out, sizeof out);
+    return n;
+}
 
 /* The eigenvalues of the 24 x 24 companion linearisation of A x^2 + B x + C: [[0, I], [-A^-1
-   C, -A^-1 B]] (A invertible); 0 when the QR iteration does not converge. */
-static int ik_gen_eigen_quadratic(const double m[3][12][12], double wr[24], double wi[24]) {
-    double a[12][12], k[24][24], cc[12], cb[12], xc[12], xb[12];
-    int p[12], i, r, col;
-    memcpy(a, m[2], sizeof a);
-    ik_gen_lu(&a[0][0], 12, p);
+   C, -A^-1 B]] (A invertible, given as its LU a, p), less the eigenvalues +-i that
+   ik_gen_deflate_spurious removes; their number in *n. 0 when the QR iteration does not
+   converge. */
+static int ik_gen_eigen_quadratic(const double m[3][12][12], const double a[12][12],
+                                  const int p[12], double wr[24], double wi[24], int *n) {
+    double k[24][24], cc[12], cb[12], xc[12], xb[12];
+    int i, r, col;
     memset(k, 0, sizeof k);
     for (i = 0; i < 12; i++) k[i][12 + i] = 1.0;
     for (col = 0; col < 12; col++) {
@@ -426,29 +582,32 @@ static int ik_gen_eigen_quadratic(const double m[3][12][12], double wr[24], doub
             k[12 + r][12 + col] = -xb[r];
         }
     }
-    return ik_gen_eigenvalues(k, wr, wi);
+    *n = ik_gen_deflate_spurious(m, k);
+    return ik_gen_eigenvalues(k, *n, wr, wi);
 }
 
 /* A null vector of the 12 x 12 matrix m (Gaussian elimination with complete pivoting, the
    last pivot taken as zero). */
 static void ik_gen_null_vector(const double m[12][12], double v[12]) {
-    double a[12][12], y[12], bv, d, f, s, t;
+    double a[12][12], y[12], bv, d, f, s, t, x;
     int cols[12], i, k, r, c, br, bc;
     memcpy(a, m, sizeof a);
     for (i = 0; i < 12; i++) cols[i] = i;
-    for (k = 0; k < 11; k++) {
-        br = k;
-        bc = k;
-        bv = -1.0;
-        for (r = k; r < 12; r++) {
-            for (c = k; c < 12; c++) {
-                if (fabs(a[r][c]) > bv) {
-                    br = r;
-                    bc = c;
-                    bv = fabs(a[r][c]);
-                }
+    /* The largest entry of the remaining block, tracked while it is updated (the same choice
+       as a search of the block after each step). */
+    br = 0;
+    bc = 0;
+    bv = -1.0;
+    for (r = 0; r < 12; r++) {
+        for (c = 0; c < 12; c++) {
+            if (fabs(a[r][c]) > bv) {
+                br = r;
+                bc = c;
+                bv = fabs(a[r][c]);
             }
         }
+    }
+    for (k = 0; k < 11; k++) {
         for (c = 0; c < 12; c++) {
             t = a[k][c];
             a[k][c] = a[br][c];
@@ -463,10 +622,33 @@ static void ik_gen_null_vector(const double m[12][12], double v[12]) {
         cols[k] = cols[bc];
         cols[bc] = i;
         d = a[k][k];
-        if (d == 0.0) continue;
+        br = k + 1;
+        bc = k + 1;
+        bv = -1.0;
+        if (d == 0.0) {
+            for (r = k + 1; r < 12; r++) {
+                for (c = k + 1; c < 12; c++) {
+                    if (fabs(a[r][c]) > bv) {
+                        br = r;
+                        bc = c;
+                        bv = fabs(a[r][c]);
+                    }
+                }
+            }
+            continue;
+        }
         for (r = k + 1; r < 12; r++) {
             f = a[r][k] / d;
-            for (c = k; c < 12; c++) a[r][c] -= f * a[k][c];
+            a[r][k] -= f * a[k][k];
+            for (c = k + 1; c < 12; c++) {
+                x = a[r][c] - f * a[k][c];
+                a[r][c] = x;
+                if (fabs(x) > bv) {
+                    br = r;
+                    bc = c;
+                    bv = fabs(x);
+                }
+            }
         }
     }
     y[11] = 1.0;
@@ -604,26 +786,33 @@ static void ik_gen_back_substitute(const ik_gen_arranged *ar, const ik_gen_elim 
    arrangement is degenerate here. */
 static int ik_gen_candidates(const ik_gen_arranged *ar, const ik_gen_elim *el,
                              double roots[24][6], int *n, int *degree) {
-    double mp[3][12][12];
-    double a[12][12], wr[24], wi[24], t[6], best_phi = 0.0, best = -1.0, ratio, re, im, phi;
-    int p[12], k, i;
+    double mp[3][12][12], mps[3][12][12];
+    double a[12][12], a_s[12][12], wr[24], wi[24], t[6], best_phi = 0.0, best = -1.0, ratio, re,
+        im, phi;
+    int p[12], ps[12], k, i, n_ev;
+    /* The shift phi of the hidden joint that makes A best conditioned; its matrix polynomial
+       and the LU of its A are kept. */
     for (k = 0; k < (int)(sizeof IK_GEN_SHIFTS / sizeof IK_GEN_SHIFTS[0]); k++) {
-        ik_gen_matrix_poly((const double (*)[6][9])el->sig, IK_GEN_SHIFTS[k], mp);
-        memcpy(a, mp[2], sizeof a);
-        ratio = ik_gen_lu(&a[0][0], 12, p);
+        ik_gen_matrix_poly((const double (*)[6][9])el->sig, IK_GEN_SHIFTS[k], mps);
+        memcpy(a_s, mps[2], sizeof a_s);
+        ratio = ik_gen_lu(&a_s[0][0], 12, ps);
         if (ratio > best) {
             best_phi = IK_GEN_SHIFTS[k];
             best = ratio;
+            memcpy(mp, mps, sizeof mp);
+            memcpy(a, a_s, sizeof a);
+            memcpy(p, ps, sizeof p);
         }
         if (ratio > IK_GEN_SHIFT_GOOD) break;
     }
     if (best < IK_GEN_SHIFT_SINGULAR) return 0;
     phi = best_phi;
-    ik_gen_matrix_poly((const double (*)[6][9])el->sig, phi, mp);
-    if (!ik_gen_eigen_quadratic((const double (*)[12][12])mp, wr, wi)) return 0;
+    if (!ik_gen_eigen_quadratic((const double (*)[12][12])mp, (const double (*)[12])a, p, wr, wi,
+                                &n_ev))
+        return 0;
     *n = 0;
     *degree = 0;
-    for (k = 0; k < 24; k++) {
+    for (k = 0; k < n_ev; k++) {
         const int spurious = (fabs(wr[k]) + fabs(fabs(wi[k]) - 1.0)) < IK_GEN_SPURIOUS_TOL;
         re = wr[k];
         im = wi[k];
@@ -861,17 +1050,17 @@ static void ik_gen_solve(const double axes[6][7], const double home[3][4],
 
 /* Balancing (Parlett-Reinsch, powers of two): a similar matrix with rows and columns of
    comparable norm. */
-static void ik_gen_balance(double a[24][24]) {
+static void ik_gen_balance(double a[24][24], int n) {
     const double radix = 2.0;
     int done = 0, sweeps = 0, i, j;
     double c, r, s, f, g, gi;
     while (!done && sweeps < 100) {
         done = 1;
         sweeps += 1;
-        for (i = 0; i < 24; i++) {
+        for (i = 0; i < n; i++) {
             c = 0.0;
             r = 0.0;
-            for (j = 0; j < 24; j++) {
+            for (j = 0; j < n; j++) {
                 if (j != i) {
                     c += fabs(a[j][i]);
                     r += fabs(a[i][j]);
@@ -893,46 +1082,47 @@ static void ik_gen_balance(double a[24][24]) {
             if ((c + r) / f < 0.95 * s) {
                 done = 0;
                 gi = 1.0 / f;
-                for (j = 0; j < 24; j++) a[i][j] *= gi;
-                for (j = 0; j < 24; j++) a[j][i] *= f;
+                for (j = 0; j < n; j++) a[i][j] *= gi;
+                for (j = 0; j < n; j++) a[j][i] *= f;
             }
         }
     }
 }
 
-/* Reduction to upper Hessenberg form by stabilised elementary similarity transformations. */
-static void ik_gen_hessenberg(double a[24][24]) {
+/* Reduction to upper Hessenberg form by stabilised elementary similarity transformations (of
+   the leading n x n block). */
+static void ik_gen_hessenberg(double a[24][24], int n) {
     int m, i, j, ii;
     double x, y, t;
-    for (m = 1; m < 23; m++) {
+    for (m = 1; m < n - 1; m++) {
         x = 0.0;
         i = m;
-        for (j = m; j < 24; j++) {
+        for (j = m; j < n; j++) {
             if (fabs(a[j][m - 1]) > fabs(x)) {
                 x = a[j][m - 1];
                 i = j;
             }
         }
         if (i != m) {
-            for (j = m - 1; j < 24; j++) {
+            for (j = m - 1; j < n; j++) {
                 t = a[i][j];
                 a[i][j] = a[m][j];
                 a[m][j] = t;
             }
-            for (j = 0; j < 24; j++) {
+            for (j = 0; j < n; j++) {
                 t = a[j][i];
                 a[j][i] = a[j][m];
                 a[j][m] = t;
             }
         }
         if (x != 0.0) {
-            for (ii = m + 1; ii < 24; ii++) {
+            for (ii = m + 1; ii < n; ii++) {
                 y = a[ii][m - 1];
                 if (y != 0.0) {
                     y /= x;
                     a[ii][m - 1] = 0.0;
-                    for (j = m; j < 24; j++) a[ii][j] -= y * a[m][j];
-                    for (j = 0; j < 24; j++) a[j][m] += y * a[j][ii];
+                    for (j = m; j < n; j++) a[ii][j] -= y * a[m][j];
+                    for (j = 0; j < n; j++) a[j][m] += y * a[j][ii];
                 }
             }
         }
@@ -977,39 +1167,49 @@ static void ik_gen_qr_sweep(double a[24][24], int l, int m, int nn, double p, do
         z = r / s;
         q /= p;
         r /= p;
-        for (j = k; j <= nn; j++) {
-            p = IK_GEN_A(k, j) + q * IK_GEN_A(k + 1, j);
-            if (k != nn - 1) {
-                p += r * IK_GEN_A(k + 2, j);
-                IK_GEN_A(k + 2, j) -= p * z;
-            }
-            IK_GEN_A(k + 1, j) -= p * y;
-            IK_GEN_A(k, j) -= p * x;
-        }
         mmin = nn < k + 3 ? nn : k + 3;
-        for (i = l; i <= mmin; i++) {
-            p = x * IK_GEN_A(i, k) + y * IK_GEN_A(i, k + 1);
-            if (k != nn - 1) {
-                p += z * IK_GEN_A(i, k + 2);
-                IK_GEN_A(i, k + 2) -= p * r;
+        if (k != nn - 1) {
+            double *r0 = a[k - 1], *r1 = a[k], *r2 = a[k + 1];
+            for (j = k - 1; j < nn; j++) {
+                p = r0[j] + q * r1[j] + r * r2[j];
+                r2[j] -= p * z;
+                r1[j] -= p * y;
+                r0[j] -= p * x;
             }
-            IK_GEN_A(i, k + 1) -= p * q;
-            IK_GEN_A(i, k) -= p;
+            for (i = l - 1; i < mmin; i++) {
+                double *ci = a[i] + (k - 1);
+                p = x * ci[0] + y * ci[1] + z * ci[2];
+                ci[2] -= p * r;
+                ci[1] -= p * q;
+                ci[0] -= p;
+            }
+        } else {
+            double *r0 = a[k - 1], *r1 = a[k];
+            for (j = k - 1; j < nn; j++) {
+                p = r0[j] + q * r1[j];
+                r1[j] -= p * y;
+                r0[j] -= p * x;
+            }
+            for (i = l - 1; i < mmin; i++) {
+                double *ci = a[i] + (k - 1);
+                p = x * ci[0] + y * ci[1];
+                ci[1] -= p * q;
+                ci[0] -= p;
+            }
         }
     }
 #undef IK_GEN_A
 }
 
-/* The eigenvalues (wr + i wi) of a real 24 x 24 matrix (destroyed): balancing, Hessenberg
-   reduction and the Francis double-shift QR iteration (the classical hqr, 1-based indices);
-   0 when an eigenvalue takes more than 60 iterations. */
-static int ik_gen_eigenvalues(double a[24][24], double wr[24], double wi[24]) {
+/* The eigenvalues (wr + i wi) of the leading n x n block of a real matrix (destroyed):
+   balancing, Hessenberg reduction and the Francis double-shift QR iteration (the classical
+   hqr, 1-based indices); 0 when an eigenvalue takes more than 60 iterations. */
+static int ik_gen_eigenvalues(double a[24][24], int n, double wr[24], double wi[24]) {
 #define IK_GEN_A(i, j) a[(i) - 1][(j) - 1]
-    const int n = 24;
     double anorm = 0.0, t = 0.0, p = 0.0, q = 0.0, r = 0.0, s, w, x, y, z, u, v;
     int nn, its, l, m, i, j, i1, i2;
-    ik_gen_balance(a);
-    ik_gen_hessenberg(a);
+    ik_gen_balance(a, n);
+    ik_gen_hessenberg(a, n);
     for (i = 1; i <= n; i++)
         for (j = i - 1 > 1 ? i - 1 : 1; j <= n; j++) anorm += fabs(IK_GEN_A(i, j));
     if (!isfinite(anorm)) return 0;

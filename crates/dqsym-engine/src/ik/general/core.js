@@ -295,11 +295,117 @@ function ik_gen_lu_solve(lu, p, b) {
     return x;
 }
 
+// Deflates the spurious eigenvalues +-i of the 24 x 24 companion matrix k (see core.rs): the
+// null vectors a + i b of M(i) = C - A + i B (elimination with complete pivoting) span with
+// [a; -b], [b; a] an invariant subspace Z; Gaussian elimination with partial pivoting of Z
+// gives the similarity whose trailing block k'22 - L2 L1^-1 k'12 (k' = P k P^T) has the other
+// eigenvalues. Returns that block (k itself when nothing is deflated).
+function ik_gen_deflate_spurious(m, k) {
+    const re = ik_gen_zeros(12, 12), im = m[1].map((row) => row.slice());
+    for (let r = 0; r < 12; r++) for (let c = 0; c < 12; c++) re[r][c] = m[0][r][c] - m[2][r][c];
+    const cols = [...Array(12).keys()];
+    let br = 0, bc = 0, bv = -1;
+    for (let r = 0; r < 12; r++) {
+        for (let c = 0; c < 12; c++) {
+            const v = re[r][c] * re[r][c] + im[r][c] * im[r][c];
+            if (v > bv) [br, bc, bv] = [r, c, v];
+        }
+    }
+    const first = bv;
+    let rank = 12;
+    for (let s = 0; s < 12; s++) {
+        if (!(bv > IK_GEN_SPURIOUS_RANK * IK_GEN_SPURIOUS_RANK * first)) {
+            rank = s;
+            break;
+        }
+        [re[s], re[br]] = [re[br], re[s]];
+        [im[s], im[br]] = [im[br], im[s]];
+        for (let r = 0; r < 12; r++) {
+            [re[r][s], re[r][bc]] = [re[r][bc], re[r][s]];
+            [im[r][s], im[r][bc]] = [im[r][bc], im[r][s]];
+        }
+        [cols[s], cols[bc]] = [cols[bc], cols[s]];
+        const dr = re[s][s], di = im[s][s], d = bv, pr = re[s], pi = im[s];
+        [br, bc, bv] = [s + 1, s + 1, -1];
+        for (let r = s + 1; r < 12; r++) {
+            const nr = re[r][s], ni = im[r][s];
+            const fr = (nr * dr + ni * di) / d;
+            const fi = (ni * dr - nr * di) / d;
+            re[r][s] = 0;
+            im[r][s] = 0;
+            for (let c = s + 1; c < 12; c++) {
+                const x = re[r][c] - (fr * pr[c] - fi * pi[c]);
+                const y = im[r][c] - (fr * pi[c] + fi * pr[c]);
+                re[r][c] = x;
+                im[r][c] = y;
+                const v = x * x + y * y;
+                if (v > bv) [br, bc, bv] = [r, c, v];
+            }
+        }
+    }
+    const nullity = 12 - rank;
+    if (nullity === 0 || nullity >= 12 || !(first > 0 && Number.isFinite(first))) return k;
+    const z = ik_gen_zeros(24, 24);
+    for (let f = 0; f < nullity; f++) {
+        const yr = new Array(12).fill(0), yi = new Array(12).fill(0);
+        yr[rank + f] = 1;
+        for (let i = rank - 1; i >= 0; i--) {
+            let sr = -re[i][rank + f], si = -im[i][rank + f];
+            for (let c = i + 1; c < rank; c++) {
+                sr -= re[i][c] * yr[c] - im[i][c] * yi[c];
+                si -= re[i][c] * yi[c] + im[i][c] * yr[c];
+            }
+            const dr = re[i][i], di = im[i][i], d = dr * dr + di * di;
+            yr[i] = (sr * dr + si * di) / d;
+            yi[i] = (si * dr - sr * di) / d;
+        }
+        for (let i = 0; i < 12; i++) {
+            const c = cols[i];
+            z[2 * f][c] = yr[i];
+            z[2 * f][12 + c] = -yi[i];
+            z[2 * f + 1][c] = yi[i];
+            z[2 * f + 1][12 + c] = yr[i];
+        }
+    }
+    const nz = 2 * nullity, perm = [...Array(24).keys()];
+    for (let j = 0; j < nz; j++) {
+        let best = j;
+        for (let r = j + 1; r < 24; r++) if (Math.abs(z[j][perm[r]]) > Math.abs(z[j][perm[best]])) best = r;
+        [perm[j], perm[best]] = [perm[best], perm[j]];
+        const d = z[j][perm[j]];
+        if (!(d !== 0 && Number.isFinite(d))) return k;
+        for (let r = j + 1; r < 24; r++) {
+            const pr = perm[r], f = z[j][pr] / d;
+            z[j][pr] = f;
+            for (let c = j + 1; c < nz; c++) z[c][pr] -= f * z[c][perm[j]];
+        }
+    }
+    const n = 24 - nz, x = [];
+    for (let i = 0; i < nz; i++) {
+        const row = [...Array(n).keys()].map((c) => k[perm[i]][perm[nz + c]]);
+        for (let j = 0; j < i; j++) {
+            const l = z[j][perm[i]];
+            for (let c = 0; c < n; c++) row[c] -= l * x[j][c];
+        }
+        x.push(row);
+    }
+    const out = [];
+    for (let r = 0; r < n; r++) {
+        const pr = perm[nz + r];
+        const row = [...Array(n).keys()].map((c) => k[pr][perm[nz + c]]);
+        for (let j = 0; j < nz; j++) {
+            const l = z[j][pr];
+            for (let c = 0; c < n; c++) row[c] -= l * x[j][c];
+        }
+        out.push(row);
+    }
+    return out;
+}
+
 // The eigenvalues [re, im] of the companion linearisation [[0, I], [-A^-1 C, -A^-1 B]] of
-// A x^2 + B x + C; null when the QR iteration does not converge.
-function ik_gen_eigen_quadratic(m) {
-    const a = m[2].map((row) => row.slice());
-    const [p] = ik_gen_lu(a);
+// A x^2 + B x + C (A given as its LU a, p), less the eigenvalues +-i that
+// ik_gen_deflate_spurious removes; null when the QR iteration does not converge.
+function ik_gen_eigen_quadratic(m, a, p) {
     const k = ik_gen_zeros(24, 24);
     for (let i = 0; i < 12; i++) k[i][12 + i] = 1;
     for (let col = 0; col < 12; col++) {
@@ -310,7 +416,7 @@ function ik_gen_eigen_quadratic(m) {
             k[12 + r][12 + col] = -xb[r];
         }
     }
-    return ik_gen_eigenvalues(k);
+    return ik_gen_eigenvalues(ik_gen_deflate_spurious(m, k));
 }
 
 // A null vector of the 12 x 12 matrix m (Gaussian elimination with complete pivoting, the last
@@ -432,17 +538,18 @@ function ik_gen_back_substitute(ar, el, mp, phi, x) {
 // The candidates of one arrangement: {roots (the arm's joint vectors, not yet refined),
 // degree}; null when the arrangement is degenerate here.
 function ik_gen_candidates(ar, el) {
-    let best = [0, -1];
+    // The shift phi that makes A best conditioned; its matrix polynomial and A's LU are kept.
+    let best = [0, -1], mp = null, lu = null, piv = null;
     for (const phi of IK_GEN_SHIFTS) {
-        const a = ik_gen_matrix_poly(el.sig, phi)[2];
-        const [, ratio] = ik_gen_lu(a);
-        if (ratio > best[1]) best = [phi, ratio];
+        const mps = ik_gen_matrix_poly(el.sig, phi);
+        const a = mps[2].map((row) => row.slice());
+        const [p, ratio] = ik_gen_lu(a);
+        if (ratio > best[1]) [best, mp, lu, piv] = [[phi, ratio], mps, a, p];
         if (ratio > IK_GEN_SHIFT_GOOD) break;
     }
     if (best[1] < IK_GEN_SHIFT_SINGULAR) return null;
     const phi = best[0];
-    const mp = ik_gen_matrix_poly(el.sig, phi);
-    const ev = ik_gen_eigen_quadratic(mp);
+    const ev = ik_gen_eigen_quadratic(mp, lu, piv);
     if (ev === null) return null;
     const roots = [];
     let degree = 0;

@@ -144,6 +144,20 @@ def _back(j, h, am, bm, mp, phi, x):
     return [t1, t2, t3, t4, t5, t6]
 
 
+def _deflate(mp, k):
+    # The spurious eigenvalues +-i removed (see core.rs): the null vectors a + i b of M(i) give
+    # the invariant subspace Z = span([a; -b], [b; a]) of k; with Q = [Z W] orthogonal, W^T k W
+    # has the other eigenvalues.
+    u, sv, vh = np.linalg.svd(mp[0] - mp[2] + 1j * mp[1])
+    null = vh[sv <= IK_GEN_SPURIOUS_RANK * sv[0]].conj().T
+    if not sv[0] > 0 or null.shape[1] == 0 or null.shape[1] >= 12:
+        return k
+    z = np.hstack([np.vstack([null.real, -null.imag]), np.vstack([null.imag, null.real])])
+    q = np.linalg.qr(z, mode='complete')[0]
+    w = q[:, z.shape[1]:]
+    return w.T @ k @ w
+
+
 def _candidates(j, h, perm, am, bm, sig):
     best = (0.0, -1.0)
     for phi in IK_GEN_SHIFTS:
@@ -163,7 +177,7 @@ def _candidates(j, h, perm, am, bm, sig):
     k[12:, :12] = -a_inv @ mp[0]
     k[12:, 12:] = -a_inv @ mp[1]
     out = []
-    for z in np.linalg.eigvals(k):
+    for z in np.linalg.eigvals(_deflate(mp, k)):
         if np.isfinite(z) and abs(z.imag) <= IK_GEN_NEAR_REAL * (1 + abs(z.real)):
             t = _back(j, h, am, bm, mp, phi, float(z.real))
             q = [0.0] * 6

@@ -68,6 +68,7 @@ fn core_constants() -> (Vec<Named<String>>, Vec<Table>) {
         ("IK_GEN_SHIFT_GOOD", f(k::SHIFT_GOOD)),
         ("IK_GEN_SHIFT_SINGULAR", f(k::SHIFT_SINGULAR)),
         ("IK_GEN_SPURIOUS_TOL", f(k::SPURIOUS_TOL)),
+        ("IK_GEN_SPURIOUS_RANK", f(k::SPURIOUS_RANK)),
         ("IK_GEN_INFINITE_ROOT", f(k::INFINITE_ROOT)),
         ("IK_GEN_RANK_TOL", f(k::RANK_TOL)),
         ("IK_GEN_EXACT_TOL", f(k::EXACT_TOL)),

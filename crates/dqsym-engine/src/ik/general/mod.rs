@@ -23,7 +23,8 @@
 //!    twelve, `M(x3) X = 0`, `M(x3) = A x3² + B x3 + C`, `x3 = tan((θ3 − φ)/2)`.
 //! 5. `det M(x3) = 0` is the univariate polynomial, of degree 24 with the spurious factor
 //!    `(1 + x3²)⁴`: degree 16 for a general 6R. Its roots are the eigenvalues of the 24 x 24
-//!    companion linearisation `[[0, I], [−A⁻¹C, −A⁻¹B]]` (balancing, Hessenberg reduction,
+//!    companion linearisation `[[0, I], [−A⁻¹C, −A⁻¹B]]` (the spurious `±i` deflated first
+//!    from the null vectors of `M(i)`, 24 → 16 rows; then balancing, Hessenberg reduction,
 //!    Francis double-shift QR; the shift `φ` keeps `A` invertible). The degree the solution
 //!    states ([`GeneralInfo::degree`]) is the number of finite eigenvalues other than `±i` at
 //!    a generic target: special geometry lowers it.
@@ -59,6 +60,8 @@
 
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod core;
+#[cfg(test)]
+mod deflate_tests;
 pub(crate) mod emit;
 pub mod exact;
 
