@@ -90,9 +90,10 @@ impl GeneralInfo {
 /// than dropped, while a root that is no solution (far off the pose) is dropped.
 pub const KEEP_TOL: f64 = 1e-6;
 
-/// Six revolute joints: the chains the general method solves.
+/// Six joints, at least one revolute (the loop is read so that one ends it): the chains the
+/// general method solves.
 pub(crate) fn applies(axes: &[super::Axis]) -> bool {
-    axes.len() == 6 && axes.iter().all(|a| a.kind == JointKind::Revolute)
+    axes.len() == 6 && axes.iter().any(|a| a.kind == JointKind::Revolute)
 }
 
 fn tol() -> core::GenTol {
@@ -171,6 +172,7 @@ pub fn sampled_equations(
     let js: [core::J; 6] = std::array::from_fn(|i| core::J {
         w: [axes[i][1], axes[i][2], axes[i][3]],
         c: [axes[i][4] / len, axes[i][5] / len, axes[i][6] / len],
+        prism: axes[i][0] != 0.0,
     });
     let mut hm = home;
     let mut tg = [[0.0; 4]; 3];
