@@ -832,6 +832,13 @@ pub const SHIFT_SINGULAR: f64 = 1e-10;
 /// An eigenvalue within this of `±i` is the spurious factor `1 + x²`, not counted in the degree.
 pub const SPURIOUS_TOL: f64 = 1e-6;
 
+/// A prismatic hidden joint's root beyond this (scaled length) is a root at infinity: every
+/// length of the arm and the target's distance are at most 1 after scaling, so a slide that
+/// reaches the target is at most about 7 (six links and the target); the roots at infinity of
+/// `det M(d)` (eight for a general 5R1P chain) come out of the shifted linearisation as a
+/// cluster around `y = cot(φ/2)` spread by rounding to about `1e-6`, that is `|d|` above `1e5`.
+pub const PRISM_FAR: f64 = 1e4;
+
 /// An eigenvalue larger than this is a root at infinity (the degree drops), not counted.
 pub const INFINITE_ROOT: f64 = 1e8;
 
@@ -881,6 +888,11 @@ fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(u
     let mut n = 0;
     let mut degree = 0;
     for &(re, im) in &ev {
+        // A prismatic hidden joint's roots at infinity (`d = ∞`, the eigenvalues clustered at
+        // `y = cot(φ/2)`) are no solutions.
+        if ar.j[2].prism && (0.5 * phi + re.atan()).tan().abs() > PRISM_FAR {
+            continue;
+        }
         let spurious = (re.abs() + (im.abs() - 1.0).abs()) < SPURIOUS_TOL;
         if re.is_finite() && im.is_finite() && !spurious && re.hypot(im) < INFINITE_ROOT {
             degree += 1;

@@ -268,13 +268,23 @@ fn used_first(sol: &IkSolution, (rev, shift): (bool, usize)) -> String {
 pub fn elimination_lines(sol: &IkSolution, info: &GeneralInfo) -> Vec<String> {
     let v = &sol.variables;
     let (rev, shift) = info.arrangement;
+    let arm = |i: usize| {
+        let k = (shift + i) % 6;
+        if rev {
+            5 - k
+        } else {
+            k
+        }
+    };
     let order: Vec<&str> = (0..6)
-        .map(|i| {
-            let k = (shift + i) % 6;
-            let k = if rev { 5 - k } else { k };
-            v.get(k).map_or("?", String::as_str)
-        })
+        .map(|i| v.get(arm(i)).map_or("?", String::as_str))
         .collect();
+    let slides: Vec<bool> = (0..6)
+        .map(|i| sol.axes.get(arm(i)).is_some_and(|a| a.kind == JointKind::Prismatic))
+        .collect();
+    if slides.iter().any(|p| *p) {
+        return prismatic_lines(info, &order, &slides, rev);
+    }
     let t = TARGET_SYMBOLS
         .iter()
         .flatten()
@@ -310,6 +320,66 @@ pub fn elimination_lines(sol: &IkSolution, info: &GeneralInfo) -> Vec<String> {
             order[3], order[4], order[0], order[1], order[5], order[4], order[0]
         ),
         "special geometry (a degenerate arrangement, a double root) reads the loop from another joint".into(),
+    ];
+    if info.degree == 0 {
+        out.push("no arrangement was usable at the generic target".into());
+    }
+    out
+}
+
+/// [`elimination_lines`] for a chain with prismatic joints: a slide's variable `d` enters the
+/// quantities through `(1, d, d²)` where a turn's enters through `(1, cos, sin)`.
+fn prismatic_lines(info: &GeneralInfo, order: &[&str], slides: &[bool], rev: bool) -> Vec<String> {
+    let basis = |i: usize| {
+        let b = if slides[i] { "(1, d, d^2)" } else { "(1, c, s)" };
+        format!("{b}({})", order[i])
+    };
+    let tangent = |i: usize| {
+        if slides[i] {
+            format!("x({0}) = {0}", order[i])
+        } else {
+            format!("x({0}) = tan({0}/2)", order[i])
+        }
+    };
+    let hidden = if slides[2] {
+        format!("{} = (t + x)/(1 - t x), t = tan(phi/2)", order[2])
+    } else {
+        format!("x = tan(({} - phi)/2)", order[2])
+    };
+    let spurious = if slides[2] {
+        format!("the roots at {} = infinity", order[2])
+    } else {
+        "the spurious factor (1 + x^2)^4".into()
+    };
+    let mut out = vec![
+        format!(
+            "loop read as {} (joint order{}; the last joint turns), target G = T M^-1",
+            order.join(", "),
+            if rev { ", reversed" } else { "" }
+        ),
+        format!(
+            "1. E({}) E({}) E({}) (p, w) = E({})^-1 E({})^-1 G (p, w) for a point p and the direction w of the axis of {}: {} eliminated",
+            order[2], order[3], order[4], order[1], order[0], order[5], order[5]
+        ),
+        "2. the 14 Raghavan-Roth quantities of both sides: l, p, p.p, p.l, p x l, (p.p) l - 2 (p.l) p; each of degree one in the sine and cosine of every revolute joint, of degree two in the length d of every prismatic one (a slide by d w adds 2 d w.p + d^2 to p.p): Bm X12 = Am X45".into(),
+        format!(
+            "   X12 = {} x {} without 1 (8 monomials), X45 = {} x {} (9), Am linear in {}",
+            basis(0), basis(1), basis(3), basis(4), basis(2)
+        ),
+        "3. the left null space N of Bm (14 x 8, Householder QR in f64 at the numeric target): 6 equations N Am X45 = 0".into(),
+        format!(
+            "4. {}, {}, and the same equations times x({}): M(x) X = 0, M(x) = A x^2 + B x + C (12 x 12), {hidden}",
+            tangent(3), tangent(4), order[3]
+        ),
+        format!(
+            "5. det M(x) = 0: degree 24 with {spurious}; degree reached at a generic target: {} (known bounds: 16 for 5R1P, 8 for 4R2P, 2 for 3R3P)",
+            info.degree
+        ),
+        format!(
+            "6. back-substitution: {}, {} from the null vector of M(x); {}, {} from Bm X12 = Am X45 (a slide's d is its monomial); {} from E({})^-1 ... E({})^-1 G; each solution refined by Gauss-Newton and checked by forward kinematics",
+            order[3], order[4], order[0], order[1], order[5], order[4], order[0]
+        ),
+        "special geometry (a degenerate arrangement, a double root) reads the loop from another joint that turns".into(),
     ];
     if info.degree == 0 {
         out.push("no arrangement was usable at the generic target".into());
