@@ -1,5 +1,6 @@
 //! The derivation as text: plain (the field's `c1`, `s23` notation), LaTeX, SymPy lines.
 
+use super::general::exact::ExactError;
 use super::{
     Branch, BranchPart, BranchSigns, EndFrame, Fact, Formula, FreeChoice, IkSolution, IkStep,
     Phrase, Reach, Relation,
@@ -470,13 +471,14 @@ fn general_plain(
     info: &super::general::GeneralInfo,
     o: &PlainOptions,
 ) -> Result<String, ScalarError> {
-    let shown = super::general::exact::exact_equations(sol, info)
-        .and_then(|eq| Ok((super::general::exact_scope_text(sol, &eq), eq.shown(sol)?)));
+    let shown = super::general::exact::exact_equations(sol, info).and_then(|eq| {
+        Ok::<_, ExactError>((super::general::exact_scope_text(sol, &eq), eq.shown(sol)?))
+    });
     let (scope, groups) = match shown {
         Ok(x) => x,
         // Past the term limit or the work budget (a symbolic arm with symbolic twists), the
         // rest of the report still stands; an interruption stops it.
-        Err(ScalarError::Cancelled) => return Err(ScalarError::Cancelled),
+        Err(ExactError::Scalar(ScalarError::Cancelled)) => return Err(ScalarError::Cancelled),
         Err(e) => return Ok(format!("\nexact equations: not printed ({e})\n")),
     };
     let mut out =
@@ -500,11 +502,12 @@ fn general_exact_latex(
         shorthand,
         ..LatexOptions::default()
     };
-    let shown = super::general::exact::exact_equations(sol, info)
-        .and_then(|eq| Ok((super::general::exact_scope_text(sol, &eq), eq.shown(sol)?)));
+    let shown = super::general::exact::exact_equations(sol, info).and_then(|eq| {
+        Ok::<_, ExactError>((super::general::exact_scope_text(sol, &eq), eq.shown(sol)?))
+    });
     let (scope, groups) = match shown {
         Ok(x) => x,
-        Err(ScalarError::Cancelled) => return Err(ScalarError::Cancelled),
+        Err(ExactError::Scalar(ScalarError::Cancelled)) => return Err(ScalarError::Cancelled),
         Err(e) => {
             return Ok(line_comment(
                 Comment::Latex,

@@ -243,6 +243,11 @@ impl Arranged {
         Arranged { j, h, perm }
     }
 
+    /// Whether each arranged joint slides.
+    pub(crate) fn prismatic(&self) -> [bool; 6] {
+        std::array::from_fn(|i| self.j[i].prism)
+    }
+
     /// The equations' coefficients by exact trigonometric interpolation (see [`DFT`]).
     #[allow(clippy::needless_range_loop)]
     pub(crate) fn elim(&self) -> Option<Elim> {

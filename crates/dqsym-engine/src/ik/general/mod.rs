@@ -182,7 +182,9 @@ pub fn sampled_equations(
         tg[r][3] /= len;
     }
     let g = core::compose(&tg, &core::inverse(&hm));
-    let el = core::Arranged::new(&js, &g, arr % 12)
+    let ar = core::Arranged::new(&js, &g, arr % 12);
+    let slides = ar.prismatic();
+    let el = ar
         .elim()
         .ok_or_else(|| SampleError::Input("no elimination".into()))?;
     let mut am = el.am;
@@ -192,13 +194,17 @@ pub fn sampled_equations(
             row[col] = (0..8).map(|i| el.qt[i][e] * el.r[i][j]).sum();
         }
     }
+    // A coefficient of `d^j` (a slide's variable, scaled in the core) has `j` lengths less.
+    let power = |i: usize, k: usize| if slides[i] { k as i32 } else { 0 };
     for e in 0..14 {
-        let k = len.powi(exact::LENGTH_DEGREE[e]);
-        for x in am[e].iter_mut().flatten() {
-            *x *= k;
+        let k = |j: i32| len.powi(exact::LENGTH_DEGREE[e] - j);
+        for (i3, row) in am[e].iter_mut().enumerate() {
+            for (m, x) in row.iter_mut().enumerate() {
+                *x *= k(power(2, i3) + power(3, m / 3) + power(4, m % 3));
+            }
         }
-        for x in &mut bm[e] {
-            *x *= k;
+        for (m, x) in bm[e].iter_mut().enumerate() {
+            *x *= k(power(0, (m + 1) / 3) + power(1, (m + 1) % 3));
         }
     }
     Ok((am, bm))
@@ -280,7 +286,11 @@ pub fn elimination_lines(sol: &IkSolution, info: &GeneralInfo) -> Vec<String> {
         .map(|i| v.get(arm(i)).map_or("?", String::as_str))
         .collect();
     let slides: Vec<bool> = (0..6)
-        .map(|i| sol.axes.get(arm(i)).is_some_and(|a| a.kind == JointKind::Prismatic))
+        .map(|i| {
+            sol.axes
+                .get(arm(i))
+                .is_some_and(|a| a.kind == JointKind::Prismatic)
+        })
         .collect();
     if slides.iter().any(|p| *p) {
         return prismatic_lines(info, &order, &slides, rev);
@@ -331,7 +341,11 @@ pub fn elimination_lines(sol: &IkSolution, info: &GeneralInfo) -> Vec<String> {
 /// quantities through `(1, d, d²)` where a turn's enters through `(1, cos, sin)`.
 fn prismatic_lines(info: &GeneralInfo, order: &[&str], slides: &[bool], rev: bool) -> Vec<String> {
     let basis = |i: usize| {
-        let b = if slides[i] { "(1, d, d^2)" } else { "(1, c, s)" };
+        let b = if slides[i] {
+            "(1, d, d^2)"
+        } else {
+            "(1, c, s)"
+        };
         format!("{b}({})", order[i])
     };
     let tangent = |i: usize| {
