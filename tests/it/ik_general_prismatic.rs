@@ -572,3 +572,79 @@ fn check_flagged(
     }
     best
 }
+
+/// The exact equations with slides (`ik::general::exact`, the basis `(1, d, d²)`) equal the
+/// numeric core's sampled coefficients at random targets, for the 5R1P, the 4R2P and the
+/// 5R1P whose last joint slides (read backwards). The tolerance is the one of
+/// `ik_general::exact_equations_equal_the_sampled_coefficients` (some 2,000 roundings of order
+/// one numbers, 2.2e-13 relative, twice, with a margin): these arms' lengths are below 1, so a
+/// coefficient of `d^j` differs from the core's scaled one by a factor `len^j` of order one.
+#[test]
+#[allow(clippy::needless_range_loop)]
+fn prismatic_exact_equations_equal_the_sampled_coefficients() {
+    let mut rng = Rng::new(72);
+    // Twists whose cosines and sines are in Q(sqrt 2, sqrt 3), slides at theta 0: the exact
+    // coefficients of the arms above (cos(1/3), the seventh roots of unity of pi/7) pass the
+    // term limit.
+    let plain = |rows: Vec<Row>| -> Vec<Row> {
+        let twists = [
+            ("pi/3", PI / 3.0),
+            ("pi/4", PI / 4.0),
+            ("-pi/2", -PI / 2.0),
+            ("pi/6", PI / 6.0),
+            ("-pi/3", -PI / 3.0),
+            ("0", 0.0),
+        ];
+        rows.into_iter()
+            .zip(twists)
+            .map(|(r, alpha)| Row {
+                alpha,
+                theta: A0,
+                ..r
+            })
+            .collect()
+    };
+    for (name, rows) in [
+        ("plain 5R1P", plain(skew_5r1p())),
+        ("plain 4R2P", plain(skew_4r2p())),
+        ("plain 5R1P slide last", plain(slide_last_5r1p())),
+    ] {
+        let sol = derive(name, &rows, IkMethod::General);
+        let info = sol.general.clone().expect("general");
+        let eq = dqsym::ik::general::exact::exact_equations(&sol, &info).expect("exact");
+        assert!(
+            !rows[eq.order[5]].prismatic,
+            "{name}: the loop ends with a slide"
+        );
+        assert_eq!(
+            eq.prismatic.iter().filter(|p| **p).count(),
+            rows.iter().filter(|r| r.prismatic).count()
+        );
+        let arr = usize::from(eq.arrangement.0) * 6;
+        for _ in 0..4 {
+            let t = pose(&rows, &random_q(&rows, &mut rng));
+            let env = |n: &str| -> Option<f64> {
+                for (r, row) in dqsym::ik::TARGET_SYMBOLS.iter().enumerate() {
+                    if let Some(c) = row.iter().position(|x| *x == n) {
+                        return Some(t[r][c]);
+                    }
+                }
+                None
+            };
+            let (am, bm) = eq.eval(&env).expect("eval");
+            let (sam, sbm) =
+                dqsym::ik::general::sampled_equations(&sol, &t, &[], arr).expect("sampled");
+            for e in 0..14 {
+                let exact: Vec<f64> = am[e].iter().flatten().chain(&bm[e]).copied().collect();
+                let sampled: Vec<f64> = sam[e].iter().flatten().chain(&sbm[e]).copied().collect();
+                let big = exact.iter().fold(1e-300_f64, |m, x| m.max(x.abs()));
+                for (i, (x, y)) in exact.iter().zip(&sampled).enumerate() {
+                    assert!(
+                        (x - y).abs() <= 1e-10 * big,
+                        "{name}: equation {e} entry {i}: exact {x} sampled {y} (largest {big})"
+                    );
+                }
+            }
+        }
+    }
+}
