@@ -648,3 +648,102 @@ fn prismatic_exact_equations_equal_the_sampled_coefficients() {
         }
     }
 }
+
+const C_MAIN: &str = r#"
+#include <stdio.h>
+
+int main(void) {
+    double t[4][4];
+    int i, j;
+    for (;;) {
+        ik_solutions s;
+        for (i = 0; i < 16; i++)
+            if (scanf("%lf", &t[i / 4][i % 4]) != 1) return 0;
+        ik((const double (*)[4])t, &s);
+        printf("%d\n", s.n);
+        for (i = 0; i < s.n; i++) {
+            for (j = 0; j < 6; j++) printf("%.17g ", s.q[i][j]);
+            printf("%d %.17g\n", s.approximate[i], s.residual[i]);
+        }
+    }
+}
+"#;
+
+/// The generated C solver (`core.c`, the port of the core) on the 5R1P, the 4R2P and the
+/// 5R1P whose last joint slides, compiled under `-std=c99 -pedantic -Wall -Wextra -Werror`:
+/// at 200 random poses each it returns the reference solver's solution set (paired within
+/// rounding: the generated solver evaluates the axes' closed forms in C), slides in the
+/// robot's unit.
+#[test]
+fn generated_c_solver_with_slides_is_the_reference() {
+    for (k, (name, rows)) in [
+        ("skew 5R1P", skew_5r1p()),
+        ("skew 4R2P", skew_4r2p()),
+        ("5R1P slide last", slide_last_5r1p()),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let sol = derive(name, &rows, IkMethod::Auto);
+        let code = dqsym::ik::ik_c(&sol).expect("c");
+        let dir = crate::tools::temp_dir(&format!("ik-general-prismatic-c-{k}"));
+        let (src, exe) = (dir.join("ik.c"), dir.join("ik"));
+        std::fs::write(&src, format!("{code}{C_MAIN}")).expect("write");
+        let mut gcc = std::process::Command::new("gcc");
+        gcc.args([
+            "-std=c99",
+            "-pedantic",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            "-O2",
+            "-o",
+        ])
+        .arg(&exe)
+        .arg(&src)
+        .arg("-lm");
+        crate::tools::run(gcc, "", "gcc on the general solver with slides");
+        let mut rng = Rng::new(5 + k as u64);
+        let qs: Vec<Vec<f64>> = (0..200).map(|_| random_q(&rows, &mut rng)).collect();
+        let input: String = qs
+            .iter()
+            .map(|q| {
+                let v: Vec<String> = pose(&rows, q)
+                    .iter()
+                    .flatten()
+                    .map(|x| format!("{x:e}"))
+                    .collect();
+                v.join(" ") + "\n"
+            })
+            .collect();
+        let out = crate::tools::run(std::process::Command::new(&exe), &input, "C ik");
+        let mut lines = out.lines();
+        let mut most: f64 = 0.0;
+        for q in &qs {
+            let reference = sol.solve_numeric(&pose(&rows, q), &[]).expect("reference");
+            let n: usize = lines.next().expect("count").parse().expect("n");
+            let got: Vec<Vec<f64>> = (0..n)
+                .map(|_| {
+                    let row = lines.next().expect("row").split_whitespace();
+                    row.map(|x| x.parse().expect("number")).collect()
+                })
+                .collect();
+            assert_eq!(
+                n,
+                reference.len(),
+                "{name} at {q:?}: {got:?} vs {reference:?}"
+            );
+            // Solutions of one set are more than 1e-6 apart (the core merges closer ones):
+            // pairing within half of that is unambiguous.
+            for r in &reference {
+                let g = got
+                    .iter()
+                    .find(|g| dist(&rows, &g[..6], &r.q) <= 0.5e-6)
+                    .unwrap_or_else(|| panic!("{name}: {:?} not among {got:?}", r.q));
+                assert_eq!(g[6] != 0.0, r.approximate, "{name} at {q:?}");
+                most = most.max(dist(&rows, &g[..6], &r.q));
+            }
+        }
+        eprintln!("{name}: C solver, largest distance to the reference {most:e}");
+    }
+}
