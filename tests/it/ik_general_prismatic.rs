@@ -908,3 +908,71 @@ fn javascript_solver_with_slides_agrees_with_the_reference() {
         eprintln!("{name}: JavaScript solver, largest distance to the reference {most:e}");
     }
 }
+
+/// The generated Rust solver (`core.rs` verbatim) of the 5R1P and the 4R2P, compiled
+/// optimised and clean (rustc and clippy `-D warnings`): at 100 poses each it returns the
+/// reference's solution set (paired within rounding: it evaluates the axes' closed forms
+/// itself), slides in the robot's unit.
+#[test]
+fn generated_rust_solver_with_slides_agrees_with_the_reference() {
+    for (name, rows) in [("skew 5R1P", skew_5r1p()), ("skew 4R2P", skew_4r2p())] {
+        let sol = derive(name, &rows, IkMethod::Auto);
+        let code = dqsym::ik::ik_rust(&sol).expect("rust");
+        let main = format!(
+            "{code}\nfn main() {{\n    use std::io::BufRead;\n    \
+for line in std::io::stdin().lock().lines() {{\n        \
+let v: Vec<f64> = line.expect(\"line\").split_whitespace().map(|x| x.parse().expect(\"number\")).collect();\n        \
+let mut t = [[0.0; 4]; 4];\n        for (i, x) in v.iter().enumerate() {{\n            t[i / 4][i % 4] = *x;\n        }}\n        \
+let s = ik(&t);\n        println!(\"{{}}\", s.n);\n        for i in 0..s.n {{\n            \
+let q: Vec<String> = s.q[i].iter().map(|x| format!(\"{{x:e}}\")).collect();\n            \
+println!(\"{{}} {{}}\", q.join(\" \"), u8::from(s.approximate[i]));\n        }}\n    }}\n}}\n"
+        );
+        let tag = name.replace(' ', "-");
+        let dir = crate::tools::temp_dir(&format!("ik-general-prismatic-rust-{tag}"));
+        let (src, exe) = (dir.join("ik.rs"), dir.join("ik"));
+        std::fs::write(&src, main).expect("write");
+        crate::tools::compile_rust_clean(&src, &exe, true, &format!("general solver of {name}"));
+        let mut rng = Rng::new(33);
+        let qs: Vec<Vec<f64>> = (0..100).map(|_| random_q(&rows, &mut rng)).collect();
+        let input: String = qs
+            .iter()
+            .map(|q| {
+                let v: Vec<String> = pose(&rows, q)
+                    .iter()
+                    .flatten()
+                    .map(|x| format!("{x:e}"))
+                    .collect();
+                v.join(" ") + "\n"
+            })
+            .collect();
+        let out = crate::tools::run(std::process::Command::new(&exe), &input, "generated ik");
+        let mut lines = out.lines();
+        for q in &qs {
+            let reference = sol.solve_numeric(&pose(&rows, q), &[]).expect("reference");
+            let n: usize = lines.next().expect("count").parse().expect("n");
+            let got: Vec<Vec<f64>> = (0..n)
+                .map(|_| {
+                    let row = lines.next().expect("row").split_whitespace();
+                    row.map(|x| x.parse().expect("number")).collect()
+                })
+                .collect();
+            assert_eq!(
+                n,
+                reference.len(),
+                "{name} at {q:?}: {got:?} vs {reference:?}"
+            );
+            for r in &reference {
+                assert!(
+                    got.iter()
+                        .any(|g| dist(&rows, &g[..6], &r.q) <= 0.5e-6
+                            && (g[6] != 0.0) == r.approximate),
+                    "{name}: {:?} not in the generated solver's {got:?}",
+                    r.q
+                );
+            }
+            assert!(got
+                .iter()
+                .any(|g| g[6] == 0.0 && dist(&rows, &g[..6], q) <= 1e-6));
+        }
+    }
+}
