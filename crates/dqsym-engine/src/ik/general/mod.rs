@@ -1,5 +1,6 @@
-//! Inverse kinematics of a general 6R chain (no special family applies, or `--method general`)
-//! by the Raghavan–Roth elimination in Manocha and Canny's matrix form.
+//! Inverse kinematics of a general 6-joint chain, revolute or prismatic (no special family
+//! applies, or `--method general`), by the Raghavan–Roth elimination in Manocha and Canny's
+//! matrix form.
 //!
 //! # The elimination
 //!
@@ -31,6 +32,38 @@
 //!    Am(θ3) X45` (least squares by the same QR); `θ6` from `E6 = (E1 ⋯ E5)⁻¹ H` about axis 6.
 //!    Every candidate is polished by damped Gauss–Newton on the forward kinematics and checked
 //!    by it ([`super::check`]'s residual and approximate flag); duplicates are merged.
+//!
+//! # Prismatic joints
+//!
+//! A prismatic joint's motion is a translation by `d w` (its length `d` along its unit axis
+//! `w`). By the translation formulas (see [`exact`]) it acts on the fourteen quantities with
+//! entries of degree at most two in `d` (`p·p` gains `2 d w·p + d²`, the last three `d² l −
+//! 2 d² (w·l) w`), and on nothing else: so every step above carries over with the basis `(1,
+//! d, d²)` of a slide in place of `(1, cos, sin)` of a turn. The core samples a slide at `d =
+//! 0, 1, −1` and reads the coefficients by the inverse Vandermonde matrix (exact for degree
+//! two), as it samples a turn at three angles.
+//!
+//! - A slide among joints 1, 2 changes the eight power products of `X12` (`d1`, `d1²`, `d1 c2`,
+//!   …): `Bm` keeps its 14 x 8 shape, and `d` is read back as its monomial itself.
+//! - A slide among joints 4, 5 needs no half-angle tangent: `d` is already the polynomial
+//!   variable. The core converts its coefficients by `HALF⁻¹` so that the half-angle map
+//!   of step 4 turns them back into `(1, d, d²)`: `M(x)` keeps its 12 x 12 shape.
+//! - A slide at joint 3 gives `M(d) = A d² + B d + C` directly (the same conversion); the shift
+//!   `φ` of a turn becomes the Möbius map `d = (t + y) / (1 − t y)`, `t = tan(φ/2)`, which
+//!   keeps `A` invertible when `M(d)` has roots at infinity. These (eight for a general 5R1P)
+//!   come out at `y = cot(φ/2)` and are not counted in the degree.
+//! - Joint 6 must turn: it is eliminated by a point of its axis, which a slide would move. The
+//!   arrangements that end with a slide are skipped (and the exact equations read the loop
+//!   backwards when the last joint slides).
+//!
+//! Degree reached at a generic target (measured, `tests/it/ik_general_prismatic.rs`): 16 for a
+//! general 5R1P (slide at joint 3, or read from another joint, where `(1 + x²)⁴` is the
+//! spurious factor again), 8 for a 4R2P with its slides at joints 3 and 5: the known bounds
+//! (5R1P ≤ 16, 4R2P ≤ 8). An arm whose two slides are three joints apart (RPRRPR) puts one
+//! slide among joints 1, 2 and the other among 4, 5 in every reading that ends with a turn,
+//! and there `det M` vanishes identically: it is refused as degenerate in every arrangement.
+//! A 3R3P arm works only where an arrangement keeps both pairs (1, 2) and (4, 5) from holding
+//! two slides each: untested.
 //!
 //! Special geometry makes an arrangement degenerate (`Bm` loses rank, or `det M` vanishes
 //! identically, as for a spherical wrist) or gives double roots (two solutions sharing `θ3`):
