@@ -976,3 +976,62 @@ println!(\"{{}} {{}}\", q.join(\" \"), u8::from(s.approximate[i]));\n        }}\
         }
     }
 }
+
+/// Every placement of one slide (six 5R1P arms) and of two slides (fifteen 4R2P arms) in the
+/// skew chain: each is solved with degree at most 16 (one slide) or 8 (two), and 40 random
+/// configurations round-trip (`solve_checked`), or, for two slides three joints apart only,
+/// refused as degenerate in every arrangement.
+#[test]
+fn every_placement_of_one_or_two_slides_round_trips() {
+    let base = skew_5r1p();
+    let turn = rev(0.12, 0.07, ("-pi/4", -PI / 4.0));
+    let slide = |i: usize| {
+        let t = [("1/3", 1.0 / 3.0), ("-2/5", -0.4), ("1/5", 0.2)][i % 3];
+        pri(t, base[i].a, base[i].alpha)
+    };
+    let mut sets: Vec<Vec<usize>> = (0..6).map(|i| vec![i]).collect();
+    for i in 0..6 {
+        for j in i + 1..6 {
+            sets.push(vec![i, j]);
+        }
+    }
+    let mut rng = Rng::new(17);
+    for set in sets {
+        let rows: Vec<Row> = (0..6)
+            .map(|i| {
+                if set.contains(&i) {
+                    slide(i)
+                } else if i == 2 {
+                    turn
+                } else {
+                    base[i]
+                }
+            })
+            .collect();
+        let name = format!("slides at {set:?}");
+        let text = dh_toml(&name, &rows);
+        let robot = dqsym::parse_robot(&text, &name, &dqsym::eval_scalar_text).expect("robot");
+        let opts = IkOptions {
+            free: None,
+            method: IkMethod::General,
+        };
+        let most = if set.len() == 1 { 16 } else { 8 };
+        match solve(&robot, &opts) {
+            Ok(sol) => {
+                let degree = sol.general.as_ref().map_or(0, |g| g.degree);
+                assert!(degree > 0 && degree <= most, "{name}: degree {degree}");
+                for _ in 0..40 {
+                    let q = random_q(&rows, &mut rng);
+                    solve_checked(&name, &sol, &rows, &q, most);
+                }
+                eprintln!("{name}: degree {degree}");
+            }
+            Err(e) => {
+                let apart = set.len() == 2 && set[1] - set[0] == 3;
+                assert!(apart, "{name}: {e}");
+                assert!(e.to_string().contains("degenerate"), "{name}: {e}");
+                eprintln!("{name}: refused (degenerate in every arrangement)");
+            }
+        }
+    }
+}

@@ -837,12 +837,16 @@ pub const SHIFT_SINGULAR: f64 = 1e-10;
 /// An eigenvalue within this of `±i` is the spurious factor `1 + x²`, not counted in the degree.
 pub const SPURIOUS_TOL: f64 = 1e-6;
 
-/// A prismatic hidden joint's root beyond this (scaled length) is a root at infinity: every
-/// length of the arm and the target's distance are at most 1 after scaling, so a slide that
-/// reaches the target is at most about 7 (six links and the target); the roots at infinity of
-/// `det M(d)` (eight for a general 5R1P chain) come out of the shifted linearisation as a
-/// cluster around `y = cot(φ/2)` spread by rounding to about `1e-6`, that is `|d|` above `1e5`.
-pub const PRISM_FAR: f64 = 1e4;
+/// A prismatic hidden joint's root beyond this (scaled length) is a root at infinity, not a
+/// solution. After scaling every length of the arm and the target's distance are at most 1, so
+/// a slide that reaches the target travels at most about 7 (six links and the target), or
+/// `7 / sin α` where two slides at an angle `α` cancel part of each other's travel: below 100
+/// for slides more than 4 degrees from parallel (parallel slides are a special family). The
+/// roots at infinity of `det M(d)` (8 for a general 5R1P, 16 for a 4R2P with adjacent
+/// slides) come out of the shifted linearisation as a cluster around `y = cot(φ/2)`, spread by
+/// rounding as `ε^(1/k)` for a cluster of `k`: up to about `1e-4` measured, that is `|d|`
+/// above `1e4`; the margin of 100 covers spreads up to `1e-2`.
+pub const PRISM_FAR: f64 = 1e2;
 
 /// An eigenvalue larger than this is a root at infinity (the degree drops), not counted.
 pub const INFINITE_ROOT: f64 = 1e8;

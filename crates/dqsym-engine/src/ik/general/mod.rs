@@ -56,10 +56,9 @@
 //!   arrangements that end with a slide are skipped (and the exact equations read the loop
 //!   backwards when the last joint slides).
 //!
-//! Degree reached at a generic target (measured, `tests/it/ik_general_prismatic.rs`): 16 for a
-//! general 5R1P (slide at joint 3, or read from another joint, where `(1 + x²)⁴` is the
-//! spurious factor again), 8 for a 4R2P with its slides at joints 3 and 5: the known bounds
-//! (5R1P ≤ 16, 4R2P ≤ 8). An arm whose two slides are three joints apart (RPRRPR) puts one
+//! Degree reached at a generic target (measured, `tests/it/ik_general_prismatic.rs`, the slide
+//! or slides at every placement in a skew chain): 16 for a 5R1P, 8 for a 4R2P, the known
+//! bounds (5R1P ≤ 16, 4R2P ≤ 8). An arm whose two slides are three joints apart (RPRRPR) puts one
 //! slide among joints 1, 2 and the other among 4, 5 in every reading that ends with a turn,
 //! and there `det M` vanishes identically: it is refused as degenerate in every arrangement.
 //! A 3R3P arm works only where an arrangement keeps both pairs (1, 2) and (4, 5) from holding
