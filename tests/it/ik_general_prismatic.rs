@@ -1035,3 +1035,40 @@ fn every_placement_of_one_or_two_slides_round_trips() {
         }
     }
 }
+
+/// Three slides (3R3P, every placement in the skew chain): every reading of the loop that ends
+/// with a turn has a slide among joints 1, 2 and another among joints 4, 5 (or two in one of
+/// these pairs), where `det M` vanishes identically, so each arm is refused with that reason
+/// named: never a panic, never a wrong solution.
+#[test]
+fn three_slides_are_refused_as_degenerate() {
+    let base = skew_5r1p();
+    for i in 0..6 {
+        for j in i + 1..6 {
+            for k in j + 1..6 {
+                let rows: Vec<Row> = (0..6)
+                    .map(|n| {
+                        if [i, j, k].contains(&n) {
+                            pri(("1/5", 0.2), base[n].a, base[n].alpha)
+                        } else {
+                            rev(0.12 + 0.01 * n as f64, base[n].a, base[n].alpha)
+                        }
+                    })
+                    .collect();
+                let name = format!("slides at {:?}", [i, j, k]);
+                let text = dh_toml(&name, &rows);
+                let robot =
+                    dqsym::parse_robot(&text, &name, &dqsym::eval_scalar_text).expect("robot");
+                let opts = IkOptions {
+                    free: None,
+                    method: IkMethod::General,
+                };
+                let err = solve(&robot, &opts).expect_err("refused").to_string();
+                assert!(
+                    err.contains("degenerate for this geometry in every arrangement"),
+                    "{name}: {err}"
+                );
+            }
+        }
+    }
+}

@@ -58,11 +58,12 @@
 //!
 //! Degree reached at a generic target (measured, `tests/it/ik_general_prismatic.rs`, the slide
 //! or slides at every placement in a skew chain): 16 for a 5R1P, 8 for a 4R2P, the known
-//! bounds (5R1P ≤ 16, 4R2P ≤ 8). An arm whose two slides are three joints apart (RPRRPR) puts one
-//! slide among joints 1, 2 and the other among 4, 5 in every reading that ends with a turn,
-//! and there `det M` vanishes identically: it is refused as degenerate in every arrangement.
-//! A 3R3P arm works only where an arrangement keeps both pairs (1, 2) and (4, 5) from holding
-//! two slides each: untested.
+//! bounds (5R1P ≤ 16, 4R2P ≤ 8). A slide among joints 1, 2 together with one among joints 4,
+//! 5 makes `det M` vanish identically (observed at every such placement); two slides among
+//! joints 1, 2, or among 4, 5, leave power products that never occur (`Bm` loses rank, or `M`
+//! has a zero column). An arm whose two slides are three joints apart (RPRRPR) has that in every
+//! reading that ends with a turn, and so has every 3R3P arm: they are refused as degenerate in
+//! every arrangement (the 3R3P bound of 2 is not reached by this elimination).
 //!
 //! Special geometry makes an arrangement degenerate (`Bm` loses rank, or `det M` vanishes
 //! identically, as for a spherical wrist) or gives double roots (two solutions sharing `θ3`):
