@@ -1072,3 +1072,24 @@ fn three_slides_are_refused_as_degenerate() {
         }
     }
 }
+
+/// The report of the 5R1P states the slide's basis, the degree the solver computed, and the
+/// exact equations in the slide's powers; its LaTeX gives the Möbius map of the sliding hidden
+/// joint. The degree printed is the one `sol.general` holds (computed, 16 here).
+#[test]
+fn report_states_the_slide_basis_and_the_degree() {
+    let sol = derive("skew 5R1P", &skew_5r1p(), IkMethod::Auto);
+    let degree = sol.general.as_ref().expect("general").degree;
+    let plain = dqsym::ik::ik_report(&sol, dqsym::Format::Plain, true).expect("plain");
+    assert!(plain.contains("Am linear in (1, d, d^2)(q3)"), "{plain}");
+    assert!(
+        plain.contains(&format!("degree reached at a generic target: {degree}")),
+        "{plain}"
+    );
+    // Equation 7 is p.p: a slide by d3 w adds d3^2 (w.w) = d3^2, exactly.
+    assert!(plain.contains("A7[q3^2] = 1\n"), "{plain}");
+    assert!(!plain.contains("not printed"), "{plain}");
+    let latex = dqsym::ik::ik_report(&sol, dqsym::Format::Latex, true).expect("latex");
+    assert!(latex.contains("d = \\frac{t + x}{1 - t x}"), "{latex}");
+    assert!(latex.contains(&format!("\\deg p = {degree}")), "{latex}");
+}

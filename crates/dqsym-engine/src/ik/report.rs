@@ -395,7 +395,7 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
                 for l in super::general::elimination_lines(sol, info) {
                     out.push_str(&line_comment(Comment::Latex, "%", &l));
                 }
-                out.push_str(&general_latex(info));
+                out.push_str(&general_latex(sol, info));
                 out.push_str(&general_exact_latex(sol, info, shorthand)?);
             }
             for (step, parts) in sol.steps.iter().zip(all) {
@@ -529,7 +529,23 @@ fn general_exact_latex(
 }
 
 /// The general method's polynomial as a LaTeX block: the matrix polynomial and its degree.
-fn general_latex(info: &super::general::GeneralInfo) -> String {
+fn general_latex(sol: &IkSolution, info: &super::general::GeneralInfo) -> String {
+    let slides = sol.axes.iter().any(|a| a.kind == JointKind::Prismatic);
+    if slides {
+        // A sliding hidden joint enters M through the Möbius map of the shift, and the
+        // spurious factor depends on the arrangement (`general` module docs).
+        let var = if super::general::hidden_slides(sol, info) {
+            "d = \\frac{t + x}{1 - t x}, \\ t = \\tan\\tfrac{\\varphi}{2}"
+        } else {
+            "x = \\tan\\tfrac{\\theta - \\varphi}{2}"
+        };
+        return format!(
+            "\\begin{{aligned}}\n\
+M(x) &= A x^2 + B x + C \\in \\mathbb{{R}}^{{12 \\times 12}}, \\quad {var} \\\\\n\
+\\det M(x) &= s(x) \\, p(x), \\quad \\deg p = {} \\quad (s \\text{{: the spurious factor}})\n\\end{{aligned}}\n",
+            info.degree
+        );
+    }
     format!(
         "\\begin{{aligned}}\n\
 M(x) &= A x^2 + B x + C \\in \\mathbb{{R}}^{{12 \\times 12}}, \\quad x = \\tan\\tfrac{{\\theta - \\varphi}}{{2}} \\\\\n\

@@ -303,6 +303,17 @@ fn used_first(sol: &IkSolution, (rev, shift): (bool, usize)) -> String {
     sol.variables.get(k).cloned().unwrap_or_default()
 }
 
+/// Whether the hidden joint (arranged joint 3, whose variable the polynomial is in) slides in
+/// the arrangement of `info`.
+pub fn hidden_slides(sol: &IkSolution, info: &GeneralInfo) -> bool {
+    let (rev, shift) = info.arrangement;
+    let k = (shift + 2) % 6;
+    let k = if rev { 5 - k } else { k };
+    sol.axes
+        .get(k)
+        .is_some_and(|a| a.kind == JointKind::Prismatic)
+}
+
 /// The elimination in words, one line each (the report and the walkthrough).
 pub fn elimination_lines(sol: &IkSolution, info: &GeneralInfo) -> Vec<String> {
     let v = &sol.variables;
