@@ -181,7 +181,8 @@ pub enum SampleError {
 
 /// The numeric core's sampled equations of arrangement `arr` (`shift + 6 reversed`) at a
 /// numeric target: `(am, bm)` as [`exact::ExactEquations`] lays them out, with lengths back in
-/// the robot's units (the core divides them by the arm's scale). `bm` is read back from the
+/// the robot's units (the core divides them by the arm's scale; a slide's coefficient of `d^j`
+/// has `j` lengths less), a slide's entries in its basis `(1, d, d²)`. `bm` is read back from the
 /// core's QR factors (`Bm = Q R Pᵀ`), so it carries their rounding too.
 ///
 /// # Errors
