@@ -10,21 +10,21 @@
 use crate::common::Rng;
 use dqsym::ik::{solve, IkMethod, IkOptions, IkSolution, NumSolution};
 
-type M4 = [[f64; 4]; 4];
+pub(crate) type M4 = [[f64; 4]; 4];
 const PI: f64 = std::f64::consts::PI;
 
 /// One classic DH row `Rz(theta) Tz(d) Tx(a) Rx(alpha)`; a prismatic row's variable adds to
 /// `d`, a revolute row's to `theta`. Angles as text for the robot file and as numbers here.
 #[derive(Clone, Copy)]
-struct Row {
-    prismatic: bool,
-    theta: (&'static str, f64),
-    d: f64,
-    a: f64,
-    alpha: (&'static str, f64),
+pub(crate) struct Row {
+    pub(crate) prismatic: bool,
+    pub(crate) theta: (&'static str, f64),
+    pub(crate) d: f64,
+    pub(crate) a: f64,
+    pub(crate) alpha: (&'static str, f64),
 }
 
-fn rev(d: f64, a: f64, alpha: (&'static str, f64)) -> Row {
+pub(crate) fn rev(d: f64, a: f64, alpha: (&'static str, f64)) -> Row {
     Row {
         prismatic: false,
         theta: ("0", 0.0),
@@ -34,7 +34,7 @@ fn rev(d: f64, a: f64, alpha: (&'static str, f64)) -> Row {
     }
 }
 
-fn pri(theta: (&'static str, f64), a: f64, alpha: (&'static str, f64)) -> Row {
+pub(crate) fn pri(theta: (&'static str, f64), a: f64, alpha: (&'static str, f64)) -> Row {
     Row {
         prismatic: true,
         theta,
@@ -44,13 +44,13 @@ fn pri(theta: (&'static str, f64), a: f64, alpha: (&'static str, f64)) -> Row {
     }
 }
 
-fn mul(a: &M4, b: &M4) -> M4 {
+pub(crate) fn mul(a: &M4, b: &M4) -> M4 {
     std::array::from_fn(|r| std::array::from_fn(|c| (0..4).map(|k| a[r][k] * b[k][c]).sum()))
 }
 
 /// The frames `T_0 = I`, `T_i = T_{i-1} A_i(q_i)`: joint `i` moves along or about the z axis of
 /// `T_{i-1}`.
-fn frames(rows: &[Row], q: &[f64]) -> Vec<M4> {
+pub(crate) fn frames(rows: &[Row], q: &[f64]) -> Vec<M4> {
     let mut t: M4 = std::array::from_fn(|r| std::array::from_fn(|c| f64::from(u8::from(r == c))));
     let mut out = vec![t];
     for (r, x) in rows.iter().zip(q) {
@@ -73,11 +73,11 @@ fn frames(rows: &[Row], q: &[f64]) -> Vec<M4> {
     out
 }
 
-fn pose(rows: &[Row], q: &[f64]) -> M4 {
+pub(crate) fn pose(rows: &[Row], q: &[f64]) -> M4 {
     frames(rows, q)[rows.len()]
 }
 
-fn dh_toml(name: &str, rows: &[Row]) -> String {
+pub(crate) fn dh_toml(name: &str, rows: &[Row]) -> String {
     let mut s = format!("name = \"{name}\"\nconvention = \"dh\"\n");
     for (i, r) in rows.iter().enumerate() {
         let (kind, theta, d) = if r.prismatic {
@@ -93,7 +93,7 @@ fn dh_toml(name: &str, rows: &[Row]) -> String {
     s
 }
 
-fn derive(name: &str, rows: &[Row], method: IkMethod) -> IkSolution {
+pub(crate) fn derive(name: &str, rows: &[Row], method: IkMethod) -> IkSolution {
     let text = dh_toml(name, rows);
     let robot = dqsym::parse_robot(&text, name, &dqsym::eval_scalar_text).expect("robot");
     solve(&robot, &IkOptions { free: None, method }).unwrap_or_else(|e| panic!("{name}: {e}"))
@@ -104,7 +104,7 @@ fn wrapped(a: f64) -> f64 {
 }
 
 /// The largest joint difference: angles on the circle, slides as lengths.
-fn dist(rows: &[Row], a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn dist(rows: &[Row], a: &[f64], b: &[f64]) -> f64 {
     rows.iter()
         .zip(a.iter().zip(b))
         .map(|(r, (x, y))| {
@@ -118,7 +118,7 @@ fn dist(rows: &[Row], a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// Rotation entries as they are, positions over `len`.
-fn deviation(want: &M4, got: &M4, len: f64) -> f64 {
+pub(crate) fn deviation(want: &M4, got: &M4, len: f64) -> f64 {
     let mut d: f64 = 0.0;
     for r in 0..3 {
         for c in 0..4 {
@@ -129,7 +129,7 @@ fn deviation(want: &M4, got: &M4, len: f64) -> f64 {
     d
 }
 
-fn size(rows: &[Row]) -> f64 {
+pub(crate) fn size(rows: &[Row]) -> f64 {
     // A slide's range (at most 0.8 here) counts as its length.
     rows.iter()
         .map(|r| r.d.abs() + r.a.abs() + if r.prismatic { 0.8 } else { 0.0 })
@@ -137,7 +137,7 @@ fn size(rows: &[Row]) -> f64 {
 }
 
 /// A random configuration: angles in `(−π, π)`, slides in `(−0.5, 0.5)`.
-fn random_q(rows: &[Row], rng: &mut Rng) -> Vec<f64> {
+pub(crate) fn random_q(rows: &[Row], rng: &mut Rng) -> Vec<f64> {
     rows.iter()
         .map(|r| {
             if r.prismatic {
@@ -177,7 +177,7 @@ fn solve_checked(
 const A0: (&str, f64) = ("0", 0.0);
 
 /// A 5R1P arm of no family: skew axes, offsets everywhere, the slide third.
-fn skew_5r1p() -> Vec<Row> {
+pub(crate) fn skew_5r1p() -> Vec<Row> {
     vec![
         rev(0.3, 0.1, ("pi/3", PI / 3.0)),
         rev(0.05, 0.4, ("pi/5", PI / 5.0)),
@@ -190,7 +190,7 @@ fn skew_5r1p() -> Vec<Row> {
 
 /// A 4R2P arm of no family: slides third and fifth (the hidden joint and one of the joints
 /// of the null vector in the loop read from joint 1).
-fn skew_4r2p() -> Vec<Row> {
+pub(crate) fn skew_4r2p() -> Vec<Row> {
     vec![
         rev(0.3, 0.1, ("pi/3", PI / 3.0)),
         rev(0.05, 0.4, ("pi/5", PI / 5.0)),
@@ -234,7 +234,7 @@ fn slides_three_joints_apart_are_refused_with_the_reason() {
 }
 
 /// The same 5R1P with the slide last: the loop must be read so that a turning joint ends it.
-fn slide_last_5r1p() -> Vec<Row> {
+pub(crate) fn slide_last_5r1p() -> Vec<Row> {
     let mut rows = skew_5r1p();
     rows.swap(2, 5);
     rows[2] = rev(0.09, 0.02, ("pi/7", PI / 7.0));
@@ -645,334 +645,6 @@ fn prismatic_exact_equations_equal_the_sampled_coefficients() {
                     );
                 }
             }
-        }
-    }
-}
-
-const C_MAIN: &str = r#"
-#include <stdio.h>
-
-int main(void) {
-    double t[4][4];
-    int i, j;
-    for (;;) {
-        ik_solutions s;
-        for (i = 0; i < 16; i++)
-            if (scanf("%lf", &t[i / 4][i % 4]) != 1) return 0;
-        ik((const double (*)[4])t, &s);
-        printf("%d\n", s.n);
-        for (i = 0; i < s.n; i++) {
-            for (j = 0; j < 6; j++) printf("%.17g ", s.q[i][j]);
-            printf("%d %.17g\n", s.approximate[i], s.residual[i]);
-        }
-    }
-}
-"#;
-
-/// The generated C solver (`core.c`, the port of the core) on the 5R1P, the 4R2P and the
-/// 5R1P whose last joint slides, compiled under `-std=c99 -pedantic -Wall -Wextra -Werror`:
-/// at 200 random poses each it returns the reference solver's solution set (paired within
-/// rounding: the generated solver evaluates the axes' closed forms in C), slides in the
-/// robot's unit.
-#[test]
-fn generated_c_solver_with_slides_is_the_reference() {
-    for (k, (name, rows)) in [
-        ("skew 5R1P", skew_5r1p()),
-        ("skew 4R2P", skew_4r2p()),
-        ("5R1P slide last", slide_last_5r1p()),
-    ]
-    .into_iter()
-    .enumerate()
-    {
-        let sol = derive(name, &rows, IkMethod::Auto);
-        let code = dqsym::ik::ik_c(&sol).expect("c");
-        let dir = crate::tools::temp_dir(&format!("ik-general-prismatic-c-{k}"));
-        let (src, exe) = (dir.join("ik.c"), dir.join("ik"));
-        std::fs::write(&src, format!("{code}{C_MAIN}")).expect("write");
-        let mut gcc = std::process::Command::new("gcc");
-        gcc.args([
-            "-std=c99",
-            "-pedantic",
-            "-Wall",
-            "-Wextra",
-            "-Werror",
-            "-O2",
-            "-o",
-        ])
-        .arg(&exe)
-        .arg(&src)
-        .arg("-lm");
-        crate::tools::run(gcc, "", "gcc on the general solver with slides");
-        let mut rng = Rng::new(5 + k as u64);
-        let qs: Vec<Vec<f64>> = (0..200).map(|_| random_q(&rows, &mut rng)).collect();
-        let input: String = qs
-            .iter()
-            .map(|q| {
-                let v: Vec<String> = pose(&rows, q)
-                    .iter()
-                    .flatten()
-                    .map(|x| format!("{x:e}"))
-                    .collect();
-                v.join(" ") + "\n"
-            })
-            .collect();
-        let out = crate::tools::run(std::process::Command::new(&exe), &input, "C ik");
-        let mut lines = out.lines();
-        let mut most: f64 = 0.0;
-        for q in &qs {
-            let reference = sol.solve_numeric(&pose(&rows, q), &[]).expect("reference");
-            let n: usize = lines.next().expect("count").parse().expect("n");
-            let got: Vec<Vec<f64>> = (0..n)
-                .map(|_| {
-                    let row = lines.next().expect("row").split_whitespace();
-                    row.map(|x| x.parse().expect("number")).collect()
-                })
-                .collect();
-            assert_eq!(
-                n,
-                reference.len(),
-                "{name} at {q:?}: {got:?} vs {reference:?}"
-            );
-            // Solutions of one set are more than 1e-6 apart (the core merges closer ones):
-            // pairing within half of that is unambiguous.
-            for r in &reference {
-                let g = got
-                    .iter()
-                    .find(|g| dist(&rows, &g[..6], &r.q) <= 0.5e-6)
-                    .unwrap_or_else(|| panic!("{name}: {:?} not among {got:?}", r.q));
-                assert_eq!(g[6] != 0.0, r.approximate, "{name} at {q:?}");
-                most = most.max(dist(&rows, &g[..6], &r.q));
-            }
-        }
-        eprintln!("{name}: C solver, largest distance to the reference {most:e}");
-    }
-}
-
-/// The generated Python (NumPy) solver on the 5R1P, the 4R2P and the 5R1P whose last joint
-/// slides: at 40 poses each, every solution it returns unflagged reproduces the pose to 1e-9 by
-/// the model here, and it has every exact solution of the reference (within 1e-7: NumPy's SVD
-/// and eigenvalues round differently from the core's QR), slides in the robot's unit.
-#[test]
-fn generated_python_solver_with_slides_agrees_with_the_reference() {
-    for (name, rows) in [
-        ("skew 5R1P", skew_5r1p()),
-        ("skew 4R2P", skew_4r2p()),
-        ("5R1P slide last", slide_last_5r1p()),
-    ] {
-        let sol = derive(name, &rows, IkMethod::Auto);
-        let code = dqsym::ik::ik_python(&sol).expect("python");
-        let script = format!(
-            "{code}\n\nimport sys\nfor line in sys.stdin:\n    v = [float(x) for x in line.split()]\n    \
-T = np.array(v[:16]).reshape(4, 4)\n    sols = ik_full(T)\n    \
-print(len(sols))\n    for q, sg, ap, _ in sols:\n        print(' '.join(repr(float(x)) for x in q), int(ap))\n"
-        );
-        let mut rng = Rng::new(62);
-        let qs: Vec<Vec<f64>> = (0..40).map(|_| random_q(&rows, &mut rng)).collect();
-        let input: String = qs
-            .iter()
-            .map(|q| {
-                let v: Vec<String> = pose(&rows, q)
-                    .iter()
-                    .flatten()
-                    .map(|x| format!("{x:e}"))
-                    .collect();
-                v.join(" ") + "\n"
-            })
-            .collect();
-        let out = crate::tools::run_python(&script, &input, "numpy");
-        let mut lines = out.lines();
-        let len = size(&rows);
-        for q in &qs {
-            let t = pose(&rows, q);
-            let reference = sol.solve_numeric(&t, &[]).expect("reference");
-            let n: usize = lines.next().expect("count").parse().expect("n");
-            let mut got = Vec::new();
-            for _ in 0..n {
-                let v: Vec<f64> = lines
-                    .next()
-                    .expect("row")
-                    .split_whitespace()
-                    .map(|x| x.parse().expect("number"))
-                    .collect();
-                if v[6] == 0.0 {
-                    let dev = deviation(&t, &pose(&rows, &v[..6]), len);
-                    assert!(dev <= 1e-9, "{name}: Python {v:?} misses by {dev}");
-                    got.push(v);
-                }
-            }
-            for r in reference.iter().filter(|r| !r.approximate) {
-                assert!(
-                    got.iter().any(|g| dist(&rows, &g[..6], &r.q) <= 1e-7),
-                    "{name}: {:?} not in the Python solver's {got:?}",
-                    r.q
-                );
-            }
-        }
-    }
-}
-
-const NODE_MAIN: &str = r#"
-const lines = require("fs").readFileSync(0, "utf8").trim().split("\n");
-const ch = dqsym_ik_chain();
-const ax = IK.kinds.map((k, i) => [k].concat([0, 1, 2, 3, 4, 5].map((j) => ch[`ax${i}_${j}`])));
-const home = [0, 1, 2].map((r) => [0, 1, 2, 3].map((c) => ch[`home${r}${c}`]));
-let out = "";
-for (const l of lines) {
-    const v = l.split(" ").map(Number);
-    const T = [0, 1, 2, 3].map((r) => v.slice(4 * r, 4 * r + 4));
-    const sols = ik_general(ax, home, T);
-    out += sols.length + "\n";
-    for (const [q, , ap] of sols) out += q.map(String).join(" ") + " " + (ap ? 1 : 0) + "\n";
-}
-process.stdout.write(out);
-"#;
-
-/// The page's JavaScript general solver (`core.js` with the page's helpers and driver) on the
-/// 5R1P, the 4R2P and the 5R1P whose last joint slides, the joints' kinds as the page passes
-/// them: at 100 poses each it returns the reference's solution set (paired within rounding).
-#[test]
-fn javascript_solver_with_slides_agrees_with_the_reference() {
-    for (k, (name, rows)) in [
-        ("skew 5R1P", skew_5r1p()),
-        ("skew 4R2P", skew_4r2p()),
-        ("5R1P slide last", slide_last_5r1p()),
-    ]
-    .into_iter()
-    .enumerate()
-    {
-        let sol = derive(name, &rows, IkMethod::Auto);
-        let num = |x: &dqsym::Scalar| x.eval(&|_: &str| None).expect("a numeric axis entry");
-        let mut entries = Vec::new();
-        for (i, a) in sol.axes.iter().enumerate() {
-            for (c, x) in a.dir.iter().chain(&a.point).enumerate() {
-                entries.push(format!("ax{i}_{c}: {:e}", num(x)));
-            }
-        }
-        for (r, row) in sol.home.rows.iter().take(3).enumerate() {
-            for (c, x) in row.iter().enumerate() {
-                entries.push(format!("home{r}{c}: {:e}", num(x)));
-            }
-        }
-        let kinds: Vec<&str> = rows
-            .iter()
-            .map(|r| if r.prismatic { "1" } else { "0" })
-            .collect();
-        let script = format!(
-            "function dqsym_ik_chain() {{ return {{{}}}; }}\nconst IK = {{ kinds: [{}] }};\n{}{}{NODE_MAIN}",
-            entries.join(", "),
-            kinds.join(", "),
-            dqsym::ik::ik_javascript_helpers(&sol),
-            dqsym::ik::ik_javascript_general(&sol)
-        );
-        let mut rng = Rng::new(40 + k as u64);
-        let qs: Vec<Vec<f64>> = (0..100).map(|_| random_q(&rows, &mut rng)).collect();
-        let input: String = qs
-            .iter()
-            .map(|q| {
-                let v: Vec<String> = pose(&rows, q)
-                    .iter()
-                    .flatten()
-                    .map(|x| format!("{x:e}"))
-                    .collect();
-                v.join(" ") + "\n"
-            })
-            .collect();
-        let mut node = std::process::Command::new("node");
-        node.args(["-e", &script]);
-        let out = crate::tools::run(node, &input, "node on the general solver with slides");
-        let mut lines = out.lines();
-        let mut most: f64 = 0.0;
-        for q in &qs {
-            let reference = sol.solve_numeric(&pose(&rows, q), &[]).expect("reference");
-            let n: usize = lines.next().expect("count").parse().expect("n");
-            let got: Vec<Vec<f64>> = (0..n)
-                .map(|_| {
-                    let row = lines.next().expect("row").split_whitespace();
-                    row.map(|x| x.parse().expect("number")).collect()
-                })
-                .collect();
-            assert_eq!(
-                n,
-                reference.len(),
-                "{name} at {q:?}: {got:?} vs {reference:?}"
-            );
-            for r in &reference {
-                let g = got
-                    .iter()
-                    .find(|g| dist(&rows, &g[..6], &r.q) <= 0.5e-6)
-                    .unwrap_or_else(|| panic!("{name}: {:?} not among {got:?}", r.q));
-                assert_eq!(g[6] != 0.0, r.approximate, "{name} at {q:?}");
-                most = most.max(dist(&rows, &g[..6], &r.q));
-            }
-        }
-        eprintln!("{name}: JavaScript solver, largest distance to the reference {most:e}");
-    }
-}
-
-/// The generated Rust solver (`core.rs` verbatim) of the 5R1P and the 4R2P, compiled
-/// optimised and clean (rustc and clippy `-D warnings`): at 100 poses each it returns the
-/// reference's solution set (paired within rounding: it evaluates the axes' closed forms
-/// itself), slides in the robot's unit.
-#[test]
-fn generated_rust_solver_with_slides_agrees_with_the_reference() {
-    for (name, rows) in [("skew 5R1P", skew_5r1p()), ("skew 4R2P", skew_4r2p())] {
-        let sol = derive(name, &rows, IkMethod::Auto);
-        let code = dqsym::ik::ik_rust(&sol).expect("rust");
-        let main = format!(
-            "{code}\nfn main() {{\n    use std::io::BufRead;\n    \
-for line in std::io::stdin().lock().lines() {{\n        \
-let v: Vec<f64> = line.expect(\"line\").split_whitespace().map(|x| x.parse().expect(\"number\")).collect();\n        \
-let mut t = [[0.0; 4]; 4];\n        for (i, x) in v.iter().enumerate() {{\n            t[i / 4][i % 4] = *x;\n        }}\n        \
-let s = ik(&t);\n        println!(\"{{}}\", s.n);\n        for i in 0..s.n {{\n            \
-let q: Vec<String> = s.q[i].iter().map(|x| format!(\"{{x:e}}\")).collect();\n            \
-println!(\"{{}} {{}}\", q.join(\" \"), u8::from(s.approximate[i]));\n        }}\n    }}\n}}\n"
-        );
-        let tag = name.replace(' ', "-");
-        let dir = crate::tools::temp_dir(&format!("ik-general-prismatic-rust-{tag}"));
-        let (src, exe) = (dir.join("ik.rs"), dir.join("ik"));
-        std::fs::write(&src, main).expect("write");
-        crate::tools::compile_rust_clean(&src, &exe, true, &format!("general solver of {name}"));
-        let mut rng = Rng::new(33);
-        let qs: Vec<Vec<f64>> = (0..100).map(|_| random_q(&rows, &mut rng)).collect();
-        let input: String = qs
-            .iter()
-            .map(|q| {
-                let v: Vec<String> = pose(&rows, q)
-                    .iter()
-                    .flatten()
-                    .map(|x| format!("{x:e}"))
-                    .collect();
-                v.join(" ") + "\n"
-            })
-            .collect();
-        let out = crate::tools::run(std::process::Command::new(&exe), &input, "generated ik");
-        let mut lines = out.lines();
-        for q in &qs {
-            let reference = sol.solve_numeric(&pose(&rows, q), &[]).expect("reference");
-            let n: usize = lines.next().expect("count").parse().expect("n");
-            let got: Vec<Vec<f64>> = (0..n)
-                .map(|_| {
-                    let row = lines.next().expect("row").split_whitespace();
-                    row.map(|x| x.parse().expect("number")).collect()
-                })
-                .collect();
-            assert_eq!(
-                n,
-                reference.len(),
-                "{name} at {q:?}: {got:?} vs {reference:?}"
-            );
-            for r in &reference {
-                assert!(
-                    got.iter()
-                        .any(|g| dist(&rows, &g[..6], &r.q) <= 0.5e-6
-                            && (g[6] != 0.0) == r.approximate),
-                    "{name}: {:?} not in the generated solver's {got:?}",
-                    r.q
-                );
-            }
-            assert!(got
-                .iter()
-                .any(|g| g[6] == 0.0 && dist(&rows, &g[..6], q) <= 1e-6));
         }
     }
 }
