@@ -116,15 +116,44 @@ fn mv(r: &M3, v: &V) -> V {
     [dot3(&r[0], v), dot3(&r[1], v), dot3(&r[2], v)]
 }
 
-/// One joint of an arranged chain: unit direction `w`, point `c` (scaled), and its motion at
-/// an angle applied to a point and a direction.
+/// One joint of an arranged chain: unit direction `w`, point `c` (scaled), whether it slides
+/// (`prism`: its variable is the length `d` of a translation along `w`, and `c` is unused), and
+/// its motion applied to a point and a direction.
 #[derive(Clone, Copy)]
 pub(crate) struct J {
     pub(crate) w: V,
     pub(crate) c: V,
+    pub(crate) prism: bool,
 }
 
 impl J {
+    /// `(E x, R d)` at sample `k` of the joint's variable (`inv`: the inverse motion): a
+    /// revolute joint at the angle `2πk/3`, a prismatic one at the length `SAMPLE_D[k]`.
+    fn sample(&self, k: usize, inv: bool, x: &V, d: &V) -> (V, V) {
+        let sg = if inv { -1.0 } else { 1.0 };
+        if self.prism {
+            let t = sg * SAMPLE_D[k];
+            let y = [
+                x[0] + t * self.w[0],
+                x[1] + t * self.w[1],
+                x[2] + t * self.w[2],
+            ];
+            (y, *d)
+        } else {
+            self.apply(sg * SAMPLE_S[k], SAMPLE_C[k], x, d)
+        }
+    }
+
+    /// The weights that turn the three samples into the coefficients of the joint's basis:
+    /// `(1, cos θ, sin θ)` for a revolute joint, `(1, d, d²)` for a prismatic one.
+    fn weights(&self) -> &'static [[f64; 3]; 3] {
+        if self.prism {
+            &VANDER
+        } else {
+            &DFT
+        }
+    }
+
     /// `(E x, R d)` at the angle with sine `s`, cosine `co`.
     fn apply(&self, s: f64, co: f64, x: &V, d: &V) -> (V, V) {
         let r = rodrigues(&self.w, s, co);
@@ -168,6 +197,21 @@ pub const DFT: [[f64; 3]; 3] = [
     [0.0, 0.577_350_269_189_625_8, -0.577_350_269_189_625_8],
 ];
 
+/// The three sample lengths of a prismatic joint's variable `d` (scaled), and the weights that
+/// turn three samples of `a + b d + c d²` into `(a, b, c)` exactly (the inverse Vandermonde
+/// matrix of `0, 1, −1`): a translation by `d w` acts on the fourteen quantities with entries
+/// of degree at most two in `d` (`p·p` gains `2 d w·p + d²`).
+pub const SAMPLE_D: [f64; 3] = [0.0, 1.0, -1.0];
+pub const VANDER: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 0.5, -0.5], [-1.0, 0.5, 0.5]];
+
+/// The basis change that lets a prismatic joint's `(1, d, d²)` coefficients through the
+/// half-angle map [`HALF`] of a revolute joint's `(1, cos, sin)`: `HALF⁻¹`, so that
+/// `(coefficients · HALF_INV) · HALF` is the polynomial `a + b x + c x²` in `x = d` itself.
+/// Then the hidden joint's shift `φ` (a rotation of `(cos, sin)`) becomes the Möbius map `d =
+/// (t + y) / (1 − t y)`, `t = tan(φ/2)` (up to the constant factor `1 + t²`), and `d =
+/// tan(θ/2)` for the angle `θ` the revolute formulas give.
+pub const HALF_INV: [[f64; 3]; 3] = [[0.5, 0.5, 0.0], [0.0, 0.0, 0.5], [0.5, -0.5, 0.0]];
+
 /// The arranged problem `E1 ⋯ E6 = H` (home pose the identity), its elimination and solution.
 pub(crate) struct Arranged {
     j: [J; 6],
@@ -188,9 +232,9 @@ pub(crate) struct Elim {
     pub(crate) r: [[f64; 8]; 8],
     pub(crate) piv: [usize; 8],
     /// `|r77| / |r00|`: how far `Bm` is from losing rank.
-    pub(crate) rank_ratio: f64,
+    rank_ratio: f64,
     /// `Σ = N Am` in `(1, cos θ3, sin θ3)`: 6 x 9 each.
-    pub(crate) sig: [[[f64; 9]; 6]; 3],
+    sig: [[[f64; 9]; 6]; 3],
 }
 
 /// The monomial index of `(i, j)` with `i, j` in `(1, cos, sin)`.
@@ -212,6 +256,7 @@ impl Arranged {
                 base[i] = J {
                     w: [-a.w[0], -a.w[1], -a.w[2]],
                     c: a.c,
+                    prism: a.prism,
                 };
                 bperm[i] = 5 - i;
             }
@@ -226,12 +271,21 @@ impl Arranged {
             perm[i] = bperm[k];
             j[i] = if k < shift {
                 let (c, w) = motion_apply(&hi, &base[k].c, &base[k].w);
-                J { w, c }
+                J {
+                    w,
+                    c,
+                    prism: base[k].prism,
+                }
             } else {
                 base[k]
             };
         }
         Arranged { j, h, perm }
+    }
+
+    /// Whether each arranged joint slides.
+    pub(crate) fn prismatic(&self) -> [bool; 6] {
+        std::array::from_fn(|i| self.j[i].prism)
     }
 
     /// The equations' coefficients by exact trigonometric interpolation (see [`DFT`]).
@@ -241,11 +295,11 @@ impl Arranged {
         // Left: E3 E4 E5 applied to (p6, w6) on a 3 x 3 x 3 grid.
         let mut lhs = [[[[0.0; 14]; 3]; 3]; 3];
         for k5 in 0..3 {
-            let (x5, d5) = self.j[4].apply(SAMPLE_S[k5], SAMPLE_C[k5], &p6, &w6);
+            let (x5, d5) = self.j[4].sample(k5, false, &p6, &w6);
             for k4 in 0..3 {
-                let (x4, d4) = self.j[3].apply(SAMPLE_S[k4], SAMPLE_C[k4], &x5, &d5);
+                let (x4, d4) = self.j[3].sample(k4, false, &x5, &d5);
                 for k3 in 0..3 {
-                    let (x3, d3) = self.j[2].apply(SAMPLE_S[k3], SAMPLE_C[k3], &x4, &d4);
+                    let (x3, d3) = self.j[2].sample(k3, false, &x4, &d4);
                     lhs[k3][k4][k5] = quantities(&x3, &d3);
                 }
             }
@@ -254,21 +308,22 @@ impl Arranged {
         let hp = motion_apply(&self.h, &p6, &w6);
         let mut rhs = [[[0.0; 14]; 3]; 3];
         for k1 in 0..3 {
-            let (y1, e1) = self.j[0].apply(-SAMPLE_S[k1], SAMPLE_C[k1], &hp.0, &hp.1);
+            let (y1, e1) = self.j[0].sample(k1, true, &hp.0, &hp.1);
             for k2 in 0..3 {
-                let (y2, e2) = self.j[1].apply(-SAMPLE_S[k2], SAMPLE_C[k2], &y1, &e1);
+                let (y2, e2) = self.j[1].sample(k2, true, &y1, &e1);
                 rhs[k1][k2] = quantities(&y2, &e2);
             }
         }
         let mut am = [[[0.0; 9]; 3]; 14];
         let mut bm = [[0.0; 8]; 14];
+        let wt: [&[[f64; 3]; 3]; 5] = std::array::from_fn(|i| self.j[i].weights());
         // The 3-D transform as three 1-D passes (27 x 3 products each instead of 27 x 27).
         let mut t1 = [[[[0.0; 14]; 3]; 3]; 3];
         for i5 in 0..3 {
             for k3 in 0..3 {
                 for k4 in 0..3 {
                     for k5 in 0..3 {
-                        let w = DFT[i5][k5];
+                        let w = wt[4][i5][k5];
                         for e in 0..14 {
                             t1[k3][k4][i5][e] += w * lhs[k3][k4][k5][e];
                         }
@@ -280,7 +335,7 @@ impl Arranged {
         for i4 in 0..3 {
             for k3 in 0..3 {
                 for k4 in 0..3 {
-                    let w = DFT[i4][k4];
+                    let w = wt[3][i4][k4];
                     for i5 in 0..3 {
                         for e in 0..14 {
                             t2[k3][i4][i5][e] += w * t1[k3][k4][i5][e];
@@ -291,7 +346,7 @@ impl Arranged {
         }
         for i3 in 0..3 {
             for k3 in 0..3 {
-                let w = DFT[i3][k3];
+                let w = wt[2][i3][k3];
                 for i4 in 0..3 {
                     for i5 in 0..3 {
                         for e in 0..14 {
@@ -307,7 +362,7 @@ impl Arranged {
                     let mut s = 0.0;
                     for k1 in 0..3 {
                         for k2 in 0..3 {
-                            s += DFT[i1][k1] * DFT[i2][k2] * rhs[k1][k2][e];
+                            s += wt[0][i1][k1] * wt[1][i2][k2] * rhs[k1][k2][e];
                         }
                     }
                     let m = mono(i1, i2);
@@ -332,6 +387,7 @@ impl Arranged {
                 }
             }
         }
+        self.prismatic_basis(&mut sig);
         Some(Elim {
             am,
             qt,
@@ -340,6 +396,45 @@ impl Arranged {
             rank_ratio,
             sig,
         })
+    }
+}
+
+impl Arranged {
+    /// The coefficients of prismatic joints 3, 4, 5 from `(1, d, d²)` into the basis that
+    /// [`matrix_poly`]'s half-angle map turns into `(1, d, d²)` again ([`HALF_INV`]).
+    #[allow(clippy::needless_range_loop)]
+    fn prismatic_basis(&self, sig: &mut [[[f64; 9]; 6]; 3]) {
+        let conv = |v: [f64; 3]| -> [f64; 3] {
+            std::array::from_fn(|k| (0..3).map(|j| v[j] * HALF_INV[j][k]).sum())
+        };
+        for row in 0..6 {
+            if self.j[2].prism {
+                for m in 0..9 {
+                    let v = conv([sig[0][row][m], sig[1][row][m], sig[2][row][m]]);
+                    for k in 0..3 {
+                        sig[k][row][m] = v[k];
+                    }
+                }
+            }
+            for k in 0..3 {
+                if self.j[3].prism {
+                    for i5 in 0..3 {
+                        let v = conv(std::array::from_fn(|i4| sig[k][row][mono(i4, i5)]));
+                        for i4 in 0..3 {
+                            sig[k][row][mono(i4, i5)] = v[i4];
+                        }
+                    }
+                }
+                if self.j[4].prism {
+                    for i4 in 0..3 {
+                        let v = conv(std::array::from_fn(|i5| sig[k][row][mono(i4, i5)]));
+                        for i5 in 0..3 {
+                            sig[k][row][mono(i4, i5)] = v[i5];
+                        }
+                    }
+                }
+            }
+        }
     }
 }
 
@@ -441,7 +536,7 @@ pub const HALF: [[f64; 3]; 3] = [[1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0
 /// equations `Σ X45 = 0` with `θ4`, `θ5` by their half-angle tangents (monomials `x4^a x5^b`,
 /// `a, b ≤ 2`), and the same times `x4` (`a ≤ 3`): twelve equations in twelve monomials.
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn matrix_poly(sig: &[[[f64; 9]; 6]; 3], phi: f64) -> [[[f64; 12]; 12]; 3] {
+fn matrix_poly(sig: &[[[f64; 9]; 6]; 3], phi: f64) -> [[[f64; 12]; 12]; 3] {
     let (sp, cp) = phi.sin_cos();
     let mut out = [[[0.0; 12]; 12]; 3];
     for row in 0..6 {
@@ -473,7 +568,7 @@ pub(crate) fn matrix_poly(sig: &[[[f64; 9]; 6]; 3], phi: f64) -> [[[f64; 12]; 12
 #[allow(clippy::needless_range_loop)]
 /// LU with partial pivoting of an `n x n` block of `a` (in place); `None` when singular.
 /// Returns the pivot order and the smallest pivot over the largest entry.
-pub(crate) fn lu<const N: usize>(a: &mut [[f64; N]; N]) -> ([usize; N], f64) {
+fn lu<const N: usize>(a: &mut [[f64; N]; N]) -> ([usize; N], f64) {
     let mut p = [0usize; N];
     let mut amax: f64 = 0.0;
     for r in a.iter() {
@@ -534,15 +629,12 @@ fn lu_solve<const N: usize>(lu: &[[f64; N]; N], p: &[usize; N], b: &[f64; N]) ->
 }
 
 /// The eigenvalues of the 24 x 24 companion linearisation of `A x² + B x + C`:
-/// `[[0, I], [−A⁻¹C, −A⁻¹B]]` (`A` invertible, given as its LU `a`, `p`), less the
-/// eigenvalues `±i` that [`deflate_spurious`] removes. `(re, im)` pairs and how many; `None`
-/// when the QR iteration does not converge.
+/// `[[0, I], [−A⁻¹C, −A⁻¹B]]` (`A` invertible). `(re, im)` pairs; `None` when the QR
+/// iteration does not converge.
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn eigen_quadratic(
-    m: &[[[f64; 12]; 12]; 3],
-    a: &[[f64; 12]; 12],
-    p: &[usize; 12],
-) -> Option<([(f64, f64); 24], usize)> {
+fn eigen_quadratic(m: &[[[f64; 12]; 12]; 3]) -> Option<[(f64, f64); 24]> {
+    let mut a = m[2];
+    let (p, _) = lu(&mut a);
     let mut k = [[0.0; 24]; 24];
     for i in 0..12 {
         k[i][12 + i] = 1.0;
@@ -550,182 +642,14 @@ pub(crate) fn eigen_quadratic(
     for col in 0..12 {
         let cc: [f64; 12] = std::array::from_fn(|r| m[0][r][col]);
         let cb: [f64; 12] = std::array::from_fn(|r| m[1][r][col]);
-        let xc = lu_solve(a, p, &cc);
-        let xb = lu_solve(a, p, &cb);
+        let xc = lu_solve(&a, &p, &cc);
+        let xb = lu_solve(&a, &p, &cb);
         for r in 0..12 {
             k[12 + r][col] = -xc[r];
             k[12 + r][12 + col] = -xb[r];
         }
     }
-    let n = deflate_spurious(m, &mut k);
-    eigenvalues(&mut k, n).map(|ev| (ev, n))
-}
-
-/// Below this pivot (relative to the largest entry) `M(i)` is singular to rounding: a null
-/// vector of it. The entries of `M` are of order one and carry rounding errors of a few ulps,
-/// and elimination with complete pivoting keeps the growth small, so the pivots of the exact
-/// null space come out near 1e-15; a pivot between 1e-10 and 1e-15 would be an eigenvalue
-/// within about 1e-10 of `±i`, a complex root, so deflating it loses no real root and moves
-/// the others by about 1e-10 times their condition, which the refinement removes.
-pub const SPURIOUS_RANK: f64 = 1e-10;
-
-/// Deflates the spurious eigenvalues `±i` of the companion matrix `k` (the factor `(1 + x²)⁴`
-/// of `det M`, four pairs for a general 6R): the null vectors `v = a + i b` of `M(i)` give
-/// eigenvectors `[v; i v]` of `k`, so the real vectors `[a; −b]`, `[b; a]` span an invariant
-/// subspace `Z`. With `Q = [Z W]` orthogonal (Householder QR of `Z`), `Qᵀ k Q` is block upper
-/// triangular and its trailing block `Wᵀ k W` has the other eigenvalues; it is left in the
-/// leading rows and columns of `k`, and its size is returned (24 when nothing is deflated).
-/// For the skew 6R this takes the QR iteration from 24 to 16 rows, a third of its work.
-#[allow(clippy::needless_range_loop)]
-fn deflate_spurious(m: &[[[f64; 12]; 12]; 3], k: &mut [[f64; 24]; 24]) -> usize {
-    // M(i) = C − A + i B by elimination with complete pivoting, complex as (re, im) arrays.
-    let mut re = [[0.0; 12]; 12];
-    let mut im = m[1];
-    for r in 0..12 {
-        for c in 0..12 {
-            re[r][c] = m[0][r][c] - m[2][r][c];
-        }
-    }
-    let mut cols = [0usize; 12];
-    for (i, c) in cols.iter_mut().enumerate() {
-        *c = i;
-    }
-    // The largest entry of the remaining block is tracked while it is updated.
-    let (mut br, mut bc, mut bv) = (0, 0, -1.0);
-    for r in 0..12 {
-        for c in 0..12 {
-            let v = re[r][c] * re[r][c] + im[r][c] * im[r][c];
-            if v > bv {
-                (br, bc, bv) = (r, c, v);
-            }
-        }
-    }
-    let first = bv;
-    let mut rank = 12;
-    for s in 0..12 {
-        // Also stops on NaN: no pivot is taken unless it is a number above the threshold.
-        let pivot_ok = bv > SPURIOUS_RANK * SPURIOUS_RANK * first;
-        if !pivot_ok {
-            rank = s;
-            break;
-        }
-        re.swap(s, br);
-        im.swap(s, br);
-        for r in 0..12 {
-            re[r].swap(s, bc);
-            im[r].swap(s, bc);
-        }
-        cols.swap(s, bc);
-        let (dr, di, d) = (re[s][s], im[s][s], bv);
-        let (pr, pi) = (re[s], im[s]);
-        (br, bc, bv) = (s + 1, s + 1, -1.0);
-        for r in s + 1..12 {
-            // f = a[r][s] / a[s][s]
-            let (nr, ni) = (re[r][s], im[r][s]);
-            let fr = (nr * dr + ni * di) / d;
-            let fi = (ni * dr - nr * di) / d;
-            re[r][s] = 0.0;
-            im[r][s] = 0.0;
-            for c in s + 1..12 {
-                let x = re[r][c] - (fr * pr[c] - fi * pi[c]);
-                let y = im[r][c] - (fr * pi[c] + fi * pr[c]);
-                re[r][c] = x;
-                im[r][c] = y;
-                let v = x * x + y * y;
-                if v > bv {
-                    (br, bc, bv) = (r, c, v);
-                }
-            }
-        }
-    }
-    let nullity = 12 - rank;
-    if nullity == 0 || nullity >= 12 || !(first > 0.0 && first.is_finite()) {
-        return 24;
-    }
-    // The null vectors (one per free column) as the columns of Z, stored by columns.
-    let mut z = [[0.0; 24]; 24];
-    for f in 0..nullity {
-        let (mut yr, mut yi) = ([0.0; 12], [0.0; 12]);
-        yr[rank + f] = 1.0;
-        for i in (0..rank).rev() {
-            let (mut sr, mut si) = (-re[i][rank + f], -im[i][rank + f]);
-            for c in i + 1..rank {
-                sr -= re[i][c] * yr[c] - im[i][c] * yi[c];
-                si -= re[i][c] * yi[c] + im[i][c] * yr[c];
-            }
-            let (dr, di) = (re[i][i], im[i][i]);
-            let d = dr * dr + di * di;
-            yr[i] = (sr * dr + si * di) / d;
-            yi[i] = (si * dr - sr * di) / d;
-        }
-        for i in 0..12 {
-            let c = cols[i];
-            z[2 * f][c] = yr[i];
-            z[2 * f][12 + c] = -yi[i];
-            z[2 * f + 1][c] = yi[i];
-            z[2 * f + 1][12 + c] = yr[i];
-        }
-    }
-    // Gaussian elimination with partial pivoting of Z: `Π Z = L U`, `L = [L1; L2]` unit lower
-    // trapezoidal with multipliers of size at most one. The similarity `T = Πᵀ [[L1, 0], [L2,
-    // I]]` (the stabilised elementary transformations of the Hessenberg reduction) maps the
-    // leading coordinates onto span Z, so the trailing block of `T⁻¹ k T` is `k'22 − L2 L1⁻¹
-    // k'12` with `k' = Π k Πᵀ`.
-    let nz = 2 * nullity;
-    let mut perm = [0usize; 24];
-    for (i, p) in perm.iter_mut().enumerate() {
-        *p = i;
-    }
-    for j in 0..nz {
-        let mut best = j;
-        for r in j + 1..24 {
-            if z[j][perm[r]].abs() > z[j][perm[best]].abs() {
-                best = r;
-            }
-        }
-        perm.swap(j, best);
-        let d = z[j][perm[j]];
-        if !(d != 0.0 && d.is_finite()) {
-            return 24;
-        }
-        for r in j + 1..24 {
-            let pr = perm[r];
-            let f = z[j][pr] / d;
-            z[j][pr] = f;
-            for c in j + 1..nz {
-                z[c][pr] -= f * z[c][perm[j]];
-            }
-        }
-    }
-    // X = L1⁻¹ k'12 (forward substitution), then k'22 − L2 X into the leading block.
-    let n = 24 - nz;
-    let mut x = [[0.0; 24]; 24];
-    for i in 0..nz {
-        let mut row: [f64; 24] =
-            std::array::from_fn(|c| if c < n { k[perm[i]][perm[nz + c]] } else { 0.0 });
-        for (j, xj) in x[..i].iter().enumerate() {
-            let l = z[j][perm[i]];
-            for (rc, xc) in row[..n].iter_mut().zip(&xj[..n]) {
-                *rc -= l * xc;
-            }
-        }
-        x[i] = row;
-    }
-    let mut out = [[0.0; 24]; 24];
-    for r in 0..n {
-        let pr = perm[nz + r];
-        let mut row: [f64; 24] =
-            std::array::from_fn(|c| if c < n { k[pr][perm[nz + c]] } else { 0.0 });
-        for (j, xj) in x[..nz].iter().enumerate() {
-            let l = z[j][pr];
-            for (rc, xc) in row[..n].iter_mut().zip(&xj[..n]) {
-                *rc -= l * xc;
-            }
-        }
-        out[r] = row;
-    }
-    *k = out;
-    n
+    eigenvalues(&mut k)
 }
 
 /// A null vector of the 12 x 12 matrix `m` (Gaussian elimination with complete pivoting, the
@@ -737,45 +661,28 @@ fn null_vector(m: &[[f64; 12]; 12]) -> [f64; 12] {
     for (i, c) in cols.iter_mut().enumerate() {
         *c = i;
     }
-    // The largest entry of the remaining block, tracked while it is updated (the same choice
-    // as a search of the block after each step: the same entries in the same order).
-    let (mut br, mut bc, mut bv) = (0, 0, -1.0);
-    for (r, row) in a.iter().enumerate() {
-        for (c, x) in row.iter().enumerate() {
-            if x.abs() > bv {
-                (br, bc, bv) = (r, c, x.abs());
+    for k in 0..11 {
+        let (mut br, mut bc, mut bv) = (k, k, -1.0);
+        for r in k..12 {
+            for c in k..12 {
+                if a[r][c].abs() > bv {
+                    (br, bc, bv) = (r, c, a[r][c].abs());
+                }
             }
         }
-    }
-    for k in 0..11 {
         a.swap(k, br);
         for row in a.iter_mut() {
             row.swap(k, bc);
         }
         cols.swap(k, bc);
-        let pivot = a[k];
-        let d = pivot[k];
-        (br, bc, bv) = (k + 1, k + 1, -1.0);
+        let d = a[k][k];
         if d == 0.0 {
-            // Nothing eliminated: the next pivot is searched in the block as it is.
-            for (r, row) in a.iter().enumerate().skip(k + 1) {
-                for (c, x) in row.iter().enumerate().skip(k + 1) {
-                    if x.abs() > bv {
-                        (br, bc, bv) = (r, c, x.abs());
-                    }
-                }
-            }
             continue;
         }
-        for (r, row) in a.iter_mut().enumerate().skip(k + 1) {
-            let f = row[k] / d;
-            row[k] -= f * pivot[k];
-            for c in k + 1..12 {
-                let x = row[c] - f * pivot[c];
-                row[c] = x;
-                if x.abs() > bv {
-                    (br, bc, bv) = (r, c, x.abs());
-                }
+        for r in k + 1..12 {
+            let f = a[r][k] / d;
+            for c in k..12 {
+                a[r][c] -= f * a[k][c];
             }
         }
     }
@@ -861,12 +768,20 @@ fn back_substitute(
         (at(2, 2), at(2, 1)),
         (at(3, 2), at(3, 1)),
     ]);
+    // A prismatic joint's variable is the tangent of the half angle these formulas give
+    // (`d = tan(θ/2)`, see [`HALF_INV`]).
+    let slide = |k: usize, t: f64| if ar.j[k].prism { (0.5 * t).tan() } else { t };
+    let (t3, t4, t5) = (slide(2, t3), slide(3, t4), slide(4, t5));
     // θ1, θ2: Bm X12 = Am(θ3) X45 by the QR of Bm.
-    let f = |t: f64| {
-        let (s, c) = t.sin_cos();
-        [1.0, c, s]
+    let f = |k: usize, t: f64| {
+        if ar.j[k].prism {
+            [1.0, t, t * t]
+        } else {
+            let (s, c) = t.sin_cos();
+            [1.0, c, s]
+        }
     };
-    let (f3, f4, f5) = (f(t3), f(t4), f(t5));
+    let (f3, f4, f5) = (f(2, t3), f(3, t4), f(4, t5));
     let mut rhs = [0.0; 14];
     for e in 0..14 {
         let mut s = 0.0;
@@ -900,12 +815,24 @@ fn back_substitute(
     for i in 0..8 {
         x12[el.piv[i] + 1] = z[i];
     }
-    let t1 = x12[mono(2, 0)].atan2(x12[mono(1, 0)]);
-    let t2 = x12[mono(0, 2)].atan2(x12[mono(0, 1)]);
+    // A prismatic θ1 or θ2 is its monomial `d` itself.
+    let t1 = if ar.j[0].prism {
+        x12[mono(1, 0)]
+    } else {
+        x12[mono(2, 0)].atan2(x12[mono(1, 0)])
+    };
+    let t2 = if ar.j[1].prism {
+        x12[mono(0, 1)]
+    } else {
+        x12[mono(0, 2)].atan2(x12[mono(0, 1)])
+    };
     // θ6 from the rest: E6 = (E1 ⋯ E5)⁻¹ H, read about its axis.
     let t = [t1, t2, t3, t4, t5];
     let mut rot = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     for (k, tk) in t.iter().enumerate() {
+        if ar.j[k].prism {
+            continue;
+        }
         let (s, c) = tk.sin_cos();
         let r = rodrigues(&ar.j[k].w, s, c);
         let mut n = [[0.0; 3]; 3];
@@ -950,6 +877,17 @@ pub const SHIFT_SINGULAR: f64 = 1e-10;
 /// An eigenvalue within this of `±i` is the spurious factor `1 + x²`, not counted in the degree.
 pub const SPURIOUS_TOL: f64 = 1e-6;
 
+/// A prismatic hidden joint's root beyond this (scaled length) is a root at infinity, not a
+/// solution. After scaling every length of the arm and the target's distance are at most 1, so
+/// a slide that reaches the target travels at most about 7 (six links and the target), or
+/// `7 / sin α` where two slides at an angle `α` cancel part of each other's travel: below 100
+/// for slides more than 4 degrees from parallel (parallel slides are a special family). The
+/// roots at infinity of `det M(d)` (8 for a general 5R1P, 16 for a 4R2P with adjacent
+/// slides) come out of the shifted linearisation as a cluster around `y = cot(φ/2)`, spread by
+/// rounding as `ε^(1/k)` for a cluster of `k`: up to about `1e-4` measured, that is `|d|`
+/// above `1e4`; the margin of 100 covers spreads up to `1e-2`.
+pub const PRISM_FAR: f64 = 1e2;
+
 /// An eigenvalue larger than this is a root at infinity (the degree drops), not counted.
 pub const INFINITE_ROOT: f64 = 1e8;
 
@@ -977,19 +915,14 @@ pub const SAME_TOL: f64 = 1e-6;
 /// The candidates of one arrangement: its real roots, each with the arm's joint vector (not
 /// yet refined), and the degree reached; `None` when the arrangement is degenerate here.
 fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(usize, usize)> {
-    // The shift φ of the hidden joint that makes A (θ3 = φ + π) best conditioned; its matrix
-    // polynomial and the LU of its A are kept.
+    // The shift φ of the hidden joint that makes A (θ3 = φ + π) best conditioned.
     let mut best = (0.0, -1.0);
-    let mut mp = [[[0.0; 12]; 12]; 3];
-    let mut a = [[0.0; 12]; 12];
-    let mut p = [0; 12];
     for phi in SHIFTS {
-        let mp_s = matrix_poly(&el.sig, phi);
-        let mut a_s = mp_s[2];
-        let (p_s, ratio) = lu(&mut a_s);
+        let mp = matrix_poly(&el.sig, phi);
+        let mut a = mp[2];
+        let (_, ratio) = lu(&mut a);
         if ratio > best.1 {
             best = (phi, ratio);
-            (mp, a, p) = (mp_s, a_s, p_s);
         }
         if ratio > SHIFT_GOOD {
             break;
@@ -999,10 +932,16 @@ fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(u
         return None;
     }
     let phi = best.0;
-    let (ev, n_ev) = eigen_quadratic(&mp, &a, &p)?;
+    let mp = matrix_poly(&el.sig, phi);
+    let ev = eigen_quadratic(&mp)?;
     let mut n = 0;
     let mut degree = 0;
-    for &(re, im) in &ev[..n_ev] {
+    for &(re, im) in &ev {
+        // A prismatic hidden joint's roots at infinity (`d = ∞`, the eigenvalues clustered at
+        // `y = cot(φ/2)`) are no solutions.
+        if ar.j[2].prism && (0.5 * phi + re.atan()).tan().abs() > PRISM_FAR {
+            continue;
+        }
         let spurious = (re.abs() + (im.abs() - 1.0).abs()) < SPURIOUS_TOL;
         if re.is_finite() && im.is_finite() && !spurious && re.hypot(im) < INFINITE_ROOT {
             degree += 1;
@@ -1208,13 +1147,11 @@ pub fn gen_solve(
         tg[r][3] /= len;
     }
     let prismatic: [bool; 6] = std::array::from_fn(|i| ax[i][0] != 0.0);
-    if prismatic.iter().any(|p| *p) {
-        return out;
-    }
     let g = compose(&tg, &inverse(&hm));
     let js: [J; 6] = std::array::from_fn(|i| J {
         w: [ax[i][1], ax[i][2], ax[i][3]],
         c: [ax[i][4], ax[i][5], ax[i][6]],
+        prism: prismatic[i],
     });
     let mut roots = [[0.0; 6]; 24];
     // The arrangement that served at the derivation's generic target first (special geometry
@@ -1233,6 +1170,10 @@ pub fn gen_solve(
             break;
         }
         let ar = Arranged::new(&js, &g, arr);
+        // The last arranged joint is eliminated by a point of its axis, which a slide moves.
+        if prismatic[ar.perm[5]] {
+            continue;
+        }
         let Some(el) = ar.elim() else { continue };
         if el.rank_ratio < RANK_TOL {
             continue;
@@ -1255,8 +1196,10 @@ pub fn gen_solve(
             if res.is_nan() || res > tol.keep {
                 continue;
             }
-            for v in q.iter_mut() {
-                *v = wrap(*v);
+            for (v, p) in q.iter_mut().zip(prismatic) {
+                if !p {
+                    *v = wrap(*v);
+                }
             }
             let at = if let Some(i) = (0..out.n).find(|&i| same(&out.q[i], &q, &prismatic)) {
                 if res < out.residual[i] {
@@ -1282,14 +1225,23 @@ pub fn gen_solve(
             break;
         }
     }
+    // Prismatic variables back in the robot's length unit.
+    for q in out.q.iter_mut().take(out.n) {
+        for (v, p) in q.iter_mut().zip(prismatic) {
+            if p {
+                *v *= len;
+            }
+        }
+    }
     out
 }
 
 /// Balancing (Parlett–Reinsch, powers of two): similar matrix with rows and columns of
 /// comparable norm, so that the QR iteration's rounding is relative to the eigenvalues' size.
 #[allow(clippy::needless_range_loop)]
-fn balance(a: &mut [[f64; 24]; 24], n: usize) {
+fn balance(a: &mut [[f64; 24]; 24]) {
     const RADIX: f64 = 2.0;
+    let n = 24;
     let mut done = false;
     let mut sweeps = 0;
     while !done && sweeps < 100 {
@@ -1332,10 +1284,10 @@ fn balance(a: &mut [[f64; 24]; 24], n: usize) {
     }
 }
 
-/// Reduction to upper Hessenberg form by stabilised elementary similarity transformations
-/// (of the leading `n x n` block).
+/// Reduction to upper Hessenberg form by stabilised elementary similarity transformations.
 #[allow(clippy::needless_range_loop)]
-fn hessenberg(a: &mut [[f64; 24]; 24], n: usize) {
+fn hessenberg(a: &mut [[f64; 24]; 24]) {
+    let n = 24;
     for m in 1..n - 1 {
         let mut x: f64 = 0.0;
         let mut i = m;
@@ -1361,12 +1313,11 @@ fn hessenberg(a: &mut [[f64; 24]; 24], n: usize) {
                 if y != 0.0 {
                     y /= x;
                     a[i][m - 1] = 0.0;
-                    let (top, rest) = a.split_at_mut(i);
-                    for (ai, am) in rest[0][m..n].iter_mut().zip(&top[m][m..n]) {
-                        *ai -= y * am;
+                    for j in m..n {
+                        a[i][j] -= y * a[m][j];
                     }
-                    for row in a[..n].iter_mut() {
-                        row[m] += y * row[i];
+                    for j in 0..n {
+                        a[j][m] += y * a[j][i];
                     }
                 }
             }
@@ -1374,15 +1325,15 @@ fn hessenberg(a: &mut [[f64; 24]; 24], n: usize) {
     }
 }
 
-/// The eigenvalues of the leading `n x n` block of a real matrix (destroyed): balancing,
-/// Hessenberg reduction and the Francis double-shift QR iteration (the classical `hqr`); the
-/// first `n` pairs are set. `None` when an eigenvalue takes more than 60 iterations.
+/// The eigenvalues of a real 24 x 24 matrix (destroyed): balancing, Hessenberg reduction and
+/// the Francis double-shift QR iteration (the classical `hqr`); `None` when an eigenvalue
+/// takes more than 60 iterations.
 #[allow(clippy::needless_range_loop, clippy::many_single_char_names)]
-pub(crate) fn eigenvalues(a0: &mut [[f64; 24]; 24], size: usize) -> Option<[(f64, f64); 24]> {
-    balance(a0, size);
-    hessenberg(a0, size);
+fn eigenvalues(a0: &mut [[f64; 24]; 24]) -> Option<[(f64, f64); 24]> {
+    balance(a0);
+    hessenberg(a0);
     // 1-based indices as in the classical formulation: a[i][j] = a0[i - 1][j - 1].
-    let n = size as isize;
+    let n: isize = 24;
     macro_rules! a {
         ($i:expr, $j:expr) => {
             a0[($i - 1) as usize][($j - 1) as usize]
@@ -1535,36 +1486,24 @@ pub(crate) fn eigenvalues(a0: &mut [[f64; 24]; 24], size: usize) -> Option<[(f64
                     z = r / s;
                     q /= p;
                     r /= p;
-                    // Rows k, k + 1 (and k + 2) over columns k..=nn, and columns k, k + 1
-                    // (and k + 2) over rows l..=min(nn, k + 3), as row slices.
-                    let (k0, n0) = ((k - 1) as usize, nn as usize);
-                    let (row0, rest) = a0[k0..].split_first_mut().expect("row k");
-                    let (row1, rest) = rest.split_first_mut().expect("row k + 1");
-                    if k != nn - 1 {
-                        let row2 = &mut rest[0];
-                        for j in k0..n0 {
-                            let p = row0[j] + q * row1[j] + r * row2[j];
-                            row2[j] -= p * z;
-                            row1[j] -= p * y;
-                            row0[j] -= p * x;
+                    for j in k..=nn {
+                        p = a!(k, j) + q * a!(k + 1, j);
+                        if k != nn - 1 {
+                            p += r * a!(k + 2, j);
+                            a!(k + 2, j) -= p * z;
                         }
-                    } else {
-                        for j in k0..n0 {
-                            let p = row0[j] + q * row1[j];
-                            row1[j] -= p * y;
-                            row0[j] -= p * x;
-                        }
+                        a!(k + 1, j) -= p * y;
+                        a!(k, j) -= p * x;
                     }
                     let mmin = if nn < k + 3 { nn } else { k + 3 };
-                    for row in a0[(l - 1) as usize..mmin as usize].iter_mut() {
-                        let c = &mut row[k0..k0 + if k != nn - 1 { 3 } else { 2 }];
-                        let mut p = x * c[0] + y * c[1];
+                    for i in l..=mmin {
+                        p = x * a!(i, k) + y * a!(i, k + 1);
                         if k != nn - 1 {
-                            p += z * c[2];
-                            c[2] -= p * r;
+                            p += z * a!(i, k + 2);
+                            a!(i, k + 2) -= p * r;
                         }
-                        c[1] -= p * q;
-                        c[0] -= p;
+                        a!(i, k + 1) -= p * q;
+                        a!(i, k) -= p;
                     }
                 }
                 k += 1;
@@ -1575,7 +1514,7 @@ pub(crate) fn eigenvalues(a0: &mut [[f64; 24]; 24], size: usize) -> Option<[(f64
         }
     }
     let mut out = [(0.0, 0.0); 24];
-    for i in 0..size {
+    for i in 0..24 {
         out[i] = (wr[i], wi[i]);
     }
     Some(out)

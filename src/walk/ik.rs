@@ -89,15 +89,18 @@ pub fn walk_ik(robot: &Robot, sol: &IkSolution) -> Result<Walkthrough, WalkError
 /// and `Bm` coefficients and its half-angle polynomial (`ik::general::exact`).
 fn exact_step(sol: &IkSolution, info: &crate::ik::general::GeneralInfo) -> Result<Step, WalkError> {
     let title = Prose::text("The exact equations".to_owned());
+    use crate::ik::general::exact::ExactError;
     let shown = crate::ik::general::exact::exact_equations(sol, info).and_then(|eq| {
-        Ok((
+        Ok::<_, ExactError>((
             crate::ik::general::exact_scope_text(sol, &eq),
             eq.shown(sol)?,
         ))
     });
     let (scope, groups) = match shown {
         Ok(x) => x,
-        Err(e @ crate::ScalarError::Cancelled) => return Err(WalkError::Config(e.to_string())),
+        Err(ExactError::Scalar(e @ crate::ScalarError::Cancelled)) => {
+            return Err(WalkError::Config(e.to_string()))
+        }
         // Past the term limit or the work budget the rest of the walkthrough still stands.
         Err(e) => {
             return Ok(Step::Explain {

@@ -19,6 +19,8 @@ mod ik_edges;
 mod ik_general;
 mod ik_general_count;
 mod ik_general_ports;
+mod ik_general_prismatic;
+mod ik_general_prismatic_ports;
 mod ik_model;
 mod kinematics;
 mod lang;

@@ -1,5 +1,6 @@
 //! The derivation as text: plain (the field's `c1`, `s23` notation), LaTeX, SymPy lines.
 
+use super::general::exact::ExactError;
 use super::{
     Branch, BranchPart, BranchSigns, EndFrame, Fact, Formula, FreeChoice, IkSolution, IkStep,
     Phrase, Reach, Relation,
@@ -394,7 +395,7 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
                 for l in super::general::elimination_lines(sol, info) {
                     out.push_str(&line_comment(Comment::Latex, "%", &l));
                 }
-                out.push_str(&general_latex(info));
+                out.push_str(&general_latex(sol, info));
                 out.push_str(&general_exact_latex(sol, info, shorthand)?);
             }
             for (step, parts) in sol.steps.iter().zip(all) {
@@ -470,13 +471,14 @@ fn general_plain(
     info: &super::general::GeneralInfo,
     o: &PlainOptions,
 ) -> Result<String, ScalarError> {
-    let shown = super::general::exact::exact_equations(sol, info)
-        .and_then(|eq| Ok((super::general::exact_scope_text(sol, &eq), eq.shown(sol)?)));
+    let shown = super::general::exact::exact_equations(sol, info).and_then(|eq| {
+        Ok::<_, ExactError>((super::general::exact_scope_text(sol, &eq), eq.shown(sol)?))
+    });
     let (scope, groups) = match shown {
         Ok(x) => x,
         // Past the term limit or the work budget (a symbolic arm with symbolic twists), the
         // rest of the report still stands; an interruption stops it.
-        Err(ScalarError::Cancelled) => return Err(ScalarError::Cancelled),
+        Err(ExactError::Scalar(ScalarError::Cancelled)) => return Err(ScalarError::Cancelled),
         Err(e) => return Ok(format!("\nexact equations: not printed ({e})\n")),
     };
     let mut out =
@@ -500,11 +502,12 @@ fn general_exact_latex(
         shorthand,
         ..LatexOptions::default()
     };
-    let shown = super::general::exact::exact_equations(sol, info)
-        .and_then(|eq| Ok((super::general::exact_scope_text(sol, &eq), eq.shown(sol)?)));
+    let shown = super::general::exact::exact_equations(sol, info).and_then(|eq| {
+        Ok::<_, ExactError>((super::general::exact_scope_text(sol, &eq), eq.shown(sol)?))
+    });
     let (scope, groups) = match shown {
         Ok(x) => x,
-        Err(ScalarError::Cancelled) => return Err(ScalarError::Cancelled),
+        Err(ExactError::Scalar(ScalarError::Cancelled)) => return Err(ScalarError::Cancelled),
         Err(e) => {
             return Ok(line_comment(
                 Comment::Latex,
@@ -526,7 +529,23 @@ fn general_exact_latex(
 }
 
 /// The general method's polynomial as a LaTeX block: the matrix polynomial and its degree.
-fn general_latex(info: &super::general::GeneralInfo) -> String {
+fn general_latex(sol: &IkSolution, info: &super::general::GeneralInfo) -> String {
+    let slides = sol.axes.iter().any(|a| a.kind == JointKind::Prismatic);
+    if slides {
+        // A sliding hidden joint enters M through the Möbius map of the shift, and the
+        // spurious factor depends on the arrangement (`general` module docs).
+        let var = if super::general::hidden_slides(sol, info) {
+            "d = \\frac{t + x}{1 - t x}, \\ t = \\tan\\tfrac{\\varphi}{2}"
+        } else {
+            "x = \\tan\\tfrac{\\theta - \\varphi}{2}"
+        };
+        return format!(
+            "\\begin{{aligned}}\n\
+M(x) &= A x^2 + B x + C \\in \\mathbb{{R}}^{{12 \\times 12}}, \\quad {var} \\\\\n\
+\\det M(x) &= s(x) \\, p(x), \\quad \\deg p = {} \\quad (s \\text{{: the spurious factor}})\n\\end{{aligned}}\n",
+            info.degree
+        );
+    }
     format!(
         "\\begin{{aligned}}\n\
 M(x) &= A x^2 + B x + C \\in \\mathbb{{R}}^{{12 \\times 12}}, \\quad x = \\tan\\tfrac{{\\theta - \\varphi}}{{2}} \\\\\n\

@@ -19,9 +19,11 @@ typedef struct {
     double pose, keep;
 } ik_gen_tol;
 
-/* One joint of an arranged chain: unit direction w, point c (scaled). */
+/* One joint of an arranged chain: unit direction w, point c (scaled), whether it slides
+   (prism: its variable is the length of a translation along w). */
 typedef struct {
     double w[3], c[3];
+    int prism;
 } ik_gen_joint;
 
 static double ik_gen_dot3(const double a[3], const double b[3]) {
@@ -61,6 +63,29 @@ static void ik_gen_apply(const ik_gen_joint *j, double s, double co, const doubl
     ik_gen_mv((const double (*)[3])r, y, ry);
     for (i = 0; i < 3; i++) xo[i] = ry[i] + j->c[i];
     ik_gen_mv((const double (*)[3])r, d, dout);
+}
+
+/* (E x, R d) of joint j at sample k of its variable (inv: the inverse motion): a revolute joint
+   at the angle 2 pi k / 3, a prismatic one at the length IK_GEN_SAMPLE_D[k]. */
+static void ik_gen_sample(const ik_gen_joint *j, int k, int inv, const double x[3],
+                          const double d[3], double xo[3], double dout[3]) {
+    const double sg = inv ? -1.0 : 1.0;
+    int i;
+    if (j->prism) {
+        const double t = sg * IK_GEN_SAMPLE_D[k];
+        for (i = 0; i < 3; i++) {
+            xo[i] = x[i] + t * j->w[i];
+            dout[i] = d[i];
+        }
+    } else {
+        ik_gen_apply(j, sg * IK_GEN_SAMPLE_S[k], IK_GEN_SAMPLE_C[k], x, d, xo, dout);
+    }
+}
+
+/* The weights that turn the three samples into the coefficients of the joint's basis:
+   (1, cos, sin) for a revolute joint, (1, d, d^2) for a prismatic one. */
+static const double (*ik_gen_weights(const ik_gen_joint *j))[3] {
+    return j->prism ? IK_GEN_VANDER : IK_GEN_DFT;
 }
 
 /* The fourteen Raghavan-Roth quantities of a point p and a direction l: l, p, p.p, p.l,
@@ -134,6 +159,7 @@ static void ik_gen_arrange(const ik_gen_joint ax[6], const double g[3][4], int a
                 base[i].w[k] = -ax[5 - i].w[k];
                 base[i].c[k] = ax[5 - i].c[k];
             }
+            base[i].prism = ax[5 - i].prism;
             bperm[i] = 5 - i;
         }
         ik_gen_inverse(g, out->h);
@@ -146,6 +172,7 @@ static void ik_gen_arrange(const ik_gen_joint ax[6], const double g[3][4], int a
         if (k < shift) {
             ik_gen_motion_apply((const double (*)[4])hi, base[k].c, base[k].w, out->j[i].c,
                                 out->j[i].w);
+            out->j[i].prism = base[k].prism;
         } else {
             out->j[i] = base[k];
         }
@@ -177,28 +204,31 @@ static void ik_gen_samples(const ik_gen_arranged *ar, double lhs[3][3][3][14],
     double x5[3], d5[3], x4[3], d4[3], x3[3], d3[3], hp[3], hd[3], y1[3], e1[3], y2[3], e2[3];
     int k1, k2, k3, k4, k5;
     for (k5 = 0; k5 < 3; k5++) {
-        ik_gen_apply(&ar->j[4], IK_GEN_SAMPLE_S[k5], IK_GEN_SAMPLE_C[k5], p6, w6, x5, d5);
+        ik_gen_sample(&ar->j[4], k5, 0, p6, w6, x5, d5);
         for (k4 = 0; k4 < 3; k4++) {
-            ik_gen_apply(&ar->j[3], IK_GEN_SAMPLE_S[k4], IK_GEN_SAMPLE_C[k4], x5, d5, x4, d4);
+            ik_gen_sample(&ar->j[3], k4, 0, x5, d5, x4, d4);
             for (k3 = 0; k3 < 3; k3++) {
-                ik_gen_apply(&ar->j[2], IK_GEN_SAMPLE_S[k3], IK_GEN_SAMPLE_C[k3], x4, d4, x3,
-                             d3);
+                ik_gen_sample(&ar->j[2], k3, 0, x4, d4, x3, d3);
                 ik_gen_quantities(x3, d3, lhs[k3][k4][k5]);
             }
         }
     }
     ik_gen_motion_apply((const double (*)[4])ar->h, p6, w6, hp, hd);
     for (k1 = 0; k1 < 3; k1++) {
-        ik_gen_apply(&ar->j[0], -IK_GEN_SAMPLE_S[k1], IK_GEN_SAMPLE_C[k1], hp, hd, y1, e1);
+        ik_gen_sample(&ar->j[0], k1, 1, hp, hd, y1, e1);
         for (k2 = 0; k2 < 3; k2++) {
-            ik_gen_apply(&ar->j[1], -IK_GEN_SAMPLE_S[k2], IK_GEN_SAMPLE_C[k2], y1, e1, y2, e2);
+            ik_gen_sample(&ar->j[1], k2, 1, y1, e1, y2, e2);
             ik_gen_quantities(y2, e2, rhs[k1][k2]);
         }
     }
 }
 
 /* The left side's coefficients: the 3-D transform as three 1-D passes. */
-static void ik_gen_left_coefficients(double lhs[3][3][3][14], double am[14][3][9]) {
+static void ik_gen_left_coefficients(const ik_gen_arranged *ar, double lhs[3][3][3][14],
+                                     double am[14][3][9]) {
+    const double (*w5)[3] = ik_gen_weights(&ar->j[4]);
+    const double (*w4)[3] = ik_gen_weights(&ar->j[3]);
+    const double (*w3)[3] = ik_gen_weights(&ar->j[2]);
     double t1[3][3][3][14], t2[3][3][3][14];
     int i3, i4, i5, k3, k4, k5, e;
     memset(t1, 0, sizeof t1);
@@ -207,19 +237,19 @@ static void ik_gen_left_coefficients(double lhs[3][3][3][14], double am[14][3][9
         for (k3 = 0; k3 < 3; k3++)
             for (k4 = 0; k4 < 3; k4++)
                 for (k5 = 0; k5 < 3; k5++) {
-                    const double w = IK_GEN_DFT[i5][k5];
+                    const double w = w5[i5][k5];
                     for (e = 0; e < 14; e++) t1[k3][k4][i5][e] += w * lhs[k3][k4][k5][e];
                 }
     for (i4 = 0; i4 < 3; i4++)
         for (k3 = 0; k3 < 3; k3++)
             for (k4 = 0; k4 < 3; k4++) {
-                const double w = IK_GEN_DFT[i4][k4];
+                const double w = w4[i4][k4];
                 for (i5 = 0; i5 < 3; i5++)
                     for (e = 0; e < 14; e++) t2[k3][i4][i5][e] += w * t1[k3][k4][i5][e];
             }
     for (i3 = 0; i3 < 3; i3++)
         for (k3 = 0; k3 < 3; k3++) {
-            const double w = IK_GEN_DFT[i3][k3];
+            const double w = w3[i3][k3];
             for (i4 = 0; i4 < 3; i4++)
                 for (i5 = 0; i5 < 3; i5++)
                     for (e = 0; e < 14; e++)
@@ -230,6 +260,49 @@ static void ik_gen_left_coefficients(double lhs[3][3][3][14], double am[14][3][9
 static void ik_gen_qr_pivot(const double b[14][8], double qt[14][14], double r[8][8],
                             int piv[8], double *ratio);
 
+/* v (coefficients of (1, d, d^2)) times IK_GEN_HALF_INV, in place. */
+static void ik_gen_half_inv(double v[3]) {
+    double o[3];
+    int j, k;
+    for (k = 0; k < 3; k++) {
+        o[k] = -0.0;
+        for (j = 0; j < 3; j++) o[k] += v[j] * IK_GEN_HALF_INV[j][k];
+    }
+    memcpy(v, o, sizeof o);
+}
+
+/* The coefficients of prismatic joints 3, 4, 5 from (1, d, d^2) into the basis that
+   ik_gen_matrix_poly's half-angle map turns into (1, d, d^2) again (IK_GEN_HALF_INV). */
+static void ik_gen_prismatic_basis(const ik_gen_arranged *ar, double sig[3][6][9]) {
+    double v[3];
+    int row, m, k, i4, i5;
+    for (row = 0; row < 6; row++) {
+        if (ar->j[2].prism) {
+            for (m = 0; m < 9; m++) {
+                for (k = 0; k < 3; k++) v[k] = sig[k][row][m];
+                ik_gen_half_inv(v);
+                for (k = 0; k < 3; k++) sig[k][row][m] = v[k];
+            }
+        }
+        for (k = 0; k < 3; k++) {
+            if (ar->j[3].prism) {
+                for (i5 = 0; i5 < 3; i5++) {
+                    for (i4 = 0; i4 < 3; i4++) v[i4] = sig[k][row][ik_gen_mono(i4, i5)];
+                    ik_gen_half_inv(v);
+                    for (i4 = 0; i4 < 3; i4++) sig[k][row][ik_gen_mono(i4, i5)] = v[i4];
+                }
+            }
+            if (ar->j[4].prism) {
+                for (i4 = 0; i4 < 3; i4++) {
+                    for (i5 = 0; i5 < 3; i5++) v[i5] = sig[k][row][ik_gen_mono(i4, i5)];
+                    ik_gen_half_inv(v);
+                    for (i5 = 0; i5 < 3; i5++) sig[k][row][ik_gen_mono(i4, i5)] = v[i5];
+                }
+            }
+        }
+    }
+}
+
 /* The equations' coefficients by exact trigonometric interpolation (IK_GEN_DFT). */
 static void ik_gen_eliminate(const ik_gen_arranged *ar, ik_gen_elim *el) {
     double lhs[3][3][3][14], rhs[3][3][14], bm[14][8];
@@ -237,14 +310,15 @@ static void ik_gen_eliminate(const ik_gen_arranged *ar, ik_gen_elim *el) {
     ik_gen_samples(ar, lhs, rhs);
     memset(el->am, 0, sizeof el->am);
     memset(bm, 0, sizeof bm);
-    ik_gen_left_coefficients(lhs, el->am);
+    ik_gen_left_coefficients(ar, lhs, el->am);
     for (e = 0; e < 14; e++) {
         for (i1 = 0; i1 < 3; i1++) {
             for (i2 = 0; i2 < 3; i2++) {
                 double s = 0.0;
                 for (k1 = 0; k1 < 3; k1++)
                     for (k2 = 0; k2 < 3; k2++)
-                        s += IK_GEN_DFT[i1][k1] * IK_GEN_DFT[i2][k2] * rhs[k1][k2][e];
+                        s += ik_gen_weights(&ar->j[0])[i1][k1] *
+                             ik_gen_weights(&ar->j[1])[i2][k2] * rhs[k1][k2][e];
                 m = ik_gen_mono(i1, i2);
                 if (m == 0) {
                     el->am[e][0][0] -= s;
@@ -264,6 +338,7 @@ static void ik_gen_eliminate(const ik_gen_arranged *ar, ik_gen_elim *el) {
             }
         }
     }
+    ik_gen_prismatic_basis(ar, el->sig);
 }
 
 /* Householder QR with column pivoting of the 14 x 8 matrix b: Q^T, R, the column order and
@@ -688,8 +763,9 @@ static double ik_gen_angle_from(const double *num, const double *den, int n) {
 }
 
 /* th1, th2 from Bm X12 = Am(th3) X45 by the QR of Bm, given (1, cos, sin) of th3, th4, th5. */
-static void ik_gen_first_two(const ik_gen_elim *el, const double f3[3], const double f4[3],
-                             const double f5[3], double *t1, double *t2) {
+static void ik_gen_first_two(const ik_gen_arranged *ar, const ik_gen_elim *el,
+                             const double f3[3], const double f4[3], const double f5[3],
+                             double *t1, double *t2) {
     double rhs[14], y[8], z[8], x12[9], s;
     int e, k, i4, i5, i;
     for (e = 0; e < 14; e++) {
@@ -711,8 +787,11 @@ static void ik_gen_first_two(const ik_gen_elim *el, const double f3[3], const do
     }
     x12[0] = 1.0;
     for (i = 0; i < 8; i++) x12[el->piv[i] + 1] = z[i];
-    *t1 = atan2(x12[ik_gen_mono(2, 0)], x12[ik_gen_mono(1, 0)]);
-    *t2 = atan2(x12[ik_gen_mono(0, 2)], x12[ik_gen_mono(0, 1)]);
+    /* A prismatic th1 or th2 is its monomial d itself. */
+    *t1 = ar->j[0].prism ? x12[ik_gen_mono(1, 0)]
+                         : atan2(x12[ik_gen_mono(2, 0)], x12[ik_gen_mono(1, 0)]);
+    *t2 = ar->j[1].prism ? x12[ik_gen_mono(0, 1)]
+                         : atan2(x12[ik_gen_mono(0, 2)], x12[ik_gen_mono(0, 1)]);
 }
 
 /* th6 from the rest: E6 = (E1 ... E5)^-1 H, read about its axis. */
@@ -723,6 +802,7 @@ static double ik_gen_last(const ik_gen_arranged *ar, const double t[5]) {
     const double *w6 = ar->j[5].w;
     int k, i, j, l;
     for (k = 0; k < 5; k++) {
+        if (ar->j[k].prism) continue;
         ik_gen_rodrigues(ar->j[k].w, sin(t[k]), cos(t[k]), r);
         for (i = 0; i < 3; i++) {
             for (j = 0; j < 3; j++) {
@@ -744,6 +824,18 @@ static double ik_gen_last(const ik_gen_arranged *ar, const double t[5]) {
     }
     ik_gen_cross3(u, v, uv);
     return atan2(ik_gen_dot3(w6, uv), ik_gen_dot3(u, v));
+}
+
+/* The joint's basis at its value t: (1, cos t, sin t), or (1, t, t^2) for a slide. */
+static void ik_gen_basis(const ik_gen_joint *j, double t, double f[3]) {
+    f[0] = 1.0;
+    if (j->prism) {
+        f[1] = t;
+        f[2] = t * t;
+    } else {
+        f[1] = cos(t);
+        f[2] = sin(t);
+    }
 }
 
 /* The joints of the arranged chain at the root x of det M. */
@@ -770,14 +862,13 @@ static void ik_gen_back_substitute(const ik_gen_arranged *ar, const ik_gen_elim 
             den[k] = v[3 * a + b];
         }
     out[4] = ik_gen_angle_from(num, den, 8);
-    f3[0] = f4[0] = f5[0] = 1.0;
-    f3[1] = cos(out[2]);
-    f3[2] = sin(out[2]);
-    f4[1] = cos(out[3]);
-    f4[2] = sin(out[3]);
-    f5[1] = cos(out[4]);
-    f5[2] = sin(out[4]);
-    ik_gen_first_two(el, f3, f4, f5, &out[0], &out[1]);
+    /* A prismatic joint's variable is the tangent of the half angle these formulas give. */
+    for (k = 2; k < 5; k++)
+        if (ar->j[k].prism) out[k] = tan(0.5 * out[k]);
+    ik_gen_basis(&ar->j[2], out[2], f3);
+    ik_gen_basis(&ar->j[3], out[3], f4);
+    ik_gen_basis(&ar->j[4], out[4], f5);
+    ik_gen_first_two(ar, el, f3, f4, f5, &out[0], &out[1]);
     out[5] = ik_gen_last(ar, out);
 }
 
@@ -816,6 +907,8 @@ static int ik_gen_candidates(const ik_gen_arranged *ar, const ik_gen_elim *el,
         const int spurious = (fabs(wr[k]) + fabs(fabs(wi[k]) - 1.0)) < IK_GEN_SPURIOUS_TOL;
         re = wr[k];
         im = wi[k];
+        /* A prismatic hidden joint's roots at infinity are no solutions. */
+        if (ar->j[2].prism && fabs(tan(0.5 * phi + atan(re))) > IK_GEN_PRISM_FAR) continue;
         if (isfinite(re) && isfinite(im) && !spurious && hypot(re, im) < IK_GEN_INFINITE_ROOT) {
             *degree += 1;
         }
@@ -1008,10 +1101,7 @@ static void ik_gen_solve(const double axes[6][7], const double home[3][4],
         hm[i][3] /= len;
         tg[i][3] /= len;
     }
-    for (i = 0; i < 6; i++) {
-        prismatic[i] = ax[i][0] != 0.0;
-        if (prismatic[i]) return;
-    }
+    for (i = 0; i < 6; i++) prismatic[i] = ax[i][0] != 0.0;
     ik_gen_inverse((const double (*)[4])hm, ihm);
     ik_gen_compose((const double (*)[4])tg, (const double (*)[4])ihm, g);
     for (i = 0; i < 6; i++) {
@@ -1019,12 +1109,15 @@ static void ik_gen_solve(const double axes[6][7], const double home[3][4],
             js[i].w[k] = ax[i][1 + k];
             js[i].c[k] = ax[i][4 + k];
         }
+        js[i].prism = prismatic[i];
     }
     /* The arrangement that served at the derivation's generic target first, then the others. */
     for (k = 0; k < 12; k++) {
         arr = k == 0 ? first % 12 : k <= first % 12 ? k - 1 : k;
         if (out->n_arr == 12) break;
         ik_gen_arrange(js, (const double (*)[4])g, arr, &ar);
+        /* The last arranged joint is eliminated by a point of its axis, which a slide moves. */
+        if (prismatic[ar.perm[5]]) continue;
         ik_gen_eliminate(&ar, &el);
         if (el.rank_ratio < IK_GEN_RANK_TOL) continue;
         if (!ik_gen_candidates(&ar, &el, roots, &n, &degree)) continue;
@@ -1038,7 +1131,8 @@ static void ik_gen_solve(const double axes[6][7], const double home[3][4],
             res = ik_gen_refine((const double (*)[7])ax, (const double (*)[4])hm,
                                 (const double (*)[4])tg, q);
             if (isnan(res) || res > tol.keep) continue;
-            for (j = 0; j < 6; j++) q[j] = ik_gen_wrap(q[j]);
+            for (j = 0; j < 6; j++)
+                if (!prismatic[j]) q[j] = ik_gen_wrap(q[j]);
             at = ik_gen_add(out, q, res, prismatic);
             if (at >= 0) hit[at] |= res <= tol.pose;
         }
@@ -1046,6 +1140,10 @@ static void ik_gen_solve(const double axes[6][7], const double home[3][4],
         for (hits = 0, i = 0; i < IK_GEN_MAX; i++) hits += hit[i];
         if (hits == n) break;
     }
+    /* Prismatic variables back in the robot's length unit. */
+    for (i = 0; i < out->n; i++)
+        for (j = 0; j < 6; j++)
+            if (prismatic[j]) out->q[i][j] *= len;
 }
 
 /* Balancing (Parlett-Reinsch, powers of two): a similar matrix with rows and columns of

@@ -48,6 +48,23 @@ function ik_gen_apply(j, s, co, x, d) {
     return [[ry[0] + j.c[0], ry[1] + j.c[1], ry[2] + j.c[2]], ik_gen_mv(r, d)];
 }
 
+// [E x, R d] of joint j = {w, c, prism} at sample k of its variable (inv: the inverse motion):
+// a revolute joint at the angle 2 pi k / 3, a prismatic one at the length IK_GEN_SAMPLE_D[k].
+function ik_gen_sample(j, k, inv, x, d) {
+    const sg = inv ? -1 : 1;
+    if (j.prism) {
+        const t = sg * IK_GEN_SAMPLE_D[k];
+        return [[x[0] + t * j.w[0], x[1] + t * j.w[1], x[2] + t * j.w[2]], d];
+    }
+    return ik_gen_apply(j, sg * IK_GEN_SAMPLE_S[k], IK_GEN_SAMPLE_C[k], x, d);
+}
+
+// The weights that turn three samples into the coefficients of the joint's basis: (1, cos,
+// sin) for a revolute joint, (1, d, d^2) for a prismatic one.
+function ik_gen_weights(j) {
+    return j.prism ? IK_GEN_VANDER : IK_GEN_DFT;
+}
+
 // The fourteen Raghavan-Roth quantities of a point p and a direction l: l, p, p.p, p.l, p x l,
 // (p.p) l - 2 (p.l) p.
 function ik_gen_quantities(p, l) {
@@ -95,7 +112,7 @@ function ik_gen_arrange(js, g, arr) {
     let base = js, h = g, bperm = [0, 1, 2, 3, 4, 5];
     if (rev) {
         // E6^-1 ... E1^-1 = G^-1, and Ei^-1(q) turns about the reversed axis by q.
-        base = js.map((_, i) => ({ w: js[5 - i].w.map((x) => -x), c: js[5 - i].c }));
+        base = js.map((_, i) => ({ w: js[5 - i].w.map((x) => -x), c: js[5 - i].c, prism: js[5 - i].prism }));
         bperm = bperm.map((i) => 5 - i);
         h = ik_gen_inverse(g);
     }
@@ -107,7 +124,7 @@ function ik_gen_arrange(js, g, arr) {
         perm.push(bperm[k]);
         if (k < shift) {
             const [c, w] = ik_gen_motion_apply(hi, base[k].c, base[k].w);
-            j.push({ w, c });
+            j.push({ w, c, prism: base[k].prism });
         } else {
             j.push(base[k]);
         }
@@ -122,14 +139,14 @@ function ik_gen_mono(i, j) {
 // The quantities on the 3 x 3 x 3 grid of sample angles (left: E3 E4 E5 applied to (p6, w6))
 // and the 3 x 3 grid (right: E2^-1 E1^-1 H applied to it).
 function ik_gen_samples(ar) {
-    const p6 = ar.j[5].c, w6 = ar.j[5].w, S = IK_GEN_SAMPLE_S, C = IK_GEN_SAMPLE_C;
+    const p6 = ar.j[5].c, w6 = ar.j[5].w;
     const lhs = ik_gen_zeros(3, 3, 3, 0);
     for (let k5 = 0; k5 < 3; k5++) {
-        const [x5, d5] = ik_gen_apply(ar.j[4], S[k5], C[k5], p6, w6);
+        const [x5, d5] = ik_gen_sample(ar.j[4], k5, false, p6, w6);
         for (let k4 = 0; k4 < 3; k4++) {
-            const [x4, d4] = ik_gen_apply(ar.j[3], S[k4], C[k4], x5, d5);
+            const [x4, d4] = ik_gen_sample(ar.j[3], k4, false, x5, d5);
             for (let k3 = 0; k3 < 3; k3++) {
-                const [x3, d3] = ik_gen_apply(ar.j[2], S[k3], C[k3], x4, d4);
+                const [x3, d3] = ik_gen_sample(ar.j[2], k3, false, x4, d4);
                 lhs[k3][k4][k5] = ik_gen_quantities(x3, d3);
             }
         }
@@ -137,9 +154,9 @@ function ik_gen_samples(ar) {
     const [hp, hd] = ik_gen_motion_apply(ar.h, p6, w6);
     const rhs = ik_gen_zeros(3, 3, 0);
     for (let k1 = 0; k1 < 3; k1++) {
-        const [y1, e1] = ik_gen_apply(ar.j[0], -S[k1], C[k1], hp, hd);
+        const [y1, e1] = ik_gen_sample(ar.j[0], k1, true, hp, hd);
         for (let k2 = 0; k2 < 3; k2++) {
-            const [y2, e2] = ik_gen_apply(ar.j[1], -S[k2], C[k2], y1, e1);
+            const [y2, e2] = ik_gen_sample(ar.j[1], k2, true, y1, e1);
             rhs[k1][k2] = ik_gen_quantities(y2, e2);
         }
     }
@@ -147,23 +164,23 @@ function ik_gen_samples(ar) {
 }
 
 // The left side's coefficients am[e][i3][mono(i4, i5)]: the 3-D transform as three 1-D passes.
-function ik_gen_left_coefficients(lhs) {
-    const D = IK_GEN_DFT, t1 = ik_gen_zeros(3, 3, 3, 14), t2 = ik_gen_zeros(3, 3, 3, 14);
+function ik_gen_left_coefficients(ar, lhs) {
+    const W = ar.j.map(ik_gen_weights), t1 = ik_gen_zeros(3, 3, 3, 14), t2 = ik_gen_zeros(3, 3, 3, 14);
     const am = ik_gen_zeros(14, 3, 9);
     for (let i5 = 0; i5 < 3; i5++) for (let k3 = 0; k3 < 3; k3++) for (let k4 = 0; k4 < 3; k4++) {
         for (let k5 = 0; k5 < 3; k5++) {
-            const w = D[i5][k5];
+            const w = W[4][i5][k5];
             for (let e = 0; e < 14; e++) t1[k3][k4][i5][e] += w * lhs[k3][k4][k5][e];
         }
     }
     for (let i4 = 0; i4 < 3; i4++) for (let k3 = 0; k3 < 3; k3++) for (let k4 = 0; k4 < 3; k4++) {
-        const w = D[i4][k4];
+        const w = W[3][i4][k4];
         for (let i5 = 0; i5 < 3; i5++) {
             for (let e = 0; e < 14; e++) t2[k3][i4][i5][e] += w * t1[k3][k4][i5][e];
         }
     }
     for (let i3 = 0; i3 < 3; i3++) for (let k3 = 0; k3 < 3; k3++) {
-        const w = D[i3][k3];
+        const w = W[2][i3][k3];
         for (let i4 = 0; i4 < 3; i4++) for (let i5 = 0; i5 < 3; i5++) {
             for (let e = 0; e < 14; e++) am[e][i3][ik_gen_mono(i4, i5)] += w * t2[k3][i4][i5][e];
         }
@@ -175,11 +192,12 @@ function ik_gen_left_coefficients(lhs) {
 // rank_ratio) and Sig = N Am in (1, cos th3, sin th3) with N the last six rows of Q^T.
 function ik_gen_eliminate(ar) {
     const [lhs, rhs] = ik_gen_samples(ar);
-    const D = IK_GEN_DFT, am = ik_gen_left_coefficients(lhs), bm = ik_gen_zeros(14, 8);
+    const W = ar.j.map(ik_gen_weights), am = ik_gen_left_coefficients(ar, lhs);
+    const bm = ik_gen_zeros(14, 8);
     for (let e = 0; e < 14; e++) for (let i1 = 0; i1 < 3; i1++) for (let i2 = 0; i2 < 3; i2++) {
         let s = 0;
         for (let k1 = 0; k1 < 3; k1++) for (let k2 = 0; k2 < 3; k2++) {
-            s += D[i1][k1] * D[i2][k2] * rhs[k1][k2][e];
+            s += W[0][i1][k1] * W[1][i2][k2] * rhs[k1][k2][e];
         }
         const m = ik_gen_mono(i1, i2);
         if (m === 0) am[e][0][0] -= s;
@@ -192,7 +210,36 @@ function ik_gen_eliminate(ar) {
         for (let e = 0; e < 14; e++) s += qt[8 + row][e] * am[e][k][m];
         sig[k][row][m] = s;
     }
+    ik_gen_prismatic_basis(ar, sig);
     return { am, qt, r, piv, rank_ratio: ratio, sig };
+}
+
+// The coefficients of prismatic joints 3, 4, 5 from (1, d, d^2) into the basis that
+// ik_gen_matrix_poly's half-angle map turns into (1, d, d^2) again (IK_GEN_HALF_INV).
+function ik_gen_prismatic_basis(ar, sig) {
+    const conv = (v) => [0, 1, 2].map((k) => v.reduce((s, x, j) => s + x * IK_GEN_HALF_INV[j][k], -0));
+    for (let row = 0; row < 6; row++) {
+        if (ar.j[2].prism) {
+            for (let m = 0; m < 9; m++) {
+                const v = conv([sig[0][row][m], sig[1][row][m], sig[2][row][m]]);
+                for (let k = 0; k < 3; k++) sig[k][row][m] = v[k];
+            }
+        }
+        for (let k = 0; k < 3; k++) {
+            if (ar.j[3].prism) {
+                for (let i5 = 0; i5 < 3; i5++) {
+                    const v = conv([0, 1, 2].map((i4) => sig[k][row][ik_gen_mono(i4, i5)]));
+                    for (let i4 = 0; i4 < 3; i4++) sig[k][row][ik_gen_mono(i4, i5)] = v[i4];
+                }
+            }
+            if (ar.j[4].prism) {
+                for (let i4 = 0; i4 < 3; i4++) {
+                    const v = conv([0, 1, 2].map((i5) => sig[k][row][ik_gen_mono(i4, i5)]));
+                    for (let i5 = 0; i5 < 3; i5++) sig[k][row][ik_gen_mono(i4, i5)] = v[i5];
+                }
+            }
+        }
+    }
 }
 
 // Householder QR with column pivoting of the 14 x 8 matrix b: {qt: Q^T, r, piv, ratio: |r77| /
@@ -480,7 +527,7 @@ function ik_gen_angle_from(pairs) {
 }
 
 // th1, th2 from Bm X12 = Am(th3) X45 by the QR of Bm, given (1, cos, sin) of th3, th4, th5.
-function ik_gen_first_two(el, f3, f4, f5) {
+function ik_gen_first_two(ar, el, f3, f4, f5) {
     const rhs = el.am.map((ae) => {
         let s = 0;
         for (let k = 0; k < 3; k++) for (let i4 = 0; i4 < 3; i4++) for (let i5 = 0; i5 < 3; i5++) {
@@ -498,14 +545,16 @@ function ik_gen_first_two(el, f3, f4, f5) {
     const x12 = new Array(9).fill(0);
     x12[0] = 1;
     for (let i = 0; i < 8; i++) x12[el.piv[i] + 1] = z[i];
-    return [Math.atan2(x12[ik_gen_mono(2, 0)], x12[ik_gen_mono(1, 0)]),
-        Math.atan2(x12[ik_gen_mono(0, 2)], x12[ik_gen_mono(0, 1)])];
+    // A prismatic th1 or th2 is its monomial d itself.
+    return [ar.j[0].prism ? x12[ik_gen_mono(1, 0)] : Math.atan2(x12[ik_gen_mono(2, 0)], x12[ik_gen_mono(1, 0)]),
+        ar.j[1].prism ? x12[ik_gen_mono(0, 1)] : Math.atan2(x12[ik_gen_mono(0, 2)], x12[ik_gen_mono(0, 1)])];
 }
 
 // th6 from the rest: E6 = (E1 ... E5)^-1 H, read about its axis.
 function ik_gen_last(ar, t) {
     let rot = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
     for (let k = 0; k < 5; k++) {
+        if (ar.j[k].prism) continue;
         const r = ik_gen_rodrigues(ar.j[k].w, Math.sin(t[k]), Math.cos(t[k]));
         rot = [0, 1, 2].map((i) => [0, 1, 2].map((j) =>
             -0 + rot[i][0] * r[0][j] + rot[i][1] * r[1][j] + rot[i][2] * r[2][j]));
@@ -524,13 +573,15 @@ function ik_gen_back_substitute(ar, el, mp, phi, x) {
         (mp[2][r][c] * x + mp[1][r][c]) * x + mp[0][r][c]));
     const v = ik_gen_null_vector(m);
     const at = (a, b) => v[3 * a + b];
-    const t3 = ik_gen_wrap(phi + 2 * Math.atan(x));
+    const slide = (k, t) => (ar.j[k].prism ? Math.tan(0.5 * t) : t);
+    const t3 = slide(2, ik_gen_wrap(phi + 2 * Math.atan(x)));
     const p4 = [], p5 = [];
     for (let a = 0; a < 3; a++) for (let b = 0; b < 3; b++) p4.push([at(a + 1, b), at(a, b)]);
     for (let b = 0; b < 2; b++) for (let a = 0; a < 4; a++) p5.push([at(a, b + 1), at(a, b)]);
-    const t4 = ik_gen_angle_from(p4), t5 = ik_gen_angle_from(p5);
-    const f = (t) => [1, Math.cos(t), Math.sin(t)];
-    const [t1, t2] = ik_gen_first_two(el, f(t3), f(t4), f(t5));
+    // A prismatic joint's variable is the tangent of the half angle these formulas give.
+    const t4 = slide(3, ik_gen_angle_from(p4)), t5 = slide(4, ik_gen_angle_from(p5));
+    const f = (k, t) => (ar.j[k].prism ? [1, t, t * t] : [1, Math.cos(t), Math.sin(t)]);
+    const [t1, t2] = ik_gen_first_two(ar, el, f(2, t3), f(3, t4), f(4, t5));
     const t = [t1, t2, t3, t4, t5];
     return t.concat([ik_gen_last(ar, t)]);
 }
@@ -554,6 +605,8 @@ function ik_gen_candidates(ar, el) {
     const roots = [];
     let degree = 0;
     for (const [re, im] of ev) {
+        // A prismatic hidden joint's roots at infinity are no solutions.
+        if (ar.j[2].prism && Math.abs(Math.tan(0.5 * phi + Math.atan(re))) > IK_GEN_PRISM_FAR) continue;
         const spurious = (Math.abs(re) + Math.abs(Math.abs(im) - 1)) < IK_GEN_SPURIOUS_TOL;
         if (Number.isFinite(re) && Number.isFinite(im) && !spurious && Math.hypot(re, im) < IK_GEN_INFINITE_ROOT) {
             degree += 1;
@@ -670,13 +723,14 @@ function ik_gen_solve(axes, home, target, len, tol, first) {
     const hm = home.slice(0, 3).map((r) => r.map((x, c) => (c === 3 ? x / len : x)));
     const tg = target.slice(0, 3).map((r) => r.map((x, c) => (c === 3 ? x / len : x)));
     const prismatic = ax.map((a) => a[0] !== 0);
-    if (prismatic.some((p) => p)) return out;
     const g = ik_gen_compose(tg, ik_gen_inverse(hm));
-    const js = ax.map((a) => ({ w: a.slice(1, 4), c: a.slice(4, 7) }));
+    const js = ax.map((a, i) => ({ w: a.slice(1, 4), c: a.slice(4, 7), prism: prismatic[i] }));
     const f0 = first % 12;
     for (let k = 0; k < 12; k++) {
         const arr = k === 0 ? f0 : k <= f0 ? k - 1 : k;
         const ar = ik_gen_arrange(js, g, arr);
+        // The last arranged joint is eliminated by a point of its axis, which a slide moves.
+        if (prismatic[ar.perm[5]]) continue;
         const el = ik_gen_eliminate(ar);
         if (el.rank_ratio < IK_GEN_RANK_TOL) continue;
         const cand = ik_gen_candidates(ar, el);
@@ -688,7 +742,7 @@ function ik_gen_solve(axes, home, target, len, tol, first) {
         for (const q0 of cand.roots) {
             let [q, res] = ik_gen_refine(ax, hm, tg, q0);
             if (Number.isNaN(res) || res > tol.keep) continue;
-            q = q.map(ik_gen_wrap);
+            q = q.map((x, i) => (prismatic[i] ? x : ik_gen_wrap(x)));
             let at = out.q.findIndex((s) => ik_gen_same(s, q, prismatic));
             if (at >= 0) {
                 if (res < out.residual[at]) [out.q[at], out.residual[at]] = [q, res];
@@ -702,6 +756,8 @@ function ik_gen_solve(axes, home, target, len, tol, first) {
         // Every root gave its own exact solution: the set is complete.
         if (hit.size === cand.roots.length) break;
     }
+    // Prismatic variables back in the robot's length unit.
+    out.q = out.q.map((q) => q.map((x, i) => (prismatic[i] ? x * len : x)));
     return out;
 }
 

@@ -7,6 +7,9 @@ _SS = np.array(IK_GEN_SAMPLE_S)
 _SC = np.array(IK_GEN_SAMPLE_C)
 _DFT = np.array(IK_GEN_DFT)
 _HALF = np.array(IK_GEN_HALF)
+_SD = np.array(IK_GEN_SAMPLE_D)
+_VANDER = np.array(IK_GEN_VANDER)
+_HALF_INV = np.array(IK_GEN_HALF_INV)
 
 
 def _rod(w, s, c):
@@ -17,6 +20,19 @@ def _rod(w, s, c):
 def _apply(j, s, c, x, d):
     r = _rod(j[0], s, c)
     return j[1] + r @ (x - j[1]), r @ d
+
+
+# A joint is (w, c, prism): a prismatic joint's variable is the length d of a slide along w,
+# sampled at 0, 1, -1 and read in the basis (1, d, d^2) (see core.rs, SAMPLE_D and HALF_INV).
+def _sample(j, k, inv, x, d):
+    sg = -1.0 if inv else 1.0
+    if j[2]:
+        return x + sg * _SD[k] * j[0], d
+    return _apply(j, sg * _SS[k], _SC[k], x, d)
+
+
+def _weights(j):
+    return _VANDER if j[2] else _DFT
 
 
 def _quant(p, l):
@@ -42,7 +58,7 @@ def _arranged(js, g, arr):
     rev, shift = arr >= 6, arr % 6
     base, h, bperm = list(js), g, list(range(6))
     if rev:
-        base = [(-js[5 - i][0], js[5 - i][1]) for i in range(6)]
+        base = [(-js[5 - i][0], js[5 - i][1], js[5 - i][2]) for i in range(6)]
         bperm = [5 - i for i in range(6)]
         h = _inv(g)
     hi = _inv(h)
@@ -52,36 +68,46 @@ def _arranged(js, g, arr):
         perm.append(bperm[k])
         if k < shift:
             c, w = _mapply(hi, base[k][1], base[k][0])
-            j.append((w, c))
+            j.append((w, c, base[k][2]))
         else:
             j.append(base[k])
     return j, h, perm
 
 
 def _elim(j, h):
-    w6, p6 = j[5]
+    w6, p6, _ = j[5]
     lhs = np.zeros((3, 3, 3, 14))
     for k5 in range(3):
-        x5, d5 = _apply(j[4], _SS[k5], _SC[k5], p6, w6)
+        x5, d5 = _sample(j[4], k5, False, p6, w6)
         for k4 in range(3):
-            x4, d4 = _apply(j[3], _SS[k4], _SC[k4], x5, d5)
+            x4, d4 = _sample(j[3], k4, False, x5, d5)
             for k3 in range(3):
-                x3, d3 = _apply(j[2], _SS[k3], _SC[k3], x4, d4)
+                x3, d3 = _sample(j[2], k3, False, x4, d4)
                 lhs[k3, k4, k5] = _quant(x3, d3)
     hp, hd = _mapply(h, p6, w6)
     rhs = np.zeros((3, 3, 14))
     for k1 in range(3):
-        y1, e1 = _apply(j[0], -_SS[k1], _SC[k1], hp, hd)
+        y1, e1 = _sample(j[0], k1, True, hp, hd)
         for k2 in range(3):
-            y2, e2 = _apply(j[1], -_SS[k2], _SC[k2], y1, e1)
+            y2, e2 = _sample(j[1], k2, True, y1, e1)
             rhs[k1, k2] = _quant(y2, e2)
-    am = np.einsum('ia,jb,kc,abce->eijk', _DFT, _DFT, _DFT, lhs).reshape(14, 3, 9).copy()
-    r = np.einsum('ia,jb,abe->eij', _DFT, _DFT, rhs).reshape(14, 9)
+    w = [_weights(x) for x in j]
+    am = np.einsum('ia,jb,kc,abce->eijk', w[2], w[3], w[4], lhs).reshape(14, 3, 9).copy()
+    r = np.einsum('ia,jb,abe->eij', w[0], w[1], rhs).reshape(14, 9)
     am[:, 0, 0] -= r[:, 0]
     bm = r[:, 1:]
     u, sv, _ = np.linalg.svd(bm)
     ratio = sv[7] / sv[0] if sv[0] > 0 else 0.0
     sig = np.einsum('re,ekm->krm', u[:, 8:].T, am)
+    # Prismatic joints 3, 4, 5 into the basis the half-angle map turns into (1, d, d^2).
+    s9 = sig.reshape(3, 6, 3, 3)
+    if j[2][2]:
+        s9 = np.einsum('krab,kc->crab', s9, _HALF_INV)
+    if j[3][2]:
+        s9 = np.einsum('krab,ac->krcb', s9, _HALF_INV)
+    if j[4][2]:
+        s9 = np.einsum('krab,bc->krac', s9, _HALF_INV)
+    sig = s9.reshape(3, 6, 9)
     return am, bm, ratio, sig
 
 
@@ -127,15 +153,23 @@ def _back(j, h, am, bm, mp, phi, x):
     t3 = _wrap(phi + 2 * math.atan(x))
     t4 = _angle([(at(a + 1, b), at(a, b)) for a in range(3) for b in range(3)])
     t5 = _angle([(at(a, b + 1), at(a, b)) for a in range(4) for b in range(2)])
-    f = lambda t: np.array([1.0, math.cos(t), math.sin(t)])
-    x45 = np.outer(f(t4), f(t5)).reshape(9)
-    rhs = np.einsum('ekm,k,m->e', am, f(t3), x45)
+    # A slide's variable is the tangent of the half angle these formulas give.
+    t3, t4, t5 = [math.tan(0.5 * t) if j[k][2] else t for k, t in ((2, t3), (3, t4), (4, t5))]
+
+    def f(k, t):
+        if j[k][2]:
+            return np.array([1.0, t, t * t])
+        return np.array([1.0, math.cos(t), math.sin(t)])
+
+    x45 = np.outer(f(3, t4), f(4, t5)).reshape(9)
+    rhs = np.einsum('ekm,k,m->e', am, f(2, t3), x45)
     x12 = np.linalg.lstsq(bm, rhs, rcond=None)[0]
-    t1 = math.atan2(x12[5], x12[2])
-    t2 = math.atan2(x12[1], x12[0])
+    t1 = x12[2] if j[0][2] else math.atan2(x12[5], x12[2])
+    t2 = x12[0] if j[1][2] else math.atan2(x12[1], x12[0])
     rot = np.eye(3)
     for k, tk in enumerate([t1, t2, t3, t4, t5]):
-        rot = rot @ _rod(j[k][0], math.sin(tk), math.cos(tk))
+        if not j[k][2]:
+            rot = rot @ _rod(j[k][0], math.sin(tk), math.cos(tk))
     w6 = j[5][0]
     e = np.array([1.0, 0.0, 0.0]) if abs(w6[0]) < 0.6 else np.array([0.0, 1.0, 0.0])
     u = np.cross(w6, e)
@@ -178,6 +212,9 @@ def _candidates(j, h, perm, am, bm, sig):
     k[12:, 12:] = -a_inv @ mp[1]
     out = []
     for z in np.linalg.eigvals(_deflate(mp, k)):
+        # A prismatic hidden joint's roots at infinity are no solutions.
+        if j[2][2] and np.isfinite(z) and abs(math.tan(0.5 * phi + math.atan(z.real))) > IK_GEN_PRISM_FAR:
+            continue
         if np.isfinite(z) and abs(z.imag) <= IK_GEN_NEAR_REAL * (1 + abs(z.real)):
             t = _back(j, h, am, bm, mp, phi, float(z.real))
             q = [0.0] * 6
@@ -193,9 +230,12 @@ def _forward(ax, home, q):
     for a, qi in zip(ax, q):
         w, c = a[1:4], a[4:7]
         o, d = _mapply(p, c, w)
-        cur.append((d, o))
-        r = _rod(w, math.sin(qi), math.cos(qi))
-        p = _compose(p, np.hstack([r, (c - r @ c)[:, None]]))
+        cur.append((d, o, a[0] != 0))
+        if a[0] != 0:
+            p = _compose(p, np.hstack([np.eye(3), (qi * w)[:, None]]))
+        else:
+            r = _rod(w, math.sin(qi), math.cos(qi))
+            p = _compose(p, np.hstack([r, (c - r @ c)[:, None]]))
     return _compose(p, home), cur
 
 
@@ -209,7 +249,10 @@ def _refine(ax, home, t, q):
         if not res > IK_GEN_EXACT_TOL:
             break
         cols = []
-        for d, o in cur:
+        for d, o, slide in cur:
+            if slide:
+                cols.append(np.hstack([np.zeros((3, 3)), d[:, None]]).reshape(12))
+                continue
             dr = np.cross(d, f[:, :3].T).T
             dt = np.cross(d, f[:, 3] - o)
             cols.append(np.hstack([dr, dt[:, None]]).reshape(12))
@@ -233,8 +276,9 @@ def _refine(ax, home, t, q):
     return q, res
 
 
-def _same(a, b):
-    return all(abs(_wrap(x - y)) <= IK_GEN_SAME_TOL for x, y in zip(a, b))
+def _same(a, b, slides):
+    return all(abs(x - y if sl else _wrap(x - y)) <= IK_GEN_SAME_TOL
+               for x, y, sl in zip(a, b, slides))
 
 
 def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
@@ -245,7 +289,8 @@ def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
     tg = np.array(target, dtype=float)[:3].copy()
     tg[:, 3] /= length
     g = _compose(tg, _inv(home))
-    js = [(a[1:4], a[4:7]) for a in ax]
+    slides = [a[0] != 0 for a in ax]
+    js = [(a[1:4], a[4:7], a[0] != 0) for a in ax]
     sols = []
     used = 0
     order = [first % 12] + [k for k in range(12) if k != first % 12]
@@ -253,6 +298,9 @@ def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
         if used == 12:
             break
         j, h, perm = _arranged(js, g, arr)
+        # The last arranged joint is eliminated by a point of its axis, which a slide moves.
+        if slides[perm[5]]:
+            continue
         am, bm, ratio, sig = _elim(j, h)
         if ratio < IK_GEN_RANK_TOL:
             continue
@@ -265,8 +313,8 @@ def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
             q, res = _refine(ax, home, tg, q0)
             if not res <= keep_tol:
                 continue
-            q = [_wrap(float(x)) for x in q]
-            at = next((i for i, s in enumerate(sols) if _same(s[0], q)), None)
+            q = [float(x) if sl else _wrap(float(x)) for x, sl in zip(q, slides)]
+            at = next((i for i, s in enumerate(sols) if _same(s[0], q, slides)), None)
             if at is None and len(sols) < IK_GEN_MAX:
                 sols.append([q, res])
                 at = len(sols) - 1
@@ -276,4 +324,6 @@ def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
                 hit.add(at)
         if len(hit) == len(cands):
             break
-    return [(q, False, not res <= pose_tol, float(res)) for q, res in sols]
+    # Slides back in the robot's length unit.
+    return [([x * length if sl else x for x, sl in zip(q, slides)], False, not res <= pose_tol,
+             float(res)) for q, res in sols]

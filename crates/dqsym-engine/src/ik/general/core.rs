@@ -76,15 +76,44 @@ fn mv(r: &M3, v: &V) -> V {
     [dot3(&r[0], v), dot3(&r[1], v), dot3(&r[2], v)]
 }
 
-/// One joint of an arranged chain: unit direction `w`, point `c` (scaled), and its motion at
-/// an angle applied to a point and a direction.
+/// One joint of an arranged chain: unit direction `w`, point `c` (scaled), whether it slides
+/// (`prism`: its variable is the length `d` of a translation along `w`, and `c` is unused), and
+/// its motion applied to a point and a direction.
 #[derive(Clone, Copy)]
 pub(crate) struct J {
     pub(crate) w: V,
     pub(crate) c: V,
+    pub(crate) prism: bool,
 }
 
 impl J {
+    /// `(E x, R d)` at sample `k` of the joint's variable (`inv`: the inverse motion): a
+    /// revolute joint at the angle `2πk/3`, a prismatic one at the length `SAMPLE_D[k]`.
+    fn sample(&self, k: usize, inv: bool, x: &V, d: &V) -> (V, V) {
+        let sg = if inv { -1.0 } else { 1.0 };
+        if self.prism {
+            let t = sg * SAMPLE_D[k];
+            let y = [
+                x[0] + t * self.w[0],
+                x[1] + t * self.w[1],
+                x[2] + t * self.w[2],
+            ];
+            (y, *d)
+        } else {
+            self.apply(sg * SAMPLE_S[k], SAMPLE_C[k], x, d)
+        }
+    }
+
+    /// The weights that turn the three samples into the coefficients of the joint's basis:
+    /// `(1, cos θ, sin θ)` for a revolute joint, `(1, d, d²)` for a prismatic one.
+    fn weights(&self) -> &'static [[f64; 3]; 3] {
+        if self.prism {
+            &VANDER
+        } else {
+            &DFT
+        }
+    }
+
     /// `(E x, R d)` at the angle with sine `s`, cosine `co`.
     fn apply(&self, s: f64, co: f64, x: &V, d: &V) -> (V, V) {
         let r = rodrigues(&self.w, s, co);
@@ -127,6 +156,21 @@ pub const DFT: [[f64; 3]; 3] = [
     [2.0 / 3.0, -1.0 / 3.0, -1.0 / 3.0],
     [0.0, 0.577_350_269_189_625_8, -0.577_350_269_189_625_8],
 ];
+
+/// The three sample lengths of a prismatic joint's variable `d` (scaled), and the weights that
+/// turn three samples of `a + b d + c d²` into `(a, b, c)` exactly (the inverse Vandermonde
+/// matrix of `0, 1, −1`): a translation by `d w` acts on the fourteen quantities with entries
+/// of degree at most two in `d` (`p·p` gains `2 d w·p + d²`).
+pub const SAMPLE_D: [f64; 3] = [0.0, 1.0, -1.0];
+pub const VANDER: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 0.5, -0.5], [-1.0, 0.5, 0.5]];
+
+/// The basis change that lets a prismatic joint's `(1, d, d²)` coefficients through the
+/// half-angle map [`HALF`] of a revolute joint's `(1, cos, sin)`: `HALF⁻¹`, so that
+/// `(coefficients · HALF_INV) · HALF` is the polynomial `a + b x + c x²` in `x = d` itself.
+/// Then the hidden joint's shift `φ` (a rotation of `(cos, sin)`) becomes the Möbius map `d =
+/// (t + y) / (1 − t y)`, `t = tan(φ/2)` (up to the constant factor `1 + t²`), and `d =
+/// tan(θ/2)` for the angle `θ` the revolute formulas give.
+pub const HALF_INV: [[f64; 3]; 3] = [[0.5, 0.5, 0.0], [0.0, 0.0, 0.5], [0.5, -0.5, 0.0]];
 
 /// The arranged problem `E1 ⋯ E6 = H` (home pose the identity), its elimination and solution.
 pub(crate) struct Arranged {
@@ -172,6 +216,7 @@ impl Arranged {
                 base[i] = J {
                     w: [-a.w[0], -a.w[1], -a.w[2]],
                     c: a.c,
+                    prism: a.prism,
                 };
                 bperm[i] = 5 - i;
             }
@@ -186,12 +231,21 @@ impl Arranged {
             perm[i] = bperm[k];
             j[i] = if k < shift {
                 let (c, w) = motion_apply(&hi, &base[k].c, &base[k].w);
-                J { w, c }
+                J {
+                    w,
+                    c,
+                    prism: base[k].prism,
+                }
             } else {
                 base[k]
             };
         }
         Arranged { j, h, perm }
+    }
+
+    /// Whether each arranged joint slides.
+    pub(crate) fn prismatic(&self) -> [bool; 6] {
+        std::array::from_fn(|i| self.j[i].prism)
     }
 
     /// The equations' coefficients by exact trigonometric interpolation (see [`DFT`]).
@@ -201,11 +255,11 @@ impl Arranged {
         // Left: E3 E4 E5 applied to (p6, w6) on a 3 x 3 x 3 grid.
         let mut lhs = [[[[0.0; 14]; 3]; 3]; 3];
         for k5 in 0..3 {
-            let (x5, d5) = self.j[4].apply(SAMPLE_S[k5], SAMPLE_C[k5], &p6, &w6);
+            let (x5, d5) = self.j[4].sample(k5, false, &p6, &w6);
             for k4 in 0..3 {
-                let (x4, d4) = self.j[3].apply(SAMPLE_S[k4], SAMPLE_C[k4], &x5, &d5);
+                let (x4, d4) = self.j[3].sample(k4, false, &x5, &d5);
                 for k3 in 0..3 {
-                    let (x3, d3) = self.j[2].apply(SAMPLE_S[k3], SAMPLE_C[k3], &x4, &d4);
+                    let (x3, d3) = self.j[2].sample(k3, false, &x4, &d4);
                     lhs[k3][k4][k5] = quantities(&x3, &d3);
                 }
             }
@@ -214,21 +268,22 @@ impl Arranged {
         let hp = motion_apply(&self.h, &p6, &w6);
         let mut rhs = [[[0.0; 14]; 3]; 3];
         for k1 in 0..3 {
-            let (y1, e1) = self.j[0].apply(-SAMPLE_S[k1], SAMPLE_C[k1], &hp.0, &hp.1);
+            let (y1, e1) = self.j[0].sample(k1, true, &hp.0, &hp.1);
             for k2 in 0..3 {
-                let (y2, e2) = self.j[1].apply(-SAMPLE_S[k2], SAMPLE_C[k2], &y1, &e1);
+                let (y2, e2) = self.j[1].sample(k2, true, &y1, &e1);
                 rhs[k1][k2] = quantities(&y2, &e2);
             }
         }
         let mut am = [[[0.0; 9]; 3]; 14];
         let mut bm = [[0.0; 8]; 14];
+        let wt: [&[[f64; 3]; 3]; 5] = std::array::from_fn(|i| self.j[i].weights());
         // The 3-D transform as three 1-D passes (27 x 3 products each instead of 27 x 27).
         let mut t1 = [[[[0.0; 14]; 3]; 3]; 3];
         for i5 in 0..3 {
             for k3 in 0..3 {
                 for k4 in 0..3 {
                     for k5 in 0..3 {
-                        let w = DFT[i5][k5];
+                        let w = wt[4][i5][k5];
                         for e in 0..14 {
                             t1[k3][k4][i5][e] += w * lhs[k3][k4][k5][e];
                         }
@@ -240,7 +295,7 @@ impl Arranged {
         for i4 in 0..3 {
             for k3 in 0..3 {
                 for k4 in 0..3 {
-                    let w = DFT[i4][k4];
+                    let w = wt[3][i4][k4];
                     for i5 in 0..3 {
                         for e in 0..14 {
                             t2[k3][i4][i5][e] += w * t1[k3][k4][i5][e];
@@ -251,7 +306,7 @@ impl Arranged {
         }
         for i3 in 0..3 {
             for k3 in 0..3 {
-                let w = DFT[i3][k3];
+                let w = wt[2][i3][k3];
                 for i4 in 0..3 {
                     for i5 in 0..3 {
                         for e in 0..14 {
@@ -267,7 +322,7 @@ impl Arranged {
                     let mut s = 0.0;
                     for k1 in 0..3 {
                         for k2 in 0..3 {
-                            s += DFT[i1][k1] * DFT[i2][k2] * rhs[k1][k2][e];
+                            s += wt[0][i1][k1] * wt[1][i2][k2] * rhs[k1][k2][e];
                         }
                     }
                     let m = mono(i1, i2);
@@ -292,6 +347,7 @@ impl Arranged {
                 }
             }
         }
+        self.prismatic_basis(&mut sig);
         Some(Elim {
             am,
             qt,
@@ -300,6 +356,45 @@ impl Arranged {
             rank_ratio,
             sig,
         })
+    }
+}
+
+impl Arranged {
+    /// The coefficients of prismatic joints 3, 4, 5 from `(1, d, d²)` into the basis that
+    /// [`matrix_poly`]'s half-angle map turns into `(1, d, d²)` again ([`HALF_INV`]).
+    #[allow(clippy::needless_range_loop)]
+    fn prismatic_basis(&self, sig: &mut [[[f64; 9]; 6]; 3]) {
+        let conv = |v: [f64; 3]| -> [f64; 3] {
+            std::array::from_fn(|k| (0..3).map(|j| v[j] * HALF_INV[j][k]).sum())
+        };
+        for row in 0..6 {
+            if self.j[2].prism {
+                for m in 0..9 {
+                    let v = conv([sig[0][row][m], sig[1][row][m], sig[2][row][m]]);
+                    for k in 0..3 {
+                        sig[k][row][m] = v[k];
+                    }
+                }
+            }
+            for k in 0..3 {
+                if self.j[3].prism {
+                    for i5 in 0..3 {
+                        let v = conv(std::array::from_fn(|i4| sig[k][row][mono(i4, i5)]));
+                        for i4 in 0..3 {
+                            sig[k][row][mono(i4, i5)] = v[i4];
+                        }
+                    }
+                }
+                if self.j[4].prism {
+                    for i4 in 0..3 {
+                        let v = conv(std::array::from_fn(|i5| sig[k][row][mono(i4, i5)]));
+                        for i5 in 0..3 {
+                            sig[k][row][mono(i4, i5)] = v[i5];
+                        }
+                    }
+                }
+            }
+        }
     }
 }
 
@@ -821,12 +916,20 @@ fn back_substitute(
         (at(2, 2), at(2, 1)),
         (at(3, 2), at(3, 1)),
     ]);
+    // A prismatic joint's variable is the tangent of the half angle these formulas give
+    // (`d = tan(θ/2)`, see [`HALF_INV`]).
+    let slide = |k: usize, t: f64| if ar.j[k].prism { (0.5 * t).tan() } else { t };
+    let (t3, t4, t5) = (slide(2, t3), slide(3, t4), slide(4, t5));
     // θ1, θ2: Bm X12 = Am(θ3) X45 by the QR of Bm.
-    let f = |t: f64| {
-        let (s, c) = t.sin_cos();
-        [1.0, c, s]
+    let f = |k: usize, t: f64| {
+        if ar.j[k].prism {
+            [1.0, t, t * t]
+        } else {
+            let (s, c) = t.sin_cos();
+            [1.0, c, s]
+        }
     };
-    let (f3, f4, f5) = (f(t3), f(t4), f(t5));
+    let (f3, f4, f5) = (f(2, t3), f(3, t4), f(4, t5));
     let mut rhs = [0.0; 14];
     for e in 0..14 {
         let mut s = 0.0;
@@ -860,12 +963,24 @@ fn back_substitute(
     for i in 0..8 {
         x12[el.piv[i] + 1] = z[i];
     }
-    let t1 = x12[mono(2, 0)].atan2(x12[mono(1, 0)]);
-    let t2 = x12[mono(0, 2)].atan2(x12[mono(0, 1)]);
+    // A prismatic θ1 or θ2 is its monomial `d` itself.
+    let t1 = if ar.j[0].prism {
+        x12[mono(1, 0)]
+    } else {
+        x12[mono(2, 0)].atan2(x12[mono(1, 0)])
+    };
+    let t2 = if ar.j[1].prism {
+        x12[mono(0, 1)]
+    } else {
+        x12[mono(0, 2)].atan2(x12[mono(0, 1)])
+    };
     // θ6 from the rest: E6 = (E1 ⋯ E5)⁻¹ H, read about its axis.
     let t = [t1, t2, t3, t4, t5];
     let mut rot = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     for (k, tk) in t.iter().enumerate() {
+        if ar.j[k].prism {
+            continue;
+        }
         let (s, c) = tk.sin_cos();
         let r = rodrigues(&ar.j[k].w, s, c);
         let mut n = [[0.0; 3]; 3];
@@ -909,6 +1024,17 @@ pub const SHIFT_SINGULAR: f64 = 1e-10;
 
 /// An eigenvalue within this of `±i` is the spurious factor `1 + x²`, not counted in the degree.
 pub const SPURIOUS_TOL: f64 = 1e-6;
+
+/// A prismatic hidden joint's root beyond this (scaled length) is a root at infinity, not a
+/// solution. After scaling every length of the arm and the target's distance are at most 1, so
+/// a slide that reaches the target travels at most about 7 (six links and the target), or
+/// `7 / sin α` where two slides at an angle `α` cancel part of each other's travel: below 100
+/// for slides more than 4 degrees from parallel (parallel slides are a special family). The
+/// roots at infinity of `det M(d)` (8 for a general 5R1P, 16 for a 4R2P with adjacent
+/// slides) come out of the shifted linearisation as a cluster around `y = cot(φ/2)`, spread by
+/// rounding as `ε^(1/k)` for a cluster of `k`: up to about `1e-4` measured, that is `|d|`
+/// above `1e4`; the margin of 100 covers spreads up to `1e-2`.
+pub const PRISM_FAR: f64 = 1e2;
 
 /// An eigenvalue larger than this is a root at infinity (the degree drops), not counted.
 pub const INFINITE_ROOT: f64 = 1e8;
@@ -963,6 +1089,11 @@ fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(u
     let mut n = 0;
     let mut degree = 0;
     for &(re, im) in &ev[..n_ev] {
+        // A prismatic hidden joint's roots at infinity (`d = ∞`, the eigenvalues clustered at
+        // `y = cot(φ/2)`) are no solutions.
+        if ar.j[2].prism && (0.5 * phi + re.atan()).tan().abs() > PRISM_FAR {
+            continue;
+        }
         let spurious = (re.abs() + (im.abs() - 1.0).abs()) < SPURIOUS_TOL;
         if re.is_finite() && im.is_finite() && !spurious && re.hypot(im) < INFINITE_ROOT {
             degree += 1;
@@ -1168,13 +1299,11 @@ pub fn gen_solve(
         tg[r][3] /= len;
     }
     let prismatic: [bool; 6] = std::array::from_fn(|i| ax[i][0] != 0.0);
-    if prismatic.iter().any(|p| *p) {
-        return out;
-    }
     let g = compose(&tg, &inverse(&hm));
     let js: [J; 6] = std::array::from_fn(|i| J {
         w: [ax[i][1], ax[i][2], ax[i][3]],
         c: [ax[i][4], ax[i][5], ax[i][6]],
+        prism: prismatic[i],
     });
     let mut roots = [[0.0; 6]; 24];
     // The arrangement that served at the derivation's generic target first (special geometry
@@ -1193,6 +1322,10 @@ pub fn gen_solve(
             break;
         }
         let ar = Arranged::new(&js, &g, arr);
+        // The last arranged joint is eliminated by a point of its axis, which a slide moves.
+        if prismatic[ar.perm[5]] {
+            continue;
+        }
         let Some(el) = ar.elim() else { continue };
         if el.rank_ratio < RANK_TOL {
             continue;
@@ -1215,8 +1348,10 @@ pub fn gen_solve(
             if res.is_nan() || res > tol.keep {
                 continue;
             }
-            for v in q.iter_mut() {
-                *v = wrap(*v);
+            for (v, p) in q.iter_mut().zip(prismatic) {
+                if !p {
+                    *v = wrap(*v);
+                }
             }
             let at = if let Some(i) = (0..out.n).find(|&i| same(&out.q[i], &q, &prismatic)) {
                 if res < out.residual[i] {
@@ -1240,6 +1375,14 @@ pub fn gen_solve(
         // solutions sharing the hidden joint, gives one of them twice or neither).
         if hit.iter().filter(|h| **h).count() == n {
             break;
+        }
+    }
+    // Prismatic variables back in the robot's length unit.
+    for q in out.q.iter_mut().take(out.n) {
+        for (v, p) in q.iter_mut().zip(prismatic) {
+            if p {
+                *v *= len;
+            }
         }
     }
     out

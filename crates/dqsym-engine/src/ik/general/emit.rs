@@ -77,6 +77,7 @@ fn core_constants() -> (Vec<Named<String>>, Vec<Table>) {
         ("IK_GEN_DAMP_MAX", f(k::DAMP_MAX)),
         ("IK_GEN_SAME_TOL", f(k::SAME_TOL)),
         ("IK_GEN_MIN_POSITIVE", f(f64::MIN_POSITIVE)),
+        ("IK_GEN_PRISM_FAR", f(k::PRISM_FAR)),
     ];
     let rows = |m: &[[f64; 3]; 3]| m.iter().map(|r| r.to_vec()).collect::<Vec<_>>();
     let tables = vec![
@@ -85,6 +86,9 @@ fn core_constants() -> (Vec<Named<String>>, Vec<Table>) {
         ("IK_GEN_DFT", rows(&k::DFT)),
         ("IK_GEN_HALF", rows(&k::HALF)),
         ("IK_GEN_SHIFTS", vec![k::SHIFTS.to_vec()]),
+        ("IK_GEN_SAMPLE_D", vec![k::SAMPLE_D.to_vec()]),
+        ("IK_GEN_VANDER", rows(&k::VANDER)),
+        ("IK_GEN_HALF_INV", rows(&k::HALF_INV)),
     ];
     (scalars, tables)
 }
@@ -212,7 +216,9 @@ fn chain_code(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
     let ax: Vec<String> = (0..6)
         .map(|i| {
             let v: Vec<String> = (0..6).map(|k| code(6 * i + k)).collect();
-            format!("{open}0.0, {}{close}", v.join(", "))
+            // The kind: 1 for a joint that slides (the core's `GenAxis`).
+            let kind = u8::from(sol.axes[i].kind == crate::kin::JointKind::Prismatic);
+            format!("{open}{kind}.0, {}{close}", v.join(", "))
         })
         .collect();
     let hm: Vec<String> = (0..3)

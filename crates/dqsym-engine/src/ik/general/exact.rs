@@ -19,6 +19,13 @@
 //! products `(1, c3, s3) ⊗ (1, c4, s4) ⊗ (1, c5, s5)` come out of three such products applied
 //! one joint at a time, by exact arithmetic (no sampling, no floating point).
 //!
+//! A prismatic joint's slide by `d w` is a translation: by the formulas above its matrix is
+//! `K₁ + d K_d + d² K_dd` (`p·p` gains `2 d w·p + d² w·w`, the last three `d² (w·w) l − 2 d²
+//! (w·l) w`), so the same construction runs in the basis `(1, d, d²)` of its variable, and the
+//! half-angle form leaves `d` as it is. The loop is read so that its last joint turns (a point
+//! of that axis is what the joint leaves fixed): forwards, or backwards when the last joint
+//! slides; an arm whose first and last joints both slide has no such reading from joint 1.
+//!
 //! The target enters through the fourteen quantities of the point `u = H p6` and the
 //! direction `v = H w6` alone (`H = G = T M⁻¹`, or `G⁻¹` when the loop is read backwards):
 //! the equations name them `g1 … g14` and give their definitions apart.
@@ -26,10 +33,24 @@
 use super::super::axes::{cross, dot, V3};
 use super::super::{IkSolution, TARGET_SYMBOLS};
 use super::GeneralInfo;
+use crate::kin::JointKind;
 use crate::{Scalar, ScalarError};
 
 /// Fourteen quantities and the constant 1.
 pub(crate) type Q15 = [Scalar; 15];
+
+/// Why [`exact_equations`] gives no equations.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ExactError {
+    /// The exact arithmetic failed (term limit, work budget, an interruption).
+    #[error(transparent)]
+    Scalar(#[from] ScalarError),
+    /// The first and the last joint both slide: no reading of the loop from joint 1 ends with
+    /// a joint that turns.
+    #[error("the first and the last joint both slide, so no reading of the loop from the first joint ends with a turning joint")]
+    SlideAtBothEnds,
+}
 
 /// The exact equations of one arrangement of the loop.
 #[derive(Clone, Debug)]
@@ -39,6 +60,9 @@ pub struct ExactEquations {
     pub arrangement: (bool, usize),
     /// The arm's joint index (from 0) of each arranged joint.
     pub order: [usize; 6],
+    /// Whether each arranged joint slides: its basis is `(1, d, d²)` where a turning joint's
+    /// is `(1, cos, sin)`, in `am`, `bm` and the half-angle form.
+    pub prismatic: [bool; 6],
     /// The names of the target's fourteen quantities (`g1 … g14` unless a parameter is
     /// called so).
     pub g_names: Vec<String>,
@@ -160,6 +184,55 @@ fn rotate_parts(q: &Q15, w: &V3, sign: i64) -> [Q15; 3] {
     [k1, kc, ks]
 }
 
+/// A slide by `sign d w` applied to `q`, in parts `(1, d, d²)` (the translation's formulas with
+/// `t = d w` sorted by powers of `d`).
+fn slide_parts(q: &Q15, w: &V3, sign: i64) -> [Q15; 3] {
+    let (l, p, x, last) = (part(q, 0), part(q, 3), part(q, 8), part(q, 11));
+    let (pp, pl, one) = (&q[6], &q[7], &q[14]);
+    let zero = Scalar::int(0);
+    let sg = Scalar::int(sign);
+    let two = Scalar::int(2);
+    let ww = dot(w, w);
+    let wl = dot(w, &l);
+    let zv = v3(|_| zero.clone());
+    // Power one (times sign): p + w, p·p + 2 w·p, p·l + w·l, p × l + w × l, last − 2 w × (p × l)
+    // − 2 (p·l) w.
+    let wxl = cross(w, &l);
+    let wxx = cross(w, &x);
+    let d1 = assemble(
+        &zv,
+        &v3(|i| &w[i] * one * &sg),
+        &two * dot(w, &p) * &sg,
+        &wl * &sg,
+        &v3(|i| &wxl[i] * &sg),
+        &v3(|i| (-&two * &wxx[i] - &two * pl * &w[i]) * &sg),
+        zero.clone(),
+    );
+    // Power two (sign squared): p·p + w·w, last + (w·w) l − 2 (w·l) w.
+    let d2 = assemble(
+        &zv,
+        &zv,
+        &ww * one,
+        zero.clone(),
+        &zv,
+        &v3(|i| &ww * &l[i] - &two * &wl * &w[i]),
+        zero.clone(),
+    );
+    let d0 = assemble(&l, &p, pp.clone(), pl.clone(), &x, &last, one.clone());
+    [d0, d1, d2]
+}
+
+/// A joint's motion applied to `q` in the parts of its variable's basis: a turn about the line
+/// through `c` along `w` in `(1, cos, sin)` of its angle, a slide along `w` in `(1, d, d²)`
+/// (`sign` −1: the inverse motion).
+fn motion_parts(q: &Q15, (w, c, slide): &(V3, V3, bool), sign: i64) -> [Q15; 3] {
+    if *slide {
+        slide_parts(q, w, sign)
+    } else {
+        joint_parts(q, w, c, sign)
+    }
+}
+
 /// A joint's turn about the line through `c` along `w` applied to `q`, in parts `(1, cos,
 /// sin)` of its angle (`sign` −1: the inverse turn).
 fn joint_parts(q: &Q15, w: &V3, c: &V3, sign: i64) -> [Q15; 3] {
@@ -216,28 +289,37 @@ fn g_names(sol: &IkSolution) -> Vec<String> {
 }
 
 /// The exact equations of the arrangement read from joint 1, forwards or backwards as at the
-/// derivation's generic target (`info.arrangement.0`). An arrangement read from another joint
-/// (`shift > 0`, chosen when these are degenerate) conjugates joints by the target and is not
-/// derived exactly; its equations are the same construction with those axes moved.
+/// derivation's generic target (`info.arrangement.0`), or the other way when that would end
+/// with a joint that slides. An arrangement read from another joint (`shift > 0`, chosen when
+/// these are degenerate) conjugates joints by the target and is not derived exactly; its
+/// equations are the same construction with those axes moved.
 ///
 /// # Errors
-/// The exact arithmetic fails (term limit, work budget).
-pub fn exact_equations(
-    sol: &IkSolution,
-    info: &GeneralInfo,
-) -> Result<ExactEquations, ScalarError> {
-    let rev = info.arrangement.0;
+/// The exact arithmetic fails (term limit, work budget); the first and last joints both slide.
+pub fn exact_equations(sol: &IkSolution, info: &GeneralInfo) -> Result<ExactEquations, ExactError> {
+    let slides = |k: usize| {
+        sol.axes
+            .get(k)
+            .is_some_and(|a| a.kind == JointKind::Prismatic)
+    };
+    let mut rev = info.arrangement.0;
+    if slides(if rev { 0 } else { 5 }) {
+        rev = !rev;
+    }
+    if slides(if rev { 0 } else { 5 }) {
+        return Err(ExactError::SlideAtBothEnds);
+    }
     let order: [usize; 6] = std::array::from_fn(|i| if rev { 5 - i } else { i });
     // The arranged axes: reversed directions when read backwards (`Ei⁻¹(q)` turns about the
-    // reversed axis by `q`).
-    let axis = |i: usize| -> (V3, V3) {
+    // reversed axis by `q`, and slides along it by `q`).
+    let axis = |i: usize| -> (V3, V3, bool) {
         let a = &sol.axes[order[i]];
         let w = if rev {
             v3(|k| -&a.dir[k])
         } else {
             a.dir.clone()
         };
-        (w, a.point.clone())
+        (w, a.point.clone(), slides(order[i]))
     };
     // G = T M⁻¹ with T the symbolic target.
     let t: Motion =
@@ -245,7 +327,7 @@ pub fn exact_equations(
     let m: Motion = std::array::from_fn(|i| std::array::from_fn(|j| sol.home.rows[i][j].clone()));
     let g = compose(&t, &inverse(&m));
     let h = if rev { inverse(&g) } else { g };
-    let (w6, p6) = axis(5);
+    let (w6, p6, _) = axis(5);
     let (u, v) = apply(&h, &p6, &w6);
     let defs = quantities(&u, &v);
     let names = g_names(sol);
@@ -259,17 +341,15 @@ pub fn exact_equations(
     gq[14] = Scalar::int(1);
     // Left side: E3 E4 E5 applied to (p6, w6), one joint at a time.
     let q0 = quantities(&p6, &w6);
-    let (w5, c5) = axis(4);
-    let (w4, c4) = axis(3);
-    let (w3, c3) = axis(2);
-    let v5 = joint_parts(&q0, &w5, &c5, 1);
+    let (j5, j4, j3) = (axis(4), axis(3), axis(2));
+    let v5 = motion_parts(&q0, &j5, 1);
     let zero = || Scalar::int(0);
     let mut am: Vec<[[Scalar; 9]; 3]> = (0..14)
         .map(|_| std::array::from_fn(|_| std::array::from_fn(|_| zero())))
         .collect();
     for (i5, x5) in v5.iter().enumerate() {
-        for (i4, x4) in joint_parts(x5, &w4, &c4, 1).iter().enumerate() {
-            for (i3, x3) in joint_parts(x4, &w3, &c3, 1).iter().enumerate() {
+        for (i4, x4) in motion_parts(x5, &j4, 1).iter().enumerate() {
+            for (i3, x3) in motion_parts(x4, &j3, 1).iter().enumerate() {
                 for e in 0..14 {
                     am[e][i3][3 * i4 + i5] = x3[e].clone().check()?;
                 }
@@ -277,11 +357,10 @@ pub fn exact_equations(
         }
     }
     // Right side: E2⁻¹ E1⁻¹ applied to the target's (u, v), linear in its quantities.
-    let (w1, c1) = axis(0);
-    let (w2, c2) = axis(1);
+    let (j1, j2) = (axis(0), axis(1));
     let mut bm: Vec<[Scalar; 8]> = (0..14).map(|_| std::array::from_fn(|_| zero())).collect();
-    for (i1, y1) in joint_parts(&gq, &w1, &c1, -1).iter().enumerate() {
-        for (i2, y2) in joint_parts(y1, &w2, &c2, -1).iter().enumerate() {
+    for (i1, y1) in motion_parts(&gq, &j1, -1).iter().enumerate() {
+        for (i2, y2) in motion_parts(y1, &j2, -1).iter().enumerate() {
             let mono = 3 * i1 + i2;
             for e in 0..14 {
                 let y = y2[e].clone().check()?;
@@ -300,6 +379,7 @@ pub fn exact_equations(
     Ok(ExactEquations {
         arrangement: (rev, 0),
         order,
+        prismatic: std::array::from_fn(|i| slides(order[i])),
         g_names: names,
         g: g_defs,
         am,
@@ -314,7 +394,8 @@ pub const HALF: [[i64; 3]; 3] = [[1, 0, 1], [1, 0, -1], [0, 2, 0]];
 impl ExactEquations {
     /// The half-angle form before the null space: `half[e][j][3 a + b]`, the coefficient of
     /// `x3^j x4^a x5^b` in `(1 + x3²)(1 + x4²)(1 + x5²)` times equation `e`'s left side minus
-    /// right side's constant (the part `Am(θ3) X45`). `M(x3) = A x3² + B x3 + C` are `N` times
+    /// right side's constant (the part `Am(θ3) X45`); a slide's `x` is its `d` itself, without
+    /// the factor. `M(x3) = A x3² + B x3 + C` are `N` times
     /// these (and `x4` times them), `N` the left null space of `Bm` at the target (numeric).
     ///
     /// # Errors
@@ -331,7 +412,9 @@ impl ExactEquations {
                         let mut s = Scalar::int(0);
                         for (k, ak) in a.iter().enumerate() {
                             for (m, c) in ak.iter().enumerate() {
-                                let w = HALF[k][j] * HALF[m / 3][pa] * HALF[m % 3][pb];
+                                let w = self.weight(2, k, j)
+                                    * self.weight(3, m / 3, pa)
+                                    * self.weight(4, m % 3, pb);
                                 if w != 0 && !c.is_zero_value() {
                                     s = s + Scalar::int(w) * c;
                                 }
@@ -343,6 +426,16 @@ impl ExactEquations {
                 Ok(out)
             })
             .collect()
+    }
+
+    /// The weight of basis function `k` of arranged joint `i` in power `j` of its half-angle
+    /// variable: [`HALF`] for a turn, the identity for a slide.
+    fn weight(&self, i: usize, k: usize, j: usize) -> i64 {
+        if self.prismatic[i] {
+            i64::from(k == j)
+        } else {
+            HALF[k][j]
+        }
     }
 
     /// The equations at numbers: the target's quantities from `env` (parameters and target
@@ -424,6 +517,16 @@ fn trig_factor(k: usize, var: &str) -> (String, String) {
     }
 }
 
+/// `d^p` of a slide's variable `d`.
+fn slide_factor(p: usize, var: &str) -> (String, String) {
+    let tex = crate::emit::latex_symbol(var);
+    match p {
+        1 => (var.to_string(), tex),
+        2 => (format!("{var}^2"), format!("{tex}^{{2}}")),
+        _ => (String::new(), String::new()),
+    }
+}
+
 /// `x^p` of a half-angle tangent `x_var`.
 fn power_factor(p: usize, var: &str) -> (String, String) {
     let tex = format!("x_{{{}}}", crate::emit::latex_symbol(var));
@@ -463,6 +566,21 @@ impl ExactEquations {
     /// A closed form that fails (term limit, work budget).
     pub fn shown(&self, sol: &IkSolution) -> Result<Vec<ShownGroup>, ScalarError> {
         let var = |i: usize| sol.variables[self.order[i]].as_str();
+        // A slide's basis `(1, d, d²)` is its half-angle form too.
+        let tf = |k: usize, i: usize| {
+            if self.prismatic[i] {
+                slide_factor(k, var(i))
+            } else {
+                trig_factor(k, var(i))
+            }
+        };
+        let pf = |k: usize, i: usize| {
+            if self.prismatic[i] {
+                slide_factor(k, var(i))
+            } else {
+                power_factor(k, var(i))
+            }
+        };
         let mut raw: Vec<(String, Named)> = Vec::new();
         raw.push((
             "the target's quantities (u = H p6, v = H w6: the point and direction of the last axis carried by the target)".into(),
@@ -483,11 +601,7 @@ impl ExactEquations {
             let mut items = Vec::new();
             for k in 0..3 {
                 for m in 0..9 {
-                    let (p, t) = monomial(&[
-                        trig_factor(k, var(2)),
-                        trig_factor(m / 3, var(3)),
-                        trig_factor(m % 3, var(4)),
-                    ]);
+                    let (p, t) = monomial(&[tf(k, 2), tf(m / 3, 3), tf(m % 3, 4)]);
                     items.push((
                         format!("A{}[{p}]", e + 1),
                         format!("A_{{{}}}[{t}]", e + 1),
@@ -496,7 +610,7 @@ impl ExactEquations {
                 }
             }
             for m in 1..9 {
-                let (p, t) = monomial(&[trig_factor(m / 3, var(0)), trig_factor(m % 3, var(1))]);
+                let (p, t) = monomial(&[tf(m / 3, 0), tf(m % 3, 1)]);
                 items.push((
                     format!("B{}[{p}]", e + 1),
                     format!("B_{{{}}}[{t}]", e + 1),
@@ -515,11 +629,7 @@ impl ExactEquations {
             let mut items = Vec::new();
             for (j, row) in h.iter().enumerate() {
                 for (ab, c) in row.iter().enumerate() {
-                    let (p, t) = monomial(&[
-                        power_factor(j, var(2)),
-                        power_factor(ab / 3, var(3)),
-                        power_factor(ab % 3, var(4)),
-                    ]);
+                    let (p, t) = monomial(&[pf(j, 2), pf(ab / 3, 3), pf(ab % 3, 4)]);
                     items.push((
                         format!("P{}[{p}]", e + 1),
                         format!("P_{{{}}}[{t}]", e + 1),

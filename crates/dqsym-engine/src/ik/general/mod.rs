@@ -1,5 +1,6 @@
-//! Inverse kinematics of a general 6R chain (no special family applies, or `--method general`)
-//! by the Raghavan–Roth elimination in Manocha and Canny's matrix form.
+//! Inverse kinematics of a general 6-joint chain, revolute or prismatic (no special family
+//! applies, or `--method general`), by the Raghavan–Roth elimination in Manocha and Canny's
+//! matrix form.
 //!
 //! # The elimination
 //!
@@ -32,6 +33,38 @@
 //!    Am(θ3) X45` (least squares by the same QR); `θ6` from `E6 = (E1 ⋯ E5)⁻¹ H` about axis 6.
 //!    Every candidate is polished by damped Gauss–Newton on the forward kinematics and checked
 //!    by it ([`super::check`]'s residual and approximate flag); duplicates are merged.
+//!
+//! # Prismatic joints
+//!
+//! A prismatic joint's motion is a translation by `d w` (its length `d` along its unit axis
+//! `w`). By the translation formulas (see [`exact`]) it acts on the fourteen quantities with
+//! entries of degree at most two in `d` (`p·p` gains `2 d w·p + d²`, the last three `d² l −
+//! 2 d² (w·l) w`), and on nothing else: so every step above carries over with the basis `(1,
+//! d, d²)` of a slide in place of `(1, cos, sin)` of a turn. The core samples a slide at `d =
+//! 0, 1, −1` and reads the coefficients by the inverse Vandermonde matrix (exact for degree
+//! two), as it samples a turn at three angles.
+//!
+//! - A slide among joints 1, 2 changes the eight power products of `X12` (`d1`, `d1²`, `d1 c2`,
+//!   …): `Bm` keeps its 14 x 8 shape, and `d` is read back as its monomial itself.
+//! - A slide among joints 4, 5 needs no half-angle tangent: `d` is already the polynomial
+//!   variable. The core converts its coefficients by `HALF⁻¹` so that the half-angle map
+//!   of step 4 turns them back into `(1, d, d²)`: `M(x)` keeps its 12 x 12 shape.
+//! - A slide at joint 3 gives `M(d) = A d² + B d + C` directly (the same conversion); the shift
+//!   `φ` of a turn becomes the Möbius map `d = (t + y) / (1 − t y)`, `t = tan(φ/2)`, which
+//!   keeps `A` invertible when `M(d)` has roots at infinity. These (eight for a general 5R1P)
+//!   come out at `y = cot(φ/2)` and are not counted in the degree.
+//! - Joint 6 must turn: it is eliminated by a point of its axis, which a slide would move. The
+//!   arrangements that end with a slide are skipped (and the exact equations read the loop
+//!   backwards when the last joint slides).
+//!
+//! Degree reached at a generic target (measured, `tests/it/ik_general_prismatic.rs`, the slide
+//! or slides at every placement in a skew chain): 16 for a 5R1P, 8 for a 4R2P, the known
+//! bounds (5R1P ≤ 16, 4R2P ≤ 8). A slide among joints 1, 2 together with one among joints 4,
+//! 5 makes `det M` vanish identically (observed at every such placement); two slides among
+//! joints 1, 2, or among 4, 5, leave power products that never occur (`Bm` loses rank, or `M`
+//! has a zero column). An arm whose two slides are three joints apart (RPRRPR) has that in every
+//! reading that ends with a turn, and so has every 3R3P arm: they are refused as degenerate in
+//! every arrangement (the 3R3P bound of 2 is not reached by this elimination).
 //!
 //! Special geometry makes an arrangement degenerate (`Bm` loses rank, or `det M` vanishes
 //! identically, as for a spherical wrist) or gives double roots (two solutions sharing `θ3`):
@@ -93,9 +126,10 @@ impl GeneralInfo {
 /// than dropped, while a root that is no solution (far off the pose) is dropped.
 pub const KEEP_TOL: f64 = 1e-6;
 
-/// Six revolute joints: the chains the general method solves.
+/// Six joints, at least one revolute (the loop is read so that one ends it): the chains the
+/// general method solves.
 pub(crate) fn applies(axes: &[super::Axis]) -> bool {
-    axes.len() == 6 && axes.iter().all(|a| a.kind == JointKind::Revolute)
+    axes.len() == 6 && axes.iter().any(|a| a.kind == JointKind::Revolute)
 }
 
 fn tol() -> core::GenTol {
@@ -150,7 +184,8 @@ pub enum SampleError {
 
 /// The numeric core's sampled equations of arrangement `arr` (`shift + 6 reversed`) at a
 /// numeric target: `(am, bm)` as [`exact::ExactEquations`] lays them out, with lengths back in
-/// the robot's units (the core divides them by the arm's scale). `bm` is read back from the
+/// the robot's units (the core divides them by the arm's scale; a slide's coefficient of `d^j`
+/// has `j` lengths less), a slide's entries in its basis `(1, d, d²)`. `bm` is read back from the
 /// core's QR factors (`Bm = Q R Pᵀ`), so it carries their rounding too.
 ///
 /// # Errors
@@ -174,6 +209,7 @@ pub fn sampled_equations(
     let js: [core::J; 6] = std::array::from_fn(|i| core::J {
         w: [axes[i][1], axes[i][2], axes[i][3]],
         c: [axes[i][4] / len, axes[i][5] / len, axes[i][6] / len],
+        prism: axes[i][0] != 0.0,
     });
     let mut hm = home;
     let mut tg = [[0.0; 4]; 3];
@@ -183,7 +219,9 @@ pub fn sampled_equations(
         tg[r][3] /= len;
     }
     let g = core::compose(&tg, &core::inverse(&hm));
-    let el = core::Arranged::new(&js, &g, arr % 12)
+    let ar = core::Arranged::new(&js, &g, arr % 12);
+    let slides = ar.prismatic();
+    let el = ar
         .elim()
         .ok_or_else(|| SampleError::Input("no elimination".into()))?;
     let mut am = el.am;
@@ -193,13 +231,17 @@ pub fn sampled_equations(
             row[col] = (0..8).map(|i| el.qt[i][e] * el.r[i][j]).sum();
         }
     }
+    // A coefficient of `d^j` (a slide's variable, scaled in the core) has `j` lengths less.
+    let power = |i: usize, k: usize| if slides[i] { k as i32 } else { 0 };
     for e in 0..14 {
-        let k = len.powi(exact::LENGTH_DEGREE[e]);
-        for x in am[e].iter_mut().flatten() {
-            *x *= k;
+        let k = |j: i32| len.powi(exact::LENGTH_DEGREE[e] - j);
+        for (i3, row) in am[e].iter_mut().enumerate() {
+            for (m, x) in row.iter_mut().enumerate() {
+                *x *= k(power(2, i3) + power(3, m / 3) + power(4, m % 3));
+            }
         }
-        for x in &mut bm[e] {
-            *x *= k;
+        for (m, x) in bm[e].iter_mut().enumerate() {
+            *x *= k(power(0, (m + 1) / 3) + power(1, (m + 1) % 3));
         }
     }
     Ok((am, bm))
@@ -265,17 +307,42 @@ fn used_first(sol: &IkSolution, (rev, shift): (bool, usize)) -> String {
     sol.variables.get(k).cloned().unwrap_or_default()
 }
 
+/// Whether the hidden joint (arranged joint 3, whose variable the polynomial is in) slides in
+/// the arrangement of `info`.
+pub fn hidden_slides(sol: &IkSolution, info: &GeneralInfo) -> bool {
+    let (rev, shift) = info.arrangement;
+    let k = (shift + 2) % 6;
+    let k = if rev { 5 - k } else { k };
+    sol.axes
+        .get(k)
+        .is_some_and(|a| a.kind == JointKind::Prismatic)
+}
+
 /// The elimination in words, one line each (the report and the walkthrough).
 pub fn elimination_lines(sol: &IkSolution, info: &GeneralInfo) -> Vec<String> {
     let v = &sol.variables;
     let (rev, shift) = info.arrangement;
+    let arm = |i: usize| {
+        let k = (shift + i) % 6;
+        if rev {
+            5 - k
+        } else {
+            k
+        }
+    };
     let order: Vec<&str> = (0..6)
+        .map(|i| v.get(arm(i)).map_or("?", String::as_str))
+        .collect();
+    let slides: Vec<bool> = (0..6)
         .map(|i| {
-            let k = (shift + i) % 6;
-            let k = if rev { 5 - k } else { k };
-            v.get(k).map_or("?", String::as_str)
+            sol.axes
+                .get(arm(i))
+                .is_some_and(|a| a.kind == JointKind::Prismatic)
         })
         .collect();
+    if slides.iter().any(|p| *p) {
+        return prismatic_lines(info, &order, &slides, rev);
+    }
     let t = TARGET_SYMBOLS
         .iter()
         .flatten()
@@ -311,6 +378,70 @@ pub fn elimination_lines(sol: &IkSolution, info: &GeneralInfo) -> Vec<String> {
             order[3], order[4], order[0], order[1], order[5], order[4], order[0]
         ),
         "special geometry (a degenerate arrangement, a double root) reads the loop from another joint".into(),
+    ];
+    if info.degree == 0 {
+        out.push("no arrangement was usable at the generic target".into());
+    }
+    out
+}
+
+/// [`elimination_lines`] for a chain with prismatic joints: a slide's variable `d` enters the
+/// quantities through `(1, d, d²)` where a turn's enters through `(1, cos, sin)`.
+fn prismatic_lines(info: &GeneralInfo, order: &[&str], slides: &[bool], rev: bool) -> Vec<String> {
+    let basis = |i: usize| {
+        let b = if slides[i] {
+            "(1, d, d^2)"
+        } else {
+            "(1, c, s)"
+        };
+        format!("{b}({})", order[i])
+    };
+    let tangent = |i: usize| {
+        if slides[i] {
+            format!("x({0}) = {0}", order[i])
+        } else {
+            format!("x({0}) = tan({0}/2)", order[i])
+        }
+    };
+    let hidden = if slides[2] {
+        format!("{} = (t + x)/(1 - t x), t = tan(phi/2)", order[2])
+    } else {
+        format!("x = tan(({} - phi)/2)", order[2])
+    };
+    let spurious = if slides[2] {
+        format!("the roots at {} = infinity", order[2])
+    } else {
+        "the spurious factor (1 + x^2)^4".into()
+    };
+    let mut out = vec![
+        format!(
+            "loop read as {} (joint order{}; the last joint turns), target G = T M^-1",
+            order.join(", "),
+            if rev { ", reversed" } else { "" }
+        ),
+        format!(
+            "1. E({}) E({}) E({}) (p, w) = E({})^-1 E({})^-1 G (p, w) for a point p and the direction w of the axis of {}: {} eliminated",
+            order[2], order[3], order[4], order[1], order[0], order[5], order[5]
+        ),
+        "2. the 14 Raghavan-Roth quantities of both sides: l, p, p.p, p.l, p x l, (p.p) l - 2 (p.l) p; each of degree one in the sine and cosine of every revolute joint, of degree two in the length d of every prismatic one (a slide by d w adds 2 d w.p + d^2 to p.p): Bm X12 = Am X45".into(),
+        format!(
+            "   X12 = {} x {} without 1 (8 monomials), X45 = {} x {} (9), Am linear in {}",
+            basis(0), basis(1), basis(3), basis(4), basis(2)
+        ),
+        "3. the left null space N of Bm (14 x 8, Householder QR in f64 at the numeric target): 6 equations N Am X45 = 0".into(),
+        format!(
+            "4. {}, {}, and the same equations times x({}): M(x) X = 0, M(x) = A x^2 + B x + C (12 x 12), {hidden}",
+            tangent(3), tangent(4), order[3]
+        ),
+        format!(
+            "5. det M(x) = 0: degree 24 with {spurious}; degree reached at a generic target: {} (known bounds: 16 for 5R1P, 8 for 4R2P, 2 for 3R3P)",
+            info.degree
+        ),
+        format!(
+            "6. back-substitution: {}, {} from the null vector of M(x); {}, {} from Bm X12 = Am X45 (a slide's d is its monomial); {} from E({})^-1 ... E({})^-1 G; each solution refined by Gauss-Newton and checked by forward kinematics",
+            order[3], order[4], order[0], order[1], order[5], order[4], order[0]
+        ),
+        "special geometry (a degenerate arrangement, a double root) reads the loop from another joint that turns".into(),
     ];
     if info.degree == 0 {
         out.push("no arrangement was usable at the generic target".into());
