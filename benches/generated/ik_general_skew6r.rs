@@ -232,9 +232,9 @@ pub(crate) struct Elim {
     pub(crate) r: [[f64; 8]; 8],
     pub(crate) piv: [usize; 8],
     /// `|r77| / |r00|`: how far `Bm` is from losing rank.
-    rank_ratio: f64,
+    pub(crate) rank_ratio: f64,
     /// `Σ = N Am` in `(1, cos θ3, sin θ3)`: 6 x 9 each.
-    sig: [[[f64; 9]; 6]; 3],
+    pub(crate) sig: [[[f64; 9]; 6]; 3],
 }
 
 /// The monomial index of `(i, j)` with `i, j` in `(1, cos, sin)`.
@@ -536,7 +536,7 @@ pub const HALF: [[f64; 3]; 3] = [[1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0
 /// equations `Σ X45 = 0` with `θ4`, `θ5` by their half-angle tangents (monomials `x4^a x5^b`,
 /// `a, b ≤ 2`), and the same times `x4` (`a ≤ 3`): twelve equations in twelve monomials.
 #[allow(clippy::needless_range_loop)]
-fn matrix_poly(sig: &[[[f64; 9]; 6]; 3], phi: f64) -> [[[f64; 12]; 12]; 3] {
+pub(crate) fn matrix_poly(sig: &[[[f64; 9]; 6]; 3], phi: f64) -> [[[f64; 12]; 12]; 3] {
     let (sp, cp) = phi.sin_cos();
     let mut out = [[[0.0; 12]; 12]; 3];
     for row in 0..6 {
@@ -568,7 +568,7 @@ fn matrix_poly(sig: &[[[f64; 9]; 6]; 3], phi: f64) -> [[[f64; 12]; 12]; 3] {
 #[allow(clippy::needless_range_loop)]
 /// LU with partial pivoting of an `n x n` block of `a` (in place); `None` when singular.
 /// Returns the pivot order and the smallest pivot over the largest entry.
-fn lu<const N: usize>(a: &mut [[f64; N]; N]) -> ([usize; N], f64) {
+pub(crate) fn lu<const N: usize>(a: &mut [[f64; N]; N]) -> ([usize; N], f64) {
     let mut p = [0usize; N];
     let mut amax: f64 = 0.0;
     for r in a.iter() {
@@ -629,12 +629,15 @@ fn lu_solve<const N: usize>(lu: &[[f64; N]; N], p: &[usize; N], b: &[f64; N]) ->
 }
 
 /// The eigenvalues of the 24 x 24 companion linearisation of `A x² + B x + C`:
-/// `[[0, I], [−A⁻¹C, −A⁻¹B]]` (`A` invertible). `(re, im)` pairs; `None` when the QR
-/// iteration does not converge.
+/// `[[0, I], [−A⁻¹C, −A⁻¹B]]` (`A` invertible, given as its LU `a`, `p`), less the
+/// eigenvalues `±i` that [`deflate_spurious`] removes. `(re, im)` pairs and how many; `None`
+/// when the QR iteration does not converge.
 #[allow(clippy::needless_range_loop)]
-fn eigen_quadratic(m: &[[[f64; 12]; 12]; 3]) -> Option<[(f64, f64); 24]> {
-    let mut a = m[2];
-    let (p, _) = lu(&mut a);
+pub(crate) fn eigen_quadratic(
+    m: &[[[f64; 12]; 12]; 3],
+    a: &[[f64; 12]; 12],
+    p: &[usize; 12],
+) -> Option<([(f64, f64); 24], usize)> {
     let mut k = [[0.0; 24]; 24];
     for i in 0..12 {
         k[i][12 + i] = 1.0;
@@ -642,14 +645,182 @@ fn eigen_quadratic(m: &[[[f64; 12]; 12]; 3]) -> Option<[(f64, f64); 24]> {
     for col in 0..12 {
         let cc: [f64; 12] = std::array::from_fn(|r| m[0][r][col]);
         let cb: [f64; 12] = std::array::from_fn(|r| m[1][r][col]);
-        let xc = lu_solve(&a, &p, &cc);
-        let xb = lu_solve(&a, &p, &cb);
+        let xc = lu_solve(a, p, &cc);
+        let xb = lu_solve(a, p, &cb);
         for r in 0..12 {
             k[12 + r][col] = -xc[r];
             k[12 + r][12 + col] = -xb[r];
         }
     }
-    eigenvalues(&mut k)
+    let n = deflate_spurious(m, &mut k);
+    eigenvalues(&mut k, n).map(|ev| (ev, n))
+}
+
+/// Below this pivot (relative to the largest entry) `M(i)` is singular to rounding: a null
+/// vector of it. The entries of `M` are of order one and carry rounding errors of a few ulps,
+/// and elimination with complete pivoting keeps the growth small, so the pivots of the exact
+/// null space come out near 1e-15; a pivot between 1e-10 and 1e-15 would be an eigenvalue
+/// within about 1e-10 of `±i`, a complex root, so deflating it loses no real root and moves
+/// the others by about 1e-10 times their condition, which the refinement removes.
+pub const SPURIOUS_RANK: f64 = 1e-10;
+
+/// Deflates the spurious eigenvalues `±i` of the companion matrix `k` (the factor `(1 + x²)⁴`
+/// of `det M`, four pairs for a general 6R): the null vectors `v = a + i b` of `M(i)` give
+/// eigenvectors `[v; i v]` of `k`, so the real vectors `[a; −b]`, `[b; a]` span an invariant
+/// subspace `Z`. With `Q = [Z W]` orthogonal (Householder QR of `Z`), `Qᵀ k Q` is block upper
+/// triangular and its trailing block `Wᵀ k W` has the other eigenvalues; it is left in the
+/// leading rows and columns of `k`, and its size is returned (24 when nothing is deflated).
+/// For the skew 6R this takes the QR iteration from 24 to 16 rows, a third of its work.
+#[allow(clippy::needless_range_loop)]
+fn deflate_spurious(m: &[[[f64; 12]; 12]; 3], k: &mut [[f64; 24]; 24]) -> usize {
+    // M(i) = C − A + i B by elimination with complete pivoting, complex as (re, im) arrays.
+    let mut re = [[0.0; 12]; 12];
+    let mut im = m[1];
+    for r in 0..12 {
+        for c in 0..12 {
+            re[r][c] = m[0][r][c] - m[2][r][c];
+        }
+    }
+    let mut cols = [0usize; 12];
+    for (i, c) in cols.iter_mut().enumerate() {
+        *c = i;
+    }
+    // The largest entry of the remaining block is tracked while it is updated.
+    let (mut br, mut bc, mut bv) = (0, 0, -1.0);
+    for r in 0..12 {
+        for c in 0..12 {
+            let v = re[r][c] * re[r][c] + im[r][c] * im[r][c];
+            if v > bv {
+                (br, bc, bv) = (r, c, v);
+            }
+        }
+    }
+    let first = bv;
+    let mut rank = 12;
+    for s in 0..12 {
+        // Also stops on NaN: no pivot is taken unless it is a number above the threshold.
+        let pivot_ok = bv > SPURIOUS_RANK * SPURIOUS_RANK * first;
+        if !pivot_ok {
+            rank = s;
+            break;
+        }
+        re.swap(s, br);
+        im.swap(s, br);
+        for r in 0..12 {
+            re[r].swap(s, bc);
+            im[r].swap(s, bc);
+        }
+        cols.swap(s, bc);
+        let (dr, di, d) = (re[s][s], im[s][s], bv);
+        let (pr, pi) = (re[s], im[s]);
+        (br, bc, bv) = (s + 1, s + 1, -1.0);
+        for r in s + 1..12 {
+            // f = a[r][s] / a[s][s]
+            let (nr, ni) = (re[r][s], im[r][s]);
+            let fr = (nr * dr + ni * di) / d;
+            let fi = (ni * dr - nr * di) / d;
+            re[r][s] = 0.0;
+            im[r][s] = 0.0;
+            for c in s + 1..12 {
+                let x = re[r][c] - (fr * pr[c] - fi * pi[c]);
+                let y = im[r][c] - (fr * pi[c] + fi * pr[c]);
+                re[r][c] = x;
+                im[r][c] = y;
+                let v = x * x + y * y;
+                if v > bv {
+                    (br, bc, bv) = (r, c, v);
+                }
+            }
+        }
+    }
+    let nullity = 12 - rank;
+    if nullity == 0 || nullity >= 12 || !(first > 0.0 && first.is_finite()) {
+        return 24;
+    }
+    // The null vectors (one per free column) as the columns of Z, stored by columns.
+    let mut z = [[0.0; 24]; 24];
+    for f in 0..nullity {
+        let (mut yr, mut yi) = ([0.0; 12], [0.0; 12]);
+        yr[rank + f] = 1.0;
+        for i in (0..rank).rev() {
+            let (mut sr, mut si) = (-re[i][rank + f], -im[i][rank + f]);
+            for c in i + 1..rank {
+                sr -= re[i][c] * yr[c] - im[i][c] * yi[c];
+                si -= re[i][c] * yi[c] + im[i][c] * yr[c];
+            }
+            let (dr, di) = (re[i][i], im[i][i]);
+            let d = dr * dr + di * di;
+            yr[i] = (sr * dr + si * di) / d;
+            yi[i] = (si * dr - sr * di) / d;
+        }
+        for i in 0..12 {
+            let c = cols[i];
+            z[2 * f][c] = yr[i];
+            z[2 * f][12 + c] = -yi[i];
+            z[2 * f + 1][c] = yi[i];
+            z[2 * f + 1][12 + c] = yr[i];
+        }
+    }
+    // Gaussian elimination with partial pivoting of Z: `Π Z = L U`, `L = [L1; L2]` unit lower
+    // trapezoidal with multipliers of size at most one. The similarity `T = Πᵀ [[L1, 0], [L2,
+    // I]]` (the stabilised elementary transformations of the Hessenberg reduction) maps the
+    // leading coordinates onto span Z, so the trailing block of `T⁻¹ k T` is `k'22 − L2 L1⁻¹
+    // k'12` with `k' = Π k Πᵀ`.
+    let nz = 2 * nullity;
+    let mut perm = [0usize; 24];
+    for (i, p) in perm.iter_mut().enumerate() {
+        *p = i;
+    }
+    for j in 0..nz {
+        let mut best = j;
+        for r in j + 1..24 {
+            if z[j][perm[r]].abs() > z[j][perm[best]].abs() {
+                best = r;
+            }
+        }
+        perm.swap(j, best);
+        let d = z[j][perm[j]];
+        if !(d != 0.0 && d.is_finite()) {
+            return 24;
+        }
+        for r in j + 1..24 {
+            let pr = perm[r];
+            let f = z[j][pr] / d;
+            z[j][pr] = f;
+            for c in j + 1..nz {
+                z[c][pr] -= f * z[c][perm[j]];
+            }
+        }
+    }
+    // X = L1⁻¹ k'12 (forward substitution), then k'22 − L2 X into the leading block.
+    let n = 24 - nz;
+    let mut x = [[0.0; 24]; 24];
+    for i in 0..nz {
+        let mut row: [f64; 24] =
+            std::array::from_fn(|c| if c < n { k[perm[i]][perm[nz + c]] } else { 0.0 });
+        for (j, xj) in x[..i].iter().enumerate() {
+            let l = z[j][perm[i]];
+            for (rc, xc) in row[..n].iter_mut().zip(&xj[..n]) {
+                *rc -= l * xc;
+            }
+        }
+        x[i] = row;
+    }
+    let mut out = [[0.0; 24]; 24];
+    for r in 0..n {
+        let pr = perm[nz + r];
+        let mut row: [f64; 24] =
+            std::array::from_fn(|c| if c < n { k[pr][perm[nz + c]] } else { 0.0 });
+        for (j, xj) in x[..nz].iter().enumerate() {
+            let l = z[j][pr];
+            for (rc, xc) in row[..n].iter_mut().zip(&xj[..n]) {
+                *rc -= l * xc;
+            }
+        }
+        out[r] = row;
+    }
+    *k = out;
+    n
 }
 
 /// A null vector of the 12 x 12 matrix `m` (Gaussian elimination with complete pivoting, the
@@ -661,28 +832,45 @@ fn null_vector(m: &[[f64; 12]; 12]) -> [f64; 12] {
     for (i, c) in cols.iter_mut().enumerate() {
         *c = i;
     }
-    for k in 0..11 {
-        let (mut br, mut bc, mut bv) = (k, k, -1.0);
-        for r in k..12 {
-            for c in k..12 {
-                if a[r][c].abs() > bv {
-                    (br, bc, bv) = (r, c, a[r][c].abs());
-                }
+    // The largest entry of the remaining block, tracked while it is updated (the same choice
+    // as a search of the block after each step: the same entries in the same order).
+    let (mut br, mut bc, mut bv) = (0, 0, -1.0);
+    for (r, row) in a.iter().enumerate() {
+        for (c, x) in row.iter().enumerate() {
+            if x.abs() > bv {
+                (br, bc, bv) = (r, c, x.abs());
             }
         }
+    }
+    for k in 0..11 {
         a.swap(k, br);
         for row in a.iter_mut() {
             row.swap(k, bc);
         }
         cols.swap(k, bc);
-        let d = a[k][k];
+        let pivot = a[k];
+        let d = pivot[k];
+        (br, bc, bv) = (k + 1, k + 1, -1.0);
         if d == 0.0 {
+            // Nothing eliminated: the next pivot is searched in the block as it is.
+            for (r, row) in a.iter().enumerate().skip(k + 1) {
+                for (c, x) in row.iter().enumerate().skip(k + 1) {
+                    if x.abs() > bv {
+                        (br, bc, bv) = (r, c, x.abs());
+                    }
+                }
+            }
             continue;
         }
-        for r in k + 1..12 {
-            let f = a[r][k] / d;
-            for c in k..12 {
-                a[r][c] -= f * a[k][c];
+        for (r, row) in a.iter_mut().enumerate().skip(k + 1) {
+            let f = row[k] / d;
+            row[k] -= f * pivot[k];
+            for c in k + 1..12 {
+                let x = row[c] - f * pivot[c];
+                row[c] = x;
+                if x.abs() > bv {
+                    (br, bc, bv) = (r, c, x.abs());
+                }
             }
         }
     }
@@ -915,14 +1103,19 @@ pub const SAME_TOL: f64 = 1e-6;
 /// The candidates of one arrangement: its real roots, each with the arm's joint vector (not
 /// yet refined), and the degree reached; `None` when the arrangement is degenerate here.
 fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(usize, usize)> {
-    // The shift φ of the hidden joint that makes A (θ3 = φ + π) best conditioned.
+    // The shift φ of the hidden joint that makes A (θ3 = φ + π) best conditioned; its matrix
+    // polynomial and the LU of its A are kept.
     let mut best = (0.0, -1.0);
+    let mut mp = [[[0.0; 12]; 12]; 3];
+    let mut a = [[0.0; 12]; 12];
+    let mut p = [0; 12];
     for phi in SHIFTS {
-        let mp = matrix_poly(&el.sig, phi);
-        let mut a = mp[2];
-        let (_, ratio) = lu(&mut a);
+        let mp_s = matrix_poly(&el.sig, phi);
+        let mut a_s = mp_s[2];
+        let (p_s, ratio) = lu(&mut a_s);
         if ratio > best.1 {
             best = (phi, ratio);
+            (mp, a, p) = (mp_s, a_s, p_s);
         }
         if ratio > SHIFT_GOOD {
             break;
@@ -932,11 +1125,10 @@ fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(u
         return None;
     }
     let phi = best.0;
-    let mp = matrix_poly(&el.sig, phi);
-    let ev = eigen_quadratic(&mp)?;
+    let (ev, n_ev) = eigen_quadratic(&mp, &a, &p)?;
     let mut n = 0;
     let mut degree = 0;
-    for &(re, im) in &ev {
+    for &(re, im) in &ev[..n_ev] {
         // A prismatic hidden joint's roots at infinity (`d = ∞`, the eigenvalues clustered at
         // `y = cot(φ/2)`) are no solutions.
         if ar.j[2].prism && (0.5 * phi + re.atan()).tan().abs() > PRISM_FAR {
@@ -1239,9 +1431,8 @@ pub fn gen_solve(
 /// Balancing (Parlett–Reinsch, powers of two): similar matrix with rows and columns of
 /// comparable norm, so that the QR iteration's rounding is relative to the eigenvalues' size.
 #[allow(clippy::needless_range_loop)]
-fn balance(a: &mut [[f64; 24]; 24]) {
+fn balance(a: &mut [[f64; 24]; 24], n: usize) {
     const RADIX: f64 = 2.0;
-    let n = 24;
     let mut done = false;
     let mut sweeps = 0;
     while !done && sweeps < 100 {
@@ -1284,10 +1475,10 @@ fn balance(a: &mut [[f64; 24]; 24]) {
     }
 }
 
-/// Reduction to upper Hessenberg form by stabilised elementary similarity transformations.
+/// Reduction to upper Hessenberg form by stabilised elementary similarity transformations
+/// (of the leading `n x n` block).
 #[allow(clippy::needless_range_loop)]
-fn hessenberg(a: &mut [[f64; 24]; 24]) {
-    let n = 24;
+fn hessenberg(a: &mut [[f64; 24]; 24], n: usize) {
     for m in 1..n - 1 {
         let mut x: f64 = 0.0;
         let mut i = m;
@@ -1313,11 +1504,12 @@ fn hessenberg(a: &mut [[f64; 24]; 24]) {
                 if y != 0.0 {
                     y /= x;
                     a[i][m - 1] = 0.0;
-                    for j in m..n {
-                        a[i][j] -= y * a[m][j];
+                    let (top, rest) = a.split_at_mut(i);
+                    for (ai, am) in rest[0][m..n].iter_mut().zip(&top[m][m..n]) {
+                        *ai -= y * am;
                     }
-                    for j in 0..n {
-                        a[j][m] += y * a[j][i];
+                    for row in a[..n].iter_mut() {
+                        row[m] += y * row[i];
                     }
                 }
             }
@@ -1325,15 +1517,15 @@ fn hessenberg(a: &mut [[f64; 24]; 24]) {
     }
 }
 
-/// The eigenvalues of a real 24 x 24 matrix (destroyed): balancing, Hessenberg reduction and
-/// the Francis double-shift QR iteration (the classical `hqr`); `None` when an eigenvalue
-/// takes more than 60 iterations.
+/// The eigenvalues of the leading `n x n` block of a real matrix (destroyed): balancing,
+/// Hessenberg reduction and the Francis double-shift QR iteration (the classical `hqr`); the
+/// first `n` pairs are set. `None` when an eigenvalue takes more than 60 iterations.
 #[allow(clippy::needless_range_loop, clippy::many_single_char_names)]
-fn eigenvalues(a0: &mut [[f64; 24]; 24]) -> Option<[(f64, f64); 24]> {
-    balance(a0);
-    hessenberg(a0);
+pub(crate) fn eigenvalues(a0: &mut [[f64; 24]; 24], size: usize) -> Option<[(f64, f64); 24]> {
+    balance(a0, size);
+    hessenberg(a0, size);
     // 1-based indices as in the classical formulation: a[i][j] = a0[i - 1][j - 1].
-    let n: isize = 24;
+    let n = size as isize;
     macro_rules! a {
         ($i:expr, $j:expr) => {
             a0[($i - 1) as usize][($j - 1) as usize]
@@ -1486,24 +1678,36 @@ fn eigenvalues(a0: &mut [[f64; 24]; 24]) -> Option<[(f64, f64); 24]> {
                     z = r / s;
                     q /= p;
                     r /= p;
-                    for j in k..=nn {
-                        p = a!(k, j) + q * a!(k + 1, j);
-                        if k != nn - 1 {
-                            p += r * a!(k + 2, j);
-                            a!(k + 2, j) -= p * z;
+                    // Rows k, k + 1 (and k + 2) over columns k..=nn, and columns k, k + 1
+                    // (and k + 2) over rows l..=min(nn, k + 3), as row slices.
+                    let (k0, n0) = ((k - 1) as usize, nn as usize);
+                    let (row0, rest) = a0[k0..].split_first_mut().expect("row k");
+                    let (row1, rest) = rest.split_first_mut().expect("row k + 1");
+                    if k != nn - 1 {
+                        let row2 = &mut rest[0];
+                        for j in k0..n0 {
+                            let p = row0[j] + q * row1[j] + r * row2[j];
+                            row2[j] -= p * z;
+                            row1[j] -= p * y;
+                            row0[j] -= p * x;
                         }
-                        a!(k + 1, j) -= p * y;
-                        a!(k, j) -= p * x;
+                    } else {
+                        for j in k0..n0 {
+                            let p = row0[j] + q * row1[j];
+                            row1[j] -= p * y;
+                            row0[j] -= p * x;
+                        }
                     }
                     let mmin = if nn < k + 3 { nn } else { k + 3 };
-                    for i in l..=mmin {
-                        p = x * a!(i, k) + y * a!(i, k + 1);
+                    for row in a0[(l - 1) as usize..mmin as usize].iter_mut() {
+                        let c = &mut row[k0..k0 + if k != nn - 1 { 3 } else { 2 }];
+                        let mut p = x * c[0] + y * c[1];
                         if k != nn - 1 {
-                            p += z * a!(i, k + 2);
-                            a!(i, k + 2) -= p * r;
+                            p += z * c[2];
+                            c[2] -= p * r;
                         }
-                        a!(i, k + 1) -= p * q;
-                        a!(i, k) -= p;
+                        c[1] -= p * q;
+                        c[0] -= p;
                     }
                 }
                 k += 1;
@@ -1514,7 +1718,7 @@ fn eigenvalues(a0: &mut [[f64; 24]; 24]) -> Option<[(f64, f64); 24]> {
         }
     }
     let mut out = [(0.0, 0.0); 24];
-    for i in 0..24 {
+    for i in 0..size {
         out[i] = (wr[i], wi[i]);
     }
     Some(out)
