@@ -129,10 +129,6 @@ impl Syntax for C {
 }
 
 impl SolverSyntax for C {
-    fn runtime(&self) -> &'static str {
-        include_str!("runtime/ik_helpers.c")
-    }
-
     fn doc_syntax(&self) -> Comment {
         Comment::Block
     }

@@ -108,9 +108,13 @@ pub fn javascript_function(
 pub(crate) struct JavaScript;
 
 impl JavaScript {
-    /// The numeric helpers of the IK page's solver.
-    pub(crate) fn ik_runtime(&self) -> &'static str {
-        include_str!("runtime/ik_helpers.js")
+    /// The numeric helpers of the IK page's solver: every helper of its runtime file.
+    pub(crate) fn ik_runtime(&self) -> String {
+        let texts: Vec<&str> = super::helpers::runtime(Lang::JavaScript)
+            .iter()
+            .map(|h| h.text)
+            .collect();
+        format!("{}\n", texts.join("\n\n"))
     }
 }
 

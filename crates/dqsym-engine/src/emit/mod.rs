@@ -6,6 +6,7 @@
 mod c;
 pub(crate) mod codegen;
 mod count;
+pub(crate) mod helpers;
 pub(crate) mod javascript;
 pub use latex::visual_len;
 mod latex;

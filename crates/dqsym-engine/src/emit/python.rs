@@ -167,13 +167,9 @@ impl Syntax for Python {
 }
 
 impl SolverSyntax for Python {
-    fn runtime(&self) -> &'static str {
-        include_str!("runtime/ik_helpers.py")
-    }
-
-    fn helper_texts(&self, consts: &str) -> Vec<String> {
-        // One text: its blocks are separated by two blank lines, as PEP 8 asks.
-        vec![format!("{consts}\n\n{}", self.runtime())]
+    fn helper_separator(&self) -> &'static str {
+        // Two blank lines between top-level definitions, as PEP 8 asks.
+        "\n\n\n"
     }
 
     fn doc_syntax(&self) -> Comment {

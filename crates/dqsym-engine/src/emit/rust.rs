@@ -201,10 +201,6 @@ impl Syntax for Rust {
 }
 
 impl SolverSyntax for Rust {
-    fn runtime(&self) -> &'static str {
-        include_str!("runtime/ik_helpers.rs")
-    }
-
     fn doc_syntax(&self) -> Comment {
         Comment::Slashes
     }

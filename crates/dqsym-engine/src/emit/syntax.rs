@@ -54,12 +54,9 @@ pub(crate) trait Syntax {
 /// calls into the language's runtime helpers (`emit/runtime/ik_helpers.*`), the loops over a
 /// step's roots and the file around the solver.
 pub(crate) trait SolverSyntax: Syntax {
-    /// The numeric helpers (roots, check, refinement) as the language's source text.
-    fn runtime(&self) -> &'static str;
-
-    /// The texts the helper blocks are taken from, the tolerance constants `consts` first.
-    fn helper_texts(&self, consts: &str) -> Vec<String> {
-        vec![consts.to_string(), self.runtime().to_string()]
+    /// What separates the solver's helpers (and its constants before them): a blank line.
+    fn helper_separator(&self) -> &'static str {
+        "\n\n"
     }
 
     /// The comment syntax of the solver's documentation lines.
