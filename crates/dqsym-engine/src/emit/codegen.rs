@@ -840,8 +840,3 @@ pub(crate) const STD_CONSTS: &[(&str, f64)] = &[
     ("LOG2_10", std::f64::consts::LOG2_10),
     ("LOG10_2", std::f64::consts::LOG10_2),
 ];
-
-/// A float literal that reads back to `v` exactly: `0.5`, `2.0`, `0.3535533905932738`.
-pub(crate) fn float_literal(v: f64) -> String {
-    format!("{v:?}")
-}

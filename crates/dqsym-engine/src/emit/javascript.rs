@@ -135,6 +135,14 @@ impl Syntax for JavaScript {
         format!("const {name} = {value};\n")
     }
 
+    fn table(&self, name: &str, _dims: &[usize], value: &str) -> String {
+        format!("const {name} = {value};\n")
+    }
+
+    fn call(&self, f: &str, arg: &str) -> String {
+        format!("Math.{f}({arg})")
+    }
+
     fn shape_constants(&self, _dof: usize, _position_only: bool) -> String {
         format!("const IK_EPS = {};\n", self.literal(f64::EPSILON))
     }

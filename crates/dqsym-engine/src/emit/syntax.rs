@@ -45,6 +45,28 @@ pub(crate) trait Syntax {
         "false"
     }
 
+    /// A list literal `[a, b]` (C: `{a, b}`) of the already written items.
+    fn list(&self, items: &str) -> String {
+        format!("[{items}]")
+    }
+
+    /// A constant table of doubles at the top level: `name`, of dimensions `dims` (rows, then
+    /// columns; one for a vector), bound to the list literal `value`; with newline.
+    fn table(&self, name: &str, dims: &[usize], value: &str) -> String {
+        let _ = dims;
+        format!("{}\n", self.local(name, value))
+    }
+
+    /// A local array of doubles `name` of dimensions `dims` bound to the list literal `value`,
+    /// without indentation or newline (as [`Syntax::local`]).
+    fn array_local(&self, name: &str, dims: &[usize], value: &str) -> String {
+        let _ = dims;
+        self.local(name, value)
+    }
+
+    /// A call of the scalar function `f` (`sin`, `cos`) on `arg`.
+    fn call(&self, f: &str, arg: &str) -> String;
+
     /// An IK solver's shape constants after its tolerances (`IK_DOF`, `IK_POSITION_ONLY`,
     /// `IK_EPS` where the helpers need them).
     fn shape_constants(&self, dof: usize, position_only: bool) -> String;
@@ -87,11 +109,6 @@ pub(crate) trait SolverSyntax: Syntax {
     /// Whether the roots of step `i` at its loop index are samples beside a kept value.
     fn sampled(&self, i: usize) -> String;
 
-    /// A list literal `[a, b]` (C: `{a, b}`) of the already written items.
-    fn list(&self, items: &str) -> String {
-        format!("[{items}]")
-    }
-
     /// The check's data: the axes `ax` and home rows `hm` (list literals) and the scale.
     fn chain(&self, pad: &str, ax: &str, hm: &str) -> String;
 
@@ -114,6 +131,48 @@ pub(crate) trait SolverSyntax: Syntax {
 
     /// The whole file around the solver's body.
     fn file(&self, f: &SolverFile) -> String;
+
+    /// The parameters (symbolic lengths) after the target in the solver's signatures.
+    fn parameters(&self, params: &[String]) -> String;
+
+    /// The parameters passed on from one entry point to another.
+    fn pass(&self, params: &[String]) -> String {
+        params.iter().map(|p| format!(", {p}")).collect()
+    }
+
+    /// The entry points over the solver's main function (`ik` over `ik_into`, `ik_dq` over
+    /// `ik`), the same for every method, ending with one newline.
+    fn entry_points(&self, params: &[String], variables: &[String]) -> String;
+
+    /// The whole file of a general-method solver (`ik/general/emit.rs`): its numeric core
+    /// and the driver around it.
+    fn general_file(&self, f: &GeneralFile) -> String;
+}
+
+/// What a general-method solver file is made of (see [`SolverSyntax::general_file`]).
+pub(crate) struct GeneralFile<'a> {
+    /// The documentation, written as comment lines.
+    pub doc: String,
+    /// The parameters (symbolic lengths) after the target.
+    pub params: &'a [String],
+    /// The joint variables, in order.
+    pub variables: &'a [String],
+    /// The literals of the pose tolerance and of the elimination's keep tolerance.
+    pub pose_tol: String,
+    /// See `pose_tol`.
+    pub keep_tol: String,
+    /// The arrangement of the loop tried first.
+    pub first: usize,
+    /// The family solvers' tolerance constants (the C solver states them).
+    pub tolerances: String,
+    /// The numeric core's constants (none in Rust: the core is included verbatim).
+    pub constants: String,
+    /// The numeric core's source in the language.
+    pub core: &'static str,
+    /// The statements binding the axes `ik_ax` and the home pose `ik_home`.
+    pub chain: String,
+    /// The runtime helper `ik_dq_matrix`.
+    pub dq_matrix: &'static str,
 }
 
 /// What the language's solver file is made of (see [`SolverSyntax::file`]).

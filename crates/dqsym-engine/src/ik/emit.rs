@@ -7,8 +7,8 @@
 //! numeric helpers the solver calls are the language's `emit/runtime/ik_helpers.*`.
 
 use super::{Formula, IkSolution, TARGET_SYMBOLS};
-use crate::emit::helpers::StepKind;
 use crate::emit::codegen::{lower, CodegenOptions, Id, Node, Output, Program};
+use crate::emit::helpers::StepKind;
 use crate::emit::names::{self, comment_lines, Comment};
 use crate::emit::syntax::{solver_syntax, syntax, SolverFile, SolverSyntax, Syntax};
 use crate::scalar::Trig;
@@ -191,6 +191,14 @@ fn solver_outputs(
     // The axes and the home pose, for the check by forward kinematics (level 0: parameters
     // only).
     let n_trig = outputs.len();
+    outputs.extend(chain_outputs(sol)?);
+    Ok((outputs, n_parts, n_trig))
+}
+
+/// The axes `(w, p)` (six entries each) and the home pose's top three rows as outputs, for
+/// the check by forward kinematics (both methods' solvers).
+pub(super) fn chain_outputs(sol: &IkSolution) -> Result<Vec<Output>, ScalarError> {
+    let mut outputs = Vec::new();
     for (i, a) in sol.axes.iter().enumerate() {
         for (k, x) in a.dir.iter().chain(&a.point).enumerate() {
             outputs.push(Output::scalar(
@@ -209,7 +217,7 @@ fn solver_outputs(
             ));
         }
     }
-    Ok((outputs, n_parts, n_trig))
+    Ok(outputs)
 }
 
 impl Ctx<'_> {
@@ -443,10 +451,10 @@ pub fn ik_javascript_helpers(sol: &IkSolution) -> String {
     format!("{}{}", tolerances(sol, &js), js.ik_runtime())
 }
 
-/// The tolerances block of the C solvers (the general method's C solver states the same
-/// constants as the family solvers).
-pub(super) fn c_tolerances(sol: &IkSolution) -> String {
-    tolerances(sol, syntax(names::Lang::C))
+/// The tolerances block of `lang` (the general method's C solver states the same constants
+/// as the family solvers).
+pub(super) fn tolerances_of(sol: &IkSolution, lang: names::Lang) -> String {
+    tolerances(sol, syntax(lang))
 }
 
 /// Each step's degree in lengths (see [`super::check`]), for the page's solver.
