@@ -107,6 +107,17 @@ impl Syntax for C {
         Lang::C
     }
 
+    fn function(
+        &self,
+        name: &str,
+        doc: &str,
+        outputs: &[Output],
+        args: &[String],
+        o: &CodegenOptions,
+    ) -> Result<String, CodegenError> {
+        c_function(name, doc, outputs, args, o)
+    }
+
     fn local(&self, name: &str, value: &str) -> String {
         format!("const double {name} = {value};")
     }

@@ -113,6 +113,9 @@ pub enum CodegenError {
     /// A matrix output whose rows differ in length, or an empty output.
     #[error("output `{0}` has a ragged or empty shape")]
     BadShape(String),
+    /// Code asked of a text syntax (SymPy), which has no function writer.
+    #[error("{0:?} text is not code")]
+    NoWriter(super::names::Lang),
 }
 
 /// The arguments of a generated function: `joints` in joint order, then every other symbol of

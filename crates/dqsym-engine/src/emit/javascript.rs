@@ -123,6 +123,17 @@ impl Syntax for JavaScript {
         Lang::JavaScript
     }
 
+    fn function(
+        &self,
+        name: &str,
+        doc: &str,
+        outputs: &[Output],
+        args: &[String],
+        o: &CodegenOptions,
+    ) -> Result<String, CodegenError> {
+        javascript_function(name, doc, outputs, args, o)
+    }
+
     fn local(&self, name: &str, value: &str) -> String {
         format!("const {name} = {value};")
     }

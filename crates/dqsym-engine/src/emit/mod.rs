@@ -28,3 +28,4 @@ pub use latex::{
 pub use python::{python_function, python_names};
 pub use rust::rust_function;
 pub use sympy::{sympy, sympy_decimals, sympy_quotient};
+pub use syntax::function;

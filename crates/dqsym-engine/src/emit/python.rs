@@ -137,6 +137,17 @@ impl Syntax for Python {
         Lang::Python
     }
 
+    fn function(
+        &self,
+        name: &str,
+        doc: &str,
+        outputs: &[Output],
+        args: &[String],
+        o: &CodegenOptions,
+    ) -> Result<String, CodegenError> {
+        python_function(name, doc, outputs, args, o)
+    }
+
     fn local(&self, name: &str, value: &str) -> String {
         format!("{name} = {value}")
     }

@@ -188,6 +188,17 @@ impl Syntax for Rust {
         lit(v)
     }
 
+    fn function(
+        &self,
+        name: &str,
+        doc: &str,
+        outputs: &[Output],
+        args: &[String],
+        o: &CodegenOptions,
+    ) -> Result<String, CodegenError> {
+        rust_function(name, doc, outputs, args, o)
+    }
+
     fn local(&self, name: &str, value: &str) -> String {
         format!("let {name} = {value};")
     }

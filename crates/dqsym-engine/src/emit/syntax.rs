@@ -1,18 +1,35 @@
 //! The syntax of each target language, written once: literals, locals, comments, constants
 //! ([`Syntax`]), and the statements of an IK solver ([`SolverSyntax`]). Each language's
 //! implementation lives in its own module (`rust.rs`, `c.rs`, `python.rs`, `javascript.rs`),
-//! beside its fk function writer; the fk writers, the IK solver writer (`ik/emit.rs`, which
-//! holds the solver's logic once) and the walkthrough page's code all write through it.
+//! beside its fk function writer; fk code ([`function`]), `show`, both IK methods' solver
+//! writers (`ik/emit.rs`, `ik/general/emit.rs`, which hold the solvers' logic once) and the
+//! walkthrough page's code all write through it.
 //!
 //! Adding a language: a module implementing these traits (the compiler lists what is missing)
-//! and its arm in [`syntax`] / [`solver_syntax`].
+//! and its arm in [`syntax`] / [`solver_syntax`]; for IK solvers, its runtime helpers
+//! (`runtime/ik_helpers.*`, each declared by a marker line, see `helpers.rs`).
 
+use super::codegen::{CodegenError, CodegenOptions, Output};
 use super::names::{Comment, Lang};
 
-/// The syntax every generated text of a language shares.
+/// The syntax every generated text of a language shares, and its function writer.
 pub(crate) trait Syntax {
     /// The language, for its reserved names ([`super::names`]).
     fn lang(&self) -> Lang;
+
+    /// A self-contained function `name` computing `outputs` from `args` (fk code, `show`'s
+    /// code formats, the walkthrough page's functions): the language's `*_function`.
+    ///
+    /// # Errors
+    /// As [`super::rust_function`].
+    fn function(
+        &self,
+        name: &str,
+        doc: &str,
+        outputs: &[Output],
+        args: &[String],
+        o: &CodegenOptions,
+    ) -> Result<String, CodegenError>;
 
     /// The literal for `v`: the shortest text that reads back exactly (Rust: a
     /// `std::f64::consts` name where one matches, as clippy's `approx_constant` asks).
@@ -52,15 +69,13 @@ pub(crate) trait Syntax {
 
     /// A constant table of doubles at the top level: `name`, of dimensions `dims` (rows, then
     /// columns; one for a vector), bound to the list literal `value`; with newline.
-    fn table(&self, name: &str, dims: &[usize], value: &str) -> String {
-        let _ = dims;
+    fn table(&self, name: &str, _dims: &[usize], value: &str) -> String {
         format!("{}\n", self.local(name, value))
     }
 
     /// A local array of doubles `name` of dimensions `dims` bound to the list literal `value`,
     /// without indentation or newline (as [`Syntax::local`]).
-    fn array_local(&self, name: &str, dims: &[usize], value: &str) -> String {
-        let _ = dims;
+    fn array_local(&self, name: &str, _dims: &[usize], value: &str) -> String {
         self.local(name, value)
     }
 
@@ -193,6 +208,26 @@ pub(crate) struct SolverFile<'a> {
     pub helpers: String,
     /// The solver's body (indented by 4).
     pub body: String,
+}
+
+/// A function `name` computing `outputs` from `args` in `lang` (Rust, C, Python or
+/// JavaScript), through the language's one writer.
+///
+/// # Errors
+/// When an output reads a symbol that is not an argument, a name is not an identifier, or an
+/// output's shape does not match its values; SymPy, which is not code.
+pub fn function(
+    lang: Lang,
+    name: &str,
+    doc: &str,
+    outputs: &[Output],
+    args: &[String],
+    o: &CodegenOptions,
+) -> Result<String, CodegenError> {
+    if lang == Lang::Sympy {
+        return Err(CodegenError::NoWriter(lang));
+    }
+    syntax(lang).function(name, doc, outputs, args, o)
 }
 
 /// The syntax of `lang` (SymPy text has none of its own here: JavaScript's is returned).
