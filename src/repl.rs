@@ -142,34 +142,55 @@ pub(crate) fn help() -> String {
     s
 }
 
+/// Why `:ik` gave no report (printed after `error: `).
+#[derive(Debug, thiserror::Error)]
+enum IkCommandError {
+    /// The command's words do not read.
+    #[error("{0}")]
+    Usage(&'static str),
+    /// The chain named is bound to another kind of value.
+    #[error("`{name}` is {what}, not a dual quaternion")]
+    NotDualQuat { name: String, what: String },
+    /// The chain named is not bound.
+    #[error("`{0}` is not bound")]
+    Unbound(String),
+    /// The derivation failed.
+    #[error(transparent)]
+    Ik(#[from] dqsym::ik::IkError),
+    /// The report failed (a limit).
+    #[error(transparent)]
+    Report(#[from] dqsym::ScalarError),
+}
+
 /// `:ik NAME q1 q2 ... [--free qk]`: the inverse kinematics of a bound chain DQ.
-fn ik_command(session: &Session, cmd: &str, opts: &ShowOptions) -> Result<String, String> {
+fn ik_command(session: &Session, cmd: &str, opts: &ShowOptions) -> Result<String, IkCommandError> {
+    const USAGE: &str = "usage: :ik NAME q1 q2 ... [--free qk]";
     let mut words: Vec<&str> = cmd.split_whitespace().skip(1).collect();
     let mut free = None;
     if let Some(i) = words.iter().position(|w| *w == "--free") {
         free = Some(
             words
                 .get(i + 1)
-                .ok_or("--free needs a joint variable")?
+                .ok_or(IkCommandError::Usage("--free needs a joint variable"))?
                 .to_string(),
         );
         words.drain(i..i + 2);
     }
-    let (name, vars) = words
-        .split_first()
-        .ok_or("usage: :ik NAME q1 q2 ... [--free qk]")?;
+    let (name, vars) = words.split_first().ok_or(IkCommandError::Usage(USAGE))?;
     if vars.is_empty() {
-        return Err("usage: :ik NAME q1 q2 ... [--free qk] (name the joint variables)".into());
+        return Err(IkCommandError::Usage(
+            "usage: :ik NAME q1 q2 ... [--free qk] (name the joint variables)",
+        ));
     }
     let q = match session.get(name) {
         Some(dqsym::Value::DualQuat(q)) => q.clone(),
         Some(v) => {
-            return Err(format!(
-                "`{name}` is {}, not a dual quaternion",
-                v.describe()
-            ))
+            return Err(IkCommandError::NotDualQuat {
+                name: name.to_string(),
+                what: v.describe(),
+            })
         }
-        None => return Err(format!("`{name}` is not bound")),
+        None => return Err(IkCommandError::Unbound(name.to_string())),
     };
     let vars: Vec<String> = vars.iter().map(|v| v.to_string()).collect();
     let _derivation = dqsym::Context::entered().enter();
@@ -181,14 +202,13 @@ fn ik_command(session: &Session, cmd: &str, opts: &ShowOptions) -> Result<String
             free,
             ..Default::default()
         },
-    )
-    .map_err(|e| e.to_string())?;
+    )?;
     // The report, in LaTeX or SymPy when those are the session's format, else in plain text.
     let format = match opts.format {
         f @ (dqsym::Format::Latex | dqsym::Format::Sympy) => f,
         _ => dqsym::Format::Plain,
     };
-    dqsym::ik::ik_report(&sol, format, !opts.explicit).map_err(|e| e.to_string())
+    Ok(dqsym::ik::ik_report(&sol, format, !opts.explicit)?)
 }
 
 /// The `:vars` listing.

@@ -18,9 +18,37 @@ impl Walkthrough {
     }
 }
 
+/// Why the page's KaTeX could not be read (raised as `DqsymError` with this message).
+#[derive(Debug)]
+enum KatexError {
+    /// No folder holds `katex.min.js`.
+    NotInstalled,
+    /// A file of the folder could not be read.
+    Read { path: PathBuf, error: std::io::Error },
+    /// The assets do not form a page (the library's message).
+    Assets(dqsym::walk::WalkError),
+}
+
+impl std::fmt::Display for KatexError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            KatexError::NotInstalled => f.write_str(
+                "KaTeX is not installed (node_modules/katex/dist/katex.min.js): run `npm install \
+                 katex` in the dqsym directory (or `bash scripts/test.sh`), or pass katex_dir",
+            ),
+            KatexError::Read { path, error } => {
+                write!(f, "cannot read {}: {error}", path.display())
+            }
+            KatexError::Assets(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for KatexError {}
+
 /// Where KaTeX's `dist` folder is: `katex_dir`, `$DQSYM_KATEX_DIR`, `node_modules/katex/dist`
 /// in the current folder or a parent, or in the source tree the package was built from.
-fn katex_dir(given: Option<PathBuf>) -> Result<PathBuf, String> {
+fn katex_dir(given: Option<PathBuf>) -> Result<PathBuf, KatexError> {
     let mut candidates: Vec<PathBuf> = Vec::new();
     candidates.extend(given);
     if let Some(d) = std::env::var_os("DQSYM_KATEX_DIR") {
@@ -35,23 +63,19 @@ fn katex_dir(given: Option<PathBuf>) -> Result<PathBuf, String> {
     candidates
         .into_iter()
         .find(|d| d.join("katex.min.js").is_file())
-        .ok_or_else(|| {
-            "KaTeX is not installed (node_modules/katex/dist/katex.min.js): run `npm install \
-             katex` in the dqsym directory (or `bash scripts/test.sh`), or pass katex_dir"
-                .to_owned()
-        })
+        .ok_or(KatexError::NotInstalled)
 }
 
-fn katex_assets(given: Option<PathBuf>) -> Result<dqsym::walk::KatexAssets, String> {
+fn katex_assets(given: Option<PathBuf>) -> Result<dqsym::walk::KatexAssets, KatexError> {
     let dir = katex_dir(given)?;
     let read = |name: &str| {
-        std::fs::read_to_string(dir.join(name))
-            .map_err(|e| format!("cannot read {}: {e}", dir.join(name).display()))
+        let path = dir.join(name);
+        std::fs::read_to_string(&path).map_err(|error| KatexError::Read { path, error })
     };
     let css = read("katex.min.css")?;
     let js = read("katex.min.js")?;
     let font = |name: &str| std::fs::read(dir.join("fonts").join(name)).ok();
-    dqsym::walk::KatexAssets::new(&css, &js, &font).map_err(|e| e.to_string())
+    dqsym::walk::KatexAssets::new(&css, &js, &font).map_err(KatexError::Assets)
 }
 
 fn attr_escape(s: &str) -> String {
@@ -87,7 +111,7 @@ impl Walkthrough {
     fn html(&self, py: Python<'_>, config: &str, katex_dir: Option<PathBuf>) -> PyResult<String> {
         let cfg = dqsym::walk::Config::parse(config)
             .map_err(|e| errors::other(py, format!("config: {e}")))?;
-        let assets = katex_assets(katex_dir).map_err(|m| errors::other(py, m))?;
+        let assets = katex_assets(katex_dir).map_err(|e| errors::other(py, e.to_string()))?;
         dqsym::walk_html(&self.inner, &assets, &cfg).map_err(|e| errors::other(py, e.to_string()))
     }
 

@@ -25,8 +25,8 @@ use super::value::Value;
 use crate::{
     closed_form,
     emit::{
-        arguments, latex_dual_quat, latex_matrix, latex_quotient_matrix, latex_symbol, latex_tuple,
-        rust_function, sympy, sympy_quotient, CodegenError, CodegenOptions, Output,
+        arguments, function, latex_dual_quat, latex_matrix, latex_quotient_matrix, latex_symbol,
+        latex_tuple, names::Lang, sympy, sympy_quotient, CodegenError, CodegenOptions, Output,
     },
     latex, plain,
     print::{legend, plain_quotient},
@@ -245,24 +245,15 @@ fn is_identifier(label: &str) -> bool {
         && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
-/// The signature shared by the code emitters.
-type Emitter =
-    fn(&str, &str, &[Output], &[String], &CodegenOptions) -> Result<String, CodegenError>;
-
-/// The code emitter of a code format.
-fn emitter(format: Format) -> Option<Emitter> {
-    match format {
-        Format::Rust => Some(rust_function),
-        Format::C => Some(crate::emit::c_function),
-        Format::Python => Some(crate::emit::python_function),
-        Format::Plain | Format::Latex | Format::Sympy => None,
-    }
+/// The language of a code format, whose one writer ([`function`]) writes it.
+fn emitter(format: Format) -> Option<Lang> {
+    Lang::of_code(format)
 }
 
 /// The value as a function named after `label` (or `value`) in the language of `emit`. A
 /// matrix with quotient entries becomes two outputs, `{name}_num` and `{name}_den`: the
 /// emitters have no division.
-fn code_value(label: &str, v: &Value, emit: Emitter) -> Result<String, ShowError> {
+fn code_value(label: &str, v: &Value, lang: Lang) -> Result<String, ShowError> {
     let name = if is_identifier(label) {
         label.to_lowercase()
     } else {
@@ -311,7 +302,8 @@ fn code_value(label: &str, v: &Value, emit: Emitter) -> Result<String, ShowError
         }
     };
     let args = arguments(&outputs, &[]);
-    Ok(emit(
+    Ok(function(
+        lang,
         &name,
         &doc,
         &outputs,

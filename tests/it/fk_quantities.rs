@@ -398,3 +398,46 @@ fn fk_task_jacobian_kinds_are_refused_with_typed_errors() {
         )
     );
 }
+
+/// What choosing code by searching generated (or template) text looks like: a test for a
+/// fragment of code, splitting a text into blocks at blank lines.
+const SEARCHING: &[&str] = &[
+    ".contains(\"",
+    ".find(\"",
+    ".split(\"\\n",
+    ".starts_with(\"",
+    ".ends_with(\"",
+    ".matches(\"",
+];
+
+/// The code writers (`emit/`, the IK solvers' writers) decide what to write from data: the
+/// runtime helpers a solver keeps from its formulas (`emit/helpers.rs`, declared in the
+/// runtime files), its parts from the plan; none of them searches text for code. (The one
+/// place that reads the runtime files' marker lines is `emit/helpers.rs`, which parses
+/// declarations, not code.)
+#[test]
+fn no_writer_chooses_code_by_searching_generated_text() {
+    let writer = |f: &str| {
+        (f.contains("/src/emit/") || f.contains("/src/ik/")) && !f.ends_with("emit/helpers.rs")
+    };
+    let mut found = Vec::new();
+    let mut files = std::collections::BTreeSet::new();
+    for (file, line) in code_lines() {
+        if !writer(&file) {
+            continue;
+        }
+        files.insert(file.clone());
+        for p in SEARCHING {
+            if line.contains(p) {
+                found.push(format!("{file}: `{p}` in {}", line.trim()));
+            }
+        }
+    }
+    assert!(
+        files.iter().any(|f| f.ends_with("ik/emit.rs"))
+            && files.iter().any(|f| f.ends_with("ik/general/emit.rs"))
+            && files.iter().any(|f| f.ends_with("emit/syntax.rs")),
+        "the writers were read: {files:?}"
+    );
+    assert!(found.is_empty(), "{}", found.join("\n"));
+}

@@ -550,6 +550,83 @@ fn explicit(plain: &str) -> String {
     out
 }
 
+/// The coefficients the report of `report_prints_the_exact_equations` names, by the names it
+/// gives them: `g` (by `names`), `A{e}[monomial]` of `Am` and `B{e}[monomial]` of `Bm`.
+#[allow(clippy::needless_range_loop)]
+fn report_coefficients(
+    names: &[String],
+    g: &[f64],
+    am: &[[[f64; 9]; 3]],
+    bm: &[[f64; 8]],
+) -> Vec<(String, f64)> {
+    // The monomial label of (k3, k4, k5) in (1, cos, sin), as the report writes it.
+    let trig = |k: usize, v: &str| match k {
+        1 => format!("cos {v}"),
+        2 => format!("sin {v}"),
+        _ => String::new(),
+    };
+    let label = |ks: &[(usize, &str)]| {
+        let parts: Vec<String> = ks
+            .iter()
+            .map(|(k, v)| trig(*k, v))
+            .filter(|x| !x.is_empty())
+            .collect();
+        if parts.is_empty() {
+            "1".to_string()
+        } else {
+            parts.join(" ")
+        }
+    };
+    let mut want: Vec<(String, f64)> = Vec::new();
+    for e in 0..14 {
+        want.push((names[e].clone(), g[e]));
+        for k in 0..3 {
+            for m in 0..9 {
+                let l = label(&[(k, "q3"), (m / 3, "q4"), (m % 3, "q5")]);
+                want.push((format!("A{}[{l}]", e + 1), am[e][k][m]));
+            }
+        }
+        for m in 1..9 {
+            let l = label(&[(m / 3, "q1"), (m % 3, "q2")]);
+            want.push((format!("B{}[{l}]", e + 1), bm[e][m - 1]));
+        }
+    }
+    want
+}
+
+/// The half-angle polynomial `P1` of the report, summed at `x_q3, x_q4, x_q5 = x` with its
+/// coefficients evaluated by `env`.
+fn p1_at(plain: &str, env: &dyn Fn(&str) -> Option<f64>, x: [f64; 3]) -> f64 {
+    let [x3, x4, x5] = x;
+    let mut p1 = 0.0;
+    for line in plain.lines() {
+        let Some((name, expr)) = line.trim().split_once(" = ") else {
+            continue;
+        };
+        let Some(mono) = name.strip_prefix("P1[").and_then(|m| m.strip_suffix(']')) else {
+            continue;
+        };
+        let mut term = dqsym::eval_scalar_text(&explicit(expr))
+            .expect("P")
+            .eval(env)
+            .expect("v");
+        for f in mono.split(' ').filter(|f| *f != "1") {
+            let (v, p) = f
+                .split_once('^')
+                .map_or((f, 1), |(v, p)| (v, p.parse().expect("power")));
+            let x = match v {
+                "x_q3" => x3,
+                "x_q4" => x4,
+                "x_q5" => x5,
+                other => panic!("{other}"),
+            };
+            term *= x.powi(p);
+        }
+        p1 += term;
+    }
+    p1
+}
+
 /// The report prints the exact equations: every `A`, `B` and `g` line read back by the
 /// language is, at a random target, the value the exact equations (checked against the
 /// numeric core by `exact_equations_equal_the_sampled_coefficients`) give; the half-angle
@@ -584,38 +661,7 @@ fn report_prints_the_exact_equations() {
             .map(|i| g[i])
             .or_else(|| target(n))
     };
-    // The monomial label of (k3, k4, k5) in (1, cos, sin), as the report writes it.
-    let trig = |k: usize, v: &str| match k {
-        1 => format!("cos {v}"),
-        2 => format!("sin {v}"),
-        _ => String::new(),
-    };
-    let label = |ks: &[(usize, &str)]| {
-        let parts: Vec<String> = ks
-            .iter()
-            .map(|(k, v)| trig(*k, v))
-            .filter(|x| !x.is_empty())
-            .collect();
-        if parts.is_empty() {
-            "1".to_string()
-        } else {
-            parts.join(" ")
-        }
-    };
-    let mut want: Vec<(String, f64)> = Vec::new();
-    for e in 0..14 {
-        want.push((eq.g_names[e].clone(), g[e]));
-        for k in 0..3 {
-            for m in 0..9 {
-                let l = label(&[(k, "q3"), (m / 3, "q4"), (m % 3, "q5")]);
-                want.push((format!("A{}[{l}]", e + 1), am[e][k][m]));
-            }
-        }
-        for m in 1..9 {
-            let l = label(&[(m / 3, "q1"), (m % 3, "q2")]);
-            want.push((format!("B{}[{l}]", e + 1), bm[e][m - 1]));
-        }
-    }
+    let want = report_coefficients(&eq.g_names, &g, &am, &bm);
     let mut seen = 0;
     for line in plain.lines() {
         let Some((name, expr)) = line.trim().split_once(" = ") else {
@@ -643,32 +689,7 @@ fn report_prints_the_exact_equations() {
     // The half-angle polynomial of equation 1 at x = tan(q/2) equals (1 + x^2)^3 times
     // Am(q3) X45 at those angles.
     let (x3, x4, x5) = (0.3_f64, -0.7_f64, 1.1_f64);
-    let mut p1 = 0.0;
-    for line in plain.lines() {
-        let Some((name, expr)) = line.trim().split_once(" = ") else {
-            continue;
-        };
-        let Some(mono) = name.strip_prefix("P1[").and_then(|m| m.strip_suffix(']')) else {
-            continue;
-        };
-        let mut term = dqsym::eval_scalar_text(&explicit(expr))
-            .expect("P")
-            .eval(&env)
-            .expect("v");
-        for f in mono.split(' ').filter(|f| *f != "1") {
-            let (v, p) = f
-                .split_once('^')
-                .map_or((f, 1), |(v, p)| (v, p.parse().expect("power")));
-            let x = match v {
-                "x_q3" => x3,
-                "x_q4" => x4,
-                "x_q5" => x5,
-                other => panic!("{other}"),
-            };
-            term *= x.powi(p);
-        }
-        p1 += term;
-    }
+    let p1 = p1_at(&plain, &env, [x3, x4, x5]);
     let cs = |x: f64| [1.0, (1.0 - x * x) / (1.0 + x * x), 2.0 * x / (1.0 + x * x)];
     let (t3, t4, t5) = (cs(x3), cs(x4), cs(x5));
     let mut direct = 0.0;

@@ -431,15 +431,31 @@ fn num(p: i64, q: i64) -> G {
     G::Num(R::new(p, q))
 }
 
-/// Draws one case of the family numbered `family`.
-fn case(rng: &mut Rng, family: u64) -> Case {
-    let mut g = Gen::new(rng);
-    let single = |family, a| Case { family, a, b: None };
-    let pair = |family, a, b| Case {
+fn single(family: &'static str, a: G) -> Case {
+    Case { family, a, b: None }
+}
+
+fn pair(family: &'static str, a: G, b: G) -> Case {
+    Case {
         family,
         a,
         b: Some(b),
-    };
+    }
+}
+
+/// Draws one case of the family numbered `family`.
+fn case(rng: &mut Rng, family: u64) -> Case {
+    let mut g = Gen::new(rng);
+    match family {
+        0..=4 => expression_case(&mut g, family),
+        5..=8 => identity_case(&mut g, family),
+        _ => addition_case(&mut g, family),
+    }
+}
+
+/// Families 0-4: single expressions (polynomials, products, constants, half angles, planar
+/// kinematics), simplified and checked at random points.
+fn expression_case(g: &mut Gen, family: u64) -> Case {
     match family {
         0 => {
             let pool = g.pool(false);
@@ -475,7 +491,7 @@ fn case(rng: &mut Rng, family: u64) -> Case {
             let n = 1 + g.rng.below(3) as usize;
             single("half angles", g.sum(&pool, n))
         }
-        4 => {
+        _ => {
             // A planar chain: sum of l_i cos/sin of cumulative angles with offsets.
             let n = 2 + g.rng.below(2) as usize;
             let mut acc = Ang::constant_pi(R::int(0));
@@ -507,6 +523,13 @@ fn case(rng: &mut Rng, family: u64) -> Case {
                 single("kinematics", G::Add(terms))
             }
         }
+    }
+}
+
+/// Families 5-8: identities of several angles (Morrie, regular polygons, Chebyshev, product
+/// to sum), both sides simplified to the same form.
+fn identity_case(g: &mut Gen, family: u64) -> Case {
+    match family {
         5 => {
             // Morrie: 2^n sin(A) prod cos(2^k A) = sin(2^n A).
             let n = 2 + g.rng.below(3) as u32;
@@ -561,7 +584,7 @@ fn case(rng: &mut Rng, family: u64) -> Case {
                 )
             }
         }
-        8 => {
+        _ => {
             // Product to sum.
             let (a, b) = (g.angle(), g.angle());
             let (d, s) = (a.plus(&b.scaled(R::int(-1))), a.plus(&b));
@@ -586,6 +609,13 @@ fn case(rng: &mut Rng, family: u64) -> Case {
                 ),
             }
         }
+    }
+}
+
+/// Families 9-12: sums to products, the harmonic form, shifts and double angles, the
+/// addition formulas in a planar arm.
+fn addition_case(g: &mut Gen, family: u64) -> Case {
+    match family {
         9 => {
             // Sum to product.
             let (a, b) = (g.angle(), g.angle());

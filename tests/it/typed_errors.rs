@@ -96,3 +96,40 @@ fn dh_refusal_is_typed_and_names_the_coupled_joint() {
     // A screw-form reader's refusal of a DH robot is typed too.
     assert_eq!(dh_refusal(&planar2r()), Some(DhRefusal::NotScrew));
 }
+
+/// The REPL's `:ik` refuses each bad command with its typed error's message (the usage, an
+/// unbound or mistyped chain, `--free` without a variable) and the session goes on.
+#[test]
+fn repl_ik_errors_say_what_is_wrong_and_the_session_goes_on() {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_dqsym"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    let input = ":ik\n:ik foo q1\nsyms a\n:ik a q1\n:ik a --free\n:ik a\na + 1/2\n:quit\n";
+    child
+        .stdin
+        .take()
+        .expect("stdin")
+        .write_all(input.as_bytes())
+        .expect("written");
+    let out = child.wait_with_output().expect("it ends");
+    let err = String::from_utf8_lossy(&out.stderr);
+    let lines: Vec<&str> = err.lines().filter(|l| l.starts_with("error:")).collect();
+    assert_eq!(
+        lines,
+        [
+            "error: usage: :ik NAME q1 q2 ... [--free qk]",
+            "error: `foo` is not bound",
+            "error: `a` is a scalar, not a dual quaternion",
+            "error: --free needs a joint variable",
+            "error: usage: :ik NAME q1 q2 ... [--free qk] (name the joint variables)",
+        ],
+        "{err}"
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("a + 1/2"), "{stdout}");
+}

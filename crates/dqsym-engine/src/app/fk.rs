@@ -13,11 +13,11 @@
 
 use super::quantity::{Family, Letters, MatrixFrom, Quantity, Section, SectionKind};
 use super::recurrence::recurrence_sections;
-use crate::emit::names::{line_comment, Comment};
+use crate::emit::names::{line_comment, Comment, Lang};
+use crate::emit::syntax::syntax;
 use crate::emit::{
-    arguments, c_function, count_ops, generated_ops, latex_aligned, product_table, python_function,
-    rotation_chain_ops, rust_function, sympy, sympy_decimals, CodegenError, CodegenOptions,
-    Counted, LatexOptions, Output,
+    arguments, count_ops, generated_ops, latex_aligned, product_table, rotation_chain_ops, sympy,
+    sympy_decimals, CodegenError, CodegenOptions, Counted, LatexOptions, Output,
 };
 use crate::kin::{dq_jacobian, Robot};
 use crate::print::{legend, plain, plain_len_bound, Format, PlainOptions};
@@ -456,9 +456,9 @@ pub(super) fn render(
         sections
     };
     Ok(match o.format {
-        Format::Rust => code(robot, sections, Generated::Rust)?,
-        Format::C => code(robot, sections, Generated::C)?,
-        Format::Python => code(robot, sections, Generated::Python)?,
+        Format::Rust => code(robot, sections, Generated::Code(Lang::Rust))?,
+        Format::C => code(robot, sections, Generated::Code(Lang::C))?,
+        Format::Python => code(robot, sections, Generated::Code(Lang::Python))?,
         Format::Sympy => sections
             .iter()
             .flat_map(|s| {
@@ -527,9 +527,7 @@ pub(super) fn render(
 /// What [`code`] writes: a function in one language, or the operation counts of the Rust one.
 #[derive(Clone, Copy)]
 enum Generated {
-    Rust,
-    C,
-    Python,
+    Code(Lang),
     Ops,
 }
 
@@ -611,9 +609,7 @@ fn code(robot: &Robot, sections: &[Section], f: Generated) -> Result<String, Cod
             }
             Ok(out)
         }
-        Generated::C => c_function(&name, &doc, &outputs, &args, &o),
-        Generated::Python => python_function(&name, &doc, &outputs, &args, &o),
-        Generated::Rust => rust_function(&name, &doc, &outputs, &args, &o),
+        Generated::Code(lang) => syntax(lang).function(&name, &doc, &outputs, &args, &o),
     }
 }
 

@@ -2,7 +2,7 @@
 
 use super::codegen::{lower_named, CodegenError, CodegenOptions, Output};
 use super::names::{comment_lines, safe_name, safe_names, Comment, Lang};
-use super::syntax::{SolverFile, SolverSyntax, Syntax};
+use super::syntax::{GeneralFile, SolverFile, SolverSyntax, Syntax};
 
 /// A C99 function `void name(double arg..., double out[n]...)` computing `outputs` from `args`
 /// with the same common subexpressions as [`rust_function`](crate::emit::rust_function). A scalar
@@ -94,12 +94,28 @@ pub fn c_function(
     Ok(s)
 }
 
+/// The dimensions of an array declaration (`[6][7]`).
+fn dimensions(dims: &[usize]) -> String {
+    dims.iter().map(|d| format!("[{d}]")).collect()
+}
+
 /// C99's syntax ([`super::syntax`]).
 pub(crate) struct C;
 
 impl Syntax for C {
     fn lang(&self) -> Lang {
         Lang::C
+    }
+
+    fn function(
+        &self,
+        name: &str,
+        doc: &str,
+        outputs: &[Output],
+        args: &[String],
+        o: &CodegenOptions,
+    ) -> Result<String, CodegenError> {
+        c_function(name, doc, outputs, args, o)
     }
 
     fn local(&self, name: &str, value: &str) -> String {
@@ -122,6 +138,25 @@ impl Syntax for C {
         "0"
     }
 
+    fn list(&self, items: &str) -> String {
+        format!("{{{items}}}")
+    }
+
+    fn table(&self, name: &str, dims: &[usize], value: &str) -> String {
+        format!(
+            "static const double {name}{} = {value};\n",
+            dimensions(dims)
+        )
+    }
+
+    fn array_local(&self, name: &str, dims: &[usize], value: &str) -> String {
+        format!("const double {name}{} = {value};", dimensions(dims))
+    }
+
+    fn call(&self, f: &str, arg: &str) -> String {
+        format!("{f}({arg})")
+    }
+
     fn shape_constants(&self, _dof: usize, position_only: bool) -> String {
         // IK_DOF is defined before the solutions' struct, which needs it.
         format!("#define IK_POSITION_ONLY {}\n", u8::from(position_only))
@@ -129,10 +164,6 @@ impl Syntax for C {
 }
 
 impl SolverSyntax for C {
-    fn runtime(&self) -> &'static str {
-        include_str!("runtime/ik_helpers.c")
-    }
-
     fn doc_syntax(&self) -> Comment {
         Comment::Block
     }
@@ -157,10 +188,6 @@ impl SolverSyntax for C {
 
     fn sampled(&self, i: usize) -> String {
         format!("ik_i{i} >= ik_r{i}.smp")
-    }
-
-    fn list(&self, items: &str) -> String {
-        format!("{{{items}}}")
     }
 
     fn chain(&self, pad: &str, ax: &str, hm: &str) -> String {
@@ -198,17 +225,15 @@ impl SolverSyntax for C {
     }
 
     fn file(&self, f: &SolverFile) -> String {
-        let (n, max) = (f.dof, f.max);
-        let params: String = f.params.iter().map(|p| format!(", double {p}")).collect();
-        let pnames: String = f.params.iter().map(|p| format!(", {p}")).collect();
+        let params = self.parameters(f.params);
         let mut s = String::new();
         for l in &f.doc {
-            s.push_str(&format!("/* {l} */\n"));
+            s.push_str(&self.comment_line(l));
         }
-        s.push_str(&format!(
-            "#include <float.h>\n#include <math.h>\n#ifndef M_PI\n#define M_PI 3.14159265358979323846\n#endif\n\n\
-#define IK_MAX {max}\n#define IK_DOF {n}\n\ntypedef struct {{\n    double q[IK_MAX][IK_DOF];\n    int singular[IK_MAX];\n    int approximate[IK_MAX];\n    double residual[IK_MAX];\n    int n;\n}} ik_solutions;\n\n"
-        ));
+        s.push_str(
+            "#include <float.h>\n#include <math.h>\n#ifndef M_PI\n#define M_PI 3.14159265358979323846\n#endif\n\n",
+        );
+        s.push_str(&solutions_type(f.max, f.dof));
         s.push_str(&f.helpers);
         s.push_str(&format!(
             "\nvoid ik(const double ik_target[4][4]{params}, ik_solutions *ik_out) {{\n"
@@ -227,9 +252,81 @@ impl SolverSyntax for C {
         s.push_str("    ik_out->n = 0;\n");
         s.push_str(&f.body);
         s.push_str("}\n\n");
-        s.push_str(&format!(
+        s.push_str(&self.entry_points(f.params, f.variables));
+        s
+    }
+
+    fn parameters(&self, params: &[String]) -> String {
+        params.iter().map(|p| format!(", double {p}")).collect()
+    }
+
+    fn entry_points(&self, params: &[String], _variables: &[String]) -> String {
+        let (pnames, params) = (self.pass(params), self.parameters(params));
+        format!(
             "void ik_dq(const double ik_q[8]{params}, ik_solutions *ik_out) {{\n    double ik_target[4][4];\n    ik_dq_matrix(ik_q, ik_target);\n    ik((const double (*)[4])ik_target{pnames}, ik_out);\n}}\n"
+        )
+    }
+
+    fn general_file(&self, f: &GeneralFile) -> String {
+        let params = self.parameters(f.params);
+        let mut s = f.doc.clone();
+        s.push_str("#include <math.h>\n#include <string.h>\n\n");
+        s.push_str(&solutions_type(16, 6));
+        s.push_str(&f.tolerances);
+        s.push_str(&format!(
+            "/* The residual above which a root of the elimination is dropped (no solution), and the\n   arrangement of the loop tried first (the one that served at the derivation). */\n\
+#define IK_KEEP_TOL {}\n#define IK_FIRST_ARRANGEMENT {}\n\n/* The constants of the numeric core (from core.rs). */\n{}\n",
+            f.keep_tol, f.first, f.constants
         ));
+        s.push_str(f.core);
+        s.push('\n');
+        s.push_str(&self.comment_line(
+            "The homogeneous matrix of a unit dual quaternion (w, x, y, z) + eps (w, x, y, z).",
+        ));
+        s.push_str(f.dq_matrix);
+        s.push_str("\n\n");
+        s.push_str(&format!(
+            "/* Every solution for the target pose ik_target (row-major homogeneous matrix), written to\n   ik_out (ik_out->n of them). */\n\
+void ik(const double ik_target[4][4]{params}, ik_solutions *ik_out) {{\n"
+        ));
+        for p in f.params {
+            s.push_str(&format!("    (void){p};\n"));
+        }
+        s.push_str(&f.chain);
+        s.push_str(GENERAL_DRIVER);
+        s.push_str(&self.entry_points(f.params, f.variables));
         s
     }
 }
+
+/// The solutions' type, after the most solutions and the number of joints.
+fn solutions_type(max: usize, dof: usize) -> String {
+    format!(
+        "#define IK_MAX {max}\n#define IK_DOF {dof}\n\ntypedef struct {{\n    double q[IK_MAX][IK_DOF];\n    int singular[IK_MAX];\n    int approximate[IK_MAX];\n    double residual[IK_MAX];\n    int n;\n}} ik_solutions;\n\n"
+    )
+}
+
+/// The general solver's driver after the chain: the scale, the core's call, the solutions.
+const GENERAL_DRIVER: &str = r#"    /* The robot's scale (as ik::check::scale). */
+    double ik_len = 0.0;
+    ik_gen_tol ik_tol;
+    ik_gen_out ik_o;
+    int ik_i, ik_k;
+    for (ik_i = 0; ik_i < 6; ik_i++)
+        ik_len = fmax(ik_len, fabs(ik_ax[ik_i][4]) + fabs(ik_ax[ik_i][5]) + fabs(ik_ax[ik_i][6]));
+    ik_len = fmax(ik_len, fabs(ik_home[0][3]) + fabs(ik_home[1][3]) + fabs(ik_home[2][3]));
+    ik_len = fmax(ik_len, fabs(ik_target[0][3]) + fabs(ik_target[1][3]) + fabs(ik_target[2][3]));
+    if (!(ik_len > 0.0 && isfinite(ik_len))) ik_len = 1.0;
+    ik_tol.pose = IK_POSE_TOL;
+    ik_tol.keep = IK_KEEP_TOL;
+    ik_gen_solve(ik_ax, ik_home, ik_target, ik_len, ik_tol, IK_FIRST_ARRANGEMENT, &ik_o);
+    ik_out->n = ik_o.n;
+    for (ik_i = 0; ik_i < ik_o.n; ik_i++) {
+        for (ik_k = 0; ik_k < 6; ik_k++) ik_out->q[ik_i][ik_k] = ik_o.q[ik_i][ik_k];
+        ik_out->singular[ik_i] = 0;
+        ik_out->residual[ik_i] = ik_o.residual[ik_i];
+        ik_out->approximate[ik_i] = ik_o.residual[ik_i] > IK_POSE_TOL || isnan(ik_o.residual[ik_i]);
+    }
+}
+
+"#;

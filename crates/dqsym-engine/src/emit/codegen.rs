@@ -113,6 +113,9 @@ pub enum CodegenError {
     /// A matrix output whose rows differ in length, or an empty output.
     #[error("output `{0}` has a ragged or empty shape")]
     BadShape(String),
+    /// Code asked of a text syntax (SymPy), which has no function writer.
+    #[error("{0:?} text is not code")]
+    NoWriter(super::names::Lang),
 }
 
 /// The arguments of a generated function: `joints` in joint order, then every other symbol of
@@ -840,8 +843,3 @@ pub(crate) const STD_CONSTS: &[(&str, f64)] = &[
     ("LOG2_10", std::f64::consts::LOG2_10),
     ("LOG10_2", std::f64::consts::LOG10_2),
 ];
-
-/// A float literal that reads back to `v` exactly: `0.5`, `2.0`, `0.3535533905932738`.
-pub(crate) fn float_literal(v: f64) -> String {
-    format!("{v:?}")
-}

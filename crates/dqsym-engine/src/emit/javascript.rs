@@ -108,15 +108,30 @@ pub fn javascript_function(
 pub(crate) struct JavaScript;
 
 impl JavaScript {
-    /// The numeric helpers of the IK page's solver.
-    pub(crate) fn ik_runtime(&self) -> &'static str {
-        include_str!("runtime/ik_helpers.js")
+    /// The numeric helpers of the IK page's solver: every helper of its runtime file.
+    pub(crate) fn ik_runtime(&self) -> String {
+        let texts: Vec<&str> = super::helpers::runtime(Lang::JavaScript)
+            .iter()
+            .map(|h| h.text)
+            .collect();
+        format!("{}\n", texts.join("\n\n"))
     }
 }
 
 impl Syntax for JavaScript {
     fn lang(&self) -> Lang {
         Lang::JavaScript
+    }
+
+    fn function(
+        &self,
+        name: &str,
+        doc: &str,
+        outputs: &[Output],
+        args: &[String],
+        o: &CodegenOptions,
+    ) -> Result<String, CodegenError> {
+        javascript_function(name, doc, outputs, args, o)
     }
 
     fn local(&self, name: &str, value: &str) -> String {
@@ -129,6 +144,14 @@ impl Syntax for JavaScript {
 
     fn constant(&self, name: &str, value: &str, _ty: &str) -> String {
         format!("const {name} = {value};\n")
+    }
+
+    fn table(&self, name: &str, _dims: &[usize], value: &str) -> String {
+        format!("const {name} = {value};\n")
+    }
+
+    fn call(&self, f: &str, arg: &str) -> String {
+        format!("Math.{f}({arg})")
     }
 
     fn shape_constants(&self, _dof: usize, _position_only: bool) -> String {

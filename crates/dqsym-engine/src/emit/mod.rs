@@ -6,6 +6,7 @@
 mod c;
 pub(crate) mod codegen;
 mod count;
+pub(crate) mod helpers;
 pub(crate) mod javascript;
 pub use latex::visual_len;
 mod latex;
@@ -27,3 +28,4 @@ pub use latex::{
 pub use python::{python_function, python_names};
 pub use rust::rust_function;
 pub use sympy::{sympy, sympy_decimals, sympy_quotient};
+pub use syntax::function;

@@ -2,7 +2,7 @@
 
 use super::codegen::{lower_named, CodegenError, CodegenOptions, Output};
 use super::names::{comment_lines, safe_name, safe_names, Comment, Lang};
-use super::syntax::{SolverFile, SolverSyntax, Syntax};
+use super::syntax::{GeneralFile, SolverFile, SolverSyntax, Syntax};
 
 /// A Python module text (`import numpy as np` and one function) computing `outputs` from
 /// `args` with the same common subexpressions as [`rust_function`](crate::emit::rust_function). The
@@ -137,6 +137,17 @@ impl Syntax for Python {
         Lang::Python
     }
 
+    fn function(
+        &self,
+        name: &str,
+        doc: &str,
+        outputs: &[Output],
+        args: &[String],
+        o: &CodegenOptions,
+    ) -> Result<String, CodegenError> {
+        python_function(name, doc, outputs, args, o)
+    }
+
     fn local(&self, name: &str, value: &str) -> String {
         format!("{name} = {value}")
     }
@@ -153,6 +164,10 @@ impl Syntax for Python {
         " or "
     }
 
+    fn call(&self, f: &str, arg: &str) -> String {
+        format!("math.{f}({arg})")
+    }
+
     fn false_literal(&self) -> &'static str {
         "False"
     }
@@ -167,13 +182,9 @@ impl Syntax for Python {
 }
 
 impl SolverSyntax for Python {
-    fn runtime(&self) -> &'static str {
-        include_str!("runtime/ik_helpers.py")
-    }
-
-    fn helper_texts(&self, consts: &str) -> Vec<String> {
-        // One text: its blocks are separated by two blank lines, as PEP 8 asks.
-        vec![format!("{consts}\n\n{}", self.runtime())]
+    fn helper_separator(&self) -> &'static str {
+        // Two blank lines between top-level definitions, as PEP 8 asks.
+        "\n\n\n"
     }
 
     fn doc_syntax(&self) -> Comment {
@@ -244,15 +255,10 @@ impl SolverSyntax for Python {
     }
 
     fn file(&self, f: &SolverFile) -> String {
-        let kw = if f.params.is_empty() {
-            String::new()
-        } else {
-            format!(", *, {}", f.params.join(", "))
-        };
-        let pass: String = f.params.iter().map(|p| format!(", {p}={p}")).collect();
+        let kw = self.parameters(f.params);
         let mut s = String::new();
         for l in &f.doc {
-            s.push_str(&format!("# {l}\n"));
+            s.push_str(&self.comment_line(l));
         }
         s.push_str("import math\n\nimport numpy as np\n\n\n");
         s.push_str(&f.helpers);
@@ -267,13 +273,63 @@ impl SolverSyntax for Python {
         s.push_str("    ik_out = []\n");
         s.push_str(&f.body);
         s.push_str("    return ik_out\n\n\n");
+        s.push_str(&self.entry_points(f.params, f.variables));
+        s
+    }
+
+    fn parameters(&self, params: &[String]) -> String {
+        if params.is_empty() {
+            String::new()
+        } else {
+            format!(", *, {}", params.join(", "))
+        }
+    }
+
+    fn pass(&self, params: &[String]) -> String {
+        params.iter().map(|p| format!(", {p}={p}")).collect()
+    }
+
+    fn entry_points(&self, params: &[String], variables: &[String]) -> String {
+        let (pass, kw) = (self.pass(params), self.parameters(params));
+        format!(
+            "def ik(T{kw}):\n    \"\"\"Every solution: joint vectors in joint order ({}).\"\"\"\n    return [q for q, _, _, _ in ik_full(T{pass})]\n\n\n\
+def ik_dq(q{kw}):\n    \"\"\"ik for a unit dual quaternion (w, x, y, z) + eps (w, x, y, z).\"\"\"\n    return ik(_ik_dq_matrix(q){pass})\n",
+            variables.join(", ")
+        )
+    }
+
+    fn general_file(&self, f: &GeneralFile) -> String {
+        let kw = self.parameters(f.params);
+        let mut s = f.doc.clone();
+        s.push_str("import math\n\nimport numpy as np\n\n");
         s.push_str(&format!(
-            "def ik(T{kw}):\n    \"\"\"Every solution: joint vectors in joint order ({}).\"\"\"\n    return [q for q, _, _, _ in ik_full(T{pass})]\n\n\n",
-            f.variables.join(", ")
+            "IK_POSE_TOL = {}\nIK_KEEP_TOL = {}\nIK_FIRST_ARRANGEMENT = {}\n\n",
+            f.pose_tol, f.keep_tol, f.first
         ));
+        s.push_str(&f.constants);
+        s.push('\n');
+        s.push_str(f.core);
         s.push_str(&format!(
-            "def ik_dq(q{kw}):\n    \"\"\"ik for a unit dual quaternion (w, x, y, z) + eps (w, x, y, z).\"\"\"\n    return ik(_ik_dq_matrix(q){pass})\n"
+            "\n\ndef ik_full(T{kw}):\n    \"\"\"Every solution as (q, singular, approximate, residual).\"\"\"\n    T = np.asarray(T, dtype=float)\n"
         ));
+        s.push_str(&f.chain);
+        s.push_str(GENERAL_DRIVER);
+        s.push_str(&self.entry_points(f.params, f.variables));
+        s.push_str("\n\n");
+        s.push_str(f.dq_matrix);
+        s.push('\n');
         s
     }
 }
+
+/// The general solver's driver after the chain: the scale, the core's call.
+const GENERAL_DRIVER: &str = r#"    # The robot's scale (as ik::check::scale).
+    ik_len = max([abs(a[4]) + abs(a[5]) + abs(a[6]) for a in ik_ax]
+                 + [abs(ik_home[0][3]) + abs(ik_home[1][3]) + abs(ik_home[2][3]),
+                    abs(T[0, 3]) + abs(T[1, 3]) + abs(T[2, 3])])
+    if not (ik_len > 0 and math.isfinite(ik_len)):
+        ik_len = 1.0
+    return _gen_solve(ik_ax, ik_home, T, ik_len, IK_POSE_TOL, IK_KEEP_TOL, IK_FIRST_ARRANGEMENT)
+
+
+"#;

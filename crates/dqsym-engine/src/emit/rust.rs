@@ -2,7 +2,7 @@
 
 use super::codegen::{lower_named, CodegenError, CodegenOptions, Output, STD_CONSTS};
 use super::names::{comment_lines, float_literal, safe_name, safe_names, Comment, Lang};
-use super::syntax::{SolverFile, SolverSyntax, Syntax};
+use super::syntax::{GeneralFile, SolverFile, SolverSyntax, Syntax};
 
 /// The literal for `v`, through `std::f64::consts` where one matches.
 fn lit(v: f64) -> String {
@@ -169,6 +169,13 @@ pub fn rust_function(
     Ok(s)
 }
 
+/// The type of an array of doubles of dimensions `dims` (`[[f64; 7]; 6]` for `[6, 7]`).
+fn array_type(dims: &[usize]) -> String {
+    dims.iter()
+        .rev()
+        .fold("f64".to_string(), |t, d| format!("[{t}; {d}]"))
+}
+
 /// Rust's syntax ([`super::syntax`]).
 pub(crate) struct Rust;
 
@@ -179,6 +186,17 @@ impl Syntax for Rust {
 
     fn literal(&self, v: f64) -> String {
         lit(v)
+    }
+
+    fn function(
+        &self,
+        name: &str,
+        doc: &str,
+        outputs: &[Output],
+        args: &[String],
+        o: &CodegenOptions,
+    ) -> Result<String, CodegenError> {
+        rust_function(name, doc, outputs, args, o)
     }
 
     fn local(&self, name: &str, value: &str) -> String {
@@ -193,6 +211,18 @@ impl Syntax for Rust {
         format!("#[allow(dead_code)]\nconst {name}: {ty} = {value};\n")
     }
 
+    fn table(&self, name: &str, dims: &[usize], value: &str) -> String {
+        format!("const {name}: {} = {value};\n", array_type(dims))
+    }
+
+    fn array_local(&self, name: &str, dims: &[usize], value: &str) -> String {
+        format!("let {name}: {} = {value};", array_type(dims))
+    }
+
+    fn call(&self, f: &str, arg: &str) -> String {
+        format!("({arg}).{f}()")
+    }
+
     fn shape_constants(&self, dof: usize, position_only: bool) -> String {
         format!(
             "const IK_DOF: usize = {dof};\n#[allow(dead_code)]\nconst IK_POSITION_ONLY: bool = {position_only};\n"
@@ -201,10 +231,6 @@ impl Syntax for Rust {
 }
 
 impl SolverSyntax for Rust {
-    fn runtime(&self) -> &'static str {
-        include_str!("runtime/ik_helpers.rs")
-    }
-
     fn doc_syntax(&self) -> Comment {
         Comment::Slashes
     }
@@ -262,11 +288,10 @@ impl SolverSyntax for Rust {
 
     fn file(&self, f: &SolverFile) -> String {
         let (n, max) = (f.dof, f.max);
-        let params: String = f.params.iter().map(|p| format!(", {p}: f64")).collect();
-        let pnames: String = f.params.iter().map(|p| format!(", {p}")).collect();
+        let params = self.parameters(f.params);
         let mut s = String::new();
         for l in &f.doc {
-            s.push_str(&format!("// {l}\n"));
+            s.push_str(&self.comment_line(l));
         }
         s.push_str(&format!(
             "\n/// The most solutions the solver returns.\npub const IK_MAX: usize = {max};\n\n\
@@ -293,17 +318,71 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4]{params}) {{\n
         s.push_str("    ik_out.n = 0;\n");
         s.push_str(&f.body);
         s.push_str("}\n\n");
-        s.push_str(&format!(
+        s.push_str(&self.entry_points(f.params, f.variables));
+        s
+    }
+
+    fn parameters(&self, params: &[String]) -> String {
+        params.iter().map(|p| format!(", {p}: f64")).collect()
+    }
+
+    fn entry_points(&self, params: &[String], _variables: &[String]) -> String {
+        let (pnames, params) = (self.pass(params), self.parameters(params));
+        format!(
             "/// Every solution for the target pose `t` (row-major homogeneous matrix).\n\
 #[allow(non_snake_case, clippy::too_many_arguments)]\n\
 pub fn ik(ik_target: &[[f64; 4]; 4]{params}) -> IkSolutions {{\n    let mut ik_out = IkSolutions::default();\n    \
-ik_into(&mut ik_out, ik_target{pnames});\n    ik_out\n}}\n\n"
-        ));
-        s.push_str(&format!(
-            "/// Every solution for the target given as a unit dual quaternion `(w, x, y, z)` +\n\
+ik_into(&mut ik_out, ik_target{pnames});\n    ik_out\n}}\n\n\
+/// Every solution for the target given as a unit dual quaternion `(w, x, y, z)` +\n\
 /// eps `(w, x, y, z)`.\n#[allow(non_snake_case, clippy::too_many_arguments)]\n\
 pub fn ik_dq(ik_q: &[f64; 8]{params}) -> IkSolutions {{\n    ik(&ik_dq_matrix(ik_q){pnames})\n}}\n"
+        )
+    }
+
+    fn general_file(&self, f: &GeneralFile) -> String {
+        let params = self.parameters(f.params);
+        let mut s = f.doc.clone();
+        s.push_str(&format!(
+            "\n/// The most solutions the solver returns.\npub const IK_MAX: usize = 16;\n\
+/// The residual above which a solution is flagged approximate.\npub const IK_POSE_TOL: f64 = {};\n\
+/// The residual above which a root of the elimination is dropped (no solution).\npub const IK_KEEP_TOL: f64 = {};\n\
+/// The arrangement of the loop tried first (the one that served at the derivation).\nconst IK_FIRST_ARRANGEMENT: usize = {};\n\n\
+/// The solutions: `q` in joint order, with their flags.\n\
+#[derive(Clone, Copy, Debug, PartialEq)]\npub struct IkSolutions {{\n    /// Joint vectors.\n    pub q: [[f64; 6]; IK_MAX],\n    \
+/// Never set by the general method.\n    pub singular: [bool; IK_MAX],\n    /// The pose misses the target by more than IK_POSE_TOL.\n    pub approximate: [bool; IK_MAX],\n    \
+/// The residual of each solution.\n    pub residual: [f64; IK_MAX],\n    /// How many are valid.\n    pub n: usize,\n}}\n\n\
+impl Default for IkSolutions {{\n    fn default() -> Self {{\n        IkSolutions {{ q: [[0.0; 6]; IK_MAX], singular: [false; IK_MAX], approximate: [false; IK_MAX], residual: [0.0; IK_MAX], n: 0 }}\n    }}\n}}\n\n",
+            f.pose_tol, f.keep_tol, f.first,
         ));
+        s.push_str("/// The numeric core of the general 6R solver.\n#[allow(dead_code, clippy::all)]\nmod ik_general {\n");
+        s.push_str(f.core);
+        s.push_str("}\n\n");
+        s.push_str(&format!(
+            "/// Every solution for the target pose `t` (row-major homogeneous matrix), written to\n\
+/// `ik_out` (`ik_out.n` of them).\n\
+#[allow(non_snake_case, unused_variables, clippy::too_many_arguments, clippy::excessive_precision, clippy::neg_multiply, clippy::double_parens, unused_parens)]\n\
+pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4]{params}) {{\n"
+        ));
+        s.push_str(&f.chain);
+        s.push_str(GENERAL_DRIVER);
+        s.push_str(&self.entry_points(f.params, f.variables));
+        s.push('\n');
+        s.push_str(f.dq_matrix);
+        s.push('\n');
         s
     }
 }
+
+/// The general solver's driver after the chain: the scale, the core's call, the solutions.
+const GENERAL_DRIVER: &str = "    // The robot's scale: the largest sum of absolute coordinates of an axis point, the\n\
+    // home position or the target position (as ik::check::scale).\n\
+    let mut ik_len: f64 = 0.0;\n\
+    for a in &ik_ax {\n        ik_len = ik_len.max(a[4].abs() + a[5].abs() + a[6].abs());\n    }\n\
+    ik_len = ik_len.max(ik_home[0][3].abs() + ik_home[1][3].abs() + ik_home[2][3].abs());\n\
+    ik_len = ik_len.max(ik_target[0][3].abs() + ik_target[1][3].abs() + ik_target[2][3].abs());\n\
+    if !(ik_len > 0.0 && ik_len.is_finite()) {\n        ik_len = 1.0;\n    }\n\
+    let ik_tol = ik_general::GenTol { pose: IK_POSE_TOL, keep: IK_KEEP_TOL };\n\
+    let ik_o = ik_general::gen_solve(&ik_ax, &ik_home, ik_target, ik_len, ik_tol, IK_FIRST_ARRANGEMENT);\n\
+    ik_out.n = ik_o.n;\n\
+    for i in 0..ik_o.n {\n        ik_out.q[i] = ik_o.q[i];\n        ik_out.singular[i] = false;\n        \
+ik_out.residual[i] = ik_o.residual[i];\n        ik_out.approximate[i] = ik_o.residual[i] > IK_POSE_TOL || ik_o.residual[i].is_nan();\n    }\n}\n\n";

@@ -8,6 +8,7 @@
 
 use super::{Formula, IkSolution, TARGET_SYMBOLS};
 use crate::emit::codegen::{lower, CodegenOptions, Id, Node, Output, Program};
+use crate::emit::helpers::StepKind;
 use crate::emit::names::{self, comment_lines, Comment};
 use crate::emit::syntax::{solver_syntax, syntax, SolverFile, SolverSyntax, Syntax};
 use crate::scalar::Trig;
@@ -126,20 +127,15 @@ fn ctx<'a>(sol: &'a IkSolution, w: &'a dyn SolverSyntax) -> Result<Ctx<'a>, Scal
     }
     let mut parts = vec![Vec::new(); n];
     let mut solve_level = vec![0; n];
-    let mut k = 0;
-    for (out, ids) in prog.outputs.iter().take(n_parts) {
-        let (step, name) = out.name[1..].split_once('_').unwrap_or(("0", ""));
-        let step: usize = step.parse().unwrap_or(0);
-        let name = forms[step]
-            .iter()
-            .map(|(n, _)| *n)
-            .find(|n| *n == name)
-            .unwrap_or("v");
+    // The parts are the first outputs, step by step in the order of `forms`.
+    let part_of = forms
+        .iter()
+        .enumerate()
+        .flat_map(|(k, f)| f.iter().map(move |(name, _)| (k, *name)));
+    for ((step, name), (_, ids)) in part_of.zip(&prog.outputs[..n_parts]) {
         parts[step].push((name, ids[0]));
         solve_level[step] = solve_level[step].max(level[ids[0]]);
-        k += 1;
     }
-    debug_assert_eq!(k, n_parts);
     let mut temps = vec![Vec::new(); n + 1];
     let mut temp = std::collections::HashMap::new();
     for id in 0..nodes.len() {
@@ -195,6 +191,14 @@ fn solver_outputs(
     // The axes and the home pose, for the check by forward kinematics (level 0: parameters
     // only).
     let n_trig = outputs.len();
+    outputs.extend(chain_outputs(sol)?);
+    Ok((outputs, n_parts, n_trig))
+}
+
+/// The axes `(w, p)` (six entries each) and the home pose's top three rows as outputs, for
+/// the check by forward kinematics (both methods' solvers).
+pub(super) fn chain_outputs(sol: &IkSolution) -> Result<Vec<Output>, ScalarError> {
+    let mut outputs = Vec::new();
     for (i, a) in sol.axes.iter().enumerate() {
         for (k, x) in a.dir.iter().chain(&a.point).enumerate() {
             outputs.push(Output::scalar(
@@ -213,7 +217,7 @@ fn solver_outputs(
             ));
         }
     }
-    Ok((outputs, n_parts, n_trig))
+    Ok(outputs)
 }
 
 impl Ctx<'_> {
@@ -267,17 +271,14 @@ impl Ctx<'_> {
             self.local(pad, &name, &self.prog.code(*id, &lit), out);
             args.push(name);
         }
-        let f = match step.formula {
-            Formula::Atan2 { .. } => "ik_atan2",
-            Formula::Trig { .. } => "ik_trig",
-            Formula::Quadratic { .. } => "ik_quadratic",
-            Formula::Value { .. } => return,
+        let Some(kind) = step_kind(&step.formula) else {
+            return;
         };
         args.push(format!("ik_sg{k}"));
         if matches!(step.formula, Formula::Atan2 { .. }) {
             args.push(self.w.memo_arg(k));
         }
-        let call = format!("{}({})", self.w.helper(f), args.join(", "));
+        let call = format!("{}({})", self.w.helper(kind.helper()), args.join(", "));
         out.push_str(&format!("{pad}{}\n", self.w.roots(k, &call)));
     }
 
@@ -373,42 +374,40 @@ impl Ctx<'_> {
     }
 }
 
-/// The helper functions the solver uses (blocks of the helper texts, kept when the name they
-/// define is needed).
-fn helpers(sol: &IkSolution, texts: &[String]) -> String {
-    let has = |f: fn(&Formula) -> bool| sol.steps.iter().any(|s| f(&s.formula));
-    let atan2 = has(|f| matches!(f, Formula::Atan2 { .. }));
-    let trig = has(|f| matches!(f, Formula::Trig { .. }));
-    let quad = has(|f| matches!(f, Formula::Quadratic { .. }));
-    let mut out = Vec::new();
-    for t in texts {
-        for block in t.split("\n\n\n").flat_map(|b| b.split("\n\n")) {
-            let block = block.trim_matches('\n');
-            if block.is_empty() {
-                continue;
-            }
-            let keep =
-                if block.contains("ik_radicand(rad") || block.contains("ik_radicand(double *rad") {
-                    trig || quad
-                } else if (block.contains("_atan2(") && !block.contains("_trig("))
-                    || block.contains("IkMemo")
-                    || block.contains("ik_memo")
-                {
-                    atan2
-                } else if block.contains("_trig(") {
-                    trig
-                } else if block.contains("_quadratic(") {
-                    quad
-                } else {
-                    true
-                };
-            if keep {
-                out.push(block.to_string());
-            }
+/// The kind of step a formula is solved by (a value step has no roots to compute).
+fn step_kind(f: &Formula) -> Option<StepKind> {
+    match f {
+        Formula::Atan2 { .. } => Some(StepKind::Atan2),
+        Formula::Trig { .. } => Some(StepKind::Trig),
+        Formula::Quadratic { .. } => Some(StepKind::Quadratic),
+        Formula::Value { .. } => None,
+    }
+}
+
+/// The kinds of step of `sol` with roots, each once (the helpers a solver needs follow from
+/// them).
+fn step_kinds(sol: &IkSolution) -> Vec<StepKind> {
+    let mut kinds = Vec::new();
+    for k in sol.steps.iter().filter_map(|s| step_kind(&s.formula)) {
+        if !kinds.contains(&k) {
+            kinds.push(k);
         }
     }
-    let sep = if texts.len() == 1 { "\n\n\n" } else { "\n\n" };
-    format!("{}\n", out.join(sep))
+    kinds
+}
+
+/// The solver's helpers: the tolerance constants `consts`, then the language's runtime
+/// helpers its steps use (declared in `emit/runtime/ik_helpers.*`, see `emit/helpers.rs`).
+fn helpers(sol: &IkSolution, w: &dyn SolverSyntax, consts: &str) -> String {
+    let kinds = step_kinds(sol);
+    let mut out = vec![consts.trim_matches('\n')];
+    out.extend(
+        crate::emit::helpers::runtime(w.lang())
+            .iter()
+            .filter(|h| h.used_by(&kinds))
+            .map(|h| h.text),
+    );
+    format!("{}\n", out.join(w.helper_separator()))
 }
 
 /// The tolerances of [`super::check`] (where they are derived) as constants of the solver's
@@ -452,10 +451,10 @@ pub fn ik_javascript_helpers(sol: &IkSolution) -> String {
     format!("{}{}", tolerances(sol, &js), js.ik_runtime())
 }
 
-/// The tolerances block of the C solvers (the general method's C solver states the same
-/// constants as the family solvers).
-pub(super) fn c_tolerances(sol: &IkSolution) -> String {
-    tolerances(sol, syntax(names::Lang::C))
+/// The tolerances block of `lang` (the general method's C solver states the same constants
+/// as the family solvers).
+pub(super) fn tolerances_of(sol: &IkSolution, lang: names::Lang) -> String {
+    tolerances(sol, syntax(lang))
 }
 
 /// Each step's degree in lengths (see [`super::check`]), for the page's solver.
@@ -511,7 +510,7 @@ fn solver(sol: &IkSolution, lang: names::Lang) -> Result<String, ScalarError> {
         params: &sol.params,
         variables: &sol.variables,
         target: &TARGET_SYMBOLS,
-        helpers: helpers(sol, &w.helper_texts(&consts)),
+        helpers: helpers(sol, w, &consts),
         body,
     }))
 }

@@ -66,16 +66,9 @@ pub enum NumericError {
     /// An exact computation or an evaluation failed.
     #[error(transparent)]
     Scalar(#[from] ScalarError),
-    /// The general method's solver failed (its message).
-    #[error("{0}")]
-    General(String),
-}
-
-/// The message, for the general method's solver (`general/`), whose errors are still text.
-impl From<NumericError> for String {
-    fn from(e: NumericError) -> String {
-        e.to_string()
-    }
+    /// The general method's solver failed.
+    #[error(transparent)]
+    General(#[from] general::GeneralError),
 }
 
 /// Which method derives the solver.
@@ -587,7 +580,7 @@ impl IkSolution {
             }
         }
         if self.general.is_some() {
-            return general::solve_numeric(self, target, params).map_err(NumericError::General);
+            return general::solve_numeric(self, target, params);
         }
         let mut env: Vec<(String, f64)> = params.iter().map(|(n, v)| (n.to_string(), *v)).collect();
         let (axes, home) =

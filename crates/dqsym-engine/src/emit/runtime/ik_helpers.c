@@ -1,3 +1,4 @@
+//@ ik_roots: always
 /* The roots of one step: n joint values with their sines and cosines, and the flags
    (singular, checked); n = 12 on a singular set of an atan2 (any value: k pi/6, k = -5..6),
    n = 13 with the atan2 value first. */
@@ -24,6 +25,7 @@ static void ik_root(const ik_roots *r, int i, double *q, double *s, double *c) {
     }
 }
 
+//@ ik_memo: atan2
 /* A step's last atan2, reused by the next call of the step: the same arguments give the same
    root, exactly negated ones the angle plus pi with the sine and cosine negated. */
 typedef struct {
@@ -38,6 +40,7 @@ static ik_memo ik_memo_new(void) {
     return m;
 }
 
+//@ ik_atan2: atan2
 /* atan2(y, x) for arguments rounded by sg: where both are zero within it, any value (and
    atan2 itself where not exactly 0/0). */
 static ik_roots ik_atan2(double y, double x, double sg, ik_memo *m) {
@@ -80,6 +83,7 @@ static ik_roots ik_atan2(double y, double x, double sg, ik_memo *m) {
     return r;
 }
 
+//@ ik_radicand: trig quadratic
 /* A radicand of scale n rounded by nu: 0 out of reach (below -IK_REACH_TOL n), a double root
    within nu of zero (singular), else itself (checked where its roots err by more than
    IK_CHECK_TOL). */
@@ -95,6 +99,7 @@ static int ik_radicand(double *rad, double n, double nu, int *sg, int *ck) {
     return 1;
 }
 
+//@ ik_trig: trig
 static ik_roots ik_trig(double a, double b, double c, double sg) {
     ik_roots r = ik_none();
     const double n = a * a + b * b;
@@ -131,6 +136,7 @@ static ik_roots ik_trig(double a, double b, double c, double sg) {
     return r;
 }
 
+//@ ik_exact: trig
 /* Beside the double root of ik_trig(...): a solution from `from` on reproduces the pose. */
 static int ik_exact(const ik_solutions *out, int from) {
     int i;
@@ -139,6 +145,7 @@ static int ik_exact(const ik_solutions *out, int from) {
     return 0;
 }
 
+//@ ik_quadratic: quadratic
 static ik_roots ik_quadratic(double beta, double gamma, double sg) {
     ik_roots r = ik_none();
     double rad = beta * beta - gamma, w;
@@ -151,6 +158,7 @@ static ik_roots ik_quadratic(double beta, double gamma, double sg) {
     return r;
 }
 
+//@ ik_chain: always
 /* What the check of a solution needs: the joint axes in the home pose {kind, w, p} (kind 1:
    prismatic), the home pose, the target and the robot's scale. */
 typedef struct {
@@ -160,6 +168,7 @@ typedef struct {
     double len;
 } ik_chain;
 
+//@ ik_scale: always
 /* The robot's scale: the largest sum of absolute coordinates of an axis' point, the home
    position or the target position. */
 static double ik_scale(const ik_chain *ch) {
@@ -170,6 +179,7 @@ static double ik_scale(const ik_chain *ch) {
     return l > 0.0 && l < HUGE_VAL ? l : 1.0;
 }
 
+//@ ik_compose: always
 /* a b for rigid motions as 3 x 4 blocks (m may not be a or b). */
 static void ik_compose(const double a[3][4], const double b[3][4], double m[3][4]) {
     int r, c;
@@ -178,6 +188,7 @@ static void ik_compose(const double a[3][4], const double b[3][4], double m[3][4
             m[r][c] = a[r][0] * b[0][c] + a[r][1] * b[1][c] + a[r][2] * b[2][c] + (c == 3 ? a[r][3] : 0.0);
 }
 
+//@ ik_motion: always
 /* Joint motion at q about (along) a home axis: R = c I + s [w]x + (1 - c) w w^T,
    t = (I - R) p. */
 static void ik_motion(const double a[7], double q, double m[3][4]) {
@@ -192,6 +203,7 @@ static void ik_motion(const double a[7], double q, double m[3][4]) {
     }
 }
 
+//@ ik_fk: always
 /* The pose E1(q1) ... En(qn) M (into f) and each joint's current axis (w, p). */
 static void ik_fk(const ik_chain *ch, const double q[IK_DOF], double cur[IK_DOF][6], double f[3][4]) {
     double p[3][4] = {{1.0, 0.0, 0.0, 0.0}, {0.0, 1.0, 0.0, 0.0}, {0.0, 0.0, 1.0, 0.0}}, e[3][4], m[3][4];
@@ -210,6 +222,7 @@ static void ik_fk(const ik_chain *ch, const double q[IK_DOF], double cur[IK_DOF]
     ik_compose((const double (*)[4])p, ch->home, f);
 }
 
+//@ ik_error: always
 /* T - F (rotation entries, then positions over the scale; positions only for a
    position-only solver); returns its length. */
 static int ik_error(const ik_chain *ch, const double f[3][4], double e[12]) {
@@ -222,6 +235,7 @@ static int ik_error(const ik_chain *ch, const double f[3][4], double e[12]) {
     return k;
 }
 
+//@ ik_max_abs: always
 static double ik_max_abs(const double *e, int m) {
     double x = 0.0;
     int k;
@@ -230,6 +244,7 @@ static double ik_max_abs(const double *e, int m) {
     return x;
 }
 
+//@ ik_residual: always
 /* The residual of q: the largest entry of T - F(q), positions over the scale. */
 static double ik_residual(const ik_chain *ch, const double q[IK_DOF]) {
     double cur[IK_DOF][6], f[3][4], e[12];
@@ -239,6 +254,7 @@ static double ik_residual(const ik_chain *ch, const double q[IK_DOF]) {
     return ik_max_abs(e, m);
 }
 
+//@ ik_cholesky: always
 /* Solves h x = b in place (b becomes x) for a symmetric positive definite h; 0 when it is
    not. */
 static int ik_cholesky(double h[IK_DOF][IK_DOF], double b[IK_DOF]) {
@@ -266,6 +282,7 @@ static int ik_cholesky(double h[IK_DOF][IK_DOF], double b[IK_DOF]) {
     return 1;
 }
 
+//@ ik_refine: always
 /* Damped Gauss-Newton on the pose residual from q (updated in place): at most
    IK_REFINE_STEPS steps, each kept only when it lowers the residual (else the damping grows a
    hundredfold). Returns the final residual. */
@@ -341,6 +358,7 @@ static double ik_refine(const ik_chain *ch, double q[IK_DOF]) {
     return res;
 }
 
+//@ ik_same: always
 static int ik_same(const double *a, const double *b) {
     int i;
     for (i = 0; i < IK_DOF; i++) {
@@ -350,6 +368,7 @@ static int ik_same(const double *a, const double *b) {
     return 1;
 }
 
+//@ ik_push: always
 /* Writes a solution; one a step asks to check is checked by forward kinematics: refined
    where its residual exceeds IK_REFINE_TOL, flagged approximate where it stays above
    IK_POSE_TOL, dropped when it is a sample off the pose or a singular duplicate. */
@@ -380,6 +399,7 @@ static void ik_push(ik_solutions *out, const double q0[IK_DOF], int sg, int ck, 
     out->n += 1;
 }
 
+//@ ik_dq_matrix: always
 static void ik_dq_matrix(const double q[8], double T[4][4]) {
     const double w = q[0], x = q[1], y = q[2], z = q[3];
     const double a = q[4], b = q[5], c = q[6], d = q[7];

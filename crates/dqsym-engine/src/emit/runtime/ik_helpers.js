@@ -1,3 +1,4 @@
+//@ ik_cands: always
 // The candidates of one step from its parts v (rounded by sg): [value, singular, checked,
 // sampled] each.
 function ik_cands(kind, v, sg) {
@@ -46,6 +47,7 @@ function ik_cands(kind, v, sg) {
     return [[-b + w, r[1], r[2], false], [-b - w, r[1], r[2], false]];
 }
 
+//@ ik_scale: always
 // The robot's scale: the largest sum of absolute coordinates of an axis' point, the home
 // position or the target position.
 function ik_scale(ax, home, T) {
@@ -55,6 +57,7 @@ function ik_scale(ax, home, T) {
     return l > 0 && l < Infinity ? l : 1;
 }
 
+//@ ik_fk: always
 // The pose E1(q1) ... En(qn) M (3 x 4) and each joint's current axis [w, p].
 function ik_fk(ax, home, q) {
     const compose = (a, b) => [0, 1, 2].map((r) => [0, 1, 2, 3].map((c) =>
@@ -80,6 +83,7 @@ function ik_fk(ax, home, q) {
     return [compose(p, home), cur];
 }
 
+//@ ik_error: always
 // T - F: rotation entries, then positions over the scale (positions only for a position-only
 // solver).
 function ik_error(f, T, len, po) {
@@ -91,10 +95,12 @@ function ik_error(f, T, len, po) {
     return e;
 }
 
+//@ ik_max_abs: always
 function ik_max_abs(e) {
     return e.reduce((m, x) => (Math.abs(x) > m || Number.isNaN(x) ? Math.abs(x) : m), 0);
 }
 
+//@ ik_cholesky: always
 // Solves h x = b for a symmetric positive definite h (Cholesky); null when it is not.
 function ik_cholesky(h, b) {
     const n = b.length, l = h.map((r) => r.slice()), x = b.slice();
@@ -121,6 +127,7 @@ function ik_cholesky(h, b) {
     return x;
 }
 
+//@ ik_refine: always
 // Damped Gauss-Newton on the pose residual from q: at most IK_REFINE_STEPS steps, each kept
 // only when it lowers the residual (else the damping grows a hundredfold); [q, residual].
 function ik_refine(ax, home, T, len, po, q) {
@@ -177,6 +184,7 @@ function ik_refine(ax, home, T, len, po, q) {
     return [q, res];
 }
 
+//@ ik_push: always
 // Adds a solution [q, singular, approximate, residual] to out; one a step asks to check is
 // checked by forward kinematics: refined where its residual exceeds IK_REFINE_TOL, flagged
 // approximate where it stays above IK_POSE_TOL, dropped when it is a sample off the pose or a

@@ -1,3 +1,4 @@
+#@ _ik_radicand: trig quadratic
 def _ik_radicand(rad, n, nu):
     # A radicand of scale n rounded by nu: None out of reach (below -IK_REACH_TOL n), a double
     # root within nu of zero (singular), else itself (checked where its roots err by more than
@@ -9,6 +10,7 @@ def _ik_radicand(rad, n, nu):
     return rad, False, nu * nu > 4.0 * IK_CHECK_TOL * IK_CHECK_TOL * rad * n
 
 
+#@ _ik_any: always
 def _ik_any(first):
     # A joint free on a singular set: twelve values k pi/6, k = -5..6; sampled beside a kept
     # atan2 value when `first`.
@@ -16,6 +18,7 @@ def _ik_any(first):
     return [(q, math.sin(q), math.cos(q), first) for q in qs]
 
 
+#@ _ik_atan2: atan2
 def _ik_atan2(y, x, sg, m):
     # The roots [(q, sin q, cos q, sampled)], singular, checked, for arguments rounded by sg.
     # m: the step's last [y, x, roots]: the same arguments give the same root, exactly negated
@@ -38,6 +41,7 @@ def _ik_atan2(y, x, sg, m):
     return m[2]
 
 
+#@ _ik_trig: trig
 def _ik_trig(a, b, c, sg):
     n = a * a + b * b
     if n <= sg * sg:
@@ -68,6 +72,7 @@ def _ik_trig(a, b, c, sg):
     return roots, sing, ck
 
 
+#@ _ik_quadratic: quadratic
 def _ik_quadratic(beta, gamma, sg):
     s = max(abs(beta), math.sqrt(abs(gamma)))
     nu = sg + 2.0 * math.sqrt(sg * IK_ZERO_TOL) * (2.0 * abs(beta) + s) + 4.0 * IK_EPS * (beta * beta + abs(gamma))
@@ -79,6 +84,7 @@ def _ik_quadratic(beta, gamma, sg):
     return [(-beta + w, 0.0, 1.0, False), (-beta - w, 0.0, 1.0, False)], sing, ck
 
 
+#@ _ik_scale: always
 def _ik_scale(ax, home, T):
     # The robot's scale: the largest sum of absolute coordinates of an axis' point, the home
     # position or the target position.
@@ -87,6 +93,7 @@ def _ik_scale(ax, home, T):
     return s if 0.0 < s < math.inf else 1.0
 
 
+#@ _ik_fk: always
 def _ik_fk(ax, home, q):
     # The pose E1(q1) ... En(qn) M (3 x 4) and each joint's current axis (w, p).
     p = np.eye(4)
@@ -106,6 +113,7 @@ def _ik_fk(ax, home, q):
     return (p @ np.vstack([home, [0.0, 0.0, 0.0, 1.0]]))[:3], cur
 
 
+#@ _ik_error: always
 def _ik_error(f, T, n):
     # T - F: rotation entries, then positions over the scale (positions only for a
     # position-only solver).
@@ -120,10 +128,12 @@ def _ik_error(f, T, n):
     return np.array(rows)
 
 
+#@ _ik_max_abs: always
 def _ik_max_abs(e):
     return float(np.max(np.abs(e))) if not np.isnan(e).any() else math.nan
 
 
+#@ _ik_refine: always
 def _ik_refine(ax, home, T, n, q):
     # Damped Gauss-Newton on the pose residual from q: at most IK_REFINE_STEPS steps, each
     # kept only when it lowers the residual (else the damping grows a hundredfold); the joint
@@ -169,6 +179,7 @@ def _ik_refine(ax, home, T, n, q):
     return q, res
 
 
+#@ _ik_push: always
 def _ik_push(out, q, sg, ck, smp, ax, home, T, n):
     # Writes a solution (q, singular, approximate, residual); one a step asks to check is
     # checked by forward kinematics: refined where its residual exceeds IK_REFINE_TOL, flagged
@@ -192,6 +203,7 @@ def _ik_push(out, q, sg, ck, smp, ax, home, T, n):
     out.append((q, sg, not res <= IK_POSE_TOL, res))
 
 
+#@ _ik_dq_matrix: always
 def _ik_dq_matrix(q):
     w, x, y, z, a, b, c, d = (float(v) for v in q)
     return np.array([

@@ -1,3 +1,4 @@
+//@ IkRoots: always
 /// The roots of one step: `n` joint values with their sines and cosines (known without a
 /// call), and the flags (singular, checked); `n = 12` on a singular set of an atan2 (the
 /// samples of `ik_any`), `n = 13` with the atan2 value first; roots from `smp` on are samples
@@ -32,6 +33,7 @@ impl IkRoots {
     }
 }
 
+//@ ik_any: always
 /// A joint free on a singular set: value `i` of twelve, k pi/6, k = -5..6, so that a later
 /// joint can still reach.
 #[cold]
@@ -42,6 +44,7 @@ fn ik_any(i: usize) -> (f64, f64, f64) {
     (q, s, c)
 }
 
+//@ IkMemo: atan2
 /// A step's last atan2 (`y`, `x` and the root `q`, `sin q`, `cos q`), reused by the next call
 /// of the step: the same arguments give the same root, exactly negated ones the angle plus pi
 /// with the sine and cosine negated (the wrist flip theta4 + pi, theta6 + pi of the sibling
@@ -60,6 +63,7 @@ impl IkMemo {
     const NEW: IkMemo = IkMemo { y: f64::NAN, x: f64::NAN, q: 0.0, s: 0.0, c: 1.0, ck: false };
 }
 
+//@ ik_atan2: atan2
 /// `atan2(y, x)`, its sine `y / h` and cosine `x / h`, for arguments rounded by `sg`: where
 /// both are zero within it, any value (and atan2 itself where not exactly 0/0).
 #[inline(always)]
@@ -82,6 +86,7 @@ fn ik_atan2(y: f64, x: f64, sg: f64, m: &mut IkMemo) -> IkRoots {
     IkRoots { n: 1, q: [m.q, 0.0, 0.0], s: [m.s, 0.0, 0.0], c: [m.c, 1.0, 1.0], sg: false, ck: m.ck, smp: 99 }
 }
 
+//@ ik_atan2_singular: atan2
 #[cold]
 #[inline(never)]
 fn ik_atan2_singular(y: f64, x: f64, h2: f64) -> IkRoots {
@@ -92,6 +97,7 @@ fn ik_atan2_singular(y: f64, x: f64, h2: f64) -> IkRoots {
     IkRoots { n: 12, sg: true, ck: true, ..IkRoots::NONE }
 }
 
+//@ ik_radicand: trig quadratic
 /// A radicand `rad` of scale `n` rounded by `nu`: none out of reach (below -IK_REACH_TOL n),
 /// a double root within `nu` of zero (singular), else itself (checked where its roots err by
 /// more than IK_CHECK_TOL).
@@ -106,6 +112,7 @@ fn ik_radicand(rad: f64, n: f64, nu: f64) -> Option<(f64, bool, bool)> {
     }
 }
 
+//@ ik_trig: trig
 /// `a cos q + b sin q = c` (parts rounded by `sg`): `q = atan2(b, a) +- atan2(r, c)`, `r =
 /// sqrt(a^2 + b^2 - c^2)`, as `atan2(b c +- a r, a c -+ b r)`, whose sine and cosine are those
 /// over `a^2 + b^2`. Where `b = 0` the roots are `+-q` (`atan2` is odd in `y`), where `a = 0`
@@ -143,11 +150,13 @@ fn ik_trig(a: f64, b: f64, c: f64, sg: f64) -> IkRoots {
     IkRoots { n: 2, q: [q0, q1, 0.0], s: [y0 / d, y1 / d, 0.0], c: [x0 / d, x1 / d, 1.0], sg, ck, smp: 99 }
 }
 
+//@ ik_exact: trig
 /// Beside the double root of `ik_trig(...)`: a solution from `from` on reproduces the pose.
 fn ik_exact(out: &IkSolutions, from: usize) -> bool {
     out.approximate[from..out.n].iter().any(|a| !a)
 }
 
+//@ ik_quadratic: quadratic
 /// `q^2 + 2 beta q + gamma = 0` (`gamma` rounded by `sg`, `beta` by `sqrt(sg IK_ZERO_TOL)`):
 /// up to two roots.
 #[inline(always)]
@@ -161,6 +170,7 @@ fn ik_quadratic(beta: f64, gamma: f64, sg: f64) -> IkRoots {
     IkRoots { n: 2, q: [-beta + r, -beta - r, 0.0], sg, ck, ..IkRoots::NONE }
 }
 
+//@ IkChain: always
 /// What the check of a solution needs: the joint axes in the home pose `[kind, w, p]` (kind 1:
 /// prismatic), the home pose, the target and the robot's scale.
 struct IkChain<'a> {
@@ -170,6 +180,7 @@ struct IkChain<'a> {
     len: f64,
 }
 
+//@ ik_scale: always
 /// The robot's scale: the largest sum of absolute coordinates of an axis' point, the home
 /// position or the target position.
 fn ik_scale(ch: &IkChain) -> f64 {
@@ -181,6 +192,7 @@ fn ik_scale(ch: &IkChain) -> f64 {
     if l > 0.0 && l.is_finite() { l } else { 1.0 }
 }
 
+//@ ik_push: always
 /// Writes a solution; one a step asks to check goes through `ik_checked`.
 #[inline(always)]
 fn ik_push(out: &mut IkSolutions, q: [f64; IK_DOF], sg: bool, ck: bool, smp: bool, ch: &IkChain) {
@@ -195,6 +207,7 @@ fn ik_push(out: &mut IkSolutions, q: [f64; IK_DOF], sg: bool, ck: bool, smp: boo
     out.n += 1;
 }
 
+//@ ik_checked: always
 /// A solution checked by forward kinematics: refined where its residual exceeds
 /// IK_REFINE_TOL, flagged approximate where it stays above IK_POSE_TOL, dropped when it is a
 /// sample off the pose or a singular duplicate.
@@ -228,11 +241,13 @@ fn ik_checked(out: &mut IkSolutions, mut q: [f64; IK_DOF], sg: bool, smp: bool, 
     out.n += 1;
 }
 
+//@ ik_same: always
 /// Equal to a few units in the last place.
 fn ik_same(a: &[f64; IK_DOF], b: &[f64; IK_DOF]) -> bool {
     a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 4.0 * f64::EPSILON * x.abs().max(y.abs()).max(1.0))
 }
 
+//@ ik_compose: always
 /// `a b` for rigid motions as 3 x 4 blocks.
 fn ik_compose(a: &[[f64; 4]; 3], b: &[[f64; 4]; 3]) -> [[f64; 4]; 3] {
     let mut m = [[0.0; 4]; 3];
@@ -244,6 +259,7 @@ fn ik_compose(a: &[[f64; 4]; 3], b: &[[f64; 4]; 3]) -> [[f64; 4]; 3] {
     m
 }
 
+//@ ik_motion: always
 /// Joint motion at `q` about (along) a home axis: `R = c I + s [w]x + (1 - c) w w^T`, `t = (I
 /// - R) p`.
 #[allow(clippy::needless_range_loop)]
@@ -266,6 +282,7 @@ fn ik_motion(a: &[f64; 7], q: f64) -> [[f64; 4]; 3] {
     m
 }
 
+//@ ik_fk: always
 /// The pose `E1(q1) ... En(qn) M` and each joint's current axis `(w, p)`.
 #[allow(clippy::needless_range_loop)]
 fn ik_fk(ch: &IkChain, q: &[f64; IK_DOF], cur: &mut [[f64; 6]; IK_DOF]) -> [[f64; 4]; 3] {
@@ -280,6 +297,7 @@ fn ik_fk(ch: &IkChain, q: &[f64; IK_DOF], cur: &mut [[f64; 6]; IK_DOF]) -> [[f64
     ik_compose(&p, &ch.home)
 }
 
+//@ ik_error: always
 /// `T - F` (rotation entries, then positions over the scale; positions only for a
 /// position-only solver); its length.
 #[allow(clippy::needless_range_loop)]
@@ -299,11 +317,13 @@ fn ik_error(ch: &IkChain, f: &[[f64; 4]; 3], e: &mut [f64; 12]) -> usize {
     k
 }
 
+//@ ik_max_abs: always
 /// The largest entry (NaN for a NaN).
 fn ik_max_abs(e: &[f64]) -> f64 {
     e.iter().fold(0.0, |m: f64, x| if x.abs() > m || x.is_nan() { x.abs() } else { m })
 }
 
+//@ ik_residual: always
 /// The residual of `q`: the largest entry of `T - F(q)`, positions over the scale.
 fn ik_residual(ch: &IkChain, q: &[f64; IK_DOF]) -> f64 {
     let mut cur = [[0.0; 6]; IK_DOF];
@@ -313,6 +333,7 @@ fn ik_residual(ch: &IkChain, q: &[f64; IK_DOF]) -> f64 {
     ik_max_abs(&e[..k])
 }
 
+//@ ik_refine: always
 /// Damped Gauss-Newton on the pose residual from `q` (updated in place): at most
 /// IK_REFINE_STEPS steps, each kept only when it lowers the residual (else the damping grows a
 /// hundredfold). Returns the final residual.
@@ -403,6 +424,7 @@ fn ik_refine(ch: &IkChain, q: &mut [f64; IK_DOF]) -> f64 {
     res
 }
 
+//@ ik_cholesky: always
 /// Solves `h x = b` in place (`b` becomes `x`) for a symmetric positive definite `h`; false
 /// when it is not.
 #[allow(clippy::needless_range_loop)]
@@ -440,6 +462,7 @@ fn ik_cholesky(h: &mut [[f64; IK_DOF]; IK_DOF], b: &mut [f64; IK_DOF]) -> bool {
     true
 }
 
+//@ ik_dq_matrix: always
 /// The homogeneous matrix of a unit dual quaternion (Appendix I).
 fn ik_dq_matrix(q: &[f64; 8]) -> [[f64; 4]; 4] {
     let [w, x, y, z, a, b, c, d] = *q;

@@ -144,7 +144,7 @@ pub(crate) fn solve_numeric(
     sol: &IkSolution,
     target: &[[f64; 4]; 4],
     params: &[(&str, f64)],
-) -> Result<Vec<NumSolution>, String> {
+) -> Result<Vec<NumSolution>, super::NumericError> {
     let env = |n: &str| params.iter().find(|(k, _)| *k == n).map(|(_, v)| *v);
     let (axes, home) = check::axis_data(sol, &env)?;
     let len = check::scale(&axes, &home, target);
@@ -166,20 +166,35 @@ fn run(
     target: &[[f64; 4]; 4],
     len: f64,
     first: usize,
-) -> Result<core::GenOut, String> {
+) -> Result<core::GenOut, GeneralError> {
     let ax: [AxisData; 6] = axes
         .try_into()
-        .map_err(|_| format!("the general method needs 6 joints, not {}", axes.len()))?;
+        .map_err(|_| GeneralError::Joints(axes.len()))?;
     Ok(core::gen_solve(&ax, home, target, len, tol(), first))
+}
+
+/// What the general method cannot solve.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum GeneralError {
+    /// An arm that is not six joints.
+    #[error("the general method needs 6 joints, not {0}")]
+    Joints(usize),
+    /// The arrangement's elimination is not usable at the target.
+    #[error("no elimination")]
+    NoElimination,
 }
 
 /// What [`sampled_equations`] could not do.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum SampleError {
-    /// A parameter without a value, or an arm that is not six joints.
-    #[error("{0}")]
-    Input(String),
+    /// A parameter without a value, or an entry that does not evaluate.
+    #[error(transparent)]
+    Input(#[from] super::NumericError),
+    /// Not six joints, or no elimination at the target.
+    #[error(transparent)]
+    General(#[from] GeneralError),
 }
 
 /// The numeric core's sampled equations of arrangement `arr` (`shift + 6 reversed`) at a
@@ -198,12 +213,9 @@ pub fn sampled_equations(
     arr: usize,
 ) -> Result<([[[f64; 9]; 3]; 14], [[f64; 8]; 14]), SampleError> {
     let env = |n: &str| params.iter().find(|(k, _)| *k == n).map(|(_, v)| *v);
-    let (axes, home) = check::axis_data(sol, &env).map_err(|e| SampleError::Input(e.into()))?;
+    let (axes, home) = check::axis_data(sol, &env)?;
     if axes.len() != 6 {
-        return Err(SampleError::Input(format!(
-            "the general method needs 6 joints, not {}",
-            axes.len()
-        )));
+        return Err(GeneralError::Joints(axes.len()).into());
     }
     let len = check::scale(&axes, &home, target);
     let js: [core::J; 6] = std::array::from_fn(|i| core::J {
@@ -223,7 +235,7 @@ pub fn sampled_equations(
     let slides = ar.prismatic();
     let el = ar
         .elim()
-        .ok_or_else(|| SampleError::Input("no elimination".into()))?;
+        .ok_or(GeneralError::NoElimination)?;
     let mut am = el.am;
     let mut bm = [[0.0; 8]; 14];
     for (j, &col) in el.piv.iter().enumerate() {
