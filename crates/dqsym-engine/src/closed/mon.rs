@@ -669,8 +669,39 @@ fn content_big<'a>(qs: impl Iterator<Item = &'a Q>) -> Q {
 
 /// `q / g` for a positive `g`.
 pub(crate) fn div_q(q: &Q, g: &Q) -> Q {
+    if let Some(z) = div_exact(q, g) {
+        return z;
+    }
     match g {
         Q::S(n, d) => q * &Q::new(*d, *n),
         Q::B(b) => Q::big(q.to_big() / &**b),
     }
+}
+
+/// `q / g` by exact integer divisions when it is an integer: `g`'s numerator divides `q`'s and
+/// `q`'s denominator divides `g`'s, always so for `g` the content of a list holding `q` (the
+/// gcd of the numerators over the lcm of the denominators, [`content_of`]). `None` otherwise,
+/// and for a small `q` (the machine-word path is cheap). Through a product of big rationals
+/// each quotient took two big-integer gcds: 28% of the instructions of the closed form of
+/// `(x + y + z)^60`.
+fn div_exact(q: &Q, g: &Q) -> Option<Q> {
+    let Q::B(b) = q else {
+        return None;
+    };
+    let (gn, gd) = match g {
+        Q::S(n, d) => (BigInt::from(*n), BigInt::from(*d)),
+        Q::B(c) => (c.numer().clone(), c.denom().clone()),
+    };
+    if gn.is_zero() {
+        return None;
+    }
+    let (a, r) = b.numer().div_rem(&gn);
+    if !r.is_zero() {
+        return None;
+    }
+    let (c, r) = gd.div_rem(b.denom());
+    if !r.is_zero() {
+        return None;
+    }
+    Some(Q::big(BigRational::from_integer(a * c)))
 }

@@ -186,3 +186,97 @@ fn mul(a: &MonoRc, b: &Option<MonoRc>) -> Result<MonoRc, ScalarError> {
         .and_then(|b| super::atoms::mono_mul(a, b))
         .ok_or_else(|| ScalarError::OutOfRange("exponent too large".into()))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::Context;
+    use crate::Scalar;
+    use num_bigint::BigInt;
+    use num_rational::BigRational;
+
+    fn q(n: i64, d: i64) -> Scalar {
+        Scalar::rational(BigRational::new(BigInt::from(n), BigInt::from(d)))
+    }
+
+    /// Sums of plain monomials with rational coefficients: ones whose products never meet,
+    /// and ones whose products do (`x^2 * y^2 = (x y)^2`), with a constant term.
+    fn bases() -> Vec<Scalar> {
+        let (x, y, z) = (Scalar::sym("x"), Scalar::sym("y"), Scalar::sym("z"));
+        vec![
+            &x + &y,
+            &(&x + &(&q(2, 1) * &y)) - &(&q(3, 5) * &z),
+            &(&(&x * &x) + &(&x * &y)) + &(&y * &y),
+            &(&(&(&q(1, 2) * &x) - &(&y * &z)) + &(&q(4, 7) * &(&z * &z))) - &q(1, 3),
+        ]
+    }
+
+    /// `x^n` as `n - 1` general products (the path repeated squaring takes term by term).
+    fn product_power(x: &Scalar, n: u32) -> Scalar {
+        let mut acc = x.clone();
+        for _ in 1..n {
+            acc = &acc * x;
+        }
+        acc
+    }
+
+    #[test]
+    fn powers_of_plain_polynomials_equal_repeated_products_and_evaluate_as_the_base_raised() {
+        let _ctx = Context::new().enter();
+        // A small seeded generator: points in [-1.5, 1.5].
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % 3001) as f64 / 1000.0 - 1.5
+        };
+        for base in bases() {
+            let t = base.terms().unwrap();
+            let abs_base = |p: &[(&str, f64)]| -> f64 {
+                t.iter()
+                    .map(|t| {
+                        let one = Scalar::from_terms(vec![t.clone()]);
+                        one.eval_at(p).unwrap().abs()
+                    })
+                    .sum()
+            };
+            for n in 2..=9u32 {
+                let fast = super::pow(t, n).expect("a plain polynomial takes this path");
+                // Exactly the general product's value.
+                assert_eq!(fast, product_power(&base, n), "({base})^{n}");
+                // And numerically the base's value raised to n, at random points. Each term
+                // of the expansion is formed with at most n + 3 roundings and the sum adds one
+                // per term (at most 55 here), so the error is below (n + 58) eps times the sum
+                // of the terms' magnitudes, itself at most (sum |c_i m_i|)^n: 1e-12 of that
+                // leaves a margin of some 50.
+                for _ in 0..5 {
+                    let p = [("x", next()), ("y", next()), ("z", next())];
+                    let want = base.eval_at(&p).unwrap().powi(n as i32);
+                    let got = fast.eval_at(&p).unwrap();
+                    let scale = abs_base(&p).powi(n as i32).max(1.0);
+                    assert!(
+                        (got - want).abs() <= 1e-12 * scale,
+                        "({base})^{n} at {p:?}: {got} vs {want}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn powers_this_path_does_not_take() {
+        let _ctx = Context::new().with_term_limit(100).enter();
+        let (x, y) = (Scalar::sym("x"), Scalar::sym("y"));
+        // Past the term limit (C(20 + 2, 2) = 231 exponent vectors): left to repeated squaring.
+        let three = &(&x + &y) + &Scalar::sym("z");
+        assert!(super::pow(three.terms().unwrap(), 20).is_none());
+        // A radical or a trigonometric term: products that are not single terms.
+        let rad = &x + &Scalar::int(2).sqrt();
+        assert!(super::pow(rad.terms().unwrap(), 3).is_none());
+        let trig = &y + &Scalar::sym("t").cos();
+        assert!(super::pow(trig.terms().unwrap(), 3).is_none());
+        // And through `pow` the same values as products.
+        assert_eq!(rad.pow(3), product_power(&rad, 3));
+        assert_eq!(trig.pow(3), product_power(&trig, 3));
+    }
+}
