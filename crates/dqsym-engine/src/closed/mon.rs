@@ -636,27 +636,40 @@ where
 /// words): `gcd(g, n) = gcd(g, n mod g)`. A big-integer gcd per coefficient was 56% of the
 /// instructions of the closed form of `(x + y + z)^60`.
 fn content_big<'a>(qs: impl Iterator<Item = &'a Q>) -> Q {
-    use std::borrow::Cow;
     let mut small: Option<u64> = None;
     let mut num = BigInt::zero();
     let mut den = BigInt::from(1);
     for q in qs {
-        let (n, d): (Cow<BigInt>, Cow<BigInt>) = match q {
-            Q::S(n, d) => (Cow::Owned(BigInt::from(*n)), Cow::Owned(BigInt::from(*d))),
-            Q::B(b) => (Cow::Borrowed(b.numer()), Cow::Borrowed(b.denom())),
-        };
-        if *d != den && !num_traits::One::is_one(&*d) {
-            den = den.lcm(&d);
-        }
-        match small {
-            Some(1) => {}
-            Some(g) => {
-                let r = num_traits::ToPrimitive::to_u64(&(n.magnitude() % g)).unwrap_or(0);
-                small = Some(g.gcd(&r));
+        // No allocation for a coefficient once the gcd is a machine word (the common case:
+        // a power's coefficients share small factors): its numerator is read modulo the gcd
+        // word by word, and a denominator of one (integer coefficients) is skipped.
+        match q {
+            Q::S(n, d) => {
+                if *d != 1 {
+                    den = den.lcm(&BigInt::from(*d));
+                }
+                match small {
+                    Some(1) => {}
+                    Some(g) => small = Some(g.gcd(&(n.unsigned_abs() % g))),
+                    None => {
+                        num = num.gcd(&BigInt::from(*n));
+                        small = num_traits::ToPrimitive::to_u64(num.magnitude()).filter(|g| *g != 0);
+                    }
+                }
             }
-            None => {
-                num = num.gcd(&n);
-                small = num_traits::ToPrimitive::to_u64(num.magnitude()).filter(|g| *g != 0);
+            Q::B(b) => {
+                let d = b.denom();
+                if !num_traits::One::is_one(d) && *d != den {
+                    den = den.lcm(d);
+                }
+                match small {
+                    Some(1) => {}
+                    Some(g) => small = Some(g.gcd(&mod_word(b.numer().magnitude(), g))),
+                    None => {
+                        num = num.gcd(b.numer());
+                        small = num_traits::ToPrimitive::to_u64(num.magnitude()).filter(|g| *g != 0);
+                    }
+                }
             }
         }
     }
@@ -665,6 +678,13 @@ fn content_big<'a>(qs: impl Iterator<Item = &'a Q>) -> Q {
         return Q::ONE;
     }
     Q::big(BigRational::new(num, den))
+}
+
+/// `n mod g` for `g > 0`, from the most significant word down, without allocating.
+fn mod_word(n: &num_bigint::BigUint, g: u64) -> u64 {
+    n.iter_u64_digits()
+        .rev()
+        .fold(0u64, |r, w| ((u128::from(r) << 64 | u128::from(w)) % u128::from(g)) as u64)
 }
 
 /// `q / g` for a positive `g`.
