@@ -1031,7 +1031,13 @@ fn terms_in_basis(
             }
             let (rad, k) = rad_mul(*s, col.h)
                 .ok_or_else(|| ScalarError::OutOfRange("radicand too large".into()))?;
-            let mut coef = x * Rat::from_integer(k.into());
+            // The common case multiplies by one: skipped, since a product of big rationals
+            // reduces its result by gcds (11% of the Jaco-style arm's `fk --jacobian`).
+            let mut coef = if k == 1 {
+                x
+            } else {
+                x * Rat::from_integer(k.into())
+            };
             let mode = if col.angle.is_zero() && real {
                 Mode::unit()
             } else {
