@@ -498,7 +498,7 @@ impl Search<'_> {
         group.len().hash(&mut h);
         for (i, q) in group {
             let m = &self.root[*i as usize];
-            q.hash(&mut h);
+            q.hash_words(&mut h);
             self.rad(*i).hash(&mut h);
             for (s, e) in quotient_syms(m, &self.div, self.counts.sym_base) {
                 h.write_u32(s);

@@ -725,3 +725,77 @@ fn div_exact(q: &Q, g: &Q) -> Option<Q> {
     }
     Some(Q::big(BigRational::from_integer(a * c)))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_bigint::BigUint;
+
+    /// Seeded random rationals of one to four words, some small, some integers.
+    fn rationals(seed: u64, n: usize) -> Vec<BigRational> {
+        let mut s = seed;
+        let mut word = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s
+        };
+        let common = BigInt::from(word() % 1000 + 1);
+        (0..n)
+            .map(|_| {
+                let words = (word() % 4 + 1) as usize;
+                let mut num = BigInt::from(word() % 97 + 1);
+                for _ in 1..words {
+                    num = (num << 64) + BigInt::from(word());
+                }
+                num *= &common;
+                if word() % 3 == 0 {
+                    num = -num;
+                }
+                let den = if word() % 2 == 0 {
+                    BigInt::from(1)
+                } else {
+                    BigInt::from(word() % 50 + 1)
+                };
+                BigRational::new(num, den)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn content_and_exact_division_agree_with_big_rational_arithmetic() {
+        for seed in 1..40u64 {
+            let qs = rationals(seed * 0x9e37_79b9, 12);
+            let list: Vec<Q> = qs.iter().cloned().map(Q::big).collect();
+            // The content computed independently: gcd of the numerators over the lcm of the
+            // denominators.
+            let num = qs.iter().fold(BigInt::zero(), |g, q| g.gcd(q.numer()));
+            let den = qs.iter().fold(BigInt::from(1), |l, q| l.lcm(q.denom()));
+            let want = BigRational::new(num, den);
+            let g = content_of(list.iter());
+            assert_eq!(g.to_big(), want, "seed {seed}");
+            for (q, big) in list.iter().zip(&qs) {
+                // Each quotient an integer, equal to the big rationals' own division.
+                let z = div_q(q, &g);
+                assert_eq!(z.to_big(), big / &want, "seed {seed}");
+                assert!(z.to_big().is_integer());
+            }
+            // Division by a value that is not the content: the general path, same values.
+            let other = Q::big(BigRational::new(BigInt::from(7), BigInt::from(3)));
+            for (q, big) in list.iter().zip(&qs) {
+                assert_eq!(div_q(q, &other).to_big(), big * BigRational::new(3.into(), 7.into()));
+            }
+        }
+    }
+
+    #[test]
+    fn a_numerator_modulo_a_word_agrees_with_big_integer_remainder() {
+        for (i, q) in rationals(7, 60).iter().enumerate() {
+            let n: &BigUint = q.numer().magnitude();
+            for g in [1u64, 2, 3, 97, 1 << 40, u64::MAX, 0x1234_5678_9abc_def1 + i as u64] {
+                let want = n % BigUint::from(g);
+                assert_eq!(BigUint::from(mod_word(n, g)), want, "{n} mod {g}");
+            }
+        }
+    }
+}

@@ -174,6 +174,25 @@ impl Q {
         Q::B(Arc::new(q))
     }
 
+    /// Feeds a few words of the value to `h`: a small value whole, a big one by the sizes of
+    /// its numerator and denominator and the numerator's lowest word. Equal values feed equal
+    /// words; for hash keys compared in full afterwards, where hashing every word of a big
+    /// coefficient was the cost (the factoring search's memo).
+    pub(crate) fn hash_words<H: Hasher>(&self, h: &mut H) {
+        match self {
+            Q::S(n, d) => {
+                h.write_i64(*n);
+                h.write_i64(*d);
+            }
+            Q::B(b) => {
+                h.write_u64(b.numer().bits());
+                h.write_u64(b.numer().iter_u64_digits().next().unwrap_or(0));
+                h.write_u8(u8::from(b.numer().is_negative()));
+                h.write_u64(b.denom().bits());
+            }
+        }
+    }
+
     /// The size in bits of the longer of the numerator and the denominator.
     pub(crate) fn bits(&self) -> u64 {
         match self {
@@ -480,5 +499,43 @@ mod tests {
         assert_eq!(z, Q::S(i64::MAX, 1));
         assert!(matches!(Q::int(i64::MIN), Q::B(_)));
         assert_eq!(-&Q::int(i64::MIN), Q::big(big(-(i64::MIN as i128), 1)));
+    }
+}
+
+#[cfg(test)]
+mod hash_tests {
+    use super::*;
+    use std::hash::{DefaultHasher, Hash, Hasher};
+
+    fn hashes(q: &Q) -> (u64, u64) {
+        let mut a = DefaultHasher::new();
+        q.hash(&mut a);
+        let mut b = DefaultHasher::new();
+        q.hash_words(&mut b);
+        (a.finish(), b.finish())
+    }
+
+    /// Equal values reached by different arithmetic hash alike (both hashes), as `Eq` needs;
+    /// and different big values of one size are told apart by the full hash.
+    #[test]
+    fn hashes_agree_with_equality() {
+        let two64 = BigInt::from(1u128 << 64);
+        let a = Q::big(BigRational::new(two64.clone() * 3, BigInt::from(7)));
+        // 3 * 2^64 / 7 as (2^64 / 7) * 3 and as (6 * 2^64 / 14).
+        let b = &Q::big(BigRational::new(two64.clone(), BigInt::from(7))) * &Q::int(3);
+        let c = Q::big(BigRational::new(two64.clone() * 6, BigInt::from(14)));
+        assert_eq!(a, b);
+        assert_eq!(a, c);
+        assert_eq!(hashes(&a), hashes(&b));
+        assert_eq!(hashes(&a), hashes(&c));
+        // A big product that comes back to a small value is small, and hashes as one.
+        let d = &Q::big(BigRational::new(two64.clone(), BigInt::from(1))) * &Q::big(
+            BigRational::new(BigInt::from(5), two64.clone()),
+        );
+        assert_eq!(d, Q::int(5));
+        assert_eq!(hashes(&d), hashes(&Q::int(5)));
+        let e = Q::big(BigRational::new(two64.clone() * 3 + 1, BigInt::from(7)));
+        assert_ne!(a, e);
+        assert_ne!(hashes(&a).0, hashes(&e).0);
     }
 }
