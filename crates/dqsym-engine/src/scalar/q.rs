@@ -321,8 +321,15 @@ impl Default for Q {
 }
 
 impl From<&BigRational> for Q {
+    /// Without copying the digits when the value fits in machine words (the common case: the
+    /// cyclotomic coordinates, read once per unit of every group).
     fn from(q: &BigRational) -> Q {
-        Q::big(q.clone())
+        if let (Some(n), Some(d)) = (q.numer().to_i64(), q.denom().to_i64()) {
+            if n != i64::MIN {
+                return if n == 0 { Q::ZERO } else { Q::S(n, d) };
+            }
+        }
+        Q::B(Arc::new(q.clone()))
     }
 }
 
