@@ -653,7 +653,8 @@ fn content_big<'a>(qs: impl Iterator<Item = &'a Q>) -> Q {
                     Some(g) => small = Some(g.gcd(&(n.unsigned_abs() % g))),
                     None => {
                         num = num.gcd(&BigInt::from(*n));
-                        small = num_traits::ToPrimitive::to_u64(num.magnitude()).filter(|g| *g != 0);
+                        small =
+                            num_traits::ToPrimitive::to_u64(num.magnitude()).filter(|g| *g != 0);
                     }
                 }
             }
@@ -667,7 +668,8 @@ fn content_big<'a>(qs: impl Iterator<Item = &'a Q>) -> Q {
                     Some(g) => small = Some(g.gcd(&mod_word(b.numer().magnitude(), g))),
                     None => {
                         num = num.gcd(b.numer());
-                        small = num_traits::ToPrimitive::to_u64(num.magnitude()).filter(|g| *g != 0);
+                        small =
+                            num_traits::ToPrimitive::to_u64(num.magnitude()).filter(|g| *g != 0);
                     }
                 }
             }
@@ -682,9 +684,9 @@ fn content_big<'a>(qs: impl Iterator<Item = &'a Q>) -> Q {
 
 /// `n mod g` for `g > 0`, from the most significant word down, without allocating.
 fn mod_word(n: &num_bigint::BigUint, g: u64) -> u64 {
-    n.iter_u64_digits()
-        .rev()
-        .fold(0u64, |r, w| ((u128::from(r) << 64 | u128::from(w)) % u128::from(g)) as u64)
+    n.iter_u64_digits().rev().fold(0u64, |r, w| {
+        ((u128::from(r) << 64 | u128::from(w)) % u128::from(g)) as u64
+    })
 }
 
 /// `q / g` for a positive `g`.
@@ -783,7 +785,10 @@ mod tests {
             // Division by a value that is not the content: the general path, same values.
             let other = Q::big(BigRational::new(BigInt::from(7), BigInt::from(3)));
             for (q, big) in list.iter().zip(&qs) {
-                assert_eq!(div_q(q, &other).to_big(), big * BigRational::new(3.into(), 7.into()));
+                assert_eq!(
+                    div_q(q, &other).to_big(),
+                    big * BigRational::new(3.into(), 7.into())
+                );
             }
         }
     }
@@ -792,7 +797,15 @@ mod tests {
     fn a_numerator_modulo_a_word_agrees_with_big_integer_remainder() {
         for (i, q) in rationals(7, 60).iter().enumerate() {
             let n: &BigUint = q.numer().magnitude();
-            for g in [1u64, 2, 3, 97, 1 << 40, u64::MAX, 0x1234_5678_9abc_def1 + i as u64] {
+            for g in [
+                1u64,
+                2,
+                3,
+                97,
+                1 << 40,
+                u64::MAX,
+                0x1234_5678_9abc_def1 + i as u64,
+            ] {
                 let want = n % BigUint::from(g);
                 assert_eq!(BigUint::from(mod_word(n, g)), want, "{n} mod {g}");
             }

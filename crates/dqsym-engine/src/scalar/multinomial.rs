@@ -34,9 +34,9 @@ pub(crate) fn pow(base: &[Term], n: u32) -> Option<Scalar> {
     if count > term_limit() as u64 {
         return None;
     }
-    let den = base
-        .iter()
-        .fold(BigInt::one(), |l, t| l.lcm(&t.coef.to_big().denom().clone()));
+    let den = base.iter().fold(BigInt::one(), |l, t| {
+        l.lcm(&t.coef.to_big().denom().clone())
+    });
     let nums: Vec<BigInt> = base
         .iter()
         .map(|t| {
@@ -47,7 +47,12 @@ pub(crate) fn pow(base: &[Term], n: u32) -> Option<Scalar> {
     // The coefficients' size, bounded before any is formed: `ci^ai` has at most `ai` times
     // the bits of `ci`, the multinomial coefficient at most `n log2 k` bits, `D^n` `n` times
     // those of `D`.
-    let widest = nums.iter().map(BigInt::bits).max().unwrap_or(0).max(den.bits());
+    let widest = nums
+        .iter()
+        .map(BigInt::bits)
+        .max()
+        .unwrap_or(0)
+        .max(den.bits());
     let log_k = u64::from(64 - (base.len() as u64).leading_zeros());
     let bits = u64::from(n).saturating_mul(widest.saturating_add(log_k));
     if digits_of_bits(bits) > max_digits() {
@@ -104,13 +109,7 @@ fn mono_powers(m: &MonoRc, n: u32) -> Vec<Option<MonoRc>> {
                 .iter()
                 .map(|(s, e)| e.checked_mul(j).map(|e| (s.clone(), e)))
                 .collect();
-            v.map(|v| {
-                if j == 0 {
-                    empty()
-                } else {
-                    Arc::from(v)
-                }
-            })
+            v.map(|v| if j == 0 { empty() } else { Arc::from(v) })
         })
         .collect()
 }
@@ -137,9 +136,18 @@ struct Expansion {
 impl Expansion {
     /// Every term whose exponents of the base's terms before `i` are fixed (their product so
     /// far `coef mono`, `rest` of the exponent left to give out), term `i` given `j` of it.
-    fn expand(&mut self, i: usize, rest: u32, coef: BigInt, mono: MonoRc) -> Result<(), ScalarError> {
+    fn expand(
+        &mut self,
+        i: usize,
+        rest: u32,
+        coef: BigInt,
+        mono: MonoRc,
+    ) -> Result<(), ScalarError> {
         if i + 1 == self.powers.len() {
-            return self.push(&coef * &self.powers[i][rest as usize], mul(&mono, &self.monos[i][rest as usize])?);
+            return self.push(
+                &coef * &self.powers[i][rest as usize],
+                mul(&mono, &self.monos[i][rest as usize])?,
+            );
         }
         // C(rest, j), from C(rest, j - 1) exactly.
         let mut binom = BigInt::one();

@@ -536,9 +536,8 @@ mod hash_tests {
         assert_eq!(hashes(&a), hashes(&b));
         assert_eq!(hashes(&a), hashes(&c));
         // A big product that comes back to a small value is small, and hashes as one.
-        let d = &Q::big(BigRational::new(two64.clone(), BigInt::from(1))) * &Q::big(
-            BigRational::new(BigInt::from(5), two64.clone()),
-        );
+        let d = &Q::big(BigRational::new(two64.clone(), BigInt::from(1)))
+            * &Q::big(BigRational::new(BigInt::from(5), two64.clone()));
         assert_eq!(d, Q::int(5));
         assert_eq!(hashes(&d), hashes(&Q::int(5)));
         let e = Q::big(BigRational::new(two64.clone() * 3 + 1, BigInt::from(7)));
