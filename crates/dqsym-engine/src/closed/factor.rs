@@ -329,17 +329,18 @@ impl Search<'_> {
             self.rad_off = false;
             return mul(vec![E::Sqrt(r), e]);
         }
-        let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
-        let candidates = self.candidates(group, tries);
-        if candidates.is_empty() {
-            return self.plain_sum(group);
-        }
         // The result depends on the depth only through the branching, so below the branching
-        // levels all depths share one entry.
+        // levels all depths share one entry. Looked up before the candidates are counted: a
+        // group found before needs no count (a group without candidates is never stored).
         let level = depth.min(BRANCH_DEPTH);
         let hash = self.hash(level, group);
         if let Some(e) = self.remembered(hash, level, group) {
             return e;
+        }
+        let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
+        let candidates = self.candidates(group, tries);
+        if candidates.is_empty() {
+            return self.plain_sum(group);
         }
         let mut best: Option<(Cost, E)> = None;
         for f in candidates {
