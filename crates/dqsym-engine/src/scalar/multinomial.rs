@@ -167,7 +167,7 @@ impl Expansion {
         // coefficient (its product and reduction).
         self.pending += 1 + mono.len() as u64 + num.bits() / 64;
         self.formed += 1;
-        if self.formed % CHARGE_EVERY == 0 {
+        if self.formed.is_multiple_of(CHARGE_EVERY) {
             charge(std::mem::take(&mut self.pending))?;
         }
         if num.is_zero() {
