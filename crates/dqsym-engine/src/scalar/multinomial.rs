@@ -144,6 +144,7 @@ impl Expansion {
         mono: MonoRc,
     ) -> Result<(), ScalarError> {
         if i + 1 == self.powers.len() {
+            self.pending += mul_units(&coef, &self.powers[i][rest as usize]);
             return self.push(
                 &coef * &self.powers[i][rest as usize],
                 mul(&mono, &self.monos[i][rest as usize])?,
@@ -155,6 +156,7 @@ impl Expansion {
             if j > 0 {
                 binom = binom * (rest - j + 1) / j;
             }
+            self.pending += mul_units(&coef, &self.powers[i][j as usize]);
             let c = &coef * &binom * &self.powers[i][j as usize];
             let m = mul(&mono, &self.monos[i][j as usize])?;
             self.expand(i + 1, rest - j, c, m)?;
@@ -186,6 +188,13 @@ impl Expansion {
         });
         Ok(())
     }
+}
+
+/// The work of multiplying two big integers: the product of their word counts (schoolbook),
+/// nothing for machine words. With the digit limit's thousand-word coefficients a product
+/// takes some fifty microseconds: a term limit's worth of them is charged, not free.
+fn mul_units(a: &BigInt, b: &BigInt) -> u64 {
+    (a.bits() / 64).saturating_mul(b.bits() / 64)
 }
 
 /// `a * b` for a monomial `b` that may have overflowed.
