@@ -19,6 +19,11 @@ enum Factor {
     Sym(u32),
 }
 
+/// The units one word of a big coefficient adds to a group's visit: its remainder modulo the
+/// content (one 128-bit division a word), its exact division and its copy each go over it
+/// once.
+const BIG_WORD_UNITS: u64 = 3;
+
 /// How many alternative factors are tried at each of the first levels.
 const BRANCH: usize = 3;
 /// How many levels branch; below them the most frequent factor is taken.
@@ -226,7 +231,8 @@ struct Search<'a> {
 /// The cheapest nested expression this search finds for the sum of `mons`, with its cost.
 ///
 /// The search counts against the work budget like scalar arithmetic (one unit per monomial
-/// and per factor of it looked at); when the budget runs out it stops with the budget error.
+/// and per factor of it looked at, [`BIG_WORD_UNITS`] per word of a big coefficient); when
+/// the budget runs out it stops with the budget error.
 pub(crate) fn build(mons: &[Mon]) -> Result<(E, Cost), ScalarError> {
     let counts = Counts::for_mons(mons);
     let mut s = Search {
@@ -304,7 +310,14 @@ impl Search<'_> {
             [(i, q)] => return self.mon_expr(*i, q),
             _ => {}
         }
-        let work: usize = group.iter().map(|(i, _)| 1 + self.quotient_len(*i)).sum();
+        // A big coefficient adds its words: each visit reads it a few times (content,
+        // division, hash). Uncharged, a power whose expansion is cheap (`(x + y)^2000`, a
+        // thousand-digit coefficient per term, formed term by term) spent a minute here
+        // before the budget stopped it.
+        let work: usize = group
+            .iter()
+            .map(|(i, q)| 1 + self.quotient_len(*i) + (q.words() * BIG_WORD_UNITS) as usize)
+            .sum();
         if self.spent.is_none() {
             self.spent = charge(work as u64).err();
         }
@@ -329,17 +342,18 @@ impl Search<'_> {
             self.rad_off = false;
             return mul(vec![E::Sqrt(r), e]);
         }
-        let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
-        let candidates = self.candidates(group, tries);
-        if candidates.is_empty() {
-            return self.plain_sum(group);
-        }
         // The result depends on the depth only through the branching, so below the branching
-        // levels all depths share one entry.
+        // levels all depths share one entry. Looked up before the candidates are counted: a
+        // group found before needs no count (a group without candidates is never stored).
         let level = depth.min(BRANCH_DEPTH);
         let hash = self.hash(level, group);
         if let Some(e) = self.remembered(hash, level, group) {
             return e;
+        }
+        let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
+        let candidates = self.candidates(group, tries);
+        if candidates.is_empty() {
+            return self.plain_sum(group);
         }
         let mut best: Option<(Cost, E)> = None;
         for f in candidates {
@@ -498,7 +512,7 @@ impl Search<'_> {
         group.len().hash(&mut h);
         for (i, q) in group {
             let m = &self.root[*i as usize];
-            q.hash(&mut h);
+            q.hash_words(&mut h);
             self.rad(*i).hash(&mut h);
             for (s, e) in quotient_syms(m, &self.div, self.counts.sym_base) {
                 h.write_u32(s);

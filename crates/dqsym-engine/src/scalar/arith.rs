@@ -335,6 +335,14 @@ impl Scalar {
                 "exponent {n} is too large"
             )));
         }
+        // A plain polynomial: each term of the power formed once (see `multinomial.rs`).
+        if let Some(p) = self
+            .terms()
+            .ok()
+            .and_then(|t| super::multinomial::pow(t, n as u32))
+        {
+            return p;
+        }
         let mut base = self.clone();
         let mut acc = Scalar::int(1);
         let mut e = n;

@@ -31,6 +31,7 @@ mod cyclo;
 mod decimal;
 mod frac;
 mod modp;
+mod multinomial;
 mod par;
 pub(crate) mod q;
 
