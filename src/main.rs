@@ -1157,7 +1157,7 @@ pub(crate) fn run_source(
             Ok(Some(d)) => match show(&d, opts) {
                 Ok(text) => print!("{text}"),
                 Err(e) => {
-                    eprintln!("error: {e}");
+                    eprintln!("{}", with_origin(&e.at(stmt.span).render(src), origin));
                     return false;
                 }
             },
@@ -1200,8 +1200,8 @@ fn one_liner(src: &str, opts: &ShowOptions, limits: &Limits) -> ExitCode {
                         print!("{text}");
                         ExitCode::SUCCESS
                     }
-                    Err(e) => {
-                        eprintln!("error: {e}");
+                    Err(err) => {
+                        eprintln!("{}", err.at(e.span).render(src));
                         ExitCode::FAILURE
                     }
                 },

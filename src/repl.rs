@@ -490,7 +490,7 @@ fn statement(
     match work.exec(stmt) {
         Ok(Some(d)) => show(&d, opts).map(Some).map_err(|e| match e {
             dqsym::lang::ShowError::Scalar(dqsym::ScalarError::Cancelled) => Failure::Interrupted,
-            e => Failure::Error(format!("error: {e}")),
+            e => Failure::Error(e.at(stmt.span).render(source)),
         }),
         Ok(None) => Ok(None),
         Err(e) if matches!(e.kind(), EvalErrorKind::Interrupted) => Err(Failure::Interrupted),

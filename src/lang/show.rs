@@ -47,6 +47,21 @@ pub enum ShowError {
     Codegen(#[from] CodegenError),
 }
 
+impl ShowError {
+    /// The error at `span`, the statement or expression whose value could not be shown, so it
+    /// is rendered with its line, column and caret like any evaluation error (a limit reached
+    /// while the closed form is built for display, Ctrl-C during it).
+    pub fn at(self, span: super::Span) -> super::EvalError {
+        use super::EvalErrorKind as K;
+        let kind = match self {
+            ShowError::Scalar(ScalarError::Cancelled) => K::Interrupted,
+            ShowError::Scalar(e) => K::Scalar(e),
+            ShowError::Codegen(e) => K::Invalid(e.to_string()),
+        };
+        super::EvalError::new(kind, span)
+    }
+}
+
 use crate::print::Format;
 
 /// How results are shown.

@@ -233,9 +233,7 @@ pub fn sampled_equations(
     let g = core::compose(&tg, &core::inverse(&hm));
     let ar = core::Arranged::new(&js, &g, arr % 12);
     let slides = ar.prismatic();
-    let el = ar
-        .elim()
-        .ok_or(GeneralError::NoElimination)?;
+    let el = ar.elim().ok_or(GeneralError::NoElimination)?;
     let mut am = el.am;
     let mut bm = [[0.0; 8]; 14];
     for (j, &col) in el.piv.iter().enumerate() {
