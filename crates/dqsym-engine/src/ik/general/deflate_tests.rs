@@ -159,6 +159,7 @@ fn check_arm(rows: &[(f64, f64, f64); 6], seed: u64, poses: usize) -> Vec<usize>
         let js: [J; 6] = std::array::from_fn(|i| J {
             w: [ax[i][1], ax[i][2], ax[i][3]],
             c: [ax[i][4], ax[i][5], ax[i][6]],
+            prism: false,
         });
         // The first usable arrangement and shift, as the solver chooses them.
         let usable = (0..12).find_map(|arr| {
