@@ -898,6 +898,56 @@ fn separable(t: &[Term]) -> Option<Vec<Expr>> {
         return None;
     }
     charge(t.len() as u64).ok()?;
+    let (ws, w) = waves(t, &syms)?;
+    let scale: f64 = ws.iter().map(|w| w.v.abs()).sum();
+    let mut pts = Points(0x9E37_79B9_7F4A_7C15);
+    let parts = split_parts(&ws, n, &mut pts, scale)?;
+    // A point where the scalar is far from 0 (the other parts' values there scale each part).
+    let x = (0..4).map(|_| pts.point(n)).max_by(|a, b| {
+        wave_value(&ws, a)
+            .abs()
+            .total_cmp(&wave_value(&ws, b).abs())
+    })?;
+    if wave_value(&ws, &x).abs() < 1e-3 * scale {
+        return None;
+    }
+    let mut options: Vec<Vec<Vec<Built>>> = Vec::with_capacity(parts.len());
+    let mut top: BTreeMap<Sym, Small> = BTreeMap::new();
+    for &part in &parts {
+        let (found, theta, m) = part_options(t, &syms, &ws, part, &x, w)?;
+        options.push(found);
+        for (s, c) in theta.iter() {
+            top.insert(s.clone(), *c * Small::from_integer(m));
+        }
+    }
+    // The coefficient of e^{i T}, T the sum of the parts' top modes: from the terms of mode T
+    // or -T.
+    let sign = |u: &Term| -> Option<bool> {
+        let f = &u.mode.freq;
+        if f.len() != top.len() {
+            return None;
+        }
+        if f.iter().all(|(s, c)| top.get(s) == Some(c)) {
+            Some(false)
+        } else if f.iter().all(|(s, c)| top.get(s) == Some(&-*c)) {
+            Some(true)
+        } else {
+            None
+        }
+    };
+    let (re, im) = top_of(t.iter().filter_map(|u| sign(u).map(|neg| (u, neg))));
+    let mut out = Vec::new();
+    for built in every_choice(&options) {
+        charge(1).ok()?;
+        out.extend(finish(built, &re, &im).unwrap_or_default());
+    }
+    Some(out)
+}
+
+/// The terms as waves over `syms`, and the order `w` of the roots of unity their angles and
+/// square roots need.
+fn waves(t: &[Term], syms: &[Sym]) -> Option<(Vec<Wave>, i64)> {
+    let n = syms.len();
     let mut w: i64 = 24;
     let mut ws = Vec::with_capacity(t.len());
     for u in t {
@@ -921,13 +971,16 @@ fn separable(t: &[Term]) -> Option<Vec<Expr>> {
             a: std::f64::consts::PI * (*psi.numer() as f64 / *psi.denom() as f64),
         });
     }
-    let scale: f64 = ws.iter().map(|w| w.v.abs()).sum();
-    let mut pts = Points(0x9E37_79B9_7F4A_7C15);
-    // The finest split: each symbol's part is the intersection of the sets that split.
+    Some((ws, w))
+}
+
+/// The finest split of the `n` symbols (as bit masks) across which the waves are of rank one:
+/// each symbol's part is the intersection of the sets that split. `None` past the budget.
+fn split_parts(ws: &[Wave], n: usize, pts: &mut Points, scale: f64) -> Option<Vec<u32>> {
     let full: u32 = (1 << n) - 1;
     let mut passing = vec![full];
     for mask in (1..full).filter(|m| m & 1 == 1) {
-        if splits(&ws, n, mask, &mut pts, scale)? {
+        if splits(ws, n, mask, pts, scale)? {
             passing.extend([mask, full ^ mask]);
         }
     }
@@ -944,96 +997,83 @@ fn separable(t: &[Term]) -> Option<Vec<Expr>> {
     if parts.len() < 2 {
         return None;
     }
-    // A point where the scalar is far from 0 (the other parts' values there scale each part).
-    let x = (0..4).map(|_| pts.point(n)).max_by(|a, b| {
-        wave_value(&ws, a)
-            .abs()
-            .total_cmp(&wave_value(&ws, b).abs())
-    })?;
-    if wave_value(&ws, &x).abs() < 1e-3 * scale {
+    Some(parts)
+}
+
+/// The cheapest groupings of one part's roots (its symbols the bits of `part`), found from the
+/// part's polynomial in `z = e^{i theta}` at the point `x` of the other symbols; with the
+/// part's angle `theta` and top mode `m`.
+#[allow(clippy::type_complexity)]
+fn part_options(
+    t: &[Term],
+    syms: &[Sym],
+    ws: &[Wave],
+    part: u32,
+    x: &[f64],
+    w: i64,
+) -> Option<(Vec<Vec<Built>>, Vec<(Sym, Small)>, i64)> {
+    let n = syms.len();
+    charge((t.len() / 4 + 1) as u64).ok()?;
+    let inside = |s: &Sym| {
+        syms.iter()
+            .position(|x| x == s)
+            .is_some_and(|i| part >> i & 1 == 1)
+    };
+    let fs: Vec<Vec<(Sym, Small)>> = t
+        .iter()
+        .map(|u| {
+            u.mode
+                .freq
+                .iter()
+                .filter(|(s, _)| inside(s))
+                .cloned()
+                .collect()
+        })
+        .collect();
+    let refs: Vec<&[(Sym, Small)]> = fs.iter().map(|f| &f[..]).collect();
+    let (theta, ks) = base_of(&refs)?;
+    // The angle with a positive first coefficient (`cos(y + pi/9)`, not `cos(-y - pi/9)`).
+    let (theta, ks): (Vec<(Sym, Small)>, Vec<i64>) = if theta.first()?.1.is_negative() {
+        (
+            theta.iter().map(|(s, c)| (s.clone(), -*c)).collect(),
+            ks.iter().map(|k| -k).collect(),
+        )
+    } else {
+        (theta.to_vec(), ks)
+    };
+    let m = ks.iter().map(|k| k.abs()).max()?;
+    if !(1..=MAX_DEGREE).contains(&m) {
         return None;
     }
-    let mut options: Vec<Vec<Vec<Built>>> = Vec::with_capacity(parts.len());
-    let mut top: BTreeMap<Sym, Small> = BTreeMap::new();
-    for &part in &parts {
-        charge((t.len() / 4 + 1) as u64).ok()?;
-        let inside = |s: &Sym| {
-            syms.iter()
-                .position(|x| x == s)
-                .is_some_and(|i| part >> i & 1 == 1)
-        };
-        let fs: Vec<Vec<(Sym, Small)>> = t
-            .iter()
-            .map(|u| {
-                u.mode
-                    .freq
-                    .iter()
-                    .filter(|(s, _)| inside(s))
-                    .cloned()
-                    .collect()
-            })
-            .collect();
-        let refs: Vec<&[(Sym, Small)]> = fs.iter().map(|f| &f[..]).collect();
-        let (theta, ks) = base_of(&refs)?;
-        // The angle with a positive first coefficient (`cos(y + pi/9)`, not `cos(-y - pi/9)`).
-        let (theta, ks): (Vec<(Sym, Small)>, Vec<i64>) = if theta.first()?.1.is_negative() {
-            (
-                theta.iter().map(|(s, c)| (s.clone(), -*c)).collect(),
-                ks.iter().map(|k| -k).collect(),
-            )
-        } else {
-            (theta.to_vec(), ks)
-        };
-        let m = ks.iter().map(|k| k.abs()).max()?;
-        if !(1..=MAX_DEGREE).contains(&m) {
-            return None;
-        }
-        // The part's polynomial in z = e^{i theta} at the point x of the other symbols.
-        let mut p = vec![C(0.0, 0.0); 2 * m as usize + 1];
-        for (wave, &k) in ws.iter().zip(&ks) {
-            let rest: f64 = (0..n)
-                .filter(|i| part >> i & 1 == 0)
-                .map(|i| wave.k[i] * x[i])
-                .sum::<f64>()
-                + wave.a;
-            p[(m + k) as usize] = p[(m + k) as usize].add(C::polar(wave.v / 2.0, rest));
-            p[(m - k) as usize] = p[(m - k) as usize].add(C::polar(wave.v / 2.0, -rest));
-        }
-        let half = half_roots(&p, w)?;
-        let mut found: Vec<(usize, Vec<Built>)> = groupings(&half)
-            .iter()
-            .filter_map(|g| built_factors(g, &theta))
-            .map(|b| (b.iter().map(|f| f.expr.cost().ops).sum(), b))
-            .collect();
-        found.sort_by_key(|(c, _)| *c);
-        found.truncate(KEPT_PER_PART);
-        if found.is_empty() {
-            return None;
-        }
-        options.push(found.into_iter().map(|(_, b)| b).collect());
-        for (s, c) in theta.iter() {
-            top.insert(s.clone(), *c * Small::from_integer(m));
-        }
+    // The part's polynomial in z = e^{i theta} at the point x of the other symbols.
+    let mut p = vec![C(0.0, 0.0); 2 * m as usize + 1];
+    for (wave, &k) in ws.iter().zip(&ks) {
+        let rest: f64 = (0..n)
+            .filter(|i| part >> i & 1 == 0)
+            .map(|i| wave.k[i] * x[i])
+            .sum::<f64>()
+            + wave.a;
+        p[(m + k) as usize] = p[(m + k) as usize].add(C::polar(wave.v / 2.0, rest));
+        p[(m - k) as usize] = p[(m - k) as usize].add(C::polar(wave.v / 2.0, -rest));
     }
-    // The coefficient of e^{i T}, T the sum of the parts' top modes: from the terms of mode T
-    // or -T.
-    let sign = |u: &Term| -> Option<bool> {
-        let f = &u.mode.freq;
-        if f.len() != top.len() {
-            return None;
-        }
-        if f.iter().all(|(s, c)| top.get(s) == Some(c)) {
-            Some(false)
-        } else if f.iter().all(|(s, c)| top.get(s) == Some(&-*c)) {
-            Some(true)
-        } else {
-            None
-        }
-    };
-    let (re, im) = top_of(t.iter().filter_map(|u| sign(u).map(|neg| (u, neg))));
-    // Every choice of grouping per part.
+    let half = half_roots(&p, w)?;
+    let mut found: Vec<(usize, Vec<Built>)> = groupings(&half)
+        .iter()
+        .filter_map(|g| built_factors(g, &theta))
+        .map(|b| (b.iter().map(|f| f.expr.cost().ops).sum(), b))
+        .collect();
+    found.sort_by_key(|(c, _)| *c);
+    found.truncate(KEPT_PER_PART);
+    if found.is_empty() {
+        return None;
+    }
+    Some((found.into_iter().map(|(_, b)| b).collect(), theta, m))
+}
+
+/// Every choice of one grouping per part, the parts' factors concatenated.
+fn every_choice(options: &[Vec<Vec<Built>>]) -> Vec<Vec<Built>> {
     let mut combos: Vec<Vec<Built>> = vec![Vec::new()];
-    for opts in &options {
+    for opts in options {
         combos = combos
             .iter()
             .flat_map(|c| {
@@ -1045,12 +1085,7 @@ fn separable(t: &[Term]) -> Option<Vec<Expr>> {
             })
             .collect();
     }
-    let mut out = Vec::new();
-    for built in combos {
-        charge(1).ok()?;
-        out.extend(finish(built, &re, &im).unwrap_or_default());
-    }
-    Some(out)
+    combos
 }
 
 #[cfg(test)]

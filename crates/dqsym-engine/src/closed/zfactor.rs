@@ -125,8 +125,38 @@ pub(crate) fn factor(p: &MPoly) -> Option<Factored> {
             .map(|(e, c)| (e.clone(), c / &content))
             .collect(),
     };
-    let mut factors: Vec<(MPoly, u32)> = Vec::new();
-    // The monomial factor.
+    let mut factors = monomial_factors(&mut rest);
+    if !rest.is_constant() {
+        let (kr, f) = Kronecker::image(&rest)?;
+        // A bound on the coefficients of any factor (Gelfond: 3^(sum of the partial degrees)
+        // times the 1-norm), times the image's leading coefficient, twice.
+        let norm1: BigInt = rest.terms.values().map(|c| c.abs()).sum();
+        let spread: u32 = kr.degs.iter().sum();
+        let lc = f.last()?.abs();
+        let bound = BigInt::from(2) * &lc * BigInt::from(3).pow(spread) * norm1;
+        let lifted = lifted_pieces(&f, &bound)?;
+        recombine(&mut rest, &kr, &f, lifted, &mut factors)?;
+        if !rest.is_constant() {
+            if rest.leading().is_some_and(|(_, c)| c.is_negative()) {
+                rest = rest.neg();
+                content = -content;
+            }
+            factors.push((rest.clone(), 1));
+        }
+        if let Some(c) = rest.terms.get(&vec![0; n]).filter(|_| rest.is_constant()) {
+            content *= c;
+        }
+    }
+    Some(Factored {
+        content,
+        factors: merge_equal(factors),
+    })
+}
+
+/// Divides the largest monomial out of `rest`, returned as its variables' powers.
+fn monomial_factors(rest: &mut MPoly) -> Vec<(MPoly, u32)> {
+    let n = rest.n;
+    let mut factors = Vec::new();
     for i in 0..n {
         let low = rest.terms.keys().map(|e| e[i]).min().unwrap_or(0);
         if low > 0 {
@@ -140,8 +170,22 @@ pub(crate) fn factor(p: &MPoly) -> Option<Factored> {
                 .collect();
         }
     }
-    if !rest.is_constant() {
-        // Kronecker's substitution.
+    factors
+}
+
+/// Kronecker's substitution: variable i becomes `t^base[i]`, with bases past each variable's
+/// degree, so a polynomial maps to a univariate one and back without loss.
+struct Kronecker {
+    n: usize,
+    degs: Vec<u32>,
+    base: Vec<usize>,
+}
+
+impl Kronecker {
+    /// The substitution for `rest` and its univariate image (coefficients by degree); `None`
+    /// past [`MAX_IMAGE_DEGREE`].
+    fn image(rest: &MPoly) -> Option<(Kronecker, Vec<BigInt>)> {
+        let n = rest.n;
         let degs: Vec<u32> = (0..n)
             .map(|i| rest.terms.keys().map(|e| e[i]).max().unwrap_or(0))
             .collect();
@@ -154,130 +198,137 @@ pub(crate) fn factor(p: &MPoly) -> Option<Factored> {
                 return None;
             }
         }
-        let image_of =
-            |e: &[u32]| -> usize { e.iter().zip(&base).map(|(&x, &b)| x as usize * b).sum() };
-        let deg = image_of(&degs);
-        let top = rest.terms.keys().map(|e| image_of(e)).max().unwrap_or(0);
+        let kr = Kronecker { n, degs, base };
+        let deg = kr.of(&kr.degs);
+        let top = rest.terms.keys().map(|e| kr.of(e)).max().unwrap_or(0);
         if top > MAX_IMAGE_DEGREE || deg > 64 * MAX_IMAGE_DEGREE {
             return None;
         }
         let mut f = vec![BigInt::zero(); top + 1];
         for (e, c) in &rest.terms {
-            f[image_of(e)] = c.clone();
+            f[kr.of(e)] = c.clone();
         }
-        let back = |g: &[BigInt]| -> MPoly {
-            let mut terms = BTreeMap::new();
-            for (k, c) in g.iter().enumerate() {
-                if c.is_zero() {
-                    continue;
-                }
-                let mut e = vec![0u32; n];
-                let mut r = k;
-                for i in (0..n).rev() {
-                    e[i] = (r / base[i]) as u32;
-                    r %= base[i];
-                }
-                terms.insert(e, c.clone());
+        Some((kr, f))
+    }
+
+    /// The degree of `t` a monomial maps to.
+    fn of(&self, e: &[u32]) -> usize {
+        e.iter()
+            .zip(&self.base)
+            .map(|(&x, &b)| x as usize * b)
+            .sum()
+    }
+
+    /// The polynomial whose image is `g`.
+    fn back(&self, g: &[BigInt]) -> MPoly {
+        let n = self.n;
+        let mut terms = BTreeMap::new();
+        for (k, c) in g.iter().enumerate() {
+            if c.is_zero() {
+                continue;
             }
-            MPoly { n, terms }
-        };
-        // A bound on the coefficients of any factor (Gelfond: 3^(sum of the partial degrees)
-        // times the 1-norm), times the image's leading coefficient, twice.
-        let norm1: BigInt = rest.terms.values().map(|c| c.abs()).sum();
-        let spread: u32 = degs.iter().sum();
-        let lc = f.last()?.abs();
-        let bound = BigInt::from(2) * &lc * BigInt::from(3).pow(spread) * norm1;
-        let (pieces, modulus, shifts) = lifted_pieces(&f, &bound)?;
-        // Products of subsets of the modular factors (times a power of t, which no factor's
-        // image need be free of), mapped back and tried as multivariate factors, smallest
-        // subsets first.
-        let mut pieces = pieces;
-        let mut size = 1;
-        // The subsets are exponentially many in the modular factors (a polynomial whose image
-        // splits into many factors modulo the prime, as a product of many linear factors
-        // does); the work budget bounds them only where a budget is set. Past
-        // `MAX_SUBSET_TRIES` the factorization is given up: the closed form is then found
-        // without it, still exact. (Factors of kinematic expressions split into a handful of
-        // modular factors: 2^14 tries cover every subset of 14 pieces up to half their
-        // number.)
-        let mut tries: u64 = 0;
-        let mut gave_up = false;
-        while !rest.is_constant() && size <= pieces.len() / 2 {
-            let l = rest
-                .terms
-                .iter()
-                .max_by_key(|(e, _)| image_of(e))
-                .map(|(_, c)| c.clone())?;
-            let mut found = None;
-            for_each_subset(pieces.len(), size, &mut |idx| {
-                tries += 1;
-                if tries > MAX_SUBSET_TRIES {
-                    gave_up = true;
+            let mut e = vec![0u32; n];
+            let mut r = k;
+            for i in (0..n).rev() {
+                e[i] = (r / self.base[i]) as u32;
+                r %= self.base[i];
+            }
+            terms.insert(e, c.clone());
+        }
+        MPoly { n, terms }
+    }
+}
+
+/// Products of subsets of the modular factors `pieces` (times a power of t, which no factor's
+/// image need be free of), mapped back and tried as multivariate factors of `rest`, smallest
+/// subsets first; each found is pushed to `factors` and divided out of `rest`. `None` when the
+/// budget runs out or the tries pass [`MAX_SUBSET_TRIES`].
+fn recombine(
+    rest: &mut MPoly,
+    kr: &Kronecker,
+    f: &[BigInt],
+    (mut pieces, modulus, shifts): (Vec<Vec<BigInt>>, BigInt, usize),
+    factors: &mut Vec<(MPoly, u32)>,
+) -> Option<()> {
+    let mut size = 1;
+    // The subsets are exponentially many in the modular factors (a polynomial whose image
+    // splits into many factors modulo the prime, as a product of many linear factors
+    // does); the work budget bounds them only where a budget is set. Past
+    // `MAX_SUBSET_TRIES` the factorization is given up: the closed form is then found
+    // without it, still exact. (Factors of kinematic expressions split into a handful of
+    // modular factors: 2^14 tries cover every subset of 14 pieces up to half their
+    // number.)
+    let mut tries: u64 = 0;
+    let mut gave_up = false;
+    while !rest.is_constant() && size <= pieces.len() / 2 {
+        let l = rest
+            .terms
+            .iter()
+            .max_by_key(|(e, _)| kr.of(e))
+            .map(|(_, c)| c.clone())?;
+        let mut found = None;
+        for_each_subset(pieces.len(), size, &mut |idx| {
+            tries += 1;
+            if tries > MAX_SUBSET_TRIES {
+                gave_up = true;
+                return true;
+            }
+            // Each try builds and maps back a product of up to `f.len()` coefficients
+            // per shift: charged so, or the budget would stand for seconds of work.
+            if charge((1 + shifts as u64) * f.len() as u64).is_err() {
+                return true;
+            }
+            let mut g = vec![l.clone()];
+            for &i in idx {
+                g = u_mul(&g, &pieces[i]);
+                if !modulus.is_zero() {
+                    for c in g.iter_mut() {
+                        *c = c.mod_floor(&modulus);
+                    }
+                }
+            }
+            let g = if modulus.is_zero() {
+                u_pp(&g)
+            } else {
+                u_pp(&symmetric(&g, &modulus))
+            };
+            for j in 0..=shifts {
+                let mut shifted = vec![BigInt::zero(); j];
+                shifted.extend(g.iter().cloned());
+                if shifted.len() > f.len() {
+                    break;
+                }
+                let mut cand = kr.back(&shifted);
+                if cand.leading().is_some_and(|(_, c)| c.is_negative()) {
+                    cand = cand.neg();
+                }
+                if let Some(q) = rest.div_exact(&cand) {
+                    found = Some((idx.to_vec(), cand, q));
                     return true;
                 }
-                // Each try builds and maps back a product of up to `f.len()` coefficients
-                // per shift: charged so, or the budget would stand for seconds of work.
-                if charge((1 + shifts as u64) * f.len() as u64).is_err() {
-                    return true;
-                }
-                let mut g = vec![l.clone()];
-                for &i in idx {
-                    g = u_mul(&g, &pieces[i]);
-                    if !modulus.is_zero() {
-                        for c in g.iter_mut() {
-                            *c = c.mod_floor(&modulus);
-                        }
-                    }
-                }
-                let g = if modulus.is_zero() {
-                    u_pp(&g)
-                } else {
-                    u_pp(&symmetric(&g, &modulus))
-                };
-                for j in 0..=shifts {
-                    let mut shifted = vec![BigInt::zero(); j];
-                    shifted.extend(g.iter().cloned());
-                    if shifted.len() > f.len() {
-                        break;
-                    }
-                    let mut cand = back(&shifted);
-                    if cand.leading().is_some_and(|(_, c)| c.is_negative()) {
-                        cand = cand.neg();
-                    }
-                    if let Some(q) = rest.div_exact(&cand) {
-                        found = Some((idx.to_vec(), cand, q));
-                        return true;
-                    }
-                }
-                false
-            });
-            charge(0).ok()?;
-            if gave_up {
-                return None;
             }
-            match found {
-                Some((idx, cand, q)) => {
-                    factors.push((cand, 1));
-                    rest = q;
-                    for &i in idx.iter().rev() {
-                        pieces.remove(i);
-                    }
-                }
-                None => size += 1,
-            }
+            false
+        });
+        charge(0).ok()?;
+        if gave_up {
+            return None;
         }
-        if !rest.is_constant() {
-            if rest.leading().is_some_and(|(_, c)| c.is_negative()) {
-                rest = rest.neg();
-                content = -content;
+        match found {
+            Some((idx, cand, q)) => {
+                factors.push((cand, 1));
+                *rest = q;
+                for &i in idx.iter().rev() {
+                    pieces.remove(i);
+                }
             }
-            factors.push((rest.clone(), 1));
-        }
-        if let Some(c) = rest.terms.get(&vec![0; n]).filter(|_| rest.is_constant()) {
-            content *= c;
+            None => size += 1,
         }
     }
-    // Equal factors merged.
+    Some(())
+}
+
+/// Equal factors merged (their multiplicities added), sorted.
+fn merge_equal(mut factors: Vec<(MPoly, u32)>) -> Vec<(MPoly, u32)> {
     factors.sort();
     let mut merged: Vec<(MPoly, u32)> = Vec::new();
     for (f, m) in factors {
@@ -286,10 +337,7 @@ pub(crate) fn factor(p: &MPoly) -> Option<Factored> {
             _ => merged.push((f, m)),
         }
     }
-    Some(Factored {
-        content,
-        factors: merged,
-    })
+    merged
 }
 
 /// The most subsets of modular factors one factorization tries (see `factor`'s recombination).
