@@ -155,7 +155,19 @@ fn check_ikgeo(r: &Robot, geo: &ik_geo::robot::Robot, m: &Matrix3<f64>) {
     assert!(found >= 95, "{}: ik-geo solves another robot", r.name);
 }
 
-fn main() {
+/// The poses of both robots and ik-geo's solvers for them, checked.
+struct Setup {
+    tp: Vec<(M4, Matrix3<f64>, Vector3<f64>)>,
+    tu: Vec<(M4, Matrix3<f64>, Vector3<f64>)>,
+    geo_puma: ik_geo::robot::Robot,
+    geo_ur5: ik_geo::robot::Robot,
+}
+
+/// PUMA 560 lengths (a2, a3, d3, d4) and UR5's (a2, a3, d1, d4, d5, d6), as the solvers take them.
+const PUMA: (f64, f64, f64, f64) = (0.4318, 0.0203, 0.15005, 0.4318);
+const UR: (f64, f64, f64, f64, f64, f64) = (-0.425, -0.39225, 0.089159, 0.10915, 0.09465, 0.0823);
+
+fn setup() -> Setup {
     let pi2 = std::f64::consts::FRAC_PI_2;
     let puma_robot = Robot {
         name: "PUMA 560",
@@ -188,61 +200,84 @@ fn main() {
     check_ikgeo(&ur5_robot, &geo_ur5, &mu);
     let tp = poses(&puma_robot, &mp, 1);
     let tu = poses(&ur5_robot, &mu, 2);
-    let (pa, pb, pc, pd) = (0.4318, 0.0203, 0.15005, 0.4318);
-    let ur = (-0.425, -0.39225, 0.089159, 0.10915, 0.09465, 0.0823);
+    Setup {
+        tp,
+        tu,
+        geo_puma,
+        geo_ur5,
+    }
+}
+
+fn main() {
+    let s = setup();
     // `--count NAME` (no criterion run): NAME's solver on every pose `COUNT_ROUNDS` times, for
     // instruction counts under valgrind, which a loaded machine does not disturb; `none` is the
     // set-up alone, to subtract (bench/ikgeo/count).
     let args: Vec<String> = std::env::args().collect();
     if let Some(i) = args.iter().position(|a| a == "--count") {
-        let name = args.get(i + 1).map_or("none", String::as_str);
-        let mut total = 0usize;
-        let (mut op, mut ob) = (
-            puma::IkSolutions::default(),
-            puma_before::IkSolutions::default(),
-        );
-        let (mut ou, mut oub) = (
-            ur5::IkSolutions::default(),
-            ur5_before::IkSolutions::default(),
-        );
-        for _ in 0..COUNT_ROUNDS {
-            for ((t, r, p), (tu, ru, pu)) in tp.iter().zip(&tu) {
-                total += match name {
-                    "puma560_dqsym_checked" => {
-                        puma::ik_into(&mut op, black_box(t), pa, pb, pc, pd);
-                        op.n
-                    }
-                    "puma560_dqsym_before_check" => {
-                        puma_before::ik_into(&mut ob, black_box(t), pa, pb, pc, pd);
-                        ob.n
-                    }
-                    "puma560_ikgeo" => geo_puma.ik(black_box(*r), black_box(*p)).len(),
-                    "ur5_dqsym_checked" => {
-                        ur5::ik_into(&mut ou, black_box(tu), ur.0, ur.1, ur.2, ur.3, ur.4, ur.5);
-                        ou.n
-                    }
-                    "ur5_dqsym_before_check" => {
-                        ur5_before::ik_into(
-                            &mut oub,
-                            black_box(tu),
-                            ur.0,
-                            ur.1,
-                            ur.2,
-                            ur.3,
-                            ur.4,
-                            ur.5,
-                        );
-                        oub.n
-                    }
-                    "ur5_ikgeo" => geo_ur5.ik(black_box(*ru), black_box(*pu)).len(),
-                    "none" => 0,
-                    other => panic!("--count {other}: unknown"),
-                };
-            }
-        }
-        println!("{name}: {total} solutions");
+        count(&s, args.get(i + 1).map_or("none", String::as_str));
         return;
     }
+    bench(&s);
+}
+
+/// Solves every pose with solver `name` `COUNT_ROUNDS` times and prints the solutions' count.
+fn count(s: &Setup, name: &str) {
+    let (tp, tu, geo_puma, geo_ur5) = (&s.tp, &s.tu, &s.geo_puma, &s.geo_ur5);
+    let (pa, pb, pc, pd) = PUMA;
+    let ur = UR;
+    let mut total = 0usize;
+    let (mut op, mut ob) = (
+        puma::IkSolutions::default(),
+        puma_before::IkSolutions::default(),
+    );
+    let (mut ou, mut oub) = (
+        ur5::IkSolutions::default(),
+        ur5_before::IkSolutions::default(),
+    );
+    for _ in 0..COUNT_ROUNDS {
+        for ((t, r, p), (tu, ru, pu)) in tp.iter().zip(tu.iter()) {
+            total += match name {
+                "puma560_dqsym_checked" => {
+                    puma::ik_into(&mut op, black_box(t), pa, pb, pc, pd);
+                    op.n
+                }
+                "puma560_dqsym_before_check" => {
+                    puma_before::ik_into(&mut ob, black_box(t), pa, pb, pc, pd);
+                    ob.n
+                }
+                "puma560_ikgeo" => geo_puma.ik(black_box(*r), black_box(*p)).len(),
+                "ur5_dqsym_checked" => {
+                    ur5::ik_into(&mut ou, black_box(tu), ur.0, ur.1, ur.2, ur.3, ur.4, ur.5);
+                    ou.n
+                }
+                "ur5_dqsym_before_check" => {
+                    ur5_before::ik_into(
+                        &mut oub,
+                        black_box(tu),
+                        ur.0,
+                        ur.1,
+                        ur.2,
+                        ur.3,
+                        ur.4,
+                        ur.5,
+                    );
+                    oub.n
+                }
+                "ur5_ikgeo" => geo_ur5.ik(black_box(*ru), black_box(*pu)).len(),
+                "none" => 0,
+                other => panic!("--count {other}: unknown"),
+            };
+        }
+    }
+    println!("{name}: {total} solutions");
+}
+
+/// The criterion run: every solver on every pose.
+fn bench(s: &Setup) {
+    let (tp, tu, geo_puma, geo_ur5) = (&s.tp, &s.tu, &s.geo_puma, &s.geo_ur5);
+    let (pa, pb, pc, pd) = PUMA;
+    let ur = UR;
     // The solutions are written into a buffer the caller keeps (`ik_into`), as a controller
     // calling the solver in its loop does; the sum of the counts keeps the work observable.
     let mut c = Criterion::default()
