@@ -94,10 +94,7 @@ pub fn rust_function(
     if args.len() > 7 {
         s.push_str("#[allow(clippy::too_many_arguments)]\n");
     }
-    if names
-        .iter()
-        .any(|a| a.chars().any(|c| c.is_ascii_uppercase()))
-    {
+    if names.iter().any(|a| !snake_case(a)) {
         s.push_str("#[allow(non_snake_case)]\n");
     }
     let params: Vec<String> = names
@@ -306,4 +303,12 @@ pub fn ik_dq(ik_q: &[f64; 8]{params}) -> IkSolutions {{\n    ik(&ik_dq_matrix(ik
         ));
         s
     }
+}
+
+/// Whether rustc's `non_snake_case` lint accepts `name`: no uppercase letter and, inside the
+/// underscores that begin or end it, no two underscores in a row (a URDF joint `j*/0` becomes
+/// the variable `j__0`).
+fn snake_case(name: &str) -> bool {
+    let inner = name.trim_matches('_');
+    !inner.chars().any(char::is_uppercase) && !inner.contains("__")
 }
