@@ -845,7 +845,8 @@ fn fk(
             print!("{t}");
             ExitCode::SUCCESS
         }
-        Err(e) => fail(e.to_string()),
+        // A limit reached in the derivation names the file, as a limit in a field does.
+        Err(e) => fail(format!("{}: {e}", path.display())),
     }
 }
 
@@ -883,7 +884,7 @@ fn ops(path: Option<&std::path::Path>, jacobian: bool, robot_args: &RobotArgs) -
             ExitCode::SUCCESS
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            eprintln!("error: {}: {e}", path.display());
             ExitCode::FAILURE
         }
     }
