@@ -838,7 +838,7 @@ fn sums_times_constants_past_f64_keep_their_value_in_c_and_numpy() {
         let out = Output::scalar("v", "value", closed_form(&e).unwrap());
         let f = format!("f{k}");
         let args = ["x".to_string(), "y".to_string()];
-        c_src.push_str(&c_function(&f, "doc", &[out.clone()], &args, &o).unwrap());
+        c_src.push_str(&c_function(&f, "doc", std::slice::from_ref(&out), &args, &o).unwrap());
         py.push_str(&python_function(&f, "doc", &[out], &args, &o).unwrap());
         py.push('\n');
         let (a, b) = (pts[2 * k], pts[2 * k + 1]);
