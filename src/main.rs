@@ -956,10 +956,8 @@ fn walk(
     let name = path.display().to_string();
     let robot_file = is_urdf(path) || path.extension().is_some_and(|e| e == "toml");
     let w = if is_urdf(path) {
-        // Through the same size probe as a robot file: a chain too large to show product by
-        // product is refused at once, naming the file, not after seconds of products.
         match load_robot(path, robot_args) {
-            Ok(r) => dqsym::walk::walk_robot_read(&r, &name),
+            Ok(r) => dqsym::walk::walk_robot_chain(&r),
             Err(m) => return fail(m),
         }
     } else if let Err(m) = urdf_only(robot_args) {

@@ -209,12 +209,14 @@ fn is_ident(s: &str) -> bool {
         && c.all(|x| x.is_ascii_alphanumeric() || x == '_')
 }
 
-/// A product whose rational coefficient is outside f64's normal range (a factored
+/// A product whose rational coefficient is below f64's normal range (a factored
 /// `(3^700 + x)/3^700`), with the coefficient multiplied exactly into its first sum; `None`
-/// for any other product. Written as it is, such a coefficient would round to 0 or infinity
-/// and the product to 0 or NaN where its value is near 1; distributed, each term carries its
-/// own coefficient, which rounds to that term's own size (a term past the range still
-/// becomes the language's infinity or 0, as a single constant does).
+/// for any other product. Written as it is, such a coefficient would round to 0 and the
+/// product to NaN (`(inf + x) * 0`) or 0 where its value is near 1; distributed, each term
+/// carries its own coefficient, which rounds to that term's own size (a term past the range
+/// still becomes the language's infinity or 0, as a single constant does). A coefficient
+/// past the top of the range stays outside: `(x - 10^100 y) * inf` keeps the sign of the
+/// sum, where `x * inf - inf * y` would be NaN.
 fn distributed(v: &[Expr]) -> Option<Expr> {
     let mut q = BigRational::one();
     for f in v {
@@ -222,7 +224,10 @@ fn distributed(v: &[Expr]) -> Option<Expr> {
             q *= n;
         }
     }
-    if q.is_zero() || q.to_f64().is_some_and(f64::is_normal) {
+    let tiny = q
+        .to_f64()
+        .is_some_and(|f| f.is_finite() && f.abs() < f64::MIN_POSITIVE);
+    if q.is_zero() || !tiny {
         return None;
     }
     let sum = v.iter().position(|f| matches!(f, Expr::Add(_)))?;
