@@ -481,7 +481,10 @@ fn quiet_on_closed_pipe() {}
 
 fn main() -> ExitCode {
     quiet_on_closed_pipe();
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return clap_exit(&e),
+    };
     tune_allocator(cli.command.is_none() && cli.expr.is_none());
     let worker = std::thread::Builder::new()
         .stack_size(STACK)
@@ -508,6 +511,17 @@ fn main() -> ExitCode {
             eprintln!("error: internal failure");
             ExitCode::FAILURE
         }
+    }
+}
+
+/// Prints clap's help, version or usage error and returns its status: a help or version
+/// text that cannot be written to stdout (a full disk) is an output error like any other,
+/// not a success (`Cli::parse` ignores the write's failure and exits 0).
+fn clap_exit(e: &clap::Error) -> ExitCode {
+    let printed = e.print().and_then(|()| std::io::stdout().flush());
+    match printed {
+        Err(w) if !e.use_stderr() => output_failed(&w),
+        _ => ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2)),
     }
 }
 
@@ -831,7 +845,8 @@ fn fk(
             print!("{t}");
             ExitCode::SUCCESS
         }
-        Err(e) => fail(e.to_string()),
+        // A limit reached in the derivation names the file, as a limit in a field does.
+        Err(e) => fail(format!("{}: {e}", path.display())),
     }
 }
 
@@ -869,7 +884,7 @@ fn ops(path: Option<&std::path::Path>, jacobian: bool, robot_args: &RobotArgs) -
             ExitCode::SUCCESS
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            eprintln!("error: {}: {e}", path.display());
             ExitCode::FAILURE
         }
     }
@@ -939,6 +954,7 @@ fn walk(
         Err(m) => return fail(m),
     };
     let name = path.display().to_string();
+    let robot_file = is_urdf(path) || path.extension().is_some_and(|e| e == "toml");
     let w = if is_urdf(path) {
         match load_robot(path, robot_args) {
             Ok(r) => dqsym::walk::walk_robot_chain(&r),
@@ -957,6 +973,10 @@ fn walk(
     };
     let w = match w {
         Ok(w) => w,
+        Err(e @ dqsym::walk::WalkError::TooLarge { .. }) => return fail(e.to_string()),
+        // A robot's walkthrough that fails past the probe (a limit in a product or a closed
+        // form) names its file as every other robot-file error does.
+        Err(e) if robot_file => return fail(format!("{name}: {e}")),
         Err(dqsym::walk::WalkError::Script(m)) => {
             eprintln!("{}", with_origin(&m, &name));
             return ExitCode::FAILURE;

@@ -388,17 +388,22 @@ fn a_long_numeric_dh_chain_meets_a_small_budget_at_once() {
         );
     }
     std::fs::write(dir.join("dh.toml"), toml).expect("writes");
-    let out = Command::new(BIN)
-        .args(["fk", "dh.toml", "--work-budget", "1000"])
-        .current_dir(&dir)
-        .output()
-        .expect("runs");
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{err}");
-    assert!(
-        err.contains("work budget exceeded") && err.contains("--work-budget"),
-        "{err}"
-    );
+    // fk, its Jacobian and ops: the derivation's limit error names the file, as a field's does.
+    for args in [&["fk"][..], &["fk", "--jacobian"][..], &["ops"][..]] {
+        let out = Command::new(BIN)
+            .args(args)
+            .args(["dh.toml", "--work-budget", "1000"])
+            .current_dir(&dir)
+            .output()
+            .expect("runs");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert!(
+            err.starts_with("error: dh.toml: work budget exceeded")
+                && err.contains("--work-budget"),
+            "{args:?}: {err}"
+        );
+    }
 }
 
 #[test]

@@ -810,3 +810,121 @@ fn walk_markdown_heading_shows_any_robot_name_as_text() {
         );
     }
 }
+
+/// Values whose closed form is a sum times a rational past f64's range (`(3^700 + x)/3^700`):
+/// the generated C and NumPy code gives the value (here `1 + x y / 2^1100`-sized terms that
+/// round to their own size), never `(inf + x) * 0` = NaN. The oracle is the test's own f64
+/// arithmetic of the expanded value, each term rounded on its own.
+#[test]
+fn sums_times_constants_past_f64_keep_their_value_in_c_and_numpy() {
+    let cases = [
+        "(3^700 + x)*y/3^700",
+        "(2^1100 + x)*(3^700 + y)/(2^1100*3^700)",
+        "(5^600 - x)/5^600 + y",
+    ];
+    // The x / 3^700-sized terms underflow to 0 in f64 (3^-700 ~ 1e-334): the f64 values are
+    // y, 1 and 1 + y exactly.
+    let oracle = |k: usize, _a: f64, b: f64| match k {
+        0 => b,
+        1 => 1.0,
+        _ => 1.0 + b,
+    };
+    let o = CodegenOptions::default();
+    let pts = values(21, 2 * cases.len());
+    let (mut c_src, mut c_calls, mut py, mut py_calls) =
+        (String::new(), String::new(), String::new(), String::new());
+    for (k, e) in cases.iter().enumerate() {
+        let e = eval_scalar_text(e).expect("exact value");
+        let out = Output::scalar("v", "value", closed_form(&e).unwrap());
+        let f = format!("f{k}");
+        let args = ["x".to_string(), "y".to_string()];
+        c_src.push_str(&c_function(&f, "doc", std::slice::from_ref(&out), &args, &o).unwrap());
+        py.push_str(&python_function(&f, "doc", &[out], &args, &o).unwrap());
+        py.push('\n');
+        let (a, b) = (pts[2 * k], pts[2 * k + 1]);
+        c_calls.push_str(&format!(
+            "    {{ double v; {f}({a:?}, {b:?}, &v); printf(\"%.17g\\n\", v); }}\n"
+        ));
+        py_calls.push_str(&format!("print(repr(float({f}({a:?}, {b:?})['v'])))\n"));
+    }
+    c_src.push_str(&format!(
+        "#include <stdio.h>\nint main(void)\n{{\n{c_calls}    return 0;\n}}\n"
+    ));
+    let c_out = compile_and_run_c("past_f64", &c_src);
+    let py_out = run_py_file("past_f64", &format!("{py}\n{py_calls}"), "");
+    for (lang, out) in [("C", c_out), ("NumPy", py_out)] {
+        let got: Vec<f64> = out.lines().map(|l| l.parse().unwrap()).collect();
+        assert_eq!(got.len(), cases.len(), "{lang}: {out}");
+        for (k, g) in got.iter().enumerate() {
+            close(
+                &format!("{lang} case {k}"),
+                *g,
+                oracle(k, pts[2 * k], pts[2 * k + 1]),
+            );
+        }
+    }
+}
+
+/// A robot whose name has no letter or digit (`robot_fk`, not `robot__fk`) and whose joint
+/// variable and parameter hold double underscores (a URDF joint `j*/0` becomes `j__0`):
+/// the Rust fk compiles with `-D warnings` (rustc's snake-case lint) and gives the DH pose.
+#[test]
+fn rust_fk_of_names_rustc_calls_not_snake_case_compiles_clean_and_matches_dh() {
+    let mut src = String::new();
+    let mut calls = String::new();
+    let pts = values(22, 6);
+    for (i, (name, v, p)) in [("!!!", "q__1", "l__a"), ("", "q__", "a__b")]
+        .into_iter()
+        .enumerate()
+    {
+        let text = format!(
+            "name = \"{name}\"\nconvention = \"dh\"\n\
+             [[joint]]\ntype = \"revolute\"\ntheta = \"{v}\"\nd = \"0\"\na = \"{p}\"\nalpha = \"0\"\n\
+             [[joint]]\ntype = \"revolute\"\ntheta = \"q2\"\nd = \"1/2\"\na = \"1\"\nalpha = \"pi/2\"\n"
+        );
+        let robot = parse_robot(&text, "r.toml", &eval_scalar_text).expect("robot");
+        let code = fk_code(&robot, Format::Rust);
+        let f = fn_name(&code, "pub fn ");
+        assert_eq!(f, "robot_fk", "{code}");
+        // Each function in its own module: both are named `robot_fk`.
+        src.push_str(&format!("mod m{i} {{\n{code}\n}}\n"));
+        let args = robot.parameters();
+        assert!(args.len() == 1, "{args:?}");
+        // Arguments in the order the doc comment lists them.
+        let order = code
+            .lines()
+            .find_map(|l| l.strip_prefix("/// Arguments, in order: "))
+            .expect("argument list")
+            .trim_end_matches('.')
+            .replace('`', "");
+        let vals: Vec<String> = order
+            .split(", ")
+            .map(|a| match a {
+                a if a == v => format!("{:?}", pts[3 * i]),
+                a if a == p => format!("{:?}", pts[3 * i + 1]),
+                _ => format!("{:?}", pts[3 * i + 2]),
+            })
+            .collect();
+        calls.push_str(&format!(
+            "    println!(\"{{:?}}\", m{i}::robot_fk({}).t);\n",
+            vals.join(", ")
+        ));
+    }
+    src.push_str(&format!("fn main() {{\n{calls}}}\n"));
+    let dir = temp_dir("names_rust_snake");
+    let (file, exe) = (dir.join("gen.rs"), dir.join("gen"));
+    std::fs::write(&file, &src).unwrap();
+    compile_rust_clean(&file, &exe, false, "non-snake-case names");
+    let out = run(Command::new(&exe), "", "the compiled Rust program");
+    for (i, line) in out.lines().enumerate() {
+        let got: Vec<f64> = line
+            .replace(['[', ']'], "")
+            .split(", ")
+            .map(|x| x.parse().unwrap())
+            .collect();
+        let want = dh_pose(pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]);
+        for (k, g) in got.iter().enumerate() {
+            close(&format!("robot {i} t[{k}]"), *g, want[k / 4][k % 4]);
+        }
+    }
+}

@@ -76,6 +76,10 @@ fn every_command_ends_a_full_disk_with_one_message_and_status_1() {
         (vec!["ops".into()], ""),
         (vec!["ops".into(), rrr.clone()], ""),
         (vec!["paper".into()], ""),
+        // clap's help and version texts (once written with the write's failure ignored: 0).
+        (vec!["--help".into()], ""),
+        (vec!["fk".into(), "--help".into()], ""),
+        (vec!["--version".into()], ""),
     ];
     for format in ["plain", "latex", "sympy", "rust", "c", "python"] {
         cases.push((
@@ -282,5 +286,43 @@ fn huge_values_never_put_nan_into_the_drawing() {
         let start = page.find("<svg").expect("a drawing");
         let svg = &page[start..start + page[start..].find("</svg>").expect("its end")];
         assert!(!svg.contains("NaN") && !svg.contains("inf"), "{v}: {svg}");
+    }
+}
+
+/// A URDF chain too long to walk product by product (2,000 collinear joints: one angle of
+/// 2,000 symbols) ends with the limit's error naming the file and the limit's option, also
+/// with the angle limit at 10x its default (then the work budget ends it).
+#[test]
+fn walk_of_a_urdf_past_a_limit_names_the_file() {
+    let dir = scratch("walk_limit");
+    let n = 2000;
+    let mut urdf = String::from("<robot name=\"r\">");
+    for i in 0..=n {
+        urdf.push_str(&format!("<link name=\"l{i}\"/>"));
+    }
+    for i in 0..n {
+        urdf.push_str(&format!(
+            "<joint name=\"j{i}\" type=\"revolute\"><parent link=\"l{i}\"/>\
+             <child link=\"l{}\"/><origin xyz=\"0 0 0.1\"/><axis xyz=\"0 0 1\"/></joint>",
+            i + 1
+        ));
+    }
+    urdf.push_str("</robot>");
+    std::fs::write(dir.join("chain.urdf"), urdf).expect("writes");
+    for extra in [
+        &[][..],
+        &["--max-angle-symbols", "10000"][..],
+        &["--markdown"][..],
+    ] {
+        let mut args = vec!["walk", "chain.urdf"];
+        args.extend_from_slice(extra);
+        let out = run_into(&dir, &args, "", Stdio::piped());
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert!(
+            err.starts_with("error: chain.urdf: ")
+                && (err.contains("--max-angle-symbols") || err.contains("--work-budget")),
+            "{args:?}: {err}"
+        );
     }
 }

@@ -629,7 +629,11 @@ fn snake(name: &str) -> String {
         s = s.replace("__", "_");
     }
     let s = s.trim_matches('_');
-    let s = if s.starts_with(|c: char| c.is_ascii_digit()) || s.is_empty() {
+    // An empty name gives `robot_fk`, not `robot__fk` (rustc's snake-case lint rejects a
+    // double underscore).
+    let s = if s.is_empty() {
+        "robot".to_string()
+    } else if s.starts_with(|c: char| c.is_ascii_digit()) {
         format!("robot_{s}")
     } else {
         s.to_string()

@@ -13,6 +13,7 @@
 use crate::closed::{angle_text, shorthand_name, Angle, Expr};
 use crate::scalar::{Small, Sym, Trig};
 use num_integer::Integer;
+use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::collections::{BTreeMap, HashMap, HashSet};
 use thiserror::Error;
@@ -209,6 +210,73 @@ fn is_ident(s: &str) -> bool {
     c.next()
         .is_some_and(|f| f.is_ascii_alphabetic() || f == '_')
         && c.all(|x| x.is_ascii_alphanumeric() || x == '_')
+}
+
+/// A product whose rational coefficient is below f64's normal range (a factored
+/// `(3^700 + x)/3^700`), with the coefficient multiplied exactly into its first sum; `None`
+/// for any other product. Written as it is, such a coefficient would round to 0 and the
+/// product to NaN (`(inf + x) * 0`) or 0 where its value is near 1; distributed, each term
+/// carries its own coefficient, which rounds to that term's own size (a term past the range
+/// still becomes the language's infinity or 0, as a single constant does). A coefficient
+/// past the top of the range stays outside: `(x - 10^100 y) * inf` keeps the sign of the
+/// sum, where `x * inf - inf * y` would be NaN.
+fn distributed(v: &[Expr]) -> Option<Expr> {
+    let mut q = BigRational::one();
+    for f in v {
+        if let Expr::Num(n) = f {
+            q *= n;
+        }
+    }
+    let tiny = q
+        .to_f64()
+        .is_some_and(|f| f.is_finite() && f.abs() < f64::MIN_POSITIVE);
+    if q.is_zero() || !tiny {
+        return None;
+    }
+    let sum = v.iter().position(|f| matches!(f, Expr::Add(_)))?;
+    let mut rest: Vec<Expr> = v
+        .iter()
+        .enumerate()
+        .filter(|&(i, f)| i != sum && !matches!(f, Expr::Num(_)))
+        .map(|(_, f)| f.clone())
+        .collect();
+    let scaled = scaled(&v[sum], &q);
+    Some(if rest.is_empty() {
+        scaled
+    } else {
+        rest.push(scaled);
+        Expr::Mul(rest)
+    })
+}
+
+/// `e` times the rational `q`, exactly: into every term of a sum, into a product's
+/// coefficient.
+fn scaled(e: &Expr, q: &BigRational) -> Expr {
+    match e {
+        Expr::Num(n) => Expr::Num(n * q),
+        Expr::Neg(x) => Expr::Neg(Box::new(scaled(x, q))),
+        Expr::Add(v) => Expr::Add(v.iter().map(|t| scaled(t, q)).collect()),
+        Expr::Mul(v) if v.iter().any(|f| matches!(f, Expr::Num(_))) => {
+            let mut done = false;
+            Expr::Mul(
+                v.iter()
+                    .map(|f| match f {
+                        Expr::Num(n) if !done => {
+                            done = true;
+                            Expr::Num(n * q)
+                        }
+                        f => f.clone(),
+                    })
+                    .collect(),
+            )
+        }
+        Expr::Mul(v) => Expr::Mul(
+            std::iter::once(Expr::Num(q.clone()))
+                .chain(v.iter().cloned())
+                .collect(),
+        ),
+        e => Expr::Mul(vec![Expr::Num(q.clone()), e.clone()]),
+    }
 }
 
 /// Lowers the outputs into one program over `args`, each written as itself.
@@ -421,6 +489,9 @@ impl Builder<'_> {
                 acc
             }
             Expr::Mul(v) => {
+                if let Some(d) = distributed(v) {
+                    return self.expr(&d);
+                }
                 let mut c = 1.0;
                 let mut ids = Vec::new();
                 for f in v {

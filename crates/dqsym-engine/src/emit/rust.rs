@@ -94,10 +94,7 @@ pub fn rust_function(
     if args.len() > 7 {
         s.push_str("#[allow(clippy::too_many_arguments)]\n");
     }
-    if names
-        .iter()
-        .any(|a| a.chars().any(|c| c.is_ascii_uppercase()))
-    {
+    if names.iter().any(|a| !snake_case(a)) {
         s.push_str("#[allow(non_snake_case)]\n");
     }
     let params: Vec<String> = names
@@ -386,3 +383,11 @@ const GENERAL_DRIVER: &str = "    // The robot's scale: the largest sum of absol
     ik_out.n = ik_o.n;\n\
     for i in 0..ik_o.n {\n        ik_out.q[i] = ik_o.q[i];\n        ik_out.singular[i] = false;\n        \
 ik_out.residual[i] = ik_o.residual[i];\n        ik_out.approximate[i] = ik_o.residual[i] > IK_POSE_TOL || ik_o.residual[i].is_nan();\n    }\n}\n\n";
+
+/// Whether rustc's `non_snake_case` lint accepts `name`: no uppercase letter and, inside the
+/// underscores that begin or end it, no two underscores in a row (a URDF joint `j*/0` becomes
+/// the variable `j__0`).
+fn snake_case(name: &str) -> bool {
+    let inner = name.trim_matches('_');
+    !inner.chars().any(char::is_uppercase) && !inner.contains("__")
+}
