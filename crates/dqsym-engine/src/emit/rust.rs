@@ -389,5 +389,5 @@ ik_out.residual[i] = ik_o.residual[i];\n        ik_out.approximate[i] = ik_o.res
 /// the variable `j__0`).
 fn snake_case(name: &str) -> bool {
     let inner = name.trim_matches('_');
-    !inner.chars().any(char::is_uppercase) && !inner.contains("__")
+    !inner.chars().any(char::is_uppercase) && !inner.as_bytes().windows(2).any(|w| w == b"__")
 }
