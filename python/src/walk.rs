@@ -24,7 +24,10 @@ enum KatexError {
     /// No folder holds `katex.min.js`.
     NotInstalled,
     /// A file of the folder could not be read.
-    Read { path: PathBuf, error: std::io::Error },
+    Read {
+        path: PathBuf,
+        error: std::io::Error,
+    },
     /// The assets do not form a page (the library's message).
     Assets(dqsym::walk::WalkError),
 }
