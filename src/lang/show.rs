@@ -262,7 +262,12 @@ fn is_identifier(label: &str) -> bool {
 
 /// The language of a code format, whose one writer ([`function`]) writes it.
 fn emitter(format: Format) -> Option<Lang> {
-    Lang::of_code(format)
+    match format {
+        Format::Rust => Some(Lang::Rust),
+        Format::C => Some(Lang::C),
+        Format::Python => Some(Lang::Python),
+        _ => None,
+    }
 }
 
 /// The value as a function named after `label` (or `value`) in the language of `emit`. A

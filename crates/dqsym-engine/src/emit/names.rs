@@ -45,18 +45,6 @@ pub enum Lang {
     Sympy,
 }
 
-impl Lang {
-    /// The language of a code output format (Rust, C, Python); none for text formats.
-    pub fn of_code(format: crate::Format) -> Option<Lang> {
-        match format {
-            crate::Format::Rust => Some(Lang::Rust),
-            crate::Format::C => Some(Lang::C),
-            crate::Format::Python => Some(Lang::Python),
-            _ => None,
-        }
-    }
-}
-
 /// A comment or docstring syntax.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
