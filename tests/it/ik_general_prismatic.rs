@@ -8,6 +8,8 @@
 //! set; and near-singular poses, where nothing wrong is returned unflagged.
 
 use crate::common::Rng;
+use crate::ik_general_count::{cross, solve6};
+use crate::mat4::mul;
 use dqsym::ik::{solve, IkMethod, IkOptions, IkSolution, NumSolution};
 
 pub(crate) type M4 = [[f64; 4]; 4];
@@ -42,10 +44,6 @@ pub(crate) fn pri(theta: (&'static str, f64), a: f64, alpha: (&'static str, f64)
         a,
         alpha,
     }
-}
-
-pub(crate) fn mul(a: &M4, b: &M4) -> M4 {
-    std::array::from_fn(|r| std::array::from_fn(|c| (0..4).map(|k| a[r][k] * b[k][c]).sum()))
 }
 
 /// The frames `T_0 = I`, `T_i = T_{i-1} A_i(q_i)`: joint `i` moves along or about the z axis of
@@ -266,40 +264,6 @@ fn skew_prismatic_arms_round_trip_with_the_degree_of_their_class() {
         );
         assert!(most >= 4, "{name}: {most}");
     }
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// Solves `a x = b` (6 x 6) by Gaussian elimination with partial pivoting.
-#[allow(clippy::needless_range_loop)]
-fn solve6(mut a: [[f64; 6]; 6], mut b: [f64; 6]) -> Option<[f64; 6]> {
-    for k in 0..6 {
-        let p = (k..6).max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))?;
-        if a[p][k].abs() < 1e-300 {
-            return None;
-        }
-        a.swap(k, p);
-        b.swap(k, p);
-        for i in k + 1..6 {
-            let f = a[i][k] / a[k][k];
-            for j in k..6 {
-                a[i][j] -= f * a[k][j];
-            }
-            b[i] -= f * b[k];
-        }
-    }
-    let mut x = [0.0; 6];
-    for i in (0..6).rev() {
-        let s: f64 = (i + 1..6).map(|j| a[i][j] * x[j]).sum();
-        x[i] = (b[i] - s) / a[i][i];
-    }
-    Some(x)
 }
 
 /// The pose error (position over `len`, then the rotation vector to first order) and its
