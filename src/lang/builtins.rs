@@ -901,6 +901,7 @@ fn ik(vals: &[Arg]) -> Result<Value> {
             crate::ik::Formula::Trig { a, b, c } => (at(a), at(b), at(c), 2),
             crate::ik::Formula::Atan2 { y, x } => (-at(y), at(x), zero.clone(), 1),
             crate::ik::Formula::Value { v } => (zero.clone(), one.clone(), -at(v), 1),
+            crate::ik::Formula::Linear { a, b } => (zero.clone(), at(a), -at(b), 1),
             crate::ik::Formula::Quadratic { beta, gamma } => {
                 (one.clone(), Scalar::int(2) * at(beta), at(gamma), 2)
             }

@@ -534,6 +534,7 @@ fn ik_script(sol: &crate::ik::IkSolution) -> Result<String, WalkError> {
             Formula::Atan2 { .. } => "atan2",
             Formula::Trig { .. } => "trig",
             Formula::Value { .. } => "value",
+            Formula::Linear { .. } => "linear",
             Formula::Quadratic { .. } => "quadratic",
         };
         let names: Vec<String> = parts.iter().map(|(n, _)| format!("\"part_{n}\"")).collect();

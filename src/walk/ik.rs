@@ -411,6 +411,14 @@ fn formula_blocks(f: &Formula, q: &str) -> Vec<Block> {
             }),
         ),
         Formula::Value { .. } => (format!("{t} = v"), format!("{q} = v"), None),
+        Formula::Linear { .. } => (
+            format!("a {t} = b \\;\\Rightarrow\\; {t} = \\frac{{b}}{{a}}"),
+            format!("a {q} = b: {q} = b / a"),
+            Some(Prose {
+                tex: "It is singular where $a = 0$ (the slides' directions do not span).".into(),
+                plain: "It is singular where a = 0 (the slides' directions do not span).".into(),
+            }),
+        ),
         Formula::Quadratic { .. } => (
             format!(
                 "{t}^2 + 2 \\beta {t} + \\gamma = 0 \\;\\Rightarrow\\; {t} = -\\beta \\pm \

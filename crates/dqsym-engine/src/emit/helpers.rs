@@ -1,7 +1,7 @@
 //! The runtime helpers of generated IK solvers (`runtime/ik_helpers.*`) as data: each helper
 //! is declared in its file by a marker line before its text, `//@ name: users` (`#@` in
 //! Python), where `users` are the kinds of step whose roots it computes (`atan2`, `trig`,
-//! `quadratic`, several separated by spaces) or `always`. A solver keeps the helpers its steps
+//! `quadratic`, `linear`, several separated by spaces) or `always`. A solver keeps the helpers its steps
 //! use, decided from its formulas; nothing here or in the writers reads the helpers' code.
 
 use std::sync::OnceLock;
@@ -17,6 +17,8 @@ pub enum StepKind {
     Trig,
     /// `q^2 + 2 beta q + gamma = 0`.
     Quadratic,
+    /// `a q = b`.
+    Linear,
 }
 
 impl StepKind {
@@ -25,6 +27,7 @@ impl StepKind {
             "atan2" => Some(StepKind::Atan2),
             "trig" => Some(StepKind::Trig),
             "quadratic" => Some(StepKind::Quadratic),
+            "linear" => Some(StepKind::Linear),
             _ => None,
         }
     }
@@ -36,6 +39,7 @@ impl StepKind {
             StepKind::Atan2 => "ik_atan2",
             StepKind::Trig => "ik_trig",
             StepKind::Quadratic => "ik_quadratic",
+            StepKind::Linear => "ik_linear",
         }
     }
 }
@@ -69,7 +73,7 @@ pub enum HelperFileError {
     #[error("helper marker `{0}` is not `name: users`")]
     Marker(String),
     /// A user that is not a kind of step.
-    #[error("helper `{name}`: `{word}` is not atan2, trig, quadratic or always")]
+    #[error("helper `{name}`: `{word}` is not atan2, trig, quadratic, linear or always")]
     User { name: String, word: String },
 }
 
@@ -209,13 +213,13 @@ mod tests {
     /// (no kept helper calls a dropped one), and the helper of each kind is kept.
     #[test]
     fn kept_helpers_never_call_a_dropped_one() {
-        use StepKind::{Atan2, Quadratic, Trig};
-        let all = [Atan2, Trig, Quadratic];
+        use StepKind::{Atan2, Linear, Quadratic, Trig};
+        let all = [Atan2, Trig, Quadratic, Linear];
         for lang in [Lang::Rust, Lang::C, Lang::Python] {
             let helpers = runtime(lang);
             let names: Vec<&str> = helpers.iter().map(|h| h.name).collect();
-            for mask in 0..8usize {
-                let kinds: Vec<StepKind> = (0..3)
+            for mask in 0..16usize {
+                let kinds: Vec<StepKind> = (0..4)
                     .filter(|i| mask >> i & 1 == 1)
                     .map(|i| all[i])
                     .collect();

@@ -129,6 +129,21 @@ pub(crate) fn trig_cands(a: f64, b: f64, c: f64, sigma: f64) -> Vec<Cand> {
     vec![(phi + w, sg, ck, false), (phi - w, sg, ck, false)]
 }
 
+/// `a q = b` with the rounding `sigma` of `b` (a length, degree 1: `sigma = ZERO_TOL L`); `a`
+/// is dimensionless (degree 0), so its rounding is `ZERO_TOL` itself. Singular where `|a| ≤
+/// ZERO_TOL` (the slides' directions dependent within rounding): `b / a` is kept while `a ≠ 0`
+/// (near the set `a` and `b` share the vanishing factor, as an atan2's arguments do), else 0,
+/// and checked. The root errs by `δq = (sigma + |q| ZERO_TOL) / |a|` (first order), checked
+/// where that exceeds `CHECK_TOL L`, `L = sigma / ZERO_TOL`.
+pub(crate) fn linear_cand(a: f64, b: f64, sigma: f64) -> Cand {
+    let q = if a == 0.0 { 0.0 } else { b / a };
+    if a.abs() <= ZERO_TOL {
+        return (q, true, true, false);
+    }
+    let err = (sigma + q.abs() * ZERO_TOL) / a.abs();
+    (q, false, err * ZERO_TOL > CHECK_TOL * sigma, false)
+}
+
 /// `q² + 2 β q + γ = 0` with the rounding `sigma` of `γ` (the step's degree is that of `γ`,
 /// twice that of `β`, whose rounding is then `sqrt(sigma ZERO_TOL)`).
 pub(crate) fn quadratic_cands(beta: f64, gamma: f64, sigma: f64) -> Vec<Cand> {

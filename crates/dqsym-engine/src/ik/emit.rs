@@ -380,6 +380,7 @@ fn step_kind(f: &Formula) -> Option<StepKind> {
         Formula::Atan2 { .. } => Some(StepKind::Atan2),
         Formula::Trig { .. } => Some(StepKind::Trig),
         Formula::Quadratic { .. } => Some(StepKind::Quadratic),
+        Formula::Linear { .. } => Some(StepKind::Linear),
         Formula::Value { .. } => None,
     }
 }

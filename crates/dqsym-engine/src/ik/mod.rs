@@ -130,6 +130,17 @@ pub enum Formula {
         /// The value.
         v: Scalar,
     },
+    /// `a q = b`: `q = b / a`, a prismatic joint's length from a linear equation whose
+    /// coefficient varies with the joints solved before it (Cramer's rule for several slides
+    /// at once). `a` is dimensionless and `b` a length (the step's degree in lengths is `b`'s,
+    /// 1): singular where `a = 0` (the slides' directions fail to span; `b / a` is kept while
+    /// `a ≠ 0`, else 0).
+    Linear {
+        /// The coefficient of `q`.
+        a: Scalar,
+        /// The right-hand side.
+        b: Scalar,
+    },
     /// `q² + 2 β q + γ = 0`: `q = −β ± sqrt(β² − γ)`.
     Quadratic {
         /// Half the linear coefficient.
@@ -717,6 +728,7 @@ pub fn candidates(
         Formula::Atan2 { y, x } => vec![ev(y)?, ev(x)?],
         Formula::Trig { a, b, c } => vec![ev(a)?, ev(b)?, ev(c)?],
         Formula::Value { v } => vec![ev(v)?],
+        Formula::Linear { a, b } => vec![ev(a)?, ev(b)?],
         Formula::Quadratic { beta, gamma } => vec![ev(beta)?, ev(gamma)?],
     };
     Ok(from_values(f, &v, sigma))
@@ -727,6 +739,7 @@ fn from_values(f: &Formula, v: &[f64], sigma: f64) -> Vec<check::Cand> {
     match f {
         Formula::Atan2 { .. } => check::atan2_cands(v[0], v[1], sigma),
         Formula::Value { .. } => vec![(v[0], false, false, false)],
+        Formula::Linear { .. } => vec![check::linear_cand(v[0], v[1], sigma)],
         Formula::Trig { .. } => check::trig_cands(v[0], v[1], v[2], sigma),
         Formula::Quadratic { .. } => check::quadratic_cands(v[0], v[1], sigma),
     }

@@ -16,6 +16,7 @@ use thiserror::Error;
 
 mod divisor;
 mod short;
+mod slides;
 
 use divisor::{homogenize, meet, on_line_scaled, parts_mut, INV_SCALE};
 use short::{five_joints, pitch_arm, pitch_arm_axes};
@@ -56,7 +57,9 @@ spherical shoulder: axes 1, 2, 3 through one point, with axes 4 and 5 parallel, 
 intersecting, or axes 4 and 5 intersecting off axis 6); 6R with axes 2, 3, 4 parallel and axes \
 5 and 6 intersecting (UR type); 4R with axes 2, 3, 4 parallel (position and one angle); 5 \
 joints with axes 1-3 as in a spherical-wrist arm and axes 4 and 5 intersecting (position and \
-approach axis); 7 joints with one joint given by --free reducing to one of these";
+approach axis); 6 joints of three turns and three slides in any order (3R3P, no two \
+consecutive turns about parallel axes); 7 joints with one joint given by --free reducing to one \
+of these";
 
 /// The target pose and the home pose: `G = T M⁻¹`, the motion `E1 ... En`.
 struct Target {
@@ -239,12 +242,14 @@ impl Builder<'_> {
         let degenerate = match &formula {
             Formula::Atan2 { y, x } => y.is_zero_value() && x.is_zero_value(),
             Formula::Trig { a, b, .. } => a.is_zero_value() && b.is_zero_value(),
+            Formula::Linear { a, .. } => a.is_zero_value(),
             _ => false,
         };
         let all = match &formula {
             Formula::Atan2 { y, x } => vec![y, x],
             Formula::Trig { a, b, c } => vec![a, b, c],
             Formula::Value { v } => vec![v],
+            Formula::Linear { a, b } => vec![a, b],
             Formula::Quadratic { beta, gamma } => vec![beta, gamma],
         };
         first_error(all)?;
@@ -803,6 +808,9 @@ fn family(b: &mut Builder, t: &Target) -> Result<Option<(Phrase, bool)>, PlanErr
             "6R with three consecutive parallel axes (2, 3, 4) and axes 5, 6 intersecting".into(),
             false,
         )));
+    }
+    if slides::applies(ax) {
+        return Ok(Some((slides::three_slides(b, t)?, false)));
     }
     Ok(None)
 }

@@ -19,6 +19,7 @@ pub(crate) fn parts(f: &Formula) -> Result<Vec<(&'static str, Expr)>, ScalarErro
         Formula::Atan2 { y, x } => vec![("y", y), ("x", x)],
         Formula::Trig { a, b, c } => vec![("a", a), ("b", b), ("c", c)],
         Formula::Value { v } => vec![("v", v)],
+        Formula::Linear { a, b } => vec![("a", a), ("b", b)],
         Formula::Quadratic { beta, gamma } => vec![("beta", beta), ("gamma", gamma)],
     };
     let forms = crate::scalar::par_map(&named, |(_, s)| best_form(s));
@@ -51,6 +52,7 @@ fn solution_text(step: &IkStep) -> String {
             format!("{q} = atan2(b, a) ± atan2(sqrt(a^2 + b^2 - c^2), c)")
         }
         Formula::Value { .. } => format!("{q} = v"),
+        Formula::Linear { .. } => format!("{q} = b / a"),
         Formula::Quadratic { .. } => format!("{q} = -beta ± sqrt(beta^2 - gamma)"),
     }
 }
@@ -60,6 +62,7 @@ fn equation_text(step: &IkStep) -> Option<String> {
     match &step.formula {
         Formula::Trig { .. } => Some(format!("a cos({q}) + b sin({q}) = c")),
         Formula::Quadratic { .. } => Some(format!("{q}^2 + 2 beta {q} + gamma = 0")),
+        Formula::Linear { .. } => Some(format!("a {q} = b")),
         _ => None,
     }
 }
@@ -422,6 +425,9 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
                         c = sub("c")
                     ),
                     Formula::Value { .. } => format!("{q} &= {}", sub("v")),
+                    Formula::Linear { .. } => {
+                        format!("{q} &= \\frac{{{}}}{{{}}}", sub("b"), sub("a"))
+                    }
                     Formula::Quadratic { .. } => format!(
                         "{q} &= -{b} \\pm \\sqrt{{{b}^2 - {g}}}",
                         b = sub("\\beta"),
@@ -453,6 +459,7 @@ pub fn ik_report(sol: &IkSolution, format: Format, shorthand: bool) -> Result<St
                         "{q} = atan2({q}_b, {q}_a) + sign_{q}*atan2(sqrt({q}_a**2 + {q}_b**2 - {q}_c**2), {q}_c)"
                     ),
                     Formula::Value { .. } => format!("{q} = {q}_v"),
+                    Formula::Linear { .. } => format!("{q} = {q}_b/{q}_a"),
                     Formula::Quadratic { .. } => {
                         format!("{q} = -{q}_beta + sign_{q}*sqrt({q}_beta**2 - {q}_gamma)")
                     }

@@ -66,6 +66,10 @@ pub(super) fn solution(sol: &IkSolution, lang: Lang) -> Cow<'_, IkSolution> {
                 c: subs(c),
             },
             Formula::Value { v } => Formula::Value { v: subs(v) },
+            Formula::Linear { a, b } => Formula::Linear {
+                a: subs(a),
+                b: subs(b),
+            },
             Formula::Quadratic { beta, gamma } => Formula::Quadratic {
                 beta: subs(beta),
                 gamma: subs(gamma),

@@ -158,6 +158,24 @@ static ik_roots ik_quadratic(double beta, double gamma, double sg) {
     return r;
 }
 
+//@ ik_linear: linear
+/* a q = b, q a length (b rounded by sg = IK_ZERO_TOL L, a dimensionless, rounded by
+   IK_ZERO_TOL): q = b / a; singular where |a| <= IK_ZERO_TOL (b / a kept while a != 0, else 0);
+   checked where its error (sg + |q| IK_ZERO_TOL) / |a| exceeds IK_CHECK_TOL L. */
+static ik_roots ik_linear(double a, double b, double sg) {
+    ik_roots r = ik_none();
+    const double q = a == 0.0 ? 0.0 : b / a;
+    r.n = 1;
+    r.q[0] = q;
+    if (fabs(a) <= IK_ZERO_TOL) {
+        r.sg = 1;
+        r.ck = 1;
+        return r;
+    }
+    r.ck = (sg + fabs(q) * IK_ZERO_TOL) / fabs(a) * IK_ZERO_TOL > IK_CHECK_TOL * sg;
+    return r;
+}
+
 //@ ik_chain: always
 /* What the check of a solution needs: the joint axes in the home pose {kind, w, p} (kind 1:
    prismatic), the home pose, the target and the robot's scale. */

@@ -20,6 +20,13 @@ function ik_cands(kind, v, sg) {
         return [[Math.atan2(y, x), false, sg * sg > IK_CHECK_TOL * IK_CHECK_TOL * h2, false]];
     }
     if (kind === "value") return [[v[0], false, false, false]];
+    if (kind === "linear") {
+        // a q = b, q a length: b rounded by sg = IK_ZERO_TOL L, a dimensionless (rounded by
+        // IK_ZERO_TOL); singular where |a| <= IK_ZERO_TOL (b / a kept while a != 0).
+        const [a, b] = v, q = a === 0 ? 0 : b / a;
+        if (Math.abs(a) <= IK_ZERO_TOL) return [[q, true, true, false]];
+        return [[q, false, (sg + Math.abs(q) * IK_ZERO_TOL) / Math.abs(a) * IK_ZERO_TOL > IK_CHECK_TOL * sg, false]];
+    }
     if (kind === "trig") {
         const [a, b, c] = v, n = a * a + b * b;
         if (n <= sg * sg) return Math.abs(c) <= sg ? [[0, true, true, false]] : [];

@@ -84,6 +84,18 @@ def _ik_quadratic(beta, gamma, sg):
     return [(-beta + w, 0.0, 1.0, False), (-beta - w, 0.0, 1.0, False)], sing, ck
 
 
+#@ _ik_linear: linear
+def _ik_linear(a, b, sg):
+    # a q = b, q a length (b rounded by sg = IK_ZERO_TOL L, a dimensionless, rounded by
+    # IK_ZERO_TOL): q = b / a; singular where |a| <= IK_ZERO_TOL (b / a kept while a != 0, else
+    # 0); checked where its error (sg + |q| IK_ZERO_TOL) / |a| exceeds IK_CHECK_TOL L.
+    q = 0.0 if a == 0.0 else b / a
+    if abs(a) <= IK_ZERO_TOL:
+        return [(q, 0.0, 1.0, False)], True, True
+    ck = (sg + abs(q) * IK_ZERO_TOL) / abs(a) * IK_ZERO_TOL > IK_CHECK_TOL * sg
+    return [(q, 0.0, 1.0, False)], False, ck
+
+
 #@ _ik_scale: always
 def _ik_scale(ax, home, T):
     # The robot's scale: the largest sum of absolute coordinates of an axis' point, the home

@@ -170,6 +170,20 @@ fn ik_quadratic(beta: f64, gamma: f64, sg: f64) -> IkRoots {
     IkRoots { n: 2, q: [-beta + r, -beta - r, 0.0], sg, ck, ..IkRoots::NONE }
 }
 
+//@ ik_linear: linear
+/// `a q = b`, `q` a length (`b` rounded by `sg = IK_ZERO_TOL L`, `a` dimensionless, rounded by
+/// `IK_ZERO_TOL`): `q = b / a`; singular where `|a| <= IK_ZERO_TOL` (`b / a` kept while `a != 0`,
+/// else 0); checked where its error `(sg + |q| IK_ZERO_TOL) / |a|` exceeds `IK_CHECK_TOL L`.
+#[inline(always)]
+fn ik_linear(a: f64, b: f64, sg: f64) -> IkRoots {
+    let q = if a == 0.0 { 0.0 } else { b / a };
+    if a.abs() <= IK_ZERO_TOL {
+        return IkRoots { n: 1, q: [q, 0.0, 0.0], sg: true, ck: true, ..IkRoots::NONE };
+    }
+    let ck = (sg + q.abs() * IK_ZERO_TOL) / a.abs() * IK_ZERO_TOL > IK_CHECK_TOL * sg;
+    IkRoots { n: 1, q: [q, 0.0, 0.0], ck, ..IkRoots::NONE }
+}
+
 //@ IkChain: always
 /// What the check of a solution needs: the joint axes in the home pose `[kind, w, p]` (kind 1:
 /// prismatic), the home pose, the target and the robot's scale.

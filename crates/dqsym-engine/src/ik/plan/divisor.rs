@@ -35,6 +35,7 @@ pub(super) fn parts_mut(f: &mut Formula) -> Vec<&mut Scalar> {
         Formula::Atan2 { y, x } => vec![y, x],
         Formula::Trig { a, b, c } => vec![a, b, c],
         Formula::Value { v } => vec![v],
+        Formula::Linear { a, b } => vec![a, b],
         Formula::Quadratic { beta, gamma } => vec![beta, gamma],
     }
 }
