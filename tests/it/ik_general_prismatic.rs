@@ -306,7 +306,12 @@ fn error_and_jacobian(rows: &[Row], q: &[f64], target: &M4, len: f64) -> ([f64; 
 
 /// Levenberg–Marquardt from `seed`: the configuration when it converges to the pose
 /// (deviation at most 1e-12), else `None`.
-fn levenberg_marquardt(rows: &[Row], seed: &[f64], target: &M4, len: f64) -> Option<Vec<f64>> {
+pub(crate) fn levenberg_marquardt(
+    rows: &[Row],
+    seed: &[f64],
+    target: &M4,
+    len: f64,
+) -> Option<Vec<f64>> {
     let mut q = seed.to_vec();
     let norm = |e: &[f64; 6]| e.iter().map(|x| x * x).sum::<f64>();
     let (mut e, mut j) = error_and_jacobian(rows, &q, target, len);
@@ -512,7 +517,7 @@ fn near_singular_prismatic_poses_return_nothing_wrong_unflagged() {
 }
 
 /// Every unflagged solution reproduces the pose to 1e-9; returns the best deviation of any.
-fn check_flagged(
+pub(crate) fn check_flagged(
     name: &str,
     sol: &IkSolution,
     rows: &[Row],

@@ -15,6 +15,7 @@ mod fk_quantities;
 mod geometric;
 mod hostile;
 mod ik;
+mod ik_3r3p;
 mod ik_edges;
 mod ik_general;
 mod ik_general_count;
