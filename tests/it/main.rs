@@ -17,6 +17,7 @@ mod hostile;
 mod ik;
 mod ik_3r3p;
 mod ik_edges;
+mod ik_free_slides;
 mod ik_general;
 mod ik_general_count;
 mod ik_general_ports;
