@@ -521,3 +521,39 @@ fn page_javascript_3r3p_solver_is_the_reference() {
         check_output("JavaScript", &n, &sol, &rows, &qs, &out);
     }
 }
+
+/// A 3R3P arm that no closed form serves is refused with the reason, never solved wrongly:
+/// two consecutive turns about parallel axes (the turns reach a two-parameter set of
+/// orientations), and three slides whose directions stay coplanar whatever the turns (slides
+/// first, along directions in one plane: `det U` vanishes identically).
+#[test]
+fn degenerate_3r3p_arms_are_refused_with_the_reason() {
+    let mut parallel = arm([3, 4, 5]);
+    parallel[1].alpha = ("0", 0.0);
+    let mut coplanar = arm([0, 1, 2]);
+    for r in &mut coplanar[..3] {
+        r.alpha = ("0", 0.0);
+    }
+    for (n, rows, why) in [
+        (
+            "parallel turns",
+            parallel,
+            "two consecutive turns about parallel axes",
+        ),
+        ("coplanar slides", coplanar, "linear (Cramer's rule)"),
+    ] {
+        let text = dh_toml(n, &rows);
+        let robot = dqsym::parse_robot(&text, n, &dqsym::eval_scalar_text).expect("robot");
+        let err = dqsym::ik::solve(
+            &robot,
+            &dqsym::ik::IkOptions {
+                free: None,
+                method: IkMethod::Auto,
+            },
+        )
+        .expect_err("refused")
+        .to_string();
+        assert!(err.contains("the family that applies stops"), "{n}: {err}");
+        assert!(err.contains(why), "{n}: {err}");
+    }
+}

@@ -229,6 +229,10 @@ fn slides_three_joints_apart_are_refused_with_the_reason() {
         "{err}"
     );
     assert!(err.contains("RPRRPR"), "{err}");
+    assert!(
+        err.contains("the slides q2 and q5 are three joints apart"),
+        "{err}"
+    );
 }
 
 /// The same 5R1P with the slide last: the loop must be read so that a turning joint ends it.

@@ -540,6 +540,11 @@ fn derive_fixed(
     first_error(axes.iter().flat_map(|a| a.dir.iter().chain(&a.point)))?;
     first_error(home.rows.iter().flatten())?;
     let general = opts.method != IkMethod::Family && super::general::applies(&axes);
+    // Why a family that applied stopped: said beside the general method's refusal.
+    let family_error = match &attempt {
+        Err(m) => Some(m.to_string()),
+        _ => None,
+    };
     let (family, position_only) = match attempt {
         Ok(Some(f)) => f,
         Err(PlanError::Scalar(e)) => return Err(IkError::Scalar(e)),
@@ -581,7 +586,7 @@ fn derive_fixed(
         forms: std::sync::OnceLock::new(),
         degrees: std::sync::OnceLock::new(),
     };
-    with_general(sol)
+    with_general(sol, family_error)
 }
 
 /// Refuses a robot that uses a name of the target pose's entries.
@@ -656,7 +661,7 @@ fn reach_conditions(steps: &[IkStep]) -> Vec<String> {
 
 /// A solution by the general method gets its elimination's data; refused where the
 /// elimination is degenerate.
-fn with_general(mut sol: IkSolution) -> Result<IkSolution, IkError> {
+fn with_general(mut sol: IkSolution, family_error: Option<String>) -> Result<IkSolution, IkError> {
     let name = sol.robot.clone();
     if sol.steps.is_empty() && sol.family.template == GENERAL {
         let info = super::general::info(&sol);
@@ -664,10 +669,12 @@ fn with_general(mut sol: IkSolution) -> Result<IkSolution, IkError> {
             // Every arrangement of the loop is degenerate here (three parallel axes with a
             // spherical wrist, say): the elimination gives no polynomial.
             let mut g: Vec<String> = sol.geometry.iter().map(Fact::to_string).collect();
+            g.extend(family_error.map(|e| format!("the family that applies stops: {e}")));
             g.push(
                 "the general 6R elimination is degenerate for this geometry in every arrangement"
                     .into(),
             );
+            g.extend(super::general::degenerate_reason(&sol.axes));
             return Err(IkError::Unsupported {
                 robot: name.to_string(),
                 geometry: g

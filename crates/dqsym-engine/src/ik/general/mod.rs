@@ -59,12 +59,30 @@
 //!
 //! Degree reached at a generic target (measured, `tests/it/ik_general_prismatic.rs`, the slide
 //! or slides at every placement in a skew chain): 16 for a 5R1P, 8 for a 4R2P, the known
-//! bounds (5R1P ≤ 16, 4R2P ≤ 8). A slide among joints 1, 2 together with one among joints 4,
-//! 5 makes `det M` vanish identically (observed at every such placement); two slides among
-//! joints 1, 2, or among 4, 5, leave power products that never occur (`Bm` loses rank, or `M`
-//! has a zero column). An arm whose two slides are three joints apart (RPRRPR) has that in every
-//! reading that ends with a turn, and so has every 3R3P arm: they are refused as degenerate in
-//! every arrangement (the 3R3P bound of 2 is not reached by this elimination).
+//! bounds (5R1P ≤ 16, 4R2P ≤ 8). Two slides among joints 1, 2, or among 4, 5, leave power
+//! products that never occur (`Bm` loses rank, or `M` has a zero column). A slide among joints
+//! 1, 2 together with one among joints 4, 5 makes `det M` vanish identically, for this reason
+//! ([`degenerate_reason`]):
+//!
+//! - A slide's `d²` enters only four of the fourteen quantities: `p·p` (coefficient 1) and the
+//!   last three, `(p·p) l − 2 (p·l) p` (coefficient the reflection `l − 2 (v·l) v` of the
+//!   direction in the plane normal to the slide's direction `v`, then carried by the turns
+//!   after it). So the `d²` columns are vectors `(α; y)` in those four rows, `y ∈ R³`.
+//! - The left slide (joint 1 or 2) gives `Bm` three `d²` columns (times `1, c, s` of the other
+//!   left joint): those with `α = 0` span the turn's image of a plane, a 2-plane `Π₁ ⊂ R³`.
+//! - The right slide (joint 4 or 5) gives `Am` three `d²` columns (times `1, c, s` of the
+//!   other right joint): those with `α = 0` (the `cos`, `sin` ones) span a 2-plane `Π₂ ⊂ R³`,
+//!   turned by `θ3`.
+//! - Two planes of `R³` through the origin share a line: at every `θ3` a combination of the
+//!   right slide's `d² c`, `d² s` columns lies in the column space of `Bm`, so `N` annihilates
+//!   it and `M(x)` has a null vector supported on the columns of the slide's highest power
+//!   `d³ x5ᵇ` (a solution at `d = ∞`) for every `x`: `det M ≡ 0`.
+//!
+//! An arm whose two slides are three joints apart (RPRRPR) puts one slide on each side in
+//! every reading of the loop that ends with a turn: it is refused with this reason. Another
+//! elimination (the last joint a slide, eliminated by its line instead of a point) is not
+//! built. A 3R3P arm needs no elimination: the family `ik/plan/slides.rs` solves it in closed
+//! form (two solutions).
 //!
 //! Special geometry makes an arrangement degenerate (`Bm` loses rank, or `det M` vanishes
 //! identically, as for a spherical wrist) or gives double roots (two solutions sharing `θ3`):
@@ -130,6 +148,27 @@ pub const KEEP_TOL: f64 = 1e-6;
 /// general method solves.
 pub(crate) fn applies(axes: &[super::Axis]) -> bool {
     axes.len() == 6 && axes.iter().any(|a| a.kind == JointKind::Revolute)
+}
+
+/// Why the elimination is degenerate in every arrangement, when the kinds of the joints say so
+/// (see the module docs): two slides three joints apart.
+pub(crate) fn degenerate_reason(axes: &[super::Axis]) -> Option<String> {
+    let slides: Vec<usize> = (0..axes.len())
+        .filter(|&i| axes[i].kind == JointKind::Prismatic)
+        .collect();
+    let &[i, j] = slides.as_slice() else {
+        return None;
+    };
+    (axes.len() == 6 && j - i == 3).then(|| {
+        format!(
+            "the slides {} and {} are three joints apart: every reading of the loop that ends \
+             with a turn has one among the eliminated joints 1, 2 and the other among joints \
+             4, 5; a slide's d^2 enters only p.p and (p.p) l - 2 (p.l) p, so at every target a \
+             combination of the second slide's d^2 columns lies in the column space of Bm and \
+             M(x) has a null vector at d = infinity for every x (det M = 0 identically)",
+            axes[i].variable, axes[j].variable
+        )
+    })
 }
 
 fn tol() -> core::GenTol {

@@ -53,6 +53,14 @@ pub(super) fn three_slides(b: &mut Builder, t: &Target) -> Result<Phrase, PlanEr
     let (ia, ib, ic) = (turns[0], turns[1], turns[2]);
     let (wa, wc) = (&ax[ia].dir, &ax[ic].dir);
     let n = |i: usize| i + 1;
+    if parallel(&ax[ia], &ax[ib]) || parallel(&ax[ib], &ax[ic]) {
+        return Err(PlanError::Degenerate {
+            variable: ax[ib].variable.clone(),
+            method: "two consecutive turns about parallel axes: the three turns reach only a \
+                     two-parameter set of orientations"
+                .into(),
+        });
+    }
     let gwc = t.dir(wc);
     b.push(
         ib,
