@@ -485,6 +485,27 @@ fn stanford_arm_forced_general_gives_the_family_solution_set() {
     }
 }
 
+/// Arms of a family forced through the general method state the family's solution count as
+/// their degree (the product of the family's branch counts, 8 for each): the Stanford arm
+/// (`det M` has `θ5 = 0` and `θ5 = π`, the wrist singular set, as roots of multiplicity four at
+/// every target: not counted), the PUMA 560, the KUKA KR5 and the UR5.
+#[test]
+fn forced_general_degree_is_the_family_solution_count() {
+    for file in ["stanford", "puma560", "kuka_kr5", "ur5"] {
+        let path = format!("{}/examples/robots/{file}.toml", env!("CARGO_MANIFEST_DIR"));
+        let text = std::fs::read_to_string(&path).expect("robot file");
+        let robot = dqsym::parse_robot(&text, &path, &dqsym::eval_scalar_text).expect("robot");
+        let derive = |method| solve(&robot, &IkOptions { free: None, method }).expect("ik");
+        let family = derive(IkMethod::Auto);
+        assert!(family.general.is_none(), "{file}: {}", family.family);
+        let count: usize = family.steps.iter().map(|s| s.formula.branches()).product();
+        let general = derive(IkMethod::General);
+        let degree = general.general.expect("general").degree;
+        assert_eq!(degree, count, "{file}");
+        eprintln!("{file}: forced general, degree {degree} = the family's {count} solutions");
+    }
+}
+
 /// Near-singular poses of the Stanford arm forced through the general method: its wrist at
 /// `theta5 = eps` and its slide at `d3 = eps` (the wrist centre on axis 2: `theta2` nearly a
 /// free turn, a nearly continuous family of solutions), `eps` from 1e-12 to 1e-3: every
@@ -683,8 +704,9 @@ fn every_placement_of_one_or_two_slides_round_trips() {
 
 /// Three slides (3R3P, every placement in the skew chain): every reading of the loop that ends
 /// with a turn has a slide among joints 1, 2 and another among joints 4, 5 (or two in one of
-/// these pairs), where `det M` vanishes identically, so each arm is refused with that reason
-/// named: never a panic, never a wrong solution.
+/// these pairs), where `det M` vanishes identically, so each arm is refused by `--method
+/// general` with that reason named: never a panic, never a wrong solution (`dqsym ik` solves
+/// them by the 3R3P family, `ik_3r3p.rs`).
 #[test]
 fn three_slides_are_refused_as_degenerate() {
     let base = skew_5r1p();

@@ -288,7 +288,7 @@ fn header(sol: &IkSolution) -> Vec<String> {
     ));
     if let Some(info) = &sol.general {
         out.push(format!(
-            "solutions: at most 16 (the real roots of one polynomial of degree {}), all at once",
+            "solutions: at most {0} isolated (the real roots of one polynomial of degree {0}), all at once",
             info.degree
         ));
         return out;

@@ -113,6 +113,7 @@
 pub(crate) mod core;
 #[cfg(test)]
 mod deflate_tests;
+mod degree;
 pub(crate) mod emit;
 pub mod exact;
 
@@ -257,19 +258,7 @@ pub fn sampled_equations(
         return Err(GeneralError::Joints(axes.len()).into());
     }
     let len = check::scale(&axes, &home, target);
-    let js: [core::J; 6] = std::array::from_fn(|i| core::J {
-        w: [axes[i][1], axes[i][2], axes[i][3]],
-        c: [axes[i][4] / len, axes[i][5] / len, axes[i][6] / len],
-        prism: axes[i][0] != 0.0,
-    });
-    let mut hm = home;
-    let mut tg = [[0.0; 4]; 3];
-    tg.copy_from_slice(&target[..3]);
-    for r in 0..3 {
-        hm[r][3] /= len;
-        tg[r][3] /= len;
-    }
-    let g = core::compose(&tg, &core::inverse(&hm));
+    let (js, g) = scaled(&axes, &home, target, len);
     let ar = core::Arranged::new(&js, &g, arr % 12);
     let slides = ar.prismatic();
     let el = ar.elim().ok_or(GeneralError::NoElimination)?;
@@ -296,6 +285,28 @@ pub fn sampled_equations(
     Ok((am, bm))
 }
 
+/// The chain and the target `G = T M⁻¹` as the core takes them: lengths over `len`.
+fn scaled(
+    axes: &[AxisData],
+    home: &[[f64; 4]; 3],
+    target: &[[f64; 4]; 4],
+    len: f64,
+) -> ([core::J; 6], [[f64; 4]; 3]) {
+    let js: [core::J; 6] = std::array::from_fn(|i| core::J {
+        w: [axes[i][1], axes[i][2], axes[i][3]],
+        c: [axes[i][4] / len, axes[i][5] / len, axes[i][6] / len],
+        prism: axes[i][0] != 0.0,
+    });
+    let mut hm = *home;
+    let mut tg = [[0.0; 4]; 3];
+    tg.copy_from_slice(&target[..3]);
+    for r in 0..3 {
+        hm[r][3] /= len;
+        tg[r][3] /= len;
+    }
+    (js, core::compose(&tg, &core::inverse(&hm)))
+}
+
 /// The degree reached and the arrangement at a generic target: the parameters at `0.55 +
 /// 0.13 i` (as `check::step_degrees`), the target the pose at joint values `0.31 + 0.17 i`.
 pub(crate) fn info(sol: &IkSolution) -> GeneralInfo {
@@ -313,17 +324,34 @@ pub(crate) fn info(sol: &IkSolution) -> GeneralInfo {
     let Ok((axes, home)) = check::axis_data(sol, &env) else {
         return none;
     };
-    let q: Vec<f64> = (0..axes.len()).map(|i| 0.31 + 0.17 * i as f64).collect();
-    let f = check::forward(&axes, &home, &q).0;
-    let mut t = [[0.0; 4]; 4];
-    t[..3].copy_from_slice(&f);
-    t[3][3] = 1.0;
+    // The generic target, and two more for the roots that stay (see `degree.rs`).
+    let targets: Vec<[[f64; 4]; 4]> = [(0.31, 0.17), (0.53, -0.11), (-0.27, 0.19)]
+        .iter()
+        .map(|&(a, b)| {
+            let q: Vec<f64> = (0..axes.len()).map(|i| a + b * i as f64).collect();
+            let f = check::forward(&axes, &home, &q).0;
+            let mut t = [[0.0; 4]; 4];
+            t[..3].copy_from_slice(&f);
+            t[3][3] = 1.0;
+            t
+        })
+        .collect();
+    let t = targets[0];
     let len = check::scale(&axes, &home, &t);
     match run(&axes, &home, &t, len, 0) {
-        Ok(o) if o.n_arr > 0 => GeneralInfo {
-            degree: o.degree,
-            arrangement: (o.arrangements[0] >= 6, o.arrangements[0] % 6),
-        },
+        Ok(o) if o.n_arr > 0 => {
+            let arr = o.arrangements[0];
+            let gs: Vec<[[f64; 4]; 3]> = targets
+                .iter()
+                .map(|t| scaled(&axes, &home, t, len).1)
+                .collect();
+            let js = scaled(&axes, &home, &t, len).0;
+            let moving = degree::moving_roots(&degree::arranged(&js, &gs, arr));
+            GeneralInfo {
+                degree: moving.unwrap_or(o.degree),
+                arrangement: (arr >= 6, arr % 6),
+            }
+        }
         _ => none,
     }
 }

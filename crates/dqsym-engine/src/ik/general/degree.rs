@@ -1,0 +1,216 @@
+//! The degree a general-method solution states: the roots of `det M(x)` that move with the
+//! target.
+//!
+//! `det M(x)` (degree 24) has roots that are no solutions at any target: the spurious `±i`
+//! (each of multiplicity four, from the half-angle factors `1 + x²`), roots at infinity (a
+//! slide's `d = ∞`), and for special geometry more. The Stanford arm read from its slide, with
+//! its wrist's middle joint hidden, has `θ5 = 0` and `θ5 = π` as roots of multiplicity four
+//! each at every target (the wrist singular set: axes 4 and 6 in line, where the quantities of
+//! the eliminated line no longer fix `θ4` and `θ6` apart, so the six equations have a common
+//! solution whatever the target): the core's count of finite roots off `±i` is 16 there, the
+//! arm's solutions are 8. A root that is a solution moves with the target; a spurious one
+//! stays. So the degree is counted as the roots of `det M` at one generic target that are not
+//! roots of `det M` at another generic target (the fewer of two others), with multiplicity:
+//! `deg p − deg gcd(p, q)`. Each polynomial is read off by the inverse discrete Fourier
+//! transform of the 12 x 12 determinant at 32 points of the unit circle (exact for degree 24
+//! up to rounding); `deg gcd` is the rank deficiency of their Sylvester matrix (singular values
+//! by one-sided Jacobi rotations, zero below [`COMMON_TOL`] of the largest). No root is
+//! computed, so multiple roots (the spurious ones have multiplicity four) cost no accuracy.
+
+use super::core::{matrix_poly, Arranged, J};
+
+type Cx = (f64, f64);
+
+fn mul(a: Cx, b: Cx) -> Cx {
+    (a.0 * b.0 - a.1 * b.1, a.0 * b.1 + a.1 * b.0)
+}
+
+fn div(a: Cx, b: Cx) -> Cx {
+    let d = b.0 * b.0 + b.1 * b.1;
+    ((a.0 * b.0 + a.1 * b.1) / d, (a.1 * b.0 - a.0 * b.1) / d)
+}
+
+fn sub(a: Cx, b: Cx) -> Cx {
+    (a.0 - b.0, a.1 - b.1)
+}
+
+fn abs(a: Cx) -> f64 {
+    a.0.hypot(a.1)
+}
+
+/// A singular value of the Sylvester matrix of two targets' polynomials below this fraction of
+/// the largest is zero: a common root. The coefficients are the inverse DFT of 12 x 12
+/// determinants, rounded to about `1e-15` of the largest, so a zero singular value comes out
+/// at most about `1e-14` of the largest (measured: `2e-15` at most on the arms of the tests);
+/// the nonzero ones are the separation of the two targets' moving roots, measured at `1e-8` or
+/// more where the roots are of moderate size. `1e-11` lies three orders of magnitude from both.
+pub(crate) const COMMON_TOL: f64 = 1e-11;
+
+/// The smallest nonzero singular value (relative) that makes the rank clear: two orders of
+/// magnitude above [`COMMON_TOL`]. Below it (polynomials with roots over many orders of
+/// magnitude, whose Sylvester matrix has singular values all the way down) the count is not
+/// trusted and the core's count of finite roots off `±i` stands.
+pub(crate) const GAP_TOL: f64 = 1e-9;
+
+/// `det M(x)` of an elimination's `Σ` (no shift), ascending coefficients (degree ≤ 24).
+fn det_poly(sig: &[[[f64; 9]; 6]; 3]) -> Option<[f64; 25]> {
+    const K: usize = 32;
+    let m = matrix_poly(sig, 0.0);
+    let mut vals = [(0.0, 0.0); K];
+    for (k, v) in vals.iter_mut().enumerate() {
+        let z = (std::f64::consts::TAU * k as f64 / K as f64).sin_cos();
+        let z = (z.1, z.0);
+        let z2 = mul(z, z);
+        let mut a = [[(0.0, 0.0); 12]; 12];
+        for r in 0..12 {
+            for c in 0..12 {
+                a[r][c] = (
+                    m[0][r][c] + m[1][r][c] * z.0 + m[2][r][c] * z2.0,
+                    m[1][r][c] * z.1 + m[2][r][c] * z2.1,
+                );
+            }
+        }
+        *v = det(&mut a);
+    }
+    let mut out = [0.0; 25];
+    for (j, c) in out.iter_mut().enumerate() {
+        // c_j = (1/K) Σ p(z_k) z_k^(−j): real for a real polynomial.
+        *c = (0..K)
+            .map(|k| {
+                let a = -std::f64::consts::TAU * (j * k) as f64 / K as f64;
+                mul(vals[k], (a.cos(), a.sin())).0
+            })
+            .sum::<f64>()
+            / K as f64;
+    }
+    out.iter().all(|c| c.is_finite()).then_some(out)
+}
+
+/// The determinant of a complex matrix by elimination with partial pivoting.
+fn det(a: &mut [[Cx; 12]; 12]) -> Cx {
+    let mut d = (1.0, 0.0);
+    for k in 0..12 {
+        let p = (k..12)
+            .max_by(|&i, &j| abs(a[i][k]).total_cmp(&abs(a[j][k])))
+            .unwrap_or(k);
+        if abs(a[p][k]) == 0.0 {
+            return (0.0, 0.0);
+        }
+        if p != k {
+            a.swap(p, k);
+            d = (-d.0, -d.1);
+        }
+        d = mul(d, a[k][k]);
+        for i in k + 1..12 {
+            let f = div(a[i][k], a[k][k]);
+            for j in k..12 {
+                a[i][j] = sub(a[i][j], mul(f, a[k][j]));
+            }
+        }
+    }
+    d
+}
+
+/// `p` over its largest coefficient, trimmed to its degree (coefficients below `1e-11` of the
+/// largest are rounding: a root at infinity each).
+fn trimmed(p: &[f64; 25]) -> Option<Vec<f64>> {
+    let big = p.iter().fold(0.0, |m: f64, c| m.max(c.abs()));
+    if big == 0.0 {
+        return None;
+    }
+    let deg = (0..25).rev().find(|&k| p[k].abs() > 1e-11 * big)?;
+    Some(p[..=deg].iter().map(|c| c / big).collect())
+}
+
+/// The Sylvester matrix of `p` (degree `n`) and `q` (degree `m`): `m` shifted copies of `p`
+/// and `n` of `q`, `(n + m)` square. Its rank is `n + m − deg gcd(p, q)`.
+fn sylvester(p: &[f64], q: &[f64]) -> Vec<Vec<f64>> {
+    let (n, m) = (p.len() - 1, q.len() - 1);
+    let mut s = vec![vec![0.0; n + m]; n + m];
+    for i in 0..m {
+        for (k, c) in p.iter().enumerate() {
+            s[i][i + k] = *c;
+        }
+    }
+    for i in 0..n {
+        for (k, c) in q.iter().enumerate() {
+            s[m + i][i + k] = *c;
+        }
+    }
+    s
+}
+
+/// The singular values of `a` (square), by one-sided Jacobi rotations of its columns.
+fn singular_values(mut a: Vec<Vec<f64>>) -> Vec<f64> {
+    let n = a.len();
+    for _ in 0..60 {
+        let mut off: f64 = 0.0;
+        for i in 0..n {
+            for j in i + 1..n {
+                let (mut alpha, mut beta, mut gamma) = (0.0, 0.0, 0.0);
+                for row in &a {
+                    alpha += row[i] * row[i];
+                    beta += row[j] * row[j];
+                    gamma += row[i] * row[j];
+                }
+                if gamma == 0.0 {
+                    continue;
+                }
+                off = off.max(gamma.abs() / (alpha * beta).sqrt());
+                let zeta = (beta - alpha) / (2.0 * gamma);
+                let t = zeta.signum() / (zeta.abs() + (1.0 + zeta * zeta).sqrt());
+                let t = if zeta == 0.0 { 1.0 } else { t };
+                let c = 1.0 / (1.0 + t * t).sqrt();
+                let s = c * t;
+                for row in a.iter_mut() {
+                    let (x, y) = (row[i], row[j]);
+                    row[i] = c * x - s * y;
+                    row[j] = s * x + c * y;
+                }
+            }
+        }
+        if off < 1e-15 {
+            break;
+        }
+    }
+    (0..n)
+        .map(|j| a.iter().map(|r| r[j] * r[j]).sum::<f64>().sqrt())
+        .collect()
+}
+
+/// `deg gcd(p, q)`: the singular values of their Sylvester matrix below [`COMMON_TOL`] of the
+/// largest, when the next one is above [`GAP_TOL`] of it (else `None`: the rank is not clear,
+/// as for polynomials whose roots spread over many orders of magnitude).
+fn common_degree(p: &[f64], q: &[f64]) -> Option<usize> {
+    let mut sv = singular_values(sylvester(p, q));
+    sv.sort_by(f64::total_cmp);
+    let top = *sv.last()?;
+    let k = sv.iter().filter(|x| **x <= COMMON_TOL * top).count();
+    sv.get(k).is_some_and(|x| *x >= GAP_TOL * top).then_some(k)
+}
+
+/// The number of roots of `det M` at the target of `arranged[0]` that are not roots at the
+/// targets of the others (the same arrangement at other generic targets), with multiplicity:
+/// the degree that counts solutions. `None` when a determinant vanishes identically or a rank
+/// is not clear.
+pub(crate) fn moving_roots(arranged: &[Arranged]) -> Option<usize> {
+    let polys: Vec<Vec<f64>> = arranged
+        .iter()
+        .map(|a| {
+            a.elim()
+                .and_then(|e| det_poly(&e.sig))
+                .and_then(|p| trimmed(&p))
+        })
+        .collect::<Option<_>>()?;
+    let deg = polys[0].len() - 1;
+    let common = polys[1..]
+        .iter()
+        .map(|q| common_degree(&polys[0], q))
+        .collect::<Option<Vec<usize>>>()?;
+    Some(deg.saturating_sub(common.into_iter().min().unwrap_or(0)))
+}
+
+/// The same chain `js` at the targets `g` in arrangement `arr`.
+pub(crate) fn arranged(js: &[J; 6], g: &[[[f64; 4]; 3]], arr: usize) -> Vec<Arranged> {
+    g.iter().map(|g| Arranged::new(js, g, arr)).collect()
+}
