@@ -27,8 +27,10 @@
 //!    companion linearisation `[[0, I], [−A⁻¹C, −A⁻¹B]]` (the spurious `±i` deflated first
 //!    from the null vectors of `M(i)`, 24 → 16 rows; then balancing, Hessenberg reduction,
 //!    Francis double-shift QR; the shift `φ` keeps `A` invertible). The degree the solution
-//!    states ([`GeneralInfo::degree`]) is the number of finite eigenvalues other than `±i` at
-//!    a generic target: special geometry lowers it.
+//!    states ([`GeneralInfo::degree`]) is the number of roots of `det M` at a generic target
+//!    that move with the target (`degree.rs`: the spurious `±i`, roots at infinity and, for
+//!    special geometry, roots that stay, such as the wrist singular set `θ5 ∈ {0, π}` of a
+//!    spherical wrist, are not counted); special geometry lowers it.
 //! 6. Back-substitution: `x4`, `x5` from the null vector of `M(x3)`; `θ1`, `θ2` from `Bm X12 =
 //!    Am(θ3) X45` (least squares by the same QR); `θ6` from `E6 = (E1 ⋯ E5)⁻¹ H` about axis 6.
 //!    Every candidate is polished by damped Gauss–Newton on the forward kinematics and checked
@@ -124,8 +126,9 @@ use crate::kin::JointKind;
 /// What the general method found about the arm.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct GeneralInfo {
-    /// The degree of the univariate polynomial reached at a generic target (16 for a general
-    /// 6R; special geometry lowers it), 0 when no arrangement was usable there.
+    /// The degree of the univariate polynomial reached at a generic target, counting the
+    /// roots that move with the target (16 for a general 6R; special geometry lowers it), 0
+    /// when no arrangement was usable there.
     pub degree: usize,
     /// The arrangement used at that target: `(reversed, shift)` (the loop read from joint
     /// `shift + 1`, backwards when `reversed`).
