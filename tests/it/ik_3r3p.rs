@@ -259,7 +259,7 @@ fn near_coplanar_slides_nothing_wrong_is_returned_unflagged() {
                 hi = mid;
             }
         }
-        let e = 3 + (tried % 10) as i32;
+        let e = 3 + tried % 10;
         let eps = 10f64.powi(-e);
         q[3] = lo + eps;
         tried += 1;

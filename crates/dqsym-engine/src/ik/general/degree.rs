@@ -101,10 +101,11 @@ fn det(a: &mut [[Cx; 12]; 12]) -> Cx {
             d = (-d.0, -d.1);
         }
         d = mul(d, a[k][k]);
-        for i in k + 1..12 {
-            let f = div(a[i][k], a[k][k]);
-            for j in k..12 {
-                a[i][j] = sub(a[i][j], mul(f, a[k][j]));
+        let pivot = a[k];
+        for row in a.iter_mut().skip(k + 1) {
+            let f = div(row[k], pivot[k]);
+            for (x, p) in row.iter_mut().zip(&pivot).skip(k) {
+                *x = sub(*x, mul(f, *p));
             }
         }
     }
