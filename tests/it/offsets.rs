@@ -317,6 +317,38 @@ fn jaco_pose_closed_forms_fit_a_work_budget() {
     assert!(used < 2_000_000, "work used: {used}");
 }
 
+/// `CommonOffsets::fixes` (which lets an `fk` report count a pose entry's text before the
+/// report's offsets are chosen) holds exactly for the entries `apply` leaves alone: for the
+/// Jaco-style pose's closed forms (offsets at `5 pi/9`) it is false for some, and `apply` with
+/// the pose's own offsets changes no entry it holds for; for a chain without offsets (the
+/// PUMA-like `cos(q1) cos(q1 + q2) + 1/2 sin(q2 + pi/6)`, offsets at multiples of pi/12 only)
+/// it holds, and the text is the same after `apply`.
+#[test]
+fn fixed_entries_are_the_ones_common_offsets_leave_alone() {
+    use dqsym::closed::CommonOffsets;
+    let (_, entries) = jaco_pose();
+    let forms: Vec<Expr> = entries
+        .iter()
+        .map(|x| closed_form(x).expect("closed form"))
+        .collect();
+    let common = CommonOffsets::from_forms(&forms);
+    let mut unfixed = 0;
+    for e in &forms {
+        if CommonOffsets::fixes(e) {
+            assert_eq!(common.apply(e.clone()), *e, "{}", show(e));
+        } else {
+            unfixed += 1;
+        }
+    }
+    assert!(unfixed > 0, "the Jaco-style pose has angles at 5 pi/9");
+    let x = eval_scalar_text("cos(q1)*cos(q1 + q2) + 1/2*sin(q2 + pi/6)").expect("scalar");
+    let e = closed_form(&x).expect("closed form");
+    assert!(CommonOffsets::fixes(&e), "{}", show(&e));
+    // Offsets voted for by the Jaco's pose applied to an entry they cannot move.
+    assert_eq!(show(&common.apply(e.clone())), show(&e));
+    assert_eq!(e.to_scalar(), x);
+}
+
 /// Random systems of linear congruences in two to four unknowns (the shape of the offsets'
 /// equations `f . o = d_f`, scaled to integers) solved by `closed::congruence::solutions`
 /// have the solutions a brute force over every candidate finds, in the same (lexicographic)

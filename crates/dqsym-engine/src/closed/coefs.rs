@@ -185,36 +185,54 @@ fn outside_twelfths(c: &Scalar) -> bool {
         .is_ok_and(|t| t.iter().any(|t| !t.mode.pi.is_zero()))
 }
 
-/// `x` with its constants lifted (see the module docs), when it has a symbolic mode with a pi
-/// offset, and at least one constant outside the multiples of pi/12 is left once the offsets
-/// are taken out of the angles.
-pub(crate) fn lift(x: &Scalar, phased: bool) -> Option<Lifted> {
-    let terms = x.terms().ok()?;
-    let symbolic = |t: &Term| t.mode.freq.iter().any(|(s, _)| !s.is_one());
-    // Not for a constant (whose closed form is the one each lifted symbol is replaced by).
-    let offsets = terms.iter().any(|t| !t.mode.pi.is_zero());
-    let symbols = terms.iter().any(|t| symbolic(t) || !t.mono.is_empty());
-    if !offsets || !symbols || terms.len() > MAX_TERMS {
-        return None;
+/// What the two liftings of one scalar (joined into phases or not) share: the constant
+/// coefficient of each (monomial, angle, cos or sin), and the values of `cos(p pi)` found on
+/// the way. Computed once for both ([`Lifting::lift`]): the Jaco-style arm's `fk --jacobian`
+/// computed them twice per pose entry.
+pub(crate) struct Lifting {
+    coefs: BTreeMap<Key, Scalar>,
+    n: i64,
+    trig_pi: TrigPi,
+}
+
+impl Lifting {
+    /// The coefficients of `x` when it has a symbolic mode with a pi offset and they may be
+    /// short products of constant cosines and sines (`worth_lifting`); `None` otherwise.
+    pub(crate) fn new(x: &Scalar) -> Option<Lifting> {
+        let terms = x.terms().ok()?;
+        let symbolic = |t: &Term| t.mode.freq.iter().any(|(s, _)| !s.is_one());
+        // Not for a constant (whose closed form is the one each lifted symbol is replaced by).
+        let offsets = terms.iter().any(|t| !t.mode.pi.is_zero());
+        let symbols = terms.iter().any(|t| symbolic(t) || !t.mono.is_empty());
+        if !offsets || !symbols || terms.len() > MAX_TERMS {
+            return None;
+        }
+        crate::scalar::charge(terms.len() as u64).ok()?;
+        let n = terms
+            .iter()
+            .fold(12i64, |acc, t| acc.lcm(t.mode.pi.denom()));
+        if !worth_lifting(terms) {
+            return None;
+        }
+        let mut trig_pi = TrigPi::default();
+        let coefs = coefficients(terms, &mut trig_pi);
+        Some(Lifting { coefs, n, trig_pi })
     }
-    crate::scalar::charge(terms.len() as u64).ok()?;
-    let n = terms
-        .iter()
-        .fold(12i64, |acc, t| acc.lcm(t.mode.pi.denom()));
-    if !worth_lifting(terms) {
-        return None;
+
+    /// The scalar with its constants lifted (see the module docs), the two coefficients of
+    /// one angle joined into `R cos(F - phi)` when `phased`; `None` when no constant outside
+    /// the multiples of pi/12 is left once the offsets are taken out of the angles.
+    pub(crate) fn lift(&mut self, phased: bool) -> Option<Lifted> {
+        let items = items(self.coefs.clone(), phased, self.n, &mut self.trig_pi)?;
+        let (norms, uses) = normalized(items)?;
+        // Many distinct constants: nothing reads shorter (each would be a sum of its own).
+        if norms.is_empty() || norms.len() > MAX_CONSTANTS {
+            return None;
+        }
+        let (constants, symbol) = products(&norms)?;
+        let scalar = assemble(uses, &norms, &constants, &symbol)?;
+        Some(Lifted { scalar, constants })
     }
-    let mut trig_pi = TrigPi::default();
-    let coefs = coefficients(terms, &mut trig_pi);
-    let items = items(coefs, phased, n, &mut trig_pi)?;
-    let (norms, uses) = normalized(items)?;
-    // Many distinct constants: nothing reads shorter (each would be a sum of its own).
-    if norms.is_empty() || norms.len() > MAX_CONSTANTS {
-        return None;
-    }
-    let (constants, symbol) = products(&norms)?;
-    let scalar = assemble(uses, &norms, &constants, &symbol)?;
-    Some(Lifted { scalar, constants })
 }
 
 /// A coefficient's place: (monomial, offset-free angle, sine).

@@ -149,6 +149,16 @@ impl CommonOffsets {
         CommonOffsets(chosen)
     }
 
+    /// Whether [`CommonOffsets::apply`] leaves `e` as it is whatever offsets were chosen:
+    /// no angle of `e` has symbols and an offset outside the multiples of pi/12 (the PUMA's
+    /// entries, every entry of a chain without offsets). The text of such an entry is final
+    /// before the report's offsets are known.
+    pub fn fixes(e: &Expr) -> bool {
+        let mut fixed = true;
+        walk(e, &mut |a| fixed &= direction(a).is_none());
+        fixed
+    }
+
     /// `e` with every angle whose offset differs from its direction's common one by a multiple
     /// of `pi/2` shown at the common one (see the module docs), when that costs no more than
     /// `e`; else `e`.

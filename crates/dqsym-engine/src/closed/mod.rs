@@ -239,8 +239,9 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
     // Constants lifted out of the angles, when shorter still (`coefs.rs`); derivatives then
     // start from the expanded series.
     let mut best: Option<Expr> = None;
+    let mut lifting = coefs::Lifting::new(x);
     for phased in [true, false] {
-        let Some(l) = coefs::lift(x, phased) else {
+        let Some(l) = lifting.as_mut().and_then(|l| l.lift(phased)) else {
             continue;
         };
         let Ok(c) = prepared_shifted(&l.scalar).0.map(|c| l.substitute(c)) else {
