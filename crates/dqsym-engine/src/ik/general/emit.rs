@@ -60,6 +60,17 @@ fn core_constants(w: &dyn Syntax) -> (Vec<Named<String>>, Vec<Table>) {
         ("IK_GEN_SAME_TOL", f(k::SAME_TOL)),
         ("IK_GEN_MIN_POSITIVE", f(f64::MIN_POSITIVE)),
         ("IK_GEN_PRISM_FAR", f(k::PRISM_FAR)),
+        ("IK_GEN_DET_SAMPLES", k::DET_SAMPLES.to_string()),
+        ("IK_GEN_DET_DEGREE", k::DET_DEGREE.to_string()),
+        ("IK_GEN_TAYLOR", k::TAYLOR.to_string()),
+        ("IK_GEN_ROOT_GRID", k::ROOT_GRID.to_string()),
+        ("IK_GEN_ROOT_EVALS", k::ROOT_EVALS.to_string()),
+        ("IK_GEN_DET_CHECK", f(k::DET_CHECK)),
+        ("IK_GEN_DET_TRIM", f(k::DET_TRIM)),
+        ("IK_GEN_ROOT_MARGIN", f(k::ROOT_MARGIN)),
+        ("IK_GEN_ROOT_LEAF", f(k::ROOT_LEAF)),
+        ("IK_GEN_BRACKET_TOL", f(k::BRACKET_TOL)),
+        ("IK_GEN_NULL_RESIDUAL", f(k::NULL_RESIDUAL)),
     ];
     let rows = |m: &[[f64; 3]; 3]| m.iter().map(|r| r.to_vec()).collect::<Vec<_>>();
     let tables = vec![

@@ -90,11 +90,40 @@
 //! transform, exact for degree one ([`sampled_equations`] returns them; a test checks them
 //! against [`exact`] at random parameters and targets).
 //! The numeric core (`core.rs`) is plain Rust that the generated solver contains verbatim.
+//!
+//! # The determinant route (measured, not taken)
+//!
+//! The eigenvalue route costs 508k instructions per pose (callgrind on the generated solver
+//! of `benches/support/skew6r.toml` at the 64 poses of `benches/ik_general.rs`, 362
+//! solutions): QR iteration 133k (Hessenberg 22k, balancing 12k more), null vectors 68k (11k
+//! each), deflation of `±i` 66k, the elimination 66k, refinement 60k. The determinant route
+//! was tried in session 13 (commit `a774fe3`, reverted; not ported):
+//! `det M(x) = (1 + x²)¹² det S(θ)` with `S(θ) = T0 + T1 cos θ + T2 sin θ` (12 x 12), so `det S`
+//! is a trigonometric polynomial of degree 8 in `θ`. Its 17 coefficients come exactly from 17
+//! real LUs at equally spaced angles and a discrete Fourier transform: no division by `(1 +
+//! x²)⁴`, and a check angle half way between two samples agreed with the interpolant to
+//! `1e-15` of the largest sample at every bench pose. The real roots were the problem:
+//! - the companion matrix of `p(x) = (1 + x²)⁸ det S(φ + 2 atan x)` in monomials costs 207k
+//!   instructions per QR (more iterations than the linearisation's) and gives roots to only
+//!   `1e-6` (monomials are ill-conditioned for sixteen roots spread on the real line): two
+//!   near-double roots became a complex pair, and 360 of the 362 solutions were found;
+//! - an interval search on `det S(θ)` (Taylor's formula to the third derivative, the rest
+//!   bounded by `Σ j⁴ |c_j|`; monotone and convex pieces by Newton in a bracket, a near-double
+//!   root taken twice) finds all 362 but needs 560 evaluations per pose (315k instructions):
+//!   `det S` stays at `1e-5` of its scale over long stretches next to clusters of complex roots.
+//!
+//! With the generic `lu` at 7k instructions per 12 x 12 sample, that route cost 740k per pose.
+//! It would pay with a root finder in the well-conditioned basis `z = e^{iθ}` (the Fourier
+//! coefficients are its monomial coefficients, the real roots lie on `|z| = 1`) below about
+//! 60k instructions, a fixed-size 12 x 12 LU (about 2k), and null vectors from the LU at each
+//! root (partial pivoting, about 2k, instead of 11k).
 
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod core;
 #[cfg(test)]
 mod deflate_tests;
+#[cfg(test)]
+mod det_tests;
 pub(crate) mod emit;
 pub mod exact;
 
