@@ -1007,7 +1007,7 @@ static int ik_gen_mono_root(const double c[IK_GEN_DET_DEGREE + 1][2], double a, 
    0 when the search gives up. */
 static int ik_gen_trig_roots(const double c[IK_GEN_DET_DEGREE + 1][2], double out[24], int *n) {
     double b0 = 0.0, b8 = 0.0, margin, nd = (double)IK_GEN_DET_DEGREE, h, top, a, b, m, r, term,
-        leaf_end = -1.0, x, e, moves[3], v[IK_GEN_TAYLOR], w[IK_GEN_TAYLOR], stack[96][2];
+        x, e, moves[3], v[IK_GEN_TAYLOR], w[IK_GEN_TAYLOR], stack[96][2];
     int j, k, l, depth = 0, evals = 0, left, right, flat;
     double xl = 0.0, xr = 0.0;
     for (j = 0; j <= IK_GEN_DET_DEGREE; j++) {
@@ -1066,16 +1066,10 @@ static int ik_gen_trig_roots(const double c[IK_GEN_DET_DEGREE + 1][2], double ou
             }
             continue;
         }
+        /* D and D' both zero to rounding, or nothing certified at the finest width: the
+           eigenvalue route decides. */
         flat = fabs(v[0]) <= margin && fabs(v[1]) <= nd * margin;
-        if (flat || r <= IK_GEN_ROOT_LEAF || depth + 2 > 96) {
-            /* A multiple root to rounding, taken twice (once for a run of such intervals). */
-            if (a != leaf_end) {
-                out[(*n)++] = m;
-                out[(*n)++] = m;
-            }
-            leaf_end = b;
-            continue;
-        }
+        if (flat || r <= IK_GEN_ROOT_LEAF || depth + 2 > 96) return 0;
         stack[depth][0] = m;
         stack[depth][1] = b;
         stack[depth + 1][0] = a;

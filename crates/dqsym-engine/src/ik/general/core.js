@@ -691,7 +691,7 @@ function ik_gen_trig_roots(c) {
     const stack = [];
     for (let k = IK_GEN_ROOT_GRID - 1; k >= 0; k--) stack.push([k * h, (k + 1) * h]);
     const out = [];
-    let evals = 0, leafEnd = -1;
+    let evals = 0;
     // A root of the monotone D^(k) on [a, b] if its ends differ in sign, else null.
     const mono = (a, b, k) => {
         const fa = at(a)[k], fb = at(b)[k];
@@ -736,13 +736,10 @@ function ik_gen_trig_roots(c) {
             }
             continue;
         }
+        // D and D' both zero to rounding, or nothing certified at the finest width: the
+        // eigenvalue route decides.
         const flat = Math.abs(v[0]) <= margin && Math.abs(v[1]) <= nd * margin;
-        if (flat || r <= IK_GEN_ROOT_LEAF || stack.length + 2 > 96) {
-            // A multiple root to rounding, taken twice (once for a run of such intervals).
-            if (a !== leafEnd) out.push(m, m);
-            leafEnd = b;
-            continue;
-        }
+        if (flat || r <= IK_GEN_ROOT_LEAF || stack.length + 2 > 96) return null;
         stack.push([m, b], [a, m]);
     }
     return out;

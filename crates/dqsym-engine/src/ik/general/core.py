@@ -245,7 +245,7 @@ def _trig_roots(c):
     top = IK_GEN_ROOT_GRID * h
     at = lambda x: _trig_eval(c, 0.0 if x >= top else x)
     stack = [(k * h, (k + 1) * h) for k in reversed(range(IK_GEN_ROOT_GRID))]
-    out, evals, leaf_end = [], 0, -1.0
+    out, evals = [], 0
 
     def mono(a, b, k):
         nonlocal evals
@@ -288,13 +288,11 @@ def _trig_roots(c):
                 if 2 * abs(w[0]) <= IK_GEN_NEAR_REAL ** 2 * abs(w[2]):
                     out += [e, e]
             continue
+        # D and D' both zero to rounding, or nothing certified at the finest width: the
+        # eigenvalue route decides.
         flat = abs(v[0]) <= margin and abs(v[1]) <= nd * margin
         if flat or r <= IK_GEN_ROOT_LEAF or len(stack) + 2 > 96:
-            # A multiple root to rounding, taken twice (once for a run of such intervals).
-            if a != leaf_end:
-                out += [m, m]
-            leaf_end = b
-            continue
+            return None
         stack += [(m, b), (a, m)]
     return out
 

@@ -1341,7 +1341,8 @@ pub const ROOT_GRID: usize = 32;
 pub const ROOT_MARGIN: f64 = 1e-11;
 
 /// The smallest half-width of an interval the search splits further (an interval where neither
-/// `D′` nor `D″` is certified nonzero at this width is a triple root to rounding).
+/// `D′` nor `D″` is certified nonzero at this width is a triple root to rounding: the search
+/// gives up).
 pub const ROOT_LEAF: f64 = 1e-9;
 
 /// Evaluations of `D` at most before the search gives way to the eigenvalue route (60 to 120
@@ -1392,12 +1393,12 @@ fn bracketed(c: &[(f64, f64); DET_DEGREE + 1], k: usize, mut a: f64, mut b: f64,
 /// that does not reach zero but comes within [`NEAR_REAL`] of it (the imaginary part of the
 /// complex pair, `√(2 |D| / |D″|)`) is a near-double root, taken twice as the eigenvalue route
 /// takes a complex pair with a small imaginary part (so that `gen_solve` sees an incomplete
-/// set and reads the next arrangement when both are one solution). An interval where `D` and
-/// `D′` are zero to rounding, or that reaches [`ROOT_LEAF`] undecided, is a multiple root,
-/// taken twice (once for a run of such intervals). Otherwise the interval is halved. No real
-/// root is lost: every interval that can hold one is resolved or split. `None` (the eigenvalue
-/// route decides) when the search needs more than [`ROOT_EVALS`] evaluations or finds more
-/// roots than fit.
+/// set and reads the next arrangement when both are one solution). Otherwise the interval is
+/// halved. No real root is lost: every interval that can hold one is resolved or split, and
+/// the search gives up (`None`: the eigenvalue route decides) where `D` and `D′` are both zero
+/// to rounding (a root of multiplicity three or more, as the special arms forced through the
+/// general method have), where an interval reaches [`ROOT_LEAF`] undecided, after
+/// [`ROOT_EVALS`] evaluations, or with more roots than fit.
 #[allow(clippy::needless_range_loop)]
 pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) -> Option<usize> {
     // B0 (the scale of D) and B8 (a bound of |D⁽⁸⁾|).
@@ -1422,7 +1423,6 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     }
     let mut n = 0;
     let mut evals = 0;
-    let mut leaf_end = -1.0;
     // A root of the monotone part `[a, b]` of `D` (`k = 0`) or `D′` (`k = 1`), if its ends
     // differ in sign (0 counted as positive, so a root at a shared end is seen once).
     let mono = |a: f64, b: f64, k: usize, evals: &mut usize| -> Option<f64> {
@@ -1489,18 +1489,12 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
             }
             continue;
         }
+        // D and D′ both zero to rounding (a root of multiplicity three or more: the special
+        // arms forced general), or nothing certified at the finest width: the eigenvalue route
+        // decides.
         let flat = v[0].abs() <= margin && v[1].abs() <= nd * margin;
         if flat || r <= ROOT_LEAF || depth + 2 > stack.len() {
-            // D and D′ both zero to rounding, or neither D′ nor D″ certified at the finest
-            // width: a multiple root to rounding, taken twice; the leaves that follow it
-            // without a gap are the same root.
-            if a != leaf_end {
-                out[n] = m;
-                out[n + 1] = m;
-                n += 2;
-            }
-            leaf_end = b;
-            continue;
+            return None;
         }
         stack[depth] = (m, b);
         stack[depth + 1] = (a, m);
