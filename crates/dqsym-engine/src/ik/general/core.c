@@ -901,12 +901,14 @@ static void ik_gen_trig_at(const double t[3][12][12], double s, double c, double
 /* One step of Gaussian elimination on whole rows: the rows below k less their multiple
    m[r][k] / d of row k (the columns left of k are never read again). */
 static void ik_gen_eliminate_rows(double m[12][12], int k, double d) {
-    double f;
+    double f, p[12];
     int r, c;
+    /* The pivot row copied: the compiler then knows the rows below do not alias it. */
+    memcpy(p, m[k], sizeof p);
     for (r = k + 1; r < 12; r++) {
         f = m[r][k] / d;
         if (f != 0.0)
-            for (c = 0; c < 12; c++) m[r][c] -= f * m[k][c];
+            for (c = 0; c < 12; c++) m[r][c] -= f * p[c];
     }
 }
 
