@@ -1592,7 +1592,9 @@ pub(crate) fn det_coefficients(
     }
     let (s, co) = half.sin_cos();
     let check = det_trig(tm, s, co).0;
-    if !((check - interp).abs() <= DET_CHECK * scale) {
+    // A NaN mismatch fails too.
+    let agrees = (check - interp).abs() <= DET_CHECK * scale;
+    if !agrees {
         return None;
     }
     let mut n = DET_DEGREE;
