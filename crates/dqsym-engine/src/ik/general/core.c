@@ -838,16 +838,13 @@ static void ik_gen_basis(const ik_gen_joint *j, double t, double f[3]) {
     }
 }
 
-/* The joints of the arranged chain at the root x of det M. */
+/* The joints of the arranged chain at a root of det M: v the null vector of M(x) (or of S(th))
+   there, t3 the hidden joint's angle phi + 2 atan x. */
 static void ik_gen_back_substitute(const ik_gen_arranged *ar, const ik_gen_elim *el,
-                                   const double mp[3][12][12], double phi, double x,
-                                   double out[6]) {
-    double m[12][12], v[12], num[9], den[9], f3[3], f4[3], f5[3];
-    int r, c, a, b, k;
-    for (r = 0; r < 12; r++)
-        for (c = 0; c < 12; c++) m[r][c] = (mp[2][r][c] * x + mp[1][r][c]) * x + mp[0][r][c];
-    ik_gen_null_vector((const double (*)[12])m, v);
-    out[2] = ik_gen_wrap(phi + 2.0 * atan(x));
+                                   const double v[12], double t3, double out[6]) {
+    double num[9], den[9], f3[3], f4[3], f5[3];
+    int a, b, k;
+    out[2] = t3;
     /* th4: the pairs (x4^(a+1) x5^b, x4^a x5^b), a = 0..2, b = 0..2. */
     for (k = 0, a = 0; a < 3; a++)
         for (b = 0; b < 3; b++, k++) {
@@ -872,15 +869,325 @@ static void ik_gen_back_substitute(const ik_gen_arranged *ar, const ik_gen_elim 
     out[5] = ik_gen_last(ar, out);
 }
 
+/* S(th) = T0 + T1 cos th + T2 sin th: the 12 x 12 matrix of matrix_poly at phi = 0 divided by
+   1 + x^2 (see core.rs, matrix_trig). */
+static void ik_gen_matrix_trig(const double sig[3][6][9], double out[3][12][12]) {
+    int row, i4, i5, a, b, d, m;
+    double h;
+    memset(out, 0, 3 * 12 * 12 * sizeof(double));
+    for (row = 0; row < 6; row++)
+        for (i4 = 0; i4 < 3; i4++)
+            for (i5 = 0; i5 < 3; i5++) {
+                m = ik_gen_mono(i4, i5);
+                for (a = 0; a < 3; a++)
+                    for (b = 0; b < 3; b++) {
+                        h = IK_GEN_HALF[i4][a] * IK_GEN_HALF[i5][b];
+                        if (h == 0.0) continue;
+                        for (d = 0; d < 3; d++) {
+                            out[d][row][3 * a + b] += h * sig[d][row][m];
+                            out[d][row + 6][3 * (a + 1) + b] += h * sig[d][row][m];
+                        }
+                    }
+            }
+}
+
+/* S(th) at the angle with sine s, cosine c. */
+static void ik_gen_trig_at(const double t[3][12][12], double s, double c, double m[12][12]) {
+    int r, k;
+    for (r = 0; r < 12; r++)
+        for (k = 0; k < 12; k++) m[r][k] = t[0][r][k] + c * t[1][r][k] + s * t[2][r][k];
+}
+
+/* One step of Gaussian elimination on whole rows: the rows below k less their multiple
+   m[r][k] / d of row k (the columns left of k are never read again). */
+static void ik_gen_eliminate_rows(double m[12][12], int k, double d) {
+    double f, p[12];
+    int r, c;
+    /* The pivot row copied: the compiler then knows the rows below do not alias it. */
+    memcpy(p, m[k], sizeof p);
+    for (r = k + 1; r < 12; r++) {
+        f = m[r][k] / d;
+        if (f != 0.0)
+            for (c = 0; c < 12; c++) m[r][c] -= f * p[c];
+    }
+}
+
+/* det S(th) (LU with partial pivoting) and the smallest pivot over the largest in *ratio. */
+static double ik_gen_det_trig(const double t[3][12][12], double s, double c, double *ratio) {
+    double m[12][12], row[12], det = 1.0, minpiv = HUGE_VAL, maxpiv = 0.0, d;
+    int k, r, best;
+    ik_gen_trig_at(t, s, c, m);
+    for (k = 0; k < 12; k++) {
+        best = k;
+        for (r = k + 1; r < 12; r++)
+            if (fabs(m[r][k]) > fabs(m[best][k])) best = r;
+        if (best != k) {
+            memcpy(row, m[k], sizeof row);
+            memcpy(m[k], m[best], sizeof row);
+            memcpy(m[best], row, sizeof row);
+            det = -det;
+        }
+        d = m[k][k];
+        det *= d;
+        if (fabs(d) < minpiv) minpiv = fabs(d);
+        if (fabs(d) > maxpiv) maxpiv = fabs(d);
+        if (d == 0.0) continue;
+        ik_gen_eliminate_rows(m, k, d);
+    }
+    *ratio = maxpiv > 0.0 ? minpiv / maxpiv : 0.0;
+    return det;
+}
+
+/* D(th) = Re sum_j c_j e^(i j th) and its derivatives to the seventh. */
+static void ik_gen_trig_eval(const double c[IK_GEN_DET_DEGREE + 1][2], double th,
+                             double out[IK_GEN_TAYLOR]) {
+    double s = sin(th), co = cos(th), zr = 1.0, zi = 0.0, re, im, j1, j2, j3, j4, nz;
+    int j, k;
+    for (k = 0; k < IK_GEN_TAYLOR; k++) out[k] = 0.0;
+    for (j = 0; j <= IK_GEN_DET_DEGREE; j++) {
+        re = c[j][0] * zr - c[j][1] * zi;
+        im = c[j][0] * zi + c[j][1] * zr;
+        j1 = (double)j;
+        j2 = j1 * j1;
+        j3 = j2 * j1;
+        j4 = j2 * j2;
+        out[0] += re;
+        out[1] -= j1 * im;
+        out[2] -= j2 * re;
+        out[3] += j3 * im;
+        out[4] += j4 * re;
+        out[5] -= j4 * j1 * im;
+        out[6] -= j4 * j2 * re;
+        out[7] += j4 * j3 * im;
+        nz = zr * co - zi * s;
+        zi = zr * s + zi * co;
+        zr = nz;
+    }
+}
+
+/* The zero of D^(k) in [a, b] (fa = D^(k)(a), of the other sign than at b, 0 counted as
+   positive; D^(k) monotone there): Newton's method kept inside the bracket. */
+static double ik_gen_bracketed(const double c[IK_GEN_DET_DEGREE + 1][2], int k, double a,
+                               double b, double fa) {
+    double v[IK_GEN_TAYLOR], x = 0.5 * (a + b), next;
+    const int neg_a = fa < 0.0;
+    int it;
+    for (it = 0; it < 60; it++) {
+        ik_gen_trig_eval(c, x, v);
+        if (v[k] == 0.0) return x;
+        if ((v[k] < 0.0) == neg_a)
+            a = x;
+        else
+            b = x;
+        next = x - v[k] / v[k + 1];
+        if (!(next > a && next < b)) next = 0.5 * (a + b);
+        if (fabs(next - x) <= IK_GEN_BRACKET_TOL || b - a <= IK_GEN_BRACKET_TOL) return next;
+        x = next;
+    }
+    return x;
+}
+
+/* D at x, with 2 pi read as 0 (top: the grid's end). */
+static void ik_gen_trig_at_end(const double c[IK_GEN_DET_DEGREE + 1][2], double x, double top,
+                               double v[IK_GEN_TAYLOR]) {
+    ik_gen_trig_eval(c, x >= top ? 0.0 : x, v);
+}
+
+/* A root of the monotone D^(k) on [a, b] into *x if its ends differ in sign; 1 when found. */
+static int ik_gen_mono_root(const double c[IK_GEN_DET_DEGREE + 1][2], double a, double b, int k,
+                            double top, int *evals, double *x) {
+    double va[IK_GEN_TAYLOR], vb[IK_GEN_TAYLOR];
+    ik_gen_trig_at_end(c, a, top, va);
+    ik_gen_trig_at_end(c, b, top, vb);
+    *evals += 2;
+    if ((va[k] < 0.0) == (vb[k] < 0.0)) return 0;
+    *x = ik_gen_bracketed(c, k, a, b, va[k]);
+    return 1;
+}
+
+/* The real roots in [0, 2 pi) of D (see core.rs, trig_roots) into out, their number in *n;
+   0 when the search gives up. */
+static int ik_gen_trig_roots(const double c[IK_GEN_DET_DEGREE + 1][2], double out[24], int *n) {
+    double b0 = 0.0, b8 = 0.0, margin, nd = (double)IK_GEN_DET_DEGREE, h, top, a, b, m, r, term,
+        x, e, moves[3], v[IK_GEN_TAYLOR], w[IK_GEN_TAYLOR], stack[96][2];
+    int j, k, l, depth = 0, evals = 0, left, right, flat;
+    double xl = 0.0, xr = 0.0;
+    for (j = 0; j <= IK_GEN_DET_DEGREE; j++) {
+        const double amp = hypot(c[j][0], c[j][1]), j2 = (double)(j * j);
+        b0 += amp;
+        b8 += j2 * j2 * j2 * j2 * amp;
+    }
+    margin = IK_GEN_ROOT_MARGIN * b0;
+    h = IK_GEN_TAU / (double)IK_GEN_ROOT_GRID;
+    top = (double)IK_GEN_ROOT_GRID * h;
+    for (k = IK_GEN_ROOT_GRID - 1; k >= 0; k--) {
+        stack[depth][0] = (double)k * h;
+        stack[depth][1] = (double)(k + 1) * h;
+        depth++;
+    }
+    *n = 0;
+    while (depth > 0) {
+        depth--;
+        a = stack[depth][0];
+        b = stack[depth][1];
+        m = 0.5 * (a + b);
+        r = 0.5 * (b - a);
+        ik_gen_trig_at_end(c, m, top, v);
+        evals++;
+        if (evals > IK_GEN_ROOT_EVALS || *n + 2 > 24) return 0;
+        for (l = 0; l < 3; l++) {
+            moves[l] = 0.0;
+            term = 1.0;
+            for (k = l + 1; k < IK_GEN_TAYLOR; k++) {
+                term *= r / (double)(k - l);
+                moves[l] += fabs(v[k]) * term;
+            }
+            moves[l] += b8 * term * r / (double)(IK_GEN_TAYLOR - l);
+        }
+        if (fabs(v[0]) > moves[0] + margin) continue;
+        if (fabs(v[1]) > moves[1] + nd * margin) {
+            if (ik_gen_mono_root(c, a, b, 0, top, &evals, &x)) out[(*n)++] = x;
+            continue;
+        }
+        if (fabs(v[2]) > moves[2] + nd * nd * margin) {
+            if (!ik_gen_mono_root(c, a, b, 1, top, &evals, &e)) {
+                /* D' keeps its sign: D is monotone after all. */
+                if (ik_gen_mono_root(c, a, b, 0, top, &evals, &x)) out[(*n)++] = x;
+                continue;
+            }
+            left = ik_gen_mono_root(c, a, e, 0, top, &evals, &xl);
+            right = ik_gen_mono_root(c, e, b, 0, top, &evals, &xr);
+            if (left) out[(*n)++] = xl;
+            if (right) out[(*n)++] = xr;
+            if (!left && !right) {
+                ik_gen_trig_at_end(c, e, top, w);
+                if (2.0 * fabs(w[0]) <= IK_GEN_NEAR_REAL * IK_GEN_NEAR_REAL * fabs(w[2])) {
+                    out[(*n)++] = e;
+                    out[(*n)++] = e;
+                }
+            }
+            continue;
+        }
+        /* D and D' both zero to rounding, or nothing certified at the finest width: the
+           eigenvalue route decides. */
+        flat = fabs(v[0]) <= margin && fabs(v[1]) <= nd * margin;
+        if (flat || r <= IK_GEN_ROOT_LEAF || depth + 2 > 96) return 0;
+        stack[depth][0] = m;
+        stack[depth][1] = b;
+        stack[depth + 1][0] = a;
+        stack[depth + 1][1] = m;
+        depth += 2;
+    }
+    return 1;
+}
+
+/* A null vector of m, singular to rounding, from its LU with partial pivoting: the smallest
+   pivot u_kk taken as zero, y_k = 1 and the triangle above solved (see core.rs). */
+static void ik_gen_null_vector_lu(const double m[12][12], double y[12]) {
+    double a[12][12], row[12], pmin = HUGE_VAL, d, s, ms = 0.0, ys = 0.0, res = 0.0;
+    int k, r, c, i, best, kmin = 11;
+    memcpy(a, m, sizeof a);
+    for (k = 0; k < 12; k++) {
+        best = k;
+        for (r = k + 1; r < 12; r++)
+            if (fabs(a[r][k]) > fabs(a[best][k])) best = r;
+        if (best != k) {
+            memcpy(row, a[k], sizeof row);
+            memcpy(a[k], a[best], sizeof row);
+            memcpy(a[best], row, sizeof row);
+        }
+        d = a[k][k];
+        if (fabs(d) < pmin) {
+            kmin = k;
+            pmin = fabs(d);
+        }
+        if (d == 0.0) continue;
+        ik_gen_eliminate_rows(a, k, d);
+    }
+    for (i = 0; i < 12; i++) y[i] = 0.0;
+    y[kmin] = 1.0;
+    for (i = kmin - 1; i >= 0; i--) {
+        s = 0.0;
+        for (c = i + 1; c <= kmin; c++) s -= a[i][c] * y[c];
+        y[i] = a[i][i] == 0.0 ? 0.0 : s / a[i][i];
+    }
+    /* Partial pivoting need not reveal the rank: checked by the residual, else complete
+       pivoting. */
+    for (r = 0; r < 12; r++) {
+        s = 0.0;
+        for (c = 0; c < 12; c++) {
+            s += m[r][c] * y[c];
+            if (fabs(m[r][c]) > ms) ms = fabs(m[r][c]);
+        }
+        if (fabs(s) > res) res = fabs(s);
+        if (fabs(y[r]) > ys) ys = fabs(y[r]);
+    }
+    if (!(res <= IK_GEN_NULL_RESIDUAL * ms * ys)) ik_gen_null_vector(m, y);
+}
+
+/* The candidates of one arrangement by the determinant route (see core.rs, det_candidates);
+   0 when the eigenvalue route decides. */
+static int ik_gen_det_candidates(const ik_gen_arranged *ar, const ik_gen_elim *el,
+                                 double roots[24][6], int *n, int *degree) {
+    double tm[3][12][12], m[12][12], v[12], t[6], tab[IK_GEN_DET_SAMPLES][2],
+        d[IK_GEN_DET_SAMPLES], c[IK_GEN_DET_DEGREE + 1][2], th[24], step, scale = 0.0, good = 0.0,
+        ratio, a, b, w, half, interp = 0.0, check, t3;
+    int k, j, i, deg, count;
+    ik_gen_matrix_trig((const double (*)[6][9])el->sig, tm);
+    step = IK_GEN_TAU / (double)IK_GEN_DET_SAMPLES;
+    for (k = 0; k < IK_GEN_DET_SAMPLES; k++) {
+        tab[k][0] = sin((double)k * step);
+        tab[k][1] = cos((double)k * step);
+        d[k] = ik_gen_det_trig((const double (*)[12][12])tm, tab[k][0], tab[k][1], &ratio);
+        if (fabs(d[k]) > scale) scale = fabs(d[k]);
+        if (ratio > good) good = ratio;
+    }
+    if (!(good > IK_GEN_SHIFT_GOOD && isfinite(scale))) return 0;
+    /* c_j = a_j - i b_j of D(th) = a_0 + sum a_j cos j th + b_j sin j th. */
+    for (j = 0; j <= IK_GEN_DET_DEGREE; j++) {
+        a = 0.0;
+        b = 0.0;
+        for (k = 0; k < IK_GEN_DET_SAMPLES; k++) {
+            const int idx = (j * k) % IK_GEN_DET_SAMPLES;
+            a += d[k] * tab[idx][1];
+            b += d[k] * tab[idx][0];
+        }
+        w = (j == 0 ? 1.0 : 2.0) / (double)IK_GEN_DET_SAMPLES;
+        c[j][0] = w * a;
+        c[j][1] = -(w * b);
+    }
+    half = 0.5 * step;
+    for (j = 0; j <= IK_GEN_DET_DEGREE; j++)
+        interp += c[j][0] * cos((double)j * half) - c[j][1] * sin((double)j * half);
+    check = ik_gen_det_trig((const double (*)[12][12])tm, sin(half), cos(half), &ratio);
+    if (!(fabs(check - interp) <= IK_GEN_DET_CHECK * scale)) return 0;
+    deg = IK_GEN_DET_DEGREE;
+    while (deg > 0 && hypot(c[deg][0], c[deg][1]) <= IK_GEN_DET_TRIM * scale) deg--;
+    if (!ik_gen_trig_roots((const double (*)[2])c, th, &count)) return 0;
+    *n = 0;
+    for (k = 0; k < count; k++) {
+        t3 = th[k];
+        ik_gen_trig_at((const double (*)[12][12])tm, sin(t3), cos(t3), m);
+        ik_gen_null_vector_lu((const double (*)[12])m, v);
+        ik_gen_back_substitute(ar, el, v, ik_gen_wrap(t3), t);
+        for (i = 0; i < 6; i++) roots[*n][ar->perm[i]] = t[i];
+        *n += 1;
+    }
+    *degree = 2 * deg;
+    return 1;
+}
+
 /* The candidates of one arrangement: its real roots, each with the arm's joint vector (not
    yet refined) in roots, their number in *n and the degree reached in *degree; 0 when the
    arrangement is degenerate here. */
 static int ik_gen_candidates(const ik_gen_arranged *ar, const ik_gen_elim *el,
                              double roots[24][6], int *n, int *degree) {
-    double mp[3][12][12], mps[3][12][12];
+    double mp[3][12][12], mps[3][12][12], m[12][12], v[12];
     double a[12][12], a_s[12][12], wr[24], wi[24], t[6], best_phi = 0.0, best = -1.0, ratio, re,
         im, phi;
     int p[12], ps[12], k, i, n_ev;
+    /* A turning hidden joint: the determinant route, unless one of its checks fails. */
+    if (!ar->j[2].prism && ik_gen_det_candidates(ar, el, roots, n, degree)) return 1;
     /* The shift phi of the hidden joint that makes A best conditioned; its matrix polynomial
        and the LU of its A are kept. */
     for (k = 0; k < (int)(sizeof IK_GEN_SHIFTS / sizeof IK_GEN_SHIFTS[0]); k++) {
@@ -915,7 +1222,12 @@ static int ik_gen_candidates(const ik_gen_arranged *ar, const ik_gen_elim *el,
         /* A real root, or a pair split by rounding (a double root near a singular set): the
            refinement and the check by forward kinematics decide. */
         if (fabs(im) <= IK_GEN_NEAR_REAL * (1.0 + fabs(re)) && isfinite(re)) {
-            ik_gen_back_substitute(ar, el, (const double (*)[12][12])mp, phi, re, t);
+            int r, c;
+            for (r = 0; r < 12; r++)
+                for (c = 0; c < 12; c++)
+                    m[r][c] = (mp[2][r][c] * re + mp[1][r][c]) * re + mp[0][r][c];
+            ik_gen_null_vector((const double (*)[12])m, v);
+            ik_gen_back_substitute(ar, el, v, ik_gen_wrap(phi + 2.0 * atan(re)), t);
             for (i = 0; i < 6; i++) roots[*n][ar->perm[i]] = t[i];
             *n += 1;
         }

@@ -567,14 +567,12 @@ function ik_gen_last(ar, t) {
     return Math.atan2(ik_gen_dot3(w6, ik_gen_cross3(u, v)), ik_gen_dot3(u, v));
 }
 
-// The joints of the arranged chain at the root x of det M.
-function ik_gen_back_substitute(ar, el, mp, phi, x) {
-    const m = [...Array(12).keys()].map((r) => [...Array(12).keys()].map((c) =>
-        (mp[2][r][c] * x + mp[1][r][c]) * x + mp[0][r][c]));
-    const v = ik_gen_null_vector(m);
+// The joints of the arranged chain at a root of det M: v the null vector of M(x) (or of S(th))
+// there, th3 the hidden joint's angle phi + 2 atan x.
+function ik_gen_back_substitute(ar, el, v, th3) {
     const at = (a, b) => v[3 * a + b];
     const slide = (k, t) => (ar.j[k].prism ? Math.tan(0.5 * t) : t);
-    const t3 = slide(2, ik_gen_wrap(phi + 2 * Math.atan(x)));
+    const t3 = slide(2, th3);
     const p4 = [], p5 = [];
     for (let a = 0; a < 3; a++) for (let b = 0; b < 3; b++) p4.push([at(a + 1, b), at(a, b)]);
     for (let b = 0; b < 2; b++) for (let a = 0; a < 4; a++) p5.push([at(a, b + 1), at(a, b)]);
@@ -586,9 +584,258 @@ function ik_gen_back_substitute(ar, el, mp, phi, x) {
     return t.concat([ik_gen_last(ar, t)]);
 }
 
+// S(th) = T0 + T1 cos th + T2 sin th: the 12 x 12 matrix of matrix_poly at phi = 0 divided by
+// 1 + x^2 (see core.rs, matrix_trig).
+function ik_gen_matrix_trig(sig) {
+    const H = IK_GEN_HALF, out = ik_gen_zeros(3, 12, 12);
+    for (let row = 0; row < 6; row++) for (let i4 = 0; i4 < 3; i4++) for (let i5 = 0; i5 < 3; i5++) {
+        const m = ik_gen_mono(i4, i5);
+        for (let a = 0; a < 3; a++) for (let b = 0; b < 3; b++) {
+            const h = H[i4][a] * H[i5][b];
+            if (h === 0) continue;
+            for (let d = 0; d < 3; d++) {
+                out[d][row][3 * a + b] += h * sig[d][row][m];
+                out[d][row + 6][3 * (a + 1) + b] += h * sig[d][row][m];
+            }
+        }
+    }
+    return out;
+}
+
+// S(th) at the angle with sine s, cosine c.
+function ik_gen_trig_at(t, s, c) {
+    return [...Array(12).keys()].map((r) => [...Array(12).keys()].map((k) =>
+        t[0][r][k] + c * t[1][r][k] + s * t[2][r][k]));
+}
+
+// One step of Gaussian elimination on whole rows: the rows below k less their multiple
+// m[r][k] / d of row k (the columns left of k are never read again).
+function ik_gen_eliminate_rows(m, k, d) {
+    for (let r = k + 1; r < 12; r++) {
+        const f = m[r][k] / d;
+        if (f !== 0) for (let c = 0; c < 12; c++) m[r][c] -= f * m[k][c];
+    }
+}
+
+// [det S(th), smallest pivot over the largest] (LU with partial pivoting).
+function ik_gen_det_trig(t, s, c) {
+    const m = ik_gen_trig_at(t, s, c);
+    let det = 1, minpiv = Infinity, maxpiv = 0;
+    for (let k = 0; k < 12; k++) {
+        let best = k;
+        for (let r = k + 1; r < 12; r++) if (Math.abs(m[r][k]) > Math.abs(m[best][k])) best = r;
+        if (best !== k) {
+            [m[k], m[best]] = [m[best], m[k]];
+            det = -det;
+        }
+        const d = m[k][k];
+        det *= d;
+        if (Math.abs(d) < minpiv) minpiv = Math.abs(d);
+        if (Math.abs(d) > maxpiv) maxpiv = Math.abs(d);
+        if (d === 0) continue;
+        ik_gen_eliminate_rows(m, k, d);
+    }
+    return [det, maxpiv > 0 ? minpiv / maxpiv : 0];
+}
+
+// D(th) = Re sum_j c_j e^(i j th) and its derivatives to the seventh.
+function ik_gen_trig_eval(c, th) {
+    const s = Math.sin(th), co = Math.cos(th), out = new Array(IK_GEN_TAYLOR).fill(0);
+    let zr = 1, zi = 0;
+    for (let j = 0; j <= IK_GEN_DET_DEGREE; j++) {
+        const re = c[j][0] * zr - c[j][1] * zi;
+        const im = c[j][0] * zi + c[j][1] * zr;
+        const j1 = j, j2 = j1 * j1, j3 = j2 * j1, j4 = j2 * j2;
+        out[0] += re;
+        out[1] -= j1 * im;
+        out[2] -= j2 * re;
+        out[3] += j3 * im;
+        out[4] += j4 * re;
+        out[5] -= j4 * j1 * im;
+        out[6] -= j4 * j2 * re;
+        out[7] += j4 * j3 * im;
+        [zr, zi] = [zr * co - zi * s, zr * s + zi * co];
+    }
+    return out;
+}
+
+// The zero of D^(k) in [a, b] (fa = D^(k)(a), of the other sign than at b, 0 counted as
+// positive; D^(k) monotone there): Newton's method kept inside the bracket.
+function ik_gen_bracketed(c, k, a, b, fa) {
+    const negA = fa < 0;
+    let x = 0.5 * (a + b);
+    for (let it = 0; it < 60; it++) {
+        const v = ik_gen_trig_eval(c, x);
+        if (v[k] === 0) return x;
+        if ((v[k] < 0) === negA) a = x;
+        else b = x;
+        let next = x - v[k] / v[k + 1];
+        if (!(next > a && next < b)) next = 0.5 * (a + b);
+        if (Math.abs(next - x) <= IK_GEN_BRACKET_TOL || b - a <= IK_GEN_BRACKET_TOL) return next;
+        x = next;
+    }
+    return x;
+}
+
+// The real roots in [0, 2 pi) of D (see core.rs, trig_roots); null when the search gives up.
+function ik_gen_trig_roots(c) {
+    let b0 = 0, b8 = 0;
+    for (let j = 0; j <= IK_GEN_DET_DEGREE; j++) {
+        const amp = Math.hypot(c[j][0], c[j][1]), j2 = j * j;
+        b0 += amp;
+        b8 += j2 * j2 * j2 * j2 * amp;
+    }
+    const margin = IK_GEN_ROOT_MARGIN * b0, nd = IK_GEN_DET_DEGREE;
+    const h = IK_GEN_TAU / IK_GEN_ROOT_GRID, top = IK_GEN_ROOT_GRID * h;
+    const at = (x) => ik_gen_trig_eval(c, x >= top ? 0 : x);
+    const stack = [];
+    for (let k = IK_GEN_ROOT_GRID - 1; k >= 0; k--) stack.push([k * h, (k + 1) * h]);
+    const out = [];
+    let evals = 0;
+    // A root of the monotone D^(k) on [a, b] if its ends differ in sign, else null.
+    const mono = (a, b, k) => {
+        const fa = at(a)[k], fb = at(b)[k];
+        evals += 2;
+        return (fa < 0) === (fb < 0) ? null : ik_gen_bracketed(c, k, a, b, fa);
+    };
+    while (stack.length > 0) {
+        const [a, b] = stack.pop();
+        const m = 0.5 * (a + b), r = 0.5 * (b - a);
+        const v = at(m);
+        evals += 1;
+        if (evals > IK_GEN_ROOT_EVALS || out.length + 2 > 24) return null;
+        const moves = [0, 0, 0];
+        for (let l = 0; l < 3; l++) {
+            let term = 1;
+            for (let k = l + 1; k < IK_GEN_TAYLOR; k++) {
+                term *= r / (k - l);
+                moves[l] += Math.abs(v[k]) * term;
+            }
+            moves[l] += b8 * term * r / (IK_GEN_TAYLOR - l);
+        }
+        if (Math.abs(v[0]) > moves[0] + margin) continue;
+        if (Math.abs(v[1]) > moves[1] + nd * margin) {
+            const x = mono(a, b, 0);
+            if (x !== null) out.push(x);
+            continue;
+        }
+        if (Math.abs(v[2]) > moves[2] + nd * nd * margin) {
+            const e = mono(a, b, 1);
+            if (e === null) {
+                // D' keeps its sign: D is monotone after all.
+                const x = mono(a, b, 0);
+                if (x !== null) out.push(x);
+                continue;
+            }
+            const left = mono(a, e, 0), right = mono(e, b, 0);
+            if (left !== null) out.push(left);
+            if (right !== null) out.push(right);
+            if (left === null && right === null) {
+                const w = at(e);
+                if (2 * Math.abs(w[0]) <= IK_GEN_NEAR_REAL * IK_GEN_NEAR_REAL * Math.abs(w[2])) out.push(e, e);
+            }
+            continue;
+        }
+        // D and D' both zero to rounding, or nothing certified at the finest width: the
+        // eigenvalue route decides.
+        const flat = Math.abs(v[0]) <= margin && Math.abs(v[1]) <= nd * margin;
+        if (flat || r <= IK_GEN_ROOT_LEAF || stack.length + 2 > 96) return null;
+        stack.push([m, b], [a, m]);
+    }
+    return out;
+}
+
+// A null vector of m, singular to rounding, from its LU with partial pivoting: the smallest
+// pivot u_kk taken as zero, y_k = 1 and the triangle above solved (see core.rs).
+function ik_gen_null_vector_lu(m0) {
+    const a = m0.map((row) => row.slice());
+    let kmin = 11, pmin = Infinity;
+    for (let k = 0; k < 12; k++) {
+        let best = k;
+        for (let r = k + 1; r < 12; r++) if (Math.abs(a[r][k]) > Math.abs(a[best][k])) best = r;
+        [a[k], a[best]] = [a[best], a[k]];
+        const d = a[k][k];
+        if (Math.abs(d) < pmin) [kmin, pmin] = [k, Math.abs(d)];
+        if (d === 0) continue;
+        ik_gen_eliminate_rows(a, k, d);
+    }
+    const y = new Array(12).fill(0);
+    y[kmin] = 1;
+    for (let i = kmin - 1; i >= 0; i--) {
+        let s = 0;
+        for (let c = i + 1; c <= kmin; c++) s -= a[i][c] * y[c];
+        y[i] = a[i][i] === 0 ? 0 : s / a[i][i];
+    }
+    // Partial pivoting need not reveal the rank: checked by the residual, else complete
+    // pivoting.
+    let ms = 0, ys = 0, res = 0;
+    for (let r = 0; r < 12; r++) {
+        let s = 0;
+        for (let c = 0; c < 12; c++) {
+            s += m0[r][c] * y[c];
+            if (Math.abs(m0[r][c]) > ms) ms = Math.abs(m0[r][c]);
+        }
+        if (Math.abs(s) > res) res = Math.abs(s);
+        if (Math.abs(y[r]) > ys) ys = Math.abs(y[r]);
+    }
+    return res <= IK_GEN_NULL_RESIDUAL * ms * ys ? y : ik_gen_null_vector(m0);
+}
+
+// The candidates of one arrangement by the determinant route (see core.rs, det_candidates);
+// null when the eigenvalue route decides.
+function ik_gen_det_candidates(ar, el) {
+    const tm = ik_gen_matrix_trig(el.sig), N = IK_GEN_DET_SAMPLES, step = IK_GEN_TAU / N;
+    const tab = [], d = [];
+    let scale = 0, good = 0;
+    for (let k = 0; k < N; k++) {
+        tab.push([Math.sin(k * step), Math.cos(k * step)]);
+        const [det, ratio] = ik_gen_det_trig(tm, tab[k][0], tab[k][1]);
+        d.push(det);
+        if (Math.abs(det) > scale) scale = Math.abs(det);
+        if (ratio > good) good = ratio;
+    }
+    if (!(good > IK_GEN_SHIFT_GOOD && Number.isFinite(scale))) return null;
+    // c_j = a_j - i b_j of D(th) = a_0 + sum a_j cos j th + b_j sin j th.
+    const c = [];
+    for (let j = 0; j <= IK_GEN_DET_DEGREE; j++) {
+        let a = 0, b = 0;
+        for (let k = 0; k < N; k++) {
+            const [s, co] = tab[(j * k) % N];
+            a += d[k] * co;
+            b += d[k] * s;
+        }
+        const w = (j === 0 ? 1 : 2) / N;
+        c.push([w * a, -(w * b)]);
+    }
+    const half = 0.5 * step;
+    let interp = 0;
+    for (let j = 0; j <= IK_GEN_DET_DEGREE; j++) {
+        interp += c[j][0] * Math.cos(j * half) - c[j][1] * Math.sin(j * half);
+    }
+    const check = ik_gen_det_trig(tm, Math.sin(half), Math.cos(half))[0];
+    if (!(Math.abs(check - interp) <= IK_GEN_DET_CHECK * scale)) return null;
+    let deg = IK_GEN_DET_DEGREE;
+    while (deg > 0 && Math.hypot(c[deg][0], c[deg][1]) <= IK_GEN_DET_TRIM * scale) deg -= 1;
+    const th = ik_gen_trig_roots(c);
+    if (th === null) return null;
+    const roots = th.map((t3) => {
+        const v = ik_gen_null_vector_lu(ik_gen_trig_at(tm, Math.sin(t3), Math.cos(t3)));
+        const t = ik_gen_back_substitute(ar, el, v, ik_gen_wrap(t3));
+        const q = new Array(6).fill(0);
+        for (let i = 0; i < 6; i++) q[ar.perm[i]] = t[i];
+        return q;
+    });
+    return { roots, degree: 2 * deg };
+}
+
 // The candidates of one arrangement: {roots (the arm's joint vectors, not yet refined),
 // degree}; null when the arrangement is degenerate here.
 function ik_gen_candidates(ar, el) {
+    // A turning hidden joint: the determinant route, unless one of its checks fails.
+    if (!ar.j[2].prism) {
+        const found = ik_gen_det_candidates(ar, el);
+        if (found !== null) return found;
+    }
     // The shift phi that makes A best conditioned; its matrix polynomial and A's LU are kept.
     let best = [0, -1], mp = null, lu = null, piv = null;
     for (const phi of IK_GEN_SHIFTS) {
@@ -613,7 +860,9 @@ function ik_gen_candidates(ar, el) {
         }
         // A real root, or a pair split by rounding: refinement and the check decide.
         if (Math.abs(im) <= IK_GEN_NEAR_REAL * (1 + Math.abs(re)) && Number.isFinite(re)) {
-            const t = ik_gen_back_substitute(ar, el, mp, phi, re);
+            const m = [...Array(12).keys()].map((r) => [...Array(12).keys()].map((c) =>
+                (mp[2][r][c] * re + mp[1][r][c]) * re + mp[0][r][c]));
+            const t = ik_gen_back_substitute(ar, el, ik_gen_null_vector(m), ik_gen_wrap(phi + 2 * Math.atan(re)));
             const q = new Array(6).fill(0);
             for (let i = 0; i < 6; i++) q[ar.perm[i]] = t[i];
             roots.push(q);

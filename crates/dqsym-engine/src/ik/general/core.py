@@ -146,11 +146,10 @@ def _wrap(a):
     return x
 
 
-def _back(j, h, am, bm, mp, phi, x):
-    m = (mp[2] * x + mp[1]) * x + mp[0]
+def _back(j, h, am, bm, m, t3):
+    # m: M(x) (or S(th)) at the root, t3 the hidden joint's angle phi + 2 atan x.
     v = np.linalg.svd(m)[2][-1]
     at = lambda a, b: v[3 * a + b]
-    t3 = _wrap(phi + 2 * math.atan(x))
     t4 = _angle([(at(a + 1, b), at(a, b)) for a in range(3) for b in range(3)])
     t5 = _angle([(at(a, b + 1), at(a, b)) for a in range(4) for b in range(2)])
     # A slide's variable is the tangent of the half angle these formulas give.
@@ -192,7 +191,158 @@ def _deflate(mp, k):
     return w.T @ k @ w
 
 
+def _mtrig(sig):
+    # S(th) = T0 + T1 cos th + T2 sin th: M(x) of _mpoly at phi = 0 over 1 + x^2.
+    out = np.zeros((3, 12, 12))
+    for i4 in range(3):
+        for i5 in range(3):
+            m = 3 * i4 + i5
+            for a in range(3):
+                for b in range(3):
+                    hh = _HALF[i4, a] * _HALF[i5, b]
+                    if hh == 0:
+                        continue
+                    for dd in range(3):
+                        out[dd, :6, 3 * a + b] += hh * sig[dd, :, m]
+                        out[dd, 6:, 3 * (a + 1) + b] += hh * sig[dd, :, m]
+    return out
+
+
+def _trig_eval(c, th):
+    # D(th) = Re sum_j c_j e^(i j th) and its derivatives to the seventh.
+    z = c * np.exp(1j * th * np.arange(len(c)))
+    jj = np.arange(len(c), dtype=float)
+    return [float(np.sum(jj ** k * (1j ** k * z).real)) for k in range(IK_GEN_TAYLOR)]
+
+
+def _bracketed(c, k, a, b, fa):
+    neg_a = fa < 0
+    x = 0.5 * (a + b)
+    for _ in range(60):
+        v = _trig_eval(c, x)
+        if v[k] == 0:
+            return x
+        if (v[k] < 0) == neg_a:
+            a = x
+        else:
+            b = x
+        nxt = x - v[k] / v[k + 1]
+        if not (a < nxt < b):
+            nxt = 0.5 * (a + b)
+        if abs(nxt - x) <= IK_GEN_BRACKET_TOL or b - a <= IK_GEN_BRACKET_TOL:
+            return nxt
+        x = nxt
+    return x
+
+
+def _trig_roots(c):
+    # The real roots in [0, 2 pi) of D by interval search (see core.rs, trig_roots).
+    amp = np.abs(c)
+    jj = np.arange(len(c), dtype=float)
+    b0, b8 = float(amp.sum()), float((jj ** IK_GEN_TAYLOR * amp).sum())
+    margin, nd = IK_GEN_ROOT_MARGIN * b0, float(IK_GEN_DET_DEGREE)
+    h = IK_GEN_TAU / IK_GEN_ROOT_GRID
+    top = IK_GEN_ROOT_GRID * h
+    at = lambda x: _trig_eval(c, 0.0 if x >= top else x)
+    stack = [(k * h, (k + 1) * h) for k in reversed(range(IK_GEN_ROOT_GRID))]
+    out, evals = [], 0
+
+    def mono(a, b, k):
+        nonlocal evals
+        fa, fb = at(a)[k], at(b)[k]
+        evals += 2
+        return None if (fa < 0) == (fb < 0) else _bracketed(c, k, a, b, fa)
+
+    while stack:
+        a, b = stack.pop()
+        m, r = 0.5 * (a + b), 0.5 * (b - a)
+        v = at(m)
+        evals += 1
+        if evals > IK_GEN_ROOT_EVALS or len(out) + 2 > 24:
+            return None
+        moves = []
+        for l in range(3):
+            mv, term = 0.0, 1.0
+            for k in range(l + 1, IK_GEN_TAYLOR):
+                term *= r / (k - l)
+                mv += abs(v[k]) * term
+            moves.append(mv + b8 * term * r / (IK_GEN_TAYLOR - l))
+        if abs(v[0]) > moves[0] + margin:
+            continue
+        if abs(v[1]) > moves[1] + nd * margin:
+            x = mono(a, b, 0)
+            if x is not None:
+                out.append(x)
+            continue
+        if abs(v[2]) > moves[2] + nd * nd * margin:
+            e = mono(a, b, 1)
+            if e is None:
+                x = mono(a, b, 0)
+                if x is not None:
+                    out.append(x)
+                continue
+            left, right = mono(a, e, 0), mono(e, b, 0)
+            out += [x for x in (left, right) if x is not None]
+            if left is None and right is None:
+                w = at(e)
+                if 2 * abs(w[0]) <= IK_GEN_NEAR_REAL ** 2 * abs(w[2]):
+                    out += [e, e]
+            continue
+        # D and D' both zero to rounding, or nothing certified at the finest width: the
+        # eigenvalue route decides.
+        flat = abs(v[0]) <= margin and abs(v[1]) <= nd * margin
+        if flat or r <= IK_GEN_ROOT_LEAF or len(stack) + 2 > 96:
+            return None
+        stack += [(m, b), (a, m)]
+    return out
+
+
+def _det_candidates(j, h, perm, am, bm, sig):
+    # The determinant route (see core.rs, det_candidates): det S(th) at IK_GEN_DET_SAMPLES
+    # angles, its coefficients by the DFT, its real roots by interval search.
+    tm = _mtrig(sig)
+    n = IK_GEN_DET_SAMPLES
+    ths = IK_GEN_TAU * np.arange(n) / n
+    d, good = [], 0.0
+    for th in ths:
+        s_ = tm[0] + math.cos(th) * tm[1] + math.sin(th) * tm[2]
+        d.append(np.linalg.det(s_))
+        sv = np.linalg.svd(s_, compute_uv=False)
+        good = max(good, sv[-1] / sv[0] if sv[0] > 0 else 0.0)
+    d = np.array(d)
+    scale = float(np.abs(d).max())
+    if not (good > IK_GEN_SHIFT_GOOD and math.isfinite(scale)):
+        return None
+    f = np.fft.fft(d) / n
+    # c_j = a_j - i b_j of D(th) = a_0 + sum a_j cos j th + b_j sin j th: 2 F_j (F_0 for j = 0).
+    c = np.concatenate([[f[0].real], 2 * f[1:IK_GEN_DET_DEGREE + 1]])
+    half = 0.5 * IK_GEN_TAU / n
+    interp = float(np.sum((c * np.exp(1j * half * np.arange(len(c)))).real))
+    check = np.linalg.det(tm[0] + math.cos(half) * tm[1] + math.sin(half) * tm[2])
+    if not abs(check - interp) <= IK_GEN_DET_CHECK * scale:
+        return None
+    deg = IK_GEN_DET_DEGREE
+    while deg > 0 and abs(c[deg]) <= IK_GEN_DET_TRIM * scale:
+        deg -= 1
+    th = _trig_roots(c)
+    if th is None:
+        return None
+    out = []
+    for t3 in th:
+        t = _back(j, h, am, bm, tm[0] + math.cos(t3) * tm[1] + math.sin(t3) * tm[2], _wrap(t3))
+        q = [0.0] * 6
+        for i in range(6):
+            q[perm[i]] = t[i]
+        out.append(q)
+    return out
+
+
 def _candidates(j, h, perm, am, bm, sig):
+    # A turning hidden joint: the determinant route, unless one of its checks fails.
+    if not j[2][2]:
+        found = _det_candidates(j, h, perm, am, bm, sig)
+        if found is not None:
+            return found
     best = (0.0, -1.0)
     for phi in IK_GEN_SHIFTS:
         sv = np.linalg.svd(_mpoly(sig, phi)[2], compute_uv=False)
@@ -216,7 +366,8 @@ def _candidates(j, h, perm, am, bm, sig):
         if j[2][2] and np.isfinite(z) and abs(math.tan(0.5 * phi + math.atan(z.real))) > IK_GEN_PRISM_FAR:
             continue
         if np.isfinite(z) and abs(z.imag) <= IK_GEN_NEAR_REAL * (1 + abs(z.real)):
-            t = _back(j, h, am, bm, mp, phi, float(z.real))
+            x = float(z.real)
+            t = _back(j, h, am, bm, (mp[2] * x + mp[1]) * x + mp[0], _wrap(phi + 2 * math.atan(x)))
             q = [0.0] * 6
             for i in range(6):
                 q[perm[i]] = t[i]

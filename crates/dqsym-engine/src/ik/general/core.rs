@@ -786,7 +786,7 @@ fn deflate_spurious(m: &[[[f64; 12]; 12]; 3], k: &mut [[f64; 24]; 24]) -> usize 
 /// A null vector of the 12 x 12 matrix `m` (Gaussian elimination with complete pivoting, the
 /// last pivot taken as zero).
 #[allow(clippy::needless_range_loop)]
-fn null_vector(m: &[[f64; 12]; 12]) -> [f64; 12] {
+pub(crate) fn null_vector(m: &[[f64; 12]; 12]) -> [f64; 12] {
     let mut a = *m;
     let mut cols = [0usize; 12];
     for (i, c) in cols.iter_mut().enumerate() {
@@ -850,6 +850,75 @@ fn null_vector(m: &[[f64; 12]; 12]) -> [f64; 12] {
     v
 }
 
+/// A null vector of the 12 x 12 matrix `m`, singular to rounding, from its LU with partial
+/// pivoting (a quarter of [`null_vector`]'s work): `U` has the rank of `m`, so its smallest
+/// pivot `u_kk` is the zero one; `y_k = 1`, `y_j = 0` beyond `k` and the triangle above solved
+/// give `U y = 0`, hence `m y = 0`. The rows below a tiny pivot are not used. When the residual
+/// is above [`NULL_RESIDUAL`] (partial pivoting did not reveal the rank, or the root is
+/// inexact) the vector of complete pivoting ([`null_vector`]) is taken.
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn null_vector_lu(m: &[[f64; 12]; 12]) -> [f64; 12] {
+    let mut a = *m;
+    let (mut kmin, mut pmin) = (11, f64::INFINITY);
+    for k in 0..12 {
+        let mut best = k;
+        for r in k + 1..12 {
+            if a[r][k].abs() > a[best][k].abs() {
+                best = r;
+            }
+        }
+        a.swap(k, best);
+        let (top, rest) = a.split_at_mut(k + 1);
+        let pivot = &top[k];
+        let d = pivot[k];
+        if d.abs() < pmin {
+            (kmin, pmin) = (k, d.abs());
+        }
+        if d == 0.0 {
+            continue;
+        }
+        eliminate(rest, pivot, k, d);
+    }
+    let mut y = [0.0; 12];
+    y[kmin] = 1.0;
+    for i in (0..kmin).rev() {
+        let mut s = 0.0;
+        for c in i + 1..=kmin {
+            s -= a[i][c] * y[c];
+        }
+        y[i] = if a[i][i] == 0.0 { 0.0 } else { s / a[i][i] };
+    }
+    // Partial pivoting need not reveal the rank: checked by the residual, else complete
+    // pivoting.
+    let (mut ms, mut ys, mut res) = (0.0, 0.0, 0.0);
+    for r in 0..12 {
+        let mut s = 0.0;
+        for c in 0..12 {
+            s += m[r][c] * y[c];
+            if m[r][c].abs() > ms {
+                ms = m[r][c].abs();
+            }
+        }
+        if s.abs() > res {
+            res = s.abs();
+        }
+        if y[r].abs() > ys {
+            ys = y[r].abs();
+        }
+    }
+    if res <= NULL_RESIDUAL * ms * ys {
+        y
+    } else {
+        null_vector(m)
+    }
+}
+
+/// The residual `|m y|` (largest entry) over `|m| |y|` a null vector from partial pivoting may
+/// keep (see [`null_vector_lu`]): rounding of the elimination (`1e-16` times its growth and
+/// the condition of `U`'s leading block, up to `1e4` at the bench's poses) with a margin of
+/// ten; measured `1e-11` at most where partial pivoting works, `1e-7` where it does not.
+pub const NULL_RESIDUAL: f64 = 1e-10;
+
 /// `2 atan2(num, den)` from the pair of monomials of largest size: the half-angle tangent's
 /// ratio `num / den`, well-conditioned for any angle.
 fn angle_from(pairs: &[(f64, f64)]) -> f64 {
@@ -877,24 +946,12 @@ fn wrap(a: f64) -> f64 {
     x
 }
 
-/// The joints of the arranged chain at the root `x` of `det M`.
+/// The joints of the arranged chain at a root of `det M`: `v` is the null vector of `M(x)` (or
+/// of any multiple of it, as `S(θ)`) there, and `t3` the hidden joint's angle `φ + 2 atan x` (a
+/// slide's through [`HALF_INV`]).
 #[allow(clippy::needless_range_loop)]
-fn back_substitute(
-    ar: &Arranged,
-    el: &Elim,
-    mp: &[[[f64; 12]; 12]; 3],
-    phi: f64,
-    x: f64,
-) -> [f64; 6] {
-    let mut m = [[0.0; 12]; 12];
-    for r in 0..12 {
-        for c in 0..12 {
-            m[r][c] = (mp[2][r][c] * x + mp[1][r][c]) * x + mp[0][r][c];
-        }
-    }
-    let v = null_vector(&m);
+fn back_substitute(ar: &Arranged, el: &Elim, v: &[f64; 12], t3: f64) -> [f64; 6] {
     let at = |a: usize, b: usize| v[3 * a + b];
-    let t3 = wrap(phi + 2.0 * x.atan());
     let t4 = angle_from(&[
         (at(1, 0), at(0, 0)),
         (at(1, 1), at(0, 1)),
@@ -1063,6 +1120,12 @@ pub const SAME_TOL: f64 = 1e-6;
 /// The candidates of one arrangement: its real roots, each with the arm's joint vector (not
 /// yet refined), and the degree reached; `None` when the arrangement is degenerate here.
 fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(usize, usize)> {
+    // A turning hidden joint: the determinant route, unless one of its checks fails.
+    if !ar.j[2].prism {
+        if let Some(found) = det_candidates(ar, el, roots) {
+            return Some(found);
+        }
+    }
     // The shift φ of the hidden joint that makes A (θ3 = φ + π) best conditioned; its matrix
     // polynomial and the LU of its A are kept.
     let mut best = (0.0, -1.0);
@@ -1101,7 +1164,13 @@ fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(u
         // A real root, or a pair split by rounding (a double root near a singular set): the
         // refinement and the check by forward kinematics decide.
         if im.abs() <= NEAR_REAL * (1.0 + re.abs()) && re.is_finite() {
-            let t = back_substitute(ar, el, &mp, phi, re);
+            let mut m = [[0.0; 12]; 12];
+            for r in 0..12 {
+                for c in 0..12 {
+                    m[r][c] = (mp[2][r][c] * re + mp[1][r][c]) * re + mp[0][r][c];
+                }
+            }
+            let t = back_substitute(ar, el, &null_vector(&m), wrap(phi + 2.0 * re.atan()));
             let mut q = [0.0; 6];
             for i in 0..6 {
                 q[ar.perm[i]] = t[i];
@@ -1111,6 +1180,412 @@ fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(u
         }
     }
     Some((n, degree))
+}
+
+/// The samples of the determinant route: `det S(θ)` is a trigonometric polynomial of degree at
+/// most [`DET_DEGREE`], so `2 DET_DEGREE + 1` equally spaced angles determine it exactly.
+pub const DET_SAMPLES: usize = 17;
+
+/// The degree of `det S(θ)` in `θ` for a turning hidden joint: `det M(x) = (1 + x²)¹² det S(θ)`
+/// has degree 24 with the spurious factor `(1 + x²)⁴` of the elimination, so `det S(θ)` is a
+/// polynomial of degree 16 over `(1 + x²)⁸`: of degree 8 in `(cos θ, sin θ)`.
+pub const DET_DEGREE: usize = 8;
+
+/// The largest mismatch (relative to the largest sample) between `det S` at the check angle
+/// `π / DET_SAMPLES` (half way between two samples) and the interpolant, before the
+/// determinant route gives way to the eigenvalue route. Rounding makes each sample's
+/// determinant the exact one of a matrix within a few units of rounding (LU with partial
+/// pivoting, growth small at a pivot ratio above [`SHIFT_GOOD`]), that is an absolute error up
+/// to about `n ε κ` of the largest sample with `κ` the condition of `S` (below `1e4` where
+/// the samples are usable), and the interpolation (Lebesgue constant under 3 for 17 points)
+/// adds a factor 3: about `1e-10`. Content of degree 9 to 12 (an elimination with fewer
+/// spurious factors) aliases onto degrees 8 to 5 and differs at the check angle by twice its
+/// size: above `1e-7` it is not rounding.
+pub const DET_CHECK: f64 = 1e-7;
+
+/// A top coefficient of `det S(θ)` below this (relative to the largest sample) is rounding and
+/// dropped: the polynomial's degree is then lower (more spurious factors `1 + x²`, as for arms
+/// with parallel axes, whose roots `±i` the eigenvalue route deflates). Rounding leaves the
+/// coefficients with errors of about `1e-13` of the largest sample (see [`DET_CHECK`]); a
+/// dropped coefficient of up to `1e-9` moves a simple root by about as much (restored by the
+/// refinement) and splits a double root by at most `1e-4.5` (within [`NEAR_REAL`]).
+pub const DET_TRIM: f64 = 1e-9;
+
+/// `S(θ) = T0 + T1 cos θ + T2 sin θ`, the 12 x 12 matrix [`matrix_poly`] builds at `φ = 0`
+/// divided by `1 + x²`, `x = tan(θ/2)`: the same rows with `(1, cos θ3, sin θ3)` kept.
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn matrix_trig(sig: &[[[f64; 9]; 6]; 3]) -> [[[f64; 12]; 12]; 3] {
+    let mut out = [[[0.0; 12]; 12]; 3];
+    for row in 0..6 {
+        for i4 in 0..3 {
+            for i5 in 0..3 {
+                let m = mono(i4, i5);
+                for a in 0..3 {
+                    for b in 0..3 {
+                        let h = HALF[i4][a] * HALF[i5][b];
+                        if h == 0.0 {
+                            continue;
+                        }
+                        for d in 0..3 {
+                            out[d][row][3 * a + b] += h * sig[d][row][m];
+                            out[d][row + 6][3 * (a + 1) + b] += h * sig[d][row][m];
+                        }
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// `S(θ)` at the angle with sine `s`, cosine `c`.
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn trig_at(t: &[[[f64; 12]; 12]; 3], s: f64, c: f64) -> [[f64; 12]; 12] {
+    let mut m = [[0.0; 12]; 12];
+    for r in 0..12 {
+        for k in 0..12 {
+            m[r][k] = t[0][r][k] + c * t[1][r][k] + s * t[2][r][k];
+        }
+    }
+    m
+}
+
+/// `det S(θ)` and the smallest LU pivot over the largest (Gaussian elimination with partial
+/// pivoting). The row updates run over whole rows: the columns left of the pivot are never
+/// read again, and a fixed length of 12 lets the compiler vectorise the loop (the same
+/// arithmetic on every column that is read).
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn det_trig(t: &[[[f64; 12]; 12]; 3], s: f64, c: f64) -> (f64, f64) {
+    let mut m = trig_at(t, s, c);
+    let (mut det, mut minpiv, mut maxpiv) = (1.0, f64::INFINITY, 0.0);
+    for k in 0..12 {
+        let mut best = k;
+        for r in k + 1..12 {
+            if m[r][k].abs() > m[best][k].abs() {
+                best = r;
+            }
+        }
+        if best != k {
+            m.swap(k, best);
+            det = -det;
+        }
+        let (top, rest) = m.split_at_mut(k + 1);
+        let pivot = &top[k];
+        let d = pivot[k];
+        det *= d;
+        if d.abs() < minpiv {
+            minpiv = d.abs();
+        }
+        if d.abs() > maxpiv {
+            maxpiv = d.abs();
+        }
+        if d == 0.0 {
+            continue;
+        }
+        eliminate(rest, pivot, k, d);
+    }
+    (det, if maxpiv > 0.0 { minpiv / maxpiv } else { 0.0 })
+}
+
+/// One step of Gaussian elimination: the rows `rest` below the pivot row less their multiple
+/// `row[k] / d` of it, over whole rows (see [`det_trig`]).
+fn eliminate(rest: &mut [[f64; 12]], pivot: &[f64; 12], k: usize, d: f64) {
+    for row in rest.iter_mut() {
+        let f = row[k] / d;
+        if f != 0.0 {
+            for c in 0..12 {
+                row[c] -= f * pivot[c];
+            }
+        }
+    }
+}
+
+/// How many derivatives of `det S(θ)` the root search uses: Taylor's formula to the seventh,
+/// the rest bounded by `Σ j⁸ |c_j| r⁸ / 8!` (below `1e-5` of `Σ |c_j|` at the grid's half-width
+/// `π / 32`).
+pub const TAYLOR: usize = 8;
+
+/// `D(θ) = Re Σ_j c_j e^{ijθ}` and its derivatives to the seventh: `D⁽ᵏ⁾ = Re Σ_j (i j)ᵏ c_j
+/// e^{ijθ}`.
+pub(crate) fn trig_eval(c: &[(f64, f64); DET_DEGREE + 1], th: f64) -> [f64; TAYLOR] {
+    let (s, co) = th.sin_cos();
+    let (mut zr, mut zi) = (1.0, 0.0);
+    let mut out = [0.0; TAYLOR];
+    for (j, cj) in c.iter().enumerate() {
+        let re = cj.0 * zr - cj.1 * zi;
+        let im = cj.0 * zi + cj.1 * zr;
+        // The powers of j times the real part of iᵏ (re + i im): re, −im, −re, im, …
+        let j1 = j as f64;
+        let j2 = j1 * j1;
+        let j3 = j2 * j1;
+        let j4 = j2 * j2;
+        out[0] += re;
+        out[1] -= j1 * im;
+        out[2] -= j2 * re;
+        out[3] += j3 * im;
+        out[4] += j4 * re;
+        out[5] -= j4 * j1 * im;
+        out[6] -= j4 * j2 * re;
+        out[7] += j4 * j3 * im;
+        (zr, zi) = (zr * co - zi * s, zr * s + zi * co);
+    }
+    out
+}
+
+/// Grid of the real-root search of `det S(θ)`: intervals of `2π / ROOT_GRID`.
+pub const ROOT_GRID: usize = 32;
+
+/// The rounding of `D(θ)` relative to `Σ |c_j|` (see [`DET_CHECK`]: the samples' error is
+/// about `1e-15` of the largest, measured; a margin of four orders): an interval is free of
+/// roots only when `|D|` stays above it.
+pub const ROOT_MARGIN: f64 = 1e-11;
+
+/// The smallest half-width of an interval the search splits further (an interval where neither
+/// `D′` nor `D″` is certified nonzero at this width is a triple root to rounding: the search
+/// gives up).
+pub const ROOT_LEAF: f64 = 1e-9;
+
+/// Evaluations of `D` at most before the search gives way to the eigenvalue route (60 to 120
+/// at the bench's poses).
+pub const ROOT_EVALS: usize = 600;
+
+/// The step of Newton's method (an angle) at which [`bracketed`] stops: the step after it
+/// would be of the order of its square, beyond rounding.
+pub const BRACKET_TOL: f64 = 1e-10;
+
+/// The zero of `f(x)[k]` in `[a, b]` (`fa = f(a)[k]`, `fb = f(b)[k]` of opposite signs, with
+/// 0 counted as positive), `f[k]` monotone there: Newton's method kept inside the bracket
+/// (bisection when a step leaves it), to rounding.
+fn bracketed(c: &[(f64, f64); DET_DEGREE + 1], k: usize, mut a: f64, mut b: f64, fa: f64) -> f64 {
+    let neg_a = fa < 0.0;
+    let mut x = 0.5 * (a + b);
+    for _ in 0..60 {
+        let v = trig_eval(c, x);
+        if v[k] == 0.0 {
+            return x;
+        }
+        if (v[k] < 0.0) == neg_a {
+            a = x;
+        } else {
+            b = x;
+        }
+        let mut next = x - v[k] / v[k + 1];
+        if !(next > a && next < b) {
+            next = 0.5 * (a + b);
+        }
+        // Newton's step is the error of x: below BRACKET_TOL the root is as exact as the
+        // refinement needs (it starts from the back-substituted joints anyway).
+        if (next - x).abs() <= BRACKET_TOL || b - a <= BRACKET_TOL {
+            return next;
+        }
+        x = next;
+    }
+    x
+}
+
+/// The real roots in `θ ∈ [0, 2π)` of `D(θ) = Re Σ_j c_j e^{ijθ}` into `out` (a near-double
+/// root twice), by interval search from [`ROOT_GRID`] intervals. On `[m − r, m + r]`, Taylor's
+/// formula at `m` to the seventh derivative, with the rest bounded by `B₈ r⁸ / 8!` (`B₈ = Σ j⁸
+/// |c_j|` bounds `|D⁽⁸⁾|`), bounds how far `D`, `D′`, `D″` move: `|D(m)|` above it (and the
+/// rounding margin) excludes a root; `|D′(m)|` above it makes `D` monotone (a root where its
+/// ends differ in sign, by Newton in the bracket); `|D″(m)|` above it makes `D` convex or
+/// concave: the extremum (the zero of `D′`) splits it into two monotone parts, and an extremum
+/// that does not reach zero but comes within [`NEAR_REAL`] of it (the imaginary part of the
+/// complex pair, `√(2 |D| / |D″|)`) is a near-double root, taken twice as the eigenvalue route
+/// takes a complex pair with a small imaginary part (so that `gen_solve` sees an incomplete
+/// set and reads the next arrangement when both are one solution). Otherwise the interval is
+/// halved. No real root is lost: every interval that can hold one is resolved or split, and
+/// the search gives up (`None`: the eigenvalue route decides) where `D` and `D′` are both zero
+/// to rounding (a root of multiplicity three or more, as the special arms forced through the
+/// general method have), where an interval reaches [`ROOT_LEAF`] undecided, after
+/// [`ROOT_EVALS`] evaluations, or with more roots than fit.
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) -> Option<usize> {
+    // B0 (the scale of D) and B8 (a bound of |D⁽⁸⁾|).
+    let (mut b0, mut b8) = (0.0, 0.0);
+    for (j, cj) in c.iter().enumerate() {
+        let a = cj.0.hypot(cj.1);
+        b0 += a;
+        let j2 = (j * j) as f64;
+        b8 += j2 * j2 * j2 * j2 * a;
+    }
+    let margin = ROOT_MARGIN * b0;
+    let nd = DET_DEGREE as f64;
+    let h = std::f64::consts::TAU / ROOT_GRID as f64;
+    // The end 2π is the start 0, so that a root there is seen the same from both sides.
+    let top = ROOT_GRID as f64 * h;
+    let at = |x: f64| trig_eval(c, if x >= top { 0.0 } else { x });
+    let mut stack = [(0.0, 0.0); 96];
+    let mut depth = 0;
+    for k in (0..ROOT_GRID).rev() {
+        stack[depth] = (k as f64 * h, (k + 1) as f64 * h);
+        depth += 1;
+    }
+    let mut n = 0;
+    let mut evals = 0;
+    // A root of the monotone part `[a, b]` of `D` (`k = 0`) or `D′` (`k = 1`), if its ends
+    // differ in sign (0 counted as positive, so a root at a shared end is seen once).
+    let mono = |a: f64, b: f64, k: usize, evals: &mut usize| -> Option<f64> {
+        let (fa, fb) = (at(a)[k], at(b)[k]);
+        *evals += 2;
+        if (fa < 0.0) == (fb < 0.0) {
+            None
+        } else {
+            Some(bracketed(c, k, a, b, fa))
+        }
+    };
+    while depth > 0 {
+        depth -= 1;
+        let (a, b) = stack[depth];
+        let (m, r) = (0.5 * (a + b), 0.5 * (b - a));
+        let v = at(m);
+        evals += 1;
+        if evals > ROOT_EVALS || n + 2 > out.len() {
+            return None;
+        }
+        // How far D, D′, D″ can move on the interval: Taylor's formula at m, the rest
+        // bounded by B8.
+        let mut moves = [0.0; 3];
+        for (l, mv) in moves.iter_mut().enumerate() {
+            let mut term = 1.0;
+            for k in l + 1..TAYLOR {
+                term *= r / (k - l) as f64;
+                *mv += v[k].abs() * term;
+            }
+            *mv += b8 * term * r / (TAYLOR - l) as f64;
+        }
+        if v[0].abs() > moves[0] + margin {
+            continue;
+        }
+        if v[1].abs() > moves[1] + nd * margin {
+            if let Some(x) = mono(a, b, 0, &mut evals) {
+                out[n] = x;
+                n += 1;
+            }
+            continue;
+        }
+        if v[2].abs() > moves[2] + nd * nd * margin {
+            let Some(e) = mono(a, b, 1, &mut evals) else {
+                // D′ keeps its sign: D is monotone after all.
+                if let Some(x) = mono(a, b, 0, &mut evals) {
+                    out[n] = x;
+                    n += 1;
+                }
+                continue;
+            };
+            let left = mono(a, e, 0, &mut evals);
+            let right = mono(e, b, 0, &mut evals);
+            for x in [left, right].iter().flatten() {
+                out[n] = *x;
+                n += 1;
+            }
+            if left.is_none() && right.is_none() {
+                let w = at(e);
+                if 2.0 * w[0].abs() <= NEAR_REAL * NEAR_REAL * w[2].abs() {
+                    out[n] = e;
+                    out[n + 1] = e;
+                    n += 2;
+                }
+            }
+            continue;
+        }
+        // D and D′ both zero to rounding (a root of multiplicity three or more: the special
+        // arms forced general), or nothing certified at the finest width: the eigenvalue route
+        // decides.
+        let flat = v[0].abs() <= margin && v[1].abs() <= nd * margin;
+        if flat || r <= ROOT_LEAF || depth + 2 > stack.len() {
+            return None;
+        }
+        stack[depth] = (m, b);
+        stack[depth + 1] = (a, m);
+        depth += 2;
+    }
+    Some(n)
+}
+
+/// The trigonometric polynomial `det S(θ) = Re Σ_j c_j e^{ijθ}` of `S` as [`matrix_trig`]
+/// gives it: `(c, scale, degree)` with `scale` the largest of the samples and `degree` its
+/// degree less the top coefficients that are rounding ([`DET_TRIM`]). `det S` at
+/// [`DET_SAMPLES`] angles (an LU each), the `c_j` by the discrete Fourier transform (exact for
+/// the degree [`DET_DEGREE`]), checked at one more angle. `None` when no sample is
+/// conditioned or the check angle disagrees with the interpolant.
+#[allow(clippy::needless_range_loop, clippy::type_complexity)]
+pub(crate) fn det_coefficients(
+    tm: &[[[f64; 12]; 12]; 3],
+) -> Option<([(f64, f64); DET_DEGREE + 1], f64, usize)> {
+    let step = std::f64::consts::TAU / DET_SAMPLES as f64;
+    let mut tab = [(0.0, 0.0); DET_SAMPLES];
+    let mut d = [0.0; DET_SAMPLES];
+    let (mut scale, mut good) = (0.0, 0.0);
+    for k in 0..DET_SAMPLES {
+        tab[k] = (k as f64 * step).sin_cos();
+        let (det, ratio) = det_trig(tm, tab[k].0, tab[k].1);
+        d[k] = det;
+        if det.abs() > scale {
+            scale = det.abs();
+        }
+        if ratio > good {
+            good = ratio;
+        }
+    }
+    if !(good > SHIFT_GOOD && scale.is_finite()) {
+        return None;
+    }
+    // c_j = a_j − i b_j of D(θ) = a_0 + Σ a_j cos jθ + b_j sin jθ = Re Σ c_j e^{ijθ}.
+    let mut c = [(0.0, 0.0); DET_DEGREE + 1];
+    for j in 0..=DET_DEGREE {
+        let (mut a, mut b) = (0.0, 0.0);
+        for k in 0..DET_SAMPLES {
+            let (s, co) = tab[(j * k) % DET_SAMPLES];
+            a += d[k] * co;
+            b += d[k] * s;
+        }
+        let w = if j == 0 { 1.0 } else { 2.0 } / DET_SAMPLES as f64;
+        c[j] = (w * a, -(w * b));
+    }
+    let half = 0.5 * step;
+    let mut interp = 0.0;
+    for j in 0..=DET_DEGREE {
+        let (s, co) = (j as f64 * half).sin_cos();
+        interp += c[j].0 * co - c[j].1 * s;
+    }
+    let (s, co) = half.sin_cos();
+    let check = det_trig(tm, s, co).0;
+    // A NaN mismatch fails too.
+    let agrees = (check - interp).abs() <= DET_CHECK * scale;
+    if !agrees {
+        return None;
+    }
+    let mut n = DET_DEGREE;
+    while n > 0 && c[n].0.hypot(c[n].1) <= DET_TRIM * scale {
+        n -= 1;
+    }
+    Some((c, scale, n))
+}
+
+/// The candidates of one arrangement by the determinant route (the hidden joint turns): `det
+/// S(θ)` by [`det_coefficients`], its real roots by [`trig_roots`], then one null vector of
+/// `S(θ)` per root ([`null_vector_lu`]). `None` (the eigenvalue route decides) when either
+/// gives up.
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn det_candidates(
+    ar: &Arranged,
+    el: &Elim,
+    roots: &mut [[f64; 6]; 24],
+) -> Option<(usize, usize)> {
+    let tm = matrix_trig(&el.sig);
+    let (c, _, n) = det_coefficients(&tm)?;
+    let mut th = [0.0; 24];
+    let count = trig_roots(&c, &mut th)?;
+    for (k, &t3) in th[..count].iter().enumerate() {
+        let (s, co) = t3.sin_cos();
+        let t = back_substitute(ar, el, &null_vector_lu(&trig_at(&tm, s, co)), wrap(t3));
+        for i in 0..6 {
+            roots[k][ar.perm[i]] = t[i];
+        }
+    }
+    // A trigonometric polynomial of degree n has 2n complex roots, none at infinity.
+    Some((count, 2 * n))
 }
 
 /// The pose `E1(q1) ⋯ E6(q6) M` and each joint's current axis `(w, p)` (scaled lengths).

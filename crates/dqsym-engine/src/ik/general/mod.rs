@@ -23,14 +23,16 @@
 //!    in the nine monomials `x4^a x5^b` (`a, b ≤ 2`); with the same six times `x4`: twelve in
 //!    twelve, `M(x3) X = 0`, `M(x3) = A x3² + B x3 + C`, `x3 = tan((θ3 − φ)/2)`.
 //! 5. `det M(x3) = 0` is the univariate polynomial, of degree 24 with the spurious factor
-//!    `(1 + x3²)⁴`: degree 16 for a general 6R. Its roots are the eigenvalues of the 24 x 24
-//!    companion linearisation `[[0, I], [−A⁻¹C, −A⁻¹B]]` (the spurious `±i` deflated first
-//!    from the null vectors of `M(i)`, 24 → 16 rows; then balancing, Hessenberg reduction,
-//!    Francis double-shift QR; the shift `φ` keeps `A` invertible). The degree the solution
-//!    states ([`GeneralInfo::degree`]) is the number of roots of `det M` at a generic target
-//!    that move with the target (`degree.rs`: the spurious `±i`, roots at infinity and, for
-//!    special geometry, roots that stay, such as the wrist singular set `θ5 ∈ {0, π}` of a
-//!    spherical wrist, are not counted); special geometry lowers it.
+//!    `(1 + x3²)⁴`: degree 16 for a general 6R. For a turning hidden joint the core finds its
+//!    real roots by the determinant route (below); where that route gives up, and for a
+//!    sliding hidden joint, they are the eigenvalues of the 24 x 24 companion linearisation
+//!    `[[0, I], [−A⁻¹C, −A⁻¹B]]` (the spurious `±i` deflated first from the null vectors of
+//!    `M(i)`, 24 → 16 rows; then balancing, Hessenberg reduction, Francis double-shift QR; the
+//!    shift `φ` keeps `A` invertible). The degree the solution states
+//!    ([`GeneralInfo::degree`]) is the number of roots of `det M` at a generic target that
+//!    move with the target (`degree.rs`: the spurious `±i`, roots at infinity and, for special
+//!    geometry, roots that stay, such as the wrist singular set `θ5 ∈ {0, π}` of a spherical
+//!    wrist, are not counted); special geometry lowers it.
 //! 6. Back-substitution: `x4`, `x5` from the null vector of `M(x3)`; `θ1`, `θ2` from `Bm X12 =
 //!    Am(θ3) X45` (least squares by the same QR); `θ6` from `E6 = (E1 ⋯ E5)⁻¹ H` about axis 6.
 //!    Every candidate is polished by damped Gauss–Newton on the forward kinematics and checked
@@ -110,12 +112,50 @@
 //! transform, exact for degree one ([`sampled_equations`] returns them; a test checks them
 //! against [`exact`] at random parameters and targets).
 //! The numeric core (`core.rs`) is plain Rust that the generated solver contains verbatim.
+//!
+//! # The determinant route
+//!
+//! `M(x) = (1 + x²) S(θ)` row by row, with `S(θ) = T0 + T1 cos θ + T2 sin θ` (12 x 12, `x =
+//! tan(θ/2)`), so `det S = det M / (1 + x²)¹²` is a trigonometric polynomial in `θ`, of degree
+//! 8 for the spurious factor `(1 + x²)⁴` (lower for arms with more): no division by a factor
+//! that vanishes at `±i`, no shift, no root at infinity. The core (`core::det_candidates`)
+//! evaluates it at 17 equally spaced real angles (an LU each), reads its coefficients by the
+//! discrete Fourier transform (exact for degree 8, perfectly conditioned on the circle), and
+//! checks the interpolant at an 18th angle (content of a higher degree would show there). Its
+//! real roots come from a certified interval search (`core::trig_roots`): Taylor's formula to
+//! the seventh derivative with the rest bounded by `Σ j⁸ |c_j|` excludes intervals free of
+//! roots and proves the others monotone (one root, Newton in the bracket) or convex (two
+//! roots or a near-double one, taken twice as a near-real complex pair is) — no real root can
+//! fall between the cases. Each root's null vector is one LU with partial pivoting, checked
+//! by its residual (complete pivoting otherwise). Where `det S` and its derivative vanish
+//! together to rounding (a cluster of roots: the multiple roots of special arms forced
+//! general, and a cluster of about six roots within 0.02 rad at one pose in ten of a general
+//! arm), the route gives up and the eigenvalue route decides, as it does when no sample is
+//! conditioned or the check angle disagrees.
+//!
+//! Why not the companion matrix of `p(x) = (1 + x²)⁸ det S` in monomials (tried): its QR
+//! took 207k instructions (more than the linearisation's) and its roots came out to `1e-6`
+//! only (monomials are ill-conditioned for sixteen roots spread on the real line), losing two
+//! solutions of the 64 bench poses to near-double roots turned complex.
+//!
+//! Measured (callgrind, the generated solver of `benches/support/skew6r.toml` at the 64 poses
+//! of `benches/ik_general.rs`, 362 solutions before and after): 513k instructions per pose
+//! with the eigenvalue route (QR iteration 133k, null vectors 68k, `±i` deflation 66k, the
+//! elimination 66k, refinement 60k), 402k with the determinant route (the 18 sampled LUs
+//! 86k, the root search 75k, null vectors and back-substitution 26k, the eigenvalue route at
+//! the 5 poses of 64 where the search gives up 20k, the elimination and the refinement as
+//! before). The C port gains less (645k to 614k: C99 has no `sincos`, and the search
+//! evaluates `det S` about 130 times per pose). The 20 µs target of issue #29 is not reached:
+//! what is left is the elimination, the samples' LUs, the search and the refinement, in about
+//! equal parts.
 
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod core;
 #[cfg(test)]
 mod deflate_tests;
 mod degree;
+#[cfg(test)]
+mod det_tests;
 pub(crate) mod emit;
 pub mod exact;
 
@@ -450,7 +490,7 @@ pub fn elimination_lines(sol: &IkSolution, info: &GeneralInfo) -> Vec<String> {
             order[3], order[4], order[3], order[2]
         ),
         format!(
-            "5. det M(x) = 0: degree 24 with the spurious factor (1 + x^2)^4; degree reached at a generic target: {} (roots: eigenvalues of the 24 x 24 companion matrix, Hessenberg + shifted QR)",
+            "5. det M(x) = 0: degree 24 with the spurious factor (1 + x^2)^4; degree reached at a generic target: {} (det M / (1 + x^2)^12 is a trigonometric polynomial of degree 8 in the angle: 17 samples, its real roots by a certified interval search; the eigenvalues of the 24 x 24 companion matrix where that search gives up)",
             info.degree
         ),
         format!(
