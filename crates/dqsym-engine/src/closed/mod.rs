@@ -120,6 +120,7 @@ mod factor;
 mod mon;
 mod notation;
 mod offsets;
+mod peel;
 mod recombine;
 mod roots;
 mod trace;
