@@ -12,6 +12,8 @@ use num_traits::One;
 use std::hash::{Hash, Hasher};
 use std::rc::Rc;
 
+mod run;
+
 /// A factor that can be pulled out of several monomials.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug)]
 enum Factor {
@@ -342,6 +344,12 @@ impl Search<'_> {
             self.rad_off = false;
             return mul(vec![E::Sqrt(r), e]);
         }
+        self.searched(group, depth)
+    }
+
+    /// [`Search::build_at`] past its first steps (sign, content, radical): the memo, the
+    /// candidates, the splits.
+    fn searched(&mut self, group: &[(u32, Q)], depth: usize) -> E {
         // The result depends on the depth only through the branching, so below the branching
         // levels all depths share one entry. Looked up before the candidates are counted: a
         // group found before needs no count (a group without candidates is never stored).
@@ -355,15 +363,20 @@ impl Search<'_> {
         if candidates.is_empty() {
             return self.plain_sum(group);
         }
-        let mut best: Option<(Cost, E)> = None;
-        for f in candidates {
-            let e = self.split_on(group, f, depth);
-            let c = e.cost();
-            if best.as_ref().is_none_or(|(bc, _)| c < *bc) {
-                best = Some((c, e));
+        let e = if tries == 1 {
+            // Below the branching levels: the run of splits on the most frequent factor.
+            self.run(group, candidates[0], depth)
+        } else {
+            let mut best: Option<(Cost, E)> = None;
+            for f in candidates {
+                let e = self.split_on(group, f, depth);
+                let c = e.cost();
+                if best.as_ref().is_none_or(|(bc, _)| c < *bc) {
+                    best = Some((c, e));
+                }
             }
-        }
-        let e = best.map(|(_, e)| e).unwrap_or_else(E::zero);
+            best.map(|(_, e)| e).unwrap_or_else(E::zero)
+        };
         let found = Found {
             level,
             group: group.to_vec(),

@@ -20,14 +20,17 @@
 //! or split per symbol; for the whole-modes shape each group of one monomial and one angle at
 //! offsets outside pi/12 joined into `R cos(F + phi)` when it is one angle, checked exactly:
 //! `l1 cos(t + 5*pi/9) + l2 cos(2*t + 5*pi/9)`); `recombine.rs` applies the four angle-sum
-//! identities to any depth; `factor.rs` nests common factors, choosing by `Cost`; `expr.rs` is the
+//! identities to any depth; `factor.rs` nests common factors, choosing by `Cost` (below its
+//! branching levels a run of splits on one factor from one sort of the terms by its power,
+//! `factor/run.rs`); `expr.rs` is the
 //! display expression `Expr` with its cost and exact value (and f64 value); `decimals.rs`
 //! `decimal_form`, a robot's decimal denominators put back into their sums (`0.425 c2`, the
 //! printers' `decimals` option prints the decimal fractions); `alt.rs` the further candidates taken
 //! when strictly shorter counting the arithmetic inside angles (harmonic form `R cos(x + phi)`, sum
 //! to product, a polynomial in one cosine or sine factored by its rational roots (the roots 1
 //! and -1 paired as `-sin^2`), a sum of such polynomials in distinct angles with the constants
-//! merged, products of cosines peeled off by exact division, a single `cos(k pi/n)`; `cprod.rs`:
+//! merged, products of cosines peeled off by exact division (`peel.rs`, Gaussian integer
+//! coefficients over one denominator), a single `cos(k pi/n)`; `cprod.rs`:
 //! products of one to three constant cosines and sines at the field's angles times a rational
 //! polynomial, `cos(pi/7) cos(pi/9)`, found numerically, with a radical cofactor (each radicand's
 //! terms apart, `1/4 (1 + sqrt(5)) sin(pi/11)^2`, or the square root of a radicand of the terms
@@ -120,6 +123,7 @@ mod factor;
 mod mon;
 mod notation;
 mod offsets;
+mod peel;
 mod recombine;
 mod roots;
 mod trace;
