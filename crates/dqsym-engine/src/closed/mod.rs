@@ -123,6 +123,7 @@ mod offsets;
 mod recombine;
 mod roots;
 mod trace;
+mod trigfac;
 mod zfactor;
 
 pub use crate::scalar::Trig;
