@@ -43,7 +43,12 @@ const MAX_PRODUCT_TERMS: usize = 4096;
 /// candidate equal to `x` is not shorter than `than`, no candidate shorter than `than` equals
 /// `x`, and both ways give `than`.
 pub(super) fn best_alternative(x: &Scalar, than: &Expr) -> Option<Expr> {
-    let cands = unsorted_candidates(x);
+    let mut cands = unsorted_candidates(x);
+    // Products of sinusoids of mixed angles, sums split into parts (`trigfac.rs`): made only
+    // when a lower bound of their cost is below the form found before.
+    if let Ok(t) = x.terms() {
+        cands.extend(super::trigfac::candidates(t, full_cost(than).0));
+    }
     if cands.is_empty() {
         return None;
     }
@@ -92,8 +97,6 @@ fn unsorted_candidates(x: &Scalar) -> Vec<Expr> {
     if t.len() <= MAX_TERMS {
         cands.extend(super::cspoly::factored_forms(t));
     }
-    // Products of sinusoids of mixed angles, sums split into parts (`trigfac.rs`).
-    cands.extend(super::trigfac::candidates(t));
     cands
 }
 

@@ -36,19 +36,38 @@ const PHASES: i64 = 24;
 /// The most parts a sum is split into.
 const MAX_PARTS: usize = 6;
 
-/// The candidates of this file for the canonical terms `t`, not yet checked against them.
-pub(super) fn candidates(t: &[Term]) -> Vec<Expr> {
+/// The candidates of this file for the canonical terms `t`, not yet checked against them;
+/// only those whose cost (as [`full_cost`] counts it) may be below `bound`: each is made only
+/// when a lower bound of its cost ([`least_cost`]) is.
+pub(super) fn candidates(t: &[Term], bound: usize) -> Vec<Expr> {
     let mut out = Vec::new();
     if t.len() < 2
         || t.len() > MAX_TERMS
-        || t.iter()
+        || t.iter().all(|u| u.mode.freq.is_empty())
+        || t
+            .iter()
             .any(|u| u.mode.freq.iter().any(|(s, _)| s.is_one()))
     {
         return out;
     }
-    out.extend(split_sum(t));
-    out.extend(sinusoid_factors(t));
+    out.extend(split_sum(t, bound));
+    out.extend(sinusoid_factors(t, bound));
     out
+}
+
+/// A lower bound of the operations of any closed form of the terms `t`: the multiplications
+/// by the symbols of the shortest monomial, and one call when some term has a mode, or two
+/// calls and an operation when the modes have two or more frequencies (a single sinusoid
+/// `R cos(F + phi)`, `cos(F)^2 = (1 + cos 2F)/2`, has one).
+fn least_cost(t: &[Term]) -> usize {
+    let mono = t.iter().map(|u| u.mono.len()).min().unwrap_or(0);
+    let mut freqs = t.iter().filter(|u| !u.mode.freq.is_empty()).map(|u| &u.mode.freq);
+    let calls = match freqs.next() {
+        None => 0,
+        Some(f) if freqs.all(|g| g == f) => 1,
+        Some(_) => 3,
+    };
+    mono + calls
 }
 
 /// A term's coefficient, radical and monomial as a scalar (its mode dropped).
@@ -73,10 +92,24 @@ fn scalar_of(t: &[Term], pick: impl Fn(usize) -> bool) -> Scalar {
 /// The sum split into parts with distinct monomials, and within one monomial into parts whose
 /// angles share no symbol (the constant terms of a monomial kept with its first part), each
 /// part's closed form found on its own.
-fn split_sum(t: &[Term]) -> Option<Expr> {
+fn split_sum(t: &[Term], bound: usize) -> Option<Expr> {
     let part = parts(t);
     let n = part.iter().copied().max()? + 1;
     if !(2..=MAX_PARTS).contains(&n) {
+        return None;
+    }
+    // The additions between the parts and each part's least cost.
+    let least: usize = (n - 1)
+        + (0..n)
+            .map(|p| {
+                let terms: Vec<Term> = (0..t.len())
+                    .filter(|&i| part[i] == p)
+                    .map(|i| t[i].clone())
+                    .collect();
+                least_cost(&terms)
+            })
+            .sum::<usize>();
+    if least >= bound {
         return None;
     }
     charge(t.len() as u64).ok()?;
@@ -181,7 +214,12 @@ impl Points {
 
 /// The sinusoid factors `cos(d.x + phi)` of the sum (see the module doc), each divided out and
 /// its cofactor given its closed form.
-fn sinusoid_factors(t: &[Term]) -> Vec<Expr> {
+fn sinusoid_factors(t: &[Term], bound: usize) -> Vec<Expr> {
+    // A factor of mixed angle costs a call and an operation in its angle, one multiplication
+    // joins it to its cofactor, which has a call at least.
+    if 4 + t.iter().map(|u| u.mono.len()).min().unwrap_or(0) >= bound {
+        return Vec::new();
+    }
     let mut syms: Vec<Sym> = Vec::new();
     for u in t {
         for (s, _) in u.mode.freq.iter() {
@@ -223,13 +261,20 @@ fn sinusoid_factors(t: &[Term]) -> Vec<Expr> {
             .filter(|(_, k)| !k.is_zero())
             .collect();
         let phi = Small::new(k, PHASES);
+        let shown = shown_factor(&freq, phi);
         let Some(q) = divide(&x, &freq, phi) else {
             continue;
         };
+        let Ok(qt) = q.terms() else {
+            continue;
+        };
+        if full_cost(&shown).0 + 1 + least_cost(qt) >= bound {
+            continue;
+        }
         let Ok(qe) = super::closed_form(&q) else {
             continue;
         };
-        out.push(mul(shown_factor(&freq, phi), qe));
+        out.push(mul(shown, qe));
     }
     out
 }
@@ -254,13 +299,12 @@ fn waves(t: &[Term], exps: &[Vec<Small>]) -> Option<Vec<Wave>> {
         .collect()
 }
 
-/// The directions `d` (first nonzero entry positive) and phases `k` (`phi = k pi/PHASES`) at
-/// which the sum vanishes on the hyperplane `d.x + phi = pi/2` at three points.
-fn find_factors(exps: &[Vec<Small>], ws: &[Wave], n: usize) -> Vec<(Vec<Small>, i64)> {
-    // The exponents are +-m for each mode m; the top one along a generic direction is a vertex
-    // of the Newton polytope, `d` half its difference with another exponent.
+/// The halves of the differences between the top exponent along a generic direction (a vertex
+/// of the Newton polytope of the exponents `+-m`) and every other exponent, first nonzero entry
+/// positive.
+fn directions(signed: &[Vec<Small>], n: usize, tilt: f64) -> Vec<Vec<Small>> {
     let generic: Vec<f64> = (0..n)
-        .map(|i| 1.0 + 0.318_309_886 * (i as f64 + 1.0).sqrt())
+        .map(|i| 1.0 + tilt * (i as f64 + 1.0).sqrt())
         .collect();
     let along = |e: &[Small]| -> f64 {
         e.iter()
@@ -268,20 +312,15 @@ fn find_factors(exps: &[Vec<Small>], ws: &[Wave], n: usize) -> Vec<(Vec<Small>, 
             .map(|(k, g)| k.to_f64().unwrap_or(0.0) * g)
             .sum()
     };
-    let signed: Vec<Vec<Small>> = exps
-        .iter()
-        .flat_map(|e| [e.clone(), e.iter().map(|k| -*k).collect()])
-        .collect();
     let Some(top) = signed
         .iter()
         .max_by(|a, b| along(a).total_cmp(&along(b)))
-        .cloned()
     else {
         return Vec::new();
     };
     let two = Small::from_integer(2);
     let mut dirs: Vec<Vec<Small>> = Vec::new();
-    for e in &signed {
+    for e in signed {
         let mut d: Vec<Small> = top.iter().zip(e).map(|(a, b)| (*a - *b) / two).collect();
         let Some(first) = d.iter().find(|k| !k.is_zero()) else {
             continue;
@@ -293,6 +332,24 @@ fn find_factors(exps: &[Vec<Small>], ws: &[Wave], n: usize) -> Vec<(Vec<Small>, 
             dirs.push(d);
         }
     }
+    dirs
+}
+
+/// The directions `d` (first nonzero entry positive) and phases `k` (`phi = k pi/PHASES`) at
+/// which the sum vanishes on the hyperplane `d.x + phi = pi/2` at three points.
+fn find_factors(exps: &[Vec<Small>], ws: &[Wave], n: usize) -> Vec<(Vec<Small>, i64)> {
+    let signed: Vec<Vec<Small>> = exps
+        .iter()
+        .flat_map(|e| [e.clone(), e.iter().map(|k| -*k).collect()])
+        .collect();
+    // A factor's direction shows from every vertex of the Newton polytope (unless terms
+    // cancel there): only directions seen from two vertices are tried, and only those mixing
+    // two or more symbols (one symbol's factors are `roots.rs`'s).
+    let first = directions(&signed, n, 0.318_309_886);
+    let dirs: Vec<Vec<Small>> = directions(&signed, n, -0.577_215_665)
+        .into_iter()
+        .filter(|d| first.contains(d) && d.iter().filter(|k| !k.is_zero()).count() >= 2)
+        .collect();
     // The sum is evaluated to a relative error of about (terms) * 1e-16 times the largest
     // angle (below 100 here: coefficients of a few units at points below 2); a factor's zero
     // shows as well below 1e-9 of the sum of the magnitudes, a nonzero value at a generic point
