@@ -44,9 +44,9 @@ pub(super) fn candidates(t: &[Term], bound: usize) -> Vec<Expr> {
     if t.len() < 2
         || t.len() > MAX_TERMS
         || t.iter().all(|u| u.mode.freq.is_empty())
-        || t
-            .iter()
+        || t.iter()
             .any(|u| u.mode.freq.iter().any(|(s, _)| s.is_one()))
+        || unit_modes(t)
     {
         return out;
     }
@@ -55,13 +55,30 @@ pub(super) fn candidates(t: &[Term], bound: usize) -> Vec<Expr> {
     out
 }
 
+/// Whether every mode is a sum or difference of symbols without a pi offset (`q1 + q2 - q3`):
+/// then the split shape's single-angle atoms, regrouped by the angle-sum identities and
+/// factored, already find the products of sinusoids (`c1 c23`, a robot chain's scalars, the
+/// PUMA's all of them), and these candidates are not made.
+fn unit_modes(t: &[Term]) -> bool {
+    t.iter().all(|u| {
+        u.mode.pi.is_zero()
+            && u.mode
+                .freq
+                .iter()
+                .all(|(_, k)| k.is_integer() && k.abs() <= Small::one())
+    })
+}
+
 /// A lower bound of the operations of any closed form of the terms `t`: the multiplications
 /// by the symbols of the shortest monomial, and one call when some term has a mode, or two
 /// calls and an operation when the modes have two or more frequencies (a single sinusoid
 /// `R cos(F + phi)`, `cos(F)^2 = (1 + cos 2F)/2`, has one).
 fn least_cost(t: &[Term]) -> usize {
     let mono = t.iter().map(|u| u.mono.len()).min().unwrap_or(0);
-    let mut freqs = t.iter().filter(|u| !u.mode.freq.is_empty()).map(|u| &u.mode.freq);
+    let mut freqs = t
+        .iter()
+        .filter(|u| !u.mode.freq.is_empty())
+        .map(|u| &u.mode.freq);
     let calls = match freqs.next() {
         None => 0,
         Some(f) if freqs.all(|g| g == f) => 1,
@@ -312,10 +329,7 @@ fn directions(signed: &[Vec<Small>], n: usize, tilt: f64) -> Vec<Vec<Small>> {
             .map(|(k, g)| k.to_f64().unwrap_or(0.0) * g)
             .sum()
     };
-    let Some(top) = signed
-        .iter()
-        .max_by(|a, b| along(a).total_cmp(&along(b)))
-    else {
+    let Some(top) = signed.iter().max_by(|a, b| along(a).total_cmp(&along(b))) else {
         return Vec::new();
     };
     let two = Small::from_integer(2);
@@ -328,10 +342,10 @@ fn directions(signed: &[Vec<Small>], n: usize, tilt: f64) -> Vec<Vec<Small>> {
         if first.is_negative() {
             d.iter_mut().for_each(|k| *k = -*k);
         }
-        if !dirs.contains(&d) {
-            dirs.push(d);
-        }
+        dirs.push(d);
     }
+    dirs.sort_unstable();
+    dirs.dedup();
     dirs
 }
 
@@ -348,7 +362,9 @@ fn find_factors(exps: &[Vec<Small>], ws: &[Wave], n: usize) -> Vec<(Vec<Small>, 
     let first = directions(&signed, n, 0.318_309_886);
     let dirs: Vec<Vec<Small>> = directions(&signed, n, -0.577_215_665)
         .into_iter()
-        .filter(|d| first.contains(d) && d.iter().filter(|k| !k.is_zero()).count() >= 2)
+        .filter(|d| {
+            d.iter().filter(|k| !k.is_zero()).count() >= 2 && first.binary_search(d).is_ok()
+        })
         .collect();
     // The sum is evaluated to a relative error of about (terms) * 1e-16 times the largest
     // angle (below 100 here: coefficients of a few units at points below 2); a factor's zero
