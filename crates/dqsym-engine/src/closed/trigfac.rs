@@ -55,17 +55,20 @@ pub(super) fn candidates(t: &[Term], bound: usize) -> Vec<Expr> {
     out
 }
 
-/// Whether every mode is a sum or difference of symbols without a pi offset (`q1 + q2 - q3`):
-/// then the split shape's single-angle atoms, regrouped by the angle-sum identities and
-/// factored, already find the products of sinusoids (`c1 c23`, a robot chain's scalars, the
-/// PUMA's all of them), and these candidates are not made.
+/// Whether every mode is a sum or difference of symbols at one common multiple `c` without a pi
+/// offset, and no term has a radical (`q1/2 + q2/2 - q3/2`, the half-angle series of a chain
+/// whose twists are multiples of pi/2: the PUMA's scalars): in `y = c x` the split shape's
+/// single-angle atoms, regrouped by the angle-sum identities and factored, already find the
+/// products of sinusoids (`c1 c23`), and these candidates are not made.
 fn unit_modes(t: &[Term]) -> bool {
+    let mut step: Option<Small> = None;
     t.iter().all(|u| {
         u.mode.pi.is_zero()
-            && u.mode
-                .freq
-                .iter()
-                .all(|(_, k)| k.is_integer() && k.abs() <= Small::one())
+            && u.rad == 1
+            && u.mode.freq.iter().all(|(_, k)| {
+                let k = k.abs();
+                *step.get_or_insert(k) == k
+            })
     })
 }
 
