@@ -142,3 +142,14 @@ fn constant_sine_product_closed_form_reuses_its_pieces() {
     // it, 131 M with it, in the release binary).
     assert!(work <= 170_000, "work {work}");
 }
+
+#[test]
+fn puma_fk_jacobian_work_stays_bounded_with_the_mixed_angle_factors() {
+    // The candidates of `closed/trigfac.rs` (sinusoids of mixed angles, sums split into
+    // parts) are not made for the PUMA's scalars (half-angle series at one step, no offsets,
+    // no radicals): its work is the search's without them. Measured: PUMA_MEASURED units.
+    let r = robot("examples/robots/puma560.toml");
+    let (_, work) = fk_jacobian_work(&r);
+    eprintln!("puma work {work}");
+    assert!(work <= 70_000_000, "work {work}");
+}

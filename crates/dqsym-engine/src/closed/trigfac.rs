@@ -23,8 +23,10 @@ use crate::scalar::{charge, Small, Sym, Term};
 use crate::Scalar;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
-/// The most terms a scalar may have for these candidates.
-const MAX_TERMS: usize = 48;
+/// The most terms a scalar may have for these candidates: a product of four sinusoids at
+/// offsets has up to 16, a sum of two products of three 8 (with radicals twice as many); the
+/// long sums of a chain with 60-degree twists (the Jaco-style arm) are past it.
+const MAX_TERMS: usize = 24;
 
 /// The most sinusoid factors (directions and phases) divided out and recursed on per scalar.
 const MAX_FACTORS: usize = 3;
