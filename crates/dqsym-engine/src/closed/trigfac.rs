@@ -364,8 +364,8 @@ fn find_factors(exps: &[Vec<Small>], ws: &[Wave], n: usize) -> Vec<(Vec<Small>, 
     // A factor's direction shows from every vertex of the Newton polytope (unless terms
     // cancel there): only directions seen from two vertices are tried, and only those mixing
     // two or more symbols (one symbol's factors are `roots.rs`'s).
-    let first = directions(&signed, n, 0.318_309_886);
-    let dirs: Vec<Vec<Small>> = directions(&signed, n, -0.577_215_665)
+    let first = directions(&signed, n, 0.313_7);
+    let dirs: Vec<Vec<Small>> = directions(&signed, n, -0.561_3)
         .into_iter()
         .filter(|d| {
             d.iter().filter(|k| !k.is_zero()).count() >= 2 && first.binary_search(d).is_ok()
