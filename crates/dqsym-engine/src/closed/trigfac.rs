@@ -135,8 +135,18 @@ fn split_sum(t: &[Term], bound: usize) -> Option<Expr> {
         return None;
     }
     charge(t.len() as u64).ok()?;
+    // The parts in the order of their monomials (`l1 ... + l2 ... + l3 ...`), then of their terms.
+    let mut order: Vec<usize> = (0..n).collect();
+    let first = |p: usize| (0..t.len()).find(|&i| part[i] == p).unwrap_or(0);
+    order.sort_by(|&a, &b| {
+        t[first(a)]
+            .mono
+            .iter()
+            .cmp(t[first(b)].mono.iter())
+            .then(first(a).cmp(&first(b)))
+    });
     let mut sum = Vec::with_capacity(n);
-    for p in 0..n {
+    for p in order {
         let x = scalar_of(t, |i| part[i] == p);
         let e = super::closed_form(&x).ok()?;
         match e {
