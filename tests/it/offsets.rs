@@ -133,8 +133,9 @@ fn offsets_outside_twelfths_print_as_one_angle_or_a_product() {
         ),
         (
             "cos(x+2*pi/9)*cos(x-2*pi/9)",
-            // The product again (`roots.rs`), shorter than the sum.
-            "cos(x + 2*pi/9) cos(x - 2*pi/9)",
+            // The sum: with `2*pi/9` a multiplication and a division (as SymPy counts it),
+            // shorter than the product of `roots.rs`.
+            "1/2 (cos(2*x) + cos(4*pi/9))",
             Box::new(move |e| (e["x"] + a(2., 9.)).cos() * (e["x"] - a(2., 9.)).cos()),
         ),
     ];

@@ -43,7 +43,12 @@ const MAX_PRODUCT_TERMS: usize = 4096;
 /// candidate equal to `x` is not shorter than `than`, no candidate shorter than `than` equals
 /// `x`, and both ways give `than`.
 pub(super) fn best_alternative(x: &Scalar, than: &Expr) -> Option<Expr> {
-    let cands = unsorted_candidates(x);
+    let mut cands = unsorted_candidates(x);
+    // Products of sinusoids of mixed angles, sums split into parts (`trigfac.rs`): made only
+    // when a lower bound of their cost is below the form found before.
+    if let Ok(t) = x.terms() {
+        cands.extend(super::trigfac::candidates(t, full_cost(than).0));
+    }
     if cands.is_empty() {
         return None;
     }
@@ -116,7 +121,16 @@ pub(super) fn full_cost(e: &Expr) -> (usize, usize, usize) {
                     .count()
                     + usize::from(!(angle.pi * scale).abs().is_one() && !angle.pi.is_zero())
                     + usize::from(d > 1);
-                terms.saturating_sub(1) + coefs
+                // Without a common denominator a fraction other than `1/n` is a multiplication
+                // and a division (`3*u1/2`, `5*pi/12`), as SymPy counts it.
+                let fractions = if d > 1 {
+                    0
+                } else {
+                    let two_ops = |k: &Small| *k.denom() > 1 && k.numer().abs() > 1;
+                    angle.terms.iter().filter(|(_, k)| two_ops(k)).count()
+                        + usize::from(two_ops(&angle.pi))
+                };
+                terms.saturating_sub(1) + coefs + fractions
             }
             Expr::Add(v) | Expr::Mul(v) => v.iter().map(angle_ops).sum(),
             Expr::Neg(x) | Expr::Pow(x, _) => angle_ops(x),

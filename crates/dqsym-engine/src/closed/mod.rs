@@ -57,7 +57,14 @@
 //! Kronecker's substitution onto one variable, square-free part by a modular gcd, factors modulo a
 //! small prime (distinct-degree and Cantor-Zassenhaus), Hensel lifting past a Gelfond bound,
 //! subsets recombined by exact multivariate division; image degree <= 64, charged to the work
-//! budget)), each checked exactly; constant angles are shown with a positive sign; an angle's
+//! budget)); `trigfac.rs` (made in `best_alternative` only when a lower bound of their cost is
+//! below the form found, for at most 24 terms, not for modes at one step without offsets or
+//! radicals such as the PUMA's): sinusoids `cos(d.x + phi)` whose angle mixes symbols
+//! (`-sin(u1) cos(u1 + 2*u2 - pi/6)`), `d` from half-differences of the exponents seen from
+//! two vertices of the Newton polytope, `phi` a multiple of pi/24 found in floats on the
+//! factor's zero set, divided out exactly by a long division along `d`, the cofactor given its
+//! own closed form; and a sum split into parts of distinct monomials or disjoint symbols, each
+//! part's closed form found alone; each checked exactly; constant angles are shown with a positive sign; an angle's
 //! symbols print first, then its rational constant and its multiple of pi (`t/2 - 1/3`,
 //! `x - pi/7`), and an angle with a rational constant is shown with its first symbol's coefficient
 //! positive (`Expr::symbols_leading`: `sin(1/3 - t/2)` prints `-sin(t/2 - 1/3)`); equal symbols and
@@ -127,6 +134,7 @@ mod peel;
 mod recombine;
 mod roots;
 mod trace;
+mod trigfac;
 mod zfactor;
 
 pub use crate::scalar::Trig;

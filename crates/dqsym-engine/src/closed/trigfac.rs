@@ -1,0 +1,628 @@
+//! Two candidates for sums whose short form is a product of sinusoids of mixed angles, or a sum
+//! of a few such products (issue 33: what SymPy's `trigsimp` finds and the other candidates of
+//! `alt.rs` miss):
+//! - a sinusoid `cos(d.x + phi)` peeled off when its angle mixes symbols
+//!   (`-sin(u1) cos(u1 + 2*u2 - pi/6)`, whose expansion is `cos(2*u1 + 2*u2 + pi/3)/2 +
+//!   cos(2*u2 - 2*pi/3)/2`): in the exponential form `f = sum a_m e^{i m.x}` the factor is the
+//!   binomial `e^{i(d.x + phi)} + e^{-i(d.x + phi)}`, so `d` is half the difference of the top
+//!   exponent (for a generic direction) and another exponent of the support; `phi` a multiple of
+//!   pi/24, tried in floats on the hyperplane where the factor vanishes; the factor then divided
+//!   out exactly ([`divide`], a long division along `d`) and the cofactor given its own closed
+//!   form, which peels the next factor;
+//! - a sum split into parts that share no length monomial or no symbol, each part given its
+//!   own closed form (`sin(p) sin(r/2 + u1) - k1 cos(u1) cos(2*u1 + w)`).
+//!
+//! Both are gated on the shape of the scalar (no term with a constant angle, at most
+//! [`MAX_TERMS`] terms) and charge their work to the Context's budget; like every candidate of
+//! `alt.rs` they are checked exactly and kept only when shorter.
+
+use super::alt::{full_cost, mul, neg, trig};
+use super::expr::Expr;
+use crate::scalar::atoms::freq_combine;
+use crate::scalar::{charge, Small, Sym, Term};
+use crate::Scalar;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+
+/// The most terms a scalar may have for these candidates: a product of four sinusoids at
+/// offsets has up to 16, a sum of two products of three 8 (with radicals twice as many); the
+/// long sums of a chain with 60-degree twists (the Jaco-style arm) are past it.
+const MAX_TERMS: usize = 24;
+
+/// The most sinusoid factors (directions and phases) divided out and recursed on per scalar.
+const MAX_FACTORS: usize = 3;
+
+/// The phases tried: multiples of pi/PHASES in `[0, pi)` (a factor is defined up to sign,
+/// `cos(A + pi) = -cos(A)`).
+const PHASES: i64 = 24;
+
+/// The most parts a sum is split into.
+const MAX_PARTS: usize = 6;
+
+/// The candidates of this file for the canonical terms `t`, not yet checked against them;
+/// only those whose cost (as [`full_cost`] counts it) may be below `bound`: each is made only
+/// when a lower bound of its cost ([`least_cost`]) is.
+pub(super) fn candidates(t: &[Term], bound: usize) -> Vec<Expr> {
+    let mut out = Vec::new();
+    if t.len() < 2
+        || t.len() > MAX_TERMS
+        || t.iter().all(|u| u.mode.freq.is_empty())
+        || t.iter()
+            .any(|u| u.mode.freq.iter().any(|(s, _)| s.is_one()))
+        || unit_modes(t)
+    {
+        return out;
+    }
+    out.extend(split_sum(t, bound));
+    out.extend(sinusoid_factors(t, bound));
+    out
+}
+
+/// Whether every mode is a sum or difference of symbols at one common multiple `c` without a pi
+/// offset, and no term has a radical (`q1/2 + q2/2 - q3/2`, the half-angle series of a chain
+/// whose twists are multiples of pi/2: the PUMA's scalars): in `y = c x` the split shape's
+/// single-angle atoms, regrouped by the angle-sum identities and factored, already find the
+/// products of sinusoids (`c1 c23`), and these candidates are not made.
+fn unit_modes(t: &[Term]) -> bool {
+    let mut step: Option<Small> = None;
+    t.iter().all(|u| {
+        u.mode.pi.is_zero()
+            && u.rad == 1
+            && u.mode.freq.iter().all(|(_, k)| {
+                let k = k.abs();
+                *step.get_or_insert(k) == k
+            })
+    })
+}
+
+/// A lower bound of the operations of any closed form of the terms `t`: the multiplications
+/// by the symbols of the shortest monomial, and one call when some term has a mode, or two
+/// calls and an operation when the modes have two or more frequencies (a single sinusoid
+/// `R cos(F + phi)`, `cos(F)^2 = (1 + cos 2F)/2`, has one).
+fn least_cost(t: &[Term]) -> usize {
+    let mono = t.iter().map(|u| u.mono.len()).min().unwrap_or(0);
+    let mut freqs = t
+        .iter()
+        .filter(|u| !u.mode.freq.is_empty())
+        .map(|u| &u.mode.freq);
+    let calls = match freqs.next() {
+        None => 0,
+        Some(f) if freqs.all(|g| g == f) => 1,
+        Some(_) => 3,
+    };
+    mono + calls
+}
+
+/// A term's coefficient, radical and monomial as a scalar (its mode dropped).
+fn weight(t: &Term) -> Scalar {
+    Scalar::from_terms_sorted(vec![Term {
+        mode: crate::scalar::Mode::unit(),
+        ..t.clone()
+    }])
+}
+
+/// The scalar of some of the terms (a subsequence of canonical terms is canonical).
+fn scalar_of(t: &[Term], pick: impl Fn(usize) -> bool) -> Scalar {
+    Scalar::from_terms_sorted(
+        t.iter()
+            .enumerate()
+            .filter(|(i, _)| pick(*i))
+            .map(|(_, u)| u.clone())
+            .collect(),
+    )
+}
+
+/// The sum split into parts with distinct monomials, and within one monomial into parts whose
+/// angles share no symbol (the constant terms of a monomial kept with its first part), each
+/// part's closed form found on its own.
+fn split_sum(t: &[Term], bound: usize) -> Option<Expr> {
+    let part = parts(t);
+    let n = part.iter().copied().max()? + 1;
+    if !(2..=MAX_PARTS).contains(&n) {
+        return None;
+    }
+    // The additions between the parts and each part's least cost.
+    let least: usize = (n - 1)
+        + (0..n)
+            .map(|p| {
+                let terms: Vec<Term> = (0..t.len())
+                    .filter(|&i| part[i] == p)
+                    .map(|i| t[i].clone())
+                    .collect();
+                least_cost(&terms)
+            })
+            .sum::<usize>();
+    if least >= bound {
+        return None;
+    }
+    charge(t.len() as u64).ok()?;
+    // The parts in the order of their monomials (`l1 ... + l2 ... + l3 ...`), then of their terms.
+    let mut order: Vec<usize> = (0..n).collect();
+    let first = |p: usize| (0..t.len()).find(|&i| part[i] == p).unwrap_or(0);
+    order.sort_by(|&a, &b| {
+        t[first(a)]
+            .mono
+            .iter()
+            .cmp(t[first(b)].mono.iter())
+            .then(first(a).cmp(&first(b)))
+    });
+    let mut sum = Vec::with_capacity(n);
+    for p in order {
+        let x = scalar_of(t, |i| part[i] == p);
+        let e = super::closed_form(&x).ok()?;
+        match e {
+            Expr::Add(v) => sum.extend(v),
+            e => sum.push(e),
+        }
+    }
+    Some(Expr::Add(sum))
+}
+
+/// The part of each term: terms of one monomial whose symbols connect (union-find over the
+/// terms: two join when they share a monomial and a symbol; a radical does not part them,
+/// `sqrt(3) cos(x) + sin(x)` is one sinusoid), the constant terms with the monomial's first
+/// part.
+fn parts(t: &[Term]) -> Vec<usize> {
+    let mut up: Vec<usize> = (0..t.len()).collect();
+    fn root(up: &mut [usize], mut i: usize) -> usize {
+        while up[i] != i {
+            up[i] = up[up[i]];
+            i = up[i];
+        }
+        i
+    }
+    let shares = |a: &Term, b: &Term| {
+        a.mode
+            .freq
+            .iter()
+            .any(|(s, _)| b.mode.freq.iter().any(|(r, _)| r == s))
+    };
+    for i in 0..t.len() {
+        for j in 0..i {
+            if t[i].mono == t[j].mono && shares(&t[i], &t[j]) {
+                let (a, b) = (root(&mut up, i), root(&mut up, j));
+                up[a.max(b)] = a.min(b);
+            }
+        }
+    }
+    // A constant term joins the first term of its monomial with a mode (joining every part
+    // would join the parts).
+    for i in 0..t.len() {
+        if t[i].mode.freq.is_empty() {
+            if let Some(j) =
+                (0..t.len()).find(|&j| !t[j].mode.freq.is_empty() && t[j].mono == t[i].mono)
+            {
+                let (a, b) = (root(&mut up, i), root(&mut up, j));
+                up[a.max(b)] = a.min(b);
+            }
+        }
+    }
+    let mut ids: Vec<usize> = Vec::new();
+    (0..t.len())
+        .map(|i| {
+            let r = root(&mut up, i);
+            match ids.iter().position(|&x| x == r) {
+                Some(p) => p,
+                None => {
+                    ids.push(r);
+                    ids.len() - 1
+                }
+            }
+        })
+        .collect()
+}
+
+/// One term in floats over the symbols of the modes: `amp cos(f.x + phase)`.
+struct Wave {
+    f: Vec<f64>,
+    phase: f64,
+    amp: f64,
+}
+
+fn value(ws: &[Wave], x: &[f64]) -> f64 {
+    ws.iter()
+        .map(|w| {
+            let a: f64 = w.f.iter().zip(x).map(|(f, x)| f * x).sum();
+            w.amp * (a + w.phase).cos()
+        })
+        .sum()
+}
+
+/// A small pseudo-random generator of points (the search is deterministic).
+struct Points(u64);
+
+impl Points {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        0.3 + 1.4 * (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn point(&mut self, n: usize) -> Vec<f64> {
+        (0..n).map(|_| self.next()).collect()
+    }
+}
+
+/// The sinusoid factors `cos(d.x + phi)` of the sum (see the module doc), each divided out and
+/// its cofactor given its closed form.
+fn sinusoid_factors(t: &[Term], bound: usize) -> Vec<Expr> {
+    // A factor of mixed angle costs a call and an operation in its angle, one multiplication
+    // joins it to its cofactor, which has a call at least.
+    if 4 + t.iter().map(|u| u.mono.len()).min().unwrap_or(0) >= bound {
+        return Vec::new();
+    }
+    let mut syms: Vec<Sym> = Vec::new();
+    for u in t {
+        for (s, _) in u.mode.freq.iter() {
+            if !syms.contains(s) {
+                syms.push(s.clone());
+            }
+        }
+    }
+    syms.sort();
+    let n = syms.len();
+    if n == 0 {
+        return Vec::new();
+    }
+    let exps: Vec<Vec<Small>> = t
+        .iter()
+        .map(|u| {
+            syms.iter()
+                .map(|s| {
+                    u.mode
+                        .freq
+                        .iter()
+                        .find(|(r, _)| r == s)
+                        .map_or(Small::zero(), |(_, k)| *k)
+                })
+                .collect()
+        })
+        .collect();
+    let Some(ws) = waves(t, &exps) else {
+        return Vec::new();
+    };
+    let found = find_factors(&exps, &ws, n);
+    let mut out = Vec::new();
+    let x = Scalar::from_terms_sorted(t.to_vec());
+    for (d, k) in found.into_iter().take(MAX_FACTORS) {
+        let freq: Vec<(Sym, Small)> = syms
+            .iter()
+            .cloned()
+            .zip(d)
+            .filter(|(_, k)| !k.is_zero())
+            .collect();
+        let phi = Small::new(k, PHASES);
+        let shown = shown_factor(&freq, phi);
+        let Some(q) = divide(&x, &freq, phi) else {
+            continue;
+        };
+        let Ok(qt) = q.terms() else {
+            continue;
+        };
+        if full_cost(&shown).0 + 1 + least_cost(qt) >= bound {
+            continue;
+        }
+        let Ok(qe) = super::closed_form(&q) else {
+            continue;
+        };
+        out.push(mul(shown, qe));
+    }
+    out
+}
+
+/// The terms as waves at a fixed point of the length symbols; `None` past `f64`.
+fn waves(t: &[Term], exps: &[Vec<Small>]) -> Option<Vec<Wave>> {
+    let pi = std::f64::consts::PI;
+    t.iter()
+        .zip(exps)
+        .map(|(u, e)| {
+            let mut amp = u.coef.to_f64()? * (u.rad as f64).sqrt();
+            for (s, p) in u.mono.iter() {
+                amp *= super::point_value(s, 0x5851_f42d_4c95_7f2d).powi(i32::try_from(*p).ok()?);
+            }
+            let off = *u.mode.pi.numer() as f64 / *u.mode.pi.denom() as f64;
+            Some(Wave {
+                f: e.iter().map(|k| k.to_f64().unwrap_or(0.0)).collect(),
+                phase: pi * off - if u.mode.sin { pi / 2.0 } else { 0.0 },
+                amp,
+            })
+        })
+        .collect()
+}
+
+/// The halves of the differences between the top exponent along a generic direction (a vertex
+/// of the Newton polytope of the exponents `+-m`) and every other exponent, first nonzero entry
+/// positive.
+fn directions(signed: &[Vec<Small>], n: usize, tilt: f64) -> Vec<Vec<Small>> {
+    let generic: Vec<f64> = (0..n)
+        .map(|i| 1.0 + tilt * (i as f64 + 1.0).sqrt())
+        .collect();
+    let along = |e: &[Small]| -> f64 {
+        e.iter()
+            .zip(&generic)
+            .map(|(k, g)| k.to_f64().unwrap_or(0.0) * g)
+            .sum()
+    };
+    let Some(top) = signed.iter().max_by(|a, b| along(a).total_cmp(&along(b))) else {
+        return Vec::new();
+    };
+    let two = Small::from_integer(2);
+    let mut dirs: Vec<Vec<Small>> = Vec::new();
+    for e in signed {
+        let mut d: Vec<Small> = top.iter().zip(e).map(|(a, b)| (*a - *b) / two).collect();
+        let Some(first) = d.iter().find(|k| !k.is_zero()) else {
+            continue;
+        };
+        if first.is_negative() {
+            d.iter_mut().for_each(|k| *k = -*k);
+        }
+        dirs.push(d);
+    }
+    dirs.sort_unstable();
+    dirs.dedup();
+    dirs
+}
+
+/// The directions `d` (first nonzero entry positive) and phases `k` (`phi = k pi/PHASES`) at
+/// which the sum vanishes on the hyperplane `d.x + phi = pi/2` at three points.
+fn find_factors(exps: &[Vec<Small>], ws: &[Wave], n: usize) -> Vec<(Vec<Small>, i64)> {
+    let signed: Vec<Vec<Small>> = exps
+        .iter()
+        .flat_map(|e| [e.clone(), e.iter().map(|k| -*k).collect()])
+        .collect();
+    // A factor's direction shows from every vertex of the Newton polytope (unless terms
+    // cancel there): only directions seen from two vertices are tried, and only those mixing
+    // two or more symbols (one symbol's factors are `roots.rs`'s).
+    let first = directions(&signed, n, 0.313_7);
+    let dirs: Vec<Vec<Small>> = directions(&signed, n, -0.561_3)
+        .into_iter()
+        .filter(|d| {
+            d.iter().filter(|k| !k.is_zero()).count() >= 2 && first.binary_search(d).is_ok()
+        })
+        .collect();
+    // The sum is evaluated to a relative error of about (terms) * 1e-16 times the largest
+    // angle (below 100 here: coefficients of a few units at points below 2); a factor's zero
+    // shows as well below 1e-9 of the sum of the magnitudes, a nonzero value at a generic point
+    // as far above it (a false zero is then caught by the exact division).
+    let scale: f64 = ws.iter().map(|w| w.amp.abs()).sum();
+    let tol = 1e-9 * scale;
+    let mut pts = Points(0x2545_f491_4f6c_dd1d);
+    let bases: Vec<Vec<f64>> = (0..3).map(|_| pts.point(n)).collect();
+    let mut found = Vec::new();
+    for d in dirs {
+        if charge((ws.len() as u64 * PHASES as u64) / 8 + 1).is_err() {
+            break;
+        }
+        let df: Vec<f64> = d.iter().map(|k| k.to_f64().unwrap_or(0.0)).collect();
+        let dd: f64 = df.iter().map(|k| k * k).sum();
+        let on_plane = |base: &[f64], k: i64| -> Vec<f64> {
+            let c = std::f64::consts::FRAC_PI_2 - k as f64 * std::f64::consts::PI / PHASES as f64;
+            let s = (c - df.iter().zip(base).map(|(a, b)| a * b).sum::<f64>()) / dd;
+            base.iter().zip(&df).map(|(b, a)| b + s * a).collect()
+        };
+        for k in 0..PHASES {
+            if bases
+                .iter()
+                .all(|b| value(ws, &on_plane(b, k)).abs() <= tol)
+            {
+                found.push((d.clone(), k));
+            }
+        }
+    }
+    found
+}
+
+/// `x / cos(d.x + phi)` when exact: a long division along `d`, each step taking the term
+/// whose mode reaches furthest along `d` (`|m.d|` largest) as the product of the factor and a
+/// term of the quotient; `None` when a remainder is left or the budget runs out.
+fn divide(x: &Scalar, d: &[(Sym, Small)], phi: Small) -> Option<Scalar> {
+    let factor = trig(false, d.to_vec(), phi).to_scalar();
+    let dd: Small = d.iter().map(|(_, k)| *k * *k).sum();
+    let dot = |f: &[(Sym, Small)]| -> Small {
+        f.iter()
+            .filter_map(|(s, k)| d.iter().find(|(r, _)| r == s).map(|(_, j)| *k * *j))
+            .sum()
+    };
+    let mut rem = x.clone();
+    let mut quot = Scalar::zero();
+    let limit = 4 * x.len() + 8;
+    for _ in 0..limit {
+        let t = rem.terms().ok()?;
+        if t.is_empty() {
+            return Some(quot);
+        }
+        charge(t.len() as u64).ok()?;
+        let (u, p) = t
+            .iter()
+            .map(|u| (u, dot(&u.mode.freq)))
+            .max_by(|a, b| a.1.abs().cmp(&b.1.abs()))?;
+        if p.abs() < dd {
+            return None;
+        }
+        // Oriented so that the mode reaches along +d: cos(-A) = cos(A), sin(-A) = -sin(A).
+        let (flip, sign) = if p.is_negative() {
+            (-Small::one(), if u.mode.sin { -1 } else { 1 })
+        } else {
+            (Small::one(), 1)
+        };
+        let m: Vec<(Sym, Small)> = u
+            .mode
+            .freq
+            .iter()
+            .map(|(s, k)| (s.clone(), *k * flip))
+            .collect();
+        let rest: Vec<(Sym, Small)> = freq_combine(&m, d, -1);
+        let h = weight(u)
+            * Scalar::int(2 * sign)
+            * trig(u.mode.sin, rest, u.mode.pi * flip - phi).to_scalar();
+        rem = (&rem - &(&factor * &h)).check().ok()?;
+        quot = (&quot + &h).check().ok()?;
+    }
+    None
+}
+
+/// `cos(d.x + phi)` shown the cheapest way: as a cosine or a sine, with either sign, the
+/// offset reduced.
+fn shown_factor(d: &[(Sym, Small)], phi: Small) -> Expr {
+    let half = Small::new(1, 2);
+    let centred = |p: Small| {
+        let two = Small::from_integer(2);
+        let mut p = p - (p / two).floor() * two;
+        if p > Small::one() {
+            p -= two;
+        }
+        p
+    };
+    // cos(A) = sin(A + pi/2) = -cos(A + pi) = -sin(A - pi/2).
+    let options = [
+        trig(false, d.to_vec(), centred(phi)),
+        trig(true, d.to_vec(), centred(phi + half)),
+        neg(trig(false, d.to_vec(), centred(phi + Small::one()))),
+        neg(trig(true, d.to_vec(), centred(phi - half))),
+    ];
+    options
+        .into_iter()
+        .min_by_key(full_cost)
+        .expect("four options")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_rational::BigRational;
+
+    fn q(n: i64, d: i64) -> Scalar {
+        Scalar::rational(BigRational::new(n.into(), d.into()))
+    }
+
+    /// An angle `sum k_s s + pi_k pi` as a scalar.
+    fn angle(terms: &[(&str, i64, i64)], pi: (i64, i64)) -> Scalar {
+        let mut a = q(pi.0, pi.1) * Scalar::pi();
+        for (s, n, d) in terms {
+            a = a + q(*n, *d) * Scalar::sym(s);
+        }
+        a
+    }
+
+    /// The same angle in floats at a point.
+    fn angle_f64(terms: &[(&str, i64, i64)], pi: (i64, i64), at: &dyn Fn(&str) -> f64) -> f64 {
+        let mut a = std::f64::consts::PI * pi.0 as f64 / pi.1 as f64;
+        for (s, n, d) in terms {
+            a += *n as f64 / *d as f64 * at(s);
+        }
+        a
+    }
+
+    type Factor = (bool, &'static [(&'static str, i64, i64)], (i64, i64));
+
+    /// The product `c * prod f_i(angle_i)` as a canonical (expanded) scalar.
+    fn product(c: &Scalar, fs: &[Factor]) -> Scalar {
+        fs.iter().fold(c.clone(), |acc, (sin, t, pi)| {
+            let a = angle(t, *pi);
+            acc * if *sin { a.sin() } else { a.cos() }
+        })
+    }
+
+    /// The same product in floats (an independent evaluation: `f64::cos`, `f64::sin`).
+    fn product_f64(c: f64, fs: &[Factor], at: &dyn Fn(&str) -> f64) -> f64 {
+        fs.iter().fold(c, |acc, (sin, t, pi)| {
+            let a = angle_f64(t, *pi, at);
+            acc * if *sin { a.sin() } else { a.cos() }
+        })
+    }
+
+    /// The number of cos/sin factors of a product (under a sign), 0 for other shapes.
+    fn trig_factors(e: &Expr) -> usize {
+        match e {
+            Expr::Neg(e) => trig_factors(e),
+            Expr::Mul(v) => v
+                .iter()
+                .map(|f| match f {
+                    Expr::Trig { .. } => 1,
+                    Expr::Pow(b, n) if matches!(**b, Expr::Trig { .. }) => *n as usize,
+                    _ => 0,
+                })
+                .sum(),
+            _ => 0,
+        }
+    }
+
+    /// Compares the closed form with the float value of the sum of products at random points.
+    fn agrees(e: &Expr, parts: &[(f64, &[Factor], Option<&str>)]) {
+        let mut seed = 0x1234_5678_9abc_def1u64;
+        for _ in 0..5 {
+            let mut vals: Vec<(String, f64)> = Vec::new();
+            for s in ["a", "b", "c", "k"] {
+                seed = seed
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                vals.push((
+                    s.into(),
+                    4.0 * (seed >> 11) as f64 / (1u64 << 53) as f64 - 2.0,
+                ));
+            }
+            let at = |s: &str| vals.iter().find(|(n, _)| n == s).expect("symbol").1;
+            let want: f64 = parts
+                .iter()
+                .map(|(c, fs, m)| product_f64(*c, fs, &at) * m.map_or(1.0, &at))
+                .sum();
+            let (got, scale) = e.eval_f64(&|s: &Sym| at(s.name()));
+            // Both sides are a few dozen f64 operations on values of size ~1.
+            assert!(
+                (got - want).abs() <= 1e-12 * scale.max(1.0),
+                "{got} vs {want}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_sinusoid_of_mixed_angle_with_an_offset_is_peeled_off() {
+        // sin(a) cos(a + 2 b + pi/4): expanded, cos(2a + 2b + pi/4)/2 ... over sqrt(2).
+        let fs: &[Factor] = &[
+            (true, &[("a", 1, 1)], (0, 1)),
+            (false, &[("a", 1, 1), ("b", 2, 1)], (1, 4)),
+        ];
+        let x = product(&Scalar::int(1), fs);
+        assert!(x.len() >= 2);
+        let e = super::super::closed_form(&x).expect("closed form");
+        assert_eq!(e.to_scalar(), x);
+        assert_eq!(trig_factors(&e), 2, "{e:?}");
+        agrees(&e, &[(1.0, fs, None)]);
+    }
+
+    #[test]
+    fn three_sinusoids_of_mixed_angles_are_found_one_by_one() {
+        let fs: &[Factor] = &[
+            (false, &[("a", 2, 1)], (0, 1)),
+            (true, &[("a", -1, 2), ("b", 1, 1)], (0, 1)),
+            (false, &[("a", 1, 1), ("c", 1, 1)], (1, 3)),
+        ];
+        let x = product(&q(-3, 2), fs);
+        let e = super::super::closed_form(&x).expect("closed form");
+        assert_eq!(e.to_scalar(), x);
+        assert_eq!(trig_factors(&e), 3, "{e:?}");
+        agrees(&e, &[(-1.5, fs, None)]);
+    }
+
+    #[test]
+    fn a_sum_of_products_in_distinct_monomials_is_split() {
+        let f1: &[Factor] = &[
+            (false, &[("a", 1, 1)], (0, 1)),
+            (false, &[("a", 2, 1), ("b", 1, 1)], (0, 1)),
+        ];
+        let f2: &[Factor] = &[
+            (true, &[("c", 1, 1)], (0, 1)),
+            (true, &[("c", 1, 2), ("a", 1, 1)], (1, 6)),
+        ];
+        let x = product(&Scalar::sym("k"), f1) + product(&Scalar::int(1), f2);
+        let e = super::super::closed_form(&x).expect("closed form");
+        assert_eq!(e.to_scalar(), x);
+        let Expr::Add(v) = &e else {
+            panic!("not a sum: {e:?}")
+        };
+        assert_eq!(v.len(), 2, "{e:?}");
+        assert_eq!(v.iter().map(trig_factors).sum::<usize>(), 4, "{e:?}");
+        agrees(&e, &[(1.0, f1, Some("k")), (1.0, f2, None)]);
+    }
+}
