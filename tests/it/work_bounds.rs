@@ -252,6 +252,7 @@ fn signed_radical_power_display_agrees_with_its_value() {
             "{got} vs {want} at {p:?}"
         );
     }
+}
 
 #[test]
 fn puma_fk_jacobian_work_stays_bounded_with_the_mixed_angle_factors() {
