@@ -66,7 +66,7 @@
 //! bounds (5R1P ≤ 16, 4R2P ≤ 8). Two slides among joints 1, 2, or among 4, 5, leave power
 //! products that never occur (`Bm` loses rank, or `M` has a zero column). A slide among joints
 //! 1, 2 together with one among joints 4, 5 makes `det M` vanish identically, for this reason
-//! ([`degenerate_reason`]):
+//! (`degenerate_reason`):
 //!
 //! - A slide's `d²` enters only four of the fourteen quantities: `p·p` (coefficient 1) and the
 //!   last three, `(p·p) l − 2 (p·l) p` (coefficient the reflection `l − 2 (v·l) v` of the
