@@ -20,7 +20,7 @@ use super::alt::{full_cost, mul, neg, trig};
 use super::expr::Expr;
 use crate::scalar::atoms::freq_combine;
 use crate::scalar::{charge, Small, Sym, Term};
-use crate::Scalar;
+use crate::{Context, Scalar};
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
 /// The most terms a scalar may have for these candidates: a product of four sinusoids at
@@ -43,11 +43,16 @@ const MAX_PARTS: usize = 6;
 /// when a lower bound of its cost ([`least_cost`]) is.
 pub(super) fn candidates(t: &[Term], bound: usize) -> Vec<Expr> {
     let mut out = Vec::new();
-    if t.len() < 2
+    // Optional candidates: made only while most of the budget is left, so that they never
+    // turn a closed form the other candidates find into a budget error.
+    if NESTED.with(|n| n.get()) >= MAX_NESTED
+        || crate::scalar::work_left() < Context::current().work_budget() / 2
+        || t.len() < 2
         || t.len() > MAX_TERMS
         || t.iter().all(|u| u.mode.freq.is_empty())
         || t.iter()
             .any(|u| u.mode.freq.iter().any(|(s, _)| s.is_one()))
+        || !small_modes(t)
         || unit_modes(t)
     {
         return out;
@@ -55,6 +60,57 @@ pub(super) fn candidates(t: &[Term], bound: usize) -> Vec<Expr> {
     out.extend(split_sum(t, bound));
     out.extend(sinusoid_factors(t, bound));
     out
+}
+
+/// How many of this file's closed forms of a part or a cofactor are open on this thread: each
+/// cofactor's closed form may peel the next factor (up to [`MAX_FACTORS`] deep), and the search
+/// it starts reaches these candidates again through every other candidate (`cspoly`'s factors'
+/// closed forms); past this depth they are not made, so the nesting stays bounded.
+const MAX_NESTED: u32 = MAX_FACTORS as u32;
+
+thread_local! {
+    static NESTED: std::cell::Cell<u32> = const { std::cell::Cell::new(0) };
+}
+
+/// The share of the budget left that one nested closed form may spend.
+const NESTED_SHARE: u64 = 16;
+
+/// `closed_form(x)` one level deeper in [`NESTED`], in a context of its own whose budget is
+/// [`NESTED_SHARE`]-th of the work left, its work then charged to the caller's: a part's or a
+/// cofactor's search starts every candidate again (measured: a 5-term sum of products at
+/// `sqrt(5)` coefficients spent the whole default budget of 3,000,000 units in them), so a
+/// candidate of this file can spend at most a bounded share of what is left and never turns a
+/// closed form the other candidates find into a budget error.
+fn nested_closed_form(x: &Scalar) -> Result<Expr, crate::scalar::ScalarError> {
+    let left = crate::scalar::work_left();
+    NESTED.with(|n| n.set(n.get() + 1));
+    let (e, used) = if left == u64::MAX {
+        (super::closed_form(x), 0)
+    } else {
+        let sub = Context::current().with_work_budget(left / NESTED_SHARE);
+        let entered = sub.enter();
+        let e = super::closed_form(x);
+        let used = entered.work_used();
+        (e, used)
+    };
+    NESTED.with(|n| n.set(n.get() - 1));
+    crate::scalar::charge(used)?;
+    e
+}
+
+/// The bound on the numerators and denominators of the modes' coefficients these candidates
+/// take: the long division multiplies and adds them in `i64` rationals (products of two, sums of
+/// a few: far below `2^63` from `2^16`).
+const SMALL_FREQ: i64 = 1 << 16;
+
+/// Whether every mode's coefficients are within [`SMALL_FREQ`].
+fn small_modes(t: &[Term]) -> bool {
+    t.iter().all(|u| {
+        u.mode
+            .freq
+            .iter()
+            .all(|(_, k)| k.numer().abs() <= SMALL_FREQ && *k.denom() <= SMALL_FREQ)
+    })
 }
 
 /// Whether every mode is a sum or difference of symbols at one common multiple `c` without a pi
@@ -148,7 +204,7 @@ fn split_sum(t: &[Term], bound: usize) -> Option<Expr> {
     let mut sum = Vec::with_capacity(n);
     for p in order {
         let x = scalar_of(t, |i| part[i] == p);
-        let e = super::closed_form(&x).ok()?;
+        let e = nested_closed_form(&x).ok()?;
         match e {
             Expr::Add(v) => sum.extend(v),
             e => sum.push(e),
@@ -303,7 +359,7 @@ fn sinusoid_factors(t: &[Term], bound: usize) -> Vec<Expr> {
         if full_cost(&shown).0 + 1 + least_cost(qt) >= bound {
             continue;
         }
-        let Ok(qe) = super::closed_form(&q) else {
+        let Ok(qe) = nested_closed_form(&q) else {
             continue;
         };
         out.push(mul(shown, qe));

@@ -398,6 +398,15 @@ pub(crate) fn work_used() -> u64 {
     STATE.with(|s| s.borrow().as_ref().map_or(0, |st| st.used))
 }
 
+/// The work the entered context on this thread may still charge (`u64::MAX` without one).
+pub(crate) fn work_left() -> u64 {
+    STATE.with(|s| {
+        s.borrow()
+            .as_ref()
+            .map_or(u64::MAX, |st| st.ctx.work_budget.saturating_sub(st.used))
+    })
+}
+
 /// Counts `units` of work; the error to return when the computation is cancelled or the budget
 /// is spent.
 pub(crate) fn charge(units: u64) -> Result<(), ScalarError> {

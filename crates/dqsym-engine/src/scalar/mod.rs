@@ -40,7 +40,7 @@ pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use atoms::{Sym, Trig};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
 pub(crate) use ctx::{
-    charge, check_cancelled, max_angle_symbols, max_digits, term_limit, work_used, Poll,
+    charge, check_cancelled, max_angle_symbols, max_digits, term_limit, work_left, work_used, Poll,
 };
 pub use ctx::{
     Context, Entered, Preset, DEFAULT_MAX_ANGLE_SYMBOLS, DEFAULT_MAX_CYCLOTOMIC_DEGREE,
