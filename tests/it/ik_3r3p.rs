@@ -400,20 +400,7 @@ fn generated_c_3r3p_solver_is_the_reference() {
         let dir = crate::tools::temp_dir(&format!("ik-3r3p-c-{tag}"));
         let (src, exe) = (dir.join("ik.c"), dir.join("ik"));
         std::fs::write(&src, format!("{code}{C_MAIN}")).expect("write");
-        let mut gcc = std::process::Command::new("gcc");
-        gcc.args([
-            "-std=c99",
-            "-pedantic",
-            "-Wall",
-            "-Wextra",
-            "-Werror",
-            "-O2",
-            "-o",
-        ])
-        .arg(&exe)
-        .arg(&src)
-        .arg("-lm");
-        crate::tools::run(gcc, "", "gcc on the 3R3P solver");
+        crate::tools::compile_c_clean(&src, &exe, "gcc on the 3R3P solver");
         let (qs, input) = poses(&rows, 200, 52);
         let out = crate::tools::run(std::process::Command::new(&exe), &input, "C ik");
         check_output("C", &n, &sol, &rows, &qs, &out);

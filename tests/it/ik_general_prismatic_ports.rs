@@ -49,20 +49,7 @@ fn generated_c_solver_with_slides_is_the_reference() {
         let dir = crate::tools::temp_dir(&format!("ik-general-prismatic-c-{k}"));
         let (src, exe) = (dir.join("ik.c"), dir.join("ik"));
         std::fs::write(&src, format!("{code}{C_MAIN}")).expect("write");
-        let mut gcc = std::process::Command::new("gcc");
-        gcc.args([
-            "-std=c99",
-            "-pedantic",
-            "-Wall",
-            "-Wextra",
-            "-Werror",
-            "-O2",
-            "-o",
-        ])
-        .arg(&exe)
-        .arg(&src)
-        .arg("-lm");
-        crate::tools::run(gcc, "", "gcc on the general solver with slides");
+        crate::tools::compile_c_clean(&src, &exe, "gcc on the general solver with slides");
         let mut rng = Rng::new(5 + k as u64);
         let qs: Vec<Vec<f64>> = (0..200).map(|_| random_q(&rows, &mut rng)).collect();
         let input: String = qs

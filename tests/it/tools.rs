@@ -175,6 +175,25 @@ pub fn compile_rust_clean(src: &Path, exe: &Path, opt: bool, what: &str) {
     );
 }
 
+/// Compiles the C99 program `src` into `exe` with `gcc -std=c99 -pedantic -Wall -Wextra
+/// -Werror -O2 ... -lm`; `what` names it in failure messages.
+pub fn compile_c_clean(src: &Path, exe: &Path, what: &str) {
+    let mut gcc = Command::new("gcc");
+    gcc.args([
+        "-std=c99",
+        "-pedantic",
+        "-Wall",
+        "-Wextra",
+        "-Werror",
+        "-O2",
+        "-o",
+    ])
+    .arg(exe)
+    .arg(src)
+    .arg("-lm");
+    run(gcc, "", what);
+}
+
 /// Debian's chromium on PATH, or a failure saying how to install it.
 pub fn chromium() -> PathBuf {
     let found = std::env::var_os("PATH").and_then(|p| {

@@ -425,32 +425,9 @@ impl Search<'_> {
         self.path.pop();
         self.div[fi] -= k;
         let factored = mul(vec![factor_expr(f, k), inner]);
-        if rest.is_empty() {
-            return factored;
-        }
-        let rest_expr = self.build_at(&rest, depth + 1);
-        // Splice the rest around the factored group in reading order: the factored group
+        // The rest spliced around the factored group in reading order: the factored group
         // stands where its first monomial stood.
-        let mut rest_terms = match rest_expr {
-            E::Add(v, _) => v.to_vec(),
-            e => vec![e],
-        };
-        let mut terms = Vec::with_capacity(rest_terms.len() + 1);
-        if rest_terms.len() == rest.len() {
-            let n_before = n_before.min(rest_terms.len());
-            let after = rest_terms.split_off(n_before);
-            terms.extend(rest_terms);
-            terms.push(factored);
-            terms.extend(after);
-        } else {
-            terms.push(factored);
-            terms.extend(rest_terms);
-        }
-        if terms.len() == 1 {
-            terms.pop().unwrap_or_else(E::zero)
-        } else {
-            E::sum(terms)
-        }
+        self.beside(factored, &rest, n_before, depth)
     }
 
     /// The radicand of monomial `i` of the current group.

@@ -141,7 +141,13 @@ impl Search<'_> {
 
     /// `factored` among the terms of `rest` searched, where its first monomial stood (the
     /// splice of [`Search::split_on`]).
-    fn beside(&mut self, factored: E, rest: &[(u32, Q)], n_before: usize, depth: usize) -> E {
+    pub(super) fn beside(
+        &mut self,
+        factored: E,
+        rest: &[(u32, Q)],
+        n_before: usize,
+        depth: usize,
+    ) -> E {
         if rest.is_empty() {
             return factored;
         }
