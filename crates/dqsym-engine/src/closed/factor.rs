@@ -647,7 +647,25 @@ fn factor_expr(f: Factor, k: u32) -> E {
 
 /// A product, flattened, with a leading negation pulled out of it.
 fn mul(parts: Vec<E>) -> E {
-    let mut flat = Vec::new();
+    // Most products (a coefficient or factor beside a sum, a monomial's parts) have nothing
+    // to flatten: their vector is sorted in place, not copied.
+    let plain = |p: &E| match p {
+        E::Mul(..) | E::Neg(_) => false,
+        E::Num(q) => !q.is_one(),
+        _ => true,
+    };
+    let (flat, neg) = if parts.iter().all(plain) {
+        (parts, false)
+    } else {
+        flatten(parts)
+    };
+    sorted_product(flat, neg)
+}
+
+/// The factors of `parts` with products spliced in, ones left out and negations pulled out
+/// (whether an odd number was).
+fn flatten(parts: Vec<E>) -> (Vec<E>, bool) {
+    let mut flat = Vec::with_capacity(parts.len() + 2);
     let mut neg = false;
     for p in parts {
         match p {
@@ -663,6 +681,11 @@ fn mul(parts: Vec<E>) -> E {
             e => flat.push(e),
         }
     }
+    (flat, neg)
+}
+
+/// The product of `flat` (flattened), its factors in rank order, negated when `neg`.
+fn sorted_product(mut flat: Vec<E>, neg: bool) -> E {
     // Numbers first, then radicals, symbols, sums and trigonometric factors.
     flat.sort_by_key(rank);
     let e = match flat.len() {

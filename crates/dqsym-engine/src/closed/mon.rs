@@ -614,7 +614,7 @@ where
     let (mut num, mut den) = (0u64, 1u64);
     for q in qs.clone() {
         let Q::S(n, d) = *q else {
-            return content_big(qs);
+            return content_i128(qs.clone()).unwrap_or_else(|| content_big(qs));
         };
         num = num.gcd(&n.unsigned_abs());
         let Some(l) = (den / den.gcd(&(d as u64))).checked_mul(d as u64) else {
@@ -628,6 +628,47 @@ where
     match (i64::try_from(num), i64::try_from(den)) {
         (Ok(n), Ok(d)) => Q::new(n, d),
         _ => content_big(qs),
+    }
+}
+
+/// [`content_of`] of integers that fit in 128 bits (the coefficients of `(x + y + z)^80`
+/// do), in machine arithmetic: each numerator enters as its remainder modulo the gcd so far
+/// (`gcd(g, n) = gcd(g, n mod g)`), without a big integer built. `None` for a fraction or a
+/// wider integer.
+fn content_i128<'a>(qs: impl Iterator<Item = &'a Q>) -> Option<Q> {
+    let mut g = 0u128;
+    for q in qs {
+        let n = int_i128(q)?.unsigned_abs();
+        g = match g {
+            0 => n,
+            1 => 1,
+            g => g.gcd(&(n % g)),
+        };
+    }
+    Some(match g {
+        0 => Q::ONE,
+        g => q_of_i128(i128::try_from(g).ok()?),
+    })
+}
+
+/// `q` as a 128-bit integer, when it is an integer that fits.
+fn int_i128(q: &Q) -> Option<i128> {
+    match q {
+        Q::S(n, 1) => Some(i128::from(*n)),
+        Q::S(..) => None,
+        Q::B(b) if num_traits::One::is_one(b.denom()) => {
+            num_traits::ToPrimitive::to_i128(b.numer())
+        }
+        Q::B(_) => None,
+    }
+}
+
+/// The integer `n` (a machine word when it fits, as [`Q::big`] keeps it).
+fn q_of_i128(n: i128) -> Q {
+    match i64::try_from(n) {
+        Ok(0) => Q::ZERO,
+        Ok(s) if s != i64::MIN => Q::S(s, 1),
+        _ => Q::big(BigRational::from_integer(BigInt::from(n))),
     }
 }
 
@@ -691,6 +732,16 @@ fn mod_word(n: &num_bigint::BigUint, g: u64) -> u64 {
 
 /// `q / g` for a positive `g`.
 pub(crate) fn div_q(q: &Q, g: &Q) -> Q {
+    // Integers (a content divides each of its coefficients exactly) in machine arithmetic:
+    // through the rational product each quotient took a 128-bit gcd, and past 64 bits two
+    // big integers built for the divisor alone.
+    if let (Some(a), Some(b)) = (int_i128(q), int_i128(g)) {
+        if b != 0 && a % b == 0 {
+            if let Some(z) = a.checked_div(b) {
+                return q_of_i128(z);
+            }
+        }
+    }
     if let Some(z) = div_exact(q, g) {
         return z;
     }

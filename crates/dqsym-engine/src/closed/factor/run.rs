@@ -152,20 +152,20 @@ impl Search<'_> {
             return factored;
         }
         let rest_expr = self.build_at(rest, depth + 1);
-        let mut rest_terms = match rest_expr {
-            E::Add(v, _) => v.to_vec(),
-            e => vec![e],
+        // The rest's terms are copied once, into the sum they join.
+        let rest_terms: &[E] = match &rest_expr {
+            E::Add(v, _) => v,
+            e => std::slice::from_ref(e),
         };
         let mut terms = Vec::with_capacity(rest_terms.len() + 1);
         if rest_terms.len() == rest.len() {
-            let n_before = n_before.min(rest_terms.len());
-            let after = rest_terms.split_off(n_before);
-            terms.extend(rest_terms);
+            let (before, after) = rest_terms.split_at(n_before.min(rest_terms.len()));
+            terms.extend_from_slice(before);
             terms.push(factored);
-            terms.extend(after);
+            terms.extend_from_slice(after);
         } else {
             terms.push(factored);
-            terms.extend(rest_terms);
+            terms.extend_from_slice(rest_terms);
         }
         if terms.len() == 1 {
             terms.pop().unwrap_or_else(E::zero)
