@@ -9,6 +9,7 @@ use super::mon::{angle_of, content_of, div_q, is_sin, Atom, Ctx, FxMap, Mon};
 use crate::scalar::{charge, FxHasher, Q};
 use crate::ScalarError;
 use num_traits::One;
+use smallvec::SmallVec;
 use std::hash::{Hash, Hasher};
 use std::rc::Rc;
 
@@ -64,6 +65,18 @@ impl E {
     fn product(v: Vec<E>) -> E {
         let c = Self::node_cost(&v, false);
         E::Mul(v.into(), c)
+    }
+
+    /// [`E::product`] of a slice, copied into the node (one allocation).
+    fn product_of(v: &[E]) -> E {
+        let c = Self::node_cost(v, false);
+        E::Mul(Rc::from(v), c)
+    }
+
+    /// [`E::sum`] of terms already in their node.
+    fn sum_of(v: Rc<[E]>) -> E {
+        let c = Self::node_cost(&v, true);
+        E::Add(v, c)
     }
 
     fn node_cost(v: &[E], in_sum: bool) -> Cost {
@@ -335,14 +348,14 @@ impl Search<'_> {
         let g = content_of(group.iter().map(|(_, q)| q));
         if !g.is_one() {
             let inner: Group = group.iter().map(|(i, q)| (*i, div_q(q, &g))).collect();
-            return mul(vec![E::Num(g), self.build_at(&inner, depth)]);
+            return mul([E::Num(g), self.build_at(&inner, depth)]);
         }
         let r = self.rad(group[0].0);
         if r != 1 && group.iter().all(|(i, _)| self.rad(*i) == r) {
             self.rad_off = true;
             let e = self.build_at(group, depth);
             self.rad_off = false;
-            return mul(vec![E::Sqrt(r), e]);
+            return mul([E::Sqrt(r), e]);
         }
         self.searched(group, depth)
     }
@@ -355,7 +368,8 @@ impl Search<'_> {
         // group found before needs no count (a group without candidates is never stored).
         let level = depth.min(BRANCH_DEPTH);
         let hash = self.hash(level, group);
-        if let Some(e) = self.remembered(hash, level, group) {
+        let key = self.div_key();
+        if let Some(e) = self.remembered(hash, level, &key, group) {
             return e;
         }
         let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
@@ -380,7 +394,7 @@ impl Search<'_> {
         let found = Found {
             level,
             group: group.to_vec(),
-            div: self.div_key(),
+            div: key,
             rad_off: self.rad_off,
             e: e.clone(),
         };
@@ -424,7 +438,7 @@ impl Search<'_> {
         let inner = self.build_at(&with, depth.saturating_add(k as usize));
         self.path.pop();
         self.div[fi] -= k;
-        let factored = mul(vec![factor_expr(f, k), inner]);
+        let factored = mul([factor_expr(f, k), inner]);
         // The rest spliced around the factored group in reading order: the factored group
         // stands where its first monomial stood.
         self.beside(factored, &rest, n_before, depth)
@@ -518,12 +532,17 @@ impl Search<'_> {
     }
 
     /// The result found before for a group of the same monomials at the same depth class.
-    fn remembered(&self, hash: u64, level: usize, group: &[(u32, Q)]) -> Option<E> {
+    fn remembered(
+        &self,
+        hash: u64,
+        level: usize,
+        key: &[(usize, u32)],
+        group: &[(u32, Q)],
+    ) -> Option<E> {
         let entries = self.memo.get(&hash)?;
-        let key = self.div_key();
         entries
             .iter()
-            .find(|f| f.level == level && self.same_monomials(f, &key, group))
+            .find(|f| f.level == level && self.same_monomials(f, key, group))
             .map(|f| f.e.clone())
     }
 
@@ -646,26 +665,12 @@ fn factor_expr(f: Factor, k: u32) -> E {
 }
 
 /// A product, flattened, with a leading negation pulled out of it.
-fn mul(parts: Vec<E>) -> E {
-    // Most products (a coefficient or factor beside a sum, a monomial's parts) have nothing
-    // to flatten: their vector is sorted in place, not copied.
-    let plain = |p: &E| match p {
-        E::Mul(..) | E::Neg(_) => false,
-        E::Num(q) => !q.is_one(),
-        _ => true,
-    };
-    let (flat, neg) = if parts.iter().all(plain) {
-        (parts, false)
-    } else {
-        flatten(parts)
-    };
-    sorted_product(flat, neg)
-}
-
-/// The factors of `parts` with products spliced in, ones left out and negations pulled out
-/// (whether an odd number was).
-fn flatten(parts: Vec<E>) -> (Vec<E>, bool) {
-    let mut flat = Vec::with_capacity(parts.len() + 2);
+///
+/// The factors are gathered on the stack and the node is allocated once, at its size: a
+/// vector per product, copied into the node and freed, was one allocation in three of the
+/// search.
+fn mul(parts: impl IntoIterator<Item = E>) -> E {
+    let mut flat: SmallVec<[E; 8]> = SmallVec::new();
     let mut neg = false;
     for p in parts {
         match p {
@@ -681,17 +686,12 @@ fn flatten(parts: Vec<E>) -> (Vec<E>, bool) {
             e => flat.push(e),
         }
     }
-    (flat, neg)
-}
-
-/// The product of `flat` (flattened), its factors in rank order, negated when `neg`.
-fn sorted_product(mut flat: Vec<E>, neg: bool) -> E {
     // Numbers first, then radicals, symbols, sums and trigonometric factors.
     flat.sort_by_key(rank);
     let e = match flat.len() {
         0 => E::Num(Q::ONE),
         1 => flat.pop().unwrap_or_else(E::zero),
-        _ => E::product(flat),
+        _ => E::product_of(&flat),
     };
     if neg {
         E::Neg(Rc::new(e))
@@ -722,7 +722,7 @@ fn mon_parts_expr(
     syms: impl Iterator<Item = (u32, u32)>,
     atoms: impl Iterator<Item = Atom>,
 ) -> E {
-    let mut parts = Vec::with_capacity(8);
+    let mut parts: SmallVec<[E; 8]> = SmallVec::new();
     let neg = q.is_negative();
     let q = if neg { -q } else { q.clone() };
     if !q.is_one() {

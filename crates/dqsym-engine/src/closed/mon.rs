@@ -616,17 +616,23 @@ where
         let Q::S(n, d) = *q else {
             return content_i128(qs.clone()).unwrap_or_else(|| content_big(qs));
         };
-        num = num.gcd(&n.unsigned_abs());
-        let Some(l) = (den / den.gcd(&(d as u64))).checked_mul(d as u64) else {
-            return content_big(qs);
-        };
-        den = l;
+        if num != 1 {
+            num = num.gcd(&n.unsigned_abs());
+        }
+        if d != 1 {
+            let Some(l) = (den / den.gcd(&(d as u64))).checked_mul(d as u64) else {
+                return content_big(qs);
+            };
+            den = l;
+        }
     }
     if num == 0 {
         return Q::ONE;
     }
     match (i64::try_from(num), i64::try_from(den)) {
-        (Ok(n), Ok(d)) => Q::new(n, d),
+        // In lowest terms already: a prime of every numerator divides no denominator (each
+        // coefficient is in lowest terms), so none of their lcm.
+        (Ok(n), Ok(d)) => Q::S(n, d),
         _ => content_big(qs),
     }
 }

@@ -15,6 +15,7 @@
 use super::{factor_expr, mul, multiplicity, Factor, Search, E};
 use crate::closed::mon::{content_of, div_q};
 use crate::scalar::{charge, Q};
+use smallvec::SmallVec;
 use std::rc::Rc;
 
 /// The steps a level of a run takes before it splits (those of [`Search::build_at`]).
@@ -95,7 +96,7 @@ impl Search<'_> {
             if l.best != Some(fi) {
                 // The run ends: the group as the level by level search had it (in the order of
                 // the first group), searched.
-                let mut at: Vec<u32> = buckets[b..].iter().flatten().copied().collect();
+                let mut at: Vec<u32> = buckets.from(b).to_vec();
                 at.sort_unstable();
                 let group: Vec<(u32, Q)> = at
                     .iter()
@@ -120,13 +121,16 @@ impl Search<'_> {
                     .pop()
                     .unwrap_or_else(|| (Steps::default(), false, Q::ONE, entry_rad_off)),
             };
-            let factored = mul(vec![factor_expr(f, ks[lb + 1] - ks[lb]), e]);
-            let rest: Vec<(u32, Q)> = buckets[lb]
+            let factored = mul([factor_expr(f, ks[lb + 1] - ks[lb]), e]);
+            let rest: SmallVec<[(u32, Q); 4]> = buckets
+                .get(lb)
                 .iter()
                 .map(|&p| &g0[p as usize])
                 .map(|(i, q)| (*i, cur(q, neg, &divisor)))
                 .collect();
-            let n_before = buckets[lb].partition_point(|&p| p < levels[lb + 1].first);
+            let n_before = buckets
+                .get(lb)
+                .partition_point(|&p| p < levels[lb + 1].first);
             self.div[fi] = base + ks[lb];
             self.rad_off = rad_off;
             self.path.push((fi, ks[lb]));
@@ -157,26 +161,25 @@ impl Search<'_> {
             E::Add(v, _) => v,
             e => std::slice::from_ref(e),
         };
-        let mut terms = Vec::with_capacity(rest_terms.len() + 1);
-        if rest_terms.len() == rest.len() {
-            let (before, after) = rest_terms.split_at(n_before.min(rest_terms.len()));
-            terms.extend_from_slice(before);
-            terms.push(factored);
-            terms.extend_from_slice(after);
+        let at = if rest_terms.len() == rest.len() {
+            n_before.min(rest_terms.len())
         } else {
-            terms.push(factored);
-            terms.extend_from_slice(rest_terms);
-        }
-        if terms.len() == 1 {
-            terms.pop().unwrap_or_else(E::zero)
-        } else {
-            E::sum(terms)
-        }
+            0
+        };
+        let (before, after) = rest_terms.split_at(at);
+        // Collected from an iterator of known length: the node is allocated once.
+        let terms: Rc<[E]> = before
+            .iter()
+            .cloned()
+            .chain(std::iter::once(factored))
+            .chain(after.iter().cloned())
+            .collect();
+        E::sum_of(terms)
     }
 
     /// The distinct powers of `f` in `g0` (divided by `f^base`), 0 first, and the positions of
     /// the monomials of each, in order.
-    fn buckets(&self, g0: &[(u32, Q)], f: Factor, base: u32) -> (Vec<u32>, Vec<Vec<u32>>) {
+    fn buckets(&self, g0: &[(u32, Q)], f: Factor, base: u32) -> (Vec<u32>, Buckets) {
         let mults: Vec<u32> = g0
             .iter()
             .map(|(i, _)| multiplicity(&self.root[*i as usize], f) - base)
@@ -185,26 +188,33 @@ impl Search<'_> {
         ks.push(0);
         ks.sort_unstable();
         ks.dedup();
-        let mut buckets = vec![Vec::new(); ks.len()];
-        for (p, m) in mults.iter().enumerate() {
-            if let Ok(b) = ks.binary_search(m) {
-                buckets[b].push(p as u32);
-            }
+        // A counting sort by bucket (stable: positions stay in order within each), into one
+        // vector: a vector per bucket was an allocation per monomial in a run of single ones.
+        let of: Vec<usize> = mults
+            .iter()
+            .map(|m| ks.binary_search(m).unwrap_or(0))
+            .collect();
+        let mut start = vec![0usize; ks.len() + 1];
+        for &b in &of {
+            start[b + 1] += 1;
         }
-        (ks, buckets)
+        for b in 0..ks.len() {
+            start[b + 1] += start[b];
+        }
+        let mut next = start.clone();
+        let mut order = vec![0u32; of.len()];
+        for (p, &b) in of.iter().enumerate() {
+            order[next[b]] = p as u32;
+            next[b] += 1;
+        }
+        (ks, Buckets { order, start })
     }
 
     /// Each level's data from the buckets above it, top down (a last level past the buckets,
     /// empty); charged to the work budget: one unit per monomial and factor read,
     /// [`super::BIG_WORD_UNITS`] per word of a coefficient or content, one per factor compared
     /// at each level.
-    fn levels(
-        &mut self,
-        g0: &[(u32, Q)],
-        f: Factor,
-        ks: &[u32],
-        buckets: &[Vec<u32>],
-    ) -> Vec<Level> {
+    fn levels(&mut self, g0: &[(u32, Q)], f: Factor, ks: &[u32], buckets: &Buckets) -> Vec<Level> {
         let fi = self.counts.index(f);
         let n = ks.len();
         let mut out: Vec<Level> = (0..=n).map(|_| Level::empty()).collect();
@@ -216,7 +226,7 @@ impl Search<'_> {
         for b in (1..n).rev() {
             let mut l = Level::empty();
             let mut rad: Option<Option<u64>> = None;
-            for &p in &buckets[b] {
+            for &p in buckets.get(b) {
                 let (i, q) = &g0[p as usize];
                 let m = &root[*i as usize];
                 work += 1 + (m.syms.len() + m.atoms.len()) as u64;
@@ -241,10 +251,11 @@ impl Search<'_> {
                     last = Some(a);
                 }
             }
-            l.size = buckets[b].len();
-            l.first = buckets[b][0];
+            let bucket = buckets.get(b);
+            l.size = bucket.len();
+            l.first = bucket[0];
             l.rad = rad.flatten();
-            l.content = content_of(buckets[b].iter().map(|&p| &g0[p as usize].1));
+            l.content = content_of(bucket.iter().map(|&p| &g0[p as usize].1));
             let above = &out[b + 1];
             if above.size > 0 {
                 l.size += above.size;
@@ -272,6 +283,24 @@ impl Search<'_> {
             self.spent = charge(work).err();
         }
         out
+    }
+}
+
+/// The positions of a run's first group by their power of `f`: bucket `b` (power `ks[b]`) is
+/// `order[start[b]..start[b + 1]]`, in increasing order.
+struct Buckets {
+    order: Vec<u32>,
+    start: Vec<usize>,
+}
+
+impl Buckets {
+    fn get(&self, b: usize) -> &[u32] {
+        &self.order[self.start[b]..self.start[b + 1]]
+    }
+
+    /// Buckets `b` and up, one after another.
+    fn from(&self, b: usize) -> &[u32] {
+        &self.order[self.start[b]..]
     }
 }
 
@@ -317,10 +346,10 @@ fn bump(counts: &mut [u32], touched: &mut Vec<usize>, k: usize) {
 fn wrap(e: E, steps: Steps) -> E {
     let mut e = e;
     if let Some(r) = steps.rad {
-        e = mul(vec![E::Sqrt(r), e]);
+        e = mul([E::Sqrt(r), e]);
     }
     if let Some(g) = steps.content {
-        e = mul(vec![E::Num(g), e]);
+        e = mul([E::Num(g), e]);
     }
     if steps.neg {
         e = E::Neg(Rc::new(e));
