@@ -850,6 +850,70 @@ mod tests {
         }
     }
 
+    /// Integers within 128 bits (the machine path of [`content_of`] and [`div_q`]), one in
+    /// five lists with a wider one (the big path), against big-integer arithmetic; results in
+    /// the canonical form [`Q::big`] gives (the derived `Eq` compares forms).
+    #[test]
+    fn content_and_division_of_128_bit_integers_agree_with_big_integers() {
+        let mut s = 0x2545_f491_4f6c_dd1du64;
+        let mut word = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s
+        };
+        for case in 0..200u64 {
+            let common = match case % 4 {
+                0 => BigInt::from(1),
+                1 => BigInt::from(word() % 1000 + 2),
+                2 => BigInt::from(word() >> 1),
+                _ => BigInt::from(u128::from(word()) << 40 | 3),
+            };
+            let qs: Vec<BigInt> = (0..9)
+                .map(|k| {
+                    let bits = word() % 120 + 1;
+                    let mut n = BigInt::from(u128::from(word()) << 64 | u128::from(word()));
+                    n >>= 128 - bits;
+                    if n.is_zero() {
+                        n = BigInt::from(1);
+                    }
+                    n *= &common;
+                    if case % 5 == 4 && k == 3 {
+                        n <<= 140;
+                    }
+                    if word() % 3 == 0 {
+                        n = -n;
+                    }
+                    if case % 7 == 6 && k == 0 {
+                        n = BigInt::from(i64::MIN);
+                    }
+                    n
+                })
+                .collect();
+            let list: Vec<Q> = qs
+                .iter()
+                .cloned()
+                .map(BigRational::from_integer)
+                .map(Q::big)
+                .collect();
+            let want = qs.iter().fold(BigInt::zero(), |g, n| g.gcd(n));
+            let g = content_of(list.iter());
+            assert_eq!(
+                g,
+                Q::big(BigRational::from_integer(want.clone())),
+                "case {case}"
+            );
+            for (q, n) in list.iter().zip(&qs) {
+                let z = div_q(q, &g);
+                assert_eq!(
+                    z,
+                    Q::big(BigRational::from_integer(n / &want)),
+                    "case {case}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn a_numerator_modulo_a_word_agrees_with_big_integer_remainder() {
         for (i, q) in rationals(7, 60).iter().enumerate() {
