@@ -29,6 +29,7 @@ macro_rules! eprintln {
     ($($arg:tt)*) => { $crate::write_err(format_args!("{}\n", format_args!($($arg)*))) };
 }
 
+mod allocator;
 mod repl;
 
 /// Writes to stdout; a failed write ends the process (see [`print!`]).
@@ -424,15 +425,9 @@ fn threads_from_env() -> Option<usize> {
         .map(|n| n.max(1))
 }
 
-/// The allocator of the command line. The closed-form searches make and drop many small
-/// trees: with glibc's allocator, `malloc` and `free` were 22% of the instructions of the
-/// PUMA 560's `fk --jacobian` (about 110 instructions per call, its per-thread cache of seven
-/// blocks a size overflowing into the arena's bins), with mimalloc's free lists per page about
-/// 25 (callgrind, one thread: 49.9 M instructions with glibc, 42.0 M with mimalloc preloaded,
-/// the same output). The library leaves the choice to its user (the Python module keeps the
-/// interpreter's).
+/// The allocator of the command line (`allocator.rs` says why).
 #[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+static ALLOCATOR: allocator::MiMalloc = allocator::MiMalloc;
 
 /// Writing to a closed pipe (`dqsym fk robot.toml | head -1`) ends the process quietly, as it
 /// ends `cat`: the default action of SIGPIPE, which the Rust runtime sets to "ignore" (every
