@@ -9,6 +9,12 @@
 //! of those; every block of mimalloc is aligned to a machine word (its size classes are whole
 //! words), so layouts aligned to a word or less take `mi_malloc`. The library leaves the
 //! choice to its user (the Python module keeps the interpreter's allocator).
+//!
+//! Built without transparent huge pages (the `no_thp` feature): where the kernel grants them
+//! on request (`madvise`, the common setting), mimalloc asked for them on its arenas, and each
+//! first touch zeroed 2 MB. The PUMA's report then took 22 MB of resident memory instead of
+//! 10 MB and about 12 ms of CPU instead of 8 ms (one thread, `perf stat`), despite its fewer
+//! page faults (212 against 633 of 4 KB).
 
 use libmimalloc_sys::{
     mi_free, mi_malloc, mi_malloc_aligned, mi_realloc, mi_realloc_aligned, mi_zalloc,

@@ -220,7 +220,7 @@ fn the_import_reader_sees_groups_and_paths() {
 /// line's dependencies (`cargo tree`, normal edges only): python/ and fuzz/ build without them.
 #[test]
 fn the_library_has_no_command_line_dependencies() {
-    let cli = ["clap", "rustyline", "ctrlc"];
+    let cli = ["clap", "rustyline", "ctrlc", "libmimalloc-sys"];
     for args in [
         &["-p", "dqsym-engine"][..],
         &["-p", "dqsym", "--no-default-features"][..],
