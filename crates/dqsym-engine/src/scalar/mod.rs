@@ -592,13 +592,12 @@ mod sampled_key_tests {
     /// and scalars that differ only in terms the hash does not sample are still two keys.
     #[test]
     fn sampled_keys_agree_with_equality() {
-        let (a, b, t) = (Scalar::sym("a"), Scalar::sym("b"), Scalar::sym("t"));
-        // (a cos t + b sin t)^3 expanded two ways: 10+ terms.
-        let x = (a.clone() * t.cos() + b.clone() * t.sin()).pow(3);
-        let y = {
-            let s = a.clone() * t.cos() + b.clone() * t.sin();
-            s.clone() * s.clone() * s
-        };
+        let (a, b, c) = (Scalar::sym("a"), Scalar::sym("b"), Scalar::sym("c"));
+        let (t, u) = (Scalar::sym("t"), Scalar::sym("u"));
+        // (a cos t + b sin u + c)^3 expanded two ways: dozens of terms.
+        let s = a * t.cos() + b * u.sin() + c;
+        let x = s.pow(3);
+        let y = s.clone() * s.clone() * s;
         assert_eq!(x, y);
         let n = x.terms().map(<[_]>::len).unwrap_or(0);
         assert!(n > 2 * super::SAMPLED_TERMS, "{n} terms");
