@@ -29,6 +29,7 @@ macro_rules! eprintln {
     ($($arg:tt)*) => { $crate::write_err(format_args!("{}\n", format_args!($($arg)*))) };
 }
 
+mod allocator;
 mod repl;
 
 /// Writes to stdout; a failed write ends the process (see [`print!`]).
@@ -424,41 +425,9 @@ fn threads_from_env() -> Option<usize> {
         .map(|n| n.max(1))
 }
 
-/// glibc grows a thread's heap arena a page run at a time, one `mprotect` each; `fk` on two
-/// threads made about 85 such calls per run. A 16 MB top pad grows it in few steps.
-///
-/// The REPL instead keeps its resident memory small between statements: an abandoned
-/// computation's memory must go back to the system, and a thread arena keeps its top pad (and
-/// glibc's dynamic trim threshold, which freeing large blocks raises up to 64 MB) resident.
-/// Fixed thresholds of 1 MB hand freed memory back at once. And one arena only: `malloc_trim`
-/// returns the free pages inside every arena, but the free top of a thread arena's heap only
-/// when a large `free` happens to trigger it, so an interrupted worker's arena kept megabytes
-/// resident; with every thread on the main arena, `malloc_trim` after the worker is joined
-/// hands back all of it (the REPL's threads contend a little more for the allocator's lock).
-#[cfg(all(target_os = "linux", target_env = "gnu"))]
-fn tune_allocator(interactive: bool) {
-    extern "C" {
-        fn mallopt(param: std::ffi::c_int, value: std::ffi::c_int) -> std::ffi::c_int;
-    }
-    const M_TRIM_THRESHOLD: std::ffi::c_int = -1;
-    const M_TOP_PAD: std::ffi::c_int = -2;
-    const M_MMAP_THRESHOLD: std::ffi::c_int = -3;
-    const M_ARENA_MAX: std::ffi::c_int = -8;
-    // SAFETY: mallopt only sets allocator tuning parameters; it is called before any other
-    // thread exists.
-    unsafe {
-        if interactive {
-            mallopt(M_TRIM_THRESHOLD, 1 << 20);
-            mallopt(M_MMAP_THRESHOLD, 1 << 20);
-            mallopt(M_ARENA_MAX, 1);
-        } else {
-            mallopt(M_TOP_PAD, 16 << 20);
-        }
-    }
-}
-
-#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
-fn tune_allocator(_interactive: bool) {}
+/// The allocator of the command line (`allocator.rs` says why).
+#[global_allocator]
+static ALLOCATOR: allocator::MiMalloc = allocator::MiMalloc;
 
 /// Writing to a closed pipe (`dqsym fk robot.toml | head -1`) ends the process quietly, as it
 /// ends `cat`: the default action of SIGPIPE, which the Rust runtime sets to "ignore" (every
@@ -485,7 +454,6 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => return clap_exit(&e),
     };
-    tune_allocator(cli.command.is_none() && cli.expr.is_none());
     let worker = std::thread::Builder::new()
         .stack_size(STACK)
         .spawn(move || {

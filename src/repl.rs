@@ -501,18 +501,16 @@ fn statement(
 /// The message after Ctrl-C stopped a computation.
 const INTERRUPTED: &str = "interrupted; the bindings are unchanged";
 
-/// Hands the memory an abandoned computation freed back to the system: glibc keeps a worker
-/// thread's freed heap in its arena otherwise.
-#[cfg(all(target_os = "linux", target_env = "gnu"))]
+/// Hands the memory an abandoned computation freed back to the system at once: mimalloc
+/// (the binary's allocator, `main.rs`) otherwise keeps an exited worker's pages, and purges
+/// free pages only after a delay.
 fn release_freed_memory() {
     extern "C" {
-        fn malloc_trim(pad: usize) -> std::ffi::c_int;
+        fn mi_collect(force: bool);
     }
-    // SAFETY: malloc_trim only returns free memory of the allocator's arenas to the system.
+    // SAFETY: mi_collect only frees and purges memory the allocator holds unused (and
+    // reclaims the pages of exited threads); every thread may call it at any time.
     unsafe {
-        malloc_trim(0);
+        mi_collect(true);
     }
 }
-
-#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
-fn release_freed_memory() {}
