@@ -794,16 +794,43 @@ static void ik_gen_first_two(const ik_gen_arranged *ar, const ik_gen_elim *el,
                          : atan2(x12[ik_gen_mono(0, 2)], x12[ik_gen_mono(0, 1)]);
 }
 
+/* cos and sin of a small angle, |d| <= pi/64, by Taylor polynomials (see core.rs,
+   cos_sin_small). */
+static void ik_gen_cos_sin_small(double d, double *co, double *si) {
+    const double d2 = d * d;
+    *si = d * (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0 +
+                                                                  d2 * (1.0 / 362880.0)))));
+    *co = 1.0 + d2 * (-0.5 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0 + d2 * (1.0 / 40320.0 +
+                                                                         d2 * (-1.0 / 3628800.0)))));
+}
+
+/* cos th and sin th without a library call: the nearest table angle b pi/32 turned by the rest
+   (see core.rs, unit). */
+static void ik_gen_unit(double th, double *co, double *si) {
+    const double y = th / IK_GEN_GRID_STEP + 0.5;
+    long long b = fabs(y) < 1e15 ? (long long)y : 0;
+    double c, s, sb, cb;
+    int k;
+    if ((double)b > y) b -= 1;
+    ik_gen_cos_sin_small(th - (double)b * IK_GEN_GRID_STEP, &c, &s);
+    k = (int)(((b % 64) + 64) % 64);
+    sb = IK_GEN_GRID_SIN[k];
+    cb = IK_GEN_GRID_SIN[(k + 16) % 64];
+    *co = cb * c - sb * s;
+    *si = sb * c + cb * s;
+}
+
 /* th6 from the rest: E6 = (E1 ... E5)^-1 H, read about its axis. */
 static double ik_gen_last(const ik_gen_arranged *ar, const double t[5]) {
     double rot[3][3] = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
-    double r[3][3], n[3][3], u[3], hu[3], v[3], uv[3];
+    double r[3][3], n[3][3], u[3], hu[3], v[3], uv[3], co, si;
     const double ex[3] = {1.0, 0.0, 0.0}, ey[3] = {0.0, 1.0, 0.0};
     const double *w6 = ar->j[5].w;
     int k, i, j, l;
     for (k = 0; k < 5; k++) {
         if (ar->j[k].prism) continue;
-        ik_gen_rodrigues(ar->j[k].w, sin(t[k]), cos(t[k]), r);
+        ik_gen_unit(t[k], &co, &si);
+        ik_gen_rodrigues(ar->j[k].w, si, co, r);
         for (i = 0; i < 3; i++) {
             for (j = 0; j < 3; j++) {
                 n[i][j] = -0.0;
@@ -833,8 +860,7 @@ static void ik_gen_basis(const ik_gen_joint *j, double t, double f[3]) {
         f[1] = t;
         f[2] = t * t;
     } else {
-        f[1] = cos(t);
-        f[2] = sin(t);
+        ik_gen_unit(t, &f[1], &f[2]);
     }
 }
 
@@ -940,32 +966,6 @@ static double ik_gen_det_trig(const double t[3][12][12], double s, double c, dou
     }
     *ratio = maxpiv > 0.0 ? minpiv / maxpiv : 0.0;
     return det;
-}
-
-/* cos and sin of a small angle, |d| <= pi/64, by Taylor polynomials (see core.rs,
-   cos_sin_small). */
-static void ik_gen_cos_sin_small(double d, double *co, double *si) {
-    const double d2 = d * d;
-    *si = d * (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0 +
-                                                                  d2 * (1.0 / 362880.0)))));
-    *co = 1.0 + d2 * (-0.5 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0 + d2 * (1.0 / 40320.0 +
-                                                                         d2 * (-1.0 / 3628800.0)))));
-}
-
-/* cos th and sin th without a library call: the nearest table angle b pi/32 turned by the rest
-   (see core.rs, unit). */
-static void ik_gen_unit(double th, double *co, double *si) {
-    const double y = th / IK_GEN_GRID_STEP + 0.5;
-    long long b = fabs(y) < 1e15 ? (long long)y : 0;
-    double c, s, sb, cb;
-    int k;
-    if ((double)b > y) b -= 1;
-    ik_gen_cos_sin_small(th - (double)b * IK_GEN_GRID_STEP, &c, &s);
-    k = (int)(((b % 64) + 64) % 64);
-    sb = IK_GEN_GRID_SIN[k];
-    cb = IK_GEN_GRID_SIN[(k + 16) % 64];
-    *co = cb * c - sb * s;
-    *si = sb * c + cb * s;
 }
 
 /* D(th) = Re sum_j c_j e^(i j th) prepared for evaluation with its derivatives: D^(k)(th) =

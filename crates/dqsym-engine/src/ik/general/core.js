@@ -555,7 +555,8 @@ function ik_gen_last(ar, t) {
     let rot = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
     for (let k = 0; k < 5; k++) {
         if (ar.j[k].prism) continue;
-        const r = ik_gen_rodrigues(ar.j[k].w, Math.sin(t[k]), Math.cos(t[k]));
+        const [co, si] = ik_gen_unit(t[k]);
+        const r = ik_gen_rodrigues(ar.j[k].w, si, co);
         rot = [0, 1, 2].map((i) => [0, 1, 2].map((j) =>
             -0 + rot[i][0] * r[0][j] + rot[i][1] * r[1][j] + rot[i][2] * r[2][j]));
     }
@@ -578,7 +579,7 @@ function ik_gen_back_substitute(ar, el, v, th3) {
     for (let b = 0; b < 2; b++) for (let a = 0; a < 4; a++) p5.push([at(a, b + 1), at(a, b)]);
     // A prismatic joint's variable is the tangent of the half angle these formulas give.
     const t4 = slide(3, ik_gen_angle_from(p4)), t5 = slide(4, ik_gen_angle_from(p5));
-    const f = (k, t) => (ar.j[k].prism ? [1, t, t * t] : [1, Math.cos(t), Math.sin(t)]);
+    const f = (k, t) => (ar.j[k].prism ? [1, t, t * t] : [1, ...ik_gen_unit(t)]);
     const [t1, t2] = ik_gen_first_two(ar, el, f(2, t3), f(3, t4), f(4, t5));
     const t = [t1, t2, t3, t4, t5];
     return t.concat([ik_gen_last(ar, t)]);

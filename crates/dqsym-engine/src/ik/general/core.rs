@@ -982,7 +982,8 @@ fn back_substitute(ar: &Arranged, el: &Elim, v: &[f64; 12], t3: f64) -> [f64; 6]
         if ar.j[k].prism {
             [1.0, t, t * t]
         } else {
-            let (s, c) = t.sin_cos();
+            // (A few units of rounding more than the library's: the refinement starts here.)
+            let (c, s) = unit(t);
             [1.0, c, s]
         }
     };
@@ -1038,7 +1039,7 @@ fn back_substitute(ar: &Arranged, el: &Elim, v: &[f64; 12], t3: f64) -> [f64; 6]
         if ar.j[k].prism {
             continue;
         }
-        let (s, c) = tk.sin_cos();
+        let (c, s) = unit(*tk);
         let r = rodrigues(&ar.j[k].w, s, c);
         let mut n = [[0.0; 3]; 3];
         for i in 0..3 {
