@@ -933,10 +933,11 @@ static void ik_gen_eliminate_rows(double m[12][12], int k, double d) {
 
 /* S(th) with its columns in the order IK_GEN_DET_COLS (see core.rs, DET_COLS). */
 static void ik_gen_trig_at_cols(const double t[3][12][12], double s, double c, double m[12][12]) {
-    int r, k, j;
+    int r, k, j, cols[12];
+    for (k = 0; k < 12; k++) cols[k] = (int)IK_GEN_DET_COLS[k];
     for (r = 0; r < 12; r++)
         for (k = 0; k < 12; k++) {
-            j = (int)IK_GEN_DET_COLS[k];
+            j = cols[k];
             m[r][k] = t[0][r][j] + c * t[1][r][j] + s * t[2][r][j];
         }
 }
@@ -997,16 +998,19 @@ static void ik_gen_trig_table_of(const double c[IK_GEN_DET_DEGREE + 1][2], ik_ge
 
 /* D(th) and its derivatives to the seventh. */
 static void ik_gen_trig_eval(const ik_gen_trig_table *t, double th, double out[IK_GEN_TAYLOR]) {
-    double s, co, zr = 1.0, zi = 0.0, nz;
+    double s, co, zr = 1.0, zi = 0.0, nz, acc[IK_GEN_TAYLOR];
     int j, k;
     ik_gen_unit(th, &co, &s);
-    for (k = 0; k < IK_GEN_TAYLOR; k++) out[k] = 0.0;
+    /* Sums in a local array (no aliasing with the table: the compiler may run them side by
+       side). */
+    for (k = 0; k < IK_GEN_TAYLOR; k++) acc[k] = 0.0;
     for (j = 0; j <= IK_GEN_DET_DEGREE; j++) {
-        for (k = 0; k < IK_GEN_TAYLOR; k++) out[k] += t->u[j][k] * zr + t->v[j][k] * zi;
+        for (k = 0; k < IK_GEN_TAYLOR; k++) acc[k] += t->u[j][k] * zr + t->v[j][k] * zi;
         nz = zr * co - zi * s;
         zi = zr * s + zi * co;
         zr = nz;
     }
+    for (k = 0; k < IK_GEN_TAYLOR; k++) out[k] = acc[k];
 }
 
 /* D^(k), D^(k+1), D^(k+2) at th for k 0 or 1 (see core.rs, trig_low). */
