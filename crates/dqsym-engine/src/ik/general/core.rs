@@ -426,9 +426,9 @@ fn motion_apply(g: &B34, x: &V, d: &V) -> (V, V) {
 #[allow(clippy::needless_range_loop, clippy::type_complexity)]
 fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], f64) {
     let mut a = *b;
-    let mut qt = [[0.0; 14]; 14];
+    let mut q = [[0.0; 14]; 14];
     for i in 0..14 {
-        qt[i][i] = 1.0;
+        q[i][i] = 1.0;
     }
     let mut piv = [0, 1, 2, 3, 4, 5, 6, 7];
     for k in 0..8 {
@@ -468,13 +468,16 @@ fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], 
                 a[r][c] -= s * v[r];
             }
         }
-        for c in 0..14 {
-            let s: f64 = (k..14).map(|r| v[r] * qt[r][c]).sum::<f64>() * 2.0 / vn;
+        // Q (the transpose of Qᵀ) by rows, so that each update runs along a row (the same
+        // operations in the same order).
+        for qc in q.iter_mut() {
+            let s: f64 = (k..14).map(|r| v[r] * qc[r]).sum::<f64>() * 2.0 / vn;
             for r in k..14 {
-                qt[r][c] -= s * v[r];
+                qc[r] -= s * v[r];
             }
         }
     }
+    let qt: [[f64; 14]; 14] = std::array::from_fn(|i| std::array::from_fn(|c| q[c][i]));
     let mut r = [[0.0; 8]; 8];
     for i in 0..8 {
         for j in i..8 {
