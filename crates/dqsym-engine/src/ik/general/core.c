@@ -812,7 +812,8 @@ static void ik_gen_unit(double th, double *co, double *si) {
     double c, s, sb, cb;
     int k;
     if ((double)b > y) b -= 1;
-    ik_gen_cos_sin_small(th - (double)b * IK_GEN_GRID_STEP, &c, &s);
+    ik_gen_cos_sin_small((th - (double)b * IK_GEN_GRID_STEP_HI) - (double)b * IK_GEN_GRID_STEP_LO,
+                         &c, &s);
     k = (int)(((b % 64) + 64) % 64);
     sb = IK_GEN_GRID_SIN[k];
     cb = IK_GEN_GRID_SIN[(k + 16) % 64];
@@ -1057,12 +1058,13 @@ static double ik_gen_bracketed(const ik_gen_trig_table *c, int k, double a,
     return x;
 }
 
-/* A root of the monotone D^(k) on [a, b] into *x if its ends differ in sign; 1 when found. */
-static int ik_gen_mono_root(const ik_gen_trig_table *c, double a, double b, int k,
+/* A root of the monotone D^(k) on [a, b] into *x if its ends differ in sign; 1 when found. The
+   end top (2 pi) is read as 0, so that a root there is seen the same from both sides. */
+static int ik_gen_mono_root(const ik_gen_trig_table *c, double a, double b, int k, double top,
                             int *evals, double *x) {
     double va[3], vb[3];
-    ik_gen_trig_low(c, k, a, va);
-    ik_gen_trig_low(c, k, b, vb);
+    ik_gen_trig_low(c, k, a >= top ? 0.0 : a, va);
+    ik_gen_trig_low(c, k, b >= top ? 0.0 : b, vb);
     *evals += 2;
     if ((va[0] < 0.0) == (vb[0] < 0.0)) return 0;
     *x = ik_gen_bracketed(c, k, a, b, va[0], vb[0]);
@@ -1072,7 +1074,7 @@ static int ik_gen_mono_root(const ik_gen_trig_table *c, double a, double b, int 
 /* The real roots in [0, 2 pi) of D (see core.rs, trig_roots) into out, their number in *n;
    0 when the search gives up. */
 static int ik_gen_trig_roots(const double c[IK_GEN_DET_DEGREE + 1][2], double out[24], int *n) {
-    double b0 = 0.0, b8 = 0.0, margin, nd = (double)IK_GEN_DET_DEGREE, h, a, b, m, r, term,
+    double b0 = 0.0, b8 = 0.0, margin, nd = (double)IK_GEN_DET_DEGREE, h, top, a, b, m, r, term,
         x, e, moves[3], v[IK_GEN_TAYLOR], w[IK_GEN_TAYLOR], stack[96][2];
     int j, k, l, depth = 0, evals = 0, left, right, flat;
     ik_gen_trig_table tt;
@@ -1085,6 +1087,7 @@ static int ik_gen_trig_roots(const double c[IK_GEN_DET_DEGREE + 1][2], double ou
     ik_gen_trig_table_of(c, &tt);
     margin = IK_GEN_ROOT_MARGIN * b0;
     h = IK_GEN_TAU / (double)IK_GEN_ROOT_GRID;
+    top = (double)IK_GEN_ROOT_GRID * h;
     for (k = IK_GEN_ROOT_GRID - 1; k >= 0; k--) {
         stack[depth][0] = (double)k * h;
         stack[depth][1] = (double)(k + 1) * h;
@@ -1097,7 +1100,7 @@ static int ik_gen_trig_roots(const double c[IK_GEN_DET_DEGREE + 1][2], double ou
         b = stack[depth][1];
         m = 0.5 * (a + b);
         r = 0.5 * (b - a);
-        ik_gen_trig_eval(&tt, m, v);
+        ik_gen_trig_eval(&tt, m >= top ? 0.0 : m, v);
         evals++;
         if (evals > IK_GEN_ROOT_EVALS || *n + 2 > 24) return 0;
         for (l = 0; l < 3; l++) {
@@ -1111,21 +1114,21 @@ static int ik_gen_trig_roots(const double c[IK_GEN_DET_DEGREE + 1][2], double ou
         }
         if (fabs(v[0]) > moves[0] + margin) continue;
         if (fabs(v[1]) > moves[1] + nd * margin) {
-            if (ik_gen_mono_root(&tt, a, b, 0, &evals, &x)) out[(*n)++] = x;
+            if (ik_gen_mono_root(&tt, a, b, 0, top, &evals, &x)) out[(*n)++] = x;
             continue;
         }
         if (fabs(v[2]) > moves[2] + nd * nd * margin) {
-            if (!ik_gen_mono_root(&tt, a, b, 1, &evals, &e)) {
+            if (!ik_gen_mono_root(&tt, a, b, 1, top, &evals, &e)) {
                 /* D' keeps its sign: D is monotone after all. */
-                if (ik_gen_mono_root(&tt, a, b, 0, &evals, &x)) out[(*n)++] = x;
+                if (ik_gen_mono_root(&tt, a, b, 0, top, &evals, &x)) out[(*n)++] = x;
                 continue;
             }
-            left = ik_gen_mono_root(&tt, a, e, 0, &evals, &xl);
-            right = ik_gen_mono_root(&tt, e, b, 0, &evals, &xr);
+            left = ik_gen_mono_root(&tt, a, e, 0, top, &evals, &xl);
+            right = ik_gen_mono_root(&tt, e, b, 0, top, &evals, &xr);
             if (left) out[(*n)++] = xl;
             if (right) out[(*n)++] = xr;
             if (!left && !right) {
-                ik_gen_trig_eval(&tt, e, w);
+                ik_gen_trig_eval(&tt, e >= top ? 0.0 : e, w);
                 if (2.0 * fabs(w[0]) <= IK_GEN_NEAR_REAL * IK_GEN_NEAR_REAL * fabs(w[2])) {
                     out[(*n)++] = e;
                     out[(*n)++] = e;
@@ -1307,7 +1310,7 @@ static int ik_gen_candidates(const ik_gen_arranged *ar, const ik_gen_elim *el,
 static void ik_gen_forward(const double ax[6][7], const double home[3][4], const double q[6],
                            double pose[3][4], double cur[6][6]) {
     double p[3][4] = {{1.0, 0.0, 0.0, 0.0}, {0.0, 1.0, 0.0, 0.0}, {0.0, 0.0, 1.0, 0.0}};
-    double m[3][4], r[3][3], np[3][4], o[3], d[3];
+    double m[3][4], r[3][3], np[3][4], o[3], d[3], co, si;
     int i, rr, c;
     for (i = 0; i < 6; i++) {
         const double *w = ax[i] + 1, *pc = ax[i] + 4;
@@ -1323,7 +1326,8 @@ static void ik_gen_forward(const double ax[6][7], const double home[3][4], const
                 m[rr][3] = q[i] * w[rr];
             }
         } else {
-            ik_gen_rodrigues(w, sin(q[i]), cos(q[i]), r);
+            ik_gen_unit(q[i], &co, &si);
+            ik_gen_rodrigues(w, si, co, r);
             for (rr = 0; rr < 3; rr++) {
                 for (c = 0; c < 3; c++) m[rr][c] = r[rr][c];
                 m[rr][3] = pc[rr] - ik_gen_dot3(r[rr], pc);

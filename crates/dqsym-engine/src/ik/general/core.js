@@ -655,7 +655,7 @@ function ik_gen_unit(th) {
     const y = th / IK_GEN_GRID_STEP + 0.5;
     let b = Math.abs(y) < 1e15 ? Math.trunc(y) : 0;
     if (b > y) b -= 1;
-    const [c, s] = ik_gen_cos_sin_small(th - b * IK_GEN_GRID_STEP);
+    const [c, s] = ik_gen_cos_sin_small((th - b * IK_GEN_GRID_STEP_HI) - b * IK_GEN_GRID_STEP_LO);
     const k = ((b % 64) + 64) % 64;
     const sb = IK_GEN_GRID_SIN[k], cb = IK_GEN_GRID_SIN[(k + 16) % 64];
     return [cb * c - sb * s, sb * c + cb * s];
@@ -732,16 +732,17 @@ function ik_gen_trig_roots(c) {
         b8 += j2 * j2 * j2 * j2 * amp;
     }
     const margin = IK_GEN_ROOT_MARGIN * b0, nd = IK_GEN_DET_DEGREE;
-    const h = IK_GEN_TAU / IK_GEN_ROOT_GRID;
-    // 2 pi is read as 0 by ik_gen_unit.
-    const at = (x) => ik_gen_trig_eval(c, x);
+    const h = IK_GEN_TAU / IK_GEN_ROOT_GRID, top = IK_GEN_ROOT_GRID * h;
+    // The end 2 pi is read as 0, so that a root there is seen the same from both sides.
+    const end = (x) => (x >= top ? 0 : x);
+    const at = (x) => ik_gen_trig_eval(c, end(x));
     const stack = [];
     for (let k = IK_GEN_ROOT_GRID - 1; k >= 0; k--) stack.push([k * h, (k + 1) * h]);
     const out = [];
     let evals = 0;
     // A root of the monotone D^(k) on [a, b] if its ends differ in sign, else null.
     const mono = (a, b, k) => {
-        const fa = ik_gen_trig_low(c, k, a)[0], fb = ik_gen_trig_low(c, k, b)[0];
+        const fa = ik_gen_trig_low(c, k, end(a))[0], fb = ik_gen_trig_low(c, k, end(b))[0];
         evals += 2;
         return (fa < 0) === (fb < 0) ? null : ik_gen_bracketed(c, k, a, b, fa, fb);
     };

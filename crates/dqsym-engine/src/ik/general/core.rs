@@ -1468,6 +1468,14 @@ pub const GRID_SIN: [f64; 64] = [
 /// The spacing `π/32` of [`GRID_SIN`].
 pub const GRID_STEP: f64 = std::f64::consts::PI / 32.0;
 
+/// `π/32` in two parts (Cody and Waite): `GRID_STEP_HI` with 33 significant bits, so that
+/// `b · GRID_STEP_HI` is exact for `|b| < 2²⁰`, and the rest `GRID_STEP_LO` (from 50
+/// digits). The rest of an angle `θ − b π/32` is then exact to a unit of its own rounding,
+/// not of `θ`'s.
+pub const GRID_STEP_HI: f64 = 0.098_174_770_420_882_85;
+/// See [`GRID_STEP_HI`].
+pub const GRID_STEP_LO: f64 = 3.798_187_816_566_37e-12;
+
 /// `(cos d, sin d)` of a small angle, `|d| ≤ π/64` (and rounding), by Taylor's polynomials to
 /// `d⁹` and `d¹⁰`: the remainders `|d|¹¹/11!` and `|d|¹²/12!` are below `1e-22`, far under
 /// rounding, so the result is as accurate as a library's (a few units of rounding).
@@ -1485,9 +1493,10 @@ fn cos_sin_small(d: f64) -> (f64, f64) {
 }
 
 /// `(cos θ, sin θ)` without a library call: the nearest multiple `bπ/32` of the table turned
-/// by the rest `θ − bπ/32` ([`cos_sin_small`]). A function of `θ` alone (the same value for an
-/// end shared by two intervals: a root there is seen once), exact table values at the grid's
-/// points, and `2π` read as `0`.
+/// by the rest `θ − bπ/32` ([`cos_sin_small`], the rest by [`GRID_STEP_HI`] and
+/// [`GRID_STEP_LO`]): within a few units of rounding of the library's. A function of `θ` alone
+/// (the same value for an end shared by two intervals: a root there is seen once), and the
+/// table's values at its points.
 pub(crate) fn unit(th: f64) -> (f64, f64) {
     // The nearest multiple b (by truncation, one less where that rounded up a negative).
     // (0 for a NaN or huge θ, as the C port: its conversion is undefined there.)
@@ -1496,7 +1505,8 @@ pub(crate) fn unit(th: f64) -> (f64, f64) {
     if b as f64 > y {
         b -= 1;
     }
-    let (c, s) = cos_sin_small(th - b as f64 * GRID_STEP);
+    let bf = b as f64;
+    let (c, s) = cos_sin_small((th - bf * GRID_STEP_HI) - bf * GRID_STEP_LO);
     let k = b.rem_euclid(64) as usize;
     let (sb, cb) = (GRID_SIN[k], GRID_SIN[(k + 16) % 64]);
     (cb * c - sb * s, sb * c + cb * s)
@@ -1664,11 +1674,12 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     let margin = ROOT_MARGIN * b0;
     let nd = DET_DEGREE as f64;
     let h = std::f64::consts::TAU / ROOT_GRID as f64;
-    // The end 2π is the start 0 ([`unit`]), so that a root there is seen the same from both
-    // sides.
+    // The end 2π is the start 0, so that a root there is seen the same from both sides.
+    let top = ROOT_GRID as f64 * h;
     let tt = trig_table(c);
     let c = &tt;
-    let at = |x: f64| trig_eval(c, x);
+    let end = |x: f64| if x >= top { 0.0 } else { x };
+    let at = |x: f64| trig_eval(c, end(x));
     let mut stack = [(0.0, 0.0); 96];
     let mut depth = 0;
     for k in (0..ROOT_GRID).rev() {
@@ -1680,7 +1691,7 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     // A root of the monotone part `[a, b]` of `D` (`k = 0`) or `D′` (`k = 1`), if its ends
     // differ in sign (0 counted as positive, so a root at a shared end is seen once).
     let mono = |a: f64, b: f64, k: usize, evals: &mut usize| -> Option<f64> {
-        let (fa, fb) = (trig_low(c, k, a).0, trig_low(c, k, b).0);
+        let (fa, fb) = (trig_low(c, k, end(a)).0, trig_low(c, k, end(b)).0);
         *evals += 2;
         if (fa < 0.0) == (fb < 0.0) {
             None
@@ -1867,7 +1878,7 @@ fn forward(ax: &[GenAxis; 6], home: &B34, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) 
                 m[r][3] = q[i] * w[r];
             }
         } else {
-            let (s, co) = q[i].sin_cos();
+            let (co, s) = unit(q[i]);
             let r = rodrigues(&w, s, co);
             for rr in 0..3 {
                 m[rr][..3].copy_from_slice(&r[rr]);

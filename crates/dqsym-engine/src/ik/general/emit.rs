@@ -73,6 +73,8 @@ fn core_constants(w: &dyn Syntax) -> (Vec<Named<String>>, Vec<Table>) {
         ("IK_GEN_BRACKET_WIDTH", f(k::BRACKET_WIDTH)),
         ("IK_GEN_NULL_RESIDUAL", f(k::NULL_RESIDUAL)),
         ("IK_GEN_GRID_STEP", f(k::GRID_STEP)),
+        ("IK_GEN_GRID_STEP_HI", f(k::GRID_STEP_HI)),
+        ("IK_GEN_GRID_STEP_LO", f(k::GRID_STEP_LO)),
     ];
     let rows = |m: &[[f64; 3]; 3]| m.iter().map(|r| r.to_vec()).collect::<Vec<_>>();
     let tables = vec![
