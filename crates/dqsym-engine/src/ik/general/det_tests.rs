@@ -583,3 +583,75 @@ fn det_trig_in_its_column_order_is_the_determinant() {
         );
     }
 }
+
+/// Halley's brackets (`bracketed`, from the secant's zero, bisection where a step leaves the
+/// bracket) in the hard places: clusters of simple roots (three and four within 3e-3, the
+/// shape of the bench arm's clusters), roots at `θ = π ± 2e-8` (the half-angle tangent near
+/// `±1e8`) beside a cluster, and a near-double root (`2e-6` apart) beside another root. Each
+/// real root is found to `1e-9` or to its own condition (the rounding of the coefficients over
+/// `|D′|`), none is made up, or the search leaves a cluster within rounding to the eigenvalue
+/// route.
+#[test]
+fn trig_roots_resolves_clusters_and_roots_near_pi() {
+    let pi = std::f64::consts::PI;
+    let cases: [Vec<Factor>; 4] = [
+        vec![
+            Factor::Real {
+                mu: 1.0,
+                delta: 1e-3,
+            },
+            Factor::Real {
+                mu: 1.0005,
+                delta: 2e-3,
+            },
+            Factor::Complex { mu: 4.0, eta: 0.4 },
+        ],
+        vec![
+            Factor::Real {
+                mu: 2.0,
+                delta: 1e-3,
+            },
+            Factor::Real {
+                mu: 2.0012,
+                delta: 1.5e-3,
+            },
+            Factor::Real {
+                mu: pi,
+                delta: 2e-8,
+            },
+            Factor::Complex { mu: 5.0, eta: 0.2 },
+        ],
+        vec![
+            Factor::Real {
+                mu: pi,
+                delta: 2e-8,
+            },
+            Factor::Real {
+                mu: pi + 0.01,
+                delta: 3e-3,
+            },
+            Factor::Real {
+                mu: 0.5,
+                delta: 0.3,
+            },
+        ],
+        vec![
+            Factor::Real {
+                mu: 3.0,
+                delta: 1e-6,
+            },
+            Factor::Real {
+                mu: 3.01,
+                delta: 0.2,
+            },
+            Factor::Complex { mu: 0.3, eta: 0.05 },
+        ],
+    ];
+    let mut answered = 0;
+    for f in &cases {
+        check_or_give_up(f, 1.0, 1e-9, true);
+        answered += usize::from(trig_roots(&product(f, 1.0), &mut [0.0; 24]).is_some());
+    }
+    // Clusters of simple roots 1e-3 apart are resolved, not left to the eigenvalue route.
+    assert!(answered >= 3, "answered {answered} of 4");
+}
