@@ -127,7 +127,7 @@
 //! higher degree would show there). Its real roots come from a certified interval search
 //! (`core::trig_roots`): Taylor's formula to the seventh derivative with the rest bounded by
 //! `Σ j⁸ |c_j|` excludes intervals free of roots and proves the others monotone (one root,
-//! Halley's method in the bracket from the secant's zero: cubic convergence, about 3.5
+//! Halley's method in the bracket from the secant's zero: cubic convergence, about 5
 //! evaluations of `D`, `D′`, `D″` per root where Newton's took 7 of all eight derivatives) or
 //! convex (two roots or a near-double one, taken twice as a near-real complex pair is) — no
 //! real root can fall between the cases. No library sine or cosine: the sample angles are
@@ -152,7 +152,7 @@
 //! vectors 68k, `±i` deflation 66k, the elimination 66k, refinement 60k); 402k with the
 //! determinant route as first built (the 18 sampled LUs 86k, the root search 75k of which
 //! 36k were library `sincos` calls, null vectors and back-substitution 26k, the eigenvalue
-//! route at the 5 poses of 64 where the search gives up 20k); 348k now (issue #29, session
+//! route at the 5 poses of 64 where the search gives up 20k); 352k now (issue #29, session
 //! 14: no library `sincos` in the search, the back-substitution or the forward kinematics of
 //! the refinement, `core::unit` instead, within a few units of rounding, the residuals still
 //! below `EXACT_TOL`; Halley; the block column order; the tables; the QR's row layout). What
