@@ -1636,13 +1636,15 @@ pub const ROOT_LEAF: f64 = 1e-9;
 /// at the bench's poses).
 pub const ROOT_EVALS: usize = 600;
 
-/// The step of Halley's method (an angle) at which [`bracketed`] stops: the error after a step
-/// `s` is about `K s³` (cubic convergence, `K = |D‴/6D′ − (D″/2D′)²|` at the root, up to the
-/// degree squared, about 64, for a simple root on the scale of the coefficients), so below
-/// `1e-6` the root is within `1e-16` and the step after it would change nothing. At a nearly
-/// double root `K` is larger and the root less exact (`1e-12` for `K = 1e6`): the
-/// refinement, which starts from the back-substituted joints anyway, finishes it.
-pub const BRACKET_TOL: f64 = 1e-6;
+/// The step of Halley's method (an angle) at which [`bracketed`] stops. The error after a step
+/// `s` is about `K s³` (cubic convergence, `K = |D‴/6D′ − (D″/2D′)²|` at the root): up to
+/// the degree squared for a simple root on the scale of the coefficients, so that `1e-6`
+/// would do there, but `K` grows as the inverse square of the distance to a nearly double
+/// root's partner, and such roots are where the refinement needs the root most exactly (the
+/// Jacobian nearly singular: a Baxter pose with its fifth joint free stalled `1e-4` from the
+/// solution at a residual of `1e-11` from a root to `1e-6`). So the root to `1e-10`, as with
+/// Newton's method before: the last step costs one evaluation of three sums.
+pub const BRACKET_TOL: f64 = 1e-10;
 
 /// The bracket's width at which bisection in [`bracketed`] stops (where Halley's steps keep
 /// leaving the bracket: a root of `D⁽ᵏ⁾` with its derivative nearly zero too), as exact as

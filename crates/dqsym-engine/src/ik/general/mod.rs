@@ -161,7 +161,7 @@
 //! it), the refinement 55k (12 forward kinematics and 6 normal equations for 6 candidates),
 //! the search 45k (about 50 evaluations with all derivatives and 60 of three), null vectors
 //! and back-substitution 50k, the eigenvalue route 20k. The C port (GCC 12, `-O2`): 607k to
-//! 546k. Tried and dropped (no gain or a loss): row updates from the pivot column on
+//! 550k. Tried and dropped (no gain or a loss): row updates from the pivot column on
 //! (not vectorised), the elimination's arrays built element by element, the 27 products of
 //! back-substitution hoisted, a root margin lowered a hundredfold (the eigenvalue route's
 //! poses are clusters within `1e-13` of the scale). The 20 µs (about 150k instructions) of
