@@ -1439,6 +1439,7 @@ pub const TAYLOR: usize = 8;
 /// `sin(kπ/32)`, `k = 0 … 63` (correctly rounded, from 40 digits); `cos(kπ/32)` is
 /// `GRID_SIN[(k + 16) % 64]`. The points [`unit`] turns from: the grid of the root search
 /// (intervals of `2π / ROOT_GRID`) has its ends at the even `k` and its midpoints at the odd.
+#[allow(clippy::approx_constant)]
 pub const GRID_SIN: [f64; 64] = [
     0.0,
     0.0980171403295606,
