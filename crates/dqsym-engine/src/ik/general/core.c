@@ -794,16 +794,44 @@ static void ik_gen_first_two(const ik_gen_arranged *ar, const ik_gen_elim *el,
                          : atan2(x12[ik_gen_mono(0, 2)], x12[ik_gen_mono(0, 1)]);
 }
 
+/* cos and sin of a small angle, |d| <= pi/64, by Taylor polynomials (see core.rs,
+   cos_sin_small). */
+static void ik_gen_cos_sin_small(double d, double *co, double *si) {
+    const double d2 = d * d;
+    *si = d * (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0 +
+                                                                  d2 * (1.0 / 362880.0)))));
+    *co = 1.0 + d2 * (-0.5 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0 + d2 * (1.0 / 40320.0 +
+                                                                         d2 * (-1.0 / 3628800.0)))));
+}
+
+/* cos th and sin th without a library call: the nearest table angle b pi/32 turned by the rest
+   (see core.rs, unit). */
+static void ik_gen_unit(double th, double *co, double *si) {
+    const double y = th / IK_GEN_GRID_STEP + 0.5;
+    long long b = fabs(y) < 1e15 ? (long long)y : 0;
+    double c, s, sb, cb;
+    int k;
+    if ((double)b > y) b -= 1;
+    ik_gen_cos_sin_small((th - (double)b * IK_GEN_GRID_STEP_HI) - (double)b * IK_GEN_GRID_STEP_LO,
+                         &c, &s);
+    k = (int)(((b % 64) + 64) % 64);
+    sb = IK_GEN_GRID_SIN[k];
+    cb = IK_GEN_GRID_SIN[(k + 16) % 64];
+    *co = cb * c - sb * s;
+    *si = sb * c + cb * s;
+}
+
 /* th6 from the rest: E6 = (E1 ... E5)^-1 H, read about its axis. */
 static double ik_gen_last(const ik_gen_arranged *ar, const double t[5]) {
     double rot[3][3] = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
-    double r[3][3], n[3][3], u[3], hu[3], v[3], uv[3];
+    double r[3][3], n[3][3], u[3], hu[3], v[3], uv[3], co, si;
     const double ex[3] = {1.0, 0.0, 0.0}, ey[3] = {0.0, 1.0, 0.0};
     const double *w6 = ar->j[5].w;
     int k, i, j, l;
     for (k = 0; k < 5; k++) {
         if (ar->j[k].prism) continue;
-        ik_gen_rodrigues(ar->j[k].w, sin(t[k]), cos(t[k]), r);
+        ik_gen_unit(t[k], &co, &si);
+        ik_gen_rodrigues(ar->j[k].w, si, co, r);
         for (i = 0; i < 3; i++) {
             for (j = 0; j < 3; j++) {
                 n[i][j] = -0.0;
@@ -833,8 +861,7 @@ static void ik_gen_basis(const ik_gen_joint *j, double t, double f[3]) {
         f[1] = t;
         f[2] = t * t;
     } else {
-        f[1] = cos(t);
-        f[2] = sin(t);
+        ik_gen_unit(t, &f[1], &f[2]);
     }
 }
 
@@ -891,13 +918,6 @@ static void ik_gen_matrix_trig(const double sig[3][6][9], double out[3][12][12])
             }
 }
 
-/* S(th) at the angle with sine s, cosine c. */
-static void ik_gen_trig_at(const double t[3][12][12], double s, double c, double m[12][12]) {
-    int r, k;
-    for (r = 0; r < 12; r++)
-        for (k = 0; k < 12; k++) m[r][k] = t[0][r][k] + c * t[1][r][k] + s * t[2][r][k];
-}
-
 /* One step of Gaussian elimination on whole rows: the rows below k less their multiple
    m[r][k] / d of row k (the columns left of k are never read again). */
 static void ik_gen_eliminate_rows(double m[12][12], int k, double d) {
@@ -912,11 +932,23 @@ static void ik_gen_eliminate_rows(double m[12][12], int k, double d) {
     }
 }
 
-/* det S(th) (LU with partial pivoting) and the smallest pivot over the largest in *ratio. */
+/* S(th) with its columns in the order IK_GEN_DET_COLS (see core.rs, DET_COLS). */
+static void ik_gen_trig_at_cols(const double t[3][12][12], double s, double c, double m[12][12]) {
+    int r, k, j, cols[12];
+    for (k = 0; k < 12; k++) cols[k] = (int)IK_GEN_DET_COLS[k];
+    for (r = 0; r < 12; r++)
+        for (k = 0; k < 12; k++) {
+            j = cols[k];
+            m[r][k] = t[0][r][j] + c * t[1][r][j] + s * t[2][r][j];
+        }
+}
+
+/* det S(th) (LU with partial pivoting, the columns in the order IK_GEN_DET_COLS) and the
+   smallest pivot over the largest in *ratio. */
 static double ik_gen_det_trig(const double t[3][12][12], double s, double c, double *ratio) {
     double m[12][12], row[12], det = 1.0, minpiv = HUGE_VAL, maxpiv = 0.0, d;
     int k, r, best;
-    ik_gen_trig_at(t, s, c, m);
+    ik_gen_trig_at_cols(t, s, c, m);
     for (k = 0; k < 12; k++) {
         best = k;
         for (r = k + 1; r < 12; r++)
@@ -938,70 +970,104 @@ static double ik_gen_det_trig(const double t[3][12][12], double s, double c, dou
     return det;
 }
 
-/* D(th) = Re sum_j c_j e^(i j th) and its derivatives to the seventh. */
-static void ik_gen_trig_eval(const double c[IK_GEN_DET_DEGREE + 1][2], double th,
-                             double out[IK_GEN_TAYLOR]) {
-    double s = sin(th), co = cos(th), zr = 1.0, zi = 0.0, re, im, j1, j2, j3, j4, nz;
+/* D(th) = Re sum_j c_j e^(i j th) prepared for evaluation with its derivatives: D^(k)(th) =
+   sum_j u[j][k] cos j th + v[j][k] sin j th (see core.rs, TrigTable). */
+typedef struct {
+    double u[IK_GEN_DET_DEGREE + 1][IK_GEN_TAYLOR], v[IK_GEN_DET_DEGREE + 1][IK_GEN_TAYLOR];
+} ik_gen_trig_table;
+
+static void ik_gen_trig_table_of(const double c[IK_GEN_DET_DEGREE + 1][2], ik_gen_trig_table *t) {
+    double p, a, b, u, v;
     int j, k;
-    for (k = 0; k < IK_GEN_TAYLOR; k++) out[k] = 0.0;
     for (j = 0; j <= IK_GEN_DET_DEGREE; j++) {
-        re = c[j][0] * zr - c[j][1] * zi;
-        im = c[j][0] * zi + c[j][1] * zr;
-        j1 = (double)j;
-        j2 = j1 * j1;
-        j3 = j2 * j1;
-        j4 = j2 * j2;
-        out[0] += re;
-        out[1] -= j1 * im;
-        out[2] -= j2 * re;
-        out[3] += j3 * im;
-        out[4] += j4 * re;
-        out[5] -= j4 * j1 * im;
-        out[6] -= j4 * j2 * re;
-        out[7] += j4 * j3 * im;
+        a = c[j][0];
+        b = c[j][1];
+        p = 1.0;
+        for (k = 0; k < IK_GEN_TAYLOR; k++) {
+            switch (k % 4) {
+            case 0: u = a; v = -b; break;
+            case 1: u = -b; v = -a; break;
+            case 2: u = -a; v = b; break;
+            default: u = b; v = a; break;
+            }
+            t->u[j][k] = p * u;
+            t->v[j][k] = p * v;
+            p *= (double)j;
+        }
+    }
+}
+
+/* D(th) and its derivatives to the seventh. */
+static void ik_gen_trig_eval(const ik_gen_trig_table *t, double th, double out[IK_GEN_TAYLOR]) {
+    double s, co, zr = 1.0, zi = 0.0, nz, acc[IK_GEN_TAYLOR];
+    int j, k;
+    ik_gen_unit(th, &co, &s);
+    /* Sums in a local array (no aliasing with the table: the compiler may run them side by
+       side). */
+    for (k = 0; k < IK_GEN_TAYLOR; k++) acc[k] = 0.0;
+    for (j = 0; j <= IK_GEN_DET_DEGREE; j++) {
+        for (k = 0; k < IK_GEN_TAYLOR; k++) acc[k] += t->u[j][k] * zr + t->v[j][k] * zi;
         nz = zr * co - zi * s;
         zi = zr * s + zi * co;
         zr = nz;
     }
+    for (k = 0; k < IK_GEN_TAYLOR; k++) out[k] = acc[k];
 }
 
-/* The zero of D^(k) in [a, b] (fa = D^(k)(a), of the other sign than at b, 0 counted as
-   positive; D^(k) monotone there): Newton's method kept inside the bracket. */
-static double ik_gen_bracketed(const double c[IK_GEN_DET_DEGREE + 1][2], int k, double a,
-                               double b, double fa) {
-    double v[IK_GEN_TAYLOR], x = 0.5 * (a + b), next;
+/* D^(k), D^(k+1), D^(k+2) at th for k 0 or 1 (see core.rs, trig_low). */
+static void ik_gen_trig_low(const ik_gen_trig_table *t, int k, double th, double v[3]) {
+    double s, co, zr = 1.0, zi = 0.0, nz, out[4] = {0.0, 0.0, 0.0, 0.0};
+    int j, l;
+    ik_gen_unit(th, &co, &s);
+    for (j = 0; j <= IK_GEN_DET_DEGREE; j++) {
+        for (l = 0; l < 4; l++) out[l] += t->u[j][l] * zr + t->v[j][l] * zi;
+        nz = zr * co - zi * s;
+        zi = zr * s + zi * co;
+        zr = nz;
+    }
+    v[0] = out[k];
+    v[1] = out[k + 1];
+    v[2] = out[k + 2];
+}
+
+/* The zero of D^(k) in [a, b] (fa, fb its values at the ends, of opposite signs, 0 counted as
+   positive; D^(k) monotone there): Halley's method from the secant's zero, kept inside the
+   bracket. */
+static double ik_gen_bracketed(const ik_gen_trig_table *c, int k, double a,
+                               double b, double fa, double fb) {
+    double v[3], x = a + (b - a) * (fa / (fa - fb)), next;
     const int neg_a = fa < 0.0;
     int it;
+    if (!(x > a && x < b)) x = 0.5 * (a + b);
     for (it = 0; it < 60; it++) {
-        ik_gen_trig_eval(c, x, v);
-        if (v[k] == 0.0) return x;
-        if ((v[k] < 0.0) == neg_a)
+        ik_gen_trig_low(c, k, x, v);
+        if (v[0] == 0.0) return x;
+        if ((v[0] < 0.0) == neg_a)
             a = x;
         else
             b = x;
-        next = x - v[k] / v[k + 1];
-        if (!(next > a && next < b)) next = 0.5 * (a + b);
-        if (fabs(next - x) <= IK_GEN_BRACKET_TOL || b - a <= IK_GEN_BRACKET_TOL) return next;
-        x = next;
+        next = x - 2.0 * v[0] * v[1] / (2.0 * v[1] * v[1] - v[0] * v[2]);
+        if (next > a && next < b) {
+            if (fabs(next - x) <= IK_GEN_BRACKET_TOL) return next;
+            x = next;
+        } else {
+            x = 0.5 * (a + b);
+        }
+        if (b - a <= IK_GEN_BRACKET_WIDTH) return x;
     }
     return x;
 }
 
-/* D at x, with 2 pi read as 0 (top: the grid's end). */
-static void ik_gen_trig_at_end(const double c[IK_GEN_DET_DEGREE + 1][2], double x, double top,
-                               double v[IK_GEN_TAYLOR]) {
-    ik_gen_trig_eval(c, x >= top ? 0.0 : x, v);
-}
-
-/* A root of the monotone D^(k) on [a, b] into *x if its ends differ in sign; 1 when found. */
-static int ik_gen_mono_root(const double c[IK_GEN_DET_DEGREE + 1][2], double a, double b, int k,
-                            double top, int *evals, double *x) {
-    double va[IK_GEN_TAYLOR], vb[IK_GEN_TAYLOR];
-    ik_gen_trig_at_end(c, a, top, va);
-    ik_gen_trig_at_end(c, b, top, vb);
+/* A root of the monotone D^(k) on [a, b] into *x if its ends differ in sign; 1 when found. The
+   end top (2 pi) is read as 0, so that a root there is seen the same from both sides. */
+static int ik_gen_mono_root(const ik_gen_trig_table *c, double a, double b, int k, double top,
+                            int *evals, double *x) {
+    double va[3], vb[3];
+    ik_gen_trig_low(c, k, a >= top ? 0.0 : a, va);
+    ik_gen_trig_low(c, k, b >= top ? 0.0 : b, vb);
     *evals += 2;
-    if ((va[k] < 0.0) == (vb[k] < 0.0)) return 0;
-    *x = ik_gen_bracketed(c, k, a, b, va[k]);
+    if ((va[0] < 0.0) == (vb[0] < 0.0)) return 0;
+    *x = ik_gen_bracketed(c, k, a, b, va[0], vb[0]);
     return 1;
 }
 
@@ -1011,12 +1077,14 @@ static int ik_gen_trig_roots(const double c[IK_GEN_DET_DEGREE + 1][2], double ou
     double b0 = 0.0, b8 = 0.0, margin, nd = (double)IK_GEN_DET_DEGREE, h, top, a, b, m, r, term,
         x, e, moves[3], v[IK_GEN_TAYLOR], w[IK_GEN_TAYLOR], stack[96][2];
     int j, k, l, depth = 0, evals = 0, left, right, flat;
+    ik_gen_trig_table tt;
     double xl = 0.0, xr = 0.0;
     for (j = 0; j <= IK_GEN_DET_DEGREE; j++) {
         const double amp = hypot(c[j][0], c[j][1]), j2 = (double)(j * j);
         b0 += amp;
         b8 += j2 * j2 * j2 * j2 * amp;
     }
+    ik_gen_trig_table_of(c, &tt);
     margin = IK_GEN_ROOT_MARGIN * b0;
     h = IK_GEN_TAU / (double)IK_GEN_ROOT_GRID;
     top = (double)IK_GEN_ROOT_GRID * h;
@@ -1032,7 +1100,7 @@ static int ik_gen_trig_roots(const double c[IK_GEN_DET_DEGREE + 1][2], double ou
         b = stack[depth][1];
         m = 0.5 * (a + b);
         r = 0.5 * (b - a);
-        ik_gen_trig_at_end(c, m, top, v);
+        ik_gen_trig_eval(&tt, m >= top ? 0.0 : m, v);
         evals++;
         if (evals > IK_GEN_ROOT_EVALS || *n + 2 > 24) return 0;
         for (l = 0; l < 3; l++) {
@@ -1046,21 +1114,21 @@ static int ik_gen_trig_roots(const double c[IK_GEN_DET_DEGREE + 1][2], double ou
         }
         if (fabs(v[0]) > moves[0] + margin) continue;
         if (fabs(v[1]) > moves[1] + nd * margin) {
-            if (ik_gen_mono_root(c, a, b, 0, top, &evals, &x)) out[(*n)++] = x;
+            if (ik_gen_mono_root(&tt, a, b, 0, top, &evals, &x)) out[(*n)++] = x;
             continue;
         }
         if (fabs(v[2]) > moves[2] + nd * nd * margin) {
-            if (!ik_gen_mono_root(c, a, b, 1, top, &evals, &e)) {
+            if (!ik_gen_mono_root(&tt, a, b, 1, top, &evals, &e)) {
                 /* D' keeps its sign: D is monotone after all. */
-                if (ik_gen_mono_root(c, a, b, 0, top, &evals, &x)) out[(*n)++] = x;
+                if (ik_gen_mono_root(&tt, a, b, 0, top, &evals, &x)) out[(*n)++] = x;
                 continue;
             }
-            left = ik_gen_mono_root(c, a, e, 0, top, &evals, &xl);
-            right = ik_gen_mono_root(c, e, b, 0, top, &evals, &xr);
+            left = ik_gen_mono_root(&tt, a, e, 0, top, &evals, &xl);
+            right = ik_gen_mono_root(&tt, e, b, 0, top, &evals, &xr);
             if (left) out[(*n)++] = xl;
             if (right) out[(*n)++] = xr;
             if (!left && !right) {
-                ik_gen_trig_at_end(c, e, top, w);
+                ik_gen_trig_eval(&tt, e >= top ? 0.0 : e, w);
                 if (2.0 * fabs(w[0]) <= IK_GEN_NEAR_REAL * IK_GEN_NEAR_REAL * fabs(w[2])) {
                     out[(*n)++] = e;
                     out[(*n)++] = e;
@@ -1129,16 +1197,15 @@ static void ik_gen_null_vector_lu(const double m[12][12], double y[12]) {
    0 when the eigenvalue route decides. */
 static int ik_gen_det_candidates(const ik_gen_arranged *ar, const ik_gen_elim *el,
                                  double roots[24][6], int *n, int *degree) {
-    double tm[3][12][12], m[12][12], v[12], t[6], tab[IK_GEN_DET_SAMPLES][2],
-        d[IK_GEN_DET_SAMPLES], c[IK_GEN_DET_DEGREE + 1][2], th[24], step, scale = 0.0, good = 0.0,
-        ratio, a, b, w, half, interp = 0.0, check, t3;
+    double tm[3][12][12], m[12][12], v[12], y[12], t[6], d[IK_GEN_DET_SAMPLES],
+        c[IK_GEN_DET_DEGREE + 1][2], th[24], scale = 0.0, good = 0.0, ratio, a, b, w,
+        interp = 0.0, check, t3, co, si;
     int k, j, i, deg, count;
     ik_gen_matrix_trig((const double (*)[6][9])el->sig, tm);
-    step = IK_GEN_TAU / (double)IK_GEN_DET_SAMPLES;
+    /* The angle 2 pi k / 17 is (2k) pi / 17 of the tables. */
     for (k = 0; k < IK_GEN_DET_SAMPLES; k++) {
-        tab[k][0] = sin((double)k * step);
-        tab[k][1] = cos((double)k * step);
-        d[k] = ik_gen_det_trig((const double (*)[12][12])tm, tab[k][0], tab[k][1], &ratio);
+        d[k] = ik_gen_det_trig((const double (*)[12][12])tm, IK_GEN_DET_SIN[2 * k],
+                               IK_GEN_DET_COS[2 * k], &ratio);
         if (fabs(d[k]) > scale) scale = fabs(d[k]);
         if (ratio > good) good = ratio;
     }
@@ -1148,27 +1215,31 @@ static int ik_gen_det_candidates(const ik_gen_arranged *ar, const ik_gen_elim *e
         a = 0.0;
         b = 0.0;
         for (k = 0; k < IK_GEN_DET_SAMPLES; k++) {
-            const int idx = (j * k) % IK_GEN_DET_SAMPLES;
-            a += d[k] * tab[idx][1];
-            b += d[k] * tab[idx][0];
+            const int idx = 2 * ((j * k) % IK_GEN_DET_SAMPLES);
+            a += d[k] * IK_GEN_DET_COS[idx];
+            b += d[k] * IK_GEN_DET_SIN[idx];
         }
         w = (j == 0 ? 1.0 : 2.0) / (double)IK_GEN_DET_SAMPLES;
         c[j][0] = w * a;
         c[j][1] = -(w * b);
     }
-    half = 0.5 * step;
+    /* The check angle pi / 17: j pi / 17 of the tables. */
     for (j = 0; j <= IK_GEN_DET_DEGREE; j++)
-        interp += c[j][0] * cos((double)j * half) - c[j][1] * sin((double)j * half);
-    check = ik_gen_det_trig((const double (*)[12][12])tm, sin(half), cos(half), &ratio);
+        interp += c[j][0] * IK_GEN_DET_COS[j] - c[j][1] * IK_GEN_DET_SIN[j];
+    check = ik_gen_det_trig((const double (*)[12][12])tm, IK_GEN_DET_SIN[1], IK_GEN_DET_COS[1],
+                            &ratio);
     if (!(fabs(check - interp) <= IK_GEN_DET_CHECK * scale)) return 0;
     deg = IK_GEN_DET_DEGREE;
     while (deg > 0 && hypot(c[deg][0], c[deg][1]) <= IK_GEN_DET_TRIM * scale) deg--;
     if (!ik_gen_trig_roots((const double (*)[2])c, th, &count)) return 0;
     *n = 0;
     for (k = 0; k < count; k++) {
+        /* The null vector with the columns in the order IK_GEN_DET_COLS, put back. */
         t3 = th[k];
-        ik_gen_trig_at((const double (*)[12][12])tm, sin(t3), cos(t3), m);
-        ik_gen_null_vector_lu((const double (*)[12])m, v);
+        ik_gen_unit(t3, &co, &si);
+        ik_gen_trig_at_cols((const double (*)[12][12])tm, si, co, m);
+        ik_gen_null_vector_lu((const double (*)[12])m, y);
+        for (i = 0; i < 12; i++) v[(int)IK_GEN_DET_COLS[i]] = y[i];
         ik_gen_back_substitute(ar, el, v, ik_gen_wrap(t3), t);
         for (i = 0; i < 6; i++) roots[*n][ar->perm[i]] = t[i];
         *n += 1;
@@ -1239,7 +1310,7 @@ static int ik_gen_candidates(const ik_gen_arranged *ar, const ik_gen_elim *el,
 static void ik_gen_forward(const double ax[6][7], const double home[3][4], const double q[6],
                            double pose[3][4], double cur[6][6]) {
     double p[3][4] = {{1.0, 0.0, 0.0, 0.0}, {0.0, 1.0, 0.0, 0.0}, {0.0, 0.0, 1.0, 0.0}};
-    double m[3][4], r[3][3], np[3][4], o[3], d[3];
+    double m[3][4], r[3][3], np[3][4], o[3], d[3], co, si;
     int i, rr, c;
     for (i = 0; i < 6; i++) {
         const double *w = ax[i] + 1, *pc = ax[i] + 4;
@@ -1255,7 +1326,8 @@ static void ik_gen_forward(const double ax[6][7], const double home[3][4], const
                 m[rr][3] = q[i] * w[rr];
             }
         } else {
-            ik_gen_rodrigues(w, sin(q[i]), cos(q[i]), r);
+            ik_gen_unit(q[i], &co, &si);
+            ik_gen_rodrigues(w, si, co, r);
             for (rr = 0; rr < 3; rr++) {
                 for (c = 0; c < 3; c++) m[rr][c] = r[rr][c];
                 m[rr][3] = pc[rr] - ik_gen_dot3(r[rr], pc);

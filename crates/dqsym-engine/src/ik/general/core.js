@@ -555,7 +555,8 @@ function ik_gen_last(ar, t) {
     let rot = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
     for (let k = 0; k < 5; k++) {
         if (ar.j[k].prism) continue;
-        const r = ik_gen_rodrigues(ar.j[k].w, Math.sin(t[k]), Math.cos(t[k]));
+        const [co, si] = ik_gen_unit(t[k]);
+        const r = ik_gen_rodrigues(ar.j[k].w, si, co);
         rot = [0, 1, 2].map((i) => [0, 1, 2].map((j) =>
             -0 + rot[i][0] * r[0][j] + rot[i][1] * r[1][j] + rot[i][2] * r[2][j]));
     }
@@ -578,7 +579,7 @@ function ik_gen_back_substitute(ar, el, v, th3) {
     for (let b = 0; b < 2; b++) for (let a = 0; a < 4; a++) p5.push([at(a, b + 1), at(a, b)]);
     // A prismatic joint's variable is the tangent of the half angle these formulas give.
     const t4 = slide(3, ik_gen_angle_from(p4)), t5 = slide(4, ik_gen_angle_from(p5));
-    const f = (k, t) => (ar.j[k].prism ? [1, t, t * t] : [1, Math.cos(t), Math.sin(t)]);
+    const f = (k, t) => (ar.j[k].prism ? [1, t, t * t] : [1, ...ik_gen_unit(t)]);
     const [t1, t2] = ik_gen_first_two(ar, el, f(2, t3), f(3, t4), f(4, t5));
     const t = [t1, t2, t3, t4, t5];
     return t.concat([ik_gen_last(ar, t)]);
@@ -602,12 +603,6 @@ function ik_gen_matrix_trig(sig) {
     return out;
 }
 
-// S(th) at the angle with sine s, cosine c.
-function ik_gen_trig_at(t, s, c) {
-    return [...Array(12).keys()].map((r) => [...Array(12).keys()].map((k) =>
-        t[0][r][k] + c * t[1][r][k] + s * t[2][r][k]));
-}
-
 // One step of Gaussian elimination on whole rows: the rows below k less their multiple
 // m[r][k] / d of row k (the columns left of k are never read again).
 function ik_gen_eliminate_rows(m, k, d) {
@@ -617,9 +612,16 @@ function ik_gen_eliminate_rows(m, k, d) {
     }
 }
 
-// [det S(th), smallest pivot over the largest] (LU with partial pivoting).
+// S(th) with its columns in the order IK_GEN_DET_COLS (see core.rs, DET_COLS).
+function ik_gen_trig_at_cols(t, s, c) {
+    return [...Array(12).keys()].map((r) => IK_GEN_DET_COLS.map((j) =>
+        t[0][r][j] + c * t[1][r][j] + s * t[2][r][j]));
+}
+
+// [det S(th), smallest pivot over the largest] (LU with partial pivoting, the columns in the
+// order IK_GEN_DET_COLS).
 function ik_gen_det_trig(t, s, c) {
-    const m = ik_gen_trig_at(t, s, c);
+    const m = ik_gen_trig_at_cols(t, s, c);
     let det = 1, minpiv = Infinity, maxpiv = 0;
     for (let k = 0; k < 12; k++) {
         let best = k;
@@ -638,9 +640,30 @@ function ik_gen_det_trig(t, s, c) {
     return [det, maxpiv > 0 ? minpiv / maxpiv : 0];
 }
 
+// [cos d, sin d] of a small angle, |d| <= pi/64, by Taylor polynomials (see core.rs,
+// cos_sin_small).
+function ik_gen_cos_sin_small(d) {
+    const d2 = d * d;
+    const s = d * (1 + d2 * (-1 / 6 + d2 * (1 / 120 + d2 * (-1 / 5040 + d2 * (1 / 362880)))));
+    const c = 1 + d2 * (-0.5 + d2 * (1 / 24 + d2 * (-1 / 720 + d2 * (1 / 40320 + d2 * (-1 / 3628800)))));
+    return [c, s];
+}
+
+// [cos th, sin th] without a library call: the nearest table angle b pi/32 turned by the rest
+// (see core.rs, unit).
+function ik_gen_unit(th) {
+    const y = th / IK_GEN_GRID_STEP + 0.5;
+    let b = Math.abs(y) < 1e15 ? Math.trunc(y) : 0;
+    if (b > y) b -= 1;
+    const [c, s] = ik_gen_cos_sin_small((th - b * IK_GEN_GRID_STEP_HI) - b * IK_GEN_GRID_STEP_LO);
+    const k = ((b % 64) + 64) % 64;
+    const sb = IK_GEN_GRID_SIN[k], cb = IK_GEN_GRID_SIN[(k + 16) % 64];
+    return [cb * c - sb * s, sb * c + cb * s];
+}
+
 // D(th) = Re sum_j c_j e^(i j th) and its derivatives to the seventh.
 function ik_gen_trig_eval(c, th) {
-    const s = Math.sin(th), co = Math.cos(th), out = new Array(IK_GEN_TAYLOR).fill(0);
+    const [co, s] = ik_gen_unit(th), out = new Array(IK_GEN_TAYLOR).fill(0);
     let zr = 1, zi = 0;
     for (let j = 0; j <= IK_GEN_DET_DEGREE; j++) {
         const re = c[j][0] * zr - c[j][1] * zi;
@@ -659,20 +682,43 @@ function ik_gen_trig_eval(c, th) {
     return out;
 }
 
-// The zero of D^(k) in [a, b] (fa = D^(k)(a), of the other sign than at b, 0 counted as
-// positive; D^(k) monotone there): Newton's method kept inside the bracket.
-function ik_gen_bracketed(c, k, a, b, fa) {
+// [D^(k), D^(k+1), D^(k+2)] at th for k 0 or 1 (see core.rs, trig_low).
+function ik_gen_trig_low(c, k, th) {
+    const [co, s] = ik_gen_unit(th);
+    let zr = 1, zi = 0, d0 = 0, d1 = 0, d2 = 0, d3 = 0;
+    for (let j = 0; j <= IK_GEN_DET_DEGREE; j++) {
+        const re = c[j][0] * zr - c[j][1] * zi;
+        const im = c[j][0] * zi + c[j][1] * zr;
+        const j2 = j * j;
+        d0 += re;
+        d1 -= j * im;
+        d2 -= j2 * re;
+        d3 += j2 * j * im;
+        [zr, zi] = [zr * co - zi * s, zr * s + zi * co];
+    }
+    return k === 0 ? [d0, d1, d2] : [d1, d2, d3];
+}
+
+// The zero of D^(k) in [a, b] (fa, fb its values at the ends, of opposite signs, 0 counted as
+// positive; D^(k) monotone there): Halley's method from the secant's zero, kept inside the
+// bracket.
+function ik_gen_bracketed(c, k, a, b, fa, fb) {
     const negA = fa < 0;
-    let x = 0.5 * (a + b);
+    let x = a + (b - a) * (fa / (fa - fb));
+    if (!(x > a && x < b)) x = 0.5 * (a + b);
     for (let it = 0; it < 60; it++) {
-        const v = ik_gen_trig_eval(c, x);
-        if (v[k] === 0) return x;
-        if ((v[k] < 0) === negA) a = x;
+        const [v, dv, ddv] = ik_gen_trig_low(c, k, x);
+        if (v === 0) return x;
+        if ((v < 0) === negA) a = x;
         else b = x;
-        let next = x - v[k] / v[k + 1];
-        if (!(next > a && next < b)) next = 0.5 * (a + b);
-        if (Math.abs(next - x) <= IK_GEN_BRACKET_TOL || b - a <= IK_GEN_BRACKET_TOL) return next;
-        x = next;
+        const next = x - 2 * v * dv / (2 * dv * dv - v * ddv);
+        if (next > a && next < b) {
+            if (Math.abs(next - x) <= IK_GEN_BRACKET_TOL) return next;
+            x = next;
+        } else {
+            x = 0.5 * (a + b);
+        }
+        if (b - a <= IK_GEN_BRACKET_WIDTH) return x;
     }
     return x;
 }
@@ -687,16 +733,18 @@ function ik_gen_trig_roots(c) {
     }
     const margin = IK_GEN_ROOT_MARGIN * b0, nd = IK_GEN_DET_DEGREE;
     const h = IK_GEN_TAU / IK_GEN_ROOT_GRID, top = IK_GEN_ROOT_GRID * h;
-    const at = (x) => ik_gen_trig_eval(c, x >= top ? 0 : x);
+    // The end 2 pi is read as 0, so that a root there is seen the same from both sides.
+    const end = (x) => (x >= top ? 0 : x);
+    const at = (x) => ik_gen_trig_eval(c, end(x));
     const stack = [];
     for (let k = IK_GEN_ROOT_GRID - 1; k >= 0; k--) stack.push([k * h, (k + 1) * h]);
     const out = [];
     let evals = 0;
     // A root of the monotone D^(k) on [a, b] if its ends differ in sign, else null.
     const mono = (a, b, k) => {
-        const fa = at(a)[k], fb = at(b)[k];
+        const fa = ik_gen_trig_low(c, k, end(a))[0], fb = ik_gen_trig_low(c, k, end(b))[0];
         evals += 2;
-        return (fa < 0) === (fb < 0) ? null : ik_gen_bracketed(c, k, a, b, fa);
+        return (fa < 0) === (fb < 0) ? null : ik_gen_bracketed(c, k, a, b, fa, fb);
     };
     while (stack.length > 0) {
         const [a, b] = stack.pop();
@@ -784,12 +832,12 @@ function ik_gen_null_vector_lu(m0) {
 // The candidates of one arrangement by the determinant route (see core.rs, det_candidates);
 // null when the eigenvalue route decides.
 function ik_gen_det_candidates(ar, el) {
-    const tm = ik_gen_matrix_trig(el.sig), N = IK_GEN_DET_SAMPLES, step = IK_GEN_TAU / N;
-    const tab = [], d = [];
+    const tm = ik_gen_matrix_trig(el.sig), N = IK_GEN_DET_SAMPLES;
+    const d = [];
     let scale = 0, good = 0;
     for (let k = 0; k < N; k++) {
-        tab.push([Math.sin(k * step), Math.cos(k * step)]);
-        const [det, ratio] = ik_gen_det_trig(tm, tab[k][0], tab[k][1]);
+        // The angle 2 pi k / 17 is (2k) pi / 17 of the tables.
+        const [det, ratio] = ik_gen_det_trig(tm, IK_GEN_DET_SIN[2 * k], IK_GEN_DET_COS[2 * k]);
         d.push(det);
         if (Math.abs(det) > scale) scale = Math.abs(det);
         if (ratio > good) good = ratio;
@@ -800,26 +848,30 @@ function ik_gen_det_candidates(ar, el) {
     for (let j = 0; j <= IK_GEN_DET_DEGREE; j++) {
         let a = 0, b = 0;
         for (let k = 0; k < N; k++) {
-            const [s, co] = tab[(j * k) % N];
-            a += d[k] * co;
-            b += d[k] * s;
+            const i = 2 * ((j * k) % N);
+            a += d[k] * IK_GEN_DET_COS[i];
+            b += d[k] * IK_GEN_DET_SIN[i];
         }
         const w = (j === 0 ? 1 : 2) / N;
         c.push([w * a, -(w * b)]);
     }
-    const half = 0.5 * step;
+    // The check angle pi / 17: j pi / 17 of the tables.
     let interp = 0;
     for (let j = 0; j <= IK_GEN_DET_DEGREE; j++) {
-        interp += c[j][0] * Math.cos(j * half) - c[j][1] * Math.sin(j * half);
+        interp += c[j][0] * IK_GEN_DET_COS[j] - c[j][1] * IK_GEN_DET_SIN[j];
     }
-    const check = ik_gen_det_trig(tm, Math.sin(half), Math.cos(half))[0];
+    const check = ik_gen_det_trig(tm, IK_GEN_DET_SIN[1], IK_GEN_DET_COS[1])[0];
     if (!(Math.abs(check - interp) <= IK_GEN_DET_CHECK * scale)) return null;
     let deg = IK_GEN_DET_DEGREE;
     while (deg > 0 && Math.hypot(c[deg][0], c[deg][1]) <= IK_GEN_DET_TRIM * scale) deg -= 1;
     const th = ik_gen_trig_roots(c);
     if (th === null) return null;
     const roots = th.map((t3) => {
-        const v = ik_gen_null_vector_lu(ik_gen_trig_at(tm, Math.sin(t3), Math.cos(t3)));
+        // The null vector with the columns in the order IK_GEN_DET_COLS, put back.
+        const [co, si] = ik_gen_unit(t3);
+        const y = ik_gen_null_vector_lu(ik_gen_trig_at_cols(tm, si, co));
+        const v = new Array(12).fill(0);
+        for (let i = 0; i < 12; i++) v[IK_GEN_DET_COLS[i]] = y[i];
         const t = ik_gen_back_substitute(ar, el, v, ik_gen_wrap(t3));
         const q = new Array(6).fill(0);
         for (let i = 0; i < 6; i++) q[ar.perm[i]] = t[i];

@@ -215,9 +215,12 @@ def _trig_eval(c, th):
     return [float(np.sum(jj ** k * (1j ** k * z).real)) for k in range(IK_GEN_TAYLOR)]
 
 
-def _bracketed(c, k, a, b, fa):
+def _bracketed(c, k, a, b, fa, fb):
+    # Halley's method from the secant's zero, kept inside the bracket (see core.rs, bracketed).
     neg_a = fa < 0
-    x = 0.5 * (a + b)
+    x = a + (b - a) * (fa / (fa - fb))
+    if not (a < x < b):
+        x = 0.5 * (a + b)
     for _ in range(60):
         v = _trig_eval(c, x)
         if v[k] == 0:
@@ -226,12 +229,16 @@ def _bracketed(c, k, a, b, fa):
             a = x
         else:
             b = x
-        nxt = x - v[k] / v[k + 1]
-        if not (a < nxt < b):
-            nxt = 0.5 * (a + b)
-        if abs(nxt - x) <= IK_GEN_BRACKET_TOL or b - a <= IK_GEN_BRACKET_TOL:
-            return nxt
-        x = nxt
+        den = 2 * v[k + 1] ** 2 - v[k] * v[k + 2]
+        nxt = x - 2 * v[k] * v[k + 1] / den if den != 0 else math.nan
+        if a < nxt < b:
+            if abs(nxt - x) <= IK_GEN_BRACKET_TOL:
+                return nxt
+            x = nxt
+        else:
+            x = 0.5 * (a + b)
+        if b - a <= IK_GEN_BRACKET_WIDTH:
+            return x
     return x
 
 
@@ -251,7 +258,7 @@ def _trig_roots(c):
         nonlocal evals
         fa, fb = at(a)[k], at(b)[k]
         evals += 2
-        return None if (fa < 0) == (fb < 0) else _bracketed(c, k, a, b, fa)
+        return None if (fa < 0) == (fb < 0) else _bracketed(c, k, a, b, fa, fb)
 
     while stack:
         a, b = stack.pop()

@@ -426,9 +426,9 @@ fn motion_apply(g: &B34, x: &V, d: &V) -> (V, V) {
 #[allow(clippy::needless_range_loop, clippy::type_complexity)]
 fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], f64) {
     let mut a = *b;
-    let mut qt = [[0.0; 14]; 14];
+    let mut q = [[0.0; 14]; 14];
     for i in 0..14 {
-        qt[i][i] = 1.0;
+        q[i][i] = 1.0;
     }
     let mut piv = [0, 1, 2, 3, 4, 5, 6, 7];
     for k in 0..8 {
@@ -468,13 +468,16 @@ fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], 
                 a[r][c] -= s * v[r];
             }
         }
-        for c in 0..14 {
-            let s: f64 = (k..14).map(|r| v[r] * qt[r][c]).sum::<f64>() * 2.0 / vn;
+        // Q (the transpose of Qᵀ) by rows, so that each update runs along a row (the same
+        // operations in the same order).
+        for qc in q.iter_mut() {
+            let s: f64 = (k..14).map(|r| v[r] * qc[r]).sum::<f64>() * 2.0 / vn;
             for r in k..14 {
-                qt[r][c] -= s * v[r];
+                qc[r] -= s * v[r];
             }
         }
     }
+    let qt: [[f64; 14]; 14] = std::array::from_fn(|i| std::array::from_fn(|c| q[c][i]));
     let mut r = [[0.0; 8]; 8];
     for i in 0..8 {
         for j in i..8 {
@@ -982,7 +985,8 @@ fn back_substitute(ar: &Arranged, el: &Elim, v: &[f64; 12], t3: f64) -> [f64; 6]
         if ar.j[k].prism {
             [1.0, t, t * t]
         } else {
-            let (s, c) = t.sin_cos();
+            // (A few units of rounding more than the library's: the refinement starts here.)
+            let (c, s) = unit(t);
             [1.0, c, s]
         }
     };
@@ -1038,7 +1042,7 @@ fn back_substitute(ar: &Arranged, el: &Elim, v: &[f64; 12], t3: f64) -> [f64; 6]
         if ar.j[k].prism {
             continue;
         }
-        let (s, c) = tk.sin_cos();
+        let (c, s) = unit(*tk);
         let r = rodrigues(&ar.j[k].w, s, c);
         let mut n = [[0.0; 3]; 3];
         for i in 0..3 {
@@ -1191,6 +1195,84 @@ pub const DET_SAMPLES: usize = 17;
 /// polynomial of degree 16 over `(1 + x²)⁸`: of degree 8 in `(cos θ, sin θ)`.
 pub const DET_DEGREE: usize = 8;
 
+/// `sin(kπ/17)` and `cos(kπ/17)`, `k = 0 … 33` (correctly rounded, from 40 digits): the
+/// [`DET_SAMPLES`] angles `2πk/17` at the even `k`, the check angle `π/17` and the
+/// interpolant's `jπ/17` at the others; no library call.
+pub const DET_SIN: [f64; 34] = [
+    0.0,
+    0.18374951781657034,
+    0.3612416661871529,
+    0.5264321628773558,
+    0.6736956436465572,
+    0.7980172272802395,
+    0.8951632913550623,
+    0.961825643172819,
+    0.9957341762950345,
+    0.9957341762950345,
+    0.961825643172819,
+    0.8951632913550623,
+    0.7980172272802395,
+    0.6736956436465572,
+    0.5264321628773558,
+    0.3612416661871529,
+    0.18374951781657034,
+    0.0,
+    -0.18374951781657034,
+    -0.3612416661871529,
+    -0.5264321628773558,
+    -0.6736956436465572,
+    -0.7980172272802395,
+    -0.8951632913550623,
+    -0.961825643172819,
+    -0.9957341762950345,
+    -0.9957341762950345,
+    -0.961825643172819,
+    -0.8951632913550623,
+    -0.7980172272802395,
+    -0.6736956436465572,
+    -0.5264321628773558,
+    -0.3612416661871529,
+    -0.18374951781657034,
+];
+
+/// See [`DET_SIN`].
+pub const DET_COS: [f64; 34] = [
+    1.0,
+    0.9829730996839018,
+    0.9324722294043558,
+    0.8502171357296141,
+    0.7390089172206591,
+    0.6026346363792564,
+    0.44573835577653825,
+    0.2736629900720829,
+    0.092268359463302,
+    -0.092268359463302,
+    -0.2736629900720829,
+    -0.44573835577653825,
+    -0.6026346363792564,
+    -0.7390089172206591,
+    -0.8502171357296141,
+    -0.9324722294043558,
+    -0.9829730996839018,
+    -1.0,
+    -0.9829730996839018,
+    -0.9324722294043558,
+    -0.8502171357296141,
+    -0.7390089172206591,
+    -0.6026346363792564,
+    -0.44573835577653825,
+    -0.2736629900720829,
+    -0.092268359463302,
+    0.092268359463302,
+    0.2736629900720829,
+    0.44573835577653825,
+    0.6026346363792564,
+    0.7390089172206591,
+    0.8502171357296141,
+    0.9324722294043558,
+    0.9829730996839018,
+];
+
 /// The largest mismatch (relative to the largest sample) between `det S` at the check angle
 /// `π / DET_SAMPLES` (half way between two samples) and the interpolant, before the
 /// determinant route gives way to the eigenvalue route. Rounding makes each sample's
@@ -1238,25 +1320,33 @@ pub(crate) fn matrix_trig(sig: &[[[f64; 9]; 6]; 3]) -> [[[f64; 12]; 12]; 3] {
     out
 }
 
-/// `S(θ)` at the angle with sine `s`, cosine `c`.
+/// The column order in which [`det_trig`] eliminates `S(θ)`: the
+/// monomials `x4^a x5^b` by blocks `a = 0, 3, 1, 2`. The rows of the six equations have no `a = 3` column and their
+/// copies times `x4` no `a = 0` column, so with the blocks `a = 0` and `a = 3` first each is
+/// eliminated within its six rows (the others' multipliers are exactly zero and skipped),
+/// leaving a 6 x 6 block: 39 row updates instead of 48. Moving three columns past six keeps
+/// the determinant's sign.
+pub const DET_COLS: [usize; 12] = [0, 1, 2, 9, 10, 11, 3, 4, 5, 6, 7, 8];
+
+/// `S(θ)` at the angle with sine `s`, cosine `c`, its columns in the order [`DET_COLS`].
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn trig_at(t: &[[[f64; 12]; 12]; 3], s: f64, c: f64) -> [[f64; 12]; 12] {
+pub(crate) fn trig_at_cols(t: &[[[f64; 12]; 12]; 3], s: f64, c: f64) -> [[f64; 12]; 12] {
     let mut m = [[0.0; 12]; 12];
     for r in 0..12 {
-        for k in 0..12 {
-            m[r][k] = t[0][r][k] + c * t[1][r][k] + s * t[2][r][k];
+        for (k, &j) in DET_COLS.iter().enumerate() {
+            m[r][k] = t[0][r][j] + c * t[1][r][j] + s * t[2][r][j];
         }
     }
     m
 }
 
 /// `det S(θ)` and the smallest LU pivot over the largest (Gaussian elimination with partial
-/// pivoting). The row updates run over whole rows: the columns left of the pivot are never
-/// read again, and a fixed length of 12 lets the compiler vectorise the loop (the same
-/// arithmetic on every column that is read).
+/// pivoting, the columns in the order [`DET_COLS`]). The row updates run over whole rows: the
+/// columns left of the pivot are never read again, and a fixed length of 12 lets the compiler
+/// vectorise the loop (the same arithmetic on every column that is read).
 #[allow(clippy::needless_range_loop)]
 pub(crate) fn det_trig(t: &[[[f64; 12]; 12]; 3], s: f64, c: f64) -> (f64, f64) {
-    let mut m = trig_at(t, s, c);
+    let mut m = trig_at_cols(t, s, c);
     let (mut det, mut minpiv, mut maxpiv) = (1.0, f64::INFINITY, 0.0);
     for k in 0..12 {
         let mut best = k;
@@ -1305,31 +1395,188 @@ fn eliminate(rest: &mut [[f64; 12]], pivot: &[f64; 12], k: usize, d: f64) {
 /// `π / 32`).
 pub const TAYLOR: usize = 8;
 
-/// `D(θ) = Re Σ_j c_j e^{ijθ}` and its derivatives to the seventh: `D⁽ᵏ⁾ = Re Σ_j (i j)ᵏ c_j
-/// e^{ijθ}`.
-pub(crate) fn trig_eval(c: &[(f64, f64); DET_DEGREE + 1], th: f64) -> [f64; TAYLOR] {
-    let (s, co) = th.sin_cos();
+/// `sin(kπ/32)`, `k = 0 … 63` (correctly rounded, from 40 digits); `cos(kπ/32)` is
+/// `GRID_SIN[(k + 16) % 64]`. The points [`unit`] turns from: the grid of the root search
+/// (intervals of `2π / ROOT_GRID`) has its ends at the even `k` and its midpoints at the odd.
+#[allow(clippy::approx_constant)]
+pub const GRID_SIN: [f64; 64] = [
+    0.0,
+    0.0980171403295606,
+    0.19509032201612828,
+    0.2902846772544624,
+    0.3826834323650898,
+    0.47139673682599764,
+    0.5555702330196022,
+    0.6343932841636455,
+    0.7071067811865476,
+    0.773010453362737,
+    0.8314696123025452,
+    0.881921264348355,
+    0.9238795325112867,
+    0.9569403357322088,
+    0.9807852804032304,
+    0.9951847266721969,
+    1.0,
+    0.9951847266721969,
+    0.9807852804032304,
+    0.9569403357322088,
+    0.9238795325112867,
+    0.881921264348355,
+    0.8314696123025452,
+    0.773010453362737,
+    0.7071067811865476,
+    0.6343932841636455,
+    0.5555702330196022,
+    0.47139673682599764,
+    0.3826834323650898,
+    0.2902846772544624,
+    0.19509032201612828,
+    0.0980171403295606,
+    0.0,
+    -0.0980171403295606,
+    -0.19509032201612828,
+    -0.2902846772544624,
+    -0.3826834323650898,
+    -0.47139673682599764,
+    -0.5555702330196022,
+    -0.6343932841636455,
+    -0.7071067811865476,
+    -0.773010453362737,
+    -0.8314696123025452,
+    -0.881921264348355,
+    -0.9238795325112867,
+    -0.9569403357322088,
+    -0.9807852804032304,
+    -0.9951847266721969,
+    -1.0,
+    -0.9951847266721969,
+    -0.9807852804032304,
+    -0.9569403357322088,
+    -0.9238795325112867,
+    -0.881921264348355,
+    -0.8314696123025452,
+    -0.773010453362737,
+    -0.7071067811865476,
+    -0.6343932841636455,
+    -0.5555702330196022,
+    -0.47139673682599764,
+    -0.3826834323650898,
+    -0.2902846772544624,
+    -0.19509032201612828,
+    -0.0980171403295606,
+];
+
+/// The spacing `π/32` of [`GRID_SIN`].
+pub const GRID_STEP: f64 = std::f64::consts::PI / 32.0;
+
+/// `π/32` in two parts (Cody and Waite): `GRID_STEP_HI` with 33 significant bits, so that
+/// `b · GRID_STEP_HI` is exact for `|b| < 2²⁰`, and the rest `GRID_STEP_LO` (from 50
+/// digits). The rest of an angle `θ − b π/32` is then exact to a unit of its own rounding,
+/// not of `θ`'s.
+pub const GRID_STEP_HI: f64 = 0.098_174_770_420_882_85;
+/// See [`GRID_STEP_HI`].
+pub const GRID_STEP_LO: f64 = 3.798_187_816_566_37e-12;
+
+/// `(cos d, sin d)` of a small angle, `|d| ≤ π/64` (and rounding), by Taylor's polynomials to
+/// `d⁹` and `d¹⁰`: the remainders `|d|¹¹/11!` and `|d|¹²/12!` are below `1e-22`, far under
+/// rounding, so the result is as accurate as a library's (a few units of rounding).
+fn cos_sin_small(d: f64) -> (f64, f64) {
+    let d2 = d * d;
+    let s = d
+        * (1.0
+            + d2 * (-1.0 / 6.0
+                + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0 + d2 * (1.0 / 362_880.0)))));
+    let c = 1.0
+        + d2 * (-0.5
+            + d2 * (1.0 / 24.0
+                + d2 * (-1.0 / 720.0 + d2 * (1.0 / 40_320.0 + d2 * (-1.0 / 3_628_800.0)))));
+    (c, s)
+}
+
+/// `(cos θ, sin θ)` without a library call: the nearest multiple `bπ/32` of the table turned
+/// by the rest `θ − bπ/32` ([`cos_sin_small`], the rest by [`GRID_STEP_HI`] and
+/// [`GRID_STEP_LO`]): within a few units of rounding of the library's. A function of `θ` alone
+/// (the same value for an end shared by two intervals: a root there is seen once), and the
+/// table's values at its points.
+pub(crate) fn unit(th: f64) -> (f64, f64) {
+    // The nearest multiple b (by truncation, one less where that rounded up a negative).
+    // (0 for a NaN or huge θ, as the C port: its conversion is undefined there.)
+    let y = th / GRID_STEP + 0.5;
+    let mut b = if y.abs() < 1e15 { y as i64 } else { 0 };
+    if b as f64 > y {
+        b -= 1;
+    }
+    let bf = b as f64;
+    let (c, s) = cos_sin_small((th - bf * GRID_STEP_HI) - bf * GRID_STEP_LO);
+    let k = b.rem_euclid(64) as usize;
+    let (sb, cb) = (GRID_SIN[k], GRID_SIN[(k + 16) % 64]);
+    (cb * c - sb * s, sb * c + cb * s)
+}
+
+/// `D(θ) = Re Σ_j c_j e^{ijθ}` prepared for evaluation with its derivatives: `D⁽ᵏ⁾(θ) = Re Σ_j
+/// (i j)ᵏ c_j e^{ijθ} = Σ_j u[j][k] cos jθ + v[j][k] sin jθ`, the signs of `iᵏ` and the powers
+/// `jᵏ` (exact integers) taken into the coefficients once per polynomial, so that an
+/// evaluation is the powers of `e^{iθ}` and eight independent sums (which the compiler runs
+/// side by side).
+pub(crate) struct TrigTable {
+    u: [[f64; TAYLOR]; DET_DEGREE + 1],
+    v: [[f64; TAYLOR]; DET_DEGREE + 1],
+}
+
+/// The [`TrigTable`] of `D(θ) = Re Σ_j c_j e^{ijθ}`, `c_j = a_j + i b_j`: `Re(iᵏ c_j z)` is
+/// `a cos − b sin`, `−(b cos + a sin)`, `−(a cos − b sin)`, `b cos + a sin` for `k mod 4 = 0,
+/// 1, 2, 3`.
+pub(crate) fn trig_table(c: &[(f64, f64); DET_DEGREE + 1]) -> TrigTable {
+    let mut t = TrigTable {
+        u: [[0.0; TAYLOR]; DET_DEGREE + 1],
+        v: [[0.0; TAYLOR]; DET_DEGREE + 1],
+    };
+    for (j, &(a, b)) in c.iter().enumerate() {
+        let mut p = 1.0;
+        for k in 0..TAYLOR {
+            let (u, v) = match k % 4 {
+                0 => (a, -b),
+                1 => (-b, -a),
+                2 => (-a, b),
+                _ => (b, a),
+            };
+            t.u[j][k] = p * u;
+            t.v[j][k] = p * v;
+            p *= j as f64;
+        }
+    }
+    t
+}
+
+/// `D(θ)` and its derivatives to the seventh (see [`TrigTable`]).
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn trig_eval(t: &TrigTable, th: f64) -> [f64; TAYLOR] {
+    let (co, s) = unit(th);
     let (mut zr, mut zi) = (1.0, 0.0);
     let mut out = [0.0; TAYLOR];
-    for (j, cj) in c.iter().enumerate() {
-        let re = cj.0 * zr - cj.1 * zi;
-        let im = cj.0 * zi + cj.1 * zr;
-        // The powers of j times the real part of iᵏ (re + i im): re, −im, −re, im, …
-        let j1 = j as f64;
-        let j2 = j1 * j1;
-        let j3 = j2 * j1;
-        let j4 = j2 * j2;
-        out[0] += re;
-        out[1] -= j1 * im;
-        out[2] -= j2 * re;
-        out[3] += j3 * im;
-        out[4] += j4 * re;
-        out[5] -= j4 * j1 * im;
-        out[6] -= j4 * j2 * re;
-        out[7] += j4 * j3 * im;
+    for (u, v) in t.u.iter().zip(&t.v) {
+        for k in 0..TAYLOR {
+            out[k] += u[k] * zr + v[k] * zi;
+        }
         (zr, zi) = (zr * co - zi * s, zr * s + zi * co);
     }
     out
+}
+
+/// `(D⁽ᵏ⁾(θ), D⁽ᵏ⁺¹⁾(θ), D⁽ᵏ⁺²⁾(θ))` for `k` 0 or 1 only (the sums of [`trig_eval`] the
+/// root search's brackets read): half its work.
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn trig_low(t: &TrigTable, k: usize, th: f64) -> (f64, f64, f64) {
+    let (co, s) = unit(th);
+    let (mut zr, mut zi) = (1.0, 0.0);
+    let mut out = [0.0; 4];
+    for (u, v) in t.u.iter().zip(&t.v) {
+        for l in 0..4 {
+            out[l] += u[l] * zr + v[l] * zi;
+        }
+        (zr, zi) = (zr * co - zi * s, zr * s + zi * co);
+    }
+    (out[k], out[k + 1], out[k + 2])
 }
 
 /// Grid of the real-root search of `det S(θ)`: intervals of `2π / ROOT_GRID`.
@@ -1349,36 +1596,54 @@ pub const ROOT_LEAF: f64 = 1e-9;
 /// at the bench's poses).
 pub const ROOT_EVALS: usize = 600;
 
-/// The step of Newton's method (an angle) at which [`bracketed`] stops: the step after it
-/// would be of the order of its square, beyond rounding.
+/// The step of Halley's method (an angle) at which [`bracketed`] stops. The error after a step
+/// `s` is about `K s³` (cubic convergence, `K = |D‴/6D′ − (D″/2D′)²|` at the root): up to
+/// the degree squared for a simple root on the scale of the coefficients, so that `1e-6`
+/// would do there, but `K` grows as the inverse square of the distance to a nearly double
+/// root's partner, and such roots are where the refinement needs the root most exactly (the
+/// Jacobian nearly singular: a Baxter pose with its fifth joint free stalled `1e-4` from the
+/// solution at a residual of `1e-11` from a root to `1e-6`). So the root to `1e-10`, as with
+/// Newton's method before: the last step costs one evaluation of three sums.
 pub const BRACKET_TOL: f64 = 1e-10;
 
-/// The zero of `f(x)[k]` in `[a, b]` (`fa = f(a)[k]`, `fb = f(b)[k]` of opposite signs, with
-/// 0 counted as positive), `f[k]` monotone there: Newton's method kept inside the bracket
-/// (bisection when a step leaves it), to rounding.
-fn bracketed(c: &[(f64, f64); DET_DEGREE + 1], k: usize, mut a: f64, mut b: f64, fa: f64) -> f64 {
+/// The bracket's width at which bisection in [`bracketed`] stops (where Halley's steps keep
+/// leaving the bracket: a root of `D⁽ᵏ⁾` with its derivative nearly zero too), as exact as
+/// the refinement needs (it starts from the back-substituted joints anyway).
+pub const BRACKET_WIDTH: f64 = 1e-10;
+
+/// The zero of `D⁽ᵏ⁾` in `[a, b]` (`fa`, `fb` its values at the ends, of opposite signs with
+/// 0 counted as positive), `D⁽ᵏ⁾` monotone there: Halley's method from the secant's zero, kept
+/// inside the bracket (bisection when a step leaves it), to rounding.
+fn bracketed(c: &TrigTable, k: usize, mut a: f64, mut b: f64, fa: f64, fb: f64) -> f64 {
     let neg_a = fa < 0.0;
-    let mut x = 0.5 * (a + b);
+    let mut x = a + (b - a) * (fa / (fa - fb));
+    if !(x > a && x < b) {
+        x = 0.5 * (a + b);
+    }
     for _ in 0..60 {
-        let v = trig_eval(c, x);
-        if v[k] == 0.0 {
+        let (v, dv, ddv) = trig_low(c, k, x);
+        if v == 0.0 {
             return x;
         }
-        if (v[k] < 0.0) == neg_a {
+        if (v < 0.0) == neg_a {
             a = x;
         } else {
             b = x;
         }
-        let mut next = x - v[k] / v[k + 1];
-        if !(next > a && next < b) {
-            next = 0.5 * (a + b);
+        let next = x - 2.0 * v * dv / (2.0 * dv * dv - v * ddv);
+        // A Halley step inside the bracket, small enough: the root (see BRACKET_TOL).
+        // Bisection where it leaves the bracket, to a bracket of BRACKET_WIDTH.
+        if next > a && next < b {
+            if (next - x).abs() <= BRACKET_TOL {
+                return next;
+            }
+            x = next;
+        } else {
+            x = 0.5 * (a + b);
         }
-        // Newton's step is the error of x: below BRACKET_TOL the root is as exact as the
-        // refinement needs (it starts from the back-substituted joints anyway).
-        if (next - x).abs() <= BRACKET_TOL || b - a <= BRACKET_TOL {
-            return next;
+        if b - a <= BRACKET_WIDTH {
+            return x;
         }
-        x = next;
     }
     x
 }
@@ -1414,7 +1679,10 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     let h = std::f64::consts::TAU / ROOT_GRID as f64;
     // The end 2π is the start 0, so that a root there is seen the same from both sides.
     let top = ROOT_GRID as f64 * h;
-    let at = |x: f64| trig_eval(c, if x >= top { 0.0 } else { x });
+    let tt = trig_table(c);
+    let c = &tt;
+    let end = |x: f64| if x >= top { 0.0 } else { x };
+    let at = |x: f64| trig_eval(c, end(x));
     let mut stack = [(0.0, 0.0); 96];
     let mut depth = 0;
     for k in (0..ROOT_GRID).rev() {
@@ -1426,12 +1694,12 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     // A root of the monotone part `[a, b]` of `D` (`k = 0`) or `D′` (`k = 1`), if its ends
     // differ in sign (0 counted as positive, so a root at a shared end is seen once).
     let mono = |a: f64, b: f64, k: usize, evals: &mut usize| -> Option<f64> {
-        let (fa, fb) = (at(a)[k], at(b)[k]);
+        let (fa, fb) = (trig_low(c, k, end(a)).0, trig_low(c, k, end(b)).0);
         *evals += 2;
         if (fa < 0.0) == (fb < 0.0) {
             None
         } else {
-            Some(bracketed(c, k, a, b, fa))
+            Some(bracketed(c, k, a, b, fa, fb))
         }
     };
     while depth > 0 {
@@ -1513,13 +1781,11 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
 pub(crate) fn det_coefficients(
     tm: &[[[f64; 12]; 12]; 3],
 ) -> Option<([(f64, f64); DET_DEGREE + 1], f64, usize)> {
-    let step = std::f64::consts::TAU / DET_SAMPLES as f64;
-    let mut tab = [(0.0, 0.0); DET_SAMPLES];
     let mut d = [0.0; DET_SAMPLES];
     let (mut scale, mut good) = (0.0, 0.0);
     for k in 0..DET_SAMPLES {
-        tab[k] = (k as f64 * step).sin_cos();
-        let (det, ratio) = det_trig(tm, tab[k].0, tab[k].1);
+        // The angle 2πk/17 is (2k)π/17 of the tables.
+        let (det, ratio) = det_trig(tm, DET_SIN[2 * k], DET_COS[2 * k]);
         d[k] = det;
         if det.abs() > scale {
             scale = det.abs();
@@ -1536,21 +1802,19 @@ pub(crate) fn det_coefficients(
     for j in 0..=DET_DEGREE {
         let (mut a, mut b) = (0.0, 0.0);
         for k in 0..DET_SAMPLES {
-            let (s, co) = tab[(j * k) % DET_SAMPLES];
-            a += d[k] * co;
-            b += d[k] * s;
+            let i = 2 * ((j * k) % DET_SAMPLES);
+            a += d[k] * DET_COS[i];
+            b += d[k] * DET_SIN[i];
         }
         let w = if j == 0 { 1.0 } else { 2.0 } / DET_SAMPLES as f64;
         c[j] = (w * a, -(w * b));
     }
-    let half = 0.5 * step;
+    // The check angle π/17, half way between two samples: jπ/17 of the tables.
     let mut interp = 0.0;
     for j in 0..=DET_DEGREE {
-        let (s, co) = (j as f64 * half).sin_cos();
-        interp += c[j].0 * co - c[j].1 * s;
+        interp += c[j].0 * DET_COS[j] - c[j].1 * DET_SIN[j];
     }
-    let (s, co) = half.sin_cos();
-    let check = det_trig(tm, s, co).0;
+    let check = det_trig(tm, DET_SIN[1], DET_COS[1]).0;
     // A NaN mismatch fails too.
     let agrees = (check - interp).abs() <= DET_CHECK * scale;
     if !agrees {
@@ -1578,8 +1842,15 @@ pub(crate) fn det_candidates(
     let mut th = [0.0; 24];
     let count = trig_roots(&c, &mut th)?;
     for (k, &t3) in th[..count].iter().enumerate() {
-        let (s, co) = t3.sin_cos();
-        let t = back_substitute(ar, el, &null_vector_lu(&trig_at(&tm, s, co)), wrap(t3));
+        // The null vector of S(θ) with its columns in the order DET_COLS (the elimination
+        // then skips the same zero blocks as det_trig's), put back in monomial order.
+        let (co, s) = unit(t3);
+        let y = null_vector_lu(&trig_at_cols(&tm, s, co));
+        let mut v = [0.0; 12];
+        for (yk, &j) in y.iter().zip(&DET_COLS) {
+            v[j] = *yk;
+        }
+        let t = back_substitute(ar, el, &v, wrap(t3));
         for i in 0..6 {
             roots[k][ar.perm[i]] = t[i];
         }
@@ -1610,7 +1881,7 @@ fn forward(ax: &[GenAxis; 6], home: &B34, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) 
                 m[r][3] = q[i] * w[r];
             }
         } else {
-            let (s, co) = q[i].sin_cos();
+            let (co, s) = unit(q[i]);
             let r = rodrigues(&w, s, co);
             for rr in 0..3 {
                 m[rr][..3].copy_from_slice(&r[rr]);

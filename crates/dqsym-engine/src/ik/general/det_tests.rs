@@ -8,9 +8,22 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::core::{
-    compose, det_coefficients, inverse, matrix_trig, null_vector, null_vector_lu, trig_at,
-    trig_eval, trig_roots, Arranged, DET_DEGREE, J, NEAR_REAL, RANK_TOL,
+    compose, det_coefficients, det_trig, inverse, matrix_trig, null_vector, null_vector_lu,
+    trig_eval, trig_low, trig_roots, trig_table, unit, Arranged, DET_COS, DET_DEGREE, DET_SIN,
+    GRID_SIN, GRID_STEP, J, NEAR_REAL, RANK_TOL,
 };
+
+/// `S(θ)` at the angle with sine `s`, cosine `c`, in the natural column order (the test's own).
+#[allow(clippy::needless_range_loop)]
+fn trig_at(t: &[[[f64; 12]; 12]; 3], s: f64, c: f64) -> [[f64; 12]; 12] {
+    let mut m = [[0.0; 12]; 12];
+    for r in 0..12 {
+        for k in 0..12 {
+            m[r][k] = t[0][r][k] + c * t[1][r][k] + s * t[2][r][k];
+        }
+    }
+    m
+}
 
 type Coef = [(f64, f64); DET_DEGREE + 1];
 
@@ -121,7 +134,7 @@ fn check_or_give_up(factors: &[Factor], scale: f64, tol: f64, may_give_up: bool)
             })
             .product::<f64>()
             * scale;
-        let got = trig_eval(&c, th)[0];
+        let got = trig_eval(&trig_table(&c), th)[0];
         assert!(
             (got - want).abs() <= 1e-12 * scale.abs().max(1e-300) * 100.0,
             "{factors:?}: {got} vs {want}"
@@ -135,7 +148,7 @@ fn check_or_give_up(factors: &[Factor], scale: f64, tol: f64, may_give_up: bool)
     let found = &out[..n];
     let real = real_roots(factors);
     let b0: f64 = c.iter().map(|x| x.0.hypot(x.1)).sum();
-    let tol_at = |r: f64| tol.max(1e-13 * b0 / trig_eval(&c, r)[1].abs());
+    let tol_at = |r: f64| tol.max(1e-13 * b0 / trig_eval(&trig_table(&c), r)[1].abs());
     for &r in &real {
         let tol = tol_at(r);
         let near = real.iter().filter(|&&x| gap(x, r) <= tol).count();
@@ -397,7 +410,7 @@ fn det_coefficients_reproduce_det_s_and_null_vectors_annihilate_it() {
             for _ in 0..10 {
                 let th = rng.angle();
                 let want = det_complete(&trig_at(&tm, th.sin(), th.cos()));
-                let got = trig_eval(&c, th)[0];
+                let got = trig_eval(&trig_table(&c), th)[0];
                 assert!(
                     (got - want).abs() <= 1e-11 * scale,
                     "det S({th}) = {want:e}, interpolant {got:e}, scale {scale:e}"
@@ -437,7 +450,7 @@ fn det_coefficients_reproduce_det_s_and_null_vectors_annihilate_it() {
                     lu <= (10.0 * complete).max(1e-9),
                     "S({th}): partial pivoting {lu:e}, complete {complete:e}"
                 );
-                let v = trig_eval(&c, th);
+                let v = trig_eval(&trig_table(&c), th);
                 let delta = (v[0] / v[1]).abs();
                 if v[1].abs() >= 1e-6 * scale {
                     assert!(
@@ -452,4 +465,195 @@ fn det_coefficients_reproduce_det_s_and_null_vectors_annihilate_it() {
         // at the others.
         assert!(gave_up < 20, "{name}: gave up at every pose");
     }
+}
+
+/// `unit(θ)` (the root search's cosine and sine without a library call: a table entry turned by
+/// Taylor polynomials) against the library's, at random angles and at the adversarial ones:
+/// the table's points, both sides of the points where the nearest table entry changes (odd
+/// multiples of π/64), 0, 2π and just below, negative angles. Its error: the angle's own
+/// rounding `th − b·π/32` (about `ε (|θ| + 1)`) plus a few roundings of the polynomial and the
+/// turn (`3ε`); the library's within `ε`: so `ε (|θ| + 5)`.
+#[test]
+fn unit_matches_the_library_sine_and_cosine() {
+    let eps = f64::EPSILON;
+    let tau = std::f64::consts::TAU;
+    let mut angles = vec![0.0, -0.0, tau, tau - 1e-15, 1e-300, -1e-300, 40.0, -40.0];
+    for k in -200..=200 {
+        let p = k as f64 * GRID_STEP;
+        let half = (k as f64 + 0.5) * GRID_STEP;
+        angles.extend([
+            p,
+            half,
+            half.next_up(),
+            half.next_down(),
+            p + 1e-12,
+            p - 1e-12,
+        ]);
+    }
+    let mut rng = Rng(0x1234_5678);
+    for _ in 0..20_000 {
+        angles.push(40.0 * rng.angle());
+        angles.push(rng.unit() * tau);
+    }
+    for th in angles {
+        let (c, s) = unit(th);
+        let (ws, wc) = th.sin_cos();
+        let tol = eps * (th.abs() + 5.0);
+        assert!(
+            (c - wc).abs() <= tol && (s - ws).abs() <= tol,
+            "unit({th}) = ({c}, {s}), library ({wc}, {ws})"
+        );
+    }
+    // The tables against the library at the rounded angles: that rounding, ε |angle|, too.
+    for (k, v) in GRID_SIN.iter().enumerate() {
+        let th = k as f64 * GRID_STEP;
+        assert!((v - th.sin()).abs() <= eps * (th + 1.0), "GRID_SIN[{k}]");
+    }
+    let step = std::f64::consts::PI / 17.0;
+    for k in 0..DET_SIN.len() {
+        let th = k as f64 * step;
+        let (ws, wc) = th.sin_cos();
+        assert!((DET_SIN[k] - ws).abs() <= eps * (th + 1.0), "DET_SIN[{k}]");
+        assert!((DET_COS[k] - wc).abs() <= eps * (th + 1.0), "DET_COS[{k}]");
+    }
+}
+
+/// `trig_low` (the three sums the brackets read) against derivatives computed here: the
+/// closed form `D⁽ᵏ⁾ = Re Σ (ij)ᵏ c_j e^{ijθ}` with the library's sine and cosine, to rounding
+/// relative to `Σ jᵏ |c_j|` (twenty units: nine terms, and the angle's rounding times the
+/// degree).
+#[test]
+fn trig_low_gives_the_derivatives() {
+    let mut rng = Rng(0xdead_beef);
+    for _ in 0..2000 {
+        let c: Coef = std::array::from_fn(|_| (rng.angle(), rng.angle()));
+        let th = rng.unit() * std::f64::consts::TAU;
+        let want = |k: u32| -> (f64, f64) {
+            let mut v = 0.0;
+            let mut size = 0.0;
+            for (j, cj) in c.iter().enumerate() {
+                let (s, co) = (j as f64 * th).sin_cos();
+                let (re, im) = (cj.0 * co - cj.1 * s, cj.0 * s + cj.1 * co);
+                // iᵏ (re + i im), real part.
+                let r = [re, -im, -re, im][k as usize % 4];
+                v += (j as f64).powi(k as i32) * r;
+                size += (j as f64).powi(k as i32) * cj.0.hypot(cj.1);
+            }
+            (v, size)
+        };
+        for k in 0..2 {
+            let got = trig_low(&trig_table(&c), k, th);
+            for (i, g) in [got.0, got.1, got.2].into_iter().enumerate() {
+                let (w, size) = want((k + i) as u32);
+                assert!(
+                    (g - w).abs() <= 20.0 * f64::EPSILON * size * 9.0,
+                    "D^({}) at {th}: {g} vs {w}",
+                    k + i
+                );
+            }
+        }
+    }
+}
+
+/// `det_trig` (the columns eliminated in the order `DET_COLS`) against the determinant by
+/// complete pivoting written here, for the matrices `S(θ)` of random arms and targets and of
+/// random matrices with the same zero blocks: the two differ by rounding only (the condition
+/// of S times 1e-16 per entry: 1e-10 relative to the product of the row norms, Hadamard's bound).
+#[test]
+fn det_trig_in_its_column_order_is_the_determinant() {
+    let mut rng = Rng(0x5151);
+    for _ in 0..300 {
+        let mut sig = [[[0.0; 9]; 6]; 3];
+        for x in sig.iter_mut().flatten().flatten() {
+            *x = rng.angle();
+        }
+        let tm = matrix_trig(&sig);
+        let th = rng.unit() * std::f64::consts::TAU;
+        let (s, c) = th.sin_cos();
+        let m = trig_at(&tm, s, c);
+        let want = det_complete(&m);
+        let hadamard: f64 = m
+            .iter()
+            .map(|r| r.iter().map(|x| x * x).sum::<f64>().sqrt())
+            .product();
+        let got = det_trig(&tm, s, c).0;
+        assert!(
+            (got - want).abs() <= 1e-10 * hadamard,
+            "det {got:e} vs {want:e} (Hadamard {hadamard:e})"
+        );
+    }
+}
+
+/// Halley's brackets (`bracketed`, from the secant's zero, bisection where a step leaves the
+/// bracket) in the hard places: clusters of simple roots (four within 1e-2, the shape of the
+/// bench arm's clusters; their spacings above `2 NEAR_REAL`, so that no extremum between two
+/// of them counts as a near-double root, a candidate the search may add by design), roots at
+/// `θ = π ± 2e-8` (the half-angle tangent near `±1e8`) beside a cluster, and a near-double
+/// root (`2e-6` apart) beside another root. Each real root is found to `1e-9` or to its own
+/// condition (the rounding of the coefficients over `|D′|`), none is made up, or the search
+/// leaves a cluster within rounding to the eigenvalue route.
+#[test]
+fn trig_roots_resolves_clusters_and_roots_near_pi() {
+    let pi = std::f64::consts::PI;
+    let cases: [Vec<Factor>; 4] = [
+        vec![
+            Factor::Real {
+                mu: 1.0,
+                delta: 2.5e-3,
+            },
+            Factor::Real {
+                mu: 1.0,
+                delta: 5e-3,
+            },
+            Factor::Complex { mu: 4.0, eta: 0.4 },
+        ],
+        vec![
+            Factor::Real {
+                mu: 2.0,
+                delta: 3e-3,
+            },
+            Factor::Real {
+                mu: 2.0,
+                delta: 6e-3,
+            },
+            Factor::Real {
+                mu: pi,
+                delta: 2e-8,
+            },
+            Factor::Complex { mu: 5.0, eta: 0.2 },
+        ],
+        vec![
+            Factor::Real {
+                mu: pi,
+                delta: 2e-8,
+            },
+            Factor::Real {
+                mu: pi + 0.01,
+                delta: 3e-3,
+            },
+            Factor::Real {
+                mu: 0.5,
+                delta: 0.3,
+            },
+        ],
+        vec![
+            Factor::Real {
+                mu: 3.0,
+                delta: 1e-6,
+            },
+            Factor::Real {
+                mu: 3.01,
+                delta: 0.2,
+            },
+            Factor::Complex { mu: 0.3, eta: 0.05 },
+        ],
+    ];
+    let mut answered = 0;
+    for f in &cases {
+        check_or_give_up(f, 1.0, 1e-9, true);
+        answered += usize::from(trig_roots(&product(f, 1.0), &mut [0.0; 24]).is_some());
+    }
+    // Clusters of simple roots a few 1e-3 apart are resolved, not left to the eigenvalue
+    // route.
+    assert!(answered >= 3, "answered {answered} of 4");
 }

@@ -70,7 +70,11 @@ fn core_constants(w: &dyn Syntax) -> (Vec<Named<String>>, Vec<Table>) {
         ("IK_GEN_ROOT_MARGIN", f(k::ROOT_MARGIN)),
         ("IK_GEN_ROOT_LEAF", f(k::ROOT_LEAF)),
         ("IK_GEN_BRACKET_TOL", f(k::BRACKET_TOL)),
+        ("IK_GEN_BRACKET_WIDTH", f(k::BRACKET_WIDTH)),
         ("IK_GEN_NULL_RESIDUAL", f(k::NULL_RESIDUAL)),
+        ("IK_GEN_GRID_STEP", f(k::GRID_STEP)),
+        ("IK_GEN_GRID_STEP_HI", f(k::GRID_STEP_HI)),
+        ("IK_GEN_GRID_STEP_LO", f(k::GRID_STEP_LO)),
     ];
     let rows = |m: &[[f64; 3]; 3]| m.iter().map(|r| r.to_vec()).collect::<Vec<_>>();
     let tables = vec![
@@ -82,6 +86,13 @@ fn core_constants(w: &dyn Syntax) -> (Vec<Named<String>>, Vec<Table>) {
         ("IK_GEN_SAMPLE_D", vec![k::SAMPLE_D.to_vec()]),
         ("IK_GEN_VANDER", rows(&k::VANDER)),
         ("IK_GEN_HALF_INV", rows(&k::HALF_INV)),
+        ("IK_GEN_GRID_SIN", vec![k::GRID_SIN.to_vec()]),
+        ("IK_GEN_DET_SIN", vec![k::DET_SIN.to_vec()]),
+        ("IK_GEN_DET_COS", vec![k::DET_COS.to_vec()]),
+        (
+            "IK_GEN_DET_COLS",
+            vec![k::DET_COLS.iter().map(|&j| j as f64).collect()],
+        ),
     ];
     (scalars, tables)
 }

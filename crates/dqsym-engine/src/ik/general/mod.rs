@@ -119,15 +119,23 @@
 //! tan(θ/2)`), so `det S = det M / (1 + x²)¹²` is a trigonometric polynomial in `θ`, of degree
 //! 8 for the spurious factor `(1 + x²)⁴` (lower for arms with more): no division by a factor
 //! that vanishes at `±i`, no shift, no root at infinity. The core (`core::det_candidates`)
-//! evaluates it at 17 equally spaced real angles (an LU each), reads its coefficients by the
-//! discrete Fourier transform (exact for degree 8, perfectly conditioned on the circle), and
-//! checks the interpolant at an 18th angle (content of a higher degree would show there). Its
-//! real roots come from a certified interval search (`core::trig_roots`): Taylor's formula to
-//! the seventh derivative with the rest bounded by `Σ j⁸ |c_j|` excludes intervals free of
-//! roots and proves the others monotone (one root, Newton in the bracket) or convex (two
-//! roots or a near-double one, taken twice as a near-real complex pair is) — no real root can
-//! fall between the cases. Each root's null vector is one LU with partial pivoting, checked
-//! by its residual (complete pivoting otherwise). Where `det S` and its derivative vanish
+//! evaluates it at 17 equally spaced real angles (an LU each, the columns in the block order
+//! `core::DET_COLS`: the six equations have no `x4³` column and their copies no `x4⁰` one, so
+//! each of those blocks is eliminated within its own six rows, 39 row updates instead of 48),
+//! reads its coefficients by the discrete Fourier transform (exact for degree 8, perfectly
+//! conditioned on the circle), and checks the interpolant at an 18th angle (content of a
+//! higher degree would show there). Its real roots come from a certified interval search
+//! (`core::trig_roots`): Taylor's formula to the seventh derivative with the rest bounded by
+//! `Σ j⁸ |c_j|` excludes intervals free of roots and proves the others monotone (one root,
+//! Halley's method in the bracket from the secant's zero: cubic convergence, about 5
+//! evaluations of `D`, `D′`, `D″` per root where Newton's took 7 of all eight derivatives) or
+//! convex (two roots or a near-double one, taken twice as a near-real complex pair is) — no
+//! real root can fall between the cases. No library sine or cosine: the sample angles are
+//! tables (`core::DET_SIN`), and each evaluation turns the nearest multiple of `π/32`
+//! (`core::GRID_SIN`) by Taylor polynomials of the rest (`core::unit`, a few units of
+//! rounding), with the signs and powers of the derivatives folded into the coefficients once
+//! per polynomial (`core::TrigTable`). Each root's null vector is one LU with partial
+//! pivoting (the same column order), checked by its residual (complete pivoting otherwise). Where `det S` and its derivative vanish
 //! together to rounding (a cluster of roots: the multiple roots of special arms forced
 //! general, and a cluster of about six roots within 0.02 rad at one pose in ten of a general
 //! arm), the route gives up and the eigenvalue route decides, as it does when no sample is
@@ -139,15 +147,28 @@
 //! solutions of the 64 bench poses to near-double roots turned complex.
 //!
 //! Measured (callgrind, the generated solver of `benches/support/skew6r.toml` at the 64 poses
-//! of `benches/ik_general.rs`, 362 solutions before and after): 513k instructions per pose
-//! with the eigenvalue route (QR iteration 133k, null vectors 68k, `±i` deflation 66k, the
-//! elimination 66k, refinement 60k), 402k with the determinant route (the 18 sampled LUs
-//! 86k, the root search 75k, null vectors and back-substitution 26k, the eigenvalue route at
-//! the 5 poses of 64 where the search gives up 20k, the elimination and the refinement as
-//! before). The C port gains less (645k to 614k: C99 has no `sincos`, and the search
-//! evaluates `det S` about 130 times per pose). The 20 µs target of issue #29 is not reached:
-//! what is left is the elimination, the samples' LUs, the search and the refinement, in about
-//! equal parts.
+//! of `benches/ik_general.rs`, instructions of the solves only, 362 solutions before and
+//! after): 513k instructions per pose with the eigenvalue route (QR iteration 133k, null
+//! vectors 68k, `±i` deflation 66k, the elimination 66k, refinement 60k); 402k with the
+//! determinant route as first built (the 18 sampled LUs 86k, the root search 75k of which
+//! 36k were library `sincos` calls, null vectors and back-substitution 26k, the eigenvalue
+//! route at the 5 poses of 64 where the search gives up 20k); 352k now (issue #29, session
+//! 14: no library `sincos` in the search, the back-substitution or the forward kinematics of
+//! the refinement, `core::unit` instead, within a few units of rounding, the residuals still
+//! below `EXACT_TOL`; Halley; the block column order; the tables; the QR's row layout). What
+//! is left, per pose: the 18 sampled LUs about 85k (their row updates are vectorised
+//! already; assembling `S(θ)` is a fifth of it), the elimination 70k (the QR of `Bm` 20k of
+//! it), the refinement 55k (12 forward kinematics and 6 normal equations for 6 candidates),
+//! the search 45k (about 50 evaluations with all derivatives and 60 of three), null vectors
+//! and back-substitution 50k, the eigenvalue route 20k. The C port (GCC 12, `-O2`): 607k to
+//! 550k. Tried and dropped (no gain or a loss): row updates from the pivot column on
+//! (not vectorised), the elimination's arrays built element by element, the 27 products of
+//! back-substitution hoisted, a root margin lowered a hundredfold (the eigenvalue route's
+//! poses are clusters within `1e-13` of the scale). The 20 µs (about 150k instructions) of
+//! issue #29 needs fewer or smaller samples (an LU is 4.7k), the left side of the
+//! elimination (`E3 E4 E5` on its grid) hoisted to the arm's constants where the loop is
+//! read from joint 1 (it depends on the target only through the length scale), and fewer
+//! refinement steps.
 
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod core;
