@@ -127,6 +127,7 @@ mod cspoly;
 mod decimals;
 mod expr;
 mod factor;
+mod floor;
 mod mon;
 mod notation;
 mod offsets;
@@ -284,31 +285,37 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
 
 /// [`closed_form_prepared`] without the constants lifted.
 fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
-    let (plain, prepared) = prepared_unshifted(x);
-    let Some(shift) = offsets::find(x) else {
-        return (plain, prepared);
+    let Some((shift, y)) = offsets::find(x).and_then(|s| s.apply(x).map(|y| (s, y))) else {
+        return prepared_unshifted(x);
     };
-    let Some(y) = shift.apply(x) else {
-        return (plain, prepared);
-    };
+    // The shifted form first: it is taken on equal cost, so the unshifted search is finished
+    // only when it may be strictly shorter (`floor.rs`; a Jaco-style arm's unshifted forms
+    // never are, and were most of its closed-form work).
     let (shifted, yprep) = prepared_unshifted(&y);
-    let Ok(mut e) = shifted.map(|e| shift.unshift(e)) else {
-        return (plain, prepared);
-    };
-    // The shift changes what an angle costs (`cos(y - pi/7) cos(y + pi/7)` ties with the sum in
-    // `y`, `cos(x) cos(x + 2*pi/7)` beats it in `x`): the candidates of `alt.rs` for the
-    // shifted scalar are compared again once shifted back.
-    for a in alt::candidates(&y).into_iter().map(|a| shift.unshift(a)) {
-        if alt::shorter(&a, &e) && a.to_scalar() == *x {
-            e = a;
-            break;
+    let e = shifted.ok().map(|e| {
+        let mut e = shift.unshift(e);
+        // The shift changes what an angle costs (`cos(y - pi/7) cos(y + pi/7)` ties with the
+        // sum in `y`, `cos(x) cos(x + 2*pi/7)` beats it in `x`): the candidates of `alt.rs` for
+        // the shifted scalar are compared again once shifted back.
+        for a in alt::candidates(&y).into_iter().map(|a| shift.unshift(a)) {
+            if alt::shorter(&a, &e) && a.to_scalar() == *x {
+                e = a;
+                break;
+            }
         }
-    }
+        e
+    });
+    let Some(e) = e.filter(|e| verified(e, x)) else {
+        return prepared_unshifted(x);
+    };
     // On equal cost the shifted form: its angles are the ones the user wrote.
-    if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) || !verified(&e, x) {
-        return (plain, prepared);
+    let key = alt::choice_key(&e);
+    match prepared_unshifted_below(x, Some((key.0, key.1))) {
+        Some((plain, prepared)) if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) => {
+            (plain, prepared)
+        }
+        _ => (Ok(e.symbols_leading()), Prepared(yprep.0, Some(shift))),
     }
-    (Ok(e.symbols_leading()), Prepared(yprep.0, Some(shift)))
 }
 
 /// Whether `e` equals `x`: exactly in debug builds, numerically first in release builds (as
@@ -319,33 +326,45 @@ fn verified(e: &Expr, x: &Scalar) -> bool {
 
 /// [`closed_form_prepared`] without the offsets absorbed.
 fn prepared_unshifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+    prepared_unshifted_below(x, None).expect("a search without a cap always finishes")
+}
+
+/// [`prepared_unshifted`], or `None` when `cap` is given and no form it may return is
+/// strictly below `cap` (`floor::cannot_beat`, decided before the factoring).
+fn prepared_unshifted_below(
+    x: &Scalar,
+    cap: Option<floor::Cap>,
+) -> Option<(Result<Expr, ScalarError>, Prepared)> {
     if let Err(e) = x.terms() {
-        return (Err(e.clone()), Prepared(None, None));
+        return Some((Err(e.clone()), Prepared(None, None)));
     }
     let split_size: usize = x
         .terms()
         .map(|t| t.iter().map(|t| 1usize << t.mode.freq.len().min(30)).sum())
         .unwrap_or(0);
     if split_size > SPLIT_LIMIT {
-        return (
+        return Some((
             whole_form(x).map(|(e, _)| e.symbols_leading()),
             Prepared(None, None),
-        );
+        ));
     }
     if skip_split(x, split_size) {
-        return (
+        return Some((
             best_whole(x).map(Expr::symbols_leading),
             Prepared(None, None),
-        );
+        ));
     }
     let (mut sctx, smons) = mon::split_modes(x);
     let smons = recombine::recombine(&mut sctx, smons);
+    if cap.is_some_and(|cap| floor::cannot_beat(x, &sctx, &smons, cap)) {
+        return None;
+    }
     let result = best_of(x, &sctx, &smons, true);
     let split_won = result.as_ref().is_ok_and(|(_, split)| *split);
-    (
+    Some((
         result.map(|(e, _)| e.symbols_leading()),
         Prepared(Some((sctx, smons, split_won)), None),
-    )
+    ))
 }
 
 /// The most a scalar's split shape may multiply its number of terms by, on average, before
