@@ -39,12 +39,14 @@ pub(super) fn cannot_beat(x: &Scalar, ctx: &Ctx, mons: &[Mon], cap: Cap) -> bool
 /// with the arithmetic inside the angles) of the expression `factor::build` makes of `mons`,
 /// shown (`E::to_expr`, then `Expr::symbols_leading`).
 ///
-/// The factoring only pulls common factors out of the monomials, so each distinct atom and
-/// symbol of them is a leaf of the result at least once, every atom a call (its cosine or
-/// sine): `n` leaves take at least `n - 1` additions and multiplications to combine (a sum or
-/// product of `k` parts costs `k - 1`; negations, powers and numbers only add), which is
-/// `factor::cost_lower_bound`. Each call's angle adds its own arithmetic ([`angle_floor`]),
-/// once per distinct atom at least.
+/// The factoring only pulls common factors (atoms, symbols, numbers) out of groups of the
+/// monomials, so its result is a tree whose sums partition the monomials: each of the `n`
+/// distinct monomials is a term of some sum, below which it has a leaf of its own, and each
+/// distinct atom and symbol is a leaf at least once. A tree of `L` leaves whose sums and
+/// products have `k` parts each costs `k - 1` operations per node, `L - 1` in all (negations
+/// and powers have one part and only add; merging equal factors into a power keeps a leaf for
+/// each monomial), and every atom is a call (its cosine or sine), with its angle's arithmetic
+/// ([`angle_floor`]), at least once.
 pub(super) fn shape_floor(ctx: &Ctx, mons: &[Mon]) -> usize {
     let mut atoms: Vec<u32> = mons.iter().flat_map(|m| m.atoms.iter().copied()).collect();
     atoms.sort_unstable();
@@ -55,12 +57,16 @@ pub(super) fn shape_floor(ctx: &Ctx, mons: &[Mon]) -> usize {
         .collect();
     syms.sort_unstable();
     syms.dedup();
-    let leaves = (atoms.len() + syms.len()).saturating_sub(1);
+    // The distinct nonzero monomials (a list with equal ones or zeros would have fewer).
+    let mut keys: Vec<&Mon> = mons.iter().filter(|m| !m.q.is_zero()).collect();
+    keys.sort_unstable_by(|a, b| mon::key_cmp(a, b));
+    keys.dedup_by(|a, b| mon::key_cmp(a, b).is_eq());
+    let leaves = keys.len().max(atoms.len() + syms.len());
     let angles: usize = atoms
         .iter()
         .map(|&a| angle_floor(&ctx.angles[angle_of(a) as usize]))
         .sum();
-    leaves + atoms.len() + angles
+    leaves.saturating_sub(1) + atoms.len() + angles
 }
 
 /// A lower bound of the arithmetic [`alt::full_cost`] counts inside a call of `angle`, and of
@@ -119,7 +125,12 @@ mod tests {
                 let d = dens[rng.below(4) as usize];
                 let off = rng.below(2 * d as u64) as i64;
                 angle = angle + Scalar::pi() * ratio(off, d);
-                term = term * if rng.below(2) == 0 { angle.cos() } else { angle.sin() };
+                term = term
+                    * if rng.below(2) == 0 {
+                        angle.cos()
+                    } else {
+                        angle.sin()
+                    };
             }
             sum = sum + term;
         }
@@ -161,7 +172,12 @@ mod tests {
             let (full, _) = super::super::prepared_unshifted(&x);
             let Ok(full) = full else { continue };
             let k = alt::choice_key(&full);
-            for cap in [(k.0 / 3, k.1 / 3), (k.0, k.1), (k.0 + 1, k.1 + 1), (2 * k.0, 2 * k.1)] {
+            for cap in [
+                (k.0 / 3, k.1 / 3),
+                (k.0, k.1),
+                (k.0 + 1, k.1 + 1),
+                (2 * k.0, 2 * k.1),
+            ] {
                 match super::super::prepared_unshifted_below(&x, Some(cap)) {
                     None => {
                         assert!((k.0, k.1) >= cap, "gave up below the cap {cap:?}: {full:?}");
@@ -175,5 +191,37 @@ mod tests {
             }
         }
         assert!(skipped > 0 && kept > 0, "skipped {skipped}, kept {kept}");
+    }
+
+    #[test]
+    fn substitution_floor_never_exceeds_what_the_constants_add() {
+        // Every lifted scalar (`coefs.rs`) of random scalars: the closed form with its
+        // constants put back costs at least the lifted form's cost plus the floor.
+        let mut rng = Rng(5);
+        let mut checked = 0;
+        for _ in 0..80 {
+            let x = random_scalar(&mut rng);
+            let Some(mut lifting) = super::super::coefs::Lifting::new(&x) else {
+                continue;
+            };
+            for phased in [true, false] {
+                let Some(l) = lifting.lift(phased) else {
+                    continue;
+                };
+                let Ok(c0) = super::super::prepared_shifted(&l.scalar).0 else {
+                    continue;
+                };
+                let inner = alt::full_cost(&c0).0;
+                let c = l.substitute(c0);
+                let floor = l.substitution_floor();
+                let cost = alt::full_cost(&c).0;
+                assert!(
+                    inner + floor <= cost,
+                    "{inner} + {floor} > {cost} for {c:?}"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked >= 5, "only {checked} lifted forms");
     }
 }
