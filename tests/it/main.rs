@@ -16,6 +16,7 @@ mod geometric;
 mod hostile;
 mod ik;
 mod ik_3r3p;
+mod ik_4r2p_apart;
 mod ik_edges;
 mod ik_free_slides;
 mod ik_general;

@@ -150,6 +150,8 @@
 //! equal parts.
 
 #[allow(clippy::many_single_char_names)]
+pub(crate) mod apart;
+#[allow(clippy::many_single_char_names)]
 pub(crate) mod core;
 #[cfg(test)]
 mod deflate_tests;
@@ -232,11 +234,11 @@ pub(crate) fn solve_numeric(
     let (axes, home) = check::axis_data(sol, &env)?;
     let len = check::scale(&axes, &home, target);
     let first = sol.general.as_ref().map_or(0, GeneralInfo::index);
-    let out = run(&axes, &home, target, len, first)?;
+    let (out, singular) = run(&axes, &home, target, len, first)?;
     Ok((0..out.n)
         .map(|i| NumSolution {
             q: out.q[i].to_vec(),
-            singular: false,
+            singular: singular[i],
             approximate: out.residual[i] > check::POSE_TOL || out.residual[i].is_nan(),
             residual: out.residual[i],
         })
@@ -249,11 +251,45 @@ fn run(
     target: &[[f64; 4]; 4],
     len: f64,
     first: usize,
-) -> Result<core::GenOut, GeneralError> {
+) -> Result<(core::GenOut, [bool; core::GEN_MAX]), GeneralError> {
     let ax: [AxisData; 6] = axes
         .try_into()
         .map_err(|_| GeneralError::Joints(axes.len()))?;
-    Ok(core::gen_solve(&ax, home, target, len, tol(), first))
+    let mut singular = [false; core::GEN_MAX];
+    let out = if apart(&ax) {
+        apart::apart_solve(&ax, home, target, len, tol(), &mut singular)
+    } else {
+        core::gen_solve(&ax, home, target, len, tol(), first)
+    };
+    Ok((out, singular))
+}
+
+/// [`info`] of a 4R2P with its slides three joints apart: the first reading (forwards, then
+/// backwards) whose resultant is usable at the generic target, and its degree
+/// (`degree::apart_degree`).
+fn apart_info(axes: &[AxisData], home: &[[f64; 4]; 3], t: &[[f64; 4]; 4], len: f64) -> GeneralInfo {
+    let (js, g) = scaled(axes, home, t, len);
+    let prismatic: [bool; 6] = std::array::from_fn(|i| js[i].prism);
+    for arr in apart::apart_arrangements(&prismatic).unwrap_or_default() {
+        let found = apart::ApartChain::new(core::Arranged::new(&js, &g, arr))
+            .and_then(|ch| degree::apart_degree(&ch));
+        if let Some(degree) = found {
+            return GeneralInfo {
+                degree,
+                arrangement: (arr >= 6, arr % 6),
+            };
+        }
+    }
+    GeneralInfo {
+        degree: 0,
+        arrangement: (false, 0),
+    }
+}
+
+/// Whether the chain is a 4R2P with its slides three joints apart: solved by [`apart`] (the
+/// elimination of `core.rs` is degenerate for it).
+fn apart(ax: &[AxisData]) -> bool {
+    ax.len() == 6 && apart::apart_arrangements(&std::array::from_fn(|i| ax[i][0] != 0.0)).is_some()
 }
 
 /// What the general method cannot solve.
@@ -381,8 +417,11 @@ pub(crate) fn info(sol: &IkSolution) -> GeneralInfo {
         .collect();
     let t = targets[0];
     let len = check::scale(&axes, &home, &t);
+    if apart(&axes) {
+        return apart_info(&axes, &home, &t, len);
+    }
     match run(&axes, &home, &t, len, 0) {
-        Ok(o) if o.n_arr > 0 => {
+        Ok((o, _)) if o.n_arr > 0 => {
             let arr = o.arrangements[0];
             let gs: Vec<[[f64; 4]; 3]> = targets
                 .iter()
