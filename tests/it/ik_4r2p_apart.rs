@@ -9,8 +9,8 @@
 
 use crate::common::Rng;
 use crate::ik_general_prismatic::{
-    check_flagged, derive, deviation, dist, levenberg_marquardt, pose, pri, random_q, rev, size,
-    Row,
+    check_flagged, derive, deviation, dist, frames, levenberg_marquardt, pose, pri, random_q, rev,
+    size, Row,
 };
 use dqsym::ik::{IkMethod, IkSolution, NumSolution};
 
@@ -104,5 +104,193 @@ fn slides_three_apart_round_trip_at_every_placement() {
             info.degree
         );
         assert!(most >= 4, "{name}: {most}");
+    }
+}
+
+/// The independent count: at 10 random poses per arm, 300 Levenberg–Marquardt starts each
+/// (slides seeded in `(−1, 1)`); every distinct solution they find (joints apart by more than
+/// 1e-6, each reproducing the pose to 1e-12) is one of the solver's, and over all poses they
+/// find at least 95% of the solver's (a random start can miss a small basin).
+#[test]
+fn slides_three_apart_counts_agree_with_an_independent_multistart() {
+    for (name, rows) in arms() {
+        let sol = derive(&name, &rows, IkMethod::Auto);
+        let len = size(&rows);
+        let mut rng = Rng::new(101);
+        let (mut total_solver, mut total_multi) = (0, 0);
+        for _ in 0..10 {
+            let q = random_q(&rows, &mut rng);
+            let exact: Vec<NumSolution> = solve_checked(&name, &sol, &rows, &q, 8)
+                .into_iter()
+                .filter(|s| !s.approximate)
+                .collect();
+            let t = pose(&rows, &q);
+            let mut found: Vec<Vec<f64>> = Vec::new();
+            for _ in 0..300 {
+                let seed: Vec<f64> = rows
+                    .iter()
+                    .map(|r| {
+                        if r.prismatic {
+                            rng.range(-1.0, 1.0)
+                        } else {
+                            rng.range(-PI, PI)
+                        }
+                    })
+                    .collect();
+                if let Some(s) = levenberg_marquardt(&rows, &seed, &t, len) {
+                    if !found.iter().any(|f| dist(&rows, f, &s) <= 1e-6) {
+                        found.push(s);
+                    }
+                }
+            }
+            for m in &found {
+                assert!(
+                    exact.iter().any(|s| dist(&rows, &s.q, m) <= 1e-6),
+                    "{name}: the multistart's {m:?} is not among the solver's {exact:?} (q {q:?})"
+                );
+            }
+            total_solver += exact.len();
+            total_multi += found.len();
+        }
+        assert!(
+            20 * total_multi >= 19 * total_solver,
+            "{name}: the multistart found {total_multi} of the solver's {total_solver}"
+        );
+        eprintln!("{name}: solver {total_solver} at 10 poses, multistart {total_multi}");
+    }
+}
+
+/// The determinant of the DH model's 6 x 6 geometric Jacobian (independent of the engine).
+fn jacobian_det(rows: &[Row], q: &[f64]) -> f64 {
+    let fr = frames(rows, q);
+    let p = [fr[6][0][3], fr[6][1][3], fr[6][2][3]];
+    let mut j = [[0.0; 6]; 6];
+    for i in 0..6 {
+        let z = [fr[i][0][2], fr[i][1][2], fr[i][2][2]];
+        let o = [fr[i][0][3], fr[i][1][3], fr[i][2][3]];
+        let col = if rows[i].prismatic {
+            [z[0], z[1], z[2], 0.0, 0.0, 0.0]
+        } else {
+            let d = [p[0] - o[0], p[1] - o[1], p[2] - o[2]];
+            [
+                z[1] * d[2] - z[2] * d[1],
+                z[2] * d[0] - z[0] * d[2],
+                z[0] * d[1] - z[1] * d[0],
+                z[0],
+                z[1],
+                z[2],
+            ]
+        };
+        for r in 0..6 {
+            j[r][i] = col[r];
+        }
+    }
+    // Gaussian elimination with partial pivoting.
+    let mut det = 1.0;
+    for k in 0..6 {
+        let p = (k..6)
+            .max_by(|&a, &b| j[a][k].abs().total_cmp(&j[b][k].abs()))
+            .expect("row");
+        if j[p][k] == 0.0 {
+            return 0.0;
+        }
+        if p != k {
+            j.swap(p, k);
+            det = -det;
+        }
+        det *= j[k][k];
+        for r in k + 1..6 {
+            let f = j[r][k] / j[k][k];
+            for c in k..6 {
+                j[r][c] -= f * j[k][c];
+            }
+        }
+    }
+    det
+}
+
+/// A configuration on the singular set (the Jacobian's determinant zero, two solutions
+/// merged): along joint `k` from a random configuration, a sign change of the determinant
+/// bisected to rounding; `None` when there is none.
+fn singular_configuration(rows: &[Row], rng: &mut Rng) -> Option<(Vec<f64>, usize)> {
+    let mut q = random_q(rows, rng);
+    let k = (0..6).find(|&i| !rows[i].prismatic).expect("a turn") + rng.below(2) as usize;
+    let k = if rows[k].prismatic { k + 1 } else { k };
+    let at = |q: &mut Vec<f64>, x: f64| {
+        q[k] = x;
+        jacobian_det(rows, q)
+    };
+    let n = 64;
+    let step = 2.0 * PI / f64::from(n);
+    for i in 0..n {
+        let (mut a, mut b) = (-PI + step * f64::from(i), -PI + step * f64::from(i + 1));
+        let fa = at(&mut q, a);
+        if (fa < 0.0) != (at(&mut q, b) < 0.0) {
+            for _ in 0..200 {
+                let m = 0.5 * (a + b);
+                if (at(&mut q, m) < 0.0) == (fa < 0.0) {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            q[k] = 0.5 * (a + b);
+            return Some((q, k));
+        }
+    }
+    None
+}
+
+/// Near-singular poses (a configuration on the Jacobian's singular set, one turn moved by
+/// `eps` from 1e-12 to 1e-3): every solution returned unflagged reproduces the pose to 1e-9
+/// by the model here; the pose is reached (exactly or flagged) at least at 95% of them.
+#[test]
+fn slides_three_apart_near_singular_return_nothing_wrong_unflagged() {
+    let mut rng = Rng::new(77);
+    let (mut reached, mut total) = (0, 0);
+    for (name, rows) in arms() {
+        let sol = derive(&name, &rows, IkMethod::Auto);
+        for e in 3..=12 {
+            let eps = 10f64.powi(-e);
+            let Some((mut q, k)) = singular_configuration(&rows, &mut rng) else {
+                continue;
+            };
+            q[k] += eps;
+            total += 1;
+            if check_flagged(&name, &sol, &rows, &q, &[]) <= 1e-6 {
+                reached += 1;
+            }
+        }
+    }
+    eprintln!("slides three apart, near singular: reached at {reached} of {total}");
+    assert!(total >= 40, "{total}");
+    assert!(20 * reached >= 19 * total, "{reached} of {total}");
+}
+
+/// The generated Rust solver (the apart core after the core), compiled clean, at 60 poses of
+/// each placement: the reference's solutions.
+#[test]
+fn generated_rust_apart_solver_is_the_reference() {
+    for (name, rows) in arms().into_iter().step_by(2) {
+        let sol = derive(&name, &rows, IkMethod::Auto);
+        let code = dqsym::ik::ik_rust(&sol).expect("rust");
+        assert!(code.contains("fn apart_solve("), "{name}");
+        let main = format!(
+            "{code}\nfn main() {{\n    use std::io::BufRead;\n    \
+for line in std::io::stdin().lock().lines() {{\n        \
+let v: Vec<f64> = line.expect(\"line\").split_whitespace().map(|x| x.parse().expect(\"number\")).collect();\n        \
+let mut t = [[0.0; 4]; 4];\n        for (i, x) in v.iter().enumerate() {{\n            t[i / 4][i % 4] = *x;\n        }}\n        \
+let s = ik(&t);\n        println!(\"{{}}\", s.n);\n        for i in 0..s.n {{\n            \
+let q: Vec<String> = s.q[i].iter().map(|x| format!(\"{{x:e}}\")).collect();\n            \
+println!(\"{{}} {{}}\", q.join(\" \"), u8::from(s.approximate[i]));\n        }}\n    }}\n}}\n"
+        );
+        let tag: String = name.chars().filter(char::is_ascii_alphanumeric).collect();
+        let dir = crate::tools::temp_dir(&format!("ik-apart-rust-{tag}"));
+        let (src, exe) = (dir.join("ik.rs"), dir.join("ik"));
+        std::fs::write(&src, main).expect("write");
+        crate::tools::compile_rust_clean(&src, &exe, true, &format!("the solver of {name}"));
+        let (qs, input) = crate::ik_3r3p::poses(&rows, 60, 51);
+        let out = crate::tools::run(std::process::Command::new(&exe), &input, "generated ik");
+        crate::ik_3r3p::check_output("Rust", &name, &sol, &rows, &qs, &out);
     }
 }

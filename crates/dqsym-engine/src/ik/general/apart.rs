@@ -449,3 +449,18 @@ pub fn apart_solve(
     }
     out
 }
+
+/// [`apart_solve`] with the signature of [`gen_solve`] (the generated Rust solver's driver
+/// calls it so; its `singular` flags are not returned).
+#[allow(dead_code)]
+pub fn apart_gen_solve(
+    axes: &[GenAxis; 6],
+    home: &[[f64; 4]; 3],
+    target: &[[f64; 4]; 4],
+    len: f64,
+    tol: GenTol,
+    _first: usize,
+) -> GenOut {
+    let mut singular = [false; GEN_MAX];
+    apart_solve(axes, home, target, len, tol, &mut singular)
+}

@@ -21,6 +21,10 @@ use crate::ScalarError;
 /// The numeric core, included in the generated solver.
 const CORE: &str = include_str!("core.rs");
 
+/// The numeric core of a 4R2P with its slides three joints apart (`apart.rs`), after the core
+/// in the generated Rust solver (its `use` line dropped: there both are one module).
+const APART: &str = include_str!("apart.rs");
+
 /// The numeric core in Python (NumPy).
 const PY_CORE: &str = include_str!("core.py");
 
@@ -213,14 +217,24 @@ fn doc(sol: &IkSolution, w: &dyn SolverSyntax, long: bool, singular: bool) -> St
 fn solver(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
     let w = solver_syntax(lang).expect("a language IK solvers are written in");
     let sol = &*super::super::safe::solution(sol, lang);
+    let apart = super::apart_chain(&sol.axes);
+    let rust_core = if apart {
+        let tail: Vec<&str> = APART
+            .lines()
+            .filter(|l| !l.starts_with("use super::core::"))
+            .collect();
+        format!("{CORE}\n{}\n", tail.join("\n"))
+    } else {
+        CORE.to_string()
+    };
     let (long, core, constants) = match lang {
-        Lang::Rust => (true, CORE, String::new()),
+        Lang::Rust => (true, rust_core.as_str(), String::new()),
         Lang::C => (true, C_CORE, core_constant_code(w)),
         _ => (false, PY_CORE, core_constant_code(w)),
     };
     let dq_matrix = crate::emit::helpers::helper(lang, w.helper("ik_dq_matrix").as_str())
         .map_or("", |h| h.text);
-    Ok(w.general_file(&GeneralFile {
+    let file = w.general_file(&GeneralFile {
         doc: doc(sol, w, long, lang == Lang::C),
         params: &sol.params,
         variables: &sol.variables,
@@ -232,7 +246,13 @@ fn solver(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
         core,
         chain: chain_code(sol, w)?,
         dq_matrix,
-    }))
+    });
+    // The Rust driver calls the apart core's entry, of the same signature.
+    Ok(if apart && lang == Lang::Rust {
+        file.replace("ik_general::gen_solve(", "ik_general::apart_gen_solve(")
+    } else {
+        file
+    })
 }
 
 /// The solver as Rust, with the interface of the family solvers: `ik_into`, `ik`, `ik_dq`

@@ -286,6 +286,15 @@ fn apart_info(axes: &[AxisData], home: &[[f64; 4]; 3], t: &[[f64; 4]; 4], len: f
     }
 }
 
+/// Whether the joints make a 4R2P with its slides three joints apart (solved by [`apart`]).
+pub(crate) fn apart_chain(axes: &[super::Axis]) -> bool {
+    axes.len() == 6
+        && apart::apart_arrangements(&std::array::from_fn(|i| {
+            axes[i].kind == JointKind::Prismatic
+        }))
+        .is_some()
+}
+
 /// Whether the chain is a 4R2P with its slides three joints apart: solved by [`apart`] (the
 /// elimination of `core.rs` is degenerate for it).
 fn apart(ax: &[AxisData]) -> bool {
