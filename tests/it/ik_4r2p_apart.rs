@@ -125,6 +125,13 @@ fn slides_three_apart_counts_agree_with_an_independent_multistart() {
                 .filter(|s| !s.approximate)
                 .collect();
             let t = pose(&rows, &q);
+            // Far solutions (slides nearly parallel, lengths of hundreds) are fixed only to
+            // about the residual times their length over the arm's: joints compared relative
+            // to the largest of them.
+            let near = |a: &[f64], b: &[f64]| {
+                let big = a.iter().chain(b).fold(1.0f64, |m, x| m.max(x.abs()));
+                dist(&rows, a, b) <= 1e-6 * big
+            };
             let mut found: Vec<Vec<f64>> = Vec::new();
             for _ in 0..300 {
                 let seed: Vec<f64> = rows
@@ -138,14 +145,14 @@ fn slides_three_apart_counts_agree_with_an_independent_multistart() {
                     })
                     .collect();
                 if let Some(s) = levenberg_marquardt(&rows, &seed, &t, len) {
-                    if !found.iter().any(|f| dist(&rows, f, &s) <= 1e-6) {
+                    if !found.iter().any(|f| near(f, &s)) {
                         found.push(s);
                     }
                 }
             }
             for m in &found {
                 assert!(
-                    exact.iter().any(|s| dist(&rows, &s.q, m) <= 1e-6),
+                    exact.iter().any(|s| near(&s.q, m)),
                     "{name}: the multistart's {m:?} is not among the solver's {exact:?} (q {q:?})"
                 );
             }
@@ -252,7 +259,8 @@ fn slides_three_apart_near_singular_return_nothing_wrong_unflagged() {
         let sol = derive(&name, &rows, IkMethod::Auto);
         for e in 3..=12 {
             let eps = 10f64.powi(-e);
-            let Some((mut q, k)) = singular_configuration(&rows, &mut rng) else {
+            let Some((mut q, k)) = (0..20).find_map(|_| singular_configuration(&rows, &mut rng))
+            else {
                 continue;
             };
             q[k] += eps;
@@ -263,7 +271,7 @@ fn slides_three_apart_near_singular_return_nothing_wrong_unflagged() {
         }
     }
     eprintln!("slides three apart, near singular: reached at {reached} of {total}");
-    assert!(total >= 40, "{total}");
+    assert!(total >= 55, "{total}");
     assert!(20 * reached >= 19 * total, "{reached} of {total}");
 }
 
