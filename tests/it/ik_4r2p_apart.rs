@@ -302,3 +302,35 @@ println!(\"{{}} {{}}\", q.join(\" \"), u8::from(s.approximate[i]));\n        }}\
         crate::ik_3r3p::check_output("Rust", &name, &sol, &rows, &qs, &out);
     }
 }
+
+/// The generated Python (NumPy) solver (`apart.py` after `core.py`) at 40 poses of each
+/// placement: the reference's solutions.
+#[test]
+fn generated_python_apart_solver_is_the_reference() {
+    for (name, rows) in arms().into_iter().step_by(2) {
+        let sol = derive(&name, &rows, IkMethod::Auto);
+        let code = dqsym::ik::ik_python(&sol).expect("python");
+        assert!(code.contains("_apart_gen_solve(ik_ax"), "{name}");
+        let script = format!(
+            "{code}\n\nimport sys\nfor line in sys.stdin:\n    v = [float(x) for x in line.split()]\n    \
+T = np.array(v[:16]).reshape(4, 4)\n    sols = ik_full(T)\n    \
+print(len(sols))\n    for q, sg, ap, _ in sols:\n        print(' '.join(repr(float(x)) for x in q), int(ap))\n"
+        );
+        let (qs, input) = crate::ik_3r3p::poses(&rows, 40, 53);
+        let out = crate::tools::run_python(&script, &input, "numpy");
+        crate::ik_3r3p::check_output("Python", &name, &sol, &rows, &qs, &out);
+    }
+}
+
+/// The C solver and the page's JavaScript have no port of the apart core yet: the C solver
+/// stops its compilation with the reason, the page's function throws it (never a silent empty
+/// solution set).
+#[test]
+fn unported_apart_solvers_say_so() {
+    let (name, rows) = arms().remove(2);
+    let sol = derive(&name, &rows, IkMethod::Auto);
+    let c = dqsym::ik::ik_c(&sol).expect("c");
+    assert!(c.contains("#error"), "{name}");
+    let js = dqsym::ik::ik_javascript_general(&sol);
+    assert!(js.contains("throw new Error"), "{name}");
+}

@@ -25,6 +25,9 @@ const CORE: &str = include_str!("core.rs");
 /// in the generated Rust solver (its `use` line dropped: there both are one module).
 const APART: &str = include_str!("apart.rs");
 
+/// The apart core in Python (a port of `apart.rs`, after `core.py`).
+const PY_APART: &str = include_str!("apart.py");
+
 /// The numeric core in Python (NumPy).
 const PY_CORE: &str = include_str!("core.py");
 
@@ -227,11 +230,19 @@ fn solver(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
     } else {
         CORE.to_string()
     };
-    let (long, core, constants) = match lang {
+    let py_core = if apart {
+        format!("{PY_CORE}\n\n{PY_APART}")
+    } else {
+        PY_CORE.to_string()
+    };
+    let (long, core, mut constants) = match lang {
         Lang::Rust => (true, rust_core.as_str(), String::new()),
         Lang::C => (true, C_CORE, core_constant_code(w)),
-        _ => (false, PY_CORE, core_constant_code(w)),
+        _ => (false, py_core.as_str(), core_constant_code(w)),
     };
+    if apart && lang != Lang::Rust {
+        constants.push_str(&apart_constant_code(w));
+    }
     let dq_matrix = crate::emit::helpers::helper(lang, w.helper("ik_dq_matrix").as_str())
         .map_or("", |h| h.text);
     let file = w.general_file(&GeneralFile {
@@ -247,12 +258,35 @@ fn solver(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
         chain: chain_code(sol, w)?,
         dq_matrix,
     });
-    // The Rust driver calls the apart core's entry, of the same signature.
-    Ok(if apart && lang == Lang::Rust {
-        file.replace("ik_general::gen_solve(", "ik_general::apart_gen_solve(")
-    } else {
-        file
+    // The driver calls the apart core's entry, of the same signature.
+    Ok(match lang {
+        _ if !apart => file,
+        Lang::Rust => file.replace("ik_general::gen_solve(", "ik_general::apart_gen_solve("),
+        Lang::C => format!("{APART_UNPORTED_C}\n{file}"),
+        _ => file.replace("_gen_solve(ik_ax", "_apart_gen_solve(ik_ax"),
     })
+}
+
+/// The C solver of a 4R2P with its slides three joints apart: not ported (`apart.rs` has Rust
+/// and Python only), so its compilation stops with the reason rather than solve nothing.
+const APART_UNPORTED_C: &str = "#error \"dqsym: the C port of the 4R2P solver with slides three \
+joints apart is not written; use the Rust or Python solver\"";
+
+/// The page's function for such an arm: it throws the same reason.
+const APART_UNPORTED_JS: &str = "function ik_general(ax, home, T) {\n    throw new Error(\"dqsym: \
+the JavaScript port of the 4R2P solver with slides three joints apart is not written\");\n}\n";
+
+/// The apart core's constants (`apart.rs`) in the language of `w`, for its ports.
+fn apart_constant_code(w: &dyn Syntax) -> String {
+    use super::apart as a;
+    let mut s = String::new();
+    for (name, v) in [
+        ("IK_GEN_APART_PARALLEL", a::APART_PARALLEL),
+        ("IK_GEN_APART_P_TOL", a::APART_P_TOL),
+    ] {
+        s.push_str(&w.constant(name, &w.literal(v), "f64"));
+    }
+    s
 }
 
 /// The solver as Rust, with the interface of the family solvers: `ik_into`, `ik`, `ik_dq`
@@ -289,6 +323,9 @@ pub fn ik_python(sol: &IkSolution) -> Result<String, ScalarError> {
 /// `core.rs`) with its constants written from `core.rs`, and `ik_general(ax, home, T)`, every
 /// solution as `[q, singular, approximate, residual]` as the generated solvers return them.
 pub fn ik_javascript_general(sol: &IkSolution) -> String {
+    if super::apart_chain(&sol.axes) {
+        return APART_UNPORTED_JS.to_string();
+    }
     let js = syntax(Lang::JavaScript);
     let first = sol.general.as_ref().map_or(0, super::GeneralInfo::index);
     format!(
