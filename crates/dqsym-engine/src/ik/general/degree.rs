@@ -208,7 +208,13 @@ pub(crate) fn moving_roots(arranged: &[Arranged]) -> Option<usize> {
         .iter()
         .map(|q| common_degree(&polys[0], q))
         .collect::<Option<Vec<usize>>>()?;
-    Some(deg.saturating_sub(common.into_iter().min().unwrap_or(0)))
+    let moving = deg.saturating_sub(common.into_iter().min().unwrap_or(0));
+    // Of those, the roots that back-substitute to a solution (`closure.rs`): fewer for
+    // special geometry whose moving roots include spurious ones.
+    let closing = arranged[0]
+        .elim()
+        .and_then(|e| super::closure::closing_roots(&arranged[0], &e, &polys[0]));
+    Some(closing.map_or(moving, |c| moving.min(c)))
 }
 
 /// The same chain `js` at the targets `g` in arrangement `arr`.

@@ -151,6 +151,7 @@
 
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod apart;
+mod closure;
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod core;
 #[cfg(test)]
