@@ -208,13 +208,16 @@ pub(crate) fn moving_roots(arranged: &[Arranged]) -> Option<usize> {
         .iter()
         .map(|q| common_degree(&polys[0], q))
         .collect::<Option<Vec<usize>>>()?;
-    let moving = deg.saturating_sub(common.into_iter().min().unwrap_or(0));
-    // Of those, the roots that back-substitute to a solution (`closure.rs`): fewer for
-    // special geometry whose moving roots include spurious ones.
-    let closing = arranged[0]
-        .elim()
-        .and_then(|e| super::closure::closing_roots(&arranged[0], &e, &polys[0]));
-    Some(closing.map_or(moving, |c| moving.min(c)))
+    Some(deg.saturating_sub(common.into_iter().min().unwrap_or(0)))
+}
+
+/// The roots of `det M` at the target of `ar` that back-substitute to a solution
+/// (`closure.rs`): fewer than the moving ones for special geometry whose moving roots include
+/// spurious ones. `None` when the determinant or the eigenvalues fail.
+pub(crate) fn closing_roots(ar: &Arranged) -> Option<usize> {
+    let el = ar.elim()?;
+    let p = trimmed(&det_poly(&el.sig)?)?;
+    super::closure::closing_roots(ar, &el, &p)
 }
 
 /// The same chain `js` at the targets `g` in arrangement `arr`.
