@@ -320,11 +320,10 @@ impl ApartChain {
 /// The two slides three joints apart: the arrangements (`shift + 6 reversed`) that put them
 /// at arranged joints 0 and 3, forwards and backwards; `None` for any other chain.
 pub fn apart_arrangements(prismatic: &[bool; 6]) -> Option<[usize; 2]> {
-    let slides: [usize; 6] = std::array::from_fn(|i| i);
     let mut found = [0usize; 2];
     let mut n = 0;
-    for &i in &slides {
-        if prismatic[i] {
+    for (i, &p) in prismatic.iter().enumerate() {
+        if p {
             if n == 2 {
                 return None;
             }

@@ -225,11 +225,12 @@ pub(crate) fn arranged(js: &[J; 6], g: &[[[f64; 4]; 3]], arr: usize) -> Vec<Arra
     g.iter().map(|g| Arranged::new(js, g, arr)).collect()
 }
 
-/// `a + b`, `a · b` and the square root of complex numbers.
+/// `a + b` of complex numbers.
 fn add(a: Cx, b: Cx) -> Cx {
     (a.0 + b.0, a.1 + b.1)
 }
 
+/// The principal square root of a complex number.
 fn csqrt(a: Cx) -> Cx {
     let r = abs(a);
     let re = (0.5 * (r + a.0)).max(0.0).sqrt();
@@ -274,16 +275,15 @@ pub(crate) fn apart_degree(ch: &super::apart::ApartChain) -> Option<usize> {
     // D at complex z: (Σ c_j z^j + Σ conj(c_j) z^-j) / 2, and the size of its terms.
     let d_at = |z: Cx| {
         let zi = div((1.0, 0.0), z);
-        let (mut p, mut q, mut s) = ((1.0, 0.0), (1.0, 0.0), (0.0, (0.0, 0.0)));
-        let mut sum = (0.0, 0.0);
+        let (mut p, mut q) = ((1.0, 0.0), (1.0, 0.0));
+        let (mut sum, mut size) = ((0.0, 0.0), 0.0);
         for cj in &c {
             sum = add(sum, add(mul(*cj, p), mul((cj.0, -cj.1), q)));
-            s.0 += abs(*cj) * (abs(p) + abs(q));
+            size += abs(*cj) * (abs(p) + abs(q));
             p = mul(p, z);
             q = mul(q, zi);
         }
-        let _ = s.1;
-        (abs(sum) * 0.5, s.0 * 0.5)
+        (abs(sum) * 0.5, size * 0.5)
     };
     let mut spurious = 0;
     for sign in [1.0, -1.0] {
