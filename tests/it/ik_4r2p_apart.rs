@@ -168,6 +168,7 @@ fn slides_three_apart_counts_agree_with_an_independent_multistart() {
 }
 
 /// The determinant of the DH model's 6 x 6 geometric Jacobian (independent of the engine).
+#[allow(clippy::needless_range_loop)]
 fn jacobian_det(rows: &[Row], q: &[f64]) -> f64 {
     let fr = frames(rows, q);
     let p = [fr[6][0][3], fr[6][1][3], fr[6][2][3]];

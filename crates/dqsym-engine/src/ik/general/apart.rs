@@ -306,7 +306,7 @@ impl ApartChain {
         let k = dot3(&v0, &u);
         let det = 1.0 - k * k;
         let (r0, ru) = (dot3(&v0, &r), dot3(&u, &r));
-        let singular = !(det > APART_PARALLEL);
+        let singular = det.is_nan() || det <= APART_PARALLEL;
         let (d0, d3) = if singular {
             // A line of solutions: the one with d3 = 0.
             (r0, 0.0)

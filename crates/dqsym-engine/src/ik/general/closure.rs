@@ -82,7 +82,7 @@ pub(crate) fn closing_roots(ar: &Arranged, el: &Elim, p: &[f64]) -> Option<usize
         let defect = closes(ar, el, &m, x);
         if defect <= CLOSURE_TOL {
             count += 1;
-        } else if !(defect >= CLOSURE_FAR) {
+        } else if defect < CLOSURE_FAR {
             return None;
         }
     }
