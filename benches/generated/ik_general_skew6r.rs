@@ -89,11 +89,11 @@ type M3 = [[f64; 3]; 3];
 /// A rigid motion as a 3 x 4 block `[R | t]`.
 type B34 = [[f64; 4]; 3];
 
-fn dot3(a: &V, b: &V) -> f64 {
+pub(crate) fn dot3(a: &V, b: &V) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-fn cross3(a: &V, b: &V) -> V {
+pub(crate) fn cross3(a: &V, b: &V) -> V {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -102,7 +102,7 @@ fn cross3(a: &V, b: &V) -> V {
 }
 
 /// Rodrigues: `c I + s [w]x + (1 − c) w wᵀ`.
-fn rodrigues(w: &V, s: f64, c: f64) -> M3 {
+pub(crate) fn rodrigues(w: &V, s: f64, c: f64) -> M3 {
     let k = [[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]];
     let mut r = [[0.0; 3]; 3];
     for i in 0..3 {
@@ -113,7 +113,7 @@ fn rodrigues(w: &V, s: f64, c: f64) -> M3 {
     r
 }
 
-fn mv(r: &M3, v: &V) -> V {
+pub(crate) fn mv(r: &M3, v: &V) -> V {
     [dot3(&r[0], v), dot3(&r[1], v), dot3(&r[2], v)]
 }
 
@@ -215,11 +215,11 @@ pub const HALF_INV: [[f64; 3]; 3] = [[0.5, 0.5, 0.0], [0.0, 0.0, 0.5], [0.5, -0.
 
 /// The arranged problem `E1 ⋯ E6 = H` (home pose the identity), its elimination and solution.
 pub(crate) struct Arranged {
-    j: [J; 6],
+    pub(crate) j: [J; 6],
     /// `H` with its translation scaled.
-    h: B34,
+    pub(crate) h: B34,
     /// Arranged joint `i` is the arm's joint `perm[i]`.
-    perm: [usize; 6],
+    pub(crate) perm: [usize; 6],
 }
 
 /// The elimination of one arrangement: `Bm X12 = Am(θ3) X45` (14 equations), the left null
@@ -979,7 +979,7 @@ fn angle_from(pairs: &[(f64, f64)]) -> f64 {
 }
 
 /// An angle in `(−π, π]`.
-fn wrap(a: f64) -> f64 {
+pub(crate) fn wrap(a: f64) -> f64 {
     let t = std::f64::consts::TAU;
     let mut x = a % t;
     if x > std::f64::consts::PI {
@@ -1965,7 +1965,7 @@ fn error(f: &B34, t: &B34) -> ([f64; 12], f64) {
 /// Damped Gauss–Newton from `q` on the pose residual (as `ik::check::refine`, on scaled
 /// lengths); returns the final residual.
 #[allow(clippy::needless_range_loop)]
-fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -> f64 {
+pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -> f64 {
     let (mut f, mut cur) = forward(ax, home, q);
     let (mut e, mut res) = error(&f, t);
     let mut lambda = DAMP_START;
@@ -2039,7 +2039,7 @@ fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -> f64 {
 }
 
 /// Two joint vectors that are one solution (angles compared on the circle).
-fn same(a: &[f64; 6], b: &[f64; 6], prismatic: &[bool; 6]) -> bool {
+pub(crate) fn same(a: &[f64; 6], b: &[f64; 6], prismatic: &[bool; 6]) -> bool {
     (0..6).all(|i| {
         let d = if prismatic[i] {
             a[i] - b[i]

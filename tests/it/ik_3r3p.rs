@@ -274,7 +274,7 @@ fn near_coplanar_slides_nothing_wrong_is_returned_unflagged() {
 }
 
 /// Random poses of `rows` as input lines (16 numbers each), with their configurations.
-fn poses(rows: &[Row], count: usize, seed: u64) -> (Vec<Vec<f64>>, String) {
+pub(crate) fn poses(rows: &[Row], count: usize, seed: u64) -> (Vec<Vec<f64>>, String) {
     let mut rng = Rng::new(seed);
     let qs: Vec<Vec<f64>> = (0..count).map(|_| random_q(rows, &mut rng)).collect();
     let input = qs
@@ -295,7 +295,7 @@ fn poses(rows: &[Row], count: usize, seed: u64) -> (Vec<Vec<f64>>, String) {
 /// approximate flag each) against the reference: the same solutions (paired within 1e-7: the
 /// solvers evaluate the same closed forms in another order), the same flags, every unflagged
 /// one reproducing the pose by the model here.
-fn check_output(
+pub(crate) fn check_output(
     what: &str,
     name: &str,
     sol: &IkSolution,

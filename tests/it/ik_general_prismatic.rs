@@ -199,42 +199,6 @@ pub(crate) fn skew_4r2p() -> Vec<Row> {
     ]
 }
 
-/// A 4R2P arm whose slides are three joints apart (second and fifth): every reading of the
-/// loop that ends with a turning joint puts one slide among the eliminated joints 1, 2 and
-/// the other among joints 4, 5, and there `det M` vanishes identically; the arm is refused
-/// with the reason named, never solved wrongly.
-fn slides_three_apart() -> Vec<Row> {
-    let mut rows = skew_4r2p();
-    rows[1] = pri(("1/5", 0.2), 0.4, ("pi/5", PI / 5.0));
-    rows[2] = rev(0.12, 0.07, ("-pi/4", -PI / 4.0));
-    rows
-}
-
-#[test]
-fn slides_three_joints_apart_are_refused_with_the_reason() {
-    let rows = slides_three_apart();
-    let text = dh_toml("rprrpr", &rows);
-    let robot = dqsym::parse_robot(&text, "rprrpr", &dqsym::eval_scalar_text).expect("robot");
-    let err = solve(
-        &robot,
-        &IkOptions {
-            free: None,
-            method: IkMethod::Auto,
-        },
-    )
-    .expect_err("refused")
-    .to_string();
-    assert!(
-        err.contains("degenerate for this geometry in every arrangement"),
-        "{err}"
-    );
-    assert!(err.contains("RPRRPR"), "{err}");
-    assert!(
-        err.contains("the slides q2 and q5 are three joints apart"),
-        "{err}"
-    );
-}
-
 /// The same 5R1P with the slide last: the loop must be read so that a turning joint ends it.
 pub(crate) fn slide_last_5r1p() -> Vec<Row> {
     let mut rows = skew_5r1p();

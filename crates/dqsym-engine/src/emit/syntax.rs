@@ -183,7 +183,7 @@ pub(crate) struct GeneralFile<'a> {
     /// The numeric core's constants (none in Rust: the core is included verbatim).
     pub constants: String,
     /// The numeric core's source in the language.
-    pub core: &'static str,
+    pub core: &'a str,
     /// The statements binding the axes `ik_ax` and the home pose `ik_home`.
     pub chain: String,
     /// The runtime helper `ik_dq_matrix`.

@@ -211,7 +211,103 @@ pub(crate) fn moving_roots(arranged: &[Arranged]) -> Option<usize> {
     Some(deg.saturating_sub(common.into_iter().min().unwrap_or(0)))
 }
 
+/// The roots of `det M` at the target of `ar` that back-substitute to a solution
+/// (`closure.rs`): fewer than the moving ones for special geometry whose moving roots include
+/// spurious ones. `None` when the determinant or the eigenvalues fail.
+pub(crate) fn closing_roots(ar: &Arranged) -> Option<usize> {
+    let el = ar.elim()?;
+    let p = trimmed(&det_poly(&el.sig)?)?;
+    super::closure::closing_roots(ar, &el, &p)
+}
+
 /// The same chain `js` at the targets `g` in arrangement `arr`.
 pub(crate) fn arranged(js: &[J; 6], g: &[[[f64; 4]; 3]], arr: usize) -> Vec<Arranged> {
     g.iter().map(|g| Arranged::new(js, g, arr)).collect()
+}
+
+/// `a + b` of complex numbers.
+fn add(a: Cx, b: Cx) -> Cx {
+    (a.0 + b.0, a.1 + b.1)
+}
+
+/// The principal square root of a complex number.
+fn csqrt(a: Cx) -> Cx {
+    let r = abs(a);
+    let re = (0.5 * (r + a.0)).max(0.0).sqrt();
+    let im = (0.5 * (r - a.0)).max(0.0).sqrt();
+    (re, if a.1 < 0.0 { -im } else { im })
+}
+
+/// A root of `D(θ4)` is spurious below this fraction of the size of its terms (`Σ |c_j|
+/// |z|^±j`): the spurious roots are roots of `D` by its structure, so `D` vanishes there to the
+/// rounding of its coefficients (about `1e-15` of the samples, measured `1e-14` at most),
+/// while at a root of `fc ± i fs` that is no root of `D` it is of the order of its terms.
+pub(crate) const APART_SPURIOUS: f64 = 1e-8;
+
+/// The degree a 4R2P with its slides three apart reaches at the generic target of `ch`: the
+/// `2 n` roots of the resultant `D(θ4)` (trigonometric degree `n`, in `z = e^{iθ4}`) less the
+/// spurious ones, where the common root of `(1 + x²) F` and `(1 + x²)² P` is `x = ±i` (`θ5`
+/// at infinity: no solution). `(1 + x²) F` at `x = ±i` is `2 (fc ± i fs)`, with `fc`, `fs`
+/// the coefficients of `cos θ5`, `sin θ5` in `F`, of degree one in `θ4`: so the spurious roots
+/// are among the two roots in `z` of each of `fc ± i fs`, and each that is a root of `D`
+/// counts once. `None` when the resultant is not usable there.
+pub(crate) fn apart_degree(ch: &super::apart::ApartChain) -> Option<usize> {
+    let c = ch.coefficients()?;
+    let size: f64 = c.iter().map(|x| abs(*x)).sum();
+    let n = (0..c.len()).rev().find(|&j| abs(c[j]) > 1e-9 * size)?;
+    // F's coefficients of (1, cos θ5, sin θ5), each as (1, cos θ4, sin θ4) by 3 x 3 samples.
+    let tau = std::f64::consts::TAU;
+    let mut fcoef = [[0.0; 3]; 3];
+    for k4 in 0..3 {
+        let t4 = tau * k4 as f64 / 3.0;
+        for k5 in 0..3 {
+            let t5 = tau * k5 as f64 / 3.0;
+            let v = ch.fp(t4, t5).0;
+            let w5 = [1.0 / 3.0, 2.0 * t5.cos() / 3.0, 2.0 * t5.sin() / 3.0];
+            let w4 = [1.0 / 3.0, 2.0 * t4.cos() / 3.0, 2.0 * t4.sin() / 3.0];
+            for a in 0..3 {
+                for b in 0..3 {
+                    fcoef[a][b] += v * w5[a] * w4[b];
+                }
+            }
+        }
+    }
+    // D at complex z: (Σ c_j z^j + Σ conj(c_j) z^-j) / 2, and the size of its terms.
+    let d_at = |z: Cx| {
+        let zi = div((1.0, 0.0), z);
+        let (mut p, mut q) = ((1.0, 0.0), (1.0, 0.0));
+        let (mut sum, mut size) = ((0.0, 0.0), 0.0);
+        for cj in &c {
+            sum = add(sum, add(mul(*cj, p), mul((cj.0, -cj.1), q)));
+            size += abs(*cj) * (abs(p) + abs(q));
+            p = mul(p, z);
+            q = mul(q, zi);
+        }
+        (abs(sum) * 0.5, size * 0.5)
+    };
+    let mut spurious = 0;
+    for sign in [1.0, -1.0] {
+        // g = fc + i sign fs = g0 + g1 z + g_1 / z, with a + b cos θ + e sin θ = a + (b − i e)/2
+        // z + (b + i e)/2 z⁻¹.
+        let lin = |k: usize| -> [Cx; 3] {
+            let [a, b, e] = fcoef[k];
+            [(a, 0.0), (0.5 * b, -0.5 * e), (0.5 * b, 0.5 * e)]
+        };
+        let (fc, fs) = (lin(1), lin(2));
+        let g: [Cx; 3] = std::array::from_fn(|i| add(fc[i], mul((0.0, sign), fs[i])));
+        // g1 z² + g0 z + g_1 = 0.
+        let (qa, qb, qc) = (g[1], g[0], g[2]);
+        if abs(qa) == 0.0 {
+            continue;
+        }
+        let disc = csqrt(sub(mul(qb, qb), mul((4.0, 0.0), mul(qa, qc))));
+        for r in [add((-qb.0, -qb.1), disc), sub((-qb.0, -qb.1), disc)] {
+            let z = div(r, mul((2.0, 0.0), qa));
+            let (v, s) = d_at(z);
+            if abs(z) > 0.0 && v <= APART_SPURIOUS * s {
+                spurious += 1;
+            }
+        }
+    }
+    Some((2 * n).saturating_sub(spurious))
 }

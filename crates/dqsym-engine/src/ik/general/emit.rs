@@ -21,6 +21,13 @@ use crate::ScalarError;
 /// The numeric core, included in the generated solver.
 const CORE: &str = include_str!("core.rs");
 
+/// The numeric core of a 4R2P with its slides three joints apart (`apart.rs`), after the core
+/// in the generated Rust solver (its `use` line dropped: there both are one module).
+const APART: &str = include_str!("apart.rs");
+
+/// The apart core in Python (a port of `apart.rs`, after `core.py`).
+const PY_APART: &str = include_str!("apart.py");
+
 /// The numeric core in Python (NumPy).
 const PY_CORE: &str = include_str!("core.py");
 
@@ -224,14 +231,32 @@ fn doc(sol: &IkSolution, w: &dyn SolverSyntax, long: bool, singular: bool) -> St
 fn solver(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
     let w = solver_syntax(lang).expect("a language IK solvers are written in");
     let sol = &*super::super::safe::solution(sol, lang);
-    let (long, core, constants) = match lang {
-        Lang::Rust => (true, CORE, String::new()),
-        Lang::C => (true, C_CORE, core_constant_code(w)),
-        _ => (false, PY_CORE, core_constant_code(w)),
+    let apart = super::apart_chain(&sol.axes);
+    let rust_core = if apart {
+        let tail: Vec<&str> = APART
+            .lines()
+            .filter(|l| !l.starts_with("use super::core::"))
+            .collect();
+        format!("{CORE}\n{}\n", tail.join("\n"))
+    } else {
+        CORE.to_string()
     };
+    let py_core = if apart {
+        format!("{PY_CORE}\n\n{PY_APART}")
+    } else {
+        PY_CORE.to_string()
+    };
+    let (long, core, mut constants) = match lang {
+        Lang::Rust => (true, rust_core.as_str(), String::new()),
+        Lang::C => (true, C_CORE, core_constant_code(w)),
+        _ => (false, py_core.as_str(), core_constant_code(w)),
+    };
+    if apart && lang != Lang::Rust {
+        constants.push_str(&apart_constant_code(w));
+    }
     let dq_matrix = crate::emit::helpers::helper(lang, w.helper("ik_dq_matrix").as_str())
         .map_or("", |h| h.text);
-    Ok(w.general_file(&GeneralFile {
+    let file = w.general_file(&GeneralFile {
         doc: doc(sol, w, long, lang == Lang::C),
         params: &sol.params,
         variables: &sol.variables,
@@ -243,7 +268,36 @@ fn solver(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
         core,
         chain: chain_code(sol, w)?,
         dq_matrix,
-    }))
+    });
+    // The driver calls the apart core's entry, of the same signature.
+    Ok(match lang {
+        _ if !apart => file,
+        Lang::Rust => file.replace("ik_general::gen_solve(", "ik_general::apart_gen_solve("),
+        Lang::C => format!("{APART_UNPORTED_C}\n{file}"),
+        _ => file.replace("_gen_solve(ik_ax", "_apart_gen_solve(ik_ax"),
+    })
+}
+
+/// The C solver of a 4R2P with its slides three joints apart: not ported (`apart.rs` has Rust
+/// and Python only), so its compilation stops with the reason rather than solve nothing.
+const APART_UNPORTED_C: &str = "#error \"dqsym: the C port of the 4R2P solver with slides three \
+joints apart is not written; use the Rust or Python solver\"";
+
+/// The page's function for such an arm: it throws the same reason.
+const APART_UNPORTED_JS: &str = "function ik_general(ax, home, T) {\n    throw new Error(\"dqsym: \
+the JavaScript port of the 4R2P solver with slides three joints apart is not written\");\n}\n";
+
+/// The apart core's constants (`apart.rs`) in the language of `w`, for its ports.
+fn apart_constant_code(w: &dyn Syntax) -> String {
+    use super::apart as a;
+    let mut s = String::new();
+    for (name, v) in [
+        ("IK_GEN_APART_PARALLEL", a::APART_PARALLEL),
+        ("IK_GEN_APART_P_TOL", a::APART_P_TOL),
+    ] {
+        s.push_str(&w.constant(name, &w.literal(v), "f64"));
+    }
+    s
 }
 
 /// The solver as Rust, with the interface of the family solvers: `ik_into`, `ik`, `ik_dq`
@@ -280,6 +334,9 @@ pub fn ik_python(sol: &IkSolution) -> Result<String, ScalarError> {
 /// `core.rs`) with its constants written from `core.rs`, and `ik_general(ax, home, T)`, every
 /// solution as `[q, singular, approximate, residual]` as the generated solvers return them.
 pub fn ik_javascript_general(sol: &IkSolution) -> String {
+    if super::apart_chain(&sol.axes) {
+        return APART_UNPORTED_JS.to_string();
+    }
     let js = syntax(Lang::JavaScript);
     let first = sol.general.as_ref().map_or(0, super::GeneralInfo::index);
     format!(

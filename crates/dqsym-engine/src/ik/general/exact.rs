@@ -50,6 +50,11 @@ pub enum ExactError {
     /// a joint that turns.
     #[error("the first and the last joint both slide, so no reading of the loop from the first joint ends with a turning joint")]
     SlideAtBothEnds,
+    /// Two slides three joints apart: the arm is solved by `apart.rs` (orientation and
+    /// position separated), whose equations `F`, `P` and resultant are computed numerically;
+    /// the Raghavan–Roth equations here are degenerate for it.
+    #[error("the slides are three joints apart: the Raghavan-Roth equations are degenerate for this arm, and the equations F, P of its elimination (orientation by the four turns, position by the slides' plane) are computed numerically, not derived exactly")]
+    SlidesApart,
 }
 
 /// The exact equations of one arrangement of the loop.
@@ -297,6 +302,9 @@ fn g_names(sol: &IkSolution) -> Vec<String> {
 /// # Errors
 /// The exact arithmetic fails (term limit, work budget); the first and last joints both slide.
 pub fn exact_equations(sol: &IkSolution, info: &GeneralInfo) -> Result<ExactEquations, ExactError> {
+    if super::apart_chain(&sol.axes) {
+        return Err(ExactError::SlidesApart);
+    }
     let slides = |k: usize| {
         sol.axes
             .get(k)

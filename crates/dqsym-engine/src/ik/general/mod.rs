@@ -82,11 +82,28 @@
 //!   it and `M(x)` has a null vector supported on the columns of the slide's highest power
 //!   `d³ x5ᵇ` (a solution at `d = ∞`) for every `x`: `det M ≡ 0`.
 //!
-//! An arm whose two slides are three joints apart (RPRRPR) puts one slide on each side in
-//! every reading of the loop that ends with a turn: it is refused with this reason. Another
-//! elimination (the last joint a slide, eliminated by its line instead of a point) is not
-//! built. A 3R3P arm needs no elimination: the family `ik/plan/slides.rs` solves it in closed
-//! form (two solutions).
+//! An arm whose two slides are three joints apart (RPRRPR, PRRPRR, RRPRRP) puts one slide on
+//! each side in every reading of the loop that ends with a turn, so this elimination cannot
+//! serve it; `apart.rs` solves it instead (the loop read from a slide, `Tr(d0 v0) E1 E2 Tr(d3
+//! v3) E4 E5 = H`): slides turn nothing, so `R1 R2 = R_H R5ᵀ R4ᵀ =: Q` and `F = w1 · Q w2 −
+//! w1 · w2 = 0` (degree one in each of `θ4`, `θ5`); moved past the turns the slides add `d0 v0
+//! + d3 Q v3`, so `P = det(v0, Q v3, h − t(E1 E2 E4 E5)) = 0` (degree two in each, with
+//! `cos θ1`, `sin θ1` by subproblem 1 linear in `Q`); the Sylvester resultant of `F` and `P`
+//! in `tan(θ5/2)` is a trigonometric polynomial `D(θ4)` of degree 8 (17 samples, the core's
+//! certified root search). `D` has degree 6 at a generic arm: 12 roots, of which the four
+//! where the common root is `tan(θ5/2) = ±i` are no solutions, so the degree reached is 8
+//! (`degree::apart_degree`). Back-substitution: `θ5` from `F = 0` where `P` vanishes, `θ1`,
+//! `θ2` by subproblem 1, `d0`, `d3` by least squares (flagged singular where the slides'
+//! current directions are parallel), then the core's refinement and check. A 3R3P arm needs
+//! no elimination: the family `ik/plan/slides.rs` solves it in closed form (two solutions).
+//!
+//! # The degree stated
+//!
+//! The roots of `det M` that move with the target (`degree.rs`) can still be no solutions for
+//! special geometry forced general (the IRB 140: 16 moving roots, 8 solutions). `closure.rs`
+//! back-substitutes every complex root at the generic target (the null vector of `M(x3)`, `X12`
+//! from the fourteen equations) and keeps those where the equations hold and `X12` is a
+//! product of `(1, c, s)` factors with `c² + s² = 1`: the degree stated is the smaller count.
 //!
 //! Special geometry makes an arrangement degenerate (`Bm` loses rank, or `det M` vanishes
 //! identically, as for a spherical wrist) or gives double roots (two solutions sharing `θ3`):
@@ -171,6 +188,9 @@
 //! refinement steps.
 
 #[allow(clippy::many_single_char_names)]
+pub(crate) mod apart;
+mod closure;
+#[allow(clippy::many_single_char_names)]
 pub(crate) mod core;
 #[cfg(test)]
 mod deflate_tests;
@@ -253,11 +273,11 @@ pub(crate) fn solve_numeric(
     let (axes, home) = check::axis_data(sol, &env)?;
     let len = check::scale(&axes, &home, target);
     let first = sol.general.as_ref().map_or(0, GeneralInfo::index);
-    let out = run(&axes, &home, target, len, first)?;
+    let (out, singular) = run(&axes, &home, target, len, first)?;
     Ok((0..out.n)
         .map(|i| NumSolution {
             q: out.q[i].to_vec(),
-            singular: false,
+            singular: singular[i],
             approximate: out.residual[i] > check::POSE_TOL || out.residual[i].is_nan(),
             residual: out.residual[i],
         })
@@ -270,11 +290,54 @@ fn run(
     target: &[[f64; 4]; 4],
     len: f64,
     first: usize,
-) -> Result<core::GenOut, GeneralError> {
+) -> Result<(core::GenOut, [bool; core::GEN_MAX]), GeneralError> {
     let ax: [AxisData; 6] = axes
         .try_into()
         .map_err(|_| GeneralError::Joints(axes.len()))?;
-    Ok(core::gen_solve(&ax, home, target, len, tol(), first))
+    let mut singular = [false; core::GEN_MAX];
+    let out = if apart(&ax) {
+        apart::apart_solve(&ax, home, target, len, tol(), &mut singular)
+    } else {
+        core::gen_solve(&ax, home, target, len, tol(), first)
+    };
+    Ok((out, singular))
+}
+
+/// [`info`] of a 4R2P with its slides three joints apart: the first reading (forwards, then
+/// backwards) whose resultant is usable at the generic target, and its degree
+/// (`degree::apart_degree`).
+fn apart_info(axes: &[AxisData], home: &[[f64; 4]; 3], t: &[[f64; 4]; 4], len: f64) -> GeneralInfo {
+    let (js, g) = scaled(axes, home, t, len);
+    let prismatic: [bool; 6] = std::array::from_fn(|i| js[i].prism);
+    for arr in apart::apart_arrangements(&prismatic).unwrap_or_default() {
+        let found = apart::ApartChain::new(core::Arranged::new(&js, &g, arr))
+            .and_then(|ch| degree::apart_degree(&ch));
+        if let Some(degree) = found {
+            return GeneralInfo {
+                degree,
+                arrangement: (arr >= 6, arr % 6),
+            };
+        }
+    }
+    GeneralInfo {
+        degree: 0,
+        arrangement: (false, 0),
+    }
+}
+
+/// Whether the joints make a 4R2P with its slides three joints apart (solved by [`apart`]).
+pub(crate) fn apart_chain(axes: &[super::Axis]) -> bool {
+    axes.len() == 6
+        && apart::apart_arrangements(&std::array::from_fn(|i| {
+            axes[i].kind == JointKind::Prismatic
+        }))
+        .is_some()
+}
+
+/// Whether the chain is a 4R2P with its slides three joints apart: solved by [`apart`] (the
+/// elimination of `core.rs` is degenerate for it).
+fn apart(ax: &[AxisData]) -> bool {
+    ax.len() == 6 && apart::apart_arrangements(&std::array::from_fn(|i| ax[i][0] != 0.0)).is_some()
 }
 
 /// What the general method cannot solve.
@@ -402,17 +465,23 @@ pub(crate) fn info(sol: &IkSolution) -> GeneralInfo {
         .collect();
     let t = targets[0];
     let len = check::scale(&axes, &home, &t);
+    if apart(&axes) {
+        return apart_info(&axes, &home, &t, len);
+    }
     match run(&axes, &home, &t, len, 0) {
-        Ok(o) if o.n_arr > 0 => {
+        Ok((o, _)) if o.n_arr > 0 => {
             let arr = o.arrangements[0];
             let gs: Vec<[[f64; 4]; 3]> = targets
                 .iter()
                 .map(|t| scaled(&axes, &home, t, len).1)
                 .collect();
             let js = scaled(&axes, &home, &t, len).0;
-            let moving = degree::moving_roots(&degree::arranged(&js, &gs, arr));
+            let ars = degree::arranged(&js, &gs, arr);
+            let moving = degree::moving_roots(&ars).unwrap_or(o.degree);
+            // Of those, the ones that are solutions (`closure.rs`).
+            let closing = degree::closing_roots(&ars[0]).unwrap_or(moving);
             GeneralInfo {
-                degree: moving.unwrap_or(o.degree),
+                degree: moving.min(closing),
                 arrangement: (arr >= 6, arr % 6),
             }
         }
@@ -461,6 +530,9 @@ pub fn hidden_slides(sol: &IkSolution, info: &GeneralInfo) -> bool {
 
 /// The elimination in words, one line each (the report and the walkthrough).
 pub fn elimination_lines(sol: &IkSolution, info: &GeneralInfo) -> Vec<String> {
+    if apart_chain(&sol.axes) {
+        return apart_lines(sol, info);
+    }
     let v = &sol.variables;
     let (rev, shift) = info.arrangement;
     let arm = |i: usize| {
@@ -586,6 +658,49 @@ fn prismatic_lines(info: &GeneralInfo, order: &[&str], slides: &[bool], rev: boo
     ];
     if info.degree == 0 {
         out.push("no arrangement was usable at the generic target".into());
+    }
+    out
+}
+
+/// [`elimination_lines`] for a 4R2P with its slides three joints apart (`apart.rs`).
+fn apart_lines(sol: &IkSolution, info: &GeneralInfo) -> Vec<String> {
+    let (rev, shift) = info.arrangement;
+    let order: Vec<&str> = (0..6)
+        .map(|i| {
+            let k = (shift + i) % 6;
+            let k = if rev { 5 - k } else { k };
+            sol.variables.get(k).map_or("?", String::as_str)
+        })
+        .collect();
+    let o = |i: usize| order[i];
+    let mut out = vec![
+        format!(
+            "loop read as {} (joint order{}; slides {} and {} three joints apart: the Raghavan-Roth elimination is degenerate for them), target G = T M^-1",
+            order.join(", "),
+            if rev { ", reversed" } else { "" },
+            o(0),
+            o(3)
+        ),
+        format!(
+            "1. orientation: slides turn nothing, so R({}) R({}) = R_G R({})^T R({})^T =: Q; R({}) keeps w({}) and R({}) keeps w({}): F = w({}) . Q w({}) - w({}) . w({}) = 0, of degree one in the sine and cosine of {} and of {}",
+            o(1), o(2), o(5), o(4), o(1), o(1), o(2), o(2), o(1), o(2), o(1), o(2), o(4), o(5)
+        ),
+        format!(
+            "2. position: moved past the turns the slides add {} v + {} Q v', so P = det(v, Q v', g - t(E({}) E({}) E({}) E({}))) = 0, with cos, sin of {} from subproblem 1 (linear in Q): of degree two in each of {}, {}",
+            o(0), o(3), o(1), o(2), o(4), o(5), o(1), o(4), o(5)
+        ),
+        format!(
+            "3. the Sylvester resultant of (1 + x^2) F and (1 + x^2)^2 P in x = tan({}/2): D({}), a trigonometric polynomial of degree at most 8 (17 samples, its real roots by a certified interval search); degree reached at a generic target: {} (the roots where the common x is +-i are no solutions)",
+            o(5), o(4), info.degree
+        ),
+        format!(
+            "4. back-substitution: {} from F = 0 where P vanishes; {}, {} by subproblem 1; {}, {} by least squares (singular where the slides' current directions are parallel); each solution refined by Gauss-Newton and checked by forward kinematics",
+            o(5), o(1), o(2), o(0), o(3)
+        ),
+        "a double root (two solutions sharing the hidden joint) reads the loop backwards too".into(),
+    ];
+    if info.degree == 0 {
+        out.push("no reading was usable at the generic target".into());
     }
     out
 }
