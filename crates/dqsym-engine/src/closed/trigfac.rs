@@ -81,7 +81,7 @@ const NESTED_SHARE: u64 = 16;
 /// `sqrt(5)` coefficients spent the whole default budget of 3,000,000 units in them), so a
 /// candidate of this file can spend at most a bounded share of what is left and never turns a
 /// closed form the other candidates find into a budget error.
-fn nested_closed_form(x: &Scalar) -> Result<Expr, crate::scalar::ScalarError> {
+pub(super) fn nested_closed_form(x: &Scalar) -> Result<Expr, crate::scalar::ScalarError> {
     let left = crate::scalar::work_left();
     NESTED.with(|n| n.set(n.get() + 1));
     let (e, used) = if left == u64::MAX {

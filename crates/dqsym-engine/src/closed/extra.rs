@@ -1,0 +1,144 @@
+//! The candidates added for issue 33's held-out corpus, made in one place for
+//! `alt::best_alternative`: squares of sums (`square.rs`), and any candidate that is a sum of
+//! products sharing a factor with that factor taken out (`k2 cos(w/2 - pi/3) sin(w) -
+//! k2 sin(p/2 + u2) cos(r)` is `k2 (cos(w/2 - pi/3) sin(w) - sin(p/2 + u2) cos(r))`: the parts
+//! of `trigfac.rs`'s split sums and the constant products of `cprod.rs` are found apart and
+//! joined by an addition, never factored).
+
+use super::alt::{full_cost, mul, neg};
+use super::expr::Expr;
+use crate::scalar::Term;
+
+/// The candidates of the files listed above for the canonical terms `t`, not yet checked
+/// against them; `than` is the form found before and `others` the other candidates (only
+/// shorter ones can be taken).
+pub(super) fn candidates(t: &[Term], than: &Expr, others: &[Expr]) -> Vec<Expr> {
+    let bound = full_cost(than).0;
+    let mut out: Vec<Expr> = others
+        .iter()
+        .chain(std::iter::once(than))
+        .filter_map(common_factor)
+        .collect();
+    out.extend(super::square::candidates(t, bound));
+    out
+}
+
+/// A summand as its sign and its factors, a power `x^n` as `n` factors `x` (numbers kept).
+fn factors(e: &Expr) -> (bool, Vec<Expr>) {
+    let (negated, e) = match e {
+        Expr::Neg(x) => (true, &**x),
+        e => (false, e),
+    };
+    let mut out = Vec::new();
+    let one = |f: &Expr, out: &mut Vec<Expr>| match f {
+        Expr::Pow(x, n) => out.extend(std::iter::repeat_n((**x).clone(), *n as usize)),
+        f => out.push(f.clone()),
+    };
+    match e {
+        Expr::Mul(v) => v.iter().for_each(|f| one(f, &mut out)),
+        f => one(f, &mut out),
+    }
+    (negated, out)
+}
+
+/// Factors back into a product, equal factors as a power.
+fn product(fs: &[Expr]) -> Expr {
+    let mut v: Vec<Expr> = Vec::new();
+    let mut i = 0;
+    while i < fs.len() {
+        let n = fs[i..].iter().take_while(|f| **f == fs[i]).count();
+        v.push(if n == 1 {
+            fs[i].clone()
+        } else {
+            Expr::Pow(Box::new(fs[i].clone()), n as u32)
+        });
+        i += n;
+    }
+    match v.len() {
+        0 => Expr::Num(num_rational::BigRational::from_integer(1.into())),
+        1 => v.pop().expect("one factor"),
+        _ => Expr::Mul(v),
+    }
+}
+
+/// The sum `e` (or a number times it) with the factors common to all its summands (other
+/// than numbers) taken out: `c (a + b)` for `c a + c b`; `None` when they share none.
+fn common_factor(e: &Expr) -> Option<Expr> {
+    let (front, sum) = match e {
+        Expr::Add(v) => (None, v),
+        Expr::Mul(v) if v.len() == 2 => match (&v[0], &v[1]) {
+            (Expr::Num(_), Expr::Add(s)) => (Some(v[0].clone()), s),
+            _ => return None,
+        },
+        _ => return None,
+    };
+    if sum.len() < 2 {
+        return None;
+    }
+    let parts: Vec<(bool, Vec<Expr>)> = sum.iter().map(factors).collect();
+    // The common factors with their multiplicities: those of the first summand kept while
+    // every other summand has one left.
+    let mut rests: Vec<Vec<Expr>> = parts.iter().map(|(_, f)| f.clone()).collect();
+    let mut common: Vec<Expr> = Vec::new();
+    for f in &parts[0].1 {
+        if matches!(f, Expr::Num(_)) {
+            continue;
+        }
+        if rests.iter().all(|r| r.contains(f)) {
+            for r in rests.iter_mut() {
+                let i = r.iter().position(|g| g == f).expect("present");
+                r.remove(i);
+            }
+            common.push(f.clone());
+        }
+    }
+    if common.is_empty() {
+        return None;
+    }
+    let inner: Vec<Expr> = parts
+        .iter()
+        .zip(&rests)
+        .map(|((negated, _), r)| {
+            let p = product(r);
+            if *negated {
+                neg(p)
+            } else {
+                p
+            }
+        })
+        .collect();
+    let mut positive = inner.clone();
+    // Positive terms first, as the printers order a sum.
+    positive.sort_by_key(|e| matches!(e, Expr::Neg(_)));
+    let out = mul(product(&common), Expr::Add(positive));
+    Some(match front {
+        Some(n) => mul(n, out),
+        None => out,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::Sym;
+
+    #[test]
+    fn a_factor_shared_by_every_summand_is_taken_out() {
+        let (a, b, k) = (
+            Expr::Sym(Sym::new("a")),
+            Expr::Sym(Sym::new("b")),
+            Expr::Sym(Sym::new("k")),
+        );
+        let e = Expr::Add(vec![
+            Expr::Mul(vec![k.clone(), a.clone()]),
+            neg(Expr::Mul(vec![
+                k.clone(),
+                Expr::Pow(Box::new(b.clone()), 2),
+            ])),
+        ]);
+        let c = common_factor(&e).expect("a common factor");
+        assert_eq!(c.to_scalar(), e.to_scalar());
+        assert!(full_cost(&c) < full_cost(&e));
+        assert!(common_factor(&Expr::Add(vec![a, b])).is_none());
+    }
+}
