@@ -45,8 +45,7 @@ pub(super) fn candidates(t: &[Term], bound: usize) -> Vec<Expr> {
     let mut out = Vec::new();
     // Optional candidates: made only while most of the budget is left, so that they never
     // turn a closed form the other candidates find into a budget error.
-    if NESTED.with(|n| n.get()) >= MAX_NESTED
-        || crate::scalar::work_left() < Context::current().work_budget() / 2
+    if !may_nest()
         || t.len() < 2
         || t.len() > MAX_TERMS
         || t.iter().all(|u| u.mode.freq.is_empty())
@@ -70,6 +69,13 @@ const MAX_NESTED: u32 = MAX_FACTORS as u32;
 
 thread_local! {
     static NESTED: std::cell::Cell<u32> = const { std::cell::Cell::new(0) };
+}
+
+/// Whether a candidate that searches closed forms of parts (through [`nested_closed_form`])
+/// may be made: below [`MAX_NESTED`] and while half the budget is left.
+pub(super) fn may_nest() -> bool {
+    NESTED.with(|n| n.get()) < MAX_NESTED
+        && crate::scalar::work_left() >= Context::current().work_budget() / 2
 }
 
 /// The share of the budget left that one nested closed form may spend.
@@ -134,7 +140,7 @@ fn unit_modes(t: &[Term]) -> bool {
 /// by the symbols of the shortest monomial, and one call when some term has a mode, or two
 /// calls and an operation when the modes have two or more frequencies (a single sinusoid
 /// `R cos(F + phi)`, `cos(F)^2 = (1 + cos 2F)/2`, has one).
-fn least_cost(t: &[Term]) -> usize {
+pub(super) fn least_cost(t: &[Term]) -> usize {
     let mono = t.iter().map(|u| u.mono.len()).min().unwrap_or(0);
     let mut freqs = t
         .iter()
