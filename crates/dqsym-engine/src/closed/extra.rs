@@ -39,9 +39,15 @@ const MAX_TERMS: usize = 24;
 
 /// The sum split by the set of symbols of each term's angle (a term without an angle joins
 /// the first part of its monomial), each part's closed form found alone; `None` for one part,
-/// or when a lower bound of the cost is not below `bound`.
+/// or when a lower bound of the cost is not below `bound`. Not made for modes at one step
+/// without offsets or radicals (`trigfac::unit_modes`, the PUMA's scalars), whose products
+/// the regrouping of single-angle atoms already finds, part by part.
 fn by_support(t: &[Term], bound: usize) -> Option<Expr> {
-    if t.len() < 3 || t.len() > MAX_TERMS || !super::trigfac::may_nest() {
+    if t.len() < 3
+        || t.len() > MAX_TERMS
+        || super::trigfac::unit_modes(t)
+        || !super::trigfac::may_nest()
+    {
         return None;
     }
     if t.iter()

@@ -124,7 +124,7 @@ fn small_modes(t: &[Term]) -> bool {
 /// whose twists are multiples of pi/2: the PUMA's scalars): in `y = c x` the split shape's
 /// single-angle atoms, regrouped by the angle-sum identities and factored, already find the
 /// products of sinusoids (`c1 c23`), and these candidates are not made.
-fn unit_modes(t: &[Term]) -> bool {
+pub(super) fn unit_modes(t: &[Term]) -> bool {
     let mut step: Option<Small> = None;
     t.iter().all(|u| {
         u.mode.pi.is_zero()
