@@ -53,7 +53,7 @@ fn a_square_of_a_length_times_a_cosine_and_a_sine_is_found() {
 fn a_square_with_an_offset_and_half_angles_is_found() {
     check(
         "(n*cos(a/2 + pi/6) + sin(2*c))^2",
-        "(n cos(a/2 + pi/6) + sin(2 c))^2",
+        "(sin(2*c) + n cos(a/2 + pi/6))^2",
         |v| {
             (v("n") * (v("a") / 2.0 + std::f64::consts::PI / 6.0).cos() + (2.0 * v("c")).sin())
                 .powi(2)
@@ -74,7 +74,7 @@ fn minus_a_square_times_a_length_and_a_number_is_found() {
 fn a_square_with_a_quarter_turn_offset_is_found() {
     check(
         "(m*cos(a - c + pi/4) + sin(b/2 + c))^2",
-        "(m cos(a - c + pi/4) + sin(b/2 + c))^2",
+        "(sin(b/2 + c) + m cos(a - c + pi/4))^2",
         |v| {
             (v("m") * (v("a") - v("c") + std::f64::consts::FRAC_PI_4).cos()
                 + (v("b") / 2.0 + v("c")).sin())
@@ -100,7 +100,7 @@ fn a_length_shared_by_two_products_is_taken_out() {
 fn a_sum_whose_parts_share_a_symbol_is_split_by_the_symbols_of_its_angles() {
     check(
         "2*sin(a/2)*sin(a - b) - sin(c)*cos(d)*cos(a)",
-        "2 sin(a - b) sin(a/2) - cos(a) cos(d) sin(c)",
+        "2 sin(a - b) sin(a/2) - cos(a) sin(c) cos(d)",
         |v| {
             2.0 * (v("a") / 2.0).sin() * (v("a") - v("b")).sin()
                 - v("c").sin() * v("d").cos() * v("a").cos()
