@@ -191,14 +191,25 @@ fn common_factor(e: &Expr) -> Option<Expr> {
             }
         })
         .collect();
-    let mut positive = inner.clone();
-    // Positive terms first, as the printers order a sum.
-    positive.sort_by_key(|e| matches!(e, Expr::Neg(_)));
-    let out = mul(product(&common), Expr::Add(positive));
+    let out = match signed_sum(inner) {
+        Expr::Neg(sum) => neg(mul(product(&common), *sum)),
+        sum => mul(product(&common), sum),
+    };
     Some(match front {
         Some(n) => mul(n, out),
         None => out,
     })
+}
+
+/// The terms as a sum, positive terms first as the printers order a sum; when every term is
+/// negative, minus the sum of their negations (`-(a + b)`, one negation: a sum whose terms
+/// are all negative needs one, which the cost of a sum does not count).
+fn signed_sum(mut terms: Vec<Expr>) -> Expr {
+    if terms.iter().all(|e| matches!(e, Expr::Neg(_))) {
+        return neg(Expr::Add(terms.into_iter().map(neg).collect()));
+    }
+    terms.sort_by_key(|e| matches!(e, Expr::Neg(_)));
+    Expr::Add(terms)
 }
 
 /// The factor (other than a number) in the most summands, two or more but not all, taken
