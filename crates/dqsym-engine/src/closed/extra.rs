@@ -108,33 +108,35 @@ fn by_support(t: &[Term], bound: usize) -> Option<Expr> {
 }
 
 /// A summand as its sign and its factors, a power `x^n` as `n` factors `x` (numbers kept).
-fn factors(e: &Expr) -> (bool, Vec<Expr>) {
+fn factors(e: &Expr) -> (bool, Vec<&Expr>) {
     let (negated, e) = match e {
         Expr::Neg(x) => (true, &**x),
         e => (false, e),
     };
     let mut out = Vec::new();
-    let one = |f: &Expr, out: &mut Vec<Expr>| match f {
-        Expr::Pow(x, n) => out.extend(std::iter::repeat_n((**x).clone(), *n as usize)),
-        f => out.push(f.clone()),
-    };
+    fn push<'a>(f: &'a Expr, out: &mut Vec<&'a Expr>) {
+        match f {
+            Expr::Pow(x, n) => out.extend(std::iter::repeat_n(&**x, *n as usize)),
+            f => out.push(f),
+        }
+    }
     match e {
-        Expr::Mul(v) => v.iter().for_each(|f| one(f, &mut out)),
-        f => one(f, &mut out),
+        Expr::Mul(v) => v.iter().for_each(|f| push(f, &mut out)),
+        f => push(f, &mut out),
     }
     (negated, out)
 }
 
 /// Factors back into a product, equal factors as a power.
-fn product(fs: &[Expr]) -> Expr {
+fn product(fs: &[&Expr]) -> Expr {
     let mut v: Vec<Expr> = Vec::new();
     let mut i = 0;
     while i < fs.len() {
         let n = fs[i..].iter().take_while(|f| **f == fs[i]).count();
         v.push(if n == 1 {
-            fs[i].clone()
+            (*fs[i]).clone()
         } else {
-            Expr::Pow(Box::new(fs[i].clone()), n as u32)
+            Expr::Pow(Box::new((*fs[i]).clone()), n as u32)
         });
         i += n;
     }
@@ -159,21 +161,21 @@ fn common_factor(e: &Expr) -> Option<Expr> {
     if sum.len() < 2 {
         return None;
     }
-    let parts: Vec<(bool, Vec<Expr>)> = sum.iter().map(factors).collect();
+    let parts: Vec<(bool, Vec<&Expr>)> = sum.iter().map(factors).collect();
     // The common factors with their multiplicities: those of the first summand kept while
     // every other summand has one left.
-    let mut rests: Vec<Vec<Expr>> = parts.iter().map(|(_, f)| f.clone()).collect();
-    let mut common: Vec<Expr> = Vec::new();
-    for f in &parts[0].1 {
+    let mut rests: Vec<Vec<&Expr>> = parts.iter().map(|(_, f)| f.clone()).collect();
+    let mut common: Vec<&Expr> = Vec::new();
+    for &f in &parts[0].1 {
         if matches!(f, Expr::Num(_)) {
             continue;
         }
-        if rests.iter().all(|r| r.contains(f)) {
+        if rests.iter().all(|r| r.contains(&f)) {
             for r in rests.iter_mut() {
-                let i = r.iter().position(|g| g == f).expect("present");
+                let i = r.iter().position(|g| *g == f).expect("present");
                 r.remove(i);
             }
-            common.push(f.clone());
+            common.push(f);
         }
     }
     if common.is_empty() {
@@ -214,14 +216,14 @@ fn signed_sum(mut terms: Vec<Expr>) -> Expr {
 
 /// The factor (other than a number) in the most summands, two or more but not all, taken
 /// out of those: `c a + c b + d` as `c (a + b) + d`; then again in the sum left.
-fn partial_factor(front: Option<Expr>, sum: &[Expr], parts: &[(bool, Vec<Expr>)]) -> Option<Expr> {
+fn partial_factor(front: Option<Expr>, sum: &[Expr], parts: &[(bool, Vec<&Expr>)]) -> Option<Expr> {
     let mut best: Option<(&Expr, usize)> = None;
     for (_, fs) in parts {
-        for f in fs {
+        for &f in fs {
             if matches!(f, Expr::Num(_)) || best.is_some_and(|(b, _)| b == f) {
                 continue;
             }
-            let n = parts.iter().filter(|(_, g)| g.contains(f)).count();
+            let n = parts.iter().filter(|(_, g)| g.contains(&f)).count();
             if n >= 2 && best.is_none_or(|(_, m)| n > m) {
                 best = Some((f, n));
             }
@@ -231,7 +233,7 @@ fn partial_factor(front: Option<Expr>, sum: &[Expr], parts: &[(bool, Vec<Expr>)]
     let mut with: Vec<Expr> = Vec::new();
     let mut rest: Vec<Expr> = Vec::new();
     for (e, (_, g)) in sum.iter().zip(parts) {
-        if g.contains(f) {
+        if g.contains(&f) {
             with.push(e.clone());
         } else {
             rest.push(e.clone());

@@ -98,7 +98,108 @@ pub(super) fn candidates(t: &[Term], bound: usize) -> Vec<Expr> {
     {
         return Vec::new();
     }
+    if !one_signed(t) || !even_spans(t) {
+        return Vec::new();
+    }
     square(t).into_iter().collect()
+}
+
+/// Whether every length symbol's largest and smallest powers over the terms differ by an even
+/// number: in `m g^2` (`m` a monomial) a symbol's top and bottom powers are those of `m`
+/// plus twice those of `g`. One pass over the terms; rejects most sums at once (the PUMA's
+/// entries, linear in their lengths).
+fn even_spans(t: &[Term]) -> bool {
+    let mut span: Vec<(&Sym, u32, u32)> = Vec::new();
+    for u in t {
+        for (s, p) in u.mono.iter() {
+            match span.iter_mut().find(|(r, _, _)| *r == s) {
+                Some((_, lo, hi)) => {
+                    *lo = (*lo).min(*p);
+                    *hi = (*hi).max(*p);
+                }
+                None => span.push((s, *p, *p)),
+            }
+        }
+    }
+    // A symbol missing from some term has power 0 there.
+    span.iter().all(|(s, lo, hi)| {
+        let lo = if t.iter().all(|u| u.mono.iter().any(|(r, _)| r == *s)) {
+            *lo
+        } else {
+            0
+        };
+        (hi - lo) % 2 == 0
+    })
+}
+
+/// The points at which [`one_signed`] evaluates the sum.
+const SIGN_POINTS: usize = 8;
+
+/// Whether the sum takes one sign at a few pseudo-random points (lengths and angles in
+/// `[-2, 2]`): a monomial `m` times `k g^2` is of one sign wherever `m` is, so the sign of
+/// the monomial common to the terms is divided out. The sum is
+/// evaluated to a relative error of about (terms) * 1e-16 of the magnitudes; a value below
+/// 1e-9 of them counts as either sign.
+fn one_signed(t: &[Term]) -> bool {
+    let pi = std::f64::consts::PI;
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        -2.0 + 4.0 * (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut syms: Vec<&Sym> = Vec::new();
+    for u in t {
+        let names = u.mono.iter().map(|(s, _)| s);
+        for s in names.chain(u.mode.freq.iter().map(|(s, _)| s)) {
+            if !syms.contains(&s) {
+                syms.push(s);
+            }
+        }
+    }
+    // The common monomial: each symbol at its smallest power over the terms.
+    let common: Vec<(&Sym, i32)> = syms
+        .iter()
+        .map(|s| {
+            let p = t
+                .iter()
+                .map(|u| u.mono.iter().find(|(r, _)| r == *s).map_or(0, |(_, p)| *p))
+                .min()
+                .unwrap_or(0);
+            (*s, p as i32)
+        })
+        .collect();
+    let (mut pos, mut negs) = (false, false);
+    for _ in 0..SIGN_POINTS {
+        let at: Vec<f64> = syms.iter().map(|_| next()).collect();
+        let val = |s: &Sym| at[syms.iter().position(|r| *r == s).unwrap_or(0)];
+        let (mut v, mut scale) = (0.0f64, 0.0f64);
+        for u in t {
+            let Some(c) = u.coef.to_f64() else {
+                return true;
+            };
+            let mut a = c * (u.rad as f64).sqrt();
+            for (s, p) in u.mono.iter() {
+                a *= val(s).powi(*p as i32);
+            }
+            let mut angle = pi * (*u.mode.pi.numer() as f64 / *u.mode.pi.denom() as f64);
+            for (s, k) in u.mode.freq.iter() {
+                angle += val(s) * (*k.numer() as f64 / *k.denom() as f64);
+            }
+            let tr = if u.mode.sin { angle.sin() } else { angle.cos() };
+            v += a * tr;
+            scale += a.abs();
+        }
+        let m: f64 = common.iter().map(|(s, p)| val(s).powi(*p)).product();
+        let v = v * m.signum();
+        if v > 1e-9 * scale {
+            pos = true;
+        } else if v < -1e-9 * scale {
+            negs = true;
+        }
+    }
+    !(pos && negs)
 }
 
 fn square(t: &[Term]) -> Option<Expr> {
