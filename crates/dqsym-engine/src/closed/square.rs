@@ -98,7 +98,10 @@ pub(super) fn candidates(t: &[Term], bound: usize) -> Vec<Expr> {
     {
         return Vec::new();
     }
-    if !one_signed(t) || !even_spans(t) {
+    // The mean of `m k g^2` over the angles is `m k` times the sum of the squares of the
+    // root's coefficients: never zero, so a square has a term without an angle (the PUMA's
+    // rotation entries have none).
+    if !t.iter().any(|u| u.mode.freq.is_empty()) || !even_spans(t) || !one_signed(t) {
         return Vec::new();
     }
     square(t).into_iter().collect()
@@ -170,33 +173,46 @@ fn one_signed(t: &[Term]) -> bool {
             (*s, p as i32)
         })
         .collect();
+    // Each term with its symbols as indices into `syms`: the points then take only floats.
+    let index = |s: &Sym| syms.iter().position(|r| *r == s).unwrap_or(0);
+    let mut terms: Vec<(f64, f64, bool, Vec<(usize, i32)>, Vec<(usize, f64)>)> =
+        Vec::with_capacity(t.len());
+    for u in t {
+        let Some(c) = u.coef.to_f64() else {
+            return true;
+        };
+        terms.push((
+            c * (u.rad as f64).sqrt(),
+            pi * (*u.mode.pi.numer() as f64 / *u.mode.pi.denom() as f64),
+            u.mode.sin,
+            u.mono.iter().map(|(s, p)| (index(s), *p as i32)).collect(),
+            u.mode
+                .freq
+                .iter()
+                .map(|(s, k)| (index(s), *k.numer() as f64 / *k.denom() as f64))
+                .collect(),
+        ));
+    }
+    let common: Vec<(usize, i32)> = common.iter().map(|(s, p)| (index(s), *p)).collect();
     let (mut pos, mut negs) = (false, false);
     for _ in 0..SIGN_POINTS {
         let at: Vec<f64> = syms.iter().map(|_| next()).collect();
-        let val = |s: &Sym| at[syms.iter().position(|r| *r == s).unwrap_or(0)];
         let (mut v, mut scale) = (0.0f64, 0.0f64);
-        for u in t {
-            let Some(c) = u.coef.to_f64() else {
-                return true;
-            };
-            let mut a = c * (u.rad as f64).sqrt();
-            for (s, p) in u.mono.iter() {
-                a *= val(s).powi(*p as i32);
-            }
-            let mut angle = pi * (*u.mode.pi.numer() as f64 / *u.mode.pi.denom() as f64);
-            for (s, k) in u.mode.freq.iter() {
-                angle += val(s) * (*k.numer() as f64 / *k.denom() as f64);
-            }
-            let tr = if u.mode.sin { angle.sin() } else { angle.cos() };
-            v += a * tr;
+        for (amp, phase, sin, mono, freq) in &terms {
+            let a = mono.iter().fold(*amp, |a, (i, p)| a * at[*i].powi(*p));
+            let angle = freq.iter().fold(*phase, |x, (i, k)| x + at[*i] * k);
+            v += a * if *sin { angle.sin() } else { angle.cos() };
             scale += a.abs();
         }
-        let m: f64 = common.iter().map(|(s, p)| val(s).powi(*p)).product();
+        let m: f64 = common.iter().map(|(i, p)| at[*i].powi(*p)).product();
         let v = v * m.signum();
         if v > 1e-9 * scale {
             pos = true;
         } else if v < -1e-9 * scale {
             negs = true;
+        }
+        if pos && negs {
+            return false;
         }
     }
     !(pos && negs)
