@@ -135,6 +135,10 @@ fn even_spans(t: &[Term]) -> bool {
     })
 }
 
+/// A term for [`one_signed`]: amplitude, phase, sine or cosine, the lengths' indices and
+/// powers, the angle symbols' indices and frequencies.
+type SignTerm = (f64, f64, bool, Vec<(usize, i32)>, Vec<(usize, f64)>);
+
 /// The points at which [`one_signed`] evaluates the sum.
 const SIGN_POINTS: usize = 8;
 
@@ -175,8 +179,7 @@ fn one_signed(t: &[Term]) -> bool {
         .collect();
     // Each term with its symbols as indices into `syms`: the points then take only floats.
     let index = |s: &Sym| syms.iter().position(|r| *r == s).unwrap_or(0);
-    let mut terms: Vec<(f64, f64, bool, Vec<(usize, i32)>, Vec<(usize, f64)>)> =
-        Vec::with_capacity(t.len());
+    let mut terms: Vec<SignTerm> = Vec::with_capacity(t.len());
     for u in t {
         let Some(c) = u.coef.to_f64() else {
             return true;
