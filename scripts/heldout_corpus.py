@@ -2,10 +2,12 @@
 expressions that no heuristic was tuned on, each expanded (so the short form must be found),
 given to `dqsym -e` and to SymPy's trigsimp, fu and simplify; prints the share of expressions
 whose closed form is no longer than SymPy's best (by SymPy's count_ops of both, the input
-itself counting as a SymPy answer).
+itself counting as a SymPy answer). With --cache, SymPy's best count for each expression is
+kept in FILE (JSON, keyed by the expression's text) and read from it on the next run, so that
+a run that changes only the binary does not wait for SymPy again.
 
   python scripts/heldout_corpus.py [--n 200] [--seed 33] [--bin target/release/dqsym]
-      [--timeout 10] [--show]
+      [--timeout 10] [--show] [--cache FILE]
 
 Run with a Python that has SymPy (the repository's .venv). The shapes: products of two or
 three cosines and sines of integer (or half) combinations of one or two symbols, optionally
@@ -13,6 +15,8 @@ with a length symbol and an offset at a multiple of pi/6 or pi/4, sums of two su
 and squares of sums; symbol names (p, r, w, u1, u2, k1) unused by tests/data/trig_identities.txt.
 """
 import argparse
+import json
+import os
 import random
 import signal
 import subprocess
@@ -101,7 +105,12 @@ def main():
     ap.add_argument("--bin", default="target/release/dqsym")
     ap.add_argument("--timeout", type=int, default=10)
     ap.add_argument("--show", action="store_true")
+    ap.add_argument("--cache", default=None)
     a = ap.parse_args()
+    cache = {}
+    if a.cache and os.path.exists(a.cache):
+        with open(a.cache) as f:
+            cache = json.load(f)
     rng = random.Random(a.seed)
     ok = longer = failed = 0
     for i in range(a.n):
@@ -114,12 +123,17 @@ def main():
         # The closed form must equal the input (checked at a random point, in floats).
         pt = {s: rng.uniform(0.3, 1.7) for s in SYMS + LENGTHS}
         assert abs(complex((mine - e).evalf(subs=pt))) < 1e-9, (i, e, text)
-        best = ops(e)
-        how = "input"
-        for name, f in [("trigsimp", sp.trigsimp), ("fu", fu), ("simplify", sp.simplify)]:
-            r = limited(f, e, a.timeout)
-            if r is not None and ops(r) < best:
-                best, how = ops(r), name
+        key = str(e)
+        if key in cache:
+            best, how = cache[key]
+        else:
+            best = ops(e)
+            how = "input"
+            for name, f in [("trigsimp", sp.trigsimp), ("fu", fu), ("simplify", sp.simplify)]:
+                r = limited(f, e, a.timeout)
+                if r is not None and ops(r) < best:
+                    best, how = ops(r), name
+            cache[key] = [best, how]
         m = ops(mine)
         if m <= best:
             ok += 1
@@ -129,6 +143,9 @@ def main():
                 print(f"{i}: ours {m} > {how} {best}: {text}  <- {e}", flush=True)
         if a.show and (i + 1) % 10 == 0:
             print(f"after {i + 1}: {ok} no longer, {longer} longer, {failed} failed", flush=True)
+    if a.cache:
+        with open(a.cache, "w") as f:
+            json.dump(cache, f, indent=0, sort_keys=True)
     n = ok + longer
     print(f"held-out corpus (seed {a.seed}): {ok}/{n} = {100.0 * ok / max(n, 1):.1f}% no longer than "
           f"SymPy's best; {failed} failed")

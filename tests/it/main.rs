@@ -5,6 +5,7 @@ mod cli;
 mod codegen;
 mod coefs;
 mod common;
+mod corpus_shapes;
 mod costs;
 mod counts;
 mod cyclotomic;

@@ -48,6 +48,9 @@ pub(super) fn best_alternative(x: &Scalar, than: &Expr) -> Option<Expr> {
     // when a lower bound of their cost is below the form found before.
     if let Ok(t) = x.terms() {
         cands.extend(super::trigfac::candidates(t, full_cost(than).0));
+        // Squares of sums, common factors, sums split by their angles' symbols (`extra.rs`).
+        let more = super::extra::candidates(t, than, &cands);
+        cands.extend(more);
     }
     if cands.is_empty() {
         return None;
@@ -250,7 +253,7 @@ fn centred(p: Small) -> Small {
 }
 
 /// A rational with a small denominator within `1e-9` of `v` (continued fractions).
-fn small_rational(v: f64) -> Option<Rat> {
+pub(super) fn small_rational(v: f64) -> Option<Rat> {
     if !v.is_finite() || v.abs() > 1e9 {
         return None;
     }

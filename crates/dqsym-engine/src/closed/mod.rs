@@ -64,7 +64,14 @@
 //! two vertices of the Newton polytope, `phi` a multiple of pi/24 found in floats on the
 //! factor's zero set, divided out exactly by a long division along `d`, the cofactor given its
 //! own closed form; and a sum split into parts of distinct monomials or disjoint symbols, each
-//! part's closed form found alone; each checked exactly; constant angles are shown with a positive sign; an angle's
+//! part's closed form found alone; `extra.rs` (the one place of the candidates below, for
+//! issue 33's held-out corpus): squares of sums `k (g)^2` (`square.rs`: the square root of the
+//! sum's exponential form taken in `f64` by the schoolbook algorithm in a lexicographic order of
+//! the exponents, read back as a real sum with coefficients snapped to rationals times square
+//! roots, the square checked exactly before the root's closed form is found), every candidate
+//! with a factor shared by all or some of its summands taken out (`k2 (a - b)` for
+//! `k2 a - k2 b`), and a sum split by the symbols of its terms' angles (not for the PUMA's
+//! unit-step modes), each part's closed form found alone; each checked exactly; constant angles are shown with a positive sign; an angle's
 //! symbols print first, then its rational constant and its multiple of pi (`t/2 - 1/3`,
 //! `x - pi/7`), and an angle with a rational constant is shown with its first symbol's coefficient
 //! positive (`Expr::symbols_leading`: `sin(1/3 - t/2)` prints `-sin(t/2 - 1/3)`); equal symbols and
@@ -131,6 +138,7 @@ mod cprod;
 mod cspoly;
 mod decimals;
 mod expr;
+mod extra;
 mod factor;
 mod floor;
 mod mon;
@@ -139,6 +147,7 @@ mod offsets;
 mod peel;
 mod recombine;
 mod roots;
+mod square;
 mod trace;
 mod trigfac;
 mod zfactor;

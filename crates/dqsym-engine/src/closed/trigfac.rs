@@ -45,8 +45,7 @@ pub(super) fn candidates(t: &[Term], bound: usize) -> Vec<Expr> {
     let mut out = Vec::new();
     // Optional candidates: made only while most of the budget is left, so that they never
     // turn a closed form the other candidates find into a budget error.
-    if NESTED.with(|n| n.get()) >= MAX_NESTED
-        || crate::scalar::work_left() < Context::current().work_budget() / 2
+    if !may_nest()
         || t.len() < 2
         || t.len() > MAX_TERMS
         || t.iter().all(|u| u.mode.freq.is_empty())
@@ -72,6 +71,13 @@ thread_local! {
     static NESTED: std::cell::Cell<u32> = const { std::cell::Cell::new(0) };
 }
 
+/// Whether a candidate that searches closed forms of parts (through [`nested_closed_form`])
+/// may be made: below [`MAX_NESTED`] and while half the budget is left.
+pub(super) fn may_nest() -> bool {
+    NESTED.with(|n| n.get()) < MAX_NESTED
+        && crate::scalar::work_left() >= Context::current().work_budget() / 2
+}
+
 /// The share of the budget left that one nested closed form may spend.
 const NESTED_SHARE: u64 = 16;
 
@@ -81,7 +87,7 @@ const NESTED_SHARE: u64 = 16;
 /// `sqrt(5)` coefficients spent the whole default budget of 3,000,000 units in them), so a
 /// candidate of this file can spend at most a bounded share of what is left and never turns a
 /// closed form the other candidates find into a budget error.
-fn nested_closed_form(x: &Scalar) -> Result<Expr, crate::scalar::ScalarError> {
+pub(super) fn nested_closed_form(x: &Scalar) -> Result<Expr, crate::scalar::ScalarError> {
     let left = crate::scalar::work_left();
     NESTED.with(|n| n.set(n.get() + 1));
     let (e, used) = if left == u64::MAX {
@@ -118,7 +124,7 @@ fn small_modes(t: &[Term]) -> bool {
 /// whose twists are multiples of pi/2: the PUMA's scalars): in `y = c x` the split shape's
 /// single-angle atoms, regrouped by the angle-sum identities and factored, already find the
 /// products of sinusoids (`c1 c23`), and these candidates are not made.
-fn unit_modes(t: &[Term]) -> bool {
+pub(super) fn unit_modes(t: &[Term]) -> bool {
     let mut step: Option<Small> = None;
     t.iter().all(|u| {
         u.mode.pi.is_zero()
@@ -134,7 +140,7 @@ fn unit_modes(t: &[Term]) -> bool {
 /// by the symbols of the shortest monomial, and one call when some term has a mode, or two
 /// calls and an operation when the modes have two or more frequencies (a single sinusoid
 /// `R cos(F + phi)`, `cos(F)^2 = (1 + cos 2F)/2`, has one).
-fn least_cost(t: &[Term]) -> usize {
+pub(super) fn least_cost(t: &[Term]) -> usize {
     let mono = t.iter().map(|u| u.mono.len()).min().unwrap_or(0);
     let mut freqs = t
         .iter()

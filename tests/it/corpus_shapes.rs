@@ -1,0 +1,109 @@
+//! Closed forms of the shapes of issue 33's held-out corpus (`scripts/heldout_corpus.py`),
+//! written here with other symbols, offsets and coefficients than any seed of it: squares of
+//! sums (`closed/square.rs`), a factor shared by the summands of a sum of products, and a sum
+//! split by its angles' symbols (`closed/extra.rs`). Every case: the input is expanded into its
+//! canonical (Fourier) form, the closed form found from that equals it exactly, its f64 value
+//! at random points equals a formula written here (plain `f64::cos` and `f64::sin`), and it
+//! has the short shape (a square, a shared factor taken out) as printed.
+
+use crate::common::Rng;
+use dqsym::{closed_form, eval_scalar_text, plain, PlainOptions};
+
+type F = fn(&dyn Fn(&str) -> f64) -> f64;
+
+/// The closed form of `input` expanded: exact, at 10 random points equal to `direct`, and
+/// printed as `want`.
+fn check(input: &str, want: &str, direct: F) {
+    let x = eval_scalar_text(input).unwrap_or_else(|e| panic!("{input}: {e}"));
+    let e = closed_form(&x).unwrap_or_else(|err| panic!("{input}: {err}"));
+    assert_eq!(e.to_scalar(), x, "{input}");
+    let mut g = Rng::new(0x51_7cc1_b727_220a ^ input.len() as u64);
+    for _ in 0..10 {
+        let vals: Vec<(String, f64)> = e
+            .symbol_names()
+            .into_iter()
+            .map(|n| (n, g.range(-2.0, 2.0)))
+            .collect();
+        let env = |n: &str| {
+            vals.iter()
+                .find(|(m, _)| m == n)
+                .map(|(_, v)| *v)
+                .unwrap_or_else(|| panic!("no value for {n}"))
+        };
+        let pairs: Vec<(&str, f64)> = vals.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+        let got = e.value_at(&pairs).expect("value");
+        let want_v = direct(&env);
+        // A few dozen f64 operations on values of size ~1 (lengths below 2): well under 1e-9.
+        assert!(
+            (got - want_v).abs() < 1e-9 * (1.0 + want_v.abs()),
+            "{input}: {got} vs {want_v}"
+        );
+    }
+    assert_eq!(plain(&e, &PlainOptions::default()), want, "{input}");
+}
+
+#[test]
+fn a_square_of_a_length_times_a_cosine_and_a_sine_is_found() {
+    check("(m*cos(a) - sin(b))^2", "(m cos(a) - sin(b))^2", |v| {
+        (v("m") * v("a").cos() - v("b").sin()).powi(2)
+    });
+}
+
+#[test]
+fn a_square_with_an_offset_and_half_angles_is_found() {
+    check(
+        "(n*cos(a/2 + pi/6) + sin(2*c))^2",
+        "(sin(2*c) + n cos(a/2 + pi/6))^2",
+        |v| {
+            (v("n") * (v("a") / 2.0 + std::f64::consts::PI / 6.0).cos() + (2.0 * v("c")).sin())
+                .powi(2)
+        },
+    );
+}
+
+#[test]
+fn minus_a_square_times_a_length_and_a_number_is_found() {
+    check(
+        "-3*m*(cos(a - b) + n*sin(c + a))^2",
+        "-3 m (cos(a - b) + n sin(a + c))^2",
+        |v| -3.0 * v("m") * ((v("a") - v("b")).cos() + v("n") * (v("c") + v("a")).sin()).powi(2),
+    );
+}
+
+#[test]
+fn a_square_with_a_quarter_turn_offset_is_found() {
+    check(
+        "(m*cos(a - c + pi/4) + sin(b/2 + c))^2",
+        "(sin(b/2 + c) + m cos(a - c + pi/4))^2",
+        |v| {
+            (v("m") * (v("a") - v("c") + std::f64::consts::FRAC_PI_4).cos()
+                + (v("b") / 2.0 + v("c")).sin())
+            .powi(2)
+        },
+    );
+}
+
+#[test]
+fn a_length_shared_by_two_products_is_taken_out() {
+    check(
+        "n*cos(c/2 - pi/3)*sin(c) - n*sin(a/2 + b)*cos(d)",
+        "n (cos(c/2 - pi/3) sin(c) - sin(a/2 + b) cos(d))",
+        |v| {
+            v("n")
+                * ((v("c") / 2.0 - std::f64::consts::FRAC_PI_3).cos() * v("c").sin()
+                    - (v("a") / 2.0 + v("b")).sin() * v("d").cos())
+        },
+    );
+}
+
+#[test]
+fn a_sum_whose_parts_share_a_symbol_is_split_by_the_symbols_of_its_angles() {
+    check(
+        "2*sin(a/2)*sin(a - b) - sin(c)*cos(d)*cos(a)",
+        "2 sin(a - b) sin(a/2) - cos(a) sin(c) cos(d)",
+        |v| {
+            2.0 * (v("a") / 2.0).sin() * (v("a") - v("b")).sin()
+                - v("c").sin() * v("d").cos() * v("a").cos()
+        },
+    );
+}
