@@ -78,6 +78,10 @@ pub(super) fn any_candidate_below(x: &Scalar, cap: (usize, usize)) -> bool {
     let mut cands = unsorted_candidates(x);
     if let Ok(t) = x.terms() {
         cands.extend(super::trigfac::candidates(t, cap.0 + 1));
+        // Squares, common factors and split sums (`extra.rs`) may be shorter than every
+        // factored shape (a square has fewer leaves than its monomials).
+        let more = super::extra::candidates_up_to(t, cap.0 + 1, &cands);
+        cands.extend(more);
     }
     cands.iter().any(|e| {
         let k = choice_key(e);

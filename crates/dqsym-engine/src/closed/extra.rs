@@ -17,12 +17,15 @@ use crate::Scalar;
 /// against them; `than` is the form found before and `others` the other candidates (only
 /// shorter ones can be taken).
 pub(super) fn candidates(t: &[Term], than: &Expr, others: &[Expr]) -> Vec<Expr> {
-    let bound = full_cost(than).0;
-    let mut out: Vec<Expr> = others
-        .iter()
-        .chain(std::iter::once(than))
-        .filter_map(common_factor)
-        .collect();
+    let mut out = candidates_up_to(t, full_cost(than).0, others);
+    out.extend(common_factor(than));
+    out
+}
+
+/// The candidates of [`candidates`] made without a form found before, for costs below
+/// `bound`: what a search capped at `bound` (`floor.rs`) must count as possible winners.
+pub(super) fn candidates_up_to(t: &[Term], bound: usize, others: &[Expr]) -> Vec<Expr> {
+    let mut out: Vec<Expr> = others.iter().filter_map(common_factor).collect();
     out.extend(super::square::candidates(t, bound));
     if let Some(e) = by_support(t, bound) {
         out.extend(common_factor(&e));
