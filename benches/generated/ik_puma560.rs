@@ -525,12 +525,12 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4], a2: f64, a3:
     let mut ik_m4 = IkMemo::NEW;
     let mut ik_m5 = IkMemo::NEW;
     let ik_t0 = a3 * pz;
-    let ik_t5 = a2 * pz;
-    let ik_t6 = d4 * pz;
-    let ik_t22 = -1.0;
-    let ik_t23 = a2 + a3;
-    let ik_t24 = -d3;
-    let mut ik_ch = IkChain { ax: [[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0], [0.0, 0.0, ik_t22, 0.0, 0.0, 0.0, 0.0], [0.0, 0.0, ik_t22, 0.0, a2, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0, ik_t23, ik_t24, 0.0], [0.0, 0.0, ik_t22, 0.0, ik_t23, ik_t24, d4], [0.0, 0.0, 0.0, 1.0, ik_t23, ik_t24, d4]], home: [[1.0, 0.0, 0.0, ik_t23], [0.0, 1.0, 0.0, ik_t24], [0.0, 0.0, 1.0, d4]], t: ik_target, len: 1.0 };
+    let ik_t3 = a2 * pz;
+    let ik_t4 = d4 * pz;
+    let ik_t19 = -1.0;
+    let ik_t20 = a2 + a3;
+    let ik_t21 = -d3;
+    let mut ik_ch = IkChain { ax: [[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0], [0.0, 0.0, ik_t19, 0.0, 0.0, 0.0, 0.0], [0.0, 0.0, ik_t19, 0.0, a2, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0, ik_t20, ik_t21, 0.0], [0.0, 0.0, ik_t19, 0.0, ik_t20, ik_t21, d4], [0.0, 0.0, 0.0, 1.0, ik_t20, ik_t21, d4]], home: [[1.0, 0.0, 0.0, ik_t20], [0.0, 1.0, 0.0, ik_t21], [0.0, 0.0, 1.0, d4]], t: ik_target, len: 1.0 };
     ik_ch.len = ik_scale(&ik_ch);
     let ik_sg0 = IK_ZERO_TOL * ik_ch.len;
     let ik_sg1 = IK_ZERO_TOL * ik_ch.len * ik_ch.len;
@@ -554,40 +554,37 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4], a2: f64, a3:
             continue;
         }
         let (theta1, s_theta1, c_theta1) = ik_r0.root(ik_i0);
-        let ik_t1 = px * c_theta1;
-        let ik_t2 = py * s_theta1;
-        let ik_t3 = ik_t1 + ik_t2;
-        let ik_t4 = ik_t0 - d4 * ik_t3;
-        let ik_t7 = a3 * ik_t3 + ik_t6;
-        let ik_t11 = c_theta1 * r13 + s_theta1 * r23;
-        let ik_t12 = s_theta1 * r13 - c_theta1 * r23;
-        let ik_t14 = c_theta1 * r12 + s_theta1 * r22;
-        let ik_t16 = s_theta1 * r12;
-        let ik_t17 = c_theta1 * r22;
-        let ik_t18 = ik_t16 - ik_t17;
-        let ik_t21 = ik_t17 - ik_t16;
+        let ik_t1 = px * c_theta1 + py * s_theta1;
+        let ik_t2 = ik_t0 - d4 * ik_t1;
+        let ik_t5 = a3 * ik_t1 + ik_t4;
+        let ik_t8 = c_theta1 * r13 + s_theta1 * r23;
+        let ik_t9 = s_theta1 * r13 - c_theta1 * r23;
+        let ik_t11 = c_theta1 * r12 + s_theta1 * r22;
+        let ik_t13 = s_theta1 * r12;
+        let ik_t14 = c_theta1 * r22;
+        let ik_t15 = ik_t13 - ik_t14;
+        let ik_t18 = ik_t14 - ik_t13;
         let ik_n1 = ik_out.n;
         for ik_i1 in 0..ik_r1.n {
             if ik_r1.sampled(ik_i1) && ik_exact(ik_out, ik_n1) {
                 continue;
             }
             let (theta3, s_theta3, c_theta3) = ik_r1.root(ik_i1);
-            let ik_t8 = a2 + a3 * c_theta3 - d4 * s_theta3;
             // theta2: subproblem 1 (rotation): joint 2 turns the wrist centre onto the target's
-            let ik_theta2_y = c_theta3 * ik_t4 + ik_t5 - s_theta3 * ik_t7;
-            let ik_theta2_x = pz * (a3 * s_theta3 + d4 * c_theta3) + ik_t1 * ik_t8 + ik_t2 * ik_t8;
+            let ik_theta2_y = c_theta3 * ik_t2 + ik_t3 - s_theta3 * ik_t5;
+            let ik_theta2_x = ik_t1 * (a2 + a3 * c_theta3 - d4 * s_theta3) + pz * (a3 * s_theta3 + d4 * c_theta3);
             let ik_r2 = ik_atan2(ik_theta2_y, ik_theta2_x, ik_sg2, &mut ik_m2);
             for ik_i2 in 0..ik_r2.n {
                 let (theta2, s_theta2, c_theta2) = ik_r2.root(ik_i2);
-                let ik_t9 = c_theta3 * c_theta2 - s_theta3 * s_theta2;
-                let ik_t10 = c_theta3 * s_theta2 + s_theta3 * c_theta2;
-                let ik_t13 = ik_t9 * ik_t11 + ik_t10 * r33;
-                let ik_t15 = ik_t9 * ik_t14 + ik_t10 * r32;
-                let ik_t19 = ik_t10 * ik_t14 - ik_t9 * r32;
+                let ik_t6 = c_theta3 * c_theta2 - s_theta3 * s_theta2;
+                let ik_t7 = c_theta3 * s_theta2 + s_theta3 * c_theta2;
+                let ik_t10 = ik_t6 * ik_t8 + ik_t7 * r33;
+                let ik_t12 = ik_t6 * ik_t11 + ik_t7 * r32;
+                let ik_t16 = ik_t7 * ik_t11 - ik_t6 * r32;
                 // theta5: subproblem 4 (height): R4 R5 R6 = R3ᵀ R2ᵀ R1ᵀ R; joint 4 keeps the component along axis 4 and joint 6 fixes k6, so k4·Rot(axis 5, theta) k6 = k4·(R456 k6)
                 let ik_theta5_a = 1.0;
                 let ik_theta5_b = 0.0;
-                let ik_theta5_c = ik_t9 * r33 - ik_t10 * ik_t11;
+                let ik_theta5_c = ik_t6 * r33 - ik_t7 * ik_t8;
                 let ik_r3 = ik_trig(ik_theta5_a, ik_theta5_b, ik_theta5_c, ik_sg3);
                 let ik_n3 = ik_out.n;
                 for ik_i3 in 0..ik_r3.n {
@@ -595,16 +592,16 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4], a2: f64, a3:
                         continue;
                     }
                     let (theta5, s_theta5, c_theta5) = ik_r3.root(ik_i3);
-                    let ik_t20 = s_theta5 * ik_t19;
+                    let ik_t17 = s_theta5 * ik_t16;
                     // theta4: subproblem 1 (rotation): joint 4 turns Rot(axis 5) k6 onto R456 k6
-                    let ik_theta4_y = s_theta5 * ik_t12;
-                    let ik_theta4_x = -(s_theta5 * ik_t13);
+                    let ik_theta4_y = s_theta5 * ik_t9;
+                    let ik_theta4_x = -(s_theta5 * ik_t10);
                     let ik_r4 = ik_atan2(ik_theta4_y, ik_theta4_x, ik_sg4, &mut ik_m4);
                     for ik_i4 in 0..ik_r4.n {
                         let (theta4, s_theta4, c_theta4) = ik_r4.root(ik_i4);
                         // theta6: subproblem 1 (rotation): joint 6 turns a vector normal to axis 6 onto R5ᵀ R4ᵀ R456 of it
-                        let ik_theta6_y = c_theta5 * (s_theta4 * ik_t18 - c_theta4 * ik_t15) + ik_t20;
-                        let ik_theta6_x = c_theta4 * ik_t21 - s_theta4 * ik_t15;
+                        let ik_theta6_y = c_theta5 * (s_theta4 * ik_t15 - c_theta4 * ik_t12) + ik_t17;
+                        let ik_theta6_x = c_theta4 * ik_t18 - s_theta4 * ik_t12;
                         let ik_r5 = ik_atan2(ik_theta6_y, ik_theta6_x, ik_sg5, &mut ik_m5);
                         for ik_i5 in 0..ik_r5.n {
                             let (theta6, s_theta6, c_theta6) = ik_r5.root(ik_i5);

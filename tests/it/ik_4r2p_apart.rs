@@ -335,3 +335,21 @@ fn unported_apart_solvers_say_so() {
     let js = dqsym::ik::ik_javascript_general(&sol);
     assert!(js.contains("throw new Error"), "{name}");
 }
+
+/// The family line and the report name this arm's own elimination (the four turns and the
+/// slides' plane), not Raghavan-Roth's, which is degenerate for it; the stated degree is 8.
+#[test]
+fn apart_arms_name_their_own_elimination() {
+    for (name, rows) in arms() {
+        let sol = derive(&name, &rows, IkMethod::Auto);
+        let family = sol.family.template;
+        assert!(
+            family.contains("slides three joints apart"),
+            "{name}: {family}"
+        );
+        assert!(!family.contains("Raghavan"), "{name}: {family}");
+        assert_eq!(sol.general.as_ref().map(|g| g.degree), Some(8), "{name}");
+        let report = dqsym::ik::ik_report(&sol, dqsym::Format::Plain, true).expect("plain");
+        assert!(report.contains(family), "{name}: {report}");
+    }
+}

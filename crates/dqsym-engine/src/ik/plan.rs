@@ -551,7 +551,12 @@ fn derive_fixed(
         Ok(None) | Err(_) if general => {
             b.steps.clear();
             b.reach = Reach::Pose;
-            (GENERAL.into(), false)
+            let name = if super::general::apart_chain(&axes) {
+                GENERAL_APART
+            } else {
+                GENERAL
+            };
+            (name.into(), false)
         }
         Ok(None) => return Err(unsupported(None)),
         Err(m) => return Err(unsupported(Some(m.to_string()))),
@@ -663,7 +668,9 @@ fn reach_conditions(steps: &[IkStep]) -> Vec<String> {
 /// elimination is degenerate.
 fn with_general(mut sol: IkSolution, family_error: Option<String>) -> Result<IkSolution, IkError> {
     let name = sol.robot.clone();
-    if sol.steps.is_empty() && sol.family.template == GENERAL {
+    if sol.steps.is_empty()
+        && (sol.family.template == GENERAL || sol.family.template == GENERAL_APART)
+    {
         let info = super::general::info(&sol);
         if info.degree == 0 {
             // Every arrangement of the loop is degenerate here (three parallel axes with a
@@ -693,6 +700,10 @@ fn with_general(mut sol: IkSolution, family_error: Option<String>) -> Result<IkS
 /// The family line of a solution by the general method.
 pub(crate) const GENERAL: &str =
     "general 6R: Raghavan-Roth elimination to one polynomial in tan(theta/2) (Manocha-Canny matrix form)";
+
+/// The family line of a 4R2P with its slides three joints apart, solved by the general
+/// method's own elimination for it (`general/apart.rs`), not by Raghavan-Roth's.
+pub(crate) const GENERAL_APART: &str = "general 4R2P, slides three joints apart: the four turns fix the orientation, the slides' plane the position; one resultant in tan(theta/2)";
 
 /// Tries every family in turn; `Ok(None)` when none applies.
 fn family(b: &mut Builder, t: &Target) -> Result<Option<(Phrase, bool)>, PlanError> {
