@@ -70,25 +70,6 @@ pub(super) fn best_alternative(x: &Scalar, than: &Expr) -> Option<Expr> {
         .find(|e| e.to_scalar() == *x)
 }
 
-/// Whether some candidate for `x` (those [`best_alternative`] makes, not yet checked against
-/// `x`) has a [`choice_key`] strictly below `cap` (its first two parts): when none has,
-/// `best_alternative` returns no form below `cap` whatever it is given. The candidates of
-/// `trigfac.rs` are made for every cost up to `cap.0` (theirs below `cap.0 + 1`).
-pub(super) fn any_candidate_below(x: &Scalar, cap: (usize, usize)) -> bool {
-    let mut cands = unsorted_candidates(x);
-    if let Ok(t) = x.terms() {
-        cands.extend(super::trigfac::candidates(t, cap.0 + 1));
-        // Squares, common factors and split sums (`extra.rs`) may be shorter than every
-        // factored shape (a square has fewer leaves than its monomials).
-        let more = super::extra::candidates_up_to(t, cap.0 + 1, &cands);
-        cands.extend(more);
-    }
-    cands.iter().any(|e| {
-        let k = choice_key(e);
-        (k.0, k.1) < cap
-    })
-}
-
 /// Every candidate for `x`, cheapest first ([`choice_key`]), not yet checked against it.
 pub(super) fn candidates(x: &Scalar) -> Vec<Expr> {
     let mut cands = unsorted_candidates(x);

@@ -450,23 +450,6 @@ impl Lifted {
     pub(crate) fn substitute(&self, e: Expr) -> Expr {
         replace(e, &self.constants)
     }
-
-    /// A lower bound of what [`Lifted::substitute`] adds to the first part of
-    /// `alt::choice_key` of any closed form of [`Lifted::scalar`]: each fresh symbol of the
-    /// scalar is a leaf of every such form at least once, and is replaced by its constant's
-    /// closed form whole (nothing is merged), which adds that form's operations with the
-    /// arithmetic in its angles, less a leading negation, free in a sum.
-    pub(crate) fn substitution_floor(&self) -> usize {
-        let present = self.scalar.symbols();
-        self.constants
-            .iter()
-            .filter(|(s, _, _)| present.contains(s))
-            .map(|(_, f, _)| {
-                let neg = usize::from(matches!(f, Expr::Neg(_)));
-                super::alt::full_cost(f).0.saturating_sub(neg)
-            })
-            .sum()
-    }
 }
 
 /// `e` as a rational times an expression without a rational factor.

@@ -116,12 +116,7 @@
 //! with the cheaper angle (`l1 cos(x - pi/3) + l2 cos(x + y - 2*pi/3)`); the whole-modes shape is
 //! not factored when a lower bound of its cost (`factor::cost_lower_bound`: each distinct atom and
 //! symbol a leaf, each atom a call) is not below the regrouped shape's, and `alt::best_alternative`
-//! checks only candidates shorter than the form found before; `floor.rs`: the search with offsets
-//! absorbed runs first, and the search as given (taken only when strictly shorter) and the search
-//! of the constants lifted (`coefs.rs`) are finished only when a lower bound of every form they may
-//! return (each shape's distinct atoms and symbols as leaves, their calls and the parts of their
-//! angles; the candidates of `alt.rs` by their own costs; what putting the constants back adds)
-//! may be below the form found; `closed_form_prepared` keeps the
+//! checks only candidates shorter than the form found before; `closed_form_prepared` keeps the
 //! regrouped monomials of a scalar so that `closed_form_of_derivative` starts a derivative's closed
 //! form from them (the Jacobian of a chain: no second expansion into single angles);
 //! `closed_form_cos_sin` factors a cos/sin polynomial and shows its placeholders as cos/sin;
@@ -140,7 +135,6 @@ mod decimals;
 mod expr;
 mod extra;
 mod factor;
-mod floor;
 mod mon;
 mod notation;
 mod offsets;
@@ -271,11 +265,10 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
         let Some(l) = lifting.as_mut().and_then(|l| l.lift(phased)) else {
             continue;
         };
-        let than = best.as_ref().unwrap_or(&found);
-        let Some(c) = lifted_form(&l, than) else {
+        let Ok(c) = prepared_shifted(&l.scalar).0.map(|c| l.substitute(c)) else {
             continue;
         };
-        if alt::shorter(&c, than) && verified(&c, x) {
+        if alt::shorter(&c, best.as_ref().unwrap_or(&found)) && verified(&c, x) {
             best = Some(c);
         }
     }
@@ -298,65 +291,33 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
     }
 }
 
-/// The closed form of the lifted scalar of `l` with its constants put back, or `None` when
-/// its search fails or when it provably cannot be [`alt::shorter`] than `than`: the
-/// substitution only adds to the cost (`Lifted::substitution_floor`), so a form of the lifted
-/// scalar is worth finishing only when its cost may be at most `than`'s less that floor.
-fn lifted_form(l: &coefs::Lifted, than: &Expr) -> Option<Expr> {
-    let t = alt::choice_key(than).0;
-    let extra = l.substitution_floor();
-    if extra > t {
-        return None;
-    }
-    // A form of cost `k` is below this cap when `k <= t - extra` (its second part is never
-    // `usize::MAX`).
-    let cap = (t - extra, usize::MAX);
-    let c = prepared_shifted_below(&l.scalar, Some(cap))?.0.ok()?;
-    Some(l.substitute(c))
-}
-
 /// [`closed_form_prepared`] without the constants lifted.
 fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
-    prepared_shifted_below(x, None).expect("a search without a cap always finishes")
-}
-
-/// [`prepared_shifted`], or `None` when `cap` is given, `x` has no offsets to absorb and no
-/// form its search may return is strictly below `cap` (see [`prepared_unshifted_below`]).
-fn prepared_shifted_below(
-    x: &Scalar,
-    cap: Option<floor::Cap>,
-) -> Option<(Result<Expr, ScalarError>, Prepared)> {
-    let Some((shift, y)) = offsets::find(x).and_then(|s| s.apply(x).map(|y| (s, y))) else {
-        return prepared_unshifted_below(x, cap);
+    let (plain, prepared) = prepared_unshifted(x);
+    let Some(shift) = offsets::find(x) else {
+        return (plain, prepared);
     };
-    // The shifted form first: it is taken on equal cost, so the unshifted search is finished
-    // only when it may be strictly shorter (`floor.rs`; a Jaco-style arm's unshifted forms
-    // never are, and were most of its closed-form work).
+    let Some(y) = shift.apply(x) else {
+        return (plain, prepared);
+    };
     let (shifted, yprep) = prepared_unshifted(&y);
-    let e = shifted.ok().map(|e| {
-        let mut e = shift.unshift(e);
-        // The shift changes what an angle costs (`cos(y - pi/7) cos(y + pi/7)` ties with the
-        // sum in `y`, `cos(x) cos(x + 2*pi/7)` beats it in `x`): the candidates of `alt.rs` for
-        // the shifted scalar are compared again once shifted back.
-        for a in alt::candidates(&y).into_iter().map(|a| shift.unshift(a)) {
-            if alt::shorter(&a, &e) && a.to_scalar() == *x {
-                e = a;
-                break;
-            }
-        }
-        e
-    });
-    let Some(e) = e.filter(|e| verified(e, x)) else {
-        return Some(prepared_unshifted(x));
+    let Ok(mut e) = shifted.map(|e| shift.unshift(e)) else {
+        return (plain, prepared);
     };
-    // On equal cost the shifted form: its angles are the ones the user wrote.
-    let key = alt::choice_key(&e);
-    Some(match prepared_unshifted_below(x, Some((key.0, key.1))) {
-        Some((plain, prepared)) if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) => {
-            (plain, prepared)
+    // The shift changes what an angle costs (`cos(y - pi/7) cos(y + pi/7)` ties with the sum in
+    // `y`, `cos(x) cos(x + 2*pi/7)` beats it in `x`): the candidates of `alt.rs` for the
+    // shifted scalar are compared again once shifted back.
+    for a in alt::candidates(&y).into_iter().map(|a| shift.unshift(a)) {
+        if alt::shorter(&a, &e) && a.to_scalar() == *x {
+            e = a;
+            break;
         }
-        _ => (Ok(e.symbols_leading()), Prepared(yprep.0, Some(shift))),
-    })
+    }
+    // On equal cost the shifted form: its angles are the ones the user wrote.
+    if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) || !verified(&e, x) {
+        return (plain, prepared);
+    }
+    (Ok(e.symbols_leading()), Prepared(yprep.0, Some(shift)))
 }
 
 /// Whether `e` equals `x`: exactly in debug builds, numerically first in release builds (as
@@ -367,45 +328,33 @@ fn verified(e: &Expr, x: &Scalar) -> bool {
 
 /// [`closed_form_prepared`] without the offsets absorbed.
 fn prepared_unshifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
-    prepared_unshifted_below(x, None).expect("a search without a cap always finishes")
-}
-
-/// [`prepared_unshifted`], or `None` when `cap` is given and no form it may return is
-/// strictly below `cap` (`floor::cannot_beat`, decided before the factoring).
-fn prepared_unshifted_below(
-    x: &Scalar,
-    cap: Option<floor::Cap>,
-) -> Option<(Result<Expr, ScalarError>, Prepared)> {
     if let Err(e) = x.terms() {
-        return Some((Err(e.clone()), Prepared(None, None)));
+        return (Err(e.clone()), Prepared(None, None));
     }
     let split_size: usize = x
         .terms()
         .map(|t| t.iter().map(|t| 1usize << t.mode.freq.len().min(30)).sum())
         .unwrap_or(0);
     if split_size > SPLIT_LIMIT {
-        return Some((
+        return (
             whole_form(x).map(|(e, _)| e.symbols_leading()),
             Prepared(None, None),
-        ));
+        );
     }
     if skip_split(x, split_size) {
-        return Some((
+        return (
             best_whole(x).map(Expr::symbols_leading),
             Prepared(None, None),
-        ));
+        );
     }
     let (mut sctx, smons) = mon::split_modes(x);
     let smons = recombine::recombine(&mut sctx, smons);
-    if cap.is_some_and(|cap| floor::cannot_beat(x, &sctx, &smons, cap)) {
-        return None;
-    }
     let result = best_of(x, &sctx, &smons, true);
     let split_won = result.as_ref().is_ok_and(|(_, split)| *split);
-    Some((
+    (
         result.map(|(e, _)| e.symbols_leading()),
         Prepared(Some((sctx, smons, split_won)), None),
-    ))
+    )
 }
 
 /// The most a scalar's split shape may multiply its number of terms by, on average, before
