@@ -87,7 +87,9 @@ fn constant_products_beside_symbolic_angles_print_as_products() {
         ),
         (
             "sin(4*pi/9)*cos(q1)*sin(q2) + cos(pi/7)*cos(q1)*l",
-            "c1 (l cos(pi/7) + sin(4*pi/9) s2)",
+            // The shared c1 is taken out of the summands in their order (extra.rs), of the
+            // same cost as `c1 (l cos(pi/7) + sin(4*pi/9) s2)`.
+            "c1 (sin(4*pi/9) s2 + l cos(pi/7))",
             Box::new(|v| {
                 a(4., 9.).sin() * v("q1").cos() * v("q2").sin()
                     + a(1., 7.).cos() * v("q1").cos() * v("l")
@@ -95,7 +97,9 @@ fn constant_products_beside_symbolic_angles_print_as_products() {
         ),
         (
             "cos(pi/9)*cos(q1+q2) + cos(pi/7)*sin(q1)",
-            "cos(pi/7) s1 + cos(pi/9) c12",
+            // The sum split by its angles' symbols, part by part (extra.rs), of the same
+            // cost as `cos(pi/7) s1 + cos(pi/9) c12`.
+            "cos(pi/9) c12 + cos(pi/7) s1",
             Box::new(|v| {
                 a(1., 9.).cos() * (v("q1") + v("q2")).cos() + a(1., 7.).cos() * v("q1").sin()
             }),

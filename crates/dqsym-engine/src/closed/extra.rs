@@ -18,13 +18,20 @@ use crate::Scalar;
 /// shorter ones can be taken).
 pub(super) fn candidates(t: &[Term], than: &Expr, others: &[Expr]) -> Vec<Expr> {
     let mut out = candidates_up_to(t, full_cost(than).0, others);
-    out.extend(common_factor(than));
+    if !out.is_empty() || super::trigfac::may_nest() {
+        out.extend(common_factor(than));
+    }
     out
 }
 
 /// The candidates of [`candidates`] made without a form found before, for costs below
 /// `bound`: what a search capped at `bound` (`floor.rs`) must count as possible winners.
 pub(super) fn candidates_up_to(t: &[Term], bound: usize, others: &[Expr]) -> Vec<Expr> {
+    // Each candidate costs an exact check: made only while half the budget is left (as
+    // `trigfac.rs`'s), so that they never turn a form found within the budget into an error.
+    if !super::trigfac::may_nest() {
+        return Vec::new();
+    }
     let mut out: Vec<Expr> = others.iter().filter_map(common_factor).collect();
     out.extend(super::square::candidates(t, bound));
     if let Some(e) = by_support(t, bound) {

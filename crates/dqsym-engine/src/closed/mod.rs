@@ -535,8 +535,13 @@ fn best_of(
         _ => (split.to_expr(sctx), true),
     };
     // A shorter form of another kind (checked exactly by `best_alternative`).
-    let best = alt::best_alternative(x, &best).unwrap_or(best);
-    if !cfg!(debug_assertions) && agrees_numerically(&best, x) {
+    // An alternative is returned only once it equals `x` exactly: not checked again (in debug
+    // builds that second expansion could run the budget out on a form already verified).
+    let (best, verified) = match alt::best_alternative(x, &best) {
+        Some(e) => (e, true),
+        None => (best, false),
+    };
+    if verified || (!cfg!(debug_assertions) && agrees_numerically(&best, x)) {
         return Ok((best, split_won));
     }
     let value = best.to_scalar();

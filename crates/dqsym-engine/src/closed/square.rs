@@ -94,6 +94,7 @@ pub(super) fn candidates(t: &[Term], bound: usize) -> Vec<Expr> {
         || t.iter()
             .any(|u| u.mode.freq.iter().any(|(s, _)| s.is_one()))
         || t.iter().all(|u| u.mode.freq.is_empty())
+        || !super::trigfac::may_nest()
         || charge(t.len() as u64).is_err()
     {
         return Vec::new();
@@ -250,13 +251,42 @@ fn square(t: &[Term]) -> Option<Expr> {
         }
         e => e,
     };
+    // A rational factor of the base's closed form goes to `k` (the root of `sin(x)^10` is
+    // found as `16 sin(x)^5`), and a power's exponent doubles: `sin(x)^10`, never
+    // `1/256 (16 sin(x)^5)^2`.
+    let (he, k) = match he {
+        Expr::Mul(v) if v.iter().any(|e| matches!(e, Expr::Num(_))) => {
+            let mut k = k;
+            let mut rest = Vec::new();
+            for e in v {
+                match e {
+                    Expr::Num(c) => k = k * &c * &c,
+                    e => rest.push(e),
+                }
+            }
+            if rest.is_empty() {
+                return None;
+            }
+            let he = if rest.len() == 1 {
+                rest.pop()?
+            } else {
+                Expr::Mul(rest)
+            };
+            (he, k)
+        }
+        he => (he, k),
+    };
+    let power = match he {
+        Expr::Pow(b, p) => Expr::Pow(b, 2 * p),
+        he => Expr::Pow(Box::new(he), 2),
+    };
     let kf = if k.is_negative() {
         neg(num(-k))
     } else {
         num(k)
     };
     let mono = monomial_expr(&f.lengths, &common);
-    Some(mul(kf, mul(mono, Expr::Pow(Box::new(he), 2))))
+    Some(mul(kf, mul(mono, power)))
 }
 
 fn monomial_expr(lengths: &[Sym], e: &[i64]) -> Expr {

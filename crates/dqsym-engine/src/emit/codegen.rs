@@ -234,12 +234,22 @@ fn distributed(v: &[Expr]) -> Option<Expr> {
         return None;
     }
     let sum = v.iter().position(|f| matches!(f, Expr::Add(_)))?;
-    let mut rest: Vec<Expr> = v
-        .iter()
-        .enumerate()
-        .filter(|&(i, f)| i != sum && !matches!(f, Expr::Num(_)))
-        .map(|(_, f)| f.clone())
-        .collect();
+    // Every sum divided by its largest coefficient first (exactly; the quotient kept in
+    // `q`): with two sums past the range, `(2^1100 + y) (x + 3^700) / (2^1100 3^700)`,
+    // scaling the first alone leaves `(2^-1100 + ...) (x + inf)` = `0 * inf`.
+    let mut rest = Vec::new();
+    for (i, f) in v.iter().enumerate() {
+        match f {
+            Expr::Num(_) => {}
+            Expr::Add(_) if i != sum => {
+                let c = largest_coefficient(f);
+                q *= &c;
+                rest.push(scaled(f, &c.recip()));
+            }
+            f if i != sum => rest.push(f.clone()),
+            _ => {}
+        }
+    }
     let scaled = scaled(&v[sum], &q);
     Some(if rest.is_empty() {
         scaled
@@ -247,6 +257,34 @@ fn distributed(v: &[Expr]) -> Option<Expr> {
         rest.push(scaled);
         Expr::Mul(rest)
     })
+}
+
+/// The largest absolute rational coefficient of the terms of `e` (1 for a term without one).
+fn largest_coefficient(e: &Expr) -> BigRational {
+    fn coefficient(t: &Expr) -> BigRational {
+        match t {
+            Expr::Num(n) => n.abs(),
+            Expr::Neg(x) => coefficient(x),
+            Expr::Mul(v) => v
+                .iter()
+                .find_map(|f| match f {
+                    Expr::Num(n) => Some(n.abs()),
+                    _ => None,
+                })
+                .unwrap_or_else(BigRational::one),
+            _ => BigRational::one(),
+        }
+    }
+    let terms = match e {
+        Expr::Add(v) => v.as_slice(),
+        e => std::slice::from_ref(e),
+    };
+    terms
+        .iter()
+        .map(coefficient)
+        .filter(|c| !c.is_zero())
+        .max()
+        .unwrap_or_else(BigRational::one)
 }
 
 /// `e` times the rational `q`, exactly: into every term of a sum, into a product's

@@ -21,9 +21,9 @@ use crate::ScalarError;
 /// The numeric core, included in the generated solver.
 const CORE: &str = include_str!("core.rs");
 
-/// The numeric core of a 4R2P with its slides three joints apart (`apart.rs`), after the core
-/// in the generated Rust solver (its `use` line dropped: there both are one module).
-const APART: &str = include_str!("apart.rs");
+/// The numeric core of a 4R2P with its slides three joints apart (`apart_solver.rs`, which
+/// `apart.rs` includes after its one import), after the core in the generated Rust solver.
+const APART: &str = include_str!("apart_solver.rs");
 
 /// The apart core in Python (a port of `apart.rs`, after `core.py`).
 const PY_APART: &str = include_str!("apart.py");
@@ -233,11 +233,7 @@ fn solver(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
     let sol = &*super::super::safe::solution(sol, lang);
     let apart = super::apart_chain(&sol.axes);
     let rust_core = if apart {
-        let tail: Vec<&str> = APART
-            .lines()
-            .filter(|l| !l.starts_with("use super::core::"))
-            .collect();
-        format!("{CORE}\n{}\n", tail.join("\n"))
+        format!("{CORE}\n{APART}")
     } else {
         CORE.to_string()
     };
