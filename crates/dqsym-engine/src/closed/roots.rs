@@ -52,32 +52,42 @@ const MAX_SWEEPS: usize = 500;
 /// The largest denominator a root's multiple of pi may have.
 const MAX_DENOMINATOR: i64 = 1_000_000;
 
-/// A complex number in f64.
+/// A complex number in f64 (also `square.rs`'s).
 #[derive(Clone, Copy, Debug)]
-struct C(f64, f64);
+pub(super) struct C(pub(super) f64, pub(super) f64);
 
 impl C {
     fn polar(r: f64, a: f64) -> C {
         C(r * a.cos(), r * a.sin())
     }
-    fn add(self, o: C) -> C {
+    pub(super) fn add(self, o: C) -> C {
         C(self.0 + o.0, self.1 + o.1)
     }
-    fn sub(self, o: C) -> C {
+    pub(super) fn sub(self, o: C) -> C {
         C(self.0 - o.0, self.1 - o.1)
     }
-    fn mul(self, o: C) -> C {
+    pub(super) fn mul(self, o: C) -> C {
         C(self.0 * o.0 - self.1 * o.1, self.0 * o.1 + self.1 * o.0)
     }
-    fn div(self, o: C) -> C {
+    pub(super) fn div(self, o: C) -> C {
         let d = o.0 * o.0 + o.1 * o.1;
         C(
             (self.0 * o.0 + self.1 * o.1) / d,
             (self.1 * o.0 - self.0 * o.1) / d,
         )
     }
-    fn abs(self) -> f64 {
+    pub(super) fn abs(self) -> f64 {
         self.0.hypot(self.1)
+    }
+    /// The principal square root.
+    pub(super) fn sqrt(self) -> C {
+        let r = self.abs();
+        let re = ((r + self.0) / 2.0).max(0.0).sqrt();
+        let im = ((r - self.0) / 2.0).max(0.0).sqrt();
+        C(re, if self.1 < 0.0 { -im } else { im })
+    }
+    pub(super) fn scale(self, k: f64) -> C {
+        C(self.0 * k, self.1 * k)
     }
     fn finite(self) -> bool {
         self.0.is_finite() && self.1.is_finite()

@@ -41,40 +41,7 @@ const MAX_DENOM: i64 = 10_000;
 
 type Exps = Vec<i64>;
 
-/// A complex number in `f64`.
-#[derive(Clone, Copy, Debug)]
-struct C(f64, f64);
-
-impl C {
-    fn add(self, o: C) -> C {
-        C(self.0 + o.0, self.1 + o.1)
-    }
-    fn sub(self, o: C) -> C {
-        C(self.0 - o.0, self.1 - o.1)
-    }
-    fn mul(self, o: C) -> C {
-        C(self.0 * o.0 - self.1 * o.1, self.0 * o.1 + self.1 * o.0)
-    }
-    fn div(self, o: C) -> C {
-        let d = o.0 * o.0 + o.1 * o.1;
-        C(
-            (self.0 * o.0 + self.1 * o.1) / d,
-            (self.1 * o.0 - self.0 * o.1) / d,
-        )
-    }
-    fn abs(self) -> f64 {
-        self.0.hypot(self.1)
-    }
-    fn sqrt(self) -> C {
-        let r = self.abs();
-        let re = ((r + self.0) / 2.0).max(0.0).sqrt();
-        let im = ((r - self.0) / 2.0).max(0.0).sqrt();
-        C(re, if self.1 < 0.0 { -im } else { im })
-    }
-    fn scale(self, k: f64) -> C {
-        C(self.0 * k, self.1 * k)
-    }
-}
+use super::roots::C;
 
 /// The sum as exponent vectors over `lengths` then `angles` (frequencies times `den`).
 struct Laurent {
