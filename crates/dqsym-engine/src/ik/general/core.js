@@ -1015,6 +1015,20 @@ function ik_gen_same(a, b, prismatic) {
     return a.every((x, i) => Math.abs(prismatic[i] ? x - b[i] : ik_gen_wrap(x - b[i])) <= IK_GEN_SAME_TOL);
 }
 
+// Adds the refined candidate q (residual res) to out, or improves the solution it repeats;
+// returns its index, -1 when out is full.
+function ik_gen_add(out, q, res, prismatic) {
+    const at = out.q.findIndex((s) => ik_gen_same(s, q, prismatic));
+    if (at >= 0) {
+        if (res < out.residual[at]) [out.q[at], out.residual[at]] = [q, res];
+        return at;
+    }
+    if (out.q.length >= IK_GEN_MAX) return -1;
+    out.q.push(q);
+    out.residual.push(res);
+    return out.q.length - 1;
+}
+
 // Every solution of E1 ... E6 M = T for a 6R chain (axes [kind, w, p], home, target; lengths
 // in the robot's, len its scale): {q, residual, degree, arrangements}, the arrangements tried
 // from first on until one's roots all gave exact solutions of their own.
@@ -1044,14 +1058,7 @@ function ik_gen_solve(axes, home, target, len, tol, first) {
             let [q, res] = ik_gen_refine(ax, hm, tg, q0);
             if (Number.isNaN(res) || res > tol.keep) continue;
             q = q.map((x, i) => (prismatic[i] ? x : ik_gen_wrap(x)));
-            let at = out.q.findIndex((s) => ik_gen_same(s, q, prismatic));
-            if (at >= 0) {
-                if (res < out.residual[at]) [out.q[at], out.residual[at]] = [q, res];
-            } else if (out.q.length < IK_GEN_MAX) {
-                out.q.push(q);
-                out.residual.push(res);
-                at = out.q.length - 1;
-            }
+            const at = ik_gen_add(out, q, res, prismatic);
             if (at >= 0 && res <= tol.pose) hit.add(at);
         }
         // Every root gave its own exact solution: the set is complete.

@@ -1,10 +1,12 @@
 //! The generated solvers of a general-method solution: the robot's exact axes and home pose
 //! as expressions in its parameters, and the numeric core: `core.rs` verbatim in Rust, so that
 //! the generated solver and the reference solver are the same algorithm, and its ports
-//! `core.py` (Python, NumPy), `core.c` (C99) and `core.js` (the IK page's JavaScript). The
-//! ports read the core's tolerances and tables as constants written here from `core.rs`
-//! (`core_constants`), never as copies; the tests of `tests/it/ik_general_ports.rs` hold the
-//! C and JavaScript ports to the reference solver's solution sets.
+//! `core.py` (Python, NumPy), `core.c` (C99) and `core.js` (the IK page's JavaScript), each
+//! followed by its port of `apart_solver.rs` (`apart.py`, `apart.c`, `apart.js`) for a 4R2P with
+//! its slides three joints apart. The ports read the core's tolerances and tables as constants
+//! written here from `core.rs` (`core_constants`), never as copies; the tests of
+//! `tests/it/ik_general_ports.rs` and `tests/it/ik_4r2p_apart.rs` hold the C and JavaScript
+//! ports to the reference solver's solution sets.
 //!
 //! What the solver computes is decided here, once; every statement and the file around it
 //! are written by the language's [`SolverSyntax`] (`emit/{rust,c,python}.rs`), as for the
@@ -36,6 +38,12 @@ const C_CORE: &str = include_str!("core.c");
 
 /// The numeric core in JavaScript (a port of `core.rs`, for the IK page).
 const JS_CORE: &str = include_str!("core.js");
+
+/// The apart core in C99 (a port of `apart_solver.rs`, after `core.c`).
+const C_APART: &str = include_str!("apart.c");
+
+/// The apart core in JavaScript (a port of `apart_solver.rs`, after `core.js`).
+const JS_APART: &str = include_str!("apart.js");
 
 /// A constant of the core by the name the ports read it by.
 type Named<T> = (&'static str, T);
@@ -242,9 +250,14 @@ fn solver(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
     } else {
         PY_CORE.to_string()
     };
+    let c_core = if apart {
+        format!("{C_CORE}\n{C_APART}")
+    } else {
+        C_CORE.to_string()
+    };
     let (long, core, mut constants) = match lang {
         Lang::Rust => (true, rust_core.as_str(), String::new()),
-        Lang::C => (true, C_CORE, core_constant_code(w)),
+        Lang::C => (true, c_core.as_str(), core_constant_code(w)),
         _ => (false, py_core.as_str(), core_constant_code(w)),
     };
     if apart && lang != Lang::Rust {
@@ -264,24 +277,10 @@ fn solver(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
         core,
         chain: chain_code(sol, w)?,
         dq_matrix,
+        apart,
     });
-    // The driver calls the apart core's entry, of the same signature.
-    Ok(match lang {
-        _ if !apart => file,
-        Lang::Rust => file.replace("ik_general::gen_solve(", "ik_general::apart_gen_solve("),
-        Lang::C => format!("{APART_UNPORTED_C}\n{file}"),
-        _ => file.replace("_gen_solve(ik_ax", "_apart_gen_solve(ik_ax"),
-    })
+    Ok(file)
 }
-
-/// The C solver of a 4R2P with its slides three joints apart: not ported (`apart.rs` has Rust
-/// and Python only), so its compilation stops with the reason rather than solve nothing.
-const APART_UNPORTED_C: &str = "#error \"dqsym: the C port of the 4R2P solver with slides three \
-joints apart is not written; use the Rust or Python solver\"";
-
-/// The page's function for such an arm: it throws the same reason.
-const APART_UNPORTED_JS: &str = "function ik_general(ax, home, T) {\n    throw new Error(\"dqsym: \
-the JavaScript port of the 4R2P solver with slides three joints apart is not written\");\n}\n";
 
 /// The apart core's constants (`apart.rs`) in the language of `w`, for its ports.
 fn apart_constant_code(w: &dyn Syntax) -> String {
@@ -330,27 +329,38 @@ pub fn ik_python(sol: &IkSolution) -> Result<String, ScalarError> {
 /// `core.rs`) with its constants written from `core.rs`, and `ik_general(ax, home, T)`, every
 /// solution as `[q, singular, approximate, residual]` as the generated solvers return them.
 pub fn ik_javascript_general(sol: &IkSolution) -> String {
-    if super::apart_chain(&sol.axes) {
-        return APART_UNPORTED_JS.to_string();
-    }
     let js = syntax(Lang::JavaScript);
     let first = sol.general.as_ref().map_or(0, super::GeneralInfo::index);
+    // A 4R2P with its slides three joints apart: the apart core after the core, its entry
+    // called by the driver.
+    let (apart, constants, solve) = if super::apart_chain(&sol.axes) {
+        (
+            format!("\n{JS_APART}"),
+            apart_constant_code(js),
+            "ik_gen_apart_solve",
+        )
+    } else {
+        (String::new(), String::new(), "ik_gen_solve")
+    };
     format!(
         "// The general 6R method: the residual above which a root of the elimination is dropped,\n\
 // the arrangement of the loop tried first, the numeric core's constants (from core.rs).\n\
-{}{}{}\n{JS_CORE}\n{JS_DRIVER}",
+{}{}{}{constants}\n{JS_CORE}{apart}\n{JS_DRIVER}    const o = {solve}(ax, home, T, len, tol, IK_FIRST_ARRANGEMENT);\n{JS_DRIVER_TAIL}",
         js.constant("IK_KEEP_TOL", &js.literal(super::KEEP_TOL), "f64"),
         js.constant("IK_FIRST_ARRANGEMENT", &first.to_string(), "usize"),
         core_constant_code(js)
     )
 }
 
+/// The page's driver of the general method, before the core's call.
 const JS_DRIVER: &str = r#"// Every solution by the general method for the axes [kind, w, p], the home pose and the target
 // (lengths in the robot's): [q, singular (never), approximate, residual] each.
 function ik_general(ax, home, T) {
     const len = ik_scale(ax, home, T);
     const tol = { pose: IK_POSE_TOL, keep: IK_KEEP_TOL };
-    const o = ik_gen_solve(ax, home, T, len, tol, IK_FIRST_ARRANGEMENT);
-    return o.q.map((q, i) => [q, false, !(o.residual[i] <= IK_POSE_TOL), o.residual[i]]);
+"#;
+
+/// The page's driver after the core's call.
+const JS_DRIVER_TAIL: &str = r#"    return o.q.map((q, i) => [q, false, !(o.residual[i] <= IK_POSE_TOL), o.residual[i]]);
 }
 "#;

@@ -189,6 +189,8 @@
 
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod apart;
+#[cfg(test)]
+mod apart_tests;
 mod closure;
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod core;
