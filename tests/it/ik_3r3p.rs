@@ -369,7 +369,7 @@ println!(\"{{}} {{}}\", q.join(\" \"), u8::from(s.approximate[i]));\n        }}\
     }
 }
 
-const C_MAIN: &str = r#"
+pub(crate) const C_MAIN: &str = r#"
 #include <stdio.h>
 
 int main(void) {

@@ -421,7 +421,7 @@ fn generated_c_solver_with_hostile_names_agrees_with_the_reference() {
 
 /// The IK page of `file` written by `dqsym walk --ik --html` (extra arguments `args`); returns
 /// its text.
-fn ik_page(file: &Path, page: &Path, args: &[&str]) -> String {
+pub(crate) fn ik_page(file: &Path, page: &Path, args: &[&str]) -> String {
     let out = Command::new(env!("CARGO_BIN_EXE_dqsym"))
         .arg("walk")
         .arg(file)
@@ -441,7 +441,7 @@ fn ik_page(file: &Path, page: &Path, args: &[&str]) -> String {
 
 /// The page's solver script without its driver (the part that reads the document): the chain,
 /// the IK data, the helpers and the general method's core.
-fn page_solver(html: &str) -> String {
+pub(crate) fn page_solver(html: &str) -> String {
     let script = html
         .split("<script>")
         .filter_map(|s| s.split("</script>").next())

@@ -429,6 +429,10 @@ static void ik_gen_apart_solve(const double axes[6][7], const double home[3][4],
         eigen = route >= 2;
         arr = arrs[route % 2];
         if (eigen && searched) continue;
+#ifdef IK_GEN_APART_EIGEN_ONLY
+        /* The tests' hook: the eigenvalue route only (apart_solve_by's eigen_only). */
+        if (!eigen) continue;
+#endif
         ik_gen_arrange(js, (const double (*)[4])g, arr, &ar);
         if (!ik_gen_apart_new(&ar, &ch)) continue;
         if (!ik_gen_apart_coefficients(&ch, c)) continue;

@@ -250,6 +250,9 @@ function ik_gen_apart_arrangements(prismatic) {
 // apart_solve), as ik_gen_solve returns them (first unused): both readings by the certified
 // search, then, where it gave up in both, by the companion matrix; the backward reading only
 // when a root of the forward one gave no new exact solution.
+// The tests' hook: the eigenvalue route only (apart_solve_by's eigen_only) when set.
+let ik_gen_apart_eigen_only = false;
+
 function ik_gen_apart_solve(axes, home, target, len, tol, first) {
     const out = { q: [], residual: [], degree: 0, arrangements: [] };
     const ax = axes.map((a) => a.map((x, k) => (k >= 4 ? x / len : x)));
@@ -262,7 +265,7 @@ function ik_gen_apart_solve(axes, home, target, len, tol, first) {
     const js = ax.map((a, i) => ({ w: a.slice(1, 4), c: a.slice(4, 7), prism: prismatic[i] }));
     let searched = false;
     for (const [eigen, arr] of [[false, arrs[0]], [false, arrs[1]], [true, arrs[0]], [true, arrs[1]]]) {
-        if (eigen && searched) continue;
+        if ((eigen && searched) || (ik_gen_apart_eigen_only && !eigen)) continue;
         const ch = ik_gen_apart_new(ik_gen_arrange(js, g, arr));
         if (ch === null) continue;
         const c = ik_gen_apart_coefficients(ch);
