@@ -365,10 +365,7 @@ fn check_page(name: &str, rows: &[Row], eigen_only: bool, count: usize) {
     } else {
         ""
     };
-    let script = format!(
-        "{js}{hook}{}",
-        crate::ik_general_prismatic_ports::NODE_MAIN
-    );
+    let script = format!("{js}{hook}{}", crate::ik_general_prismatic_ports::NODE_MAIN);
     let (qs, input) = crate::ik_3r3p::poses(rows, count, 56);
     let mut node = std::process::Command::new("node");
     node.args(["-e", &script]);

@@ -294,7 +294,11 @@ void ik(const double ik_target[4][4]{params}, ik_solutions *ik_out) {{\n"
         }
         s.push_str(&f.chain);
         s.push_str(GENERAL_DRIVER);
-        let solve = if f.apart { "ik_gen_apart_solve" } else { "ik_gen_solve" };
+        let solve = if f.apart {
+            "ik_gen_apart_solve"
+        } else {
+            "ik_gen_solve"
+        };
         s.push_str(&format!(
             "    {solve}(ik_ax, ik_home, ik_target, ik_len, ik_tol, IK_FIRST_ARRANGEMENT, &ik_o);\n"
         ));

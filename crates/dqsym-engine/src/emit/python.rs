@@ -314,7 +314,11 @@ def ik_dq(q{kw}):\n    \"\"\"ik for a unit dual quaternion (w, x, y, z) + eps (w
         ));
         s.push_str(&f.chain);
         s.push_str(GENERAL_DRIVER);
-        let solve = if f.apart { "_apart_gen_solve" } else { "_gen_solve" };
+        let solve = if f.apart {
+            "_apart_gen_solve"
+        } else {
+            "_gen_solve"
+        };
         s.push_str(&format!(
             "    return {solve}(ik_ax, ik_home, T, ik_len, IK_POSE_TOL, IK_KEEP_TOL, IK_FIRST_ARRANGEMENT)\n\n\n"
         ));

@@ -362,7 +362,11 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4]{params}) {{\n
         ));
         s.push_str(&f.chain);
         s.push_str(GENERAL_DRIVER);
-        let solve = if f.apart { "apart_gen_solve" } else { "gen_solve" };
+        let solve = if f.apart {
+            "apart_gen_solve"
+        } else {
+            "gen_solve"
+        };
         s.push_str(&format!(
             "    let ik_o = ik_general::{solve}(&ik_ax, &ik_home, ik_target, ik_len, ik_tol, IK_FIRST_ARRANGEMENT);\n"
         ));
@@ -377,7 +381,8 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4]{params}) {{\n
 
 /// The general solver's driver after the chain: the scale and the tolerances, before the
 /// core's call.
-const GENERAL_DRIVER: &str = "    // The robot's scale: the largest sum of absolute coordinates of an axis point, the\n\
+const GENERAL_DRIVER: &str =
+    "    // The robot's scale: the largest sum of absolute coordinates of an axis point, the\n\
     // home position or the target position (as ik::check::scale).\n\
     let mut ik_len: f64 = 0.0;\n\
     for a in &ik_ax {\n        ik_len = ik_len.max(a[4].abs() + a[5].abs() + a[6].abs());\n    }\n\

@@ -390,40 +390,26 @@ static int ik_gen_apart_arrangements(const int prismatic[6], int arrs[2]) {
 }
 
 /* Every solution of a 4R2P chain with its slides three joints apart (see apart_solver.rs,
-   apart_solve), with the signature of ik_gen_solve (first unused): both readings by the
+   apart_solve), with the signature of ik_gen_solve (first unused here): both readings by the
    certified search, then, where it gave up in both, by the companion matrix; the backward
    reading only when a root of the forward one gave no new exact solution. */
 static void ik_gen_apart_solve(const double axes[6][7], const double home[3][4],
                                const double target[4][4], double len, ik_gen_tol tol, int first,
                                ik_gen_out *out) {
-    double ax[6][7], hm[3][4], tg[3][4], g[3][4], ihm[3][4], q[6], cands[2][6], res,
-        c[IK_GEN_DET_DEGREE + 1][2], th[24];
-    ik_gen_joint js[6];
+    double q[6], cands[2][6], res, c[IK_GEN_DET_DEGREE + 1][2], th[24];
+    ik_gen_scaled sc;
     ik_gen_arranged ar;
     ik_gen_apart ch;
-    int prismatic[6], arrs[2], hit[IK_GEN_MAX], route, eigen, arr, searched = 0, count, found,
-        roots, hits, i, j, k, m, at;
-    (void)first;
+    const int *prismatic = sc.prismatic;
+    int arrs[2], hit[IK_GEN_MAX], route, eigen, arr, searched = 0, count, found, roots, hits, i,
+        j, k, m, at;
     memset(out, 0, sizeof *out);
-    memcpy(ax, axes, sizeof ax);
-    memcpy(hm, home, sizeof hm);
-    memcpy(tg, target, sizeof tg);
-    for (i = 0; i < 6; i++)
-        for (k = 4; k < 7; k++) ax[i][k] /= len;
-    for (i = 0; i < 3; i++) {
-        hm[i][3] /= len;
-        tg[i][3] /= len;
-    }
-    for (i = 0; i < 6; i++) prismatic[i] = ax[i][0] != 0.0;
-    if (!ik_gen_apart_arrangements(prismatic, arrs)) return;
-    ik_gen_inverse((const double (*)[4])hm, ihm);
-    ik_gen_compose((const double (*)[4])tg, (const double (*)[4])ihm, g);
-    for (i = 0; i < 6; i++) {
-        for (k = 0; k < 3; k++) {
-            js[i].w[k] = ax[i][1 + k];
-            js[i].c[k] = ax[i][4 + k];
-        }
-        js[i].prism = prismatic[i];
+    ik_gen_scale(axes, home, target, len, &sc);
+    /* Any other chain by the core's elimination (no generated solver calls this entry for one;
+       so the core's entry stays in use, as -Wunused-function wants). */
+    if (!ik_gen_apart_arrangements(prismatic, arrs)) {
+        ik_gen_solve(axes, home, target, len, tol, first, out);
+        return;
     }
     for (route = 0; route < 4; route++) {
         eigen = route >= 2;
@@ -433,7 +419,7 @@ static void ik_gen_apart_solve(const double axes[6][7], const double home[3][4],
         /* The tests' hook: the eigenvalue route only (apart_solve_by's eigen_only). */
         if (!eigen) continue;
 #endif
-        ik_gen_arrange(js, (const double (*)[4])g, arr, &ar);
+        ik_gen_arrange(sc.js, (const double (*)[4])sc.g, arr, &ar);
         if (!ik_gen_apart_new(&ar, &ch)) continue;
         if (!ik_gen_apart_coefficients(&ch, c)) continue;
         found = eigen ? ik_gen_apart_eigen_roots((const double (*)[2])c, th, &count)
@@ -450,8 +436,8 @@ static void ik_gen_apart_solve(const double axes[6][7], const double home[3][4],
             roots += m;
             for (j = 0; j < m; j++) {
                 for (k = 0; k < 6; k++) q[ch.ar.perm[k]] = cands[j][k];
-                res = ik_gen_refine((const double (*)[7])ax, (const double (*)[4])hm,
-                                    (const double (*)[4])tg, q);
+                res = ik_gen_refine((const double (*)[7])sc.ax, (const double (*)[4])sc.hm,
+                                    (const double (*)[4])sc.tg, q);
                 if (isnan(res) || res > tol.keep) continue;
                 for (k = 0; k < 6; k++)
                     if (!prismatic[k]) q[k] = ik_gen_wrap(q[k]);

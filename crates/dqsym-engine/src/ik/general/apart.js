@@ -255,14 +255,9 @@ let ik_gen_apart_eigen_only = false;
 
 function ik_gen_apart_solve(axes, home, target, len, tol, first) {
     const out = { q: [], residual: [], degree: 0, arrangements: [] };
-    const ax = axes.map((a) => a.map((x, k) => (k >= 4 ? x / len : x)));
-    const hm = home.slice(0, 3).map((r) => r.map((x, c) => (c === 3 ? x / len : x)));
-    const tg = target.slice(0, 3).map((r) => r.map((x, c) => (c === 3 ? x / len : x)));
-    const prismatic = ax.map((a) => a[0] !== 0);
+    const { ax, hm, tg, prismatic, g, js } = ik_gen_scale(axes, home, target, len);
     const arrs = ik_gen_apart_arrangements(prismatic);
     if (arrs === null) return out;
-    const g = ik_gen_compose(tg, ik_gen_inverse(hm));
-    const js = ax.map((a, i) => ({ w: a.slice(1, 4), c: a.slice(4, 7), prism: prismatic[i] }));
     let searched = false;
     for (const [eigen, arr] of [[false, arrs[0]], [false, arrs[1]], [true, arrs[0]], [true, arrs[1]]]) {
         if ((eigen && searched) || (ik_gen_apart_eigen_only && !eigen)) continue;

@@ -329,7 +329,10 @@ impl ApartChain {
 /// forward kinematics decide). `None` when `D` vanishes identically to rounding or the QR
 /// iteration does not converge.
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn apart_eigen_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) -> Option<usize> {
+pub(crate) fn apart_eigen_roots(
+    c: &[(f64, f64); DET_DEGREE + 1],
+    out: &mut [f64; 24],
+) -> Option<usize> {
     let mut b0 = 0.0;
     for cj in c {
         b0 += cj.0.hypot(cj.1);
@@ -487,7 +490,12 @@ pub(crate) fn apart_solve_by(
     });
     // Both readings by the certified search, then (where it gave up in both) by the
     // eigenvalues.
-    let routes = [(false, arrs[0]), (false, arrs[1]), (true, arrs[0]), (true, arrs[1])];
+    let routes = [
+        (false, arrs[0]),
+        (false, arrs[1]),
+        (true, arrs[0]),
+        (true, arrs[1]),
+    ];
     let mut searched = false;
     for (eigen, arr) in routes {
         if (eigen && searched) || (eigen_only && !eigen) {

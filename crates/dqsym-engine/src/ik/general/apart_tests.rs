@@ -9,8 +9,8 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::apart::{apart_eigen_roots, apart_solve_by};
-use super::core::{trig_eval, trig_roots, trig_table, GenAxis, GEN_MAX, NEAR_REAL};
-use super::det_tests::{gap, product, real_roots, Factor, Rng};
+use super::core::{trig_eval, trig_roots, trig_table, GenAxis, DET_DEGREE, GEN_MAX, NEAR_REAL};
+use super::det_tests::{gap, product, random_factors, real_roots, separation, Factor, Rng};
 
 /// Checks `apart_eigen_roots` on the product of `factors`: every real root has a found root
 /// within `tol`, and every found root is near a real root or near a complex pair close enough
@@ -48,31 +48,11 @@ fn check_eigen(factors: &[Factor], scale: f64, tol: f64) -> Vec<f64> {
 fn eigen_roots_find_every_real_root_of_random_products() {
     let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
     for _ in 0..300 {
-        let deg = 1 + (rng.unit() * 8.0) as usize;
-        let factors: Vec<Factor> = (0..deg)
-            .map(|_| {
-                let mu = rng.angle();
-                if rng.unit() < 0.6 {
-                    Factor::Real {
-                        mu,
-                        delta: 0.05 + 1.4 * rng.unit(),
-                    }
-                } else {
-                    Factor::Complex {
-                        mu,
-                        eta: 0.05 + rng.unit(),
-                    }
-                }
-            })
-            .collect();
-        // Roots of different factors that fall close are fixed only to about the square root
-        // of the rounding over their distance.
-        let real = real_roots(&factors);
-        let s = real
-            .iter()
-            .enumerate()
-            .flat_map(|(i, a)| real[i + 1..].iter().map(move |b| gap(*a, *b)))
-            .fold(1.0, f64::min);
+        let deg = 1 + (rng.unit() * DET_DEGREE as f64) as usize;
+        let factors = random_factors(&mut rng, deg, 0.6);
+        // Roots of different factors that fall close are fixed only to about the rounding
+        // over their distance.
+        let s = separation(&factors);
         let tol = if s > 1e-3 { 1e-8 } else { 1e-3 };
         check_eigen(&factors, 10f64.powf(6.0 * rng.unit() - 3.0), tol);
     }
@@ -170,7 +150,13 @@ fn unit_vector(rng: &mut Rng) -> [f64; 3] {
 /// The largest difference of two joint vectors (angles on the circle).
 fn dist(a: &[f64; 6], b: &[f64; 6], slides: &[bool; 6]) -> f64 {
     (0..6)
-        .map(|i| if slides[i] { (a[i] - b[i]).abs() } else { gap(a[i], b[i]) })
+        .map(|i| {
+            if slides[i] {
+                (a[i] - b[i]).abs()
+            } else {
+                gap(a[i], b[i])
+            }
+        })
         .fold(0.0, f64::max)
 }
 
@@ -207,8 +193,13 @@ fn apart_solver_through_the_eigenvalue_route_is_the_certified_one() {
         ];
         let hm: [[f64; 4]; 3] = [home[0], home[1], home[2]];
         for _ in 0..20 {
-            let q: [f64; 6] =
-                std::array::from_fn(|i| if slides[i] { rng.unit() - 0.5 } else { rng.angle() });
+            let q: [f64; 6] = std::array::from_fn(|i| {
+                if slides[i] {
+                    rng.unit() - 0.5
+                } else {
+                    rng.angle()
+                }
+            });
             let t = forward(&ax, &home, &q);
             let solve = |eigen: bool| {
                 let mut sing = [false; GEN_MAX];
@@ -224,7 +215,10 @@ fn apart_solver_through_the_eigenvalue_route_is_the_certified_one() {
                     .flat_map(|r| (0..4).map(move |c| (r, c)))
                     .map(|(r, c)| (f[r][c] - t[r][c]).abs())
                     .fold(0.0, f64::max);
-                assert!(dev <= 1e-9, "arm {arm}: {s:?} (residual {res:e}) misses by {dev:e}");
+                assert!(
+                    dev <= 1e-9,
+                    "arm {arm}: {s:?} (residual {res:e}) misses by {dev:e}"
+                );
             }
             assert!(
                 by_eigen

@@ -1029,17 +1029,24 @@ function ik_gen_add(out, q, res, prismatic) {
     return out.q.length - 1;
 }
 
-// Every solution of E1 ... E6 M = T for a 6R chain (axes [kind, w, p], home, target; lengths
-// in the robot's, len its scale): {q, residual, degree, arrangements}, the arrangements tried
-// from first on until one's roots all gave exact solutions of their own.
-function ik_gen_solve(axes, home, target, len, tol, first) {
-    const out = { q: [], residual: [], degree: 0, arrangements: [] };
+// The chain and the target in the core's units (every length over the scale len): {ax, hm, tg
+// (the target's top rows), prismatic, g = T M^-1, js (the joints)}.
+function ik_gen_scale(axes, home, target, len) {
     const ax = axes.map((a) => a.map((x, k) => (k >= 4 ? x / len : x)));
     const hm = home.slice(0, 3).map((r) => r.map((x, c) => (c === 3 ? x / len : x)));
     const tg = target.slice(0, 3).map((r) => r.map((x, c) => (c === 3 ? x / len : x)));
     const prismatic = ax.map((a) => a[0] !== 0);
     const g = ik_gen_compose(tg, ik_gen_inverse(hm));
     const js = ax.map((a, i) => ({ w: a.slice(1, 4), c: a.slice(4, 7), prism: prismatic[i] }));
+    return { ax, hm, tg, prismatic, g, js };
+}
+
+// Every solution of E1 ... E6 M = T for a 6R chain (axes [kind, w, p], home, target; lengths
+// in the robot's, len its scale): {q, residual, degree, arrangements}, the arrangements tried
+// from first on until one's roots all gave exact solutions of their own.
+function ik_gen_solve(axes, home, target, len, tol, first) {
+    const out = { q: [], residual: [], degree: 0, arrangements: [] };
+    const { ax, hm, tg, prismatic, g, js } = ik_gen_scale(axes, home, target, len);
     const f0 = first % 12;
     for (let k = 0; k < 12; k++) {
         const arr = k === 0 ? f0 : k <= f0 ? k - 1 : k;

@@ -171,34 +171,43 @@ fn check_or_give_up(factors: &[Factor], scale: f64, tol: f64, may_give_up: bool)
     }
 }
 
+/// `deg` random factors, each real (two roots) with probability `p_real`, else a complex pair.
+pub(super) fn random_factors(rng: &mut Rng, deg: usize, p_real: f64) -> Vec<Factor> {
+    (0..deg)
+        .map(|_| {
+            let mu = rng.angle();
+            if rng.unit() < p_real {
+                Factor::Real {
+                    mu,
+                    delta: 0.05 + 1.4 * rng.unit(),
+                }
+            } else {
+                Factor::Complex {
+                    mu,
+                    eta: 0.05 + rng.unit(),
+                }
+            }
+        })
+        .collect()
+}
+
+/// The least distance of two real roots of `factors` (1 at most).
+pub(super) fn separation(factors: &[Factor]) -> f64 {
+    let real = real_roots(factors);
+    real.iter()
+        .enumerate()
+        .flat_map(|(i, a)| real[i + 1..].iter().map(move |b| gap(*a, *b)))
+        .fold(1.0, f64::min)
+}
+
 #[test]
 fn trig_roots_finds_every_real_root_of_random_products() {
     let mut rng = Rng(0x2545_f491_4f6c_dd1d);
     for _ in 0..300 {
-        let factors: Vec<Factor> = (0..DET_DEGREE)
-            .map(|_| {
-                let mu = rng.angle();
-                if rng.unit() < 0.5 {
-                    Factor::Real {
-                        mu,
-                        delta: 0.05 + 1.4 * rng.unit(),
-                    }
-                } else {
-                    Factor::Complex {
-                        mu,
-                        eta: 0.05 + rng.unit(),
-                    }
-                }
-            })
-            .collect();
+        let factors = random_factors(&mut rng, DET_DEGREE, 0.5);
         // Two roots of different factors may fall close: the tolerance is the roots' own
         // accuracy near a pair at distance s (rounding over |D′| ~ s), at least 1e-9.
-        let real = real_roots(&factors);
-        let s = real
-            .iter()
-            .enumerate()
-            .flat_map(|(i, a)| real[i + 1..].iter().map(move |b| gap(*a, *b)))
-            .fold(1.0, f64::min);
+        let s = separation(&factors);
         let tol = if s > 1e-4 { 1e-9 } else { 1e-3 };
         check(&factors, 10f64.powf(6.0 * rng.unit() - 3.0), tol);
     }
