@@ -357,7 +357,12 @@ fn check_page(name: &str, rows: &[Row], eigen_only: bool, count: usize) {
     let dir = crate::tools::temp_dir(&format!("ik-apart-js-{tag}-{eigen_only}"));
     let file = dir.join("arm.toml");
     std::fs::write(&file, crate::ik_general_prismatic::dh_toml(name, rows)).expect("write");
-    let html = crate::ik_general_ports::ik_page(&file, &dir.join("page.html"), &[]);
+    // The drawing of a random arm needs more than the default work budget.
+    let html = crate::ik_general_ports::ik_page(
+        &file,
+        &dir.join("page.html"),
+        &["--work-budget", "100000000"],
+    );
     let js = crate::ik_general_ports::page_solver(&html);
     assert!(js.contains("function ik_gen_apart_solve("), "{name}");
     let hook = if eigen_only {
