@@ -348,34 +348,67 @@ fn check_c(name: &str, rows: &[Row], eigen_only: bool, count: usize) {
     crate::ik_3r3p::check_output("C", name, &sol, rows, &qs, &out);
 }
 
-/// The IK page of `dqsym walk --ik --html` (its chain, helpers, `core.js` and `apart.js`), run
-/// with node at `count` poses of `rows`, its roots of `D` by the eigenvalue route only when
-/// `eigen_only` (the port's hook `ik_gen_apart_eigen_only`): the reference's solutions.
+/// The IK page's solver (its chain, helpers, `core.js` and `apart.js`: the pieces the page
+/// puts together, the chain evaluated by the library), run with node at `count` poses of
+/// `rows`, its roots of `D` by the eigenvalue route only when `eigen_only` (the port's hook
+/// `ik_gen_apart_eigen_only`): the reference's solutions.
 fn check_page(name: &str, rows: &[Row], eigen_only: bool, count: usize) {
     let sol = derive(name, rows, IkMethod::Auto);
-    let tag: String = name.chars().filter(char::is_ascii_alphanumeric).collect();
-    let dir = crate::tools::temp_dir(&format!("ik-apart-js-{tag}-{eigen_only}"));
-    let file = dir.join("arm.toml");
-    std::fs::write(&file, crate::ik_general_prismatic::dh_toml(name, rows)).expect("write");
-    // The drawing of a random arm needs more than the default work budget.
-    let html = crate::ik_general_ports::ik_page(
-        &file,
-        &dir.join("page.html"),
-        &["--work-budget", "100000000"],
+    let js = format!(
+        "{}{}{}",
+        crate::ik_general_ports::js_chain(&sol),
+        dqsym::ik::ik_javascript_helpers(&sol),
+        dqsym::ik::ik_javascript_general(&sol)
     );
-    let js = crate::ik_general_ports::page_solver(&html);
     assert!(js.contains("function ik_gen_apart_solve("), "{name}");
     let hook = if eigen_only {
         "ik_gen_apart_eigen_only = true;\n"
     } else {
         ""
     };
-    let script = format!("{js}{hook}{}", crate::ik_general_prismatic_ports::NODE_MAIN);
+    run_page_solver(name, rows, &sol, &format!("{js}{hook}"), count);
+}
+
+/// Runs the page's solver `js` with node at `count` poses of `rows` and checks its output
+/// against the reference.
+fn run_page_solver(name: &str, rows: &[Row], sol: &IkSolution, js: &str, count: usize) {
+    let script = format!("{js}{}", crate::ik_general_prismatic_ports::NODE_MAIN);
     let (qs, input) = crate::ik_3r3p::poses(rows, count, 56);
     let mut node = std::process::Command::new("node");
     node.args(["-e", &script]);
     let out = crate::tools::run(node, &input, "node on the apart page solver");
-    crate::ik_3r3p::check_output("JavaScript", name, &sol, rows, &qs, &out);
+    crate::ik_3r3p::check_output("JavaScript", name, sol, rows, &qs, &out);
+}
+
+/// An RPRRPR arm whose angles are multiples of pi/12 (so that its walkthrough's drawing stays
+/// small), slides at joints 2 and 5.
+fn page_arm() -> Vec<Row> {
+    let n = |t: &'static str, v: f64| (t, v);
+    vec![
+        rev(0.12, 0.05, n("pi/3", PI / 3.0)),
+        pri(n("pi/4", PI / 4.0), 0.1, n("-pi/4", -PI / 4.0)),
+        rev(0.07, 0.2, n("2*pi/3", 2.0 * PI / 3.0)),
+        rev(-0.05, 0.15, n("pi/6", PI / 6.0)),
+        pri(n("-pi/3", -PI / 3.0), 0.03, n("-5*pi/12", -5.0 * PI / 12.0)),
+        rev(0.09, 0.1, n("pi/4", PI / 4.0)),
+    ]
+}
+
+/// The IK page itself (`dqsym walk --ik --html`) of an arm with its slides three joints apart:
+/// its script (chain, helpers, `core.js`, `apart.js`) run with node at 100 poses returns the
+/// reference's solutions.
+#[test]
+fn ik_page_of_an_apart_arm_solves_it() {
+    let (name, rows) = ("RPRRPR page", page_arm());
+    let sol = derive(name, &rows, IkMethod::Auto);
+    assert!(sol.general.is_some(), "{}", sol.family);
+    let dir = crate::tools::temp_dir("ik-apart-page");
+    let file = dir.join("arm.toml");
+    std::fs::write(&file, crate::ik_general_prismatic::dh_toml(name, &rows)).expect("write");
+    let html = crate::ik_general_ports::ik_page(&file, &dir.join("page.html"), &[]);
+    let js = crate::ik_general_ports::page_solver(&html);
+    assert!(js.contains("function ik_gen_apart_solve("), "{name}");
+    run_page_solver(name, &rows, &sol, &js, 100);
 }
 
 /// The generated C solver at 200 poses of each placement: the reference's solutions.

@@ -520,8 +520,8 @@ fn page_javascript_solver_agrees_with_the_reference() {
 }
 
 /// `dqsym_ik_chain()` and `IK` as the page defines them, for an arm without parameters, from
-/// its axes and home pose evaluated by the library.
-fn js_chain(sol: &IkSolution) -> String {
+/// its axes, their kinds and its home pose evaluated by the library.
+pub(crate) fn js_chain(sol: &IkSolution) -> String {
     let num = |x: &dqsym::Scalar| {
         x.eval(&|_: &str| None)
             .unwrap_or_else(|e| panic!("a numeric axis entry: {e}"))
@@ -537,9 +537,21 @@ fn js_chain(sol: &IkSolution) -> String {
             entries.push(format!("home{r}{c}: {:e}", num(x)));
         }
     }
+    let kinds: Vec<&str> = sol
+        .axes
+        .iter()
+        .map(|a| {
+            if a.kind == dqsym::JointKind::Prismatic {
+                "1"
+            } else {
+                "0"
+            }
+        })
+        .collect();
     format!(
-        "function dqsym_ik_chain() {{ return {{{}}}; }}\nconst IK = {{ kinds: [0, 0, 0, 0, 0, 0] }};\n",
-        entries.join(", ")
+        "function dqsym_ik_chain() {{ return {{{}}}; }}\nconst IK = {{ kinds: [{}] }};\n",
+        entries.join(", "),
+        kinds.join(", ")
     )
 }
 
