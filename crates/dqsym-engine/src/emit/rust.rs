@@ -368,7 +368,7 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4]{params}) {{\n
             "gen_solve"
         };
         s.push_str(&format!(
-            "    let ik_o = ik_general::{solve}(&ik_ax, &ik_home, ik_target, ik_len, ik_tol, IK_FIRST_ARRANGEMENT);\n"
+            "let ik_o = ik_general::{solve}(&ik_ax, &ik_home, ik_target, ik_len, ik_tol, IK_FIRST_ARRANGEMENT);\n"
         ));
         s.push_str(GENERAL_DRIVER_TAIL);
         s.push_str(&self.entry_points(f.params, f.variables));
@@ -392,7 +392,7 @@ const GENERAL_DRIVER: &str =
     let ik_tol = ik_general::GenTol { pose: IK_POSE_TOL, keep: IK_KEEP_TOL };\n";
 
 /// The general solver's driver after the core's call: the solutions.
-const GENERAL_DRIVER_TAIL: &str = "    ik_out.n = ik_o.n;\n\
+const GENERAL_DRIVER_TAIL: &str = "ik_out.n = ik_o.n;\n\
     for i in 0..ik_o.n {\n        ik_out.q[i] = ik_o.q[i];\n        ik_out.singular[i] = false;\n        \
 ik_out.residual[i] = ik_o.residual[i];\n        ik_out.approximate[i] = ik_o.residual[i] > IK_POSE_TOL || ik_o.residual[i].is_nan();\n    }\n}\n\n";
 
