@@ -365,7 +365,8 @@ pub(crate) fn apart_eigen_roots(
             break;
         }
     }
-    if !(best.1 > 0.0) {
+    // (No NaN: `b0` is finite.)
+    if best.1 <= 0.0 {
         return None;
     }
     let phi = best.0;
