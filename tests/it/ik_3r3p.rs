@@ -292,9 +292,9 @@ pub(crate) fn poses(rows: &[Row], count: usize, seed: u64) -> (Vec<Vec<f64>>, St
 }
 
 /// A generated solver's output (per pose: the count, then one line of six joints and the
-/// approximate flag each) against the reference: the same solutions (paired within 1e-7: the
-/// solvers evaluate the same closed forms in another order), the same flags, every unflagged
-/// one reproducing the pose by the model here.
+/// approximate flag each) against the reference: the same solutions (paired within 1e-7 times
+/// the largest joint, at least 1: the solvers evaluate the same closed forms in another order),
+/// the same flags, every unflagged one reproducing the pose by the model here.
 pub(crate) fn check_output(
     what: &str,
     name: &str,
@@ -321,9 +321,13 @@ pub(crate) fn check_output(
             "{what} {name} at {q:?}: {got:?} vs {reference:?}"
         );
         for r in &reference {
+            // A far solution (slides nearly parallel, lengths of hundreds) is fixed only to
+            // about the rounding times its length: joints compared relative to the largest.
+            let big = r.q.iter().fold(1.0f64, |m, x| m.max(x.abs()));
             assert!(
                 got.iter()
-                    .any(|g| dist(rows, &g[..6], &r.q) <= 1e-7 && (g[6] != 0.0) == r.approximate),
+                    .any(|g| dist(rows, &g[..6], &r.q) <= 1e-7 * big
+                        && (g[6] != 0.0) == r.approximate),
                 "{what} {name}: {:?} not among {got:?}",
                 r.q
             );
@@ -369,7 +373,7 @@ println!(\"{{}} {{}}\", q.join(\" \"), u8::from(s.approximate[i]));\n        }}\
     }
 }
 
-const C_MAIN: &str = r#"
+pub(crate) const C_MAIN: &str = r#"
 #include <stdio.h>
 
 int main(void) {

@@ -5,7 +5,9 @@
 //! `ik_general_prismatic.rs` (independent of the engine's product of exponentials): every
 //! unflagged solution reproduces the pose to 1e-9 (rotation entries, positions over the arm's
 //! size), the original configuration is among them, the count agrees with an independent
-//! Levenberg–Marquardt multistart, and near-singular poses return nothing wrong unflagged.
+//! Levenberg–Marquardt multistart, near-singular poses return nothing wrong unflagged, and the
+//! generated solvers (Rust, C, Python, the IK page's JavaScript) return the reference's
+//! solutions.
 
 use crate::common::Rng;
 use crate::ik_general_prismatic::{
@@ -323,17 +325,128 @@ print(len(sols))\n    for q, sg, ap, _ in sols:\n        print(' '.join(repr(flo
     }
 }
 
-/// The C solver and the page's JavaScript have no port of the apart core yet: the C solver
-/// stops its compilation with the reason, the page's function throws it (never a silent empty
-/// solution set).
+/// The generated C solver (`apart.c` after `core.c`, compiled under `-std=c99 -pedantic -Wall
+/// -Wextra -Werror`) at `count` poses of `rows`, its roots of `D` by the eigenvalue route only
+/// when `eigen_only` (the port's hook `IK_GEN_APART_EIGEN_ONLY`): the reference's solutions.
+fn check_c(name: &str, rows: &[Row], eigen_only: bool, count: usize) {
+    let sol = derive(name, rows, IkMethod::Auto);
+    let code = dqsym::ik::ik_c(&sol).expect("c");
+    assert!(code.contains("ik_gen_apart_solve(ik_ax"), "{name}");
+    let hook = if eigen_only {
+        "#define IK_GEN_APART_EIGEN_ONLY\n"
+    } else {
+        ""
+    };
+    let tag: String = name.chars().filter(char::is_ascii_alphanumeric).collect();
+    let dir = crate::tools::temp_dir(&format!("ik-apart-c-{tag}-{eigen_only}"));
+    let (src, exe) = (dir.join("ik.c"), dir.join("ik"));
+    let text = format!("{hook}{code}{}", crate::ik_3r3p::C_MAIN);
+    std::fs::write(&src, text).expect("write");
+    crate::tools::compile_c_clean(&src, &exe, &format!("gcc on the solver of {name}"));
+    let (qs, input) = crate::ik_3r3p::poses(rows, count, 55);
+    let out = crate::tools::run(std::process::Command::new(&exe), &input, "C ik");
+    crate::ik_3r3p::check_output("C", name, &sol, rows, &qs, &out);
+}
+
+/// The IK page's solver (its chain, helpers, `core.js` and `apart.js`: the pieces the page
+/// puts together, the chain evaluated by the library), run with node at `count` poses of
+/// `rows`, its roots of `D` by the eigenvalue route only when `eigen_only` (the port's hook
+/// `ik_gen_apart_eigen_only`): the reference's solutions.
+fn check_page(name: &str, rows: &[Row], eigen_only: bool, count: usize) {
+    let sol = derive(name, rows, IkMethod::Auto);
+    let js = format!(
+        "{}{}{}",
+        crate::ik_general_ports::js_chain(&sol),
+        dqsym::ik::ik_javascript_helpers(&sol),
+        dqsym::ik::ik_javascript_general(&sol)
+    );
+    assert!(js.contains("function ik_gen_apart_solve("), "{name}");
+    let hook = if eigen_only {
+        "ik_gen_apart_eigen_only = true;\n"
+    } else {
+        ""
+    };
+    run_page_solver(name, rows, &sol, &format!("{js}{hook}"), count);
+}
+
+/// Runs the page's solver `js` with node at `count` poses of `rows` and checks its output
+/// against the reference.
+fn run_page_solver(name: &str, rows: &[Row], sol: &IkSolution, js: &str, count: usize) {
+    let script = format!("{js}{}", crate::ik_general_prismatic_ports::NODE_MAIN);
+    let (qs, input) = crate::ik_3r3p::poses(rows, count, 56);
+    let mut node = std::process::Command::new("node");
+    node.args(["-e", &script]);
+    let out = crate::tools::run(node, &input, "node on the apart page solver");
+    crate::ik_3r3p::check_output("JavaScript", name, sol, rows, &qs, &out);
+}
+
+/// An RPRRPR arm whose angles are multiples of pi/12 (so that its walkthrough's drawing stays
+/// small), slides at joints 2 and 5.
+fn page_arm() -> Vec<Row> {
+    let n = |t: &'static str, v: f64| (t, v);
+    vec![
+        rev(0.12, 0.05, n("pi/3", PI / 3.0)),
+        pri(n("pi/4", PI / 4.0), 0.1, n("-pi/4", -PI / 4.0)),
+        rev(0.07, 0.2, n("2*pi/3", 2.0 * PI / 3.0)),
+        rev(-0.05, 0.15, n("pi/6", PI / 6.0)),
+        pri(n("-pi/3", -PI / 3.0), 0.03, n("-5*pi/12", -5.0 * PI / 12.0)),
+        rev(0.09, 0.1, n("pi/4", PI / 4.0)),
+    ]
+}
+
+/// The IK page itself (`dqsym walk --ik --html`) of an arm with its slides three joints apart:
+/// its script (chain, helpers, `core.js`, `apart.js`) run with node at 100 poses returns the
+/// reference's solutions.
 #[test]
-fn unported_apart_solvers_say_so() {
-    let (name, rows) = arms().remove(2);
-    let sol = derive(&name, &rows, IkMethod::Auto);
-    let c = dqsym::ik::ik_c(&sol).expect("c");
-    assert!(c.contains("#error"), "{name}");
-    let js = dqsym::ik::ik_javascript_general(&sol);
-    assert!(js.contains("throw new Error"), "{name}");
+fn ik_page_of_an_apart_arm_solves_it() {
+    let (name, rows) = ("RPRRPR page", page_arm());
+    let sol = derive(name, &rows, IkMethod::Auto);
+    assert!(sol.general.is_some(), "{}", sol.family);
+    let dir = crate::tools::temp_dir("ik-apart-page");
+    let file = dir.join("arm.toml");
+    std::fs::write(&file, crate::ik_general_prismatic::dh_toml(name, &rows)).expect("write");
+    let html = crate::ik_general_ports::ik_page(&file, &dir.join("page.html"), &[]);
+    let js = crate::ik_general_ports::page_solver(&html);
+    assert!(js.contains("function ik_gen_apart_solve("), "{name}");
+    run_page_solver(name, &rows, &sol, &js, 100);
+}
+
+/// The generated C solver at 200 poses of each placement: the reference's solutions.
+#[test]
+fn generated_c_apart_solver_is_the_reference() {
+    for (name, rows) in arms().into_iter().step_by(2) {
+        check_c(&name, &rows, false, 200);
+    }
+}
+
+/// The IK page's JavaScript at 100 poses of each placement: the reference's solutions.
+#[test]
+fn page_javascript_apart_solver_is_the_reference() {
+    for (name, rows) in arms().into_iter().step_by(2) {
+        check_page(&name, &rows, false, 100);
+    }
+}
+
+/// The fallback where the certified root search gives up in both readings (the eigenvalues of
+/// the companion matrix of `D`), forced by each port's hook: the C solver, the page's
+/// JavaScript and the Python solver (`_APART_EIGEN_ONLY`) at 40 poses of each placement return
+/// the reference's solutions (found by the certified search).
+#[test]
+fn apart_ports_through_the_eigenvalue_route_are_the_reference() {
+    for (name, rows) in arms().into_iter().skip(1).step_by(2) {
+        check_c(&name, &rows, true, 40);
+        check_page(&name, &rows, true, 40);
+        let sol = derive(&name, &rows, IkMethod::Auto);
+        let code = dqsym::ik::ik_python(&sol).expect("python");
+        let script = format!(
+            "{code}\n\n_APART_EIGEN_ONLY = True\nimport sys\nfor line in sys.stdin:\n    v = [float(x) for x in line.split()]\n    \
+T = np.array(v[:16]).reshape(4, 4)\n    sols = ik_full(T)\n    \
+print(len(sols))\n    for q, sg, ap, _ in sols:\n        print(' '.join(repr(float(x)) for x in q), int(ap))\n"
+        );
+        let (qs, input) = crate::ik_3r3p::poses(&rows, 40, 57);
+        let out = crate::tools::run_python(&script, &input, "numpy");
+        crate::ik_3r3p::check_output("Python", &name, &sol, &rows, &qs, &out);
+    }
 }
 
 /// The family line and the report name this arm's own elimination (the four turns and the

@@ -421,7 +421,7 @@ fn generated_c_solver_with_hostile_names_agrees_with_the_reference() {
 
 /// The IK page of `file` written by `dqsym walk --ik --html` (extra arguments `args`); returns
 /// its text.
-fn ik_page(file: &Path, page: &Path, args: &[&str]) -> String {
+pub(crate) fn ik_page(file: &Path, page: &Path, args: &[&str]) -> String {
     let out = Command::new(env!("CARGO_BIN_EXE_dqsym"))
         .arg("walk")
         .arg(file)
@@ -441,7 +441,7 @@ fn ik_page(file: &Path, page: &Path, args: &[&str]) -> String {
 
 /// The page's solver script without its driver (the part that reads the document): the chain,
 /// the IK data, the helpers and the general method's core.
-fn page_solver(html: &str) -> String {
+pub(crate) fn page_solver(html: &str) -> String {
     let script = html
         .split("<script>")
         .filter_map(|s| s.split("</script>").next())
@@ -520,8 +520,8 @@ fn page_javascript_solver_agrees_with_the_reference() {
 }
 
 /// `dqsym_ik_chain()` and `IK` as the page defines them, for an arm without parameters, from
-/// its axes and home pose evaluated by the library.
-fn js_chain(sol: &IkSolution) -> String {
+/// its axes, their kinds and its home pose evaluated by the library.
+pub(crate) fn js_chain(sol: &IkSolution) -> String {
     let num = |x: &dqsym::Scalar| {
         x.eval(&|_: &str| None)
             .unwrap_or_else(|e| panic!("a numeric axis entry: {e}"))
@@ -537,9 +537,21 @@ fn js_chain(sol: &IkSolution) -> String {
             entries.push(format!("home{r}{c}: {:e}", num(x)));
         }
     }
+    let kinds: Vec<&str> = sol
+        .axes
+        .iter()
+        .map(|a| {
+            if a.kind == dqsym::JointKind::Prismatic {
+                "1"
+            } else {
+                "0"
+            }
+        })
+        .collect();
     format!(
-        "function dqsym_ik_chain() {{ return {{{}}}; }}\nconst IK = {{ kinds: [0, 0, 0, 0, 0, 0] }};\n",
-        entries.join(", ")
+        "function dqsym_ik_chain() {{ return {{{}}}; }}\nconst IK = {{ kinds: [{}] }};\n",
+        entries.join(", "),
+        kinds.join(", ")
     )
 }
 

@@ -158,7 +158,7 @@ print(len(sols))\n    for q, sg, ap, _ in sols:\n        print(' '.join(repr(flo
     }
 }
 
-const NODE_MAIN: &str = r#"
+pub(crate) const NODE_MAIN: &str = r#"
 const lines = require("fs").readFileSync(0, "utf8").trim().split("\n");
 const ch = dqsym_ik_chain();
 const ax = IK.kinds.map((k, i) => [k].concat([0, 1, 2, 3, 4, 5].map((j) => ch[`ax${i}_${j}`])));

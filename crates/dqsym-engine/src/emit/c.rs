@@ -294,6 +294,15 @@ void ik(const double ik_target[4][4]{params}, ik_solutions *ik_out) {{\n"
         }
         s.push_str(&f.chain);
         s.push_str(GENERAL_DRIVER);
+        let solve = if f.apart {
+            "ik_gen_apart_solve"
+        } else {
+            "ik_gen_solve"
+        };
+        s.push_str(&format!(
+            "    {solve}(ik_ax, ik_home, ik_target, ik_len, ik_tol, IK_FIRST_ARRANGEMENT, &ik_o);\n"
+        ));
+        s.push_str(GENERAL_DRIVER_TAIL);
         s.push_str(&self.entry_points(f.params, f.variables));
         s
     }
@@ -306,7 +315,8 @@ fn solutions_type(max: usize, dof: usize) -> String {
     )
 }
 
-/// The general solver's driver after the chain: the scale, the core's call, the solutions.
+/// The general solver's driver after the chain: the scale and the tolerances, before the
+/// core's call.
 const GENERAL_DRIVER: &str = r#"    /* The robot's scale (as ik::check::scale). */
     double ik_len = 0.0;
     ik_gen_tol ik_tol;
@@ -319,8 +329,10 @@ const GENERAL_DRIVER: &str = r#"    /* The robot's scale (as ik::check::scale). 
     if (!(ik_len > 0.0 && isfinite(ik_len))) ik_len = 1.0;
     ik_tol.pose = IK_POSE_TOL;
     ik_tol.keep = IK_KEEP_TOL;
-    ik_gen_solve(ik_ax, ik_home, ik_target, ik_len, ik_tol, IK_FIRST_ARRANGEMENT, &ik_o);
-    ik_out->n = ik_o.n;
+"#;
+
+/// The general solver's driver after the core's call: the solutions.
+const GENERAL_DRIVER_TAIL: &str = r#"    ik_out->n = ik_o.n;
     for (ik_i = 0; ik_i < ik_o.n; ik_i++) {
         for (ik_k = 0; ik_k < 6; ik_k++) ik_out->q[ik_i][ik_k] = ik_o.q[ik_i][ik_k];
         ik_out->singular[ik_i] = 0;

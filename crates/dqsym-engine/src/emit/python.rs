@@ -314,6 +314,14 @@ def ik_dq(q{kw}):\n    \"\"\"ik for a unit dual quaternion (w, x, y, z) + eps (w
         ));
         s.push_str(&f.chain);
         s.push_str(GENERAL_DRIVER);
+        let solve = if f.apart {
+            "_apart_gen_solve"
+        } else {
+            "_gen_solve"
+        };
+        s.push_str(&format!(
+            "    return {solve}(ik_ax, ik_home, T, ik_len, IK_POSE_TOL, IK_KEEP_TOL, IK_FIRST_ARRANGEMENT)\n\n\n"
+        ));
         s.push_str(&self.entry_points(f.params, f.variables));
         s.push_str("\n\n");
         s.push_str(f.dq_matrix);
@@ -322,14 +330,11 @@ def ik_dq(q{kw}):\n    \"\"\"ik for a unit dual quaternion (w, x, y, z) + eps (w
     }
 }
 
-/// The general solver's driver after the chain: the scale, the core's call.
+/// The general solver's driver after the chain: the scale, before the core's call.
 const GENERAL_DRIVER: &str = r#"    # The robot's scale (as ik::check::scale).
     ik_len = max([abs(a[4]) + abs(a[5]) + abs(a[6]) for a in ik_ax]
                  + [abs(ik_home[0][3]) + abs(ik_home[1][3]) + abs(ik_home[2][3]),
                     abs(T[0, 3]) + abs(T[1, 3]) + abs(T[2, 3])])
     if not (ik_len > 0 and math.isfinite(ik_len)):
         ik_len = 1.0
-    return _gen_solve(ik_ax, ik_home, T, ik_len, IK_POSE_TOL, IK_KEEP_TOL, IK_FIRST_ARRANGEMENT)
-
-
 "#;

@@ -362,6 +362,15 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4]{params}) {{\n
         ));
         s.push_str(&f.chain);
         s.push_str(GENERAL_DRIVER);
+        let solve = if f.apart {
+            "apart_gen_solve"
+        } else {
+            "gen_solve"
+        };
+        s.push_str(&format!(
+            "let ik_o = ik_general::{solve}(&ik_ax, &ik_home, ik_target, ik_len, ik_tol, IK_FIRST_ARRANGEMENT);\n"
+        ));
+        s.push_str(GENERAL_DRIVER_TAIL);
         s.push_str(&self.entry_points(f.params, f.variables));
         s.push('\n');
         s.push_str(f.dq_matrix);
@@ -370,17 +379,20 @@ pub fn ik_into(ik_out: &mut IkSolutions, ik_target: &[[f64; 4]; 4]{params}) {{\n
     }
 }
 
-/// The general solver's driver after the chain: the scale, the core's call, the solutions.
-const GENERAL_DRIVER: &str = "    // The robot's scale: the largest sum of absolute coordinates of an axis point, the\n\
+/// The general solver's driver after the chain: the scale and the tolerances, before the
+/// core's call.
+const GENERAL_DRIVER: &str =
+    "    // The robot's scale: the largest sum of absolute coordinates of an axis point, the\n\
     // home position or the target position (as ik::check::scale).\n\
     let mut ik_len: f64 = 0.0;\n\
     for a in &ik_ax {\n        ik_len = ik_len.max(a[4].abs() + a[5].abs() + a[6].abs());\n    }\n\
     ik_len = ik_len.max(ik_home[0][3].abs() + ik_home[1][3].abs() + ik_home[2][3].abs());\n\
     ik_len = ik_len.max(ik_target[0][3].abs() + ik_target[1][3].abs() + ik_target[2][3].abs());\n\
     if !(ik_len > 0.0 && ik_len.is_finite()) {\n        ik_len = 1.0;\n    }\n\
-    let ik_tol = ik_general::GenTol { pose: IK_POSE_TOL, keep: IK_KEEP_TOL };\n\
-    let ik_o = ik_general::gen_solve(&ik_ax, &ik_home, ik_target, ik_len, ik_tol, IK_FIRST_ARRANGEMENT);\n\
-    ik_out.n = ik_o.n;\n\
+    let ik_tol = ik_general::GenTol { pose: IK_POSE_TOL, keep: IK_KEEP_TOL };\n";
+
+/// The general solver's driver after the core's call: the solutions.
+const GENERAL_DRIVER_TAIL: &str = "ik_out.n = ik_o.n;\n\
     for i in 0..ik_o.n {\n        ik_out.q[i] = ik_o.q[i];\n        ik_out.singular[i] = false;\n        \
 ik_out.residual[i] = ik_o.residual[i];\n        ik_out.approximate[i] = ik_o.residual[i] > IK_POSE_TOL || ik_o.residual[i].is_nan();\n    }\n}\n\n";
 

@@ -188,6 +188,9 @@ pub(crate) struct GeneralFile<'a> {
     pub chain: String,
     /// The runtime helper `ik_dq_matrix`.
     pub dq_matrix: &'static str,
+    /// The chain is a 4R2P with its slides three joints apart: the driver calls the apart
+    /// core's entry (`apart_solver.rs` and its ports, after the core) instead of the core's.
+    pub apart: bool,
 }
 
 /// What the language's solver file is made of (see [`SolverSyntax::file`]).

@@ -316,6 +316,102 @@ impl ApartChain {
     }
 }
 
+/// The real roots of `D(θ) = Re Σ_j c_j e^{ijθ}` (as [`trig_roots`] returns them) where the
+/// certified search gives up (a root of multiplicity three or more to rounding, `D` and `D′`
+/// both zero there): the eigenvalues of the companion matrix of `D` in `x = tan((θ − φ)/2)`,
+/// as the core takes `det M`'s where its search gives up. With `e^{iθ'} = (1 + ix)² / (1 +
+/// x²)` (`θ' = θ − φ`), `(1 + x²)ⁿ D = Re Σ_j c_j e^{ijφ} (1 + ix)ⁿ⁺ʲ (1 − ix)ⁿ⁻ʲ` is a real
+/// polynomial of degree `2n` (`n` the degree of `D` less its top coefficients that are
+/// rounding, [`DET_TRIM`]) whose leading coefficient is `D(φ + π)`: the shift `φ` is the first
+/// of [`SHIFTS`] where that is above [`SHIFT_GOOD`] of `Σ |c_j|` (else the best), so that no
+/// root lies at `x = ∞`. An eigenvalue within [`NEAR_REAL`] of the real axis is a root `θ = φ +
+/// 2 atan x` (a multiple root splits into such a cluster; the refinement and the check by
+/// forward kinematics decide). `None` when `D` vanishes identically to rounding or the QR
+/// iteration does not converge.
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn apart_eigen_roots(
+    c: &[(f64, f64); DET_DEGREE + 1],
+    out: &mut [f64; 24],
+) -> Option<usize> {
+    let mut b0 = 0.0;
+    for cj in c {
+        b0 += cj.0.hypot(cj.1);
+    }
+    let mut n = DET_DEGREE;
+    while n > 0 && c[n].0.hypot(c[n].1) <= DET_TRIM * b0 {
+        n -= 1;
+    }
+    if !(b0 > 0.0 && b0.is_finite()) {
+        return None;
+    }
+    if n == 0 {
+        // A nonzero constant: no root.
+        return Some(0);
+    }
+    // The shift: |D(φ + π)| = |Σ_j (−1)ʲ Re(c_j e^{ijφ})| large.
+    let mut best = (0.0, -1.0);
+    for phi in SHIFTS {
+        let mut lead = 0.0;
+        for j in 0..=n {
+            let (s, co) = (j as f64 * phi).sin_cos();
+            let re = c[j].0 * co - c[j].1 * s;
+            lead += if j % 2 == 0 { re } else { -re };
+        }
+        let ratio = lead.abs() / b0;
+        if ratio > best.1 {
+            best = (phi, ratio);
+        }
+        if ratio > SHIFT_GOOD {
+            break;
+        }
+    }
+    // (No NaN: `b0` is finite.)
+    if best.1 <= 0.0 {
+        return None;
+    }
+    let phi = best.0;
+    // The polynomial's coefficients (ascending): each (1 + ix)ⁿ⁺ʲ (1 − ix)ⁿ⁻ʲ expanded as a
+    // complex polynomial, its product with c_j e^{ijφ} taken real.
+    let m = 2 * n;
+    let mut p = [0.0; 2 * DET_DEGREE + 1];
+    for j in 0..=n {
+        let (s, co) = (j as f64 * phi).sin_cos();
+        let (a, b) = (c[j].0 * co - c[j].1 * s, c[j].0 * s + c[j].1 * co);
+        let mut pr = [0.0; 2 * DET_DEGREE + 1];
+        let mut pi = [0.0; 2 * DET_DEGREE + 1];
+        pr[0] = 1.0;
+        for k in 0..m {
+            // Times (1 + i sg x), the highest power first.
+            let sg = if k < n + j { 1.0 } else { -1.0 };
+            for l in (1..=k + 1).rev() {
+                let (r0, i0) = (pr[l], pi[l]);
+                pr[l] = r0 - sg * pi[l - 1];
+                pi[l] = i0 + sg * pr[l - 1];
+            }
+        }
+        for l in 0..=m {
+            p[l] += a * pr[l] - b * pi[l];
+        }
+    }
+    // The companion matrix of the monic polynomial.
+    let mut k = [[0.0; 24]; 24];
+    for col in 0..m {
+        k[0][col] = -p[m - 1 - col] / p[m];
+    }
+    for r in 1..m {
+        k[r][r - 1] = 1.0;
+    }
+    let ev = eigenvalues(&mut k, m)?;
+    let mut count = 0;
+    for &(re, im) in &ev[..m] {
+        if im.abs() <= NEAR_REAL * (1.0 + re.abs()) && re.is_finite() {
+            out[count] = phi + 2.0 * re.atan();
+            count += 1;
+        }
+    }
+    Some(count)
+}
+
 /// The two slides three joints apart: the arrangements (`shift + 6 reversed`) that put them
 /// at arranged joints 0 and 3, forwards and backwards; `None` for any other chain.
 pub fn apart_arrangements(prismatic: &[bool; 6]) -> Option<[usize; 2]> {
@@ -336,8 +432,9 @@ pub fn apart_arrangements(prismatic: &[bool; 6]) -> Option<[usize; 2]> {
 /// Every solution of a 4R2P chain with its slides three joints apart (see the file's notes),
 /// as [`gen_solve`] returns them, and whether each one's back-substitution degenerated
 /// (`singular`). The forward reading first; when a root gave no new exact solution (a
-/// double root: two solutions sharing `θ4`), the backward one too.
-#[allow(clippy::needless_range_loop)]
+/// double root: two solutions sharing `θ4`), the backward one too. The roots of `D` by the
+/// certified search ([`trig_roots`]); where it gives up in both readings, by the companion
+/// matrix ([`apart_eigen_roots`]).
 pub fn apart_solve(
     axes: &[GenAxis; 6],
     home: &[[f64; 4]; 3],
@@ -345,6 +442,21 @@ pub fn apart_solve(
     len: f64,
     tol: GenTol,
     singular: &mut [bool; GEN_MAX],
+) -> GenOut {
+    apart_solve_by(axes, home, target, len, tol, singular, false)
+}
+
+/// [`apart_solve`], with the companion matrix's route only when `eigen_only` (the tests' way
+/// to reach the route the certified search rarely leaves to it).
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn apart_solve_by(
+    axes: &[GenAxis; 6],
+    home: &[[f64; 4]; 3],
+    target: &[[f64; 4]; 4],
+    len: f64,
+    tol: GenTol,
+    singular: &mut [bool; GEN_MAX],
+    eigen_only: bool,
 ) -> GenOut {
     let mut out = GenOut {
         q: [[0.0; 6]; GEN_MAX],
@@ -377,15 +489,33 @@ pub fn apart_solve(
         c: [ax[i][4], ax[i][5], ax[i][6]],
         prism: prismatic[i],
     });
-    for arr in arrs {
+    // Both readings by the certified search, then (where it gave up in both) by the
+    // eigenvalues.
+    let routes = [
+        (false, arrs[0]),
+        (false, arrs[1]),
+        (true, arrs[0]),
+        (true, arrs[1]),
+    ];
+    let mut searched = false;
+    for (eigen, arr) in routes {
+        if (eigen && searched) || (eigen_only && !eigen) {
+            continue;
+        }
         let Some(ch) = ApartChain::new(Arranged::new(&js, &g, arr)) else {
             continue;
         };
         let Some(c) = ch.coefficients() else { continue };
         let mut th = [0.0; 24];
-        let Some(count) = trig_roots(&c, &mut th) else {
+        let found = if eigen {
+            apart_eigen_roots(&c, &mut th)
+        } else {
+            trig_roots(&c, &mut th)
+        };
+        let Some(count) = found else {
             continue;
         };
+        searched |= !eigen;
         if out.n_arr == 0 {
             out.degree = 2 * DET_DEGREE;
         }

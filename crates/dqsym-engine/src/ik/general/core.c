@@ -1461,6 +1461,39 @@ static int ik_gen_add(ik_gen_out *out, const double q[6], double res, const int 
     return -1;
 }
 
+/* The chain and the target in the core's units (every length over the scale len): the axes,
+   the home pose and the target's top rows, G = T M^-1, the joints and which of them slide. */
+typedef struct {
+    double ax[6][7], hm[3][4], tg[3][4], g[3][4];
+    ik_gen_joint js[6];
+    int prismatic[6];
+} ik_gen_scaled;
+
+static void ik_gen_scale(const double axes[6][7], const double home[3][4],
+                         const double target[4][4], double len, ik_gen_scaled *s) {
+    double ihm[3][4];
+    int i, k;
+    memcpy(s->ax, axes, sizeof s->ax);
+    memcpy(s->hm, home, sizeof s->hm);
+    memcpy(s->tg, target, sizeof s->tg);
+    for (i = 0; i < 6; i++)
+        for (k = 4; k < 7; k++) s->ax[i][k] /= len;
+    for (i = 0; i < 3; i++) {
+        s->hm[i][3] /= len;
+        s->tg[i][3] /= len;
+    }
+    for (i = 0; i < 6; i++) s->prismatic[i] = s->ax[i][0] != 0.0;
+    ik_gen_inverse((const double (*)[4])s->hm, ihm);
+    ik_gen_compose((const double (*)[4])s->tg, (const double (*)[4])ihm, s->g);
+    for (i = 0; i < 6; i++) {
+        for (k = 0; k < 3; k++) {
+            s->js[i].w[k] = s->ax[i][1 + k];
+            s->js[i].c[k] = s->ax[i][4 + k];
+        }
+        s->js[i].prism = s->prismatic[i];
+    }
+}
+
 /* Every solution of E1 ... E6 M = T for a 6R chain (axes [kind, w, p], home and target
    positions in the robot's lengths, len its scale): the arrangements are tried in order from
    first; each nondegenerate one gives its real roots, each back-substituted, refined and
@@ -1471,35 +1504,18 @@ static void ik_gen_solve(const double axes[6][7], const double home[3][4],
                          ik_gen_out *out) {
     double roots[24][6];
     ik_gen_elim el;
-    double ax[6][7], hm[3][4], tg[3][4], g[3][4], ihm[3][4], q[6], res;
-    ik_gen_joint js[6];
+    ik_gen_scaled sc;
+    double q[6], res;
     ik_gen_arranged ar;
-    int prismatic[6], hit[IK_GEN_MAX], i, j, k, n, degree, arr, at, hits;
+    const int *prismatic = sc.prismatic;
+    int hit[IK_GEN_MAX], i, j, k, n, degree, arr, at, hits;
     memset(out, 0, sizeof *out);
-    memcpy(ax, axes, sizeof ax);
-    memcpy(hm, home, sizeof hm);
-    memcpy(tg, target, sizeof tg);
-    for (i = 0; i < 6; i++)
-        for (k = 4; k < 7; k++) ax[i][k] /= len;
-    for (i = 0; i < 3; i++) {
-        hm[i][3] /= len;
-        tg[i][3] /= len;
-    }
-    for (i = 0; i < 6; i++) prismatic[i] = ax[i][0] != 0.0;
-    ik_gen_inverse((const double (*)[4])hm, ihm);
-    ik_gen_compose((const double (*)[4])tg, (const double (*)[4])ihm, g);
-    for (i = 0; i < 6; i++) {
-        for (k = 0; k < 3; k++) {
-            js[i].w[k] = ax[i][1 + k];
-            js[i].c[k] = ax[i][4 + k];
-        }
-        js[i].prism = prismatic[i];
-    }
+    ik_gen_scale(axes, home, target, len, &sc);
     /* The arrangement that served at the derivation's generic target first, then the others. */
     for (k = 0; k < 12; k++) {
         arr = k == 0 ? first % 12 : k <= first % 12 ? k - 1 : k;
         if (out->n_arr == 12) break;
-        ik_gen_arrange(js, (const double (*)[4])g, arr, &ar);
+        ik_gen_arrange(sc.js, (const double (*)[4])sc.g, arr, &ar);
         /* The last arranged joint is eliminated by a point of its axis, which a slide moves. */
         if (prismatic[ar.perm[5]]) continue;
         ik_gen_eliminate(&ar, &el);
@@ -1512,8 +1528,8 @@ static void ik_gen_solve(const double axes[6][7], const double home[3][4],
         memset(hit, 0, sizeof hit);
         for (i = 0; i < n; i++) {
             memcpy(q, roots[i], sizeof q);
-            res = ik_gen_refine((const double (*)[7])ax, (const double (*)[4])hm,
-                                (const double (*)[4])tg, q);
+            res = ik_gen_refine((const double (*)[7])sc.ax, (const double (*)[4])sc.hm,
+                                (const double (*)[4])sc.tg, q);
             if (isnan(res) || res > tol.keep) continue;
             for (j = 0; j < 6; j++)
                 if (!prismatic[j]) q[j] = ik_gen_wrap(q[j]);

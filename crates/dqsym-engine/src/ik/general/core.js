@@ -1015,17 +1015,38 @@ function ik_gen_same(a, b, prismatic) {
     return a.every((x, i) => Math.abs(prismatic[i] ? x - b[i] : ik_gen_wrap(x - b[i])) <= IK_GEN_SAME_TOL);
 }
 
-// Every solution of E1 ... E6 M = T for a 6R chain (axes [kind, w, p], home, target; lengths
-// in the robot's, len its scale): {q, residual, degree, arrangements}, the arrangements tried
-// from first on until one's roots all gave exact solutions of their own.
-function ik_gen_solve(axes, home, target, len, tol, first) {
-    const out = { q: [], residual: [], degree: 0, arrangements: [] };
+// Adds the refined candidate q (residual res) to out, or improves the solution it repeats;
+// returns its index, -1 when out is full.
+function ik_gen_add(out, q, res, prismatic) {
+    const at = out.q.findIndex((s) => ik_gen_same(s, q, prismatic));
+    if (at >= 0) {
+        if (res < out.residual[at]) [out.q[at], out.residual[at]] = [q, res];
+        return at;
+    }
+    if (out.q.length >= IK_GEN_MAX) return -1;
+    out.q.push(q);
+    out.residual.push(res);
+    return out.q.length - 1;
+}
+
+// The chain and the target in the core's units (every length over the scale len): {ax, hm, tg
+// (the target's top rows), prismatic, g = T M^-1, js (the joints)}.
+function ik_gen_scale(axes, home, target, len) {
     const ax = axes.map((a) => a.map((x, k) => (k >= 4 ? x / len : x)));
     const hm = home.slice(0, 3).map((r) => r.map((x, c) => (c === 3 ? x / len : x)));
     const tg = target.slice(0, 3).map((r) => r.map((x, c) => (c === 3 ? x / len : x)));
     const prismatic = ax.map((a) => a[0] !== 0);
     const g = ik_gen_compose(tg, ik_gen_inverse(hm));
     const js = ax.map((a, i) => ({ w: a.slice(1, 4), c: a.slice(4, 7), prism: prismatic[i] }));
+    return { ax, hm, tg, prismatic, g, js };
+}
+
+// Every solution of E1 ... E6 M = T for a 6R chain (axes [kind, w, p], home, target; lengths
+// in the robot's, len its scale): {q, residual, degree, arrangements}, the arrangements tried
+// from first on until one's roots all gave exact solutions of their own.
+function ik_gen_solve(axes, home, target, len, tol, first) {
+    const out = { q: [], residual: [], degree: 0, arrangements: [] };
+    const { ax, hm, tg, prismatic, g, js } = ik_gen_scale(axes, home, target, len);
     const f0 = first % 12;
     for (let k = 0; k < 12; k++) {
         const arr = k === 0 ? f0 : k <= f0 ? k - 1 : k;
@@ -1044,14 +1065,7 @@ function ik_gen_solve(axes, home, target, len, tol, first) {
             let [q, res] = ik_gen_refine(ax, hm, tg, q0);
             if (Number.isNaN(res) || res > tol.keep) continue;
             q = q.map((x, i) => (prismatic[i] ? x : ik_gen_wrap(x)));
-            let at = out.q.findIndex((s) => ik_gen_same(s, q, prismatic));
-            if (at >= 0) {
-                if (res < out.residual[at]) [out.q[at], out.residual[at]] = [q, res];
-            } else if (out.q.length < IK_GEN_MAX) {
-                out.q.push(q);
-                out.residual.push(res);
-                at = out.q.length - 1;
-            }
+            const at = ik_gen_add(out, q, res, prismatic);
             if (at >= 0 && res <= tol.pose) hit.add(at);
         }
         // Every root gave its own exact solution: the set is complete.

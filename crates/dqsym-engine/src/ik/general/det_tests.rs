@@ -25,20 +25,20 @@ fn trig_at(t: &[[[f64; 12]; 12]; 3], s: f64, c: f64) -> [[f64; 12]; 12] {
     m
 }
 
-type Coef = [(f64, f64); DET_DEGREE + 1];
+pub(super) type Coef = [(f64, f64); DET_DEGREE + 1];
 
-struct Rng(u64);
+pub(super) struct Rng(pub(super) u64);
 
 impl Rng {
     /// Uniform in `[0, 1)`.
-    fn unit(&mut self) -> f64 {
+    pub(super) fn unit(&mut self) -> f64 {
         self.0 ^= self.0 << 13;
         self.0 ^= self.0 >> 7;
         self.0 ^= self.0 << 17;
         (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
 
-    fn angle(&mut self) -> f64 {
+    pub(super) fn angle(&mut self) -> f64 {
         (self.unit() - 0.5) * std::f64::consts::TAU
     }
 }
@@ -46,14 +46,14 @@ impl Rng {
 /// One factor `cos(θ − μ) − γ`: real roots `μ ± δ` for `γ = cos δ`, the complex pair `μ ± iη`
 /// for `γ = cosh η`.
 #[derive(Clone, Copy, Debug)]
-enum Factor {
+pub(super) enum Factor {
     Real { mu: f64, delta: f64 },
     Complex { mu: f64, eta: f64 },
 }
 
 /// `Re Σ c_j e^{ijθ}` of the product of `factors` (at most [`DET_DEGREE`]) times `scale`, by
 /// convolution of the two-sided Fourier series `e^{±i(θ − μ)}/2 − γ`.
-fn product(factors: &[Factor], scale: f64) -> Coef {
+pub(super) fn product(factors: &[Factor], scale: f64) -> Coef {
     let n = DET_DEGREE;
     // Two-sided coefficients f[k + n] of e^{ikθ}, k = −n..=n, complex.
     let mut f = vec![(0.0, 0.0); 2 * n + 1];
@@ -93,14 +93,14 @@ fn product(factors: &[Factor], scale: f64) -> Coef {
 }
 
 /// The distance of two angles on the circle.
-fn gap(a: f64, b: f64) -> f64 {
+pub(super) fn gap(a: f64, b: f64) -> f64 {
     let t = std::f64::consts::TAU;
     let d = (a - b).rem_euclid(t);
     d.min(t - d)
 }
 
 /// The real roots of the factors, on the circle.
-fn real_roots(factors: &[Factor]) -> Vec<f64> {
+pub(super) fn real_roots(factors: &[Factor]) -> Vec<f64> {
     factors
         .iter()
         .flat_map(|f| match *f {
@@ -171,34 +171,43 @@ fn check_or_give_up(factors: &[Factor], scale: f64, tol: f64, may_give_up: bool)
     }
 }
 
+/// `deg` random factors, each real (two roots) with probability `p_real`, else a complex pair.
+pub(super) fn random_factors(rng: &mut Rng, deg: usize, p_real: f64) -> Vec<Factor> {
+    (0..deg)
+        .map(|_| {
+            let mu = rng.angle();
+            if rng.unit() < p_real {
+                Factor::Real {
+                    mu,
+                    delta: 0.05 + 1.4 * rng.unit(),
+                }
+            } else {
+                Factor::Complex {
+                    mu,
+                    eta: 0.05 + rng.unit(),
+                }
+            }
+        })
+        .collect()
+}
+
+/// The least distance of two real roots of `factors` (1 at most).
+pub(super) fn separation(factors: &[Factor]) -> f64 {
+    let real = real_roots(factors);
+    real.iter()
+        .enumerate()
+        .flat_map(|(i, a)| real[i + 1..].iter().map(move |b| gap(*a, *b)))
+        .fold(1.0, f64::min)
+}
+
 #[test]
 fn trig_roots_finds_every_real_root_of_random_products() {
     let mut rng = Rng(0x2545_f491_4f6c_dd1d);
     for _ in 0..300 {
-        let factors: Vec<Factor> = (0..DET_DEGREE)
-            .map(|_| {
-                let mu = rng.angle();
-                if rng.unit() < 0.5 {
-                    Factor::Real {
-                        mu,
-                        delta: 0.05 + 1.4 * rng.unit(),
-                    }
-                } else {
-                    Factor::Complex {
-                        mu,
-                        eta: 0.05 + rng.unit(),
-                    }
-                }
-            })
-            .collect();
+        let factors = random_factors(&mut rng, DET_DEGREE, 0.5);
         // Two roots of different factors may fall close: the tolerance is the roots' own
         // accuracy near a pair at distance s (rounding over |D′| ~ s), at least 1e-9.
-        let real = real_roots(&factors);
-        let s = real
-            .iter()
-            .enumerate()
-            .flat_map(|(i, a)| real[i + 1..].iter().map(move |b| gap(*a, *b)))
-            .fold(1.0, f64::min);
+        let s = separation(&factors);
         let tol = if s > 1e-4 { 1e-9 } else { 1e-3 };
         check(&factors, 10f64.powf(6.0 * rng.unit() - 3.0), tol);
     }

@@ -90,9 +90,10 @@
 //! + d3 Q v3`, so `P = det(v0, Q v3, h − t(E1 E2 E4 E5)) = 0` (degree two in each, with
 //! `cos θ1`, `sin θ1` by subproblem 1 linear in `Q`); the Sylvester resultant of `F` and `P`
 //! in `tan(θ5/2)` is a trigonometric polynomial `D(θ4)` of degree 8 (17 samples, the core's
-//! certified root search). `D` has degree 6 at a generic arm: 12 roots, of which the four
-//! where the common root is `tan(θ5/2) = ±i` are no solutions, so the degree reached is 8
-//! (`degree::apart_degree`). Back-substitution: `θ5` from `F = 0` where `P` vanishes, `θ1`,
+//! certified root search; where it gives up in both readings, the eigenvalues of the companion
+//! matrix of `D` in `tan((θ4 − φ)/2)`). `D` has degree 6 at a generic arm: 12 roots, of which
+//! the four where the common root is `tan(θ5/2) = ±i` are no solutions, so the degree reached
+//! is 8 (`degree::apart_degree`). Back-substitution: `θ5` from `F = 0` where `P` vanishes, `θ1`,
 //! `θ2` by subproblem 1, `d0`, `d3` by least squares (flagged singular where the slides'
 //! current directions are parallel), then the core's refinement and check. A 3R3P arm needs
 //! no elimination: the family `ik/plan/slides.rs` solves it in closed form (two solutions).
@@ -189,6 +190,8 @@
 
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod apart;
+#[cfg(test)]
+mod apart_tests;
 mod closure;
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod core;
