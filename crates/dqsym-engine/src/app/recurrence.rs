@@ -429,12 +429,16 @@ fn shared_closed_forms(all: &[&Scalar]) -> Vec<Result<Expr, ScalarError>> {
                 Some((_, map)) => {
                     let e = unshape(e, map);
                     // A limit reached by the check itself (the budget is shared) proves
-                    // nothing either way.
-                    let d = e.to_scalar() - *x;
-                    debug_assert!(
-                        d.as_error().is_some() || d.is_zero_value(),
-                        "a shared closed form differs from its entry"
-                    );
+                    // nothing either way. Only debug builds expand the form to check it
+                    // (release builds spent 3.6% of a symbolic 6R's report on a value
+                    // they threw away).
+                    if cfg!(debug_assertions) {
+                        let d = e.to_scalar() - *x;
+                        debug_assert!(
+                            d.as_error().is_some() || d.is_zero_value(),
+                            "a shared closed form differs from its entry"
+                        );
+                    }
                     e
                 }
             })
