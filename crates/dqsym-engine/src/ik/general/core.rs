@@ -1294,10 +1294,15 @@ pub const DET_CHECK: f64 = 1e-7;
 pub const DET_TRIM: f64 = 1e-9;
 
 /// `S(θ) = T0 + T1 cos θ + T2 sin θ`, the 12 x 12 matrix [`matrix_poly`] builds at `φ = 0`
-/// divided by `1 + x²`, `x = tan(θ/2)`: the same rows with `(1, cos θ3, sin θ3)` kept.
+/// divided by `1 + x²`, `x = tan(θ/2)`, by its six distinct rows: `rows[d][r][3a + b]` is the
+/// coefficient (`d`: of `1`, `cos θ`, `sin θ`) of the monomial `x4^a x5^b` in equation `r`.
+/// Row `r + 6` of `S` is row `r` times `x4`: the same entries at the columns `3(a + 1) + b`.
+pub(crate) type TrigRows = [[[f64; 9]; 6]; 3];
+
+/// The [`TrigRows`] of `S(θ)` from `Σ = N Am` (the same rows with `(1, cos θ3, sin θ3)` kept).
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn matrix_trig(sig: &[[[f64; 9]; 6]; 3]) -> [[[f64; 12]; 12]; 3] {
-    let mut out = [[[0.0; 12]; 12]; 3];
+pub(crate) fn trig_rows(sig: &[[[f64; 9]; 6]; 3]) -> TrigRows {
+    let mut out = [[[0.0; 9]; 6]; 3];
     for row in 0..6 {
         for i4 in 0..3 {
             for i5 in 0..3 {
@@ -1310,7 +1315,6 @@ pub(crate) fn matrix_trig(sig: &[[[f64; 9]; 6]; 3]) -> [[[f64; 12]; 12]; 3] {
                         }
                         for d in 0..3 {
                             out[d][row][3 * a + b] += h * sig[d][row][m];
-                            out[d][row + 6][3 * (a + 1) + b] += h * sig[d][row][m];
                         }
                     }
                 }
@@ -1328,29 +1332,64 @@ pub(crate) fn matrix_trig(sig: &[[[f64; 9]; 6]; 3]) -> [[[f64; 12]; 12]; 3] {
 /// the determinant's sign.
 pub const DET_COLS: [usize; 12] = [0, 1, 2, 9, 10, 11, 3, 4, 5, 6, 7, 8];
 
-/// `S(θ)` at the angle with sine `s`, cosine `c`, its columns in the order [`DET_COLS`].
+/// The six rows of `S(θ)` at the angle with sine `s`, cosine `c` (54 entries).
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn trig_at_cols(t: &[[[f64; 12]; 12]; 3], s: f64, c: f64) -> [[f64; 12]; 12] {
-    let mut m = [[0.0; 12]; 12];
-    for r in 0..12 {
-        for (k, &j) in DET_COLS.iter().enumerate() {
-            m[r][k] = t[0][r][j] + c * t[1][r][j] + s * t[2][r][j];
+fn rows_at(t: &TrigRows, s: f64, c: f64) -> [[f64; 9]; 6] {
+    let mut m = [[0.0; 9]; 6];
+    for r in 0..6 {
+        for j in 0..9 {
+            m[r][j] = t[0][r][j] + c * t[1][r][j] + s * t[2][r][j];
         }
     }
     m
 }
 
-/// `det S(θ)` and the smallest LU pivot over the largest (Gaussian elimination with partial
-/// pivoting, the columns in the order [`DET_COLS`]). The row updates run over whole rows: the
-/// columns left of the pivot are never read again, and a fixed length of 12 lets the compiler
-/// vectorise the loop (the same arithmetic on every column that is read).
+/// `S(θ)` at the angle with sine `s`, cosine `c`, its columns in the order [`DET_COLS`].
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn det_trig(t: &[[[f64; 12]; 12]; 3], s: f64, c: f64) -> (f64, f64) {
-    let mut m = trig_at_cols(t, s, c);
+pub(crate) fn trig_at_cols(t: &TrigRows, s: f64, c: f64) -> [[f64; 12]; 12] {
+    let p = rows_at(t, s, c);
+    let mut m = [[0.0; 12]; 12];
+    for r in 0..6 {
+        // Columns a = 0 | a = 3 | a = 1 | a = 2: the equation, then its copy times x4.
+        m[r][..3].copy_from_slice(&p[r][..3]);
+        m[r][6..].copy_from_slice(&p[r][3..]);
+        m[r + 6][3..6].copy_from_slice(&p[r][6..]);
+        m[r + 6][6..].copy_from_slice(&p[r][..6]);
+    }
+    m
+}
+
+/// `det S(θ)` and the smallest LU pivot over the largest: Gaussian elimination with partial
+/// pivoting of `S` with its columns in the order [`DET_COLS`], on its nonzero blocks only, with
+/// the same pivots, row swaps, products and row updates (of the entries that are read again)
+/// as the elimination of the whole 12 x 12 matrix. An equation's row is `[a = 0 | a = 1 | a =
+/// 2]` and its copy's `[a = 3 | a = 1 | a = 2]`, the other block zero: columns 0-2 are
+/// eliminated within the equations' rows (the copies' multipliers are exactly zero), columns
+/// 3-5 within the copies' rows, and the last six columns are a 6 x 6 block. A third of the
+/// assembly (54 entries, not 144) and about half of the row updates' length.
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn det_trig(t: &TrigRows, s: f64, c: f64) -> (f64, f64) {
+    let mut m = rows_at(t, s, c);
+    // The copies: [a = 3 | a = 1 | a = 2] of the equation's [a = 0 | a = 1 | a = 2].
+    let mut low = [[0.0; 9]; 6];
+    for r in 0..6 {
+        let p = &m[r];
+        low[r] = [p[6], p[7], p[8], p[0], p[1], p[2], p[3], p[4], p[5]];
+    }
     let (mut det, mut minpiv, mut maxpiv) = (1.0, f64::INFINITY, 0.0);
-    for k in 0..12 {
+    let mut pivot = |det: &mut f64, d: f64| {
+        *det *= d;
+        if d.abs() < minpiv {
+            minpiv = d.abs();
+        }
+        if d.abs() > maxpiv {
+            maxpiv = d.abs();
+        }
+    };
+    // Columns 0-2, among the equations' rows (positions 0-5 of the whole matrix).
+    for k in 0..3 {
         let mut best = k;
-        for r in k + 1..12 {
+        for r in k + 1..6 {
             if m[r][k].abs() > m[best][k].abs() {
                 best = r;
             }
@@ -1359,22 +1398,97 @@ pub(crate) fn det_trig(t: &[[[f64; 12]; 12]; 3], s: f64, c: f64) -> (f64, f64) {
             m.swap(k, best);
             det = -det;
         }
-        let (top, rest) = m.split_at_mut(k + 1);
-        let pivot = &top[k];
-        let d = pivot[k];
-        det *= d;
-        if d.abs() < minpiv {
-            minpiv = d.abs();
+        let d = m[k][k];
+        pivot(&mut det, d);
+        if d != 0.0 {
+            let (top, rest) = m.split_at_mut(k + 1);
+            eliminate_rows(rest, &top[k], k, d);
         }
-        if d.abs() > maxpiv {
-            maxpiv = d.abs();
+    }
+    // Columns 3-5, among the copies' rows (positions 6-11; the equations' rows 3-5 at
+    // positions 3-5 are zero there). A copy taken as the pivot of column k trades places with
+    // the equation's row at position k; the copies left keep their positions, in their order,
+    // so the first of the largest is the whole matrix' choice. `from[i]`: the row at position
+    // 6 + i for the last block, the copy `i` (6 + i) or the equation's row `k` (k) that took
+    // its place.
+    let mut from = [6, 7, 8, 9, 10, 11];
+    for k in 3..6 {
+        let kc = k - 3;
+        let mut best = usize::MAX;
+        let mut bv = 0.0;
+        for i in 0..6 {
+            if from[i] >= 6 && low[i][kc].abs() > bv {
+                best = i;
+                bv = low[i][kc].abs();
+            }
         }
+        if best == usize::MAX {
+            // No copy is nonzero here: the zero pivot of the equation's row k.
+            pivot(&mut det, 0.0);
+            continue;
+        }
+        det = -det;
+        from[best] = k;
+        let piv = low[best];
+        let d = piv[kc];
+        pivot(&mut det, d);
+        for i in 0..6 {
+            if from[i] >= 6 {
+                let f = low[i][kc] / d;
+                if f != 0.0 {
+                    for c in 0..9 {
+                        low[i][c] -= f * piv[c];
+                    }
+                }
+            }
+        }
+    }
+    // The last six columns: a 6 x 6 block.
+    let mut b = [[0.0; 6]; 6];
+    for i in 0..6 {
+        let row = if from[i] >= 6 { &low[i] } else { &m[from[i]] };
+        b[i].copy_from_slice(&row[3..]);
+    }
+    for k in 0..6 {
+        let mut best = k;
+        for r in k + 1..6 {
+            if b[r][k].abs() > b[best][k].abs() {
+                best = r;
+            }
+        }
+        if best != k {
+            b.swap(k, best);
+            det = -det;
+        }
+        let d = b[k][k];
+        pivot(&mut det, d);
         if d == 0.0 {
             continue;
         }
-        eliminate(rest, pivot, k, d);
+        let (top, rest) = b.split_at_mut(k + 1);
+        let p = &top[k];
+        for row in rest.iter_mut() {
+            let f = row[k] / d;
+            if f != 0.0 {
+                for c in 0..6 {
+                    row[c] -= f * p[c];
+                }
+            }
+        }
     }
     (det, if maxpiv > 0.0 { minpiv / maxpiv } else { 0.0 })
+}
+
+/// One step of Gaussian elimination on the equations' compact rows (see [`det_trig`]).
+fn eliminate_rows(rest: &mut [[f64; 9]], pivot: &[f64; 9], k: usize, d: f64) {
+    for row in rest.iter_mut() {
+        let f = row[k] / d;
+        if f != 0.0 {
+            for c in 0..9 {
+                row[c] -= f * pivot[c];
+            }
+        }
+    }
 }
 
 /// One step of Gaussian elimination: the rows `rest` below the pivot row less their multiple
@@ -1771,7 +1885,7 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     Some(n)
 }
 
-/// The trigonometric polynomial `det S(θ) = Re Σ_j c_j e^{ijθ}` of `S` as [`matrix_trig`]
+/// The trigonometric polynomial `det S(θ) = Re Σ_j c_j e^{ijθ}` of `S` as [`trig_rows`]
 /// gives it: `(c, scale, degree)` with `scale` the largest of the samples and `degree` its
 /// degree less the top coefficients that are rounding ([`DET_TRIM`]). `det S` at
 /// [`DET_SAMPLES`] angles (an LU each), the `c_j` by the discrete Fourier transform (exact for
@@ -1779,7 +1893,7 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
 /// conditioned or the check angle disagrees with the interpolant.
 #[allow(clippy::needless_range_loop, clippy::type_complexity)]
 pub(crate) fn det_coefficients(
-    tm: &[[[f64; 12]; 12]; 3],
+    tm: &TrigRows,
 ) -> Option<([(f64, f64); DET_DEGREE + 1], f64, usize)> {
     let mut d = [0.0; DET_SAMPLES];
     let (mut scale, mut good) = (0.0, 0.0);
@@ -1837,7 +1951,7 @@ pub(crate) fn det_candidates(
     el: &Elim,
     roots: &mut [[f64; 6]; 24],
 ) -> Option<(usize, usize)> {
-    let tm = matrix_trig(&el.sig);
+    let tm = trig_rows(&el.sig);
     let (c, _, n) = det_coefficients(&tm)?;
     let mut th = [0.0; 24];
     let count = trig_roots(&c, &mut th)?;
