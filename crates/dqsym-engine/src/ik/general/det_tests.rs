@@ -8,9 +8,9 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::core::{
-    compose, det_coefficients, det_trig, inverse, null_vector, null_vector_lu, trig_at_cols,
-    trig_eval, trig_low, trig_roots, trig_rows, trig_table, unit, Arranged, DET_COLS, DET_COS,
-    DET_DEGREE, DET_SIN, GRID_SIN, GRID_STEP, J, NEAR_REAL, RANK_TOL,
+    compose, det_coefficients, det_trig, inverse, null_vector, null_vector_lu, null_vector_trig,
+    trig_at_cols, trig_eval, trig_low, trig_roots, trig_rows, trig_table, unit, Arranged, DET_COLS,
+    DET_COS, DET_DEGREE, DET_SIN, GRID_SIN, GRID_STEP, J, NEAR_REAL, RANK_TOL,
 };
 
 /// `S(θ)` at the angle with sine `s`, cosine `c`, in the natural column order (the test's own).
@@ -470,6 +470,19 @@ fn det_coefficients_reproduce_det_s_and_null_vectors_annihilate_it() {
                 }
                 let m = trig_at(&tm, th.sin(), th.cos());
                 let lu = residual(&m, &null_vector_lu(&m));
+                // The solver's vector from the blocks is the whole matrix' (its columns in
+                // the order DET_COLS), bit for bit.
+                let rows = trig_rows(&el.sig);
+                let (sn, cs) = th.sin_cos();
+                let blocks = null_vector_trig(&rows, sn, cs);
+                let whole = null_vector_lu(&trig_at_cols(&rows, sn, cs));
+                assert!(
+                    blocks
+                        .iter()
+                        .zip(&whole)
+                        .all(|(a, b)| a.to_bits() == b.to_bits()),
+                    "S({th}): {blocks:?} vs {whole:?}"
+                );
                 let complete = residual(&m, &null_vector(&m));
                 assert!(
                     lu <= (10.0 * complete).max(1e-9),
