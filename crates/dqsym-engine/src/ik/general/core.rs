@@ -1953,6 +1953,22 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
             Some(bracketed(c, k, a, b, fa, fb))
         }
     };
+    // Whether `D⁽ˡ⁾` has one sign at both ends of `[m − r, m + r]`, certified by Taylor's
+    // formula at `m` (the rest bounded by B8 as below, and the rounding margin `tol`): `mono`'s
+    // two evaluations there would find no change of sign, so they are skipped (and counted, so
+    // that the search takes the same course).
+    let ends_agree = |v: &[f64; TAYLOR], r: f64, l: usize, tol: f64| -> bool {
+        let (mut left, mut right, mut term) = (0.0, 0.0, 1.0);
+        for k in l..TAYLOR {
+            if k > l {
+                term *= r / (k - l) as f64;
+            }
+            right += v[k] * term;
+            left += if (k - l) % 2 == 0 { v[k] } else { -v[k] } * term;
+        }
+        let rest = b8 * term * r / (TAYLOR - l) as f64 + tol;
+        (left > rest && right > rest) || (left < -rest && right < -rest)
+    };
     while depth > 0 {
         depth -= 1;
         let (a, b) = stack[depth];
@@ -1977,16 +1993,26 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
             continue;
         }
         if v[1].abs() > moves[1] + nd * margin {
-            if let Some(x) = mono(a, b, 0, &mut evals) {
+            if ends_agree(&v, r, 0, margin) {
+                evals += 2;
+            } else if let Some(x) = mono(a, b, 0, &mut evals) {
                 out[n] = x;
                 n += 1;
             }
             continue;
         }
         if v[2].abs() > moves[2] + nd * nd * margin {
-            let Some(e) = mono(a, b, 1, &mut evals) else {
+            let e = if ends_agree(&v, r, 1, nd * margin) {
+                evals += 2;
+                None
+            } else {
+                mono(a, b, 1, &mut evals)
+            };
+            let Some(e) = e else {
                 // D′ keeps its sign: D is monotone after all.
-                if let Some(x) = mono(a, b, 0, &mut evals) {
+                if ends_agree(&v, r, 0, margin) {
+                    evals += 2;
+                } else if let Some(x) = mono(a, b, 0, &mut evals) {
                     out[n] = x;
                     n += 1;
                 }
