@@ -2139,6 +2139,18 @@ pub(crate) fn det_candidates(
 /// The pose `E1(q1) ⋯ E6(q6) M` and each joint's current axis `(w, p)` (scaled lengths).
 #[allow(clippy::needless_range_loop)]
 fn forward(ax: &[GenAxis; 6], home: &B34, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
+    forward_with::<true>(ax, home, q)
+}
+
+/// [`forward`], the current axes only when `AXES` (else zero): the refinement's trial points
+/// need the pose alone unless another step follows.
+#[inline(always)]
+#[allow(clippy::needless_range_loop)]
+fn forward_with<const AXES: bool>(
+    ax: &[GenAxis; 6],
+    home: &B34,
+    q: &[f64; 6],
+) -> (B34, [[f64; 6]; 6]) {
     let mut p: B34 = [
         [1.0, 0.0, 0.0, 0.0],
         [0.0, 1.0, 0.0, 0.0],
@@ -2149,8 +2161,10 @@ fn forward(ax: &[GenAxis; 6], home: &B34, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) 
         let a = &ax[i];
         let w = [a[1], a[2], a[3]];
         let c = [a[4], a[5], a[6]];
-        let (o, d) = motion_apply(&p, &c, &w);
-        cur[i] = [d[0], d[1], d[2], o[0], o[1], o[2]];
+        if AXES {
+            let (o, d) = motion_apply(&p, &c, &w);
+            cur[i] = [d[0], d[1], d[2], o[0], o[1], o[2]];
+        }
         let mut m: B34 = [[0.0; 4]; 3];
         if a[0] != 0.0 {
             for r in 0..3 {
@@ -2205,9 +2219,15 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
     let (mut f, mut cur) = forward(ax, home, q);
     let (mut e, mut res) = error(&f, t);
     let mut lambda = DAMP_START;
+    // The axes of `cur` belong to an earlier `q` (a step was taken without them).
+    let mut stale = false;
     for _ in 0..REFINE_ITERS {
         if res <= EXACT_TOL || res.is_nan() {
             break;
+        }
+        if stale {
+            cur = forward(ax, home, q).1;
+            stale = false;
         }
         let mut cols = [[0.0; 12]; 6];
         for i in 0..6 {
@@ -2256,11 +2276,12 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
             if ok {
                 let d = lu_solve(&m, &p, &g);
                 let next: [f64; 6] = std::array::from_fn(|i| q[i] + d[i]);
-                let (f2, cur2) = forward(ax, home, &next);
+                let (f2, _) = forward_with::<false>(ax, home, &next);
                 let (e2, r2) = error(&f2, t);
                 if r2 < res {
                     *q = next;
-                    (f, cur, e, res) = (f2, cur2, e2, r2);
+                    (f, e, res) = (f2, e2, r2);
+                    stale = true;
                     lambda = (lambda * 0.01).max(DAMP_MIN);
                     break;
                 }
