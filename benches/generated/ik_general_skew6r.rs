@@ -993,7 +993,7 @@ fn checked_null(m: &[[f64; 12]; 12], y: [f64; 12]) -> [f64; 12] {
 }
 
 /// The residual `|m y|` (largest entry) over `|m| |y|` a null vector from partial pivoting may
-/// keep (see [`null_vector_lu`]): rounding of the elimination (`1e-16` times its growth and
+/// keep (see [`null_vector_trig`]): rounding of the elimination (`1e-16` times its growth and
 /// the condition of `U`'s leading block, up to `1e4` at the bench's poses) with a margin of
 /// ten; measured `1e-11` at most where partial pivoting works, `1e-7` where it does not.
 pub const NULL_RESIDUAL: f64 = 1e-10;
@@ -1424,8 +1424,9 @@ fn rows_at(t: &TrigRows, s: f64, c: f64) -> [[f64; 9]; 6] {
     m
 }
 
-/// `S(θ)` at the angle with sine `s`, cosine `c`, its columns in the order [`DET_COLS`].
-#[allow(clippy::needless_range_loop)]
+/// `S(θ)` at the angle with sine `s`, cosine `c`, its columns in the order [`DET_COLS`] (the
+/// tests' reference for [`block_lu`]).
+#[cfg(test)]
 pub(crate) fn trig_at_cols(t: &TrigRows, s: f64, c: f64) -> [[f64; 12]; 12] {
     cols_of(&rows_at(t, s, c))
 }
@@ -1633,7 +1634,7 @@ pub(crate) fn det_trig(t: &TrigRows, s: f64, c: f64) -> (f64, f64) {
 }
 
 /// A null vector of `S(θ)`, singular to rounding, with its entries in the column order
-/// [`DET_COLS`]: [`null_vector_lu`]'s (the same bits) from the blocks' LU ([`block_lu`]).
+/// [`DET_COLS`]: `null_vector_lu`'s (the same bits) from the blocks' LU ([`block_lu`]).
 #[allow(clippy::needless_range_loop)]
 pub(crate) fn null_vector_trig(t: &TrigRows, s: f64, c: f64) -> [f64; 12] {
     let p = rows_at(t, s, c);
@@ -2147,7 +2148,7 @@ pub(crate) fn det_coefficients(
 
 /// The candidates of one arrangement by the determinant route (the hidden joint turns): `det
 /// S(θ)` by [`det_coefficients`], its real roots by [`trig_roots`], then one null vector of
-/// `S(θ)` per root ([`null_vector_lu`]). `None` (the eigenvalue route decides) when either
+/// `S(θ)` per root ([`null_vector_trig`]). `None` (the eigenvalue route decides) when either
 /// gives up.
 #[allow(clippy::needless_range_loop)]
 pub(crate) fn det_candidates(
@@ -2268,7 +2269,6 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
         }
         if stale {
             cur = forward(ax, home, q).1;
-            stale = false;
         }
         let mut cols = [[0.0; 12]; 6];
         for i in 0..6 {
