@@ -2000,13 +2000,14 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     // two evaluations there would find no change of sign, so they are skipped (and counted, so
     // that the search takes the same course).
     let ends_agree = |v: &[f64; TAYLOR], r: f64, l: usize, tol: f64| -> bool {
-        let (mut left, mut right, mut term) = (0.0, 0.0, 1.0);
+        let (mut left, mut right, mut term, mut sign) = (0.0, 0.0, 1.0, 1.0);
         for k in l..TAYLOR {
             if k > l {
                 term *= r / (k - l) as f64;
             }
             right += v[k] * term;
-            left += if (k - l) % 2 == 0 { v[k] } else { -v[k] } * term;
+            left += sign * v[k] * term;
+            sign = -sign;
         }
         let rest = b8 * term * r / (TAYLOR - l) as f64 + tol;
         (left > rest && right > rest) || (left < -rest && right < -rest)
