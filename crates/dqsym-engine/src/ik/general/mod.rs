@@ -210,7 +210,9 @@
 //! changes: what is left is spread over steps near their floor in arithmetic, and needs
 //! structure (the left side of the elimination, `E3 E4 E5` on its grid, as per-arm constants
 //! where the loop is read from joint 1 or 6; the base grid's evaluations from tables; a forward
-//! kinematics shared by the refinement's steps).
+//! kinematics shared by the refinement's steps). The C port's determinant on the blocks too
+//! (the same bits): GCC 12 `-O2` 551k per pose before and after (it vectorises neither), `-O3`
+//! 352k to 324k.
 
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod apart;
