@@ -128,9 +128,23 @@ pub(crate) struct J {
 }
 
 impl J {
-    /// `(E x, R d)` at sample `k` of the joint's variable (`inv`: the inverse motion): a
-    /// revolute joint at the angle `2πk/3`, a prismatic one at the length `SAMPLE_D[k]`.
-    fn sample(&self, k: usize, inv: bool, x: &V, d: &V) -> (V, V) {
+    /// The rotations of the joint's three samples (`inv`: of the inverse motion), computed once
+    /// for the grid of [`Arranged::elim`]; unused for a slide.
+    fn sample_rots(&self, inv: bool) -> [M3; 3] {
+        let sg = if inv { -1.0 } else { 1.0 };
+        std::array::from_fn(|k| {
+            if self.prism {
+                [[0.0; 3]; 3]
+            } else {
+                rodrigues(&self.w, sg * SAMPLE_S[k], SAMPLE_C[k])
+            }
+        })
+    }
+
+    /// `(E x, R d)` at sample `k` of the joint's variable (`inv`: the inverse motion), `rots`
+    /// its [`J::sample_rots`]: a revolute joint at the angle `2πk/3`, a prismatic one at the
+    /// length `SAMPLE_D[k]`.
+    fn sample(&self, rots: &[M3; 3], k: usize, inv: bool, x: &V, d: &V) -> (V, V) {
         let sg = if inv { -1.0 } else { 1.0 };
         if self.prism {
             let t = sg * SAMPLE_D[k];
@@ -141,7 +155,7 @@ impl J {
             ];
             (y, *d)
         } else {
-            self.apply(sg * SAMPLE_S[k], SAMPLE_C[k], x, d)
+            self.turn(&rots[k], x, d)
         }
     }
 
@@ -155,14 +169,13 @@ impl J {
         }
     }
 
-    /// `(E x, R d)` at the angle with sine `s`, cosine `co`.
-    fn apply(&self, s: f64, co: f64, x: &V, d: &V) -> (V, V) {
-        let r = rodrigues(&self.w, s, co);
+    /// `(E x, R d)` for the rotation `r` about the joint's axis.
+    fn turn(&self, r: &M3, x: &V, d: &V) -> (V, V) {
         let y = [x[0] - self.c[0], x[1] - self.c[1], x[2] - self.c[2]];
-        let ry = mv(&r, &y);
+        let ry = mv(r, &y);
         (
             [ry[0] + self.c[0], ry[1] + self.c[1], ry[2] + self.c[2]],
-            mv(&r, d),
+            mv(r, d),
         )
     }
 }
@@ -294,13 +307,14 @@ impl Arranged {
     pub(crate) fn elim(&self) -> Option<Elim> {
         let (p6, w6) = (self.j[5].c, self.j[5].w);
         // Left: E3 E4 E5 applied to (p6, w6) on a 3 x 3 x 3 grid.
+        let rots: [[M3; 3]; 5] = std::array::from_fn(|i| self.j[i].sample_rots(i < 2));
         let mut lhs = [[[[0.0; 14]; 3]; 3]; 3];
         for k5 in 0..3 {
-            let (x5, d5) = self.j[4].sample(k5, false, &p6, &w6);
+            let (x5, d5) = self.j[4].sample(&rots[4], k5, false, &p6, &w6);
             for k4 in 0..3 {
-                let (x4, d4) = self.j[3].sample(k4, false, &x5, &d5);
+                let (x4, d4) = self.j[3].sample(&rots[3], k4, false, &x5, &d5);
                 for k3 in 0..3 {
-                    let (x3, d3) = self.j[2].sample(k3, false, &x4, &d4);
+                    let (x3, d3) = self.j[2].sample(&rots[2], k3, false, &x4, &d4);
                     lhs[k3][k4][k5] = quantities(&x3, &d3);
                 }
             }
@@ -309,9 +323,9 @@ impl Arranged {
         let hp = motion_apply(&self.h, &p6, &w6);
         let mut rhs = [[[0.0; 14]; 3]; 3];
         for k1 in 0..3 {
-            let (y1, e1) = self.j[0].sample(k1, true, &hp.0, &hp.1);
+            let (y1, e1) = self.j[0].sample(&rots[0], k1, true, &hp.0, &hp.1);
             for k2 in 0..3 {
-                let (y2, e2) = self.j[1].sample(k2, true, &y1, &e1);
+                let (y2, e2) = self.j[1].sample(&rots[1], k2, true, &y1, &e1);
                 rhs[k1][k2] = quantities(&y2, &e2);
             }
         }
@@ -345,14 +359,25 @@ impl Arranged {
                 }
             }
         }
+        // (Accumulated along e, then put in am's order: the same sums.)
+        let mut t3 = [[[[0.0; 14]; 3]; 3]; 3];
         for i3 in 0..3 {
             for k3 in 0..3 {
                 let w = wt[2][i3][k3];
                 for i4 in 0..3 {
                     for i5 in 0..3 {
                         for e in 0..14 {
-                            am[e][i3][mono(i4, i5)] += w * t2[k3][i4][i5][e];
+                            t3[i3][i4][i5][e] += w * t2[k3][i4][i5][e];
                         }
+                    }
+                }
+            }
+        }
+        for i3 in 0..3 {
+            for i4 in 0..3 {
+                for i5 in 0..3 {
+                    for e in 0..14 {
+                        am[e][i3][mono(i4, i5)] = t3[i3][i4][i5][e];
                     }
                 }
             }
@@ -376,15 +401,17 @@ impl Arranged {
             }
         }
         let (qt, r, piv, rank_ratio) = qr_pivot(&bm);
+        // Each sum over e in order, the nine monomials side by side.
         let mut sig = [[[0.0; 9]; 6]; 3];
         for k in 0..3 {
             for row in 0..6 {
-                for m in 0..9 {
-                    let mut s = 0.0;
-                    for e in 0..14 {
-                        s += qt[8 + row][e] * am[e][k][m];
+                let q = &qt[8 + row];
+                let out = &mut sig[k][row];
+                for e in 0..14 {
+                    let (qe, a) = (q[e], &am[e][k]);
+                    for m in 0..9 {
+                        out[m] += qe * a[m];
                     }
-                    sig[k][row][m] = s;
                 }
             }
         }
@@ -899,7 +926,9 @@ pub(crate) fn null_vector(m: &[[f64; 12]; 12]) -> [f64; 12] {
 /// pivot `u_kk` is the zero one; `y_k = 1`, `y_j = 0` beyond `k` and the triangle above solved
 /// give `U y = 0`, hence `m y = 0`. The rows below a tiny pivot are not used. When the residual
 /// is above [`NULL_RESIDUAL`] (partial pivoting did not reveal the rank, or the root is
-/// inexact) the vector of complete pivoting ([`null_vector`]) is taken.
+/// inexact) the vector of complete pivoting ([`null_vector`]) is taken. (The solver takes the
+/// same vector of `S(θ)` from its blocks, [`null_vector_trig`]; this is its reference.)
+#[cfg(test)]
 #[allow(clippy::needless_range_loop)]
 pub(crate) fn null_vector_lu(m: &[[f64; 12]; 12]) -> [f64; 12] {
     let mut a = *m;
@@ -932,8 +961,14 @@ pub(crate) fn null_vector_lu(m: &[[f64; 12]; 12]) -> [f64; 12] {
         }
         y[i] = if a[i][i] == 0.0 { 0.0 } else { s / a[i][i] };
     }
-    // Partial pivoting need not reveal the rank: checked by the residual, else complete
-    // pivoting.
+    checked_null(m, y)
+}
+
+/// `y` when it is a null vector of `m` to rounding (the residual `|m y|` at most
+/// [`NULL_RESIDUAL`] `|m| |y|`), else the vector of complete pivoting ([`null_vector`]):
+/// partial pivoting need not reveal the rank.
+#[allow(clippy::needless_range_loop)]
+fn checked_null(m: &[[f64; 12]; 12], y: [f64; 12]) -> [f64; 12] {
     let (mut ms, mut ys, mut res) = (0.0, 0.0, 0.0);
     for r in 0..12 {
         let mut s = 0.0;
@@ -958,7 +993,7 @@ pub(crate) fn null_vector_lu(m: &[[f64; 12]; 12]) -> [f64; 12] {
 }
 
 /// The residual `|m y|` (largest entry) over `|m| |y|` a null vector from partial pivoting may
-/// keep (see [`null_vector_lu`]): rounding of the elimination (`1e-16` times its growth and
+/// keep (see [`null_vector_trig`]): rounding of the elimination (`1e-16` times its growth and
 /// the condition of `U`'s leading block, up to `1e4` at the bench's poses) with a margin of
 /// ten; measured `1e-11` at most where partial pivoting works, `1e-7` where it does not.
 pub const NULL_RESIDUAL: f64 = 1e-10;
@@ -1335,10 +1370,15 @@ pub const DET_CHECK: f64 = 1e-7;
 pub const DET_TRIM: f64 = 1e-9;
 
 /// `S(θ) = T0 + T1 cos θ + T2 sin θ`, the 12 x 12 matrix [`matrix_poly`] builds at `φ = 0`
-/// divided by `1 + x²`, `x = tan(θ/2)`: the same rows with `(1, cos θ3, sin θ3)` kept.
+/// divided by `1 + x²`, `x = tan(θ/2)`, by its six distinct rows: `rows[d][r][3a + b]` is the
+/// coefficient (`d`: of `1`, `cos θ`, `sin θ`) of the monomial `x4^a x5^b` in equation `r`.
+/// Row `r + 6` of `S` is row `r` times `x4`: the same entries at the columns `3(a + 1) + b`.
+pub(crate) type TrigRows = [[[f64; 9]; 6]; 3];
+
+/// The [`TrigRows`] of `S(θ)` from `Σ = N Am` (the same rows with `(1, cos θ3, sin θ3)` kept).
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn matrix_trig(sig: &[[[f64; 9]; 6]; 3]) -> [[[f64; 12]; 12]; 3] {
-    let mut out = [[[0.0; 12]; 12]; 3];
+pub(crate) fn trig_rows(sig: &[[[f64; 9]; 6]; 3]) -> TrigRows {
+    let mut out = [[[0.0; 9]; 6]; 3];
     for row in 0..6 {
         for i4 in 0..3 {
             for i5 in 0..3 {
@@ -1351,7 +1391,6 @@ pub(crate) fn matrix_trig(sig: &[[[f64; 9]; 6]; 3]) -> [[[f64; 12]; 12]; 3] {
                         }
                         for d in 0..3 {
                             out[d][row][3 * a + b] += h * sig[d][row][m];
-                            out[d][row + 6][3 * (a + 1) + b] += h * sig[d][row][m];
                         }
                     }
                 }
@@ -1369,29 +1408,119 @@ pub(crate) fn matrix_trig(sig: &[[[f64; 9]; 6]; 3]) -> [[[f64; 12]; 12]; 3] {
 /// the determinant's sign.
 pub const DET_COLS: [usize; 12] = [0, 1, 2, 9, 10, 11, 3, 4, 5, 6, 7, 8];
 
-/// `S(θ)` at the angle with sine `s`, cosine `c`, its columns in the order [`DET_COLS`].
+/// The six rows of `S(θ)` at the angle with sine `s`, cosine `c` (54 entries).
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn trig_at_cols(t: &[[[f64; 12]; 12]; 3], s: f64, c: f64) -> [[f64; 12]; 12] {
-    let mut m = [[0.0; 12]; 12];
-    for r in 0..12 {
-        for (k, &j) in DET_COLS.iter().enumerate() {
-            m[r][k] = t[0][r][j] + c * t[1][r][j] + s * t[2][r][j];
-        }
+fn rows_at(t: &TrigRows, s: f64, c: f64) -> [[f64; 9]; 6] {
+    let mut m = [[0.0; 9]; 6];
+    // (The 54 entries as one run: the loop is vectorised.)
+    let (t0, t1, t2) = (
+        t[0].as_flattened(),
+        t[1].as_flattened(),
+        t[2].as_flattened(),
+    );
+    for (k, x) in m.as_flattened_mut().iter_mut().enumerate() {
+        *x = t0[k] + c * t1[k] + s * t2[k];
     }
     m
 }
 
-/// `det S(θ)` and the smallest LU pivot over the largest (Gaussian elimination with partial
-/// pivoting, the columns in the order [`DET_COLS`]). The row updates run over whole rows: the
-/// columns left of the pivot are never read again, and a fixed length of 12 lets the compiler
-/// vectorise the loop (the same arithmetic on every column that is read).
+/// `S(θ)` at the angle with sine `s`, cosine `c`, its columns in the order [`DET_COLS`] (the
+/// tests' reference for [`block_lu`]).
+#[cfg(test)]
+pub(crate) fn trig_at_cols(t: &TrigRows, s: f64, c: f64) -> [[f64; 12]; 12] {
+    cols_of(&rows_at(t, s, c))
+}
+
+/// `S` from its six distinct rows `p`, its columns in the order [`DET_COLS`].
+fn cols_of(p: &[[f64; 9]; 6]) -> [[f64; 12]; 12] {
+    let mut m = [[0.0; 12]; 12];
+    for r in 0..6 {
+        // Columns a = 0 | a = 3 | a = 1 | a = 2: the equation, then its copy times x4.
+        m[r][..3].copy_from_slice(&p[r][..3]);
+        m[r][6..].copy_from_slice(&p[r][3..]);
+        m[r + 6][3..6].copy_from_slice(&p[r][6..]);
+        m[r + 6][6..].copy_from_slice(&p[r][..6]);
+    }
+    m
+}
+
+/// The LU with partial pivoting of `S(θ)` with its columns in the order [`DET_COLS`], on its
+/// nonzero blocks only ([`block_lu`]): the rows by their position in the whole matrix'
+/// elimination, each as nine entries.
+struct BlockLu {
+    /// The equations' rows `[a = 0 | a = 1 | a = 2]` at positions 0-5 (rows 0-2 are `U`'s).
+    eq: [[f64; 9]; 6],
+    /// The copies' rows `[a = 3 | a = 1 | a = 2]`, copy `i` at position `6 + i` until it is
+    /// a pivot row.
+    low: [[f64; 9]; 6],
+    /// The row at position `6 + i` after columns 3-5: copy `i` (`6 + i`) or the equation's
+    /// row `k` that traded places with it when it became the pivot row `k`.
+    from: [usize; 6],
+    /// `U`'s rows 6-11 at its columns 6-11.
+    b: [[f64; 6]; 6],
+    /// The pivots `u_kk`.
+    piv: [f64; 12],
+    /// The determinant.
+    det: f64,
+}
+
+impl BlockLu {
+    /// `U`'s entry `(i, c)`, `c > i`.
+    fn u(&self, i: usize, c: usize) -> f64 {
+        if i >= 6 {
+            return self.b[i - 6][c - 6];
+        }
+        let copy = if i >= 3 {
+            self.from.iter().position(|&f| f == i)
+        } else {
+            None
+        };
+        match copy {
+            // [0 | a = 3 | a = 1 | a = 2]
+            Some(j) => {
+                if c < 3 {
+                    0.0
+                } else {
+                    self.low[j][c - 3]
+                }
+            }
+            // [a = 0 | 0 | a = 1 | a = 2]
+            None => {
+                if c < 3 {
+                    self.eq[i][c]
+                } else if c < 6 {
+                    0.0
+                } else {
+                    self.eq[i][c - 3]
+                }
+            }
+        }
+    }
+}
+
+/// The LU of `S` from its six distinct rows `p`, with the same pivots, row swaps, products and
+/// row updates (of the entries that are read again) as the elimination with partial pivoting
+/// of the whole 12 x 12 matrix in the column order [`DET_COLS`]. An equation's row is `[a = 0 |
+/// a = 1 | a = 2]` and its copy's `[a = 3 | a = 1 | a = 2]`, the other block zero: columns 0-2
+/// are eliminated within the equations' rows (the copies' multipliers are exactly zero),
+/// columns 3-5 within the copies' rows, and the last six columns are a 6 x 6 block. A third of
+/// the assembly (54 entries, not 144) and about half of the row updates' length.
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn det_trig(t: &[[[f64; 12]; 12]; 3], s: f64, c: f64) -> (f64, f64) {
-    let mut m = trig_at_cols(t, s, c);
-    let (mut det, mut minpiv, mut maxpiv) = (1.0, f64::INFINITY, 0.0);
-    for k in 0..12 {
+#[inline(always)]
+fn block_lu(p: &[[f64; 9]; 6]) -> BlockLu {
+    let mut m = *p;
+    // The copies: [a = 3 | a = 1 | a = 2] of the equation's [a = 0 | a = 1 | a = 2].
+    let mut low = [[0.0; 9]; 6];
+    for r in 0..6 {
+        let p = &m[r];
+        low[r] = [p[6], p[7], p[8], p[0], p[1], p[2], p[3], p[4], p[5]];
+    }
+    let mut det = 1.0;
+    let mut piv = [0.0; 12];
+    // Columns 0-2, among the equations' rows (positions 0-5 of the whole matrix).
+    for k in 0..3 {
         let mut best = k;
-        for r in k + 1..12 {
+        for r in k + 1..6 {
             if m[r][k].abs() > m[best][k].abs() {
                 best = r;
             }
@@ -1400,26 +1529,149 @@ pub(crate) fn det_trig(t: &[[[f64; 12]; 12]; 3], s: f64, c: f64) -> (f64, f64) {
             m.swap(k, best);
             det = -det;
         }
-        let (top, rest) = m.split_at_mut(k + 1);
-        let pivot = &top[k];
-        let d = pivot[k];
+        let d = m[k][k];
         det *= d;
+        piv[k] = d;
+        if d != 0.0 {
+            let (top, rest) = m.split_at_mut(k + 1);
+            eliminate_rows(rest, &top[k], k, d);
+        }
+    }
+    // Columns 3-5, among the copies' rows (positions 6-11; the equations' rows 3-5 at
+    // positions 3-5 are zero there). A copy taken as the pivot of column k trades places with
+    // the equation's row at position k; the copies left keep their positions, in their order,
+    // so the first of the largest is the whole matrix' choice.
+    let mut from = [6, 7, 8, 9, 10, 11];
+    for k in 3..6 {
+        let kc = k - 3;
+        let mut best = usize::MAX;
+        let mut bv = 0.0;
+        for i in 0..6 {
+            if from[i] >= 6 && low[i][kc].abs() > bv {
+                best = i;
+                bv = low[i][kc].abs();
+            }
+        }
+        if best == usize::MAX {
+            // No copy is nonzero here: the zero pivot of the equation's row k.
+            det *= 0.0;
+            continue;
+        }
+        det = -det;
+        from[best] = k;
+        let pr = low[best];
+        let d = pr[kc];
+        det *= d;
+        piv[k] = d;
+        for i in 0..6 {
+            if from[i] >= 6 {
+                let f = low[i][kc] / d;
+                if f != 0.0 {
+                    for c in 0..9 {
+                        low[i][c] -= f * pr[c];
+                    }
+                }
+            }
+        }
+    }
+    // The last six columns: a 6 x 6 block.
+    let mut b = [[0.0; 6]; 6];
+    for i in 0..6 {
+        let row = if from[i] >= 6 { &low[i] } else { &m[from[i]] };
+        b[i].copy_from_slice(&row[3..]);
+    }
+    for k in 0..6 {
+        let mut best = k;
+        for r in k + 1..6 {
+            if b[r][k].abs() > b[best][k].abs() {
+                best = r;
+            }
+        }
+        if best != k {
+            b.swap(k, best);
+            det = -det;
+        }
+        let d = b[k][k];
+        det *= d;
+        piv[6 + k] = d;
+        if d == 0.0 {
+            continue;
+        }
+        let (top, rest) = b.split_at_mut(k + 1);
+        let pr = &top[k];
+        for row in rest.iter_mut() {
+            let f = row[k] / d;
+            if f != 0.0 {
+                for c in 0..6 {
+                    row[c] -= f * pr[c];
+                }
+            }
+        }
+    }
+    BlockLu {
+        eq: m,
+        low,
+        from,
+        b,
+        piv,
+        det,
+    }
+}
+
+/// `det S(θ)` and the smallest LU pivot over the largest ([`block_lu`]).
+pub(crate) fn det_trig(t: &TrigRows, s: f64, c: f64) -> (f64, f64) {
+    let f = block_lu(&rows_at(t, s, c));
+    let (mut minpiv, mut maxpiv) = (f64::INFINITY, 0.0);
+    for d in f.piv {
         if d.abs() < minpiv {
             minpiv = d.abs();
         }
         if d.abs() > maxpiv {
             maxpiv = d.abs();
         }
-        if d == 0.0 {
-            continue;
-        }
-        eliminate(rest, pivot, k, d);
     }
-    (det, if maxpiv > 0.0 { minpiv / maxpiv } else { 0.0 })
+    (f.det, if maxpiv > 0.0 { minpiv / maxpiv } else { 0.0 })
+}
+
+/// A null vector of `S(θ)`, singular to rounding, with its entries in the column order
+/// [`DET_COLS`]: `null_vector_lu`'s (the same bits) from the blocks' LU ([`block_lu`]).
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn null_vector_trig(t: &TrigRows, s: f64, c: f64) -> [f64; 12] {
+    let p = rows_at(t, s, c);
+    let f = block_lu(&p);
+    let (mut kmin, mut pmin) = (11, f64::INFINITY);
+    for (k, d) in f.piv.iter().enumerate() {
+        if d.abs() < pmin {
+            (kmin, pmin) = (k, d.abs());
+        }
+    }
+    let mut y = [0.0; 12];
+    y[kmin] = 1.0;
+    for i in (0..kmin).rev() {
+        let mut s = 0.0;
+        for c in i + 1..=kmin {
+            s -= f.u(i, c) * y[c];
+        }
+        y[i] = if f.piv[i] == 0.0 { 0.0 } else { s / f.piv[i] };
+    }
+    checked_null(&cols_of(&p), y)
+}
+
+/// One step of Gaussian elimination on the equations' compact rows (see [`det_trig`]).
+fn eliminate_rows(rest: &mut [[f64; 9]], pivot: &[f64; 9], k: usize, d: f64) {
+    for row in rest.iter_mut() {
+        let f = row[k] / d;
+        if f != 0.0 {
+            for c in 0..9 {
+                row[c] -= f * pivot[c];
+            }
+        }
+    }
 }
 
 /// One step of Gaussian elimination: the rows `rest` below the pivot row less their multiple
-/// `row[k] / d` of it, over whole rows (see [`det_trig`]).
+/// `row[k] / d` of it, over whole rows (see [`null_vector_lu`]).
+#[cfg(test)]
 fn eliminate(rest: &mut [[f64; 12]], pivot: &[f64; 12], k: usize, d: f64) {
     for row in rest.iter_mut() {
         let f = row[k] / d;
@@ -1743,6 +1995,23 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
             Some(bracketed(c, k, a, b, fa, fb))
         }
     };
+    // Whether `D⁽ˡ⁾` has one sign at both ends of `[m − r, m + r]`, certified by Taylor's
+    // formula at `m` (the rest bounded by B8 as below, and the rounding margin `tol`): `mono`'s
+    // two evaluations there would find no change of sign, so they are skipped (and counted, so
+    // that the search takes the same course).
+    let ends_agree = |v: &[f64; TAYLOR], r: f64, l: usize, tol: f64| -> bool {
+        let (mut left, mut right, mut term, mut sign) = (0.0, 0.0, 1.0, 1.0);
+        for k in l..TAYLOR {
+            if k > l {
+                term *= r / (k - l) as f64;
+            }
+            right += v[k] * term;
+            left += sign * v[k] * term;
+            sign = -sign;
+        }
+        let rest = b8 * term * r / (TAYLOR - l) as f64 + tol;
+        (left > rest && right > rest) || (left < -rest && right < -rest)
+    };
     while depth > 0 {
         depth -= 1;
         let (a, b) = stack[depth];
@@ -1767,16 +2036,26 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
             continue;
         }
         if v[1].abs() > moves[1] + nd * margin {
-            if let Some(x) = mono(a, b, 0, &mut evals) {
+            if ends_agree(&v, r, 0, margin) {
+                evals += 2;
+            } else if let Some(x) = mono(a, b, 0, &mut evals) {
                 out[n] = x;
                 n += 1;
             }
             continue;
         }
         if v[2].abs() > moves[2] + nd * nd * margin {
-            let Some(e) = mono(a, b, 1, &mut evals) else {
+            let e = if ends_agree(&v, r, 1, nd * margin) {
+                evals += 2;
+                None
+            } else {
+                mono(a, b, 1, &mut evals)
+            };
+            let Some(e) = e else {
                 // D′ keeps its sign: D is monotone after all.
-                if let Some(x) = mono(a, b, 0, &mut evals) {
+                if ends_agree(&v, r, 0, margin) {
+                    evals += 2;
+                } else if let Some(x) = mono(a, b, 0, &mut evals) {
                     out[n] = x;
                     n += 1;
                 }
@@ -1812,7 +2091,7 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     Some(n)
 }
 
-/// The trigonometric polynomial `det S(θ) = Re Σ_j c_j e^{ijθ}` of `S` as [`matrix_trig`]
+/// The trigonometric polynomial `det S(θ) = Re Σ_j c_j e^{ijθ}` of `S` as [`trig_rows`]
 /// gives it: `(c, scale, degree)` with `scale` the largest of the samples and `degree` its
 /// degree less the top coefficients that are rounding ([`DET_TRIM`]). `det S` at
 /// [`DET_SAMPLES`] angles (an LU each), the `c_j` by the discrete Fourier transform (exact for
@@ -1820,7 +2099,7 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
 /// conditioned or the check angle disagrees with the interpolant.
 #[allow(clippy::needless_range_loop, clippy::type_complexity)]
 pub(crate) fn det_coefficients(
-    tm: &[[[f64; 12]; 12]; 3],
+    tm: &TrigRows,
 ) -> Option<([(f64, f64); DET_DEGREE + 1], f64, usize)> {
     let mut d = [0.0; DET_SAMPLES];
     let (mut scale, mut good) = (0.0, 0.0);
@@ -1870,7 +2149,7 @@ pub(crate) fn det_coefficients(
 
 /// The candidates of one arrangement by the determinant route (the hidden joint turns): `det
 /// S(θ)` by [`det_coefficients`], its real roots by [`trig_roots`], then one null vector of
-/// `S(θ)` per root ([`null_vector_lu`]). `None` (the eigenvalue route decides) when either
+/// `S(θ)` per root ([`null_vector_trig`]). `None` (the eigenvalue route decides) when either
 /// gives up.
 #[allow(clippy::needless_range_loop)]
 pub(crate) fn det_candidates(
@@ -1878,7 +2157,7 @@ pub(crate) fn det_candidates(
     el: &Elim,
     roots: &mut [[f64; 6]; 24],
 ) -> Option<(usize, usize)> {
-    let tm = matrix_trig(&el.sig);
+    let tm = trig_rows(&el.sig);
     let (c, _, n) = det_coefficients(&tm)?;
     let mut th = [0.0; 24];
     let count = trig_roots(&c, &mut th)?;
@@ -1886,7 +2165,7 @@ pub(crate) fn det_candidates(
         // The null vector of S(θ) with its columns in the order DET_COLS (the elimination
         // then skips the same zero blocks as det_trig's), put back in monomial order.
         let (co, s) = unit(t3);
-        let y = null_vector_lu(&trig_at_cols(&tm, s, co));
+        let y = null_vector_trig(&tm, s, co);
         let mut v = [0.0; 12];
         for (yk, &j) in y.iter().zip(&DET_COLS) {
             v[j] = *yk;
@@ -1903,6 +2182,18 @@ pub(crate) fn det_candidates(
 /// The pose `E1(q1) ⋯ E6(q6) M` and each joint's current axis `(w, p)` (scaled lengths).
 #[allow(clippy::needless_range_loop)]
 fn forward(ax: &[GenAxis; 6], home: &B34, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
+    forward_with::<true>(ax, home, q)
+}
+
+/// [`forward`], the current axes only when `AXES` (else zero): the refinement's trial points
+/// need the pose alone unless another step follows.
+#[inline(always)]
+#[allow(clippy::needless_range_loop)]
+fn forward_with<const AXES: bool>(
+    ax: &[GenAxis; 6],
+    home: &B34,
+    q: &[f64; 6],
+) -> (B34, [[f64; 6]; 6]) {
     let mut p: B34 = [
         [1.0, 0.0, 0.0, 0.0],
         [0.0, 1.0, 0.0, 0.0],
@@ -1913,8 +2204,10 @@ fn forward(ax: &[GenAxis; 6], home: &B34, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) 
         let a = &ax[i];
         let w = [a[1], a[2], a[3]];
         let c = [a[4], a[5], a[6]];
-        let (o, d) = motion_apply(&p, &c, &w);
-        cur[i] = [d[0], d[1], d[2], o[0], o[1], o[2]];
+        if AXES {
+            let (o, d) = motion_apply(&p, &c, &w);
+            cur[i] = [d[0], d[1], d[2], o[0], o[1], o[2]];
+        }
         let mut m: B34 = [[0.0; 4]; 3];
         if a[0] != 0.0 {
             for r in 0..3 {
@@ -1969,9 +2262,14 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
     let (mut f, mut cur) = forward(ax, home, q);
     let (mut e, mut res) = error(&f, t);
     let mut lambda = DAMP_START;
+    // The axes of `cur` belong to an earlier `q` (a step was taken without them).
+    let mut stale = false;
     for _ in 0..REFINE_ITERS {
         if res <= EXACT_TOL || res.is_nan() {
             break;
+        }
+        if stale {
+            cur = forward(ax, home, q).1;
         }
         let mut cols = [[0.0; 12]; 6];
         for i in 0..6 {
@@ -2020,11 +2318,12 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
             if ok {
                 let d = lu_solve(&m, &p, &g);
                 let next: [f64; 6] = std::array::from_fn(|i| q[i] + d[i]);
-                let (f2, cur2) = forward(ax, home, &next);
+                let (f2, _) = forward_with::<false>(ax, home, &next);
                 let (e2, r2) = error(&f2, t);
                 if r2 < res {
                     *q = next;
-                    (f, cur, e, res) = (f2, cur2, e2, r2);
+                    (f, e, res) = (f2, e2, r2);
+                    stale = true;
                     lambda = (lambda * 0.01).max(DAMP_MIN);
                     break;
                 }

@@ -944,14 +944,28 @@ static void ik_gen_trig_at_cols(const double t[3][12][12], double s, double c, d
 }
 
 /* det S(th) (LU with partial pivoting, the columns in the order IK_GEN_DET_COLS) and the
-   smallest pivot over the largest in *ratio. */
+   smallest pivot over the largest in *ratio, on the nonzero blocks only (see core.rs,
+   block_lu): an equation's row [a = 0 | a = 1 | a = 2] (S's rows 0-5, columns 0-8), its
+   copy times x4 [a = 3 | a = 1 | a = 2]; columns 0-2 among the equations' rows, 3-5 among
+   the copies', then a 6 x 6 block. The same pivots, products and bits as the whole matrix'. */
 static double ik_gen_det_trig(const double t[3][12][12], double s, double c, double *ratio) {
-    double m[12][12], row[12], det = 1.0, minpiv = HUGE_VAL, maxpiv = 0.0, d;
-    int k, r, best;
-    ik_gen_trig_at_cols(t, s, c, m);
-    for (k = 0; k < 12; k++) {
+    double m[6][9], low[6][9], b[6][6], row[9], det = 1.0, minpiv = HUGE_VAL, maxpiv = 0.0, d,
+        f, bv;
+    int k, r, i, j, best, from[6];
+    for (r = 0; r < 6; r++)
+        for (j = 0; j < 9; j++) m[r][j] = t[0][r][j] + c * t[1][r][j] + s * t[2][r][j];
+    for (r = 0; r < 6; r++)
+        for (j = 0; j < 9; j++) low[r][j] = m[r][(j + 6) % 9];
+#define IK_GEN_PIVOT(x)                         \
+    do {                                        \
+        det *= (x);                             \
+        if (fabs(x) < minpiv) minpiv = fabs(x); \
+        if (fabs(x) > maxpiv) maxpiv = fabs(x); \
+    } while (0)
+    /* Columns 0-2, among the equations' rows. */
+    for (k = 0; k < 3; k++) {
         best = k;
-        for (r = k + 1; r < 12; r++)
+        for (r = k + 1; r < 6; r++)
             if (fabs(m[r][k]) > fabs(m[best][k])) best = r;
         if (best != k) {
             memcpy(row, m[k], sizeof row);
@@ -960,12 +974,64 @@ static double ik_gen_det_trig(const double t[3][12][12], double s, double c, dou
             det = -det;
         }
         d = m[k][k];
-        det *= d;
-        if (fabs(d) < minpiv) minpiv = fabs(d);
-        if (fabs(d) > maxpiv) maxpiv = fabs(d);
+        IK_GEN_PIVOT(d);
         if (d == 0.0) continue;
-        ik_gen_eliminate_rows(m, k, d);
+        for (r = k + 1; r < 6; r++) {
+            f = m[r][k] / d;
+            if (f != 0.0)
+                for (j = 0; j < 9; j++) m[r][j] -= f * m[k][j];
+        }
     }
+    /* Columns 3-5, among the copies' rows (positions 6-11): a copy taken as pivot k trades
+       places with the equation's row k; from[i] is the row at position 6 + i. */
+    for (i = 0; i < 6; i++) from[i] = 6 + i;
+    for (k = 3; k < 6; k++) {
+        best = -1;
+        bv = 0.0;
+        for (i = 0; i < 6; i++)
+            if (from[i] >= 6 && fabs(low[i][k - 3]) > bv) {
+                best = i;
+                bv = fabs(low[i][k - 3]);
+            }
+        if (best < 0) {
+            IK_GEN_PIVOT(0.0);
+            continue;
+        }
+        det = -det;
+        from[best] = k;
+        memcpy(row, low[best], sizeof row);
+        d = row[k - 3];
+        IK_GEN_PIVOT(d);
+        for (i = 0; i < 6; i++)
+            if (from[i] >= 6) {
+                f = low[i][k - 3] / d;
+                if (f != 0.0)
+                    for (j = 0; j < 9; j++) low[i][j] -= f * row[j];
+            }
+    }
+    /* The last six columns: a 6 x 6 block. */
+    for (i = 0; i < 6; i++)
+        for (j = 0; j < 6; j++) b[i][j] = from[i] >= 6 ? low[i][3 + j] : m[from[i]][3 + j];
+    for (k = 0; k < 6; k++) {
+        best = k;
+        for (r = k + 1; r < 6; r++)
+            if (fabs(b[r][k]) > fabs(b[best][k])) best = r;
+        if (best != k) {
+            memcpy(row, b[k], 6 * sizeof(double));
+            memcpy(b[k], b[best], 6 * sizeof(double));
+            memcpy(b[best], row, 6 * sizeof(double));
+            det = -det;
+        }
+        d = b[k][k];
+        IK_GEN_PIVOT(d);
+        if (d == 0.0) continue;
+        for (r = k + 1; r < 6; r++) {
+            f = b[r][k] / d;
+            if (f != 0.0)
+                for (j = 0; j < 6; j++) b[r][j] -= f * b[k][j];
+        }
+    }
+#undef IK_GEN_PIVOT
     *ratio = maxpiv > 0.0 ? minpiv / maxpiv : 0.0;
     return det;
 }

@@ -8,9 +8,9 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::core::{
-    compose, det_coefficients, det_trig, inverse, matrix_trig, null_vector, null_vector_lu,
-    trig_eval, trig_low, trig_roots, trig_table, unit, Arranged, DET_COS, DET_DEGREE, DET_SIN,
-    GRID_SIN, GRID_STEP, J, NEAR_REAL, RANK_TOL,
+    compose, det_coefficients, det_trig, inverse, null_vector, null_vector_lu, null_vector_trig,
+    trig_at_cols, trig_eval, trig_low, trig_roots, trig_rows, trig_table, unit, Arranged, DET_COLS,
+    DET_COS, DET_DEGREE, DET_SIN, GRID_SIN, GRID_STEP, J, NEAR_REAL, RANK_TOL,
 };
 
 /// `S(θ)` at the angle with sine `s`, cosine `c`, in the natural column order (the test's own).
@@ -23,6 +23,31 @@ fn trig_at(t: &[[[f64; 12]; 12]; 3], s: f64, c: f64) -> [[f64; 12]; 12] {
         }
     }
     m
+}
+
+/// `S(θ) = T0 + T1 cos θ + T2 sin θ` as three 12 x 12 matrices from `Σ` (the test's own): the
+/// six equations in the monomials `x4^a x5^b` by the half-angle map, and the same times `x4`.
+fn matrix_trig(sig: &[[[f64; 9]; 6]; 3]) -> [[[f64; 12]; 12]; 3] {
+    // (1, cos, sin) of a half-angle tangent times 1 + x², as polynomials in x.
+    let half = [[1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0.0]];
+    let mut out = [[[0.0; 12]; 12]; 3];
+    for row in 0..6 {
+        for i4 in 0..3 {
+            for i5 in 0..3 {
+                for a in 0..3 {
+                    for b in 0..3 {
+                        let h: f64 = half[i4][a] * half[i5][b];
+                        for d in 0..3 {
+                            let v = h * sig[d][row][3 * i4 + i5];
+                            out[d][row][3 * a + b] += v;
+                            out[d][row + 6][3 * (a + 1) + b] += v;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    out
 }
 
 pub(super) type Coef = [(f64, f64); DET_DEGREE + 1];
@@ -410,7 +435,7 @@ fn det_coefficients_reproduce_det_s_and_null_vectors_annihilate_it() {
                 panic!("no arrangement at {q:?}");
             };
             let tm = matrix_trig(&el.sig);
-            let Some((c, scale, _)) = det_coefficients(&tm) else {
+            let Some((c, scale, _)) = det_coefficients(&trig_rows(&el.sig)) else {
                 continue;
             };
             // The interpolant against det S at random angles: the samples' rounding (1e-15
@@ -454,6 +479,19 @@ fn det_coefficients_reproduce_det_s_and_null_vectors_annihilate_it() {
                 }
                 let m = trig_at(&tm, th.sin(), th.cos());
                 let lu = residual(&m, &null_vector_lu(&m));
+                // The solver's vector from the blocks is the whole matrix' (its columns in
+                // the order DET_COLS), bit for bit.
+                let rows = trig_rows(&el.sig);
+                let (sn, cs) = th.sin_cos();
+                let blocks = null_vector_trig(&rows, sn, cs);
+                let whole = null_vector_lu(&trig_at_cols(&rows, sn, cs));
+                assert!(
+                    blocks
+                        .iter()
+                        .zip(&whole)
+                        .all(|(a, b)| a.to_bits() == b.to_bits()),
+                    "S({th}): {blocks:?} vs {whole:?}"
+                );
                 let complete = residual(&m, &null_vector(&m));
                 assert!(
                     lu <= (10.0 * complete).max(1e-9),
@@ -585,12 +623,55 @@ fn det_trig_in_its_column_order_is_the_determinant() {
             .iter()
             .map(|r| r.iter().map(|x| x * x).sum::<f64>().sqrt())
             .product();
-        let got = det_trig(&tm, s, c).0;
+        let rows = trig_rows(&sig);
+        let got = det_trig(&rows, s, c).0;
         assert!(
             (got - want).abs() <= 1e-10 * hadamard,
             "det {got:e} vs {want:e} (Hadamard {hadamard:e})"
         );
+        // The block elimination is the whole matrix' elimination with partial pivoting, the
+        // same operations on the entries it keeps: the same bits (and the matrix in its
+        // column order is S's, within rounding of the sums).
+        let full = trig_at_cols(&rows, s, c);
+        assert_eq!(got.to_bits(), lu_det(full).to_bits(), "{got:e}");
+        for r in 0..12 {
+            for (k, &j) in DET_COLS.iter().enumerate() {
+                assert!((full[r][k] - m[r][j]).abs() <= 1e-14 * (1.0 + m[r][j].abs()));
+            }
+        }
     }
+}
+
+/// The determinant by Gaussian elimination with partial pivoting of the whole matrix, the row
+/// updates over whole rows (the elimination `det_trig` did before it kept the blocks).
+fn lu_det(mut m: [[f64; 12]; 12]) -> f64 {
+    let mut det = 1.0;
+    for k in 0..12 {
+        let mut best = k;
+        for r in k + 1..12 {
+            if m[r][k].abs() > m[best][k].abs() {
+                best = r;
+            }
+        }
+        if best != k {
+            m.swap(k, best);
+            det = -det;
+        }
+        let d = m[k][k];
+        det *= d;
+        if d == 0.0 {
+            continue;
+        }
+        for r in k + 1..12 {
+            let f = m[r][k] / d;
+            if f != 0.0 {
+                for c in 0..12 {
+                    m[r][c] -= f * m[k][c];
+                }
+            }
+        }
+    }
+    det
 }
 
 /// Halley's brackets (`bracketed`, from the secant's zero, bisection where a step leaves the

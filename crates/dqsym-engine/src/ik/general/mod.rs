@@ -139,7 +139,9 @@
 //! that vanishes at `±i`, no shift, no root at infinity. The core (`core::det_candidates`)
 //! evaluates it at 17 equally spaced real angles (an LU each, the columns in the block order
 //! `core::DET_COLS`: the six equations have no `x4³` column and their copies no `x4⁰` one, so
-//! each of those blocks is eliminated within its own six rows, 39 row updates instead of 48),
+//! each of those blocks is eliminated within its own six rows, 39 row updates instead of 48;
+//! only the six distinct rows are assembled, and the zero blocks are never stored: the same
+//! pivots and bits as the whole matrix' LU, a test checks),
 //! reads its coefficients by the discrete Fourier transform (exact for degree 8, perfectly
 //! conditioned on the circle), and checks the interpolant at an 18th angle (content of a
 //! higher degree would show there). Its real roots come from a certified interval search
@@ -187,6 +189,31 @@
 //! elimination (`E3 E4 E5` on its grid) hoisted to the arm's constants where the loop is
 //! read from joint 1 (it depends on the target only through the length scale), and fewer
 //! refinement steps.
+//!
+//! Session 15 (callgrind as above): 352k to 301k per pose, 362 solutions, the same solutions
+//! to the bit (each change keeps every operation and its order; a harness compared all 64
+//! poses' joint vectors bit for bit): `det S` and the roots' null vectors from one LU on
+//! the nonzero blocks (`core::block_lu`: the six distinct rows assembled, 54 entries not 144;
+//! row updates of 9 and 6 entries, not 12; tests check the same bits as the whole matrix'
+//! LU), the root search skipping `mono`'s end evaluations where Taylor's formula at the
+//! midpoint certifies one sign at both ends, the refinement's trial points without the
+//! current axes, the elimination's sample rotations once per joint and its sums along the
+//! contiguous index. Measured per pose now (inclusive): the elimination 56k (one arrangement:
+//! the QR of `Bm` with `Q` 12k, `Σ = N Am` 4k, the grid transforms 8k, loop overhead the
+//! rest), the 18 sampled determinants 52k (about 1k of row updates each at SSE2's two lanes,
+//! assembly 0.4k, pivoting and bookkeeping the rest), the root search about 40k (50
+//! evaluations with eight derivatives, 60 with three), the refinement's forward kinematics
+//! 23k (2.1 per candidate: one Gauss–Newton step reaches `EXACT_TOL` already), the
+//! back-substitution 22k (a third of it five library `atan2`), the eigenvalue route 20k and
+//! its complete-pivoting null vectors 12k (5 poses of 64). Tried and dropped: a root grid of
+//! 16 or 24 intervals (330k: more splits), the back-substitution's sums from a transposed
+//! copy of `Am` (more copying than it saved). The 150k of issue #29 is not reached by local
+//! changes: what is left is spread over steps near their floor in arithmetic, and needs
+//! structure (the left side of the elimination, `E3 E4 E5` on its grid, as per-arm constants
+//! where the loop is read from joint 1 or 6; the base grid's evaluations from tables; a forward
+//! kinematics shared by the refinement's steps). The C port's determinant on the blocks too
+//! (the same bits): GCC 12 `-O2` 551k per pose before and after (it vectorises neither), `-O3`
+//! 352k to 324k.
 
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod apart;
