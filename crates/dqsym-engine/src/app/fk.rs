@@ -98,15 +98,18 @@ pub enum ReportError {
 /// `NAME = EXPR` with these additional names, and the code formats compute the recurrence as
 /// straight-line code, its entries as locals.
 pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
-    let entries = fk_entries(robot, o)?;
+    // The joint factors once, for the expansions and the header's parameters.
+    let joints = robot.joint_dqs();
+    let params = robot.parameters_of(&joints);
+    let entries = entries_of(robot, joints, o)?;
     if !entries.recurrence {
-        return render(robot, &entries.sections, o, &[]);
+        return render(robot, &params, &entries.sections, o, &[]);
     }
     let notes = [format!(
         "the expanded pose exceeds {} terms per entry: it is given exactly, as a recurrence over the joint factors (entry X[k] is the symbol X_k of later entries)",
         o.max_terms
     )];
-    render(robot, &entries.sections, o, &notes)
+    render(robot, &params, &entries.sections, o, &notes)
 }
 
 /// The operation counts of the code [`fk_report`] generates for `robot` (`dqsym ops ROBOT`):
@@ -151,6 +154,15 @@ impl FkEntries {
 /// # Errors
 /// As [`fk_report`].
 pub fn fk_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError> {
+    entries_of(robot, robot.joint_dqs(), o)
+}
+
+/// [`fk_entries`] from the robot's joint factors `joints` ([`Robot::joint_dqs`]).
+fn entries_of(
+    robot: &Robot,
+    joints: Vec<DualQuat<Scalar>>,
+    o: &FkOptions,
+) -> Result<FkEntries, ReportError> {
     // Any stage past the term limit (the DQ, the matrix, the point, the Jacobian, a closed
     // form) switches to the recurrence, whose every entry is small.
     // The expansion is an attempt with a budget of its own (what is left of the caller's), so
@@ -159,7 +171,7 @@ pub fn fk_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError
     let left = Context::current()
         .work_budget()
         .saturating_sub(crate::scalar::work_used());
-    let expanded = with_own_budget(left, || expanded_entries(robot, o));
+    let expanded = with_own_budget(left, || expanded_entries(robot, joints, o));
     match expanded {
         // Every size limit: too many terms, term pairs (a product of the constant frames of
         // a URDF with angles off the pi/12 grid), digits or symbols in one angle (a long chain
@@ -221,7 +233,11 @@ fn recurrence_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportE
 type Sections = Vec<Section>;
 
 /// The expanded entries, or `None` when the DQ or the matrix exceeds `o.max_terms` terms.
-fn expanded_entries(robot: &Robot, o: &FkOptions) -> Option<Result<Sections, ReportError>> {
+fn expanded_entries(
+    robot: &Robot,
+    joints: Vec<DualQuat<Scalar>>,
+    o: &FkOptions,
+) -> Option<Result<Sections, ReportError>> {
     // The DQ product, then its components in closed form; the matrix (the product of the
     // joint factors' matrices, which does not wait for the DQ), then its entries. Then the
     // point and the Jacobian, every distinct entry once, in parallel. `closed_form` is a pure
@@ -237,8 +253,8 @@ fn expanded_entries(robot: &Robot, o: &FkOptions) -> Option<Result<Sections, Rep
     // instructions, of which 1,640 M in that DQ product; a 20-joint symbolic chain 75 / 149 ms
     // CPU; the PUMA 560 51 M / 49 M instructions, both expansions small).
     let stop = AtomicBool::new(false);
-    let m = robot.forward_matrix_until(o.max_terms, &stop)?;
-    let q = robot.forward_within_until(o.max_terms, &stop)?;
+    let m = robot.forward_matrix_until(&joints, o.max_terms, &stop)?;
+    let q = robot.forward_within_until(joints, o.max_terms, &stop)?;
     let comps = q.components();
     let cells = matrix_cells(&m);
     let all: Vec<(bool, &Scalar)> = comps
@@ -493,9 +509,10 @@ fn matrix_cells(m: &crate::Matrix4<Scalar>) -> Vec<&Scalar> {
 }
 
 /// The sections in `o.format` (plain and LaTeX with `o.shorthand`), after `notes` (comment
-/// lines in plain and LaTeX).
+/// lines in plain and LaTeX); `params` are the robot's [`Robot::parameters`].
 pub(super) fn render(
     robot: &Robot,
+    params: &[String],
     sections: &[Section],
     o: &FkOptions,
     notes: &[String],
@@ -536,7 +553,7 @@ pub(super) fn render(
                 shorthand,
                 decimals,
             };
-            let mut out = header(robot, Comment::Hash, "#");
+            let mut out = header(robot, params, Comment::Hash, "#");
             for n in notes {
                 out.push_str(&line_comment(Comment::Hash, "#", n));
             }
@@ -562,9 +579,8 @@ pub(super) fn render(
                 decimals,
                 ..LatexOptions::default()
             };
-            let letters =
-                Letters::avoiding(robot.variables.iter().cloned().chain(robot.parameters()));
-            let mut out = header(robot, Comment::Latex, "% #");
+            let letters = Letters::avoiding(robot.variables.iter().chain(params).cloned());
+            let mut out = header(robot, params, Comment::Latex, "% #");
             for n in notes {
                 out.push_str(&line_comment(Comment::Latex, "%", n));
             }
@@ -629,7 +645,7 @@ fn code(robot: &Robot, sections: &[Section], f: Generated) -> Result<String, Cod
     let o = CodegenOptions::default();
     match f {
         Generated::Ops => {
-            let mut out = header(robot, Comment::Hash, "#");
+            let mut out = header(robot, &robot.parameters(), Comment::Hash, "#");
             let n = robot.variables.len();
             let dq = count_ops(|| {
                 let mk = |k: f64| Counted(k);
@@ -701,9 +717,9 @@ fn snake(name: &str) -> String {
 }
 
 /// The report's first comment: the robot's name (every line of it commented, control
-/// characters escaped), its joints and parameters; `prefix` is `#`, or `% #` in LaTeX.
-fn header(robot: &Robot, syntax: Comment, prefix: &str) -> String {
-    let params = robot.parameters();
+/// characters escaped), its joints and parameters `params`; `prefix` is `#`, or `% #` in
+/// LaTeX.
+fn header(robot: &Robot, params: &[String], syntax: Comment, prefix: &str) -> String {
     let text = format!(
         "{} ({} joint{}: {}; parameters: {})",
         robot.name,

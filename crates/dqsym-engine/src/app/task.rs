@@ -533,7 +533,7 @@ fn task_report_inner(
             )],
         });
     }
-    render(robot, &sections, o, &[])
+    render(robot, &robot.parameters(), &sections, o, &[])
 }
 
 /// `D(l . lz)` and `|P(l x lz)|^2` of the line-to-line distance (`b` and `a`: the squared
@@ -624,7 +624,7 @@ fn line_to_line_report(
             vec![Quantity::TaskDenominator(distance)],
         )?,
     ];
-    render(robot, &sections, o, &[])
+    render(robot, &robot.parameters(), &sections, o, &[])
 }
 
 /// The name of the line-to-line distance Jacobian's entries (`Jd`).

@@ -940,7 +940,13 @@ impl Robot {
     /// that their product is the pose and each joint's variables sit in its own factor. A
     /// chain without joints gives the single factor `base tool`.
     pub fn pose_factors(&self) -> Vec<DualQuat<Scalar>> {
-        let mut f = self.joint_dqs();
+        self.pose_factors_of(self.joint_dqs())
+    }
+
+    /// [`Robot::pose_factors`] from the joint factors `joints` ([`Robot::joint_dqs`], made
+    /// once by a caller that needs them more than once).
+    fn pose_factors_of(&self, joints: Vec<DualQuat<Scalar>>) -> Vec<DualQuat<Scalar>> {
+        let mut f = joints;
         let (base, tool) = (&self.chain.base, &self.chain.tool);
         let id = DualQuat::identity();
         if f.is_empty() {
@@ -987,12 +993,14 @@ impl Robot {
     /// it when it gives up; it also gives up early when the growth of the partial products
     /// says the last one will exceed the limit (see [`Growth`]). For running it next to
     /// [`Robot::forward_within_until`]: whichever expansion is abandoned first stops the other.
+    /// `joints` are [`Robot::joint_dqs`], made once for both.
     pub(crate) fn forward_matrix_until(
         &self,
+        joints: &[DualQuat<Scalar>],
         max_terms: usize,
         stop: &AtomicBool,
     ) -> Option<Matrix4<Scalar>> {
-        let r = self.matrix_product_until(Some(max_terms), |x| Some(x.clone()), Some(stop));
+        let r = self.matrix_product_until(joints, Some(max_terms), |x| Some(x.clone()), Some(stop));
         if r.is_none() {
             stop.store(true, AtomicOrdering::Relaxed);
         }
@@ -1007,13 +1015,15 @@ impl Robot {
         max_terms: Option<usize>,
         entry: impl Fn(&Scalar) -> Option<Scalar>,
     ) -> Option<Matrix4<Scalar>> {
-        self.matrix_product_until(max_terms, entry, None)
+        self.matrix_product_until(&self.joint_dqs(), max_terms, entry, None)
     }
 
-    /// [`Robot::matrix_product`]; with `stop`, also `None` once `stop` is set or when the
-    /// growth of the partial products predicts that the last one exceeds `max_terms`.
+    /// [`Robot::matrix_product`] of the joint factors `joints` ([`Robot::joint_dqs`]); with
+    /// `stop`, also `None` once `stop` is set or when the growth of the partial products
+    /// predicts that the last one exceeds `max_terms`.
     fn matrix_product_until(
         &self,
+        joints: &[DualQuat<Scalar>],
         max_terms: Option<usize>,
         entry: impl Fn(&Scalar) -> Option<Scalar>,
         stop: Option<&AtomicBool>,
@@ -1021,10 +1031,9 @@ impl Robot {
         let mut acc: Option<Matrix4<Scalar>> = None;
         let id = DualQuat::identity();
         let base = (self.chain.base != id).then_some(&self.chain.base);
-        let joints = self.joint_dqs();
         let factors: Vec<&DualQuat<Scalar>> = base
             .into_iter()
-            .chain(&joints)
+            .chain(joints)
             .chain(std::iter::once(&self.chain.tool))
             .collect();
         let stopped = || stop.is_some_and(|s| s.load(AtomicOrdering::Relaxed));
@@ -1077,25 +1086,32 @@ impl Robot {
     /// than `max_terms` terms: a chain whose expansion grows exponentially (every DH parameter
     /// symbolic, many joints) is detected after a few products instead of exhausting memory.
     pub fn forward_within(&self, max_terms: usize) -> Option<DualQuat<Scalar>> {
-        self.forward_within_until(max_terms, &AtomicBool::new(false))
+        self.forward_within_until(self.joint_dqs(), max_terms, &AtomicBool::new(false))
     }
 
-    /// [`Robot::forward_within`] that gives up (`None`) once `stop` is set, and sets it when
-    /// it gives up (see [`Robot::forward_matrix_until`]).
+    /// [`Robot::forward_within`] of the joint factors `joints` ([`Robot::joint_dqs`]) that
+    /// gives up (`None`) once `stop` is set, and sets it when it gives up (see
+    /// [`Robot::forward_matrix_until`]).
     pub(crate) fn forward_within_until(
         &self,
+        joints: Vec<DualQuat<Scalar>>,
         max_terms: usize,
         stop: &AtomicBool,
     ) -> Option<DualQuat<Scalar>> {
-        let r = self.forward_product(max_terms, stop);
+        let r = self.forward_product(joints, max_terms, stop);
         if r.is_none() {
             stop.store(true, AtomicOrdering::Relaxed);
         }
         r
     }
 
-    fn forward_product(&self, max_terms: usize, stop: &AtomicBool) -> Option<DualQuat<Scalar>> {
-        let factors = self.pose_factors();
+    fn forward_product(
+        &self,
+        joints: Vec<DualQuat<Scalar>>,
+        max_terms: usize,
+        stop: &AtomicBool,
+    ) -> Option<DualQuat<Scalar>> {
+        let factors = self.pose_factors_of(joints);
         let product = |fs: &[DualQuat<Scalar>]| -> Option<DualQuat<Scalar>> {
             let mut acc = DualQuat::identity();
             for f in fs {
@@ -1128,12 +1144,14 @@ impl Robot {
     /// The symbols other than the joint variables (and pi), sorted by name: those of the joint
     /// factors and the tool, so nothing is expanded to find them.
     pub fn parameters(&self) -> Vec<String> {
+        self.parameters_of(&self.joint_dqs())
+    }
+
+    /// [`Robot::parameters`] from the joint factors `joints` ([`Robot::joint_dqs`], made once
+    /// by a caller that needs them more than once).
+    pub(crate) fn parameters_of(&self, joints: &[DualQuat<Scalar>]) -> Vec<String> {
         let mut names: Vec<String> = Vec::new();
-        for f in self
-            .joint_dqs()
-            .iter()
-            .chain([&self.chain.base, &self.chain.tool])
-        {
+        for f in joints.iter().chain([&self.chain.base, &self.chain.tool]) {
             names.extend(
                 f.components()
                     .iter()

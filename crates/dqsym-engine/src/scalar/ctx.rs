@@ -105,6 +105,9 @@ pub struct Context {
     max_digits: u64,
     max_angle_symbols: usize,
     work_budget: u64,
+    /// The threads of parallel maps; 0 for the available cores ([`available_threads`]), read
+    /// when a parallel map first asks: a context that never runs one (`dqsym -e 1`) never
+    /// reads the cgroup files.
     threads: usize,
     cancel: Option<Arc<AtomicBool>>,
 }
@@ -118,7 +121,7 @@ impl Default for Context {
             max_digits: DEFAULT_MAX_DIGITS,
             max_angle_symbols: DEFAULT_MAX_ANGLE_SYMBOLS,
             work_budget: u64::MAX,
-            threads: available_threads(),
+            threads: 0,
             cancel: None,
         }
     }
@@ -272,7 +275,10 @@ impl Context {
 
     /// The threads parallel maps use.
     pub fn threads(&self) -> usize {
-        self.threads
+        match self.threads {
+            0 => available_threads(),
+            n => n,
+        }
     }
 
     /// All the work charged on this thread so far, in every context entered on it (a unit's
@@ -389,7 +395,7 @@ pub(crate) fn threads() -> usize {
     STATE.with(|s| {
         s.borrow()
             .as_ref()
-            .map_or_else(available_threads, |st| st.ctx.threads)
+            .map_or_else(available_threads, |st| st.ctx.threads())
     })
 }
 

@@ -381,8 +381,11 @@ impl Scalar {
     /// is cancelled meanwhile (see [`canonical_terms`]).
     pub(crate) fn from_terms(mut terms: Vec<Term>) -> Scalar {
         if terms.len() <= RUN {
-            // As `canonical_terms`, counting the pi offsets on the way.
-            terms.sort_unstable_by(Term::key_cmp);
+            // As `canonical_terms`, counting the pi offsets on the way. The stable sort finds
+            // the runs already in order (a product's terms for one term of a factor, a
+            // derivative's terms) and merges them, where the unstable one compared every
+            // term again; equal keys are summed, so their order does not matter.
+            terms.sort_by(Term::key_cmp);
             return match merge_sorted_counting(terms) {
                 Ok((t, offsets)) => Scalar::from_canonical(t, offsets > 0),
                 Err(e) => Scalar::error(e),
