@@ -13,6 +13,7 @@ use smallvec::SmallVec;
 use std::hash::{Hash, Hasher};
 use std::rc::Rc;
 
+mod costs;
 mod run;
 
 /// A factor that can be pulled out of several monomials.
@@ -247,6 +248,8 @@ struct Search<'a> {
     path: Vec<(usize, u32)>,
     rad_off: bool,
     memo: FxMap<u64, Vec<Found>>,
+    /// The costs of candidates found without their trees, for plain integer polynomials.
+    costs: Option<costs::Costs>,
     spent: Option<ScalarError>,
 }
 
@@ -264,6 +267,7 @@ pub(crate) fn build(mons: &[Mon]) -> Result<(E, Cost), ScalarError> {
         path: Vec::new(),
         rad_off: false,
         memo: FxMap::default(),
+        costs: costs::Costs::for_mons(mons),
         spent: None,
     };
     let group: Group = mons
@@ -380,13 +384,29 @@ impl Search<'_> {
             return e;
         }
         let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
-        let candidates = self.candidates(group, tries);
+        let candidates = self.candidates(group.iter().map(|(i, _)| *i), tries);
         if candidates.is_empty() {
             return self.plain_sum(group);
         }
         let e = if tries == 1 {
             // Below the branching levels: the run of splits on the most frequent factor.
             self.run(group, candidates[0], depth)
+        } else if let Some(costs) = self.candidate_costs(group, &candidates, depth) {
+            // Only the first candidate of least cost is built (`costs.rs`).
+            let mut best: Option<(Cost, Factor)> = None;
+            for (&f, c) in candidates.iter().zip(costs) {
+                if best.as_ref().is_none_or(|(bc, _)| c < *bc) {
+                    best = Some((c, f));
+                }
+            }
+            match best {
+                Some((c, f)) => {
+                    let e = self.split_on(group, f, depth);
+                    debug_assert!(self.spent.is_some() || e.cost() == c, "cost without the tree");
+                    e
+                }
+                None => E::zero(),
+            }
         } else {
             let mut best: Option<(Cost, E)> = None;
             for f in candidates {
@@ -484,10 +504,10 @@ impl Search<'_> {
     }
 
     /// The first `k` factors that occur in at least two monomials of the group.
-    fn candidates(&mut self, group: &[(u32, Q)], k: usize) -> Vec<Factor> {
+    fn candidates(&mut self, group: impl Iterator<Item = u32>, k: usize) -> Vec<Factor> {
         let (root, div, c) = (self.root, &self.div, &mut self.counts);
-        for (i, _) in group {
-            let m = &root[*i as usize];
+        for i in group {
+            let m = &root[i as usize];
             for (s, _) in quotient_syms(m, div, c.sym_base) {
                 c.bump(c.sym_base + s as usize);
             }
