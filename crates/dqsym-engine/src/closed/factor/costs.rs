@@ -14,7 +14,7 @@
 //! is the one building every candidate gave.
 //!
 //! Taken only when every monomial is a product of symbols without a radical or a
-//! trigonometric atom and every coefficient an integer within 120 bits; otherwise the
+//! trigonometric atom and every coefficient an integer within 126 bits; otherwise the
 //! candidates are built as before.
 
 use super::{multiplicity, quotient_syms, Factor, Search, BIG_WORD_UNITS, BRANCH, BRANCH_DEPTH};
@@ -210,7 +210,7 @@ struct Level {
 }
 
 /// Below this bit size a coefficient, its quotients and products of divisors stay in `i128`.
-const MAX_BITS: u64 = 120;
+const MAX_BITS: u64 = 126;
 
 impl Costs {
     /// The costs of a search of `mons`, when every monomial is a plain product of symbols
