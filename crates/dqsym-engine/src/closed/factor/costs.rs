@@ -252,11 +252,55 @@ impl Costs {
     }
 }
 
-fn gcd(mut a: u128, mut b: u128) -> u128 {
-    while b != 0 {
-        (a, b) = (b, a % b);
+/// `gcd(g, n)`, `g` the gcd so far (0 for none): `n` enters as its remainder modulo `g`, and
+/// once `g` is a machine word the rest is a binary gcd of words.
+fn gcd(g: u128, n: u128) -> u128 {
+    if g == 0 {
+        return n;
     }
-    a
+    let r = n % g;
+    match u64::try_from(g) {
+        Ok(w) => u128::from(gcd_u64(w, r as u64)),
+        Err(_) => {
+            let (mut a, mut b) = (g, r);
+            while b != 0 {
+                (a, b) = (b, a % b);
+            }
+            a
+        }
+    }
+}
+
+fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
+    if a == 0 || b == 0 {
+        return a | b;
+    }
+    let shift = (a | b).trailing_zeros();
+    a >>= a.trailing_zeros();
+    loop {
+        b >>= b.trailing_zeros();
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        b -= a;
+        if b == 0 {
+            return a << shift;
+        }
+    }
+}
+
+/// The gcd of `n` over a group whose coefficients `d` divides: it stops at `|d|`, below
+/// which it cannot go.
+fn gcd_over(d: i128, ns: impl Iterator<Item = i128>, above: u128) -> u128 {
+    let floor = d.unsigned_abs();
+    let mut g = above;
+    for n in ns {
+        if g == floor {
+            break;
+        }
+        g = gcd(g, n.unsigned_abs());
+    }
+    g
 }
 
 impl Search<'_> {
@@ -345,10 +389,7 @@ impl Search<'_> {
         if group.iter().all(|&i| (self.coef(i) < 0) != (d < 0)) {
             return self.c_build_at(group, -d, depth).neg();
         }
-        let g = group
-            .iter()
-            .fold(0u128, |g, &i| gcd(g, self.coef(i).unsigned_abs()))
-            / d.unsigned_abs();
+        let g = gcd_over(d, group.iter().map(|&i| self.coef(i)), 0) / d.unsigned_abs();
         if g != 1 {
             let inner = self.c_build_at(group, d * g as i128, depth);
             return mul(&[Shape::int(g as i128), inner]);
@@ -554,7 +595,6 @@ impl Search<'_> {
                 let negative = (c < 0) != (d < 0);
                 l.all_neg &= negative;
                 l.all_pos &= !negative;
-                l.gcd = gcd(l.gcd, c.unsigned_abs());
                 for (s, _) in quotient_syms(m, &self.div, sym_base) {
                     let k = sym_base + s as usize;
                     if k != fi {
@@ -568,12 +608,18 @@ impl Search<'_> {
             l.size = buckets[b].len();
             l.first = buckets[b][0];
             let above = &out[b + 1];
+            // The bucket's coefficients after the gcd of the buckets above (one and the same
+            // gcd; it stops at `|d|`).
+            l.gcd = gcd_over(
+                d,
+                buckets[b].iter().map(|&p| self.coef(g0[p as usize])),
+                above.gcd,
+            );
             if above.size > 0 {
                 l.size += above.size;
                 l.first = l.first.min(above.first);
                 l.all_neg &= above.all_neg;
                 l.all_pos &= above.all_pos;
-                l.gcd = gcd(l.gcd, above.gcd);
             }
             let f_count = above.size as u32;
             let mut best: Option<(u32, usize)> = (f_count >= 2).then_some((f_count, fi));
