@@ -22,6 +22,7 @@ use crate::closed::expr::Cost;
 use crate::closed::mon::{FxMap, Mon};
 use crate::scalar::{charge, FxHasher, Q};
 use num_traits::ToPrimitive;
+use smallvec::SmallVec;
 use std::hash::{Hash, Hasher};
 
 /// The root's coefficients as machine integers, and the costs found for groups.
@@ -495,12 +496,25 @@ impl Search<'_> {
         if ks.len() <= super::run::SHORT_RUN {
             return self.c_split_on(g0, d, f, depth);
         }
-        // Positions by bucket, each in increasing order.
-        let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); ks.len()];
-        for (p, m) in mults.iter().enumerate() {
-            let b = ks.binary_search(m).unwrap_or(0);
-            buckets[b].push(p as u32);
+        // Positions by bucket, each in increasing order, in one vector (a counting sort).
+        let of: Vec<u32> = mults
+            .iter()
+            .map(|m| ks.binary_search(m).unwrap_or(0) as u32)
+            .collect();
+        let mut start = vec![0usize; ks.len() + 1];
+        for &b in &of {
+            start[b as usize + 1] += 1;
         }
+        for b in 0..ks.len() {
+            start[b + 1] += start[b];
+        }
+        let mut next = start.clone();
+        let mut order = vec![0u32; of.len()];
+        for (p, &b) in of.iter().enumerate() {
+            order[next[b as usize]] = p as u32;
+            next[b as usize] += 1;
+        }
+        let buckets = Buckets { order, start };
         let levels = self.c_levels(g0, d, f, &ks, &buckets);
         if self.spent.is_some() {
             return self.c_plain_sum(g0, d);
@@ -529,7 +543,7 @@ impl Search<'_> {
                 divisor = content;
             }
             if l.best != Some(fi) {
-                let mut group: Vec<u32> = buckets[b..].iter().flatten().copied().collect();
+                let mut group: Vec<u32> = buckets.from(b).to_vec();
                 group.sort_unstable();
                 for p in &mut group {
                     *p = g0[*p as usize];
@@ -549,7 +563,7 @@ impl Search<'_> {
                 _ => states.pop().unwrap_or((Steps::default(), false, 1)),
             };
             let factored = mul(&[factor_shape(ks[lb + 1] - ks[lb]), e]);
-            let rest: Vec<u32> = buckets[lb].iter().map(|&p| g0[p as usize]).collect();
+            let rest: SmallVec<[u32; 8]> = buckets.get(lb).iter().map(|&p| g0[p as usize]).collect();
             self.div[fi] = base + ks[lb];
             self.path.push((fi, ks[lb]));
             let level_e = self.c_beside(factored, &rest, at(neg, divisor), depth);
@@ -567,7 +581,7 @@ impl Search<'_> {
         d: i128,
         f: Factor,
         ks: &[u32],
-        buckets: &[Vec<u32>],
+        buckets: &Buckets,
     ) -> Vec<Level> {
         let fi = self.counts.index(f);
         let n = ks.len();
@@ -586,7 +600,7 @@ impl Search<'_> {
         let mut work = 0u64;
         for b in (1..n).rev() {
             let mut l = empty();
-            for &p in &buckets[b] {
+            for &p in buckets.get(b) {
                 let i = g0[p as usize];
                 let m = &self.root[i as usize];
                 let c = self.coef(i);
@@ -605,14 +619,14 @@ impl Search<'_> {
                     }
                 }
             }
-            l.size = buckets[b].len();
-            l.first = buckets[b][0];
+            l.size = buckets.get(b).len();
+            l.first = buckets.get(b)[0];
             let above = &out[b + 1];
             // The bucket's coefficients after the gcd of the buckets above (one and the same
             // gcd; it stops at `|d|`).
             l.gcd = gcd_over(
                 d,
-                buckets[b].iter().map(|&p| self.coef(g0[p as usize])),
+                buckets.get(b).iter().map(|&p| self.coef(g0[p as usize])),
                 above.gcd,
             );
             if above.size > 0 {
@@ -637,6 +651,24 @@ impl Search<'_> {
             self.spent = charge(work).err();
         }
         out
+    }
+}
+
+/// The positions of a run's first group by their power of `f` (`run::Buckets`): bucket `b`
+/// is `order[start[b]..start[b + 1]]`, in increasing order.
+struct Buckets {
+    order: Vec<u32>,
+    start: Vec<usize>,
+}
+
+impl Buckets {
+    fn get(&self, b: usize) -> &[u32] {
+        &self.order[self.start[b]..self.start[b + 1]]
+    }
+
+    /// Buckets `b` and up, one after another.
+    fn from(&self, b: usize) -> &[u32] {
+        &self.order[self.start[b]..]
     }
 }
 
