@@ -135,7 +135,11 @@ fn mul(parts: &[Shape]) -> Shape {
         } else {
             *p
         };
-        flat += if e.negs == 0 && e.kind == Kind::Mul { 2 } else { 1 };
+        flat += if e.negs == 0 && e.kind == Kind::Mul {
+            2
+        } else {
+            1
+        };
         units += 1;
         cost = add(cost, e.alone());
         single = e;
@@ -406,9 +410,10 @@ impl Search<'_> {
         (level, d, &key, group).hash(&mut h);
         let hash = h.finish();
         if let Some(k) = self.costs.as_ref().and_then(|c| {
-            c.memo.get(&hash)?.iter().find(|k| {
-                k.level == level && k.d == d && k.div == key && k.group == group
-            })
+            c.memo
+                .get(&hash)?
+                .iter()
+                .find(|k| k.level == level && k.d == d && k.div == key && k.group == group)
         }) {
             return k.shape;
         }
@@ -469,10 +474,7 @@ impl Search<'_> {
         let r = self.c_build_at(rest, d, depth + 1);
         if r.kind == Kind::Add && r.negs == 0 {
             Shape {
-                core: add(
-                    add(r.core, factored.in_sum()),
-                    Cost { ops: 1, calls: 0 },
-                ),
+                core: add(add(r.core, factored.in_sum()), Cost { ops: 1, calls: 0 }),
                 ..r
             }
         } else {
@@ -563,7 +565,8 @@ impl Search<'_> {
                 _ => states.pop().unwrap_or((Steps::default(), false, 1)),
             };
             let factored = mul(&[factor_shape(ks[lb + 1] - ks[lb]), e]);
-            let rest: SmallVec<[u32; 8]> = buckets.get(lb).iter().map(|&p| g0[p as usize]).collect();
+            let rest: SmallVec<[u32; 8]> =
+                buckets.get(lb).iter().map(|&p| g0[p as usize]).collect();
             self.div[fi] = base + ks[lb];
             self.path.push((fi, ks[lb]));
             let level_e = self.c_beside(factored, &rest, at(neg, divisor), depth);
