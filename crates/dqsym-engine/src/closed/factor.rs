@@ -803,7 +803,7 @@ mod tests {
             let mut s = Scalar::int(next(3) as i64);
             for name in names.iter().take(2 + next(3) as usize) {
                 let c = next(7) as i64 - 3;
-                s = s + Scalar::int(if c == 0 { 1 } else { c }) * Scalar::sym(*name);
+                s = s + Scalar::int(if c == 0 { 1 } else { c }) * Scalar::sym(name);
             }
             s
         };
