@@ -491,10 +491,23 @@ impl Search<'_> {
             .iter()
             .map(|&i| multiplicity(&self.root[i as usize], f) - base)
             .collect();
-        let mut ks = mults.clone();
-        ks.push(0);
-        ks.sort_unstable();
-        ks.dedup();
+        // The distinct powers, 0 among them, in increasing order: marked in a table when the
+        // largest is small beside the group (a power's run), sorted otherwise.
+        let top = mults.iter().copied().max().unwrap_or(0) as usize;
+        let ks: Vec<u32> = if top <= 4 * mults.len() + 64 {
+            let mut seen = vec![false; top + 1];
+            seen[0] = true;
+            for &m in &mults {
+                seen[m as usize] = true;
+            }
+            (0..=top as u32).filter(|&k| seen[k as usize]).collect()
+        } else {
+            let mut ks = mults.clone();
+            ks.push(0);
+            ks.sort_unstable();
+            ks.dedup();
+            ks
+        };
         if ks.len() <= super::run::SHORT_RUN {
             return self.c_split_on(g0, d, f, depth);
         }
