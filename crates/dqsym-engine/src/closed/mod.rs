@@ -22,7 +22,8 @@
 //! `l1 cos(t + 5*pi/9) + l2 cos(2*t + 5*pi/9)`); `recombine.rs` applies the four angle-sum
 //! identities to any depth; `factor.rs` nests common factors, choosing by `Cost` (below its
 //! branching levels a run of splits on one factor from one sort of the terms by its power,
-//! `factor/run.rs`); `expr.rs` is the
+//! `factor/run.rs`; at the branching levels of a plain integer polynomial each candidate's
+//! exact cost found without its tree, in machine integers, `factor/costs.rs`); `expr.rs` is the
 //! display expression `Expr` with its cost and exact value (and f64 value); `decimals.rs`
 //! `decimal_form`, a robot's decimal denominators put back into their sums (`0.425 c2`, the
 //! printers' `decimals` option prints the decimal fractions); `alt.rs` the further candidates taken

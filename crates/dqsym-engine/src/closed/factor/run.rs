@@ -47,7 +47,7 @@ struct Level {
 }
 
 /// Runs over at most this many distinct powers (0 among them) take the level by level path.
-const SHORT_RUN: usize = 3;
+pub(super) const SHORT_RUN: usize = 3;
 
 impl Search<'_> {
     /// The split of `g0` on `f` (at a level that does not branch), and of the group holding

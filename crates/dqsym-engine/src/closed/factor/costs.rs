@@ -1,0 +1,697 @@
+//! The cost of a candidate of the branching levels without its tree, for sums of plain
+//! monomials with integer coefficients (a polynomial such as `(x + y + z)^60`'s expansion).
+//!
+//! At each branching level [`Search::searched`] tries several factors and keeps the first of
+//! least cost; every candidate used to be built in full and all but one thrown away (about
+//! ten trees of `(x + y + z)^60`'s size). Here each candidate's exact [`Cost`] is computed by
+//! the same steps the tree search takes (sign, content, split, the run of splits on one
+//! factor, the splice of the rest), each step producing a [`Shape`] (the cost and the few
+//! facts about a node its parent's cost depends on) instead of a node; only the winner is then
+//! built. The coefficients are machine integers: a group of the search is always the root's
+//! monomials divided by one common divisor `d` (see [`super::Group`]), so a group is its
+//! indices and `d`, and a coefficient `coef[i] / d` is never formed. The costs equal the
+//! built trees' (checked in debug builds for every winner), so the choice, and the output,
+//! is the one building every candidate gave.
+//!
+//! Taken only when every monomial is a product of symbols without a radical or a
+//! trigonometric atom and every coefficient an integer within 126 bits; otherwise the
+//! candidates are built as before.
+
+use super::{multiplicity, quotient_syms, Factor, Search, BIG_WORD_UNITS, BRANCH, BRANCH_DEPTH};
+use crate::closed::expr::Cost;
+use crate::closed::mon::{FxMap, Mon};
+use crate::scalar::{charge, FxHasher, Q};
+use num_traits::ToPrimitive;
+use smallvec::SmallVec;
+use std::hash::{Hash, Hasher};
+
+/// The root's coefficients as machine integers, and the costs found for groups.
+pub(super) struct Costs {
+    coef: Vec<i128>,
+    /// The budget units of a coefficient's words (as [`Q::words`] counts them, for the
+    /// root's coefficient: an upper bound of a quotient's).
+    words: Vec<u64>,
+    memo: FxMap<u64, Vec<Known>>,
+}
+
+/// A cost found for a group: its depth class, divisor, the factors pulled out of it (as
+/// [`Search::div_key`]) and its monomials by index.
+struct Known {
+    level: usize,
+    d: i128,
+    div: Vec<(usize, u32)>,
+    group: Vec<u32>,
+    shape: Shape,
+}
+
+/// What a node's parent needs of it: the cost of its core (the node without its leading
+/// negations), the kind of the core and the number of negations around it.
+#[derive(Clone, Copy, Debug)]
+struct Shape {
+    core: Cost,
+    kind: Kind,
+    negs: usize,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Kind {
+    /// The number one (`E::Num(1)`), dropped from a product.
+    One,
+    Add,
+    Mul,
+    Other,
+}
+
+impl Shape {
+    const ZERO: Shape = Shape {
+        core: Cost { ops: 0, calls: 0 },
+        kind: Kind::Other,
+        negs: 0,
+    };
+
+    /// A leaf costing `ops` operations (a symbol, a power, an integer).
+    fn leaf(ops: usize) -> Shape {
+        Shape {
+            core: Cost { ops, calls: 0 },
+            kind: Kind::Other,
+            negs: 0,
+        }
+    }
+
+    /// An integer `E::Num`.
+    fn int(n: i128) -> Shape {
+        Shape {
+            kind: if n == 1 { Kind::One } else { Kind::Other },
+            ..Shape::ZERO
+        }
+    }
+
+    /// [`super::E::cost`]: standing alone, each negation is an operation.
+    fn alone(&self) -> Cost {
+        Cost {
+            ops: self.core.ops + self.negs,
+            calls: self.core.calls,
+        }
+    }
+
+    /// The cost as a term of a sum: the outermost negation is the subtraction's.
+    fn in_sum(&self) -> Cost {
+        Cost {
+            ops: self.core.ops + self.negs.saturating_sub(1),
+            calls: self.core.calls,
+        }
+    }
+
+    fn neg(self) -> Shape {
+        Shape {
+            negs: self.negs + 1,
+            ..self
+        }
+    }
+}
+
+fn add(a: Cost, b: Cost) -> Cost {
+    Cost {
+        ops: a.ops + b.ops,
+        calls: a.calls + b.calls,
+    }
+}
+
+/// [`super::mul`]'s node: products flattened (each keeps its cost, so it counts as one
+/// factor), a leading negation of a factor pulled out of the product, a one dropped.
+fn mul(parts: &[Shape]) -> Shape {
+    let (mut flat, mut units, mut parity) = (0usize, 0usize, false);
+    let mut cost = Cost::default();
+    let mut single = Shape::ZERO;
+    for p in parts {
+        let e = if p.negs > 0 {
+            parity = !parity;
+            Shape {
+                negs: p.negs - 1,
+                ..*p
+            }
+        } else if p.kind == Kind::One {
+            continue;
+        } else {
+            *p
+        };
+        flat += if e.negs == 0 && e.kind == Kind::Mul {
+            2
+        } else {
+            1
+        };
+        units += 1;
+        cost = add(cost, e.alone());
+        single = e;
+    }
+    let e = match flat {
+        0 => Shape::int(1),
+        1 => single,
+        _ => Shape {
+            core: Cost {
+                ops: cost.ops + units - 1,
+                calls: cost.calls,
+            },
+            kind: Kind::Mul,
+            negs: 0,
+        },
+    };
+    if parity {
+        e.neg()
+    } else {
+        e
+    }
+}
+
+/// A sum of terms already shaped (`E::sum`).
+fn sum(terms: impl Iterator<Item = Shape>) -> Shape {
+    let (mut n, mut cost) = (0usize, Cost::default());
+    for t in terms {
+        n += 1;
+        cost = add(cost, t.in_sum());
+    }
+    Shape {
+        core: Cost {
+            ops: cost.ops + n.saturating_sub(1),
+            calls: cost.calls,
+        },
+        kind: Kind::Add,
+        negs: 0,
+    }
+}
+
+/// `f^k` (`super::factor_expr` of a symbol).
+fn factor_shape(k: u32) -> Shape {
+    Shape::leaf(k.saturating_sub(1) as usize)
+}
+
+/// The steps a level of a run takes before it splits (`run::Steps`, without a radical).
+#[derive(Default, Clone, Copy)]
+struct Steps {
+    neg: bool,
+    content: Option<i128>,
+}
+
+fn wrap(e: Shape, steps: Steps) -> Shape {
+    let mut e = e;
+    if let Some(g) = steps.content {
+        e = mul(&[Shape::int(g), e]);
+    }
+    if steps.neg {
+        e = e.neg();
+    }
+    e
+}
+
+/// What the buckets above a level of a run have in common (`run::Level`).
+struct Level {
+    size: usize,
+    first: u32,
+    all_neg: bool,
+    all_pos: bool,
+    /// The gcd of the root's coefficients (absolute values; 0 for none).
+    gcd: u128,
+    best: Option<usize>,
+}
+
+/// Below this bit size a coefficient, its quotients and products of divisors stay in `i128`.
+const MAX_BITS: u64 = 126;
+
+impl Costs {
+    /// The costs of a search of `mons`, when every monomial is a plain product of symbols
+    /// with an integer coefficient of at most [`MAX_BITS`] bits.
+    pub(super) fn for_mons(mons: &[Mon]) -> Option<Costs> {
+        let mut coef = Vec::with_capacity(mons.len());
+        let mut words = Vec::with_capacity(mons.len());
+        for m in mons {
+            if m.rad != 1 || !m.atoms.is_empty() || m.q.bits() > MAX_BITS {
+                return None;
+            }
+            let n = match &m.q {
+                Q::S(n, 1) => i128::from(*n),
+                Q::S(..) => return None,
+                Q::B(b) if num_traits::One::is_one(b.denom()) => b.numer().to_i128()?,
+                Q::B(_) => return None,
+            };
+            coef.push(n);
+            words.push(m.q.words() * BIG_WORD_UNITS);
+        }
+        Some(Costs {
+            coef,
+            words,
+            memo: FxMap::default(),
+        })
+    }
+
+    /// The common divisor of a group of the tree search: `coef[i] / q` for its first
+    /// monomial `(i, q)`.
+    pub(super) fn divisor(&self, group: &[(u32, Q)]) -> Option<i128> {
+        let (i, q) = group.first()?;
+        let q = match q {
+            Q::S(n, 1) => i128::from(*n),
+            Q::B(b) if num_traits::One::is_one(b.denom()) => b.numer().to_i128()?,
+            _ => return None,
+        };
+        let c = self.coef[*i as usize];
+        (q != 0 && c % q == 0).then(|| c / q)
+    }
+}
+
+/// `gcd(g, n)`, `g` the gcd so far (0 for none): `n` enters as its remainder modulo `g`, and
+/// once `g` is a machine word the rest is a binary gcd of words.
+fn gcd(g: u128, n: u128) -> u128 {
+    if g == 0 {
+        return n;
+    }
+    let r = n % g;
+    match u64::try_from(g) {
+        Ok(w) => u128::from(gcd_u64(w, r as u64)),
+        Err(_) => {
+            let (mut a, mut b) = (g, r);
+            while b != 0 {
+                (a, b) = (b, a % b);
+            }
+            a
+        }
+    }
+}
+
+fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
+    if a == 0 || b == 0 {
+        return a | b;
+    }
+    let shift = (a | b).trailing_zeros();
+    a >>= a.trailing_zeros();
+    loop {
+        b >>= b.trailing_zeros();
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        b -= a;
+        if b == 0 {
+            return a << shift;
+        }
+    }
+}
+
+/// The gcd of `n` over a group whose coefficients `d` divides: it stops at `|d|`, below
+/// which it cannot go.
+fn gcd_over(d: i128, ns: impl Iterator<Item = i128>, above: u128) -> u128 {
+    let floor = d.unsigned_abs();
+    let mut g = above;
+    for n in ns {
+        if g == floor {
+            break;
+        }
+        g = gcd(g, n.unsigned_abs());
+    }
+    g
+}
+
+impl Search<'_> {
+    /// The costs of the candidates `fs` for `group` (of the tree search, at `depth`) split on
+    /// each, in order, when the group's monomials allow it.
+    pub(super) fn candidate_costs(
+        &mut self,
+        group: &[(u32, Q)],
+        fs: &[Factor],
+        depth: usize,
+    ) -> Option<Vec<Cost>> {
+        let d = self.costs.as_ref()?.divisor(group)?;
+        debug_assert!(group.iter().all(|(i, q)| {
+            let c = self.costs.as_ref().map_or(0, |c| c.coef[*i as usize]);
+            c % d == 0 && *q == c_q(c / d)
+        }));
+        let idx: Vec<u32> = group.iter().map(|(i, _)| *i).collect();
+        Some(
+            fs.iter()
+                .map(|&f| self.c_split_on(&idx, d, f, depth).alone())
+                .collect(),
+        )
+    }
+
+    fn coef(&self, i: u32) -> i128 {
+        self.costs.as_ref().map_or(1, |c| c.coef[i as usize])
+    }
+
+    /// Monomial `i` with coefficient `coef[i] / d` ([`Search::mon_expr`]).
+    fn c_mon(&self, i: u32, d: i128) -> Shape {
+        let q = self.coef(i) / d;
+        let m = &self.root[i as usize];
+        let mut parts = 0usize;
+        let mut ops = 0usize;
+        if q.unsigned_abs() != 1 {
+            parts += 1;
+        }
+        for (_, e) in quotient_syms(m, &self.div, self.counts.sym_base) {
+            parts += 1;
+            ops += (e as usize).saturating_sub(1);
+        }
+        let e = match parts {
+            0 => Shape::int(1),
+            1 => Shape::leaf(ops),
+            n => Shape {
+                core: Cost {
+                    ops: ops + n - 1,
+                    calls: 0,
+                },
+                kind: Kind::Mul,
+                negs: 0,
+            },
+        };
+        if q < 0 {
+            e.neg()
+        } else {
+            e
+        }
+    }
+
+    fn c_plain_sum(&self, group: &[u32], d: i128) -> Shape {
+        sum(group.iter().map(|&i| self.c_mon(i, d)))
+    }
+
+    /// [`Search::build_at`] for the group `coef[i] / d`, `i` in `group`.
+    fn c_build_at(&mut self, group: &[u32], d: i128, depth: usize) -> Shape {
+        match group {
+            [] => return Shape::ZERO,
+            [i] => return self.c_mon(*i, d),
+            _ => {}
+        }
+        let work: u64 = group
+            .iter()
+            .map(|&i| {
+                let m = &self.root[i as usize];
+                let len = quotient_syms(m, &self.div, self.counts.sym_base).count() as u64;
+                1 + len + self.costs.as_ref().map_or(0, |c| c.words[i as usize])
+            })
+            .sum();
+        if self.spent.is_none() {
+            self.spent = charge(work).err();
+        }
+        if self.spent.is_some() {
+            return self.c_plain_sum(group, d);
+        }
+        if group.iter().all(|&i| (self.coef(i) < 0) != (d < 0)) {
+            return self.c_build_at(group, -d, depth).neg();
+        }
+        let g = gcd_over(d, group.iter().map(|&i| self.coef(i)), 0) / d.unsigned_abs();
+        if g != 1 {
+            let inner = self.c_build_at(group, d * g as i128, depth);
+            return mul(&[Shape::int(g as i128), inner]);
+        }
+        self.c_searched(group, d, depth)
+    }
+
+    /// [`Search::searched`]: the memo, the candidates, the splits.
+    fn c_searched(&mut self, group: &[u32], d: i128, depth: usize) -> Shape {
+        let level = depth.min(BRANCH_DEPTH);
+        let key = self.div_key();
+        let mut h = FxHasher::default();
+        (level, d, &key, group).hash(&mut h);
+        let hash = h.finish();
+        if let Some(k) = self.costs.as_ref().and_then(|c| {
+            c.memo
+                .get(&hash)?
+                .iter()
+                .find(|k| k.level == level && k.d == d && k.div == key && k.group == group)
+        }) {
+            return k.shape;
+        }
+        let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
+        let candidates = self.candidates(group.iter().copied(), tries);
+        if candidates.is_empty() {
+            return self.c_plain_sum(group, d);
+        }
+        let shape = if tries == 1 {
+            self.c_run(group, d, candidates[0], depth)
+        } else {
+            let mut best: Option<Shape> = None;
+            for f in candidates {
+                let e = self.c_split_on(group, d, f, depth);
+                if best.is_none_or(|b| e.alone() < b.alone()) {
+                    best = Some(e);
+                }
+            }
+            best.unwrap_or(Shape::ZERO)
+        };
+        if let Some(c) = self.costs.as_mut() {
+            c.memo.entry(hash).or_default().push(Known {
+                level,
+                d,
+                div: key,
+                group: group.to_vec(),
+                shape,
+            });
+        }
+        shape
+    }
+
+    /// [`Search::split_on`].
+    fn c_split_on(&mut self, group: &[u32], d: i128, f: Factor, depth: usize) -> Shape {
+        let fi = self.counts.index(f);
+        let mult = |s: &Self, i: u32| multiplicity(&s.root[i as usize], f) - s.div[fi];
+        let k = group
+            .iter()
+            .map(|&i| mult(self, i))
+            .filter(|&n| n > 0)
+            .min()
+            .unwrap_or(1);
+        let (with, rest): (Vec<u32>, Vec<u32>) = group.iter().partition(|&&i| mult(self, i) >= k);
+        self.div[fi] += k;
+        self.path.push((fi, k));
+        let inner = self.c_build_at(&with, d, depth.saturating_add(k as usize));
+        self.path.pop();
+        self.div[fi] -= k;
+        let factored = mul(&[factor_shape(k), inner]);
+        self.c_beside(factored, &rest, d, depth)
+    }
+
+    /// [`Search::beside`]: the rest's terms and the factored group in one sum.
+    fn c_beside(&mut self, factored: Shape, rest: &[u32], d: i128, depth: usize) -> Shape {
+        if rest.is_empty() {
+            return factored;
+        }
+        let r = self.c_build_at(rest, d, depth + 1);
+        if r.kind == Kind::Add && r.negs == 0 {
+            Shape {
+                core: add(add(r.core, factored.in_sum()), Cost { ops: 1, calls: 0 }),
+                ..r
+            }
+        } else {
+            sum([r, factored].into_iter())
+        }
+    }
+
+    /// [`Search::run`]: the split of `g0` on `f`, and of the group holding `f` on `f` again
+    /// while `f` stays its most frequent factor, from buckets by the power of `f`.
+    fn c_run(&mut self, g0: &[u32], d: i128, f: Factor, depth: usize) -> Shape {
+        let fi = self.counts.index(f);
+        let base = self.div[fi];
+        let mults: Vec<u32> = g0
+            .iter()
+            .map(|&i| multiplicity(&self.root[i as usize], f) - base)
+            .collect();
+        // The distinct powers, 0 among them, in increasing order: marked in a table when the
+        // largest is small beside the group (a power's run), sorted otherwise.
+        let top = mults.iter().copied().max().unwrap_or(0) as usize;
+        let ks: Vec<u32> = if top <= 4 * mults.len() + 64 {
+            let mut seen = vec![false; top + 1];
+            seen[0] = true;
+            for &m in &mults {
+                seen[m as usize] = true;
+            }
+            (0..=top as u32).filter(|&k| seen[k as usize]).collect()
+        } else {
+            let mut ks = mults.clone();
+            ks.push(0);
+            ks.sort_unstable();
+            ks.dedup();
+            ks
+        };
+        if ks.len() <= super::run::SHORT_RUN {
+            return self.c_split_on(g0, d, f, depth);
+        }
+        // Positions by bucket, each in increasing order, in one vector (a counting sort).
+        let of: Vec<u32> = mults
+            .iter()
+            .map(|m| ks.binary_search(m).unwrap_or(0) as u32)
+            .collect();
+        let mut start = vec![0usize; ks.len() + 1];
+        for &b in &of {
+            start[b as usize + 1] += 1;
+        }
+        for b in 0..ks.len() {
+            start[b + 1] += start[b];
+        }
+        let mut next = start.clone();
+        let mut order = vec![0u32; of.len()];
+        for (p, &b) in of.iter().enumerate() {
+            order[next[b as usize]] = p as u32;
+            next[b as usize] += 1;
+        }
+        let buckets = Buckets { order, start };
+        let levels = self.c_levels(g0, d, f, &ks, &buckets);
+        if self.spent.is_some() {
+            return self.c_plain_sum(g0, d);
+        }
+        // A level's coefficients are `g0`'s divided by `divisor` and negated with `neg`:
+        // `coef / (d * divisor * sign)`.
+        let at = |neg: bool, divisor: i128| if neg { -d * divisor } else { d * divisor };
+        let (mut neg, mut divisor) = (false, 1i128);
+        let mut states: Vec<(Steps, bool, i128)> = Vec::new();
+        let mut b = 1;
+        let inner = loop {
+            let l = &levels[b];
+            self.div[fi] = base + ks[b];
+            if l.size == 1 {
+                break self.c_mon(g0[l.first as usize], at(neg, divisor));
+            }
+            let mut steps = Steps::default();
+            if (neg && l.all_pos) || (!neg && l.all_neg) {
+                steps.neg = true;
+                neg = !neg;
+            }
+            // The level's content relative to `g0`'s coefficients.
+            let content = (l.gcd / d.unsigned_abs()) as i128;
+            if content != divisor {
+                steps.content = Some(content / divisor);
+                divisor = content;
+            }
+            if l.best != Some(fi) {
+                let mut group: Vec<u32> = buckets.from(b).to_vec();
+                group.sort_unstable();
+                for p in &mut group {
+                    *p = g0[*p as usize];
+                }
+                self.path.push((fi, ks[b]));
+                let e = self.c_searched(&group, at(neg, divisor), depth);
+                self.path.pop();
+                break wrap(e, steps);
+            }
+            states.push((steps, neg, divisor));
+            b += 1;
+        };
+        let mut e = inner;
+        for lb in (0..b).rev() {
+            let (steps, neg, divisor) = match lb {
+                0 => (Steps::default(), false, 1),
+                _ => states.pop().unwrap_or((Steps::default(), false, 1)),
+            };
+            let factored = mul(&[factor_shape(ks[lb + 1] - ks[lb]), e]);
+            let rest: SmallVec<[u32; 8]> =
+                buckets.get(lb).iter().map(|&p| g0[p as usize]).collect();
+            self.div[fi] = base + ks[lb];
+            self.path.push((fi, ks[lb]));
+            let level_e = self.c_beside(factored, &rest, at(neg, divisor), depth);
+            self.path.pop();
+            e = wrap(level_e, steps);
+        }
+        self.div[fi] = base;
+        e
+    }
+
+    /// Each level's data from the buckets above it ([`Search::levels`]), charged alike.
+    fn c_levels(
+        &mut self,
+        g0: &[u32],
+        d: i128,
+        f: Factor,
+        ks: &[u32],
+        buckets: &Buckets,
+    ) -> Vec<Level> {
+        let fi = self.counts.index(f);
+        let n = ks.len();
+        let empty = || Level {
+            size: 0,
+            first: u32::MAX,
+            all_neg: true,
+            all_pos: true,
+            gcd: 0,
+            best: None,
+        };
+        let mut out: Vec<Level> = (0..=n).map(|_| empty()).collect();
+        let sym_base = self.counts.sym_base;
+        let mut counts = vec![0u32; self.counts.n.len()];
+        let mut touched: Vec<usize> = Vec::new();
+        let mut work = 0u64;
+        for b in (1..n).rev() {
+            let mut l = empty();
+            for &p in buckets.get(b) {
+                let i = g0[p as usize];
+                let m = &self.root[i as usize];
+                let c = self.coef(i);
+                work += 1 + m.syms.len() as u64;
+                work += self.costs.as_ref().map_or(0, |c| c.words[i as usize]);
+                let negative = (c < 0) != (d < 0);
+                l.all_neg &= negative;
+                l.all_pos &= !negative;
+                for (s, _) in quotient_syms(m, &self.div, sym_base) {
+                    let k = sym_base + s as usize;
+                    if k != fi {
+                        if counts[k] == 0 {
+                            touched.push(k);
+                        }
+                        counts[k] += 1;
+                    }
+                }
+            }
+            l.size = buckets.get(b).len();
+            l.first = buckets.get(b)[0];
+            let above = &out[b + 1];
+            // The bucket's coefficients after the gcd of the buckets above (one and the same
+            // gcd; it stops at `|d|`).
+            l.gcd = gcd_over(
+                d,
+                buckets.get(b).iter().map(|&p| self.coef(g0[p as usize])),
+                above.gcd,
+            );
+            if above.size > 0 {
+                l.size += above.size;
+                l.first = l.first.min(above.first);
+                l.all_neg &= above.all_neg;
+                l.all_pos &= above.all_pos;
+            }
+            let f_count = above.size as u32;
+            let mut best: Option<(u32, usize)> = (f_count >= 2).then_some((f_count, fi));
+            for &k in &touched {
+                let c = counts[k];
+                if c >= 2 && best.is_none_or(|(bc, bk)| c > bc || (c == bc && k < bk)) {
+                    best = Some((c, k));
+                }
+            }
+            work += 1 + touched.len() as u64;
+            l.best = best.map(|(_, k)| k);
+            out[b] = l;
+        }
+        if self.spent.is_none() {
+            self.spent = charge(work).err();
+        }
+        out
+    }
+}
+
+/// The positions of a run's first group by their power of `f` (`run::Buckets`): bucket `b`
+/// is `order[start[b]..start[b + 1]]`, in increasing order.
+struct Buckets {
+    order: Vec<u32>,
+    start: Vec<usize>,
+}
+
+impl Buckets {
+    fn get(&self, b: usize) -> &[u32] {
+        &self.order[self.start[b]..self.start[b + 1]]
+    }
+
+    /// Buckets `b` and up, one after another.
+    fn from(&self, b: usize) -> &[u32] {
+        &self.order[self.start[b]..]
+    }
+}
+
+/// The integer `n` as a [`Q`] (debug checks only).
+fn c_q(n: i128) -> Q {
+    match i64::try_from(n) {
+        Ok(s) if s != i64::MIN => Q::S(s, 1),
+        _ => Q::big(num_rational::BigRational::from_integer(n.into())),
+    }
+}
