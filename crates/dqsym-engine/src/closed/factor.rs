@@ -252,6 +252,9 @@ struct Search<'a> {
     /// The costs of candidates found without their trees, for plain integer polynomials.
     costs: Option<costs::Costs>,
     spent: Option<ScalarError>,
+    /// Above zero while the winner of a cost pass is built: its work was charged by the pass
+    /// (which repeats every step of the build), so charging it again would count it twice.
+    prepaid: u32,
 }
 
 /// The cheapest nested expression this search finds for the sum of `mons`, with its cost.
@@ -277,6 +280,7 @@ fn build_with(mons: &[Mon], costs: bool) -> Result<(E, Cost), ScalarError> {
         memo: FxMap::default(),
         costs: costs.then(|| costs::Costs::for_mons(mons)).flatten(),
         spent: None,
+        prepaid: 0,
     };
     let group: Group = mons
         .iter()
@@ -338,6 +342,13 @@ fn quotient_atoms<'m>(m: &'m Mon, div: &'m [u32]) -> impl Iterator<Item = Atom> 
 }
 
 impl Search<'_> {
+    /// Charges `work` to the budget, unless it is out already or the work was prepaid.
+    fn charge_work(&mut self, work: u64) {
+        if self.spent.is_none() && self.prepaid == 0 {
+            self.spent = charge(work).err();
+        }
+    }
+
     fn build_at(&mut self, group: &[(u32, Q)], depth: usize) -> E {
         match group {
             [] => return E::zero(),
@@ -352,9 +363,7 @@ impl Search<'_> {
             .iter()
             .map(|(i, q)| 1 + self.quotient_len(*i) + (q.words() * BIG_WORD_UNITS) as usize)
             .sum();
-        if self.spent.is_none() {
-            self.spent = charge(work as u64).err();
-        }
+        self.charge_work(work as u64);
         if self.spent.is_some() {
             // Out of budget: the result is discarded, so stop at once.
             return self.plain_sum(group);
@@ -409,7 +418,9 @@ impl Search<'_> {
             }
             match best {
                 Some((c, f)) => {
+                    self.prepaid += 1;
                     let e = self.split_on(group, f, depth);
+                    self.prepaid -= 1;
                     debug_assert!(
                         self.spent.is_some() || e.cost() == c,
                         "cost without the tree"

@@ -20,7 +20,7 @@
 use super::{multiplicity, quotient_syms, Factor, Search, BIG_WORD_UNITS, BRANCH, BRANCH_DEPTH};
 use crate::closed::expr::Cost;
 use crate::closed::mon::{FxMap, Mon};
-use crate::scalar::{charge, FxHasher, Q};
+use crate::scalar::{FxHasher, Q};
 use num_traits::ToPrimitive;
 use smallvec::SmallVec;
 use std::hash::{Hash, Hasher};
@@ -385,9 +385,7 @@ impl Search<'_> {
                 1 + len + self.costs.as_ref().map_or(0, |c| c.words[i as usize])
             })
             .sum();
-        if self.spent.is_none() {
-            self.spent = charge(work).err();
-        }
+        self.charge_work(work);
         if self.spent.is_some() {
             return self.c_plain_sum(group, d);
         }
@@ -663,9 +661,7 @@ impl Search<'_> {
             l.best = best.map(|(_, k)| k);
             out[b] = l;
         }
-        if self.spent.is_none() {
-            self.spent = charge(work).err();
-        }
+        self.charge_work(work);
         out
     }
 }

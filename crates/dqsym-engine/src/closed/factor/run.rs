@@ -14,7 +14,7 @@
 
 use super::{factor_expr, mul, multiplicity, Factor, Search, E};
 use crate::closed::mon::{content_of, div_q};
-use crate::scalar::{charge, Q};
+use crate::scalar::Q;
 use smallvec::SmallVec;
 use std::rc::Rc;
 
@@ -279,9 +279,7 @@ impl Search<'_> {
             l.best = best.map(|(_, k)| k);
             out[b] = l;
         }
-        if self.spent.is_none() {
-            self.spent = charge(work).err();
-        }
+        self.charge_work(work);
         out
     }
 }
