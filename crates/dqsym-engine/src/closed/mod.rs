@@ -268,6 +268,7 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
         let Ok(c) = prepared_shifted(&l.scalar).0.map(|c| l.substitute(c)) else {
             continue;
         };
+        let c = joined(c, x);
         if alt::shorter(&c, best.as_ref().unwrap_or(&found)) && verified(&c, x) {
             best = Some(c);
         }
@@ -279,16 +280,29 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
             .0
             .ok()
             .and_then(|c| a.substitute(c))
+            .map(|c| joined(c, x))
         {
             if alt::shorter(&c, best.as_ref().unwrap_or(&found)) && verified(&c, x) {
                 best = Some(c);
             }
         }
     }
+    // Pairs of summands joined in the angles shown (`extra::joined_form`).
+    if best.is_none() {
+        best = extra::joined_form(&found, |c| verified(c, x));
+    }
     match best {
         Some(c) => (Ok(c.symbols_leading()), Prepared(None, None)),
         None => (Ok(found), prepared),
     }
+}
+
+/// `e` (a form of `x`) with pairs of its summands joined when that is shorter
+/// (`extra::joined_form`): the angles that constants lifted out or radicals made angles again
+/// (`coefs.rs`) are first seen in the form shown (`cos(r - u2/2 + pi/3) + cos(r + 3*u2/2 +
+/// pi/3)` is `2 cos(r + u2/2 + pi/3) cos(u2)`).
+fn joined(e: Expr, x: &Scalar) -> Expr {
+    extra::joined_form(&e, |c| verified(c, x)).unwrap_or(e)
 }
 
 /// [`closed_form_prepared`] without the constants lifted.
