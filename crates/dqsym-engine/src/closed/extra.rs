@@ -13,6 +13,7 @@ use super::expr::{Angle, Expr};
 use crate::scalar::atoms::{freq_combine, Small};
 use crate::scalar::{charge, Sym, Term, Trig};
 use crate::Scalar;
+use num_integer::Integer;
 use num_rational::BigRational as Rat;
 use num_traits::One;
 
@@ -369,13 +370,23 @@ impl Summand {
     }
 }
 
-/// The sinusoid `f(angle)` with the angle's leading coefficient made positive and its offset
-/// reduced: `(negated, call)`.
-fn sinusoid(f: Trig, mut angle: Angle) -> (bool, Expr) {
+/// The sinusoid `f(angle)` with the angle's leading coefficient made positive, an offset that
+/// is a multiple of `pi/2` taken into the call (`cos(x/2 + pi/2)` is `-sin(x/2)`) and the
+/// offset reduced: `(negated, call)`.
+fn sinusoid(mut f: Trig, mut angle: Angle) -> (bool, Expr) {
     let mut negated = false;
     if angle.leading().is_some_and(|k| k < Small::from_integer(0)) {
         angle.negate();
         negated = f.is_sin();
+    }
+    let quarters = angle.pi * Small::from_integer(2);
+    if quarters.is_integer() {
+        // cos(y + pi/2) = -sin(y), sin(y + pi/2) = cos(y), once per quarter turn.
+        for _ in 0..quarters.numer().rem_euclid(4) {
+            negated ^= !f.is_sin();
+            f = Trig::of(!f.is_sin());
+        }
+        angle.pi = Small::from_integer(0);
     }
     angle.reduce_offset();
     (negated, Expr::Trig { f, angle })
@@ -501,13 +512,20 @@ fn pairs_joined(e: &Expr) -> Vec<Expr> {
         return Vec::new();
     }
     let whole = |v: &[Summand]| -> Expr {
-        // A number common to every summand taken out: `2 (a b + c^2)`.
+        // The numbers' common factor taken out (`2 (a b + c^2)`; `1/4 (2 a + 4 b)` is
+        // `1/2 (a + 2 b)`): the gcd of the numerators over the lcm of the denominators.
         let mut front = front.clone();
         let mut v = v.to_vec();
-        if v.len() >= 2 && !v[0].q.is_one() && v.iter().all(|s| s.q == v[0].q) {
-            let q = v[0].q.clone();
-            v.iter_mut().for_each(|s| s.q = Rat::one());
-            front = Some(front.map_or(q.clone(), |f| f * q));
+        if v.len() >= 2 {
+            let (n, d) = v.iter().fold(
+                (v[0].q.numer().clone(), v[0].q.denom().clone()),
+                |(n, d), s| (n.gcd(s.q.numer()), d.lcm(s.q.denom())),
+            );
+            let g = Rat::new(n, d);
+            if !g.is_one() {
+                v.iter_mut().for_each(|s| s.q = &s.q / &g);
+                front = Some(front.map_or(g.clone(), |f| f * g));
+            }
         }
         let mut terms: Vec<Expr> = v.iter().map(Summand::expr).collect();
         terms.sort_by_key(|e| matches!(e, Expr::Neg(_)));
