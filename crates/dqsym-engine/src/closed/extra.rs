@@ -279,6 +279,9 @@ fn partial_factor(front: Option<Expr>, sum: &[Expr], parts: &[(bool, Vec<&Expr>)
 /// The most summands [`pairs_joined`] looks at (its pairs are quadratic in them).
 const MAX_PAIR_SUMMANDS: usize = 16;
 
+/// A call among a summand's factors: the other factors, the function and its angle.
+type Call = (Vec<Expr>, Trig, Angle);
+
 /// A summand read for [`pairs_joined`]: its sign, its number (positive), its other factors,
 /// and the position among them of the call it is written in (a call outside a power).
 #[derive(Clone)]
@@ -357,7 +360,7 @@ impl Summand {
     }
 
     /// The other factors and the call, for each call among the factors.
-    fn calls(&self) -> Vec<(Vec<Expr>, Trig, Angle)> {
+    fn calls(&self) -> Vec<Call> {
         let mut out = Vec::new();
         for (i, f) in self.factors.iter().enumerate() {
             if let Expr::Trig { f, angle } = f {
@@ -407,15 +410,15 @@ fn half_sum(a: &Angle, b: &Angle, sign: i64) -> Angle {
 /// of equal size: sum to product (`cos A + cos B = 2 cos((A + B)/2) cos((A - B)/2)`, and the
 /// three others), and a number beside the cosine or sine of one angle as a square
 /// (`1 - cos(2 w) = 2 sin(w)^2`, `k + k cos(x) = 2 k cos(x/2)^2`). Not checked.
-fn joined(a: &Summand, b: &Summand) -> Vec<Summand> {
+fn joined(a: &Summand, ca: &[Call], b: &Summand, cb: &[Call]) -> Vec<Summand> {
     if a.q != b.q {
         return Vec::new();
     }
     let mut out = Vec::new();
     let same_sign = a.negated == b.negated;
     // A call beside a summand without it: `s (1 + sign f(phi))`, `f(phi)` as a cosine.
-    for (x, y) in [(a, b), (b, a)] {
-        for (rest, f, angle) in y.calls() {
+    for (x, y) in [(a, cb), (b, ca)] {
+        for (rest, f, angle) in y.iter().cloned() {
             if rest != x.factors {
                 continue;
             }
@@ -439,8 +442,8 @@ fn joined(a: &Summand, b: &Summand) -> Vec<Summand> {
             });
         }
     }
-    for (ra, fa, aa) in a.calls() {
-        for (rb, fb, ab) in b.calls() {
+    for (ra, fa, aa) in ca.iter().cloned() {
+        for (rb, fb, ab) in cb.iter().cloned() {
             if ra != rb {
                 continue;
             }
@@ -477,6 +480,66 @@ fn joined(a: &Summand, b: &Summand) -> Vec<Summand> {
     out
 }
 
+/// Whether two of the summands have the same numbers and the same factors but a call in one
+/// or each (what [`joined`] needs), read without copying them: most sums have no such pair.
+fn any_pair_may_join(sum: &[Expr]) -> bool {
+    fn read(e: &Expr) -> (Rat, Vec<&Expr>) {
+        let e = match e {
+            Expr::Neg(x) => &**x,
+            e => e,
+        };
+        let fs: Vec<&Expr> = match e {
+            Expr::Mul(v) => v.iter().collect(),
+            e => vec![e],
+        };
+        let mut q = Rat::one();
+        let mut rest = Vec::with_capacity(fs.len());
+        for f in fs {
+            match f {
+                Expr::Num(n) => q *= n,
+                f => rest.push(f),
+            }
+        }
+        (q, rest)
+    }
+    let read: Vec<(Rat, Vec<&Expr>)> = sum.iter().map(read).collect();
+    // The factors of `a` missing from `b` (with multiplicity), when at most one.
+    let missing = |a: &[&Expr], b: &[&Expr]| -> Option<Option<usize>> {
+        let mut used = vec![false; b.len()];
+        let mut miss = None;
+        for (i, f) in a.iter().enumerate() {
+            match (0..b.len()).find(|&j| !used[j] && b[j] == *f) {
+                Some(j) => used[j] = true,
+                None if miss.is_none() => miss = Some(i),
+                None => return None,
+            }
+        }
+        Some(miss)
+    };
+    let call = |f: &Expr| matches!(f, Expr::Trig { .. });
+    for i in 0..read.len() {
+        for j in 0..read.len() {
+            let ((qa, a), (qb, b)) = (&read[i], &read[j]);
+            if i == j || qa != qb {
+                continue;
+            }
+            let ok = if a.len() == b.len() {
+                // Sum to product: one call of each differs (or none: equal summands).
+                i < j && missing(a, b).is_some_and(|m| m.is_none_or(|k| call(a[k])))
+            } else if a.len() == b.len() + 1 {
+                // A call beside the summand without it.
+                missing(a, b).is_some_and(|m| m.is_some_and(|k| call(a[k])))
+            } else {
+                false
+            };
+            if ok {
+                return true;
+            }
+        }
+    }
+    false
+}
+
 /// The first of the sums of [`pairs_joined`] for `e` (each also with its common factors
 /// taken out) shorter than `e` by `alt::shorter` for which `equal` holds: for the final form
 /// of a scalar, whose angles at multiples of pi/12 (`coefs::phase_angles`) the candidates
@@ -508,7 +571,7 @@ fn pairs_joined(e: &Expr) -> Vec<Expr> {
     if sum.len() < 2 || sum.len() > MAX_PAIR_SUMMANDS {
         return Vec::new();
     }
-    if charge((sum.len() * sum.len()) as u64).is_err() {
+    if !any_pair_may_join(sum) || charge((sum.len() * sum.len()) as u64).is_err() {
         return Vec::new();
     }
     let whole = |v: &[Summand]| -> Expr {
@@ -546,27 +609,46 @@ fn pairs_joined(e: &Expr) -> Vec<Expr> {
     let mut cur: Vec<Summand> = sum.iter().map(Summand::of).collect();
     let mut key = choice_key(e);
     let mut out = Vec::new();
+    // The cost of a summand in a sum (its sign the sum's subtraction).
+    let cost = |s: &Summand| {
+        let mut s = s.clone();
+        s.negated = false;
+        full_cost(&s.expr()).0
+    };
     while cur.len() >= 2 {
-        let mut best: Option<(_, Vec<Summand>, Expr)> = None;
+        // The pair whose join saves the most locally (the addition between them included),
+        // then the whole sum built once and compared.
+        let calls: Vec<Vec<Call>> = cur.iter().map(Summand::calls).collect();
+        let costs: Vec<usize> = cur.iter().map(cost).collect();
+        let mut pick: Option<(usize, usize, usize, Summand)> = None;
         for i in 0..cur.len() {
             for j in i + 1..cur.len() {
-                for s in joined(&cur[i], &cur[j]) {
-                    let mut v: Vec<Summand> = cur
-                        .iter()
-                        .enumerate()
-                        .filter(|(k, _)| *k != i && *k != j)
-                        .map(|(_, x)| x.clone())
-                        .collect();
-                    v.push(s);
-                    let e = whole(&v);
-                    let k = choice_key(&e);
-                    if (k.0, k.1) <= (key.0, key.1) && best.as_ref().is_none_or(|(b, _, _)| k < *b)
-                    {
-                        best = Some((k, v, e));
+                if cur[i].q != cur[j].q {
+                    continue;
+                }
+                for s in joined(&cur[i], &calls[i], &cur[j], &calls[j]) {
+                    // The saving: what the two summands and their addition cost, less the join.
+                    let Some(d) = (costs[i] + costs[j] + 1).checked_sub(cost(&s)) else {
+                        continue;
+                    };
+                    if pick.as_ref().is_none_or(|(_, _, b, _)| d > *b) {
+                        pick = Some((i, j, d, s));
                     }
                 }
             }
         }
+        let best = pick.and_then(|(i, j, _, s)| {
+            let mut v: Vec<Summand> = cur
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| *k != i && *k != j)
+                .map(|(_, x)| x.clone())
+                .collect();
+            v.push(s);
+            let e = whole(&v);
+            let k = choice_key(&e);
+            ((k.0, k.1) <= (key.0, key.1)).then_some((k, v, e))
+        });
         let Some((k, v, e)) = best else { break };
         key = k;
         cur = v;
