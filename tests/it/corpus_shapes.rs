@@ -107,3 +107,25 @@ fn a_sum_whose_parts_share_a_symbol_is_split_by_the_symbols_of_its_angles() {
         },
     );
 }
+
+#[test]
+fn two_cosines_of_equal_weight_are_joined_into_a_product_and_one_minus_a_cosine_into_a_square() {
+    // cos(a - b/2 + pi/4) cos(b) expands to two cosines at pi/4 offsets (radicals in the
+    // canonical form), 2 sin(c)^2 to 1 - cos(2 c): the closed form joins both pairs again.
+    check(
+        "2*cos(a - b/2 + pi/4)*cos(b) + 2*sin(c)^2",
+        "2 (cos(a - b/2 + pi/4) cos(b) + sin(c)^2)",
+        |v| {
+            2.0 * (v("a") - v("b") / 2.0 + std::f64::consts::FRAC_PI_4).cos() * v("b").cos()
+                + 2.0 * v("c").sin().powi(2)
+        },
+    );
+}
+
+#[test]
+fn minus_a_number_times_a_square_of_a_sine_is_kept_a_square() {
+    // The sign is the number's: `-3/4 sin(a)^2` (4 operations), not `3/8 (cos(2 a) - 1)`.
+    check("-3*sin(a)^2/4", "-3/4 sin(a)^2", |v| {
+        -0.75 * v("a").sin().powi(2)
+    });
+}

@@ -499,7 +499,12 @@ fn factored_forms(p: &BTreeMap<u32, Rat>, v: &Expr, o: &Expr) -> Vec<Expr> {
     if k > 0 {
         if let Some(f) = factored(&rest, v) {
             let pw = Expr::Pow(Box::new(o.clone()), 2 * k);
-            let e = mul(pw, f);
+            // A number first (`-3/4 sin(x)^2`), as every product prints.
+            let number = match &f {
+                Expr::Neg(x) => matches!(**x, Expr::Num(_)),
+                f => matches!(f, Expr::Num(_)),
+            };
+            let e = if number { mul(f, pw) } else { mul(pw, f) };
             out.push(if k % 2 == 1 { neg(e) } else { e });
         }
     }

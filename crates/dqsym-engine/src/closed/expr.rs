@@ -405,7 +405,8 @@ impl Expr {
     }
 
     /// Operation and call counts: `a + b - c` is 2 ops, `2 l1 c1` is 2 ops and 1 call,
-    /// `1/2` is one division, `-x` alone one negation.
+    /// `1/2` is one division, `-x` alone one negation, `-2 l1 c1` 2 ops (the sign is the
+    /// number's).
     pub fn cost(&self) -> Cost {
         let mut c = Cost::default();
         self.add_cost(&mut c, false);
@@ -441,7 +442,11 @@ impl Expr {
                 }
             }
             Expr::Neg(e) => {
-                if !in_sum {
+                // In a sum a negation is the subtraction; in a product with a number it is
+                // that number's sign (`-1/2 sin(x)^2` multiplies by `-1/2`).
+                let signed_number =
+                    matches!(&**e, Expr::Mul(v) if v.iter().any(|f| matches!(f, Expr::Num(_))));
+                if !in_sum && !signed_number {
                     c.ops += 1;
                 }
                 e.add_cost(c, false);

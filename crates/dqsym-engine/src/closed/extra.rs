@@ -8,10 +8,14 @@
 //! of `trigfac.rs`'s split sums and the constant products of `cprod.rs` are found apart and
 //! joined by an addition, never factored).
 
-use super::alt::{full_cost, mul, neg};
-use super::expr::Expr;
-use crate::scalar::{charge, Sym, Term};
+use super::alt::{choice_key, full_cost, mul, neg, num};
+use super::expr::{Angle, Expr};
+use crate::scalar::atoms::{freq_combine, Small};
+use crate::scalar::{charge, Sym, Term, Trig};
 use crate::Scalar;
+use num_integer::Integer;
+use num_rational::BigRational as Rat;
+use num_traits::One;
 
 /// The candidates of the files listed above for the canonical terms `t`, not yet checked
 /// against them; `than` is the form found before and `others` the other candidates (only
@@ -20,6 +24,10 @@ pub(super) fn candidates(t: &[Term], than: &Expr, others: &[Expr]) -> Vec<Expr> 
     let mut out = candidates_up_to(t, full_cost(than).0, others);
     if !out.is_empty() || super::trigfac::may_nest() {
         out.extend(common_factor(than));
+        for e in pairs_joined(than) {
+            out.extend(common_factor(&e));
+            out.push(e);
+        }
     }
     out
 }
@@ -266,6 +274,387 @@ fn partial_factor(front: Option<Expr>, sum: &[Expr], parts: &[(bool, Vec<&Expr>)
         Some(n) => mul(n, out),
         None => out,
     })
+}
+
+/// The most summands [`pairs_joined`] looks at (its pairs are quadratic in them).
+const MAX_PAIR_SUMMANDS: usize = 16;
+
+/// A call among a summand's factors: the other factors, the function and its angle.
+type Call = (Vec<Expr>, Trig, Angle);
+
+/// A summand read for [`pairs_joined`]: its sign, its number (positive), its other factors,
+/// and the position among them of the call it is written in (a call outside a power).
+#[derive(Clone)]
+struct Summand {
+    negated: bool,
+    q: Rat,
+    factors: Vec<Expr>,
+}
+
+impl Summand {
+    fn of(e: &Expr) -> Summand {
+        let (negated, e) = match e {
+            Expr::Neg(x) => (true, &**x),
+            e => (false, e),
+        };
+        let mut q = Rat::one();
+        let mut factors = Vec::new();
+        let fs: Vec<&Expr> = match e {
+            Expr::Mul(v) => v.iter().collect(),
+            e => vec![e],
+        };
+        for f in fs {
+            match f {
+                Expr::Num(n) => q *= n,
+                f => factors.push(f.clone()),
+            }
+        }
+        Summand {
+            negated,
+            q,
+            factors,
+        }
+    }
+
+    /// The summand as an expression: the number first, equal factors as one power.
+    fn expr(&self) -> Expr {
+        let mut fs: Vec<Expr> = Vec::new();
+        for f in &self.factors {
+            match f {
+                Expr::Pow(x, n) => fs.extend(std::iter::repeat_n((**x).clone(), *n as usize)),
+                f => fs.push(f.clone()),
+            }
+        }
+        let mut v: Vec<Expr> = Vec::new();
+        if !self.q.is_one() {
+            v.push(Expr::Num(self.q.clone()));
+        }
+        let mut used = vec![false; fs.len()];
+        for i in 0..fs.len() {
+            if used[i] {
+                continue;
+            }
+            let mut n = 0u32;
+            for j in i..fs.len() {
+                if !used[j] && fs[j] == fs[i] {
+                    used[j] = true;
+                    n += 1;
+                }
+            }
+            v.push(if n == 1 {
+                fs[i].clone()
+            } else {
+                Expr::Pow(Box::new(fs[i].clone()), n)
+            });
+        }
+        let e = match v.len() {
+            0 => num(Rat::one()),
+            1 => v.pop().expect("one factor"),
+            _ => Expr::Mul(v),
+        };
+        if self.negated {
+            neg(e)
+        } else {
+            e
+        }
+    }
+
+    /// The other factors and the call, for each call among the factors.
+    fn calls(&self) -> Vec<Call> {
+        let mut out = Vec::new();
+        for (i, f) in self.factors.iter().enumerate() {
+            if let Expr::Trig { f, angle } = f {
+                let mut rest = self.factors.clone();
+                rest.remove(i);
+                out.push((rest, *f, angle.clone()));
+            }
+        }
+        out
+    }
+}
+
+/// The sinusoid `f(angle)` with the angle's leading coefficient made positive, an offset that
+/// is a multiple of `pi/2` taken into the call (`cos(x/2 + pi/2)` is `-sin(x/2)`) and the
+/// offset reduced: `(negated, call)`.
+fn sinusoid(mut f: Trig, mut angle: Angle) -> (bool, Expr) {
+    let mut negated = false;
+    if angle.leading().is_some_and(|k| k < Small::from_integer(0)) {
+        angle.negate();
+        negated = f.is_sin();
+    }
+    let quarters = angle.pi * Small::from_integer(2);
+    if quarters.is_integer() {
+        // cos(y + pi/2) = -sin(y), sin(y + pi/2) = cos(y), once per quarter turn.
+        for _ in 0..quarters.numer().rem_euclid(4) {
+            negated ^= !f.is_sin();
+            f = Trig::of(!f.is_sin());
+        }
+        angle.pi = Small::from_integer(0);
+    }
+    angle.reduce_offset();
+    (negated, Expr::Trig { f, angle })
+}
+
+/// `(a + sign b) / 2` of two angles.
+fn half_sum(a: &Angle, b: &Angle, sign: i64) -> Angle {
+    let two = Small::from_integer(2);
+    let f: Vec<(Sym, Small)> = freq_combine(&a.freq(), &b.freq(), sign)
+        .into_iter()
+        .map(|(s, k)| (s, k / two))
+        .collect();
+    let pi = (a.pi + b.pi * Small::from_integer(sign)) / two;
+    Angle::from_freq(&f, pi)
+}
+
+/// Two summands joined into one, when they have the same factors but one call and numbers
+/// of equal size: sum to product (`cos A + cos B = 2 cos((A + B)/2) cos((A - B)/2)`, and the
+/// three others), and a number beside the cosine or sine of one angle as a square
+/// (`1 - cos(2 w) = 2 sin(w)^2`, `k + k cos(x) = 2 k cos(x/2)^2`). Not checked.
+fn joined(a: &Summand, ca: &[Call], b: &Summand, cb: &[Call]) -> Vec<Summand> {
+    if a.q != b.q {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    let same_sign = a.negated == b.negated;
+    // A call beside a summand without it: `s (1 + sign f(phi))`, `f(phi)` as a cosine.
+    for (x, y) in [(a, cb), (b, ca)] {
+        for (rest, f, angle) in y.iter().cloned() {
+            if rest != x.factors {
+                continue;
+            }
+            let angle = if f.is_sin() {
+                Angle::new(angle.terms, angle.constant, angle.pi - Small::new(1, 2))
+            } else {
+                angle
+            };
+            if angle.is_pi_multiple() {
+                continue;
+            }
+            // 1 + cos(phi) = 2 cos(phi/2)^2, 1 - cos(phi) = 2 sin(phi/2)^2.
+            let (_, e) = sinusoid(Trig::of(!same_sign), angle.scaled(Small::new(1, 2)));
+            let mut factors = rest;
+            factors.push(e.clone());
+            factors.push(e);
+            out.push(Summand {
+                negated: x.negated,
+                q: &x.q * Rat::from_integer(2.into()),
+                factors,
+            });
+        }
+    }
+    for (ra, fa, aa) in ca.iter().cloned() {
+        for (rb, fb, ab) in cb.iter().cloned() {
+            if ra != rb {
+                continue;
+            }
+            // `b`'s call as the kind of `a`'s: cos B = sin(B + pi/2), sin B = cos(B - pi/2).
+            let ab = match (fa.is_sin(), fb.is_sin()) {
+                (true, false) => Angle::new(ab.terms, ab.constant, ab.pi + Small::new(1, 2)),
+                (false, true) => Angle::new(ab.terms, ab.constant, ab.pi - Small::new(1, 2)),
+                _ => ab,
+            };
+            let (s, d) = (half_sum(&aa, &ab, 1), half_sum(&aa, &ab, -1));
+            if s.is_pi_multiple() || d.is_pi_multiple() {
+                continue;
+            }
+            // cos A + cos B = 2 cos S cos D, cos A - cos B = -2 sin S sin D,
+            // sin A + sin B = 2 sin S cos D, sin A - sin B = 2 cos S sin D.
+            let (k1, k2, negate) = match (fa.is_sin(), same_sign) {
+                (false, true) => (false, false, false),
+                (false, false) => (true, true, true),
+                (true, true) => (true, false, false),
+                (true, false) => (false, true, false),
+            };
+            let (n1, e1) = sinusoid(Trig::of(k1), s);
+            let (n2, e2) = sinusoid(Trig::of(k2), d);
+            let mut factors = ra.clone();
+            factors.push(e1);
+            factors.push(e2);
+            out.push(Summand {
+                negated: a.negated ^ negate ^ n1 ^ n2,
+                q: &a.q * Rat::from_integer(2.into()),
+                factors,
+            });
+        }
+    }
+    out
+}
+
+/// Whether two of the summands have the same numbers and the same factors but a call in one
+/// or each (what [`joined`] needs), read without copying them: most sums have no such pair.
+fn any_pair_may_join(sum: &[Expr]) -> bool {
+    fn read(e: &Expr) -> (Rat, Vec<&Expr>) {
+        let e = match e {
+            Expr::Neg(x) => &**x,
+            e => e,
+        };
+        let fs: Vec<&Expr> = match e {
+            Expr::Mul(v) => v.iter().collect(),
+            e => vec![e],
+        };
+        let mut q = Rat::one();
+        let mut rest = Vec::with_capacity(fs.len());
+        for f in fs {
+            match f {
+                Expr::Num(n) => q *= n,
+                f => rest.push(f),
+            }
+        }
+        (q, rest)
+    }
+    let read: Vec<(Rat, Vec<&Expr>)> = sum.iter().map(read).collect();
+    // The factors of `a` missing from `b` (with multiplicity), when at most one.
+    let missing = |a: &[&Expr], b: &[&Expr]| -> Option<Option<usize>> {
+        let mut used = vec![false; b.len()];
+        let mut miss = None;
+        for (i, f) in a.iter().enumerate() {
+            match (0..b.len()).find(|&j| !used[j] && b[j] == *f) {
+                Some(j) => used[j] = true,
+                None if miss.is_none() => miss = Some(i),
+                None => return None,
+            }
+        }
+        Some(miss)
+    };
+    let call = |f: &Expr| matches!(f, Expr::Trig { .. });
+    for i in 0..read.len() {
+        for j in 0..read.len() {
+            let ((qa, a), (qb, b)) = (&read[i], &read[j]);
+            if i == j || qa != qb {
+                continue;
+            }
+            let ok = if a.len() == b.len() {
+                // Sum to product: one call of each differs (or none: equal summands).
+                i < j && missing(a, b).is_some_and(|m| m.is_none_or(|k| call(a[k])))
+            } else if a.len() == b.len() + 1 {
+                // A call beside the summand without it.
+                missing(a, b).is_some_and(|m| m.is_some_and(|k| call(a[k])))
+            } else {
+                false
+            };
+            if ok {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// The first of the sums of [`pairs_joined`] for `e` (each also with its common factors
+/// taken out) shorter than `e` by `alt::shorter` for which `equal` holds: for the final form
+/// of a scalar, whose angles at multiples of pi/12 (`coefs::phase_angles`) the candidates
+/// never see (`cos(r - u2/2 + pi/3) + cos(r + 3*u2/2 + pi/3)` is `2 cos(r + u2/2 + pi/3)
+/// cos(u2)`).
+pub(super) fn joined_form(e: &Expr, equal: impl Fn(&Expr) -> bool) -> Option<Expr> {
+    let mut cands: Vec<Expr> = Vec::new();
+    for j in pairs_joined(e) {
+        cands.extend(common_factor(&j));
+        cands.push(j);
+    }
+    cands.retain(|c| super::alt::shorter(c, e));
+    cands.sort_by_cached_key(choice_key);
+    cands.into_iter().find(|c| equal(c))
+}
+
+/// The sum `e` (or a number times it) with pairs of its summands joined ([`joined`]) while
+/// that makes it no longer by [`choice_key`], the cheapest join first; each sum reached, not
+/// yet checked (`alt::best_alternative` checks them exactly). Empty when no pair joins.
+fn pairs_joined(e: &Expr) -> Vec<Expr> {
+    let (front, sum) = match e {
+        Expr::Add(v) => (None, v),
+        Expr::Mul(v) if v.len() == 2 => match (&v[0], &v[1]) {
+            (Expr::Num(q), Expr::Add(s)) => (Some(q.clone()), s),
+            _ => return Vec::new(),
+        },
+        _ => return Vec::new(),
+    };
+    if sum.len() < 2 || sum.len() > MAX_PAIR_SUMMANDS {
+        return Vec::new();
+    }
+    if !any_pair_may_join(sum) || charge((sum.len() * sum.len()) as u64).is_err() {
+        return Vec::new();
+    }
+    let whole = |v: &[Summand]| -> Expr {
+        // The numbers' common factor taken out (`2 (a b + c^2)`; `1/4 (2 a + 4 b)` is
+        // `1/2 (a + 2 b)`): the gcd of the numerators over the lcm of the denominators.
+        let mut front = front.clone();
+        let mut v = v.to_vec();
+        if v.len() >= 2 {
+            let (n, d) = v.iter().fold(
+                (v[0].q.numer().clone(), v[0].q.denom().clone()),
+                |(n, d), s| (n.gcd(s.q.numer()), d.lcm(s.q.denom())),
+            );
+            let g = Rat::new(n, d);
+            if !g.is_one() {
+                v.iter_mut().for_each(|s| s.q = &s.q / &g);
+                front = Some(front.map_or(g.clone(), |f| f * g));
+            }
+        }
+        let mut terms: Vec<Expr> = v.iter().map(Summand::expr).collect();
+        terms.sort_by_key(|e| matches!(e, Expr::Neg(_)));
+        let (inner, q) = match (terms.len(), &front) {
+            (1, Some(q)) => {
+                let mut s = v[0].clone();
+                s.q *= q;
+                (s.expr(), None)
+            }
+            (1, None) => (terms.pop().expect("one"), None),
+            _ => (Expr::Add(terms), front.clone()),
+        };
+        match q {
+            Some(q) => mul(Expr::Num(q), inner),
+            None => inner,
+        }
+    };
+    let mut cur: Vec<Summand> = sum.iter().map(Summand::of).collect();
+    let mut key = choice_key(e);
+    let mut out = Vec::new();
+    // The cost of a summand in a sum (its sign the sum's subtraction).
+    let cost = |s: &Summand| {
+        let mut s = s.clone();
+        s.negated = false;
+        full_cost(&s.expr()).0
+    };
+    while cur.len() >= 2 {
+        // The pair whose join saves the most locally (the addition between them included),
+        // then the whole sum built once and compared.
+        let calls: Vec<Vec<Call>> = cur.iter().map(Summand::calls).collect();
+        let costs: Vec<usize> = cur.iter().map(cost).collect();
+        let mut pick: Option<(usize, usize, usize, Summand)> = None;
+        for i in 0..cur.len() {
+            for j in i + 1..cur.len() {
+                if cur[i].q != cur[j].q {
+                    continue;
+                }
+                for s in joined(&cur[i], &calls[i], &cur[j], &calls[j]) {
+                    // The saving: what the two summands and their addition cost, less the join.
+                    let Some(d) = (costs[i] + costs[j] + 1).checked_sub(cost(&s)) else {
+                        continue;
+                    };
+                    if pick.as_ref().is_none_or(|(_, _, b, _)| d > *b) {
+                        pick = Some((i, j, d, s));
+                    }
+                }
+            }
+        }
+        let best = pick.and_then(|(i, j, _, s)| {
+            let mut v: Vec<Summand> = cur
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| *k != i && *k != j)
+                .map(|(_, x)| x.clone())
+                .collect();
+            v.push(s);
+            let e = whole(&v);
+            let k = choice_key(&e);
+            ((k.0, k.1) <= (key.0, key.1)).then_some((k, v, e))
+        });
+        let Some((k, v, e)) = best else { break };
+        key = k;
+        cur = v;
+        out.push(e);
+    }
+    out
 }
 
 #[cfg(test)]

@@ -71,8 +71,12 @@
 //! the exponents, read back as a real sum with coefficients snapped to rationals times square
 //! roots, the square checked exactly before the root's closed form is found), every candidate
 //! with a factor shared by all or some of its summands taken out (`k2 (a - b)` for
-//! `k2 a - k2 b`), and a sum split by the symbols of its terms' angles (not for the PUMA's
-//! unit-step modes), each part's closed form found alone; each checked exactly; constant angles are shown with a positive sign; an angle's
+//! `k2 a - k2 b`), a sum split by the symbols of its terms' angles (not for the PUMA's
+//! unit-step modes), each part's closed form found alone, and pairs of summands with equal
+//! numbers and factors but one call joined (sum to product, `cos A + cos B = 2 cos((A + B)/2)
+//! cos((A - B)/2)`; a number beside its cosine as a square, `1 - cos(2 w) = 2 sin(w)^2`),
+//! greedily while no longer, also on the form shown (`extra::joined_form`: the angles made
+//! again from radicals by `coefs.rs` are first seen there); each checked exactly; constant angles are shown with a positive sign; an angle's
 //! symbols print first, then its rational constant and its multiple of pi (`t/2 - 1/3`,
 //! `x - pi/7`), and an angle with a rational constant is shown with its first symbol's coefficient
 //! positive (`Expr::symbols_leading`: `sin(1/3 - t/2)` prints `-sin(t/2 - 1/3)`); equal symbols and
@@ -269,6 +273,7 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
         let Ok(c) = prepared_shifted(&l.scalar).0.map(|c| l.substitute(c)) else {
             continue;
         };
+        let c = joined(c, x);
         if alt::shorter(&c, best.as_ref().unwrap_or(&found)) && verified(&c, x) {
             best = Some(c);
         }
@@ -280,16 +285,29 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
             .0
             .ok()
             .and_then(|c| a.substitute(c))
+            .map(|c| joined(c, x))
         {
             if alt::shorter(&c, best.as_ref().unwrap_or(&found)) && verified(&c, x) {
                 best = Some(c);
             }
         }
     }
+    // Pairs of summands joined in the angles shown (`extra::joined_form`).
+    if best.is_none() {
+        best = extra::joined_form(&found, |c| verified(c, x));
+    }
     match best {
         Some(c) => (Ok(c.symbols_leading()), Prepared(None, None)),
         None => (Ok(found), prepared),
     }
+}
+
+/// `e` (a form of `x`) with pairs of its summands joined when that is shorter
+/// (`extra::joined_form`): the angles that constants lifted out or radicals made angles again
+/// (`coefs.rs`) are first seen in the form shown (`cos(r - u2/2 + pi/3) + cos(r + 3*u2/2 +
+/// pi/3)` is `2 cos(r + u2/2 + pi/3) cos(u2)`).
+fn joined(e: Expr, x: &Scalar) -> Expr {
+    extra::joined_form(&e, |c| verified(c, x)).unwrap_or(e)
 }
 
 /// [`closed_form_prepared`] without the constants lifted.
