@@ -95,6 +95,23 @@ fn write(e: &Expr, prec: u8, sym: &dyn Fn(&str) -> String, dec: bool, out: &mut 
                 out.push(')');
             }
         }
+        // `2*(a + b)*c` would be read `(2*a + 2*b)*c`: Python multiplies left to right, and
+        // SymPy distributes a number over a sum it multiplies alone. `2*((a + b)*c)` is the
+        // tree `Mul(2, a + b, c)`, which the Python package builds from the same expression.
+        Expr::Mul(v)
+            if v.len() > 2 && matches!(v[0], Expr::Num(_)) && matches!(v[1], Expr::Add(_)) =>
+        {
+            if prec > 2 {
+                out.push('(');
+            }
+            write(&v[0], 2, out);
+            out.push_str("*(");
+            write(&Expr::Mul(v[1..].to_vec()), 0, out);
+            out.push(')');
+            if prec > 2 {
+                out.push(')');
+            }
+        }
         Expr::Mul(v) => {
             if prec > 2 {
                 out.push('(');
