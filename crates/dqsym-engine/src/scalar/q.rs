@@ -47,7 +47,8 @@ impl Hash for Q {
     }
 }
 
-fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
+/// Binary gcd of machine words (also the closed-form cost pass's, `closed/factor/costs.rs`).
+pub(crate) fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
     if a == 0 {
         return b;
     }

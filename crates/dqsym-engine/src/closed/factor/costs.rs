@@ -20,6 +20,7 @@
 use super::{multiplicity, quotient_syms, Factor, Search, BIG_WORD_UNITS, BRANCH, BRANCH_DEPTH};
 use crate::closed::expr::Cost;
 use crate::closed::mon::{FxMap, Mon};
+use crate::scalar::q::gcd_u64;
 use crate::scalar::{FxHasher, Q};
 use num_traits::ToPrimitive;
 use smallvec::SmallVec;
@@ -272,24 +273,6 @@ fn gcd(g: u128, n: u128) -> u128 {
                 (a, b) = (b, a % b);
             }
             a
-        }
-    }
-}
-
-fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
-    if a == 0 || b == 0 {
-        return a | b;
-    }
-    let shift = (a | b).trailing_zeros();
-    a >>= a.trailing_zeros();
-    loop {
-        b >>= b.trailing_zeros();
-        if a > b {
-            std::mem::swap(&mut a, &mut b);
-        }
-        b -= a;
-        if b == 0 {
-            return a << shift;
         }
     }
 }
