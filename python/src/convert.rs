@@ -10,7 +10,7 @@
 //!   quaternion), a SymPy `Quaternion`, a `dqsym.DQ` or a `Matrix` becomes a library value.
 //!   Floats are refused: results are exact.
 
-use dqsym::{closed_form, DualQuat, Expr, Quat, Scalar, Value};
+use dqsym::{closed_form, Angle, DualQuat, Expr, Quat, Scalar, Value};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use pyo3::exceptions::{PyTypeError, PyValueError};
@@ -86,6 +86,10 @@ pub(crate) struct ToSympy<'py> {
     pi: Bound<'py, PyAny>,
     minus_one: Bound<'py, PyAny>,
     symbols: HashMap<String, Bound<'py, PyAny>>,
+    /// The cosines and sines made so far (`true`: a sine), shared: a report repeats a few
+    /// angles in every entry (the PUMA 560's Jacobian: 384 trigonometric factors a
+    /// conversion), and SymPy's objects are immutable.
+    trig: HashMap<(bool, Angle), Bound<'py, PyAny>>,
 }
 
 impl<'py> ToSympy<'py> {
@@ -108,6 +112,7 @@ impl<'py> ToSympy<'py> {
             pi: get("pi")?,
             sympy,
             symbols: HashMap::new(),
+            trig: HashMap::new(),
         })
     }
 
@@ -128,8 +133,14 @@ impl<'py> ToSympy<'py> {
         }
     }
 
-    fn small(&self, k: &num_rational::Ratio<i64>) -> PyResult<Bound<'py, PyAny>> {
-        self.rational(BigInt::from(*k.numer()), BigInt::from(*k.denom()))
+    /// `k`, or `-k` when `negate` (negated as a big integer: `i64::MIN` has no negative).
+    fn small_signed(
+        &self,
+        k: &num_rational::Ratio<i64>,
+        negate: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let n = BigInt::from(*k.numer());
+        self.rational(if negate { -n } else { n }, BigInt::from(*k.denom()))
     }
 
     /// A closed form as a SymPy expression.
@@ -141,51 +152,13 @@ impl<'py> ToSympy<'py> {
             Expr::Sym(s) if s.is_one() => self.integer.call1((1,))?,
             Expr::Sym(s) => self.symbol(s.name())?,
             Expr::Trig { f, angle } => {
-                let sin = f.is_sin();
-                let mut parts = Vec::with_capacity(angle.terms.len() + 2);
-                if *angle.constant.numer() != 0 {
-                    parts.push(self.small(&angle.constant)?);
+                let key = (f.is_sin(), angle.clone());
+                if let Some(t) = self.trig.get(&key) {
+                    return Ok(t.clone());
                 }
-                for (s, k) in &angle.terms {
-                    let k = self.small(k)?;
-                    parts.push(if s.is_pi() {
-                        self.mul.call1((k, self.pi.clone()))?
-                    } else {
-                        let x = self.symbol(s.name())?;
-                        self.mul.call1((k, x))?
-                    });
-                }
-                if *angle.pi.numer() != 0 {
-                    parts.push(self.mul.call1((self.small(&angle.pi)?, self.pi.clone()))?);
-                }
-                let arg = self.add.call1(PyTuple::new(self.py, parts)?)?;
-                // SymPy's `cos(arg)` spends milliseconds on a cold cache looking for multiples
-                // of pi and imaginary parts. An angle without pi and with a symbol has neither,
-                // and the only rewrite SymPy would make is the sign: done here the same way
-                // (`could_extract_minus_sign`), then built unevaluated. The result is the same
-                // tree as the evaluated call (a test compares with `sympify` structurally).
-                let plain = *angle.pi.numer() == 0 && angle.terms.iter().any(|(s, _)| !s.is_pi());
-                if !plain {
-                    return Ok(if sin {
-                        self.sin.call1((arg,))?
-                    } else {
-                        self.cos.call1((arg,))?
-                    });
-                }
-                let kw = PyDict::new(self.py);
-                kw.set_item("evaluate", false)?;
-                let negate = arg
-                    .call_method0("could_extract_minus_sign")?
-                    .extract::<bool>()?;
-                let arg = if negate { arg.neg()? } else { arg };
-                match (sin, negate) {
-                    (false, _) => self.cos.call((arg,), Some(&kw))?,
-                    (true, false) => self.sin.call((arg,), Some(&kw))?,
-                    (true, true) => {
-                        let s = self.sin.call((arg,), Some(&kw))?;
-                        self.mul.call1((self.minus_one.clone(), s))?
-                    }
-                }
+                let t = self.trig(f.is_sin(), angle)?;
+                self.trig.insert(key, t.clone());
+                t
             }
             Expr::Add(v) => {
                 let parts = v
@@ -210,6 +183,64 @@ impl<'py> ToSympy<'py> {
                 self.pow.call1((b, self.integer.call1((*n,))?))?
             }
         })
+    }
+
+    /// `sin(angle)` (`sin`) or `cos(angle)` as SymPy's evaluated call makes it.
+    fn trig(&mut self, sin: bool, angle: &Angle) -> PyResult<Bound<'py, PyAny>> {
+        // SymPy's `cos(arg)` spends milliseconds on a cold cache looking for multiples of pi
+        // and imaginary parts. An angle without pi and with a symbol has neither, and the
+        // only rewrite SymPy would make is the sign: done here the same way
+        // (`could_extract_minus_sign`), then built unevaluated. The result is the same tree as
+        // the evaluated call (a test compares with `sympify` structurally).
+        let plain = *angle.pi.numer() == 0 && angle.terms.iter().any(|(s, _)| !s.is_pi());
+        if !plain {
+            let arg = self.angle(angle, false)?;
+            return if sin {
+                self.sin.call1((arg,))
+            } else {
+                self.cos.call1((arg,))
+            };
+        }
+        let negate = match plain_angle_is_negative(angle) {
+            Some(n) => n,
+            None => self
+                .angle(angle, false)?
+                .call_method0("could_extract_minus_sign")?
+                .extract::<bool>()?,
+        };
+        let arg = self.angle(angle, negate)?;
+        let kw = PyDict::new(self.py);
+        kw.set_item("evaluate", false)?;
+        Ok(match (sin, negate) {
+            (false, _) => self.cos.call((arg,), Some(&kw))?,
+            (true, false) => self.sin.call((arg,), Some(&kw))?,
+            (true, true) => {
+                let s = self.sin.call((arg,), Some(&kw))?;
+                self.mul.call1((self.minus_one.clone(), s))?
+            }
+        })
+    }
+
+    /// An angle as a SymPy sum (`negate`: its negative, each coefficient negated).
+    fn angle(&mut self, angle: &Angle, negate: bool) -> PyResult<Bound<'py, PyAny>> {
+        let mut parts = Vec::with_capacity(angle.terms.len() + 2);
+        if *angle.constant.numer() != 0 {
+            parts.push(self.small_signed(&angle.constant, negate)?);
+        }
+        for (s, k) in &angle.terms {
+            let k = self.small_signed(k, negate)?;
+            parts.push(if s.is_pi() {
+                self.mul.call1((k, self.pi.clone()))?
+            } else {
+                let x = self.symbol(s.name())?;
+                self.mul.call1((k, x))?
+            });
+        }
+        if *angle.pi.numer() != 0 {
+            let k = self.small_signed(&angle.pi, negate)?;
+            parts.push(self.mul.call1((k, self.pi.clone()))?);
+        }
+        self.add.call1(PyTuple::new(self.py, parts)?)
     }
 
     fn exprs(&mut self, v: &[Expr]) -> PyResult<Vec<Bound<'py, PyAny>>> {
@@ -279,6 +310,35 @@ impl<'py> ToSympy<'py> {
             d.set_item(n, self.expr(e)?)?;
         }
         Ok(d)
+    }
+}
+
+/// SymPy's `could_extract_minus_sign` of a plain angle's sum (no multiple of pi; see
+/// [`ToSympy::expr`]), decided without building it when the signs of its summands decide it,
+/// as they almost always do: the sum of the constant and each `k*symbol` (each summand kept
+/// by SymPy's `Add`, the symbols being distinct) extracts a minus sign when more summands have
+/// a negative coefficient than a positive one, and not when fewer (SymPy's
+/// `_could_extract_minus_sign`); a single summand `k*x` when `k` is negative, as `Mul`'s
+/// rule says (`x` alone: never). `None` on a tie, which SymPy breaks with its `sort_key`: the
+/// caller asks SymPy then. Asking SymPy for every angle was half of the PUMA 560's
+/// `jacobian()` conversion (cProfile: 0.22 of 0.43 s for ten conversions).
+fn plain_angle_is_negative(angle: &Angle) -> Option<bool> {
+    let constant = (*angle.constant.numer() != 0).then_some(&angle.constant);
+    let (mut negative, mut positive) = (0usize, 0usize);
+    for k in constant
+        .into_iter()
+        .chain(angle.terms.iter().map(|(_, k)| k))
+    {
+        if *k.numer() < 0 {
+            negative += 1;
+        } else {
+            positive += 1;
+        }
+    }
+    match negative.cmp(&positive) {
+        std::cmp::Ordering::Greater => Some(true),
+        std::cmp::Ordering::Less => Some(false),
+        std::cmp::Ordering::Equal => None,
     }
 }
 

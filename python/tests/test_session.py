@@ -43,6 +43,36 @@ def test_evaluate_equals_the_cli_sympy_output():
             assert same(got, sympy.sympify(expected))
 
 
+def test_angles_with_negative_summands_are_sympys_own_trees():
+    # The sign SymPy takes out of a cosine's or sine's sum is decided by the package where the
+    # summands' signs decide it (convert.rs, `plain_angle_is_negative`) and by SymPy on a tie:
+    # either way the tree is the one sympify makes of the command line's text, exactly.
+    for src in [
+        "cos(a - b)",
+        "sin(a - b)",
+        "sin(b - a)",
+        "sin(c - a - b)",
+        "cos(1 - a - b)",
+        "sin(-1 - a)",
+        "sin(2 - a)",
+        "sin(-3*a)",
+        "cos(-a/2)",
+        "sin(a + b - 1/2)",
+        "sin(c + d - a/2 - b/3)",
+        "sin(d - a - b - c)",
+        "x*sin(1/3 - a) + y*cos(2 - b - c)",
+        # More negative summands than positive ones: SymPy takes the sign out.
+        "cos(a - b - c)",
+        "sin(a - b - c)",
+        "sin(a - b - 1)",
+        "cos(a/2 - b - 1/3)",
+        "sin(a - b + c - d)",
+    ]:
+        want = sympy.sympify(cli("-e", src, "--format", "sympy").strip())
+        got = dqsym.evaluate(src)
+        assert sympy.srepr(got) == sympy.srepr(want), src
+
+
 def test_the_papers_rrr_script_matches_the_cli_and_numbers():
     src = (ROOT / "examples" / "appendix3_rrr.dq").read_text()
     s = dqsym.Session()
