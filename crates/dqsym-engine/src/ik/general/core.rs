@@ -1476,97 +1476,34 @@ fn block_lu(p: &[[f64; 9]; 6]) -> BlockLu {
     }
     let mut det = 1.0;
     let mut piv = [0.0; 12];
-    // Columns 0-2, among the equations' rows (positions 0-5 of the whole matrix).
-    for k in 0..3 {
-        let mut best = k;
-        for r in k + 1..6 {
-            if m[r][k].abs() > m[best][k].abs() {
-                best = r;
-            }
-        }
-        if best != k {
-            m.swap(k, best);
-            det = -det;
-        }
-        let d = m[k][k];
-        det *= d;
-        piv[k] = d;
-        if d != 0.0 {
-            let (top, rest) = m.split_at_mut(k + 1);
-            eliminate_rows(rest, &top[k], k, d);
-        }
-    }
+    // Columns 0-2, among the equations' rows (positions 0-5 of the whole matrix). Each step
+    // updates the columns after the pivot's only: the entries of the rows below at the
+    // pivot's column and before are never read again (the next pivots are searched further
+    // right, `U` is read above its diagonal), so the entries that are read are the whole
+    // matrix' to the bit.
+    eq_step::<0>(&mut m, &mut det, &mut piv);
+    eq_step::<1>(&mut m, &mut det, &mut piv);
+    eq_step::<2>(&mut m, &mut det, &mut piv);
     // Columns 3-5, among the copies' rows (positions 6-11; the equations' rows 3-5 at
     // positions 3-5 are zero there). A copy taken as the pivot of column k trades places with
     // the equation's row at position k; the copies left keep their positions, in their order,
     // so the first of the largest is the whole matrix' choice.
     let mut from = [6, 7, 8, 9, 10, 11];
-    for k in 3..6 {
-        let kc = k - 3;
-        let mut best = usize::MAX;
-        let mut bv = 0.0;
-        for i in 0..6 {
-            if from[i] >= 6 && low[i][kc].abs() > bv {
-                best = i;
-                bv = low[i][kc].abs();
-            }
-        }
-        if best == usize::MAX {
-            // No copy is nonzero here: the zero pivot of the equation's row k.
-            det *= 0.0;
-            continue;
-        }
-        det = -det;
-        from[best] = k;
-        let pr = low[best];
-        let d = pr[kc];
-        det *= d;
-        piv[k] = d;
-        for i in 0..6 {
-            if from[i] >= 6 {
-                let f = low[i][kc] / d;
-                if f != 0.0 {
-                    for c in 0..9 {
-                        low[i][c] -= f * pr[c];
-                    }
-                }
-            }
-        }
-    }
+    copy_step::<0>(&mut low, &mut from, &mut det, &mut piv);
+    copy_step::<1>(&mut low, &mut from, &mut det, &mut piv);
+    copy_step::<2>(&mut low, &mut from, &mut det, &mut piv);
     // The last six columns: a 6 x 6 block.
     let mut b = [[0.0; 6]; 6];
     for i in 0..6 {
         let row = if from[i] >= 6 { &low[i] } else { &m[from[i]] };
         b[i].copy_from_slice(&row[3..]);
     }
-    for k in 0..6 {
-        let mut best = k;
-        for r in k + 1..6 {
-            if b[r][k].abs() > b[best][k].abs() {
-                best = r;
-            }
-        }
-        if best != k {
-            b.swap(k, best);
-            det = -det;
-        }
-        let d = b[k][k];
-        det *= d;
-        piv[6 + k] = d;
-        if d == 0.0 {
-            continue;
-        }
-        let (top, rest) = b.split_at_mut(k + 1);
-        let pr = &top[k];
-        for row in rest.iter_mut() {
-            let f = row[k] / d;
-            if f != 0.0 {
-                for c in 0..6 {
-                    row[c] -= f * pr[c];
-                }
-            }
-        }
-    }
+    block_step::<0>(&mut b, &mut det, &mut piv);
+    block_step::<1>(&mut b, &mut det, &mut piv);
+    block_step::<2>(&mut b, &mut det, &mut piv);
+    block_step::<3>(&mut b, &mut det, &mut piv);
+    block_step::<4>(&mut b, &mut det, &mut piv);
+    block_step::<5>(&mut b, &mut det, &mut piv);
     BlockLu {
         eq: m,
         low,
@@ -1574,6 +1511,106 @@ fn block_lu(p: &[[f64; 9]; 6]) -> BlockLu {
         b,
         piv,
         det,
+    }
+}
+
+/// Step `K` (column `K`) of [`block_lu`] among the equations' rows: partial pivoting, the rows
+/// below less their multiple of the pivot row at the columns after `K`.
+#[inline(always)]
+fn eq_step<const K: usize>(m: &mut [[f64; 9]; 6], det: &mut f64, piv: &mut [f64; 12]) {
+    let mut best = K;
+    for r in K + 1..6 {
+        if m[r][K].abs() > m[best][K].abs() {
+            best = r;
+        }
+    }
+    if best != K {
+        m.swap(K, best);
+        *det = -*det;
+    }
+    let d = m[K][K];
+    *det *= d;
+    piv[K] = d;
+    if d != 0.0 {
+        let pr = m[K];
+        for row in m[K + 1..].iter_mut() {
+            let f = row[K] / d;
+            if f != 0.0 {
+                for c in K + 1..9 {
+                    row[c] -= f * pr[c];
+                }
+            }
+        }
+    }
+}
+
+/// Step `KC` (column `3 + KC`) of [`block_lu`] among the copies' rows not yet pivot rows
+/// (`from[i] >= 6`), at the columns after the pivot's.
+#[inline(always)]
+fn copy_step<const KC: usize>(
+    low: &mut [[f64; 9]; 6],
+    from: &mut [usize; 6],
+    det: &mut f64,
+    piv: &mut [f64; 12],
+) {
+    let mut best = usize::MAX;
+    let mut bv = 0.0;
+    for i in 0..6 {
+        if from[i] >= 6 && low[i][KC].abs() > bv {
+            best = i;
+            bv = low[i][KC].abs();
+        }
+    }
+    if best == usize::MAX {
+        // No copy is nonzero here: the zero pivot of the equation's row 3 + KC.
+        *det *= 0.0;
+        return;
+    }
+    *det = -*det;
+    from[best] = 3 + KC;
+    let pr = low[best];
+    let d = pr[KC];
+    *det *= d;
+    piv[3 + KC] = d;
+    for (row, &fr) in low.iter_mut().zip(from.iter()) {
+        if fr >= 6 {
+            let f = row[KC] / d;
+            if f != 0.0 {
+                for c in KC + 1..9 {
+                    row[c] -= f * pr[c];
+                }
+            }
+        }
+    }
+}
+
+/// Step `K` of [`block_lu`]'s last 6 x 6 block (column `6 + K`), at the columns after `K`.
+#[inline(always)]
+fn block_step<const K: usize>(b: &mut [[f64; 6]; 6], det: &mut f64, piv: &mut [f64; 12]) {
+    let mut best = K;
+    for r in K + 1..6 {
+        if b[r][K].abs() > b[best][K].abs() {
+            best = r;
+        }
+    }
+    if best != K {
+        b.swap(K, best);
+        *det = -*det;
+    }
+    let d = b[K][K];
+    *det *= d;
+    piv[6 + K] = d;
+    if d == 0.0 {
+        return;
+    }
+    let pr = b[K];
+    for row in b[K + 1..].iter_mut() {
+        let f = row[K] / d;
+        if f != 0.0 {
+            for c in K + 1..6 {
+                row[c] -= f * pr[c];
+            }
+        }
     }
 }
 
@@ -1614,18 +1651,6 @@ pub(crate) fn null_vector_trig(t: &TrigRows, s: f64, c: f64) -> [f64; 12] {
         y[i] = if f.piv[i] == 0.0 { 0.0 } else { s / f.piv[i] };
     }
     checked_null(&cols_of(&p), y)
-}
-
-/// One step of Gaussian elimination on the equations' compact rows (see [`det_trig`]).
-fn eliminate_rows(rest: &mut [[f64; 9]], pivot: &[f64; 9], k: usize, d: f64) {
-    for row in rest.iter_mut() {
-        let f = row[k] / d;
-        if f != 0.0 {
-            for c in 0..9 {
-                row[c] -= f * pivot[c];
-            }
-        }
-    }
 }
 
 /// One step of Gaussian elimination: the rows `rest` below the pivot row less their multiple
