@@ -1650,7 +1650,56 @@ pub(crate) fn null_vector_trig(t: &TrigRows, s: f64, c: f64) -> [f64; 12] {
         }
         y[i] = if f.piv[i] == 0.0 { 0.0 } else { s / f.piv[i] };
     }
-    checked_null(&cols_of(&p), y)
+    checked_null_rows(&p, y)
+}
+
+/// [`checked_null`] of `S` given by its six distinct rows `p` (the columns in the order
+/// [`DET_COLS`]) without assembling it: each row's sum skips the structural zeros, whose
+/// products `0 · y_c` are zeros that leave a sum started at `+0` unchanged (it is never `−0`),
+/// so the residual, the scales and the decision are [`checked_null`]'s to the bit. A vector
+/// with an entry that is not finite (`0 · ∞` is NaN) takes [`checked_null`] itself.
+#[allow(clippy::needless_range_loop)]
+fn checked_null_rows(p: &[[f64; 9]; 6], y: [f64; 12]) -> [f64; 12] {
+    if !y.iter().all(|v| v.is_finite()) {
+        return checked_null(&cols_of(p), y);
+    }
+    let (mut ms, mut ys, mut res) = (0.0, 0.0, 0.0);
+    for r in 0..6 {
+        let q = &p[r];
+        // The equation [a = 0 | 0 | a = 1 | a = 2] and its copy [0 | a = 3 | a = 1 | a = 2].
+        let mut s = 0.0;
+        let mut t = 0.0;
+        for c in 0..3 {
+            s += q[c] * y[c];
+            t += q[6 + c] * y[3 + c];
+        }
+        for c in 3..9 {
+            s += q[c] * y[3 + c];
+        }
+        for c in 0..6 {
+            t += q[c] * y[6 + c];
+        }
+        for x in q {
+            if x.abs() > ms {
+                ms = x.abs();
+            }
+        }
+        for v in [s, t] {
+            if v.abs() > res {
+                res = v.abs();
+            }
+        }
+    }
+    for v in y {
+        if v.abs() > ys {
+            ys = v.abs();
+        }
+    }
+    if res <= NULL_RESIDUAL * ms * ys {
+        y
+    } else {
+        null_vector(&cols_of(p))
+    }
 }
 
 /// One step of Gaussian elimination: the rows `rest` below the pivot row less their multiple
