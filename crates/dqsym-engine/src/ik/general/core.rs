@@ -458,52 +458,15 @@ fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], 
         q[i][i] = 1.0;
     }
     let mut piv = [0, 1, 2, 3, 4, 5, 6, 7];
-    for k in 0..8 {
-        // The remaining column of largest norm first.
-        let mut best = k;
-        let mut bn = -1.0;
-        for c in k..8 {
-            let n: f64 = (k..14).map(|r| a[r][c] * a[r][c]).sum();
-            if n > bn {
-                bn = n;
-                best = c;
-            }
-        }
-        if best != k {
-            for r in 0..14 {
-                a[r].swap(k, best);
-            }
-            piv.swap(k, best);
-        }
-        let norm = bn.max(0.0).sqrt();
-        if norm == 0.0 {
-            continue;
-        }
-        let alpha = if a[k][k] > 0.0 { -norm } else { norm };
-        let mut v = [0.0; 14];
-        for r in k..14 {
-            v[r] = a[r][k];
-        }
-        v[k] -= alpha;
-        let vn: f64 = (k..14).map(|r| v[r] * v[r]).sum();
-        if vn == 0.0 {
-            continue;
-        }
-        for c in k..8 {
-            let s: f64 = (k..14).map(|r| v[r] * a[r][c]).sum::<f64>() * 2.0 / vn;
-            for r in k..14 {
-                a[r][c] -= s * v[r];
-            }
-        }
-        // Q (the transpose of Qᵀ) by rows, so that each update runs along a row (the same
-        // operations in the same order).
-        for qc in q.iter_mut() {
-            let s: f64 = (k..14).map(|r| v[r] * qc[r]).sum::<f64>() * 2.0 / vn;
-            for r in k..14 {
-                qc[r] -= s * v[r];
-            }
-        }
-    }
+    // Each step with its column a constant (the loops over its rows unrolled).
+    qr_step::<0>(&mut a, &mut q, &mut piv);
+    qr_step::<1>(&mut a, &mut q, &mut piv);
+    qr_step::<2>(&mut a, &mut q, &mut piv);
+    qr_step::<3>(&mut a, &mut q, &mut piv);
+    qr_step::<4>(&mut a, &mut q, &mut piv);
+    qr_step::<5>(&mut a, &mut q, &mut piv);
+    qr_step::<6>(&mut a, &mut q, &mut piv);
+    qr_step::<7>(&mut a, &mut q, &mut piv);
     let qt: [[f64; 14]; 14] = std::array::from_fn(|i| std::array::from_fn(|c| q[c][i]));
     let mut r = [[0.0; 8]; 8];
     for i in 0..8 {
@@ -517,6 +480,72 @@ fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], 
         (r[7][7] / r[0][0]).abs()
     };
     (qt, r, piv, ratio)
+}
+
+/// Step `K` of [`qr_pivot`]: the remaining column of largest norm to column `K`, its
+/// Householder reflection applied to the columns from `K` on and to `Q` (by rows). Each sum
+/// starts at `−0`, as the standard library's `f64` sum of an iterator, which it was.
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn qr_step<const K: usize>(a: &mut [[f64; 8]; 14], q: &mut [[f64; 14]; 14], piv: &mut [usize; 8]) {
+    // The remaining column of largest norm first.
+    let mut best = K;
+    let mut bn = -1.0;
+    for c in K..8 {
+        let mut n = -0.0;
+        for r in K..14 {
+            n += a[r][c] * a[r][c];
+        }
+        if n > bn {
+            bn = n;
+            best = c;
+        }
+    }
+    if best != K {
+        for r in 0..14 {
+            a[r].swap(K, best);
+        }
+        piv.swap(K, best);
+    }
+    let norm = f64::max(bn, 0.0).sqrt();
+    if norm == 0.0 {
+        return;
+    }
+    let alpha = if a[K][K] > 0.0 { -norm } else { norm };
+    let mut v = [0.0; 14];
+    for r in K..14 {
+        v[r] = a[r][K];
+    }
+    v[K] -= alpha;
+    let mut vn = -0.0;
+    for r in K..14 {
+        vn += v[r] * v[r];
+    }
+    if vn == 0.0 {
+        return;
+    }
+    for c in K..8 {
+        let mut s = -0.0;
+        for r in K..14 {
+            s += v[r] * a[r][c];
+        }
+        let s = s * 2.0 / vn;
+        for r in K..14 {
+            a[r][c] -= s * v[r];
+        }
+    }
+    // Q (the transpose of Qᵀ) by rows, so that each update runs along a row (the same
+    // operations in the same order).
+    for qc in q.iter_mut() {
+        let mut s = -0.0;
+        for r in K..14 {
+            s += v[r] * qc[r];
+        }
+        let s = s * 2.0 / vn;
+        for r in K..14 {
+            qc[r] -= s * v[r];
+        }
+    }
 }
 
 /// `(1, cos, sin)` of a half-angle tangent times `1 + x²`, as polynomials in `x`.
