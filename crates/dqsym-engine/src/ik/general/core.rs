@@ -2183,10 +2183,15 @@ pub(crate) fn det_coefficients(
     let mut c = [(0.0, 0.0); DET_DEGREE + 1];
     for j in 0..=DET_DEGREE {
         let (mut a, mut b) = (0.0, 0.0);
+        // i = j k mod 17, stepped (no division).
+        let mut i = 0;
         for k in 0..DET_SAMPLES {
-            let i = 2 * ((j * k) % DET_SAMPLES);
-            a += d[k] * DET_COS[i];
-            b += d[k] * DET_SIN[i];
+            a += d[k] * DET_COS[2 * i];
+            b += d[k] * DET_SIN[2 * i];
+            i += j;
+            if i >= DET_SAMPLES {
+                i -= DET_SAMPLES;
+            }
         }
         let w = if j == 0 { 1.0 } else { 2.0 } / DET_SAMPLES as f64;
         c[j] = (w * a, -(w * b));
@@ -2364,8 +2369,12 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
         let mut g = [0.0; 6];
         let mut tr = 0.0;
         for i in 0..6 {
-            for j in 0..6 {
-                a[i][j] = (0..12).map(|k| cols[i][k] * cols[j][k]).sum();
+            // Symmetric: the entries below the diagonal are those above (the same products
+            // in the same order).
+            for j in i..6 {
+                let x: f64 = (0..12).map(|k| cols[i][k] * cols[j][k]).sum();
+                a[i][j] = x;
+                a[j][i] = x;
             }
             g[i] = (0..12).map(|k| cols[i][k] * e[k]).sum();
             tr += a[i][i];
