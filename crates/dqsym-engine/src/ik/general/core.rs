@@ -861,38 +861,18 @@ pub(crate) fn null_vector(m: &[[f64; 12]; 12]) -> [f64; 12] {
             }
         }
     }
-    for k in 0..11 {
-        a.swap(k, br);
-        for row in a.iter_mut() {
-            row.swap(k, bc);
-        }
-        cols.swap(k, bc);
-        let pivot = a[k];
-        let d = pivot[k];
-        (br, bc, bv) = (k + 1, k + 1, -1.0);
-        if d == 0.0 {
-            // Nothing eliminated: the next pivot is searched in the block as it is.
-            for (r, row) in a.iter().enumerate().skip(k + 1) {
-                for (c, x) in row.iter().enumerate().skip(k + 1) {
-                    if x.abs() > bv {
-                        (br, bc, bv) = (r, c, x.abs());
-                    }
-                }
-            }
-            continue;
-        }
-        for (r, row) in a.iter_mut().enumerate().skip(k + 1) {
-            let f = row[k] / d;
-            row[k] -= f * pivot[k];
-            for c in k + 1..12 {
-                let x = row[c] - f * pivot[c];
-                row[c] = x;
-                if x.abs() > bv {
-                    (br, bc, bv) = (r, c, x.abs());
-                }
-            }
-        }
-    }
+    // Each step with its column a constant (the row updates unrolled).
+    nv_step::<0>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<1>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<2>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<3>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<4>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<5>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<6>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<7>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<8>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<9>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<10>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
     let mut y = [0.0; 12];
     y[11] = 1.0;
     for i in (0..11).rev() {
@@ -907,6 +887,48 @@ pub(crate) fn null_vector(m: &[[f64; 12]; 12]) -> [f64; 12] {
         v[cols[i]] = y[i];
     }
     v
+}
+
+/// Step `K` of [`null_vector`]: the pivot `(br, bc)` to `(K, K)`, the rows below less their
+/// multiple of it, and the largest entry of the block left tracked.
+#[inline(always)]
+fn nv_step<const K: usize>(
+    a: &mut [[f64; 12]; 12],
+    cols: &mut [usize; 12],
+    br: &mut usize,
+    bc: &mut usize,
+    bv: &mut f64,
+) {
+    a.swap(K, *br);
+    for row in a.iter_mut() {
+        row.swap(K, *bc);
+    }
+    cols.swap(K, *bc);
+    let pivot = a[K];
+    let d = pivot[K];
+    (*br, *bc, *bv) = (K + 1, K + 1, -1.0);
+    if d == 0.0 {
+        // Nothing eliminated: the next pivot is searched in the block as it is.
+        for (r, row) in a.iter().enumerate().skip(K + 1) {
+            for (c, x) in row.iter().enumerate().skip(K + 1) {
+                if x.abs() > *bv {
+                    (*br, *bc, *bv) = (r, c, x.abs());
+                }
+            }
+        }
+        return;
+    }
+    for (r, row) in a.iter_mut().enumerate().skip(K + 1) {
+        let f = row[K] / d;
+        row[K] -= f * pivot[K];
+        for c in K + 1..12 {
+            let x = row[c] - f * pivot[c];
+            row[c] = x;
+            if x.abs() > *bv {
+                (*br, *bc, *bv) = (r, c, x.abs());
+            }
+        }
+    }
 }
 
 /// A null vector of the 12 x 12 matrix `m`, singular to rounding, from its LU with partial
