@@ -210,6 +210,77 @@ pub(crate) struct Elim {
     pub(crate) sig: [[[f64; 9]; 6]; 3],
 }
 
+/// The left side's coefficients `Am[e][k][m]` ([`Arranged::left`]).
+pub(crate) type Left = [[[f64; 9]; 3]; 14];
+
+/// The degree in length of each of the fourteen quantities ([`quantities`]): `l`, `p`, `p·p`,
+/// `p·l`, `p×l`, `(p·p) l − 2 (p·l) p`. Computed from lengths in the robot's units, equation
+/// `e` of the left side is `len^LEFT_DEG[e]` times the one from lengths over `len`, whatever
+/// the turning joints' angles: the products and sums of each quantity are of its degree.
+pub const LEFT_DEG: [u8; 14] = [0, 0, 0, 1, 1, 1, 2, 1, 1, 1, 1, 2, 2, 2];
+
+/// The left side of lengths over `len` from the one in the robot's units (see [`LEFT_DEG`]):
+/// each equation times `1 / len` to its degree.
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn scaled_left(robot: &Left, len: f64) -> Left {
+    let s = 1.0 / len;
+    let f = [1.0, s, s * s];
+    let mut out = *robot;
+    for e in 0..14 {
+        let fe = f[LEFT_DEG[e] as usize];
+        for row in out[e].iter_mut() {
+            for x in row.iter_mut() {
+                *x *= fe;
+            }
+        }
+    }
+    out
+}
+
+/// Whether the left side of arrangement `arr` ([`Arranged::left`]) is a constant of the arm:
+/// the loop read from joint 1 (forwards or backwards, `arr` 0 or 6) leaves the axes as they
+/// are (a shifted loop conjugates some by the target), and turning joints 3 to 5 make each
+/// equation a multiple of the one in the robot's units ([`LEFT_DEG`]; a slide's samples are
+/// lengths of the scaled arm).
+pub(crate) fn left_is_constant(ar: &Arranged, arr: usize) -> bool {
+    arr % 6 == 0 && !ar.j[2].prism && !ar.j[3].prism && !ar.j[4].prism
+}
+
+/// The left side of arrangement `arr` (0 or 6) of the arm `axes` in the robot's units,
+/// computed once per arm and thread (the solver of a fixed arm computes it at its first call):
+/// the last arm's two in a thread-local cache keyed by the axes' bits.
+pub(crate) fn robot_left(axes: &[GenAxis; 6], arr: usize) -> Left {
+    use std::cell::RefCell;
+    type Cache = Option<([[u64; 7]; 6], [Option<Left>; 2])>;
+    thread_local! {
+        static LEFT_CACHE: RefCell<Cache> = const { RefCell::new(None) };
+    }
+    let key: [[u64; 7]; 6] = std::array::from_fn(|i| std::array::from_fn(|k| axes[i][k].to_bits()));
+    let compute = || {
+        let js: [J; 6] = std::array::from_fn(|i| J {
+            w: [axes[i][1], axes[i][2], axes[i][3]],
+            c: [axes[i][4], axes[i][5], axes[i][6]],
+            prism: axes[i][0] != 0.0,
+        });
+        let id: B34 = [
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+        ];
+        Arranged::new(&js, &id, arr).left()
+    };
+    LEFT_CACHE
+        .try_with(|cell| {
+            let mut cache = cell.borrow_mut();
+            if cache.as_ref().map(|c| c.0) != Some(key) {
+                *cache = Some((key, [None, None]));
+            }
+            let slot = &mut cache.as_mut().expect("set above").1[arr / 6];
+            *slot.get_or_insert_with(compute)
+        })
+        .unwrap_or_else(|_| compute())
+}
+
 /// The monomial index of `(i, j)` with `i, j` in `(1, cos, sin)`.
 fn mono(i: usize, j: usize) -> usize {
     3 * i + j
@@ -262,34 +333,29 @@ impl Arranged {
     }
 
     /// The equations' coefficients by exact trigonometric interpolation (see [`DFT`]).
-    #[allow(clippy::needless_range_loop)]
     pub(crate) fn elim(&self) -> Option<Elim> {
+        self.elim_from(self.left())
+    }
+
+    /// The left side's coefficients (`Am` before the right side's constant term is taken
+    /// from it): `E3 E4 E5` applied to `(p6, w6)` on a 3 x 3 x 3 grid of samples and turned
+    /// into coefficients (see [`DFT`]). A function of the arranged joints 3 to 6 alone.
+    #[allow(clippy::needless_range_loop)]
+    pub(crate) fn left(&self) -> Left {
         let (p6, w6) = (self.j[5].c, self.j[5].w);
-        // Left: E3 E4 E5 applied to (p6, w6) on a 3 x 3 x 3 grid.
-        let rots: [[M3; 3]; 5] = std::array::from_fn(|i| self.j[i].sample_rots(i < 2));
+        let rots: [[M3; 3]; 3] = std::array::from_fn(|i| self.j[2 + i].sample_rots(false));
         let mut lhs = [[[[0.0; 14]; 3]; 3]; 3];
         for k5 in 0..3 {
-            let (x5, d5) = self.j[4].sample(&rots[4], k5, false, &p6, &w6);
+            let (x5, d5) = self.j[4].sample(&rots[2], k5, false, &p6, &w6);
             for k4 in 0..3 {
-                let (x4, d4) = self.j[3].sample(&rots[3], k4, false, &x5, &d5);
+                let (x4, d4) = self.j[3].sample(&rots[1], k4, false, &x5, &d5);
                 for k3 in 0..3 {
-                    let (x3, d3) = self.j[2].sample(&rots[2], k3, false, &x4, &d4);
+                    let (x3, d3) = self.j[2].sample(&rots[0], k3, false, &x4, &d4);
                     lhs[k3][k4][k5] = quantities(&x3, &d3);
                 }
             }
         }
-        // Right: E2⁻¹ E1⁻¹ H applied to (p6, w6) on a 3 x 3 grid.
-        let hp = motion_apply(&self.h, &p6, &w6);
-        let mut rhs = [[[0.0; 14]; 3]; 3];
-        for k1 in 0..3 {
-            let (y1, e1) = self.j[0].sample(&rots[0], k1, true, &hp.0, &hp.1);
-            for k2 in 0..3 {
-                let (y2, e2) = self.j[1].sample(&rots[1], k2, true, &y1, &e1);
-                rhs[k1][k2] = quantities(&y2, &e2);
-            }
-        }
         let mut am = [[[0.0; 9]; 3]; 14];
-        let mut bm = [[0.0; 8]; 14];
         let wt: [&[[f64; 3]; 3]; 5] = std::array::from_fn(|i| self.j[i].weights());
         // The 3-D transform as three 1-D passes (27 x 3 products each instead of 27 x 27).
         let mut t1 = [[[[0.0; 14]; 3]; 3]; 3];
@@ -341,6 +407,28 @@ impl Arranged {
                 }
             }
         }
+        am
+    }
+
+    /// The elimination from the left side's coefficients `left` ([`Arranged::left`], or its
+    /// rows scaled from the robot's units, [`scaled_left`]): the right side `E2⁻¹ E1⁻¹ H`
+    /// applied to `(p6, w6)` on a 3 x 3 grid, `Bm`, its QR and `Σ = N Am`.
+    #[allow(clippy::needless_range_loop)]
+    pub(crate) fn elim_from(&self, left: Left) -> Option<Elim> {
+        let (p6, w6) = (self.j[5].c, self.j[5].w);
+        let rots: [[M3; 3]; 2] = std::array::from_fn(|i| self.j[i].sample_rots(true));
+        let hp = motion_apply(&self.h, &p6, &w6);
+        let mut rhs = [[[0.0; 14]; 3]; 3];
+        for k1 in 0..3 {
+            let (y1, e1) = self.j[0].sample(&rots[0], k1, true, &hp.0, &hp.1);
+            for k2 in 0..3 {
+                let (y2, e2) = self.j[1].sample(&rots[1], k2, true, &y1, &e1);
+                rhs[k1][k2] = quantities(&y2, &e2);
+            }
+        }
+        let mut am = left;
+        let mut bm = [[0.0; 8]; 14];
+        let wt: [&[[f64; 3]; 3]; 2] = std::array::from_fn(|i| self.j[i].weights());
         for e in 0..14 {
             for i1 in 0..3 {
                 for i2 in 0..3 {
@@ -2505,7 +2593,14 @@ pub fn gen_solve(
         if prismatic[ar.perm[5]] {
             continue;
         }
-        let Some(el) = ar.elim() else { continue };
+        // The left side from the arm's constants where it is one (scaled to this target's
+        // length scale), else from the arranged joints.
+        let el = if left_is_constant(&ar, arr) {
+            ar.elim_from(scaled_left(&robot_left(axes, arr), len))
+        } else {
+            ar.elim()
+        };
+        let Some(el) = el else { continue };
         if el.rank_ratio < RANK_TOL {
             continue;
         }
