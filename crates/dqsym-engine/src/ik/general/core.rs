@@ -2044,6 +2044,19 @@ pub(crate) fn trig_low(t: &TrigTable, k: usize, th: f64) -> (f64, f64, f64) {
     (out[k], out[k + 1], out[k + 2])
 }
 
+/// `D⁽ᵏ⁾(θ)` alone (the one sum of [`trig_low`] that the search's end values read; the same
+/// sum to the bit).
+pub(crate) fn trig_one(t: &TrigTable, k: usize, th: f64) -> f64 {
+    let (co, s) = unit(th);
+    let (mut zr, mut zi) = (1.0, 0.0);
+    let mut out = 0.0;
+    for (u, v) in t.u.iter().zip(&t.v) {
+        out += u[k] * zr + v[k] * zi;
+        (zr, zi) = (zr * co - zi * s, zr * s + zi * co);
+    }
+    out
+}
+
 /// Grid of the real-root search of `det S(θ)`: intervals of `2π / ROOT_GRID`.
 pub const ROOT_GRID: usize = 32;
 
@@ -2159,7 +2172,7 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     // A root of the monotone part `[a, b]` of `D` (`k = 0`) or `D′` (`k = 1`), if its ends
     // differ in sign (0 counted as positive, so a root at a shared end is seen once).
     let mono = |a: f64, b: f64, k: usize, evals: &mut usize| -> Option<f64> {
-        let (fa, fb) = (trig_low(c, k, end(a)).0, trig_low(c, k, end(b)).0);
+        let (fa, fb) = (trig_one(c, k, end(a)), trig_one(c, k, end(b)));
         *evals += 2;
         if (fa < 0.0) == (fb < 0.0) {
             None
