@@ -2028,6 +2028,41 @@ pub(crate) fn trig_eval(t: &TrigTable, th: f64) -> [f64; TAYLOR] {
     out
 }
 
+/// [`trig_eval`] from the powers `e^{ijθ}` it would compute ([`grid_powers`]).
+#[allow(clippy::needless_range_loop)]
+fn trig_eval_powers(t: &TrigTable, z: &[(f64, f64); DET_DEGREE + 1]) -> [f64; TAYLOR] {
+    let mut out = [0.0; TAYLOR];
+    for ((u, v), &(zr, zi)) in t.u.iter().zip(&t.v).zip(z) {
+        for k in 0..TAYLOR {
+            out[k] += u[k] * zr + v[k] * zi;
+        }
+    }
+    out
+}
+
+/// The powers `e^{ijm}`, `j = 0 … DET_DEGREE`, that [`trig_eval`] computes at the midpoint `m`
+/// of each of the root search's [`ROOT_GRID`] base intervals (the same numbers: the same
+/// [`unit`] and products), computed once: every search evaluates there first.
+fn grid_powers() -> &'static [[(f64, f64); DET_DEGREE + 1]; ROOT_GRID] {
+    static POWERS: std::sync::OnceLock<[[(f64, f64); DET_DEGREE + 1]; ROOT_GRID]> =
+        std::sync::OnceLock::new();
+    POWERS.get_or_init(|| {
+        let h = std::f64::consts::TAU / ROOT_GRID as f64;
+        let top = ROOT_GRID as f64 * h;
+        std::array::from_fn(|k| {
+            let (a, b) = (k as f64 * h, (k + 1) as f64 * h);
+            let m = 0.5 * (a + b);
+            let (co, s) = unit(if m >= top { 0.0 } else { m });
+            let (mut zr, mut zi) = (1.0, 0.0);
+            std::array::from_fn(|_| {
+                let z = (zr, zi);
+                (zr, zi) = (zr * co - zi * s, zr * s + zi * co);
+                z
+            })
+        })
+    })
+}
+
 /// `(D⁽ᵏ⁾(θ), D⁽ᵏ⁺¹⁾(θ), D⁽ᵏ⁺²⁾(θ))` for `k` 0 or 1 only (the sums of [`trig_eval`] the
 /// root search's brackets read): half its work.
 #[allow(clippy::needless_range_loop)]
@@ -2161,12 +2196,14 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     let c = &tt;
     let end = |x: f64| if x >= top { 0.0 } else { x };
     let at = |x: f64| trig_eval(c, end(x));
-    let mut stack = [(0.0, 0.0); 96];
+    // (Each interval with its index in the base grid, ROOT_GRID for the halves.)
+    let mut stack = [(0.0, 0.0, 0); 96];
     let mut depth = 0;
     for k in (0..ROOT_GRID).rev() {
-        stack[depth] = (k as f64 * h, (k + 1) as f64 * h);
+        stack[depth] = (k as f64 * h, (k + 1) as f64 * h, k);
         depth += 1;
     }
+    let powers = grid_powers();
     let mut n = 0;
     let mut evals = 0;
     // A root of the monotone part `[a, b]` of `D` (`k = 0`) or `D′` (`k = 1`), if its ends
@@ -2199,9 +2236,13 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     };
     while depth > 0 {
         depth -= 1;
-        let (a, b) = stack[depth];
+        let (a, b, g) = stack[depth];
         let (m, r) = (0.5 * (a + b), 0.5 * (b - a));
-        let v = at(m);
+        let v = if g < ROOT_GRID {
+            trig_eval_powers(c, &powers[g])
+        } else {
+            at(m)
+        };
         evals += 1;
         if evals > ROOT_EVALS || n + 2 > out.len() {
             return None;
@@ -2269,8 +2310,8 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
         if flat || r <= ROOT_LEAF || depth + 2 > stack.len() {
             return None;
         }
-        stack[depth] = (m, b);
-        stack[depth + 1] = (a, m);
+        stack[depth] = (m, b, ROOT_GRID);
+        stack[depth + 1] = (a, m, ROOT_GRID);
         depth += 2;
     }
     Some(n)
