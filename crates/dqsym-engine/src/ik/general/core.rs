@@ -2030,7 +2030,7 @@ pub(crate) fn trig_eval(t: &TrigTable, th: f64) -> [f64; TAYLOR] {
 
 /// [`trig_eval`] from the powers `e^{ijθ}` it would compute ([`grid_powers`]).
 #[allow(clippy::needless_range_loop)]
-fn trig_eval_powers(t: &TrigTable, z: &[(f64, f64); DET_DEGREE + 1]) -> [f64; TAYLOR] {
+pub(crate) fn trig_eval_powers(t: &TrigTable, z: &[(f64, f64); DET_DEGREE + 1]) -> [f64; TAYLOR] {
     let mut out = [0.0; TAYLOR];
     for ((u, v), &(zr, zi)) in t.u.iter().zip(&t.v).zip(z) {
         for k in 0..TAYLOR {
@@ -2043,7 +2043,7 @@ fn trig_eval_powers(t: &TrigTable, z: &[(f64, f64); DET_DEGREE + 1]) -> [f64; TA
 /// The powers `e^{ijm}`, `j = 0 … DET_DEGREE`, that [`trig_eval`] computes at the midpoint `m`
 /// of each of the root search's [`ROOT_GRID`] base intervals (the same numbers: the same
 /// [`unit`] and products), computed once: every search evaluates there first.
-fn grid_powers() -> &'static [[(f64, f64); DET_DEGREE + 1]; ROOT_GRID] {
+pub(crate) fn grid_powers() -> &'static [[(f64, f64); DET_DEGREE + 1]; ROOT_GRID] {
     static POWERS: std::sync::OnceLock<[[(f64, f64); DET_DEGREE + 1]; ROOT_GRID]> =
         std::sync::OnceLock::new();
     POWERS.get_or_init(|| {
@@ -2094,6 +2094,9 @@ pub(crate) fn trig_one(t: &TrigTable, k: usize, th: f64) -> f64 {
 
 /// Grid of the real-root search of `det S(θ)`: intervals of `2π / ROOT_GRID`.
 pub const ROOT_GRID: usize = 32;
+
+// (The search keeps each interval's index in the grid in a byte.)
+const _: () = assert!(ROOT_GRID < 256);
 
 /// The rounding of `D(θ)` relative to `Σ |c_j|` (see [`DET_CHECK`]: the samples' error is
 /// about `1e-15` of the largest, measured; a margin of four orders): an interval is free of
@@ -2196,11 +2199,13 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     let c = &tt;
     let end = |x: f64| if x >= top { 0.0 } else { x };
     let at = |x: f64| trig_eval(c, end(x));
-    // (Each interval with its index in the base grid, ROOT_GRID for the halves.)
-    let mut stack = [(0.0, 0.0, 0); 96];
+    // (Each interval with its index in the base grid beside it, ROOT_GRID for the halves.)
+    let mut stack = [(0.0, 0.0); 96];
+    let mut grid = [0u8; 96];
     let mut depth = 0;
     for k in (0..ROOT_GRID).rev() {
-        stack[depth] = (k as f64 * h, (k + 1) as f64 * h, k);
+        stack[depth] = (k as f64 * h, (k + 1) as f64 * h);
+        grid[depth] = k as u8;
         depth += 1;
     }
     let powers = grid_powers();
@@ -2236,7 +2241,8 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     };
     while depth > 0 {
         depth -= 1;
-        let (a, b, g) = stack[depth];
+        let (a, b) = stack[depth];
+        let g = grid[depth] as usize;
         let (m, r) = (0.5 * (a + b), 0.5 * (b - a));
         let v = if g < ROOT_GRID {
             trig_eval_powers(c, &powers[g])
@@ -2310,8 +2316,10 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
         if flat || r <= ROOT_LEAF || depth + 2 > stack.len() {
             return None;
         }
-        stack[depth] = (m, b, ROOT_GRID);
-        stack[depth + 1] = (a, m, ROOT_GRID);
+        stack[depth] = (m, b);
+        stack[depth + 1] = (a, m);
+        grid[depth] = ROOT_GRID as u8;
+        grid[depth + 1] = ROOT_GRID as u8;
         depth += 2;
     }
     Some(n)
