@@ -215,7 +215,7 @@
 //! (the same bits): GCC 12 `-O2` 551k per pose before and after (it vectorises neither), `-O3`
 //! 352k to 324k.
 //!
-//! Session 16 (callgrind as above): 301k to 239k per pose, 362 solutions. Bit for bit the
+//! Session 16 (callgrind as above): 301k to 237k per pose, 362 solutions. Bit for bit the
 //! same solutions (each change keeps every operation and its order; a harness compared the 64
 //! poses' joint vectors): `block_lu`'s row updates only at the columns after the pivot's (the
 //! entries before are never read again), each step with its column a constant so that the
@@ -224,8 +224,9 @@
 //! and the complete-pivoting null vector step by step with constant columns (278k to 261k);
 //! the normal matrix of the refinement by its upper triangle; the search's end values by one
 //! sum (`core::trig_one`) and its 32 base evaluations from the powers `e^{ijm}` at the grid's
-//! midpoints computed once (`core::grid_powers`). Different bits, the same solutions to
-//! `4e-13`: the left side of the elimination (`E3 E4 E5` on its grid and its transform, 16k
+//! midpoints computed once (`core::grid_powers`), the grid indices beside the search's stack (a
+//! stack above 2 kB took glibc's `rep stosb` to zero, which callgrind counts by the byte).
+//! Different bits, the same solutions to `4e-13`: the left side of the elimination (`E3 E4 E5` on its grid and its transform, 16k
 //! per pose) is a constant of the arm where the loop is read from joint 1 (arrangements 0 and
 //! 6, joints 3 to 5 turning): computed in the robot's units once per arm and thread
 //! (`core::robot_left`, a cache keyed by the axes' bits) and each equation scaled by `1/len`
