@@ -251,6 +251,77 @@ pub(crate) struct Elim {
     pub(crate) sig: [[[f64; 9]; 6]; 3],
 }
 
+/// The left side's coefficients `Am[e][k][m]` ([`Arranged::left`]).
+pub(crate) type Left = [[[f64; 9]; 3]; 14];
+
+/// The degree in length of each of the fourteen quantities ([`quantities`]): `l`, `p`, `p·p`,
+/// `p·l`, `p×l`, `(p·p) l − 2 (p·l) p`. Computed from lengths in the robot's units, equation
+/// `e` of the left side is `len^LEFT_DEG[e]` times the one from lengths over `len`, whatever
+/// the turning joints' angles: the products and sums of each quantity are of its degree.
+pub const LEFT_DEG: [u8; 14] = [0, 0, 0, 1, 1, 1, 2, 1, 1, 1, 1, 2, 2, 2];
+
+/// The left side of lengths over `len` from the one in the robot's units (see [`LEFT_DEG`]):
+/// each equation times `1 / len` to its degree.
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn scaled_left(robot: &Left, len: f64) -> Left {
+    let s = 1.0 / len;
+    let f = [1.0, s, s * s];
+    let mut out = *robot;
+    for e in 0..14 {
+        let fe = f[LEFT_DEG[e] as usize];
+        for row in out[e].iter_mut() {
+            for x in row.iter_mut() {
+                *x *= fe;
+            }
+        }
+    }
+    out
+}
+
+/// Whether the left side of arrangement `arr` ([`Arranged::left`]) is a constant of the arm:
+/// the loop read from joint 1 (forwards or backwards, `arr` 0 or 6) leaves the axes as they
+/// are (a shifted loop conjugates some by the target), and turning joints 3 to 5 make each
+/// equation a multiple of the one in the robot's units ([`LEFT_DEG`]; a slide's samples are
+/// lengths of the scaled arm).
+pub(crate) fn left_is_constant(ar: &Arranged, arr: usize) -> bool {
+    arr % 6 == 0 && !ar.j[2].prism && !ar.j[3].prism && !ar.j[4].prism
+}
+
+/// The left side of arrangement `arr` (0 or 6) of the arm `axes` in the robot's units,
+/// computed once per arm and thread (the solver of a fixed arm computes it at its first call):
+/// the last arm's two in a thread-local cache keyed by the axes' bits.
+pub(crate) fn robot_left(axes: &[GenAxis; 6], arr: usize) -> Left {
+    use std::cell::RefCell;
+    type Cache = Option<([[u64; 7]; 6], [Option<Left>; 2])>;
+    thread_local! {
+        static LEFT_CACHE: RefCell<Cache> = const { RefCell::new(None) };
+    }
+    let key: [[u64; 7]; 6] = std::array::from_fn(|i| std::array::from_fn(|k| axes[i][k].to_bits()));
+    let compute = || {
+        let js: [J; 6] = std::array::from_fn(|i| J {
+            w: [axes[i][1], axes[i][2], axes[i][3]],
+            c: [axes[i][4], axes[i][5], axes[i][6]],
+            prism: axes[i][0] != 0.0,
+        });
+        let id: B34 = [
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+        ];
+        Arranged::new(&js, &id, arr).left()
+    };
+    LEFT_CACHE
+        .try_with(|cell| {
+            let mut cache = cell.borrow_mut();
+            if cache.as_ref().map(|c| c.0) != Some(key) {
+                *cache = Some((key, [None, None]));
+            }
+            let slot = &mut cache.as_mut().expect("set above").1[arr / 6];
+            *slot.get_or_insert_with(compute)
+        })
+        .unwrap_or_else(|_| compute())
+}
+
 /// The monomial index of `(i, j)` with `i, j` in `(1, cos, sin)`.
 fn mono(i: usize, j: usize) -> usize {
     3 * i + j
@@ -303,34 +374,29 @@ impl Arranged {
     }
 
     /// The equations' coefficients by exact trigonometric interpolation (see [`DFT`]).
-    #[allow(clippy::needless_range_loop)]
     pub(crate) fn elim(&self) -> Option<Elim> {
+        self.elim_from(self.left())
+    }
+
+    /// The left side's coefficients (`Am` before the right side's constant term is taken
+    /// from it): `E3 E4 E5` applied to `(p6, w6)` on a 3 x 3 x 3 grid of samples and turned
+    /// into coefficients (see [`DFT`]). A function of the arranged joints 3 to 6 alone.
+    #[allow(clippy::needless_range_loop)]
+    pub(crate) fn left(&self) -> Left {
         let (p6, w6) = (self.j[5].c, self.j[5].w);
-        // Left: E3 E4 E5 applied to (p6, w6) on a 3 x 3 x 3 grid.
-        let rots: [[M3; 3]; 5] = std::array::from_fn(|i| self.j[i].sample_rots(i < 2));
+        let rots: [[M3; 3]; 3] = std::array::from_fn(|i| self.j[2 + i].sample_rots(false));
         let mut lhs = [[[[0.0; 14]; 3]; 3]; 3];
         for k5 in 0..3 {
-            let (x5, d5) = self.j[4].sample(&rots[4], k5, false, &p6, &w6);
+            let (x5, d5) = self.j[4].sample(&rots[2], k5, false, &p6, &w6);
             for k4 in 0..3 {
-                let (x4, d4) = self.j[3].sample(&rots[3], k4, false, &x5, &d5);
+                let (x4, d4) = self.j[3].sample(&rots[1], k4, false, &x5, &d5);
                 for k3 in 0..3 {
-                    let (x3, d3) = self.j[2].sample(&rots[2], k3, false, &x4, &d4);
+                    let (x3, d3) = self.j[2].sample(&rots[0], k3, false, &x4, &d4);
                     lhs[k3][k4][k5] = quantities(&x3, &d3);
                 }
             }
         }
-        // Right: E2⁻¹ E1⁻¹ H applied to (p6, w6) on a 3 x 3 grid.
-        let hp = motion_apply(&self.h, &p6, &w6);
-        let mut rhs = [[[0.0; 14]; 3]; 3];
-        for k1 in 0..3 {
-            let (y1, e1) = self.j[0].sample(&rots[0], k1, true, &hp.0, &hp.1);
-            for k2 in 0..3 {
-                let (y2, e2) = self.j[1].sample(&rots[1], k2, true, &y1, &e1);
-                rhs[k1][k2] = quantities(&y2, &e2);
-            }
-        }
         let mut am = [[[0.0; 9]; 3]; 14];
-        let mut bm = [[0.0; 8]; 14];
         let wt: [&[[f64; 3]; 3]; 5] = std::array::from_fn(|i| self.j[i].weights());
         // The 3-D transform as three 1-D passes (27 x 3 products each instead of 27 x 27).
         let mut t1 = [[[[0.0; 14]; 3]; 3]; 3];
@@ -382,6 +448,28 @@ impl Arranged {
                 }
             }
         }
+        am
+    }
+
+    /// The elimination from the left side's coefficients `left` ([`Arranged::left`], or its
+    /// rows scaled from the robot's units, [`scaled_left`]): the right side `E2⁻¹ E1⁻¹ H`
+    /// applied to `(p6, w6)` on a 3 x 3 grid, `Bm`, its QR and `Σ = N Am`.
+    #[allow(clippy::needless_range_loop)]
+    pub(crate) fn elim_from(&self, left: Left) -> Option<Elim> {
+        let (p6, w6) = (self.j[5].c, self.j[5].w);
+        let rots: [[M3; 3]; 2] = std::array::from_fn(|i| self.j[i].sample_rots(true));
+        let hp = motion_apply(&self.h, &p6, &w6);
+        let mut rhs = [[[0.0; 14]; 3]; 3];
+        for k1 in 0..3 {
+            let (y1, e1) = self.j[0].sample(&rots[0], k1, true, &hp.0, &hp.1);
+            for k2 in 0..3 {
+                let (y2, e2) = self.j[1].sample(&rots[1], k2, true, &y1, &e1);
+                rhs[k1][k2] = quantities(&y2, &e2);
+            }
+        }
+        let mut am = left;
+        let mut bm = [[0.0; 8]; 14];
+        let wt: [&[[f64; 3]; 3]; 2] = std::array::from_fn(|i| self.j[i].weights());
         for e in 0..14 {
             for i1 in 0..3 {
                 for i2 in 0..3 {
@@ -1981,6 +2069,41 @@ pub(crate) fn trig_eval(t: &TrigTable, th: f64) -> [f64; TAYLOR] {
     out
 }
 
+/// [`trig_eval`] from the powers `e^{ijθ}` it would compute ([`grid_powers`]).
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn trig_eval_powers(t: &TrigTable, z: &[(f64, f64); DET_DEGREE + 1]) -> [f64; TAYLOR] {
+    let mut out = [0.0; TAYLOR];
+    for ((u, v), &(zr, zi)) in t.u.iter().zip(&t.v).zip(z) {
+        for k in 0..TAYLOR {
+            out[k] += u[k] * zr + v[k] * zi;
+        }
+    }
+    out
+}
+
+/// The powers `e^{ijm}`, `j = 0 … DET_DEGREE`, that [`trig_eval`] computes at the midpoint `m`
+/// of each of the root search's [`ROOT_GRID`] base intervals (the same numbers: the same
+/// [`unit`] and products), computed once: every search evaluates there first.
+pub(crate) fn grid_powers() -> &'static [[(f64, f64); DET_DEGREE + 1]; ROOT_GRID] {
+    static POWERS: std::sync::OnceLock<[[(f64, f64); DET_DEGREE + 1]; ROOT_GRID]> =
+        std::sync::OnceLock::new();
+    POWERS.get_or_init(|| {
+        let h = std::f64::consts::TAU / ROOT_GRID as f64;
+        let top = ROOT_GRID as f64 * h;
+        std::array::from_fn(|k| {
+            let (a, b) = (k as f64 * h, (k + 1) as f64 * h);
+            let m = 0.5 * (a + b);
+            let (co, s) = unit(if m >= top { 0.0 } else { m });
+            let (mut zr, mut zi) = (1.0, 0.0);
+            std::array::from_fn(|_| {
+                let z = (zr, zi);
+                (zr, zi) = (zr * co - zi * s, zr * s + zi * co);
+                z
+            })
+        })
+    })
+}
+
 /// `(D⁽ᵏ⁾(θ), D⁽ᵏ⁺¹⁾(θ), D⁽ᵏ⁺²⁾(θ))` for `k` 0 or 1 only (the sums of [`trig_eval`] the
 /// root search's brackets read): half its work.
 #[allow(clippy::needless_range_loop)]
@@ -1997,8 +2120,24 @@ pub(crate) fn trig_low(t: &TrigTable, k: usize, th: f64) -> (f64, f64, f64) {
     (out[k], out[k + 1], out[k + 2])
 }
 
+/// `D⁽ᵏ⁾(θ)` alone (the one sum of [`trig_low`] that the search's end values read; the same
+/// sum to the bit).
+pub(crate) fn trig_one(t: &TrigTable, k: usize, th: f64) -> f64 {
+    let (co, s) = unit(th);
+    let (mut zr, mut zi) = (1.0, 0.0);
+    let mut out = 0.0;
+    for (u, v) in t.u.iter().zip(&t.v) {
+        out += u[k] * zr + v[k] * zi;
+        (zr, zi) = (zr * co - zi * s, zr * s + zi * co);
+    }
+    out
+}
+
 /// Grid of the real-root search of `det S(θ)`: intervals of `2π / ROOT_GRID`.
 pub const ROOT_GRID: usize = 32;
+
+// (The search keeps each interval's index in the grid in a byte.)
+const _: () = assert!(ROOT_GRID < 256);
 
 /// The rounding of `D(θ)` relative to `Σ |c_j|` (see [`DET_CHECK`]: the samples' error is
 /// about `1e-15` of the largest, measured; a margin of four orders): an interval is free of
@@ -2101,18 +2240,22 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     let c = &tt;
     let end = |x: f64| if x >= top { 0.0 } else { x };
     let at = |x: f64| trig_eval(c, end(x));
+    // (Each interval with its index in the base grid beside it, ROOT_GRID for the halves.)
     let mut stack = [(0.0, 0.0); 96];
+    let mut grid = [0u8; 96];
     let mut depth = 0;
     for k in (0..ROOT_GRID).rev() {
         stack[depth] = (k as f64 * h, (k + 1) as f64 * h);
+        grid[depth] = k as u8;
         depth += 1;
     }
+    let powers = grid_powers();
     let mut n = 0;
     let mut evals = 0;
     // A root of the monotone part `[a, b]` of `D` (`k = 0`) or `D′` (`k = 1`), if its ends
     // differ in sign (0 counted as positive, so a root at a shared end is seen once).
     let mono = |a: f64, b: f64, k: usize, evals: &mut usize| -> Option<f64> {
-        let (fa, fb) = (trig_low(c, k, end(a)).0, trig_low(c, k, end(b)).0);
+        let (fa, fb) = (trig_one(c, k, end(a)), trig_one(c, k, end(b)));
         *evals += 2;
         if (fa < 0.0) == (fb < 0.0) {
             None
@@ -2140,8 +2283,13 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     while depth > 0 {
         depth -= 1;
         let (a, b) = stack[depth];
+        let g = grid[depth] as usize;
         let (m, r) = (0.5 * (a + b), 0.5 * (b - a));
-        let v = at(m);
+        let v = if g < ROOT_GRID {
+            trig_eval_powers(c, &powers[g])
+        } else {
+            at(m)
+        };
         evals += 1;
         if evals > ROOT_EVALS || n + 2 > out.len() {
             return None;
@@ -2211,6 +2359,8 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
         }
         stack[depth] = (m, b);
         stack[depth + 1] = (a, m);
+        grid[depth] = ROOT_GRID as u8;
+        grid[depth + 1] = ROOT_GRID as u8;
         depth += 2;
     }
     Some(n)
@@ -2546,7 +2696,14 @@ pub fn gen_solve(
         if prismatic[ar.perm[5]] {
             continue;
         }
-        let Some(el) = ar.elim() else { continue };
+        // The left side from the arm's constants where it is one (scaled to this target's
+        // length scale), else from the arranged joints.
+        let el = if left_is_constant(&ar, arr) {
+            ar.elim_from(scaled_left(&robot_left(axes, arr), len))
+        } else {
+            ar.elim()
+        };
+        let Some(el) = el else { continue };
         if el.rank_ratio < RANK_TOL {
             continue;
         }
