@@ -243,7 +243,7 @@ pub(crate) fn scaled_left(robot: &Left, len: f64) -> Left {
 /// equation a multiple of the one in the robot's units ([`LEFT_DEG`]; a slide's samples are
 /// lengths of the scaled arm).
 pub(crate) fn left_is_constant(ar: &Arranged, arr: usize) -> bool {
-    arr % 6 == 0 && !ar.j[2].prism && !ar.j[3].prism && !ar.j[4].prism
+    (arr == 0 || arr == 6) && !ar.j[2].prism && !ar.j[3].prism && !ar.j[4].prism
 }
 
 /// The left side of arrangement `arr` (0 or 6) of the arm `axes` in the robot's units,
