@@ -203,7 +203,8 @@ static void ik_gen_samples(const ik_gen_arranged *ar, double lhs[3][3][3][14],
     const double *p6 = ar->j[5].c, *w6 = ar->j[5].w;
     double x5[3], d5[3], x4[3], d4[3], x3[3], d3[3], hp[3], hd[3], y1[3], e1[3], y2[3], e2[3];
     int k1, k2, k3, k4, k5;
-    for (k5 = 0; k5 < 3; k5++) {
+    /* (No left side when the caller has it: lhs NULL.) */
+    for (k5 = 0; lhs && k5 < 3; k5++) {
         ik_gen_sample(&ar->j[4], k5, 0, p6, w6, x5, d5);
         for (k4 = 0; k4 < 3; k4++) {
             ik_gen_sample(&ar->j[3], k4, 0, x5, d5, x4, d4);
@@ -304,13 +305,20 @@ static void ik_gen_prismatic_basis(const ik_gen_arranged *ar, double sig[3][6][9
 }
 
 /* The equations' coefficients by exact trigonometric interpolation (IK_GEN_DFT). */
-static void ik_gen_eliminate(const ik_gen_arranged *ar, ik_gen_elim *el) {
+static void ik_gen_eliminate(const ik_gen_arranged *ar, const double left[14][3][9],
+                             ik_gen_elim *el) {
     double lhs[3][3][3][14], rhs[3][3][14], bm[14][8];
     int e, i1, i2, k1, k2, k, row, m;
-    ik_gen_samples(ar, lhs, rhs);
-    memset(el->am, 0, sizeof el->am);
     memset(bm, 0, sizeof bm);
-    ik_gen_left_coefficients(ar, lhs, el->am);
+    if (left) {
+        /* The left side given (ik_gen_robot_left): the right side only. */
+        ik_gen_samples(ar, NULL, rhs);
+        memcpy(el->am, left, sizeof el->am);
+    } else {
+        ik_gen_samples(ar, lhs, rhs);
+        memset(el->am, 0, sizeof el->am);
+        ik_gen_left_coefficients(ar, lhs, el->am);
+    }
     for (e = 0; e < 14; e++) {
         for (i1 = 0; i1 < 3; i1++) {
             for (i2 = 0; i2 < 3; i2++) {
@@ -1560,6 +1568,41 @@ static void ik_gen_scale(const double axes[6][7], const double home[3][4],
     }
 }
 
+/* The degree in length of each of the fourteen quantities (l, p, p.p, p.l, p x l,
+   (p.p) l - 2 (p.l) p): computed from lengths in the robot's units, equation e of the left side
+   is len^IK_GEN_LEFT_DEG[e] times the one from lengths over len. */
+static const int IK_GEN_LEFT_DEG[14] = {0, 0, 0, 1, 1, 1, 2, 1, 1, 1, 1, 2, 2, 2};
+
+/* The left side of arrangement arr (0 or 6, joints 3 to 5 turning: a constant of the arm) from
+   the axes in the robot's units, each equation times 1 / len to its degree (the Rust solver
+   keeps the unscaled one per arm; the same numbers). */
+static void ik_gen_robot_left(const double axes[6][7], int arr, double len,
+                              double am[14][3][9]) {
+    static const double id[3][4] = {{1.0, 0.0, 0.0, 0.0}, {0.0, 1.0, 0.0, 0.0},
+                                     {0.0, 0.0, 1.0, 0.0}};
+    ik_gen_joint js[6];
+    ik_gen_arranged ar;
+    double lhs[3][3][3][14], rhs[3][3][14], s = 1.0 / len, f[3];
+    int i, k, m;
+    for (i = 0; i < 6; i++) {
+        for (k = 0; k < 3; k++) {
+            js[i].w[k] = axes[i][1 + k];
+            js[i].c[k] = axes[i][4 + k];
+        }
+        js[i].prism = axes[i][0] != 0.0;
+    }
+    ik_gen_arrange(js, id, arr, &ar);
+    ik_gen_samples(&ar, lhs, rhs);
+    memset(am, 0, 14 * sizeof am[0]);
+    ik_gen_left_coefficients(&ar, lhs, am);
+    f[0] = 1.0;
+    f[1] = s;
+    f[2] = s * s;
+    for (i = 0; i < 14; i++)
+        for (k = 0; k < 3; k++)
+            for (m = 0; m < 9; m++) am[i][k][m] *= f[IK_GEN_LEFT_DEG[i]];
+}
+
 /* Every solution of E1 ... E6 M = T for a 6R chain (axes [kind, w, p], home and target
    positions in the robot's lengths, len its scale): the arrangements are tried in order from
    first; each nondegenerate one gives its real roots, each back-substituted, refined and
@@ -1568,7 +1611,7 @@ static void ik_gen_scale(const double axes[6][7], const double home[3][4],
 static void ik_gen_solve(const double axes[6][7], const double home[3][4],
                          const double target[4][4], double len, ik_gen_tol tol, int first,
                          ik_gen_out *out) {
-    double roots[24][6];
+    double roots[24][6], left[14][3][9];
     ik_gen_elim el;
     ik_gen_scaled sc;
     double q[6], res;
@@ -1584,7 +1627,14 @@ static void ik_gen_solve(const double axes[6][7], const double home[3][4],
         ik_gen_arrange(sc.js, (const double (*)[4])sc.g, arr, &ar);
         /* The last arranged joint is eliminated by a point of its axis, which a slide moves. */
         if (prismatic[ar.perm[5]]) continue;
-        ik_gen_eliminate(&ar, &el);
+        /* The left side from the arm's constants where it is one, else from the arranged
+           joints. */
+        if (arr % 6 == 0 && !ar.j[2].prism && !ar.j[3].prism && !ar.j[4].prism) {
+            ik_gen_robot_left(axes, arr, len, left);
+            ik_gen_eliminate(&ar, (const double (*)[3][9])left, &el);
+        } else {
+            ik_gen_eliminate(&ar, NULL, &el);
+        }
         if (el.rank_ratio < IK_GEN_RANK_TOL) continue;
         if (!ik_gen_candidates(&ar, &el, roots, &n, &degree)) continue;
         if (out->n_arr == 0) out->degree = degree;

@@ -210,6 +210,77 @@ pub(crate) struct Elim {
     pub(crate) sig: [[[f64; 9]; 6]; 3],
 }
 
+/// The left side's coefficients `Am[e][k][m]` ([`Arranged::left`]).
+pub(crate) type Left = [[[f64; 9]; 3]; 14];
+
+/// The degree in length of each of the fourteen quantities ([`quantities`]): `l`, `p`, `p·p`,
+/// `p·l`, `p×l`, `(p·p) l − 2 (p·l) p`. Computed from lengths in the robot's units, equation
+/// `e` of the left side is `len^LEFT_DEG[e]` times the one from lengths over `len`, whatever
+/// the turning joints' angles: the products and sums of each quantity are of its degree.
+pub const LEFT_DEG: [u8; 14] = [0, 0, 0, 1, 1, 1, 2, 1, 1, 1, 1, 2, 2, 2];
+
+/// The left side of lengths over `len` from the one in the robot's units (see [`LEFT_DEG`]):
+/// each equation times `1 / len` to its degree.
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn scaled_left(robot: &Left, len: f64) -> Left {
+    let s = 1.0 / len;
+    let f = [1.0, s, s * s];
+    let mut out = *robot;
+    for e in 0..14 {
+        let fe = f[LEFT_DEG[e] as usize];
+        for row in out[e].iter_mut() {
+            for x in row.iter_mut() {
+                *x *= fe;
+            }
+        }
+    }
+    out
+}
+
+/// Whether the left side of arrangement `arr` ([`Arranged::left`]) is a constant of the arm:
+/// the loop read from joint 1 (forwards or backwards, `arr` 0 or 6) leaves the axes as they
+/// are (a shifted loop conjugates some by the target), and turning joints 3 to 5 make each
+/// equation a multiple of the one in the robot's units ([`LEFT_DEG`]; a slide's samples are
+/// lengths of the scaled arm).
+pub(crate) fn left_is_constant(ar: &Arranged, arr: usize) -> bool {
+    (arr == 0 || arr == 6) && !ar.j[2].prism && !ar.j[3].prism && !ar.j[4].prism
+}
+
+/// The left side of arrangement `arr` (0 or 6) of the arm `axes` in the robot's units,
+/// computed once per arm and thread (the solver of a fixed arm computes it at its first call):
+/// the last arm's two in a thread-local cache keyed by the axes' bits.
+pub(crate) fn robot_left(axes: &[GenAxis; 6], arr: usize) -> Left {
+    use std::cell::RefCell;
+    type Cache = Option<([[u64; 7]; 6], [Option<Left>; 2])>;
+    thread_local! {
+        static LEFT_CACHE: RefCell<Cache> = const { RefCell::new(None) };
+    }
+    let key: [[u64; 7]; 6] = std::array::from_fn(|i| std::array::from_fn(|k| axes[i][k].to_bits()));
+    let compute = || {
+        let js: [J; 6] = std::array::from_fn(|i| J {
+            w: [axes[i][1], axes[i][2], axes[i][3]],
+            c: [axes[i][4], axes[i][5], axes[i][6]],
+            prism: axes[i][0] != 0.0,
+        });
+        let id: B34 = [
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+        ];
+        Arranged::new(&js, &id, arr).left()
+    };
+    LEFT_CACHE
+        .try_with(|cell| {
+            let mut cache = cell.borrow_mut();
+            if cache.as_ref().map(|c| c.0) != Some(key) {
+                *cache = Some((key, [None, None]));
+            }
+            let slot = &mut cache.as_mut().expect("set above").1[arr / 6];
+            *slot.get_or_insert_with(compute)
+        })
+        .unwrap_or_else(|_| compute())
+}
+
 /// The monomial index of `(i, j)` with `i, j` in `(1, cos, sin)`.
 fn mono(i: usize, j: usize) -> usize {
     3 * i + j
@@ -262,34 +333,29 @@ impl Arranged {
     }
 
     /// The equations' coefficients by exact trigonometric interpolation (see [`DFT`]).
-    #[allow(clippy::needless_range_loop)]
     pub(crate) fn elim(&self) -> Option<Elim> {
+        self.elim_from(self.left())
+    }
+
+    /// The left side's coefficients (`Am` before the right side's constant term is taken
+    /// from it): `E3 E4 E5` applied to `(p6, w6)` on a 3 x 3 x 3 grid of samples and turned
+    /// into coefficients (see [`DFT`]). A function of the arranged joints 3 to 6 alone.
+    #[allow(clippy::needless_range_loop)]
+    pub(crate) fn left(&self) -> Left {
         let (p6, w6) = (self.j[5].c, self.j[5].w);
-        // Left: E3 E4 E5 applied to (p6, w6) on a 3 x 3 x 3 grid.
-        let rots: [[M3; 3]; 5] = std::array::from_fn(|i| self.j[i].sample_rots(i < 2));
+        let rots: [[M3; 3]; 3] = std::array::from_fn(|i| self.j[2 + i].sample_rots(false));
         let mut lhs = [[[[0.0; 14]; 3]; 3]; 3];
         for k5 in 0..3 {
-            let (x5, d5) = self.j[4].sample(&rots[4], k5, false, &p6, &w6);
+            let (x5, d5) = self.j[4].sample(&rots[2], k5, false, &p6, &w6);
             for k4 in 0..3 {
-                let (x4, d4) = self.j[3].sample(&rots[3], k4, false, &x5, &d5);
+                let (x4, d4) = self.j[3].sample(&rots[1], k4, false, &x5, &d5);
                 for k3 in 0..3 {
-                    let (x3, d3) = self.j[2].sample(&rots[2], k3, false, &x4, &d4);
+                    let (x3, d3) = self.j[2].sample(&rots[0], k3, false, &x4, &d4);
                     lhs[k3][k4][k5] = quantities(&x3, &d3);
                 }
             }
         }
-        // Right: E2⁻¹ E1⁻¹ H applied to (p6, w6) on a 3 x 3 grid.
-        let hp = motion_apply(&self.h, &p6, &w6);
-        let mut rhs = [[[0.0; 14]; 3]; 3];
-        for k1 in 0..3 {
-            let (y1, e1) = self.j[0].sample(&rots[0], k1, true, &hp.0, &hp.1);
-            for k2 in 0..3 {
-                let (y2, e2) = self.j[1].sample(&rots[1], k2, true, &y1, &e1);
-                rhs[k1][k2] = quantities(&y2, &e2);
-            }
-        }
         let mut am = [[[0.0; 9]; 3]; 14];
-        let mut bm = [[0.0; 8]; 14];
         let wt: [&[[f64; 3]; 3]; 5] = std::array::from_fn(|i| self.j[i].weights());
         // The 3-D transform as three 1-D passes (27 x 3 products each instead of 27 x 27).
         let mut t1 = [[[[0.0; 14]; 3]; 3]; 3];
@@ -341,6 +407,28 @@ impl Arranged {
                 }
             }
         }
+        am
+    }
+
+    /// The elimination from the left side's coefficients `left` ([`Arranged::left`], or its
+    /// rows scaled from the robot's units, [`scaled_left`]): the right side `E2⁻¹ E1⁻¹ H`
+    /// applied to `(p6, w6)` on a 3 x 3 grid, `Bm`, its QR and `Σ = N Am`.
+    #[allow(clippy::needless_range_loop)]
+    pub(crate) fn elim_from(&self, left: Left) -> Option<Elim> {
+        let (p6, w6) = (self.j[5].c, self.j[5].w);
+        let rots: [[M3; 3]; 2] = std::array::from_fn(|i| self.j[i].sample_rots(true));
+        let hp = motion_apply(&self.h, &p6, &w6);
+        let mut rhs = [[[0.0; 14]; 3]; 3];
+        for k1 in 0..3 {
+            let (y1, e1) = self.j[0].sample(&rots[0], k1, true, &hp.0, &hp.1);
+            for k2 in 0..3 {
+                let (y2, e2) = self.j[1].sample(&rots[1], k2, true, &y1, &e1);
+                rhs[k1][k2] = quantities(&y2, &e2);
+            }
+        }
+        let mut am = left;
+        let mut bm = [[0.0; 8]; 14];
+        let wt: [&[[f64; 3]; 3]; 2] = std::array::from_fn(|i| self.j[i].weights());
         for e in 0..14 {
             for i1 in 0..3 {
                 for i2 in 0..3 {
@@ -458,52 +546,15 @@ fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], 
         q[i][i] = 1.0;
     }
     let mut piv = [0, 1, 2, 3, 4, 5, 6, 7];
-    for k in 0..8 {
-        // The remaining column of largest norm first.
-        let mut best = k;
-        let mut bn = -1.0;
-        for c in k..8 {
-            let n: f64 = (k..14).map(|r| a[r][c] * a[r][c]).sum();
-            if n > bn {
-                bn = n;
-                best = c;
-            }
-        }
-        if best != k {
-            for r in 0..14 {
-                a[r].swap(k, best);
-            }
-            piv.swap(k, best);
-        }
-        let norm = bn.max(0.0).sqrt();
-        if norm == 0.0 {
-            continue;
-        }
-        let alpha = if a[k][k] > 0.0 { -norm } else { norm };
-        let mut v = [0.0; 14];
-        for r in k..14 {
-            v[r] = a[r][k];
-        }
-        v[k] -= alpha;
-        let vn: f64 = (k..14).map(|r| v[r] * v[r]).sum();
-        if vn == 0.0 {
-            continue;
-        }
-        for c in k..8 {
-            let s: f64 = (k..14).map(|r| v[r] * a[r][c]).sum::<f64>() * 2.0 / vn;
-            for r in k..14 {
-                a[r][c] -= s * v[r];
-            }
-        }
-        // Q (the transpose of Qᵀ) by rows, so that each update runs along a row (the same
-        // operations in the same order).
-        for qc in q.iter_mut() {
-            let s: f64 = (k..14).map(|r| v[r] * qc[r]).sum::<f64>() * 2.0 / vn;
-            for r in k..14 {
-                qc[r] -= s * v[r];
-            }
-        }
-    }
+    // Each step with its column a constant (the loops over its rows unrolled).
+    qr_step::<0>(&mut a, &mut q, &mut piv);
+    qr_step::<1>(&mut a, &mut q, &mut piv);
+    qr_step::<2>(&mut a, &mut q, &mut piv);
+    qr_step::<3>(&mut a, &mut q, &mut piv);
+    qr_step::<4>(&mut a, &mut q, &mut piv);
+    qr_step::<5>(&mut a, &mut q, &mut piv);
+    qr_step::<6>(&mut a, &mut q, &mut piv);
+    qr_step::<7>(&mut a, &mut q, &mut piv);
     let qt: [[f64; 14]; 14] = std::array::from_fn(|i| std::array::from_fn(|c| q[c][i]));
     let mut r = [[0.0; 8]; 8];
     for i in 0..8 {
@@ -517,6 +568,72 @@ fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], 
         (r[7][7] / r[0][0]).abs()
     };
     (qt, r, piv, ratio)
+}
+
+/// Step `K` of [`qr_pivot`]: the remaining column of largest norm to column `K`, its
+/// Householder reflection applied to the columns from `K` on and to `Q` (by rows). Each sum
+/// starts at `−0`, as the standard library's `f64` sum of an iterator, which it was.
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn qr_step<const K: usize>(a: &mut [[f64; 8]; 14], q: &mut [[f64; 14]; 14], piv: &mut [usize; 8]) {
+    // The remaining column of largest norm first.
+    let mut best = K;
+    let mut bn = -1.0;
+    for c in K..8 {
+        let mut n = -0.0;
+        for r in K..14 {
+            n += a[r][c] * a[r][c];
+        }
+        if n > bn {
+            bn = n;
+            best = c;
+        }
+    }
+    if best != K {
+        for r in 0..14 {
+            a[r].swap(K, best);
+        }
+        piv.swap(K, best);
+    }
+    let norm = f64::max(bn, 0.0).sqrt();
+    if norm == 0.0 {
+        return;
+    }
+    let alpha = if a[K][K] > 0.0 { -norm } else { norm };
+    let mut v = [0.0; 14];
+    for r in K..14 {
+        v[r] = a[r][K];
+    }
+    v[K] -= alpha;
+    let mut vn = -0.0;
+    for r in K..14 {
+        vn += v[r] * v[r];
+    }
+    if vn == 0.0 {
+        return;
+    }
+    for c in K..8 {
+        let mut s = -0.0;
+        for r in K..14 {
+            s += v[r] * a[r][c];
+        }
+        let s = s * 2.0 / vn;
+        for r in K..14 {
+            a[r][c] -= s * v[r];
+        }
+    }
+    // Q (the transpose of Qᵀ) by rows, so that each update runs along a row (the same
+    // operations in the same order).
+    for qc in q.iter_mut() {
+        let mut s = -0.0;
+        for r in K..14 {
+            s += v[r] * qc[r];
+        }
+        let s = s * 2.0 / vn;
+        for r in K..14 {
+            qc[r] -= s * v[r];
+        }
+    }
 }
 
 /// `(1, cos, sin)` of a half-angle tangent times `1 + x²`, as polynomials in `x`.
@@ -832,38 +949,18 @@ pub(crate) fn null_vector(m: &[[f64; 12]; 12]) -> [f64; 12] {
             }
         }
     }
-    for k in 0..11 {
-        a.swap(k, br);
-        for row in a.iter_mut() {
-            row.swap(k, bc);
-        }
-        cols.swap(k, bc);
-        let pivot = a[k];
-        let d = pivot[k];
-        (br, bc, bv) = (k + 1, k + 1, -1.0);
-        if d == 0.0 {
-            // Nothing eliminated: the next pivot is searched in the block as it is.
-            for (r, row) in a.iter().enumerate().skip(k + 1) {
-                for (c, x) in row.iter().enumerate().skip(k + 1) {
-                    if x.abs() > bv {
-                        (br, bc, bv) = (r, c, x.abs());
-                    }
-                }
-            }
-            continue;
-        }
-        for (r, row) in a.iter_mut().enumerate().skip(k + 1) {
-            let f = row[k] / d;
-            row[k] -= f * pivot[k];
-            for c in k + 1..12 {
-                let x = row[c] - f * pivot[c];
-                row[c] = x;
-                if x.abs() > bv {
-                    (br, bc, bv) = (r, c, x.abs());
-                }
-            }
-        }
-    }
+    // Each step with its column a constant (the row updates unrolled).
+    nv_step::<0>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<1>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<2>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<3>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<4>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<5>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<6>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<7>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<8>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<9>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
+    nv_step::<10>(&mut a, &mut cols, &mut br, &mut bc, &mut bv);
     let mut y = [0.0; 12];
     y[11] = 1.0;
     for i in (0..11).rev() {
@@ -878,6 +975,48 @@ pub(crate) fn null_vector(m: &[[f64; 12]; 12]) -> [f64; 12] {
         v[cols[i]] = y[i];
     }
     v
+}
+
+/// Step `K` of [`null_vector`]: the pivot `(br, bc)` to `(K, K)`, the rows below less their
+/// multiple of it, and the largest entry of the block left tracked.
+#[inline(always)]
+fn nv_step<const K: usize>(
+    a: &mut [[f64; 12]; 12],
+    cols: &mut [usize; 12],
+    br: &mut usize,
+    bc: &mut usize,
+    bv: &mut f64,
+) {
+    a.swap(K, *br);
+    for row in a.iter_mut() {
+        row.swap(K, *bc);
+    }
+    cols.swap(K, *bc);
+    let pivot = a[K];
+    let d = pivot[K];
+    (*br, *bc, *bv) = (K + 1, K + 1, -1.0);
+    if d == 0.0 {
+        // Nothing eliminated: the next pivot is searched in the block as it is.
+        for (r, row) in a.iter().enumerate().skip(K + 1) {
+            for (c, x) in row.iter().enumerate().skip(K + 1) {
+                if x.abs() > *bv {
+                    (*br, *bc, *bv) = (r, c, x.abs());
+                }
+            }
+        }
+        return;
+    }
+    for (r, row) in a.iter_mut().enumerate().skip(K + 1) {
+        let f = row[K] / d;
+        row[K] -= f * pivot[K];
+        for c in K + 1..12 {
+            let x = row[c] - f * pivot[c];
+            row[c] = x;
+            if x.abs() > *bv {
+                (*br, *bc, *bv) = (r, c, x.abs());
+            }
+        }
+    }
 }
 
 /// A null vector of the 12 x 12 matrix `m`, singular to rounding, from its LU with partial
@@ -1476,97 +1615,34 @@ fn block_lu(p: &[[f64; 9]; 6]) -> BlockLu {
     }
     let mut det = 1.0;
     let mut piv = [0.0; 12];
-    // Columns 0-2, among the equations' rows (positions 0-5 of the whole matrix).
-    for k in 0..3 {
-        let mut best = k;
-        for r in k + 1..6 {
-            if m[r][k].abs() > m[best][k].abs() {
-                best = r;
-            }
-        }
-        if best != k {
-            m.swap(k, best);
-            det = -det;
-        }
-        let d = m[k][k];
-        det *= d;
-        piv[k] = d;
-        if d != 0.0 {
-            let (top, rest) = m.split_at_mut(k + 1);
-            eliminate_rows(rest, &top[k], k, d);
-        }
-    }
+    // Columns 0-2, among the equations' rows (positions 0-5 of the whole matrix). Each step
+    // updates the columns after the pivot's only: the entries of the rows below at the
+    // pivot's column and before are never read again (the next pivots are searched further
+    // right, `U` is read above its diagonal), so the entries that are read are the whole
+    // matrix' to the bit.
+    eq_step::<0>(&mut m, &mut det, &mut piv);
+    eq_step::<1>(&mut m, &mut det, &mut piv);
+    eq_step::<2>(&mut m, &mut det, &mut piv);
     // Columns 3-5, among the copies' rows (positions 6-11; the equations' rows 3-5 at
     // positions 3-5 are zero there). A copy taken as the pivot of column k trades places with
     // the equation's row at position k; the copies left keep their positions, in their order,
     // so the first of the largest is the whole matrix' choice.
     let mut from = [6, 7, 8, 9, 10, 11];
-    for k in 3..6 {
-        let kc = k - 3;
-        let mut best = usize::MAX;
-        let mut bv = 0.0;
-        for i in 0..6 {
-            if from[i] >= 6 && low[i][kc].abs() > bv {
-                best = i;
-                bv = low[i][kc].abs();
-            }
-        }
-        if best == usize::MAX {
-            // No copy is nonzero here: the zero pivot of the equation's row k.
-            det *= 0.0;
-            continue;
-        }
-        det = -det;
-        from[best] = k;
-        let pr = low[best];
-        let d = pr[kc];
-        det *= d;
-        piv[k] = d;
-        for i in 0..6 {
-            if from[i] >= 6 {
-                let f = low[i][kc] / d;
-                if f != 0.0 {
-                    for c in 0..9 {
-                        low[i][c] -= f * pr[c];
-                    }
-                }
-            }
-        }
-    }
+    copy_step::<0>(&mut low, &mut from, &mut det, &mut piv);
+    copy_step::<1>(&mut low, &mut from, &mut det, &mut piv);
+    copy_step::<2>(&mut low, &mut from, &mut det, &mut piv);
     // The last six columns: a 6 x 6 block.
     let mut b = [[0.0; 6]; 6];
     for i in 0..6 {
         let row = if from[i] >= 6 { &low[i] } else { &m[from[i]] };
         b[i].copy_from_slice(&row[3..]);
     }
-    for k in 0..6 {
-        let mut best = k;
-        for r in k + 1..6 {
-            if b[r][k].abs() > b[best][k].abs() {
-                best = r;
-            }
-        }
-        if best != k {
-            b.swap(k, best);
-            det = -det;
-        }
-        let d = b[k][k];
-        det *= d;
-        piv[6 + k] = d;
-        if d == 0.0 {
-            continue;
-        }
-        let (top, rest) = b.split_at_mut(k + 1);
-        let pr = &top[k];
-        for row in rest.iter_mut() {
-            let f = row[k] / d;
-            if f != 0.0 {
-                for c in 0..6 {
-                    row[c] -= f * pr[c];
-                }
-            }
-        }
-    }
+    block_step::<0>(&mut b, &mut det, &mut piv);
+    block_step::<1>(&mut b, &mut det, &mut piv);
+    block_step::<2>(&mut b, &mut det, &mut piv);
+    block_step::<3>(&mut b, &mut det, &mut piv);
+    block_step::<4>(&mut b, &mut det, &mut piv);
+    block_step::<5>(&mut b, &mut det, &mut piv);
     BlockLu {
         eq: m,
         low,
@@ -1574,6 +1650,106 @@ fn block_lu(p: &[[f64; 9]; 6]) -> BlockLu {
         b,
         piv,
         det,
+    }
+}
+
+/// Step `K` (column `K`) of [`block_lu`] among the equations' rows: partial pivoting, the rows
+/// below less their multiple of the pivot row at the columns after `K`.
+#[inline(always)]
+fn eq_step<const K: usize>(m: &mut [[f64; 9]; 6], det: &mut f64, piv: &mut [f64; 12]) {
+    let mut best = K;
+    for r in K + 1..6 {
+        if m[r][K].abs() > m[best][K].abs() {
+            best = r;
+        }
+    }
+    if best != K {
+        m.swap(K, best);
+        *det = -*det;
+    }
+    let d = m[K][K];
+    *det *= d;
+    piv[K] = d;
+    if d != 0.0 {
+        let pr = m[K];
+        for row in m[K + 1..].iter_mut() {
+            let f = row[K] / d;
+            if f != 0.0 {
+                for c in K + 1..9 {
+                    row[c] -= f * pr[c];
+                }
+            }
+        }
+    }
+}
+
+/// Step `KC` (column `3 + KC`) of [`block_lu`] among the copies' rows not yet pivot rows
+/// (`from[i] >= 6`), at the columns after the pivot's.
+#[inline(always)]
+fn copy_step<const KC: usize>(
+    low: &mut [[f64; 9]; 6],
+    from: &mut [usize; 6],
+    det: &mut f64,
+    piv: &mut [f64; 12],
+) {
+    let mut best = usize::MAX;
+    let mut bv = 0.0;
+    for i in 0..6 {
+        if from[i] >= 6 && low[i][KC].abs() > bv {
+            best = i;
+            bv = low[i][KC].abs();
+        }
+    }
+    if best == usize::MAX {
+        // No copy is nonzero here: the zero pivot of the equation's row 3 + KC.
+        *det *= 0.0;
+        return;
+    }
+    *det = -*det;
+    from[best] = 3 + KC;
+    let pr = low[best];
+    let d = pr[KC];
+    *det *= d;
+    piv[3 + KC] = d;
+    for (row, &fr) in low.iter_mut().zip(from.iter()) {
+        if fr >= 6 {
+            let f = row[KC] / d;
+            if f != 0.0 {
+                for c in KC + 1..9 {
+                    row[c] -= f * pr[c];
+                }
+            }
+        }
+    }
+}
+
+/// Step `K` of [`block_lu`]'s last 6 x 6 block (column `6 + K`), at the columns after `K`.
+#[inline(always)]
+fn block_step<const K: usize>(b: &mut [[f64; 6]; 6], det: &mut f64, piv: &mut [f64; 12]) {
+    let mut best = K;
+    for r in K + 1..6 {
+        if b[r][K].abs() > b[best][K].abs() {
+            best = r;
+        }
+    }
+    if best != K {
+        b.swap(K, best);
+        *det = -*det;
+    }
+    let d = b[K][K];
+    *det *= d;
+    piv[6 + K] = d;
+    if d == 0.0 {
+        return;
+    }
+    let pr = b[K];
+    for row in b[K + 1..].iter_mut() {
+        let f = row[K] / d;
+        if f != 0.0 {
+            for c in K + 1..6 {
+                row[c] -= f * pr[c];
+            }
+        }
     }
 }
 
@@ -1613,18 +1789,55 @@ pub(crate) fn null_vector_trig(t: &TrigRows, s: f64, c: f64) -> [f64; 12] {
         }
         y[i] = if f.piv[i] == 0.0 { 0.0 } else { s / f.piv[i] };
     }
-    checked_null(&cols_of(&p), y)
+    checked_null_rows(&p, y)
 }
 
-/// One step of Gaussian elimination on the equations' compact rows (see [`det_trig`]).
-fn eliminate_rows(rest: &mut [[f64; 9]], pivot: &[f64; 9], k: usize, d: f64) {
-    for row in rest.iter_mut() {
-        let f = row[k] / d;
-        if f != 0.0 {
-            for c in 0..9 {
-                row[c] -= f * pivot[c];
+/// [`checked_null`] of `S` given by its six distinct rows `p` (the columns in the order
+/// [`DET_COLS`]) without assembling it: each row's sum skips the structural zeros, whose
+/// products `0 · y_c` are zeros that leave a sum started at `+0` unchanged (it is never `−0`),
+/// so the residual, the scales and the decision are [`checked_null`]'s to the bit. A vector
+/// with an entry that is not finite (`0 · ∞` is NaN) takes [`checked_null`] itself.
+#[allow(clippy::needless_range_loop)]
+fn checked_null_rows(p: &[[f64; 9]; 6], y: [f64; 12]) -> [f64; 12] {
+    if !y.iter().all(|v| v.is_finite()) {
+        return checked_null(&cols_of(p), y);
+    }
+    let (mut ms, mut ys, mut res) = (0.0, 0.0, 0.0);
+    for r in 0..6 {
+        let q = &p[r];
+        // The equation [a = 0 | 0 | a = 1 | a = 2] and its copy [0 | a = 3 | a = 1 | a = 2].
+        let mut s = 0.0;
+        let mut t = 0.0;
+        for c in 0..3 {
+            s += q[c] * y[c];
+            t += q[6 + c] * y[3 + c];
+        }
+        for c in 3..9 {
+            s += q[c] * y[3 + c];
+        }
+        for c in 0..6 {
+            t += q[c] * y[6 + c];
+        }
+        for x in q {
+            if x.abs() > ms {
+                ms = x.abs();
             }
         }
+        for v in [s, t] {
+            if v.abs() > res {
+                res = v.abs();
+            }
+        }
+    }
+    for v in y {
+        if v.abs() > ys {
+            ys = v.abs();
+        }
+    }
+    if res <= NULL_RESIDUAL * ms * ys {
+        y
+    } else {
+        null_vector(&cols_of(p))
     }
 }
 
@@ -1815,6 +2028,41 @@ pub(crate) fn trig_eval(t: &TrigTable, th: f64) -> [f64; TAYLOR] {
     out
 }
 
+/// [`trig_eval`] from the powers `e^{ijθ}` it would compute ([`grid_powers`]).
+#[allow(clippy::needless_range_loop)]
+pub(crate) fn trig_eval_powers(t: &TrigTable, z: &[(f64, f64); DET_DEGREE + 1]) -> [f64; TAYLOR] {
+    let mut out = [0.0; TAYLOR];
+    for ((u, v), &(zr, zi)) in t.u.iter().zip(&t.v).zip(z) {
+        for k in 0..TAYLOR {
+            out[k] += u[k] * zr + v[k] * zi;
+        }
+    }
+    out
+}
+
+/// The powers `e^{ijm}`, `j = 0 … DET_DEGREE`, that [`trig_eval`] computes at the midpoint `m`
+/// of each of the root search's [`ROOT_GRID`] base intervals (the same numbers: the same
+/// [`unit`] and products), computed once: every search evaluates there first.
+pub(crate) fn grid_powers() -> &'static [[(f64, f64); DET_DEGREE + 1]; ROOT_GRID] {
+    static POWERS: std::sync::OnceLock<[[(f64, f64); DET_DEGREE + 1]; ROOT_GRID]> =
+        std::sync::OnceLock::new();
+    POWERS.get_or_init(|| {
+        let h = std::f64::consts::TAU / ROOT_GRID as f64;
+        let top = ROOT_GRID as f64 * h;
+        std::array::from_fn(|k| {
+            let (a, b) = (k as f64 * h, (k + 1) as f64 * h);
+            let m = 0.5 * (a + b);
+            let (co, s) = unit(if m >= top { 0.0 } else { m });
+            let (mut zr, mut zi) = (1.0, 0.0);
+            std::array::from_fn(|_| {
+                let z = (zr, zi);
+                (zr, zi) = (zr * co - zi * s, zr * s + zi * co);
+                z
+            })
+        })
+    })
+}
+
 /// `(D⁽ᵏ⁾(θ), D⁽ᵏ⁺¹⁾(θ), D⁽ᵏ⁺²⁾(θ))` for `k` 0 or 1 only (the sums of [`trig_eval`] the
 /// root search's brackets read): half its work.
 #[allow(clippy::needless_range_loop)]
@@ -1831,8 +2079,24 @@ pub(crate) fn trig_low(t: &TrigTable, k: usize, th: f64) -> (f64, f64, f64) {
     (out[k], out[k + 1], out[k + 2])
 }
 
+/// `D⁽ᵏ⁾(θ)` alone (the one sum of [`trig_low`] that the search's end values read; the same
+/// sum to the bit).
+pub(crate) fn trig_one(t: &TrigTable, k: usize, th: f64) -> f64 {
+    let (co, s) = unit(th);
+    let (mut zr, mut zi) = (1.0, 0.0);
+    let mut out = 0.0;
+    for (u, v) in t.u.iter().zip(&t.v) {
+        out += u[k] * zr + v[k] * zi;
+        (zr, zi) = (zr * co - zi * s, zr * s + zi * co);
+    }
+    out
+}
+
 /// Grid of the real-root search of `det S(θ)`: intervals of `2π / ROOT_GRID`.
 pub const ROOT_GRID: usize = 32;
+
+// (The search keeps each interval's index in the grid in a byte.)
+const _: () = assert!(ROOT_GRID < 256);
 
 /// The rounding of `D(θ)` relative to `Σ |c_j|` (see [`DET_CHECK`]: the samples' error is
 /// about `1e-15` of the largest, measured; a margin of four orders): an interval is free of
@@ -1935,18 +2199,22 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     let c = &tt;
     let end = |x: f64| if x >= top { 0.0 } else { x };
     let at = |x: f64| trig_eval(c, end(x));
+    // (Each interval with its index in the base grid beside it, ROOT_GRID for the halves.)
     let mut stack = [(0.0, 0.0); 96];
+    let mut grid = [0u8; 96];
     let mut depth = 0;
     for k in (0..ROOT_GRID).rev() {
         stack[depth] = (k as f64 * h, (k + 1) as f64 * h);
+        grid[depth] = k as u8;
         depth += 1;
     }
+    let powers = grid_powers();
     let mut n = 0;
     let mut evals = 0;
     // A root of the monotone part `[a, b]` of `D` (`k = 0`) or `D′` (`k = 1`), if its ends
     // differ in sign (0 counted as positive, so a root at a shared end is seen once).
     let mono = |a: f64, b: f64, k: usize, evals: &mut usize| -> Option<f64> {
-        let (fa, fb) = (trig_low(c, k, end(a)).0, trig_low(c, k, end(b)).0);
+        let (fa, fb) = (trig_one(c, k, end(a)), trig_one(c, k, end(b)));
         *evals += 2;
         if (fa < 0.0) == (fb < 0.0) {
             None
@@ -1974,8 +2242,13 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
     while depth > 0 {
         depth -= 1;
         let (a, b) = stack[depth];
+        let g = grid[depth] as usize;
         let (m, r) = (0.5 * (a + b), 0.5 * (b - a));
-        let v = at(m);
+        let v = if g < ROOT_GRID {
+            trig_eval_powers(c, &powers[g])
+        } else {
+            at(m)
+        };
         evals += 1;
         if evals > ROOT_EVALS || n + 2 > out.len() {
             return None;
@@ -2045,6 +2318,8 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
         }
         stack[depth] = (m, b);
         stack[depth + 1] = (a, m);
+        grid[depth] = ROOT_GRID as u8;
+        grid[depth + 1] = ROOT_GRID as u8;
         depth += 2;
     }
     Some(n)
@@ -2080,10 +2355,15 @@ pub(crate) fn det_coefficients(
     let mut c = [(0.0, 0.0); DET_DEGREE + 1];
     for j in 0..=DET_DEGREE {
         let (mut a, mut b) = (0.0, 0.0);
+        // i = j k mod 17, stepped (no division).
+        let mut i = 0;
         for k in 0..DET_SAMPLES {
-            let i = 2 * ((j * k) % DET_SAMPLES);
-            a += d[k] * DET_COS[i];
-            b += d[k] * DET_SIN[i];
+            a += d[k] * DET_COS[2 * i];
+            b += d[k] * DET_SIN[2 * i];
+            i += j;
+            if i >= DET_SAMPLES {
+                i -= DET_SAMPLES;
+            }
         }
         let w = if j == 0 { 1.0 } else { 2.0 } / DET_SAMPLES as f64;
         c[j] = (w * a, -(w * b));
@@ -2261,8 +2541,12 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
         let mut g = [0.0; 6];
         let mut tr = 0.0;
         for i in 0..6 {
-            for j in 0..6 {
-                a[i][j] = (0..12).map(|k| cols[i][k] * cols[j][k]).sum();
+            // Symmetric: the entries below the diagonal are those above (the same products
+            // in the same order).
+            for j in i..6 {
+                let x: f64 = (0..12).map(|k| cols[i][k] * cols[j][k]).sum();
+                a[i][j] = x;
+                a[j][i] = x;
             }
             g[i] = (0..12).map(|k| cols[i][k] * e[k]).sum();
             tr += a[i][i];
@@ -2371,7 +2655,14 @@ pub fn gen_solve(
         if prismatic[ar.perm[5]] {
             continue;
         }
-        let Some(el) = ar.elim() else { continue };
+        // The left side from the arm's constants where it is one (scaled to this target's
+        // length scale), else from the arranged joints.
+        let el = if left_is_constant(&ar, arr) {
+            ar.elim_from(scaled_left(&robot_left(axes, arr), len))
+        } else {
+            ar.elim()
+        };
+        let Some(el) = el else { continue };
         if el.rank_ratio < RANK_TOL {
             continue;
         }

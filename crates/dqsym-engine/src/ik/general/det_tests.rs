@@ -747,3 +747,107 @@ fn trig_roots_resolves_clusters_and_roots_near_pi() {
     // route.
     assert!(answered >= 3, "answered {answered} of 4");
 }
+
+/// The left side of the elimination as a constant of the arm (`core::robot_left`, in the
+/// robot's units, scaled per target by `core::scaled_left`) against the left side of the
+/// scaled arm computed as before (`Arranged::left`), on random DH arms at length scales from
+/// 1e-3 to 1e3 and random scales `len`: equal to rounding (each equation relative to its
+/// largest coefficient), read from joint 1 forwards and backwards. The cache keyed by the axes
+/// gives each of two alternating arms its own left side, bit for bit the uncached one.
+#[test]
+fn left_side_in_the_robot_units_scales_by_its_degree() {
+    use super::core::{robot_left, scaled_left, GenAxis, Left};
+    let mut rng = Rng(0x1eff);
+    let id = [
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 0.0],
+    ];
+    let fresh = |js: &[J; 6], arr: usize| -> Left { Arranged::new(js, &id, arr).left() };
+    let mut arms: Vec<[GenAxis; 6]> = Vec::new();
+    for trial in 0..40 {
+        let size = 10f64.powf(rng.unit() * 6.0 - 3.0);
+        let rows: [(f64, f64, f64); 6] = std::array::from_fn(|_| {
+            (
+                (rng.unit() - 0.5) * size,
+                (rng.unit() - 0.5) * size,
+                rng.angle(),
+            )
+        });
+        let (_, js) = dh(&rows, &[0.0; 6]);
+        let axes: [GenAxis; 6] = std::array::from_fn(|i| {
+            let j = js[i];
+            [0.0, j.w[0], j.w[1], j.w[2], j.c[0], j.c[1], j.c[2]]
+        });
+        let len = size * (0.5 + 3.0 * rng.unit());
+        let scaled: [J; 6] = std::array::from_fn(|i| J {
+            w: js[i].w,
+            c: js[i].c.map(|x| x / len),
+            prism: false,
+        });
+        for arr in [0, 6] {
+            let want = fresh(&scaled, arr);
+            let got = scaled_left(&robot_left(&axes, arr), len);
+            for e in 0..14 {
+                let big = want[e].iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+                for (w, g) in want[e].iter().flatten().zip(got[e].iter().flatten()) {
+                    assert!(
+                        (w - g).abs() <= 1e-12 * big,
+                        "trial {trial}, arr {arr}, equation {e}: {g} vs {w} (largest {big})"
+                    );
+                }
+            }
+        }
+        arms.push(axes);
+    }
+    // Alternating arms and arrangements: each its own, as computed without the cache.
+    for k in 0..6 {
+        let axes = arms[k % 2];
+        let arr = 6 * (k / 2 % 2);
+        let js: [J; 6] = std::array::from_fn(|i| J {
+            w: [axes[i][1], axes[i][2], axes[i][3]],
+            c: [axes[i][4], axes[i][5], axes[i][6]],
+            prism: false,
+        });
+        let want = fresh(&js, arr);
+        let got = robot_left(&axes, arr);
+        for (w, g) in want
+            .iter()
+            .flatten()
+            .flatten()
+            .zip(got.iter().flatten().flatten())
+        {
+            assert_eq!(w.to_bits(), g.to_bits(), "arm {}, arr {arr}", k % 2);
+        }
+    }
+}
+
+/// The root search's shortcuts read what they replace, bit for bit: `trig_one` the first
+/// sum of `trig_low`, `trig_eval_powers` at the base grid's midpoints `trig_eval` there.
+#[test]
+fn search_shortcuts_are_the_sums_they_replace() {
+    use super::core::{grid_powers, trig_eval_powers, trig_one, ROOT_GRID};
+    let mut rng = Rng(0x5eed);
+    let h = std::f64::consts::TAU / ROOT_GRID as f64;
+    for _ in 0..200 {
+        let c: Coef = std::array::from_fn(|_| (rng.angle(), rng.angle()));
+        let tt = trig_table(&c);
+        let th = rng.unit() * std::f64::consts::TAU;
+        for k in 0..2 {
+            assert_eq!(
+                trig_one(&tt, k, th).to_bits(),
+                trig_low(&tt, k, th).0.to_bits()
+            );
+        }
+        for (g, z) in grid_powers().iter().enumerate() {
+            let m = 0.5 * (g as f64 * h + (g + 1) as f64 * h);
+            let want = trig_eval(&tt, m);
+            let got = trig_eval_powers(&tt, z);
+            assert_eq!(
+                want.map(f64::to_bits),
+                got.map(f64::to_bits),
+                "midpoint {g}"
+            );
+        }
+    }
+}

@@ -214,6 +214,30 @@
 //! kinematics shared by the refinement's steps). The C port's determinant on the blocks too
 //! (the same bits): GCC 12 `-O2` 551k per pose before and after (it vectorises neither), `-O3`
 //! 352k to 324k.
+//!
+//! Session 16 (callgrind as above): 301k to 237k per pose, 362 solutions. Bit for bit the same
+//! solutions (each change keeps every operation and its order; a harness compared the 64 poses'
+//! joint vectors): `block_lu`'s row updates only at the columns after the pivot's (the entries
+//! before are never read again), each step with its column a constant so that the loops unroll
+//! (`core::eq_step`, `copy_step`, `block_step`), 301k to 280k; the null vector's residual check on
+//! the six distinct rows of `S` (structural zeros skipped); the QR of `Bm` and the
+//! complete-pivoting null vector step by step with constant columns (278k to 261k); the normal
+//! matrix of the refinement by its upper triangle; the search's end values by one sum
+//! (`core::trig_one`) and its 32 base evaluations from the powers `e^{ijm}` at the grid's midpoints
+//! computed once (`core::grid_powers`), the grid indices beside the search's stack (a stack above 2
+//! kB took glibc's `rep stosb` to zero, which callgrind counts by the byte). Different bits, the
+//! same solutions to `4e-13`: the left side of the elimination (`E3 E4 E5` on its grid and its
+//! transform, 16k per pose) is a constant of the arm where the loop is read from joint 1
+//! (arrangements 0 and 6, joints 3 to 5 turning): computed in the robot's units once per arm and
+//! thread (`core::robot_left`, a cache keyed by the axes' bits) and each equation scaled by `1/len`
+//! to its degree in length (`core::LEFT_DEG`, `core::scaled_left`), 261k to 243k. The C port
+//! computes the same numbers per call (`ik_gen_robot_left`) and stays bit for bit the Rust
+//! solver's; the JavaScript and Python ports keep the left side of the scaled arm (their solutions
+//! agree within the ports tests' tolerance). Tried and dropped: the elimination's transforms built
+//! block by block without zeroed arrays (283k, worse), `compose` row by row (the same code). What
+//! is left per pose, roughly: the 18 sampled determinants 30k, the root search 30k, the elimination
+//! 35k (the QR of `Bm` 12k), the refinement 30k, the back-substitution 20k, the eigenvalue route at
+//! 5 poses of 64 about 30k. The 150k of issue #29 is not reached.
 
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod apart;
