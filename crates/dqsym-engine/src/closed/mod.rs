@@ -54,10 +54,12 @@
 //! direction's unit, in the cosines and sines of the modes' directions (`cos(a + b)` a variable of
 //! its own: `a2^2 cos(a)^2 - a3^2 cos(a + b)^2`) (`cspoly.rs`: as expanded, with `s^2 = 1 - c^2`,
 //! with `c^2 = 1 - s^2`; not factored when linear in distinct length symbols with one coefficient a
-//! constant or a variable another coefficient lacks; `zfactor.rs`: content and monomial factor,
+//! constant or a variable another coefficient lacks; the closed forms of its factors and pairs of
+//! factors found without factoring them again; `zfactor.rs`: content and monomial factor,
 //! Kronecker's substitution onto one variable, square-free part by a modular gcd, factors modulo a
 //! small prime (distinct-degree and Cantor-Zassenhaus), Hensel lifting past a Gelfond bound,
-//! subsets recombined by exact multivariate division; image degree <= 64, charged to the work
+//! subsets recombined by exact multivariate division, a subset whose constant term cannot divide
+//! skipped before its product is formed; image degree <= 64, charged to the work
 //! budget)); `trigfac.rs` (made in `best_alternative` only when a lower bound of their cost is
 //! below the form found, for at most 24 terms, not for modes at one step without offsets or
 //! radicals such as the PUMA's): sinusoids `cos(d.x + phi)` whose angle mixes symbols
