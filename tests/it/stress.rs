@@ -729,11 +729,7 @@ fn is_budget(e: &str) -> bool {
 
 /// What went wrong with one expression (`None`: nothing).
 /// `budget` counts the statements that ran out of the work budget (issue 33 counts them).
-fn check_one(
-    x: &G,
-    rng: &mut Rng,
-    budget: &mut usize,
-) -> Result<Option<(String, usize)>, String> {
+fn check_one(x: &G, rng: &mut Rng, budget: &mut usize) -> Result<Option<(String, usize)>, String> {
     let _in = limits().enter();
     let text = x.text();
     // The limits (field degree, work budget, term limit) are errors by design, not failures.

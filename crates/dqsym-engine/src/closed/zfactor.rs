@@ -268,11 +268,12 @@ fn recombine(
             .map(|(_, c)| c.clone())?;
         // The lowest coefficient of the image of `rest` (its powers of t left out) times `l`:
         // what the constant term of a candidate must divide (see `constant_term_divides`).
-        let low = &l * rest
-            .terms
-            .iter()
-            .min_by_key(|(e, _)| kr.of(e))
-            .map(|(_, c)| c.clone())?;
+        let low = &l
+            * rest
+                .terms
+                .iter()
+                .min_by_key(|(e, _)| kr.of(e))
+                .map(|(_, c)| c.clone())?;
         let mut found = None;
         for_each_subset(pieces.len(), size, &mut |idx| {
             tries += 1;
