@@ -63,10 +63,16 @@ fn c_add(p: &mut CPoly, e: Vec<u32>, re: Rat, im: Rat) {
 /// The factored forms of the sum of `t` (see the module text); empty when none applies, and
 /// inside the closed form of one of this file's factors or pairs of factors (see [`nested`]).
 pub(super) fn factored_forms(t: &[Term]) -> Vec<Expr> {
-    if NESTED.with(|n| n.get()) {
+    if nested_open() {
         return Vec::new();
     }
     candidates(t).unwrap_or_default()
+}
+
+/// Whether a closed form of this file's [`nested`] is open on this thread (the memo of
+/// `closed/mod.rs` keeps what it finds apart).
+pub(super) fn nested_open() -> bool {
+    NESTED.with(|n| n.get())
 }
 
 thread_local! {

@@ -191,14 +191,20 @@ pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
 /// at every level of that recursion (`sin(1)*sin(2)*sin(3)` asked for the same scalars'
 /// closed forms again and again). A memo lives only while the outermost
 /// [`closed_form_prepared`] of its thread runs, so it never outlives the context (limits,
-/// budget) its entries were found in; errors are never remembered.
+/// budget) its entries were found in; errors are never remembered. The closed forms found
+/// inside `cspoly.rs`'s search of a factor's or a pair's closed form (without factoring them
+/// again: `cspoly::nested_open`) are kept apart, so that a search outside it never takes a
+/// closed form made without its factorizations.
 struct Memo;
 
 /// The most closed forms one outermost search remembers.
 const MEMO_LIMIT: usize = 4096;
 
+/// The memo's tables: the searches outside `cspoly.rs`'s nested ones, and those inside.
+type MemoTables = [FxMap<Scalar, Expr>; 2];
+
 thread_local! {
-    static MEMO: std::cell::RefCell<Option<FxMap<Scalar, Expr>>> =
+    static MEMO: std::cell::RefCell<Option<MemoTables>> =
         const { std::cell::RefCell::new(None) };
 }
 
@@ -209,21 +215,28 @@ impl Memo {
             let mut m = m.borrow_mut();
             let opened = m.is_none();
             if opened {
-                *m = Some(FxMap::default());
+                *m = Some(Default::default());
             }
             opened
         }))
     }
 
+    /// The table of the searches of this kind (see [`Memo`]).
+    fn table() -> usize {
+        usize::from(cspoly::nested_open())
+    }
+
     fn get(x: &Scalar) -> Option<Expr> {
-        MEMO.with(|m| m.borrow().as_ref().and_then(|m| m.get(x).cloned()))
+        let t = Self::table();
+        MEMO.with(|m| m.borrow().as_ref().and_then(|m| m[t].get(x).cloned()))
     }
 
     fn put(x: &Scalar, e: &Expr) {
+        let t = Self::table();
         MEMO.with(|m| {
             if let Some(m) = m.borrow_mut().as_mut() {
-                if m.len() < MEMO_LIMIT {
-                    m.insert(x.clone(), e.clone());
+                if m[t].len() < MEMO_LIMIT {
+                    m[t].insert(x.clone(), e.clone());
                 }
             }
         });
