@@ -722,20 +722,32 @@ fn is_limit(e: &str) -> bool {
         .any(|k| e.contains(k))
 }
 
+/// Whether an error is the work budget's.
+fn is_budget(e: &str) -> bool {
+    e.contains("work budget")
+}
+
 /// What went wrong with one expression (`None`: nothing).
-fn check_one(x: &G, rng: &mut Rng) -> Result<Option<(String, usize)>, String> {
+/// `budget` counts the statements that ran out of the work budget (issue 33 counts them).
+fn check_one(x: &G, rng: &mut Rng, budget: &mut usize) -> Result<Option<(String, usize)>, String> {
     let _in = limits().enter();
     let text = x.text();
     // The limits (field degree, work budget, term limit) are errors by design, not failures.
     let v = match eval_scalar_text(&text) {
         Ok(v) => v,
-        Err(e) if is_limit(&e.to_string()) => return Ok(None),
+        Err(e) if is_limit(&e.to_string()) => {
+            *budget += usize::from(is_budget(&e.to_string()));
+            return Ok(None);
+        }
         Err(e) => return Err(format!("{text}: {e}")),
     };
     let e = match closed_form(&v) {
         Ok(e) => e,
         Err(ScalarError::CyclotomicDegree { .. }) => return Ok(None),
-        Err(e) => return Err(format!("{text}: closed form failed: {e}")),
+        Err(e) => {
+            *budget += usize::from(is_budget(&e.to_string()));
+            return Err(format!("{text}: closed form failed: {e}"));
+        }
     };
     let shown = plain(
         &e,
@@ -783,6 +795,8 @@ struct Tally {
     failures: Vec<String>,
     longer: Vec<String>,
     slow: Vec<String>,
+    /// Statements that ran out of the work budget.
+    budget: usize,
     by_family: std::collections::BTreeMap<&'static str, usize>,
 }
 
@@ -800,7 +814,7 @@ fn run_case(c: &Case, rng: &mut Rng, tally: &mut Tally) {
     let start = Instant::now();
     let mut outcome = || -> Result<(), String> {
         for x in std::iter::once(&c.a).chain(c.b.iter()) {
-            if let Some((shown, n)) = check_one(x, rng)? {
+            if let Some((shown, n)) = check_one(x, rng, &mut tally.budget)? {
                 tally.longer.push(format!(
                     "[{}] {} ({} ops) => {shown} ({n} ops)",
                     c.family,
@@ -823,10 +837,16 @@ fn run_case(c: &Case, rng: &mut Rng, tally: &mut Tally) {
             let _in = limits().enter();
             let d = match eval_scalar_text(&text) {
                 Ok(d) => d,
-                Err(e) if is_limit(&e.to_string()) => return Ok(()),
+                Err(e) if is_limit(&e.to_string()) => {
+                    tally.budget += usize::from(is_budget(&e.to_string()));
+                    return Ok(());
+                }
                 Err(e) => return Err(format!("{text}: {e}")),
             };
-            let e = closed_form(&d).map_err(|e| format!("{text}: {e}"))?;
+            let e = closed_form(&d).map_err(|e| {
+                tally.budget += usize::from(is_budget(&e.to_string()));
+                format!("{text}: {e}")
+            })?;
             let shown = plain(&e, &PlainOptions::default());
             if shown != "0" {
                 return Err(format!("[{}] {text} => {shown}, not 0", c.family));
@@ -892,6 +912,7 @@ fn stress_many_generated_expressions() {
     let t = run(var("DQSYM_STRESS_SEED", 1), n);
     println!("{} cases: {:?}", t.cases, t.by_family);
     println!("slow (> 2 s): {}\n{}", t.slow.len(), t.slow.join("\n"));
+    println!("out of the work budget: {}", t.budget);
     println!(
         "longer than the input: {}\n{}",
         t.longer.len(),

@@ -16,6 +16,7 @@ use super::expr::Expr;
 use super::zfactor::{factor, MPoly};
 use crate::scalar::atoms::Small;
 use crate::scalar::{charge, Sym, Term};
+use crate::Scalar;
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational as Rat;
@@ -59,9 +60,39 @@ fn c_add(p: &mut CPoly, e: Vec<u32>, re: Rat, im: Rat) {
     }
 }
 
-/// The factored forms of the sum of `t` (see the module text); empty when none applies.
+/// The factored forms of the sum of `t` (see the module text); empty when none applies, and
+/// inside the closed form of one of this file's factors or pairs of factors (see [`nested`]).
 pub(super) fn factored_forms(t: &[Term]) -> Vec<Expr> {
+    if nested_open() {
+        return Vec::new();
+    }
     candidates(t).unwrap_or_default()
+}
+
+/// Whether a closed form of this file's [`nested`] is open on this thread (the memo of
+/// `closed/mod.rs` keeps what it finds apart).
+pub(super) fn nested_open() -> bool {
+    NESTED.with(|n| n.get())
+}
+
+thread_local! {
+    /// Whether a closed form of this file's [`nested`] is open on this thread.
+    static NESTED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// The closed form of a factor, or of a pair of factors, of a factorization, found without
+/// factoring it again: its factors are known (those of the reading it came from), and what its
+/// closed form is asked for is a shorter way to write them, an angle sum or a multiple angle
+/// (`sin(2)` for `2 cos(1) sin(1)`), which the regrouped and whole-mode shapes and the other
+/// candidates find. Factored again, each reading of each factor and pair asked for the
+/// closed forms of its own factors and pairs, and those of theirs: `sin(1) sin(2) sin(3)`, a
+/// polynomial of degree 6 in `cos(1)`, `sin(1)`, spent 100 million instructions in a hundred
+/// nested searches and two hundred factorizations.
+fn nested(x: &Scalar) -> Option<Expr> {
+    let outer = NESTED.with(|n| n.replace(true));
+    let e = super::closed_form(x).ok();
+    NESTED.with(|n| n.set(outer));
+    e
 }
 
 /// How a sum is read as a polynomial: the angles whose cosine and sine are its variables
@@ -466,7 +497,7 @@ fn factored_expr(p: &BTreeMap<Vec<u32>, Rat>, vars: &[Var]) -> Option<Expr> {
         for i in 0..parts.len() {
             for j in i + 1..parts.len() {
                 let pair = mul(num(k.clone()), mul(parts[i].clone(), parts[j].clone()));
-                let Ok(c) = super::closed_form(&pair.to_scalar()) else {
+                let Some(c) = nested(&pair.to_scalar()) else {
                     continue;
                 };
                 let bar = best.as_ref().map_or(&pair, |(_, _, b)| b);
@@ -497,7 +528,7 @@ fn factor_expr(g: &MPoly, vars: &[Var]) -> Option<(bool, Expr)> {
     }
     // Its own closed form (of the factor shown), when cheaper: `cos(x + y)` for
     // `c_x c_y - s_x s_y`.
-    let closed = super::closed_form(&poly.to_scalar()).ok();
+    let closed = nested(&poly.to_scalar());
     match closed {
         Some(c) if shorter(&c, &poly) => Some((negated, c)),
         _ => Some((negated, poly)),

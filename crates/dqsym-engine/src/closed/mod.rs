@@ -54,10 +54,12 @@
 //! direction's unit, in the cosines and sines of the modes' directions (`cos(a + b)` a variable of
 //! its own: `a2^2 cos(a)^2 - a3^2 cos(a + b)^2`) (`cspoly.rs`: as expanded, with `s^2 = 1 - c^2`,
 //! with `c^2 = 1 - s^2`; not factored when linear in distinct length symbols with one coefficient a
-//! constant or a variable another coefficient lacks; `zfactor.rs`: content and monomial factor,
+//! constant or a variable another coefficient lacks; the closed forms of its factors and pairs of
+//! factors found without factoring them again; `zfactor.rs`: content and monomial factor,
 //! Kronecker's substitution onto one variable, square-free part by a modular gcd, factors modulo a
 //! small prime (distinct-degree and Cantor-Zassenhaus), Hensel lifting past a Gelfond bound,
-//! subsets recombined by exact multivariate division; image degree <= 64, charged to the work
+//! subsets recombined by exact multivariate division, a subset whose constant term cannot divide
+//! skipped before its product is formed; image degree <= 64, charged to the work
 //! budget)); `trigfac.rs` (made in `best_alternative` only when a lower bound of their cost is
 //! below the form found, for at most 24 terms, not for modes at one step without offsets or
 //! radicals such as the PUMA's): sinusoids `cos(d.x + phi)` whose angle mixes symbols
@@ -189,14 +191,20 @@ pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
 /// at every level of that recursion (`sin(1)*sin(2)*sin(3)` asked for the same scalars'
 /// closed forms again and again). A memo lives only while the outermost
 /// [`closed_form_prepared`] of its thread runs, so it never outlives the context (limits,
-/// budget) its entries were found in; errors are never remembered.
+/// budget) its entries were found in; errors are never remembered. The closed forms found
+/// inside `cspoly.rs`'s search of a factor's or a pair's closed form (without factoring them
+/// again: `cspoly::nested_open`) are kept apart, so that a search outside it never takes a
+/// closed form made without its factorizations.
 struct Memo;
 
 /// The most closed forms one outermost search remembers.
 const MEMO_LIMIT: usize = 4096;
 
+/// The memo's tables: the searches outside `cspoly.rs`'s nested ones, and those inside.
+type MemoTables = [FxMap<Scalar, Expr>; 2];
+
 thread_local! {
-    static MEMO: std::cell::RefCell<Option<FxMap<Scalar, Expr>>> =
+    static MEMO: std::cell::RefCell<Option<MemoTables>> =
         const { std::cell::RefCell::new(None) };
 }
 
@@ -207,21 +215,28 @@ impl Memo {
             let mut m = m.borrow_mut();
             let opened = m.is_none();
             if opened {
-                *m = Some(FxMap::default());
+                *m = Some(Default::default());
             }
             opened
         }))
     }
 
+    /// The table of the searches of this kind (see [`Memo`]).
+    fn table() -> usize {
+        usize::from(cspoly::nested_open())
+    }
+
     fn get(x: &Scalar) -> Option<Expr> {
-        MEMO.with(|m| m.borrow().as_ref().and_then(|m| m.get(x).cloned()))
+        let t = Self::table();
+        MEMO.with(|m| m.borrow().as_ref().and_then(|m| m[t].get(x).cloned()))
     }
 
     fn put(x: &Scalar, e: &Expr) {
+        let t = Self::table();
         MEMO.with(|m| {
             if let Some(m) = m.borrow_mut().as_mut() {
-                if m.len() < MEMO_LIMIT {
-                    m.insert(x.clone(), e.clone());
+                if m[t].len() < MEMO_LIMIT {
+                    m[t].insert(x.clone(), e.clone());
                 }
             }
         });

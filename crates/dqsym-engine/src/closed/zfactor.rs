@@ -266,6 +266,14 @@ fn recombine(
             .iter()
             .max_by_key(|(e, _)| kr.of(e))
             .map(|(_, c)| c.clone())?;
+        // The lowest coefficient of the image of `rest` (its powers of t left out) times `l`:
+        // what the constant term of a candidate must divide (see `constant_term_divides`).
+        let low = &l
+            * rest
+                .terms
+                .iter()
+                .min_by_key(|(e, _)| kr.of(e))
+                .map(|(_, c)| c.clone())?;
         let mut found = None;
         for_each_subset(pieces.len(), size, &mut |idx| {
             tries += 1;
@@ -277,6 +285,9 @@ fn recombine(
             // per shift: charged so, or the budget would stand for seconds of work.
             if charge((1 + shifts as u64) * f.len() as u64).is_err() {
                 return true;
+            }
+            if !modulus.is_zero() && !constant_term_divides(&l, &pieces, idx, &modulus, &low) {
+                return false;
             }
             let mut g = vec![l.clone()];
             for &i in idx {
@@ -325,6 +336,38 @@ fn recombine(
         }
     }
     Some(())
+}
+
+/// The test of Zassenhaus' recombination that rejects most subsets of the modular factors
+/// before their product is formed: whether the constant term `c0` of `l * prod pieces[idx]`
+/// (modulo `modulus`, symmetric) divides `low`, `l` times the lowest coefficient of the
+/// image of `rest`; true when `c0` is zero (left to the full test).
+///
+/// It never rejects a candidate that divides `rest`: `c = symmetric(l * prod)` has the leading
+/// coefficient `l` (the pieces are monic and `|l| < modulus / 2`), so its content `k`, with
+/// `c = k g`, divides `l` (`k lc(g) = l`); a `g` with a nonzero constant term that divides the
+/// image of `rest` divides it without its powers of t, so `g(0)` divides that lowest
+/// coefficient, and `c0 = k g(0)` divides `low`. The product of all coefficients of a subset
+/// and its primitive part cost a pass over every coefficient of each factor; this costs one
+/// multiplication per factor (`cos(1) cos(2) cos(3)`: 42 to 24 million instructions).
+fn constant_term_divides(
+    l: &BigInt,
+    pieces: &[UPoly],
+    idx: &[usize],
+    modulus: &BigInt,
+    low: &BigInt,
+) -> bool {
+    let mut c0 = l.mod_floor(modulus);
+    for &i in idx {
+        let Some(p0) = pieces[i].first() else {
+            return true;
+        };
+        c0 = (c0 * p0).mod_floor(modulus);
+    }
+    if &c0 + &c0 > *modulus {
+        c0 -= modulus;
+    }
+    c0.is_zero() || (low % &c0).is_zero()
 }
 
 /// Equal factors merged (their multiplicities added), sorted.
