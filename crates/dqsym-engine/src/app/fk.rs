@@ -251,25 +251,38 @@ fn expanded_entries(
     // `fk --jacobian` processes, callgrind, one thread / two: generic 6R 573 M / 2,224 M
     // instructions, of which 1,640 M in that DQ product; a 20-joint symbolic chain 75 / 149 ms
     // CPU; the PUMA 560 51 M / 49 M instructions, both expansions small).
-    let stop = AtomicBool::new(false);
-    let m = robot.forward_matrix_until(&joints, o.max_terms, &stop)?;
     // The pose's text is summed as its closed forms are found, and the rest given up once it
     // is past `MAX_EXPANDED_TEXT` (see `pose_text_exceeds`). The matrix's closed forms come
     // before the DQ product: when they alone print past the limit, the report is the
     // recurrence whatever the DQ adds, and the DQ is never multiplied out (a fully symbolic
     // 4R: two matrix entries of 59 kB each, where the DQ product and the closed forms of its
-    // components cost 160 M instructions). Neither order changes what is decided: the sum
-    // only grows.
+    // components cost 160 M instructions). Its large entries' closed forms are found as the
+    // last product makes them, largest first, so that the entries after the limit are never
+    // made either (the 4R's other ten). Neither order changes what is decided: the sum only
+    // grows.
     let text = PoseText::default();
+    let mut t_forms: Vec<Option<PoseForm>> = (0..12).map(|_| None).collect();
+    let mut seen = |i: usize, j: usize, x: &Scalar| {
+        if i == 3 || x.len() < EARLY_FORM_TERMS {
+            return true;
+        }
+        let f = closed_form(x);
+        text.add(&f);
+        t_forms[4 * i + j] = Some((f, None));
+        !text.exceeded()
+    };
+    let stop = AtomicBool::new(false);
+    let m = robot.forward_matrix_until(&joints, o.max_terms, &stop, &mut seen)?;
     let cells = matrix_cells(&m);
-    let t_forms = pose_forms(&cells, &text, |x| (closed_form(x), None));
+    let t_forms = pose_forms(&cells, t_forms, &text, |x| (closed_form(x), None));
     if text.exceeded() {
         return None;
     }
     let q = robot.forward_within_until(joints, o.max_terms, &stop)?;
     let comps = q.components();
     let comp_refs: Vec<&Scalar> = comps.iter().collect();
-    let forms = pose_forms(&comp_refs, &text, |x| {
+    let none = (0..comp_refs.len()).map(|_| None).collect();
+    let forms = pose_forms(&comp_refs, none, &text, |x| {
         let (e, p) = closed_form_prepared(x);
         (e, Some(p))
     });
@@ -311,18 +324,25 @@ fn expanded_entries(
 /// A pose entry's closed form (and, for a DQ component, its prepared form).
 type PoseForm = (Result<Expr, ScalarError>, Option<crate::closed::Prepared>);
 
-/// The closed forms `form` of the pose's `entries`, in their order, each counted in `text`;
-/// once `text` is past [`MAX_EXPANDED_TEXT`] the entries not yet begun are `None`. The entries
-/// are begun largest first (by terms): the longest texts are found first, so the limit is
-/// passed after as few closed forms as the entries allow.
+/// The matrix entries of at least this many terms whose closed forms are found as the
+/// matrix product makes them (one after the other); the others' are found after it, in
+/// parallel. Either way they are the same closed forms: only the work stopped early differs.
+const EARLY_FORM_TERMS: usize = 512;
+
+/// The closed forms `form` of the pose's `entries`, in their order, those of `found` kept
+/// (and counted in `text` already), the others counted in `text`; once `text` is past
+/// [`MAX_EXPANDED_TEXT`] the entries not yet begun are `None`. The entries are begun largest
+/// first (by terms): the longest texts are found first, so the limit is passed after as few
+/// closed forms as the entries allow.
 fn pose_forms(
     entries: &[&Scalar],
+    found: Vec<Option<PoseForm>>,
     text: &PoseText,
     form: impl Fn(&Scalar) -> PoseForm + Sync,
 ) -> Vec<Option<PoseForm>> {
-    let mut order: Vec<usize> = (0..entries.len()).collect();
+    let mut order: Vec<usize> = (0..entries.len()).filter(|&k| found[k].is_none()).collect();
     order.sort_by_key(|&k| std::cmp::Reverse(entries[k].len()));
-    let found = par_map(&order, |&k| {
+    let made = par_map(&order, |&k| {
         if text.exceeded() {
             return None;
         }
@@ -330,8 +350,8 @@ fn pose_forms(
         text.add(&f.0);
         Some(f)
     });
-    let mut forms: Vec<Option<PoseForm>> = (0..entries.len()).map(|_| None).collect();
-    for (k, f) in order.into_iter().zip(found) {
+    let mut forms = found;
+    for (k, f) in order.into_iter().zip(made) {
         forms[k] = f;
     }
     forms

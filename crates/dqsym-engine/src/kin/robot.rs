@@ -994,13 +994,24 @@ impl Robot {
     /// says the last one will exceed the limit (see [`Growth`]). For running it next to
     /// [`Robot::forward_within_until`]: whichever expansion is abandoned first stops the other.
     /// `joints` are [`Robot::joint_dqs`], made once for both.
+    /// `seen` is told of each entry of the last product as it is made (row, column, entry),
+    /// largest first, and abandons the expansion by answering `false`: a caller that would
+    /// throw the matrix away for what its first entries show (`fk`: text past its limit)
+    /// never makes the others.
     pub(crate) fn forward_matrix_until(
         &self,
         joints: &[DualQuat<Scalar>],
         max_terms: usize,
         stop: &AtomicBool,
+        seen: EntrySeen,
     ) -> Option<Matrix4<Scalar>> {
-        let r = self.matrix_product_until(joints, Some(max_terms), |x| Some(x.clone()), Some(stop));
+        let r = self.matrix_product_until(
+            joints,
+            Some(max_terms),
+            |x| Some(x.clone()),
+            Some(stop),
+            Some(seen),
+        );
         if r.is_none() {
             stop.store(true, AtomicOrdering::Relaxed);
         }
@@ -1015,18 +1026,21 @@ impl Robot {
         max_terms: Option<usize>,
         entry: impl Fn(&Scalar) -> Option<Scalar>,
     ) -> Option<Matrix4<Scalar>> {
-        self.matrix_product_until(&self.joint_dqs(), max_terms, entry, None)
+        self.matrix_product_until(&self.joint_dqs(), max_terms, entry, None, None)
     }
 
     /// [`Robot::matrix_product`] of the joint factors `joints` ([`Robot::joint_dqs`]); with
     /// `stop`, also `None` once `stop` is set or when the growth of the partial products
-    /// predicts that the last one exceeds `max_terms`.
+    /// predicts that the last one exceeds `max_terms`; with `seen` (and `max_terms`), also
+    /// `None` when it refuses an entry of the last product (see
+    /// [`Robot::forward_matrix_until`]).
     fn matrix_product_until(
         &self,
         joints: &[DualQuat<Scalar>],
         max_terms: Option<usize>,
         entry: impl Fn(&Scalar) -> Option<Scalar>,
         stop: Option<&AtomicBool>,
+        mut seen: Option<EntrySeen>,
     ) -> Option<Matrix4<Scalar>> {
         let mut acc: Option<Matrix4<Scalar>> = None;
         let id = DualQuat::identity();
@@ -1038,19 +1052,28 @@ impl Robot {
             .collect();
         let stopped = || stop.is_some_and(|s| s.load(AtomicOrdering::Relaxed));
         let mut growth = Growth::default();
+        // A factor equal to the identity (the tool of most chains) leaves the product as it
+        // is, exactly: it is not multiplied, and the product before it is the last one made.
+        let last = factors.iter().rposition(|f| **f != id).unwrap_or(0);
         for (k, f) in factors.iter().enumerate() {
             if stopped() {
                 return None;
             }
-            let mut rows = f.to_matrix().rows;
-            for x in rows.iter_mut().flatten() {
-                *x = entry(x)?;
-            }
-            let m = Matrix4::from_rows(rows);
-            let next = match (acc, max_terms) {
-                (None, _) => m,
-                (Some(a), None) => a.mul_ref(&m),
-                (Some(a), Some(limit)) => product_within(&a, &m, limit, stop)?,
+            let next = match acc {
+                Some(a) if k > last => a,
+                acc => {
+                    let mut rows = f.to_matrix().rows;
+                    for x in rows.iter_mut().flatten() {
+                        *x = entry(x)?;
+                    }
+                    let m = Matrix4::from_rows(rows);
+                    let seen = if k == last { seen.take() } else { None };
+                    match (acc, max_terms) {
+                        (None, _) => m,
+                        (Some(a), None) => a.mul_ref(&m),
+                        (Some(a), Some(limit)) => product_within(&a, &m, limit, stop, seen)?,
+                    }
+                }
             };
             if let Some(limit) = max_terms {
                 if next
@@ -1179,11 +1202,13 @@ impl Robot {
 /// The entries are computed largest first by the count of their term pairs, so that a product
 /// past the limit (the last factor of a long numeric chain, whose entries reach tens of
 /// thousands of terms) usually stops after its first entry instead of computing all sixteen.
+/// Each entry is shown to `seen` as it is made; `false` there gives `None`.
 fn product_within(
     a: &Matrix4<Scalar>,
     b: &Matrix4<Scalar>,
     limit: usize,
     stop: Option<&AtomicBool>,
+    mut seen: Option<EntrySeen>,
 ) -> Option<Matrix4<Scalar>> {
     let pairs = |i: usize, j: usize| -> usize {
         (0..4)
@@ -1201,10 +1226,19 @@ fn product_within(
         if x.len() > limit || x.as_error().is_some() {
             return None;
         }
+        if let Some(seen) = seen.as_mut() {
+            if !seen(i, j, &x) {
+                return None;
+            }
+        }
         rows[i][j] = x;
     }
     Some(Matrix4::from_rows(rows))
 }
+
+/// Told of each entry of a matrix product as it is made (row, column, entry); `false`
+/// abandons the product (see [`Robot::forward_matrix_until`]).
+pub(crate) type EntrySeen<'a> = &'a mut dyn FnMut(usize, usize, &Scalar) -> bool;
 
 /// The sizes of the partial products of a chain, to predict the last one's.
 ///
