@@ -1068,10 +1068,19 @@ impl Robot {
                     }
                     let m = Matrix4::from_rows(rows);
                     let seen = if k == last { seen.take() } else { None };
+                    // The growth's prediction (below) made on the entries as they come: it
+                    // only grows with the largest entry, so once it says the limit will be
+                    // passed, it says so of the whole product (a fully symbolic 6R gives up
+                    // after one entry of its fourth product, not twelve).
+                    let left = factors.len() - 1 - k;
+                    let predicts = |size: usize| {
+                        max_terms.is_some_and(|limit| growth.predicts(size, left, limit))
+                    };
+                    let early: Option<&dyn Fn(usize) -> bool> = stop.is_some().then_some(&predicts);
                     match (acc, max_terms) {
                         (None, _) => m,
                         (Some(a), None) => a.mul_ref(&m),
-                        (Some(a), Some(limit)) => product_within(&a, &m, limit, stop, seen)?,
+                        (Some(a), Some(limit)) => product_within(&a, &m, limit, stop, seen, early)?,
                     }
                 }
             };
@@ -1202,13 +1211,15 @@ impl Robot {
 /// The entries are computed largest first by the count of their term pairs, so that a product
 /// past the limit (the last factor of a long numeric chain, whose entries reach tens of
 /// thousands of terms) usually stops after its first entry instead of computing all sixteen.
-/// Each entry is shown to `seen` as it is made; `false` there gives `None`.
+/// Each entry is shown to `seen` as it is made; `false` there gives `None`, and so does
+/// `early` of the largest entry made so far.
 fn product_within(
     a: &Matrix4<Scalar>,
     b: &Matrix4<Scalar>,
     limit: usize,
     stop: Option<&AtomicBool>,
     mut seen: Option<EntrySeen>,
+    early: Option<&dyn Fn(usize) -> bool>,
 ) -> Option<Matrix4<Scalar>> {
     let pairs = |i: usize, j: usize| -> usize {
         (0..4)
@@ -1218,12 +1229,17 @@ fn product_within(
     let mut order: Vec<(usize, usize)> = (0..4).flat_map(|i| (0..4).map(move |j| (i, j))).collect();
     order.sort_by_key(|&(i, j)| std::cmp::Reverse(pairs(i, j)));
     let mut rows: [[Scalar; 4]; 4] = Default::default();
+    let mut largest = 0;
     for (i, j) in order {
         if stop.is_some_and(|s| s.load(AtomicOrdering::Relaxed)) {
             return None;
         }
         let x = (0..4).fold(Scalar::int(0), |acc, k| acc + &a.rows[i][k] * &b.rows[k][j]);
         if x.len() > limit || x.as_error().is_some() {
+            return None;
+        }
+        largest = largest.max(x.len());
+        if early.is_some_and(|f| f(largest)) {
             return None;
         }
         if let Some(seen) = seen.as_mut() {
@@ -1258,8 +1274,15 @@ impl Growth {
     /// Records the largest entry `size` of the next partial product; whether `left` more
     /// links at the present growth take it past twice `limit`.
     fn exceeds(&mut self, size: usize, left: usize, limit: usize) -> bool {
+        let r = self.predicts(size, left, limit);
+        self.last = [self.last[1], size];
+        r
+    }
+
+    /// [`Growth::exceeds`] without recording `size`: true of a size, it is true of every
+    /// larger one (the growth factor only grows with it).
+    fn predicts(&self, size: usize, left: usize, limit: usize) -> bool {
         let [a, b] = self.last;
-        self.last = [b, size];
         if a == 0 || b == 0 || size < limit / 16 || left == 0 {
             return false;
         }
