@@ -238,56 +238,63 @@ fn expanded_entries(
     joints: Vec<DualQuat<Scalar>>,
     o: &FkOptions,
 ) -> Option<Result<Sections, ReportError>> {
-    // The DQ product, then its components in closed form; the matrix (the product of the
-    // joint factors' matrices, which does not wait for the DQ), then its entries. Then the
-    // point and the Jacobian, every distinct entry once, in parallel. `closed_form` is a pure
-    // function of its input, so neither the threads nor the sharing of equal entries change
-    // the output.
-    // Both expansions first (each stops as soon as an entry exceeds the limit), so that an
-    // oversized stage costs no closed forms; then every entry's closed form in parallel.
-    // The matrix goes first: it grows faster on numeric chains (3^k modes against 2^k) and
+    // The matrix (the product of the joint factors' matrices), then its entries in closed
+    // form; the DQ product, then its components. Then the point and the Jacobian, every
+    // distinct entry once, in parallel. `closed_form` is a pure function of its input, so
+    // neither the threads nor the sharing of equal entries change the output.
+    // Each expansion stops as soon as an entry exceeds the limit, before its closed forms.
+    // The matrix goes first: it grows faster, on numeric chains (3^k modes against 2^k) and
+    // on symbolic ones (a fully symbolic 5R: 6,688 terms against the DQ's 5,120), and
     // predicts its overflow from its growth, and when it is abandoned the DQ is never made.
     // They run one after the other, not side by side: the DQ product beside an abandoned
     // matrix noticed the stop only between two factors, after a product thrown away (whole
     // `fk --jacobian` processes, callgrind, one thread / two: generic 6R 573 M / 2,224 M
     // instructions, of which 1,640 M in that DQ product; a 20-joint symbolic chain 75 / 149 ms
     // CPU; the PUMA 560 51 M / 49 M instructions, both expansions small).
+    // The pose's text is summed as its closed forms are found, and the rest given up once it
+    // is past `MAX_EXPANDED_TEXT` (see `pose_text_exceeds`). The matrix's closed forms come
+    // before the DQ product: when they alone print past the limit, the report is the
+    // recurrence whatever the DQ adds, and the DQ is never multiplied out (a fully symbolic
+    // 4R: two matrix entries of 59 kB each, where the DQ product and the closed forms of its
+    // components cost 160 M instructions). Its large entries' closed forms are found as the
+    // last product makes them, largest first, so that the entries after the limit are never
+    // made either (the 4R's other ten). Neither order changes what is decided: the sum only
+    // grows.
+    let text = PoseText::default();
+    let mut t_forms: Vec<Option<PoseForm>> = (0..12).map(|_| None).collect();
+    let mut seen = |i: usize, j: usize, x: &Scalar| {
+        if i == 3 || x.len() < EARLY_FORM_TERMS {
+            return true;
+        }
+        let f = closed_form(x);
+        text.add(&f);
+        t_forms[4 * i + j] = Some((f, None));
+        !text.exceeded()
+    };
     let stop = AtomicBool::new(false);
-    let m = robot.forward_matrix_until(&joints, o.max_terms, &stop)?;
+    let m = robot.forward_matrix_until(&joints, o.max_terms, &stop, &mut seen)?;
+    let cells = matrix_cells(&m);
+    let t_forms = pose_forms(&cells, t_forms, &text, |x| (closed_form(x), None));
+    if text.exceeded() {
+        return None;
+    }
     let q = robot.forward_within_until(joints, o.max_terms, &stop)?;
     let comps = q.components();
-    let cells = matrix_cells(&m);
-    let all: Vec<(bool, &Scalar)> = comps
-        .iter()
-        .map(|c| (true, c))
-        .chain(cells.iter().map(|c| (false, *c)))
-        .collect();
-    // The pose's text is summed as its closed forms are found, and the rest given up once it
-    // is past `MAX_EXPANDED_TEXT` (see `pose_text_exceeds`).
-    let text = PoseText::default();
-    let forms = par_map(&all, |(dq, x)| {
-        if text.exceeded() {
-            return None;
-        }
-        let form = if *dq {
-            let (e, p) = closed_form_prepared(x);
-            (e, Some(p))
-        } else {
-            (closed_form(x), None)
-        };
-        text.add(&form.0);
-        Some(form)
+    let comp_refs: Vec<&Scalar> = comps.iter().collect();
+    let none = (0..comp_refs.len()).map(|_| None).collect();
+    let forms = pose_forms(&comp_refs, none, &text, |x| {
+        let (e, p) = closed_form_prepared(x);
+        (e, Some(p))
     });
     if text.exceeded() {
         return None;
     }
-    let mut forms = forms.into_iter().flatten();
     let (dq_forms, prepared): (Vec<_>, Vec<_>) = forms
-        .by_ref()
-        .take(8)
+        .into_iter()
+        .flatten()
         .map(|(e, p)| (e, p.expect("a DQ entry is prepared")))
         .unzip();
-    let t_forms: Vec<_> = forms.map(|(e, _)| e).collect();
+    let t_forms: Vec<_> = t_forms.into_iter().flatten().map(|(e, _)| e).collect();
     // One offset per angle across the report (`closed/common.rs`), chosen from the pose's
     // entries and shown in every entry.
     let common = CommonOffsets::from_forms(dq_forms.iter().chain(&t_forms).flatten());
@@ -312,6 +319,42 @@ fn expanded_entries(
                 .collect()
         }),
     )
+}
+
+/// A pose entry's closed form (and, for a DQ component, its prepared form).
+type PoseForm = (Result<Expr, ScalarError>, Option<crate::closed::Prepared>);
+
+/// The matrix entries of at least this many terms whose closed forms are found as the
+/// matrix product makes them (one after the other); the others' are found after it, in
+/// parallel. Either way they are the same closed forms: only the work stopped early differs.
+const EARLY_FORM_TERMS: usize = 512;
+
+/// The closed forms `form` of the pose's `entries`, in their order, those of `found` kept
+/// (and counted in `text` already), the others counted in `text`; once `text` is past
+/// [`MAX_EXPANDED_TEXT`] the entries not yet begun are `None`. The entries are begun largest
+/// first (by terms): the longest texts are found first, so the limit is passed after as few
+/// closed forms as the entries allow.
+fn pose_forms(
+    entries: &[&Scalar],
+    found: Vec<Option<PoseForm>>,
+    text: &PoseText,
+    form: impl Fn(&Scalar) -> PoseForm + Sync,
+) -> Vec<Option<PoseForm>> {
+    let mut order: Vec<usize> = (0..entries.len()).filter(|&k| found[k].is_none()).collect();
+    order.sort_by_key(|&k| std::cmp::Reverse(entries[k].len()));
+    let made = par_map(&order, |&k| {
+        if text.exceeded() {
+            return None;
+        }
+        let f = form(entries[k]);
+        text.add(&f.0);
+        Some(f)
+    });
+    let mut forms = found;
+    for (k, f) in order.into_iter().zip(made) {
+        forms[k] = f;
+    }
+    forms
 }
 
 /// The plain text of the pose's closed forms found so far, counted as they are found (by

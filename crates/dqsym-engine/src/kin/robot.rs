@@ -994,13 +994,24 @@ impl Robot {
     /// says the last one will exceed the limit (see [`Growth`]). For running it next to
     /// [`Robot::forward_within_until`]: whichever expansion is abandoned first stops the other.
     /// `joints` are [`Robot::joint_dqs`], made once for both.
+    /// `seen` is told of each entry of the last product as it is made (row, column, entry),
+    /// largest first, and abandons the expansion by answering `false`: a caller that would
+    /// throw the matrix away for what its first entries show (`fk`: text past its limit)
+    /// never makes the others.
     pub(crate) fn forward_matrix_until(
         &self,
         joints: &[DualQuat<Scalar>],
         max_terms: usize,
         stop: &AtomicBool,
+        seen: EntrySeen,
     ) -> Option<Matrix4<Scalar>> {
-        let r = self.matrix_product_until(joints, Some(max_terms), |x| Some(x.clone()), Some(stop));
+        let r = self.matrix_product_until(
+            joints,
+            Some(max_terms),
+            |x| Some(x.clone()),
+            Some(stop),
+            Some(seen),
+        );
         if r.is_none() {
             stop.store(true, AtomicOrdering::Relaxed);
         }
@@ -1015,18 +1026,21 @@ impl Robot {
         max_terms: Option<usize>,
         entry: impl Fn(&Scalar) -> Option<Scalar>,
     ) -> Option<Matrix4<Scalar>> {
-        self.matrix_product_until(&self.joint_dqs(), max_terms, entry, None)
+        self.matrix_product_until(&self.joint_dqs(), max_terms, entry, None, None)
     }
 
     /// [`Robot::matrix_product`] of the joint factors `joints` ([`Robot::joint_dqs`]); with
     /// `stop`, also `None` once `stop` is set or when the growth of the partial products
-    /// predicts that the last one exceeds `max_terms`.
+    /// predicts that the last one exceeds `max_terms`; with `seen` (and `max_terms`), also
+    /// `None` when it refuses an entry of the last product (see
+    /// [`Robot::forward_matrix_until`]).
     fn matrix_product_until(
         &self,
         joints: &[DualQuat<Scalar>],
         max_terms: Option<usize>,
         entry: impl Fn(&Scalar) -> Option<Scalar>,
         stop: Option<&AtomicBool>,
+        mut seen: Option<EntrySeen>,
     ) -> Option<Matrix4<Scalar>> {
         let mut acc: Option<Matrix4<Scalar>> = None;
         let id = DualQuat::identity();
@@ -1038,19 +1052,37 @@ impl Robot {
             .collect();
         let stopped = || stop.is_some_and(|s| s.load(AtomicOrdering::Relaxed));
         let mut growth = Growth::default();
+        // A factor equal to the identity (the tool of most chains) leaves the product as it
+        // is, exactly: it is not multiplied, and the product before it is the last one made.
+        let last = factors.iter().rposition(|f| **f != id).unwrap_or(0);
         for (k, f) in factors.iter().enumerate() {
             if stopped() {
                 return None;
             }
-            let mut rows = f.to_matrix().rows;
-            for x in rows.iter_mut().flatten() {
-                *x = entry(x)?;
-            }
-            let m = Matrix4::from_rows(rows);
-            let next = match (acc, max_terms) {
-                (None, _) => m,
-                (Some(a), None) => a.mul_ref(&m),
-                (Some(a), Some(limit)) => product_within(&a, &m, limit, stop)?,
+            let next = match acc {
+                Some(a) if k > last => a,
+                acc => {
+                    let mut rows = f.to_matrix().rows;
+                    for x in rows.iter_mut().flatten() {
+                        *x = entry(x)?;
+                    }
+                    let m = Matrix4::from_rows(rows);
+                    let seen = if k == last { seen.take() } else { None };
+                    // The growth's prediction (below) made on the entries as they come: it
+                    // only grows with the largest entry, so once it says the limit will be
+                    // passed, it says so of the whole product (a fully symbolic 6R gives up
+                    // after one entry of its fourth product, not twelve).
+                    let left = factors.len() - 1 - k;
+                    let predicts = |size: usize| {
+                        max_terms.is_some_and(|limit| growth.predicts(size, left, limit))
+                    };
+                    let early: Option<&dyn Fn(usize) -> bool> = stop.is_some().then_some(&predicts);
+                    match (acc, max_terms) {
+                        (None, _) => m,
+                        (Some(a), None) => a.mul_ref(&m),
+                        (Some(a), Some(limit)) => product_within(&a, &m, limit, stop, seen, early)?,
+                    }
+                }
             };
             if let Some(limit) = max_terms {
                 if next
@@ -1179,11 +1211,15 @@ impl Robot {
 /// The entries are computed largest first by the count of their term pairs, so that a product
 /// past the limit (the last factor of a long numeric chain, whose entries reach tens of
 /// thousands of terms) usually stops after its first entry instead of computing all sixteen.
+/// Each entry is shown to `seen` as it is made; `false` there gives `None`, and so does
+/// `early` of the largest entry made so far.
 fn product_within(
     a: &Matrix4<Scalar>,
     b: &Matrix4<Scalar>,
     limit: usize,
     stop: Option<&AtomicBool>,
+    mut seen: Option<EntrySeen>,
+    early: Option<&dyn Fn(usize) -> bool>,
 ) -> Option<Matrix4<Scalar>> {
     let pairs = |i: usize, j: usize| -> usize {
         (0..4)
@@ -1193,6 +1229,7 @@ fn product_within(
     let mut order: Vec<(usize, usize)> = (0..4).flat_map(|i| (0..4).map(move |j| (i, j))).collect();
     order.sort_by_key(|&(i, j)| std::cmp::Reverse(pairs(i, j)));
     let mut rows: [[Scalar; 4]; 4] = Default::default();
+    let mut largest = 0;
     for (i, j) in order {
         if stop.is_some_and(|s| s.load(AtomicOrdering::Relaxed)) {
             return None;
@@ -1201,10 +1238,23 @@ fn product_within(
         if x.len() > limit || x.as_error().is_some() {
             return None;
         }
+        largest = largest.max(x.len());
+        if early.is_some_and(|f| f(largest)) {
+            return None;
+        }
+        if let Some(seen) = seen.as_mut() {
+            if !seen(i, j, &x) {
+                return None;
+            }
+        }
         rows[i][j] = x;
     }
     Some(Matrix4::from_rows(rows))
 }
+
+/// Told of each entry of a matrix product as it is made (row, column, entry); `false`
+/// abandons the product (see [`Robot::forward_matrix_until`]).
+pub(crate) type EntrySeen<'a> = &'a mut dyn FnMut(usize, usize, &Scalar) -> bool;
 
 /// The sizes of the partial products of a chain, to predict the last one's.
 ///
@@ -1224,8 +1274,15 @@ impl Growth {
     /// Records the largest entry `size` of the next partial product; whether `left` more
     /// links at the present growth take it past twice `limit`.
     fn exceeds(&mut self, size: usize, left: usize, limit: usize) -> bool {
+        let r = self.predicts(size, left, limit);
+        self.last = [self.last[1], size];
+        r
+    }
+
+    /// [`Growth::exceeds`] without recording `size`: true of a size, it is true of every
+    /// larger one (the growth factor only grows with it).
+    fn predicts(&self, size: usize, left: usize, limit: usize) -> bool {
         let [a, b] = self.last;
-        self.last = [b, size];
         if a == 0 || b == 0 || size < limit / 16 || left == 0 {
             return false;
         }
