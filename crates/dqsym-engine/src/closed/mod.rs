@@ -258,14 +258,22 @@ pub struct Prepared(
 /// one on ties).
 pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     let _memo = Memo::open();
-    let (e, prepared) = prepared_shifted(x);
+    let (e, prepared, absorbed) = prepared_shifted_absorbed(x);
     let Ok(found) = e else {
         return (e, prepared);
     };
     // Constants lifted out of the angles, when shorter still (`coefs.rs`); derivatives then
-    // start from the expanded series.
+    // start from the expanded series. Not for a scalar whose every offset outside the
+    // multiples of pi/12 a shift absorbs (`absorbed`): its only constants outside them are
+    // the cosines and sines of those offsets, and lifting them writes each shifted angle
+    // `cos(F + a)` as `cos(a) cos(F) - sin(a) sin(F)` again (the Jaco-style arm's pose: 370 M
+    // of its 1,230 M instructions, never shorter).
     let mut best: Option<Expr> = None;
-    let mut lifting = coefs::Lifting::new(x);
+    let mut lifting = if absorbed {
+        None
+    } else {
+        coefs::Lifting::new(x)
+    };
     for phased in [true, false] {
         let Some(l) = lifting.as_mut().and_then(|l| l.lift(phased)) else {
             continue;
@@ -312,16 +320,27 @@ fn joined(e: Expr, x: &Scalar) -> Expr {
 
 /// [`closed_form_prepared`] without the constants lifted.
 fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+    let (e, prepared, _) = prepared_shifted_absorbed(x);
+    (e, prepared)
+}
+
+/// [`prepared_shifted`], and whether a shift (`offsets.rs`) leaves `x` without any offset
+/// outside the multiples of pi/12, on its constant modes too: the shifted scalar's
+/// coefficients are then radicals, whichever form was taken.
+fn prepared_shifted_absorbed(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared, bool) {
     let (plain, prepared) = prepared_unshifted(x);
     let Some(shift) = offsets::find(x) else {
-        return (plain, prepared);
+        return (plain, prepared, false);
     };
     let Some(y) = shift.apply(x) else {
-        return (plain, prepared);
+        return (plain, prepared, false);
     };
+    let absorbed = y
+        .terms()
+        .is_ok_and(|t| t.iter().all(|t| *t.mode.pi.numer() == 0));
     let (shifted, yprep) = prepared_unshifted(&y);
     let Ok(mut e) = shifted.map(|e| shift.unshift(e)) else {
-        return (plain, prepared);
+        return (plain, prepared, absorbed);
     };
     // The shift changes what an angle costs (`cos(y - pi/7) cos(y + pi/7)` ties with the sum in
     // `y`, `cos(x) cos(x + 2*pi/7)` beats it in `x`): the candidates of `alt.rs` for the
@@ -334,9 +353,13 @@ fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     }
     // On equal cost the shifted form: its angles are the ones the user wrote.
     if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) || !verified(&e, x) {
-        return (plain, prepared);
+        return (plain, prepared, absorbed);
     }
-    (Ok(e.symbols_leading()), Prepared(yprep.0, Some(shift)))
+    (
+        Ok(e.symbols_leading()),
+        Prepared(yprep.0, Some(shift)),
+        absorbed,
+    )
 }
 
 /// Whether `e` equals `x`: exactly in debug builds, numerically first in release builds (as
