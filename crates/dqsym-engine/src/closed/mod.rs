@@ -92,10 +92,11 @@
 //! `f . o = d_f` solved by a bounded search), its closed form found on the offset-free path and
 //! every angle shifted back (`cos(q2 + 5*pi/9)`, `cos(x - pi/7) cos(y + pi/7)`,
 //! `sin(x - 2*pi/7)^2`; the candidates of `alt.rs` for the shifted scalar compared again shifted
-//! back, since a shift changes what an angle costs: `cos(x) cos(x + 2*pi/7)`), kept when shorter
-//! and checked like every other; the offset shown among equal classes is the one with the fewest
-//! cosine and sine parts in `y`, then the smallest denominator, the fewest nonzero offsets, the
-//! fewest negative parts (`cos(t + 5*pi/9)`, not `-cos(t - 4*pi/9)`), the smallest `|o|`, the
+//! back, since a shift changes what an angle costs: `cos(x) cos(x + 2*pi/7)`), kept unless the
+//! form as given is strictly shorter (found first, so that the search as given checks the
+//! candidates of `alt.rs` only below it) and checked like every other; the offset shown among
+//! equal classes is the one with the fewest cosine and sine parts in `y`, then the smallest
+//! denominator, the fewest nonzero offsets, the fewest negative parts (`cos(t + 5*pi/9)`, not `-cos(t - 4*pi/9)`), the smallest `|o|`, the
 //! positive one; derivatives of a prepared scalar are shifted alike; the congruences are scaled to
 //! integer residues modulo one common modulus and solved in echelon form (`congruence.rs`: each
 //! unknown a residue class given the earlier ones, the solutions listed in lexicographic order
@@ -258,22 +259,14 @@ pub struct Prepared(
 /// one on ties).
 pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     let _memo = Memo::open();
-    let (e, prepared, absorbed) = prepared_shifted_absorbed(x);
+    let (e, prepared) = prepared_shifted(x);
     let Ok(found) = e else {
         return (e, prepared);
     };
     // Constants lifted out of the angles, when shorter still (`coefs.rs`); derivatives then
-    // start from the expanded series. Not for a scalar whose every offset outside the
-    // multiples of pi/12 a shift absorbs (`absorbed`): its only constants outside them are
-    // the cosines and sines of those offsets, and lifting them writes each shifted angle
-    // `cos(F + a)` as `cos(a) cos(F) - sin(a) sin(F)` again (the Jaco-style arm's pose: 370 M
-    // of its 1,230 M instructions, never shorter).
+    // start from the expanded series.
     let mut best: Option<Expr> = None;
-    let mut lifting = if absorbed {
-        None
-    } else {
-        coefs::Lifting::new(x)
-    };
+    let mut lifting = coefs::Lifting::new(x);
     for phased in [true, false] {
         let Some(l) = lifting.as_mut().and_then(|l| l.lift(phased)) else {
             continue;
@@ -320,27 +313,16 @@ fn joined(e: Expr, x: &Scalar) -> Expr {
 
 /// [`closed_form_prepared`] without the constants lifted.
 fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
-    let (e, prepared, _) = prepared_shifted_absorbed(x);
-    (e, prepared)
-}
-
-/// [`prepared_shifted`], and whether a shift (`offsets.rs`) leaves `x` without any offset
-/// outside the multiples of pi/12, on its constant modes too: the shifted scalar's
-/// coefficients are then radicals, whichever form was taken.
-fn prepared_shifted_absorbed(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared, bool) {
-    let (plain, prepared) = prepared_unshifted(x);
-    let Some(shift) = offsets::find(x) else {
-        return (plain, prepared, false);
+    let Some((shift, y)) = offsets::find(x).and_then(|s| s.apply(x).map(|y| (s, y))) else {
+        return prepared_unshifted(x);
     };
-    let Some(y) = shift.apply(x) else {
-        return (plain, prepared, false);
-    };
-    let absorbed = y
-        .terms()
-        .is_ok_and(|t| t.iter().all(|t| *t.mode.pi.numer() == 0));
+    // The shifted form first: the form as given is taken only when strictly shorter, so its
+    // search checks the candidates of `alt.rs` only below the shifted form
+    // (`best_of_below`; the Jaco-style arm's pose checked hundreds of candidates in
+    // cyclotomic arithmetic that could not win).
     let (shifted, yprep) = prepared_unshifted(&y);
     let Ok(mut e) = shifted.map(|e| shift.unshift(e)) else {
-        return (plain, prepared, absorbed);
+        return prepared_unshifted(x);
     };
     // The shift changes what an angle costs (`cos(y - pi/7) cos(y + pi/7)` ties with the sum in
     // `y`, `cos(x) cos(x + 2*pi/7)` beats it in `x`): the candidates of `alt.rs` for the
@@ -351,15 +333,16 @@ fn prepared_shifted_absorbed(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared
             break;
         }
     }
-    // On equal cost the shifted form: its angles are the ones the user wrote.
-    if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) || !verified(&e, x) {
-        return (plain, prepared, absorbed);
+    if !verified(&e, x) {
+        return prepared_unshifted(x);
     }
-    (
-        Ok(e.symbols_leading()),
-        Prepared(yprep.0, Some(shift)),
-        absorbed,
-    )
+    let key = alt::choice_key(&e);
+    let (plain, prepared) = prepared_unshifted_below(x, Some((key.0, key.1)));
+    // On equal cost the shifted form: its angles are the ones the user wrote.
+    if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) {
+        return (plain, prepared);
+    }
+    (Ok(e.symbols_leading()), Prepared(yprep.0, Some(shift)))
 }
 
 /// Whether `e` equals `x`: exactly in debug builds, numerically first in release builds (as
@@ -370,6 +353,15 @@ fn verified(e: &Expr, x: &Scalar) -> bool {
 
 /// [`closed_form_prepared`] without the offsets absorbed.
 fn prepared_unshifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+    prepared_unshifted_below(x, None)
+}
+
+/// [`prepared_unshifted`], its candidates of `alt.rs` checked only below `cap` (see
+/// [`best_of_below`]): the same form whenever it is strictly below `cap`.
+fn prepared_unshifted_below(
+    x: &Scalar,
+    cap: Option<(usize, usize)>,
+) -> (Result<Expr, ScalarError>, Prepared) {
     if let Err(e) = x.terms() {
         return (Err(e.clone()), Prepared(None, None));
     }
@@ -391,7 +383,7 @@ fn prepared_unshifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     }
     let (mut sctx, smons) = mon::split_modes(x);
     let smons = recombine::recombine(&mut sctx, smons);
-    let result = best_of(x, &sctx, &smons, true);
+    let result = best_of_below(x, &sctx, &smons, true, cap);
     let split_won = result.as_ref().is_ok_and(|(_, split)| *split);
     (
         result.map(|(e, _)| e.symbols_leading()),
@@ -550,6 +542,19 @@ fn best_of(
     smons: &[mon::Mon],
     try_whole: bool,
 ) -> Result<(Expr, bool), ScalarError> {
+    best_of_below(x, sctx, smons, try_whole, None)
+}
+
+/// [`best_of`], with the candidates of `alt.rs` checked only below `cap` (the first two parts
+/// of the [`alt::choice_key`] of a form found elsewhere, taken unless this one is strictly
+/// shorter): a candidate not below it is never taken over that form, whatever it is here.
+fn best_of_below(
+    x: &Scalar,
+    sctx: &mon::Ctx,
+    smons: &[mon::Mon],
+    try_whole: bool,
+    cap: Option<(usize, usize)>,
+) -> Result<(Expr, bool), ScalarError> {
     let (split, sc) = factor::build(smons)?;
     // Without trigonometric terms both shapes are the same monomials (a polynomial in cos/sin
     // placeholders, say): the whole shape would be factored again to the same cost.
@@ -579,7 +584,7 @@ fn best_of(
     // A shorter form of another kind (checked exactly by `best_alternative`).
     // An alternative is returned only once it equals `x` exactly: not checked again (in debug
     // builds that second expansion could run the budget out on a form already verified).
-    let (best, verified) = match alt::best_alternative(x, &best) {
+    let (best, verified) = match alt::best_alternative_below(x, &best, cap) {
         Some(e) => (e, true),
         None => (best, false),
     };
