@@ -43,26 +43,11 @@ const MAX_PRODUCT_TERMS: usize = 4096;
 /// candidate equal to `x` is not shorter than `than`, no candidate shorter than `than` equals
 /// `x`, and both ways give `than`.
 pub(super) fn best_alternative(x: &Scalar, than: &Expr) -> Option<Expr> {
-    best_alternative_below(x, than, None)
-}
-
-/// [`best_alternative`], only for a candidate also strictly below `cap` (the first two parts
-/// of a [`choice_key`]) when one is given: the first candidate equal to `x` among those below
-/// both is the first among those below `than` when it is below `cap`, and there is none
-/// below `cap` otherwise. The candidates of `trigfac.rs` are made for every cost up to
-/// `cap.0` (theirs below `cap.0 + 1`).
-pub(super) fn best_alternative_below(
-    x: &Scalar,
-    than: &Expr,
-    cap: Option<(usize, usize)>,
-) -> Option<Expr> {
     let mut cands = unsorted_candidates(x);
     // Products of sinusoids of mixed angles, sums split into parts (`trigfac.rs`): made only
     // when a lower bound of their cost is below the form found before.
     if let Ok(t) = x.terms() {
-        let bound = full_cost(than).0;
-        let bound = cap.map_or(bound, |c| bound.min(c.0.saturating_add(1)));
-        cands.extend(super::trigfac::candidates(t, bound));
+        cands.extend(super::trigfac::candidates(t, full_cost(than).0));
         // Squares of sums, common factors, sums split by their angles' symbols (`extra.rs`).
         let more = super::extra::candidates(t, than, &cands);
         cands.extend(more);
@@ -71,7 +56,7 @@ pub(super) fn best_alternative_below(
         return None;
     }
     let bound = choice_key(than);
-    let bound = cap.map_or((bound.0, bound.1), |c| c.min((bound.0, bound.1)));
+    let bound = (bound.0, bound.1);
     let mut cands: Vec<_> = cands
         .into_iter()
         .map(|e| (choice_key(&e), e))

@@ -92,11 +92,10 @@
 //! `f . o = d_f` solved by a bounded search), its closed form found on the offset-free path and
 //! every angle shifted back (`cos(q2 + 5*pi/9)`, `cos(x - pi/7) cos(y + pi/7)`,
 //! `sin(x - 2*pi/7)^2`; the candidates of `alt.rs` for the shifted scalar compared again shifted
-//! back, since a shift changes what an angle costs: `cos(x) cos(x + 2*pi/7)`), kept unless the
-//! form as given is strictly shorter (found first, so that the search as given checks the
-//! candidates of `alt.rs` only below it) and checked like every other; the offset shown among
-//! equal classes is the one with the fewest cosine and sine parts in `y`, then the smallest
-//! denominator, the fewest nonzero offsets, the fewest negative parts (`cos(t + 5*pi/9)`, not `-cos(t - 4*pi/9)`), the smallest `|o|`, the
+//! back, since a shift changes what an angle costs: `cos(x) cos(x + 2*pi/7)`), kept when shorter
+//! and checked like every other; the offset shown among equal classes is the one with the fewest
+//! cosine and sine parts in `y`, then the smallest denominator, the fewest nonzero offsets, the
+//! fewest negative parts (`cos(t + 5*pi/9)`, not `-cos(t - 4*pi/9)`), the smallest `|o|`, the
 //! positive one; derivatives of a prepared scalar are shifted alike; the congruences are scaled to
 //! integer residues modulo one common modulus and solved in echelon form (`congruence.rs`: each
 //! unknown a residue class given the earlier ones, the solutions listed in lexicographic order
@@ -313,16 +312,16 @@ fn joined(e: Expr, x: &Scalar) -> Expr {
 
 /// [`closed_form_prepared`] without the constants lifted.
 fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
-    let Some((shift, y)) = offsets::find(x).and_then(|s| s.apply(x).map(|y| (s, y))) else {
-        return prepared_unshifted(x);
+    let (plain, prepared) = prepared_unshifted(x);
+    let Some(shift) = offsets::find(x) else {
+        return (plain, prepared);
     };
-    // The shifted form first: the form as given is taken only when strictly shorter, so its
-    // search checks the candidates of `alt.rs` only below the shifted form
-    // (`best_of_below`; the Jaco-style arm's pose checked hundreds of candidates in
-    // cyclotomic arithmetic that could not win).
+    let Some(y) = shift.apply(x) else {
+        return (plain, prepared);
+    };
     let (shifted, yprep) = prepared_unshifted(&y);
     let Ok(mut e) = shifted.map(|e| shift.unshift(e)) else {
-        return prepared_unshifted(x);
+        return (plain, prepared);
     };
     // The shift changes what an angle costs (`cos(y - pi/7) cos(y + pi/7)` ties with the sum in
     // `y`, `cos(x) cos(x + 2*pi/7)` beats it in `x`): the candidates of `alt.rs` for the
@@ -333,13 +332,8 @@ fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
             break;
         }
     }
-    if !verified(&e, x) {
-        return prepared_unshifted(x);
-    }
-    let key = alt::choice_key(&e);
-    let (plain, prepared) = prepared_unshifted_below(x, Some((key.0, key.1)));
     // On equal cost the shifted form: its angles are the ones the user wrote.
-    if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) {
+    if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) || !verified(&e, x) {
         return (plain, prepared);
     }
     (Ok(e.symbols_leading()), Prepared(yprep.0, Some(shift)))
@@ -353,15 +347,6 @@ fn verified(e: &Expr, x: &Scalar) -> bool {
 
 /// [`closed_form_prepared`] without the offsets absorbed.
 fn prepared_unshifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
-    prepared_unshifted_below(x, None)
-}
-
-/// [`prepared_unshifted`], its candidates of `alt.rs` checked only below `cap` (see
-/// [`best_of_below`]): the same form whenever it is strictly below `cap`.
-fn prepared_unshifted_below(
-    x: &Scalar,
-    cap: Option<(usize, usize)>,
-) -> (Result<Expr, ScalarError>, Prepared) {
     if let Err(e) = x.terms() {
         return (Err(e.clone()), Prepared(None, None));
     }
@@ -383,7 +368,7 @@ fn prepared_unshifted_below(
     }
     let (mut sctx, smons) = mon::split_modes(x);
     let smons = recombine::recombine(&mut sctx, smons);
-    let result = best_of_below(x, &sctx, &smons, true, cap);
+    let result = best_of(x, &sctx, &smons, true);
     let split_won = result.as_ref().is_ok_and(|(_, split)| *split);
     (
         result.map(|(e, _)| e.symbols_leading()),
@@ -542,19 +527,6 @@ fn best_of(
     smons: &[mon::Mon],
     try_whole: bool,
 ) -> Result<(Expr, bool), ScalarError> {
-    best_of_below(x, sctx, smons, try_whole, None)
-}
-
-/// [`best_of`], with the candidates of `alt.rs` checked only below `cap` (the first two parts
-/// of the [`alt::choice_key`] of a form found elsewhere, taken unless this one is strictly
-/// shorter): a candidate not below it is never taken over that form, whatever it is here.
-fn best_of_below(
-    x: &Scalar,
-    sctx: &mon::Ctx,
-    smons: &[mon::Mon],
-    try_whole: bool,
-    cap: Option<(usize, usize)>,
-) -> Result<(Expr, bool), ScalarError> {
     let (split, sc) = factor::build(smons)?;
     // Without trigonometric terms both shapes are the same monomials (a polynomial in cos/sin
     // placeholders, say): the whole shape would be factored again to the same cost.
@@ -584,7 +556,7 @@ fn best_of_below(
     // A shorter form of another kind (checked exactly by `best_alternative`).
     // An alternative is returned only once it equals `x` exactly: not checked again (in debug
     // builds that second expansion could run the budget out on a form already verified).
-    let (best, verified) = match alt::best_alternative_below(x, &best, cap) {
+    let (best, verified) = match alt::best_alternative(x, &best) {
         Some(e) => (e, true),
         None => (best, false),
     };
