@@ -262,7 +262,7 @@ type FxMap<K, V> = std::collections::HashMap<K, V, BuildHasherDefault<FxHasher>>
 /// when the split shape was skipped (too large) or failed.
 pub struct Prepared(
     Option<(mon::Ctx, Vec<mon::Mon>, bool)>,
-    Option<offsets::Shift>,
+    Option<(offsets::Shift, Scalar)>,
 );
 
 /// [`closed_form`], and what it found on the way (see [`Prepared`]).
@@ -351,7 +351,7 @@ fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) || !verified(&e, x) {
         return (plain, prepared);
     }
-    (Ok(e.symbols_leading()), Prepared(yprep.0, Some(shift)))
+    (Ok(e.symbols_leading()), Prepared(yprep.0, Some((shift, y))))
 }
 
 /// Whether `e` equals `x`: exactly in debug builds, numerically first in release builds (as
@@ -622,10 +622,19 @@ pub fn closed_form_of_derivative(
     }
     // Prepared with its offsets absorbed: the derivative (with respect to the same symbol,
     // d/dx = d/dy) is shifted alike, its closed form shifted back.
-    if let Some(shift) = &p.1 {
-        let Some(dy) = shift.apply(dx) else {
-            return closed_form(dx);
+    if let Some((shift, y)) = &p.1 {
+        // The shifted derivative is the derivative of the shifted scalar: made from it, in
+        // radicals, not by shifting `dx` back out of its cyclotomic basis (the Jaco-style
+        // arm's Jacobian: 20 M instructions).
+        let dy = y.diff(var);
+        let dy = match dy.terms() {
+            Ok(_) => dy,
+            Err(_) => match shift.apply(dx) {
+                Some(dy) => dy,
+                None => return closed_form(dx),
+            },
         };
+        debug_assert!(shift.apply(dx).is_none_or(|d| d == dy), "d/d{var} shifted");
         let e = shift.unshift(derivative_unshifted(p, var, &dy)?);
         return if verified(&e, dx) {
             Ok(e)

@@ -185,6 +185,20 @@ fn solve(
     fixed: &[Option<Small>],
     found: &mut dyn FnMut(&[Small]) -> bool,
 ) -> Option<bool> {
+    solve_listing(syms, rows, targets, n, fixed, true, found)
+}
+
+/// [`solve`]; without `fill`, `found` is passed the fixed offsets only (the free ones are not
+/// made): for a caller that counts the solutions.
+fn solve_listing(
+    syms: &[Sym],
+    rows: &[Vec<(usize, Small)>],
+    targets: &[(Small, Small)],
+    n: i64,
+    fixed: &[Option<Small>],
+    fill: bool,
+    found: &mut dyn FnMut(&[Small]) -> bool,
+) -> Option<bool> {
     // Each free symbol's unit `1/(n a)` and number of candidates.
     let mut free: Vec<(usize, Small, i64)> = Vec::new();
     for (s, fixed_s) in fixed.iter().enumerate().take(syms.len()) {
@@ -269,6 +283,9 @@ fn solve(
         .map(|c| vec![None; usize::try_from(*c).unwrap_or(0)])
         .collect();
     let result = super::congruence::solutions(&a, &b, modulus, &ranges, &mut |z| {
+        if !fill {
+            return found(&o);
+        }
         for (((s, unit, _), v), known) in free.iter().zip(z).zip(&mut values) {
             let slot = usize::try_from(*v).ok().and_then(|i| known.get_mut(i));
             o[*s] = match slot {
@@ -402,7 +419,9 @@ fn representatives(
         // none of the first run (`all`) is shown.
         if all {
             let mut seen = 0usize;
-            let complete = solve(syms, rows, targets, n, fixed, &mut |_| {
+            // Counted without making the offsets (the Jaco-style arm's pose entries each
+            // have more than the bound).
+            let complete = solve_listing(syms, rows, targets, n, fixed, false, &mut |_| {
                 seen += 1;
                 seen < MAX_SOLUTIONS
             })?;
