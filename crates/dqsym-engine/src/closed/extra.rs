@@ -540,6 +540,324 @@ fn any_pair_may_join(sum: &[Expr]) -> bool {
     false
 }
 
+/// Whether two of the summands have the same factors but a cosine in one and a sine of the
+/// same angle in the other, numbers and square roots aside (what [`harmonic_joined`] needs).
+fn any_harmonic_pair(sum: &[Expr]) -> bool {
+    fn read(e: &Expr) -> Vec<&Expr> {
+        let e = match e {
+            Expr::Neg(x) => &**x,
+            e => e,
+        };
+        let fs: Vec<&Expr> = match e {
+            Expr::Mul(v) => v.iter().collect(),
+            e => vec![e],
+        };
+        fs.into_iter()
+            .filter(|f| !matches!(f, Expr::Num(_) | Expr::Sqrt(_)))
+            .collect()
+    }
+    let read: Vec<Vec<&Expr>> = sum.iter().map(read).collect();
+    for i in 0..read.len() {
+        for j in i + 1..read.len() {
+            let (a, b) = (&read[i], &read[j]);
+            if a.len() != b.len() {
+                continue;
+            }
+            for (k, f) in a.iter().enumerate() {
+                let Expr::Trig { f: fa, angle: aa } = f else {
+                    continue;
+                };
+                for (l, g) in b.iter().enumerate() {
+                    let Expr::Trig { f: fb, angle: ab } = g else {
+                        continue;
+                    };
+                    if fa == fb || aa != ab {
+                        continue;
+                    }
+                    let (mut ra, mut rb) = (a.clone(), b.clone());
+                    ra.remove(k);
+                    rb.remove(l);
+                    if ra == rb {
+                        return true;
+                    }
+                }
+            }
+        }
+    }
+    false
+}
+
+/// `sqrt(r)` as `g sqrt(m)`, `g` rational and `m` square-free; `None` when `r` is negative,
+/// zero or too large to factor by trial division.
+fn sqrt_parts(r: &Rat) -> Option<(Rat, u64)> {
+    use num_traits::ToPrimitive;
+    let (n, d) = (r.numer().to_u64()?, r.denom().to_u64()?);
+    let mut x = n.checked_mul(d)?;
+    if x == 0 || x > 1 << 40 {
+        return None;
+    }
+    let (mut g, mut m, mut p) = (1u64, 1u64, 2u64);
+    while p * p <= x {
+        let mut e = 0;
+        while x % p == 0 {
+            x /= p;
+            e += 1;
+        }
+        g *= p.pow(e / 2);
+        if e % 2 == 1 {
+            m *= p;
+        }
+        p += 1;
+    }
+    Some((Rat::new(g.into(), d.into()), m * x))
+}
+
+/// Two summands with the same factors, numbers and square roots aside, but `cos A` in one and
+/// `sin A` in the other joined as one sinusoid (the harmonic form, `c cos A + s sin A =
+/// R cos(A - phi)`), when `phi` is a multiple of pi/12 (found in floats; the result is
+/// checked exactly by the caller): `cos(u1) + sqrt(3) sin(u1) = 2 cos(u1 - pi/3)`. Each of
+/// the four ways to write the sinusoid (`cos`, `sin`, either negated) is offered.
+fn harmonic_joined(a: &Summand, ca: &[Call], b: &Summand, cb: &[Call]) -> Vec<Summand> {
+    use num_traits::ToPrimitive;
+    let split = |rest: &[Expr]| -> Option<(Vec<Expr>, u64)> {
+        let mut m = 1u64;
+        let mut v = Vec::with_capacity(rest.len());
+        for f in rest {
+            match f {
+                Expr::Sqrt(n) => m = m.checked_mul(*n)?,
+                f => v.push(f.clone()),
+            }
+        }
+        Some((v, m))
+    };
+    let value = |s: &Summand, m: u64| {
+        let v = s.q.to_f64().unwrap_or(f64::NAN) * (m as f64).sqrt();
+        if s.negated {
+            -v
+        } else {
+            v
+        }
+    };
+    let square = |s: &Summand, m: u64| &s.q * &s.q * Rat::from_integer(m.into());
+    let mut out = Vec::new();
+    for (ra, fa, aa) in ca {
+        for (rb, fb, ab) in cb {
+            if fa == fb || aa != ab || aa.is_pi_multiple() {
+                continue;
+            }
+            let (Some((ra, ma)), Some((rb, mb))) = (split(ra), split(rb)) else {
+                continue;
+            };
+            if ra != rb {
+                continue;
+            }
+            let (va, vb) = (value(a, ma), value(b, mb));
+            let (c, s) = if fa.is_sin() { (vb, va) } else { (va, vb) };
+            // c cos A + s sin A = R cos(A - phi), phi = atan2(s, c).
+            let k = s.atan2(c) * 12.0 / std::f64::consts::PI;
+            let kr = k.round();
+            if (k - kr).abs() >= 1e-9 {
+                continue;
+            }
+            let Some((g, m)) = sqrt_parts(&(square(a, ma) + square(b, mb))) else {
+                continue;
+            };
+            let o = aa.pi - Small::new(kr as i64, 12);
+            // cos y = sin(y + pi/2) = -cos(y + pi) = -sin(y + 3 pi/2).
+            for (sin, quarters, negated) in [
+                (false, 0, false),
+                (true, 1, false),
+                (false, 2, true),
+                (true, 3, true),
+            ] {
+                let angle = Angle::new(
+                    aa.terms.clone(),
+                    aa.constant,
+                    o + Small::new(quarters, 2),
+                );
+                let (n, e) = sinusoid(Trig::of(sin), angle);
+                let mut factors = ra.clone();
+                if m > 1 {
+                    factors.push(Expr::Sqrt(m));
+                }
+                factors.push(e);
+                out.push(Summand {
+                    negated: negated ^ n,
+                    q: g.clone(),
+                    factors,
+                });
+            }
+        }
+    }
+    out
+}
+
+/// A product's factors flattened (products in it spread, signs taken out, numbers multiplied
+/// into one number first); with `double`, also each pair `sin(A) cos(A)` among them made
+/// `sin(2 A)/2`. The second value says whether a pair was made.
+fn tidy_product(kids: Vec<Expr>, double: bool) -> (Expr, bool) {
+    fn push(e: Expr, q: &mut Rat, negated: &mut bool, fs: &mut Vec<Expr>) {
+        match e {
+            Expr::Neg(x) => {
+                *negated ^= true;
+                push(*x, q, negated, fs);
+            }
+            Expr::Mul(v) => v.into_iter().for_each(|f| push(f, q, negated, fs)),
+            Expr::Num(n) => *q *= n,
+            f => fs.push(f),
+        }
+    }
+    let (mut q, mut negated, mut fs) = (Rat::one(), false, Vec::new());
+    kids.into_iter()
+        .for_each(|f| push(f, &mut q, &mut negated, &mut fs));
+    let mut contracted = false;
+    if double {
+        // Powers of calls as repeated factors, then each sin/cos pair of one angle joined.
+        let mut flat: Vec<Expr> = Vec::with_capacity(fs.len());
+        for f in fs.iter().cloned() {
+            match f {
+                Expr::Pow(x, n) if matches!(*x, Expr::Trig { .. }) => {
+                    flat.extend(std::iter::repeat_n(*x, n as usize))
+                }
+                f => flat.push(f),
+            }
+        }
+        'pairs: loop {
+            for i in 0..flat.len() {
+                let Expr::Trig { f: fi, angle: ai } = &flat[i] else {
+                    continue;
+                };
+                if ai.is_pi_multiple() {
+                    continue;
+                }
+                for j in i + 1..flat.len() {
+                    let Expr::Trig { f: fj, angle: aj } = &flat[j] else {
+                        continue;
+                    };
+                    if fi == fj || ai != aj {
+                        continue;
+                    }
+                    // sin(A) cos(A) = sin(2 A)/2.
+                    let (n, e) = sinusoid(Trig::Sin, ai.scaled(Small::from_integer(2)));
+                    flat.remove(j);
+                    flat.remove(i);
+                    flat.push(e);
+                    negated ^= n;
+                    q /= Rat::from_integer(2.into());
+                    contracted = true;
+                    continue 'pairs;
+                }
+            }
+            break;
+        }
+        if contracted {
+            let refs: Vec<&Expr> = flat.iter().collect();
+            let mut sorted: Vec<&Expr> = Vec::with_capacity(refs.len());
+            // Equal factors side by side, first seen first, for `product`'s powers.
+            for f in &refs {
+                if !sorted.contains(f) {
+                    sorted.extend(refs.iter().filter(|g| **g == *f));
+                }
+            }
+            fs = match product(&sorted) {
+                Expr::Mul(v) => v,
+                e => vec![e],
+            };
+        }
+    }
+    let mut v = Vec::with_capacity(fs.len() + 1);
+    if !q.is_one() {
+        v.push(Expr::Num(q));
+    }
+    v.extend(fs);
+    let e = match v.len() {
+        0 => Expr::Num(Rat::one()),
+        1 => v.pop().expect("one factor"),
+        _ => Expr::Mul(v),
+    };
+    (if negated { neg(e) } else { e }, contracted)
+}
+
+/// The numbers' common factor of a sum's summands taken out (`2 a + 4 b` is `2 (a + 2 b)`).
+fn gcd_out(v: Vec<Expr>) -> Expr {
+    let parts: Vec<Summand> = v.iter().map(Summand::of).collect();
+    let (n, d) = parts.iter().fold(
+        (parts[0].q.numer().clone(), parts[0].q.denom().clone()),
+        |(n, d), s| (n.gcd(s.q.numer()), d.lcm(s.q.denom())),
+    );
+    let g = Rat::new(n, d);
+    if g.is_one() {
+        return Expr::Add(v);
+    }
+    let terms: Vec<Expr> = parts
+        .into_iter()
+        .map(|mut s| {
+            s.q = &s.q / &g;
+            s.expr()
+        })
+        .collect();
+    Expr::Mul(vec![Expr::Num(g), Expr::Add(terms)])
+}
+
+/// `e` with the sums inside it (below the top: factors of products) joined as
+/// [`pairs_joined`] joins a sum, pairs of one angle's cosine and sine made one sinusoid, and,
+/// with `double`, each `sin(A) cos(A)` in a product made `sin(2 A)/2` (`sin(p) (sin(2 r + w) +
+/// sin(w))` is `2 sin(p) sin(r + w) cos(r)`); `None` when nothing changes. Not checked.
+fn nested_joined(e: &Expr, double: bool) -> Option<Expr> {
+    fn go(e: &Expr, top: bool, double: bool) -> Option<Expr> {
+        match e {
+            Expr::Add(v) => {
+                let mut changed = false;
+                let kids: Vec<Expr> = v
+                    .iter()
+                    .map(|x| match go(x, false, double) {
+                        Some(y) => {
+                            changed = true;
+                            y
+                        }
+                        None => x.clone(),
+                    })
+                    .collect();
+                if top || kids.len() < 2 {
+                    return changed.then(|| Expr::Add(kids));
+                }
+                let sum = if changed {
+                    gcd_out(kids)
+                } else {
+                    Expr::Add(kids)
+                };
+                pairs_joined(&sum).pop().or(changed.then_some(sum))
+            }
+            Expr::Mul(v) => {
+                let mut changed = false;
+                let kids: Vec<Expr> = v
+                    .iter()
+                    .map(|x| match go(x, false, double) {
+                        Some(y) => {
+                            changed = true;
+                            y
+                        }
+                        None => x.clone(),
+                    })
+                    .collect();
+                if !changed && !double {
+                    return None;
+                }
+                let (t, contracted) = tidy_product(kids, double);
+                (changed || contracted).then_some(t)
+            }
+            Expr::Neg(x) => go(x, top, double).map(neg),
+            Expr::Pow(x, n) => go(x, false, double).map(|y| match y {
+                Expr::Neg(y) if n % 2 == 0 => Expr::Pow(y, *n),
+                Expr::Neg(y) => neg(Expr::Pow(y, *n)),
+                y => Expr::Pow(Box::new(y), *n),
+            }),
+            _ => None,
+        }
+    }
+    go(e, true, double)
+}
+
 /// The first of the sums of [`pairs_joined`] for `e` (each also with its common factors
 /// taken out) shorter than `e` by `alt::shorter` for which `equal` holds: for the final form
 /// of a scalar, whose angles at multiples of pi/12 (`coefs::phase_angles`) the candidates
@@ -550,6 +868,18 @@ pub(super) fn joined_form(e: &Expr, equal: impl Fn(&Expr) -> bool) -> Option<Exp
     for j in pairs_joined(e) {
         cands.extend(common_factor(&j));
         cands.push(j);
+    }
+    // The sums inside products joined too, with and without double angles contracted.
+    for double in [false, true] {
+        let Some(n) = nested_joined(e, double) else {
+            continue;
+        };
+        for j in pairs_joined(&n) {
+            cands.extend(common_factor(&j));
+            cands.push(j);
+        }
+        cands.extend(common_factor(&n));
+        cands.push(n);
     }
     cands.retain(|c| super::alt::shorter(c, e));
     cands.sort_by_cached_key(choice_key);
@@ -571,7 +901,9 @@ fn pairs_joined(e: &Expr) -> Vec<Expr> {
     if sum.len() < 2 || sum.len() > MAX_PAIR_SUMMANDS {
         return Vec::new();
     }
-    if !any_pair_may_join(sum) || charge((sum.len() * sum.len()) as u64).is_err() {
+    if !(any_pair_may_join(sum) || any_harmonic_pair(sum))
+        || charge((sum.len() * sum.len()) as u64).is_err()
+    {
         return Vec::new();
     }
     let whole = |v: &[Summand]| -> Expr {
@@ -623,10 +955,13 @@ fn pairs_joined(e: &Expr) -> Vec<Expr> {
         let mut pick: Option<(usize, usize, usize, Summand)> = None;
         for i in 0..cur.len() {
             for j in i + 1..cur.len() {
-                if cur[i].q != cur[j].q {
-                    continue;
-                }
-                for s in joined(&cur[i], &calls[i], &cur[j], &calls[j]) {
+                let mut joins = if cur[i].q == cur[j].q {
+                    joined(&cur[i], &calls[i], &cur[j], &calls[j])
+                } else {
+                    Vec::new()
+                };
+                joins.extend(harmonic_joined(&cur[i], &calls[i], &cur[j], &calls[j]));
+                for s in joins {
                     // The saving: what the two summands and their addition cost, less the join.
                     let Some(d) = (costs[i] + costs[j] + 1).checked_sub(cost(&s)) else {
                         continue;
