@@ -6,7 +6,9 @@
 //! products sharing a factor with that factor taken out (`k2 cos(w/2 - pi/3) sin(w) -
 //! k2 sin(p/2 + u2) cos(r)` is `k2 (cos(w/2 - pi/3) sin(w) - sin(p/2 + u2) cos(r))`: the parts
 //! of `trigfac.rs`'s split sums and the constant products of `cprod.rs` are found apart and
-//! joined by an addition, never factored).
+//! joined by an addition, never factored); pairs of summands joined (sum to product, `1 -
+//! cos(2 w)` as a square, a cosine and a sine of one angle as one sinusoid), also in the sums
+//! inside the products of the form shown (`joined_form`).
 
 use super::alt::{choice_key, full_cost, mul, neg, num};
 use super::expr::{Angle, Expr};
@@ -670,11 +672,7 @@ fn harmonic_joined(a: &Summand, ca: &[Call], b: &Summand, cb: &[Call]) -> Vec<Su
                 (false, 2, true),
                 (true, 3, true),
             ] {
-                let angle = Angle::new(
-                    aa.terms.clone(),
-                    aa.constant,
-                    o + Small::new(quarters, 2),
-                );
+                let angle = Angle::new(aa.terms.clone(), aa.constant, o + Small::new(quarters, 2));
                 let (n, e) = sinusoid(Trig::of(sin), angle);
                 let mut factors = ra.clone();
                 if m > 1 {
@@ -692,10 +690,9 @@ fn harmonic_joined(a: &Summand, ca: &[Call], b: &Summand, cb: &[Call]) -> Vec<Su
     out
 }
 
-/// A product's factors flattened (products in it spread, signs taken out, numbers multiplied
-/// into one number first); with `double`, also each pair `sin(A) cos(A)` among them made
-/// `sin(2 A)/2`. The second value says whether a pair was made.
-fn tidy_product(kids: Vec<Expr>, double: bool) -> (Expr, bool) {
+/// A product's factors flattened: products in it spread, signs taken out, numbers multiplied
+/// into one number first.
+fn tidy_product(kids: Vec<Expr>) -> Expr {
     fn push(e: Expr, q: &mut Rat, negated: &mut bool, fs: &mut Vec<Expr>) {
         match e {
             Expr::Neg(x) => {
@@ -710,61 +707,6 @@ fn tidy_product(kids: Vec<Expr>, double: bool) -> (Expr, bool) {
     let (mut q, mut negated, mut fs) = (Rat::one(), false, Vec::new());
     kids.into_iter()
         .for_each(|f| push(f, &mut q, &mut negated, &mut fs));
-    let mut contracted = false;
-    if double {
-        // Powers of calls as repeated factors, then each sin/cos pair of one angle joined.
-        let mut flat: Vec<Expr> = Vec::with_capacity(fs.len());
-        for f in fs.iter().cloned() {
-            match f {
-                Expr::Pow(x, n) if matches!(*x, Expr::Trig { .. }) => {
-                    flat.extend(std::iter::repeat_n(*x, n as usize))
-                }
-                f => flat.push(f),
-            }
-        }
-        'pairs: loop {
-            for i in 0..flat.len() {
-                let Expr::Trig { f: fi, angle: ai } = &flat[i] else {
-                    continue;
-                };
-                if ai.is_pi_multiple() {
-                    continue;
-                }
-                for j in i + 1..flat.len() {
-                    let Expr::Trig { f: fj, angle: aj } = &flat[j] else {
-                        continue;
-                    };
-                    if fi == fj || ai != aj {
-                        continue;
-                    }
-                    // sin(A) cos(A) = sin(2 A)/2.
-                    let (n, e) = sinusoid(Trig::Sin, ai.scaled(Small::from_integer(2)));
-                    flat.remove(j);
-                    flat.remove(i);
-                    flat.push(e);
-                    negated ^= n;
-                    q /= Rat::from_integer(2.into());
-                    contracted = true;
-                    continue 'pairs;
-                }
-            }
-            break;
-        }
-        if contracted {
-            let refs: Vec<&Expr> = flat.iter().collect();
-            let mut sorted: Vec<&Expr> = Vec::with_capacity(refs.len());
-            // Equal factors side by side, first seen first, for `product`'s powers.
-            for f in &refs {
-                if !sorted.contains(f) {
-                    sorted.extend(refs.iter().filter(|g| **g == *f));
-                }
-            }
-            fs = match product(&sorted) {
-                Expr::Mul(v) => v,
-                e => vec![e],
-            };
-        }
-    }
     let mut v = Vec::with_capacity(fs.len() + 1);
     if !q.is_one() {
         v.push(Expr::Num(q));
@@ -775,7 +717,11 @@ fn tidy_product(kids: Vec<Expr>, double: bool) -> (Expr, bool) {
         1 => v.pop().expect("one factor"),
         _ => Expr::Mul(v),
     };
-    (if negated { neg(e) } else { e }, contracted)
+    if negated {
+        neg(e)
+    } else {
+        e
+    }
 }
 
 /// The numbers' common factor of a sum's summands taken out (`2 a + 4 b` is `2 (a + 2 b)`).
@@ -800,17 +746,18 @@ fn gcd_out(v: Vec<Expr>) -> Expr {
 }
 
 /// `e` with the sums inside it (below the top: factors of products) joined as
-/// [`pairs_joined`] joins a sum, pairs of one angle's cosine and sine made one sinusoid, and,
-/// with `double`, each `sin(A) cos(A)` in a product made `sin(2 A)/2` (`sin(p) (sin(2 r + w) +
-/// sin(w))` is `2 sin(p) sin(r + w) cos(r)`); `None` when nothing changes. Not checked.
-fn nested_joined(e: &Expr, double: bool) -> Option<Expr> {
-    fn go(e: &Expr, top: bool, double: bool) -> Option<Expr> {
+/// [`pairs_joined`] joins a sum (also a cosine and a sine of one angle as one sinusoid), the
+/// products holding them flattened and the numbers' common factor of a sum taken out
+/// (`sin(p) (sin(2 r + w) + sin(w))` is `2 sin(p) sin(r + w) cos(r)`); `None` when nothing
+/// changes. Not checked.
+fn nested_joined(e: &Expr) -> Option<Expr> {
+    fn go(e: &Expr, top: bool) -> Option<Expr> {
         match e {
             Expr::Add(v) => {
                 let mut changed = false;
                 let kids: Vec<Expr> = v
                     .iter()
-                    .map(|x| match go(x, false, double) {
+                    .map(|x| match go(x, false) {
                         Some(y) => {
                             changed = true;
                             y
@@ -832,7 +779,7 @@ fn nested_joined(e: &Expr, double: bool) -> Option<Expr> {
                 let mut changed = false;
                 let kids: Vec<Expr> = v
                     .iter()
-                    .map(|x| match go(x, false, double) {
+                    .map(|x| match go(x, false) {
                         Some(y) => {
                             changed = true;
                             y
@@ -840,14 +787,10 @@ fn nested_joined(e: &Expr, double: bool) -> Option<Expr> {
                         None => x.clone(),
                     })
                     .collect();
-                if !changed && !double {
-                    return None;
-                }
-                let (t, contracted) = tidy_product(kids, double);
-                (changed || contracted).then_some(t)
+                changed.then(|| tidy_product(kids))
             }
-            Expr::Neg(x) => go(x, top, double).map(neg),
-            Expr::Pow(x, n) => go(x, false, double).map(|y| match y {
+            Expr::Neg(x) => go(x, top).map(neg),
+            Expr::Pow(x, n) => go(x, false).map(|y| match y {
                 Expr::Neg(y) if n % 2 == 0 => Expr::Pow(y, *n),
                 Expr::Neg(y) => neg(Expr::Pow(y, *n)),
                 y => Expr::Pow(Box::new(y), *n),
@@ -855,7 +798,7 @@ fn nested_joined(e: &Expr, double: bool) -> Option<Expr> {
             _ => None,
         }
     }
-    go(e, true, double)
+    go(e, true)
 }
 
 /// The first of the sums of [`pairs_joined`] for `e` (each also with its common factors
@@ -869,11 +812,8 @@ pub(super) fn joined_form(e: &Expr, equal: impl Fn(&Expr) -> bool) -> Option<Exp
         cands.extend(common_factor(&j));
         cands.push(j);
     }
-    // The sums inside products joined too, with and without double angles contracted.
-    for double in [false, true] {
-        let Some(n) = nested_joined(e, double) else {
-            continue;
-        };
+    // The sums inside products joined too.
+    if let Some(n) = nested_joined(e) {
         for j in pairs_joined(&n) {
             cands.extend(common_factor(&j));
             cands.push(j);
@@ -1015,5 +955,16 @@ mod tests {
         assert_eq!(c.to_scalar(), e.to_scalar());
         assert!(full_cost(&c) < full_cost(&e));
         assert!(common_factor(&Expr::Add(vec![a, b])).is_none());
+    }
+
+    #[test]
+    fn a_square_root_of_a_rational_is_split_into_a_rational_and_a_square_free_root() {
+        let r = |n: i64, d: i64| Rat::new(n.into(), d.into());
+        // sqrt(8/3) = sqrt(24)/3 = 2 sqrt(6)/3; sqrt(4) = 2; sqrt(1/2) = sqrt(2)/2.
+        assert_eq!(sqrt_parts(&r(8, 3)), Some((r(2, 3), 6)));
+        assert_eq!(sqrt_parts(&r(4, 1)), Some((r(2, 1), 1)));
+        assert_eq!(sqrt_parts(&r(1, 2)), Some((r(1, 2), 2)));
+        assert_eq!(sqrt_parts(&r(0, 1)), None);
+        assert_eq!(sqrt_parts(&r(-2, 1)), None);
     }
 }

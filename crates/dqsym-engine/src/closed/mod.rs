@@ -76,7 +76,10 @@
 //! numbers and factors but one call joined (sum to product, `cos A + cos B = 2 cos((A + B)/2)
 //! cos((A - B)/2)`; a number beside its cosine as a square, `1 - cos(2 w) = 2 sin(w)^2`),
 //! greedily while no longer, also on the form shown (`extra::joined_form`: the angles made
-//! again from radicals by `coefs.rs` are first seen there); each checked exactly; constant angles are shown with a positive sign; an angle's
+//! again from radicals by `coefs.rs` are first seen there), there also the sums inside its
+//! products (`sin(c) (sin(2 a + b) + sin(b))` as `2 sin(c) sin(a + b) cos(a)`), and a cosine
+//! and a sine of one angle with the same other factors as one sinusoid when its offset is a
+//! multiple of pi/12 (`cos(a) + sqrt(3) sin(a) = 2 sin(a + pi/6)`); each checked exactly; constant angles are shown with a positive sign; an angle's
 //! symbols print first, then its rational constant and its multiple of pi (`t/2 - 1/3`,
 //! `x - pi/7`), and an angle with a rational constant is shown with its first symbol's coefficient
 //! positive (`Expr::symbols_leading`: `sin(1/3 - t/2)` prints `-sin(t/2 - 1/3)`); equal symbols and
