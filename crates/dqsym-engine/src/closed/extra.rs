@@ -751,44 +751,54 @@ fn gcd_out(v: Vec<Expr>) -> Expr {
 /// (`sin(p) (sin(2 r + w) + sin(w))` is `2 sin(p) sin(r + w) cos(r)`); `None` when nothing
 /// changes. Not checked.
 fn nested_joined(e: &Expr) -> Option<Expr> {
+    /// The terms or factors `v` with those that change replaced; `None` (and nothing copied)
+    /// when none does.
+    fn kids(v: &[Expr]) -> Option<Vec<Expr>> {
+        let (i, y) = v
+            .iter()
+            .enumerate()
+            .find_map(|(i, x)| go(x, false).map(|y| (i, y)))?;
+        let mut out = Vec::with_capacity(v.len());
+        out.extend_from_slice(&v[..i]);
+        out.push(y);
+        out.extend(
+            v[i + 1..]
+                .iter()
+                .map(|x| go(x, false).unwrap_or_else(|| x.clone())),
+        );
+        Some(out)
+    }
+    /// Whether a summand has a call among its factors (what every join needs).
+    fn has_call(v: &[Expr]) -> bool {
+        let call = |f: &Expr| matches!(f, Expr::Trig { .. });
+        v.iter().any(|t| {
+            let t = match t {
+                Expr::Neg(x) => &**x,
+                t => t,
+            };
+            match t {
+                Expr::Mul(fs) => fs.iter().any(call),
+                t => call(t),
+            }
+        })
+    }
     fn go(e: &Expr, top: bool) -> Option<Expr> {
         match e {
             Expr::Add(v) => {
-                let mut changed = false;
-                let kids: Vec<Expr> = v
-                    .iter()
-                    .map(|x| match go(x, false) {
-                        Some(y) => {
-                            changed = true;
-                            y
-                        }
-                        None => x.clone(),
-                    })
-                    .collect();
-                if top || kids.len() < 2 {
-                    return changed.then(|| Expr::Add(kids));
+                let kids = kids(v);
+                if top || v.len() < 2 {
+                    return kids.map(Expr::Add);
                 }
-                let sum = if changed {
-                    gcd_out(kids)
-                } else {
-                    Expr::Add(kids)
-                };
-                pairs_joined(&sum).pop().or(changed.then_some(sum))
+                match kids {
+                    None if !has_call(v) => None,
+                    None => pairs_joined(e).pop(),
+                    Some(k) => {
+                        let sum = gcd_out(k);
+                        pairs_joined(&sum).pop().or(Some(sum))
+                    }
+                }
             }
-            Expr::Mul(v) => {
-                let mut changed = false;
-                let kids: Vec<Expr> = v
-                    .iter()
-                    .map(|x| match go(x, false) {
-                        Some(y) => {
-                            changed = true;
-                            y
-                        }
-                        None => x.clone(),
-                    })
-                    .collect();
-                changed.then(|| tidy_product(kids))
-            }
+            Expr::Mul(v) => kids(v).map(tidy_product),
             Expr::Neg(x) => go(x, top).map(neg),
             Expr::Pow(x, n) => go(x, false).map(|y| match y {
                 Expr::Neg(y) if n % 2 == 0 => Expr::Pow(y, *n),
