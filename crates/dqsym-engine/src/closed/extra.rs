@@ -558,6 +558,31 @@ fn any_harmonic_pair(sum: &[Expr]) -> bool {
             .filter(|f| !matches!(f, Expr::Num(_) | Expr::Sqrt(_)))
             .collect()
     }
+    // First only the calls: most sums have no cosine and sine of one angle in two summands.
+    let mut calls: Vec<(usize, &Trig, &Angle)> = Vec::new();
+    for (i, e) in sum.iter().enumerate() {
+        let e = match e {
+            Expr::Neg(x) => &**x,
+            e => e,
+        };
+        let fs = match e {
+            Expr::Mul(v) => v.as_slice(),
+            e => std::slice::from_ref(e),
+        };
+        for f in fs {
+            if let Expr::Trig { f, angle } = f {
+                calls.push((i, f, angle));
+            }
+        }
+    }
+    let paired = calls.iter().enumerate().any(|(k, (i, f, a))| {
+        calls[k + 1..]
+            .iter()
+            .any(|(j, g, b)| i != j && f != g && a == b)
+    });
+    if !paired {
+        return false;
+    }
     let read: Vec<Vec<&Expr>> = sum.iter().map(read).collect();
     for i in 0..read.len() {
         for j in i + 1..read.len() {
@@ -808,6 +833,19 @@ fn nested_joined(e: &Expr) -> Option<Expr> {
             _ => None,
         }
     }
+    /// Whether a call's angle has a symbol (the constant products of `cprod.rs` are found as
+    /// products already, and are left alone).
+    fn symbolic_call(e: &Expr) -> bool {
+        match e {
+            Expr::Trig { angle, .. } => !angle.terms.is_empty(),
+            Expr::Add(v) | Expr::Mul(v) => v.iter().any(symbolic_call),
+            Expr::Neg(x) | Expr::Pow(x, _) => symbolic_call(x),
+            _ => false,
+        }
+    }
+    if !symbolic_call(e) {
+        return None;
+    }
     go(e, true)
 }
 
@@ -851,9 +889,9 @@ fn pairs_joined(e: &Expr) -> Vec<Expr> {
     if sum.len() < 2 || sum.len() > MAX_PAIR_SUMMANDS {
         return Vec::new();
     }
-    if !(any_pair_may_join(sum) || any_harmonic_pair(sum))
-        || charge((sum.len() * sum.len()) as u64).is_err()
-    {
+    // Harmonic pairs looked for only when the sum has one to begin with.
+    let harmonic = any_harmonic_pair(sum);
+    if !(harmonic || any_pair_may_join(sum)) || charge((sum.len() * sum.len()) as u64).is_err() {
         return Vec::new();
     }
     let whole = |v: &[Summand]| -> Expr {
@@ -910,7 +948,9 @@ fn pairs_joined(e: &Expr) -> Vec<Expr> {
                 } else {
                     Vec::new()
                 };
-                joins.extend(harmonic_joined(&cur[i], &calls[i], &cur[j], &calls[j]));
+                if harmonic {
+                    joins.extend(harmonic_joined(&cur[i], &calls[i], &cur[j], &calls[j]));
+                }
                 for s in joins {
                     // The saving: what the two summands and their addition cost, less the join.
                     let Some(d) = (costs[i] + costs[j] + 1).checked_sub(cost(&s)) else {
