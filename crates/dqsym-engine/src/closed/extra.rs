@@ -26,7 +26,7 @@ pub(super) fn candidates(t: &[Term], than: &Expr, others: &[Expr]) -> Vec<Expr> 
     let mut out = candidates_up_to(t, full_cost(than).0, others);
     if !out.is_empty() || super::trigfac::may_nest() {
         out.extend(common_factor(than));
-        for e in pairs_joined(than) {
+        for e in pairs_joined(than, false) {
             out.extend(common_factor(&e));
             out.push(e);
         }
@@ -816,10 +816,10 @@ fn nested_joined(e: &Expr) -> Option<Expr> {
                 }
                 match kids {
                     None if !has_call(v) => None,
-                    None => pairs_joined(e).pop(),
+                    None => pairs_joined(e, true).pop(),
                     Some(k) => {
                         let sum = gcd_out(k);
-                        pairs_joined(&sum).pop().or(Some(sum))
+                        pairs_joined(&sum, true).pop().or(Some(sum))
                     }
                 }
             }
@@ -850,19 +850,25 @@ fn nested_joined(e: &Expr) -> Option<Expr> {
 }
 
 /// The first of the sums of [`pairs_joined`] for `e` (each also with its common factors
-/// taken out) shorter than `e` by `alt::shorter` for which `equal` holds: for the final form
+/// taken out; for the `outermost` search also with a cosine and a sine of one angle joined
+/// and the sums inside its products joined, [`nested_joined`]) shorter than `e` by `alt::shorter` for which `equal` holds: for the final form
 /// of a scalar, whose angles at multiples of pi/12 (`coefs::phase_angles`) the candidates
 /// never see (`cos(r - u2/2 + pi/3) + cos(r + 3*u2/2 + pi/3)` is `2 cos(r + u2/2 + pi/3)
 /// cos(u2)`).
-pub(super) fn joined_form(e: &Expr, equal: impl Fn(&Expr) -> bool) -> Option<Expr> {
+pub(super) fn joined_form(
+    e: &Expr,
+    outermost: bool,
+    equal: impl Fn(&Expr) -> bool,
+) -> Option<Expr> {
     let mut cands: Vec<Expr> = Vec::new();
-    for j in pairs_joined(e) {
+    for j in pairs_joined(e, outermost) {
         cands.extend(common_factor(&j));
         cands.push(j);
     }
-    // The sums inside products joined too.
-    if let Some(n) = nested_joined(e) {
-        for j in pairs_joined(&n) {
+    // The sums inside products joined too, and cosines and sines of one angle (once, for the
+    // form of the outermost search, whose tree holds every sum of the nested ones).
+    if let Some(n) = outermost.then(|| nested_joined(e)).flatten() {
+        for j in pairs_joined(&n, true) {
             cands.extend(common_factor(&j));
             cands.push(j);
         }
@@ -877,7 +883,7 @@ pub(super) fn joined_form(e: &Expr, equal: impl Fn(&Expr) -> bool) -> Option<Exp
 /// The sum `e` (or a number times it) with pairs of its summands joined ([`joined`]) while
 /// that makes it no longer by [`choice_key`], the cheapest join first; each sum reached, not
 /// yet checked (`alt::best_alternative` checks them exactly). Empty when no pair joins.
-fn pairs_joined(e: &Expr) -> Vec<Expr> {
+fn pairs_joined(e: &Expr, harmonic: bool) -> Vec<Expr> {
     let (front, sum) = match e {
         Expr::Add(v) => (None, v),
         Expr::Mul(v) if v.len() == 2 => match (&v[0], &v[1]) {
@@ -889,8 +895,8 @@ fn pairs_joined(e: &Expr) -> Vec<Expr> {
     if sum.len() < 2 || sum.len() > MAX_PAIR_SUMMANDS {
         return Vec::new();
     }
-    // Harmonic pairs looked for only when the sum has one to begin with.
-    let harmonic = any_harmonic_pair(sum);
+    // Harmonic pairs looked for only when asked and the sum has one to begin with.
+    let harmonic = harmonic && any_harmonic_pair(sum);
     if !(harmonic || any_pair_may_join(sum)) || charge((sum.len() * sum.len()) as u64).is_err() {
         return Vec::new();
     }

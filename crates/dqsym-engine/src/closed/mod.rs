@@ -260,7 +260,7 @@ pub struct Prepared(
 /// and factored like `cos(q2)`), the shorter of the two kept (`alt::shorter`; the shifted
 /// one on ties).
 pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
-    let _memo = Memo::open();
+    let memo = Memo::open();
     let (e, prepared) = prepared_shifted(x);
     let Ok(found) = e else {
         return (e, prepared);
@@ -276,7 +276,7 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
         let Ok(c) = prepared_shifted(&l.scalar).0.map(|c| l.substitute(c)) else {
             continue;
         };
-        let c = joined(c, x);
+        let c = joined(c, x, memo.0);
         if alt::shorter(&c, best.as_ref().unwrap_or(&found)) && verified(&c, x) {
             best = Some(c);
         }
@@ -288,7 +288,7 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
             .0
             .ok()
             .and_then(|c| a.substitute(c))
-            .map(|c| joined(c, x))
+            .map(|c| joined(c, x, memo.0))
         {
             if alt::shorter(&c, best.as_ref().unwrap_or(&found)) && verified(&c, x) {
                 best = Some(c);
@@ -297,7 +297,7 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
     }
     // Pairs of summands joined in the angles shown (`extra::joined_form`).
     if best.is_none() {
-        best = extra::joined_form(&found, |c| verified(c, x));
+        best = extra::joined_form(&found, memo.0, |c| verified(c, x));
     }
     match best {
         Some(c) => (Ok(c.symbols_leading()), Prepared(None, None)),
@@ -309,8 +309,8 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
 /// (`extra::joined_form`): the angles that constants lifted out or radicals made angles again
 /// (`coefs.rs`) are first seen in the form shown (`cos(r - u2/2 + pi/3) + cos(r + 3*u2/2 +
 /// pi/3)` is `2 cos(r + u2/2 + pi/3) cos(u2)`).
-fn joined(e: Expr, x: &Scalar) -> Expr {
-    extra::joined_form(&e, |c| verified(c, x)).unwrap_or(e)
+fn joined(e: Expr, x: &Scalar, outermost: bool) -> Expr {
+    extra::joined_form(&e, outermost, |c| verified(c, x)).unwrap_or(e)
 }
 
 /// [`closed_form_prepared`] without the constants lifted.
