@@ -716,7 +716,7 @@ fn harmonic_joined(a: &Summand, ca: &[Call], b: &Summand, cb: &[Call]) -> Vec<Su
 }
 
 /// A product's factors flattened: products in it spread, signs taken out, numbers multiplied
-/// into one number first.
+/// into one number first, square roots into one.
 fn tidy_product(kids: Vec<Expr>) -> Expr {
     fn push(e: Expr, q: &mut Rat, negated: &mut bool, fs: &mut Vec<Expr>) {
         match e {
@@ -732,6 +732,29 @@ fn tidy_product(kids: Vec<Expr>) -> Expr {
     let (mut q, mut negated, mut fs) = (Rat::one(), false, Vec::new());
     kids.into_iter()
         .for_each(|f| push(f, &mut q, &mut negated, &mut fs));
+    // Square roots multiplied into one (`sqrt(2) sqrt(2)` is 2), first among the factors.
+    if fs.iter().filter(|f| matches!(f, Expr::Sqrt(_))).count() >= 2 {
+        let mut n = 1u64;
+        let mut overflow = false;
+        for f in &fs {
+            if let Expr::Sqrt(m) = f {
+                n = n.checked_mul(*m).unwrap_or_else(|| {
+                    overflow = true;
+                    1
+                });
+            }
+        }
+        if let Some((g, m)) = (!overflow)
+            .then(|| sqrt_parts(&Rat::from_integer(n.into())))
+            .flatten()
+        {
+            fs.retain(|f| !matches!(f, Expr::Sqrt(_)));
+            q *= g;
+            if m > 1 {
+                fs.insert(0, Expr::Sqrt(m));
+            }
+        }
+    }
     let mut v = Vec::with_capacity(fs.len() + 1);
     if !q.is_one() {
         v.push(Expr::Num(q));
