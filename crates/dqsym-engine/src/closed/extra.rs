@@ -793,6 +793,11 @@ fn gcd_out(v: Vec<Expr>) -> Expr {
     Expr::Mul(vec![Expr::Num(g), Expr::Add(terms)])
 }
 
+/// The most summands a sum inside a product may have to be joined by [`nested_joined`]: the
+/// pairs of a short factor such as `sin(2 r + w) + sin(w)`; an fk entry's long sums inside
+/// products (whose pairs rarely join) are left as they are.
+const MAX_NESTED_SUMMANDS: usize = 4;
+
 /// `e` with the sums inside it (below the top: factors of products) joined as
 /// [`pairs_joined`] joins a sum (also a cosine and a sine of one angle as one sinusoid), the
 /// products holding them flattened and the numbers' common factor of a sum taken out
@@ -838,10 +843,13 @@ fn nested_joined(e: &Expr) -> Option<Expr> {
                     return kids.map(Expr::Add);
                 }
                 match kids {
-                    None if !has_call(v) => None,
+                    None if v.len() > MAX_NESTED_SUMMANDS || !has_call(v) => None,
                     None => pairs_joined(e, true).pop(),
                     Some(k) => {
                         let sum = gcd_out(k);
+                        if v.len() > MAX_NESTED_SUMMANDS {
+                            return Some(sum);
+                        }
                         pairs_joined(&sum, true).pop().or(Some(sum))
                     }
                 }
