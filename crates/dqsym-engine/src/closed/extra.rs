@@ -626,7 +626,7 @@ fn sqrt_parts(r: &Rat) -> Option<(Rat, u64)> {
     let (mut g, mut m, mut p) = (1u64, 1u64, 2u64);
     while p * p <= x {
         let mut e = 0;
-        while x % p == 0 {
+        while x.is_multiple_of(p) {
             x /= p;
             e += 1;
         }
@@ -857,7 +857,7 @@ fn nested_joined(e: &Expr) -> Option<Expr> {
             Expr::Mul(v) => kids(v).map(tidy_product),
             Expr::Neg(x) => go(x, top).map(neg),
             Expr::Pow(x, n) => go(x, false).map(|y| match y {
-                Expr::Neg(y) if n % 2 == 0 => Expr::Pow(y, *n),
+                Expr::Neg(y) if (*n).is_multiple_of(2) => Expr::Pow(y, *n),
                 Expr::Neg(y) => neg(Expr::Pow(y, *n)),
                 y => Expr::Pow(Box::new(y), *n),
             }),
