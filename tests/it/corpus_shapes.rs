@@ -1,7 +1,8 @@
 //! Closed forms of the shapes of issue 33's held-out corpus (`scripts/heldout_corpus.py`),
 //! written here with other symbols, offsets and coefficients than any seed of it: squares of
-//! sums (`closed/square.rs`), a factor shared by the summands of a sum of products, and a sum
-//! split by its angles' symbols (`closed/extra.rs`). Every case: the input is expanded into its
+//! sums (`closed/square.rs`), a factor shared by the summands of a sum of products, a sum
+//! split by its angles' symbols, and pairs of summands joined, also inside products
+//! (`closed/extra.rs`). Every case: the input is expanded into its
 //! canonical (Fourier) form, the closed form found from that equals it exactly, its f64 value
 //! at random points equals a formula written here (plain `f64::cos` and `f64::sin`), and it
 //! has the short shape (a square, a shared factor taken out) as printed.
@@ -128,4 +129,48 @@ fn minus_a_number_times_a_square_of_a_sine_is_kept_a_square() {
     check("-3*sin(a)^2/4", "-3/4 sin(a)^2", |v| {
         -0.75 * v("a").sin().powi(2)
     });
+}
+
+#[test]
+fn two_sines_inside_a_product_are_joined_into_a_product() {
+    // sin(c) sin(a + b) cos(a) expands to sin(c) (sin(2 a + b) + sin(b))/2: the sum inside
+    // the product is joined again (sum to product), the numbers' factor 2 taken out.
+    check(
+        "sin(c)*sin(a + b)*cos(a)/2 + sin(d/2)*cos(2*a + e)/2",
+        "1/2 (sin(c) sin(a + b) cos(a) + cos(2*a + e) sin(d/2))",
+        |v| {
+            0.5 * v("c").sin() * (v("a") + v("b")).sin() * v("a").cos()
+                + 0.5 * (v("d") / 2.0).sin() * (2.0 * v("a") + v("e")).cos()
+        },
+    );
+}
+
+#[test]
+fn two_cosines_inside_a_product_are_joined_into_two_sines() {
+    // cos(A) - cos(B) = -2 sin((A + B)/2) sin((A - B)/2) inside the product with sin(a/3).
+    check(
+        "-sin(a/3)*sin(b + c)*sin(c - d) - 2*sin(d)*sin(e/2)",
+        "-sin(a/3) sin(b + c) sin(c - d) - 2 sin(d) sin(e/2)",
+        |v| {
+            -(v("a") / 3.0).sin() * (v("b") + v("c")).sin() * (v("c") - v("d")).sin()
+                - 2.0 * v("d").sin() * (v("e") / 2.0).sin()
+        },
+    );
+}
+
+#[test]
+fn a_cosine_and_a_sine_of_one_angle_inside_a_product_are_one_sinusoid() {
+    // sin(a + pi/6) is (sqrt(3) sin(a) + cos(a))/2 in the canonical form: the harmonic form
+    // inside the product joins them again (2 cos(a - pi/3)); sqrt(2) (cos(a) - sin(a)) is
+    // kept, as short as sqrt(2) cos(a + pi/4) counted alone.
+    check(
+        "m*(sin(c)*sin(b)*sin(a + pi/6) + sin(2*c + 2*b)*cos(a + pi/4))",
+        "1/2 m (2 sin(b) sin(c) cos(a - pi/3) + sqrt(2) sin(2*b + 2*c) (cos(a) - sin(a)))",
+        |v| {
+            v("m")
+                * (v("c").sin() * v("b").sin() * (v("a") + std::f64::consts::FRAC_PI_6).sin()
+                    + (2.0 * v("c") + 2.0 * v("b")).sin()
+                        * (v("a") + std::f64::consts::FRAC_PI_4).cos())
+        },
+    );
 }

@@ -6,7 +6,9 @@
 //! products sharing a factor with that factor taken out (`k2 cos(w/2 - pi/3) sin(w) -
 //! k2 sin(p/2 + u2) cos(r)` is `k2 (cos(w/2 - pi/3) sin(w) - sin(p/2 + u2) cos(r))`: the parts
 //! of `trigfac.rs`'s split sums and the constant products of `cprod.rs` are found apart and
-//! joined by an addition, never factored).
+//! joined by an addition, never factored); pairs of summands joined (sum to product, `1 -
+//! cos(2 w)` as a square, a cosine and a sine of one angle as one sinusoid), also in the sums
+//! inside the products of the form shown (`joined_form`).
 
 use super::alt::{choice_key, full_cost, mul, neg, num};
 use super::expr::{Angle, Expr};
@@ -24,7 +26,7 @@ pub(super) fn candidates(t: &[Term], than: &Expr, others: &[Expr]) -> Vec<Expr> 
     let mut out = candidates_up_to(t, full_cost(than).0, others);
     if !out.is_empty() || super::trigfac::may_nest() {
         out.extend(common_factor(than));
-        for e in pairs_joined(than) {
+        for e in pairs_joined(than, false) {
             out.extend(common_factor(&e));
             out.push(e);
         }
@@ -540,16 +542,369 @@ fn any_pair_may_join(sum: &[Expr]) -> bool {
     false
 }
 
+/// Whether two of the summands have the same factors but a cosine in one and a sine of the
+/// same angle in the other, numbers and square roots aside (what [`harmonic_joined`] needs).
+fn any_harmonic_pair(sum: &[Expr]) -> bool {
+    fn read(e: &Expr) -> Vec<&Expr> {
+        let e = match e {
+            Expr::Neg(x) => &**x,
+            e => e,
+        };
+        let fs: Vec<&Expr> = match e {
+            Expr::Mul(v) => v.iter().collect(),
+            e => vec![e],
+        };
+        fs.into_iter()
+            .filter(|f| !matches!(f, Expr::Num(_) | Expr::Sqrt(_)))
+            .collect()
+    }
+    // First only the calls: most sums have no cosine and sine of one angle in two summands.
+    let mut calls: Vec<(usize, &Trig, &Angle)> = Vec::new();
+    for (i, e) in sum.iter().enumerate() {
+        let e = match e {
+            Expr::Neg(x) => &**x,
+            e => e,
+        };
+        let fs = match e {
+            Expr::Mul(v) => v.as_slice(),
+            e => std::slice::from_ref(e),
+        };
+        for f in fs {
+            if let Expr::Trig { f, angle } = f {
+                calls.push((i, f, angle));
+            }
+        }
+    }
+    let paired = calls.iter().enumerate().any(|(k, (i, f, a))| {
+        calls[k + 1..]
+            .iter()
+            .any(|(j, g, b)| i != j && f != g && a == b)
+    });
+    if !paired {
+        return false;
+    }
+    let read: Vec<Vec<&Expr>> = sum.iter().map(read).collect();
+    for i in 0..read.len() {
+        for j in i + 1..read.len() {
+            let (a, b) = (&read[i], &read[j]);
+            if a.len() != b.len() {
+                continue;
+            }
+            for (k, f) in a.iter().enumerate() {
+                let Expr::Trig { f: fa, angle: aa } = f else {
+                    continue;
+                };
+                for (l, g) in b.iter().enumerate() {
+                    let Expr::Trig { f: fb, angle: ab } = g else {
+                        continue;
+                    };
+                    if fa == fb || aa != ab {
+                        continue;
+                    }
+                    let (mut ra, mut rb) = (a.clone(), b.clone());
+                    ra.remove(k);
+                    rb.remove(l);
+                    if ra == rb {
+                        return true;
+                    }
+                }
+            }
+        }
+    }
+    false
+}
+
+/// `sqrt(r)` as `g sqrt(m)`, `g` rational and `m` square-free; `None` when `r` is negative,
+/// zero or too large to factor by trial division.
+fn sqrt_parts(r: &Rat) -> Option<(Rat, u64)> {
+    use num_traits::ToPrimitive;
+    let (n, d) = (r.numer().to_u64()?, r.denom().to_u64()?);
+    let mut x = n.checked_mul(d)?;
+    if x == 0 || x > 1 << 40 {
+        return None;
+    }
+    let (mut g, mut m, mut p) = (1u64, 1u64, 2u64);
+    while p * p <= x {
+        let mut e = 0;
+        while x.is_multiple_of(p) {
+            x /= p;
+            e += 1;
+        }
+        g *= p.pow(e / 2);
+        if e % 2 == 1 {
+            m *= p;
+        }
+        p += 1;
+    }
+    Some((Rat::new(g.into(), d.into()), m * x))
+}
+
+/// Two summands with the same factors, numbers and square roots aside, but `cos A` in one and
+/// `sin A` in the other joined as one sinusoid (the harmonic form, `c cos A + s sin A =
+/// R cos(A - phi)`), when `phi` is a multiple of pi/12 (found in floats; the result is
+/// checked exactly by the caller): `cos(u1) + sqrt(3) sin(u1) = 2 cos(u1 - pi/3)`. Each of
+/// the four ways to write the sinusoid (`cos`, `sin`, either negated) is offered.
+fn harmonic_joined(a: &Summand, ca: &[Call], b: &Summand, cb: &[Call]) -> Vec<Summand> {
+    use num_traits::ToPrimitive;
+    let split = |rest: &[Expr]| -> Option<(Vec<Expr>, u64)> {
+        let mut m = 1u64;
+        let mut v = Vec::with_capacity(rest.len());
+        for f in rest {
+            match f {
+                Expr::Sqrt(n) => m = m.checked_mul(*n)?,
+                f => v.push(f.clone()),
+            }
+        }
+        Some((v, m))
+    };
+    let value = |s: &Summand, m: u64| {
+        let v = s.q.to_f64().unwrap_or(f64::NAN) * (m as f64).sqrt();
+        if s.negated {
+            -v
+        } else {
+            v
+        }
+    };
+    let square = |s: &Summand, m: u64| &s.q * &s.q * Rat::from_integer(m.into());
+    let mut out = Vec::new();
+    for (ra, fa, aa) in ca {
+        for (rb, fb, ab) in cb {
+            if fa == fb || aa != ab || aa.is_pi_multiple() {
+                continue;
+            }
+            let (Some((ra, ma)), Some((rb, mb))) = (split(ra), split(rb)) else {
+                continue;
+            };
+            if ra != rb {
+                continue;
+            }
+            let (va, vb) = (value(a, ma), value(b, mb));
+            let (c, s) = if fa.is_sin() { (vb, va) } else { (va, vb) };
+            // c cos A + s sin A = R cos(A - phi), phi = atan2(s, c).
+            let k = s.atan2(c) * 12.0 / std::f64::consts::PI;
+            let kr = k.round();
+            if (k - kr).abs() >= 1e-9 {
+                continue;
+            }
+            let Some((g, m)) = sqrt_parts(&(square(a, ma) + square(b, mb))) else {
+                continue;
+            };
+            let o = aa.pi - Small::new(kr as i64, 12);
+            // cos y = sin(y + pi/2) = -cos(y + pi) = -sin(y + 3 pi/2).
+            for (sin, quarters, negated) in [
+                (false, 0, false),
+                (true, 1, false),
+                (false, 2, true),
+                (true, 3, true),
+            ] {
+                let angle = Angle::new(aa.terms.clone(), aa.constant, o + Small::new(quarters, 2));
+                let (n, e) = sinusoid(Trig::of(sin), angle);
+                let mut factors = ra.clone();
+                if m > 1 {
+                    factors.push(Expr::Sqrt(m));
+                }
+                factors.push(e);
+                out.push(Summand {
+                    negated: negated ^ n,
+                    q: g.clone(),
+                    factors,
+                });
+            }
+        }
+    }
+    out
+}
+
+/// A product's factors flattened: products in it spread, signs taken out, numbers multiplied
+/// into one number first, square roots into one.
+fn tidy_product(kids: Vec<Expr>) -> Expr {
+    fn push(e: Expr, q: &mut Rat, negated: &mut bool, fs: &mut Vec<Expr>) {
+        match e {
+            Expr::Neg(x) => {
+                *negated ^= true;
+                push(*x, q, negated, fs);
+            }
+            Expr::Mul(v) => v.into_iter().for_each(|f| push(f, q, negated, fs)),
+            Expr::Num(n) => *q *= n,
+            f => fs.push(f),
+        }
+    }
+    let (mut q, mut negated, mut fs) = (Rat::one(), false, Vec::new());
+    kids.into_iter()
+        .for_each(|f| push(f, &mut q, &mut negated, &mut fs));
+    // Square roots multiplied into one (`sqrt(2) sqrt(2)` is 2), first among the factors.
+    if fs.iter().filter(|f| matches!(f, Expr::Sqrt(_))).count() >= 2 {
+        let mut n = 1u64;
+        let mut overflow = false;
+        for f in &fs {
+            if let Expr::Sqrt(m) = f {
+                n = n.checked_mul(*m).unwrap_or_else(|| {
+                    overflow = true;
+                    1
+                });
+            }
+        }
+        if let Some((g, m)) = (!overflow)
+            .then(|| sqrt_parts(&Rat::from_integer(n.into())))
+            .flatten()
+        {
+            fs.retain(|f| !matches!(f, Expr::Sqrt(_)));
+            q *= g;
+            if m > 1 {
+                fs.insert(0, Expr::Sqrt(m));
+            }
+        }
+    }
+    let mut v = Vec::with_capacity(fs.len() + 1);
+    if !q.is_one() {
+        v.push(Expr::Num(q));
+    }
+    v.extend(fs);
+    let e = match v.len() {
+        0 => Expr::Num(Rat::one()),
+        1 => v.pop().expect("one factor"),
+        _ => Expr::Mul(v),
+    };
+    if negated {
+        neg(e)
+    } else {
+        e
+    }
+}
+
+/// The numbers' common factor of a sum's summands taken out (`2 a + 4 b` is `2 (a + 2 b)`).
+fn gcd_out(v: Vec<Expr>) -> Expr {
+    let parts: Vec<Summand> = v.iter().map(Summand::of).collect();
+    let (n, d) = parts.iter().fold(
+        (parts[0].q.numer().clone(), parts[0].q.denom().clone()),
+        |(n, d), s| (n.gcd(s.q.numer()), d.lcm(s.q.denom())),
+    );
+    let g = Rat::new(n, d);
+    if g.is_one() {
+        return Expr::Add(v);
+    }
+    let terms: Vec<Expr> = parts
+        .into_iter()
+        .map(|mut s| {
+            s.q = &s.q / &g;
+            s.expr()
+        })
+        .collect();
+    Expr::Mul(vec![Expr::Num(g), Expr::Add(terms)])
+}
+
+/// The most summands a sum inside a product may have to be joined by [`nested_joined`]: the
+/// pairs of a short factor such as `sin(2 r + w) + sin(w)`; an fk entry's long sums inside
+/// products (whose pairs rarely join) are left as they are.
+const MAX_NESTED_SUMMANDS: usize = 4;
+
+/// `e` with the sums inside it (below the top: factors of products) joined as
+/// [`pairs_joined`] joins a sum (also a cosine and a sine of one angle as one sinusoid), the
+/// products holding them flattened and the numbers' common factor of a sum taken out
+/// (`sin(p) (sin(2 r + w) + sin(w))` is `2 sin(p) sin(r + w) cos(r)`); `None` when nothing
+/// changes. Not checked.
+fn nested_joined(e: &Expr) -> Option<Expr> {
+    /// The terms or factors `v` with those that change replaced; `None` (and nothing copied)
+    /// when none does.
+    fn kids(v: &[Expr]) -> Option<Vec<Expr>> {
+        let (i, y) = v
+            .iter()
+            .enumerate()
+            .find_map(|(i, x)| go(x, false).map(|y| (i, y)))?;
+        let mut out = Vec::with_capacity(v.len());
+        out.extend_from_slice(&v[..i]);
+        out.push(y);
+        out.extend(
+            v[i + 1..]
+                .iter()
+                .map(|x| go(x, false).unwrap_or_else(|| x.clone())),
+        );
+        Some(out)
+    }
+    /// Whether a summand has a call among its factors (what every join needs).
+    fn has_call(v: &[Expr]) -> bool {
+        let call = |f: &Expr| matches!(f, Expr::Trig { .. });
+        v.iter().any(|t| {
+            let t = match t {
+                Expr::Neg(x) => &**x,
+                t => t,
+            };
+            match t {
+                Expr::Mul(fs) => fs.iter().any(call),
+                t => call(t),
+            }
+        })
+    }
+    fn go(e: &Expr, top: bool) -> Option<Expr> {
+        match e {
+            Expr::Add(v) => {
+                let kids = kids(v);
+                if top || v.len() < 2 {
+                    return kids.map(Expr::Add);
+                }
+                match kids {
+                    None if v.len() > MAX_NESTED_SUMMANDS || !has_call(v) => None,
+                    None => pairs_joined(e, true).pop(),
+                    Some(k) => {
+                        let sum = gcd_out(k);
+                        if v.len() > MAX_NESTED_SUMMANDS {
+                            return Some(sum);
+                        }
+                        pairs_joined(&sum, true).pop().or(Some(sum))
+                    }
+                }
+            }
+            Expr::Mul(v) => kids(v).map(tidy_product),
+            Expr::Neg(x) => go(x, top).map(neg),
+            Expr::Pow(x, n) => go(x, false).map(|y| match y {
+                Expr::Neg(y) if (*n).is_multiple_of(2) => Expr::Pow(y, *n),
+                Expr::Neg(y) => neg(Expr::Pow(y, *n)),
+                y => Expr::Pow(Box::new(y), *n),
+            }),
+            _ => None,
+        }
+    }
+    /// Whether a call's angle has a symbol (the constant products of `cprod.rs` are found as
+    /// products already, and are left alone).
+    fn symbolic_call(e: &Expr) -> bool {
+        match e {
+            Expr::Trig { angle, .. } => !angle.terms.is_empty(),
+            Expr::Add(v) | Expr::Mul(v) => v.iter().any(symbolic_call),
+            Expr::Neg(x) | Expr::Pow(x, _) => symbolic_call(x),
+            _ => false,
+        }
+    }
+    if !symbolic_call(e) {
+        return None;
+    }
+    go(e, true)
+}
+
 /// The first of the sums of [`pairs_joined`] for `e` (each also with its common factors
-/// taken out) shorter than `e` by `alt::shorter` for which `equal` holds: for the final form
+/// taken out; for the `outermost` search also with a cosine and a sine of one angle joined
+/// and the sums inside its products joined, [`nested_joined`]) shorter than `e` by `alt::shorter` for which `equal` holds: for the final form
 /// of a scalar, whose angles at multiples of pi/12 (`coefs::phase_angles`) the candidates
 /// never see (`cos(r - u2/2 + pi/3) + cos(r + 3*u2/2 + pi/3)` is `2 cos(r + u2/2 + pi/3)
 /// cos(u2)`).
-pub(super) fn joined_form(e: &Expr, equal: impl Fn(&Expr) -> bool) -> Option<Expr> {
+pub(super) fn joined_form(
+    e: &Expr,
+    outermost: bool,
+    equal: impl Fn(&Expr) -> bool,
+) -> Option<Expr> {
     let mut cands: Vec<Expr> = Vec::new();
-    for j in pairs_joined(e) {
+    for j in pairs_joined(e, outermost) {
         cands.extend(common_factor(&j));
         cands.push(j);
+    }
+    // The sums inside products joined too, and cosines and sines of one angle (once, for the
+    // form of the outermost search, whose tree holds every sum of the nested ones).
+    if let Some(n) = outermost.then(|| nested_joined(e)).flatten() {
+        for j in pairs_joined(&n, true) {
+            cands.extend(common_factor(&j));
+            cands.push(j);
+        }
+        cands.extend(common_factor(&n));
+        cands.push(n);
     }
     cands.retain(|c| super::alt::shorter(c, e));
     cands.sort_by_cached_key(choice_key);
@@ -559,7 +914,7 @@ pub(super) fn joined_form(e: &Expr, equal: impl Fn(&Expr) -> bool) -> Option<Exp
 /// The sum `e` (or a number times it) with pairs of its summands joined ([`joined`]) while
 /// that makes it no longer by [`choice_key`], the cheapest join first; each sum reached, not
 /// yet checked (`alt::best_alternative` checks them exactly). Empty when no pair joins.
-fn pairs_joined(e: &Expr) -> Vec<Expr> {
+fn pairs_joined(e: &Expr, harmonic: bool) -> Vec<Expr> {
     let (front, sum) = match e {
         Expr::Add(v) => (None, v),
         Expr::Mul(v) if v.len() == 2 => match (&v[0], &v[1]) {
@@ -571,7 +926,9 @@ fn pairs_joined(e: &Expr) -> Vec<Expr> {
     if sum.len() < 2 || sum.len() > MAX_PAIR_SUMMANDS {
         return Vec::new();
     }
-    if !any_pair_may_join(sum) || charge((sum.len() * sum.len()) as u64).is_err() {
+    // Harmonic pairs looked for only when asked and the sum has one to begin with.
+    let harmonic = harmonic && any_harmonic_pair(sum);
+    if !(harmonic || any_pair_may_join(sum)) || charge((sum.len() * sum.len()) as u64).is_err() {
         return Vec::new();
     }
     let whole = |v: &[Summand]| -> Expr {
@@ -623,10 +980,15 @@ fn pairs_joined(e: &Expr) -> Vec<Expr> {
         let mut pick: Option<(usize, usize, usize, Summand)> = None;
         for i in 0..cur.len() {
             for j in i + 1..cur.len() {
-                if cur[i].q != cur[j].q {
-                    continue;
+                let mut joins = if cur[i].q == cur[j].q {
+                    joined(&cur[i], &calls[i], &cur[j], &calls[j])
+                } else {
+                    Vec::new()
+                };
+                if harmonic {
+                    joins.extend(harmonic_joined(&cur[i], &calls[i], &cur[j], &calls[j]));
                 }
-                for s in joined(&cur[i], &calls[i], &cur[j], &calls[j]) {
+                for s in joins {
                     // The saving: what the two summands and their addition cost, less the join.
                     let Some(d) = (costs[i] + costs[j] + 1).checked_sub(cost(&s)) else {
                         continue;
@@ -680,5 +1042,16 @@ mod tests {
         assert_eq!(c.to_scalar(), e.to_scalar());
         assert!(full_cost(&c) < full_cost(&e));
         assert!(common_factor(&Expr::Add(vec![a, b])).is_none());
+    }
+
+    #[test]
+    fn a_square_root_of_a_rational_is_split_into_a_rational_and_a_square_free_root() {
+        let r = |n: i64, d: i64| Rat::new(n.into(), d.into());
+        // sqrt(8/3) = sqrt(24)/3 = 2 sqrt(6)/3; sqrt(4) = 2; sqrt(1/2) = sqrt(2)/2.
+        assert_eq!(sqrt_parts(&r(8, 3)), Some((r(2, 3), 6)));
+        assert_eq!(sqrt_parts(&r(4, 1)), Some((r(2, 1), 1)));
+        assert_eq!(sqrt_parts(&r(1, 2)), Some((r(1, 2), 2)));
+        assert_eq!(sqrt_parts(&r(0, 1)), None);
+        assert_eq!(sqrt_parts(&r(-2, 1)), None);
     }
 }

@@ -78,7 +78,10 @@
 //! numbers and factors but one call joined (sum to product, `cos A + cos B = 2 cos((A + B)/2)
 //! cos((A - B)/2)`; a number beside its cosine as a square, `1 - cos(2 w) = 2 sin(w)^2`),
 //! greedily while no longer, also on the form shown (`extra::joined_form`: the angles made
-//! again from radicals by `coefs.rs` are first seen there); each checked exactly; constant angles are shown with a positive sign; an angle's
+//! again from radicals by `coefs.rs` are first seen there), there also the sums inside its
+//! products (`sin(c) (sin(2 a + b) + sin(b))` as `2 sin(c) sin(a + b) cos(a)`), and a cosine
+//! and a sine of one angle with the same other factors as one sinusoid when its offset is a
+//! multiple of pi/12 (`cos(a) + sqrt(3) sin(a) = 2 sin(a + pi/6)`); each checked exactly; constant angles are shown with a positive sign; an angle's
 //! symbols print first, then its rational constant and its multiple of pi (`t/2 - 1/3`,
 //! `x - pi/7`), and an angle with a rational constant is shown with its first symbol's coefficient
 //! positive (`Expr::symbols_leading`: `sin(1/3 - t/2)` prints `-sin(t/2 - 1/3)`); equal symbols and
@@ -272,7 +275,7 @@ pub struct Prepared(
 /// and factored like `cos(q2)`), the shorter of the two kept (`alt::shorter`; the shifted
 /// one on ties).
 pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
-    let _memo = Memo::open();
+    let memo = Memo::open();
     let (e, prepared) = prepared_shifted(x);
     let Ok(found) = e else {
         return (e, prepared);
@@ -288,7 +291,7 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
         let Ok(c) = prepared_shifted(&l.scalar).0.map(|c| l.substitute(c)) else {
             continue;
         };
-        let c = joined(c, x);
+        let c = joined(c, x, memo.0);
         if alt::shorter(&c, best.as_ref().unwrap_or(&found)) && verified(&c, x) {
             best = Some(c);
         }
@@ -300,7 +303,7 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
             .0
             .ok()
             .and_then(|c| a.substitute(c))
-            .map(|c| joined(c, x))
+            .map(|c| joined(c, x, memo.0))
         {
             if alt::shorter(&c, best.as_ref().unwrap_or(&found)) && verified(&c, x) {
                 best = Some(c);
@@ -309,7 +312,7 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
     }
     // Pairs of summands joined in the angles shown (`extra::joined_form`).
     if best.is_none() {
-        best = extra::joined_form(&found, |c| verified(c, x));
+        best = extra::joined_form(&found, memo.0, |c| verified(c, x));
     }
     match best {
         Some(c) => (Ok(c.symbols_leading()), Prepared(None, None)),
@@ -321,8 +324,8 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
 /// (`extra::joined_form`): the angles that constants lifted out or radicals made angles again
 /// (`coefs.rs`) are first seen in the form shown (`cos(r - u2/2 + pi/3) + cos(r + 3*u2/2 +
 /// pi/3)` is `2 cos(r + u2/2 + pi/3) cos(u2)`).
-fn joined(e: Expr, x: &Scalar) -> Expr {
-    extra::joined_form(&e, |c| verified(c, x)).unwrap_or(e)
+fn joined(e: Expr, x: &Scalar, outermost: bool) -> Expr {
+    extra::joined_form(&e, outermost, |c| verified(c, x)).unwrap_or(e)
 }
 
 /// [`closed_form_prepared`] without the constants lifted.
