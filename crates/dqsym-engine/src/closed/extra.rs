@@ -482,18 +482,24 @@ fn joined(a: &Summand, ca: &[Call], b: &Summand, cb: &[Call]) -> Vec<Summand> {
     out
 }
 
+/// The factors of a summand, its sign aside: `-2 cos(a) b` is `[2, cos(a), b]`, a summand
+/// that is no product is its own one factor.
+fn summand_factors(e: &Expr) -> &[Expr] {
+    let e = match e {
+        Expr::Neg(x) => &**x,
+        e => e,
+    };
+    match e {
+        Expr::Mul(v) => v.as_slice(),
+        e => std::slice::from_ref(e),
+    }
+}
+
 /// Whether two of the summands have the same numbers and the same factors but a call in one
 /// or each (what [`joined`] needs), read without copying them: most sums have no such pair.
 fn any_pair_may_join(sum: &[Expr]) -> bool {
     fn read(e: &Expr) -> (Rat, Vec<&Expr>) {
-        let e = match e {
-            Expr::Neg(x) => &**x,
-            e => e,
-        };
-        let fs: Vec<&Expr> = match e {
-            Expr::Mul(v) => v.iter().collect(),
-            e => vec![e],
-        };
+        let fs = summand_factors(e);
         let mut q = Rat::one();
         let mut rest = Vec::with_capacity(fs.len());
         for f in fs {
@@ -546,30 +552,15 @@ fn any_pair_may_join(sum: &[Expr]) -> bool {
 /// same angle in the other, numbers and square roots aside (what [`harmonic_joined`] needs).
 fn any_harmonic_pair(sum: &[Expr]) -> bool {
     fn read(e: &Expr) -> Vec<&Expr> {
-        let e = match e {
-            Expr::Neg(x) => &**x,
-            e => e,
-        };
-        let fs: Vec<&Expr> = match e {
-            Expr::Mul(v) => v.iter().collect(),
-            e => vec![e],
-        };
-        fs.into_iter()
+        summand_factors(e)
+            .iter()
             .filter(|f| !matches!(f, Expr::Num(_) | Expr::Sqrt(_)))
             .collect()
     }
     // First only the calls: most sums have no cosine and sine of one angle in two summands.
     let mut calls: Vec<(usize, &Trig, &Angle)> = Vec::new();
     for (i, e) in sum.iter().enumerate() {
-        let e = match e {
-            Expr::Neg(x) => &**x,
-            e => e,
-        };
-        let fs = match e {
-            Expr::Mul(v) => v.as_slice(),
-            e => std::slice::from_ref(e),
-        };
-        for f in fs {
+        for f in summand_factors(e) {
             if let Expr::Trig { f, angle } = f {
                 calls.push((i, f, angle));
             }
