@@ -17,6 +17,7 @@
 //! trigonometric atom and every coefficient an integer within 126 bits; otherwise the
 //! candidates are built as before.
 
+use super::run::{most_frequent, Buckets};
 use super::{multiplicity, quotient_syms, Factor, Search, BIG_WORD_UNITS, BRANCH, BRANCH_DEPTH};
 use crate::closed::expr::Cost;
 use crate::closed::mon::{FxMap, Mon};
@@ -492,25 +493,7 @@ impl Search<'_> {
         if ks.len() <= super::run::SHORT_RUN {
             return self.c_split_on(g0, d, f, depth);
         }
-        // Positions by bucket, each in increasing order, in one vector (a counting sort).
-        let of: Vec<u32> = mults
-            .iter()
-            .map(|m| ks.binary_search(m).unwrap_or(0) as u32)
-            .collect();
-        let mut start = vec![0usize; ks.len() + 1];
-        for &b in &of {
-            start[b as usize + 1] += 1;
-        }
-        for b in 0..ks.len() {
-            start[b + 1] += start[b];
-        }
-        let mut next = start.clone();
-        let mut order = vec![0u32; of.len()];
-        for (p, &b) in of.iter().enumerate() {
-            order[next[b as usize]] = p as u32;
-            next[b as usize] += 1;
-        }
-        let buckets = Buckets { order, start };
+        let buckets = Buckets::sorted(&mults, &ks);
         let levels = self.c_levels(g0, d, f, &ks, &buckets);
         if self.spent.is_some() {
             return self.c_plain_sum(g0, d);
@@ -632,38 +615,12 @@ impl Search<'_> {
                 l.all_neg &= above.all_neg;
                 l.all_pos &= above.all_pos;
             }
-            let f_count = above.size as u32;
-            let mut best: Option<(u32, usize)> = (f_count >= 2).then_some((f_count, fi));
-            for &k in &touched {
-                let c = counts[k];
-                if c >= 2 && best.is_none_or(|(bc, bk)| c > bc || (c == bc && k < bk)) {
-                    best = Some((c, k));
-                }
-            }
             work += 1 + touched.len() as u64;
-            l.best = best.map(|(_, k)| k);
+            l.best = most_frequent(above.size as u32, fi, &touched, &counts);
             out[b] = l;
         }
         self.charge_work(work);
         out
-    }
-}
-
-/// The positions of a run's first group by their power of `f` (`run::Buckets`): bucket `b`
-/// is `order[start[b]..start[b + 1]]`, in increasing order.
-struct Buckets {
-    order: Vec<u32>,
-    start: Vec<usize>,
-}
-
-impl Buckets {
-    fn get(&self, b: usize) -> &[u32] {
-        &self.order[self.start[b]..self.start[b + 1]]
-    }
-
-    /// Buckets `b` and up, one after another.
-    fn from(&self, b: usize) -> &[u32] {
-        &self.order[self.start[b]..]
     }
 }
 

@@ -188,26 +188,8 @@ impl Search<'_> {
         ks.push(0);
         ks.sort_unstable();
         ks.dedup();
-        // A counting sort by bucket (stable: positions stay in order within each), into one
-        // vector: a vector per bucket was an allocation per monomial in a run of single ones.
-        let of: Vec<usize> = mults
-            .iter()
-            .map(|m| ks.binary_search(m).unwrap_or(0))
-            .collect();
-        let mut start = vec![0usize; ks.len() + 1];
-        for &b in &of {
-            start[b + 1] += 1;
-        }
-        for b in 0..ks.len() {
-            start[b + 1] += start[b];
-        }
-        let mut next = start.clone();
-        let mut order = vec![0u32; of.len()];
-        for (p, &b) in of.iter().enumerate() {
-            order[next[b]] = p as u32;
-            next[b] += 1;
-        }
-        (ks, Buckets { order, start })
+        let buckets = Buckets::sorted(&mults, &ks);
+        (ks, buckets)
     }
 
     /// Each level's data from the buckets above it, top down (a last level past the buckets,
@@ -267,16 +249,8 @@ impl Search<'_> {
                 work += l.content.words() * super::BIG_WORD_UNITS;
             }
             // The most frequent factor; `f` itself is in the monomials of the levels above.
-            let f_count = above.size as u32;
-            let mut best: Option<(u32, usize)> = (f_count >= 2).then_some((f_count, fi));
-            for &k in &touched {
-                let c = counts[k];
-                if c >= 2 && best.is_none_or(|(bc, bk)| c > bc || (c == bc && k < bk)) {
-                    best = Some((c, k));
-                }
-            }
             work += 1 + touched.len() as u64;
-            l.best = best.map(|(_, k)| k);
+            l.best = most_frequent(above.size as u32, fi, &touched, &counts);
             out[b] = l;
         }
         self.charge_work(work);
@@ -284,20 +258,64 @@ impl Search<'_> {
     }
 }
 
+/// The factor that occurs in most monomials of a level, at least twice: `f` itself
+/// (`f_count` times, in the monomials of the levels above) or a factor `k` of `touched`
+/// (`counts[k]` times); on a tie the lower index.
+pub(super) fn most_frequent(
+    f_count: u32,
+    fi: usize,
+    touched: &[usize],
+    counts: &[u32],
+) -> Option<usize> {
+    let mut best: Option<(u32, usize)> = (f_count >= 2).then_some((f_count, fi));
+    for &k in touched {
+        let c = counts[k];
+        if c >= 2 && best.is_none_or(|(bc, bk)| c > bc || (c == bc && k < bk)) {
+            best = Some((c, k));
+        }
+    }
+    best.map(|(_, k)| k)
+}
+
 /// The positions of a run's first group by their power of `f`: bucket `b` (power `ks[b]`) is
 /// `order[start[b]..start[b + 1]]`, in increasing order.
-struct Buckets {
+pub(super) struct Buckets {
     order: Vec<u32>,
     start: Vec<usize>,
 }
 
 impl Buckets {
-    fn get(&self, b: usize) -> &[u32] {
+    /// Positions `0..mults.len()` by the bucket of their power `mults[p]` among `ks` (sorted,
+    /// distinct, holding every power): a counting sort, stable (positions stay in order within
+    /// each), into one vector: a vector per bucket was an allocation per monomial in a run of
+    /// single ones.
+    pub(super) fn sorted(mults: &[u32], ks: &[u32]) -> Buckets {
+        let of: Vec<usize> = mults
+            .iter()
+            .map(|m| ks.binary_search(m).unwrap_or(0))
+            .collect();
+        let mut start = vec![0usize; ks.len() + 1];
+        for &b in &of {
+            start[b + 1] += 1;
+        }
+        for b in 0..ks.len() {
+            start[b + 1] += start[b];
+        }
+        let mut next = start.clone();
+        let mut order = vec![0u32; of.len()];
+        for (p, &b) in of.iter().enumerate() {
+            order[next[b]] = p as u32;
+            next[b] += 1;
+        }
+        Buckets { order, start }
+    }
+
+    pub(super) fn get(&self, b: usize) -> &[u32] {
         &self.order[self.start[b]..self.start[b + 1]]
     }
 
     /// Buckets `b` and up, one after another.
-    fn from(&self, b: usize) -> &[u32] {
+    pub(super) fn from(&self, b: usize) -> &[u32] {
         &self.order[self.start[b]..]
     }
 }
