@@ -98,8 +98,8 @@ where
 /// Runs `own` on this thread while up to `k` helper threads each run `job` once, and returns
 /// once every helper that began `job` has ended it: the helpers are the process's persistent
 /// ones ([`Pool`]), started when first needed and kept, not threads spawned per call (each
-/// spawn mapped and touched a fresh 64 MB stack and a fresh allocator heap: the PUMA 560's
-/// `fk --jacobian` spawned four, 92 of its 726 page faults). A job no helper has begun when
+/// spawn mapped and touched a fresh 64 MB stack and set up a thread and its allocator heap:
+/// the PUMA 560's `fk --jacobian` spawned four per run). A job no helper has begun when
 /// `own` returns is taken back, never waited for, so a call never waits for a busy helper
 /// (a `par_map` inside a job, or helpers that could not be started, run sequentially here).
 /// A panic of `job` on a helper is resumed here once the others are done.
@@ -129,6 +129,10 @@ struct Retract {
 impl Drop for Retract {
     fn drop(&mut self) {
         self.pool.finish(self.call);
+        // The caller's own panic is the one that goes on; a helper's is dropped.
+        if std::thread::panicking() {
+            drop(self.pool.take_panic(self.call));
+        }
     }
 }
 
