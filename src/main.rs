@@ -148,13 +148,18 @@ fn read_input(path: &std::path::Path) -> Result<String, String> {
             path.display()
         )
     };
-    if file
+    // A regular file's length sizes the buffer: read in one call, not in reads of 32, 64,
+    // 128, ... bytes (seven for the PUMA 560's robot file).
+    let size = file
         .metadata()
-        .is_ok_and(|m| m.is_file() && m.len() > limit)
-    {
+        .ok()
+        .filter(std::fs::Metadata::is_file)
+        .map(|m| m.len());
+    if size.is_some_and(|n| n > limit) {
         return Err(too_large());
     }
-    let mut bytes = Vec::new();
+    let mut bytes =
+        Vec::with_capacity(size.map_or(0, |n| usize::try_from(n).unwrap_or(0).saturating_add(1)));
     file.take(limit.saturating_add(1))
         .read_to_end(&mut bytes)
         .map_err(cannot)?;

@@ -8,8 +8,9 @@
 
 use super::ctx::{charge, threads, Context};
 use super::ScalarError;
+use std::collections::VecDeque;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
+use std::sync::{Condvar, Mutex, MutexGuard, OnceLock};
 
 /// The stack of a worker: closed-form searches recurse over expression depth.
 const WORKER_STACK: usize = 64 << 20;
@@ -51,22 +52,7 @@ pub fn par_map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec
         }
         done.lock().unwrap_or_else(|e| e.into_inner()).extend(mine);
     };
-    std::thread::scope(|s| {
-        let helpers: Vec<_> = (1..n)
-            .filter_map(|_| {
-                std::thread::Builder::new()
-                    .stack_size(WORKER_STACK)
-                    .spawn_scoped(s, || work(true))
-                    .ok()
-            })
-            .collect();
-        work(false);
-        for h in helpers {
-            if let Err(p) = h.join() {
-                std::panic::resume_unwind(p);
-            }
-        }
-    });
+    with_helpers(n - 1, &|| work(true), || work(false));
     // The workers' work counts against this thread's budget; an overrun shows up in the
     // next operation here, as it would have sequentially.
     let _: Result<(), ScalarError> = charge(spent.into_inner() as u64);
@@ -76,7 +62,7 @@ pub fn par_map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec
 }
 
 /// Runs `a` on this thread and `b` on another one (under this thread's limits), and returns
-/// both results. Without a second thread (one allowed, or none to be had) both run here.
+/// both results. Without a second thread (one allowed, or none free) both run here.
 pub fn join<A, B>(a: impl FnOnce() -> A, b: impl FnOnce() -> B + Send) -> (A, B)
 where
     B: Send,
@@ -89,27 +75,183 @@ where
         return (ra, rb.unwrap_or_else(|| unreachable!("b runs once")));
     }
     let ctx = Context::current();
-    std::thread::scope(|s| {
-        let other = std::thread::Builder::new()
-            .stack_size(WORKER_STACK)
-            .spawn_scoped(s, || {
-                let entered = ctx.enter();
-                let r = take().map(|b| b());
-                (r, entered.work_used())
-            });
-        let ra = a();
-        let (rb, used) = match other {
-            Ok(h) => match h.join() {
-                Ok(x) => x,
-                Err(p) => std::panic::resume_unwind(p),
-            },
-            Err(_) => (None, 0),
-        };
-        let _ = charge(used);
-        // The worker did not start: `b` is still in its slot.
-        let rb = rb.or_else(|| take().map(|b| b()));
-        (ra, rb.unwrap_or_else(|| unreachable!("b runs once")))
-    })
+    let other: Mutex<Option<(B, u64)>> = Mutex::new(None);
+    let helper = || {
+        let entered = ctx.enter();
+        if let Some(b) = take() {
+            let rb = b();
+            *other.lock().unwrap_or_else(|e| e.into_inner()) = Some((rb, entered.work_used()));
+        }
+    };
+    let ra = with_helpers(1, &helper, a);
+    let rb = match other.into_inner().unwrap_or_else(|e| e.into_inner()) {
+        Some((rb, used)) => {
+            let _ = charge(used);
+            rb
+        }
+        // No helper took `b` before `a` was done: it is still in its slot.
+        None => take().map_or_else(|| unreachable!("b runs once"), |b| b()),
+    };
+    (ra, rb)
+}
+
+/// Runs `own` on this thread while up to `k` helper threads each run `job` once, and returns
+/// once every helper that began `job` has ended it: the helpers are the process's persistent
+/// ones ([`Pool`]), started when first needed and kept, not threads spawned per call (each
+/// spawn mapped and touched a fresh 64 MB stack and set up a thread and its allocator heap:
+/// the PUMA 560's `fk --jacobian` spawned four per run). A job no helper has begun when
+/// `own` returns is taken back, never waited for, so a call never waits for a busy helper
+/// (a `par_map` inside a job, or helpers that could not be started, run sequentially here).
+/// A panic of `job` on a helper is resumed here once the others are done.
+fn with_helpers<R>(k: usize, job: &(dyn Fn() + Sync), own: impl FnOnce() -> R) -> R {
+    let pool = Pool::get();
+    // SAFETY: the job's borrow is extended to `'static` only for the queue: the guard below
+    // takes every unstarted copy back and waits for every started one to end before this
+    // function returns or unwinds, so no helper uses it after its borrow ends.
+    let erased: &'static (dyn Fn() + Sync) = unsafe { std::mem::transmute(job) };
+    let call = pool.post(k, erased);
+    let guard = Retract { pool, call };
+    let r = own();
+    drop(guard);
+    if let Some(p) = pool.take_panic(call) {
+        std::panic::resume_unwind(p);
+    }
+    r
+}
+
+/// Takes a call's unstarted jobs back and waits for its started ones, also when the caller
+/// unwinds: the jobs borrow the caller's frame.
+struct Retract {
+    pool: &'static Pool,
+    call: u64,
+}
+
+impl Drop for Retract {
+    fn drop(&mut self) {
+        self.pool.finish(self.call);
+        // The caller's own panic is the one that goes on; a helper's is dropped.
+        if std::thread::panicking() {
+            drop(self.pool.take_panic(self.call));
+        }
+    }
+}
+
+/// A job in the queue: which call posted it and what it runs.
+struct Job {
+    call: u64,
+    run: &'static (dyn Fn() + Sync),
+}
+
+/// The persistent helper threads and their queue of jobs.
+struct Pool {
+    state: Mutex<PoolState>,
+    /// Helpers wait here for a job.
+    posted: Condvar,
+    /// Callers wait here for their started jobs to end.
+    ended: Condvar,
+}
+
+#[derive(Default)]
+struct PoolState {
+    queue: VecDeque<Job>,
+    /// The calls with jobs begun and not ended, with their numbers of such jobs.
+    running: Vec<(u64, usize)>,
+    /// The panics of jobs, by call, until the call takes them.
+    panics: Vec<(u64, Box<dyn std::any::Any + Send>)>,
+    /// The helpers started (a failed start is not retried past this count).
+    helpers: usize,
+    next_call: u64,
+}
+
+impl Pool {
+    fn get() -> &'static Pool {
+        static POOL: OnceLock<Pool> = OnceLock::new();
+        POOL.get_or_init(|| Pool {
+            state: Mutex::new(PoolState::default()),
+            posted: Condvar::new(),
+            ended: Condvar::new(),
+        })
+    }
+
+    fn lock(&self) -> MutexGuard<'_, PoolState> {
+        self.state.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Queues `k` copies of `run` (starting helpers up to `k`), and returns the call's number.
+    fn post(&'static self, k: usize, run: &'static (dyn Fn() + Sync)) -> u64 {
+        let mut st = self.lock();
+        while st.helpers < k {
+            let started = std::thread::Builder::new()
+                .name("dqsym-helper".to_owned())
+                .stack_size(WORKER_STACK)
+                .spawn(move || self.serve());
+            if started.is_err() {
+                break;
+            }
+            st.helpers += 1;
+        }
+        let call = st.next_call;
+        st.next_call += 1;
+        st.queue.extend((0..k).map(|_| Job { call, run }));
+        drop(st);
+        for _ in 0..k {
+            self.posted.notify_one();
+        }
+        call
+    }
+
+    /// A helper's life: takes jobs from the queue and runs them, forever.
+    fn serve(&self) {
+        let mut st = self.lock();
+        loop {
+            let Some(job) = st.queue.pop_front() else {
+                st = self.posted.wait(st).unwrap_or_else(|e| e.into_inner());
+                continue;
+            };
+            match st.running.iter_mut().find(|(c, _)| *c == job.call) {
+                Some((_, n)) => *n += 1,
+                None => st.running.push((job.call, 1)),
+            }
+            drop(st);
+            let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(job.run));
+            st = self.lock();
+            if let Err(p) = outcome {
+                st.panics.push((job.call, p));
+            }
+            if let Some(i) = st.running.iter().position(|(c, _)| *c == job.call) {
+                st.running[i].1 -= 1;
+                if st.running[i].1 == 0 {
+                    st.running.swap_remove(i);
+                    self.ended.notify_all();
+                }
+            }
+        }
+    }
+
+    /// Takes `call`'s unstarted jobs out of the queue and waits until its started ones ended.
+    fn finish(&self, call: u64) {
+        let mut st = self.lock();
+        st.queue.retain(|j| j.call != call);
+        while st.running.iter().any(|(c, _)| *c == call) {
+            st = self.ended.wait(st).unwrap_or_else(|e| e.into_inner());
+        }
+    }
+
+    /// The first panic of `call`'s jobs, if one panicked (the others are dropped).
+    fn take_panic(&self, call: u64) -> Option<Box<dyn std::any::Any + Send>> {
+        let mut st = self.lock();
+        let mut first = None;
+        let mut i = 0;
+        while i < st.panics.len() {
+            if st.panics[i].0 == call {
+                let (_, p) = st.panics.swap_remove(i);
+                first.get_or_insert(p);
+            } else {
+                i += 1;
+            }
+        }
+        first
+    }
 }
 
 #[cfg(test)]
@@ -144,6 +286,47 @@ mod tests {
         );
         let (a, b) = join(|| sum_of(2).len(), || sum_of(3).len());
         assert_eq!((a, b), (2, 3));
+    }
+
+    #[test]
+    fn nested_maps_and_joins_finish_and_keep_the_order() {
+        let _in = Context::new().with_threads(3).enter();
+        let items: Vec<usize> = (0..12).collect();
+        let out = par_map(&items, |&n| {
+            let inner: Vec<usize> = (0..n).collect();
+            let (a, b) = join(
+                || par_map(&inner, |&k| sum_of(k).len()).iter().sum::<usize>(),
+                || sum_of(n).len(),
+            );
+            a + b
+        });
+        let expected: Vec<usize> = items
+            .iter()
+            .map(|&n| n * n.saturating_sub(1) / 2 + n)
+            .collect();
+        assert_eq!(out, expected);
+        // The helpers are kept: many calls start no more of them than the most threads a
+        // call asks for (at most 8) less the caller.
+        for _ in 0..50 {
+            let _ = par_map(&items, |&n| n + 1);
+        }
+        assert!(Pool::get().lock().helpers < 8);
+    }
+
+    #[test]
+    fn a_panic_on_a_helper_reaches_the_caller_and_the_helpers_stay() {
+        let _in = Context::new().with_threads(2).enter();
+        let items: Vec<usize> = (0..64).collect();
+        let caught = std::panic::catch_unwind(|| {
+            par_map(&items, |&n| {
+                assert!(n != 40, "item 40");
+                n
+            })
+        });
+        assert!(caught.is_err());
+        assert_eq!(par_map(&items, |&n| n * 2)[63], 126);
+        let (a, b) = join(|| 1, || 2);
+        assert_eq!((a, b), (1, 2));
     }
 
     #[test]
