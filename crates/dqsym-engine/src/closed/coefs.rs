@@ -193,6 +193,9 @@ pub(crate) struct Lifting {
     coefs: BTreeMap<Key, Scalar>,
     n: i64,
     trig_pi: TrigPi,
+    /// Whether the phased lifting found every constant inside the multiples of pi/12 (see
+    /// [`Lifting::lift`]): the unphased one is then not made.
+    phases_inside: bool,
 }
 
 impl Lifting {
@@ -216,15 +219,34 @@ impl Lifting {
         }
         let mut trig_pi = TrigPi::default();
         let coefs = coefficients(terms, &mut trig_pi);
-        Some(Lifting { coefs, n, trig_pi })
+        Some(Lifting {
+            coefs,
+            n,
+            trig_pi,
+            phases_inside: false,
+        })
     }
 
     /// The scalar with its constants lifted (see the module docs), the two coefficients of
     /// one angle joined into `R cos(F - phi)` when `phased`; `None` when no constant outside
     /// the multiples of pi/12 is left once the offsets are taken out of the angles.
+    ///
+    /// Called phased first, the unphased lifting is not made when the phased one left no
+    /// constant outside the multiples of pi/12 (the Jaco-style arm's entries, offsets at
+    /// multiples of 5 pi/18): every (monomial, angle) of the scalar is then `R cos(F - phi)`
+    /// with `R` inside them, or a pair of such constants, and the unphased lifting would only
+    /// write each `cos(F - phi)` back as `cos(phi) cos(F) + sin(phi) sin(F)`, two products and
+    /// two constant calls where the scalar has one sinusoid, whose offset the shifted search
+    /// (`offsets.rs`) or the search of the scalar itself already shows in its angle.
     pub(crate) fn lift(&mut self, phased: bool) -> Option<Lifted> {
+        if !phased && self.phases_inside {
+            return None;
+        }
         let items = items(self.coefs.clone(), phased, self.n, &mut self.trig_pi)?;
         let (norms, uses) = normalized(items)?;
+        if phased && norms.is_empty() {
+            self.phases_inside = true;
+        }
         // Many distinct constants: nothing reads shorter (each would be a sum of its own).
         if norms.is_empty() || norms.len() > MAX_CONSTANTS {
             return None;
