@@ -211,6 +211,11 @@ impl Lifting {
             return None;
         }
         crate::scalar::charge(terms.len() as u64).ok()?;
+        // Neither lifting can lift anything (see `phases_inside`): the unphased one is not
+        // made when the phased one lifts nothing (`lift`), and the phased one lifts nothing.
+        if phases_inside(terms) {
+            return None;
+        }
         let n = terms
             .iter()
             .fold(12i64, |acc, t| acc.lcm(t.mode.pi.denom()));
@@ -255,6 +260,95 @@ impl Lifting {
         let scalar = assemble(uses, &norms, &constants, &symbol)?;
         Some(Lifted { scalar, constants })
     }
+}
+
+/// Whether the phased lifting ([`Lifting::lift`]) of a scalar of `terms` is sure to leave
+/// no constant outside the multiples of pi/12, decided from the terms alone, without the
+/// arithmetic in the cyclotomic field the lifting does (the Jaco-style arm's pose entries,
+/// whose offsets are multiples of 5 pi/18: a fifth of its `fk --jacobian`).
+///
+/// The phased lifting joins the terms of one (monomial, angle `F`) into `R cos(F - phi)` and
+/// lifts `R` when it lies outside those multiples, or, when `phi` is not a rational multiple
+/// of pi, lifts the coefficients of `cos F` and `sin F`. A term is `c cos(F + p pi)` (a sine
+/// is the cosine at `p - 1/2`), `c = q sqrt(r)` a rational times a square root. True when no
+/// constant term carries an offset and each (monomial, angle) holds
+/// - one term: `R = |c|`, `phi = -p pi`;
+/// - two terms at offsets `p1`, `p2` with `p2 - p1` a multiple of 1 (`R = |c1 +- c2|`, a sum
+///   of square roots, `phi` as for one term; the amplitude checked to be far from 0, where the
+///   lifting would find no phase), or an odd multiple of 1/2: then `c1 cos X -+ c2 sin X` with
+///   `X = F + p1 pi` has a phase `psi` that is a rational multiple of pi exactly when
+///   `tan^2 psi = c2^2/c1^2` is 1/3, 1 or 3 (Niven: `cos 2 psi = (1 - t^2)/(1 + t^2)` is then
+///   rational, so `2 psi` is a multiple of pi/3 or pi/2), and `R = sqrt(c1^2 + c2^2)` is the
+///   square root of a rational.
+///
+/// In each case `R` has no term with an offset and `phi` is a multiple of `pi/(2n)` (the
+/// offsets' denominators divide `n`, a multiple of 12), which `phase` finds and checks.
+fn phases_inside(terms: &[Term]) -> bool {
+    type Group<'a> = (&'a MonoRc, &'a Freq);
+    let mut groups: std::collections::HashMap<Group, (&Term, Option<&Term>)> =
+        std::collections::HashMap::with_capacity(terms.len());
+    for t in terms {
+        if t.mode.freq.is_empty() {
+            if !t.mode.pi.is_zero() {
+                return false;
+            }
+            continue;
+        }
+        match groups.entry((&t.mono, &t.mode.freq)) {
+            std::collections::hash_map::Entry::Vacant(v) => {
+                v.insert((t, None));
+            }
+            std::collections::hash_map::Entry::Occupied(mut o) => {
+                if o.get().1.is_some() {
+                    return false;
+                }
+                o.get_mut().1 = Some(t);
+            }
+        }
+    }
+    // The offset of a term as a cosine's, and `c^2 = q^2 r`.
+    let offset = |t: &Term| {
+        if t.mode.sin {
+            t.mode.pi - Small::new(1, 2)
+        } else {
+            t.mode.pi
+        }
+    };
+    let square = |t: &Term| {
+        let q = t.coef.to_big();
+        &q * &q * BigRational::from_integer(t.rad.into())
+    };
+    let value = |t: &Term| t.coef.to_f64().map(|q| q * (t.rad as f64).sqrt());
+    // Far from the 1e-12 below which `phase` finds none (`R >= |c|` for one term and for two
+    // at right angles).
+    let audible = |v: f64| v.abs() > 1e-9;
+    groups.values().all(|&(a, b)| {
+        let Some(b) = b else {
+            return a.mode.pi.is_zero() || value(a).is_some_and(audible);
+        };
+        if a.mode.pi.is_zero() && b.mode.pi.is_zero() {
+            // Both coefficients inside already, phased or not.
+            return true;
+        }
+        let d = (offset(b) - offset(a)) * Small::from_integer(2);
+        if !d.is_integer() {
+            return false;
+        }
+        if d.numer().rem_euclid(2) == 0 {
+            // Collinear: `(c1 +- c2) cos X`, the amplitude far from the lifting's 1e-12.
+            let (Some(va), Some(vb)) = (value(a), value(b)) else {
+                return false;
+            };
+            let r = (va + vb).abs().min((va - vb).abs());
+            return audible(r) && r > 1e-6 * (va.abs() + vb.abs());
+        }
+        if !value(a).is_some_and(audible) || !value(b).is_some_and(audible) {
+            return false;
+        }
+        let t = square(b) / square(a);
+        let third = BigRational::new(1.into(), 3.into());
+        t.is_one() || t == BigRational::from_integer(3.into()) || t == third
+    })
 }
 
 /// A coefficient's place: (monomial, offset-free angle, sine).
