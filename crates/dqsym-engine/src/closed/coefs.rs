@@ -757,3 +757,73 @@ impl Angles {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `k pi / n` as a scalar.
+    fn pi_times(k: i64, n: i64) -> Scalar {
+        Scalar::pi() * Scalar::rational(BigRational::new(k.into(), n.into()))
+    }
+
+    /// `phases_inside` claims only what the phased lifting finds: on random sums of sinusoids
+    /// at offsets of several fields (one or two per angle, cosines and sines, coefficients
+    /// rational or with `sqrt(3)`), whenever it holds, the phased lifting's constants
+    /// (`coefficients`, `items`, `normalized`, as `Lifting::lift` makes them) are all inside
+    /// the multiples of pi/12. Both answers occur.
+    #[test]
+    fn phases_inside_never_claims_what_the_phased_lifting_does_not_find() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: u64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state % m
+        };
+        let angles = [
+            Scalar::sym("q"),
+            Scalar::sym("q") + Scalar::sym("r"),
+            Scalar::sym("q") * Scalar::int(2) - Scalar::sym("r"),
+        ];
+        let dens = [18i64, 9, 7, 8, 12];
+        let coefs = [
+            Scalar::int(1),
+            Scalar::int(-2),
+            Scalar::int(3).sqrt(),
+            Scalar::rational(BigRational::new(1.into(), 2.into())),
+            Scalar::int(3).sqrt() * Scalar::int(2),
+        ];
+        let (mut held, mut not) = (0, 0);
+        for _ in 0..150 {
+            let n = dens[next(dens.len() as u64) as usize];
+            let mut x = Scalar::int(0);
+            for a in &angles {
+                for _ in 0..next(3) {
+                    let k = next(2 * n as u64) as i64;
+                    let arg = a.clone() + pi_times(k, n);
+                    let trig = if next(2) == 0 { arg.cos() } else { arg.sin() };
+                    x = x + coefs[next(coefs.len() as u64) as usize].clone() * trig;
+                }
+            }
+            let Ok(terms) = x.terms() else {
+                panic!("an error value");
+            };
+            if terms.iter().all(|t| t.mode.pi.is_zero()) {
+                continue;
+            }
+            if !phases_inside(terms) {
+                not += 1;
+                continue;
+            }
+            held += 1;
+            let n = terms.iter().fold(12i64, |acc, t| acc.lcm(t.mode.pi.denom()));
+            let mut trig_pi = TrigPi::default();
+            let c = coefficients(terms, &mut trig_pi);
+            let items = items(c, true, n, &mut trig_pi).expect("items");
+            let (norms, _) = normalized(items).expect("normalized");
+            assert!(norms.is_empty(), "{x:?}: the phased lifting lifts {norms:?}");
+        }
+        assert!(held > 10 && not > 10, "held {held}, not {not}");
+    }
+}
