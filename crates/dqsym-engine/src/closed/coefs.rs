@@ -817,12 +817,17 @@ mod tests {
                 continue;
             }
             held += 1;
-            let n = terms.iter().fold(12i64, |acc, t| acc.lcm(t.mode.pi.denom()));
+            let n = terms
+                .iter()
+                .fold(12i64, |acc, t| acc.lcm(t.mode.pi.denom()));
             let mut trig_pi = TrigPi::default();
             let c = coefficients(terms, &mut trig_pi);
             let items = items(c, true, n, &mut trig_pi).expect("items");
             let (norms, _) = normalized(items).expect("normalized");
-            assert!(norms.is_empty(), "{x:?}: the phased lifting lifts {norms:?}");
+            assert!(
+                norms.is_empty(),
+                "{x:?}: the phased lifting lifts {norms:?}"
+            );
         }
         assert!(held > 10 && not > 10, "held {held}, not {not}");
     }
