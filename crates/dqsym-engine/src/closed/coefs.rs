@@ -193,6 +193,9 @@ pub(crate) struct Lifting {
     coefs: BTreeMap<Key, Scalar>,
     n: i64,
     trig_pi: TrigPi,
+    /// Whether the phased lifting found every constant inside the multiples of pi/12 (see
+    /// [`Lifting::lift`]): the unphased one is then not made.
+    phases_inside: bool,
 }
 
 impl Lifting {
@@ -208,6 +211,11 @@ impl Lifting {
             return None;
         }
         crate::scalar::charge(terms.len() as u64).ok()?;
+        // Neither lifting can lift anything (see `phases_inside`): the unphased one is not
+        // made when the phased one lifts nothing (`lift`), and the phased one lifts nothing.
+        if phases_inside(terms) {
+            return None;
+        }
         let n = terms
             .iter()
             .fold(12i64, |acc, t| acc.lcm(t.mode.pi.denom()));
@@ -216,15 +224,34 @@ impl Lifting {
         }
         let mut trig_pi = TrigPi::default();
         let coefs = coefficients(terms, &mut trig_pi);
-        Some(Lifting { coefs, n, trig_pi })
+        Some(Lifting {
+            coefs,
+            n,
+            trig_pi,
+            phases_inside: false,
+        })
     }
 
     /// The scalar with its constants lifted (see the module docs), the two coefficients of
     /// one angle joined into `R cos(F - phi)` when `phased`; `None` when no constant outside
     /// the multiples of pi/12 is left once the offsets are taken out of the angles.
+    ///
+    /// Called phased first, the unphased lifting is not made when the phased one left no
+    /// constant outside the multiples of pi/12 (the Jaco-style arm's entries, offsets at
+    /// multiples of 5 pi/18): every (monomial, angle) of the scalar is then `R cos(F - phi)`
+    /// with `R` inside them, or a pair of such constants, and the unphased lifting would only
+    /// write each `cos(F - phi)` back as `cos(phi) cos(F) + sin(phi) sin(F)`, two products and
+    /// two constant calls where the scalar has one sinusoid, whose offset the shifted search
+    /// (`offsets.rs`) or the search of the scalar itself already shows in its angle.
     pub(crate) fn lift(&mut self, phased: bool) -> Option<Lifted> {
+        if !phased && self.phases_inside {
+            return None;
+        }
         let items = items(self.coefs.clone(), phased, self.n, &mut self.trig_pi)?;
         let (norms, uses) = normalized(items)?;
+        if phased && norms.is_empty() {
+            self.phases_inside = true;
+        }
         // Many distinct constants: nothing reads shorter (each would be a sum of its own).
         if norms.is_empty() || norms.len() > MAX_CONSTANTS {
             return None;
@@ -233,6 +260,95 @@ impl Lifting {
         let scalar = assemble(uses, &norms, &constants, &symbol)?;
         Some(Lifted { scalar, constants })
     }
+}
+
+/// Whether the phased lifting ([`Lifting::lift`]) of a scalar of `terms` is sure to leave
+/// no constant outside the multiples of pi/12, decided from the terms alone, without the
+/// arithmetic in the cyclotomic field the lifting does (the Jaco-style arm's pose entries,
+/// whose offsets are multiples of 5 pi/18: a fifth of its `fk --jacobian`).
+///
+/// The phased lifting joins the terms of one (monomial, angle `F`) into `R cos(F - phi)` and
+/// lifts `R` when it lies outside those multiples, or, when `phi` is not a rational multiple
+/// of pi, lifts the coefficients of `cos F` and `sin F`. A term is `c cos(F + p pi)` (a sine
+/// is the cosine at `p - 1/2`), `c = q sqrt(r)` a rational times a square root. True when no
+/// constant term carries an offset and each (monomial, angle) holds
+/// - one term: `R = |c|`, `phi = -p pi`;
+/// - two terms at offsets `p1`, `p2` with `p2 - p1` a multiple of 1 (`R = |c1 +- c2|`, a sum
+///   of square roots, `phi` as for one term; the amplitude checked to be far from 0, where the
+///   lifting would find no phase), or an odd multiple of 1/2: then `c1 cos X -+ c2 sin X` with
+///   `X = F + p1 pi` has a phase `psi` that is a rational multiple of pi exactly when
+///   `tan^2 psi = c2^2/c1^2` is 1/3, 1 or 3 (Niven: `cos 2 psi = (1 - t^2)/(1 + t^2)` is then
+///   rational, so `2 psi` is a multiple of pi/3 or pi/2), and `R = sqrt(c1^2 + c2^2)` is the
+///   square root of a rational.
+///
+/// In each case `R` has no term with an offset and `phi` is a multiple of `pi/(2n)` (the
+/// offsets' denominators divide `n`, a multiple of 12), which `phase` finds and checks.
+fn phases_inside(terms: &[Term]) -> bool {
+    type Group<'a> = (&'a MonoRc, &'a Freq);
+    let mut groups: std::collections::HashMap<Group, (&Term, Option<&Term>)> =
+        std::collections::HashMap::with_capacity(terms.len());
+    for t in terms {
+        if t.mode.freq.is_empty() {
+            if !t.mode.pi.is_zero() {
+                return false;
+            }
+            continue;
+        }
+        match groups.entry((&t.mono, &t.mode.freq)) {
+            std::collections::hash_map::Entry::Vacant(v) => {
+                v.insert((t, None));
+            }
+            std::collections::hash_map::Entry::Occupied(mut o) => {
+                if o.get().1.is_some() {
+                    return false;
+                }
+                o.get_mut().1 = Some(t);
+            }
+        }
+    }
+    // The offset of a term as a cosine's, and `c^2 = q^2 r`.
+    let offset = |t: &Term| {
+        if t.mode.sin {
+            t.mode.pi - Small::new(1, 2)
+        } else {
+            t.mode.pi
+        }
+    };
+    let square = |t: &Term| {
+        let q = t.coef.to_big();
+        &q * &q * BigRational::from_integer(t.rad.into())
+    };
+    let value = |t: &Term| t.coef.to_f64().map(|q| q * (t.rad as f64).sqrt());
+    // Far from the 1e-12 below which `phase` finds none (`R >= |c|` for one term and for two
+    // at right angles).
+    let audible = |v: f64| v.abs() > 1e-9;
+    groups.values().all(|&(a, b)| {
+        let Some(b) = b else {
+            return a.mode.pi.is_zero() || value(a).is_some_and(audible);
+        };
+        if a.mode.pi.is_zero() && b.mode.pi.is_zero() {
+            // Both coefficients inside already, phased or not.
+            return true;
+        }
+        let d = (offset(b) - offset(a)) * Small::from_integer(2);
+        if !d.is_integer() {
+            return false;
+        }
+        if d.numer().rem_euclid(2) == 0 {
+            // Collinear: `(c1 +- c2) cos X`, the amplitude far from the lifting's 1e-12.
+            let (Some(va), Some(vb)) = (value(a), value(b)) else {
+                return false;
+            };
+            let r = (va + vb).abs().min((va - vb).abs());
+            return audible(r) && r > 1e-6 * (va.abs() + vb.abs());
+        }
+        if !value(a).is_some_and(audible) || !value(b).is_some_and(audible) {
+            return false;
+        }
+        let t = square(b) / square(a);
+        let third = BigRational::new(1.into(), 3.into());
+        t.is_one() || t == BigRational::from_integer(3.into()) || t == third
+    })
 }
 
 /// A coefficient's place: (monomial, offset-free angle, sine).
@@ -639,5 +755,80 @@ impl Angles {
             Expr::Pow(e, n) => Expr::Pow(Box::new(self.substitute(*e)?), n),
             e => e,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `k pi / n` as a scalar.
+    fn pi_times(k: i64, n: i64) -> Scalar {
+        Scalar::pi() * Scalar::rational(BigRational::new(k.into(), n.into()))
+    }
+
+    /// `phases_inside` claims only what the phased lifting finds: on random sums of sinusoids
+    /// at offsets of several fields (one or two per angle, cosines and sines, coefficients
+    /// rational or with `sqrt(3)`), whenever it holds, the phased lifting's constants
+    /// (`coefficients`, `items`, `normalized`, as `Lifting::lift` makes them) are all inside
+    /// the multiples of pi/12. Both answers occur.
+    #[test]
+    fn phases_inside_never_claims_what_the_phased_lifting_does_not_find() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: u64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state % m
+        };
+        let angles = [
+            Scalar::sym("q"),
+            Scalar::sym("q") + Scalar::sym("r"),
+            Scalar::sym("q") * Scalar::int(2) - Scalar::sym("r"),
+        ];
+        let dens = [18i64, 9, 7, 8, 12];
+        let coefs = [
+            Scalar::int(1),
+            Scalar::int(-2),
+            Scalar::int(3).sqrt(),
+            Scalar::rational(BigRational::new(1.into(), 2.into())),
+            Scalar::int(3).sqrt() * Scalar::int(2),
+        ];
+        let (mut held, mut not) = (0, 0);
+        for _ in 0..150 {
+            let n = dens[next(dens.len() as u64) as usize];
+            let mut x = Scalar::int(0);
+            for a in &angles {
+                for _ in 0..next(3) {
+                    let k = next(2 * n as u64) as i64;
+                    let arg = a.clone() + pi_times(k, n);
+                    let trig = if next(2) == 0 { arg.cos() } else { arg.sin() };
+                    x = x + coefs[next(coefs.len() as u64) as usize].clone() * trig;
+                }
+            }
+            let Ok(terms) = x.terms() else {
+                panic!("an error value");
+            };
+            if terms.iter().all(|t| t.mode.pi.is_zero()) {
+                continue;
+            }
+            if !phases_inside(terms) {
+                not += 1;
+                continue;
+            }
+            held += 1;
+            let n = terms
+                .iter()
+                .fold(12i64, |acc, t| acc.lcm(t.mode.pi.denom()));
+            let mut trig_pi = TrigPi::default();
+            let c = coefficients(terms, &mut trig_pi);
+            let items = items(c, true, n, &mut trig_pi).expect("items");
+            let (norms, _) = normalized(items).expect("normalized");
+            assert!(
+                norms.is_empty(),
+                "{x:?}: the phased lifting lifts {norms:?}"
+            );
+        }
+        assert!(held > 10 && not > 10, "held {held}, not {not}");
     }
 }

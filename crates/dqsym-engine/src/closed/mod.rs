@@ -117,7 +117,11 @@
 //! (found from `atan2`, checked exactly), and each constant outside pi/12 (up to a rational factor)
 //! a fresh symbol; that scalar's closed form, with each symbol replaced by its constant's closed
 //! form (`sin(pi/7) cos(pi/9) cos(q)`, `cos(pi/9) sin(q + pi/7)`, was a sum over pi/63), kept when
-//! shorter and checked like every other (a derivative's closed form then starts afresh);
+//! shorter and checked like every other (a derivative's closed form then starts afresh); the
+//! unlifted coefficients of `cos F` and `sin F` lifted only when joining them into phases
+//! left some constant outside pi/12, and neither when the terms show that it cannot (one
+//! sinusoid per monomial and angle, or two at right angles with `tan^2` 1/3, 1 or 3: the
+//! Jaco-style arm's entries);
 //! `coefs::phase_angles` does the same for angles at offsets that are multiples of pi/12, which the
 //! canonical form holds as radicals (`l1 sin(x + pi/6)` is `l1 (cos x + sqrt(3) sin x)/2`): the two
 //! coefficients of one monomial's `cos F` and `sin F`, `R cos(phi)` and `R sin(phi)` with `phi` a
