@@ -426,6 +426,13 @@ pub(crate) fn split_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
     let Ok(terms) = x.terms() else {
         return (ctx, Vec::new());
     };
+    if terms.iter().all(|t| t.mode.is_unit()) {
+        // Nothing to split (a polynomial in cos/sin placeholders, say): each term is its own
+        // monomial, summed per cofactor and sorted as below, without the sums by atoms (a
+        // hash map, its key and a copy of the cofactor per term).
+        let mons = merge(terms.iter().map(|t| base_mon(&ctx, t)).collect());
+        return (ctx, mons);
+    }
     // First the parts of every mode, so the angle ids are final before expanding. The few
     // distinct parts are remembered by value, sparing an angle and a hash per repeat.
     let mut seen: Vec<PartKey> = Vec::new();
