@@ -52,6 +52,12 @@ impl Sym {
         Sym(one_name().clone())
     }
 
+    /// The address of the name's allocation: equal for clones of one symbol (a cheap key for
+    /// the symbols of one expression while a clone is held; equal names may differ).
+    pub(crate) fn addr(&self) -> usize {
+        Arc::as_ptr(&self.0) as *const u8 as usize
+    }
+
     /// Whether this is the symbol `pi`.
     pub fn is_pi(&self) -> bool {
         &*self.0 == "pi"
