@@ -181,6 +181,9 @@ fn common_factor(e: &Expr) -> Option<Expr> {
     if sum.len() < 2 {
         return None;
     }
+    // `x (a - b) + y (b - a)` read as `x (a - b) - y (a - b)`, so that `a - b` is shared.
+    let unified = same_signed_sums(sum);
+    let sum = unified.as_deref().unwrap_or(sum);
     let parts: Vec<(bool, Vec<&Expr>)> = sum.iter().map(factors).collect();
     // The common factors with their multiplicities: those of the first summand kept while
     // every other summand has one left.
@@ -276,6 +279,76 @@ fn partial_factor(front: Option<Expr>, sum: &[Expr], parts: &[(bool, Vec<&Expr>)
         Some(n) => mul(n, out),
         None => out,
     })
+}
+
+/// Whether the sums `f` and `g` are negations of each other, term by term in any order
+/// (`a - 2 b` and `-a + 2 b`), read without copying either.
+fn negated_sums(f: &[Expr], g: &[Expr]) -> bool {
+    // `x` is `-y`: one of them is the other's negation.
+    let opposite = |x: &Expr, y: &Expr| match (x, y) {
+        (Expr::Neg(a), b) | (b, Expr::Neg(a)) => **a == *b,
+        _ => false,
+    };
+    if f.len() != g.len() {
+        return false;
+    }
+    let mut used = vec![false; g.len()];
+    f.iter().all(|x| {
+        (0..g.len())
+            .find(|&j| !used[j] && opposite(x, &g[j]))
+            .map(|j| used[j] = true)
+            .is_some()
+    })
+}
+
+/// The summands with every sum among a summand's factors that is the negation of a sum met
+/// before (in that summand or an earlier one) written as that sum, the summand's sign changed
+/// once for each: `sin(A) (a - 2 b) + sin(B) (-a + 2 b)` is `sin(A) (a - 2 b) - sin(B) (a - 2
+/// b)`, whose summands share a factor and can join; `None` (nothing copied) when no factor
+/// changes. Sums in powers are left (an even power hides the sign).
+fn same_signed_sums(sum: &[Expr]) -> Option<Vec<Expr>> {
+    let is_sum = |f: &Expr| matches!(f, Expr::Add(_));
+    // Most sums have no two summands with a sum among their factors.
+    if sum
+        .iter()
+        .filter(|e| summand_factors(e).iter().any(is_sum))
+        .count()
+        < 2
+    {
+        return None;
+    }
+    let mut seen: Vec<&Expr> = Vec::new();
+    let mut out: Option<Vec<Expr>> = None;
+    for (i, e) in sum.iter().enumerate() {
+        let fs = summand_factors(e);
+        let mut swaps: Vec<(usize, &Expr)> = Vec::new();
+        for (k, f) in fs.iter().enumerate() {
+            let Expr::Add(terms) = f else {
+                continue;
+            };
+            if seen.contains(&f) {
+                continue;
+            }
+            match seen.iter().find(|g| matches!(g, Expr::Add(v) if negated_sums(terms, v))) {
+                Some(g) => swaps.push((k, *g)),
+                None => seen.push(f),
+            }
+        }
+        if swaps.is_empty() {
+            continue;
+        }
+        let mut new: Vec<Expr> = fs.to_vec();
+        for (k, g) in &swaps {
+            new[*k] = (*g).clone();
+        }
+        let body = match new.len() {
+            1 => new.pop().expect("one factor"),
+            _ => Expr::Mul(new),
+        };
+        let negated = matches!(e, Expr::Neg(_)) ^ (swaps.len() % 2 == 1);
+        out.get_or_insert_with(|| sum.to_vec())[i] = if negated { neg(body) } else { body };
+    }
+    out
 }
 
 /// The most summands [`pairs_joined`] looks at (its pairs are quadratic in them).
@@ -917,6 +990,10 @@ fn pairs_joined(e: &Expr, harmonic: bool) -> Vec<Expr> {
     if sum.len() < 2 || sum.len() > MAX_PAIR_SUMMANDS {
         return Vec::new();
     }
+    // Factors that differ only in sign made equal (`sin(A) (a - 2 b) + sin(B) (-a + 2 b)` as
+    // `sin(A) (a - 2 b) - sin(B) (a - 2 b)`), so that the pair can join.
+    let unified = same_signed_sums(sum);
+    let sum = unified.as_deref().unwrap_or(sum);
     // Harmonic pairs looked for only when asked and the sum has one to begin with.
     let harmonic = harmonic && any_harmonic_pair(sum);
     if !(harmonic || any_pair_may_join(sum)) || charge((sum.len() * sum.len()) as u64).is_err() {
