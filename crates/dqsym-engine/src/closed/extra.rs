@@ -918,7 +918,14 @@ fn nested_joined(e: &Expr) -> Option<Expr> {
                     }
                 }
             }
-            Expr::Mul(v) => kids(v).map(tidy_product),
+            Expr::Mul(v) => {
+                let k = kids(v);
+                let fs = k.as_deref().unwrap_or(v);
+                match sinusoid_in_product(fs) {
+                    Some(e) => Some(e),
+                    None => k.map(tidy_product),
+                }
+            }
             Expr::Neg(x) => go(x, top).map(neg),
             Expr::Pow(x, n) => go(x, false).map(|y| match y {
                 Expr::Neg(y) if (*n).is_multiple_of(2) => Expr::Pow(y, *n),
@@ -942,6 +949,40 @@ fn nested_joined(e: &Expr) -> Option<Expr> {
         return None;
     }
     go(e, true)
+}
+
+/// The product `fs` with a two-summand sum among its factors that is a cosine and a sine of
+/// one angle written as one sinusoid ([`harmonic_joined`]) and the product tidied, when that
+/// is shorter than the product tidied as it is: the sinusoid's number or square root then
+/// merges with the product's (`sqrt(2) k (cos(a) - sin(a))` is `2 k cos(a + pi/4)`, though
+/// `sqrt(2) cos(a + pi/4)` alone is no shorter than `cos(a) - sin(a)`, so [`pairs_joined`]
+/// leaves the sum). Only for products with a number or a square root to merge with.
+fn sinusoid_in_product(fs: &[Expr]) -> Option<Expr> {
+    if !fs.iter().any(|f| matches!(f, Expr::Num(_) | Expr::Sqrt(_))) {
+        return None;
+    }
+    let mut best: Option<(usize, usize, Expr)> = None;
+    for (k, f) in fs.iter().enumerate() {
+        let Expr::Add(sum) = f else {
+            continue;
+        };
+        if sum.len() != 2 || !any_harmonic_pair(sum) {
+            continue;
+        }
+        let (a, b) = (Summand::of(&sum[0]), Summand::of(&sum[1]));
+        for s in harmonic_joined(&a, &a.calls(), &b, &b.calls()) {
+            let mut v = fs.to_vec();
+            v[k] = s.expr();
+            let e = tidy_product(v);
+            let key = choice_key(&e);
+            if best.as_ref().is_none_or(|(c, d, _)| (key.0, key.1) < (*c, *d)) {
+                best = Some((key.0, key.1, e));
+            }
+        }
+    }
+    let (c, d, e) = best?;
+    let now = choice_key(&tidy_product(fs.to_vec()));
+    ((c, d) < (now.0, now.1)).then_some(e)
 }
 
 /// The first of the sums of [`pairs_joined`] for `e` (each also with its common factors
