@@ -799,3 +799,50 @@ fn constant_trig(x: &Scalar, t: &[Term]) -> Option<Expr> {
     let e = trig(sin, Vec::new(), Small::new(k, n));
     Some(if v < 0.0 { neg(e) } else { e })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `in_one_function` (integers over a common denominator) against the polynomial itself,
+    /// exactly, at the rational point (cos, sin) = (3/5, 4/5) of the unit circle, for both
+    /// choices of the variable and random polynomials with rational coefficients.
+    #[test]
+    fn a_polynomial_in_cos_and_sin_rewritten_in_one_of_them_keeps_its_value_on_the_circle() {
+        let r = |n: i64, d: i64| Rat::new(n.into(), d.into());
+        let pow = |x: &Rat, n: u32| (0..n).fold(Rat::one(), |acc, _| acc * x);
+        let (c, s) = (r(3, 5), r(4, 5));
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % m
+        };
+        for _ in 0..40 {
+            let mut poly: BTreeMap<(u32, u32), Rat> = BTreeMap::new();
+            for _ in 0..1 + next(6) {
+                let (i, j) = (next(9) as u32, next(9) as u32);
+                let q = r(next(41) as i64 - 20, 1 + next(12) as i64);
+                if !q.is_zero() {
+                    poly.insert((i, j), q);
+                }
+            }
+            let want: Rat = poly
+                .iter()
+                .map(|(&(i, j), q)| q * pow(&c, i) * pow(&s, j))
+                .fold(Rat::zero(), |a, b| a + b);
+            for sin_var in [false, true] {
+                let (even, odd) = in_one_function(&poly, sin_var);
+                let (v, o) = if sin_var { (&s, &c) } else { (&c, &s) };
+                let at = |p: &BTreeMap<u32, Rat>| {
+                    p.iter()
+                        .map(|(&k, q)| q * pow(v, k))
+                        .fold(Rat::zero(), |a, b| a + b)
+                };
+                assert!(even.values().chain(odd.values()).all(|q| !q.is_zero()));
+                assert_eq!(at(&even) + o * at(&odd), want, "{poly:?}");
+            }
+        }
+    }
+}

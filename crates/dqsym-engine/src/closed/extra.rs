@@ -1154,6 +1154,38 @@ mod tests {
     }
 
     #[test]
+    fn sums_that_differ_only_in_sign_are_made_equal_with_the_summand_negated() {
+        let sym = |n: &str| Expr::Sym(Sym::new(n));
+        let two_b = Expr::Mul(vec![num(Rat::from_integer(2.into())), sym("b")]);
+        // a - 2 b and -2 b + a (another order): negations of -a + 2 b.
+        let f = Expr::Add(vec![sym("a"), neg(two_b.clone())]);
+        let g = Expr::Add(vec![neg(sym("a")), two_b.clone()]);
+        let h = Expr::Add(vec![neg(two_b.clone()), sym("a")]);
+        let terms = |e: &Expr| match e {
+            Expr::Add(v) => v.clone(),
+            _ => unreachable!(),
+        };
+        assert!(negated_sums(&terms(&f), &terms(&g)));
+        assert!(negated_sums(&terms(&h), &terms(&g)));
+        assert!(!negated_sums(&terms(&f), &terms(&h)));
+        // x (a - 2 b) + y (-a + 2 b) is x (a - 2 b) - y (a - 2 b): equal value, one factor.
+        let sum = vec![
+            Expr::Mul(vec![sym("x"), f.clone()]),
+            Expr::Mul(vec![sym("y"), g.clone()]),
+        ];
+        let same = same_signed_sums(&sum).expect("a factor changes");
+        assert_eq!(same[1], neg(Expr::Mul(vec![sym("y"), f.clone()])));
+        assert_eq!(
+            Expr::Add(same).to_scalar(),
+            Expr::Add(sum.clone()).to_scalar()
+        );
+        // Nothing to change: no copy.
+        assert!(same_signed_sums(&sum[..1]).is_none());
+        let c = common_factor(&Expr::Add(sum.clone())).expect("a shared sum");
+        assert_eq!(c.to_scalar(), Expr::Add(sum).to_scalar());
+    }
+
+    #[test]
     fn a_square_root_of_a_rational_is_split_into_a_rational_and_a_square_free_root() {
         let r = |n: i64, d: i64| Rat::new(n.into(), d.into());
         // sqrt(8/3) = sqrt(24)/3 = 2 sqrt(6)/3; sqrt(4) = 2; sqrt(1/2) = sqrt(2)/2.
