@@ -329,7 +329,10 @@ fn same_signed_sums(sum: &[Expr]) -> Option<Vec<Expr>> {
             if seen.contains(&f) {
                 continue;
             }
-            match seen.iter().find(|g| matches!(g, Expr::Add(v) if negated_sums(terms, v))) {
+            match seen
+                .iter()
+                .find(|g| matches!(g, Expr::Add(v) if negated_sums(terms, v)))
+            {
                 Some(g) => swaps.push((k, *g)),
                 None => seen.push(f),
             }
@@ -975,7 +978,10 @@ fn sinusoid_in_product(fs: &[Expr]) -> Option<Expr> {
             v[k] = s.expr();
             let e = tidy_product(v);
             let key = choice_key(&e);
-            if best.as_ref().is_none_or(|(c, d, _)| (key.0, key.1) < (*c, *d)) {
+            if best
+                .as_ref()
+                .is_none_or(|(c, d, _)| (key.0, key.1) < (*c, *d))
+            {
                 best = Some((key.0, key.1, e));
             }
         }
