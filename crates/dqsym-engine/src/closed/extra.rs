@@ -8,7 +8,10 @@
 //! of `trigfac.rs`'s split sums and the constant products of `cprod.rs` are found apart and
 //! joined by an addition, never factored); pairs of summands joined (sum to product, `1 -
 //! cos(2 w)` as a square, a cosine and a sine of one angle as one sinusoid), also in the sums
-//! inside the products of the form shown (`joined_form`).
+//! inside the products of the form shown (`joined_form`), where a sinusoid's square root may
+//! merge with the product's (`sqrt(2) k (cos(a) - sin(a))` is `2 k cos(a + pi/4)`); sums among
+//! a summand's factors that differ only in sign are made equal first (`x (a - b) + y (b - a)`
+//! shares `a - b`).
 
 use super::alt::{choice_key, full_cost, mul, neg, num};
 use super::expr::{Angle, Expr};
