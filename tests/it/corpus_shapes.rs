@@ -161,11 +161,12 @@ fn two_cosines_inside_a_product_are_joined_into_two_sines() {
 #[test]
 fn a_cosine_and_a_sine_of_one_angle_inside_a_product_are_one_sinusoid() {
     // sin(a + pi/6) is (sqrt(3) sin(a) + cos(a))/2 in the canonical form: the harmonic form
-    // inside the product joins them again (2 cos(a - pi/3)); sqrt(2) (cos(a) - sin(a)) is
-    // kept, as short as sqrt(2) cos(a + pi/4) counted alone.
+    // inside the product joins them again (2 cos(a - pi/3)); sqrt(2) (cos(a) - sin(a)), as
+    // short as sqrt(2) cos(a + pi/4) counted alone, is joined inside its product, whose
+    // sqrt(2) makes it 2 cos(a + pi/4); the numbers' 1/2 and 2 then cancel.
     check(
         "m*(sin(c)*sin(b)*sin(a + pi/6) + sin(2*c + 2*b)*cos(a + pi/4))",
-        "1/2 m (2 sin(b) sin(c) cos(a - pi/3) + sqrt(2) sin(2*b + 2*c) (cos(a) - sin(a)))",
+        "m (sin(b) sin(c) cos(a - pi/3) + sin(2*b + 2*c) cos(a + pi/4))",
         |v| {
             v("m")
                 * (v("c").sin() * v("b").sin() * (v("a") + std::f64::consts::FRAC_PI_6).sin()
@@ -173,4 +174,35 @@ fn a_cosine_and_a_sine_of_one_angle_inside_a_product_are_one_sinusoid() {
                         * (v("a") + std::f64::consts::FRAC_PI_4).cos())
         },
     );
+}
+
+#[test]
+fn two_sines_whose_factors_differ_in_sign_are_joined() {
+    // The z entry of the symbolic screw's pow(q, t, psi) (snapshots/dqr_symbolic_screw): the
+    // factors a - 2 b and -a + 2 b differ only in sign, so sin(psi/2) - sin(psi/2 - theta)
+    // joins: 2 cos((psi - theta)/2) sin(theta/2).
+    check(
+        "1/18*t*(cos(psi/2)*(4*a + 2*b + 5*c - 6*d) - cos(psi/2 - theta)*(4*a + 2*b + 5*c) \
+         + 3*(sin(psi/2)*(a - 2*b) + sin(psi/2 - theta)*(-a + 2*b)))",
+        "1/18 t (cos(psi/2) (4 a + 2 b + 5 c - 6 d) - cos(psi/2 - theta) (4 a + 2 b + 5 c) \
+         + 6 (a - 2 b) cos((psi - theta)/2) sin(theta/2))",
+        |v| {
+            let (a, b, c, d) = (v("a"), v("b"), v("c"), v("d"));
+            let (psi, theta) = (v("psi"), v("theta"));
+            v("t") / 18.0
+                * ((psi / 2.0).cos() * (4.0 * a + 2.0 * b + 5.0 * c - 6.0 * d)
+                    - (psi / 2.0 - theta).cos() * (4.0 * a + 2.0 * b + 5.0 * c)
+                    + 3.0
+                        * ((psi / 2.0).sin() * (a - 2.0 * b)
+                            + (psi / 2.0 - theta).sin() * (-a + 2.0 * b)))
+        },
+    );
+}
+
+#[test]
+fn a_sum_shared_up_to_its_sign_is_taken_out() {
+    // x (a - b) + y (b - a) = (x - y) (a - b).
+    check("x*(a - b) + y*(b - a)", "(x - y) (a - b)", |v| {
+        v("x") * (v("a") - v("b")) + v("y") * (v("b") - v("a"))
+    });
 }

@@ -425,13 +425,18 @@ fn cos_sin_poly(t: &[Term]) -> Option<(Sym, BTreeMap<(u32, u32), Rat>)> {
     }
     let var = var?;
     // (i, j) -> coefficient of cos^i sin^j: cos(k x) and sin(k x) are the real and imaginary
-    // parts of (c + i s)^k.
-    let mut poly: BTreeMap<(u32, u32), Rat> = BTreeMap::new();
+    // parts of (c + i s)^k. Summed as integers over the coefficients' common denominator and
+    // reduced once each at the end (a rational sum reduces at every step: most of the cost).
+    let den = t
+        .iter()
+        .fold(BigInt::one(), |d, u| d.lcm(u.coef.to_big().denom()));
+    let mut poly: BTreeMap<(u32, u32), BigInt> = BTreeMap::new();
     for u in t {
         let q = u.coef.to_big();
+        let n = q.numer() * (&den / q.denom());
         let k = match &*u.mode.freq {
             [] => {
-                *poly.entry((0, 0)).or_insert_with(Rat::zero) += q;
+                *poly.entry((0, 0)).or_default() += n;
                 continue;
             }
             [(_, k)] => k.to_integer(),
@@ -441,20 +446,28 @@ fn cos_sin_poly(t: &[Term]) -> Option<(Sym, BTreeMap<(u32, u32), Rat>)> {
             return None;
         }
         let k = k as u32;
-        let mut binom = BigInt::one();
+        // C(k, j) for k <= MAX_MULTIPLE (at most C(24, 12) = 2,704,156) fits an i64.
+        let mut binom = 1i64;
         for j in 0..=k {
             // i^j: real for even j (sign (-1)^(j/2)), imaginary for odd j (sign (-1)^((j-1)/2)).
             let real = j % 2 == 0;
             if real != u.mode.sin {
-                let sign = if (j / 2) % 2 == 0 { 1 } else { -1 };
-                let c = Rat::from_integer(&binom * BigInt::from(sign)) * &q;
-                *poly.entry((k - j, j)).or_insert_with(Rat::zero) += c;
+                let c = &n * BigInt::from(binom);
+                let e = poly.entry((k - j, j)).or_default();
+                if (j / 2) % 2 == 0 {
+                    *e += c;
+                } else {
+                    *e -= c;
+                }
             }
-            binom = binom * BigInt::from(k - j) / BigInt::from(j + 1);
+            binom = binom * i64::from(k - j) / i64::from(j + 1);
         }
     }
-    poly.retain(|_, q| !q.is_zero());
-    poly.retain(|_, q| !q.is_zero());
+    let poly = poly
+        .into_iter()
+        .filter(|(_, n)| !n.is_zero())
+        .map(|(ij, n)| (ij, Rat::new(n, den.clone())))
+        .collect();
     Some((var.clone(), poly))
 }
 
@@ -464,25 +477,36 @@ fn in_one_function(
     poly: &BTreeMap<(u32, u32), Rat>,
     sin_var: bool,
 ) -> (BTreeMap<u32, Rat>, BTreeMap<u32, Rat>) {
-    let mut even: BTreeMap<u32, Rat> = BTreeMap::new();
-    let mut odd: BTreeMap<u32, Rat> = BTreeMap::new();
+    // Integers over the coefficients' common denominator, each result reduced once (as in
+    // `cos_sin_poly`).
+    let den = poly.values().fold(BigInt::one(), |d, q| d.lcm(q.denom()));
+    let mut even: BTreeMap<u32, BigInt> = BTreeMap::new();
+    let mut odd: BTreeMap<u32, BigInt> = BTreeMap::new();
     for (&(i, j), q) in poly {
         let (dv, d_o) = if sin_var { (j, i) } else { (i, j) };
         let target = if d_o % 2 == 0 { &mut even } else { &mut odd };
-        // (1 - v^2)^(d_o / 2) v^dv.
+        let num = q.numer() * (&den / q.denom());
+        // (1 - v^2)^(d_o / 2) v^dv; C(n, k) for n <= MAX_MULTIPLE / 2 fits an i64.
         let n = d_o / 2;
-        let mut binom = BigInt::one();
+        let mut binom = 1i64;
         for k in 0..=n {
-            let c = Rat::from_integer(binom.clone())
-                * q
-                * Rat::from_integer(if k % 2 == 0 { 1.into() } else { (-1).into() });
-            *target.entry(dv + 2 * k).or_insert_with(Rat::zero) += c;
-            binom = binom * BigInt::from(n - k) / BigInt::from(k + 1);
+            let c = &num * BigInt::from(binom);
+            let e = target.entry(dv + 2 * k).or_default();
+            if k % 2 == 0 {
+                *e += c;
+            } else {
+                *e -= c;
+            }
+            binom = binom * i64::from(n - k) / i64::from(k + 1);
         }
     }
-    even.retain(|_, q| !q.is_zero());
-    odd.retain(|_, q| !q.is_zero());
-    (even, odd)
+    let reduced = |m: BTreeMap<u32, BigInt>| -> BTreeMap<u32, Rat> {
+        m.into_iter()
+            .filter(|(_, n)| !n.is_zero())
+            .map(|(i, n)| (i, Rat::new(n, den.clone())))
+            .collect()
+    };
+    (reduced(even), reduced(odd))
 }
 
 /// `p(v)` factored by its rational roots, and also with the pairs `(v - 1)(v + 1)` of the
@@ -774,4 +798,51 @@ fn constant_trig(x: &Scalar, t: &[Term]) -> Option<Expr> {
         .min()?;
     let e = trig(sin, Vec::new(), Small::new(k, n));
     Some(if v < 0.0 { neg(e) } else { e })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `in_one_function` (integers over a common denominator) against the polynomial itself,
+    /// exactly, at the rational point (cos, sin) = (3/5, 4/5) of the unit circle, for both
+    /// choices of the variable and random polynomials with rational coefficients.
+    #[test]
+    fn a_polynomial_in_cos_and_sin_rewritten_in_one_of_them_keeps_its_value_on_the_circle() {
+        let r = |n: i64, d: i64| Rat::new(n.into(), d.into());
+        let pow = |x: &Rat, n: u32| (0..n).fold(Rat::one(), |acc, _| acc * x);
+        let (c, s) = (r(3, 5), r(4, 5));
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: u64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed % m
+        };
+        for _ in 0..40 {
+            let mut poly: BTreeMap<(u32, u32), Rat> = BTreeMap::new();
+            for _ in 0..1 + next(6) {
+                let (i, j) = (next(9) as u32, next(9) as u32);
+                let q = r(next(41) as i64 - 20, 1 + next(12) as i64);
+                if !q.is_zero() {
+                    poly.insert((i, j), q);
+                }
+            }
+            let want: Rat = poly
+                .iter()
+                .map(|(&(i, j), q)| q * pow(&c, i) * pow(&s, j))
+                .fold(Rat::zero(), |a, b| a + b);
+            for sin_var in [false, true] {
+                let (even, odd) = in_one_function(&poly, sin_var);
+                let (v, o) = if sin_var { (&s, &c) } else { (&c, &s) };
+                let at = |p: &BTreeMap<u32, Rat>| {
+                    p.iter()
+                        .map(|(&k, q)| q * pow(v, k))
+                        .fold(Rat::zero(), |a, b| a + b)
+                };
+                assert!(even.values().chain(odd.values()).all(|q| !q.is_zero()));
+                assert_eq!(at(&even) + o * at(&odd), want, "{poly:?}");
+            }
+        }
+    }
 }

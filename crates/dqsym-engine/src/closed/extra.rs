@@ -8,7 +8,10 @@
 //! of `trigfac.rs`'s split sums and the constant products of `cprod.rs` are found apart and
 //! joined by an addition, never factored); pairs of summands joined (sum to product, `1 -
 //! cos(2 w)` as a square, a cosine and a sine of one angle as one sinusoid), also in the sums
-//! inside the products of the form shown (`joined_form`).
+//! inside the products of the form shown (`joined_form`), where a sinusoid's square root may
+//! merge with the product's (`sqrt(2) k (cos(a) - sin(a))` is `2 k cos(a + pi/4)`); sums among
+//! a summand's factors that differ only in sign are made equal first (`x (a - b) + y (b - a)`
+//! shares `a - b`).
 
 use super::alt::{choice_key, full_cost, mul, neg, num};
 use super::expr::{Angle, Expr};
@@ -181,6 +184,9 @@ fn common_factor(e: &Expr) -> Option<Expr> {
     if sum.len() < 2 {
         return None;
     }
+    // `x (a - b) + y (b - a)` read as `x (a - b) - y (a - b)`, so that `a - b` is shared.
+    let unified = same_signed_sums(sum);
+    let sum = unified.as_deref().unwrap_or(sum);
     let parts: Vec<(bool, Vec<&Expr>)> = sum.iter().map(factors).collect();
     // The common factors with their multiplicities: those of the first summand kept while
     // every other summand has one left.
@@ -276,6 +282,79 @@ fn partial_factor(front: Option<Expr>, sum: &[Expr], parts: &[(bool, Vec<&Expr>)
         Some(n) => mul(n, out),
         None => out,
     })
+}
+
+/// Whether the sums `f` and `g` are negations of each other, term by term in any order
+/// (`a - 2 b` and `-a + 2 b`), read without copying either.
+fn negated_sums(f: &[Expr], g: &[Expr]) -> bool {
+    // `x` is `-y`: one of them is the other's negation.
+    let opposite = |x: &Expr, y: &Expr| match (x, y) {
+        (Expr::Neg(a), b) | (b, Expr::Neg(a)) => **a == *b,
+        _ => false,
+    };
+    if f.len() != g.len() {
+        return false;
+    }
+    let mut used = vec![false; g.len()];
+    f.iter().all(|x| {
+        (0..g.len())
+            .find(|&j| !used[j] && opposite(x, &g[j]))
+            .map(|j| used[j] = true)
+            .is_some()
+    })
+}
+
+/// The summands with every sum among a summand's factors that is the negation of a sum met
+/// before (in that summand or an earlier one) written as that sum, the summand's sign changed
+/// once for each: `sin(A) (a - 2 b) + sin(B) (-a + 2 b)` is `sin(A) (a - 2 b) - sin(B) (a - 2
+/// b)`, whose summands share a factor and can join; `None` (nothing copied) when no factor
+/// changes. Sums in powers are left (an even power hides the sign).
+fn same_signed_sums(sum: &[Expr]) -> Option<Vec<Expr>> {
+    let is_sum = |f: &Expr| matches!(f, Expr::Add(_));
+    // Most sums have no two summands with a sum among their factors.
+    if sum
+        .iter()
+        .filter(|e| summand_factors(e).iter().any(is_sum))
+        .count()
+        < 2
+    {
+        return None;
+    }
+    let mut seen: Vec<&Expr> = Vec::new();
+    let mut out: Option<Vec<Expr>> = None;
+    for (i, e) in sum.iter().enumerate() {
+        let fs = summand_factors(e);
+        let mut swaps: Vec<(usize, &Expr)> = Vec::new();
+        for (k, f) in fs.iter().enumerate() {
+            let Expr::Add(terms) = f else {
+                continue;
+            };
+            if seen.contains(&f) {
+                continue;
+            }
+            match seen
+                .iter()
+                .find(|g| matches!(g, Expr::Add(v) if negated_sums(terms, v)))
+            {
+                Some(g) => swaps.push((k, *g)),
+                None => seen.push(f),
+            }
+        }
+        if swaps.is_empty() {
+            continue;
+        }
+        let mut new: Vec<Expr> = fs.to_vec();
+        for (k, g) in &swaps {
+            new[*k] = (*g).clone();
+        }
+        let body = match new.len() {
+            1 => new.pop().expect("one factor"),
+            _ => Expr::Mul(new),
+        };
+        let negated = matches!(e, Expr::Neg(_)) ^ (swaps.len() % 2 == 1);
+        out.get_or_insert_with(|| sum.to_vec())[i] = if negated { neg(body) } else { body };
+    }
+    out
 }
 
 /// The most summands [`pairs_joined`] looks at (its pairs are quadratic in them).
@@ -845,7 +924,14 @@ fn nested_joined(e: &Expr) -> Option<Expr> {
                     }
                 }
             }
-            Expr::Mul(v) => kids(v).map(tidy_product),
+            Expr::Mul(v) => {
+                let k = kids(v);
+                let fs = k.as_deref().unwrap_or(v);
+                match sinusoid_in_product(fs) {
+                    Some(e) => Some(e),
+                    None => k.map(tidy_product),
+                }
+            }
             Expr::Neg(x) => go(x, top).map(neg),
             Expr::Pow(x, n) => go(x, false).map(|y| match y {
                 Expr::Neg(y) if (*n).is_multiple_of(2) => Expr::Pow(y, *n),
@@ -869,6 +955,43 @@ fn nested_joined(e: &Expr) -> Option<Expr> {
         return None;
     }
     go(e, true)
+}
+
+/// The product `fs` with a two-summand sum among its factors that is a cosine and a sine of
+/// one angle written as one sinusoid ([`harmonic_joined`]) and the product tidied, when that
+/// is shorter than the product tidied as it is: the sinusoid's number or square root then
+/// merges with the product's (`sqrt(2) k (cos(a) - sin(a))` is `2 k cos(a + pi/4)`, though
+/// `sqrt(2) cos(a + pi/4)` alone is no shorter than `cos(a) - sin(a)`, so [`pairs_joined`]
+/// leaves the sum). Only for products with a number or a square root to merge with.
+fn sinusoid_in_product(fs: &[Expr]) -> Option<Expr> {
+    if !fs.iter().any(|f| matches!(f, Expr::Num(_) | Expr::Sqrt(_))) {
+        return None;
+    }
+    let mut best: Option<(usize, usize, Expr)> = None;
+    for (k, f) in fs.iter().enumerate() {
+        let Expr::Add(sum) = f else {
+            continue;
+        };
+        if sum.len() != 2 || !any_harmonic_pair(sum) {
+            continue;
+        }
+        let (a, b) = (Summand::of(&sum[0]), Summand::of(&sum[1]));
+        for s in harmonic_joined(&a, &a.calls(), &b, &b.calls()) {
+            let mut v = fs.to_vec();
+            v[k] = s.expr();
+            let e = tidy_product(v);
+            let key = choice_key(&e);
+            if best
+                .as_ref()
+                .is_none_or(|(c, d, _)| (key.0, key.1) < (*c, *d))
+            {
+                best = Some((key.0, key.1, e));
+            }
+        }
+    }
+    let (c, d, e) = best?;
+    let now = choice_key(&tidy_product(fs.to_vec()));
+    ((c, d) < (now.0, now.1)).then_some(e)
 }
 
 /// The first of the sums of [`pairs_joined`] for `e` (each also with its common factors
@@ -917,6 +1040,10 @@ fn pairs_joined(e: &Expr, harmonic: bool) -> Vec<Expr> {
     if sum.len() < 2 || sum.len() > MAX_PAIR_SUMMANDS {
         return Vec::new();
     }
+    // Factors that differ only in sign made equal (`sin(A) (a - 2 b) + sin(B) (-a + 2 b)` as
+    // `sin(A) (a - 2 b) - sin(B) (a - 2 b)`), so that the pair can join.
+    let unified = same_signed_sums(sum);
+    let sum = unified.as_deref().unwrap_or(sum);
     // Harmonic pairs looked for only when asked and the sum has one to begin with.
     let harmonic = harmonic && any_harmonic_pair(sum);
     if !(harmonic || any_pair_may_join(sum)) || charge((sum.len() * sum.len()) as u64).is_err() {
@@ -1033,6 +1160,38 @@ mod tests {
         assert_eq!(c.to_scalar(), e.to_scalar());
         assert!(full_cost(&c) < full_cost(&e));
         assert!(common_factor(&Expr::Add(vec![a, b])).is_none());
+    }
+
+    #[test]
+    fn sums_that_differ_only_in_sign_are_made_equal_with_the_summand_negated() {
+        let sym = |n: &str| Expr::Sym(Sym::new(n));
+        let two_b = Expr::Mul(vec![num(Rat::from_integer(2.into())), sym("b")]);
+        // a - 2 b and -2 b + a (another order): negations of -a + 2 b.
+        let f = Expr::Add(vec![sym("a"), neg(two_b.clone())]);
+        let g = Expr::Add(vec![neg(sym("a")), two_b.clone()]);
+        let h = Expr::Add(vec![neg(two_b.clone()), sym("a")]);
+        let terms = |e: &Expr| match e {
+            Expr::Add(v) => v.clone(),
+            _ => unreachable!(),
+        };
+        assert!(negated_sums(&terms(&f), &terms(&g)));
+        assert!(negated_sums(&terms(&h), &terms(&g)));
+        assert!(!negated_sums(&terms(&f), &terms(&h)));
+        // x (a - 2 b) + y (-a + 2 b) is x (a - 2 b) - y (a - 2 b): equal value, one factor.
+        let sum = vec![
+            Expr::Mul(vec![sym("x"), f.clone()]),
+            Expr::Mul(vec![sym("y"), g.clone()]),
+        ];
+        let same = same_signed_sums(&sum).expect("a factor changes");
+        assert_eq!(same[1], neg(Expr::Mul(vec![sym("y"), f.clone()])));
+        assert_eq!(
+            Expr::Add(same).to_scalar(),
+            Expr::Add(sum.clone()).to_scalar()
+        );
+        // Nothing to change: no copy.
+        assert!(same_signed_sums(&sum[..1]).is_none());
+        let c = common_factor(&Expr::Add(sum.clone())).expect("a shared sum");
+        assert_eq!(c.to_scalar(), Expr::Add(sum).to_scalar());
     }
 
     #[test]
