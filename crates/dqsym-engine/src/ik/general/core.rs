@@ -1295,21 +1295,10 @@ pub const REFINE_ITERS: usize = 16;
 /// Two joint vectors within this (every angle, on the circle) are one solution.
 pub const SAME_TOL: f64 = 1e-6;
 
-/// The candidates of one arrangement: its real roots, each with the arm's joint vector (not
-/// yet refined), and the degree reached; `None` when the arrangement is degenerate here.
-fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(usize, usize)> {
-    // A turning hidden joint: the determinant route, unless one of its checks fails.
-    if !ar.j[2].prism {
-        if let Some(found) = det_candidates(ar, el, roots) {
-            return Some(found);
-        }
-    }
-    eigen_candidates(ar, el, roots)
-}
-
-/// The candidates of one arrangement by the eigenvalue route: the companion linearisation of
-/// `M(x)` at the best-conditioned shift, its real (and nearly real) eigenvalues, a null vector
-/// of `M` at each; `None` when `A` is singular at every shift.
+/// The candidates of one arrangement by the eigenvalue route: its real roots (the real and
+/// nearly real eigenvalues of the linearisation of `M(x)` at the best-conditioned shift), each
+/// with the arm's joint vector (not yet refined), and the degree reached; `None` when `A` is
+/// singular at every shift (the arrangement is degenerate here).
 pub(crate) fn eigen_candidates(
     ar: &Arranged,
     el: &Elim,
