@@ -1017,3 +1017,58 @@ fn a_determinant_route_that_gives_up_defers_to_the_next_arrangement() {
         }
     }
 }
+
+/// `HALF_TERMS` (the table `trig_rows` reads) is the list of the nonzero products of the
+/// half-angle map [`HALF`](super::core::HALF) in the loops' order, and `trig_rows` gives the
+/// sums of those loops bit for bit on random `Σ`.
+#[test]
+fn half_terms_are_the_half_angle_products_in_order() {
+    use super::core::{HALF, HALF_TERMS};
+    let mut want = Vec::new();
+    for i4 in 0..3 {
+        for i5 in 0..3 {
+            for a in 0..3 {
+                for b in 0..3 {
+                    let h = HALF[i4][a] * HALF[i5][b];
+                    if h != 0.0 {
+                        want.push((3 * a + b, 3 * i4 + i5, h));
+                    }
+                }
+            }
+        }
+    }
+    assert_eq!(HALF_TERMS.to_vec(), want);
+    let mut rng = Rng(7);
+    for _ in 0..20 {
+        let sig: [[[f64; 9]; 6]; 3] = std::array::from_fn(|_| {
+            std::array::from_fn(|_| {
+                std::array::from_fn(|_| rng.angle() * 1e3f64.powf(rng.unit() - 0.5))
+            })
+        });
+        let mut loops = [[[0.0; 9]; 6]; 3];
+        for row in 0..6 {
+            for i4 in 0..3 {
+                for i5 in 0..3 {
+                    for a in 0..3 {
+                        for b in 0..3 {
+                            let h = HALF[i4][a] * HALF[i5][b];
+                            if h != 0.0 {
+                                for d in 0..3 {
+                                    loops[d][row][3 * a + b] += h * sig[d][row][3 * i4 + i5];
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let got = trig_rows(&sig);
+        for d in 0..3 {
+            for row in 0..6 {
+                for k in 0..9 {
+                    assert_eq!(got[d][row][k].to_bits(), loops[d][row][k].to_bits());
+                }
+            }
+        }
+    }
+}
