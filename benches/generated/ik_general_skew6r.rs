@@ -1519,25 +1519,46 @@ pub(crate) type TrigRows = [[[f64; 9]; 6]; 3];
 pub(crate) fn trig_rows(sig: &[[[f64; 9]; 6]; 3]) -> TrigRows {
     let mut out = [[[0.0; 9]; 6]; 3];
     for row in 0..6 {
-        for i4 in 0..3 {
-            for i5 in 0..3 {
-                let m = mono(i4, i5);
-                for a in 0..3 {
-                    for b in 0..3 {
-                        let h = HALF[i4][a] * HALF[i5][b];
-                        if h == 0.0 {
-                            continue;
-                        }
-                        for d in 0..3 {
-                            out[d][row][3 * a + b] += h * sig[d][row][m];
-                        }
-                    }
-                }
+        // Each entry takes its terms in the order (i4, i5) of the table: the sums of the loops
+        // over the half-angle map, bit for bit (the products by 1, 2, 4 are exact).
+        for &(o, m, h) in &HALF_TERMS {
+            for d in 0..3 {
+                out[d][row][o] += h * sig[d][row][m];
             }
         }
     }
     out
 }
+
+/// The nonzero products `h = HALF[i4][a] HALF[i5][b]` as `(3a + b, mono(i4, i5), h)`, in the
+/// order `(i4, i5, a, b)` (25 of 81; a unit test rebuilds them from [`HALF`]).
+pub const HALF_TERMS: [(usize, usize, f64); 25] = [
+    (0, 0, 1.0),
+    (2, 0, 1.0),
+    (6, 0, 1.0),
+    (8, 0, 1.0),
+    (0, 1, 1.0),
+    (2, 1, -1.0),
+    (6, 1, 1.0),
+    (8, 1, -1.0),
+    (1, 2, 2.0),
+    (7, 2, 2.0),
+    (0, 3, 1.0),
+    (2, 3, 1.0),
+    (6, 3, -1.0),
+    (8, 3, -1.0),
+    (0, 4, 1.0),
+    (2, 4, -1.0),
+    (6, 4, -1.0),
+    (8, 4, 1.0),
+    (1, 5, 2.0),
+    (7, 5, -2.0),
+    (3, 6, 2.0),
+    (5, 6, 2.0),
+    (3, 7, 2.0),
+    (5, 7, -2.0),
+    (4, 8, 4.0),
+];
 
 /// The column order in which [`det_trig`] eliminates `S(θ)`: the
 /// monomials `x4^a x5^b` by blocks `a = 0, 3, 1, 2`. The rows of the six equations have no `a = 3` column and their
