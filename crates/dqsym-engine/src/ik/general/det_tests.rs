@@ -995,7 +995,7 @@ fn a_determinant_route_that_gives_up_defers_to_the_next_arrangement() {
                 for root in &roots[..n] {
                     let mut q = *root;
                     let res = refine(&ax, &sc(&home), &tg, &mut q);
-                    if !(res <= tol.pose) {
+                    if res.is_nan() || res > tol.pose {
                         continue;
                     }
                     let q = q.map(wrap);
