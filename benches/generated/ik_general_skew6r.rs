@@ -1336,15 +1336,15 @@ pub const REFINE_ITERS: usize = 16;
 /// Two joint vectors within this (every angle, on the circle) are one solution.
 pub const SAME_TOL: f64 = 1e-6;
 
-/// The candidates of one arrangement: its real roots, each with the arm's joint vector (not
-/// yet refined), and the degree reached; `None` when the arrangement is degenerate here.
-fn candidates(ar: &Arranged, el: &Elim, roots: &mut [[f64; 6]; 24]) -> Option<(usize, usize)> {
-    // A turning hidden joint: the determinant route, unless one of its checks fails.
-    if !ar.j[2].prism {
-        if let Some(found) = det_candidates(ar, el, roots) {
-            return Some(found);
-        }
-    }
+/// The candidates of one arrangement by the eigenvalue route: its real roots (the real and
+/// nearly real eigenvalues of the linearisation of `M(x)` at the best-conditioned shift), each
+/// with the arm's joint vector (not yet refined), and the degree reached; `None` when `A` is
+/// singular at every shift (the arrangement is degenerate here).
+pub(crate) fn eigen_candidates(
+    ar: &Arranged,
+    el: &Elim,
+    roots: &mut [[f64; 6]; 24],
+) -> Option<(usize, usize)> {
     // The shift φ of the hidden joint that makes A (θ3 = φ + π) best conditioned; its matrix
     // polynomial and the LU of its A are kept.
     let mut best = (0.0, -1.0);
@@ -1519,25 +1519,46 @@ pub(crate) type TrigRows = [[[f64; 9]; 6]; 3];
 pub(crate) fn trig_rows(sig: &[[[f64; 9]; 6]; 3]) -> TrigRows {
     let mut out = [[[0.0; 9]; 6]; 3];
     for row in 0..6 {
-        for i4 in 0..3 {
-            for i5 in 0..3 {
-                let m = mono(i4, i5);
-                for a in 0..3 {
-                    for b in 0..3 {
-                        let h = HALF[i4][a] * HALF[i5][b];
-                        if h == 0.0 {
-                            continue;
-                        }
-                        for d in 0..3 {
-                            out[d][row][3 * a + b] += h * sig[d][row][m];
-                        }
-                    }
-                }
+        // Each entry takes its terms in the order (i4, i5) of the table: the sums of the loops
+        // over the half-angle map, bit for bit (the products by 1, 2, 4 are exact).
+        for &(o, m, h) in &HALF_TERMS {
+            for d in 0..3 {
+                out[d][row][o] += h * sig[d][row][m];
             }
         }
     }
     out
 }
+
+/// The nonzero products `h = HALF[i4][a] HALF[i5][b]` as `(3a + b, mono(i4, i5), h)`, in the
+/// order `(i4, i5, a, b)` (25 of 81; a unit test rebuilds them from [`HALF`]).
+pub const HALF_TERMS: [(usize, usize, f64); 25] = [
+    (0, 0, 1.0),
+    (2, 0, 1.0),
+    (6, 0, 1.0),
+    (8, 0, 1.0),
+    (0, 1, 1.0),
+    (2, 1, -1.0),
+    (6, 1, 1.0),
+    (8, 1, -1.0),
+    (1, 2, 2.0),
+    (7, 2, 2.0),
+    (0, 3, 1.0),
+    (2, 3, 1.0),
+    (6, 3, -1.0),
+    (8, 3, -1.0),
+    (0, 4, 1.0),
+    (2, 4, -1.0),
+    (6, 4, -1.0),
+    (8, 4, 1.0),
+    (1, 5, 2.0),
+    (7, 5, -2.0),
+    (3, 6, 2.0),
+    (5, 6, 2.0),
+    (3, 7, 2.0),
+    (5, 7, -2.0),
+    (4, 8, 4.0),
+];
 
 /// The column order in which [`det_trig`] eliminates `S(θ)`: the
 /// monomials `x4^a x5^b` by blocks `a = 0, 3, 1, 2`. The rows of the six equations have no `a = 3` column and their
@@ -2633,11 +2654,79 @@ pub(crate) fn same(a: &[f64; 6], b: &[f64; 6], prismatic: &[bool; 6]) -> bool {
     })
 }
 
+/// Refines the candidates of arrangement `arr` (roots of degree `degree`), adds the solutions
+/// to `out`; whether the set is complete (every root gave its own exact solution: a double
+/// root, two solutions sharing the hidden joint, gives one of them twice or neither).
+#[allow(clippy::too_many_arguments)]
+fn take_roots(
+    out: &mut GenOut,
+    roots: &[[f64; 6]],
+    degree: usize,
+    arr: usize,
+    ax: &[GenAxis; 6],
+    hm: &B34,
+    tg: &B34,
+    tol: &GenTol,
+) -> bool {
+    let prismatic: [bool; 6] = std::array::from_fn(|i| ax[i][0] != 0.0);
+    if out.n_arr == 0 {
+        out.degree = degree;
+    }
+    if out.n_arr < 3 {
+        out.arrangements[out.n_arr] = arr;
+    }
+    out.n_arr += 1;
+    // The solutions this arrangement's roots reached (exactly).
+    let mut hit = [false; GEN_MAX];
+    for root in roots {
+        let mut q = *root;
+        let res = refine(ax, hm, tg, &mut q);
+        if res.is_nan() || res > tol.keep {
+            continue;
+        }
+        for (v, p) in q.iter_mut().zip(prismatic) {
+            if !p {
+                *v = wrap(*v);
+            }
+        }
+        let at = if let Some(i) = (0..out.n).find(|&i| same(&out.q[i], &q, &prismatic)) {
+            if res < out.residual[i] {
+                out.q[i] = q;
+                out.residual[i] = res;
+            }
+            Some(i)
+        } else if out.n < GEN_MAX {
+            out.q[out.n] = q;
+            out.residual[out.n] = res;
+            out.n += 1;
+            Some(out.n - 1)
+        } else {
+            None
+        };
+        if let Some(i) = at {
+            hit[i] |= res <= tol.pose;
+        }
+    }
+    hit.iter().filter(|h| **h).count() == roots.len()
+}
+
 /// Every solution of `E1 ⋯ E6 M = T` for a 6R chain: the arrangements (a cyclic shift of the
 /// loop, read forwards or backwards) are tried in order; one whose elimination is
 /// nondegenerate gives its real roots, each is back-substituted, refined and checked by
 /// forward kinematics. When a root gave no new solution (a double root: two solutions
 /// sharing the hidden joint), the next arrangement adds its solutions too (at most three).
+///
+/// A determinant route gives up where `det S`, `D′` and `D″` are all near zero (a flat
+/// cluster of roots) or its check fails. Such a cluster is either an accident of the target in
+/// one arrangement (the roots of `det S(θ)` are the values of the hidden joint, which differs
+/// from one arrangement to the next: two solutions close in `θ3` are rarely close in the next
+/// arrangement's hidden joint) or structural (an arm near special geometry, where two
+/// solutions share a joint angle for every target; the cluster then recurs in every
+/// arrangement whose hidden joint is that joint or moves with it). So the eigenvalue route of
+/// the first arrangement to give up is deferred by one arrangement: the next usable
+/// arrangement's determinant route is tried, and if it gives up too (the cluster recurs), the
+/// deferred arrangement's eigenvalue route decides, then that arrangement's own. Its cost when
+/// structural: one more elimination and determinant route than before.
 #[allow(clippy::needless_range_loop)]
 pub fn gen_solve(
     axes: &[GenAxis; 6],
@@ -2676,6 +2765,10 @@ pub fn gen_solve(
         prism: prismatic[i],
     });
     let mut roots = [[0.0; 6]; 24];
+    // An arrangement whose determinant route gave up, its eigenvalue route deferred (see
+    // above).
+    let mut deferred: Option<(Arranged, Elim, usize)> = None;
+    let mut complete = false;
     // The arrangement that served at the derivation's generic target first (special geometry
     // makes the same ones degenerate at every target), then the others in order.
     for k in 0..12 {
@@ -2707,51 +2800,46 @@ pub fn gen_solve(
         if el.rank_ratio < RANK_TOL {
             continue;
         }
-        let Some((n, degree)) = candidates(&ar, &el, &mut roots) else {
-            continue;
+        // A turning hidden joint: the determinant route first.
+        let det = if ar.j[2].prism {
+            None
+        } else {
+            det_candidates(&ar, &el, &mut roots)
         };
-        if out.n_arr == 0 {
-            out.degree = degree;
-        }
-        if out.n_arr < 3 {
-            out.arrangements[out.n_arr] = arr;
-        }
-        out.n_arr += 1;
-        // The solutions this arrangement's roots reached (exactly).
-        let mut hit = [false; GEN_MAX];
-        for k in 0..n {
-            let mut q = roots[k];
-            let res = refine(&ax, &hm, &tg, &mut q);
-            if res.is_nan() || res > tol.keep {
+        let found = match det {
+            Some(found) => Some(found),
+            // The first to give up waits for the next arrangement's determinant route.
+            None if !ar.j[2].prism && deferred.is_none() => {
+                deferred = Some((ar, el, arr));
                 continue;
             }
-            for (v, p) in q.iter_mut().zip(prismatic) {
-                if !p {
-                    *v = wrap(*v);
+            // A second gave up (a cluster in every arrangement) or the hidden joint slides:
+            // the deferred eigenvalue route decides first, then this arrangement's.
+            None => {
+                if let Some((da, de, darr)) = deferred.take() {
+                    if let Some((n, degree)) = eigen_candidates(&da, &de, &mut roots) {
+                        complete =
+                            take_roots(&mut out, &roots[..n], degree, darr, &ax, &hm, &tg, &tol);
+                        if complete || out.n_arr == 12 {
+                            break;
+                        }
+                    }
                 }
+                eigen_candidates(&ar, &el, &mut roots)
             }
-            let at = if let Some(i) = (0..out.n).find(|&i| same(&out.q[i], &q, &prismatic)) {
-                if res < out.residual[i] {
-                    out.q[i] = q;
-                    out.residual[i] = res;
-                }
-                Some(i)
-            } else if out.n < GEN_MAX {
-                out.q[out.n] = q;
-                out.residual[out.n] = res;
-                out.n += 1;
-                Some(out.n - 1)
-            } else {
-                None
-            };
-            if let Some(i) = at {
-                hit[i] |= res <= tol.pose;
-            }
-        }
-        // Every root gave its own exact solution: the set is complete (a double root, two
-        // solutions sharing the hidden joint, gives one of them twice or neither).
-        if hit.iter().filter(|h| **h).count() == n {
+        };
+        let Some((n, degree)) = found else { continue };
+        complete = take_roots(&mut out, &roots[..n], degree, arr, &ax, &hm, &tg, &tol);
+        if complete {
             break;
+        }
+    }
+    // The loop ended with an arrangement deferred and the set incomplete: its eigenvalue route.
+    if let Some((da, de, darr)) = deferred {
+        if !complete && out.n_arr < 12 {
+            if let Some((n, degree)) = eigen_candidates(&da, &de, &mut roots) {
+                take_roots(&mut out, &roots[..n], degree, darr, &ax, &hm, &tg, &tol);
+            }
         }
     }
     // Prismatic variables back in the robot's length unit.

@@ -1322,17 +1322,15 @@ static int ik_gen_det_candidates(const ik_gen_arranged *ar, const ik_gen_elim *e
     return 1;
 }
 
-/* The candidates of one arrangement: its real roots, each with the arm's joint vector (not
-   yet refined) in roots, their number in *n and the degree reached in *degree; 0 when the
-   arrangement is degenerate here. */
-static int ik_gen_candidates(const ik_gen_arranged *ar, const ik_gen_elim *el,
-                             double roots[24][6], int *n, int *degree) {
+/* The candidates of one arrangement by the eigenvalue route (see core.rs, eigen_candidates):
+   its real roots, each with the arm's joint vector (not yet refined) in roots, their number
+   in *n and the degree reached in *degree; 0 when A is singular at every shift. */
+static int ik_gen_eigen_candidates(const ik_gen_arranged *ar, const ik_gen_elim *el,
+                                   double roots[24][6], int *n, int *degree) {
     double mp[3][12][12], mps[3][12][12], m[12][12], v[12];
     double a[12][12], a_s[12][12], wr[24], wi[24], t[6], best_phi = 0.0, best = -1.0, ratio, re,
         im, phi;
     int p[12], ps[12], k, i, n_ev;
-    /* A turning hidden joint: the determinant route, unless one of its checks fails. */
-    if (!ar->j[2].prism && ik_gen_det_candidates(ar, el, roots, n, degree)) return 1;
     /* The shift phi of the hidden joint that makes A best conditioned; its matrix polynomial
        and the LU of its A are kept. */
     for (k = 0; k < (int)(sizeof IK_GEN_SHIFTS / sizeof IK_GEN_SHIFTS[0]); k++) {
@@ -1603,21 +1601,46 @@ static void ik_gen_robot_left(const double axes[6][7], int arr, double len,
             for (m = 0; m < 9; m++) am[i][k][m] *= f[IK_GEN_LEFT_DEG[i]];
 }
 
+/* Refines the n candidates of arrangement arr (degree reached: degree), adds the solutions to
+   out; 1 when the set is complete (every root gave its own exact solution). */
+static int ik_gen_take(ik_gen_out *out, const ik_gen_scaled *sc, double roots[24][6], int n,
+                       int degree, int arr, ik_gen_tol tol) {
+    int hit[IK_GEN_MAX], i, j, at, hits;
+    double q[6], res;
+    if (out->n_arr == 0) out->degree = degree;
+    if (out->n_arr < 3) out->arrangements[out->n_arr] = arr;
+    out->n_arr += 1;
+    /* The solutions this arrangement's roots reached (exactly). */
+    memset(hit, 0, sizeof hit);
+    for (i = 0; i < n; i++) {
+        memcpy(q, roots[i], sizeof q);
+        res = ik_gen_refine((const double (*)[7])sc->ax, (const double (*)[4])sc->hm,
+                            (const double (*)[4])sc->tg, q);
+        if (isnan(res) || res > tol.keep) continue;
+        for (j = 0; j < 6; j++)
+            if (!sc->prismatic[j]) q[j] = ik_gen_wrap(q[j]);
+        at = ik_gen_add(out, q, res, sc->prismatic);
+        if (at >= 0) hit[at] |= res <= tol.pose;
+    }
+    for (hits = 0, i = 0; i < IK_GEN_MAX; i++) hits += hit[i];
+    return hits == n;
+}
+
 /* Every solution of E1 ... E6 M = T for a 6R chain (axes [kind, w, p], home and target
    positions in the robot's lengths, len its scale): the arrangements are tried in order from
    first; each nondegenerate one gives its real roots, each back-substituted, refined and
    checked by forward kinematics, until one arrangement's roots all gave exact solutions of
-   their own. */
+   their own. The eigenvalue route of the first arrangement whose determinant route gives up
+   is deferred by one arrangement (see core.rs, gen_solve). */
 static void ik_gen_solve(const double axes[6][7], const double home[3][4],
                          const double target[4][4], double len, ik_gen_tol tol, int first,
                          ik_gen_out *out) {
     double roots[24][6], left[14][3][9];
-    ik_gen_elim el;
+    ik_gen_elim el, del;
     ik_gen_scaled sc;
-    double q[6], res;
-    ik_gen_arranged ar;
+    ik_gen_arranged ar, dar;
     const int *prismatic = sc.prismatic;
-    int hit[IK_GEN_MAX], i, j, k, n, degree, arr, at, hits;
+    int i, j, k, n, degree, arr, darr = -1, complete = 0, found;
     memset(out, 0, sizeof *out);
     ik_gen_scale(axes, home, target, len, &sc);
     /* The arrangement that served at the derivation's generic target first, then the others. */
@@ -1636,26 +1659,37 @@ static void ik_gen_solve(const double axes[6][7], const double home[3][4],
             ik_gen_eliminate(&ar, NULL, &el);
         }
         if (el.rank_ratio < IK_GEN_RANK_TOL) continue;
-        if (!ik_gen_candidates(&ar, &el, roots, &n, &degree)) continue;
-        if (out->n_arr == 0) out->degree = degree;
-        if (out->n_arr < 3) out->arrangements[out->n_arr] = arr;
-        out->n_arr += 1;
-        /* The solutions this arrangement's roots reached (exactly). */
-        memset(hit, 0, sizeof hit);
-        for (i = 0; i < n; i++) {
-            memcpy(q, roots[i], sizeof q);
-            res = ik_gen_refine((const double (*)[7])sc.ax, (const double (*)[4])sc.hm,
-                                (const double (*)[4])sc.tg, q);
-            if (isnan(res) || res > tol.keep) continue;
-            for (j = 0; j < 6; j++)
-                if (!prismatic[j]) q[j] = ik_gen_wrap(q[j]);
-            at = ik_gen_add(out, q, res, prismatic);
-            if (at >= 0) hit[at] |= res <= tol.pose;
+        /* A turning hidden joint: the determinant route first. */
+        found = !ar.j[2].prism && ik_gen_det_candidates(&ar, &el, roots, &n, &degree);
+        if (!found) {
+            /* The first to give up waits for the next arrangement's determinant route. */
+            if (!ar.j[2].prism && darr < 0) {
+                dar = ar;
+                del = el;
+                darr = arr;
+                continue;
+            }
+            /* A second gave up (or the hidden joint slides): the deferred eigenvalue route
+               decides first, then this arrangement's. */
+            if (darr >= 0) {
+                const int d = darr;
+                darr = -1;
+                if (ik_gen_eigen_candidates(&dar, &del, roots, &n, &degree)) {
+                    complete = ik_gen_take(out, &sc, roots, n, degree, d, tol);
+                    if (complete || out->n_arr == 12) break;
+                }
+            }
+            found = ik_gen_eigen_candidates(&ar, &el, roots, &n, &degree);
         }
-        /* Every root gave its own exact solution: the set is complete. */
-        for (hits = 0, i = 0; i < IK_GEN_MAX; i++) hits += hit[i];
-        if (hits == n) break;
+        if (!found) continue;
+        complete = ik_gen_take(out, &sc, roots, n, degree, arr, tol);
+        if (complete) break;
     }
+    /* The loop ended with an arrangement deferred and the set incomplete: its eigenvalue
+       route. */
+    if (darr >= 0 && !complete && out->n_arr < 12 &&
+        ik_gen_eigen_candidates(&dar, &del, roots, &n, &degree))
+        ik_gen_take(out, &sc, roots, n, degree, darr, tol);
     /* Prismatic variables back in the robot's length unit. */
     for (i = 0; i < out->n; i++)
         for (j = 0; j < 6; j++)

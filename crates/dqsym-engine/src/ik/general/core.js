@@ -880,14 +880,10 @@ function ik_gen_det_candidates(ar, el) {
     return { roots, degree: 2 * deg };
 }
 
-// The candidates of one arrangement: {roots (the arm's joint vectors, not yet refined),
-// degree}; null when the arrangement is degenerate here.
-function ik_gen_candidates(ar, el) {
-    // A turning hidden joint: the determinant route, unless one of its checks fails.
-    if (!ar.j[2].prism) {
-        const found = ik_gen_det_candidates(ar, el);
-        if (found !== null) return found;
-    }
+// The candidates of one arrangement by the eigenvalue route (see core.rs, eigen_candidates):
+// {roots (the arm's joint vectors, not yet refined), degree}; null when A is singular at
+// every shift.
+function ik_gen_eigen_candidates(ar, el) {
     // The shift phi that makes A best conditioned; its matrix polynomial and A's LU are kept.
     let best = [0, -1], mp = null, lu = null, piv = null;
     for (const phi of IK_GEN_SHIFTS) {
@@ -1047,19 +1043,11 @@ function ik_gen_scale(axes, home, target, len) {
 function ik_gen_solve(axes, home, target, len, tol, first) {
     const out = { q: [], residual: [], degree: 0, arrangements: [] };
     const { ax, hm, tg, prismatic, g, js } = ik_gen_scale(axes, home, target, len);
-    const f0 = first % 12;
-    for (let k = 0; k < 12; k++) {
-        const arr = k === 0 ? f0 : k <= f0 ? k - 1 : k;
-        const ar = ik_gen_arrange(js, g, arr);
-        // The last arranged joint is eliminated by a point of its axis, which a slide moves.
-        if (prismatic[ar.perm[5]]) continue;
-        const el = ik_gen_eliminate(ar);
-        if (el.rank_ratio < IK_GEN_RANK_TOL) continue;
-        const cand = ik_gen_candidates(ar, el);
-        if (cand === null) continue;
+    // Refines the candidates of arrangement arr, adds the solutions; whether the set is
+    // complete (every root gave its own exact solution).
+    const take = (cand, arr) => {
         if (out.arrangements.length === 0) out.degree = cand.degree;
         out.arrangements.push(arr);
-        // The solutions this arrangement's roots reached (exactly).
         const hit = new Set();
         for (const q0 of cand.roots) {
             let [q, res] = ik_gen_refine(ax, hm, tg, q0);
@@ -1068,8 +1056,43 @@ function ik_gen_solve(axes, home, target, len, tol, first) {
             const at = ik_gen_add(out, q, res, prismatic);
             if (at >= 0 && res <= tol.pose) hit.add(at);
         }
-        // Every root gave its own exact solution: the set is complete.
-        if (hit.size === cand.roots.length) break;
+        return hit.size === cand.roots.length;
+    };
+    // The eigenvalue route of the first arrangement whose determinant route gives up waits for
+    // the next arrangement's determinant route (see core.rs, gen_solve).
+    let deferred = null, complete = false;
+    const f0 = first % 12;
+    for (let k = 0; k < 12; k++) {
+        const arr = k === 0 ? f0 : k <= f0 ? k - 1 : k;
+        const ar = ik_gen_arrange(js, g, arr);
+        // The last arranged joint is eliminated by a point of its axis, which a slide moves.
+        if (prismatic[ar.perm[5]]) continue;
+        const el = ik_gen_eliminate(ar);
+        if (el.rank_ratio < IK_GEN_RANK_TOL) continue;
+        let cand = ar.j[2].prism ? null : ik_gen_det_candidates(ar, el);
+        if (cand === null) {
+            if (!ar.j[2].prism && deferred === null) {
+                deferred = { ar, el, arr };
+                continue;
+            }
+            if (deferred !== null) {
+                const d = deferred;
+                deferred = null;
+                const dc = ik_gen_eigen_candidates(d.ar, d.el);
+                if (dc !== null) {
+                    complete = take(dc, d.arr);
+                    if (complete) break;
+                }
+            }
+            cand = ik_gen_eigen_candidates(ar, el);
+        }
+        if (cand === null) continue;
+        complete = take(cand, arr);
+        if (complete) break;
+    }
+    if (deferred !== null && !complete) {
+        const dc = ik_gen_eigen_candidates(deferred.ar, deferred.el);
+        if (dc !== null) take(dc, deferred.arr);
     }
     // Prismatic variables back in the robot's length unit.
     out.q = out.q.map((q) => q.map((x, i) => (prismatic[i] ? x * len : x)));

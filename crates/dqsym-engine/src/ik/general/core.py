@@ -344,12 +344,9 @@ def _det_candidates(j, h, perm, am, bm, sig):
     return out
 
 
-def _candidates(j, h, perm, am, bm, sig):
-    # A turning hidden joint: the determinant route, unless one of its checks fails.
-    if not j[2][2]:
-        found = _det_candidates(j, h, perm, am, bm, sig)
-        if found is not None:
-            return found
+def _eigen_candidates(j, h, perm, am, bm, sig):
+    # The eigenvalue route (see core.rs, eigen_candidates); None when A is singular at every
+    # shift.
     best = (0.0, -1.0)
     for phi in IK_GEN_SHIFTS:
         sv = np.linalg.svd(_mpoly(sig, phi)[2], compute_uv=False)
@@ -450,22 +447,12 @@ def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
     slides = [a[0] != 0 for a in ax]
     js = [(a[1:4], a[4:7], a[0] != 0) for a in ax]
     sols = []
-    used = 0
-    order = [first % 12] + [k for k in range(12) if k != first % 12]
-    for arr in order:
-        if used == 12:
-            break
-        j, h, perm = _arranged(js, g, arr)
-        # The last arranged joint is eliminated by a point of its axis, which a slide moves.
-        if slides[perm[5]]:
-            continue
-        am, bm, ratio, sig = _elim(j, h)
-        if ratio < IK_GEN_RANK_TOL:
-            continue
-        cands = _candidates(j, h, perm, am, bm, sig)
-        if cands is None:
-            continue
-        used += 1
+    state = {"used": 0}
+
+    def take(cands):
+        # Refines the candidates, adds the solutions; whether the set is complete (every root
+        # gave its own exact solution).
+        state["used"] += 1
         hit = set()
         for q0 in cands:
             q, res = _refine(ax, home, tg, q0)
@@ -480,8 +467,45 @@ def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
                 sols[at] = [q, res]
             if at is not None and res <= pose_tol:
                 hit.add(at)
-        if len(hit) == len(cands):
+        return len(hit) == len(cands)
+
+    # The eigenvalue route of the first arrangement whose determinant route gives up waits for
+    # the next arrangement's determinant route (see core.rs, gen_solve).
+    deferred = None
+    complete = False
+    order = [first % 12] + [k for k in range(12) if k != first % 12]
+    for arr in order:
+        if state["used"] == 12:
             break
+        j, h, perm = _arranged(js, g, arr)
+        # The last arranged joint is eliminated by a point of its axis, which a slide moves.
+        if slides[perm[5]]:
+            continue
+        am, bm, ratio, sig = _elim(j, h)
+        if ratio < IK_GEN_RANK_TOL:
+            continue
+        cands = None if j[2][2] else _det_candidates(j, h, perm, am, bm, sig)
+        if cands is None:
+            if not j[2][2] and deferred is None:
+                deferred = (j, h, perm, am, bm, sig)
+                continue
+            if deferred is not None:
+                d, deferred = deferred, None
+                dc = _eigen_candidates(*d)
+                if dc is not None:
+                    complete = take(dc)
+                    if complete or state["used"] == 12:
+                        break
+            cands = _eigen_candidates(j, h, perm, am, bm, sig)
+        if cands is None:
+            continue
+        complete = take(cands)
+        if complete:
+            break
+    if deferred is not None and not complete and state["used"] < 12:
+        dc = _eigen_candidates(*deferred)
+        if dc is not None:
+            take(dc)
     # Slides back in the robot's length unit.
     return [([x * length if sl else x for x, sl in zip(q, slides)], False, not res <= pose_tol,
              float(res)) for q, res in sols]

@@ -24,8 +24,10 @@
 //!    twelve, `M(x3) X = 0`, `M(x3) = A x3² + B x3 + C`, `x3 = tan((θ3 − φ)/2)`.
 //! 5. `det M(x3) = 0` is the univariate polynomial, of degree 24 with the spurious factor
 //!    `(1 + x3²)⁴`: degree 16 for a general 6R. For a turning hidden joint the core finds its
-//!    real roots by the determinant route (below); where that route gives up, and for a
-//!    sliding hidden joint, they are the eigenvalues of the 24 x 24 companion linearisation
+//!    real roots by the determinant route (below); where that route gives up in this
+//!    arrangement and again in the next one tried (`core::gen_solve`: a cluster that is an
+//!    accident of the target breaks up in another reading of the loop, a structural one
+//!    recurs), and for a sliding hidden joint, they are the eigenvalues of the 24 x 24 companion linearisation
 //!    `[[0, I], [−A⁻¹C, −A⁻¹B]]` (the spurious `±i` deflated first from the null vectors of
 //!    `M(i)`, 24 → 16 rows; then balancing, Hessenberg reduction, Francis double-shift QR; the
 //!    shift `φ` keeps `A` invertible). The degree the solution states
@@ -238,6 +240,25 @@
 //! is left per pose, roughly: the 18 sampled determinants 30k, the root search 30k, the elimination
 //! 35k (the QR of `Bm` 12k), the refinement 30k, the back-substitution 20k, the eigenvalue route at
 //! 5 poses of 64 about 30k. The 150k of issue #29 is not reached.
+//!
+//! Session 17 (callgrind as above): 236k to 219k per pose, the same 362 solutions (within
+//! `5e-14`). Where arrangement 0's determinant route gives up (5 poses of 64: a cluster of
+//! roots of `det S(θ3)` within rounding) the next arrangement's determinant route is tried
+//! before the eigenvalue route (`core::gen_solve`): its hidden joint is another, where the
+//! cluster is not; an extra elimination and 18 samples (about 100k) instead of the eigenvalue
+//! route (about 450k). Where the next one gives up too (a structural cluster: a PUMA with
+//! `1e-6` offsets forced general gives up in 10 of 12 arrangements), the deferred
+//! arrangement's eigenvalue route decides, then that arrangement's own, so the solution set is
+//! the one the old order gave (`det_tests`). All four ports take this order; the C port stays
+//! bit for bit the Rust solver's on the 64 bench poses. `core::trig_rows` reads its 25 nonzero
+//! half-angle products from a table in the loops' order (the same bits; 1.4k). Tried and
+//! dropped: the 27 products of the back-substitution hoisted (0.6k, different bits), a root
+//! grid of 16, 24 or 48 intervals (all more than 32). What is left per pose (inclusive): the
+//! determinant route 136k (18 sampled LUs 38k, search 26k, back-substitution 22k), the
+//! refinement 51k (two forward kinematics per root, 1.8k each, and one Gauss–Newton step:
+//! 316 of 368 roots need exactly one, the residual after it is about `4e-16`, below
+//! `EXACT_TOL` = `1e-14`, which is the rounding of the 7 products of the forward kinematics
+//! already, so no earlier stop is safe), the elimination 26k.
 
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod apart;
