@@ -900,29 +900,111 @@ fn pi_exponent(p: &Small, w: u64) -> u64 {
     e.rem_euclid(w as i128) as u64
 }
 
+/// The key of a group: the frequency vector and the monomial its terms share.
+pub(crate) type GroupKey<'a> = (&'a [(super::Sym, Small)], &'a MonoRc);
+
+/// Which groups of a term vector are known to be canonical already, so that
+/// [`canonicalize`] passes them through.
+pub(crate) enum Settled<'a> {
+    /// None: every group holding a pi offset is rewritten.
+    Nothing,
+    /// The terms of the sum of two canonical scalars, `origin[i]` telling where term `i`
+    /// came from (bit 1 the left operand, bit 2 the right one), with the keys of the terms
+    /// that cancelled. A group whose terms all come from one operand, none cancelled, is
+    /// that operand's group, canonical: the canonical form is a function of the group's
+    /// value alone, and canonicalizing a canonical group gives it back.
+    Sum {
+        /// Where each term came from.
+        origin: &'a [u8],
+        /// The keys of the terms of both operands that cancelled.
+        cancelled: &'a [GroupKey<'a>],
+    },
+}
+
 /// Rewrites the groups of terms holding a pi offset in their canonical basis (see the module
 /// docs); a field past the context's degree limit, or the work budget running out, is an
-/// error.
-pub(crate) fn canonicalize(terms: &[Term]) -> Result<Vec<Term>, ScalarError> {
-    let mut keys: Vec<(&[(super::Sym, Small)], &MonoRc)> = terms
+/// error. `None` when every such group is [`Settled`] (the terms are canonical as they are).
+pub(crate) fn canonicalize(
+    terms: &[Term],
+    settled: &Settled,
+) -> Result<Option<Vec<Term>>, ScalarError> {
+    let mut keys: Vec<GroupKey> = terms
         .iter()
         .filter(|t| !t.mode.pi.is_zero())
         .map(|t| (&*t.mode.freq, &t.mono))
         .collect();
-    keys.sort();
+    keys.sort_unstable();
     keys.dedup();
+    // For each group, the operands its terms came from (see `Settled::Sum`).
+    let mut from = vec![0u8; keys.len()];
+    let mut at: Vec<Option<usize>> = Vec::with_capacity(terms.len());
+    for (i, t) in terms.iter().enumerate() {
+        let k = keys.binary_search(&(&*t.mode.freq, &t.mono)).ok();
+        if let (Some(k), Settled::Sum { origin, .. }) = (k, settled) {
+            from[k] |= origin[i];
+        }
+        at.push(k);
+    }
+    let redo: Vec<bool> = match settled {
+        Settled::Nothing => vec![true; keys.len()],
+        Settled::Sum { cancelled, .. } => keys
+            .iter()
+            .zip(&from)
+            .map(|(k, f)| *f == 3 || cancelled.contains(k))
+            .collect(),
+    };
+    if cfg!(debug_assertions) {
+        debug_check_settled(terms, &at, &redo);
+    }
+    if !redo.contains(&true) {
+        return Ok(None);
+    }
     let mut groups: Vec<Vec<&Term>> = vec![Vec::new(); keys.len()];
     let mut out: Vec<Term> = Vec::with_capacity(terms.len());
-    for t in terms {
-        match keys.binary_search(&(&*t.mode.freq, &t.mono)) {
-            Ok(i) => groups[i].push(t),
-            Err(_) => out.push(t.clone()),
+    for (t, k) in terms.iter().zip(&at) {
+        match k {
+            Some(k) if redo[*k] => groups[*k].push(t),
+            _ => out.push(t.clone()),
         }
     }
     for g in groups {
-        out.extend(canonical_group(&g)?);
+        if !g.is_empty() {
+            out.extend(canonical_group(&g)?);
+        }
     }
-    Ok(out)
+    Ok(Some(out))
+}
+
+/// Debug builds: every group passed through as settled is its own canonical form (checked
+/// on a budget of its own, so the check neither fails for lack of the caller's budget nor
+/// spends it).
+fn debug_check_settled(terms: &[Term], at: &[Option<usize>], redo: &[bool]) {
+    for (k, _) in redo.iter().enumerate().filter(|(_, r)| !**r) {
+        let g: Vec<&Term> = terms
+            .iter()
+            .zip(at)
+            .filter(|(_, a)| **a == Some(k))
+            .map(|(t, _)| t)
+            .collect();
+        let again = super::with_own_budget(u64::MAX / 4, || canonical_group(&g));
+        if let Ok(mut again) = again {
+            again.sort_by(Term::key_cmp);
+            let mut g: Vec<Term> = g.into_iter().cloned().collect();
+            g.sort_by(Term::key_cmp);
+            assert_eq!(again, g, "a settled group is not canonical");
+        }
+    }
+}
+
+/// Debug builds: `terms` (sorted, merged) are canonical as they are.
+pub(crate) fn debug_check_canonical(terms: &[Term]) {
+    let again = super::with_own_budget(u64::MAX / 4, || {
+        canonicalize(terms, &Settled::Nothing)
+            .and_then(|t| t.map(super::canonical_terms).transpose())
+    });
+    if let Ok(Some(again)) = again {
+        assert_eq!(again, terms, "terms taken as canonical are not");
+    }
 }
 
 fn canonical_group(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
