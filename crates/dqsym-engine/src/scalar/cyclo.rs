@@ -43,6 +43,8 @@ use num_rational::BigRational as Rat;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::collections::{BTreeMap, HashMap};
 use std::hash::BuildHasherDefault;
+use std::cell::RefCell;
+use std::rc::Rc;
 use std::sync::{Arc, Mutex, OnceLock};
 
 fn lcm(a: u64, b: u64) -> u64 {
@@ -58,9 +60,23 @@ fn level_of<'a>(terms: impl Iterator<Item = &'a Term>) -> Result<u64, ScalarErro
     let limit = super::ctx::max_cyclotomic_degree();
     let cap = 2u128.saturating_mul(u128::from(limit).saturating_mul(u128::from(limit)));
     let mut w: Option<u128> = Some(24);
+    // The terms of a group share a few denominators: one lcm per change of denominator, none
+    // when the level already holds it.
+    let mut last = 0;
     for t in terms {
-        let d = 2 * u128::from(t.mode.pi.denom().unsigned_abs());
-        w = w.and_then(|w| (w / w.gcd(&d)).checked_mul(d));
+        let den = t.mode.pi.denom().unsigned_abs();
+        if den == last {
+            continue;
+        }
+        last = den;
+        let d = 2 * u128::from(den);
+        w = w.and_then(|w| {
+            if w.is_multiple_of(d) {
+                Some(w)
+            } else {
+                (w / w.gcd(&d)).checked_mul(d)
+            }
+        });
     }
     let refuse = |w: u128, degree: u64, exact: bool| ScalarError::CyclotomicDegree {
         level: u64::try_from(w / 2).unwrap_or(u64::MAX),
@@ -78,11 +94,25 @@ fn level_of<'a>(terms: impl Iterator<Item = &'a Term>) -> Result<u64, ScalarErro
         }
         None => return Err(refuse(u128::MAX, u64::MAX, false)),
     };
-    let degree = totient(w);
+    let degree = level_primes(w).0;
     if degree > limit {
         return Err(refuse(u128::from(w), degree, true));
     }
     Ok(w)
+}
+
+/// `phi(W)` and the primes of `W`, remembered per thread (every group asks for its level's).
+fn level_primes(w: u64) -> (u64, Rc<[u64]>) {
+    type Levels = HashMap<u64, (u64, Rc<[u64]>), BuildHasherDefault<FxHasher>>;
+    thread_local! {
+        static LEVELS: RefCell<Levels> = RefCell::new(Levels::default());
+    }
+    LEVELS.with(|l| {
+        l.borrow_mut()
+            .entry(w)
+            .or_insert_with(|| (totient(w), primes_of(w).into()))
+            .clone()
+    })
 }
 
 fn primes_of(mut n: u64) -> Vec<u64> {
@@ -717,6 +747,13 @@ impl Unit {
 /// The exact coordinates of a vector over the columns of a [`FastBasis`] span.
 type Coords = Vec<(usize, Rat)>;
 
+/// The same as machine-word rationals where they fit (the form a group's sum is taken in).
+type QCoords = Vec<(usize, Q)>;
+
+/// The most units a [`FastBasis`] keeps in its table by position (three kinds for every
+/// square root and power of `zeta_W`); bigger fields keep them in a map.
+const DENSE_UNITS: usize = 1 << 16;
+
 /// The basis of [`Basis`] (the same columns, in the same order) found modulo a prime and
 /// checked exactly: every column taken is independent of the ones before modulo `P`, hence
 /// over `Q`; every candidate left out was shown to depend on the ones before by exact
@@ -729,19 +766,28 @@ struct FastBasis {
     span: ModSpan,
     /// The exact value of every span column (basis columns, then the completion).
     vecs: Vec<Ints>,
-    /// Keyed by three words: hashed by FxHash (SipHash's rounds were 2% of the Jaco-style
-    /// arm's `fk --jacobian`, one lookup per unit of every group).
-    units: Mutex<HashMap<Unit, Option<Arc<Coords>>, BuildHasherDefault<FxHasher>>>,
+    /// The units' coordinates by position ([`FastBasis::slot`]), each found once: one
+    /// lookup per unit of every group, without a lock.
+    dense: Vec<OnceLock<Option<Arc<QCoords>>>>,
+    /// The same for fields with more units than [`DENSE_UNITS`]. Keyed by three words:
+    /// hashed by FxHash (SipHash's rounds were 2% of the Jaco-style arm's `fk --jacobian`).
+    units: Mutex<HashMap<Unit, Option<Arc<QCoords>>, BuildHasherDefault<FxHasher>>>,
 }
 
 impl FastBasis {
     /// `Ok(None)` when a check fails (the caller takes the exact path).
     fn new(f: &Field, m: u64, real: bool) -> Result<Option<FastBasis>, ScalarError> {
         let w = f.w;
+        let positions = f.sqrts.len() * w as usize * 3;
         let mut fb = FastBasis {
             cols: Vec::new(),
             span: ModSpan::new(),
             vecs: Vec::new(),
+            dense: if positions <= DENSE_UNITS {
+                (0..positions).map(|_| OnceLock::new()).collect()
+            } else {
+                Vec::new()
+            },
             units: Mutex::new(HashMap::default()),
         };
         for Candidate { k, l, parts } in candidates(m, w, real) {
@@ -820,11 +866,45 @@ impl FastBasis {
         Ok(Some(fb))
     }
 
+    /// The position of a unit in [`FastBasis::dense`], when the table is kept.
+    fn slot(&self, f: &Field, u: Unit) -> Option<usize> {
+        if self.dense.is_empty() {
+            return None;
+        }
+        let h = f.sqrts.binary_search_by_key(&u.h, |(x, _)| *x).ok()?;
+        Some((h * f.w as usize + u.a as usize) * 3 + usize::from(u.kind))
+    }
+
     /// The exact coordinates of a unit over the span (`None` when they cannot be shown).
-    fn unit(&self, f: &Field, u: Unit, real: bool) -> Result<Option<Arc<Coords>>, ScalarError> {
-        if let Some(c) = self.units.lock().map_err(poisoned)?.get(&u) {
+    fn unit(&self, f: &Field, u: Unit, real: bool) -> Result<Option<Arc<QCoords>>, ScalarError> {
+        let slot = self.slot(f, u);
+        if let Some(c) = slot.and_then(|i| self.dense[i].get()) {
             return Ok(c.clone());
         }
+        if slot.is_none() {
+            if let Some(c) = self.units.lock().map_err(poisoned)?.get(&u) {
+                return Ok(c.clone());
+            }
+        }
+        let xs = self.unit_coords(f, u, real)?;
+        match slot {
+            // Another thread may have set it meanwhile, to the same value.
+            Some(i) => Ok(self.dense[i].get_or_init(|| xs).clone()),
+            None => {
+                self.units.lock().map_err(poisoned)?.insert(u, xs.clone());
+                Ok(xs)
+            }
+        }
+    }
+
+    /// [`FastBasis::unit`] computed: residues solved modulo `P`, read back as rationals and
+    /// checked exactly.
+    fn unit_coords(
+        &self,
+        f: &Field,
+        u: Unit,
+        real: bool,
+    ) -> Result<Option<Arc<QCoords>>, ScalarError> {
         super::charge((f.phi * f.phi) as u64 / 256 + 1)?;
         let t = u.value(f, real);
         let xs = f
@@ -838,8 +918,7 @@ impl FastBasis {
                     .collect::<Option<Coords>>()
             })
             .filter(|xs| f.combination_is(xs, &self.vecs, &t) == Some(true))
-            .map(Arc::new);
-        self.units.lock().map_err(poisoned)?.insert(u, xs.clone());
+            .map(|xs| Arc::new(xs.iter().map(|(j, c)| (*j, Q::from(c))).collect()));
         Ok(xs)
     }
 }
@@ -850,8 +929,23 @@ fn poisoned<T>(_: T) -> ScalarError {
     ScalarError::OutOfRange("cyclotomic cache poisoned".into())
 }
 
-/// `Q(zeta_W)`, computed once per process (its work charged to the context that builds it).
+/// `Q(zeta_W)`, computed once per process (its work charged to the context that builds it);
+/// the ones a thread used are kept by the thread, looked up without a lock.
 fn field(w: u64) -> Result<Arc<Field>, ScalarError> {
+    type Fields = HashMap<u64, Arc<Field>, BuildHasherDefault<FxHasher>>;
+    thread_local! {
+        static FIELDS: RefCell<Fields> = RefCell::new(Fields::default());
+    }
+    if let Some(f) = FIELDS.with(|c| c.borrow().get(&w).cloned()) {
+        return Ok(f);
+    }
+    let f = shared_field(w)?;
+    FIELDS.with(|c| c.borrow_mut().insert(w, f.clone()));
+    Ok(f)
+}
+
+/// [`field`] from the process-wide cache.
+fn shared_field(w: u64) -> Result<Arc<Field>, ScalarError> {
     static CACHE: Cache<u64, Field> = OnceLock::new();
     let cache = CACHE.get_or_init(Default::default);
     if let Some(f) = cache.lock().map_err(poisoned)?.get(&w) {
@@ -878,8 +972,28 @@ fn basis(f: &Field, m: u64, real: bool) -> Result<Arc<Basis>, ScalarError> {
 }
 
 /// The [`FastBasis`] of `(W, M, real)`, computed once per process; `None` when its checks
-/// failed (the exact [`Basis`] is used then).
+/// failed (the exact [`Basis`] is used then). The ones a thread used are kept by the thread,
+/// looked up without a lock.
 fn fast_basis(f: &Field, m: u64, real: bool) -> Result<Option<Arc<FastBasis>>, ScalarError> {
+    type Local = HashMap<(u64, u64, bool), Option<Arc<FastBasis>>, BuildHasherDefault<FxHasher>>;
+    thread_local! {
+        static LOCAL: RefCell<Local> = RefCell::new(Local::default());
+    }
+    let key = (f.w, m, real);
+    if let Some(b) = LOCAL.with(|c| c.borrow().get(&key).cloned()) {
+        return Ok(b);
+    }
+    let b = shared_fast_basis(f, m, real)?;
+    LOCAL.with(|c| c.borrow_mut().insert(key, b.clone()));
+    Ok(b)
+}
+
+/// [`fast_basis`] from the process-wide cache.
+fn shared_fast_basis(
+    f: &Field,
+    m: u64,
+    real: bool,
+) -> Result<Option<Arc<FastBasis>>, ScalarError> {
     type FastCache = OnceLock<Mutex<HashMap<(u64, u64, bool), Option<Arc<FastBasis>>>>>;
     static CACHE: FastCache = OnceLock::new();
     let cache = CACHE.get_or_init(Default::default);
@@ -1022,27 +1136,32 @@ fn canonical_group_fast(g: &[&Term]) -> Result<Option<Vec<Term>>, ScalarError> {
     };
     let real = first.mode.freq.is_empty();
     let w = level_of(g.iter().copied())?;
-    super::charge(g.len() as u64 * totient(w) / 128 + 1)?;
+    let (phi, primes) = level_primes(w);
+    super::charge(g.len() as u64 * phi / 128 + 1)?;
     let f = field(w)?;
     // Coefficients as `Q` (machine-word rationals until they overflow): the coordinates
     // are small rationals, and `BigRational`'s products and sums reduced by big-integer gcds
     // at every step (56% of the Jaco-style arm's `fk --jacobian` was spent in this function).
-    let mut ys: BTreeMap<u64, BTreeMap<Unit, Q>> = BTreeMap::new();
-    for t in g {
-        let (s, h) = f.split(t.rad);
-        let (a, kind) = if real && t.mode.is_unit() {
-            (0, UNIT_ONE)
-        } else {
-            let kind = if t.mode.sin { UNIT_SIN } else { UNIT_COS };
-            (pi_exponent(&t.mode.pi, w), kind)
-        };
-        *ys.entry(s)
-            .or_default()
-            .entry(Unit { h, a, kind })
-            .or_insert(Q::ZERO) += &t.coef;
-    }
+    // Each term is a unit (its value without the rational coefficient) of a class `s` of
+    // square roots outside the field; a class's value is the sum of its units' coordinates
+    // times their coefficients (units met twice are simply added twice).
+    let mut units: Vec<(u64, Unit, &Q)> = g
+        .iter()
+        .map(|t| {
+            let (s, h) = f.split(t.rad);
+            let (a, kind) = if real && t.mode.is_unit() {
+                (0, UNIT_ONE)
+            } else {
+                let kind = if t.mode.sin { UNIT_SIN } else { UNIT_COS };
+                (pi_exponent(&t.mode.pi, w), kind)
+            };
+            (s, Unit { h, a, kind }, &t.coef)
+        })
+        .collect();
+    units.sort_by_key(|(s, _, _)| *s);
+    let classes: Vec<&[(u64, Unit, &Q)]> = units.chunk_by(|x, y| x.0 == y.0).collect();
     enum Fit {
-        In(Vec<Vec<Rat>>),
+        In(Vec<Vec<Q>>),
         Out,
         Unsure,
     }
@@ -1050,22 +1169,22 @@ fn canonical_group_fast(g: &[&Term]) -> Result<Option<Vec<Term>>, ScalarError> {
         let Some(b) = fast_basis(&f, m, real)? else {
             return Ok(Fit::Unsure);
         };
-        let mut sol = Vec::with_capacity(ys.len());
-        for units in ys.values() {
+        let mut sol = Vec::with_capacity(classes.len());
+        for class in &classes {
             let mut x = vec![Q::ZERO; b.span.cols];
-            for (u, q) in units {
+            for (_, u, q) in *class {
                 let Some(cs) = b.unit(&f, *u, real)? else {
                     return Ok(Fit::Unsure);
                 };
                 for (j, c) in cs.iter() {
-                    x[*j] += &(q * &Q::from(c));
+                    x[*j] += &(*q * c);
                 }
             }
             if x[b.cols.len()..].iter().any(|v| !v.is_zero()) {
                 return Ok(Fit::Out);
             }
             x.truncate(b.cols.len());
-            sol.push(x.iter().map(Q::to_big).collect());
+            sol.push(x);
         }
         Ok(Fit::In(sol))
     };
@@ -1075,7 +1194,7 @@ fn canonical_group_fast(g: &[&Term]) -> Result<Option<Vec<Term>>, ScalarError> {
         Fit::Out | Fit::Unsure => return Ok(None),
     };
     'descend: loop {
-        for p in primes_of(m) {
+        for &p in primes.iter().filter(|p| m.is_multiple_of(**p)) {
             let n = m / p;
             if !n.is_multiple_of(24) {
                 continue;
@@ -1095,7 +1214,7 @@ fn canonical_group_fast(g: &[&Term]) -> Result<Option<Vec<Term>>, ScalarError> {
     let Some(b) = fast_basis(&f, m, real)? else {
         return Ok(None);
     };
-    let classes: Vec<u64> = ys.keys().copied().collect();
+    let classes: Vec<u64> = classes.iter().map(|c| c[0].0).collect();
     terms_in_basis(first, real, &classes, sol, &b.cols).map(Some)
 }
 
@@ -1105,7 +1224,7 @@ fn terms_in_basis(
     first: &Term,
     real: bool,
     classes: &[u64],
-    sol: Vec<Vec<Rat>>,
+    sol: Vec<Vec<Q>>,
     cols: &[Col],
 ) -> Result<Vec<Term>, ScalarError> {
     let mut out = Vec::new();
@@ -1118,11 +1237,7 @@ fn terms_in_basis(
                 .ok_or_else(|| ScalarError::OutOfRange("radicand too large".into()))?;
             // The common case multiplies by one: skipped, since a product of big rationals
             // reduces its result by gcds (11% of the Jaco-style arm's `fk --jacobian`).
-            let mut coef = if k == 1 {
-                x
-            } else {
-                x * Rat::from_integer(k.into())
-            };
+            let mut coef = if k == 1 { x } else { &x * &Q::from_u64(k) };
             let mode = if col.angle.is_zero() && real {
                 Mode::unit()
             } else {
@@ -1145,7 +1260,7 @@ fn terms_in_basis(
                 mode,
                 mono: first.mono.clone(),
                 rad,
-                coef: Q::big(coef),
+                coef,
             });
         }
     }
@@ -1225,6 +1340,10 @@ fn canonical_group_exact(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
     }
     let b = basis(&f, m, real)?;
     let classes: Vec<u64> = ys.iter().map(|(s, _)| *s).collect();
+    let sol = sol
+        .into_iter()
+        .map(|xs| xs.into_iter().map(Q::big).collect())
+        .collect();
     terms_in_basis(first, real, &classes, sol, &b.cols)
 }
 

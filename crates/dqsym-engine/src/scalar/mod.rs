@@ -28,6 +28,8 @@ pub(crate) use calculus::mode_angle;
 mod cs;
 mod ctx;
 mod cyclo;
+#[cfg(test)]
+mod cyclo_props;
 mod decimal;
 mod frac;
 mod modp;
