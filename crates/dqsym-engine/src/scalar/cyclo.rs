@@ -33,6 +33,12 @@
 //! by the context's limit ([`Context::with_max_cyclotomic_degree`](super::Context), 192 by
 //! default): past it, or when the work budget runs out on the way, the result is an error
 //! value, never a group left in a non-canonical form.
+//!
+//! The canonical form of a group is a function of its value, so a canonical group is its own
+//! canonical form: a sum of two canonical scalars rewrites only the groups that hold terms of
+//! both ([`Settled::Sum`]), and a product by a nonzero constant of the square-root field
+//! times a monomial rewrites none (`arith::mul`). Debug builds check every group passed
+//! through this way against the rewrite from scratch.
 
 use super::atoms::{rad_mul, Mode, MonoRc, Small};
 use super::modp::{self, ModSpan};
