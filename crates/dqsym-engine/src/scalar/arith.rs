@@ -44,7 +44,10 @@ pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
     let mut out = Vec::with_capacity(x.len() + y.len());
     // Where each term of the sum came from, and the keys of the terms that cancelled: only
     // the groups mixed from both operands are canonicalized again (`Scalar::from_sum`).
-    let mut origin: Vec<u8> = Vec::with_capacity(x.len() + y.len());
+    // Without a pi offset in either operand there is nothing to canonicalize or track.
+    let offsets = |t: &[Term]| t.iter().any(|t| !t.mode.pi.is_zero());
+    let track = offsets(x) || offsets(y);
+    let mut origin: Vec<u8> = Vec::with_capacity(if track { x.len() + y.len() } else { 0 });
     let mut cancelled: Vec<GroupKey> = Vec::new();
     let (mut i, mut j) = (0, 0);
     // A long sum notices cancellation as it goes, not only before.
@@ -63,12 +66,16 @@ pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
         match x[i].key_cmp(&y[j]) {
             std::cmp::Ordering::Less => {
                 out.push(x[i].clone());
-                origin.push(1);
+                if track {
+                    origin.push(1);
+                }
                 i += 1;
             }
             std::cmp::Ordering::Greater => {
                 out.push(flip(&y[j]));
-                origin.push(2);
+                if track {
+                    origin.push(2);
+                }
                 j += 1;
             }
             std::cmp::Ordering::Equal => {
@@ -78,12 +85,16 @@ pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
                     &x[i].coef + &y[j].coef
                 };
                 if c.is_zero() {
-                    cancelled.push((&*x[i].mode.freq, &x[i].mono));
+                    if track {
+                        cancelled.push((&*x[i].mode.freq, &x[i].mono));
+                    }
                 } else {
                     let mut t = x[i].clone();
                     t.coef = c;
                     out.push(t);
-                    origin.push(3);
+                    if track {
+                        origin.push(3);
+                    }
                 }
                 i += 1;
                 j += 1;
@@ -91,10 +102,14 @@ pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
         }
     }
     out.extend(x[i..].iter().cloned());
+    if !track {
+        out.extend(y[j..].iter().map(flip));
+        return Scalar::from_sum(out, None);
+    }
     origin.resize(out.len(), 1);
     out.extend(y[j..].iter().map(flip));
     origin.resize(out.len(), 2);
-    Scalar::from_sum(out, &origin, &cancelled)
+    Scalar::from_sum(out, Some((&origin, &cancelled)))
 }
 
 /// A small, fast, non-cryptographic hasher (FxHash) for the mode-product cache.

@@ -358,10 +358,16 @@ impl Scalar {
     /// The sum of two canonical scalars from its sorted, merged terms: `origin[i]` says
     /// which operand term `i` came from (bit 1 the left, bit 2 the right), `cancelled` holds
     /// the keys of the terms that cancelled. Only the groups mixed from both operands are
-    /// canonicalized again (see [`Settled::Sum`]).
-    pub(crate) fn from_sum(terms: Vec<Term>, origin: &[u8], cancelled: &[GroupKey]) -> Scalar {
-        let offsets = terms.iter().any(|t| !t.mode.pi.is_zero());
-        Scalar::from_canonical(terms, offsets, &Settled::Sum { origin, cancelled })
+    /// canonicalized again (see [`Settled::Sum`]). `None` when neither operand has a pi
+    /// offset.
+    pub(crate) fn from_sum(terms: Vec<Term>, origins: Option<(&[u8], &[GroupKey])>) -> Scalar {
+        match origins {
+            None => Scalar::from_canonical(terms, false, &Settled::Nothing),
+            Some((origin, cancelled)) => {
+                let offsets = terms.iter().any(|t| !t.mode.pi.is_zero());
+                Scalar::from_canonical(terms, offsets, &Settled::Sum { origin, cancelled })
+            }
+        }
     }
 
     /// [`Scalar::from_terms_sorted`] told whether a term has a pi offset and which groups
