@@ -5,7 +5,7 @@ use super::atoms::{
     empty_mono, mode_mul, mono_mul, rad_mul, small_ok, split_square, trig_mode, Mode, ModeSum,
     Small, Sym,
 };
-use super::{charge, term_limit, Poll, Scalar, ScalarError, Term, Q};
+use super::{charge, term_limit, GroupKey, Poll, Scalar, ScalarError, Term, Q};
 use crate::Ring;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
@@ -15,6 +15,7 @@ use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 use std::ops::{Add, Mul, Neg, Sub};
 use std::rc::Rc;
+use std::sync::Arc;
 
 /// How many term pairs one product may form, as a multiple of the term limit.
 const PRODUCT_FACTOR: usize = 2;
@@ -41,6 +42,13 @@ pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
         return Scalar::error(e);
     }
     let mut out = Vec::with_capacity(x.len() + y.len());
+    // Where each term of the sum came from, and the keys of the terms that cancelled: only
+    // the groups mixed from both operands are canonicalized again (`Scalar::from_sum`).
+    // Without a pi offset in either operand there is nothing to canonicalize or track.
+    let offsets = |t: &[Term]| t.iter().any(|t| !t.mode.pi.is_zero());
+    let track = offsets(x) || offsets(y);
+    let mut origin: Vec<u8> = Vec::with_capacity(if track { x.len() + y.len() } else { 0 });
+    let mut cancelled: Vec<GroupKey> = Vec::new();
     let (mut i, mut j) = (0, 0);
     // A long sum notices cancellation as it goes, not only before.
     let mut poll = Poll::default();
@@ -58,10 +66,16 @@ pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
         match x[i].key_cmp(&y[j]) {
             std::cmp::Ordering::Less => {
                 out.push(x[i].clone());
+                if track {
+                    origin.push(1);
+                }
                 i += 1;
             }
             std::cmp::Ordering::Greater => {
                 out.push(flip(&y[j]));
+                if track {
+                    origin.push(2);
+                }
                 j += 1;
             }
             std::cmp::Ordering::Equal => {
@@ -70,10 +84,17 @@ pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
                 } else {
                     &x[i].coef + &y[j].coef
                 };
-                if !c.is_zero() {
+                if c.is_zero() {
+                    if track {
+                        cancelled.push((&*x[i].mode.freq, &x[i].mono));
+                    }
+                } else {
                     let mut t = x[i].clone();
                     t.coef = c;
                     out.push(t);
+                    if track {
+                        origin.push(3);
+                    }
                 }
                 i += 1;
                 j += 1;
@@ -81,8 +102,14 @@ pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
         }
     }
     out.extend(x[i..].iter().cloned());
+    if !track {
+        out.extend(y[j..].iter().map(flip));
+        return Scalar::from_sum(out, None);
+    }
+    origin.resize(out.len(), 1);
     out.extend(y[j..].iter().map(flip));
-    Scalar::from_terms_sorted(out)
+    origin.resize(out.len(), 2);
+    Scalar::from_sum(out, Some((&origin, &cancelled)))
 }
 
 /// A small, fast, non-cryptographic hasher (FxHash) for the mode-product cache.
@@ -262,6 +289,13 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
     if let Err(e) = charge(product_work(x, y)) {
         return Scalar::error(e);
     }
+    // A canonical scalar times a nonzero constant of the square-root field times a monomial
+    // is canonical once like terms merge: each group is carried to one group (the monomial
+    // multiplies its key), its value times the constant `k`, which has the same smallest
+    // cyclotomic field (`k` is invertible in the field of square roots), and the products of
+    // the terms, merged, are its coordinates over `Q` in the same basis (a basis of square
+    // roots times the columns). So the product skips the cyclotomic rewrite.
+    let settled = scales(x) || scales(y);
     let mut out = Vec::with_capacity(x.len() * y.len());
     // A large product notices cancellation as it goes (every few term pairs), not only before.
     let mut poll = Poll::default();
@@ -309,7 +343,21 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
             }
         }
     }
-    Scalar::from_terms(out)
+    if settled {
+        Scalar::from_terms_settled(out)
+    } else {
+        Scalar::from_terms(out)
+    }
+}
+
+/// Whether `t` is a nonzero constant of the square-root field times one monomial: every term
+/// without a trigonometric mode, all with the same monomial (see [`mul`]).
+fn scales(t: &[Term]) -> bool {
+    t.first().is_some_and(|first| {
+        t.iter().all(|u| {
+            u.mode.is_unit() && (Arc::ptr_eq(&u.mono, &first.mono) || u.mono == first.mono)
+        })
+    })
 }
 
 impl Scalar {

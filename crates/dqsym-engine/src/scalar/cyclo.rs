@@ -33,6 +33,12 @@
 //! by the context's limit ([`Context::with_max_cyclotomic_degree`](super::Context), 192 by
 //! default): past it, or when the work budget runs out on the way, the result is an error
 //! value, never a group left in a non-canonical form.
+//!
+//! The canonical form of a group is a function of its value, so a canonical group is its own
+//! canonical form: a sum of two canonical scalars rewrites only the groups that hold terms of
+//! both ([`Settled::Sum`]), and a product by a nonzero constant of the square-root field
+//! times a monomial rewrites none (`arith::mul`). Debug builds check every group passed
+//! through this way against the rewrite from scratch.
 
 use super::atoms::{rad_mul, Mode, MonoRc, Small};
 use super::modp::{self, ModSpan};
@@ -41,8 +47,10 @@ use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational as Rat;
 use num_traits::{One, Signed, ToPrimitive, Zero};
+use std::cell::RefCell;
 use std::collections::{BTreeMap, HashMap};
 use std::hash::BuildHasherDefault;
+use std::rc::Rc;
 use std::sync::{Arc, Mutex, OnceLock};
 
 fn lcm(a: u64, b: u64) -> u64 {
@@ -58,9 +66,23 @@ fn level_of<'a>(terms: impl Iterator<Item = &'a Term>) -> Result<u64, ScalarErro
     let limit = super::ctx::max_cyclotomic_degree();
     let cap = 2u128.saturating_mul(u128::from(limit).saturating_mul(u128::from(limit)));
     let mut w: Option<u128> = Some(24);
+    // The terms of a group share a few denominators: one lcm per change of denominator, none
+    // when the level already holds it.
+    let mut last = 0;
     for t in terms {
-        let d = 2 * u128::from(t.mode.pi.denom().unsigned_abs());
-        w = w.and_then(|w| (w / w.gcd(&d)).checked_mul(d));
+        let den = t.mode.pi.denom().unsigned_abs();
+        if den == last {
+            continue;
+        }
+        last = den;
+        let d = 2 * u128::from(den);
+        w = w.and_then(|w| {
+            if w.is_multiple_of(d) {
+                Some(w)
+            } else {
+                (w / w.gcd(&d)).checked_mul(d)
+            }
+        });
     }
     let refuse = |w: u128, degree: u64, exact: bool| ScalarError::CyclotomicDegree {
         level: u64::try_from(w / 2).unwrap_or(u64::MAX),
@@ -78,11 +100,25 @@ fn level_of<'a>(terms: impl Iterator<Item = &'a Term>) -> Result<u64, ScalarErro
         }
         None => return Err(refuse(u128::MAX, u64::MAX, false)),
     };
-    let degree = totient(w);
+    let degree = level_primes(w).0;
     if degree > limit {
         return Err(refuse(u128::from(w), degree, true));
     }
     Ok(w)
+}
+
+/// `phi(W)` and the primes of `W`, remembered per thread (every group asks for its level's).
+fn level_primes(w: u64) -> (u64, Rc<[u64]>) {
+    type Levels = HashMap<u64, (u64, Rc<[u64]>), BuildHasherDefault<FxHasher>>;
+    thread_local! {
+        static LEVELS: RefCell<Levels> = RefCell::new(Levels::default());
+    }
+    LEVELS.with(|l| {
+        l.borrow_mut()
+            .entry(w)
+            .or_insert_with(|| (totient(w), primes_of(w).into()))
+            .clone()
+    })
 }
 
 fn primes_of(mut n: u64) -> Vec<u64> {
@@ -717,6 +753,63 @@ impl Unit {
 /// The exact coordinates of a vector over the columns of a [`FastBasis`] span.
 type Coords = Vec<(usize, Rat)>;
 
+/// A unit's coordinates over the columns of a [`FastBasis`] span: as `Q`, and as integer
+/// numerators over one denominator when they fit in machine words (the form a group's sum is
+/// taken in: no gcd until the sum is done).
+struct QCoords {
+    q: Vec<(usize, Q)>,
+    ints: Option<(i64, Vec<(usize, i64)>)>,
+}
+
+impl QCoords {
+    fn new(xs: &Coords) -> QCoords {
+        let mut den = BigInt::one();
+        for (_, c) in xs {
+            den = den.lcm(c.denom());
+        }
+        let ints = den.to_i64().and_then(|d| {
+            let nums = xs
+                .iter()
+                .map(|(j, c)| (c.numer() * (&den / c.denom())).to_i64().map(|n| (*j, n)))
+                .collect::<Option<Vec<_>>>()?;
+            Some((d, nums))
+        });
+        QCoords {
+            q: xs.iter().map(|(j, c)| (*j, Q::from(c))).collect(),
+            ints,
+        }
+    }
+}
+
+/// `sum q_u x_u` over units `x_u` (of `cols` coordinates) in integers: the numerators over
+/// one common denominator, `None` when a coefficient is not a machine-word rational or an
+/// integer would overflow (the caller sums in `Q` then).
+fn sum_ints(cols: usize, units: &[(Arc<QCoords>, &Q)]) -> Option<(Vec<i128>, i128)> {
+    let mut l: i128 = 1;
+    for (u, q) in units {
+        let (Q::S(_, d), Some((den, _))) = (q, &u.ints) else {
+            return None;
+        };
+        let m = i128::from(*d).checked_mul(i128::from(*den))?;
+        l = (l / l.gcd(&m)).checked_mul(m)?;
+    }
+    let mut x = vec![0i128; cols];
+    for (u, q) in units {
+        let (Q::S(n, d), Some((den, nums))) = (q, &u.ints) else {
+            return None;
+        };
+        let f = i128::from(*n).checked_mul(l / (i128::from(*d) * i128::from(*den)))?;
+        for (j, c) in nums {
+            x[*j] = x[*j].checked_add(f.checked_mul(i128::from(*c))?)?;
+        }
+    }
+    Some((x, l))
+}
+
+/// The most units a [`FastBasis`] keeps in its table by position (three kinds for every
+/// square root and power of `zeta_W`); bigger fields keep them in a map.
+const DENSE_UNITS: usize = 1 << 16;
+
 /// The basis of [`Basis`] (the same columns, in the same order) found modulo a prime and
 /// checked exactly: every column taken is independent of the ones before modulo `P`, hence
 /// over `Q`; every candidate left out was shown to depend on the ones before by exact
@@ -729,19 +822,28 @@ struct FastBasis {
     span: ModSpan,
     /// The exact value of every span column (basis columns, then the completion).
     vecs: Vec<Ints>,
-    /// Keyed by three words: hashed by FxHash (SipHash's rounds were 2% of the Jaco-style
-    /// arm's `fk --jacobian`, one lookup per unit of every group).
-    units: Mutex<HashMap<Unit, Option<Arc<Coords>>, BuildHasherDefault<FxHasher>>>,
+    /// The units' coordinates by position ([`FastBasis::slot`]), each found once: one
+    /// lookup per unit of every group, without a lock.
+    dense: Vec<OnceLock<Option<Arc<QCoords>>>>,
+    /// The same for fields with more units than [`DENSE_UNITS`]. Keyed by three words:
+    /// hashed by FxHash (SipHash's rounds were 2% of the Jaco-style arm's `fk --jacobian`).
+    units: Mutex<HashMap<Unit, Option<Arc<QCoords>>, BuildHasherDefault<FxHasher>>>,
 }
 
 impl FastBasis {
     /// `Ok(None)` when a check fails (the caller takes the exact path).
     fn new(f: &Field, m: u64, real: bool) -> Result<Option<FastBasis>, ScalarError> {
         let w = f.w;
+        let positions = f.sqrts.len() * w as usize * 3;
         let mut fb = FastBasis {
             cols: Vec::new(),
             span: ModSpan::new(),
             vecs: Vec::new(),
+            dense: if positions <= DENSE_UNITS {
+                (0..positions).map(|_| OnceLock::new()).collect()
+            } else {
+                Vec::new()
+            },
             units: Mutex::new(HashMap::default()),
         };
         for Candidate { k, l, parts } in candidates(m, w, real) {
@@ -820,11 +922,45 @@ impl FastBasis {
         Ok(Some(fb))
     }
 
+    /// The position of a unit in [`FastBasis::dense`], when the table is kept.
+    fn slot(&self, f: &Field, u: Unit) -> Option<usize> {
+        if self.dense.is_empty() {
+            return None;
+        }
+        let h = f.sqrts.binary_search_by_key(&u.h, |(x, _)| *x).ok()?;
+        Some((h * f.w as usize + u.a as usize) * 3 + usize::from(u.kind))
+    }
+
     /// The exact coordinates of a unit over the span (`None` when they cannot be shown).
-    fn unit(&self, f: &Field, u: Unit, real: bool) -> Result<Option<Arc<Coords>>, ScalarError> {
-        if let Some(c) = self.units.lock().map_err(poisoned)?.get(&u) {
+    fn unit(&self, f: &Field, u: Unit, real: bool) -> Result<Option<Arc<QCoords>>, ScalarError> {
+        let slot = self.slot(f, u);
+        if let Some(c) = slot.and_then(|i| self.dense[i].get()) {
             return Ok(c.clone());
         }
+        if slot.is_none() {
+            if let Some(c) = self.units.lock().map_err(poisoned)?.get(&u) {
+                return Ok(c.clone());
+            }
+        }
+        let xs = self.unit_coords(f, u, real)?;
+        match slot {
+            // Another thread may have set it meanwhile, to the same value.
+            Some(i) => Ok(self.dense[i].get_or_init(|| xs).clone()),
+            None => {
+                self.units.lock().map_err(poisoned)?.insert(u, xs.clone());
+                Ok(xs)
+            }
+        }
+    }
+
+    /// [`FastBasis::unit`] computed: residues solved modulo `P`, read back as rationals and
+    /// checked exactly.
+    fn unit_coords(
+        &self,
+        f: &Field,
+        u: Unit,
+        real: bool,
+    ) -> Result<Option<Arc<QCoords>>, ScalarError> {
         super::charge((f.phi * f.phi) as u64 / 256 + 1)?;
         let t = u.value(f, real);
         let xs = f
@@ -838,8 +974,7 @@ impl FastBasis {
                     .collect::<Option<Coords>>()
             })
             .filter(|xs| f.combination_is(xs, &self.vecs, &t) == Some(true))
-            .map(Arc::new);
-        self.units.lock().map_err(poisoned)?.insert(u, xs.clone());
+            .map(|xs| Arc::new(QCoords::new(&xs)));
         Ok(xs)
     }
 }
@@ -850,8 +985,23 @@ fn poisoned<T>(_: T) -> ScalarError {
     ScalarError::OutOfRange("cyclotomic cache poisoned".into())
 }
 
-/// `Q(zeta_W)`, computed once per process (its work charged to the context that builds it).
+/// `Q(zeta_W)`, computed once per process (its work charged to the context that builds it);
+/// the ones a thread used are kept by the thread, looked up without a lock.
 fn field(w: u64) -> Result<Arc<Field>, ScalarError> {
+    type Fields = HashMap<u64, Arc<Field>, BuildHasherDefault<FxHasher>>;
+    thread_local! {
+        static FIELDS: RefCell<Fields> = RefCell::new(Fields::default());
+    }
+    if let Some(f) = FIELDS.with(|c| c.borrow().get(&w).cloned()) {
+        return Ok(f);
+    }
+    let f = shared_field(w)?;
+    FIELDS.with(|c| c.borrow_mut().insert(w, f.clone()));
+    Ok(f)
+}
+
+/// [`field`] from the process-wide cache.
+fn shared_field(w: u64) -> Result<Arc<Field>, ScalarError> {
     static CACHE: Cache<u64, Field> = OnceLock::new();
     let cache = CACHE.get_or_init(Default::default);
     if let Some(f) = cache.lock().map_err(poisoned)?.get(&w) {
@@ -878,8 +1028,24 @@ fn basis(f: &Field, m: u64, real: bool) -> Result<Arc<Basis>, ScalarError> {
 }
 
 /// The [`FastBasis`] of `(W, M, real)`, computed once per process; `None` when its checks
-/// failed (the exact [`Basis`] is used then).
+/// failed (the exact [`Basis`] is used then). The ones a thread used are kept by the thread,
+/// looked up without a lock.
 fn fast_basis(f: &Field, m: u64, real: bool) -> Result<Option<Arc<FastBasis>>, ScalarError> {
+    type Local = HashMap<(u64, u64, bool), Option<Arc<FastBasis>>, BuildHasherDefault<FxHasher>>;
+    thread_local! {
+        static LOCAL: RefCell<Local> = RefCell::new(Local::default());
+    }
+    let key = (f.w, m, real);
+    if let Some(b) = LOCAL.with(|c| c.borrow().get(&key).cloned()) {
+        return Ok(b);
+    }
+    let b = shared_fast_basis(f, m, real)?;
+    LOCAL.with(|c| c.borrow_mut().insert(key, b.clone()));
+    Ok(b)
+}
+
+/// [`fast_basis`] from the process-wide cache.
+fn shared_fast_basis(f: &Field, m: u64, real: bool) -> Result<Option<Arc<FastBasis>>, ScalarError> {
     type FastCache = OnceLock<Mutex<HashMap<(u64, u64, bool), Option<Arc<FastBasis>>>>>;
     static CACHE: FastCache = OnceLock::new();
     let cache = CACHE.get_or_init(Default::default);
@@ -900,29 +1066,111 @@ fn pi_exponent(p: &Small, w: u64) -> u64 {
     e.rem_euclid(w as i128) as u64
 }
 
+/// The key of a group: the frequency vector and the monomial its terms share.
+pub(crate) type GroupKey<'a> = (&'a [(super::Sym, Small)], &'a MonoRc);
+
+/// Which groups of a term vector are known to be canonical already, so that
+/// [`canonicalize`] passes them through.
+pub(crate) enum Settled<'a> {
+    /// None: every group holding a pi offset is rewritten.
+    Nothing,
+    /// The terms of the sum of two canonical scalars, `origin[i]` telling where term `i`
+    /// came from (bit 1 the left operand, bit 2 the right one), with the keys of the terms
+    /// that cancelled. A group whose terms all come from one operand, none cancelled, is
+    /// that operand's group, canonical: the canonical form is a function of the group's
+    /// value alone, and canonicalizing a canonical group gives it back.
+    Sum {
+        /// Where each term came from.
+        origin: &'a [u8],
+        /// The keys of the terms of both operands that cancelled.
+        cancelled: &'a [GroupKey<'a>],
+    },
+}
+
 /// Rewrites the groups of terms holding a pi offset in their canonical basis (see the module
 /// docs); a field past the context's degree limit, or the work budget running out, is an
-/// error.
-pub(crate) fn canonicalize(terms: &[Term]) -> Result<Vec<Term>, ScalarError> {
-    let mut keys: Vec<(&[(super::Sym, Small)], &MonoRc)> = terms
+/// error. `None` when every such group is [`Settled`] (the terms are canonical as they are).
+pub(crate) fn canonicalize(
+    terms: &[Term],
+    settled: &Settled,
+) -> Result<Option<Vec<Term>>, ScalarError> {
+    let mut keys: Vec<GroupKey> = terms
         .iter()
         .filter(|t| !t.mode.pi.is_zero())
         .map(|t| (&*t.mode.freq, &t.mono))
         .collect();
-    keys.sort();
+    keys.sort_unstable();
     keys.dedup();
+    // For each group, the operands its terms came from (see `Settled::Sum`).
+    let mut from = vec![0u8; keys.len()];
+    let mut at: Vec<Option<usize>> = Vec::with_capacity(terms.len());
+    for (i, t) in terms.iter().enumerate() {
+        let k = keys.binary_search(&(&*t.mode.freq, &t.mono)).ok();
+        if let (Some(k), Settled::Sum { origin, .. }) = (k, settled) {
+            from[k] |= origin[i];
+        }
+        at.push(k);
+    }
+    let redo: Vec<bool> = match settled {
+        Settled::Nothing => vec![true; keys.len()],
+        Settled::Sum { cancelled, .. } => keys
+            .iter()
+            .zip(&from)
+            .map(|(k, f)| *f == 3 || cancelled.contains(k))
+            .collect(),
+    };
+    if cfg!(debug_assertions) {
+        debug_check_settled(terms, &at, &redo);
+    }
+    if !redo.contains(&true) {
+        return Ok(None);
+    }
     let mut groups: Vec<Vec<&Term>> = vec![Vec::new(); keys.len()];
     let mut out: Vec<Term> = Vec::with_capacity(terms.len());
-    for t in terms {
-        match keys.binary_search(&(&*t.mode.freq, &t.mono)) {
-            Ok(i) => groups[i].push(t),
-            Err(_) => out.push(t.clone()),
+    for (t, k) in terms.iter().zip(&at) {
+        match k {
+            Some(k) if redo[*k] => groups[*k].push(t),
+            _ => out.push(t.clone()),
         }
     }
     for g in groups {
-        out.extend(canonical_group(&g)?);
+        if !g.is_empty() {
+            out.extend(canonical_group(&g)?);
+        }
     }
-    Ok(out)
+    Ok(Some(out))
+}
+
+/// Debug builds: every group passed through as settled is its own canonical form (checked
+/// on a budget of its own, so the check neither fails for lack of the caller's budget nor
+/// spends it).
+fn debug_check_settled(terms: &[Term], at: &[Option<usize>], redo: &[bool]) {
+    for (k, _) in redo.iter().enumerate().filter(|(_, r)| !**r) {
+        let g: Vec<&Term> = terms
+            .iter()
+            .zip(at)
+            .filter(|(_, a)| **a == Some(k))
+            .map(|(t, _)| t)
+            .collect();
+        let again = super::with_own_budget(u64::MAX / 4, || canonical_group(&g));
+        if let Ok(mut again) = again {
+            again.sort_by(Term::key_cmp);
+            let mut g: Vec<Term> = g.into_iter().cloned().collect();
+            g.sort_by(Term::key_cmp);
+            assert_eq!(again, g, "a settled group is not canonical");
+        }
+    }
+}
+
+/// Debug builds: `terms` (sorted, merged) are canonical as they are.
+pub(crate) fn debug_check_canonical(terms: &[Term]) {
+    let again = super::with_own_budget(u64::MAX / 4, || {
+        canonicalize(terms, &Settled::Nothing)
+            .and_then(|t| t.map(super::canonical_terms).transpose())
+    });
+    if let Ok(Some(again)) = again {
+        assert_eq!(again, terms, "terms taken as canonical are not");
+    }
 }
 
 fn canonical_group(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
@@ -940,27 +1188,32 @@ fn canonical_group_fast(g: &[&Term]) -> Result<Option<Vec<Term>>, ScalarError> {
     };
     let real = first.mode.freq.is_empty();
     let w = level_of(g.iter().copied())?;
-    super::charge(g.len() as u64 * totient(w) / 128 + 1)?;
+    let (phi, primes) = level_primes(w);
+    super::charge(g.len() as u64 * phi / 128 + 1)?;
     let f = field(w)?;
     // Coefficients as `Q` (machine-word rationals until they overflow): the coordinates
     // are small rationals, and `BigRational`'s products and sums reduced by big-integer gcds
     // at every step (56% of the Jaco-style arm's `fk --jacobian` was spent in this function).
-    let mut ys: BTreeMap<u64, BTreeMap<Unit, Q>> = BTreeMap::new();
-    for t in g {
-        let (s, h) = f.split(t.rad);
-        let (a, kind) = if real && t.mode.is_unit() {
-            (0, UNIT_ONE)
-        } else {
-            let kind = if t.mode.sin { UNIT_SIN } else { UNIT_COS };
-            (pi_exponent(&t.mode.pi, w), kind)
-        };
-        *ys.entry(s)
-            .or_default()
-            .entry(Unit { h, a, kind })
-            .or_insert(Q::ZERO) += &t.coef;
-    }
+    // Each term is a unit (its value without the rational coefficient) of a class `s` of
+    // square roots outside the field; a class's value is the sum of its units' coordinates
+    // times their coefficients (units met twice are simply added twice).
+    let mut units: Vec<(u64, Unit, &Q)> = g
+        .iter()
+        .map(|t| {
+            let (s, h) = f.split(t.rad);
+            let (a, kind) = if real && t.mode.is_unit() {
+                (0, UNIT_ONE)
+            } else {
+                let kind = if t.mode.sin { UNIT_SIN } else { UNIT_COS };
+                (pi_exponent(&t.mode.pi, w), kind)
+            };
+            (s, Unit { h, a, kind }, &t.coef)
+        })
+        .collect();
+    units.sort_by_key(|(s, _, _)| *s);
+    let classes: Vec<&[(u64, Unit, &Q)]> = units.chunk_by(|x, y| x.0 == y.0).collect();
     enum Fit {
-        In(Vec<Vec<Rat>>),
+        In(Vec<Vec<Q>>),
         Out,
         Unsure,
     }
@@ -968,22 +1221,34 @@ fn canonical_group_fast(g: &[&Term]) -> Result<Option<Vec<Term>>, ScalarError> {
         let Some(b) = fast_basis(&f, m, real)? else {
             return Ok(Fit::Unsure);
         };
-        let mut sol = Vec::with_capacity(ys.len());
-        for units in ys.values() {
-            let mut x = vec![Q::ZERO; b.span.cols];
-            for (u, q) in units {
+        let (n, all) = (b.cols.len(), b.span.cols);
+        let mut sol = Vec::with_capacity(classes.len());
+        for class in &classes {
+            let mut units = Vec::with_capacity(class.len());
+            for (_, u, q) in *class {
                 let Some(cs) = b.unit(&f, *u, real)? else {
                     return Ok(Fit::Unsure);
                 };
-                for (j, c) in cs.iter() {
-                    x[*j] += &(q * &Q::from(c));
+                units.push((cs, *q));
+            }
+            if let Some((x, l)) = sum_ints(all, &units) {
+                if x[n..].iter().any(|v| *v != 0) {
+                    return Ok(Fit::Out);
+                }
+                sol.push(x[..n].iter().map(|v| Q::from_i128(*v, l)).collect());
+                continue;
+            }
+            let mut x = vec![Q::ZERO; all];
+            for (cs, q) in &units {
+                for (j, c) in &cs.q {
+                    x[*j] += &(*q * c);
                 }
             }
-            if x[b.cols.len()..].iter().any(|v| !v.is_zero()) {
+            if x[n..].iter().any(|v| !v.is_zero()) {
                 return Ok(Fit::Out);
             }
-            x.truncate(b.cols.len());
-            sol.push(x.iter().map(Q::to_big).collect());
+            x.truncate(n);
+            sol.push(x);
         }
         Ok(Fit::In(sol))
     };
@@ -993,7 +1258,7 @@ fn canonical_group_fast(g: &[&Term]) -> Result<Option<Vec<Term>>, ScalarError> {
         Fit::Out | Fit::Unsure => return Ok(None),
     };
     'descend: loop {
-        for p in primes_of(m) {
+        for &p in primes.iter().filter(|p| m.is_multiple_of(**p)) {
             let n = m / p;
             if !n.is_multiple_of(24) {
                 continue;
@@ -1013,7 +1278,7 @@ fn canonical_group_fast(g: &[&Term]) -> Result<Option<Vec<Term>>, ScalarError> {
     let Some(b) = fast_basis(&f, m, real)? else {
         return Ok(None);
     };
-    let classes: Vec<u64> = ys.keys().copied().collect();
+    let classes: Vec<u64> = classes.iter().map(|c| c[0].0).collect();
     terms_in_basis(first, real, &classes, sol, &b.cols).map(Some)
 }
 
@@ -1023,7 +1288,7 @@ fn terms_in_basis(
     first: &Term,
     real: bool,
     classes: &[u64],
-    sol: Vec<Vec<Rat>>,
+    sol: Vec<Vec<Q>>,
     cols: &[Col],
 ) -> Result<Vec<Term>, ScalarError> {
     let mut out = Vec::new();
@@ -1036,11 +1301,7 @@ fn terms_in_basis(
                 .ok_or_else(|| ScalarError::OutOfRange("radicand too large".into()))?;
             // The common case multiplies by one: skipped, since a product of big rationals
             // reduces its result by gcds (11% of the Jaco-style arm's `fk --jacobian`).
-            let mut coef = if k == 1 {
-                x
-            } else {
-                x * Rat::from_integer(k.into())
-            };
+            let mut coef = if k == 1 { x } else { &x * &Q::from_u64(k) };
             let mode = if col.angle.is_zero() && real {
                 Mode::unit()
             } else {
@@ -1063,7 +1324,7 @@ fn terms_in_basis(
                 mode,
                 mono: first.mono.clone(),
                 rad,
-                coef: Q::big(coef),
+                coef,
             });
         }
     }
@@ -1143,6 +1404,10 @@ fn canonical_group_exact(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
     }
     let b = basis(&f, m, real)?;
     let classes: Vec<u64> = ys.iter().map(|(s, _)| *s).collect();
+    let sol = sol
+        .into_iter()
+        .map(|xs| xs.into_iter().map(Q::big).collect())
+        .collect();
     terms_in_basis(first, real, &classes, sol, &b.cols)
 }
 

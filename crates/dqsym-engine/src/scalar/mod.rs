@@ -28,6 +28,8 @@ pub(crate) use calculus::mode_angle;
 mod cs;
 mod ctx;
 mod cyclo;
+#[cfg(test)]
+mod cyclo_props;
 mod decimal;
 mod frac;
 mod modp;
@@ -46,6 +48,7 @@ pub use ctx::{
     Context, Entered, Preset, DEFAULT_MAX_ANGLE_SYMBOLS, DEFAULT_MAX_CYCLOTOMIC_DEGREE,
     DEFAULT_MAX_DIGITS, DEFAULT_MAX_EXPONENT,
 };
+use cyclo::{GroupKey, Settled};
 pub use decimal::{decimal_places, decimal_text, parse_decimal, short_numbers};
 pub use frac::Frac;
 pub(crate) use par::{join, par_map, with_own_budget};
@@ -349,21 +352,46 @@ pub struct Scalar(Repr);
 impl Scalar {
     pub(crate) fn from_terms_sorted(terms: Vec<Term>) -> Scalar {
         let offsets = terms.iter().any(|t| !t.mode.pi.is_zero());
-        Scalar::from_canonical(terms, offsets)
+        Scalar::from_canonical(terms, offsets, &Settled::Nothing)
     }
 
-    /// [`Scalar::from_terms_sorted`] told whether a term has a pi offset.
-    fn from_canonical(terms: Vec<Term>, offsets: bool) -> Scalar {
+    /// The sum of two canonical scalars from its sorted, merged terms: `origin[i]` says
+    /// which operand term `i` came from (bit 1 the left, bit 2 the right), `cancelled` holds
+    /// the keys of the terms that cancelled. Only the groups mixed from both operands are
+    /// canonicalized again (see [`Settled::Sum`]). `None` when neither operand has a pi
+    /// offset.
+    pub(crate) fn from_sum(terms: Vec<Term>, origins: Option<(&[u8], &[GroupKey])>) -> Scalar {
+        match origins {
+            None => Scalar::from_canonical(terms, false, &Settled::Nothing),
+            Some((origin, cancelled)) => {
+                let offsets = terms.iter().any(|t| !t.mode.pi.is_zero());
+                Scalar::from_canonical(terms, offsets, &Settled::Sum { origin, cancelled })
+            }
+        }
+    }
+
+    /// [`Scalar::from_terms_sorted`] told whether a term has a pi offset and which groups
+    /// are canonical already.
+    fn from_canonical(terms: Vec<Term>, offsets: bool, settled: &Settled) -> Scalar {
         // Constants at rational multiples of pi other than pi/12 (and symbolic angles offset
         // by them) take their canonical basis; the common case only pays for a scan.
         let terms = if offsets {
-            match cyclo::canonicalize(&terms).and_then(canonical_terms) {
-                Ok(t) => t,
+            match cyclo::canonicalize(&terms, settled) {
+                Ok(None) => terms,
+                Ok(Some(t)) => match canonical_terms(t) {
+                    Ok(t) => t,
+                    Err(e) => return Scalar::error(e),
+                },
                 Err(e) => return Scalar::error(e),
             }
         } else {
             terms
         };
+        Scalar::checked(terms)
+    }
+
+    /// A scalar of canonical terms, or the error of the first limit they pass.
+    fn checked(terms: Vec<Term>) -> Scalar {
         let limit = term_limit();
         if terms.len() > limit {
             return Scalar::error(ScalarError::TooLarge {
@@ -387,12 +415,35 @@ impl Scalar {
             // term again; equal keys are summed, so their order does not matter.
             terms.sort_by(Term::key_cmp);
             return match merge_sorted_counting(terms) {
-                Ok((t, offsets)) => Scalar::from_canonical(t, offsets > 0),
+                Ok((t, offsets)) => Scalar::from_canonical(t, offsets > 0, &Settled::Nothing),
                 Err(e) => Scalar::error(e),
             };
         }
         match canonical_terms(terms) {
             Ok(t) => Scalar::from_terms_sorted(t),
+            Err(e) => Scalar::error(e),
+        }
+    }
+
+    /// [`Scalar::from_terms`] for terms whose groups are canonical already once like terms
+    /// are merged: a canonical scalar times a nonzero constant of the square-root field times
+    /// a monomial (see `arith::mul`). Sorted and merged, never rewritten in a cyclotomic
+    /// basis.
+    pub(crate) fn from_terms_settled(mut terms: Vec<Term>) -> Scalar {
+        let merged = if terms.len() <= RUN {
+            // Stable, as in `from_terms`: a product's runs are in order already.
+            terms.sort_by(Term::key_cmp);
+            merge_sorted(terms)
+        } else {
+            canonical_terms(terms)
+        };
+        match merged {
+            Ok(t) => {
+                if cfg!(debug_assertions) {
+                    cyclo::debug_check_canonical(&t);
+                }
+                Scalar::checked(t)
+            }
             Err(e) => Scalar::error(e),
         }
     }

@@ -1,0 +1,219 @@
+//! Randomized laws of the arithmetic in cyclotomic fields: sums and products of random
+//! elements (constants and symbolic angles offset by rational multiples of pi, square roots,
+//! monomials) are canonical (a second canonicalization from scratch changes nothing: the
+//! route every result took before sums and products by constants skipped the groups that
+//! were canonical already), agree with an independent evaluation in `f64` of the same
+//! expression, and do not depend on the order they were formed in.
+
+use super::cyclo::{canonicalize, Settled};
+use super::{canonical_terms, Scalar, ScalarError};
+use num_bigint::BigInt;
+use num_rational::BigRational;
+
+/// A small linear congruential generator: the test needs no dependency and repeats exactly.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        self.0 >> 33
+    }
+
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+
+    fn pick<T: Copy>(&mut self, xs: &[T]) -> T {
+        xs[self.below(xs.len() as u64) as usize]
+    }
+}
+
+const X: f64 = 0.37;
+const A: f64 = 0.61;
+const B: f64 = -1.3;
+
+/// A value built both exactly and in `f64`, independently.
+#[derive(Clone)]
+struct Val {
+    s: Scalar,
+    f: f64,
+}
+
+fn ratio(p: i64, q: i64) -> Val {
+    Val {
+        s: Scalar::rational(BigRational::new(BigInt::from(p), BigInt::from(q))),
+        f: p as f64 / q as f64,
+    }
+}
+
+fn add(a: &Val, b: &Val) -> Val {
+    Val {
+        s: &a.s + &b.s,
+        f: a.f + b.f,
+    }
+}
+
+fn sub(a: &Val, b: &Val) -> Val {
+    Val {
+        s: &a.s - &b.s,
+        f: a.f - b.f,
+    }
+}
+
+fn mul(a: &Val, b: &Val) -> Val {
+    Val {
+        s: &a.s * &b.s,
+        f: a.f * b.f,
+    }
+}
+
+/// `sqrt(d)`.
+fn root(d: i64) -> Val {
+    Val {
+        s: Scalar::int(d).sqrt(),
+        f: (d as f64).sqrt(),
+    }
+}
+
+/// One of the monomials `1, a, b, a b, a^2`.
+fn monomial(rng: &mut Rng) -> Val {
+    let (a, b) = (
+        Val {
+            s: Scalar::sym("a"),
+            f: A,
+        },
+        Val {
+            s: Scalar::sym("b"),
+            f: B,
+        },
+    );
+    match rng.below(5) {
+        0 => ratio(1, 1),
+        1 => a,
+        2 => b,
+        3 => mul(&a, &b),
+        _ => mul(&a, &a),
+    }
+}
+
+/// `cos` or `sin` of `j x + k pi / n` (`j` may be zero: a constant).
+fn trig(rng: &mut Rng, n: i64) -> Val {
+    let j = rng.pick(&[0i64, 0, 1, 2, -1]);
+    let k = rng.below(2 * n as u64) as i64 - n / 2;
+    let angle = &(&Scalar::sym("x") * &Scalar::int(j))
+        + &(&Scalar::pi() * &Scalar::rational(BigRational::new(k.into(), n.into())));
+    let t = j as f64 * X + std::f64::consts::PI * k as f64 / n as f64;
+    if rng.below(2) == 0 {
+        Val {
+            s: angle.cos(),
+            f: t.cos(),
+        }
+    } else {
+        Val {
+            s: angle.sin(),
+            f: t.sin(),
+        }
+    }
+}
+
+/// A sum of one to four terms `p/q sqrt(d) monomial trig` at the denominators `dens`.
+fn element(rng: &mut Rng, dens: &[i64]) -> Val {
+    let mut acc = ratio(0, 1);
+    for _ in 0..=rng.below(4) {
+        let p = rng.below(9) as i64 - 4;
+        let q = rng.pick(&[1i64, 2, 3, 4]);
+        let mut t = mul(&ratio(p, q), &root(rng.pick(&[1i64, 1, 2, 3, 5, 6])));
+        t = mul(&t, &monomial(rng));
+        if rng.below(4) != 0 {
+            let n = rng.pick(dens);
+            t = mul(&t, &trig(rng, n));
+        }
+        acc = add(&acc, &t);
+    }
+    acc
+}
+
+/// A constant of the square-root field times one monomial (what products skip the
+/// cyclotomic rewrite for), nonzero.
+fn scale(rng: &mut Rng) -> Val {
+    let mut k = ratio(rng.pick(&[1i64, -1, 2, 3]), rng.pick(&[1i64, 2, 4]));
+    if rng.below(2) == 0 {
+        let extra = mul(
+            &ratio(rng.pick(&[1i64, -1, 5]), 4),
+            &root(rng.pick(&[2i64, 3, 6, 7])),
+        );
+        k = add(&k, &extra);
+    }
+    mul(&k, &monomial(rng))
+}
+
+/// `v` is its own canonical form from scratch and agrees with its `f64` value; `false` when
+/// the field is past the degree limit (the case is skipped).
+fn check(v: &Val, what: &str) -> bool {
+    let terms = match v.s.terms() {
+        Ok(t) => t,
+        Err(ScalarError::CyclotomicDegree { .. }) => return false,
+        Err(e) => panic!("{what}: {e}"),
+    };
+    if let Some(again) = canonicalize(terms, &Settled::Nothing).expect("canonicalize") {
+        let again = canonical_terms(again).expect("sorted");
+        assert_eq!(again, terms, "{what}: not canonical");
+    }
+    let f =
+        v.s.eval_at(&[("x", X), ("a", A), ("b", B)])
+            .expect("a value");
+    let tol = 1e-9 * (1.0 + v.f.abs());
+    assert!((f - v.f).abs() < tol, "{what}: {f} against {}", v.f);
+    true
+}
+
+/// Sums (groups from one operand, from both, cancelling) and products (by constants times
+/// monomials, and general ones) of random elements of cyclotomic fields: canonical, equal
+/// to the `f64` evaluation, and the same whichever way the value is formed.
+#[test]
+fn random_sums_and_products_are_canonical_and_exact() {
+    let mut rng = Rng(0x5eed_c1c0);
+    let dens = [5i64, 7, 8, 9, 10, 16, 18, 36];
+    let mut checked = 0;
+    for trial in 0..120 {
+        let pair = [rng.pick(&dens), rng.pick(&dens)];
+        let (u, v, w) = (
+            element(&mut rng, &pair),
+            element(&mut rng, &pair),
+            element(&mut rng, &pair),
+        );
+        let k = scale(&mut rng);
+        let cases = [
+            ("u + v", add(&u, &v)),
+            ("u - v", sub(&u, &v)),
+            ("u - u", sub(&u, &u)),
+            ("u + u", add(&u, &u)),
+            ("u k", mul(&u, &k)),
+            ("k u", mul(&k, &u)),
+            ("(u + v) k", mul(&add(&u, &v), &k)),
+            ("u v", mul(&u, &v)),
+            ("u v + w", add(&mul(&u, &v), &w)),
+        ];
+        for (what, c) in &cases {
+            if check(c, &format!("trial {trial}: {what}")) {
+                checked += 1;
+            }
+        }
+        // The same values formed another way: through sums whose groups mix.
+        let uk = &cases[4].1.s;
+        let other = &(&(&u.s + &w.s) * &k.s) - &(&w.s * &k.s);
+        if uk.as_error().is_none() && other.as_error().is_none() {
+            assert_eq!(*uk, other, "trial {trial}: u k = (u + w) k - w k");
+        }
+        let sum = &cases[0].1.s;
+        let other = &(&(&u.s + &w.s) + &v.s) - &w.s;
+        if sum.as_error().is_none() && other.as_error().is_none() {
+            assert_eq!(*sum, other, "trial {trial}: u + v = ((u + w) + v) - w");
+        }
+        assert!(cases[2].1.s.is_zero_value() || cases[2].1.s.as_error().is_some());
+    }
+    assert!(checked > 800, "{checked}");
+}
