@@ -47,9 +47,9 @@ use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational as Rat;
 use num_traits::{One, Signed, ToPrimitive, Zero};
-use std::cell::RefCell;
 use std::collections::{BTreeMap, HashMap};
 use std::hash::BuildHasherDefault;
+use std::cell::RefCell;
 use std::rc::Rc;
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -753,58 +753,8 @@ impl Unit {
 /// The exact coordinates of a vector over the columns of a [`FastBasis`] span.
 type Coords = Vec<(usize, Rat)>;
 
-/// A unit's coordinates over the columns of a [`FastBasis`] span: as `Q`, and as integer
-/// numerators over one denominator when they fit in machine words (the form a group's sum is
-/// taken in: no gcd until the sum is done).
-struct QCoords {
-    q: Vec<(usize, Q)>,
-    ints: Option<(i64, Vec<(usize, i64)>)>,
-}
-
-impl QCoords {
-    fn new(xs: &Coords) -> QCoords {
-        let mut den = BigInt::one();
-        for (_, c) in xs {
-            den = den.lcm(c.denom());
-        }
-        let ints = den.to_i64().and_then(|d| {
-            let nums = xs
-                .iter()
-                .map(|(j, c)| (c.numer() * (&den / c.denom())).to_i64().map(|n| (*j, n)))
-                .collect::<Option<Vec<_>>>()?;
-            Some((d, nums))
-        });
-        QCoords {
-            q: xs.iter().map(|(j, c)| (*j, Q::from(c))).collect(),
-            ints,
-        }
-    }
-}
-
-/// `sum q_u x_u` over units `x_u` (of `cols` coordinates) in integers: the numerators over
-/// one common denominator, `None` when a coefficient is not a machine-word rational or an
-/// integer would overflow (the caller sums in `Q` then).
-fn sum_ints(cols: usize, units: &[(Arc<QCoords>, &Q)]) -> Option<(Vec<i128>, i128)> {
-    let mut l: i128 = 1;
-    for (u, q) in units {
-        let (Q::S(_, d), Some((den, _))) = (q, &u.ints) else {
-            return None;
-        };
-        let m = i128::from(*d).checked_mul(i128::from(*den))?;
-        l = (l / l.gcd(&m)).checked_mul(m)?;
-    }
-    let mut x = vec![0i128; cols];
-    for (u, q) in units {
-        let (Q::S(n, d), Some((den, nums))) = (q, &u.ints) else {
-            return None;
-        };
-        let f = i128::from(*n).checked_mul(l / (i128::from(*d) * i128::from(*den)))?;
-        for (j, c) in nums {
-            x[*j] = x[*j].checked_add(f.checked_mul(i128::from(*c))?)?;
-        }
-    }
-    Some((x, l))
-}
+/// The same as machine-word rationals where they fit (the form a group's sum is taken in).
+type QCoords = Vec<(usize, Q)>;
 
 /// The most units a [`FastBasis`] keeps in its table by position (three kinds for every
 /// square root and power of `zeta_W`); bigger fields keep them in a map.
@@ -974,7 +924,7 @@ impl FastBasis {
                     .collect::<Option<Coords>>()
             })
             .filter(|xs| f.combination_is(xs, &self.vecs, &t) == Some(true))
-            .map(|xs| Arc::new(QCoords::new(&xs)));
+            .map(|xs| Arc::new(xs.iter().map(|(j, c)| (*j, Q::from(c))).collect()));
         Ok(xs)
     }
 }
@@ -1045,7 +995,11 @@ fn fast_basis(f: &Field, m: u64, real: bool) -> Result<Option<Arc<FastBasis>>, S
 }
 
 /// [`fast_basis`] from the process-wide cache.
-fn shared_fast_basis(f: &Field, m: u64, real: bool) -> Result<Option<Arc<FastBasis>>, ScalarError> {
+fn shared_fast_basis(
+    f: &Field,
+    m: u64,
+    real: bool,
+) -> Result<Option<Arc<FastBasis>>, ScalarError> {
     type FastCache = OnceLock<Mutex<HashMap<(u64, u64, bool), Option<Arc<FastBasis>>>>>;
     static CACHE: FastCache = OnceLock::new();
     let cache = CACHE.get_or_init(Default::default);
@@ -1221,33 +1175,21 @@ fn canonical_group_fast(g: &[&Term]) -> Result<Option<Vec<Term>>, ScalarError> {
         let Some(b) = fast_basis(&f, m, real)? else {
             return Ok(Fit::Unsure);
         };
-        let (n, all) = (b.cols.len(), b.span.cols);
         let mut sol = Vec::with_capacity(classes.len());
         for class in &classes {
-            let mut units = Vec::with_capacity(class.len());
+            let mut x = vec![Q::ZERO; b.span.cols];
             for (_, u, q) in *class {
                 let Some(cs) = b.unit(&f, *u, real)? else {
                     return Ok(Fit::Unsure);
                 };
-                units.push((cs, *q));
-            }
-            if let Some((x, l)) = sum_ints(all, &units) {
-                if x[n..].iter().any(|v| *v != 0) {
-                    return Ok(Fit::Out);
-                }
-                sol.push(x[..n].iter().map(|v| Q::from_i128(*v, l)).collect());
-                continue;
-            }
-            let mut x = vec![Q::ZERO; all];
-            for (cs, q) in &units {
-                for (j, c) in &cs.q {
+                for (j, c) in cs.iter() {
                     x[*j] += &(*q * c);
                 }
             }
-            if x[n..].iter().any(|v| !v.is_zero()) {
+            if x[b.cols.len()..].iter().any(|v| !v.is_zero()) {
                 return Ok(Fit::Out);
             }
-            x.truncate(n);
+            x.truncate(b.cols.len());
             sol.push(x);
         }
         Ok(Fit::In(sol))

@@ -143,7 +143,7 @@ impl Q {
     }
 
     /// `n / d` reduced, for `d != 0`.
-    pub(crate) fn from_i128(mut n: i128, mut d: i128) -> Q {
+    fn from_i128(mut n: i128, mut d: i128) -> Q {
         if n == 0 {
             return Q::ZERO;
         }
