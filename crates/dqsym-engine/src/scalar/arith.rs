@@ -354,8 +354,9 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
 /// without a trigonometric mode, all with the same monomial (see [`mul`]).
 fn scales(t: &[Term]) -> bool {
     t.first().is_some_and(|first| {
-        t.iter()
-            .all(|u| u.mode.is_unit() && (Arc::ptr_eq(&u.mono, &first.mono) || u.mono == first.mono))
+        t.iter().all(|u| {
+            u.mode.is_unit() && (Arc::ptr_eq(&u.mono, &first.mono) || u.mono == first.mono)
+        })
     })
 }
 

@@ -47,9 +47,9 @@ use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational as Rat;
 use num_traits::{One, Signed, ToPrimitive, Zero};
+use std::cell::RefCell;
 use std::collections::{BTreeMap, HashMap};
 use std::hash::BuildHasherDefault;
-use std::cell::RefCell;
 use std::rc::Rc;
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -995,11 +995,7 @@ fn fast_basis(f: &Field, m: u64, real: bool) -> Result<Option<Arc<FastBasis>>, S
 }
 
 /// [`fast_basis`] from the process-wide cache.
-fn shared_fast_basis(
-    f: &Field,
-    m: u64,
-    real: bool,
-) -> Result<Option<Arc<FastBasis>>, ScalarError> {
+fn shared_fast_basis(f: &Field, m: u64, real: bool) -> Result<Option<Arc<FastBasis>>, ScalarError> {
     type FastCache = OnceLock<Mutex<HashMap<(u64, u64, bool), Option<Arc<FastBasis>>>>>;
     static CACHE: FastCache = OnceLock::new();
     let cache = CACHE.get_or_init(Default::default);

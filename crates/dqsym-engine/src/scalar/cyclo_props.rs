@@ -162,10 +162,9 @@ fn check(v: &Val, what: &str) -> bool {
         let again = canonical_terms(again).expect("sorted");
         assert_eq!(again, terms, "{what}: not canonical");
     }
-    let f = v
-        .s
-        .eval_at(&[("x", X), ("a", A), ("b", B)])
-        .expect("a value");
+    let f =
+        v.s.eval_at(&[("x", X), ("a", A), ("b", B)])
+            .expect("a value");
     let tol = 1e-9 * (1.0 + v.f.abs());
     assert!((f - v.f).abs() < tol, "{what}: {f} against {}", v.f);
     true

@@ -38,7 +38,6 @@ mod par;
 pub(crate) mod q;
 
 pub(crate) use arith::FxHasher;
-use cyclo::{GroupKey, Settled};
 pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use atoms::{Sym, Trig};
 pub use cs::{parse_trig_placeholder, trig_placeholder};
@@ -49,6 +48,7 @@ pub use ctx::{
     Context, Entered, Preset, DEFAULT_MAX_ANGLE_SYMBOLS, DEFAULT_MAX_CYCLOTOMIC_DEGREE,
     DEFAULT_MAX_DIGITS, DEFAULT_MAX_EXPONENT,
 };
+use cyclo::{GroupKey, Settled};
 pub use decimal::{decimal_places, decimal_text, parse_decimal, short_numbers};
 pub use frac::Frac;
 pub(crate) use par::{join, par_map, with_own_budget};
