@@ -110,6 +110,12 @@ pub struct Context {
     /// reads the cgroup files.
     threads: usize,
     cancel: Option<Arc<AtomicBool>>,
+    /// For a context taken by [`Context::current`] (a parallel worker's): the budget of the
+    /// context it was taken from as that one reports it, and the work done under it before.
+    /// A [`ScalarError::Budget`] raised under this context then names the budget the user set
+    /// and the work done in all, not what was left of it when a worker started (which depends
+    /// on when the worker took its job).
+    shown: Option<(u64, u64)>,
 }
 
 impl Default for Context {
@@ -123,6 +129,7 @@ impl Default for Context {
             work_budget: u64::MAX,
             threads: 0,
             cancel: None,
+            shown: None,
         }
     }
 }
@@ -166,10 +173,14 @@ impl Context {
     /// is left of it: what a computation started here may still spend.
     pub fn current() -> Context {
         STATE.with(|s| match &*s.borrow() {
-            Some(st) => Context {
-                work_budget: st.ctx.work_budget.saturating_sub(st.used),
-                ..st.ctx.clone()
-            },
+            Some(st) => {
+                let (limit, before) = st.ctx.shown.unwrap_or((st.ctx.work_budget, 0));
+                Context {
+                    work_budget: st.ctx.work_budget.saturating_sub(st.used),
+                    shown: Some((limit, before.saturating_add(st.used))),
+                    ..st.ctx.clone()
+                }
+            }
             None => Context::default(),
         })
     }
@@ -227,6 +238,7 @@ impl Context {
     /// many small operations.
     pub fn with_work_budget(mut self, units: u64) -> Context {
         self.work_budget = units;
+        self.shown = None;
         self
     }
 
@@ -427,9 +439,10 @@ pub(crate) fn charge(units: u64) -> Result<(), ScalarError> {
         TOTAL.with(|t| t.set(t.get().saturating_add(units)));
         st.used = st.used.saturating_add(units);
         if st.used > st.ctx.work_budget {
+            let (limit, before) = st.ctx.shown.unwrap_or((st.ctx.work_budget, 0));
             return Err(ScalarError::Budget {
-                used: st.used,
-                limit: st.ctx.work_budget,
+                used: before.saturating_add(st.used),
+                limit,
             });
         }
         Ok(())
@@ -533,6 +546,55 @@ mod tests {
         assert_eq!(Context::current().work_budget(), 1000 - used);
         drop(g);
         assert_eq!(term_limit(), DEFAULT_TERM_LIMIT);
+    }
+
+    /// A worker runs under [`Context::current`] (what is left of the budget); a budget it
+    /// runs out of is still reported as the budget the user set, with the work done in all
+    /// (an `ik` report at `--work-budget 5000` once said "over the budget of 1271" when a
+    /// helper thread ran out, depending on when it took its job). A budget of its own (a
+    /// bounded attempt) reports itself.
+    #[test]
+    fn a_worker_reports_the_budget_the_user_set() {
+        let _in = Context::new().with_work_budget(1000).enter();
+        charge(600).expect("within the budget");
+        let worker = Context::current();
+        assert_eq!(worker.work_budget(), 400);
+        let first_error = |ctx: Context| {
+            std::thread::spawn(move || {
+                let _e = ctx.enter();
+                (0..100).find_map(|_| charge(10).err())
+            })
+            .join()
+            .expect("the worker ends")
+        };
+        assert_eq!(
+            first_error(worker.clone()),
+            Some(ScalarError::Budget {
+                used: 1010,
+                limit: 1000
+            })
+        );
+        // A worker of a worker: the same.
+        let nested = {
+            let _w = worker.enter();
+            charge(100).expect("within the budget");
+            Context::current()
+        };
+        assert_eq!(nested.work_budget(), 300);
+        assert_eq!(
+            first_error(nested),
+            Some(ScalarError::Budget {
+                used: 1010,
+                limit: 1000
+            })
+        );
+        assert_eq!(
+            first_error(worker.with_work_budget(50)),
+            Some(ScalarError::Budget {
+                used: 60,
+                limit: 50
+            })
+        );
     }
 
     #[test]
