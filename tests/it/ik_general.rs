@@ -849,3 +849,37 @@ fn exact_equations_equal_the_sampled_coefficients() {
         }
     }
 }
+
+/// A calibrated UR5: every twist off its nominal value by about `delta` (1e-3, 1e-6, alternating
+/// in sign), so axes 2-4 are nearly parallel and no family applies exactly; forced through the
+/// general method, each pose's original configuration is among the solutions and every
+/// solution reproduces it. Not yet at 1e-9: there the general method misses the original
+/// configuration at some poses (found in session 17; issue 29 stays open for it).
+#[test]
+fn ur5_with_perturbed_twists_round_trips_by_the_general_method() {
+    for (k, delta) in [1e-3_f64, 1e-6].into_iter().enumerate() {
+        let rows: Vec<Row> = ur5()
+            .into_iter()
+            .enumerate()
+            .map(|(i, r)| {
+                // A fraction 1/n with 3 dividing n: not a decimal, so it is read as it is (a
+                // robot file reads a decimal that is a multiple of pi/12 to the digits it has,
+                // or within 1e-8, as that multiple).
+                let n = 3 * (1.0 / (3.0 * 1.234567 * delta)).round() as u64;
+                let sign = if i % 2 == 0 { "" } else { "-" };
+                let d = if i % 2 == 0 { 1.0 } else { -1.0 } / n as f64;
+                let text: &'static str =
+                    Box::leak(format!("{} + ({sign}1/{n})", r.alpha.0).into_boxed_str());
+                row(r.d, r.a, (text, r.alpha.1 + d))
+            })
+            .collect();
+        let most = round_trip_by(
+            &format!("ur5 twists {delta:e}"),
+            &rows,
+            200,
+            40 + k as u64,
+            IkMethod::General,
+        );
+        assert!(most >= 4, "{most}");
+    }
+}
