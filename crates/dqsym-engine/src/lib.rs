@@ -40,6 +40,8 @@ pub mod kin;
 pub mod print;
 mod ring;
 pub mod scalar;
+#[cfg(test)]
+mod testing;
 
 // The core nouns.
 pub use algebra::{DualQuat, Matrix4, Quat};

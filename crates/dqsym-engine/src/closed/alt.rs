@@ -812,13 +812,7 @@ mod tests {
         let r = |n: i64, d: i64| Rat::new(n.into(), d.into());
         let pow = |x: &Rat, n: u32| (0..n).fold(Rat::one(), |acc, _| acc * x);
         let (c, s) = (r(3, 5), r(4, 5));
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = |m: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % m
-        };
+        let mut next = crate::testing::xorshift_below(0x2545_f491_4f6c_dd1du64);
         for _ in 0..40 {
             let mut poly: BTreeMap<(u32, u32), Rat> = BTreeMap::new();
             for _ in 0..1 + next(6) {

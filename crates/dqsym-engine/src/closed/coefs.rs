@@ -774,13 +774,7 @@ mod tests {
     /// the multiples of pi/12. Both answers occur.
     #[test]
     fn phases_inside_never_claims_what_the_phased_lifting_does_not_find() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = |m: u64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state % m
-        };
+        let mut next = crate::testing::xorshift_below(0x2545_f491_4f6c_dd1du64);
         let angles = [
             Scalar::sym("q"),
             Scalar::sym("q") + Scalar::sym("r"),

@@ -803,13 +803,7 @@ mod tests {
     /// A pseudo-random integer polynomial in up to four symbols: a power of a sum with
     /// coefficients of either sign, times another, plus a few monomials.
     fn poly(seed: u64) -> Scalar {
-        let mut h = seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1;
-        let mut next = |n: u64| {
-            h ^= h << 13;
-            h ^= h >> 7;
-            h ^= h << 17;
-            h % n
-        };
+        let mut next = crate::testing::xorshift_below(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
         let names = ["x", "y", "z", "w"];
         let sum = |next: &mut dyn FnMut(u64) -> u64| {
             let mut s = Scalar::int(next(3) as i64);

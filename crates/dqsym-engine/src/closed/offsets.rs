@@ -581,13 +581,7 @@ mod tests {
     #[test]
     fn dot_is_the_exact_sum_of_the_row_times_the_offsets() {
         use num_rational::BigRational;
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = |m: u64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed % m
-        };
+        let mut next = crate::testing::xorshift_below(0x2545_f491_4f6c_dd1du64);
         let big = |q: Small| BigRational::new((*q.numer()).into(), (*q.denom()).into());
         for round in 0..2000 {
             let span = if round % 2 == 0 { 37 } else { 360 };

@@ -225,15 +225,7 @@ fn check_arm(rows: &[(f64, f64, f64); 6], seed: u64, poses: usize) -> Vec<usize>
 
 #[test]
 fn deflation_keeps_every_eigenvalue_but_the_spurious_of_a_skew_6r() {
-    let pi = std::f64::consts::PI;
-    let rows = [
-        (0.3, 0.05, pi / 3.0),
-        (0.02, 0.4, pi / 6.0),
-        (0.05, 0.03, pi / 2.0),
-        (0.35, 0.02, -pi / 2.0),
-        (0.07, 0.04, 2.0 * pi / 5.0),
-        (0.1, 0.0, 0.0),
-    ];
+    let rows = super::det_tests::skew_rows();
     let sizes = check_arm(&rows, 0x9e37_79b9_7f4a_7c15, 40);
     // A general 6R: the factor (1 + x²)⁴ gives four null vectors of M(i), eight eigenvalues.
     assert!(sizes.iter().all(|&n| n == 16), "{sizes:?}");

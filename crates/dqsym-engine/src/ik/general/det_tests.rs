@@ -13,6 +13,20 @@ use super::core::{
     DET_COS, DET_DEGREE, DET_SIN, GRID_SIN, GRID_STEP, J, NEAR_REAL, RANK_TOL,
 };
 
+/// The skew 6R of these tests (and `deflate_tests`): DH rows `(d, a, alpha)`, no two axes
+/// parallel or intersecting.
+pub(super) fn skew_rows() -> [(f64, f64, f64); 6] {
+    let pi = std::f64::consts::PI;
+    [
+        (0.3, 0.05, pi / 3.0),
+        (0.02, 0.4, pi / 6.0),
+        (0.05, 0.03, pi / 2.0),
+        (0.35, 0.02, -pi / 2.0),
+        (0.07, 0.04, 2.0 * pi / 5.0),
+        (0.1, 0.0, 0.0),
+    ]
+}
+
 /// `S(θ)` at the angle with sine `s`, cosine `c`, in the natural column order (the test's own).
 #[allow(clippy::needless_range_loop)]
 fn trig_at(t: &[[[f64; 12]; 12]; 3], s: f64, c: f64) -> [[f64; 12]; 12] {
@@ -402,14 +416,7 @@ fn det_complete(m: &[[f64; 12]; 12]) -> f64 {
 #[test]
 fn det_coefficients_reproduce_det_s_and_null_vectors_annihilate_it() {
     let pi = std::f64::consts::PI;
-    let skew = [
-        (0.3, 0.05, pi / 3.0),
-        (0.02, 0.4, pi / 6.0),
-        (0.05, 0.03, pi / 2.0),
-        (0.35, 0.02, -pi / 2.0),
-        (0.07, 0.04, 2.0 * pi / 5.0),
-        (0.1, 0.0, 0.0),
-    ];
+    let skew = skew_rows();
     // A PUMA with a 0.8 mm shoulder offset (nearly special: det S nearly of lower degree).
     let puma = [
         (0.0, 0.0008, pi / 2.0),
@@ -868,14 +875,7 @@ fn a_determinant_route_that_gives_up_defers_to_the_next_arrangement() {
         scaled_left, wrap, GenAxis, GenTol,
     };
     let pi = std::f64::consts::PI;
-    let skew = [
-        (0.3, 0.05, pi / 3.0),
-        (0.02, 0.4, pi / 6.0),
-        (0.05, 0.03, pi / 2.0),
-        (0.35, 0.02, -pi / 2.0),
-        (0.07, 0.04, 2.0 * pi / 5.0),
-        (0.1, 0.0, 0.0),
-    ];
+    let skew = skew_rows();
     let e = 1e-6;
     let puma = [
         (0.0, e, pi / 2.0),
