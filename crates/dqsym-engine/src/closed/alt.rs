@@ -427,12 +427,10 @@ fn cos_sin_poly(t: &[Term]) -> Option<(Sym, BTreeMap<(u32, u32), Rat>)> {
     // (i, j) -> coefficient of cos^i sin^j: cos(k x) and sin(k x) are the real and imaginary
     // parts of (c + i s)^k. Summed as integers over the coefficients' common denominator and
     // reduced once each at the end (a rational sum reduces at every step: most of the cost).
-    let den = t
-        .iter()
-        .fold(BigInt::one(), |d, u| d.lcm(u.coef.to_big().denom()));
+    let coefs: Vec<Rat> = t.iter().map(|u| u.coef.to_big()).collect();
+    let den = coefs.iter().fold(BigInt::one(), |d, q| d.lcm(q.denom()));
     let mut poly: BTreeMap<(u32, u32), BigInt> = BTreeMap::new();
-    for u in t {
-        let q = u.coef.to_big();
+    for (u, q) in t.iter().zip(&coefs) {
         let n = q.numer() * (&den / q.denom());
         let k = match &*u.mode.freq {
             [] => {
@@ -463,12 +461,15 @@ fn cos_sin_poly(t: &[Term]) -> Option<(Sym, BTreeMap<(u32, u32), Rat>)> {
             binom = binom * i64::from(k - j) / i64::from(j + 1);
         }
     }
-    let poly = poly
-        .into_iter()
+    Some((var.clone(), over(poly, &den)))
+}
+
+/// The nonzero integers of `m` over `den`, each reduced once.
+fn over<K: Ord>(m: BTreeMap<K, BigInt>, den: &BigInt) -> BTreeMap<K, Rat> {
+    m.into_iter()
         .filter(|(_, n)| !n.is_zero())
-        .map(|(ij, n)| (ij, Rat::new(n, den.clone())))
-        .collect();
-    Some((var.clone(), poly))
+        .map(|(k, n)| (k, Rat::new(n, den.clone())))
+        .collect()
 }
 
 /// The polynomial in `v = sin x` (or `cos x`) that `p` is, with `o^2 = 1 - v^2` for the other
@@ -500,13 +501,7 @@ fn in_one_function(
             binom = binom * i64::from(n - k) / i64::from(k + 1);
         }
     }
-    let reduced = |m: BTreeMap<u32, BigInt>| -> BTreeMap<u32, Rat> {
-        m.into_iter()
-            .filter(|(_, n)| !n.is_zero())
-            .map(|(i, n)| (i, Rat::new(n, den.clone())))
-            .collect()
-    };
-    (reduced(even), reduced(odd))
+    (over(even, &den), over(odd, &den))
 }
 
 /// `p(v)` factored by its rational roots, and also with the pairs `(v - 1)(v + 1)` of the

@@ -996,9 +996,9 @@ fn sinusoid_in_product(fs: &[Expr]) -> Option<Expr> {
 
 /// The first of the sums of [`pairs_joined`] for `e` (each also with its common factors
 /// taken out; for the `outermost` search also with a cosine and a sine of one angle joined
-/// and the sums inside its products joined, [`nested_joined`]) shorter than `e` by `alt::shorter` for which `equal` holds: for the final form
-/// of a scalar, whose angles at multiples of pi/12 (`coefs::phase_angles`) the candidates
-/// never see (`cos(r - u2/2 + pi/3) + cos(r + 3*u2/2 + pi/3)` is `2 cos(r + u2/2 + pi/3)
+/// and the sums inside its products joined, [`nested_joined`]) shorter than `e` by
+/// `alt::shorter` for which `equal` holds: for the final form of a scalar, whose angles at
+/// multiples of pi/12 (`coefs::phase_angles`) the candidates never see (`cos(r - u2/2 + pi/3) + cos(r + 3*u2/2 + pi/3)` is `2 cos(r + u2/2 + pi/3)
 /// cos(u2)`).
 pub(super) fn joined_form(
     e: &Expr,
