@@ -745,6 +745,10 @@ static void ik_gen_null_vector(const double m[12][12], double v[12]) {
 
 /* An angle in (-pi, pi]. */
 static double ik_gen_wrap(double a) {
+    /* Already in (-pi, pi]: the remainder would return it unchanged. */
+    if (a > -IK_GEN_PI && a <= IK_GEN_PI) {
+        return a;
+    }
     double x = fmod(a, IK_GEN_TAU);
     if (x > IK_GEN_PI) {
         x -= IK_GEN_TAU;

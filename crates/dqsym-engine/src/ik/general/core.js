@@ -507,6 +507,8 @@ function ik_gen_null_vector(m) {
 
 // An angle in (-pi, pi].
 function ik_gen_wrap(a) {
+    // Already in (-pi, pi]: the remainder would return it unchanged.
+    if (a > -IK_GEN_PI && a <= IK_GEN_PI) return a;
     let x = a % IK_GEN_TAU;
     if (x > IK_GEN_PI) x -= IK_GEN_TAU;
     else if (x <= -IK_GEN_PI) x += IK_GEN_TAU;

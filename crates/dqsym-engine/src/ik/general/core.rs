@@ -1111,8 +1111,12 @@ fn angle_from(pairs: &[(f64, f64)]) -> f64 {
     wrap(2.0 * best.0.atan2(best.1))
 }
 
-/// An angle in `(−π, π]`.
+/// An angle in `(−π, π]`. One already there is returned as it is, without the remainder
+/// (which is exact and would return it unchanged: the same bits, a library call fewer).
 pub(crate) fn wrap(a: f64) -> f64 {
+    if a > -std::f64::consts::PI && a <= std::f64::consts::PI {
+        return a;
+    }
     let t = std::f64::consts::TAU;
     let mut x = a % t;
     if x > std::f64::consts::PI {
