@@ -676,37 +676,43 @@ pub(crate) fn matrix_poly(sig: &[[[f64; 9]; 6]; 3], phi: f64) -> [[[f64; 12]; 12
 /// LU with partial pivoting of an `n x n` block of `a` (in place); `None` when singular.
 /// Returns the pivot order and the smallest pivot over the largest entry.
 pub(crate) fn lu<const N: usize>(a: &mut [[f64; N]; N]) -> ([usize; N], f64) {
-    let mut p = [0usize; N];
+    let mut p: [usize; N] = std::array::from_fn(|i| i);
+    // (Comparisons, not `f64::max`/`min`: the same choice, NaN skipped as they skip it.)
     let mut amax: f64 = 0.0;
-    for r in a.iter() {
-        for x in r {
-            amax = amax.max(x.abs());
+    for x in a.as_flattened() {
+        if x.abs() > amax {
+            amax = x.abs();
         }
     }
     let mut minpiv = f64::INFINITY;
-    for (i, pi) in p.iter_mut().enumerate() {
-        *pi = i;
-    }
     for k in 0..N {
         let mut best = k;
+        let mut bv = a[k][k].abs();
         for r in k + 1..N {
-            if a[r][k].abs() > a[best][k].abs() {
+            if a[r][k].abs() > bv {
                 best = r;
+                bv = a[r][k].abs();
             }
         }
-        a.swap(k, best);
-        p.swap(k, best);
+        if best != k {
+            a.swap(k, best);
+            p.swap(k, best);
+        }
         let d = a[k][k];
-        minpiv = minpiv.min(d.abs());
+        if d.abs() < minpiv {
+            minpiv = d.abs();
+        }
         if d == 0.0 {
             continue;
         }
-        for r in k + 1..N {
-            let f = a[r][k] / d;
-            a[r][k] = f;
+        let (top, rest) = a.split_at_mut(k + 1);
+        let pr = &top[k];
+        for row in rest.iter_mut() {
+            let f = row[k] / d;
+            row[k] = f;
             if f != 0.0 {
                 for c in k + 1..N {
-                    a[r][c] -= f * a[k][c];
+                    row[c] -= f * pr[c];
                 }
             }
         }
