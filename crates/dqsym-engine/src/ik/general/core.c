@@ -1149,11 +1149,54 @@ static int ik_gen_mono_root(const ik_gen_trig_table *c, double a, double b, int 
     return 1;
 }
 
+/* D and its derivatives at the midpoints of the IK_GEN_ROOT_GRID base intervals, four at a
+   time (see core.rs, grid_values): from the powers e^(i j m) at the first quarter's midpoints
+   m, the sums by j mod 4 give the values at m + r pi/2 too. */
+static void ik_gen_grid_values(const ik_gen_trig_table *t,
+                               double out[IK_GEN_ROOT_GRID][IK_GEN_TAYLOR]) {
+    const int quarter = IK_GEN_ROOT_GRID / 4;
+    const double h = IK_GEN_TAU / (double)IK_GEN_ROOT_GRID;
+    double s, co, zr, zi, nz, av[4][IK_GEN_TAYLOR], bv[2][IK_GEN_TAYLOR], e0, e1, o0, o1;
+    int g, j, k, q;
+    for (g = 0; g < quarter; g++) {
+        ik_gen_unit(0.5 * ((double)g * h + (double)(g + 1) * h), &co, &s);
+        zr = 1.0;
+        zi = 0.0;
+        for (q = 0; q < 4; q++)
+            for (k = 0; k < IK_GEN_TAYLOR; k++) av[q][k] = 0.0;
+        for (q = 0; q < 2; q++)
+            for (k = 0; k < IK_GEN_TAYLOR; k++) bv[q][k] = 0.0;
+        for (j = 0; j <= IK_GEN_DET_DEGREE; j++) {
+            q = j % 4;
+            for (k = 0; k < IK_GEN_TAYLOR; k++) av[q][k] += t->u[j][k] * zr + t->v[j][k] * zi;
+            if (q % 2 == 1)
+                for (k = 0; k < IK_GEN_TAYLOR; k++)
+                    bv[q / 2][k] += t->v[j][k] * zr - t->u[j][k] * zi;
+            nz = zr * co - zi * s;
+            zi = zr * s + zi * co;
+            zr = nz;
+        }
+        for (k = 0; k < IK_GEN_TAYLOR; k++) {
+            e0 = av[0][k] + av[2][k];
+            e1 = av[0][k] - av[2][k];
+            o0 = av[1][k] + av[3][k];
+            o1 = bv[0][k] - bv[1][k];
+            out[g][k] = e0 + o0;
+            out[g + quarter][k] = e1 + o1;
+            out[g + 2 * quarter][k] = e0 - o0;
+            out[g + 3 * quarter][k] = e1 - o1;
+        }
+    }
+}
+
 /* The real roots in [0, 2 pi) of D (see core.rs, trig_roots) into out, their number in *n;
    0 when the search gives up. */
 static int ik_gen_trig_roots(const double c[IK_GEN_DET_DEGREE + 1][2], double out[24], int *n) {
     double b0 = 0.0, b8 = 0.0, margin, nd = (double)IK_GEN_DET_DEGREE, h, top, a, b, m, r, term,
-        x, e, moves[3], v[IK_GEN_TAYLOR], w[IK_GEN_TAYLOR], stack[96][2];
+        x, e, moves[3], v[IK_GEN_TAYLOR], w[IK_GEN_TAYLOR], stack[96][2],
+        base[IK_GEN_ROOT_GRID][IK_GEN_TAYLOR];
+    /* Each interval's index in the base grid (IK_GEN_ROOT_GRID for the halves). */
+    int grid[96];
     int j, k, l, depth = 0, evals = 0, left, right, flat;
     ik_gen_trig_table tt;
     double xl = 0.0, xr = 0.0;
@@ -1163,12 +1206,14 @@ static int ik_gen_trig_roots(const double c[IK_GEN_DET_DEGREE + 1][2], double ou
         b8 += j2 * j2 * j2 * j2 * amp;
     }
     ik_gen_trig_table_of(c, &tt);
+    ik_gen_grid_values(&tt, base);
     margin = IK_GEN_ROOT_MARGIN * b0;
     h = IK_GEN_TAU / (double)IK_GEN_ROOT_GRID;
     top = (double)IK_GEN_ROOT_GRID * h;
     for (k = IK_GEN_ROOT_GRID - 1; k >= 0; k--) {
         stack[depth][0] = (double)k * h;
         stack[depth][1] = (double)(k + 1) * h;
+        grid[depth] = k;
         depth++;
     }
     *n = 0;
@@ -1178,7 +1223,10 @@ static int ik_gen_trig_roots(const double c[IK_GEN_DET_DEGREE + 1][2], double ou
         b = stack[depth][1];
         m = 0.5 * (a + b);
         r = 0.5 * (b - a);
-        ik_gen_trig_eval(&tt, m >= top ? 0.0 : m, v);
+        if (grid[depth] < IK_GEN_ROOT_GRID)
+            memcpy(v, base[grid[depth]], sizeof v);
+        else
+            ik_gen_trig_eval(&tt, m >= top ? 0.0 : m, v);
         evals++;
         if (evals > IK_GEN_ROOT_EVALS || *n + 2 > 24) return 0;
         for (l = 0; l < 3; l++) {
@@ -1222,6 +1270,8 @@ static int ik_gen_trig_roots(const double c[IK_GEN_DET_DEGREE + 1][2], double ou
         stack[depth][1] = b;
         stack[depth + 1][0] = a;
         stack[depth + 1][1] = m;
+        grid[depth] = IK_GEN_ROOT_GRID;
+        grid[depth + 1] = IK_GEN_ROOT_GRID;
         depth += 2;
     }
     return 1;

@@ -2059,31 +2059,63 @@ pub(crate) fn trig_eval(t: &TrigTable, th: f64) -> [f64; TAYLOR] {
     out
 }
 
-/// [`trig_eval`] from the powers `e^{ijθ}` it would compute ([`grid_powers`]).
+/// A quarter of the root search's [`ROOT_GRID`] base intervals: their midpoints `m` and `m +
+/// rπ/2` (`r` = 1, 2, 3) are the others' ([`grid_values`]).
+pub const GRID_QUARTER: usize = ROOT_GRID / 4;
+
+const _: () = assert!(ROOT_GRID % 4 == 0);
+
+/// `D` and its derivatives to the seventh ([`trig_eval`]) at the midpoints of the
+/// [`ROOT_GRID`] base intervals, `[g % GRID_QUARTER][g / GRID_QUARTER]` for interval `g`: four
+/// at a time from the powers `e^{ijm}` at the first quarter's midpoints ([`grid_powers`]),
+/// since `e^{ij(m + rπ/2)} = iʲʳ e^{ijm}`. With the sums by `j mod 4`, `A_q = Σ u zr + v zi`
+/// (the value's part) and, for odd `q`, `B_q = Σ v zr − u zi` (the part turned by `i`), the
+/// four values are `A0 + A1 + A2 + A3`, `A0 + B1 − A2 − B3`, `A0 − A1 + A2 − A3`, `A0 − B1 −
+/// A2 + B3`: 13 sums per quarter where [`trig_eval`] takes 36. The same values to a few units
+/// of rounding of `Σ |c_j| jᵏ` (another order of the sums); the search only compares them
+/// with bounds that have a margin far above that ([`ROOT_MARGIN`]), and its roots come from
+/// fresh evaluations ([`bracketed`]).
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn trig_eval_powers(t: &TrigTable, z: &[(f64, f64); DET_DEGREE + 1]) -> [f64; TAYLOR] {
-    let mut out = [0.0; TAYLOR];
-    for ((u, v), &(zr, zi)) in t.u.iter().zip(&t.v).zip(z) {
-        for k in 0..TAYLOR {
-            out[k] += u[k] * zr + v[k] * zi;
+pub(crate) fn grid_values(t: &TrigTable) -> [[[f64; TAYLOR]; 4]; GRID_QUARTER] {
+    let powers = grid_powers();
+    std::array::from_fn(|g| {
+        let mut a = [[0.0; TAYLOR]; 4];
+        let mut b = [[0.0; TAYLOR]; 2];
+        for (j, ((u, v), &(zr, zi))) in t.u.iter().zip(&t.v).zip(&powers[g]).enumerate() {
+            let q = j % 4;
+            for k in 0..TAYLOR {
+                a[q][k] += u[k] * zr + v[k] * zi;
+            }
+            if q % 2 == 1 {
+                for k in 0..TAYLOR {
+                    b[q / 2][k] += v[k] * zr - u[k] * zi;
+                }
+            }
         }
-    }
-    out
+        let mut out = [[0.0; TAYLOR]; 4];
+        for k in 0..TAYLOR {
+            let (e0, e1) = (a[0][k] + a[2][k], a[0][k] - a[2][k]);
+            let (o0, o1) = (a[1][k] + a[3][k], b[0][k] - b[1][k]);
+            out[0][k] = e0 + o0;
+            out[1][k] = e1 + o1;
+            out[2][k] = e0 - o0;
+            out[3][k] = e1 - o1;
+        }
+        out
+    })
 }
 
-/// The powers `e^{ijm}`, `j = 0 … DET_DEGREE`, that [`trig_eval`] computes at the midpoint `m`
-/// of each of the root search's [`ROOT_GRID`] base intervals (the same numbers: the same
-/// [`unit`] and products), computed once: every search evaluates there first.
-pub(crate) fn grid_powers() -> &'static [[(f64, f64); DET_DEGREE + 1]; ROOT_GRID] {
-    static POWERS: std::sync::OnceLock<[[(f64, f64); DET_DEGREE + 1]; ROOT_GRID]> =
+/// The powers `e^{ijm}`, `j = 0 … DET_DEGREE`, at the midpoint `m` of each of the first
+/// [`GRID_QUARTER`] base intervals of the root search (as [`trig_eval`] computes them there:
+/// the same [`unit`] and products), computed once: every search evaluates there first.
+pub(crate) fn grid_powers() -> &'static [[(f64, f64); DET_DEGREE + 1]; GRID_QUARTER] {
+    static POWERS: std::sync::OnceLock<[[(f64, f64); DET_DEGREE + 1]; GRID_QUARTER]> =
         std::sync::OnceLock::new();
     POWERS.get_or_init(|| {
         let h = std::f64::consts::TAU / ROOT_GRID as f64;
-        let top = ROOT_GRID as f64 * h;
         std::array::from_fn(|k| {
             let (a, b) = (k as f64 * h, (k + 1) as f64 * h);
-            let m = 0.5 * (a + b);
-            let (co, s) = unit(if m >= top { 0.0 } else { m });
+            let (co, s) = unit(0.5 * (a + b));
             let (mut zr, mut zi) = (1.0, 0.0);
             std::array::from_fn(|_| {
                 let z = (zr, zi);
@@ -2239,7 +2271,7 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
         grid[depth] = k as u8;
         depth += 1;
     }
-    let powers = grid_powers();
+    let base = grid_values(c);
     let mut n = 0;
     let mut evals = 0;
     // A root of the monotone part `[a, b]` of `D` (`k = 0`) or `D′` (`k = 1`), if its ends
@@ -2276,7 +2308,7 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
         let g = grid[depth] as usize;
         let (m, r) = (0.5 * (a + b), 0.5 * (b - a));
         let v = if g < ROOT_GRID {
-            trig_eval_powers(c, &powers[g])
+            base[g % GRID_QUARTER][g / GRID_QUARTER]
         } else {
             at(m)
         };
