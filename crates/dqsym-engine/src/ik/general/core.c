@@ -1112,11 +1112,10 @@ static void ik_gen_trig_low(const ik_gen_trig_table *t, int k, double th, double
    positive; D^(k) monotone there): Halley's method from the secant's zero, kept inside the
    bracket. */
 static double ik_gen_bracketed(const ik_gen_trig_table *c, int k, double a,
-                               double b, double fa, double fb) {
-    double v[3], x = a + (b - a) * (fa / (fa - fb)), next;
+                               double b, double fa, double start) {
+    double v[3], x = start, next;
     const int neg_a = fa < 0.0;
     int it;
-    if (!(x > a && x < b)) x = 0.5 * (a + b);
     for (it = 0; it < 60; it++) {
         ik_gen_trig_low(c, k, x, v);
         if (v[0] == 0.0) return x;
@@ -1136,16 +1135,68 @@ static double ik_gen_bracketed(const ik_gen_trig_table *c, int k, double a,
     return x;
 }
 
-/* A root of the monotone D^(k) on [a, b] into *x if its ends differ in sign; 1 when found. The
-   end top (2 pi) is read as 0, so that a root there is seen the same from both sides. */
-static int ik_gen_mono_root(const ik_gen_trig_table *c, double a, double b, int k, double top,
-                            int *evals, double *x) {
-    double va[3], vb[3];
-    ik_gen_trig_low(c, k, a >= top ? 0.0 : a, va);
-    ik_gen_trig_low(c, k, b >= top ? 0.0 : b, vb);
+/* Where ik_gen_bracketed starts on [a, b] inside an interval with midpoint m and Taylor data v
+   there: the zero of the Taylor polynomial of D^(k) at m by Newton's method from the secant's
+   zero; the secant's zero where Newton's leaves the bracket (see core.rs, taylor_start). */
+static double ik_gen_taylor_start(const double v[IK_GEN_TAYLOR], int k, double m, double a,
+                                  double b, double fa, double fb) {
+    static const double inv_fact[IK_GEN_TAYLOR] = {1.0,         1.0,         0.5,
+                                                   1.0 / 6.0,   1.0 / 24.0,  1.0 / 120.0,
+                                                   1.0 / 720.0, 1.0 / 5040.0};
+    double x = a + (b - a) * (fa / (fa - fb)), h, p, dp, step, y;
+    int it, j;
+    if (!(x > a && x < b)) x = 0.5 * (a + b);
+    h = x - m;
+    for (it = 0; it < 8; it++) {
+        p = v[IK_GEN_TAYLOR - 1] * inv_fact[IK_GEN_TAYLOR - 1 - k];
+        dp = 0.0;
+        for (j = IK_GEN_TAYLOR - 2 - k; j >= 0; j--) {
+            dp = dp * h + p;
+            p = p * h + v[k + j] * inv_fact[j];
+        }
+        step = p / dp;
+        if (!isfinite(step)) return x;
+        h -= step;
+        if (fabs(step) <= 1e-15) break;
+    }
+    y = m + h;
+    return y > a && y < b ? y : x;
+}
+
+/* D^(l) at m + h by Taylor's formula at m (v) into *val when its sign is certified: the value
+   beyond the rest b8 |h|^(8 - l) / (8 - l)! and the margin tol (see core.rs, trig_roots). */
+static int ik_gen_certified(const double v[IK_GEN_TAYLOR], int l, double h, double tol,
+                            double b8, double *val) {
+    double s = 0.0, term = 1.0, rest;
+    int k;
+    for (k = l; k < IK_GEN_TAYLOR; k++) {
+        if (k > l) term *= h / (double)(k - l);
+        s += v[k] * term;
+    }
+    rest = b8 * fabs(term * h / (double)(IK_GEN_TAYLOR - l)) + tol;
+    *val = s;
+    return s > rest || s < -rest;
+}
+
+/* A root of the monotone D^(k) on [a, b] (at m + ha, m + hb inside the interval with midpoint
+   m and Taylor data v) into *x if its ends differ in sign; 1 when found. An end whose sign
+   Taylor's formula certifies is not evaluated. The end top (2 pi) is read as 0, so that a root
+   there is seen the same from both sides. */
+static int ik_gen_mono_root(const ik_gen_trig_table *c, double a, double b, double ha, double hb,
+                            int k, double m, const double v[IK_GEN_TAYLOR], double b8,
+                            double tol, double top, int *evals, double *x) {
+    double va[3], vb[3], fa, fb;
+    if (!ik_gen_certified(v, k, ha, tol, b8, &fa)) {
+        ik_gen_trig_low(c, k, a >= top ? 0.0 : a, va);
+        fa = va[0];
+    }
+    if (!ik_gen_certified(v, k, hb, tol, b8, &fb)) {
+        ik_gen_trig_low(c, k, b >= top ? 0.0 : b, vb);
+        fb = vb[0];
+    }
     *evals += 2;
-    if ((va[0] < 0.0) == (vb[0] < 0.0)) return 0;
-    *x = ik_gen_bracketed(c, k, a, b, va[0], vb[0]);
+    if ((fa < 0.0) == (fb < 0.0)) return 0;
+    *x = ik_gen_bracketed(c, k, a, b, fa, ik_gen_taylor_start(v, k, m, a, b, fa, fb));
     return 1;
 }
 
@@ -1240,17 +1291,19 @@ static int ik_gen_trig_roots(const double c[IK_GEN_DET_DEGREE + 1][2], double ou
         }
         if (fabs(v[0]) > moves[0] + margin) continue;
         if (fabs(v[1]) > moves[1] + nd * margin) {
-            if (ik_gen_mono_root(&tt, a, b, 0, top, &evals, &x)) out[(*n)++] = x;
+            if (ik_gen_mono_root(&tt, a, b, -r, r, 0, m, v, b8, margin, top, &evals, &x))
+                out[(*n)++] = x;
             continue;
         }
         if (fabs(v[2]) > moves[2] + nd * nd * margin) {
-            if (!ik_gen_mono_root(&tt, a, b, 1, top, &evals, &e)) {
+            if (!ik_gen_mono_root(&tt, a, b, -r, r, 1, m, v, b8, nd * margin, top, &evals, &e)) {
                 /* D' keeps its sign: D is monotone after all. */
-                if (ik_gen_mono_root(&tt, a, b, 0, top, &evals, &x)) out[(*n)++] = x;
+                if (ik_gen_mono_root(&tt, a, b, -r, r, 0, m, v, b8, margin, top, &evals, &x))
+                    out[(*n)++] = x;
                 continue;
             }
-            left = ik_gen_mono_root(&tt, a, e, 0, top, &evals, &xl);
-            right = ik_gen_mono_root(&tt, e, b, 0, top, &evals, &xr);
+            left = ik_gen_mono_root(&tt, a, e, -r, e - m, 0, m, v, b8, margin, top, &evals, &xl);
+            right = ik_gen_mono_root(&tt, e, b, e - m, r, 0, m, v, b8, margin, top, &evals, &xr);
             if (left) out[(*n)++] = xl;
             if (right) out[(*n)++] = xr;
             if (!left && !right) {
