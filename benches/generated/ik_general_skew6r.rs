@@ -717,37 +717,43 @@ pub(crate) fn matrix_poly(sig: &[[[f64; 9]; 6]; 3], phi: f64) -> [[[f64; 12]; 12
 /// LU with partial pivoting of an `n x n` block of `a` (in place); `None` when singular.
 /// Returns the pivot order and the smallest pivot over the largest entry.
 pub(crate) fn lu<const N: usize>(a: &mut [[f64; N]; N]) -> ([usize; N], f64) {
-    let mut p = [0usize; N];
+    let mut p: [usize; N] = std::array::from_fn(|i| i);
+    // (Comparisons, not `f64::max`/`min`: the same choice, NaN skipped as they skip it.)
     let mut amax: f64 = 0.0;
-    for r in a.iter() {
-        for x in r {
-            amax = amax.max(x.abs());
+    for x in a.as_flattened() {
+        if x.abs() > amax {
+            amax = x.abs();
         }
     }
     let mut minpiv = f64::INFINITY;
-    for (i, pi) in p.iter_mut().enumerate() {
-        *pi = i;
-    }
     for k in 0..N {
         let mut best = k;
+        let mut bv = a[k][k].abs();
         for r in k + 1..N {
-            if a[r][k].abs() > a[best][k].abs() {
+            if a[r][k].abs() > bv {
                 best = r;
+                bv = a[r][k].abs();
             }
         }
-        a.swap(k, best);
-        p.swap(k, best);
+        if best != k {
+            a.swap(k, best);
+            p.swap(k, best);
+        }
         let d = a[k][k];
-        minpiv = minpiv.min(d.abs());
+        if d.abs() < minpiv {
+            minpiv = d.abs();
+        }
         if d == 0.0 {
             continue;
         }
-        for r in k + 1..N {
-            let f = a[r][k] / d;
-            a[r][k] = f;
+        let (top, rest) = a.split_at_mut(k + 1);
+        let pr = &top[k];
+        for row in rest.iter_mut() {
+            let f = row[k] / d;
+            row[k] = f;
             if f != 0.0 {
                 for c in k + 1..N {
-                    a[r][c] -= f * a[k][c];
+                    row[c] -= f * pr[c];
                 }
             }
         }
@@ -1152,8 +1158,12 @@ fn angle_from(pairs: &[(f64, f64)]) -> f64 {
     wrap(2.0 * best.0.atan2(best.1))
 }
 
-/// An angle in `(−π, π]`.
+/// An angle in `(−π, π]`. One already there is returned as it is, without the remainder
+/// (which is exact and would return it unchanged: the same bits, a library call fewer).
 pub(crate) fn wrap(a: f64) -> f64 {
+    if a > -std::f64::consts::PI && a <= std::f64::consts::PI {
+        return a;
+    }
     let t = std::f64::consts::TAU;
     let mut x = a % t;
     if x > std::f64::consts::PI {
@@ -1625,15 +1635,27 @@ struct BlockLu {
 }
 
 impl BlockLu {
-    /// `U`'s entry `(i, c)`, `c > i`.
-    fn u(&self, i: usize, c: usize) -> f64 {
+    /// Which copy became pivot row `i` (`from[j] == i`), for `i` below 6; `usize::MAX` where
+    /// none did (an equation's row).
+    fn copies(&self) -> [usize; 6] {
+        let mut out = [usize::MAX; 6];
+        for (j, &f) in self.from.iter().enumerate() {
+            if f < 6 {
+                out[f] = j;
+            }
+        }
+        out
+    }
+
+    /// `U`'s entry `(i, c)`, `c > i`, with `copy` the [`BlockLu::copies`].
+    fn u(&self, copy: &[usize; 6], i: usize, c: usize) -> f64 {
         if i >= 6 {
             return self.b[i - 6][c - 6];
         }
-        let copy = if i >= 3 {
-            self.from.iter().position(|&f| f == i)
-        } else {
+        let copy = if copy[i] == usize::MAX {
             None
+        } else {
+            Some(copy[i])
         };
         match copy {
             // [0 | a = 3 | a = 1 | a = 2]
@@ -1842,12 +1864,13 @@ pub(crate) fn null_vector_trig(t: &TrigRows, s: f64, c: f64) -> [f64; 12] {
             (kmin, pmin) = (k, d.abs());
         }
     }
+    let copy = f.copies();
     let mut y = [0.0; 12];
     y[kmin] = 1.0;
     for i in (0..kmin).rev() {
         let mut s = 0.0;
         for c in i + 1..=kmin {
-            s -= f.u(i, c) * y[c];
+            s -= f.u(&copy, i, c) * y[c];
         }
         y[i] = if f.piv[i] == 0.0 { 0.0 } else { s / f.piv[i] };
     }
@@ -2090,31 +2113,63 @@ pub(crate) fn trig_eval(t: &TrigTable, th: f64) -> [f64; TAYLOR] {
     out
 }
 
-/// [`trig_eval`] from the powers `e^{ijθ}` it would compute ([`grid_powers`]).
+/// A quarter of the root search's [`ROOT_GRID`] base intervals: their midpoints `m` and `m +
+/// rπ/2` (`r` = 1, 2, 3) are the others' ([`grid_values`]).
+pub const GRID_QUARTER: usize = ROOT_GRID / 4;
+
+const _: () = assert!(ROOT_GRID % 4 == 0);
+
+/// `D` and its derivatives to the seventh ([`trig_eval`]) at the midpoints of the
+/// [`ROOT_GRID`] base intervals, `[g % GRID_QUARTER][g / GRID_QUARTER]` for interval `g`: four
+/// at a time from the powers `e^{ijm}` at the first quarter's midpoints ([`grid_powers`]),
+/// since `e^{ij(m + rπ/2)} = iʲʳ e^{ijm}`. With the sums by `j mod 4`, `A_q = Σ u zr + v zi`
+/// (the value's part) and, for odd `q`, `B_q = Σ v zr − u zi` (the part turned by `i`), the
+/// four values are `A0 + A1 + A2 + A3`, `A0 + B1 − A2 − B3`, `A0 − A1 + A2 − A3`, `A0 − B1 −
+/// A2 + B3`: 13 sums per quarter where [`trig_eval`] takes 36. The same values to a few units
+/// of rounding of `Σ |c_j| jᵏ` (another order of the sums); the search only compares them
+/// with bounds that have a margin far above that ([`ROOT_MARGIN`]), and its roots come from
+/// fresh evaluations ([`bracketed`]).
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn trig_eval_powers(t: &TrigTable, z: &[(f64, f64); DET_DEGREE + 1]) -> [f64; TAYLOR] {
-    let mut out = [0.0; TAYLOR];
-    for ((u, v), &(zr, zi)) in t.u.iter().zip(&t.v).zip(z) {
-        for k in 0..TAYLOR {
-            out[k] += u[k] * zr + v[k] * zi;
+pub(crate) fn grid_values(t: &TrigTable) -> [[[f64; TAYLOR]; 4]; GRID_QUARTER] {
+    let powers = grid_powers();
+    std::array::from_fn(|g| {
+        let mut a = [[0.0; TAYLOR]; 4];
+        let mut b = [[0.0; TAYLOR]; 2];
+        for (j, ((u, v), &(zr, zi))) in t.u.iter().zip(&t.v).zip(&powers[g]).enumerate() {
+            let q = j % 4;
+            for k in 0..TAYLOR {
+                a[q][k] += u[k] * zr + v[k] * zi;
+            }
+            if q % 2 == 1 {
+                for k in 0..TAYLOR {
+                    b[q / 2][k] += v[k] * zr - u[k] * zi;
+                }
+            }
         }
-    }
-    out
+        let mut out = [[0.0; TAYLOR]; 4];
+        for k in 0..TAYLOR {
+            let (e0, e1) = (a[0][k] + a[2][k], a[0][k] - a[2][k]);
+            let (o0, o1) = (a[1][k] + a[3][k], b[0][k] - b[1][k]);
+            out[0][k] = e0 + o0;
+            out[1][k] = e1 + o1;
+            out[2][k] = e0 - o0;
+            out[3][k] = e1 - o1;
+        }
+        out
+    })
 }
 
-/// The powers `e^{ijm}`, `j = 0 … DET_DEGREE`, that [`trig_eval`] computes at the midpoint `m`
-/// of each of the root search's [`ROOT_GRID`] base intervals (the same numbers: the same
-/// [`unit`] and products), computed once: every search evaluates there first.
-pub(crate) fn grid_powers() -> &'static [[(f64, f64); DET_DEGREE + 1]; ROOT_GRID] {
-    static POWERS: std::sync::OnceLock<[[(f64, f64); DET_DEGREE + 1]; ROOT_GRID]> =
+/// The powers `e^{ijm}`, `j = 0 … DET_DEGREE`, at the midpoint `m` of each of the first
+/// [`GRID_QUARTER`] base intervals of the root search (as [`trig_eval`] computes them there:
+/// the same [`unit`] and products), computed once: every search evaluates there first.
+pub(crate) fn grid_powers() -> &'static [[(f64, f64); DET_DEGREE + 1]; GRID_QUARTER] {
+    static POWERS: std::sync::OnceLock<[[(f64, f64); DET_DEGREE + 1]; GRID_QUARTER]> =
         std::sync::OnceLock::new();
     POWERS.get_or_init(|| {
         let h = std::f64::consts::TAU / ROOT_GRID as f64;
-        let top = ROOT_GRID as f64 * h;
         std::array::from_fn(|k| {
             let (a, b) = (k as f64 * h, (k + 1) as f64 * h);
-            let m = 0.5 * (a + b);
-            let (co, s) = unit(if m >= top { 0.0 } else { m });
+            let (co, s) = unit(0.5 * (a + b));
             let (mut zr, mut zi) = (1.0, 0.0);
             std::array::from_fn(|_| {
                 let z = (zr, zi);
@@ -2189,15 +2244,13 @@ pub const BRACKET_TOL: f64 = 1e-10;
 /// the refinement needs (it starts from the back-substituted joints anyway).
 pub const BRACKET_WIDTH: f64 = 1e-10;
 
-/// The zero of `D⁽ᵏ⁾` in `[a, b]` (`fa`, `fb` its values at the ends, of opposite signs with
-/// 0 counted as positive), `D⁽ᵏ⁾` monotone there: Halley's method from the secant's zero, kept
-/// inside the bracket (bisection when a step leaves it), to rounding.
-fn bracketed(c: &TrigTable, k: usize, mut a: f64, mut b: f64, fa: f64, fb: f64) -> f64 {
+/// The zero of `D⁽ᵏ⁾` in `[a, b]` (`fa` its value or certified sign at `a`, of the opposite
+/// sign at `b`, 0 counted as positive), `D⁽ᵏ⁾` monotone there: Halley's method from `start`
+/// ([`taylor_start`]), kept inside the bracket (bisection when a step leaves it), to
+/// rounding.
+fn bracketed(c: &TrigTable, k: usize, mut a: f64, mut b: f64, fa: f64, start: f64) -> f64 {
     let neg_a = fa < 0.0;
-    let mut x = a + (b - a) * (fa / (fa - fb));
-    if !(x > a && x < b) {
-        x = 0.5 * (a + b);
-    }
+    let mut x = start;
     for _ in 0..60 {
         let (v, dv, ddv) = trig_low(c, k, x);
         if v == 0.0 {
@@ -2226,6 +2279,53 @@ fn bracketed(c: &TrigTable, k: usize, mut a: f64, mut b: f64, fa: f64, fb: f64) 
     x
 }
 
+/// `1 / j!`, `j = 0 … 7`.
+const INV_FACT: [f64; TAYLOR] = [
+    1.0,
+    1.0,
+    0.5,
+    1.0 / 6.0,
+    1.0 / 24.0,
+    1.0 / 120.0,
+    1.0 / 720.0,
+    1.0 / 5040.0,
+];
+
+/// Where [`bracketed`] starts on `[a, b]` inside an interval of the search with midpoint `m`
+/// and Taylor data `v` there (`fa`, `fb`: `D⁽ᵏ⁾` at the ends): the zero of `D⁽ᵏ⁾`'s Taylor
+/// polynomial at `m`, by Newton's method on it from the secant's zero (no evaluation of `D`).
+/// It is within the rest `B₈ r⁸⁻ᵏ / (8 − k)!` over `|D⁽ᵏ⁺¹⁾|` of the root (about `1e-6` at the
+/// base grid's width), so that Halley's method takes one step and its check where it took
+/// two or three from the secant's zero. The secant's zero where Newton's leaves the bracket.
+fn taylor_start(v: &[f64; TAYLOR], k: usize, m: f64, a: f64, b: f64, fa: f64, fb: f64) -> f64 {
+    let mut x = a + (b - a) * (fa / (fa - fb));
+    if !(x > a && x < b) {
+        x = 0.5 * (a + b);
+    }
+    let mut h = x - m;
+    for _ in 0..8 {
+        let (mut p, mut dp) = (v[TAYLOR - 1] * INV_FACT[TAYLOR - 1 - k], 0.0);
+        for j in (0..TAYLOR - 1 - k).rev() {
+            dp = dp * h + p;
+            p = p * h + v[k + j] * INV_FACT[j];
+        }
+        let step = p / dp;
+        if !step.is_finite() {
+            return x;
+        }
+        h -= step;
+        if step.abs() <= 1e-15 {
+            break;
+        }
+    }
+    let y = m + h;
+    if y > a && y < b {
+        y
+    } else {
+        x
+    }
+}
+
 /// The real roots in `θ ∈ [0, 2π)` of `D(θ) = Re Σ_j c_j e^{ijθ}` into `out` (a near-double
 /// root twice), by interval search from [`ROOT_GRID`] intervals. On `[m − r, m + r]`, Taylor's
 /// formula at `m` to the seventh derivative, with the rest bounded by `B₈ r⁸ / 8!` (`B₈ = Σ j⁸
@@ -2237,7 +2337,9 @@ fn bracketed(c: &TrigTable, k: usize, mut a: f64, mut b: f64, fa: f64, fb: f64) 
 /// complex pair, `√(2 |D| / |D″|)`) is a near-double root, taken twice as the eigenvalue route
 /// takes a complex pair with a small imaginary part (so that `gen_solve` sees an incomplete
 /// set and reads the next arrangement when both are one solution). Otherwise the interval is
-/// halved. No real root is lost: every interval that can hold one is resolved or split, and
+/// halved. An end's sign is read from Taylor's formula where it is certified (beyond the rest
+/// and the rounding margin), else evaluated; each root is polished from the zero of the
+/// Taylor polynomial ([`taylor_start`]). No real root is lost: every interval that can hold one is resolved or split, and
 /// the search gives up (`None`: the eigenvalue route decides) where `D` and `D′` are both zero
 /// to rounding (a root of multiplicity three or more, as the special arms forced through the
 /// general method have), where an interval reaches [`ROOT_LEAF`] undecided, after
@@ -2270,36 +2372,46 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
         grid[depth] = k as u8;
         depth += 1;
     }
-    let powers = grid_powers();
+    let base = grid_values(c);
     let mut n = 0;
     let mut evals = 0;
-    // A root of the monotone part `[a, b]` of `D` (`k = 0`) or `D′` (`k = 1`), if its ends
-    // differ in sign (0 counted as positive, so a root at a shared end is seen once).
-    let mono = |a: f64, b: f64, k: usize, evals: &mut usize| -> Option<f64> {
-        let (fa, fb) = (trig_one(c, k, end(a)), trig_one(c, k, end(b)));
+    // `D⁽ˡ⁾` at `m + h` by Taylor's formula at `m` (`v`), `|h|` at most the interval's
+    // half-width, when its sign is certified: the value beyond the rest `B₈ |h|⁸⁻ˡ / (8 − l)!`
+    // (`B₈` bounds `|D⁽⁸⁾|`) and the rounding margin `tol`.
+    let certified = |v: &[f64; TAYLOR], l: usize, h: f64, tol: f64| -> Option<f64> {
+        let (mut val, mut term) = (0.0, 1.0);
+        for k in l..TAYLOR {
+            if k > l {
+                term *= h / (k - l) as f64;
+            }
+            val += v[k] * term;
+        }
+        let rest = b8 * (term * h / (TAYLOR - l) as f64).abs() + tol;
+        (val > rest || val < -rest).then_some(val)
+    };
+    // A root of the monotone part `[a, b]` of `D` (`k = 0`) or `D′` (`k = 1`) inside the
+    // interval with midpoint `m` and Taylor data `v` there (`a`, `b` at `m + ha`, `m + hb`), if
+    // its ends differ in sign (0 counted as positive, so a root at a shared end is seen once).
+    // An end's sign certified by Taylor's formula is not evaluated (it is `D`'s: the margin is
+    // far above the evaluation's rounding); two evaluations are counted either way, so that
+    // the search takes the same course.
+    let mono = |a: f64,
+                b: f64,
+                (ha, hb): (f64, f64),
+                k: usize,
+                m: f64,
+                v: &[f64; TAYLOR],
+                evals: &mut usize| {
+        let tol = if k == 0 { margin } else { nd * margin };
+        let fa = certified(v, k, ha, tol).unwrap_or_else(|| trig_one(c, k, end(a)));
+        let fb = certified(v, k, hb, tol).unwrap_or_else(|| trig_one(c, k, end(b)));
         *evals += 2;
         if (fa < 0.0) == (fb < 0.0) {
             None
         } else {
-            Some(bracketed(c, k, a, b, fa, fb))
+            let start = taylor_start(v, k, m, a, b, fa, fb);
+            Some(bracketed(c, k, a, b, fa, start))
         }
-    };
-    // Whether `D⁽ˡ⁾` has one sign at both ends of `[m − r, m + r]`, certified by Taylor's
-    // formula at `m` (the rest bounded by B8 as below, and the rounding margin `tol`): `mono`'s
-    // two evaluations there would find no change of sign, so they are skipped (and counted, so
-    // that the search takes the same course).
-    let ends_agree = |v: &[f64; TAYLOR], r: f64, l: usize, tol: f64| -> bool {
-        let (mut left, mut right, mut term, mut sign) = (0.0, 0.0, 1.0, 1.0);
-        for k in l..TAYLOR {
-            if k > l {
-                term *= r / (k - l) as f64;
-            }
-            right += v[k] * term;
-            left += sign * v[k] * term;
-            sign = -sign;
-        }
-        let rest = b8 * term * r / (TAYLOR - l) as f64 + tol;
-        (left > rest && right > rest) || (left < -rest && right < -rest)
     };
     while depth > 0 {
         depth -= 1;
@@ -2307,7 +2419,7 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
         let g = grid[depth] as usize;
         let (m, r) = (0.5 * (a + b), 0.5 * (b - a));
         let v = if g < ROOT_GRID {
-            trig_eval_powers(c, &powers[g])
+            base[g % GRID_QUARTER][g / GRID_QUARTER]
         } else {
             at(m)
         };
@@ -2330,33 +2442,23 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
             continue;
         }
         if v[1].abs() > moves[1] + nd * margin {
-            if ends_agree(&v, r, 0, margin) {
-                evals += 2;
-            } else if let Some(x) = mono(a, b, 0, &mut evals) {
+            if let Some(x) = mono(a, b, (-r, r), 0, m, &v, &mut evals) {
                 out[n] = x;
                 n += 1;
             }
             continue;
         }
         if v[2].abs() > moves[2] + nd * nd * margin {
-            let e = if ends_agree(&v, r, 1, nd * margin) {
-                evals += 2;
-                None
-            } else {
-                mono(a, b, 1, &mut evals)
-            };
-            let Some(e) = e else {
+            let Some(e) = mono(a, b, (-r, r), 1, m, &v, &mut evals) else {
                 // D′ keeps its sign: D is monotone after all.
-                if ends_agree(&v, r, 0, margin) {
-                    evals += 2;
-                } else if let Some(x) = mono(a, b, 0, &mut evals) {
+                if let Some(x) = mono(a, b, (-r, r), 0, m, &v, &mut evals) {
                     out[n] = x;
                     n += 1;
                 }
                 continue;
             };
-            let left = mono(a, e, 0, &mut evals);
-            let right = mono(e, b, 0, &mut evals);
+            let left = mono(a, e, (-r, e - m), 0, m, &v, &mut evals);
+            let right = mono(e, b, (e - m, r), 0, m, &v, &mut evals);
             for x in [left, right].iter().flatten() {
                 out[n] = *x;
                 n += 1;

@@ -681,14 +681,14 @@ fn lu_det(mut m: [[f64; 12]; 12]) -> f64 {
     det
 }
 
-/// Halley's brackets (`bracketed`, from the secant's zero, bisection where a step leaves the
-/// bracket) in the hard places: clusters of simple roots (four within 1e-2, the shape of the
-/// bench arm's clusters; their spacings above `2 NEAR_REAL`, so that no extremum between two
-/// of them counts as a near-double root, a candidate the search may add by design), roots at
-/// `θ = π ± 2e-8` (the half-angle tangent near `±1e8`) beside a cluster, and a near-double
-/// root (`2e-6` apart) beside another root. Each real root is found to `1e-9` or to its own
-/// condition (the rounding of the coefficients over `|D′|`), none is made up, or the search
-/// leaves a cluster within rounding to the eigenvalue route.
+/// Halley's brackets (`bracketed`, from the Taylor polynomial's zero, bisection where a step
+/// leaves the bracket) in the hard places: clusters of simple roots (four within 1e-2, the
+/// shape of the bench arm's clusters; their spacings above `2 NEAR_REAL`, so that no extremum
+/// between two of them counts as a near-double root, a candidate the search may add by
+/// design), roots at `θ = π ± 2e-8` (the half-angle tangent near `±1e8`) beside a cluster,
+/// and a near-double root (`2e-6` apart) beside another root. Each real root is found to
+/// `1e-9` or to its own condition (the rounding of the coefficients over `|D′|`), none is
+/// made up, or the search leaves a cluster within rounding to the eigenvalue route.
 #[test]
 fn trig_roots_resolves_clusters_and_roots_near_pi() {
     let pi = std::f64::consts::PI;

@@ -149,8 +149,9 @@
 //! higher degree would show there). Its real roots come from a certified interval search
 //! (`core::trig_roots`): Taylor's formula to the seventh derivative with the rest bounded by
 //! `Σ j⁸ |c_j|` excludes intervals free of roots and proves the others monotone (one root,
-//! Halley's method in the bracket from the secant's zero: cubic convergence, about 5
-//! evaluations of `D`, `D′`, `D″` per root where Newton's took 7 of all eight derivatives) or
+//! Halley's method in the bracket from the zero of the Taylor polynomial at the interval's
+//! midpoint: cubic convergence, one step and its check, the ends' signs read from Taylor's
+//! formula where it certifies them) or
 //! convex (two roots or a near-double one, taken twice as a near-real complex pair is) — no
 //! real root can fall between the cases. No library sine or cosine: the sample angles are
 //! tables (`core::DET_SIN`), and each evaluation turns the nearest multiple of `π/32`
