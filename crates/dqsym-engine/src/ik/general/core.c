@@ -1536,51 +1536,64 @@ static double ik_gen_error(const double f[3][4], const double t[3][4], double e[
     return m;
 }
 
-/* The Jacobian's columns (d pose / d q_i, entries as the error's) at the pose f. */
-static void ik_gen_jacobian(const double ax[6][7], const double f[3][4], const double cur[6][6],
-                            double cols[6][12]) {
-    double dt[3], d[3], col[3], rel[3];
-    int i, k, r;
-    memset(cols, 0, 6 * sizeof cols[0]);
+/* The normal matrix a and gradient g of Gauss-Newton at the pose f with the current axes cur
+   and the error e, without the Jacobian's columns (see core.rs, refine): joint i's column is
+   [w]x [F | t - p] (a slide's [0 | w]), so with F a rotation its rotation part gives 2 wi.wj
+   and wi.u, u = sum_k f_k x e_k; the translation part (wi x (t - pi)).(wj x (t - pj)) and its
+   product with e_t. Returns the trace. */
+static double ik_gen_normal(const double ax[6][7], const double f[3][4], const double cur[6][6],
+                            const double e[12], double a[6][6], double g[6]) {
+    double u[3] = {0.0, 0.0, 0.0}, x[3], col[3], ek[3], et[3], rel[3], rot[6][3], tra[6][3],
+        tr = 0.0, v;
+    int i, j, k, r;
+    for (k = 0; k < 3; k++) {
+        for (r = 0; r < 3; r++) {
+            col[r] = f[r][k];
+            ek[r] = e[4 * r + k];
+        }
+        ik_gen_cross3(col, ek, x);
+        for (r = 0; r < 3; r++) u[r] += x[r];
+    }
+    for (r = 0; r < 3; r++) et[r] = e[4 * r + 3];
     for (i = 0; i < 6; i++) {
         const double *w = cur[i], *p = cur[i] + 3;
         if (ax[i][0] != 0.0) {
-            for (r = 0; r < 3; r++) cols[i][4 * r + 3] = w[r];
-        } else {
-            for (r = 0; r < 3; r++) rel[r] = f[r][3] - p[r];
-            ik_gen_cross3(w, rel, dt);
-            for (k = 0; k < 3; k++) {
-                for (r = 0; r < 3; r++) col[r] = f[r][k];
-                ik_gen_cross3(w, col, d);
-                for (r = 0; r < 3; r++) cols[i][4 * r + k] = d[r];
+            for (r = 0; r < 3; r++) {
+                rot[i][r] = 0.0;
+                tra[i][r] = w[r];
             }
-            for (r = 0; r < 3; r++) cols[i][4 * r + 3] = dt[r];
+        } else {
+            for (r = 0; r < 3; r++) {
+                rot[i][r] = w[r];
+                rel[r] = f[r][3] - p[r];
+            }
+            ik_gen_cross3(w, rel, tra[i]);
         }
     }
+    for (i = 0; i < 6; i++) {
+        for (j = i; j < 6; j++) {
+            v = 2.0 * ik_gen_dot3(rot[i], rot[j]) + ik_gen_dot3(tra[i], tra[j]);
+            a[i][j] = v;
+            a[j][i] = v;
+        }
+        g[i] = ik_gen_dot3(rot[i], u) + ik_gen_dot3(tra[i], et);
+        tr += a[i][i];
+    }
+    return tr;
 }
 
 /* Damped Gauss-Newton from q on the pose residual (scaled lengths); returns the final
    residual. */
 static double ik_gen_refine(const double ax[6][7], const double home[3][4], const double t[3][4],
                             double q[6]) {
-    double f[3][4], cur[6][6], e[12], f2[3][4], cur2[6][6], e2[12], cols[6][12];
+    double f[3][4], cur[6][6], e[12], f2[3][4], cur2[6][6], e2[12];
     double a[6][6], m[6][6], g[6], d[6], next[6], res, r2, tr, lambda = IK_GEN_DAMP_START, ratio;
-    int it, i, j, k, p[6], done;
+    int it, i, p[6], done;
     ik_gen_forward(ax, home, q, f, cur);
     res = ik_gen_error((const double (*)[4])f, t, e);
     for (it = 0; it < IK_GEN_REFINE_ITERS; it++) {
         if (res <= IK_GEN_EXACT_TOL || isnan(res)) break;
-        ik_gen_jacobian(ax, (const double (*)[4])f, (const double (*)[6])cur, cols);
-        tr = 0.0;
-        for (i = 0; i < 6; i++) {
-            for (j = 0; j < 6; j++) {
-                a[i][j] = -0.0;
-                for (k = 0; k < 12; k++) a[i][j] += cols[i][k] * cols[j][k];
-            }
-            g[i] = -0.0;
-            for (k = 0; k < 12; k++) g[i] += cols[i][k] * e[k];
-            tr += a[i][i];
-        }
+        tr = ik_gen_normal(ax, (const double (*)[4])f, (const double (*)[6])cur, e, a, g);
         for (done = 0; !done;) {
             memcpy(m, a, sizeof m);
             for (i = 0; i < 6; i++) m[i][i] += lambda * fmax(tr, IK_GEN_MIN_POSITIVE);
