@@ -2674,45 +2674,42 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
         if stale {
             cur = forward(ax, home, q).1;
         }
-        let mut cols = [[0.0; 12]; 6];
+        // The Jacobian's column of joint i is `[w]× [F | t − p]` (revolute; `[0 | w]` for a
+        // slide), so its normal matrix and gradient need no column: with `F` a rotation (to
+        // rounding), `Σ_k (wi × f_k)·(wj × f_k) = 3 wi·wj − wiᵀ F Fᵀ wj = 2 wi·wj` and
+        // `Σ_k (wi × f_k)·e_k = wi·u`, `u = Σ_k f_k × e_k`; the translation column adds
+        // `(wi × (t − pi))·(wj × (t − pj))` and its product with `e_t`.
+        let col = |k: usize| [f[0][k], f[1][k], f[2][k]];
+        let mut u = [0.0; 3];
+        for k in 0..3 {
+            let x = cross3(&col(k), &[e[k], e[4 + k], e[8 + k]]);
+            for r in 0..3 {
+                u[r] += x[r];
+            }
+        }
+        let et = [e[3], e[7], e[11]];
+        let mut rot = [[0.0; 3]; 6];
+        let mut tra = [[0.0; 3]; 6];
         for i in 0..6 {
             let [wx, wy, wz, px, py, pz] = cur[i];
-            let cr = |v: [f64; 3]| {
-                [
-                    wy * v[2] - wz * v[1],
-                    wz * v[0] - wx * v[2],
-                    wx * v[1] - wy * v[0],
-                ]
-            };
+            let w = [wx, wy, wz];
             if ax[i][0] != 0.0 {
-                for r in 0..3 {
-                    cols[i][4 * r + 3] = [wx, wy, wz][r];
-                }
+                tra[i] = w;
             } else {
-                let dt = cr([f[0][3] - px, f[1][3] - py, f[2][3] - pz]);
-                for k in 0..3 {
-                    let d = cr([f[0][k], f[1][k], f[2][k]]);
-                    for r in 0..3 {
-                        cols[i][4 * r + k] = d[r];
-                    }
-                }
-                for r in 0..3 {
-                    cols[i][4 * r + 3] = dt[r];
-                }
+                rot[i] = w;
+                tra[i] = cross3(&w, &[f[0][3] - px, f[1][3] - py, f[2][3] - pz]);
             }
         }
         let mut a = [[0.0; 6]; 6];
         let mut g = [0.0; 6];
         let mut tr = 0.0;
         for i in 0..6 {
-            // Symmetric: the entries below the diagonal are those above (the same products
-            // in the same order).
             for j in i..6 {
-                let x: f64 = (0..12).map(|k| cols[i][k] * cols[j][k]).sum();
+                let x = 2.0 * dot3(&rot[i], &rot[j]) + dot3(&tra[i], &tra[j]);
                 a[i][j] = x;
                 a[j][i] = x;
             }
-            g[i] = (0..12).map(|k| cols[i][k] * e[k]).sum();
+            g[i] = dot3(&rot[i], &u) + dot3(&tra[i], &et);
             tr += a[i][i];
         }
         loop {
