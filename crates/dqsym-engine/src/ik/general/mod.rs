@@ -262,7 +262,7 @@
 //! already, so no earlier stop is safe), the elimination 26k.
 //!
 //! Session 18 (callgrind as above, the solver's core compiled with `rustc -O` in a harness that
-//! calls `gen_solve` at the 64 poses): 218.6k to 208.0k per pose, the same 362 solutions
+//! calls `gen_solve` at the 64 poses): 218.6k to 204.4k per pose, the same 362 solutions
 //! (within `5.2e-14`, largest residual `9.4e-15`); the C port bit for bit the Rust solver's
 //! there. The same bits: `wrap` returns an angle already in `(−π, π]` without the remainder
 //! (−2.3k), `lu` with comparisons for its largest entry and smallest pivot (−2.1k), the null
@@ -271,14 +271,17 @@
 //! by `j mod 4` at 8 midpoints; the same values to rounding, the same decisions; −1.5k). Each
 //! root's bracket reads an end's sign from Taylor's formula at the interval's midpoint where
 //! it is certified and evaluates only the others, and Halley's method starts from the zero of
-//! the Taylor polynomial (`core::taylor_start`), one step and its check (−4.3k). Tried and
+//! the Taylor polynomial (`core::taylor_start`), one step and its check (−4.3k). The
+//! refinement's normal matrix and gradient without the Jacobian's columns: joint `i`'s column
+//! is `[w]× [F | t − p]`, so with `F` a rotation its rotation part gives `2 wi·wj` and `wi·u`,
+//! `u = Σ_k f_k × e_k` (−3.6k; two solutions move in their last bits). Tried and
 //! dropped: the samples' rows in pairs `(T0 + c T1) ± s T2` (the same bits, +0.6k: the LUs
 //! inline worse), a library-free `atan2` (no gain: the library's is 4k per pose in all),
 //! `block_lu` built in its result (+2k), the base sums class by class (+1.3k). Found: for the
 //! bench arm the θ3-dependent parts of `S(θ)` (`T1`, `T2` stacked, 12 x 9) have rank 8, the
-//! same kernel at every target (a column of monomials free of `θ3`), not used. Where the 208k
+//! same kernel at every target (a column of monomials free of `θ3`), not used. Where the 204k
 //! goes (inclusive): the determinant route 128k (18 sampled LUs 38.5k, back-substitution
-//! 21.5k, the search and null vectors the rest), the refinement 47k (two forward
+//! 21.5k, the search and null vectors the rest), the refinement 43k (two forward
 //! kinematics per root at about 2k each), the elimination 26k (the QR of `Bm` 13.6k). The
 //! 157k of the 20 µs target is not reached.
 
