@@ -2117,7 +2117,7 @@ pub(crate) fn trig_eval(t: &TrigTable, th: f64) -> [f64; TAYLOR] {
 /// rπ/2` (`r` = 1, 2, 3) are the others' ([`grid_values`]).
 pub const GRID_QUARTER: usize = ROOT_GRID / 4;
 
-const _: () = assert!(ROOT_GRID % 4 == 0);
+const _: () = assert!(ROOT_GRID.is_multiple_of(4));
 
 /// `D` and its derivatives to the seventh ([`trig_eval`]) at the midpoints of the
 /// [`ROOT_GRID`] base intervals, `[g % GRID_QUARTER][g / GRID_QUARTER]` for interval `g`: four
