@@ -2644,7 +2644,6 @@ fn take_roots(
     tg: &B34,
     tol: &GenTol,
 ) -> bool {
-    let prismatic: [bool; 6] = std::array::from_fn(|i| ax[i][0] != 0.0);
     if out.n_arr == 0 {
         out.degree = degree;
     }
@@ -2655,35 +2654,51 @@ fn take_roots(
     // The solutions this arrangement's roots reached (exactly).
     let mut hit = [false; GEN_MAX];
     for root in roots {
-        let mut q = *root;
-        let res = refine(ax, hm, tg, &mut q);
-        if res.is_nan() || res > tol.keep {
-            continue;
-        }
-        for (v, p) in q.iter_mut().zip(prismatic) {
-            if !p {
-                *v = wrap(*v);
-            }
-        }
-        let at = if let Some(i) = (0..out.n).find(|&i| same(&out.q[i], &q, &prismatic)) {
-            if res < out.residual[i] {
-                out.q[i] = q;
-                out.residual[i] = res;
-            }
-            Some(i)
-        } else if out.n < GEN_MAX {
-            out.q[out.n] = q;
-            out.residual[out.n] = res;
-            out.n += 1;
-            Some(out.n - 1)
-        } else {
-            None
-        };
-        if let Some(i) = at {
-            hit[i] |= res <= tol.pose;
+        if let Some((i, exact, _)) = add_root(out, *root, ax, hm, tg, tol) {
+            hit[i] |= exact;
         }
     }
     hit.iter().filter(|h| **h).count() == roots.len()
+}
+
+/// Refines the candidate `q` ([`refine`]) and adds it to `out`, its angles wrapped: merged
+/// with a solution within [`SAME_TOL`] of it (the smaller residual kept) or appended. Returns
+/// the index it took, whether it is exact (residual within `tol.pose`) and whether it was
+/// appended; `None` when it is no solution (residual above `tol.keep`) or the set is full.
+/// The root loop of [`take_roots`] and of the 4R2P solver (`apart_solver.rs`).
+pub(crate) fn add_root(
+    out: &mut GenOut,
+    mut q: [f64; 6],
+    ax: &[GenAxis; 6],
+    hm: &B34,
+    tg: &B34,
+    tol: &GenTol,
+) -> Option<(usize, bool, bool)> {
+    let prismatic: [bool; 6] = std::array::from_fn(|i| ax[i][0] != 0.0);
+    let res = refine(ax, hm, tg, &mut q);
+    if res.is_nan() || res > tol.keep {
+        return None;
+    }
+    for (v, p) in q.iter_mut().zip(prismatic) {
+        if !p {
+            *v = wrap(*v);
+        }
+    }
+    let exact = res <= tol.pose;
+    if let Some(i) = (0..out.n).find(|&i| same(&out.q[i], &q, &prismatic)) {
+        if res < out.residual[i] {
+            out.q[i] = q;
+            out.residual[i] = res;
+        }
+        Some((i, exact, false))
+    } else if out.n < GEN_MAX {
+        out.q[out.n] = q;
+        out.residual[out.n] = res;
+        out.n += 1;
+        Some((out.n - 1, exact, true))
+    } else {
+        None
+    }
 }
 
 /// Every solution of `E1 ⋯ E6 M = T` for a 6R chain: the arrangements (a cyclic shift of the
