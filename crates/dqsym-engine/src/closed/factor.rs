@@ -698,7 +698,11 @@ impl Counts {
 /// The power of `f` in `m` (0 when `m` lacks it).
 fn multiplicity(m: &Mon, f: Factor) -> u32 {
     match f {
-        Factor::Sym(s) => m.syms.iter().find(|&&(x, _)| x == s).map_or(0, |&(_, e)| e),
+        // The symbols are sorted by id.
+        Factor::Sym(s) => m
+            .syms
+            .binary_search_by_key(&s, |&(x, _)| x)
+            .map_or(0, |k| m.syms[k].1),
         Factor::Atom(a) => m.atoms.iter().filter(|&&x| x == a).count() as u32,
     }
 }
