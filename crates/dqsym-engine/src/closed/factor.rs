@@ -698,11 +698,13 @@ impl Counts {
 /// The power of `f` in `m` (0 when `m` lacks it).
 fn multiplicity(m: &Mon, f: Factor) -> u32 {
     match f {
-        // The symbols are sorted by id.
-        Factor::Sym(s) => m
-            .syms
-            .binary_search_by_key(&s, |&(x, _)| x)
-            .map_or(0, |k| m.syms[k].1),
+        // The symbols are sorted by id (`Mon`'s invariant, checked in debug builds).
+        Factor::Sym(s) => {
+            debug_assert!(m.syms.windows(2).all(|w| w[0].0 < w[1].0));
+            m.syms
+                .binary_search_by_key(&s, |&(x, _)| x)
+                .map_or(0, |k| m.syms[k].1)
+        }
         Factor::Atom(a) => m.atoms.iter().filter(|&&x| x == a).count() as u32,
     }
 }
