@@ -185,20 +185,93 @@ fn solve(
     fixed: &[Option<Small>],
     found: &mut dyn FnMut(&[Small]) -> bool,
 ) -> Option<bool> {
-    solve_listing(syms, rows, targets, n, fixed, true, found)
+    let System {
+        free,
+        a,
+        b,
+        modulus,
+        ranges,
+    } = system(syms, rows, targets, n, fixed)?;
+    let mut o: Vec<Small> = fixed
+        .iter()
+        .take(syms.len())
+        .map(|v| v.unwrap_or_else(Small::zero))
+        .collect();
+    // Each free symbol's offsets `unit * v`, made once per value met: the solutions repeat
+    // a few values (a product in `Small` reduces by gcds; 6% of the Jaco-style arm's
+    // `fk --jacobian` made them afresh for every solution).
+    let mut values: Vec<Vec<Option<Small>>> = ranges
+        .iter()
+        .map(|c| vec![None; usize::try_from(*c).unwrap_or(0)])
+        .collect();
+    let result = super::congruence::solutions(&a, &b, modulus, &ranges, &mut |z| {
+        for (((s, unit, _), v), known) in free.iter().zip(z).zip(&mut values) {
+            let slot = usize::try_from(*v).ok().and_then(|i| known.get_mut(i));
+            o[*s] = match slot {
+                Some(Some(x)) => *x,
+                Some(slot) => *slot.insert(*unit * Small::from_integer(*v)),
+                None => *unit * Small::from_integer(*v),
+            };
+        }
+        found(&o)
+    });
+    match result {
+        Ok(()) => Some(true),
+        Err(super::congruence::Stop::Work(_)) => None,
+        Err(_) => Some(false),
+    }
 }
 
-/// [`solve`]; without `fill`, `found` is passed the fixed offsets only (the free ones are not
-/// made): for a caller that counts the solutions.
-fn solve_listing(
+/// Whether [`solve`] on the same arguments has fewer than `bound` solutions, decided by
+/// counting them without listing them (`congruence::count`) when the count is known, by
+/// listing up to `bound` of them otherwise; `None` as [`solve`].
+fn fewer_solutions_than(
     syms: &[Sym],
     rows: &[Vec<(usize, Small)>],
     targets: &[(Small, Small)],
     n: i64,
     fixed: &[Option<Small>],
-    fill: bool,
-    found: &mut dyn FnMut(&[Small]) -> bool,
+    bound: usize,
 ) -> Option<bool> {
+    let sys = system(syms, rows, targets, n, fixed)?;
+    match super::congruence::count(&sys.a, &sys.b, sys.modulus, &sys.ranges) {
+        Ok(Some(c)) => return Some(c < bound as u128),
+        Ok(None) => {}
+        Err(_) => return None,
+    }
+    let mut seen = 0usize;
+    let result =
+        super::congruence::solutions(&sys.a, &sys.b, sys.modulus, &sys.ranges, &mut |_| {
+            seen += 1;
+            seen < bound
+        });
+    match result {
+        Ok(()) => Some(true),
+        Err(super::congruence::Stop::Work(_)) => None,
+        Err(_) => Some(false),
+    }
+}
+
+/// The system of [`solve`] in integers (see `congruence.rs`): each free symbol's index, unit
+/// `1/(n a)` and number of candidates; the rows and right-hand sides modulo one modulus; the
+/// candidates' ranges.
+struct System {
+    free: Vec<(usize, Small, i64)>,
+    a: Vec<Vec<i64>>,
+    b: Vec<i64>,
+    modulus: i64,
+    ranges: Vec<i64>,
+}
+
+/// The integer system of [`solve`]; `None` past the bounds (too many candidates, numbers too
+/// large).
+fn system(
+    syms: &[Sym],
+    rows: &[Vec<(usize, Small)>],
+    targets: &[(Small, Small)],
+    n: i64,
+    fixed: &[Option<Small>],
+) -> Option<System> {
     // Each free symbol's unit `1/(n a)` and number of candidates.
     let mut free: Vec<(usize, Small, i64)> = Vec::new();
     for (s, fixed_s) in fixed.iter().enumerate().take(syms.len()) {
@@ -270,37 +343,13 @@ fn solve_listing(
         b.push(int(*rhs));
     }
     let ranges: Vec<i64> = free.iter().map(|(_, _, c)| *c).collect();
-    let mut o: Vec<Small> = fixed
-        .iter()
-        .take(syms.len())
-        .map(|v| v.unwrap_or_else(Small::zero))
-        .collect();
-    // Each free symbol's offsets `unit * v`, made once per value met: the solutions repeat
-    // a few values (a product in `Small` reduces by gcds; 6% of the Jaco-style arm's
-    // `fk --jacobian` made them afresh for every solution).
-    let mut values: Vec<Vec<Option<Small>>> = ranges
-        .iter()
-        .map(|c| vec![None; usize::try_from(*c).unwrap_or(0)])
-        .collect();
-    let result = super::congruence::solutions(&a, &b, modulus, &ranges, &mut |z| {
-        if !fill {
-            return found(&o);
-        }
-        for (((s, unit, _), v), known) in free.iter().zip(z).zip(&mut values) {
-            let slot = usize::try_from(*v).ok().and_then(|i| known.get_mut(i));
-            o[*s] = match slot {
-                Some(Some(x)) => *x,
-                Some(slot) => *slot.insert(*unit * Small::from_integer(*v)),
-                None => *unit * Small::from_integer(*v),
-            };
-        }
-        found(&o)
-    });
-    match result {
-        Ok(()) => Some(true),
-        Err(super::congruence::Stop::Work(_)) => None,
-        Err(_) => Some(false),
-    }
+    Some(System {
+        free,
+        a,
+        b,
+        modulus,
+        ranges,
+    })
 }
 
 /// The value of terms of one frequency vector `F` (a group) as the complex amplitude `z` of
@@ -388,15 +437,22 @@ fn representatives(
         })
         .collect();
     let mut phases: Vec<(f64, f64)> = vec![(0.0, 0.0); freqs.len()];
+    // `e^{i pi f}` by the exact phase `f`: the solutions compared share few phases (most
+    // symbols are held at 0 or take a few values), and the cosine and sine were most of the
+    // cost of scoring a solution. The same `f` gives the same bits, so the scores are those
+    // computed afresh.
+    let mut unit_circle: super::FxMap<Small, (f64, f64)> = Default::default();
     // The number of cosine and sine parts of the shifted scalar, and of negative ones.
     let mut score = |o: &[Small]| -> (usize, usize) {
         for (p, r) in phases.iter_mut().zip(&freqs) {
             let f = dot(r, o);
-            let f = f.numer().to_f64().unwrap_or(0.0) / f.denom().to_f64().unwrap_or(1.0);
-            *p = (
-                (f * std::f64::consts::PI).cos(),
-                (f * std::f64::consts::PI).sin(),
-            );
+            *p = *unit_circle.entry(f).or_insert_with(|| {
+                let f = f.numer().to_f64().unwrap_or(0.0) / f.denom().to_f64().unwrap_or(1.0);
+                (
+                    (f * std::f64::consts::PI).cos(),
+                    (f * std::f64::consts::PI).sin(),
+                )
+            });
         }
         let (mut parts, mut neg) = (0, 0);
         for (i, (re, im)) in row_freq.iter().zip(&amps) {
@@ -417,17 +473,11 @@ fn representatives(
     let mut run = |fixed: &[Option<Small>], all: bool| -> Option<(bool, Option<Vec<Small>>)> {
         // Whether the solutions are fewer than the bound, counted first: when they are not,
         // none of the first run (`all`) is shown.
-        if all {
-            let mut seen = 0usize;
-            // Counted without making the offsets (the Jaco-style arm's pose entries each
-            // have more than the bound).
-            let complete = solve_listing(syms, rows, targets, n, fixed, false, &mut |_| {
-                seen += 1;
-                seen < MAX_SOLUTIONS
-            })?;
-            if !complete {
-                return Some((false, None));
-            }
+        // Counted without listing them when the count is known (the Jaco-style arm's pose
+        // entries each have more than the bound: listing them to the bound was a ninth of
+        // its `fk --jacobian`).
+        if all && !fewer_solutions_than(syms, rows, targets, n, fixed, MAX_SOLUTIONS)? {
+            return Some((false, None));
         }
         let mut best: Option<(Key, Vec<Small>)> = None;
         let mut seen = 0usize;
@@ -436,15 +486,7 @@ fn representatives(
             let o: Vec<Small> = o
                 .iter()
                 .zip(&halves)
-                .map(|(&v, &den)| {
-                    let period = den * Small::from_integer(2);
-                    let v = v - (v / period).floor() * period;
-                    if v > den {
-                        v - period
-                    } else {
-                        v
-                    }
-                })
+                .map(|(&v, &den)| centred(v, den))
                 .collect();
             let (parts, neg) = score(&o);
             let den = o.iter().map(|v| *v.denom()).max().unwrap_or(1);
@@ -484,6 +526,37 @@ fn representatives(
         })
         .collect();
     run(&fixed, false)?.1
+}
+
+/// `v` moved by a multiple of the period `2 den` into `(-den, den]` (`den` a positive
+/// integer): in machine words when they suffice (zero, the common case, at once), in `Small`
+/// otherwise.
+fn centred(v: Small, den: Small) -> Small {
+    if v.is_zero() {
+        return v;
+    }
+    let slow = || {
+        let period = den * Small::from_integer(2);
+        let v = v - (v / period).floor() * period;
+        if v > den {
+            v - period
+        } else {
+            v
+        }
+    };
+    // v = a / b, period p: a mod (p b), over b, is v minus floor(v / p) p.
+    let fast = || -> Option<Small> {
+        let (a, b) = (*v.numer(), *v.denom());
+        let half = den.to_integer().checked_mul(b)?;
+        let r = a.rem_euclid(half.checked_mul(2)?);
+        let r = if r > half { r - 2 * half } else { r };
+        Some(Small::new(r, b))
+    };
+    if den.is_integer() {
+        fast().unwrap_or_else(slow)
+    } else {
+        slow()
+    }
 }
 
 /// The order of solutions: parts, largest denominator, offsets, negative parts, sum of
@@ -602,6 +675,27 @@ mod tests {
         // A product past a machine word before its reduction: `Small`'s path.
         let (k, o) = (Small::new(1 << 62, 3), Small::new(5, 1 << 61));
         assert_eq!(dot(&[(0, k)], &[o]), Small::new(10, 3));
+    }
+
+    /// `centred` against its definition in big rationals (the multiple of the period `2 den`
+    /// that takes `v` into `(-den, den]`), on seeded random offsets and half periods.
+    #[test]
+    fn centred_offsets_lie_in_the_half_open_period_and_differ_by_whole_periods() {
+        use num_rational::BigRational;
+        let mut next = crate::testing::xorshift_below(0x1234_5678_9abc_def1u64);
+        let big = |q: Small| BigRational::new((*q.numer()).into(), (*q.denom()).into());
+        for _ in 0..3000 {
+            let v = Small::new(next(2001) as i64 - 1000, 1 + next(72) as i64);
+            let den = Small::from_integer(1 + next(6) as i64);
+            let c = big(centred(v, den));
+            let (bv, bd) = (big(v), big(den));
+            assert!(c > -bd.clone() && c <= bd, "{v} in ({den})");
+            let turns = (bv - c) / (bd * BigRational::from_integer(2.into()));
+            assert!(
+                turns.is_integer(),
+                "{v} and its centred value differ by whole periods"
+            );
+        }
     }
 
     #[test]
