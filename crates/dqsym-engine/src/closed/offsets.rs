@@ -436,26 +436,35 @@ fn representatives(
             )
         })
         .collect();
+    // Each distinct vector's phase for the solution being scored, made when a group first
+    // asks for it (`stamp` says for which solution).
     let mut phases: Vec<(f64, f64)> = vec![(0.0, 0.0); freqs.len()];
+    let mut stamp: Vec<usize> = vec![0; freqs.len()];
+    let mut scored = 0usize;
     // `e^{i pi f}` by the exact phase `f`: the solutions compared share few phases (most
     // symbols are held at 0 or take a few values), and the cosine and sine were most of the
     // cost of scoring a solution. The same `f` gives the same bits, so the scores are those
     // computed afresh.
     let mut unit_circle: super::FxMap<Small, (f64, f64)> = Default::default();
-    // The number of cosine and sine parts of the shifted scalar, and of negative ones.
-    let mut score = |o: &[Small]| -> (usize, usize) {
-        for (p, r) in phases.iter_mut().zip(&freqs) {
-            let f = dot(r, o);
-            *p = *unit_circle.entry(f).or_insert_with(|| {
-                let f = f.numer().to_f64().unwrap_or(0.0) / f.denom().to_f64().unwrap_or(1.0);
-                (
-                    (f * std::f64::consts::PI).cos(),
-                    (f * std::f64::consts::PI).sin(),
-                )
-            });
-        }
+    // The number of cosine and sine parts of the shifted scalar, and of negative ones; `None`
+    // once the parts pass `bound` (the parts of the best solution so far: the parts come first
+    // in the order of solutions, and they only grow group by group, so such a solution is
+    // never taken, and the rest of its groups need not be looked at).
+    let mut score = |o: &[Small], bound: usize| -> Option<(usize, usize)> {
+        scored += 1;
         let (mut parts, mut neg) = (0, 0);
         for (i, (re, im)) in row_freq.iter().zip(&amps) {
+            if stamp[*i] != scored {
+                stamp[*i] = scored;
+                let f = dot(freqs[*i], o);
+                phases[*i] = *unit_circle.entry(f).or_insert_with(|| {
+                    let f = f.numer().to_f64().unwrap_or(0.0) / f.denom().to_f64().unwrap_or(1.0);
+                    (
+                        (f * std::f64::consts::PI).cos(),
+                        (f * std::f64::consts::PI).sin(),
+                    )
+                });
+            }
             let (c, s) = phases[*i];
             // z e^{-i pi f}: the cosine part is its real part, the sine part minus its
             // imaginary part.
@@ -467,8 +476,11 @@ fn representatives(
                     neg += usize::from(v < 0.0);
                 }
             }
+            if parts > bound {
+                return None;
+            }
         }
-        (parts, neg)
+        Some((parts, neg))
     };
     let mut run = |fixed: &[Option<Small>], all: bool| -> Option<(bool, Option<Vec<Small>>)> {
         // Whether the solutions are fewer than the bound, counted first: when they are not,
@@ -488,7 +500,11 @@ fn representatives(
                 .zip(&halves)
                 .map(|(&v, &den)| centred(v, den))
                 .collect();
-            let (parts, neg) = score(&o);
+            seen += 1;
+            let bound = best.as_ref().map_or(usize::MAX, |(k, _)| k.0);
+            let Some((parts, neg)) = score(&o, bound) else {
+                return seen < MAX_SOLUTIONS;
+            };
             let den = o.iter().map(|v| *v.denom()).max().unwrap_or(1);
             let size: Small = o.iter().map(|v| v.abs()).sum();
             let negatives = o.iter().filter(|v| v.is_negative()).count();
@@ -497,7 +513,6 @@ fn representatives(
             if best.as_ref().is_none_or(|(k, _)| key < *k) {
                 best = Some((key, o));
             }
-            seen += 1;
             seen < MAX_SOLUTIONS
         })?;
         Some((complete, best.map(|(_, o)| o)))
