@@ -15,7 +15,8 @@
 //! numerators) over one period; scaled to integers modulo one common modulus, the
 //! congruences are solved in echelon form (`congruence.rs`), which lists the solutions in
 //! lexicographic order without a search (the first [`MAX_SOLUTIONS`] are compared, every
-//! value listed charged to the Context).
+//! value listed charged to the Context), and counts them without listing them (a product
+//! over the echelon form's steps) when deciding whether they are fewer than that.
 //!
 //! Which solution is shown (`5 pi/9` or `-4 pi/9`, or `1/18 pi` with the cosine turned into
 //! a sine): among every solution (when there are fewer than [`MAX_SOLUTIONS`]; else with the symbols whose
