@@ -10,7 +10,7 @@
 //! (the fast path). Other rational multiples of pi (pi/8, pi/7) are constant modes, and
 //! symbolic angles may carry them as offsets (`cos(x + pi/7)`); every group of terms holding
 //! such a mode is rewritten in a canonical basis of the cyclotomic field it lives in
-//! (`cyclo.rs`), so `cos(3 pi/8) = sin(pi/8)`, `cos(pi/5) = (1 + sqrt 5)/4` and
+//! (`cyclo/`), so `cos(3 pi/8) = sin(pi/8)`, `cos(pi/5) = (1 + sqrt 5)/4` and
 //! `cos(x + 6 pi/5) = -cos(x + pi/5)` hold as equal term vectors. The boundary is the field's
 //! degree: past the [`Context`]'s `max_cyclotomic_degree` (768 by default: any one denominator
 //! up to 100, whole degrees, sevenths with ninths or fifths) the result is the error
@@ -28,8 +28,6 @@ pub(crate) use calculus::mode_angle;
 mod cs;
 mod ctx;
 mod cyclo;
-#[cfg(test)]
-mod cyclo_props;
 mod decimal;
 mod frac;
 mod modp;

@@ -5,8 +5,8 @@
 //! were canonical already), agree with an independent evaluation in `f64` of the same
 //! expression, and do not depend on the order they were formed in.
 
-use super::cyclo::{canonicalize, Settled};
-use super::{canonical_terms, Scalar, ScalarError};
+use super::super::{canonical_terms, Scalar, ScalarError};
+use super::{canonicalize, Settled};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 
