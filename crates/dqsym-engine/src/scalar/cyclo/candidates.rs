@@ -11,7 +11,7 @@ use num_traits::One;
 
 /// One column of a basis: `sqrt(h) b` with `b = cos(theta)` (real) or `e^{i theta}` (times
 /// `i` when `imag`), `theta = pi * angle`.
-#[derive(Clone)]
+#[derive(Clone, PartialEq, Eq)]
 pub(super) struct Col {
     pub(super) h: u64,
     pub(super) angle: Small,

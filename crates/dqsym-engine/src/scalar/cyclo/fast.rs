@@ -340,10 +340,31 @@ pub(super) fn canonical_group_fast(g: &[&Term]) -> Result<Option<Vec<Term>>, Sca
         Fit::Out | Fit::Unsure => return Ok(None),
     };
     'descend: loop {
+        let Some(bm) = fast_basis(&f, m, real)? else {
+            return Ok(None);
+        };
         for &p in primes.iter().filter(|p| m.is_multiple_of(**p)) {
             let n = m / p;
             if !n.is_multiple_of(24) {
                 continue;
+            }
+            // When the basis of level `n` is the first columns of level `m`'s (ninths: the
+            // level-24 columns come first in the level-72 order), the coordinates at `m`
+            // decide without a second solve: coordinates over a basis are unique, so the value
+            // is in the span of those columns, `n`'s field, exactly when its coordinates past
+            // them are zero, and they are then its coordinates at `n`.
+            if let Some(bn) = fast_basis(&f, n, real)? {
+                let k = bn.cols.len();
+                if bm.cols.get(..k) == Some(&bn.cols[..]) {
+                    if sol.iter().all(|x| x[k..].iter().all(Q::is_zero)) {
+                        for x in &mut sol {
+                            x.truncate(k);
+                        }
+                        m = n;
+                        continue 'descend;
+                    }
+                    continue;
+                }
             }
             match fits(n)? {
                 Fit::In(s) => {

@@ -47,7 +47,7 @@
 //! units'; this file the rewriting of a term vector's groups and which of them pass through;
 //! `props.rs` the randomized laws.
 
-use super::atoms::{rad_mul, Mode, MonoRc, Small};
+use super::atoms::{rad_mul, Freq, Mode, MonoRc, Small};
 use super::{ScalarError, Term, Q};
 use num_traits::{Signed, Zero};
 use std::collections::HashMap;
@@ -58,10 +58,13 @@ mod exact;
 mod fast;
 mod field;
 mod level;
+mod product;
 #[cfg(test)]
 mod props;
 
 use candidates::Col;
+use level::level_of;
+pub(crate) use product::ProductTrace;
 
 type Cache<K, V> = OnceLock<Mutex<HashMap<K, Arc<V>>>>;
 
@@ -72,54 +75,122 @@ fn poisoned<T>(_: T) -> ScalarError {
 /// The key of a group: the frequency vector and the monomial its terms share.
 pub(crate) type GroupKey<'a> = (&'a [(super::Sym, Small)], &'a MonoRc);
 
+/// A group's key that owns its parts (a product names its settled groups before its terms
+/// are sorted and merged).
+pub(crate) type OwnedKey = (Freq, MonoRc);
+
 /// Which groups of a term vector are known to be canonical already, so that
 /// [`canonicalize`] passes them through.
+///
+/// What makes a group canonical: its canonical form is the expansion of its value in the
+/// basis `B_M` of its smallest level `M` (a function of the value alone), and the first
+/// column of every `B_M` is `1` (`cos 0`, `e^{i 0}`), whose coordinates are exactly the
+/// group's terms without a pi offset (`q sqrt(r)`, `q sqrt(r) cos(phi)`, `q sqrt(r)
+/// sin(phi)`). Adding a value of `K(i)` (`K` for a real group) changes no smallest level (every
+/// `K(zeta_M)`, `24 | M`, holds `K(i)`), so it changes only those coordinates: a group is
+/// canonical exactly when its terms *with* a pi offset are a canonical group on their own,
+/// whatever its terms without one. Hence only the terms with a pi offset are traced below.
 pub(crate) enum Settled<'a> {
     /// None: every group holding a pi offset is rewritten.
     Nothing,
+    /// Every group (a canonical scalar negated, or times a nonzero constant of the
+    /// square-root field times a monomial: see `arith::mul`); only the degree limit is
+    /// checked.
+    All,
     /// The terms of the sum of two canonical scalars, `origin[i]` telling where term `i`
     /// came from (bit 1 the left operand, bit 2 the right one), with the keys of the terms
-    /// that cancelled. A group whose terms all come from one operand, none cancelled, is
-    /// that operand's group, canonical: the canonical form is a function of the group's
-    /// value alone, and canonicalizing a canonical group gives it back.
+    /// with a pi offset that cancelled. A group whose terms with a pi offset all come from one
+    /// operand, none cancelled, has the offset terms of that operand's group, which are
+    /// canonical on their own (that group less its `1` column): the group is canonical.
     Sum {
         /// Where each term came from.
         origin: &'a [u8],
-        /// The keys of the terms of both operands that cancelled.
+        /// The keys of the terms with a pi offset of both operands that cancelled.
         cancelled: &'a [GroupKey<'a>],
     },
+    /// The groups known to be canonical, sorted (a product's: see `arith::mul`).
+    Groups(&'a [OwnedKey]),
 }
 
 /// Rewrites the groups of terms holding a pi offset in their canonical basis (see the module
 /// docs); a field past the context's degree limit, or the work budget running out, is an
 /// error. `None` when every such group is [`Settled`] (the terms are canonical as they are).
+///
+/// The degree limit holds for the groups passed through too: a value built under a higher
+/// limit than the one entered now may hold a group past it, and the result is then the
+/// degree error a rewrite from scratch gives, never the group passed through unchecked.
 pub(crate) fn canonicalize(
     terms: &[Term],
     settled: &Settled,
 ) -> Result<Option<Vec<Term>>, ScalarError> {
+    let offset = |t: &&Term| !t.mode.pi.is_zero();
+    // One check of all offsets together when their level fits: each group's level divides
+    // it, and `phi(d) <= phi(n)` when `d | n`. (A rewrite checks its own group.)
+    let fits = match settled {
+        Settled::Nothing => true,
+        _ => level_of(terms.iter().filter(offset)).is_ok(),
+    };
+    if fits && matches!(settled, Settled::All) {
+        return Ok(None);
+    }
+    if let (true, Settled::Sum { origin, cancelled }) = (fits, settled) {
+        // Every term with a pi offset from one operand, none cancelled: every group is that
+        // operand's, without sorting the groups out.
+        let from = terms
+            .iter()
+            .zip(origin.iter())
+            .filter(|(t, _)| !t.mode.pi.is_zero())
+            .fold(0, |f, (_, o)| f | o);
+        if from != 3 && cancelled.is_empty() {
+            if cfg!(debug_assertions) {
+                debug_check_canonical(terms);
+            }
+            return Ok(None);
+        }
+    }
     let mut keys: Vec<GroupKey> = terms
         .iter()
-        .filter(|t| !t.mode.pi.is_zero())
+        .filter(offset)
         .map(|t| (&*t.mode.freq, &t.mono))
         .collect();
     keys.sort_unstable();
     keys.dedup();
-    // For each group, the operands its terms came from (see `Settled::Sum`).
+    // For each group, the operands its terms with a pi offset came from (see
+    // `Settled::Sum`).
     let mut from = vec![0u8; keys.len()];
     let mut at: Vec<Option<usize>> = Vec::with_capacity(terms.len());
     for (i, t) in terms.iter().enumerate() {
         let k = keys.binary_search(&(&*t.mode.freq, &t.mono)).ok();
         if let (Some(k), Settled::Sum { origin, .. }) = (k, settled) {
-            from[k] |= origin[i];
+            if !t.mode.pi.is_zero() {
+                from[k] |= origin[i];
+            }
         }
         at.push(k);
     }
+    if !fits {
+        // Group by group, in key order, as a rewrite from scratch meets them.
+        let mut groups: Vec<Vec<&Term>> = vec![Vec::new(); keys.len()];
+        for (t, k) in terms.iter().zip(&at) {
+            if let Some(k) = k {
+                groups[*k].push(t);
+            }
+        }
+        for g in groups {
+            level_of(g.into_iter())?;
+        }
+    }
     let redo: Vec<bool> = match settled {
         Settled::Nothing => vec![true; keys.len()],
+        Settled::All => return Ok(None),
         Settled::Sum { cancelled, .. } => keys
             .iter()
             .zip(&from)
             .map(|(k, f)| *f == 3 || cancelled.contains(k))
+            .collect(),
+        Settled::Groups(known) => keys
+            .iter()
+            .map(|k| known.binary_search_by(|(f, m)| (&**f, m).cmp(k)).is_err())
             .collect(),
     };
     if cfg!(debug_assertions) {

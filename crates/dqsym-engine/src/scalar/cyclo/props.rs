@@ -217,3 +217,127 @@ fn random_sums_and_products_are_canonical_and_exact() {
     }
     assert!(checked > 800, "{checked}");
 }
+
+/// Products of general scalars (the groups a product passes through untouched, a group with
+/// pi offsets of one factor times an offset-free group of the other, and the ones it
+/// rewrites) at denominators from 5 to 72, with square roots: canonical (a rewrite from
+/// scratch changes nothing), equal to the `f64` evaluation, and equal to the same value built
+/// another way (distributed, reassociated, through a sum that cancels).
+#[test]
+fn random_general_products_are_canonical_and_exact() {
+    let mut rng = Rng(0x9e37_79b9_7f4a);
+    let dens = [5i64, 7, 9, 10, 12, 14, 15, 16, 18, 20, 24, 36, 40, 45, 72];
+    // Offset-free factors: their angles are multiples of pi/12.
+    let plain = [1i64, 2, 3, 4, 6, 12];
+    let mut checked = 0;
+    let mut trials = 0;
+    while trials < 90 {
+        let pair = [rng.pick(&dens), rng.pick(&dens)];
+        // Fields of degree up to 96 keep the debug build's bases quick.
+        let w = pair.iter().fold(24u64, |w, d| {
+            let d = 2 * *d as u64;
+            w / num_integer::gcd(w, d) * d
+        });
+        if super::level::totient(w) > 96 {
+            continue;
+        }
+        trials += 1;
+        let (u, v) = (element(&mut rng, &pair), element(&mut rng, &pair));
+        let (p, q) = (element(&mut rng, &plain), element(&mut rng, &plain));
+        let up = mul(&u, &p);
+        let cases = [
+            ("u p", up.clone()),
+            ("p u", mul(&p, &u)),
+            ("u v", mul(&u, &v)),
+            ("u u", mul(&u, &u)),
+            ("(u + p) (v + q)", mul(&add(&u, &p), &add(&v, &q))),
+            ("(u p) q", mul(&up, &q)),
+            ("(u p) v", mul(&up, &v)),
+            ("u p - v q", sub(&up, &mul(&v, &q))),
+        ];
+        for (what, c) in &cases {
+            if check(c, &format!("trial {trials}: {what}")) {
+                checked += 1;
+            }
+        }
+        let same = |a: &Scalar, b: &Scalar, what: &str| {
+            if a.as_error().is_none() && b.as_error().is_none() {
+                assert_eq!(*a, *b, "trial {trials}: {what}");
+            }
+        };
+        let (us, vs, ps, qs) = (&u.s, &v.s, &p.s, &q.s);
+        same(
+            &up.s,
+            &(&(&(us + qs) * ps) - &(qs * ps)),
+            "u p = (u + q) p - q p",
+        );
+        same(
+            &cases[4].1.s,
+            &(&(&(us * vs) + &(us * qs)) + &(&(ps * vs) + &(ps * qs))),
+            "(u + p) (v + q) = u v + u q + p v + p q",
+        );
+        same(&cases[5].1.s, &(us * &(ps * qs)), "(u p) q = u (p q)");
+        same(&cases[6].1.s, &(us * &(ps * vs)), "(u p) v = u (p v)");
+    }
+    assert!(checked > 600, "{checked}");
+}
+
+/// A value built under the default cyclotomic degree limit, then combined under a lower one:
+/// every result that holds a group past the lower limit is the degree error naming that
+/// limit, whichever way it was formed (sums whose groups pass through untouched, products by
+/// constants, general products, negation), never a panic and never the group passed through
+/// unchecked; results within the lower limit are unaffected.
+#[test]
+fn a_limit_lowered_after_a_value_was_built_is_still_enforced() {
+    use super::super::Context;
+    let sym = Scalar::sym;
+    let angle = |j: i64, k: i64, n: i64| {
+        &(&sym("x") * &Scalar::int(j))
+            + &(&Scalar::pi() * &Scalar::rational(BigRational::new(k.into(), n.into())))
+    };
+    // Sevenths need Q(zeta_168), of degree 48; ninths Q(zeta_72), of degree 24.
+    let sevenths = &(&angle(1, 1, 7).cos() * &sym("a")) + &angle(0, 2, 7).cos();
+    let ninths = &angle(1, 5, 9).sin() * &Scalar::int(3).sqrt();
+    let plain = &sym("b") + &angle(1, 1, 3).cos();
+    for v in [&sevenths, &ninths] {
+        assert!(v.as_error().is_none(), "built under the default limit: {v}");
+    }
+    let limit = 12;
+    let _in = Context::new().with_max_cyclotomic_degree(limit).enter();
+    let k = &(&Scalar::int(3) + &Scalar::int(2).sqrt()) * &sym("c");
+    for (name, v, degree) in [("sevenths", &sevenths, 48), ("ninths", &ninths, 24)] {
+        let results = [
+            ("v + plain", v + &plain),
+            ("plain - v", &plain - v),
+            ("v + v", v + v),
+            ("v k", v * &k),
+            ("k v", &k * v),
+            ("v plain", v * &plain),
+            ("v cos(y)", v * &sym("y").cos()),
+            ("-v", -v),
+        ];
+        for (what, r) in results {
+            match r.check() {
+                Err(e @ ScalarError::CyclotomicDegree { .. }) => {
+                    let ScalarError::CyclotomicDegree {
+                        degree: d,
+                        limit: l,
+                        exact,
+                        ..
+                    } = e
+                    else {
+                        unreachable!()
+                    };
+                    assert_eq!((d, l, exact), (degree, limit, true), "{name}: {what}");
+                    let text = e.to_string();
+                    assert!(text.contains("--max-cyclotomic-degree"), "{text}");
+                }
+                other => panic!("{name}: {what}: expected the degree limit, got {other:?}"),
+            }
+        }
+    }
+    // Within the lower limit nothing changes.
+    let twice = &plain + &plain;
+    assert_eq!(twice, &plain * &Scalar::int(2));
+    assert!(twice.as_error().is_none());
+}
