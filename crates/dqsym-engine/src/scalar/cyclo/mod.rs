@@ -35,17 +35,22 @@
 //! value, never a group left in a non-canonical form.
 //!
 //! The canonical form of a group is a function of its value, so a canonical group is its own
-//! canonical form: a sum of two canonical scalars rewrites only the groups that hold terms of
-//! both ([`Settled::Sum`]), and a product by a nonzero constant of the square-root field
-//! times a monomial rewrites none (`arith::mul`). Debug builds check every group passed
-//! through this way against the rewrite from scratch.
+//! canonical form, and only a group's terms with a pi offset decide whether it is canonical
+//! (see [`Settled`]): a sum of two canonical scalars rewrites only the groups whose offset
+//! terms come from both ([`Settled::Sum`]); a product rewrites only the groups that are not
+//! one factor's group with offsets times an offset-free group of the other, alone
+//! (`product.rs`), and a product by a nonzero constant of the square-root field times a
+//! monomial, or a negation, none ([`Settled::All`]). Every group passed through is still
+//! held to the degree limit entered now. Debug builds check every group passed through
+//! against the rewrite from scratch.
 //!
 //! The parts, one concern each: `level.rs` the level `W` of a group and its degree check;
 //! `field.rs` `Q(zeta_W)` (reductions, square roots, the field cache); `candidates.rs` the
 //! columns a basis may take and their order; `exact.rs` the dense exact path (the reference);
 //! `fast.rs` the basis found modulo a prime and checked, and a group's coordinates from its
-//! units'; this file the rewriting of a term vector's groups and which of them pass through;
-//! `props.rs` the randomized laws.
+//! units'; `product.rs` which groups of a product are canonical already; this file the
+//! rewriting of a term vector's groups and which of them pass through; `props.rs` the
+//! randomized laws.
 
 use super::atoms::{rad_mul, Freq, Mode, MonoRc, Small};
 use super::{ScalarError, Term, Q};

@@ -6,8 +6,12 @@
 //! or as a real `c` when `f` is empty (module docs of `cyclo`). The product of a group `A`
 //! of `x` and a group `B` of `y` is, by the product-to-sum rules `arith::mul` applies term by
 //! term,
-//! `Re(z_A e^{i phi_A}) Re(z_B e^{i phi_B}) = 1/2 Re(z_A z_B e^{i (phi_A + phi_B)})
-//! + 1/2 Re(z_A conj(z_B) e^{i (phi_A - phi_B)})`,
+//!
+//! ```text
+//! Re(z_A e^{i phi_A}) Re(z_B e^{i phi_B}) = 1/2 Re(z_A z_B e^{i (phi_A + phi_B)})
+//!                                         + 1/2 Re(z_A conj(z_B) e^{i (phi_A - phi_B)}),
+//! ```
+//!
 //! a frequency with a negative leading coefficient being turned round by conjugating
 //! (`Re(w e^{-i psi}) = Re(conj(w) e^{i psi})`). Call `B` *offset-free* when none of its
 //! terms has a pi offset: its value `c` is then in `K(i)` (in `K` for a real group). When `A`
