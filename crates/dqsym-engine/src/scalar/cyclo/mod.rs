@@ -69,7 +69,7 @@ mod props;
 
 use candidates::Col;
 use level::level_of;
-pub(crate) use product::ProductTrace;
+pub(crate) use product::{settled_groups, ProductTrace};
 
 type Cache<K, V> = OnceLock<Mutex<HashMap<K, Arc<V>>>>;
 

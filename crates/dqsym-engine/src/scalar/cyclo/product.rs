@@ -131,21 +131,29 @@ impl ProductTrace {
     /// The keys of the groups of the product terms `out` (before they are sorted) that are
     /// canonical once like terms merge, sorted.
     pub(crate) fn settled(self, out: &[Term]) -> Vec<OwnedKey> {
-        let mut m: Vec<(GroupKey, u64, usize)> = self
-            .marks
-            .iter()
-            .map(|&(k, origin)| {
-                let t = &out[k];
-                ((&*t.mode.freq, &t.mono), origin, k)
-            })
-            .collect();
-        m.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.cmp(&b.1)));
-        m.chunk_by(|a, b| a.0 == b.0)
-            .filter(|run| run[0].1 != 0 && run[0].1 == run[run.len() - 1].1)
-            .map(|run| {
-                let t = &out[run[0].2];
-                (t.mode.freq.clone(), t.mono.clone())
-            })
-            .collect()
+        settled_groups(out, &self.marks)
     }
+}
+
+/// The keys of the groups of `out` (terms not yet sorted or merged) whose terms with a pi
+/// offset all have one origin, none of them `0`, sorted: `marks` holds the index and the
+/// origin of every term of `out` with a pi offset, `0` for one that may not be passed
+/// through. The caller shows that a group of one origin is canonical once like terms merge
+/// (a product's: see the module docs; a derivative's: `Scalar::diff`).
+pub(crate) fn settled_groups(out: &[Term], marks: &[(usize, u64)]) -> Vec<OwnedKey> {
+    let mut m: Vec<(GroupKey, u64, usize)> = marks
+        .iter()
+        .map(|&(k, origin)| {
+            let t = &out[k];
+            ((&*t.mode.freq, &t.mono), origin, k)
+        })
+        .collect();
+    m.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.cmp(&b.1)));
+    m.chunk_by(|a, b| a.0 == b.0)
+        .filter(|run| run[0].1 != 0 && run[0].1 == run[run.len() - 1].1)
+        .map(|run| {
+            let t = &out[run[0].2];
+            (t.mode.freq.clone(), t.mono.clone())
+        })
+        .collect()
 }

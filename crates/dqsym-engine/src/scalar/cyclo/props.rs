@@ -278,8 +278,47 @@ fn random_general_products_are_canonical_and_exact() {
         );
         same(&cases[5].1.s, &(us * &(ps * qs)), "(u p) q = u (p q)");
         same(&cases[6].1.s, &(us * &(ps * vs)), "(u p) v = u (p v)");
+        // Derivatives (whose groups of one origin pass through): canonical, the numeric
+        // derivative, and the product rule.
+        for x in ["x", "a"] {
+            let d = up.s.diff(x);
+            let at = |dx: f64| {
+                let (xv, av) = if x == "x" { (X + dx, A) } else { (X, A + dx) };
+                up.s.eval_at(&[("x", xv), ("a", av), ("b", B)])
+            };
+            let h = 1e-4;
+            let (Ok(f1), Ok(f2), Ok(g1), Ok(g2)) = (at(h), at(-h), at(2.0 * h), at(-2.0 * h))
+            else {
+                continue;
+            };
+            // Richardson's five-point derivative: error of order h^4.
+            let numeric = (8.0 * (f1 - f2) - (g1 - g2)) / (12.0 * h);
+            let v = Val {
+                s: d.clone(),
+                f: numeric,
+            };
+            if d.as_error().is_none() {
+                let terms = d.terms().expect("terms");
+                if let Some(again) = canonicalize(terms, &Settled::Nothing).expect("canonicalize") {
+                    let again = canonical_terms(again).expect("sorted");
+                    assert_eq!(again, terms, "trial {trials}: d(u p)/d{x} not canonical");
+                }
+                let f = d.eval_at(&[("x", X), ("a", A), ("b", B)]).expect("a value");
+                assert!(
+                    (f - v.f).abs() < 1e-6 * (1.0 + v.f.abs()),
+                    "trial {trials}: d/d{x}: {f} against {}",
+                    v.f
+                );
+                checked += 1;
+            }
+            same(
+                &d,
+                &(&(&us.diff(x) * ps) + &(us * &ps.diff(x))),
+                "(u p)' = u' p + u p'",
+            );
+        }
     }
-    assert!(checked > 600, "{checked}");
+    assert!(checked > 700, "{checked}");
 }
 
 /// A value built under the default cyclotomic degree limit, then combined under a lower one:
