@@ -230,6 +230,7 @@ fn random_general_products_are_canonical_and_exact() {
     // Offset-free factors: their angles are multiples of pi/12.
     let plain = [1i64, 2, 3, 4, 6, 12];
     let mut checked = 0;
+    let mut derivatives = 0;
     let mut trials = 0;
     while trials < 90 {
         let pair = [rng.pick(&dens), rng.pick(&dens)];
@@ -309,7 +310,7 @@ fn random_general_products_are_canonical_and_exact() {
                     "trial {trials}: d/d{x}: {f} against {}",
                     v.f
                 );
-                checked += 1;
+                derivatives += 1;
             }
             same(
                 &d,
@@ -318,7 +319,8 @@ fn random_general_products_are_canonical_and_exact() {
             );
         }
     }
-    assert!(checked > 700, "{checked}");
+    assert!(checked > 650, "{checked}");
+    assert!(derivatives > 150, "{derivatives}");
 }
 
 /// A value built under the default cyclotomic degree limit, then combined under a lower one:
