@@ -698,7 +698,13 @@ impl Counts {
 /// The power of `f` in `m` (0 when `m` lacks it).
 fn multiplicity(m: &Mon, f: Factor) -> u32 {
     match f {
-        Factor::Sym(s) => m.syms.iter().find(|&&(x, _)| x == s).map_or(0, |&(_, e)| e),
+        // The symbols are sorted by id (`Mon`'s invariant, checked in debug builds).
+        Factor::Sym(s) => {
+            debug_assert!(m.syms.windows(2).all(|w| w[0].0 < w[1].0));
+            m.syms
+                .binary_search_by_key(&s, |&(x, _)| x)
+                .map_or(0, |k| m.syms[k].1)
+        }
         Factor::Atom(a) => m.atoms.iter().filter(|&&x| x == a).count() as u32,
     }
 }

@@ -15,7 +15,8 @@
 //! numerators) over one period; scaled to integers modulo one common modulus, the
 //! congruences are solved in echelon form (`congruence.rs`), which lists the solutions in
 //! lexicographic order without a search (the first [`MAX_SOLUTIONS`] are compared, every
-//! value listed charged to the Context).
+//! value listed charged to the Context), and counts them without listing them (a product
+//! over the echelon form's steps) when deciding whether they are fewer than that.
 //!
 //! Which solution is shown (`5 pi/9` or `-4 pi/9`, or `1/18 pi` with the cosine turned into
 //! a sine): among every solution (when there are fewer than [`MAX_SOLUTIONS`]; else with the symbols whose
@@ -185,20 +186,93 @@ fn solve(
     fixed: &[Option<Small>],
     found: &mut dyn FnMut(&[Small]) -> bool,
 ) -> Option<bool> {
-    solve_listing(syms, rows, targets, n, fixed, true, found)
+    let System {
+        free,
+        a,
+        b,
+        modulus,
+        ranges,
+    } = system(syms, rows, targets, n, fixed)?;
+    let mut o: Vec<Small> = fixed
+        .iter()
+        .take(syms.len())
+        .map(|v| v.unwrap_or_else(Small::zero))
+        .collect();
+    // Each free symbol's offsets `unit * v`, made once per value met: the solutions repeat
+    // a few values (a product in `Small` reduces by gcds; 6% of the Jaco-style arm's
+    // `fk --jacobian` made them afresh for every solution).
+    let mut values: Vec<Vec<Option<Small>>> = ranges
+        .iter()
+        .map(|c| vec![None; usize::try_from(*c).unwrap_or(0)])
+        .collect();
+    let result = super::congruence::solutions(&a, &b, modulus, &ranges, &mut |z| {
+        for (((s, unit, _), v), known) in free.iter().zip(z).zip(&mut values) {
+            let slot = usize::try_from(*v).ok().and_then(|i| known.get_mut(i));
+            o[*s] = match slot {
+                Some(Some(x)) => *x,
+                Some(slot) => *slot.insert(*unit * Small::from_integer(*v)),
+                None => *unit * Small::from_integer(*v),
+            };
+        }
+        found(&o)
+    });
+    match result {
+        Ok(()) => Some(true),
+        Err(super::congruence::Stop::Work(_)) => None,
+        Err(_) => Some(false),
+    }
 }
 
-/// [`solve`]; without `fill`, `found` is passed the fixed offsets only (the free ones are not
-/// made): for a caller that counts the solutions.
-fn solve_listing(
+/// Whether [`solve`] on the same arguments has fewer than `bound` solutions, decided by
+/// counting them without listing them (`congruence::count`) when the count is known, by
+/// listing up to `bound` of them otherwise; `None` as [`solve`].
+fn fewer_solutions_than(
     syms: &[Sym],
     rows: &[Vec<(usize, Small)>],
     targets: &[(Small, Small)],
     n: i64,
     fixed: &[Option<Small>],
-    fill: bool,
-    found: &mut dyn FnMut(&[Small]) -> bool,
+    bound: usize,
 ) -> Option<bool> {
+    let sys = system(syms, rows, targets, n, fixed)?;
+    match super::congruence::count(&sys.a, &sys.b, sys.modulus, &sys.ranges) {
+        Ok(Some(c)) => return Some(c < bound as u128),
+        Ok(None) => {}
+        Err(_) => return None,
+    }
+    let mut seen = 0usize;
+    let result =
+        super::congruence::solutions(&sys.a, &sys.b, sys.modulus, &sys.ranges, &mut |_| {
+            seen += 1;
+            seen < bound
+        });
+    match result {
+        Ok(()) => Some(true),
+        Err(super::congruence::Stop::Work(_)) => None,
+        Err(_) => Some(false),
+    }
+}
+
+/// The system of [`solve`] in integers (see `congruence.rs`): each free symbol's index, unit
+/// `1/(n a)` and number of candidates; the rows and right-hand sides modulo one modulus; the
+/// candidates' ranges.
+struct System {
+    free: Vec<(usize, Small, i64)>,
+    a: Vec<Vec<i64>>,
+    b: Vec<i64>,
+    modulus: i64,
+    ranges: Vec<i64>,
+}
+
+/// The integer system of [`solve`]; `None` past the bounds (too many candidates, numbers too
+/// large).
+fn system(
+    syms: &[Sym],
+    rows: &[Vec<(usize, Small)>],
+    targets: &[(Small, Small)],
+    n: i64,
+    fixed: &[Option<Small>],
+) -> Option<System> {
     // Each free symbol's unit `1/(n a)` and number of candidates.
     let mut free: Vec<(usize, Small, i64)> = Vec::new();
     for (s, fixed_s) in fixed.iter().enumerate().take(syms.len()) {
@@ -270,37 +344,13 @@ fn solve_listing(
         b.push(int(*rhs));
     }
     let ranges: Vec<i64> = free.iter().map(|(_, _, c)| *c).collect();
-    let mut o: Vec<Small> = fixed
-        .iter()
-        .take(syms.len())
-        .map(|v| v.unwrap_or_else(Small::zero))
-        .collect();
-    // Each free symbol's offsets `unit * v`, made once per value met: the solutions repeat
-    // a few values (a product in `Small` reduces by gcds; 6% of the Jaco-style arm's
-    // `fk --jacobian` made them afresh for every solution).
-    let mut values: Vec<Vec<Option<Small>>> = ranges
-        .iter()
-        .map(|c| vec![None; usize::try_from(*c).unwrap_or(0)])
-        .collect();
-    let result = super::congruence::solutions(&a, &b, modulus, &ranges, &mut |z| {
-        if !fill {
-            return found(&o);
-        }
-        for (((s, unit, _), v), known) in free.iter().zip(z).zip(&mut values) {
-            let slot = usize::try_from(*v).ok().and_then(|i| known.get_mut(i));
-            o[*s] = match slot {
-                Some(Some(x)) => *x,
-                Some(slot) => *slot.insert(*unit * Small::from_integer(*v)),
-                None => *unit * Small::from_integer(*v),
-            };
-        }
-        found(&o)
-    });
-    match result {
-        Ok(()) => Some(true),
-        Err(super::congruence::Stop::Work(_)) => None,
-        Err(_) => Some(false),
-    }
+    Some(System {
+        free,
+        a,
+        b,
+        modulus,
+        ranges,
+    })
 }
 
 /// The value of terms of one frequency vector `F` (a group) as the complex amplitude `z` of
@@ -387,19 +437,35 @@ fn representatives(
             )
         })
         .collect();
+    // Each distinct vector's phase for the solution being scored, made when a group first
+    // asks for it (`stamp` says for which solution).
     let mut phases: Vec<(f64, f64)> = vec![(0.0, 0.0); freqs.len()];
-    // The number of cosine and sine parts of the shifted scalar, and of negative ones.
-    let mut score = |o: &[Small]| -> (usize, usize) {
-        for (p, r) in phases.iter_mut().zip(&freqs) {
-            let f = dot(r, o);
-            let f = f.numer().to_f64().unwrap_or(0.0) / f.denom().to_f64().unwrap_or(1.0);
-            *p = (
-                (f * std::f64::consts::PI).cos(),
-                (f * std::f64::consts::PI).sin(),
-            );
-        }
+    let mut stamp: Vec<usize> = vec![0; freqs.len()];
+    let mut scored = 0usize;
+    // `e^{i pi f}` by the exact phase `f`: the solutions compared share few phases (most
+    // symbols are held at 0 or take a few values), and the cosine and sine were most of the
+    // cost of scoring a solution. The same `f` gives the same bits, so the scores are those
+    // computed afresh.
+    let mut unit_circle: super::FxMap<Small, (f64, f64)> = Default::default();
+    // The number of cosine and sine parts of the shifted scalar, and of negative ones; `None`
+    // once the parts pass `bound` (the parts of the best solution so far: the parts come first
+    // in the order of solutions, and they only grow group by group, so such a solution is
+    // never taken, and the rest of its groups need not be looked at).
+    let mut score = |o: &[Small], bound: usize| -> Option<(usize, usize)> {
+        scored += 1;
         let (mut parts, mut neg) = (0, 0);
         for (i, (re, im)) in row_freq.iter().zip(&amps) {
+            if stamp[*i] != scored {
+                stamp[*i] = scored;
+                let f = dot(freqs[*i], o);
+                phases[*i] = *unit_circle.entry(f).or_insert_with(|| {
+                    let f = f.numer().to_f64().unwrap_or(0.0) / f.denom().to_f64().unwrap_or(1.0);
+                    (
+                        (f * std::f64::consts::PI).cos(),
+                        (f * std::f64::consts::PI).sin(),
+                    )
+                });
+            }
             let (c, s) = phases[*i];
             // z e^{-i pi f}: the cosine part is its real part, the sine part minus its
             // imaginary part.
@@ -411,23 +477,20 @@ fn representatives(
                     neg += usize::from(v < 0.0);
                 }
             }
+            if parts > bound {
+                return None;
+            }
         }
-        (parts, neg)
+        Some((parts, neg))
     };
     let mut run = |fixed: &[Option<Small>], all: bool| -> Option<(bool, Option<Vec<Small>>)> {
         // Whether the solutions are fewer than the bound, counted first: when they are not,
         // none of the first run (`all`) is shown.
-        if all {
-            let mut seen = 0usize;
-            // Counted without making the offsets (the Jaco-style arm's pose entries each
-            // have more than the bound).
-            let complete = solve_listing(syms, rows, targets, n, fixed, false, &mut |_| {
-                seen += 1;
-                seen < MAX_SOLUTIONS
-            })?;
-            if !complete {
-                return Some((false, None));
-            }
+        // Counted without listing them when the count is known (the Jaco-style arm's pose
+        // entries each have more than the bound: listing them to the bound was a ninth of
+        // its `fk --jacobian`).
+        if all && !fewer_solutions_than(syms, rows, targets, n, fixed, MAX_SOLUTIONS)? {
+            return Some((false, None));
         }
         let mut best: Option<(Key, Vec<Small>)> = None;
         let mut seen = 0usize;
@@ -436,17 +499,13 @@ fn representatives(
             let o: Vec<Small> = o
                 .iter()
                 .zip(&halves)
-                .map(|(&v, &den)| {
-                    let period = den * Small::from_integer(2);
-                    let v = v - (v / period).floor() * period;
-                    if v > den {
-                        v - period
-                    } else {
-                        v
-                    }
-                })
+                .map(|(&v, &den)| centred(v, den))
                 .collect();
-            let (parts, neg) = score(&o);
+            seen += 1;
+            let bound = best.as_ref().map_or(usize::MAX, |(k, _)| k.0);
+            let Some((parts, neg)) = score(&o, bound) else {
+                return seen < MAX_SOLUTIONS;
+            };
             let den = o.iter().map(|v| *v.denom()).max().unwrap_or(1);
             let size: Small = o.iter().map(|v| v.abs()).sum();
             let negatives = o.iter().filter(|v| v.is_negative()).count();
@@ -455,7 +514,6 @@ fn representatives(
             if best.as_ref().is_none_or(|(k, _)| key < *k) {
                 best = Some((key, o));
             }
-            seen += 1;
             seen < MAX_SOLUTIONS
         })?;
         Some((complete, best.map(|(_, o)| o)))
@@ -484,6 +542,37 @@ fn representatives(
         })
         .collect();
     run(&fixed, false)?.1
+}
+
+/// `v` moved by a multiple of the period `2 den` into `(-den, den]` (`den` a positive
+/// integer): in machine words when they suffice (zero, the common case, at once), in `Small`
+/// otherwise.
+fn centred(v: Small, den: Small) -> Small {
+    if v.is_zero() {
+        return v;
+    }
+    let slow = || {
+        let period = den * Small::from_integer(2);
+        let v = v - (v / period).floor() * period;
+        if v > den {
+            v - period
+        } else {
+            v
+        }
+    };
+    // v = a / b, period p: a mod (p b), over b, is v minus floor(v / p) p.
+    let fast = || -> Option<Small> {
+        let (a, b) = (*v.numer(), *v.denom());
+        let half = den.to_integer().checked_mul(b)?;
+        let r = a.rem_euclid(half.checked_mul(2)?);
+        let r = if r > half { r - 2 * half } else { r };
+        Some(Small::new(r, b))
+    };
+    if den.is_integer() {
+        fast().unwrap_or_else(slow)
+    } else {
+        slow()
+    }
 }
 
 /// The order of solutions: parts, largest denominator, offsets, negative parts, sum of
@@ -602,6 +691,27 @@ mod tests {
         // A product past a machine word before its reduction: `Small`'s path.
         let (k, o) = (Small::new(1 << 62, 3), Small::new(5, 1 << 61));
         assert_eq!(dot(&[(0, k)], &[o]), Small::new(10, 3));
+    }
+
+    /// `centred` against its definition in big rationals (the multiple of the period `2 den`
+    /// that takes `v` into `(-den, den]`), on seeded random offsets and half periods.
+    #[test]
+    fn centred_offsets_lie_in_the_half_open_period_and_differ_by_whole_periods() {
+        use num_rational::BigRational;
+        let mut next = crate::testing::xorshift_below(0x1234_5678_9abc_def1u64);
+        let big = |q: Small| BigRational::new((*q.numer()).into(), (*q.denom()).into());
+        for _ in 0..3000 {
+            let v = Small::new(next(2001) as i64 - 1000, 1 + next(72) as i64);
+            let den = Small::from_integer(1 + next(6) as i64);
+            let c = big(centred(v, den));
+            let (bv, bd) = (big(v), big(den));
+            assert!(c > -bd.clone() && c <= bd, "{v} in ({den})");
+            let turns = (bv - c) / (bd * BigRational::from_integer(2.into()));
+            assert!(
+                turns.is_integer(),
+                "{v} and its centred value differ by whole periods"
+            );
+        }
     }
 
     #[test]

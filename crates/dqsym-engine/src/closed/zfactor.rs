@@ -109,6 +109,12 @@ pub(crate) struct Factored {
 /// The factorization of `p` into irreducibles over Z; `None` when `p` is zero, when its
 /// univariate image is of degree over [`MAX_IMAGE_DEGREE`], or when the work budget runs out.
 pub(crate) fn factor(p: &MPoly) -> Option<Factored> {
+    factor_with(p, true)
+}
+
+/// [`factor`], with the test [`linear_irreducible`] first when `shortcut` is set (the tests
+/// compare the two).
+fn factor_with(p: &MPoly, shortcut: bool) -> Option<Factored> {
     if p.terms.is_empty() {
         return None;
     }
@@ -127,29 +133,102 @@ pub(crate) fn factor(p: &MPoly) -> Option<Factored> {
     };
     let mut factors = monomial_factors(&mut rest);
     if !rest.is_constant() {
+        // The image first, also where the linear test answers: past its degree limit the
+        // factorization gives up, and the test must not answer there either. It only saves
+        // the search; a factorization found past the limit would be a closed-form candidate
+        // the search never offers (`t` times the rest of the symbolic screw's
+        // `pow(q, t, psi)` z entry, in nine variables: it won on its cost before its sums
+        // were joined, and printed longer).
         let (kr, f) = Kronecker::image(&rest)?;
-        // A bound on the coefficients of any factor (Gelfond: 3^(sum of the partial degrees)
-        // times the 1-norm), times the image's leading coefficient, twice.
-        let norm1: BigInt = rest.terms.values().map(|c| c.abs()).sum();
-        let spread: u32 = kr.degs.iter().sum();
-        let lc = f.last()?.abs();
-        let bound = BigInt::from(2) * &lc * BigInt::from(3).pow(spread) * norm1;
-        let lifted = lifted_pieces(&f, &bound)?;
-        recombine(&mut rest, &kr, &f, lifted, &mut factors)?;
-        if !rest.is_constant() {
-            if rest.leading().is_some_and(|(_, c)| c.is_negative()) {
-                rest = rest.neg();
-                content = -content;
+        if shortcut && linear_irreducible(&rest, LINEAR_DEPTH) {
+            // What the search below concludes, found without it: `rest` is its own factor
+            // (its leading coefficient is positive: the content took the sign of `p`'s, and
+            // dividing out a monomial keeps the leading monomial).
+            factors.push((rest, 1));
+        } else {
+            // A bound on the coefficients of any factor (Gelfond: 3^(sum of the partial
+            // degrees) times the 1-norm), times the image's leading coefficient, twice.
+            let norm1: BigInt = rest.terms.values().map(|c| c.abs()).sum();
+            let spread: u32 = kr.degs.iter().sum();
+            let lc = f.last()?.abs();
+            let bound = BigInt::from(2) * &lc * BigInt::from(3).pow(spread) * norm1;
+            let lifted = lifted_pieces(&f, &bound)?;
+            recombine(&mut rest, &kr, &f, lifted, &mut factors)?;
+            if !rest.is_constant() {
+                if rest.leading().is_some_and(|(_, c)| c.is_negative()) {
+                    rest = rest.neg();
+                    content = -content;
+                }
+                factors.push((rest.clone(), 1));
             }
-            factors.push((rest.clone(), 1));
-        }
-        if let Some(c) = rest.terms.get(&vec![0; n]).filter(|_| rest.is_constant()) {
-            content *= c;
+            if let Some(c) = rest.terms.get(&vec![0; n]).filter(|_| rest.is_constant()) {
+                content *= c;
+            }
         }
     }
     Some(Factored {
         content,
         factors: merge_equal(factors),
+    })
+}
+
+/// How deep [`linear_irreducible`] looks into the coefficients of a linear variable.
+const LINEAR_DEPTH: u32 = 3;
+
+/// Whether `p`, primitive, non-constant and without a monomial factor, is certainly
+/// irreducible over Z by a test linear in its terms (`false`: not known). Where `p = x A + B`
+/// is of degree 1 in a variable `x` (`A`, `B` free of `x`, `B` not zero since `x` does not
+/// divide `p`), a factorization `p = F G` puts `x` in one factor, `F = x F1 + F0`, and the
+/// other divides `A = F1 G` and `B = F0 G`, so `G` divides `gcd(A, B)`, which divides `p`. That
+/// gcd is a unit (`p` is irreducible) when
+/// - `A` or `B` is a single term: its divisors are monomials, and no monomial but `1` divides
+///   `p`;
+/// - or `A` is `c m A'`, `c` an integer, `m` a monomial and `A'` certainly irreducible (by
+///   this test, `depth` levels down), and `A'` does not divide `B`: the divisors of `A` that
+///   may divide `p` are `1` and `A'`.
+///
+/// The Kronecker image of such a polynomial (`a s_x c_y + d c_x s_y`, a DH link's dual part:
+/// degree up to 63 in six variables of degree 1) split into many modular factors whose
+/// recombination only confirmed it: 1.3 M to 8 M instructions each.
+fn linear_irreducible(p: &MPoly, depth: u32) -> bool {
+    let n = p.n;
+    if charge((p.terms.len() * n) as u64).is_err() {
+        return false;
+    }
+    (0..n).any(|x| {
+        if p.terms.keys().any(|e| e[x] > 1) || p.terms.keys().all(|e| e[x] == 0) {
+            return false;
+        }
+        let (with, without): (BTreeMap<_, _>, BTreeMap<_, _>) = p
+            .terms
+            .iter()
+            .map(|(e, c)| (e.clone(), c.clone()))
+            .partition(|(e, _)| e[x] == 1);
+        if with.len() == 1 || without.len() == 1 {
+            return true;
+        }
+        if depth == 0 {
+            return false;
+        }
+        // `A'`: the coefficient of `x` without its content and monomial factor.
+        let content = with.values().fold(BigInt::zero(), |acc, c| acc.gcd(c));
+        let mut a = MPoly {
+            n,
+            terms: with
+                .into_iter()
+                .map(|(mut e, c)| {
+                    e[x] = 0;
+                    (e, c / &content)
+                })
+                .collect(),
+        };
+        monomial_factors(&mut a);
+        let b = MPoly { n, terms: without };
+        // A budget run out in the division says nothing: not known.
+        !a.is_constant()
+            && linear_irreducible(&a, depth - 1)
+            && b.div_exact(&a).is_none()
+            && charge(0).is_ok()
     })
 }
 
@@ -970,6 +1049,98 @@ mod tests {
         }
         terms.retain(|_, c| !c.is_zero());
         MPoly { n, terms }
+    }
+
+    /// A pseudo-random polynomial in `n` variables of degree at most 1 in each of the first
+    /// `n - 1` and 2 in the last: up to five terms, small coefficients of either sign.
+    fn random_poly(n: usize, next: &mut dyn FnMut(u64) -> u64) -> MPoly {
+        let mut terms: BTreeMap<Vec<u32>, BigInt> = BTreeMap::new();
+        for _ in 0..1 + next(5) {
+            let e: Vec<u32> = (0..n)
+                .map(|i| next(if i + 1 == n { 3 } else { 2 }) as u32)
+                .collect();
+            let c = next(7) as i64 - 3;
+            *terms.entry(e).or_insert_with(BigInt::zero) += if c == 0 { 1 } else { c };
+        }
+        terms.retain(|_, c| !c.is_zero());
+        MPoly { n, terms }
+    }
+
+    /// The factorization with the linear test first equals the factorization without it, on
+    /// random polynomials that are irreducible, products of two, and products times
+    /// monomials; and the test says "irreducible" on a good share of them (the DH links'
+    /// dual parts among them).
+    #[test]
+    fn linear_irreducible_agrees_with_the_full_factorization() {
+        let mut h: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut next = |k: u64| {
+            h ^= h << 13;
+            h ^= h >> 7;
+            h ^= h << 17;
+            h % k
+        };
+        let (mut certified, mut tried) = (0, 0);
+        for round in 0..400 {
+            let n = 2 + (round % 5);
+            let a = random_poly(n, &mut next);
+            let p = if round % 3 == 0 {
+                mul(&a, &random_poly(n, &mut next))
+            } else {
+                a
+            };
+            if p.terms.is_empty() {
+                continue;
+            }
+            tried += 1;
+            let (fast, full) = (factor_with(&p, true), factor_with(&p, false));
+            assert_eq!(fast.is_some(), full.is_some(), "{p:?}");
+            let (Some(fast), Some(full)) = (fast, full) else {
+                continue;
+            };
+            assert_eq!(fast.content, full.content, "{p:?}");
+            assert_eq!(fast.factors, full.factors, "{p:?}");
+            let mut q = p.clone();
+            q.terms = q
+                .terms
+                .iter()
+                .map(|(e, c)| (e.clone(), c / &full.content))
+                .collect();
+            monomial_factors(&mut q);
+            if !q.is_constant() && linear_irreducible(&q, LINEAR_DEPTH) {
+                certified += 1;
+                let count: u32 = full
+                    .factors
+                    .iter()
+                    .map(|(g, m)| m * u32::from(g.terms.len() > 1))
+                    .sum();
+                assert_eq!(count, 1, "certified irreducible, but factors: {p:?}");
+            }
+        }
+        assert!(
+            tried > 300 && certified > 50,
+            "tried {tried}, certified {certified}"
+        );
+        // A DH link's dual part, read by symbols (x0 = a, x1 = d, x2..x5 = c_alpha, s_alpha,
+        // c_theta, s_theta) and by directions.
+        for s in ["x0*x3*x4 + x1*x2*x5", "x0*x2 - x1*x2 + x0*x3 + x1*x3"] {
+            let p = parse(6, s);
+            assert!(linear_irreducible(&p, LINEAR_DEPTH), "{s}");
+            assert_eq!(
+                factor_with(&p, false).map(|f| f.factors.len()),
+                Some(1),
+                "{s}"
+            );
+        }
+        // Linear in every variable and reducible: not certified.
+        let p = parse(4, "x0*x2 + x0*x3 + x1*x2 + x1*x3");
+        assert!(!linear_irreducible(&p, LINEAR_DEPTH));
+        // Certified, but past the image's degree limit (x1 x3 x4 x5 x6 maps to t^122): the
+        // factorization gives up with or without the test, so that the test never offers a
+        // closed form (here x7 times the rest) the search would not.
+        let p = parse(8, "x0*x2*x7 + x1*x3*x4*x5*x6*x7");
+        let rest = parse(8, "x0*x2 + x1*x3*x4*x5*x6");
+        assert!(linear_irreducible(&rest, LINEAR_DEPTH));
+        assert!(factor_with(&p, true).is_none() && factor_with(&p, false).is_none());
     }
 
     fn mul(a: &MPoly, b: &MPoly) -> MPoly {

@@ -5,7 +5,7 @@ use super::atoms::{
     empty_mono, mode_mul, mono_mul, rad_mul, small_ok, split_square, trig_mode, Mode, ModeSum,
     Small, Sym,
 };
-use super::{charge, term_limit, GroupKey, Poll, Scalar, ScalarError, Term, Q};
+use super::{charge, term_limit, GroupKey, Poll, ProductTrace, Scalar, ScalarError, Term, Q};
 use crate::Ring;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
@@ -85,7 +85,8 @@ pub(crate) fn add(a: &Scalar, b: &Scalar, sign: i64) -> Scalar {
                     &x[i].coef + &y[j].coef
                 };
                 if c.is_zero() {
-                    if track {
+                    // Only terms with a pi offset matter (see `Settled`).
+                    if track && !x[i].mode.pi.is_zero() {
                         cancelled.push((&*x[i].mode.freq, &x[i].mono));
                     }
                 } else {
@@ -296,17 +297,27 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
     // the terms, merged, are its coordinates over `Q` in the same basis (a basis of square
     // roots times the columns). So the product skips the cyclotomic rewrite.
     let settled = scales(x) || scales(y);
+    // Otherwise, the groups that are canonical anyway (a group of one factor with pi offsets
+    // times an offset-free group of the other, alone in its group of the product): traced
+    // term by term, so that only the others are rewritten (see `cyclo::ProductTrace`).
+    let mut trace = if settled {
+        None
+    } else {
+        ProductTrace::new(x, y)
+    };
     let mut out = Vec::with_capacity(x.len() * y.len());
     // A large product notices cancellation as it goes (every few term pairs), not only before.
     let mut poll = Poll::default();
     // Mode products are the expensive part; compute each once per pair of mode runs.
+    let mut ia = 0;
     for ra in mode_runs(x) {
+        let mut ib = 0;
         for rb in mode_runs(y) {
             let modes = cached_mode_mul(&ra[0].mode, &rb[0].mode);
             let weights: usize = modes.iter().map(|(_, w)| w.len()).sum();
             out.reserve(ra.len() * rb.len() * weights);
-            for s in ra {
-                for t in rb {
+            for (i, s) in (ia..).zip(ra) {
+                for (j, t) in (ib..).zip(rb) {
                     if let Err(e) = poll.step() {
                         return Scalar::error(e);
                     }
@@ -331,6 +342,9 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
                             if g2 != 1 {
                                 c = &c * &Q::from_u64(g2);
                             }
+                            if let Some(trace) = &mut trace {
+                                trace.mark(out.len(), (i, &s.mode), (j, &t.mode), mode);
+                            }
                             out.push(Term {
                                 mode: mode.clone(),
                                 mono: mono.clone(),
@@ -341,12 +355,19 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
                     }
                 }
             }
+            ib += rb.len();
         }
+        ia += ra.len();
     }
     if settled {
-        Scalar::from_terms_settled(out)
-    } else {
-        Scalar::from_terms(out)
+        return Scalar::from_terms_settled(out);
+    }
+    match trace {
+        Some(trace) => {
+            let known = trace.settled(&out);
+            Scalar::from_terms_known(out, &known)
+        }
+        None => Scalar::from_terms(out),
     }
 }
 
@@ -634,8 +655,10 @@ impl Neg for Scalar {
 impl Neg for &Scalar {
     type Output = Scalar;
     fn neg(self) -> Scalar {
+        // A canonical group negated is canonical: its coordinates negated (the terms stay
+        // sorted and merged).
         match self.terms() {
-            Ok(t) => Scalar::from_terms_sorted(
+            Ok(t) => Scalar::from_sorted_settled(
                 t.iter()
                     .map(|x| {
                         let mut x = x.clone();

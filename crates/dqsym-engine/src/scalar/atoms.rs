@@ -237,10 +237,10 @@ pub(crate) fn small_cmp(a: &Small, b: &Small) -> Ordering {
 
 /// A trigonometric mode: `1` (empty frequency, no pi offset, cosine), `cos(phi)` or `sin(phi)`.
 ///
-/// Invariants, kept by [`trig_mode`] and `cyclo.rs`: `freq` is sorted by symbol with nonzero
+/// Invariants, kept by [`trig_mode`] and `cyclo/`: `freq` is sorted by symbol with nonzero
 /// entries and a positive first entry; `pi` lies in `[0, 2)` and is never a multiple of 1/12
 /// (those are expanded exactly); a mode with empty `freq` has `pi` in `(0, 1)`, or is the unit
-/// mode. Within the degree bound of `cyclo.rs` the modes with a pi offset are those of the
+/// mode. Within the degree bound of `cyclo/` the modes with a pi offset are those of the
 /// canonical bases: `cos(k pi/n)` at angles in `(0, pi/2)` for constants, `cos`/`sin` of
 /// `phi + theta` with `theta` in `(-pi/4, pi/4]` for symbolic angles.
 #[derive(Clone, PartialEq, Eq, Debug)]

@@ -18,8 +18,21 @@ impl Scalar {
             Err(e) => return Scalar::error(e.clone()),
         };
         let mut out = Vec::with_capacity(t.len());
+        // The origin of every term with a pi offset: 1 from a monomial's derivative, 2 from
+        // an angle's. A group of the derivative with one origin is canonical once like terms
+        // merge: a monomial's derivative carries the group `(f, m x)` to `(f, m)` times the
+        // exponent, an angle's the group `(f, m)` to itself times `i k` (`k` the frequency of
+        // `x`, nonzero), so its value is that of one canonical group times a nonzero element
+        // of `K(i)`, the same smallest level, and its terms are that group's coordinates
+        // times it (see `cyclo::settled_groups`, and `product.rs` for the argument). Only
+        // the groups holding both are rewritten.
+        let mut marks: Vec<(usize, u64)> = Vec::new();
         for term in t {
+            let offset = !term.mode.pi.is_zero();
             if let Some(pos) = term.mono.iter().position(|(s, _)| s.name() == x) {
+                if offset {
+                    marks.push((out.len(), 1));
+                }
                 let e = term.mono[pos].1;
                 let mut mono = term.mono.to_vec();
                 if e == 1 {
@@ -45,6 +58,9 @@ impl Scalar {
                     sin: !term.mode.sin,
                     ..term.mode.clone()
                 };
+                if offset {
+                    marks.push((out.len(), 2));
+                }
                 out.push(Term {
                     mode,
                     mono: term.mono.clone(),
@@ -53,7 +69,11 @@ impl Scalar {
                 });
             }
         }
-        Scalar::from_terms(out)
+        if marks.is_empty() {
+            return Scalar::from_terms(out);
+        }
+        let known = super::cyclo::settled_groups(&out, &marks);
+        Scalar::from_terms_known(out, &known)
     }
 
     /// `self` with its symbols renamed, `names[k].0` to `names[k].1`, in one pass over the

@@ -10,7 +10,7 @@
 //! (the fast path). Other rational multiples of pi (pi/8, pi/7) are constant modes, and
 //! symbolic angles may carry them as offsets (`cos(x + pi/7)`); every group of terms holding
 //! such a mode is rewritten in a canonical basis of the cyclotomic field it lives in
-//! (`cyclo.rs`), so `cos(3 pi/8) = sin(pi/8)`, `cos(pi/5) = (1 + sqrt 5)/4` and
+//! (`cyclo/`), so `cos(3 pi/8) = sin(pi/8)`, `cos(pi/5) = (1 + sqrt 5)/4` and
 //! `cos(x + 6 pi/5) = -cos(x + pi/5)` hold as equal term vectors. The boundary is the field's
 //! degree: past the [`Context`]'s `max_cyclotomic_degree` (768 by default: any one denominator
 //! up to 100, whole degrees, sevenths with ninths or fifths) the result is the error
@@ -28,8 +28,6 @@ pub(crate) use calculus::mode_angle;
 mod cs;
 mod ctx;
 mod cyclo;
-#[cfg(test)]
-mod cyclo_props;
 mod decimal;
 mod frac;
 mod modp;
@@ -48,7 +46,7 @@ pub use ctx::{
     Context, Entered, Preset, DEFAULT_MAX_ANGLE_SYMBOLS, DEFAULT_MAX_CYCLOTOMIC_DEGREE,
     DEFAULT_MAX_DIGITS, DEFAULT_MAX_EXPONENT,
 };
-use cyclo::{GroupKey, Settled};
+use cyclo::{GroupKey, OwnedKey, ProductTrace, Settled};
 pub use decimal::{decimal_places, decimal_text, parse_decimal, short_numbers};
 pub use frac::Frac;
 pub(crate) use par::{join, par_map, with_own_budget};
@@ -426,10 +424,28 @@ impl Scalar {
     }
 
     /// [`Scalar::from_terms`] for terms whose groups are canonical already once like terms
-    /// are merged: a canonical scalar times a nonzero constant of the square-root field times
-    /// a monomial (see `arith::mul`). Sorted and merged, never rewritten in a cyclotomic
-    /// basis.
-    pub(crate) fn from_terms_settled(mut terms: Vec<Term>) -> Scalar {
+    /// are merged: a canonical scalar negated, or times a nonzero constant of the square-root
+    /// field times a monomial (see `arith::mul`). Sorted and merged, never rewritten in a
+    /// cyclotomic basis; only the degree limit is checked (see [`Settled::All`]).
+    pub(crate) fn from_terms_settled(terms: Vec<Term>) -> Scalar {
+        Scalar::from_terms_in(terms, &Settled::All)
+    }
+
+    /// [`Scalar::from_terms_settled`] for terms sorted and merged already (a canonical
+    /// scalar negated).
+    pub(crate) fn from_sorted_settled(terms: Vec<Term>) -> Scalar {
+        let offsets = terms.iter().any(|t| !t.mode.pi.is_zero());
+        Scalar::from_canonical(terms, offsets, &Settled::All)
+    }
+
+    /// [`Scalar::from_terms`] for a product whose groups `known` (sorted) are canonical
+    /// already once like terms are merged (see `arith::mul`); the others are rewritten.
+    pub(crate) fn from_terms_known(terms: Vec<Term>, known: &[OwnedKey]) -> Scalar {
+        Scalar::from_terms_in(terms, &Settled::Groups(known))
+    }
+
+    /// Sorted, merged, and the groups `settled` does not name rewritten.
+    fn from_terms_in(mut terms: Vec<Term>, settled: &Settled) -> Scalar {
         let merged = if terms.len() <= RUN {
             // Stable, as in `from_terms`: a product's runs are in order already.
             terms.sort_by(Term::key_cmp);
@@ -439,10 +455,11 @@ impl Scalar {
         };
         match merged {
             Ok(t) => {
-                if cfg!(debug_assertions) {
+                if cfg!(debug_assertions) && matches!(settled, Settled::All) {
                     cyclo::debug_check_canonical(&t);
                 }
-                Scalar::checked(t)
+                let offsets = t.iter().any(|t| !t.mode.pi.is_zero());
+                Scalar::from_canonical(t, offsets, settled)
             }
             Err(e) => Scalar::error(e),
         }

@@ -1,5 +1,5 @@
 //! Linear algebra modulo the prime `P = 2^61 - 1`, and rational reconstruction: the fast
-//! path of the cyclotomic bases (`cyclo.rs`). Nothing computed here is trusted on its own:
+//! path of the cyclotomic bases (`cyclo/`). Nothing computed here is trusted on its own:
 //! - columns independent modulo `P` are independent over `Q` (a nonzero minor modulo `P` is
 //!   nonzero), so a set found independent here is independent;
 //! - a dependence, or coordinates, found here are read back as small rationals and then

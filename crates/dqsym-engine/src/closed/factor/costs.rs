@@ -431,14 +431,22 @@ impl Search<'_> {
     /// [`Search::split_on`].
     fn c_split_on(&mut self, group: &[u32], d: i128, f: Factor, depth: usize) -> Shape {
         let fi = self.counts.index(f);
-        let mult = |s: &Self, i: u32| multiplicity(&s.root[i as usize], f) - s.div[fi];
-        let k = group
+        // Each monomial's power of `f` looked up once, for `k` and for the split (twice was a
+        // sixth of the symbolic 6R's cost pass).
+        let base = self.div[fi];
+        let mults: SmallVec<[u32; 32]> = group
             .iter()
-            .map(|&i| mult(self, i))
-            .filter(|&n| n > 0)
-            .min()
-            .unwrap_or(1);
-        let (with, rest): (Vec<u32>, Vec<u32>) = group.iter().partition(|&&i| mult(self, i) >= k);
+            .map(|&i| multiplicity(&self.root[i as usize], f) - base)
+            .collect();
+        let k = mults.iter().copied().filter(|&n| n > 0).min().unwrap_or(1);
+        let (mut with, mut rest) = (Vec::with_capacity(group.len()), Vec::new());
+        for (&i, &n) in group.iter().zip(&mults) {
+            if n >= k {
+                with.push(i);
+            } else {
+                rest.push(i);
+            }
+        }
         self.div[fi] += k;
         self.path.push((fi, k));
         let inner = self.c_build_at(&with, d, depth.saturating_add(k as usize));

@@ -534,33 +534,13 @@ pub(crate) fn apart_solve_by(
                 for i in 0..6 {
                     q[ch.ar.perm[i]] = qa[i];
                 }
-                let res = refine(&ax, &hm, &tg, &mut q);
-                if res.is_nan() || res > tol.keep {
-                    continue;
-                }
-                for (v, p) in q.iter_mut().zip(prismatic) {
-                    if !p {
-                        *v = wrap(*v);
+                if let Some((i, exact, appended)) = add_root(&mut out, q, &ax, &hm, &tg, &tol) {
+                    if appended {
+                        singular[i] = *sing;
+                    } else {
+                        singular[i] |= *sing;
                     }
-                }
-                let at = if let Some(i) = (0..out.n).find(|&i| same(&out.q[i], &q, &prismatic)) {
-                    if res < out.residual[i] {
-                        out.q[i] = q;
-                        out.residual[i] = res;
-                    }
-                    singular[i] |= *sing;
-                    Some(i)
-                } else if out.n < GEN_MAX {
-                    out.q[out.n] = q;
-                    out.residual[out.n] = res;
-                    singular[out.n] = *sing;
-                    out.n += 1;
-                    Some(out.n - 1)
-                } else {
-                    None
-                };
-                if let Some(i) = at {
-                    hit[i] |= res <= tol.pose;
+                    hit[i] |= exact;
                 }
             }
         }

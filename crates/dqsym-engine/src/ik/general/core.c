@@ -1374,10 +1374,11 @@ static void ik_gen_null_vector_lu(const double m[12][12], double y[12]) {
     if (!(res <= IK_GEN_NULL_RESIDUAL * ms * ys)) ik_gen_null_vector(m, y);
 }
 
-/* The candidates of one arrangement by the determinant route (see core.rs, det_candidates);
-   0 when the eigenvalue route decides. */
+/* The candidates of one arrangement by the determinant route (see core.rs, det_candidates):
+   1 with the roots; 0 when the eigenvalue route decides; -1 when no sample is conditioned
+   (GaveUp::Unconditioned: nearly degenerate here), the best sample's pivot ratio in *best. */
 static int ik_gen_det_candidates(const ik_gen_arranged *ar, const ik_gen_elim *el,
-                                 double roots[24][6], int *n, int *degree) {
+                                 double roots[24][6], int *n, int *degree, double *best) {
     double tm[3][12][12], m[12][12], v[12], y[12], t[6], d[IK_GEN_DET_SAMPLES],
         c[IK_GEN_DET_DEGREE + 1][2], th[24], scale = 0.0, good = 0.0, ratio, a, b, w,
         interp = 0.0, check, t3, co, si;
@@ -1390,7 +1391,10 @@ static int ik_gen_det_candidates(const ik_gen_arranged *ar, const ik_gen_elim *e
         if (fabs(d[k]) > scale) scale = fabs(d[k]);
         if (ratio > good) good = ratio;
     }
-    if (!(good > IK_GEN_SHIFT_GOOD && isfinite(scale))) return 0;
+    if (!(good > IK_GEN_SHIFT_GOOD && isfinite(scale))) {
+        *best = good;
+        return -1;
+    }
     /* c_j = a_j - i b_j of D(th) = a_0 + sum a_j cos j th + b_j sin j th. */
     for (j = 0; j <= IK_GEN_DET_DEGREE; j++) {
         a = 0.0;
@@ -1752,15 +1756,28 @@ static int ik_gen_take(ik_gen_out *out, const ik_gen_scaled *sc, double roots[24
    checked by forward kinematics, until one arrangement's roots all gave exact solutions of
    their own. The eigenvalue route of the first arrangement whose determinant route gives up
    is deferred by one arrangement (see core.rs, gen_solve). */
+static void ik_gen_elim_of(const double axes[6][7], double len, const ik_gen_arranged *ar,
+                           int arr, ik_gen_elim *el) {
+    double left[14][3][9];
+    /* The left side from the arm's constants where it is one, else from the arranged
+       joints. */
+    if (arr % 6 == 0 && !ar->j[2].prism && !ar->j[3].prism && !ar->j[4].prism) {
+        ik_gen_robot_left(axes, arr, len, left);
+        ik_gen_eliminate(ar, (const double (*)[3][9])left, el);
+    } else {
+        ik_gen_eliminate(ar, NULL, el);
+    }
+}
+
 static void ik_gen_solve(const double axes[6][7], const double home[3][4],
                          const double target[4][4], double len, ik_gen_tol tol, int first,
                          ik_gen_out *out) {
-    double roots[24][6], left[14][3][9];
+    double roots[24][6], good, unc_good[12], tg;
     ik_gen_elim el, del;
     ik_gen_scaled sc;
     ik_gen_arranged ar, dar;
     const int *prismatic = sc.prismatic;
-    int i, j, k, n, degree, arr, darr = -1, complete = 0, found;
+    int i, j, k, n, degree, arr, darr = -1, complete = 0, found, unc_arr[12], n_unc = 0, ta;
     memset(out, 0, sizeof *out);
     ik_gen_scale(axes, home, target, len, &sc);
     /* The arrangement that served at the derivation's generic target first, then the others. */
@@ -1770,17 +1787,18 @@ static void ik_gen_solve(const double axes[6][7], const double home[3][4],
         ik_gen_arrange(sc.js, (const double (*)[4])sc.g, arr, &ar);
         /* The last arranged joint is eliminated by a point of its axis, which a slide moves. */
         if (prismatic[ar.perm[5]]) continue;
-        /* The left side from the arm's constants where it is one, else from the arranged
-           joints. */
-        if (arr % 6 == 0 && !ar.j[2].prism && !ar.j[3].prism && !ar.j[4].prism) {
-            ik_gen_robot_left(axes, arr, len, left);
-            ik_gen_eliminate(&ar, (const double (*)[3][9])left, &el);
-        } else {
-            ik_gen_eliminate(&ar, NULL, &el);
-        }
+        ik_gen_elim_of(axes, len, &ar, arr, &el);
         if (el.rank_ratio < IK_GEN_RANK_TOL) continue;
         /* A turning hidden joint: the determinant route first. */
-        found = !ar.j[2].prism && ik_gen_det_candidates(&ar, &el, roots, &n, &degree);
+        found = ar.j[2].prism ? 0
+                              : ik_gen_det_candidates(&ar, &el, roots, &n, &degree, &good);
+        /* Nearly degenerate here: kept for the end. */
+        if (found < 0) {
+            unc_good[n_unc] = good;
+            unc_arr[n_unc] = arr;
+            n_unc += 1;
+            continue;
+        }
         if (!found) {
             /* The first to give up waits for the next arrangement's determinant route. */
             if (!ar.j[2].prism && darr < 0) {
@@ -1809,7 +1827,25 @@ static void ik_gen_solve(const double axes[6][7], const double home[3][4],
        route. */
     if (darr >= 0 && !complete && out->n_arr < 12 &&
         ik_gen_eigen_candidates(&dar, &del, roots, &n, &degree))
-        ik_gen_take(out, &sc, roots, n, degree, darr, tol);
+        complete = ik_gen_take(out, &sc, roots, n, degree, darr, tol);
+    /* Still incomplete: the nearly degenerate arrangements' eigenvalue routes, the best
+       conditioned first (in the order tried among equals). */
+    for (i = 1; i < n_unc; i++)
+        for (k = i; k > 0 && unc_good[k - 1] < unc_good[k]; k--) {
+            tg = unc_good[k - 1];
+            unc_good[k - 1] = unc_good[k];
+            unc_good[k] = tg;
+            ta = unc_arr[k - 1];
+            unc_arr[k - 1] = unc_arr[k];
+            unc_arr[k] = ta;
+        }
+    for (i = 0; i < n_unc; i++) {
+        if (complete || out->n_arr == 12) break;
+        ik_gen_arrange(sc.js, (const double (*)[4])sc.g, unc_arr[i], &ar);
+        ik_gen_elim_of(axes, len, &ar, unc_arr[i], &el);
+        if (ik_gen_eigen_candidates(&ar, &el, roots, &n, &degree))
+            complete = ik_gen_take(out, &sc, roots, n, degree, unc_arr[i], tol);
+    }
     /* Prismatic variables back in the robot's length unit. */
     for (i = 0; i < out->n; i++)
         for (j = 0; j < 6; j++)

@@ -832,7 +832,8 @@ function ik_gen_null_vector_lu(m0) {
 }
 
 // The candidates of one arrangement by the determinant route (see core.rs, det_candidates);
-// null when the eigenvalue route decides.
+// null when the eigenvalue route decides; {unconditioned: best} when no sample is conditioned
+// (nearly degenerate here, GaveUp::Unconditioned).
 function ik_gen_det_candidates(ar, el) {
     const tm = ik_gen_matrix_trig(el.sig), N = IK_GEN_DET_SAMPLES;
     const d = [];
@@ -844,7 +845,7 @@ function ik_gen_det_candidates(ar, el) {
         if (Math.abs(det) > scale) scale = Math.abs(det);
         if (ratio > good) good = ratio;
     }
-    if (!(good > IK_GEN_SHIFT_GOOD && Number.isFinite(scale))) return null;
+    if (!(good > IK_GEN_SHIFT_GOOD && Number.isFinite(scale))) return { unconditioned: good };
     // c_j = a_j - i b_j of D(th) = a_0 + sum a_j cos j th + b_j sin j th.
     const c = [];
     for (let j = 0; j <= IK_GEN_DET_DEGREE; j++) {
@@ -1063,6 +1064,8 @@ function ik_gen_solve(axes, home, target, len, tol, first) {
     // The eigenvalue route of the first arrangement whose determinant route gives up waits for
     // the next arrangement's determinant route (see core.rs, gen_solve).
     let deferred = null, complete = false;
+    // The arrangements whose determinant route found no conditioned sample: {good, arr}.
+    const unconditioned = [];
     const f0 = first % 12;
     for (let k = 0; k < 12; k++) {
         const arr = k === 0 ? f0 : k <= f0 ? k - 1 : k;
@@ -1072,6 +1075,11 @@ function ik_gen_solve(axes, home, target, len, tol, first) {
         const el = ik_gen_eliminate(ar);
         if (el.rank_ratio < IK_GEN_RANK_TOL) continue;
         let cand = ar.j[2].prism ? null : ik_gen_det_candidates(ar, el);
+        if (cand !== null && cand.unconditioned !== undefined) {
+            // Nearly degenerate here: kept for the end.
+            unconditioned.push({ good: cand.unconditioned, arr });
+            continue;
+        }
         if (cand === null) {
             if (!ar.j[2].prism && deferred === null) {
                 deferred = { ar, el, arr };
@@ -1094,7 +1102,16 @@ function ik_gen_solve(axes, home, target, len, tol, first) {
     }
     if (deferred !== null && !complete) {
         const dc = ik_gen_eigen_candidates(deferred.ar, deferred.el);
-        if (dc !== null) take(dc, deferred.arr);
+        if (dc !== null) complete = take(dc, deferred.arr);
+    }
+    // Still incomplete: the nearly degenerate arrangements' eigenvalue routes, the best
+    // conditioned first (in the order tried among equals: the sort is stable).
+    unconditioned.sort((a, b) => b.good - a.good);
+    for (const u of unconditioned) {
+        if (complete) break;
+        const ar = ik_gen_arrange(js, g, u.arr);
+        const cand = ik_gen_eigen_candidates(ar, ik_gen_eliminate(ar));
+        if (cand !== null) complete = take(cand, u.arr);
     }
     // Prismatic variables back in the robot's length unit.
     out.q = out.q.map((q) => q.map((x, i) => (prismatic[i] ? x * len : x)));

@@ -306,7 +306,9 @@ def _trig_roots(c):
 
 def _det_candidates(j, h, perm, am, bm, sig):
     # The determinant route (see core.rs, det_candidates): det S(th) at IK_GEN_DET_SAMPLES
-    # angles, its coefficients by the DFT, its real roots by interval search.
+    # angles, its coefficients by the DFT, its real roots by interval search. None when the
+    # eigenvalue route decides; ("unconditioned", best) when no sample is conditioned (nearly
+    # degenerate here, GaveUp::Unconditioned).
     tm = _mtrig(sig)
     n = IK_GEN_DET_SAMPLES
     ths = IK_GEN_TAU * np.arange(n) / n
@@ -319,7 +321,7 @@ def _det_candidates(j, h, perm, am, bm, sig):
     d = np.array(d)
     scale = float(np.abs(d).max())
     if not (good > IK_GEN_SHIFT_GOOD and math.isfinite(scale)):
-        return None
+        return ("unconditioned", good)
     f = np.fft.fft(d) / n
     # c_j = a_j - i b_j of D(th) = a_0 + sum a_j cos j th + b_j sin j th: 2 F_j (F_0 for j = 0).
     c = np.concatenate([[f[0].real], 2 * f[1:IK_GEN_DET_DEGREE + 1]])
@@ -472,6 +474,8 @@ def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
     # The eigenvalue route of the first arrangement whose determinant route gives up waits for
     # the next arrangement's determinant route (see core.rs, gen_solve).
     deferred = None
+    # The arrangements whose determinant route found no conditioned sample: (best, arr).
+    unconditioned = []
     complete = False
     order = [first % 12] + [k for k in range(12) if k != first % 12]
     for arr in order:
@@ -485,6 +489,10 @@ def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
         if ratio < IK_GEN_RANK_TOL:
             continue
         cands = None if j[2][2] else _det_candidates(j, h, perm, am, bm, sig)
+        if isinstance(cands, tuple):
+            # Nearly degenerate here: kept for the end.
+            unconditioned.append((cands[1], arr))
+            continue
         if cands is None:
             if not j[2][2] and deferred is None:
                 deferred = (j, h, perm, am, bm, sig)
@@ -505,7 +513,17 @@ def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
     if deferred is not None and not complete and state["used"] < 12:
         dc = _eigen_candidates(*deferred)
         if dc is not None:
-            take(dc)
+            complete = take(dc)
+    # Still incomplete: the nearly degenerate arrangements' eigenvalue routes, the best
+    # conditioned first (in the order tried among equals: the sort is stable).
+    for _, arr in sorted(unconditioned, key=lambda u: -u[0]):
+        if complete or state["used"] == 12:
+            break
+        j, h, perm = _arranged(js, g, arr)
+        am, bm, ratio, sig = _elim(j, h)
+        cands = _eigen_candidates(j, h, perm, am, bm, sig)
+        if cands is not None:
+            complete = take(cands)
     # Slides back in the robot's length unit.
     return [([x * length if sl else x for x, sl in zip(q, slides)], False, not res <= pose_tol,
              float(res)) for q, res in sols]

@@ -2452,12 +2452,13 @@ pub(crate) fn trig_roots(c: &[(f64, f64); DET_DEGREE + 1], out: &mut [f64; 24]) 
 /// gives it: `(c, scale, degree)` with `scale` the largest of the samples and `degree` its
 /// degree less the top coefficients that are rounding ([`DET_TRIM`]). `det S` at
 /// [`DET_SAMPLES`] angles (an LU each), the `c_j` by the discrete Fourier transform (exact for
-/// the degree [`DET_DEGREE`]), checked at one more angle. `None` when no sample is
-/// conditioned or the check angle disagrees with the interpolant.
+/// the degree [`DET_DEGREE`]), checked at one more angle. [`GaveUp::Unconditioned`] when no
+/// sample is conditioned, [`GaveUp::Disagrees`] when the check angle disagrees with the
+/// interpolant.
 #[allow(clippy::needless_range_loop, clippy::type_complexity)]
 pub(crate) fn det_coefficients(
     tm: &TrigRows,
-) -> Option<([(f64, f64); DET_DEGREE + 1], f64, usize)> {
+) -> Result<([(f64, f64); DET_DEGREE + 1], f64, usize), GaveUp> {
     let mut d = [0.0; DET_SAMPLES];
     let (mut scale, mut good) = (0.0, 0.0);
     for k in 0..DET_SAMPLES {
@@ -2472,7 +2473,7 @@ pub(crate) fn det_coefficients(
         }
     }
     if !(good > SHIFT_GOOD && scale.is_finite()) {
-        return None;
+        return Err(GaveUp::Unconditioned(good));
     }
     // c_j = a_j − i b_j of D(θ) = a_0 + Σ a_j cos jθ + b_j sin jθ = Re Σ c_j e^{ijθ}.
     let mut c = [(0.0, 0.0); DET_DEGREE + 1];
@@ -2500,29 +2501,45 @@ pub(crate) fn det_coefficients(
     // A NaN mismatch fails too.
     let agrees = (check - interp).abs() <= DET_CHECK * scale;
     if !agrees {
-        return None;
+        return Err(GaveUp::Disagrees);
     }
     let mut n = DET_DEGREE;
     while n > 0 && c[n].0.hypot(c[n].1) <= DET_TRIM * scale {
         n -= 1;
     }
-    Some((c, scale, n))
+    Ok((c, scale, n))
+}
+
+/// Why a determinant route gave up.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum GaveUp {
+    /// No sample of `S(θ)` has a relative pivot above [`SHIFT_GOOD`]; the best one's is given.
+    /// `S(θ)` is then near a matrix singular at every `θ`: the arrangement is nearly
+    /// degenerate at this target (as those of a special arm that are degenerate are, when it
+    /// is perturbed by less than about the square root of the rounding), and its eigenvalue
+    /// route is used only where no conditioned arrangement gives a complete set (see
+    /// [`gen_solve`]).
+    Unconditioned(f64),
+    /// The interpolant disagrees with `det S` at the check angle ([`DET_CHECK`]).
+    Disagrees,
+    /// The root search gave up ([`trig_roots`]: a flat cluster of roots).
+    Cluster,
 }
 
 /// The candidates of one arrangement by the determinant route (the hidden joint turns): `det
 /// S(θ)` by [`det_coefficients`], its real roots by [`trig_roots`], then one null vector of
-/// `S(θ)` per root ([`null_vector_trig`]). `None` (the eigenvalue route decides) when either
-/// gives up.
+/// `S(θ)` per root ([`null_vector_trig`]). Why it gave up (the eigenvalue route decides, see
+/// [`gen_solve`]) when either gives up.
 #[allow(clippy::needless_range_loop)]
 pub(crate) fn det_candidates(
     ar: &Arranged,
     el: &Elim,
     roots: &mut [[f64; 6]; 24],
-) -> Option<(usize, usize)> {
+) -> Result<(usize, usize), GaveUp> {
     let tm = trig_rows(&el.sig);
     let (c, _, n) = det_coefficients(&tm)?;
     let mut th = [0.0; 24];
-    let count = trig_roots(&c, &mut th)?;
+    let count = trig_roots(&c, &mut th).ok_or(GaveUp::Cluster)?;
     for (k, &t3) in th[..count].iter().enumerate() {
         // The null vector of S(θ) with its columns in the order DET_COLS (the elimination
         // then skips the same zero blocks as det_trig's), put back in monomial order.
@@ -2538,7 +2555,7 @@ pub(crate) fn det_candidates(
         }
     }
     // A trigonometric polynomial of degree n has 2n complex roots, none at infinity.
-    Some((count, 2 * n))
+    Ok((count, 2 * n))
 }
 
 /// The pose `E1(q1) ⋯ E6(q6) M` and each joint's current axis `(w, p)` (scaled lengths).
@@ -2726,7 +2743,6 @@ fn take_roots(
     tg: &B34,
     tol: &GenTol,
 ) -> bool {
-    let prismatic: [bool; 6] = std::array::from_fn(|i| ax[i][0] != 0.0);
     if out.n_arr == 0 {
         out.degree = degree;
     }
@@ -2737,35 +2753,51 @@ fn take_roots(
     // The solutions this arrangement's roots reached (exactly).
     let mut hit = [false; GEN_MAX];
     for root in roots {
-        let mut q = *root;
-        let res = refine(ax, hm, tg, &mut q);
-        if res.is_nan() || res > tol.keep {
-            continue;
-        }
-        for (v, p) in q.iter_mut().zip(prismatic) {
-            if !p {
-                *v = wrap(*v);
-            }
-        }
-        let at = if let Some(i) = (0..out.n).find(|&i| same(&out.q[i], &q, &prismatic)) {
-            if res < out.residual[i] {
-                out.q[i] = q;
-                out.residual[i] = res;
-            }
-            Some(i)
-        } else if out.n < GEN_MAX {
-            out.q[out.n] = q;
-            out.residual[out.n] = res;
-            out.n += 1;
-            Some(out.n - 1)
-        } else {
-            None
-        };
-        if let Some(i) = at {
-            hit[i] |= res <= tol.pose;
+        if let Some((i, exact, _)) = add_root(out, *root, ax, hm, tg, tol) {
+            hit[i] |= exact;
         }
     }
     hit.iter().filter(|h| **h).count() == roots.len()
+}
+
+/// Refines the candidate `q` ([`refine`]) and adds it to `out`, its angles wrapped: merged
+/// with a solution within [`SAME_TOL`] of it (the smaller residual kept) or appended. Returns
+/// the index it took, whether it is exact (residual within `tol.pose`) and whether it was
+/// appended; `None` when it is no solution (residual above `tol.keep`) or the set is full.
+/// The root loop of [`take_roots`] and of the 4R2P solver (`apart_solver.rs`).
+pub(crate) fn add_root(
+    out: &mut GenOut,
+    mut q: [f64; 6],
+    ax: &[GenAxis; 6],
+    hm: &B34,
+    tg: &B34,
+    tol: &GenTol,
+) -> Option<(usize, bool, bool)> {
+    let prismatic: [bool; 6] = std::array::from_fn(|i| ax[i][0] != 0.0);
+    let res = refine(ax, hm, tg, &mut q);
+    if res.is_nan() || res > tol.keep {
+        return None;
+    }
+    for (v, p) in q.iter_mut().zip(prismatic) {
+        if !p {
+            *v = wrap(*v);
+        }
+    }
+    let exact = res <= tol.pose;
+    if let Some(i) = (0..out.n).find(|&i| same(&out.q[i], &q, &prismatic)) {
+        if res < out.residual[i] {
+            out.q[i] = q;
+            out.residual[i] = res;
+        }
+        Some((i, exact, false))
+    } else if out.n < GEN_MAX {
+        out.q[out.n] = q;
+        out.residual[out.n] = res;
+        out.n += 1;
+        Some((out.n - 1, exact, true))
+    } else {
+        None
+    }
 }
 
 /// Every solution of `E1 ⋯ E6 M = T` for a 6R chain: the arrangements (a cyclic shift of the
@@ -2785,6 +2817,23 @@ fn take_roots(
 /// arrangement's determinant route is tried, and if it gives up too (the cluster recurs), the
 /// deferred arrangement's eigenvalue route decides, then that arrangement's own. Its cost when
 /// structural: one more elimination and determinant route than before.
+///
+/// A determinant route that gives up because no sample of `S(θ)` is conditioned
+/// ([`GaveUp::Unconditioned`]) marks an arrangement that is nearly degenerate at this target:
+/// the arrangements of a special arm whose `det M` vanishes identically stay within about the
+/// perturbation of that when the arm is perturbed (a UR5 whose twists are off by `1e-9`: the
+/// best sample's relative pivot about `1e-9`, its smallest singular values about `1e-12`,
+/// two of them). Its eigenvalue route divides by a leading matrix as ill-conditioned, so its
+/// rounding (about `ε κ`, relative) swamps the perturbation that makes `det M` nonzero
+/// wherever `ε κ ≳ 1/κ`: roots are lost or made up, and the null vectors at the roots mix
+/// with the near-null direction (garbage that the refinement carries to some other solution:
+/// the set looks complete and misses the original configuration, or is empty). Such an
+/// arrangement is kept for the end and used only when the conditioned ones leave the set
+/// incomplete, the best conditioned first. The bound is the determinant route's own
+/// [`SHIFT_GOOD`]: the pivot ratio overstates the smallest singular value by up to a few
+/// hundred (measured on these arrangements), so at `1e-3` the smallest singular value is
+/// above about `3e-6` and the null vectors' mixing, `24 ε / σ²`, below `6e-4`, under
+/// [`NEAR_REAL`].
 #[allow(clippy::needless_range_loop)]
 pub fn gen_solve(
     axes: &[GenAxis; 6],
@@ -2826,6 +2875,19 @@ pub fn gen_solve(
     // An arrangement whose determinant route gave up, its eigenvalue route deferred (see
     // above).
     let mut deferred: Option<(Arranged, Elim, usize)> = None;
+    // The arrangements whose determinant route found no conditioned sample (nearly
+    // degenerate here, see above): the best sample's pivot ratio and the arrangement.
+    let mut unconditioned = [(0.0, 0); 12];
+    let mut n_unc = 0;
+    // The left side from the arm's constants where it is one (scaled to this target's
+    // length scale), else from the arranged joints.
+    let elim_of = |ar: &Arranged, arr: usize| {
+        if left_is_constant(ar, arr) {
+            ar.elim_from(scaled_left(&robot_left(axes, arr), len))
+        } else {
+            ar.elim()
+        }
+    };
     let mut complete = false;
     // The arrangement that served at the derivation's generic target first (special geometry
     // makes the same ones degenerate at every target), then the others in order.
@@ -2847,14 +2909,9 @@ pub fn gen_solve(
         if prismatic[ar.perm[5]] {
             continue;
         }
-        // The left side from the arm's constants where it is one (scaled to this target's
-        // length scale), else from the arranged joints.
-        let el = if left_is_constant(&ar, arr) {
-            ar.elim_from(scaled_left(&robot_left(axes, arr), len))
-        } else {
-            ar.elim()
+        let Some(el) = elim_of(&ar, arr) else {
+            continue;
         };
-        let Some(el) = el else { continue };
         if el.rank_ratio < RANK_TOL {
             continue;
         }
@@ -2862,18 +2919,24 @@ pub fn gen_solve(
         let det = if ar.j[2].prism {
             None
         } else {
-            det_candidates(&ar, &el, &mut roots)
+            Some(det_candidates(&ar, &el, &mut roots))
         };
         let found = match det {
-            Some(found) => Some(found),
+            Some(Ok(found)) => Some(found),
+            // Nearly degenerate here: kept for the end.
+            Some(Err(GaveUp::Unconditioned(good))) => {
+                unconditioned[n_unc] = (good, arr);
+                n_unc += 1;
+                continue;
+            }
             // The first to give up waits for the next arrangement's determinant route.
-            None if !ar.j[2].prism && deferred.is_none() => {
+            Some(Err(_)) if deferred.is_none() => {
                 deferred = Some((ar, el, arr));
                 continue;
             }
             // A second gave up (a cluster in every arrangement) or the hidden joint slides:
             // the deferred eigenvalue route decides first, then this arrangement's.
-            None => {
+            _ => {
                 if let Some((da, de, darr)) = deferred.take() {
                     if let Some((n, degree)) = eigen_candidates(&da, &de, &mut roots) {
                         complete =
@@ -2896,8 +2959,30 @@ pub fn gen_solve(
     if let Some((da, de, darr)) = deferred {
         if !complete && out.n_arr < 12 {
             if let Some((n, degree)) = eigen_candidates(&da, &de, &mut roots) {
-                take_roots(&mut out, &roots[..n], degree, darr, &ax, &hm, &tg, &tol);
+                complete = take_roots(&mut out, &roots[..n], degree, darr, &ax, &hm, &tg, &tol);
             }
+        }
+    }
+    // Still incomplete: the nearly degenerate arrangements' eigenvalue routes, the best
+    // conditioned first (in the order tried among equals).
+    let unc = &mut unconditioned[..n_unc];
+    for i in 1..unc.len() {
+        let mut k = i;
+        while k > 0 && unc[k - 1].0 < unc[k].0 {
+            unc.swap(k - 1, k);
+            k -= 1;
+        }
+    }
+    for &(_, arr) in unc.iter() {
+        if complete || out.n_arr == 12 {
+            break;
+        }
+        let ar = Arranged::new(&js, &g, arr);
+        let Some(el) = elim_of(&ar, arr) else {
+            continue;
+        };
+        if let Some((n, degree)) = eigen_candidates(&ar, &el, &mut roots) {
+            complete = take_roots(&mut out, &roots[..n], degree, arr, &ax, &hm, &tg, &tol);
         }
     }
     // Prismatic variables back in the robot's length unit.

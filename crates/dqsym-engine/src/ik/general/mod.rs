@@ -27,7 +27,9 @@
 //!    real roots by the determinant route (below); where that route gives up in this
 //!    arrangement and again in the next one tried (`core::gen_solve`: a cluster that is an
 //!    accident of the target breaks up in another reading of the loop, a structural one
-//!    recurs), and for a sliding hidden joint, they are the eigenvalues of the 24 x 24 companion linearisation
+//!    recurs; an arrangement with no conditioned sample of `S(θ)` is nearly degenerate at the
+//!    target and waits until the conditioned ones leave the set incomplete, `core::GaveUp`),
+//!    and for a sliding hidden joint, they are the eigenvalues of the 24 x 24 companion linearisation
 //!    `[[0, I], [−A⁻¹C, −A⁻¹B]]` (the spurious `±i` deflated first from the null vectors of
 //!    `M(i)`, 24 → 16 rows; then balancing, Hessenberg reduction, Francis double-shift QR; the
 //!    shift `φ` keeps `A` invertible). The degree the solution states

@@ -1,0 +1,384 @@
+//! `Q(zeta_W)`: its elements as sparse sums of powers of `zeta_W`, their reduction to the
+//! power basis and to the tensor basis (exactly, and modulo a prime), the square roots the
+//! field contains, and the per-process cache of fields.
+
+use super::super::modp;
+use super::super::{FxHasher, ScalarError};
+use super::level::{moebius, primes_of, totient};
+use super::{poisoned, Cache};
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational as Rat;
+use num_traits::{One, ToPrimitive, Zero};
+use std::cell::RefCell;
+use std::collections::{BTreeMap, HashMap};
+use std::hash::BuildHasherDefault;
+use std::sync::{Arc, OnceLock};
+
+/// An element of `Q(zeta_W)` as a sum of powers of `zeta_W` (exponents mod `W`).
+pub(super) type Sparse = BTreeMap<u64, Rat>;
+
+/// The same with integer coefficients, doubled (every basis vector is in `Z[zeta_W] / 2`).
+pub(super) type Ints = Vec<(u64, i64)>;
+
+pub(super) fn sparse_mul(a: &Sparse, b: &Sparse, w: u64) -> Sparse {
+    let mut out = Sparse::new();
+    for (i, x) in a {
+        for (j, y) in b {
+            let e = (i + j) % w;
+            let v = out.entry(e).or_insert_with(Rat::zero);
+            *v += x * y;
+        }
+    }
+    out.retain(|_, v| !v.is_zero());
+    out
+}
+
+pub(super) fn mono(e: u64, c: Rat) -> Sparse {
+    let mut s = Sparse::new();
+    s.insert(e, c);
+    s
+}
+
+/// `Q(zeta_W)` for a multiple `W` of 4: the reduction of every power of `zeta_W` to the power
+/// basis, and the square roots it contains.
+///
+/// Two coordinate systems: the power basis modulo the cyclotomic polynomial (the exact dense
+/// path, built on first use) and, for the fast path, the tensor basis of
+/// `Q(zeta_W) = Q(zeta_q1) (x) ... (x) Q(zeta_qk)` for the prime powers `q` of `W`: an
+/// exponent `e` is the tuple `(e mod q)`, and each axis is reduced modulo
+/// `Phi_q(x) = sum_{j < p} x^{j q / p}` in one pass (`O(W)` per axis, no table).
+pub(super) struct Field {
+    pub(super) w: u64,
+    pub(super) phi: usize,
+    /// The cyclotomic polynomial, coefficients from the constant term.
+    pub(super) poly: Vec<i64>,
+    /// `red[k]`: `x^k` modulo the cyclotomic polynomial, `k < W` (the exact path only).
+    pub(super) red: OnceLock<Option<Vec<Vec<i64>>>>,
+    /// The prime powers `(q, p)` of `W`; axis `i` has stride `q_0 ... q_{i-1}`.
+    pub(super) axes: Vec<(u64, u64)>,
+    /// The position of `zeta_W^e` in the tensor layout, for each exponent `e`.
+    pub(super) slot: Vec<u32>,
+    /// The reduced positions (every digit below `phi(q)`), in order: the coordinates.
+    pub(super) kept: Vec<u32>,
+    /// The primes `p` with `sqrt(p)` in the field (odd divisors of `W`, 2 when 8 divides `W`).
+    pub(super) allowed: Vec<u64>,
+    /// Every square-free product `h` of allowed primes with `sqrt(h)`.
+    pub(super) sqrts: Vec<(u64, Sparse)>,
+}
+
+pub(super) fn legendre(a: u64, p: u64) -> i64 {
+    // Euler's criterion.
+    let mut r: u128 = 1;
+    let (mut b, mut e, m) = (a as u128 % p as u128, (p - 1) / 2, p as u128);
+    while e > 0 {
+        if e & 1 == 1 {
+            r = r * b % m;
+        }
+        b = b * b % m;
+        e >>= 1;
+    }
+    if r == 1 {
+        1
+    } else {
+        -1
+    }
+}
+
+impl Field {
+    pub(super) fn new(w: u64) -> Option<Field> {
+        let phi = totient(w) as usize;
+        // Phi_W = prod_{d | W} (x^d - 1)^mu(W/d): the multiplications first, so that every
+        // division is exact.
+        let divisors: Vec<u64> = (1..=w).filter(|d| w.is_multiple_of(*d)).collect();
+        let mut poly: Vec<i64> = vec![1];
+        for &d in &divisors {
+            if moebius(w / d) == 1 {
+                let d = d as usize;
+                let mut next = vec![0i64; poly.len() + d];
+                for (i, c) in poly.iter().enumerate() {
+                    next[i + d] = next[i + d].checked_add(*c)?;
+                    next[i] = next[i].checked_sub(*c)?;
+                }
+                poly = next;
+            }
+        }
+        for &d in &divisors {
+            if moebius(w / d) == -1 {
+                // q (x^d - 1) = p: p[i] = q[i - d] - q[i].
+                let d = d as usize;
+                let n = poly.len() - d;
+                let mut q = vec![0i64; n];
+                for i in 0..n {
+                    let prev = if i >= d { q[i - d] } else { 0 };
+                    q[i] = prev.checked_sub(poly[i])?;
+                }
+                poly = q;
+            }
+        }
+        if poly.len() != phi + 1 || poly[phi] != 1 {
+            return None;
+        }
+        let mut axes = Vec::new();
+        for p in primes_of(w) {
+            let mut q = 1;
+            while w.is_multiple_of(q * p) {
+                q *= p;
+            }
+            axes.push((q, p));
+        }
+        let slot: Vec<u32> = (0..w)
+            .map(|e| {
+                let (mut pos, mut stride) = (0, 1);
+                for (q, _) in &axes {
+                    pos += (e % q) * stride;
+                    stride *= q;
+                }
+                pos as u32
+            })
+            .collect();
+        let kept: Vec<u32> = (0..w)
+            .filter(|&pos| {
+                let mut r = pos;
+                axes.iter().all(|(q, p)| {
+                    let d = r % q;
+                    r /= q;
+                    d < q / p * (p - 1)
+                })
+            })
+            .map(|pos| pos as u32)
+            .collect();
+        if kept.len() != phi {
+            return None;
+        }
+        let allowed: Vec<u64> = primes_of(w)
+            .into_iter()
+            .filter(|&p| p != 2 || w.is_multiple_of(8))
+            .collect();
+        let mut prime_roots: Vec<(u64, Sparse)> = Vec::new();
+        for &p in &allowed {
+            let s = if p == 2 {
+                let mut s = mono(w / 8, Rat::one());
+                s.insert(7 * w / 8, Rat::one());
+                s
+            } else {
+                // The Gauss sum g = sum (a/p) zeta_p^a is sqrt(p) for p = 1 mod 4 and
+                // i sqrt(p) for p = 3 mod 4.
+                let mut g = Sparse::new();
+                for a in 1..p {
+                    g.insert(a * (w / p), Rat::from_integer(legendre(a, p).into()));
+                }
+                if p % 4 == 1 {
+                    g
+                } else {
+                    sparse_mul(&g, &mono(3 * w / 4, Rat::one()), w)
+                }
+            };
+            prime_roots.push((p, s));
+        }
+        let mut sqrts: Vec<(u64, Sparse)> = vec![(1, mono(0, Rat::one()))];
+        for (p, s) in &prime_roots {
+            let more: Vec<(u64, Sparse)> = sqrts
+                .iter()
+                .map(|(h, x)| (h * p, sparse_mul(x, s, w)))
+                .collect();
+            sqrts.extend(more);
+        }
+        sqrts.sort_by_key(|(h, _)| *h);
+        Some(Field {
+            w,
+            phi,
+            poly,
+            red: OnceLock::new(),
+            axes,
+            slot,
+            kept,
+            allowed,
+            sqrts,
+        })
+    }
+
+    /// The power-basis reduction of every power of `zeta_W` (charged on first use).
+    pub(super) fn red(&self) -> Result<&Vec<Vec<i64>>, ScalarError> {
+        if self.red.get().is_none() {
+            super::super::charge(self.w.saturating_mul(self.phi as u64))?;
+        }
+        let (w, phi, poly) = (self.w as usize, self.phi, &self.poly);
+        self.red
+            .get_or_init(|| {
+                let mut red: Vec<Vec<i64>> = Vec::with_capacity(w);
+                for k in 0..w {
+                    let mut v = vec![0i64; phi];
+                    if k < phi {
+                        v[k] = 1;
+                    } else {
+                        let prev = &red[k - 1];
+                        let lead = prev[phi - 1];
+                        for j in 0..phi {
+                            let shifted = if j > 0 { prev[j - 1] } else { 0 };
+                            v[j] = shifted.checked_sub(lead.checked_mul(poly[j])?)?;
+                        }
+                    }
+                    red.push(v);
+                }
+                Some(red)
+            })
+            .as_ref()
+            .ok_or_else(|| {
+                ScalarError::OutOfRange(format!("the cyclotomic polynomial of order {w}"))
+            })
+    }
+
+    pub(super) fn reduce(&self, s: &Sparse) -> Result<Vec<Rat>, ScalarError> {
+        let red = self.red()?;
+        let mut out = vec![Rat::zero(); self.phi];
+        for (e, c) in s {
+            for (o, r) in out.iter_mut().zip(&red[*e as usize]) {
+                if *r != 0 {
+                    *o += c * Rat::from_integer(BigInt::from(*r));
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// Reduces a vector in the tensor layout along every axis (see the type's docs), with
+    /// `sub(a, b) = a - b` (`None` stops).
+    pub(super) fn crt_reduce<T: Copy + PartialEq>(
+        &self,
+        a: &mut [T],
+        zero: T,
+        sub: impl Fn(T, T) -> Option<T>,
+    ) -> Option<()> {
+        let mut stride = 1usize;
+        for &(q, p) in &self.axes {
+            let (q, p) = (q as usize, p as usize);
+            let m = q / p;
+            let block = q * stride;
+            for hi in (0..a.len()).step_by(block) {
+                for d in (p - 1) * m..q {
+                    let r = d - (p - 1) * m;
+                    for lo in 0..stride {
+                        let v = a[hi + d * stride + lo];
+                        if v == zero {
+                            continue;
+                        }
+                        a[hi + d * stride + lo] = zero;
+                        for j in 0..p - 1 {
+                            let t = &mut a[hi + (r + j * m) * stride + lo];
+                            *t = sub(*t, v)?;
+                        }
+                    }
+                }
+            }
+            stride = block;
+        }
+        Some(())
+    }
+
+    /// `s` in the tensor basis modulo [`modp::P`]; `None` when `P` divides a denominator.
+    pub(super) fn reduce_mod(&self, s: &Sparse) -> Option<Vec<u64>> {
+        let mut a = vec![0u64; self.w as usize];
+        for (e, c) in s {
+            let t = &mut a[self.slot[*e as usize] as usize];
+            *t = modp::add(*t, modp::from_rat(c)?);
+        }
+        self.crt_reduce(&mut a, 0, |x, y| Some(modp::sub(x, y)))?;
+        Some(self.kept.iter().map(|&k| a[k as usize]).collect())
+    }
+
+    /// Whether `sum x_j v_j = t` exactly, for `v_j` given by their doubled integer
+    /// coefficients; `None` when an integer overflows on the way (nothing is decided then).
+    pub(super) fn combination_is(
+        &self,
+        xs: &[(usize, Rat)],
+        vs: &[Ints],
+        t: &Sparse,
+    ) -> Option<bool> {
+        let mut d = BigInt::from(2);
+        for (_, x) in xs {
+            d = d.lcm(x.denom());
+        }
+        for c in t.values() {
+            d = d.lcm(c.denom());
+        }
+        let mut acc = vec![0i128; self.w as usize];
+        for (j, x) in xs {
+            // (d x) (2 v) = 2 d (x v).
+            let k = (x * Rat::from_integer(d.clone())).to_integer();
+            let k = k.to_i128()?;
+            for (e, c2) in &vs[*j] {
+                let a = &mut acc[self.slot[*e as usize] as usize];
+                *a = a.checked_add(k.checked_mul(i128::from(*c2))?)?;
+            }
+        }
+        for (e, c) in t {
+            let k = (c * Rat::from_integer(BigInt::from(2) * &d)).to_integer();
+            let a = &mut acc[self.slot[*e as usize] as usize];
+            *a = a.checked_sub(k.to_i128()?)?;
+        }
+        self.crt_reduce(&mut acc, 0, |x, y| x.checked_sub(y))?;
+        Some(acc.iter().all(|a| *a == 0))
+    }
+
+    pub(super) fn sqrt(&self, h: u64) -> &Sparse {
+        let i = self
+            .sqrts
+            .binary_search_by_key(&h, |(x, _)| *x)
+            .expect("h is a product of allowed primes");
+        &self.sqrts[i].1
+    }
+
+    /// `d = s h`: `h` the part of the square-free `d` whose square root is in the field.
+    pub(super) fn split(&self, d: u64) -> (u64, u64) {
+        let h: u64 = self
+            .allowed
+            .iter()
+            .filter(|&&p| d.is_multiple_of(p))
+            .product();
+        (d / h, h)
+    }
+}
+
+/// The exact value of a column, doubled into integers (`None` past `i64`).
+pub(super) fn ints(s: &Sparse) -> Option<Ints> {
+    s.iter()
+        .map(|(e, c)| {
+            let c2 = c * Rat::from_integer(2.into());
+            c2.is_integer()
+                .then(|| c2.to_integer().to_i64())
+                .flatten()
+                .map(|c| (*e, c))
+        })
+        .collect()
+}
+
+/// `Q(zeta_W)`, computed once per process (its work charged to the context that builds it);
+/// the ones a thread used are kept by the thread, looked up without a lock.
+pub(super) fn field(w: u64) -> Result<Arc<Field>, ScalarError> {
+    type Fields = HashMap<u64, Arc<Field>, BuildHasherDefault<FxHasher>>;
+    thread_local! {
+        static FIELDS: RefCell<Fields> = RefCell::new(Fields::default());
+    }
+    if let Some(f) = FIELDS.with(|c| c.borrow().get(&w).cloned()) {
+        return Ok(f);
+    }
+    let f = shared_field(w)?;
+    FIELDS.with(|c| c.borrow_mut().insert(w, f.clone()));
+    Ok(f)
+}
+
+/// [`field`] from the process-wide cache.
+pub(super) fn shared_field(w: u64) -> Result<Arc<Field>, ScalarError> {
+    static CACHE: Cache<u64, Field> = OnceLock::new();
+    let cache = CACHE.get_or_init(Default::default);
+    if let Some(f) = cache.lock().map_err(poisoned)?.get(&w) {
+        return Ok(f.clone());
+    }
+    super::super::charge(w)?;
+    let f = Arc::new(Field::new(w).ok_or_else(|| {
+        ScalarError::OutOfRange(format!("the cyclotomic polynomial of order {w}"))
+    })?);
+    cache.lock().map_err(poisoned)?.insert(w, f.clone());
+    Ok(f)
+}

@@ -1,0 +1,309 @@
+//! The canonical form of cos and sin at rational multiples of pi: exact arithmetic in
+//! cyclotomic fields.
+//!
+//! Every term of a scalar is `q sqrt(d) m t` (see `atoms.rs`). For the terms that share a
+//! monomial `m` and a frequency vector `f` (a *group*), the sum of the `q sqrt(d) t` is:
+//! - for an empty `f`, a real number `c` in `K(zeta_W)`, where `K` is the field of all square
+//!   roots of rationals and `W` a multiple of 4 read from the pi offsets;
+//! - otherwise `Re(z e^{i phi})` with `phi` the symbolic angle and `z` in `K(zeta_W)`
+//!   (`cos(phi + a)` stands for `z = e^{ia}`, `sin(phi + a)` for `z = -i e^{ia}`).
+//!
+//! When a group holds a mode with a pi offset (a constant `cos(3 pi/7)`, a symbolic
+//! `cos(x + pi/5)`; multiples of pi/12 never stay as offsets), [`canonicalize`] rewrites it as
+//! the unique expansion of its value in a fixed basis:
+//! - `M`, the smallest multiple of 24 dividing `W` with `c` (or `z`) in `K(zeta_M)`, found by
+//!   removing one prime of `W` at a time. `K(zeta_M)` contains `i` and `zeta_3` through the
+//!   square roots (`i = sqrt(-3)/sqrt(3)`), so fields are only told apart at multiples of 24:
+//!   there `K(zeta_M) = K(zeta_N)` only for `M = N`, and the fields holding a value are the
+//!   multiples of one smallest;
+//! - for real `c`, the basis `R_M` of `K(zeta_M)^+` over `K`: cosines `cos(2 pi k / M)` at
+//!   angles in `[0, pi/2)`, taken greedily when independent of the ones before (over `K`), in
+//!   the order (the field they need, the denominator of the angle over pi, the angle):
+//!   `cos(pi/7)`, `cos(2 pi/7)` for sevenths, with `cos(3 pi/7) = 1/2 - cos(pi/7) + cos(2 pi/7)`; `{1}` for `M = 24` (and
+//!   fifths, eighths, tenths and twelfths, whose constants are square roots);
+//! - for complex `z`, the basis `C_M` of `K(zeta_M)` over `K(i)`: `e^{i theta}`,
+//!   `theta` a multiple of `2 pi / M` in `(-pi/4, pi/4]`, taken greedily in the same order
+//!   (`|theta|` then positive first for the angle). A coefficient `a + b i` of `e^{i theta}`
+//!   prints as `a cos(phi + theta) - b sin(phi + theta)`.
+//!
+//! `{q sqrt(d) b}` (`d` square-free, `b` in the basis) is a basis of the field over `Q`, so two
+//! equal values give the same terms. The computation is in `Q(zeta_W)` (vectors over `Q` in the
+//! power basis modulo the cyclotomic polynomial) for the square roots that live there (Gauss
+//! sums); the others are carried along as independent factors. The degree `phi(W)` is bounded
+//! by the context's limit ([`Context::with_max_cyclotomic_degree`](super::Context), 768 by
+//! default): past it, or when the work budget runs out on the way, the result is an error
+//! value, never a group left in a non-canonical form.
+//!
+//! The canonical form of a group is a function of its value, so a canonical group is its own
+//! canonical form, and only a group's terms with a pi offset decide whether it is canonical
+//! (see [`Settled`]): a sum of two canonical scalars rewrites only the groups whose offset
+//! terms come from both ([`Settled::Sum`]); a product rewrites only the groups that are not
+//! one factor's group with offsets times an offset-free group of the other, alone
+//! (`product.rs`), and a product by a nonzero constant of the square-root field times a
+//! monomial, or a negation, none ([`Settled::All`]). Every group passed through is still
+//! held to the degree limit entered now. Debug builds check every group passed through
+//! against the rewrite from scratch.
+//!
+//! The parts, one concern each: `level.rs` the level `W` of a group and its degree check;
+//! `field.rs` `Q(zeta_W)` (reductions, square roots, the field cache); `candidates.rs` the
+//! columns a basis may take and their order; `exact.rs` the dense exact path (the reference);
+//! `fast.rs` the basis found modulo a prime and checked, and a group's coordinates from its
+//! units'; `product.rs` which groups of a product are canonical already; this file the
+//! rewriting of a term vector's groups and which of them pass through; `props.rs` the
+//! randomized laws.
+
+use super::atoms::{rad_mul, Freq, Mode, MonoRc, Small};
+use super::{ScalarError, Term, Q};
+use num_traits::{Signed, Zero};
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
+
+mod candidates;
+mod exact;
+mod fast;
+mod field;
+mod level;
+mod product;
+#[cfg(test)]
+mod props;
+
+use candidates::Col;
+use level::level_of;
+pub(crate) use product::{settled_groups, ProductTrace};
+
+type Cache<K, V> = OnceLock<Mutex<HashMap<K, Arc<V>>>>;
+
+fn poisoned<T>(_: T) -> ScalarError {
+    ScalarError::OutOfRange("cyclotomic cache poisoned".into())
+}
+
+/// The key of a group: the frequency vector and the monomial its terms share.
+pub(crate) type GroupKey<'a> = (&'a [(super::Sym, Small)], &'a MonoRc);
+
+/// A group's key that owns its parts (a product names its settled groups before its terms
+/// are sorted and merged).
+pub(crate) type OwnedKey = (Freq, MonoRc);
+
+/// Which groups of a term vector are known to be canonical already, so that
+/// [`canonicalize`] passes them through.
+///
+/// What makes a group canonical: its canonical form is the expansion of its value in the
+/// basis `B_M` of its smallest level `M` (a function of the value alone), and the first
+/// column of every `B_M` is `1` (`cos 0`, `e^{i 0}`), whose coordinates are exactly the
+/// group's terms without a pi offset (`q sqrt(r)`, `q sqrt(r) cos(phi)`, `q sqrt(r)
+/// sin(phi)`). Adding a value of `K(i)` (`K` for a real group) changes no smallest level (every
+/// `K(zeta_M)`, `24 | M`, holds `K(i)`), so it changes only those coordinates: a group is
+/// canonical exactly when its terms *with* a pi offset are a canonical group on their own,
+/// whatever its terms without one. Hence only the terms with a pi offset are traced below.
+pub(crate) enum Settled<'a> {
+    /// None: every group holding a pi offset is rewritten.
+    Nothing,
+    /// Every group (a canonical scalar negated, or times a nonzero constant of the
+    /// square-root field times a monomial: see `arith::mul`); only the degree limit is
+    /// checked.
+    All,
+    /// The terms of the sum of two canonical scalars, `origin[i]` telling where term `i`
+    /// came from (bit 1 the left operand, bit 2 the right one), with the keys of the terms
+    /// with a pi offset that cancelled. A group whose terms with a pi offset all come from one
+    /// operand, none cancelled, has the offset terms of that operand's group, which are
+    /// canonical on their own (that group less its `1` column): the group is canonical.
+    Sum {
+        /// Where each term came from.
+        origin: &'a [u8],
+        /// The keys of the terms with a pi offset of both operands that cancelled.
+        cancelled: &'a [GroupKey<'a>],
+    },
+    /// The groups known to be canonical, sorted (a product's: see `arith::mul`).
+    Groups(&'a [OwnedKey]),
+}
+
+/// Rewrites the groups of terms holding a pi offset in their canonical basis (see the module
+/// docs); a field past the context's degree limit, or the work budget running out, is an
+/// error. `None` when every such group is [`Settled`] (the terms are canonical as they are).
+///
+/// The degree limit holds for the groups passed through too: a value built under a higher
+/// limit than the one entered now may hold a group past it, and the result is then the
+/// degree error a rewrite from scratch gives, never the group passed through unchecked.
+pub(crate) fn canonicalize(
+    terms: &[Term],
+    settled: &Settled,
+) -> Result<Option<Vec<Term>>, ScalarError> {
+    let offset = |t: &&Term| !t.mode.pi.is_zero();
+    // One check of all offsets together when their level fits: each group's level divides
+    // it, and `phi(d) <= phi(n)` when `d | n`. (A rewrite checks its own group.)
+    let fits = match settled {
+        Settled::Nothing => true,
+        _ => level_of(terms.iter().filter(offset)).is_ok(),
+    };
+    if fits && matches!(settled, Settled::All) {
+        return Ok(None);
+    }
+    if let (true, Settled::Sum { origin, cancelled }) = (fits, settled) {
+        // Every term with a pi offset from one operand, none cancelled: every group is that
+        // operand's, without sorting the groups out.
+        let from = terms
+            .iter()
+            .zip(origin.iter())
+            .filter(|(t, _)| !t.mode.pi.is_zero())
+            .fold(0, |f, (_, o)| f | o);
+        if from != 3 && cancelled.is_empty() {
+            if cfg!(debug_assertions) {
+                debug_check_canonical(terms);
+            }
+            return Ok(None);
+        }
+    }
+    let mut keys: Vec<GroupKey> = terms
+        .iter()
+        .filter(offset)
+        .map(|t| (&*t.mode.freq, &t.mono))
+        .collect();
+    keys.sort_unstable();
+    keys.dedup();
+    // For each group, the operands its terms with a pi offset came from (see
+    // `Settled::Sum`).
+    let mut from = vec![0u8; keys.len()];
+    let mut at: Vec<Option<usize>> = Vec::with_capacity(terms.len());
+    for (i, t) in terms.iter().enumerate() {
+        let k = keys.binary_search(&(&*t.mode.freq, &t.mono)).ok();
+        if let (Some(k), Settled::Sum { origin, .. }) = (k, settled) {
+            if !t.mode.pi.is_zero() {
+                from[k] |= origin[i];
+            }
+        }
+        at.push(k);
+    }
+    if !fits {
+        // Group by group, in key order, as a rewrite from scratch meets them.
+        let mut groups: Vec<Vec<&Term>> = vec![Vec::new(); keys.len()];
+        for (t, k) in terms.iter().zip(&at) {
+            if let Some(k) = k {
+                groups[*k].push(t);
+            }
+        }
+        for g in groups {
+            level_of(g.into_iter())?;
+        }
+    }
+    let redo: Vec<bool> = match settled {
+        Settled::Nothing => vec![true; keys.len()],
+        Settled::All => return Ok(None),
+        Settled::Sum { cancelled, .. } => keys
+            .iter()
+            .zip(&from)
+            .map(|(k, f)| *f == 3 || cancelled.contains(k))
+            .collect(),
+        Settled::Groups(known) => keys
+            .iter()
+            .map(|k| known.binary_search_by(|(f, m)| (&**f, m).cmp(k)).is_err())
+            .collect(),
+    };
+    if cfg!(debug_assertions) {
+        debug_check_settled(terms, &at, &redo);
+    }
+    if !redo.contains(&true) {
+        return Ok(None);
+    }
+    let mut groups: Vec<Vec<&Term>> = vec![Vec::new(); keys.len()];
+    let mut out: Vec<Term> = Vec::with_capacity(terms.len());
+    for (t, k) in terms.iter().zip(&at) {
+        match k {
+            Some(k) if redo[*k] => groups[*k].push(t),
+            _ => out.push(t.clone()),
+        }
+    }
+    for g in groups {
+        if !g.is_empty() {
+            out.extend(canonical_group(&g)?);
+        }
+    }
+    Ok(Some(out))
+}
+
+/// Debug builds: every group passed through as settled is its own canonical form (checked
+/// on a budget of its own, so the check neither fails for lack of the caller's budget nor
+/// spends it).
+fn debug_check_settled(terms: &[Term], at: &[Option<usize>], redo: &[bool]) {
+    for (k, _) in redo.iter().enumerate().filter(|(_, r)| !**r) {
+        let g: Vec<&Term> = terms
+            .iter()
+            .zip(at)
+            .filter(|(_, a)| **a == Some(k))
+            .map(|(t, _)| t)
+            .collect();
+        let again = super::with_own_budget(u64::MAX / 4, || canonical_group(&g));
+        if let Ok(mut again) = again {
+            again.sort_by(Term::key_cmp);
+            let mut g: Vec<Term> = g.into_iter().cloned().collect();
+            g.sort_by(Term::key_cmp);
+            assert_eq!(again, g, "a settled group is not canonical");
+        }
+    }
+}
+
+/// Debug builds: `terms` (sorted, merged) are canonical as they are.
+pub(crate) fn debug_check_canonical(terms: &[Term]) {
+    let again = super::with_own_budget(u64::MAX / 4, || {
+        canonicalize(terms, &Settled::Nothing)
+            .and_then(|t| t.map(super::canonical_terms).transpose())
+    });
+    if let Ok(Some(again)) = again {
+        assert_eq!(again, terms, "terms taken as canonical are not");
+    }
+}
+
+fn canonical_group(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
+    match fast::canonical_group_fast(g)? {
+        Some(out) => Ok(out),
+        None => exact::canonical_group_exact(g),
+    }
+}
+
+/// The terms of a group from its coordinates: for each class `s` of square roots outside the
+/// field, `x_j sqrt(s) b_j` over the basis columns `b_j`.
+fn terms_in_basis(
+    first: &Term,
+    real: bool,
+    classes: &[u64],
+    sol: Vec<Vec<Q>>,
+    cols: &[Col],
+) -> Result<Vec<Term>, ScalarError> {
+    let mut out = Vec::new();
+    for (s, xs) in classes.iter().zip(sol) {
+        for (col, x) in cols.iter().zip(xs) {
+            if x.is_zero() {
+                continue;
+            }
+            let (rad, k) = rad_mul(*s, col.h)
+                .ok_or_else(|| ScalarError::OutOfRange("radicand too large".into()))?;
+            // The common case multiplies by one: skipped, since a product of big rationals
+            // reduces its result by gcds (11% of the Jaco-style arm's `fk --jacobian`).
+            let mut coef = if k == 1 { x } else { &x * &Q::from_u64(k) };
+            let mode = if col.angle.is_zero() && real {
+                Mode::unit()
+            } else {
+                let two = Small::from_integer(2);
+                let pi = if col.angle.is_negative() {
+                    col.angle + two
+                } else {
+                    col.angle
+                };
+                if col.imag {
+                    coef = -coef;
+                }
+                Mode {
+                    sin: col.imag,
+                    freq: first.mode.freq.clone(),
+                    pi,
+                }
+            };
+            out.push(Term {
+                mode,
+                mono: first.mono.clone(),
+                rad,
+                coef,
+            });
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,384 @@
+//! Randomized laws of the arithmetic in cyclotomic fields: sums and products of random
+//! elements (constants and symbolic angles offset by rational multiples of pi, square roots,
+//! monomials) are canonical (a second canonicalization from scratch changes nothing: the
+//! route every result took before sums and products by constants skipped the groups that
+//! were canonical already), agree with an independent evaluation in `f64` of the same
+//! expression, and do not depend on the order they were formed in.
+
+use super::super::{canonical_terms, Scalar, ScalarError};
+use super::{canonicalize, Settled};
+use num_bigint::BigInt;
+use num_rational::BigRational;
+
+/// A small linear congruential generator: the test needs no dependency and repeats exactly.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        self.0 >> 33
+    }
+
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+
+    fn pick<T: Copy>(&mut self, xs: &[T]) -> T {
+        xs[self.below(xs.len() as u64) as usize]
+    }
+}
+
+const X: f64 = 0.37;
+const A: f64 = 0.61;
+const B: f64 = -1.3;
+
+/// A value built both exactly and in `f64`, independently.
+#[derive(Clone)]
+struct Val {
+    s: Scalar,
+    f: f64,
+}
+
+fn ratio(p: i64, q: i64) -> Val {
+    Val {
+        s: Scalar::rational(BigRational::new(BigInt::from(p), BigInt::from(q))),
+        f: p as f64 / q as f64,
+    }
+}
+
+fn add(a: &Val, b: &Val) -> Val {
+    Val {
+        s: &a.s + &b.s,
+        f: a.f + b.f,
+    }
+}
+
+fn sub(a: &Val, b: &Val) -> Val {
+    Val {
+        s: &a.s - &b.s,
+        f: a.f - b.f,
+    }
+}
+
+fn mul(a: &Val, b: &Val) -> Val {
+    Val {
+        s: &a.s * &b.s,
+        f: a.f * b.f,
+    }
+}
+
+/// `sqrt(d)`.
+fn root(d: i64) -> Val {
+    Val {
+        s: Scalar::int(d).sqrt(),
+        f: (d as f64).sqrt(),
+    }
+}
+
+/// One of the monomials `1, a, b, a b, a^2`.
+fn monomial(rng: &mut Rng) -> Val {
+    let (a, b) = (
+        Val {
+            s: Scalar::sym("a"),
+            f: A,
+        },
+        Val {
+            s: Scalar::sym("b"),
+            f: B,
+        },
+    );
+    match rng.below(5) {
+        0 => ratio(1, 1),
+        1 => a,
+        2 => b,
+        3 => mul(&a, &b),
+        _ => mul(&a, &a),
+    }
+}
+
+/// `cos` or `sin` of `j x + k pi / n` (`j` may be zero: a constant).
+fn trig(rng: &mut Rng, n: i64) -> Val {
+    let j = rng.pick(&[0i64, 0, 1, 2, -1]);
+    let k = rng.below(2 * n as u64) as i64 - n / 2;
+    let angle = &(&Scalar::sym("x") * &Scalar::int(j))
+        + &(&Scalar::pi() * &Scalar::rational(BigRational::new(k.into(), n.into())));
+    let t = j as f64 * X + std::f64::consts::PI * k as f64 / n as f64;
+    if rng.below(2) == 0 {
+        Val {
+            s: angle.cos(),
+            f: t.cos(),
+        }
+    } else {
+        Val {
+            s: angle.sin(),
+            f: t.sin(),
+        }
+    }
+}
+
+/// A sum of one to four terms `p/q sqrt(d) monomial trig` at the denominators `dens`.
+fn element(rng: &mut Rng, dens: &[i64]) -> Val {
+    let mut acc = ratio(0, 1);
+    for _ in 0..=rng.below(4) {
+        let p = rng.below(9) as i64 - 4;
+        let q = rng.pick(&[1i64, 2, 3, 4]);
+        let mut t = mul(&ratio(p, q), &root(rng.pick(&[1i64, 1, 2, 3, 5, 6])));
+        t = mul(&t, &monomial(rng));
+        if rng.below(4) != 0 {
+            let n = rng.pick(dens);
+            t = mul(&t, &trig(rng, n));
+        }
+        acc = add(&acc, &t);
+    }
+    acc
+}
+
+/// A constant of the square-root field times one monomial (what products skip the
+/// cyclotomic rewrite for), nonzero.
+fn scale(rng: &mut Rng) -> Val {
+    let mut k = ratio(rng.pick(&[1i64, -1, 2, 3]), rng.pick(&[1i64, 2, 4]));
+    if rng.below(2) == 0 {
+        let extra = mul(
+            &ratio(rng.pick(&[1i64, -1, 5]), 4),
+            &root(rng.pick(&[2i64, 3, 6, 7])),
+        );
+        k = add(&k, &extra);
+    }
+    mul(&k, &monomial(rng))
+}
+
+/// `v` is its own canonical form from scratch and agrees with its `f64` value; `false` when
+/// the field is past the degree limit (the case is skipped).
+fn check(v: &Val, what: &str) -> bool {
+    let terms = match v.s.terms() {
+        Ok(t) => t,
+        Err(ScalarError::CyclotomicDegree { .. }) => return false,
+        Err(e) => panic!("{what}: {e}"),
+    };
+    if let Some(again) = canonicalize(terms, &Settled::Nothing).expect("canonicalize") {
+        let again = canonical_terms(again).expect("sorted");
+        assert_eq!(again, terms, "{what}: not canonical");
+    }
+    let f =
+        v.s.eval_at(&[("x", X), ("a", A), ("b", B)])
+            .expect("a value");
+    let tol = 1e-9 * (1.0 + v.f.abs());
+    assert!((f - v.f).abs() < tol, "{what}: {f} against {}", v.f);
+    true
+}
+
+/// Sums (groups from one operand, from both, cancelling) and products (by constants times
+/// monomials, and general ones) of random elements of cyclotomic fields: canonical, equal
+/// to the `f64` evaluation, and the same whichever way the value is formed.
+#[test]
+fn random_sums_and_products_are_canonical_and_exact() {
+    let mut rng = Rng(0x5eed_c1c0);
+    let dens = [5i64, 7, 8, 9, 10, 16, 18, 36];
+    let mut checked = 0;
+    for trial in 0..120 {
+        let pair = [rng.pick(&dens), rng.pick(&dens)];
+        let (u, v, w) = (
+            element(&mut rng, &pair),
+            element(&mut rng, &pair),
+            element(&mut rng, &pair),
+        );
+        let k = scale(&mut rng);
+        let cases = [
+            ("u + v", add(&u, &v)),
+            ("u - v", sub(&u, &v)),
+            ("u - u", sub(&u, &u)),
+            ("u + u", add(&u, &u)),
+            ("u k", mul(&u, &k)),
+            ("k u", mul(&k, &u)),
+            ("(u + v) k", mul(&add(&u, &v), &k)),
+            ("u v", mul(&u, &v)),
+            ("u v + w", add(&mul(&u, &v), &w)),
+        ];
+        for (what, c) in &cases {
+            if check(c, &format!("trial {trial}: {what}")) {
+                checked += 1;
+            }
+        }
+        // The same values formed another way: through sums whose groups mix.
+        let uk = &cases[4].1.s;
+        let other = &(&(&u.s + &w.s) * &k.s) - &(&w.s * &k.s);
+        if uk.as_error().is_none() && other.as_error().is_none() {
+            assert_eq!(*uk, other, "trial {trial}: u k = (u + w) k - w k");
+        }
+        let sum = &cases[0].1.s;
+        let other = &(&(&u.s + &w.s) + &v.s) - &w.s;
+        if sum.as_error().is_none() && other.as_error().is_none() {
+            assert_eq!(*sum, other, "trial {trial}: u + v = ((u + w) + v) - w");
+        }
+        assert!(cases[2].1.s.is_zero_value() || cases[2].1.s.as_error().is_some());
+    }
+    assert!(checked > 800, "{checked}");
+}
+
+/// Products of general scalars (the groups a product passes through untouched, a group with
+/// pi offsets of one factor times an offset-free group of the other, and the ones it
+/// rewrites) at denominators from 5 to 72, with square roots: canonical (a rewrite from
+/// scratch changes nothing), equal to the `f64` evaluation, and equal to the same value built
+/// another way (distributed, reassociated, through a sum that cancels).
+#[test]
+fn random_general_products_are_canonical_and_exact() {
+    let mut rng = Rng(0x9e37_79b9_7f4a);
+    let dens = [5i64, 7, 9, 10, 12, 14, 15, 16, 18, 20, 24, 36, 40, 45, 72];
+    // Offset-free factors: their angles are multiples of pi/12.
+    let plain = [1i64, 2, 3, 4, 6, 12];
+    let mut checked = 0;
+    let mut derivatives = 0;
+    let mut trials = 0;
+    while trials < 90 {
+        let pair = [rng.pick(&dens), rng.pick(&dens)];
+        // Fields of degree up to 96 keep the debug build's bases quick.
+        let w = pair.iter().fold(24u64, |w, d| {
+            let d = 2 * *d as u64;
+            w / num_integer::gcd(w, d) * d
+        });
+        if super::level::totient(w) > 96 {
+            continue;
+        }
+        trials += 1;
+        let (u, v) = (element(&mut rng, &pair), element(&mut rng, &pair));
+        let (p, q) = (element(&mut rng, &plain), element(&mut rng, &plain));
+        let up = mul(&u, &p);
+        let cases = [
+            ("u p", up.clone()),
+            ("p u", mul(&p, &u)),
+            ("u v", mul(&u, &v)),
+            ("u u", mul(&u, &u)),
+            ("(u + p) (v + q)", mul(&add(&u, &p), &add(&v, &q))),
+            ("(u p) q", mul(&up, &q)),
+            ("(u p) v", mul(&up, &v)),
+            ("u p - v q", sub(&up, &mul(&v, &q))),
+        ];
+        for (what, c) in &cases {
+            if check(c, &format!("trial {trials}: {what}")) {
+                checked += 1;
+            }
+        }
+        let same = |a: &Scalar, b: &Scalar, what: &str| {
+            if a.as_error().is_none() && b.as_error().is_none() {
+                assert_eq!(*a, *b, "trial {trials}: {what}");
+            }
+        };
+        let (us, vs, ps, qs) = (&u.s, &v.s, &p.s, &q.s);
+        same(
+            &up.s,
+            &(&(&(us + qs) * ps) - &(qs * ps)),
+            "u p = (u + q) p - q p",
+        );
+        same(
+            &cases[4].1.s,
+            &(&(&(us * vs) + &(us * qs)) + &(&(ps * vs) + &(ps * qs))),
+            "(u + p) (v + q) = u v + u q + p v + p q",
+        );
+        same(&cases[5].1.s, &(us * &(ps * qs)), "(u p) q = u (p q)");
+        same(&cases[6].1.s, &(us * &(ps * vs)), "(u p) v = u (p v)");
+        // Derivatives (whose groups of one origin pass through): canonical, the numeric
+        // derivative, and the product rule.
+        for x in ["x", "a"] {
+            let d = up.s.diff(x);
+            let at = |dx: f64| {
+                let (xv, av) = if x == "x" { (X + dx, A) } else { (X, A + dx) };
+                up.s.eval_at(&[("x", xv), ("a", av), ("b", B)])
+            };
+            let h = 1e-4;
+            let (Ok(f1), Ok(f2), Ok(g1), Ok(g2)) = (at(h), at(-h), at(2.0 * h), at(-2.0 * h))
+            else {
+                continue;
+            };
+            // Richardson's five-point derivative: error of order h^4.
+            let numeric = (8.0 * (f1 - f2) - (g1 - g2)) / (12.0 * h);
+            let v = Val {
+                s: d.clone(),
+                f: numeric,
+            };
+            if d.as_error().is_none() {
+                let terms = d.terms().expect("terms");
+                if let Some(again) = canonicalize(terms, &Settled::Nothing).expect("canonicalize") {
+                    let again = canonical_terms(again).expect("sorted");
+                    assert_eq!(again, terms, "trial {trials}: d(u p)/d{x} not canonical");
+                }
+                let f = d.eval_at(&[("x", X), ("a", A), ("b", B)]).expect("a value");
+                assert!(
+                    (f - v.f).abs() < 1e-6 * (1.0 + v.f.abs()),
+                    "trial {trials}: d/d{x}: {f} against {}",
+                    v.f
+                );
+                derivatives += 1;
+            }
+            same(
+                &d,
+                &(&(&us.diff(x) * ps) + &(us * &ps.diff(x))),
+                "(u p)' = u' p + u p'",
+            );
+        }
+    }
+    assert!(checked > 650, "{checked}");
+    assert!(derivatives > 150, "{derivatives}");
+}
+
+/// A value built under the default cyclotomic degree limit, then combined under a lower one:
+/// every result that holds a group past the lower limit is the degree error naming that
+/// limit, whichever way it was formed (sums whose groups pass through untouched, products by
+/// constants, general products, negation), never a panic and never the group passed through
+/// unchecked; results within the lower limit are unaffected.
+#[test]
+fn a_limit_lowered_after_a_value_was_built_is_still_enforced() {
+    use super::super::Context;
+    let sym = Scalar::sym;
+    let angle = |j: i64, k: i64, n: i64| {
+        &(&sym("x") * &Scalar::int(j))
+            + &(&Scalar::pi() * &Scalar::rational(BigRational::new(k.into(), n.into())))
+    };
+    // Sevenths need Q(zeta_168), of degree 48; ninths Q(zeta_72), of degree 24.
+    let sevenths = &(&angle(1, 1, 7).cos() * &sym("a")) + &angle(0, 2, 7).cos();
+    let ninths = &angle(1, 5, 9).sin() * &Scalar::int(3).sqrt();
+    let plain = &sym("b") + &angle(1, 1, 3).cos();
+    for v in [&sevenths, &ninths] {
+        assert!(v.as_error().is_none(), "built under the default limit: {v}");
+    }
+    let limit = 12;
+    let _in = Context::new().with_max_cyclotomic_degree(limit).enter();
+    let k = &(&Scalar::int(3) + &Scalar::int(2).sqrt()) * &sym("c");
+    for (name, v, degree) in [("sevenths", &sevenths, 48), ("ninths", &ninths, 24)] {
+        let results = [
+            ("v + plain", v + &plain),
+            ("plain - v", &plain - v),
+            ("v + v", v + v),
+            ("v k", v * &k),
+            ("k v", &k * v),
+            ("v plain", v * &plain),
+            ("v cos(y)", v * &sym("y").cos()),
+            ("-v", -v),
+        ];
+        for (what, r) in results {
+            match r.check() {
+                Err(e @ ScalarError::CyclotomicDegree { .. }) => {
+                    let ScalarError::CyclotomicDegree {
+                        degree: d,
+                        limit: l,
+                        exact,
+                        ..
+                    } = e
+                    else {
+                        unreachable!()
+                    };
+                    assert_eq!((d, l, exact), (degree, limit, true), "{name}: {what}");
+                    let text = e.to_string();
+                    assert!(text.contains("--max-cyclotomic-degree"), "{text}");
+                }
+                other => panic!("{name}: {what}: expected the degree limit, got {other:?}"),
+            }
+        }
+    }
+    // Within the lower limit nothing changes.
+    let twice = &plain + &plain;
+    assert_eq!(twice, &plain * &Scalar::int(2));
+    assert!(twice.as_error().is_none());
+}
