@@ -9,8 +9,8 @@
 use super::ctx::{charge, threads, Context};
 use super::ScalarError;
 use std::collections::VecDeque;
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Condvar, Mutex, MutexGuard, OnceLock};
+use std::sync::atomic::{AtomicPtr, AtomicUsize, Ordering};
+use std::sync::{Condvar, Mutex, MutexGuard};
 
 /// The stack of a worker: closed-form searches recurse over expression depth.
 const WORKER_STACK: usize = 64 << 20;
@@ -149,6 +149,8 @@ struct Pool {
     posted: Condvar,
     /// Callers wait here for their started jobs to end.
     ended: Condvar,
+    /// The forks counted in this process when the pool was made ([`forks::seen`]).
+    forks: u64,
 }
 
 #[derive(Default)]
@@ -164,13 +166,36 @@ struct PoolState {
 }
 
 impl Pool {
+    /// This process's pool. A process forked from one that had a pool (Python's
+    /// `multiprocessing`, `os.fork`) gets a new one: the child has none of the parent's
+    /// helpers, and the parent's lock may have been held at the fork by a thread that the
+    /// child does not have, so the child never touches the parent's pool (left as it was, not
+    /// freed: it is the parent's memory, copied).
     fn get() -> &'static Pool {
-        static POOL: OnceLock<Pool> = OnceLock::new();
-        POOL.get_or_init(|| Pool {
-            state: Mutex::new(PoolState::default()),
-            posted: Condvar::new(),
-            ended: Condvar::new(),
-        })
+        static POOL: AtomicPtr<Pool> = AtomicPtr::new(std::ptr::null_mut());
+        loop {
+            let seen = POOL.load(Ordering::Acquire);
+            // SAFETY: a pointer stored in `POOL` comes from `Box::into_raw` below and is
+            // never freed, so it is valid for the rest of the process (and of a forked child).
+            if let Some(pool) = unsafe { seen.as_ref() } {
+                if pool.forks == forks::seen() {
+                    return pool;
+                }
+            }
+            let fresh = Box::into_raw(Box::new(Pool {
+                state: Mutex::new(PoolState::default()),
+                posted: Condvar::new(),
+                ended: Condvar::new(),
+                forks: forks::seen(),
+            }));
+            match POOL.compare_exchange(seen, fresh, Ordering::AcqRel, Ordering::Acquire) {
+                // SAFETY: stored just now, and never freed (above).
+                Ok(_) => return unsafe { &*fresh },
+                // Another thread stored one first: this one was never shared.
+                // SAFETY: `fresh` is the box made above, seen by no other thread.
+                Err(_) => drop(unsafe { Box::from_raw(fresh) }),
+            }
+        }
     }
 
     fn lock(&self) -> MutexGuard<'_, PoolState> {
@@ -254,6 +279,55 @@ impl Pool {
     }
 }
 
+/// The forks this process descends from since it first asked, counted in the child of each
+/// `fork` (a `pthread_atfork` handler): a pool made under another count is a parent's.
+#[cfg(unix)]
+mod forks {
+    use std::ffi::c_int;
+    use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+
+    /// Forks counted in this process.
+    static FORKS: AtomicU64 = AtomicU64::new(0);
+    /// Whether the handler is registered (a registration in a parent stays in its children).
+    static REGISTERED: AtomicBool = AtomicBool::new(false);
+
+    type Handler = Option<unsafe extern "C" fn()>;
+
+    extern "C" {
+        fn pthread_atfork(prepare: Handler, parent: Handler, child: Handler) -> c_int;
+    }
+
+    /// Runs in the child of every fork, before `fork` returns there; an atomic addition is
+    /// all it does (async-signal-safe).
+    unsafe extern "C" fn in_child() {
+        FORKS.fetch_add(1, Ordering::AcqRel);
+    }
+
+    /// The forks counted so far. The handler is registered first, without a lock or a
+    /// `Once` (a fork while another thread held either would leave the child waiting on it):
+    /// two threads that both find it unregistered both register it, and the count then rises
+    /// by two a fork, which changes it all the same. A thread goes on only once a
+    /// registration is done, so every fork after a pool was made is counted.
+    pub(super) fn seen() -> u64 {
+        if !REGISTERED.load(Ordering::Acquire) {
+            // SAFETY: registers a handler that only adds to an atomic; no pointer is passed.
+            // A failed registration (out of memory) is tried again at the next call.
+            if unsafe { pthread_atfork(None, None, Some(in_child)) } == 0 {
+                REGISTERED.store(true, Ordering::Release);
+            }
+        }
+        FORKS.load(Ordering::Acquire)
+    }
+}
+
+/// Without `fork` no process inherits a pool.
+#[cfg(not(unix))]
+mod forks {
+    pub(super) fn seen() -> u64 {
+        0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::ctx::work_used;
@@ -327,6 +401,68 @@ mod tests {
         assert_eq!(par_map(&items, |&n| n * 2)[63], 126);
         let (a, b) = join(|| 1, || 2);
         assert_eq!((a, b), (1, 2));
+    }
+
+    /// A child forked while the parent's pool is in use (its lock held, helpers started)
+    /// makes a pool of its own and finishes its maps and joins: before, it waited forever on
+    /// the lock, which no thread of the child would release.
+    #[cfg(unix)]
+    #[test]
+    fn a_forked_child_gets_a_pool_of_its_own() {
+        use std::ffi::c_int;
+        extern "C" {
+            fn fork() -> c_int;
+            fn waitpid(pid: c_int, status: *mut c_int, options: c_int) -> c_int;
+            fn kill(pid: c_int, sig: c_int) -> c_int;
+            fn _exit(status: c_int) -> !;
+        }
+        const WNOHANG: c_int = 1;
+        const SIGKILL: c_int = 9;
+        let _in = Context::new().with_threads(2).enter();
+        let items: Vec<usize> = (0..40).collect();
+        assert_eq!(par_map(&items, |&n| n * 3)[39], 117);
+        let parents = Pool::get();
+        let held = parents.lock();
+        // SAFETY: the child runs only this crate's code and `_exit`s, never returning into
+        // the test harness; the parent waits for it below.
+        let pid = unsafe { fork() };
+        assert!(pid >= 0, "fork failed");
+        if pid == 0 {
+            let ok = std::panic::catch_unwind(|| {
+                let own = Pool::get();
+                let out = par_map(&items, |&n| sum_of(n % 5).len());
+                let (a, b) = join(|| sum_of(2).len(), || sum_of(3).len());
+                !std::ptr::eq(own, parents)
+                    && own.lock().helpers == 1
+                    && out == items.iter().map(|n| n % 5).collect::<Vec<_>>()
+                    && (a, b) == (2, 3)
+            });
+            // SAFETY: ends the child without running the harness's code in it.
+            unsafe { _exit(if matches!(ok, Ok(true)) { 0 } else { 1 }) }
+        }
+        drop(held);
+        let mut status: c_int = -1;
+        let mut ended = false;
+        for _ in 0..3000 {
+            // SAFETY: waits for the child started above; `status` is a local.
+            if unsafe { waitpid(pid, &mut status, WNOHANG) } == pid {
+                ended = true;
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(10));
+        }
+        if !ended {
+            // SAFETY: the child started above, which has not been waited for.
+            unsafe {
+                kill(pid, SIGKILL);
+                waitpid(pid, &mut status, 0);
+            }
+        }
+        assert!(ended, "the forked child did not finish in 30 s");
+        assert_eq!(status, 0, "the forked child's maps gave wrong results");
+        // The parent's pool is still its own.
+        assert!(std::ptr::eq(Pool::get(), parents));
+        assert_eq!(par_map(&items, |&n| n + 1)[0], 1);
     }
 
     #[test]
