@@ -9,6 +9,7 @@
 use super::ctx::{charge, threads, Context};
 use super::ScalarError;
 use std::collections::VecDeque;
+use std::marker::PhantomData;
 use std::sync::atomic::{AtomicPtr, AtomicUsize, Ordering};
 use std::sync::{Condvar, Mutex, MutexGuard};
 
@@ -149,8 +150,6 @@ struct Pool {
     posted: Condvar,
     /// Callers wait here for their started jobs to end.
     ended: Condvar,
-    /// The forks counted in this process when the pool was made ([`forks::seen`]).
-    forks: u64,
 }
 
 #[derive(Default)]
@@ -166,36 +165,16 @@ struct PoolState {
 }
 
 impl Pool {
-    /// This process's pool. A process forked from one that had a pool (Python's
-    /// `multiprocessing`, `os.fork`) gets a new one: the child has none of the parent's
-    /// helpers, and the parent's lock may have been held at the fork by a thread that the
-    /// child does not have, so the child never touches the parent's pool (left as it was, not
-    /// freed: it is the parent's memory, copied).
+    /// This process's pool: a process forked from one that had a pool (Python's
+    /// `multiprocessing`, `os.fork`) gets a new one ([`PerFork`]), with none of the parent's
+    /// helpers, whose lock may have been held at the fork.
     fn get() -> &'static Pool {
-        static POOL: AtomicPtr<Pool> = AtomicPtr::new(std::ptr::null_mut());
-        loop {
-            let seen = POOL.load(Ordering::Acquire);
-            // SAFETY: a pointer stored in `POOL` comes from `Box::into_raw` below and is
-            // never freed, so it is valid for the rest of the process (and of a forked child).
-            if let Some(pool) = unsafe { seen.as_ref() } {
-                if pool.forks == forks::seen() {
-                    return pool;
-                }
-            }
-            let fresh = Box::into_raw(Box::new(Pool {
-                state: Mutex::new(PoolState::default()),
-                posted: Condvar::new(),
-                ended: Condvar::new(),
-                forks: forks::seen(),
-            }));
-            match POOL.compare_exchange(seen, fresh, Ordering::AcqRel, Ordering::Acquire) {
-                // SAFETY: stored just now, and never freed (above).
-                Ok(_) => return unsafe { &*fresh },
-                // Another thread stored one first: this one was never shared.
-                // SAFETY: `fresh` is the box made above, seen by no other thread.
-                Err(_) => drop(unsafe { Box::from_raw(fresh) }),
-            }
-        }
+        static POOL: PerFork<Pool> = PerFork::new();
+        POOL.get_or(|| Pool {
+            state: Mutex::new(PoolState::default()),
+            posted: Condvar::new(),
+            ended: Condvar::new(),
+        })
     }
 
     fn lock(&self) -> MutexGuard<'_, PoolState> {
@@ -281,6 +260,58 @@ impl Pool {
 
 /// The forks this process descends from since it first asked, counted in the child of each
 /// `fork` (a `pthread_atfork` handler): a pool made under another count is a parent's.
+/// A value made once per process, and made again in a process forked from it (Python's
+/// `multiprocessing`, `os.fork`): the child's copy of the parent's value may hold a lock, or a
+/// `OnceLock` being filled, taken by a thread the child does not have, so the child never
+/// touches it (it is left as it was, not freed: the parent's memory, copied). For the
+/// process-wide pool and caches; a per-thread cache holding such values keeps the
+/// [`fork_count`] it was filled at and empties itself when the count differs.
+pub(crate) struct PerFork<T> {
+    made: AtomicPtr<(u64, T)>,
+    _owns: PhantomData<T>,
+}
+
+impl<T: Send + Sync> PerFork<T> {
+    pub(crate) const fn new() -> Self {
+        PerFork {
+            made: AtomicPtr::new(std::ptr::null_mut()),
+            _owns: PhantomData,
+        }
+    }
+
+    /// This process's value, made by `make` the first time (two threads may both make one;
+    /// one is kept, the other dropped unseen).
+    pub(crate) fn get_or(&'static self, make: impl Fn() -> T) -> &'static T {
+        loop {
+            let seen = self.made.load(Ordering::Acquire);
+            let forks = forks::seen();
+            // SAFETY: a pointer stored in `made` comes from `Box::into_raw` below and is never
+            // freed, so it is valid for the rest of the process (and of a forked child).
+            if let Some((at, value)) = unsafe { seen.as_ref() } {
+                if *at == forks {
+                    return value;
+                }
+            }
+            let fresh = Box::into_raw(Box::new((forks, make())));
+            match self
+                .made
+                .compare_exchange(seen, fresh, Ordering::AcqRel, Ordering::Acquire)
+            {
+                // SAFETY: stored just now, and never freed (above).
+                Ok(_) => return unsafe { &(*fresh).1 },
+                // Another thread stored one first: this one was never shared.
+                // SAFETY: `fresh` is the box made above, seen by no other thread.
+                Err(_) => drop(unsafe { Box::from_raw(fresh) }),
+            }
+        }
+    }
+}
+
+/// The forks counted in this process so far (see [`PerFork`]).
+pub(crate) fn fork_count() -> u64 {
+    forks::seen()
+}
+
 #[cfg(unix)]
 mod forks {
     use std::ffi::c_int;
@@ -326,6 +357,51 @@ mod forks {
     pub(super) fn seen() -> u64 {
         0
     }
+}
+
+/// Runs `child` in a forked child of this process and `parent` in this one right after the
+/// fork, and fails unless the child ends within 30 s with `child` true (a child that waits
+/// forever on a lock is killed).
+#[cfg(all(test, unix))]
+pub(crate) fn in_forked_child(child: impl FnOnce() -> bool, parent: impl FnOnce()) {
+    use std::ffi::c_int;
+    extern "C" {
+        fn fork() -> c_int;
+        fn waitpid(pid: c_int, status: *mut c_int, options: c_int) -> c_int;
+        fn kill(pid: c_int, sig: c_int) -> c_int;
+        fn _exit(status: c_int) -> !;
+    }
+    const WNOHANG: c_int = 1;
+    const SIGKILL: c_int = 9;
+    // SAFETY: the child runs only this crate's code and `_exit`s, never returning into the
+    // test harness; the parent waits for it below.
+    let pid = unsafe { fork() };
+    assert!(pid >= 0, "fork failed");
+    if pid == 0 {
+        let ok = std::panic::catch_unwind(std::panic::AssertUnwindSafe(child));
+        // SAFETY: ends the child without running the harness's code in it.
+        unsafe { _exit(if matches!(ok, Ok(true)) { 0 } else { 1 }) }
+    }
+    parent();
+    let mut status: c_int = -1;
+    let mut ended = false;
+    for _ in 0..3000 {
+        // SAFETY: waits for the child started above; `status` is a local.
+        if unsafe { waitpid(pid, &mut status, WNOHANG) } == pid {
+            ended = true;
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    if !ended {
+        // SAFETY: the child started above, which has not been waited for.
+        unsafe {
+            kill(pid, SIGKILL);
+            waitpid(pid, &mut status, 0);
+        }
+    }
+    assert!(ended, "the forked child did not finish in 30 s");
+    assert_eq!(status, 0, "the forked child's results were wrong");
 }
 
 #[cfg(test)]
@@ -409,26 +485,13 @@ mod tests {
     #[cfg(unix)]
     #[test]
     fn a_forked_child_gets_a_pool_of_its_own() {
-        use std::ffi::c_int;
-        extern "C" {
-            fn fork() -> c_int;
-            fn waitpid(pid: c_int, status: *mut c_int, options: c_int) -> c_int;
-            fn kill(pid: c_int, sig: c_int) -> c_int;
-            fn _exit(status: c_int) -> !;
-        }
-        const WNOHANG: c_int = 1;
-        const SIGKILL: c_int = 9;
         let _in = Context::new().with_threads(2).enter();
         let items: Vec<usize> = (0..40).collect();
         assert_eq!(par_map(&items, |&n| n * 3)[39], 117);
         let parents = Pool::get();
         let held = parents.lock();
-        // SAFETY: the child runs only this crate's code and `_exit`s, never returning into
-        // the test harness; the parent waits for it below.
-        let pid = unsafe { fork() };
-        assert!(pid >= 0, "fork failed");
-        if pid == 0 {
-            let ok = std::panic::catch_unwind(|| {
+        in_forked_child(
+            || {
                 let own = Pool::get();
                 let out = par_map(&items, |&n| sum_of(n % 5).len());
                 let (a, b) = join(|| sum_of(2).len(), || sum_of(3).len());
@@ -436,30 +499,9 @@ mod tests {
                     && own.lock().helpers == 1
                     && out == items.iter().map(|n| n % 5).collect::<Vec<_>>()
                     && (a, b) == (2, 3)
-            });
-            // SAFETY: ends the child without running the harness's code in it.
-            unsafe { _exit(if matches!(ok, Ok(true)) { 0 } else { 1 }) }
-        }
-        drop(held);
-        let mut status: c_int = -1;
-        let mut ended = false;
-        for _ in 0..3000 {
-            // SAFETY: waits for the child started above; `status` is a local.
-            if unsafe { waitpid(pid, &mut status, WNOHANG) } == pid {
-                ended = true;
-                break;
-            }
-            std::thread::sleep(std::time::Duration::from_millis(10));
-        }
-        if !ended {
-            // SAFETY: the child started above, which has not been waited for.
-            unsafe {
-                kill(pid, SIGKILL);
-                waitpid(pid, &mut status, 0);
-            }
-        }
-        assert!(ended, "the forked child did not finish in 30 s");
-        assert_eq!(status, 0, "the forked child's maps gave wrong results");
+            },
+            move || drop(held),
+        );
         // The parent's pool is still its own.
         assert!(std::ptr::eq(Pool::get(), parents));
         assert_eq!(par_map(&items, |&n| n + 1)[0], 1);

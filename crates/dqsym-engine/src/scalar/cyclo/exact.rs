@@ -2,6 +2,7 @@
 //! its field (the reference the fast path is checked against, and its fallback).
 
 use super::super::atoms::Small;
+use super::super::par::PerFork;
 use super::super::{ScalarError, Term, Q};
 use super::candidates::{candidates, Candidate, Col};
 use super::field::{field, mono, sparse_mul, Field, Sparse};
@@ -10,7 +11,7 @@ use super::{poisoned, terms_in_basis, Cache};
 use num_rational::BigRational as Rat;
 use num_traits::{One, Zero};
 use std::collections::BTreeMap;
-use std::sync::{Arc, OnceLock};
+use std::sync::Arc;
 
 /// A pivot row: its pivot index, the reduced vector, and the combination of columns it is.
 pub(super) type PivotRow = (usize, Vec<Rat>, Vec<(usize, Rat)>);
@@ -129,8 +130,8 @@ impl Basis {
 }
 
 pub(super) fn basis(f: &Field, m: u64, real: bool) -> Result<Arc<Basis>, ScalarError> {
-    static CACHE: Cache<(u64, u64, bool), Basis> = OnceLock::new();
-    let cache = CACHE.get_or_init(Default::default);
+    static CACHE: Cache<(u64, u64, bool), Basis> = PerFork::new();
+    let cache = CACHE.get_or(Default::default);
     let key = (f.w, m, real);
     if let Some(b) = cache.lock().map_err(poisoned)?.get(&key) {
         return Ok(b.clone());

@@ -4,6 +4,7 @@
 
 use super::super::atoms::Small;
 use super::super::modp::{self, ModSpan};
+use super::super::par::{fork_count, PerFork};
 use super::super::{FxHasher, ScalarError, Term, Q};
 use super::candidates::{candidates, Candidate, Col};
 use super::field::{field, ints, mono, sparse_mul, Field, Ints, Sparse};
@@ -245,14 +246,23 @@ pub(super) fn fast_basis(
 ) -> Result<Option<Arc<FastBasis>>, ScalarError> {
     type Local = HashMap<(u64, u64, bool), Option<Arc<FastBasis>>, BuildHasherDefault<FxHasher>>;
     thread_local! {
-        static LOCAL: RefCell<Local> = RefCell::new(Local::default());
+        // With the fork count it was filled at: a forked child empties it ([`PerFork`]).
+        static LOCAL: RefCell<(u64, Local)> = RefCell::new((0, Local::default()));
     }
     let key = (f.w, m, real);
-    if let Some(b) = LOCAL.with(|c| c.borrow().get(&key).cloned()) {
+    let forks = fork_count();
+    let found = LOCAL.with(|c| {
+        let mut c = c.borrow_mut();
+        if c.0 != forks {
+            *c = (forks, Local::default());
+        }
+        c.1.get(&key).cloned()
+    });
+    if let Some(b) = found {
         return Ok(b);
     }
     let b = shared_fast_basis(f, m, real)?;
-    LOCAL.with(|c| c.borrow_mut().insert(key, b.clone()));
+    LOCAL.with(|c| c.borrow_mut().1.insert(key, b.clone()));
     Ok(b)
 }
 
@@ -262,9 +272,9 @@ pub(super) fn shared_fast_basis(
     m: u64,
     real: bool,
 ) -> Result<Option<Arc<FastBasis>>, ScalarError> {
-    type FastCache = OnceLock<Mutex<HashMap<(u64, u64, bool), Option<Arc<FastBasis>>>>>;
-    static CACHE: FastCache = OnceLock::new();
-    let cache = CACHE.get_or_init(Default::default);
+    type FastCache = PerFork<Mutex<HashMap<(u64, u64, bool), Option<Arc<FastBasis>>>>>;
+    static CACHE: FastCache = PerFork::new();
+    let cache = CACHE.get_or(Default::default);
     let key = (f.w, m, real);
     if let Some(b) = cache.lock().map_err(poisoned)?.get(&key) {
         return Ok(b.clone());

@@ -3,6 +3,7 @@
 //! field contains, and the per-process cache of fields.
 
 use super::super::modp;
+use super::super::par::{fork_count, PerFork};
 use super::super::{FxHasher, ScalarError};
 use super::level::{moebius, primes_of, totient};
 use super::{poisoned, Cache};
@@ -13,6 +14,8 @@ use num_traits::{One, ToPrimitive, Zero};
 use std::cell::RefCell;
 use std::collections::{BTreeMap, HashMap};
 use std::hash::BuildHasherDefault;
+#[cfg(all(test, unix))]
+use std::sync::Mutex;
 use std::sync::{Arc, OnceLock};
 
 /// An element of `Q(zeta_W)` as a sum of powers of `zeta_W` (exponents mod `W`).
@@ -358,20 +361,31 @@ pub(super) fn ints(s: &Sparse) -> Option<Ints> {
 pub(super) fn field(w: u64) -> Result<Arc<Field>, ScalarError> {
     type Fields = HashMap<u64, Arc<Field>, BuildHasherDefault<FxHasher>>;
     thread_local! {
-        static FIELDS: RefCell<Fields> = RefCell::new(Fields::default());
+        // With the fork count it was filled at: a forked child empties it ([`PerFork`]).
+        static FIELDS: RefCell<(u64, Fields)> = RefCell::new((0, Fields::default()));
     }
-    if let Some(f) = FIELDS.with(|c| c.borrow().get(&w).cloned()) {
+    let forks = fork_count();
+    let found = FIELDS.with(|c| {
+        let mut c = c.borrow_mut();
+        if c.0 != forks {
+            *c = (forks, Fields::default());
+        }
+        c.1.get(&w).cloned()
+    });
+    if let Some(f) = found {
         return Ok(f);
     }
     let f = shared_field(w)?;
-    FIELDS.with(|c| c.borrow_mut().insert(w, f.clone()));
+    FIELDS.with(|c| c.borrow_mut().1.insert(w, f.clone()));
     Ok(f)
 }
 
+/// The fields made in this process (made again in a forked child).
+static SHARED_FIELDS: Cache<u64, Field> = PerFork::new();
+
 /// [`field`] from the process-wide cache.
 pub(super) fn shared_field(w: u64) -> Result<Arc<Field>, ScalarError> {
-    static CACHE: Cache<u64, Field> = OnceLock::new();
-    let cache = CACHE.get_or_init(Default::default);
+    let cache = SHARED_FIELDS.get_or(Default::default);
     if let Some(f) = cache.lock().map_err(poisoned)?.get(&w) {
         return Ok(f.clone());
     }
@@ -381,4 +395,46 @@ pub(super) fn shared_field(w: u64) -> Result<Arc<Field>, ScalarError> {
     })?);
     cache.lock().map_err(poisoned)?.insert(w, f.clone());
     Ok(f)
+}
+
+#[cfg(all(test, unix))]
+mod fork_tests {
+    use super::*;
+    use crate::Scalar;
+
+    /// `cos(k pi / n)`.
+    fn cos_pi(k: i64, n: i64) -> Scalar {
+        (&Scalar::pi() * &Scalar::rational(Rat::new(k.into(), n.into()))).cos()
+    }
+
+    /// `cos(a pi / n) cos(b pi / n)`, as a product and as half the sum of
+    /// `cos((a - b) pi / n)` and `cos((a + b) pi / n)`.
+    fn both_ways(a: i64, b: i64, n: i64) -> (Scalar, Scalar) {
+        let sum = &cos_pi(a - b, n) + &cos_pi(a + b, n);
+        (
+            &cos_pi(a, n) * &cos_pi(b, n),
+            &sum * &Scalar::rational(Rat::new(1.into(), 2.into())),
+        )
+    }
+
+    /// A child forked while another thread of the parent holds the process-wide field cache
+    /// (here: this thread, through the fork) makes fields of its own: before, it waited
+    /// forever on the lock. Its per-thread cache, filled in the parent, is emptied too.
+    #[test]
+    fn a_forked_child_makes_its_own_fields() {
+        let (product, sum) = both_ways(1, 2, 7);
+        assert_eq!(product, sum);
+        let held = SHARED_FIELDS.get_or(Default::default).lock().unwrap();
+        let parents: *const Mutex<_> = SHARED_FIELDS.get_or(Default::default);
+        super::super::super::par::in_forked_child(
+            || {
+                let own: *const Mutex<_> = SHARED_FIELDS.get_or(Default::default);
+                // Q(zeta_7) again, and Q(zeta_11), which this process has not made before.
+                let (p7, s7) = both_ways(1, 2, 7);
+                let (p11, s11) = both_ways(1, 2, 11);
+                !std::ptr::eq(own, parents) && p7 == product && p7 == s7 && p11 == s11
+            },
+            move || drop(held),
+        );
+    }
 }

@@ -53,10 +53,11 @@
 //! randomized laws.
 
 use super::atoms::{rad_mul, Freq, Mode, MonoRc, Small};
+use super::par::PerFork;
 use super::{ScalarError, Term, Q};
 use num_traits::{Signed, Zero};
 use std::collections::HashMap;
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::{Arc, Mutex};
 
 mod candidates;
 mod exact;
@@ -71,7 +72,8 @@ use candidates::Col;
 use level::level_of;
 pub(crate) use product::{settled_groups, ProductTrace};
 
-type Cache<K, V> = OnceLock<Mutex<HashMap<K, Arc<V>>>>;
+/// A process-wide cache, made again in a forked child ([`PerFork`]).
+type Cache<K, V> = PerFork<Mutex<HashMap<K, Arc<V>>>>;
 
 fn poisoned<T>(_: T) -> ScalarError {
     ScalarError::OutOfRange("cyclotomic cache poisoned".into())
