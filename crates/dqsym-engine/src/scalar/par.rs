@@ -265,7 +265,7 @@ impl Pool {
 /// `OnceLock` being filled, taken by a thread the child does not have, so the child never
 /// touches it (it is left as it was, not freed: the parent's memory, copied). For the
 /// process-wide pool and caches; a per-thread cache holding such values keeps the
-/// [`fork_count`] it was filled at and empties itself when the count differs.
+/// fork count it was filled at and empties itself when the count differs ([`this_fork`]).
 pub(crate) struct PerFork<T> {
     made: AtomicPtr<(u64, T)>,
     _owns: PhantomData<T>,
@@ -307,9 +307,14 @@ impl<T: Send + Sync> PerFork<T> {
     }
 }
 
-/// The forks counted in this process so far (see [`PerFork`]).
-pub(crate) fn fork_count() -> u64 {
-    forks::seen()
+/// A per-thread cache (a map with the fork count it was filled at), emptied first in a
+/// process forked since (see [`PerFork`]).
+pub(crate) fn this_fork<M: Default>(cache: &mut (u64, M)) -> &mut M {
+    let forks = forks::seen();
+    if cache.0 != forks {
+        *cache = (forks, M::default());
+    }
+    &mut cache.1
 }
 
 #[cfg(unix)]

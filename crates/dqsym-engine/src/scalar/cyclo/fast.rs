@@ -4,7 +4,7 @@
 
 use super::super::atoms::Small;
 use super::super::modp::{self, ModSpan};
-use super::super::par::{fork_count, PerFork};
+use super::super::par::{this_fork, PerFork};
 use super::super::{FxHasher, ScalarError, Term, Q};
 use super::candidates::{candidates, Candidate, Col};
 use super::field::{field, ints, mono, sparse_mul, Field, Ints, Sparse};
@@ -250,19 +250,11 @@ pub(super) fn fast_basis(
         static LOCAL: RefCell<(u64, Local)> = RefCell::new((0, Local::default()));
     }
     let key = (f.w, m, real);
-    let forks = fork_count();
-    let found = LOCAL.with(|c| {
-        let mut c = c.borrow_mut();
-        if c.0 != forks {
-            *c = (forks, Local::default());
-        }
-        c.1.get(&key).cloned()
-    });
-    if let Some(b) = found {
+    if let Some(b) = LOCAL.with(|c| this_fork(&mut c.borrow_mut()).get(&key).cloned()) {
         return Ok(b);
     }
     let b = shared_fast_basis(f, m, real)?;
-    LOCAL.with(|c| c.borrow_mut().1.insert(key, b.clone()));
+    LOCAL.with(|c| this_fork(&mut c.borrow_mut()).insert(key, b.clone()));
     Ok(b)
 }
 

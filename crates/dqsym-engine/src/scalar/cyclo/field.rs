@@ -3,7 +3,7 @@
 //! field contains, and the per-process cache of fields.
 
 use super::super::modp;
-use super::super::par::{fork_count, PerFork};
+use super::super::par::{this_fork, PerFork};
 use super::super::{FxHasher, ScalarError};
 use super::level::{moebius, primes_of, totient};
 use super::{poisoned, Cache};
@@ -364,19 +364,11 @@ pub(super) fn field(w: u64) -> Result<Arc<Field>, ScalarError> {
         // With the fork count it was filled at: a forked child empties it ([`PerFork`]).
         static FIELDS: RefCell<(u64, Fields)> = RefCell::new((0, Fields::default()));
     }
-    let forks = fork_count();
-    let found = FIELDS.with(|c| {
-        let mut c = c.borrow_mut();
-        if c.0 != forks {
-            *c = (forks, Fields::default());
-        }
-        c.1.get(&w).cloned()
-    });
-    if let Some(f) = found {
+    if let Some(f) = FIELDS.with(|c| this_fork(&mut c.borrow_mut()).get(&w).cloned()) {
         return Ok(f);
     }
     let f = shared_field(w)?;
-    FIELDS.with(|c| c.borrow_mut().1.insert(w, f.clone()));
+    FIELDS.with(|c| this_fork(&mut c.borrow_mut()).insert(w, f.clone()));
     Ok(f)
 }
 
