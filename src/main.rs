@@ -30,6 +30,7 @@ macro_rules! eprintln {
 }
 
 mod allocator;
+mod fast_args;
 mod repl;
 
 /// Writes to stdout; a failed write ends the process (see [`print!`]).
@@ -74,7 +75,7 @@ fn os_message(e: &std::io::Error) -> String {
     }
 }
 
-#[derive(Parser)]
+#[derive(Parser, Debug, PartialEq)]
 #[command(
     name = "dqsym",
     version,
@@ -175,7 +176,7 @@ fn read_input(path: &std::path::Path) -> Result<String, String> {
     })
 }
 
-#[derive(Subcommand)]
+#[derive(Subcommand, Debug, PartialEq)]
 enum Command {
     /// Run a .dq script and print each displayed result.
     Run {
@@ -279,7 +280,7 @@ enum Command {
 /// How a robot is read: the one argument group of every command that reads a robot (`fk`,
 /// `ik`, `walk` with or without `--ik`, `ops`, `convert`), passed whole to [`load_robot`] so
 /// that each option means the same everywhere (the URDF options are errors on a TOML file).
-#[derive(clap::Args, Clone, Debug, Default)]
+#[derive(clap::Args, Clone, Debug, Default, PartialEq)]
 struct RobotArgs {
     /// URDF: the last link of the chain (default: the only leaf link).
     #[arg(long, value_name = "LINK")]
@@ -457,9 +458,16 @@ fn main() -> ExitCode {
     quiet_on_closed_pipe();
     // The command line is parsed on the worker too: every allocation of a run is then of one
     // thread's heap, and the pages of the allocator's size classes are touched once, not once
-    // per thread (`dqsym -e 1`: 261 page faults instead of 278).
+    // per thread (`dqsym -e 1`: 261 page faults instead of 278). The common forms are read
+    // without building clap's command (`fast_args.rs` says why); clap reads the others and
+    // writes every help, version and error.
     let worker = std::thread::Builder::new().stack_size(STACK).spawn(|| {
-        let cli = match Cli::try_parse() {
+        let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+        let read = match args.split_first() {
+            Some((_, rest)) => fast_args::parse(rest),
+            None => None,
+        };
+        let cli = match read.map_or_else(|| Cli::try_parse_from(&args), Ok) {
             Ok(cli) => cli,
             Err(e) => return clap_exit(&e),
         };
