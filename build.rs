@@ -12,32 +12,47 @@
 //! version, which would make a binary that does not run where it was built. So the option is
 //! given only when the C library the binary links against defines `GLIBC_ABI_DT_RELR`, and
 //! only for a native build (a cross build's C library is not the one found here).
+//!
+//! Also on GNU/Linux, natively: the cfg `static_unwinder` when the C compiler has libgcc's
+//! static unwinder, `libgcc_eh.a`, which `main.rs` then links into the binary instead of
+//! loading `libgcc_s.so.1` at every start (`main.rs` says why).
 
 use std::process::Command;
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-env-changed=CC");
+    println!("cargo::rustc-check-cfg=cfg(static_unwinder)");
     let var = |name: &str| std::env::var(name).unwrap_or_default();
     let gnu_linux = var("CARGO_CFG_TARGET_OS") == "linux" && var("CARGO_CFG_TARGET_ENV") == "gnu";
-    if gnu_linux && var("TARGET") == var("HOST") && libc_has_dt_relr() {
+    if !gnu_linux || var("TARGET") != var("HOST") {
+        return;
+    }
+    if library("libc.so.6").is_some_and(|path| defines_dt_relr(&path)) {
         println!("cargo:rustc-link-arg-bins=-Wl,-z,pack-relative-relocs");
+    }
+    if library("libgcc_eh.a").is_some() {
+        println!("cargo:rustc-cfg=static_unwinder");
     }
 }
 
-/// Whether the `libc.so.6` the C compiler links against defines the version
-/// `GLIBC_ABI_DT_RELR` (glibc 2.36 and later). Any failure to find out is a no.
-fn libc_has_dt_relr() -> bool {
+/// The path of the library `name` the C compiler links against, if it finds one.
+fn library(name: &str) -> Option<String> {
     let cc = std::env::var("CC").unwrap_or_else(|_| "cc".to_owned());
-    let Ok(out) = Command::new(cc).arg("-print-file-name=libc.so.6").output() else {
-        return false;
-    };
+    let out = Command::new(cc)
+        .arg(format!("-print-file-name={name}"))
+        .output()
+        .ok()?;
     let path = String::from_utf8_lossy(&out.stdout).trim().to_owned();
     // Without the library, the compiler prints the bare name back.
-    if !out.status.success() || !path.contains('/') {
-        return false;
-    }
-    std::fs::read(&path).is_ok_and(|bytes| {
+    (out.status.success() && path.contains('/') && std::path::Path::new(&path).exists())
+        .then_some(path)
+}
+
+/// Whether the C library at `path` defines the version `GLIBC_ABI_DT_RELR` (glibc 2.36 and
+/// later). Any failure to find out is a no.
+fn defines_dt_relr(path: &str) -> bool {
+    std::fs::read(path).is_ok_and(|bytes| {
         bytes
             .windows(b"GLIBC_ABI_DT_RELR".len())
             .any(|w| w == b"GLIBC_ABI_DT_RELR")

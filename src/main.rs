@@ -437,6 +437,18 @@ fn threads_from_env() -> Option<usize> {
         .map(|n| n.max(1))
 }
 
+// The unwinder (panics, backtraces) linked in from libgcc's static `libgcc_eh.a` where the C
+// compiler has it (`build.rs`), not loaded from `libgcc_s.so.1`: one shared library fewer to
+// find, map and relocate at every start, and its constructor, which probes the processor with
+// `cpuid` (costly in a virtual machine), never runs: ~0.1 ms of a run. The same libgcc code,
+// as in `-static-libgcc` builds. With LLD, Rust's linker here, the archive's members answer
+// the standard library's references although it comes first on the command line, and
+// `libgcc_s.so.1`, no longer needed, is dropped (`--as-needed`); another linker takes them
+// from `libgcc_s.so.1` as before.
+#[cfg(static_unwinder)]
+#[link(name = "gcc_eh", kind = "static", modifiers = "-bundle")]
+extern "C" {}
+
 /// The allocator of the command line (`allocator.rs` says why).
 #[global_allocator]
 static ALLOCATOR: allocator::MiMalloc = allocator::MiMalloc;

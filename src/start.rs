@@ -209,6 +209,18 @@ mod tests {
         assert!(!stderr.contains("overflowed"), "{stderr}");
     }
 
+    /// The binary's unwinder (`main.rs`: libgcc's static one where the C compiler has it)
+    /// unwinds a panic to where it is caught, as the REPL catches a failed statement's.
+    #[test]
+    fn a_panic_unwinds_to_where_it_is_caught() {
+        let caught = std::panic::catch_unwind(|| {
+            let _watch = watch_stack();
+            std::panic::panic_any(42_u8)
+        });
+        let payload = caught.expect_err("the panic is caught");
+        assert_eq!(payload.downcast_ref::<u8>(), Some(&42));
+    }
+
     #[test]
     fn closed_standard_descriptors_are_opened_on_dev_null() {
         if is_child() {
