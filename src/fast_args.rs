@@ -5,7 +5,7 @@
 //! Why: clap builds its whole command (every subcommand, argument and help text, the global
 //! arguments copied into each subcommand) before it reads a single argument. That was a fifth
 //! of the start-up of every run: `dqsym -e 1` 1.47 -> 1.30 ms of wall time at best and 284 -> 216
-//! page faults without it (100 runs of each, alternating).
+//! page faults without it (300 runs of each, alternating; a loaded machine).
 //!
 //! clap stays the one source of help, versions and errors: [`parse`] answers only for a
 //! command line it reads completely and leaves every other to clap (`None`): help and version
