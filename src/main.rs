@@ -1,5 +1,9 @@
 //! The `dqsym` command line. Only this file does I/O.
 
+// GNU/Linux: the process starts at this file's C `main`, not through the Rust runtime's
+// start-up (see `c_main`).
+#![cfg_attr(all(target_os = "linux", target_env = "gnu", not(test)), no_main)]
+
 use clap::{Parser, Subcommand, ValueEnum};
 use dqsym::{
     lang::{parse_with, show_value, ParseOptions, StmtKind},
@@ -30,7 +34,10 @@ macro_rules! eprintln {
 }
 
 mod allocator;
+mod fast_args;
 mod repl;
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+mod start;
 
 /// Writes to stdout; a failed write ends the process (see [`print!`]).
 pub(crate) fn write_out(args: std::fmt::Arguments<'_>) {
@@ -74,7 +81,7 @@ fn os_message(e: &std::io::Error) -> String {
     }
 }
 
-#[derive(Parser)]
+#[derive(Parser, Debug, PartialEq)]
 #[command(
     name = "dqsym",
     version,
@@ -175,7 +182,7 @@ fn read_input(path: &std::path::Path) -> Result<String, String> {
     })
 }
 
-#[derive(Subcommand)]
+#[derive(Subcommand, Debug, PartialEq)]
 enum Command {
     /// Run a .dq script and print each displayed result.
     Run {
@@ -279,7 +286,7 @@ enum Command {
 /// How a robot is read: the one argument group of every command that reads a robot (`fk`,
 /// `ik`, `walk` with or without `--ik`, `ops`, `convert`), passed whole to [`load_robot`] so
 /// that each option means the same everywhere (the URDF options are errors on a TOML file).
-#[derive(clap::Args, Clone, Debug, Default)]
+#[derive(clap::Args, Clone, Debug, Default, PartialEq)]
 struct RobotArgs {
     /// URDF: the last link of the chain (default: the only leaf link).
     #[arg(long, value_name = "LINK")]
@@ -430,6 +437,18 @@ fn threads_from_env() -> Option<usize> {
         .map(|n| n.max(1))
 }
 
+// The unwinder (panics, backtraces) linked in from libgcc's static `libgcc_eh.a` where the C
+// compiler has it (`build.rs`), not loaded from `libgcc_s.so.1`: one shared library fewer to
+// find, map and relocate at every start, and its constructor, which probes the processor with
+// `cpuid` (costly in a virtual machine), never runs: ~0.1 ms of a run. The same libgcc code,
+// as in `-static-libgcc` builds. With LLD, Rust's linker here, the archive's members answer
+// the standard library's references although it comes first on the command line, and
+// `libgcc_s.so.1`, no longer needed, is dropped (`--as-needed`); another linker takes them
+// from `libgcc_s.so.1` as before.
+#[cfg(static_unwinder)]
+#[link(name = "gcc_eh", kind = "static", modifiers = "-bundle")]
+extern "C" {}
+
 /// The allocator of the command line (`allocator.rs` says why).
 #[global_allocator]
 static ALLOCATOR: allocator::MiMalloc = allocator::MiMalloc;
@@ -453,13 +472,57 @@ fn quiet_on_closed_pipe() {
 #[cfg(not(unix))]
 fn quiet_on_closed_pipe() {}
 
+/// The process's entry on GNU/Linux: C's `main`, called by glibc, instead of the Rust
+/// runtime's start-up and `fn main`. That start-up found the main thread's stack for its
+/// stack-overflow report by reading `/proc/self/maps`, ~0.1 ms of every run (`start.rs`);
+/// the main thread here only starts the worker and waits. What the binary needs of the
+/// start-up is done here and on the worker ([`watch_stack`]); the arguments reach
+/// `std::env::args_os` as before (glibc hands them to the standard library before `main`).
+#[cfg(all(target_os = "linux", target_env = "gnu", not(test)))]
+#[export_name = "main"]
+extern "C" fn c_main(
+    _argc: std::ffi::c_int,
+    _argv: *const *const std::ffi::c_char,
+) -> std::ffi::c_int {
+    start::open_standard_descriptors();
+    let code = run();
+    // What is left in stdout when the worker did not end the process (it failed): the
+    // runtime flushed it at exit.
+    let _ = std::io::stdout().flush();
+    status(code)
+}
+
+#[cfg(any(not(all(target_os = "linux", target_env = "gnu")), test))]
 fn main() -> ExitCode {
+    run()
+}
+
+/// While the value lives, a stack overflow of this thread is reported (`start.rs`).
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+pub(crate) fn watch_stack() -> Option<start::Watch> {
+    start::watch_stack()
+}
+
+/// Elsewhere than on GNU/Linux, the Rust runtime reports every thread's stack overflow.
+#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+pub(crate) fn watch_stack() {}
+
+/// Runs the command line: on a worker thread with a [`STACK`] stack.
+fn run() -> ExitCode {
     quiet_on_closed_pipe();
     // The command line is parsed on the worker too: every allocation of a run is then of one
     // thread's heap, and the pages of the allocator's size classes are touched once, not once
-    // per thread (`dqsym -e 1`: 261 page faults instead of 278).
+    // per thread (`dqsym -e 1`: 261 page faults instead of 278). The common forms are read
+    // without building clap's command (`fast_args.rs` says why); clap reads the others and
+    // writes every help, version and error.
     let worker = std::thread::Builder::new().stack_size(STACK).spawn(|| {
-        let cli = match Cli::try_parse() {
+        let _watch = watch_stack();
+        let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+        let read = match args.split_first() {
+            Some((_, rest)) => fast_args::parse(rest),
+            None => None,
+        };
+        let cli = match read.map_or_else(|| Cli::try_parse_from(&args), Ok) {
             Ok(cli) => cli,
             Err(e) => return clap_exit(&e),
         };
@@ -502,14 +565,19 @@ fn exit_now(code: ExitCode) -> ! {
     extern "C" {
         fn _exit(status: std::ffi::c_int) -> !;
     }
-    // `ExitCode` has no stable conversion to a status; every status this binary returns is an
-    // `ExitCode::from(u8)` (`SUCCESS` and `FAILURE` are 0 and 1 on unix), so it is one of these.
-    let status = (0..=u8::MAX)
-        .find(|&n| ExitCode::from(n) == code)
-        .map_or(1, std::ffi::c_int::from);
     // SAFETY: `_exit` ends the process without running anything of this one; the other thread,
     // `main`, only waits for this one.
-    unsafe { _exit(status) }
+    unsafe { _exit(status(code)) }
+}
+
+/// The process status of `code`. `ExitCode` has no stable conversion to a status; every
+/// status this binary returns is an `ExitCode::from(u8)` (`SUCCESS` and `FAILURE` are 0 and 1
+/// on unix), so it is one of these.
+#[cfg(unix)]
+fn status(code: ExitCode) -> std::ffi::c_int {
+    (0..=u8::MAX)
+        .find(|&n| ExitCode::from(n) == code)
+        .map_or(1, std::ffi::c_int::from)
 }
 
 #[cfg(not(unix))]

@@ -414,6 +414,7 @@ impl Repl<'_> {
             let spawned = std::thread::Builder::new()
                 .stack_size(crate::STACK)
                 .spawn(move || {
+                    let _watch = crate::watch_stack();
                     let _entered = ctx.enter();
                     work.checkpoint();
                     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {

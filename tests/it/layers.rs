@@ -148,9 +148,12 @@ fn every_crate_import_goes_down_the_layer_table() {
             let first = rel.components().next().expect("a component");
             let module = first.as_os_str().to_string_lossy();
             let module = module.trim_end_matches(".rs");
-            // lib.rs only declares and re-exports; main.rs, repl.rs and allocator.rs are the
-            // binary, which reaches the library through `dqsym::`.
-            if matches!(module, "lib" | "main" | "repl" | "allocator") {
+            // lib.rs only declares and re-exports; main.rs, repl.rs, allocator.rs, fast_args.rs
+            // and start.rs are the binary, which reaches the library through `dqsym::`.
+            if matches!(
+                module,
+                "lib" | "main" | "repl" | "allocator" | "fast_args" | "start"
+            ) {
                 continue;
             }
             let own = *layers.get(module).unwrap_or_else(|| {
