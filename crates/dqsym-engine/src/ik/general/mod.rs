@@ -166,6 +166,34 @@
 //! arm), the route gives up and the eigenvalue route decides, as it does when no sample is
 //! conditioned or the check angle disagrees.
 //!
+//! Why `det S` has degree 8 at every arm, and why no smaller determinant splits off `S(θ)`
+//! (issue #29, session 19; the unit test
+//! `det_tests::the_moving_part_of_s_has_rank_eight_in_its_rows_and_no_constant_block` checks
+//! each rank below on the skew arm and random arms, all twelve arrangements). The
+//! hidden joint is a rotation `Rot(θ)` between two constant translations (step 2), so the left
+//! side is `L Rot(θ) u(X45)`, `u` the fourteen quantities of `E4 E5 (p6, w6)` moved by a
+//! constant translation: `Rot(θ)` leaves the two scalars and the four vectors' components
+//! along the axis alone and turns the eight others, `cos θ Π + sin θ J` (`Π` the projection
+//! on the four normal planes, `J` the quarter turn in each). So `T1`, `T2` (the parts of `Σ =
+//! N Am` in `cos θ3`, `sin θ3`) are `N L Π U⊥`, `N L J U⊥`, with `U⊥` the 8 x 9 matrix of those
+//! eight components in `X45`: stacked (12 x 9) they have rank 8, and their kernel, `U⊥`'s,
+//! depends on joints 3 to 6 of the arranged loop alone, so it is the same at every target
+//! where those four are all the arm's or all conjugated by the target (a common rigid motion:
+//! arrangements 0, 4, 5, forwards or backwards) and moves with it in the others. With `z =
+//! e^{iθ}`, `z S(θ) = A⁻ + z T0 + z² A⁺`, `A± = (T1 ∓ i T2) / 2`, and `Π + i J` has complex
+//! rank one in each plane: `T1 + i T2` has complex rank 4 in nine columns, so the 12 x 12 `A⁻`
+//! (six rows and their copies times `x4`) has rank 8 at most, and so has `A⁺`. Then `det (z
+//! S)` has the factor `z⁴` and degree 20 at most: `det S = z⁻⁸ p(z)`, `p` of degree 16, a
+//! trigonometric polynomial of degree 8 (the spurious `(1 + x²)⁴` is this), whatever the arm.
+//! A general 6R has 16 solutions, so no elimination of this kind has a lower degree and
+//! needs fewer samples. A constant block does not split off either: the real parts `T1`,
+//! `T2` of the 12 x 12 `S`, stacked (24 x 12) and side by side (12 x 24), have rank 12 at every
+//! arm and target tried, so no combination of its columns or of its rows with constant
+//! coefficients is free of `θ`. The constant block there is is complex: with `Z` the kernel of
+//! `A⁻` and `Y` the left kernel of `A⁺`, `Y S(θ) Z = Y T0 Z` (4 x 4), and its Schur
+//! complement is an 8 x 8 matrix quadratic in `z` with complex entries, whose samples cost
+//! more than the real 12 x 12 LU on its blocks (about 230 multiplications and additions).
+//!
 //! Why not the companion matrix of `p(x) = (1 + x²)⁸ det S` in monomials (tried): its QR
 //! took 207k instructions (more than the linearisation's) and its roots came out to `1e-6`
 //! only (monomials are ill-conditioned for sixteen roots spread on the real line), losing two
