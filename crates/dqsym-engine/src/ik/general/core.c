@@ -778,14 +778,16 @@ static double ik_gen_angle_from(const double *num, const double *den, int n) {
 static void ik_gen_first_two(const ik_gen_arranged *ar, const ik_gen_elim *el,
                              const double f3[3], const double f4[3], const double f5[3],
                              double *t1, double *t2) {
-    double rhs[14], y[8], z[8], x12[9], s;
+    double rhs[14], g[3][9], y[8], z[8], x12[9], s;
     int e, k, i4, i5, i;
+    /* The 27 products of the three joints' bases once, in am's order (k, i4, i5). */
+    for (k = 0; k < 3; k++)
+        for (i4 = 0; i4 < 3; i4++)
+            for (i5 = 0; i5 < 3; i5++) g[k][ik_gen_mono(i4, i5)] = f3[k] * f4[i4] * f5[i5];
     for (e = 0; e < 14; e++) {
         s = 0.0;
         for (k = 0; k < 3; k++)
-            for (i4 = 0; i4 < 3; i4++)
-                for (i5 = 0; i5 < 3; i5++)
-                    s += el->am[e][k][ik_gen_mono(i4, i5)] * f3[k] * f4[i4] * f5[i5];
+            for (i = 0; i < 9; i++) s += el->am[e][k][i] * g[k][i];
         rhs[e] = s;
     }
     for (i = 0; i < 8; i++) {
@@ -833,34 +835,26 @@ static void ik_gen_unit(double th, double *co, double *si) {
     *si = sb * c + cb * s;
 }
 
-/* th6 from the rest: E6 = (E1 ... E5)^-1 H, read about its axis. */
+/* th6 from the rest: E6 = (E1 ... E5)^-1 H, read about its axis: R6 u = R5^T ... R1^T R_H u
+   for a unit vector u normal to axis 6, each R^T by Rodrigues applied to the vector. */
 static double ik_gen_last(const ik_gen_arranged *ar, const double t[5]) {
-    double rot[3][3] = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
-    double r[3][3], n[3][3], u[3], hu[3], v[3], uv[3], co, si;
+    double u[3], v[3], x[3], uv[3], co, si, f;
     const double ex[3] = {1.0, 0.0, 0.0}, ey[3] = {0.0, 1.0, 0.0};
-    const double *w6 = ar->j[5].w;
-    int k, i, j, l;
+    const double *w6 = ar->j[5].w, *w;
+    int k, i, l;
+    ik_gen_cross3(w6, fabs(w6[0]) < 0.6 ? ex : ey, u);
+    for (i = 0; i < 3; i++) {
+        v[i] = -0.0;
+        for (l = 0; l < 3; l++) v[i] += ar->h[i][l] * u[l];
+    }
     for (k = 0; k < 5; k++) {
         if (ar->j[k].prism) continue;
         ik_gen_unit(t[k], &co, &si);
-        ik_gen_rodrigues(ar->j[k].w, si, co, r);
-        for (i = 0; i < 3; i++) {
-            for (j = 0; j < 3; j++) {
-                n[i][j] = -0.0;
-                for (l = 0; l < 3; l++) n[i][j] += rot[i][l] * r[l][j];
-            }
-        }
-        memcpy(rot, n, sizeof rot);
-    }
-    ik_gen_cross3(w6, fabs(w6[0]) < 0.6 ? ex : ey, u);
-    /* v = R6 u with R6 = rot^T R_H. */
-    for (i = 0; i < 3; i++) {
-        hu[i] = -0.0;
-        for (l = 0; l < 3; l++) hu[i] += ar->h[i][l] * u[l];
-    }
-    for (i = 0; i < 3; i++) {
-        v[i] = -0.0;
-        for (l = 0; l < 3; l++) v[i] += rot[l][i] * hu[l];
+        w = ar->j[k].w;
+        /* R^T v = c v - s w x v + (1 - c) (w . v) w. */
+        ik_gen_cross3(w, v, x);
+        f = (1.0 - co) * ik_gen_dot3(w, v);
+        for (i = 0; i < 3; i++) v[i] = co * v[i] - si * x[i] + f * w[i];
     }
     ik_gen_cross3(u, v, uv);
     return atan2(ik_gen_dot3(w6, uv), ik_gen_dot3(u, v));
@@ -1380,7 +1374,8 @@ static void ik_gen_null_vector_lu(const double m[12][12], double y[12]) {
 static int ik_gen_det_candidates(const ik_gen_arranged *ar, const ik_gen_elim *el,
                                  double roots[24][6], int *n, int *degree, double *best) {
     double tm[3][12][12], m[12][12], v[12], y[12], t[6], d[IK_GEN_DET_SAMPLES],
-        c[IK_GEN_DET_DEGREE + 1][2], th[24], scale = 0.0, good = 0.0, ratio, a, b, w,
+        c[IK_GEN_DET_DEGREE + 1][2], th[24], even[IK_GEN_DET_DEGREE + 1],
+        odd[IK_GEN_DET_DEGREE + 1], scale = 0.0, good = 0.0, ratio, a, b, w,
         interp = 0.0, check, t3, co, si;
     int k, j, i, deg, count;
     ik_gen_matrix_trig((const double (*)[6][9])el->sig, tm);
@@ -1395,14 +1390,19 @@ static int ik_gen_det_candidates(const ik_gen_arranged *ar, const ik_gen_elim *e
         *best = good;
         return -1;
     }
-    /* c_j = a_j - i b_j of D(th) = a_0 + sum a_j cos j th + b_j sin j th. */
+    /* c_j = a_j - i b_j of D(th) = a_0 + sum a_j cos j th + b_j sin j th; the samples at
+       +-th paired (cos j th even, sin j th odd). */
+    for (k = 1; k <= IK_GEN_DET_DEGREE; k++) {
+        even[k] = d[k] + d[IK_GEN_DET_SAMPLES - k];
+        odd[k] = d[k] - d[IK_GEN_DET_SAMPLES - k];
+    }
     for (j = 0; j <= IK_GEN_DET_DEGREE; j++) {
-        a = 0.0;
+        a = d[0];
         b = 0.0;
-        for (k = 0; k < IK_GEN_DET_SAMPLES; k++) {
+        for (k = 1; k <= IK_GEN_DET_DEGREE; k++) {
             const int idx = 2 * ((j * k) % IK_GEN_DET_SAMPLES);
-            a += d[k] * IK_GEN_DET_COS[idx];
-            b += d[k] * IK_GEN_DET_SIN[idx];
+            a += even[k] * IK_GEN_DET_COS[idx];
+            b += odd[k] * IK_GEN_DET_SIN[idx];
         }
         w = (j == 0 ? 1.0 : 2.0) / (double)IK_GEN_DET_SAMPLES;
         c[j][0] = w * a;
