@@ -837,7 +837,7 @@ static void ik_gen_unit(double th, double *co, double *si) {
 
 /* th6 from the rest: E6 = (E1 ... E5)^-1 H, read about its axis: R6 u = R5^T ... R1^T R_H u
    for a unit vector u normal to axis 6, each R^T by Rodrigues applied to the vector. */
-static double ik_gen_last(const ik_gen_arranged *ar, const double t[5]) {
+static double ik_gen_last(const ik_gen_arranged *ar, const double t[5], const double *fk[3]) {
     double u[3], v[3], x[3], uv[3], co, si, f;
     const double ex[3] = {1.0, 0.0, 0.0}, ey[3] = {0.0, 1.0, 0.0};
     const double *w6 = ar->j[5].w, *w;
@@ -849,7 +849,13 @@ static double ik_gen_last(const ik_gen_arranged *ar, const double t[5]) {
     }
     for (k = 0; k < 5; k++) {
         if (ar->j[k].prism) continue;
-        ik_gen_unit(t[k], &co, &si);
+        /* (Joints 3 to 5 turning have their cosine and sine in their bases already.) */
+        if (k >= 2) {
+            co = fk[k - 2][1];
+            si = fk[k - 2][2];
+        } else {
+            ik_gen_unit(t[k], &co, &si);
+        }
         w = ar->j[k].w;
         /* R^T v = c v - s w x v + (1 - c) (w . v) w. */
         ik_gen_cross3(w, v, x);
@@ -876,6 +882,7 @@ static void ik_gen_basis(const ik_gen_joint *j, double t, double f[3]) {
 static void ik_gen_back_substitute(const ik_gen_arranged *ar, const ik_gen_elim *el,
                                    const double v[12], double t3, double out[6]) {
     double num[9], den[9], f3[3], f4[3], f5[3];
+    const double *fk[3];
     int a, b, k;
     out[2] = t3;
     /* th4: the pairs (x4^(a+1) x5^b, x4^a x5^b), a = 0..2, b = 0..2. */
@@ -899,7 +906,10 @@ static void ik_gen_back_substitute(const ik_gen_arranged *ar, const ik_gen_elim 
     ik_gen_basis(&ar->j[3], out[3], f4);
     ik_gen_basis(&ar->j[4], out[4], f5);
     ik_gen_first_two(ar, el, f3, f4, f5, &out[0], &out[1]);
-    out[5] = ik_gen_last(ar, out);
+    fk[0] = f3;
+    fk[1] = f4;
+    fk[2] = f5;
+    out[5] = ik_gen_last(ar, out, fk);
 }
 
 /* S(th) = T0 + T1 cos th + T2 sin th: the 12 x 12 matrix of matrix_poly at phi = 0 divided by

@@ -1234,12 +1234,18 @@ fn back_substitute(ar: &Arranged, el: &Elim, v: &[f64; 12], t3: f64) -> [f64; 6]
     };
     let u = cross3(&w6, &e);
     let mut v: V = std::array::from_fn(|i| (0..3).map(|l| ar.h[i][l] * u[l]).sum());
+    // (Joints 3 to 5 turning have their cosine and sine in their bases already.)
     let t = [t1, t2, t3, t4, t5];
+    let fk = [f3, f4, f5];
     for (k, tk) in t.iter().enumerate() {
         if ar.j[k].prism {
             continue;
         }
-        let (c, s) = unit(*tk);
+        let (c, s) = if k >= 2 {
+            (fk[k - 2][1], fk[k - 2][2])
+        } else {
+            unit(*tk)
+        };
         let w = &ar.j[k].w;
         // Rᵀ v = c v − s w × v + (1 − c) (w · v) w.
         let x = cross3(w, &v);
