@@ -1216,15 +1216,20 @@ fn back_substitute(ar: &Arranged, el: &Elim, v: &[f64; 12], t3: f64) -> [f64; 6]
         }
     };
     let (f3, f4, f5) = (f(2, t3), f(3, t4), f(4, t5));
+    // The 27 products of the three joints' bases once, in am's order (k, i4, i5).
+    let mut g = [0.0; 27];
+    for k in 0..3 {
+        for i4 in 0..3 {
+            for i5 in 0..3 {
+                g[9 * k + mono(i4, i5)] = f3[k] * f4[i4] * f5[i5];
+            }
+        }
+    }
     let mut rhs = [0.0; 14];
     for e in 0..14 {
         let mut s = 0.0;
-        for k in 0..3 {
-            for i4 in 0..3 {
-                for i5 in 0..3 {
-                    s += el.am[e][k][mono(i4, i5)] * f3[k] * f4[i4] * f5[i5];
-                }
-            }
+        for (a, gm) in el.am[e].as_flattened().iter().zip(&g) {
+            s += a * gm;
         }
         rhs[e] = s;
     }
@@ -1260,23 +1265,8 @@ fn back_substitute(ar: &Arranged, el: &Elim, v: &[f64; 12], t3: f64) -> [f64; 6]
     } else {
         x12[mono(0, 2)].atan2(x12[mono(0, 1)])
     };
-    // θ6 from the rest: E6 = (E1 ⋯ E5)⁻¹ H, read about its axis.
-    let t = [t1, t2, t3, t4, t5];
-    let mut rot = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    for (k, tk) in t.iter().enumerate() {
-        if ar.j[k].prism {
-            continue;
-        }
-        let (c, s) = unit(*tk);
-        let r = rodrigues(&ar.j[k].w, s, c);
-        let mut n = [[0.0; 3]; 3];
-        for i in 0..3 {
-            for j in 0..3 {
-                n[i][j] = (0..3).map(|l| rot[i][l] * r[l][j]).sum();
-            }
-        }
-        rot = n;
-    }
+    // θ6 from the rest: E6 = (E1 ⋯ E5)⁻¹ H, read about its axis: R6 u = R5ᵀ ⋯ R1ᵀ R_H u for
+    // a unit vector u normal to axis 6, each Rᵀ by Rodrigues applied to the vector.
     let w6 = ar.j[5].w;
     let e = if w6[0].abs() < 0.6 {
         [1.0, 0.0, 0.0]
@@ -1284,9 +1274,25 @@ fn back_substitute(ar: &Arranged, el: &Elim, v: &[f64; 12], t3: f64) -> [f64; 6]
         [0.0, 1.0, 0.0]
     };
     let u = cross3(&w6, &e);
-    // v = R6 u with R6 = rotᵀ R_H.
-    let hu: V = std::array::from_fn(|i| (0..3).map(|l| ar.h[i][l] * u[l]).sum());
-    let v: V = std::array::from_fn(|i| (0..3).map(|l| rot[l][i] * hu[l]).sum());
+    let mut v: V = std::array::from_fn(|i| (0..3).map(|l| ar.h[i][l] * u[l]).sum());
+    // (Joints 3 to 5 turning have their cosine and sine in their bases already.)
+    let t = [t1, t2, t3, t4, t5];
+    let fk = [f3, f4, f5];
+    for (k, tk) in t.iter().enumerate() {
+        if ar.j[k].prism {
+            continue;
+        }
+        let (c, s) = if k >= 2 {
+            (fk[k - 2][1], fk[k - 2][2])
+        } else {
+            unit(*tk)
+        };
+        let w = &ar.j[k].w;
+        // Rᵀ v = c v − s w × v + (1 − c) (w · v) w.
+        let x = cross3(w, &v);
+        let f = (1.0 - c) * dot3(w, &v);
+        v = std::array::from_fn(|i| c * v[i] - s * x[i] + f * w[i]);
+    }
     let t6 = dot3(&w6, &cross3(&u, &v)).atan2(dot3(&u, &v));
     [t1, t2, t3, t4, t5, t6]
 }
@@ -1646,38 +1652,6 @@ impl BlockLu {
         }
         out
     }
-
-    /// `U`'s entry `(i, c)`, `c > i`, with `copy` the [`BlockLu::copies`].
-    fn u(&self, copy: &[usize; 6], i: usize, c: usize) -> f64 {
-        if i >= 6 {
-            return self.b[i - 6][c - 6];
-        }
-        let copy = if copy[i] == usize::MAX {
-            None
-        } else {
-            Some(copy[i])
-        };
-        match copy {
-            // [0 | a = 3 | a = 1 | a = 2]
-            Some(j) => {
-                if c < 3 {
-                    0.0
-                } else {
-                    self.low[j][c - 3]
-                }
-            }
-            // [a = 0 | 0 | a = 1 | a = 2]
-            None => {
-                if c < 3 {
-                    self.eq[i][c]
-                } else if c < 6 {
-                    0.0
-                } else {
-                    self.eq[i][c - 3]
-                }
-            }
-        }
-    }
 }
 
 /// The LU of `S` from its six distinct rows `p`, with the same pivots, row swaps, products and
@@ -1741,10 +1715,10 @@ fn block_lu(p: &[[f64; 9]; 6]) -> BlockLu {
 /// below less their multiple of the pivot row at the columns after `K`.
 #[inline(always)]
 fn eq_step<const K: usize>(m: &mut [[f64; 9]; 6], det: &mut f64, piv: &mut [f64; 12]) {
-    let mut best = K;
+    let (mut best, mut bv) = (K, m[K][K].abs());
     for r in K + 1..6 {
-        if m[r][K].abs() > m[best][K].abs() {
-            best = r;
+        if m[r][K].abs() > bv {
+            (best, bv) = (r, m[r][K].abs());
         }
     }
     if best != K {
@@ -1810,10 +1784,10 @@ fn copy_step<const KC: usize>(
 /// Step `K` of [`block_lu`]'s last 6 x 6 block (column `6 + K`), at the columns after `K`.
 #[inline(always)]
 fn block_step<const K: usize>(b: &mut [[f64; 6]; 6], det: &mut f64, piv: &mut [f64; 12]) {
-    let mut best = K;
+    let (mut best, mut bv) = (K, b[K][K].abs());
     for r in K + 1..6 {
-        if b[r][K].abs() > b[best][K].abs() {
-            best = r;
+        if b[r][K].abs() > bv {
+            (best, bv) = (r, b[r][K].abs());
         }
     }
     if best != K {
@@ -1867,10 +1841,31 @@ pub(crate) fn null_vector_trig(t: &TrigRows, s: f64, c: f64) -> [f64; 12] {
     let copy = f.copies();
     let mut y = [0.0; 12];
     y[kmin] = 1.0;
+    // U's rows by their blocks, the structural zeros skipped: their products `0 · y_c` leave a
+    // sum started at `+0` unchanged (it is never `−0`), and a vector with an entry that is not
+    // finite takes the complete pivoting of `checked_null_rows` whatever its other entries.
     for i in (0..kmin).rev() {
         let mut s = 0.0;
-        for c in i + 1..=kmin {
-            s -= f.u(&copy, i, c) * y[c];
+        if i >= 6 {
+            let row = &f.b[i - 6];
+            for c in i + 1..=kmin {
+                s -= row[c - 6] * y[c];
+            }
+        } else if copy[i] != usize::MAX {
+            // [0 | a = 3 | a = 1 | a = 2]
+            let row = &f.low[copy[i]];
+            for c in (i + 1).max(3)..=kmin {
+                s -= row[c - 3] * y[c];
+            }
+        } else {
+            // [a = 0 | 0 | a = 1 | a = 2]
+            let row = &f.eq[i];
+            for c in i + 1..=kmin.min(2) {
+                s -= row[c] * y[c];
+            }
+            for c in (i + 1).max(6)..=kmin {
+                s -= row[c - 3] * y[c];
+            }
         }
         y[i] = if f.piv[i] == 0.0 { 0.0 } else { s / f.piv[i] };
     }
@@ -2517,18 +2512,25 @@ pub(crate) fn det_coefficients(
         return Err(GaveUp::Unconditioned(good));
     }
     // c_j = a_j − i b_j of D(θ) = a_0 + Σ a_j cos jθ + b_j sin jθ = Re Σ c_j e^{ijθ}.
+    // The samples at ±θ paired: cos jθ is even, sin jθ odd.
+    let mut even = [0.0; DET_DEGREE + 1];
+    let mut odd = [0.0; DET_DEGREE + 1];
+    for k in 1..=DET_DEGREE {
+        even[k] = d[k] + d[DET_SAMPLES - k];
+        odd[k] = d[k] - d[DET_SAMPLES - k];
+    }
     let mut c = [(0.0, 0.0); DET_DEGREE + 1];
     for j in 0..=DET_DEGREE {
-        let (mut a, mut b) = (0.0, 0.0);
+        let (mut a, mut b) = (d[0], 0.0);
         // i = j k mod 17, stepped (no division).
         let mut i = 0;
-        for k in 0..DET_SAMPLES {
-            a += d[k] * DET_COS[2 * i];
-            b += d[k] * DET_SIN[2 * i];
+        for k in 1..=DET_DEGREE {
             i += j;
             if i >= DET_SAMPLES {
                 i -= DET_SAMPLES;
             }
+            a += even[k] * DET_COS[2 * i];
+            b += odd[k] * DET_SIN[2 * i];
         }
         let w = if j == 0 { 1.0 } else { 2.0 } / DET_SAMPLES as f64;
         c[j] = (w * a, -(w * b));
