@@ -1713,6 +1713,7 @@ fn block_lu(p: &[[f64; 9]; 6]) -> BlockLu {
 
 /// Step `K` (column `K`) of [`block_lu`] among the equations' rows: partial pivoting, the rows
 /// below less their multiple of the pivot row at the columns after `K`.
+#[allow(clippy::needless_range_loop)]
 #[inline(always)]
 fn eq_step<const K: usize>(m: &mut [[f64; 9]; 6], det: &mut f64, piv: &mut [f64; 12]) {
     let (mut best, mut bv) = (K, m[K][K].abs());
@@ -1782,6 +1783,7 @@ fn copy_step<const KC: usize>(
 }
 
 /// Step `K` of [`block_lu`]'s last 6 x 6 block (column `6 + K`), at the columns after `K`.
+#[allow(clippy::needless_range_loop)]
 #[inline(always)]
 fn block_step<const K: usize>(b: &mut [[f64; 6]; 6], det: &mut f64, piv: &mut [f64; 12]) {
     let (mut best, mut bv) = (K, b[K][K].abs());
