@@ -1204,42 +1204,62 @@ static int ik_gen_mono_root(const ik_gen_trig_table *c, double a, double b, doub
     return 1;
 }
 
-/* D and its derivatives at the midpoints of the IK_GEN_ROOT_GRID base intervals, four at a
-   time (see core.rs, grid_values): from the powers e^(i j m) at the first quarter's midpoints
-   m, the sums by j mod 4 give the values at m + r pi/2 too. */
+/* D and its derivatives at the midpoints of the IK_GEN_ROOT_GRID base intervals, eight at a
+   time (see core.rs, grid_values): from the powers e^(i j m) at the first half quarter's
+   midpoints m, the sums by j mod 4 of the cosine and sine parts give the values at m + r pi/2
+   and, the cosine part even and the sine part odd, at -(m + r pi/2) too. */
 static void ik_gen_grid_values(const ik_gen_trig_table *t,
                                double out[IK_GEN_ROOT_GRID][IK_GEN_TAYLOR]) {
     const int quarter = IK_GEN_ROOT_GRID / 4;
     const double h = IK_GEN_TAU / (double)IK_GEN_ROOT_GRID;
-    double s, co, zr, zi, nz, av[4][IK_GEN_TAYLOR], bv[2][IK_GEN_TAYLOR], e0, e1, o0, o1;
-    int g, j, k, q;
-    for (g = 0; g < quarter; g++) {
+    double s, co, zr, zi, nz, pv[4][IK_GEN_TAYLOR], rv[4][IK_GEN_TAYLOR], qv[2][IK_GEN_TAYLOR],
+        wv[2][IK_GEN_TAYLOR], ce, cn, cd, cq, se, sn, sd, sw, part[4][2];
+    int g, j, k, q, i;
+    for (g = 0; g < quarter / 2; g++) {
         ik_gen_unit(0.5 * ((double)g * h + (double)(g + 1) * h), &co, &s);
         zr = 1.0;
         zi = 0.0;
         for (q = 0; q < 4; q++)
-            for (k = 0; k < IK_GEN_TAYLOR; k++) av[q][k] = 0.0;
+            for (k = 0; k < IK_GEN_TAYLOR; k++) pv[q][k] = rv[q][k] = 0.0;
         for (q = 0; q < 2; q++)
-            for (k = 0; k < IK_GEN_TAYLOR; k++) bv[q][k] = 0.0;
+            for (k = 0; k < IK_GEN_TAYLOR; k++) qv[q][k] = wv[q][k] = 0.0;
         for (j = 0; j <= IK_GEN_DET_DEGREE; j++) {
             q = j % 4;
-            for (k = 0; k < IK_GEN_TAYLOR; k++) av[q][k] += t->u[j][k] * zr + t->v[j][k] * zi;
+            for (k = 0; k < IK_GEN_TAYLOR; k++) {
+                pv[q][k] += t->u[j][k] * zr;
+                rv[q][k] += t->v[j][k] * zi;
+            }
             if (q % 2 == 1)
-                for (k = 0; k < IK_GEN_TAYLOR; k++)
-                    bv[q / 2][k] += t->v[j][k] * zr - t->u[j][k] * zi;
+                for (k = 0; k < IK_GEN_TAYLOR; k++) {
+                    qv[q / 2][k] += t->u[j][k] * zi;
+                    wv[q / 2][k] += t->v[j][k] * zr;
+                }
             nz = zr * co - zi * s;
             zi = zr * s + zi * co;
             zr = nz;
         }
         for (k = 0; k < IK_GEN_TAYLOR; k++) {
-            e0 = av[0][k] + av[2][k];
-            e1 = av[0][k] - av[2][k];
-            o0 = av[1][k] + av[3][k];
-            o1 = bv[0][k] - bv[1][k];
-            out[g][k] = e0 + o0;
-            out[g + quarter][k] = e1 + o1;
-            out[g + 2 * quarter][k] = e0 - o0;
-            out[g + 3 * quarter][k] = e1 - o1;
+            ce = pv[0][k] + pv[2][k];
+            cn = pv[1][k] + pv[3][k];
+            cd = pv[0][k] - pv[2][k];
+            cq = qv[1][k] - qv[0][k];
+            se = rv[0][k] + rv[2][k];
+            sn = rv[1][k] + rv[3][k];
+            sd = rv[0][k] - rv[2][k];
+            sw = wv[0][k] - wv[1][k];
+            part[0][0] = ce + cn;
+            part[0][1] = se + sn;
+            part[1][0] = cd + cq;
+            part[1][1] = sd + sw;
+            part[2][0] = ce - cn;
+            part[2][1] = se - sn;
+            part[3][0] = cd - cq;
+            part[3][1] = sd - sw;
+            for (i = 0; i < 4; i++) {
+                out[g + i * quarter][k] = part[i][0] + part[i][1];
+                /* -(m + i pi/2): interval quarter - 1 - g's midpoint plus (3 - i) pi/2. */
+                out[quarter - 1 - g + (3 - i) * quarter][k] = part[i][0] - part[i][1];
+            }
         }
     }
 }
