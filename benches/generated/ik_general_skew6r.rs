@@ -2114,46 +2114,64 @@ pub(crate) fn trig_eval(t: &TrigTable, th: f64) -> [f64; TAYLOR] {
 /// rπ/2` (`r` = 1, 2, 3) are the others' ([`grid_values`]).
 pub const GRID_QUARTER: usize = ROOT_GRID / 4;
 
-const _: () = assert!(ROOT_GRID.is_multiple_of(4));
+const _: () = assert!(ROOT_GRID.is_multiple_of(8));
 
 /// `D` and its derivatives to the seventh ([`trig_eval`]) at the midpoints of the
-/// [`ROOT_GRID`] base intervals, `[g % GRID_QUARTER][g / GRID_QUARTER]` for interval `g`: four
-/// at a time from the powers `e^{ijm}` at the first quarter's midpoints ([`grid_powers`]),
-/// since `e^{ij(m + rπ/2)} = iʲʳ e^{ijm}`. With the sums by `j mod 4`, `A_q = Σ u zr + v zi`
-/// (the value's part) and, for odd `q`, `B_q = Σ v zr − u zi` (the part turned by `i`), the
-/// four values are `A0 + A1 + A2 + A3`, `A0 + B1 − A2 − B3`, `A0 − A1 + A2 − A3`, `A0 − B1 −
-/// A2 + B3`: 13 sums per quarter where [`trig_eval`] takes 36. The same values to a few units
-/// of rounding of `Σ |c_j| jᵏ` (another order of the sums); the search only compares them
-/// with bounds that have a margin far above that ([`ROOT_MARGIN`]), and its roots come from
-/// fresh evaluations ([`bracketed`]).
+/// [`ROOT_GRID`] base intervals, `[g % GRID_QUARTER][g / GRID_QUARTER]` for interval `g`: eight
+/// at a time from the powers `e^{ijm}` at the first half quarter's midpoints ([`grid_powers`]),
+/// since `e^{ij(m + rπ/2)} = iʲʳ e^{ijm}` and `D⁽ᵏ⁾ = C + S` with `C = Σ u cos jθ` even and `S =
+/// Σ v sin jθ` odd in `θ` (so `D⁽ᵏ⁾(−θ) = C − S`), and the grid is symmetric: `−(m + rπ/2)` is
+/// the midpoint `m′ + (3 − r)π/2` of interval `GRID_QUARTER − 1 − g`. With the sums by `j mod
+/// 4` of `u zr`, `v zi` and, for odd classes, `u zi`, `v zr`, each the same products as before
+/// (no more multiplications per midpoint than one value needs), at half the midpoints. The
+/// same values to a few units of rounding of `Σ |c_j| jᵏ` (another order of the sums); the
+/// search only compares them with bounds that have a margin far above that
+/// ([`ROOT_MARGIN`]), and its roots come from fresh evaluations ([`bracketed`]).
 #[allow(clippy::needless_range_loop)]
 pub(crate) fn grid_values(t: &TrigTable) -> [[[f64; TAYLOR]; 4]; GRID_QUARTER] {
     let powers = grid_powers();
-    std::array::from_fn(|g| {
-        let mut a = [[0.0; TAYLOR]; 4];
-        let mut b = [[0.0; TAYLOR]; 2];
+    let mut out = [[[0.0; TAYLOR]; 4]; GRID_QUARTER];
+    for g in 0..GRID_QUARTER / 2 {
+        // By j mod 4: Σ u zr (the cosine part) and Σ v zi (the sine part), and for the odd
+        // classes Σ u zi and Σ v zr (the parts turned by i).
+        let mut p = [[0.0; TAYLOR]; 4];
+        let mut r = [[0.0; TAYLOR]; 4];
+        let mut q = [[0.0; TAYLOR]; 2];
+        let mut w = [[0.0; TAYLOR]; 2];
         for (j, ((u, v), &(zr, zi))) in t.u.iter().zip(&t.v).zip(&powers[g]).enumerate() {
-            let q = j % 4;
+            let c = j % 4;
             for k in 0..TAYLOR {
-                a[q][k] += u[k] * zr + v[k] * zi;
+                p[c][k] += u[k] * zr;
+                r[c][k] += v[k] * zi;
             }
-            if q % 2 == 1 {
+            if c % 2 == 1 {
                 for k in 0..TAYLOR {
-                    b[q / 2][k] += v[k] * zr - u[k] * zi;
+                    q[c / 2][k] += u[k] * zi;
+                    w[c / 2][k] += v[k] * zr;
                 }
             }
         }
-        let mut out = [[0.0; TAYLOR]; 4];
         for k in 0..TAYLOR {
-            let (e0, e1) = (a[0][k] + a[2][k], a[0][k] - a[2][k]);
-            let (o0, o1) = (a[1][k] + a[3][k], b[0][k] - b[1][k]);
-            out[0][k] = e0 + o0;
-            out[1][k] = e1 + o1;
-            out[2][k] = e0 - o0;
-            out[3][k] = e1 - o1;
+            // The cosine and sine parts at m + rπ/2, r = 0 … 3.
+            let (ce, co) = (p[0][k] + p[2][k], p[1][k] + p[3][k]);
+            let (cd, cq) = (p[0][k] - p[2][k], q[1][k] - q[0][k]);
+            let (se, so) = (r[0][k] + r[2][k], r[1][k] + r[3][k]);
+            let (sd, sw) = (r[0][k] - r[2][k], w[0][k] - w[1][k]);
+            let parts = [
+                (ce + co, se + so),
+                (cd + cq, sd + sw),
+                (ce - co, se - so),
+                (cd - cq, sd - sw),
+            ];
+            for (i, (c, s)) in parts.iter().enumerate() {
+                out[g][i][k] = c + s;
+                // −(m + iπ/2) is m′ + (3 − i)π/2 for the midpoint m′ = −m − 3π/2 of
+                // interval GRID_QUARTER − 1 − g: the cosine part is even, the sine part odd.
+                out[GRID_QUARTER - 1 - g][3 - i][k] = c - s;
+            }
         }
-        out
-    })
+    }
+    out
 }
 
 /// The powers `e^{ijm}`, `j = 0 … DET_DEGREE`, at the midpoint `m` of each of the first

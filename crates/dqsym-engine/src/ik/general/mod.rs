@@ -316,15 +316,17 @@
 //! 157k of the 20 µs target is not reached.
 //!
 //! Session 19, the determinant route (callgrind as in session 18, the generated solver's core
-//! compiled with `rustc -O` in a harness that solves the 64 bench poses): 204.8k to 197.4k per
+//! compiled with `rustc -O` in a harness that solves the 64 bench poses): 204.8k to 195.4k per
 //! pose, the same 362 solutions (largest change in any joint `2.7e-13`, largest residual
 //! `9.8e-15`); the C port changed with it, bit for bit the Rust solver's on the 64 poses (GCC 12
-//! `-O2`, the whole program: 570.8k to 551.9k per pose). The lead of a constant block in `S(θ)`
+//! `-O2`, the whole program: 570.8k to 549.9k per pose). The lead of a constant block in `S(θ)`
 //! does not hold (see the determinant route above: the moving part of `S` has real rank 12).
 //! Changes: `θ6` by turning one vector `u` back through joints 5 to 1 (Rodrigues on a vector,
 //! no 3 x 3 products; joints 3 to 5 with the cosine and sine their bases have) (−3.2k); the
 //! back-substitution's 27 basis products once (−0.6k); the Fourier sums on the samples at `±θ`
-//! paired, half the products (−1.2k); the same bits: the LU's pivot searches with a running
+//! paired, half the products (−1.2k); the search's base grid eight values at a time (the grid
+//! is symmetric and `D`'s cosine part even, its sine part odd: `core::grid_values`) (−2.1k);
+//! the same bits: the LU's pivot searches with a running
 //! largest (−1.4k), the null vector's back-solve by `U`'s blocks, structural zeros skipped
 //! (−0.9k). Tried and dropped: `block_lu` taking its rows by value (+0.2k), the residual check's
 //! rows side by side (+0.4k), the search's bounds `r^j / j!` once per interval or only when the
