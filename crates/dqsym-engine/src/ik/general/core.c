@@ -778,14 +778,16 @@ static double ik_gen_angle_from(const double *num, const double *den, int n) {
 static void ik_gen_first_two(const ik_gen_arranged *ar, const ik_gen_elim *el,
                              const double f3[3], const double f4[3], const double f5[3],
                              double *t1, double *t2) {
-    double rhs[14], y[8], z[8], x12[9], s;
+    double rhs[14], g[3][9], y[8], z[8], x12[9], s;
     int e, k, i4, i5, i;
+    /* The 27 products of the three joints' bases once, in am's order (k, i4, i5). */
+    for (k = 0; k < 3; k++)
+        for (i4 = 0; i4 < 3; i4++)
+            for (i5 = 0; i5 < 3; i5++) g[k][ik_gen_mono(i4, i5)] = f3[k] * f4[i4] * f5[i5];
     for (e = 0; e < 14; e++) {
         s = 0.0;
         for (k = 0; k < 3; k++)
-            for (i4 = 0; i4 < 3; i4++)
-                for (i5 = 0; i5 < 3; i5++)
-                    s += el->am[e][k][ik_gen_mono(i4, i5)] * f3[k] * f4[i4] * f5[i5];
+            for (i = 0; i < 9; i++) s += el->am[e][k][i] * g[k][i];
         rhs[e] = s;
     }
     for (i = 0; i < 8; i++) {
@@ -833,34 +835,32 @@ static void ik_gen_unit(double th, double *co, double *si) {
     *si = sb * c + cb * s;
 }
 
-/* th6 from the rest: E6 = (E1 ... E5)^-1 H, read about its axis. */
-static double ik_gen_last(const ik_gen_arranged *ar, const double t[5]) {
-    double rot[3][3] = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
-    double r[3][3], n[3][3], u[3], hu[3], v[3], uv[3], co, si;
+/* th6 from the rest: E6 = (E1 ... E5)^-1 H, read about its axis: R6 u = R5^T ... R1^T R_H u
+   for a unit vector u normal to axis 6, each R^T by Rodrigues applied to the vector. */
+static double ik_gen_last(const ik_gen_arranged *ar, const double t[5], const double *fk[3]) {
+    double u[3], v[3], x[3], uv[3], co, si, f;
     const double ex[3] = {1.0, 0.0, 0.0}, ey[3] = {0.0, 1.0, 0.0};
-    const double *w6 = ar->j[5].w;
-    int k, i, j, l;
-    for (k = 0; k < 5; k++) {
-        if (ar->j[k].prism) continue;
-        ik_gen_unit(t[k], &co, &si);
-        ik_gen_rodrigues(ar->j[k].w, si, co, r);
-        for (i = 0; i < 3; i++) {
-            for (j = 0; j < 3; j++) {
-                n[i][j] = -0.0;
-                for (l = 0; l < 3; l++) n[i][j] += rot[i][l] * r[l][j];
-            }
-        }
-        memcpy(rot, n, sizeof rot);
-    }
+    const double *w6 = ar->j[5].w, *w;
+    int k, i, l;
     ik_gen_cross3(w6, fabs(w6[0]) < 0.6 ? ex : ey, u);
-    /* v = R6 u with R6 = rot^T R_H. */
-    for (i = 0; i < 3; i++) {
-        hu[i] = -0.0;
-        for (l = 0; l < 3; l++) hu[i] += ar->h[i][l] * u[l];
-    }
     for (i = 0; i < 3; i++) {
         v[i] = -0.0;
-        for (l = 0; l < 3; l++) v[i] += rot[l][i] * hu[l];
+        for (l = 0; l < 3; l++) v[i] += ar->h[i][l] * u[l];
+    }
+    for (k = 0; k < 5; k++) {
+        if (ar->j[k].prism) continue;
+        /* (Joints 3 to 5 turning have their cosine and sine in their bases already.) */
+        if (k >= 2) {
+            co = fk[k - 2][1];
+            si = fk[k - 2][2];
+        } else {
+            ik_gen_unit(t[k], &co, &si);
+        }
+        w = ar->j[k].w;
+        /* R^T v = c v - s w x v + (1 - c) (w . v) w. */
+        ik_gen_cross3(w, v, x);
+        f = (1.0 - co) * ik_gen_dot3(w, v);
+        for (i = 0; i < 3; i++) v[i] = co * v[i] - si * x[i] + f * w[i];
     }
     ik_gen_cross3(u, v, uv);
     return atan2(ik_gen_dot3(w6, uv), ik_gen_dot3(u, v));
@@ -882,6 +882,7 @@ static void ik_gen_basis(const ik_gen_joint *j, double t, double f[3]) {
 static void ik_gen_back_substitute(const ik_gen_arranged *ar, const ik_gen_elim *el,
                                    const double v[12], double t3, double out[6]) {
     double num[9], den[9], f3[3], f4[3], f5[3];
+    const double *fk[3];
     int a, b, k;
     out[2] = t3;
     /* th4: the pairs (x4^(a+1) x5^b, x4^a x5^b), a = 0..2, b = 0..2. */
@@ -905,7 +906,10 @@ static void ik_gen_back_substitute(const ik_gen_arranged *ar, const ik_gen_elim 
     ik_gen_basis(&ar->j[3], out[3], f4);
     ik_gen_basis(&ar->j[4], out[4], f5);
     ik_gen_first_two(ar, el, f3, f4, f5, &out[0], &out[1]);
-    out[5] = ik_gen_last(ar, out);
+    fk[0] = f3;
+    fk[1] = f4;
+    fk[2] = f5;
+    out[5] = ik_gen_last(ar, out, fk);
 }
 
 /* S(th) = T0 + T1 cos th + T2 sin th: the 12 x 12 matrix of matrix_poly at phi = 0 divided by
@@ -1200,42 +1204,62 @@ static int ik_gen_mono_root(const ik_gen_trig_table *c, double a, double b, doub
     return 1;
 }
 
-/* D and its derivatives at the midpoints of the IK_GEN_ROOT_GRID base intervals, four at a
-   time (see core.rs, grid_values): from the powers e^(i j m) at the first quarter's midpoints
-   m, the sums by j mod 4 give the values at m + r pi/2 too. */
+/* D and its derivatives at the midpoints of the IK_GEN_ROOT_GRID base intervals, eight at a
+   time (see core.rs, grid_values): from the powers e^(i j m) at the first half quarter's
+   midpoints m, the sums by j mod 4 of the cosine and sine parts give the values at m + r pi/2
+   and, the cosine part even and the sine part odd, at -(m + r pi/2) too. */
 static void ik_gen_grid_values(const ik_gen_trig_table *t,
                                double out[IK_GEN_ROOT_GRID][IK_GEN_TAYLOR]) {
     const int quarter = IK_GEN_ROOT_GRID / 4;
     const double h = IK_GEN_TAU / (double)IK_GEN_ROOT_GRID;
-    double s, co, zr, zi, nz, av[4][IK_GEN_TAYLOR], bv[2][IK_GEN_TAYLOR], e0, e1, o0, o1;
-    int g, j, k, q;
-    for (g = 0; g < quarter; g++) {
+    double s, co, zr, zi, nz, pv[4][IK_GEN_TAYLOR], rv[4][IK_GEN_TAYLOR], qv[2][IK_GEN_TAYLOR],
+        wv[2][IK_GEN_TAYLOR], ce, cn, cd, cq, se, sn, sd, sw, part[4][2];
+    int g, j, k, q, i;
+    for (g = 0; g < quarter / 2; g++) {
         ik_gen_unit(0.5 * ((double)g * h + (double)(g + 1) * h), &co, &s);
         zr = 1.0;
         zi = 0.0;
         for (q = 0; q < 4; q++)
-            for (k = 0; k < IK_GEN_TAYLOR; k++) av[q][k] = 0.0;
+            for (k = 0; k < IK_GEN_TAYLOR; k++) pv[q][k] = rv[q][k] = 0.0;
         for (q = 0; q < 2; q++)
-            for (k = 0; k < IK_GEN_TAYLOR; k++) bv[q][k] = 0.0;
+            for (k = 0; k < IK_GEN_TAYLOR; k++) qv[q][k] = wv[q][k] = 0.0;
         for (j = 0; j <= IK_GEN_DET_DEGREE; j++) {
             q = j % 4;
-            for (k = 0; k < IK_GEN_TAYLOR; k++) av[q][k] += t->u[j][k] * zr + t->v[j][k] * zi;
+            for (k = 0; k < IK_GEN_TAYLOR; k++) {
+                pv[q][k] += t->u[j][k] * zr;
+                rv[q][k] += t->v[j][k] * zi;
+            }
             if (q % 2 == 1)
-                for (k = 0; k < IK_GEN_TAYLOR; k++)
-                    bv[q / 2][k] += t->v[j][k] * zr - t->u[j][k] * zi;
+                for (k = 0; k < IK_GEN_TAYLOR; k++) {
+                    qv[q / 2][k] += t->u[j][k] * zi;
+                    wv[q / 2][k] += t->v[j][k] * zr;
+                }
             nz = zr * co - zi * s;
             zi = zr * s + zi * co;
             zr = nz;
         }
         for (k = 0; k < IK_GEN_TAYLOR; k++) {
-            e0 = av[0][k] + av[2][k];
-            e1 = av[0][k] - av[2][k];
-            o0 = av[1][k] + av[3][k];
-            o1 = bv[0][k] - bv[1][k];
-            out[g][k] = e0 + o0;
-            out[g + quarter][k] = e1 + o1;
-            out[g + 2 * quarter][k] = e0 - o0;
-            out[g + 3 * quarter][k] = e1 - o1;
+            ce = pv[0][k] + pv[2][k];
+            cn = pv[1][k] + pv[3][k];
+            cd = pv[0][k] - pv[2][k];
+            cq = qv[1][k] - qv[0][k];
+            se = rv[0][k] + rv[2][k];
+            sn = rv[1][k] + rv[3][k];
+            sd = rv[0][k] - rv[2][k];
+            sw = wv[0][k] - wv[1][k];
+            part[0][0] = ce + cn;
+            part[0][1] = se + sn;
+            part[1][0] = cd + cq;
+            part[1][1] = sd + sw;
+            part[2][0] = ce - cn;
+            part[2][1] = se - sn;
+            part[3][0] = cd - cq;
+            part[3][1] = sd - sw;
+            for (i = 0; i < 4; i++) {
+                out[g + i * quarter][k] = part[i][0] + part[i][1];
+                /* -(m + i pi/2): interval quarter - 1 - g's midpoint plus (3 - i) pi/2. */
+                out[quarter - 1 - g + (3 - i) * quarter][k] = part[i][0] - part[i][1];
+            }
         }
     }
 }
@@ -1380,7 +1404,8 @@ static void ik_gen_null_vector_lu(const double m[12][12], double y[12]) {
 static int ik_gen_det_candidates(const ik_gen_arranged *ar, const ik_gen_elim *el,
                                  double roots[24][6], int *n, int *degree, double *best) {
     double tm[3][12][12], m[12][12], v[12], y[12], t[6], d[IK_GEN_DET_SAMPLES],
-        c[IK_GEN_DET_DEGREE + 1][2], th[24], scale = 0.0, good = 0.0, ratio, a, b, w,
+        c[IK_GEN_DET_DEGREE + 1][2], th[24], even[IK_GEN_DET_DEGREE + 1],
+        odd[IK_GEN_DET_DEGREE + 1], scale = 0.0, good = 0.0, ratio, a, b, w,
         interp = 0.0, check, t3, co, si;
     int k, j, i, deg, count;
     ik_gen_matrix_trig((const double (*)[6][9])el->sig, tm);
@@ -1395,14 +1420,19 @@ static int ik_gen_det_candidates(const ik_gen_arranged *ar, const ik_gen_elim *e
         *best = good;
         return -1;
     }
-    /* c_j = a_j - i b_j of D(th) = a_0 + sum a_j cos j th + b_j sin j th. */
+    /* c_j = a_j - i b_j of D(th) = a_0 + sum a_j cos j th + b_j sin j th; the samples at
+       +-th paired (cos j th even, sin j th odd). */
+    for (k = 1; k <= IK_GEN_DET_DEGREE; k++) {
+        even[k] = d[k] + d[IK_GEN_DET_SAMPLES - k];
+        odd[k] = d[k] - d[IK_GEN_DET_SAMPLES - k];
+    }
     for (j = 0; j <= IK_GEN_DET_DEGREE; j++) {
-        a = 0.0;
+        a = d[0];
         b = 0.0;
-        for (k = 0; k < IK_GEN_DET_SAMPLES; k++) {
+        for (k = 1; k <= IK_GEN_DET_DEGREE; k++) {
             const int idx = 2 * ((j * k) % IK_GEN_DET_SAMPLES);
-            a += d[k] * IK_GEN_DET_COS[idx];
-            b += d[k] * IK_GEN_DET_SIN[idx];
+            a += even[k] * IK_GEN_DET_COS[idx];
+            b += odd[k] * IK_GEN_DET_SIN[idx];
         }
         w = (j == 0 ? 1.0 : 2.0) / (double)IK_GEN_DET_SAMPLES;
         c[j][0] = w * a;

@@ -1175,15 +1175,20 @@ fn back_substitute(ar: &Arranged, el: &Elim, v: &[f64; 12], t3: f64) -> [f64; 6]
         }
     };
     let (f3, f4, f5) = (f(2, t3), f(3, t4), f(4, t5));
+    // The 27 products of the three joints' bases once, in am's order (k, i4, i5).
+    let mut g = [0.0; 27];
+    for k in 0..3 {
+        for i4 in 0..3 {
+            for i5 in 0..3 {
+                g[9 * k + mono(i4, i5)] = f3[k] * f4[i4] * f5[i5];
+            }
+        }
+    }
     let mut rhs = [0.0; 14];
     for e in 0..14 {
         let mut s = 0.0;
-        for k in 0..3 {
-            for i4 in 0..3 {
-                for i5 in 0..3 {
-                    s += el.am[e][k][mono(i4, i5)] * f3[k] * f4[i4] * f5[i5];
-                }
-            }
+        for (a, gm) in el.am[e].as_flattened().iter().zip(&g) {
+            s += a * gm;
         }
         rhs[e] = s;
     }
@@ -1219,23 +1224,8 @@ fn back_substitute(ar: &Arranged, el: &Elim, v: &[f64; 12], t3: f64) -> [f64; 6]
     } else {
         x12[mono(0, 2)].atan2(x12[mono(0, 1)])
     };
-    // θ6 from the rest: E6 = (E1 ⋯ E5)⁻¹ H, read about its axis.
-    let t = [t1, t2, t3, t4, t5];
-    let mut rot = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    for (k, tk) in t.iter().enumerate() {
-        if ar.j[k].prism {
-            continue;
-        }
-        let (c, s) = unit(*tk);
-        let r = rodrigues(&ar.j[k].w, s, c);
-        let mut n = [[0.0; 3]; 3];
-        for i in 0..3 {
-            for j in 0..3 {
-                n[i][j] = (0..3).map(|l| rot[i][l] * r[l][j]).sum();
-            }
-        }
-        rot = n;
-    }
+    // θ6 from the rest: E6 = (E1 ⋯ E5)⁻¹ H, read about its axis: R6 u = R5ᵀ ⋯ R1ᵀ R_H u for
+    // a unit vector u normal to axis 6, each Rᵀ by Rodrigues applied to the vector.
     let w6 = ar.j[5].w;
     let e = if w6[0].abs() < 0.6 {
         [1.0, 0.0, 0.0]
@@ -1243,9 +1233,25 @@ fn back_substitute(ar: &Arranged, el: &Elim, v: &[f64; 12], t3: f64) -> [f64; 6]
         [0.0, 1.0, 0.0]
     };
     let u = cross3(&w6, &e);
-    // v = R6 u with R6 = rotᵀ R_H.
-    let hu: V = std::array::from_fn(|i| (0..3).map(|l| ar.h[i][l] * u[l]).sum());
-    let v: V = std::array::from_fn(|i| (0..3).map(|l| rot[l][i] * hu[l]).sum());
+    let mut v: V = std::array::from_fn(|i| (0..3).map(|l| ar.h[i][l] * u[l]).sum());
+    // (Joints 3 to 5 turning have their cosine and sine in their bases already.)
+    let t = [t1, t2, t3, t4, t5];
+    let fk = [f3, f4, f5];
+    for (k, tk) in t.iter().enumerate() {
+        if ar.j[k].prism {
+            continue;
+        }
+        let (c, s) = if k >= 2 {
+            (fk[k - 2][1], fk[k - 2][2])
+        } else {
+            unit(*tk)
+        };
+        let w = &ar.j[k].w;
+        // Rᵀ v = c v − s w × v + (1 − c) (w · v) w.
+        let x = cross3(w, &v);
+        let f = (1.0 - c) * dot3(w, &v);
+        v = std::array::from_fn(|i| c * v[i] - s * x[i] + f * w[i]);
+    }
     let t6 = dot3(&w6, &cross3(&u, &v)).atan2(dot3(&u, &v));
     [t1, t2, t3, t4, t5, t6]
 }
@@ -1605,38 +1611,6 @@ impl BlockLu {
         }
         out
     }
-
-    /// `U`'s entry `(i, c)`, `c > i`, with `copy` the [`BlockLu::copies`].
-    fn u(&self, copy: &[usize; 6], i: usize, c: usize) -> f64 {
-        if i >= 6 {
-            return self.b[i - 6][c - 6];
-        }
-        let copy = if copy[i] == usize::MAX {
-            None
-        } else {
-            Some(copy[i])
-        };
-        match copy {
-            // [0 | a = 3 | a = 1 | a = 2]
-            Some(j) => {
-                if c < 3 {
-                    0.0
-                } else {
-                    self.low[j][c - 3]
-                }
-            }
-            // [a = 0 | 0 | a = 1 | a = 2]
-            None => {
-                if c < 3 {
-                    self.eq[i][c]
-                } else if c < 6 {
-                    0.0
-                } else {
-                    self.eq[i][c - 3]
-                }
-            }
-        }
-    }
 }
 
 /// The LU of `S` from its six distinct rows `p`, with the same pivots, row swaps, products and
@@ -1698,12 +1672,13 @@ fn block_lu(p: &[[f64; 9]; 6]) -> BlockLu {
 
 /// Step `K` (column `K`) of [`block_lu`] among the equations' rows: partial pivoting, the rows
 /// below less their multiple of the pivot row at the columns after `K`.
+#[allow(clippy::needless_range_loop)]
 #[inline(always)]
 fn eq_step<const K: usize>(m: &mut [[f64; 9]; 6], det: &mut f64, piv: &mut [f64; 12]) {
-    let mut best = K;
+    let (mut best, mut bv) = (K, m[K][K].abs());
     for r in K + 1..6 {
-        if m[r][K].abs() > m[best][K].abs() {
-            best = r;
+        if m[r][K].abs() > bv {
+            (best, bv) = (r, m[r][K].abs());
         }
     }
     if best != K {
@@ -1767,12 +1742,13 @@ fn copy_step<const KC: usize>(
 }
 
 /// Step `K` of [`block_lu`]'s last 6 x 6 block (column `6 + K`), at the columns after `K`.
+#[allow(clippy::needless_range_loop)]
 #[inline(always)]
 fn block_step<const K: usize>(b: &mut [[f64; 6]; 6], det: &mut f64, piv: &mut [f64; 12]) {
-    let mut best = K;
+    let (mut best, mut bv) = (K, b[K][K].abs());
     for r in K + 1..6 {
-        if b[r][K].abs() > b[best][K].abs() {
-            best = r;
+        if b[r][K].abs() > bv {
+            (best, bv) = (r, b[r][K].abs());
         }
     }
     if best != K {
@@ -1826,10 +1802,31 @@ pub(crate) fn null_vector_trig(t: &TrigRows, s: f64, c: f64) -> [f64; 12] {
     let copy = f.copies();
     let mut y = [0.0; 12];
     y[kmin] = 1.0;
+    // U's rows by their blocks, the structural zeros skipped: their products `0 · y_c` leave a
+    // sum started at `+0` unchanged (it is never `−0`), and a vector with an entry that is not
+    // finite takes the complete pivoting of `checked_null_rows` whatever its other entries.
     for i in (0..kmin).rev() {
         let mut s = 0.0;
-        for c in i + 1..=kmin {
-            s -= f.u(&copy, i, c) * y[c];
+        if i >= 6 {
+            let row = &f.b[i - 6];
+            for c in i + 1..=kmin {
+                s -= row[c - 6] * y[c];
+            }
+        } else if copy[i] != usize::MAX {
+            // [0 | a = 3 | a = 1 | a = 2]
+            let row = &f.low[copy[i]];
+            for c in (i + 1).max(3)..=kmin {
+                s -= row[c - 3] * y[c];
+            }
+        } else {
+            // [a = 0 | 0 | a = 1 | a = 2]
+            let row = &f.eq[i];
+            for c in i + 1..=kmin.min(2) {
+                s -= row[c] * y[c];
+            }
+            for c in (i + 1).max(6)..=kmin {
+                s -= row[c - 3] * y[c];
+            }
         }
         y[i] = if f.piv[i] == 0.0 { 0.0 } else { s / f.piv[i] };
     }
@@ -2076,46 +2073,64 @@ pub(crate) fn trig_eval(t: &TrigTable, th: f64) -> [f64; TAYLOR] {
 /// rπ/2` (`r` = 1, 2, 3) are the others' ([`grid_values`]).
 pub const GRID_QUARTER: usize = ROOT_GRID / 4;
 
-const _: () = assert!(ROOT_GRID.is_multiple_of(4));
+const _: () = assert!(ROOT_GRID.is_multiple_of(8));
 
 /// `D` and its derivatives to the seventh ([`trig_eval`]) at the midpoints of the
-/// [`ROOT_GRID`] base intervals, `[g % GRID_QUARTER][g / GRID_QUARTER]` for interval `g`: four
-/// at a time from the powers `e^{ijm}` at the first quarter's midpoints ([`grid_powers`]),
-/// since `e^{ij(m + rπ/2)} = iʲʳ e^{ijm}`. With the sums by `j mod 4`, `A_q = Σ u zr + v zi`
-/// (the value's part) and, for odd `q`, `B_q = Σ v zr − u zi` (the part turned by `i`), the
-/// four values are `A0 + A1 + A2 + A3`, `A0 + B1 − A2 − B3`, `A0 − A1 + A2 − A3`, `A0 − B1 −
-/// A2 + B3`: 13 sums per quarter where [`trig_eval`] takes 36. The same values to a few units
-/// of rounding of `Σ |c_j| jᵏ` (another order of the sums); the search only compares them
-/// with bounds that have a margin far above that ([`ROOT_MARGIN`]), and its roots come from
-/// fresh evaluations ([`bracketed`]).
+/// [`ROOT_GRID`] base intervals, `[g % GRID_QUARTER][g / GRID_QUARTER]` for interval `g`: eight
+/// at a time from the powers `e^{ijm}` at the first half quarter's midpoints ([`grid_powers`]),
+/// since `e^{ij(m + rπ/2)} = iʲʳ e^{ijm}` and `D⁽ᵏ⁾ = C + S` with `C = Σ u cos jθ` even and `S =
+/// Σ v sin jθ` odd in `θ` (so `D⁽ᵏ⁾(−θ) = C − S`), and the grid is symmetric: `−(m + rπ/2)` is
+/// the midpoint `m′ + (3 − r)π/2` of interval `GRID_QUARTER − 1 − g`. With the sums by `j mod
+/// 4` of `u zr`, `v zi` and, for odd classes, `u zi`, `v zr`, each the same products as before
+/// (no more multiplications per midpoint than one value needs), at half the midpoints. The
+/// same values to a few units of rounding of `Σ |c_j| jᵏ` (another order of the sums); the
+/// search only compares them with bounds that have a margin far above that
+/// ([`ROOT_MARGIN`]), and its roots come from fresh evaluations ([`bracketed`]).
 #[allow(clippy::needless_range_loop)]
 pub(crate) fn grid_values(t: &TrigTable) -> [[[f64; TAYLOR]; 4]; GRID_QUARTER] {
     let powers = grid_powers();
-    std::array::from_fn(|g| {
-        let mut a = [[0.0; TAYLOR]; 4];
-        let mut b = [[0.0; TAYLOR]; 2];
+    let mut out = [[[0.0; TAYLOR]; 4]; GRID_QUARTER];
+    for g in 0..GRID_QUARTER / 2 {
+        // By j mod 4: Σ u zr (the cosine part) and Σ v zi (the sine part), and for the odd
+        // classes Σ u zi and Σ v zr (the parts turned by i).
+        let mut p = [[0.0; TAYLOR]; 4];
+        let mut r = [[0.0; TAYLOR]; 4];
+        let mut q = [[0.0; TAYLOR]; 2];
+        let mut w = [[0.0; TAYLOR]; 2];
         for (j, ((u, v), &(zr, zi))) in t.u.iter().zip(&t.v).zip(&powers[g]).enumerate() {
-            let q = j % 4;
+            let c = j % 4;
             for k in 0..TAYLOR {
-                a[q][k] += u[k] * zr + v[k] * zi;
+                p[c][k] += u[k] * zr;
+                r[c][k] += v[k] * zi;
             }
-            if q % 2 == 1 {
+            if c % 2 == 1 {
                 for k in 0..TAYLOR {
-                    b[q / 2][k] += v[k] * zr - u[k] * zi;
+                    q[c / 2][k] += u[k] * zi;
+                    w[c / 2][k] += v[k] * zr;
                 }
             }
         }
-        let mut out = [[0.0; TAYLOR]; 4];
         for k in 0..TAYLOR {
-            let (e0, e1) = (a[0][k] + a[2][k], a[0][k] - a[2][k]);
-            let (o0, o1) = (a[1][k] + a[3][k], b[0][k] - b[1][k]);
-            out[0][k] = e0 + o0;
-            out[1][k] = e1 + o1;
-            out[2][k] = e0 - o0;
-            out[3][k] = e1 - o1;
+            // The cosine and sine parts at m + rπ/2, r = 0 … 3.
+            let (ce, co) = (p[0][k] + p[2][k], p[1][k] + p[3][k]);
+            let (cd, cq) = (p[0][k] - p[2][k], q[1][k] - q[0][k]);
+            let (se, so) = (r[0][k] + r[2][k], r[1][k] + r[3][k]);
+            let (sd, sw) = (r[0][k] - r[2][k], w[0][k] - w[1][k]);
+            let parts = [
+                (ce + co, se + so),
+                (cd + cq, sd + sw),
+                (ce - co, se - so),
+                (cd - cq, sd - sw),
+            ];
+            for (i, (c, s)) in parts.iter().enumerate() {
+                out[g][i][k] = c + s;
+                // −(m + iπ/2) is m′ + (3 − i)π/2 for the midpoint m′ = −m − 3π/2 of
+                // interval GRID_QUARTER − 1 − g: the cosine part is even, the sine part odd.
+                out[GRID_QUARTER - 1 - g][3 - i][k] = c - s;
+            }
         }
-        out
-    })
+    }
+    out
 }
 
 /// The powers `e^{ijm}`, `j = 0 … DET_DEGREE`, at the midpoint `m` of each of the first
@@ -2476,18 +2491,25 @@ pub(crate) fn det_coefficients(
         return Err(GaveUp::Unconditioned(good));
     }
     // c_j = a_j − i b_j of D(θ) = a_0 + Σ a_j cos jθ + b_j sin jθ = Re Σ c_j e^{ijθ}.
+    // The samples at ±θ paired: cos jθ is even, sin jθ odd.
+    let mut even = [0.0; DET_DEGREE + 1];
+    let mut odd = [0.0; DET_DEGREE + 1];
+    for k in 1..=DET_DEGREE {
+        even[k] = d[k] + d[DET_SAMPLES - k];
+        odd[k] = d[k] - d[DET_SAMPLES - k];
+    }
     let mut c = [(0.0, 0.0); DET_DEGREE + 1];
     for j in 0..=DET_DEGREE {
-        let (mut a, mut b) = (0.0, 0.0);
+        let (mut a, mut b) = (d[0], 0.0);
         // i = j k mod 17, stepped (no division).
         let mut i = 0;
-        for k in 0..DET_SAMPLES {
-            a += d[k] * DET_COS[2 * i];
-            b += d[k] * DET_SIN[2 * i];
+        for k in 1..=DET_DEGREE {
             i += j;
             if i >= DET_SAMPLES {
                 i -= DET_SAMPLES;
             }
+            a += even[k] * DET_COS[2 * i];
+            b += odd[k] * DET_SIN[2 * i];
         }
         let w = if j == 0 { 1.0 } else { 2.0 } / DET_SAMPLES as f64;
         c[j] = (w * a, -(w * b));

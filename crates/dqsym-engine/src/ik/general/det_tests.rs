@@ -1098,3 +1098,137 @@ fn half_terms_are_the_half_angle_products_in_order() {
         }
     }
 }
+
+/// The sizes of the pivots of `m` (rows of equal length) by elimination with complete
+/// pivoting, over the first: a gap after the `r`-th shows a numerical rank `r`.
+fn pivot_ratios(mut m: Vec<Vec<f64>>) -> Vec<f64> {
+    let (rows, cols) = (m.len(), m[0].len());
+    let mut out = Vec::new();
+    for k in 0..rows.min(cols) {
+        let (mut br, mut bc) = (k, k);
+        for r in k..rows {
+            for c in k..cols {
+                if m[r][c].abs() > m[br][bc].abs() {
+                    (br, bc) = (r, c);
+                }
+            }
+        }
+        m.swap(k, br);
+        for row in m.iter_mut() {
+            row.swap(k, bc);
+        }
+        let d = m[k][k];
+        out.push(d.abs());
+        if d == 0.0 {
+            break;
+        }
+        for r in k + 1..rows {
+            let f = m[r][k] / d;
+            for c in k..cols {
+                m[r][c] -= f * m[k][c];
+            }
+        }
+    }
+    let first = out[0];
+    out.iter().map(|p| p / first).collect()
+}
+
+/// Why `det S(θ)` is of degree 8 and not 12, and why no constant block splits off `S(θ)`
+/// (the structure the module's doc proves under "The determinant route"), on the skew arm and
+/// random DH arms, at random targets, in all twelve arrangements:
+///
+/// - The parts of the six rows of `S(θ)` that move with `θ` (`T1`, `T2` of [`trig_rows`],
+///   stacked: 12 x 9) have rank 8: `θ` turns only the components of the four vector quantities
+///   normal to the hidden axis. Where joints 3 to 6 of the arranged loop are all the arm's or
+///   all conjugated by the target (arrangements 0, 4, 5, forwards or backwards) their kernel is
+///   the same at every target (the four targets' parts stacked, 48 x 9, have rank 8 too); in
+///   the other arrangements it moves with the target (rank 9).
+/// - `T1 + i T2` (the 12 x 12 of `S`) has complex rank 8 (its real form, 24 x 24, rank 16),
+///   again with the same kernel at every target in those arrangements: so `det (z S)`,
+///   `z = e^{iθ}`, has the factor `z⁴` (and its leading coefficient a 4-dimensional kernel),
+///   the spurious `(1 + x²)⁴`.
+/// - But `T1`, `T2` of the whole 12 x 12 `S`, stacked (24 x 12) or side by side (12 x 24),
+///   have rank 12: no combination of the columns (or of the rows) of `S(θ)`, with constant
+///   coefficients, is free of `θ`, so no constant block can be split off it.
+#[test]
+fn the_moving_part_of_s_has_rank_eight_in_its_rows_and_no_constant_block() {
+    let mut rng = Rng(0x29_0007);
+    let (mut worst_low, mut worst_gap, mut worst_moving) = (0.0f64, f64::INFINITY, 1.0f64);
+    let mut shifted_moves = 0;
+    for arm in 0..7 {
+        let rows: [(f64, f64, f64); 6] = if arm == 0 {
+            skew_rows()
+        } else {
+            std::array::from_fn(|_| (rng.unit() - 0.5, rng.unit() - 0.5, rng.angle()))
+        };
+        let (home, js0) = dh(&rows, &[0.0; 6]);
+        let targets: Vec<_> = (0..4)
+            .map(|_| {
+                let q: [f64; 6] = std::array::from_fn(|_| rng.angle());
+                let (t, _) = dh(&rows, &q);
+                compose(&[t[0], t[1], t[2]], &inverse(&[home[0], home[1], home[2]]))
+            })
+            .collect();
+        for arr in 0..12 {
+            let (mut moving, mut complex) = (Vec::new(), Vec::new());
+            for g in &targets {
+                let el = Arranged::new(&js0, g, arr).elim().expect("elimination");
+                let t = trig_rows(&el.sig);
+                let s = matrix_trig(&el.sig);
+                let rows9: Vec<Vec<f64>> = (1..3)
+                    .flat_map(|d| t[d].iter().map(|r| r.to_vec()))
+                    .collect();
+                let p = pivot_ratios(rows9.clone());
+                worst_low = worst_low.max(p[8]);
+                worst_gap = worst_gap.min(p[7]);
+                moving.extend(rows9);
+                // The real form [[S1, −S2], [S2, S1]] of S1 + i S2.
+                let re: Vec<Vec<f64>> = (0..24)
+                    .map(|r| {
+                        (0..24)
+                            .map(|c| {
+                                let (i, j) = (r % 12, c % 12);
+                                match (r < 12, c < 12) {
+                                    (true, true) | (false, false) => s[1][i][j],
+                                    (true, false) => -s[2][i][j],
+                                    (false, true) => s[2][i][j],
+                                }
+                            })
+                            .collect()
+                    })
+                    .collect();
+                let p = pivot_ratios(re.clone());
+                worst_low = worst_low.max(p[16]);
+                worst_gap = worst_gap.min(p[15]);
+                complex.extend(re);
+                let stacked: Vec<Vec<f64>> = (1..3)
+                    .flat_map(|d| s[d].iter().map(|r| r.to_vec()))
+                    .collect();
+                let side: Vec<Vec<f64>> = (0..12)
+                    .map(|r| s[1][r].iter().chain(&s[2][r]).copied().collect())
+                    .collect();
+                worst_moving = worst_moving.min(pivot_ratios(stacked)[11]);
+                worst_moving = worst_moving.min(pivot_ratios(side)[11]);
+            }
+            // The same kernels at every target when joints 3 to 6 of the arranged loop are all
+            // the arm's or all conjugated by the target (a rigid motion of the four axes
+            // together): arrangements 0, 4, 5 (forwards or backwards). Else they move.
+            let (pm, pc) = (pivot_ratios(moving), pivot_ratios(complex));
+            if matches!(arr % 6, 0 | 4 | 5) {
+                worst_low = worst_low.max(pm[8]).max(pc[16]);
+            } else {
+                worst_gap = worst_gap.min(pm[8]).min(pc[16]);
+                shifted_moves += 1;
+            }
+        }
+    }
+    // Measured: the pivots past the rank below 5e-15, those within it above 3e-5, the moving
+    // part of the whole S above 1e-4.
+    assert!(worst_low <= 1e-11, "a pivot past the rank: {worst_low:e}");
+    assert!(worst_gap >= 1e-7, "a pivot within the rank: {worst_gap:e}");
+    assert!(
+        worst_moving >= 1e-7,
+        "the moving part of S lost rank: {worst_moving:e}"
+    );
+    assert_eq!(shifted_moves, 42);
+}

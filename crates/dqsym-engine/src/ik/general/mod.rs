@@ -166,6 +166,34 @@
 //! arm), the route gives up and the eigenvalue route decides, as it does when no sample is
 //! conditioned or the check angle disagrees.
 //!
+//! Why `det S` has degree 8 at every arm, and why no smaller determinant splits off `S(θ)`
+//! (issue #29, session 19; the unit test
+//! `det_tests::the_moving_part_of_s_has_rank_eight_in_its_rows_and_no_constant_block` checks
+//! each rank below on the skew arm and random arms, all twelve arrangements). The
+//! hidden joint is a rotation `Rot(θ)` between two constant translations (step 2), so the left
+//! side is `L Rot(θ) u(X45)`, `u` the fourteen quantities of `E4 E5 (p6, w6)` moved by a
+//! constant translation: `Rot(θ)` leaves the two scalars and the four vectors' components
+//! along the axis alone and turns the eight others, `cos θ Π + sin θ J` (`Π` the projection
+//! on the four normal planes, `J` the quarter turn in each). So `T1`, `T2` (the parts of `Σ =
+//! N Am` in `cos θ3`, `sin θ3`) are `N L Π U⊥`, `N L J U⊥`, with `U⊥` the 8 x 9 matrix of those
+//! eight components in `X45`: stacked (12 x 9) they have rank 8, and their kernel, `U⊥`'s,
+//! depends on joints 3 to 6 of the arranged loop alone, so it is the same at every target
+//! where those four are all the arm's or all conjugated by the target (a common rigid motion:
+//! arrangements 0, 4, 5, forwards or backwards) and moves with it in the others. With `z =
+//! e^{iθ}`, `z S(θ) = A⁻ + z T0 + z² A⁺`, `A± = (T1 ∓ i T2) / 2`, and `Π + i J` has complex
+//! rank one in each plane: `T1 + i T2` has complex rank 4 in nine columns, so the 12 x 12 `A⁻`
+//! (six rows and their copies times `x4`) has rank 8 at most, and so has `A⁺`. Then `det (z
+//! S)` has the factor `z⁴` and degree 20 at most: `det S = z⁻⁸ p(z)`, `p` of degree 16, a
+//! trigonometric polynomial of degree 8 (the spurious `(1 + x²)⁴` is this), whatever the arm.
+//! A general 6R has 16 solutions, so no elimination of this kind has a lower degree and
+//! needs fewer samples. A constant block does not split off either: the real parts `T1`,
+//! `T2` of the 12 x 12 `S`, stacked (24 x 12) and side by side (12 x 24), have rank 12 at every
+//! arm and target tried, so no combination of its columns or of its rows with constant
+//! coefficients is free of `θ`. The constant block there is is complex: with `Z` the kernel of
+//! `A⁻` and `Y` the left kernel of `A⁺`, `Y S(θ) Z = Y T0 Z` (4 x 4), and its Schur
+//! complement is an 8 x 8 matrix quadratic in `z` with complex entries, whose samples cost
+//! more than the real 12 x 12 LU on its blocks (about 230 multiplications and additions).
+//!
 //! Why not the companion matrix of `p(x) = (1 + x²)⁸ det S` in monomials (tried): its QR
 //! took 207k instructions (more than the linearisation's) and its roots came out to `1e-6`
 //! only (monomials are ill-conditioned for sixteen roots spread on the real line), losing two
@@ -286,6 +314,24 @@
 //! 21.5k, the search and null vectors the rest), the refinement 43k (two forward
 //! kinematics per root at about 2k each), the elimination 26k (the QR of `Bm` 13.6k). The
 //! 157k of the 20 µs target is not reached.
+//!
+//! Session 19, the determinant route (callgrind as in session 18, the generated solver's core
+//! compiled with `rustc -O` in a harness that solves the 64 bench poses): 204.8k to 195.4k per
+//! pose, the same 362 solutions (largest change in any joint `2.7e-13`, largest residual
+//! `9.8e-15`); the C port changed with it, bit for bit the Rust solver's on the 64 poses (GCC 12
+//! `-O2`, the whole program: 570.8k to 549.9k per pose). The lead of a constant block in `S(θ)`
+//! does not hold (see the determinant route above: the moving part of `S` has real rank 12).
+//! Changes: `θ6` by turning one vector `u` back through joints 5 to 1 (Rodrigues on a vector,
+//! no 3 x 3 products; joints 3 to 5 with the cosine and sine their bases have) (−3.2k); the
+//! back-substitution's 27 basis products once (−0.6k); the Fourier sums on the samples at `±θ`
+//! paired, half the products (−1.2k); the search's base grid eight values at a time (the grid
+//! is symmetric and `D`'s cosine part even, its sine part odd: `core::grid_values`) (−2.1k);
+//! the same bits: the LU's pivot searches with a running
+//! largest (−1.4k), the null vector's back-solve by `U`'s blocks, structural zeros skipped
+//! (−0.9k). Tried and dropped: `block_lu` taking its rows by value (+0.2k), the residual check's
+//! rows side by side (+0.4k), the search's bounds `r^j / j!` once per interval or only when the
+//! one before decided nothing (±0.1k). The JavaScript and Python ports are unchanged (their
+//! solutions agree within the ports tests' tolerance).
 
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod apart;
