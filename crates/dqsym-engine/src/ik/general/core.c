@@ -1586,13 +1586,43 @@ static double ik_gen_normal(const double ax[6][7], const double f[3][4], const d
     return tr;
 }
 
+/* Solves m d = g by Cholesky's factorization m = L L^T (the damped normal matrix is symmetric
+   positive definite; see core.rs, cholesky_solve); 0 where a pivot is not positive and finite. */
+static int ik_gen_cholesky_solve(const double m[6][6], const double g[6], double d[6]) {
+    double l[6][6], inv[6], y[6], s, ir, t;
+    int i, j, k;
+    for (j = 0; j < 6; j++) {
+        s = m[j][j];
+        for (k = 0; k < j; k++) s -= l[j][k] * l[j][k];
+        if (!(s > 0.0 && isfinite(s))) return 0;
+        ir = 1.0 / sqrt(s);
+        inv[j] = ir;
+        for (i = j + 1; i < 6; i++) {
+            t = m[i][j];
+            for (k = 0; k < j; k++) t -= l[i][k] * l[j][k];
+            l[i][j] = t * ir;
+        }
+    }
+    for (i = 0; i < 6; i++) {
+        t = g[i];
+        for (k = 0; k < i; k++) t -= l[i][k] * y[k];
+        y[i] = t * inv[i];
+    }
+    for (i = 5; i >= 0; i--) {
+        t = y[i];
+        for (k = i + 1; k < 6; k++) t -= l[k][i] * d[k];
+        d[i] = t * inv[i];
+    }
+    return 1;
+}
+
 /* Damped Gauss-Newton from q on the pose residual (scaled lengths); returns the final
    residual. */
 static double ik_gen_refine(const double ax[6][7], const double home[3][4], const double t[3][4],
                             double q[6]) {
     double f[3][4], cur[6][6], e[12], f2[3][4], cur2[6][6], e2[12];
-    double a[6][6], m[6][6], g[6], d[6], next[6], res, r2, tr, lambda = IK_GEN_DAMP_START, ratio;
-    int it, i, p[6], done;
+    double a[6][6], m[6][6], g[6], d[6], next[6], res, r2, tr, lambda = IK_GEN_DAMP_START;
+    int it, i, done;
     ik_gen_forward(ax, home, q, f, cur);
     res = ik_gen_error((const double (*)[4])f, t, e);
     for (it = 0; it < IK_GEN_REFINE_ITERS; it++) {
@@ -1601,9 +1631,7 @@ static double ik_gen_refine(const double ax[6][7], const double home[3][4], cons
         for (done = 0; !done;) {
             memcpy(m, a, sizeof m);
             for (i = 0; i < 6; i++) m[i][i] += lambda * fmax(tr, IK_GEN_MIN_POSITIVE);
-            ratio = ik_gen_lu(&m[0][0], 6, p);
-            if (ratio > 0.0 && isfinite(ratio)) {
-                ik_gen_lu_solve(&m[0][0], 6, p, g, d);
+            if (ik_gen_cholesky_solve((const double (*)[6])m, g, d)) {
                 for (i = 0; i < 6; i++) next[i] = q[i] + d[i];
                 ik_gen_forward(ax, home, next, f2, cur2);
                 r2 = ik_gen_error((const double (*)[4])f2, t, e2);

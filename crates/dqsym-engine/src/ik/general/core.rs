@@ -2693,10 +2693,7 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
             for i in 0..6 {
                 m[i][i] += lambda * tr.max(f64::MIN_POSITIVE);
             }
-            let (p, ratio) = lu(&mut m);
-            let ok = ratio > 0.0 && ratio.is_finite();
-            if ok {
-                let d = lu_solve(&m, &p, &g);
+            if let Some(d) = cholesky_solve(&m, &g) {
                 let next: [f64; 6] = std::array::from_fn(|i| q[i] + d[i]);
                 let (f2, _) = forward_with::<false>(ax, home, &next);
                 let (e2, r2) = error(&f2, t);
@@ -2715,6 +2712,55 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
         }
     }
     res
+}
+
+/// Solves `m d = g` by Cholesky's factorization `m = L Lᵀ`: the refinement's damped normal
+/// matrix is symmetric and positive definite (the Gram matrix of the Jacobian's columns plus a
+/// positive multiple of the identity), so no pivoting is needed and the factorization is
+/// backward stable; half the work of an LU with partial pivoting. `None` where a pivot is not
+/// positive and finite (rounding made the matrix indefinite: more damping).
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn cholesky_solve(m: &[[f64; 6]; 6], g: &[f64; 6]) -> Option<[f64; 6]> {
+    // The lower triangle `l` and its diagonal's reciprocals.
+    let mut l = [[0.0; 6]; 6];
+    let mut inv = [0.0; 6];
+    for j in 0..6 {
+        let mut s = m[j][j];
+        for k in 0..j {
+            s -= l[j][k] * l[j][k];
+        }
+        if !(s > 0.0 && s.is_finite()) {
+            return None;
+        }
+        let ir = 1.0 / s.sqrt();
+        inv[j] = ir;
+        for i in j + 1..6 {
+            let mut t = m[i][j];
+            for k in 0..j {
+                t -= l[i][k] * l[j][k];
+            }
+            l[i][j] = t * ir;
+        }
+    }
+    // `L y = g`, then `Lᵀ d = y`.
+    let mut y = [0.0; 6];
+    for i in 0..6 {
+        let mut t = g[i];
+        for k in 0..i {
+            t -= l[i][k] * y[k];
+        }
+        y[i] = t * inv[i];
+    }
+    let mut d = [0.0; 6];
+    for i in (0..6).rev() {
+        let mut t = y[i];
+        for k in i + 1..6 {
+            t -= l[k][i] * d[k];
+        }
+        d[i] = t * inv[i];
+    }
+    Some(d)
 }
 
 /// Two joint vectors that are one solution (angles compared on the circle).
