@@ -1489,37 +1489,100 @@ static int ik_gen_eigen_candidates(const ik_gen_arranged *ar, const ik_gen_elim 
     return 1;
 }
 
-/* The pose E1(q1) ... E6(q6) M and each joint's current axis (w, p) (scaled lengths). */
-static void ik_gen_forward(const double ax[6][7], const double home[3][4], const double q[6],
-                           double pose[3][4], double cur[6][6]) {
-    double p[3][4] = {{1.0, 0.0, 0.0, 0.0}, {0.0, 1.0, 0.0, 0.0}, {0.0, 0.0, 1.0, 0.0}};
-    double m[3][4], r[3][3], np[3][4], o[3], d[3], co, si;
-    int i, rr, c;
+/* A joint prepared for the forward kinematics (see core.rs, Link): its axis w and point c, the
+   entries 00, 01, 02, 11, 12, 22 of w w^T, a = c - (w.c) w and b = w x c. */
+typedef struct {
+    double w[3], c[3], ww[6], a[3], b[3];
+    int prism;
+} ik_gen_link;
+
+static void ik_gen_links(const double ax[6][7], ik_gen_link ls[6]) {
+    int i, r;
     for (i = 0; i < 6; i++) {
-        const double *w = ax[i] + 1, *pc = ax[i] + 4;
-        ik_gen_motion_apply((const double (*)[4])p, pc, w, o, d);
+        ik_gen_link *l = &ls[i];
+        double wc;
+        for (r = 0; r < 3; r++) {
+            l->w[r] = ax[i][1 + r];
+            l->c[r] = ax[i][4 + r];
+        }
+        wc = ik_gen_dot3(l->w, l->c);
+        l->ww[0] = l->w[0] * l->w[0];
+        l->ww[1] = l->w[0] * l->w[1];
+        l->ww[2] = l->w[0] * l->w[2];
+        l->ww[3] = l->w[1] * l->w[1];
+        l->ww[4] = l->w[1] * l->w[2];
+        l->ww[5] = l->w[2] * l->w[2];
+        for (r = 0; r < 3; r++) l->a[r] = l->c[r] - wc * l->w[r];
+        ik_gen_cross3(l->w, l->c, l->b);
+        l->prism = ax[i][0] != 0.0;
+    }
+}
+
+/* The motion of joint l at q (Rodrigues with the translation (1 - cos q) a - sin q b; a slide
+   by q w). */
+static void ik_gen_link_motion(const ik_gen_link *l, double q, double m[3][4]) {
+    const double *w = l->w, *ww = l->ww;
+    double co, s, vc, v01, v02, v12, s0, s1, s2;
+    int r;
+    if (l->prism) {
+        for (r = 0; r < 3; r++) {
+            m[r][0] = m[r][1] = m[r][2] = 0.0;
+            m[r][r] = 1.0;
+            m[r][3] = q * w[r];
+        }
+        return;
+    }
+    ik_gen_unit(q, &co, &s);
+    vc = 1.0 - co;
+    v01 = vc * ww[1];
+    v02 = vc * ww[2];
+    v12 = vc * ww[4];
+    s0 = s * w[0];
+    s1 = s * w[1];
+    s2 = s * w[2];
+    m[0][0] = co + vc * ww[0];
+    m[0][1] = v01 - s2;
+    m[0][2] = v02 + s1;
+    m[1][0] = v01 + s2;
+    m[1][1] = co + vc * ww[3];
+    m[1][2] = v12 - s0;
+    m[2][0] = v02 - s1;
+    m[2][1] = v12 + s0;
+    m[2][2] = co + vc * ww[5];
+    for (r = 0; r < 3; r++) m[r][3] = vc * l->a[r] - s * l->b[r];
+}
+
+/* a b for rigid motions (no term for the zero bottom row of b's rotation columns). */
+static void ik_gen_then(const double a[3][4], const double b[3][4], double o[3][4]) {
+    int r, c;
+    for (r = 0; r < 3; r++) {
+        for (c = 0; c < 3; c++) o[r][c] = a[r][0] * b[0][c] + a[r][1] * b[1][c] + a[r][2] * b[2][c];
+        o[r][3] = a[r][0] * b[0][3] + a[r][1] * b[1][3] + a[r][2] * b[2][3] + a[r][3];
+    }
+}
+
+/* The pose E1(q1) ... E6(q6) M and each joint's current axis (w, p) (scaled lengths): joint i's
+   home axis moved by E1 ... Ei-1. */
+static void ik_gen_forward(const ik_gen_link ls[6], const double home[3][4], const double q[6],
+                           double pose[3][4], double cur[6][6]) {
+    double p[3][4], m[3][4], np[3][4], o[3], d[3];
+    int i, c;
+    for (c = 0; c < 3; c++) {
+        cur[0][c] = ls[0].w[c];
+        cur[0][3 + c] = ls[0].c[c];
+    }
+    ik_gen_link_motion(&ls[0], q[0], p);
+    for (i = 1; i < 6; i++) {
+        ik_gen_motion_apply((const double (*)[4])p, ls[i].c, ls[i].w, o, d);
         for (c = 0; c < 3; c++) {
             cur[i][c] = d[c];
             cur[i][3 + c] = o[c];
         }
-        memset(m, 0, sizeof m);
-        if (ax[i][0] != 0.0) {
-            for (rr = 0; rr < 3; rr++) {
-                m[rr][rr] = 1.0;
-                m[rr][3] = q[i] * w[rr];
-            }
-        } else {
-            ik_gen_unit(q[i], &co, &si);
-            ik_gen_rodrigues(w, si, co, r);
-            for (rr = 0; rr < 3; rr++) {
-                for (c = 0; c < 3; c++) m[rr][c] = r[rr][c];
-                m[rr][3] = pc[rr] - ik_gen_dot3(r[rr], pc);
-            }
-        }
-        ik_gen_compose((const double (*)[4])p, (const double (*)[4])m, np);
+        ik_gen_link_motion(&ls[i], q[i], m);
+        ik_gen_then((const double (*)[4])p, (const double (*)[4])m, np);
         memcpy(p, np, sizeof p);
     }
-    ik_gen_compose((const double (*)[4])p, home, pose);
+    ik_gen_then((const double (*)[4])p, home, pose);
 }
 
 /* T - F entry by entry, and its largest size (NaN when any is). */
@@ -1623,7 +1686,9 @@ static double ik_gen_refine(const double ax[6][7], const double home[3][4], cons
     double f[3][4], cur[6][6], e[12], f2[3][4], cur2[6][6], e2[12];
     double a[6][6], m[6][6], g[6], d[6], next[6], res, r2, tr, lambda = IK_GEN_DAMP_START;
     int it, i, done;
-    ik_gen_forward(ax, home, q, f, cur);
+    ik_gen_link ls[6];
+    ik_gen_links(ax, ls);
+    ik_gen_forward(ls, home, q, f, cur);
     res = ik_gen_error((const double (*)[4])f, t, e);
     for (it = 0; it < IK_GEN_REFINE_ITERS; it++) {
         if (res <= IK_GEN_EXACT_TOL || isnan(res)) break;
@@ -1633,7 +1698,7 @@ static double ik_gen_refine(const double ax[6][7], const double home[3][4], cons
             for (i = 0; i < 6; i++) m[i][i] += lambda * fmax(tr, IK_GEN_MIN_POSITIVE);
             if (ik_gen_cholesky_solve((const double (*)[6])m, g, d)) {
                 for (i = 0; i < 6; i++) next[i] = q[i] + d[i];
-                ik_gen_forward(ax, home, next, f2, cur2);
+                ik_gen_forward(ls, home, next, f2, cur2);
                 r2 = ik_gen_error((const double (*)[4])f2, t, e2);
                 if (r2 < res) {
                     memcpy(q, next, 6 * sizeof q[0]);

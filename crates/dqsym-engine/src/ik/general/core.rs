@@ -2558,52 +2558,112 @@ pub(crate) fn det_candidates(
     Ok((count, 2 * n))
 }
 
+/// A joint prepared for the forward kinematics: its axis `w` and point `c`, the entries of `w
+/// wᵀ` (`00, 01, 02, 11, 12, 22`), `a = c − (w·c) w` and `b = w × c`, so that its motion at
+/// `(cos θ, sin θ)` is `R = cos θ I + sin θ [w]× + (1 − cos θ) w wᵀ` (Rodrigues) with the
+/// translation `c − R c = (1 − cos θ) a − sin θ b` (a slide's: `d w`).
+#[derive(Clone, Copy)]
+struct Link {
+    w: V,
+    c: V,
+    ww: [f64; 6],
+    a: V,
+    b: V,
+    prism: bool,
+}
+
+/// The chain's [`Link`]s, once per refinement.
+fn links(ax: &[GenAxis; 6]) -> [Link; 6] {
+    std::array::from_fn(|i| {
+        let x = &ax[i];
+        let w = [x[1], x[2], x[3]];
+        let c = [x[4], x[5], x[6]];
+        let wc = dot3(&w, &c);
+        Link {
+            w,
+            c,
+            ww: [
+                w[0] * w[0],
+                w[0] * w[1],
+                w[0] * w[2],
+                w[1] * w[1],
+                w[1] * w[2],
+                w[2] * w[2],
+            ],
+            a: [c[0] - wc * w[0], c[1] - wc * w[1], c[2] - wc * w[2]],
+            b: cross3(&w, &c),
+            prism: x[0] != 0.0,
+        }
+    })
+}
+
+/// The motion of joint `l` at `q`: a rotation by `q` about its axis, or a slide by `q` along it.
+#[inline(always)]
+fn link_motion(l: &Link, q: f64) -> B34 {
+    let w = &l.w;
+    if l.prism {
+        return [
+            [1.0, 0.0, 0.0, q * w[0]],
+            [0.0, 1.0, 0.0, q * w[1]],
+            [0.0, 0.0, 1.0, q * w[2]],
+        ];
+    }
+    let (co, s) = unit(q);
+    let vc = 1.0 - co;
+    let ww = &l.ww;
+    let (v01, v02, v12) = (vc * ww[1], vc * ww[2], vc * ww[4]);
+    let (s0, s1, s2) = (s * w[0], s * w[1], s * w[2]);
+    let t: V = std::array::from_fn(|r| vc * l.a[r] - s * l.b[r]);
+    [
+        [co + vc * ww[0], v01 - s2, v02 + s1, t[0]],
+        [v01 + s2, co + vc * ww[3], v12 - s0, t[1]],
+        [v02 - s1, v12 + s0, co + vc * ww[5], t[2]],
+    ]
+}
+
+/// `a b` for rigid motions (no term for the zero bottom row of `b`'s rotation columns).
+#[inline(always)]
+fn then(a: &B34, b: &B34) -> B34 {
+    std::array::from_fn(|r| {
+        let x = &a[r];
+        let mut o = [0.0; 4];
+        for c in 0..3 {
+            o[c] = x[0] * b[0][c] + x[1] * b[1][c] + x[2] * b[2][c];
+        }
+        o[3] = x[0] * b[0][3] + x[1] * b[1][3] + x[2] * b[2][3] + x[3];
+        o
+    })
+}
+
 /// The pose `E1(q1) ⋯ E6(q6) M` and each joint's current axis `(w, p)` (scaled lengths).
-#[allow(clippy::needless_range_loop)]
-fn forward(ax: &[GenAxis; 6], home: &B34, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
-    forward_with::<true>(ax, home, q)
+fn forward(ls: &[Link; 6], home: &B34, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
+    forward_with::<true>(ls, home, q)
 }
 
 /// [`forward`], the current axes only when `AXES` (else zero): the refinement's trial points
-/// need the pose alone unless another step follows.
+/// need the pose alone unless another step follows. Joint `i`'s current axis is its home axis
+/// moved by `E1 ⋯ Ei−1` (its own motion leaves it in place).
 #[inline(always)]
-#[allow(clippy::needless_range_loop)]
 fn forward_with<const AXES: bool>(
-    ax: &[GenAxis; 6],
+    ls: &[Link; 6],
     home: &B34,
     q: &[f64; 6],
 ) -> (B34, [[f64; 6]; 6]) {
-    let mut p: B34 = [
-        [1.0, 0.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0, 0.0],
-        [0.0, 0.0, 1.0, 0.0],
-    ];
     let mut cur = [[0.0; 6]; 6];
-    for i in 0..6 {
-        let a = &ax[i];
-        let w = [a[1], a[2], a[3]];
-        let c = [a[4], a[5], a[6]];
+    if AXES {
+        let l = &ls[0];
+        cur[0] = [l.w[0], l.w[1], l.w[2], l.c[0], l.c[1], l.c[2]];
+    }
+    let mut p = link_motion(&ls[0], q[0]);
+    for i in 1..6 {
+        let l = &ls[i];
         if AXES {
-            let (o, d) = motion_apply(&p, &c, &w);
+            let (o, d) = motion_apply(&p, &l.c, &l.w);
             cur[i] = [d[0], d[1], d[2], o[0], o[1], o[2]];
         }
-        let mut m: B34 = [[0.0; 4]; 3];
-        if a[0] != 0.0 {
-            for r in 0..3 {
-                m[r][r] = 1.0;
-                m[r][3] = q[i] * w[r];
-            }
-        } else {
-            let (co, s) = unit(q[i]);
-            let r = rodrigues(&w, s, co);
-            for rr in 0..3 {
-                m[rr][..3].copy_from_slice(&r[rr]);
-                m[rr][3] = c[rr] - dot3(&r[rr], &c);
-            }
-        }
-        p = compose(&p, &m);
+        p = then(&p, &link_motion(l, q[i]));
     }
-    (compose(&p, home), cur)
+    (then(&p, home), cur)
 }
 
 pub(crate) fn compose(a: &B34, b: &B34) -> B34 {
@@ -2638,7 +2698,8 @@ fn error(f: &B34, t: &B34) -> ([f64; 12], f64) {
 /// lengths); returns the final residual.
 #[allow(clippy::needless_range_loop)]
 pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -> f64 {
-    let (mut f, mut cur) = forward(ax, home, q);
+    let ls = links(ax);
+    let (mut f, mut cur) = forward(&ls, home, q);
     let (mut e, mut res) = error(&f, t);
     let mut lambda = DAMP_START;
     // The axes of `cur` belong to an earlier `q` (a step was taken without them).
@@ -2648,7 +2709,7 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
             break;
         }
         if stale {
-            cur = forward(ax, home, q).1;
+            cur = forward(&ls, home, q).1;
         }
         // The Jacobian's column of joint i is `[w]× [F | t − p]` (revolute; `[0 | w]` for a
         // slide), so its normal matrix and gradient need no column: with `F` a rotation (to
@@ -2695,7 +2756,7 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
             }
             if let Some(d) = cholesky_solve(&m, &g) {
                 let next: [f64; 6] = std::array::from_fn(|i| q[i] + d[i]);
-                let (f2, _) = forward_with::<false>(ax, home, &next);
+                let (f2, _) = forward_with::<false>(&ls, home, &next);
                 let (e2, r2) = error(&f2, t);
                 if r2 < res {
                     *q = next;
