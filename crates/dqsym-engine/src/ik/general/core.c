@@ -1608,7 +1608,7 @@ static double ik_gen_error(const double f[3][4], const double t[3][4], double e[
    [w]x [F | t - p] (a slide's [0 | w]), so with F a rotation its rotation part gives 2 wi.wj
    and wi.u, u = sum_k f_k x e_k; the translation part (wi x (t - pi)).(wj x (t - pj)) and its
    product with e_t. Returns the trace. */
-static double ik_gen_normal(const double ax[6][7], const double f[3][4], const double cur[6][6],
+static double ik_gen_normal(const ik_gen_link ls[6], const double f[3][4], const double cur[6][6],
                             const double e[12], double a[6][6], double g[6]) {
     double u[3] = {0.0, 0.0, 0.0}, x[3], col[3], ek[3], et[3], rel[3], rot[6][3], tra[6][3],
         tr = 0.0, v;
@@ -1624,7 +1624,7 @@ static double ik_gen_normal(const double ax[6][7], const double f[3][4], const d
     for (r = 0; r < 3; r++) et[r] = e[4 * r + 3];
     for (i = 0; i < 6; i++) {
         const double *w = cur[i], *p = cur[i] + 3;
-        if (ax[i][0] != 0.0) {
+        if (ls[i].prism) {
             for (r = 0; r < 3; r++) {
                 rot[i][r] = 0.0;
                 tra[i][r] = w[r];
@@ -1681,18 +1681,16 @@ static int ik_gen_cholesky_solve(const double m[6][6], const double g[6], double
 
 /* Damped Gauss-Newton from q on the pose residual (scaled lengths); returns the final
    residual. */
-static double ik_gen_refine(const double ax[6][7], const double home[3][4], const double t[3][4],
+static double ik_gen_refine(const ik_gen_link ls[6], const double home[3][4], const double t[3][4],
                             double q[6]) {
     double f[3][4], cur[6][6], e[12], f2[3][4], cur2[6][6], e2[12];
     double a[6][6], m[6][6], g[6], d[6], next[6], res, r2, tr, lambda = IK_GEN_DAMP_START;
     int it, i, done;
-    ik_gen_link ls[6];
-    ik_gen_links(ax, ls);
     ik_gen_forward(ls, home, q, f, cur);
     res = ik_gen_error((const double (*)[4])f, t, e);
     for (it = 0; it < IK_GEN_REFINE_ITERS; it++) {
         if (res <= IK_GEN_EXACT_TOL || isnan(res)) break;
-        tr = ik_gen_normal(ax, (const double (*)[4])f, (const double (*)[6])cur, e, a, g);
+        tr = ik_gen_normal(ls, (const double (*)[4])f, (const double (*)[6])cur, e, a, g);
         for (done = 0; !done;) {
             memcpy(m, a, sizeof m);
             for (i = 0; i < 6; i++) m[i][i] += lambda * fmax(tr, IK_GEN_MIN_POSITIVE);
@@ -1755,6 +1753,7 @@ static int ik_gen_add(ik_gen_out *out, const double q[6], double res, const int 
 typedef struct {
     double ax[6][7], hm[3][4], tg[3][4], g[3][4];
     ik_gen_joint js[6];
+    ik_gen_link ls[6];
     int prismatic[6];
 } ik_gen_scaled;
 
@@ -1772,6 +1771,7 @@ static void ik_gen_scale(const double axes[6][7], const double home[3][4],
         s->tg[i][3] /= len;
     }
     for (i = 0; i < 6; i++) s->prismatic[i] = s->ax[i][0] != 0.0;
+    ik_gen_links((const double (*)[7])s->ax, s->ls);
     ik_gen_inverse((const double (*)[4])s->hm, ihm);
     ik_gen_compose((const double (*)[4])s->tg, (const double (*)[4])ihm, s->g);
     for (i = 0; i < 6; i++) {
@@ -1831,7 +1831,7 @@ static int ik_gen_take(ik_gen_out *out, const ik_gen_scaled *sc, double roots[24
     memset(hit, 0, sizeof hit);
     for (i = 0; i < n; i++) {
         memcpy(q, roots[i], sizeof q);
-        res = ik_gen_refine((const double (*)[7])sc->ax, (const double (*)[4])sc->hm,
+        res = ik_gen_refine(sc->ls, (const double (*)[4])sc->hm,
                             (const double (*)[4])sc->tg, q);
         if (isnan(res) || res > tol.keep) continue;
         for (j = 0; j < 6; j++)

@@ -2563,7 +2563,7 @@ pub(crate) fn det_candidates(
 /// `(cos θ, sin θ)` is `R = cos θ I + sin θ [w]× + (1 − cos θ) w wᵀ` (Rodrigues) with the
 /// translation `c − R c = (1 − cos θ) a − sin θ b` (a slide's: `d w`).
 #[derive(Clone, Copy)]
-struct Link {
+pub(crate) struct Link {
     w: V,
     c: V,
     ww: [f64; 6],
@@ -2572,8 +2572,8 @@ struct Link {
     prism: bool,
 }
 
-/// The chain's [`Link`]s, once per refinement.
-fn links(ax: &[GenAxis; 6]) -> [Link; 6] {
+/// The chain's [`Link`]s (once per solve).
+pub(crate) fn links(ax: &[GenAxis; 6]) -> [Link; 6] {
     std::array::from_fn(|i| {
         let x = &ax[i];
         let w = [x[1], x[2], x[3]];
@@ -2697,9 +2697,8 @@ fn error(f: &B34, t: &B34) -> ([f64; 12], f64) {
 /// Damped Gauss–Newton from `q` on the pose residual (as `ik::check::refine`, on scaled
 /// lengths); returns the final residual.
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -> f64 {
-    let ls = links(ax);
-    let (mut f, mut cur) = forward(&ls, home, q);
+pub(crate) fn refine(ls: &[Link; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -> f64 {
+    let (mut f, mut cur) = forward(ls, home, q);
     let (mut e, mut res) = error(&f, t);
     let mut lambda = DAMP_START;
     // The axes of `cur` belong to an earlier `q` (a step was taken without them).
@@ -2709,7 +2708,7 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
             break;
         }
         if stale {
-            cur = forward(&ls, home, q).1;
+            cur = forward(ls, home, q).1;
         }
         // The Jacobian's column of joint i is `[w]× [F | t − p]` (revolute; `[0 | w]` for a
         // slide), so its normal matrix and gradient need no column: with `F` a rotation (to
@@ -2730,7 +2729,7 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
         for i in 0..6 {
             let [wx, wy, wz, px, py, pz] = cur[i];
             let w = [wx, wy, wz];
-            if ax[i][0] != 0.0 {
+            if ls[i].prism {
                 tra[i] = w;
             } else {
                 rot[i] = w;
@@ -2756,7 +2755,7 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
             }
             if let Some(d) = cholesky_solve(&m, &g) {
                 let next: [f64; 6] = std::array::from_fn(|i| q[i] + d[i]);
-                let (f2, _) = forward_with::<false>(&ls, home, &next);
+                let (f2, _) = forward_with::<false>(ls, home, &next);
                 let (e2, r2) = error(&f2, t);
                 if r2 < res {
                     *q = next;
@@ -2845,7 +2844,7 @@ fn take_roots(
     roots: &[[f64; 6]],
     degree: usize,
     arr: usize,
-    ax: &[GenAxis; 6],
+    ls: &[Link; 6],
     hm: &B34,
     tg: &B34,
     tol: &GenTol,
@@ -2860,7 +2859,7 @@ fn take_roots(
     // The solutions this arrangement's roots reached (exactly).
     let mut hit = [false; GEN_MAX];
     for root in roots {
-        if let Some((i, exact, _)) = add_root(out, *root, ax, hm, tg, tol) {
+        if let Some((i, exact, _)) = add_root(out, *root, ls, hm, tg, tol) {
             hit[i] |= exact;
         }
     }
@@ -2875,13 +2874,13 @@ fn take_roots(
 pub(crate) fn add_root(
     out: &mut GenOut,
     mut q: [f64; 6],
-    ax: &[GenAxis; 6],
+    ls: &[Link; 6],
     hm: &B34,
     tg: &B34,
     tol: &GenTol,
 ) -> Option<(usize, bool, bool)> {
-    let prismatic: [bool; 6] = std::array::from_fn(|i| ax[i][0] != 0.0);
-    let res = refine(ax, hm, tg, &mut q);
+    let prismatic: [bool; 6] = std::array::from_fn(|i| ls[i].prism);
+    let res = refine(ls, hm, tg, &mut q);
     if res.is_nan() || res > tol.keep {
         return None;
     }
@@ -2972,6 +2971,7 @@ pub fn gen_solve(
         tg[r][3] /= len;
     }
     let prismatic: [bool; 6] = std::array::from_fn(|i| ax[i][0] != 0.0);
+    let ls = links(&ax);
     let g = compose(&tg, &inverse(&hm));
     let js: [J; 6] = std::array::from_fn(|i| J {
         w: [ax[i][1], ax[i][2], ax[i][3]],
@@ -3047,7 +3047,7 @@ pub fn gen_solve(
                 if let Some((da, de, darr)) = deferred.take() {
                     if let Some((n, degree)) = eigen_candidates(&da, &de, &mut roots) {
                         complete =
-                            take_roots(&mut out, &roots[..n], degree, darr, &ax, &hm, &tg, &tol);
+                            take_roots(&mut out, &roots[..n], degree, darr, &ls, &hm, &tg, &tol);
                         if complete || out.n_arr == 12 {
                             break;
                         }
@@ -3057,7 +3057,7 @@ pub fn gen_solve(
             }
         };
         let Some((n, degree)) = found else { continue };
-        complete = take_roots(&mut out, &roots[..n], degree, arr, &ax, &hm, &tg, &tol);
+        complete = take_roots(&mut out, &roots[..n], degree, arr, &ls, &hm, &tg, &tol);
         if complete {
             break;
         }
@@ -3066,7 +3066,7 @@ pub fn gen_solve(
     if let Some((da, de, darr)) = deferred {
         if !complete && out.n_arr < 12 {
             if let Some((n, degree)) = eigen_candidates(&da, &de, &mut roots) {
-                complete = take_roots(&mut out, &roots[..n], degree, darr, &ax, &hm, &tg, &tol);
+                complete = take_roots(&mut out, &roots[..n], degree, darr, &ls, &hm, &tg, &tol);
             }
         }
     }
@@ -3089,7 +3089,7 @@ pub fn gen_solve(
             continue;
         };
         if let Some((n, degree)) = eigen_candidates(&ar, &el, &mut roots) {
-            complete = take_roots(&mut out, &roots[..n], degree, arr, &ax, &hm, &tg, &tol);
+            complete = take_roots(&mut out, &roots[..n], degree, arr, &ls, &hm, &tg, &tol);
         }
     }
     // Prismatic variables back in the robot's length unit.
