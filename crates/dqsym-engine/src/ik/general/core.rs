@@ -2715,21 +2715,24 @@ pub(crate) fn compose(a: &B34, b: &B34) -> B34 {
     o
 }
 
+/// `T − F` entry by entry and its largest size (NaN when any entry is): the maximum by
+/// comparisons (a NaN never wins one) and the NaN by a flag, without a branch per entry.
 fn error(f: &B34, t: &B34) -> ([f64; 12], f64) {
     let mut e = [0.0; 12];
     let mut m: f64 = 0.0;
+    let mut nan = false;
     for r in 0..3 {
         for c in 0..4 {
             let d = t[r][c] - f[r][c];
             e[4 * r + c] = d;
-            if d.is_nan() {
-                m = f64::NAN;
-            } else if !m.is_nan() {
-                m = m.max(d.abs());
+            let a = d.abs();
+            if a > m {
+                m = a;
             }
+            nan |= d.is_nan();
         }
     }
-    (e, m)
+    (e, if nan { f64::NAN } else { m })
 }
 
 /// Damped Gauss–Newton from `q` on the pose residual (as `ik::check::refine`, on scaled
@@ -2828,7 +2831,8 @@ fn cholesky_solve(m: &[[f64; 6]; 6], g: &[f64; 6]) -> Option<[f64; 6]> {
         for k in 0..j {
             s -= l[j][k] * l[j][k];
         }
-        if !(s > 0.0 && s.is_finite()) {
+        // (Not NaN, not infinite.)
+        if !(s > 0.0 && s < f64::INFINITY) {
             return None;
         }
         let ir = 1.0 / s.sqrt();
