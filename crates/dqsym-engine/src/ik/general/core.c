@@ -1503,67 +1503,46 @@ static int ik_gen_eigen_candidates(const ik_gen_arranged *ar, const ik_gen_elim 
     return 1;
 }
 
-/* A joint prepared for the forward kinematics (see core.rs, Link): its axis w and point c, the
-   entries 00, 01, 02, 11, 12, 22 of w w^T, a = c - (w.c) w and b = w x c. */
+/* The chain prepared for the forward kinematics (see core.rs, Chain): E1(q1) ... E6(q6) M =
+   F1 Z(q1) L1 ... Z(q6) L6 with Fi a frame of joint i's axis, Li = Fi^-1 Fi+1, L6 = F6^-1 M. */
 typedef struct {
-    double w[3], c[3], ww[6], a[3], b[3];
-    int prism;
-} ik_gen_link;
+    double base[3][4], link[6][3][4];
+    int prism[6];
+} ik_gen_chain;
 
-static void ik_gen_links(const double ax[6][7], ik_gen_link ls[6]) {
-    int i, r;
-    for (i = 0; i < 6; i++) {
-        ik_gen_link *l = &ls[i];
-        double wc;
-        for (r = 0; r < 3; r++) {
-            l->w[r] = ax[i][1 + r];
-            l->c[r] = ax[i][4 + r];
-        }
-        wc = ik_gen_dot3(l->w, l->c);
-        l->ww[0] = l->w[0] * l->w[0];
-        l->ww[1] = l->w[0] * l->w[1];
-        l->ww[2] = l->w[0] * l->w[2];
-        l->ww[3] = l->w[1] * l->w[1];
-        l->ww[4] = l->w[1] * l->w[2];
-        l->ww[5] = l->w[2] * l->w[2];
-        for (r = 0; r < 3; r++) l->a[r] = l->c[r] - wc * l->w[r];
-        ik_gen_cross3(l->w, l->c, l->b);
-        l->prism = ax[i][0] != 0.0;
+/* A frame of the axis through c along w: z the unit direction, x a unit normal, y = z x x. */
+static void ik_gen_axis_frame(const double w[3], const double c[3], double f[3][4]) {
+    const double n = sqrt(ik_gen_dot3(w, w));
+    const double ex[3] = {1.0, 0.0, 0.0}, ey[3] = {0.0, 1.0, 0.0};
+    double z[3], x0[3], x[3], y[3], m;
+    int r;
+    for (r = 0; r < 3; r++) z[r] = w[r] / n;
+    ik_gen_cross3(z, fabs(z[0]) < 0.6 ? ex : ey, x0);
+    m = sqrt(ik_gen_dot3(x0, x0));
+    for (r = 0; r < 3; r++) x[r] = x0[r] / m;
+    ik_gen_cross3(z, x, y);
+    for (r = 0; r < 3; r++) {
+        f[r][0] = x[r];
+        f[r][1] = y[r];
+        f[r][2] = z[r];
+        f[r][3] = c[r];
     }
 }
 
-/* The motion of joint l at q (Rodrigues with the translation (1 - cos q) a - sin q b; a slide
-   by q w). */
-static void ik_gen_link_motion(const ik_gen_link *l, double q, double m[3][4]) {
-    const double *w = l->w, *ww = l->ww;
-    double co, s, vc, v01, v02, v12, s0, s1, s2;
-    int r;
-    if (l->prism) {
-        for (r = 0; r < 3; r++) {
-            m[r][0] = m[r][1] = m[r][2] = 0.0;
-            m[r][r] = 1.0;
-            m[r][3] = q * w[r];
-        }
-        return;
+/* The chain of the axes ax and the home pose home (scaled). */
+static void ik_gen_chain_of(const double ax[6][7], const double home[3][4], ik_gen_chain *ch) {
+    double fr[6][3][4], inv[3][4];
+    int i;
+    for (i = 0; i < 6; i++) {
+        ik_gen_axis_frame(ax[i] + 1, ax[i] + 4, fr[i]);
+        ch->prism[i] = ax[i][0] != 0.0;
     }
-    ik_gen_unit(q, &co, &s);
-    vc = 1.0 - co;
-    v01 = vc * ww[1];
-    v02 = vc * ww[2];
-    v12 = vc * ww[4];
-    s0 = s * w[0];
-    s1 = s * w[1];
-    s2 = s * w[2];
-    m[0][0] = co + vc * ww[0];
-    m[0][1] = v01 - s2;
-    m[0][2] = v02 + s1;
-    m[1][0] = v01 + s2;
-    m[1][1] = co + vc * ww[3];
-    m[1][2] = v12 - s0;
-    m[2][0] = v02 - s1;
-    m[2][1] = v12 + s0;
-    m[2][2] = co + vc * ww[5];
-    for (r = 0; r < 3; r++) m[r][3] = vc * l->a[r] - s * l->b[r];
+    memcpy(ch->base, fr[0], sizeof ch->base);
+    for (i = 0; i < 6; i++) {
+        ik_gen_inverse((const double (*)[4])fr[i], inv);
+        ik_gen_compose((const double (*)[4])inv, i < 5 ? (const double (*)[4])fr[i + 1] : home,
+                       ch->link[i]);
+    }
 }
 
 /* a b for rigid motions (no term for the zero bottom row of b's rotation columns). */
@@ -1575,28 +1554,33 @@ static void ik_gen_then(const double a[3][4], const double b[3][4], double o[3][
     }
 }
 
-/* The pose E1(q1) ... E6(q6) M and each joint's current axis (w, p) (scaled lengths): joint i's
-   home axis moved by E1 ... Ei-1. */
-static void ik_gen_forward(const ik_gen_link ls[6], const double home[3][4], const double q[6],
-                           double pose[3][4], double cur[6][6]) {
-    double p[3][4], m[3][4], np[3][4], o[3], d[3];
-    int i, c;
-    for (c = 0; c < 3; c++) {
-        cur[0][c] = ls[0].w[c];
-        cur[0][3 + c] = ls[0].c[c];
-    }
-    ik_gen_link_motion(&ls[0], q[0], p);
-    for (i = 1; i < 6; i++) {
-        ik_gen_motion_apply((const double (*)[4])p, ls[i].c, ls[i].w, o, d);
-        for (c = 0; c < 3; c++) {
-            cur[i][c] = d[c];
-            cur[i][3 + c] = o[c];
+/* The pose E1(q1) ... E6(q6) M and each joint's current axis (w, p) (scaled lengths): the
+   product so far is joint i's frame. */
+static void ik_gen_forward(const ik_gen_chain *ch, const double q[6], double pose[3][4],
+                           double cur[6][6]) {
+    double p[3][4], np[3][4], co, si, x, y;
+    int i, r;
+    memcpy(p, ch->base, sizeof p);
+    for (i = 0; i < 6; i++) {
+        for (r = 0; r < 3; r++) {
+            cur[i][r] = p[r][2];
+            cur[i][3 + r] = p[r][3];
         }
-        ik_gen_link_motion(&ls[i], q[i], m);
-        ik_gen_then((const double (*)[4])p, (const double (*)[4])m, np);
+        if (ch->prism[i]) {
+            for (r = 0; r < 3; r++) p[r][3] += q[i] * p[r][2];
+        } else {
+            ik_gen_unit(q[i], &co, &si);
+            for (r = 0; r < 3; r++) {
+                x = p[r][0];
+                y = p[r][1];
+                p[r][0] = co * x + si * y;
+                p[r][1] = co * y - si * x;
+            }
+        }
+        ik_gen_then((const double (*)[4])p, (const double (*)[4])ch->link[i], np);
         memcpy(p, np, sizeof p);
     }
-    ik_gen_then((const double (*)[4])p, home, pose);
+    memcpy(pose, p, sizeof p);
 }
 
 /* T - F entry by entry, and its largest size (NaN when any is). */
@@ -1622,7 +1606,7 @@ static double ik_gen_error(const double f[3][4], const double t[3][4], double e[
    [w]x [F | t - p] (a slide's [0 | w]), so with F a rotation its rotation part gives 2 wi.wj
    and wi.u, u = sum_k f_k x e_k; the translation part (wi x (t - pi)).(wj x (t - pj)) and its
    product with e_t. Returns the trace. */
-static double ik_gen_normal(const ik_gen_link ls[6], const double f[3][4], const double cur[6][6],
+static double ik_gen_normal(const ik_gen_chain *ch, const double f[3][4], const double cur[6][6],
                             const double e[12], double a[6][6], double g[6]) {
     double u[3] = {0.0, 0.0, 0.0}, x[3], col[3], ek[3], et[3], rel[3], rot[6][3], tra[6][3],
         tr = 0.0, v;
@@ -1638,7 +1622,7 @@ static double ik_gen_normal(const ik_gen_link ls[6], const double f[3][4], const
     for (r = 0; r < 3; r++) et[r] = e[4 * r + 3];
     for (i = 0; i < 6; i++) {
         const double *w = cur[i], *p = cur[i] + 3;
-        if (ls[i].prism) {
+        if (ch->prism[i]) {
             for (r = 0; r < 3; r++) {
                 rot[i][r] = 0.0;
                 tra[i][r] = w[r];
@@ -1695,22 +1679,21 @@ static int ik_gen_cholesky_solve(const double m[6][6], const double g[6], double
 
 /* Damped Gauss-Newton from q on the pose residual (scaled lengths); returns the final
    residual. */
-static double ik_gen_refine(const ik_gen_link ls[6], const double home[3][4], const double t[3][4],
-                            double q[6]) {
+static double ik_gen_refine(const ik_gen_chain *ch, const double t[3][4], double q[6]) {
     double f[3][4], cur[6][6], e[12], f2[3][4], cur2[6][6], e2[12];
     double a[6][6], m[6][6], g[6], d[6], next[6], res, r2, tr, lambda = IK_GEN_DAMP_START;
     int it, i, done;
-    ik_gen_forward(ls, home, q, f, cur);
+    ik_gen_forward(ch, q, f, cur);
     res = ik_gen_error((const double (*)[4])f, t, e);
     for (it = 0; it < IK_GEN_REFINE_ITERS; it++) {
         if (res <= IK_GEN_EXACT_TOL || isnan(res)) break;
-        tr = ik_gen_normal(ls, (const double (*)[4])f, (const double (*)[6])cur, e, a, g);
+        tr = ik_gen_normal(ch, (const double (*)[4])f, (const double (*)[6])cur, e, a, g);
         for (done = 0; !done;) {
             memcpy(m, a, sizeof m);
             for (i = 0; i < 6; i++) m[i][i] += lambda * fmax(tr, IK_GEN_MIN_POSITIVE);
             if (ik_gen_cholesky_solve((const double (*)[6])m, g, d)) {
                 for (i = 0; i < 6; i++) next[i] = q[i] + d[i];
-                ik_gen_forward(ls, home, next, f2, cur2);
+                ik_gen_forward(ch, next, f2, cur2);
                 r2 = ik_gen_error((const double (*)[4])f2, t, e2);
                 if (r2 < res) {
                     memcpy(q, next, 6 * sizeof q[0]);
@@ -1767,7 +1750,7 @@ static int ik_gen_add(ik_gen_out *out, const double q[6], double res, const int 
 typedef struct {
     double ax[6][7], hm[3][4], tg[3][4], g[3][4];
     ik_gen_joint js[6];
-    ik_gen_link ls[6];
+    ik_gen_chain chain;
     int prismatic[6];
 } ik_gen_scaled;
 
@@ -1785,7 +1768,7 @@ static void ik_gen_scale(const double axes[6][7], const double home[3][4],
         s->tg[i][3] /= len;
     }
     for (i = 0; i < 6; i++) s->prismatic[i] = s->ax[i][0] != 0.0;
-    ik_gen_links((const double (*)[7])s->ax, s->ls);
+    ik_gen_chain_of((const double (*)[7])s->ax, (const double (*)[4])s->hm, &s->chain);
     ik_gen_inverse((const double (*)[4])s->hm, ihm);
     ik_gen_compose((const double (*)[4])s->tg, (const double (*)[4])ihm, s->g);
     for (i = 0; i < 6; i++) {
@@ -1845,8 +1828,7 @@ static int ik_gen_take(ik_gen_out *out, const ik_gen_scaled *sc, double roots[24
     memset(hit, 0, sizeof hit);
     for (i = 0; i < n; i++) {
         memcpy(q, roots[i], sizeof q);
-        res = ik_gen_refine(sc->ls, (const double (*)[4])sc->hm,
-                            (const double (*)[4])sc->tg, q);
+        res = ik_gen_refine(&sc->chain, (const double (*)[4])sc->tg, q);
         if (isnan(res) || res > tol.keep) continue;
         for (j = 0; j < 6; j++)
             if (!sc->prismatic[j]) q[j] = ik_gen_wrap(q[j]);

@@ -2596,67 +2596,56 @@ pub(crate) fn det_candidates(
     Ok((count, 2 * n))
 }
 
-/// A joint prepared for the forward kinematics: its axis `w` and point `c`, the entries of `w
-/// wᵀ` (`00, 01, 02, 11, 12, 22`), `a = c − (w·c) w` and `b = w × c`, so that its motion at
-/// `(cos θ, sin θ)` is `R = cos θ I + sin θ [w]× + (1 − cos θ) w wᵀ` (Rodrigues) with the
-/// translation `c − R c = (1 − cos θ) a − sin θ b` (a slide's: `d w`).
-#[derive(Clone, Copy)]
-pub(crate) struct Link {
-    w: V,
-    c: V,
-    ww: [f64; 6],
-    a: V,
-    b: V,
-    prism: bool,
+/// The chain prepared for the forward kinematics (once per solve): with `Fi` a frame of joint
+/// `i` in the home pose (its `z` axis the joint's axis, its origin the axis' point),
+/// `E1(q1) ⋯ E6(q6) M = F1 Z(q1) L1 Z(q2) L2 ⋯ Z(q6) L6`, where `Z(q)` turns by `q` about `z`
+/// (a slide moves by `q` along it), `Li = Fi⁻¹ Fi+1` and `L6 = F6⁻¹ M` (`Ei(q) = Fi Z(q)
+/// Fi⁻¹`). The link transforms `Li` are constants of the arm, so a joint costs the turn of two
+/// columns and one product, the cosine and sine once, and the product so far is joint `i + 1`'s
+/// frame: its current axis with no work.
+pub(crate) struct Chain {
+    /// `F1`.
+    base: B34,
+    /// `L1 … L6`.
+    link: [B34; 6],
+    /// Whether each joint slides.
+    prism: [bool; 6],
 }
 
-/// The chain's [`Link`]s (once per solve).
-pub(crate) fn links(ax: &[GenAxis; 6]) -> [Link; 6] {
-    std::array::from_fn(|i| {
-        let x = &ax[i];
-        let w = [x[1], x[2], x[3]];
-        let c = [x[4], x[5], x[6]];
-        let wc = dot3(&w, &c);
-        Link {
-            w,
-            c,
-            ww: [
-                w[0] * w[0],
-                w[0] * w[1],
-                w[0] * w[2],
-                w[1] * w[1],
-                w[1] * w[2],
-                w[2] * w[2],
-            ],
-            a: [c[0] - wc * w[0], c[1] - wc * w[1], c[2] - wc * w[2]],
-            b: cross3(&w, &c),
-            prism: x[0] != 0.0,
-        }
-    })
-}
-
-/// The motion of joint `l` at `q`: a rotation by `q` about its axis, or a slide by `q` along it.
-#[inline(always)]
-fn link_motion(l: &Link, q: f64) -> B34 {
-    let w = &l.w;
-    if l.prism {
-        return [
-            [1.0, 0.0, 0.0, q * w[0]],
-            [0.0, 1.0, 0.0, q * w[1]],
-            [0.0, 0.0, 1.0, q * w[2]],
-        ];
-    }
-    let (co, s) = unit(q);
-    let vc = 1.0 - co;
-    let ww = &l.ww;
-    let (v01, v02, v12) = (vc * ww[1], vc * ww[2], vc * ww[4]);
-    let (s0, s1, s2) = (s * w[0], s * w[1], s * w[2]);
-    let t: V = std::array::from_fn(|r| vc * l.a[r] - s * l.b[r]);
+/// A frame of the axis through `c` along `w`: `z` the unit direction, `x` a unit normal (away
+/// from the coordinate axis nearest `z`), `y = z × x`, origin `c`.
+fn axis_frame(w: &V, c: &V) -> B34 {
+    let n = dot3(w, w).sqrt();
+    let z = [w[0] / n, w[1] / n, w[2] / n];
+    let e = if z[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let x0 = cross3(&z, &e);
+    let m = dot3(&x0, &x0).sqrt();
+    let x = [x0[0] / m, x0[1] / m, x0[2] / m];
+    let y = cross3(&z, &x);
     [
-        [co + vc * ww[0], v01 - s2, v02 + s1, t[0]],
-        [v01 + s2, co + vc * ww[3], v12 - s0, t[1]],
-        [v02 - s1, v12 + s0, co + vc * ww[5], t[2]],
+        [x[0], y[0], z[0], c[0]],
+        [x[1], y[1], z[1], c[1]],
+        [x[2], y[2], z[2], c[2]],
     ]
+}
+
+/// The [`Chain`] of the axes `ax` and the home pose `home` (scaled).
+pub(crate) fn chain(ax: &[GenAxis; 6], home: &B34) -> Chain {
+    let fr: [B34; 6] = std::array::from_fn(|i| {
+        let x = &ax[i];
+        axis_frame(&[x[1], x[2], x[3]], &[x[4], x[5], x[6]])
+    });
+    Chain {
+        base: fr[0],
+        link: std::array::from_fn(|i| {
+            compose(&inverse(&fr[i]), if i < 5 { &fr[i + 1] } else { home })
+        }),
+        prism: std::array::from_fn(|i| ax[i][0] != 0.0),
+    }
 }
 
 /// `a b` for rigid motions (no term for the zero bottom row of `b`'s rotation columns).
@@ -2674,34 +2663,36 @@ fn then(a: &B34, b: &B34) -> B34 {
 }
 
 /// The pose `E1(q1) ⋯ E6(q6) M` and each joint's current axis `(w, p)` (scaled lengths).
-fn forward(ls: &[Link; 6], home: &B34, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
-    forward_with::<true>(ls, home, q)
+fn forward(ch: &Chain, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
+    forward_with::<true>(ch, q)
 }
 
 /// [`forward`], the current axes only when `AXES` (else zero): the refinement's trial points
-/// need the pose alone unless another step follows. Joint `i`'s current axis is its home axis
-/// moved by `E1 ⋯ Ei−1` (its own motion leaves it in place).
+/// need the pose alone unless another step follows.
 #[inline(always)]
-fn forward_with<const AXES: bool>(
-    ls: &[Link; 6],
-    home: &B34,
-    q: &[f64; 6],
-) -> (B34, [[f64; 6]; 6]) {
+#[allow(clippy::needless_range_loop)]
+fn forward_with<const AXES: bool>(ch: &Chain, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
     let mut cur = [[0.0; 6]; 6];
-    if AXES {
-        let l = &ls[0];
-        cur[0] = [l.w[0], l.w[1], l.w[2], l.c[0], l.c[1], l.c[2]];
-    }
-    let mut p = link_motion(&ls[0], q[0]);
-    for i in 1..6 {
-        let l = &ls[i];
+    let mut p = ch.base;
+    for i in 0..6 {
         if AXES {
-            let (o, d) = motion_apply(&p, &l.c, &l.w);
-            cur[i] = [d[0], d[1], d[2], o[0], o[1], o[2]];
+            cur[i] = [p[0][2], p[1][2], p[2][2], p[0][3], p[1][3], p[2][3]];
         }
-        p = then(&p, &link_motion(l, q[i]));
+        if ch.prism[i] {
+            for row in p.iter_mut() {
+                row[3] += q[i] * row[2];
+            }
+        } else {
+            let (c, s) = unit(q[i]);
+            for row in p.iter_mut() {
+                let (x, y) = (row[0], row[1]);
+                row[0] = c * x + s * y;
+                row[1] = c * y - s * x;
+            }
+        }
+        p = then(&p, &ch.link[i]);
     }
-    (then(&p, home), cur)
+    (p, cur)
 }
 
 pub(crate) fn compose(a: &B34, b: &B34) -> B34 {
@@ -2738,8 +2729,8 @@ fn error(f: &B34, t: &B34) -> ([f64; 12], f64) {
 /// Damped Gauss–Newton from `q` on the pose residual (as `ik::check::refine`, on scaled
 /// lengths); returns the final residual.
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn refine(ls: &[Link; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -> f64 {
-    let (mut f, mut cur) = forward(ls, home, q);
+pub(crate) fn refine(ch: &Chain, t: &B34, q: &mut [f64; 6]) -> f64 {
+    let (mut f, mut cur) = forward(ch, q);
     let (mut e, mut res) = error(&f, t);
     let mut lambda = DAMP_START;
     // The axes of `cur` belong to an earlier `q` (a step was taken without them).
@@ -2749,7 +2740,7 @@ pub(crate) fn refine(ls: &[Link; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -> f
             break;
         }
         if stale {
-            cur = forward(ls, home, q).1;
+            cur = forward(ch, q).1;
         }
         // The Jacobian's column of joint i is `[w]× [F | t − p]` (revolute; `[0 | w]` for a
         // slide), so its normal matrix and gradient need no column: with `F` a rotation (to
@@ -2770,7 +2761,7 @@ pub(crate) fn refine(ls: &[Link; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -> f
         for i in 0..6 {
             let [wx, wy, wz, px, py, pz] = cur[i];
             let w = [wx, wy, wz];
-            if ls[i].prism {
+            if ch.prism[i] {
                 tra[i] = w;
             } else {
                 rot[i] = w;
@@ -2796,7 +2787,7 @@ pub(crate) fn refine(ls: &[Link; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -> f
             }
             if let Some(d) = cholesky_solve(&m, &g) {
                 let next: [f64; 6] = std::array::from_fn(|i| q[i] + d[i]);
-                let (f2, _) = forward_with::<false>(ls, home, &next);
+                let (f2, _) = forward_with::<false>(ch, &next);
                 let (e2, r2) = error(&f2, t);
                 if r2 < res {
                     *q = next;
@@ -2886,8 +2877,7 @@ fn take_roots(
     roots: &[[f64; 6]],
     degree: usize,
     arr: usize,
-    ls: &[Link; 6],
-    hm: &B34,
+    ch: &Chain,
     tg: &B34,
     tol: &GenTol,
 ) -> bool {
@@ -2901,7 +2891,7 @@ fn take_roots(
     // The solutions this arrangement's roots reached (exactly).
     let mut hit = [false; GEN_MAX];
     for root in roots {
-        if let Some((i, exact, _)) = add_root(out, *root, ls, hm, tg, tol) {
+        if let Some((i, exact, _)) = add_root(out, *root, ch, tg, tol) {
             hit[i] |= exact;
         }
     }
@@ -2916,13 +2906,12 @@ fn take_roots(
 pub(crate) fn add_root(
     out: &mut GenOut,
     mut q: [f64; 6],
-    ls: &[Link; 6],
-    hm: &B34,
+    ch: &Chain,
     tg: &B34,
     tol: &GenTol,
 ) -> Option<(usize, bool, bool)> {
-    let prismatic: [bool; 6] = std::array::from_fn(|i| ls[i].prism);
-    let res = refine(ls, hm, tg, &mut q);
+    let prismatic = ch.prism;
+    let res = refine(ch, tg, &mut q);
     if res.is_nan() || res > tol.keep {
         return None;
     }
@@ -3013,7 +3002,7 @@ pub fn gen_solve(
         tg[r][3] /= len;
     }
     let prismatic: [bool; 6] = std::array::from_fn(|i| ax[i][0] != 0.0);
-    let ls = links(&ax);
+    let ch = chain(&ax, &hm);
     let g = compose(&tg, &inverse(&hm));
     let js: [J; 6] = std::array::from_fn(|i| J {
         w: [ax[i][1], ax[i][2], ax[i][3]],
@@ -3088,8 +3077,7 @@ pub fn gen_solve(
             _ => {
                 if let Some((da, de, darr)) = deferred.take() {
                     if let Some((n, degree)) = eigen_candidates(&da, &de, &mut roots) {
-                        complete =
-                            take_roots(&mut out, &roots[..n], degree, darr, &ls, &hm, &tg, &tol);
+                        complete = take_roots(&mut out, &roots[..n], degree, darr, &ch, &tg, &tol);
                         if complete || out.n_arr == 12 {
                             break;
                         }
@@ -3099,7 +3087,7 @@ pub fn gen_solve(
             }
         };
         let Some((n, degree)) = found else { continue };
-        complete = take_roots(&mut out, &roots[..n], degree, arr, &ls, &hm, &tg, &tol);
+        complete = take_roots(&mut out, &roots[..n], degree, arr, &ch, &tg, &tol);
         if complete {
             break;
         }
@@ -3108,7 +3096,7 @@ pub fn gen_solve(
     if let Some((da, de, darr)) = deferred {
         if !complete && out.n_arr < 12 {
             if let Some((n, degree)) = eigen_candidates(&da, &de, &mut roots) {
-                complete = take_roots(&mut out, &roots[..n], degree, darr, &ls, &hm, &tg, &tol);
+                complete = take_roots(&mut out, &roots[..n], degree, darr, &ch, &tg, &tol);
             }
         }
     }
@@ -3131,7 +3119,7 @@ pub fn gen_solve(
             continue;
         };
         if let Some((n, degree)) = eigen_candidates(&ar, &el, &mut roots) {
-            complete = take_roots(&mut out, &roots[..n], degree, arr, &ls, &hm, &tg, &tol);
+            complete = take_roots(&mut out, &roots[..n], degree, arr, &ch, &tg, &tol);
         }
     }
     // Prismatic variables back in the robot's length unit.
