@@ -307,9 +307,8 @@ static void ik_gen_prismatic_basis(const ik_gen_arranged *ar, double sig[3][6][9
 /* The equations' coefficients by exact trigonometric interpolation (IK_GEN_DFT). */
 static void ik_gen_eliminate(const ik_gen_arranged *ar, const double left[14][3][9],
                              ik_gen_elim *el) {
-    double lhs[3][3][3][14], rhs[3][3][14], bm[14][8], t1[3][3][14];
-    const double (*w0)[3], (*w1)[3];
-    int e, i1, i2, k1, k, row, m;
+    double lhs[3][3][3][14], rhs[3][3][14], bm[14][8];
+    int e, i1, i2, k1, k2, k, row, m;
     memset(bm, 0, sizeof bm);
     if (left) {
         /* The left side given (ik_gen_robot_left): the right side only. */
@@ -320,20 +319,15 @@ static void ik_gen_eliminate(const ik_gen_arranged *ar, const double left[14][3]
         memset(el->am, 0, sizeof el->am);
         ik_gen_left_coefficients(ar, lhs, el->am);
     }
-    /* The 2-D transform as two 1-D passes (see core.rs, elim_from). */
-    w0 = ik_gen_weights(&ar->j[0]);
-    w1 = ik_gen_weights(&ar->j[1]);
-    for (k1 = 0; k1 < 3; k1++)
-        for (i2 = 0; i2 < 3; i2++)
-            for (e = 0; e < 14; e++)
-                t1[k1][i2][e] = w1[i2][0] * rhs[k1][0][e] + w1[i2][1] * rhs[k1][1][e] +
-                                w1[i2][2] * rhs[k1][2][e];
-    for (i1 = 0; i1 < 3; i1++) {
-        for (i2 = 0; i2 < 3; i2++) {
-            m = ik_gen_mono(i1, i2);
-            for (e = 0; e < 14; e++) {
-                const double s = w0[i1][0] * t1[0][i2][e] + w0[i1][1] * t1[1][i2][e] +
-                                 w0[i1][2] * t1[2][i2][e];
+    for (e = 0; e < 14; e++) {
+        for (i1 = 0; i1 < 3; i1++) {
+            for (i2 = 0; i2 < 3; i2++) {
+                double s = 0.0;
+                for (k1 = 0; k1 < 3; k1++)
+                    for (k2 = 0; k2 < 3; k2++)
+                        s += ik_gen_weights(&ar->j[0])[i1][k1] *
+                             ik_gen_weights(&ar->j[1])[i2][k2] * rhs[k1][k2][e];
+                m = ik_gen_mono(i1, i2);
                 if (m == 0) {
                     el->am[e][0][0] -= s;
                 } else {
@@ -360,10 +354,11 @@ static void ik_gen_eliminate(const ik_gen_arranged *ar, const double left[14][3]
    small. */
 static void ik_gen_qr_pivot(const double b[14][8], double qt[14][14], double r[8][8],
                             int piv[8], double *ratio) {
-    double a[14][8], hv[8][14], hn[8], norm, alpha, vn, bn, n, s, t, *v;
+    double a[14][8], v[14], norm, alpha, vn, bn, n, s, t;
     int i, k, c, rr, best, ti;
     memcpy(a, b, sizeof a);
-    memset(hn, 0, sizeof hn);
+    memset(qt, 0, 14 * sizeof qt[0]);
+    for (i = 0; i < 14; i++) qt[i][i] = 1.0;
     for (i = 0; i < 8; i++) piv[i] = i;
     for (k = 0; k < 8; k++) {
         /* The remaining column of largest norm first. */
@@ -390,32 +385,23 @@ static void ik_gen_qr_pivot(const double b[14][8], double qt[14][14], double r[8
         norm = sqrt(fmax(bn, 0.0));
         if (norm == 0.0) continue;
         alpha = a[k][k] > 0.0 ? -norm : norm;
-        v = hv[k];
+        memset(v, 0, sizeof v);
         for (rr = k; rr < 14; rr++) v[rr] = a[rr][k];
         v[k] -= alpha;
         vn = -0.0;
         for (rr = k; rr < 14; rr++) vn += v[rr] * v[rr];
         if (vn == 0.0) continue;
-        hn[k] = vn;
         for (c = k; c < 8; c++) {
             s = -0.0;
             for (rr = k; rr < 14; rr++) s += v[rr] * a[rr][c];
             s = s * 2.0 / vn;
             for (rr = k; rr < 14; rr++) a[rr][c] -= s * v[rr];
         }
-    }
-    /* Q^T = H7 ... H0 accumulated backwards (see core.rs, qr_pivot): H_k changes the rows and
-       columns from k only. */
-    memset(qt, 0, 14 * sizeof qt[0]);
-    for (i = 0; i < 14; i++) qt[i][i] = 1.0;
-    for (k = 7; k >= 0; k--) {
-        if (hn[k] == 0.0) continue;
-        v = hv[k];
-        for (rr = k; rr < 14; rr++) {
+        for (c = 0; c < 14; c++) {
             s = -0.0;
-            for (c = k; c < 14; c++) s += qt[rr][c] * v[c];
-            s = s * 2.0 / hn[k];
-            for (c = k; c < 14; c++) qt[rr][c] -= s * v[c];
+            for (rr = k; rr < 14; rr++) s += v[rr] * qt[rr][c];
+            s = s * 2.0 / vn;
+            for (rr = k; rr < 14; rr++) qt[rr][c] -= s * v[rr];
         }
     }
     memset(r, 0, 8 * sizeof r[0]);
