@@ -470,24 +470,16 @@ impl Arranged {
         let mut am = left;
         let mut bm = [[0.0; 8]; 14];
         let wt: [&[[f64; 3]; 3]; 2] = std::array::from_fn(|i| self.j[i].weights());
-        // The 2-D transform as two 1-D passes (9 x 6 products per equation instead of 9 x 18),
-        // along the equations.
-        let mut t1 = [[[0.0; 14]; 3]; 3];
-        for k1 in 0..3 {
-            for i2 in 0..3 {
-                let (w0, w1, w2) = (wt[1][i2][0], wt[1][i2][1], wt[1][i2][2]);
-                let r = &rhs[k1];
-                for e in 0..14 {
-                    t1[k1][i2][e] = w0 * r[0][e] + w1 * r[1][e] + w2 * r[2][e];
-                }
-            }
-        }
-        for i1 in 0..3 {
-            let (w0, w1, w2) = (wt[0][i1][0], wt[0][i1][1], wt[0][i1][2]);
-            for i2 in 0..3 {
-                let m = mono(i1, i2);
-                for e in 0..14 {
-                    let s = w0 * t1[0][i2][e] + w1 * t1[1][i2][e] + w2 * t1[2][i2][e];
+        for e in 0..14 {
+            for i1 in 0..3 {
+                for i2 in 0..3 {
+                    let mut s = 0.0;
+                    for k1 in 0..3 {
+                        for k2 in 0..3 {
+                            s += wt[0][i1][k1] * wt[1][i2][k2] * rhs[k1][k2][e];
+                        }
+                    }
+                    let m = mono(i1, i2);
                     if m == 0 {
                         am[e][0][0] -= s;
                     } else {
@@ -588,37 +580,23 @@ fn motion_apply(g: &B34, x: &V, d: &V) -> (V, V) {
 /// Householder QR with column pivoting of the 14 x 8 matrix `b`: `(Qᵀ, R, order, |r77| /
 /// |r00|)`; the last six rows of `Qᵀ` span the left null space when the ratio is not small.
 #[allow(clippy::needless_range_loop, clippy::type_complexity)]
-fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], f64) {
+pub(crate) fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], f64) {
     let mut a = *b;
-    // Each step's Householder vector and its squared norm (0: no reflection).
-    let mut hv = [[0.0; 14]; 8];
-    let mut hn = [0.0; 8];
+    let mut q = [[0.0; 14]; 14];
+    for i in 0..14 {
+        q[i][i] = 1.0;
+    }
     let mut piv = [0, 1, 2, 3, 4, 5, 6, 7];
     // Each step with its column a constant (the loops over its rows unrolled).
-    qr_step::<0>(&mut a, &mut hv, &mut hn, &mut piv);
-    qr_step::<1>(&mut a, &mut hv, &mut hn, &mut piv);
-    qr_step::<2>(&mut a, &mut hv, &mut hn, &mut piv);
-    qr_step::<3>(&mut a, &mut hv, &mut hn, &mut piv);
-    qr_step::<4>(&mut a, &mut hv, &mut hn, &mut piv);
-    qr_step::<5>(&mut a, &mut hv, &mut hn, &mut piv);
-    qr_step::<6>(&mut a, &mut hv, &mut hn, &mut piv);
-    qr_step::<7>(&mut a, &mut hv, &mut hn, &mut piv);
-    // `Qᵀ = H7 ⋯ H0`, accumulated from `H7` on (backwards): the product so far is the identity
-    // outside its trailing block from row and column `K + 1`, so `H_K` changes rows and
-    // columns from `K` only (a quarter less work than `Q` accumulated forwards, and no
-    // transpose).
-    let mut qt = [[0.0; 14]; 14];
-    for i in 0..14 {
-        qt[i][i] = 1.0;
-    }
-    qt_step::<7>(&mut qt, &hv, &hn);
-    qt_step::<6>(&mut qt, &hv, &hn);
-    qt_step::<5>(&mut qt, &hv, &hn);
-    qt_step::<4>(&mut qt, &hv, &hn);
-    qt_step::<3>(&mut qt, &hv, &hn);
-    qt_step::<2>(&mut qt, &hv, &hn);
-    qt_step::<1>(&mut qt, &hv, &hn);
-    qt_step::<0>(&mut qt, &hv, &hn);
+    qr_step::<0>(&mut a, &mut q, &mut piv);
+    qr_step::<1>(&mut a, &mut q, &mut piv);
+    qr_step::<2>(&mut a, &mut q, &mut piv);
+    qr_step::<3>(&mut a, &mut q, &mut piv);
+    qr_step::<4>(&mut a, &mut q, &mut piv);
+    qr_step::<5>(&mut a, &mut q, &mut piv);
+    qr_step::<6>(&mut a, &mut q, &mut piv);
+    qr_step::<7>(&mut a, &mut q, &mut piv);
+    let qt: [[f64; 14]; 14] = std::array::from_fn(|i| std::array::from_fn(|c| q[c][i]));
     let mut r = [[0.0; 8]; 8];
     for i in 0..8 {
         for j in i..8 {
@@ -634,17 +612,11 @@ fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], 
 }
 
 /// Step `K` of [`qr_pivot`]: the remaining column of largest norm to column `K`, its
-/// Householder reflection applied to the columns from `K` on and kept (`hv[K]`, its squared
-/// norm `hn[K]`) for `Qᵀ`. Each sum starts at `−0`, as the standard library's `f64` sum of an
-/// iterator, which it was.
+/// Householder reflection applied to the columns from `K` on and to `Q` (by rows). Each sum
+/// starts at `−0`, as the standard library's `f64` sum of an iterator, which it was.
 #[allow(clippy::needless_range_loop)]
 #[inline(always)]
-fn qr_step<const K: usize>(
-    a: &mut [[f64; 8]; 14],
-    hv: &mut [[f64; 14]; 8],
-    hn: &mut [f64; 8],
-    piv: &mut [usize; 8],
-) {
+fn qr_step<const K: usize>(a: &mut [[f64; 8]; 14], q: &mut [[f64; 14]; 14], piv: &mut [usize; 8]) {
     // The remaining column of largest norm first.
     let mut best = K;
     let mut bn = -1.0;
@@ -669,7 +641,7 @@ fn qr_step<const K: usize>(
         return;
     }
     let alpha = if a[K][K] > 0.0 { -norm } else { norm };
-    let v = &mut hv[K];
+    let mut v = [0.0; 14];
     for r in K..14 {
         v[r] = a[r][K];
     }
@@ -681,7 +653,6 @@ fn qr_step<const K: usize>(
     if vn == 0.0 {
         return;
     }
-    hn[K] = vn;
     for c in K..8 {
         let mut s = -0.0;
         for r in K..14 {
@@ -692,25 +663,16 @@ fn qr_step<const K: usize>(
             a[r][c] -= s * v[r];
         }
     }
-}
-
-/// `qt ← qt H_K` for [`qr_pivot`]'s backward accumulation: rows and columns from `K` (see
-/// there), each row's update along the row.
-#[allow(clippy::needless_range_loop)]
-#[inline(always)]
-fn qt_step<const K: usize>(qt: &mut [[f64; 14]; 14], hv: &[[f64; 14]; 8], hn: &[f64; 8]) {
-    let (v, vn) = (&hv[K], hn[K]);
-    if vn == 0.0 {
-        return;
-    }
-    for row in qt[K..].iter_mut() {
+    // Q (the transpose of Qᵀ) by rows, so that each update runs along a row (the same
+    // operations in the same order).
+    for qc in q.iter_mut() {
         let mut s = -0.0;
-        for c in K..14 {
-            s += row[c] * v[c];
+        for r in K..14 {
+            s += v[r] * qc[r];
         }
         let s = s * 2.0 / vn;
-        for c in K..14 {
-            row[c] -= s * v[c];
+        for r in K..14 {
+            qc[r] -= s * v[r];
         }
     }
 }
@@ -2704,7 +2666,7 @@ fn then(a: &B34, b: &B34) -> B34 {
 }
 
 /// The pose `E1(q1) ⋯ E6(q6) M` and each joint's current axis `(w, p)` (scaled lengths).
-fn forward(ch: &Chain, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
+pub(crate) fn forward(ch: &Chain, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
     forward_with::<true>(ch, q)
 }
 
@@ -2854,7 +2816,7 @@ pub(crate) fn refine(ch: &Chain, t: &B34, q: &mut [f64; 6]) -> f64 {
 /// positive and finite (rounding made the matrix indefinite: more damping).
 #[allow(clippy::needless_range_loop)]
 #[inline(always)]
-fn cholesky_solve(m: &[[f64; 6]; 6], g: &[f64; 6]) -> Option<[f64; 6]> {
+pub(crate) fn cholesky_solve(m: &[[f64; 6]; 6], g: &[f64; 6]) -> Option<[f64; 6]> {
     // The lower triangle `l` and its diagonal's reciprocals.
     let mut l = [[0.0; 6]; 6];
     let mut inv = [0.0; 6];

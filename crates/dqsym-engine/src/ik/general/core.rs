@@ -539,7 +539,7 @@ fn motion_apply(g: &B34, x: &V, d: &V) -> (V, V) {
 /// Householder QR with column pivoting of the 14 x 8 matrix `b`: `(Qᵀ, R, order, |r77| /
 /// |r00|)`; the last six rows of `Qᵀ` span the left null space when the ratio is not small.
 #[allow(clippy::needless_range_loop, clippy::type_complexity)]
-fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], f64) {
+pub(crate) fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], f64) {
     let mut a = *b;
     let mut q = [[0.0; 14]; 14];
     for i in 0..14 {
@@ -2625,7 +2625,7 @@ fn then(a: &B34, b: &B34) -> B34 {
 }
 
 /// The pose `E1(q1) ⋯ E6(q6) M` and each joint's current axis `(w, p)` (scaled lengths).
-fn forward(ch: &Chain, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
+pub(crate) fn forward(ch: &Chain, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
     forward_with::<true>(ch, q)
 }
 
@@ -2775,7 +2775,7 @@ pub(crate) fn refine(ch: &Chain, t: &B34, q: &mut [f64; 6]) -> f64 {
 /// positive and finite (rounding made the matrix indefinite: more damping).
 #[allow(clippy::needless_range_loop)]
 #[inline(always)]
-fn cholesky_solve(m: &[[f64; 6]; 6], g: &[f64; 6]) -> Option<[f64; 6]> {
+pub(crate) fn cholesky_solve(m: &[[f64; 6]; 6], g: &[f64; 6]) -> Option<[f64; 6]> {
     // The lower triangle `l` and its diagonal's reciprocals.
     let mut l = [[0.0; 6]; 6];
     let mut inv = [0.0; 6];
