@@ -436,8 +436,7 @@ static void ik_gen_apart_solve(const double axes[6][7], const double home[3][4],
             roots += m;
             for (j = 0; j < m; j++) {
                 for (k = 0; k < 6; k++) q[ch.ar.perm[k]] = cands[j][k];
-                res = ik_gen_refine((const double (*)[7])sc.ax, (const double (*)[4])sc.hm,
-                                    (const double (*)[4])sc.tg, q);
+                res = ik_gen_refine(&sc.chain, (const double (*)[4])sc.tg, q);
                 if (isnan(res) || res > tol.keep) continue;
                 for (k = 0; k < 6; k++)
                     if (!prismatic[k]) q[k] = ik_gen_wrap(q[k]);

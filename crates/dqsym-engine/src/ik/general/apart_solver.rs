@@ -1,4 +1,3 @@
-
 // The numeric core of a 4R2P chain whose two slides are three joints apart (RPRRPR, PRRPRR,
 // RRPRRP): the Raghavan–Roth elimination of `core.rs` is degenerate for it in every reading of
 // the loop (see `mod.rs`), so the orientation and the position are separated instead. Plain
@@ -483,6 +482,8 @@ pub(crate) fn apart_solve_by(
     let Some(arrs) = apart_arrangements(&prismatic) else {
         return out;
     };
+    // The forward kinematics' chain (the refinement's).
+    let fk = chain(&ax, &hm);
     let g = compose(&tg, &inverse(&hm));
     let js: [J; 6] = std::array::from_fn(|i| J {
         w: [ax[i][1], ax[i][2], ax[i][3]],
@@ -534,7 +535,7 @@ pub(crate) fn apart_solve_by(
                 for i in 0..6 {
                     q[ch.ar.perm[i]] = qa[i];
                 }
-                if let Some((i, exact, appended)) = add_root(&mut out, q, &ax, &hm, &tg, &tol) {
+                if let Some((i, exact, appended)) = add_root(&mut out, q, &fk, &tg, &tol) {
                     if appended {
                         singular[i] = *sing;
                     } else {

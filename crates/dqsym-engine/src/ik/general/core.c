@@ -1519,37 +1519,84 @@ static int ik_gen_eigen_candidates(const ik_gen_arranged *ar, const ik_gen_elim 
     return 1;
 }
 
-/* The pose E1(q1) ... E6(q6) M and each joint's current axis (w, p) (scaled lengths). */
-static void ik_gen_forward(const double ax[6][7], const double home[3][4], const double q[6],
-                           double pose[3][4], double cur[6][6]) {
-    double p[3][4] = {{1.0, 0.0, 0.0, 0.0}, {0.0, 1.0, 0.0, 0.0}, {0.0, 0.0, 1.0, 0.0}};
-    double m[3][4], r[3][3], np[3][4], o[3], d[3], co, si;
-    int i, rr, c;
+/* The chain prepared for the forward kinematics (see core.rs, Chain): E1(q1) ... E6(q6) M =
+   F1 Z(q1) L1 ... Z(q6) L6 with Fi a frame of joint i's axis, Li = Fi^-1 Fi+1, L6 = F6^-1 M. */
+typedef struct {
+    double base[3][4], link[6][3][4];
+    int prism[6];
+} ik_gen_chain;
+
+/* A frame of the axis through c along w: z the unit direction, x a unit normal, y = z x x. */
+static void ik_gen_axis_frame(const double w[3], const double c[3], double f[3][4]) {
+    const double n = sqrt(ik_gen_dot3(w, w));
+    const double ex[3] = {1.0, 0.0, 0.0}, ey[3] = {0.0, 1.0, 0.0};
+    double z[3], x0[3], x[3], y[3], m;
+    int r;
+    for (r = 0; r < 3; r++) z[r] = w[r] / n;
+    ik_gen_cross3(z, fabs(z[0]) < 0.6 ? ex : ey, x0);
+    m = sqrt(ik_gen_dot3(x0, x0));
+    for (r = 0; r < 3; r++) x[r] = x0[r] / m;
+    ik_gen_cross3(z, x, y);
+    for (r = 0; r < 3; r++) {
+        f[r][0] = x[r];
+        f[r][1] = y[r];
+        f[r][2] = z[r];
+        f[r][3] = c[r];
+    }
+}
+
+/* The chain of the axes ax and the home pose home (scaled). */
+static void ik_gen_chain_of(const double ax[6][7], const double home[3][4], ik_gen_chain *ch) {
+    double fr[6][3][4], inv[3][4];
+    int i;
     for (i = 0; i < 6; i++) {
-        const double *w = ax[i] + 1, *pc = ax[i] + 4;
-        ik_gen_motion_apply((const double (*)[4])p, pc, w, o, d);
-        for (c = 0; c < 3; c++) {
-            cur[i][c] = d[c];
-            cur[i][3 + c] = o[c];
+        ik_gen_axis_frame(ax[i] + 1, ax[i] + 4, fr[i]);
+        ch->prism[i] = ax[i][0] != 0.0;
+    }
+    memcpy(ch->base, fr[0], sizeof ch->base);
+    for (i = 0; i < 6; i++) {
+        ik_gen_inverse((const double (*)[4])fr[i], inv);
+        ik_gen_compose((const double (*)[4])inv, i < 5 ? (const double (*)[4])fr[i + 1] : home,
+                       ch->link[i]);
+    }
+}
+
+/* a b for rigid motions (no term for the zero bottom row of b's rotation columns). */
+static void ik_gen_then(const double a[3][4], const double b[3][4], double o[3][4]) {
+    int r, c;
+    for (r = 0; r < 3; r++) {
+        for (c = 0; c < 3; c++) o[r][c] = a[r][0] * b[0][c] + a[r][1] * b[1][c] + a[r][2] * b[2][c];
+        o[r][3] = a[r][0] * b[0][3] + a[r][1] * b[1][3] + a[r][2] * b[2][3] + a[r][3];
+    }
+}
+
+/* The pose E1(q1) ... E6(q6) M and each joint's current axis (w, p) (scaled lengths): the
+   product so far is joint i's frame. */
+static void ik_gen_forward(const ik_gen_chain *ch, const double q[6], double pose[3][4],
+                           double cur[6][6]) {
+    double p[3][4], np[3][4], co, si, x, y;
+    int i, r;
+    memcpy(p, ch->base, sizeof p);
+    for (i = 0; i < 6; i++) {
+        for (r = 0; r < 3; r++) {
+            cur[i][r] = p[r][2];
+            cur[i][3 + r] = p[r][3];
         }
-        memset(m, 0, sizeof m);
-        if (ax[i][0] != 0.0) {
-            for (rr = 0; rr < 3; rr++) {
-                m[rr][rr] = 1.0;
-                m[rr][3] = q[i] * w[rr];
-            }
+        if (ch->prism[i]) {
+            for (r = 0; r < 3; r++) p[r][3] += q[i] * p[r][2];
         } else {
             ik_gen_unit(q[i], &co, &si);
-            ik_gen_rodrigues(w, si, co, r);
-            for (rr = 0; rr < 3; rr++) {
-                for (c = 0; c < 3; c++) m[rr][c] = r[rr][c];
-                m[rr][3] = pc[rr] - ik_gen_dot3(r[rr], pc);
+            for (r = 0; r < 3; r++) {
+                x = p[r][0];
+                y = p[r][1];
+                p[r][0] = co * x + si * y;
+                p[r][1] = co * y - si * x;
             }
         }
-        ik_gen_compose((const double (*)[4])p, (const double (*)[4])m, np);
+        ik_gen_then((const double (*)[4])p, (const double (*)[4])ch->link[i], np);
         memcpy(p, np, sizeof p);
     }
-    ik_gen_compose((const double (*)[4])p, home, pose);
+    memcpy(pose, p, sizeof p);
 }
 
 /* T - F entry by entry, and its largest size (NaN when any is). */
@@ -1575,7 +1622,7 @@ static double ik_gen_error(const double f[3][4], const double t[3][4], double e[
    [w]x [F | t - p] (a slide's [0 | w]), so with F a rotation its rotation part gives 2 wi.wj
    and wi.u, u = sum_k f_k x e_k; the translation part (wi x (t - pi)).(wj x (t - pj)) and its
    product with e_t. Returns the trace. */
-static double ik_gen_normal(const double ax[6][7], const double f[3][4], const double cur[6][6],
+static double ik_gen_normal(const ik_gen_chain *ch, const double f[3][4], const double cur[6][6],
                             const double e[12], double a[6][6], double g[6]) {
     double u[3] = {0.0, 0.0, 0.0}, x[3], col[3], ek[3], et[3], rel[3], rot[6][3], tra[6][3],
         tr = 0.0, v;
@@ -1591,7 +1638,7 @@ static double ik_gen_normal(const double ax[6][7], const double f[3][4], const d
     for (r = 0; r < 3; r++) et[r] = e[4 * r + 3];
     for (i = 0; i < 6; i++) {
         const double *w = cur[i], *p = cur[i] + 3;
-        if (ax[i][0] != 0.0) {
+        if (ch->prism[i]) {
             for (r = 0; r < 3; r++) {
                 rot[i][r] = 0.0;
                 tra[i][r] = w[r];
@@ -1616,26 +1663,53 @@ static double ik_gen_normal(const double ax[6][7], const double f[3][4], const d
     return tr;
 }
 
+/* Solves m d = g by Cholesky's factorization m = L L^T (the damped normal matrix is symmetric
+   positive definite; see core.rs, cholesky_solve); 0 where a pivot is not positive and finite. */
+static int ik_gen_cholesky_solve(const double m[6][6], const double g[6], double d[6]) {
+    double l[6][6], inv[6], y[6], s, ir, t;
+    int i, j, k;
+    for (j = 0; j < 6; j++) {
+        s = m[j][j];
+        for (k = 0; k < j; k++) s -= l[j][k] * l[j][k];
+        if (!(s > 0.0 && isfinite(s))) return 0;
+        ir = 1.0 / sqrt(s);
+        inv[j] = ir;
+        for (i = j + 1; i < 6; i++) {
+            t = m[i][j];
+            for (k = 0; k < j; k++) t -= l[i][k] * l[j][k];
+            l[i][j] = t * ir;
+        }
+    }
+    for (i = 0; i < 6; i++) {
+        t = g[i];
+        for (k = 0; k < i; k++) t -= l[i][k] * y[k];
+        y[i] = t * inv[i];
+    }
+    for (i = 5; i >= 0; i--) {
+        t = y[i];
+        for (k = i + 1; k < 6; k++) t -= l[k][i] * d[k];
+        d[i] = t * inv[i];
+    }
+    return 1;
+}
+
 /* Damped Gauss-Newton from q on the pose residual (scaled lengths); returns the final
    residual. */
-static double ik_gen_refine(const double ax[6][7], const double home[3][4], const double t[3][4],
-                            double q[6]) {
+static double ik_gen_refine(const ik_gen_chain *ch, const double t[3][4], double q[6]) {
     double f[3][4], cur[6][6], e[12], f2[3][4], cur2[6][6], e2[12];
-    double a[6][6], m[6][6], g[6], d[6], next[6], res, r2, tr, lambda = IK_GEN_DAMP_START, ratio;
-    int it, i, p[6], done;
-    ik_gen_forward(ax, home, q, f, cur);
+    double a[6][6], m[6][6], g[6], d[6], next[6], res, r2, tr, lambda = IK_GEN_DAMP_START;
+    int it, i, done;
+    ik_gen_forward(ch, q, f, cur);
     res = ik_gen_error((const double (*)[4])f, t, e);
     for (it = 0; it < IK_GEN_REFINE_ITERS; it++) {
         if (res <= IK_GEN_EXACT_TOL || isnan(res)) break;
-        tr = ik_gen_normal(ax, (const double (*)[4])f, (const double (*)[6])cur, e, a, g);
+        tr = ik_gen_normal(ch, (const double (*)[4])f, (const double (*)[6])cur, e, a, g);
         for (done = 0; !done;) {
             memcpy(m, a, sizeof m);
             for (i = 0; i < 6; i++) m[i][i] += lambda * fmax(tr, IK_GEN_MIN_POSITIVE);
-            ratio = ik_gen_lu(&m[0][0], 6, p);
-            if (ratio > 0.0 && isfinite(ratio)) {
-                ik_gen_lu_solve(&m[0][0], 6, p, g, d);
+            if (ik_gen_cholesky_solve((const double (*)[6])m, g, d)) {
                 for (i = 0; i < 6; i++) next[i] = q[i] + d[i];
-                ik_gen_forward(ax, home, next, f2, cur2);
+                ik_gen_forward(ch, next, f2, cur2);
                 r2 = ik_gen_error((const double (*)[4])f2, t, e2);
                 if (r2 < res) {
                     memcpy(q, next, 6 * sizeof q[0]);
@@ -1692,6 +1766,7 @@ static int ik_gen_add(ik_gen_out *out, const double q[6], double res, const int 
 typedef struct {
     double ax[6][7], hm[3][4], tg[3][4], g[3][4];
     ik_gen_joint js[6];
+    ik_gen_chain chain;
     int prismatic[6];
 } ik_gen_scaled;
 
@@ -1709,6 +1784,7 @@ static void ik_gen_scale(const double axes[6][7], const double home[3][4],
         s->tg[i][3] /= len;
     }
     for (i = 0; i < 6; i++) s->prismatic[i] = s->ax[i][0] != 0.0;
+    ik_gen_chain_of((const double (*)[7])s->ax, (const double (*)[4])s->hm, &s->chain);
     ik_gen_inverse((const double (*)[4])s->hm, ihm);
     ik_gen_compose((const double (*)[4])s->tg, (const double (*)[4])ihm, s->g);
     for (i = 0; i < 6; i++) {
@@ -1768,8 +1844,7 @@ static int ik_gen_take(ik_gen_out *out, const ik_gen_scaled *sc, double roots[24
     memset(hit, 0, sizeof hit);
     for (i = 0; i < n; i++) {
         memcpy(q, roots[i], sizeof q);
-        res = ik_gen_refine((const double (*)[7])sc->ax, (const double (*)[4])sc->hm,
-                            (const double (*)[4])sc->tg, q);
+        res = ik_gen_refine(&sc->chain, (const double (*)[4])sc->tg, q);
         if (isnan(res) || res > tol.keep) continue;
         for (j = 0; j < 6; j++)
             if (!sc->prismatic[j]) q[j] = ik_gen_wrap(q[j]);

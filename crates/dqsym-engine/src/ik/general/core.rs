@@ -539,7 +539,7 @@ fn motion_apply(g: &B34, x: &V, d: &V) -> (V, V) {
 /// Householder QR with column pivoting of the 14 x 8 matrix `b`: `(Qᵀ, R, order, |r77| /
 /// |r00|)`; the last six rows of `Qᵀ` span the left null space when the ratio is not small.
 #[allow(clippy::needless_range_loop, clippy::type_complexity)]
-fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], f64) {
+pub(crate) fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], f64) {
     let mut a = *b;
     let mut q = [[0.0; 14]; 14];
     for i in 0..14 {
@@ -2580,52 +2580,103 @@ pub(crate) fn det_candidates(
     Ok((count, 2 * n))
 }
 
+/// The chain prepared for the forward kinematics (once per solve): with `Fi` a frame of joint
+/// `i` in the home pose (its `z` axis the joint's axis, its origin the axis' point),
+/// `E1(q1) ⋯ E6(q6) M = F1 Z(q1) L1 Z(q2) L2 ⋯ Z(q6) L6`, where `Z(q)` turns by `q` about `z`
+/// (a slide moves by `q` along it), `Li = Fi⁻¹ Fi+1` and `L6 = F6⁻¹ M` (`Ei(q) = Fi Z(q)
+/// Fi⁻¹`). The link transforms `Li` are constants of the arm, so a joint costs the turn of two
+/// columns and one product, the cosine and sine once, and the product so far is joint `i + 1`'s
+/// frame: its current axis with no work.
+pub(crate) struct Chain {
+    /// `F1`.
+    base: B34,
+    /// `L1 … L6`.
+    link: [B34; 6],
+    /// Whether each joint slides.
+    prism: [bool; 6],
+}
+
+/// A frame of the axis through `c` along `w`: `z` the unit direction, `x` a unit normal (away
+/// from the coordinate axis nearest `z`), `y = z × x`, origin `c`.
+fn axis_frame(w: &V, c: &V) -> B34 {
+    let n = dot3(w, w).sqrt();
+    let z = [w[0] / n, w[1] / n, w[2] / n];
+    let e = if z[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let x0 = cross3(&z, &e);
+    let m = dot3(&x0, &x0).sqrt();
+    let x = [x0[0] / m, x0[1] / m, x0[2] / m];
+    let y = cross3(&z, &x);
+    [
+        [x[0], y[0], z[0], c[0]],
+        [x[1], y[1], z[1], c[1]],
+        [x[2], y[2], z[2], c[2]],
+    ]
+}
+
+/// The [`Chain`] of the axes `ax` and the home pose `home` (scaled).
+pub(crate) fn chain(ax: &[GenAxis; 6], home: &B34) -> Chain {
+    let fr: [B34; 6] = std::array::from_fn(|i| {
+        let x = &ax[i];
+        axis_frame(&[x[1], x[2], x[3]], &[x[4], x[5], x[6]])
+    });
+    Chain {
+        base: fr[0],
+        link: std::array::from_fn(|i| {
+            compose(&inverse(&fr[i]), if i < 5 { &fr[i + 1] } else { home })
+        }),
+        prism: std::array::from_fn(|i| ax[i][0] != 0.0),
+    }
+}
+
+/// `a b` for rigid motions (no term for the zero bottom row of `b`'s rotation columns).
+#[inline(always)]
+fn then(a: &B34, b: &B34) -> B34 {
+    std::array::from_fn(|r| {
+        let x = &a[r];
+        let mut o = [0.0; 4];
+        for c in 0..3 {
+            o[c] = x[0] * b[0][c] + x[1] * b[1][c] + x[2] * b[2][c];
+        }
+        o[3] = x[0] * b[0][3] + x[1] * b[1][3] + x[2] * b[2][3] + x[3];
+        o
+    })
+}
+
 /// The pose `E1(q1) ⋯ E6(q6) M` and each joint's current axis `(w, p)` (scaled lengths).
-#[allow(clippy::needless_range_loop)]
-fn forward(ax: &[GenAxis; 6], home: &B34, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
-    forward_with::<true>(ax, home, q)
+pub(crate) fn forward(ch: &Chain, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
+    forward_with::<true>(ch, q)
 }
 
 /// [`forward`], the current axes only when `AXES` (else zero): the refinement's trial points
 /// need the pose alone unless another step follows.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)]
-fn forward_with<const AXES: bool>(
-    ax: &[GenAxis; 6],
-    home: &B34,
-    q: &[f64; 6],
-) -> (B34, [[f64; 6]; 6]) {
-    let mut p: B34 = [
-        [1.0, 0.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0, 0.0],
-        [0.0, 0.0, 1.0, 0.0],
-    ];
+fn forward_with<const AXES: bool>(ch: &Chain, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
     let mut cur = [[0.0; 6]; 6];
+    let mut p = ch.base;
     for i in 0..6 {
-        let a = &ax[i];
-        let w = [a[1], a[2], a[3]];
-        let c = [a[4], a[5], a[6]];
         if AXES {
-            let (o, d) = motion_apply(&p, &c, &w);
-            cur[i] = [d[0], d[1], d[2], o[0], o[1], o[2]];
+            cur[i] = [p[0][2], p[1][2], p[2][2], p[0][3], p[1][3], p[2][3]];
         }
-        let mut m: B34 = [[0.0; 4]; 3];
-        if a[0] != 0.0 {
-            for r in 0..3 {
-                m[r][r] = 1.0;
-                m[r][3] = q[i] * w[r];
+        if ch.prism[i] {
+            for row in p.iter_mut() {
+                row[3] += q[i] * row[2];
             }
         } else {
-            let (co, s) = unit(q[i]);
-            let r = rodrigues(&w, s, co);
-            for rr in 0..3 {
-                m[rr][..3].copy_from_slice(&r[rr]);
-                m[rr][3] = c[rr] - dot3(&r[rr], &c);
+            let (c, s) = unit(q[i]);
+            for row in p.iter_mut() {
+                let (x, y) = (row[0], row[1]);
+                row[0] = c * x + s * y;
+                row[1] = c * y - s * x;
             }
         }
-        p = compose(&p, &m);
+        p = then(&p, &ch.link[i]);
     }
-    (compose(&p, home), cur)
+    (p, cur)
 }
 
 pub(crate) fn compose(a: &B34, b: &B34) -> B34 {
@@ -2639,28 +2690,31 @@ pub(crate) fn compose(a: &B34, b: &B34) -> B34 {
     o
 }
 
+/// `T − F` entry by entry and its largest size (NaN when any entry is): the maximum by
+/// comparisons (a NaN never wins one) and the NaN by a flag, without a branch per entry.
 fn error(f: &B34, t: &B34) -> ([f64; 12], f64) {
     let mut e = [0.0; 12];
     let mut m: f64 = 0.0;
+    let mut nan = false;
     for r in 0..3 {
         for c in 0..4 {
             let d = t[r][c] - f[r][c];
             e[4 * r + c] = d;
-            if d.is_nan() {
-                m = f64::NAN;
-            } else if !m.is_nan() {
-                m = m.max(d.abs());
+            let a = d.abs();
+            if a > m {
+                m = a;
             }
+            nan |= d.is_nan();
         }
     }
-    (e, m)
+    (e, if nan { f64::NAN } else { m })
 }
 
 /// Damped Gauss–Newton from `q` on the pose residual (as `ik::check::refine`, on scaled
 /// lengths); returns the final residual.
 #[allow(clippy::needless_range_loop)]
-pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -> f64 {
-    let (mut f, mut cur) = forward(ax, home, q);
+pub(crate) fn refine(ch: &Chain, t: &B34, q: &mut [f64; 6]) -> f64 {
+    let (mut f, mut cur) = forward(ch, q);
     let (mut e, mut res) = error(&f, t);
     let mut lambda = DAMP_START;
     // The axes of `cur` belong to an earlier `q` (a step was taken without them).
@@ -2670,7 +2724,7 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
             break;
         }
         if stale {
-            cur = forward(ax, home, q).1;
+            cur = forward(ch, q).1;
         }
         // The Jacobian's column of joint i is `[w]× [F | t − p]` (revolute; `[0 | w]` for a
         // slide), so its normal matrix and gradient need no column: with `F` a rotation (to
@@ -2691,7 +2745,7 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
         for i in 0..6 {
             let [wx, wy, wz, px, py, pz] = cur[i];
             let w = [wx, wy, wz];
-            if ax[i][0] != 0.0 {
+            if ch.prism[i] {
                 tra[i] = w;
             } else {
                 rot[i] = w;
@@ -2715,12 +2769,9 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
             for i in 0..6 {
                 m[i][i] += lambda * tr.max(f64::MIN_POSITIVE);
             }
-            let (p, ratio) = lu(&mut m);
-            let ok = ratio > 0.0 && ratio.is_finite();
-            if ok {
-                let d = lu_solve(&m, &p, &g);
+            if let Some(d) = cholesky_solve(&m, &g) {
                 let next: [f64; 6] = std::array::from_fn(|i| q[i] + d[i]);
-                let (f2, _) = forward_with::<false>(ax, home, &next);
+                let (f2, _) = forward_with::<false>(ch, &next);
                 let (e2, r2) = error(&f2, t);
                 if r2 < res {
                     *q = next;
@@ -2737,6 +2788,56 @@ pub(crate) fn refine(ax: &[GenAxis; 6], home: &B34, t: &B34, q: &mut [f64; 6]) -
         }
     }
     res
+}
+
+/// Solves `m d = g` by Cholesky's factorization `m = L Lᵀ`: the refinement's damped normal
+/// matrix is symmetric and positive definite (the Gram matrix of the Jacobian's columns plus a
+/// positive multiple of the identity), so no pivoting is needed and the factorization is
+/// backward stable; half the work of an LU with partial pivoting. `None` where a pivot is not
+/// positive and finite (rounding made the matrix indefinite: more damping).
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+pub(crate) fn cholesky_solve(m: &[[f64; 6]; 6], g: &[f64; 6]) -> Option<[f64; 6]> {
+    // The lower triangle `l` and its diagonal's reciprocals.
+    let mut l = [[0.0; 6]; 6];
+    let mut inv = [0.0; 6];
+    for j in 0..6 {
+        let mut s = m[j][j];
+        for k in 0..j {
+            s -= l[j][k] * l[j][k];
+        }
+        // (Not NaN, not infinite.)
+        if !(s > 0.0 && s < f64::INFINITY) {
+            return None;
+        }
+        let ir = 1.0 / s.sqrt();
+        inv[j] = ir;
+        for i in j + 1..6 {
+            let mut t = m[i][j];
+            for k in 0..j {
+                t -= l[i][k] * l[j][k];
+            }
+            l[i][j] = t * ir;
+        }
+    }
+    // `L y = g`, then `Lᵀ d = y`.
+    let mut y = [0.0; 6];
+    for i in 0..6 {
+        let mut t = g[i];
+        for k in 0..i {
+            t -= l[i][k] * y[k];
+        }
+        y[i] = t * inv[i];
+    }
+    let mut d = [0.0; 6];
+    for i in (0..6).rev() {
+        let mut t = y[i];
+        for k in i + 1..6 {
+            t -= l[k][i] * d[k];
+        }
+        d[i] = t * inv[i];
+    }
+    Some(d)
 }
 
 /// Two joint vectors that are one solution (angles compared on the circle).
@@ -2760,8 +2861,7 @@ fn take_roots(
     roots: &[[f64; 6]],
     degree: usize,
     arr: usize,
-    ax: &[GenAxis; 6],
-    hm: &B34,
+    ch: &Chain,
     tg: &B34,
     tol: &GenTol,
 ) -> bool {
@@ -2775,7 +2875,7 @@ fn take_roots(
     // The solutions this arrangement's roots reached (exactly).
     let mut hit = [false; GEN_MAX];
     for root in roots {
-        if let Some((i, exact, _)) = add_root(out, *root, ax, hm, tg, tol) {
+        if let Some((i, exact, _)) = add_root(out, *root, ch, tg, tol) {
             hit[i] |= exact;
         }
     }
@@ -2790,13 +2890,12 @@ fn take_roots(
 pub(crate) fn add_root(
     out: &mut GenOut,
     mut q: [f64; 6],
-    ax: &[GenAxis; 6],
-    hm: &B34,
+    ch: &Chain,
     tg: &B34,
     tol: &GenTol,
 ) -> Option<(usize, bool, bool)> {
-    let prismatic: [bool; 6] = std::array::from_fn(|i| ax[i][0] != 0.0);
-    let res = refine(ax, hm, tg, &mut q);
+    let prismatic = ch.prism;
+    let res = refine(ch, tg, &mut q);
     if res.is_nan() || res > tol.keep {
         return None;
     }
@@ -2887,6 +2986,7 @@ pub fn gen_solve(
         tg[r][3] /= len;
     }
     let prismatic: [bool; 6] = std::array::from_fn(|i| ax[i][0] != 0.0);
+    let ch = chain(&ax, &hm);
     let g = compose(&tg, &inverse(&hm));
     let js: [J; 6] = std::array::from_fn(|i| J {
         w: [ax[i][1], ax[i][2], ax[i][3]],
@@ -2961,8 +3061,7 @@ pub fn gen_solve(
             _ => {
                 if let Some((da, de, darr)) = deferred.take() {
                     if let Some((n, degree)) = eigen_candidates(&da, &de, &mut roots) {
-                        complete =
-                            take_roots(&mut out, &roots[..n], degree, darr, &ax, &hm, &tg, &tol);
+                        complete = take_roots(&mut out, &roots[..n], degree, darr, &ch, &tg, &tol);
                         if complete || out.n_arr == 12 {
                             break;
                         }
@@ -2972,7 +3071,7 @@ pub fn gen_solve(
             }
         };
         let Some((n, degree)) = found else { continue };
-        complete = take_roots(&mut out, &roots[..n], degree, arr, &ax, &hm, &tg, &tol);
+        complete = take_roots(&mut out, &roots[..n], degree, arr, &ch, &tg, &tol);
         if complete {
             break;
         }
@@ -2981,7 +3080,7 @@ pub fn gen_solve(
     if let Some((da, de, darr)) = deferred {
         if !complete && out.n_arr < 12 {
             if let Some((n, degree)) = eigen_candidates(&da, &de, &mut roots) {
-                complete = take_roots(&mut out, &roots[..n], degree, darr, &ax, &hm, &tg, &tol);
+                complete = take_roots(&mut out, &roots[..n], degree, darr, &ch, &tg, &tol);
             }
         }
     }
@@ -3004,7 +3103,7 @@ pub fn gen_solve(
             continue;
         };
         if let Some((n, degree)) = eigen_candidates(&ar, &el, &mut roots) {
-            complete = take_roots(&mut out, &roots[..n], degree, arr, &ax, &hm, &tg, &tol);
+            complete = take_roots(&mut out, &roots[..n], degree, arr, &ch, &tg, &tol);
         }
     }
     // Prismatic variables back in the robot's length unit.

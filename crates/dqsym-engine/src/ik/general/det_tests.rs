@@ -880,8 +880,8 @@ fn search_shortcuts_are_the_sums_they_replace() {
 #[test]
 fn a_determinant_route_that_gives_up_defers_to_the_next_arrangement() {
     use super::core::{
-        det_candidates, eigen_candidates, gen_solve, left_is_constant, refine, robot_left, same,
-        scaled_left, wrap, GaveUp, GenAxis, GenTol,
+        chain, det_candidates, eigen_candidates, gen_solve, left_is_constant, refine, robot_left,
+        same, scaled_left, wrap, GaveUp, GenAxis, GenTol,
     };
     let pi = std::f64::consts::PI;
     let skew = skew_rows();
@@ -1019,7 +1019,7 @@ fn a_determinant_route_that_gives_up_defers_to_the_next_arrangement() {
                 };
                 for root in &roots[..n] {
                     let mut q = *root;
-                    let res = refine(&ax, &sc(&home), &tg, &mut q);
+                    let res = refine(&chain(&ax, &sc(&home)), &tg, &mut q);
                     if res.is_nan() || res > tol.pose {
                         continue;
                     }
