@@ -34,16 +34,40 @@ pub(super) struct Costs {
     /// root's coefficient: an upper bound of a quotient's).
     words: Vec<u64>,
     memo: FxMap<u64, Vec<Known>>,
+    /// Whether a candidate is cut once its cost reaches the best so far (see the module's
+    /// doc); off only in the tests that compare the two.
+    pub(super) bounded: bool,
 }
 
 /// A cost found for a group: its depth class, divisor, the factors pulled out of it (as
-/// [`Search::div_key`]) and its monomials by index.
+/// [`Search::div_key`]) and its monomials by index; what is known of its cost, and at a
+/// branching level the candidate that won.
 struct Known {
     level: usize,
     d: i128,
     div: Vec<(usize, u32)>,
     group: Vec<u32>,
-    shape: Shape,
+    found: Bounded,
+    winner: Option<Factor>,
+}
+
+/// What a search under a bound knows of a group's cost: its exact shape, or that its cost
+/// (standing alone) is at least the bound, found without finishing the search.
+#[derive(Clone, Copy, Debug)]
+enum Bounded {
+    Exact(Shape),
+    AtLeast(usize),
+}
+
+/// No bound: every cost counts.
+const NO_BOUND: usize = usize::MAX;
+
+/// The cost of a group of `n` distinct monomials is at least `n - 1` operations: its
+/// additions. Every step of the search keeps them: a split makes the group holding the factor
+/// one term of the sum of the rest's terms (`n1 - 1` additions inside it, `n2 - 1` among the
+/// rest, one to join them), and a sign, a content or a power only adds operations.
+fn additions(n: usize) -> usize {
+    n.saturating_sub(1)
 }
 
 /// What a node's parent needs of it: the cost of its core (the node without its leading
@@ -242,6 +266,7 @@ impl Costs {
             coef,
             words,
             memo: FxMap::default(),
+            bounded: true,
         })
     }
 
@@ -293,29 +318,33 @@ fn gcd_over(d: i128, ns: impl Iterator<Item = i128>, above: u128) -> u128 {
 }
 
 impl Search<'_> {
-    /// The costs of the candidates `fs` for `group` (of the tree search, at `depth`) split on
-    /// each, in order, when the group's monomials allow it.
-    pub(super) fn candidate_costs(
+    /// The candidate of `fs` (those of `group`, of the tree search at `depth`, a branching
+    /// level) the search takes, the first of least cost, with that cost, when the group's
+    /// monomials allow costs without trees.
+    pub(super) fn cost_winner(
         &mut self,
         group: &[(u32, Q)],
         fs: &[Factor],
         depth: usize,
-    ) -> Option<Vec<Cost>> {
+    ) -> Option<(Factor, Cost)> {
         let d = self.costs.as_ref()?.divisor(group)?;
         debug_assert!(group.iter().all(|(i, q)| {
             let c = self.costs.as_ref().map_or(0, |c| c.coef[*i as usize]);
             c % d == 0 && *q == c_q(c / d)
         }));
         let idx: Vec<u32> = group.iter().map(|(i, _)| *i).collect();
-        Some(
-            fs.iter()
-                .map(|&f| self.c_split_on(&idx, d, f, depth).alone())
-                .collect(),
-        )
+        let (shape, winner) = self.c_search(&idx, d, depth, Some(fs), NO_BOUND);
+        Some((winner?, shape?.alone()))
     }
 
     fn coef(&self, i: u32) -> i128 {
         self.costs.as_ref().map_or(1, |c| c.coef[i as usize])
+    }
+
+    /// Whether candidates are cut at the best cost so far (always, but in the tests that
+    /// compare the search with and without the bound).
+    fn bounded(&self) -> bool {
+        self.costs.as_ref().is_some_and(|c| c.bounded)
     }
 
     /// Monomial `i` with coefficient `coef[i] / d` ([`Search::mon_expr`]).
@@ -354,12 +383,16 @@ impl Search<'_> {
         sum(group.iter().map(|&i| self.c_mon(i, d)))
     }
 
-    /// [`Search::build_at`] for the group `coef[i] / d`, `i` in `group`.
-    fn c_build_at(&mut self, group: &[u32], d: i128, depth: usize) -> Shape {
+    /// [`Search::build_at`] for the group `coef[i] / d`, `i` in `group`; `None` when its cost
+    /// is at least `bound` operations (see the module's doc).
+    fn c_build_at(&mut self, group: &[u32], d: i128, depth: usize, bound: usize) -> Option<Shape> {
         match group {
-            [] => return Shape::ZERO,
-            [i] => return self.c_mon(*i, d),
+            [] => return Some(Shape::ZERO),
+            [i] => return Some(self.c_mon(*i, d)),
             _ => {}
+        }
+        if additions(group.len()) >= bound {
+            return None;
         }
         let work: u64 = group
             .iter()
@@ -371,65 +404,118 @@ impl Search<'_> {
             .sum();
         self.charge_work(work);
         if self.spent.is_some() {
-            return self.c_plain_sum(group, d);
+            return Some(self.c_plain_sum(group, d));
         }
+        // The negation and the content each add one operation to the group's cost.
         if group.iter().all(|&i| (self.coef(i) < 0) != (d < 0)) {
-            return self.c_build_at(group, -d, depth).neg();
+            return self
+                .c_build_at(group, -d, depth, bound.saturating_sub(1))
+                .map(Shape::neg);
         }
         let g = gcd_over(d, group.iter().map(|&i| self.coef(i)), 0) / d.unsigned_abs();
         if g != 1 {
-            let inner = self.c_build_at(group, d * g as i128, depth);
-            return mul(&[Shape::int(g as i128), inner]);
+            let inner = self.c_build_at(group, d * g as i128, depth, bound.saturating_sub(1))?;
+            return Some(mul(&[Shape::int(g as i128), inner]));
         }
-        self.c_searched(group, d, depth)
+        self.c_search(group, d, depth, None, bound).0
     }
 
-    /// [`Search::searched`]: the memo, the candidates, the splits.
-    fn c_searched(&mut self, group: &[u32], d: i128, depth: usize) -> Shape {
+    /// [`Search::searched`]: the memo, the candidates (`fs` when counted already), the
+    /// splits; the shape (`None` when its cost is at least `bound` operations) and, at a
+    /// branching level, the candidate taken.
+    fn c_search(
+        &mut self,
+        group: &[u32],
+        d: i128,
+        depth: usize,
+        fs: Option<&[Factor]>,
+        bound: usize,
+    ) -> (Option<Shape>, Option<Factor>) {
         let level = depth.min(BRANCH_DEPTH);
         let key = self.div_key();
         let mut h = FxHasher::default();
         (level, d, &key, group).hash(&mut h);
         let hash = h.finish();
-        if let Some(k) = self.costs.as_ref().and_then(|c| {
+        // An entry that only knows a lower bound below this one is searched again and
+        // replaced.
+        let mut stale = None;
+        if let Some((pos, k)) = self.costs.as_ref().and_then(|c| {
             c.memo
                 .get(&hash)?
                 .iter()
-                .find(|k| k.level == level && k.d == d && k.div == key && k.group == group)
+                .enumerate()
+                .find(|(_, k)| k.level == level && k.d == d && k.div == key && k.group == group)
         }) {
-            return k.shape;
+            match k.found {
+                Bounded::Exact(s) => return (Some(s), k.winner),
+                Bounded::AtLeast(l) if l >= bound => return (None, None),
+                Bounded::AtLeast(_) => stale = Some(pos),
+            }
         }
         let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
-        let candidates = self.candidates(group.iter().copied(), tries);
+        let counted;
+        let candidates = match fs {
+            Some(fs) => fs,
+            None => {
+                counted = self.candidates(group.iter().copied(), tries);
+                &counted[..]
+            }
+        };
         if candidates.is_empty() {
-            return self.c_plain_sum(group, d);
+            return (Some(self.c_plain_sum(group, d)), None);
         }
-        let shape = if tries == 1 {
-            self.c_run(group, d, candidates[0], depth)
+        let (shape, winner) = if tries == 1 {
+            (self.c_run(group, d, candidates[0], depth, bound), None)
         } else {
-            let mut best: Option<Shape> = None;
-            for f in candidates {
-                let e = self.c_split_on(group, d, f, depth);
-                if best.is_none_or(|b| e.alone() < b.alone()) {
-                    best = Some(e);
+            let bounded = self.bounded();
+            let mut best: Option<(Shape, Factor)> = None;
+            for &f in candidates {
+                // A candidate costing as much as the best so far is not taken (the first of
+                // least cost is): it is cut there.
+                let b = match best {
+                    Some((s, _)) if bounded => s.alone().ops.min(bound),
+                    _ => bound,
+                };
+                let Some(e) = self.c_split_on(group, d, f, depth, b) else {
+                    continue;
+                };
+                if e.alone().ops < b && best.is_none_or(|(s, _)| e.alone() < s.alone()) {
+                    best = Some((e, f));
                 }
             }
-            best.unwrap_or(Shape::ZERO)
+            (best.map(|(s, _)| s), best.map(|(_, f)| f))
         };
         if let Some(c) = self.costs.as_mut() {
-            c.memo.entry(hash).or_default().push(Known {
+            let found = match shape {
+                Some(s) => Bounded::Exact(s),
+                None => Bounded::AtLeast(bound),
+            };
+            let k = Known {
                 level,
                 d,
                 div: key,
                 group: group.to_vec(),
-                shape,
-            });
+                found,
+                winner,
+            };
+            let entries = c.memo.entry(hash).or_default();
+            match stale {
+                Some(pos) => entries[pos] = k,
+                None => entries.push(k),
+            }
         }
-        shape
+        (shape, winner)
     }
 
-    /// [`Search::split_on`].
-    fn c_split_on(&mut self, group: &[u32], d: i128, f: Factor, depth: usize) -> Shape {
+    /// [`Search::split_on`]; `None` when its cost is at least `bound` operations.
+    fn c_split_on(
+        &mut self,
+        group: &[u32],
+        d: i128,
+        f: Factor,
+        depth: usize,
+        bound: usize,
+    ) -> Option<Shape> {
         let fi = self.counts.index(f);
         // Each monomial's power of `f` looked up once, for `k` and for the split (twice was a
         // sixth of the symbolic 6R's cost pass).
@@ -447,34 +533,65 @@ impl Search<'_> {
                 rest.push(i);
             }
         }
+        // What the split adds to the cost of the group holding `f` (at least two monomials,
+        // so not the number one): `k - 1` for the power and one for the product, or with a
+        // rest of `n` monomials `k - 1` and `n` (its additions and the one joining it; the
+        // product's operation may be the subtraction's negation, see the module's doc).
+        let over = (k as usize - 1) + rest.len().max(1);
         self.div[fi] += k;
         self.path.push((fi, k));
-        let inner = self.c_build_at(&with, d, depth.saturating_add(k as usize));
+        let inner = self.c_build_at(
+            &with,
+            d,
+            depth.saturating_add(k as usize),
+            bound.saturating_sub(over),
+        );
         self.path.pop();
         self.div[fi] -= k;
-        let factored = mul(&[factor_shape(k), inner]);
-        self.c_beside(factored, &rest, d, depth)
+        let factored = mul(&[factor_shape(k), inner?]);
+        self.c_beside(factored, &rest, d, depth, bound)
     }
 
-    /// [`Search::beside`]: the rest's terms and the factored group in one sum.
-    fn c_beside(&mut self, factored: Shape, rest: &[u32], d: i128, depth: usize) -> Shape {
+    /// [`Search::beside`]: the rest's terms and the factored group in one sum; `None` when
+    /// its cost is at least `bound` operations.
+    fn c_beside(
+        &mut self,
+        factored: Shape,
+        rest: &[u32],
+        d: i128,
+        depth: usize,
+        bound: usize,
+    ) -> Option<Shape> {
         if rest.is_empty() {
-            return factored;
+            return Some(factored);
         }
-        let r = self.c_build_at(rest, d, depth + 1);
-        if r.kind == Kind::Add && r.negs == 0 {
+        let r = self.c_build_at(
+            rest,
+            d,
+            depth + 1,
+            bound.saturating_sub(factored.in_sum().ops),
+        )?;
+        Some(if r.kind == Kind::Add && r.negs == 0 {
             Shape {
                 core: add(add(r.core, factored.in_sum()), Cost { ops: 1, calls: 0 }),
                 ..r
             }
         } else {
             sum([r, factored].into_iter())
-        }
+        })
     }
 
     /// [`Search::run`]: the split of `g0` on `f`, and of the group holding `f` on `f` again
-    /// while `f` stays its most frequent factor, from buckets by the power of `f`.
-    fn c_run(&mut self, g0: &[u32], d: i128, f: Factor, depth: usize) -> Shape {
+    /// while `f` stays its most frequent factor, from buckets by the power of `f`; `None`
+    /// when its cost is at least `bound` operations (each level's cost is at most the run's).
+    fn c_run(
+        &mut self,
+        g0: &[u32],
+        d: i128,
+        f: Factor,
+        depth: usize,
+        bound: usize,
+    ) -> Option<Shape> {
         let fi = self.counts.index(f);
         let base = self.div[fi];
         let mults: Vec<u32> = g0
@@ -499,12 +616,12 @@ impl Search<'_> {
             ks
         };
         if ks.len() <= super::run::SHORT_RUN {
-            return self.c_split_on(g0, d, f, depth);
+            return self.c_split_on(g0, d, f, depth, bound);
         }
         let buckets = Buckets::sorted(&mults, &ks);
         let levels = self.c_levels(g0, d, f, &ks, &buckets);
         if self.spent.is_some() {
-            return self.c_plain_sum(g0, d);
+            return Some(self.c_plain_sum(g0, d));
         }
         // A level's coefficients are `g0`'s divided by `divisor` and negated with `neg`:
         // `coef / (d * divisor * sign)`.
@@ -536,9 +653,17 @@ impl Search<'_> {
                     *p = g0[*p as usize];
                 }
                 self.path.push((fi, ks[b]));
-                let e = self.c_searched(&group, at(neg, divisor), depth);
+                let e = self
+                    .c_search(&group, at(neg, divisor), depth, None, bound)
+                    .0;
                 self.path.pop();
-                break wrap(e, steps);
+                match e {
+                    Some(e) => break wrap(e, steps),
+                    None => {
+                        self.div[fi] = base;
+                        return None;
+                    }
+                }
             }
             states.push((steps, neg, divisor));
             b += 1;
@@ -554,14 +679,19 @@ impl Search<'_> {
                 buckets.get(lb).iter().map(|&p| g0[p as usize]).collect();
             self.div[fi] = base + ks[lb];
             self.path.push((fi, ks[lb]));
-            let level_e = self.c_beside(factored, &rest, at(neg, divisor), depth);
+            let level_e = self.c_beside(factored, &rest, at(neg, divisor), depth, bound);
             self.path.pop();
-            e = wrap(level_e, steps);
+            match level_e {
+                Some(level_e) => e = wrap(level_e, steps),
+                None => {
+                    self.div[fi] = base;
+                    return None;
+                }
+            }
         }
         self.div[fi] = base;
-        e
+        Some(e)
     }
-
     /// Each level's data from the buckets above it ([`Search::levels`]), charged alike.
     fn c_levels(
         &mut self,
