@@ -410,19 +410,10 @@ impl Search<'_> {
         // levels all depths share one entry. Looked up before the candidates are counted: a
         // group found before needs no count (a group without candidates is never stored).
         let level = depth.min(BRANCH_DEPTH);
-        // While the winner of a cost pass is built, the groups are the disjoint parts of one
-        // tree: none comes back, so the memo is neither asked nor filled (its hash went over
-        // every monomial of every group).
-        let memo = self.prepaid == 0;
-        let (hash, key) = if memo {
-            (self.hash(level, group), self.div_key())
-        } else {
-            (0, Vec::new())
-        };
-        if memo {
-            if let Some(e) = self.remembered(hash, level, &key, group) {
-                return e;
-            }
+        let hash = self.hash(level, group);
+        let key = self.div_key();
+        if let Some(e) = self.remembered(hash, level, &key, group) {
+            return e;
         }
         let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
         let candidates = self.candidates(group.iter().map(|(i, _)| *i), tries);
@@ -453,16 +444,14 @@ impl Search<'_> {
             }
             best.map(|(_, e)| e).unwrap_or_else(E::zero)
         };
-        if memo {
-            let found = Found {
-                level,
-                group: group.to_vec(),
-                div: key,
-                rad_off: self.rad_off,
-                e: e.clone(),
-            };
-            self.memo.entry(hash).or_default().push(found);
-        }
+        let found = Found {
+            level,
+            group: group.to_vec(),
+            div: key,
+            rad_off: self.rad_off,
+            e: e.clone(),
+        };
+        self.memo.entry(hash).or_default().push(found);
         e
     }
 
@@ -854,7 +843,7 @@ mod tests {
     fn poly_many(seed: u64) -> Scalar {
         let mut next = crate::testing::xorshift_below(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
         let names = ["a", "b", "c", "d", "e", "f", "g", "h", "u", "v"];
-        let mut term = |next: &mut dyn FnMut(u64) -> u64| {
+        let term = |next: &mut dyn FnMut(u64) -> u64| {
             let c = [1, -1, 1, -1, 2, -2, 3][next(7) as usize];
             let mut t = Scalar::int(c) * Scalar::sym(names[next(10) as usize]);
             if next(2) == 0 {

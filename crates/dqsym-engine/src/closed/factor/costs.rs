@@ -333,7 +333,8 @@ impl Search<'_> {
             c % d == 0 && *q == c_q(c / d)
         }));
         let idx: Vec<u32> = group.iter().map(|(i, _)| *i).collect();
-        let (shape, winner) = self.c_search(&idx, d, depth, Some(fs), NO_BOUND);
+        let value = self.c_value(&idx);
+        let (shape, winner) = self.c_search(&idx, d, value, depth, Some(fs), NO_BOUND);
         Some((winner?, shape?.alone()))
     }
 
@@ -394,14 +395,22 @@ impl Search<'_> {
         if additions(group.len()) >= bound {
             return None;
         }
-        let work: u64 = group
-            .iter()
-            .map(|&i| {
-                let m = &self.root[i as usize];
-                let len = quotient_syms(m, &self.div, self.counts.sym_base).count() as u64;
-                1 + len + self.costs.as_ref().map_or(0, |c| c.words[i as usize])
-            })
-            .sum();
+        // The work's pass over the quotients also hashes them (see [`Search::c_search`]).
+        let mut work = 0u64;
+        let mut h = FxHasher::default();
+        for &i in group {
+            let m = &self.root[i as usize];
+            let mut len = 0u64;
+            h.write_i128(self.coef(i));
+            for (s, e) in quotient_syms(m, &self.div, self.counts.sym_base) {
+                len += 1;
+                h.write_u32(s);
+                h.write_u32(e);
+            }
+            h.write_u8(0xff);
+            work += 1 + len + self.costs.as_ref().map_or(0, |c| c.words[i as usize]);
+        }
+        let value = h.finish();
         self.charge_work(work);
         if self.spent.is_some() {
             return Some(self.c_plain_sum(group, d));
@@ -417,16 +426,59 @@ impl Search<'_> {
             let inner = self.c_build_at(group, d * g as i128, depth, bound.saturating_sub(1))?;
             return Some(mul(&[Shape::int(g as i128), inner]));
         }
-        self.c_search(group, d, depth, None, bound).0
+        self.c_search(group, d, value, depth, None, bound).0
+    }
+
+    /// The hash of a group's coefficients and quotients, as [`Search::c_build_at`] makes it.
+    fn c_value(&self, group: &[u32]) -> u64 {
+        let mut h = FxHasher::default();
+        for &i in group {
+            h.write_i128(self.coef(i));
+            for (s, e) in quotient_syms(&self.root[i as usize], &self.div, self.counts.sym_base) {
+                h.write_u32(s);
+                h.write_u32(e);
+            }
+            h.write_u8(0xff);
+        }
+        h.finish()
+    }
+
+    /// Whether the group of `k` is `group` as now divided: the same divisor, coefficients and
+    /// quotients, monomial by monomial (`key` is [`Search::div_key`]).
+    fn c_same(&self, k: &Known, d: i128, key: &[(usize, u32)], group: &[u32]) -> bool {
+        if k.d != d || k.group.len() != group.len() {
+            return false;
+        }
+        if k.div == key {
+            // Divided alike: a quotient determines its monomial of the root.
+            return k.group == group;
+        }
+        let mut other = vec![0u32; self.div.len()];
+        for &(i, p) in &k.div {
+            other[i] = p;
+        }
+        let base = self.counts.sym_base;
+        k.group.iter().zip(group).all(|(&i, &j)| {
+            let (m, n) = (&self.root[i as usize], &self.root[j as usize]);
+            self.coef(i) == self.coef(j)
+                && quotient_syms(m, &other, base).eq(quotient_syms(n, &self.div, base))
+        })
     }
 
     /// [`Search::searched`]: the memo, the candidates (`fs` when counted already), the
     /// splits; the shape (`None` when its cost is at least `bound` operations) and, at a
     /// branching level, the candidate taken.
+    ///
+    /// The memo is keyed by the group's value (`value`, [`Search::c_value`]): the divisor,
+    /// the coefficients and the quotients, which are all the search of a group reads (the
+    /// candidates are counted on the quotients, ties broken by factor; the shapes are made
+    /// from the quotients and the coefficients divided by `d`). The same quotients come back
+    /// under other factors pulled out, in other groups of the root's monomials.
     fn c_search(
         &mut self,
         group: &[u32],
         d: i128,
+        value: u64,
         depth: usize,
         fs: Option<&[Factor]>,
         bound: usize,
@@ -434,7 +486,7 @@ impl Search<'_> {
         let level = depth.min(BRANCH_DEPTH);
         let key = self.div_key();
         let mut h = FxHasher::default();
-        (level, d, &key, group).hash(&mut h);
+        (level, d, value).hash(&mut h);
         let hash = h.finish();
         // An entry that only knows a lower bound below this one is searched again and
         // replaced.
@@ -444,7 +496,7 @@ impl Search<'_> {
                 .get(&hash)?
                 .iter()
                 .enumerate()
-                .find(|(_, k)| k.level == level && k.d == d && k.div == key && k.group == group)
+                .find(|(_, k)| k.level == level && self.c_same(k, d, &key, group))
         }) {
             match k.found {
                 Bounded::Exact(s) => return (Some(s), k.winner),
@@ -653,8 +705,9 @@ impl Search<'_> {
                     *p = g0[*p as usize];
                 }
                 self.path.push((fi, ks[b]));
+                let value = self.c_value(&group);
                 let e = self
-                    .c_search(&group, at(neg, divisor), depth, None, bound)
+                    .c_search(&group, at(neg, divisor), value, depth, None, bound)
                     .0;
                 self.path.pop();
                 match e {
