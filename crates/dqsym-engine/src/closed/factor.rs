@@ -667,6 +667,14 @@ impl Counts {
         }
     }
 
+    /// The counts cleared without reading them.
+    fn clear(&mut self) {
+        for &i in &self.touched {
+            self.n[i] = 0;
+        }
+        self.touched.clear();
+    }
+
     fn bump(&mut self, i: usize) {
         if self.n[i] == 0 {
             self.touched.push(i);

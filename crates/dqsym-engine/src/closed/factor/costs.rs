@@ -59,6 +59,15 @@ enum Bounded {
     AtLeast(usize),
 }
 
+/// The candidates of a group [`Search::c_search`] is given: the factors themselves, counted
+/// already (in [`Search::c_build_at`]'s pass, in [`super::Counts`]), or to be counted.
+#[derive(Clone, Copy)]
+enum Cands<'f> {
+    Given(&'f [Factor]),
+    Counted,
+    Count,
+}
+
 /// No bound: every cost counts.
 const NO_BOUND: usize = usize::MAX;
 
@@ -334,7 +343,7 @@ impl Search<'_> {
         }));
         let idx: Vec<u32> = group.iter().map(|(i, _)| *i).collect();
         let value = self.c_value(&idx);
-        let (shape, winner) = self.c_search(&idx, d, value, depth, Some(fs), NO_BOUND);
+        let (shape, winner) = self.c_search(&idx, d, value, depth, Cands::Given(fs), NO_BOUND);
         Some((winner?, shape?.alone()))
     }
 
@@ -395,38 +404,48 @@ impl Search<'_> {
         if additions(group.len()) >= bound {
             return None;
         }
-        // The work's pass over the quotients also hashes them (see [`Search::c_search`]).
+        // The work's pass over the quotients also hashes them (see [`Search::c_search`]) and
+        // counts their factors (the candidates), one pass for three.
         let mut work = 0u64;
         let mut h = FxHasher::default();
+        let Some(costs) = self.costs.as_ref() else {
+            return Some(self.c_plain_sum(group, d));
+        };
+        let (root, div, counts) = (self.root, &self.div, &mut self.counts);
         for &i in group {
-            let m = &self.root[i as usize];
+            let m = &root[i as usize];
             let mut len = 0u64;
-            h.write_i128(self.coef(i));
-            for (s, e) in quotient_syms(m, &self.div, self.counts.sym_base) {
+            h.write_i128(costs.coef[i as usize]);
+            for (s, e) in quotient_syms(m, div, counts.sym_base) {
                 len += 1;
                 h.write_u32(s);
                 h.write_u32(e);
+                counts.bump(counts.sym_base + s as usize);
             }
             h.write_u8(0xff);
-            work += 1 + len + self.costs.as_ref().map_or(0, |c| c.words[i as usize]);
+            work += 1 + len + costs.words[i as usize];
         }
         let value = h.finish();
         self.charge_work(work);
         if self.spent.is_some() {
+            self.counts.clear();
             return Some(self.c_plain_sum(group, d));
         }
         // The negation and the content each add one operation to the group's cost.
         if group.iter().all(|&i| (self.coef(i) < 0) != (d < 0)) {
+            self.counts.clear();
             return self
                 .c_build_at(group, -d, depth, bound.saturating_sub(1))
                 .map(Shape::neg);
         }
         let g = gcd_over(d, group.iter().map(|&i| self.coef(i)), 0) / d.unsigned_abs();
         if g != 1 {
+            self.counts.clear();
             let inner = self.c_build_at(group, d * g as i128, depth, bound.saturating_sub(1))?;
             return Some(mul(&[Shape::int(g as i128), inner]));
         }
-        self.c_search(group, d, value, depth, None, bound).0
+        self.c_search(group, d, value, depth, Cands::Counted, bound)
+            .0
     }
 
     /// The hash of a group's coefficients and quotients, as [`Search::c_build_at`] makes it.
@@ -480,7 +499,7 @@ impl Search<'_> {
         d: i128,
         value: u64,
         depth: usize,
-        fs: Option<&[Factor]>,
+        fs: Cands,
         bound: usize,
     ) -> (Option<Shape>, Option<Factor>) {
         let level = depth.min(BRANCH_DEPTH);
@@ -498,17 +517,30 @@ impl Search<'_> {
                 .enumerate()
                 .find(|(_, k)| k.level == level && self.c_same(k, d, &key, group))
         }) {
-            match k.found {
-                Bounded::Exact(s) => return (Some(s), k.winner),
-                Bounded::AtLeast(l) if l >= bound => return (None, None),
-                Bounded::AtLeast(_) => stale = Some(pos),
+            let found = match k.found {
+                Bounded::Exact(s) => Some((Some(s), k.winner)),
+                Bounded::AtLeast(l) if l >= bound => Some((None, None)),
+                Bounded::AtLeast(_) => {
+                    stale = Some(pos);
+                    None
+                }
+            };
+            if let Some(found) = found {
+                if matches!(fs, Cands::Counted) {
+                    self.counts.clear();
+                }
+                return found;
             }
         }
         let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
         let counted;
         let candidates = match fs {
-            Some(fs) => fs,
-            None => {
+            Cands::Given(fs) => fs,
+            Cands::Counted => {
+                counted = self.counts.best(tries);
+                &counted[..]
+            }
+            Cands::Count => {
                 counted = self.candidates(group.iter().copied(), tries);
                 &counted[..]
             }
@@ -707,7 +739,7 @@ impl Search<'_> {
                 self.path.push((fi, ks[b]));
                 let value = self.c_value(&group);
                 let e = self
-                    .c_search(&group, at(neg, divisor), value, depth, None, bound)
+                    .c_search(&group, at(neg, divisor), value, depth, Cands::Count, bound)
                     .0;
                 self.path.pop();
                 match e {
