@@ -263,13 +263,25 @@ struct Search<'a> {
 /// and per factor of it looked at, [`BIG_WORD_UNITS`] per word of a big coefficient); when
 /// the budget runs out it stops with the budget error.
 pub(crate) fn build(mons: &[Mon]) -> Result<(E, Cost), ScalarError> {
-    build_with(mons, true)
+    build_with(mons, Pass::Bounded)
 }
 
-/// [`build`], with the candidates' costs found without their trees (`costs.rs`) where the
-/// monomials allow it when `costs` is set, every candidate built otherwise (the tests compare
-/// the two).
-fn build_with(mons: &[Mon], costs: bool) -> Result<(E, Cost), ScalarError> {
+/// How [`build_with`] compares the candidates of its branching levels.
+///
+/// Only [`Pass::Bounded`] runs outside the tests, which compare the three.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+#[cfg_attr(not(test), allow(dead_code))]
+enum Pass {
+    /// Every candidate built.
+    Trees,
+    /// Each candidate's cost found without its tree (`costs.rs`) where the monomials allow it.
+    Costs,
+    /// [`Pass::Costs`], each candidate cut once its cost reaches the best so far ([`build`]).
+    Bounded,
+}
+
+/// [`build`], the candidates compared as `pass` says (the tests compare the three).
+fn build_with(mons: &[Mon], pass: Pass) -> Result<(E, Cost), ScalarError> {
     let counts = Counts::for_mons(mons);
     let mut s = Search {
         root: mons,
@@ -278,7 +290,13 @@ fn build_with(mons: &[Mon], costs: bool) -> Result<(E, Cost), ScalarError> {
         path: Vec::new(),
         rad_off: false,
         memo: FxMap::default(),
-        costs: costs.then(|| costs::Costs::for_mons(mons)).flatten(),
+        costs: match pass {
+            Pass::Trees => None,
+            Pass::Costs | Pass::Bounded => costs::Costs::for_mons(mons).map(|mut c| {
+                c.bounded = pass == Pass::Bounded;
+                c
+            }),
+        },
         spent: None,
         prepaid: 0,
     };
@@ -408,27 +426,16 @@ impl Search<'_> {
         let e = if tries == 1 {
             // Below the branching levels: the run of splits on the most frequent factor.
             self.run(group, candidates[0], depth)
-        } else if let Some(costs) = self.candidate_costs(group, &candidates, depth) {
+        } else if let Some((f, c)) = self.cost_winner(group, &candidates, depth) {
             // Only the first candidate of least cost is built (`costs.rs`).
-            let mut best: Option<(Cost, Factor)> = None;
-            for (&f, c) in candidates.iter().zip(costs) {
-                if best.as_ref().is_none_or(|(bc, _)| c < *bc) {
-                    best = Some((c, f));
-                }
-            }
-            match best {
-                Some((c, f)) => {
-                    self.prepaid += 1;
-                    let e = self.split_on(group, f, depth);
-                    self.prepaid -= 1;
-                    debug_assert!(
-                        self.spent.is_some() || e.cost() == c,
-                        "cost without the tree"
-                    );
-                    e
-                }
-                None => E::zero(),
-            }
+            self.prepaid += 1;
+            let e = self.split_on(group, f, depth);
+            self.prepaid -= 1;
+            debug_assert!(
+                self.spent.is_some() || e.cost() == c,
+                "cost without the tree"
+            );
+            e
         } else {
             let mut best: Option<(Cost, E)> = None;
             for f in candidates {
@@ -663,6 +670,14 @@ impl Counts {
         }
     }
 
+    /// The counts cleared without reading them.
+    fn clear(&mut self) {
+        for &i in &self.touched {
+            self.n[i] = 0;
+        }
+        self.touched.clear();
+    }
+
     fn bump(&mut self, i: usize) {
         if self.n[i] == 0 {
             self.touched.push(i);
@@ -674,21 +689,24 @@ impl Counts {
     /// order (the order a full sort of the counts gave, without the sort: only the first few
     /// are ever tried); the counts are cleared.
     fn best(&mut self, k: usize) -> Vec<Factor> {
-        // The best `k` as (count, index), best first: a higher count, then a lower index.
-        let mut best: Vec<(u32, usize)> = Vec::with_capacity(k + 1);
+        // The best `k` as (count, index), best first: a higher count, then a lower index. A
+        // count no better than the last kept is passed over at once (most are).
+        let mut best: SmallVec<[(u32, usize); 4]> = SmallVec::new();
         for &i in &self.touched {
             let c = self.n[i];
-            if c < 2 {
+            self.n[i] = 0;
+            if c < 2 || k == 0 {
                 continue;
             }
-            let pos = best.partition_point(|&(bc, bi)| bc > c || (bc == c && bi < i));
-            if pos < k {
-                best.insert(pos, (c, i));
-                best.truncate(k);
+            if best.len() == k {
+                let (lc, li) = best[k - 1];
+                if c < lc || (c == lc && i > li) {
+                    continue;
+                }
             }
-        }
-        for &i in &self.touched {
-            self.n[i] = 0;
+            let pos = best.partition_point(|&(bc, bi)| bc > c || (bc == c && bi < i));
+            best.insert(pos, (c, i));
+            best.truncate(k);
         }
         self.touched.clear();
         best.into_iter().map(|(_, i)| self.factor(i)).collect()
@@ -830,26 +848,85 @@ mod tests {
         p
     }
 
-    /// The costs found without the trees choose what building every candidate chose: the
-    /// same expression (and so the same cost), equal to the polynomial.
+    /// A pseudo-random polynomial in many symbols of low degree each, as the entries of a
+    /// chain whose lengths and twists are symbols are: a product of two to four short sums of
+    /// products of one or two symbols out of ten, plus a few monomials.
+    fn poly_many(seed: u64) -> Scalar {
+        let mut next = crate::testing::xorshift_below(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
+        let names = ["a", "b", "c", "d", "e", "f", "g", "h", "u", "v"];
+        let term = |next: &mut dyn FnMut(u64) -> u64| {
+            let c = [1, -1, 1, -1, 2, -2, 3][next(7) as usize];
+            let mut t = Scalar::int(c) * Scalar::sym(names[next(10) as usize]);
+            if next(2) == 0 {
+                t = t * Scalar::sym(names[next(10) as usize]);
+            }
+            t
+        };
+        let mut p = Scalar::int(1);
+        for _ in 0..2 + next(3) {
+            let mut s = Scalar::int(0);
+            for _ in 0..2 + next(3) {
+                s = s + term(&mut next);
+            }
+            p = p * s;
+        }
+        for _ in 0..next(4) {
+            p = p + term(&mut next) * term(&mut next);
+        }
+        p
+    }
+
+    /// The three passes on `p`: the same expression (and so the same cost), equal to `p`;
+    /// whether the cost path was taken, and the work the costs and the bounded costs charged.
+    fn three_passes(p: &Scalar, what: &str) -> Option<(bool, u64, u64)> {
+        let (ctx, mons) = whole_modes(p);
+        if mons.len() < 2 {
+            return None;
+        }
+        let taken = costs::Costs::for_mons(&mons).is_some();
+        let _entered = crate::Context::default().enter();
+        let w0 = crate::Context::work_done();
+        let (costed, cc) = build_with(&mons, Pass::Costs).expect("factored");
+        let w1 = crate::Context::work_done();
+        let (bounded, bc) = build_with(&mons, Pass::Bounded).expect("factored");
+        let w2 = crate::Context::work_done();
+        let (full, uc) = build_with(&mons, Pass::Trees).expect("factored");
+        assert_eq!(cc, uc, "{what}");
+        assert_eq!(bc, uc, "{what}");
+        let (costed, bounded, full) = (
+            costed.to_expr(&ctx),
+            bounded.to_expr(&ctx),
+            full.to_expr(&ctx),
+        );
+        assert_eq!(costed, full, "{what}");
+        assert_eq!(bounded, full, "{what}");
+        assert_eq!(bounded.to_scalar(), *p, "{what}");
+        Some((taken, w1 - w0, w2 - w1))
+    }
+
+    /// The costs found without the trees, with and without the bound, choose what building
+    /// every candidate chose: the same expression (and so the same cost), equal to the
+    /// polynomial. The bound changes only the work: it saves some on many inputs (on others a
+    /// group cut under a tight bound is searched again under a looser one).
     #[test]
     fn candidate_costs_without_trees_choose_as_the_built_candidates() {
-        let mut taken = 0;
-        for seed in 0..60 {
-            let p = poly(seed);
-            let (ctx, mons) = whole_modes(&p);
-            if mons.len() < 2 {
+        let (mut taken, mut tried, mut saved) = (0, 0, 0);
+        let polys = (0..60)
+            .map(|seed| (poly(seed), format!("seed {seed}")))
+            .chain((0..60).map(|seed| (poly_many(seed), format!("many, seed {seed}"))));
+        for (p, what) in polys {
+            let Some((t, costed, bounded)) = three_passes(&p, &what) else {
                 continue;
-            }
-            taken += usize::from(costs::Costs::for_mons(&mons).is_some());
-            let (fast, fc) = build_with(&mons, true).expect("factored");
-            let (full, uc) = build_with(&mons, false).expect("factored");
-            assert_eq!(fc, uc, "seed {seed}");
-            let (fast, full) = (fast.to_expr(&ctx), full.to_expr(&ctx));
-            assert_eq!(fast, full, "seed {seed}");
-            assert_eq!(fast.to_scalar(), p, "seed {seed}");
+            };
+            tried += 1;
+            taken += usize::from(t);
+            saved += usize::from(bounded < costed);
         }
-        assert!(taken >= 50, "the cost path was taken {taken} times");
+        assert!(
+            taken >= 100,
+            "the cost path was taken {taken} times of {tried}"
+        );
+        assert!(saved >= 10, "the bound saved work {saved} times of {tried}");
     }
 
     /// Past 126 bits a coefficient is not a machine integer: every candidate is built.

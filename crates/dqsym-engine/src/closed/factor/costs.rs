@@ -16,6 +16,36 @@
 //! Taken only when every monomial is a product of symbols without a radical or a
 //! trigonometric atom and every coefficient an integer within 126 bits; otherwise the
 //! candidates are built as before.
+//!
+//! # Branch and bound
+//!
+//! Here no cost has calls (there is no atom and no radical), so a cost is its count of
+//! operations, and a candidate is taken only when it costs strictly less than the best one
+//! before it. So each candidate is searched under a bound, the best cost so far (and the
+//! bound its own group was searched under): a search that finds its cost will reach the bound
+//! stops with `None`, which is exact for the choice, since such a candidate is never taken.
+//! A group's bound is handed down to the searches of its parts, reduced by what the parts
+//! still to come add at least; this is sound because costs only grow as a node is put
+//! together from its parts ([`Shape`]'s arithmetic, `a` the cost standing alone, `s` as a
+//! term of a sum, `c` without the negations around it, so `s >= c` and `a <= s + 1`):
+//! - a negation around a node adds one to `a`, and so does the product with a content `g != 1`
+//!   (two factors; a negation of the part moves out of the product and stays counted);
+//! - `f^k` times the group holding `f` (at least two monomials, so not the number one) costs
+//!   `a(inner) + k` alone and `s >= a(inner) + k - 1` as a term;
+//! - that term beside a rest `r` costs `c(r) + s(factored) + 1 >= a(r) + s(factored)`
+//!   (`c(r) >= a(r) - 1`, or `r`'s terms are spliced in and `c(r) = a(r)`);
+//! - a sum of `n` distinct monomials costs at least its `n - 1` additions in every shape the
+//!   search gives it (a split keeps them: `n1 - 1` inside the factored group, `n2 - 1` among
+//!   the rest, one joining them), so a rest of `n` adds at least `n`;
+//! - each level of a run ([`Search::c_run`]) is one of these steps, so every level costs at
+//!   most the run.
+//!
+//! So a part whose cost reaches its reduced bound makes the whole reach the group's bound.
+//! The memo keeps what a cut search learned (its cost is at least the bound, `AtLeast`), and
+//! a search under a looser bound searches the group again. The candidates' costs differ by a
+//! few operations and most ties are exact (the symbolic 6R's top levels: 319, 319, 320), so
+//! a cut mostly comes late; on the symbolic 6R the bound saves about 2 M instructions of
+//! the pass's ~80 M, and on random polynomials it can cost a little (groups searched again).
 
 use super::run::{most_frequent, Buckets};
 use super::{multiplicity, quotient_syms, Factor, Search, BIG_WORD_UNITS, BRANCH, BRANCH_DEPTH};
@@ -34,16 +64,49 @@ pub(super) struct Costs {
     /// root's coefficient: an upper bound of a quotient's).
     words: Vec<u64>,
     memo: FxMap<u64, Vec<Known>>,
+    /// Whether a candidate is cut once its cost reaches the best so far (see the module's
+    /// doc); off only in the tests that compare the two.
+    pub(super) bounded: bool,
 }
 
 /// A cost found for a group: its depth class, divisor, the factors pulled out of it (as
-/// [`Search::div_key`]) and its monomials by index.
+/// [`Search::div_key`]) and its monomials by index; what is known of its cost, and at a
+/// branching level the candidate that won.
 struct Known {
     level: usize,
     d: i128,
     div: Vec<(usize, u32)>,
     group: Vec<u32>,
-    shape: Shape,
+    found: Bounded,
+    winner: Option<Factor>,
+}
+
+/// What a search under a bound knows of a group's cost: its exact shape, or that its cost
+/// (standing alone) is at least the bound, found without finishing the search.
+#[derive(Clone, Copy, Debug)]
+enum Bounded {
+    Exact(Shape),
+    AtLeast(usize),
+}
+
+/// The candidates of a group [`Search::c_search`] is given: the factors themselves, counted
+/// already (in [`Search::c_build_at`]'s pass, in [`super::Counts`]), or to be counted.
+#[derive(Clone, Copy)]
+enum Cands<'f> {
+    Given(&'f [Factor]),
+    Counted,
+    Count,
+}
+
+/// No bound: every cost counts.
+const NO_BOUND: usize = usize::MAX;
+
+/// The cost of a group of `n` distinct monomials is at least `n - 1` operations: its
+/// additions. Every step of the search keeps them: a split makes the group holding the factor
+/// one term of the sum of the rest's terms (`n1 - 1` additions inside it, `n2 - 1` among the
+/// rest, one to join them), and a sign, a content or a power only adds operations.
+fn additions(n: usize) -> usize {
+    n.saturating_sub(1)
 }
 
 /// What a node's parent needs of it: the cost of its core (the node without its leading
@@ -242,6 +305,7 @@ impl Costs {
             coef,
             words,
             memo: FxMap::default(),
+            bounded: true,
         })
     }
 
@@ -293,29 +357,34 @@ fn gcd_over(d: i128, ns: impl Iterator<Item = i128>, above: u128) -> u128 {
 }
 
 impl Search<'_> {
-    /// The costs of the candidates `fs` for `group` (of the tree search, at `depth`) split on
-    /// each, in order, when the group's monomials allow it.
-    pub(super) fn candidate_costs(
+    /// The candidate of `fs` (those of `group`, of the tree search at `depth`, a branching
+    /// level) the search takes, the first of least cost, with that cost, when the group's
+    /// monomials allow costs without trees.
+    pub(super) fn cost_winner(
         &mut self,
         group: &[(u32, Q)],
         fs: &[Factor],
         depth: usize,
-    ) -> Option<Vec<Cost>> {
+    ) -> Option<(Factor, Cost)> {
         let d = self.costs.as_ref()?.divisor(group)?;
         debug_assert!(group.iter().all(|(i, q)| {
             let c = self.costs.as_ref().map_or(0, |c| c.coef[*i as usize]);
             c % d == 0 && *q == c_q(c / d)
         }));
         let idx: Vec<u32> = group.iter().map(|(i, _)| *i).collect();
-        Some(
-            fs.iter()
-                .map(|&f| self.c_split_on(&idx, d, f, depth).alone())
-                .collect(),
-        )
+        let value = self.c_value(&idx);
+        let (shape, winner) = self.c_search(&idx, d, value, depth, Cands::Given(fs), NO_BOUND);
+        Some((winner?, shape?.alone()))
     }
 
     fn coef(&self, i: u32) -> i128 {
         self.costs.as_ref().map_or(1, |c| c.coef[i as usize])
+    }
+
+    /// Whether candidates are cut at the best cost so far (always, but in the tests that
+    /// compare the search with and without the bound).
+    fn bounded(&self) -> bool {
+        self.costs.as_ref().is_some_and(|c| c.bounded)
     }
 
     /// Monomial `i` with coefficient `coef[i] / d` ([`Search::mon_expr`]).
@@ -354,82 +423,213 @@ impl Search<'_> {
         sum(group.iter().map(|&i| self.c_mon(i, d)))
     }
 
-    /// [`Search::build_at`] for the group `coef[i] / d`, `i` in `group`.
-    fn c_build_at(&mut self, group: &[u32], d: i128, depth: usize) -> Shape {
+    /// [`Search::build_at`] for the group `coef[i] / d`, `i` in `group`; `None` when its cost
+    /// is at least `bound` operations (see the module's doc).
+    fn c_build_at(&mut self, group: &[u32], d: i128, depth: usize, bound: usize) -> Option<Shape> {
         match group {
-            [] => return Shape::ZERO,
-            [i] => return self.c_mon(*i, d),
+            [] => return Some(Shape::ZERO),
+            [i] => return Some(self.c_mon(*i, d)),
             _ => {}
         }
-        let work: u64 = group
-            .iter()
-            .map(|&i| {
-                let m = &self.root[i as usize];
-                let len = quotient_syms(m, &self.div, self.counts.sym_base).count() as u64;
-                1 + len + self.costs.as_ref().map_or(0, |c| c.words[i as usize])
-            })
-            .sum();
+        if additions(group.len()) >= bound {
+            return None;
+        }
+        // The work's pass over the quotients also hashes them (see [`Search::c_search`]) and
+        // counts their factors (the candidates), one pass for three.
+        let mut work = 0u64;
+        let mut h = FxHasher::default();
+        let Some(costs) = self.costs.as_ref() else {
+            return Some(self.c_plain_sum(group, d));
+        };
+        let (root, div, counts) = (self.root, &self.div, &mut self.counts);
+        for &i in group {
+            let m = &root[i as usize];
+            let mut len = 0u64;
+            h.write_i128(costs.coef[i as usize]);
+            for (s, e) in quotient_syms(m, div, counts.sym_base) {
+                len += 1;
+                h.write_u32(s);
+                h.write_u32(e);
+                counts.bump(counts.sym_base + s as usize);
+            }
+            h.write_u8(0xff);
+            work += 1 + len + costs.words[i as usize];
+        }
+        let value = h.finish();
         self.charge_work(work);
         if self.spent.is_some() {
-            return self.c_plain_sum(group, d);
+            self.counts.clear();
+            return Some(self.c_plain_sum(group, d));
         }
+        // The negation and the content each add one operation to the group's cost.
         if group.iter().all(|&i| (self.coef(i) < 0) != (d < 0)) {
-            return self.c_build_at(group, -d, depth).neg();
+            self.counts.clear();
+            return self
+                .c_build_at(group, -d, depth, bound.saturating_sub(1))
+                .map(Shape::neg);
         }
         let g = gcd_over(d, group.iter().map(|&i| self.coef(i)), 0) / d.unsigned_abs();
         if g != 1 {
-            let inner = self.c_build_at(group, d * g as i128, depth);
-            return mul(&[Shape::int(g as i128), inner]);
+            self.counts.clear();
+            let inner = self.c_build_at(group, d * g as i128, depth, bound.saturating_sub(1))?;
+            return Some(mul(&[Shape::int(g as i128), inner]));
         }
-        self.c_searched(group, d, depth)
+        self.c_search(group, d, value, depth, Cands::Counted, bound)
+            .0
     }
 
-    /// [`Search::searched`]: the memo, the candidates, the splits.
-    fn c_searched(&mut self, group: &[u32], d: i128, depth: usize) -> Shape {
+    /// The hash of a group's coefficients and quotients, as [`Search::c_build_at`] makes it.
+    fn c_value(&self, group: &[u32]) -> u64 {
+        let mut h = FxHasher::default();
+        for &i in group {
+            h.write_i128(self.coef(i));
+            for (s, e) in quotient_syms(&self.root[i as usize], &self.div, self.counts.sym_base) {
+                h.write_u32(s);
+                h.write_u32(e);
+            }
+            h.write_u8(0xff);
+        }
+        h.finish()
+    }
+
+    /// Whether the group of `k` is `group` as now divided: the same divisor, coefficients and
+    /// quotients, monomial by monomial (`key` is [`Search::div_key`]).
+    fn c_same(&self, k: &Known, d: i128, key: &[(usize, u32)], group: &[u32]) -> bool {
+        if k.d != d || k.group.len() != group.len() {
+            return false;
+        }
+        if k.div == key {
+            // Divided alike: a quotient determines its monomial of the root.
+            return k.group == group;
+        }
+        let mut other = vec![0u32; self.div.len()];
+        for &(i, p) in &k.div {
+            other[i] = p;
+        }
+        let base = self.counts.sym_base;
+        k.group.iter().zip(group).all(|(&i, &j)| {
+            let (m, n) = (&self.root[i as usize], &self.root[j as usize]);
+            self.coef(i) == self.coef(j)
+                && quotient_syms(m, &other, base).eq(quotient_syms(n, &self.div, base))
+        })
+    }
+
+    /// [`Search::searched`]: the memo, the candidates (`fs` when counted already), the
+    /// splits; the shape (`None` when its cost is at least `bound` operations) and, at a
+    /// branching level, the candidate taken.
+    ///
+    /// The memo is keyed by the group's value (`value`, [`Search::c_value`]): the divisor,
+    /// the coefficients and the quotients, which are all the search of a group reads (the
+    /// candidates are counted on the quotients, ties broken by factor; the shapes are made
+    /// from the quotients and the coefficients divided by `d`). The same quotients come back
+    /// under other factors pulled out, in other groups of the root's monomials.
+    fn c_search(
+        &mut self,
+        group: &[u32],
+        d: i128,
+        value: u64,
+        depth: usize,
+        fs: Cands,
+        bound: usize,
+    ) -> (Option<Shape>, Option<Factor>) {
         let level = depth.min(BRANCH_DEPTH);
         let key = self.div_key();
         let mut h = FxHasher::default();
-        (level, d, &key, group).hash(&mut h);
+        (level, d, value).hash(&mut h);
         let hash = h.finish();
-        if let Some(k) = self.costs.as_ref().and_then(|c| {
+        // An entry that only knows a lower bound below this one is searched again and
+        // replaced.
+        let mut stale = None;
+        if let Some((pos, k)) = self.costs.as_ref().and_then(|c| {
             c.memo
                 .get(&hash)?
                 .iter()
-                .find(|k| k.level == level && k.d == d && k.div == key && k.group == group)
+                .enumerate()
+                .find(|(_, k)| k.level == level && self.c_same(k, d, &key, group))
         }) {
-            return k.shape;
+            let found = match k.found {
+                Bounded::Exact(s) => Some((Some(s), k.winner)),
+                Bounded::AtLeast(l) if l >= bound => Some((None, None)),
+                Bounded::AtLeast(_) => {
+                    stale = Some(pos);
+                    None
+                }
+            };
+            if let Some(found) = found {
+                if matches!(fs, Cands::Counted) {
+                    self.counts.clear();
+                }
+                return found;
+            }
         }
         let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
-        let candidates = self.candidates(group.iter().copied(), tries);
+        let counted;
+        let candidates = match fs {
+            Cands::Given(fs) => fs,
+            Cands::Counted => {
+                counted = self.counts.best(tries);
+                &counted[..]
+            }
+            Cands::Count => {
+                counted = self.candidates(group.iter().copied(), tries);
+                &counted[..]
+            }
+        };
         if candidates.is_empty() {
-            return self.c_plain_sum(group, d);
+            return (Some(self.c_plain_sum(group, d)), None);
         }
-        let shape = if tries == 1 {
-            self.c_run(group, d, candidates[0], depth)
+        let (shape, winner) = if tries == 1 {
+            (self.c_run(group, d, candidates[0], depth, bound), None)
         } else {
-            let mut best: Option<Shape> = None;
-            for f in candidates {
-                let e = self.c_split_on(group, d, f, depth);
-                if best.is_none_or(|b| e.alone() < b.alone()) {
-                    best = Some(e);
+            let bounded = self.bounded();
+            let mut best: Option<(Shape, Factor)> = None;
+            for &f in candidates {
+                // A candidate costing as much as the best so far is not taken (the first of
+                // least cost is): it is cut there.
+                let b = match best {
+                    Some((s, _)) if bounded => s.alone().ops.min(bound),
+                    _ => bound,
+                };
+                let Some(e) = self.c_split_on(group, d, f, depth, b) else {
+                    continue;
+                };
+                if e.alone().ops < b && best.is_none_or(|(s, _)| e.alone() < s.alone()) {
+                    best = Some((e, f));
                 }
             }
-            best.unwrap_or(Shape::ZERO)
+            (best.map(|(s, _)| s), best.map(|(_, f)| f))
         };
         if let Some(c) = self.costs.as_mut() {
-            c.memo.entry(hash).or_default().push(Known {
+            let found = match shape {
+                Some(s) => Bounded::Exact(s),
+                None => Bounded::AtLeast(bound),
+            };
+            let k = Known {
                 level,
                 d,
                 div: key,
                 group: group.to_vec(),
-                shape,
-            });
+                found,
+                winner,
+            };
+            let entries = c.memo.entry(hash).or_default();
+            match stale {
+                Some(pos) => entries[pos] = k,
+                None => entries.push(k),
+            }
         }
-        shape
+        (shape, winner)
     }
 
-    /// [`Search::split_on`].
-    fn c_split_on(&mut self, group: &[u32], d: i128, f: Factor, depth: usize) -> Shape {
+    /// [`Search::split_on`]; `None` when its cost is at least `bound` operations.
+    fn c_split_on(
+        &mut self,
+        group: &[u32],
+        d: i128,
+        f: Factor,
+        depth: usize,
+        bound: usize,
+    ) -> Option<Shape> {
         let fi = self.counts.index(f);
         // Each monomial's power of `f` looked up once, for `k` and for the split (twice was a
         // sixth of the symbolic 6R's cost pass).
@@ -447,34 +647,65 @@ impl Search<'_> {
                 rest.push(i);
             }
         }
+        // What the split adds to the cost of the group holding `f` (at least two monomials,
+        // so not the number one): `k - 1` for the power and one for the product, or with a
+        // rest of `n` monomials `k - 1` and `n` (its additions and the one joining it; the
+        // product's operation may be the subtraction's negation, see the module's doc).
+        let over = (k as usize - 1) + rest.len().max(1);
         self.div[fi] += k;
         self.path.push((fi, k));
-        let inner = self.c_build_at(&with, d, depth.saturating_add(k as usize));
+        let inner = self.c_build_at(
+            &with,
+            d,
+            depth.saturating_add(k as usize),
+            bound.saturating_sub(over),
+        );
         self.path.pop();
         self.div[fi] -= k;
-        let factored = mul(&[factor_shape(k), inner]);
-        self.c_beside(factored, &rest, d, depth)
+        let factored = mul(&[factor_shape(k), inner?]);
+        self.c_beside(factored, &rest, d, depth, bound)
     }
 
-    /// [`Search::beside`]: the rest's terms and the factored group in one sum.
-    fn c_beside(&mut self, factored: Shape, rest: &[u32], d: i128, depth: usize) -> Shape {
+    /// [`Search::beside`]: the rest's terms and the factored group in one sum; `None` when
+    /// its cost is at least `bound` operations.
+    fn c_beside(
+        &mut self,
+        factored: Shape,
+        rest: &[u32],
+        d: i128,
+        depth: usize,
+        bound: usize,
+    ) -> Option<Shape> {
         if rest.is_empty() {
-            return factored;
+            return Some(factored);
         }
-        let r = self.c_build_at(rest, d, depth + 1);
-        if r.kind == Kind::Add && r.negs == 0 {
+        let r = self.c_build_at(
+            rest,
+            d,
+            depth + 1,
+            bound.saturating_sub(factored.in_sum().ops),
+        )?;
+        Some(if r.kind == Kind::Add && r.negs == 0 {
             Shape {
                 core: add(add(r.core, factored.in_sum()), Cost { ops: 1, calls: 0 }),
                 ..r
             }
         } else {
             sum([r, factored].into_iter())
-        }
+        })
     }
 
     /// [`Search::run`]: the split of `g0` on `f`, and of the group holding `f` on `f` again
-    /// while `f` stays its most frequent factor, from buckets by the power of `f`.
-    fn c_run(&mut self, g0: &[u32], d: i128, f: Factor, depth: usize) -> Shape {
+    /// while `f` stays its most frequent factor, from buckets by the power of `f`; `None`
+    /// when its cost is at least `bound` operations (each level's cost is at most the run's).
+    fn c_run(
+        &mut self,
+        g0: &[u32],
+        d: i128,
+        f: Factor,
+        depth: usize,
+        bound: usize,
+    ) -> Option<Shape> {
         let fi = self.counts.index(f);
         let base = self.div[fi];
         let mults: Vec<u32> = g0
@@ -499,12 +730,12 @@ impl Search<'_> {
             ks
         };
         if ks.len() <= super::run::SHORT_RUN {
-            return self.c_split_on(g0, d, f, depth);
+            return self.c_split_on(g0, d, f, depth, bound);
         }
         let buckets = Buckets::sorted(&mults, &ks);
         let levels = self.c_levels(g0, d, f, &ks, &buckets);
         if self.spent.is_some() {
-            return self.c_plain_sum(g0, d);
+            return Some(self.c_plain_sum(g0, d));
         }
         // A level's coefficients are `g0`'s divided by `divisor` and negated with `neg`:
         // `coef / (d * divisor * sign)`.
@@ -536,9 +767,18 @@ impl Search<'_> {
                     *p = g0[*p as usize];
                 }
                 self.path.push((fi, ks[b]));
-                let e = self.c_searched(&group, at(neg, divisor), depth);
+                let value = self.c_value(&group);
+                let e = self
+                    .c_search(&group, at(neg, divisor), value, depth, Cands::Count, bound)
+                    .0;
                 self.path.pop();
-                break wrap(e, steps);
+                match e {
+                    Some(e) => break wrap(e, steps),
+                    None => {
+                        self.div[fi] = base;
+                        return None;
+                    }
+                }
             }
             states.push((steps, neg, divisor));
             b += 1;
@@ -554,14 +794,19 @@ impl Search<'_> {
                 buckets.get(lb).iter().map(|&p| g0[p as usize]).collect();
             self.div[fi] = base + ks[lb];
             self.path.push((fi, ks[lb]));
-            let level_e = self.c_beside(factored, &rest, at(neg, divisor), depth);
+            let level_e = self.c_beside(factored, &rest, at(neg, divisor), depth, bound);
             self.path.pop();
-            e = wrap(level_e, steps);
+            match level_e {
+                Some(level_e) => e = wrap(level_e, steps),
+                None => {
+                    self.div[fi] = base;
+                    return None;
+                }
+            }
         }
         self.div[fi] = base;
-        e
+        Some(e)
     }
-
     /// Each level's data from the buckets above it ([`Search::levels`]), charged alike.
     fn c_levels(
         &mut self,
