@@ -333,17 +333,32 @@ fn joined(e: Expr, x: &Scalar, outermost: bool) -> Expr {
 }
 
 /// [`closed_form_prepared`] without the constants lifted.
+///
+/// With offsets absorbed (`offsets.rs`), the shifted form `e` is found first and the form as
+/// given is searched with `e`'s key as its cap ([`best_of`]'s `cap`): the form as given is
+/// taken only when [`alt::shorter`] than `e`, so a search of it that gives up on forms not
+/// below `e` changes nothing. The choice is the same as searching both in full:
+/// - the capped search gives the uncapped search's form whenever either is strictly below
+///   the cap (`alt::best_alternative_below`; every other step is the same), so when the form
+///   as given is shorter than `e`, it is taken either way;
+/// - otherwise neither is shorter, and `e` is taken when it passes its check, as before; when
+///   it does not (a defect the check guards against), the form as given is searched again
+///   without the cap and taken, as before.
+///
+/// `e` is checked (exactly, in debug builds) only once the form as given has lost, as when
+/// the form as given was searched first: checking it before (as an earlier ordering did)
+/// expanded `e` also where the form as given wins, and that expansion is charged to the work
+/// budget (`stress::heavy_factorizations_stay_exact_within_the_budget` ran 588 units past its
+/// 3,000,000 in debug builds). Budget-dependent choices (`trigfac::may_nest`, the share of a
+/// nested search) now see the shifted search's work spent before the search as given, where
+/// they saw the reverse; far from the budget they are the same.
 fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
-    let (plain, prepared) = prepared_unshifted(x);
-    let Some(shift) = offsets::find(x) else {
-        return (plain, prepared);
+    let Some((shift, y)) = offsets::find(x).and_then(|s| s.apply(x).map(|y| (s, y))) else {
+        return prepared_unshifted(x, None);
     };
-    let Some(y) = shift.apply(x) else {
-        return (plain, prepared);
-    };
-    let (shifted, yprep) = prepared_unshifted(&y);
+    let (shifted, yprep) = prepared_unshifted(&y, None);
     let Ok(mut e) = shifted.map(|e| shift.unshift(e)) else {
-        return (plain, prepared);
+        return prepared_unshifted(x, None);
     };
     // The shift changes what an angle costs (`cos(y - pi/7) cos(y + pi/7)` ties with the sum in
     // `y`, `cos(x) cos(x + 2*pi/7)` beats it in `x`): the candidates of `alt.rs` for the
@@ -354,11 +369,29 @@ fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
             break;
         }
     }
+    let (plain, prepared) = prepared_unshifted(x, cap_of(x, &e));
     // On equal cost the shifted form: its angles are the ones the user wrote.
-    if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) || !verified(&e, x) {
+    if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) {
         return (plain, prepared);
     }
+    if !verified(&e, x) {
+        return prepared_unshifted(x, None);
+    }
     (Ok(e.symbols_leading()), Prepared(yprep.0, Some((shift, y))))
+}
+
+/// The cap of a search of `x` whose result is taken only when [`alt::shorter`] than `e`: the
+/// first two parts of `e`'s [`alt::choice_key`]. `None` (no cap) when some mode of `x` holds a
+/// rational constant: its forms' angles may then be turned by `Expr::symbols_leading`, which
+/// can drop a negation after the search, so a form not below the cap inside the search could
+/// be below it once shown.
+fn cap_of(x: &Scalar, e: &Expr) -> Option<(usize, usize)> {
+    let constant = x.terms().map_or(true, |t| {
+        t.iter()
+            .any(|u| u.mode.freq.iter().any(|(s, _)| s.is_one()))
+    });
+    let k = alt::choice_key(e);
+    (!constant).then_some((k.0, k.1))
 }
 
 /// Whether `e` equals `x`: exactly in debug builds, numerically first in release builds (as
@@ -367,8 +400,11 @@ fn verified(e: &Expr, x: &Scalar) -> bool {
     (!cfg!(debug_assertions) && agrees_numerically(e, x)) || e.to_scalar() == *x
 }
 
-/// [`closed_form_prepared`] without the offsets absorbed.
-fn prepared_unshifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+/// [`closed_form_prepared`] without the offsets absorbed; with `cap`, as [`best_of`] with it.
+fn prepared_unshifted(
+    x: &Scalar,
+    cap: Option<(usize, usize)>,
+) -> (Result<Expr, ScalarError>, Prepared) {
     if let Err(e) = x.terms() {
         return (Err(e.clone()), Prepared(None, None));
     }
@@ -390,7 +426,7 @@ fn prepared_unshifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     }
     let (mut sctx, smons) = mon::split_modes(x);
     let smons = recombine::recombine(&mut sctx, smons);
-    let result = best_of(x, &sctx, &smons, true);
+    let result = best_of(x, &sctx, &smons, true, cap);
     let split_won = result.as_ref().is_ok_and(|(_, split)| *split);
     (
         result.map(|(e, _)| e.symbols_leading()),
@@ -543,11 +579,21 @@ fn whole_form(x: &Scalar) -> Result<(Expr, Cost), ScalarError> {
 
 /// The cheaper of the regrouped monomials `smons` (factored) and, with `try_whole`, the
 /// whole-modes shape of `x`, checked against `x`; and whether the regrouped shape was taken.
+///
+/// With `cap` (see [`prepared_shifted`]) the result is taken by the caller only when strictly
+/// below it ([`alt::shorter`] than a form whose key starts with `cap`): the candidates of
+/// `alt.rs` are checked only below it (`alt::best_alternative_below`: the same candidate
+/// whenever one below `cap` is found either way, none below it otherwise), and a form not
+/// below it is returned unchecked (the caller discards it; the check fails only on a defect,
+/// `x` being canonical). The result is the uncapped one whenever either is below `cap`: both
+/// ways take the same shape; the same alternative, or none below `cap`; and when `best` is
+/// below `cap` (so `cap` does not narrow the candidates), the same check and fallback.
 fn best_of(
     x: &Scalar,
     sctx: &mon::Ctx,
     smons: &[mon::Mon],
     try_whole: bool,
+    cap: Option<(usize, usize)>,
 ) -> Result<(Expr, bool), ScalarError> {
     let (split, sc) = factor::build(smons)?;
     // Without trigonometric terms both shapes are the same monomials (a polynomial in cos/sin
@@ -578,11 +624,17 @@ fn best_of(
     // A shorter form of another kind (checked exactly by `best_alternative`).
     // An alternative is returned only once it equals `x` exactly: not checked again (in debug
     // builds that second expansion could run the budget out on a form already verified).
-    let (best, verified) = match alt::best_alternative(x, &best) {
+    let (best, verified) = match alt::best_alternative_below(x, &best, cap) {
         Some(e) => (e, true),
         None => (best, false),
     };
-    if verified || (!cfg!(debug_assertions) && agrees_numerically(&best, x)) {
+    // A form not below `cap` is discarded by the caller: its check (an expansion in debug
+    // builds) is not made. It could fail only on a defect (`x`, an error-free value, is
+    // canonical: see the `debug_assert` below).
+    if verified
+        || cap.is_some_and(|c| !below(&best, c))
+        || (!cfg!(debug_assertions) && agrees_numerically(&best, x))
+    {
         return Ok((best, split_won));
     }
     let value = best.to_scalar();
@@ -601,6 +653,12 @@ fn best_of(
         };
         Ok((w, false))
     }
+}
+
+/// Whether `e` is chosen over a form whose [`alt::choice_key`] starts with `cap`.
+fn below(e: &Expr, cap: (usize, usize)) -> bool {
+    let k = alt::choice_key(e);
+    (k.0, k.1) < cap
 }
 
 /// Whether `x` has no trigonometric term and its whole-modes monomials are `smons`.
@@ -662,7 +720,7 @@ fn derivative_unshifted(p: &Prepared, var: &str, dx: &Scalar) -> Result<Expr, Sc
     let dmons = recombine::recombine(&mut ctx, mon::merge(dmons));
     // Where the regrouped shape won for the scalar, it is kept for its derivatives (which have
     // the same modes) without factoring the whole modes again.
-    best_of(dx, &ctx, &dmons, !split_won).map(|(e, _)| e.symbols_leading())
+    best_of(dx, &ctx, &dmons, !split_won, None).map(|(e, _)| e.symbols_leading())
 }
 
 /// The closed form of a polynomial in cosine and sine placeholders (see
