@@ -345,20 +345,25 @@ fn joined(e: Expr, x: &Scalar, outermost: bool) -> Expr {
 ///   it does not (a defect the check guards against), the form as given is searched again
 ///   without the cap and taken, as before.
 ///
-/// `e` is checked (exactly, in debug builds) only once the form as given has lost, as when
-/// the form as given was searched first: checking it before (as an earlier ordering did)
-/// expanded `e` also where the form as given wins, and that expansion is charged to the work
-/// budget (`stress::heavy_factorizations_stay_exact_within_the_budget` ran 588 units past its
-/// 3,000,000 in debug builds). Budget-dependent choices (`trigfac::may_nest`, the share of a
-/// nested search) now see the shifted search's work spent before the search as given, where
-/// they saw the reverse; far from the budget they are the same.
+/// The work budget sees the same: the form as given used to be searched first, so it is the
+/// fallback when the shifted search fails (runs out of the budget, say). Found after that
+/// failed search, it would find the budget spent (`stress::heavy_factorizations_stay_exact_
+/// within_the_budget`: the shifted search of `cos(3*q + 2*pi/9)*cos(-2*y)` spends all of its
+/// 3,000,000 units factoring `cos(3 q) cos(2 y)` in `cspoly.rs`, and the form as given, 40
+/// units, then failed too: the first reordering's 588 units over). So a fallback search of
+/// the form as given runs in the budget left before the shifted search ([`as_first`]), its
+/// work charged after it. `e` is checked (exactly, in debug builds) only once the form as
+/// given has lost, as before. At the budget's edge the order still tells: where the form as
+/// given used to spend the budget the shifted search needed, the shifted form is now found.
 fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     let Some((shift, y)) = offsets::find(x).and_then(|s| s.apply(x).map(|y| (s, y))) else {
         return prepared_unshifted(x, None);
     };
+    // No context entered: nothing is charged, and none is entered for the fallback.
+    let before = (crate::scalar::work_left() != u64::MAX).then(crate::Context::current);
     let (shifted, yprep) = prepared_unshifted(&y, None);
     let Ok(mut e) = shifted.map(|e| shift.unshift(e)) else {
-        return prepared_unshifted(x, None);
+        return as_first(&before, x);
     };
     // The shift changes what an angle costs (`cos(y - pi/7) cos(y + pi/7)` ties with the sum in
     // `y`, `cos(x) cos(x + 2*pi/7)` beats it in `x`): the candidates of `alt.rs` for the
@@ -369,15 +374,35 @@ fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
             break;
         }
     }
-    let (plain, prepared) = prepared_unshifted(x, cap_of(x, &e));
+    let (plain, prepared) = match prepared_unshifted(x, cap_of(x, &e)) {
+        // Out of the budget (or another limit) after the shifted search: as when first.
+        (Err(_), _) => as_first(&before, x),
+        found => found,
+    };
     // On equal cost the shifted form: its angles are the ones the user wrote.
     if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) {
         return (plain, prepared);
     }
     if !verified(&e, x) {
-        return prepared_unshifted(x, None);
+        return as_first(&before, x);
     }
     (Ok(e.symbols_leading()), Prepared(yprep.0, Some((shift, y))))
+}
+
+/// The uncapped search of `x` as given, in `before` (the context as it was before the
+/// shifted search of [`prepared_shifted`]; `None` when none was entered), its work then
+/// charged to the context entered now (an error of that charge is left to the next one: the
+/// result was found within `before`).
+fn as_first(before: &Option<crate::Context>, x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+    let Some(before) = before else {
+        return prepared_unshifted(x, None);
+    };
+    let entered = before.enter();
+    let found = prepared_unshifted(x, None);
+    let used = entered.work_used();
+    drop(entered);
+    let _ = crate::scalar::charge(used);
+    found
 }
 
 /// The cap of a search of `x` whose result is taken only when [`alt::shorter`] than `e`: the
@@ -386,6 +411,10 @@ fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
 /// can drop a negation after the search, so a form not below the cap inside the search could
 /// be below it once shown.
 fn cap_of(x: &Scalar, e: &Expr) -> Option<(usize, usize)> {
+    #[cfg(test)]
+    if tests::UNCAPPED.with(std::cell::Cell::get) {
+        return None;
+    }
     let constant = x.terms().map_or(true, |t| {
         t.iter()
             .any(|u| u.mode.freq.iter().any(|(s, _)| s.is_one()))
@@ -872,8 +901,111 @@ mod tests {
     use super::*;
     use crate::scalar::Q;
 
+    thread_local! {
+        /// Set by a test to search the form as given without the shifted form's cap.
+        pub(super) static UNCAPPED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    }
+
     fn s(x: &str) -> Scalar {
         Scalar::sym(x)
+    }
+
+    /// A pseudo-random scalar with pi offsets outside the multiples of pi/12 (the shape of the
+    /// Jaco-style arm's entries, smaller): 2 to 4 terms, each a signed small integer, maybe a
+    /// length, times one or two cosines or sines of one or two joint angles plus `k pi/n`
+    /// (`n` one of 5, 7, 9 for the whole scalar).
+    fn offset_scalar(seed: u64) -> Scalar {
+        let mut next = crate::testing::xorshift_below(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+        let (angles, lengths) = (["q1", "q2", "q3"], ["a2", "d3"]);
+        let n = [5u64, 7, 9][next(3) as usize];
+        let mut x = Scalar::int(0);
+        for _ in 0..2 + next(3) {
+            let sign = if next(2) == 0 { -1 } else { 1 };
+            let mut t = Scalar::int(sign * (next(4) as i64 + 1));
+            if next(2) == 0 {
+                t = t * s(lengths[next(2) as usize]);
+            }
+            for _ in 0..1 + next(2) {
+                let mut a = s(angles[next(3) as usize]);
+                if next(3) == 0 {
+                    a = a + s(angles[next(3) as usize]);
+                }
+                let k = next(2 * n) as i64;
+                a = a + Scalar::pi() * Scalar::from_q(Q::new(k, n as i64));
+                t = t * if next(2) == 0 { a.cos() } else { a.sin() };
+            }
+            x = x + t;
+        }
+        x
+    }
+
+    /// The search as given with a cap gives the uncapped form whenever either is below the
+    /// cap, and neither is below it otherwise (`best_of`, `alt::best_alternative_below`): caps
+    /// around, at and below the uncapped form's key.
+    #[test]
+    fn a_capped_search_gives_the_uncapped_form_below_its_cap() {
+        let mut compared = 0;
+        for seed in 0..40 {
+            let x = offset_scalar(seed);
+            if x.terms().map_or(true, <[_]>::is_empty) {
+                continue;
+            }
+            let e = prepared_unshifted(&x, None).0.expect("a closed form");
+            let k = alt::choice_key(&e);
+            let caps = [
+                (k.0, k.1),
+                (k.0, k.1 + 1),
+                (k.0 + 1, 0),
+                (k.0.saturating_sub(1), k.1),
+                (k.0 / 2, 0),
+                (k.0 + 8, 0),
+            ];
+            for cap in caps {
+                let c = prepared_unshifted(&x, Some(cap)).0.expect("a closed form");
+                if below(&e, cap) || below(&c, cap) {
+                    assert_eq!(c, e, "seed {seed}, cap {cap:?}");
+                    assert_eq!(c.to_scalar(), x, "seed {seed}");
+                    compared += 1;
+                }
+            }
+        }
+        assert!(compared >= 40, "{compared} capped forms below their caps");
+    }
+
+    /// The closed form chosen with the shifted form's cap on the search as given is the one
+    /// chosen without it, on random scalars with offsets; it equals the scalar exactly and at
+    /// a random point in floats.
+    #[test]
+    fn the_shifted_forms_cap_does_not_change_the_chosen_form() {
+        let (mut shifted, mut plain) = (0, 0);
+        for seed in 100..260 {
+            let x = offset_scalar(seed);
+            let capped = closed_form_prepared(&x).0;
+            UNCAPPED.with(|u| u.set(true));
+            let uncapped = closed_form_prepared(&x).0;
+            UNCAPPED.with(|u| u.set(false));
+            let (Ok(c), Ok(u)) = (capped, uncapped) else {
+                panic!("seed {seed}: no closed form");
+            };
+            assert_eq!(c, u, "seed {seed}");
+            assert_eq!(c.to_scalar(), x, "seed {seed}");
+            let point = |sym: &Sym| point_value(sym, seed);
+            let want = x.eval_symbols(&|sym| Some(point(sym))).expect("a value");
+            let (got, scale) = c.eval_f64(&point);
+            assert!((got - want).abs() <= 1e-9 * scale.max(1.0), "seed {seed}");
+            if offsets::find(&x).is_some() {
+                let (p, _) = prepared_unshifted(&x, None);
+                if p.is_ok_and(|p| alt::shorter(&p, &c) || p == c) {
+                    plain += 1;
+                } else {
+                    shifted += 1;
+                }
+            }
+        }
+        assert!(
+            shifted >= 5 && plain >= 10,
+            "shifted {shifted}, as given {plain}"
+        );
     }
 
     #[test]
