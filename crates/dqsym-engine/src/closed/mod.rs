@@ -97,8 +97,10 @@
 //! `f . o = d_f` solved by a bounded search), its closed form found on the offset-free path and
 //! every angle shifted back (`cos(q2 + 5*pi/9)`, `cos(x - pi/7) cos(y + pi/7)`,
 //! `sin(x - 2*pi/7)^2`; the candidates of `alt.rs` for the shifted scalar compared again shifted
-//! back, since a shift changes what an angle costs: `cos(x) cos(x + 2*pi/7)`), kept when shorter
-//! and checked like every other; the offset shown among equal classes is the one with the fewest
+//! back, since a shift changes what an angle costs: `cos(x) cos(x + 2*pi/7)`), kept unless the
+//! form as given is strictly shorter (found first, so that the search as given checks its
+//! candidates of `alt.rs` only below it: `prepared_shifted`, the same choice) and checked like
+//! every other; the offset shown among equal classes is the one with the fewest
 //! cosine and sine parts in `y`, then the smallest denominator, the fewest nonzero offsets, the
 //! fewest negative parts (`cos(t + 5*pi/9)`, not `-cos(t - 4*pi/9)`), the smallest `|o|`, the
 //! positive one; derivatives of a prepared scalar are shifted alike; the congruences are scaled to
