@@ -43,6 +43,30 @@ const MAX_PRODUCT_TERMS: usize = 4096;
 /// candidate equal to `x` is not shorter than `than`, no candidate shorter than `than` equals
 /// `x`, and both ways give `than`.
 pub(super) fn best_alternative(x: &Scalar, than: &Expr) -> Option<Expr> {
+    best_alternative_below(x, than, None)
+}
+
+/// [`best_alternative`] for a search whose result is taken only when [`shorter`] than a form
+/// found elsewhere, whose [`choice_key`]'s first two parts are `cap`: only the candidates
+/// strictly below both `than` and `cap` are checked against `x`.
+///
+/// The result is the same as [`best_alternative`]'s whenever either is strictly below `cap`,
+/// and neither is otherwise. The candidates are made exactly as without `cap` (every one of
+/// them, whatever its cost: a candidate above `cap` may still yield one below it, `extra.rs`
+/// taking a common factor out of it), and sorted by their keys; the keys strictly below
+/// `min(than, cap)` are a prefix of that order (keys are compared by their first two parts
+/// first). So when the first candidate equal to `x` below `than` (the answer without `cap`)
+/// is below `cap`, it lies in that prefix and is its first candidate equal to `x`; when it
+/// is not below `cap` (or there is none), no candidate of the prefix equals `x`, and both
+/// answers are `None` or not below `cap`. Only the exact checks of the candidates between
+/// `cap` and `than` are saved (each expands a candidate: the Jaco-style arm's form as given
+/// checked several candidates of a few hundred operations that its shifted form of about a
+/// hundred beats).
+pub(super) fn best_alternative_below(
+    x: &Scalar,
+    than: &Expr,
+    cap: Option<(usize, usize)>,
+) -> Option<Expr> {
     let mut cands = unsorted_candidates(x);
     // Products of sinusoids of mixed angles, sums split into parts (`trigfac.rs`): made only
     // when a lower bound of their cost is below the form found before.
@@ -57,6 +81,7 @@ pub(super) fn best_alternative(x: &Scalar, than: &Expr) -> Option<Expr> {
     }
     let bound = choice_key(than);
     let bound = (bound.0, bound.1);
+    let bound = cap.map_or(bound, |c| c.min(bound));
     let mut cands: Vec<_> = cands
         .into_iter()
         .map(|e| (choice_key(&e), e))

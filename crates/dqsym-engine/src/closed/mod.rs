@@ -97,8 +97,10 @@
 //! `f . o = d_f` solved by a bounded search), its closed form found on the offset-free path and
 //! every angle shifted back (`cos(q2 + 5*pi/9)`, `cos(x - pi/7) cos(y + pi/7)`,
 //! `sin(x - 2*pi/7)^2`; the candidates of `alt.rs` for the shifted scalar compared again shifted
-//! back, since a shift changes what an angle costs: `cos(x) cos(x + 2*pi/7)`), kept when shorter
-//! and checked like every other; the offset shown among equal classes is the one with the fewest
+//! back, since a shift changes what an angle costs: `cos(x) cos(x + 2*pi/7)`), kept unless the
+//! form as given is strictly shorter (found first, so that the search as given checks its
+//! candidates of `alt.rs` only below it: `prepared_shifted`, the same choice) and checked like
+//! every other; the offset shown among equal classes is the one with the fewest
 //! cosine and sine parts in `y`, then the smallest denominator, the fewest nonzero offsets, the
 //! fewest negative parts (`cos(t + 5*pi/9)`, not `-cos(t - 4*pi/9)`), the smallest `|o|`, the
 //! positive one; derivatives of a prepared scalar are shifted alike; the congruences are scaled to
@@ -333,17 +335,37 @@ fn joined(e: Expr, x: &Scalar, outermost: bool) -> Expr {
 }
 
 /// [`closed_form_prepared`] without the constants lifted.
+///
+/// With offsets absorbed (`offsets.rs`), the shifted form `e` is found first and the form as
+/// given is searched with `e`'s key as its cap ([`best_of`]'s `cap`): the form as given is
+/// taken only when [`alt::shorter`] than `e`, so a search of it that gives up on forms not
+/// below `e` changes nothing. The choice is the same as searching both in full:
+/// - the capped search gives the uncapped search's form whenever either is strictly below
+///   the cap (`alt::best_alternative_below`; every other step is the same), so when the form
+///   as given is shorter than `e`, it is taken either way;
+/// - otherwise neither is shorter, and `e` is taken when it passes its check, as before; when
+///   it does not (a defect the check guards against), the form as given is searched again
+///   without the cap and taken, as before.
+///
+/// The work budget sees the same: the form as given used to be searched first, so it is the
+/// fallback when the shifted search fails (runs out of the budget, say). Found after that
+/// failed search, it would find the budget spent (`stress::heavy_factorizations_stay_exact_
+/// within_the_budget`: the shifted search of `cos(3*q + 2*pi/9)*cos(-2*y)` spends all of its
+/// 3,000,000 units factoring `cos(3 q) cos(2 y)` in `cspoly.rs`, and the form as given, 40
+/// units, then failed too: the first reordering's 588 units over). So a fallback search of
+/// the form as given runs in the budget left before the shifted search ([`as_first`]), its
+/// work charged after it. `e` is checked (exactly, in debug builds) only once the form as
+/// given has lost, as before. At the budget's edge the order still tells: where the form as
+/// given used to spend the budget the shifted search needed, the shifted form is now found.
 fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
-    let (plain, prepared) = prepared_unshifted(x);
-    let Some(shift) = offsets::find(x) else {
-        return (plain, prepared);
+    let Some((shift, y)) = offsets::find(x).and_then(|s| s.apply(x).map(|y| (s, y))) else {
+        return prepared_unshifted(x, None);
     };
-    let Some(y) = shift.apply(x) else {
-        return (plain, prepared);
-    };
-    let (shifted, yprep) = prepared_unshifted(&y);
+    // No context entered: nothing is charged, and none is entered for the fallback.
+    let before = (crate::scalar::work_left() != u64::MAX).then(crate::Context::current);
+    let (shifted, yprep) = prepared_unshifted(&y, None);
     let Ok(mut e) = shifted.map(|e| shift.unshift(e)) else {
-        return (plain, prepared);
+        return as_first(&before, x);
     };
     // The shift changes what an angle costs (`cos(y - pi/7) cos(y + pi/7)` ties with the sum in
     // `y`, `cos(x) cos(x + 2*pi/7)` beats it in `x`): the candidates of `alt.rs` for the
@@ -354,11 +376,53 @@ fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
             break;
         }
     }
+    let (plain, prepared) = match prepared_unshifted(x, cap_of(x, &e)) {
+        // Out of the budget (or another limit) after the shifted search: as when first.
+        (Err(_), _) => as_first(&before, x),
+        found => found,
+    };
     // On equal cost the shifted form: its angles are the ones the user wrote.
-    if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) || !verified(&e, x) {
+    if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) {
         return (plain, prepared);
     }
+    if !verified(&e, x) {
+        return as_first(&before, x);
+    }
     (Ok(e.symbols_leading()), Prepared(yprep.0, Some((shift, y))))
+}
+
+/// The uncapped search of `x` as given, in `before` (the context as it was before the
+/// shifted search of [`prepared_shifted`]; `None` when none was entered), its work then
+/// charged to the context entered now (an error of that charge is left to the next one: the
+/// result was found within `before`).
+fn as_first(before: &Option<crate::Context>, x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+    let Some(before) = before else {
+        return prepared_unshifted(x, None);
+    };
+    let entered = before.enter();
+    let found = prepared_unshifted(x, None);
+    let used = entered.work_used();
+    drop(entered);
+    let _ = crate::scalar::charge(used);
+    found
+}
+
+/// The cap of a search of `x` whose result is taken only when [`alt::shorter`] than `e`: the
+/// first two parts of `e`'s [`alt::choice_key`]. `None` (no cap) when some mode of `x` holds a
+/// rational constant: its forms' angles may then be turned by `Expr::symbols_leading`, which
+/// can drop a negation after the search, so a form not below the cap inside the search could
+/// be below it once shown.
+fn cap_of(x: &Scalar, e: &Expr) -> Option<(usize, usize)> {
+    #[cfg(test)]
+    if tests::UNCAPPED.with(std::cell::Cell::get) {
+        return None;
+    }
+    let constant = x.terms().map_or(true, |t| {
+        t.iter()
+            .any(|u| u.mode.freq.iter().any(|(s, _)| s.is_one()))
+    });
+    let k = alt::choice_key(e);
+    (!constant).then_some((k.0, k.1))
 }
 
 /// Whether `e` equals `x`: exactly in debug builds, numerically first in release builds (as
@@ -367,8 +431,11 @@ fn verified(e: &Expr, x: &Scalar) -> bool {
     (!cfg!(debug_assertions) && agrees_numerically(e, x)) || e.to_scalar() == *x
 }
 
-/// [`closed_form_prepared`] without the offsets absorbed.
-fn prepared_unshifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+/// [`closed_form_prepared`] without the offsets absorbed; with `cap`, as [`best_of`] with it.
+fn prepared_unshifted(
+    x: &Scalar,
+    cap: Option<(usize, usize)>,
+) -> (Result<Expr, ScalarError>, Prepared) {
     if let Err(e) = x.terms() {
         return (Err(e.clone()), Prepared(None, None));
     }
@@ -390,7 +457,7 @@ fn prepared_unshifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     }
     let (mut sctx, smons) = mon::split_modes(x);
     let smons = recombine::recombine(&mut sctx, smons);
-    let result = best_of(x, &sctx, &smons, true);
+    let result = best_of(x, &sctx, &smons, true, cap);
     let split_won = result.as_ref().is_ok_and(|(_, split)| *split);
     (
         result.map(|(e, _)| e.symbols_leading()),
@@ -543,11 +610,21 @@ fn whole_form(x: &Scalar) -> Result<(Expr, Cost), ScalarError> {
 
 /// The cheaper of the regrouped monomials `smons` (factored) and, with `try_whole`, the
 /// whole-modes shape of `x`, checked against `x`; and whether the regrouped shape was taken.
+///
+/// With `cap` (see [`prepared_shifted`]) the result is taken by the caller only when strictly
+/// below it ([`alt::shorter`] than a form whose key starts with `cap`): the candidates of
+/// `alt.rs` are checked only below it (`alt::best_alternative_below`: the same candidate
+/// whenever one below `cap` is found either way, none below it otherwise), and a form not
+/// below it is returned unchecked (the caller discards it; the check fails only on a defect,
+/// `x` being canonical). The result is the uncapped one whenever either is below `cap`: both
+/// ways take the same shape; the same alternative, or none below `cap`; and when `best` is
+/// below `cap` (so `cap` does not narrow the candidates), the same check and fallback.
 fn best_of(
     x: &Scalar,
     sctx: &mon::Ctx,
     smons: &[mon::Mon],
     try_whole: bool,
+    cap: Option<(usize, usize)>,
 ) -> Result<(Expr, bool), ScalarError> {
     let (split, sc) = factor::build(smons)?;
     // Without trigonometric terms both shapes are the same monomials (a polynomial in cos/sin
@@ -578,11 +655,17 @@ fn best_of(
     // A shorter form of another kind (checked exactly by `best_alternative`).
     // An alternative is returned only once it equals `x` exactly: not checked again (in debug
     // builds that second expansion could run the budget out on a form already verified).
-    let (best, verified) = match alt::best_alternative(x, &best) {
+    let (best, verified) = match alt::best_alternative_below(x, &best, cap) {
         Some(e) => (e, true),
         None => (best, false),
     };
-    if verified || (!cfg!(debug_assertions) && agrees_numerically(&best, x)) {
+    // A form not below `cap` is discarded by the caller: its check (an expansion in debug
+    // builds) is not made. It could fail only on a defect (`x`, an error-free value, is
+    // canonical: see the `debug_assert` below).
+    if verified
+        || cap.is_some_and(|c| !below(&best, c))
+        || (!cfg!(debug_assertions) && agrees_numerically(&best, x))
+    {
         return Ok((best, split_won));
     }
     let value = best.to_scalar();
@@ -601,6 +684,12 @@ fn best_of(
         };
         Ok((w, false))
     }
+}
+
+/// Whether `e` is chosen over a form whose [`alt::choice_key`] starts with `cap`.
+fn below(e: &Expr, cap: (usize, usize)) -> bool {
+    let k = alt::choice_key(e);
+    (k.0, k.1) < cap
 }
 
 /// Whether `x` has no trigonometric term and its whole-modes monomials are `smons`.
@@ -662,7 +751,7 @@ fn derivative_unshifted(p: &Prepared, var: &str, dx: &Scalar) -> Result<Expr, Sc
     let dmons = recombine::recombine(&mut ctx, mon::merge(dmons));
     // Where the regrouped shape won for the scalar, it is kept for its derivatives (which have
     // the same modes) without factoring the whole modes again.
-    best_of(dx, &ctx, &dmons, !split_won).map(|(e, _)| e.symbols_leading())
+    best_of(dx, &ctx, &dmons, !split_won, None).map(|(e, _)| e.symbols_leading())
 }
 
 /// The closed form of a polynomial in cosine and sine placeholders (see
@@ -814,8 +903,111 @@ mod tests {
     use super::*;
     use crate::scalar::Q;
 
+    thread_local! {
+        /// Set by a test to search the form as given without the shifted form's cap.
+        pub(super) static UNCAPPED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    }
+
     fn s(x: &str) -> Scalar {
         Scalar::sym(x)
+    }
+
+    /// A pseudo-random scalar with pi offsets outside the multiples of pi/12 (the shape of the
+    /// Jaco-style arm's entries, smaller): 2 to 4 terms, each a signed small integer, maybe a
+    /// length, times one or two cosines or sines of one or two joint angles plus `k pi/n`
+    /// (`n` one of 5, 7, 9 for the whole scalar).
+    fn offset_scalar(seed: u64) -> Scalar {
+        let mut next = crate::testing::xorshift_below(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+        let (angles, lengths) = (["q1", "q2", "q3"], ["a2", "d3"]);
+        let n = [5u64, 7, 9][next(3) as usize];
+        let mut x = Scalar::int(0);
+        for _ in 0..2 + next(3) {
+            let sign = if next(2) == 0 { -1 } else { 1 };
+            let mut t = Scalar::int(sign * (next(4) as i64 + 1));
+            if next(2) == 0 {
+                t = t * s(lengths[next(2) as usize]);
+            }
+            for _ in 0..1 + next(2) {
+                let mut a = s(angles[next(3) as usize]);
+                if next(3) == 0 {
+                    a = a + s(angles[next(3) as usize]);
+                }
+                let k = next(2 * n) as i64;
+                a = a + Scalar::pi() * Scalar::from_q(Q::new(k, n as i64));
+                t = t * if next(2) == 0 { a.cos() } else { a.sin() };
+            }
+            x = x + t;
+        }
+        x
+    }
+
+    /// The search as given with a cap gives the uncapped form whenever either is below the
+    /// cap, and neither is below it otherwise (`best_of`, `alt::best_alternative_below`): caps
+    /// around, at and below the uncapped form's key.
+    #[test]
+    fn a_capped_search_gives_the_uncapped_form_below_its_cap() {
+        let mut compared = 0;
+        for seed in 0..40 {
+            let x = offset_scalar(seed);
+            if x.terms().map_or(true, <[_]>::is_empty) {
+                continue;
+            }
+            let e = prepared_unshifted(&x, None).0.expect("a closed form");
+            let k = alt::choice_key(&e);
+            let caps = [
+                (k.0, k.1),
+                (k.0, k.1 + 1),
+                (k.0 + 1, 0),
+                (k.0.saturating_sub(1), k.1),
+                (k.0 / 2, 0),
+                (k.0 + 8, 0),
+            ];
+            for cap in caps {
+                let c = prepared_unshifted(&x, Some(cap)).0.expect("a closed form");
+                if below(&e, cap) || below(&c, cap) {
+                    assert_eq!(c, e, "seed {seed}, cap {cap:?}");
+                    assert_eq!(c.to_scalar(), x, "seed {seed}");
+                    compared += 1;
+                }
+            }
+        }
+        assert!(compared >= 40, "{compared} capped forms below their caps");
+    }
+
+    /// The closed form chosen with the shifted form's cap on the search as given is the one
+    /// chosen without it, on random scalars with offsets; it equals the scalar exactly and at
+    /// a random point in floats.
+    #[test]
+    fn the_shifted_forms_cap_does_not_change_the_chosen_form() {
+        let (mut shifted, mut plain) = (0, 0);
+        for seed in 100..260 {
+            let x = offset_scalar(seed);
+            let capped = closed_form_prepared(&x).0;
+            UNCAPPED.with(|u| u.set(true));
+            let uncapped = closed_form_prepared(&x).0;
+            UNCAPPED.with(|u| u.set(false));
+            let (Ok(c), Ok(u)) = (capped, uncapped) else {
+                panic!("seed {seed}: no closed form");
+            };
+            assert_eq!(c, u, "seed {seed}");
+            assert_eq!(c.to_scalar(), x, "seed {seed}");
+            let point = |sym: &Sym| point_value(sym, seed);
+            let want = x.eval_symbols(&|sym| Some(point(sym))).expect("a value");
+            let (got, scale) = c.eval_f64(&point);
+            assert!((got - want).abs() <= 1e-9 * scale.max(1.0), "seed {seed}");
+            if offsets::find(&x).is_some() {
+                let (p, _) = prepared_unshifted(&x, None);
+                if p.is_ok_and(|p| alt::shorter(&p, &c) || p == c) {
+                    plain += 1;
+                } else {
+                    shifted += 1;
+                }
+            }
+        }
+        assert!(
+            shifted >= 5 && plain >= 10,
+            "shifted {shifted}, as given {plain}"
+        );
     }
 
     #[test]

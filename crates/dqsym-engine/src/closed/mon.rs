@@ -279,10 +279,11 @@ pub(crate) fn whole_modes_joined(x: &Scalar) -> (Ctx, Vec<Mon>) {
     whole_modes_of(x, true)
 }
 
-/// The group `g` (terms of one monomial and one frequency vector) as one term `R cos(F + phi)`
-/// (or `R sin(F + phi')`, whichever offset has the smaller denominator, cos on ties), `R > 0`
-/// a rational times the square root of a square-free integer and `phi` a rational multiple of
-/// pi; `None` when the group is not one angle (or the exact check fails).
+/// The group `g` (all the terms of a canonical scalar of one monomial and one frequency
+/// vector, in order) as one term `R cos(F + phi)` (or `R sin(F + phi')`, whichever offset has
+/// the smaller denominator, cos on ties), `R > 0` a rational times the square root of a
+/// square-free integer and `phi` a rational multiple of pi; `None` when the group is not one
+/// angle (or the exact check fails).
 fn single_angle(g: &[&crate::scalar::Term]) -> Option<crate::scalar::Term> {
     use num_traits::ToPrimitive;
     let (re, im) = super::offsets::amplitude(g.iter().copied())?;
@@ -322,7 +323,10 @@ fn single_angle(g: &[&crate::scalar::Term]) -> Option<crate::scalar::Term> {
         rad: free,
         coef: Q::new(square, d),
     };
-    let group = Scalar::from_terms(g.iter().map(|t| (*t).clone()).collect());
+    // `g` is a whole group of a canonical scalar (all its terms of one monomial and one
+    // frequency vector, in order: the cyclotomic layer's group), so it is canonical on its
+    // own and is not rewritten again.
+    let group = Scalar::from_sorted_settled(g.iter().map(|t| (*t).clone()).collect());
     (Scalar::from_terms(vec![term.clone()]) == group).then_some(term)
 }
 
