@@ -91,16 +91,17 @@ fn eigen_roots_take_the_triple_roots_the_certified_search_leaves() {
     }
 }
 
-type M4 = [[f64; 4]; 4];
+/// A 4 x 4 homogeneous matrix (also the refinement tests' own forward kinematics).
+pub(super) type M4 = [[f64; 4]; 4];
 
-fn mul(a: &M4, b: &M4) -> M4 {
+pub(super) fn mul(a: &M4, b: &M4) -> M4 {
     std::array::from_fn(|i| std::array::from_fn(|j| (0..4).map(|k| a[i][k] * b[k][j]).sum()))
 }
 
 /// The motion of one joint as a 4 x 4 matrix (the test's own): a turn by `q` about the line
 /// through `p` along the unit `w` (`R = exp(q [w]×)` by its series' closed form), or a slide
 /// by `q` along `w`.
-fn joint(a: &GenAxis, q: f64) -> M4 {
+pub(super) fn joint(a: &GenAxis, q: f64) -> M4 {
     let (w, p) = ([a[1], a[2], a[3]], [a[4], a[5], a[6]]);
     let mut m = [[0.0; 4]; 4];
     m[3][3] = 1.0;

@@ -1,46 +1,14 @@
 //! The refinement's pieces (`core::forward` on the joints' frames, `core::cholesky_solve`,
 //! `core::refine`) and the elimination's QR (`core::qr_pivot`) against independent
-//! computations written here: a forward kinematics of plain 4 x 4 matrices (Rodrigues' formula
+//! computations written in the tests: a forward kinematics of plain 4 x 4 matrices (`apart_tests`: Rodrigues' formula
 //! per joint, the product of exponentials), the residual of the solved system, the definition
 //! of a QR factorization.
 
 #![allow(clippy::needless_range_loop)]
 
+use super::apart_tests::{joint, mul, M4};
 use super::core::{chain, cholesky_solve, forward, qr_pivot, refine, GenAxis, EXACT_TOL};
 use super::det_tests::Rng;
-
-type M4 = [[f64; 4]; 4];
-
-fn mul(a: &M4, b: &M4) -> M4 {
-    std::array::from_fn(|i| std::array::from_fn(|j| (0..4).map(|k| a[i][k] * b[k][j]).sum()))
-}
-
-/// Joint `x` at `q` as a 4 x 4 matrix: a rotation by `q` about the line through `c` along `w`
-/// (Rodrigues), or a translation by `q w`.
-fn joint(x: &GenAxis, q: f64) -> M4 {
-    let (w, p) = ([x[1], x[2], x[3]], [x[4], x[5], x[6]]);
-    let mut m = [[0.0; 4]; 4];
-    m[3][3] = 1.0;
-    if x[0] != 0.0 {
-        for i in 0..3 {
-            m[i][i] = 1.0;
-            m[i][3] = q * w[i];
-        }
-        return m;
-    }
-    let (s, c) = q.sin_cos();
-    let k = [[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]];
-    for i in 0..3 {
-        for j in 0..3 {
-            let kk: f64 = (0..3).map(|l| k[i][l] * k[l][j]).sum();
-            m[i][j] = if i == j { 1.0 } else { 0.0 } + s * k[i][j] + (1.0 - c) * kk;
-        }
-    }
-    for i in 0..3 {
-        m[i][3] = p[i] - (0..3).map(|j| m[i][j] * p[j]).sum::<f64>();
-    }
-    m
-}
 
 fn unit_vector(rng: &mut Rng) -> [f64; 3] {
     loop {
