@@ -1,8 +1,8 @@
 //! The refinement's pieces (`core::forward` on the joints' frames, `core::cholesky_solve`,
 //! `core::refine`) and the elimination's QR (`core::qr_pivot`) against independent
-//! computations written in the tests: a forward kinematics of plain 4 x 4 matrices (`apart_tests`: Rodrigues' formula
-//! per joint, the product of exponentials), the residual of the solved system, the definition
-//! of a QR factorization.
+//! computations written in the tests: a forward kinematics of plain 4 x 4 matrices
+//! (`apart_tests`: Rodrigues' formula per joint, the product of exponentials), the residual of
+//! the solved system, the definition of a QR factorization.
 
 #![allow(clippy::needless_range_loop)]
 
