@@ -8,8 +8,8 @@
 //! (`dqsym -e 1`: 1.31 -> 1.21 ms wall at best, 230 -> 206 page faults). What the binary needs
 //! of it is here, for the threads that evaluate (the main thread only waits for them):
 //! [`open_standard_descriptors`] and [`watch_stack`]. SIGPIPE is set by `main.rs`
-//! (`quiet_on_closed_pipe`) either way. A thread that does not watch its stack (the engine's
-//! helpers) ends on an overflow by SIGSEGV, without the message.
+//! (`quiet_on_closed_pipe`) either way. The engine's helper threads watch theirs too: `main`
+//! sets [`watch_stack`] as their start hook (`dqsym::scalar::on_helper_start`).
 
 use std::cell::Cell;
 use std::ffi::{c_int, c_void};

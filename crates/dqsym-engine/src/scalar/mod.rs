@@ -49,6 +49,7 @@ pub use ctx::{
 use cyclo::{GroupKey, OwnedKey, ProductTrace, Settled};
 pub use decimal::{decimal_places, decimal_text, parse_decimal, short_numbers};
 pub use frac::Frac;
+pub use par::on_helper_start;
 pub(crate) use par::{join, par_map, with_own_budget};
 pub(crate) use q::Q;
 

@@ -62,6 +62,20 @@ pub fn par_map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec
     done.into_iter().map(|(_, r)| r).collect()
 }
 
+/// What each helper thread of the pool runs first, and keeps until the thread ends: set once
+/// per process by [`on_helper_start`].
+static HELPER_START: std::sync::OnceLock<fn() -> Box<dyn std::any::Any>> =
+    std::sync::OnceLock::new();
+
+/// Sets what each helper thread runs when it starts (the value it returns is kept for the
+/// thread's life): for a program that sets up per-thread state the Rust runtime would
+/// otherwise have set up, such as the `dqsym` binary's stack-overflow report, since it starts
+/// without the runtime's start-up. Set once, before the first helper starts; whether it was
+/// set by this call (false if a hook was already set).
+pub fn on_helper_start(hook: fn() -> Box<dyn std::any::Any>) -> bool {
+    HELPER_START.set(hook).is_ok()
+}
+
 /// Runs `a` on this thread and `b` on another one (under this thread's limits), and returns
 /// both results. Without a second thread (one allowed, or none free) both run here.
 pub fn join<A, B>(a: impl FnOnce() -> A, b: impl FnOnce() -> B + Send) -> (A, B)
@@ -204,8 +218,10 @@ impl Pool {
         call
     }
 
-    /// A helper's life: takes jobs from the queue and runs them, forever.
+    /// A helper's life: runs the start hook ([`on_helper_start`]), then takes jobs from the
+    /// queue and runs them, forever.
     fn serve(&self) {
+        let _hook = HELPER_START.get().map(|start| start());
         let mut st = self.lock();
         loop {
             let Some(job) = st.queue.pop_front() else {
@@ -482,6 +498,47 @@ mod tests {
         assert_eq!(par_map(&items, |&n| n * 2)[63], 126);
         let (a, b) = join(|| 1, || 2);
         assert_eq!((a, b), (1, 2));
+    }
+
+    thread_local! {
+        /// Set by the start hook of the test below, on the thread that runs it.
+        static HOOKED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    }
+
+    /// A helper runs the hook set by `on_helper_start` before its first job (the `dqsym`
+    /// binary's stack-overflow report of its helpers rests on it). In a forked child, whose
+    /// pool is made there after the hook is set.
+    #[cfg(unix)]
+    #[test]
+    fn helpers_run_the_start_hook_before_their_jobs() {
+        in_forked_child(
+            || {
+                let set = on_helper_start(|| {
+                    HOOKED.with(|h| h.set(true));
+                    Box::new(())
+                });
+                let _in = Context::new().with_threads(2).enter();
+                let began = std::sync::atomic::AtomicBool::new(false);
+                let (_, on_helper) = join(
+                    || {
+                        // Waits (up to 10 s) for a helper to take `b`, so `b` does not run
+                        // here.
+                        let until = std::time::Instant::now() + std::time::Duration::from_secs(10);
+                        while !began.load(std::sync::atomic::Ordering::SeqCst)
+                            && std::time::Instant::now() < until
+                        {
+                            std::thread::yield_now();
+                        }
+                    },
+                    || {
+                        began.store(true, std::sync::atomic::Ordering::SeqCst);
+                        HOOKED.with(std::cell::Cell::get)
+                    },
+                );
+                set && on_helper && !HOOKED.with(std::cell::Cell::get)
+            },
+            || {},
+        );
     }
 
     /// A child forked while the parent's pool is in use (its lock held, helpers started)
