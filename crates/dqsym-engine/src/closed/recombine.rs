@@ -153,8 +153,33 @@ fn groups(mons: &[Mon], index: Vec<Entry>) -> Vec<Vec<Entry>> {
             s = t;
         }
     }
-    groups.sort_by(|x, y| key_cmp(mons, &x[0], &y[0]));
-    groups
+    // In key order. The keys of the groups differ (one group per key), so an unstable sort
+    // gives the order of a stable one; the fixed part of the key, packed in one integer, is
+    // compared first, and the other atoms only when it ties (rarely: a few ties in thousands
+    // of groups on the Jaco-style arm). `fk --jacobian tests/data/jaco_style.toml` on one
+    // thread: 565.6 M -> 563.4 M instructions against a stable sort of the groups by `key_cmp`.
+    let mut heads: Vec<(u128, usize)> = groups
+        .iter()
+        .enumerate()
+        .map(|(k, g)| (head(&g[0]), k))
+        .collect();
+    heads.sort_unstable_by(|&(x, k), &(y, l)| {
+        x.cmp(&y).then_with(|| {
+            let (e, f) = (&groups[k][0], &groups[l][0]);
+            rest_cmp(&mons[e.i].atoms, e.p, e.q, &mons[f.i].atoms, f.p, f.q)
+        })
+    });
+    let mut slots: Vec<Option<Vec<Entry>>> = groups.into_iter().map(Some).collect();
+    heads.iter().filter_map(|&(_, k)| slots[k].take()).collect()
+}
+
+/// The part `(class, a, b, cof)` of the key of `e`, packed so that integers compare as
+/// [`key_cmp`] compares that part.
+fn head(e: &Entry) -> u128 {
+    u128::from(e.class == Class::Sin) << 96
+        | u128::from(e.a) << 64
+        | u128::from(e.b) << 32
+        | u128::from(e.cof)
 }
 
 /// Compares the atoms of `x` other than those at `xp < xq` with those of `y` other than those
