@@ -136,10 +136,16 @@ fn groups(mons: &[Mon], index: Vec<Entry>) -> Vec<Vec<Entry>> {
         if run.len() < 2 {
             continue;
         }
-        // Different keys with one hash: order by key, stably.
-        if run[1..].iter().any(|e| key_cmp(mons, &run[0], e).is_ne()) {
-            run.sort_by(|x, y| key_cmp(mons, x, y));
+        let pairs = |g: &[Entry]| g.iter().any(|e| e.sin) && g.iter().any(|e| !e.sin);
+        // One key (almost always): the run is the group, its keys compared once.
+        if run[1..].iter().all(|e| key_cmp(mons, &run[0], e).is_eq()) {
+            if pairs(run) {
+                groups.push(run.to_vec());
+            }
+            continue;
         }
+        // Different keys with one hash: order by key, stably.
+        run.sort_by(|x, y| key_cmp(mons, x, y));
         let mut s = 0;
         while s < run.len() {
             let mut t = s + 1;
@@ -147,7 +153,7 @@ fn groups(mons: &[Mon], index: Vec<Entry>) -> Vec<Vec<Entry>> {
                 t += 1;
             }
             let g = &run[s..t];
-            if g.iter().any(|e| e.sin) && g.iter().any(|e| !e.sin) {
+            if pairs(g) {
                 groups.push(g.to_vec());
             }
             s = t;
