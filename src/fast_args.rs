@@ -160,7 +160,7 @@ impl Read {
             None => set(slot, ()),
         };
         match name {
-            "format" => set(&mut self.format, format(value()?)?),
+            "format" => set(&mut self.format, named::<OutputFormat>(value()?)?),
             "explicit" => flag(&mut self.explicit),
             "term-limit" => set(&mut self.term_limit, number(value()?)?),
             "max-depth" => {
@@ -190,13 +190,10 @@ impl Read {
             "free" if command == Some(Name::Ik) => set(&mut self.free, value()?.to_owned()),
             "method" if command == Some(Name::Ik) => {
                 let m = value()?;
-                ["auto", "family", "general"].contains(&m).then_some(())?;
+                dqsym::ik::IkMethod::parse(m)?;
                 set(&mut self.method, m.to_owned())
             }
-            "to" if command == Some(Name::Convert) => match value()? {
-                "toml" => set(&mut self.to, ConvertTo::Toml),
-                _ => None,
-            },
+            "to" if command == Some(Name::Convert) => set(&mut self.to, named(value()?)?),
             "tip" if command.is_some_and(Name::reads_robot) => {
                 set(&mut self.tip, value()?.to_owned())
             }
@@ -275,17 +272,10 @@ impl Read {
     }
 }
 
-/// `--format`'s names, as clap's `ValueEnum` spells them.
-fn format(v: &str) -> Option<OutputFormat> {
-    Some(match v {
-        "plain" => OutputFormat::Plain,
-        "latex" => OutputFormat::Latex,
-        "rust" => OutputFormat::Rust,
-        "sympy" => OutputFormat::Sympy,
-        "c" => OutputFormat::C,
-        "python" => OutputFormat::Python,
-        _ => return None,
-    })
+/// A value of a `ValueEnum` option by its name, as clap matches it (case-sensitive, aliases
+/// too), from the enum itself: no command is built.
+fn named<T: clap::ValueEnum>(v: &str) -> Option<T> {
+    T::from_str(v, false).ok()
 }
 
 #[cfg(test)]

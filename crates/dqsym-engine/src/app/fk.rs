@@ -479,10 +479,10 @@ pub fn in_decimals(robot: &Robot, sections: &mut [Section]) {
     }
 }
 
-/// The report from the expanded DQ and matrix and their closed forms.
+/// The report from the expanded DQ and matrix and their closed forms. `img` is the point's
+/// image (when the report has a point) and `jac` the Jacobian of `q` in `vars` (when it has
+/// one).
 #[allow(clippy::too_many_arguments)]
-/// `img` is the point's image (when the report has a point) and `jac` the Jacobian of `q` in
-/// `vars` (when it has one).
 fn expanded_sections(
     q: &DualQuat<Scalar>,
     vars: &[&str],
