@@ -544,6 +544,7 @@ fn motion_apply(g: &B34, x: &V, d: &V) -> (V, V) {
 /// Householder QR with column pivoting of the 14 x 8 matrix `b`: `(Qᵀ, R, order, |r77| /
 /// |r00|)`; the last six rows of `Qᵀ` span the left null space when the ratio is not small.
 #[allow(clippy::needless_range_loop, clippy::type_complexity)]
+#[inline(always)]
 pub(crate) fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], f64) {
     let mut a = *b;
     let mut qt = [[0.0; 14]; 14];
@@ -2670,6 +2671,7 @@ fn then(a: &B34, b: &B34) -> B34 {
 }
 
 /// The pose `E1(q1) ⋯ E6(q6) M` and each joint's current axis `(w, p)` (scaled lengths).
+#[inline(always)]
 pub(crate) fn forward(ch: &Chain, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
     forward_with::<true>(ch, q)
 }
