@@ -3056,7 +3056,10 @@ pub fn gen_solve(
         if prismatic[ar.perm[5]] {
             continue;
         }
-        let Some(el) = elim_of(&ar, arr) else {
+        // (Borrowed where it was returned, moved only when it waits: no copy of it per
+        // arrangement.)
+        let elo = elim_of(&ar, arr);
+        let Some(el) = elo.as_ref() else {
             continue;
         };
         if el.rank_ratio < RANK_TOL {
@@ -3066,7 +3069,7 @@ pub fn gen_solve(
         let det = if ar.j[2].prism {
             None
         } else {
-            Some(det_candidates(&ar, &el, &mut roots))
+            Some(det_candidates(&ar, el, &mut roots))
         };
         let found = match det {
             Some(Ok(found)) => Some(found),
@@ -3078,7 +3081,7 @@ pub fn gen_solve(
             }
             // The first to give up waits for the next arrangement's determinant route.
             Some(Err(_)) if deferred.is_none() => {
-                deferred = Some((ar, el, arr));
+                deferred = elo.map(|el| (ar, el, arr));
                 continue;
             }
             // A second gave up (a cluster in every arrangement) or the hidden joint slides:
@@ -3092,7 +3095,7 @@ pub fn gen_solve(
                         }
                     }
                 }
-                eigen_candidates(&ar, &el, &mut roots)
+                eigen_candidates(&ar, el, &mut roots)
             }
         };
         let Some((n, degree)) = found else { continue };
