@@ -12,8 +12,8 @@ pub const IK_MAX: usize = 16;
 pub const IK_POSE_TOL: f64 = 1e-10;
 /// The residual above which a root of the elimination is dropped (no solution).
 pub const IK_KEEP_TOL: f64 = 1e-6;
-/// The arrangement of the loop tried first (the one that served at the derivation).
-const IK_FIRST_ARRANGEMENT: usize = 0;
+/// The arrangement of the loop tried first (chosen at the derivation: the fewest give-ups at sample targets).
+const IK_FIRST_ARRANGEMENT: usize = 6;
 
 /// The solutions: `q` in joint order, with their flags.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -470,20 +470,25 @@ impl Arranged {
         let mut am = left;
         let mut bm = [[0.0; 8]; 14];
         let wt: [&[[f64; 3]; 3]; 2] = std::array::from_fn(|i| self.j[i].weights());
-        for e in 0..14 {
-            for i1 in 0..3 {
-                for i2 in 0..3 {
-                    let mut s = 0.0;
-                    for k1 in 0..3 {
-                        for k2 in 0..3 {
-                            s += wt[0][i1][k1] * wt[1][i2][k2] * rhs[k1][k2][e];
+        // The 2-D transform of each of the 14 quantities, the quantities' sums side by side
+        // (each in the order of k1, k2).
+        for i1 in 0..3 {
+            for i2 in 0..3 {
+                let mut s = [0.0; 14];
+                for k1 in 0..3 {
+                    for k2 in 0..3 {
+                        let w = wt[0][i1][k1] * wt[1][i2][k2];
+                        for e in 0..14 {
+                            s[e] += w * rhs[k1][k2][e];
                         }
                     }
-                    let m = mono(i1, i2);
+                }
+                let m = mono(i1, i2);
+                for e in 0..14 {
                     if m == 0 {
-                        am[e][0][0] -= s;
+                        am[e][0][0] -= s[e];
                     } else {
-                        bm[e][m - 1] = s;
+                        bm[e][m - 1] = s[e];
                     }
                 }
             }
@@ -580,23 +585,23 @@ fn motion_apply(g: &B34, x: &V, d: &V) -> (V, V) {
 /// Householder QR with column pivoting of the 14 x 8 matrix `b`: `(Qᵀ, R, order, |r77| /
 /// |r00|)`; the last six rows of `Qᵀ` span the left null space when the ratio is not small.
 #[allow(clippy::needless_range_loop, clippy::type_complexity)]
+#[inline(always)]
 pub(crate) fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [usize; 8], f64) {
     let mut a = *b;
-    let mut q = [[0.0; 14]; 14];
+    let mut qt = [[0.0; 14]; 14];
     for i in 0..14 {
-        q[i][i] = 1.0;
+        qt[i][i] = 1.0;
     }
     let mut piv = [0, 1, 2, 3, 4, 5, 6, 7];
     // Each step with its column a constant (the loops over its rows unrolled).
-    qr_step::<0>(&mut a, &mut q, &mut piv);
-    qr_step::<1>(&mut a, &mut q, &mut piv);
-    qr_step::<2>(&mut a, &mut q, &mut piv);
-    qr_step::<3>(&mut a, &mut q, &mut piv);
-    qr_step::<4>(&mut a, &mut q, &mut piv);
-    qr_step::<5>(&mut a, &mut q, &mut piv);
-    qr_step::<6>(&mut a, &mut q, &mut piv);
-    qr_step::<7>(&mut a, &mut q, &mut piv);
-    let qt: [[f64; 14]; 14] = std::array::from_fn(|i| std::array::from_fn(|c| q[c][i]));
+    qr_step::<0>(&mut a, &mut qt, &mut piv);
+    qr_step::<1>(&mut a, &mut qt, &mut piv);
+    qr_step::<2>(&mut a, &mut qt, &mut piv);
+    qr_step::<3>(&mut a, &mut qt, &mut piv);
+    qr_step::<4>(&mut a, &mut qt, &mut piv);
+    qr_step::<5>(&mut a, &mut qt, &mut piv);
+    qr_step::<6>(&mut a, &mut qt, &mut piv);
+    qr_step::<7>(&mut a, &mut qt, &mut piv);
     let mut r = [[0.0; 8]; 8];
     for i in 0..8 {
         for j in i..8 {
@@ -612,21 +617,26 @@ pub(crate) fn qr_pivot(b: &[[f64; 8]; 14]) -> ([[f64; 14]; 14], [[f64; 8]; 8], [
 }
 
 /// Step `K` of [`qr_pivot`]: the remaining column of largest norm to column `K`, its
-/// Householder reflection applied to the columns from `K` on and to `Q` (by rows). Each sum
-/// starts at `−0`, as the standard library's `f64` sum of an iterator, which it was.
+/// Householder reflection applied to the columns from `K` on and to `Qᵀ` (from the left, its
+/// rows from `K` on). Each sum runs down a column, over the rows from `K` in order and started
+/// at `−0` (as the standard library's `f64` sum of an iterator, which it was), and the sums of
+/// all columns are accumulated side by side, row after row: the same operations in the same
+/// order as one column at a time, in loops along the rows that the compiler vectorises.
 #[allow(clippy::needless_range_loop)]
 #[inline(always)]
-fn qr_step<const K: usize>(a: &mut [[f64; 8]; 14], q: &mut [[f64; 14]; 14], piv: &mut [usize; 8]) {
+fn qr_step<const K: usize>(a: &mut [[f64; 8]; 14], qt: &mut [[f64; 14]; 14], piv: &mut [usize; 8]) {
     // The remaining column of largest norm first.
+    let mut norms = [-0.0; 8];
+    for r in K..14 {
+        for c in K..8 {
+            norms[c] += a[r][c] * a[r][c];
+        }
+    }
     let mut best = K;
     let mut bn = -1.0;
     for c in K..8 {
-        let mut n = -0.0;
-        for r in K..14 {
-            n += a[r][c] * a[r][c];
-        }
-        if n > bn {
-            bn = n;
+        if norms[c] > bn {
+            bn = norms[c];
             best = c;
         }
     }
@@ -653,26 +663,40 @@ fn qr_step<const K: usize>(a: &mut [[f64; 8]; 14], q: &mut [[f64; 14]; 14], piv:
     if vn == 0.0 {
         return;
     }
-    for c in K..8 {
-        let mut s = -0.0;
-        for r in K..14 {
-            s += v[r] * a[r][c];
-        }
-        let s = s * 2.0 / vn;
-        for r in K..14 {
-            a[r][c] -= s * v[r];
+    let mut s = [-0.0; 8];
+    for r in K..14 {
+        for c in K..8 {
+            s[c] += v[r] * a[r][c];
         }
     }
-    // Q (the transpose of Qᵀ) by rows, so that each update runs along a row (the same
-    // operations in the same order).
-    for qc in q.iter_mut() {
-        let mut s = -0.0;
-        for r in K..14 {
-            s += v[r] * qc[r];
+    for c in K..8 {
+        s[c] = s[c] * 2.0 / vn;
+    }
+    for r in K..14 {
+        for c in K..8 {
+            a[r][c] -= s[c] * v[r];
         }
-        let s = s * 2.0 / vn;
+    }
+    // Qᵀ ← H Qᵀ: each column's sum down the rows from K, all columns side by side. At the
+    // first step Qᵀ is the identity and, with v finite, column c's sum is v[c] itself (its
+    // other terms are zeros, which leave it unchanged; where it is a zero the update leaves
+    // Qᵀ the identity whatever its sign).
+    let mut t = [-0.0; 14];
+    if K == 0 && vn.is_finite() {
+        t = v;
+    } else {
         for r in K..14 {
-            qc[r] -= s * v[r];
+            for c in 0..14 {
+                t[c] += v[r] * qt[r][c];
+            }
+        }
+    }
+    for c in 0..14 {
+        t[c] = t[c] * 2.0 / vn;
+    }
+    for r in K..14 {
+        for c in 0..14 {
+            qt[r][c] -= t[c] * v[r];
         }
     }
 }
@@ -2688,6 +2712,7 @@ fn then(a: &B34, b: &B34) -> B34 {
 }
 
 /// The pose `E1(q1) ⋯ E6(q6) M` and each joint's current axis `(w, p)` (scaled lengths).
+#[inline(always)]
 pub(crate) fn forward(ch: &Chain, q: &[f64; 6]) -> (B34, [[f64; 6]; 6]) {
     forward_with::<true>(ch, q)
 }
@@ -3072,7 +3097,10 @@ pub fn gen_solve(
         if prismatic[ar.perm[5]] {
             continue;
         }
-        let Some(el) = elim_of(&ar, arr) else {
+        // (Borrowed where it was returned, moved only when it waits: no copy of it per
+        // arrangement.)
+        let elo = elim_of(&ar, arr);
+        let Some(el) = elo.as_ref() else {
             continue;
         };
         if el.rank_ratio < RANK_TOL {
@@ -3082,7 +3110,7 @@ pub fn gen_solve(
         let det = if ar.j[2].prism {
             None
         } else {
-            Some(det_candidates(&ar, &el, &mut roots))
+            Some(det_candidates(&ar, el, &mut roots))
         };
         let found = match det {
             Some(Ok(found)) => Some(found),
@@ -3094,7 +3122,7 @@ pub fn gen_solve(
             }
             // The first to give up waits for the next arrangement's determinant route.
             Some(Err(_)) if deferred.is_none() => {
-                deferred = Some((ar, el, arr));
+                deferred = elo.map(|el| (ar, el, arr));
                 continue;
             }
             // A second gave up (a cluster in every arrangement) or the hidden joint slides:
@@ -3108,7 +3136,7 @@ pub fn gen_solve(
                         }
                     }
                 }
-                eigen_candidates(&ar, &el, &mut roots)
+                eigen_candidates(&ar, el, &mut roots)
             }
         };
         let Some((n, degree)) = found else { continue };

@@ -274,7 +274,7 @@ impl SolverSyntax for C {
         s.push_str(&solutions_type(16, 6));
         s.push_str(&f.tolerances);
         s.push_str(&format!(
-            "/* The residual above which a root of the elimination is dropped (no solution), and the\n   arrangement of the loop tried first (the one that served at the derivation). */\n\
+            "/* The residual above which a root of the elimination is dropped (no solution), and the\n   arrangement of the loop tried first (chosen at the derivation: the fewest give-ups at sample\n   targets). */\n\
 #define IK_KEEP_TOL {}\n#define IK_FIRST_ARRANGEMENT {}\n\n/* The constants of the numeric core (from core.rs). */\n{}\n",
             f.keep_tol, f.first, f.constants
         ));

@@ -343,7 +343,7 @@ pub fn ik_dq(ik_q: &[f64; 8]{params}) -> IkSolutions {{\n    ik(&ik_dq_matrix(ik
             "\n/// The most solutions the solver returns.\npub const IK_MAX: usize = 16;\n\
 /// The residual above which a solution is flagged approximate.\npub const IK_POSE_TOL: f64 = {};\n\
 /// The residual above which a root of the elimination is dropped (no solution).\npub const IK_KEEP_TOL: f64 = {};\n\
-/// The arrangement of the loop tried first (the one that served at the derivation).\nconst IK_FIRST_ARRANGEMENT: usize = {};\n\n\
+/// The arrangement of the loop tried first (chosen at the derivation: the fewest give-ups at sample targets).\nconst IK_FIRST_ARRANGEMENT: usize = {};\n\n\
 /// The solutions: `q` in joint order, with their flags.\n\
 #[derive(Clone, Copy, Debug, PartialEq)]\npub struct IkSolutions {{\n    /// Joint vectors.\n    pub q: [[f64; 6]; IK_MAX],\n    \
 /// Never set by the general method.\n    pub singular: [bool; IK_MAX],\n    /// The pose misses the target by more than IK_POSE_TOL.\n    pub approximate: [bool; IK_MAX],\n    \

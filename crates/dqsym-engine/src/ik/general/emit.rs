@@ -290,7 +290,7 @@ fn solver(sol: &IkSolution, lang: Lang) -> Result<String, ScalarError> {
         variables: &sol.variables,
         pose_tol: w.literal(check::POSE_TOL),
         keep_tol: w.literal(super::KEEP_TOL),
-        first: sol.general.as_ref().map_or(0, super::GeneralInfo::index),
+        first: sol.general.as_ref().map_or(0, |g| g.first),
         tolerances: super::super::emit::tolerances_of(sol, lang),
         constants,
         core,
@@ -349,7 +349,7 @@ pub fn ik_python(sol: &IkSolution) -> Result<String, ScalarError> {
 /// solution as `[q, singular, approximate, residual]` as the generated solvers return them.
 pub fn ik_javascript_general(sol: &IkSolution) -> String {
     let js = syntax(Lang::JavaScript);
-    let first = sol.general.as_ref().map_or(0, super::GeneralInfo::index);
+    let first = sol.general.as_ref().map_or(0, |g| g.first);
     // A 4R2P with its slides three joints apart: the apart core after the core, its entry
     // called by the driver.
     let (apart, constants, solve) = if super::apart_chain(&sol.axes) {
