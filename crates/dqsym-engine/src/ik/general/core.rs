@@ -3036,8 +3036,10 @@ pub fn gen_solve(
         }
     };
     let mut complete = false;
-    // The arrangement that served at the derivation's generic target first (special geometry
-    // makes the same ones degenerate at every target), then the others in order.
+    // The arrangement chosen at the derivation first (one that served at its generic target,
+    // or the other reading from joint 1 where that gives up less at sample targets: special
+    // geometry makes the same ones degenerate at every target, and the hidden joint whose
+    // roots cluster is a property of the arm), then the others in order.
     for k in 0..12 {
         let arr = if k == 0 {
             first % 12

@@ -358,6 +358,33 @@
 //! of the 368) takes 35 trial steps of the 408. Where the 191k goes: the determinant route
 //! 128k, the refinement 28.5k (plus the chain 1.7k), the elimination 29.8k (the QR of `Bm`
 //! 13.6k).
+//!
+//! Session 20 (callgrind as above): 181.5k to 141.6k per pose, the same 362 solutions. The
+//! arrangement tried first is chosen at the derivation ([`GeneralInfo::first`]): the bench's
+//! skew 6R clusters roots of `θ3` (arrangement 0, the first that serves at the generic
+//! target) at 7 of the 64 poses (5 give up, a flat cluster near `θ3 ≈ 4.2`; 2 leave the set
+//! incomplete), each paying a second elimination (with a left side computed per target,
+//! 23k) and eighteen more samples: those 7 poses cost 230k to 510k each, 18k per pose on
+//! average. Reading the loop backwards (arrangement 6, hidden `θ4`, its left side a constant of
+//! the arm too) no bench pose gives up: 176.3k to 141.6k, the solutions within `1.3e-12`
+//! (the largest change at a pose with two solutions `0.06` rad apart), residuals at most
+//! `1.0e-14`. The choice solves 32 poses per candidate at the derivation (the derivation's
+//! arrangement, the other of 0 and 6) and keeps the derivation's unless the other serves
+//! alone at more of them. Measured first arrangements on the bench (the whole solver): 0
+//! 176.3k, 1 161.3k, 2 170.6k, 3 173.4k, 4 171.3k, 5 178.7k, 6 141.7k. The same bits,
+//! before that (181.5k to 176.3k): the QR of `Bm` with every column's sums side by side (the
+//! norms, the reflection's products, `Qᵀ` updated from the left in place, vectorised; the
+//! first step's `Qᵀ` read off the identity) (−2.8k), `qr_pivot` and the refinement's
+//! `forward` inlined (no `memcpy` of their results) (−1.8k), the elimination borrowed where
+//! it is returned, not moved per arrangement (−0.7k). Tried and dropped: the complete
+//! pivoting's largest entry searched after the row updates (+0.1k), `block_lu` built in its
+//! result (+1.1k, as in session 18), `Arranged::left`'s transforms entry by entry without
+//! zeroed arrays (+0.2k), `elim_from` taking the left side by reference (no change), the
+//! cluster's fallback to arrangement 6 instead of 1 at arrangement 0 (−1.1k: dropped for
+//! the choice at the derivation, which avoids the give-ups). Where the 141.6k goes
+//! (inclusive): the 18 sampled LUs 34k, the elimination 21k (the QR of `Bm` about 10k), the
+//! back-substitution 17k, the refinement 16k (two forward kinematics per root), the root
+//! search, the null vectors and the rest about 54k.
 
 #[allow(clippy::many_single_char_names)]
 pub(crate) mod apart;
@@ -390,8 +417,9 @@ pub struct GeneralInfo {
     /// The arrangement used at that target: `(reversed, shift)` (the loop read from joint
     /// `shift + 1`, backwards when `reversed`).
     pub arrangement: (bool, usize),
-    /// The arrangement the numeric solvers try first, as the core numbers it
-    /// ([`first_arrangement`]).
+    /// The arrangement the numeric solvers try first, as the core numbers it (`shift + 6
+    /// reversed`): the derivation's, or the other reading of the loop from joint 1 where that
+    /// gives up less at sample targets.
     pub first: usize,
 }
 
@@ -725,6 +753,10 @@ fn first_arrangement(axes: &[AxisData], home: &[[f64; 4]; 3], arr: usize) -> usi
     };
     let mut best = (arr, clean(arr));
     for other in [0, 6] {
+        // (None is better than one that serves alone at every sample.)
+        if best.1 == FIRST_SAMPLES {
+            break;
+        }
         if other != arr && core::left_is_constant(&core::Arranged::new(&js, &g, other), other) {
             let n = clean(other);
             if n > best.1 {
