@@ -1232,3 +1232,65 @@ fn the_moving_part_of_s_has_rank_eight_in_its_rows_and_no_constant_block() {
     );
     assert_eq!(shifted_moves, 42);
 }
+
+/// The arrangement tried first (`first_arrangement`, chosen at the derivation): on the skew
+/// arm, whose roots of `θ3` (arrangement 0, the derivation's) cluster at about one target in
+/// ten, it is the loop read backwards (arrangement 6, hidden `θ4`), and at targets of another
+/// sequence than the choice's own it serves alone where arrangement 0 does not, with the same
+/// solutions; on the PUMA forced general (arrangements 0 and 6 degenerate) it stays the
+/// derivation's.
+#[test]
+fn the_first_arrangement_avoids_the_skew_arms_clusters() {
+    use super::core::{gen_solve, same, GenAxis, GenTol};
+    let pi = std::f64::consts::PI;
+    let tol = GenTol {
+        pose: 1e-10,
+        keep: 1e-6,
+    };
+    let arm = |rows: &[(f64, f64, f64); 6]| {
+        let (home4, js) = dh(rows, &[0.0; 6]);
+        let axes: [GenAxis; 6] = std::array::from_fn(|i| {
+            let (w, c) = (js[i].w, js[i].c);
+            [0.0, w[0], w[1], w[2], c[0], c[1], c[2]]
+        });
+        (axes, [home4[0], home4[1], home4[2]])
+    };
+    let (axes, home) = arm(&skew_rows());
+    assert_eq!(super::first_arrangement(&axes, &home, 0), 6);
+    // Where each first arrangement serves alone, and the solutions, at 48 targets.
+    let mut rng = Rng(7);
+    let (mut alone0, mut alone6) = (0, 0);
+    for _ in 0..48 {
+        let q0: [f64; 6] = std::array::from_fn(|_| rng.angle());
+        let (t, _) = dh(&skew_rows(), &q0);
+        let len = super::check::scale(&axes, &home, &t);
+        let o0 = gen_solve(&axes, &home, &t, len, tol, 0);
+        let o6 = gen_solve(&axes, &home, &t, len, tol, 6);
+        alone0 += usize::from(o0.n_arr == 1 && o0.arrangements[0] == 0);
+        alone6 += usize::from(o6.n_arr == 1 && o6.arrangements[0] == 6);
+        assert_eq!(o0.n, o6.n, "at {q0:?}");
+        for q in &o6.q[..o6.n] {
+            assert!(
+                o0.q[..o0.n].iter().any(|p| same(p, q, &[false; 6])),
+                "{q:?} at {q0:?}"
+            );
+        }
+        assert!(o6.residual[..o6.n].iter().all(|r| *r <= tol.pose));
+    }
+    assert!(alone0 < 48, "arrangement 0 served alone everywhere");
+    assert!(
+        alone6 > alone0,
+        "arrangement 6 alone at {alone6}, 0 at {alone0}"
+    );
+    // The PUMA 560's DH rows: arrangements 0 and 6 are degenerate, the derivation's (5) stays.
+    let puma = [
+        (0.0, 0.0, pi / 2.0),
+        (0.0, 0.4318, 0.0),
+        (0.15005, 0.0203, -pi / 2.0),
+        (0.4318, 0.0, pi / 2.0),
+        (0.0, 0.0, -pi / 2.0),
+        (0.0, 0.0, 0.0),
+    ];
+    let (axes, home) = arm(&puma);
+    assert_eq!(super::first_arrangement(&axes, &home, 5), 5);
+}
