@@ -369,8 +369,9 @@
 //! the arm too) no bench pose gives up: 176.3k to 141.6k, the solutions within `1.3e-12`
 //! (the largest change at a pose with two solutions `0.06` rad apart), residuals at most
 //! `1.0e-14`; at 5000 poses of the bench's generator the same 29,276 solutions, 93 of them
-//! moved by more than `1e-12` (at most `1.2e-9`, all at pairs of solutions within `0.003` rad
-//! of each other, where the joints are that ill-conditioned), and 182.2k to 145.4k per pose
+//! moved by more than `1e-12` (the six largest, `1.9e-11` to `1.2e-9`, at pairs of solutions
+//! within `0.003` rad of each other, where the joints are that ill-conditioned; every residual
+//! at most `1.0e-14` either way), and 182.2k to 145.4k per pose
 //! at 1000 of them (test `det_tests::the_first_arrangement_avoids_the_skew_arms_clusters`).
 //! The choice solves 32 poses per candidate at the derivation (the derivation's
 //! arrangement, the other of 0 and 6) and keeps the derivation's unless the other serves
