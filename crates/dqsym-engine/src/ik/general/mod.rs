@@ -40,7 +40,11 @@
 //! 6. Back-substitution: `x4`, `x5` from the null vector of `M(x3)`; `θ1`, `θ2` from `Bm X12 =
 //!    Am(θ3) X45` (least squares by the same QR); `θ6` from `E6 = (E1 ⋯ E5)⁻¹ H` about axis 6.
 //!    Every candidate is polished by damped Gauss–Newton on the forward kinematics and checked
-//!    by it ([`super::check`]'s residual and approximate flag); duplicates are merged.
+//!    by it ([`super::check`]'s residual and approximate flag); duplicates are merged: within
+//!    `core::SAME_TOL` as they come, then a solution whose residual `r` is above the rounding
+//!    into one of smaller residual within `core::FOLD_REACH √r` (near a singular
+//!    configuration the refinement stops short along a fold, and the joint vectors within
+//!    residual `r` reach about `√r` from the solution: `core::merge_repeats`).
 //!
 //! # Prismatic joints
 //!
