@@ -7,6 +7,7 @@
 //! configuration is among the solutions, and there are never more than 16.
 
 use crate::common::Rng;
+use crate::ik_general_edges::{near_special_round_trips, perturb_twists, turns};
 use dqsym::ik::{solve, IkMethod, IkOptions, IkSolution, NumSolution};
 
 pub(crate) type M4 = [[f64; 4]; 4];
@@ -850,68 +851,6 @@ fn exact_equations_equal_the_sampled_coefficients() {
     }
 }
 
-/// A nearly special arm forced through the general method, at `n` random poses: every
-/// solution not flagged approximate reproduces the pose and the original configuration is
-/// among them ([`check_pose`]). Where `special` (the arm without its perturbation, solved by
-/// its family) is given, the arm is within rounding of it: at each pose whose family solutions
-/// are all regular (none singular or approximate) and at least `0.1` apart, the general
-/// method's exact solutions are as many, and each family solution has one within `1e-2` (one
-/// only, as they are `0.1` apart; near a singular set the perturbation moves a solution by
-/// far more than itself: `3e-4` for the PUMA's wrist off by `1e-9` where the two shoulder
-/// solutions' first angles are `6e-3` apart). Returns the most solutions at a pose and the
-/// poses compared.
-fn near_special_round_trips(
-    name: &str,
-    rows: &[Row],
-    special: Option<&[Row]>,
-    n: usize,
-    seed: u64,
-) -> (usize, usize) {
-    let gen = derive(name, rows, IkMethod::General);
-    assert!(gen.general.is_some(), "{name}: {}", gen.family);
-    let fam = special.map(|sp| {
-        let fam = derive(&format!("{name} (special)"), sp, IkMethod::Family);
-        assert!(
-            fam.general.is_none(),
-            "{name}: the special arm has no family"
-        );
-        fam
-    });
-    let mut rng = Rng::new(seed);
-    let (mut most, mut compared) = (0, 0);
-    for _ in 0..n {
-        let q: Vec<f64> = (0..6).map(|_| rng.range(-PI, PI)).collect();
-        let g = check_pose(name, &gen, rows, &q);
-        most = most.max(g.len());
-        let Some(fam) = &fam else { continue };
-        let f = fam.solve_numeric(&dh_pose(rows, &q), &[]).expect("family");
-        let regular = f.iter().all(|s| !s.approximate && !s.singular);
-        let apart = f
-            .iter()
-            .enumerate()
-            .all(|(i, a)| f[..i].iter().all(|b| dist(&a.q, &b.q) > 0.1));
-        if !(regular && apart) {
-            continue;
-        }
-        compared += 1;
-        let exact: Vec<&NumSolution> = g.iter().filter(|s| !s.approximate).collect();
-        assert_eq!(
-            exact.len(),
-            f.len(),
-            "{name} at {q:?}: general {exact:?}, family {f:?}"
-        );
-        for s in &f {
-            assert!(
-                exact.iter().any(|x| dist(&x.q, &s.q) <= 1e-2),
-                "{name}: family solution {:?} missing at {q:?}: {exact:?}",
-                s.q
-            );
-        }
-    }
-    eprintln!("{name}: at most {most} solutions, {compared} of {n} poses compared");
-    (most, compared)
-}
-
 /// A calibrated UR5: every twist off its nominal value by about `delta` (alternating in sign),
 /// so axes 2-4 are nearly parallel and no family applies exactly; forced through the general
 /// method at every nearness from `1e-3` to `1e-12`. Below about `1e-8` (the square root of the
@@ -925,22 +864,8 @@ fn ur5_with_perturbed_twists_round_trips_by_the_general_method() {
         .into_iter()
         .enumerate()
     {
-        let rows: Vec<Row> = ur5()
-            .into_iter()
-            .enumerate()
-            .map(|(i, r)| {
-                // A fraction 1/n with 3 dividing n: not a decimal, so it is read as it is (a
-                // robot file reads a decimal that is a multiple of pi/12 to the digits it has,
-                // or within 1e-8, as that multiple).
-                let n = 3 * (1.0 / (3.0 * 1.234567 * delta)).round() as u64;
-                let sign = if i % 2 == 0 { "" } else { "-" };
-                let d = if i % 2 == 0 { 1.0 } else { -1.0 } / n as f64;
-                let text: &'static str =
-                    Box::leak(format!("{} + ({sign}1/{n})", r.alpha.0).into_boxed_str());
-                row(r.d, r.a, (text, r.alpha.1 + d))
-            })
-            .collect();
-        let special = ur5();
+        let rows = perturb_twists(&turns(&ur5()), delta);
+        let special = turns(&ur5());
         let (most, compared) = near_special_round_trips(
             &format!("ur5 twists {delta:e}"),
             &rows,
@@ -964,10 +889,10 @@ fn puma_with_nearly_spherical_wrist_round_trips_by_the_general_method() {
         let mut rows = puma(0.0);
         rows[3].a = e;
         rows[4].d = e;
-        let special = puma(0.0);
+        let special = turns(&puma(0.0));
         let (most, compared) = near_special_round_trips(
             &format!("puma wrist {e:e}"),
-            &rows,
+            &turns(&rows),
             Some(&special),
             150,
             50 + k as u64,

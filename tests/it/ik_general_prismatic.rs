@@ -149,7 +149,7 @@ pub(crate) fn random_q(rows: &[Row], rng: &mut Rng) -> Vec<f64> {
 
 /// The solver's solutions at the pose of `q`, checked: at most `most`, each one not flagged
 /// approximate reproduces the pose to 1e-9 by the model here, the original is among them.
-fn solve_checked(
+pub(crate) fn solve_checked(
     name: &str,
     sol: &IkSolution,
     rows: &[Row],
@@ -319,6 +319,36 @@ pub(crate) fn levenberg_marquardt(
     })
 }
 
+/// The distinct solutions (joints apart by more than 1e-6) that [`levenberg_marquardt`] finds
+/// from `starts` random seeds (angles in `(−π, π)`, slides in `(−1, 1)`).
+pub(crate) fn multistart(
+    rows: &[Row],
+    target: &M4,
+    len: f64,
+    starts: usize,
+    rng: &mut Rng,
+) -> Vec<Vec<f64>> {
+    let mut found: Vec<Vec<f64>> = Vec::new();
+    for _ in 0..starts {
+        let seed: Vec<f64> = rows
+            .iter()
+            .map(|r| {
+                if r.prismatic {
+                    rng.range(-1.0, 1.0)
+                } else {
+                    rng.range(-PI, PI)
+                }
+            })
+            .collect();
+        if let Some(s) = levenberg_marquardt(rows, &seed, target, len) {
+            if !found.iter().any(|f| dist(rows, f, &s) <= 1e-6) {
+                found.push(s);
+            }
+        }
+    }
+    found
+}
+
 /// The independent count: at 30 random poses per arm, 300 Levenberg–Marquardt starts each
 /// (slides seeded in `(−1, 1)`); every distinct solution they find (joints apart by more than
 /// 1e-6: both reproduce the pose to 1e-12, so each is within about 1e-9 of its exact solution
@@ -340,25 +370,7 @@ fn prismatic_solution_sets_agree_with_an_independent_multistart() {
                 .into_iter()
                 .filter(|s| !s.approximate)
                 .collect();
-            let t = pose(&rows, &q);
-            let mut found: Vec<Vec<f64>> = Vec::new();
-            for _ in 0..300 {
-                let seed: Vec<f64> = rows
-                    .iter()
-                    .map(|r| {
-                        if r.prismatic {
-                            rng.range(-1.0, 1.0)
-                        } else {
-                            rng.range(-PI, PI)
-                        }
-                    })
-                    .collect();
-                if let Some(s) = levenberg_marquardt(&rows, &seed, &t, len) {
-                    if !found.iter().any(|f| dist(&rows, f, &s) <= 1e-6) {
-                        found.push(s);
-                    }
-                }
-            }
+            let found = multistart(&rows, &pose(&rows, &q), len, 300, &mut rng);
             for m in &found {
                 assert!(
                     exact.iter().any(|s| dist(&rows, &s.q, m) <= 1e-6),

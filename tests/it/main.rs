@@ -23,6 +23,7 @@ mod ik_free_slides;
 mod ik_general;
 mod ik_general_count;
 mod ik_general_degree;
+mod ik_general_edges;
 mod ik_general_ports;
 mod ik_general_prismatic;
 mod ik_general_prismatic_ports;

@@ -199,7 +199,8 @@ def _apart_gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
                 if not res <= keep_tol:
                     continue
                 q = [float(x) if sl else _wrap(float(x)) for x, sl in zip(q, slides)]
-                at = next((i for i, s in enumerate(sols) if _same(s[0], q, slides)), None)
+                at = next((i for i, s in enumerate(sols)
+                           if _same(s[0], q, slides, IK_GEN_SAME_TOL)), None)
                 if at is None and len(sols) < IK_GEN_MAX:
                     sols.append([q, res, sing])
                     at = len(sols) - 1

@@ -1729,14 +1729,43 @@ static double ik_gen_refine(const ik_gen_chain *ch, const double t[3][4], double
     return res;
 }
 
-/* Two joint vectors that are one solution (angles compared on the circle). */
-static int ik_gen_same(const double a[6], const double b[6], const int prismatic[6]) {
+/* Two joint vectors within radius of each other in every joint (angles compared on the
+   circle). */
+static int ik_gen_same(const double a[6], const double b[6], const int prismatic[6],
+                       double radius) {
     int i;
     for (i = 0; i < 6; i++) {
         const double d = prismatic[i] ? a[i] - b[i] : ik_gen_wrap(a[i] - b[i]);
-        if (!(fabs(d) <= IK_GEN_SAME_TOL)) return 0;
+        if (!(fabs(d) <= radius)) return 0;
     }
     return 1;
+}
+
+/* Drops each solution of out that repeats another at its residual (core.rs, merge_repeats):
+   one whose residual r is above IK_GEN_EXACT_TOL and that lies within IK_GEN_FOLD_REACH
+   sqrt(r) of a solution of smaller residual (of equal residual and earlier). */
+static void ik_gen_merge_repeats(ik_gen_out *out, const int prismatic[6]) {
+    int i = out->n, j, k, repeats;
+    double r, rj, radius;
+    while (i > 0) {
+        i -= 1;
+        r = out->residual[i];
+        if (r <= IK_GEN_EXACT_TOL) continue;
+        radius = IK_GEN_FOLD_REACH * sqrt(r);
+        repeats = 0;
+        for (j = 0; j < out->n && !repeats; j++) {
+            rj = out->residual[j];
+            repeats = j != i && (rj < r || (rj == r && j < i)) &&
+                      ik_gen_same(out->q[j], out->q[i], prismatic, radius);
+        }
+        if (repeats) {
+            for (k = i; k < out->n - 1; k++) {
+                memcpy(out->q[k], out->q[k + 1], 6 * sizeof out->q[k][0]);
+                out->residual[k] = out->residual[k + 1];
+            }
+            out->n -= 1;
+        }
+    }
 }
 
 /* Adds the refined candidate q (residual res) to out, or improves the solution it repeats;
@@ -1744,7 +1773,7 @@ static int ik_gen_same(const double a[6], const double b[6], const int prismatic
 static int ik_gen_add(ik_gen_out *out, const double q[6], double res, const int prismatic[6]) {
     int i;
     for (i = 0; i < out->n; i++) {
-        if (ik_gen_same(out->q[i], q, prismatic)) {
+        if (ik_gen_same(out->q[i], q, prismatic, IK_GEN_SAME_TOL)) {
             if (res < out->residual[i]) {
                 memcpy(out->q[i], q, 6 * sizeof q[0]);
                 out->residual[i] = res;
@@ -1951,6 +1980,7 @@ static void ik_gen_solve(const double axes[6][7], const double home[3][4],
         if (ik_gen_eigen_candidates(&ar, &el, roots, &n, &degree))
             complete = ik_gen_take(out, &sc, roots, n, degree, unc_arr[i], tol);
     }
+    ik_gen_merge_repeats(out, prismatic);
     /* Prismatic variables back in the robot's length unit. */
     for (i = 0; i < out->n; i++)
         for (j = 0; j < 6; j++)

@@ -1009,15 +1009,34 @@ function ik_gen_refine(ax, home, t, q) {
     return [q, res];
 }
 
-// Two joint vectors that are one solution (angles compared on the circle).
-function ik_gen_same(a, b, prismatic) {
-    return a.every((x, i) => Math.abs(prismatic[i] ? x - b[i] : ik_gen_wrap(x - b[i])) <= IK_GEN_SAME_TOL);
+// Two joint vectors within radius of each other in every joint (angles compared on the circle).
+function ik_gen_same(a, b, prismatic, radius) {
+    return a.every((x, i) => Math.abs(prismatic[i] ? x - b[i] : ik_gen_wrap(x - b[i])) <= radius);
+}
+
+// Drops each solution of out that repeats another at its residual (core.rs, merge_repeats):
+// one whose residual r is above IK_GEN_EXACT_TOL and that lies within IK_GEN_FOLD_REACH
+// sqrt(r) of a solution of smaller residual (of equal residual and earlier).
+function ik_gen_merge_repeats(out, prismatic) {
+    for (let i = out.q.length - 1; i >= 0; i--) {
+        const r = out.residual[i];
+        if (r <= IK_GEN_EXACT_TOL) continue;
+        const radius = IK_GEN_FOLD_REACH * Math.sqrt(r);
+        const repeats = out.q.some((s, j) => {
+            const rj = out.residual[j];
+            return j !== i && (rj < r || (rj === r && j < i)) && ik_gen_same(s, out.q[i], prismatic, radius);
+        });
+        if (repeats) {
+            out.q.splice(i, 1);
+            out.residual.splice(i, 1);
+        }
+    }
 }
 
 // Adds the refined candidate q (residual res) to out, or improves the solution it repeats;
 // returns its index, -1 when out is full.
 function ik_gen_add(out, q, res, prismatic) {
-    const at = out.q.findIndex((s) => ik_gen_same(s, q, prismatic));
+    const at = out.q.findIndex((s) => ik_gen_same(s, q, prismatic, IK_GEN_SAME_TOL));
     if (at >= 0) {
         if (res < out.residual[at]) [out.q[at], out.residual[at]] = [q, res];
         return at;
@@ -1113,6 +1132,7 @@ function ik_gen_solve(axes, home, target, len, tol, first) {
         const cand = ik_gen_eigen_candidates(ar, ik_gen_eliminate(ar));
         if (cand !== null) complete = take(cand, u.arr);
     }
+    ik_gen_merge_repeats(out, prismatic);
     // Prismatic variables back in the robot's length unit.
     out.q = out.q.map((q) => q.map((x, i) => (prismatic[i] ? x * len : x)));
     return out;

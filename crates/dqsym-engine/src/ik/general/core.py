@@ -433,9 +433,23 @@ def _refine(ax, home, t, q):
     return q, res
 
 
-def _same(a, b, slides):
-    return all(abs(x - y if sl else _wrap(x - y)) <= IK_GEN_SAME_TOL
+def _same(a, b, slides, radius):
+    return all(abs(x - y if sl else _wrap(x - y)) <= radius
                for x, y, sl in zip(a, b, slides))
+
+
+def _merge_repeats(sols, slides):
+    # Drops each solution that repeats another at its residual (core.rs, merge_repeats): one
+    # whose residual r is above IK_GEN_EXACT_TOL and that lies within IK_GEN_FOLD_REACH sqrt(r)
+    # of a solution of smaller residual (of equal residual and earlier).
+    for i in range(len(sols) - 1, -1, -1):
+        q, r = sols[i][0], sols[i][1]
+        if r <= IK_GEN_EXACT_TOL:
+            continue
+        radius = IK_GEN_FOLD_REACH * math.sqrt(r)
+        if any(j != i and (s[1] < r or (s[1] == r and j < i)) and _same(s[0], q, slides, radius)
+               for j, s in enumerate(sols)):
+            del sols[i]
 
 
 def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
@@ -461,7 +475,8 @@ def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
             if not res <= keep_tol:
                 continue
             q = [float(x) if sl else _wrap(float(x)) for x, sl in zip(q, slides)]
-            at = next((i for i, s in enumerate(sols) if _same(s[0], q, slides)), None)
+            at = next((i for i, s in enumerate(sols) if _same(s[0], q, slides, IK_GEN_SAME_TOL)),
+                      None)
             if at is None and len(sols) < IK_GEN_MAX:
                 sols.append([q, res])
                 at = len(sols) - 1
@@ -524,6 +539,7 @@ def _gen_solve(ax, home, target, length, pose_tol, keep_tol, first):
         cands = _eigen_candidates(j, h, perm, am, bm, sig)
         if cands is not None:
             complete = take(cands)
+    _merge_repeats(sols, slides)
     # Slides back in the robot's length unit.
     return [([x * length if sl else x for x, sl in zip(q, slides)], False, not res <= pose_tol,
              float(res)) for q, res in sols]

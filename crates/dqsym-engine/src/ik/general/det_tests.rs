@@ -881,7 +881,7 @@ fn search_shortcuts_are_the_sums_they_replace() {
 fn a_determinant_route_that_gives_up_defers_to_the_next_arrangement() {
     use super::core::{
         chain, det_candidates, eigen_candidates, gen_solve, left_is_constant, refine, robot_left,
-        same, scaled_left, wrap, GaveUp, GenAxis, GenTol,
+        same, scaled_left, wrap, GaveUp, GenAxis, GenTol, SAME_TOL,
     };
     let pi = std::f64::consts::PI;
     let skew = skew_rows();
@@ -1008,7 +1008,7 @@ fn a_determinant_route_that_gives_up_defers_to_the_next_arrangement() {
             }
             let prismatic = [false; 6];
             assert!(
-                sols.iter().any(|q| same(q, &q0, &prismatic)),
+                sols.iter().any(|q| same(q, &q0, &prismatic, SAME_TOL)),
                 "{name}: {q0:?} not among {sols:?}"
             );
             // The eigenvalue routes of the first four usable arrangements find nothing more.
@@ -1025,7 +1025,7 @@ fn a_determinant_route_that_gives_up_defers_to_the_next_arrangement() {
                     }
                     let q = q.map(wrap);
                     assert!(
-                        sols.iter().any(|s| same(s, &q, &prismatic)),
+                        sols.iter().any(|s| same(s, &q, &prismatic, SAME_TOL)),
                         "{name}: arrangement {arr}'s eigenvalue route finds {q:?}, not among {sols:?}"
                     );
                 }

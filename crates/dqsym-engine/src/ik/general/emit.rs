@@ -73,6 +73,7 @@ fn core_constants(w: &dyn Syntax) -> (Vec<Named<String>>, Vec<Table>) {
         ("IK_GEN_DAMP_MIN", f(k::DAMP_MIN)),
         ("IK_GEN_DAMP_MAX", f(k::DAMP_MAX)),
         ("IK_GEN_SAME_TOL", f(k::SAME_TOL)),
+        ("IK_GEN_FOLD_REACH", f(k::FOLD_REACH)),
         ("IK_GEN_MIN_POSITIVE", f(f64::MIN_POSITIVE)),
         ("IK_GEN_PRISM_FAR", f(k::PRISM_FAR)),
         ("IK_GEN_DET_SAMPLES", k::DET_SAMPLES.to_string()),
