@@ -1241,7 +1241,7 @@ fn the_moving_part_of_s_has_rank_eight_in_its_rows_and_no_constant_block() {
 /// derivation's.
 #[test]
 fn the_first_arrangement_avoids_the_skew_arms_clusters() {
-    use super::core::{gen_solve, same, GenAxis, GenTol};
+    use super::core::{gen_solve, same, GenAxis, GenTol, SAME_TOL};
     let pi = std::f64::consts::PI;
     let tol = GenTol {
         pose: 1e-10,
@@ -1271,7 +1271,9 @@ fn the_first_arrangement_avoids_the_skew_arms_clusters() {
         assert_eq!(o0.n, o6.n, "at {q0:?}");
         for q in &o6.q[..o6.n] {
             assert!(
-                o0.q[..o0.n].iter().any(|p| same(p, q, &[false; 6])),
+                o0.q[..o0.n]
+                    .iter()
+                    .any(|p| same(p, q, &[false; 6], SAME_TOL)),
                 "{q:?} at {q0:?}"
             );
         }
