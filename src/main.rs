@@ -646,6 +646,12 @@ fn dispatch(cli: Cli) -> ExitCode {
         eprintln!("error: {message}");
         return ExitCode::from(2);
     }
+    // fk's closed forms are found in parallel once its robot is read and its matrices
+    // multiplied: the helper threads start meanwhile, on the other cores, not when the first
+    // parallel stage needs them (`start_helpers` says why).
+    if matches!(cli.command, Some(Command::Fk { .. })) {
+        dqsym::scalar::start_helpers();
+    }
     let format = cli.format.unwrap_or(OutputFormat::Plain);
     // fk has its own formats (a report per entry); the other commands share show options.
     let opts = match &cli.command {
