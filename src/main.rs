@@ -485,6 +485,7 @@ extern "C" fn c_main(
     _argv: *const *const std::ffi::c_char,
 ) -> std::ffi::c_int {
     start::open_standard_descriptors();
+    start::one_malloc_arena();
     // The engine's helper threads report a stack overflow as the evaluating threads do.
     dqsym::scalar::on_helper_start(|| Box::new(start::watch_stack()));
     let code = run();
