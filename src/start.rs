@@ -29,6 +29,17 @@ pub(crate) fn open_standard_descriptors() {
     }
 }
 
+/// Makes glibc's `malloc` keep one arena for every thread. Rust's allocations are
+/// mimalloc's (`allocator.rs`); glibc's `malloc` serves glibc itself, once per thread
+/// (`pthread_getattr_np`'s CPU set, for [`watch_stack`]), and its first call on each new
+/// thread made an arena of its own: 128 MB of address space mapped and trimmed, its header
+/// touched (four system calls and a page fault), on the worker before its first step.
+#[cfg_attr(test, allow(dead_code))]
+pub(crate) fn one_malloc_arena() {
+    // SAFETY: a setting of glibc's allocator, made before any other thread exists.
+    unsafe { libc::mallopt(libc::M_ARENA_MAX, 1) };
+}
+
 thread_local! {
     /// The guard area below this thread's stack (start, end), empty unless watched.
     static GUARD: Cell<(usize, usize)> = const { Cell::new((0, 0)) };

@@ -49,8 +49,8 @@ pub use ctx::{
 use cyclo::{GroupKey, OwnedKey, ProductTrace, Settled};
 pub use decimal::{decimal_places, decimal_text, parse_decimal, short_numbers};
 pub use frac::Frac;
-pub use par::on_helper_start;
 pub(crate) use par::{join, par_map, with_own_budget};
+pub use par::{on_helper_start, start_helpers};
 pub(crate) use q::Q;
 
 use num_rational::BigRational;

@@ -76,6 +76,20 @@ pub fn on_helper_start(hook: fn() -> Box<dyn std::any::Any>) -> bool {
     HELPER_START.set(hook).is_ok()
 }
 
+/// Starts the helper threads the entered context's parallel maps use now, not at the first
+/// one: a caller with serial work of its own before its parallel work (the command line's
+/// `fk`, which reads its robot file and multiplies the matrices first) overlaps the helpers'
+/// start-up (a thread, its stack and allocator heap, the start hook) with that work. The
+/// first parallel stage then finds its helper waiting for jobs instead of running alone
+/// while one starts.
+pub fn start_helpers() {
+    let k = threads().saturating_sub(1);
+    if k > 0 {
+        let pool = Pool::get();
+        pool.start(&mut pool.lock(), k);
+    }
+}
+
 /// Runs `a` on this thread and `b` on another one (under this thread's limits), and returns
 /// both results. Without a second thread (one allowed, or none free) both run here.
 pub fn join<A, B>(a: impl FnOnce() -> A, b: impl FnOnce() -> B + Send) -> (A, B)
@@ -198,6 +212,19 @@ impl Pool {
     /// Queues `k` copies of `run` (starting helpers up to `k`), and returns the call's number.
     fn post(&'static self, k: usize, run: &'static (dyn Fn() + Sync)) -> u64 {
         let mut st = self.lock();
+        self.start(&mut st, k);
+        let call = st.next_call;
+        st.next_call += 1;
+        st.queue.extend((0..k).map(|_| Job { call, run }));
+        drop(st);
+        for _ in 0..k {
+            self.posted.notify_one();
+        }
+        call
+    }
+
+    /// Starts helpers until there are `k` (fewer if a thread cannot be started).
+    fn start(&'static self, st: &mut PoolState, k: usize) {
         while st.helpers < k {
             let started = std::thread::Builder::new()
                 .name("dqsym-helper".to_owned())
@@ -208,14 +235,6 @@ impl Pool {
             }
             st.helpers += 1;
         }
-        let call = st.next_call;
-        st.next_call += 1;
-        st.queue.extend((0..k).map(|_| Job { call, run }));
-        drop(st);
-        for _ in 0..k {
-            self.posted.notify_one();
-        }
-        call
     }
 
     /// A helper's life: runs the start hook ([`on_helper_start`]), then takes jobs from the
