@@ -206,7 +206,7 @@ fn groups(mons: &[Mon], index: Vec<Entry>) -> Groups {
 
 /// The fewest items [`by_hash`] and the sort of the groups order by counting passes
 /// ([`radix_sort`]): below it a comparison sort costs less than the passes' tables.
-const RADIX_MIN: usize = 512;
+const RADIX_MIN: usize = 128;
 
 /// The bits of one counting pass of [`radix_sort`].
 const DIGIT: u32 = 8;
