@@ -36,24 +36,37 @@ struct Entry {
     hash: u64,
 }
 
-/// A hash of the key of `e`, a pair of atoms of `m`.
-fn key_hash(m: &Mon, e: &Entry) -> u64 {
+/// A hash of the key of `e`, whose other atoms hash to `rest` ([`atom_hash`] summed).
+fn key_hash(e: &Entry, rest: u64) -> u64 {
     let mut h = FxHasher::default();
     h.write_u64(u64::from(e.class == Class::Sin) | u64::from(e.a) << 1 | u64::from(e.b) << 32);
     h.write_u32(e.cof);
-    for (k, a) in m.atoms.iter().enumerate() {
-        if k != e.p && k != e.q {
-            h.write_u32(*a);
-        }
-    }
+    h.write_u64(rest);
     h.finish()
+}
+
+/// A hash of one atom (splitmix64's finalizer), summed over the other atoms of a pair's
+/// monomial for [`key_hash`]: the sum is the monomial's less the pair's two, one subtraction
+/// per pair instead of a pass over the other atoms (the Jaco-style arm's split shapes have
+/// monomials of six to eight atoms, each with up to 28 pairs). Equal keys have equal other
+/// atoms (sorted), so equal sums; the hash only groups the entries, which are compared by
+/// their keys within a group.
+fn atom_hash(a: Atom) -> u64 {
+    let mut z = u64::from(a).wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
 }
 
 /// The entries of `mons`: every pair of atoms of two different angles of each monomial, in
 /// the order `(i, p, q)`; `cof` ranks the monomials' cofactors, `pairs` is the capacity.
 fn entries(mons: &[Mon], cof: &[u32], pairs: usize) -> Vec<Entry> {
     let mut index: Vec<Entry> = Vec::with_capacity(pairs);
+    let mut hashes: Vec<u64> = Vec::new();
     for (i, m) in mons.iter().enumerate() {
+        hashes.clear();
+        hashes.extend(m.atoms.iter().map(|&a| atom_hash(a)));
+        let all = hashes.iter().fold(0u64, |s, &h| s.wrapping_add(h));
         for p in 0..m.atoms.len() {
             for q in p + 1..m.atoms.len() {
                 let (a, b) = (m.atoms[p], m.atoms[q]);
@@ -76,8 +89,9 @@ fn entries(mons: &[Mon], cof: &[u32], pairs: usize) -> Vec<Entry> {
                     q,
                     hash: 0,
                 };
+                let rest = all.wrapping_sub(hashes[p]).wrapping_sub(hashes[q]);
                 index.push(Entry {
-                    hash: key_hash(m, &e),
+                    hash: key_hash(&e, rest),
                     ..e
                 });
             }
@@ -113,8 +127,7 @@ fn groups(mons: &[Mon], index: Vec<Entry>) -> Groups {
         let k = bit(hash);
         (seen[0][k / 64] & seen[1][k / 64]) >> (k % 64) & 1 == 1
     };
-    // Ordered by hash; equal hashes keep the order in which the entries were found (the
-    // position breaks ties, so sorting the small `(hash, position)` pairs is a stable sort).
+    // Equal hashes together, in the order in which the entries were found (`by_hash`).
     let mut order: Vec<(u64, usize)> = index
         .iter()
         .enumerate()
@@ -122,7 +135,7 @@ fn groups(mons: &[Mon], index: Vec<Entry>) -> Groups {
         .map(|(k, e)| (e.hash, k))
         .collect();
     drop(seen);
-    order.sort_unstable();
+    by_hash(&mut order);
     let mut index: Vec<Entry> = order.iter().map(|&(_, k)| index[k]).collect();
     // Each group is a range of `index`, not a copy of its entries.
     let mut groups: Vec<(u128, usize, usize)> = Vec::new();
@@ -164,15 +177,131 @@ fn groups(mons: &[Mon], index: Vec<Entry>) -> Groups {
     // compared first, and the other atoms only when it ties (rarely: a few ties in thousands
     // of groups on the Jaco-style arm). `fk --jacobian tests/data/jaco_style.toml` on one
     // thread: 565.6 M -> 563.4 M instructions against a stable sort of the groups by `key_cmp`.
-    groups.sort_unstable_by(|&(x, k, _), &(y, l, _)| {
-        x.cmp(&y).then_with(|| {
-            let (e, f) = (&index[k], &index[l]);
-            rest_cmp(&mons[e.i].atoms, e.p, e.q, &mons[f.i].atoms, f.p, f.q)
-        })
-    });
+    let rest = |&(_, k, _): &(u128, usize, usize), &(_, l, _): &(u128, usize, usize)| {
+        let (e, f) = (&index[k], &index[l]);
+        rest_cmp(&mons[e.i].atoms, e.p, e.q, &mons[f.i].atoms, f.p, f.q)
+    };
+    match (groups.len() >= RADIX_MIN)
+        .then(|| Packing::of(&groups))
+        .flatten()
+    {
+        // Many groups: by their heads packed in one word, in a few counting passes (the
+        // Jaco-style arm's split shapes: thousands of groups a round, and this sort was 6% of
+        // its `fk --jacobian`), then each run of equal heads by the other atoms.
+        Some(p) => {
+            radix_sort(&mut groups, p.bits(), |g| p.pack(g.0));
+            for run in groups.chunk_by_mut(|x, y| x.0 == y.0) {
+                if run.len() > 1 {
+                    run.sort_unstable_by(rest);
+                }
+            }
+        }
+        _ => groups.sort_unstable_by(|x, y| x.0.cmp(&y.0).then_with(|| rest(x, y))),
+    }
     Groups {
         ranges: groups.iter().map(|&(_, from, to)| from..to).collect(),
         entries: index,
+    }
+}
+
+/// The fewest items [`by_hash`] and the sort of the groups order by counting passes
+/// ([`radix_sort`]): below it a comparison sort costs less than the passes' tables.
+const RADIX_MIN: usize = 128;
+
+/// The bits of one counting pass of [`radix_sort`].
+const DIGIT: u32 = 8;
+
+/// Sorts `v` stably by the low `bits` bits of `key`, in passes of [`DIGIT`] bits from the
+/// lowest (a pass that would leave every item in one bucket is skipped).
+fn radix_sort<T: Copy>(v: &mut Vec<T>, bits: u32, key: impl Fn(&T) -> u64) {
+    let mut from = v.clone();
+    let mut to = v.clone();
+    for shift in (0..bits).step_by(DIGIT as usize) {
+        let digit = |x: &T| ((key(x) >> shift) & ((1 << DIGIT) - 1)) as usize;
+        let mut start = [0usize; 1 << DIGIT];
+        for x in &from {
+            start[digit(x)] += 1;
+        }
+        if start.contains(&from.len()) {
+            continue;
+        }
+        let mut sum = 0;
+        for c in &mut start {
+            sum += std::mem::replace(c, sum);
+        }
+        for x in &from {
+            let d = digit(x);
+            to[start[d]] = *x;
+            start[d] += 1;
+        }
+        std::mem::swap(&mut from, &mut to);
+    }
+    *v = from;
+}
+
+/// Sorts `order` (hashes, each with its entry's position, the positions increasing) so that
+/// equal hashes stand together, in the order of their positions: what sorting the pairs
+/// gives, except for the order of the runs, which [`groups`] does not use (its groups are
+/// sorted by key afterwards). Many pairs are spread by the top bits of their hashes in a few
+/// counting passes (stable, so each bucket keeps the order of positions), and only each
+/// bucket (a few pairs) sorted.
+fn by_hash(order: &mut Vec<(u64, usize)>) {
+    if order.len() < RADIX_MIN {
+        order.sort_unstable();
+        return;
+    }
+    let bits = order.len().next_power_of_two().trailing_zeros();
+    let bucket = |h: u64| h.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - bits);
+    radix_sort(order, bits, |&(h, _)| bucket(h));
+    for run in order.chunk_by_mut(|x, y| bucket(x.0) == bucket(y.0)) {
+        if run.len() > 1 {
+            run.sort_unstable();
+        }
+    }
+}
+
+/// How the heads of some groups ([`head`]) pack into one word: each part as wide as its
+/// largest value among them needs, the class bit above `a`, above `b`, above `cof`, so that
+/// the words compare as the heads do.
+#[derive(Clone, Copy)]
+struct Packing {
+    a: u32,
+    b: u32,
+    cof: u32,
+}
+
+impl Packing {
+    /// The packing of the heads of `groups`; `None` when they need more than 64 bits.
+    fn of(groups: &[(u128, usize, usize)]) -> Option<Packing> {
+        let width = |shift: u32| {
+            let max = groups
+                .iter()
+                .map(|g| (g.0 >> shift) as u32)
+                .max()
+                .unwrap_or(0);
+            u32::BITS - max.leading_zeros()
+        };
+        let p = Packing {
+            a: width(64),
+            b: width(32),
+            cof: width(0),
+        };
+        (p.bits() <= 64).then_some(p)
+    }
+
+    /// The bits of a packed head.
+    fn bits(self) -> u32 {
+        1 + self.a + self.b + self.cof
+    }
+
+    /// The head `h` packed.
+    fn pack(self, h: u128) -> u64 {
+        let part = |shift: u32| u64::from((h >> shift) as u32);
+        let class = (h >> 96) as u64;
+        class << (self.a + self.b + self.cof)
+            | part(64) << (self.b + self.cof)
+            | part(32) << self.cof
+            | part(0)
     }
 }
 
@@ -421,44 +550,123 @@ mod tests {
         groups
     }
 
+    /// The groups of `mons` by [`groups`] and by [`all_sorted`], as `(i, p, q)` lists.
+    fn both_ways(mons: &[Mon]) -> [Vec<Vec<(usize, usize, usize)>>; 2] {
+        let cof = cofactor_ranks(mons);
+        let index = entries(mons, &cof, 0);
+        let ids = |gs: Vec<Vec<Entry>>| -> Vec<Vec<(usize, usize, usize)>> {
+            gs.iter()
+                .map(|g| g.iter().map(|e| (e.i, e.p, e.q)).collect())
+                .collect()
+        };
+        let expected = ids(all_sorted(mons, index.clone()));
+        let found = groups(mons, index);
+        let found = found
+            .ranges
+            .iter()
+            .map(|r| found.entries[r.clone()].to_vec())
+            .collect();
+        [ids(found), expected]
+    }
+
+    /// `count` random monomials of 2 to `2 + extra - 1` atoms over `angles` angles.
+    fn random_mons(
+        below: &mut impl FnMut(u64) -> u64,
+        count: u64,
+        extra: u64,
+        angles: u64,
+    ) -> Vec<Mon> {
+        (0..count)
+            .map(|_| {
+                let mut atoms: Atoms = (0..2 + below(extra))
+                    .map(|_| atom(below(angles) as u32, below(2) == 1))
+                    .collect();
+                atoms.sort_unstable();
+                Mon {
+                    q: Q::int(if below(2) == 0 { -1 } else { 1 }),
+                    rad: 1 + below(2),
+                    syms: Syms::new(),
+                    atoms,
+                }
+            })
+            .collect()
+    }
+
     #[test]
     fn groups_are_those_of_sorting_every_entry() {
         let mut below = xorshift_below(0x5eed_9a1f);
         let mut pairing = 0;
         for _ in 0..300 {
             // Few angles, cofactors and coefficients, so that many pairs share a key.
-            let mons: Vec<Mon> = (0..1 + below(24))
-                .map(|_| {
-                    let mut atoms: Atoms = (0..2 + below(3))
-                        .map(|_| atom(below(3) as u32, below(2) == 1))
-                        .collect();
-                    atoms.sort_unstable();
-                    Mon {
-                        q: Q::int(if below(2) == 0 { -1 } else { 1 }),
-                        rad: 1 + below(2),
-                        syms: Syms::new(),
-                        atoms,
-                    }
-                })
-                .collect();
-            let cof = cofactor_ranks(&mons);
-            let index = entries(&mons, &cof, 0);
-            let ids = |gs: Vec<Vec<Entry>>| -> Vec<Vec<(usize, usize, usize)>> {
-                gs.iter()
-                    .map(|g| g.iter().map(|e| (e.i, e.p, e.q)).collect())
-                    .collect()
-            };
-            let expected = ids(all_sorted(&mons, index.clone()));
+            let count = 1 + below(24);
+            let mons = random_mons(&mut below, count, 3, 3);
+            let [found, expected] = both_ways(&mons);
             pairing += usize::from(!expected.is_empty());
-            let found = groups(&mons, index);
-            let found = found
-                .ranges
-                .iter()
-                .map(|r| found.entries[r.clone()].to_vec())
-                .collect();
-            assert_eq!(ids(found), expected);
+            assert_eq!(found, expected);
         }
         // Both outcomes occur: monomials that pair and monomials that do not.
         assert!(pairing > 60 && pairing < 300, "{pairing} of 300 pair");
+    }
+
+    #[test]
+    fn many_groups_sorted_by_counting_passes_are_those_of_sorting_every_entry() {
+        let mut below = xorshift_below(0x0ddb_a11e);
+        for angles in [10, 14, 20] {
+            // Enough entries and groups for the counting passes of `by_hash` and `radix_sort`.
+            let mons = random_mons(&mut below, 5000, 3, angles);
+            let [found, expected] = both_ways(&mons);
+            assert!(found.len() >= RADIX_MIN, "{} groups", found.len());
+            assert_eq!(found, expected);
+        }
+    }
+
+    #[test]
+    fn radix_sort_is_a_stable_sort_by_the_key() {
+        let mut below = xorshift_below(0xface_5eed);
+        for bits in [1, 8, 13, 29, 64] {
+            let mask = if bits == 64 {
+                u64::MAX
+            } else {
+                (1u64 << bits) - 1
+            };
+            let mut v: Vec<(u64, usize)> = (0..2000)
+                .map(|k| (below(1 << 20).wrapping_mul(0x9e37_79b9_7f4a_7c15) & mask, k))
+                .collect();
+            let mut expected = v.clone();
+            expected.sort_by_key(|&(key, _)| key);
+            radix_sort(&mut v, bits, |&(key, _)| key);
+            assert_eq!(v, expected);
+        }
+    }
+
+    #[test]
+    fn packed_heads_compare_as_the_heads() {
+        let mut below = xorshift_below(0x0004_ead5);
+        let groups: Vec<(u128, usize, usize)> = (0..1000)
+            .map(|k| {
+                let e = Entry {
+                    class: if below(2) == 0 {
+                        Class::Cos
+                    } else {
+                        Class::Sin
+                    },
+                    a: below(700) as u32,
+                    b: below(90) as u32,
+                    cof: below(5000) as u32,
+                    i: 0,
+                    sin: false,
+                    p: 0,
+                    q: 1,
+                    hash: 0,
+                };
+                (head(&e), k, k)
+            })
+            .collect();
+        let p = Packing::of(&groups).expect("fits one word");
+        for x in &groups[..100] {
+            for y in &groups {
+                assert_eq!(p.pack(x.0).cmp(&p.pack(y.0)), x.0.cmp(&y.0));
+            }
+        }
     }
 }
