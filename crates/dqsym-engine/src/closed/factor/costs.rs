@@ -346,6 +346,12 @@ impl Costs {
         len
     }
 
+    /// Whether the monomials are taken as bit sets ([`Masks`]; the tests).
+    #[cfg(test)]
+    pub(super) fn masked(&self) -> bool {
+        self.masks.is_some()
+    }
+
     /// The common divisor of a group of the tree search: `coef[i] / q` for its first
     /// monomial `(i, q)`.
     pub(super) fn divisor(&self, group: &[(u32, Q)]) -> Option<i128> {
