@@ -929,6 +929,48 @@ mod tests {
         assert!(saved >= 10, "the bound saved work {saved} times of {tried}");
     }
 
+    /// A pseudo-random multilinear polynomial, as a chain's entries are in the cosines and
+    /// sines of its joints: a product of two to four sums, each over symbols of its own (one
+    /// or two of them a term), plus a few products of two symbols of different sums.
+    fn poly_multilinear(seed: u64) -> Scalar {
+        let mut next = crate::testing::xorshift_below(seed.wrapping_mul(0x5851_f42d_4c95_7f2d) | 1);
+        let sym = |link: u64, k: u64| Scalar::sym(&format!("s{link}_{k}"));
+        let mut p = Scalar::int(1);
+        let links = 2 + next(3);
+        for link in 0..links {
+            let mut s = Scalar::int(0);
+            for _ in 0..2 + next(3) {
+                let c = [1, -1, 1, -1, 2, -3][next(6) as usize];
+                let (a, b) = (next(5), next(5));
+                let mut t = Scalar::int(c) * sym(link, a);
+                if next(2) == 0 && b != a {
+                    t = t * sym(link, b);
+                }
+                s = s + t;
+            }
+            p = p * s;
+        }
+        for _ in 0..next(4) {
+            let c = next(9) as i64 - 4;
+            p = p + Scalar::int(c) * sym(0, next(5)) * sym(1, next(5));
+        }
+        p
+    }
+
+    /// A multilinear root takes its monomials as bit sets (`costs.rs`'s `Masks`), and the
+    /// choice is the one of the symbol lists: the same expression as building every candidate.
+    #[test]
+    fn multilinear_roots_choose_on_bit_sets_as_the_built_candidates() {
+        let mut masked = 0;
+        for seed in 0..60 {
+            let p = poly_multilinear(seed);
+            let (_, mons) = whole_modes(&p);
+            masked += usize::from(costs::Costs::for_mons(&mons).is_some_and(|c| c.masked()));
+            three_passes(&p, &format!("multilinear, seed {seed}"));
+        }
+        assert!(masked >= 50, "bit sets taken {masked} times of 60");
+    }
+
     /// Past 126 bits a coefficient is not a machine integer: every candidate is built.
     #[test]
     fn wide_coefficients_take_the_built_candidates() {

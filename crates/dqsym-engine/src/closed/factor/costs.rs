@@ -44,8 +44,11 @@
 //! The memo keeps what a cut search learned (its cost is at least the bound, `AtLeast`), and
 //! a search under a looser bound searches the group again. The candidates' costs differ by a
 //! few operations and most ties are exact (the symbolic 6R's top levels: 319, 319, 320), so
-//! a cut mostly comes late; on the symbolic 6R the bound saves about 2 M instructions of
+//! a cut mostly comes late; on the symbolic 6R the bound saved about 2 M instructions of
 //! the pass's ~80 M, and on random polynomials it can cost a little (groups searched again).
+//! A bound from a group's leaves (its distinct symbols, on [`Masks`]) cut more groups of the
+//! 6R but cost more than it saved (its report: 148.5 M instructions to 150.5 M): a group cut
+//! under a tight bound is searched again under a looser one.
 
 use super::run::{most_frequent, Buckets};
 use super::{multiplicity, quotient_syms, Factor, Search, BIG_WORD_UNITS, BRANCH, BRANCH_DEPTH};
@@ -64,6 +67,8 @@ pub(super) struct Costs {
     /// root's coefficient: an upper bound of a quotient's).
     words: Vec<u64>,
     memo: FxMap<u64, Vec<Known>>,
+    /// Each monomial's symbols as a bit set, when the root is multilinear (see [`Masks`]).
+    masks: Option<Masks>,
     /// Whether a candidate is cut once its cost reaches the best so far (see the module's
     /// doc); off only in the tests that compare the two.
     pub(super) bounded: bool,
@@ -305,8 +310,49 @@ impl Costs {
             coef,
             words,
             memo: FxMap::default(),
+            masks: Masks::for_mons(mons),
             bounded: true,
         })
+    }
+
+    /// Monomial `i` (`m`) of a group divided by `div`: its coefficient and quotient (its
+    /// symbols and their powers) hashed into `h`, as [`Search::c_value`] and
+    /// [`Search::c_build_at`] hash them, each symbol of the quotient handed to `each`; the
+    /// number of symbols.
+    fn hash_mon(
+        &self,
+        i: u32,
+        m: &Mon,
+        div: &[u32],
+        sym_base: usize,
+        h: &mut FxHasher,
+        mut each: impl FnMut(u32),
+    ) -> u64 {
+        h.write_i128(self.coef[i as usize]);
+        let mut len = 0u64;
+        if let Some(masks) = &self.masks {
+            let q = masks.quotient(i);
+            h.write_u64(q);
+            for s in bits(q) {
+                len += 1;
+                each(s);
+            }
+        } else {
+            for (s, e) in quotient_syms(m, div, sym_base) {
+                len += 1;
+                h.write_u32(s);
+                h.write_u32(e);
+                each(s);
+            }
+        }
+        h.write_u8(0xff);
+        len
+    }
+
+    /// Whether the monomials are taken as bit sets ([`Masks`]; the tests).
+    #[cfg(test)]
+    pub(super) fn masked(&self) -> bool {
+        self.masks.is_some()
     }
 
     /// The common divisor of a group of the tree search: `coef[i] / q` for its first
@@ -321,6 +367,52 @@ impl Costs {
         let c = self.coef[*i as usize];
         (q != 0 && c % q == 0).then(|| c / q)
     }
+}
+
+/// The monomials of a multilinear root (every symbol to the first power, every symbol's id
+/// below 64) as bit sets, bit `s` for symbol `s`: the entries of a chain whose lengths and
+/// twists are symbols, in the cosines and sines of its joints, are such sums (a fully symbolic
+/// 6R's matrix: 55 to 232 monomials in 36 symbols). A group's divisor is then a mask too (a
+/// factor pulled out of a group is in all its monomials, to the first power), so a quotient is
+/// `mask & !div`: one word hashed and compared where the symbol list was walked and each
+/// power looked up in the divisor (the 6R's cost pass: 72 M instructions to 46 M).
+struct Masks {
+    of: Vec<u64>,
+    /// The symbols pulled out of the current group ([`Search::div`]'s symbols), kept with
+    /// it by the cost pass ([`Search::c_split_on`]) and set from it where the tree search
+    /// hands a group to the pass ([`Search::cost_winner`]).
+    div: u64,
+}
+
+impl Masks {
+    fn for_mons(mons: &[Mon]) -> Option<Masks> {
+        let of = mons
+            .iter()
+            .map(|m| {
+                m.syms.iter().try_fold(0u64, |mask, &(s, e)| {
+                    (e == 1 && s < 64).then(|| mask | 1 << s)
+                })
+            })
+            .collect::<Option<Vec<u64>>>()?;
+        Some(Masks { of, div: 0 })
+    }
+
+    /// Monomial `i`'s quotient by the current divisor.
+    fn quotient(&self, i: u32) -> u64 {
+        self.of[i as usize] & !self.div
+    }
+}
+
+/// The symbols of a mask, in increasing order (the order of a monomial's symbol list).
+fn bits(mask: u64) -> impl Iterator<Item = u32> {
+    let mut m = mask;
+    std::iter::from_fn(move || {
+        (m != 0).then(|| {
+            let s = m.trailing_zeros();
+            m &= m - 1;
+            s
+        })
+    })
 }
 
 /// `gcd(g, n)`, `g` the gcd so far (0 for none): `n` enters as its remainder modulo `g`, and
@@ -372,6 +464,7 @@ impl Search<'_> {
             c % d == 0 && *q == c_q(c / d)
         }));
         let idx: Vec<u32> = group.iter().map(|(i, _)| *i).collect();
+        self.set_div_mask();
         let value = self.c_value(&idx);
         let (shape, winner) = self.c_search(&idx, d, value, depth, Cands::Given(fs), NO_BOUND);
         Some((winner?, shape?.alone()))
@@ -379,6 +472,63 @@ impl Search<'_> {
 
     fn coef(&self, i: u32) -> i128 {
         self.costs.as_ref().map_or(1, |c| c.coef[i as usize])
+    }
+
+    /// The bit sets of a multilinear root ([`Masks`]).
+    fn masks(&self) -> Option<&Masks> {
+        self.costs.as_ref()?.masks.as_ref()
+    }
+
+    /// The symbols of [`Search::div`] (each to the first power, the root being multilinear)
+    /// as a mask.
+    fn div_as_mask(&self) -> u64 {
+        self.div[self.counts.sym_base..]
+            .iter()
+            .enumerate()
+            .filter(|&(_, &k)| k > 0)
+            .fold(0, |mask, (s, _)| mask | 1 << s)
+    }
+
+    /// [`Masks::div`] set from [`Search::div`].
+    fn set_div_mask(&mut self) {
+        let div = self.div_as_mask();
+        if let Some(m) = self.costs.as_mut().and_then(|c| c.masks.as_mut()) {
+            m.div = div;
+        }
+    }
+
+    /// `f` put in [`Masks::div`] (`on`) or taken out of it, when the root is multilinear;
+    /// whether it was.
+    fn mask_div(&mut self, f: Factor, on: bool) -> bool {
+        let m = self.costs.as_mut().and_then(|c| c.masks.as_mut());
+        match (m, f) {
+            (Some(m), Factor::Sym(s)) => {
+                m.div = if on {
+                    m.div | 1 << s
+                } else {
+                    m.div & !(1 << s)
+                };
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// The power of `f` in each monomial of `group` above the current divisor's
+    /// ([`multiplicity`]; a bit of the mask for a multilinear root, the choice made once per
+    /// group: made per monomial it was 2% of the 6R's report).
+    fn c_mults<C: FromIterator<u32>>(&self, group: &[u32], f: Factor) -> C {
+        let base = self.div[self.counts.index(f)];
+        match (self.masks(), f) {
+            (Some(m), Factor::Sym(s)) => group
+                .iter()
+                .map(|&i| ((m.of[i as usize] >> s) as u32 & 1) - base)
+                .collect(),
+            _ => group
+                .iter()
+                .map(|&i| multiplicity(&self.root[i as usize], f) - base)
+                .collect(),
+        }
     }
 
     /// Whether candidates are cut at the best cost so far (always, but in the tests that
@@ -396,9 +546,13 @@ impl Search<'_> {
         if q.unsigned_abs() != 1 {
             parts += 1;
         }
-        for (_, e) in quotient_syms(m, &self.div, self.counts.sym_base) {
-            parts += 1;
-            ops += (e as usize).saturating_sub(1);
+        if let Some(masks) = self.masks() {
+            parts += masks.quotient(i).count_ones() as usize;
+        } else {
+            for (_, e) in quotient_syms(m, &self.div, self.counts.sym_base) {
+                parts += 1;
+                ops += (e as usize).saturating_sub(1);
+            }
         }
         let e = match parts {
             0 => Shape::int(1),
@@ -442,20 +596,15 @@ impl Search<'_> {
             return Some(self.c_plain_sum(group, d));
         };
         let (root, div, counts) = (self.root, &self.div, &mut self.counts);
+        let base = counts.sym_base;
         for &i in group {
-            let m = &root[i as usize];
-            let mut len = 0u64;
-            h.write_i128(costs.coef[i as usize]);
-            for (s, e) in quotient_syms(m, div, counts.sym_base) {
-                len += 1;
-                h.write_u32(s);
-                h.write_u32(e);
-                counts.bump(counts.sym_base + s as usize);
-            }
-            h.write_u8(0xff);
+            let len = costs.hash_mon(i, &root[i as usize], div, base, &mut h, |s| {
+                counts.bump(base + s as usize);
+            });
             work += 1 + len + costs.words[i as usize];
         }
         let value = h.finish();
+        debug_assert!(self.masks().is_none_or(|m| m.div == self.div_as_mask()));
         self.charge_work(work);
         if self.spent.is_some() {
             self.counts.clear();
@@ -481,13 +630,11 @@ impl Search<'_> {
     /// The hash of a group's coefficients and quotients, as [`Search::c_build_at`] makes it.
     fn c_value(&self, group: &[u32]) -> u64 {
         let mut h = FxHasher::default();
-        for &i in group {
-            h.write_i128(self.coef(i));
-            for (s, e) in quotient_syms(&self.root[i as usize], &self.div, self.counts.sym_base) {
-                h.write_u32(s);
-                h.write_u32(e);
+        if let Some(costs) = &self.costs {
+            let base = self.counts.sym_base;
+            for &i in group {
+                costs.hash_mon(i, &self.root[i as usize], &self.div, base, &mut h, |_| {});
             }
-            h.write_u8(0xff);
         }
         h.finish()
     }
@@ -502,11 +649,20 @@ impl Search<'_> {
             // Divided alike: a quotient determines its monomial of the root.
             return k.group == group;
         }
+        let base = self.counts.sym_base;
+        if let Some(masks) = self.masks() {
+            let other = k
+                .div
+                .iter()
+                .fold(0u64, |mask, &(i, _)| mask | 1 << (i - base));
+            return k.group.iter().zip(group).all(|(&i, &j)| {
+                self.coef(i) == self.coef(j) && masks.of[i as usize] & !other == masks.quotient(j)
+            });
+        }
         let mut other = vec![0u32; self.div.len()];
         for &(i, p) in &k.div {
             other[i] = p;
         }
-        let base = self.counts.sym_base;
         k.group.iter().zip(group).all(|(&i, &j)| {
             let (m, n) = (&self.root[i as usize], &self.root[j as usize]);
             self.coef(i) == self.coef(j)
@@ -633,11 +789,7 @@ impl Search<'_> {
         let fi = self.counts.index(f);
         // Each monomial's power of `f` looked up once, for `k` and for the split (twice was a
         // sixth of the symbolic 6R's cost pass).
-        let base = self.div[fi];
-        let mults: SmallVec<[u32; 32]> = group
-            .iter()
-            .map(|&i| multiplicity(&self.root[i as usize], f) - base)
-            .collect();
+        let mults: SmallVec<[u32; 32]> = self.c_mults(group, f);
         let k = mults.iter().copied().filter(|&n| n > 0).min().unwrap_or(1);
         let (mut with, mut rest) = (Vec::with_capacity(group.len()), Vec::new());
         for (&i, &n) in group.iter().zip(&mults) {
@@ -654,12 +806,16 @@ impl Search<'_> {
         let over = (k as usize - 1) + rest.len().max(1);
         self.div[fi] += k;
         self.path.push((fi, k));
+        let masked = self.mask_div(f, true);
         let inner = self.c_build_at(
             &with,
             d,
             depth.saturating_add(k as usize),
             bound.saturating_sub(over),
         );
+        if masked {
+            self.mask_div(f, false);
+        }
         self.path.pop();
         self.div[fi] -= k;
         let factored = mul(&[factor_shape(k), inner?]);
@@ -708,10 +864,7 @@ impl Search<'_> {
     ) -> Option<Shape> {
         let fi = self.counts.index(f);
         let base = self.div[fi];
-        let mults: Vec<u32> = g0
-            .iter()
-            .map(|&i| multiplicity(&self.root[i as usize], f) - base)
-            .collect();
+        let mults: Vec<u32> = self.c_mults(g0, f);
         // The distinct powers, 0 among them, in increasing order: marked in a table when the
         // largest is small beside the group (a power's run), sorted otherwise.
         let top = mults.iter().copied().max().unwrap_or(0) as usize;
@@ -732,6 +885,8 @@ impl Search<'_> {
         if ks.len() <= super::run::SHORT_RUN {
             return self.c_split_on(g0, d, f, depth, bound);
         }
+        // A multilinear root's powers are 0 and 1: its runs are short.
+        debug_assert!(self.masks().is_none());
         let buckets = Buckets::sorted(&mults, &ks);
         let levels = self.c_levels(g0, d, f, &ks, &buckets);
         if self.spent.is_some() {
