@@ -74,16 +74,26 @@ pub(super) struct Costs {
     pub(super) bounded: bool,
 }
 
-/// A cost found for a group: its depth class, divisor, the factors pulled out of it (as
-/// [`Search::div_key`]) and its monomials by index; what is known of its cost, and at a
-/// branching level the candidate that won.
+/// A cost found for a group: its depth class, divisor, the factors pulled out of it and its
+/// monomials by index; what is known of its cost, and at a branching level the candidate
+/// that won.
 struct Known {
     level: usize,
     d: i128,
-    div: Vec<(usize, u32)>,
+    div: DivKey,
     group: Vec<u32>,
     found: Bounded,
     winner: Option<Factor>,
+}
+
+/// The factors pulled out of a group: [`Masks::div`] for a multilinear root (each factor a
+/// symbol to the first power, so the set is the key), [`Search::div_key`] otherwise. The mask
+/// is kept with the search, where the list was collected and sorted from the path on every
+/// [`Search::c_search`] (and turned back into a mask to compare quotients).
+#[derive(PartialEq, Eq)]
+enum DivKey {
+    Mask(u64),
+    List(Vec<(usize, u32)>),
 }
 
 /// What a search under a bound knows of a group's cost: its exact shape, or that its cost
@@ -328,25 +338,57 @@ impl Costs {
         h: &mut FxHasher,
         mut each: impl FnMut(u32),
     ) -> u64 {
-        h.write_i128(self.coef[i as usize]);
-        let mut len = 0u64;
         if let Some(masks) = &self.masks {
             let q = masks.quotient(i);
-            h.write_u64(q);
-            for s in bits(q) {
-                len += 1;
-                each(s);
-            }
-        } else {
-            for (s, e) in quotient_syms(m, div, sym_base) {
-                len += 1;
-                h.write_u32(s);
-                h.write_u32(e);
-                each(s);
-            }
+            self.hash_quotient(i, q, h);
+            bits(q).for_each(each);
+            return u64::from(q.count_ones());
+        }
+        h.write_i128(self.coef[i as usize]);
+        let mut len = 0u64;
+        for (s, e) in quotient_syms(m, div, sym_base) {
+            len += 1;
+            h.write_u32(s);
+            h.write_u32(e);
+            each(s);
         }
         h.write_u8(0xff);
         len
+    }
+
+    /// Monomial `i` of a multilinear root with quotient `q` hashed into `h`, as
+    /// [`Costs::hash_mon`] hashes it.
+    fn hash_quotient(&self, i: u32, q: u64, h: &mut FxHasher) {
+        h.write_i128(self.coef[i as usize]);
+        h.write_u64(q);
+        h.write_u8(0xff);
+    }
+
+    /// [`Search::c_build_at`]'s pass over a multilinear root's group: the quotients hashed
+    /// and their symbols counted, without [`super::Counts::bump`]'s test per symbol (the
+    /// symbols met are the union of the quotients, listed once at the end); the work.
+    fn count_masked(
+        &self,
+        masks: &Masks,
+        group: &[u32],
+        counts: &mut super::Counts,
+        h: &mut FxHasher,
+    ) -> u64 {
+        let base = counts.sym_base;
+        let (mut union, mut work) = (0u64, 0u64);
+        for &i in group {
+            let q = masks.quotient(i);
+            self.hash_quotient(i, q, h);
+            union |= q;
+            for s in bits(q) {
+                counts.n[base + s as usize] += 1;
+            }
+            work += 1 + u64::from(q.count_ones()) + self.words[i as usize];
+        }
+        counts
+            .touched
+            .extend(bits(union).map(|s| base + s as usize));
+        work
     }
 
     /// Whether the monomials are taken as bit sets ([`Masks`]; the tests).
@@ -479,6 +521,14 @@ impl Search<'_> {
         self.costs.as_ref()?.masks.as_ref()
     }
 
+    /// The factors pulled out of the current group, as the memo of costs keys them.
+    fn c_div_key(&self) -> DivKey {
+        match self.masks() {
+            Some(m) => DivKey::Mask(m.div),
+            None => DivKey::List(self.div_key()),
+        }
+    }
+
     /// The symbols of [`Search::div`] (each to the first power, the root being multilinear)
     /// as a mask.
     fn div_as_mask(&self) -> u64 {
@@ -597,11 +647,15 @@ impl Search<'_> {
         };
         let (root, div, counts) = (self.root, &self.div, &mut self.counts);
         let base = counts.sym_base;
-        for &i in group {
-            let len = costs.hash_mon(i, &root[i as usize], div, base, &mut h, |s| {
-                counts.bump(base + s as usize);
-            });
-            work += 1 + len + costs.words[i as usize];
+        if let Some(masks) = &costs.masks {
+            work = costs.count_masked(masks, group, counts, &mut h);
+        } else {
+            for &i in group {
+                let len = costs.hash_mon(i, &root[i as usize], div, base, &mut h, |s| {
+                    counts.bump(base + s as usize);
+                });
+                work += 1 + len + costs.words[i as usize];
+            }
         }
         let value = h.finish();
         debug_assert!(self.masks().is_none_or(|m| m.div == self.div_as_mask()));
@@ -640,27 +694,29 @@ impl Search<'_> {
     }
 
     /// Whether the group of `k` is `group` as now divided: the same divisor, coefficients and
-    /// quotients, monomial by monomial (`key` is [`Search::div_key`]).
-    fn c_same(&self, k: &Known, d: i128, key: &[(usize, u32)], group: &[u32]) -> bool {
+    /// quotients, monomial by monomial (`key` is [`Search::c_div_key`]).
+    fn c_same(&self, k: &Known, d: i128, key: &DivKey, group: &[u32]) -> bool {
         if k.d != d || k.group.len() != group.len() {
             return false;
         }
-        if k.div == key {
+        if k.div == *key {
             // Divided alike: a quotient determines its monomial of the root.
             return k.group == group;
         }
+        let div = match (&k.div, self.masks()) {
+            (DivKey::Mask(other), Some(masks)) => {
+                return k.group.iter().zip(group).all(|(&i, &j)| {
+                    self.coef(i) == self.coef(j)
+                        && masks.of[i as usize] & !other == masks.quotient(j)
+                });
+            }
+            (DivKey::List(div), None) => div,
+            // A search's root is multilinear or not throughout: its keys are all of one kind.
+            _ => return false,
+        };
         let base = self.counts.sym_base;
-        if let Some(masks) = self.masks() {
-            let other = k
-                .div
-                .iter()
-                .fold(0u64, |mask, &(i, _)| mask | 1 << (i - base));
-            return k.group.iter().zip(group).all(|(&i, &j)| {
-                self.coef(i) == self.coef(j) && masks.of[i as usize] & !other == masks.quotient(j)
-            });
-        }
         let mut other = vec![0u32; self.div.len()];
-        for &(i, p) in &k.div {
+        for &(i, p) in div {
             other[i] = p;
         }
         k.group.iter().zip(group).all(|(&i, &j)| {
@@ -689,7 +745,7 @@ impl Search<'_> {
         bound: usize,
     ) -> (Option<Shape>, Option<Factor>) {
         let level = depth.min(BRANCH_DEPTH);
-        let key = self.div_key();
+        let key = self.c_div_key();
         let mut h = FxHasher::default();
         (level, d, value).hash(&mut h);
         let hash = h.finish();
