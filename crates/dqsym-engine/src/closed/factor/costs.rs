@@ -847,7 +847,9 @@ impl Search<'_> {
         // sixth of the symbolic 6R's cost pass).
         let mults: SmallVec<[u32; 32]> = self.c_mults(group, f);
         let k = mults.iter().copied().filter(|&n| n > 0).min().unwrap_or(1);
-        let (mut with, mut rest) = (Vec::with_capacity(group.len()), Vec::new());
+        // On the stack: a split's two parts were two allocations per candidate tried.
+        let mut with = SmallVec::<[u32; 64]>::with_capacity(group.len());
+        let mut rest = SmallVec::<[u32; 64]>::new();
         for (&i, &n) in group.iter().zip(&mults) {
             if n >= k {
                 with.push(i);
