@@ -38,6 +38,9 @@ const BIG_WORD_UNITS: u64 = 3;
 /// the winner is built (`(x + y + z)^60`: 159 M instructions to 94 M); otherwise every
 /// candidate is built in full (about ten trees of a big power's size).
 const BRANCH: usize = 3;
+/// The candidates of a group, at most [`BRANCH`]: on the stack (a `Vec` was an allocation per
+/// group searched).
+type Candidates = SmallVec<[Factor; BRANCH]>;
 /// How many levels branch; below them the most frequent factor is taken.
 const BRANCH_DEPTH: usize = 3;
 
@@ -533,7 +536,7 @@ impl Search<'_> {
     }
 
     /// The first `k` factors that occur in at least two monomials of the group.
-    fn candidates(&mut self, group: impl Iterator<Item = u32>, k: usize) -> Vec<Factor> {
+    fn candidates(&mut self, group: impl Iterator<Item = u32>, k: usize) -> Candidates {
         let (root, div, c) = (self.root, &self.div, &mut self.counts);
         for i in group {
             let m = &root[i as usize];
@@ -688,7 +691,7 @@ impl Counts {
     /// The first `k` factors counted at least twice, most frequent first, ties by factor
     /// order (the order a full sort of the counts gave, without the sort: only the first few
     /// are ever tried); the counts are cleared.
-    fn best(&mut self, k: usize) -> Vec<Factor> {
+    fn best(&mut self, k: usize) -> Candidates {
         // The best `k` as (count, index), best first: a higher count, then a lower index. A
         // count no better than the last kept is passed over at once (most are).
         let mut best: SmallVec<[(u32, usize); 4]> = SmallVec::new();
