@@ -9,8 +9,8 @@
 
 use crate::common::Rng;
 use crate::ik_general_prismatic::{
-    check_flagged, derive, deviation, dh_toml, dist, frames, levenberg_marquardt, pose, pri,
-    random_q, rev, size, Row,
+    check_flagged, derive, deviation, dh_toml, dist, frames, multistart, pose, pri, random_q, rev,
+    size, Row,
 };
 use dqsym::ik::{IkMethod, IkSolution};
 
@@ -130,24 +130,7 @@ fn three_slide_solution_sets_agree_with_an_independent_multistart() {
             let q = random_q(&rows, &mut rng);
             let exact = checked(&n, &sol, &rows, &q);
             let t = pose(&rows, &q);
-            let mut found: Vec<Vec<f64>> = Vec::new();
-            for _ in 0..60 {
-                let seed: Vec<f64> = rows
-                    .iter()
-                    .map(|r| {
-                        if r.prismatic {
-                            rng.range(-1.0, 1.0)
-                        } else {
-                            rng.range(-PI, PI)
-                        }
-                    })
-                    .collect();
-                if let Some(s) = levenberg_marquardt(&rows, &seed, &t, len) {
-                    if !found.iter().any(|f| dist(&rows, f, &s) <= 1e-6) {
-                        found.push(s);
-                    }
-                }
-            }
+            let found = multistart(&rows, &t, len, 60, &mut rng);
             for m in &found {
                 assert!(
                     exact.iter().any(|s| dist(&rows, s, m) <= 1e-6),

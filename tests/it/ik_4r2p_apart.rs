@@ -11,8 +11,8 @@
 
 use crate::common::Rng;
 use crate::ik_general_prismatic::{
-    check_flagged, derive, deviation, dist, frames, levenberg_marquardt, pose, pri, random_q, rev,
-    size, Row,
+    check_flagged, derive, deviation, dist, frames, multistart_by, pose, pri, random_q, rev, size,
+    Row,
 };
 use dqsym::ik::{IkMethod, IkSolution, NumSolution};
 
@@ -134,24 +134,7 @@ fn slides_three_apart_counts_agree_with_an_independent_multistart() {
                 let big = a.iter().chain(b).fold(1.0f64, |m, x| m.max(x.abs()));
                 dist(&rows, a, b) <= 1e-6 * big
             };
-            let mut found: Vec<Vec<f64>> = Vec::new();
-            for _ in 0..300 {
-                let seed: Vec<f64> = rows
-                    .iter()
-                    .map(|r| {
-                        if r.prismatic {
-                            rng.range(-1.0, 1.0)
-                        } else {
-                            rng.range(-PI, PI)
-                        }
-                    })
-                    .collect();
-                if let Some(s) = levenberg_marquardt(&rows, &seed, &t, len) {
-                    if !found.iter().any(|f| near(f, &s)) {
-                        found.push(s);
-                    }
-                }
-            }
+            let found = multistart_by(&rows, &t, len, 300, &mut rng, near);
             for m in &found {
                 assert!(
                     exact.iter().any(|s| near(&s.q, m)),

@@ -328,6 +328,20 @@ pub(crate) fn multistart(
     starts: usize,
     rng: &mut Rng,
 ) -> Vec<Vec<f64>> {
+    multistart_by(rows, target, len, starts, rng, |a, b| {
+        dist(rows, a, b) <= 1e-6
+    })
+}
+
+/// [`multistart`], two solutions being the same when `same` says so.
+pub(crate) fn multistart_by(
+    rows: &[Row],
+    target: &M4,
+    len: f64,
+    starts: usize,
+    rng: &mut Rng,
+    same: impl Fn(&[f64], &[f64]) -> bool,
+) -> Vec<Vec<f64>> {
     let mut found: Vec<Vec<f64>> = Vec::new();
     for _ in 0..starts {
         let seed: Vec<f64> = rows
@@ -341,7 +355,7 @@ pub(crate) fn multistart(
             })
             .collect();
         if let Some(s) = levenberg_marquardt(rows, &seed, target, len) {
-            if !found.iter().any(|f| dist(rows, f, &s) <= 1e-6) {
+            if !found.iter().any(|f| same(f, &s)) {
                 found.push(s);
             }
         }
