@@ -314,10 +314,6 @@ fn phases_inside(terms: &[Term]) -> bool {
             t.mode.pi
         }
     };
-    let square = |t: &Term| {
-        let q = t.coef.to_big();
-        &q * &q * BigRational::from_integer(t.rad.into())
-    };
     let value = |t: &Term| t.coef.to_f64().map(|q| q * (t.rad as f64).sqrt());
     // Far from the 1e-12 below which `phase` finds none (`R >= |c|` for one term and for two
     // at right angles).
@@ -345,9 +341,45 @@ fn phases_inside(terms: &[Term]) -> bool {
         if !value(a).is_some_and(audible) || !value(b).is_some_and(audible) {
             return false;
         }
+        square_ratio_in(a, b, &[(1, 1), (3, 1), (1, 3)])
+    })
+}
+
+/// Whether the ratio `c_b^2 / c_a^2` of the squares of two nonzero coefficients (`c^2 = q^2
+/// r`) is one of `ratios` (`(num, den)` pairs): cross-multiplied in 128-bit words when they
+/// hold the products (the Jaco-style arm's coefficients: `sqrt(3)/4`, `1/2`), in big
+/// rationals otherwise (each a few hundred instructions more: 2% of that arm's
+/// `fk --jacobian`).
+fn square_ratio_in(a: &Term, b: &Term, ratios: &[(u8, u8)]) -> bool {
+    // `n^2 r` and `d^2` of a coefficient `n / d` times `sqrt(r)`.
+    let words = |t: &Term| -> Option<(u128, u128)> {
+        let q = t.coef.to_ratio_i64()?;
+        let (n, d) = (q.numer().unsigned_abs(), q.denom().unsigned_abs());
+        let n2 = u128::from(n).checked_mul(u128::from(n))?;
+        Some((
+            n2.checked_mul(u128::from(t.rad))?,
+            u128::from(d) * u128::from(d),
+        ))
+    };
+    let small = || -> Option<bool> {
+        let ((na, da), (nb, db)) = (words(a)?, words(b)?);
+        // c_b^2 / c_a^2 = (nb da) / (db na).
+        let (x, y) = (nb.checked_mul(da)?, db.checked_mul(na)?);
+        let mut any = false;
+        for &(p, q) in ratios {
+            any |= x.checked_mul(u128::from(q))? == y.checked_mul(u128::from(p))?;
+        }
+        Some(any)
+    };
+    small().unwrap_or_else(|| {
+        let square = |t: &Term| {
+            let q = t.coef.to_big();
+            &q * &q * BigRational::from_integer(t.rad.into())
+        };
         let t = square(b) / square(a);
-        let third = BigRational::new(1.into(), 3.into());
-        t.is_one() || t == BigRational::from_integer(3.into()) || t == third
+        ratios
+            .iter()
+            .any(|&(p, q)| t == BigRational::new(p.into(), q.into()))
     })
 }
 
