@@ -710,6 +710,49 @@ impl Shift {
 mod tests {
     use super::*;
 
+    /// A phase from the integer rows (`phase_of`) is the phase `dot` sums in rationals, and
+    /// its f64 quotient has the same bits as that of the reduced fraction (what `score` looked
+    /// the cosine and sine up by), on rows of half and whole coefficients and offsets of
+    /// several denominators, centred as `representatives` centres them.
+    #[test]
+    fn phases_over_one_denominator_are_the_reduced_phases() {
+        let mut below = crate::testing::xorshift_below(0x0ff5_e7a1);
+        let coefs = [(1, 1), (-1, 1), (1, 2), (-1, 2), (3, 2), (-3, 2), (2, 1)];
+        for _ in 0..300 {
+            let syms = 1 + below(6) as usize;
+            let mut rows: Vec<Vec<(usize, Small)>> = Vec::new();
+            for _ in 0..1 + below(8) {
+                let mut row = Vec::new();
+                for s in 0..syms {
+                    if below(3) > 0 {
+                        let (p, q) = coefs[below(coefs.len() as u64) as usize];
+                        row.push((s, Small::new(p, q)));
+                    }
+                }
+                rows.push(row);
+            }
+            let dens = [1, 12, 18, 36, 72, 7];
+            let o: Vec<Small> = (0..syms)
+                .map(|_| {
+                    let d = dens[below(dens.len() as u64) as usize];
+                    let v = Small::new(below(4 * d as u64) as i64, d);
+                    centred(v, Small::from_integer(2))
+                })
+                .collect();
+            let freqs: Vec<&[(usize, Small)]> = rows.iter().map(Vec::as_slice).collect();
+            let ints = integer_rows(&freqs);
+            let mut scaled = Vec::new();
+            let o_den = scale_offsets(&o, &mut scaled);
+            for (i, f) in freqs.iter().enumerate() {
+                let (num, den) = phase_of(f, ints.as_ref(), i, &o, &scaled, o_den);
+                let exact = dot(f, &o);
+                assert_eq!(Small::new(num, den), exact);
+                let reduced = *exact.numer() as f64 / *exact.denom() as f64;
+                assert_eq!((num as f64 / den as f64).to_bits(), reduced.to_bits());
+            }
+        }
+    }
+
     fn parse_pi(k: i64, n: i64) -> Scalar {
         Scalar::pi() * Scalar::rational(num_rational::BigRational::new(k.into(), n.into()))
     }
