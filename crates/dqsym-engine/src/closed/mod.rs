@@ -376,7 +376,7 @@ fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
             break;
         }
     }
-    let (plain, prepared) = match plain_probe(x, cap_of(x, &e)) {
+    let (plain, prepared) = match prepared_unshifted(x, cap_of(x, &e)) {
         // Out of the budget (or another limit) after the shifted search: as when first.
         (Err(_), _) => as_first(&before, x),
         found => found,
@@ -431,13 +431,7 @@ fn verified(e: &Expr, x: &Scalar) -> bool {
     (!cfg!(debug_assertions) && agrees_numerically(e, x)) || e.to_scalar() == *x
 }
 
-#[inline(never)]
-fn plain_probe(x: &Scalar, cap: Option<(usize, usize)>) -> (Result<Expr, ScalarError>, Prepared) {
-    prepared_unshifted(x, cap)
-}
-
 /// [`closed_form_prepared`] without the offsets absorbed; with `cap`, as [`best_of`] with it.
-#[inline(never)]
 fn prepared_unshifted(
     x: &Scalar,
     cap: Option<(usize, usize)>,
