@@ -314,10 +314,6 @@ fn phases_inside(terms: &[Term]) -> bool {
             t.mode.pi
         }
     };
-    let square = |t: &Term| {
-        let q = t.coef.to_big();
-        &q * &q * BigRational::from_integer(t.rad.into())
-    };
     let value = |t: &Term| t.coef.to_f64().map(|q| q * (t.rad as f64).sqrt());
     // Far from the 1e-12 below which `phase` finds none (`R >= |c|` for one term and for two
     // at right angles).
@@ -345,9 +341,49 @@ fn phases_inside(terms: &[Term]) -> bool {
         if !value(a).is_some_and(audible) || !value(b).is_some_and(audible) {
             return false;
         }
+        square_ratio_in(
+            (&a.coef, a.rad),
+            (&b.coef, b.rad),
+            &[(1, 1), (3, 1), (1, 3)],
+        )
+    })
+}
+
+/// Whether the ratio `c_b^2 / c_a^2` of the squares of two nonzero coefficients `c = q
+/// sqrt(r)`, given as `(q, r)`, is one of `ratios` (`(num, den)` pairs): cross-multiplied in
+/// 128-bit words when they hold the products (the Jaco-style arm's coefficients:
+/// `sqrt(3)/4`, `1/2`), in big rationals otherwise (each a few hundred instructions more: 2%
+/// of that arm's `fk --jacobian`).
+fn square_ratio_in(a: (&Q, u64), b: (&Q, u64), ratios: &[(u8, u8)]) -> bool {
+    // `n^2 r` and `d^2` of a coefficient `n / d` times `sqrt(r)`.
+    let words = |(q, r): (&Q, u64)| -> Option<(u128, u128)> {
+        let q = q.to_ratio_i64()?;
+        let (n, d) = (q.numer().unsigned_abs(), q.denom().unsigned_abs());
+        let n2 = u128::from(n).checked_mul(u128::from(n))?;
+        Some((
+            n2.checked_mul(u128::from(r))?,
+            u128::from(d) * u128::from(d),
+        ))
+    };
+    let small = || -> Option<bool> {
+        let ((na, da), (nb, db)) = (words(a)?, words(b)?);
+        // c_b^2 / c_a^2 = (nb da) / (db na).
+        let (x, y) = (nb.checked_mul(da)?, db.checked_mul(na)?);
+        let mut any = false;
+        for &(p, q) in ratios {
+            any |= x.checked_mul(u128::from(q))? == y.checked_mul(u128::from(p))?;
+        }
+        Some(any)
+    };
+    small().unwrap_or_else(|| {
+        let square = |(q, r): (&Q, u64)| {
+            let q = q.to_big();
+            &q * &q * BigRational::from_integer(r.into())
+        };
         let t = square(b) / square(a);
-        let third = BigRational::new(1.into(), 3.into());
-        t.is_one() || t == BigRational::from_integer(3.into()) || t == third
+        ratios
+            .iter()
+            .any(|&(p, q)| t == BigRational::new(p.into(), q.into()))
     })
 }
 
@@ -761,6 +797,46 @@ impl Angles {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `square_ratio_in` in machine words says what the ratio of the squares in big rationals
+    /// says, on coefficients small and large (past the words, where it falls back on them),
+    /// with the ratios met (1, 3, 1/3) and without.
+    #[test]
+    fn the_ratio_of_squares_in_words_is_the_one_in_big_rationals() {
+        let mut below = crate::testing::xorshift_below(0x5a_c0ef_0001);
+        let (mut hits, mut big) = (0, 0);
+        for k in 0..4000 {
+            // Numerators and denominators of a few bits, or past 2^40 (then the products
+            // leave 128 bits and the big rationals decide).
+            let bits = if k % 7 == 0 { 62 } else { 4 };
+            let parts: Vec<i64> = (0..4).map(|_| 1 + below(1 << bits) as i64).collect();
+            let qa = Q::new(parts[0], parts[1]);
+            let rad = |x: u64| [1, 2, 3, 6][x as usize];
+            let ra = rad(below(4));
+            // `b` often `a` times 1, sqrt(3) or 1/sqrt(3), so that the ratios occur.
+            let (qb, rb) = match below(4) {
+                0 => (qa.clone(), ra),
+                1 if ra == 1 => (qa.clone(), 3),
+                2 if ra == 3 => (qa.clone(), 1),
+                _ => (Q::new(parts[2], parts[3]), rad(below(4))),
+            };
+            let ratios: &[(u8, u8)] = &[(1, 1), (3, 1), (1, 3)];
+            let found = square_ratio_in((&qa, ra), (&qb, rb), ratios);
+            let square = |q: &Q, r: u64| {
+                let q = q.to_big();
+                &q * &q * BigRational::from_integer(r.into())
+            };
+            let t = square(&qb, rb) / square(&qa, ra);
+            let expected = [(1, 1), (3, 1), (1, 3)]
+                .iter()
+                .any(|&(p, q): &(i64, i64)| t == BigRational::new(p.into(), q.into()));
+            assert_eq!(found, expected, "{qa:?} sqrt({ra}), {qb:?} sqrt({rb})");
+            hits += usize::from(expected);
+            big += usize::from(qa.to_ratio_i64().is_some_and(|q| q.numer().abs() > 1 << 40));
+        }
+        assert!(hits > 500 && hits < 3500, "{hits} of 4000 in the ratios");
+        assert!(big > 100, "{big} large coefficients");
+    }
 
     /// `k pi / n` as a scalar.
     fn pi_times(k: i64, n: i64) -> Scalar {

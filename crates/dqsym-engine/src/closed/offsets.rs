@@ -401,6 +401,70 @@ fn dot(r: &[(usize, Small)], o: &[Small]) -> Small {
     })
 }
 
+/// Rows of integer coefficients `(symbol, k)` over one common denominator: `(rows, den)`.
+type IntegerRows = (Vec<Vec<(usize, i64)>>, i64);
+
+/// The rows `freqs` with integer coefficients over one common denominator; `None` when that
+/// denominator or a coefficient leaves a machine word.
+fn integer_rows(freqs: &[&[(usize, Small)]]) -> Option<IntegerRows> {
+    let mut den: i64 = 1;
+    for (_, k) in freqs.iter().flat_map(|r| r.iter()) {
+        den = den.checked_mul(k.denom() / den.gcd(k.denom()))?;
+    }
+    let rows = freqs
+        .iter()
+        .map(|r| {
+            r.iter()
+                .map(|(s, k)| Some((*s, k.numer().checked_mul(den / k.denom())?)))
+                .collect::<Option<Vec<_>>>()
+        })
+        .collect::<Option<Vec<_>>>()?;
+    Some((rows, den))
+}
+
+/// The offsets `o` over their common denominator: the numerators into `out`, the denominator
+/// returned; `None` when it leaves a machine word.
+fn scale_offsets(o: &[Small], out: &mut Vec<i64>) -> Option<i64> {
+    out.clear();
+    let mut den: i64 = 1;
+    for v in o {
+        den = den.checked_mul(v.denom() / den.gcd(v.denom()))?;
+    }
+    for v in o {
+        out.push(v.numer().checked_mul(den / v.denom())?);
+    }
+    Some(den)
+}
+
+/// The phase `f . o` of the `i`-th distinct vector `f` as `(numerator, denominator)`, for the
+/// value `numerator / denominator` in f64: from the integer rows (`int_freqs`, see
+/// [`integer_rows`]) and the scaled offsets (`scaled`, over `o_den`, see [`scale_offsets`])
+/// when every number fits and is exact in an f64 (then the quotient is the correctly rounded
+/// value of the phase, the same bits as the reduced fraction's), else reduced by [`dot`].
+fn phase_of(
+    f: &[(usize, Small)],
+    int_freqs: Option<&IntegerRows>,
+    i: usize,
+    o: &[Small],
+    scaled: &[i64],
+    o_den: Option<i64>,
+) -> (i64, i64) {
+    const EXACT: u64 = 1 << 53;
+    let fast = || -> Option<(i64, i64)> {
+        let (rows, den) = int_freqs?;
+        let den = den.checked_mul(o_den?)?;
+        let mut num: i64 = 0;
+        for (s, k) in &rows[i] {
+            num = num.checked_add(k.checked_mul(scaled[*s])?)?;
+        }
+        (num.unsigned_abs() <= EXACT && den.unsigned_abs() <= EXACT).then_some((num, den))
+    };
+    fast().unwrap_or_else(|| {
+        let f = dot(f, o);
+        (*f.numer(), *f.denom())
+    })
+}
+
 /// The offsets shown (see the module docs): a symbol whose offset in `base` is a multiple
 /// of its own steps (each keeping every group's phase modulo 1/12) keeps none; the others
 /// range over every solution with those fixed at 0, the best by (fewest cosine and sine
@@ -446,20 +510,26 @@ fn representatives(
     // symbols are held at 0 or take a few values), and the cosine and sine were most of the
     // cost of scoring a solution. The same `f` gives the same bits, so the scores are those
     // computed afresh.
-    let mut unit_circle: super::FxMap<Small, (f64, f64)> = Default::default();
+    let mut unit_circle: super::FxMap<(i64, i64), (f64, f64)> = Default::default();
+    // The distinct vectors over one common denominator, and each solution's offsets over
+    // theirs (`scaled`): a phase is then an integer sum over a known denominator, not a sum
+    // of rationals reduced by a gcd (see `phase_of`).
+    let int_freqs = integer_rows(&freqs);
+    let mut scaled_o: Vec<i64> = Vec::with_capacity(syms.len());
     // The number of cosine and sine parts of the shifted scalar, and of negative ones; `None`
     // once the parts pass `bound` (the parts of the best solution so far: the parts come first
     // in the order of solutions, and they only grow group by group, so such a solution is
     // never taken, and the rest of its groups need not be looked at).
     let mut score = |o: &[Small], bound: usize| -> Option<(usize, usize)> {
         scored += 1;
+        let o_den = scale_offsets(o, &mut scaled_o);
         let (mut parts, mut neg) = (0, 0);
         for (i, (re, im)) in row_freq.iter().zip(&amps) {
             if stamp[*i] != scored {
                 stamp[*i] = scored;
-                let f = dot(freqs[*i], o);
+                let f = phase_of(freqs[*i], int_freqs.as_ref(), *i, o, &scaled_o, o_den);
                 phases[*i] = *unit_circle.entry(f).or_insert_with(|| {
-                    let f = f.numer().to_f64().unwrap_or(0.0) / f.denom().to_f64().unwrap_or(1.0);
+                    let f = f.0 as f64 / f.1 as f64;
                     (
                         (f * std::f64::consts::PI).cos(),
                         (f * std::f64::consts::PI).sin(),
@@ -639,6 +709,49 @@ impl Shift {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A phase from the integer rows (`phase_of`) is the phase `dot` sums in rationals, and
+    /// its f64 quotient has the same bits as that of the reduced fraction (what `score` looked
+    /// the cosine and sine up by), on rows of half and whole coefficients and offsets of
+    /// several denominators, centred as `representatives` centres them.
+    #[test]
+    fn phases_over_one_denominator_are_the_reduced_phases() {
+        let mut below = crate::testing::xorshift_below(0x0ff5_e7a1);
+        let coefs = [(1, 1), (-1, 1), (1, 2), (-1, 2), (3, 2), (-3, 2), (2, 1)];
+        for _ in 0..300 {
+            let syms = 1 + below(6) as usize;
+            let mut rows: Vec<Vec<(usize, Small)>> = Vec::new();
+            for _ in 0..1 + below(8) {
+                let mut row = Vec::new();
+                for s in 0..syms {
+                    if below(3) > 0 {
+                        let (p, q) = coefs[below(coefs.len() as u64) as usize];
+                        row.push((s, Small::new(p, q)));
+                    }
+                }
+                rows.push(row);
+            }
+            let dens = [1, 12, 18, 36, 72, 7];
+            let o: Vec<Small> = (0..syms)
+                .map(|_| {
+                    let d = dens[below(dens.len() as u64) as usize];
+                    let v = Small::new(below(4 * d as u64) as i64, d);
+                    centred(v, Small::from_integer(2))
+                })
+                .collect();
+            let freqs: Vec<&[(usize, Small)]> = rows.iter().map(Vec::as_slice).collect();
+            let ints = integer_rows(&freqs);
+            let mut scaled = Vec::new();
+            let o_den = scale_offsets(&o, &mut scaled);
+            for (i, f) in freqs.iter().enumerate() {
+                let (num, den) = phase_of(f, ints.as_ref(), i, &o, &scaled, o_den);
+                let exact = dot(f, &o);
+                assert_eq!(Small::new(num, den), exact);
+                let reduced = *exact.numer() as f64 / *exact.denom() as f64;
+                assert_eq!((num as f64 / den as f64).to_bits(), reduced.to_bits());
+            }
+        }
+    }
 
     fn parse_pi(k: i64, n: i64) -> Scalar {
         Scalar::pi() * Scalar::rational(num_rational::BigRational::new(k.into(), n.into()))
