@@ -626,31 +626,56 @@ fn best_of(
     try_whole: bool,
     cap: Option<(usize, usize)>,
 ) -> Result<(Expr, bool), ScalarError> {
-    let (split, sc) = factor::build(smons)?;
     // Without trigonometric terms both shapes are the same monomials (a polynomial in cos/sin
     // placeholders, say): the whole shape would be factored again to the same cost.
     let try_whole = try_whole && !same_monomials(x, smons);
-    let whole = if try_whole {
-        // The same monomials as `whole_form`'s (modes joined into one angle where they are one).
+    // The same monomials as `whole_form`'s (modes joined into one angle where they are one),
+    // with a lower bound of their factored cost.
+    let wholes = try_whole.then(|| {
         let (wctx, wmons) = mon::whole_modes_joined(x);
-        // The whole shape is taken only when strictly cheaper: not searched when even a lower
-        // bound of its cost is not (the common case: many more distinct modes than the
-        // regrouped shape has calls).
         let bound = factor::cost_lower_bound(&wmons);
-        if bound >= sc {
-            debug_assert!(factor::build(&wmons).map_or(true, |(_, wc)| wc >= bound));
-            None
-        } else {
-            let (w, wc) = factor::build(&wmons)?;
-            Some((w.to_expr(&wctx), wc))
+        (wctx, wmons, bound)
+    });
+    // The whole shape is taken only when strictly cheaper. Factored first when even its lower
+    // bound is below the regrouped shape's: when its cost is below that bound too, the
+    // regrouped shape cannot be taken and is not factored (the Jaco-style arm's entries as
+    // given, whose regrouped shapes were the larger part of their search); otherwise it is
+    // factored as below, which would have factored the whole shape too.
+    let split_bound = factor::summands_lower_bound(smons);
+    let early = match &wholes {
+        Some((wctx, wmons, bound)) if *bound < split_bound => {
+            let (w, wc) = factor::build(wmons)?;
+            Some((w.to_expr(wctx), wc))
         }
-    } else {
-        None
+        _ => None,
     };
-    // Prefer the regrouped shape on ties: it is the one textbooks print.
-    let (best, split_won) = match &whole {
-        Some((w, wc)) if *wc < sc => (w.clone(), false),
-        _ => (split.to_expr(sctx), true),
+    let (best, split_won, whole) = match early {
+        Some((w, wc)) if wc < split_bound => {
+            debug_assert!(factor::build(smons).map_or(true, |(_, sc)| sc >= split_bound));
+            (w.clone(), false, Some((w, wc)))
+        }
+        early => {
+            let (split, sc) = factor::build(smons)?;
+            // Not searched when even a lower bound of its cost is not below `sc` (the common
+            // case: many more distinct modes than the regrouped shape has calls).
+            let whole = match (early, &wholes) {
+                (Some(w), _) => Some(w),
+                (None, Some((wctx, wmons, bound))) if *bound < sc => {
+                    let (w, wc) = factor::build(wmons)?;
+                    Some((w.to_expr(wctx), wc))
+                }
+                (None, Some((_, wmons, bound))) => {
+                    debug_assert!(factor::build(wmons).map_or(true, |(_, wc)| wc >= *bound));
+                    None
+                }
+                (None, None) => None,
+            };
+            // Prefer the regrouped shape on ties: it is the one textbooks print.
+            match &whole {
+                Some((w, wc)) if *wc < sc => (w.clone(), false, whole),
+                _ => (split.to_expr(sctx), true, whole),
+            }
+        }
     };
     // A shorter form of another kind (checked exactly by `best_alternative`).
     // An alternative is returned only once it equals `x` exactly: not checked again (in debug
