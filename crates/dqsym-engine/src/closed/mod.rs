@@ -131,7 +131,11 @@
 //! `W = F - phi`, and each `W` is replaced back in the closed form, shown as the cosine or sine
 //! with the cheaper angle (`l1 cos(x - pi/3) + l2 cos(x + y - 2*pi/3)`); the whole-modes shape is
 //! not factored when a lower bound of its cost (`factor::cost_lower_bound`: each distinct atom and
-//! symbol a leaf, each atom a call) is not below the regrouped shape's, and `alt::best_alternative`
+//! symbol a leaf, each atom a call, each monomial a summand) is not below the regrouped shape's,
+//! and is factored first when that bound is below the regrouped shape's own lower bound (`m`
+//! monomials, `m - 1` additions: `factor::summands_lower_bound`), the regrouped shape then not
+//! factored when the whole one costs less than that (the Jaco-style arm's entries as given),
+//! and `alt::best_alternative`
 //! checks only candidates shorter than the form found before; `closed_form_prepared` keeps the
 //! regrouped monomials of a scalar so that `closed_form_of_derivative` starts a derivative's closed
 //! form from them (the Jacobian of a chain: no second expansion into single angles);
