@@ -320,7 +320,7 @@ fn build_with(mons: &[Mon], pass: Pass) -> Result<(E, Cost), ScalarError> {
 /// only pulls common factors out of the given monomials, so every distinct atom and symbol
 /// of them is a leaf of its result at least once; each atom is a call, and `n` leaves take
 /// at least `n - 1` additions and multiplications to combine (a sum or product of `k` parts
-/// costs `k - 1`; negations and powers only add).
+/// costs `k - 1`; negations and powers only add); and at least [`summands_lower_bound`].
 pub(crate) fn cost_lower_bound(mons: &[Mon]) -> Cost {
     let mut atoms: Vec<Atom> = mons.iter().flat_map(|m| m.atoms.iter().copied()).collect();
     atoms.sort_unstable();
@@ -331,9 +331,22 @@ pub(crate) fn cost_lower_bound(mons: &[Mon]) -> Cost {
         .collect();
     syms.sort_unstable();
     syms.dedup();
+    let leaves = (atoms.len() + syms.len()).saturating_sub(1);
     Cost {
-        ops: (atoms.len() + syms.len()).saturating_sub(1) + atoms.len(),
+        ops: leaves.max(summands_lower_bound(mons).ops) + atoms.len(),
         calls: atoms.len(),
+    }
+}
+
+/// A lower bound of the cost [`build`] finds for `mons`, in constant time: each monomial stays
+/// one summand of the result (a factor pulled out of some monomials divides each of them
+/// exactly, and distinct monomials stay distinct), so `m` monomials take at least `m - 1`
+/// additions or subtractions (a regrouped shape of 180 monomials at least 179 operations, more
+/// than its whole modes' form of 163: the Jaco-style arm's entries as given).
+pub(crate) fn summands_lower_bound(mons: &[Mon]) -> Cost {
+    Cost {
+        ops: mons.len().saturating_sub(1),
+        calls: 0,
     }
 }
 
@@ -972,6 +985,66 @@ mod tests {
             three_passes(&p, &format!("multilinear, seed {seed}"));
         }
         assert!(masked >= 50, "bit sets taken {masked} times of 60");
+    }
+
+    /// The additions and subtractions of `e`: `k - 1` for each sum of `k` terms.
+    fn additions(e: &Expr) -> usize {
+        match e {
+            Expr::Add(v) => v.len() - 1 + v.iter().map(additions).sum::<usize>(),
+            Expr::Mul(v) => v.iter().map(additions).sum(),
+            Expr::Neg(x) | Expr::Pow(x, _) => additions(x),
+            _ => 0,
+        }
+    }
+
+    /// Factoring keeps each monomial one summand: the form built for `m` monomials (integer
+    /// polynomials; trigonometric ones split into single angles) has exactly `m - 1` additions
+    /// and subtractions, counted on its tree, so [`summands_lower_bound`] holds, and
+    /// [`cost_lower_bound`] with it; on polynomials of many monomials in a few symbols it is
+    /// the larger part of that bound.
+    #[test]
+    fn each_monomial_stays_one_summand() {
+        let (a, b, l) = (Scalar::sym("a"), Scalar::sym("b"), Scalar::sym("l"));
+        let trig = (1..5).map(|k| {
+            let s = a.clone().cos() + l.clone() * b.clone().sin() + Scalar::int(1);
+            let t = (a.clone() + b.clone()).cos() * Scalar::sym("d") - Scalar::int(2);
+            s.pow(k) * t
+        });
+        let (mut scalars, mut by_summands) = (0, 0);
+        for p in (0..30)
+            .map(poly)
+            .chain((0..30).map(poly_many))
+            .chain((0..30).map(poly_multilinear))
+            .chain(trig)
+        {
+            let (ctx, mons) = crate::closed::mon::split_modes(&p);
+            if mons.is_empty() {
+                continue;
+            }
+            let (e, c) = build(&mons).expect("factored");
+            let e = e.to_expr(&ctx);
+            assert_eq!(e.to_scalar(), p);
+            assert_eq!(additions(&e), mons.len() - 1, "{p}");
+            let (lower, summands) = (cost_lower_bound(&mons), summands_lower_bound(&mons));
+            assert!(
+                c >= lower && lower >= summands,
+                "{p}: {c:?} {lower:?} {summands:?}"
+            );
+            scalars += 1;
+            // More monomials than distinct atoms and symbols (`lower.calls` counts the atoms).
+            let mut syms: Vec<u32> = mons
+                .iter()
+                .flat_map(|m| m.syms.iter().map(|s| s.0))
+                .collect();
+            syms.sort_unstable();
+            syms.dedup();
+            by_summands += usize::from(mons.len() > lower.calls + syms.len());
+        }
+        assert!(scalars >= 90, "{scalars} scalars");
+        assert!(
+            by_summands >= 30,
+            "the summands bound the larger {by_summands} times"
+        );
     }
 
     /// Past 126 bits a coefficient is not a machine integer: every candidate is built.

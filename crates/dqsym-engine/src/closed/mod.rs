@@ -131,7 +131,11 @@
 //! `W = F - phi`, and each `W` is replaced back in the closed form, shown as the cosine or sine
 //! with the cheaper angle (`l1 cos(x - pi/3) + l2 cos(x + y - 2*pi/3)`); the whole-modes shape is
 //! not factored when a lower bound of its cost (`factor::cost_lower_bound`: each distinct atom and
-//! symbol a leaf, each atom a call) is not below the regrouped shape's, and `alt::best_alternative`
+//! symbol a leaf, each atom a call, each monomial a summand) is not below the regrouped shape's,
+//! and is factored first when that bound is below the regrouped shape's own lower bound (`m`
+//! monomials, `m - 1` additions: `factor::summands_lower_bound`), the regrouped shape then not
+//! factored when the whole one costs less than that (the Jaco-style arm's entries as given),
+//! and `alt::best_alternative`
 //! checks only candidates shorter than the form found before; `closed_form_prepared` keeps the
 //! regrouped monomials of a scalar so that `closed_form_of_derivative` starts a derivative's closed
 //! form from them (the Jacobian of a chain: no second expansion into single angles);
@@ -626,31 +630,56 @@ fn best_of(
     try_whole: bool,
     cap: Option<(usize, usize)>,
 ) -> Result<(Expr, bool), ScalarError> {
-    let (split, sc) = factor::build(smons)?;
     // Without trigonometric terms both shapes are the same monomials (a polynomial in cos/sin
     // placeholders, say): the whole shape would be factored again to the same cost.
     let try_whole = try_whole && !same_monomials(x, smons);
-    let whole = if try_whole {
-        // The same monomials as `whole_form`'s (modes joined into one angle where they are one).
+    // The same monomials as `whole_form`'s (modes joined into one angle where they are one),
+    // with a lower bound of their factored cost.
+    let wholes = try_whole.then(|| {
         let (wctx, wmons) = mon::whole_modes_joined(x);
-        // The whole shape is taken only when strictly cheaper: not searched when even a lower
-        // bound of its cost is not (the common case: many more distinct modes than the
-        // regrouped shape has calls).
         let bound = factor::cost_lower_bound(&wmons);
-        if bound >= sc {
-            debug_assert!(factor::build(&wmons).map_or(true, |(_, wc)| wc >= bound));
-            None
-        } else {
-            let (w, wc) = factor::build(&wmons)?;
-            Some((w.to_expr(&wctx), wc))
+        (wctx, wmons, bound)
+    });
+    // The whole shape is taken only when strictly cheaper. Factored first when even its lower
+    // bound is below the regrouped shape's: when its cost is below that bound too, the
+    // regrouped shape cannot be taken and is not factored (the Jaco-style arm's entries as
+    // given, whose regrouped shapes were the larger part of their search); otherwise it is
+    // factored as below, which would have factored the whole shape too.
+    let split_bound = factor::summands_lower_bound(smons);
+    let early = match &wholes {
+        Some((wctx, wmons, bound)) if *bound < split_bound => {
+            let (w, wc) = factor::build(wmons)?;
+            Some((w.to_expr(wctx), wc))
         }
-    } else {
-        None
+        _ => None,
     };
-    // Prefer the regrouped shape on ties: it is the one textbooks print.
-    let (best, split_won) = match &whole {
-        Some((w, wc)) if *wc < sc => (w.clone(), false),
-        _ => (split.to_expr(sctx), true),
+    let (best, split_won, whole) = match early {
+        Some((w, wc)) if wc < split_bound => {
+            debug_assert!(factor::build(smons).map_or(true, |(_, sc)| sc >= split_bound));
+            (w.clone(), false, Some((w, wc)))
+        }
+        early => {
+            let (split, sc) = factor::build(smons)?;
+            // Not searched when even a lower bound of its cost is not below `sc` (the common
+            // case: many more distinct modes than the regrouped shape has calls).
+            let whole = match (early, &wholes) {
+                (Some(w), _) => Some(w),
+                (None, Some((wctx, wmons, bound))) if *bound < sc => {
+                    let (w, wc) = factor::build(wmons)?;
+                    Some((w.to_expr(wctx), wc))
+                }
+                (None, Some((_, wmons, bound))) => {
+                    debug_assert!(factor::build(wmons).map_or(true, |(_, wc)| wc >= *bound));
+                    None
+                }
+                (None, None) => None,
+            };
+            // Prefer the regrouped shape on ties: it is the one textbooks print.
+            match &whole {
+                Some((w, wc)) if *wc < sc => (w.clone(), false, whole),
+                _ => (split.to_expr(sctx), true, whole),
+            }
+        }
     };
     // A shorter form of another kind (checked exactly by `best_alternative`).
     // An alternative is returned only once it equals `x` exactly: not checked again (in debug
