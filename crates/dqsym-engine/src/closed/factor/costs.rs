@@ -51,7 +51,9 @@
 //! under a tight bound is searched again under a looser one.
 
 use super::run::{most_frequent, Buckets};
-use super::{multiplicity, quotient_syms, Factor, Search, BIG_WORD_UNITS, BRANCH, BRANCH_DEPTH};
+use super::{
+    multiplicity, quotient_syms, Candidates, Factor, Search, BIG_WORD_UNITS, BRANCH, BRANCH_DEPTH,
+};
 use crate::closed::expr::Cost;
 use crate::closed::mon::{FxMap, Mon};
 use crate::scalar::q::gcd_u64;
@@ -359,36 +361,28 @@ impl Costs {
     /// Monomial `i` of a multilinear root with quotient `q` hashed into `h`, as
     /// [`Costs::hash_mon`] hashes it.
     fn hash_quotient(&self, i: u32, q: u64, h: &mut FxHasher) {
-        h.write_i128(self.coef[i as usize]);
-        h.write_u64(q);
-        h.write_u8(0xff);
+        hash_quotient(self.coef[i as usize], q, h);
     }
 
     /// [`Search::c_build_at`]'s pass over a multilinear root's group: the quotients hashed
-    /// and their symbols counted, without [`super::Counts::bump`]'s test per symbol (the
-    /// symbols met are the union of the quotients, listed once at the end); the work.
-    fn count_masked(
-        &self,
-        masks: &Masks,
-        group: &[u32],
-        counts: &mut super::Counts,
-        h: &mut FxHasher,
-    ) -> u64 {
-        let base = counts.sym_base;
-        let (mut union, mut work) = (0u64, 0u64);
+    /// and their symbols counted in [`Masks::tally`] (read by [`Search::counted_best`]);
+    /// the work.
+    fn count_masked(&mut self, group: &[u32], h: &mut FxHasher) -> u64 {
+        let Costs {
+            coef, words, masks, ..
+        } = self;
+        let Some(masks) = masks else {
+            return 0;
+        };
+        let (mut ones, mut rest) = (0u32, 0u64);
         for &i in group {
             let q = masks.quotient(i);
-            self.hash_quotient(i, q, h);
-            union |= q;
-            for s in bits(q) {
-                counts.n[base + s as usize] += 1;
-            }
-            work += 1 + u64::from(q.count_ones()) + self.words[i as usize];
+            hash_quotient(coef[i as usize], q, h);
+            masks.tally.add(q);
+            ones += q.count_ones();
+            rest += words[i as usize];
         }
-        counts
-            .touched
-            .extend(bits(union).map(|s| base + s as usize));
-        work
+        group.len() as u64 + u64::from(ones) + rest
     }
 
     /// Whether the monomials are taken as bit sets ([`Masks`]; the tests).
@@ -424,6 +418,96 @@ struct Masks {
     /// it by the cost pass ([`Search::c_split_on`]) and set from it where the tree search
     /// hands a group to the pass ([`Search::cost_winner`]).
     div: u64,
+    /// The symbols of the current group's quotients counted, where [`super::Counts`] counts
+    /// those of a root that is not multilinear.
+    tally: Tally,
+}
+
+/// Monomial `q` with coefficient `coef`, hashed into `h`: the low word of the coefficient
+/// is enough for a hash (the memo compares the coefficients in full), and a record of two
+/// words needs no end mark.
+fn hash_quotient(coef: i128, q: u64, h: &mut FxHasher) {
+    h.write_u64(coef as u64);
+    h.write_u64(q);
+}
+
+/// How many symbols each count of a [`Tally`] can reach: `2^PLANES - 1` monomials.
+const PLANES: usize = 32;
+
+/// Counts of the symbols of a group's quotients, bit-sliced: plane `p` holds bit `p` of
+/// every symbol's count, so a quotient is counted by adding its mask with a carry, a few
+/// word operations (each of its symbols was an increment in [`super::Counts`], a fifth of
+/// the symbolic 6R's cost pass), and the most frequent symbols are read from the planes,
+/// top down.
+struct Tally {
+    planes: [u64; PLANES],
+    /// The planes that may be nonzero.
+    used: usize,
+    /// The symbols counted at least once.
+    union: u64,
+}
+
+impl Tally {
+    fn new() -> Tally {
+        Tally {
+            planes: [0; PLANES],
+            used: 0,
+            union: 0,
+        }
+    }
+
+    /// Each symbol of `q` counted once more.
+    fn add(&mut self, q: u64) {
+        self.union |= q;
+        let (mut carry, mut p) = (q, 0);
+        while carry != 0 && p < PLANES {
+            let plane = &mut self.planes[p];
+            let next = *plane & carry;
+            *plane ^= carry;
+            carry = next;
+            p += 1;
+        }
+        self.used = self.used.max(p);
+    }
+
+    /// The count of symbol `s`.
+    fn count(&self, s: u32) -> u32 {
+        self.planes[..self.used]
+            .iter()
+            .enumerate()
+            .fold(0, |n, (p, plane)| n | (((plane >> s) & 1) as u32) << p)
+    }
+
+    /// [`super::Counts::best`]: the first `k` symbols counted at least twice, most frequent
+    /// first, ties by symbol; the counts are cleared. The symbols of the highest count among
+    /// those left are the ones left at a plane's bit at each plane from the top that has
+    /// any.
+    fn best(&mut self, k: usize) -> Candidates {
+        let mut out = Candidates::new();
+        let mut left = self.union;
+        while out.len() < k && left != 0 {
+            let mut top = left;
+            for plane in self.planes[..self.used].iter().rev() {
+                if top & plane != 0 {
+                    top &= plane;
+                }
+            }
+            if self.count(top.trailing_zeros()) < 2 {
+                break;
+            }
+            let room = k - out.len();
+            out.extend(bits(top).take(room).map(Factor::Sym));
+            left &= !top;
+        }
+        self.clear();
+        out
+    }
+
+    fn clear(&mut self) {
+        self.planes[..self.used].fill(0);
+        self.used = 0;
+        self.union = 0;
+    }
 }
 
 impl Masks {
@@ -436,7 +520,11 @@ impl Masks {
                 })
             })
             .collect::<Option<Vec<u64>>>()?;
-        Some(Masks { of, div: 0 })
+        Some(Masks {
+            of,
+            div: 0,
+            tally: Tally::new(),
+        })
     }
 
     /// Monomial `i`'s quotient by the current divisor.
@@ -519,6 +607,28 @@ impl Search<'_> {
     /// The bit sets of a multilinear root ([`Masks`]).
     fn masks(&self) -> Option<&Masks> {
         self.costs.as_ref()?.masks.as_ref()
+    }
+
+    /// The tally of a multilinear root ([`Masks::tally`]).
+    fn tally(&mut self) -> Option<&mut Tally> {
+        Some(&mut self.costs.as_mut()?.masks.as_mut()?.tally)
+    }
+
+    /// The best `k` factors of the group [`Search::c_build_at`] counted ([`super::Counts::best`]
+    /// or [`Tally::best`]); the counts are cleared.
+    fn counted_best(&mut self, k: usize) -> Candidates {
+        match self.tally() {
+            Some(t) => t.best(k),
+            None => self.counts.best(k),
+        }
+    }
+
+    /// The counts of [`Search::c_build_at`] cleared without reading them.
+    fn clear_counted(&mut self) {
+        match self.tally() {
+            Some(t) => t.clear(),
+            None => self.counts.clear(),
+        }
     }
 
     /// The factors pulled out of the current group, as the memo of costs keys them.
@@ -642,13 +752,13 @@ impl Search<'_> {
         // counts their factors (the candidates), one pass for three.
         let mut work = 0u64;
         let mut h = FxHasher::default();
-        let Some(costs) = self.costs.as_ref() else {
+        let Some(costs) = self.costs.as_mut() else {
             return Some(self.c_plain_sum(group, d));
         };
         let (root, div, counts) = (self.root, &self.div, &mut self.counts);
         let base = counts.sym_base;
-        if let Some(masks) = &costs.masks {
-            work = costs.count_masked(masks, group, counts, &mut h);
+        if costs.masks.is_some() {
+            work = costs.count_masked(group, &mut h);
         } else {
             for &i in group {
                 let len = costs.hash_mon(i, &root[i as usize], div, base, &mut h, |s| {
@@ -661,19 +771,19 @@ impl Search<'_> {
         debug_assert!(self.masks().is_none_or(|m| m.div == self.div_as_mask()));
         self.charge_work(work);
         if self.spent.is_some() {
-            self.counts.clear();
+            self.clear_counted();
             return Some(self.c_plain_sum(group, d));
         }
         // The negation and the content each add one operation to the group's cost.
         if group.iter().all(|&i| (self.coef(i) < 0) != (d < 0)) {
-            self.counts.clear();
+            self.clear_counted();
             return self
                 .c_build_at(group, -d, depth, bound.saturating_sub(1))
                 .map(Shape::neg);
         }
         let g = gcd_over(d, group.iter().map(|&i| self.coef(i)), 0) / d.unsigned_abs();
         if g != 1 {
-            self.counts.clear();
+            self.clear_counted();
             let inner = self.c_build_at(group, d * g as i128, depth, bound.saturating_sub(1))?;
             return Some(mul(&[Shape::int(g as i128), inner]));
         }
@@ -769,7 +879,7 @@ impl Search<'_> {
             };
             if let Some(found) = found {
                 if matches!(fs, Cands::Counted) {
-                    self.counts.clear();
+                    self.clear_counted();
                 }
                 return found;
             }
@@ -779,7 +889,7 @@ impl Search<'_> {
         let candidates = match fs {
             Cands::Given(fs) => fs,
             Cands::Counted => {
-                counted = self.counts.best(tries);
+                counted = self.counted_best(tries);
                 &counted[..]
             }
             Cands::Count => {
