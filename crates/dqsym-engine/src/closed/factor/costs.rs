@@ -115,6 +115,9 @@ enum Cands<'f> {
     Count,
 }
 
+/// A part of a split: monomials by index, on the stack up to a size the 6R's groups keep.
+type Part = SmallVec<[u32; 64]>;
+
 /// No bound: every cost counts.
 const NO_BOUND: usize = usize::MAX;
 
@@ -412,7 +415,7 @@ impl Costs {
 /// factor pulled out of a group is in all its monomials, to the first power), so a quotient is
 /// `mask & !div`: one word hashed and compared where the symbol list was walked and each
 /// power looked up in the divisor (the 6R's cost pass: 72 M instructions to 46 M).
-struct Masks {
+pub(super) struct Masks {
     of: Vec<u64>,
     /// The symbols pulled out of the current group ([`Search::div`]'s symbols), kept with
     /// it by the cost pass ([`Search::c_split_on`]) and set from it where the tree search
@@ -528,7 +531,7 @@ impl Masks {
     }
 
     /// Monomial `i`'s quotient by the current divisor.
-    fn quotient(&self, i: u32) -> u64 {
+    pub(super) fn quotient(&self, i: u32) -> u64 {
         self.of[i as usize] & !self.div
     }
 }
@@ -605,7 +608,7 @@ impl Search<'_> {
     }
 
     /// The bit sets of a multilinear root ([`Masks`]).
-    fn masks(&self) -> Option<&Masks> {
+    pub(super) fn masks(&self) -> Option<&Masks> {
         self.costs.as_ref()?.masks.as_ref()
     }
 
@@ -659,7 +662,7 @@ impl Search<'_> {
 
     /// `f` put in [`Masks::div`] (`on`) or taken out of it, when the root is multilinear;
     /// whether it was.
-    fn mask_div(&mut self, f: Factor, on: bool) -> bool {
+    pub(super) fn mask_div(&mut self, f: Factor, on: bool) -> bool {
         let m = self.costs.as_mut().and_then(|c| c.masks.as_mut());
         match (m, f) {
             (Some(m), Factor::Sym(s)) => {
@@ -677,16 +680,18 @@ impl Search<'_> {
     /// The power of `f` in each monomial of `group` above the current divisor's
     /// ([`multiplicity`]; a bit of the mask for a multilinear root, the choice made once per
     /// group: made per monomial it was 2% of the 6R's report).
-    fn c_mults<C: FromIterator<u32>>(&self, group: &[u32], f: Factor) -> C {
+    pub(super) fn powers<C: FromIterator<u32>>(
+        &self,
+        group: impl Iterator<Item = u32>,
+        f: Factor,
+    ) -> C {
         let base = self.div[self.counts.index(f)];
         match (self.masks(), f) {
             (Some(m), Factor::Sym(s)) => group
-                .iter()
-                .map(|&i| ((m.of[i as usize] >> s) as u32 & 1) - base)
+                .map(|i| ((m.of[i as usize] >> s) as u32 & 1) - base)
                 .collect(),
             _ => group
-                .iter()
-                .map(|&i| multiplicity(&self.root[i as usize], f) - base)
+                .map(|i| multiplicity(&self.root[i as usize], f) - base)
                 .collect(),
         }
     }
@@ -943,6 +948,37 @@ impl Search<'_> {
         (shape, winner)
     }
 
+    /// The split of `group` on `f` ([`Search::split_on`]'s): the lowest power `k` of `f`
+    /// (above the current divisor's) among the monomials holding it, the monomials holding
+    /// `f^k` (pushed on `with`) and the others (on `rest`), each in order.
+    fn c_partition(&self, group: &[u32], f: Factor, with: &mut Part, rest: &mut Part) -> u32 {
+        if let (Some(m), Factor::Sym(s)) = (self.masks(), f) {
+            // A multilinear root's powers are bits, and a candidate is not pulled out yet:
+            // `k` is one, and a monomial holds `f` when it has its bit.
+            debug_assert_eq!(m.div >> s & 1, 0);
+            for &i in group {
+                if m.of[i as usize] >> s & 1 != 0 {
+                    with.push(i);
+                } else {
+                    rest.push(i);
+                }
+            }
+            return 1;
+        }
+        // Each monomial's power of `f` looked up once, for `k` and for the split (twice was a
+        // sixth of the symbolic 6R's cost pass).
+        let mults: SmallVec<[u32; 32]> = self.powers(group.iter().copied(), f);
+        let k = mults.iter().copied().filter(|&n| n > 0).min().unwrap_or(1);
+        for (&i, &n) in group.iter().zip(&mults) {
+            if n >= k {
+                with.push(i);
+            } else {
+                rest.push(i);
+            }
+        }
+        k
+    }
+
     /// [`Search::split_on`]; `None` when its cost is at least `bound` operations.
     fn c_split_on(
         &mut self,
@@ -953,20 +989,9 @@ impl Search<'_> {
         bound: usize,
     ) -> Option<Shape> {
         let fi = self.counts.index(f);
-        // Each monomial's power of `f` looked up once, for `k` and for the split (twice was a
-        // sixth of the symbolic 6R's cost pass).
-        let mults: SmallVec<[u32; 32]> = self.c_mults(group, f);
-        let k = mults.iter().copied().filter(|&n| n > 0).min().unwrap_or(1);
         // On the stack: a split's two parts were two allocations per candidate tried.
-        let mut with = SmallVec::<[u32; 64]>::with_capacity(group.len());
-        let mut rest = SmallVec::<[u32; 64]>::new();
-        for (&i, &n) in group.iter().zip(&mults) {
-            if n >= k {
-                with.push(i);
-            } else {
-                rest.push(i);
-            }
-        }
+        let (mut with, mut rest) = (Part::new(), Part::new());
+        let k = self.c_partition(group, f, &mut with, &mut rest);
         // What the split adds to the cost of the group holding `f` (at least two monomials,
         // so not the number one): `k - 1` for the power and one for the product, or with a
         // rest of `n` monomials `k - 1` and `n` (its additions and the one joining it; the
@@ -1030,9 +1055,13 @@ impl Search<'_> {
         depth: usize,
         bound: usize,
     ) -> Option<Shape> {
+        if self.masks().is_some() {
+            // A multilinear root's powers are 0 and 1: its runs are short.
+            return self.c_split_on(g0, d, f, depth, bound);
+        }
         let fi = self.counts.index(f);
         let base = self.div[fi];
-        let mults: Vec<u32> = self.c_mults(g0, f);
+        let mults: Vec<u32> = self.powers(g0.iter().copied(), f);
         // The distinct powers, 0 among them, in increasing order: marked in a table when the
         // largest is small beside the group (a power's run), sorted otherwise.
         let top = mults.iter().copied().max().unwrap_or(0) as usize;
@@ -1053,8 +1082,6 @@ impl Search<'_> {
         if ks.len() <= super::run::SHORT_RUN {
             return self.c_split_on(g0, d, f, depth, bound);
         }
-        // A multilinear root's powers are 0 and 1: its runs are short.
-        debug_assert!(self.masks().is_none());
         let buckets = Buckets::sorted(&mults, &ks);
         let levels = self.c_levels(g0, d, f, &ks, &buckets);
         if self.spent.is_some() {
