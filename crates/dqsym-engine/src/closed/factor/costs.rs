@@ -459,6 +459,7 @@ impl Tally {
     }
 
     /// Each symbol of `q` counted once more.
+    #[inline]
     fn add(&mut self, q: u64) {
         self.union |= q;
         let (mut carry, mut p) = (q, 0);
@@ -473,6 +474,7 @@ impl Tally {
     }
 
     /// The count of symbol `s`.
+    #[inline]
     fn count(&self, s: u32) -> u32 {
         self.planes[..self.used]
             .iter()
@@ -505,6 +507,7 @@ impl Tally {
         out
     }
 
+    #[inline]
     fn clear(&mut self) {
         self.planes[..self.used].fill(0);
         self.used = 0;
