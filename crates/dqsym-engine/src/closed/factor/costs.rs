@@ -51,7 +51,9 @@
 //! under a tight bound is searched again under a looser one.
 
 use super::run::{most_frequent, Buckets};
-use super::{multiplicity, quotient_syms, Factor, Search, BIG_WORD_UNITS, BRANCH, BRANCH_DEPTH};
+use super::{
+    multiplicity, quotient_syms, Candidates, Factor, Search, BIG_WORD_UNITS, BRANCH, BRANCH_DEPTH,
+};
 use crate::closed::expr::Cost;
 use crate::closed::mon::{FxMap, Mon};
 use crate::scalar::q::gcd_u64;
@@ -112,6 +114,9 @@ enum Cands<'f> {
     Counted,
     Count,
 }
+
+/// A part of a split: monomials by index, on the stack up to a size the 6R's groups keep.
+type Part = SmallVec<[u32; 64]>;
 
 /// No bound: every cost counts.
 const NO_BOUND: usize = usize::MAX;
@@ -272,6 +277,8 @@ struct Steps {
     content: Option<i128>,
 }
 
+/// `e` inside a level's steps (`run::wrap`).
+#[inline]
 fn wrap(e: Shape, steps: Steps) -> Shape {
     let mut e = e;
     if let Some(g) = steps.content {
@@ -325,11 +332,14 @@ impl Costs {
         })
     }
 
-    /// Monomial `i` (`m`) of a group divided by `div`: its coefficient and quotient (its
-    /// symbols and their powers) hashed into `h`, as [`Search::c_value`] and
-    /// [`Search::c_build_at`] hash them, each symbol of the quotient handed to `each`; the
-    /// number of symbols.
-    fn hash_mon(
+    /// Monomial `i` (`m`) of a group divided by `div`, the root not multilinear: its
+    /// coefficient and quotient (its symbols and their powers) hashed into `h`, as
+    /// [`Search::c_value`] and [`Search::c_build_at`] hash them, each symbol of the quotient
+    /// handed to `each`; the number of symbols. Inlined into their loops, which ask once per
+    /// group whether the root is multilinear (asked per monomial, and a call per monomial,
+    /// it was 3% of `(x + y + z)^30`'s report).
+    #[inline(always)]
+    fn hash_listed(
         &self,
         i: u32,
         m: &Mon,
@@ -338,12 +348,6 @@ impl Costs {
         h: &mut FxHasher,
         mut each: impl FnMut(u32),
     ) -> u64 {
-        if let Some(masks) = &self.masks {
-            let q = masks.quotient(i);
-            self.hash_quotient(i, q, h);
-            bits(q).for_each(each);
-            return u64::from(q.count_ones());
-        }
         h.write_i128(self.coef[i as usize]);
         let mut len = 0u64;
         for (s, e) in quotient_syms(m, div, sym_base) {
@@ -357,38 +361,30 @@ impl Costs {
     }
 
     /// Monomial `i` of a multilinear root with quotient `q` hashed into `h`, as
-    /// [`Costs::hash_mon`] hashes it.
+    /// [`Search::c_value`] and [`Search::c_build_at`] hash it.
     fn hash_quotient(&self, i: u32, q: u64, h: &mut FxHasher) {
-        h.write_i128(self.coef[i as usize]);
-        h.write_u64(q);
-        h.write_u8(0xff);
+        hash_quotient(self.coef[i as usize], q, h);
     }
 
     /// [`Search::c_build_at`]'s pass over a multilinear root's group: the quotients hashed
-    /// and their symbols counted, without [`super::Counts::bump`]'s test per symbol (the
-    /// symbols met are the union of the quotients, listed once at the end); the work.
-    fn count_masked(
-        &self,
-        masks: &Masks,
-        group: &[u32],
-        counts: &mut super::Counts,
-        h: &mut FxHasher,
-    ) -> u64 {
-        let base = counts.sym_base;
-        let (mut union, mut work) = (0u64, 0u64);
+    /// and their symbols counted in [`Masks::tally`] (read by [`Search::counted_best`]);
+    /// the work.
+    fn count_masked(&mut self, group: &[u32], h: &mut FxHasher) -> u64 {
+        let Costs {
+            coef, words, masks, ..
+        } = self;
+        let Some(masks) = masks else {
+            return 0;
+        };
+        let (mut ones, mut rest) = (0u32, 0u64);
         for &i in group {
             let q = masks.quotient(i);
-            self.hash_quotient(i, q, h);
-            union |= q;
-            for s in bits(q) {
-                counts.n[base + s as usize] += 1;
-            }
-            work += 1 + u64::from(q.count_ones()) + self.words[i as usize];
+            hash_quotient(coef[i as usize], q, h);
+            masks.tally.add(q);
+            ones += q.count_ones();
+            rest += words[i as usize];
         }
-        counts
-            .touched
-            .extend(bits(union).map(|s| base + s as usize));
-        work
+        group.len() as u64 + u64::from(ones) + rest
     }
 
     /// Whether the monomials are taken as bit sets ([`Masks`]; the tests).
@@ -418,12 +414,105 @@ impl Costs {
 /// factor pulled out of a group is in all its monomials, to the first power), so a quotient is
 /// `mask & !div`: one word hashed and compared where the symbol list was walked and each
 /// power looked up in the divisor (the 6R's cost pass: 72 M instructions to 46 M).
-struct Masks {
+pub(super) struct Masks {
     of: Vec<u64>,
     /// The symbols pulled out of the current group ([`Search::div`]'s symbols), kept with
     /// it by the cost pass ([`Search::c_split_on`]) and set from it where the tree search
     /// hands a group to the pass ([`Search::cost_winner`]).
     div: u64,
+    /// The symbols of the current group's quotients counted, where [`super::Counts`] counts
+    /// those of a root that is not multilinear.
+    tally: Tally,
+}
+
+/// Monomial `q` with coefficient `coef`, hashed into `h`: the low word of the coefficient
+/// is enough for a hash (the memo compares the coefficients in full), and a record of two
+/// words needs no end mark.
+fn hash_quotient(coef: i128, q: u64, h: &mut FxHasher) {
+    h.write_u64(coef as u64);
+    h.write_u64(q);
+}
+
+/// How many symbols each count of a [`Tally`] can reach: `2^PLANES - 1` monomials.
+const PLANES: usize = 32;
+
+/// Counts of the symbols of a group's quotients, bit-sliced: plane `p` holds bit `p` of
+/// every symbol's count, so a quotient is counted by adding its mask with a carry, a few
+/// word operations (each of its symbols was an increment in [`super::Counts`], a fifth of
+/// the symbolic 6R's cost pass), and the most frequent symbols are read from the planes,
+/// top down.
+struct Tally {
+    planes: [u64; PLANES],
+    /// The planes that may be nonzero.
+    used: usize,
+    /// The symbols counted at least once.
+    union: u64,
+}
+
+impl Tally {
+    fn new() -> Tally {
+        Tally {
+            planes: [0; PLANES],
+            used: 0,
+            union: 0,
+        }
+    }
+
+    /// Each symbol of `q` counted once more.
+    #[inline]
+    fn add(&mut self, q: u64) {
+        self.union |= q;
+        let (mut carry, mut p) = (q, 0);
+        while carry != 0 && p < PLANES {
+            let plane = &mut self.planes[p];
+            let next = *plane & carry;
+            *plane ^= carry;
+            carry = next;
+            p += 1;
+        }
+        self.used = self.used.max(p);
+    }
+
+    /// The count of symbol `s`.
+    #[inline]
+    fn count(&self, s: u32) -> u32 {
+        self.planes[..self.used]
+            .iter()
+            .enumerate()
+            .fold(0, |n, (p, plane)| n | (((plane >> s) & 1) as u32) << p)
+    }
+
+    /// [`super::Counts::best`]: the first `k` symbols counted at least twice, most frequent
+    /// first, ties by symbol; the counts are cleared. The symbols of the highest count among
+    /// those left are the ones left at a plane's bit at each plane from the top that has
+    /// any.
+    fn best(&mut self, k: usize) -> Candidates {
+        let mut out = Candidates::new();
+        let mut left = self.union;
+        while out.len() < k && left != 0 {
+            let mut top = left;
+            for plane in self.planes[..self.used].iter().rev() {
+                if top & plane != 0 {
+                    top &= plane;
+                }
+            }
+            if self.count(top.trailing_zeros()) < 2 {
+                break;
+            }
+            let room = k - out.len();
+            out.extend(bits(top).take(room).map(Factor::Sym));
+            left &= !top;
+        }
+        self.clear();
+        out
+    }
+
+    #[inline]
+    fn clear(&mut self) {
+        self.planes[..self.used].fill(0);
+        self.used = 0;
+        self.union = 0;
+    }
 }
 
 impl Masks {
@@ -436,11 +525,15 @@ impl Masks {
                 })
             })
             .collect::<Option<Vec<u64>>>()?;
-        Some(Masks { of, div: 0 })
+        Some(Masks {
+            of,
+            div: 0,
+            tally: Tally::new(),
+        })
     }
 
     /// Monomial `i`'s quotient by the current divisor.
-    fn quotient(&self, i: u32) -> u64 {
+    pub(super) fn quotient(&self, i: u32) -> u64 {
         self.of[i as usize] & !self.div
     }
 }
@@ -477,7 +570,9 @@ fn gcd(g: u128, n: u128) -> u128 {
 }
 
 /// The gcd of `n` over a group whose coefficients `d` divides: it stops at `|d|`, below
-/// which it cannot go.
+/// which it cannot go. Inlined into its callers (called apart it was 2% of
+/// `(x + y + z)^30`'s report).
+#[inline]
 fn gcd_over(d: i128, ns: impl Iterator<Item = i128>, above: u128) -> u128 {
     let floor = d.unsigned_abs();
     let mut g = above;
@@ -517,8 +612,30 @@ impl Search<'_> {
     }
 
     /// The bit sets of a multilinear root ([`Masks`]).
-    fn masks(&self) -> Option<&Masks> {
+    pub(super) fn masks(&self) -> Option<&Masks> {
         self.costs.as_ref()?.masks.as_ref()
+    }
+
+    /// The tally of a multilinear root ([`Masks::tally`]).
+    fn tally(&mut self) -> Option<&mut Tally> {
+        Some(&mut self.costs.as_mut()?.masks.as_mut()?.tally)
+    }
+
+    /// The best `k` factors of the group [`Search::c_build_at`] counted ([`super::Counts::best`]
+    /// or [`Tally::best`]); the counts are cleared.
+    fn counted_best(&mut self, k: usize) -> Candidates {
+        match self.tally() {
+            Some(t) => t.best(k),
+            None => self.counts.best(k),
+        }
+    }
+
+    /// The counts of [`Search::c_build_at`] cleared without reading them.
+    fn clear_counted(&mut self) {
+        match self.tally() {
+            Some(t) => t.clear(),
+            None => self.counts.clear(),
+        }
     }
 
     /// The factors pulled out of the current group, as the memo of costs keys them.
@@ -549,7 +666,7 @@ impl Search<'_> {
 
     /// `f` put in [`Masks::div`] (`on`) or taken out of it, when the root is multilinear;
     /// whether it was.
-    fn mask_div(&mut self, f: Factor, on: bool) -> bool {
+    pub(super) fn mask_div(&mut self, f: Factor, on: bool) -> bool {
         let m = self.costs.as_mut().and_then(|c| c.masks.as_mut());
         match (m, f) {
             (Some(m), Factor::Sym(s)) => {
@@ -567,18 +684,35 @@ impl Search<'_> {
     /// The power of `f` in each monomial of `group` above the current divisor's
     /// ([`multiplicity`]; a bit of the mask for a multilinear root, the choice made once per
     /// group: made per monomial it was 2% of the 6R's report).
-    fn c_mults<C: FromIterator<u32>>(&self, group: &[u32], f: Factor) -> C {
+    pub(super) fn powers<C: FromIterator<u32>>(
+        &self,
+        group: impl Iterator<Item = u32>,
+        f: Factor,
+    ) -> C {
         let base = self.div[self.counts.index(f)];
         match (self.masks(), f) {
             (Some(m), Factor::Sym(s)) => group
-                .iter()
-                .map(|&i| ((m.of[i as usize] >> s) as u32 & 1) - base)
+                .map(|i| ((m.of[i as usize] >> s) as u32 & 1) - base)
                 .collect(),
             _ => group
-                .iter()
-                .map(|&i| multiplicity(&self.root[i as usize], f) - base)
+                .map(|i| multiplicity(&self.root[i as usize], f) - base)
                 .collect(),
         }
+    }
+
+    /// [`Search::candidates`] of a multilinear root's group, counted on its quotients'
+    /// bit sets ([`Tally`]); `None` for another root.
+    pub(super) fn candidates_masked(
+        &mut self,
+        group: impl Iterator<Item = u32>,
+        k: usize,
+    ) -> Option<Candidates> {
+        let m = self.costs.as_mut()?.masks.as_mut()?;
+        for i in group {
+            let q = m.quotient(i);
+            m.tally.add(q);
+        }
+        Some(m.tally.best(k))
     }
 
     /// Whether candidates are cut at the best cost so far (always, but in the tests that
@@ -642,16 +776,16 @@ impl Search<'_> {
         // counts their factors (the candidates), one pass for three.
         let mut work = 0u64;
         let mut h = FxHasher::default();
-        let Some(costs) = self.costs.as_ref() else {
+        let Some(costs) = self.costs.as_mut() else {
             return Some(self.c_plain_sum(group, d));
         };
         let (root, div, counts) = (self.root, &self.div, &mut self.counts);
         let base = counts.sym_base;
-        if let Some(masks) = &costs.masks {
-            work = costs.count_masked(masks, group, counts, &mut h);
+        if costs.masks.is_some() {
+            work = costs.count_masked(group, &mut h);
         } else {
             for &i in group {
-                let len = costs.hash_mon(i, &root[i as usize], div, base, &mut h, |s| {
+                let len = costs.hash_listed(i, &root[i as usize], div, base, &mut h, |s| {
                     counts.bump(base + s as usize);
                 });
                 work += 1 + len + costs.words[i as usize];
@@ -661,19 +795,19 @@ impl Search<'_> {
         debug_assert!(self.masks().is_none_or(|m| m.div == self.div_as_mask()));
         self.charge_work(work);
         if self.spent.is_some() {
-            self.counts.clear();
+            self.clear_counted();
             return Some(self.c_plain_sum(group, d));
         }
         // The negation and the content each add one operation to the group's cost.
         if group.iter().all(|&i| (self.coef(i) < 0) != (d < 0)) {
-            self.counts.clear();
+            self.clear_counted();
             return self
                 .c_build_at(group, -d, depth, bound.saturating_sub(1))
                 .map(Shape::neg);
         }
         let g = gcd_over(d, group.iter().map(|&i| self.coef(i)), 0) / d.unsigned_abs();
         if g != 1 {
-            self.counts.clear();
+            self.clear_counted();
             let inner = self.c_build_at(group, d * g as i128, depth, bound.saturating_sub(1))?;
             return Some(mul(&[Shape::int(g as i128), inner]));
         }
@@ -684,10 +818,18 @@ impl Search<'_> {
     /// The hash of a group's coefficients and quotients, as [`Search::c_build_at`] makes it.
     fn c_value(&self, group: &[u32]) -> u64 {
         let mut h = FxHasher::default();
-        if let Some(costs) = &self.costs {
+        let Some(costs) = &self.costs else {
+            return h.finish();
+        };
+        if let Some(masks) = &costs.masks {
+            for &i in group {
+                costs.hash_quotient(i, masks.quotient(i), &mut h);
+            }
+        } else {
             let base = self.counts.sym_base;
             for &i in group {
-                costs.hash_mon(i, &self.root[i as usize], &self.div, base, &mut h, |_| {});
+                let m = &self.root[i as usize];
+                costs.hash_listed(i, m, &self.div, base, &mut h, |_| {});
             }
         }
         h.finish()
@@ -769,7 +911,7 @@ impl Search<'_> {
             };
             if let Some(found) = found {
                 if matches!(fs, Cands::Counted) {
-                    self.counts.clear();
+                    self.clear_counted();
                 }
                 return found;
             }
@@ -779,7 +921,7 @@ impl Search<'_> {
         let candidates = match fs {
             Cands::Given(fs) => fs,
             Cands::Counted => {
-                counted = self.counts.best(tries);
+                counted = self.counted_best(tries);
                 &counted[..]
             }
             Cands::Count => {
@@ -833,6 +975,37 @@ impl Search<'_> {
         (shape, winner)
     }
 
+    /// The split of `group` on `f` ([`Search::split_on`]'s): the lowest power `k` of `f`
+    /// (above the current divisor's) among the monomials holding it, the monomials holding
+    /// `f^k` (pushed on `with`) and the others (on `rest`), each in order.
+    fn c_partition(&self, group: &[u32], f: Factor, with: &mut Part, rest: &mut Part) -> u32 {
+        if let (Some(m), Factor::Sym(s)) = (self.masks(), f) {
+            // A multilinear root's powers are bits, and a candidate is not pulled out yet:
+            // `k` is one, and a monomial holds `f` when it has its bit.
+            debug_assert_eq!(m.div >> s & 1, 0);
+            for &i in group {
+                if m.of[i as usize] >> s & 1 != 0 {
+                    with.push(i);
+                } else {
+                    rest.push(i);
+                }
+            }
+            return 1;
+        }
+        // Each monomial's power of `f` looked up once, for `k` and for the split (twice was a
+        // sixth of the symbolic 6R's cost pass).
+        let mults: SmallVec<[u32; 32]> = self.powers(group.iter().copied(), f);
+        let k = mults.iter().copied().filter(|&n| n > 0).min().unwrap_or(1);
+        for (&i, &n) in group.iter().zip(&mults) {
+            if n >= k {
+                with.push(i);
+            } else {
+                rest.push(i);
+            }
+        }
+        k
+    }
+
     /// [`Search::split_on`]; `None` when its cost is at least `bound` operations.
     fn c_split_on(
         &mut self,
@@ -843,20 +1016,9 @@ impl Search<'_> {
         bound: usize,
     ) -> Option<Shape> {
         let fi = self.counts.index(f);
-        // Each monomial's power of `f` looked up once, for `k` and for the split (twice was a
-        // sixth of the symbolic 6R's cost pass).
-        let mults: SmallVec<[u32; 32]> = self.c_mults(group, f);
-        let k = mults.iter().copied().filter(|&n| n > 0).min().unwrap_or(1);
         // On the stack: a split's two parts were two allocations per candidate tried.
-        let mut with = SmallVec::<[u32; 64]>::with_capacity(group.len());
-        let mut rest = SmallVec::<[u32; 64]>::new();
-        for (&i, &n) in group.iter().zip(&mults) {
-            if n >= k {
-                with.push(i);
-            } else {
-                rest.push(i);
-            }
-        }
+        let (mut with, mut rest) = (Part::with_capacity(group.len()), Part::new());
+        let k = self.c_partition(group, f, &mut with, &mut rest);
         // What the split adds to the cost of the group holding `f` (at least two monomials,
         // so not the number one): `k - 1` for the power and one for the product, or with a
         // rest of `n` monomials `k - 1` and `n` (its additions and the one joining it; the
@@ -920,9 +1082,13 @@ impl Search<'_> {
         depth: usize,
         bound: usize,
     ) -> Option<Shape> {
+        if self.masks().is_some() {
+            // A multilinear root's powers are 0 and 1: its runs are short.
+            return self.c_split_on(g0, d, f, depth, bound);
+        }
         let fi = self.counts.index(f);
         let base = self.div[fi];
-        let mults: Vec<u32> = self.c_mults(g0, f);
+        let mults: Vec<u32> = self.powers(g0.iter().copied(), f);
         // The distinct powers, 0 among them, in increasing order: marked in a table when the
         // largest is small beside the group (a power's run), sorted otherwise.
         let top = mults.iter().copied().max().unwrap_or(0) as usize;
@@ -943,8 +1109,6 @@ impl Search<'_> {
         if ks.len() <= super::run::SHORT_RUN {
             return self.c_split_on(g0, d, f, depth, bound);
         }
-        // A multilinear root's powers are 0 and 1: its runs are short.
-        debug_assert!(self.masks().is_none());
         let buckets = Buckets::sorted(&mults, &ks);
         let levels = self.c_levels(g0, d, f, &ks, &buckets);
         if self.spent.is_some() {
@@ -1095,5 +1259,46 @@ fn c_q(n: i128) -> Q {
     match i64::try_from(n) {
         Ok(s) if s != i64::MIN => Q::S(s, 1),
         _ => Q::big(num_rational::BigRational::from_integer(n.into())),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The bit-sliced counts agree with counts kept one symbol at a time, and the best `k`
+    /// with those counts sorted (most frequent first, ties by symbol, at least two), over
+    /// random groups of sparse and dense masks, small and past a plane's carry.
+    #[test]
+    fn a_tally_counts_and_ranks_as_counting_each_symbol() {
+        let mut next = crate::testing::xorshift_below(0x9e37_79b9_7f4a_7c15);
+        let mut tally = Tally::new();
+        for round in 0..200 {
+            let n = 1 + next(if round % 10 == 0 { 300 } else { 12 }) as usize;
+            let mut counts = [0u32; 64];
+            for _ in 0..n {
+                let mut q = 0u64;
+                for _ in 0..next(if round % 2 == 0 { 4 } else { 40 }) {
+                    q |= 1 << next(64);
+                }
+                tally.add(q);
+                for s in bits(q) {
+                    counts[s as usize] += 1;
+                }
+            }
+            for s in 0..64 {
+                assert_eq!(
+                    tally.count(s),
+                    counts[s as usize],
+                    "round {round}, symbol {s}"
+                );
+            }
+            let mut ranked: Vec<u32> = (0..64).filter(|&s| counts[s as usize] >= 2).collect();
+            ranked.sort_by_key(|&s| (std::cmp::Reverse(counts[s as usize]), s));
+            let k = next(5) as usize;
+            let want: Vec<Factor> = ranked.into_iter().take(k).map(Factor::Sym).collect();
+            assert_eq!(tally.best(k).to_vec(), want, "round {round}, k {k}");
+            assert_eq!((tally.used, tally.union), (0, 0), "cleared");
+        }
     }
 }

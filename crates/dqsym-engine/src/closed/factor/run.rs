@@ -54,6 +54,10 @@ impl Search<'_> {
     /// `f` on `f` again while `f` stays its most frequent factor; equal to
     /// [`Search::split_on`] followed by [`Search::build_at`] on each group it makes.
     pub(super) fn run(&mut self, g0: &[(u32, Q)], f: Factor, depth: usize) -> E {
+        if self.masks().is_some() {
+            // A multilinear root's powers are 0 and 1: its runs are short.
+            return self.split_on(g0, f, depth);
+        }
         let fi = self.counts.index(f);
         let base = self.div[fi];
         let (ks, buckets) = self.buckets(g0, f, base);
