@@ -261,42 +261,57 @@ fn expanded_entries(
     // made either (the 4R's other ten). Neither order changes what is decided: the sum only
     // grows.
     let text = PoseText::default();
-    let mut t_forms: Vec<Option<PoseForm>> = (0..12).map(|_| None).collect();
-    let mut seen = |i: usize, j: usize, x: &Scalar| {
-        if i == 3 || x.len() < EARLY_FORM_TERMS {
-            return true;
-        }
-        let f = closed_form(x);
-        text.add(&f);
-        t_forms[4 * i + j] = Some((f, None));
-        !text.exceeded()
-    };
     let stop = AtomicBool::new(false);
+    // The matrix product, with the closed forms of its large entries found as it makes them.
+    let product = |factors| {
+        let mut t_forms: Vec<Option<PoseForm>> = (0..12).map(|_| None).collect();
+        let mut seen = |i: usize, j: usize, x: &Scalar| {
+            if i == 3 || x.len() < EARLY_FORM_TERMS {
+                return true;
+            }
+            let f = closed_form(x);
+            text.add(&f);
+            t_forms[4 * i + j] = Some((f, None));
+            !text.exceeded()
+        };
+        let m = robot.forward_matrix_until(factors, o.max_terms, &stop, &mut seen)?;
+        Some((m, t_forms))
+    };
+    // The closed forms of the matrix's other entries (`pose_forms` is a `par_map`).
+    let matrix_forms = |(m, found): (crate::Matrix4<Scalar>, Vec<Option<PoseForm>>)| {
+        let forms = pose_forms(&matrix_cells(&m), found, &text, |x| (closed_form(x), None));
+        if text.exceeded() {
+            stop.store(true, Ordering::Relaxed);
+        }
+        (m, forms)
+    };
+    let dq_product = |joints| {
+        if text.exceeded() {
+            return None;
+        }
+        robot.forward_within_until(joints, o.max_terms, &stop)
+    };
     // The DQ product on the helper while this thread begins the matrix's closed forms; the
-    // helper takes the closed forms left once the product is done (`pose_forms` is a
-    // `par_map`). Before, the product (2.6 M instructions of the PUMA 560's 36 M, 1.7 M of it
-    // the product of its two halves) ran alone between two parallel stages. It is not begun
-    // once the matrix's text is past the limit (one thread: the closed forms come first, as
-    // before), and stops between two factors once it is. It is not made beside the matrix
-    // product: a matrix abandoned for its size (a fully symbolic 6R) would leave the DQ
-    // product's work thrown away (two threads: 202 M instructions instead of 188 M).
-    let m = robot.forward_matrix_until(&joints, o.max_terms, &stop, &mut seen)?;
-    let cells = matrix_cells(&m);
-    let (t_forms, q) = join(
-        || {
-            let forms = pose_forms(&cells, t_forms, &text, |x| (closed_form(x), None));
-            if text.exceeded() {
-                stop.store(true, Ordering::Relaxed);
-            }
-            forms
-        },
-        || {
-            if text.exceeded() {
-                return None;
-            }
-            robot.forward_within_until(joints, o.max_terms, &stop)
-        },
-    );
+    // helper takes the closed forms left once the product is done. Before, the product (2.6 M
+    // instructions of the PUMA 560's 36 M, 1.7 M of it the product of its two halves) ran
+    // alone between two parallel stages. It is not begun once the matrix's text is past the
+    // limit (one thread: the closed forms come first, as before), and stops between two
+    // factors once it is. It is not made beside the matrix product: a matrix abandoned for its
+    // size (a fully symbolic 6R) would leave the DQ product's work thrown away (two threads:
+    // 202 M instructions instead of 188 M). Unless the matrix stays small
+    // (`FactorMatrices::small`: neither its size nor the text of its entries' closed forms
+    // abandons it, as on the PUMA 560): then the DQ product is begun beside the matrix
+    // product, which ran alone while the helper waited (PUMA 560 `fk --jacobian`, SCHED_FIFO
+    // runs: wall minimum 4.31 -> 4.26 ms, median 4.54 -> 4.49 ms).
+    let factors = robot.factor_matrices(&joints, EARLY_FORM_TERMS.min(o.max_terms));
+    let (matrix, q) = if factors.small() {
+        join(|| product(factors).map(matrix_forms), || dq_product(joints))
+    } else {
+        let made = product(factors)?;
+        let (matrix, q) = join(|| matrix_forms(made), || dq_product(joints));
+        (Some(matrix), q)
+    };
+    let (m, t_forms) = matrix?;
     if text.exceeded() {
         return None;
     }
