@@ -98,18 +98,33 @@ pub enum ReportError {
 /// `NAME = EXPR` with these additional names, and the code formats compute the recurrence as
 /// straight-line code, its entries as locals.
 pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
+    fk_report_and_entries(robot, o).map(|(text, _)| text)
+}
+
+/// [`fk_report`], and the entries it printed: for a caller that ends right after printing
+/// and need not drop them (the `dqsym` binary: dropping the PUMA 560's entries, many of them
+/// made on the helper thread and freed across threads, took ~0.1 ms of its `fk --jacobian`).
+///
+/// # Errors
+/// As [`fk_report`].
+pub fn fk_report_and_entries(
+    robot: &Robot,
+    o: &FkOptions,
+) -> Result<(String, FkEntries), ReportError> {
     // The joint factors once, for the expansions and the header's parameters.
     let joints = robot.joint_dqs();
     let params = robot.parameters_of(&joints);
     let entries = entries_of(robot, joints, o)?;
-    if !entries.recurrence {
-        return render(robot, &params, &entries.sections, o, &[]);
-    }
-    let notes = [format!(
-        "the expanded pose exceeds {} terms per entry: it is given exactly, as a recurrence over the joint factors (entry X[k] is the symbol X_k of later entries)",
-        o.max_terms
-    )];
-    render(robot, &params, &entries.sections, o, &notes)
+    let text = if entries.recurrence {
+        let notes = [format!(
+            "the expanded pose exceeds {} terms per entry: it is given exactly, as a recurrence over the joint factors (entry X[k] is the symbol X_k of later entries)",
+            o.max_terms
+        )];
+        render(robot, &params, &entries.sections, o, &notes)?
+    } else {
+        render(robot, &params, &entries.sections, o, &[])?
+    };
+    Ok((text, entries))
 }
 
 /// The operation counts of the code [`fk_report`] generates for `robot` (`dqsym ops ROBOT`):
