@@ -370,7 +370,9 @@ fn expanded_entries(
     // The pose's rows are rows of the report as they stand: when their text alone is past
     // `MAX_EXPANDED_TEXT`, the report is the recurrence whatever the Jacobian and the point
     // add, so their closed forms (most of the work on a fully symbolic chain) are never made.
-    if pose_text_exceeds(&dq_forms, &t_forms, &common) {
+    if !text.all_within(dq_forms.len() + t_forms.len())
+        && pose_text_exceeds(&dq_forms, &t_forms, &common)
+    {
         return None;
     }
     Some(
@@ -440,6 +442,8 @@ struct PoseText {
     bound: AtomicUsize,
     /// The exact length of the entries printed: a lower bound of the text of those counted.
     bytes: AtomicUsize,
+    /// The number of entries counted.
+    counted: AtomicUsize,
 }
 
 impl PoseText {
@@ -448,6 +452,7 @@ impl PoseText {
         if !CommonOffsets::fixes(e) {
             return;
         }
+        self.counted.fetch_add(1, Ordering::Relaxed);
         // Printed only once the bounds say the text may be past the limit: the PUMA's pose
         // is never printed here.
         let bound = plain_len_bound(e);
@@ -463,6 +468,15 @@ impl PoseText {
 
     fn exceeded(&self) -> bool {
         self.bytes.load(Ordering::Relaxed) > MAX_EXPANDED_TEXT
+    }
+
+    /// Whether all `n` entries of the pose were counted (none an error, every one's text final
+    /// before the report's offsets are chosen) and the sum of their bounds is within
+    /// [`MAX_EXPANDED_TEXT`]: then [`pose_text_exceeds`] is false, and is not asked (it clones
+    /// and bounds every entry again; the PUMA 560's).
+    fn all_within(&self, n: usize) -> bool {
+        self.counted.load(Ordering::Relaxed) == n
+            && self.bound.load(Ordering::Relaxed) <= MAX_EXPANDED_TEXT
     }
 }
 
