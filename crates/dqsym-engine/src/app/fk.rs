@@ -199,9 +199,6 @@ fn entries_of(
             | ScalarError::Budget { .. },
         )))
         | None => recurrence_entries(robot, o),
-        Some(Ok(sections)) if text_exceeds(&sections, MAX_EXPANDED_TEXT) => {
-            recurrence_entries(robot, o)
-        }
         Some(r) => r.map(|sections| FkEntries {
             sections,
             recurrence: false,
@@ -370,26 +367,34 @@ fn expanded_entries(
     // The pose's rows are rows of the report as they stand: when their text alone is past
     // `MAX_EXPANDED_TEXT`, the report is the recurrence whatever the Jacobian and the point
     // add, so their closed forms (most of the work on a fully symbolic chain) are never made.
-    if !text.all_within(dq_forms.len() + t_forms.len())
-        && pose_text_exceeds(&dq_forms, &t_forms, &common)
-    {
+    let pose_entries = dq_forms.len() + t_forms.len();
+    if !text.all_within(pose_entries, 0) && pose_text_exceeds(&dq_forms, &t_forms, &common) {
         return None;
     }
-    Some(
-        expanded_sections(&q, &vars, img, jac, dq_forms, prepared, t_forms, m).map(|sections| {
-            sections
+    let (sections, rest_bound) =
+        match expanded_sections(&q, &vars, img, jac, dq_forms, prepared, t_forms, m) {
+            Ok(made) => made,
+            Err(e) => return Some(Err(e)),
+        };
+    let sections: Sections = sections
+        .into_iter()
+        .map(|s| Section {
+            kind: s.kind,
+            rows: s
+                .rows
                 .into_iter()
-                .map(|s| Section {
-                    kind: s.kind,
-                    rows: s
-                        .rows
-                        .into_iter()
-                        .map(|(n, e)| (n, common.apply(e)))
-                        .collect(),
-                })
-                .collect()
-        }),
-    )
+                .map(|(n, e)| (n, common.apply(e)))
+                .collect(),
+        })
+        .collect();
+    // A report longer than `MAX_EXPANDED_TEXT` is the recurrence. When every row is final
+    // before the offsets were chosen, the sum of the bounds found with the closed forms
+    // (in parallel) says so, or not, without bounding every row again.
+    let within = rest_bound.is_some_and(|more| text.all_within(pose_entries, more));
+    if !within && text_exceeds(&sections, MAX_EXPANDED_TEXT) {
+        return None;
+    }
+    Some(Ok(sections))
 }
 
 /// A pose entry's closed form (and, for a DQ component, its prepared form).
@@ -448,14 +453,12 @@ struct PoseText {
 
 impl PoseText {
     fn add(&self, e: &Result<Expr, ScalarError>) {
-        let Ok(e) = e else { return };
-        if !CommonOffsets::fixes(e) {
+        let (Some(bound), Ok(e)) = (final_bound(e), e) else {
             return;
-        }
+        };
         self.counted.fetch_add(1, Ordering::Relaxed);
         // Printed only once the bounds say the text may be past the limit: the PUMA's pose
         // is never printed here.
-        let bound = plain_len_bound(e);
         if self.bound.fetch_add(bound, Ordering::Relaxed) + bound <= MAX_EXPANDED_TEXT {
             return;
         }
@@ -471,12 +474,13 @@ impl PoseText {
     }
 
     /// Whether all `n` entries of the pose were counted (none an error, every one's text final
-    /// before the report's offsets are chosen) and the sum of their bounds is within
-    /// [`MAX_EXPANDED_TEXT`]: then [`pose_text_exceeds`] is false, and is not asked (it clones
-    /// and bounds every entry again; the PUMA 560's).
-    fn all_within(&self, n: usize) -> bool {
+    /// before the report's offsets are chosen) and the sum of their bounds and `more` is
+    /// within [`MAX_EXPANDED_TEXT`]: then [`pose_text_exceeds`] (`more` 0), or
+    /// [`text_exceeds`] of the report whose other rows' bounds sum to `more`, is false, and is
+    /// not asked (it clones or bounds every entry again; the PUMA 560's).
+    fn all_within(&self, n: usize, more: usize) -> bool {
         self.counted.load(Ordering::Relaxed) == n
-            && self.bound.load(Ordering::Relaxed) <= MAX_EXPANDED_TEXT
+            && self.bound.load(Ordering::Relaxed).saturating_add(more) <= MAX_EXPANDED_TEXT
     }
 }
 
@@ -525,7 +529,8 @@ pub fn in_decimals(robot: &Robot, sections: &mut [Section]) {
 
 /// The report from the expanded DQ and matrix and their closed forms. `img` is the point's
 /// image (when the report has a point) and `jac` the Jacobian of `q` in `vars` (when it has
-/// one).
+/// one). With it, the sum of [`final_bound`] over the rows after the pose's, when every one
+/// has one.
 #[allow(clippy::too_many_arguments)]
 fn expanded_sections(
     q: &DualQuat<Scalar>,
@@ -536,7 +541,7 @@ fn expanded_sections(
     prepared: Vec<crate::closed::Prepared>,
     t_forms: Vec<Result<Expr, ScalarError>>,
     m: crate::Matrix4<Scalar>,
-) -> Result<Sections, ReportError> {
+) -> Result<(Sections, Option<usize>), ReportError> {
     let comps = q.components();
     let cells = matrix_cells(&m);
     // Each entry with, for a Jacobian entry, the DQ component it is the derivative of and the
@@ -585,10 +590,19 @@ fn expanded_sections(
     // may wait for the other, are small ones.
     let mut order: Vec<usize> = (0..distinct.len()).collect();
     order.sort_by_key(|&k| std::cmp::Reverse(distinct[k].0.len()));
-    let made = par_map(&order, |&k| match distinct[k] {
-        (x, Some((i, var))) => closed_form_of_derivative(&prepared[i], var, x),
-        (x, None) => closed_form(x),
+    let made = par_map(&order, |&k| {
+        let form = match distinct[k] {
+            (x, Some((i, var))) => closed_form_of_derivative(&prepared[i], var, x),
+            (x, None) => closed_form(x),
+        };
+        let bound = final_bound(&form);
+        (form, bound)
     });
+    let (made, bounds_made): (Vec<_>, Vec<_>) = made.into_iter().unzip();
+    let mut bounds = vec![None; bounds_made.len()];
+    for (&k, b) in order.iter().zip(bounds_made) {
+        bounds[k] = b;
+    }
     let mut by_entry: Vec<(usize, Result<Expr, ScalarError>)> =
         order.into_iter().zip(made).collect();
     by_entry.sort_unstable_by_key(|(k, _)| *k);
@@ -609,6 +623,14 @@ fn expanded_sections(
     for &i in sources.iter().filter_map(|s| s.as_ref().err()) {
         uses[i] += 1;
     }
+    // The bound of the rows' text, when every row's is final (see `final_bound`).
+    let rest_bound: Option<usize> = sources
+        .iter()
+        .map(|source| match source {
+            Ok(e) => final_bound(e),
+            Err(i) => bounds[*i],
+        })
+        .sum();
     let rest_forms: Vec<Result<Expr, ScalarError>> = sources
         .into_iter()
         .map(|source| match source {
@@ -659,7 +681,16 @@ fn expanded_sections(
             s.rows.push(row);
         }
     }
-    Ok(sections)
+    Ok((sections, rest_bound))
+}
+
+/// [`plain_len_bound`] of a closed form whose text is final before the report's offsets are
+/// chosen ([`CommonOffsets::fixes`]); `None` for an error or another form.
+fn final_bound(e: &Result<Expr, ScalarError>) -> Option<usize> {
+    e.as_ref()
+        .ok()
+        .filter(|e| CommonOffsets::fixes(e))
+        .map(plain_len_bound)
 }
 
 /// Rows 0..2 of a matrix, row by row.
