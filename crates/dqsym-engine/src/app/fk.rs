@@ -98,18 +98,33 @@ pub enum ReportError {
 /// `NAME = EXPR` with these additional names, and the code formats compute the recurrence as
 /// straight-line code, its entries as locals.
 pub fn fk_report(robot: &Robot, o: &FkOptions) -> Result<String, ReportError> {
+    fk_report_and_entries(robot, o).map(|(text, _)| text)
+}
+
+/// [`fk_report`], and the entries it printed: for a caller that ends right after printing
+/// and need not drop them (the `dqsym` binary: dropping the PUMA 560's entries, many of them
+/// made on the helper thread and freed across threads, took ~0.1 ms of its `fk --jacobian`).
+///
+/// # Errors
+/// As [`fk_report`].
+pub fn fk_report_and_entries(
+    robot: &Robot,
+    o: &FkOptions,
+) -> Result<(String, FkEntries), ReportError> {
     // The joint factors once, for the expansions and the header's parameters.
     let joints = robot.joint_dqs();
     let params = robot.parameters_of(&joints);
     let entries = entries_of(robot, joints, o)?;
-    if !entries.recurrence {
-        return render(robot, &params, &entries.sections, o, &[]);
-    }
-    let notes = [format!(
-        "the expanded pose exceeds {} terms per entry: it is given exactly, as a recurrence over the joint factors (entry X[k] is the symbol X_k of later entries)",
-        o.max_terms
-    )];
-    render(robot, &params, &entries.sections, o, &notes)
+    let text = if entries.recurrence {
+        let notes = [format!(
+            "the expanded pose exceeds {} terms per entry: it is given exactly, as a recurrence over the joint factors (entry X[k] is the symbol X_k of later entries)",
+            o.max_terms
+        )];
+        render(robot, &params, &entries.sections, o, &notes)?
+    } else {
+        render(robot, &params, &entries.sections, o, &[])?
+    };
+    Ok((text, entries))
 }
 
 /// The operation counts of the code [`fk_report`] generates for `robot` (`dqsym ops ROBOT`):
@@ -184,9 +199,6 @@ fn entries_of(
             | ScalarError::Budget { .. },
         )))
         | None => recurrence_entries(robot, o),
-        Some(Ok(sections)) if text_exceeds(&sections, MAX_EXPANDED_TEXT) => {
-            recurrence_entries(robot, o)
-        }
         Some(r) => r.map(|sections| FkEntries {
             sections,
             recurrence: false,
@@ -261,42 +273,57 @@ fn expanded_entries(
     // made either (the 4R's other ten). Neither order changes what is decided: the sum only
     // grows.
     let text = PoseText::default();
-    let mut t_forms: Vec<Option<PoseForm>> = (0..12).map(|_| None).collect();
-    let mut seen = |i: usize, j: usize, x: &Scalar| {
-        if i == 3 || x.len() < EARLY_FORM_TERMS {
-            return true;
-        }
-        let f = closed_form(x);
-        text.add(&f);
-        t_forms[4 * i + j] = Some((f, None));
-        !text.exceeded()
-    };
     let stop = AtomicBool::new(false);
+    // The matrix product, with the closed forms of its large entries found as it makes them.
+    let product = |factors| {
+        let mut t_forms: Vec<Option<PoseForm>> = (0..12).map(|_| None).collect();
+        let mut seen = |i: usize, j: usize, x: &Scalar| {
+            if i == 3 || x.len() < EARLY_FORM_TERMS {
+                return true;
+            }
+            let f = closed_form(x);
+            text.add(&f);
+            t_forms[4 * i + j] = Some((f, None));
+            !text.exceeded()
+        };
+        let m = robot.forward_matrix_until(factors, o.max_terms, &stop, &mut seen)?;
+        Some((m, t_forms))
+    };
+    // The closed forms of the matrix's other entries (`pose_forms` is a `par_map`).
+    let matrix_forms = |(m, found): (crate::Matrix4<Scalar>, Vec<Option<PoseForm>>)| {
+        let forms = pose_forms(&matrix_cells(&m), found, &text, |x| (closed_form(x), None));
+        if text.exceeded() {
+            stop.store(true, Ordering::Relaxed);
+        }
+        (m, forms)
+    };
+    let dq_product = |joints| {
+        if text.exceeded() {
+            return None;
+        }
+        robot.forward_within_until(joints, o.max_terms, &stop)
+    };
     // The DQ product on the helper while this thread begins the matrix's closed forms; the
-    // helper takes the closed forms left once the product is done (`pose_forms` is a
-    // `par_map`). Before, the product (2.6 M instructions of the PUMA 560's 36 M, 1.7 M of it
-    // the product of its two halves) ran alone between two parallel stages. It is not begun
-    // once the matrix's text is past the limit (one thread: the closed forms come first, as
-    // before), and stops between two factors once it is. It is not made beside the matrix
-    // product: a matrix abandoned for its size (a fully symbolic 6R) would leave the DQ
-    // product's work thrown away (two threads: 202 M instructions instead of 188 M).
-    let m = robot.forward_matrix_until(&joints, o.max_terms, &stop, &mut seen)?;
-    let cells = matrix_cells(&m);
-    let (t_forms, q) = join(
-        || {
-            let forms = pose_forms(&cells, t_forms, &text, |x| (closed_form(x), None));
-            if text.exceeded() {
-                stop.store(true, Ordering::Relaxed);
-            }
-            forms
-        },
-        || {
-            if text.exceeded() {
-                return None;
-            }
-            robot.forward_within_until(joints, o.max_terms, &stop)
-        },
-    );
+    // helper takes the closed forms left once the product is done. Before, the product (2.6 M
+    // instructions of the PUMA 560's 36 M, 1.7 M of it the product of its two halves) ran
+    // alone between two parallel stages. It is not begun once the matrix's text is past the
+    // limit (one thread: the closed forms come first, as before), and stops between two
+    // factors once it is. It is not made beside the matrix product: a matrix abandoned for its
+    // size (a fully symbolic 6R) would leave the DQ product's work thrown away (two threads:
+    // 202 M instructions instead of 188 M). Unless the matrix stays small
+    // (`FactorMatrices::small`: neither its size nor the text of its entries' closed forms
+    // abandons it, as on the PUMA 560): then the DQ product is begun beside the matrix
+    // product, which ran alone while the helper waited (PUMA 560 `fk --jacobian`, SCHED_FIFO
+    // runs: wall minimum 4.31 -> 4.26 ms, median 4.54 -> 4.49 ms).
+    let factors = robot.factor_matrices(&joints, EARLY_FORM_TERMS.min(o.max_terms));
+    let (matrix, q) = if factors.small() {
+        join(|| product(factors).map(matrix_forms), || dq_product(joints))
+    } else {
+        let made = product(factors)?;
+        let (matrix, q) = join(|| matrix_forms(made), || dq_product(joints));
+        (Some(matrix), q)
+    };
+    let (m, t_forms) = matrix?;
     if text.exceeded() {
         return None;
     }
@@ -340,24 +367,34 @@ fn expanded_entries(
     // The pose's rows are rows of the report as they stand: when their text alone is past
     // `MAX_EXPANDED_TEXT`, the report is the recurrence whatever the Jacobian and the point
     // add, so their closed forms (most of the work on a fully symbolic chain) are never made.
-    if pose_text_exceeds(&dq_forms, &t_forms, &common) {
+    let pose_entries = dq_forms.len() + t_forms.len();
+    if !text.all_within(pose_entries, 0) && pose_text_exceeds(&dq_forms, &t_forms, &common) {
         return None;
     }
-    Some(
-        expanded_sections(&q, &vars, img, jac, dq_forms, prepared, t_forms, m).map(|sections| {
-            sections
+    let (sections, rest_bound) =
+        match expanded_sections(&q, &vars, img, jac, dq_forms, prepared, t_forms, m) {
+            Ok(made) => made,
+            Err(e) => return Some(Err(e)),
+        };
+    let sections: Sections = sections
+        .into_iter()
+        .map(|s| Section {
+            kind: s.kind,
+            rows: s
+                .rows
                 .into_iter()
-                .map(|s| Section {
-                    kind: s.kind,
-                    rows: s
-                        .rows
-                        .into_iter()
-                        .map(|(n, e)| (n, common.apply(e)))
-                        .collect(),
-                })
-                .collect()
-        }),
-    )
+                .map(|(n, e)| (n, common.apply(e)))
+                .collect(),
+        })
+        .collect();
+    // A report longer than `MAX_EXPANDED_TEXT` is the recurrence. When every row is final
+    // before the offsets were chosen, the sum of the bounds found with the closed forms
+    // (in parallel) says so, or not, without bounding every row again.
+    let within = rest_bound.is_some_and(|more| text.all_within(pose_entries, more));
+    if !within && text_exceeds(&sections, MAX_EXPANDED_TEXT) {
+        return None;
+    }
+    Some(Ok(sections))
 }
 
 /// A pose entry's closed form (and, for a DQ component, its prepared form).
@@ -410,17 +447,18 @@ struct PoseText {
     bound: AtomicUsize,
     /// The exact length of the entries printed: a lower bound of the text of those counted.
     bytes: AtomicUsize,
+    /// The number of entries counted.
+    counted: AtomicUsize,
 }
 
 impl PoseText {
     fn add(&self, e: &Result<Expr, ScalarError>) {
-        let Ok(e) = e else { return };
-        if !CommonOffsets::fixes(e) {
+        let (Some(bound), Ok(e)) = (final_bound(e), e) else {
             return;
-        }
+        };
+        self.counted.fetch_add(1, Ordering::Relaxed);
         // Printed only once the bounds say the text may be past the limit: the PUMA's pose
         // is never printed here.
-        let bound = plain_len_bound(e);
         if self.bound.fetch_add(bound, Ordering::Relaxed) + bound <= MAX_EXPANDED_TEXT {
             return;
         }
@@ -433,6 +471,16 @@ impl PoseText {
 
     fn exceeded(&self) -> bool {
         self.bytes.load(Ordering::Relaxed) > MAX_EXPANDED_TEXT
+    }
+
+    /// Whether all `n` entries of the pose were counted (none an error, every one's text final
+    /// before the report's offsets are chosen) and the sum of their bounds and `more` is
+    /// within [`MAX_EXPANDED_TEXT`]: then [`pose_text_exceeds`] (`more` 0), or
+    /// [`text_exceeds`] of the report whose other rows' bounds sum to `more`, is false, and is
+    /// not asked (it clones or bounds every entry again; the PUMA 560's).
+    fn all_within(&self, n: usize, more: usize) -> bool {
+        self.counted.load(Ordering::Relaxed) == n
+            && self.bound.load(Ordering::Relaxed).saturating_add(more) <= MAX_EXPANDED_TEXT
     }
 }
 
@@ -481,7 +529,8 @@ pub fn in_decimals(robot: &Robot, sections: &mut [Section]) {
 
 /// The report from the expanded DQ and matrix and their closed forms. `img` is the point's
 /// image (when the report has a point) and `jac` the Jacobian of `q` in `vars` (when it has
-/// one).
+/// one). With it, the sum of [`final_bound`] over the rows after the pose's, when every one
+/// has one.
 #[allow(clippy::too_many_arguments)]
 fn expanded_sections(
     q: &DualQuat<Scalar>,
@@ -492,7 +541,7 @@ fn expanded_sections(
     prepared: Vec<crate::closed::Prepared>,
     t_forms: Vec<Result<Expr, ScalarError>>,
     m: crate::Matrix4<Scalar>,
-) -> Result<Sections, ReportError> {
+) -> Result<(Sections, Option<usize>), ReportError> {
     let comps = q.components();
     let cells = matrix_cells(&m);
     // Each entry with, for a Jacobian entry, the DQ component it is the derivative of and the
@@ -541,40 +590,82 @@ fn expanded_sections(
     // may wait for the other, are small ones.
     let mut order: Vec<usize> = (0..distinct.len()).collect();
     order.sort_by_key(|&k| std::cmp::Reverse(distinct[k].0.len()));
-    let made = par_map(&order, |&k| match distinct[k] {
-        (x, Some((i, var))) => closed_form_of_derivative(&prepared[i], var, x),
-        (x, None) => closed_form(x),
+    let made = par_map(&order, |&k| {
+        let form = match distinct[k] {
+            (x, Some((i, var))) => closed_form_of_derivative(&prepared[i], var, x),
+            (x, None) => closed_form(x),
+        };
+        let bound = final_bound(&form);
+        (form, bound)
     });
+    let (made, bounds_made): (Vec<_>, Vec<_>) = made.into_iter().unzip();
+    let mut bounds = vec![None; bounds_made.len()];
+    for (&k, b) in order.iter().zip(bounds_made) {
+        bounds[k] = b;
+    }
     let mut by_entry: Vec<(usize, Result<Expr, ScalarError>)> =
         order.into_iter().zip(made).collect();
     by_entry.sort_unstable_by_key(|(k, _)| *k);
-    let forms: Vec<Result<Expr, ScalarError>> = by_entry.into_iter().map(|(_, f)| f).collect();
-    let form_of = |x: &Scalar| -> Result<Expr, ScalarError> {
-        let key = SampledKey(x);
-        match known.get(&key) {
-            Some(e) => (*e).clone(),
-            None => forms[index[&key]].clone(),
-        }
-    };
+    let mut forms: Vec<Option<Result<Expr, ScalarError>>> =
+        by_entry.into_iter().map(|(_, f)| Some(f)).collect();
+    // Each row's form: a pose entry's, or a distinct entry's, moved into its last row and
+    // cloned into the others. The pose's own rows take its forms after these, moved too
+    // (cloning the PUMA 560's 68 rows and dropping the originals took ~0.1 ms after the last
+    // parallel stage).
+    let sources: Vec<Result<&Result<Expr, ScalarError>, usize>> = rest
+        .iter()
+        .map(|(_, x, _)| {
+            let key = SampledKey(x);
+            known.get(&key).copied().ok_or_else(|| index[&key])
+        })
+        .collect();
+    let mut uses = vec![0usize; forms.len()];
+    for &i in sources.iter().filter_map(|s| s.as_ref().err()) {
+        uses[i] += 1;
+    }
+    // The bound of the rows' text, when every row's is final (see `final_bound`).
+    let rest_bound: Option<usize> = sources
+        .iter()
+        .map(|source| match source {
+            Ok(e) => final_bound(e),
+            Err(i) => bounds[*i],
+        })
+        .sum();
+    let rest_forms: Vec<Result<Expr, ScalarError>> = sources
+        .into_iter()
+        .map(|source| match source {
+            Ok(e) => e.clone(),
+            Err(i) => {
+                uses[i] -= 1;
+                let form = if uses[i] == 0 {
+                    forms[i].take()
+                } else {
+                    forms[i].clone()
+                };
+                form.expect("a distinct entry's form is taken by its last row only")
+            }
+        })
+        .collect();
+    drop(known);
     let mut sections: Vec<Section> = vec![
         Section {
             kind: SectionKind::Pose { last_q: false },
             rows: dq_forms
-                .iter()
+                .into_iter()
                 .enumerate()
-                .map(|(k, e)| Ok((Quantity::Dq(k), e.clone()?)))
+                .map(|(k, e)| Ok((Quantity::Dq(k), e?)))
                 .collect::<Result<_, ScalarError>>()?,
         },
         Section {
             kind: SectionKind::Matrix(MatrixFrom::Expanded),
             rows: t_forms
-                .iter()
+                .into_iter()
                 .enumerate()
-                .map(|(c, e)| Ok((Quantity::T(c / 4, c % 4), e.clone()?)))
+                .map(|(c, e)| Ok((Quantity::T(c / 4, c % 4), e?)))
                 .collect::<Result<_, ScalarError>>()?,
         },
     ];
-    for (q, x, _) in &rest {
+    for ((q, _, _), form) in rest.iter().zip(rest_forms) {
         let kind = match q {
             Quantity::Point(_) => SectionKind::Point,
             _ => SectionKind::Jacobian { recurrence: false },
@@ -585,12 +676,21 @@ fn expanded_sections(
                 rows: Vec::new(),
             });
         }
-        let row = (*q, form_of(x)?);
+        let row = (*q, form?);
         if let Some(s) = sections.last_mut() {
             s.rows.push(row);
         }
     }
-    Ok(sections)
+    Ok((sections, rest_bound))
+}
+
+/// [`plain_len_bound`] of a closed form whose text is final before the report's offsets are
+/// chosen ([`CommonOffsets::fixes`]); `None` for an error or another form.
+fn final_bound(e: &Result<Expr, ScalarError>) -> Option<usize> {
+    e.as_ref()
+        .ok()
+        .filter(|e| CommonOffsets::fixes(e))
+        .map(plain_len_bound)
 }
 
 /// Rows 0..2 of a matrix, row by row.

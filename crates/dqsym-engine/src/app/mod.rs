@@ -20,7 +20,8 @@ mod task;
 
 pub use convert::{dh_refusal, robot_toml, DhRefusal};
 pub use fk::{
-    fk_entries, fk_ops, fk_report, in_decimals, ops_tables, FkEntries, FkOptions, ReportError,
+    fk_entries, fk_ops, fk_report, fk_report_and_entries, in_decimals, ops_tables, FkEntries,
+    FkOptions, ReportError,
 };
 pub use quantity::{
     Family, Letters, MatrixFrom, Quantity, Section, SectionKind, Step, TaskBase, TaskName,

@@ -1001,39 +1001,33 @@ impl Robot {
     /// every example robot), and much cheaper: the factors' matrices are in full angles, while
     /// converting the product DQ multiplies long half-angle sums.
     pub fn forward_matrix(&self) -> Matrix4<Scalar> {
-        self.matrix_product(None, |x| Some(x.clone()))
+        self.matrix_product(None, Some)
             .unwrap_or_else(Matrix4::identity)
     }
 
     /// [`Robot::forward_matrix`], or `None` as soon as an entry of a partial product has more
     /// than `max_terms` terms (or is an error value).
     pub fn forward_matrix_within(&self, max_terms: usize) -> Option<Matrix4<Scalar>> {
-        self.matrix_product(Some(max_terms), |x| Some(x.clone()))
+        self.matrix_product(Some(max_terms), Some)
     }
 
     /// [`Robot::forward_matrix_within`] that gives up (`None`) once `stop` is set, and sets
     /// it when it gives up; it also gives up early when the growth of the partial products
     /// says the last one will exceed the limit (see [`Growth`]). For running it next to
     /// [`Robot::forward_within_until`]: whichever expansion is abandoned first stops the other.
-    /// `joints` are [`Robot::joint_dqs`], made once for both.
+    /// `factors` are [`Robot::factor_matrices`] of the joint factors.
     /// `seen` is told of each entry of the last product as it is made (row, column, entry),
     /// largest first, and abandons the expansion by answering `false`: a caller that would
     /// throw the matrix away for what its first entries show (`fk`: text past its limit)
     /// never makes the others.
     pub(crate) fn forward_matrix_until(
         &self,
-        joints: &[DualQuat<Scalar>],
+        factors: FactorMatrices,
         max_terms: usize,
         stop: &AtomicBool,
         seen: EntrySeen,
     ) -> Option<Matrix4<Scalar>> {
-        let r = self.matrix_product_until(
-            joints,
-            Some(max_terms),
-            |x| Some(x.clone()),
-            Some(stop),
-            Some(seen),
-        );
+        let r = matrix_product_until(factors, Some(max_terms), Some, Some(stop), Some(seen));
         if r.is_none() {
             stop.store(true, AtomicOrdering::Relaxed);
         }
@@ -1046,25 +1040,23 @@ impl Robot {
     fn matrix_product(
         &self,
         max_terms: Option<usize>,
-        entry: impl Fn(&Scalar) -> Option<Scalar>,
+        entry: impl Fn(Scalar) -> Option<Scalar>,
     ) -> Option<Matrix4<Scalar>> {
-        self.matrix_product_until(&self.joint_dqs(), max_terms, entry, None, None)
+        let factors = self.factor_matrices(&self.joint_dqs(), 0);
+        matrix_product_until(factors, max_terms, entry, None, None)
     }
 
-    /// [`Robot::matrix_product`] of the joint factors `joints` ([`Robot::joint_dqs`]); with
-    /// `stop`, also `None` once `stop` is set or when the growth of the partial products
-    /// predicts that the last one exceeds `max_terms`; with `seen` (and `max_terms`), also
-    /// `None` when it refuses an entry of the last product (see
-    /// [`Robot::forward_matrix_until`]).
-    fn matrix_product_until(
+    /// The factors the matrix product multiplies: the base (unless it is the identity), the
+    /// joint factors `joints` ([`Robot::joint_dqs`]) and the tool, up to the last that is not
+    /// the identity (the tool of most chains leaves the product as it is, exactly). Their
+    /// matrices are made while [`FactorMatrices::small`]'s estimate of the partial products
+    /// stays below `terms`, the others' as the product reaches them (a product given up for
+    /// its size never converts the factors after it).
+    pub(crate) fn factor_matrices(
         &self,
         joints: &[DualQuat<Scalar>],
-        max_terms: Option<usize>,
-        entry: impl Fn(&Scalar) -> Option<Scalar>,
-        stop: Option<&AtomicBool>,
-        mut seen: Option<EntrySeen>,
-    ) -> Option<Matrix4<Scalar>> {
-        let mut acc: Option<Matrix4<Scalar>> = None;
+        terms: usize,
+    ) -> FactorMatrices {
         let id = DualQuat::identity();
         let base = (self.chain.base != id).then_some(&self.chain.base);
         let factors: Vec<&DualQuat<Scalar>> = base
@@ -1072,58 +1064,8 @@ impl Robot {
             .chain(joints)
             .chain(std::iter::once(&self.chain.tool))
             .collect();
-        let stopped = || stop.is_some_and(|s| s.load(AtomicOrdering::Relaxed));
-        let mut growth = Growth::default();
-        // A factor equal to the identity (the tool of most chains) leaves the product as it
-        // is, exactly: it is not multiplied, and the product before it is the last one made.
         let last = factors.iter().rposition(|f| **f != id).unwrap_or(0);
-        for (k, f) in factors.iter().enumerate() {
-            if stopped() {
-                return None;
-            }
-            let next = match acc {
-                Some(a) if k > last => a,
-                acc => {
-                    let mut rows = f.to_matrix().rows;
-                    for x in rows.iter_mut().flatten() {
-                        *x = entry(x)?;
-                    }
-                    let m = Matrix4::from_rows(rows);
-                    let seen = if k == last { seen.take() } else { None };
-                    // The growth's prediction (below) made on the entries as they come: it
-                    // only grows with the largest entry, so once it says the limit will be
-                    // passed, it says so of the whole product (a fully symbolic 6R gives up
-                    // after one entry of its fourth product, not twelve).
-                    let left = factors.len() - 1 - k;
-                    let predicts = |size: usize| {
-                        max_terms.is_some_and(|limit| growth.predicts(size, left, limit))
-                    };
-                    let early: Option<&dyn Fn(usize) -> bool> = stop.is_some().then_some(&predicts);
-                    match (acc, max_terms) {
-                        (None, _) => m,
-                        (Some(a), None) => a.mul_ref(&m),
-                        (Some(a), Some(limit)) => product_within(&a, &m, limit, stop, seen, early)?,
-                    }
-                }
-            };
-            if let Some(limit) = max_terms {
-                if next
-                    .rows
-                    .iter()
-                    .flatten()
-                    .any(|x| x.len() > limit || x.as_error().is_some())
-                {
-                    return None;
-                }
-                let largest = next.rows.iter().flatten().map(Scalar::len).max();
-                let left = factors.len() - 1 - k;
-                if stop.is_some() && growth.exceeds(largest.unwrap_or(0), left, limit) {
-                    return None;
-                }
-            }
-            acc = Some(next);
-        }
-        Some(acc.unwrap_or_else(Matrix4::identity))
+        FactorMatrices::new(&factors[..=last], factors.len(), terms)
     }
 
     /// The homogeneous matrix as polynomials in the cosines and sines of the joint variables
@@ -1133,7 +1075,7 @@ impl Robot {
     /// monomials against about 300,000 Fourier terms); put it in closed form with
     /// [`crate::closed::closed_form_cos_sin`].
     pub fn forward_matrix_cos_sin(&self, max_terms: usize) -> Option<Matrix4<Scalar>> {
-        self.matrix_product(Some(max_terms), Scalar::to_cos_sin_polynomial)
+        self.matrix_product(Some(max_terms), |x| x.to_cos_sin_polynomial())
     }
 
     /// The forward kinematics, or `None` as soon as a component of a partial product has more
@@ -1289,6 +1231,129 @@ fn product_within(
     Some(Matrix4::from_rows(rows))
 }
 
+/// The factors a matrix product multiplies ([`Robot::factor_matrices`]), the first ones
+/// already as matrices.
+pub(crate) struct FactorMatrices {
+    /// The first factors' matrices.
+    mats: Vec<Matrix4<Scalar>>,
+    /// The factors after them, converted as the product reaches them.
+    rest: Vec<DualQuat<Scalar>>,
+    /// The number of factors, the identities after the last other one included: the growth
+    /// of the partial products is measured against the links left (see [`Growth`]).
+    count: usize,
+    /// Whether every factor is converted and the estimate stayed below the threshold.
+    small: bool,
+}
+
+impl FactorMatrices {
+    /// `factors` (`count` in all, identities after them included), converted while every
+    /// entry of every partial product has fewer than `terms` terms by an estimate from the
+    /// matrices' term counts alone: an entry of a product has at most two terms per term
+    /// pair (a product of two Fourier terms is at most two).
+    fn new(factors: &[&DualQuat<Scalar>], count: usize, terms: usize) -> FactorMatrices {
+        let mut mats = Vec::with_capacity(factors.len());
+        let mut estimate: Option<[[usize; 4]; 4]> = None;
+        let mut small = true;
+        while small && mats.len() < factors.len() {
+            let m = factors[mats.len()].to_matrix();
+            let counts = m.rows.each_ref().map(|r| r.each_ref().map(Scalar::len));
+            let e = estimate.map_or(counts, |a| {
+                std::array::from_fn(|i| {
+                    std::array::from_fn(|j| {
+                        (0..4)
+                            .map(|k| a[i][k].saturating_mul(counts[k][j]).saturating_mul(2))
+                            .fold(0, usize::saturating_add)
+                    })
+                })
+            });
+            small = e.iter().flatten().all(|&n| n < terms);
+            estimate = Some(e);
+            mats.push(m);
+        }
+        FactorMatrices {
+            rest: factors[mats.len()..].iter().map(|f| (*f).clone()).collect(),
+            mats,
+            count,
+            small,
+        }
+    }
+
+    /// Whether every entry of every partial product has fewer terms than the threshold
+    /// [`Robot::factor_matrices`] was given, by its estimate. An estimate, not a bound (a
+    /// cyclotomic rewriting may add terms), for scheduling only: `fk` begins the DQ product
+    /// beside a matrix product that stays small, which its size never abandons (the PUMA
+    /// 560; a chain with twists other than multiples of a right angle, or symbolic ones,
+    /// fills its factors' matrices and passes 512 within a few links).
+    pub(crate) fn small(&self) -> bool {
+        self.small
+    }
+}
+
+/// The product of `factors` ([`Robot::factor_matrices`]), each entry of each factor's matrix
+/// first passed through `entry` (`None` there gives `None`); `None` as soon as an entry of a
+/// partial product has more than `max_terms` terms or is an error value; with `stop`, also
+/// `None` once `stop` is set or when the growth of the partial products predicts that the
+/// last one exceeds `max_terms`; with `seen` (and `max_terms`), also `None` when it refuses an
+/// entry of the last product (see [`Robot::forward_matrix_until`]).
+fn matrix_product_until(
+    factors: FactorMatrices,
+    max_terms: Option<usize>,
+    entry: impl Fn(Scalar) -> Option<Scalar>,
+    stop: Option<&AtomicBool>,
+    mut seen: Option<EntrySeen>,
+) -> Option<Matrix4<Scalar>> {
+    let FactorMatrices {
+        mats, rest, count, ..
+    } = factors;
+    let last = mats.len() + rest.len() - 1;
+    let (mut mats, mut rest) = (mats.into_iter(), rest.iter());
+    let stopped = || stop.is_some_and(|s| s.load(AtomicOrdering::Relaxed));
+    let mut growth = Growth::default();
+    let mut acc: Option<Matrix4<Scalar>> = None;
+    for k in 0..count {
+        if stopped() {
+            return None;
+        }
+        // The identity factors after the last other one leave the product as it is.
+        let Some(mut m) = mats.next().or_else(|| rest.next().map(DualQuat::to_matrix)) else {
+            continue;
+        };
+        for x in m.rows.iter_mut().flatten() {
+            *x = entry(std::mem::take(x))?;
+        }
+        let seen = if k == last { seen.take() } else { None };
+        // The growth's prediction (below) made on the entries as they come: it only grows
+        // with the largest entry, so once it says the limit will be passed, it says so of the
+        // whole product (a fully symbolic 6R gives up after one entry of its fourth product,
+        // not twelve).
+        let left = count - 1 - k;
+        let predicts =
+            |size: usize| max_terms.is_some_and(|limit| growth.predicts(size, left, limit));
+        let early: Option<&dyn Fn(usize) -> bool> = stop.is_some().then_some(&predicts);
+        let next = match (acc, max_terms) {
+            (None, _) => m,
+            (Some(a), None) => a.mul_ref(&m),
+            (Some(a), Some(limit)) => product_within(&a, &m, limit, stop, seen, early)?,
+        };
+        if let Some(limit) = max_terms {
+            if next
+                .rows
+                .iter()
+                .flatten()
+                .any(|x| x.len() > limit || x.as_error().is_some())
+            {
+                return None;
+            }
+            let largest = next.rows.iter().flatten().map(Scalar::len).max();
+            if stop.is_some() && growth.exceeds(largest.unwrap_or(0), left, limit) {
+                return None;
+            }
+        }
+        acc = Some(next);
+    }
+    Some(acc.unwrap_or_else(Matrix4::identity))
+}
+
 /// Told of each entry of a matrix product as it is made (row, column, entry); `false`
 /// abandons the product (see [`Robot::forward_matrix_until`]).
 pub(crate) type EntrySeen<'a> = &'a mut dyn FnMut(usize, usize, &Scalar) -> bool;
@@ -1403,4 +1468,78 @@ pub(crate) fn unit_numeric(a: &[Scalar; 3]) -> Result<[Scalar; 3], FieldError> {
     let n = n2.sqrt().check()?;
     let div = |x: &Scalar| x.try_div(&n);
     Ok([div(&a[0])?, div(&a[1])?, div(&a[2])?])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kin::dh::dh_link;
+    use crate::Ring;
+
+    /// The factors of classic DH links at the joint variables `q1..qn`, with twists
+    /// `twists` and the lengths `a_i` and offsets `d_i` symbols where `lengths` says so, as
+    /// `fk` converts them (threshold 512, its `EARLY_FORM_TERMS`).
+    fn dh_factors(twists: &[Scalar], lengths: &[(bool, bool)]) -> FactorMatrices {
+        let links: Vec<DualQuat<Scalar>> = twists
+            .iter()
+            .zip(lengths)
+            .enumerate()
+            .map(|(i, (alpha, &(a, d)))| {
+                let sym = |name: &str, on: bool| {
+                    if on {
+                        Scalar::sym(&format!("{name}{}", i + 1))
+                    } else {
+                        Scalar::int(0)
+                    }
+                };
+                let theta = Scalar::sym(&format!("q{}", i + 1));
+                dh_link(&theta, &sym("d", d), &sym("a", a), alpha)
+            })
+            .collect();
+        let refs: Vec<&DualQuat<Scalar>> = links.iter().collect();
+        FactorMatrices::new(&refs, refs.len(), EARLY)
+    }
+
+    /// The largest entry of the product of `f`, multiplied out.
+    fn largest_entry(f: FactorMatrices) -> usize {
+        matrix_product_until(f, None, Some, None, None).map_or(0, |m| {
+            m.rows.iter().flatten().map(Scalar::len).max().unwrap_or(0)
+        })
+    }
+
+    #[test]
+    fn a_right_angled_arm_is_estimated_small_and_a_dense_one_is_not() {
+        let angle = |k: i64| Scalar::pi() * Scalar::from_ratio(k, 2);
+        // The PUMA 560's twists, lengths a2, a3 and offsets d3, d4.
+        let puma = dh_factors(
+            &[angle(1), angle(0), angle(-1), angle(1), angle(-1), angle(0)],
+            &[
+                (false, false),
+                (true, false),
+                (true, true),
+                (false, true),
+                (false, false),
+                (false, false),
+            ],
+        );
+        assert!(puma.small());
+        assert!(puma.rest.is_empty());
+        assert!(largest_entry(puma) < EARLY);
+        // Twists of 60 degrees (a Jaco-style arm) and symbolic ones fill the factors'
+        // matrices: both estimates pass the threshold, and the symbolic product's entries do.
+        let third = Scalar::pi() * Scalar::from_ratio(1, 3);
+        let jaco = dh_factors(&vec![third; 6], &[(true, true); 6]);
+        assert!(!jaco.small());
+        let twists: Vec<Scalar> = (1..=6).map(|i| Scalar::sym(&format!("t{i}"))).collect();
+        let symbolic = dh_factors(&twists[..4], &[(true, true); 4]);
+        assert!(!symbolic.small());
+        // A longer one is converted only until the estimate passes the threshold.
+        let longer = dh_factors(&twists, &[(true, true); 6]);
+        assert!(!longer.small());
+        assert!(!longer.rest.is_empty());
+        assert!(largest_entry(symbolic) >= EARLY);
+    }
+
+    /// `fk`'s threshold (its `EARLY_FORM_TERMS`).
+    const EARLY: usize = 512;
 }
