@@ -11,8 +11,8 @@
 
 use crate::common::Rng;
 use crate::ik_general_prismatic::{
-    check_flagged, derive, deviation, dist, frames, multistart_by, pose, pri, random_q, rev, size,
-    Row,
+    check_flagged, derive, dist, frames, multistart_by, pose, pri, random_q, rev, size,
+    solve_checked, Row,
 };
 use dqsym::ik::{IkMethod, IkSolution, NumSolution};
 
@@ -56,31 +56,6 @@ fn arms() -> Vec<(String, Vec<Row>)> {
         }
     }
     out
-}
-
-/// The solutions at the pose of `q`, checked: at most `most`, every unflagged one reproduces
-/// the pose to 1e-9 by the model here, the original is among them.
-fn solve_checked(
-    name: &str,
-    sol: &IkSolution,
-    rows: &[Row],
-    q: &[f64],
-    most: usize,
-) -> Vec<NumSolution> {
-    let t = pose(rows, q);
-    let sols = sol.solve_numeric(&t, &[]).expect("solve");
-    assert!(sols.len() <= most, "{name}: {} solutions", sols.len());
-    let len = size(rows);
-    for s in sols.iter().filter(|s| !s.approximate) {
-        let dev = deviation(&t, &pose(rows, &s.q), len);
-        assert!(dev <= 1e-9, "{name}: {:?} misses by {dev} (q {q:?})", s.q);
-    }
-    assert!(
-        sols.iter()
-            .any(|s| !s.approximate && dist(rows, &s.q, q) <= 1e-6),
-        "{name}: {q:?} not among {sols:?}"
-    );
-    sols
 }
 
 #[test]

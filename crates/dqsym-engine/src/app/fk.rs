@@ -598,16 +598,11 @@ fn expanded_sections(
         let bound = final_bound(&form);
         (form, bound)
     });
-    let (made, bounds_made): (Vec<_>, Vec<_>) = made.into_iter().unzip();
-    let mut bounds = vec![None; bounds_made.len()];
-    for (&k, b) in order.iter().zip(bounds_made) {
-        bounds[k] = b;
-    }
-    let mut by_entry: Vec<(usize, Result<Expr, ScalarError>)> =
-        order.into_iter().zip(made).collect();
+    let mut by_entry: Vec<_> = order.into_iter().zip(made).collect();
     by_entry.sort_unstable_by_key(|(k, _)| *k);
-    let mut forms: Vec<Option<Result<Expr, ScalarError>>> =
-        by_entry.into_iter().map(|(_, f)| Some(f)).collect();
+    // Each distinct entry's form (taken by its last row, below) and its text's bound.
+    let (mut forms, bounds): (Vec<_>, Vec<_>) =
+        by_entry.into_iter().map(|(_, (f, b))| (Some(f), b)).unzip();
     // Each row's form: a pose entry's, or a distinct entry's, moved into its last row and
     // cloned into the others. The pose's own rows take its forms after these, moved too
     // (cloning the PUMA 560's 68 rows and dropping the originals took ~0.1 ms after the last

@@ -401,16 +401,21 @@ fn dot(r: &[(usize, Small)], o: &[Small]) -> Small {
     })
 }
 
+/// The least common multiple of the denominators of `xs`; `None` when it leaves a machine
+/// word.
+fn common_denominator<'a>(mut xs: impl Iterator<Item = &'a Small>) -> Option<i64> {
+    xs.try_fold(1i64, |den, x| {
+        den.checked_mul(x.denom() / den.gcd(x.denom()))
+    })
+}
+
 /// Rows of integer coefficients `(symbol, k)` over one common denominator: `(rows, den)`.
 type IntegerRows = (Vec<Vec<(usize, i64)>>, i64);
 
 /// The rows `freqs` with integer coefficients over one common denominator; `None` when that
 /// denominator or a coefficient leaves a machine word.
 fn integer_rows(freqs: &[&[(usize, Small)]]) -> Option<IntegerRows> {
-    let mut den: i64 = 1;
-    for (_, k) in freqs.iter().flat_map(|r| r.iter()) {
-        den = den.checked_mul(k.denom() / den.gcd(k.denom()))?;
-    }
+    let den = common_denominator(freqs.iter().flat_map(|r| r.iter().map(|(_, k)| k)))?;
     let rows = freqs
         .iter()
         .map(|r| {
@@ -426,10 +431,7 @@ fn integer_rows(freqs: &[&[(usize, Small)]]) -> Option<IntegerRows> {
 /// returned; `None` when it leaves a machine word.
 fn scale_offsets(o: &[Small], out: &mut Vec<i64>) -> Option<i64> {
     out.clear();
-    let mut den: i64 = 1;
-    for v in o {
-        den = den.checked_mul(v.denom() / den.gcd(v.denom()))?;
-    }
+    let den = common_denominator(o.iter())?;
     for v in o {
         out.push(v.numer().checked_mul(den / v.denom())?);
     }
