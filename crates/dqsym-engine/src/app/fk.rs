@@ -574,18 +574,25 @@ fn expanded_sections(
             known.entry(SampledKey(x)).or_insert(e);
         }
     }
+    // Each row's source, found in one lookup per row (hashing and comparing a repeated
+    // entry's terms again for its source was 1% of the PUMA 560's report): a pose entry's
+    // form, or the index of a distinct entry to put in closed form.
     let mut index: FxMap<SampledKey, usize> = FxMap::default();
     index.reserve(rest.len());
     let mut distinct: Vec<(&Scalar, Option<(usize, &str)>)> = Vec::new();
-    for (_, x, from) in &rest {
-        let key = SampledKey(x);
-        if !known.contains_key(&key) {
-            index.entry(key).or_insert_with(|| {
-                distinct.push((x, *from));
-                distinct.len() - 1
-            });
-        }
-    }
+    let sources: Vec<Result<&Result<Expr, ScalarError>, usize>> = rest
+        .iter()
+        .map(|(_, x, from)| {
+            let key = SampledKey(x);
+            match known.get(&key) {
+                Some(e) => Ok(*e),
+                None => Err(*index.entry(key).or_insert_with(|| {
+                    distinct.push((x, *from));
+                    distinct.len() - 1
+                })),
+            }
+        })
+        .collect();
     // Begun largest first (by terms), so that the last closed forms to end, when one thread
     // may wait for the other, are small ones.
     let mut order: Vec<usize> = (0..distinct.len()).collect();
@@ -607,13 +614,6 @@ fn expanded_sections(
     // cloned into the others. The pose's own rows take its forms after these, moved too
     // (cloning the PUMA 560's 68 rows and dropping the originals took ~0.1 ms after the last
     // parallel stage).
-    let sources: Vec<Result<&Result<Expr, ScalarError>, usize>> = rest
-        .iter()
-        .map(|(_, x, _)| {
-            let key = SampledKey(x);
-            known.get(&key).copied().ok_or_else(|| index[&key])
-        })
-        .collect();
     let mut uses = vec![0usize; forms.len()];
     for &i in sources.iter().filter_map(|s| s.as_ref().err()) {
         uses[i] += 1;

@@ -9,6 +9,7 @@ use super::super::{canonical_terms, Scalar, ScalarError};
 use super::{canonicalize, Settled};
 use num_bigint::BigInt;
 use num_rational::BigRational;
+use num_traits::Zero;
 
 /// A small linear congruential generator: the test needs no dependency and repeats exactly.
 struct Rng(u64);
@@ -381,4 +382,70 @@ fn a_limit_lowered_after_a_value_was_built_is_still_enforced() {
     let twice = &plain + &plain;
     assert_eq!(twice, &plain * &Scalar::int(2));
     assert!(twice.as_error().is_none());
+}
+
+/// Derivatives of random elements times `x`, `x + 1` or a monomial, with respect to `x` and
+/// to `a`:
+/// the variable is in the monomials, in the angles or in both, so the terms with a pi offset
+/// of the derivative have one origin (passed through whole by `Scalar::diff`) or two (its
+/// mixed groups rewritten). Either way: canonical (a rewrite from scratch changes nothing)
+/// and equal to a five-point numeric derivative.
+#[test]
+fn random_derivatives_of_one_or_two_origins_are_canonical_and_exact() {
+    let mut rng = Rng(0xd1ff_0e1e_57a7);
+    let dens = [5i64, 7, 9, 10, 18, 36];
+    // Derivatives checked whose offset terms had one origin, and two.
+    let mut origins = [0usize; 2];
+    for trial in 0..150 {
+        let den = rng.pick(&dens);
+        let u = element(&mut rng, &[den]);
+        // `x + 1`: a group of the derivative can hold terms of both origins (`(x + 1)
+        // cos(x + phi)` gives `cos(x + phi) - sin(x + phi)`, one group to rewrite).
+        let x = Val {
+            s: Scalar::sym("x"),
+            f: X,
+        };
+        let factor = match rng.below(3) {
+            0 => x,
+            1 => add(&x, &ratio(1, 1)),
+            _ => monomial(&mut rng),
+        };
+        let v = mul(&u, &factor);
+        let Ok(terms) = v.s.terms() else {
+            continue;
+        };
+        for var in ["x", "a"] {
+            let offset = terms.iter().filter(|t| !t.mode.pi.is_zero());
+            let in_mono = offset
+                .clone()
+                .any(|t| t.mono.iter().any(|(s, _)| s.name() == var));
+            let in_angle = offset
+                .clone()
+                .any(|t| t.mode.freq.iter().any(|(s, _)| s.name() == var));
+            let d = v.s.diff(var);
+            let Ok(dt) = d.terms() else {
+                continue;
+            };
+            if let Some(again) = canonicalize(dt, &Settled::Nothing).expect("canonicalize") {
+                let again = canonical_terms(again).expect("sorted");
+                assert_eq!(again, dt, "trial {trial}: d/d{var} not canonical");
+            }
+            let at = |h: f64| {
+                let (xv, av) = if var == "x" { (X + h, A) } else { (X, A + h) };
+                v.s.eval_at(&[("x", xv), ("a", av), ("b", B)])
+                    .expect("a value")
+            };
+            let h = 1e-4;
+            let numeric = (8.0 * (at(h) - at(-h)) - (at(2.0 * h) - at(-2.0 * h))) / (12.0 * h);
+            let f = d.eval_at(&[("x", X), ("a", A), ("b", B)]).expect("a value");
+            assert!(
+                (f - numeric).abs() < 1e-6 * (1.0 + numeric.abs()),
+                "trial {trial}: d/d{var}: {f} against {numeric}"
+            );
+            if in_mono || in_angle {
+                origins[usize::from(in_mono && in_angle)] += 1;
+            }
+        }
+    }
+    assert!(origins[0] > 100 && origins[1] > 20, "{origins:?}");
 }
