@@ -20,20 +20,36 @@ enum Class {
 /// A pair of atoms `p < q` of monomial `i`, with the identity they can take part in. Pairs
 /// are grouped by the key `(class, angle a, angle b, rad, syms, the other atoms)`: two
 /// monomials combine only when their keys agree.
+///
+/// 32 bytes (the positions in narrow fields: [`entries`] says how): the PUMA 560's largest
+/// rounds make thousands of entries on each thread, and every fresh page their tables touch is
+/// a page fault of the process.
 #[derive(Clone, Copy, Debug)]
 struct Entry {
-    class: Class,
+    /// A hash of the key.
+    hash: u64,
     a: u32,
     b: u32,
     /// The rank of the monomial's `(rad, syms)`.
     cof: u32,
-    i: usize,
+    i: u32,
+    p: u16,
+    q: u16,
+    class: Class,
     /// The first atom is a sine.
     sin: bool,
-    p: usize,
-    q: usize,
-    /// A hash of the key.
-    hash: u64,
+}
+
+impl Entry {
+    /// The monomial `i`, as an index.
+    fn mon(&self) -> usize {
+        self.i as usize
+    }
+
+    /// The positions `(p, q)` of the pair's atoms in its monomial.
+    fn atoms(&self) -> (usize, usize) {
+        (usize::from(self.p), usize::from(self.q))
+    }
 }
 
 /// A hash of the key of `e`, whose other atoms hash to `rest` ([`atom_hash`] summed).
@@ -59,16 +75,20 @@ fn atom_hash(a: Atom) -> u64 {
 }
 
 /// The entries of `mons`: every pair of atoms of two different angles of each monomial, in
-/// the order `(i, p, q)`; `cof` ranks the monomials' cofactors, `pairs` is the capacity.
+/// the order `(i, p, q)`; `cof` ranks the monomials' cofactors, `pairs` is the capacity. The
+/// narrow fields of an [`Entry`] hold the first `u32::MAX` monomials and the first 2^16 atoms
+/// of each: a pair past them (never met: its round would charge billions of pairs) is left
+/// out, so it is not recombined, which leaves its terms as they were.
 fn entries(mons: &[Mon], cof: &[u32], pairs: usize) -> Vec<Entry> {
     let mut index: Vec<Entry> = Vec::with_capacity(pairs);
     let mut hashes: Vec<u64> = Vec::new();
-    for (i, m) in mons.iter().enumerate() {
+    for (i, m) in mons.iter().enumerate().take(u32::MAX as usize) {
         hashes.clear();
         hashes.extend(m.atoms.iter().map(|&a| atom_hash(a)));
         let all = hashes.iter().fold(0u64, |s, &h| s.wrapping_add(h));
-        for p in 0..m.atoms.len() {
-            for q in p + 1..m.atoms.len() {
+        let n = m.atoms.len().min(1 << 16);
+        for p in 0..n {
+            for q in p + 1..n {
                 let (a, b) = (m.atoms[p], m.atoms[q]);
                 if angle_of(a) == angle_of(b) {
                     continue;
@@ -78,15 +98,16 @@ fn entries(mons: &[Mon], cof: &[u32], pairs: usize) -> Vec<Entry> {
                 } else {
                     Class::Sin
                 };
+                // In range: `i < u32::MAX` and `p < q < 2^16` (above).
                 let e = Entry {
                     class,
                     a: angle_of(a),
                     b: angle_of(b),
                     cof: cof[i],
-                    i,
+                    i: i as u32,
                     sin: is_sin(a),
-                    p,
-                    q,
+                    p: p as u16,
+                    q: q as u16,
                     hash: 0,
                 };
                 let rest = all.wrapping_sub(hashes[p]).wrapping_sub(hashes[q]);
@@ -103,7 +124,7 @@ fn entries(mons: &[Mon], cof: &[u32], pairs: usize) -> Vec<Entry> {
 /// The entries grouped by key, the groups in key order, each group's entries in the order in
 /// which they were found (`(i, p, q)`). Only groups that can pair (two entries, one with a
 /// first atom that is a sine and one without) are kept: the others change nothing.
-fn groups(mons: &[Mon], index: Vec<Entry>) -> Groups {
+fn groups(mons: &[Mon], all: Vec<Entry>) -> Groups {
     // A group lies within the entries of one hash, so only a hash with entries of both kinds
     // can hold one that pairs; the others are dropped below anyway. Sorting every entry was
     // the largest cost of the PUMA 560's recombinations (1.26 M instructions of its 37.8 M
@@ -114,12 +135,12 @@ fn groups(mons: &[Mon], index: Vec<Entry>) -> Groups {
     // left out, so the groups are the same. The PUMA's run on one thread: 37.80 M -> 37.25 M
     // instructions, page faults as before (about 595); a hash map of the kinds instead cost
     // 0.05 M instructions and some 30 page faults (its tables) more.
-    let bits = (8 * index.len()).max(64).next_power_of_two();
+    let bits = (8 * all.len()).max(64).next_power_of_two();
     let shift = 64 - bits.trailing_zeros();
     // Fibonacci hashing: the top bits of the product depend on every bit of the hash.
     let bit = |hash: u64| (hash.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> shift) as usize;
     let mut seen = [vec![0u64; bits / 64], vec![0u64; bits / 64]];
-    for e in &index {
+    for e in &all {
         let k = bit(e.hash);
         seen[usize::from(e.sin)][k / 64] |= 1 << (k % 64);
     }
@@ -128,7 +149,7 @@ fn groups(mons: &[Mon], index: Vec<Entry>) -> Groups {
         (seen[0][k / 64] & seen[1][k / 64]) >> (k % 64) & 1 == 1
     };
     // Equal hashes together, in the order in which the entries were found (`by_hash`).
-    let mut order: Vec<(u64, usize)> = index
+    let mut order: Vec<(u64, usize)> = all
         .iter()
         .enumerate()
         .filter(|(_, e)| both(e.hash))
@@ -136,7 +157,10 @@ fn groups(mons: &[Mon], index: Vec<Entry>) -> Groups {
         .collect();
     drop(seen);
     by_hash(&mut order);
-    let mut index: Vec<Entry> = order.iter().map(|&(_, k)| index[k]).collect();
+    // The entries that can pair, in that order; the others and the order freed at once, for
+    // the tables that follow to reuse their memory instead of touching fresh pages.
+    let mut index: Vec<Entry> = order.iter().map(|&(_, k)| all[k]).collect();
+    drop((all, order));
     // Each group is a range of `index`, not a copy of its entries.
     let mut groups: Vec<(u128, usize, usize)> = Vec::new();
     let pairs = |g: &[Entry]| g.iter().any(|e| e.sin) && g.iter().any(|e| !e.sin);
@@ -179,7 +203,8 @@ fn groups(mons: &[Mon], index: Vec<Entry>) -> Groups {
     // thread: 565.6 M -> 563.4 M instructions against a stable sort of the groups by `key_cmp`.
     let rest = |&(_, k, _): &(u128, usize, usize), &(_, l, _): &(u128, usize, usize)| {
         let (e, f) = (&index[k], &index[l]);
-        rest_cmp(&mons[e.i].atoms, e.p, e.q, &mons[f.i].atoms, f.p, f.q)
+        let ((ep, eq), (fp, fq)) = (e.atoms(), f.atoms());
+        rest_cmp(&mons[e.mon()].atoms, ep, eq, &mons[f.mon()].atoms, fp, fq)
     };
     match (groups.len() >= RADIX_MIN)
         .then(|| Packing::of(&groups))
@@ -214,8 +239,9 @@ const DIGIT: u32 = 8;
 /// Sorts `v` stably by the low `bits` bits of `key`, in passes of [`DIGIT`] bits from the
 /// lowest (a pass that would leave every item in one bucket is skipped).
 fn radix_sort<T: Copy>(v: &mut Vec<T>, bits: u32, key: impl Fn(&T) -> u64) {
-    let mut from = v.clone();
-    let mut to = v.clone();
+    // Two buffers, `v`'s own and one copy, written in turn.
+    let mut from = std::mem::take(v);
+    let mut to = from.clone();
     for shift in (0..bits).step_by(DIGIT as usize) {
         let digit = |x: &T| ((key(x) >> shift) & ((1 << DIGIT) - 1)) as usize;
         let mut start = [0usize; 1 << DIGIT];
@@ -360,7 +386,8 @@ fn key_cmp(mons: &[Mon], x: &Entry, y: &Entry) -> Ordering {
             if x.i == y.i && x.p == y.p && x.q == y.q {
                 return Ordering::Equal;
             }
-            rest_cmp(&mons[x.i].atoms, x.p, x.q, &mons[y.i].atoms, y.p, y.q)
+            let ((xp, xq), (yp, yq)) = (x.atoms(), y.atoms());
+            rest_cmp(&mons[x.mon()].atoms, xp, xq, &mons[y.mon()].atoms, yp, yq)
         })
 }
 
@@ -440,24 +467,22 @@ fn round(ctx: &mut Ctx, mons: &[Mon], rec: &mut Option<&mut Recorder>) -> (Vec<M
         let entries = &groups.entries[range.clone()];
         let (class, a, b) = (entries[0].class, entries[0].a, entries[0].b);
         for e in entries {
-            let (i, i_sin) = (e.i, e.sin);
+            let (i, i_sin) = (e.mon(), e.sin);
             if used[i] {
                 continue;
             }
             // The partner has both atoms of the other kind (Cos class) or swapped (Sin class).
             let partner = entries.iter().find(|f| {
-                !used[f.i] && f.i != i && f.sin != i_sin && {
-                    let (qi, qj) = (&mons[i].q, &mons[f.i].q);
+                !used[f.mon()] && f.mon() != i && f.sin != i_sin && {
+                    let (qi, qj) = (&mons[i].q, &mons[f.mon()].q);
                     qi == qj || *qi == -qj
                 }
             });
-            let Some(&Entry {
-                i: j, p: pj, q: qj, ..
-            }) = partner
-            else {
+            let Some(partner) = partner else {
                 continue;
             };
-            let Some(&Entry { p: pi, q: qi, .. }) = entries.iter().find(|f| f.i == i) else {
+            let (j, (pj, qj)) = (partner.mon(), partner.atoms());
+            let Some((pi, qi)) = entries.iter().find(|f| f.mon() == i).map(Entry::atoms) else {
                 continue;
             };
             // Orient: `first` is cos a cos b (Cos) or sin a cos b (Sin).
@@ -551,12 +576,12 @@ mod tests {
     }
 
     /// The groups of `mons` by [`groups`] and by [`all_sorted`], as `(i, p, q)` lists.
-    fn both_ways(mons: &[Mon]) -> [Vec<Vec<(usize, usize, usize)>>; 2] {
+    fn both_ways(mons: &[Mon]) -> [Vec<Vec<(usize, (usize, usize))>>; 2] {
         let cof = cofactor_ranks(mons);
         let index = entries(mons, &cof, 0);
-        let ids = |gs: Vec<Vec<Entry>>| -> Vec<Vec<(usize, usize, usize)>> {
+        let ids = |gs: Vec<Vec<Entry>>| -> Vec<Vec<(usize, (usize, usize))>> {
             gs.iter()
-                .map(|g| g.iter().map(|e| (e.i, e.p, e.q)).collect())
+                .map(|g| g.iter().map(|e| (e.mon(), e.atoms())).collect())
                 .collect()
         };
         let expected = ids(all_sorted(mons, index.clone()));
