@@ -612,13 +612,17 @@ mod tests {
     }
 
     /// The groups of `mons` by [`groups`] and by [`all_sorted`], as `(i, p, q)` lists.
-    fn both_ways(mons: &[Mon]) -> [Vec<Vec<(usize, (usize, usize))>>; 2] {
+    fn both_ways(mons: &[Mon]) -> [Vec<Vec<(usize, usize, usize)>>; 2] {
         let cof = cofactor_ranks(mons);
         let all = pairs_of(mons, &cof, 0);
         let index = all.iter().map(|x| x.entry(mons, &cof)).collect();
-        let ids = |gs: Vec<Vec<Entry>>| -> Vec<Vec<(usize, (usize, usize))>> {
+        let ids = |gs: Vec<Vec<Entry>>| -> Vec<Vec<(usize, usize, usize)>> {
             gs.iter()
-                .map(|g| g.iter().map(|e| (e.mon(), e.atoms())).collect())
+                .map(|g| {
+                    g.iter()
+                        .map(|e| (e.mon(), e.atoms().0, e.atoms().1))
+                        .collect()
+                })
                 .collect()
         };
         let expected = ids(all_sorted(mons, index));
