@@ -686,6 +686,43 @@ mod tests {
         }
     }
 
+    /// Every pair of atoms of two angles is listed once, each with its first atom's sine bit,
+    /// and the bit stored above `q` leaves pairs in the order of `(hash, i, p, q)`.
+    #[test]
+    fn pairs_are_listed_once_and_order_by_their_places() {
+        let mut below = xorshift_below(0x9a1e_5eed);
+        // Few angles: many pairs of one monomial share a hash.
+        let mons = random_mons(&mut below, 400, 6, 4);
+        let cof = cofactor_ranks(&mons);
+        let mut pairs = pairs_of(&mons, &cof, 0);
+        let mut expected = Vec::new();
+        for (i, m) in mons.iter().enumerate() {
+            for p in 0..m.atoms.len() {
+                for q in p + 1..m.atoms.len() {
+                    if angle_of(m.atoms[p]) != angle_of(m.atoms[q]) {
+                        expected.push((i, p, q, is_sin(m.atoms[p])));
+                    }
+                }
+            }
+        }
+        let found: Vec<(usize, usize, usize, bool)> = pairs
+            .iter()
+            .map(|x| {
+                let e = x.entry(&mons, &cof);
+                (e.mon(), e.atoms().0, e.atoms().1, e.sin)
+            })
+            .collect();
+        assert_eq!(found, expected);
+        let place = |x: &Pair| {
+            let e = x.entry(&mons, &cof);
+            (x.hash, e.i, e.p, e.q)
+        };
+        let mut by_place = pairs.clone();
+        by_place.sort_by_key(place);
+        pairs.sort_unstable();
+        assert_eq!(pairs, by_place);
+    }
+
     #[test]
     fn radix_sort_is_a_stable_sort_by_the_key() {
         let mut below = xorshift_below(0xface_5eed);
