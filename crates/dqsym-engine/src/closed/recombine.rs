@@ -20,20 +20,36 @@ enum Class {
 /// A pair of atoms `p < q` of monomial `i`, with the identity they can take part in. Pairs
 /// are grouped by the key `(class, angle a, angle b, rad, syms, the other atoms)`: two
 /// monomials combine only when their keys agree.
+///
+/// 32 bytes (the positions in narrow fields: [`pairs_of`] says how): the PUMA 560's largest
+/// rounds make thousands of pairs on each thread, and every fresh page their tables touch is
+/// a page fault of the process.
 #[derive(Clone, Copy, Debug)]
 struct Entry {
-    class: Class,
+    /// A hash of the key.
+    hash: u64,
     a: u32,
     b: u32,
     /// The rank of the monomial's `(rad, syms)`.
     cof: u32,
-    i: usize,
+    i: u32,
+    p: u16,
+    q: u16,
+    class: Class,
     /// The first atom is a sine.
     sin: bool,
-    p: usize,
-    q: usize,
-    /// A hash of the key.
-    hash: u64,
+}
+
+impl Entry {
+    /// The monomial `i`, as an index.
+    fn mon(&self) -> usize {
+        self.i as usize
+    }
+
+    /// The positions `(p, q)` of the pair's atoms in its monomial.
+    fn atoms(&self) -> (usize, usize) {
+        (usize::from(self.p), usize::from(self.q))
+    }
 }
 
 /// A hash of the key of `e`, whose other atoms hash to `rest` ([`atom_hash`] summed).
@@ -58,52 +74,98 @@ fn atom_hash(a: Atom) -> u64 {
     z ^ (z >> 31)
 }
 
-/// The entries of `mons`: every pair of atoms of two different angles of each monomial, in
-/// the order `(i, p, q)`; `cof` ranks the monomials' cofactors, `pairs` is the capacity.
-fn entries(mons: &[Mon], cof: &[u32], pairs: usize) -> Vec<Entry> {
-    let mut index: Vec<Entry> = Vec::with_capacity(pairs);
+/// A pair of atoms as [`pairs_of`] lists them all: the hash of its key and its place `(i, p, q)`
+/// (so pairs order by hash, then as they were found). 16 bytes: of the PUMA 560's thousands
+/// of pairs a round, only those whose hash can pair become an [`Entry`], twice the size.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Debug)]
+struct Pair {
+    hash: u64,
+    i: u32,
+    p: u16,
+    /// `q` (below 2^15) and, in bit 15, whether atom `p` is a sine: the same for every pair
+    /// of one `(i, p)`, so pairs still order as `(hash, i, p, q)` do.
+    q_sin: u16,
+}
+
+impl Pair {
+    /// The pair `p < q < 2^15` of monomial `i`, atom `p` a sine or not.
+    fn new(i: u32, p: u16, q: u16, sin: bool) -> Pair {
+        Pair {
+            hash: 0,
+            i,
+            p,
+            q_sin: q | u16::from(sin) << 15,
+        }
+    }
+
+    /// Whether the pair's first atom is a sine.
+    fn sin(self) -> bool {
+        self.q_sin >> 15 == 1
+    }
+
+    /// This pair's entry; `cof` ranks the cofactors of `mons`.
+    fn entry(self, mons: &[Mon], cof: &[u32]) -> Entry {
+        let i = self.i as usize;
+        entry(&mons[i].atoms, cof[i], self)
+    }
+}
+
+/// The entry of `pair`, whose monomial has the atoms `atoms` (of two angles at the pair's
+/// positions) and the cofactor ranked `cof`.
+fn entry(atoms: &[Atom], cof: u32, pair: Pair) -> Entry {
+    let (p, q) = (pair.p, pair.q_sin & 0x7fff);
+    let (a, b) = (atoms[usize::from(p)], atoms[usize::from(q)]);
+    Entry {
+        class: if is_sin(a) == is_sin(b) {
+            Class::Cos
+        } else {
+            Class::Sin
+        },
+        a: angle_of(a),
+        b: angle_of(b),
+        cof,
+        i: pair.i,
+        sin: pair.sin(),
+        p,
+        q,
+        hash: pair.hash,
+    }
+}
+
+/// The pairs of `mons`: every pair of atoms of two different angles of each monomial, in the
+/// order `(i, p, q)`; `cof` ranks the monomials' cofactors, `pairs` is the capacity. The
+/// narrow fields of a [`Pair`] hold the first `u32::MAX` monomials and the first 2^15 atoms
+/// of each: a pair past them (never met: its round would charge billions of pairs) is left
+/// out, so it is not recombined, which leaves its terms as they were.
+fn pairs_of(mons: &[Mon], cof: &[u32], pairs: usize) -> Vec<Pair> {
+    let mut found: Vec<Pair> = Vec::with_capacity(pairs);
     let mut hashes: Vec<u64> = Vec::new();
-    for (i, m) in mons.iter().enumerate() {
+    for ((i, m), &cof) in mons.iter().enumerate().zip(cof).take(u32::MAX as usize) {
+        let atoms: &[Atom] = &m.atoms;
+        let atoms = &atoms[..atoms.len().min(1 << 15)];
         hashes.clear();
         hashes.extend(m.atoms.iter().map(|&a| atom_hash(a)));
         let all = hashes.iter().fold(0u64, |s, &h| s.wrapping_add(h));
-        for p in 0..m.atoms.len() {
-            for q in p + 1..m.atoms.len() {
-                let (a, b) = (m.atoms[p], m.atoms[q]);
+        for (p, &a) in atoms.iter().enumerate() {
+            for (q, &b) in atoms.iter().enumerate().skip(p + 1) {
                 if angle_of(a) == angle_of(b) {
                     continue;
                 }
-                let class = if is_sin(a) == is_sin(b) {
-                    Class::Cos
-                } else {
-                    Class::Sin
-                };
-                let e = Entry {
-                    class,
-                    a: angle_of(a),
-                    b: angle_of(b),
-                    cof: cof[i],
-                    i,
-                    sin: is_sin(a),
-                    p,
-                    q,
-                    hash: 0,
-                };
+                // In range: `i < u32::MAX` and `p < q < 2^15` (above).
+                let pair = Pair::new(i as u32, p as u16, q as u16, is_sin(a));
                 let rest = all.wrapping_sub(hashes[p]).wrapping_sub(hashes[q]);
-                index.push(Entry {
-                    hash: key_hash(&e, rest),
-                    ..e
-                });
+                let hash = key_hash(&entry(atoms, cof, pair), rest);
+                found.push(Pair { hash, ..pair });
             }
         }
     }
-    index
+    found
 }
 
 /// The entries grouped by key, the groups in key order, each group's entries in the order in
 /// which they were found (`(i, p, q)`). Only groups that can pair (two entries, one with a
 /// first atom that is a sine and one without) are kept: the others change nothing.
-fn groups(mons: &[Mon], index: Vec<Entry>) -> Groups {
+fn groups(mons: &[Mon], cof: &[u32], mut all: Vec<Pair>) -> Groups {
     // A group lies within the entries of one hash, so only a hash with entries of both kinds
     // can hold one that pairs; the others are dropped below anyway. Sorting every entry was
     // the largest cost of the PUMA 560's recombinations (1.26 M instructions of its 37.8 M
@@ -114,29 +176,27 @@ fn groups(mons: &[Mon], index: Vec<Entry>) -> Groups {
     // left out, so the groups are the same. The PUMA's run on one thread: 37.80 M -> 37.25 M
     // instructions, page faults as before (about 595); a hash map of the kinds instead cost
     // 0.05 M instructions and some 30 page faults (its tables) more.
-    let bits = (8 * index.len()).max(64).next_power_of_two();
+    let bits = (8 * all.len()).max(64).next_power_of_two();
     let shift = 64 - bits.trailing_zeros();
     // Fibonacci hashing: the top bits of the product depend on every bit of the hash.
     let bit = |hash: u64| (hash.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> shift) as usize;
     let mut seen = [vec![0u64; bits / 64], vec![0u64; bits / 64]];
-    for e in &index {
-        let k = bit(e.hash);
-        seen[usize::from(e.sin)][k / 64] |= 1 << (k % 64);
+    for x in &all {
+        let k = bit(x.hash);
+        seen[usize::from(x.sin())][k / 64] |= 1 << (k % 64);
     }
     let both = |hash: u64| {
         let k = bit(hash);
         (seen[0][k / 64] & seen[1][k / 64]) >> (k % 64) & 1 == 1
     };
-    // Equal hashes together, in the order in which the entries were found (`by_hash`).
-    let mut order: Vec<(u64, usize)> = index
-        .iter()
-        .enumerate()
-        .filter(|(_, e)| both(e.hash))
-        .map(|(k, e)| (e.hash, k))
-        .collect();
+    // Equal hashes together, in the order in which the pairs were found (`by_hash`).
+    all.retain(|x| both(x.hash));
     drop(seen);
-    by_hash(&mut order);
-    let mut index: Vec<Entry> = order.iter().map(|&(_, k)| index[k]).collect();
+    by_hash(&mut all);
+    // The entries that can pair, in that order; the pairs freed at once, for the tables that
+    // follow to reuse their memory instead of touching fresh pages.
+    let mut index: Vec<Entry> = all.iter().map(|x| x.entry(mons, cof)).collect();
+    drop(all);
     // Each group is a range of `index`, not a copy of its entries.
     let mut groups: Vec<(u128, usize, usize)> = Vec::new();
     let pairs = |g: &[Entry]| g.iter().any(|e| e.sin) && g.iter().any(|e| !e.sin);
@@ -179,7 +239,8 @@ fn groups(mons: &[Mon], index: Vec<Entry>) -> Groups {
     // thread: 565.6 M -> 563.4 M instructions against a stable sort of the groups by `key_cmp`.
     let rest = |&(_, k, _): &(u128, usize, usize), &(_, l, _): &(u128, usize, usize)| {
         let (e, f) = (&index[k], &index[l]);
-        rest_cmp(&mons[e.i].atoms, e.p, e.q, &mons[f.i].atoms, f.p, f.q)
+        let ((ep, eq), (fp, fq)) = (e.atoms(), f.atoms());
+        rest_cmp(&mons[e.mon()].atoms, ep, eq, &mons[f.mon()].atoms, fp, fq)
     };
     match (groups.len() >= RADIX_MIN)
         .then(|| Packing::of(&groups))
@@ -214,8 +275,9 @@ const DIGIT: u32 = 8;
 /// Sorts `v` stably by the low `bits` bits of `key`, in passes of [`DIGIT`] bits from the
 /// lowest (a pass that would leave every item in one bucket is skipped).
 fn radix_sort<T: Copy>(v: &mut Vec<T>, bits: u32, key: impl Fn(&T) -> u64) {
-    let mut from = v.clone();
-    let mut to = v.clone();
+    // Two buffers, `v`'s own and one copy, written in turn.
+    let mut from = std::mem::take(v);
+    let mut to = from.clone();
     for shift in (0..bits).step_by(DIGIT as usize) {
         let digit = |x: &T| ((key(x) >> shift) & ((1 << DIGIT) - 1)) as usize;
         let mut start = [0usize; 1 << DIGIT];
@@ -239,21 +301,21 @@ fn radix_sort<T: Copy>(v: &mut Vec<T>, bits: u32, key: impl Fn(&T) -> u64) {
     *v = from;
 }
 
-/// Sorts `order` (hashes, each with its entry's position, the positions increasing) so that
-/// equal hashes stand together, in the order of their positions: what sorting the pairs
-/// gives, except for the order of the runs, which [`groups`] does not use (its groups are
-/// sorted by key afterwards). Many pairs are spread by the top bits of their hashes in a few
-/// counting passes (stable, so each bucket keeps the order of positions), and only each
+/// Sorts `order` (pairs in the order in which they were found) so that equal hashes stand
+/// together, in the order in which they were found: what sorting the pairs gives, except for
+/// the order of the runs, which [`groups`] does not use (its groups are sorted by key
+/// afterwards). Many pairs are spread by the top bits of their hashes in a few counting
+/// passes (stable, so each bucket keeps the order in which they were found), and only each
 /// bucket (a few pairs) sorted.
-fn by_hash(order: &mut Vec<(u64, usize)>) {
+fn by_hash(order: &mut Vec<Pair>) {
     if order.len() < RADIX_MIN {
         order.sort_unstable();
         return;
     }
     let bits = order.len().next_power_of_two().trailing_zeros();
     let bucket = |h: u64| h.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - bits);
-    radix_sort(order, bits, |&(h, _)| bucket(h));
-    for run in order.chunk_by_mut(|x, y| bucket(x.0) == bucket(y.0)) {
+    radix_sort(order, bits, |x| bucket(x.hash));
+    for run in order.chunk_by_mut(|x, y| bucket(x.hash) == bucket(y.hash)) {
         if run.len() > 1 {
             run.sort_unstable();
         }
@@ -360,7 +422,8 @@ fn key_cmp(mons: &[Mon], x: &Entry, y: &Entry) -> Ordering {
             if x.i == y.i && x.p == y.p && x.q == y.q {
                 return Ordering::Equal;
             }
-            rest_cmp(&mons[x.i].atoms, x.p, x.q, &mons[y.i].atoms, y.p, y.q)
+            let ((xp, xq), (yp, yq)) = (x.atoms(), y.atoms());
+            rest_cmp(&mons[x.mon()].atoms, xp, xq, &mons[y.mon()].atoms, yp, yq)
         })
 }
 
@@ -431,7 +494,7 @@ fn round(ctx: &mut Ctx, mons: &[Mon], rec: &mut Option<&mut Recorder>) -> (Vec<M
     if crate::scalar::charge((mons.len() + pairs) as u64).is_err() {
         return (mons.to_vec(), false);
     }
-    let groups = groups(mons, entries(mons, &cof, pairs));
+    let groups = groups(mons, &cof, pairs_of(mons, &cof, pairs));
     let mut used = vec![false; mons.len()];
     let mut out = Vec::with_capacity(mons.len());
     let mut changed = false;
@@ -440,24 +503,22 @@ fn round(ctx: &mut Ctx, mons: &[Mon], rec: &mut Option<&mut Recorder>) -> (Vec<M
         let entries = &groups.entries[range.clone()];
         let (class, a, b) = (entries[0].class, entries[0].a, entries[0].b);
         for e in entries {
-            let (i, i_sin) = (e.i, e.sin);
+            let (i, i_sin) = (e.mon(), e.sin);
             if used[i] {
                 continue;
             }
             // The partner has both atoms of the other kind (Cos class) or swapped (Sin class).
             let partner = entries.iter().find(|f| {
-                !used[f.i] && f.i != i && f.sin != i_sin && {
-                    let (qi, qj) = (&mons[i].q, &mons[f.i].q);
+                !used[f.mon()] && f.mon() != i && f.sin != i_sin && {
+                    let (qi, qj) = (&mons[i].q, &mons[f.mon()].q);
                     qi == qj || *qi == -qj
                 }
             });
-            let Some(&Entry {
-                i: j, p: pj, q: qj, ..
-            }) = partner
-            else {
+            let Some(partner) = partner else {
                 continue;
             };
-            let Some(&Entry { p: pi, q: qi, .. }) = entries.iter().find(|f| f.i == i) else {
+            let (j, (pj, qj)) = (partner.mon(), partner.atoms());
+            let Some((pi, qi)) = entries.iter().find(|f| f.mon() == i).map(Entry::atoms) else {
                 continue;
             };
             // Orient: `first` is cos a cos b (Cos) or sin a cos b (Sin).
@@ -553,14 +614,19 @@ mod tests {
     /// The groups of `mons` by [`groups`] and by [`all_sorted`], as `(i, p, q)` lists.
     fn both_ways(mons: &[Mon]) -> [Vec<Vec<(usize, usize, usize)>>; 2] {
         let cof = cofactor_ranks(mons);
-        let index = entries(mons, &cof, 0);
+        let all = pairs_of(mons, &cof, 0);
+        let index = all.iter().map(|x| x.entry(mons, &cof)).collect();
         let ids = |gs: Vec<Vec<Entry>>| -> Vec<Vec<(usize, usize, usize)>> {
             gs.iter()
-                .map(|g| g.iter().map(|e| (e.i, e.p, e.q)).collect())
+                .map(|g| {
+                    g.iter()
+                        .map(|e| (e.mon(), e.atoms().0, e.atoms().1))
+                        .collect()
+                })
                 .collect()
         };
-        let expected = ids(all_sorted(mons, index.clone()));
-        let found = groups(mons, index);
+        let expected = ids(all_sorted(mons, index));
+        let found = groups(mons, &cof, all);
         let found = found
             .ranges
             .iter()
@@ -618,6 +684,43 @@ mod tests {
             assert!(found.len() >= RADIX_MIN, "{} groups", found.len());
             assert_eq!(found, expected);
         }
+    }
+
+    /// Every pair of atoms of two angles is listed once, each with its first atom's sine bit,
+    /// and the bit stored above `q` leaves pairs in the order of `(hash, i, p, q)`.
+    #[test]
+    fn pairs_are_listed_once_and_order_by_their_places() {
+        let mut below = xorshift_below(0x9a1e_5eed);
+        // Few angles: many pairs of one monomial share a hash.
+        let mons = random_mons(&mut below, 400, 6, 4);
+        let cof = cofactor_ranks(&mons);
+        let mut pairs = pairs_of(&mons, &cof, 0);
+        let mut expected = Vec::new();
+        for (i, m) in mons.iter().enumerate() {
+            for p in 0..m.atoms.len() {
+                for q in p + 1..m.atoms.len() {
+                    if angle_of(m.atoms[p]) != angle_of(m.atoms[q]) {
+                        expected.push((i, p, q, is_sin(m.atoms[p])));
+                    }
+                }
+            }
+        }
+        let found: Vec<(usize, usize, usize, bool)> = pairs
+            .iter()
+            .map(|x| {
+                let e = x.entry(&mons, &cof);
+                (e.mon(), e.atoms().0, e.atoms().1, e.sin)
+            })
+            .collect();
+        assert_eq!(found, expected);
+        let place = |x: &Pair| {
+            let e = x.entry(&mons, &cof);
+            (x.hash, e.i, e.p, e.q)
+        };
+        let mut by_place = pairs.clone();
+        by_place.sort_by_key(place);
+        pairs.sort_unstable();
+        assert_eq!(pairs, by_place);
     }
 
     #[test]
