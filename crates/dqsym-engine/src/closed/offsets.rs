@@ -402,10 +402,15 @@ fn dot(r: &[(usize, Small)], o: &[Small]) -> Small {
 }
 
 /// The least common multiple of the denominators of `xs`; `None` when it leaves a machine
-/// word.
+/// word. A denominator that divides the multiple so far (1, the offset of most symbols, or
+/// one met before) leaves it as it is without a gcd.
 fn common_denominator<'a>(mut xs: impl Iterator<Item = &'a Small>) -> Option<i64> {
     xs.try_fold(1i64, |den, x| {
-        den.checked_mul(x.denom() / den.gcd(x.denom()))
+        if den % x.denom() == 0 {
+            Some(den)
+        } else {
+            den.checked_mul(x.denom() / den.gcd(x.denom()))
+        }
     })
 }
 
@@ -566,25 +571,24 @@ fn representatives(
         }
         let mut best: Option<(Key, Vec<Small>)> = None;
         let mut seen = 0usize;
-        let complete = solve(syms, rows, targets, n, fixed, &mut |o| {
-            // Centred into (-D, D] for a period 2 D.
-            let o: Vec<Small> = o
-                .iter()
-                .zip(&halves)
-                .map(|(&v, &den)| centred(v, den))
-                .collect();
+        // The solution being scored, centred into (-D, D] for a period 2 D: one buffer,
+        // copied only when the solution is the best so far.
+        let mut o: Vec<Small> = Vec::with_capacity(syms.len());
+        let complete = solve(syms, rows, targets, n, fixed, &mut |solution| {
+            o.clear();
+            o.extend(
+                solution
+                    .iter()
+                    .zip(&halves)
+                    .map(|(&v, &den)| centred(v, den)),
+            );
             seen += 1;
             let bound = best.as_ref().map_or(usize::MAX, |(k, _)| k.0);
             let Some((parts, neg)) = score(&o, bound) else {
                 return seen < MAX_SOLUTIONS;
             };
-            let den = o.iter().map(|v| *v.denom()).max().unwrap_or(1);
-            let size: Small = o.iter().map(|v| v.abs()).sum();
-            let negatives = o.iter().filter(|v| v.is_negative()).count();
-            let nonzero = o.iter().filter(|v| !v.is_zero()).count();
-            let key = (parts, den, nonzero, neg, size, negatives);
-            if best.as_ref().is_none_or(|(k, _)| key < *k) {
-                best = Some((key, o));
+            if let Some(key) = key_below(&o, parts, neg, best.as_ref().map(|(k, _)| k)) {
+                best = Some((key, o.clone()));
             }
             seen < MAX_SOLUTIONS
         })?;
@@ -632,13 +636,15 @@ fn centred(v: Small, den: Small) -> Small {
             v
         }
     };
-    // v = a / b, period p: a mod (p b), over b, is v minus floor(v / p) p.
+    // v = a / b, period p: a mod (p b), over b, is v minus floor(v / p) p. It is in lowest
+    // terms as it stands: `r` differs from `a` by a multiple of `b`, so `gcd(r, b) = gcd(a, b)
+    // = 1` (`b > 0`), and no gcd is taken.
     let fast = || -> Option<Small> {
         let (a, b) = (*v.numer(), *v.denom());
         let half = den.to_integer().checked_mul(b)?;
         let r = a.rem_euclid(half.checked_mul(2)?);
         let r = if r > half { r - 2 * half } else { r };
-        Some(Small::new(r, b))
+        Some(Small::new_raw(r, b))
     };
     if den.is_integer() {
         fast().unwrap_or_else(slow)
@@ -650,6 +656,28 @@ fn centred(v: Small, den: Small) -> Small {
 /// The order of solutions: parts, largest denominator, offsets, negative parts, sum of
 /// `|o|`, negative offsets.
 type Key = (usize, i64, usize, usize, Small, usize);
+
+/// The [`Key`] of the offsets `o` whose shifted scalar has `parts` parts, `neg` of them
+/// negative, when it is below `best` (every key is, without a best so far); `None` otherwise.
+/// The sum of `|o|` (rational additions, each reduced by a gcd: most of the cost of a
+/// solution the Jaco-style arm's pose entries scored) and the negative offsets are only
+/// computed when the key's first four parts do not already decide: a key whose head is above
+/// `best`'s is above it whatever its tail (keys are compared lexicographically), one whose
+/// head is below is below it, and only on equal heads is the tail compared.
+fn key_below(o: &[Small], parts: usize, neg: usize, best: Option<&Key>) -> Option<Key> {
+    let den = o.iter().map(|v| *v.denom()).max().unwrap_or(1);
+    let nonzero = o.iter().filter(|v| !v.is_zero()).count();
+    let head = (parts, den, nonzero, neg);
+    if let Some(b) = best {
+        if head > (b.0, b.1, b.2, b.3) {
+            return None;
+        }
+    }
+    let size: Small = o.iter().map(|v| v.abs()).sum();
+    let negatives = o.iter().filter(|v| v.is_negative()).count();
+    let key = (parts, den, nonzero, neg, size, negatives);
+    best.is_none_or(|b| key < *b).then_some(key)
+}
 
 /// The most solutions [`representatives`] compares.
 const MAX_SOLUTIONS: usize = 4096;
@@ -818,7 +846,12 @@ mod tests {
         for _ in 0..3000 {
             let v = Small::new(next(2001) as i64 - 1000, 1 + next(72) as i64);
             let den = Small::from_integer(1 + next(6) as i64);
-            let c = big(centred(v, den));
+            let r = centred(v, den);
+            assert!(
+                *r.denom() > 0 && r.numer().gcd(r.denom()) == 1,
+                "{v} centred in lowest terms: {r:?}"
+            );
+            let c = big(r);
             let (bv, bd) = (big(v), big(den));
             assert!(c > -bd.clone() && c <= bd, "{v} in ({den})");
             let turns = (bv - c) / (bd * BigRational::from_integer(2.into()));
@@ -827,6 +860,50 @@ mod tests {
                 "{v} and its centred value differ by whole periods"
             );
         }
+    }
+
+    /// `key_below` (the tail of a key computed only when its head ties) against the whole
+    /// key compared with the best, on seeded random offsets, part counts and bests (some of
+    /// them equal in their heads).
+    #[test]
+    fn a_key_is_below_the_best_as_the_whole_key_compares() {
+        let mut next = crate::testing::xorshift_below(0x0ff5_e7a1_4e75_0002);
+        let full = |o: &[Small], parts: usize, neg: usize| -> Key {
+            let den = o.iter().map(|v| *v.denom()).max().unwrap_or(1);
+            let size: Small = o.iter().map(|v| v.abs()).sum();
+            let negatives = o.iter().filter(|v| v.is_negative()).count();
+            let nonzero = o.iter().filter(|v| !v.is_zero()).count();
+            (parts, den, nonzero, neg, size, negatives)
+        };
+        let (mut taken, mut tied) = (0, 0);
+        for _ in 0..5000 {
+            let syms = 1 + next(4) as usize;
+            let mut offsets = || -> Vec<Small> {
+                (0..syms)
+                    .map(|_| match next(3) {
+                        0 => Small::zero(),
+                        _ => Small::new(next(19) as i64 - 9, [1, 3, 9][next(3) as usize]),
+                    })
+                    .collect()
+            };
+            let (o, b) = (offsets(), offsets());
+            let (parts, neg) = (next(3) as usize, next(2) as usize);
+            let best = full(&b, next(3) as usize, next(2) as usize);
+            let key = full(&o, parts, neg);
+            tied += usize::from((key.0, key.1, key.2, key.3) == (best.0, best.1, best.2, best.3));
+            let want = (key < best).then_some(key);
+            taken += usize::from(want.is_some());
+            assert_eq!(
+                key_below(&o, parts, neg, Some(&best)),
+                want,
+                "{o:?} {best:?}"
+            );
+            assert_eq!(key_below(&o, parts, neg, None), Some(key));
+        }
+        assert!(
+            taken > 500 && tied > 100,
+            "both ways met ({taken} taken, {tied} tied)"
+        );
     }
 
     #[test]
