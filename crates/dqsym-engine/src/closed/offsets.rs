@@ -149,13 +149,16 @@ pub(crate) fn find(x: &Scalar) -> Option<Shift> {
         .collect();
     let targets: Vec<(Small, Small)> = phase.iter().map(|d| (*d, Small::new(1, 12))).collect();
     let free = vec![None; syms.len()];
+    // The system with every symbol free: solved here for a first solution, and again by
+    // `representatives` (counted, then listed), built once.
+    let everything = system(&syms, &rows, &targets, n, &free)?;
     let mut base: Option<Vec<Small>> = None;
-    solve(&syms, &rows, &targets, n, &free, &mut |o| {
+    solve(&everything, &free, &mut |o| {
         base = Some(o.to_vec());
         false
     })?;
     let base = base?;
-    let offsets = representatives(&groups, &syms, &rows, &targets, n, base)?;
+    let offsets = representatives(&groups, &syms, &rows, &targets, n, &everything, base)?;
     let shift = Shift(
         syms.into_iter()
             .zip(offsets)
@@ -175,14 +178,11 @@ fn multiple(v: Small, m: Small) -> bool {
 /// period `[0, 2 D)` (`a` the lcm of its coefficients' numerators, `D` of their
 /// denominators), the `fixed` ones at their value: passed to `found` in lexicographic order
 /// (by symbol, then value) until it returns false. Every phase is scaled to an integer
-/// residue modulo one common modulus and the system solved by `congruence.rs`, which lists
-/// the solutions without a search. `Some(true)` when every solution was passed; `None` past
-/// the bounds (too many candidates, numbers too large, the work budget).
+/// residue modulo one common modulus (`sys`, made by [`system`] from the same `fixed`) and
+/// the system solved by `congruence.rs`, which lists the solutions without a search.
+/// `Some(true)` when every solution was passed; `None` past the work budget.
 fn solve(
-    syms: &[Sym],
-    rows: &[Vec<(usize, Small)>],
-    targets: &[(Small, Small)],
-    n: i64,
+    sys: &System,
     fixed: &[Option<Small>],
     found: &mut dyn FnMut(&[Small]) -> bool,
 ) -> Option<bool> {
@@ -192,10 +192,9 @@ fn solve(
         b,
         modulus,
         ranges,
-    } = system(syms, rows, targets, n, fixed)?;
+    } = sys;
     let mut o: Vec<Small> = fixed
         .iter()
-        .take(syms.len())
         .map(|v| v.unwrap_or_else(Small::zero))
         .collect();
     // Each free symbol's offsets `unit * v`, made once per value met: the solutions repeat
@@ -205,7 +204,7 @@ fn solve(
         .iter()
         .map(|c| vec![None; usize::try_from(*c).unwrap_or(0)])
         .collect();
-    let result = super::congruence::solutions(&a, &b, modulus, &ranges, &mut |z| {
+    let result = super::congruence::solutions(a, b, *modulus, ranges, &mut |z| {
         for (((s, unit, _), v), known) in free.iter().zip(z).zip(&mut values) {
             let slot = usize::try_from(*v).ok().and_then(|i| known.get_mut(i));
             o[*s] = match slot {
@@ -223,18 +222,10 @@ fn solve(
     }
 }
 
-/// Whether [`solve`] on the same arguments has fewer than `bound` solutions, decided by
+/// Whether [`solve`] on the same system has fewer than `bound` solutions, decided by
 /// counting them without listing them (`congruence::count`) when the count is known, by
 /// listing up to `bound` of them otherwise; `None` as [`solve`].
-fn fewer_solutions_than(
-    syms: &[Sym],
-    rows: &[Vec<(usize, Small)>],
-    targets: &[(Small, Small)],
-    n: i64,
-    fixed: &[Option<Small>],
-    bound: usize,
-) -> Option<bool> {
-    let sys = system(syms, rows, targets, n, fixed)?;
+fn fewer_solutions_than(sys: &System, bound: usize) -> Option<bool> {
     match super::congruence::count(&sys.a, &sys.b, sys.modulus, &sys.ranges) {
         Ok(Some(c)) => return Some(c < bound as u128),
         Ok(None) => {}
@@ -483,6 +474,7 @@ fn representatives(
     rows: &[Vec<(usize, Small)>],
     targets: &[(Small, Small)],
     n: i64,
+    everything: &System,
     base: Vec<Small>,
 ) -> Option<Vec<Small>> {
     let amps: Vec<(f64, f64)> = groups
@@ -560,44 +552,45 @@ fn representatives(
         }
         Some((parts, neg))
     };
-    let mut run = |fixed: &[Option<Small>], all: bool| -> Option<(bool, Option<Vec<Small>>)> {
-        // Whether the solutions are fewer than the bound, counted first: when they are not,
-        // none of the first run (`all`) is shown.
-        // Counted without listing them when the count is known (the Jaco-style arm's pose
-        // entries each have more than the bound: listing them to the bound was a ninth of
-        // its `fk --jacobian`).
-        if all && !fewer_solutions_than(syms, rows, targets, n, fixed, MAX_SOLUTIONS)? {
-            return Some((false, None));
-        }
-        let mut best: Option<(Key, Vec<Small>)> = None;
-        let mut seen = 0usize;
-        // The solution being scored, centred into (-D, D] for a period 2 D: one buffer,
-        // copied only when the solution is the best so far.
-        let mut o: Vec<Small> = Vec::with_capacity(syms.len());
-        let complete = solve(syms, rows, targets, n, fixed, &mut |solution| {
-            o.clear();
-            o.extend(
-                solution
-                    .iter()
-                    .zip(&halves)
-                    .map(|(&v, &den)| centred(v, den)),
-            );
-            seen += 1;
-            let bound = best.as_ref().map_or(usize::MAX, |(k, _)| k.0);
-            let Some((parts, neg)) = score(&o, bound) else {
-                return seen < MAX_SOLUTIONS;
-            };
-            if let Some(key) = key_below(&o, parts, neg, best.as_ref().map(|(k, _)| k)) {
-                best = Some((key, o.clone()));
+    let mut run =
+        |sys: &System, fixed: &[Option<Small>], all: bool| -> Option<(bool, Option<Vec<Small>>)> {
+            // Whether the solutions are fewer than the bound, counted first: when they are not,
+            // none of the first run (`all`) is shown.
+            // Counted without listing them when the count is known (the Jaco-style arm's pose
+            // entries each have more than the bound: listing them to the bound was a ninth of
+            // its `fk --jacobian`).
+            if all && !fewer_solutions_than(sys, MAX_SOLUTIONS)? {
+                return Some((false, None));
             }
-            seen < MAX_SOLUTIONS
-        })?;
-        Some((complete, best.map(|(_, o)| o)))
-    };
+            let mut best: Option<(Key, Vec<Small>)> = None;
+            let mut seen = 0usize;
+            // The solution being scored, centred into (-D, D] for a period 2 D: one buffer,
+            // copied only when the solution is the best so far.
+            let mut o: Vec<Small> = Vec::with_capacity(syms.len());
+            let complete = solve(sys, fixed, &mut |solution| {
+                o.clear();
+                o.extend(
+                    solution
+                        .iter()
+                        .zip(&halves)
+                        .map(|(&v, &den)| centred(v, den)),
+                );
+                seen += 1;
+                let bound = best.as_ref().map_or(usize::MAX, |(k, _)| k.0);
+                let Some((parts, neg)) = score(&o, bound) else {
+                    return seen < MAX_SOLUTIONS;
+                };
+                if let Some(key) = key_below(&o, parts, neg, best.as_ref().map(|(k, _)| k)) {
+                    best = Some((key, o.clone()));
+                }
+                seen < MAX_SOLUTIONS
+            })?;
+            Some((complete, best.map(|(_, o)| o)))
+        };
     // Every solution when they are few; else the symbols whose offset in `base` is a multiple
     // of their own steps keep none, and the others range over the solutions.
     let free = vec![None; syms.len()];
-    if let (true, Some(o)) = run(&free, true)? {
+    if let (true, Some(o)) = run(everything, &free, true)? {
         return Some(o);
     }
     let fixed: Vec<Option<Small>> = (0..syms.len())
@@ -617,7 +610,7 @@ fn representatives(
                 .then(Small::zero)
         })
         .collect();
-    run(&fixed, false)?.1
+    run(&system(syms, rows, targets, n, &fixed)?, &fixed, false)?.1
 }
 
 /// `v` moved by a multiple of the period `2 den` into `(-den, den]` (`den` a positive
