@@ -165,7 +165,7 @@ pub(super) fn full_cost(e: &Expr) -> (usize, usize, usize) {
 }
 
 /// Whether `|k d| = 1`, for `k` in lowest terms and `d > 0`, without the product (which
-/// reduces by a gcd: a tenth of the Jaco-style arm's cost evaluations): `k = p/q` with
+/// reduces by a gcd, once per angle term of every cost evaluated): `k = p/q` with
 /// `|p| d = q` and `gcd(p, q) = 1` makes `p` divide `q`, so `|p| = 1` and `q = d`; the
 /// converse is immediate.
 fn unit_over(k: &Small, d: i64) -> bool {

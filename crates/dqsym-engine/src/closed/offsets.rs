@@ -652,8 +652,7 @@ type Key = (usize, i64, usize, usize, Small, usize);
 
 /// The [`Key`] of the offsets `o` whose shifted scalar has `parts` parts, `neg` of them
 /// negative, when it is below `best` (every key is, without a best so far); `None` otherwise.
-/// The sum of `|o|` (rational additions, each reduced by a gcd: most of the cost of a
-/// solution the Jaco-style arm's pose entries scored) and the negative offsets are only
+/// The sum of `|o|` (rational additions, each reduced by a gcd) and the negative offsets are only
 /// computed when the key's first four parts do not already decide: a key whose head is above
 /// `best`'s is above it whatever its tail (keys are compared lexicographically), one whose
 /// head is below is below it, and only on equal heads is the tail compared.

@@ -413,8 +413,8 @@ fn along(signed: &[Vec<Small>], n: usize, tilt: f64) -> Vec<f64> {
 /// The differences between the top exponent by `along` (the last of equal ones) and every
 /// other exponent, first nonzero entry positive, sorted and without repeats: twice the
 /// directions. Generic so that the exponents may be integers over one common denominator
-/// (the order and the equality of such vectors are those of the rationals they stand for;
-/// sorting and comparing vectors of rationals was most of the cost of the directions).
+/// (the order and the equality of such vectors are those of the rationals they stand for,
+/// compared without the gcds and divisions of rationals).
 fn differences<T>(signed: &[Vec<T>], along: &[f64]) -> Vec<Vec<T>>
 where
     T: Ord + Clone + Zero + std::ops::Sub<Output = T> + std::ops::Neg<Output = T>,
@@ -551,12 +551,13 @@ fn on_plane(base: &[f64], df: &[f64], dd: f64, k: i64) -> Vec<f64> {
 }
 
 /// For each phase `k`, whether the sum's value at the point of `base` on the plane of `k`
-/// (`value(ws, on_plane(base, d, dd, k))` as [`find_factors`] computes it) is surely above `tol` in
-/// absolute value: then that phase fails at its first point, and its cosine per wave is not
-/// taken (most directions and phases fail there: those cosines were most of the cost of the
-/// factors). Decided from the same values in another way: on the plane of `k` the point is
-/// `base + s_k d` with `s_k = s_0 - k step`, so a wave's angle is `theta_0 + k delta`, and
-/// `e^{i theta_k}` is rotated from phase to phase (a complex product, no cosine).
+/// (`value(ws, on_plane(base, d, dd, k))` as [`find_factors`] computes it) is surely above
+/// `tol` in absolute value: then that phase fails at its first point, and its cosine per wave
+/// is not taken (most directions and phases fail there; those cosines were two fifths of
+/// `sinusoid_factors` on the Jaco-style arm). Decided from the same values in another way: on
+/// the plane of `k` the point is `base + s_k d` with `s_k = s_0 - k step`, so a wave's angle
+/// is `theta_0 + k delta`, and `e^{i theta_k}` is rotated from phase to phase (a complex
+/// product, no cosine).
 ///
 /// Why sound: both ways compute each wave's angle from sums of at most `n + 3` products
 /// whose magnitudes add up to at most `m` (the bound computed below: the products
