@@ -393,20 +393,24 @@ fn waves(t: &[Term], exps: &[Vec<Small>]) -> Option<Vec<Wave>> {
         .collect()
 }
 
-/// Each exponent's position along a generic direction (tilted by `tilt`): the top one is a
-/// vertex of the Newton polytope of the exponents `+-m`.
-fn along(signed: &[Vec<Small>], n: usize, tilt: f64) -> Vec<f64> {
+/// Each exponent's position along a generic direction (tilted by `tilt`), from the exponents
+/// in f64 ([`floats`]): the top one is a vertex of the Newton polytope of the exponents `+-m`.
+fn along(floats: &[Vec<f64>], n: usize, tilt: f64) -> Vec<f64> {
     let generic: Vec<f64> = (0..n)
         .map(|i| 1.0 + tilt * (i as f64 + 1.0).sqrt())
         .collect();
+    floats
+        .iter()
+        .map(|e| e.iter().zip(&generic).map(|(k, g)| k * g).sum())
+        .collect()
+}
+
+/// The exponents in f64 (0 where one does not fit), converted once for both tilts of
+/// [`along`].
+fn floats(signed: &[Vec<Small>]) -> Vec<Vec<f64>> {
     signed
         .iter()
-        .map(|e| {
-            e.iter()
-                .zip(&generic)
-                .map(|(k, g)| k.to_f64().unwrap_or(0.0) * g)
-                .sum()
-        })
+        .map(|e| e.iter().map(|k| k.to_f64().unwrap_or(0.0)).collect())
         .collect()
 }
 
@@ -487,7 +491,8 @@ fn integer_exponents(signed: &[Vec<Small>]) -> Option<(Vec<Vec<i64>>, i64)> {
 /// integers over a common denominator `L` when they fit (each `D / (2 L)` is then the
 /// rational `(a - b) / 2` itself, and the order the same), in rationals otherwise.
 fn directions(signed: &[Vec<Small>], n: usize) -> Vec<Vec<Small>> {
-    let (first, second) = (along(signed, n, 0.313_7), along(signed, n, -0.561_3));
+    let f = floats(signed);
+    let (first, second) = (along(&f, n, 0.313_7), along(&f, n, -0.561_3));
     match integer_exponents(signed) {
         Some((ints, l)) => twice_the_directions(&ints, &first, &second)
             .into_iter()
@@ -589,14 +594,9 @@ fn surely_above(ws: &[Wave], base: &[f64], df: &[f64], dd: f64, tol: f64) -> Vec
         let fb_abs: f64 = w.f.iter().zip(base).map(|(f, b)| (f * b).abs()).sum();
         let fd_abs: f64 = w.f.iter().zip(df).map(|(f, a)| (f * a).abs()).sum();
         m = m.max(fb_abs + s_max * fd_abs + w.phase.abs());
-        let theta = fb + w.phase + s0 * fd;
-        let delta = -step * fd;
-        z.push((
-            w.amp * theta.cos(),
-            w.amp * theta.sin(),
-            delta.cos(),
-            delta.sin(),
-        ));
+        let (sin, cos) = (fb + w.phase + s0 * fd).sin_cos();
+        let (rot_sin, rot_cos) = (-step * fd).sin_cos();
+        z.push((w.amp * cos, w.amp * sin, rot_cos, rot_sin));
     }
     let margin = scale * (1e-9 + 1e-12 * (n + 2.0 * PHASES as f64) * (1.0 + m));
     (0..PHASES)
@@ -827,7 +827,8 @@ mod tests {
                 .flat_map(|e| [e.clone(), e.iter().map(|k| -*k).collect()])
                 .collect();
             assert!(integer_exponents(&signed).is_some());
-            let (first, second) = (along(&signed, n, 0.313_7), along(&signed, n, -0.561_3));
+            let f = floats(&signed);
+            let (first, second) = (along(&f, n, 0.313_7), along(&f, n, -0.561_3));
             let two = Small::from_integer(2);
             let rational: Vec<Vec<Small>> = twice_the_directions(&signed, &first, &second)
                 .into_iter()
