@@ -141,13 +141,8 @@ pub(super) fn full_cost(e: &Expr) -> (usize, usize, usize) {
                 // Over a common denominator `(q1 + q2)/2` (see `angle_text`): one division,
                 // and a multiplication per numerator other than 1.
                 let d = super::notation::common_denominator(angle).unwrap_or(1);
-                let scale = Small::from_integer(d);
-                let coefs = angle
-                    .terms
-                    .iter()
-                    .filter(|(_, k)| !(*k * scale).abs().is_one())
-                    .count()
-                    + usize::from(!(angle.pi * scale).abs().is_one() && !angle.pi.is_zero())
+                let coefs = angle.terms.iter().filter(|(_, k)| !unit_over(k, d)).count()
+                    + usize::from(!unit_over(&angle.pi, d) && !angle.pi.is_zero())
                     + usize::from(d > 1);
                 // Without a common denominator a fraction other than `1/n` is a multiplication
                 // and a division (`3*u1/2`, `5*pi/12`), as SymPy counts it.
@@ -167,6 +162,14 @@ pub(super) fn full_cost(e: &Expr) -> (usize, usize, usize) {
     }
     let c = e.cost();
     (c.ops + angle_ops(e), c.ops, c.calls)
+}
+
+/// Whether `|k d| = 1`, for `k` in lowest terms and `d > 0`, without the product (which
+/// reduces by a gcd, once per angle term of every cost evaluated): `k = p/q` with
+/// `|p| d = q` and `gcd(p, q) = 1` makes `p` divide `q`, so `|p| = 1` and `q = d`; the
+/// converse is immediate.
+fn unit_over(k: &Small, d: i64) -> bool {
+    k.numer().unsigned_abs() == 1 && *k.denom() == d
 }
 
 /// The order candidates are chosen in: [`full_cost`]'s operations, then the operations with
@@ -823,6 +826,26 @@ fn constant_trig(x: &Scalar, t: &[Term]) -> Option<Expr> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `unit_over` (no product) against `|k d| = 1` computed as a rational product, on seeded
+    /// random fractions and denominators, with `k = +-1/d` and `+-1` among them.
+    #[test]
+    fn a_unit_over_a_denominator_is_the_product_of_one() {
+        let mut next = crate::testing::xorshift_below(0x5eed_0a17_c057_0001);
+        let mut units = 0;
+        for _ in 0..20_000 {
+            let d = 1 + next(24) as i64;
+            let k = match next(4) {
+                0 => Small::new(1 - 2 * next(2) as i64, d),
+                1 => Small::new(1 - 2 * next(2) as i64, 1),
+                _ => Small::new(next(49) as i64 - 24, 1 + next(36) as i64),
+            };
+            let want = (k * Small::from_integer(d)).abs().is_one();
+            units += usize::from(want);
+            assert_eq!(unit_over(&k, d), want, "{k} over {d}");
+        }
+        assert!(units > 1000, "the units were tried ({units})");
+    }
 
     /// `in_one_function` (integers over a common denominator) against the polynomial itself,
     /// exactly, at the rational point (cos, sin) = (3/5, 4/5) of the unit circle, for both

@@ -1025,6 +1025,15 @@ pub(super) fn joined_form(
     cands.into_iter().find(|c| equal(c))
 }
 
+/// The items of `v` whose index `keep` keeps, in their order.
+fn without<T>(v: Vec<T>, keep: impl Fn(&usize) -> bool) -> Vec<T> {
+    v.into_iter()
+        .enumerate()
+        .filter(|(k, _)| keep(k))
+        .map(|(_, x)| x)
+        .collect()
+}
+
 /// The sum `e` (or a number times it) with pairs of its summands joined ([`joined`]) while
 /// that makes it no longer by [`choice_key`], the cheapest join first; each sum reached, not
 /// yet checked (`alt::best_alternative` checks them exactly). Empty when no pair joins.
@@ -1090,12 +1099,14 @@ fn pairs_joined(e: &Expr, harmonic: bool) -> Vec<Expr> {
         s.negated = false;
         full_cost(&s.expr()).0
     };
+    // Each summand's calls and cost, kept beside `cur`: a join replaces two summands by one,
+    // whose calls and cost are the only new ones.
+    let mut calls: Vec<Vec<Call>> = cur.iter().map(Summand::calls).collect();
+    let mut costs: Vec<usize> = cur.iter().map(cost).collect();
     while cur.len() >= 2 {
         // The pair whose join saves the most locally (the addition between them included),
         // then the whole sum built once and compared.
-        let calls: Vec<Vec<Call>> = cur.iter().map(Summand::calls).collect();
-        let costs: Vec<usize> = cur.iter().map(cost).collect();
-        let mut pick: Option<(usize, usize, usize, Summand)> = None;
+        let mut pick: Option<(usize, usize, usize, Summand, usize)> = None;
         for i in 0..cur.len() {
             for j in i + 1..cur.len() {
                 let mut joins = if cur[i].q == cur[j].q {
@@ -1108,28 +1119,32 @@ fn pairs_joined(e: &Expr, harmonic: bool) -> Vec<Expr> {
                 }
                 for s in joins {
                     // The saving: what the two summands and their addition cost, less the join.
-                    let Some(d) = (costs[i] + costs[j] + 1).checked_sub(cost(&s)) else {
+                    let c = cost(&s);
+                    let Some(d) = (costs[i] + costs[j] + 1).checked_sub(c) else {
                         continue;
                     };
-                    if pick.as_ref().is_none_or(|(_, _, b, _)| d > *b) {
-                        pick = Some((i, j, d, s));
+                    if pick.as_ref().is_none_or(|(_, _, b, _, _)| d > *b) {
+                        pick = Some((i, j, d, s, c));
                     }
                 }
             }
         }
-        let best = pick.and_then(|(i, j, _, s)| {
-            let mut v: Vec<Summand> = cur
-                .iter()
-                .enumerate()
-                .filter(|(k, _)| *k != i && *k != j)
-                .map(|(_, x)| x.clone())
-                .collect();
+        let best = pick.and_then(|(i, j, _, s, c)| {
+            let mut v = without(cur.clone(), |k| *k != i && *k != j);
+            let s_calls = s.calls();
             v.push(s);
             let e = whole(&v);
             let k = choice_key(&e);
-            ((k.0, k.1) <= (key.0, key.1)).then_some((k, v, e))
+            ((k.0, k.1) <= (key.0, key.1)).then_some((k, v, e, (i, j, s_calls, c)))
         });
-        let Some((k, v, e)) = best else { break };
+        let Some((k, v, e, (i, j, s_calls, c))) = best else {
+            break;
+        };
+        let kept = |k: &usize| *k != i && *k != j;
+        calls = without(calls, kept);
+        calls.push(s_calls);
+        costs = without(costs, kept);
+        costs.push(c);
         key = k;
         cur = v;
         out.push(e);

@@ -149,13 +149,16 @@ pub(crate) fn find(x: &Scalar) -> Option<Shift> {
         .collect();
     let targets: Vec<(Small, Small)> = phase.iter().map(|d| (*d, Small::new(1, 12))).collect();
     let free = vec![None; syms.len()];
+    // The system with every symbol free: solved here for a first solution, and again by
+    // `representatives` (counted, then listed), built once.
+    let everything = system(&syms, &rows, &targets, n, &free)?;
     let mut base: Option<Vec<Small>> = None;
-    solve(&syms, &rows, &targets, n, &free, &mut |o| {
+    solve(&everything, &free, &mut |o| {
         base = Some(o.to_vec());
         false
     })?;
     let base = base?;
-    let offsets = representatives(&groups, &syms, &rows, &targets, n, base)?;
+    let offsets = representatives(&groups, &syms, &rows, &targets, n, &everything, base)?;
     let shift = Shift(
         syms.into_iter()
             .zip(offsets)
@@ -175,14 +178,11 @@ fn multiple(v: Small, m: Small) -> bool {
 /// period `[0, 2 D)` (`a` the lcm of its coefficients' numerators, `D` of their
 /// denominators), the `fixed` ones at their value: passed to `found` in lexicographic order
 /// (by symbol, then value) until it returns false. Every phase is scaled to an integer
-/// residue modulo one common modulus and the system solved by `congruence.rs`, which lists
-/// the solutions without a search. `Some(true)` when every solution was passed; `None` past
-/// the bounds (too many candidates, numbers too large, the work budget).
+/// residue modulo one common modulus (`sys`, made by [`system`] from the same `fixed`) and
+/// the system solved by `congruence.rs`, which lists the solutions without a search.
+/// `Some(true)` when every solution was passed; `None` past the work budget.
 fn solve(
-    syms: &[Sym],
-    rows: &[Vec<(usize, Small)>],
-    targets: &[(Small, Small)],
-    n: i64,
+    sys: &System,
     fixed: &[Option<Small>],
     found: &mut dyn FnMut(&[Small]) -> bool,
 ) -> Option<bool> {
@@ -192,10 +192,9 @@ fn solve(
         b,
         modulus,
         ranges,
-    } = system(syms, rows, targets, n, fixed)?;
+    } = sys;
     let mut o: Vec<Small> = fixed
         .iter()
-        .take(syms.len())
         .map(|v| v.unwrap_or_else(Small::zero))
         .collect();
     // Each free symbol's offsets `unit * v`, made once per value met: the solutions repeat
@@ -205,7 +204,7 @@ fn solve(
         .iter()
         .map(|c| vec![None; usize::try_from(*c).unwrap_or(0)])
         .collect();
-    let result = super::congruence::solutions(&a, &b, modulus, &ranges, &mut |z| {
+    let result = super::congruence::solutions(a, b, *modulus, ranges, &mut |z| {
         for (((s, unit, _), v), known) in free.iter().zip(z).zip(&mut values) {
             let slot = usize::try_from(*v).ok().and_then(|i| known.get_mut(i));
             o[*s] = match slot {
@@ -223,18 +222,10 @@ fn solve(
     }
 }
 
-/// Whether [`solve`] on the same arguments has fewer than `bound` solutions, decided by
+/// Whether [`solve`] on the same system has fewer than `bound` solutions, decided by
 /// counting them without listing them (`congruence::count`) when the count is known, by
 /// listing up to `bound` of them otherwise; `None` as [`solve`].
-fn fewer_solutions_than(
-    syms: &[Sym],
-    rows: &[Vec<(usize, Small)>],
-    targets: &[(Small, Small)],
-    n: i64,
-    fixed: &[Option<Small>],
-    bound: usize,
-) -> Option<bool> {
-    let sys = system(syms, rows, targets, n, fixed)?;
+fn fewer_solutions_than(sys: &System, bound: usize) -> Option<bool> {
     match super::congruence::count(&sys.a, &sys.b, sys.modulus, &sys.ranges) {
         Ok(Some(c)) => return Some(c < bound as u128),
         Ok(None) => {}
@@ -402,10 +393,15 @@ fn dot(r: &[(usize, Small)], o: &[Small]) -> Small {
 }
 
 /// The least common multiple of the denominators of `xs`; `None` when it leaves a machine
-/// word.
+/// word. A denominator that divides the multiple so far (1, the offset of most symbols, or
+/// one met before) leaves it as it is without a gcd.
 fn common_denominator<'a>(mut xs: impl Iterator<Item = &'a Small>) -> Option<i64> {
     xs.try_fold(1i64, |den, x| {
-        den.checked_mul(x.denom() / den.gcd(x.denom()))
+        if den % x.denom() == 0 {
+            Some(den)
+        } else {
+            den.checked_mul(x.denom() / den.gcd(x.denom()))
+        }
     })
 }
 
@@ -478,6 +474,7 @@ fn representatives(
     rows: &[Vec<(usize, Small)>],
     targets: &[(Small, Small)],
     n: i64,
+    everything: &System,
     base: Vec<Small>,
 ) -> Option<Vec<Small>> {
     let amps: Vec<(f64, f64)> = groups
@@ -555,45 +552,45 @@ fn representatives(
         }
         Some((parts, neg))
     };
-    let mut run = |fixed: &[Option<Small>], all: bool| -> Option<(bool, Option<Vec<Small>>)> {
-        // Whether the solutions are fewer than the bound, counted first: when they are not,
-        // none of the first run (`all`) is shown.
-        // Counted without listing them when the count is known (the Jaco-style arm's pose
-        // entries each have more than the bound: listing them to the bound was a ninth of
-        // its `fk --jacobian`).
-        if all && !fewer_solutions_than(syms, rows, targets, n, fixed, MAX_SOLUTIONS)? {
-            return Some((false, None));
-        }
-        let mut best: Option<(Key, Vec<Small>)> = None;
-        let mut seen = 0usize;
-        let complete = solve(syms, rows, targets, n, fixed, &mut |o| {
-            // Centred into (-D, D] for a period 2 D.
-            let o: Vec<Small> = o
-                .iter()
-                .zip(&halves)
-                .map(|(&v, &den)| centred(v, den))
-                .collect();
-            seen += 1;
-            let bound = best.as_ref().map_or(usize::MAX, |(k, _)| k.0);
-            let Some((parts, neg)) = score(&o, bound) else {
-                return seen < MAX_SOLUTIONS;
-            };
-            let den = o.iter().map(|v| *v.denom()).max().unwrap_or(1);
-            let size: Small = o.iter().map(|v| v.abs()).sum();
-            let negatives = o.iter().filter(|v| v.is_negative()).count();
-            let nonzero = o.iter().filter(|v| !v.is_zero()).count();
-            let key = (parts, den, nonzero, neg, size, negatives);
-            if best.as_ref().is_none_or(|(k, _)| key < *k) {
-                best = Some((key, o));
+    let mut run =
+        |sys: &System, fixed: &[Option<Small>], all: bool| -> Option<(bool, Option<Vec<Small>>)> {
+            // Whether the solutions are fewer than the bound, counted first: when they are not,
+            // none of the first run (`all`) is shown.
+            // Counted without listing them when the count is known (the Jaco-style arm's pose
+            // entries each have more than the bound: listing them to the bound was a ninth of
+            // its `fk --jacobian`).
+            if all && !fewer_solutions_than(sys, MAX_SOLUTIONS)? {
+                return Some((false, None));
             }
-            seen < MAX_SOLUTIONS
-        })?;
-        Some((complete, best.map(|(_, o)| o)))
-    };
+            let mut best: Option<(Key, Vec<Small>)> = None;
+            let mut seen = 0usize;
+            // The solution being scored, centred into (-D, D] for a period 2 D: one buffer,
+            // copied only when the solution is the best so far.
+            let mut o: Vec<Small> = Vec::with_capacity(syms.len());
+            let complete = solve(sys, fixed, &mut |solution| {
+                o.clear();
+                o.extend(
+                    solution
+                        .iter()
+                        .zip(&halves)
+                        .map(|(&v, &den)| centred(v, den)),
+                );
+                seen += 1;
+                let bound = best.as_ref().map_or(usize::MAX, |(k, _)| k.0);
+                let Some((parts, neg)) = score(&o, bound) else {
+                    return seen < MAX_SOLUTIONS;
+                };
+                if let Some(key) = key_below(&o, parts, neg, best.as_ref().map(|(k, _)| k)) {
+                    best = Some((key, o.clone()));
+                }
+                seen < MAX_SOLUTIONS
+            })?;
+            Some((complete, best.map(|(_, o)| o)))
+        };
     // Every solution when they are few; else the symbols whose offset in `base` is a multiple
     // of their own steps keep none, and the others range over the solutions.
     let free = vec![None; syms.len()];
-    if let (true, Some(o)) = run(&free, true)? {
+    if let (true, Some(o)) = run(everything, &free, true)? {
         return Some(o);
     }
     let fixed: Vec<Option<Small>> = (0..syms.len())
@@ -613,7 +610,7 @@ fn representatives(
                 .then(Small::zero)
         })
         .collect();
-    run(&fixed, false)?.1
+    run(&system(syms, rows, targets, n, &fixed)?, &fixed, false)?.1
 }
 
 /// `v` moved by a multiple of the period `2 den` into `(-den, den]` (`den` a positive
@@ -632,13 +629,15 @@ fn centred(v: Small, den: Small) -> Small {
             v
         }
     };
-    // v = a / b, period p: a mod (p b), over b, is v minus floor(v / p) p.
+    // v = a / b, period p: a mod (p b), over b, is v minus floor(v / p) p. It is in lowest
+    // terms as it stands: `r` differs from `a` by a multiple of `b`, so `gcd(r, b) = gcd(a, b)
+    // = 1` (`b > 0`), and no gcd is taken.
     let fast = || -> Option<Small> {
         let (a, b) = (*v.numer(), *v.denom());
         let half = den.to_integer().checked_mul(b)?;
         let r = a.rem_euclid(half.checked_mul(2)?);
         let r = if r > half { r - 2 * half } else { r };
-        Some(Small::new(r, b))
+        Some(Small::new_raw(r, b))
     };
     if den.is_integer() {
         fast().unwrap_or_else(slow)
@@ -650,6 +649,27 @@ fn centred(v: Small, den: Small) -> Small {
 /// The order of solutions: parts, largest denominator, offsets, negative parts, sum of
 /// `|o|`, negative offsets.
 type Key = (usize, i64, usize, usize, Small, usize);
+
+/// The [`Key`] of the offsets `o` whose shifted scalar has `parts` parts, `neg` of them
+/// negative, when it is below `best` (every key is, without a best so far); `None` otherwise.
+/// The sum of `|o|` (rational additions, each reduced by a gcd) and the negative offsets are only
+/// computed when the key's first four parts do not already decide: a key whose head is above
+/// `best`'s is above it whatever its tail (keys are compared lexicographically), one whose
+/// head is below is below it, and only on equal heads is the tail compared.
+fn key_below(o: &[Small], parts: usize, neg: usize, best: Option<&Key>) -> Option<Key> {
+    let den = o.iter().map(|v| *v.denom()).max().unwrap_or(1);
+    let nonzero = o.iter().filter(|v| !v.is_zero()).count();
+    let head = (parts, den, nonzero, neg);
+    if let Some(b) = best {
+        if head > (b.0, b.1, b.2, b.3) {
+            return None;
+        }
+    }
+    let size: Small = o.iter().map(|v| v.abs()).sum();
+    let negatives = o.iter().filter(|v| v.is_negative()).count();
+    let key = (parts, den, nonzero, neg, size, negatives);
+    best.is_none_or(|b| key < *b).then_some(key)
+}
 
 /// The most solutions [`representatives`] compares.
 const MAX_SOLUTIONS: usize = 4096;
@@ -818,7 +838,12 @@ mod tests {
         for _ in 0..3000 {
             let v = Small::new(next(2001) as i64 - 1000, 1 + next(72) as i64);
             let den = Small::from_integer(1 + next(6) as i64);
-            let c = big(centred(v, den));
+            let r = centred(v, den);
+            assert!(
+                *r.denom() > 0 && r.numer().gcd(r.denom()) == 1,
+                "{v} centred in lowest terms: {r:?}"
+            );
+            let c = big(r);
             let (bv, bd) = (big(v), big(den));
             assert!(c > -bd.clone() && c <= bd, "{v} in ({den})");
             let turns = (bv - c) / (bd * BigRational::from_integer(2.into()));
@@ -827,6 +852,50 @@ mod tests {
                 "{v} and its centred value differ by whole periods"
             );
         }
+    }
+
+    /// `key_below` (the tail of a key computed only when its head ties) against the whole
+    /// key compared with the best, on seeded random offsets, part counts and bests (some of
+    /// them equal in their heads).
+    #[test]
+    fn a_key_is_below_the_best_as_the_whole_key_compares() {
+        let mut next = crate::testing::xorshift_below(0x0ff5_e7a1_4e75_0002);
+        let full = |o: &[Small], parts: usize, neg: usize| -> Key {
+            let den = o.iter().map(|v| *v.denom()).max().unwrap_or(1);
+            let size: Small = o.iter().map(|v| v.abs()).sum();
+            let negatives = o.iter().filter(|v| v.is_negative()).count();
+            let nonzero = o.iter().filter(|v| !v.is_zero()).count();
+            (parts, den, nonzero, neg, size, negatives)
+        };
+        let (mut taken, mut tied) = (0, 0);
+        for _ in 0..5000 {
+            let syms = 1 + next(4) as usize;
+            let mut offsets = || -> Vec<Small> {
+                (0..syms)
+                    .map(|_| match next(3) {
+                        0 => Small::zero(),
+                        _ => Small::new(next(19) as i64 - 9, [1, 3, 9][next(3) as usize]),
+                    })
+                    .collect()
+            };
+            let (o, b) = (offsets(), offsets());
+            let (parts, neg) = (next(3) as usize, next(2) as usize);
+            let best = full(&b, next(3) as usize, next(2) as usize);
+            let key = full(&o, parts, neg);
+            tied += usize::from((key.0, key.1, key.2, key.3) == (best.0, best.1, best.2, best.3));
+            let want = (key < best).then_some(key);
+            taken += usize::from(want.is_some());
+            assert_eq!(
+                key_below(&o, parts, neg, Some(&best)),
+                want,
+                "{o:?} {best:?}"
+            );
+            assert_eq!(key_below(&o, parts, neg, None), Some(key));
+        }
+        assert!(
+            taken > 500 && tied > 100,
+            "both ways met ({taken} taken, {tied} tied)"
+        );
     }
 
     #[test]

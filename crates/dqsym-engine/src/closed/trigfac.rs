@@ -393,37 +393,119 @@ fn waves(t: &[Term], exps: &[Vec<Small>]) -> Option<Vec<Wave>> {
         .collect()
 }
 
-/// The halves of the differences between the top exponent along a generic direction (a vertex
-/// of the Newton polytope of the exponents `+-m`) and every other exponent, first nonzero entry
-/// positive.
-fn directions(signed: &[Vec<Small>], n: usize, tilt: f64) -> Vec<Vec<Small>> {
+/// Each exponent's position along a generic direction (tilted by `tilt`), from the exponents
+/// in f64 ([`floats`]): the top one is a vertex of the Newton polytope of the exponents `+-m`.
+fn along(floats: &[Vec<f64>], n: usize, tilt: f64) -> Vec<f64> {
     let generic: Vec<f64> = (0..n)
         .map(|i| 1.0 + tilt * (i as f64 + 1.0).sqrt())
         .collect();
-    let along = |e: &[Small]| -> f64 {
-        e.iter()
-            .zip(&generic)
-            .map(|(k, g)| k.to_f64().unwrap_or(0.0) * g)
-            .sum()
-    };
-    let Some(top) = signed.iter().max_by(|a, b| along(a).total_cmp(&along(b))) else {
+    floats
+        .iter()
+        .map(|e| e.iter().zip(&generic).map(|(k, g)| k * g).sum())
+        .collect()
+}
+
+/// The exponents in f64 (0 where one does not fit), converted once for both tilts of
+/// [`along`].
+fn floats(signed: &[Vec<Small>]) -> Vec<Vec<f64>> {
+    signed
+        .iter()
+        .map(|e| e.iter().map(|k| k.to_f64().unwrap_or(0.0)).collect())
+        .collect()
+}
+
+/// The differences between the top exponent by `along` (the last of equal ones) and every
+/// other exponent, first nonzero entry positive, sorted and without repeats: twice the
+/// directions. Generic so that the exponents may be integers over one common denominator
+/// (the order and the equality of such vectors are those of the rationals they stand for,
+/// compared without the gcds and divisions of rationals).
+fn differences<T>(signed: &[Vec<T>], along: &[f64]) -> Vec<Vec<T>>
+where
+    T: Ord + Clone + Zero + std::ops::Sub<Output = T> + std::ops::Neg<Output = T>,
+{
+    let Some(top) = (0..signed.len()).max_by(|&a, &b| along[a].total_cmp(&along[b])) else {
         return Vec::new();
     };
-    let two = Small::from_integer(2);
-    let mut dirs: Vec<Vec<Small>> = Vec::new();
+    let top = &signed[top];
+    let mut dirs: Vec<Vec<T>> = Vec::new();
     for e in signed {
-        let mut d: Vec<Small> = top.iter().zip(e).map(|(a, b)| (*a - *b) / two).collect();
+        let mut d: Vec<T> = top
+            .iter()
+            .zip(e)
+            .map(|(a, b)| a.clone() - b.clone())
+            .collect();
         let Some(first) = d.iter().find(|k| !k.is_zero()) else {
             continue;
         };
-        if first.is_negative() {
-            d.iter_mut().for_each(|k| *k = -*k);
+        if *first < T::zero() {
+            d.iter_mut().for_each(|k| *k = -k.clone());
         }
         dirs.push(d);
     }
     dirs.sort_unstable();
     dirs.dedup();
     dirs
+}
+
+/// Twice the directions tried (see [`find_factors`]): those seen from the vertices `first`
+/// and `second` (each by [`along`]), mixing two or more symbols, in sorted order.
+fn twice_the_directions<T>(signed: &[Vec<T>], first: &[f64], second: &[f64]) -> Vec<Vec<T>>
+where
+    T: Ord + Clone + Zero + std::ops::Sub<Output = T> + std::ops::Neg<Output = T>,
+{
+    let first = differences(signed, first);
+    differences(signed, second)
+        .into_iter()
+        .filter(|d| {
+            d.iter().filter(|k| !k.is_zero()).count() >= 2 && first.binary_search(d).is_ok()
+        })
+        .collect()
+}
+
+/// The exponents as integers over one common denominator `L`, each within `2^61` in absolute
+/// value (so that their differences fit an `i64`), `L` within `2^46` (so that `2 L` does);
+/// `None` past those bounds.
+fn integer_exponents(signed: &[Vec<Small>]) -> Option<(Vec<Vec<i64>>, i64)> {
+    let mut l: i64 = 1;
+    for k in signed.iter().flatten() {
+        l = l.checked_mul(k.denom() / num_integer::Integer::gcd(&l, k.denom()))?;
+    }
+    if l > 1 << 46 {
+        return None;
+    }
+    let ints = signed
+        .iter()
+        .map(|e| {
+            e.iter()
+                .map(|k| {
+                    let v = k.numer().checked_mul(l / k.denom())?;
+                    (v.unsigned_abs() <= 1 << 61).then_some(v)
+                })
+                .collect::<Option<Vec<i64>>>()
+        })
+        .collect::<Option<Vec<_>>>()?;
+    Some((ints, l))
+}
+
+/// The directions tried (see [`find_factors`]), halves of [`twice_the_directions`]: in
+/// integers over a common denominator `L` when they fit (each `D / (2 L)` is then the
+/// rational `(a - b) / 2` itself, and the order the same), in rationals otherwise.
+fn directions(signed: &[Vec<Small>], n: usize) -> Vec<Vec<Small>> {
+    let f = floats(signed);
+    let (first, second) = (along(&f, n, 0.313_7), along(&f, n, -0.561_3));
+    match integer_exponents(signed) {
+        Some((ints, l)) => twice_the_directions(&ints, &first, &second)
+            .into_iter()
+            .map(|d| d.into_iter().map(|k| Small::new(k, 2 * l)).collect())
+            .collect(),
+        None => {
+            let two = Small::from_integer(2);
+            twice_the_directions(signed, &first, &second)
+                .into_iter()
+                .map(|d| d.into_iter().map(|k| k / two).collect())
+                .collect()
+        }
+    }
 }
 
 /// The directions `d` (first nonzero entry positive) and phases `k` (`phi = k pi/PHASES`) at
@@ -436,13 +518,7 @@ fn find_factors(exps: &[Vec<Small>], ws: &[Wave], n: usize) -> Vec<(Vec<Small>, 
     // A factor's direction shows from every vertex of the Newton polytope (unless terms
     // cancel there): only directions seen from two vertices are tried, and only those mixing
     // two or more symbols (one symbol's factors are `roots.rs`'s).
-    let first = directions(&signed, n, 0.313_7);
-    let dirs: Vec<Vec<Small>> = directions(&signed, n, -0.561_3)
-        .into_iter()
-        .filter(|d| {
-            d.iter().filter(|k| !k.is_zero()).count() >= 2 && first.binary_search(d).is_ok()
-        })
-        .collect();
+    let dirs = directions(&signed, n);
     // The sum is evaluated to a relative error of about (terms) * 1e-16 times the largest
     // angle (below 100 here: coefficients of a few units at points below 2); a factor's zero
     // shows as well below 1e-9 of the sum of the magnitudes, a nonzero value at a generic point
@@ -458,21 +534,80 @@ fn find_factors(exps: &[Vec<Small>], ws: &[Wave], n: usize) -> Vec<(Vec<Small>, 
         }
         let df: Vec<f64> = d.iter().map(|k| k.to_f64().unwrap_or(0.0)).collect();
         let dd: f64 = df.iter().map(|k| k * k).sum();
-        let on_plane = |base: &[f64], k: i64| -> Vec<f64> {
-            let c = std::f64::consts::FRAC_PI_2 - k as f64 * std::f64::consts::PI / PHASES as f64;
-            let s = (c - df.iter().zip(base).map(|(a, b)| a * b).sum::<f64>()) / dd;
-            base.iter().zip(&df).map(|(b, a)| b + s * a).collect()
-        };
-        for k in 0..PHASES {
-            if bases
-                .iter()
-                .all(|b| value(ws, &on_plane(b, k)).abs() <= tol)
+        let surely = surely_above(ws, &bases[0], &df, dd, tol);
+        for (k, surely) in (0..PHASES).zip(surely) {
+            if !surely
+                && bases
+                    .iter()
+                    .all(|b| value(ws, &on_plane(b, &df, dd, k)).abs() <= tol)
             {
                 found.push((d.clone(), k));
             }
         }
     }
     found
+}
+
+/// The point `base + s d` on the plane `d.x + k pi/PHASES = pi/2` (`dd = d.d`).
+fn on_plane(base: &[f64], df: &[f64], dd: f64, k: i64) -> Vec<f64> {
+    let c = std::f64::consts::FRAC_PI_2 - k as f64 * std::f64::consts::PI / PHASES as f64;
+    let s = (c - df.iter().zip(base).map(|(a, b)| a * b).sum::<f64>()) / dd;
+    base.iter().zip(df).map(|(b, a)| b + s * a).collect()
+}
+
+/// For each phase `k`, whether the sum's value at the point of `base` on the plane of `k`
+/// (`value(ws, on_plane(base, d, dd, k))` as [`find_factors`] computes it) is surely above
+/// `tol` in absolute value: then that phase fails at its first point, and its cosine per wave
+/// is not taken (most directions and phases fail there; those cosines were two fifths of
+/// `sinusoid_factors` on the Jaco-style arm). Decided from the same values in another way: on
+/// the plane of `k` the point is `base + s_k d` with `s_k = s_0 - k step`, so a wave's angle
+/// is `theta_0 + k delta`, and `e^{i theta_k}` is rotated from phase to phase (a complex
+/// product, no cosine).
+///
+/// Why sound: both ways compute each wave's angle from sums of at most `n + 3` products
+/// whose magnitudes add up to at most `m` (the bound computed below: the products
+/// `f_i b_i`, `s f_i d_i` with `|s| <= s_max`, the phase), so each angle is within about
+/// `(n + 3) 2^-53 m` of the exact one; the rotation adds at most about `5 2^-53 (1 + |delta|)`
+/// (`|delta| <= m`) per phase, 24 phases; the cosine and the sums over the waves a few units
+/// in the last place of `scale` (the sum of the amplitudes), and cos is 1-Lipschitz. The two
+/// values then differ by less than `scale (1e-9 + 1e-12 (n + 2 PHASES) (1 + m))`, which is
+/// above that by a factor of 10^3 at least; a value above `tol` by more than it is one
+/// [`value`] finds above `tol`. Anything not finite fails the comparison and the phase is
+/// evaluated as before.
+fn surely_above(ws: &[Wave], base: &[f64], df: &[f64], dd: f64, tol: f64) -> Vec<bool> {
+    use std::f64::consts::{FRAC_PI_2, PI};
+    let n = base.len() as f64;
+    let scale: f64 = ws.iter().map(|w| w.amp.abs()).sum();
+    let db: f64 = df.iter().zip(base).map(|(a, b)| a * b).sum();
+    let db_abs: f64 = df.iter().zip(base).map(|(a, b)| (a * b).abs()).sum();
+    let s0 = (FRAC_PI_2 - db) / dd;
+    let step = PI / PHASES as f64 / dd;
+    // |c_k| <= pi/2 for c_k = pi/2 - k pi/PHASES, k < PHASES: a bound of |s_k| and of the
+    // magnitudes its sum adds.
+    let s_max = (FRAC_PI_2 + db_abs) / dd;
+    let mut m: f64 = 0.0;
+    // Each wave's amp e^{i theta_k} and its rotation e^{i delta} from one phase to the next.
+    let mut z: Vec<(f64, f64, f64, f64)> = Vec::with_capacity(ws.len());
+    for w in ws {
+        let fb: f64 = w.f.iter().zip(base).map(|(f, b)| f * b).sum();
+        let fd: f64 = w.f.iter().zip(df).map(|(f, a)| f * a).sum();
+        let fb_abs: f64 = w.f.iter().zip(base).map(|(f, b)| (f * b).abs()).sum();
+        let fd_abs: f64 = w.f.iter().zip(df).map(|(f, a)| (f * a).abs()).sum();
+        m = m.max(fb_abs + s_max * fd_abs + w.phase.abs());
+        let (sin, cos) = (fb + w.phase + s0 * fd).sin_cos();
+        let (rot_sin, rot_cos) = (-step * fd).sin_cos();
+        z.push((w.amp * cos, w.amp * sin, rot_cos, rot_sin));
+    }
+    let margin = scale * (1e-9 + 1e-12 * (n + 2.0 * PHASES as f64) * (1.0 + m));
+    (0..PHASES)
+        .map(|_| {
+            let v: f64 = z.iter().map(|z| z.0).sum();
+            for (re, im, c, s) in z.iter_mut() {
+                (*re, *im) = (*re * *c - *im * *s, *re * *s + *im * *c);
+            }
+            v.abs() > tol + margin
+        })
+        .collect()
 }
 
 /// `x / cos(d.x + phi)` when exact: a long division along `d`, each step taking the term
@@ -553,6 +688,159 @@ fn shown_factor(d: &[(Sym, Small)], phi: Small) -> Expr {
 mod tests {
     use super::*;
     use num_rational::BigRational;
+
+    /// `surely_above` never says a phase is above the tolerance where `value` at its point is
+    /// not: on seeded random sums of waves (whole and half frequencies, amplitudes of either
+    /// sign) and sums with a factor `cos(d.x + k pi/24)` (the product's two waves), for every
+    /// direction and phase; and it decides most phases (what it is for).
+    #[test]
+    fn a_phase_surely_above_the_tolerance_is_above_it() {
+        let mut next = crate::testing::xorshift_below(0x50e1_ab0e_7010_0004);
+        let mut unit = move || next(1 << 20) as f64 / (1u64 << 20) as f64;
+        let (mut decided, mut phases, mut zeros) = (0usize, 0usize, 0usize);
+        for round in 0..300 {
+            let n = 2 + (unit() * 3.0) as usize;
+            let freq = |u: f64| ((u * 9.0) as i64 - 4) as f64 / if u > 0.5 { 2.0 } else { 1.0 };
+            let draw = |unit: &mut dyn FnMut() -> f64| -> Vec<f64> {
+                (0..n).map(|_| freq(unit())).collect()
+            };
+            let d = draw(&mut unit);
+            let mut ws: Vec<Wave> = Vec::new();
+            if round % 2 == 0 {
+                for _ in 0..2 + (unit() * 8.0) as usize {
+                    ws.push(Wave {
+                        f: draw(&mut unit),
+                        phase: std::f64::consts::PI * unit() * 2.0,
+                        amp: unit() * 4.0 - 2.0,
+                    });
+                }
+            } else {
+                // cos(d.x + phi) cos(g.x + psi) = (cos((d + g).x + phi + psi)
+                // + cos((d - g).x + phi - psi)) / 2, phi = k pi/24.
+                let g = draw(&mut unit);
+                let phi = std::f64::consts::PI * (unit() * 24.0).floor() / 24.0;
+                let (psi, amp) = (unit() * 6.0, unit() * 4.0 - 2.0);
+                let sum: Vec<f64> = d.iter().zip(&g).map(|(a, b)| a + b).collect();
+                let diff: Vec<f64> = d.iter().zip(&g).map(|(a, b)| a - b).collect();
+                ws.push(Wave {
+                    f: sum,
+                    phase: phi + psi,
+                    amp: amp / 2.0,
+                });
+                ws.push(Wave {
+                    f: diff,
+                    phase: phi - psi,
+                    amp: amp / 2.0,
+                });
+            }
+            let dd: f64 = d.iter().map(|k| k * k).sum();
+            if dd == 0.0 {
+                continue;
+            }
+            let scale: f64 = ws.iter().map(|w| w.amp.abs()).sum();
+            let tol = 1e-9 * scale;
+            let base: Vec<f64> = (0..n).map(|_| 0.3 + 1.4 * unit()).collect();
+            for (k, surely) in (0..PHASES).zip(surely_above(&ws, &base, &d, dd, tol)) {
+                let v = value(&ws, &on_plane(&base, &d, dd, k)).abs();
+                phases += 1;
+                zeros += usize::from(v <= tol);
+                if surely {
+                    decided += 1;
+                    assert!(v > tol, "round {round}, phase {k}: {v} <= {tol}");
+                }
+            }
+        }
+        assert!(zeros > 50, "phases at a factor's zero were met ({zeros})");
+        assert!(
+            decided * 10 > phases * 8,
+            "most phases decided ({decided} of {phases})"
+        );
+    }
+
+    /// The directions as first written, the independent computation the test below compares
+    /// with: halves of the differences in rationals from each vertex, sorted, those of the
+    /// second vertex kept when they mix two symbols and are seen from the first.
+    fn halved_directions(signed: &[Vec<Small>], n: usize) -> Vec<Vec<Small>> {
+        let from = |tilt: f64| -> Vec<Vec<Small>> {
+            let generic: Vec<f64> = (0..n)
+                .map(|i| 1.0 + tilt * (i as f64 + 1.0).sqrt())
+                .collect();
+            let along = |e: &[Small]| -> f64 {
+                e.iter()
+                    .zip(&generic)
+                    .map(|(k, g)| k.to_f64().unwrap_or(0.0) * g)
+                    .sum()
+            };
+            let top = signed
+                .iter()
+                .max_by(|a, b| along(a).total_cmp(&along(b)))
+                .expect("exponents");
+            let two = Small::from_integer(2);
+            let mut dirs: Vec<Vec<Small>> = Vec::new();
+            for e in signed {
+                let mut d: Vec<Small> = top.iter().zip(e).map(|(a, b)| (*a - *b) / two).collect();
+                let Some(first) = d.iter().find(|k| !k.is_zero()) else {
+                    continue;
+                };
+                if first.is_negative() {
+                    d.iter_mut().for_each(|k| *k = -*k);
+                }
+                dirs.push(d);
+            }
+            dirs.sort();
+            dirs.dedup();
+            dirs
+        };
+        let first = from(0.313_7);
+        from(-0.561_3)
+            .into_iter()
+            .filter(|d| {
+                d.iter().filter(|k| !k.is_zero()).count() >= 2 && first.binary_search(d).is_ok()
+            })
+            .collect()
+    }
+
+    /// The directions in integers over a common denominator (`directions`' first way) are the
+    /// halves of the differences in rationals (its second way), in the same order, on seeded
+    /// random exponents of half, third and whole coefficients (some of them repeated, so that
+    /// directions repeat and ties are met).
+    #[test]
+    fn directions_in_integers_are_the_directions_in_rationals() {
+        let mut next = crate::testing::xorshift_below(0x7f1c_0dd5_d1ec_0003);
+        let mut found = 0;
+        for _ in 0..400 {
+            let n = 2 + next(3) as usize;
+            let mut exps: Vec<Vec<Small>> = Vec::new();
+            for _ in 0..2 + next(8) {
+                let e: Vec<Small> = (0..n)
+                    .map(|_| Small::new(next(9) as i64 - 4, [1, 2, 3][next(3) as usize]))
+                    .collect();
+                if next(4) == 0 {
+                    if let Some(p) = exps.last().cloned() {
+                        exps.push(p);
+                    }
+                }
+                exps.push(e);
+            }
+            let signed: Vec<Vec<Small>> = exps
+                .iter()
+                .flat_map(|e| [e.clone(), e.iter().map(|k| -*k).collect()])
+                .collect();
+            assert!(integer_exponents(&signed).is_some());
+            let f = floats(&signed);
+            let (first, second) = (along(&f, n, 0.313_7), along(&f, n, -0.561_3));
+            let two = Small::from_integer(2);
+            let rational: Vec<Vec<Small>> = twice_the_directions(&signed, &first, &second)
+                .into_iter()
+                .map(|d| d.into_iter().map(|k| k / two).collect())
+                .collect();
+            let want = halved_directions(&signed, n);
+            found += want.len();
+            assert_eq!(rational, want, "{exps:?}");
+            assert_eq!(directions(&signed, n), want, "{exps:?}");
+        }
+        assert!(found > 200, "directions were found ({found})");
+    }
 
     fn q(n: i64, d: i64) -> Scalar {
         Scalar::rational(BigRational::new(n.into(), d.into()))
