@@ -200,18 +200,34 @@ thread_local! {
     static MODE_CACHE: RefCell<ModeCache> = RefCell::new(ModeCache::default());
 }
 
+/// A mode product from [`cached_mode_mul`]: remembered, or made on the spot for a unit mode
+/// (a product by 1, cheaper made than looked up).
+enum Modes {
+    Cached(Rc<ModeProduct>),
+    Fresh(ModeSum),
+}
+
+impl Modes {
+    /// The product's modes with their weights.
+    fn sum(&self) -> &ModeSum {
+        match self {
+            Modes::Cached(p) => &p.sum,
+            Modes::Fresh(sum) => sum,
+        }
+    }
+}
+
 /// [`mode_mul`], remembered per thread: kinematic chains multiply the same modes again and
 /// again (every quaternion product forms sixteen scalar products of the same factors).
-fn cached_mode_mul(a: &Mode, b: &Mode) -> Rc<ModeProduct> {
-    let key = (a.clone(), b.clone());
+fn cached_mode_mul(a: &Mode, b: &Mode) -> Modes {
     if a.is_unit() || b.is_unit() {
-        let sum = mode_mul(a, b);
-        return Rc::new(ModeProduct { key, sum });
+        return Modes::Fresh(mode_mul(a, b));
     }
     MODE_CACHE.with(|c| {
         let mut c = c.borrow_mut();
+        let key = (a.clone(), b.clone());
         if let Some(hit) = c.get(&key) {
-            return hit.0.clone();
+            return Modes::Cached(hit.0.clone());
         }
         if c.len() >= MODE_CACHE_LIMIT {
             c.clear();
@@ -219,7 +235,7 @@ fn cached_mode_mul(a: &Mode, b: &Mode) -> Rc<ModeProduct> {
         let sum = mode_mul(a, b);
         let product = Rc::new(ModeProduct { key, sum });
         c.insert(Cached(product.clone()));
-        product
+        Modes::Cached(product)
     })
 }
 
@@ -351,7 +367,7 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
         let mut ib = 0;
         for rb in mode_runs(y) {
             let modes = cached_mode_mul(&ra[0].mode, &rb[0].mode);
-            let weights: usize = modes.sum.iter().map(|(_, w)| w.len()).sum();
+            let weights: usize = modes.sum().iter().map(|(_, w)| w.len()).sum();
             out.reserve(ra.len() * rb.len() * weights);
             for (i, s) in (ia..).zip(ra) {
                 for (j, t) in (ib..).zip(rb) {
@@ -368,7 +384,7 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
                     if g != 1 {
                         coef = &coef * &Q::from_u64(g);
                     }
-                    for (mode, weights) in modes.sum.iter() {
+                    for (mode, weights) in modes.sum().iter() {
                         for (r2, w) in weights {
                             let Some((rad3, g2)) = rad_mul(rad, *r2) else {
                                 return Scalar::error(ScalarError::OutOfRange(
