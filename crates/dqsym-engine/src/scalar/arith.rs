@@ -754,3 +754,52 @@ impl From<i64> for Scalar {
         Scalar::int(n)
     }
 }
+
+#[cfg(test)]
+mod mode_cache_tests {
+    use super::super::atoms::freq_rc;
+    use super::{cached_mode_mul, mode_mul, Mode, Modes, Small};
+    use crate::scalar::atoms::Sym;
+    use std::rc::Rc;
+
+    /// `cos` (or `sin`) of `k t + pi / 3`.
+    fn mode(sin: bool, k: i64, t: &str) -> Mode {
+        Mode {
+            sin,
+            freq: freq_rc(vec![(Sym::new(t), Small::from_integer(k))]),
+            pi: Small::new(1, 3),
+        }
+    }
+
+    /// The cache answers what `mode_mul` computes, first by computing it (a miss), then by
+    /// handing back the same product (a hit, found by the factors alone); factors in the other
+    /// order, or another pair, are other products; a unit factor is never remembered.
+    #[test]
+    fn cached_products_are_mode_products_keyed_by_their_factors() {
+        let (a, b) = (mode(false, 2, "t"), mode(true, 1, "u"));
+        let Modes::Cached(first) = cached_mode_mul(&a, &b) else {
+            panic!("a product of two angles is remembered");
+        };
+        assert_eq!(first.sum, mode_mul(&a, &b));
+        let Modes::Cached(again) = cached_mode_mul(&a.clone(), &b.clone()) else {
+            panic!("a product of two angles is remembered");
+        };
+        assert!(Rc::ptr_eq(&first, &again));
+        let Modes::Cached(swapped) = cached_mode_mul(&b, &a) else {
+            panic!("a product of two angles is remembered");
+        };
+        assert!(!Rc::ptr_eq(&first, &swapped));
+        assert_eq!(swapped.sum, mode_mul(&b, &a));
+        let c = mode(true, 2, "t");
+        let Modes::Cached(other) = cached_mode_mul(&c, &b) else {
+            panic!("a product of two angles is remembered");
+        };
+        assert_eq!(other.sum, mode_mul(&c, &b));
+        assert_ne!(other.sum, first.sum);
+        let unit = Mode::unit();
+        match cached_mode_mul(&unit, &a) {
+            Modes::Fresh(sum) => assert_eq!(sum, vec![(a.clone(), vec![(1, super::Q::ONE)])]),
+            Modes::Cached(_) => panic!("a product by a unit mode is made on the spot"),
+        }
+    }
+}
