@@ -461,7 +461,10 @@ pub(crate) fn mode_mul(a: &Mode, b: &Mode) -> ModeSum {
         (false, true) => (true, -1),
     };
     let w_sum = if a.sin && b.sin { -1 } else { 1 };
-    let mut out = Vec::new();
+    // Two modes, cos or sin of `a - b` and of `a + b`, unless a multiple of pi splits one:
+    // sized for the usual two (products are cached for the whole run, and a growing `Vec`
+    // starts at four: 128 bytes of each product's 256 unused).
+    let mut out = Vec::with_capacity(2);
     for (f, p, w) in [(diff, pd, w_diff), (sum, ps, w_sum)] {
         for (m, v) in trig_mode(kind, f, p) {
             let v = v
