@@ -484,12 +484,23 @@ pub(crate) fn recombine(ctx: &mut Ctx, mons: Vec<Mon>) -> Vec<Mon> {
 /// [`recombine`], telling `rec` (when there is one) each round's sum and every identity applied.
 pub(crate) fn recombine_traced(
     ctx: &mut Ctx,
+    mons: Vec<Mon>,
+    rec: &mut Option<&mut Recorder>,
+) -> Vec<Mon> {
+    let pass = first_pass(&mons);
+    rounds(ctx, mons, rec, pass)
+}
+
+/// The rounds of [`recombine_traced`], beginning with `pass` (with [`Pass::Low`], its rounds
+/// until nothing joins, then the all-pairs rounds).
+fn rounds(
+    ctx: &mut Ctx,
     mut mons: Vec<Mon>,
     rec: &mut Option<&mut Recorder>,
+    mut pass: Pass,
 ) -> Vec<Mon> {
     // Each round strictly lowers the number of monomials or stops (the low pass once, then
     // the usual rounds), so this terminates.
-    let mut pass = first_pass(&mons);
     let mut fresh = true;
     loop {
         if fresh {
@@ -668,6 +679,7 @@ mod tests {
     use super::*;
     use crate::closed::mon::{Atoms, Syms};
     use crate::scalar::q::Q;
+    use crate::scalar::Scalar;
     use crate::testing::xorshift_below;
 
     /// `groups` as it was before it left out the hashes without entries of both kinds: every
@@ -800,6 +812,83 @@ mod tests {
         by_place.sort_by_key(place);
         pairs.sort_unstable();
         assert_eq!(pairs, by_place);
+    }
+
+    /// The sum of `mons` as a scalar.
+    fn sum_of(ctx: &Ctx, mons: &[Mon]) -> Scalar {
+        mons.iter().fold(Scalar::int(0), |s, m| {
+            s + crate::closed::factor::mon_expr(m).to_expr(ctx).to_scalar()
+        })
+    }
+
+    /// `cos` (or `sin`) of `q1 + ... + qn`, plus `k pi / 7` when `k` is not 0.
+    fn long_angle(n: usize, k: i64, sin: bool) -> Scalar {
+        let mut a = (1..=n).fold(Scalar::int(0), |s, j| s + Scalar::sym(&format!("q{j}")));
+        if k != 0 {
+            a = a + Scalar::pi() * Scalar::from_q(Q::new(k, 7));
+        }
+        if sin {
+            a.sin()
+        } else {
+            a.cos()
+        }
+    }
+
+    /// The split shape of `x` recombined beginning with the low pass and with the all-pairs
+    /// rounds only, each with its context.
+    fn both_passes(x: &Scalar) -> [(Ctx, Vec<Mon>); 2] {
+        [Pass::Low, Pass::All].map(|pass| {
+            let (mut ctx, mons) = crate::closed::mon::split_modes(x);
+            let mons = rounds(&mut ctx, mons, &mut None, pass);
+            (ctx, mons)
+        })
+    }
+
+    /// On long sums of angles, split into products of single angles, the low pass's result
+    /// is the same scalar, exactly, and has no more monomials than the all-pairs rounds'.
+    #[test]
+    fn low_pass_keeps_the_scalar_and_leaves_no_more_monomials() {
+        let l = Scalar::sym("a2");
+        for n in 3..=7 {
+            for k in [0, 1, 3] {
+                let shapes = [
+                    long_angle(n, k, false),
+                    long_angle(n, k, true),
+                    l.clone() * long_angle(n, k, false) + long_angle(n, -k, true),
+                    long_angle(n, k, false) * long_angle(3, 0, true),
+                ];
+                for x in &shapes {
+                    let [(lctx, low), (actx, all)] = both_passes(x);
+                    assert_eq!(sum_of(&lctx, &low), *x, "n {n}, k {k}");
+                    assert_eq!(sum_of(&actx, &all), *x, "n {n}, k {k}");
+                    assert!(low.len() <= all.len(), "{} > {}", low.len(), all.len());
+                }
+            }
+        }
+    }
+
+    /// Where the all-pairs rounds join the monomials of a long split product along different
+    /// angles and leave them apart, the low pass (which the rule takes: six atoms a monomial)
+    /// joins them all: `cos(q1 + ... + q6)` split into 32 monomials comes back whole (the
+    /// all-pairs rounds leave 4), and `cos(q1 + q2 + q3 + pi/7) sin(q4 + q5 + q6)` (64) to
+    /// fewer monomials than the all-pairs rounds leave (12).
+    #[test]
+    fn low_pass_joins_long_split_products_that_the_all_pairs_rounds_leave_apart() {
+        let whole = long_angle(6, 0, false);
+        let shifted = long_angle(3, 1, false)
+            * (4..=6)
+                .fold(Scalar::int(0), |s, j| s + Scalar::sym(&format!("q{j}")))
+                .sin();
+        for x in [&whole, &shifted] {
+            let (_, split) = crate::closed::mon::split_modes(x);
+            assert_eq!(first_pass(&split), Pass::Low);
+            let [(lctx, low), (actx, all)] = both_passes(x);
+            assert_eq!(sum_of(&lctx, &low), *x);
+            assert_eq!(sum_of(&actx, &all), *x);
+            assert!(low.len() < all.len(), "{} >= {}", low.len(), all.len());
+        }
+        let [(_, low), _] = both_passes(&whole);
+        assert_eq!(low.len(), 1);
     }
 
     #[test]
