@@ -536,20 +536,23 @@ fn rounds(
     }
 }
 
-/// The fewest pairs a monomial, on average, for which the rounds begin with the low pass.
+/// The fewest pairs a monomial, on average, for which the rounds begin with the low pass:
+/// 15, monomials of six atoms.
 ///
 /// The greedy rounds over every pair join each monomial by whichever of its pairs comes first
 /// in key order, so the monomials of a long split product (the Jaco-style arm's 96-term
 /// components: 1,152 monomials of six atoms) join along different angles and meet no partner
 /// afterwards: 180 left where 72 can be. Joining first by each monomial's two lowest atoms
 /// joins them all alike: 1,152 -> 144 -> 72, and the later all-pairs rounds are on 144
-/// monomials, not 1,152. The low pass costs a round of one pair a monomial, a tenth of an
-/// all-pairs round at this bound or less, when nothing joins; below it the monomials are
-/// short, their all-pairs rounds cheap, and the pass seldom joins anything (PUMA 560: ratios
-/// of 3 to 7.5 but for eight calls of 15, where it joins nothing). Callgrind, one thread,
-/// fast builds: `fk --jacobian tests/data/jaco_style.toml` 481.4 M -> 430.6 M instructions
-/// (the same at 1 pair a monomial); the PUMA 560's 37.54 M -> 37.74 M (38.0 M at 1).
-const LOW_PASS_PAIRS: usize = 10;
+/// monomials, not 1,152. The low pass costs a round of one pair a monomial, a fifteenth of an
+/// all-pairs round or less, when nothing joins; below the bound the monomials are short,
+/// their all-pairs rounds cheap, and the pass seldom joins much. Callgrind, one thread, fast
+/// builds: `fk --jacobian tests/data/jaco_style.toml` 481.4 M -> 430.3 M instructions (430.6 M
+/// at 10 pairs, 430.7 M at 1); the PUMA 560's 37.54 M -> 37.73 M (eight calls of 15 pairs a
+/// monomial, where it joins nothing; 38.0 M at 1). At 10 pairs one expression of 300 of
+/// `scripts/offsets_same.py` (products of sines of sums of angles plus `k pi/9`) ran out of
+/// its default work budget at a longer form; none at 15.
+const LOW_PASS_PAIRS: usize = 15;
 
 /// The pass the rounds of `mons` begin with: [`Pass::Low`] when the all-pairs rounds try at
 /// least [`LOW_PASS_PAIRS`] pairs a monomial.
