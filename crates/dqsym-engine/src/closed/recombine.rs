@@ -132,17 +132,47 @@ fn entry(atoms: &[Atom], cof: u32, pair: Pair) -> Entry {
     }
 }
 
-/// The pairs of `mons`: every pair of atoms of two different angles of each monomial, in the
-/// order `(i, p, q)`; `cof` ranks the monomials' cofactors, `pairs` is the capacity. The
-/// narrow fields of a [`Pair`] hold the first `u32::MAX` monomials and the first 2^15 atoms
-/// of each: a pair past them (never met: its round would charge billions of pairs) is left
-/// out, so it is not recombined, which leaves its terms as they were.
-fn pairs_of(mons: &[Mon], cof: &[u32], pairs: usize) -> Vec<Pair> {
+/// Which pairs of atoms of each monomial a round of [`recombine`] tries.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Pass {
+    /// Only the two lowest atoms (`p = 0`, `q = 1`).
+    Low,
+    /// Every pair.
+    All,
+}
+
+impl Pass {
+    /// The atoms of each monomial (its first ones) whose pairs the pass tries.
+    fn atoms(self) -> usize {
+        match self {
+            Pass::Low => 2,
+            Pass::All => 1 << 15,
+        }
+    }
+
+    /// The number of pairs the pass tries in `mons` (at most).
+    fn pairs(self, mons: &[Mon]) -> usize {
+        mons.iter()
+            .map(|m| {
+                let k = m.atoms.len().min(self.atoms());
+                k * k.saturating_sub(1) / 2
+            })
+            .sum()
+    }
+}
+
+/// The pairs of `mons` that `pass` tries: every pair of atoms of two different angles among
+/// the first [`Pass::atoms`] of each monomial, in the order `(i, p, q)`; `cof` ranks the
+/// monomials' cofactors, `pairs` is the capacity. The narrow fields of a [`Pair`] hold the
+/// first `u32::MAX` monomials and the first 2^15 atoms of each: a pair past them (never met:
+/// its round would charge billions of pairs) is left out, so it is not recombined, which
+/// leaves its terms as they were.
+fn pairs_of(mons: &[Mon], cof: &[u32], pairs: usize, pass: Pass) -> Vec<Pair> {
     let mut found: Vec<Pair> = Vec::with_capacity(pairs);
     let mut hashes: Vec<u64> = Vec::new();
     for ((i, m), &cof) in mons.iter().enumerate().zip(cof).take(u32::MAX as usize) {
         let atoms: &[Atom] = &m.atoms;
-        let atoms = &atoms[..atoms.len().min(1 << 15)];
+        let atoms = &atoms[..atoms.len().min(pass.atoms())];
         hashes.clear();
         hashes.extend(m.atoms.iter().map(|&a| atom_hash(a)));
         let all = hashes.iter().fold(0u64, |s, &h| s.wrapping_add(h));
@@ -454,15 +484,42 @@ pub(crate) fn recombine(ctx: &mut Ctx, mons: Vec<Mon>) -> Vec<Mon> {
 /// [`recombine`], telling `rec` (when there is one) each round's sum and every identity applied.
 pub(crate) fn recombine_traced(
     ctx: &mut Ctx,
-    mut mons: Vec<Mon>,
+    mons: Vec<Mon>,
     rec: &mut Option<&mut Recorder>,
 ) -> Vec<Mon> {
-    // Each round strictly lowers the number of monomials or stops, so this terminates.
+    let pass = first_pass(&mons);
+    rounds(ctx, mons, rec, pass)
+}
+
+/// The rounds of [`recombine_traced`], beginning with `pass` (with [`Pass::Low`], its rounds
+/// until nothing joins, then the all-pairs rounds).
+fn rounds(
+    ctx: &mut Ctx,
+    mut mons: Vec<Mon>,
+    rec: &mut Option<&mut Recorder>,
+    mut pass: Pass,
+) -> Vec<Mon> {
+    // Each round strictly lowers the number of monomials or stops (the low pass once, then
+    // the usual rounds), so this terminates.
+    let mut fresh = true;
     loop {
-        if let Some(r) = rec.as_deref_mut() {
-            r.round(ctx, &mons);
+        if fresh {
+            if let Some(r) = rec.as_deref_mut() {
+                r.round(ctx, &mons);
+            }
         }
-        let (mut next, changed) = round(ctx, &mons, rec);
+        let (mut next, changed) = match round(ctx, &mons, rec, pass) {
+            Some(next) => (next, true),
+            // Nothing joined in the low pass: the same sum again with every pair tried, its
+            // round not told twice.
+            None if pass == Pass::Low => {
+                pass = Pass::All;
+                fresh = false;
+                continue;
+            }
+            None => (std::mem::take(&mut mons), false),
+        };
+        fresh = true;
         if let Some(map) = ctx.renumber() {
             for m in &mut next {
                 remap(m, &map);
@@ -479,22 +536,58 @@ pub(crate) fn recombine_traced(
     }
 }
 
+/// The fewest pairs a monomial, on average, for which the rounds begin with the low pass:
+/// 15, monomials of six atoms.
+///
+/// The greedy rounds over every pair join each monomial by whichever of its pairs comes first
+/// in key order, so the monomials of a long split product (the Jaco-style arm's 96-term
+/// components: 1,152 monomials of six atoms) join along different angles and meet no partner
+/// afterwards: 180 left where 72 can be. Joining first by each monomial's two lowest atoms
+/// joins them all alike: 1,152 -> 144 -> 72, and the later all-pairs rounds are on 144
+/// monomials, not 1,152. The low pass costs a round of one pair a monomial, a fifteenth of an
+/// all-pairs round or less, when nothing joins; below the bound the monomials are short,
+/// their all-pairs rounds cheap, and the pass seldom joins much. Callgrind, one thread, fast
+/// builds: `fk --jacobian tests/data/jaco_style.toml` 481.4 M -> 430.3 M instructions (430.6 M
+/// at 10 pairs, 430.7 M at 1); the PUMA 560's 37.54 M -> 37.73 M (eight calls of 15 pairs a
+/// monomial, where it joins nothing; 38.0 M at 1). At 10 pairs one expression of 300 of
+/// `scripts/offsets_same.py` (products of sines of sums of angles plus `k pi/9`) ran out of
+/// its default work budget at a longer form; none at 15.
+const LOW_PASS_PAIRS: usize = 15;
+
+/// The pass the rounds of `mons` begin with: [`Pass::Low`] when the all-pairs rounds try at
+/// least [`LOW_PASS_PAIRS`] pairs a monomial.
+fn first_pass(mons: &[Mon]) -> Pass {
+    if Pass::All.pairs(mons) >= LOW_PASS_PAIRS * mons.len().max(1) {
+        Pass::Low
+    } else {
+        Pass::All
+    }
+}
+
 /// The combined atom for angles `a + sign * b`: `None` for the zero angle, else the new angle's
 /// id and whether it was negated to normalize it.
 type Combined = Option<(u32, bool)>;
 
-fn round(ctx: &mut Ctx, mons: &[Mon], rec: &mut Option<&mut Recorder>) -> (Vec<Mon>, bool) {
+/// One round of `pass` on `mons`: the monomials, each pair that joins replaced by its
+/// combination (unordered, unmerged), or `None` when nothing joins, so that the caller keeps
+/// `mons` instead of a copy of it.
+fn round(
+    ctx: &mut Ctx,
+    mons: &[Mon],
+    rec: &mut Option<&mut Recorder>,
+    pass: Pass,
+) -> Option<Vec<Mon>> {
     let cof = cofactor_ranks(mons);
-    let pairs: usize = mons
-        .iter()
-        .map(|m| m.atoms.len() * m.atoms.len().saturating_sub(1) / 2)
-        .sum();
+    let pairs = pass.pairs(mons);
     // The round's work, charged before it is done; out of budget or cancelled, the round
     // changes nothing and the error comes from the closed form's next charge.
     if crate::scalar::charge((mons.len() + pairs) as u64).is_err() {
-        return (mons.to_vec(), false);
+        return None;
     }
-    let groups = groups(mons, &cof, pairs_of(mons, &cof, pairs));
+    let groups = groups(mons, &cof, pairs_of(mons, &cof, pairs, pass));
+    if groups.ranges.is_empty() {
+        return None;
+    }
     let mut used = vec![false; mons.len()];
     let mut out = Vec::with_capacity(mons.len());
     let mut changed = false;
@@ -581,7 +674,7 @@ fn round(ctx: &mut Ctx, mons: &[Mon], rec: &mut Option<&mut Recorder>) -> (Vec<M
             out.push(m.clone());
         }
     }
-    (out, changed)
+    changed.then_some(out)
 }
 
 #[cfg(test)]
@@ -589,6 +682,7 @@ mod tests {
     use super::*;
     use crate::closed::mon::{Atoms, Syms};
     use crate::scalar::q::Q;
+    use crate::scalar::Scalar;
     use crate::testing::xorshift_below;
 
     /// `groups` as it was before it left out the hashes without entries of both kinds: every
@@ -614,7 +708,7 @@ mod tests {
     /// The groups of `mons` by [`groups`] and by [`all_sorted`], as `(i, p, q)` lists.
     fn both_ways(mons: &[Mon]) -> [Vec<Vec<(usize, usize, usize)>>; 2] {
         let cof = cofactor_ranks(mons);
-        let all = pairs_of(mons, &cof, 0);
+        let all = pairs_of(mons, &cof, 0, Pass::All);
         let index = all.iter().map(|x| x.entry(mons, &cof)).collect();
         let ids = |gs: Vec<Vec<Entry>>| -> Vec<Vec<(usize, usize, usize)>> {
             gs.iter()
@@ -694,7 +788,7 @@ mod tests {
         // Few angles: many pairs of one monomial share a hash.
         let mons = random_mons(&mut below, 400, 6, 4);
         let cof = cofactor_ranks(&mons);
-        let mut pairs = pairs_of(&mons, &cof, 0);
+        let mut pairs = pairs_of(&mons, &cof, 0, Pass::All);
         let mut expected = Vec::new();
         for (i, m) in mons.iter().enumerate() {
             for p in 0..m.atoms.len() {
@@ -721,6 +815,83 @@ mod tests {
         by_place.sort_by_key(place);
         pairs.sort_unstable();
         assert_eq!(pairs, by_place);
+    }
+
+    /// The sum of `mons` as a scalar.
+    fn sum_of(ctx: &Ctx, mons: &[Mon]) -> Scalar {
+        mons.iter().fold(Scalar::int(0), |s, m| {
+            s + crate::closed::factor::mon_expr(m).to_expr(ctx).to_scalar()
+        })
+    }
+
+    /// `cos` (or `sin`) of `q1 + ... + qn`, plus `k pi / 7` when `k` is not 0.
+    fn long_angle(n: usize, k: i64, sin: bool) -> Scalar {
+        let mut a = (1..=n).fold(Scalar::int(0), |s, j| s + Scalar::sym(&format!("q{j}")));
+        if k != 0 {
+            a = a + Scalar::pi() * Scalar::from_q(Q::new(k, 7));
+        }
+        if sin {
+            a.sin()
+        } else {
+            a.cos()
+        }
+    }
+
+    /// The split shape of `x` recombined beginning with the low pass and with the all-pairs
+    /// rounds only, each with its context.
+    fn both_passes(x: &Scalar) -> [(Ctx, Vec<Mon>); 2] {
+        [Pass::Low, Pass::All].map(|pass| {
+            let (mut ctx, mons) = crate::closed::mon::split_modes(x);
+            let mons = rounds(&mut ctx, mons, &mut None, pass);
+            (ctx, mons)
+        })
+    }
+
+    /// On long sums of angles, split into products of single angles, the low pass's result
+    /// is the same scalar, exactly, and has no more monomials than the all-pairs rounds'.
+    #[test]
+    fn low_pass_keeps_the_scalar_and_leaves_no_more_monomials() {
+        let l = Scalar::sym("a2");
+        for n in 3..=7 {
+            for k in [0, 1, 3] {
+                let shapes = [
+                    long_angle(n, k, false),
+                    long_angle(n, k, true),
+                    l.clone() * long_angle(n, k, false) + long_angle(n, -k, true),
+                    long_angle(n, k, false) * long_angle(3, 0, true),
+                ];
+                for x in &shapes {
+                    let [(lctx, low), (actx, all)] = both_passes(x);
+                    assert_eq!(sum_of(&lctx, &low), *x, "n {n}, k {k}");
+                    assert_eq!(sum_of(&actx, &all), *x, "n {n}, k {k}");
+                    assert!(low.len() <= all.len(), "{} > {}", low.len(), all.len());
+                }
+            }
+        }
+    }
+
+    /// Where the all-pairs rounds join the monomials of a long split product along different
+    /// angles and leave them apart, the low pass (which the rule takes: six atoms a monomial)
+    /// joins them all: `cos(q1 + ... + q6)` split into 32 monomials comes back whole (the
+    /// all-pairs rounds leave 4), and `cos(q1 + q2 + q3 + pi/7) sin(q4 + q5 + q6)` (64) to
+    /// fewer monomials than the all-pairs rounds leave (12).
+    #[test]
+    fn low_pass_joins_long_split_products_that_the_all_pairs_rounds_leave_apart() {
+        let whole = long_angle(6, 0, false);
+        let shifted = long_angle(3, 1, false)
+            * (4..=6)
+                .fold(Scalar::int(0), |s, j| s + Scalar::sym(&format!("q{j}")))
+                .sin();
+        for x in [&whole, &shifted] {
+            let (_, split) = crate::closed::mon::split_modes(x);
+            assert_eq!(first_pass(&split), Pass::Low);
+            let [(lctx, low), (actx, all)] = both_passes(x);
+            assert_eq!(sum_of(&lctx, &low), *x);
+            assert_eq!(sum_of(&actx, &all), *x);
+            assert!(low.len() < all.len(), "{} >= {}", low.len(), all.len());
+        }
+        let [(_, low), _] = both_passes(&whole);
+        assert_eq!(low.len(), 1);
     }
 
     #[test]
