@@ -20,7 +20,8 @@
 //! or split per symbol; for the whole-modes shape each group of one monomial and one angle at
 //! offsets outside pi/12 joined into `R cos(F + phi)` when it is one angle, checked exactly:
 //! `l1 cos(t + 5*pi/9) + l2 cos(2*t + 5*pi/9)`); `recombine.rs` applies the four angle-sum
-//! identities to any depth; `factor.rs` nests common factors, choosing by `Cost` (below its
+//! identities to any depth (greedy rounds over every pair of atoms; on sums of at least 128
+//! monomials of six atoms or more, first on each monomial's two lowest atoms); `factor.rs` nests common factors, choosing by `Cost` (below its
 //! branching levels a run of splits on one factor from one sort of the terms by its power,
 //! `factor/run.rs`; at the branching levels of a plain integer polynomial each candidate's
 //! exact cost found without its tree, in machine integers, `factor/costs.rs`); `expr.rs` is the
