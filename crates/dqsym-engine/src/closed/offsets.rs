@@ -395,7 +395,7 @@ fn dot(r: &[(usize, Small)], o: &[Small]) -> Small {
 /// The least common multiple of the denominators of `xs`; `None` when it leaves a machine
 /// word. A denominator that divides the multiple so far (1, the offset of most symbols, or
 /// one met before) leaves it as it is without a gcd.
-fn common_denominator<'a>(mut xs: impl Iterator<Item = &'a Small>) -> Option<i64> {
+pub(super) fn common_denominator<'a>(mut xs: impl Iterator<Item = &'a Small>) -> Option<i64> {
     xs.try_fold(1i64, |den, x| {
         if den % x.denom() == 0 {
             Some(den)

@@ -466,10 +466,7 @@ where
 /// value (so that their differences fit an `i64`), `L` within `2^46` (so that `2 L` does);
 /// `None` past those bounds.
 fn integer_exponents(signed: &[Vec<Small>]) -> Option<(Vec<Vec<i64>>, i64)> {
-    let mut l: i64 = 1;
-    for k in signed.iter().flatten() {
-        l = l.checked_mul(k.denom() / num_integer::Integer::gcd(&l, k.denom()))?;
-    }
+    let l = super::offsets::common_denominator(signed.iter().flatten())?;
     if l > 1 << 46 {
         return None;
     }
