@@ -381,19 +381,54 @@ fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
             break;
         }
     }
-    let (plain, prepared) = match prepared_unshifted(x, cap_of(x, &e)) {
-        // Out of the budget (or another limit) after the shifted search: as when first.
-        (Err(_), _) => as_first(&before, x),
-        found => found,
-    };
-    // On equal cost the shifted form: its angles are the ones the user wrote.
-    if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) {
-        return (plain, prepared);
+    if as_given_may_win(x, &e) {
+        let (plain, prepared) = match prepared_unshifted(x, cap_of(x, &e)) {
+            // Out of the budget (or another limit) after the shifted search: as when first.
+            (Err(_), _) => as_first(&before, x),
+            found => found,
+        };
+        // On equal cost the shifted form: its angles are the ones the user wrote.
+        if plain.as_ref().is_ok_and(|p| alt::shorter(p, &e)) {
+            return (plain, prepared);
+        }
     }
     if !verified(&e, x) {
         return as_first(&before, x);
     }
     (Ok(e.symbols_leading()), Prepared(yprep.0, Some((shift, y))))
+}
+
+/// The fewest terms a scalar with offsets must have for [`as_given_may_win`] to skip its
+/// search as given. A measured threshold (with [`AS_GIVEN_OPS_PER_TERM`]), not a proven one:
+/// the search as given beats the shifted form often on small scalars, by a printed offset
+/// (`sin(q2 - q3 + pi/18)` against `cos(q2 - q3 - 4*pi/9)`, one character) or by another
+/// grouping of its two phases of one angle (`cos(a + 5*pi/18)` beside `cos(a - 2*pi/9)`, 41
+/// operations against 44), so no argument from the shape alone rules it out. Measured on
+/// the `fk --jacobian` reports of every robot in the repository and of 120 random DH chains
+/// of 3 to 6 joints (offsets `k pi/n`, n in 5, 7, 9, 10, 18; twists pi/3, pi/4, pi/6, pi/2)
+/// and on `scripts/offsets_same.py` (seeds 1 to 5, 7, 2211; 2,100 expressions): of ~20,000
+/// shifted searches, the largest scalar whose form as given won with a shifted form of fewer
+/// than [`AS_GIVEN_OPS_PER_TERM`] operations a term had 46 terms; none of the ~400 from 47
+/// terms won. The Jaco-style arm's 65-, 84- and 96-term entries (1.06, 0.82 and 1.49
+/// operations a term) are above it.
+const AS_GIVEN_MIN_TERMS: usize = 64;
+
+/// The most operations a term (of the scalar as given) the shifted form may have for
+/// [`as_given_may_win`] to skip the search as given (with [`AS_GIVEN_MIN_TERMS`]; measured
+/// on the same corpora): every form as given that won on a scalar of 47 terms or more did so
+/// against a shifted form of 2.86 operations a term or more (a random 5-joint chain's 66-term
+/// entry, 189 against 187); the forms as given that lose there are 1.5 to 5 times as long.
+const AS_GIVEN_OPS_PER_TERM: usize = 2;
+
+/// Whether the search of `x` as given may be shorter than its shifted form `e`: `false`
+/// when `x` is large ([`AS_GIVEN_MIN_TERMS`]) and `e` short for its size
+/// ([`AS_GIVEN_OPS_PER_TERM`]), a measured rule: there the shifted search has regrouped
+/// what the search as given sees as twice as many phases (the Jaco-style arm's 96-term
+/// entries, 48 terms once shifted, 143 operations; 835 as given), and that search (half of
+/// the arm's `fk --jacobian`) is skipped.
+fn as_given_may_win(x: &Scalar, e: &Expr) -> bool {
+    let terms = x.len();
+    terms < AS_GIVEN_MIN_TERMS || alt::choice_key(e).0 >= AS_GIVEN_OPS_PER_TERM * terms
 }
 
 /// The uncapped search of `x` as given, in `before` (the context as it was before the
