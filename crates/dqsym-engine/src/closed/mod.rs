@@ -428,7 +428,15 @@ const AS_GIVEN_OPS_PER_TERM: usize = 2;
 /// the arm's `fk --jacobian`) is skipped.
 fn as_given_may_win(x: &Scalar, e: &Expr) -> bool {
     let terms = x.len();
-    terms < AS_GIVEN_MIN_TERMS || alt::choice_key(e).0 >= AS_GIVEN_OPS_PER_TERM * terms
+    let may = terms < AS_GIVEN_MIN_TERMS || alt::choice_key(e).0 >= AS_GIVEN_OPS_PER_TERM * terms;
+    #[cfg(test)]
+    if !may {
+        tests::AS_GIVEN_SKIPS.with(|n| n.set(n.get() + 1));
+        if tests::AS_GIVEN_ALWAYS.with(std::cell::Cell::get) {
+            return true;
+        }
+    }
+    may
 }
 
 /// The uncapped search of `x` as given, in `before` (the context as it was before the
@@ -971,6 +979,11 @@ mod tests {
     thread_local! {
         /// Set by a test to search the form as given without the shifted form's cap.
         pub(super) static UNCAPPED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+        /// Set by a test to search every scalar as given after its shifted form (no
+        /// [`as_given_may_win`] skip).
+        pub(super) static AS_GIVEN_ALWAYS: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+        /// How many searches as given [`as_given_may_win`] ruled out.
+        pub(super) static AS_GIVEN_SKIPS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
     }
 
     fn s(x: &str) -> Scalar {
@@ -1072,6 +1085,81 @@ mod tests {
         assert!(
             shifted >= 5 && plain >= 10,
             "shifted {shifted}, as given {plain}"
+        );
+    }
+
+    /// The entries of the rotation of a pseudo-random DH chain of `joints` revolute joints (the
+    /// Jaco-style arm's shape): twists pi/3, pi/6 or pi/2, and each joint angle offset by
+    /// `k pi/9` one time in two (`Rz(theta) Rx(alpha)` multiplied out, expanded).
+    fn chain_rotation(seed: u64, joints: usize) -> Vec<Scalar> {
+        let mut next = crate::testing::xorshift_below(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
+        let pi = |p: i64, q: i64| Scalar::pi() * Scalar::from_q(Q::new(p, q));
+        let mut m: Vec<Vec<Scalar>> = (0..3)
+            .map(|i| (0..3).map(|j| Scalar::int(i64::from(i == j))).collect())
+            .collect();
+        for j in 1..=joints {
+            let mut theta = s(&format!("q{j}"));
+            if next(2) == 0 {
+                theta = theta + pi(1 + next(17) as i64, 9);
+            }
+            let alpha = pi(1, [3, 6, 2][next(3) as usize]);
+            let (ct, st, ca, sa) = (
+                theta.clone().cos(),
+                theta.sin(),
+                alpha.clone().cos(),
+                alpha.sin(),
+            );
+            let z = Scalar::int(0);
+            let r = [
+                [
+                    ct.clone(),
+                    -(st.clone() * ca.clone()),
+                    st.clone() * sa.clone(),
+                ],
+                [st, ct.clone() * ca.clone(), -(ct * sa.clone())],
+                [z, sa, ca],
+            ];
+            m = (0..3)
+                .map(|i| {
+                    (0..3)
+                        .map(|k| {
+                            (0..3).fold(Scalar::int(0), |acc, l| {
+                                acc + m[i][l].clone() * r[l][k].clone()
+                            })
+                        })
+                        .collect()
+                })
+                .collect();
+        }
+        m.into_iter().flatten().collect()
+    }
+
+    /// The measured rule of [`as_given_may_win`] changes no chosen form where it skips the
+    /// search as given: the rotation entries of pseudo-random Jaco-style chains of 5 joints
+    /// get the same closed form with every search as given run (`AS_GIVEN_ALWAYS`), equal to
+    /// the entry exactly; and the rule does skip there.
+    #[test]
+    fn skipping_the_search_as_given_keeps_the_chosen_form() {
+        let (mut large, mut skipped) = (0, 0);
+        for seed in 0..10 {
+            for (i, x) in chain_rotation(seed, 5).into_iter().enumerate() {
+                if x.len() < AS_GIVEN_MIN_TERMS {
+                    continue;
+                }
+                large += 1;
+                AS_GIVEN_SKIPS.with(|n| n.set(0));
+                let ruled = closed_form_prepared(&x).0.expect("a closed form");
+                skipped += AS_GIVEN_SKIPS.with(std::cell::Cell::get);
+                AS_GIVEN_ALWAYS.with(|a| a.set(true));
+                let full = closed_form_prepared(&x).0.expect("a closed form");
+                AS_GIVEN_ALWAYS.with(|a| a.set(false));
+                assert_eq!(ruled, full, "seed {seed}, entry {i}");
+                assert_eq!(ruled.to_scalar(), x, "seed {seed}, entry {i}");
+            }
+        }
+        assert!(
+            large >= 40 && skipped >= 20,
+            "{large} large entries, {skipped} skipped"
         );
     }
 
