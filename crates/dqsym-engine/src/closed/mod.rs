@@ -405,19 +405,22 @@ fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
 /// grouping of its two phases of one angle (`cos(a + 5*pi/18)` beside `cos(a - 2*pi/9)`, 41
 /// operations against 44), so no argument from the shape alone rules it out. Measured on
 /// the `fk --jacobian` reports of every robot in the repository and of 120 random DH chains
-/// of 3 to 6 joints (offsets `k pi/n`, n in 5, 7, 9, 10, 18; twists pi/3, pi/4, pi/6, pi/2)
-/// and on `scripts/offsets_same.py` (seeds 1 to 5, 7, 2211; 2,100 expressions): of ~20,000
-/// shifted searches, the largest scalar whose form as given won with a shifted form of fewer
-/// than [`AS_GIVEN_OPS_PER_TERM`] operations a term had 46 terms; none of the ~400 from 47
-/// terms won. The Jaco-style arm's 65-, 84- and 96-term entries (1.06, 0.82 and 1.49
-/// operations a term) are above it.
+/// of 3 to 6 joints (offsets `k pi/n`, n in 5, 7, 9, 10, 18; twists pi/3, pi/4, pi/6, pi/2;
+/// the thresholds read off 60 of them, checked on the other 60) and on
+/// `scripts/offsets_same.py` (seeds 1 to 5, 7, 2211; 2,100 expressions): of 20,362 shifted
+/// searches, the largest scalar whose form as given won against a shifted form of fewer
+/// than [`AS_GIVEN_OPS_PER_TERM`] operations a term had 46 terms; none of the 794 searches
+/// of 47 terms or more under that ratio was won by the form as given (635 of 64 or more).
+/// The Jaco-style arm's 65-, 84- and 96-term entries (1.06, 0.82 and 1.49 operations a
+/// term) are above it.
 const AS_GIVEN_MIN_TERMS: usize = 64;
 
 /// The most operations a term (of the scalar as given) the shifted form may have for
 /// [`as_given_may_win`] to skip the search as given (with [`AS_GIVEN_MIN_TERMS`]; measured
 /// on the same corpora): every form as given that won on a scalar of 47 terms or more did so
-/// against a shifted form of 2.86 operations a term or more (a random 5-joint chain's 66-term
-/// entry, 189 against 187); the forms as given that lose there are 1.5 to 5 times as long.
+/// against a shifted form of 2.80 operations a term or more (a random 3-joint chain's 96-term
+/// entry); under 2, the forms as given of 64 terms or more are 1.09 to 10 times as long as
+/// the shifted ones.
 const AS_GIVEN_OPS_PER_TERM: usize = 2;
 
 /// Whether the search of `x` as given may be shorter than its shifted form `e`: `false`
