@@ -18,134 +18,131 @@
 //!
 //! `mon.rs` turns the canonical Fourier form into monomials over trigonometric atoms (modes whole,
 //! or split per symbol; for the whole-modes shape each group of one monomial and one angle at
-//! offsets outside pi/12 joined into `R cos(F + phi)` when it is one angle, checked exactly:
-//! `l1 cos(t + 5*pi/9) + l2 cos(2*t + 5*pi/9)`); `recombine.rs` applies the four angle-sum
-//! identities to any depth (greedy rounds over every pair of atoms; on sums of at least 128
-//! monomials of six atoms or more, first on each monomial's two lowest atoms); `factor.rs` nests common factors, choosing by `Cost` (below its
-//! branching levels a run of splits on one factor from one sort of the terms by its power,
-//! `factor/run.rs`; at the branching levels of a plain integer polynomial each candidate's
-//! exact cost found without its tree, in machine integers, `factor/costs.rs`); `expr.rs` is the
-//! display expression `Expr` with its cost and exact value (and f64 value); `decimals.rs`
-//! `decimal_form`, a robot's decimal denominators put back into their sums (`0.425 c2`, the
-//! printers' `decimals` option prints the decimal fractions); `alt.rs` the further candidates taken
-//! when strictly shorter counting the arithmetic inside angles (harmonic form `R cos(x + phi)`, sum
-//! to product, a polynomial in one cosine or sine factored by its rational roots (the roots 1
-//! and -1 paired as `-sin^2`), a sum of such polynomials in distinct angles with the constants
-//! merged, products of cosines peeled off by exact division (`peel.rs`, Gaussian integer
-//! coefficients over one denominator), a single `cos(k pi/n)`; `cprod.rs`:
-//! products of one to three constant cosines and sines at the field's angles times a rational
-//! polynomial, `cos(pi/7) cos(pi/9)`, found numerically, with a radical cofactor (each radicand's
-//! terms apart, `1/4 (1 + sqrt(5)) sin(pi/11)^2`, or the square root of a radicand of the terms
-//! beside the product, `sqrt(2) sin(pi/7)^2 cos(pi/9)`) and beside the terms without a mode split
-//! off as a constant (`1 - cos(pi/7) cos(pi/9)`); `roots.rs`: for a scalar over one monomial with a
-//! pi offset or a square root whose modes are multiples of one angle `theta`, products of cosines
-//! and sines of multiples of `theta/2` with different offsets (`l cos(x) cos(x - pi/14)`,
-//! `(cos(x) - cos(pi/7)) (sin(x) + 1)`), found from the roots of the sum as a polynomial in
-//! `e^{i theta}` (Aberth's iteration in f64, each cluster snapped to a rational multiple of pi
-//! within a denominator bound from the field's conductor and the degree, the factorization checked
-//! in floats), the roots grouped into `sin(k (phi - a))`, `cos(k phi) - cos(k b)`,
-//! `sin(k phi) - sin(k b)` (every order of the kinds, the largest `k` first or `theta` before
-//! `theta/2`), each shown with the cheapest offset, the constant exact from the scalar's top
-//! coefficient; and, for 2 to 4 symbols, products `f(x) g(y)` of such one-angle parts
-//! (`cos(x - pi/8) sin(y - pi/8)`, whose expansion has the modes `x - y`, `x + y`): the symbols
-//! split where the scalar is numerically of rank one, each part's roots from its restriction to a
-//! point of the others, the constant exact from the coefficient of the parts' top modes combined;
-//! and the factorization over the integers of the sum read as a polynomial in `c_x = cos x`,
-//! `s_x = sin x` and the length symbols, and, when some mode is a multiple of two or more of its
-//! direction's unit, in the cosines and sines of the modes' directions (`cos(a + b)` a variable of
-//! its own: `a2^2 cos(a)^2 - a3^2 cos(a + b)^2`) (`cspoly.rs`: as expanded, with `s^2 = 1 - c^2`,
-//! with `c^2 = 1 - s^2`; not factored when linear in distinct length symbols with one coefficient a
-//! constant or a variable another coefficient lacks; the closed forms of its factors and pairs of
-//! factors found without factoring them again; `zfactor.rs`: content and monomial factor,
-//! Kronecker's substitution onto one variable, square-free part by a modular gcd, factors modulo a
-//! small prime (distinct-degree and Cantor-Zassenhaus), Hensel lifting past a Gelfond bound,
-//! subsets recombined by exact multivariate division, a subset whose constant term cannot divide
-//! skipped before its product is formed; image degree <= 64, charged to the work
-//! budget)); `trigfac.rs` (made in `best_alternative` only when a lower bound of their cost is
-//! below the form found, for at most 24 terms, not for modes at one step without offsets or
-//! radicals such as the PUMA's): sinusoids `cos(d.x + phi)` whose angle mixes symbols
-//! (`-sin(u1) cos(u1 + 2*u2 - pi/6)`), `d` from half-differences of the exponents seen from
-//! two vertices of the Newton polytope, `phi` a multiple of pi/24 found in floats on the
-//! factor's zero set, divided out exactly by a long division along `d`, the cofactor given its
-//! own closed form; and a sum split into parts of distinct monomials or disjoint symbols, each
-//! part's closed form found alone; `extra.rs` (the one place of the candidates below, for
-//! issue 33's held-out corpus): squares of sums `k (g)^2` (`square.rs`: the square root of the
-//! sum's exponential form taken in `f64` by the schoolbook algorithm in a lexicographic order of
-//! the exponents, read back as a real sum with coefficients snapped to rationals times square
-//! roots, the square checked exactly before the root's closed form is found), every candidate
-//! with a factor shared by all or some of its summands taken out (`k2 (a - b)` for
-//! `k2 a - k2 b`), a sum split by the symbols of its terms' angles (not for the PUMA's
-//! unit-step modes), each part's closed form found alone, and pairs of summands with equal
-//! numbers and factors but one call joined (sum to product, `cos A + cos B = 2 cos((A + B)/2)
-//! cos((A - B)/2)`; a number beside its cosine as a square, `1 - cos(2 w) = 2 sin(w)^2`),
-//! greedily while no longer, also on the form shown (`extra::joined_form`: the angles made
-//! again from radicals by `coefs.rs` are first seen there), there also the sums inside its
-//! products (`sin(c) (sin(2 a + b) + sin(b))` as `2 sin(c) sin(a + b) cos(a)`), and a cosine
-//! and a sine of one angle with the same other factors as one sinusoid when its offset is a
-//! multiple of pi/12 (`cos(a) + sqrt(3) sin(a) = 2 sin(a + pi/6)`); each checked exactly; constant angles are shown with a positive sign; an angle's
-//! symbols print first, then its rational constant and its multiple of pi (`t/2 - 1/3`,
-//! `x - pi/7`), and an angle with a rational constant is shown with its first symbol's coefficient
-//! positive (`Expr::symbols_leading`: `sin(1/3 - t/2)` prints `-sin(t/2 - 1/3)`); equal symbols and
-//! atoms of a product print as one power (`a2^2`, never `a2 a2`); an angle whose coefficients share
-//! one denominator prints over it (`cos((q1 + q2)/2)`, `notation::angle_text`, as in LaTeX) and is
-//! costed so; the split shape is skipped (`skip_split`) when it would multiply the terms by more
-//! than 256, or by more than 32 with no two terms able to meet in it (`disjoint_parts`: the
-//! cumulative angles of a planar chain), and a scalar without trigonometric terms is factored once;
-//! `offsets.rs` absorbs pi offsets outside the multiples of pi/12 into the symbols: for a scalar
-//! whose symbolic modes carry such offsets (the gate an offset-free scalar such as the PUMA's fails
-//! at once), one rational multiple of pi `o_s` per symbol such that the scalar in `y_s = x_s + o_s`
-//! has none left (each group's phase class modulo pi/12 tried exactly, the congruences
-//! `f . o = d_f` solved by a bounded search), its closed form found on the offset-free path and
-//! every angle shifted back (`cos(q2 + 5*pi/9)`, `cos(x - pi/7) cos(y + pi/7)`,
-//! `sin(x - 2*pi/7)^2`; the candidates of `alt.rs` for the shifted scalar compared again shifted
-//! back, since a shift changes what an angle costs: `cos(x) cos(x + 2*pi/7)`), kept unless the
-//! form as given is strictly shorter (found first, so that the search as given checks its
-//! candidates of `alt.rs` only below it: `prepared_shifted`, the same choice; the search as given
-//! not made for a scalar of 64 terms or more whose shifted form has fewer than 2 operations a
-//! term, a measured rule: `as_given_may_win`) and checked like every other; the offset shown among equal classes is the one with the fewest
-//! cosine and sine parts in `y`, then the smallest denominator, the fewest nonzero offsets, the
-//! fewest negative parts (`cos(t + 5*pi/9)`, not `-cos(t - 4*pi/9)`), the smallest `|o|`, the
-//! positive one; derivatives of a prepared scalar are shifted alike; the congruences are scaled to
-//! integer residues modulo one common modulus and solved in echelon form (`congruence.rs`: each
-//! unknown a residue class given the earlier ones, the solutions listed in lexicographic order
-//! without a search, every value charged to the Context); across an `fk` report one offset per
-//! angle direction (`common.rs`, `CommonOffsets`): each angle `l (g . x + t pi)` (`g` primitive)
-//! votes for `t` once per pose entry, directions of fewer symbols first and then by votes fix one
-//! offset vector `o` (ties: non-negative, then smallest), and every entry's angle whose offset
-//! differs from `l (g . o)` by a multiple of pi/2 is shown at it, call and sign adjusted, unless
-//! that entry gets costlier (`cos(q2 - q3 + 5*pi/9)` and `sin(q2/2 + q3/2 + 5*pi/18)` in one
-//! report, never `-4*pi/9`); `coefs.rs` lifts constant coefficients out of the angles: for a
-//! non-constant scalar with pi offsets outside the multiples of pi/12, each mode written back in
-//! `cos F`, `sin F` of its offset-free angle (`cos(F + a) = cos F cos a - sin F sin a`), the two
-//! coefficients of one angle joined into `R cos(F - phi)` when `phi` is a rational multiple of pi
-//! (found from `atan2`, checked exactly), and each constant outside pi/12 (up to a rational factor)
-//! a fresh symbol; that scalar's closed form, with each symbol replaced by its constant's closed
-//! form (`sin(pi/7) cos(pi/9) cos(q)`, `cos(pi/9) sin(q + pi/7)`, was a sum over pi/63), kept when
-//! shorter and checked like every other (a derivative's closed form then starts afresh); the
-//! unlifted coefficients of `cos F` and `sin F` lifted only when joining them into phases
-//! left some constant outside pi/12, and neither when the terms show that it cannot (one
-//! sinusoid per monomial and angle, or two at right angles with `tan^2` 1/3, 1 or 3: the
-//! Jaco-style arm's entries);
-//! `coefs::phase_angles` does the same for angles at offsets that are multiples of pi/12, which the
-//! canonical form holds as radicals (`l1 sin(x + pi/6)` is `l1 (cos x + sqrt(3) sin x)/2`): the two
-//! coefficients of one monomial's `cos F` and `sin F`, `R cos(phi)` and `R sin(phi)` with `phi` a
-//! multiple of pi/24 off the multiples of pi/2, make `R cos(W)` with a fresh angle symbol
-//! `W = F - phi`, and each `W` is replaced back in the closed form, shown as the cosine or sine
-//! with the cheaper angle (`l1 cos(x - pi/3) + l2 cos(x + y - 2*pi/3)`); the whole-modes shape is
-//! not factored when a lower bound of its cost (`factor::cost_lower_bound`: each distinct atom and
-//! symbol a leaf, each atom a call, each monomial a summand) is not below the regrouped shape's,
-//! and is factored first when that bound is below the regrouped shape's own lower bound (`m`
-//! monomials, `m - 1` additions: `factor::summands_lower_bound`), the regrouped shape then not
-//! factored when the whole one costs less than that (the Jaco-style arm's entries as given),
-//! and `alt::best_alternative`
-//! checks only candidates shorter than the form found before; `closed_form_prepared` keeps the
-//! regrouped monomials of a scalar so that `closed_form_of_derivative` starts a derivative's closed
-//! form from them (the Jacobian of a chain: no second expansion into single angles);
-//! `closed_form_cos_sin` factors a cos/sin polynomial and shows its placeholders as cos/sin;
-//! `trace.rs` records, for `closed_form_traced`, each round's sum (the first is the expanded sum)
-//! and every identity applied (`TraceStep`, `Identity`), observing the recombination without
-//! steering it. `notation.rs` names angles the way every printer and emitter does: `shorthand_name`
-//! (`c12`, `s123`), `angle_text` (`theta1 + theta2`), `TrigNames`.
+//! offsets outside pi/12 joined into `R cos(F + phi)` when it is one angle, checked exactly: `l1
+//! cos(t + 5*pi/9) + l2 cos(2*t + 5*pi/9)`); `recombine.rs` applies the four angle-sum identities
+//! to any depth (greedy rounds over every pair of atoms; on sums of at least 128 monomials of six
+//! atoms or more, first on each monomial's two lowest atoms); `factor.rs` nests common factors,
+//! choosing by `Cost` (below its branching levels a run of splits on one factor from one sort of
+//! the terms by its power, `factor/run.rs`; at the branching levels of a plain integer polynomial
+//! each candidate's exact cost found without its tree, in machine integers, `factor/costs.rs`);
+//! `expr.rs` is the display expression `Expr` with its cost and exact value (and f64 value);
+//! `decimals.rs` `decimal_form`, a robot's decimal denominators put back into their sums (`0.425
+//! c2`, the printers' `decimals` option prints the decimal fractions); `alt.rs` the further
+//! candidates taken when strictly shorter counting the arithmetic inside angles (harmonic form `R
+//! cos(x + phi)`, sum to product, a polynomial in one cosine or sine factored by its rational roots
+//! (the roots 1 and -1 paired as `-sin^2`), a sum of such polynomials in distinct angles with the
+//! constants merged, products of cosines peeled off by exact division (`peel.rs`, Gaussian integer
+//! coefficients over one denominator), a single `cos(k pi/n)`; `cprod.rs`: products of one to three
+//! constant cosines and sines at the field's angles times a rational polynomial, `cos(pi/7)
+//! cos(pi/9)`, found numerically, with a radical cofactor (each radicand's terms apart, `1/4 (1 +
+//! sqrt(5)) sin(pi/11)^2`, or the square root of a radicand of the terms beside the product,
+//! `sqrt(2) sin(pi/7)^2 cos(pi/9)`) and beside the terms without a mode split off as a constant (`1
+//! - cos(pi/7) cos(pi/9)`); `roots.rs`: for a scalar over one monomial with a pi offset or a square
+//! root whose modes are multiples of one angle `theta`, products of cosines and sines of multiples
+//! of `theta/2` with different offsets (`l cos(x) cos(x - pi/14)`, `(cos(x) - cos(pi/7)) (sin(x) +
+//! 1)`), found from the roots of the sum as a polynomial in `e^{i theta}` (Aberth's iteration in
+//! f64, each cluster snapped to a rational multiple of pi within a denominator bound from the
+//! field's conductor and the degree, the factorization checked in floats), the roots grouped into
+//! `sin(k (phi - a))`, `cos(k phi) - cos(k b)`, `sin(k phi) - sin(k b)` (every order of the kinds,
+//! the largest `k` first or `theta` before `theta/2`), each shown with the cheapest offset, the
+//! constant exact from the scalar's top coefficient; and, for 2 to 4 symbols, products `f(x) g(y)`
+//! of such one-angle parts (`cos(x - pi/8) sin(y - pi/8)`, whose expansion has the modes `x - y`,
+//! `x + y`): the symbols split where the scalar is numerically of rank one, each part's roots from
+//! its restriction to a point of the others, the constant exact from the coefficient of the parts'
+//! top modes combined; and the factorization over the integers of the sum read as a polynomial in
+//! `c_x = cos x`, `s_x = sin x` and the length symbols, and, when some mode is a multiple of two or
+//! more of its direction's unit, in the cosines and sines of the modes' directions (`cos(a + b)` a
+//! variable of its own: `a2^2 cos(a)^2 - a3^2 cos(a + b)^2`) (`cspoly.rs`: as expanded, with `s^2 =
+//! 1 - c^2`, with `c^2 = 1 - s^2`; not factored when linear in distinct length symbols with one
+//! coefficient a constant or a variable another coefficient lacks; the closed forms of its factors
+//! and pairs of factors found without factoring them again; `zfactor.rs`: content and monomial
+//! factor, Kronecker's substitution onto one variable, square-free part by a modular gcd, factors
+//! modulo a small prime (distinct-degree and Cantor-Zassenhaus), Hensel lifting past a Gelfond
+//! bound, subsets recombined by exact multivariate division, a subset whose constant term cannot
+//! divide skipped before its product is formed; image degree <= 64, charged to the work budget));
+//! `trigfac.rs` (made in `best_alternative` only when a lower bound of their cost is below the form
+//! found, for at most 24 terms, not for modes at one step without offsets or radicals such as the
+//! PUMA's): sinusoids `cos(d.x + phi)` whose angle mixes symbols (`-sin(u1) cos(u1 + 2*u2 -
+//! pi/6)`), `d` from half-differences of the exponents seen from two vertices of the Newton
+//! polytope, `phi` a multiple of pi/24 found in floats on the factor's zero set, divided out
+//! exactly by a long division along `d`, the cofactor given its own closed form; and a sum split
+//! into parts of distinct monomials or disjoint symbols, each part's closed form found alone;
+//! `extra.rs` (the one place of the candidates below, for issue 33's held-out corpus): squares of
+//! sums `k (g)^2` (`square.rs`: the square root of the sum's exponential form taken in `f64` by the
+//! schoolbook algorithm in a lexicographic order of the exponents, read back as a real sum with
+//! coefficients snapped to rationals times square roots, the square checked exactly before the
+//! root's closed form is found), every candidate with a factor shared by all or some of its
+//! summands taken out (`k2 (a - b)` for `k2 a - k2 b`), a sum split by the symbols of its terms'
+//! angles (not for the PUMA's unit-step modes), each part's closed form found alone, and pairs of
+//! summands with equal numbers and factors but one call joined (sum to product, `cos A + cos B = 2
+//! cos((A + B)/2) cos((A - B)/2)`; a number beside its cosine as a square, `1 - cos(2 w) = 2
+//! sin(w)^2`), greedily while no longer, also on the form shown (`extra::joined_form`: the angles
+//! made again from radicals by `coefs.rs` are first seen there), there also the sums inside its
+//! products (`sin(c) (sin(2 a + b) + sin(b))` as `2 sin(c) sin(a + b) cos(a)`), and a cosine and a
+//! sine of one angle with the same other factors as one sinusoid when its offset is a multiple of
+//! pi/12 (`cos(a) + sqrt(3) sin(a) = 2 sin(a + pi/6)`); each checked exactly; constant angles are
+//! shown with a positive sign; an angle's symbols print first, then its rational constant and its
+//! multiple of pi (`t/2 - 1/3`, `x - pi/7`), and an angle with a rational constant is shown with
+//! its first symbol's coefficient positive (`Expr::symbols_leading`: `sin(1/3 - t/2)` prints
+//! `-sin(t/2 - 1/3)`); equal symbols and atoms of a product print as one power (`a2^2`, never `a2
+//! a2`); an angle whose coefficients share one denominator prints over it (`cos((q1 + q2)/2)`,
+//! `notation::angle_text`, as in LaTeX) and is costed so; the split shape is skipped (`skip_split`)
+//! when it would multiply the terms by more than 256, or by more than 32 with no two terms able to
+//! meet in it (`disjoint_parts`: the cumulative angles of a planar chain), and a scalar without
+//! trigonometric terms is factored once; `offsets.rs` absorbs pi offsets outside the multiples of
+//! pi/12 into the symbols: for a scalar whose symbolic modes carry such offsets (the gate an
+//! offset-free scalar such as the PUMA's fails at once), one rational multiple of pi `o_s` per
+//! symbol such that the scalar in `y_s = x_s + o_s` has none left (each group's phase class modulo
+//! pi/12 tried exactly, the congruences `f . o = d_f` solved by a bounded search), its closed form
+//! found on the offset-free path and every angle shifted back (`cos(q2 + 5*pi/9)`, `cos(x - pi/7)
+//! cos(y + pi/7)`, `sin(x - 2*pi/7)^2`; the candidates of `alt.rs` for the shifted scalar compared
+//! again shifted back, since a shift changes what an angle costs: `cos(x) cos(x + 2*pi/7)`), kept
+//! unless the form as given is strictly shorter (found first, so that the search as given checks
+//! its candidates of `alt.rs` only below it: `prepared_shifted`, the same choice; the search as
+//! given not made for a scalar of 64 terms or more whose shifted form has fewer than 2 operations a
+//! term, a measured rule: `as_given_may_win`) and checked like every other; the offset shown among
+//! equal classes is the one with the fewest cosine and sine parts in `y`, then the smallest
+//! denominator, the fewest nonzero offsets, the fewest negative parts (`cos(t + 5*pi/9)`, not
+//! `-cos(t - 4*pi/9)`), the smallest `|o|`, the positive one; derivatives of a prepared scalar are
+//! shifted alike; the congruences are scaled to integer residues modulo one common modulus and
+//! solved in echelon form (`congruence.rs`: each unknown a residue class given the earlier ones,
+//! the solutions listed in lexicographic order without a search, every value charged to the
+//! Context); across an `fk` report one offset per angle direction (`common.rs`, `CommonOffsets`):
+//! each angle `l (g . x + t pi)` (`g` primitive) votes for `t` once per pose entry, directions of
+//! fewer symbols first and then by votes fix one offset vector `o` (ties: non-negative, then
+//! smallest), and every entry's angle whose offset differs from `l (g . o)` by a multiple of pi/2
+//! is shown at it, call and sign adjusted, unless that entry gets costlier (`cos(q2 - q3 + 5*pi/9)`
+//! and `sin(q2/2 + q3/2 + 5*pi/18)` in one report, never `-4*pi/9`); `coefs.rs` lifts constant
+//! coefficients out of the angles: for a non-constant scalar with pi offsets outside the multiples
+//! of pi/12, each mode written back in `cos F`, `sin F` of its offset-free angle (`cos(F + a) = cos
+//! F cos a - sin F sin a`), the two coefficients of one angle joined into `R cos(F - phi)` when
+//! `phi` is a rational multiple of pi (found from `atan2`, checked exactly), and each constant
+//! outside pi/12 (up to a rational factor) a fresh symbol; that scalar's closed form, with each
+//! symbol replaced by its constant's closed form (`sin(pi/7) cos(pi/9) cos(q)`, `cos(pi/9) sin(q +
+//! pi/7)`, was a sum over pi/63), kept when shorter and checked like every other (a derivative's
+//! closed form then starts afresh); the unlifted coefficients of `cos F` and `sin F` lifted only
+//! when joining them into phases left some constant outside pi/12, and neither when the terms show
+//! that it cannot (one sinusoid per monomial and angle, or two at right angles with `tan^2` 1/3, 1
+//! or 3: the Jaco-style arm's entries); `coefs::phase_angles` does the same for angles at offsets
+//! that are multiples of pi/12, which the canonical form holds as radicals (`l1 sin(x + pi/6)` is
+//! `l1 (cos x + sqrt(3) sin x)/2`): the two coefficients of one monomial's `cos F` and `sin F`, `R
+//! cos(phi)` and `R sin(phi)` with `phi` a multiple of pi/24 off the multiples of pi/2, make `R
+//! cos(W)` with a fresh angle symbol `W = F - phi`, and each `W` is replaced back in the closed
+//! form, shown as the cosine or sine with the cheaper angle (`l1 cos(x - pi/3) + l2 cos(x + y -
+//! 2*pi/3)`); the whole-modes shape is not factored when a lower bound of its cost
+//! (`factor::cost_lower_bound`: each distinct atom and symbol a leaf, each atom a call, each
+//! monomial a summand) is not below the regrouped shape's, and is factored first when that bound is
+//! below the regrouped shape's own lower bound (`m` monomials, `m - 1` additions:
+//! `factor::summands_lower_bound`), the regrouped shape then not factored when the whole one costs
+//! less than that (the Jaco-style arm's entries as given), and `alt::best_alternative` checks only
+//! candidates shorter than the form found before; `closed_form_prepared` keeps the regrouped
+//! monomials of a scalar so that `closed_form_of_derivative` starts a derivative's closed form from
+//! them (the Jacobian of a chain: no second expansion into single angles); `closed_form_cos_sin`
+//! factors a cos/sin polynomial and shows its placeholders as cos/sin; `trace.rs` records, for
+//! `closed_form_traced`, each round's sum (the first is the expanded sum) and every identity
+//! applied (`TraceStep`, `Identity`), observing the recombination without steering it.
+//! `notation.rs` names angles the way every printer and emitter does: `shorthand_name` (`c12`,
+//! `s123`), `angle_text` (`theta1 + theta2`), `TrigNames`.
 
 mod alt;
 mod coefs;
