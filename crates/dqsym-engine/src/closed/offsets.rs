@@ -8,9 +8,11 @@
 //! How the offsets are found, for the terms that share a monomial and a frequency vector `f`
 //! (a group, whose value is `Re(z e^{i f.x})`): the group's phase class `d_f` is the multiple
 //! `d` of `pi / N` (`N = lcm(12, the offsets' denominators)`), taken modulo `1/12`, for
-//! which the group shifted by `-d` has no offset (tried exactly, one small canonicalization
-//! per candidate); a group with no such `d` (a sum of two unrelated phases) means no shift
-//! exists. The offsets must then satisfy `f . o = d_f (mod 1/12)` for every group: each
+//! which the group shifted by `-d` has no offset; a group with no such `d` (a sum of two
+//! unrelated phases) means no shift exists. When `N` has no prime factor but 2 and 3 (ninths,
+//! eighths: the Kinova arms' offsets), `d_f` is the class modulo `1/12` that all the group's
+//! offsets share, read off them ([`phase_class_of_offsets`] proves it); otherwise each
+//! candidate is tried exactly, one small canonicalization each. The offsets must then satisfy `f . o = d_f (mod 1/12)` for every group: each
 //! symbol's candidates are the multiples of `pi / (N a)` (`a` the lcm of its coefficients'
 //! numerators) over one period; scaled to integers modulo one common modulus, the
 //! congruences are solved in echelon form (`congruence.rs`), which lists the solutions in
@@ -77,26 +79,89 @@ fn no_offset(s: &Scalar) -> bool {
     })
 }
 
-/// The shift that leaves `x` without offsets outside the multiples of pi/12 on its symbolic
-/// modes, when `x` has such offsets and one exists (see the module docs).
-pub(crate) fn find(x: &Scalar) -> Option<Shift> {
-    let terms = x.terms().ok()?;
-    let symbolic = |t: &Term| t.mode.freq.iter().any(|(s, _)| !s.is_one());
-    // The gate every offset-free scalar (the PUMA's) fails at once.
-    if !terms.iter().any(|t| !t.mode.pi.is_zero() && symbolic(t)) {
+/// A group's phase class (see the module docs), found by trying each candidate `j pi / n`,
+/// `0 < j < n / 12`, on the group shifted by it (one canonicalization each): `0` for a group
+/// without offsets, `None` when no candidate leaves it without one.
+fn phase_class_by_search(g: &Group, n: i64) -> Option<Small> {
+    if g.terms.iter().all(|t| t.mode.pi.is_zero()) {
+        return Some(Small::zero());
+    }
+    let step = Small::new(1, n);
+    (1..n / 12)
+        .map(|j| step * Small::from_integer(j))
+        .find(|&d| no_offset(&shifted_group(g, d)))
+}
+
+/// Whether `n` (a multiple of 12) has no prime factor but 2 and 3: then [`phase_class_of_offsets`]
+/// gives every group's phase class without a canonicalization.
+fn graded_level(n: i64) -> bool {
+    let mut m = n;
+    for p in [2, 3] {
+        while m % p == 0 {
+            m /= p;
+        }
+    }
+    m == 1
+}
+
+/// A group's phase class read off its terms' offsets, when `n` (the lcm of 12 and every
+/// offset's denominator) is a [`graded_level`]: the class `p mod 1/12` shared by every term's
+/// offset `p` (an offset-free term has class 0); `None` when two terms differ in it, or when
+/// it is 0 and some offset is not (as [`phase_class_by_search`], which tries no candidate 0).
+///
+/// Why this is [`phase_class_by_search`]'s answer, without trying candidates. Let `K` be the
+/// field of the square roots of all rationals (it holds `i`, and `zeta_24`): `K` is the union
+/// of fields with Galois groups `(Z/2)^k`, so the roots of unity in it are the 24th roots (a
+/// root of order `m` in `K` has `(Z/m)^*` of exponent 2, so `m | 24`). A group (one monomial,
+/// one frequency vector `f`, value `Re(z e^{i f.x})`, `z` in `K(zeta_2n)`) shifted by `-d`
+/// canonicalizes without an offset exactly when `z e^{-i pi d}` lies in `K`: the canonical
+/// basis of a value of `K` is `{1}`, and the value's expansion is unique (`scalar/cyclo`'s
+/// module docs). So the classes that work are one coset of `1/12`: two of them, `d` and
+/// `d'`, give `e^{i pi (d - d')}` in `K` (`z != 0`: a canonical group is the expansion of its
+/// value in a basis, and is not empty), a 24th root of unity, `d - d'` a multiple of `1/12`.
+/// With `2n = 2^a 3^b`, `[K(zeta_2n) : K] = 2n/24` (`(Z/2n)^*` modulo its squares has order
+/// 8), the minimal polynomial of `zeta_2n` over `K` is `t^(2n/24) - zeta_24`, and `K(zeta_2n)`
+/// is the direct sum over `j mod 2n/24` of the lines `K zeta_2n^j`: the values
+/// `K e^{i pi p}` with `p n = j (mod n/12)`, i.e. one line per class `p mod 1/12`. The
+/// canonical basis of a group has at most one column per line (two roots of unity on one
+/// line are proportional over `K`; the basis is independent), and a column's terms are the
+/// nonzero coordinate of the group's value on it. So the value's component on the line of
+/// class `c` is nonzero exactly when some term has class `c`, and `z` lies on one line (of
+/// class `d`: `z e^{-i pi d}` in `K`) exactly when every term has class `d`. (For other `n`,
+/// the lines are not independent: `1 + zeta_5 + ... + zeta_5^4 = 0`, so a value on one line
+/// may be written on several, and the classes are searched.) Checked against
+/// [`phase_class_by_search`] in debug builds, and by the tests below.
+fn phase_class_of_offsets(g: &Group, n: i64) -> Option<Small> {
+    let classes = n / 12;
+    let class = |p: Small| (p.numer() * (n / p.denom())).rem_euclid(classes);
+    let mut terms = g.terms.iter().map(|t| t.mode.pi);
+    let first = class(terms.next()?);
+    if terms.any(|p| class(p) != first) {
         return None;
     }
-    if terms.len() > MAX_TERMS {
-        return None;
+    if first == 0 {
+        return g
+            .terms
+            .iter()
+            .all(|t| t.mode.pi.is_zero())
+            .then(Small::zero);
     }
-    let mut n: i64 = 12;
-    for t in terms {
-        n = n.lcm(t.mode.pi.denom());
-    }
-    if n > 100_000 {
-        return None;
-    }
-    // Groups by (frequency vector, monomial).
+    Some(Small::new(first, n))
+}
+
+/// `N`, the lcm of 12 and the denominators of the terms' offsets (over pi).
+fn level(terms: &[Term]) -> i64 {
+    terms.iter().fold(12, |n: i64, t| n.lcm(t.mode.pi.denom()))
+}
+
+/// Whether a term's mode holds a symbol (not only the constant `1`).
+fn symbolic(t: &Term) -> bool {
+    t.mode.freq.iter().any(|(s, _)| !s.is_one())
+}
+
+/// The groups of the symbolic terms, by (frequency vector, monomial), in the order their
+/// first terms come.
+fn groups_of(terms: &[Term]) -> Vec<Group<'_>> {
     type GroupKey<'a> = (&'a [(Sym, Small)], &'a crate::scalar::MonoRc);
     let mut index: BTreeMap<GroupKey, usize> = BTreeMap::new();
     let mut groups: Vec<Group> = Vec::new();
@@ -117,20 +182,38 @@ pub(crate) fn find(x: &Scalar) -> Option<Shift> {
         });
         groups[i].terms.push(t);
     }
+    groups
+}
+
+/// The shift that leaves `x` without offsets outside the multiples of pi/12 on its symbolic
+/// modes, when `x` has such offsets and one exists (see the module docs).
+pub(crate) fn find(x: &Scalar) -> Option<Shift> {
+    let terms = x.terms().ok()?;
+    // The gate every offset-free scalar (the PUMA's) fails at once.
+    if !terms.iter().any(|t| !t.mode.pi.is_zero() && symbolic(t)) {
+        return None;
+    }
+    if terms.len() > MAX_TERMS {
+        return None;
+    }
+    let n = level(terms);
+    if n > 100_000 {
+        return None;
+    }
+    let groups = groups_of(terms);
     crate::scalar::charge(groups.len() as u64).ok()?;
     // Each group's phase class d_f (mod 1/12).
-    let step = Small::new(1, n);
-    let classes = n / 12;
+    let graded = graded_level(n);
     let mut phase: Vec<Small> = Vec::with_capacity(groups.len());
     for g in &groups {
-        if g.terms.iter().all(|t| t.mode.pi.is_zero()) {
-            phase.push(Small::zero());
-            continue;
-        }
-        let d = (1..classes)
-            .map(|j| step * Small::from_integer(j))
-            .find(|&d| no_offset(&shifted_group(g, d)))?;
-        phase.push(d);
+        let d = if graded {
+            let d = phase_class_of_offsets(g, n);
+            debug_assert_eq!(d, phase_class_by_search(g, n), "a graded level's class");
+            d
+        } else {
+            phase_class_by_search(g, n)
+        };
+        phase.push(d?);
     }
     let mut syms: Vec<Sym> = groups
         .iter()
@@ -895,6 +978,66 @@ mod tests {
         assert!(
             taken > 500 && tied > 100,
             "both ways met ({taken} taken, {tied} tied)"
+        );
+    }
+
+    /// The phase class read off the offsets is the one found by trying every candidate, on
+    /// the groups of seeded random sums over levels of 2s and 3s (offsets of ninths,
+    /// eighths, 36ths, 27ths, 16ths ...): terms of one class apart by multiples of pi/12 (one
+    /// class), now and then a term of another class or without an offset (none), several
+    /// monomials and frequency vectors per sum.
+    #[test]
+    fn the_phase_class_of_a_graded_level_is_the_one_its_offsets_share() {
+        let mut next = crate::testing::xorshift_below(0x05ee_dc1a_55e5_u64);
+        let (x, y, l) = (Scalar::sym("x"), Scalar::sym("y"), Scalar::sym("l"));
+        let dens = [9, 18, 36, 8, 16, 24, 27, 48, 72];
+        let (mut found, mut none, mut groups_seen) = (0, 0, 0);
+        for _ in 0..150 {
+            let den = dens[next(dens.len() as u64) as usize];
+            let mut e = Scalar::int(0);
+            for _ in 0..1 + next(3) {
+                let angle = Scalar::int(1 + next(2) as i64) * x.clone()
+                    + Scalar::int(next(3) as i64 - 1) * y.clone();
+                let mono = if next(2) == 0 {
+                    Scalar::int(1)
+                } else {
+                    l.clone()
+                };
+                let base = next(2 * den);
+                for _ in 0..1 + next(3) {
+                    let p = match next(8) {
+                        0 => parse_pi(next(2 * den) as i64, den as i64),
+                        1 => parse_pi(0, 1),
+                        _ => parse_pi(base as i64, den as i64) + parse_pi(next(24) as i64, 12),
+                    };
+                    let a = angle.clone() + p;
+                    let f = if next(2) == 0 { a.cos() } else { a.sin() };
+                    let c = Scalar::int(next(7) as i64 - 3);
+                    e = e + c * mono.clone() * f;
+                }
+            }
+            let Ok(terms) = e.terms() else {
+                panic!("{e:?} an error");
+            };
+            let n = level(terms);
+            assert!(graded_level(n), "{n}");
+            for g in groups_of(terms) {
+                let want = phase_class_by_search(&g, n);
+                assert_eq!(phase_class_of_offsets(&g, n), want, "{e:?} at level {n}");
+                groups_seen += 1;
+                match want {
+                    Some(d) if !d.is_zero() => found += 1,
+                    Some(_) => {}
+                    None => none += 1,
+                }
+            }
+        }
+        assert!(
+            found > 50 && none > 20,
+            "{groups_seen} groups: {found} with a class, {none} without"
+        );
+        assert!(
+            graded_level(12) && graded_level(36 * 64) && !graded_level(60) && !graded_level(84)
         );
     }
 
