@@ -594,9 +594,9 @@ fn sign_text(e: &Expr, prec: u8) -> (usize, usize) {
 }
 
 /// `-e` with its sign placed where it prints shortest ([`sign_text`]), then with the fewest
-/// minus signs: taken into a sum (each term turned, or its own sign cancelled inside it, the
-/// positive terms first when the first would be negative, as `extra::signed_sum` orders
-/// them) or into a product's sum factor, or kept in front. `-(1/4 (a - b))` is
+/// minus signs: taken into a sum (each term turned, or its own sign cancelled inside it, a
+/// positive term moved first when the first would be negative) or into a product's sum
+/// factor, or kept in front. `-(1/4 (a - b))` is
 /// `1/4 (b - a)`, `-(-a + b)` is `a - b`, `-(c (-a + b))` is `c (a - b)`; `-1/4 (a + b)`
 /// stays (`1/4 (-a - b)` prints as long with one minus more), never a `-(-...)`.
 fn minus(e: Expr) -> Expr {
@@ -619,8 +619,13 @@ fn minus(e: Expr) -> Expr {
                     }
                 })
                 .collect();
+            // A positive term first, the others in their order (a Fourier sum keeps its
+            // modes' order but one).
             if matches!(turned.first(), Some(Expr::Neg(_))) {
-                turned.sort_by_key(|t| matches!(t, Expr::Neg(_)));
+                if let Some(p) = turned.iter().position(|t| !matches!(t, Expr::Neg(_))) {
+                    let first = turned.remove(p);
+                    turned.insert(0, first);
+                }
             }
             let inside = Expr::Add(turned);
             let outside = Expr::Neg(Box::new(Expr::Add(terms)));
