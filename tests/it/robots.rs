@@ -471,6 +471,52 @@ fn cos_sin_polynomial_of_the_puma_pose_is_the_fourier_pose() {
 }
 
 #[test]
+fn jacobian_rows_taken_from_a_multiple_equal_the_jacobian() {
+    // `fk --jacobian` puts each class of rational multiples among the Jacobian's entries in
+    // closed form once and gives the others that form times their factor: every row must
+    // still be its derivative exactly. The multiples are found here independently (a row
+    // equal to -1, 2, 1/2, ... times an earlier one), so the test knows it covers them.
+    let factors: Vec<Scalar> = [(-1, 1), (2, 1), (-2, 1), (1, 2), (-1, 2)]
+        .iter()
+        .map(|&(n, d)| Scalar::rational(num_rational::BigRational::new(n.into(), d.into())))
+        .collect();
+    let mut multiples = 0;
+    for f in robot_files() {
+        let r = load(&f);
+        let vars: Vec<&str> = r.variables.iter().map(String::as_str).collect();
+        let jac = dq_jacobian(&r.forward(), &vars);
+        let o = dqsym::FkOptions {
+            jacobian: true,
+            ..dqsym::FkOptions::default()
+        };
+        let entries = dqsym::app::fk_entries(&r, &o).expect("report");
+        assert!(!entries.recurrence, "{f}");
+        let rows: Vec<&dqsym::Expr> = entries
+            .rows()
+            .filter(|(q, _)| q.name().starts_with("J["))
+            .map(|(_, e)| e)
+            .collect();
+        let flat: Vec<&Scalar> = jac.iter().flatten().collect();
+        assert_eq!(rows.len(), flat.len(), "{f}");
+        for (k, (e, x)) in rows.iter().zip(&flat).enumerate() {
+            assert_eq!(e.to_scalar(), **x, "{f}: J entry {k}");
+            let earlier = &flat[..k];
+            if !earlier.contains(x)
+                && factors
+                    .iter()
+                    .any(|c| earlier.iter().any(|y| (*y).clone() * c.clone() == **x))
+            {
+                multiples += 1;
+            }
+        }
+    }
+    assert!(
+        multiples >= 10,
+        "{multiples} rows are multiples of earlier rows"
+    );
+}
+
+#[test]
 fn jacobian_closed_forms_from_the_prepared_components_equal_the_jacobian() {
     // `fk --jacobian` puts each entry in closed form by differentiating the regrouped
     // monomials of its DQ component; every such form must be the derivative exactly.

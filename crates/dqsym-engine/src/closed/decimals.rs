@@ -148,7 +148,7 @@ fn scale(e: &Expr, q: &BigRational) -> Expr {
 }
 
 /// `k` times the product of `rest`: the factor left out when 1, a negation for -1.
-fn product(k: BigRational, rest: Vec<Expr>) -> Expr {
+pub(super) fn product(k: BigRational, rest: Vec<Expr>) -> Expr {
     let body = |rest: Vec<Expr>| match rest.len() {
         0 => Expr::Num(BigRational::one()),
         1 => rest.into_iter().next().expect("one factor"),

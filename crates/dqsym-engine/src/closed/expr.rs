@@ -5,7 +5,7 @@ use crate::scalar::{Small, Sym, Trig};
 use crate::Scalar;
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Zero};
+use num_traits::{One, Signed, Zero};
 use std::cmp::Ordering;
 
 /// An angle: a rational combination of symbols, plus a rational constant, plus a rational
@@ -463,6 +463,39 @@ impl Expr {
         Expr::Num(BigRational::zero())
     }
 
+    /// The expression times the nonzero rational `c`, as the closed-form search shows a
+    /// number times a form: `c` merged into a leading number (`1/2 (a + b)` times `-1/2` is
+    /// `-1/4 (a + b)`), a sign in front taken into it, and a negative product's sign placed
+    /// as [`minus`] places it. Unchanged when `c` is 1. The value is `c` times this one's
+    /// (every step is an identity of `Expr`'s arithmetic).
+    pub(crate) fn scaled(self, c: &BigRational) -> Expr {
+        if c.is_one() {
+            return self;
+        }
+        let (e, c) = match self {
+            Expr::Neg(x) => (*x, -c),
+            e => (e, c.clone()),
+        };
+        let (k, rest) = match e {
+            Expr::Num(k) => (k * c, Vec::new()),
+            Expr::Mul(mut v) => match v.first() {
+                Some(Expr::Num(k)) => {
+                    let k = k * c;
+                    v.remove(0);
+                    (k, v)
+                }
+                _ => (c, v),
+            },
+            e => (c, vec![e]),
+        };
+        let body = super::decimals::product(k.abs(), rest);
+        if k.is_negative() {
+            minus(body)
+        } else {
+            body
+        }
+    }
+
     /// The expression with each call `f(angle)` for which `map` returns `Some((g, b, neg))`
     /// replaced by `g(b)`, negated when `neg`: the signs met are moved out of products and
     /// powers (as [`Expr::symbols_leading`] moves them), kept on the terms of sums, and a
@@ -515,6 +548,113 @@ impl Expr {
         } else {
             self
         }
+    }
+}
+
+/// The characters of `e`'s plain text (`print/plain.rs`) that its signs and sums make, at
+/// the printer's precedence `prec` (1 a sum's term, 2 a factor or what follows a minus):
+/// minus signs, ` + ` and ` - `, a product's separators and the brackets around sums and
+/// negations; and the minus signs alone. The leaves (numbers, symbols, calls) are left out:
+/// ways of placing the same signs differ only in these ([`minus`] compares them).
+fn sign_text(e: &Expr, prec: u8) -> (usize, usize) {
+    let brackets = |inner: bool| if inner { 2 } else { 0 };
+    match e {
+        Expr::Add(v) => {
+            v.iter()
+                .enumerate()
+                .fold((brackets(prec > 1), 0), |(len, minus), (i, t)| {
+                    let (l, m, sep) = match t {
+                        Expr::Neg(x) => {
+                            let (l, m) =
+                                sign_text(x, if matches!(**x, Expr::Num(_)) { 1 } else { 2 });
+                            (l, m + 1, if i == 0 { 1 } else { 3 })
+                        }
+                        t => {
+                            let (l, m) = sign_text(t, 1);
+                            (l, m, if i == 0 { 0 } else { 3 })
+                        }
+                    };
+                    (len + l + sep, minus + m)
+                })
+        }
+        Expr::Mul(v) => v.iter().fold(
+            (brackets(prec > 2) + v.len().saturating_sub(1), 0),
+            |(len, minus), f| {
+                let (l, m) = sign_text(f, 2);
+                (len + l, minus + m)
+            },
+        ),
+        Expr::Neg(x) => {
+            let (l, m) = sign_text(x, 2);
+            (brackets(prec > 1) + 1 + l, m + 1)
+        }
+        Expr::Pow(x, _) => sign_text(x, 3),
+        _ => (0, 0),
+    }
+}
+
+/// `-e` with its sign placed where it prints shortest ([`sign_text`]), then with the fewest
+/// minus signs: taken into a sum (each term turned, or its own sign cancelled inside it, a
+/// positive term moved first when the first would be negative) or into a product's sum
+/// factor, or kept in front. `-(1/4 (a - b))` is
+/// `1/4 (b - a)`, `-(-a + b)` is `a - b`, `-(c (-a + b))` is `c (a - b)`; `-1/4 (a + b)`
+/// stays (`1/4 (-a - b)` prints as long with one minus more), never a `-(-...)`.
+fn minus(e: Expr) -> Expr {
+    let key = |e: &Expr| sign_text(e, 0);
+    match e {
+        Expr::Neg(x) => *x,
+        Expr::Add(terms) => {
+            let mut turned: Vec<Expr> = terms
+                .iter()
+                .map(|t| {
+                    let toggled = negated(t.clone());
+                    let inside = minus(t.clone());
+                    // As a later term of the sum, where its own sign costs nothing.
+                    let term_key =
+                        |t: &Expr| sign_text(&Expr::Add(vec![Expr::zero(), t.clone()]), 1);
+                    if term_key(&inside) < term_key(&toggled) {
+                        inside
+                    } else {
+                        toggled
+                    }
+                })
+                .collect();
+            // A positive term first, the others in their order (a Fourier sum keeps its
+            // modes' order but one).
+            if matches!(turned.first(), Some(Expr::Neg(_))) {
+                if let Some(p) = turned.iter().position(|t| !matches!(t, Expr::Neg(_))) {
+                    let first = turned.remove(p);
+                    turned.insert(0, first);
+                }
+            }
+            let inside = Expr::Add(turned);
+            let outside = Expr::Neg(Box::new(Expr::Add(terms)));
+            if key(&inside) < key(&outside) {
+                inside
+            } else {
+                outside
+            }
+        }
+        Expr::Mul(v) => {
+            let mut best = Expr::Neg(Box::new(Expr::Mul(v.clone())));
+            for (i, f) in v.iter().enumerate() {
+                if !matches!(f, Expr::Add(_)) {
+                    continue;
+                }
+                let turned = minus(f.clone());
+                if matches!(turned, Expr::Neg(_)) {
+                    continue;
+                }
+                let mut w = v.clone();
+                w[i] = turned;
+                let candidate = Expr::Mul(w);
+                if key(&candidate) < key(&best) {
+                    best = candidate;
+                }
+            }
+            best
+        }
+        e => Expr::Neg(Box::new(e)),
     }
 }
 
@@ -673,5 +813,98 @@ mod tests {
         assert!(asked.borrow().iter().all(|s| s.name() == "t"));
         let shown = e.value_at(&[("t", tv)]).expect("value");
         assert!((exact - want).abs() < 1e-12 && (shown - want).abs() < 1e-12);
+    }
+
+    /// Whether `e` holds a `-(-x)`, a negation as a product's factor or a negative number.
+    fn badly_signed(e: &Expr) -> bool {
+        match e {
+            Expr::Neg(x) => matches!(**x, Expr::Neg(_)) || badly_signed(x),
+            Expr::Mul(v) => v
+                .iter()
+                .any(|f| matches!(f, Expr::Neg(_)) || badly_signed(f)),
+            Expr::Add(v) => v.iter().any(badly_signed),
+            Expr::Pow(x, _) => badly_signed(x),
+            Expr::Num(q) => q < &BigRational::zero(),
+            _ => false,
+        }
+    }
+
+    /// A closed form times a rational is that rational times its value, exactly, on the
+    /// closed forms of many computed scalars (sums, products with sums as factors, radicals,
+    /// constant angles) and factors of every sign; the sign is placed without `-(-x)` and the
+    /// plain text is never longer than the form with the sign left in front.
+    #[test]
+    fn a_scaled_closed_form_is_the_multiple_of_its_value() {
+        let q = |n: i64, d: i64| BigRational::new(n.into(), d.into());
+        let (t, u, a) = (Scalar::sym("t"), Scalar::sym("u"), Scalar::sym("a"));
+        let half = Scalar::rational(q(1, 2));
+        let scalars = [
+            t.cos() - u.sin(),
+            u.sin() - t.cos(),
+            (t.cos() + u.sin()) * half.clone(),
+            (t.cos() - u.sin() * Scalar::int(3)) * (t.clone() + u.clone()).cos() * half.clone(),
+            a.clone() * (t.clone() - u.clone()).sin() * Scalar::int(2).sqrt() - u.cos(),
+            ((t.clone() * half.clone()).cos() * (u.clone() * half).sin() - a.clone())
+                * Scalar::rational(q(-3, 8)),
+            (t.clone() + Scalar::pi() * Scalar::rational(q(5, 18))).cos() * a.clone() + u.sin(),
+            a.pow(2) - Scalar::int(1),
+            Scalar::int(0),
+            Scalar::rational(q(-5, 7)),
+        ];
+        let po = crate::print::PlainOptions {
+            shorthand: false,
+            decimals: false,
+        };
+        let mut placed = 0;
+        for x in &scalars {
+            let e = crate::closed_form(x).expect("closed form");
+            assert_eq!(e.to_scalar(), *x);
+            for c in [
+                q(1, 1),
+                q(-1, 1),
+                q(1, 2),
+                q(-1, 2),
+                q(-3, 4),
+                q(2, 1),
+                q(-7, 3),
+            ] {
+                let s = e.clone().scaled(&c);
+                assert_eq!(
+                    s.to_scalar(),
+                    x.clone() * Scalar::rational(c.clone()),
+                    "{e:?} {c}"
+                );
+                assert!(!badly_signed(&s), "{s:?}");
+                if c.is_one() {
+                    assert_eq!(s, e);
+                }
+                // Against the sign left in front of the positive multiple.
+                let front = Expr::Neg(Box::new(e.clone().scaled(&-c.clone())));
+                let (new, old) = (
+                    crate::print::plain(&s, &po),
+                    crate::print::plain(&front, &po),
+                );
+                assert!(new.len() <= old.len(), "{new} vs {old}");
+                placed += usize::from(new.len() < old.len());
+            }
+        }
+        assert!(placed > 5, "{placed}");
+        // The search's style: `-(1/4 (a - b))` is `1/4 (b - a)`; `-1/4 (a + b)` stays.
+        let sum = |neg: bool| {
+            let b = Expr::Trig {
+                f: Trig::Sin,
+                angle: Angle::of_symbol(Sym::new("u")),
+            };
+            Expr::Mul(vec![
+                Expr::Num(q(1, 4)),
+                Expr::Add(vec![
+                    Expr::Sym(Sym::new("a")),
+                    if neg { Expr::Neg(Box::new(b)) } else { b },
+                ]),
+            ])
+        };
+        let text = |e: Expr| crate::print::plain(&e.scaled(&q(-1, 1)), &po);
+        assert_eq!(text(sum(true)), "1/4*(sin(u) - a)");
+        assert_eq!(text(sum(false)), "-1/4*(a + sin(u))");
     }
 }

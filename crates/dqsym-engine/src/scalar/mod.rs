@@ -33,6 +33,7 @@ mod frac;
 mod modp;
 mod multinomial;
 mod par;
+mod proportional;
 pub(crate) mod q;
 
 pub(crate) use arith::FxHasher;
@@ -51,6 +52,7 @@ pub use decimal::{decimal_places, decimal_text, parse_decimal, short_numbers};
 pub use frac::Frac;
 pub(crate) use par::{join, par_map, with_own_budget};
 pub use par::{on_helper_start, start_helpers};
+pub(crate) use proportional::ProportionalKey;
 pub(crate) use q::Q;
 
 use num_rational::BigRational;
@@ -636,7 +638,7 @@ impl Default for Scalar {
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub(crate) struct SampledKey<'a>(pub(crate) &'a Scalar);
 
-/// How many terms a [`SampledKey`] hashes.
+/// How many terms a [`SampledKey`] (and a [`ProportionalKey`]) hashes.
 const SAMPLED_TERMS: usize = 4;
 
 impl std::hash::Hash for SampledKey<'_> {

@@ -211,6 +211,15 @@ impl Q {
         }
     }
 
+    /// `1 / self`, for `self != 0` (zero gives zero; callers never pass it).
+    pub(crate) fn recip(&self) -> Q {
+        match self {
+            Q::S(0, _) => Q::ZERO,
+            Q::S(n, d) => Q::from_i128(*d as i128, *n as i128),
+            Q::B(b) => Q::big(b.recip()),
+        }
+    }
+
     /// The value as a big rational.
     pub(crate) fn to_big(&self) -> BigRational {
         match self {
