@@ -428,7 +428,9 @@ impl Search<'_> {
     fn searched(&mut self, group: &[(u32, Q)], depth: usize) -> E {
         // The result depends on the depth only through the branching, so below the branching
         // levels all depths share one entry. Looked up before the candidates are counted: a
-        // group found before needs no count (a group without candidates is never stored).
+        // group found before needs no count. A group without candidates (its plain sum) is
+        // stored too: the rests of the candidates of a branching level meet the same small
+        // groups again.
         let level = depth.min(BRANCH_DEPTH);
         let hash = self.hash(level, group);
         let key = self.div_key();
@@ -437,10 +439,9 @@ impl Search<'_> {
         }
         let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
         let candidates = self.candidates(group.iter().map(|(i, _)| *i), tries);
-        if candidates.is_empty() {
-            return self.plain_sum(group);
-        }
-        let e = if tries == 1 {
+        let e = if candidates.is_empty() {
+            self.plain_sum(group)
+        } else if tries == 1 {
             // Below the branching levels: the run of splits on the most frequent factor.
             self.run(group, candidates[0], depth)
         } else if let Some((f, c)) = self.cost_winner(group, &candidates, depth) {
@@ -527,7 +528,12 @@ impl Search<'_> {
     }
 
     /// The number of symbols and atoms of the monomials of the current group: on a
-    /// multilinear root's bit sets ([`Search::masks`]), or walked in their lists. Not
+    /// multilinear root's bit sets ([`Search::masks`]), or counted from each monomial's
+    /// lengths. Every monomial of a group holds the divisor (a split keeps in the group only
+    /// the monomials holding the factor pulled out), so its quotient has `div[a]` copies less
+    /// of each atom `a` of the divisor, and lacks a symbol of the divisor exactly where its
+    /// power is the divisor's: the count [`quotient_syms`] and [`quotient_atoms`] give, without
+    /// walking them (walked, it was 5 M instructions of the Jaco-style arm's report). Not
     /// inlined: [`Search::build_at`] stays small enough for its content's gcd to be inlined
     /// (`(x + y + z)^30`: 0.5% of the report).
     #[inline(never)]
@@ -538,14 +544,47 @@ impl Search<'_> {
                 .map(|(i, _)| masks.quotient(*i).count_ones() as usize)
                 .sum();
         }
-        group
+        let pulled = self.pulled();
+        let base = self.counts.sym_base;
+        let atoms_pulled: usize = pulled
             .iter()
-            .map(|(i, _)| {
-                let m = &self.root[*i as usize];
-                quotient_syms(m, &self.div, self.counts.sym_base).count()
-                    + quotient_atoms(m, &self.div).count()
-            })
-            .sum()
+            .filter(|&&(j, _)| j < base)
+            .map(|&(_, k)| k as usize)
+            .sum();
+        let lens = group.iter().map(|(i, _)| {
+            let m = &self.root[*i as usize];
+            let gone = pulled
+                .iter()
+                .filter(|&&(j, k)| j >= base && multiplicity(m, self.counts.factor(j)) == k)
+                .count();
+            (m.syms.len() + m.atoms.len()).saturating_sub(atoms_pulled + gone)
+        });
+        let n = lens.sum();
+        debug_assert_eq!(
+            n,
+            group
+                .iter()
+                .map(|(i, _)| {
+                    let m = &self.root[*i as usize];
+                    quotient_syms(m, &self.div, base).count() + quotient_atoms(m, &self.div).count()
+                })
+                .sum::<usize>()
+        );
+        n
+    }
+
+    /// The factors of the divisor, each once, with their powers in it: every power `div`
+    /// holds above zero was pulled out on the path (a split or a run pushes its factor
+    /// there), so the path names them all.
+    fn pulled(&self) -> SmallVec<[(usize, u32); 8]> {
+        let mut pulled: SmallVec<[(usize, u32); 8]> = SmallVec::new();
+        for &(j, _) in &self.path {
+            let k = self.div[j];
+            if k > 0 && !pulled.iter().any(|&(i, _)| i == j) {
+                pulled.push((j, k));
+            }
+        }
+        pulled
     }
 
     /// Monomial `i` of the current group, with coefficient `q`, as an expression.
@@ -853,7 +892,15 @@ fn mon_parts_expr(
     for a in atoms {
         parts.push(E::Trig(a));
     }
-    let e = mul(parts);
+    // The parts are pushed in [`rank`] order, none a product, a negation or the number one,
+    // so this is the product [`mul`] makes of them, without its flattening and sort (`mul`
+    // was two thirds of a monomial's cost, the Jaco-style arm's report 8 M instructions).
+    debug_assert!(parts.windows(2).all(|w| rank(&w[0]) <= rank(&w[1])));
+    let e = match parts.len() {
+        0 => E::Num(Q::ONE),
+        1 => parts.pop().unwrap_or_else(E::zero),
+        _ => E::product_of(&parts),
+    };
     if neg {
         E::Neg(Rc::new(e))
     } else {
