@@ -411,14 +411,14 @@ impl Search<'_> {
         let g = content_of(group.iter().map(|(_, q)| q));
         if !g.is_one() {
             let inner: Group = group.iter().map(|(i, q)| (*i, div_q(q, &g))).collect();
-            return mul([E::Num(g), self.build_at(&inner, depth)]);
+            return mul(E::Num(g), self.build_at(&inner, depth));
         }
         let r = self.rad(group[0].0);
         if r != 1 && group.iter().all(|(i, _)| self.rad(*i) == r) {
             self.rad_off = true;
             let e = self.build_at(group, depth);
             self.rad_off = false;
-            return mul([E::Sqrt(r), e]);
+            return mul(E::Sqrt(r), e);
         }
         self.searched(group, depth)
     }
@@ -512,7 +512,7 @@ impl Search<'_> {
         }
         self.path.pop();
         self.div[fi] -= k;
-        let factored = mul([factor_expr(f, k), inner]);
+        let factored = mul(factor_expr(f, k), inner);
         // The rest spliced around the factored group in reading order: the factored group
         // stands where its first monomial stood.
         self.beside(factored, &rest, n_before, depth)
@@ -819,15 +819,29 @@ fn factor_expr(f: Factor, k: u32) -> E {
     }
 }
 
-/// A product, flattened, with a leading negation pulled out of it.
+/// The product `a b`, flattened, with a leading negation pulled out of it.
 ///
 /// The factors are gathered on the stack and the node is allocated once, at its size: a
 /// vector per product, copied into the node and freed, was one allocation in three of the
-/// search.
-fn mul(parts: impl IntoIterator<Item = E>) -> E {
+/// search. Two factors neither of which is a product, a negation or the number one (a
+/// factor and a sum: most products of the search) are that node at once, in [`rank`] order,
+/// as the general path would sort them (its sort is stable).
+fn mul(a: E, b: E) -> E {
+    let plain = |e: &E| match e {
+        E::Mul(..) | E::Neg(_) => false,
+        E::Num(q) => !q.is_one(),
+        _ => true,
+    };
+    if plain(&a) && plain(&b) {
+        return if rank(&b) < rank(&a) {
+            E::product_of(&[b, a])
+        } else {
+            E::product_of(&[a, b])
+        };
+    }
     let mut flat: SmallVec<[E; 8]> = SmallVec::new();
     let mut neg = false;
-    for p in parts {
+    for p in [a, b] {
         match p {
             E::Mul(v, _) => flat.extend(v.iter().cloned()),
             E::Neg(e) => {
@@ -893,8 +907,9 @@ fn mon_parts_expr(
         parts.push(E::Trig(a));
     }
     // The parts are pushed in [`rank`] order, none a product, a negation or the number one,
-    // so this is the product [`mul`] makes of them, without its flattening and sort (`mul`
-    // was two thirds of a monomial's cost, the Jaco-style arm's report 8 M instructions).
+    // so this is the product [`mul`]'s flattening and stable sort would make of them, without
+    // them (they were two thirds of a monomial's cost: 8 M instructions of the Jaco-style
+    // arm's report).
     debug_assert!(parts.windows(2).all(|w| rank(&w[0]) <= rank(&w[1])));
     let e = match parts.len() {
         0 => E::Num(Q::ONE),
