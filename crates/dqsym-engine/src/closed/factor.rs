@@ -839,6 +839,12 @@ fn mul(a: E, b: E) -> E {
             E::product_of(&[a, b])
         };
     }
+    mul_flat(a, b)
+}
+
+/// [`mul`]'s general path: the factors of products flattened, negations pulled out, ones
+/// left out, the rest stably sorted by [`rank`].
+fn mul_flat(a: E, b: E) -> E {
     let mut flat: SmallVec<[E; 8]> = SmallVec::new();
     let mut neg = false;
     for p in [a, b] {
@@ -1136,6 +1142,63 @@ mod tests {
             by_summands >= 30,
             "the summands bound the larger {by_summands} times"
         );
+    }
+
+    /// [`mul`]'s shortcut for two factors that are neither products, negations nor one makes
+    /// the product its general path makes, on every pair of such leaves and sums (both
+    /// orders): the same expression and cost.
+    #[test]
+    fn two_plain_factors_multiply_as_the_general_path() {
+        let p = Scalar::sym("x") * Scalar::sym("y").cos() + Scalar::sym("z").sin();
+        let (ctx, mons) = whole_modes(&p);
+        let (sum, _) = build(&mons).expect("factored");
+        let trig = mons
+            .iter()
+            .find_map(|m| m.atoms.first().copied())
+            .expect("an atom");
+        let plain = [
+            E::Num(Q::new(-3, 1)),
+            E::Num(Q::ZERO),
+            E::Sqrt(3),
+            E::Sym(0),
+            E::Pow(0, 2),
+            E::Trig(trig),
+            sum,
+        ];
+        let mut pairs = 0;
+        for a in &plain {
+            for b in &plain {
+                let (fast, general) = (mul(a.clone(), b.clone()), mul_flat(a.clone(), b.clone()));
+                assert_eq!(fast.cost(), general.cost());
+                assert_eq!(fast.to_expr(&ctx), general.to_expr(&ctx));
+                pairs += 1;
+            }
+        }
+        assert_eq!(pairs, 49);
+    }
+
+    /// Sums of products of cosines and sines with radicals and fractions (a chain with 60
+    /// degree twists has such entries) factor back to themselves: the path the cost pass
+    /// does not take (every candidate built, plain sums met again taken from the memo, the
+    /// quotients' lengths counted from the divisor, checked against the walk in debug builds).
+    #[test]
+    fn trigonometric_sums_with_radicals_factor_back_to_themselves() {
+        let (a, b, c) = (Scalar::sym("a"), Scalar::sym("b"), Scalar::sym("c"));
+        let half = || Scalar::rational(num_rational::BigRational::new(1.into(), 2.into()));
+        let half_root3 = Scalar::int(3).sqrt() * half();
+        let mut checked = 0;
+        for k in 1..4u64 {
+            let s = a.clone().cos() * half_root3.clone() + b.clone().sin() * half();
+            let t = c.clone().cos() * Scalar::sym("d") - a.clone().sin() * half_root3.clone();
+            let p = s.pow(k) * t.clone() + b.clone().cos() * t.pow(2);
+            let (ctx, mons) = crate::closed::mon::split_modes(&p);
+            assert!(costs::Costs::for_mons(&mons).is_none(), "{p}");
+            let (e, c) = build(&mons).expect("factored");
+            assert_eq!(e.to_expr(&ctx).to_scalar(), p);
+            assert!(c >= cost_lower_bound(&mons));
+            checked += 1;
+        }
+        assert_eq!(checked, 3);
     }
 
     /// Past 126 bits a coefficient is not a machine integer: every candidate is built.
