@@ -6,6 +6,7 @@
 
 use super::expr::{Cost, Expr};
 use super::mon::{angle_of, content_of, div_q, is_sin, Atom, Ctx, FxMap, Mon};
+use super::recombine::atom_hash;
 use crate::scalar::{charge, FxHasher, Q};
 use crate::ScalarError;
 use num_traits::One;
@@ -252,6 +253,8 @@ struct Search<'a> {
     path: Vec<(usize, u32)>,
     rad_off: bool,
     memo: FxMap<u64, Vec<Found>>,
+    /// Each root monomial's [`linear_hash`]: a quotient's is this less the divisor's.
+    mon_hash: Vec<u64>,
     /// The costs of candidates found without their trees, for plain integer polynomials.
     costs: Option<costs::Costs>,
     spent: Option<ScalarError>,
@@ -286,6 +289,7 @@ enum Pass {
 /// [`build`], the candidates compared as `pass` says (the tests compare the three).
 fn build_with(mons: &[Mon], pass: Pass) -> Result<(E, Cost), ScalarError> {
     let counts = Counts::for_mons(mons);
+    let mon_hash = mons.iter().map(|m| linear_hash(m, &counts)).collect();
     let mut s = Search {
         root: mons,
         div: vec![0; counts.n.len()],
@@ -293,6 +297,7 @@ fn build_with(mons: &[Mon], pass: Pass) -> Result<(E, Cost), ScalarError> {
         path: Vec::new(),
         rad_off: false,
         memo: FxMap::default(),
+        mon_hash,
         costs: match pass {
             Pass::Trees => None,
             Pass::Costs | Pass::Bounded => costs::Costs::for_mons(mons).map(|mut c| {
@@ -348,6 +353,25 @@ pub(crate) fn summands_lower_bound(mons: &[Mon]) -> Cost {
         ops: mons.len().saturating_sub(1),
         calls: 0,
     }
+}
+
+/// A hash of `f^k`, `f` by its [`Counts`] index: `k` times the factor's.
+fn factor_hash(f: usize, k: u32) -> u64 {
+    u64::from(k).wrapping_mul(atom_hash(f as u32))
+}
+
+/// A hash of monomial `m`'s symbols and atoms (not its coefficient or radical): the sum of
+/// [`factor_hash`] over its factors. Being a sum, the hash of a quotient `m / d` is `m`'s
+/// less `d`'s, found without the quotient ([`Search::hash`]: the walk of each quotient was
+/// most of the hash of a group). Equal quotients hash alike; the memo compares the groups
+/// a hash finds ([`Search::same_monomials`]), so a collision costs only that comparison.
+fn linear_hash(m: &Mon, counts: &Counts) -> u64 {
+    let syms = m
+        .syms
+        .iter()
+        .map(|&(s, e)| factor_hash(counts.sym_base + s as usize, e));
+    let atoms = m.atoms.iter().map(|&a| factor_hash(a as usize, 1));
+    syms.chain(atoms).fold(0u64, u64::wrapping_add)
 }
 
 /// The symbols of `m` divided by `div` (indexed as [`Counts`]), those left.
@@ -652,19 +676,25 @@ impl Search<'_> {
             }
             return h.finish();
         }
+        // A quotient's [`linear_hash`] is its monomial's less the divisor's (every monomial
+        // of the group holds the divisor): one subtraction where its factors were walked.
+        let div = self
+            .pulled()
+            .iter()
+            .fold(0u64, |d, &(j, k)| d.wrapping_add(factor_hash(j, k)));
         for (i, q) in group {
-            let m = &self.root[*i as usize];
             q.hash_words(&mut h);
             self.rad(*i).hash(&mut h);
-            for (s, e) in quotient_syms(m, &self.div, self.counts.sym_base) {
-                h.write_u32(s);
-                h.write_u32(e);
-            }
-            h.write_u8(0xff);
-            for a in quotient_atoms(m, &self.div) {
-                h.write_u32(a);
-            }
-            h.write_u8(0xfe);
+            let quotient = self.mon_hash[*i as usize].wrapping_sub(div);
+            debug_assert_eq!(quotient, {
+                let m = &self.root[*i as usize];
+                let base = self.counts.sym_base;
+                quotient_syms(m, &self.div, base)
+                    .map(|(s, e)| factor_hash(base + s as usize, e))
+                    .chain(quotient_atoms(m, &self.div).map(|a| factor_hash(a as usize, 1)))
+                    .fold(0u64, u64::wrapping_add)
+            });
+            h.write_u64(quotient);
         }
         h.finish()
     }
