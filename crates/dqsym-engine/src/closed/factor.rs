@@ -6,6 +6,7 @@
 
 use super::expr::{Cost, Expr};
 use super::mon::{angle_of, content_of, div_q, is_sin, Atom, Ctx, FxMap, Mon};
+use super::recombine::atom_hash;
 use crate::scalar::{charge, FxHasher, Q};
 use crate::ScalarError;
 use num_traits::One;
@@ -252,6 +253,8 @@ struct Search<'a> {
     path: Vec<(usize, u32)>,
     rad_off: bool,
     memo: FxMap<u64, Vec<Found>>,
+    /// Each root monomial's [`linear_hash`]: a quotient's is this less the divisor's.
+    mon_hash: Vec<u64>,
     /// The costs of candidates found without their trees, for plain integer polynomials.
     costs: Option<costs::Costs>,
     spent: Option<ScalarError>,
@@ -286,6 +289,7 @@ enum Pass {
 /// [`build`], the candidates compared as `pass` says (the tests compare the three).
 fn build_with(mons: &[Mon], pass: Pass) -> Result<(E, Cost), ScalarError> {
     let counts = Counts::for_mons(mons);
+    let mon_hash = mons.iter().map(|m| linear_hash(m, &counts)).collect();
     let mut s = Search {
         root: mons,
         div: vec![0; counts.n.len()],
@@ -293,6 +297,7 @@ fn build_with(mons: &[Mon], pass: Pass) -> Result<(E, Cost), ScalarError> {
         path: Vec::new(),
         rad_off: false,
         memo: FxMap::default(),
+        mon_hash,
         costs: match pass {
             Pass::Trees => None,
             Pass::Costs | Pass::Bounded => costs::Costs::for_mons(mons).map(|mut c| {
@@ -348,6 +353,25 @@ pub(crate) fn summands_lower_bound(mons: &[Mon]) -> Cost {
         ops: mons.len().saturating_sub(1),
         calls: 0,
     }
+}
+
+/// A hash of `f^k`, `f` by its [`Counts`] index: `k` times the factor's.
+fn factor_hash(f: usize, k: u32) -> u64 {
+    u64::from(k).wrapping_mul(atom_hash(f as u32))
+}
+
+/// A hash of monomial `m`'s symbols and atoms (not its coefficient or radical): the sum of
+/// [`factor_hash`] over its factors. Being a sum, the hash of a quotient `m / d` is `m`'s
+/// less `d`'s, found without the quotient ([`Search::hash`]: the walk of each quotient was
+/// most of the hash of a group). Equal quotients hash alike; the memo compares the groups
+/// a hash finds ([`Search::same_monomials`]), so a collision costs only that comparison.
+fn linear_hash(m: &Mon, counts: &Counts) -> u64 {
+    let syms = m
+        .syms
+        .iter()
+        .map(|&(s, e)| factor_hash(counts.sym_base + s as usize, e));
+    let atoms = m.atoms.iter().map(|&a| factor_hash(a as usize, 1));
+    syms.chain(atoms).fold(0u64, u64::wrapping_add)
 }
 
 /// The symbols of `m` divided by `div` (indexed as [`Counts`]), those left.
@@ -411,14 +435,14 @@ impl Search<'_> {
         let g = content_of(group.iter().map(|(_, q)| q));
         if !g.is_one() {
             let inner: Group = group.iter().map(|(i, q)| (*i, div_q(q, &g))).collect();
-            return mul([E::Num(g), self.build_at(&inner, depth)]);
+            return mul(E::Num(g), self.build_at(&inner, depth));
         }
         let r = self.rad(group[0].0);
         if r != 1 && group.iter().all(|(i, _)| self.rad(*i) == r) {
             self.rad_off = true;
             let e = self.build_at(group, depth);
             self.rad_off = false;
-            return mul([E::Sqrt(r), e]);
+            return mul(E::Sqrt(r), e);
         }
         self.searched(group, depth)
     }
@@ -428,7 +452,9 @@ impl Search<'_> {
     fn searched(&mut self, group: &[(u32, Q)], depth: usize) -> E {
         // The result depends on the depth only through the branching, so below the branching
         // levels all depths share one entry. Looked up before the candidates are counted: a
-        // group found before needs no count (a group without candidates is never stored).
+        // group found before needs no count. A group without candidates (its plain sum) is
+        // stored too: the rests of the candidates of a branching level meet the same small
+        // groups again.
         let level = depth.min(BRANCH_DEPTH);
         let hash = self.hash(level, group);
         let key = self.div_key();
@@ -437,10 +463,9 @@ impl Search<'_> {
         }
         let tries = if depth < BRANCH_DEPTH { BRANCH } else { 1 };
         let candidates = self.candidates(group.iter().map(|(i, _)| *i), tries);
-        if candidates.is_empty() {
-            return self.plain_sum(group);
-        }
-        let e = if tries == 1 {
+        let e = if candidates.is_empty() {
+            self.plain_sum(group)
+        } else if tries == 1 {
             // Below the branching levels: the run of splits on the most frequent factor.
             self.run(group, candidates[0], depth)
         } else if let Some((f, c)) = self.cost_winner(group, &candidates, depth) {
@@ -511,7 +536,7 @@ impl Search<'_> {
         }
         self.path.pop();
         self.div[fi] -= k;
-        let factored = mul([factor_expr(f, k), inner]);
+        let factored = mul(factor_expr(f, k), inner);
         // The rest spliced around the factored group in reading order: the factored group
         // stands where its first monomial stood.
         self.beside(factored, &rest, n_before, depth)
@@ -527,7 +552,12 @@ impl Search<'_> {
     }
 
     /// The number of symbols and atoms of the monomials of the current group: on a
-    /// multilinear root's bit sets ([`Search::masks`]), or walked in their lists. Not
+    /// multilinear root's bit sets ([`Search::masks`]), or counted from each monomial's
+    /// lengths. Every monomial of a group holds the divisor (a split keeps in the group only
+    /// the monomials holding the factor pulled out), so its quotient has `div[a]` copies less
+    /// of each atom `a` of the divisor, and lacks a symbol of the divisor exactly where its
+    /// power is the divisor's: the count [`quotient_syms`] and [`quotient_atoms`] give, without
+    /// walking them (walked, it was 5 M instructions of the Jaco-style arm's report). Not
     /// inlined: [`Search::build_at`] stays small enough for its content's gcd to be inlined
     /// (`(x + y + z)^30`: 0.5% of the report).
     #[inline(never)]
@@ -538,14 +568,47 @@ impl Search<'_> {
                 .map(|(i, _)| masks.quotient(*i).count_ones() as usize)
                 .sum();
         }
-        group
+        let pulled = self.pulled();
+        let base = self.counts.sym_base;
+        let atoms_pulled: usize = pulled
             .iter()
-            .map(|(i, _)| {
-                let m = &self.root[*i as usize];
-                quotient_syms(m, &self.div, self.counts.sym_base).count()
-                    + quotient_atoms(m, &self.div).count()
-            })
-            .sum()
+            .filter(|&&(j, _)| j < base)
+            .map(|&(_, k)| k as usize)
+            .sum();
+        let lens = group.iter().map(|(i, _)| {
+            let m = &self.root[*i as usize];
+            let gone = pulled
+                .iter()
+                .filter(|&&(j, k)| j >= base && multiplicity(m, self.counts.factor(j)) == k)
+                .count();
+            (m.syms.len() + m.atoms.len()).saturating_sub(atoms_pulled + gone)
+        });
+        let n = lens.sum();
+        debug_assert_eq!(
+            n,
+            group
+                .iter()
+                .map(|(i, _)| {
+                    let m = &self.root[*i as usize];
+                    quotient_syms(m, &self.div, base).count() + quotient_atoms(m, &self.div).count()
+                })
+                .sum::<usize>()
+        );
+        n
+    }
+
+    /// The factors of the divisor, each once, with their powers in it: every power `div`
+    /// holds above zero was pulled out on the path (a split or a run pushes its factor
+    /// there), so the path names them all.
+    fn pulled(&self) -> SmallVec<[(usize, u32); 8]> {
+        let mut pulled: SmallVec<[(usize, u32); 8]> = SmallVec::new();
+        for &(j, _) in &self.path {
+            let k = self.div[j];
+            if k > 0 && !pulled.iter().any(|&(i, _)| i == j) {
+                pulled.push((j, k));
+            }
+        }
+        pulled
     }
 
     /// Monomial `i` of the current group, with coefficient `q`, as an expression.
@@ -613,19 +676,25 @@ impl Search<'_> {
             }
             return h.finish();
         }
+        // A quotient's [`linear_hash`] is its monomial's less the divisor's (every monomial
+        // of the group holds the divisor): one subtraction where its factors were walked.
+        let div = self
+            .pulled()
+            .iter()
+            .fold(0u64, |d, &(j, k)| d.wrapping_add(factor_hash(j, k)));
         for (i, q) in group {
-            let m = &self.root[*i as usize];
             q.hash_words(&mut h);
             self.rad(*i).hash(&mut h);
-            for (s, e) in quotient_syms(m, &self.div, self.counts.sym_base) {
-                h.write_u32(s);
-                h.write_u32(e);
-            }
-            h.write_u8(0xff);
-            for a in quotient_atoms(m, &self.div) {
-                h.write_u32(a);
-            }
-            h.write_u8(0xfe);
+            let quotient = self.mon_hash[*i as usize].wrapping_sub(div);
+            debug_assert_eq!(quotient, {
+                let m = &self.root[*i as usize];
+                let base = self.counts.sym_base;
+                quotient_syms(m, &self.div, base)
+                    .map(|(s, e)| factor_hash(base + s as usize, e))
+                    .chain(quotient_atoms(m, &self.div).map(|a| factor_hash(a as usize, 1)))
+                    .fold(0u64, u64::wrapping_add)
+            });
+            h.write_u64(quotient);
         }
         h.finish()
     }
@@ -780,15 +849,35 @@ fn factor_expr(f: Factor, k: u32) -> E {
     }
 }
 
-/// A product, flattened, with a leading negation pulled out of it.
+/// The product `a b`, flattened, with a leading negation pulled out of it.
 ///
 /// The factors are gathered on the stack and the node is allocated once, at its size: a
 /// vector per product, copied into the node and freed, was one allocation in three of the
-/// search.
-fn mul(parts: impl IntoIterator<Item = E>) -> E {
+/// search. Two factors neither of which is a product, a negation or the number one (a
+/// factor and a sum: most products of the search) are that node at once, in [`rank`] order,
+/// as the general path would sort them (its sort is stable).
+fn mul(a: E, b: E) -> E {
+    let plain = |e: &E| match e {
+        E::Mul(..) | E::Neg(_) => false,
+        E::Num(q) => !q.is_one(),
+        _ => true,
+    };
+    if plain(&a) && plain(&b) {
+        return if rank(&b) < rank(&a) {
+            E::product_of(&[b, a])
+        } else {
+            E::product_of(&[a, b])
+        };
+    }
+    mul_flat(a, b)
+}
+
+/// [`mul`]'s general path: the factors of products flattened, negations pulled out, ones
+/// left out, the rest stably sorted by [`rank`].
+fn mul_flat(a: E, b: E) -> E {
     let mut flat: SmallVec<[E; 8]> = SmallVec::new();
     let mut neg = false;
-    for p in parts {
+    for p in [a, b] {
         match p {
             E::Mul(v, _) => flat.extend(v.iter().cloned()),
             E::Neg(e) => {
@@ -853,7 +942,16 @@ fn mon_parts_expr(
     for a in atoms {
         parts.push(E::Trig(a));
     }
-    let e = mul(parts);
+    // The parts are pushed in [`rank`] order, none a product, a negation or the number one,
+    // so this is the product [`mul`]'s flattening and stable sort would make of them, without
+    // them (they were two thirds of a monomial's cost: 8 M instructions of the Jaco-style
+    // arm's report).
+    debug_assert!(parts.windows(2).all(|w| rank(&w[0]) <= rank(&w[1])));
+    let e = match parts.len() {
+        0 => E::Num(Q::ONE),
+        1 => parts.pop().unwrap_or_else(E::zero),
+        _ => E::product_of(&parts),
+    };
     if neg {
         E::Neg(Rc::new(e))
     } else {
@@ -1074,6 +1172,63 @@ mod tests {
             by_summands >= 30,
             "the summands bound the larger {by_summands} times"
         );
+    }
+
+    /// [`mul`]'s shortcut for two factors that are neither products, negations nor one makes
+    /// the product its general path makes, on every pair of such leaves and sums (both
+    /// orders): the same expression and cost.
+    #[test]
+    fn two_plain_factors_multiply_as_the_general_path() {
+        let p = Scalar::sym("x") * Scalar::sym("y").cos() + Scalar::sym("z").sin();
+        let (ctx, mons) = whole_modes(&p);
+        let (sum, _) = build(&mons).expect("factored");
+        let trig = mons
+            .iter()
+            .find_map(|m| m.atoms.first().copied())
+            .expect("an atom");
+        let plain = [
+            E::Num(Q::new(-3, 1)),
+            E::Num(Q::ZERO),
+            E::Sqrt(3),
+            E::Sym(0),
+            E::Pow(0, 2),
+            E::Trig(trig),
+            sum,
+        ];
+        let mut pairs = 0;
+        for a in &plain {
+            for b in &plain {
+                let (fast, general) = (mul(a.clone(), b.clone()), mul_flat(a.clone(), b.clone()));
+                assert_eq!(fast.cost(), general.cost());
+                assert_eq!(fast.to_expr(&ctx), general.to_expr(&ctx));
+                pairs += 1;
+            }
+        }
+        assert_eq!(pairs, 49);
+    }
+
+    /// Sums of products of cosines and sines with radicals and fractions (a chain with 60
+    /// degree twists has such entries) factor back to themselves: the path the cost pass
+    /// does not take (every candidate built, plain sums met again taken from the memo, the
+    /// quotients' lengths counted from the divisor, checked against the walk in debug builds).
+    #[test]
+    fn trigonometric_sums_with_radicals_factor_back_to_themselves() {
+        let (a, b, c) = (Scalar::sym("a"), Scalar::sym("b"), Scalar::sym("c"));
+        let half = || Scalar::rational(num_rational::BigRational::new(1.into(), 2.into()));
+        let half_root3 = Scalar::int(3).sqrt() * half();
+        let mut checked = 0;
+        for k in 1..4u64 {
+            let s = a.clone().cos() * half_root3.clone() + b.clone().sin() * half();
+            let t = c.clone().cos() * Scalar::sym("d") - a.clone().sin() * half_root3.clone();
+            let p = s.pow(k) * t.clone() + b.clone().cos() * t.pow(2);
+            let (ctx, mons) = crate::closed::mon::split_modes(&p);
+            assert!(costs::Costs::for_mons(&mons).is_none(), "{p}");
+            let (e, c) = build(&mons).expect("factored");
+            assert_eq!(e.to_expr(&ctx).to_scalar(), p);
+            assert!(c >= cost_lower_bound(&mons));
+            checked += 1;
+        }
+        assert_eq!(checked, 3);
     }
 
     /// Past 126 bits a coefficient is not a machine integer: every candidate is built.

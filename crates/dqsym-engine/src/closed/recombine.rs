@@ -67,7 +67,7 @@ fn key_hash(e: &Entry, rest: u64) -> u64 {
 /// monomials of six to eight atoms, each with up to 28 pairs). Equal keys have equal other
 /// atoms (sorted), so equal sums; the hash only groups the entries, which are compared by
 /// their keys within a group.
-fn atom_hash(a: Atom) -> u64 {
+pub(super) fn atom_hash(a: Atom) -> u64 {
     let mut z = u64::from(a).wrapping_add(0x9e37_79b9_7f4a_7c15);
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);

@@ -125,7 +125,7 @@ impl Search<'_> {
                     .pop()
                     .unwrap_or_else(|| (Steps::default(), false, Q::ONE, entry_rad_off)),
             };
-            let factored = mul([factor_expr(f, ks[lb + 1] - ks[lb]), e]);
+            let factored = mul(factor_expr(f, ks[lb + 1] - ks[lb]), e);
             let rest: SmallVec<[(u32, Q); 4]> = buckets
                 .get(lb)
                 .iter()
@@ -366,10 +366,10 @@ fn bump(counts: &mut [u32], touched: &mut Vec<usize>, k: usize) {
 fn wrap(e: E, steps: Steps) -> E {
     let mut e = e;
     if let Some(r) = steps.rad {
-        e = mul([E::Sqrt(r), e]);
+        e = mul(E::Sqrt(r), e);
     }
     if let Some(g) = steps.content {
-        e = mul([E::Num(g), e]);
+        e = mul(E::Num(g), e);
     }
     if steps.neg {
         e = E::Neg(Rc::new(e));
