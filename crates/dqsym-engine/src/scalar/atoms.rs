@@ -256,20 +256,30 @@ impl Ord for Mode {
     fn cmp(&self, other: &Self) -> Ordering {
         self.sin
             .cmp(&other.sin)
-            .then_with(|| {
-                if Arc::ptr_eq(&self.freq, &other.freq) {
-                    return Ordering::Equal;
-                }
-                for (x, y) in self.freq.iter().zip(other.freq.iter()) {
-                    let o = x.0.cmp(&y.0).then_with(|| small_cmp(&x.1, &y.1));
-                    if o.is_ne() {
-                        return o;
-                    }
-                }
-                self.freq.len().cmp(&other.freq.len())
-            })
+            .then_with(|| freq_cmp(&self.freq, &other.freq))
             .then_with(|| small_cmp(&self.pi, &other.pi))
     }
+}
+
+/// The derived order of frequency vectors (entry by entry, symbol by name, then coefficient
+/// by value, shorter first on a common prefix), without its costs: one shared vector is
+/// equal to itself at once, and coefficients compare by [`small_cmp`] instead of `Ratio`'s
+/// divisions (the group keys of `cyclo::canonicalize`, sorted and searched for every term
+/// of every canonical scalar, spent 10 M of the Jaco-style arm's 318 M instructions in
+/// `Ratio::cmp` and the slice comparison around it). Always inlined: called out of line
+/// from [`Mode::cmp`] (every sort of terms) it cost the symbolic 4R chain's report 1.5%.
+#[inline(always)]
+pub(crate) fn freq_cmp(a: &[(Sym, Small)], b: &[(Sym, Small)]) -> Ordering {
+    if std::ptr::eq(a, b) {
+        return Ordering::Equal;
+    }
+    for (x, y) in a.iter().zip(b) {
+        let o = x.0.cmp(&y.0).then_with(|| small_cmp(&x.1, &y.1));
+        if o.is_ne() {
+            return o;
+        }
+    }
+    a.len().cmp(&b.len())
 }
 
 /// Hashes the symbol names and the coefficients' numerators and denominators directly: the

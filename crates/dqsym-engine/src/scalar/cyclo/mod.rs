@@ -52,10 +52,11 @@
 //! rewriting of a term vector's groups and which of them pass through; `props.rs` the
 //! randomized laws.
 
-use super::atoms::{rad_mul, Freq, Mode, MonoRc, Small};
+use super::atoms::{freq_cmp, rad_mul, Freq, Mode, MonoRc, Small};
 use super::par::PerFork;
 use super::{ScalarError, Term, Q};
 use num_traits::{Signed, Zero};
+use std::cmp::Ordering;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
@@ -81,6 +82,24 @@ fn poisoned<T>(_: T) -> ScalarError {
 
 /// The key of a group: the frequency vector and the monomial its terms share.
 pub(crate) type GroupKey<'a> = (&'a [(super::Sym, Small)], &'a MonoRc);
+
+/// The derived order of group keys (the frequency vector, then the monomial), without its
+/// costs: see [`freq_cmp`]; one shared monomial is equal to itself at once. Every sort and
+/// search of group keys goes through it.
+pub(crate) fn key_cmp(a: &GroupKey, b: &GroupKey) -> Ordering {
+    freq_cmp(a.0, b.0).then_with(|| {
+        if Arc::ptr_eq(a.1, b.1) {
+            Ordering::Equal
+        } else {
+            a.1.cmp(b.1)
+        }
+    })
+}
+
+/// The position of `k` in the sorted, deduplicated `keys` (as `binary_search`).
+fn key_position(keys: &[GroupKey], k: &GroupKey) -> Option<usize> {
+    keys.binary_search_by(|x| key_cmp(x, k)).ok()
+}
 
 /// A group's key that owns its parts (a product names its settled groups before its terms
 /// are sorted and merged).
@@ -160,14 +179,14 @@ pub(crate) fn canonicalize(
         .filter(offset)
         .map(|t| (&*t.mode.freq, &t.mono))
         .collect();
-    keys.sort_unstable();
-    keys.dedup();
+    keys.sort_unstable_by(key_cmp);
+    keys.dedup_by(|a, b| key_cmp(a, b).is_eq());
     // For each group, the operands its terms with a pi offset came from (see
     // `Settled::Sum`).
     let mut from = vec![0u8; keys.len()];
     let mut at: Vec<Option<usize>> = Vec::with_capacity(terms.len());
     for (i, t) in terms.iter().enumerate() {
-        let k = keys.binary_search(&(&*t.mode.freq, &t.mono)).ok();
+        let k = key_position(&keys, &(&*t.mode.freq, &t.mono));
         if let (Some(k), Settled::Sum { origin, .. }) = (k, settled) {
             if !t.mode.pi.is_zero() {
                 from[k] |= origin[i];
@@ -197,7 +216,11 @@ pub(crate) fn canonicalize(
             .collect(),
         Settled::Groups(known) => keys
             .iter()
-            .map(|k| known.binary_search_by(|(f, m)| (&**f, m).cmp(k)).is_err())
+            .map(|k| {
+                known
+                    .binary_search_by(|(f, m)| key_cmp(&(&**f, m), k))
+                    .is_err()
+            })
             .collect(),
     };
     if cfg!(debug_assertions) {

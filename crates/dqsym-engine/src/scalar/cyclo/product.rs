@@ -36,7 +36,7 @@
 
 use super::super::atoms::Mode;
 use super::super::Term;
-use super::{GroupKey, OwnedKey};
+use super::{key_cmp, key_position, GroupKey, OwnedKey};
 use num_traits::Zero;
 
 /// The origins of the terms with a pi offset of one product (see the module docs).
@@ -55,15 +55,14 @@ pub(crate) struct ProductTrace {
 /// The group of each term, and for each group (in key order) whether it is offset-free.
 fn groups(t: &[Term]) -> (Vec<u32>, Vec<bool>) {
     let mut keys: Vec<GroupKey> = t.iter().map(|t| (&*t.mode.freq, &t.mono)).collect();
-    keys.sort_unstable();
-    keys.dedup();
+    keys.sort_unstable_by(key_cmp);
+    keys.dedup_by(|a, b| key_cmp(a, b).is_eq());
     let mut free = vec![true; keys.len()];
     let ids = t
         .iter()
         .map(|u| {
-            let k = keys
-                .binary_search(&(&*u.mode.freq, &u.mono))
-                .expect("every key was collected");
+            let k =
+                key_position(&keys, &(&*u.mode.freq, &u.mono)).expect("every key was collected");
             if !u.mode.pi.is_zero() {
                 free[k] = false;
             }
@@ -148,8 +147,8 @@ pub(crate) fn settled_groups(out: &[Term], marks: &[(usize, u64)]) -> Vec<OwnedK
             ((&*t.mode.freq, &t.mono), origin, k)
         })
         .collect();
-    m.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.cmp(&b.1)));
-    m.chunk_by(|a, b| a.0 == b.0)
+    m.sort_unstable_by(|a, b| key_cmp(&a.0, &b.0).then(a.1.cmp(&b.1)));
+    m.chunk_by(|a, b| key_cmp(&a.0, &b.0).is_eq())
         .filter(|run| run[0].1 != 0 && run[0].1 == run[run.len() - 1].1)
         .map(|run| {
             let t = &out[run[0].2];

@@ -449,3 +449,44 @@ fn random_derivatives_of_one_or_two_origins_are_canonical_and_exact() {
     }
     assert!(origins[0] > 100 && origins[1] > 20, "{origins:?}");
 }
+
+/// [`super::key_cmp`], the order every sort and search of group keys uses, is the derived
+/// order of the key tuple: on every pair of keys of random elements and of angles with
+/// fractional frequencies (equal keys shared or allocated apart, coefficients of different
+/// denominators), both the order and the equality.
+#[test]
+fn the_group_key_order_is_the_derived_order() {
+    use super::super::Term;
+    use super::{key_cmp, GroupKey};
+    let mut rng = Rng(0x0bde_4c3a);
+    let dens = [5i64, 7, 9, 12, 36];
+    let mut vals: Vec<Scalar> = (0..30).map(|_| element(&mut rng, &dens).s).collect();
+    let (x, y) = (Scalar::sym("x"), Scalar::sym("y"));
+    let q = |p: i64, d: i64| Scalar::rational(BigRational::new(p.into(), d.into()));
+    for (p, d) in [(1i64, 2i64), (1, 3), (2, 3), (3, 4), (-5, 6), (7, 2)] {
+        let angle = &(&(&x * &q(p, d)) + &(&y * &q(d, p.abs() + 1))) + &(&Scalar::pi() * &q(1, 9));
+        vals.push(&(&Scalar::sym("a") * &angle.cos()) + &angle.sin());
+    }
+    let terms: Vec<&Term> = vals
+        .iter()
+        .filter_map(|v| v.terms().ok())
+        .flatten()
+        .collect();
+    let keys: Vec<GroupKey> = terms.iter().map(|t| (&*t.mode.freq, &t.mono)).collect();
+    let (mut equal, mut apart) = (0, 0);
+    for a in &keys {
+        for b in &keys {
+            assert_eq!(key_cmp(a, b), a.cmp(b), "{a:?} against {b:?}");
+            assert_eq!(key_cmp(a, b).is_eq(), a == b);
+            if a == b && !std::ptr::eq(a.0, b.0) {
+                apart += 1;
+            }
+            equal += usize::from(a == b);
+        }
+    }
+    assert!(
+        keys.len() > 100 && apart > 0 && equal > keys.len(),
+        "{} keys",
+        keys.len()
+    );
+}
