@@ -36,56 +36,57 @@
 //! constant cosines and sines at the field's angles times a rational polynomial, `cos(pi/7)
 //! cos(pi/9)`, found numerically, with a radical cofactor (each radicand's terms apart, `1/4 (1 +
 //! sqrt(5)) sin(pi/11)^2`, or the square root of a radicand of the terms beside the product,
-//! `sqrt(2) sin(pi/7)^2 cos(pi/9)`) and beside the terms without a mode split off as a constant (`1
-//! - cos(pi/7) cos(pi/9)`); `roots.rs`: for a scalar over one monomial with a pi offset or a square
-//! root whose modes are multiples of one angle `theta`, products of cosines and sines of multiples
-//! of `theta/2` with different offsets (`l cos(x) cos(x - pi/14)`, `(cos(x) - cos(pi/7)) (sin(x) +
-//! 1)`), found from the roots of the sum as a polynomial in `e^{i theta}` (Aberth's iteration in
-//! f64, each cluster snapped to a rational multiple of pi within a denominator bound from the
-//! field's conductor and the degree, the factorization checked in floats), the roots grouped into
-//! `sin(k (phi - a))`, `cos(k phi) - cos(k b)`, `sin(k phi) - sin(k b)` (every order of the kinds,
-//! the largest `k` first or `theta` before `theta/2`), each shown with the cheapest offset, the
-//! constant exact from the scalar's top coefficient; and, for 2 to 4 symbols, products `f(x) g(y)`
-//! of such one-angle parts (`cos(x - pi/8) sin(y - pi/8)`, whose expansion has the modes `x - y`,
-//! `x + y`): the symbols split where the scalar is numerically of rank one, each part's roots from
-//! its restriction to a point of the others, the constant exact from the coefficient of the parts'
-//! top modes combined; and the factorization over the integers of the sum read as a polynomial in
-//! `c_x = cos x`, `s_x = sin x` and the length symbols, and, when some mode is a multiple of two or
-//! more of its direction's unit, in the cosines and sines of the modes' directions (`cos(a + b)` a
-//! variable of its own: `a2^2 cos(a)^2 - a3^2 cos(a + b)^2`) (`cspoly.rs`: as expanded, with `s^2 =
-//! 1 - c^2`, with `c^2 = 1 - s^2`; not factored when linear in distinct length symbols with one
-//! coefficient a constant or a variable another coefficient lacks; the closed forms of its factors
-//! and pairs of factors found without factoring them again; `zfactor.rs`: content and monomial
-//! factor, Kronecker's substitution onto one variable, square-free part by a modular gcd, factors
-//! modulo a small prime (distinct-degree and Cantor-Zassenhaus), Hensel lifting past a Gelfond
-//! bound, subsets recombined by exact multivariate division, a subset whose constant term cannot
-//! divide skipped before its product is formed; image degree <= 64, charged to the work budget));
-//! `trigfac.rs` (made in `best_alternative` only when a lower bound of their cost is below the form
-//! found, for at most 24 terms, not for modes at one step without offsets or radicals such as the
-//! PUMA's): sinusoids `cos(d.x + phi)` whose angle mixes symbols (`-sin(u1) cos(u1 + 2*u2 -
-//! pi/6)`), `d` from half-differences of the exponents seen from two vertices of the Newton
-//! polytope, `phi` a multiple of pi/24 found in floats on the factor's zero set, divided out
-//! exactly by a long division along `d`, the cofactor given its own closed form; and a sum split
-//! into parts of distinct monomials or disjoint symbols, each part's closed form found alone;
-//! `extra.rs` (the one place of the candidates below, for issue 33's held-out corpus): squares of
-//! sums `k (g)^2` (`square.rs`: the square root of the sum's exponential form taken in `f64` by the
-//! schoolbook algorithm in a lexicographic order of the exponents, read back as a real sum with
-//! coefficients snapped to rationals times square roots, the square checked exactly before the
-//! root's closed form is found), every candidate with a factor shared by all or some of its
-//! summands taken out (`k2 (a - b)` for `k2 a - k2 b`), a sum split by the symbols of its terms'
-//! angles (not for the PUMA's unit-step modes), each part's closed form found alone, and pairs of
-//! summands with equal numbers and factors but one call joined (sum to product, `cos A + cos B = 2
-//! cos((A + B)/2) cos((A - B)/2)`; a number beside its cosine as a square, `1 - cos(2 w) = 2
-//! sin(w)^2`), greedily while no longer, also on the form shown (`extra::joined_form`: the angles
-//! made again from radicals by `coefs.rs` are first seen there), there also the sums inside its
-//! products (`sin(c) (sin(2 a + b) + sin(b))` as `2 sin(c) sin(a + b) cos(a)`), and a cosine and a
-//! sine of one angle with the same other factors as one sinusoid when its offset is a multiple of
-//! pi/12 (`cos(a) + sqrt(3) sin(a) = 2 sin(a + pi/6)`); each checked exactly; constant angles are
-//! shown with a positive sign; an angle's symbols print first, then its rational constant and its
-//! multiple of pi (`t/2 - 1/3`, `x - pi/7`), and an angle with a rational constant is shown with
-//! its first symbol's coefficient positive (`Expr::symbols_leading`: `sin(1/3 - t/2)` prints
-//! `-sin(t/2 - 1/3)`); equal symbols and atoms of a product print as one power (`a2^2`, never `a2
-//! a2`); an angle whose coefficients share one denominator prints over it (`cos((q1 + q2)/2)`,
+//! `sqrt(2) sin(pi/7)^2 cos(pi/9)`) and beside the terms without a mode split off as a constant
+//! (`1 - cos(pi/7) cos(pi/9)`); `roots.rs`: for a scalar over one monomial with a pi offset or a
+//! square root whose modes are multiples of one angle `theta`, products of cosines and sines of
+//! multiples of `theta/2` with different offsets (`l cos(x) cos(x - pi/14)`, `(cos(x) - cos(pi/7))
+//! (sin(x) + 1)`), found from the roots of the sum as a polynomial in `e^{i theta}` (Aberth's
+//! iteration in f64, each cluster snapped to a rational multiple of pi within a denominator bound
+//! from the field's conductor and the degree, the factorization checked in floats), the roots
+//! grouped into `sin(k (phi - a))`, `cos(k phi) - cos(k b)`, `sin(k phi) - sin(k b)` (every order
+//! of the kinds, the largest `k` first or `theta` before `theta/2`), each shown with the cheapest
+//! offset, the constant exact from the scalar's top coefficient; and, for 2 to 4 symbols, products
+//! `f(x) g(y)` of such one-angle parts (`cos(x - pi/8) sin(y - pi/8)`, whose expansion has the
+//! modes `x - y`, `x + y`): the symbols split where the scalar is numerically of rank one, each
+//! part's roots from its restriction to a point of the others, the constant exact from the
+//! coefficient of the parts' top modes combined; and the factorization over the integers of the sum
+//! read as a polynomial in `c_x = cos x`, `s_x = sin x` and the length symbols, and, when some mode
+//! is a multiple of two or more of its direction's unit, in the cosines and sines of the modes'
+//! directions (`cos(a + b)` a variable of its own: `a2^2 cos(a)^2 - a3^2 cos(a + b)^2`)
+//! (`cspoly.rs`: as expanded, with `s^2 = 1 - c^2`, with `c^2 = 1 - s^2`; not factored when linear
+//! in distinct length symbols with one coefficient a constant or a variable another coefficient
+//! lacks; the closed forms of its factors and pairs of factors found without factoring them again;
+//! `zfactor.rs`: content and monomial factor, Kronecker's substitution onto one variable,
+//! square-free part by a modular gcd, factors modulo a small prime (distinct-degree and
+//! Cantor-Zassenhaus), Hensel lifting past a Gelfond bound, subsets recombined by exact
+//! multivariate division, a subset whose constant term cannot divide skipped before its product is
+//! formed; image degree <= 64, charged to the work budget)); `trigfac.rs` (made in
+//! `best_alternative` only when a lower bound of their cost is below the form found, for at most 24
+//! terms, not for modes at one step without offsets or radicals such as the PUMA's): sinusoids
+//! `cos(d.x + phi)` whose angle mixes symbols (`-sin(u1) cos(u1 + 2*u2 - pi/6)`), `d` from
+//! half-differences of the exponents seen from two vertices of the Newton polytope, `phi` a
+//! multiple of pi/24 found in floats on the factor's zero set, divided out exactly by a long
+//! division along `d`, the cofactor given its own closed form; and a sum split into parts of
+//! distinct monomials or disjoint symbols, each part's closed form found alone; `extra.rs` (the one
+//! place of the candidates below, for issue 33's held-out corpus): squares of sums `k (g)^2`
+//! (`square.rs`: the square root of the sum's exponential form taken in `f64` by the schoolbook
+//! algorithm in a lexicographic order of the exponents, read back as a real sum with coefficients
+//! snapped to rationals times square roots, the square checked exactly before the root's closed
+//! form is found), every candidate with a factor shared by all or some of its summands taken out
+//! (`k2 (a - b)` for `k2 a - k2 b`), a sum split by the symbols of its terms' angles (not for the
+//! PUMA's unit-step modes), each part's closed form found alone, and pairs of summands with equal
+//! numbers and factors but one call joined (sum to product, `cos A + cos B = 2 cos((A + B)/2)
+//! cos((A - B)/2)`; a number beside its cosine as a square, `1 - cos(2 w) = 2 sin(w)^2`), greedily
+//! while no longer, also on the form shown (`extra::joined_form`: the angles made again from
+//! radicals by `coefs.rs` are first seen there), there also the sums inside its products (`sin(c)
+//! (sin(2 a + b) + sin(b))` as `2 sin(c) sin(a + b) cos(a)`), and a cosine and a sine of one angle
+//! with the same other factors as one sinusoid when its offset is a multiple of pi/12 (`cos(a) +
+//! sqrt(3) sin(a) = 2 sin(a + pi/6)`); each checked exactly; constant angles are shown with a
+//! positive sign; an angle's symbols print first, then its rational constant and its multiple of pi
+//! (`t/2 - 1/3`, `x - pi/7`), and an angle with a rational constant is shown with its first
+//! symbol's coefficient positive (`Expr::symbols_leading`: `sin(1/3 - t/2)` prints `-sin(t/2 -
+//! 1/3)`); equal symbols and atoms of a product print as one power (`a2^2`, never `a2 a2`); an
+//! angle whose coefficients share one denominator prints over it (`cos((q1 + q2)/2)`,
 //! `notation::angle_text`, as in LaTeX) and is costed so; the split shape is skipped (`skip_split`)
 //! when it would multiply the terms by more than 256, or by more than 32 with no two terms able to
 //! meet in it (`disjoint_parts`: the cumulative angles of a planar chain), and a scalar without
