@@ -260,7 +260,9 @@ fn collect(e: &Expr, seen: &mut BTreeSet<(String, Trig, String)>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{closed_form, Scalar};
+    use crate::{closed_form, Scalar, Sym};
+    use num_rational::BigRational;
+    use num_traits::Zero;
 
     #[test]
     fn the_length_bound_is_never_below_the_text() {
@@ -298,5 +300,95 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// Whether `e` holds a `-(-x)`, a negation as a product's factor or a negative number.
+    fn badly_signed(e: &Expr) -> bool {
+        match e {
+            Expr::Neg(x) => matches!(**x, Expr::Neg(_)) || badly_signed(x),
+            Expr::Mul(v) => v
+                .iter()
+                .any(|f| matches!(f, Expr::Neg(_)) || badly_signed(f)),
+            Expr::Add(v) => v.iter().any(badly_signed),
+            Expr::Pow(x, _) => badly_signed(x),
+            Expr::Num(q) => q < &BigRational::zero(),
+            _ => false,
+        }
+    }
+
+    /// A closed form times a rational is that rational times its value, exactly, on the
+    /// closed forms of many computed scalars (sums, products with sums as factors, radicals,
+    /// constant angles) and factors of every sign; the sign is placed without `-(-x)` and the
+    /// plain text is never longer than the form with the sign left in front.
+    #[test]
+    fn a_scaled_closed_form_is_the_multiple_of_its_value() {
+        let q = |n: i64, d: i64| BigRational::new(n.into(), d.into());
+        let (t, u, a) = (Scalar::sym("t"), Scalar::sym("u"), Scalar::sym("a"));
+        let half = Scalar::rational(q(1, 2));
+        let scalars = [
+            t.cos() - u.sin(),
+            u.sin() - t.cos(),
+            (t.cos() + u.sin()) * half.clone(),
+            (t.cos() - u.sin() * Scalar::int(3)) * (t.clone() + u.clone()).cos() * half.clone(),
+            a.clone() * (t.clone() - u.clone()).sin() * Scalar::int(2).sqrt() - u.cos(),
+            ((t.clone() * half.clone()).cos() * (u.clone() * half).sin() - a.clone())
+                * Scalar::rational(q(-3, 8)),
+            (t.clone() + Scalar::pi() * Scalar::rational(q(5, 18))).cos() * a.clone() + u.sin(),
+            a.pow(2) - Scalar::int(1),
+            Scalar::int(0),
+            Scalar::rational(q(-5, 7)),
+        ];
+        let po = PlainOptions {
+            shorthand: false,
+            decimals: false,
+        };
+        let mut placed = 0;
+        for x in &scalars {
+            let e = crate::closed_form(x).expect("closed form");
+            assert_eq!(e.to_scalar(), *x);
+            for c in [
+                q(1, 1),
+                q(-1, 1),
+                q(1, 2),
+                q(-1, 2),
+                q(-3, 4),
+                q(2, 1),
+                q(-7, 3),
+            ] {
+                let s = e.clone().scaled(&c);
+                assert_eq!(
+                    s.to_scalar(),
+                    x.clone() * Scalar::rational(c.clone()),
+                    "{e:?} {c}"
+                );
+                assert!(!badly_signed(&s), "{s:?}");
+                if c.is_one() {
+                    assert_eq!(s, e);
+                }
+                // Against the sign left in front of the positive multiple.
+                let front = Expr::Neg(Box::new(e.clone().scaled(&-c.clone())));
+                let (new, old) = (plain(&s, &po), plain(&front, &po));
+                assert!(new.len() <= old.len(), "{new} vs {old}");
+                placed += usize::from(new.len() < old.len());
+            }
+        }
+        assert!(placed > 5, "{placed}");
+        // The search's style: `-(1/4 (a - b))` is `1/4 (b - a)`; `-1/4 (a + b)` stays.
+        let sum = |neg: bool| {
+            let b = Expr::Trig {
+                f: Trig::Sin,
+                angle: Angle::of_symbol(Sym::new("u")),
+            };
+            Expr::Mul(vec![
+                Expr::Num(q(1, 4)),
+                Expr::Add(vec![
+                    Expr::Sym(Sym::new("a")),
+                    if neg { Expr::Neg(Box::new(b)) } else { b },
+                ]),
+            ])
+        };
+        let text = |e: Expr| plain(&e.scaled(&q(-1, 1)), &po);
+        assert_eq!(text(sum(true)), "1/4*(sin(u) - a)");
+        assert_eq!(text(sum(false)), "-1/4*(a + sin(u))");
     }
 }
