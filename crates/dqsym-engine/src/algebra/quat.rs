@@ -131,7 +131,7 @@ impl<T: Ring> Quat<T> {
     /// The Hamilton product (eq 1): `(s₁ s₂ − m₁·m₂, s₁ m₂ + s₂ m₁ + m₁ × m₂)`.
     ///
     /// 16 multiplications and 12 additions, as Table 1 counts them; each component is one
-    /// [`Ring::sums_of_products`] of [`Quat::product_terms`].
+    /// [`Ring::sums_of_products`] of its signed products.
     pub fn mul_ref(&self, b: &Self) -> Self {
         let [w, x, y, z] = self.product_terms(b).map(|c| T::sums_of_products(&[&c]));
         Quat { w, x, y, z }
