@@ -50,5 +50,5 @@ pub use closed::{closed_form, Angle, Expr};
 pub use emit::{latex, LatexOptions};
 pub use kin::{parse_robot, parse_urdf, Chain, Joint, JointKind, Robot};
 pub use print::{plain, Format, PlainOptions};
-pub use ring::Ring;
+pub use ring::{Ring, SignedProduct};
 pub use scalar::{Context, Frac, Preset, Scalar, ScalarError, Sym, Trig};

@@ -52,7 +52,44 @@ pub trait Ring:
 
     /// An f64 approximation, when `self` has no free symbols.
     fn to_f64(&self) -> Option<f64>;
+
+    /// `Σᵢ Σⱼ ±aᵢⱼ bᵢⱼ`: each inner slice a signed sum of products (`true` subtracts the
+    /// product), the sums then added. Defined as the left fold the quaternion products write
+    /// out, `((p₁ ± p₂) ± p₃) ...` for each sum (its first product taken with its sign), then
+    /// `(s₁ + s₂) + ...`, so an `f64` result is the one those operators give bit for bit; an
+    /// exact ring may compute the same value in fewer steps (the symbolic scalar forms every
+    /// product's terms and brings them to canonical form once, see
+    /// `scalar::arith::sums_of_products`).
+    fn sums_of_products(sums: &[&[SignedProduct<'_, Self>]]) -> Self {
+        let signed = |&(minus, a, b): &SignedProduct<'_, Self>| {
+            let p = a.clone() * b;
+            if minus {
+                -p
+            } else {
+                p
+            }
+        };
+        let sum = |s: &[SignedProduct<'_, Self>]| {
+            let mut it = s.iter();
+            let first = it.next().map_or_else(Self::zero, signed);
+            it.fold(first, |acc, &(minus, a, b)| {
+                let p = a.clone() * b;
+                if minus {
+                    acc - p
+                } else {
+                    acc + p
+                }
+            })
+        };
+        let mut it = sums.iter();
+        let first = it.next().map_or_else(Self::zero, |s| sum(s));
+        it.fold(first, |acc, s| acc + sum(s))
+    }
 }
+
+/// One product of [`Ring::sums_of_products`]: `(subtract, a, b)` stands for `-a b` when
+/// `subtract`, `a b` otherwise.
+pub type SignedProduct<'a, T> = (bool, &'a T, &'a T);
 
 impl Ring for f64 {
     fn from_ratio(num: i64, den: i64) -> Self {

@@ -154,10 +154,19 @@ impl<T: Ring> DualQuat<T> {
     }
 
     /// The product (eq 7): `p q + ε (p q_ε + p_ε q)`.
+    ///
+    /// The dual part's components are each one [`Ring::sums_of_products`] of the eight
+    /// products of `real₁ dual₂ + dual₁ real₂`: the value the two quaternion products and
+    /// their sum give (bit for bit in `f64`), in one step for an exact ring.
     pub fn mul_ref(&self, b: &Self) -> Self {
+        let (rd, dr) = (
+            self.real.product_terms(&b.dual),
+            self.dual.product_terms(&b.real),
+        );
+        let [w, x, y, z] = [0, 1, 2, 3].map(|k| T::sums_of_products(&[&rd[k], &dr[k]]));
         DualQuat {
             real: &self.real * &b.real,
-            dual: &self.real * &b.dual + &self.dual * &b.real,
+            dual: Quat { w, x, y, z },
         }
     }
 

@@ -1,7 +1,7 @@
 //! Hamilton quaternions `w + x i + y j + z k` over a ring.
 
 use super::mul;
-use crate::Ring;
+use crate::{Ring, SignedProduct};
 use std::ops::{Add, Mul, Neg, Sub};
 
 /// A quaternion `w + x i + y j + z k` (the paper's `(s, m)` with `s = w`, `m = (x, y, z)`).
@@ -130,25 +130,49 @@ impl<T: Ring> Quat<T> {
 
     /// The Hamilton product (eq 1): `(s₁ s₂ − m₁·m₂, s₁ m₂ + s₂ m₁ + m₁ × m₂)`.
     ///
-    /// 16 multiplications and 12 additions, as Table 1 counts them.
+    /// 16 multiplications and 12 additions, as Table 1 counts them; each component is one
+    /// [`Ring::sums_of_products`] of its signed products.
     pub fn mul_ref(&self, b: &Self) -> Self {
-        let a = self;
-        Quat {
-            w: mul(&a.w, &b.w) - mul(&a.x, &b.x) - mul(&a.y, &b.y) - mul(&a.z, &b.z),
-            x: mul(&a.w, &b.x) + mul(&a.x, &b.w) + mul(&a.y, &b.z) - mul(&a.z, &b.y),
-            y: mul(&a.w, &b.y) - mul(&a.x, &b.z) + mul(&a.y, &b.w) + mul(&a.z, &b.x),
-            z: mul(&a.w, &b.z) + mul(&a.x, &b.y) - mul(&a.y, &b.x) + mul(&a.z, &b.w),
-        }
+        let [w, x, y, z] = self.product_terms(b).map(|c| T::sums_of_products(&[&c]));
+        Quat { w, x, y, z }
     }
 
     /// The vector part `(x, y, z)` of `self * b`, computed exactly as [`Quat::mul_ref`]
     /// computes it, without the scalar part.
     pub(crate) fn mul_vector_part(&self, b: &Self) -> [T; 3] {
+        let [_, x, y, z] = self.product_terms(b);
+        [x, y, z].map(|c| T::sums_of_products(&[&c]))
+    }
+
+    /// The signed products whose sums are the components `w, x, y, z` of `self * b` (eq 1),
+    /// each in the order the Hamilton product adds them.
+    pub(crate) fn product_terms<'a>(&'a self, b: &'a Self) -> [[SignedProduct<'a, T>; 4]; 4] {
         let a = self;
         [
-            mul(&a.w, &b.x) + mul(&a.x, &b.w) + mul(&a.y, &b.z) - mul(&a.z, &b.y),
-            mul(&a.w, &b.y) - mul(&a.x, &b.z) + mul(&a.y, &b.w) + mul(&a.z, &b.x),
-            mul(&a.w, &b.z) + mul(&a.x, &b.y) - mul(&a.y, &b.x) + mul(&a.z, &b.w),
+            [
+                (false, &a.w, &b.w),
+                (true, &a.x, &b.x),
+                (true, &a.y, &b.y),
+                (true, &a.z, &b.z),
+            ],
+            [
+                (false, &a.w, &b.x),
+                (false, &a.x, &b.w),
+                (false, &a.y, &b.z),
+                (true, &a.z, &b.y),
+            ],
+            [
+                (false, &a.w, &b.y),
+                (true, &a.x, &b.z),
+                (false, &a.y, &b.w),
+                (false, &a.z, &b.x),
+            ],
+            [
+                (false, &a.w, &b.z),
+                (false, &a.x, &b.y),
+                (true, &a.y, &b.x),
+                (false, &a.z, &b.w),
+            ],
         ]
     }
 

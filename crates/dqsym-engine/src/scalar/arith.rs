@@ -6,7 +6,7 @@ use super::atoms::{
     Small, Sym,
 };
 use super::{charge, term_limit, GroupKey, Poll, ProductTrace, Scalar, ScalarError, Term, Q};
-use crate::Ring;
+use crate::{Ring, SignedProduct};
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 use std::borrow::Borrow;
@@ -332,15 +332,7 @@ fn coefficient_words(t: &[Term]) -> (u64, u64, u64) {
 
 pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
     let (x, y) = terms_or_return!(a, b);
-    let limit = term_limit();
-    if x.len().saturating_mul(y.len()) > limit.saturating_mul(PRODUCT_FACTOR) {
-        return Scalar::error(ScalarError::TooManyPairs {
-            left: x.len(),
-            right: y.len(),
-            limit,
-        });
-    }
-    if let Err(e) = charge(product_work(x, y)) {
+    if let Err(e) = admit_product(x, y) {
         return Scalar::error(e);
     }
     // A canonical scalar times a nonzero constant of the square-root field times a monomial
@@ -359,6 +351,44 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
         ProductTrace::new(x, y)
     };
     let mut out = Vec::with_capacity(x.len() * y.len());
+    if let Err(e) = product_terms(x, y, false, &mut out, trace.as_mut()) {
+        return Scalar::error(e);
+    }
+    if settled {
+        return Scalar::from_terms_settled(out);
+    }
+    match trace {
+        Some(trace) => {
+            let known = trace.settled(&out);
+            Scalar::from_terms_known(out, &known)
+        }
+        None => Scalar::from_terms(out),
+    }
+}
+
+/// The limits a product of `x` and `y` must pass before its terms are formed: the number of
+/// term pairs, and its work charged to the budget ([`product_work`]).
+fn admit_product(x: &[Term], y: &[Term]) -> Result<(), ScalarError> {
+    let limit = term_limit();
+    if x.len().saturating_mul(y.len()) > limit.saturating_mul(PRODUCT_FACTOR) {
+        return Err(ScalarError::TooManyPairs {
+            left: x.len(),
+            right: y.len(),
+            limit,
+        });
+    }
+    charge(product_work(x, y))
+}
+
+/// Appends the terms of `x y` (of `-x y` when `minus`) to `out`, neither sorted nor merged,
+/// marking each in `trace` when given (its indices are `out`'s).
+fn product_terms(
+    x: &[Term],
+    y: &[Term],
+    minus: bool,
+    out: &mut Vec<Term>,
+    mut trace: Option<&mut ProductTrace>,
+) -> Result<(), ScalarError> {
     // A large product notices cancellation as it goes (every few term pairs), not only before.
     let mut poll = Poll::default();
     // Mode products are the expensive part; compute each once per pair of mode runs.
@@ -371,31 +401,28 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
             out.reserve(ra.len() * rb.len() * weights);
             for (i, s) in (ia..).zip(ra) {
                 for (j, t) in (ib..).zip(rb) {
-                    if let Err(e) = poll.step() {
-                        return Scalar::error(e);
-                    }
-                    let Some(mono) = mono_mul(&s.mono, &t.mono) else {
-                        return Scalar::error(ScalarError::OutOfRange("exponent too large".into()));
-                    };
-                    let Some((rad, g)) = rad_mul(s.rad, t.rad) else {
-                        return Scalar::error(ScalarError::OutOfRange("radicand too large".into()));
-                    };
+                    poll.step()?;
+                    let mono = mono_mul(&s.mono, &t.mono)
+                        .ok_or_else(|| ScalarError::OutOfRange("exponent too large".into()))?;
+                    let (rad, g) = rad_mul(s.rad, t.rad)
+                        .ok_or_else(|| ScalarError::OutOfRange("radicand too large".into()))?;
                     let mut coef = &s.coef * &t.coef;
                     if g != 1 {
                         coef = &coef * &Q::from_u64(g);
                     }
+                    if minus {
+                        coef = -coef;
+                    }
                     for (mode, weights) in modes.sum().iter() {
                         for (r2, w) in weights {
-                            let Some((rad3, g2)) = rad_mul(rad, *r2) else {
-                                return Scalar::error(ScalarError::OutOfRange(
-                                    "radicand too large".into(),
-                                ));
-                            };
+                            let (rad3, g2) = rad_mul(rad, *r2).ok_or_else(|| {
+                                ScalarError::OutOfRange("radicand too large".into())
+                            })?;
                             let mut c = &coef * w;
                             if g2 != 1 {
                                 c = &c * &Q::from_u64(g2);
                             }
-                            if let Some(trace) = &mut trace {
+                            if let Some(trace) = trace.as_deref_mut() {
                                 trace.mark(out.len(), (i, &s.mode), (j, &t.mode), mode);
                             }
                             out.push(Term {
@@ -412,16 +439,29 @@ pub(crate) fn mul(a: &Scalar, b: &Scalar) -> Scalar {
         }
         ia += ra.len();
     }
-    if settled {
-        return Scalar::from_terms_settled(out);
-    }
-    match trace {
-        Some(trace) => {
-            let known = trace.settled(&out);
-            Scalar::from_terms_known(out, &known)
+    Ok(())
+}
+
+/// `Σᵢ Σⱼ ±aᵢⱼ bᵢⱼ` ([`Ring::sums_of_products`]): the terms of every product formed, then
+/// sorted, merged and brought to canonical form once.
+///
+/// The same scalar as the products and sums one by one: the canonical form of a group is a
+/// function of its value (see `cyclo`), and the terms formed here, merged, sum to the value
+/// of each group of the result, so the rewrite of the merged terms is the group the steps
+/// give. Only the intermediate canonical forms are skipped: the rewrites of every product's
+/// groups and of every partial sum's mixed groups (and the charges of those additions). An
+/// error in a factor is the first one in the order of the products, as in the fold.
+pub(crate) fn sums_of_products(sums: &[&[SignedProduct<'_, Scalar>]]) -> Scalar {
+    let mut out = Vec::new();
+    for &(minus, a, b) in sums.iter().flat_map(|s| s.iter()) {
+        let (x, y) = terms_or_return!(a, b);
+        if let Err(e) =
+            admit_product(x, y).and_then(|()| product_terms(x, y, minus, &mut out, None))
+        {
+            return Scalar::error(e);
         }
-        None => Scalar::from_terms(out),
     }
+    Scalar::from_terms(out)
 }
 
 /// Whether `t` is a nonzero constant of the square-root field times one monomial: every term
@@ -746,6 +786,9 @@ impl Ring for Scalar {
     }
     fn to_f64(&self) -> Option<f64> {
         self.eval(&|_| None).ok()
+    }
+    fn sums_of_products(sums: &[&[SignedProduct<'_, Self>]]) -> Self {
+        sums_of_products(sums)
     }
 }
 

@@ -7,6 +7,7 @@
 
 use super::super::{canonical_terms, Scalar, ScalarError};
 use super::{canonicalize, Settled};
+use crate::{Ring, SignedProduct};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::Zero;
@@ -217,6 +218,55 @@ fn random_sums_and_products_are_canonical_and_exact() {
         assert!(cases[2].1.s.is_zero_value() || cases[2].1.s.as_error().is_some());
     }
     assert!(checked > 800, "{checked}");
+}
+
+/// Sums of signed products formed at once (`Ring::sums_of_products`: every product's terms,
+/// one canonical rewrite at the end, as the quaternion and dual quaternion products form their
+/// components) of random elements with pi offsets, square roots and monomials: the scalar the
+/// products and sums one by one give, canonical, and equal to the `f64` value of the same
+/// expression.
+#[test]
+fn sums_of_products_at_once_are_the_stepwise_scalar() {
+    let mut rng = Rng(0x5eed_d0a1);
+    let dens = [3i64, 5, 7, 8, 9, 12, 18];
+    let mut checked = 0;
+    for trial in 0..100 {
+        let pair = [rng.pick(&dens), rng.pick(&dens)];
+        let n = 1 + rng.below(8) as usize;
+        let factors: Vec<(bool, Val, Val)> = (0..n)
+            .map(|_| {
+                let minus = rng.below(2) == 0;
+                (minus, element(&mut rng, &pair), element(&mut rng, &pair))
+            })
+            .collect();
+        let split = rng.below(n as u64 + 1) as usize;
+        // The old route: every product canonical, then every partial sum.
+        let stepwise = |f: &[(bool, Val, Val)]| {
+            f.iter().fold(ratio(0, 1), |acc, (minus, a, b)| {
+                let p = mul(a, b);
+                if *minus {
+                    sub(&acc, &p)
+                } else {
+                    add(&acc, &p)
+                }
+            })
+        };
+        let expected = add(&stepwise(&factors[..split]), &stepwise(&factors[split..]));
+        let products: Vec<SignedProduct<'_, Scalar>> =
+            factors.iter().map(|(m, a, b)| (*m, &a.s, &b.s)).collect();
+        let (first, second) = products.split_at(split);
+        let at_once = Val {
+            s: <Scalar as Ring>::sums_of_products(&[first, second]),
+            f: expected.f,
+        };
+        if !check(&expected, &format!("trial {trial}: stepwise")) {
+            continue;
+        }
+        assert!(check(&at_once, &format!("trial {trial}: at once")));
+        assert_eq!(at_once.s, expected.s, "trial {trial}");
+        checked += 1;
+    }
+    assert!(checked > 80, "{checked}");
 }
 
 /// Products of general scalars (the groups a product passes through untouched, a group with
