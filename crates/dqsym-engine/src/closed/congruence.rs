@@ -482,7 +482,7 @@ mod tests {
     /// extensions.
     #[test]
     fn a_walk_skipping_prefixes_lists_the_other_solutions_and_counts_the_skipped() {
-        let mut next = crate::testing::xorshift_below(0x5eed_0f_91e5_u64);
+        let mut next = crate::testing::xorshift_below(0x005e_ed0f_91e5_u64);
         let (mut skipped_some, mut offered) = (0, 0);
         for _ in 0..300 {
             let m = [4i64, 6, 8, 9, 12][next(5) as usize];
@@ -494,7 +494,8 @@ mod tests {
             let b: Vec<i64> = (0..rows).map(|_| next(m as u64) as i64).collect();
             let ranges: Vec<i64> = (0..n).map(|_| m * (1 + next(2) as i64)).collect();
             let want = brute(&a, &b, m, &ranges);
-            let (mut listed, mut skips): (Vec<Vec<i64>>, Vec<(Vec<i64>, u128)>) = (vec![], vec![]);
+            let mut listed: Vec<Vec<i64>> = Vec::new();
+            let mut skips: Vec<(Vec<i64>, u128)> = Vec::new();
             walk(&a, &b, m, &ranges, true, &mut |node| match node {
                 Node::Solution(z) => {
                     listed.push(z.to_vec());
