@@ -100,12 +100,58 @@ pub fn solutions(
     ranges: &[i64],
     visit: &mut dyn FnMut(&[i64]) -> bool,
 ) -> Result<(), Stop> {
+    walk(a, b, m, ranges, false, &mut |node| match node {
+        Node::Solution(z) => visit(z),
+        Node::Prefix(..) => false,
+    })
+}
+
+/// What [`walk`] shows its visitor.
+pub enum Node<'z> {
+    /// A solution, as [`solutions`] lists it: the visitor returns false to stop.
+    Solution(&'z [i64]),
+    /// A proper prefix `z[..k]` before its extensions are listed, with the number of its
+    /// extensions that are solutions when the walk may skip them (`None` when it may not): the
+    /// visitor returns true to skip them (ignored with `None`).
+    Prefix(&'z [i64], Option<u128>),
+}
+
+/// [`solutions`], and with `prefixes` each proper prefix `z[..k]` shown to `visit` as
+/// [`Node::Prefix`] before its extensions, for every `k` at or past the first length from
+/// which every later unknown's range is a multiple of its step (then every prefix the walk
+/// meets has as many solutions among its extensions as [`count`] says, `ranges[j] / step` per
+/// later unknown `j`, see its proof). A prefix whose extensions are skipped is charged as the
+/// values listing them would have been (`c_k + c_k c_{k+1} + ...`, `c_j` the values per later
+/// unknown), and may be skipped only when they leave [`MAX_VISITS`] unreached: so the work
+/// charged, [`Stop::Visits`] and every other solution listed are those of the walk that lists
+/// them all. The prefixes of one length come in lexicographic order, each after the prefixes
+/// it extends.
+///
+/// # Errors
+/// As [`solutions`].
+///
+/// # Panics
+/// As [`solutions`].
+pub fn walk(
+    a: &[Vec<i64>],
+    b: &[i64],
+    m: i64,
+    ranges: &[i64],
+    prefixes: bool,
+    visit: &mut dyn FnMut(Node) -> bool,
+) -> Result<(), Stop> {
     let Some(pivots) = eliminate(a, b, m, ranges.len())? else {
         return Ok(());
+    };
+    let below = if prefixes {
+        subtrees(&pivots, ranges)
+    } else {
+        vec![None; ranges.len()]
     };
     let mut walk = Walk {
         pivots,
         ranges,
+        below,
         m,
         visits: 0,
         charged: 0,
@@ -114,6 +160,32 @@ pub fn solutions(
     let done = walk.go(0, visit);
     charge((walk.visits - walk.charged) as u64).map_err(Stop::Work)?;
     done
+}
+
+/// For each `i`, the solutions and the values listed under a prefix `z[..=i]`, when every
+/// later unknown's range is a multiple of its step (`None` otherwise, and for the last
+/// unknown, which has no proper prefix under it): `c_j = ranges[j] / step_j` values of each
+/// later unknown `j` under each prefix (see [`count`]), so `prod c_j` solutions and
+/// `c_{i+1} (1 + c_{i+2} (1 + ...))` values.
+fn subtrees(pivots: &[Option<Pivot>], ranges: &[i64]) -> Vec<Option<(u128, u128)>> {
+    let n = ranges.len();
+    let mut below = vec![None; n];
+    let mut under: Option<(u128, u128)> = Some((1, 0));
+    for j in (1..n).rev() {
+        let step = pivots[j].as_ref().map_or(1, |p| p.step);
+        under = under.and_then(|(count, values)| {
+            let c = u128::try_from(ranges[j])
+                .ok()
+                .filter(|_| ranges[j] % step == 0)?
+                / step as u128;
+            Some((
+                c.saturating_mul(count),
+                c.saturating_mul(values.saturating_add(1)),
+            ))
+        });
+        below[j - 1] = under;
+    }
+    below
 }
 
 /// The number of solutions [`solutions`] would list for the same system, without listing
@@ -223,6 +295,9 @@ fn eliminate(
 struct Walk<'a> {
     pivots: Vec<Option<Pivot>>,
     ranges: &'a [i64],
+    /// Under each prefix `z[..=i]` shown to the visitor: its solutions and values (see
+    /// [`subtrees`]).
+    below: Vec<Option<(u128, u128)>>,
     m: i64,
     visits: usize,
     charged: usize,
@@ -230,9 +305,9 @@ struct Walk<'a> {
 }
 
 impl Walk<'_> {
-    fn go(&mut self, i: usize, visit: &mut dyn FnMut(&[i64]) -> bool) -> Result<(), Stop> {
+    fn go(&mut self, i: usize, visit: &mut dyn FnMut(Node) -> bool) -> Result<(), Stop> {
         if i == self.z.len() {
-            return if visit(&self.z) {
+            return if visit(Node::Solution(&self.z)) {
                 Ok(())
             } else {
                 Err(Stop::Visitor)
@@ -264,10 +339,37 @@ impl Walk<'_> {
                 self.charged = self.visits;
             }
             self.z[i] = v;
-            self.go(i + 1, visit)?;
+            if !self.skipped(i, visit)? {
+                self.go(i + 1, visit)?;
+            }
             v += step;
         }
         Ok(())
+    }
+
+    /// Shows the prefix `z[..=i]` to the visitor when [`walk`] shows it; whether its
+    /// extensions were skipped (then charged as listed, see [`walk`]).
+    fn skipped(&mut self, i: usize, visit: &mut dyn FnMut(Node) -> bool) -> Result<bool, Stop> {
+        let Some((count, values)) = self.below[i] else {
+            return Ok(false);
+        };
+        let fits = usize::try_from(values)
+            .ok()
+            .and_then(|v| v.checked_add(self.visits))
+            .filter(|v| *v <= MAX_VISITS);
+        let offer = fits.map(|_| count);
+        if !visit(Node::Prefix(&self.z[..=i], offer)) {
+            return Ok(false);
+        }
+        let Some(visits) = fits else {
+            return Ok(false);
+        };
+        self.visits = visits;
+        if self.visits - self.charged >= CHARGE_EVERY {
+            charge((self.visits - self.charged) as u64).map_err(Stop::Work)?;
+            self.charged = self.visits;
+        }
+        Ok(true)
     }
 }
 
@@ -371,6 +473,62 @@ mod tests {
         assert!(
             known > 100 && unknown > 20 && empty > 10,
             "{known} {unknown} {empty}"
+        );
+    }
+
+    /// `walk` with prefixes, skipping seeded random ones, against brute force: the solutions
+    /// listed are those no skipped prefix starts, in order; each skipped prefix's count is
+    /// the number of brute-force solutions it starts; every prefix comes before its
+    /// extensions.
+    #[test]
+    fn a_walk_skipping_prefixes_lists_the_other_solutions_and_counts_the_skipped() {
+        let mut next = crate::testing::xorshift_below(0x005e_ed0f_91e5_u64);
+        let (mut skipped_some, mut offered) = (0, 0);
+        for _ in 0..300 {
+            let m = [4i64, 6, 8, 9, 12][next(5) as usize];
+            let n = 2 + next(3) as usize;
+            let rows = 1 + next(2) as usize;
+            let a: Vec<Vec<i64>> = (0..rows)
+                .map(|_| (0..n).map(|_| next(2 * m as u64) as i64 - m).collect())
+                .collect();
+            let b: Vec<i64> = (0..rows).map(|_| next(m as u64) as i64).collect();
+            let ranges: Vec<i64> = (0..n).map(|_| m * (1 + next(2) as i64)).collect();
+            let want = brute(&a, &b, m, &ranges);
+            let mut listed: Vec<Vec<i64>> = Vec::new();
+            let mut skips: Vec<(Vec<i64>, u128)> = Vec::new();
+            walk(&a, &b, m, &ranges, true, &mut |node| match node {
+                Node::Solution(z) => {
+                    listed.push(z.to_vec());
+                    true
+                }
+                Node::Prefix(p, count) => {
+                    assert!(p.len() < n);
+                    offered += 1;
+                    let c = count.expect("ranges that are multiples of m: skippable");
+                    if next(4) == 0 {
+                        skips.push((p.to_vec(), c));
+                        return true;
+                    }
+                    false
+                }
+            })
+            .expect("complete");
+            let under = |z: &Vec<i64>, p: &Vec<i64>| z[..p.len()] == p[..];
+            let kept: Vec<Vec<i64>> = want
+                .iter()
+                .filter(|z| !skips.iter().any(|(p, _)| under(z, p)))
+                .cloned()
+                .collect();
+            assert_eq!(listed, kept, "a {a:?}, b {b:?}, m {m}, ranges {ranges:?}");
+            for (p, c) in &skips {
+                let n_under = want.iter().filter(|z| under(z, p)).count() as u128;
+                assert_eq!(*c, n_under, "prefix {p:?}");
+            }
+            skipped_some += usize::from(!skips.is_empty());
+        }
+        assert!(
+            skipped_some > 50 && offered > 500,
+            "{skipped_some} {offered}"
         );
     }
 }

@@ -236,9 +236,12 @@ pub(crate) fn find(x: &Scalar) -> Option<Shift> {
     // `representatives` (counted, then listed), built once.
     let everything = system(&syms, &rows, &targets, n, &free)?;
     let mut base: Option<Vec<Small>> = None;
-    solve(&everything, &free, &mut |o| {
-        base = Some(o.to_vec());
-        false
+    solve(&everything, &free, false, &mut |node| match node {
+        Offered::Solution(o) => {
+            base = Some(o.to_vec());
+            false
+        }
+        Offered::Prefix { .. } => false,
     })?;
     let base = base?;
     let offsets = representatives(&groups, &syms, &rows, &targets, n, &everything, base)?;
@@ -256,18 +259,34 @@ fn multiple(v: Small, m: Small) -> bool {
     (v / m).is_integer()
 }
 
+/// What [`solve`] shows its visitor: as `congruence::Node`, in offsets.
+enum Offered<'o> {
+    /// A solution: the visitor returns false to stop.
+    Solution(&'o [Small]),
+    /// The offsets of the first `set` free symbols (`System::free`) fixed, before their
+    /// extensions (the other free symbols' offsets are stale), with the number of solutions
+    /// among those when they may be skipped: the visitor returns true to skip them.
+    Prefix {
+        o: &'o [Small],
+        set: usize,
+        count: Option<u128>,
+    },
+}
+
 /// Offsets (multiples of pi, one per symbol) with `rows[g] . o = targets[g].0` modulo
 /// `targets[g].1` for every group, each free symbol's over the multiples of `1/(n a)` in one
 /// period `[0, 2 D)` (`a` the lcm of its coefficients' numerators, `D` of their
 /// denominators), the `fixed` ones at their value: passed to `found` in lexicographic order
-/// (by symbol, then value) until it returns false. Every phase is scaled to an integer
-/// residue modulo one common modulus (`sys`, made by [`system`] from the same `fixed`) and
-/// the system solved by `congruence.rs`, which lists the solutions without a search.
-/// `Some(true)` when every solution was passed; `None` past the work budget.
+/// (by symbol, then value) until it returns false; with `prefixes`, the prefixes too (see
+/// `congruence::walk`). Every phase is scaled to an integer residue modulo one common
+/// modulus (`sys`, made by [`system`] from the same `fixed`) and the system solved by
+/// `congruence.rs`, which lists the solutions without a search. `Some(true)` when every
+/// solution was passed or skipped; `None` past the work budget.
 fn solve(
     sys: &System,
     fixed: &[Option<Small>],
-    found: &mut dyn FnMut(&[Small]) -> bool,
+    prefixes: bool,
+    found: &mut dyn FnMut(Offered) -> bool,
 ) -> Option<bool> {
     let System {
         free,
@@ -287,7 +306,7 @@ fn solve(
         .iter()
         .map(|c| vec![None; usize::try_from(*c).unwrap_or(0)])
         .collect();
-    let result = super::congruence::solutions(a, b, *modulus, ranges, &mut |z| {
+    let mut set = |z: &[i64], o: &mut [Small]| {
         for (((s, unit, _), v), known) in free.iter().zip(z).zip(&mut values) {
             let slot = usize::try_from(*v).ok().and_then(|i| known.get_mut(i));
             o[*s] = match slot {
@@ -296,7 +315,23 @@ fn solve(
                 None => *unit * Small::from_integer(*v),
             };
         }
-        found(&o)
+    };
+    let result = super::congruence::walk(a, b, *modulus, ranges, prefixes, &mut |node| {
+        use super::congruence::Node;
+        match node {
+            Node::Solution(z) => {
+                set(z, &mut o);
+                found(Offered::Solution(&o))
+            }
+            Node::Prefix(z, count) => {
+                set(z, &mut o);
+                found(Offered::Prefix {
+                    o: &o,
+                    set: z.len(),
+                    count,
+                })
+            }
+        }
     });
     match result {
         Ok(()) => Some(true),
@@ -601,12 +636,19 @@ fn representatives(
     // The number of cosine and sine parts of the shifted scalar, and of negative ones; `None`
     // once the parts pass `bound` (the parts of the best solution so far: the parts come first
     // in the order of solutions, and they only grow group by group, so such a solution is
-    // never taken, and the rest of its groups need not be looked at).
-    let mut score = |o: &[Small], bound: usize| -> Option<(usize, usize)> {
+    // never taken, and the rest of its groups need not be looked at). With `only = (done, lo,
+    // hi)`, of the groups `g` with `lo <= done[g] <= hi` alone.
+    let mut score = |o: &[Small],
+                     bound: usize,
+                     only: Option<(&[usize], usize, usize)>|
+     -> Option<(usize, usize)> {
         scored += 1;
         let o_den = scale_offsets(o, &mut scaled_o);
         let (mut parts, mut neg) = (0, 0);
-        for (i, (re, im)) in row_freq.iter().zip(&amps) {
+        for (g, (i, (re, im))) in row_freq.iter().zip(&amps).enumerate() {
+            if only.is_some_and(|(done, lo, hi)| done[g] < lo || done[g] > hi) {
+                continue;
+            }
             if stamp[*i] != scored {
                 stamp[*i] = scored;
                 let f = phase_of(freqs[*i], int_freqs.as_ref(), *i, o, &scaled_o, o_den);
@@ -650,7 +692,25 @@ fn representatives(
             // The solution being scored, centred into (-D, D] for a period 2 D: one buffer,
             // copied only when the solution is the best so far.
             let mut o: Vec<Small> = Vec::with_capacity(syms.len());
-            let complete = solve(sys, fixed, &mut |solution| {
+            let done = completions(rows, sys);
+            // The parts, and negative parts, of the groups known from each prefix shown
+            // (`known[set]`), and the
+            // length of the first (the shortest: see `congruence::walk`).
+            let mut known: Vec<(usize, usize)> = vec![(0, 0); sys.free.len() + 1];
+            let mut first: Option<usize> = None;
+            // The parts the groups not known from `set` free symbols have at least: one each
+            // but those of a zero amplitude (see `completions`).
+            let mut rest: Vec<usize> = vec![0; sys.free.len() + 1];
+            for (d, (re, im)) in done.iter().zip(&amps) {
+                if re.abs() + im.abs() > 0.0 {
+                    rest[..*d].iter_mut().for_each(|r| *r += 1);
+                }
+            }
+            let complete = solve(sys, fixed, true, &mut |node| {
+                let (solution, prefix) = match node {
+                    Offered::Solution(raw) => (raw, None),
+                    Offered::Prefix { o: raw, set, count } => (raw, Some((set, count))),
+                };
                 o.clear();
                 o.extend(
                     solution
@@ -658,9 +718,35 @@ fn representatives(
                         .zip(&halves)
                         .map(|(&v, &den)| centred(v, den)),
                 );
-                seen += 1;
                 let bound = best.as_ref().map_or(usize::MAX, |(k, _)| k.0);
-                let Some((parts, neg)) = score(&o, bound) else {
+                if let Some((set, count)) = prefix {
+                    let lo = if *first.get_or_insert(set) == set {
+                        0
+                    } else {
+                        set
+                    };
+                    let (parts, neg) =
+                        score(&o, usize::MAX, Some((&done, lo, set))).unwrap_or((0, 0));
+                    let before = if lo == 0 { (0, 0) } else { known[set - 1] };
+                    known[set] = (before.0 + parts, before.1 + neg);
+                    // A head no solution under the prefix is below (see `completions`): above
+                    // the best's, none of them is taken, and the walk goes on as it would
+                    // past them.
+                    let set_offsets = sys.free[..set].iter().map(|(s, _, _)| o[*s]);
+                    let den = set_offsets.clone().map(|v| *v.denom()).max().unwrap_or(1);
+                    let nonzero = set_offsets.filter(|v| !v.is_zero()).count();
+                    let head = (known[set].0 + rest[set], den, nonzero, known[set].1);
+                    let skip = best
+                        .as_ref()
+                        .is_some_and(|(b, _)| head > (b.0, b.1, b.2, b.3))
+                        && count.is_some_and(|c| c < (MAX_SOLUTIONS - seen) as u128);
+                    if skip {
+                        seen += count.map_or(0, |c| c as usize);
+                    }
+                    return skip;
+                }
+                seen += 1;
+                let Some((parts, neg)) = score(&o, bound, None) else {
                     return seen < MAX_SOLUTIONS;
                 };
                 if let Some(key) = key_below(&o, parts, neg, best.as_ref().map(|(k, _)| k)) {
@@ -694,6 +780,43 @@ fn representatives(
         })
         .collect();
     run(&system(syms, rows, targets, n, &fixed)?, &fixed, false)?.1
+}
+
+/// Each group's completion in the walk of `sys`: 1 + the position in `sys.free` of the last
+/// free symbol its row holds (0 when it holds none), the number of free symbols set from
+/// which its offsets, so its parts, are known.
+///
+/// Why skipping the solutions under a prefix whose head (below) is above the best's shows the
+/// same offsets. A solution's parts and negative parts are sums over the groups of each
+/// group's, which depend on that group's offsets alone (centred per symbol); a group of
+/// amplitude `z != 0` has at least one part whatever its phase (the cosine and sine parts
+/// `a`, `b` of `z e^{-i pi f}` have `|a| + |b| >= |z| >= (|Re z| + |Im z|) / sqrt 2`, so one
+/// of them is above a quarter of the `scale` of `score`, far above its threshold `1e-9
+/// scale`). So every solution under the prefix has at least the known groups' parts plus
+/// one per other group of nonzero amplitude, at least the known groups' negative parts, a
+/// largest denominator at least the set offsets' and at least as many nonzero offsets: its
+/// [`Key`]'s head is at least `(parts, den, nonzero, neg)` so bounded in every entry, so
+/// lexicographically, and above the best's: `score` returns `None` for it or `key_below`
+/// does (the best only falls), leaving the best as it is. The walk skips only when the solutions skipped
+/// stop short of [`MAX_SOLUTIONS`] (so the run stops after the same solution) and charges
+/// them as listed (`congruence::walk`): the best, `complete` and the work charged are those
+/// of the run that scores them all.
+fn completions(rows: &[Vec<(usize, Small)>], sys: &System) -> Vec<usize> {
+    let mut column: Vec<Option<usize>> = Vec::new();
+    for (j, (s, _, _)) in sys.free.iter().enumerate() {
+        if column.len() <= *s {
+            column.resize(*s + 1, None);
+        }
+        column[*s] = Some(j + 1);
+    }
+    rows.iter()
+        .map(|r| {
+            r.iter()
+                .filter_map(|(s, _)| column.get(*s).copied().flatten())
+                .max()
+                .unwrap_or(0)
+        })
+        .collect()
 }
 
 /// `v` moved by a multiple of the period `2 den` into `(-den, den]` (`den` a positive
