@@ -432,6 +432,21 @@ mod tests {
         assert!(all(&a, &[1, 0], 6, &[6, 6]).is_empty());
     }
 
+    /// A random system of `rows` congruences in `n` unknowns modulo `m`: coefficients in
+    /// `[-m, m)`, right-hand sides in `[0, m)`, drawn from `next`.
+    fn random_system(
+        next: &mut impl FnMut(u64) -> u64,
+        m: i64,
+        n: usize,
+        rows: usize,
+    ) -> (Vec<Vec<i64>>, Vec<i64>) {
+        let a = (0..rows)
+            .map(|_| (0..n).map(|_| next(2 * m as u64) as i64 - m).collect())
+            .collect();
+        let b = (0..rows).map(|_| next(m as u64) as i64).collect();
+        (a, b)
+    }
+
     /// `count` against the solutions listed by brute force, on seeded random systems: ranges
     /// that are multiples of the modulus (so of every step: the count is known) and ranges
     /// drawn at random (known only when each step divides its range); both kinds, systems
@@ -441,13 +456,9 @@ mod tests {
         let mut next = crate::testing::xorshift_below(0x9e37_79b9_7f4a_7c15);
         let (mut known, mut unknown, mut empty) = (0, 0, 0);
         for round in 0..400 {
-            let m = [4i64, 6, 8, 9, 12][next(5) as usize];
-            let n = 1 + next(3) as usize;
+            let (m, n) = ([4i64, 6, 8, 9, 12][next(5) as usize], 1 + next(3) as usize);
             let rows = 1 + next(3) as usize;
-            let a: Vec<Vec<i64>> = (0..rows)
-                .map(|_| (0..n).map(|_| next(2 * m as u64) as i64 - m).collect())
-                .collect();
-            let b: Vec<i64> = (0..rows).map(|_| next(m as u64) as i64).collect();
+            let (a, b) = random_system(&mut next, m, n, rows);
             let ranges: Vec<i64> = (0..n)
                 .map(|_| {
                     if round % 2 == 0 {
@@ -485,13 +496,9 @@ mod tests {
         let mut next = crate::testing::xorshift_below(0x005e_ed0f_91e5_u64);
         let (mut skipped_some, mut offered) = (0, 0);
         for _ in 0..300 {
-            let m = [4i64, 6, 8, 9, 12][next(5) as usize];
-            let n = 2 + next(3) as usize;
+            let (m, n) = ([4i64, 6, 8, 9, 12][next(5) as usize], 2 + next(3) as usize);
             let rows = 1 + next(2) as usize;
-            let a: Vec<Vec<i64>> = (0..rows)
-                .map(|_| (0..n).map(|_| next(2 * m as u64) as i64 - m).collect())
-                .collect();
-            let b: Vec<i64> = (0..rows).map(|_| next(m as u64) as i64).collect();
+            let (a, b) = random_system(&mut next, m, n, rows);
             let ranges: Vec<i64> = (0..n).map(|_| m * (1 + next(2) as i64)).collect();
             let want = brute(&a, &b, m, &ranges);
             let mut listed: Vec<Vec<i64>> = Vec::new();
