@@ -334,10 +334,7 @@ impl Walk<'_> {
             if self.visits > MAX_VISITS {
                 return Err(Stop::Visits);
             }
-            if self.visits - self.charged >= CHARGE_EVERY {
-                charge((self.visits - self.charged) as u64).map_err(Stop::Work)?;
-                self.charged = self.visits;
-            }
+            self.charge_due()?;
             self.z[i] = v;
             if !self.skipped(i, visit)? {
                 self.go(i + 1, visit)?;
@@ -365,11 +362,18 @@ impl Walk<'_> {
             return Ok(false);
         };
         self.visits = visits;
+        self.charge_due()?;
+        Ok(true)
+    }
+
+    /// Charges the visits made since the last charge to the work budget once they reach
+    /// [`CHARGE_EVERY`].
+    fn charge_due(&mut self) -> Result<(), Stop> {
         if self.visits - self.charged >= CHARGE_EVERY {
             charge((self.visits - self.charged) as u64).map_err(Stop::Work)?;
             self.charged = self.visits;
         }
-        Ok(true)
+        Ok(())
     }
 }
 

@@ -366,11 +366,22 @@ fn factor_hash(f: usize, k: u32) -> u64 {
 /// most of the hash of a group). Equal quotients hash alike; the memo compares the groups
 /// a hash finds ([`Search::same_monomials`]), so a collision costs only that comparison.
 fn linear_hash(m: &Mon, counts: &Counts) -> u64 {
-    let syms = m
-        .syms
-        .iter()
-        .map(|&(s, e)| factor_hash(counts.sym_base + s as usize, e));
-    let atoms = m.atoms.iter().map(|&a| factor_hash(a as usize, 1));
+    factors_hash(
+        m.syms.iter().copied(),
+        m.atoms.iter().copied(),
+        counts.sym_base,
+    )
+}
+
+/// The sum of [`factor_hash`] over symbols `syms` (indexed from `sym_base`) and `atoms`:
+/// [`linear_hash`] of the monomial they make.
+fn factors_hash(
+    syms: impl Iterator<Item = (u32, u32)>,
+    atoms: impl Iterator<Item = Atom>,
+    sym_base: usize,
+) -> u64 {
+    let syms = syms.map(|(s, e)| factor_hash(sym_base + s as usize, e));
+    let atoms = atoms.map(|a| factor_hash(a as usize, 1));
     syms.chain(atoms).fold(0u64, u64::wrapping_add)
 }
 
@@ -689,10 +700,11 @@ impl Search<'_> {
             debug_assert_eq!(quotient, {
                 let m = &self.root[*i as usize];
                 let base = self.counts.sym_base;
-                quotient_syms(m, &self.div, base)
-                    .map(|(s, e)| factor_hash(base + s as usize, e))
-                    .chain(quotient_atoms(m, &self.div).map(|a| factor_hash(a as usize, 1)))
-                    .fold(0u64, u64::wrapping_add)
+                factors_hash(
+                    quotient_syms(m, &self.div, base),
+                    quotient_atoms(m, &self.div),
+                    base,
+                )
             });
             h.write_u64(quotient);
         }
@@ -893,10 +905,16 @@ fn mul_flat(a: E, b: E) -> E {
     }
     // Numbers first, then radicals, symbols, sums and trigonometric factors.
     flat.sort_by_key(rank);
-    let e = match flat.len() {
+    product_node(flat, neg)
+}
+
+/// The product of `parts` (in [`rank`] order, none a product, a negation or the number one)
+/// as one node: one, the single part, or their product; negated when `neg`.
+fn product_node(mut parts: SmallVec<[E; 8]>, neg: bool) -> E {
+    let e = match parts.len() {
         0 => E::Num(Q::ONE),
-        1 => flat.pop().unwrap_or_else(E::zero),
-        _ => E::product_of(&flat),
+        1 => parts.pop().unwrap_or_else(E::zero),
+        _ => E::product_of(&parts),
     };
     if neg {
         E::Neg(Rc::new(e))
@@ -947,16 +965,7 @@ fn mon_parts_expr(
     // them (they were two thirds of a monomial's cost: 8 M instructions of the Jaco-style
     // arm's report).
     debug_assert!(parts.windows(2).all(|w| rank(&w[0]) <= rank(&w[1])));
-    let e = match parts.len() {
-        0 => E::Num(Q::ONE),
-        1 => parts.pop().unwrap_or_else(E::zero),
-        _ => E::product_of(&parts),
-    };
-    if neg {
-        E::Neg(Rc::new(e))
-    } else {
-        e
-    }
+    product_node(parts, neg)
 }
 
 #[cfg(test)]
