@@ -563,27 +563,14 @@ fn sign_text(e: &Expr, prec: u8) -> (usize, usize) {
             v.iter()
                 .enumerate()
                 .fold((brackets(prec > 1), 0), |(len, minus), (i, t)| {
-                    let (l, m, sep) = match t {
-                        Expr::Neg(x) => {
-                            let (l, m) =
-                                sign_text(x, if matches!(**x, Expr::Num(_)) { 1 } else { 2 });
-                            (l, m + 1, if i == 0 { 1 } else { 3 })
-                        }
-                        t => {
-                            let (l, m) = sign_text(t, 1);
-                            (l, m, if i == 0 { 0 } else { 3 })
-                        }
-                    };
-                    (len + l + sep, minus + m)
+                    let (l, m) = term_text(t, false, i == 0);
+                    (len + l, minus + m)
                 })
         }
-        Expr::Mul(v) => v.iter().fold(
-            (brackets(prec > 2) + v.len().saturating_sub(1), 0),
-            |(len, minus), f| {
-                let (l, m) = sign_text(f, 2);
-                (len + l, minus + m)
-            },
-        ),
+        Expr::Mul(v) => {
+            let (l, m) = factors_text(v);
+            (brackets(prec > 2) + l, m)
+        }
         Expr::Neg(x) => {
             let (l, m) = sign_text(x, 2);
             (brackets(prec > 1) + 1 + l, m + 1)
@@ -591,6 +578,38 @@ fn sign_text(e: &Expr, prec: u8) -> (usize, usize) {
         Expr::Pow(x, _) => sign_text(x, 3),
         _ => (0, 0),
     }
+}
+
+/// [`sign_text`] of term `t` of a sum, or of `-t` (without a double negation, as [`negated`]
+/// makes it) when `neg`, with the separator before it (none before the first term, ` + ` or
+/// ` - ` before a later one): what the sum's text holds for it. Read off `t` without building
+/// `-t` ([`minus`] compares a term turned both ways).
+fn term_text(t: &Expr, neg: bool, first: bool) -> (usize, usize) {
+    // The term `-x`: its minus sign, or ` - `, then `x` as a factor (a number as a term).
+    let negative = |x: &Expr| {
+        let (l, m) = sign_text(x, if matches!(x, Expr::Num(_)) { 1 } else { 2 });
+        (l + if first { 1 } else { 3 }, m + 1)
+    };
+    match (t, neg) {
+        (Expr::Neg(x), true) => term_text(x, false, first),
+        (Expr::Neg(x), false) => negative(x),
+        (t, true) => negative(t),
+        (t, false) => {
+            let (l, m) = sign_text(t, 1);
+            (l + if first { 0 } else { 3 }, m)
+        }
+    }
+}
+
+/// [`sign_text`] of the product of `v` without its brackets: its separators and each
+/// factor's text as a factor. A sum over the factors, so that [`minus`] finds the text of the
+/// product with one factor replaced from the whole's.
+fn factors_text(v: &[Expr]) -> (usize, usize) {
+    v.iter()
+        .fold((v.len().saturating_sub(1), 0), |(len, minus), f| {
+            let (l, m) = sign_text(f, 2);
+            (len + l, minus + m)
+        })
 }
 
 /// `-e` with its sign placed where it prints shortest ([`sign_text`]), then with the fewest
@@ -607,15 +626,17 @@ fn minus(e: Expr) -> Expr {
             let mut turned: Vec<Expr> = terms
                 .iter()
                 .map(|t| {
-                    let toggled = negated(t.clone());
                     let inside = minus(t.clone());
-                    // As a later term of the sum, where its own sign costs nothing.
-                    let term_key =
-                        |t: &Expr| sign_text(&Expr::Add(vec![Expr::zero(), t.clone()]), 1);
-                    if term_key(&inside) < term_key(&toggled) {
+                    // As a later term of the sum, where its own sign costs nothing; the term
+                    // negated is built only when taken.
+                    debug_assert_eq!(
+                        term_text(t, true, false),
+                        term_text(&negated(t.clone()), false, false)
+                    );
+                    if term_text(&inside, false, false) < term_text(t, true, false) {
                         inside
                     } else {
-                        toggled
+                        negated(t.clone())
                     }
                 })
                 .collect();
@@ -635,8 +656,11 @@ fn minus(e: Expr) -> Expr {
                 outside
             }
         }
-        Expr::Mul(v) => {
-            let mut best = Expr::Neg(Box::new(Expr::Mul(v.clone())));
+        Expr::Mul(mut v) => {
+            // The texts compared from the factors' ([`factors_text`]): the sign in front,
+            // `-(...)`, or one sum factor turned, the product built once, for the one taken.
+            let (len, neg) = factors_text(&v);
+            let mut best: (Option<(usize, Expr)>, (usize, usize)) = (None, (1 + len, neg + 1));
             for (i, f) in v.iter().enumerate() {
                 if !matches!(f, Expr::Add(_)) {
                     continue;
@@ -645,14 +669,22 @@ fn minus(e: Expr) -> Expr {
                 if matches!(turned, Expr::Neg(_)) {
                     continue;
                 }
-                let mut w = v.clone();
-                w[i] = turned;
-                let candidate = Expr::Mul(w);
-                if key(&candidate) < key(&best) {
-                    best = candidate;
+                let ((fl, fm), (tl, tm)) = (sign_text(f, 2), sign_text(&turned, 2));
+                let candidate = (len - fl + tl, neg - fm + tm);
+                if candidate < best.1 {
+                    best = (Some((i, turned)), candidate);
                 }
             }
-            best
+            let (turned, text) = best;
+            let e = match turned {
+                Some((i, f)) => {
+                    v[i] = f;
+                    Expr::Mul(v)
+                }
+                None => Expr::Neg(Box::new(Expr::Mul(v))),
+            };
+            debug_assert_eq!(key(&e), text, "the product's text from its factors'");
+            e
         }
         e => Expr::Neg(Box::new(e)),
     }

@@ -262,7 +262,7 @@ mod tests {
     use super::*;
     use crate::{closed_form, Scalar, Sym};
     use num_rational::BigRational;
-    use num_traits::Zero;
+    use num_traits::{Signed, Zero};
 
     #[test]
     fn the_length_bound_is_never_below_the_text() {
@@ -300,6 +300,106 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The next of xorshift state `g`, below `n`.
+    fn below(g: &mut u64, n: u64) -> u64 {
+        *g ^= *g << 13;
+        *g ^= *g >> 7;
+        *g ^= *g << 17;
+        *g % n
+    }
+
+    /// A random display expression as the closed-form search writes one (numbers positive,
+    /// a product's number first, negations only on the terms of sums), drawn from `g`, of
+    /// nesting at most `depth`.
+    fn random_form(g: &mut u64, depth: u32) -> Expr {
+        let sym = |name: &str| Expr::Sym(Sym::new(name));
+        let trig = |f: Trig, name: &str| Expr::Trig {
+            f,
+            angle: Angle::of_symbol(Sym::new(name)),
+        };
+        if depth == 0 || below(g, 4) == 0 {
+            return match below(g, 5) {
+                0 => sym("a"),
+                1 => sym("b"),
+                2 => trig(Trig::Cos, "t"),
+                3 => trig(Trig::Sin, "u"),
+                _ => Expr::Pow(Box::new(sym("a")), 2),
+            };
+        }
+        let n = 2 + below(g, 2);
+        if below(g, 2) == 0 {
+            let mut terms = Vec::new();
+            for _ in 0..n {
+                let t = match random_form(g, depth - 1) {
+                    Expr::Add(v) => Expr::Mul(vec![sym("b"), Expr::Add(v)]),
+                    t => t,
+                };
+                terms.push(if below(g, 2) == 0 {
+                    Expr::Neg(Box::new(t))
+                } else {
+                    t
+                });
+            }
+            Expr::Add(terms)
+        } else {
+            let mut factors = Vec::new();
+            if below(g, 3) == 0 {
+                let d = 1 + below(g, 4) as i64;
+                factors.push(Expr::Num(BigRational::new(1.into(), d.into())));
+            }
+            for _ in 0..n {
+                match random_form(g, depth - 1) {
+                    Expr::Mul(v) => {
+                        factors.extend(v.into_iter().filter(|f| !matches!(f, Expr::Num(_))))
+                    }
+                    f => factors.push(f),
+                }
+            }
+            Expr::Mul(factors)
+        }
+    }
+
+    /// On many random forms (sums of products of sums, three levels), a form times -1, 1/2 or
+    /// -3 is that multiple of its value exactly, holds no `-(-x)`, and a negative multiple prints
+    /// no longer than the sign left in front of the positive one: the sign placement `Expr::scaled` finds from the texts of the terms
+    /// and factors (checked against the texts of the products it builds in debug builds).
+    #[test]
+    fn random_forms_scaled_are_their_multiples_and_no_longer() {
+        let q = |n: i64, d: i64| BigRational::new(n.into(), d.into());
+        let po = PlainOptions {
+            shorthand: false,
+            decimals: false,
+        };
+        let mut g = 0x9e37_79b9_7f4a_7c15_u64;
+        let (mut shorter, mut cases) = (0, 0);
+        for _ in 0..400 {
+            let e = match random_form(&mut g, 3) {
+                Expr::Neg(x) => *x,
+                e => e,
+            };
+            let x = e.to_scalar();
+            for c in [q(-1, 1), q(1, 2), q(-3, 1)] {
+                let s = e.clone().scaled(&c);
+                assert_eq!(
+                    s.to_scalar(),
+                    x.clone() * Scalar::rational(c.clone()),
+                    "{e:?}"
+                );
+                assert!(!badly_signed(&s), "{s:?}");
+                if c.is_negative() {
+                    // Against the sign left in front of the positive multiple.
+                    let front = Expr::Neg(Box::new(e.clone().scaled(&-c.clone())));
+                    let (new, old) = (plain(&s, &po), plain(&front, &po));
+                    assert!(new.len() <= old.len(), "{new} vs {old}");
+                    shorter += usize::from(new.len() < old.len());
+                    cases += 1;
+                }
+            }
+        }
+        assert_eq!(cases, 800);
+        assert!(shorter > 100, "{shorter}");
     }
 
     /// Whether `e` holds a `-(-x)`, a negation as a product's factor or a negative number.
