@@ -97,14 +97,14 @@
 //! pi/12 tried exactly, the congruences `f . o = d_f` solved by a bounded search), its closed form
 //! found on the offset-free path and every angle shifted back (`cos(q2 + 5*pi/9)`, `cos(x - pi/7)
 //! cos(y + pi/7)`, `sin(x - 2*pi/7)^2`; the candidates of `alt.rs` for the shifted scalar compared
-//! again shifted back, since a shift changes what an angle costs: `cos(x) cos(x + 2*pi/7)`; each
-//! sinusoid then shown as the cheapest of its four equal forms, `Expr::cheapest_offsets`:
-//! `sin(a + pi/18)` for `cos(a - 4*pi/9)`), kept
+//! again shifted back, since a shift changes what an angle costs: `cos(x) cos(x + 2*pi/7)`), kept
 //! unless the form as given is strictly shorter (found first, so that the search as given checks
 //! its candidates of `alt.rs` only below it: `prepared_shifted`, the same choice; the search as
-//! given not made for a scalar of 32 terms or more whose shifted form has fewer than 2 operations a
-//! term, a measured rule: `as_given_may_win`) and checked like every other; the offset shown among
-//! equal classes is the one with the fewest cosine and sine parts in `y`, then the smallest
+//! given not made for a scalar of 32 terms or more whose shifted form, each sinusoid read as the
+//! cheapest of its four equal forms (`Expr::cheapest_offsets`: `sin(a + pi/18)` for `cos(a -
+//! 4*pi/9)`), has fewer than 2 operations a term, a measured rule: `as_given_may_win`) and checked
+//! like every other; the offset shown among equal classes is the one with the fewest cosine and
+//! sine parts in `y`, then the smallest
 //! denominator, the fewest nonzero offsets, the fewest negative parts (`cos(t + 5*pi/9)`, not
 //! `-cos(t - 4*pi/9)`), the smallest `|o|`, the positive one; derivatives of a prepared scalar are
 //! shifted alike; the congruences are scaled to integer residues modulo one common modulus and
@@ -408,24 +408,24 @@ fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     (Ok(e.symbols_leading()), Prepared(yprep.0, Some((shift, y))))
 }
 
-/// The fewest terms a scalar with offsets must have for [`as_given_may_win`] to skip its
-/// search as given. A measured threshold (with [`AS_GIVEN_OPS_PER_TERM`]), not a proven one:
-/// the search as given beats the shifted form on small scalars by another grouping of its
-/// phases (`cos(a + 5*pi/18)` beside `cos(a - 2*pi/9)`, 41 operations against 44), so no
-/// argument from the shape alone rules it out. It no longer wins by a printed offset alone
-/// (`sin(q2 - q3 + pi/18)` against `cos(q2 - q3 - 4*pi/9)`): the shifted form is shown at
-/// its cheapest offsets first (`Expr::cheapest_offsets`): the wins on the corpus below fell
-/// from 6,161 to 1,457. Measured on the `fk --jacobian` reports of every robot in the
-/// repository and of 120 random DH chains of 3 to 6 joints (offsets `k pi/n` on two joints
-/// in five, n in 5, 7, 9, 10, 18; twists pi/3, pi/4, pi/6, pi/2, 0, pi) and on
-/// `scripts/offsets_same.py`'s expressions (seeds 1, 2, 3, 7, 2211; 1,500), split in two
-/// halves (even and odd chains and expressions): 14,402 searches as given made, 1,457 won.
-/// The largest winner against a shifted form of fewer than [`AS_GIVEN_OPS_PER_TERM`]
-/// operations a term had 30 terms in the half the threshold was read off (a 3-joint chain's
-/// entry, 0.8 operations a term) and 27 in the other; none of 32 terms or more under the
-/// ratio won (214 searches, now skipped). Before the cheapest offsets, a 44-term scalar won
-/// under the ratio, hence the earlier threshold of 64. The Jaco-style arm's 36- and 42-term
-/// entries (1.25 and 1.07 operations a term) are above it; its 29-term one (1.59) is not.
+/// The fewest terms a scalar with offsets must have for [`as_given_may_win`] to skip its search as
+/// given. A measured threshold (with [`AS_GIVEN_OPS_PER_TERM`]), not a proven one: the search as
+/// given beats the shifted form on small scalars by another grouping of its phases (`cos(a +
+/// 5*pi/18)` beside `cos(a - 2*pi/9)`, 41 operations against 44), so no argument from the shape
+/// alone rules it out. Its wins by a printed offset alone (`sin(q2 - q3 + pi/18)` against `cos(q2 -
+/// q3 - 4*pi/9)`) are left out by reading the shifted form at its cheapest offsets
+/// (`Expr::cheapest_offsets`; the form shown is not changed): against that form, the wins on the
+/// corpus below fall from 6,161 to 1,457. Measured on the `fk --jacobian` reports of every robot in
+/// the repository and of 120 random DH chains of 3 to 6 joints (offsets `k pi/n` on two joints in
+/// five, n in 5, 7, 9, 10, 18; twists pi/3, pi/4, pi/6, pi/2, 0, pi) and on
+/// `scripts/offsets_same.py`'s expressions (seeds 1, 2, 3, 7, 2211; 1,500), split in two halves
+/// (even and odd chains and expressions): 14,402 searches as given made, 1,457 won. The largest
+/// winner against a shifted form of fewer than [`AS_GIVEN_OPS_PER_TERM`] operations a term had 30
+/// terms in the half the threshold was read off (a 3-joint chain's entry, 0.8 operations a term)
+/// and 27 in the other; none of 32 terms or more under the ratio won (214 searches, now skipped).
+/// Before the cheapest offsets, a 44-term scalar won under the ratio, hence the earlier threshold
+/// of 64. The Jaco-style arm's 36- and 42-term entries (1.25 and 1.07 operations a term) are above
+/// it; its 29-term one (1.59) is not.
 const AS_GIVEN_MIN_TERMS: usize = 32;
 
 /// The most operations a term (of the scalar as given) the shifted form may have for
