@@ -16,7 +16,7 @@
 //! arm's `q2 + 5*pi/9` shows as `q2 - q3 + 5*pi/9` and `q2/2 + q3/2 + 5*pi/18` alike.
 
 use super::{Angle, Expr};
-use crate::scalar::{Small, Sym, Trig};
+use crate::scalar::{Small, Sym};
 use num_integer::Integer;
 use num_traits::{One, Signed, Zero};
 use std::collections::BTreeMap;
@@ -183,17 +183,7 @@ impl CommonOffsets {
             }
             changed = true;
             // cos(a + q pi/2) and sin(a + q pi/2) in cos(a) and sin(a).
-            let q = quarters.to_integer().rem_euclid(4);
-            let (g, neg) = match (f, q) {
-                (Trig::Cos, 0) => (Trig::Cos, false),
-                (Trig::Cos, 1) => (Trig::Sin, true),
-                (Trig::Cos, 2) => (Trig::Cos, true),
-                (Trig::Cos, _) => (Trig::Sin, false),
-                (Trig::Sin, 0) => (Trig::Sin, false),
-                (Trig::Sin, 1) => (Trig::Cos, false),
-                (Trig::Sin, 2) => (Trig::Sin, true),
-                (Trig::Sin, _) => (Trig::Cos, true),
-            };
+            let (g, neg) = super::expr::quarter_turned(f, quarters.to_integer());
             Some((g, b, neg))
         });
         if changed && new.cost() <= e.cost() {

@@ -496,6 +496,43 @@ impl Expr {
         }
     }
 
+    /// The expression with each call `f(a + phi pi)` (`a` with symbols, `phi` nonzero) shown
+    /// as the one of its four equal forms, `f(a + phi pi)`, `g(a + (phi - q/2) pi)` with a
+    /// sign (`q` = 1, 2, 3 quarter turns, [`quarter_turned`]; the offset reduced into
+    /// `(-1, 1]`), whose call `cost` is strictly lowest (the first such on ties, a form without
+    /// a sign before one with; the call as it is when none is lower): `sin(a + pi/18)`
+    /// for `cos(a - 4*pi/9)`. The signs are moved as [`Expr::map_trig_signed`] moves them.
+    /// Each call keeps its value, so the expression does.
+    pub(crate) fn cheapest_offsets(self, cost: &dyn Fn(&Expr) -> usize) -> Expr {
+        self.map_trig_signed(&mut |f, angle| {
+            if angle.pi.is_zero() || angle.terms.is_empty() {
+                return None;
+            }
+            let call = |g: Trig, b: &Angle| {
+                cost(&Expr::Trig {
+                    f: g,
+                    angle: b.clone(),
+                })
+            };
+            let mut best = (call(f, angle), None);
+            for q in 1..4 {
+                let mut b = angle.clone();
+                b.pi -= Small::new(q, 2);
+                b.reduce_offset();
+                let (g, neg) = quarter_turned(f, q);
+                let c = call(g, &b);
+                let better = match &best {
+                    (d, None) => c < *d,
+                    (d, Some((_, _, was_neg))) => c < *d || (c == *d && *was_neg && !neg),
+                };
+                if better {
+                    best = (c, Some((g, b, neg)));
+                }
+            }
+            best.1
+        })
+    }
+
     /// The expression with each call `f(angle)` for which `map` returns `Some((g, b, neg))`
     /// replaced by `g(b)`, negated when `neg`: the signs met are moved out of products and
     /// powers (as [`Expr::symbols_leading`] moves them), kept on the terms of sums, and a
@@ -690,6 +727,21 @@ fn minus(e: Expr) -> Expr {
     }
 }
 
+/// `f(b + q pi/2)` as `g(b)`, negated when the flag says so: `(g, negated)` for `q` quarter
+/// turns (modulo 4; `cos(b + pi/2) = -sin(b)`, `sin(b - pi/2) = -cos(b)`).
+pub(crate) fn quarter_turned(f: Trig, q: i64) -> (Trig, bool) {
+    match (f, q.rem_euclid(4)) {
+        (Trig::Cos, 0) => (Trig::Cos, false),
+        (Trig::Cos, 1) => (Trig::Sin, true),
+        (Trig::Cos, 2) => (Trig::Cos, true),
+        (Trig::Cos, _) => (Trig::Sin, false),
+        (Trig::Sin, 0) => (Trig::Sin, false),
+        (Trig::Sin, 1) => (Trig::Cos, false),
+        (Trig::Sin, 2) => (Trig::Sin, true),
+        (Trig::Sin, _) => (Trig::Cos, true),
+    }
+}
+
 /// `-e`, without a double negation.
 fn negated(e: Expr) -> Expr {
     match e {
@@ -776,6 +828,108 @@ mod tests {
             }
         }
         Angle::new(terms, g.pick(&halves), g.pick(&halves))
+    }
+
+    /// The calls of `e` (with the sign of each left out).
+    fn calls(e: &Expr, out: &mut Vec<(Trig, Angle)>) {
+        match e {
+            Expr::Trig { f, angle } => out.push((*f, angle.clone())),
+            Expr::Add(v) | Expr::Mul(v) => v.iter().for_each(|x| calls(x, out)),
+            Expr::Neg(x) | Expr::Pow(x, _) => calls(x, out),
+            _ => {}
+        }
+    }
+
+    /// [`Expr::cheapest_offsets`] keeps each expression's value exactly and shows every call
+    /// at an offset no costlier than any equal form of it found independently: on seeded random
+    /// sums of signed products of a number, maybe a symbol, and one or two cosines or sines of
+    /// symbolic angles plus `k pi/n` (n in 5, 7, 9, 10, 18), each call of the result is
+    /// compared, in f64 at a point, with the eight calls `cos`, `sin` at its offset plus
+    /// `j pi/2`: every one equal to it up to sign costs no less. The issue's case is rewritten
+    /// as expected, and most expressions change.
+    #[test]
+    fn calls_at_their_cheapest_offsets_keep_the_value() {
+        let cost = |e: &Expr| super::super::alt::full_cost(e).0;
+        let q23 = |pi: Small| {
+            let t = vec![
+                (Sym::new("q2"), Small::one()),
+                (Sym::new("q3"), -Small::one()),
+            ];
+            Angle::new(t, Small::zero(), pi)
+        };
+        let quarter = |f: Trig, pi: Small| {
+            Expr::Mul(vec![
+                Expr::Num(BigRational::new(1.into(), 4.into())),
+                Expr::Trig { f, angle: q23(pi) },
+            ])
+        };
+        let issue = quarter(Trig::Cos, Small::new(-4, 9)).cheapest_offsets(&cost);
+        assert_eq!(issue, quarter(Trig::Sin, Small::new(1, 18)));
+        let mut g = Gen(0x0ff5_e7c4_ea9e_0001);
+        let point = [("a", 0.37), ("b", -1.21), ("theta1", 2.05), ("l", 1.3)];
+        let (mut changed, mut checked) = (0, 0);
+        for _ in 0..400 {
+            let n = g.pick(&[5i64, 7, 9, 10, 18]);
+            let ks: Vec<i64> = (1 - 2 * n..2 * n).collect();
+            let mut terms = Vec::new();
+            for _ in 0..g.pick(&[1, 2, 3, 4]) {
+                let mut factors = vec![Expr::Num(BigRational::from_integer(
+                    g.pick(&[1, 2, 3]).into(),
+                ))];
+                if g.pick(&[false, true]) {
+                    factors.push(Expr::Sym(Sym::new("l")));
+                }
+                for _ in 0..g.pick(&[1, 2]) {
+                    let mut angle = random_angle(&mut g);
+                    if angle.terms.is_empty() {
+                        angle.terms.push((Sym::new("a"), Small::one()));
+                    }
+                    angle.constant = Small::zero();
+                    angle.pi = Small::new(g.pick(&ks), n);
+                    angle.reduce_offset();
+                    let f = g.pick(&[Trig::Cos, Trig::Sin]);
+                    factors.push(Expr::Trig { f, angle });
+                }
+                let term = Expr::Mul(factors);
+                terms.push(if g.pick(&[false, true]) {
+                    Expr::Neg(Box::new(term))
+                } else {
+                    term
+                });
+            }
+            let e = Expr::Add(terms);
+            let c = e.clone().cheapest_offsets(&cost);
+            assert_eq!(c.to_scalar(), e.to_scalar(), "{e:?}");
+            changed += usize::from(c != e);
+            let mut found = Vec::new();
+            calls(&c, &mut found);
+            for (f, angle) in found {
+                let shown = Expr::Trig {
+                    f,
+                    angle: angle.clone(),
+                };
+                let v = shown.value_at(&point).expect("a value");
+                for j in 0..4 {
+                    for h in [Trig::Cos, Trig::Sin] {
+                        let mut b = angle.clone();
+                        b.pi += Small::new(j, 2);
+                        b.reduce_offset();
+                        let other = Expr::Trig { f: h, angle: b };
+                        let w = other.value_at(&point).expect("a value");
+                        if (w.abs() - v.abs()).abs() < 1e-12
+                            && (w - v).abs().min((w + v).abs()) < 1e-12
+                        {
+                            checked += 1;
+                            assert!(cost(&shown) <= cost(&other), "{shown:?} vs {other:?}");
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            changed > 100 && checked > 2000,
+            "{changed} changed, {checked} checked"
+        );
     }
 
     #[test]

@@ -100,9 +100,11 @@
 //! again shifted back, since a shift changes what an angle costs: `cos(x) cos(x + 2*pi/7)`), kept
 //! unless the form as given is strictly shorter (found first, so that the search as given checks
 //! its candidates of `alt.rs` only below it: `prepared_shifted`, the same choice; the search as
-//! given not made for a scalar of 64 terms or more whose shifted form has fewer than 2 operations a
-//! term, a measured rule: `as_given_may_win`) and checked like every other; the offset shown among
-//! equal classes is the one with the fewest cosine and sine parts in `y`, then the smallest
+//! given not made for a scalar of 32 terms or more whose shifted form, each sinusoid read as the
+//! cheapest of its four equal forms (`Expr::cheapest_offsets`: `sin(a + pi/18)` for `cos(a -
+//! 4*pi/9)`), has fewer than 2 operations a term, a measured rule: `as_given_may_win`) and checked
+//! like every other; the offset shown among equal classes is the one with the fewest cosine and
+//! sine parts in `y`, then the smallest
 //! denominator, the fewest nonzero offsets, the fewest negative parts (`cos(t + 5*pi/9)`, not
 //! `-cos(t - 4*pi/9)`), the smallest `|o|`, the positive one; derivatives of a prepared scalar are
 //! shifted alike; the congruences are scaled to integer residues modulo one common modulus and
@@ -385,7 +387,11 @@ fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
             break;
         }
     }
-    if as_given_may_win(x, &e) {
+    // The rule is read against `e` at its cheapest offsets (`sin(a + pi/18)` for `cos(a -
+    // 4*pi/9)`, the value unchanged), which the form as given does not beat by a printed offset
+    // alone; `e` is shown as found (a report's common offsets are chosen from its angles).
+    let cheapest = e.clone().cheapest_offsets(&|t| alt::full_cost(t).0);
+    if as_given_may_win(x, &cheapest) {
         let (plain, prepared) = match prepared_unshifted(x, cap_of(x, &e)) {
             // Out of the budget (or another limit) after the shifted search: as when first.
             (Err(_), _) => as_first(&before, x),
@@ -402,37 +408,39 @@ fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
     (Ok(e.symbols_leading()), Prepared(yprep.0, Some((shift, y))))
 }
 
-/// The fewest terms a scalar with offsets must have for [`as_given_may_win`] to skip its
-/// search as given. A measured threshold (with [`AS_GIVEN_OPS_PER_TERM`]), not a proven one:
-/// the search as given beats the shifted form often on small scalars, by a printed offset
-/// (`sin(q2 - q3 + pi/18)` against `cos(q2 - q3 - 4*pi/9)`, one character) or by another
-/// grouping of its two phases of one angle (`cos(a + 5*pi/18)` beside `cos(a - 2*pi/9)`, 41
-/// operations against 44), so no argument from the shape alone rules it out. Measured on
-/// the `fk --jacobian` reports of every robot in the repository and of 120 random DH chains
-/// of 3 to 6 joints (offsets `k pi/n`, n in 5, 7, 9, 10, 18; twists pi/3, pi/4, pi/6, pi/2;
-/// the thresholds read off 60 of them, checked on the other 60) and on
-/// `scripts/offsets_same.py` (seeds 1 to 5, 7, 2211; 2,100 expressions): of 20,362 shifted
-/// searches, the largest scalar whose form as given won against a shifted form of fewer
-/// than [`AS_GIVEN_OPS_PER_TERM`] operations a term had 46 terms; none of the 794 searches
-/// of 47 terms or more under that ratio was won by the form as given (635 of 64 or more).
-/// The Jaco-style arm's 65-, 84- and 96-term entries (1.06, 0.82 and 1.49 operations a
-/// term) are above it.
-const AS_GIVEN_MIN_TERMS: usize = 64;
+/// The fewest terms a scalar with offsets must have for [`as_given_may_win`] to skip its search as
+/// given. A measured threshold (with [`AS_GIVEN_OPS_PER_TERM`]), not a proven one: the search as
+/// given beats the shifted form on small scalars by another grouping of its phases (`cos(a +
+/// 5*pi/18)` beside `cos(a - 2*pi/9)`, 41 operations against 44), so no argument from the shape
+/// alone rules it out. Its wins by a printed offset alone (`sin(q2 - q3 + pi/18)` against `cos(q2 -
+/// q3 - 4*pi/9)`) are left out by reading the shifted form at its cheapest offsets
+/// (`Expr::cheapest_offsets`; the form shown is not changed): against that form, the wins on the
+/// corpus below fall from 6,161 to 1,457. Measured on the `fk --jacobian` reports of every robot in
+/// the repository and of 120 random DH chains of 3 to 6 joints (offsets `k pi/n` on two joints in
+/// five, n in 5, 7, 9, 10, 18; twists pi/3, pi/4, pi/6, pi/2, 0, pi) and on
+/// `scripts/offsets_same.py`'s expressions (seeds 1, 2, 3, 7, 2211; 1,500), split in two halves
+/// (even and odd chains and expressions): 14,402 searches as given made, 1,457 won. The largest
+/// winner against a shifted form of fewer than [`AS_GIVEN_OPS_PER_TERM`] operations a term had 30
+/// terms in the half the threshold was read off (a 3-joint chain's entry, 0.8 operations a term)
+/// and 27 in the other; none of 32 terms or more under the ratio won (214 searches, now skipped).
+/// Before the cheapest offsets, a 44-term scalar won under the ratio, hence the earlier threshold
+/// of 64. The Jaco-style arm's 36- and 42-term entries (1.25 and 1.07 operations a term) are above
+/// it; its 29-term one (1.59) is not.
+const AS_GIVEN_MIN_TERMS: usize = 32;
 
 /// The most operations a term (of the scalar as given) the shifted form may have for
 /// [`as_given_may_win`] to skip the search as given (with [`AS_GIVEN_MIN_TERMS`]; measured
-/// on the same corpora): every form as given that won on a scalar of 47 terms or more did so
-/// against a shifted form of 2.80 operations a term or more (a random 3-joint chain's 96-term
-/// entry); under 2, the forms as given of 64 terms or more are 1.09 to 10 times as long as
-/// the shifted ones.
+/// on the same corpora): every form as given that won on a scalar of 32 terms or more did so
+/// against a shifted form of 2.08 operations a term or more (2.19 and 2.08 in the two
+/// halves).
 const AS_GIVEN_OPS_PER_TERM: usize = 2;
 
 /// Whether the search of `x` as given may be shorter than its shifted form `e`: `false`
 /// when `x` is large ([`AS_GIVEN_MIN_TERMS`]) and `e` short for its size
 /// ([`AS_GIVEN_OPS_PER_TERM`]), a measured rule: there the shifted search has regrouped
 /// what the search as given sees as twice as many phases (the Jaco-style arm's 96-term
-/// entries, 48 terms once shifted, 143 operations; 835 as given), and that search (half of
-/// the arm's `fk --jacobian`) is skipped.
+/// entries, 48 terms once shifted, 143 operations; 835 as given; its 42-term ones, 45
+/// operations; 124 as given), and that search is skipped.
 fn as_given_may_win(x: &Scalar, e: &Expr) -> bool {
     let terms = x.len();
     let may = terms < AS_GIVEN_MIN_TERMS || alt::choice_key(e).0 >= AS_GIVEN_OPS_PER_TERM * terms;
