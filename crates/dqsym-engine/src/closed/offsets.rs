@@ -883,21 +883,37 @@ const MAX_SOLUTIONS: usize = 4096;
 impl Shift {
     /// `x` in the shifted symbols: each mode `trig(f.x + p)` becomes `trig(f.y + p - f.o)`;
     /// `None` when a symbolic mode keeps an offset (or `x` is an error value).
+    ///
+    /// A group (one monomial, one frequency vector `f`) moves as a whole, every term by the
+    /// same `f.o`. When every moved term lands on a multiple of pi/12 (the shifts found for
+    /// offsets of 2s and 3s: see `phase_class_of_offsets`), it is written at once without an
+    /// offset (`Term::push_at_twelfths`), and the groups not moved are the canonical groups
+    /// of `x` as they were: every group is then canonical once like terms are merged, and the
+    /// terms are only sorted and merged (`Scalar::from_terms_settled`, checked against the
+    /// rewrite from scratch in debug builds). Otherwise the moved terms are canonicalized.
     pub(crate) fn apply(&self, x: &Scalar) -> Option<Scalar> {
         let terms = x.terms().ok()?;
-        let y = Scalar::from_terms(
-            terms
-                .iter()
-                .map(|t| {
-                    let d = self.phase(&t.mode.freq);
-                    let mut t = t.clone();
-                    if !d.is_zero() {
-                        t.mode.pi = reduce2(t.mode.pi - d);
-                    }
-                    t
-                })
-                .collect(),
-        );
+        let mut moved: Vec<Term> = Vec::with_capacity(terms.len() + terms.len() / 2);
+        let mut settled = true;
+        for t in terms {
+            let d = self.phase(&t.mode.freq);
+            if d.is_zero() {
+                moved.push(t.clone());
+                continue;
+            }
+            let pi = reduce2(t.mode.pi - d);
+            if !t.push_at_twelfths(pi, &mut moved) {
+                settled = false;
+                let mut t = t.clone();
+                t.mode.pi = pi;
+                moved.push(t);
+            }
+        }
+        let y = if settled {
+            Scalar::from_terms_settled(moved)
+        } else {
+            Scalar::from_terms(moved)
+        };
         no_offset(&y).then_some(y)
     }
 
@@ -1161,6 +1177,80 @@ mod tests {
         );
         assert!(
             graded_level(12) && graded_level(36 * 64) && !graded_level(60) && !graded_level(84)
+        );
+    }
+
+    /// A shift applied with its moved groups written at once without an offset is the
+    /// shifted terms canonicalized from scratch, on seeded random sums of Kinova-style offsets
+    /// (ninths, eighths, 36ths: shifts onto multiples of pi/12), radicals, monomials and
+    /// constants at pi offsets (groups not moved), wherever a shift is found.
+    #[test]
+    fn a_shift_applied_is_the_shifted_terms_canonicalized() {
+        let mut next = crate::testing::xorshift_below(0x5e77_1ed0_0a55_u64);
+        let (x, y, z, l) = (
+            Scalar::sym("x"),
+            Scalar::sym("y"),
+            Scalar::sym("z"),
+            Scalar::sym("l"),
+        );
+        let dens = [9, 18, 36, 8, 16, 72];
+        let (mut applied, mut moved_terms) = (0, 0);
+        for _ in 0..200 {
+            let den = dens[next(dens.len() as u64) as usize] as i64;
+            let offs: Vec<Scalar> = (0..3)
+                .map(|_| parse_pi(next(2 * den as u64) as i64, den))
+                .collect();
+            let mut e = Scalar::int(0);
+            for _ in 0..1 + next(5) {
+                let (i, j) = (next(3) as i64, next(3) as i64 - 1);
+                let angle = Scalar::int(1 + i) * (x.clone() + offs[0].clone())
+                    + Scalar::int(j) * (y.clone() + offs[1].clone())
+                    + Scalar::int(next(2) as i64) * (z.clone() + offs[2].clone())
+                    + parse_pi(next(24) as i64, 12);
+                let f = if next(2) == 0 {
+                    angle.cos()
+                } else {
+                    angle.sin()
+                };
+                let c = Scalar::int(next(7) as i64 - 3)
+                    * Scalar::int([1, 2, 3, 6][next(4) as usize]).sqrt();
+                let mono = if next(2) == 0 {
+                    Scalar::int(1)
+                } else {
+                    l.clone()
+                };
+                e = e + c * mono * f;
+            }
+            if next(3) == 0 {
+                e = e + parse_pi(next(2 * den as u64) as i64, den).cos() * l.clone();
+            }
+            let Some(shift) = find(&e) else {
+                continue;
+            };
+            let Ok(terms) = e.terms() else {
+                panic!("{e:?} an error");
+            };
+            let plain: Vec<Term> = terms
+                .iter()
+                .map(|t| {
+                    let mut t = t.clone();
+                    t.mode.pi = reduce2(t.mode.pi - shift.phase(&t.mode.freq));
+                    t
+                })
+                .collect();
+            moved_terms += plain
+                .iter()
+                .zip(terms)
+                .filter(|(a, b)| a.mode.pi != b.mode.pi)
+                .count();
+            let want = Scalar::from_terms(plain);
+            assert!(no_offset(&want), "{e:?}: the shift leaves no offset");
+            assert_eq!(shift.apply(&e), Some(want), "{e:?} shifted by {shift:?}");
+            applied += 1;
+        }
+        assert!(
+            applied > 60 && moved_terms > 300,
+            "{applied} shifts, {moved_terms} terms moved"
         );
     }
 
