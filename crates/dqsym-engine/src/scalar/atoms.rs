@@ -370,45 +370,17 @@ pub(crate) fn trig_mode(sin: bool, mut freq: Vec<(Sym, Small)>, pi_mult: Small) 
     pi = pi - (pi / two).floor() * two;
     let twelfths = pi * Small::from_integer(12);
     if twelfths.is_integer() {
-        // cos(x + a) = cos a cos x - sin a sin x; sin(x + a) = cos a sin x + sin a cos x.
         let n = twelfths.to_integer();
-        let (ca, sa) = (exact_cos_twelfth(n), exact_cos_twelfth(n - 6));
-        let freq = freq_rc(freq);
-        let base = |s: bool| Mode {
-            sin: s,
-            freq: freq.clone(),
-            pi: Small::zero(),
-        };
-        let scaled = |v: Vec<(u64, Q)>, f: i64| {
-            v.into_iter()
-                .map(|(r, q)| (r, q.mul_int(f)))
-                .collect::<Vec<_>>()
-        };
-        let mut out: ModeSum = Vec::new();
         if freq.is_empty() {
             // A pure constant: cos a or sin a.
-            let v = if sin { sa } else { ca };
-            if !v.is_empty() {
-                out.push((Mode::unit(), scaled(v, sign)));
-            }
-            return out;
+            let v = exact_cos_twelfth(if sin { n - 6 } else { n });
+            return if v.is_empty() {
+                Vec::new()
+            } else {
+                vec![(Mode::unit(), scaled_weights(v, sign))]
+            };
         }
-        if sin {
-            if !ca.is_empty() {
-                out.push((base(true), scaled(ca, sign)));
-            }
-            if !sa.is_empty() {
-                out.push((base(false), scaled(sa, sign)));
-            }
-        } else {
-            if !ca.is_empty() {
-                out.push((base(false), ca));
-            }
-            if !sa.is_empty() {
-                out.push((base(true), scaled(sa, -1)));
-            }
-        }
-        return out;
+        return twelfth_modes(sin, freq_rc(freq), n, sign);
     }
     if freq.is_empty() && pi > Small::one() {
         // cos(a) = cos(2 pi - a), sin(a) = -sin(2 pi - a).
@@ -426,6 +398,41 @@ pub(crate) fn trig_mode(sin: bool, mut freq: Vec<(Sym, Small)>, pi_mult: Small) 
         },
         one,
     )]
+}
+
+/// Weights each times the integer `f`.
+fn scaled_weights(v: Vec<(u64, Q)>, f: i64) -> Vec<(u64, Q)> {
+    v.into_iter().map(|(r, q)| (r, q.mul_int(f))).collect()
+}
+
+/// `cos(phi + n pi/12)` (or `sin`) for the symbolic angle `phi` of the normalized frequency
+/// vector `freq`, times `sign`, as the modes `cos(phi)`, `sin(phi)` without an offset times
+/// exact constants: `cos(x + a) = cos a cos x - sin a sin x`, `sin(x + a) = cos a sin x + sin
+/// a cos x`, with `cos a`, `sin a` radicals (`exact_cos_twelfth`).
+pub(crate) fn twelfth_modes(sin: bool, freq: Freq, n: i64, sign: i64) -> ModeSum {
+    let (ca, sa) = (exact_cos_twelfth(n), exact_cos_twelfth(n - 6));
+    let base = |s: bool| Mode {
+        sin: s,
+        freq: freq.clone(),
+        pi: Small::zero(),
+    };
+    let mut out: ModeSum = Vec::new();
+    if sin {
+        if !ca.is_empty() {
+            out.push((base(true), scaled_weights(ca, sign)));
+        }
+        if !sa.is_empty() {
+            out.push((base(false), scaled_weights(sa, sign)));
+        }
+    } else {
+        if !ca.is_empty() {
+            out.push((base(false), ca));
+        }
+        if !sa.is_empty() {
+            out.push((base(true), scaled_weights(sa, -1)));
+        }
+    }
+    out
 }
 
 /// `cos(n pi / 12)` exactly, as a sum of (square-free radicand, rational) pairs; empty for 0.

@@ -191,6 +191,57 @@ impl Term {
             .then_with(|| self.mono.cmp(&other.mono))
             .then_with(|| self.rad.cmp(&other.rad))
     }
+
+    /// This term with its pi offset set to `pi`, a multiple of 1/12, pushed onto `out` as
+    /// terms without an offset (`cos(x + pi/4) = sqrt(2)/2 (cos x - sin x)`, as
+    /// [`atoms::trig_mode`] writes it); false, with nothing pushed, when `pi` is not such a
+    /// multiple or the term's angle has no symbol (a constant's offset is kept). The terms
+    /// pushed are offset-free, so a group made only of them is canonical once merged (see
+    /// `cyclo::Settled`): a shift (`closed::offsets`) that moves every term of a group onto
+    /// multiples of 1/12 needs no rewrite in a cyclotomic basis.
+    pub(crate) fn push_at_twelfths(&self, pi: Small, out: &mut Vec<Term>) -> bool {
+        let twelfths = pi * Small::from_integer(12);
+        if !twelfths.is_integer() || self.mode.freq.is_empty() {
+            return false;
+        }
+        let n = twelfths.to_integer();
+        if n.rem_euclid(24) == 0 {
+            let mut t = self.clone();
+            t.mode.pi = Small::zero();
+            out.push(t);
+            return true;
+        }
+        let modes = atoms::twelfth_modes(self.mode.sin, self.mode.freq.clone(), n, 1);
+        let start = out.len();
+        for (mode, weights) in modes {
+            for (r, q) in weights {
+                let Some(t) = self.times_root(mode.clone(), r, &q) else {
+                    out.truncate(start);
+                    return false;
+                };
+                out.push(t);
+            }
+        }
+        true
+    }
+
+    /// This term's monomial and `coef sqrt(rad)` times `q sqrt(r)`, on `mode`; `None` when
+    /// the radicand leaves a machine word.
+    pub(crate) fn times_root(&self, mode: Mode, r: u64, q: &Q) -> Option<Term> {
+        let (rad, k) = atoms::rad_mul(self.rad, r)?;
+        let coef = &self.coef * q;
+        Some(Term {
+            mode,
+            mono: self.mono.clone(),
+            rad,
+            // The common case multiplies by one, without a product's gcds.
+            coef: if k == 1 {
+                coef
+            } else {
+                &coef * &Q::from_u64(k)
+            },
+        })
+    }
 }
 
 /// Every scalar built from terms passes here: a coefficient past the context's digit limit
@@ -428,7 +479,8 @@ impl Scalar {
 
     /// [`Scalar::from_terms`] for terms whose groups are canonical already once like terms
     /// are merged: a canonical scalar negated, or times a nonzero constant of the square-root
-    /// field times a monomial (see `arith::mul`). Sorted and merged, never rewritten in a
+    /// field times a monomial (see `arith::mul`), or with some groups written without an
+    /// offset (see [`Term::push_at_twelfths`]). Sorted and merged, never rewritten in a
     /// cyclotomic basis; only the degree limit is checked (see [`Settled::All`]).
     pub(crate) fn from_terms_settled(terms: Vec<Term>) -> Scalar {
         Scalar::from_terms_in(terms, &Settled::All)

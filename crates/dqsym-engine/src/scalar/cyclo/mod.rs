@@ -40,9 +40,10 @@
 //! terms come from both ([`Settled::Sum`]); a product rewrites only the groups that are not
 //! one factor's group with offsets times an offset-free group of the other, alone
 //! (`product.rs`), and a product by a nonzero constant of the square-root field times a
-//! monomial, or a negation, none ([`Settled::All`]). Every group passed through is still
-//! held to the degree limit entered now. Debug builds check every group passed through
-//! against the rewrite from scratch.
+//! monomial, or a negation, none ([`Settled::All`]). A group of one term is rewritten from
+//! its mode's canonical form, made once per thread, times its constant ([`canonical_term`]:
+//! the same argument). Every group passed through is still held to the degree limit entered
+//! now. Debug builds check every group passed through against the rewrite from scratch.
 //!
 //! The parts, one concern each: `level.rs` the level `W` of a group and its degree check;
 //! `field.rs` `Q(zeta_W)` (reductions, square roots, the field cache); `candidates.rs` the
@@ -53,11 +54,14 @@
 //! randomized laws.
 
 use super::atoms::{freq_cmp, rad_mul, Freq, Mode, MonoRc, Small};
-use super::par::PerFork;
-use super::{ScalarError, Term, Q};
+use super::par::{this_fork, PerFork};
+use super::{FxHasher, ScalarError, Term, Q};
 use num_traits::{Signed, Zero};
+use std::cell::RefCell;
 use std::cmp::Ordering;
 use std::collections::HashMap;
+use std::hash::BuildHasherDefault;
+use std::rc::Rc;
 use std::sync::{Arc, Mutex};
 
 mod candidates;
@@ -120,8 +124,8 @@ pub(crate) enum Settled<'a> {
     /// None: every group holding a pi offset is rewritten.
     Nothing,
     /// Every group (a canonical scalar negated, or times a nonzero constant of the
-    /// square-root field times a monomial: see `arith::mul`); only the degree limit is
-    /// checked.
+    /// square-root field times a monomial: see `arith::mul`; or with some groups written
+    /// without an offset: see `Term::push_at_twelfths`); only the degree limit is checked.
     All,
     /// The terms of the sum of two canonical scalars, `origin[i]` telling where term `i`
     /// came from (bit 1 the left operand, bit 2 the right one), with the keys of the terms
@@ -278,10 +282,88 @@ pub(crate) fn debug_check_canonical(terms: &[Term]) {
 }
 
 fn canonical_group(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
+    if let [t] = g {
+        return canonical_term(t);
+    }
+    rewritten_group(g)
+}
+
+/// A group rewritten in its canonical basis, through the fast bases when their checks pass.
+fn rewritten_group(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
     match fast::canonical_group_fast(g)? {
         Some(out) => Ok(out),
         None => exact::canonical_group_exact(g),
     }
+}
+
+/// The canonical form of a one-term mode `cos(phi + p)` or `sin(phi + p)` (`phi` present or
+/// not), coefficient 1, radicand 1: the modes (sine or cosine, offset) and their constants.
+type TermTemplate = Rc<[(bool, Small, u64, Q)]>;
+
+/// The canonical form of a group of one term `q sqrt(r) m trig(phi + p)` (a constant at a
+/// pi offset, `cos(x + 5 pi/9)` built alone: an angle evaluated, a mode of a product), from
+/// the canonical form of `trig(phi + p)` alone, made once per thread for each `(sin,
+/// constant or not, p)`, times `q sqrt(r) m` (the frequency vector and the monomial copied
+/// into each term, the radicands multiplied).
+///
+/// Why that is the group's canonical form: the canonical form of a group is the expansion
+/// of its value in the basis `{sqrt(d) b}` (`d` square-free, `b` the columns of its
+/// smallest level's basis) over `Q`, a function of the value alone; the value of the group
+/// is `q sqrt(r)` times that of `trig(phi + p)` (the monomial and `phi` only label it), and
+/// the smallest level of a value is that of its product by a nonzero element `q sqrt(r)` of
+/// the square-root field `K` (the fields are `K(zeta_M)`). Multiplying the expansion
+/// `sum c_j sqrt(d_j) b_j` by `q sqrt(r)` gives `sum q c_j k_j sqrt(d'_j) b_j` (`sqrt(r
+/// d_j) = k_j sqrt(d'_j)`), whose pairs `(d'_j, b_j)` are distinct because `d -> r d`
+/// modulo squares is one to one: that is the expansion of the product (the argument of
+/// `arith::mul` for a canonical scalar times such a constant, [`Settled::All`]). The degree
+/// limit is checked on the term's level as a rewrite checks it, and the work charged is the
+/// fast path's for one term (the template's own rewrite charges as any).
+fn canonical_term(t: &Term) -> Result<Vec<Term>, ScalarError> {
+    type Templates = HashMap<(bool, bool, Small), TermTemplate, BuildHasherDefault<FxHasher>>;
+    thread_local! {
+        // With the fork count it was filled at: a forked child empties it ([`PerFork`]).
+        static TEMPLATES: RefCell<(u64, Templates)> = RefCell::new((0, Templates::default()));
+    }
+    let real = t.mode.freq.is_empty();
+    let key = (t.mode.sin, real, t.mode.pi);
+    let known = TEMPLATES.with(|c| this_fork(&mut c.borrow_mut()).get(&key).cloned());
+    let template = match known {
+        Some(template) => {
+            let w = level_of(std::iter::once(t))?;
+            super::charge(level::level_primes(w).0 / 128 + 1)?;
+            template
+        }
+        None => {
+            let unit = Term {
+                mode: t.mode.clone(),
+                mono: super::atoms::empty_mono(),
+                rad: 1,
+                coef: Q::ONE,
+            };
+            let template: TermTemplate = rewritten_group(&[&unit])?
+                .into_iter()
+                .map(|u| (u.mode.sin, u.mode.pi, u.rad, u.coef))
+                .collect();
+            TEMPLATES.with(|c| this_fork(&mut c.borrow_mut()).insert(key, template.clone()));
+            template
+        }
+    };
+    template
+        .iter()
+        .map(|(sin, pi, r, c)| {
+            let mode = if real && !*sin && pi.is_zero() {
+                Mode::unit()
+            } else {
+                Mode {
+                    sin: *sin,
+                    freq: t.mode.freq.clone(),
+                    pi: *pi,
+                }
+            };
+            t.times_root(mode, *r, c)
+                .ok_or_else(|| ScalarError::OutOfRange("radicand too large".into()))
+        })
+        .collect()
 }
 
 /// The terms of a group from its coordinates: for each class `s` of square roots outside the

@@ -540,3 +540,50 @@ fn the_group_key_order_is_the_derived_order() {
         keys.len()
     );
 }
+
+/// A group of one term `p/q sqrt(d) monomial trig(j x + k pi/n)` rewritten from the
+/// per-thread template of its mode (`canonical_term`) is the group rewritten from scratch
+/// (`rewritten_group`), on seeded random terms at many denominators, constants and
+/// symbolic angles, sines and cosines, with radicands inside the fields and outside them;
+/// each asked for twice, so the second answer comes from the template.
+#[test]
+fn a_one_term_group_from_its_template_is_the_group_rewritten() {
+    use super::{canonical_term, rewritten_group};
+    let mut rng = Rng(0x0e7e_c1a5_05e5);
+    let dens = [5i64, 7, 8, 9, 10, 15, 16, 18, 20, 36];
+    let (mut checked, mut constants) = (0, 0);
+    for _ in 0..2000 {
+        let n = rng.pick(&dens);
+        let v = trig(&mut rng, n);
+        let Ok([mode_term]) = v.s.terms() else {
+            continue;
+        };
+        if mode_term.mode.pi.is_zero() {
+            continue;
+        }
+        let mono = monomial(&mut rng);
+        let Ok([mono_term]) = mono.s.terms() else {
+            panic!("a monomial is one term");
+        };
+        let p = rng.pick(&[1i64, -1, 2, -3, 5]);
+        let q = rng.pick(&[1i64, 2, 3, 7]);
+        let t = super::Term {
+            mode: mode_term.mode.clone(),
+            mono: mono_term.mono.clone(),
+            rad: rng.pick(&[1u64, 2, 3, 5, 6, 7, 15, 21]),
+            coef: &super::Q::new(p, q) * &mode_term.coef,
+        };
+        let want = canonical_terms(rewritten_group(&[&t]).expect("rewritten")).expect("sorted");
+        for _ in 0..2 {
+            let got =
+                canonical_terms(canonical_term(&t).expect("from the template")).expect("sorted");
+            assert_eq!(got, want, "{t:?}");
+        }
+        checked += 1;
+        constants += usize::from(t.mode.freq.is_empty());
+    }
+    assert!(
+        checked > 300 && constants > 80,
+        "{checked} terms, {constants} constants"
+    );
+}
