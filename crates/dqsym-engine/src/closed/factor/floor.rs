@@ -18,9 +18,13 @@
 //! is a lower bound of the candidate's operations, given lower bounds of the two groups'
 //! weights ([`Search::floor`]), and the calls add up alike.
 //!
+//! The bound reads each monomial's quotient once per candidate, as the visit of the group
+//! does; its work is not charged to the budget, being at most the [`super::BRANCH`] times
+//! the visit's, which is.
+//!
 //! [`E`]: super::E
 
-use super::{multiplicity, quotient_atoms, quotient_syms, Atom, Factor, Search};
+use super::{quotient_atoms, quotient_syms, Atom, Factor, Search};
 use crate::closed::expr::Cost;
 use crate::scalar::Q;
 use smallvec::SmallVec;
@@ -144,11 +148,7 @@ impl Search<'_> {
     /// the others, less one.
     pub(super) fn split_floor(&mut self, group: &[(u32, Q)], f: Factor) -> Cost {
         let fi = self.counts.index(f);
-        let base = self.div[fi];
-        let mults: SmallVec<[u32; 32]> = group
-            .iter()
-            .map(|(i, _)| multiplicity(&self.root[*i as usize], f) - base)
-            .collect();
+        let mults: SmallVec<[u32; 32]> = self.powers(group.iter().map(|(i, _)| *i), f);
         let k = mults.iter().copied().filter(|&n| n > 0).min().unwrap_or(1);
         let rest = self.floor(
             group
@@ -194,15 +194,15 @@ struct More {
 /// Leaves a tree needs beyond one per factor, from factors whose monomials cross.
 ///
 /// A factor `a` of power one in every quotient holding it (`pow[a] == 1`) that is a single
-/// leaf of the tree is a factor of a product node above exactly the monomials holding it
-/// (`bits[a]`): every monomial below that node has `a` on its path, and every monomial holding
-/// `a` has it there once. The sets of monomials below the nodes of a tree are nested or
-/// disjoint; so of factors whose sets pairwise cross (meet, neither holding the other), at
-/// most one is a single leaf, and each other one is two leaves at least. The factors are
-/// partitioned greedily into such groups (each joins the first whose members it all
-/// crosses); each group of `t` factors needs `t - 1` more leaves, of the lightest kind it
-/// holds left out (an atom weighs two and calls once, a symbol weighs one), so an atom is
-/// the one excused when the group holds one.
+/// leaf of the tree covers exactly the monomials holding it (`bits[a]`): those whose path
+/// from the root passes through the product it is a factor of (a group's product, or one
+/// monomial's own). The sets of monomials whose paths pass through a node are nested or
+/// disjoint over the nodes of a tree; so of factors whose sets pairwise cross (meet, neither
+/// holding the other), at most one is a single leaf, and each other one is two leaves at
+/// least. The factors are partitioned greedily into such groups (each joins the first whose
+/// members it all crosses); each group of `t` factors needs `t - 1` more leaves, one for each
+/// member but the one excused, taken an atom where the group holds one (an atom weighs two
+/// and calls once, a symbol weighs one), so the count is low in weight and in calls both.
 fn crossing_leaves(touched: &[usize], pow: &[u32], bits: &[u64], base: usize) -> More {
     let crosses = |a: u64, b: u64| a & b != 0 && a & !b != 0 && b & !a != 0;
     // Each group: its members' sets, and how many of them are atoms.
