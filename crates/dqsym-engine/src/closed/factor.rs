@@ -15,6 +15,7 @@ use std::hash::{Hash, Hasher};
 use std::rc::Rc;
 
 mod costs;
+mod floor;
 mod run;
 
 /// A factor that can be pulled out of several monomials.
@@ -261,6 +262,15 @@ struct Search<'a> {
     /// Above zero while the winner of a cost pass is built: its work was charged by the pass
     /// (which repeats every step of the build), so charging it again would count it twice.
     prepaid: u32,
+    /// Scratch of [`Search::floor`]: the highest power of each factor (by [`Counts`] index)
+    /// in a group's quotients, zero between calls, and the indices raised.
+    floor_pow: Vec<u32>,
+    floor_touched: Vec<usize>,
+    /// Scratch of [`Search::floor`]: the monomials (of up to 64) holding each factor, as bits.
+    floor_bits: Vec<u64>,
+    /// Whether a built candidate is skipped where its lower bound is not below the best cost
+    /// so far (always, but in the tests that compare the search with and without it).
+    floored: bool,
 }
 
 /// The cheapest nested expression this search finds for the sum of `mons`, with its cost.
@@ -280,7 +290,9 @@ pub(crate) fn build(mons: &[Mon]) -> Result<(E, Cost), ScalarError> {
 enum Pass {
     /// Every candidate built.
     Trees,
-    /// Each candidate's cost found without its tree (`costs.rs`) where the monomials allow it.
+    /// Each candidate's cost found without its tree (`costs.rs`) where the monomials allow it;
+    /// elsewhere a candidate built only where its lower bound (`floor.rs`) is below the best
+    /// cost so far.
     Costs,
     /// [`Pass::Costs`], each candidate cut once its cost reaches the best so far ([`build`]).
     Bounded,
@@ -288,11 +300,24 @@ enum Pass {
 
 /// [`build`], the candidates compared as `pass` says (the tests compare the three).
 fn build_with(mons: &[Mon], pass: Pass) -> Result<(E, Cost), ScalarError> {
+    let mut s = search(mons, pass);
+    let group = root_group(mons);
+    let e = s.build_at(&group, 0);
+    if let Some(err) = s.spent {
+        return Err(err);
+    }
+    let c = e.cost();
+    Ok((e, c))
+}
+
+/// A search of `mons` in its start state, comparing candidates as `pass` says.
+fn search(mons: &[Mon], pass: Pass) -> Search<'_> {
     let counts = Counts::for_mons(mons);
+    let factors = counts.n.len();
     let mon_hash = mons.iter().map(|m| linear_hash(m, &counts)).collect();
-    let mut s = Search {
+    Search {
         root: mons,
-        div: vec![0; counts.n.len()],
+        div: vec![0; factors],
         counts,
         path: Vec::new(),
         rad_off: false,
@@ -307,18 +332,19 @@ fn build_with(mons: &[Mon], pass: Pass) -> Result<(E, Cost), ScalarError> {
         },
         spent: None,
         prepaid: 0,
-    };
-    let group: Group = mons
-        .iter()
+        floor_pow: vec![0; factors],
+        floor_touched: Vec::new(),
+        floor_bits: vec![0; factors],
+        floored: pass != Pass::Trees,
+    }
+}
+
+/// The group of all of `mons`, with their coefficients.
+fn root_group(mons: &[Mon]) -> Group {
+    mons.iter()
         .enumerate()
         .map(|(i, m)| (i as u32, m.q.clone()))
-        .collect();
-    let e = s.build_at(&group, 0);
-    if let Some(err) = s.spent {
-        return Err(err);
-    }
-    let c = e.cost();
-    Ok((e, c))
+        .collect()
 }
 
 /// A lower bound of the cost [`build`] finds for `mons`, without the search: the factoring
@@ -492,8 +518,21 @@ impl Search<'_> {
         } else {
             let mut best: Option<(Cost, E)> = None;
             for f in candidates {
+                // A candidate whose lower bound is not below the best cost so far cannot be
+                // chosen (the first of least cost is): it is not built (`floor.rs`).
+                let floor = best
+                    .as_ref()
+                    .filter(|_| self.floored)
+                    .map(|_| self.split_floor(group, f));
+                if floor.is_some_and(|floor| best.as_ref().is_some_and(|(bc, _)| floor >= *bc)) {
+                    continue;
+                }
                 let e = self.split_on(group, f, depth);
                 let c = e.cost();
+                debug_assert!(
+                    floor.is_none_or(|floor| c.ops >= floor.ops && c.calls >= floor.calls),
+                    "floor {floor:?} of {c:?}"
+                );
                 if best.as_ref().is_none_or(|(bc, _)| c < *bc) {
                     best = Some((c, e));
                 }
@@ -1238,6 +1277,97 @@ mod tests {
             checked += 1;
         }
         assert_eq!(checked, 3);
+    }
+
+    /// A pseudo-random sum of products of cosines and sines with radicals and fractions, as
+    /// the entries of a chain with 60-degree twists are: a product of two to four sums, each
+    /// of two to four terms `c cos(x)` or `c sin(x)` (`c` one of `1`, `-1`, `1/2`, `-1/2`,
+    /// `sqrt(3)/2`, `-sqrt(3)/2`, `3/4`; `x` one of four angles), some times a length, plus a
+    /// few such terms.
+    fn poly_trig(seed: u64) -> Scalar {
+        let mut next = crate::testing::xorshift_below(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+        let q =
+            |n: i64, d: i64| Scalar::rational(num_rational::BigRational::new(n.into(), d.into()));
+        let root3 = Scalar::int(3).sqrt();
+        let angles = ["a", "b", "c", "d"];
+        let term = |next: &mut dyn FnMut(u64) -> u64| {
+            let c = match next(7) {
+                0 => Scalar::int(1),
+                1 => Scalar::int(-1),
+                2 => q(1, 2),
+                3 => q(-1, 2),
+                4 => root3.clone() * q(1, 2),
+                5 => root3.clone() * q(-1, 2),
+                _ => q(3, 4),
+            };
+            let x = Scalar::sym(angles[next(4) as usize]);
+            let t = c * if next(2) == 0 { x.cos() } else { x.sin() };
+            match next(4) {
+                0 => t * Scalar::sym("l1"),
+                1 => t * Scalar::sym("l2"),
+                _ => t,
+            }
+        };
+        let mut p = Scalar::int(1);
+        for _ in 0..2 + next(3) {
+            let mut s = Scalar::int(0);
+            for _ in 0..2 + next(3) {
+                s = s + term(&mut next);
+            }
+            p = p * s;
+        }
+        for _ in 0..next(3) {
+            p = p + term(&mut next);
+        }
+        p
+    }
+
+    /// Where candidates are built (trigonometric sums with radicals and fractions), the search
+    /// that skips a candidate whose lower bound is not below the best so far chooses what the
+    /// search building every candidate chooses: the same expression and cost, equal to the
+    /// sum; at the root every candidate's bound is at most its built cost; and the skips save
+    /// work on many sums.
+    #[test]
+    fn candidates_skipped_by_their_floor_choose_as_the_built_candidates() {
+        let (mut tried, mut saved, mut floors) = (0, 0, 0);
+        for seed in 0..80 {
+            let p = poly_trig(seed);
+            let (ctx, mons) = crate::closed::mon::split_modes(&p);
+            if mons.len() < 2 {
+                continue;
+            }
+            assert!(costs::Costs::for_mons(&mons).is_none(), "{p}");
+            let _entered = crate::Context::default().enter();
+            let w0 = crate::Context::work_done();
+            let (all, ac) = build_with(&mons, Pass::Trees).expect("factored");
+            let w1 = crate::Context::work_done();
+            let (floored, fc) = build_with(&mons, Pass::Bounded).expect("factored");
+            let w2 = crate::Context::work_done();
+            assert_eq!(fc, ac, "seed {seed}");
+            let floored = floored.to_expr(&ctx);
+            assert_eq!(floored, all.to_expr(&ctx), "seed {seed}");
+            assert_eq!(floored.to_scalar(), p, "seed {seed}");
+            tried += 1;
+            saved += usize::from(w2 - w1 < w1 - w0);
+            // Each candidate of the root: its bound against its tree.
+            let mut s = search(&mons, Pass::Trees);
+            let group = root_group(&mons);
+            for f in s.candidates(group.iter().map(|(i, _)| *i), BRANCH) {
+                let floor = s.split_floor(&group, f);
+                let c = s.split_on(&group, f, 0).cost();
+                assert!(
+                    floor.ops <= c.ops && floor.calls <= c.calls,
+                    "seed {seed}: {floor:?} {c:?}"
+                );
+                floors += 1;
+            }
+        }
+        assert!(tried >= 75, "{tried} sums");
+        assert!(floors >= 200, "{floors} bounds checked");
+        assert!(
+            saved >= 10,
+            "the floors saved work {saved} times of {tried}"
+        );
     }
 
     /// Past 126 bits a coefficient is not a machine integer: every candidate is built.
