@@ -38,7 +38,7 @@ use crate::scalar::{charge, Small, Sym, Term};
 use crate::Scalar;
 use num_integer::Integer;
 use num_traits::{One, Signed, Zero};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 /// The most terms a scalar may have for its roots to be looked for.
 const MAX_TERMS: usize = 4096;
@@ -305,22 +305,57 @@ impl Factor {
     }
 }
 
+/// The factors tried by [`group`], made once per [`groupings`]: the factor of each kind and
+/// multiplier through each root, with its roots in order (every grouping tries the same
+/// factors, each a few rational operations and a map of up to `2k` roots).
+#[derive(Default)]
+struct Tried(HashMap<(u8, i64, Small), (Factor, Vec<(Small, u32)>)>);
+
+impl Tried {
+    /// [`Factor::through`] and its [`Factor::roots`].
+    fn through(&mut self, kind: u8, k: i64, r: Small) -> &(Factor, Vec<(Small, u32)>) {
+        self.0.entry((kind, k, r)).or_insert_with(|| {
+            let f = Factor::through(kind, k, r);
+            (f, f.roots().into_iter().collect())
+        })
+    }
+}
+
 /// The roots (multiples of pi in `[0, 2)` of the half angle, with multiplicities) grouped
 /// into factors: for each multiplier `k` in `ks`, in turn, the kinds in `kinds` (see
 /// [`Factor::through`]) in turn, each factor taken as often as its roots are left. `None`
 /// when some root is left over.
-fn group(roots: &BTreeMap<Small, u32>, ks: &[i64], kinds: &[u8]) -> Option<BTreeMap<Factor, u32>> {
+///
+/// Two skips that change nothing: a factor of multiplier `k` holds `2k` roots counted with
+/// their multiplicities, so while fewer are left it is taken no time; and a factor already
+/// tried is taken no time again, as roots are only ever removed: after it is taken `m`
+/// times, one of its roots of multiplicity `n` in it has fewer than `n` copies left (else
+/// it would have been taken `m + 1` times), and a factor taken no time keeps a root short.
+fn group(
+    roots: &BTreeMap<Small, u32>,
+    ks: &[i64],
+    kinds: &[u8],
+    tried: &mut Tried,
+) -> Option<BTreeMap<Factor, u32>> {
     let mut left = roots.clone();
+    let mut count: u64 = left.values().map(|&n| u64::from(n)).sum();
     let mut out: BTreeMap<Factor, u32> = BTreeMap::new();
+    let mut seen: Vec<Factor> = Vec::new();
     for &k in ks {
         for &kind in kinds {
+            if count < 2 * k.unsigned_abs() {
+                break;
+            }
             let keys: Vec<Small> = left.keys().copied().collect();
             for r in keys {
                 if !left.contains_key(&r) {
                     continue;
                 }
-                let f = Factor::through(kind, k, r);
-                let need = f.roots();
+                let (f, need) = tried.through(kind, k, r);
+                if seen.contains(f) {
+                    continue;
+                }
+                seen.push(*f);
                 let times = need
                     .iter()
                     .map(|(r, n)| left.get(r).copied().unwrap_or(0) / n)
@@ -329,12 +364,13 @@ fn group(roots: &BTreeMap<Small, u32>, ks: &[i64], kinds: &[u8]) -> Option<BTree
                 if times == 0 {
                     continue;
                 }
-                *out.entry(f).or_insert(0) += times;
+                *out.entry(*f).or_insert(0) += times;
                 for (r, n) in need {
-                    let e = left.get_mut(&r).expect("a root");
+                    let e = left.get_mut(r).expect("a root");
                     *e -= n * times;
+                    count -= u64::from(n * times);
                     if *e == 0 {
-                        left.remove(&r);
+                        left.remove(r);
                     }
                 }
             }
@@ -536,9 +572,10 @@ fn groupings(half: &BTreeMap<Small, u32>) -> Vec<BTreeMap<Factor, u32>> {
         [2, 1, 0],
     ];
     let mut seen: Vec<BTreeMap<Factor, u32>> = Vec::new();
+    let mut tried = Tried::default();
     for ks in multipliers {
         for order in &kinds {
-            if let Some(g) = group(half, ks, order) {
+            if let Some(g) = group(half, ks, order, &mut tried) {
                 if !seen.contains(&g) {
                     seen.push(g);
                 }
