@@ -305,42 +305,107 @@ impl Factor {
     }
 }
 
+/// The factors [`group`] tries, made once per [`groupings`] (every grouping tries the same
+/// factors, each a few rational operations and a map of up to `2k` roots): the roots in
+/// order, and for each kind, multiplier and root the factor through it, by its index in
+/// `factors` with its roots' indices and multiplicities; `None` when one of its roots is not
+/// a root at all (it is never taken).
+struct Table {
+    roots: Vec<Small>,
+    kmax: usize,
+    cells: Vec<Option<Option<usize>>>,
+    factors: Vec<(Factor, Vec<(usize, u32)>)>,
+}
+
+impl Table {
+    fn new(half: &BTreeMap<Small, u32>, kmax: usize) -> Table {
+        let roots: Vec<Small> = half.keys().copied().collect();
+        Table {
+            cells: vec![None; 3 * (kmax + 1) * roots.len()],
+            roots,
+            kmax,
+            factors: Vec::new(),
+        }
+    }
+
+    /// The index of [`Factor::through`] the `i`-th root, with its roots (see [`Table`]).
+    fn through(&mut self, kind: u8, k: i64, i: usize) -> Option<usize> {
+        let cell = (usize::from(kind) * (self.kmax + 1) + k as usize) * self.roots.len() + i;
+        if let Some(id) = self.cells[cell] {
+            return id;
+        }
+        let f = Factor::through(kind, k, self.roots[i]);
+        let need: Option<Vec<(usize, u32)>> = f
+            .roots()
+            .into_iter()
+            .map(|(r, n)| self.roots.binary_search(&r).ok().map(|j| (j, n)))
+            .collect();
+        let id = need.map(
+            |need| match self.factors.iter().position(|(g, _)| *g == f) {
+                Some(id) => id,
+                None => {
+                    self.factors.push((f, need));
+                    self.factors.len() - 1
+                }
+            },
+        );
+        self.cells[cell] = Some(id);
+        id
+    }
+}
+
 /// The roots (multiples of pi in `[0, 2)` of the half angle, with multiplicities) grouped
 /// into factors: for each multiplier `k` in `ks`, in turn, the kinds in `kinds` (see
 /// [`Factor::through`]) in turn, each factor taken as often as its roots are left. `None`
 /// when some root is left over.
-fn group(roots: &BTreeMap<Small, u32>, ks: &[i64], kinds: &[u8]) -> Option<BTreeMap<Factor, u32>> {
-    let mut left = roots.clone();
+///
+/// Two skips that change nothing: a factor of multiplier `k` holds `2k` roots counted with
+/// their multiplicities, so while fewer are left it is taken no time; and a factor already
+/// tried is taken no time again, as roots are only ever removed: after it is taken `m`
+/// times, one of its roots of multiplicity `n` in it has fewer than `n` copies left (else
+/// it would have been taken `m + 1` times), and a factor taken no time keeps a root short.
+fn group(
+    half: &BTreeMap<Small, u32>,
+    ks: &[i64],
+    kinds: &[u8],
+    table: &mut Table,
+) -> Option<BTreeMap<Factor, u32>> {
+    let mut left: Vec<u32> = half.values().copied().collect();
+    let mut count: u64 = left.iter().map(|&n| u64::from(n)).sum();
     let mut out: BTreeMap<Factor, u32> = BTreeMap::new();
+    let mut tried: Vec<bool> = Vec::new();
     for &k in ks {
         for &kind in kinds {
-            let keys: Vec<Small> = left.keys().copied().collect();
-            for r in keys {
-                if !left.contains_key(&r) {
+            if count < 2 * k.unsigned_abs() {
+                break;
+            }
+            for i in 0..left.len() {
+                if left[i] == 0 {
                     continue;
                 }
-                let f = Factor::through(kind, k, r);
-                let need = f.roots();
-                let times = need
-                    .iter()
-                    .map(|(r, n)| left.get(r).copied().unwrap_or(0) / n)
-                    .min()
-                    .unwrap_or(0);
+                let Some(id) = table.through(kind, k, i) else {
+                    continue;
+                };
+                if tried.len() <= id {
+                    tried.resize(id + 1, false);
+                }
+                if std::mem::replace(&mut tried[id], true) {
+                    continue;
+                }
+                let (f, need) = &table.factors[id];
+                let times = need.iter().map(|&(j, n)| left[j] / n).min().unwrap_or(0);
                 if times == 0 {
                     continue;
                 }
-                *out.entry(f).or_insert(0) += times;
-                for (r, n) in need {
-                    let e = left.get_mut(&r).expect("a root");
-                    *e -= n * times;
-                    if *e == 0 {
-                        left.remove(&r);
-                    }
+                *out.entry(*f).or_insert(0) += times;
+                for &(j, n) in need {
+                    left[j] -= n * times;
+                    count -= u64::from(n * times);
                 }
             }
         }
     }
-    left.is_empty().then_some(out)
+    (count == 0).then_some(out)
 }
 
 /// One way to show a factor `+-f(angle + phi pi)`: whether it is a sine, and `phi` in `(-1,
@@ -536,9 +601,10 @@ fn groupings(half: &BTreeMap<Small, u32>) -> Vec<BTreeMap<Factor, u32>> {
         [2, 1, 0],
     ];
     let mut seen: Vec<BTreeMap<Factor, u32>> = Vec::new();
+    let mut table = Table::new(half, kmax.max(2) as usize);
     for ks in multipliers {
         for order in &kinds {
-            if let Some(g) = group(half, ks, order) {
+            if let Some(g) = group(half, ks, order, &mut table) {
                 if !seen.contains(&g) {
                     seen.push(g);
                 }
@@ -1108,6 +1174,99 @@ mod tests {
         // phi(n) <= 2 only for n in 1, 2, 3, 4, 6.
         assert_eq!(max_denominator(24, 2), 2 * 24 * 6);
         assert!(max_denominator(168, 48) >= 2 * 168 * 210);
+    }
+
+    /// [`group`] as it was before its table: each factor made from its root at each try,
+    /// every root looked up in a map, no skip.
+    fn group_by_maps(
+        roots: &BTreeMap<Small, u32>,
+        ks: &[i64],
+        kinds: &[u8],
+    ) -> Option<BTreeMap<Factor, u32>> {
+        let mut left = roots.clone();
+        let mut out: BTreeMap<Factor, u32> = BTreeMap::new();
+        for &k in ks {
+            for &kind in kinds {
+                let keys: Vec<Small> = left.keys().copied().collect();
+                for r in keys
+                    .into_iter()
+                    .filter(|r| left.contains_key(r))
+                    .collect::<Vec<_>>()
+                {
+                    if !left.contains_key(&r) {
+                        continue;
+                    }
+                    let f = Factor::through(kind, k, r);
+                    let need = f.roots();
+                    let times = need
+                        .iter()
+                        .map(|(r, n)| left.get(r).copied().unwrap_or(0) / n)
+                        .min()
+                        .unwrap_or(0);
+                    if times == 0 {
+                        continue;
+                    }
+                    *out.entry(f).or_insert(0) += times;
+                    for (r, n) in need {
+                        let e = left.get_mut(&r).expect("a root");
+                        *e -= n * times;
+                        if *e == 0 {
+                            left.remove(&r);
+                        }
+                    }
+                }
+            }
+        }
+        left.is_empty().then_some(out)
+    }
+
+    #[test]
+    fn the_table_groups_as_the_maps_do() {
+        // Root sets made of 1 to 4 random factors (shared roots give multiplicities), and the
+        // same sets with one root dropped (no grouping then): every multiplier list and
+        // order of kinds of `groupings`, against the grouping by maps.
+        let mut pts = Points(0x2545_F491_4F6C_DD1D);
+        let mut pick = |n: i64| ((pts.next() + 3.0) / 6.0 * n as f64) as i64 % n;
+        let (mut grouped, mut cases) = (0, 0);
+        for case in 0..300 {
+            let mut half: BTreeMap<Small, u32> = BTreeMap::new();
+            for _ in 0..1 + pick(4) {
+                let k = 1 + pick(3);
+                let d = [1, 2, 3, 4, 5, 6, 8, 10, 12][pick(9) as usize];
+                let f = Factor::through(pick(3) as u8, k, Small::new(pick(2 * d), d));
+                for (r, n) in f.roots() {
+                    *half.entry(r).or_insert(0) += n;
+                }
+            }
+            if case % 5 == 4 {
+                let r = *half.keys().next().expect("a root");
+                half.remove(&r);
+            }
+            let kmax = i64::from(half.values().sum::<u32>() / 2);
+            let descending: Vec<i64> = (1..=kmax).rev().collect();
+            let mut table = Table::new(&half, kmax.max(2) as usize);
+            for ks in [&descending[..], &[2, 1], &[1]] {
+                for order in [
+                    [0, 1, 2],
+                    [0, 2, 1],
+                    [1, 0, 2],
+                    [1, 2, 0],
+                    [2, 0, 1],
+                    [2, 1, 0],
+                ] {
+                    let want = group_by_maps(&half, ks, &order);
+                    assert_eq!(group(&half, ks, &order, &mut table), want, "{half:?}");
+                    cases += 1;
+                    grouped += usize::from(want.is_some());
+                }
+            }
+        }
+        // Both answers occur: most sets group, the ones short of a root do not.
+        assert_eq!(cases, 300 * 18);
+        assert!(
+            grouped > cases / 2 && grouped < cases,
+            "{grouped} of {cases}"
+        );
     }
 
     #[test]
