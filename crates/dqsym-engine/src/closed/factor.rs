@@ -1037,6 +1037,23 @@ mod tests {
         p
     }
 
+    /// The draws of a seeded random test generator (`testing::xorshift_below`'s).
+    type Draw<'a> = &'a mut dyn FnMut(u64) -> u64;
+
+    /// A product of two to four sums of two to four of `term`'s terms, drawn with `next`: the
+    /// shape of the random polynomials the tests below factor.
+    fn product_of_sums(next: &mut dyn FnMut(u64) -> u64, term: &dyn Fn(Draw) -> Scalar) -> Scalar {
+        let mut p = Scalar::int(1);
+        for _ in 0..2 + next(3) {
+            let mut s = Scalar::int(0);
+            for _ in 0..2 + next(3) {
+                s = s + term(next);
+            }
+            p = p * s;
+        }
+        p
+    }
+
     /// A pseudo-random polynomial in many symbols of low degree each, as the entries of a
     /// chain whose lengths and twists are symbols are: a product of two to four short sums of
     /// products of one or two symbols out of ten, plus a few monomials.
@@ -1051,14 +1068,7 @@ mod tests {
             }
             t
         };
-        let mut p = Scalar::int(1);
-        for _ in 0..2 + next(3) {
-            let mut s = Scalar::int(0);
-            for _ in 0..2 + next(3) {
-                s = s + term(&mut next);
-            }
-            p = p * s;
-        }
+        let mut p = product_of_sums(&mut next, &term);
         for _ in 0..next(4) {
             p = p + term(&mut next) * term(&mut next);
         }
@@ -1308,14 +1318,7 @@ mod tests {
                 _ => t,
             }
         };
-        let mut p = Scalar::int(1);
-        for _ in 0..2 + next(3) {
-            let mut s = Scalar::int(0);
-            for _ in 0..2 + next(3) {
-                s = s + term(&mut next);
-            }
-            p = p * s;
-        }
+        let mut p = product_of_sums(&mut next, &term);
         for _ in 0..next(3) {
             p = p + term(&mut next);
         }

@@ -585,6 +585,16 @@ fn found(t: &[Term]) -> Option<Vec<Expr>> {
     Some(out)
 }
 
+/// The orders in which [`groupings`] tries the three kinds of factor.
+const KIND_ORDERS: [[u8; 3]; 6] = [
+    [0, 1, 2],
+    [0, 2, 1],
+    [1, 0, 2],
+    [1, 2, 0],
+    [2, 0, 1],
+    [2, 1, 0],
+];
+
 /// The distinct groupings of the half-angle roots into factors: the largest multipliers
 /// first, or the angle theta itself (k = 2) before the half angle, or the half angle alone;
 /// each with the kinds in every order.
@@ -592,18 +602,10 @@ fn groupings(half: &BTreeMap<Small, u32>) -> Vec<BTreeMap<Factor, u32>> {
     let kmax = i64::from(half.values().sum::<u32>() / 2);
     let descending: Vec<i64> = (1..=kmax).rev().collect();
     let multipliers: [&[i64]; 3] = [&descending, &[2, 1], &[1]];
-    let kinds: [[u8; 3]; 6] = [
-        [0, 1, 2],
-        [0, 2, 1],
-        [1, 0, 2],
-        [1, 2, 0],
-        [2, 0, 1],
-        [2, 1, 0],
-    ];
     let mut seen: Vec<BTreeMap<Factor, u32>> = Vec::new();
     let mut table = Table::new(half, kmax.max(2) as usize);
     for ks in multipliers {
-        for order in &kinds {
+        for order in &KIND_ORDERS {
             if let Some(g) = group(half, ks, order, &mut table) {
                 if !seen.contains(&g) {
                     seen.push(g);
@@ -1246,14 +1248,7 @@ mod tests {
             let descending: Vec<i64> = (1..=kmax).rev().collect();
             let mut table = Table::new(&half, kmax.max(2) as usize);
             for ks in [&descending[..], &[2, 1], &[1]] {
-                for order in [
-                    [0, 1, 2],
-                    [0, 2, 1],
-                    [1, 0, 2],
-                    [1, 2, 0],
-                    [2, 0, 1],
-                    [2, 1, 0],
-                ] {
+                for order in KIND_ORDERS {
                     let want = group_by_maps(&half, ks, &order);
                     assert_eq!(group(&half, ks, &order, &mut table), want, "{half:?}");
                     cases += 1;
