@@ -37,8 +37,9 @@ const BIG_WORD_UNITS: u64 = 3;
 /// and 37,759 operations for `x` and `y` pulled out of the same group, through ties broken by
 /// symbol order further down), so neither a symmetry nor an estimate picks the same one: each
 /// cost is exact. For a plain integer polynomial `costs.rs` finds it without the tree and only
-/// the winner is built (`(x + y + z)^60`: 159 M instructions to 94 M); otherwise every
-/// candidate is built in full (about ten trees of a big power's size).
+/// the winner is built (`(x + y + z)^60`: 159 M instructions to 94 M); otherwise each
+/// candidate is built in full (about ten trees of a big power's size) unless its lower bound
+/// (`factor/floor.rs`) is not below the best built so far.
 const BRANCH: usize = 3;
 /// The candidates of a group, at most [`BRANCH`]: on the stack (a `Vec` was an allocation per
 /// group searched).
@@ -1267,7 +1268,7 @@ mod tests {
 
     /// Sums of products of cosines and sines with radicals and fractions (a chain with 60
     /// degree twists has such entries) factor back to themselves: the path the cost pass
-    /// does not take (every candidate built, plain sums met again taken from the memo, the
+    /// does not take (candidates built unless their floor rules them out, plain sums met again taken from the memo, the
     /// quotients' lengths counted from the divisor, checked against the walk in debug builds).
     #[test]
     fn trigonometric_sums_with_radicals_factor_back_to_themselves() {
@@ -1373,7 +1374,8 @@ mod tests {
         );
     }
 
-    /// Past 126 bits a coefficient is not a machine integer: every candidate is built.
+    /// Past 126 bits a coefficient is not a machine integer: the candidates are built, not
+    /// costed without their trees.
     #[test]
     fn wide_coefficients_take_the_built_candidates() {
         let p = (Scalar::sym("x") + Scalar::sym("y") + Scalar::sym("z")).pow(90);

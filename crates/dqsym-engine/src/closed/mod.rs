@@ -387,11 +387,7 @@ fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
             break;
         }
     }
-    // The rule is read against `e` at its cheapest offsets (`sin(a + pi/18)` for `cos(a -
-    // 4*pi/9)`, the value unchanged), which the form as given does not beat by a printed offset
-    // alone; `e` is shown as found (a report's common offsets are chosen from its angles).
-    let cheapest = e.clone().cheapest_offsets(&|t| alt::full_cost(t).0);
-    if as_given_may_win(x, &cheapest) {
+    if as_given_may_win(x, &e) {
         let (plain, prepared) = match prepared_unshifted(x, cap_of(x, &e)) {
             // Out of the budget (or another limit) after the shifted search: as when first.
             (Err(_), _) => as_first(&before, x),
@@ -443,7 +439,14 @@ const AS_GIVEN_OPS_PER_TERM: usize = 2;
 /// operations; 124 as given), and that search is skipped.
 fn as_given_may_win(x: &Scalar, e: &Expr) -> bool {
     let terms = x.len();
-    let may = terms < AS_GIVEN_MIN_TERMS || alt::choice_key(e).0 >= AS_GIVEN_OPS_PER_TERM * terms;
+    // The rule is read against `e` at its cheapest offsets (`sin(a + pi/18)` for `cos(a -
+    // 4*pi/9)`, the value unchanged), which the form as given does not beat by a printed offset
+    // alone; `e` is shown as found (a report's common offsets are chosen from its angles). Made
+    // only for scalars large enough for the rule to apply.
+    let may = terms < AS_GIVEN_MIN_TERMS || {
+        let cheapest = e.clone().cheapest_offsets(&|t| alt::full_cost(t).0);
+        alt::choice_key(&cheapest).0 >= AS_GIVEN_OPS_PER_TERM * terms
+    };
     #[cfg(test)]
     if !may {
         tests::AS_GIVEN_SKIPS.with(|n| n.set(n.get() + 1));

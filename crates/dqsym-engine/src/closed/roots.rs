@@ -1190,11 +1190,7 @@ mod tests {
         for &k in ks {
             for &kind in kinds {
                 let keys: Vec<Small> = left.keys().copied().collect();
-                for r in keys
-                    .into_iter()
-                    .filter(|r| left.contains_key(r))
-                    .collect::<Vec<_>>()
-                {
+                for r in keys {
                     if !left.contains_key(&r) {
                         continue;
                     }

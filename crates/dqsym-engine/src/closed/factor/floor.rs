@@ -19,8 +19,10 @@
 //! weights ([`Search::floor`]), and the calls add up alike.
 //!
 //! The bound reads each monomial's quotient once per candidate, as the visit of the group
-//! does; its work is not charged to the budget, being at most the [`super::BRANCH`] times
-//! the visit's, which is.
+//! does, and its work is not charged to the budget: a deliberate leak, bounded but not by
+//! the visit's charge. The crossing factors' count compares each power-one factor with the
+//! groups found so far, quadratic in the distinct factors, and is made only for groups of at
+//! most 64 monomials.
 //!
 //! [`E`]: super::E
 
