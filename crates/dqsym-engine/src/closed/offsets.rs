@@ -1148,6 +1148,61 @@ mod tests {
         );
     }
 
+    /// A seeded random sum over the level `den`: one to `most_modes` modes (`x` or `2 x`, with
+    /// `-y`, none or `y`), each times 1 or `l`, of one to three terms at one base offset `k
+    /// pi/den` apart by multiples of pi/12 (one phase class), but for one draw in `arms` at
+    /// another offset of the level and, with `bare`, one more at none.
+    fn graded_sum(
+        next: &mut dyn FnMut(u64) -> u64,
+        den: u64,
+        most_modes: u64,
+        arms: u64,
+        bare: bool,
+    ) -> Scalar {
+        let (x, y, l) = (Scalar::sym("x"), Scalar::sym("y"), Scalar::sym("l"));
+        let mut e = Scalar::int(0);
+        for _ in 0..1 + next(most_modes) {
+            let angle = Scalar::int(1 + next(2) as i64) * x.clone()
+                + Scalar::int(next(3) as i64 - 1) * y.clone();
+            let mono = if next(2) == 0 {
+                Scalar::int(1)
+            } else {
+                l.clone()
+            };
+            let base = next(2 * den) as i64;
+            for _ in 0..1 + next(3) {
+                let p = match next(arms) {
+                    0 => parse_pi(next(2 * den) as i64, den as i64),
+                    1 if bare => parse_pi(0, 1),
+                    _ => parse_pi(base, den as i64) + parse_pi(next(24) as i64, 12),
+                };
+                let a = angle.clone() + p;
+                let f = if next(2) == 0 { a.cos() } else { a.sin() };
+                e = e + Scalar::int(next(7) as i64 - 3) * mono.clone() * f;
+            }
+        }
+        e
+    }
+
+    /// The groups a phase-class test met: with a class past zero, with none.
+    #[derive(Debug, Default)]
+    struct Classes {
+        seen: usize,
+        found: usize,
+        none: usize,
+    }
+
+    impl Classes {
+        fn count(&mut self, class: Option<Small>) {
+            self.seen += 1;
+            match class {
+                Some(d) if !d.is_zero() => self.found += 1,
+                Some(_) => {}
+                None => self.none += 1,
+            }
+        }
+    }
+
     /// The phase class read off the offsets is the one found by trying every candidate, on
     /// the groups of seeded random sums over levels of 2s and 3s (offsets of ninths,
     /// eighths, 36ths, 27ths, 16ths ...): terms of one class apart by multiples of pi/12 (one
@@ -1156,33 +1211,11 @@ mod tests {
     #[test]
     fn the_phase_class_of_a_graded_level_is_the_one_its_offsets_share() {
         let mut next = crate::testing::xorshift_below(0x05ee_dc1a_55e5_u64);
-        let (x, y, l) = (Scalar::sym("x"), Scalar::sym("y"), Scalar::sym("l"));
         let dens = [9, 18, 36, 8, 16, 24, 27, 48, 72];
-        let (mut found, mut none, mut groups_seen) = (0, 0, 0);
+        let mut classes = Classes::default();
         for _ in 0..150 {
             let den = dens[next(dens.len() as u64) as usize];
-            let mut e = Scalar::int(0);
-            for _ in 0..1 + next(3) {
-                let angle = Scalar::int(1 + next(2) as i64) * x.clone()
-                    + Scalar::int(next(3) as i64 - 1) * y.clone();
-                let mono = if next(2) == 0 {
-                    Scalar::int(1)
-                } else {
-                    l.clone()
-                };
-                let base = next(2 * den);
-                for _ in 0..1 + next(3) {
-                    let p = match next(8) {
-                        0 => parse_pi(next(2 * den) as i64, den as i64),
-                        1 => parse_pi(0, 1),
-                        _ => parse_pi(base as i64, den as i64) + parse_pi(next(24) as i64, 12),
-                    };
-                    let a = angle.clone() + p;
-                    let f = if next(2) == 0 { a.cos() } else { a.sin() };
-                    let c = Scalar::int(next(7) as i64 - 3);
-                    e = e + c * mono.clone() * f;
-                }
-            }
+            let e = graded_sum(&mut next, den, 3, 8, true);
             let Ok(terms) = e.terms() else {
                 panic!("{e:?} an error");
             };
@@ -1191,18 +1224,10 @@ mod tests {
             for g in groups_of(terms) {
                 let want = phase_class_by_search(&g, n);
                 assert_eq!(phase_class_of_offsets(&g, n), want, "{e:?} at level {n}");
-                groups_seen += 1;
-                match want {
-                    Some(d) if !d.is_zero() => found += 1,
-                    Some(_) => {}
-                    None => none += 1,
-                }
+                classes.count(want);
             }
         }
-        assert!(
-            found > 50 && none > 20,
-            "{groups_seen} groups: {found} with a class, {none} without"
-        );
+        assert!(classes.found > 50 && classes.none > 20, "{classes:?}");
         assert!(
             graded_level(12) && graded_level(36 * 64) && !graded_level(60) && !graded_level(84)
         );
@@ -1289,31 +1314,11 @@ mod tests {
     #[test]
     fn the_phase_class_searched_among_fitting_columns_is_the_one_searched_among_all() {
         let mut next = crate::testing::xorshift_below(0x0c01_5ea2_c4ed_u64);
-        let (x, y, l) = (Scalar::sym("x"), Scalar::sym("y"), Scalar::sym("l"));
         let dens = [5, 7, 10, 13, 15, 14, 20];
-        let (mut found, mut none, mut groups_seen) = (0, 0, 0);
+        let mut classes = Classes::default();
         for _ in 0..60 {
-            let den = dens[next(dens.len() as u64) as usize] as i64;
-            let mut e = Scalar::int(0);
-            for _ in 0..1 + next(2) {
-                let angle = Scalar::int(1 + next(2) as i64) * x.clone()
-                    + Scalar::int(next(3) as i64 - 1) * y.clone();
-                let mono = if next(2) == 0 {
-                    Scalar::int(1)
-                } else {
-                    l.clone()
-                };
-                let base = next(2 * den as u64) as i64;
-                for _ in 0..1 + next(3) {
-                    let p = match next(6) {
-                        0 => parse_pi(next(2 * den as u64) as i64, den),
-                        _ => parse_pi(base, den) + parse_pi(next(24) as i64, 12),
-                    };
-                    let a = angle.clone() + p;
-                    let f = if next(2) == 0 { a.cos() } else { a.sin() };
-                    e = e + Scalar::int(next(7) as i64 - 3) * mono.clone() * f;
-                }
-            }
+            let den = dens[next(dens.len() as u64) as usize];
+            let e = graded_sum(&mut next, den, 2, 6, false);
             let Ok(terms) = e.terms() else {
                 continue;
             };
@@ -1327,18 +1332,10 @@ mod tests {
                         .find(|&d| no_offset(&shifted_group(&g, d)))
                 };
                 assert_eq!(phase_class_by_search(&g, n), every, "{e:?} at level {n}");
-                groups_seen += 1;
-                match every {
-                    Some(d) if !d.is_zero() => found += 1,
-                    Some(_) => {}
-                    None => none += 1,
-                }
+                classes.count(every);
             }
         }
-        assert!(
-            found > 30 && none > 5,
-            "{groups_seen} groups: {found} with a class, {none} without"
-        );
+        assert!(classes.found > 30 && classes.none > 5, "{classes:?}");
     }
 
     #[test]

@@ -362,9 +362,10 @@ mod tests {
     }
 
     /// On many random forms (sums of products of sums, three levels), a form times -1, 1/2 or
-    /// -3 is that multiple of its value exactly, holds no `-(-x)`, and a negative multiple prints
-    /// no longer than the sign left in front of the positive one: the sign placement `Expr::scaled` finds from the texts of the terms
-    /// and factors (checked against the texts of the products it builds in debug builds).
+    /// -3 is that multiple of its value exactly, holds no `-(-x)`, and a negative multiple
+    /// prints no longer than the sign left in front of the positive one: the sign placement
+    /// `Expr::scaled` finds from the texts of the terms and factors (checked against the texts
+    /// of the products it builds in debug builds).
     #[test]
     fn random_forms_scaled_are_their_multiples_and_no_longer() {
         let q = |n: i64, d: i64| BigRational::new(n.into(), d.into());
@@ -381,25 +382,37 @@ mod tests {
             };
             let x = e.to_scalar();
             for c in [q(-1, 1), q(1, 2), q(-3, 1)] {
-                let s = e.clone().scaled(&c);
-                assert_eq!(
-                    s.to_scalar(),
-                    x.clone() * Scalar::rational(c.clone()),
-                    "{e:?}"
-                );
-                assert!(!badly_signed(&s), "{s:?}");
+                let s = scaled_exactly(&e, &x, &c);
                 if c.is_negative() {
-                    // Against the sign left in front of the positive multiple.
-                    let front = Expr::Neg(Box::new(e.clone().scaled(&-c.clone())));
-                    let (new, old) = (plain(&s, &po), plain(&front, &po));
-                    assert!(new.len() <= old.len(), "{new} vs {old}");
-                    shorter += usize::from(new.len() < old.len());
+                    shorter += usize::from(no_longer_than_in_front(&e, &s, &c, &po));
                     cases += 1;
                 }
             }
         }
         assert_eq!(cases, 800);
         assert!(shorter > 100, "{shorter}");
+    }
+
+    /// `e` (whose value is `x`) times `c`, asserted to be `c x` exactly and to hold no
+    /// `-(-x)`.
+    fn scaled_exactly(e: &Expr, x: &Scalar, c: &BigRational) -> Expr {
+        let s = e.clone().scaled(c);
+        assert_eq!(
+            s.to_scalar(),
+            x.clone() * Scalar::rational(c.clone()),
+            "{e:?} {c}"
+        );
+        assert!(!badly_signed(&s), "{s:?}");
+        s
+    }
+
+    /// Asserts that `s` (`e` times `c`) prints no longer than the sign left in front of `e`
+    /// times `-c`; whether it prints strictly shorter.
+    fn no_longer_than_in_front(e: &Expr, s: &Expr, c: &BigRational, po: &PlainOptions) -> bool {
+        let front = Expr::Neg(Box::new(e.clone().scaled(&-c.clone())));
+        let (new, old) = (plain(s, po), plain(&front, po));
+        assert!(new.len() <= old.len(), "{new} vs {old}");
+        new.len() < old.len()
     }
 
     /// Whether `e` holds a `-(-x)`, a negation as a product's factor or a negative number.
@@ -455,21 +468,11 @@ mod tests {
                 q(2, 1),
                 q(-7, 3),
             ] {
-                let s = e.clone().scaled(&c);
-                assert_eq!(
-                    s.to_scalar(),
-                    x.clone() * Scalar::rational(c.clone()),
-                    "{e:?} {c}"
-                );
-                assert!(!badly_signed(&s), "{s:?}");
+                let s = scaled_exactly(&e, x, &c);
                 if c.is_one() {
                     assert_eq!(s, e);
                 }
-                // Against the sign left in front of the positive multiple.
-                let front = Expr::Neg(Box::new(e.clone().scaled(&-c.clone())));
-                let (new, old) = (plain(&s, &po), plain(&front, &po));
-                assert!(new.len() <= old.len(), "{new} vs {old}");
-                placed += usize::from(new.len() < old.len());
+                placed += usize::from(no_longer_than_in_front(&e, &s, &c, &po));
             }
         }
         assert!(placed > 5, "{placed}");
