@@ -3,7 +3,9 @@
 //! Where `costs.rs` cannot cost a candidate without its tree (atoms, radicals, fractions: the
 //! entries of a chain with 60-degree twists), [`Search::searched`] built every candidate and
 //! kept the first of least cost. A candidate whose bound is not below the best cost so far
-//! cannot win (it would need a lower cost; a tie keeps the earlier one), so it is not built.
+//! cannot win (it would need a lower cost; a tie keeps the earlier one), so it is not built;
+//! nor is its rest where its factored part, built, makes the bound reach the best cost
+//! ([`Search::split_below`]).
 //!
 //! The bound counts leaves. Every node of an [`E`] tree that has `j` children costs `j - 1`
 //! operations (a sum, a product), a negation one or none, and a leaf costs what it reads: an
@@ -26,7 +28,9 @@
 //!
 //! [`E`]: super::E
 
-use super::{quotient_atoms, quotient_syms, Atom, Factor, Search};
+use super::{
+    lowest_power, quotient_atoms, quotient_syms, split_by, Atom, Factor, Mults, Search, E,
+};
 use crate::closed::expr::Cost;
 use crate::scalar::Q;
 use smallvec::SmallVec;
@@ -147,11 +151,11 @@ impl Search<'_> {
 
     /// A lower bound of the cost of [`Search::split_on`]`(group, f, _)`, without building it
     /// (module doc): the weights of `f^k`, of the monomials holding `f^k` divided by it and of
-    /// the others, less one.
-    pub(super) fn split_floor(&mut self, group: &[(u32, Q)], f: Factor) -> Cost {
+    /// the others, less one; with the powers of `f` and the others' floor.
+    pub(super) fn split_floor(&mut self, group: &[(u32, Q)], f: Factor) -> SplitFloor {
         let fi = self.counts.index(f);
-        let mults: SmallVec<[u32; 32]> = self.powers(group.iter().map(|(i, _)| *i), f);
-        let k = mults.iter().copied().filter(|&n| n > 0).min().unwrap_or(1);
+        let mults: Mults = self.powers(group.iter().map(|(i, _)| *i), f);
+        let k = lowest_power(&mults);
         let rest = self.floor(
             group
                 .iter()
@@ -179,11 +183,74 @@ impl Search<'_> {
             },
         };
         let w = fk.add(inner).add(rest);
-        Cost {
-            ops: w.weight - 1,
-            calls: w.calls,
+        SplitFloor {
+            cost: Cost {
+                ops: w.weight - 1,
+                calls: w.calls,
+            },
+            rest,
+            mults,
         }
     }
+
+    /// [`Search::split_on`]`(group, f, depth)` where its cost may be below `best`; `None`,
+    /// having built at most its factored part, where it cannot be.
+    ///
+    /// First the bound of [`Search::split_floor`]. Then, once the factored part `F` is
+    /// built, a second one: the split is the sum of `F` and the rest's terms (the rest `R`'s
+    /// own terms spliced in where `R` is a sum, else `R` itself), so it costs one addition
+    /// joining them more than `F` and `R` cost as terms of a sum: `1 + cost_in_sum(F) +
+    /// cost_in_sum(R)` operations (a sum's cost as a term is its cost). A term's cost is at
+    /// least its weight less one (module doc: a negation, free as a term, is no leaf and has
+    /// one child, so the count holds), and the rest's weight is at least its floor's: the
+    /// split costs at least `cost_in_sum(F)` plus the rest's floor weight. Its calls are
+    /// `F`'s and `R`'s, at least `F`'s plus the rest's floor calls. Both bounds hold, so their
+    /// larger operations and larger calls do; a split at or above `best` is not chosen (the
+    /// first of least cost is), so then its rest is not built.
+    pub(super) fn split_below(
+        &mut self,
+        group: &[(u32, Q)],
+        f: Factor,
+        depth: usize,
+        best: Cost,
+    ) -> Option<E> {
+        let SplitFloor { cost, rest, mults } = self.split_floor(group, f);
+        if cost >= best {
+            return None;
+        }
+        let split = split_by(group, &mults);
+        let factored = self.factored(&split, f, depth);
+        let bound = if split.rest.is_empty() {
+            cost
+        } else {
+            let fc = factored.cost_in_sum();
+            Cost {
+                ops: cost.ops.max(fc.ops + rest.weight),
+                calls: cost.calls.max(fc.calls + rest.calls),
+            }
+        };
+        if bound >= best {
+            return None;
+        }
+        let e = self.beside(factored, &split.rest, split.n_before, depth);
+        debug_assert!(
+            {
+                let c = e.cost();
+                c.ops >= bound.ops && c.calls >= bound.calls
+            },
+            "floor {bound:?} of {:?}",
+            e.cost()
+        );
+        Some(e)
+    }
+}
+
+/// [`Search::split_floor`]'s bound of a split, with the floor of its rest and each
+/// monomial's power of the factor.
+pub(super) struct SplitFloor {
+    pub(super) cost: Cost,
+    rest: Floor,
+    mults: Mults,
 }
 
 /// Leaves beyond one per factor, of atoms and of symbols.
