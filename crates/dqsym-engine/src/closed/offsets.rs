@@ -53,9 +53,17 @@ struct Group<'a> {
     terms: Vec<&'a Term>,
 }
 
+/// `p` modulo 2, in `[0, 2)`: for `p = a / b` (lowest terms, `b > 0`) the numerator `a mod
+/// 2 b` over `b`, in lowest terms as it stands (it differs from `a` by a multiple of `b`, so
+/// its gcd with `b` is 1); in `Small` when `2 b` leaves a machine word.
 fn reduce2(p: Small) -> Small {
-    let two = Small::from_integer(2);
-    p - (p / two).floor() * two
+    match p.denom().checked_mul(2) {
+        Some(period) => Small::new_raw(p.numer().rem_euclid(period), *p.denom()),
+        None => {
+            let two = Small::from_integer(2);
+            p - (p / two).floor() * two
+        }
+    }
 }
 
 /// The group's terms with their offsets lowered by `d`, canonical.
@@ -401,6 +409,10 @@ struct System {
     ranges: Vec<i64>,
 }
 
+/// One row of [`system`] before its scaling to integers: each free symbol's coefficient as a
+/// fraction `(numerator, denominator)` in lowest terms, the right-hand side, the modulus.
+type FractionRow = (Vec<(i64, i64)>, Small, Small);
+
 /// The integer system of [`solve`]; `None` past the bounds (too many candidates, numbers too
 /// large).
 fn system(
@@ -418,9 +430,15 @@ fn system(
         }
         let (mut num, mut den) = (1i64, 1i64);
         for r in rows {
+            // A multiple already (a coefficient met before, or 1) leaves it without a gcd.
             if let Some((_, k)) = r.iter().find(|(x, _)| *x == s) {
-                num = num.lcm(&k.numer().abs());
-                den = den.lcm(k.denom());
+                let kn = k.numer().abs();
+                if kn == 0 || num % kn != 0 {
+                    num = num.lcm(&kn);
+                }
+                if den % k.denom() != 0 {
+                    den = den.lcm(k.denom());
+                }
             }
         }
         let count = n.checked_mul(num)?.checked_mul(den)?.checked_mul(2)?;
@@ -436,34 +454,48 @@ fn system(
         }
         c
     };
-    // Each row as rationals: coefficients of the free symbols' integers, right-hand side
-    // (the fixed symbols moved to it), modulus.
-    let mut rational: Vec<(Vec<Small>, Small, Small)> = Vec::with_capacity(rows.len());
+    // Each row as fractions `(numerator, denominator)` in lowest terms: coefficients of the
+    // free symbols' integers, right-hand side (the fixed symbols moved to it), modulus. A
+    // coefficient `k / (n a)` is reduced by one gcd in machine words (the same fraction as
+    // `k * unit` in `Small`, which reduces by two: a product in `Small` was half of this
+    // function's instructions on the Jaco-style arm).
+    let mut rational: Vec<FractionRow> = Vec::with_capacity(rows.len());
     let mut lcm: i64 = 1;
-    let mut take = |q: Small| -> Option<Small> {
-        lcm = lcm.checked_mul(q.denom() / lcm.gcd(q.denom()))?;
-        Some(q)
+    let mut take = |den: i64| -> Option<()> {
+        if lcm % den != 0 {
+            lcm = lcm.checked_mul(den / lcm.gcd(&den))?;
+        }
+        Some(())
     };
     for (r, (t, m)) in rows.iter().zip(targets) {
-        let mut a = vec![Small::zero(); free.len()];
+        let mut a = vec![(0, 1); free.len()];
         let mut rhs = *t;
         for (s, k) in r {
             match (column[*s], fixed[*s]) {
-                (Some(j), _) => a[j] = take(*k * free[j].1)?,
-                (None, Some(v)) => rhs -= *k * v,
-                (None, None) => {}
+                (Some(j), _) => {
+                    let den = k.denom().checked_mul(*free[j].1.denom())?;
+                    let g = k.numer().gcd(&den);
+                    a[j] = (k.numer() / g, den / g);
+                    take(a[j].1)?;
+                }
+                (None, Some(v)) if !v.is_zero() => rhs -= *k * v,
+                (None, _) => {}
             }
         }
-        rational.push((a, take(rhs)?, take(*m)?));
+        take(*rhs.denom())?;
+        take(*m.denom())?;
+        rational.push((a, rhs, *m));
     }
     if lcm > 1 << 40 {
         return None;
     }
-    // One common modulus: each row scaled by `L` (integers), then by `M / (L m)`.
-    let l = Small::from_integer(lcm);
+    // One common modulus: each row scaled by `L` (integers), then by `M / (L m)`. A fraction
+    // `p / q` times `L` is the integer `p (L / q)` (`q` divides `L`).
+    let l = lcm;
+    let times_l = |(p, q): (i64, i64)| i128::from(p) * i128::from(l / q);
     let mut modulus: i64 = 1;
     for (_, _, m) in &rational {
-        let mg = (*m * l).to_integer();
+        let mg = i64::try_from(times_l((*m.numer(), *m.denom()))).ok()?;
         modulus = modulus.checked_mul(mg / modulus.gcd(&mg))?;
     }
     if modulus > 1 << 40 {
@@ -472,13 +504,11 @@ fn system(
     let mut a: Vec<Vec<i64>> = Vec::with_capacity(rational.len());
     let mut b: Vec<i64> = Vec::with_capacity(rational.len());
     for (coef, rhs, m) in &rational {
-        let scale = modulus / (*m * l).to_integer();
-        let int = |q: Small| -> i64 {
-            let v = i128::from((q * l).to_integer()) * i128::from(scale);
-            v.rem_euclid(i128::from(modulus)) as i64
-        };
+        let scale = i128::from(modulus) / times_l((*m.numer(), *m.denom()));
+        let int =
+            |q: (i64, i64)| -> i64 { (times_l(q) * scale).rem_euclid(i128::from(modulus)) as i64 };
         a.push(coef.iter().map(|q| int(*q)).collect());
-        b.push(int(*rhs));
+        b.push(int((*rhs.numer(), *rhs.denom())));
     }
     let ranges: Vec<i64> = free.iter().map(|(_, _, c)| *c).collect();
     Some(System {
@@ -509,16 +539,21 @@ pub(super) fn amplitude<'a>(terms: impl IntoIterator<Item = &'a Term>) -> Option
     Some((re, im))
 }
 
-/// `sum k o[s]` over the row `r`, exactly: summed over a growing common denominator in
+/// `sum k o[s]` over the row `r`, exactly (see [`dot_of_pairs`]).
+fn dot(r: &[(usize, Small)], o: &[Small]) -> Small {
+    dot_of_pairs(r.iter().map(|(s, k)| (*k, o[*s])))
+}
+
+/// `sum k o` over the pairs `(k, o)`, exactly: summed over a growing common denominator in
 /// machine words and reduced once (the same value as the sum in `Small`, whose every step
 /// reduces by gcds: the Jaco-style arm's offsets spent half their instructions there, scoring
 /// each solution); in `Small` when a word would overflow.
-fn dot(r: &[(usize, Small)], o: &[Small]) -> Small {
-    let fast = || -> Option<Small> {
+fn dot_of_pairs(pairs: impl Iterator<Item = (Small, Small)> + Clone) -> Small {
+    let fast = |pairs: &mut dyn Iterator<Item = (Small, Small)>| -> Option<Small> {
         let (mut num, mut den) = (0i64, 1i64);
-        for (s, k) in r {
-            let a = k.numer().checked_mul(*o[*s].numer())?;
-            let b = k.denom().checked_mul(*o[*s].denom())?;
+        for (k, o) in pairs {
+            let a = k.numer().checked_mul(*o.numer())?;
+            let b = k.denom().checked_mul(*o.denom())?;
             if den % b == 0 {
                 num = num.checked_add(a.checked_mul(den / b)?)?;
             } else {
@@ -529,13 +564,7 @@ fn dot(r: &[(usize, Small)], o: &[Small]) -> Small {
         let g = num.unsigned_abs().gcd(&den.unsigned_abs()) as i64;
         Some(Small::new_raw(num / g, den / g))
     };
-    fast().unwrap_or_else(|| {
-        let mut f = Small::zero();
-        for (s, k) in r {
-            f += *k * o[*s];
-        }
-        f
-    })
+    fast(&mut pairs.clone()).unwrap_or_else(|| pairs.map(|(k, o)| k * o).sum())
 }
 
 /// The least common multiple of the denominators of `xs`; `None` when it leaves a machine
@@ -945,15 +974,13 @@ impl Shift {
         no_offset(&y).then_some(y)
     }
 
-    /// `f . o` for a frequency vector.
+    /// `f . o` for a frequency vector, exactly (in machine words when they suffice:
+    /// [`dot_of_pairs`]).
     fn phase(&self, freq: &[(Sym, Small)]) -> Small {
-        let mut d = Small::zero();
-        for (s, k) in freq {
-            if let Some((_, o)) = self.0.iter().find(|(x, _)| x == s) {
-                d += *k * *o;
-            }
-        }
-        d
+        dot_of_pairs(
+            freq.iter()
+                .filter_map(|(s, k)| self.0.iter().find(|(x, _)| x == s).map(|(_, o)| (*k, *o))),
+        )
     }
 
     /// The expression `e` (in the shifted symbols) in the original ones: every angle gets its
@@ -1076,6 +1103,52 @@ mod tests {
         // A product past a machine word before its reduction: `Small`'s path.
         let (k, o) = (Small::new(1 << 62, 3), Small::new(5, 1 << 61));
         assert_eq!(dot(&[(0, k)], &[o]), Small::new(10, 3));
+    }
+
+    /// `Shift::phase` (a frequency vector's `f . o` over the symbols the shift holds, in
+    /// machine words) against the sum in `Small` term by term, and `reduce2` (modulo 2 in
+    /// machine words) against `p - 2 floor(p / 2)`, on seeded random vectors, shifts and phases
+    /// (denominators up to 360, and one past half a machine word: `Small`'s path).
+    #[test]
+    fn a_shifts_phase_and_its_reduction_modulo_two_are_the_rational_ones() {
+        let mut next = crate::testing::xorshift_below(0x9d2c_5680_a5a5_0f0fu64);
+        let syms: Vec<Sym> = ["x", "y", "z", "w"].into_iter().map(Sym::new).collect();
+        let two = Small::from_integer(2);
+        let modulo_two = |p: Small| p - (p / two).floor() * two;
+        let random = |next: &mut dyn FnMut(u64) -> u64, span: u64| {
+            let n = next(2 * span) as i64 - span as i64;
+            Small::new(n, 1 + next(span) as i64)
+        };
+        let (mut held, mut moved) = (0, 0);
+        for _ in 0..2000 {
+            let mut shift = Vec::new();
+            let mut freq: Vec<(Sym, Small)> = Vec::new();
+            for s in &syms {
+                if next(3) != 0 {
+                    shift.push((s.clone(), random(&mut next, 360)));
+                }
+                if next(4) != 0 {
+                    freq.push((s.clone(), random(&mut next, 6)));
+                }
+            }
+            let shift = Shift(shift);
+            let want = freq.iter().fold(Small::zero(), |acc, (s, k)| {
+                let o = shift.0.iter().find(|(x, _)| x == s);
+                acc + o.map_or(Small::zero(), |(_, o)| *k * *o)
+            });
+            let d = shift.phase(&freq);
+            assert_eq!(d, want, "{freq:?} {shift:?}");
+            held += usize::from(!d.is_zero());
+            let p = random(&mut next, 360) + d;
+            let r = reduce2(p);
+            assert_eq!(r, modulo_two(p));
+            assert!(r >= Small::zero() && r < two && r.denom() == p.denom());
+            moved += usize::from(r != p);
+        }
+        assert!(held > 1000 && moved > 500, "{held} phases, {moved} moved");
+        // A denominator past half a machine word: `Small`'s path.
+        let wide = Small::new((1 << 62) + 4, (1 << 62) + 1);
+        assert_eq!(reduce2(wide), wide);
     }
 
     /// `centred` against its definition in big rationals (the multiple of the period `2 den`
@@ -1230,6 +1303,126 @@ mod tests {
         assert!(classes.found > 50 && classes.none > 20, "{classes:?}");
         assert!(
             graded_level(12) && graded_level(36 * 64) && !graded_level(60) && !graded_level(84)
+        );
+    }
+
+    /// The integer system of [`system`] as its rationals give it (each coefficient `k` times
+    /// the symbol's unit in `Small`, every entry scaled by the lcm `L` of the denominators and
+    /// by `M / (L m)`): the reference the machine-word arithmetic of `system` must equal.
+    fn system_in_rationals(
+        rows: &[Vec<(usize, Small)>],
+        targets: &[(Small, Small)],
+        fixed: &[Option<Small>],
+        free: &[(usize, Small, i64)],
+    ) -> (Vec<Vec<i64>>, Vec<i64>, i64) {
+        let column = |s: usize| free.iter().position(|(f, _, _)| *f == s);
+        let mut rational: Vec<(Vec<Small>, Small, Small)> = Vec::new();
+        for (r, (t, m)) in rows.iter().zip(targets) {
+            let mut a = vec![Small::zero(); free.len()];
+            let mut rhs = *t;
+            for (s, k) in r {
+                match (column(*s), fixed[*s]) {
+                    (Some(j), _) => a[j] = *k * free[j].1,
+                    (None, Some(v)) => rhs -= *k * v,
+                    (None, None) => {}
+                }
+            }
+            rational.push((a, rhs, *m));
+        }
+        let l = rational
+            .iter()
+            .flat_map(|(a, rhs, m)| a.iter().chain([rhs, m]))
+            .fold(1i64, |l, q| l.lcm(q.denom()));
+        let l = Small::from_integer(l);
+        let modulus = rational
+            .iter()
+            .fold(1i64, |acc, (_, _, m)| acc.lcm(&(*m * l).to_integer()));
+        let int = |q: Small, m: Small| {
+            ((q * l).to_integer() * (modulus / (m * l).to_integer())).rem_euclid(modulus)
+        };
+        let a = rational
+            .iter()
+            .map(|(a, _, m)| a.iter().map(|q| int(*q, *m)).collect())
+            .collect();
+        let b = rational.iter().map(|(_, rhs, m)| int(*rhs, *m)).collect();
+        (a, b, modulus)
+    }
+
+    /// `system` in machine words is the system its rationals give (`system_in_rationals`) on
+    /// 2,000 random systems: 1 to 4 symbols, rows of coefficients `+-1..3` over 1, 2 or 3,
+    /// phases over the level `n` (12, 36, 60, 72), moduli 1/12 and 1/4, symbols free, fixed
+    /// at 0 or fixed at a multiple of pi/n; and it gives up (`None`) exactly where the
+    /// candidates pass `MAX_CANDIDATES`.
+    #[test]
+    fn a_system_in_machine_words_is_the_system_of_its_rationals() {
+        let mut next = crate::testing::xorshift_below(0x0ff5_e75e_u64);
+        let syms: Vec<Sym> = ["a", "b", "c", "d"].into_iter().map(Sym::new).collect();
+        let (mut built, mut too_many) = (0, 0);
+        for _ in 0..2000 {
+            let n = [12, 36, 60, 72][next(4) as usize];
+            let count = 1 + next(4) as usize;
+            let mut rows: Vec<Vec<(usize, Small)>> = Vec::new();
+            for _ in 0..1 + next(8) {
+                let mut row = Vec::new();
+                for s in 0..count {
+                    if next(4) != 0 {
+                        let k = 1 + next(3) as i64;
+                        let sign = if next(2) == 0 { 1 } else { -1 };
+                        row.push((s, Small::new(sign * k, 1 + next(3) as i64)));
+                    }
+                }
+                rows.push(row);
+            }
+            let targets: Vec<(Small, Small)> = rows
+                .iter()
+                .map(|_| {
+                    let m = [Small::new(1, 12), Small::new(1, 4)][next(2) as usize];
+                    (Small::new(next(2 * n as u64) as i64, n), m)
+                })
+                .collect();
+            let fixed: Vec<Option<Small>> = (0..count)
+                .map(|_| match next(4) {
+                    0 => Some(Small::zero()),
+                    1 => Some(Small::new(next(2 * n as u64) as i64, n)),
+                    _ => None,
+                })
+                .collect();
+            let Some(sys) = system(&syms[..count], &rows, &targets, n, &fixed) else {
+                // Only the candidates' bound gives up on these (numbers stay far inside a word).
+                let over = fixed.iter().enumerate().any(|(s, f)| {
+                    let (num, den) = rows
+                        .iter()
+                        .filter_map(|r| r.iter().find(|(x, _)| *x == s))
+                        .fold((1i64, 1i64), |(a, b), (_, k)| {
+                            (a.lcm(&k.numer().abs()), b.lcm(k.denom()))
+                        });
+                    f.is_none() && 2 * n * num * den > MAX_CANDIDATES
+                });
+                assert!(over, "gave up on {rows:?} {targets:?} {fixed:?}");
+                too_many += 1;
+                continue;
+            };
+            built += 1;
+            let free: Vec<usize> = (0..count).filter(|s| fixed[*s].is_none()).collect();
+            assert_eq!(sys.free.iter().map(|f| f.0).collect::<Vec<_>>(), free);
+            for (s, unit, c) in &sys.free {
+                assert_eq!(
+                    *c,
+                    2 * n * (*unit.denom() / n) * {
+                        rows.iter()
+                            .filter_map(|r| r.iter().find(|(x, _)| x == s))
+                            .fold(1i64, |d, (_, k)| d.lcm(k.denom()))
+                    }
+                );
+                assert_eq!(*unit.numer(), 1);
+            }
+            let (a, b, modulus) = system_in_rationals(&rows, &targets, &fixed, &sys.free);
+            assert_eq!((&sys.a, &sys.b, sys.modulus), (&a, &b, modulus), "{rows:?}");
+            assert_eq!(sys.ranges, sys.free.iter().map(|f| f.2).collect::<Vec<_>>());
+        }
+        assert!(
+            built > 1000 && too_many > 50,
+            "{built} built, {too_many} over the bound"
         );
     }
 
