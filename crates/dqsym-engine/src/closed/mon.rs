@@ -537,6 +537,15 @@ fn part_id(
 /// angle-sum formulas, `cos(a + b) = cos a cos b - sin a sin b`, so that recombination can
 /// regroup the angles the way the expression is best read.
 pub(crate) fn split_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
+    split_modes_over(x, common_denominator)
+}
+
+/// [`split_modes`] with the coefficients summed as numerators over the denominator that `den`
+/// gives for the terms, or as rationals when it gives none (the same monomials either way).
+fn split_modes_over(
+    x: &Scalar,
+    den: fn(&[crate::scalar::Term]) -> Option<OverCommon>,
+) -> (Ctx, Vec<Mon>) {
     let mut ctx = Ctx::new(x);
     let Ok(terms) = x.terms() else {
         return (ctx, Vec::new());
@@ -576,13 +585,42 @@ pub(crate) fn split_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
             }
         }
     }
-    // Sum the expansions per cofactor `(rad, syms)`, keyed by the atoms.
-    type Cofactor = (u64, Syms);
+    let mut out = match den(terms) {
+        Some((den, nums)) => {
+            let sums = expansions(&ctx, terms, &parts_of, |k| nums[k]);
+            monomials(sums, |n| fraction(n, den))
+        }
+        None => monomials(
+            expansions(&ctx, terms, &parts_of, |k| terms[k].coef.clone()),
+            |q| q,
+        ),
+    };
+    // The keys are distinct: this is the order `merge` gives.
+    out.sort_unstable_by(key_cmp);
+    (ctx, out)
+}
+
+/// A monomial's cofactor `(rad, syms)`.
+type Cofactor = (u64, Syms);
+
+/// A denominator common to some coefficients and their numerators over it
+/// ([`common_denominator`]).
+type OverCommon = (i64, Vec<i128>);
+
+/// The expansions of the terms of a split shape ([`split_modes`]; `parts_of` the parts of each
+/// term's mode), summed per cofactor and keyed by the atoms, with the coefficient of term `k`
+/// as `coef(k)`.
+fn expansions<V: Coef>(
+    ctx: &Ctx,
+    terms: &[crate::scalar::Term],
+    parts_of: &[Vec<(u32, bool)>],
+    coef: impl Fn(usize) -> V,
+) -> Vec<(Cofactor, Sum<V>)> {
     let mut group_of: FxMap<Cofactor, usize> = FxMap::default();
-    let mut groups: Vec<(Cofactor, Sum)> = Vec::new();
+    let mut groups: Vec<(Cofactor, Sum<V>)> = Vec::new();
     let mut atoms = Vec::new();
-    for (t, parts) in terms.iter().zip(&parts_of) {
-        let base = base_mon(&ctx, t);
+    for (k, (t, parts)) in terms.iter().zip(parts_of).enumerate() {
+        let base = base_mon(ctx, t);
         let cof = (base.rad, base.syms);
         let g = match group_of.get(&cof) {
             Some(&g) => g,
@@ -593,33 +631,131 @@ pub(crate) fn split_modes(x: &Scalar) -> (Ctx, Vec<Mon>) {
             }
         };
         let sum = &mut groups[g].1;
+        let q = coef(k);
         if t.mode.is_unit() {
-            add_to(sum, &[], &t.coef, false);
+            add_to(sum, &[], Some(0), &q, false);
             continue;
         }
-        expand(parts, t.mode.sin, false, &mut atoms, &t.coef, sum);
+        expand(parts, t.mode.sin, false, &mut atoms, Some(0), &q, sum);
     }
+    groups
+}
+
+/// The nonzero sums of [`expansions`] as monomials (unordered), each coefficient made a
+/// rational by `value`.
+fn monomials<V: Coef>(groups: Vec<(Cofactor, Sum<V>)>, value: impl Fn(V) -> Q) -> Vec<Mon> {
     let mut out: Vec<Mon> = Vec::new();
     for ((rad, syms), sum) in groups {
         out.extend(sum.into_terms().map(|(atoms, q)| Mon {
-            q,
+            q: value(q),
             rad,
             syms: syms.clone(),
             atoms,
         }));
     }
-    // The keys are distinct: this is the order `merge` gives.
-    out.sort_unstable_by(key_cmp);
-    (ctx, out)
+    out
 }
 
-/// A sum of atom products with rational coefficients, keyed by the sorted atoms; short
+/// A coefficient as a [`Sum`] adds it up: a rational ([`Q`]), or the numerator of a rational
+/// over a denominator common to every coefficient of the sum (`i128`, see
+/// [`common_denominator`]).
+trait Coef: Clone {
+    /// `self + (-1)^neg o`.
+    fn add_signed(&mut self, o: &Self, neg: bool);
+    /// `(-1)^neg self`.
+    fn signed(&self, neg: bool) -> Self;
+    fn is_zero(&self) -> bool;
+}
+
+impl Coef for Q {
+    fn add_signed(&mut self, o: &Q, neg: bool) {
+        *self += &o.signed(neg);
+    }
+
+    fn signed(&self, neg: bool) -> Q {
+        if neg {
+            -self
+        } else {
+            self.clone()
+        }
+    }
+
+    fn is_zero(&self) -> bool {
+        Q::is_zero(self)
+    }
+}
+
+/// Exact: the numerators are those of [`common_denominator`], below 2^63 in size, and a sum adds
+/// at most one per product of the expansion, far fewer than 2^63, so no sum leaves `i128`.
+impl Coef for i128 {
+    fn add_signed(&mut self, o: &i128, neg: bool) {
+        *self += if neg { -*o } else { *o };
+    }
+
+    fn signed(&self, neg: bool) -> i128 {
+        if neg {
+            -*self
+        } else {
+            *self
+        }
+    }
+
+    fn is_zero(&self) -> bool {
+        *self == 0
+    }
+}
+
+/// The least common denominator `D` of the coefficients of `terms` with their numerators over
+/// it, when they are all small rationals and `D` and every numerator are machine words;
+/// `None` otherwise.
+///
+/// Over it the sums of [`split_modes`] add machine integers, where adding rationals took a
+/// gcd for each of the products that meet (the Jaco-style arm's `fk --jacobian`: 11,300
+/// additions, 1.75 M instructions): the sum of `n_k / D` is `(sum n_k) / D`, made a reduced
+/// rational once per monomial by [`fraction`], the same value in the same canonical form.
+fn common_denominator(terms: &[crate::scalar::Term]) -> Option<OverCommon> {
+    let mut den: i64 = 1;
+    for t in terms {
+        let Q::S(_, d) = t.coef else {
+            return None;
+        };
+        let g = crate::scalar::q::gcd_u64(den as u64, d as u64) as i64;
+        den = (den / g).checked_mul(d)?;
+    }
+    let nums = terms
+        .iter()
+        .map(|t| match t.coef {
+            Q::S(n, d) => n.checked_mul(den / d).map(i128::from),
+            Q::B(_) => None,
+        })
+        .collect::<Option<Vec<i128>>>()?;
+    Some((den, nums))
+}
+
+/// The rational `n / den` (`den > 0`), reduced: the canonical form any rational arithmetic
+/// gives.
+fn fraction(n: i128, den: i64) -> Q {
+    match i64::try_from(n) {
+        Ok(n) => Q::new(n, den),
+        Err(_) => Q::big(BigRational::new(BigInt::from(n), BigInt::from(den))),
+    }
+}
+
+/// A sum of atom products with coefficients [`Coef`], keyed by the sorted atoms; short
 /// products of small ids are keyed by one packed integer (16 bits an atom) to spare the
 /// hashing and allocation of a vector key.
-#[derive(Default)]
-struct Sum {
-    packed: FxMap<u128, Q>,
-    other: FxMap<Atoms, Q>,
+struct Sum<V> {
+    packed: FxMap<u128, V>,
+    other: FxMap<Atoms, V>,
+}
+
+impl<V> Default for Sum<V> {
+    fn default() -> Sum<V> {
+        Sum {
+            packed: FxMap::default(),
+            other: FxMap::default(),
+        }
+    }
 }
 
 /// `atoms` (sorted) packed 16 bits each as `atom + 1`, when there are at most 8, all below
@@ -647,9 +783,9 @@ fn unpack(mut key: u128) -> Atoms {
     atoms
 }
 
-impl Sum {
+impl<V: Coef> Sum<V> {
     /// The nonzero terms, in no particular order.
-    fn into_terms(self) -> impl Iterator<Item = (Atoms, Q)> {
+    fn into_terms(self) -> impl Iterator<Item = (Atoms, V)> {
         self.packed
             .into_iter()
             .map(|(k, q)| (unpack(k), q))
@@ -658,52 +794,69 @@ impl Sum {
     }
 }
 
-/// Adds `(-1)^neg q` to the coefficient of `atoms`.
-fn add_to(sum: &mut Sum, atoms: &[Atom], q: &Q, neg: bool) {
+/// Adds `(-1)^neg q` to the coefficient of `atoms`; `key` is their packed key when it was
+/// made as they came ([`pushed`]), else they are sorted and packed here when they can be.
+fn add_to<V: Coef>(sum: &mut Sum<V>, atoms: &[Atom], key: Option<u128>, q: &V, neg: bool) {
     // Sorted in place on the stack (up to eight atoms), not in a new vector.
     let sorted;
-    let atoms = if atoms.is_sorted() {
-        atoms
-    } else {
-        sorted = {
-            let mut v = Atoms::from_slice(atoms);
-            v.sort_unstable();
-            v
-        };
-        &sorted
+    let (atoms, key) = match key {
+        Some(key) => (atoms, Some(key)),
+        None if atoms.is_sorted() => (atoms, pack(atoms)),
+        None => {
+            sorted = {
+                let mut v = Atoms::from_slice(atoms);
+                v.sort_unstable();
+                v
+            };
+            (&sorted[..], pack(&sorted))
+        }
     };
-    let q = if neg { -q } else { q.clone() };
-    if let Some(key) = pack(atoms) {
+    if let Some(key) = key {
         match sum.packed.get_mut(&key) {
-            Some(s) => *s += &q,
+            Some(s) => s.add_signed(q, neg),
             None => {
-                sum.packed.insert(key, q);
+                sum.packed.insert(key, q.signed(neg));
             }
         }
         return;
     }
     match sum.other.get_mut(atoms) {
-        Some(s) => *s += &q,
+        Some(s) => s.add_signed(q, neg),
         None => {
-            sum.other.insert(Atoms::from_slice(atoms), q);
+            sum.other.insert(Atoms::from_slice(atoms), q.signed(neg));
         }
     }
 }
 
+/// The packed key ([`pack`]) of `atoms` followed by `a`, from `key`, that of `atoms`, when
+/// `a` comes after the last of them and fits: then the atoms are in order, and this is the
+/// key [`pack`] gives them. `None` otherwise ([`add_to`] sorts and packs them itself). Made
+/// one atom at a time as [`expand`] goes down, instead of a pass over every product's atoms
+/// to check their order and another to pack them (the Jaco-style arm's `fk --jacobian`:
+/// 15,000 products of six atoms).
+fn pushed(key: Option<u128>, atoms: &[Atom], a: Atom) -> Option<u128> {
+    let k = atoms.len();
+    let in_order = atoms.last().is_none_or(|&last| last < a);
+    key.filter(|_| k < 8 && a < 0xffff && in_order)
+        .map(|key| key | u128::from(a + 1) << (16 * k))
+}
+
 /// Adds `(-1)^neg * q * atoms * trig(sum of parts)` expanded into products of single-part
-/// atoms; a part is `(angle id, the angle was negated to normalize it)`.
-fn expand(
+/// atoms; a part is `(angle id, the angle was negated to normalize it)`. `key` is the packed
+/// key of `atoms` as [`pushed`] makes it.
+fn expand<V: Coef>(
     parts: &[(u32, bool)],
     sin: bool,
     neg: bool,
     atoms: &mut Vec<Atom>,
-    q: &Q,
-    out: &mut Sum,
+    key: Option<u128>,
+    q: &V,
+    out: &mut Sum<V>,
 ) {
     let Some((&(id, flipped), rest)) = parts.split_first() else {
         // trig(0): cos 0 = 1, sin 0 = 0.
         if !sin {
-            add_to(out, atoms, q, neg);
+            add_to(out, atoms, key, q, neg);
         }
         return;
     };
@@ -711,8 +864,9 @@ fn expand(
     let part = |s: bool, minus: bool| (atom(id, s), minus ^ (flipped && s));
     if rest.is_empty() {
         let (a, n) = part(sin, false);
+        let key = pushed(key, atoms, a);
         atoms.push(a);
-        add_to(out, atoms, q, neg ^ n);
+        add_to(out, atoms, key, q, neg ^ n);
         atoms.pop();
         return;
     }
@@ -725,8 +879,9 @@ fn expand(
     };
     for (s, minus, rest_sin) in branches {
         let (a, n) = part(s, minus);
+        let key = pushed(key, atoms, a);
         atoms.push(a);
-        expand(rest, rest_sin, neg ^ n, atoms, q, out);
+        expand(rest, rest_sin, neg ^ n, atoms, key, q, out);
         atoms.pop();
     }
 }
@@ -928,6 +1083,77 @@ fn div_exact(q: &Q, g: &Q) -> Option<Q> {
 mod tests {
     use super::*;
     use num_bigint::BigUint;
+
+    /// A random coefficient: a small fraction, or (one in 16 each) one over a large power of
+    /// two or of five (two of them have no common denominator within 64 bits), or a big
+    /// integer.
+    fn random_coefficient(below: &mut impl FnMut(u64) -> u64) -> Q {
+        let sign = if below(2) == 0 { 1 } else { -1 };
+        match below(16) {
+            0 => Q::new(sign * (1 + below(9) as i64), 1 << (30 + below(30))),
+            1 => Q::new(sign, 5i64.pow(20 + below(7) as u32)),
+            2 => Q::big(BigRational::from_integer(
+                BigInt::from(sign) << (64 + below(20) as usize),
+            )),
+            _ => Q::new(sign * (1 + below(12) as i64), 1 + below(12) as i64),
+        }
+    }
+
+    /// `count` random sums of `c * l * trig(a . (q1, q2, q3, q4) + k pi / 5)`: `l` 1 or a
+    /// length, the angle of up to four symbols with coefficients -1 to 2.
+    fn random_sums(seed: u64, count: usize) -> Vec<Scalar> {
+        let mut below = crate::testing::xorshift_below(seed);
+        (0..count)
+            .map(|_| {
+                (0..1 + below(6)).fold(Scalar::int(0), |sum, _| {
+                    let mut angle = Scalar::pi() * Scalar::from_q(Q::new(below(10) as i64, 5));
+                    for j in 1..=4 {
+                        let a = below(4) as i64 - 1;
+                        angle = angle + Scalar::int(a) * Scalar::sym(&format!("q{j}"));
+                    }
+                    let trig = if below(2) == 0 {
+                        angle.cos()
+                    } else {
+                        angle.sin()
+                    };
+                    let length = match below(3) {
+                        0 => Scalar::int(1),
+                        k => Scalar::sym(&format!("l{k}")),
+                    };
+                    sum + Scalar::from_q(random_coefficient(&mut below)) * length * trig
+                })
+            })
+            .collect()
+    }
+
+    /// The split shape summed over a common denominator is the one summed as rationals
+    /// (the same monomials, coefficients in the same canonical form), and its sum is the
+    /// input exactly; both routes are taken (products of two random sums, so that the
+    /// expansions meet).
+    #[test]
+    fn split_sums_over_a_common_denominator_are_the_rational_sums() {
+        let sums = random_sums(0x5b11_7de0, 240);
+        let (mut common, mut rational, mut met) = (0, 0, 0);
+        for pair in sums.chunks(2) {
+            let x = &pair[0] * &pair[1];
+            let terms = x.terms().expect("a value");
+            match common_denominator(terms) {
+                Some(_) => common += 1,
+                None => rational += 1,
+            }
+            let (ctx, mons) = split_modes(&x);
+            let (_, by_rationals) = split_modes_over(&x, |_| None);
+            assert_eq!(mons, by_rationals, "{x}");
+            let products: usize = terms.iter().map(|t| 1 << t.mode.freq.len()).sum();
+            met += usize::from(mons.len() < products / 2);
+            let sum = mons.iter().fold(Scalar::int(0), |s, m| {
+                s + crate::closed::factor::mon_expr(m).to_expr(&ctx).to_scalar()
+            });
+            assert_eq!(sum, x);
+        }
+        assert!(common > 20 && rational > 20, "{common} / {rational}");
+        assert!(met > 10, "{met}");
+    }
 
     /// `round_small` is `f64::round` bit for bit below 2^52: on integers and halves, next to
     /// them, and on random multiples like those `single_angle` rounds.
