@@ -1302,7 +1302,7 @@ mod tests {
         // 2^E (re cos(B pi) + im sin(B pi)) in floats; each pair is made once.
         let mut pts = Points(0x9E37_79B9_7F4A_7C15);
         let mut pick = |n: i64| ((pts.next() + 3.0) / 6.0 * n as f64) as i64 % n;
-        let mut part = |pick: &mut dyn FnMut(i64) -> i64| {
+        let part = |pick: &mut dyn FnMut(i64) -> i64| {
             let q = |a: i64, b: i64| {
                 Scalar::rational(num_rational::BigRational::new(a.into(), b.into()))
             };
