@@ -496,6 +496,49 @@ fn weight(t: &Term) -> Scalar {
     }])
 }
 
+/// A scalar's top coefficient `re + i im` (the coefficient of the product of the factors' top
+/// modes) and the constants `c = 2^E Re((re + i im) e^{-i B pi})` made from it so far, one per
+/// `(E, B)` ([`Top::constant`]).
+///
+/// Why: every grouping of one scalar's roots, and every choice of [`separable`]'s parts, needs
+/// its constant, and they share few `(E, B)` pairs (the factors' leading coefficients are
+/// powers of 2 times a few roots of unity); each constant costs two exact cosines of `B pi`
+/// (cyclotomic canonical forms) and three products. The constant is a function of `(E, B)`
+/// alone for one `re + i im`, so a constant made once is the constant made again.
+struct Top {
+    re: Scalar,
+    im: Scalar,
+    made: Vec<((u64, Small), Scalar)>,
+}
+
+impl Top {
+    fn new((re, im): (Scalar, Scalar)) -> Top {
+        Top {
+            re,
+            im,
+            made: Vec::new(),
+        }
+    }
+
+    /// `2^exps Re((re + i im) e^{-i b pi})`, made once per `(exps, b)` ([`constant_of`]).
+    fn constant(&mut self, exps: u64, b: Small) -> Scalar {
+        if let Some((_, c)) = self.made.iter().find(|(k, _)| *k == (exps, b)) {
+            return c.clone();
+        }
+        let c = constant_of(&self.re, &self.im, exps, b);
+        self.made.push(((exps, b), c.clone()));
+        c
+    }
+}
+
+/// `2^exps Re((re + i im) e^{-i b pi}) = 2^exps (re cos(b pi) + im sin(b pi))`.
+fn constant_of(re: &Scalar, im: &Scalar, exps: u64, b: Small) -> Scalar {
+    let two = Scalar::int(2).pow(exps);
+    let c = re * &Scalar::trig_of_parts(false, Vec::new(), b)
+        + im * &Scalar::trig_of_parts(true, Vec::new(), b);
+    &two * &c
+}
+
 /// The scalar's coefficient of `z^N` as `(Re, Im)` exact scalars (times its monomial).
 fn top_coefficient(t: &[Term], ks: &[i64], n: i64) -> (Scalar, Scalar) {
     top_of(
@@ -577,10 +620,10 @@ fn found(t: &[Term]) -> Option<Vec<Expr>> {
         }
     }
     let half = half_roots(&p, w)?;
-    let (re, im) = top_coefficient(t, &ks, n);
+    let mut top = Top::new(top_coefficient(t, &ks, n));
     let mut out = Vec::new();
     for g in groupings(&half) {
-        out.extend(product_expr(&g, &theta, &re, &im).unwrap_or_default());
+        out.extend(product_expr(&g, &theta, &mut top).unwrap_or_default());
     }
     Some(out)
 }
@@ -734,14 +777,13 @@ struct Built {
 }
 
 /// The candidates `c prod f^m` for one grouping: each factor in its best shape, the constant
-/// exact from the top coefficient `re + i im` of the scalar.
+/// exact from the top coefficient of the scalar.
 fn product_expr(
     g: &BTreeMap<Factor, u32>,
     theta: &[(Sym, Small)],
-    re: &Scalar,
-    im: &Scalar,
+    top: &mut Top,
 ) -> Option<Vec<Expr>> {
-    finish(built_factors(g, theta)?, re, im)
+    finish(built_factors(g, theta)?, top)
 }
 
 /// The factors of one grouping, each in its best shape, in the angle `theta`.
@@ -831,23 +873,15 @@ fn built_factors(g: &BTreeMap<Factor, u32>, theta: &[(Sym, Small)]) -> Option<Ve
 }
 
 /// The candidates `c prod f^m` for the factors `built`, the constant exact from the top
-/// coefficient `re + i im` of the scalar (the coefficient of the product of the factors' top
-/// modes).
-fn finish(mut built: Vec<Built>, re: &Scalar, im: &Scalar) -> Option<Vec<Expr>> {
+/// coefficient of the scalar ([`Top`]).
+fn finish(mut built: Vec<Built>, top: &mut Top) -> Option<Vec<Expr>> {
     let exps: u64 = built.iter().map(|b| u64::from(b.power)).sum();
     let beta_sum = |bs: &[Built]| -> Small {
         bs.iter()
             .map(|b| b.beta * Small::from(b.power as i64))
             .sum()
     };
-    // c = 2^E Re((re + i im) e^{-i B pi}) = 2^E (re cos(B pi) + im sin(B pi)).
-    let constant = |b: Small| -> Scalar {
-        let two = Scalar::int(2).pow(exps);
-        let c = re * &Scalar::trig_of_parts(false, Vec::new(), b)
-            + im * &Scalar::trig_of_parts(true, Vec::new(), b);
-        &two * &c
-    };
-    let mut c = constant(beta_sum(&built));
+    let mut c = top.constant(exps, beta_sum(&built));
     let point = |s: &Sym| if s.is_pi() { std::f64::consts::PI } else { 0.7 };
     let cv = c.eval_symbols(&|s| Some(point(s))).ok()?;
     let mut out = vec![assemble(&c, &built)?];
@@ -864,7 +898,7 @@ fn finish(mut built: Vec<Built>, re: &Scalar, im: &Scalar) -> Option<Vec<Expr>> 
             let (e, beta, _) = built[i].flip.take().expect("a flip");
             built[i].expr = e;
             built[i].beta = beta;
-            c = constant(beta_sum(&built));
+            c = top.constant(exps, beta_sum(&built));
             out.extend(assemble(&c, &built));
         }
     }
@@ -1013,11 +1047,11 @@ fn separable(t: &[Term]) -> Option<Vec<Expr>> {
             None
         }
     };
-    let (re, im) = top_of(t.iter().filter_map(|u| sign(u).map(|neg| (u, neg))));
+    let mut top = Top::new(top_of(t.iter().filter_map(|u| sign(u).map(|neg| (u, neg)))));
     let mut out = Vec::new();
     for built in every_choice(&options) {
         charge(1).ok()?;
-        out.extend(finish(built, &re, &im).unwrap_or_default());
+        out.extend(finish(built, &mut top).unwrap_or_default());
     }
     Some(out)
 }
@@ -1258,6 +1292,52 @@ mod tests {
             grouped > cases / 2 && grouped < cases,
             "{grouped} of {cases}"
         );
+    }
+
+    #[test]
+    fn a_constant_made_once_is_the_constant_made_again() {
+        // Top coefficients `re + i im` with parts in Q(zeta_24) (a rational plus a rational
+        // times a cosine or sine of a multiple of pi/12), the constants asked for at random
+        // (E, B) pairs, repeats included: each equals the constant made afresh and its value
+        // 2^E (re cos(B pi) + im sin(B pi)) in floats; each pair is made once.
+        let mut pts = Points(0x9E37_79B9_7F4A_7C15);
+        let mut pick = |n: i64| ((pts.next() + 3.0) / 6.0 * n as f64) as i64 % n;
+        let part = |pick: &mut dyn FnMut(i64) -> i64| {
+            let q = |a: i64, b: i64| {
+                Scalar::rational(num_rational::BigRational::new(a.into(), b.into()))
+            };
+            q(pick(9) - 4, 1 + pick(4))
+                + q(pick(9) - 4, 1 + pick(4))
+                    * Scalar::trig_of_parts(pick(2) == 1, Vec::new(), Small::new(pick(24), 12))
+        };
+        let (mut asked, mut hits) = (0, 0);
+        for _ in 0..40 {
+            let (re, im) = (part(&mut pick), part(&mut pick));
+            let value = |x: &Scalar| x.eval(&|_| None).expect("a constant");
+            let (rv, iv) = (value(&re), value(&im));
+            let mut top = Top::new((re.clone(), im.clone()));
+            let mut pairs: Vec<(u64, Small)> = Vec::new();
+            for _ in 0..12 {
+                let (exps, b) = (pick(3) as u64, Small::new(pick(12) - 6, 12));
+                let c = top.constant(exps, b);
+                assert_eq!(c, constant_of(&re, &im, exps, b), "{exps} {b}");
+                let pi = std::f64::consts::PI * (*b.numer() as f64 / *b.denom() as f64);
+                let want = 2f64.powi(exps as i32) * (rv * pi.cos() + iv * pi.sin());
+                assert!(
+                    (value(&c) - want).abs() < 1e-9 * (1.0 + want.abs()),
+                    "{c:?} {want}"
+                );
+                hits += usize::from(pairs.contains(&(exps, b)));
+                if !pairs.contains(&(exps, b)) {
+                    pairs.push((exps, b));
+                }
+                asked += 1;
+            }
+            assert_eq!(top.made.len(), pairs.len());
+        }
+        // Repeats were asked for (the memo was read), and new pairs too.
+        assert_eq!(asked, 480);
+        assert!(hits > 10 && hits < asked / 2, "{hits} of {asked}");
     }
 
     #[test]
