@@ -288,16 +288,128 @@ fn canonical_group(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
     rewritten_group(g)
 }
 
-/// A group rewritten in its canonical basis, through the fast bases when their checks pass.
+/// A group rewritten in its canonical basis, through the fast bases when their checks pass;
+/// a group whose value was rewritten on this thread before is its remembered canonical form
+/// relabelled ([`rewritten_before`]).
 fn rewritten_group(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
+    if g.is_empty() {
+        return Ok(Vec::new());
+    }
+    let key = GroupValue::of(g);
+    if let Some(out) = rewritten_before(g, &key)? {
+        return Ok(out);
+    }
     match fast::canonical_group_fast(g)? {
-        Some(out) => Ok(out),
+        Some(out) => {
+            let template: TermTemplate = out
+                .iter()
+                .map(|u| (u.mode.sin, u.mode.pi, u.rad, u.coef.clone()))
+                .collect();
+            REWRITTEN.with(|c| {
+                let mut c = c.borrow_mut();
+                let kept = this_fork(&mut c);
+                if kept.len() >= REWRITTEN_KEPT {
+                    kept.clear();
+                }
+                kept.insert(key, template);
+            });
+            Ok(out)
+        }
         None => exact::canonical_group_exact(g),
     }
 }
 
+/// A group's value apart from its labels (the frequency vector and the monomial its terms
+/// share): whether it is real (no symbolic angle), and each term's sine flag, pi offset
+/// (numerator, denominator: reduced, so equal offsets have equal words), radicand and
+/// coefficient, in the group's order (the terms' order, by sine flag, offset, radicand).
+#[derive(Clone, PartialEq, Eq, Hash)]
+struct GroupValue(bool, Vec<(bool, i64, i64, u64, Q)>);
+
+impl GroupValue {
+    fn of(g: &[&Term]) -> GroupValue {
+        let real = g.first().is_some_and(|t| t.mode.freq.is_empty());
+        let terms = g
+            .iter()
+            .map(|t| {
+                let pi = t.mode.pi;
+                (t.mode.sin, *pi.numer(), *pi.denom(), t.rad, t.coef.clone())
+            })
+            .collect();
+        GroupValue(real, terms)
+    }
+}
+
+/// The most groups [`REWRITTEN`] keeps on one thread (emptied when full): a bound on its
+/// memory in a long-lived process. A group found there or rewritten again gives the same
+/// terms and charges the same work, so the bound changes only how fast it is.
+const REWRITTEN_KEPT: usize = 1 << 12;
+
+type Rewritten = HashMap<GroupValue, TermTemplate, BuildHasherDefault<FxHasher>>;
+
+thread_local! {
+    /// The canonical forms of the groups the fast path rewrote on this thread, by value
+    /// ([`rewritten_before`]), with the fork count they were made at ([`PerFork`]).
+    static REWRITTEN: RefCell<(u64, Rewritten)> = RefCell::new((0, Rewritten::default()));
+}
+
+/// The canonical form of the group `g` (whose value is `key`) when the fast path rewrote a
+/// group of the same value on this thread before: its terms on `g`'s frequency vector and
+/// monomial. `None` otherwise.
+///
+/// Why that is `g`'s canonical form: a group's canonical form is the expansion of its value
+/// in the basis of its smallest level (see the module docs), and the value of `sum q sqrt(r)
+/// m trig(phi + p)` is fixed by the terms' `(sin, p, r, q)` and whether `phi` is present:
+/// `phi` and `m` only label it, and the fast path reads nothing else of them
+/// (`terms_in_basis` copies the first term's frequency vector and monomial into every term
+/// but, for a real group, the mode `1`). The degree limit is checked on `g`'s level as the
+/// fast path checks it first, and the work charged is the fast path's when its bases and
+/// units are made already, as they are once it rewrote a group of this value in this
+/// process (they are kept per process, made again only in a forked child, as this cache).
+fn rewritten_before(g: &[&Term], key: &GroupValue) -> Result<Option<Vec<Term>>, ScalarError> {
+    let Some(template) = REWRITTEN.with(|c| this_fork(&mut c.borrow_mut()).get(key).cloned())
+    else {
+        return Ok(None);
+    };
+    let first = g[0];
+    let w = level_of(g.iter().copied())?;
+    fast::charge_group(g.len(), level::level_primes(w).0)?;
+    let real = key.0;
+    let out: Vec<Term> = template
+        .iter()
+        .map(|(sin, pi, rad, coef)| Term {
+            mode: template_mode(real, *sin, *pi, &first.mode.freq),
+            mono: first.mono.clone(),
+            rad: *rad,
+            coef: coef.clone(),
+        })
+        .collect();
+    if cfg!(debug_assertions) {
+        let again = super::with_own_budget(u64::MAX / 4, || fast::canonical_group_fast(g));
+        if let Ok(Some(again)) = again {
+            assert_eq!(again, out, "a group found rewritten before differs");
+        }
+    }
+    Ok(Some(out))
+}
+
+/// The mode of a template's term (sine or cosine, offset) on the frequency vector `freq`:
+/// the mode `1` for a real group's cosine without an offset (as `terms_in_basis` writes it).
+fn template_mode(real: bool, sin: bool, pi: Small, freq: &Freq) -> Mode {
+    if real && !sin && pi.is_zero() {
+        Mode::unit()
+    } else {
+        Mode {
+            sin,
+            freq: freq.clone(),
+            pi,
+        }
+    }
+}
+
 /// The canonical form of a one-term mode `cos(phi + p)` or `sin(phi + p)` (`phi` present or
-/// not), coefficient 1, radicand 1: the modes (sine or cosine, offset) and their constants.
+/// not), coefficient 1, radicand 1: the modes (sine or cosine, offset) and their constants;
+/// or of a group of one value ([`REWRITTEN`]).
 type TermTemplate = Rc<[(bool, Small, u64, Q)]>;
 
 /// The canonical form of a group of one term `q sqrt(r) m trig(phi + p)` (a constant at a
@@ -351,15 +463,7 @@ fn canonical_term(t: &Term) -> Result<Vec<Term>, ScalarError> {
     template
         .iter()
         .map(|(sin, pi, r, c)| {
-            let mode = if real && !*sin && pi.is_zero() {
-                Mode::unit()
-            } else {
-                Mode {
-                    sin: *sin,
-                    freq: t.mode.freq.clone(),
-                    pi: *pi,
-                }
-            };
+            let mode = template_mode(real, *sin, *pi, &t.mode.freq);
             t.times_root(mode, *r, c)
                 .ok_or_else(|| ScalarError::OutOfRange("radicand too large".into()))
         })
