@@ -178,25 +178,16 @@ pub(crate) fn canonicalize(
             return Ok(None);
         }
     }
-    let mut keys: Vec<GroupKey> = terms
-        .iter()
-        .filter(offset)
-        .map(|t| (&*t.mode.freq, &t.mono))
-        .collect();
-    keys.sort_unstable_by(key_cmp);
-    keys.dedup_by(|a, b| key_cmp(a, b).is_eq());
+    let (keys, at) = groups_of(terms);
     // For each group, the operands its terms with a pi offset came from (see
     // `Settled::Sum`).
     let mut from = vec![0u8; keys.len()];
-    let mut at: Vec<Option<usize>> = Vec::with_capacity(terms.len());
-    for (i, t) in terms.iter().enumerate() {
-        let k = key_position(&keys, &(&*t.mode.freq, &t.mono));
-        if let (Some(k), Settled::Sum { origin, .. }) = (k, settled) {
-            if !t.mode.pi.is_zero() {
-                from[k] |= origin[i];
+    if let Settled::Sum { origin, .. } = settled {
+        for ((t, k), o) in terms.iter().zip(&at).zip(origin.iter()) {
+            if let (Some(k), false) = (k, t.mode.pi.is_zero()) {
+                from[*k] |= o;
             }
         }
-        at.push(k);
     }
     if !fits {
         // Group by group, in key order, as a rewrite from scratch meets them.
@@ -247,6 +238,31 @@ pub(crate) fn canonicalize(
         }
     }
     Ok(Some(out))
+}
+
+/// The keys of the groups of `terms` (sorted) that hold a term with a pi offset, and each
+/// term's group among them (`None` for a term of a group without an offset).
+///
+/// The terms' indices are sorted by their group keys at once (a stable sort: the terms are
+/// sorted by mode before monomial, so their keys come in ascending runs, one per sine flag,
+/// frequency vector and offset, which the sort merges), and the runs of equal keys read off:
+/// the key comparisons of sorting the keys of the terms with an offset and then searching
+/// every term's key among them were 2.9% of the Jaco-style arm's `fk --jacobian`.
+fn groups_of(terms: &[Term]) -> (Vec<GroupKey<'_>>, Vec<Option<usize>>) {
+    let key = |i: usize| -> GroupKey { (&*terms[i].mode.freq, &terms[i].mono) };
+    let mut order: Vec<usize> = (0..terms.len()).collect();
+    order.sort_by(|&i, &j| key_cmp(&key(i), &key(j)));
+    let mut keys = Vec::new();
+    let mut at = vec![None; terms.len()];
+    for run in order.chunk_by(|&i, &j| key_cmp(&key(i), &key(j)).is_eq()) {
+        if run.iter().any(|&i| !terms[i].mode.pi.is_zero()) {
+            for &i in run {
+                at[i] = Some(keys.len());
+            }
+            keys.push(key(run[0]));
+        }
+    }
+    (keys, at)
 }
 
 /// Debug builds: every group passed through as settled is its own canonical form (checked

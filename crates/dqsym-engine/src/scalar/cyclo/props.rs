@@ -715,3 +715,46 @@ fn a_group_rewritten_before_is_the_group_rewritten_exactly() {
          {refused} past the degree limit"
     );
 }
+
+/// [`super::groups_of`] finds the groups the search of every term's key among the sorted
+/// keys of the terms with an offset finds (the route it replaced, written out here): the
+/// same keys in the same order, every term in the same group or in none, on the terms of
+/// seeded random sums and products at many denominators (with monomials, constants and
+/// symbolic angles, several groups and terms without an offset outside them).
+#[test]
+fn the_groups_of_a_term_vector_are_the_groups_searched_by_key() {
+    use super::super::Term;
+    use super::{groups_of, key_cmp, key_position, GroupKey};
+    let mut rng = Rng(0x0016_d9a0_5eed);
+    let dens = [5i64, 7, 8, 9, 10, 18, 20];
+    let (mut checked, mut grouped, mut outside) = (0, 0, 0);
+    for _ in 0..300 {
+        let n = rng.pick(&dens);
+        let v = mul(&element(&mut rng, &[n]), &element(&mut rng, &[n, 12]));
+        let v = add(&v, &element(&mut rng, &[n]));
+        let Ok(terms) = v.s.terms() else {
+            continue;
+        };
+        let mut keys: Vec<GroupKey> = terms
+            .iter()
+            .filter(|t| !t.mode.pi.is_zero())
+            .map(|t| (&*t.mode.freq, &t.mono))
+            .collect();
+        keys.sort_unstable_by(key_cmp);
+        keys.dedup_by(|a, b| key_cmp(a, b).is_eq());
+        let at: Vec<Option<usize>> = terms
+            .iter()
+            .map(|t: &Term| key_position(&keys, &(&*t.mode.freq, &t.mono)))
+            .collect();
+        let got = groups_of(terms);
+        assert_eq!(got.0, keys);
+        assert_eq!(got.1, at);
+        checked += 1;
+        grouped += usize::from(keys.len() > 1);
+        outside += usize::from(at.contains(&None) && !keys.is_empty());
+    }
+    assert!(
+        checked > 250 && grouped > 100 && outside > 30,
+        "{checked} vectors, {grouped} of several groups, {outside} with terms outside them"
+    );
+}
