@@ -42,8 +42,11 @@
 //! (`product.rs`), and a product by a nonzero constant of the square-root field times a
 //! monomial, or a negation, none ([`Settled::All`]). A group of one term is rewritten from
 //! its mode's canonical form, made once per thread, times its constant ([`canonical_term`]:
-//! the same argument). Every group passed through is still held to the degree limit entered
-//! now. Debug builds check every group passed through against the rewrite from scratch.
+//! the same argument), and a group whose value the fast path rewrote on this thread before
+//! is that canonical form relabelled onto its frequency vector and monomial
+//! ([`rewritten_before`]). Every group passed through is still held to the degree limit
+//! entered now. Debug builds check every group passed through, and every group found
+//! rewritten before, against the rewrite from scratch.
 //!
 //! The parts, one concern each: `level.rs` the level `W` of a group and its degree check;
 //! `field.rs` `Q(zeta_W)` (reductions, square roots, the field cache); `candidates.rs` the
