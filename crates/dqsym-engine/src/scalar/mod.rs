@@ -291,10 +291,12 @@ const RUN: usize = 1 << 13;
 /// of [`RUN`] that are merged pairwise, equal keys summed at every merge, with a look at the
 /// cancel flag before each run and every few terms of a merge ([`Poll`]): sorting a huge
 /// product stops within milliseconds of a cancel. (The order of equal keys does not matter: their
-/// coefficients are summed exactly.)
+/// coefficients are summed exactly.) The sort of up to [`RUN`] terms is stable: it finds the
+/// runs already in order (the groups a cyclotomic rewrite passed through, before the ones it
+/// rewrote) and merges them.
 fn canonical_terms(mut terms: Vec<Term>) -> Result<Vec<Term>, ScalarError> {
     if terms.len() <= RUN {
-        terms.sort_unstable_by(Term::key_cmp);
+        terms.sort_by(Term::key_cmp);
         return merge_sorted(terms);
     }
     let mut runs = Vec::with_capacity(terms.len().div_ceil(RUN));

@@ -276,6 +276,13 @@ pub(super) fn shared_fast_basis(
     Ok(b)
 }
 
+/// The work a group of `terms` terms in a field of degree `phi` is charged on the fast path,
+/// besides the making of its bases and units (also a group found rewritten before:
+/// `rewritten_before`).
+pub(super) fn charge_group(terms: usize, phi: u64) -> Result<(), ScalarError> {
+    super::super::charge(terms as u64 * phi / 128 + 1)
+}
+
 /// [`canonical_group_exact`] through the [`FastBasis`]es; `None` when one of their checks
 /// failed.
 pub(super) fn canonical_group_fast(g: &[&Term]) -> Result<Option<Vec<Term>>, ScalarError> {
@@ -285,7 +292,7 @@ pub(super) fn canonical_group_fast(g: &[&Term]) -> Result<Option<Vec<Term>>, Sca
     let real = first.mode.freq.is_empty();
     let w = level_of(g.iter().copied())?;
     let (phi, primes) = level_primes(w);
-    super::super::charge(g.len() as u64 * phi / 128 + 1)?;
+    charge_group(g.len(), phi)?;
     let f = field(w)?;
     // Coefficients as `Q` (machine-word rationals until they overflow): the coordinates
     // are small rationals, and `BigRational`'s products and sums reduced by big-integer gcds

@@ -307,16 +307,18 @@ impl Field {
         }
         let mut acc = vec![0i128; self.w as usize];
         for (j, x) in xs {
-            // (d x) (2 v) = 2 d (x v).
-            let k = (x * Rat::from_integer(d.clone())).to_integer();
+            // (d x) (2 v) = 2 d (x v); `d x` read off the numerator, `d` a multiple of the
+            // denominator (a product of rationals reduced its result by big-integer gcds).
+            let k = x.numer() * (&d / x.denom());
             let k = k.to_i128()?;
             for (e, c2) in &vs[*j] {
                 let a = &mut acc[self.slot[*e as usize] as usize];
                 *a = a.checked_add(k.checked_mul(i128::from(*c2))?)?;
             }
         }
+        let d2 = BigInt::from(2) * &d;
         for (e, c) in t {
-            let k = (c * Rat::from_integer(BigInt::from(2) * &d)).to_integer();
+            let k = c.numer() * (&d2 / c.denom());
             let a = &mut acc[self.slot[*e as usize] as usize];
             *a = a.checked_sub(k.to_i128()?)?;
         }

@@ -587,3 +587,174 @@ fn a_one_term_group_from_its_template_is_the_group_rewritten() {
         "{checked} terms, {constants} constants"
     );
 }
+
+/// A group found rewritten on this thread before (`rewritten_before`, through
+/// `rewritten_group`) is the group rewritten by exact linear algebra (`canonical_group_exact`,
+/// the independent route), on its own frequency vector and monomial and relabelled onto
+/// others, and it charges the work the fast path charges once its bases are made: seeded
+/// random groups of one to four terms `p/q sqrt(d) m trig(j x + k pi/n)` (one `j` a group,
+/// zero for constants) at many denominators, mixed denominators in a group included (past
+/// the degree limit, the same error).
+#[test]
+fn a_group_rewritten_before_is_the_group_rewritten_exactly() {
+    use super::super::{with_own_budget, work_used, Term};
+    use super::{exact::canonical_group_exact, fast::canonical_group_fast, rewritten_group};
+    let mut rng = Rng(0x0d16_9e0c_ac4e);
+    let dens = [5i64, 7, 8, 9, 10, 15, 16, 18, 20, 36];
+    let monos: Vec<Term> = ["1", "a", "b"]
+        .iter()
+        .map(|s| {
+            let v = if *s == "1" {
+                Scalar::int(1)
+            } else {
+                Scalar::sym(s)
+            };
+            v.terms().expect("terms")[0].clone()
+        })
+        .collect();
+    let sorted = |g: Vec<Term>| canonical_terms(g).expect("sorted");
+    let (mut checked, mut constants, mut relabelled, mut refused) = (0, 0, 0, 0);
+    for _ in 0..600 {
+        let j = rng.pick(&[0i64, 1, 2]);
+        let x = &Scalar::sym("x") * &Scalar::int(j);
+        let mono = rng.pick(&[0usize, 1, 2]);
+        let mut g: Vec<Term> = Vec::new();
+        for _ in 0..=rng.below(4) {
+            let n = rng.pick(&dens);
+            let k = rng.below(2 * n as u64) as i64;
+            let angle =
+                &x + &(&Scalar::pi() * &Scalar::rational(BigRational::new(k.into(), n.into())));
+            let v = if rng.below(2) == 0 {
+                angle.cos()
+            } else {
+                angle.sin()
+            };
+            let p = rng.pick(&[1i64, -1, 2, -3, 5]);
+            let q = rng.pick(&[1i64, 2, 3, 7]);
+            let rad = rng.pick(&[1u64, 1, 2, 3, 5, 6, 7]);
+            for t in v.terms().expect("terms") {
+                let fresh = g
+                    .iter()
+                    .all(|u| (u.mode.sin, u.mode.pi, u.rad) != (t.mode.sin, t.mode.pi, rad));
+                if t.mode.pi.is_zero() || !fresh {
+                    continue;
+                }
+                g.push(Term {
+                    mode: t.mode.clone(),
+                    mono: monos[mono].mono.clone(),
+                    rad,
+                    coef: &super::Q::new(p, q) * &t.coef,
+                });
+            }
+        }
+        g.sort_by(Term::key_cmp);
+        let refs: Vec<&Term> = g.iter().collect();
+        if refs.is_empty() {
+            continue;
+        }
+        let want = match canonical_group_exact(&refs) {
+            Ok(want) => sorted(want),
+            Err(e) => {
+                // Past the degree limit (mixed denominators): the same error, found or not.
+                for _ in 0..2 {
+                    assert_eq!(rewritten_group(&refs).err(), Some(e.clone()));
+                }
+                refused += 1;
+                continue;
+            }
+        };
+        for _ in 0..2 {
+            assert_eq!(
+                sorted(rewritten_group(&refs).expect("rewritten")),
+                want,
+                "{g:?}"
+            );
+        }
+        let fast = canonical_group_fast(&refs).expect("fast").is_some();
+        if fast {
+            let charged = |f: &dyn Fn()| {
+                with_own_budget(u64::MAX / 4, || {
+                    f();
+                    work_used()
+                })
+            };
+            let direct = charged(&|| drop(canonical_group_fast(&refs)));
+            let again = charged(&|| drop(rewritten_group(&refs)));
+            assert!(
+                direct > 0 && again == direct,
+                "{again} against {direct}: {g:?}"
+            );
+        }
+        // The same values on another monomial (and another angle, for symbolic groups).
+        let other = (mono + 1) % monos.len();
+        let freq = (&Scalar::sym("y") * &Scalar::int(3)).cos();
+        let moved: Vec<Term> = g
+            .iter()
+            .map(|t| {
+                let mut t = t.clone();
+                t.mono = monos[other].mono.clone();
+                if !t.mode.freq.is_empty() {
+                    t.mode.freq = freq.terms().expect("terms")[0].mode.freq.clone();
+                }
+                t
+            })
+            .collect();
+        let moved_refs: Vec<&Term> = moved.iter().collect();
+        let want = sorted(canonical_group_exact(&moved_refs).expect("exact"));
+        assert_eq!(
+            sorted(rewritten_group(&moved_refs).expect("rewritten")),
+            want
+        );
+        checked += 1;
+        constants += usize::from(j == 0);
+        relabelled += usize::from(fast);
+    }
+    assert!(
+        checked > 400 && constants > 100 && relabelled > 350 && refused > 0,
+        "{checked} groups, {constants} constant, {relabelled} through the fast path, \
+         {refused} past the degree limit"
+    );
+}
+
+/// [`super::groups_of`] finds the groups the search of every term's key among the sorted
+/// keys of the terms with an offset finds (the route it replaced, written out here): the
+/// same keys in the same order, every term in the same group or in none, on the terms of
+/// seeded random sums and products at many denominators (with monomials, constants and
+/// symbolic angles, several groups and terms without an offset outside them).
+#[test]
+fn the_groups_of_a_term_vector_are_the_groups_searched_by_key() {
+    use super::super::Term;
+    use super::{groups_of, key_cmp, key_position, GroupKey};
+    let mut rng = Rng(0x0016_d9a0_5eed);
+    let dens = [5i64, 7, 8, 9, 10, 18, 20];
+    let (mut checked, mut grouped, mut outside) = (0, 0, 0);
+    for _ in 0..300 {
+        let n = rng.pick(&dens);
+        let v = mul(&element(&mut rng, &[n]), &element(&mut rng, &[n, 12]));
+        let v = add(&v, &element(&mut rng, &[n]));
+        let Ok(terms) = v.s.terms() else {
+            continue;
+        };
+        let mut keys: Vec<GroupKey> = terms
+            .iter()
+            .filter(|t| !t.mode.pi.is_zero())
+            .map(|t| (&*t.mode.freq, &t.mono))
+            .collect();
+        keys.sort_unstable_by(key_cmp);
+        keys.dedup_by(|a, b| key_cmp(a, b).is_eq());
+        let at: Vec<Option<usize>> = terms
+            .iter()
+            .map(|t: &Term| key_position(&keys, &(&*t.mode.freq, &t.mono)))
+            .collect();
+        let got = groups_of(terms);
+        assert_eq!(got.0, keys);
+        assert_eq!(got.1, at);
+        checked += 1;
+        grouped += usize::from(keys.len() > 1);
+        outside += usize::from(at.contains(&None) && !keys.is_empty());
+    }
+    assert!(
+        checked > 250 && grouped > 100 && outside > 30,
+        "{checked} vectors, {grouped} of several groups, {outside} with terms outside them"
+    );
+}
