@@ -27,9 +27,10 @@ use std::sync::{Arc, OnceLock};
 /// by its text: a named symbol `1` would be a different symbol. Symbols stay one pointer to
 /// their name, so frequency vectors and monomials copy, compare and hash as cheaply as names.
 ///
-/// The name is interned for the process (one allocation per distinct name), not reference-counted: a count shared
-/// by every term of every thread (`q1` is in most terms of a chain) was one cache line written
-/// by both threads of a parallel stage at each copy and drop of a symbol. PUMA 560 and
+/// The name is interned for the process (one allocation per distinct name), not
+/// reference-counted: a count shared by every term of every thread (`q1` is in most terms of a
+/// chain) was one cache line written by both threads of a parallel stage at each copy and drop
+/// of a symbol. PUMA 560 and
 /// Jaco-style `fk --jacobian`, two threads, SCHED_FIFO, 3 x 30 runs each on a loaded machine:
 /// processor time 5.6-6.2 -> 4.9-5.6 ms and 25-28 -> 22-24 ms, wall 3.9-4.1 -> 3.4-3.7 ms and
 /// 15-17 -> 13-15 ms; one thread (callgrind) -0.7% instructions on both, the same output.
