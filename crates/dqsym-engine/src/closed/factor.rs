@@ -1439,10 +1439,10 @@ mod tests {
             for f in s.candidates(group.iter().map(|(i, _)| *i), BRANCH) {
                 let built = s.split_on(&group, f, 0);
                 let c = built.cost();
+                let first = s.split_floor(&group, f).cost;
                 for ops in c.ops.saturating_sub(4)..=c.ops + 1 {
                     for calls in c.calls.saturating_sub(1)..=c.calls + 1 {
                         let best = Cost { ops, calls };
-                        let first = s.split_floor(&group, f).cost;
                         match s.split_below(&group, f, 0, best) {
                             Some(e) => {
                                 assert_eq!(e.to_expr(&ctx), built.to_expr(&ctx), "seed {seed}")

@@ -71,16 +71,16 @@ pub(crate) struct Ctx {
     dirty: bool,
     /// The plain symbols of the input, sorted; a symbol's id is its rank.
     pub(crate) syms: Vec<Sym>,
-    /// The id of each allocation of a symbol of the input, by [`Sym::addr`] (a clone is held,
-    /// so no other name takes the address while the context lives).
+    /// The id of each symbol of the input, by [`Sym::addr`] (one address per name: names are
+    /// interned for the process).
     by_addr: FxMap<usize, (u32, Sym)>,
 }
 
 impl Ctx {
     fn new(x: &Scalar) -> Ctx {
-        // The symbols' allocations first (a few per symbol, met thousands of times in the
-        // entries of a symbolic chain's matrix), so that only those are sorted by name: a sort
-        // of every occurrence by name spent 6% of a symbolic 6R's report comparing names.
+        // The symbols' addresses first (one per symbol, met thousands of times in the entries
+        // of a symbolic chain's matrix), so that only those are sorted by name: a sort of
+        // every occurrence by name spent 6% of a symbolic 6R's report comparing names.
         let mut by_addr: FxMap<usize, (u32, Sym)> = FxMap::default();
         if let Ok(terms) = x.terms() {
             for t in terms {

@@ -30,10 +30,10 @@ use std::sync::{Arc, OnceLock};
 /// The name is interned for the process (one allocation per distinct name), not
 /// reference-counted: a count shared by every term of every thread (`q1` is in most terms of a
 /// chain) was one cache line written by both threads of a parallel stage at each copy and drop
-/// of a symbol. PUMA 560 and
-/// Jaco-style `fk --jacobian`, two threads, SCHED_FIFO, 3 x 30 runs each on a loaded machine:
-/// processor time 5.6-6.2 -> 4.9-5.6 ms and 25-28 -> 22-24 ms, wall 3.9-4.1 -> 3.4-3.7 ms and
-/// 15-17 -> 13-15 ms; one thread (callgrind) -0.7% instructions on both, the same output.
+/// of a symbol. PUMA 560 and Jaco-style `fk --jacobian`, two threads, SCHED_FIFO, 3 x 30 runs
+/// each on a loaded machine: processor time 5.6-6.2 -> 4.9-5.6 ms and 25-28 -> 22-24 ms, wall
+/// 3.9-4.1 -> 3.4-3.7 ms and 15-17 -> 13-15 ms; one thread (callgrind) -0.7% instructions on
+/// both, the same output.
 #[derive(Clone)]
 pub struct Sym(&'static str);
 
@@ -44,9 +44,9 @@ fn one_name() -> &'static str {
 }
 
 /// The one allocation of the name `name` for the whole process, made at its first use. A name
-/// is never freed: the process holds one copy of each distinct name its symbols ever had (the
-/// names a user and the project's own generated names, such as `closed/coefs.rs`'s constants,
-/// bring), in exchange for symbols copied without a shared count.
+/// is never freed: the process holds one copy of each distinct name its symbols ever had, the
+/// user's and the project's generated ones (`closed/coefs.rs`'s constants, as many as the
+/// largest expression needs), in exchange for symbols copied without a shared count.
 fn interned(name: &str) -> &'static str {
     type Names = std::collections::HashSet<&'static str>;
     static NAMES: OnceLock<std::sync::Mutex<Names>> = OnceLock::new();

@@ -341,7 +341,8 @@ mod tests {
                     _ => (next(u64::MAX) ^ (next(u64::MAX) << 1)) & all,
                 }
                 .max(1);
-                passed_over += usize::from(bits[k] == all || bits[k].count_ones() == 1);
+                passed_over +=
+                    usize::from(pow[k] == 1 && (bits[k] == all || bits[k].count_ones() == 1));
             }
             let touched: Vec<usize> = (0..factors).collect();
             let got = crossing_leaves(&touched, &pow, &bits, base, n);

@@ -598,7 +598,8 @@ fn a_one_term_group_from_its_template_is_the_group_rewritten() {
 #[test]
 fn a_group_rewritten_before_is_the_group_rewritten_exactly() {
     use super::super::{with_own_budget, work_used, Term};
-    use super::{exact::canonical_group_exact, fast::canonical_group_fast, rewritten_group};
+    use super::{exact::canonical_group_exact, fast::canonical_group_fast};
+    use super::{rewritten_before, rewritten_group, GroupValue};
     let mut rng = Rng(0x0d16_9e0c_ac4e);
     let dens = [5i64, 7, 8, 9, 10, 15, 16, 18, 20, 36];
     let monos: Vec<Term> = ["1", "a", "b"]
@@ -671,6 +672,13 @@ fn a_group_rewritten_before_is_the_group_rewritten_exactly() {
             );
         }
         let fast = canonical_group_fast(&refs).expect("fast").is_some();
+        // A group the fast path rewrote is remembered: the calls above found it.
+        let found = |g: &[&Term]| {
+            rewritten_before(g, &GroupValue::of(g))
+                .expect("within the limit")
+                .is_some()
+        };
+        assert_eq!(found(&refs), fast, "{g:?}");
         if fast {
             let charged = |f: &dyn Fn()| {
                 with_own_budget(u64::MAX / 4, || {
@@ -700,6 +708,8 @@ fn a_group_rewritten_before_is_the_group_rewritten_exactly() {
             })
             .collect();
         let moved_refs: Vec<&Term> = moved.iter().collect();
+        // Relabelled: the same value was rewritten before, on other labels.
+        assert_eq!(found(&moved_refs), fast, "{moved:?}");
         let want = sorted(canonical_group_exact(&moved_refs).expect("exact"));
         assert_eq!(
             sorted(rewritten_group(&moved_refs).expect("rewritten")),
