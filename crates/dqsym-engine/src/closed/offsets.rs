@@ -505,10 +505,13 @@ fn system(
     let mut b: Vec<i64> = Vec::with_capacity(rational.len());
     for (coef, rhs, m) in &rational {
         let scale = i128::from(modulus) / times_l((*m.numer(), *m.denom()));
-        let int =
-            |q: (i64, i64)| -> i64 { (times_l(q) * scale).rem_euclid(i128::from(modulus)) as i64 };
-        a.push(coef.iter().map(|q| int(*q)).collect());
-        b.push(int((*rhs.numer(), *rhs.denom())));
+        // No product leaves i128 unnoticed: a numerator past ~2^47 gives no system.
+        let int = |q: (i64, i64)| -> Option<i64> {
+            let v = times_l(q).checked_mul(scale)?;
+            Some(v.rem_euclid(i128::from(modulus)) as i64)
+        };
+        a.push(coef.iter().map(|q| int(*q)).collect::<Option<_>>()?);
+        b.push(int((*rhs.numer(), *rhs.denom()))?);
     }
     let ranges: Vec<i64> = free.iter().map(|(_, _, c)| *c).collect();
     Some(System {
