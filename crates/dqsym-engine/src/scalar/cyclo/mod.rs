@@ -103,9 +103,64 @@ pub(crate) fn key_cmp(a: &GroupKey, b: &GroupKey) -> Ordering {
     })
 }
 
-/// The position of `k` in the sorted, deduplicated `keys` (as `binary_search`).
-fn key_position(keys: &[GroupKey], k: &GroupKey) -> Option<usize> {
-    keys.binary_search_by(|x| key_cmp(x, k)).ok()
+/// A group key hashed by the addresses of its symbols, for [`group_ids`]: equal keys
+/// ([`key_cmp`]) hash alike, since a symbol is equal exactly to the one at its address
+/// (names are interned, `Sym::addr`) and a coefficient's reduced numerator and denominator
+/// are its value's. Equality is [`key_cmp`]'s.
+struct HashedKey<'a>(GroupKey<'a>);
+
+impl std::hash::Hash for HashedKey<'_> {
+    fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
+        let (freq, mono) = self.0;
+        h.write_usize(freq.len());
+        for (s, k) in freq {
+            h.write_usize(s.addr());
+            h.write_i64(*k.numer());
+            h.write_i64(*k.denom());
+        }
+        h.write_usize(mono.len());
+        for (s, e) in mono.iter() {
+            h.write_usize(s.addr());
+            h.write_u32(*e);
+        }
+    }
+}
+
+impl PartialEq for HashedKey<'_> {
+    fn eq(&self, other: &Self) -> bool {
+        key_cmp(&self.0, &other.0).is_eq()
+    }
+}
+
+impl Eq for HashedKey<'_> {}
+
+/// The distinct group keys of `terms`, in the order in which they first appear, the group
+/// of each term (its key's index there), and whether each group holds a term with a pi
+/// offset: one hash lookup a term, where sorting every term's key compared each term's
+/// frequency vector and monomial some `log n` times (the group keys of `canonicalize` and
+/// of a product's trace were 3% of the Jaco-style arm's `fk --jacobian`). The numbering is
+/// not the key order: a caller that needs it sorts the keys, one each.
+fn group_ids(terms: &[Term]) -> (Vec<GroupKey<'_>>, Vec<u32>, Vec<bool>) {
+    let mut index: HashMap<HashedKey, u32, BuildHasherDefault<FxHasher>> =
+        HashMap::with_capacity_and_hasher(terms.len(), Default::default());
+    let mut keys: Vec<GroupKey> = Vec::new();
+    let mut offset: Vec<bool> = Vec::new();
+    let ids = terms
+        .iter()
+        .map(|t| {
+            let k: GroupKey = (&*t.mode.freq, &t.mono);
+            let g = *index.entry(HashedKey(k)).or_insert_with(|| {
+                keys.push(k);
+                offset.push(false);
+                // Fewer groups than terms, and a term vector past `u32::MAX` terms is over
+                // every term limit long before.
+                (keys.len() - 1) as u32
+            });
+            offset[g as usize] |= !t.mode.pi.is_zero();
+            g
+        })
+        .collect();
+    (keys, ids, offset)
 }
 
 /// A group's key that owns its parts (a product names its settled groups before its terms
@@ -246,25 +301,21 @@ pub(crate) fn canonicalize(
 /// The keys of the groups of `terms` (sorted) that hold a term with a pi offset, and each
 /// term's group among them (`None` for a term of a group without an offset).
 ///
-/// The terms' indices are sorted by their group keys at once (a stable sort: the terms are
-/// sorted by mode before monomial, so their keys come in ascending runs, one per sine flag,
-/// frequency vector and offset, which the sort merges), and the runs of equal keys read off:
-/// the key comparisons of sorting the keys of the terms with an offset and then searching
-/// every term's key among them were 2.9% of the Jaco-style arm's `fk --jacobian`.
+/// The groups are found by hashing ([`group_ids`]), and only the keys of those with an
+/// offset sorted, each once: they are distinct, so an unstable sort gives the one order.
+/// (The stable sort of every term's key it replaced, itself faster than sorting the keys of
+/// the terms with an offset and searching every term's key among them, was 1.1% of the
+/// Jaco-style arm's `fk --jacobian`.)
 fn groups_of(terms: &[Term]) -> (Vec<GroupKey<'_>>, Vec<Option<usize>>) {
-    let key = |i: usize| -> GroupKey { (&*terms[i].mode.freq, &terms[i].mono) };
-    let mut order: Vec<usize> = (0..terms.len()).collect();
-    order.sort_by(|&i, &j| key_cmp(&key(i), &key(j)));
-    let mut keys = Vec::new();
-    let mut at = vec![None; terms.len()];
-    for run in order.chunk_by(|&i, &j| key_cmp(&key(i), &key(j)).is_eq()) {
-        if run.iter().any(|&i| !terms[i].mode.pi.is_zero()) {
-            for &i in run {
-                at[i] = Some(keys.len());
-            }
-            keys.push(key(run[0]));
-        }
+    let (all, ids, offset) = group_ids(terms);
+    let mut kept: Vec<usize> = (0..all.len()).filter(|&g| offset[g]).collect();
+    kept.sort_unstable_by(|&a, &b| key_cmp(&all[a], &all[b]));
+    let mut position = vec![None; all.len()];
+    for (p, &g) in kept.iter().enumerate() {
+        position[g] = Some(p);
     }
+    let keys = kept.iter().map(|&g| all[g]).collect();
+    let at = ids.iter().map(|&g| position[g as usize]).collect();
     (keys, at)
 }
 

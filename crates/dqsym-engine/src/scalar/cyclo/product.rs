@@ -36,7 +36,7 @@
 
 use super::super::atoms::Mode;
 use super::super::Term;
-use super::{key_cmp, key_position, GroupKey, OwnedKey};
+use super::{group_ids, key_cmp, GroupKey, OwnedKey};
 use num_traits::Zero;
 
 /// The origins of the terms with a pi offset of one product (see the module docs).
@@ -52,24 +52,12 @@ pub(crate) struct ProductTrace {
     marks: Vec<(usize, u64)>,
 }
 
-/// The group of each term, and for each group (in key order) whether it is offset-free.
+/// The group of each term, and for each group whether it is offset-free. The groups are
+/// numbered as [`group_ids`] finds them, not in key order: a trace only tells groups apart
+/// (its origins are compared for equality, in [`settled_groups`]).
 fn groups(t: &[Term]) -> (Vec<u32>, Vec<bool>) {
-    let mut keys: Vec<GroupKey> = t.iter().map(|t| (&*t.mode.freq, &t.mono)).collect();
-    keys.sort_unstable_by(key_cmp);
-    keys.dedup_by(|a, b| key_cmp(a, b).is_eq());
-    let mut free = vec![true; keys.len()];
-    let ids = t
-        .iter()
-        .map(|u| {
-            let k =
-                key_position(&keys, &(&*u.mode.freq, &u.mono)).expect("every key was collected");
-            if !u.mode.pi.is_zero() {
-                free[k] = false;
-            }
-            k as u32
-        })
-        .collect();
-    (ids, free)
+    let (_, ids, offset) = group_ids(t);
+    (ids, offset.iter().map(|o| !o).collect())
 }
 
 impl ProductTrace {

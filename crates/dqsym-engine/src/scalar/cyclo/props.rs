@@ -730,11 +730,14 @@ fn a_group_rewritten_before_is_the_group_rewritten_exactly() {
 /// keys of the terms with an offset finds (the route it replaced, written out here): the
 /// same keys in the same order, every term in the same group or in none, on the terms of
 /// seeded random sums and products at many denominators (with monomials, constants and
-/// symbolic angles, several groups and terms without an offset outside them).
+/// symbolic angles, several groups and terms without an offset outside them). The groups
+/// [`super::group_ids`] finds by hashing are the classes of equal keys ([`super::key_cmp`],
+/// every pair of terms compared), numbered as first met, each marked exactly when one of its
+/// terms has a pi offset.
 #[test]
 fn the_groups_of_a_term_vector_are_the_groups_searched_by_key() {
     use super::super::Term;
-    use super::{groups_of, key_cmp, key_position, GroupKey};
+    use super::{group_ids, groups_of, key_cmp, GroupKey};
     let mut rng = Rng(0x0016_d9a0_5eed);
     let dens = [5i64, 7, 8, 9, 10, 18, 20];
     let (mut checked, mut grouped, mut outside) = (0, 0, 0);
@@ -754,11 +757,40 @@ fn the_groups_of_a_term_vector_are_the_groups_searched_by_key() {
         keys.dedup_by(|a, b| key_cmp(a, b).is_eq());
         let at: Vec<Option<usize>> = terms
             .iter()
-            .map(|t: &Term| key_position(&keys, &(&*t.mode.freq, &t.mono)))
+            .map(|t: &Term| {
+                keys.binary_search_by(|x| key_cmp(x, &(&*t.mode.freq, &t.mono)))
+                    .ok()
+            })
             .collect();
         let got = groups_of(terms);
         assert_eq!(got.0, keys);
         assert_eq!(got.1, at);
+        // Every term's group by hashing: its own key, the same group exactly for equal keys
+        // (every pair of terms compared), numbered as first met.
+        let (all, ids, offset) = group_ids(terms);
+        for (i, t) in terms.iter().enumerate() {
+            let k: GroupKey = (&*t.mode.freq, &t.mono);
+            assert!(key_cmp(&all[ids[i] as usize], &k).is_eq());
+            for (j, u) in terms.iter().enumerate() {
+                let same = key_cmp(&k, &(&*u.mode.freq, &u.mono)).is_eq();
+                assert_eq!(ids[i] == ids[j], same);
+            }
+        }
+        let mut next = 0;
+        for &g in &ids {
+            assert!(g <= next, "group {g} numbered before group {next}");
+            next += u32::from(g == next);
+        }
+        assert_eq!(next as usize, all.len());
+        let held: Vec<bool> = (0..all.len())
+            .map(|g| {
+                terms
+                    .iter()
+                    .zip(&ids)
+                    .any(|(t, &h)| h as usize == g && !t.mode.pi.is_zero())
+            })
+            .collect();
+        assert_eq!(offset, held);
         checked += 1;
         grouped += usize::from(keys.len() > 1);
         outside += usize::from(at.contains(&None) && !keys.is_empty());
