@@ -293,11 +293,12 @@ pub(crate) fn find(x: &Scalar) -> Option<Shift> {
 
 /// The congruences `row . o = target` (modulo the target's modulus) of [`system`], one per
 /// distinct pair of a group's row and target: the groups of one frequency vector and phase
-/// class (other monomials: 48 groups give 16 congruences in the Jaco-style arm's largest
-/// dual-quaternion components) give one congruence, and [`system`] makes its integer row once. Its solutions
-/// are those of every group's congruence (a repeated congruence says nothing more), and the
-/// system is the same as the one of every group's up to its rows' order and repeats: its
-/// modulus, scale and units are lcms over the set of rows, and the elimination
+/// class (other monomials) give one congruence, and [`system`] makes its integer row once
+/// (the Jaco-style arm's 96-term dual-quaternion components: 48 groups, 16 congruences; its
+/// 84-term pose entries: 48 and 48). Its solutions are those of every group's congruence (a
+/// repeated congruence says nothing more), and the system is the same as the one of every
+/// group's up to its rows' order and repeats: its modulus, scale and units are lcms over the
+/// set of rows (so every bound `system` checks is met or missed alike), and the elimination
 /// (`congruence.rs`) sorts its integer rows and drops the repeated ones before anything else,
 /// so it eliminates, charges and walks the same rows either way.
 struct Congruences {
@@ -307,7 +308,8 @@ struct Congruences {
 
 impl Congruences {
     /// The distinct pairs of `rows[g]` and `targets[g]`, compared by their numerators and
-    /// denominators (in lowest terms: a pair written otherwise is only kept twice).
+    /// denominators (in lowest terms, as canonical terms' coefficients and phase classes are;
+    /// two pairs equal but written otherwise would both be kept, which changes nothing).
     fn of(rows: &[Vec<(usize, Small)>], targets: &[(Small, Small)]) -> Congruences {
         let raw = |q: &Small| (*q.numer(), *q.denom());
         let order = |x: &usize, y: &usize| {
@@ -420,6 +422,7 @@ fn fewer_solutions_than(sys: &System, bound: usize) -> Option<bool> {
     if let Some(c) = echelon.count(&sys.ranges) {
         return Some(c < bound as u128);
     }
+    // Listed as `congruence::solutions` listed them, after eliminating the system afresh.
     echelon.recharge().ok()?;
     let mut seen = 0usize;
     let result = echelon.walk(&sys.ranges, false, &mut |node| match node {
@@ -453,7 +456,7 @@ impl System {
     /// each later one its elimination's work charged again (`congruence::Echelon::recharge`),
     /// so that the work budget sees what eliminating it afresh for each use (as every use did
     /// before: [`find`]'s first solution and [`fewer_solutions_than`]'s count eliminated the
-    /// same system twice, a ninth of `find` on the Jaco-style arm) charged.
+    /// same system twice, about 9% of `find` on the Jaco-style arm) charged.
     fn echelon(&self) -> Result<&super::congruence::Echelon, super::congruence::Stop> {
         if let Some(e) = self.echelon.get() {
             e.recharge()?;
