@@ -140,26 +140,92 @@ pub fn walk(
     prefixes: bool,
     visit: &mut dyn FnMut(Node) -> bool,
 ) -> Result<(), Stop> {
-    let Some(pivots) = eliminate(a, b, m, ranges.len())? else {
-        return Ok(());
-    };
-    let below = if prefixes {
-        subtrees(&pivots, ranges)
-    } else {
-        vec![None; ranges.len()]
-    };
-    let mut walk = Walk {
-        pivots,
-        ranges,
-        below,
-        m,
-        visits: 0,
-        charged: 0,
-        z: vec![0; ranges.len()],
-    };
-    let done = walk.go(0, visit);
-    charge((walk.visits - walk.charged) as u64).map_err(Stop::Work)?;
-    done
+    echelon(a, b, m, ranges.len())?.walk(ranges, prefixes, visit)
+}
+
+/// A system put in echelon form once (see the module docs), for several uses: its pivots
+/// (`None` when it has no solution), its modulus, and the work each step of its elimination
+/// charged. Each use after the first charges that work again, step by step
+/// ([`Echelon::recharge`]): the work budget sees what eliminating the system afresh for each
+/// use charged, and runs out at the same step.
+pub struct Echelon {
+    pivots: Option<Vec<Option<Pivot>>>,
+    m: i64,
+    charges: Vec<u64>,
+}
+
+/// The system `a z = b (mod m)` in `n` unknowns in echelon form, its elimination charged.
+///
+/// # Errors
+/// [`Stop::Work`] when the work budget ran out or the Context was cancelled.
+///
+/// # Panics
+/// As [`solutions`].
+pub fn echelon(a: &[Vec<i64>], b: &[i64], m: i64, n: usize) -> Result<Echelon, Stop> {
+    let mut charges = Vec::with_capacity(n);
+    let pivots = eliminate(a, b, m, n, &mut charges)?;
+    Ok(Echelon { pivots, m, charges })
+}
+
+impl Echelon {
+    /// Charges the work of the elimination again, step by step as it was charged.
+    ///
+    /// # Errors
+    /// [`Stop::Work`] when the work budget ran out or the Context was cancelled.
+    pub fn recharge(&self) -> Result<(), Stop> {
+        self.charges
+            .iter()
+            .try_for_each(|c| charge(*c).map_err(Stop::Work))
+    }
+
+    /// [`walk`] of this system, its elimination not charged again (see [`Echelon::recharge`]).
+    ///
+    /// # Errors
+    /// As [`solutions`].
+    pub fn walk(
+        &self,
+        ranges: &[i64],
+        prefixes: bool,
+        visit: &mut dyn FnMut(Node) -> bool,
+    ) -> Result<(), Stop> {
+        let Some(pivots) = &self.pivots else {
+            return Ok(());
+        };
+        let below = if prefixes {
+            subtrees(pivots, ranges)
+        } else {
+            vec![None; ranges.len()]
+        };
+        let mut walk = Walk {
+            pivots,
+            ranges,
+            below,
+            m: self.m,
+            visits: 0,
+            charged: 0,
+            z: vec![0; ranges.len()],
+        };
+        let done = walk.go(0, visit);
+        charge((walk.visits - walk.charged) as u64).map_err(Stop::Work)?;
+        done
+    }
+
+    /// [`count`] of this system, its elimination not charged again (see
+    /// [`Echelon::recharge`]).
+    pub fn count(&self, ranges: &[i64]) -> Option<u128> {
+        let Some(pivots) = &self.pivots else {
+            return Some(0);
+        };
+        let mut n: u128 = 1;
+        for (p, &range) in pivots.iter().zip(ranges) {
+            let step = p.as_ref().map_or(1, |p| p.step);
+            if range < 0 || range % step != 0 {
+                return None;
+            }
+            n = n.saturating_mul((range / step) as u128);
+        }
+        Some(n)
+    }
 }
 
 /// For each `i`, the solutions and the values listed under a prefix `z[..=i]`, when every
@@ -208,28 +274,19 @@ fn subtrees(pivots: &[Option<Pivot>], ranges: &[i64]) -> Vec<Option<(u128, u128)
 /// # Panics
 /// As [`solutions`].
 pub fn count(a: &[Vec<i64>], b: &[i64], m: i64, ranges: &[i64]) -> Result<Option<u128>, Stop> {
-    let Some(pivots) = eliminate(a, b, m, ranges.len())? else {
-        return Ok(Some(0));
-    };
-    let mut n: u128 = 1;
-    for (p, &range) in pivots.iter().zip(ranges) {
-        let step = p.as_ref().map_or(1, |p| p.step);
-        if range < 0 || range % step != 0 {
-            return Ok(None);
-        }
-        n = n.saturating_mul((range / step) as u128);
-    }
-    Ok(Some(n))
+    Ok(echelon(a, b, m, ranges.len())?.count(ranges))
 }
 
 /// The pivots of the system in echelon form (see the module docs), one per unknown (`None`
 /// for an unknown that no row holds once the later ones are eliminated); `Ok(None)` when the
-/// system has no solution (a row `0 = c` with `c != 0` is left).
+/// system has no solution (a row `0 = c` with `c != 0` is left). Each step's charge is pushed
+/// to `charges` before it is charged.
 fn eliminate(
     a: &[Vec<i64>],
     b: &[i64],
     m: i64,
     n: usize,
+    charges: &mut Vec<u64>,
 ) -> Result<Option<Vec<Option<Pivot>>>, Stop> {
     assert!(m >= 1, "a modulus is positive");
     let mut rows: Vec<Vec<i64>> = a
@@ -247,7 +304,9 @@ fn eliminate(
     rows.dedup();
     let mut pivots: Vec<Option<Pivot>> = (0..n).map(|_| None).collect();
     for j in (0..n).rev() {
-        charge((rows.len() * (n + 1)) as u64).map_err(Stop::Work)?;
+        let units = (rows.len() * (n + 1)) as u64;
+        charges.push(units);
+        charge(units).map_err(Stop::Work)?;
         let mut pivot: Option<Vec<i64>> = None;
         let mut rest: Vec<Vec<i64>> = Vec::with_capacity(rows.len() + 1);
         for row in rows {
@@ -293,7 +352,7 @@ fn eliminate(
 }
 
 struct Walk<'a> {
-    pivots: Vec<Option<Pivot>>,
+    pivots: &'a [Option<Pivot>],
     ranges: &'a [i64],
     /// Under each prefix `z[..=i]` shown to the visitor: its solutions and values (see
     /// [`subtrees`]).
@@ -541,5 +600,74 @@ mod tests {
             skipped_some > 50 && offered > 500,
             "{skipped_some} {offered}"
         );
+    }
+
+    /// What a route of uses of one system lists, counts, and charges: the solutions listed, the
+    /// count, and the work budget's answer (`Err` with the work used when it ran out).
+    type Used = (
+        Vec<Vec<i64>>,
+        Option<Option<u128>>,
+        Result<u64, ScalarError>,
+    );
+
+    /// One system put in echelon form once, walked and then counted with its elimination
+    /// charged again, lists, counts and charges what walking and counting it afresh (two
+    /// eliminations) does, on seeded random systems, under budgets from none to past the
+    /// work: every budget that runs out does so at the same unit with the same work used.
+    #[test]
+    fn an_echelon_used_twice_charges_what_two_eliminations_charge() {
+        let mut next = crate::testing::xorshift_below(0x0ec4_e1a5_7e55_u64);
+        let route =
+            |a: &[Vec<i64>], b: &[i64], m: i64, ranges: &[i64], budget: u64, once: bool| -> Used {
+                let ctx = crate::Context::new().with_work_budget(budget);
+                let guard = ctx.enter();
+                let mut listed = Vec::new();
+                let mut list = |node: Node| {
+                    if let Node::Solution(z) = node {
+                        listed.push(z.to_vec());
+                    }
+                    true
+                };
+                let mut counted = None;
+                let mut run = || -> Result<(), Stop> {
+                    if once {
+                        let e = echelon(a, b, m, ranges.len())?;
+                        e.walk(ranges, false, &mut list)?;
+                        e.recharge()?;
+                        counted = Some(e.count(ranges));
+                    } else {
+                        walk(a, b, m, ranges, false, &mut list)?;
+                        counted = Some(count(a, b, m, ranges)?);
+                    }
+                    Ok(())
+                };
+                let used = match run() {
+                    Ok(()) => Ok(guard.work_used()),
+                    Err(Stop::Work(e)) => Err(e),
+                    Err(other) => panic!("{other:?}"),
+                };
+                (listed, counted, used)
+            };
+        let (mut ran_out, mut finished) = (0, 0);
+        for _ in 0..150 {
+            let (m, n) = ([4i64, 6, 8, 9, 12][next(5) as usize], 1 + next(3) as usize);
+            let rows = 1 + next(4) as usize;
+            let (a, b) = random_system(&mut next, m, n, rows);
+            let ranges: Vec<i64> = (0..n).map(|_| m * (1 + next(2) as i64)).collect();
+            let Ok(full) = route(&a, &b, m, &ranges, u64::MAX, false).2 else {
+                panic!("no budget");
+            };
+            for budget in [0, 1, full / 3, full / 2, full - 1, full, full + 5] {
+                let fresh = route(&a, &b, m, &ranges, budget, false);
+                assert_eq!(
+                    route(&a, &b, m, &ranges, budget, true),
+                    fresh,
+                    "a {a:?}, b {b:?}, m {m}, ranges {ranges:?}, budget {budget}"
+                );
+                ran_out += usize::from(fresh.2.is_err());
+                finished += usize::from(fresh.2.is_ok() && !fresh.0.is_empty());
+            }
+        }
+        assert!(ran_out > 300 && finished > 100, "{ran_out} {finished}");
     }
 }
