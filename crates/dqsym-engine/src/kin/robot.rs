@@ -1208,8 +1208,7 @@ impl Robot {
     pub(crate) fn offset_free(&self, joints: &[DualQuat<Scalar>]) -> Option<OffsetFree> {
         let has =
             |f: &DualQuat<Scalar>, q: &Sym| f.components().iter().any(|c| c.symbols().contains(q));
-        let mut free = joints.to_vec();
-        let mut shifts = Vec::new();
+        let mut shifted = Vec::new();
         for (i, (j, v)) in self.chain.joints.iter().zip(&self.joint_values).enumerate() {
             let Some((c, zero)) = offset_of(j) else {
                 continue;
@@ -1222,11 +1221,19 @@ impl Robot {
                 || has(&self.chain.tool, &q)
                 || has(&zero.dq(&Scalar::int(0)), &q);
             if !elsewhere {
-                free[i] = zero.dq(v);
-                shifts.push((q, c));
+                shifted.push((i, zero.dq(v), (q, c)));
             }
         }
-        (!shifts.is_empty()).then_some(OffsetFree {
+        if shifted.is_empty() {
+            return None;
+        }
+        let mut free = joints.to_vec();
+        let mut shifts = Vec::with_capacity(shifted.len());
+        for (i, factor, shift) in shifted {
+            free[i] = factor;
+            shifts.push(shift);
+        }
+        Some(OffsetFree {
             joints: free,
             shifts,
         })
@@ -1304,31 +1311,33 @@ fn offset_of(j: &Joint<Scalar>) -> Option<(Small, Joint<Scalar>)> {
     if j.kind != JointKind::Revolute {
         return None;
     }
-    let zero = Scalar::int(0);
-    let (theta, geometry) = match &j.geometry {
-        JointGeometry::Dh { theta, d, a, alpha } => (
-            theta,
-            JointGeometry::Dh {
-                theta: zero,
-                d: d.clone(),
-                a: a.clone(),
-                alpha: alpha.clone(),
-            },
-        ),
-        JointGeometry::Mdh { alpha, a, theta, d } => (
-            theta,
-            JointGeometry::Mdh {
-                alpha: alpha.clone(),
-                a: a.clone(),
-                theta: zero,
-                d: d.clone(),
-            },
-        ),
+    let c = match &j.geometry {
+        JointGeometry::Dh { theta, .. } | JointGeometry::Mdh { theta, .. } => {
+            theta.as_pi_multiple()?
+        }
         _ => return None,
     };
-    let c = theta.as_pi_multiple()?;
     let twelfths = c.checked_mul(&Small::from_integer(12))?;
-    (!twelfths.is_integer()).then(|| (c, Joint::new(JointKind::Revolute, geometry)))
+    if twelfths.is_integer() {
+        return None;
+    }
+    let zero = Scalar::int(0);
+    let geometry = match &j.geometry {
+        JointGeometry::Dh { d, a, alpha, .. } => JointGeometry::Dh {
+            theta: zero,
+            d: d.clone(),
+            a: a.clone(),
+            alpha: alpha.clone(),
+        },
+        JointGeometry::Mdh { alpha, a, d, .. } => JointGeometry::Mdh {
+            alpha: alpha.clone(),
+            a: a.clone(),
+            theta: zero,
+            d: d.clone(),
+        },
+        _ => return None,
+    };
+    Some((c, Joint::new(JointKind::Revolute, geometry)))
 }
 
 /// The product of `fs` from the left, or `None` once a component of a partial product has

@@ -32,29 +32,26 @@ fn phase(freq: &[(Sym, Small)], shifts: &[(Sym, Small)]) -> Option<Small> {
 }
 
 thread_local! {
-    /// [`shifted_term_size`] by (sine, offset, radicand): the few offsets of a chain's
-    /// entries come back for every entry of every partial product.
-    static SIZES: RefCell<HashMap<(bool, Small, u64), usize>> = RefCell::new(HashMap::new());
+    /// [`shifted_term_size`] by (sine, offset): the few offsets of a chain's entries come
+    /// back for every entry of every partial product.
+    static SIZES: RefCell<HashMap<(bool, Small), usize>> = RefCell::new(HashMap::new());
 }
 
 /// The number of terms of the canonical form of one term `c sqrt(r) m trig(f.x + p pi)`
-/// (`c` nonzero, `m` a monomial): a function of the sine flag, `p` and `r` alone. The
-/// canonical form of a group is its coordinates in a basis of `cos`/`sin` of `f.x + theta`
-/// (see `cyclo/`), the same for every `f`, and a monomial and a nonzero rational factor do
-/// not change which coordinates are nonzero. `None` when the term's form is an error value.
-fn shifted_term_size(sin: bool, pi: Small, rad: u64) -> Option<usize> {
-    if let Some(n) = SIZES.with(|c| c.borrow().get(&(sin, pi, rad)).copied()) {
+/// (`c` nonzero, `m` a monomial): a function of the sine flag and `p` alone. The canonical
+/// form of a group is its coordinates in a basis of `cos`/`sin` of `f.x + theta` (see
+/// `cyclo/`), the same for every `f`; a monomial and a nonzero rational factor do not change
+/// which coordinates are nonzero, and `sqrt(r)` maps each term `sqrt(s)` of a coordinate to
+/// one term `sqrt(r s)` (distinct `s`, square-free, give distinct `r s` up to squares), the
+/// result canonical as it stands (`Scalar::from_terms_settled`). `None` when the term's form
+/// is an error value.
+fn shifted_term_size(sin: bool, pi: Small) -> Option<usize> {
+    if let Some(n) = SIZES.with(|c| c.borrow().get(&(sin, pi)).copied()) {
         return Some(n);
     }
-    let unit = Scalar::trig_of_parts(sin, vec![(Sym::new("x"), Small::from_integer(1))], pi);
-    let root = Scalar::from_terms(vec![Term {
-        mode: super::Mode::unit(),
-        mono: super::atoms::empty_mono(),
-        rad,
-        coef: super::Q::ONE,
-    }]);
-    let n = (unit * root).check().ok()?.len();
-    SIZES.with(|c| c.borrow_mut().insert((sin, pi, rad), n));
+    let one = vec![(Sym::new("x"), Small::from_integer(1))];
+    let n = Scalar::trig_of_parts(sin, one, pi).check().ok()?.len();
+    SIZES.with(|c| c.borrow_mut().insert((sin, pi), n));
     Some(n)
 }
 
@@ -150,7 +147,7 @@ impl Scalar {
                 1
             } else {
                 let pi = modulo_two(t.mode.pi.checked_add(&d)?)?;
-                shifted_term_size(t.mode.sin, pi, t.rad)?
+                shifted_term_size(t.mode.sin, pi)?
             };
         }
         Some(n)
