@@ -275,6 +275,10 @@ fn expanded_entries(
     // grows.
     let text = PoseText::default();
     let stop = AtomicBool::new(false);
+    // Both products multiply the joint factors without their constant angle offsets where
+    // that gives the same entries and decisions (`OffsetFree`), the offsets put back once
+    // per entry: the partial products then carry no cyclotomic phases.
+    let free = robot.offset_free(&joints);
     // The matrix product, with the closed forms of its large entries found as it makes them.
     let product = |factors| {
         let mut t_forms: Vec<Option<PoseForm>> = (0..12).map(|_| None).collect();
@@ -287,7 +291,13 @@ fn expanded_entries(
             t_forms[4 * i + j] = Some((f, None));
             !text.exceeded()
         };
-        let m = robot.forward_matrix_until(factors, o.max_terms, &stop, &mut seen)?;
+        let m = match free
+            .as_ref()
+            .and_then(|f| robot.forward_matrix_offset_free(f, o.max_terms, &stop, &mut seen))
+        {
+            Some(m) => m?,
+            None => robot.forward_matrix_until(factors, o.max_terms, &stop, &mut seen)?,
+        };
         Some((m, t_forms))
     };
     // The closed forms of the matrix's other entries (`pose_forms` is a `par_map`).
@@ -302,7 +312,13 @@ fn expanded_entries(
         if text.exceeded() {
             return None;
         }
-        robot.forward_within_until(joints, o.max_terms, &stop)
+        match free
+            .as_ref()
+            .and_then(|f| robot.forward_within_offset_free(f, o.max_terms, &stop))
+        {
+            Some(q) => q,
+            None => robot.forward_within_until(joints, o.max_terms, &stop),
+        }
     };
     // The DQ product on the helper while this thread begins the matrix's closed forms; the
     // helper takes the closed forms left once the product is done. Before, the product (2.6 M

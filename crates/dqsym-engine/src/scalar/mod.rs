@@ -35,6 +35,7 @@ mod multinomial;
 mod par;
 mod proportional;
 pub(crate) mod q;
+mod shift;
 
 pub(crate) use arith::FxHasher;
 pub(crate) use atoms::{Mode, MonoRc, Small};
