@@ -599,7 +599,7 @@ fn a_one_term_group_from_its_template_is_the_group_rewritten() {
 fn a_group_rewritten_before_is_the_group_rewritten_exactly() {
     use super::super::{with_own_budget, work_used, Term};
     use super::{exact::canonical_group_exact, fast::canonical_group_fast};
-    use super::{rewritten_before, rewritten_group, GroupValue};
+    use super::{rewritten_before, rewritten_group, value_hash};
     let mut rng = Rng(0x0d16_9e0c_ac4e);
     let dens = [5i64, 7, 8, 9, 10, 15, 16, 18, 20, 36];
     let monos: Vec<Term> = ["1", "a", "b"]
@@ -674,7 +674,7 @@ fn a_group_rewritten_before_is_the_group_rewritten_exactly() {
         let fast = canonical_group_fast(&refs).expect("fast").is_some();
         // A group the fast path rewrote is remembered: the calls above found it.
         let found = |g: &[&Term]| {
-            rewritten_before(g, &GroupValue::of(g))
+            rewritten_before(g, value_hash(g))
                 .expect("within the limit")
                 .is_some()
         };
