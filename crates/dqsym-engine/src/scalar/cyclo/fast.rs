@@ -286,11 +286,19 @@ pub(super) fn charge_group(terms: usize, phi: u64) -> Result<(), ScalarError> {
 /// [`canonical_group_exact`] through the [`FastBasis`]es; `None` when one of their checks
 /// failed.
 pub(super) fn canonical_group_fast(g: &[&Term]) -> Result<Option<Vec<Term>>, ScalarError> {
+    canonical_group_fast_at(g, level_of(g.iter().copied())?)
+}
+
+/// [`canonical_group_fast`] of a group whose level `w` (`level_of`, within the limit) the
+/// caller found.
+pub(super) fn canonical_group_fast_at(
+    g: &[&Term],
+    w: u64,
+) -> Result<Option<Vec<Term>>, ScalarError> {
     let Some(first) = g.first() else {
         return Ok(Some(Vec::new()));
     };
     let real = first.mode.freq.is_empty();
-    let w = level_of(g.iter().copied())?;
     let (phi, primes) = level_primes(w);
     charge_group(g.len(), phi)?;
     let f = field(w)?;

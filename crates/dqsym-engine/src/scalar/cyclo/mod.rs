@@ -63,7 +63,7 @@ use num_traits::{Signed, Zero};
 use std::cell::RefCell;
 use std::cmp::Ordering;
 use std::collections::HashMap;
-use std::hash::BuildHasherDefault;
+use std::hash::{BuildHasherDefault, Hash, Hasher};
 use std::rc::Rc;
 use std::sync::{Arc, Mutex};
 
@@ -365,23 +365,30 @@ fn rewritten_group(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
     if g.is_empty() {
         return Ok(Vec::new());
     }
-    let key = GroupValue::of(g);
-    if let Some(out) = rewritten_before(g, &key)? {
+    let hash = value_hash(g);
+    if let Some(out) = rewritten_before(g, hash)? {
         return Ok(out);
     }
-    match fast::canonical_group_fast(g)? {
+    let w = level_of(g.iter().copied())?;
+    match fast::canonical_group_fast_at(g, w)? {
         Some(out) => {
             let template: TermTemplate = out
                 .iter()
                 .map(|u| (u.mode.sin, u.mode.pi, u.rad, u.coef.clone()))
                 .collect();
+            let kept = Rewrite {
+                value: GroupValue::of(g),
+                template,
+                level: w,
+                degree: level::level_primes(w).0,
+            };
             REWRITTEN.with(|c| {
                 let mut c = c.borrow_mut();
-                let kept = this_fork(&mut c);
-                if kept.len() >= REWRITTEN_KEPT {
-                    kept.clear();
+                let known = this_fork(&mut c);
+                if known.len() >= REWRITTEN_KEPT {
+                    known.clear();
                 }
-                kept.insert(key, template);
+                known.entry(hash).or_default().push(kept);
             });
             Ok(out)
         }
@@ -393,12 +400,11 @@ fn rewritten_group(g: &[&Term]) -> Result<Vec<Term>, ScalarError> {
 /// share): whether it is real (no symbolic angle), and each term's sine flag, pi offset
 /// (numerator, denominator: reduced, so equal offsets have equal words), radicand and
 /// coefficient, in the group's order (the terms' order, by sine flag, offset, radicand).
-#[derive(Clone, PartialEq, Eq, Hash)]
+#[derive(Clone, PartialEq, Eq, Debug)]
 struct GroupValue(bool, Vec<(bool, i64, i64, u64, Q)>);
 
 impl GroupValue {
     fn of(g: &[&Term]) -> GroupValue {
-        let real = g.first().is_some_and(|t| t.mode.freq.is_empty());
         let terms = g
             .iter()
             .map(|t| {
@@ -406,16 +412,59 @@ impl GroupValue {
                 (t.mode.sin, *pi.numer(), *pi.denom(), t.rad, t.coef.clone())
             })
             .collect();
-        GroupValue(real, terms)
+        GroupValue(group_is_real(g), terms)
+    }
+
+    /// Whether `g`'s value is this one: [`GroupValue::of`] compared without being built.
+    fn is_of(&self, g: &[&Term]) -> bool {
+        self.0 == group_is_real(g)
+            && self.1.len() == g.len()
+            && self.1.iter().zip(g).all(|((sin, n, d, rad, coef), t)| {
+                let pi = t.mode.pi;
+                (*sin, *n, *d, *rad) == (t.mode.sin, *pi.numer(), *pi.denom(), t.rad)
+                    && *coef == t.coef
+            })
     }
 }
 
-/// The most groups [`REWRITTEN`] keeps on one thread (emptied when full): a bound on its
+/// Whether the group `g` is real (its terms have no symbolic angle).
+fn group_is_real(g: &[&Term]) -> bool {
+    g.first().is_some_and(|t| t.mode.freq.is_empty())
+}
+
+/// The hash of `g`'s [`GroupValue`], read from the terms without building it (a cache hit
+/// then allocates nothing): equal values hash equal, since both hash the same fields in
+/// the same order.
+fn value_hash(g: &[&Term]) -> u64 {
+    let mut h = FxHasher::default();
+    group_is_real(g).hash(&mut h);
+    g.len().hash(&mut h);
+    for t in g {
+        let pi = t.mode.pi;
+        (t.mode.sin, *pi.numer(), *pi.denom(), t.rad).hash(&mut h);
+        t.coef.hash(&mut h);
+    }
+    h.finish()
+}
+
+/// A group the fast path rewrote: its value, its canonical form, and its level `W` and the
+/// degree `phi(W)` (both functions of the value: `W` of its pi offsets), kept so a hit
+/// neither walks the group for its level nor looks the degree up.
+struct Rewrite {
+    value: GroupValue,
+    template: TermTemplate,
+    level: u64,
+    degree: u64,
+}
+
+/// The most hashes [`REWRITTEN`] keeps on one thread (emptied when full): a bound on its
 /// memory in a long-lived process. A group found there or rewritten again gives the same
 /// terms and charges the same work, so the bound changes only how fast it is.
 const REWRITTEN_KEPT: usize = 1 << 12;
 
-type Rewritten = HashMap<GroupValue, TermTemplate, BuildHasherDefault<FxHasher>>;
+/// The groups rewritten, by the [`value_hash`] of their values (the groups of one hash, in
+/// the order they were met: distinct values almost always have distinct hashes).
+type Rewritten = HashMap<u64, Vec<Rewrite>, BuildHasherDefault<FxHasher>>;
 
 thread_local! {
     /// The canonical forms of the groups the fast path rewrote on this thread, by value
@@ -423,9 +472,9 @@ thread_local! {
     static REWRITTEN: RefCell<(u64, Rewritten)> = RefCell::new((0, Rewritten::default()));
 }
 
-/// The canonical form of the group `g` (whose value is `key`) when the fast path rewrote a
-/// group of the same value on this thread before: its terms on `g`'s frequency vector and
-/// monomial. `None` otherwise.
+/// The canonical form of the group `g` (whose [`value_hash`] is `hash`) when the fast path
+/// rewrote a group of the same value on this thread before: its terms on `g`'s frequency
+/// vector and monomial. `None` otherwise.
 ///
 /// Why that is `g`'s canonical form: a group's canonical form is the expansion of its value
 /// in the basis of its smallest level (see the module docs), and the value of `sum q sqrt(r)
@@ -436,15 +485,27 @@ thread_local! {
 /// fast path checks it first, and the work charged is the fast path's when its bases and
 /// units are made already, as they are once it rewrote a group of this value in this
 /// process (they are kept per process, made again only in a forked child, as this cache).
-fn rewritten_before(g: &[&Term], key: &GroupValue) -> Result<Option<Vec<Term>>, ScalarError> {
-    let Some(template) = REWRITTEN.with(|c| this_fork(&mut c.borrow_mut()).get(key).cloned())
-    else {
+///
+/// The level is the one remembered: `level_of` reads only the pi offsets' denominators,
+/// part of the value. It passes the limit as `level_of` would: `level_of` accepts a level
+/// `W` (at most its factoring bound, as this one, accepted before) exactly when `phi(W)` is
+/// within the limit, its other test (`W <= 2 limit^2`) then holding since `phi(W) >=
+/// sqrt(W / 2)`; past the limit (entered lower since), `level_of` gives its error.
+fn rewritten_before(g: &[&Term], hash: u64) -> Result<Option<Vec<Term>>, ScalarError> {
+    let Some((template, w, degree)) = REWRITTEN.with(|c| {
+        let mut c = c.borrow_mut();
+        let known = this_fork(&mut c).get(&hash)?;
+        let r = known.iter().find(|r| r.value.is_of(g))?;
+        Some((r.template.clone(), r.level, r.degree))
+    }) else {
         return Ok(None);
     };
+    if degree > super::ctx::max_cyclotomic_degree() {
+        level_of(g.iter().copied())?;
+    }
+    fast::charge_group(g.len(), degree)?;
     let first = g[0];
-    let w = level_of(g.iter().copied())?;
-    fast::charge_group(g.len(), level::level_primes(w).0)?;
-    let real = key.0;
+    let real = group_is_real(g);
     let out: Vec<Term> = template
         .iter()
         .map(|(sin, pi, rad, coef)| Term {
@@ -455,6 +516,7 @@ fn rewritten_before(g: &[&Term], key: &GroupValue) -> Result<Option<Vec<Term>>, 
         })
         .collect();
     if cfg!(debug_assertions) {
+        assert_eq!(level_of(g.iter().copied()), Ok(w), "a remembered level");
         let again = super::with_own_budget(u64::MAX / 4, || fast::canonical_group_fast(g));
         if let Ok(Some(again)) = again {
             assert_eq!(again, out, "a group found rewritten before differs");

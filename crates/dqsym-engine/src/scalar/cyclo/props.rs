@@ -594,12 +594,13 @@ fn a_one_term_group_from_its_template_is_the_group_rewritten() {
 /// others, and it charges the work the fast path charges once its bases are made: seeded
 /// random groups of one to four terms `p/q sqrt(d) m trig(j x + k pi/n)` (one `j` a group,
 /// zero for constants) at many denominators, mixed denominators in a group included (past
-/// the degree limit, the same error).
+/// the degree limit, the same error). A group found under a lower limit than it was
+/// rewritten at (its remembered level checked) is the exact rewrite or its degree error.
 #[test]
 fn a_group_rewritten_before_is_the_group_rewritten_exactly() {
-    use super::super::{with_own_budget, work_used, Term};
+    use super::super::{with_own_budget, work_used, Context, Term};
     use super::{exact::canonical_group_exact, fast::canonical_group_fast};
-    use super::{rewritten_before, rewritten_group, GroupValue};
+    use super::{rewritten_before, rewritten_group, value_hash};
     let mut rng = Rng(0x0d16_9e0c_ac4e);
     let dens = [5i64, 7, 8, 9, 10, 15, 16, 18, 20, 36];
     let monos: Vec<Term> = ["1", "a", "b"]
@@ -615,6 +616,7 @@ fn a_group_rewritten_before_is_the_group_rewritten_exactly() {
         .collect();
     let sorted = |g: Vec<Term>| canonical_terms(g).expect("sorted");
     let (mut checked, mut constants, mut relabelled, mut refused) = (0, 0, 0, 0);
+    let mut limited = 0;
     for _ in 0..600 {
         let j = rng.pick(&[0i64, 1, 2]);
         let x = &Scalar::sym("x") * &Scalar::int(j);
@@ -674,7 +676,7 @@ fn a_group_rewritten_before_is_the_group_rewritten_exactly() {
         let fast = canonical_group_fast(&refs).expect("fast").is_some();
         // A group the fast path rewrote is remembered: the calls above found it.
         let found = |g: &[&Term]| {
-            rewritten_before(g, &GroupValue::of(g))
+            rewritten_before(g, value_hash(g))
                 .expect("within the limit")
                 .is_some()
         };
@@ -692,6 +694,15 @@ fn a_group_rewritten_before_is_the_group_rewritten_exactly() {
                 direct > 0 && again == direct,
                 "{again} against {direct}: {g:?}"
             );
+            // Found under other limits (its remembered level checked against each): the
+            // exact route's rewrite, or its degree error.
+            for limit in [4, 8, 12, 16, 24, 48, 96] {
+                let _in = Context::new().with_max_cyclotomic_degree(limit).enter();
+                let want = canonical_group_exact(&refs).map(|w| Some(sorted(w)));
+                let hit = rewritten_before(&refs, value_hash(&refs)).map(|o| o.map(sorted));
+                assert_eq!(hit, want, "limit {limit}: {g:?}");
+                limited += usize::from(want.is_err());
+            }
         }
         // The same values on another monomial (and another angle, for symbolic groups).
         let other = (mono + 1) % monos.len();
@@ -720,9 +731,9 @@ fn a_group_rewritten_before_is_the_group_rewritten_exactly() {
         relabelled += usize::from(fast);
     }
     assert!(
-        checked > 400 && constants > 100 && relabelled > 350 && refused > 0,
+        checked > 400 && constants > 100 && relabelled > 350 && refused > 0 && limited > 100,
         "{checked} groups, {constants} constant, {relabelled} through the fast path, \
-         {refused} past the degree limit"
+         {refused} past the degree limit, {limited} found past a lower limit"
     );
 }
 
