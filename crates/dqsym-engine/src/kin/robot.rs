@@ -1176,18 +1176,24 @@ impl Robot {
 /// substitution is a ring homomorphism, and equal values have one canonical form).
 ///
 /// What the products decide on their entries' sizes (the term limit, the growth's early
-/// stop, an error value) is decided as the products with the offsets decide it: the
-/// offset-free products are kept only when every entry of every partial product, shifted
-/// back, has fewer than a sixteenth of the smaller of the term limits by
-/// [`Scalar::shifted_size_bound`]; then none of those checks stops the products with the
-/// offsets ([`Growth::predicts`] needs a sixteenth of the limit), and otherwise the caller
-/// multiplies the factors with their offsets, as before. Not bounded so: the values inside
+/// stop) is decided as the products with the offsets decide it: the offset-free products
+/// are kept only when every entry of every partial product, shifted back, has fewer than a
+/// sixteenth of the smaller of the term limits by [`Scalar::shifted_size_bound`]; then none
+/// of those checks stops the products with the offsets ([`Growth::predicts`] needs a
+/// sixteenth of the limit), and otherwise the caller multiplies the factors with their
+/// offsets, as before. Degree errors: the route is taken only when every group the factors
+/// with their offsets can make is within the degree limit (`levels_hold`), so neither
+/// product meets one; an entry shifted back that is an error value or past `max_terms`
+/// also sends the caller to the products with the offsets. The attempt runs on a work
+/// budget of its own and is charged only when kept, so a product given up for the route
+/// with the offsets leaves that route the budget it had. Not bounded so: the values inside
 /// one entry's product with the offsets (its term products and partial sums, each held to
-/// the context's term limit as it is made) and the work the products charge, which is less
-/// offset-free (Jaco-style arm: 146.7 M -> 139.8 M instructions). A chain given up only for
-/// those (an intermediate past the term limit while every entry stays below a sixteenth of
-/// it, or the budget's very edge) may now be expanded; every chain expanded before gives the
-/// same entries (outputs unchanged on the example robots and random chains with offsets).
+/// the context's term limit as it is made, and their digits) and the work the products
+/// charge, which is less offset-free (Jaco-style arm: 146.7 M -> 139.8 M instructions). A
+/// chain given up only for those (an intermediate past a limit while every entry stays
+/// below a sixteenth of the term limit, or the budget's very edge) may now be expanded;
+/// every chain expanded before gives the same entries (outputs unchanged on the example
+/// robots and random chains with offsets).
 pub(crate) struct OffsetFree {
     /// The joint factors, the shifted joints' at offset 0.
     joints: Vec<DualQuat<Scalar>>,
@@ -1230,7 +1236,7 @@ impl Robot {
                 shifted.push((i, zero.dq(v), (q, c)));
             }
         }
-        if shifted.is_empty() {
+        if shifted.is_empty() || !levels_hold(joints, [&self.chain.base, &self.chain.tool]) {
             return None;
         }
         let mut free = joints.to_vec();
@@ -1259,23 +1265,29 @@ impl Robot {
         let below = OffsetFree::below(max_terms);
         let fits = |x: &Scalar| free.fits(x, below);
         let factors = self.factor_matrices(&free.joints, 0);
-        let made = matrix_product_until(
-            factors,
-            Some(max_terms),
-            Some,
-            Some(stop),
-            None,
-            Some(&fits),
-        );
-        let Some(m) = made else {
-            return stop.load(AtomicOrdering::Relaxed).then_some(None);
-        };
-        let mut rows: [[Scalar; 4]; 4] = Default::default();
-        for (row, from) in rows.iter_mut().zip(&m.rows) {
-            for (x, y) in row.iter_mut().zip(from) {
-                *x = y.shift_angles(&free.shifts)?;
+        let rows = charged_if_kept(|| {
+            let made = matrix_product_until(
+                factors,
+                Some(max_terms),
+                Some,
+                Some(stop),
+                None,
+                Some(&fits),
+            );
+            let Some(m) = made else {
+                return stop.load(AtomicOrdering::Relaxed).then_some(None);
+            };
+            let mut rows: [[Scalar; 4]; 4] = Default::default();
+            for (row, from) in rows.iter_mut().zip(&m.rows) {
+                for (x, y) in row.iter_mut().zip(from) {
+                    *x = shifted_back(y, free, max_terms)?;
+                }
             }
-        }
+            Some(Some(rows))
+        })?;
+        let Some(rows) = rows else {
+            return Some(None);
+        };
         let mut order: Vec<(usize, usize)> =
             (0..4).flat_map(|i| (0..4).map(move |j| (i, j))).collect();
         order.sort_by_key(|&(i, j)| std::cmp::Reverse(rows[i][j].len()));
@@ -1299,16 +1311,67 @@ impl Robot {
     ) -> Option<Option<DualQuat<Scalar>>> {
         let below = OffsetFree::below(max_terms);
         let fits = |x: &Scalar| free.fits(x, below);
-        let made = self.forward_product(free.joints.clone(), max_terms, stop, Some(&fits));
-        let Some(q) = made else {
-            return stop.load(AtomicOrdering::Relaxed).then_some(None);
-        };
-        let mut comps = q.components();
-        for c in &mut comps {
-            *c = c.shift_angles(&free.shifts)?;
-        }
-        Some(Some(DualQuat::from_components(comps)))
+        charged_if_kept(|| {
+            let made = self.forward_product(free.joints.clone(), max_terms, stop, Some(&fits));
+            let Some(q) = made else {
+                return stop.load(AtomicOrdering::Relaxed).then_some(None);
+            };
+            let mut comps = q.components();
+            for c in &mut comps {
+                *c = shifted_back(c, free, max_terms)?;
+            }
+            Some(Some(DualQuat::from_components(comps)))
+        })
     }
+}
+
+/// Whether every group of the products of `joints` (the factors with their offsets), `base`
+/// and `tool`, and so of the offset-free products, is within the degree limit whatever its
+/// offsets ([`crate::scalar::levels_within_limit`] of the lcm of their terms' pi
+/// denominators): then neither product meets a degree error, in any partial product, and
+/// the route with the offsets does not stop on one where the offset-free one goes on.
+fn levels_hold<'a>(joints: &'a [DualQuat<Scalar>], frames: [&'a DualQuat<Scalar>; 2]) -> bool {
+    let mut den: u64 = 1;
+    for f in joints.iter().chain(frames) {
+        for c in f.components() {
+            let Ok(terms) = c.terms() else {
+                return false;
+            };
+            for t in terms {
+                let d = t.mode.pi.denom().unsigned_abs();
+                let Some(l) = (den / num_integer::gcd(den, d)).checked_mul(d) else {
+                    return false;
+                };
+                den = l;
+            }
+        }
+    }
+    crate::scalar::levels_within_limit(den)
+}
+
+/// `y` of an offset-free product with the offsets put back, or `None` (the caller then
+/// multiplies the factors with their offsets) when that is an error value or has more than
+/// `max_terms` terms: the products with the offsets would have stopped there.
+fn shifted_back(y: &Scalar, free: &OffsetFree, max_terms: usize) -> Option<Scalar> {
+    let x = y.shift_angles(&free.shifts)?;
+    (x.as_error().is_none() && x.len() <= max_terms).then_some(x)
+}
+
+/// `attempt` under a work budget of its own, what is left of this thread's, its work charged
+/// to this thread only when it is kept (`Some`): an offset-free product given up for the
+/// products with the offsets spends nothing, so those run on the budget they had before.
+fn charged_if_kept<R>(attempt: impl FnOnce() -> Option<R>) -> Option<R> {
+    let own = crate::Context::current()
+        .with_work_budget(crate::scalar::work_left())
+        .enter();
+    let r = attempt();
+    let used = own.work_used();
+    drop(own);
+    if r.is_some() {
+        // An overrun shows in the next operation here, as it would have in the products.
+        let _: Result<(), ScalarError> = crate::scalar::charge(used);
+    }
+    r
 }
 
 /// A revolute DH or MDH joint's constant angle offset `c` (its angle is `q + c pi`) when `c`
@@ -1742,6 +1805,12 @@ mod tests {
     /// and quarters of pi and a symbol, lengths symbolic, numeric or zero, and on one or two
     /// joints an angle offset `k pi / n` (`n` in 5, 7, 9, 10, 18), some a multiple of pi/12.
     fn random_chain(next: &mut impl FnMut(u64) -> u64) -> Robot {
+        random_chain_of(next, 7)
+    }
+
+    /// [`random_chain`] with its twists drawn from the first `kinds` of the list: 10 adds
+    /// fifths, sevenths and ninths of pi.
+    fn random_chain_of(next: &mut impl FnMut(u64) -> u64, kinds: usize) -> Robot {
         let joints_count = 3 + next(3) as usize;
         let mdh = next(2) == 0;
         let twists = [
@@ -1752,6 +1821,9 @@ mod tests {
             Scalar::pi(),
             Scalar::int(0),
             Scalar::sym("t"),
+            Scalar::pi() * Scalar::from_ratio(1, 5),
+            Scalar::pi() * Scalar::from_ratio(2, 7),
+            Scalar::pi() * Scalar::from_ratio(1, 9),
         ];
         let mut joints = Vec::new();
         let mut variables = Vec::new();
@@ -1762,7 +1834,7 @@ mod tests {
                 _ => Scalar::int(0),
             };
             let (d, a) = (length("d"), length("a"));
-            let alpha = twists[next(twists.len() as u64) as usize].clone();
+            let alpha = twists[next(kinds as u64) as usize].clone();
             let n = [5, 7, 9, 10, 18][next(5) as usize];
             let theta = if next(2) == 0 {
                 Scalar::pi() * Scalar::from_ratio(next(2 * n as u64 - 1) as i64 + 1, n)
@@ -1835,6 +1907,74 @@ mod tests {
             kept * 10 >= compared * 8,
             "{kept} of {compared} kept offset-free"
         );
+    }
+
+    /// The products as `fk` makes them (offset-free where kept, else with the offsets) and
+    /// with the offsets, under small term limits, low degree limits (twists and offsets of
+    /// fifths, sevenths and ninths of pi mix levels once shifted back) and small work
+    /// budgets: where the products with the offsets are made, the route makes the same (a
+    /// product given up on it leaves the products with the offsets their whole budget); under
+    /// no budget they decide alike (both made or both given up).
+    #[test]
+    fn the_route_decides_as_the_products_with_the_offsets() {
+        let mut next = crate::testing::xorshift_below(71);
+        let (mut compared, mut given_up, mut fell_back) = (0, 0, 0);
+        for _ in 0..40 {
+            let robot = random_chain_of(&mut next, 10);
+            for (terms, degree, budget) in [
+                (64, 768, None),
+                (256, 24, None),
+                (20_000, 48, None),
+                (20_000, 768, Some(20_000)),
+                (20_000, 768, Some(200_000)),
+            ] {
+                let mut ctx = crate::Context::new().with_max_cyclotomic_degree(degree);
+                if let Some(b) = budget {
+                    ctx = ctx.with_work_budget(b);
+                }
+                let run = |offset_free: bool| {
+                    let _in = ctx.clone().enter();
+                    let joints = robot.joint_dqs();
+                    let flag = || AtomicBool::new(false);
+                    let mut all = |_: usize, _: usize, _: &Scalar| true;
+                    let free = offset_free.then(|| robot.offset_free(&joints)).flatten();
+                    // Each product falls back on its own, as in `fk`.
+                    let tried = free.as_ref().and_then(|f| {
+                        robot.forward_matrix_offset_free(f, terms, &flag(), &mut all)
+                    });
+                    let m = tried.clone().unwrap_or_else(|| {
+                        let factors = robot.factor_matrices(&joints, EARLY);
+                        robot.forward_matrix_until(factors, terms, &flag(), &mut all)
+                    });
+                    let tried_q = free
+                        .as_ref()
+                        .and_then(|f| robot.forward_within_offset_free(f, terms, &flag()));
+                    let fell = free.is_some() && (tried.is_none() || tried_q.is_none());
+                    let q = tried_q.unwrap_or_else(|| {
+                        robot.forward_within_until(joints.clone(), terms, &flag())
+                    });
+                    (m, q, fell)
+                };
+                let (m0, q0, _) = run(false);
+                let (m1, q1, fell) = run(true);
+                compared += 1;
+                fell_back += usize::from(fell);
+                given_up += usize::from(m0.is_none() || q0.is_none());
+                if budget.is_none() || m0.is_some() {
+                    assert!(
+                        m0 == m1,
+                        "the matrix of {:?} at {terms}, {degree}",
+                        robot.chain
+                    );
+                }
+                if budget.is_none() || q0.is_some() {
+                    assert!(q0 == q1, "the DQ of {:?} at {terms}, {degree}", robot.chain);
+                }
+            }
+        }
+        assert_eq!(compared, 200);
+        assert!(given_up >= 100, "{given_up} given up");
+        assert!(fell_back >= 40, "{fell_back} fell back");
     }
 
     #[test]

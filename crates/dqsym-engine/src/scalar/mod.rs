@@ -48,6 +48,7 @@ pub use ctx::{
     Context, Entered, Preset, DEFAULT_MAX_ANGLE_SYMBOLS, DEFAULT_MAX_CYCLOTOMIC_DEGREE,
     DEFAULT_MAX_DIGITS, DEFAULT_MAX_EXPONENT,
 };
+pub(crate) use cyclo::levels_within_limit;
 use cyclo::{GroupKey, OwnedKey, ProductTrace, Settled};
 pub use decimal::{decimal_places, decimal_text, parse_decimal, short_numbers};
 pub use frac::Frac;

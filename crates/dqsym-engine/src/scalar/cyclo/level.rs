@@ -64,6 +64,20 @@ pub(super) fn level_of<'a>(terms: impl Iterator<Item = &'a Term>) -> Result<u64,
     Ok(w)
 }
 
+/// Whether a group whose pi offsets all have denominators dividing `den` is within the
+/// context's degree limit whatever its offsets: its level divides `lcm(24, 2 den)` (see
+/// [`level_of`]), and a level dividing another has a degree (`phi`) dividing the other's.
+/// Products and canonical forms of such groups stay among them: a sum of offsets has a
+/// denominator dividing `den`, and a group's basis at level `W` has offsets with
+/// denominators dividing `W / 2 = lcm(12, den)`.
+pub(crate) fn levels_within_limit(den: u64) -> bool {
+    let limit = super::super::ctx::max_cyclotomic_degree();
+    let d = 2 * u128::from(den);
+    let w = 24 / 24u128.gcd(&d) * d;
+    let cap = 2u128.saturating_mul(u128::from(limit).saturating_mul(u128::from(limit)));
+    w <= cap && w <= 1_000_000_000_000 && level_primes(w as u64).0 <= limit
+}
+
 /// `phi(W)` and the primes of `W`, remembered per thread (every group asks for its level's).
 pub(super) fn level_primes(w: u64) -> (u64, Rc<[u64]>) {
     type Levels = HashMap<u64, (u64, Rc<[u64]>), BuildHasherDefault<FxHasher>>;

@@ -78,6 +78,7 @@ mod props;
 
 use candidates::Col;
 use level::level_of;
+pub(crate) use level::levels_within_limit;
 pub(crate) use product::{settled_groups, ProductTrace};
 
 /// A process-wide cache, made again in a forked child ([`PerFork`]).
