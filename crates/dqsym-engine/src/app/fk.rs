@@ -271,8 +271,9 @@ fn expanded_entries(
     // 4R: two matrix entries of 59 kB each, where the DQ product and the closed forms of its
     // components cost 160 M instructions). Its large entries' closed forms are found as the
     // last product makes them, largest first, so that the entries after the limit are never
-    // made either (the 4R's other ten). Neither order changes what is decided: the sum only
-    // grows.
+    // made either (the 4R's other ten; on the offset-free route all sixteen are made and
+    // shifted back first, then shown largest first: more work, the same decision). Neither
+    // order changes what is decided: the sum only grows.
     let text = PoseText::default();
     let stop = AtomicBool::new(false);
     // Both products multiply the joint factors without their constant angle offsets where

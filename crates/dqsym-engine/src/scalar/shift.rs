@@ -31,6 +31,19 @@ fn phase(freq: &[(Sym, Small)], shifts: &[(Sym, Small)]) -> Option<Small> {
     Some(d)
 }
 
+/// The phase `f . o` the shifts add to the term `t`'s angle ([`phase`]); `None` when a
+/// shifted symbol is in its monomial (the substitution is then not a shift of phases) or
+/// the phase leaves a machine word.
+fn term_phase(t: &Term, shifts: &[(Sym, Small)]) -> Option<Small> {
+    if t.mono
+        .iter()
+        .any(|(s, _)| shifts.iter().any(|(x, _)| x == s))
+    {
+        return None;
+    }
+    phase(&t.mode.freq, shifts)
+}
+
 thread_local! {
     /// [`shifted_term_size`] by (sine, offset): the few offsets of a chain's entries come
     /// back for every entry of every partial product.
@@ -97,13 +110,7 @@ impl Scalar {
         let mut out: Vec<Term> = Vec::with_capacity(terms.len() + terms.len() / 2);
         let mut settled = true;
         for t in terms {
-            if t.mono
-                .iter()
-                .any(|(s, _)| shifts.iter().any(|(x, _)| x == s))
-            {
-                return None;
-            }
-            let d = phase(&t.mode.freq, shifts)?;
+            let d = term_phase(t, shifts)?;
             if d.is_zero() {
                 out.push(t.clone());
                 continue;
@@ -136,13 +143,7 @@ impl Scalar {
         let terms = self.terms().ok()?;
         let mut n = 0usize;
         for t in terms {
-            if t.mono
-                .iter()
-                .any(|(s, _)| shifts.iter().any(|(x, _)| x == s))
-            {
-                return None;
-            }
-            let d = phase(&t.mode.freq, shifts)?;
+            let d = term_phase(t, shifts)?;
             n += if d.is_zero() {
                 1
             } else {
