@@ -1848,12 +1848,25 @@ mod tests {
             });
             variables.push(format!("q{i}"));
         }
+        let values = variables.iter().map(|v| Scalar::sym(v)).collect();
+        let convention = if mdh { Convention::Mdh } else { Convention::Dh };
+        bare_robot(convention, variables, values, Chain::new(joints))
+    }
+
+    /// A robot of `chain` with its variables and joint values, and no frames, tool point,
+    /// values, notes or decimals.
+    fn bare_robot(
+        convention: Convention,
+        variables: Vec<String>,
+        joint_values: Vec<Scalar>,
+        chain: Chain<Scalar>,
+    ) -> Robot {
         Robot {
-            name: "random".into(),
-            convention: if mdh { Convention::Mdh } else { Convention::Dh },
-            joint_values: variables.iter().map(|v| Scalar::sym(v)).collect(),
+            name: "test".into(),
+            convention,
             variables,
-            chain: Chain::new(joints),
+            joint_values,
+            chain,
             base_frames: Vec::new(),
             tool_frames: Vec::new(),
             tool: None,
@@ -1993,18 +2006,9 @@ mod tests {
                 Joint::revolute_dh(Scalar::int(0), d2, Scalar::sym("a2"), right.clone()),
             ])
         };
-        let robot = |d2: Scalar, values: Vec<Scalar>| Robot {
-            name: "two".into(),
-            convention: Convention::Dh,
-            variables: vec!["q1".into(), "q2".into()],
-            joint_values: values,
-            chain: chain(d2),
-            base_frames: Vec::new(),
-            tool_frames: Vec::new(),
-            tool: None,
-            values: Vec::new(),
-            notes: Vec::new(),
-            decimals: Vec::new(),
+        let robot = |d2: Scalar, values: Vec<Scalar>| {
+            let variables = vec!["q1".into(), "q2".into()];
+            bare_robot(Convention::Dh, variables, values, chain(d2))
         };
         let shifted = |r: &Robot| r.offset_free(&r.joint_dqs()).map(|f| f.shifts.len());
         assert_eq!(
