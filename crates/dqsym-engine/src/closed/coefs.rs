@@ -17,7 +17,13 @@ use crate::Scalar;
 use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, Zero};
+use std::collections::hash_map::Entry;
 use std::collections::BTreeMap;
+
+/// A hash map under the crate's FxHash (std's SipHash was 1.4% of the Jaco-style arm's
+/// `fk --jacobian`, most of it here); for maps whose order reaches no output.
+type FxMap<K, V> =
+    std::collections::HashMap<K, V, std::hash::BuildHasherDefault<crate::scalar::FxHasher>>;
 
 /// The most terms a scalar may have for its constants to be lifted.
 const MAX_TERMS: usize = 4096;
@@ -127,18 +133,22 @@ fn trig_pi(p: Small, sin: bool) -> Scalar {
 /// The values of [`trig_pi`] found during one [`lift`]: its terms share a few offsets (the
 /// Jaco-style arm's pose entries, hundreds of terms at multiples of pi/18), and each value
 /// costs a canonicalization in the cyclotomic field (a quarter of `lift`'s instructions).
-/// Error values (a limit reached) are not kept.
+/// Error values (a limit reached) are not kept. Keyed by the offset's numerator and
+/// denominator as they stand (`Ratio`'s own `Hash` walks the continued fraction, a division
+/// per step; `Small` arithmetic reduces, and an unreduced key would only miss) under
+/// FxHash: the table is only looked up, never iterated, so the hasher reaches no output.
 #[derive(Default)]
-struct TrigPi(std::collections::HashMap<(Small, bool), Scalar>);
+struct TrigPi(FxMap<(i64, i64, bool), Scalar>);
 
 impl TrigPi {
     fn get(&mut self, p: Small, sin: bool) -> Scalar {
-        if let Some(v) = self.0.get(&(p, sin)) {
+        let key = (*p.numer(), *p.denom(), sin);
+        if let Some(v) = self.0.get(&key) {
             return v.clone();
         }
         let v = trig_pi(p, sin);
         if v.as_error().is_none() {
-            self.0.insert((p, sin), v.clone());
+            self.0.insert(key, v.clone());
         }
         v
     }
@@ -285,8 +295,10 @@ impl Lifting {
 /// offsets' denominators divide `n`, a multiple of 12), which `phase` finds and checks.
 fn phases_inside(terms: &[Term]) -> bool {
     type Group<'a> = (&'a MonoRc, &'a Freq);
-    let mut groups: std::collections::HashMap<Group, (&Term, Option<&Term>)> =
-        std::collections::HashMap::with_capacity(terms.len());
+    // FxHash: the groups are only tested all together (`all` of a pure predicate), so their
+    // order reaches no output.
+    let mut groups: FxMap<Group, (&Term, Option<&Term>)> =
+        FxMap::with_capacity_and_hasher(terms.len(), Default::default());
     for t in terms {
         if t.mode.freq.is_empty() {
             if !t.mode.pi.is_zero() {
@@ -295,10 +307,10 @@ fn phases_inside(terms: &[Term]) -> bool {
             continue;
         }
         match groups.entry((&t.mono, &t.mode.freq)) {
-            std::collections::hash_map::Entry::Vacant(v) => {
+            Entry::Vacant(v) => {
                 v.insert((t, None));
             }
-            std::collections::hash_map::Entry::Occupied(mut o) => {
+            Entry::Occupied(mut o) => {
                 if o.get().1.is_some() {
                     return false;
                 }
@@ -496,7 +508,8 @@ fn items(
 /// normalized by its first term's rational coefficient (`lead`).
 fn normalized(items: Vec<Item>) -> Option<(Vec<Vec<Term>>, Vec<Use>)> {
     let mut norms: Vec<Vec<Term>> = Vec::new();
-    let mut index: std::collections::HashMap<Vec<Term>, usize> = Default::default();
+    // Only looked up (the constants are numbered in `items`' order): FxHash.
+    let mut index: FxMap<Vec<Term>, usize> = Default::default();
     let mut uses: Vec<Use> = Vec::new();
     for (mono, trig, c) in items {
         let ct = c.terms().ok()?;
@@ -576,8 +589,8 @@ fn assemble(
 const MEMO: usize = 256;
 
 thread_local! {
-    static FORMS: std::cell::RefCell<std::collections::HashMap<Vec<Term>, Option<Expr>>> =
-        Default::default();
+    /// Only looked up and cleared, never iterated: FxHash.
+    static FORMS: std::cell::RefCell<FxMap<Vec<Term>, Option<Expr>>> = Default::default();
 }
 
 /// [`super::cprod::small_product`] of the constant of canonical terms `t`, remembered: the
@@ -841,6 +854,26 @@ mod tests {
     /// `k pi / n` as a scalar.
     fn pi_times(k: i64, n: i64) -> Scalar {
         Scalar::pi() * Scalar::rational(BigRational::new(k.into(), n.into()))
+    }
+
+    /// `TrigPi` gives `trig_pi`'s value for every offset and kind, computed and remembered
+    /// (its key is the offset's numerator and denominator): cosines and sines of the same
+    /// offsets asked in turn, and an unreduced offset (a finer key can only miss).
+    #[test]
+    fn remembered_trig_pi_is_trig_pi() {
+        let mut next = crate::testing::xorshift_below(0x7f4a_7c15);
+        let mut cache = TrigPi::default();
+        for _ in 0..3 {
+            for n in [7i64, 9, 18, 24] {
+                let p = Small::new(next(2 * n as u64) as i64, n);
+                for sin in [false, true, false] {
+                    assert_eq!(cache.get(p, sin), trig_pi(p, sin), "{p} {sin}");
+                }
+            }
+        }
+        let half = num_rational::Ratio::new_raw(2, 4);
+        assert_eq!(cache.get(half, true), trig_pi(Small::new(1, 2), true));
+        assert_eq!(cache.get(Small::new(1, 2), false), Scalar::int(0));
     }
 
     /// `phases_inside` claims only what the phased lifting finds: on random sums of sinusoids

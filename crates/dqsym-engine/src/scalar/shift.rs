@@ -8,10 +8,11 @@
 //! homomorphism and the canonical form is unique), for a fraction of the work.
 
 use super::atoms::{Small, Sym};
-use super::{Scalar, Term};
+use super::{FxHasher, Scalar, Term};
 use num_traits::{CheckedAdd, CheckedMul, Zero};
 use std::cell::RefCell;
 use std::collections::HashMap;
+use std::hash::BuildHasherDefault;
 
 /// `p` modulo 2, in `[0, 2)`; `None` when twice its denominator leaves a machine word.
 fn modulo_two(p: Small) -> Option<Small> {
@@ -44,10 +45,16 @@ fn term_phase(t: &Term, shifts: &[(Sym, Small)]) -> Option<Small> {
     phase(&t.mode.freq, shifts)
 }
 
+/// (sine, the offset's numerator and denominator) under FxHash: `Ratio`'s own `Hash` walks
+/// the continued fraction (a division per step) and std's SipHash was most of a lookup
+/// (0.6 M instructions of the Jaco-style arm's `fk --jacobian`). The table is only looked
+/// up, never iterated; the offsets come reduced from [`modulo_two`].
+type Sizes = HashMap<(bool, i64, i64), usize, BuildHasherDefault<FxHasher>>;
+
 thread_local! {
     /// [`shifted_term_size`] by (sine, offset): the few offsets of a chain's entries come
     /// back for every entry of every partial product.
-    static SIZES: RefCell<HashMap<(bool, Small), usize>> = RefCell::new(HashMap::new());
+    static SIZES: RefCell<Sizes> = RefCell::new(Sizes::default());
 }
 
 /// The number of terms of the canonical form of one term `c sqrt(r) m trig(f.x + p pi)`
@@ -59,12 +66,13 @@ thread_local! {
 /// result canonical as it stands (`Scalar::from_terms_settled`). `None` when the term's form
 /// is an error value.
 fn shifted_term_size(sin: bool, pi: Small) -> Option<usize> {
-    if let Some(n) = SIZES.with(|c| c.borrow().get(&(sin, pi)).copied()) {
+    let key = (sin, *pi.numer(), *pi.denom());
+    if let Some(n) = SIZES.with(|c| c.borrow().get(&key).copied()) {
         return Some(n);
     }
     let one = vec![(Sym::new("x"), Small::from_integer(1))];
     let n = Scalar::trig_of_parts(sin, one, pi).check().ok()?.len();
-    SIZES.with(|c| c.borrow_mut().insert((sin, pi), n));
+    SIZES.with(|c| c.borrow_mut().insert(key, n));
     Some(n)
 }
 
@@ -225,6 +233,24 @@ mod tests {
             }
         }
         assert_eq!(checked, 200);
+    }
+
+    /// `shifted_term_size`, computed and remembered (keyed by the sine flag and the offset's
+    /// numerator and denominator), is the size of the term's canonical form, for cosines and
+    /// sines of the same offsets asked in turn.
+    #[test]
+    fn a_remembered_term_size_is_the_canonical_size() {
+        let mut next = xorshift_below(7);
+        for _ in 0..3 {
+            for den in [5i64, 9, 12, 18] {
+                let pi = Small::new(next(2 * den as u64) as i64, den);
+                for sin in [true, false, true] {
+                    let one = vec![(Sym::new("x"), Small::from_integer(1))];
+                    let n = Scalar::trig_of_parts(sin, one, pi).len();
+                    assert_eq!(shifted_term_size(sin, pi), Some(n), "{sin} {pi}");
+                }
+            }
+        }
     }
 
     #[test]
