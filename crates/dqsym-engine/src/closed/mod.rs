@@ -1181,6 +1181,87 @@ mod tests {
         );
     }
 
+    /// The two values the numeric check compares, as it computed them before each symbol's
+    /// value was kept and each mode's cosine or sine reused: `point_value` at every
+    /// occurrence, and every term of the scalar evaluated on its own.
+    fn numeric_values_reference(e: &Expr, x: &Scalar) -> ((f64, f64), f64) {
+        let seed = 0x9e37_79b9_7f4a_7c15u64;
+        let a = e.eval_f64(&|s: &Sym| point_value(s, seed));
+        let mut b = 0.0;
+        for term in x.terms().expect("a value") {
+            let mut v = term.coef.to_f64().unwrap_or(f64::NAN) * (term.rad as f64).sqrt();
+            for (s, e) in term.mono.iter() {
+                let sv = if s.is_pi() {
+                    std::f64::consts::PI
+                } else {
+                    point_value(s, seed)
+                };
+                v *= sv.powi(*e as i32);
+            }
+            if !term.mode.is_unit() {
+                let mut phi = (*term.mode.pi.numer() as f64 / *term.mode.pi.denom() as f64)
+                    * std::f64::consts::PI;
+                for (s, k) in term.mode.freq.iter() {
+                    let sv = if s.is_one() {
+                        1.0
+                    } else {
+                        point_value(s, seed)
+                    };
+                    phi += (*k.numer() as f64 / *k.denom() as f64) * sv;
+                }
+                v *= if term.mode.sin { phi.sin() } else { phi.cos() };
+            }
+            b += v;
+        }
+        (a, b)
+    }
+
+    /// The numeric check computes the same floats as before (the old computation above, bit
+    /// for bit), so it decides alike: on closed forms of random scalars with offsets and
+    /// lengths (modes repeated over monomials), and on scalars off by a term.
+    #[test]
+    fn the_numeric_check_computes_the_floats_it_computed() {
+        let seed = 0x9e37_79b9_7f4a_7c15u64;
+        let (mut compared, mut agreed, mut repeated) = (0, 0, 0);
+        for k in 0..60 {
+            let x = offset_scalar(k) * (s("d3") + offset_scalar(k + 1000));
+            let Ok(e) = closed_form(&x) else {
+                continue;
+            };
+            let y = if k % 3 == 0 {
+                x.clone() + Scalar::from_q(Q::new(1, 1000)) * s("q1").cos()
+            } else {
+                x.clone()
+            };
+            let ((a, scale), b) = numeric_values_reference(&e, &y);
+            let (a2, scale2) = e.eval_f64(&|s: &Sym| point_value(s, seed));
+            let b2 = y
+                .eval_symbols(&|s| Some(point_value(s, seed)))
+                .expect("a value");
+            assert_eq!(
+                (a.to_bits(), scale.to_bits(), b.to_bits()),
+                (a2.to_bits(), scale2.to_bits(), b2.to_bits()),
+                "{y:?}"
+            );
+            let scale = scale.max(b.abs()).max(1.0);
+            let old = a.is_finite() && b.is_finite() && (a - b).abs() <= 1e-9 * scale;
+            assert_eq!(agrees_numerically(&e, &y), old, "{y:?}");
+            let t = y.terms().expect("a value");
+            repeated += t
+                .windows(2)
+                .filter(|w| !w[0].mode.is_unit() && w[0].mode == w[1].mode)
+                .count();
+            agreed += usize::from(old);
+            compared += 1;
+        }
+        assert!(compared >= 50, "{compared} compared");
+        assert!(
+            agreed >= 30 && compared - agreed >= 15,
+            "{agreed} of {compared} agreed"
+        );
+        assert!(repeated >= 100, "{repeated} repeated modes");
+    }
+
     #[test]
     fn the_numeric_check_accepts_closed_forms_and_rejects_other_values() {
         let (t1, t2, l1) = (s("theta1"), s("theta2"), s("l1"));

@@ -1189,7 +1189,9 @@ impl Robot {
 /// with the offsets leaves that route the budget it had. Not bounded so: the values inside
 /// one entry's product with the offsets (its term products and partial sums, each held to
 /// the context's term limit as it is made, and their digits) and the work the products
-/// charge, which is less offset-free (Jaco-style arm: 146.7 M -> 139.8 M instructions). A
+/// charge, which is less offset-free (Jaco-style arm: 146.7 M -> 139.8 M instructions), and
+/// less again since the shift back writes each moved term in its canonical form and merges
+/// them ([`Scalar::shift_angles`]) where it rewrote every moved group from scratch. A
 /// chain given up only for those (an intermediate past a limit while every entry stays
 /// below a sixteenth of the term limit, or the budget's very edge) may now be expanded;
 /// every chain expanded before gives the same entries (outputs unchanged on the example

@@ -45,15 +45,78 @@ fn term_phase(t: &Term, shifts: &[(Sym, Small)]) -> Option<Small> {
     phase(&t.mode.freq, shifts)
 }
 
-/// (sine, the offset's numerator and denominator) under FxHash: `Ratio`'s own `Hash` walks
-/// the continued fraction (a division per step) and std's SipHash was most of a lookup
-/// (0.6 M instructions of the Jaco-style arm's `fk --jacobian`). The table is only looked
-/// up, never iterated; the offsets come reduced from [`modulo_two`].
+/// [`term_phase`] of the terms of one scalar, one after another, and the offset each term
+/// moves to. With one shifted symbol `x` (a chain's one offset joint), the phase of a term
+/// is `k o` for the coefficient `k` of `x` in its frequency vector, and so is kept by `k`:
+/// the few coefficients of a chain's entries come back at every term, and the checked
+/// products and sums of `Ratio` (a gcd each) were a third of the Jaco-style arm's
+/// offset-free size checks. A phase kept is the exact rational [`phase`] gives (it reads
+/// nothing else of the term), and so is the offset `modulo_two(d)` of a term without one
+/// (`0 + d` is `d`).
+struct TermPhases<'a> {
+    shifts: &'a [(Sym, Small)],
+    /// By the coefficient `k` (its reduced numerator and denominator, `(0, 1)` for a
+    /// vector without `x`): the phase, and the offset of a term without one moved by it.
+    known: Vec<((i64, i64), Small, Option<Small>)>,
+}
+
+impl<'a> TermPhases<'a> {
+    fn new(shifts: &'a [(Sym, Small)]) -> TermPhases<'a> {
+        TermPhases {
+            shifts,
+            known: Vec::new(),
+        }
+    }
+
+    /// [`term_phase`] of `t`, `d`, and the offset `t` moves to, `modulo_two(p + d)` for its
+    /// offset `p` (`None` when that leaves a machine word; not made when `d` is zero).
+    fn moved(&mut self, t: &Term) -> Option<(Small, Option<Small>)> {
+        if t.mono
+            .iter()
+            .any(|(s, _)| self.shifts.iter().any(|(x, _)| x == s))
+        {
+            return None;
+        }
+        let moved = |d: Small| -> Option<(Small, Option<Small>)> {
+            if d.is_zero() {
+                return Some((d, None));
+            }
+            Some((d, t.mode.pi.checked_add(&d).and_then(modulo_two)))
+        };
+        let [(x, _)] = self.shifts else {
+            return moved(phase(&t.mode.freq, self.shifts)?);
+        };
+        let mut of_x = t.mode.freq.iter().filter(|(s, _)| s == x);
+        let k = match (of_x.next(), of_x.next()) {
+            (None, _) => (0, 1),
+            (Some((_, k)), None) => (*k.numer(), *k.denom()),
+            _ => return moved(phase(&t.mode.freq, self.shifts)?),
+        };
+        let (d, at_zero) = match self.known.iter().find(|(c, _, _)| *c == k) {
+            Some(&(_, d, at_zero)) => (d, at_zero),
+            None => {
+                let d = phase(&t.mode.freq, self.shifts)?;
+                let at_zero = if d.is_zero() { None } else { modulo_two(d) };
+                self.known.push((k, d, at_zero));
+                (d, at_zero)
+            }
+        };
+        if d.is_zero() || !t.mode.pi.is_zero() {
+            return moved(d);
+        }
+        Some((d, at_zero))
+    }
+}
+
+/// [`shifted_term_size`] by sine flag and offset (numerator, denominator).
 type Sizes = HashMap<(bool, i64, i64), usize, BuildHasherDefault<FxHasher>>;
 
 thread_local! {
-    /// [`shifted_term_size`] by (sine, offset): the few offsets of a chain's entries come
-    /// back for every entry of every partial product.
+    /// [`shifted_term_size`] by (sine, offset's numerator and denominator): the few offsets
+    /// of a chain's entries come back for every entry of every partial product. The offset
+    /// is reduced, so equal offsets have equal words; hashed by `FxHasher`, where the
+    /// default SipHash of a `Ratio` (its continued fraction) cost as much as the rest of the
+    /// size checks.
     static SIZES: RefCell<Sizes> = RefCell::new(Sizes::default());
 }
 
@@ -104,14 +167,70 @@ impl Scalar {
 
     /// `self` with each symbol `x` of `shifts` replaced by `x + o pi` (`(x, o)`), when those
     /// symbols occur only inside angles: each term `trig(f.x + p pi)` becomes
-    /// `trig(f.x + (p + f.o) pi)` (its frequency vector, and so its sign, unchanged), then the
-    /// terms are canonicalized once. `None` when a shifted symbol is in a monomial (the
-    /// substitution is then not a shift of phases) or a phase leaves a machine word; an
-    /// error value stays itself.
+    /// `trig(f.x + (p + f.o) pi)` (its frequency vector, and so its sign, unchanged). `None`
+    /// when a shifted symbol is in a monomial (the substitution is then not a shift of
+    /// phases) or a phase leaves a machine word; an error value stays itself.
+    ///
+    /// A term without an offset moved off the multiples of pi/12 is written at once in its
+    /// canonical form (`cyclo::canonical_term`), and the terms are then only merged, when no
+    /// term with an offset is so moved; otherwise the shifted terms are canonicalized as a
+    /// whole ([`Scalar::shift_angles_rewritten`]). Why the merge is canonical: a group's
+    /// canonical form is its value's expansion in the basis of its smallest level `M`, whose
+    /// first column is `1`, and a group is canonical exactly when its terms with an offset are
+    /// canonical on their own (`cyclo::Settled`). The terms of a group share `f`, so its phase
+    /// `d = f.o`: its terms without an offset, `Z = sum q sqrt(r) z` (`z` `1` or `-i`, `Z` a
+    /// nonzero value of `K(i)`, `K` the square-root field), become `Z e^{i d pi}`, whose
+    /// smallest level is that of `e^{i d pi}` (`K(i)` is in every field), and so is each
+    /// term's: all are expanded in the one basis, over `K(i)`, where the expansion is linear,
+    /// so the merged expansions are the expansion of the sum. Its terms with an offset moved
+    /// onto multiples of pi/12 are offset-free, values of `K(i)` (the column `1`), and those
+    /// not moved (`d = 0`) are the group as it was. So every group is canonical once merged.
+    /// The same terms as the rewrite (a canonical form is unique; tests compare both), for
+    /// less work charged: each term is charged as one rewritten alone, where the rewrite
+    /// charged each group by its size (an offset-free product's entry shifted back spends
+    /// less of its budget, and may now be kept at the budget's very edge: see `OffsetFree`).
     ///
     /// Equal to [`Scalar::subs`] of each `x` by `x + o pi` (tests check it), which multiplies
     /// out every shifted term's trigonometric factor.
     pub(crate) fn shift_angles(&self, shifts: &[(Sym, Small)]) -> Option<Scalar> {
+        let Ok(terms) = self.terms() else {
+            return Some(self.clone());
+        };
+        let mut out: Vec<Term> = Vec::with_capacity(terms.len() + terms.len() / 2);
+        let mut phases = TermPhases::new(shifts);
+        for t in terms {
+            let (d, pi) = phases.moved(t)?;
+            if d.is_zero() {
+                out.push(t.clone());
+                continue;
+            }
+            let pi = pi?;
+            // A reduced offset is a multiple of 1/12 exactly when its denominator divides
+            // 12: others are not looked at again. One not written so (a radicand past a
+            // machine word), or a term with an offset moved elsewhere: the rewrite.
+            if 12 % *pi.denom() == 0 {
+                if t.push_at_twelfths(pi, &mut out) {
+                    continue;
+                }
+                return self.shift_angles_rewritten(shifts);
+            }
+            if !t.mode.pi.is_zero() {
+                return self.shift_angles_rewritten(shifts);
+            }
+            let mut t = t.clone();
+            t.mode.pi = pi;
+            match super::cyclo::canonical_term(&t) {
+                Ok(c) => out.extend(c),
+                Err(e) => return Some(Scalar::error(e)),
+            }
+        }
+        Some(Scalar::from_terms_settled(out))
+    }
+
+    /// [`Scalar::shift_angles`] with every group rewritten in its canonical basis unless all
+    /// of them moved onto multiples of pi/12: the route for terms with an offset moved
+    /// elsewhere, and the reference the tests compare the other with.
+    pub(crate) fn shift_angles_rewritten(&self, shifts: &[(Sym, Small)]) -> Option<Scalar> {
         let Ok(terms) = self.terms() else {
             return Some(self.clone());
         };
@@ -150,13 +269,13 @@ impl Scalar {
     pub(crate) fn shifted_size_bound(&self, shifts: &[(Sym, Small)]) -> Option<usize> {
         let terms = self.terms().ok()?;
         let mut n = 0usize;
+        let mut phases = TermPhases::new(shifts);
         for t in terms {
-            let d = term_phase(t, shifts)?;
+            let (d, pi) = phases.moved(t)?;
             n += if d.is_zero() {
                 1
             } else {
-                let pi = modulo_two(t.mode.pi.checked_add(&d)?)?;
-                shifted_term_size(t.mode.sin, pi)?
+                shifted_term_size(t.mode.sin, pi?)?
             };
         }
         Some(n)
@@ -251,6 +370,45 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A random offset-free scalar (offsets on the pi/12 grid are written without one) with
+    /// groups of several terms: a product of two random scalars at sixths of pi.
+    fn offset_free_scalar(next: &mut impl FnMut(u64) -> u64) -> Scalar {
+        random_scalar(next, 6) * random_scalar(next, 6)
+    }
+
+    /// The shift that writes the terms without an offset in their canonical form at once and
+    /// only merges them gives the terms the rewrite of every group from scratch gives (the
+    /// route it replaced), on offset-free scalars shifted off the pi/12 grid (the route
+    /// taken) and on scalars with offsets (the rewrite taken).
+    #[test]
+    fn a_shift_merged_is_the_shift_rewritten() {
+        let mut next = xorshift_below(91);
+        let (mut merged, mut checked) = (0, 0);
+        for den in [5i64, 7, 9, 10, 18, 36] {
+            for i in 0..40 {
+                let x = if i % 4 == 3 {
+                    random_scalar(&mut next, den)
+                } else {
+                    offset_free_scalar(&mut next)
+                };
+                let o1 = Small::new(1 + next(2 * den as u64 - 1) as i64, den);
+                let o2 = Small::new(next(2 * den as u64) as i64, den);
+                let shifts = [(Sym::new("q2"), o1), (Sym::new("t"), o2)];
+                let shifted = x.shift_angles(&shifts).expect("q2, t only in angles");
+                let rewritten = x.shift_angles_rewritten(&shifts).expect("as the other");
+                assert_eq!(shifted, rewritten, "{x:?} shifted by {o1}, {o2}");
+                let offset_free = x
+                    .terms()
+                    .is_ok_and(|t| t.iter().all(|t| t.mode.pi.is_zero()));
+                let off_grid = |o: Small| !(o * Small::from_integer(12)).is_integer();
+                merged += usize::from(offset_free && off_grid(o1) && shifted != x);
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 240);
+        assert!(merged >= 120, "{merged} merged");
     }
 
     #[test]

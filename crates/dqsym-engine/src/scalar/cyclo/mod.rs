@@ -563,7 +563,7 @@ type TermTemplate = Rc<[(bool, Small, u64, Q)]>;
 /// `arith::mul` for a canonical scalar times such a constant, [`Settled::All`]). The degree
 /// limit is checked on the term's level as a rewrite checks it, and the work charged is the
 /// fast path's for one term (the template's own rewrite charges as any).
-fn canonical_term(t: &Term) -> Result<Vec<Term>, ScalarError> {
+pub(crate) fn canonical_term(t: &Term) -> Result<Vec<Term>, ScalarError> {
     type Templates = HashMap<(bool, bool, Small), TermTemplate, BuildHasherDefault<FxHasher>>;
     thread_local! {
         // With the fork count it was filled at: a forked child empties it ([`PerFork`]).
