@@ -204,8 +204,9 @@ impl Scalar {
         // The last mode's cosine or sine: the terms are sorted by mode first, so the terms of
         // one mode (one per monomial and radicand: `d4 c1`, `d5 c1`) are adjacent, and a
         // repeated mode's value is the float its own evaluation gives (the same operations on
-        // the same operands), without the call of libm (a third of the release build's
-        // numeric checks of closed forms).
+        // the same operands), without the call of libm (the release build's numeric checks
+        // of the Jaco-style arm's closed forms: 2.95 -> 2.61 M instructions; the PUMA 560's
+        // modes seldom repeat: 1.02 -> 1.05 M).
         let mut last: Option<(&Mode, f64)> = None;
         for term in t {
             let mut v = term.coef.to_f64().unwrap_or(f64::NAN) * (term.rad as f64).sqrt();
