@@ -935,12 +935,36 @@ fn representatives(
     if let (true, Some(o)) = run(everything, &free, true)? {
         return Some(o);
     }
-    let fixed: Vec<Option<Small>> = (0..syms.len())
+    let fixed = held_at_zero(congruences, syms.len(), &base);
+    let sys = system(syms, &congruences.rows, &congruences.targets, n, &fixed)?;
+    run(&sys, &fixed, false)?.1
+}
+
+/// The symbols [`representatives`] holds at offset 0 when the solutions are too many: those
+/// whose offset in `base` is a multiple of their own step, the rational lcm of `m / k` over
+/// the congruences (modulus `m`) whose row holds the symbol (coefficient `k`), or that no row
+/// holds; `None` for the others.
+///
+/// Each pair `(m, k)` is divided once per symbol (most congruences repeat a few: the Jaco-style
+/// arm's 48 rows hold each symbol with the coefficients 1 and 2, and a quotient in `Small`
+/// reduces by gcds): the same step, as the rational lcm (`lcm` of the numerators over `gcd`
+/// of the denominators, in lowest terms) takes the larger power of each prime, so it is
+/// idempotent, commutative and associative, and a repeated quotient leaves it as it is.
+fn held_at_zero(congruences: &Congruences, syms: usize, base: &[Small]) -> Vec<Option<Small>> {
+    // The pairs met, by their numerators and denominators (in lowest terms: a pair written
+    // otherwise is only divided again).
+    let mut seen: Vec<[i64; 4]> = Vec::new();
+    (0..syms)
         .map(|i| {
-            // The rational lcm of (1/12) / k over the groups holding the symbol.
+            seen.clear();
             let mut step: Option<Small> = None;
             for (r, (_, m)) in congruences.rows.iter().zip(&congruences.targets) {
                 if let Some((_, k)) = r.iter().find(|(x, _)| *x == i) {
+                    let pair = [*m.numer(), *m.denom(), *k.numer(), *k.denom()];
+                    if seen.contains(&pair) {
+                        continue;
+                    }
+                    seen.push(pair);
                     let q = (*m / *k).abs();
                     step = Some(match step {
                         None => q,
@@ -951,9 +975,7 @@ fn representatives(
             step.is_none_or(|st| multiple(base[i], st))
                 .then(Small::zero)
         })
-        .collect();
-    let sys = system(syms, &congruences.rows, &congruences.targets, n, &fixed)?;
-    run(&sys, &fixed, false)?.1
+        .collect()
 }
 
 /// Each group's completion in the walk of `sys`: 1 + the position in `sys.free` of the last
@@ -1155,6 +1177,66 @@ mod tests {
         pub(super) static UNCUT: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
         /// The groups `representatives` scored, one per group per solution or prefix.
         pub(super) static GROUPS_SCORED: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+    }
+
+    /// `held_at_zero` (each pair of a modulus and a coefficient divided once per symbol)
+    /// against the step computed from every congruence (the old route, kept here), on seeded
+    /// random congruences whose rows repeat a few coefficients, moduli of twelfths and sixths
+    /// and offsets of ninths, tenths and eighteenths of pi (some of them multiples of the step).
+    #[test]
+    fn the_symbols_held_at_zero_are_those_of_every_congruences_step() {
+        let mut next = crate::testing::xorshift_below(0x0ff5_e7a1_4e1d_0003);
+        let old = |c: &Congruences, syms: usize, base: &[Small]| -> Vec<Option<Small>> {
+            (0..syms)
+                .map(|i| {
+                    let mut step: Option<Small> = None;
+                    for (r, (_, m)) in c.rows.iter().zip(&c.targets) {
+                        if let Some((_, k)) = r.iter().find(|(x, _)| *x == i) {
+                            let q = (*m / *k).abs();
+                            step = Some(match step {
+                                None => q,
+                                Some(p) => {
+                                    Small::new(p.numer().lcm(q.numer()), p.denom().gcd(q.denom()))
+                                }
+                            });
+                        }
+                    }
+                    step.is_none_or(|st| multiple(base[i], st))
+                        .then(Small::zero)
+                })
+                .collect()
+        };
+        let coefs = [(1, 1), (-1, 1), (2, 1), (-2, 1), (1, 2), (3, 2), (3, 1)];
+        let (mut held, mut free) = (0, 0);
+        for _ in 0..2000 {
+            let syms = 1 + next(5) as usize;
+            let mut rows = Vec::new();
+            let mut targets = Vec::new();
+            for _ in 0..1 + next(12) {
+                let mut row: Vec<(usize, Small)> = Vec::new();
+                for s in 0..syms {
+                    if next(3) > 0 {
+                        let (p, q) = coefs[next(coefs.len() as u64) as usize];
+                        row.push((s, Small::new(p, q)));
+                    }
+                }
+                rows.push(row);
+                let m = if next(4) == 0 { 6 } else { 12 };
+                targets.push((Small::zero(), Small::new(1, m)));
+            }
+            let c = Congruences { rows, targets };
+            let base: Vec<Small> = (0..syms)
+                .map(|_| {
+                    let d = [9, 10, 18, 12, 4][next(5) as usize];
+                    Small::new(next(2 * d) as i64, d as i64)
+                })
+                .collect();
+            let want = old(&c, syms, &base);
+            held += want.iter().filter(|v| v.is_some()).count();
+            free += want.iter().filter(|v| v.is_none()).count();
+            assert_eq!(held_at_zero(&c, syms, &base), want, "{:?} {base:?}", c.rows);
+        }
+        assert!(held > 500 && free > 500, "{held} held, {free} free");
     }
 
     /// A seeded random sum of products of one to three cosines and sines of `k x + o`
