@@ -752,22 +752,34 @@ fn representatives(
     // of rationals reduced by a gcd (see `phase_of`).
     let int_freqs = integer_rows(&freqs);
     let mut scaled_o: Vec<i64> = Vec::with_capacity(syms.len());
-    // The number of cosine and sine parts of the shifted scalar, and of negative ones; `None`
-    // once the parts pass `bound` (the parts of the best solution so far: the parts come first
-    // in the order of solutions, and they only grow group by group, so such a solution is
-    // never taken, and the rest of its groups need not be looked at). With `only = (done, lo,
-    // hi)`, of the groups `g` with `lo <= done[g] <= hi` alone.
+    // The number of cosine and sine parts of the shifted scalar, and of negative ones, added
+    // to `start`; `None` once the parts pass `bound` (the parts of the best solution so far:
+    // the parts come first in the order of solutions, and they only grow group by group, so
+    // such a solution is never taken, and the rest of its groups need not be looked at). With
+    // `only = (done, lo, hi)`, of the groups `g` with `lo <= done[g] <= hi` alone. With
+    // `after`, the number of groups past each `g` among those that give a part whatever their
+    // phase (see [`surely_a_part`]): `None` as soon as the parts so far and those pass
+    // `bound`, which the parts at the end then do.
     let mut score = |o: &[Small],
+                     start: (usize, usize),
                      bound: usize,
-                     only: Option<(&[usize], usize, usize)>|
+                     only: Option<(&[usize], usize, usize)>,
+                     after: Option<&[usize]>|
      -> Option<(usize, usize)> {
+        if let Some(after) = after {
+            if start.0 + after.first().map_or(0, |a| *a) > bound {
+                return None;
+            }
+        }
         scored += 1;
         let o_den = scale_offsets(o, &mut scaled_o);
-        let (mut parts, mut neg) = (0, 0);
+        let (mut parts, mut neg) = start;
         for (g, (i, (re, im))) in row_freq.iter().zip(&amps).enumerate() {
             if only.is_some_and(|(done, lo, hi)| done[g] < lo || done[g] > hi) {
                 continue;
             }
+            #[cfg(test)]
+            tests::GROUPS_SCORED.with(|n| n.set(n.get() + 1));
             if stamp[*i] != scored {
                 stamp[*i] = scored;
                 let f = phase_of(freqs[*i], int_freqs.as_ref(), *i, o, &scaled_o, o_den);
@@ -790,7 +802,7 @@ fn representatives(
                     neg += usize::from(v < 0.0);
                 }
             }
-            if parts > bound {
+            if parts + after.map_or(0, |a| a[g + 1]) > bound {
                 return None;
             }
         }
@@ -825,6 +837,20 @@ fn representatives(
                     rest[..*d].iter_mut().for_each(|r| *r += 1);
                 }
             }
+            // A solution's parts: those of the groups whose rows hold no free symbol (the
+            // same for every solution of the run: their symbols are fixed), counted at the
+            // first solution, and those of the others (`done[g] >= varying`), scored for each.
+            // `after[g]`: how many of those from `g` on give a part whatever their phase (so
+            // at least that many parts are still to come; a sum of counts, the same whatever
+            // the order the groups are scored in).
+            let cut = cuts();
+            let mut constant: Option<(usize, usize)> = None;
+            let varying = if cut { 1 } else { 0 };
+            let mut after: Vec<usize> = vec![0; groups.len() + 1];
+            for g in (0..groups.len()).rev() {
+                let sure = done[g] >= varying && surely_a_part(amps[g]);
+                after[g] = after[g + 1] + usize::from(sure);
+            }
             let complete = solve(sys, fixed, true, &mut |node| {
                 let (solution, prefix) = match node {
                     Offered::Solution(raw) => (raw, None),
@@ -844,8 +870,8 @@ fn representatives(
                     } else {
                         set
                     };
-                    let (parts, neg) =
-                        score(&o, usize::MAX, Some((&done, lo, set))).unwrap_or((0, 0));
+                    let (parts, neg) = score(&o, (0, 0), usize::MAX, Some((&done, lo, set)), None)
+                        .unwrap_or((0, 0));
                     let before = if lo == 0 { (0, 0) } else { known[set - 1] };
                     known[set] = (before.0 + parts, before.1 + neg);
                     // A head no solution under the prefix is below (see `completions`): above
@@ -865,7 +891,35 @@ fn representatives(
                     return skip;
                 }
                 seen += 1;
-                let Some((parts, neg)) = score(&o, bound, None) else {
+                // A solution whose largest denominator and number of nonzero offsets are past
+                // the best's is taken (by `key_below`, which compares whole keys) only with
+                // fewer parts than the best: its bound is one less, and with a best of no
+                // parts it is not scored.
+                let bound = match &best {
+                    Some((k, _)) if cut => {
+                        let den = o.iter().map(|v| *v.denom()).max().unwrap_or(1);
+                        let nonzero = o.iter().filter(|v| !v.is_zero()).count();
+                        if (den, nonzero) > (k.1, k.2) {
+                            let Some(fewer) = bound.checked_sub(1) else {
+                                return seen < MAX_SOLUTIONS;
+                            };
+                            fewer
+                        } else {
+                            bound
+                        }
+                    }
+                    _ => bound,
+                };
+                let start = if cut {
+                    *constant.get_or_insert_with(|| {
+                        score(&o, (0, 0), usize::MAX, Some((&done, 0, 0)), None).unwrap_or((0, 0))
+                    })
+                } else {
+                    (0, 0)
+                };
+                let only = Some((&done[..], varying, sys.free.len()));
+                let Some((parts, neg)) = score(&o, start, bound, only, cut.then_some(&after))
+                else {
                     return seen < MAX_SOLUTIONS;
                 };
                 if let Some(key) = key_below(&o, parts, neg, best.as_ref().map(|(k, _)| k)) {
@@ -881,12 +935,36 @@ fn representatives(
     if let (true, Some(o)) = run(everything, &free, true)? {
         return Some(o);
     }
-    let fixed: Vec<Option<Small>> = (0..syms.len())
+    let fixed = held_at_zero(congruences, syms.len(), &base);
+    let sys = system(syms, &congruences.rows, &congruences.targets, n, &fixed)?;
+    run(&sys, &fixed, false)?.1
+}
+
+/// The symbols [`representatives`] holds at offset 0 when the solutions are too many: those
+/// whose offset in `base` is a multiple of their own step, the rational lcm of `m / k` over
+/// the congruences (modulus `m`) whose row holds the symbol (coefficient `k`), or that no row
+/// holds; `None` for the others.
+///
+/// Each pair `(m, k)` is divided once per symbol (most congruences repeat a few: the Jaco-style
+/// arm's 48 rows hold each symbol with the coefficients 1 and 2, and a quotient in `Small`
+/// reduces by gcds): the same step, as the rational lcm (`lcm` of the numerators over `gcd`
+/// of the denominators, in lowest terms) takes the larger power of each prime, so it is
+/// idempotent, commutative and associative, and a repeated quotient leaves it as it is.
+fn held_at_zero(congruences: &Congruences, syms: usize, base: &[Small]) -> Vec<Option<Small>> {
+    // The pairs met, by their numerators and denominators (in lowest terms: a pair written
+    // otherwise is only divided again).
+    let mut seen: Vec<[i64; 4]> = Vec::new();
+    (0..syms)
         .map(|i| {
-            // The rational lcm of (1/12) / k over the groups holding the symbol.
+            seen.clear();
             let mut step: Option<Small> = None;
             for (r, (_, m)) in congruences.rows.iter().zip(&congruences.targets) {
                 if let Some((_, k)) = r.iter().find(|(x, _)| *x == i) {
+                    let pair = [*m.numer(), *m.denom(), *k.numer(), *k.denom()];
+                    if seen.contains(&pair) {
+                        continue;
+                    }
+                    seen.push(pair);
                     let q = (*m / *k).abs();
                     step = Some(match step {
                         None => q,
@@ -897,9 +975,7 @@ fn representatives(
             step.is_none_or(|st| multiple(base[i], st))
                 .then(Small::zero)
         })
-        .collect();
-    let sys = system(syms, &congruences.rows, &congruences.targets, n, &fixed)?;
-    run(&sys, &fixed, false)?.1
+        .collect()
 }
 
 /// Each group's completion in the walk of `sys`: 1 + the position in `sys.free` of the last
@@ -997,6 +1073,30 @@ fn key_below(o: &[Small], parts: usize, neg: usize, best: Option<&Key>) -> Optio
     best.is_none_or(|b| key < *b).then_some(key)
 }
 
+/// Whether a group of amplitude `(re, im)` gives at least one part in `representatives`'
+/// score whatever its phase `f`: when `s = |re| + |im|` is finite and within `[1e-290,
+/// 1e290]`. Why: the parts are `a = re c + im s'`, `b = re s' - im c` (`c`, `s'` the cosine
+/// and sine of `pi f`, `c^2 + s'^2 = 1` to a few units of rounding), so `|a| + |b| >= sqrt(a^2 +
+/// b^2) = |z| >= s / sqrt 2` exactly, and the larger of them is at least `s / (2 sqrt 2)`; the
+/// products and sum that make each in f64 err by a few units of rounding of `s` (no product
+/// overflows, none that matters underflows in that range), far below that, and it is far above
+/// the threshold `1e-9 s` a part passes. (A zero amplitude, or one that is not finite, may give
+/// none.)
+fn surely_a_part((re, im): (f64, f64)) -> bool {
+    let s = re.abs() + im.abs();
+    s.is_finite() && (1e-290..=1e290).contains(&s)
+}
+
+/// Whether [`representatives`] cuts its scoring short (see there); false in the tests that
+/// compare it with the scoring of every group of every solution.
+fn cuts() -> bool {
+    #[cfg(test)]
+    if tests::UNCUT.with(std::cell::Cell::get) {
+        return false;
+    }
+    true
+}
+
 /// The most solutions [`representatives`] compares.
 const MAX_SOLUTIONS: usize = 4096;
 
@@ -1071,6 +1171,144 @@ impl Shift {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    thread_local! {
+        /// Set by a test to score every group of every solution (no cut of `representatives`).
+        pub(super) static UNCUT: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+        /// The groups `representatives` scored, one per group per solution or prefix.
+        pub(super) static GROUPS_SCORED: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+    }
+
+    /// `held_at_zero` (each pair of a modulus and a coefficient divided once per symbol)
+    /// against the step computed from every congruence (the old route, kept here), on seeded
+    /// random congruences whose rows repeat a few coefficients, moduli of twelfths and sixths
+    /// and offsets of ninths, tenths and eighteenths of pi (some of them multiples of the step).
+    #[test]
+    fn the_symbols_held_at_zero_are_those_of_every_congruences_step() {
+        let mut next = crate::testing::xorshift_below(0x0ff5_e7a1_4e1d_0003);
+        let old = |c: &Congruences, syms: usize, base: &[Small]| -> Vec<Option<Small>> {
+            (0..syms)
+                .map(|i| {
+                    let mut step: Option<Small> = None;
+                    for (r, (_, m)) in c.rows.iter().zip(&c.targets) {
+                        if let Some((_, k)) = r.iter().find(|(x, _)| *x == i) {
+                            let q = (*m / *k).abs();
+                            step = Some(match step {
+                                None => q,
+                                Some(p) => {
+                                    Small::new(p.numer().lcm(q.numer()), p.denom().gcd(q.denom()))
+                                }
+                            });
+                        }
+                    }
+                    step.is_none_or(|st| multiple(base[i], st))
+                        .then(Small::zero)
+                })
+                .collect()
+        };
+        let coefs = [(1, 1), (-1, 1), (2, 1), (-2, 1), (1, 2), (3, 2), (3, 1)];
+        let (mut held, mut free) = (0, 0);
+        for _ in 0..2000 {
+            let syms = 1 + next(5) as usize;
+            let mut rows = Vec::new();
+            let mut targets = Vec::new();
+            for _ in 0..1 + next(12) {
+                let mut row: Vec<(usize, Small)> = Vec::new();
+                for s in 0..syms {
+                    if next(3) > 0 {
+                        let (p, q) = coefs[next(coefs.len() as u64) as usize];
+                        row.push((s, Small::new(p, q)));
+                    }
+                }
+                rows.push(row);
+                let m = if next(4) == 0 { 6 } else { 12 };
+                targets.push((Small::zero(), Small::new(1, m)));
+            }
+            let c = Congruences { rows, targets };
+            let base: Vec<Small> = (0..syms)
+                .map(|_| {
+                    let d = [9, 10, 18, 12, 4][next(5) as usize];
+                    Small::new(next(2 * d) as i64, d as i64)
+                })
+                .collect();
+            let want = old(&c, syms, &base);
+            held += want.iter().filter(|v| v.is_some()).count();
+            free += want.iter().filter(|v| v.is_none()).count();
+            assert_eq!(held_at_zero(&c, syms, &base), want, "{:?} {base:?}", c.rows);
+        }
+        assert!(held > 500 && free > 500, "{held} held, {free} free");
+    }
+
+    /// A seeded random sum of products of one to three cosines and sines of `k x + o`
+    /// (`k` of 1 and 2, over the symbols `x`, `y`, `z`), each times 1, `l` or `l^2`; each
+    /// symbol's offset `o` a multiple of `pi / den` with one multiple of `pi / 12` added per
+    /// factor, and for one draw in `stray` an offset of `pi / den` of its own (which may leave
+    /// no shift).
+    fn offset_products(next: &mut dyn FnMut(u64) -> u64, den: u64, stray: u64) -> Scalar {
+        let syms = [Scalar::sym("x"), Scalar::sym("y"), Scalar::sym("z")];
+        let base: Vec<i64> = (0..3).map(|_| next(2 * den) as i64).collect();
+        let l = Scalar::sym("l");
+        let mut e = Scalar::int(0);
+        for _ in 0..1 + next(4) {
+            let mut p = Scalar::int(next(7) as i64 - 3);
+            for _ in 0..next(3) {
+                p = p * l.clone();
+            }
+            for _ in 0..1 + next(3) {
+                let s = next(3) as usize;
+                let k = 1 + next(2) as i64;
+                let o = if next(stray) == 0 {
+                    parse_pi(next(2 * den) as i64, den as i64)
+                } else {
+                    parse_pi(k * base[s], den as i64) + parse_pi(next(24) as i64, 12)
+                };
+                let a = Scalar::int(k) * syms[s].clone() + o;
+                p = p * if next(2) == 0 { a.cos() } else { a.sin() };
+            }
+            e = e + p;
+        }
+        e
+    }
+
+    /// `find` with `representatives`' cuts (the groups that hold no free symbol counted once
+    /// per run, a solution left once its parts so far and the groups sure to give one more
+    /// pass the bound, the bound lowered for a head past the best's in its denominator and
+    /// nonzero offsets) against `find` scoring every group of every solution: the same shift
+    /// and the same work charged, on seeded random products with offsets of fifths, sevenths,
+    /// ninths, tenths and eighteenths of pi; and fewer groups scored.
+    #[test]
+    fn the_cut_scoring_chooses_the_shift_of_the_whole_scoring() {
+        let mut next = crate::testing::xorshift_below(0x0ff5_e7a1_c075_0001);
+        let run = |e: &Scalar, uncut: bool| {
+            UNCUT.with(|u| u.set(uncut));
+            GROUPS_SCORED.with(|n| n.set(0));
+            let ctx = crate::Context::new();
+            let guard = ctx.enter();
+            let shift = find(e).map(|s| s.0);
+            let used = guard.work_used();
+            drop(guard);
+            UNCUT.with(|u| u.set(false));
+            (shift, used, GROUPS_SCORED.with(std::cell::Cell::get))
+        };
+        let (mut found, mut cut, mut whole) = (0, 0, 0);
+        for round in 0..1000 {
+            let den = [5, 7, 9, 10, 18][round % 5];
+            let e = offset_products(&mut next, den, 8);
+            // Once first: the work of a canonicalization depends on the per-thread caches.
+            run(&e, false);
+            let (whole_shift, whole_used, whole_scored) = run(&e, true);
+            let (shift, used, scored) = run(&e, false);
+            assert_eq!((&shift, used), (&whole_shift, whole_used), "{e}");
+            found += usize::from(shift.is_some());
+            cut += scored;
+            whole += whole_scored;
+        }
+        assert!(found > 400, "{found} shifts found");
+        assert!(
+            cut * 4 < whole * 3,
+            "{cut} groups scored, {whole} without the cuts"
+        );
+    }
 
     /// A phase from the integer rows (`phase_of`) is the phase `dot` sums in rationals, and
     /// its f64 quotient has the same bits as that of the reduced fraction (what `score` looked
