@@ -564,13 +564,16 @@ type TermTemplate = Rc<[(bool, Small, u64, Q)]>;
 /// limit is checked on the term's level as a rewrite checks it, and the work charged is the
 /// fast path's for one term (the template's own rewrite charges as any).
 pub(crate) fn canonical_term(t: &Term) -> Result<Vec<Term>, ScalarError> {
-    type Templates = HashMap<(bool, bool, Small), TermTemplate, BuildHasherDefault<FxHasher>>;
+    // Keyed by the offset's numerator and denominator: `Ratio`'s own `Hash` walks its
+    // continued fraction (a division a step) at every lookup. An offset written unreduced
+    // would only miss, its template made again from the same value.
+    type Templates = HashMap<(bool, bool, i64, i64), TermTemplate, BuildHasherDefault<FxHasher>>;
     thread_local! {
         // With the fork count it was filled at: a forked child empties it ([`PerFork`]).
         static TEMPLATES: RefCell<(u64, Templates)> = RefCell::new((0, Templates::default()));
     }
     let real = t.mode.freq.is_empty();
-    let key = (t.mode.sin, real, t.mode.pi);
+    let key = (t.mode.sin, real, *t.mode.pi.numer(), *t.mode.pi.denom());
     let known = TEMPLATES.with(|c| this_fork(&mut c.borrow_mut()).get(&key).cloned());
     let template = match known {
         Some(template) => {
