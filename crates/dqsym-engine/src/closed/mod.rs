@@ -1181,9 +1181,10 @@ mod tests {
         );
     }
 
-    /// The two values the numeric check compares, as it computed them before each symbol's
-    /// value was kept and each mode's cosine or sine reused: `point_value` at every
-    /// occurrence, and every term of the scalar evaluated on its own.
+    /// The two values the numeric check compares: the form's by the same `eval_f64` the
+    /// check calls (not changed here), and the scalar's as it was computed before each
+    /// mode's cosine or sine was reused: `point_value` at every occurrence, and every term
+    /// of the scalar evaluated on its own (the value this test checks independently).
     fn numeric_values_reference(e: &Expr, x: &Scalar) -> ((f64, f64), f64) {
         let seed = 0x9e37_79b9_7f4a_7c15u64;
         let a = e.eval_f64(&|s: &Sym| point_value(s, seed));

@@ -1195,7 +1195,11 @@ impl Robot {
 /// chain given up only for those (an intermediate past a limit while every entry stays
 /// below a sixteenth of the term limit, or the budget's very edge) may now be expanded;
 /// every chain expanded before gives the same entries (outputs unchanged on the example
-/// robots and random chains with offsets).
+/// robots and random chains with offsets). The closed forms searched after the products
+/// share that budget and find more of it left: where that crosses the half of the budget
+/// their optional candidates need (`trigfac::may_nest`), one may now be tried and taken, a
+/// different form of the same value at that edge only (as with every earlier cut in the
+/// work charged).
 pub(crate) struct OffsetFree {
     /// The joint factors, the shifted joints' at offset 0.
     joints: Vec<DualQuat<Scalar>>,

@@ -185,10 +185,14 @@ impl Scalar {
     /// so the merged expansions are the expansion of the sum. Its terms with an offset moved
     /// onto multiples of pi/12 are offset-free, values of `K(i)` (the column `1`), and those
     /// not moved (`d = 0`) are the group as it was. So every group is canonical once merged.
-    /// The same terms as the rewrite (a canonical form is unique; tests compare both), for
-    /// less work charged: each term is charged as one rewritten alone, where the rewrite
-    /// charged each group by its size (an offset-free product's entry shifted back spends
-    /// less of its budget, and may now be kept at the budget's very edge: see `OffsetFree`).
+    /// The same terms as the rewrite (a canonical form is unique; tests compare both; where
+    /// a term's form is an error value the rewrite itself is returned), for less work
+    /// charged: each term is charged as one rewritten alone, where the rewrite charged each
+    /// group by its size. An offset-free product's entry shifted back so spends less of the
+    /// report's budget: it may now be kept at the budget's very edge (see `OffsetFree`), and
+    /// the closed forms searched after it find more of the budget left, so where that leaves
+    /// their optional candidates (`trigfac::may_nest`: half the budget) one of them may now
+    /// be tried and taken (a different form of the same value, at that edge only).
     ///
     /// Equal to [`Scalar::subs`] of each `x` by `x + o pi` (tests check it), which multiplies
     /// out every shifted term's trigonometric factor.
@@ -221,7 +225,9 @@ impl Scalar {
             t.mode.pi = pi;
             match super::cyclo::canonical_term(&t) {
                 Ok(c) => out.extend(c),
-                Err(e) => return Some(Scalar::error(e)),
+                // Past the degree limit (or another limit): the rewrite, whose error value
+                // (or `None`, for a later term it cannot shift) is the one given before.
+                Err(_) => return self.shift_angles_rewritten(shifts),
             }
         }
         Some(Scalar::from_terms_settled(out))
@@ -409,6 +415,54 @@ mod tests {
         }
         assert_eq!(checked, 240);
         assert!(merged >= 120, "{merged} merged");
+    }
+
+    /// As [`a_shift_merged_is_the_shift_rewritten`], in the fields where a square root lies
+    /// inside the cyclotomic field of the shift (`sqrt(2)` at eighths, `sqrt(5)` at fifths and
+    /// twentieths, `sqrt(6)`, `sqrt(10)`), with one shifted symbol (the phases kept by its
+    /// coefficient, `TermPhases`) and with two, and with terms at offsets of the shift's
+    /// denominator or of fifths, sevenths, ninths (the moved terms with an offset, which take
+    /// the rewrite): the same scalar both ways, and both the substitution.
+    #[test]
+    fn a_shift_merged_is_the_shift_rewritten_in_other_fields() {
+        let mut next = xorshift_below(57);
+        let (mut merged, mut checked) = (0, 0);
+        for den in [8i64, 16, 20, 24, 40, 60] {
+            for i in 0..24 {
+                // Offsets of other denominators than the shift's: a moved term with an
+                // offset may then need another level than the terms moved without one.
+                let x = if i % 4 == 3 {
+                    random_scalar(&mut next, [den, 5, 7, 9][i / 4 % 4])
+                } else {
+                    offset_free_scalar(&mut next)
+                };
+                let r = [1, 2, 5, 6, 10][next(5) as usize];
+                let x = x * Scalar::int(r).sqrt() + Scalar::int(2).sqrt() * Scalar::sym("q2").sin();
+                let o1 = Small::new(1 + next(2 * den as u64 - 1) as i64, den);
+                let o2 = Small::new(next(2 * den as u64) as i64, den);
+                let two = [(Sym::new("q2"), o1), (Sym::new("t"), o2)];
+                let shifts = if i % 2 == 0 { &two[..1] } else { &two[..] };
+                let shifted = x.shift_angles(shifts).expect("q2, t only in angles");
+                let rewritten = x.shift_angles_rewritten(shifts).expect("as the other");
+                assert_eq!(shifted, rewritten, "{x:?} shifted by {shifts:?}");
+                let mut by_subs = x.clone();
+                for (s, o) in shifts {
+                    let moved = Scalar::sym(s.name())
+                        + Scalar::pi()
+                            * Scalar::rational(num_rational::BigRational::new(
+                                (*o.numer()).into(),
+                                (*o.denom()).into(),
+                            ));
+                    by_subs = by_subs.subs(s.name(), &moved);
+                }
+                assert_eq!(shifted, by_subs, "{x:?} shifted by {shifts:?}");
+                let off_grid = |o: Small| !(o * Small::from_integer(12)).is_integer();
+                merged += usize::from(off_grid(o1) && shifted != x);
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 144);
+        assert!(merged >= 60, "{merged} merged");
     }
 
     #[test]
