@@ -135,7 +135,9 @@ fn trig_pi(p: Small, sin: bool) -> Scalar {
 /// costs a canonicalization in the cyclotomic field (a quarter of `lift`'s instructions).
 /// Error values (a limit reached) are not kept. Keyed by the offset's numerator and
 /// denominator as they stand (`Ratio`'s own `Hash` walks the continued fraction, a division
-/// per step; `Small` arithmetic reduces, and an unreduced key would only miss) under
+/// per step; `Small` arithmetic reduces, as do the `Small::new_raw` sites of the offsets
+/// (`reduce2`, `centred`, `dot_of_pairs`, `small_add`), and an unreduced key would only
+/// miss, its value made again from the same offset) under
 /// FxHash: the table is only looked up, never iterated, so the hasher reaches no output.
 #[derive(Default)]
 struct TrigPi(FxMap<(i64, i64, bool), Scalar>);

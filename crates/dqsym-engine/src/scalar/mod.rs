@@ -807,4 +807,38 @@ mod twelfths_tests {
         }
         assert!(some > 1000 && none > 1000, "{some} {none}");
     }
+
+    /// The 128-bit division near the end of a machine word: numerators about `i64::MAX / 12`
+    /// (`12 n` past an `i64`) and up to `i64::MAX`, over denominators 1 to 24, both signs, the
+    /// answer against the exact `12 n / d` in 128 bits, for every `12 n / d` that fits a
+    /// word or is not an integer (past a word, `twelfths_of` leaves it to `Ratio`, as before).
+    #[test]
+    fn twelfths_by_division_near_the_word_limit() {
+        let (mut some, mut none) = (0, 0);
+        for base in [i64::MAX / 12, i64::MAX / 6, i64::MAX / 2, i64::MAX - 40] {
+            for k in 0..40i64 {
+                for d in 1..=24i64 {
+                    for n in [base - k, -(base - k)] {
+                        let p = Small::new(n, d);
+                        let (num, den) = (i128::from(*p.numer()) * 12, i128::from(*p.denom()));
+                        let expected = if num % den != 0 {
+                            None
+                        } else {
+                            match i64::try_from(num / den) {
+                                Ok(q) => Some(q),
+                                Err(_) => continue,
+                            }
+                        };
+                        assert_eq!(twelfths_of(p), expected, "{p:?}");
+                        if expected.is_some() {
+                            some += 1;
+                        } else {
+                            none += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(some > 300 && none > 1000, "{some} {none}");
+    }
 }
