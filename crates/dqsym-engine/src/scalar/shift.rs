@@ -332,6 +332,19 @@ mod tests {
         x
     }
 
+    /// `x` with each symbol `s` of `shifts` replaced by `s + o pi` ([`Scalar::subs`], one
+    /// symbol after another: no replacement holds another shifted symbol), the reference the
+    /// shift is compared with.
+    fn substituted(x: &Scalar, shifts: &[(Sym, Small)]) -> Scalar {
+        shifts.iter().fold(x.clone(), |x, (s, o)| {
+            let o = num_rational::BigRational::new((*o.numer()).into(), (*o.denom()).into());
+            x.subs(
+                s.name(),
+                &(Scalar::sym(s.name()) + Scalar::pi() * Scalar::rational(o)),
+            )
+        })
+    }
+
     #[test]
     fn a_shift_of_angles_is_the_substitution_and_within_its_bound() {
         let mut next = xorshift_below(33);
@@ -341,15 +354,7 @@ mod tests {
                 let x = random_scalar(&mut next, den);
                 let o = Small::new(1 + next(2 * den as u64 - 1) as i64, den);
                 let shifts = [(Sym::new("q2"), o)];
-                let by_subs = x.subs(
-                    "q2",
-                    &(Scalar::sym("q2")
-                        + Scalar::pi()
-                            * Scalar::rational(num_rational::BigRational::new(
-                                (*o.numer()).into(),
-                                (*o.denom()).into(),
-                            ))),
-                );
+                let by_subs = substituted(&x, &shifts);
                 let shifted = x.shift_angles(&shifts).expect("q2 only in angles");
                 assert_eq!(shifted, by_subs, "{x:?} shifted by {o}");
                 let bound = x.shifted_size_bound(&shifts).expect("a bound");
@@ -445,17 +450,11 @@ mod tests {
                 let shifted = x.shift_angles(shifts).expect("q2, t only in angles");
                 let rewritten = x.shift_angles_rewritten(shifts).expect("as the other");
                 assert_eq!(shifted, rewritten, "{x:?} shifted by {shifts:?}");
-                let mut by_subs = x.clone();
-                for (s, o) in shifts {
-                    let moved = Scalar::sym(s.name())
-                        + Scalar::pi()
-                            * Scalar::rational(num_rational::BigRational::new(
-                                (*o.numer()).into(),
-                                (*o.denom()).into(),
-                            ));
-                    by_subs = by_subs.subs(s.name(), &moved);
-                }
-                assert_eq!(shifted, by_subs, "{x:?} shifted by {shifts:?}");
+                assert_eq!(
+                    shifted,
+                    substituted(&x, shifts),
+                    "{x:?} shifted by {shifts:?}"
+                );
                 let off_grid = |o: Small| !(o * Small::from_integer(12)).is_integer();
                 merged += usize::from(off_grid(o1) && shifted != x);
                 checked += 1;
