@@ -34,7 +34,7 @@
 
 use super::fk::{FkOptions, ReportError};
 use super::quantity::{MatrixFrom, Quantity, Section, SectionKind, Step};
-use crate::scalar::{par_map, with_own_budget};
+use crate::scalar::{par_map, with_own_budget, FxHasher, SampledKey};
 
 /// The work budget of the attempt at the matrix as a cos/sin polynomial (the generic 6R needs
 /// about 52,000).
@@ -51,6 +51,7 @@ const MAX_COS_SIN_TEXT: usize = 40_000;
 use crate::{closed::closed_form_cos_sin, DualQuat, Expr, Robot, Scalar, ScalarError};
 use std::cell::RefCell;
 use std::collections::HashMap;
+use std::hash::BuildHasherDefault;
 
 /// The forward kinematics of `robot` as a recurrence (see the module documentation): every
 /// entry in the order of evaluation, named as in the report (`L1[0]`, `Q2[3]`, `dq[0]`,
@@ -405,14 +406,17 @@ fn unshape(e: Expr, map: &[(String, String)]) -> Expr {
 /// renamed back, of the same value (checked exactly in debug builds).
 fn shared_closed_forms(all: &[&Scalar]) -> Vec<Result<Expr, ScalarError>> {
     let shapes: Vec<Option<Shape>> = par_map(all, |x| shape(x));
-    let mut index: HashMap<&Scalar, usize> = HashMap::new();
+    // Keyed by a few terms of each shape (`SampledKey`, compared in full), hashed by FxHash:
+    // std's SipHash of every term of every entry was 2.3 M instructions of a fully symbolic
+    // 6R's report. Only looked up, never iterated: the order is the entries'.
+    let mut index: HashMap<SampledKey, usize, BuildHasherDefault<FxHasher>> = HashMap::default();
     let mut distinct: Vec<&Scalar> = Vec::new();
     let keys: Vec<usize> = all
         .iter()
         .zip(&shapes)
         .map(|(x, sh)| {
             let key = sh.as_ref().map_or(*x, |(k, _)| k);
-            *index.entry(key).or_insert_with(|| {
+            *index.entry(SampledKey(key)).or_insert_with(|| {
                 distinct.push(key);
                 distinct.len() - 1
             })
