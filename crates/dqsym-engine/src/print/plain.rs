@@ -272,6 +272,7 @@ fn collect<'a>(e: &'a Expr, calls: &mut CallSet<'a>) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scalar::Small;
     use crate::{closed_form, Scalar, Sym};
     use num_rational::BigRational;
     use num_traits::{Signed, Zero};
@@ -312,6 +313,74 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The legend names each distinct call once; its entries are those of naming every call
+    /// (the route before, kept here): random sums and products of calls of angles over names
+    /// with and without shorthand (`q1`, `q12`, `theta3`, `alpha5`, `x`, `q01`), coefficients
+    /// and offsets, many calls repeated, some equal in text from different angles.
+    #[test]
+    fn the_legend_is_every_call_named() {
+        fn every_call(exprs: &[&Expr]) -> Vec<String> {
+            fn go(e: &Expr, seen: &mut BTreeSet<(String, Trig, String)>) {
+                match e {
+                    Expr::Trig { f, angle } => {
+                        if let Some(n) = shorthand_name(*f, angle) {
+                            seen.insert((n, *f, angle_text(angle)));
+                        }
+                    }
+                    Expr::Add(v) | Expr::Mul(v) => v.iter().for_each(|x| go(x, seen)),
+                    Expr::Neg(x) | Expr::Pow(x, _) => go(x, seen),
+                    _ => {}
+                }
+            }
+            let mut seen = BTreeSet::new();
+            exprs.iter().for_each(|e| go(e, &mut seen));
+            seen.into_iter()
+                .map(|(name, f, text)| format!("{name} = {}({text})", f.name()))
+                .collect()
+        }
+        let names = [
+            "q1", "q2", "q3", "q12", "theta3", "alpha5", "x", "q01", "th2",
+        ];
+        let mut g = 0x2545_f491_4f6c_dd1d_u64;
+        let mut named = 0;
+        for _ in 0..300 {
+            let mut exprs = Vec::new();
+            for _ in 0..1 + below(&mut g, 4) {
+                let mut terms = Vec::new();
+                for _ in 0..1 + below(&mut g, 6) {
+                    let mut factors = Vec::new();
+                    for _ in 0..1 + below(&mut g, 3) {
+                        let mut coefs: std::collections::BTreeMap<&str, i64> = Default::default();
+                        for _ in 0..1 + below(&mut g, 3) {
+                            let s = names[below(&mut g, names.len() as u64) as usize];
+                            *coefs.entry(s).or_default() += [1, -1, 2][below(&mut g, 3) as usize];
+                        }
+                        let terms: Vec<(Sym, Small)> = coefs
+                            .into_iter()
+                            .filter(|(_, k)| *k != 0)
+                            .map(|(s, k)| (Sym::new(s), Small::from_integer(k)))
+                            .collect();
+                        let pi = Small::new(i64::from(below(&mut g, 4) == 0), 3);
+                        let f = if below(&mut g, 2) == 0 {
+                            Trig::Cos
+                        } else {
+                            Trig::Sin
+                        };
+                        let angle = Angle::new(terms, Small::zero(), pi);
+                        factors.push(Expr::Trig { f, angle });
+                    }
+                    terms.push(Expr::Mul(factors));
+                }
+                exprs.push(Expr::Add(terms));
+            }
+            let refs: Vec<&Expr> = exprs.iter().collect();
+            let l = legend(&refs);
+            assert_eq!(l, every_call(&refs));
+            named += l.len();
+        }
+        assert!(named > 300, "{named}");
     }
 
     /// The next of xorshift state `g`, below `n`.
