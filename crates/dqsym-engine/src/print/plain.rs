@@ -245,7 +245,7 @@ pub fn legend(exprs: &[&Expr]) -> Vec<String> {
     }
     let seen: BTreeSet<(String, Trig, String)> = calls
         .into_iter()
-        .filter_map(|(f, angle)| shorthand_name(f, angle).map(|n| (n, f, angle_text(angle))))
+        .filter_map(|Call(f, angle)| shorthand_name(f, angle).map(|n| (n, f, angle_text(angle))))
         .collect();
     seen.into_iter()
         .map(|(name, f, text)| format!("{name} = {}({text})", f.name()))
@@ -253,15 +253,37 @@ pub fn legend(exprs: &[&Expr]) -> Vec<String> {
 }
 
 /// The distinct calls of a report (only collected, then sorted by their entries' text).
-type CallSet<'a> = std::collections::HashSet<
-    (Trig, &'a Angle),
-    std::hash::BuildHasherDefault<crate::scalar::FxHasher>,
->;
+type CallSet<'a> =
+    std::collections::HashSet<Call<'a>, std::hash::BuildHasherDefault<crate::scalar::FxHasher>>;
+
+/// A call as a set key: equal as its function and angle are, hashed by the words of its
+/// angle (each symbol's interned address, each coefficient's numerator and denominator), not
+/// by `Angle`'s derived hash, which hashes each name's text and each rational by its
+/// continued fraction. Equal coefficients in lowest terms have equal words; an unreduced one
+/// would only be named twice, and the legend's sorted set keeps one entry.
+#[derive(PartialEq, Eq)]
+struct Call<'a>(Trig, &'a Angle);
+
+impl std::hash::Hash for Call<'_> {
+    fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
+        let word = |h: &mut H, q: &crate::scalar::Small| {
+            h.write_i64(*q.numer());
+            h.write_i64(*q.denom());
+        };
+        self.0.hash(h);
+        for (s, k) in &self.1.terms {
+            h.write_usize(s.addr());
+            word(h, k);
+        }
+        word(h, &self.1.constant);
+        word(h, &self.1.pi);
+    }
+}
 
 fn collect<'a>(e: &'a Expr, calls: &mut CallSet<'a>) {
     match e {
         Expr::Trig { f, angle } => {
-            calls.insert((*f, angle));
+            calls.insert(Call(*f, angle));
         }
         Expr::Add(v) | Expr::Mul(v) => v.iter().for_each(|x| collect(x, calls)),
         Expr::Neg(x) | Expr::Pow(x, _) => collect(x, calls),
