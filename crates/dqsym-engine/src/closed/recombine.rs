@@ -873,7 +873,7 @@ mod tests {
     fn many_groups_sorted_by_counting_passes_are_those_of_sorting_every_entry() {
         let mut below = xorshift_below(0x0ddb_a11e);
         for angles in [10, 14, 20] {
-            // Enough entries and groups for the counting passes of `by_hash` and `radix_sort`.
+            // Enough entries and groups for `by_hash` and the counting passes of `radix_sort`.
             let mons = random_mons(&mut below, 5000, 3, angles);
             let [found, expected] = both_ways(&mons);
             assert!(found.len() >= RADIX_MIN, "{} groups", found.len());
