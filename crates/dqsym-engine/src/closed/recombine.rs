@@ -2,8 +2,11 @@
 //! siblings, for any cofactor `T` (lengths, other trigonometric factors, numbers), repeated
 //! until nothing pairs up, so `c1 c2 c3 - ...` regroups to `c123` at any depth.
 
-use super::mon::{angle_combine, angle_of, atom, is_sin, merge, remap, Atom, Ctx, FxMap, Mon};
+use super::mon::{
+    angle_combine, angle_of, atom, is_sin, merge, remap, Atom, Atoms, Ctx, FxMap, Mon, Syms,
+};
 use super::trace::{AngleSum, Recorder};
+use crate::scalar::q::Q;
 use crate::scalar::FxHasher;
 use std::cmp::Ordering;
 use std::hash::Hasher;
@@ -295,8 +298,8 @@ fn groups(mons: &[Mon], cof: &[u32], mut all: Vec<Pair>) -> Groups {
     }
 }
 
-/// The fewest items [`by_hash`] and the sort of the groups order by counting passes
-/// ([`radix_sort`]): below it a comparison sort costs less than the passes' tables.
+/// The fewest groups that [`groups`] orders by counting passes ([`radix_sort`]): below it a
+/// comparison sort costs less than the passes' tables.
 const RADIX_MIN: usize = 128;
 
 /// The bits of one counting pass of [`radix_sort`].
@@ -334,22 +337,66 @@ fn radix_sort<T: Copy>(v: &mut Vec<T>, bits: u32, key: impl Fn(&T) -> u64) {
 /// Sorts `order` (pairs in the order in which they were found) so that equal hashes stand
 /// together, in the order in which they were found: what sorting the pairs gives, except for
 /// the order of the runs, which [`groups`] does not use (its groups are sorted by key
-/// afterwards). Many pairs are spread by the top bits of their hashes in a few counting
-/// passes (stable, so each bucket keeps the order in which they were found), and only each
-/// bucket (a few pairs) sorted.
+/// afterwards).
+///
+/// The pairs of each hash are chained through an open-addressing table of the hashes (linear
+/// probing, at most half full), each new pair appended to its hash's chain, so that each
+/// chain keeps the order in which its pairs were found; the chains are then written out one
+/// after the other, in the order of their slots: a few steps a pair, where the counting
+/// passes over the top bits of the hashes and a sort of each bucket (every bucket holds at
+/// least the two pairs of a group, so each was a sort of its own) cost about 100. Callgrind,
+/// `fk --jacobian tests/data/jaco_style.toml` on one thread (9,702 pairs kept in 247 rounds):
+/// 0.96 M -> about 0.6 M instructions here; with the moves of [`round`] and the one pass of
+/// [`cofactor_ranks`], 125.21 M -> 124.50 M in all (the PUMA 560's 21.95 M -> 21.81 M).
 fn by_hash(order: &mut Vec<Pair>) {
-    if order.len() < RADIX_MIN {
+    let n = order.len();
+    // Chains are numbered by `u32` below `u32::MAX` (never more: a round of that many pairs
+    // would charge billions).
+    if n < 2 || n >= u32::MAX as usize {
         order.sort_unstable();
         return;
     }
-    let bits = order.len().next_power_of_two().trailing_zeros();
-    let bucket = |h: u64| h.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - bits);
-    radix_sort(order, bits, |x| bucket(x.hash));
-    for run in order.chunk_by_mut(|x, y| bucket(x.hash) == bucket(y.hash)) {
-        if run.len() > 1 {
-            run.sort_unstable();
+    let bits = (2 * n).next_power_of_two().trailing_zeros();
+    let mask = (1usize << bits) - 1;
+    let slot = |h: u64| (h.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - bits)) as usize;
+    // Each slot: one hash's first and last pair, numbered from 1 (0: an empty slot).
+    let mut table = vec![(0u32, 0u32); mask + 1];
+    // The pair after each in its hash's chain (`END`: the last).
+    const END: u32 = u32::MAX;
+    let mut next = vec![END; n];
+    for (k, x) in order.iter().enumerate() {
+        // In range: `k < n < u32::MAX`.
+        let id = k as u32 + 1;
+        let mut s = slot(x.hash);
+        loop {
+            let (first, last) = table[s];
+            if first == 0 {
+                table[s] = (id, id);
+                break;
+            }
+            if order[first as usize - 1].hash == x.hash {
+                next[last as usize - 1] = k as u32;
+                table[s].1 = id;
+                break;
+            }
+            s = (s + 1) & mask;
         }
     }
+    let mut chained = Vec::with_capacity(n);
+    for &(first, _) in &table {
+        if first == 0 {
+            continue;
+        }
+        let mut k = first as usize - 1;
+        loop {
+            chained.push(order[k]);
+            match next[k] {
+                END => break,
+                j => k = j as usize,
+            }
+        }
+    }
+    *order = chained;
 }
 
 /// How the heads of some groups ([`head`]) pack into one word: each part as wide as its
@@ -457,14 +504,37 @@ fn key_cmp(mons: &[Mon], x: &Entry, y: &Entry) -> Ordering {
         })
 }
 
+/// The order of the cofactors `(rad, syms)` of two monomials.
+fn cof_cmp(a: &Mon, b: &Mon) -> Ordering {
+    a.rad.cmp(&b.rad).then_with(|| a.syms.cmp(&b.syms))
+}
+
 /// The rank of each monomial's cofactor `(rad, syms)` among those of `mons`.
+///
+/// The monomials come sorted from `merge`: each is compared once with the one before it, its
+/// rank the number of rises so far, which is what ranking them in their own order gives.
+/// Out of order (a fall), they are ranked by [`sorted_cofactor_ranks`] instead, as they
+/// always were: the check that they were sorted was a pass of its own over the same
+/// comparisons.
 fn cofactor_ranks(mons: &[Mon]) -> Vec<u32> {
-    let cof_cmp = |a: &Mon, b: &Mon| a.rad.cmp(&b.rad).then_with(|| a.syms.cmp(&b.syms));
-    let mut order: Vec<usize> = (0..mons.len()).collect();
-    // The monomials come sorted from `merge`; sort anyway when they are not.
-    if !mons.is_sorted_by(|a, b| cof_cmp(a, b).is_le()) {
-        order.sort_by(|&a, &b| cof_cmp(&mons[a], &mons[b]));
+    let mut rank = vec![0u32; mons.len()];
+    let mut r = 0u32;
+    for k in 1..mons.len() {
+        match cof_cmp(&mons[k - 1], &mons[k]) {
+            Ordering::Less => r += 1,
+            Ordering::Equal => {}
+            Ordering::Greater => return sorted_cofactor_ranks(mons),
+        }
+        rank[k] = r;
     }
+    rank
+}
+
+/// [`cofactor_ranks`] of monomials in any order: their indices sorted by cofactor, then
+/// ranked in that order.
+fn sorted_cofactor_ranks(mons: &[Mon]) -> Vec<u32> {
+    let mut order: Vec<usize> = (0..mons.len()).collect();
+    order.sort_by(|&a, &b| cof_cmp(&mons[a], &mons[b]));
     let mut rank = vec![0u32; mons.len()];
     let mut r = 0u32;
     for k in 1..order.len() {
@@ -508,17 +578,15 @@ fn rounds(
                 r.round(ctx, &mons);
             }
         }
-        let (mut next, changed) = match round(ctx, &mons, rec, pass) {
-            Some(next) => (next, true),
-            // Nothing joined in the low pass: the same sum again with every pair tried, its
-            // round not told twice.
-            None if pass == Pass::Low => {
-                pass = Pass::All;
-                fresh = false;
-                continue;
-            }
-            None => (std::mem::take(&mut mons), false),
-        };
+        let (mut next, changed) = round(ctx, std::mem::take(&mut mons), rec, pass);
+        // Nothing joined in the low pass: the same sum again with every pair tried, its round
+        // not told twice.
+        if !changed && pass == Pass::Low {
+            mons = next;
+            pass = Pass::All;
+            fresh = false;
+            continue;
+        }
         fresh = true;
         if let Some(map) = ctx.renumber() {
             for m in &mut next {
@@ -580,24 +648,32 @@ fn first_pass(mons: &[Mon]) -> Pass {
 type Combined = Option<(u32, bool)>;
 
 /// One round of `pass` on `mons`: the monomials, each pair that joins replaced by its
-/// combination (unordered, unmerged), or `None` when nothing joins, so that the caller keeps
-/// `mons` instead of a copy of it.
+/// combination (unordered, unmerged), and whether any pair joined (when none did, `mons` as
+/// they were).
+///
+/// The round owns `mons`, so that a monomial is moved, not copied, to where it goes: the first
+/// of each pair that joins (its atoms then changed) is taken out of `mons` and a placeholder
+/// ([`taken`]) left, and the monomials that join nothing are moved in their order after the
+/// combinations, where each was cloned. A monomial that has joined is never read again:
+/// `used` marks it, the partner search skips it, and the signs compared are those of
+/// monomials not yet used. So the monomials and their order are those of the clones
+/// (`tests::moved_round_is_the_cloning_round`).
 fn round(
     ctx: &mut Ctx,
-    mons: &[Mon],
+    mut mons: Vec<Mon>,
     rec: &mut Option<&mut Recorder>,
     pass: Pass,
-) -> Option<Vec<Mon>> {
-    let cof = cofactor_ranks(mons);
-    let pairs = pass.pairs(mons);
+) -> (Vec<Mon>, bool) {
+    let cof = cofactor_ranks(&mons);
+    let pairs = pass.pairs(&mons);
     // The round's work, charged before it is done; out of budget or cancelled, the round
     // changes nothing and the error comes from the closed form's next charge.
     if crate::scalar::charge((mons.len() + pairs) as u64).is_err() {
-        return None;
+        return (mons, false);
     }
-    let groups = groups(mons, &cof, pairs_of(mons, &cof, pairs, pass));
+    let groups = groups(&mons, &cof, pairs_of(&mons, &cof, pairs, pass));
     if groups.ranges.is_empty() {
-        return None;
+        return (mons, false);
     }
     let mut used = vec![false; mons.len()];
     let mut out = Vec::with_capacity(mons.len());
@@ -642,7 +718,7 @@ fn round(
                 angle_combine(x, y, sign).map(|(angle, flipped)| (ctx.intern(angle), flipped))
             });
             let sin = class == Class::Sin;
-            let mut base = mons[first.0].clone();
+            let mut base = std::mem::replace(&mut mons[first.0], taken());
             base.atoms.remove(first.2);
             base.atoms.remove(first.1);
             if let Some(r) = rec.as_deref_mut() {
@@ -680,12 +756,26 @@ fn round(
             }
         }
     }
-    for (i, m) in mons.iter().enumerate() {
-        if !used[i] {
-            out.push(m.clone());
-        }
+    if !changed {
+        return (mons, false);
     }
-    changed.then_some(out)
+    out.extend(
+        mons.into_iter()
+            .zip(used)
+            .filter_map(|(m, used)| (!used).then_some(m)),
+    );
+    (out, true)
+}
+
+/// What [`round`] leaves in place of a monomial it has moved out: never read (a monomial
+/// that has joined is marked used), only dropped.
+fn taken() -> Mon {
+    Mon {
+        q: Q::default(),
+        rad: 0,
+        syms: Syms::new(),
+        atoms: Atoms::new(),
+    }
 }
 
 #[cfg(test)]
@@ -783,7 +873,7 @@ mod tests {
     fn many_groups_sorted_by_counting_passes_are_those_of_sorting_every_entry() {
         let mut below = xorshift_below(0x0ddb_a11e);
         for angles in [10, 14, 20] {
-            // Enough entries and groups for the counting passes of `by_hash` and `radix_sort`.
+            // Enough entries and groups for `by_hash` and the counting passes of `radix_sort`.
             let mons = random_mons(&mut below, 5000, 3, angles);
             let [found, expected] = both_ways(&mons);
             assert!(found.len() >= RADIX_MIN, "{} groups", found.len());
@@ -908,6 +998,233 @@ mod tests {
         }
         let [(_, low), _] = both_passes(&whole);
         assert_eq!(low.len(), 1);
+    }
+
+    /// [`round`] as it was before it moved the monomials: each one that goes out cloned from
+    /// `mons`, `None` when nothing joins.
+    fn cloning_round(
+        ctx: &mut Ctx,
+        mons: &[Mon],
+        rec: &mut Option<&mut Recorder>,
+        pass: Pass,
+    ) -> Option<Vec<Mon>> {
+        let cof = cofactor_ranks(mons);
+        let pairs = pass.pairs(mons);
+        if crate::scalar::charge((mons.len() + pairs) as u64).is_err() {
+            return None;
+        }
+        let groups = groups(mons, &cof, pairs_of(mons, &cof, pairs, pass));
+        if groups.ranges.is_empty() {
+            return None;
+        }
+        let mut used = vec![false; mons.len()];
+        let mut out = Vec::with_capacity(mons.len());
+        let mut changed = false;
+        let mut combined: FxMap<(u32, u32, i64), Combined> = FxMap::default();
+        for range in &groups.ranges {
+            let entries = &groups.entries[range.clone()];
+            let (class, a, b) = (entries[0].class, entries[0].a, entries[0].b);
+            for e in entries {
+                let (i, i_sin) = (e.mon(), e.sin);
+                if used[i] {
+                    continue;
+                }
+                let partner = entries.iter().find(|f| {
+                    !used[f.mon()] && f.mon() != i && f.sin != i_sin && {
+                        let (qi, qj) = (&mons[i].q, &mons[f.mon()].q);
+                        qi == qj || *qi == -qj
+                    }
+                });
+                let Some(partner) = partner else {
+                    continue;
+                };
+                let (j, (pj, qj)) = (partner.mon(), partner.atoms());
+                let Some((pi, qi)) = entries.iter().find(|f| f.mon() == i).map(Entry::atoms) else {
+                    continue;
+                };
+                let (first, second) = if i_sin == (class == Class::Sin) {
+                    ((i, pi, qi), (j, pj, qj))
+                } else {
+                    ((j, pj, qj), (i, pi, qi))
+                };
+                let same_sign = mons[first.0].q == mons[second.0].q;
+                let sign = match (class, same_sign) {
+                    (Class::Cos, true) | (Class::Sin, false) => -1,
+                    _ => 1,
+                };
+                let c = *combined.entry((a, b, sign)).or_insert_with(|| {
+                    let (x, y) = (&ctx.angles[a as usize], &ctx.angles[b as usize]);
+                    angle_combine(x, y, sign).map(|(angle, flipped)| (ctx.intern(angle), flipped))
+                });
+                let sin = class == Class::Sin;
+                let mut base = mons[first.0].clone();
+                base.atoms.remove(first.2);
+                base.atoms.remove(first.1);
+                if let Some(r) = rec.as_deref_mut() {
+                    r.apply(
+                        ctx,
+                        &AngleSum {
+                            sin,
+                            sign,
+                            a,
+                            b,
+                            terms: [first.0, second.0],
+                            cofactor: &base,
+                            combined: c,
+                        },
+                    );
+                }
+                used[i] = true;
+                used[j] = true;
+                changed = true;
+                match c {
+                    None => {
+                        if !sin {
+                            out.push(base);
+                        }
+                    }
+                    Some((id, flipped)) => {
+                        base.atoms.push(atom(id, sin));
+                        if sin && flipped {
+                            base.q = -&base.q;
+                        }
+                        out.push(base);
+                    }
+                }
+            }
+        }
+        for (i, m) in mons.iter().enumerate() {
+            if !used[i] {
+                out.push(m.clone());
+            }
+        }
+        changed.then_some(out)
+    }
+
+    /// The round that moves the monomials gives the cloning round's monomials in its order,
+    /// and interns the same angles, on random monomials over the angles of a real context
+    /// (`q1` to `q6` and their sums), both passes; the signs `+-1` and `+-2`, so that some
+    /// pairs of equal atoms do not join.
+    #[test]
+    fn moved_round_is_the_cloning_round() {
+        let mut below = xorshift_below(0x3071_5eed);
+        let x = long_angle(6, 1, false) * long_angle(2, 0, true) + long_angle(3, 2, true);
+        let (ctx, _) = crate::closed::mon::split_modes(&x);
+        let angles = ctx.angles.len() as u64;
+        assert!(angles >= 6, "{angles} angles");
+        let mut joined = 0;
+        for case in 0..400 {
+            let count = 1 + below(if case % 10 == 0 { 300 } else { 30 });
+            let some = angles.min(4 + below(4));
+            let mut mons = random_mons(&mut below, count, 4, some);
+            for m in &mut mons {
+                m.q = Q::int([-2, -1, 1, 2][below(4) as usize]);
+            }
+            let mons = crate::closed::mon::merge(mons);
+            for pass in [Pass::Low, Pass::All] {
+                let (mut moved_ctx, mut cloned_ctx) = (ctx.clone(), ctx.clone());
+                let (moved, changed) = round(&mut moved_ctx, mons.clone(), &mut None, pass);
+                let cloned = cloning_round(&mut cloned_ctx, &mons, &mut None, pass);
+                assert_eq!(changed, cloned.is_some(), "case {case}");
+                assert_eq!(moved, cloned.unwrap_or_else(|| mons.clone()), "case {case}");
+                assert!(moved_ctx.angles == cloned_ctx.angles, "case {case}");
+                joined += usize::from(changed);
+            }
+        }
+        // Both outcomes occur: rounds that join and rounds that do not.
+        assert!(joined > 100 && joined < 800, "{joined} of 800 join");
+    }
+
+    /// [`cofactor_ranks`] as it was: the indices sorted by cofactor (when the monomials are
+    /// not in order), then ranked in that order.
+    fn ranks_by_sorting(mons: &[Mon]) -> Vec<u32> {
+        let mut order: Vec<usize> = (0..mons.len()).collect();
+        if !mons.is_sorted_by(|a, b| cof_cmp(a, b).is_le()) {
+            order.sort_by(|&a, &b| cof_cmp(&mons[a], &mons[b]));
+        }
+        let mut rank = vec![0u32; mons.len()];
+        let mut r = 0u32;
+        for k in 1..order.len() {
+            if cof_cmp(&mons[order[k - 1]], &mons[order[k]]).is_ne() {
+                r += 1;
+            }
+            rank[order[k]] = r;
+        }
+        rank
+    }
+
+    /// The ranks of one pass over sorted monomials, and of the fallback over others, are
+    /// those of sorting the indices, on monomials of few cofactors, sorted and not.
+    #[test]
+    fn cofactor_ranks_are_those_of_sorting() {
+        let mut below = xorshift_below(0xc0fa_5eed);
+        let mut sorted = 0;
+        for case in 0..400 {
+            let count = below(40);
+            let mut mons = random_mons(&mut below, count, 2, 3);
+            for m in &mut mons {
+                m.rad = 1 + below(3);
+                m.syms = (0..below(3)).map(|_| (below(2) as u32, 1)).collect();
+            }
+            if case % 2 == 0 {
+                mons.sort_by(cof_cmp);
+            }
+            sorted += usize::from(mons.is_sorted_by(|a, b| cof_cmp(a, b).is_le()));
+            assert_eq!(
+                cofactor_ranks(&mons),
+                ranks_by_sorting(&mons),
+                "case {case}"
+            );
+        }
+        assert!(sorted > 150 && sorted < 400, "{sorted} of 400 sorted");
+    }
+
+    /// [`by_hash`] leaves each hash's pairs together, in the order in which they were found:
+    /// ordered stably by hash, its result is the pairs sorted. Hashes from a few values (long
+    /// chains) and from values that share their table slots (long probes), and the sizes
+    /// around the table's.
+    #[test]
+    fn by_hash_keeps_each_hash_together_in_found_order() {
+        let mut below = xorshift_below(0xb1_a5ed);
+        for case in 0..300 {
+            let n = match case % 3 {
+                0 => below(8),
+                1 => below(200),
+                _ => 500 + below(3000),
+            };
+            let values = 1 + below(n.max(1) * 2);
+            // Multiples of 2^58 share the top bits of their products, so their slots.
+            let spread = if case % 5 == 0 { 1 << 58 } else { 0x9e37_79b9 };
+            let pairs: Vec<Pair> = (0..n)
+                .map(|k| Pair {
+                    hash: below(values).wrapping_mul(spread),
+                    ..Pair::new(
+                        k as u32,
+                        below(7) as u16,
+                        7 + below(7) as u16,
+                        below(2) == 1,
+                    )
+                })
+                .collect();
+            let mut found = pairs.clone();
+            by_hash(&mut found);
+            let runs: Vec<u64> = found
+                .chunk_by(|x, y| x.hash == y.hash)
+                .map(|r| r[0].hash)
+                .collect();
+            let mut distinct = runs.clone();
+            distinct.sort_unstable();
+            distinct.dedup();
+            assert_eq!(
+                runs.len(),
+                distinct.len(),
+                "case {case}: a hash in two runs"
+            );
+            found.sort_by_key(|x| x.hash);
+            let mut expected = pairs;
+            expected.sort_unstable();
+            assert_eq!(found, expected, "case {case}");
+        }
     }
 
     #[test]
