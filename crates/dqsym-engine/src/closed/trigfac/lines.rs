@@ -20,8 +20,9 @@ use super::Wave;
 use crate::scalar::Small;
 
 /// The relative size below which a coefficient computed in floats is not taken as surely
-/// nonzero: its terms' cosines and sines of phases below 10 in magnitude are within a few
-/// units of `2^-52` each, far below it.
+/// nonzero: its terms' phases are below 10 in magnitude (a mode's pi offset lies in `[0, 2)`,
+/// `Mode`'s invariant), so their cosines and sines are within a few units of `2^-52` each,
+/// and the coefficient within about `2^-48` of the sum of its amplitudes, far below it.
 const SURE: f64 = 1e-12;
 
 /// The distinct exponents of a sum (each up to sign) and which of them surely have a nonzero
