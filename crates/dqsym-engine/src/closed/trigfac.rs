@@ -23,6 +23,8 @@ use crate::scalar::{charge, Small, Sym, Term};
 use crate::{Context, Scalar};
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
+mod lines;
+
 /// The most terms a scalar may have for these candidates: a product of four sinusoids at
 /// offsets has up to 16, a sum of two products of three 8 (with radicals twice as many); the
 /// long sums of a chain with 60-degree twists (the Jaco-style arm) are past it.
@@ -314,33 +316,11 @@ fn sinusoid_factors(t: &[Term], bound: usize) -> Vec<Expr> {
     if 4 + t.iter().map(|u| u.mono.len()).min().unwrap_or(0) >= bound {
         return Vec::new();
     }
-    let mut syms: Vec<Sym> = Vec::new();
-    for u in t {
-        for (s, _) in u.mode.freq.iter() {
-            if !syms.contains(s) {
-                syms.push(s.clone());
-            }
-        }
-    }
-    syms.sort();
+    let (syms, exps) = exponents(t);
     let n = syms.len();
     if n == 0 {
         return Vec::new();
     }
-    let exps: Vec<Vec<Small>> = t
-        .iter()
-        .map(|u| {
-            syms.iter()
-                .map(|s| {
-                    u.mode
-                        .freq
-                        .iter()
-                        .find(|(r, _)| r == s)
-                        .map_or(Small::zero(), |(_, k)| *k)
-                })
-                .collect()
-        })
-        .collect();
     let Some(ws) = waves(t, &exps) else {
         return Vec::new();
     };
@@ -371,6 +351,35 @@ fn sinusoid_factors(t: &[Term], bound: usize) -> Vec<Expr> {
         out.push(mul(shown, qe));
     }
     out
+}
+
+/// The symbols of the terms' modes, sorted, and each term's exponent: its mode's coefficient
+/// of each symbol.
+fn exponents(t: &[Term]) -> (Vec<Sym>, Vec<Vec<Small>>) {
+    let mut syms: Vec<Sym> = Vec::new();
+    for u in t {
+        for (s, _) in u.mode.freq.iter() {
+            if !syms.contains(s) {
+                syms.push(s.clone());
+            }
+        }
+    }
+    syms.sort();
+    let exps: Vec<Vec<Small>> = t
+        .iter()
+        .map(|u| {
+            syms.iter()
+                .map(|s| {
+                    u.mode
+                        .freq
+                        .iter()
+                        .find(|(r, _)| r == s)
+                        .map_or(Small::zero(), |(_, k)| *k)
+                })
+                .collect()
+        })
+        .collect();
+    (syms, exps)
 }
 
 /// The terms as waves at a fixed point of the length symbols; `None` past `f64`.
@@ -487,11 +496,22 @@ fn integer_exponents(signed: &[Vec<Small>]) -> Option<(Vec<Vec<i64>>, i64)> {
 /// The directions tried (see [`find_factors`]), halves of [`twice_the_directions`]: in
 /// integers over a common denominator `L` when they fit (each `D / (2 L)` is then the
 /// rational `(a - b) / 2` itself, and the order the same), in rationals otherwise.
+#[cfg(test)]
 fn directions(signed: &[Vec<Small>], n: usize) -> Vec<Vec<Small>> {
+    directions_in(signed, n, integer_exponents(signed).as_ref())
+}
+
+/// [`directions`] with the exponents' [`integer_exponents`], computed once for it and the
+/// screen of [`lines`].
+fn directions_in(
+    signed: &[Vec<Small>],
+    n: usize,
+    ints: Option<&(Vec<Vec<i64>>, i64)>,
+) -> Vec<Vec<Small>> {
     let f = floats(signed);
     let (first, second) = (along(&f, n, 0.313_7), along(&f, n, -0.561_3));
-    match integer_exponents(signed) {
-        Some((ints, l)) => twice_the_directions(&ints, &first, &second)
+    match ints {
+        Some((ints, l)) => twice_the_directions(ints, &first, &second)
             .into_iter()
             .map(|d| d.into_iter().map(|k| Small::new(k, 2 * l)).collect())
             .collect(),
@@ -506,7 +526,8 @@ fn directions(signed: &[Vec<Small>], n: usize) -> Vec<Vec<Small>> {
 }
 
 /// The directions `d` (first nonzero entry positive) and phases `k` (`phi = k pi/PHASES`) at
-/// which the sum vanishes on the hyperplane `d.x + phi = pi/2` at three points.
+/// which the sum vanishes on the hyperplane `d.x + phi = pi/2` at three points; a direction
+/// along which no phase's plane can be a zero set of the sum ([`lines`]) is not evaluated.
 fn find_factors(exps: &[Vec<Small>], ws: &[Wave], n: usize) -> Vec<(Vec<Small>, i64)> {
     let signed: Vec<Vec<Small>> = exps
         .iter()
@@ -515,7 +536,9 @@ fn find_factors(exps: &[Vec<Small>], ws: &[Wave], n: usize) -> Vec<(Vec<Small>, 
     // A factor's direction shows from every vertex of the Newton polytope (unless terms
     // cancel there): only directions seen from two vertices are tried, and only those mixing
     // two or more symbols (one symbol's factors are `roots.rs`'s).
-    let dirs = directions(&signed, n);
+    let ints = integer_exponents(&signed);
+    let dirs = directions_in(&signed, n, ints.as_ref());
+    let lines = lines::Lines::new(ints.as_ref(), ws);
     // The sum is evaluated to a relative error of about (terms) * 1e-16 times the largest
     // angle (below 100 here: coefficients of a few units at points below 2); a factor's zero
     // shows as well below 1e-9 of the sum of the magnitudes, a nonzero value at a generic point
@@ -528,6 +551,12 @@ fn find_factors(exps: &[Vec<Small>], ws: &[Wave], n: usize) -> Vec<(Vec<Small>, 
     for d in dirs {
         if charge((ws.len() as u64 * PHASES as u64) / 8 + 1).is_err() {
             break;
+        }
+        // No phase of a direction along which an exponent is alone on its line can carry a
+        // factor (proof in `lines.rs`); its charge above is kept, so that the budget is spent
+        // as before.
+        if lines.as_ref().is_some_and(|l| l.lonely_along(&d)) {
+            continue;
         }
         let df: Vec<f64> = d.iter().map(|k| k.to_f64().unwrap_or(0.0)).collect();
         let dd: f64 = df.iter().map(|k| k * k).sum();
