@@ -97,7 +97,7 @@ pub(crate) fn from_rat(x: &Rat) -> Option<u64> {
 }
 
 /// Half of a doubled integer `c2` modulo `P` (a coefficient of `Z[zeta_W] / 2` kept doubled):
-/// the residue [`from_rat`] gives `c2 / 2`, whose reduced form is `(c2 / 2) / 1` or `c2 / 2`.
+/// the residue `from_rat` gives `c2 / 2`, whose reduced form is `(c2 / 2) / 1` or `c2 / 2`.
 pub(crate) fn from_doubled(c2: i64) -> u64 {
     if c2 % 2 == 0 {
         from_i64(c2 / 2)

@@ -335,7 +335,7 @@ impl Field {
     }
 
     /// `s` (doubled) in the tensor basis modulo [`modp::P`]: the residues
-    /// [`Field::reduce_mod`] gives its value.
+    /// `Field::reduce_mod` (the tests' reference) gives its value.
     pub(super) fn reduce_mod_ints(&self, s: &Ints) -> Vec<u64> {
         let mut a = vec![0u64; self.w as usize];
         for (e, c2) in s {
