@@ -5,9 +5,12 @@
 //! - a dependence, or coordinates, found here are read back as small rationals and then
 //!   checked exactly by the caller; when that fails the caller takes the exact dense path.
 
+#[cfg(test)]
 use num_bigint::BigInt;
+#[cfg(test)]
 use num_rational::BigRational as Rat;
-use num_traits::{ToPrimitive, Zero};
+#[cfg(test)]
+use num_traits::ToPrimitive;
 
 pub(crate) const P: u64 = (1 << 61) - 1;
 
@@ -66,13 +69,16 @@ fn from_i64(x: i64) -> u64 {
     }
 }
 
+#[cfg(test)]
 fn from_big(x: &BigInt) -> u64 {
     let m = BigInt::from(P);
     let r = ((x % &m) + &m) % &m;
     r.to_u64().unwrap_or(0)
 }
 
-/// A rational modulo `P`; `None` when `P` divides its denominator.
+/// A rational modulo `P`; `None` when `P` divides its denominator (the reference of the
+/// fast path's tests: it computes in machine words).
+#[cfg(test)]
 pub(crate) fn from_rat(x: &Rat) -> Option<u64> {
     if let (Some(n), Some(d)) = (x.numer().to_i64(), x.denom().to_i64()) {
         let n = from_i64(n);
@@ -90,14 +96,27 @@ pub(crate) fn from_rat(x: &Rat) -> Option<u64> {
     (d != 0).then(|| mul(from_big(x.numer()), inv(d)))
 }
 
-/// The rational `n/d` with `|n|, d < 2^30` that is `a` modulo `P`, when there is one.
-pub(crate) fn reconstruct(a: u64) -> Option<Rat> {
-    if a == 0 {
-        return Some(Rat::zero());
+/// Half of a doubled integer `c2` modulo `P` (a coefficient of `Z[zeta_W] / 2` kept doubled):
+/// the residue `from_rat` gives `c2 / 2`, whose reduced form is `(c2 / 2) / 1` or `c2 / 2`.
+pub(crate) fn from_doubled(c2: i64) -> u64 {
+    if c2 % 2 == 0 {
+        from_i64(c2 / 2)
+    } else {
+        mul(from_i64(c2), P.div_ceil(2))
     }
-    const B: i128 = 1 << 30;
-    let (mut r0, mut r1) = (P as i128, a as i128);
-    let (mut t0, mut t1) = (0i128, 1i128);
+}
+
+/// The rational `n/d` with `|n|, d < 2^30` that is `a` modulo `P`, when there is one: reduced,
+/// `d > 0` (`(0, 1)` for zero), in machine words.
+pub(crate) fn reconstruct(a: u64) -> Option<(i64, i64)> {
+    if a == 0 {
+        return Some((0, 1));
+    }
+    const B: i64 = 1 << 30;
+    // In `i64`: the remainders are below `P < 2^61`, and `|t_k| <= P / r_{k-1}` (so is
+    // `q t1` less the previous `t0`, both below `2^61`).
+    let (mut r0, mut r1) = (P as i64, a as i64);
+    let (mut t0, mut t1) = (0i64, 1i64);
     while r1 >= B {
         let q = r0 / r1;
         (r0, r1) = (r1, r0 - q * r1);
@@ -106,8 +125,16 @@ pub(crate) fn reconstruct(a: u64) -> Option<Rat> {
     if t1 == 0 || t1.abs() >= B {
         return None;
     }
-    let x = Rat::new(BigInt::from(r1), BigInt::from(t1));
-    (from_rat(&x) == Some(a)).then_some(x)
+    // Both below 2^30 in size: `r1 / t1` reduced with its denominator made positive, the
+    // value `Ratio::new` gave (this built a `BigRational` per coordinate before).
+    let g = super::q::gcd_u64(r1.unsigned_abs(), t1.unsigned_abs()) as i64;
+    let (mut n, mut d) = (r1 / g, t1 / g);
+    if d < 0 {
+        (n, d) = (-n, -d);
+    }
+    // `n / d = a` exactly when `n = a d` (`d` is invertible modulo `P`): the check
+    // `from_rat(n / d) == Some(a)` without its inverse (a power by `P - 2`).
+    (from_i64(n) == mul(a, from_i64(d))).then_some((n, d))
 }
 
 /// A pivot row: its pivot, the row scaled to 1 at the pivot, and the combination of the
@@ -213,9 +240,77 @@ mod tests {
         ] {
             let x = Rat::new(n.into(), d.into());
             let a = from_rat(&x).expect("denominator prime to P");
-            assert_eq!(reconstruct(a), Some(x));
+            let back = reconstruct(a).map(|(n, d)| Rat::new_raw(n.into(), d.into()));
+            assert_eq!(back, Some(x));
         }
         assert_eq!(from_rat(&Rat::new(1.into(), BigInt::from(P))), None);
+    }
+
+    /// The reconstruction as it was, in `BigRational` (the reference).
+    fn reconstruct_big(a: u64) -> Option<Rat> {
+        if a == 0 {
+            return Some(Rat::from_integer(0.into()));
+        }
+        const B: i128 = 1 << 30;
+        let (mut r0, mut r1) = (P as i128, a as i128);
+        let (mut t0, mut t1) = (0i128, 1i128);
+        while r1 >= B {
+            let q = r0 / r1;
+            (r0, r1) = (r1, r0 - q * r1);
+            (t0, t1) = (t1, t0 - q * t1);
+        }
+        if t1 == 0 || t1.abs() >= B {
+            return None;
+        }
+        let x = Rat::new(BigInt::from(r1), BigInt::from(t1));
+        (from_rat(&x) == Some(a)).then_some(x)
+    }
+
+    /// The machine-word reconstruction is the `BigRational` one, numerator and denominator,
+    /// for random residues (about half of them are small fractions), the residues of random
+    /// small fractions and the ends of the range.
+    #[test]
+    fn reconstruction_in_machine_words_is_the_big_one() {
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let (mut found, mut none) = (0, 0);
+        for i in 0..60_000u64 {
+            let a = match i % 3 {
+                0 => next() % P,
+                1 => {
+                    let (n, d) = ((next() % (1 << 31)) as i64 - (1 << 30), next() % (1 << 30));
+                    from_rat(&Rat::new(n.into(), (d.max(1) as i64).into())).expect("d < P")
+                }
+                _ => [
+                    0,
+                    1,
+                    2,
+                    P - 1,
+                    P - 2,
+                    (1 << 30) - 1,
+                    1 << 30,
+                    P / 2,
+                    P / 2 + 1,
+                ][(i % 9) as usize],
+            };
+            let small = reconstruct(a);
+            let big = reconstruct_big(a).map(|x| {
+                let (n, d) = (x.numer().to_i64(), x.denom().to_i64());
+                (n.expect("small"), d.expect("small"))
+            });
+            assert_eq!(small, big, "{a}");
+            if small.is_some() {
+                found += 1;
+            } else {
+                none += 1;
+            }
+        }
+        assert!(found > 30_000 && none > 5_000, "{found} {none}");
     }
 
     #[test]

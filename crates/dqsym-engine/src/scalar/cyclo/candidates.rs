@@ -3,11 +3,9 @@
 //! the same columns.
 
 use super::super::atoms::Small;
-use super::field::{mono, sparse_mul, Sparse};
+use super::field::Ints;
 use super::level::lcm;
 use num_integer::Integer;
-use num_rational::BigRational as Rat;
-use num_traits::One;
 
 /// One column of a basis: `sqrt(h) b` with `b = cos(theta)` (real) or `e^{i theta}` (times
 /// `i` when `imag`), `theta = pi * angle`.
@@ -51,11 +49,11 @@ pub(super) fn rank(k: i64, n: u64) -> (u64, u64) {
 
 /// A candidate column of a level-`m` basis: the angle `2 pi k / l` and the candidate's parts
 /// in `Q(zeta_w)` (for a real basis `cos(2 pi k / l)`; for a complex one `e^{2 pi i k / l}` and
-/// `i e^{2 pi i k / l}`).
+/// `i e^{2 pi i k / l}`), doubled (the exact path takes their [`super::field::halves`]).
 pub(super) struct Candidate {
     pub(super) k: i64,
     pub(super) l: i64,
-    pub(super) parts: Vec<Sparse>,
+    pub(super) parts: Vec<Ints>,
 }
 
 /// The candidates of `R_M` (real) or `C_M` (complex), in the order the greedy basis takes
@@ -71,13 +69,11 @@ pub(super) fn candidates(m: u64, w: u64, real: bool) -> Vec<Candidate> {
         ks.into_iter()
             .map(|k| {
                 let a = k as u64 * (w / l);
+                // (zeta^a + zeta^-a) / 2, `a < W / 4`.
                 let c = if a == 0 {
-                    mono(0, Rat::one())
+                    vec![(0, 2)]
                 } else {
-                    let half = Rat::new(1.into(), 2.into());
-                    let mut s = mono(a, half.clone());
-                    s.insert(w - a, half);
-                    s
+                    vec![(a, 1), (w - a, 1)]
                 };
                 Candidate {
                     k,
@@ -93,12 +89,12 @@ pub(super) fn candidates(m: u64, w: u64, real: bool) -> Vec<Candidate> {
             .filter(|k| 8 * k > -bound)
             .collect();
         ks.sort_by_key(|&k| (rank(k, m), k.abs(), k < 0));
-        let i = mono(w / 4, Rat::one());
         ks.into_iter()
             .map(|k| {
                 let a = (k.rem_euclid(bound) as u64) * (w / m);
-                let c = mono(a, Rat::one());
-                let ic = sparse_mul(&i, &c, w);
+                // zeta^a and i zeta^a = zeta^(a + W/4).
+                let c = vec![(a, 2)];
+                let ic = vec![((w / 4 + a) % w, 2)];
                 Candidate {
                     k,
                     l: bound,

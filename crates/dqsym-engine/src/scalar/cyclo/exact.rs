@@ -5,7 +5,7 @@ use super::super::atoms::Small;
 use super::super::par::PerFork;
 use super::super::{ScalarError, Term, Q};
 use super::candidates::{candidates, Candidate, Col};
-use super::field::{field, mono, sparse_mul, Field, Sparse};
+use super::field::{field, halves, mono, sparse_mul, Field, Sparse};
 use super::level::{level_of, pi_exponent, primes_of, totient};
 use super::{poisoned, terms_in_basis, Cache};
 use num_rational::BigRational as Rat;
@@ -110,6 +110,7 @@ impl Basis {
         let mut span = Span::new();
         let mut cols = Vec::new();
         for Candidate { k, l, parts } in candidates(m, w, real) {
+            let parts: Vec<Sparse> = parts.iter().map(halves).collect();
             super::super::charge((span.rows.len() * f.phi) as u64 + 1)?;
             if !span.independent(&f.reduce(&parts[0])?) {
                 continue;

@@ -7,11 +7,9 @@ use super::super::modp::{self, ModSpan};
 use super::super::par::{this_fork, PerFork};
 use super::super::{FxHasher, ScalarError, Term, Q};
 use super::candidates::{candidates, Candidate, Col};
-use super::field::{field, ints, mono, sparse_mul, Field, Ints, Sparse};
+use super::field::{field, ints_mul, Field, Ints};
 use super::level::{level_of, level_primes, pi_exponent};
 use super::{poisoned, terms_in_basis};
-use num_rational::BigRational as Rat;
-use num_traits::{One, Zero};
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::hash::BuildHasherDefault;
@@ -31,34 +29,31 @@ pub(super) const UNIT_COS: u8 = 1;
 pub(super) const UNIT_SIN: u8 = 2;
 
 impl Unit {
-    fn value(&self, f: &Field, real: bool) -> Sparse {
+    /// The value, doubled: `sqrt(h)` (`roots`, [`Field::roots`]) times a trigonometric part of
+    /// at most two terms, doubled coefficients `+-1`, `+-2` (`None` never: see
+    /// [`ints_mul`]).
+    fn value(&self, f: &Field, roots: &[super::field::Integral], real: bool) -> Option<Ints> {
         let (w, a) = (f.w, self.a);
-        let half = Rat::new(1.into(), 2.into());
-        let trig = match (real, self.kind) {
-            (true, UNIT_ONE) => mono(0, Rat::one()),
-            (true, UNIT_COS) => {
-                let mut s = mono(a, half.clone());
-                *s.entry((w - a) % w).or_insert_with(Rat::zero) += half;
-                s
-            }
+        let trig: Ints = match (real, self.kind) {
+            (true, UNIT_ONE) => vec![(0, 2)],
+            // cos = (zeta^a + zeta^-a) / 2 (the two the same exponent for `a = 0`).
+            (true, UNIT_COS) => vec![(a, 1), ((w - a) % w, 1)],
+            // sin = -i (zeta^a - zeta^-a) / 2.
             (true, _) => {
-                // sin = -i (zeta^a - zeta^-a) / 2.
                 let q4 = 3 * w / 4;
-                let mut s = mono((a + q4) % w, half.clone());
-                *s.entry((w - a + q4) % w).or_insert_with(Rat::zero) -= half;
-                s
+                vec![((a + q4) % w, 1), ((w - a + q4) % w, -1)]
             }
-            (false, UNIT_COS) => mono(a, Rat::one()),
-            (false, _) => mono((a + 3 * w / 4) % w, Rat::one()),
+            (false, UNIT_COS) => vec![(a, 2)],
+            (false, _) => vec![((a + 3 * w / 4) % w, 2)],
         };
-        let mut out = sparse_mul(f.sqrt(self.h), &trig, w);
-        out.retain(|_, c| !c.is_zero());
-        out
+        let h = f.sqrts.binary_search_by_key(&self.h, |(x, _)| *x).ok()?;
+        ints_mul(&roots[h], &trig, w)
     }
 }
 
-/// The exact coordinates of a vector over the columns of a [`FastBasis`] span.
-pub(super) type Coords = Vec<(usize, Rat)>;
+/// The exact coordinates of a vector over the columns of a [`FastBasis`] span: `(n, d)` for
+/// `n / d` reduced, `d > 0` (small: read back from residues by [`modp::reconstruct`]).
+pub(super) type Coords = Vec<(usize, (i64, i64))>;
 
 /// The same as machine-word rationals where they fit (the form a group's sum is taken in).
 pub(super) type QCoords = Vec<(usize, Q)>;
@@ -91,6 +86,10 @@ impl FastBasis {
     /// `Ok(None)` when a check fails (the caller takes the exact path).
     fn new(f: &Field, m: u64, real: bool) -> Result<Option<FastBasis>, ScalarError> {
         let w = f.w;
+        // Never `None` ([`Field::roots`]); the exact path would decide then.
+        let Some(roots) = &f.roots else {
+            return Ok(None);
+        };
         let positions = f.sqrts.len() * w as usize * 3;
         let mut fb = FastBasis {
             cols: Vec::new(),
@@ -106,10 +105,7 @@ impl FastBasis {
         for Candidate { k, l, parts } in candidates(m, w, real) {
             let c = &parts[0];
             super::super::charge((fb.span.rank() * f.phi) as u64 / 256 + 1)?;
-            let Some(v) = f.reduce_mod(c) else {
-                return Ok(None);
-            };
-            if let Some(xs) = fb.span.solve(v) {
+            if let Some(xs) = fb.span.solve(f.reduce_mod_ints(c)) {
                 // Dependent modulo P: shown over Q, or the exact path decides.
                 let Some(xs) = xs
                     .iter()
@@ -120,18 +116,17 @@ impl FastBasis {
                 else {
                     return Ok(None);
                 };
-                if f.combination_is(&xs, &fb.vecs, c) != Some(true) {
+                if f.combination_is_ints(&xs, &fb.vecs, c) != Some(true) {
                     return Ok(None);
                 }
                 continue;
             }
-            for (h, r) in &f.sqrts {
+            for ((h, _), r) in f.sqrts.iter().zip(roots) {
                 for (imag, x) in parts.iter().enumerate() {
-                    let val = sparse_mul(r, x, w);
-                    let (Some(v), Some(n)) = (f.reduce_mod(&val), ints(&val)) else {
+                    let Some(n) = ints_mul(r, x, w) else {
                         return Ok(None);
                     };
-                    if !fb.span.push(v) {
+                    if !fb.span.push(f.reduce_mod_ints(&n)) {
                         return Ok(None);
                     }
                     fb.vecs.push(n);
@@ -153,16 +148,14 @@ impl FastBasis {
             }
             super::super::charge((fb.span.rank() * f.phi) as u64 / 256 + 1)?;
             let (v, val) = if real {
-                let e = j as u64;
-                let mut c = mono(e, Rat::new(1.into(), 2.into()));
-                *c.entry((w - e) % w).or_insert_with(Rat::zero) += Rat::new(1.into(), 2.into());
-                let Some(v) = f.reduce_mod(&c) else {
-                    return Ok(None);
+                // (zeta^e + zeta^-e) / 2, doubled, by increasing exponent.
+                let (e, e2) = (j as u64, (w - j as u64) % w);
+                let c = match e.cmp(&e2) {
+                    std::cmp::Ordering::Equal => vec![(e, 2)],
+                    std::cmp::Ordering::Less => vec![(e, 1), (e2, 1)],
+                    std::cmp::Ordering::Greater => vec![(e2, 1), (e, 1)],
                 };
-                let Some(n) = ints(&c) else {
-                    return Ok(None);
-                };
-                (v, n)
+                (f.reduce_mod_ints(&c), c)
             } else {
                 let mut v = vec![0u64; f.phi];
                 v[j] = 1;
@@ -219,10 +212,14 @@ impl FastBasis {
         real: bool,
     ) -> Result<Option<Arc<QCoords>>, ScalarError> {
         super::super::charge((f.phi * f.phi) as u64 / 256 + 1)?;
-        let t = u.value(f, real);
-        let xs = f
-            .reduce_mod(&t)
-            .and_then(|v| self.span.solve(v))
+        // Never `None`: a basis was made, so the roots are there ([`FastBasis::new`]), and
+        // the value fits ([`Unit::value`]).
+        let Some(t) = f.roots.as_ref().and_then(|roots| u.value(f, roots, real)) else {
+            return Ok(None);
+        };
+        let xs = self
+            .span
+            .solve(f.reduce_mod_ints(&t))
             .and_then(|xs| {
                 xs.iter()
                     .enumerate()
@@ -230,8 +227,8 @@ impl FastBasis {
                     .map(|(j, x)| modp::reconstruct(*x).map(|r| (j, r)))
                     .collect::<Option<Coords>>()
             })
-            .filter(|xs| f.combination_is(xs, &self.vecs, &t) == Some(true))
-            .map(|xs| Arc::new(xs.iter().map(|(j, c)| (*j, Q::from(c))).collect()));
+            .filter(|xs| f.combination_is_ints(xs, &self.vecs, &t) == Some(true))
+            .map(|xs| Arc::new(xs.iter().map(|(j, (n, d))| (*j, Q::new(*n, *d))).collect()));
         Ok(xs)
     }
 }
@@ -405,8 +402,230 @@ pub(super) fn canonical_group_fast_at(
 #[cfg(test)]
 mod tests {
     use super::super::exact::Basis;
+    use super::super::field::{ints, mono, sparse_mul, Sparse};
     use super::super::level::totient;
     use super::*;
+    use num_rational::BigRational as Rat;
+    use num_traits::{One, Zero};
+
+    /// The route as it was, in `BigRational`, kept as the reference of the machine-word one:
+    /// candidates and units as sparse sums with rational coefficients, reduced by
+    /// `modp::from_rat`, coordinates read back as `BigRational`s and checked by the
+    /// big-integer `combination_is`.
+    mod big {
+        use super::*;
+
+        /// The old reconstruction (`modp::reconstruct` returned a `BigRational`).
+        fn reconstruct(a: u64) -> Option<Rat> {
+            if a == 0 {
+                return Some(Rat::zero());
+            }
+            const B: i128 = 1 << 30;
+            let (mut r0, mut r1) = (modp::P as i128, a as i128);
+            let (mut t0, mut t1) = (0i128, 1i128);
+            while r1 >= B {
+                let q = r0 / r1;
+                (r0, r1) = (r1, r0 - q * r1);
+                (t0, t1) = (t1, t0 - q * t1);
+            }
+            if t1 == 0 || t1.abs() >= B {
+                return None;
+            }
+            let x = Rat::new(r1.into(), t1.into());
+            (modp::from_rat(&x) == Some(a)).then_some(x)
+        }
+
+        /// The candidates' parts as they were built (the angles and their order are the
+        /// shared `candidates`').
+        fn parts(k: i64, l: i64, w: u64, real: bool) -> Vec<Sparse> {
+            if real {
+                let a = k as u64 * (w / l as u64);
+                let c = if a == 0 {
+                    mono(0, Rat::one())
+                } else {
+                    let half = Rat::new(1.into(), 2.into());
+                    let mut s = mono(a, half.clone());
+                    s.insert(w - a, half);
+                    s
+                };
+                vec![c]
+            } else {
+                let a = (k.rem_euclid(l) as u64) * (w / l as u64);
+                let c = mono(a, Rat::one());
+                let ic = sparse_mul(&mono(w / 4, Rat::one()), &c, w);
+                vec![c, ic]
+            }
+        }
+
+        pub(super) struct Old {
+            pub(super) cols: Vec<Col>,
+            pub(super) span: ModSpan,
+            pub(super) vecs: Vec<Ints>,
+        }
+
+        /// `FastBasis::new` as it was.
+        pub(super) fn basis(f: &Field, m: u64, real: bool) -> Option<Old> {
+            let w = f.w;
+            let mut fb = Old {
+                cols: Vec::new(),
+                span: ModSpan::new(),
+                vecs: Vec::new(),
+            };
+            for Candidate { k, l, .. } in candidates(m, w, real) {
+                let parts = parts(k, l, w, real);
+                let c = &parts[0];
+                let v = f.reduce_mod(c)?;
+                if let Some(xs) = fb.span.solve(v) {
+                    let xs = xs
+                        .iter()
+                        .enumerate()
+                        .filter(|(_, x)| **x != 0)
+                        .map(|(j, x)| reconstruct(*x).map(|r| (j, r)))
+                        .collect::<Option<Vec<(usize, Rat)>>>()?;
+                    if f.combination_is(&xs, &fb.vecs, c) != Some(true) {
+                        return None;
+                    }
+                    continue;
+                }
+                for (h, r) in &f.sqrts {
+                    for (imag, x) in parts.iter().enumerate() {
+                        let val = sparse_mul(r, x, w);
+                        let (Some(v), Some(n)) = (f.reduce_mod(&val), ints(&val)) else {
+                            return None;
+                        };
+                        if !fb.span.push(v) {
+                            return None;
+                        }
+                        fb.vecs.push(n);
+                        fb.cols.push(Col {
+                            h: *h,
+                            angle: Small::new(2 * k, l),
+                            imag: imag == 1,
+                        });
+                    }
+                }
+            }
+            let full = if real { f.phi / 2 } else { f.phi };
+            let mut j = 0;
+            while fb.span.rank() < full {
+                if j >= f.phi.max(w as usize) {
+                    return None;
+                }
+                let (v, val) = if real {
+                    let e = j as u64;
+                    let mut c = mono(e, Rat::new(1.into(), 2.into()));
+                    *c.entry((w - e) % w).or_insert_with(Rat::zero) += Rat::new(1.into(), 2.into());
+                    (f.reduce_mod(&c)?, ints(&c)?)
+                } else {
+                    let mut v = vec![0u64; f.phi];
+                    v[j] = 1;
+                    let pos = f.kept[j];
+                    let e = f.slot.iter().position(|s| *s == pos).expect("a slot") as u64;
+                    (v, vec![(e, 2)])
+                };
+                if fb.span.push(v) {
+                    fb.vecs.push(val);
+                }
+                j += 1;
+            }
+            Some(fb)
+        }
+
+        /// `Unit::value` as it was.
+        fn value(u: &Unit, f: &Field, real: bool) -> Sparse {
+            let (w, a) = (f.w, u.a);
+            let half = Rat::new(1.into(), 2.into());
+            let trig = match (real, u.kind) {
+                (true, UNIT_ONE) => mono(0, Rat::one()),
+                (true, UNIT_COS) => {
+                    let mut s = mono(a, half.clone());
+                    *s.entry((w - a) % w).or_insert_with(Rat::zero) += half;
+                    s
+                }
+                (true, _) => {
+                    let q4 = 3 * w / 4;
+                    let mut s = mono((a + q4) % w, half.clone());
+                    *s.entry((w - a + q4) % w).or_insert_with(Rat::zero) -= half;
+                    s
+                }
+                (false, UNIT_COS) => mono(a, Rat::one()),
+                (false, _) => mono((a + 3 * w / 4) % w, Rat::one()),
+            };
+            let mut out = sparse_mul(f.sqrt(u.h), &trig, w);
+            out.retain(|_, c| !c.is_zero());
+            out
+        }
+
+        /// `FastBasis::unit_coords` as it was.
+        pub(super) fn unit(b: &Old, f: &Field, u: Unit, real: bool) -> Option<QCoords> {
+            let t = value(&u, f, real);
+            f.reduce_mod(&t)
+                .and_then(|v| b.span.solve(v))
+                .and_then(|xs| {
+                    xs.iter()
+                        .enumerate()
+                        .filter(|(_, x)| **x != 0)
+                        .map(|(j, x)| reconstruct(*x).map(|r| (j, r)))
+                        .collect::<Option<Vec<(usize, Rat)>>>()
+                })
+                .filter(|xs| f.combination_is(xs, &b.vecs, &t) == Some(true))
+                .map(|xs| xs.iter().map(|(j, c)| (*j, Q::from(c))).collect())
+        }
+    }
+
+    /// The machine-word basis is the `BigRational` one (columns, their exact values, the
+    /// span's rank), and so are the coordinates of units (every unit of the smaller fields,
+    /// a sample of the larger ones'), for every field of degree up to 96 and every subfield
+    /// level, real and complex.
+    #[test]
+    fn machine_word_bases_and_units_are_the_big_ones() {
+        let (mut bases, mut units, mut shown) = (0, 0, 0);
+        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for w in (24..=24 * 30).step_by(24) {
+            if totient(w) > 96 {
+                continue;
+            }
+            let f = Field::new(w).expect("field");
+            for m in (24..=w).step_by(24).filter(|m| w.is_multiple_of(*m)) {
+                for real in [true, false] {
+                    let fast = FastBasis::new(&f, m, real)
+                        .expect("budget")
+                        .expect("checked");
+                    let old = big::basis(&f, m, real).expect("checked");
+                    assert_eq!(key(&fast.cols), key(&old.cols), "W = {w}, M = {m}, {real}");
+                    assert_eq!(fast.vecs, old.vecs, "W = {w}, M = {m}, {real}");
+                    assert_eq!(fast.span.rank(), old.span.rank());
+                    bases += 1;
+                    let all = f.sqrts.len() * w as usize * 3;
+                    for i in 0..all.min(600) {
+                        let i = if all <= 600 { i } else { next() as usize % all };
+                        let (h, a, kind) = (
+                            f.sqrts[i / (3 * w as usize)].0,
+                            (i / 3) as u64 % w,
+                            (i % 3) as u8,
+                        );
+                        let u = Unit { h, a, kind };
+                        let new = fast.unit_coords(&f, u, real).expect("budget");
+                        let new = new.map(|c| c.as_ref().clone());
+                        let reference = big::unit(&old, &f, u, real);
+                        assert_eq!(new, reference, "W = {w}, M = {m}, {real}, {h} {a} {kind}");
+                        units += 1;
+                        shown += usize::from(new.is_some_and(|c| !c.is_empty()));
+                    }
+                }
+            }
+        }
+        assert!(
+            bases > 40 && units > 20_000 && shown > 10_000,
+            "{bases} {units} {shown}"
+        );
+    }
 
     fn key(cols: &[Col]) -> Vec<(u64, Small, bool)> {
         cols.iter().map(|c| (c.h, c.angle, c.imag)).collect()

@@ -21,8 +21,45 @@ use std::sync::{Arc, OnceLock};
 /// An element of `Q(zeta_W)` as a sum of powers of `zeta_W` (exponents mod `W`).
 pub(super) type Sparse = BTreeMap<u64, Rat>;
 
-/// The same with integer coefficients, doubled (every basis vector is in `Z[zeta_W] / 2`).
+/// The same with integer coefficients, doubled (every basis vector is in `Z[zeta_W] / 2`): by
+/// increasing exponent, no zero coefficient. The fast path computes in this form (machine
+/// words: a `BigRational` per coefficient made the bases cost 2.4 M instructions of the
+/// Jaco-style arm's `fk --jacobian`).
 pub(super) type Ints = Vec<(u64, i64)>;
+
+/// The same with integer coefficients, not doubled (the square roots of [`Field::roots`]).
+pub(super) type Integral = Vec<(u64, i64)>;
+
+/// The most a coefficient of [`Field::roots`] may be in size: a product by a value of at most
+/// two terms with doubled coefficients of size at most 2 (a candidate, a unit's trigonometric
+/// part) then has doubled coefficients below `2^62`, in `i64` (each exponent of the product
+/// is met once per term of that value).
+const ROOT_BOUND: i64 = 1 << 60;
+
+/// `a b` for `a` with integer coefficients and `b` doubled: the product, doubled. `None` when a
+/// coefficient leaves `i64` (never for `a` a root of [`Field::roots`] and `b` of at most two
+/// terms of size at most 2: see [`ROOT_BOUND`]).
+pub(super) fn ints_mul(a: &[(u64, i64)], b: &[(u64, i64)], w: u64) -> Option<Ints> {
+    let mut acc = vec![0i128; w as usize];
+    for (i, x) in a {
+        for (j, y) in b {
+            let t = &mut acc[((i + j) % w) as usize];
+            *t = t.checked_add(i128::from(*x) * i128::from(*y))?;
+        }
+    }
+    acc.iter()
+        .enumerate()
+        .filter(|(_, c)| **c != 0)
+        .map(|(e, c)| i64::try_from(*c).ok().map(|c| (e as u64, c)))
+        .collect()
+}
+
+/// The value of doubled coefficients (the exact path's form).
+pub(super) fn halves(s: &Ints) -> Sparse {
+    s.iter()
+        .map(|(e, c2)| (*e, Rat::new((*c2).into(), 2.into())))
+        .collect()
+}
 
 pub(super) fn sparse_mul(a: &Sparse, b: &Sparse, w: u64) -> Sparse {
     let mut out = Sparse::new();
@@ -68,6 +105,12 @@ pub(super) struct Field {
     pub(super) allowed: Vec<u64>,
     /// Every square-free product `h` of allowed primes with `sqrt(h)`.
     pub(super) sqrts: Vec<(u64, Sparse)>,
+    /// The same square roots (in the same order) in machine words, for the fast path. Their
+    /// coefficients are `0` and `+-1` (a product of Gauss sums of coprime orders, the `i` of a
+    /// prime `3 mod 4` a shift: every exponent of the product is met once), so this is never
+    /// `None`; were a coefficient past [`ROOT_BOUND`], the fast path would leave the field to
+    /// the exact one.
+    pub(super) roots: Option<Vec<Integral>>,
 }
 
 pub(super) fn legendre(a: u64, p: u64) -> i64 {
@@ -188,6 +231,17 @@ impl Field {
             sqrts.extend(more);
         }
         sqrts.sort_by_key(|(h, _)| *h);
+        let roots = sqrts
+            .iter()
+            .map(|(_, s)| {
+                s.iter()
+                    .map(|(e, c)| {
+                        let c = c.is_integer().then(|| c.to_integer().to_i64()).flatten()?;
+                        (c.abs() <= ROOT_BOUND).then_some((*e, c))
+                    })
+                    .collect::<Option<Integral>>()
+            })
+            .collect();
         Some(Field {
             w,
             phi,
@@ -198,6 +252,7 @@ impl Field {
             kept,
             allowed,
             sqrts,
+            roots,
         })
     }
 
@@ -279,7 +334,21 @@ impl Field {
         Some(())
     }
 
+    /// `s` (doubled) in the tensor basis modulo [`modp::P`]: the residues
+    /// `Field::reduce_mod` (the tests' reference) gives its value.
+    pub(super) fn reduce_mod_ints(&self, s: &Ints) -> Vec<u64> {
+        let mut a = vec![0u64; self.w as usize];
+        for (e, c2) in s {
+            let t = &mut a[self.slot[*e as usize] as usize];
+            *t = modp::add(*t, modp::from_doubled(*c2));
+        }
+        // Subtraction modulo `P` never fails.
+        let _ = self.crt_reduce(&mut a, 0, |x, y| Some(modp::sub(x, y)));
+        self.kept.iter().map(|&k| a[k as usize]).collect()
+    }
+
     /// `s` in the tensor basis modulo [`modp::P`]; `None` when `P` divides a denominator.
+    #[cfg(test)]
     pub(super) fn reduce_mod(&self, s: &Sparse) -> Option<Vec<u64>> {
         let mut a = vec![0u64; self.w as usize];
         for (e, c) in s {
@@ -326,6 +395,51 @@ impl Field {
         Some(acc.iter().all(|a| *a == 0))
     }
 
+    /// [`Field::combination_is`] for coordinates `x_j = n / d` in machine words (reduced,
+    /// `d > 0`) and a doubled `t`, in 128 bits: the same products and sums, each overflowing
+    /// exactly when the big-integer ones leave `i128` there. Only the common denominator `d`
+    /// is formed differently (past `i128` the big-integer route decides).
+    pub(super) fn combination_is_ints(
+        &self,
+        xs: &[(usize, (i64, i64))],
+        vs: &[Ints],
+        t: &Ints,
+    ) -> Option<bool> {
+        // `t`'s denominators (1 and 2) divide the 2 `d` starts at.
+        let mut d: i128 = 2;
+        for (_, (_, den)) in xs {
+            let den = i128::from(*den);
+            let g = super::super::q::gcd_u64(den as u64, (d % den) as u64);
+            match (d / i128::from(g)).checked_mul(den) {
+                Some(l) => d = l,
+                None => {
+                    let xs: Vec<(usize, Rat)> = xs
+                        .iter()
+                        .map(|(j, (n, den))| (*j, Rat::new((*n).into(), (*den).into())))
+                        .collect();
+                    return self.combination_is(&xs, vs, &halves(t));
+                }
+            }
+        }
+        let mut acc = vec![0i128; self.w as usize];
+        for (j, (n, den)) in xs {
+            // `n (d / den)`: the big-integer route's `d x`, `None` where its `to_i128` was.
+            let k = i128::from(*n).checked_mul(d / i128::from(*den))?;
+            for (e, c2) in &vs[*j] {
+                let a = &mut acc[self.slot[*e as usize] as usize];
+                *a = a.checked_add(k.checked_mul(i128::from(*c2))?)?;
+            }
+        }
+        for (e, c2) in t {
+            // `(2 d) c = d c2` for `c = c2 / 2`.
+            let k = i128::from(*c2).checked_mul(d)?;
+            let a = &mut acc[self.slot[*e as usize] as usize];
+            *a = a.checked_sub(k)?;
+        }
+        self.crt_reduce(&mut acc, 0, |x, y| x.checked_sub(y))?;
+        Some(acc.iter().all(|a| *a == 0))
+    }
+
     pub(super) fn sqrt(&self, h: u64) -> &Sparse {
         let i = self
             .sqrts
@@ -346,6 +460,7 @@ impl Field {
 }
 
 /// The exact value of a column, doubled into integers (`None` past `i64`).
+#[cfg(test)]
 pub(super) fn ints(s: &Sparse) -> Option<Ints> {
     s.iter()
         .map(|(e, c)| {
@@ -429,6 +544,148 @@ mod fork_tests {
                 !std::ptr::eq(own, parents) && p7 == product && p7 == s7 && p11 == s11
             },
             move || drop(held),
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rng(seed: u64) -> impl FnMut() -> u64 {
+        let mut x = seed;
+        move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        }
+    }
+
+    /// The machine-word product is the `BigRational` one doubled, for random sparse values
+    /// of every size of coefficient up to the end of `i64` (`None` exactly when a doubled
+    /// coefficient of the product leaves it).
+    #[test]
+    fn machine_word_products_are_the_big_ones() {
+        let mut next = rng(0x1234_5678_9abc_def1);
+        let (mut some, mut none) = (0, 0);
+        for i in 0..4000 {
+            let w = 24 * (1 + next() % 6);
+            let bits = [2, 20, 40, 62][i % 4];
+            let coef = |n: &mut dyn FnMut() -> u64| (n() % (1 << bits)) as i64 - (1 << (bits - 1));
+            let a: Integral = (0..1 + next() % 12)
+                .map(|_| (next() % w, coef(&mut next)))
+                .collect::<BTreeMap<_, _>>()
+                .into_iter()
+                .collect();
+            let b: Ints = (0..1 + next() % 3)
+                .map(|_| (next() % w, coef(&mut next)))
+                .collect::<BTreeMap<_, _>>()
+                .into_iter()
+                .collect();
+            let ra: Sparse = a
+                .iter()
+                .map(|(e, c)| (*e, Rat::from_integer((*c).into())))
+                .collect();
+            let reference = ints(&sparse_mul(&ra, &halves(&b), w));
+            let product = ints_mul(&a, &b, w);
+            assert_eq!(product, reference, "{a:?} {b:?}");
+            if product.is_some() {
+                some += 1;
+            } else {
+                none += 1;
+            }
+        }
+        assert!(some > 1500 && none > 200, "{some} {none}");
+    }
+
+    /// The machine-word check of a combination is the big-integer one, for random
+    /// coordinates (small and large denominators: their common multiple past `i128` too),
+    /// random doubled vectors and targets that are the combination or are not.
+    #[test]
+    fn machine_word_combinations_are_the_big_ones() {
+        let mut next = rng(0x0ddb_a11c_afe0_0042);
+        let f = Field::new(72).expect("field");
+        let primes = [
+            1_000_003i64,
+            998_244_353,
+            1_000_000_007,
+            1_073_741_789,
+            999_999_937,
+        ];
+        let mut seen = BTreeMap::new();
+        for i in 0..3000 {
+            let n = 1 + next() as usize % 6;
+            let vs: Vec<Ints> = (0..n)
+                .map(|_| {
+                    (0..1 + next() % 5)
+                        .map(|_| (next() % 72, (next() % 9) as i64 - 4))
+                        .collect::<BTreeMap<_, _>>()
+                        .into_iter()
+                        .filter(|(_, c)| *c != 0)
+                        .collect()
+                })
+                .collect();
+            let xs: Vec<(usize, (i64, i64))> = (0..n)
+                .map(|j| {
+                    let d = match i % 3 {
+                        0 => 1 + (next() % 4) as i64,
+                        1 => primes[next() as usize % primes.len()],
+                        _ => 1 + (next() % (1 << 29)) as i64,
+                    };
+                    let q = Rat::new(((next() % (1 << 20)) as i64 - (1 << 19)).into(), d.into());
+                    let (n, d) = (
+                        q.numer().to_i64().expect("small"),
+                        q.denom().to_i64().expect("small"),
+                    );
+                    (j, (n, d))
+                })
+                .filter(|(_, (n, _))| *n != 0)
+                .collect();
+            // The combination's value, doubled where it is in Z / 2; perturbed every other time.
+            let mut sum: Sparse = Sparse::new();
+            for (j, (n, d)) in &xs {
+                for (e, c2) in &vs[*j] {
+                    *sum.entry(*e).or_insert_with(Rat::zero) +=
+                        Rat::new((*n).into(), (*d).into()) * Rat::new((*c2).into(), 2.into());
+                }
+            }
+            let mut t: Ints = sum
+                .iter()
+                .filter(|(_, c)| !c.is_zero())
+                .map(|(e, c)| {
+                    (
+                        *e,
+                        (c * Rat::from_integer(2.into()))
+                            .round()
+                            .to_integer()
+                            .to_i64()
+                            .unwrap_or(1),
+                    )
+                })
+                .filter(|(_, c)| *c != 0)
+                .collect();
+            if i % 2 == 1 {
+                t.push((71, 1 + (next() % 3) as i64));
+                t = t
+                    .into_iter()
+                    .collect::<BTreeMap<_, _>>()
+                    .into_iter()
+                    .collect();
+            }
+            let big: Vec<(usize, Rat)> = xs
+                .iter()
+                .map(|(j, (n, d))| (*j, Rat::new((*n).into(), (*d).into())))
+                .collect();
+            let reference = f.combination_is(&big, &vs, &halves(&t));
+            let small = f.combination_is_ints(&xs, &vs, &t);
+            assert_eq!(small, reference, "{xs:?} {vs:?} {t:?}");
+            *seen.entry(format!("{small:?}")).or_insert(0) += 1;
+        }
+        // Some answers of every kind: shown, refuted, and overflowing (undecided).
+        assert!(
+            seen.len() == 3 && seen.values().all(|n| *n > 50),
+            "{seen:?}"
         );
     }
 }
