@@ -291,18 +291,45 @@ impl Expr {
     /// The expression with every placeholder symbol `cos(x)` / `sin(x)` of a
     /// [`Scalar::to_cos_sin_polynomial`] form replaced by the cosine or sine of `x`.
     pub fn with_placeholders_as_trig(self) -> Expr {
+        self.placeholders_as_trig(&mut Vec::new())
+    }
+
+    /// [`Expr::with_placeholders_as_trig`], each distinct symbol read once: `seen` holds each
+    /// symbol met so far (by its interned address) with the call it stands for, if any (a
+    /// symbolic 6R's recurrence: 4,712 placeholders of a few dozen names, each parsed and its
+    /// angle's symbol interned again).
+    fn placeholders_as_trig(self, seen: &mut Vec<(usize, Option<(Trig, Sym)>)>) -> Expr {
         match self {
-            Expr::Sym(s) => match crate::scalar::parse_trig_placeholder(s.name()) {
-                Some((x, f)) => Expr::Trig {
-                    f,
-                    angle: Angle::of_symbol(Sym::new(x)),
-                },
-                None => Expr::Sym(s),
-            },
-            Expr::Add(v) => Expr::Add(v.into_iter().map(Expr::with_placeholders_as_trig).collect()),
-            Expr::Mul(v) => Expr::Mul(v.into_iter().map(Expr::with_placeholders_as_trig).collect()),
-            Expr::Neg(e) => Expr::Neg(Box::new(e.with_placeholders_as_trig())),
-            Expr::Pow(e, n) => Expr::Pow(Box::new(e.with_placeholders_as_trig()), n),
+            Expr::Sym(s) => {
+                let call = match seen.iter().find(|(a, _)| *a == s.addr()) {
+                    Some((_, call)) => call.clone(),
+                    None => {
+                        let call = crate::scalar::parse_trig_placeholder(s.name())
+                            .map(|(x, f)| (f, Sym::new(x)));
+                        seen.push((s.addr(), call.clone()));
+                        call
+                    }
+                };
+                match call {
+                    Some((f, x)) => Expr::Trig {
+                        f,
+                        angle: Angle::of_symbol(x),
+                    },
+                    None => Expr::Sym(s),
+                }
+            }
+            Expr::Add(v) => Expr::Add(
+                v.into_iter()
+                    .map(|e| e.placeholders_as_trig(seen))
+                    .collect(),
+            ),
+            Expr::Mul(v) => Expr::Mul(
+                v.into_iter()
+                    .map(|e| e.placeholders_as_trig(seen))
+                    .collect(),
+            ),
+            Expr::Neg(e) => Expr::Neg(Box::new(e.placeholders_as_trig(seen))),
+            Expr::Pow(e, n) => Expr::Pow(Box::new(e.placeholders_as_trig(seen)), n),
             e => e,
         }
     }
@@ -828,6 +855,66 @@ mod tests {
             }
         }
         Angle::new(terms, g.pick(&halves), g.pick(&halves))
+    }
+
+    /// Placeholders read once per symbol are the placeholders read at every node (the route
+    /// before, kept here): random sums, products, negations and powers of placeholders
+    /// (`cos(q1)`, `sin(theta12)`), plain symbols and names that only look alike (`cos(`,
+    /// `tan(q1)`, `cos(q1)x`), each repeated many times.
+    #[test]
+    fn placeholders_read_once_are_those_read_everywhere() {
+        fn everywhere(e: Expr) -> Expr {
+            match e {
+                Expr::Sym(s) => match crate::scalar::parse_trig_placeholder(s.name()) {
+                    Some((x, f)) => Expr::Trig {
+                        f,
+                        angle: Angle::of_symbol(Sym::new(x)),
+                    },
+                    None => Expr::Sym(s),
+                },
+                Expr::Add(v) => Expr::Add(v.into_iter().map(everywhere).collect()),
+                Expr::Mul(v) => Expr::Mul(v.into_iter().map(everywhere).collect()),
+                Expr::Neg(e) => Expr::Neg(Box::new(everywhere(*e))),
+                Expr::Pow(e, n) => Expr::Pow(Box::new(everywhere(*e)), n),
+                e => e,
+            }
+        }
+        let names = [
+            "cos(q1)",
+            "sin(q1)",
+            "cos(theta12)",
+            "sin(a2)",
+            "l1",
+            "q1",
+            "cos(",
+            "tan(q1)",
+            "cos(q1)x",
+            "sin()",
+        ];
+        fn random(g: &mut Gen, names: &[&str], depth: u32) -> Expr {
+            if depth == 0 || g.pick(&[0, 1, 2]) == 0 {
+                return Expr::Sym(Sym::new(g.pick(names)));
+            }
+            let n = g.pick(&[1usize, 2, 3]);
+            let v: Vec<Expr> = (0..n).map(|_| random(g, names, depth - 1)).collect();
+            match g.pick(&[0, 1, 2, 3]) {
+                0 => Expr::Add(v),
+                1 => Expr::Mul(v),
+                2 => Expr::Neg(Box::new(Expr::Add(v))),
+                _ => Expr::Pow(Box::new(Expr::Mul(v)), 2),
+            }
+        }
+        let mut g = Gen(0x9e37_79b9_7f4a_7c15);
+        let mut calls_seen = 0;
+        for _ in 0..300 {
+            let e = random(&mut g, &names, 4);
+            let (a, b) = (e.clone().with_placeholders_as_trig(), everywhere(e));
+            let mut c = Vec::new();
+            calls(&a, &mut c);
+            calls_seen += c.len();
+            assert_eq!(a, b);
+        }
+        assert!(calls_seen > 300, "{calls_seen}");
     }
 
     /// The calls of `e` (with the sign of each left out).
