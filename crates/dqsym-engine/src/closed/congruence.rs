@@ -66,9 +66,10 @@ fn ext_gcd(a: i64, b: i64) -> (i64, i64, i64) {
 }
 
 /// `v` modulo `m` (`m >= 1`), in `[0, m)`: in machine words when `v` fits in one (the common
-/// case: the residues and moduli of `closed::offsets` are far below 2^31, so a product of two
-/// fits), the same value as the remainder in 128 bits (one instruction in place of a call to
-/// the 128-bit division routine, which was ~1% of the Jaco-style arm's `fk --jacobian`).
+/// case: the moduli of `closed::offsets`' systems are usually far below 2^31, so a product of
+/// two residues fits), the same value as the remainder in 128 bits (one division instruction
+/// in place of a call to the 128-bit division routine: 0.85% of the Jaco-style arm's
+/// `fk --jacobian`, mostly eliminations).
 pub(super) fn md(v: i128, m: i64) -> i64 {
     match i64::try_from(v) {
         Ok(w) => w.rem_euclid(m),
