@@ -562,11 +562,18 @@ fn system(
     let mut a: Vec<Vec<i64>> = Vec::with_capacity(rational.len());
     let mut b: Vec<i64> = Vec::with_capacity(rational.len());
     for (coef, rhs, m) in &rational {
-        let scale = i128::from(modulus) / times_l((*m.numer(), *m.denom()));
-        // No product leaves i128 unnoticed: a numerator past ~2^47 gives no system.
-        let int = |q: (i64, i64)| -> Option<i64> {
-            let v = times_l(q).checked_mul(scale)?;
-            Some(v.rem_euclid(i128::from(modulus)) as i64)
+        // `L m` fits in a machine word (checked above, as `mg`): the quotient in words is the
+        // quotient in 128 bits, without the call to the 128-bit division routine.
+        let scale = modulus / i64::try_from(times_l((*m.numer(), *m.denom()))).ok()?;
+        // No product leaves i128 unnoticed: a numerator past ~2^47 gives no system. In machine
+        // words when every product fits in one (the same integer, and the same remainder as
+        // in 128 bits: `congruence::md`), else in 128 bits.
+        let int = |(p, q): (i64, i64)| -> Option<i64> {
+            if let Some(v) = p.checked_mul(l / q).and_then(|v| v.checked_mul(scale)) {
+                return Some(v.rem_euclid(modulus));
+            }
+            let v = times_l((p, q)).checked_mul(i128::from(scale))?;
+            Some(super::congruence::md(v, modulus))
         };
         a.push(coef.iter().map(|q| int(*q)).collect::<Option<_>>()?);
         b.push(int((*rhs.numer(), *rhs.denom()))?);
@@ -755,15 +762,16 @@ fn representatives(
     // The number of cosine and sine parts of the shifted scalar, and of negative ones, added
     // to `start`; `None` once the parts pass `bound` (the parts of the best solution so far:
     // the parts come first in the order of solutions, and they only grow group by group, so
-    // such a solution is never taken, and the rest of its groups need not be looked at). With
-    // `only = (done, lo, hi)`, of the groups `g` with `lo <= done[g] <= hi` alone. With
+    // such a solution is never taken, and the rest of its groups need not be looked at). Of
+    // the groups `only` alone (in increasing order; listed once per run for the solutions,
+    // not skipped group by group for each: see `listed`). With
     // `after`, the number of groups past each `g` among those that give a part whatever their
     // phase (see [`surely_a_part`]): `None` as soon as the parts so far and those pass
     // `bound`, which the parts at the end then do.
     let mut score = |o: &[Small],
                      start: (usize, usize),
                      bound: usize,
-                     only: Option<(&[usize], usize, usize)>,
+                     only: &[usize],
                      after: Option<&[usize]>|
      -> Option<(usize, usize)> {
         if let Some(after) = after {
@@ -774,10 +782,8 @@ fn representatives(
         scored += 1;
         let o_den = scale_offsets(o, &mut scaled_o);
         let (mut parts, mut neg) = start;
-        for (g, (i, (re, im))) in row_freq.iter().zip(&amps).enumerate() {
-            if only.is_some_and(|(done, lo, hi)| done[g] < lo || done[g] > hi) {
-                continue;
-            }
+        for &g in only {
+            let (i, (re, im)) = (&row_freq[g], &amps[g]);
             #[cfg(test)]
             tests::GROUPS_SCORED.with(|n| n.set(n.get() + 1));
             if stamp[*i] != scored {
@@ -851,6 +857,16 @@ fn representatives(
                 let sure = done[g] >= varying && surely_a_part(amps[g]);
                 after[g] = after[g + 1] + usize::from(sure);
             }
+            // The groups scored for each solution (`done[g] >= varying`; `done[g]` is at most
+            // the number of free symbols), and a buffer for those of a prefix or of the
+            // constant ones (`lo <= done[g] <= hi`), in increasing order as they were met when
+            // `score` went through every group and skipped the others.
+            let listed: Vec<usize> = (0..groups.len()).filter(|g| done[*g] >= varying).collect();
+            let mut some: Vec<usize> = Vec::with_capacity(groups.len());
+            let among = |lo: usize, hi: usize, out: &mut Vec<usize>| {
+                out.clear();
+                out.extend((0..groups.len()).filter(|g| (lo..=hi).contains(&done[*g])));
+            };
             let complete = solve(sys, fixed, true, &mut |node| {
                 let (solution, prefix) = match node {
                     Offered::Solution(raw) => (raw, None),
@@ -870,8 +886,8 @@ fn representatives(
                     } else {
                         set
                     };
-                    let (parts, neg) = score(&o, (0, 0), usize::MAX, Some((&done, lo, set)), None)
-                        .unwrap_or((0, 0));
+                    among(lo, set, &mut some);
+                    let (parts, neg) = score(&o, (0, 0), usize::MAX, &some, None).unwrap_or((0, 0));
                     let before = if lo == 0 { (0, 0) } else { known[set - 1] };
                     known[set] = (before.0 + parts, before.1 + neg);
                     // A head no solution under the prefix is below (see `completions`): above
@@ -912,13 +928,13 @@ fn representatives(
                 };
                 let start = if cut {
                     *constant.get_or_insert_with(|| {
-                        score(&o, (0, 0), usize::MAX, Some((&done, 0, 0)), None).unwrap_or((0, 0))
+                        among(0, 0, &mut some);
+                        score(&o, (0, 0), usize::MAX, &some, None).unwrap_or((0, 0))
                     })
                 } else {
                     (0, 0)
                 };
-                let only = Some((&done[..], varying, sys.free.len()));
-                let Some((parts, neg)) = score(&o, start, bound, only, cut.then_some(&after))
+                let Some((parts, neg)) = score(&o, start, bound, &listed, cut.then_some(&after))
                 else {
                     return seen < MAX_SOLUTIONS;
                 };
@@ -1115,8 +1131,20 @@ impl Shift {
         let terms = x.terms().ok()?;
         let mut moved: Vec<Term> = Vec::with_capacity(terms.len() + terms.len() / 2);
         let mut settled = true;
+        // The phase of the last frequency vector met: the terms come sorted by (sine, vector),
+        // so the terms of one vector follow each other, and `f . o` (a lookup of each symbol
+        // and a sum of rationals) is computed once for them. The same vector gives the same
+        // phase, so each term moves as it did with its own.
+        let mut last: Option<(&[(Sym, Small)], Small)> = None;
         for t in terms {
-            let d = self.phase(&t.mode.freq);
+            let d = match last {
+                Some((f, d)) if crate::scalar::atoms::freq_cmp(f, &t.mode.freq).is_eq() => d,
+                _ => {
+                    let d = self.phase(&t.mode.freq);
+                    last = Some((&t.mode.freq, d));
+                    d
+                }
+            };
             if d.is_zero() {
                 moved.push(t.clone());
                 continue;
