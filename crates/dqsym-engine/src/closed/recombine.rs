@@ -571,6 +571,21 @@ pub(crate) fn recombine_traced(
 
 /// The rounds of [`recombine_traced`], beginning with `pass` (with [`Pass::Low`], its rounds
 /// until nothing joins, then the all-pairs rounds).
+///
+/// Incremental rounds were tried and do not pay. Two monomials that a round leaves unused and
+/// that `merge` leaves unchanged cannot join in the next round: the round goes through every
+/// group that pairs, and when it comes to one, each still unused monomial looks for an unused
+/// partner of the other kind with `q` equal or opposite (monomials only ever become used), so
+/// two such monomials sharing a group would not both have been left; their keys agree in the
+/// next round exactly when they did (the renumbering is one to one, the cofactor ranks rank
+/// the same `(rad, syms)`), their kinds stay different and their `q` the same. (The low pass
+/// is the exception: a renumbering can change which two atoms come first.) So only groups
+/// with a new or merged monomial need forming; but on `fk --jacobian
+/// tests/data/jaco_style.toml` 4,790 of the 4,892 monomials of the 247 rounds are new or
+/// merged (nearly every monomial joins in each round), 22,024 of the 22,420 pairs theirs,
+/// and the groups that only old monomials form were 54 of 9,702 entries kept: marking the
+/// new monomials through `merge` and a third bit set in [`groups`] cost 125.21 M instructions
+/// against 124.51 M.
 fn rounds(
     ctx: &mut Ctx,
     mut mons: Vec<Mon>,
