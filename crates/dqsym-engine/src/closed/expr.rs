@@ -46,6 +46,14 @@ impl PartialOrd for Angle {
     }
 }
 
+/// Each symbol met (by its interned address) with the call it stands for as a placeholder,
+/// if any (see [`Expr::with_placeholders_as_trig`]).
+type SymCalls = std::collections::HashMap<
+    usize,
+    Option<(Trig, Sym)>,
+    std::hash::BuildHasherDefault<crate::scalar::FxHasher>,
+>;
+
 impl Angle {
     /// The angle `terms + constant + pi * pi` (`terms` sorted by symbol, nonzero, without
     /// `pi` or the constant 1 of a frequency vector).
@@ -291,25 +299,23 @@ impl Expr {
     /// The expression with every placeholder symbol `cos(x)` / `sin(x)` of a
     /// [`Scalar::to_cos_sin_polynomial`] form replaced by the cosine or sine of `x`.
     pub fn with_placeholders_as_trig(self) -> Expr {
-        self.placeholders_as_trig(&mut Vec::new())
+        self.placeholders_as_trig(&mut SymCalls::default())
     }
 
     /// [`Expr::with_placeholders_as_trig`], each distinct symbol read once: `seen` holds each
     /// symbol met so far (by its interned address) with the call it stands for, if any (a
     /// symbolic 6R's recurrence: 4,712 placeholders of a few dozen names, each parsed and its
     /// angle's symbol interned again).
-    fn placeholders_as_trig(self, seen: &mut Vec<(usize, Option<(Trig, Sym)>)>) -> Expr {
+    fn placeholders_as_trig(self, seen: &mut SymCalls) -> Expr {
         match self {
             Expr::Sym(s) => {
-                let call = match seen.iter().find(|(a, _)| *a == s.addr()) {
-                    Some((_, call)) => call.clone(),
-                    None => {
-                        let call = crate::scalar::parse_trig_placeholder(s.name())
-                            .map(|(x, f)| (f, Sym::new(x)));
-                        seen.push((s.addr(), call.clone()));
-                        call
-                    }
-                };
+                let call = seen
+                    .entry(s.addr())
+                    .or_insert_with(|| {
+                        crate::scalar::parse_trig_placeholder(s.name())
+                            .map(|(x, f)| (f, Sym::new(x)))
+                    })
+                    .clone();
                 match call {
                     Some((f, x)) => Expr::Trig {
                         f,

@@ -554,7 +554,9 @@ fn find_factors(exps: &[Vec<Small>], ws: &[Wave], n: usize) -> Vec<(Vec<Small>, 
         }
         // No phase of a direction along which an exponent is alone on its line can carry a
         // factor (proof in `lines.rs`); its charge above is kept, so that the budget is spent
-        // as before.
+        // as before. Only a false zero of the float test there (see `lines.rs`) was listed
+        // before and is not now: its division's charge and its place among the first
+        // `MAX_FACTORS` entries go with it.
         if lines.as_ref().is_some_and(|l| l.lonely_along(&d)) {
             continue;
         }

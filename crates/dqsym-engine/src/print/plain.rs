@@ -259,8 +259,9 @@ type CallSet<'a> =
 /// A call as a set key: equal as its function and angle are, hashed by the words of its
 /// angle (each symbol's interned address, each coefficient's numerator and denominator), not
 /// by `Angle`'s derived hash, which hashes each name's text and each rational by its
-/// continued fraction. Equal coefficients in lowest terms have equal words; an unreduced one
-/// would only be named twice, and the legend's sorted set keeps one entry.
+/// continued fraction. Equality is `Angle`'s (rationals by value), so the hash agrees with it
+/// because every `Small` is kept in lowest terms (the invariant `atoms.rs`'s frequency hashes
+/// rely on too): equal values, equal words.
 #[derive(PartialEq, Eq)]
 struct Call<'a>(Trig, &'a Angle);
 

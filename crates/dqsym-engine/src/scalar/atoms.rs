@@ -53,13 +53,14 @@ fn one_name() -> &'static str {
 /// placeholder and renamed symbol of its closed forms (a fully symbolic 6R's `fk --jacobian`:
 /// 10,963 calls, 3.3 M instructions, 3% of the report, in the lock and std's SipHash of the
 /// shared set). What a thread remembers is what the shared set returned, so a name has one
-/// allocation whichever thread asks.
+/// allocation whichever thread asks. A thread whose locals are being destroyed (a symbol made
+/// in another thread-local's destructor) asks the shared set alone.
 fn interned(name: &str) -> &'static str {
-    if let Some(n) = SEEN.with(|seen| seen.borrow().get(name).copied()) {
+    if let Ok(Some(n)) = SEEN.try_with(|seen| seen.borrow().get(name).copied()) {
         return n;
     }
     let n = interned_shared(name);
-    SEEN.with(|seen| seen.borrow_mut().insert(n));
+    let _ = SEEN.try_with(|seen| seen.borrow_mut().insert(n));
     n
 }
 

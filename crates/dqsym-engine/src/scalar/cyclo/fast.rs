@@ -34,7 +34,9 @@ impl Unit {
     /// [`ints_mul`]).
     fn value(&self, f: &Field, roots: &[super::field::Integral], real: bool) -> Option<Ints> {
         let (w, a) = (f.w, self.a);
-        let trig: Ints = match (real, self.kind) {
+        // Doubled coefficients, but not an `Ints`: unsorted for a sine, and one exponent twice
+        // for `a = 0` (`ints_mul` sums them into its sorted product).
+        let trig: Vec<(u64, i64)> = match (real, self.kind) {
             (true, UNIT_ONE) => vec![(0, 2)],
             // cos = (zeta^a + zeta^-a) / 2 (the two the same exponent for `a = 0`).
             (true, UNIT_COS) => vec![(a, 1), ((w - a) % w, 1)],

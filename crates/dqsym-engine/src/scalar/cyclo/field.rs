@@ -32,13 +32,15 @@ pub(super) type Integral = Vec<(u64, i64)>;
 
 /// The most a coefficient of [`Field::roots`] may be in size: a product by a value of at most
 /// two terms with doubled coefficients of size at most 2 (a candidate, a unit's trigonometric
-/// part) then has doubled coefficients below `2^62`, in `i64` (each exponent of the product
+/// part) then has doubled coefficients of at most `2^62` in size, in `i64` (each exponent of the product
 /// is met once per term of that value).
 const ROOT_BOUND: i64 = 1 << 60;
 
 /// `a b` for `a` with integer coefficients and `b` doubled: the product, doubled. `None` when a
 /// coefficient leaves `i64` (never for `a` a root of [`Field::roots`] and `b` of at most two
-/// terms of size at most 2: see [`ROOT_BOUND`]).
+/// terms of size at most 2: see [`ROOT_BOUND`]). `b` may be in any order and repeat an
+/// exponent (a unit's trigonometric part at angle 0, or a sine's): the product sums every
+/// pair's term, and is an [`Ints`] (sorted, no zero coefficient) whatever `b`'s order.
 pub(super) fn ints_mul(a: &[(u64, i64)], b: &[(u64, i64)], w: u64) -> Option<Ints> {
     let mut acc = vec![0i128; w as usize];
     for (i, x) in a {
