@@ -224,6 +224,28 @@ impl ModSpan {
     }
 }
 
+/// The reconstruction as it was, in `BigRational`: the reference of the tests of the
+/// machine-word [`reconstruct`] (here and in `cyclo/fast.rs`).
+#[cfg(test)]
+pub(crate) fn reconstruct_big(a: u64) -> Option<Rat> {
+    if a == 0 {
+        return Some(Rat::from_integer(0.into()));
+    }
+    const B: i128 = 1 << 30;
+    let (mut r0, mut r1) = (P as i128, a as i128);
+    let (mut t0, mut t1) = (0i128, 1i128);
+    while r1 >= B {
+        let q = r0 / r1;
+        (r0, r1) = (r1, r0 - q * r1);
+        (t0, t1) = (t1, t0 - q * t1);
+    }
+    if t1 == 0 || t1.abs() >= B {
+        return None;
+    }
+    let x = Rat::new(BigInt::from(r1), BigInt::from(t1));
+    (from_rat(&x) == Some(a)).then_some(x)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -244,26 +266,6 @@ mod tests {
             assert_eq!(back, Some(x));
         }
         assert_eq!(from_rat(&Rat::new(1.into(), BigInt::from(P))), None);
-    }
-
-    /// The reconstruction as it was, in `BigRational` (the reference).
-    fn reconstruct_big(a: u64) -> Option<Rat> {
-        if a == 0 {
-            return Some(Rat::from_integer(0.into()));
-        }
-        const B: i128 = 1 << 30;
-        let (mut r0, mut r1) = (P as i128, a as i128);
-        let (mut t0, mut t1) = (0i128, 1i128);
-        while r1 >= B {
-            let q = r0 / r1;
-            (r0, r1) = (r1, r0 - q * r1);
-            (t0, t1) = (t1, t0 - q * t1);
-        }
-        if t1 == 0 || t1.abs() >= B {
-            return None;
-        }
-        let x = Rat::new(BigInt::from(r1), BigInt::from(t1));
-        (from_rat(&x) == Some(a)).then_some(x)
     }
 
     /// The machine-word reconstruction is the `BigRational` one, numerator and denominator,

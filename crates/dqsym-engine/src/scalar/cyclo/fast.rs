@@ -419,22 +419,7 @@ mod tests {
 
         /// The old reconstruction (`modp::reconstruct` returned a `BigRational`).
         fn reconstruct(a: u64) -> Option<Rat> {
-            if a == 0 {
-                return Some(Rat::zero());
-            }
-            const B: i128 = 1 << 30;
-            let (mut r0, mut r1) = (modp::P as i128, a as i128);
-            let (mut t0, mut t1) = (0i128, 1i128);
-            while r1 >= B {
-                let q = r0 / r1;
-                (r0, r1) = (r1, r0 - q * r1);
-                (t0, t1) = (t1, t0 - q * t1);
-            }
-            if t1 == 0 || t1.abs() >= B {
-                return None;
-            }
-            let x = Rat::new(r1.into(), t1.into());
-            (modp::from_rat(&x) == Some(a)).then_some(x)
+            modp::reconstruct_big(a)
         }
 
         /// The candidates' parts as they were built (the angles and their order are the
