@@ -89,6 +89,18 @@ const NESTED_SHARE: u64 = 16;
 /// `sqrt(5)` coefficients spent the whole default budget of 3,000,000 units in them), so a
 /// candidate of this file can spend at most a bounded share of what is left and never turns a
 /// closed form the other candidates find into a budget error.
+///
+/// Its results are not remembered beyond the memo of one outermost search (`closed/mod.rs`'s
+/// `Memo`, which serves a part asked for again within that search): measured on the `fk --jacobian`
+/// reports of the 16 robots in examples/robots/, the Jaco-style arm and the symbolic 6R and 4R (one
+/// thread), the same part seldom comes back in another outermost search. The Jaco-style arm's 38
+/// nested searches are of 38 distinct scalars; of its 73 closed forms searched inside an outermost
+/// search and not in its memo (8,809 of the report's 95,052 work units), 11 repeat one of another
+/// search exactly (14 units) and 26 up to a rational factor (209 units, and `closed_form(c x)` need
+/// not be `c closed_form(x)`); none is a pose entry. Over the 19 reports: 146 such searches (35,500
+/// units), 36 repeating another's scalar exactly (39 units). A memo across the report (whose hits
+/// would have to replay the work charged and the entries the per-search memo gained) would save at
+/// most about 0.2% of the arm's work.
 pub(super) fn nested_closed_form(x: &Scalar) -> Result<Expr, crate::scalar::ScalarError> {
     let left = crate::scalar::work_left();
     NESTED.with(|n| n.set(n.get() + 1));
