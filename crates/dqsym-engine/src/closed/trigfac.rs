@@ -100,7 +100,10 @@ const NESTED_SHARE: u64 = 16;
 /// not be `c closed_form(x)`); none is a pose entry. Over the 19 reports: 146 such searches (35,500
 /// units), 36 repeating another's scalar exactly (39 units). A memo across the report (whose hits
 /// would have to replay the work charged and the entries the per-search memo gained) would save at
-/// most about 0.2% of the arm's work.
+/// most about 0.2% of the arm's work. Nor does the part of a scalar as given, shifted by its own
+/// offsets, come back as a part of the shifted scalar's search: `prepared_unshifted` of offset-free
+/// scalars inside nested closed forms remembered per outermost search (keyed by the scalar, the
+/// nesting depth and `cspoly::nested_open`) saved 0.13 M of the arm's 119.02 M instructions.
 pub(super) fn nested_closed_form(x: &Scalar) -> Result<Expr, crate::scalar::ScalarError> {
     let left = crate::scalar::work_left();
     NESTED.with(|n| n.set(n.get() + 1));
