@@ -183,10 +183,22 @@ impl Ord for Sym {
         if std::ptr::eq(self.0, other.0) {
             return Ordering::Equal;
         }
+        match self.0.key.cmp(&other.0.key) {
+            Ordering::Equal => self.cmp_texts(other),
+            o => o,
+        }
+    }
+}
+
+impl Sym {
+    /// [`Sym::cmp`] of two symbols whose names share their first eight bytes: out of line, so
+    /// that the comparison inlined into the sorts of terms (through [`Mode::cmp`]) stays two
+    /// word comparisons.
+    #[inline(never)]
+    fn cmp_texts(&self, other: &Self) -> Ordering {
         self.0
-            .key
-            .cmp(&other.0.key)
-            .then_with(|| self.0.text.cmp(other.0.text))
+            .text
+            .cmp(other.0.text)
             .then_with(|| other.is_one().cmp(&self.is_one()))
     }
 }
@@ -380,6 +392,8 @@ pub struct Mode {
 /// Lexicographic by `(sin, freq, pi)`, the frequencies compared entry by entry (symbol by
 /// name, then coefficient by value), shorter first on a common prefix.
 impl Ord for Mode {
+    // Inlined into `Term::key_cmp`, the comparator of every sort of terms.
+    #[inline]
     fn cmp(&self, other: &Self) -> Ordering {
         self.sin
             .cmp(&other.sin)
