@@ -176,8 +176,8 @@ impl Ord for Sym {
     /// has a zero where the other has a byte, nonzero since the words differ, and is a prefix
     /// of it). Names sharing them (`theta1`, `theta2`: the angles of a chain) are compared as
     /// texts. The merges of monomials and the sorts of terms compare symbols by the million,
-    /// where `str::cmp` called `memcmp` (the symbolic 6R's `fk --jacobian`: some 100,000
-    /// calls, 2 M instructions).
+    /// where `str::cmp` called `memcmp` (the symbolic 6R's `fk --jacobian`: 78,000 of its
+    /// 138,000 calls of `memcmp` are gone, 1.7 M instructions).
     #[inline]
     fn cmp(&self, other: &Self) -> Ordering {
         if std::ptr::eq(self.0, other.0) {
