@@ -194,18 +194,16 @@ type Formed = (
     u64,
 );
 
-fn formed(
-    route: fn(
-        &[Term],
-        &[Term],
-        bool,
-        &mut Vec<Term>,
-        Option<&mut ProductTrace>,
-    ) -> Result<(), ScalarError>,
-    x: &[Term],
-    y: &[Term],
-    minus: bool,
-) -> Formed {
+/// A route forming the terms of a product: [`product_terms`] or its reference.
+type Route = fn(
+    &[Term],
+    &[Term],
+    bool,
+    &mut Vec<Term>,
+    Option<&mut ProductTrace>,
+) -> Result<(), ScalarError>;
+
+fn formed(route: Route, x: &[Term], y: &[Term], minus: bool) -> Formed {
     test_hook::reset(None);
     let mut trace = ProductTrace::new(x, y);
     // A term already in `out`, as `sums_of_products` leaves them: indices count on from it.
