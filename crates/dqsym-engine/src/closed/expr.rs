@@ -1051,7 +1051,7 @@ mod tests {
         assert!(!Sym::new("1").is_one());
         assert!(Sym::new("pi").is_pi());
         // No larger than the name's pointer: frequency vectors stay as compact as before.
-        assert_eq!(std::mem::size_of::<Sym>(), std::mem::size_of::<&str>());
+        assert!(std::mem::size_of::<Sym>() <= std::mem::size_of::<&str>());
     }
 
     #[test]

@@ -147,6 +147,14 @@ impl Ctx {
         if let Some((id, _)) = self.by_addr.get(&s.addr()) {
             return *id;
         }
+        self.sym_id_searched(s)
+    }
+
+    /// [`Ctx::sym_id`] past the table: out of line, so that the lookup stays small enough
+    /// to be inlined into the loops over monomials ([`base_mon`]'s).
+    #[cold]
+    #[inline(never)]
+    fn sym_id_searched(&self, s: &Sym) -> u32 {
         // Every symbol of the input is in the table.
         self.syms.binary_search(s).unwrap_or(0) as u32
     }

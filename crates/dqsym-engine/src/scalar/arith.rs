@@ -2,13 +2,14 @@
 //! square roots of rationals, and cos / sin of angles.
 
 use super::atoms::{
-    empty_mono, mode_mul, mono_mul, rad_mul, small_ok, split_square, trig_mode, Mode, ModeSum,
-    Small, Sym,
+    empty_mono, mode_mul, mono_mul_in, rad_mul, small_ok, split_square, trig_mode, Mode, ModeSum,
+    MonoRc, Small, Sym,
 };
 use super::{charge, term_limit, GroupKey, Poll, ProductTrace, Scalar, ScalarError, Term, Q};
 use crate::{Ring, SignedProduct};
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
+use smallvec::SmallVec;
 use std::borrow::Borrow;
 use std::cell::RefCell;
 use std::collections::HashSet;
@@ -239,17 +240,23 @@ fn cached_mode_mul(a: &Mode, b: &Mode) -> Modes {
     })
 }
 
-/// Splits a sorted term slice into runs that share a mode.
-fn mode_runs(t: &[Term]) -> Vec<&[Term]> {
-    let mut runs = Vec::with_capacity(t.len());
-    let mut start = 0;
-    for i in 1..=t.len() {
-        if i == t.len() || t[i].mode != t[start].mode {
-            runs.push(&t[start..i]);
-            start = i;
-        }
+/// The runs of a sorted term slice that share a mode, in order, found as they are asked for
+/// (no vector of them).
+struct ModeRuns<'a>(&'a [Term]);
+
+impl<'a> Iterator for ModeRuns<'a> {
+    type Item = &'a [Term];
+
+    fn next(&mut self) -> Option<&'a [Term]> {
+        let first = &self.0.first()?.mode;
+        let n = 1 + self.0[1..]
+            .iter()
+            .position(|t| t.mode != *first)
+            .unwrap_or(self.0.len() - 1);
+        let (run, rest) = self.0.split_at(n);
+        self.0 = rest;
+        Some(run)
     }
-    runs
 }
 
 /// The work of a product, for the budget: one unit per pair of terms plus one per symbol of the
@@ -391,28 +398,47 @@ fn product_terms(
 ) -> Result<(), ScalarError> {
     // A large product notices cancellation as it goes (every few term pairs), not only before.
     let mut poll = Poll::default();
-    // Mode products are the expensive part; compute each once per pair of mode runs.
+    // The right factor's runs, found once (not again for every run of the left one).
+    let runs_y: SmallVec<[&[Term]; 16]> = ModeRuns(y).collect();
+    // The scratch vector of the monomials' merges (see `mono_mul_in`).
+    let mut buf = Vec::new();
     let mut ia = 0;
-    for ra in mode_runs(x) {
+    for ra in ModeRuns(x) {
         let mut ib = 0;
-        for rb in mode_runs(y) {
-            let modes = cached_mode_mul(&ra[0].mode, &rb[0].mode);
+        for &rb in &runs_y {
+            let (ma, mb) = (&ra[0].mode, &rb[0].mode);
+            if ma.is_unit() || mb.is_unit() {
+                // A mode times 1 is the other mode, of weight 1 (`mode_mul`): the terms are
+                // formed on it directly, without the sum of modes (two allocations) and the
+                // coefficients' products by 1 (the same values, as `Q` has one form a value).
+                let mode = if ma.is_unit() { mb } else { ma };
+                out.reserve(ra.len() * rb.len());
+                for (i, s) in (ia..).zip(ra) {
+                    for (j, t) in (ib..).zip(rb) {
+                        poll.step()?;
+                        let (mono, rad, coef) = pair_product(s, t, minus, &mut buf)?;
+                        if let Some(trace) = trace.as_deref_mut() {
+                            trace.mark(out.len(), (i, &s.mode), (j, &t.mode), mode);
+                        }
+                        out.push(Term {
+                            mode: mode.clone(),
+                            mono,
+                            rad,
+                            coef,
+                        });
+                    }
+                }
+                ib += rb.len();
+                continue;
+            }
+            // Mode products are the expensive part; compute each once per pair of mode runs.
+            let modes = cached_mode_mul(ma, mb);
             let weights: usize = modes.sum().iter().map(|(_, w)| w.len()).sum();
             out.reserve(ra.len() * rb.len() * weights);
             for (i, s) in (ia..).zip(ra) {
                 for (j, t) in (ib..).zip(rb) {
                     poll.step()?;
-                    let mono = mono_mul(&s.mono, &t.mono)
-                        .ok_or_else(|| ScalarError::OutOfRange("exponent too large".into()))?;
-                    let (rad, g) = rad_mul(s.rad, t.rad)
-                        .ok_or_else(|| ScalarError::OutOfRange("radicand too large".into()))?;
-                    let mut coef = &s.coef * &t.coef;
-                    if g != 1 {
-                        coef = &coef * &Q::from_u64(g);
-                    }
-                    if minus {
-                        coef = -coef;
-                    }
+                    let (mono, rad, coef) = pair_product(s, t, minus, &mut buf)?;
                     for (mode, weights) in modes.sum().iter() {
                         for (r2, w) in weights {
                             let (rad3, g2) = rad_mul(rad, *r2).ok_or_else(|| {
@@ -440,6 +466,30 @@ fn product_terms(
         ia += ra.len();
     }
     Ok(())
+}
+
+/// The monomial, radicand and coefficient (negated when `minus`) of the product of the terms
+/// `s` and `t`, before their modes multiply; an error when an exponent or the radicand leaves
+/// its machine word (the monomial's first).
+#[inline]
+fn pair_product(
+    s: &Term,
+    t: &Term,
+    minus: bool,
+    buf: &mut Vec<(Sym, u32)>,
+) -> Result<(MonoRc, u64, Q), ScalarError> {
+    let mono = mono_mul_in(&s.mono, &t.mono, buf)
+        .ok_or_else(|| ScalarError::OutOfRange("exponent too large".into()))?;
+    let (rad, g) = rad_mul(s.rad, t.rad)
+        .ok_or_else(|| ScalarError::OutOfRange("radicand too large".into()))?;
+    let mut coef = &s.coef * &t.coef;
+    if g != 1 {
+        coef = &coef * &Q::from_u64(g);
+    }
+    if minus {
+        coef = -coef;
+    }
+    Ok((mono, rad, coef))
 }
 
 /// `Σᵢ Σⱼ ±aᵢⱼ bᵢⱼ` ([`Ring::sums_of_products`]): the terms of every product formed, then
@@ -846,3 +896,6 @@ mod mode_cache_tests {
         }
     }
 }
+
+#[cfg(test)]
+mod product_tests;

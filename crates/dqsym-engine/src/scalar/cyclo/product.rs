@@ -115,6 +115,12 @@ impl ProductTrace {
         self.marks.push((k, origin));
     }
 
+    /// The marks recorded so far (for the tests of `arith::product_terms`).
+    #[cfg(test)]
+    pub(crate) fn marks(&self) -> &[(usize, u64)] {
+        &self.marks
+    }
+
     /// The keys of the groups of the product terms `out` (before they are sorted) that are
     /// canonical once like terms merge, sorted.
     pub(crate) fn settled(self, out: &[Term]) -> Vec<OwnedKey> {
