@@ -1552,6 +1552,8 @@ fn product_until(
 ///
 /// Without `seen`, whether the product is `None` does not depend on the order its entries
 /// are made in, so an entry likely to stop it early is made first (see [`early_first`]).
+/// `pairs_before` holds the term pairs of the entries of the product before (`a`), for
+/// that estimate, and is left holding this product's.
 fn product_within(
     a: &Matrix4<Scalar>,
     b: &Matrix4<Scalar>,
