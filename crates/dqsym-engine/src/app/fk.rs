@@ -19,7 +19,7 @@ use crate::emit::{
     arguments, count_ops, generated_ops, latex_aligned, product_table, rotation_chain_ops, sympy,
     sympy_decimals, CodegenError, CodegenOptions, Counted, LatexOptions, Output,
 };
-use crate::kin::{dq_jacobian, Robot};
+use crate::kin::{dq_jacobian, MadeJoints, Robot};
 use crate::print::{legend, plain, plain_len_bound, Format, PlainOptions};
 use crate::scalar::{join, par_map, with_own_budget};
 use crate::scalar::{FxHasher, ProportionalKey, SampledKey, Q};
@@ -112,9 +112,9 @@ pub fn fk_report_and_entries(
     robot: &Robot,
     o: &FkOptions,
 ) -> Result<(String, FkEntries), ReportError> {
-    // The joint factors once, for the expansions and the header's parameters.
-    let joints = robot.joint_dqs();
-    let params = robot.parameters_of(&joints);
+    // The joint factors once, for the expansions, the header's parameters and the recurrence.
+    let joints = robot.made_joints();
+    let params = robot.parameters_of(joints.dqs());
     let entries = entries_of(robot, joints, o)?;
     let text = if entries.recurrence {
         let notes = [format!(
@@ -170,13 +170,15 @@ impl FkEntries {
 /// # Errors
 /// As [`fk_report`].
 pub fn fk_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError> {
-    entries_of(robot, robot.joint_dqs(), o)
+    entries_of(robot, robot.made_joints(), o)
 }
 
-/// [`fk_entries`] from the robot's joint factors `joints` ([`Robot::joint_dqs`]).
+/// [`fk_entries`] from the robot's joint factors `joints` ([`Robot::made_joints`]): the
+/// recurrence takes them as the expansion leaves them (it moves them out only for the DQ
+/// product, past the matrix product that gives a fully symbolic chain up).
 fn entries_of(
     robot: &Robot,
-    joints: Vec<DualQuat<Scalar>>,
+    mut joints: MadeJoints,
     o: &FkOptions,
 ) -> Result<FkEntries, ReportError> {
     // Any stage past the term limit (the DQ, the matrix, the point, the Jacobian, a closed
@@ -187,7 +189,7 @@ fn entries_of(
     let left = Context::current()
         .work_budget()
         .saturating_sub(crate::scalar::work_used());
-    let expanded = with_own_budget(left, || expanded_entries(robot, joints, o));
+    let expanded = with_own_budget(left, || expanded_entries(robot, &mut joints, o));
     match expanded {
         // Every size limit: too many terms, term pairs (a product of the constant frames of
         // a URDF with angles off the pi/12 grid), digits or symbols in one angle (a long chain
@@ -199,7 +201,7 @@ fn entries_of(
             | ScalarError::AngleSymbols { .. }
             | ScalarError::Budget { .. },
         )))
-        | None => recurrence_entries(robot, o),
+        | None => recurrence_entries(robot, &joints, o),
         Some(r) => r.map(|sections| FkEntries {
             sections,
             recurrence: false,
@@ -235,9 +237,13 @@ pub(super) fn text_exceeds(sections: &[Section], max: usize) -> bool {
     false
 }
 
-fn recurrence_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError> {
+fn recurrence_entries(
+    robot: &Robot,
+    joints: &MadeJoints,
+    o: &FkOptions,
+) -> Result<FkEntries, ReportError> {
     Ok(FkEntries {
-        sections: recurrence_sections(robot, o)?,
+        sections: recurrence_sections(robot, Some(joints), o)?,
         recurrence: true,
     })
 }
@@ -246,9 +252,10 @@ fn recurrence_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportE
 type Sections = Vec<Section>;
 
 /// The expanded entries, or `None` when the DQ or the matrix exceeds `o.max_terms` terms.
+/// `joints` are moved out only when the DQ product is begun.
 fn expanded_entries(
     robot: &Robot,
-    joints: Vec<DualQuat<Scalar>>,
+    joints: &mut MadeJoints,
     o: &FkOptions,
 ) -> Option<Result<Sections, ReportError>> {
     // The matrix (the product of the joint factors' matrices), then its entries in closed
@@ -279,7 +286,7 @@ fn expanded_entries(
     // Both products multiply the joint factors without their constant angle offsets where
     // that gives the same entries and decisions (`OffsetFree`), the offsets put back once
     // per entry: the partial products then carry no cyclotomic phases.
-    let free = robot.offset_free(&joints);
+    let free = robot.offset_free(joints.dqs());
     // The matrix product, with the closed forms of its large entries found as it makes them.
     let product = |factors| {
         let mut t_forms: Vec<Option<PoseForm>> = (0..12).map(|_| None).collect();
@@ -333,11 +340,13 @@ fn expanded_entries(
     // abandons it, as on the PUMA 560): then the DQ product is begun beside the matrix
     // product, which ran alone while the helper waited (PUMA 560 `fk --jacobian`, SCHED_FIFO
     // runs: wall minimum 4.31 -> 4.26 ms, median 4.54 -> 4.49 ms).
-    let factors = robot.factor_matrices(&joints, EARLY_FORM_TERMS.min(o.max_terms));
+    let factors = robot.factor_matrices(joints.dqs(), EARLY_FORM_TERMS.min(o.max_terms));
     let (matrix, q) = if factors.small() {
+        let joints = joints.take();
         join(|| product(factors).map(matrix_forms), || dq_product(joints))
     } else {
         let made = product(factors)?;
+        let joints = joints.take();
         let (matrix, q) = join(|| matrix_forms(made), || dq_product(joints));
         (Some(matrix), q)
     };
@@ -1009,4 +1018,108 @@ pub fn ops_tables() -> String {
         ));
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kin::{random_test_chain, LARGEST_FIRST};
+
+    /// `fk`'s entries and decision (expanded or recurrence) on a thread of its own, with
+    /// the matrix products' entries made largest first (`largest_first`, the order before
+    /// `early_first`) or not.
+    fn entries_in_order(robot: &Robot, o: &FkOptions, largest_first: bool) -> String {
+        std::thread::scope(|s| {
+            s.spawn(|| {
+                LARGEST_FIRST.with(|f| f.set(largest_first));
+                let _in = crate::Context::new().with_threads(1).enter();
+                let r = fk_entries(robot, o).map(|e| (e.recurrence, e.named_rows()));
+                format!("{r:?}")
+            })
+            .join()
+            .expect("the entries")
+        })
+    }
+
+    /// On random chains (3 to 8 joints; symbolic, numeric and mixed parameters; offsets;
+    /// prismatic joints) under term limits below and above the binary's 5,000, `fk` decides
+    /// and prints as it did with the products' entries made largest first.
+    #[test]
+    fn fk_decides_as_with_the_largest_entries_first() {
+        let mut next = crate::testing::xorshift_below(2929);
+        let mut recurrences = 0;
+        for _ in 0..24 {
+            let robot = random_test_chain(&mut next, 8);
+            for max_terms in [300, 5_000] {
+                let o = FkOptions {
+                    jacobian: true,
+                    max_terms,
+                    ..FkOptions::default()
+                };
+                let new = entries_in_order(&robot, &o, false);
+                let old = entries_in_order(&robot, &o, true);
+                assert!(new == old, "{:?} at {max_terms}", robot.chain);
+                recurrences += usize::from(new.starts_with("Ok((true"));
+            }
+        }
+        assert!(recurrences >= 10, "{recurrences} recurrences");
+    }
+
+    /// The recurrence from the joint factors `fk` made gives what it gives making them
+    /// itself, and charges the same work, under no budget and under budgets that run out at
+    /// and around the places it would make them (the factors, the matrix in cosines and
+    /// sines, the names' check) and later.
+    #[test]
+    fn the_recurrence_from_the_factors_made_is_the_recurrence() {
+        let mut next = crate::testing::xorshift_below(4141);
+        let mut errors = 0;
+        for _ in 0..16 {
+            let robot = random_test_chain(&mut next, 7);
+            let o = FkOptions {
+                jacobian: true,
+                ..FkOptions::default()
+            };
+            // Made on warm caches, as the recurrence would make them again (see
+            // `MadeJoints::again`: on cold ones the charge may be the caches' misses more).
+            let made = {
+                let _in = crate::Context::new().with_threads(1).enter();
+                let _ = robot.joint_dqs();
+                robot.made_joints()
+            };
+            let units = made.units_for_tests();
+            let run = |budget: Option<u64>, from_made: bool| {
+                let mut ctx = crate::Context::new().with_threads(1);
+                if let Some(b) = budget {
+                    ctx = ctx.with_work_budget(b);
+                }
+                let _in = ctx.enter();
+                let r = recurrence_sections(&robot, from_made.then_some(&made), &o);
+                let used = crate::scalar::work_used();
+                (format!("{r:?}"), used)
+            };
+            // Once first, so that the per-thread caches charged on a miss (closed forms,
+            // cyclotomic templates) are as full for every run compared.
+            let _ = run(None, false);
+            let whole = run(None, false);
+            let from_made = run(None, true);
+            assert!(from_made.0 == whole.0, "{:?}", robot.chain);
+            assert!(from_made.1 == whole.1, "{:?}", robot.chain);
+            let w = whole.1;
+            for b in [
+                units - 1,
+                units,
+                units + 1,
+                2 * units,
+                3 * units - 1,
+                w / 2,
+                w - 1,
+                w,
+            ] {
+                let old = run(Some(b), false);
+                assert!(run(Some(b), true) == old, "{:?} at {b}", robot.chain);
+                errors += usize::from(old.0.starts_with("Err"));
+            }
+        }
+        assert!(errors >= 40, "{errors} errors");
+    }
 }

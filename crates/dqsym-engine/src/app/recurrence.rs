@@ -48,7 +48,9 @@ const COS_SIN_FORMS_BUDGET: u64 = 4_000_000;
 
 /// The most bytes of plain text the closed forms of that matrix may take (RTB's Ball: 10 kB).
 const MAX_COS_SIN_TEXT: usize = 40_000;
+use crate::kin::MadeJoints;
 use crate::{closed::closed_form_cos_sin, DualQuat, Expr, Robot, Scalar, ScalarError};
+use std::borrow::Cow;
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::hash::BuildHasherDefault;
@@ -64,7 +66,7 @@ use std::hash::BuildHasherDefault;
 /// When an exact operation fails (a size limit or the work budget, say), or a symbol of the
 /// robot or the point has the name of an entry's symbol (`Q2_3`).
 pub fn fk_recurrence(robot: &Robot, o: &FkOptions) -> Result<Vec<(Quantity, Expr)>, ReportError> {
-    Ok(recurrence_sections(robot, o)?
+    Ok(recurrence_sections(robot, None, o)?
         .into_iter()
         .flat_map(|s| s.rows)
         .collect())
@@ -101,13 +103,16 @@ fn learn(known: &Known, rows: &[(Quantity, Scalar)]) {
 }
 
 /// The entries of [`fk_recurrence`] in titled sections, every closed form computed in
-/// parallel.
+/// parallel. `made`, the robot's joint factors when the caller made them already, are used
+/// where they would be made again, charged as making them is ([`MadeJoints::again`]).
 pub(crate) fn recurrence_sections(
     robot: &Robot,
+    made: Option<&MadeJoints>,
     o: &FkOptions,
 ) -> Result<Vec<Section>, ReportError> {
+    let joints = || made.map_or_else(|| Cow::Owned(robot.joint_dqs()), |m| m.again(robot));
     // The base frame is folded into the first factor and the tool frame into the last.
-    let factors = robot.pose_factors();
+    let factors = robot.pose_factors_of(joints().into_owned());
     let has_tool = robot.chain.tool != DualQuat::identity();
     let has_base = robot.chain.base != DualQuat::identity();
     let n = factors.len();
@@ -196,7 +201,7 @@ pub(crate) fn recurrence_sections(
         sections.push((SectionKind::SuffixProducts, suffix));
     }
     let last = q(n);
-    let cos_sin_forms = cos_sin_matrix(robot, o);
+    let cos_sin_forms = cos_sin_matrix(robot, &joints, o);
     let (m, from, t_forms) = match cos_sin_forms {
         Some((m, forms)) => (m, MatrixFrom::CosSin, Some(forms)),
         None => (last.to_matrix(), MatrixFrom::LastQ, None),
@@ -242,7 +247,7 @@ pub(crate) fn recurrence_sections(
         sections.push((SectionKind::Jacobian { recurrence: true }, jac));
     }
 
-    check_names(robot, o, &sections)?;
+    check_names(robot, &joints, o, &sections)?;
     with_closed_forms(sections, t_forms)
 }
 
@@ -250,15 +255,16 @@ pub(crate) fn recurrence_sections(
 /// forms of its rows 0..2, when that fits (see the module docs); `None` past a budget or the
 /// size of text.
 #[allow(clippy::type_complexity)]
-fn cos_sin_matrix(
+fn cos_sin_matrix<'a>(
     robot: &Robot,
+    joints: &dyn Fn() -> Cow<'a, [DualQuat<Scalar>]>,
     o: &FkOptions,
 ) -> Option<(crate::Matrix4<Scalar>, Vec<Result<Expr, ScalarError>>)> {
     // The matrix in the robot's own symbols when it fits as a polynomial in the cosines and
     // sines (a generic 6R: 1,595 monomials), else in the last Q's symbols.
     // An attempt with its own small budget: a long chain stops early and costs little.
     let cos_sin = with_own_budget(COS_SIN_BUDGET, || {
-        robot.forward_matrix_cos_sin(o.max_terms.min(COS_SIN_MAX_TERMS))
+        robot.forward_matrix_cos_sin_of(&joints(), o.max_terms.min(COS_SIN_MAX_TERMS))
     });
     // Its closed forms are kept when they are short (a numeric 10-joint chain can give 20 kB
     // per entry); else the matrix is read from the last Q.
@@ -285,12 +291,21 @@ fn cos_sin_matrix(
 }
 
 /// Refuses a robot or point symbol named like an entry's symbol.
-fn check_names(robot: &Robot, o: &FkOptions, sections: &Staged) -> Result<(), ReportError> {
+fn check_names<'a>(
+    robot: &Robot,
+    joints: &dyn Fn() -> Cow<'a, [DualQuat<Scalar>]>,
+    o: &FkOptions,
+    sections: &Staged,
+) -> Result<(), ReportError> {
     // A robot symbol named like an entry (`Q2_3`) would be read as that entry.
     // (One set of the entries' symbols: a scan of every entry per robot symbol was quadratic
     // in the joints.)
     let point_syms = o.point.iter().flatten().flat_map(|c| c.symbols());
-    let robot_syms = robot.variables.iter().cloned().chain(robot.parameters());
+    let robot_syms = robot
+        .variables
+        .iter()
+        .cloned()
+        .chain(robot.parameters_of(&joints()));
     let entries: std::collections::HashSet<String> = sections
         .iter()
         .flat_map(|(_, rows)| rows)

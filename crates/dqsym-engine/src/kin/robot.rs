@@ -959,6 +959,16 @@ impl Robot {
             .collect()
     }
 
+    /// [`Robot::joint_dqs`], kept with the work they were charged (see [`MadeJoints`]).
+    pub(crate) fn made_joints(&self) -> MadeJoints {
+        let before = crate::scalar::work_used();
+        let dqs = self.joint_dqs();
+        MadeJoints {
+            units: crate::scalar::work_used().saturating_sub(before),
+            dqs: Some(dqs),
+        }
+    }
+
     /// The factors of the pose, in order: the joint factors, the first one after the base
     /// frame and the last one before the tool frame (`base J₁`, `J₂`, ..., `Jₙ tool`), so
     /// that their product is the pose and each joint's variables sit in its own factor. A
@@ -969,7 +979,7 @@ impl Robot {
 
     /// [`Robot::pose_factors`] from the joint factors `joints` ([`Robot::joint_dqs`], made
     /// once by a caller that needs them more than once).
-    fn pose_factors_of(&self, joints: Vec<DualQuat<Scalar>>) -> Vec<DualQuat<Scalar>> {
+    pub(crate) fn pose_factors_of(&self, joints: Vec<DualQuat<Scalar>>) -> Vec<DualQuat<Scalar>> {
         let mut f = joints;
         let (base, tool) = (&self.chain.base, &self.chain.tool);
         let id = DualQuat::identity();
@@ -1044,7 +1054,17 @@ impl Robot {
         max_terms: Option<usize>,
         entry: impl Fn(Scalar) -> Option<Scalar>,
     ) -> Option<Matrix4<Scalar>> {
-        let factors = self.factor_matrices(&self.joint_dqs(), 0);
+        self.matrix_product_of(&self.joint_dqs(), max_terms, entry)
+    }
+
+    /// [`Robot::matrix_product`] of the joint factors `joints` ([`Robot::joint_dqs`]).
+    fn matrix_product_of(
+        &self,
+        joints: &[DualQuat<Scalar>],
+        max_terms: Option<usize>,
+        entry: impl Fn(Scalar) -> Option<Scalar>,
+    ) -> Option<Matrix4<Scalar>> {
+        let factors = self.factor_matrices(joints, 0);
         matrix_product_until(factors, max_terms, entry, None, None, None)
     }
 
@@ -1078,6 +1098,15 @@ impl Robot {
     /// [`crate::closed::closed_form_cos_sin`].
     pub fn forward_matrix_cos_sin(&self, max_terms: usize) -> Option<Matrix4<Scalar>> {
         self.matrix_product(Some(max_terms), |x| x.to_cos_sin_polynomial())
+    }
+
+    /// [`Robot::forward_matrix_cos_sin`] of the joint factors `joints` ([`Robot::joint_dqs`]).
+    pub(crate) fn forward_matrix_cos_sin_of(
+        &self,
+        joints: &[DualQuat<Scalar>],
+        max_terms: usize,
+    ) -> Option<Matrix4<Scalar>> {
+        self.matrix_product_of(joints, Some(max_terms), |x| x.to_cos_sin_polynomial())
     }
 
     /// The forward kinematics, or `None` as soon as a component of a partial product has more
@@ -1380,6 +1409,75 @@ fn charged_if_kept<R>(attempt: impl FnOnce() -> Option<R>) -> Option<R> {
     r
 }
 
+/// The joint factors ([`Robot::joint_dqs`]) made once, with the work they were charged, for
+/// the callers that would make them again: `fk` makes them for the expansion and the
+/// header, and the recurrence that follows an expansion given up made them three times more
+/// (its factors, its parameters' names, its matrix in cosines and sines: 1.15 M of a fully
+/// symbolic 6R's 94.6 M instructions).
+pub(crate) struct MadeJoints {
+    /// The factors; `None` once [`MadeJoints::take`] moved them out.
+    dqs: Option<Vec<DualQuat<Scalar>>>,
+    /// The work units making them charged the context they were made in.
+    units: u64,
+}
+
+impl MadeJoints {
+    /// The factors (empty once taken).
+    pub(crate) fn dqs(&self) -> &[DualQuat<Scalar>] {
+        self.dqs.as_deref().unwrap_or(&[])
+    }
+
+    /// The work making them charged (tests).
+    #[cfg(test)]
+    pub(crate) fn units_for_tests(&self) -> u64 {
+        self.units
+    }
+
+    /// The factors moved out: [`MadeJoints::again`] makes them anew after this.
+    pub(crate) fn take(&mut self) -> Vec<DualQuat<Scalar>> {
+        self.dqs.take().unwrap_or_default()
+    }
+
+    /// `robot.joint_dqs()` (of the robot they were made of), charged the work their making
+    /// was: the factors kept when the entered context can take that whole charge (`charge`
+    /// checks the cancel flag before it adds anything), else made again.
+    ///
+    /// What the budget sees. Making the factors is a pure function of the robot, and so is
+    /// its charge (counts of term operations), but for the caches charged on a miss only
+    /// (`cyclo`'s term templates and fields): made again on caches their first making
+    /// filled, the factors may charge those misses less (16 of 568 units on a random chain
+    /// with angles off the pi/12 grid).
+    /// So the recurrence is charged, at each of the three places it made them, the same work
+    /// or up to those few units more, in one step where no operation in between could see
+    /// it: an input whose recurrence ends within those units of the work budget may now
+    /// stop at the budget. A budget too small for the whole charge, a cancelled context, or
+    /// factors that held an error value are where making them again can end otherwise (an
+    /// error value, at some operation): there they are made again, as before.
+    pub(crate) fn again(&self, robot: &Robot) -> std::borrow::Cow<'_, [DualQuat<Scalar>]> {
+        // Factors with an error value are made again: there, it may be another, or none.
+        let sound = |dqs: &[DualQuat<Scalar>]| {
+            dqs.iter().all(|q| {
+                [&q.real, &q.dual].iter().all(|p| {
+                    [&p.w, &p.x, &p.y, &p.z]
+                        .iter()
+                        .all(|c| c.as_error().is_none())
+                })
+            })
+        };
+        let units = self.units;
+        match &self.dqs {
+            Some(dqs)
+                if sound(dqs)
+                    && units <= crate::scalar::work_left()
+                    && crate::scalar::charge(units).is_ok() =>
+            {
+                std::borrow::Cow::Borrowed(dqs)
+            }
+            _ => std::borrow::Cow::Owned(robot.joint_dqs()),
+        }
+    }
+}
+
 /// A revolute DH or MDH joint's constant angle offset `c` (its angle is `q + c pi`) when `c`
 /// is not a multiple of 1/12, and the joint with the offset 0.
 fn offset_of(j: &Joint<Scalar>) -> Option<(Small, Joint<Scalar>)> {
@@ -1451,6 +1549,11 @@ fn product_until(
 /// thousands of terms) usually stops after its first entry instead of computing all sixteen.
 /// Each entry is shown to `seen` as it is made; `false` there gives `None`, and so does
 /// `early` of the largest entry made so far.
+///
+/// Without `seen`, whether the product is `None` does not depend on the order its entries
+/// are made in, so an entry likely to stop it early is made first (see [`early_first`]).
+/// `pairs_before` holds the term pairs of the entries of the product before (`a`), for
+/// that estimate, and is left holding this product's.
 fn product_within(
     a: &Matrix4<Scalar>,
     b: &Matrix4<Scalar>,
@@ -1458,14 +1561,31 @@ fn product_within(
     stop: Option<&AtomicBool>,
     mut seen: Option<EntrySeen>,
     early: Option<&dyn Fn(usize) -> bool>,
+    pairs_before: &mut Option<EntryPairs>,
 ) -> Option<Matrix4<Scalar>> {
-    let pairs = |i: usize, j: usize| -> usize {
-        (0..4)
-            .map(|k| a.rows[i][k].len() * b.rows[k][j].len())
-            .sum()
-    };
+    let pairs: EntryPairs = std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            (0..4)
+                .map(|k| a.rows[i][k].len() * b.rows[k][j].len())
+                .sum()
+        })
+    });
     let mut order: Vec<(usize, usize)> = (0..4).flat_map(|i| (0..4).map(move |j| (i, j))).collect();
-    order.sort_by_key(|&(i, j)| std::cmp::Reverse(pairs(i, j)));
+    order.sort_by_key(|&(i, j)| std::cmp::Reverse(pairs[i][j]));
+    if let (None, Some(early)) = (&seen, early) {
+        if !largest_first_in_tests() {
+            // Each entry's size estimated from its pairs at the terms per pair of the same
+            // entry of `a` (the product before: the translations of a DH chain merge to
+            // about 1.47 terms a pair, its rotations make exactly two), else two a pair.
+            let before = pairs_before.as_ref();
+            let estimate = |(i, j): (usize, usize)| match before {
+                Some(p) if p[i][j] > 0 => pairs[i][j].saturating_mul(a.rows[i][j].len()) / p[i][j],
+                _ => pairs[i][j].saturating_mul(2),
+            };
+            early_first(&mut order, |(i, j)| pairs[i][j], estimate, early);
+        }
+    }
+    *pairs_before = Some(pairs);
     let mut rows: [[Scalar; 4]; 4] = Default::default();
     let mut largest = 0;
     for (i, j) in order {
@@ -1488,6 +1608,135 @@ fn product_within(
         rows[i][j] = x;
     }
     Some(Matrix4::from_rows(rows))
+}
+
+/// The term pairs of each entry of a matrix product (row, column).
+type EntryPairs = [[usize; 4]; 4];
+
+/// Moves to the front of `order` (the entries of a product, largest first by their term
+/// pairs) the entry with the fewest term pairs among those whose `estimate`d size `early`
+/// says stops the product (the first of them on a tie); the others keep their order.
+/// Nothing moves when no estimate stops it.
+///
+/// Why the order cannot change what [`product_within`] without `seen` gives: it is `None`
+/// exactly when some entry has more than `limit` terms, is an error value, or when `early`
+/// holds of the largest entry made so far, or `stop` is set. Each entry is a pure function
+/// of `a` and `b`, so every order makes the same entries. `early` is monotone in the size
+/// (`Growth::predicts`), so it holds of the largest entry made so far at some point exactly
+/// when it holds of the largest entry of the product, whichever order they come in; `stop`
+/// is set by another thread at a time of its own, in any order. The work budget: a product
+/// made to the end makes the same entries and is charged the same work in every order (the
+/// caches charged on a miss, `cyclo`'s templates and fields, miss on the same keys), so a
+/// budget that runs out in one order runs out in every order (its error value gives
+/// `None`); a product given up is `None` whatever it was charged. `fk` runs these products
+/// on a budget of its own, not charged to the caller when given up: what changes is only
+/// which entries a given-up product made, so which cache entries the work after it (the
+/// recurrence) finds already made. That can change its charge by the few units of a cache
+/// miss (a template or a field, made for angles off the pi/12 grid), at the budget's very
+/// edge.
+///
+/// Only the work done before a product is given up changes: on a fully symbolic 6R, whose
+/// fourth product is given up for its growth (its largest entry past 363 terms), the first
+/// entry made is one of 353 term pairs (517 terms, estimated 518) instead of one of 448
+/// (896 terms). When the estimate is wrong, one entry more is made before the others, and
+/// nothing when the product is made to the end. (Two terms a pair for every entry would
+/// estimate that entry at 706 terms, which on a fully symbolic 5R, one link fewer left,
+/// stops the product where its 517 do not: the 5R made it first for nothing, 1.5% more.)
+fn early_first(
+    order: &mut [(usize, usize)],
+    pairs: impl Fn((usize, usize)) -> usize,
+    estimate: impl Fn((usize, usize)) -> usize,
+    early: &dyn Fn(usize) -> bool,
+) {
+    let mut first: Option<(usize, usize)> = None;
+    for (k, &e) in order.iter().enumerate() {
+        let fewer = first.is_none_or(|(_, n)| pairs(e) < n);
+        if fewer && early(estimate(e)) {
+            first = Some((k, pairs(e)));
+        }
+    }
+    if let Some((k, _)) = first {
+        order[..=k].rotate_right(1);
+    }
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Tests: [`product_within`] on this thread makes its entries largest first, as it did
+    /// before [`early_first`]: the reference the new order is compared with.
+    pub(crate) static LARGEST_FIRST: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Whether a test asked for the order before [`early_first`] ([`LARGEST_FIRST`]).
+fn largest_first_in_tests() -> bool {
+    #[cfg(test)]
+    return LARGEST_FIRST.with(std::cell::Cell::get);
+    #[cfg(not(test))]
+    false
+}
+
+/// A random chain for tests of `fk`'s decisions: 3 to 8 joints, DH or MDH, revolute or (one
+/// in five) prismatic, each DH parameter a symbol of its own, a number, zero, or a number
+/// plus a symbol; twists of right angles, thirds, quarters and fifths of pi or a symbol;
+/// revolute joints with angle offsets on and off the pi/12 grid or symbolic. `max_joints`
+/// caps the joints (at least 3).
+#[cfg(test)]
+pub(crate) fn random_test_chain(next: &mut impl FnMut(u64) -> u64, max_joints: usize) -> Robot {
+    use crate::Ring;
+    let count = 3 + next(max_joints.max(3) as u64 - 2) as usize;
+    let mdh = next(2) == 0;
+    let pi = |n: i64, d: i64| Scalar::pi() * Scalar::from_ratio(n, d);
+    let mut joints = Vec::new();
+    let mut variables = Vec::new();
+    let mut values = Vec::new();
+    for i in 1..=count {
+        let sym = |name: &str| Scalar::sym(&format!("{name}{i}"));
+        let mut length = |name: &str| match next(4) {
+            0 => sym(name),
+            1 => Scalar::from_ratio(next(9) as i64 + 1, 4),
+            2 => Scalar::from_ratio(next(5) as i64 + 1, 2) + sym(name),
+            _ => Scalar::int(0),
+        };
+        let (d, a) = (length("d"), length("a"));
+        let alpha = match next(8) {
+            0 => pi(1, 2),
+            1 => pi(-1, 2),
+            2 => pi(1, 3),
+            3 => pi(1, 4),
+            4 => pi(2, 5),
+            5 => Scalar::int(0),
+            _ => sym("alpha"),
+        };
+        let theta = match next(6) {
+            0 => pi(next(23) as i64 + 1, 12),
+            1 => pi(next(9) as i64 + 1, 5),
+            2 => sym("theta"),
+            _ => Scalar::int(0),
+        };
+        let q = format!("q{i}");
+        values.push(Scalar::sym(&q));
+        variables.push(q);
+        let prismatic = next(5) == 0;
+        joints.push(match (mdh, prismatic) {
+            (false, false) => Joint::revolute_dh(theta, d, a, alpha),
+            (false, true) => Joint::prismatic_dh(theta, d, a, alpha),
+            (true, false) => Joint::revolute_mdh(alpha, a, theta, d),
+            (true, true) => Joint::prismatic_mdh(alpha, a, theta, d),
+        });
+    }
+    Robot {
+        name: "test".into(),
+        convention: if mdh { Convention::Mdh } else { Convention::Dh },
+        variables,
+        joint_values: values,
+        chain: Chain::new(joints),
+        base_frames: Vec::new(),
+        tool_frames: Vec::new(),
+        tool: None,
+        values: Vec::new(),
+        notes: Vec::new(),
+        decimals: Vec::new(),
+    }
 }
 
 /// The factors a matrix product multiplies ([`Robot::factor_matrices`]), the first ones
@@ -1570,6 +1819,7 @@ fn matrix_product_until(
     let (mut mats, mut rest) = (mats.into_iter(), rest.iter());
     let stopped = || stop.is_some_and(|s| s.load(AtomicOrdering::Relaxed));
     let mut growth = Growth::default();
+    let mut pairs_before: Option<EntryPairs> = None;
     let mut acc: Option<Matrix4<Scalar>> = None;
     for k in 0..count {
         if stopped() {
@@ -1594,7 +1844,9 @@ fn matrix_product_until(
         let next = match (acc, max_terms) {
             (None, _) => m,
             (Some(a), None) => a.mul_ref(&m),
-            (Some(a), Some(limit)) => product_within(&a, &m, limit, stop, seen, early)?,
+            (Some(a), Some(limit)) => {
+                product_within(&a, &m, limit, stop, seen, early, &mut pairs_before)?
+            }
         };
         if let Some(limit) = max_terms {
             if next
@@ -1994,6 +2246,145 @@ mod tests {
         assert_eq!(compared, 200);
         assert!(given_up >= 100, "{given_up} given up");
         assert!(fell_back >= 40, "{fell_back} fell back");
+    }
+
+    /// The fully symbolic 6R (`tests/data/generic_6r.toml`).
+    fn generic_6r() -> Robot {
+        let s = |name: &str, i: usize| Scalar::sym(&format!("{name}{i}"));
+        let joints = (1..=6)
+            .map(|i| Joint::revolute_dh(s("theta", i), s("d", i), s("a", i), s("alpha", i)))
+            .collect();
+        let variables: Vec<String> = (1..=6).map(|i| format!("q{i}")).collect();
+        let values = variables.iter().map(|v| Scalar::sym(v)).collect();
+        bare_robot(Convention::Dh, variables, values, Chain::new(joints))
+    }
+
+    /// The matrix product as `fk` runs it (with its growth's prediction), its result and the
+    /// work it charged, with the entries of each product made in the order of
+    /// [`early_first`], or largest first (`largest_first`, the order before it). On a thread
+    /// of its own: the per-thread caches (cyclotomic templates, mode products), whose misses
+    /// are charged, start empty, so two orders are charged alike for the same entries.
+    fn product_in_order(
+        robot: &Robot,
+        limit: usize,
+        largest_first: bool,
+    ) -> (Option<Matrix4<Scalar>>, u64) {
+        std::thread::scope(|s| {
+            s.spawn(|| {
+                LARGEST_FIRST.with(|f| f.set(largest_first));
+                let _in = crate::Context::new().with_threads(1).enter();
+                let joints = robot.joint_dqs();
+                let before = crate::scalar::work_used();
+                let mut all = |_: usize, _: usize, _: &Scalar| true;
+                let factors = robot.factor_matrices(&joints, EARLY);
+                let stop = AtomicBool::new(false);
+                let m = robot.forward_matrix_until(factors, limit, &stop, &mut all);
+                (m, crate::scalar::work_used() - before)
+            })
+            .join()
+            .expect("the product")
+        })
+    }
+
+    /// The product decides as it did when its entries were made largest first, on random
+    /// chains (symbolic, numeric and mixed parameters, offsets, prismatic joints) at term
+    /// limits below and above `fk`'s: the same matrix, or `None` for both. Made to the end,
+    /// it charges the same work whatever the order (the same entries, on fresh per-thread
+    /// caches, the process-wide ones filled by a first run); given up, the work differs, and
+    /// on the fully symbolic 6R it is less.
+    #[test]
+    fn making_an_entry_likely_to_stop_the_product_first_decides_the_same() {
+        let mut next = crate::testing::xorshift_below(29);
+        let (mut made, mut given_up, mut moved) = (0, 0, 0);
+        for _ in 0..60 {
+            let robot = random_test_chain(&mut next, 8);
+            for limit in [100, 1_000, 5_000] {
+                let _ = product_in_order(&robot, limit, true);
+                let (new, new_work) = product_in_order(&robot, limit, false);
+                let (old, old_work) = product_in_order(&robot, limit, true);
+                assert!(new == old, "the matrix of {:?} at {limit}", robot.chain);
+                if new.is_some() {
+                    made += 1;
+                    assert_eq!(new_work, old_work, "{:?} at {limit}", robot.chain);
+                } else {
+                    given_up += 1;
+                    moved += usize::from(new_work != old_work);
+                }
+            }
+        }
+        assert!(
+            made >= 40 && given_up >= 40,
+            "{made} made, {given_up} given up"
+        );
+        assert!(moved >= 5, "{moved} given up after other entries");
+        let r6 = generic_6r();
+        let (new, new_work) = product_in_order(&r6, 5_000, false);
+        let (old, old_work) = product_in_order(&r6, 5_000, true);
+        assert!(new.is_none() && old.is_none());
+        assert!(new_work < old_work, "{new_work} against {old_work}");
+    }
+
+    /// [`early_first`] moves the fewest pairs among the entries whose estimate stops the
+    /// product to the front, the first of them on a tie, and leaves the others in order.
+    #[test]
+    fn early_first_moves_the_cheapest_entry_that_would_stop() {
+        let pairs = [9, 7, 5, 5, 2];
+        let twice = |(k, _): (usize, usize)| 2 * pairs[k];
+        let mut order: Vec<(usize, usize)> = (0..5).map(|k| (k, 0)).collect();
+        early_first(&mut order, |(k, _)| pairs[k], twice, &|size| size >= 10);
+        assert_eq!(order, [(2, 0), (0, 0), (1, 0), (3, 0), (4, 0)]);
+        let mut all = order.clone();
+        early_first(&mut all, |(k, _)| pairs[k], twice, &|size| size >= 1);
+        assert_eq!(all, [(4, 0), (2, 0), (0, 0), (1, 0), (3, 0)]);
+        let mut none: Vec<(usize, usize)> = (0..5).map(|k| (k, 0)).collect();
+        early_first(&mut none, |(k, _)| pairs[k], twice, &|size| size >= 100);
+        assert_eq!(none, [(0, 0), (1, 0), (2, 0), (3, 0), (4, 0)]);
+        // Estimates of their own: the entry of 5 pairs estimated at 4 terms stays.
+        let merged = [18, 14, 4, 10, 4];
+        let mut some: Vec<(usize, usize)> = (0..5).map(|k| (k, 0)).collect();
+        early_first(&mut some, |(k, _)| pairs[k], |(k, _)| merged[k], &|size| {
+            size >= 10
+        });
+        assert_eq!(some, [(3, 0), (0, 0), (1, 0), (2, 0), (4, 0)]);
+    }
+
+    /// `MadeJoints::again` gives the factors `joint_dqs` makes, charged the work their
+    /// making was; made again on warm caches the factors charge that too (on cold ones, the
+    /// first making, at most the cache misses more: see `MadeJoints::again`); under a budget
+    /// short of it by one unit they are made anew, with the error values that gives.
+    #[test]
+    fn joint_factors_kept_are_charged_as_made() {
+        let mut next = crate::testing::xorshift_below(33);
+        for _ in 0..40 {
+            let robot = random_test_chain(&mut next, 8);
+            let _in = crate::Context::new().with_threads(1).enter();
+            let _ = robot.joint_dqs();
+            let made = robot.made_joints();
+            let units = made.units_for_tests();
+            let before = crate::scalar::work_used();
+            let again = robot.joint_dqs();
+            assert_eq!(crate::scalar::work_used() - before, units);
+            assert!(made.dqs() == again.as_slice());
+            let before = crate::scalar::work_used();
+            assert!(*made.again(&robot) == *again.as_slice());
+            assert_eq!(crate::scalar::work_used() - before, units);
+            let tight = || {
+                crate::Context::new()
+                    .with_threads(1)
+                    .with_work_budget(units - 1)
+                    .enter()
+            };
+            let kept = {
+                let _t = tight();
+                made.again(&robot).into_owned()
+            };
+            let _t = tight();
+            let anew = robot.joint_dqs();
+            assert!(kept == anew);
+            assert!(anew
+                .iter()
+                .any(|q| q.components().iter().any(|c| c.as_error().is_some())));
+        }
     }
 
     #[test]
