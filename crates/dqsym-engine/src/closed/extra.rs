@@ -40,8 +40,8 @@ pub(super) fn candidates(t: &[Term], than: &Expr, others: &[Expr]) -> Vec<Expr> 
 /// The candidates of [`candidates`] made without a form found before, for costs below
 /// `bound`: what a search capped at `bound` (`floor.rs`) must count as possible winners.
 pub(super) fn candidates_up_to(t: &[Term], bound: usize, others: &[Expr]) -> Vec<Expr> {
-    // Each candidate costs an exact check: made only while half the budget is left (as
-    // `trigfac.rs`'s), so that they never turn a form found within the budget into an error.
+    // Each candidate costs an exact check; made under the nesting bound of `trigfac.rs`'s
+    // (`may_nest`), their nested searches each on a share of the budget left.
     if !super::trigfac::may_nest() {
         return Vec::new();
     }

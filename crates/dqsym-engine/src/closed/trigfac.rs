@@ -74,10 +74,15 @@ thread_local! {
 }
 
 /// Whether a candidate that searches closed forms of parts (through [`nested_closed_form`])
-/// may be made: below [`MAX_NESTED`] and while half the budget is left.
+/// may be made: below [`MAX_NESTED`]. What such a candidate spends is bounded by the nested
+/// searches' own budgets ([`NESTED_SHARE`]), not by the budget left here: this test also
+/// compared the work left with half of `Context::current().work_budget()`, which is the work
+/// left itself (`current` gives the entered budget less the work used), so it never failed
+/// (found in session 29; removed, no output changes). Making it a real half-budget test
+/// (against `Context::entered`) would change forms once half the budget is used: not done
+/// without measuring that.
 pub(super) fn may_nest() -> bool {
     NESTED.with(|n| n.get()) < MAX_NESTED
-        && crate::scalar::work_left() >= Context::current().work_budget() / 2
 }
 
 /// The share of the budget left that one nested closed form may spend.

@@ -1225,8 +1225,9 @@ impl Robot {
 /// below a sixteenth of the term limit, or the budget's very edge) may now be expanded;
 /// every chain expanded before gives the same entries (outputs unchanged on the example
 /// robots and random chains with offsets). The closed forms searched after the products
-/// share that budget and find more of it left: where that crosses the half of the budget
-/// their optional candidates need (`trigfac::may_nest`), one may now be tried and taken, a
+/// share that budget and find more of it left: where a nested search of their optional
+/// candidates (`trigfac::nested_closed_form`, a share of the budget left) ran out before, it
+/// may now end and be taken, a
 /// different form of the same value at that edge only (as with every earlier cut in the
 /// work charged).
 pub(crate) struct OffsetFree {

@@ -190,9 +190,10 @@ impl Scalar {
     /// charged: each term is charged as one rewritten alone, where the rewrite charged each
     /// group by its size. An offset-free product's entry shifted back so spends less of the
     /// report's budget: it may now be kept at the budget's very edge (see `OffsetFree`), and
-    /// the closed forms searched after it find more of the budget left, so where that leaves
-    /// their optional candidates (`trigfac::may_nest`: half the budget) one of them may now
-    /// be tried and taken (a different form of the same value, at that edge only).
+    /// the closed forms searched after it find more of the budget left, so where a nested
+    /// search of their optional candidates (`trigfac::nested_closed_form`: a share of the
+    /// budget left) ran out before, it may now end and be taken (a different form of the
+    /// same value, at that edge only).
     ///
     /// Equal to [`Scalar::subs`] of each `x` by `x + o pi` (tests check it), which multiplies
     /// out every shifted term's trigonometric factor.
