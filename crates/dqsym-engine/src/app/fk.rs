@@ -1116,7 +1116,19 @@ mod tests {
                 w,
             ] {
                 let old = run(Some(b), false);
-                assert!(run(Some(b), true) == old, "{:?} at {b}", robot.chain);
+                let new = run(Some(b), true);
+                // The same result; where both run out of the budget, the work counted when
+                // they stop may differ by the caches' misses (see `MadeJoints::again`: a
+                // debug build's run of this test met 95,729 against 95,725 units at a budget
+                // of 95,700), so the two errors are compared by kind.
+                let budget = |r: &str| r.starts_with("Err(Scalar(Budget");
+                assert!(
+                    new == old || (budget(&old.0) && budget(&new.0)),
+                    "{:?} at {b}: {} / {}",
+                    robot.chain,
+                    old.0,
+                    new.0
+                );
                 errors += usize::from(old.0.starts_with("Err"));
             }
         }

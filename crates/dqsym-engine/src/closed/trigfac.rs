@@ -92,8 +92,9 @@ const NESTED_SHARE: u64 = 16;
 /// [`NESTED_SHARE`]-th of the work left, its work then charged to the caller's: a part's or a
 /// cofactor's search starts every candidate again (measured: a 5-term sum of products at
 /// `sqrt(5)` coefficients spent the whole default budget of 3,000,000 units in them), so a
-/// candidate of this file can spend at most a bounded share of what is left and never turns a
-/// closed form the other candidates find into a budget error.
+/// candidate of this file spends about a sixteenth of what is left at most (`charge` counts a
+/// unit before it checks the limit, so a nested search can pass its share by its last charge,
+/// all of it charged to the caller's).
 ///
 /// Its results are not remembered beyond the memo of one outermost search (`closed/mod.rs`'s
 /// `Memo`, which serves a part asked for again within that search): measured on the `fk --jacobian`

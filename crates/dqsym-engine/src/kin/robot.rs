@@ -1227,9 +1227,8 @@ impl Robot {
 /// robots and random chains with offsets). The closed forms searched after the products
 /// share that budget and find more of it left: where a nested search of their optional
 /// candidates (`trigfac::nested_closed_form`, a share of the budget left) ran out before, it
-/// may now end and be taken, a
-/// different form of the same value at that edge only (as with every earlier cut in the
-/// work charged).
+/// may now end and be taken, a different form of the same value at that edge only (as with
+/// every earlier cut in the work charged).
 pub(crate) struct OffsetFree {
     /// The joint factors, the shifted joints' at offset 0.
     joints: Vec<DualQuat<Scalar>>,

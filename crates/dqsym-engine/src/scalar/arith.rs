@@ -220,6 +220,8 @@ impl Modes {
 
 /// [`mode_mul`], remembered per thread: kinematic chains multiply the same modes again and
 /// again (every quaternion product forms sixteen scalar products of the same factors).
+/// `product_terms` forms the pairs with a unit mode itself, so the unit branch (`Modes::Fresh`)
+/// is reached only by this function's own tests; kept so that it is `mode_mul` for every mode.
 fn cached_mode_mul(a: &Mode, b: &Mode) -> Modes {
     if a.is_unit() || b.is_unit() {
         return Modes::Fresh(mode_mul(a, b));

@@ -67,7 +67,7 @@ fn one_name() -> &'static Name {
     ONE.get_or_init(|| Name::leak("1"))
 }
 
-/// The one allocation of the name `name` for the whole process, made at its first use. A name
+/// The interned `Name` of `name` (and its text), made once for the whole process at its first use. A name
 /// is never freed: the process holds one copy of each distinct name its symbols ever had, the
 /// user's and the project's generated ones (`closed/coefs.rs`'s constants, as many as the
 /// largest expression needs), in exchange for symbols copied without a shared count.
@@ -176,7 +176,7 @@ impl Ord for Sym {
     /// has a zero where the other has a byte, nonzero since the words differ, and is a prefix
     /// of it). Names sharing them (`theta1`, `theta2`: the angles of a chain) are compared as
     /// texts. The merges of monomials and the sorts of terms compare symbols by the million,
-    /// where `str::cmp` called `memcmp` (the symbolic 6R's `fk --jacobian`: 78,000 of its
+    /// where `str::cmp` called `memcmp` (the symbolic 6R's `fk --jacobian`: 79,000 of its
     /// 138,000 calls of `memcmp` are gone, 1.7 M instructions).
     #[inline]
     fn cmp(&self, other: &Self) -> Ordering {
