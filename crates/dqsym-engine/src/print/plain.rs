@@ -2,7 +2,8 @@
 //! (`l1*cos(theta1) + l2*cos(theta1 + theta2)`).
 
 use crate::closed::{
-    angle_text, angle_text_decimals, shorthand_name, shows_as_decimal, Angle, Expr, Trig, TrigNames,
+    angle_text, angle_text_decimals, shorthand_name, shows_as_decimal, write_shorthand, Angle,
+    Expr, Trig, TrigNames,
 };
 use num_traits::One;
 use std::collections::BTreeSet;
@@ -38,15 +39,16 @@ fn decimal(q: &num_rational::BigRational, o: &PlainOptions) -> Option<String> {
 
 /// The expression as plain text.
 pub fn plain(e: &Expr, opts: &PlainOptions) -> String {
-    let names = |f: Trig, a: &Angle| opts.shorthand.then(|| shorthand_name(f, a)).flatten();
-    plain_named(e, opts, &names)
+    let mut out = String::new();
+    write(e, opts, None, 0, &mut out);
+    out
 }
 
 /// The expression as plain text, cos and sin named by `names` (a walkthrough's notation)
 /// instead of [`shorthand_name`]; `opts.shorthand` still chooses `l1 c1` over `l1*c1`.
 pub fn plain_named(e: &Expr, opts: &PlainOptions, names: TrigNames) -> String {
     let mut out = String::new();
-    write(e, opts, names, 0, &mut out);
+    write(e, opts, Some(names), 0, &mut out);
     out
 }
 
@@ -56,8 +58,7 @@ pub fn plain_quotient(num: &Expr, den: &Expr, opts: &PlainOptions) -> String {
     if matches!(den, Expr::Num(q) if q.is_one()) {
         return plain(num, opts);
     }
-    let names = |f: Trig, a: &Angle| opts.shorthand.then(|| shorthand_name(f, a)).flatten();
-    plain_quotient_named(num, den, opts, &names)
+    quotient(num, den, opts, None)
 }
 
 /// [`plain_quotient`] with cos and sin named by `names`, as [`plain_named`].
@@ -70,6 +71,11 @@ pub fn plain_quotient_named(
     if matches!(den, Expr::Num(q) if q.is_one()) {
         return plain_named(num, opts, names);
     }
+    quotient(num, den, opts, Some(names))
+}
+
+/// [`plain_quotient_named`] with `den` not 1, named as [`write`] names.
+fn quotient(num: &Expr, den: &Expr, opts: &PlainOptions, names: Option<TrigNames>) -> String {
     let mut out = String::new();
     match num {
         Expr::Neg(inner) => {
@@ -83,8 +89,10 @@ pub fn plain_quotient_named(
     out
 }
 
-/// Precedence levels: 0 top, 1 sum, 2 product, 3 power base.
-fn write(e: &Expr, o: &PlainOptions, names: TrigNames, prec: u8, out: &mut String) {
+/// Precedence levels: 0 top, 1 sum, 2 product, 3 power base. Cos and sin are named by
+/// `names`, or without it by [`shorthand_name`] when `o.shorthand`, written in place
+/// ([`write_shorthand`]: no `String` per call).
+fn write(e: &Expr, o: &PlainOptions, names: Option<TrigNames>, prec: u8, out: &mut String) {
     let times = if o.shorthand { " " } else { "*" };
     match e {
         Expr::Num(q) => {
@@ -100,15 +108,18 @@ fn write(e: &Expr, o: &PlainOptions, names: TrigNames, prec: u8, out: &mut Strin
         }
         Expr::Sqrt(n) => out.push_str(&format!("sqrt({n})")),
         Expr::Sym(s) => out.push_str(s.name()),
-        Expr::Trig { f, angle } => match names(*f, angle) {
-            Some(name) => out.push_str(&name),
-            None => {
+        Expr::Trig { f, angle } => {
+            let named = match names {
+                None => o.shorthand && write_shorthand(*f, angle, out),
+                Some(names) => names(*f, angle).map(|name| out.push_str(&name)).is_some(),
+            };
+            if !named {
                 out.push_str(f.name());
                 out.push('(');
                 out.push_str(&angle_text_decimals(angle, o.decimals));
                 out.push(')');
             }
-        },
+        }
         Expr::Add(v) => {
             if prec > 1 {
                 out.push('(');
@@ -404,6 +415,84 @@ mod tests {
             named += l.len();
         }
         assert!(named > 300, "{named}");
+    }
+
+    /// `plain` writes each shorthand in place ([`write_shorthand`]); the route before, kept
+    /// here, asked [`shorthand_name`] for a `String` through `plain_named`: both write the
+    /// same text, with and without the shorthand, on random sums and products (quotients too)
+    /// of calls whose angles have a name, have none, or fail only at a later symbol (a prefix
+    /// that differs, a leading zero, a coefficient, an offset), nested in powers and
+    /// negations.
+    #[test]
+    fn shorthand_written_in_place_is_the_named_text() {
+        let names = [
+            "q1", "q2", "q12", "theta3", "alpha5", "x", "q01", "th2", "t10", "θ4", "q7b",
+        ];
+        let mut g = 0x9e37_79b9_7f4a_7c15_u64;
+        let call = |g: &mut u64| {
+            let mut terms: Vec<(Sym, Small)> = Vec::new();
+            for _ in 0..1 + below(g, 3) {
+                let s = Sym::new(names[below(g, names.len() as u64) as usize]);
+                if terms.iter().all(|(t, _)| *t != s) {
+                    let k = [1, 1, 1, -1, 2][below(g, 5) as usize];
+                    terms.push((s, Small::from_integer(k)));
+                }
+            }
+            terms.sort();
+            let constant = Small::from_integer(i64::from(below(g, 6) == 0));
+            let pi = Small::new(i64::from(below(g, 6) == 0), 3);
+            let f = [Trig::Cos, Trig::Sin][below(g, 2) as usize];
+            Expr::Trig {
+                f,
+                angle: Angle::new(terms, constant, pi),
+            }
+        };
+        let (mut short, mut long) = (0, 0);
+        for _ in 0..400 {
+            let mut sum = Vec::new();
+            for _ in 0..1 + below(&mut g, 4) {
+                let mut factors = vec![Expr::Num(BigRational::new(
+                    (1 + below(&mut g, 3) as i64).into(),
+                    (1 + below(&mut g, 2) as i64).into(),
+                ))];
+                for _ in 0..1 + below(&mut g, 3) {
+                    let c = call(&mut g);
+                    factors.push(match below(&mut g, 4) {
+                        0 => Expr::Pow(Box::new(c), 2),
+                        1 => Expr::Neg(Box::new(c)),
+                        _ => c,
+                    });
+                }
+                let m = Expr::Mul(factors);
+                sum.push(if below(&mut g, 3) == 0 {
+                    Expr::Neg(Box::new(m))
+                } else {
+                    m
+                });
+            }
+            let e = Expr::Add(sum);
+            let den = call(&mut g);
+            for shorthand in [true, false] {
+                let o = PlainOptions {
+                    shorthand,
+                    decimals: false,
+                };
+                let names =
+                    |f: Trig, a: &Angle| o.shorthand.then(|| shorthand_name(f, a)).flatten();
+                let text = plain(&e, &o);
+                assert_eq!(text, plain_named(&e, &o, &names));
+                assert_eq!(
+                    plain_quotient(&e, &den, &o),
+                    plain_quotient_named(&e, &den, &o, &names)
+                );
+                if shorthand {
+                    short += usize::from(text.contains(" c") || text.contains(" s"));
+                    long += usize::from(text.contains("cos(") || text.contains("sin("));
+                }
+            }
+        }
+        // Both kinds of call were written, in many of the sums.
+        assert!(short > 100 && long > 100, "{short} {long}");
     }
 
     /// The next of xorshift state `g`, below `n`.
