@@ -5,7 +5,7 @@ use crate::closed::{
     angle_text, angle_text_decimals, shorthand_name, shows_as_decimal, write_shorthand, Angle,
     Expr, Trig, TrigNames,
 };
-use num_traits::One;
+use num_traits::{One, Zero};
 use std::collections::BTreeSet;
 
 /// How plain text is written.
@@ -40,7 +40,7 @@ fn decimal(q: &num_rational::BigRational, o: &PlainOptions) -> Option<String> {
 /// The expression as plain text.
 pub fn plain(e: &Expr, opts: &PlainOptions) -> String {
     let mut out = String::new();
-    write(e, opts, None, 0, &mut out);
+    write(e, opts, &mut Naming::shorthand(), 0, &mut out);
     out
 }
 
@@ -48,7 +48,7 @@ pub fn plain(e: &Expr, opts: &PlainOptions) -> String {
 /// instead of [`shorthand_name`]; `opts.shorthand` still chooses `l1 c1` over `l1*c1`.
 pub fn plain_named(e: &Expr, opts: &PlainOptions, names: TrigNames) -> String {
     let mut out = String::new();
-    write(e, opts, Some(names), 0, &mut out);
+    write(e, opts, &mut Naming::Given(names), 0, &mut out);
     out
 }
 
@@ -58,7 +58,7 @@ pub fn plain_quotient(num: &Expr, den: &Expr, opts: &PlainOptions) -> String {
     if matches!(den, Expr::Num(q) if q.is_one()) {
         return plain(num, opts);
     }
-    quotient(num, den, opts, None)
+    quotient(num, den, opts, Naming::shorthand())
 }
 
 /// [`plain_quotient`] with cos and sin named by `names`, as [`plain_named`].
@@ -71,28 +71,69 @@ pub fn plain_quotient_named(
     if matches!(den, Expr::Num(q) if q.is_one()) {
         return plain_named(num, opts, names);
     }
-    quotient(num, den, opts, Some(names))
+    quotient(num, den, opts, Naming::Given(names))
 }
 
 /// [`plain_quotient_named`] with `den` not 1, named as [`write`] names.
-fn quotient(num: &Expr, den: &Expr, opts: &PlainOptions, names: Option<TrigNames>) -> String {
+fn quotient(num: &Expr, den: &Expr, opts: &PlainOptions, mut names: Naming) -> String {
     let mut out = String::new();
     match num {
         Expr::Neg(inner) => {
             out.push('-');
-            write(inner, opts, names, 3, &mut out);
+            write(inner, opts, &mut names, 3, &mut out);
         }
-        _ => write(num, opts, names, 3, &mut out),
+        _ => write(num, opts, &mut names, 3, &mut out),
     }
     out.push('/');
-    write(den, opts, names, 3, &mut out);
+    write(den, opts, &mut names, 3, &mut out);
     out
 }
 
-/// Precedence levels: 0 top, 1 sum, 2 product, 3 power base. Cos and sin are named by
-/// `names`, or without it by [`shorthand_name`] when `o.shorthand`, written in place
-/// ([`write_shorthand`]: no `String` per call).
-fn write(e: &Expr, o: &PlainOptions, names: Option<TrigNames>, prec: u8, out: &mut String) {
+/// How [`write`] names cos and sin: by the caller's names, or by [`shorthand_name`] (when
+/// `o.shorthand`) written in place ([`write_shorthand`]: no `String` per call), each call of
+/// one symbol's angle named once per text and its name copied after (a fully symbolic 6R's
+/// matrix: 4,712 names of 24 calls, each written twice, 3.4 M instructions of its report
+/// when each was a `String`).
+enum Naming<'a> {
+    Given(TrigNames<'a>),
+    /// The calls of one symbol named so far: the function, the symbol's interned address
+    /// and the name, if any.
+    Shorthand(Vec<(Trig, usize, Option<Box<str>>)>),
+}
+
+impl Naming<'_> {
+    fn shorthand() -> Self {
+        Naming::Shorthand(Vec::new())
+    }
+
+    /// The name of `f(angle)` appended to `out`; whether there is one.
+    fn write(&mut self, f: Trig, angle: &Angle, o: &PlainOptions, out: &mut String) -> bool {
+        let seen = match self {
+            Naming::Given(names) => return names(f, angle).map(|n| out.push_str(&n)).is_some(),
+            Naming::Shorthand(_) if !o.shorthand => return false,
+            Naming::Shorthand(seen) => seen,
+        };
+        // Of one symbol (coefficient one, no offset) the name is a function of the symbol's
+        // name, so of its interned address.
+        let [(x, k)] = angle.terms.as_slice() else {
+            return write_shorthand(f, angle, out);
+        };
+        if !(k.is_one() && angle.constant.is_zero() && angle.pi.is_zero()) {
+            return write_shorthand(f, angle, out);
+        }
+        let addr = x.addr();
+        if let Some((_, _, name)) = seen.iter().find(|(g, a, _)| *g == f && *a == addr) {
+            return name.as_deref().map(|n| out.push_str(n)).is_some();
+        }
+        let start = out.len();
+        let named = write_shorthand(f, angle, out);
+        seen.push((f, addr, named.then(|| out[start..].into())));
+        named
+    }
+}
+
+/// Precedence levels: 0 top, 1 sum, 2 product, 3 power base.
+fn write(e: &Expr, o: &PlainOptions, names: &mut Naming, prec: u8, out: &mut String) {
     let times = if o.shorthand { " " } else { "*" };
     match e {
         Expr::Num(q) => {
@@ -109,11 +150,7 @@ fn write(e: &Expr, o: &PlainOptions, names: Option<TrigNames>, prec: u8, out: &m
         Expr::Sqrt(n) => out.push_str(&format!("sqrt({n})")),
         Expr::Sym(s) => out.push_str(s.name()),
         Expr::Trig { f, angle } => {
-            let named = match names {
-                None => o.shorthand && write_shorthand(*f, angle, out),
-                Some(names) => names(*f, angle).map(|name| out.push_str(&name)).is_some(),
-            };
-            if !named {
+            if !names.write(*f, angle, o, out) {
                 out.push_str(f.name());
                 out.push('(');
                 out.push_str(&angle_text_decimals(angle, o.decimals));
@@ -309,7 +346,7 @@ mod tests {
     use crate::scalar::Small;
     use crate::{closed_form, Scalar, Sym};
     use num_rational::BigRational;
-    use num_traits::{Signed, Zero};
+    use num_traits::Signed;
 
     #[test]
     fn the_length_bound_is_never_below_the_text() {
@@ -417,9 +454,10 @@ mod tests {
         assert!(named > 300, "{named}");
     }
 
-    /// `plain` writes each shorthand in place ([`write_shorthand`]); the route before, kept
-    /// here, asked [`shorthand_name`] for a `String` through `plain_named`: both write the
-    /// same text, with and without the shorthand, on random sums and products (quotients too)
+    /// `plain` writes each shorthand in place ([`write_shorthand`]), a call of one symbol's
+    /// angle named once per text ([`Naming`]); the route before, kept here, asked
+    /// [`shorthand_name`] for a `String` per call through `plain_named`: both write the same
+    /// text, with and without the shorthand, on random sums and products (quotients too)
     /// of calls whose angles have a name, have none, or fail only at a later symbol (a prefix
     /// that differs, a leading zero, a coefficient, an offset), nested in powers and
     /// negations.
