@@ -105,9 +105,10 @@ impl Scalar {
     }
 
     /// [`Scalar::rename_symbols_monotone`] of the names of `from` to those of `to`, given as
-    /// symbols: the recurrence's shapes rename every entry to the same few placeholders, and
-    /// their names' strings and each placeholder interned again per entry were a fifth of the
-    /// sharing of a symbolic 6R's closed forms.
+    /// symbols: the recurrence's shapes rename every entry to the same few placeholders,
+    /// interned once (with the names' strings, each placeholder formatted and interned again
+    /// per entry, and interned back per occurrence, the sharing of a symbolic 6R's closed
+    /// forms took 7.9 M instructions; now 5.3 M).
     pub(crate) fn rename_syms_monotone(&self, from: &[Sym], to: &[Sym]) -> Option<Scalar> {
         let t = self.terms().ok()?;
         let sorted = |v: &[Sym]| v.windows(2).all(|w| w[0].name() < w[1].name());
