@@ -355,21 +355,35 @@ fn with_closed_forms(
 }
 
 /// The placeholder names of [`shape`]: sorted like their index, and no robot symbol (those
-/// are identifiers) starts with `~`.
+/// are identifiers) starts with `~`. Written as `format!("~{k:06}")` writes it, without the
+/// formatting machinery.
 fn placeholder(k: usize) -> String {
-    format!("~{k:06}")
+    let mut digits = [b'0'; 20];
+    let (mut n, mut start) = (k, digits.len());
+    loop {
+        start -= 1;
+        digits[start] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    let mut s = String::with_capacity(8);
+    s.push('~');
+    for &d in &digits[start.min(digits.len() - 6)..] {
+        s.push(char::from(d));
+    }
+    s
 }
 
-/// An entry renamed to placeholders, and the renaming (symbol, placeholder), in order.
-type Shape = (Scalar, Vec<(String, String)>);
+/// An entry renamed to placeholders, and the symbols renamed: the `k`th to placeholder `k`.
+type Shape = (Scalar, Vec<crate::Sym>);
 
-/// The shape of an entry: its symbols renamed in order to placeholders, and the renaming.
-/// Entries of one shape (the joint factors of equal links, the prefix products past the
-/// first few, the Jacobian columns of the middle joints) share one closed form. `None` for an
-/// entry with `pi` as a symbol, or a cos/sin placeholder, whose order with respect to the
-/// placeholders a renaming could change (the constant of an angle is no symbol of
-/// [`Scalar::symbols`], and keeps its place before every name).
-fn shape(x: &Scalar) -> Option<Shape> {
+/// The symbols a [`shape`] renames, in order (by name, as [`Scalar::symbols`] sorts them).
+/// `None` for an entry with `pi` as a symbol, or a cos/sin placeholder, whose order with
+/// respect to the placeholders a renaming could change (the constant of an angle is no
+/// symbol of [`Scalar::symbols`], and keeps its place before every name).
+fn shape_symbols(x: &Scalar) -> Option<Vec<crate::Sym>> {
     let symbols = x.symbols();
     let special = |s: &crate::Sym| {
         let n = s.name();
@@ -378,26 +392,28 @@ fn shape(x: &Scalar) -> Option<Shape> {
     if symbols.iter().any(special) {
         return None;
     }
-    let mut names: Vec<String> = symbols.iter().map(|s| s.name().to_string()).collect();
-    names.sort();
-    names.dedup();
-    let map: Vec<(String, String)> = names
-        .into_iter()
-        .enumerate()
-        .map(|(k, n)| (n, placeholder(k)))
-        .collect();
-    Some((x.rename_symbols_monotone(&map)?, map))
+    debug_assert!(symbols.windows(2).all(|w| w[0].name() < w[1].name()));
+    Some(symbols)
 }
 
-/// `e` with the placeholders of `map` renamed back to the symbols.
-fn unshape(e: Expr, map: &[(String, String)]) -> Expr {
+/// The shape of an entry: its symbols (`symbols`, [`shape_symbols`]) renamed in order to
+/// placeholders (`holders[k]` is the symbol of `placeholder(k)`). Entries of one shape (the
+/// joint factors of equal links, the prefix products past the first few, the Jacobian
+/// columns of the middle joints) share one closed form.
+fn shape(x: &Scalar, symbols: Vec<crate::Sym>, holders: &[crate::Sym]) -> Option<Shape> {
+    let to = holders.get(..symbols.len())?;
+    Some((x.rename_syms_monotone(&symbols, to)?, symbols))
+}
+
+/// `e` with the placeholders renamed back to `symbols` (placeholder `k` to `symbols[k]`).
+fn unshape(e: Expr, symbols: &[crate::Sym]) -> Expr {
     let back = |s: crate::Sym| -> crate::Sym {
         match s
             .name()
             .strip_prefix('~')
             .and_then(|k| k.parse::<usize>().ok())
         {
-            Some(k) if k < map.len() => crate::Sym::new(&map[k].0),
+            Some(k) if k < symbols.len() => symbols[k].clone(),
             _ => s,
         }
     };
@@ -407,10 +423,10 @@ fn unshape(e: Expr, map: &[(String, String)]) -> Expr {
             angle.terms = angle.terms.into_iter().map(|(s, k)| (back(s), k)).collect();
             Expr::Trig { f, angle }
         }
-        Expr::Add(v) => Expr::Add(v.into_iter().map(|e| unshape(e, map)).collect()),
-        Expr::Mul(v) => Expr::Mul(v.into_iter().map(|e| unshape(e, map)).collect()),
-        Expr::Neg(e) => Expr::Neg(Box::new(unshape(*e, map))),
-        Expr::Pow(e, n) => Expr::Pow(Box::new(unshape(*e, map)), n),
+        Expr::Add(v) => Expr::Add(v.into_iter().map(|e| unshape(e, symbols)).collect()),
+        Expr::Mul(v) => Expr::Mul(v.into_iter().map(|e| unshape(e, symbols)).collect()),
+        Expr::Neg(e) => Expr::Neg(Box::new(unshape(*e, symbols))),
+        Expr::Pow(e, n) => Expr::Pow(Box::new(unshape(*e, symbols)), n),
         e => e,
     }
 }
@@ -420,7 +436,18 @@ fn unshape(e: Expr, map: &[(String, String)]) -> Expr {
 /// the symbols, and closed forms only compare symbols, so an entry's form is its shape's form
 /// renamed back, of the same value (checked exactly in debug builds).
 fn shared_closed_forms(all: &[&Scalar]) -> Vec<Result<Expr, ScalarError>> {
-    let shapes: Vec<Option<Shape>> = par_map(all, |x| shape(x));
+    let symbols: Vec<(&Scalar, Option<Vec<crate::Sym>>)> = par_map(all, |x| (*x, shape_symbols(x)));
+    // The placeholders interned once for every entry.
+    let most = symbols
+        .iter()
+        .filter_map(|(_, s)| s.as_ref().map(Vec::len))
+        .max();
+    let holders: Vec<crate::Sym> = (0..most.unwrap_or(0))
+        .map(|k| crate::Sym::new(&placeholder(k)))
+        .collect();
+    let shapes: Vec<Option<Shape>> = par_map(&symbols, |(x, s)| {
+        s.as_ref().and_then(|s| shape(x, s.clone(), &holders))
+    });
     // Keyed by a few terms of each shape (`SampledKey`, compared in full), hashed by FxHash:
     // std's SipHash of every term of every entry was 2.3 M instructions of a fully symbolic
     // 6R's report. Only looked up, never iterated: the order is the entries'.
@@ -445,8 +472,8 @@ fn shared_closed_forms(all: &[&Scalar]) -> Vec<Result<Expr, ScalarError>> {
             let e = forms[k].clone()?;
             Ok(match sh {
                 None => e,
-                Some((_, map)) => {
-                    let e = unshape(e, map);
+                Some((_, symbols)) => {
+                    let e = unshape(e, symbols);
                     // A limit reached by the check itself (the budget is shared) proves
                     // nothing either way. Only debug builds expand the form to check it
                     // (release builds spent 3.6% of a symbolic 6R's report on a value
@@ -463,4 +490,143 @@ fn shared_closed_forms(all: &[&Scalar]) -> Vec<Result<Expr, ScalarError>> {
             })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kin::{dh_link, mdh_link};
+    use crate::scalar::{trig_placeholder, Trig};
+    use crate::Sym;
+
+    /// The shape as first made (kept as the reference): the names as strings, sorted, each
+    /// placeholder formatted, renamed by name.
+    fn shape_before(x: &Scalar) -> Option<(Scalar, Vec<(String, String)>)> {
+        let symbols = x.symbols();
+        let special = |s: &Sym| {
+            let n = s.name();
+            s.is_pi() || n.starts_with('~') || crate::scalar::parse_trig_placeholder(n).is_some()
+        };
+        if symbols.iter().any(special) {
+            return None;
+        }
+        let mut names: Vec<String> = symbols.iter().map(|s| s.name().to_string()).collect();
+        names.sort();
+        names.dedup();
+        let map: Vec<(String, String)> = names
+            .into_iter()
+            .enumerate()
+            .map(|(k, n)| (n, format!("~{k:06}")))
+            .collect();
+        Some((x.rename_symbols_monotone(&map)?, map))
+    }
+
+    /// The renaming back as first made: each symbol interned again from its name.
+    fn unshape_before(e: Expr, map: &[(String, String)]) -> Expr {
+        let back = |s: Sym| -> Sym {
+            match s
+                .name()
+                .strip_prefix('~')
+                .and_then(|k| k.parse::<usize>().ok())
+            {
+                Some(k) if k < map.len() => Sym::new(&map[k].0),
+                _ => s,
+            }
+        };
+        match e {
+            Expr::Sym(s) => Expr::Sym(back(s)),
+            Expr::Trig { f, mut angle } => {
+                angle.terms = angle.terms.into_iter().map(|(s, k)| (back(s), k)).collect();
+                Expr::Trig { f, angle }
+            }
+            Expr::Add(v) => Expr::Add(v.into_iter().map(|e| unshape_before(e, map)).collect()),
+            Expr::Mul(v) => Expr::Mul(v.into_iter().map(|e| unshape_before(e, map)).collect()),
+            Expr::Neg(e) => Expr::Neg(Box::new(unshape_before(*e, map))),
+            Expr::Pow(e, n) => Expr::Pow(Box::new(unshape_before(*e, map)), n),
+            e => e,
+        }
+    }
+
+    #[test]
+    fn placeholders_are_written_as_format_writes_them() {
+        for k in [
+            0,
+            1,
+            9,
+            10,
+            99,
+            12_345,
+            999_999,
+            1_000_000,
+            31_415_926,
+            usize::MAX,
+        ] {
+            assert_eq!(placeholder(k), format!("~{k:06}"));
+        }
+    }
+
+    /// The entries of a few chains (joint factors of DH and modified-DH links with symbolic
+    /// and numeric parameters, their derivatives, prefix products of factors and of the
+    /// recurrence's symbols, cos/sin placeholders and `pi`, which have no shape): each shape,
+    /// its symbols and each shared closed form renamed back are those of the route before.
+    #[test]
+    fn shapes_and_their_forms_renamed_back_are_those_of_the_route_before() {
+        let s = |n: String| Scalar::sym(&n);
+        let half_pi =
+            Scalar::pi() * Scalar::rational(num_rational::BigRational::new(1.into(), 2.into()));
+        let mut entries: Vec<Scalar> = Vec::new();
+        let mut links = Vec::new();
+        for i in 1..=3 {
+            let (t, d, a, al) = (
+                s(format!("theta{i}")),
+                s(format!("d{i}")),
+                s(format!("a{i}")),
+                s(format!("alpha{i}")),
+            );
+            links.push(dh_link(&t, &d, &a, &al));
+            links.push(dh_link(&t, &Scalar::int(0), &a, &half_pi));
+            links.push(mdh_link(&t, &d, &Scalar::int(3), &al));
+        }
+        for l in &links {
+            for c in l.components() {
+                entries.push(c.diff("theta2"));
+                entries.push(c.diff("theta1"));
+                entries.push(c);
+            }
+        }
+        for (x, y) in [(0, 3), (3, 7), (1, 5), (2, 8)] {
+            entries.extend((links[x].clone() * links[y].clone()).components());
+        }
+        let syms =
+            |p: &str| DualQuat::from_components(std::array::from_fn(|k| s(format!("{p}_{k}"))));
+        entries.extend((syms("Q2") * syms("L3") * syms("P4")).components());
+        entries.extend((syms("Q3") * syms("L4")).components());
+        entries.push(trig_placeholder("theta1", Trig::Cos) * Scalar::sym("a1") + Scalar::sym("d2"));
+        entries.push(Scalar::sym("b") * Scalar::pi() + Scalar::sym("a"));
+
+        // The route of `shared_closed_forms`.
+        let symbols: Vec<Option<Vec<Sym>>> = entries.iter().map(shape_symbols).collect();
+        let most = symbols.iter().flatten().map(Vec::len).max().unwrap_or(0);
+        let holders: Vec<Sym> = (0..most).map(|k| Sym::new(&placeholder(k))).collect();
+        let (mut shaped, mut unshaped) = (0, 0);
+        for (x, sy) in entries.iter().zip(symbols) {
+            let now = sy.and_then(|sy| shape(x, sy, &holders));
+            let before = shape_before(x);
+            assert_eq!(now.is_some(), before.is_some(), "{x}");
+            let (Some((k, sy)), Some((k0, map))) = (now, before) else {
+                unshaped += 1;
+                continue;
+            };
+            shaped += 1;
+            assert_eq!(k, k0);
+            let names: Vec<&str> = sy.iter().map(Sym::name).collect();
+            let names0: Vec<&str> = map.iter().map(|(n, _)| n.as_str()).collect();
+            assert_eq!(names, names0);
+            if k.terms().map_or(0, <[_]>::len) <= 64 {
+                let e = closed_form_cos_sin(&k).expect("closed form");
+                assert_eq!(unshape(e.clone(), &sy), unshape_before(e, &map));
+            }
+        }
+        assert!(shaped > 100 && unshaped >= 2, "{shaped} {unshaped}");
+    }
 }

@@ -172,8 +172,8 @@ pub use crate::scalar::Trig;
 pub use common::CommonOffsets;
 pub use decimals::{decimal_form, shows_as_decimal};
 pub use expr::{Angle, Cost, Expr};
-pub(crate) use notation::decimal_constant;
 pub use notation::{angle_text, angle_text_decimals, angle_text_with, shorthand_name, TrigNames};
+pub(crate) use notation::{decimal_constant, write_shorthand};
 pub use trace::{Identity, TraceStep};
 
 use crate::scalar::FxHasher;
