@@ -35,7 +35,7 @@ use std::sync::{Arc, OnceLock};
 /// 3.9-4.1 -> 3.4-3.7 ms and 15-17 -> 13-15 ms; one thread (callgrind) -0.7% instructions on
 /// both, the same output.
 ///
-/// A symbol points to its interned [`Name`], which holds the name's first eight bytes as one
+/// A symbol points to its interned `Name`, which holds the name's first eight bytes as one
 /// word beside the text, so that two symbols are ordered by one comparison of words unless
 /// their names share those bytes (see [`Sym::cmp`]).
 #[derive(Clone)]
