@@ -1048,7 +1048,7 @@ mod tests {
     fn fk_decides_as_with_the_largest_entries_first() {
         let mut next = crate::testing::xorshift_below(2929);
         let mut recurrences = 0;
-        for _ in 0..24 {
+        for _ in 0..10 {
             let robot = random_test_chain(&mut next, 8);
             for max_terms in [300, 5_000] {
                 let o = FkOptions {
@@ -1062,18 +1062,22 @@ mod tests {
                 recurrences += usize::from(new.starts_with("Ok((true"));
             }
         }
-        assert!(recurrences >= 10, "{recurrences} recurrences");
+        // 12 of the 20 reports are recurrences (10 chains, two limits).
+        assert!(recurrences >= 8, "{recurrences} recurrences");
     }
 
     /// The recurrence from the joint factors `fk` made gives what it gives making them
-    /// itself, and charges the same work, under no budget and under budgets that run out at
-    /// and around the places it would make them (the factors, the matrix in cosines and
-    /// sines, the names' check) and later.
+    /// itself, and charges the same work, under no budget and under budgets that run out
+    /// around the first place it would make them (the pose's factors: `units` and one unit
+    /// either side) and later. Not reached here: a budget that refuses the third use (the
+    /// names' check, after the products; the second, the matrix in cosines and sines, runs on
+    /// a budget of its own), which `joint_factors_kept_are_charged_as_made` covers for
+    /// `MadeJoints::again` itself.
     #[test]
     fn the_recurrence_from_the_factors_made_is_the_recurrence() {
         let mut next = crate::testing::xorshift_below(4141);
         let mut errors = 0;
-        for _ in 0..16 {
+        for _ in 0..6 {
             let robot = random_test_chain(&mut next, 7);
             let o = FkOptions {
                 jacobian: true,
@@ -1118,10 +1122,13 @@ mod tests {
                 let old = run(Some(b), false);
                 let new = run(Some(b), true);
                 // The same result; where both run out of the budget, the work counted when
-                // they stop may differ by the caches' misses (see `MadeJoints::again`: a
-                // debug build's run of this test met 95,729 against 95,725 units at a budget
-                // of 95,700), so the two errors are compared by kind.
-                let budget = |r: &str| r.starts_with("Err(Scalar(Budget");
+                // they stop may differ by a few units (a debug build's run met 95,729 against
+                // 95,725 at a budget of 95,700; the runs compared start from different cache
+                // states, which charge on a miss, and a debug build's exact re-checks fill
+                // caches of their own), so two budget errors are compared by kind and limit.
+                let budget = |r: &str| {
+                    r.starts_with("Err(Scalar(Budget") && r.contains(&format!("limit: {b} "))
+                };
                 assert!(
                     new == old || (budget(&old.0) && budget(&new.0)),
                     "{:?} at {b}: {} / {}",
@@ -1132,6 +1139,7 @@ mod tests {
                 errors += usize::from(old.0.starts_with("Err"));
             }
         }
-        assert!(errors >= 40, "{errors} errors");
+        // 36 of the 48 runs under a budget end in an error (6 chains, 8 budgets).
+        assert!(errors >= 24, "{errors} errors");
     }
 }

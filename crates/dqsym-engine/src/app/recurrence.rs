@@ -354,9 +354,10 @@ fn with_closed_forms(
         .collect()
 }
 
-/// The placeholder names of [`shape`]: sorted like their index, and no robot symbol (those
-/// are identifiers) starts with `~`. Written as `format!("~{k:06}")` writes it, without the
-/// formatting machinery.
+/// The placeholder names of [`shape`]: sorted like their index below 10^6 (`~1000000` sorts
+/// before `~999999`, and then `rename_syms_monotone`'s check refuses the shape, as the route
+/// before did), and no robot symbol (those are identifiers) starts with `~`. Written as
+/// `format!("~{k:06}")` writes it, without the formatting machinery.
 fn placeholder(k: usize) -> String {
     let mut digits = [b'0'; 20];
     let (mut n, mut start) = (k, digits.len());
