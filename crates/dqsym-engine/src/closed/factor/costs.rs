@@ -74,6 +74,10 @@ pub(super) struct Costs {
     /// Whether a candidate is cut once its cost reaches the best so far (see the module's
     /// doc); off only in the tests that compare the two.
     pub(super) bounded: bool,
+    /// Whether a multilinear root's parts are handed what their visit needs ([`Pre`]) by the
+    /// split that makes them; off only in the tests that compare it with the pass of each
+    /// visit over its group.
+    pub(super) derived: bool,
 }
 
 /// A cost found for a group: its depth class, divisor, the factors pulled out of it and its
@@ -323,12 +327,14 @@ impl Costs {
             coef.push(n);
             words.push(m.q.words() * BIG_WORD_UNITS);
         }
+        let masks = Masks::for_mons(mons, &coef, &words);
         Some(Costs {
             coef,
             words,
             memo: FxMap::default(),
-            masks: Masks::for_mons(mons),
+            masks,
             bounded: true,
+            derived: true,
         })
     }
 
@@ -423,6 +429,19 @@ pub(super) struct Masks {
     /// The symbols of the current group's quotients counted, where [`super::Counts`] counts
     /// those of a root that is not multilinear.
     tally: Tally,
+    /// Each monomial's mask with what [`Search::c_partition_pre`] reads of it, one bounds
+    /// check for three.
+    bits: Vec<Bits>,
+}
+
+/// A monomial of a multilinear root, for [`Search::c_partition_pre`].
+struct Bits {
+    of: u64,
+    /// Its coefficient's low word scrambled, for [`mix`].
+    seed: u64,
+    /// Its work in a visit's pass before the divisor's symbols are taken off: one, its
+    /// symbols and its coefficient's words (see [`Search::c_build_at`]).
+    unit: u64,
 }
 
 /// Monomial `q` with coefficient `coef`, hashed into `h`: the low word of the coefficient
@@ -431,6 +450,41 @@ pub(super) struct Masks {
 fn hash_quotient(coef: i128, q: u64, h: &mut FxHasher) {
     h.write_u64(coef as u64);
     h.write_u64(q);
+}
+
+/// The odd multiplier of a coefficient's low word in [`Masks::seed`].
+const MIX_SEED: u64 = 0x9e37_79b9_7f4a_7c15;
+
+/// Monomial `q` with a coefficient seeded `seed` ([`Masks::seed`]) as one word of a group's
+/// value: a multilinear root's group's value is the sum of its monomials' words, so a split
+/// makes both parts' values in its one pass over the group (the memo compares the groups a
+/// value finds, so a collision costs only that comparison).
+#[inline]
+fn mix(seed: u64, q: u64) -> u64 {
+    let x = (seed ^ q).wrapping_mul(0xd6e8_feb8_6659_fd93);
+    x ^ (x >> 29)
+}
+
+/// What a visit of a multilinear root's group ([`Search::c_build_at`]) takes from its pass
+/// over the group, handed to it by the split that made the group ([`Search::c_split_on`]),
+/// which passes over the group's monomials anyway: the group's value (the memo's key, the
+/// sum of [`mix`]), the work the pass charges and its quotients' symbols counted. The part
+/// without the split's factor is counted as the group less the part with it: most
+/// monomials are counted once per split, not once per part they fall in.
+struct Pre {
+    value: u64,
+    work: u64,
+    tally: Tally,
+}
+
+impl Pre {
+    fn new() -> Pre {
+        Pre {
+            value: 0,
+            work: 0,
+            tally: Tally::new(),
+        }
+    }
 }
 
 /// How many symbols each count of a [`Tally`] can reach: `2^PLANES - 1` monomials.
@@ -482,11 +536,33 @@ impl Tally {
             .fold(0, |n, (p, plane)| n | (((plane >> s) & 1) as u32) << p)
     }
 
-    /// [`super::Counts::best`]: the first `k` symbols counted at least twice, most frequent
-    /// first, ties by symbol; the counts are cleared. The symbols of the highest count among
-    /// those left are the ones left at a plane's bit at each plane from the top that has
-    /// any.
+    /// [`Tally::ranked`], the counts cleared.
     fn best(&mut self, k: usize) -> Candidates {
+        let out = self.ranked(k);
+        self.clear();
+        out
+    }
+
+    /// `self` less `part` (counts of some of `self`'s monomials) in `out` (zero), symbol `f`
+    /// left out: the bit-sliced difference, one borrow per plane.
+    fn minus_into(&self, part: &Tally, f: u32, out: &mut Tally) {
+        let (mut borrow, mut union) = (0u64, 0u64);
+        for p in 0..self.used {
+            let (a, b) = (self.planes[p], part.planes[p]);
+            let diff = a ^ b ^ borrow;
+            borrow = (!a & (b | borrow)) | (a & b & borrow);
+            out.planes[p] = diff & !(1 << f);
+            union |= out.planes[p];
+        }
+        debug_assert_eq!(borrow, 0, "a part counts no symbol more than its group");
+        out.used = self.used;
+        out.union = union;
+    }
+
+    /// [`super::Counts::best`]: the first `k` symbols counted at least twice, most frequent
+    /// first, ties by symbol. The symbols of the highest count among those left are the ones
+    /// left at a plane's bit at each plane from the top that has any.
+    fn ranked(&self, k: usize) -> Candidates {
         let mut out = Candidates::new();
         let mut left = self.union;
         while out.len() < k && left != 0 {
@@ -503,7 +579,6 @@ impl Tally {
             out.extend(bits(top).take(room).map(Factor::Sym));
             left &= !top;
         }
-        self.clear();
         out
     }
 
@@ -516,7 +591,7 @@ impl Tally {
 }
 
 impl Masks {
-    fn for_mons(mons: &[Mon]) -> Option<Masks> {
+    fn for_mons(mons: &[Mon], coef: &[i128], words: &[u64]) -> Option<Masks> {
         let of = mons
             .iter()
             .map(|m| {
@@ -525,10 +600,20 @@ impl Masks {
                 })
             })
             .collect::<Option<Vec<u64>>>()?;
+        let bits = of
+            .iter()
+            .zip(coef.iter().zip(words))
+            .map(|(&of, (&c, w))| Bits {
+                of,
+                seed: (c as u64).wrapping_mul(MIX_SEED),
+                unit: 1 + u64::from(of.count_ones()) + w,
+            })
+            .collect();
         Some(Masks {
             of,
             div: 0,
             tally: Tally::new(),
+            bits,
         })
     }
 
@@ -602,9 +687,34 @@ impl Search<'_> {
         }));
         let idx: Vec<u32> = group.iter().map(|(i, _)| *i).collect();
         self.set_div_mask();
-        let value = self.c_value(&idx);
-        let (shape, winner) = self.c_search(&idx, d, value, depth, Cands::Given(fs), NO_BOUND);
+        let (shape, winner) = match self.c_pre(&idx) {
+            Some(pre) => {
+                let cands = Cands::Given(fs);
+                self.c_search(&idx, d, pre.value, depth, cands, NO_BOUND, Some(&pre.tally))
+            }
+            None => {
+                let value = self.c_value(&idx);
+                self.c_search(&idx, d, value, depth, Cands::Given(fs), NO_BOUND, None)
+            }
+        };
         Some((winner?, shape?.alone()))
+    }
+
+    /// What a visit of `group` takes from its pass ([`Pre`]), made in a pass of its own,
+    /// when the root is multilinear and the parts of a split are handed theirs.
+    fn c_pre(&self, group: &[u32]) -> Option<Pre> {
+        let costs = self.costs.as_ref().filter(|c| c.derived)?;
+        let m = costs.masks.as_ref()?;
+        let mut pre = Pre::new();
+        for &i in group {
+            let b = &m.bits[i as usize];
+            let q = b.of & !m.div;
+            pre.tally.add(q);
+            pre.value = pre.value.wrapping_add(mix(b.seed, q));
+            pre.work += b.unit;
+        }
+        pre.work -= group.len() as u64 * u64::from(m.div.count_ones());
+        Some(pre)
     }
 
     fn coef(&self, i: u32) -> i128 {
@@ -635,6 +745,14 @@ impl Search<'_> {
         match self.tally() {
             Some(t) => t.clear(),
             None => self.counts.clear(),
+        }
+    }
+
+    /// [`Search::clear_counted`], unless the group's counts are `tally` (handed down by a
+    /// split: the visit counted nothing).
+    fn clear_counted_unless(&mut self, tally: Option<&Tally>) {
+        if tally.is_none() {
+            self.clear_counted();
         }
     }
 
@@ -762,8 +880,16 @@ impl Search<'_> {
     }
 
     /// [`Search::build_at`] for the group `coef[i] / d`, `i` in `group`; `None` when its cost
-    /// is at least `bound` operations (see the module's doc).
-    fn c_build_at(&mut self, group: &[u32], d: i128, depth: usize, bound: usize) -> Option<Shape> {
+    /// is at least `bound` operations (see the module's doc). `pre` is what the visit's pass
+    /// over the group would find, when the split that made the group found it ([`Pre`]).
+    fn c_build_at(
+        &mut self,
+        group: &[u32],
+        d: i128,
+        depth: usize,
+        bound: usize,
+        pre: Option<&Pre>,
+    ) -> Option<Shape> {
         match group {
             [] => return Some(Shape::ZERO),
             [i] => return Some(self.c_mon(*i, d)),
@@ -773,7 +899,8 @@ impl Search<'_> {
             return None;
         }
         // The work's pass over the quotients also hashes them (see [`Search::c_search`]) and
-        // counts their factors (the candidates), one pass for three.
+        // counts their factors (the candidates), one pass for three; made by the split that
+        // made the group when the root is multilinear (`pre`).
         let mut work = 0u64;
         let mut h = FxHasher::default();
         let Some(costs) = self.costs.as_mut() else {
@@ -781,7 +908,10 @@ impl Search<'_> {
         };
         let (root, div, counts) = (self.root, &self.div, &mut self.counts);
         let base = counts.sym_base;
-        if costs.masks.is_some() {
+        if let Some(pre) = pre {
+            debug_assert!(costs.derived && costs.masks.is_some());
+            work = pre.work;
+        } else if costs.masks.is_some() {
             work = costs.count_masked(group, &mut h);
         } else {
             for &i in group {
@@ -791,27 +921,32 @@ impl Search<'_> {
                 work += 1 + len + costs.words[i as usize];
             }
         }
-        let value = h.finish();
+        let value = pre.map_or_else(|| h.finish(), |p| p.value);
         debug_assert!(self.masks().is_none_or(|m| m.div == self.div_as_mask()));
+        debug_assert!(pre.is_none_or(|p| self.c_pre(group).is_some_and(|q| {
+            (q.value, q.work, q.tally.planes) == (p.value, p.work, p.tally.planes)
+        })));
+        let tally = pre.map(|p| &p.tally);
         self.charge_work(work);
         if self.spent.is_some() {
-            self.clear_counted();
+            self.clear_counted_unless(tally);
             return Some(self.c_plain_sum(group, d));
         }
         // The negation and the content each add one operation to the group's cost.
         if group.iter().all(|&i| (self.coef(i) < 0) != (d < 0)) {
-            self.clear_counted();
+            self.clear_counted_unless(tally);
             return self
-                .c_build_at(group, -d, depth, bound.saturating_sub(1))
+                .c_build_at(group, -d, depth, bound.saturating_sub(1), pre)
                 .map(Shape::neg);
         }
         let g = gcd_over(d, group.iter().map(|&i| self.coef(i)), 0) / d.unsigned_abs();
         if g != 1 {
-            self.clear_counted();
-            let inner = self.c_build_at(group, d * g as i128, depth, bound.saturating_sub(1))?;
+            self.clear_counted_unless(tally);
+            let d = d * g as i128;
+            let inner = self.c_build_at(group, d, depth, bound.saturating_sub(1), pre)?;
             return Some(mul(&[Shape::int(g as i128), inner]));
         }
-        self.c_search(group, d, value, depth, Cands::Counted, bound)
+        self.c_search(group, d, value, depth, Cands::Counted, bound, tally)
             .0
     }
 
@@ -877,6 +1012,10 @@ impl Search<'_> {
     /// candidates are counted on the quotients, ties broken by factor; the shapes are made
     /// from the quotients and the coefficients divided by `d`). The same quotients come back
     /// under other factors pulled out, in other groups of the root's monomials.
+    ///
+    /// `tally` is the group's counts when its split handed them down ([`Pre`]): the
+    /// candidates are read from them and they are handed on to the group's splits.
+    #[allow(clippy::too_many_arguments)]
     fn c_search(
         &mut self,
         group: &[u32],
@@ -885,6 +1024,7 @@ impl Search<'_> {
         depth: usize,
         fs: Cands,
         bound: usize,
+        tally: Option<&Tally>,
     ) -> (Option<Shape>, Option<Factor>) {
         let level = depth.min(BRANCH_DEPTH);
         let key = self.c_div_key();
@@ -911,7 +1051,7 @@ impl Search<'_> {
             };
             if let Some(found) = found {
                 if matches!(fs, Cands::Counted) {
-                    self.clear_counted();
+                    self.clear_counted_unless(tally);
                 }
                 return found;
             }
@@ -921,7 +1061,10 @@ impl Search<'_> {
         let candidates = match fs {
             Cands::Given(fs) => fs,
             Cands::Counted => {
-                counted = self.counted_best(tries);
+                counted = match tally {
+                    Some(t) => t.ranked(tries),
+                    None => self.counted_best(tries),
+                };
                 &counted[..]
             }
             Cands::Count => {
@@ -933,7 +1076,10 @@ impl Search<'_> {
             return (Some(self.c_plain_sum(group, d)), None);
         }
         let (shape, winner) = if tries == 1 {
-            (self.c_run(group, d, candidates[0], depth, bound), None)
+            (
+                self.c_run(group, d, candidates[0], depth, bound, tally),
+                None,
+            )
         } else {
             let bounded = self.bounded();
             let mut best: Option<(Shape, Factor)> = None;
@@ -944,7 +1090,7 @@ impl Search<'_> {
                     Some((s, _)) if bounded => s.alone().ops.min(bound),
                     _ => bound,
                 };
-                let Some(e) = self.c_split_on(group, d, f, depth, b) else {
+                let Some(e) = self.c_split_on(group, d, f, depth, b, tally) else {
                     continue;
                 };
                 if e.alone().ops < b && best.is_none_or(|(s, _)| e.alone() < s.alone()) {
@@ -1006,7 +1152,62 @@ impl Search<'_> {
         k
     }
 
-    /// [`Search::split_on`]; `None` when its cost is at least `bound` operations.
+    /// [`Search::c_partition`] of a multilinear root's group whose counts are `tally` on `f`
+    /// (symbol `s`), with what each part's visit takes from its pass ([`Pre`], in `w` for
+    /// the part holding `f`, as divided by `f`, and `r` for the rest): the smaller part
+    /// counted, the other's counts the group's less those (most monomials are counted once
+    /// per split, where each part's visit counted all of its own).
+    #[allow(clippy::too_many_arguments)]
+    fn c_partition_pre(
+        &self,
+        group: &[u32],
+        s: u32,
+        tally: &Tally,
+        with: &mut Part,
+        rest: &mut Part,
+        w: &mut Pre,
+        r: &mut Pre,
+    ) {
+        let Some(m) = self.masks() else {
+            return;
+        };
+        let fbit = 1u64 << s;
+        debug_assert_eq!(m.div & fbit, 0);
+        let n_with = tally.count(s) as usize;
+        let count_with = 2 * n_with <= group.len();
+        for &i in group {
+            let b = &m.bits[i as usize];
+            let q = b.of & !m.div;
+            if q & fbit != 0 {
+                with.push(i);
+                let q = q & !fbit;
+                if count_with {
+                    w.tally.add(q);
+                }
+                w.value = w.value.wrapping_add(mix(b.seed, q));
+                w.work += b.unit;
+            } else {
+                rest.push(i);
+                if !count_with {
+                    r.tally.add(q);
+                }
+                r.value = r.value.wrapping_add(mix(b.seed, q));
+                r.work += b.unit;
+            }
+        }
+        debug_assert_eq!(with.len(), n_with);
+        if count_with {
+            tally.minus_into(&w.tally, s, &mut r.tally);
+        } else {
+            tally.minus_into(&r.tally, s, &mut w.tally);
+        }
+        let ones = u64::from(m.div.count_ones());
+        w.work -= with.len() as u64 * (ones + 1);
+        r.work -= rest.len() as u64 * ones;
+    }
+
+    /// [`Search::split_on`]; `None` when its cost is at least `bound` operations. `tally` is
+    /// the group's counts when its parts are handed theirs ([`Pre`]).
     fn c_split_on(
         &mut self,
         group: &[u32],
@@ -1014,11 +1215,35 @@ impl Search<'_> {
         f: Factor,
         depth: usize,
         bound: usize,
+        tally: Option<&Tally>,
     ) -> Option<Shape> {
-        let fi = self.counts.index(f);
         // On the stack: a split's two parts were two allocations per candidate tried.
         let (mut with, mut rest) = (Part::with_capacity(group.len()), Part::new());
+        if let (Some(t), Factor::Sym(s), true) = (tally, f, self.masks().is_some()) {
+            let (mut w, mut r) = (Pre::new(), Pre::new());
+            self.c_partition_pre(group, s, t, &mut with, &mut rest, &mut w, &mut r);
+            return self.c_split_parts(&with, &rest, 1, d, f, depth, bound, Some((&w, &r)));
+        }
         let k = self.c_partition(group, f, &mut with, &mut rest);
+        self.c_split_parts(&with, &rest, k, d, f, depth, bound, None)
+    }
+
+    /// [`Search::c_split_on`] past its partition: the part `with` holding `f^k` and the
+    /// `rest`, with their [`Pre`]s when handed down.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn c_split_parts(
+        &mut self,
+        with: &[u32],
+        rest: &[u32],
+        k: u32,
+        d: i128,
+        f: Factor,
+        depth: usize,
+        bound: usize,
+        pre: Option<(&Pre, &Pre)>,
+    ) -> Option<Shape> {
+        let fi = self.counts.index(f);
         // What the split adds to the cost of the group holding `f` (at least two monomials,
         // so not the number one): `k - 1` for the power and one for the product, or with a
         // rest of `n` monomials `k - 1` and `n` (its additions and the one joining it; the
@@ -1028,10 +1253,11 @@ impl Search<'_> {
         self.path.push((fi, k));
         let masked = self.mask_div(f, true);
         let inner = self.c_build_at(
-            &with,
+            with,
             d,
             depth.saturating_add(k as usize),
             bound.saturating_sub(over),
+            pre.map(|(w, _)| w),
         );
         if masked {
             self.mask_div(f, false);
@@ -1039,11 +1265,11 @@ impl Search<'_> {
         self.path.pop();
         self.div[fi] -= k;
         let factored = mul(&[factor_shape(k), inner?]);
-        self.c_beside(factored, &rest, d, depth, bound)
+        self.c_beside(factored, rest, d, depth, bound, pre.map(|(_, r)| r))
     }
 
     /// [`Search::beside`]: the rest's terms and the factored group in one sum; `None` when
-    /// its cost is at least `bound` operations.
+    /// its cost is at least `bound` operations. `pre` is the rest's [`Pre`], when handed down.
     fn c_beside(
         &mut self,
         factored: Shape,
@@ -1051,6 +1277,7 @@ impl Search<'_> {
         d: i128,
         depth: usize,
         bound: usize,
+        pre: Option<&Pre>,
     ) -> Option<Shape> {
         if rest.is_empty() {
             return Some(factored);
@@ -1060,6 +1287,7 @@ impl Search<'_> {
             d,
             depth + 1,
             bound.saturating_sub(factored.in_sum().ops),
+            pre,
         )?;
         Some(if r.kind == Kind::Add && r.negs == 0 {
             Shape {
@@ -1074,6 +1302,7 @@ impl Search<'_> {
     /// [`Search::run`]: the split of `g0` on `f`, and of the group holding `f` on `f` again
     /// while `f` stays its most frequent factor, from buckets by the power of `f`; `None`
     /// when its cost is at least `bound` operations (each level's cost is at most the run's).
+    /// `tally` is `g0`'s counts, when handed down ([`Pre`]).
     fn c_run(
         &mut self,
         g0: &[u32],
@@ -1081,10 +1310,11 @@ impl Search<'_> {
         f: Factor,
         depth: usize,
         bound: usize,
+        tally: Option<&Tally>,
     ) -> Option<Shape> {
         if self.masks().is_some() {
             // A multilinear root's powers are 0 and 1: its runs are short.
-            return self.c_split_on(g0, d, f, depth, bound);
+            return self.c_split_on(g0, d, f, depth, bound, tally);
         }
         let fi = self.counts.index(f);
         let base = self.div[fi];
@@ -1107,7 +1337,7 @@ impl Search<'_> {
             ks
         };
         if ks.len() <= super::run::SHORT_RUN {
-            return self.c_split_on(g0, d, f, depth, bound);
+            return self.c_split_on(g0, d, f, depth, bound, None);
         }
         let buckets = Buckets::sorted(&mults, &ks);
         let levels = self.c_levels(g0, d, f, &ks, &buckets);
@@ -1146,7 +1376,15 @@ impl Search<'_> {
                 self.path.push((fi, ks[b]));
                 let value = self.c_value(&group);
                 let e = self
-                    .c_search(&group, at(neg, divisor), value, depth, Cands::Count, bound)
+                    .c_search(
+                        &group,
+                        at(neg, divisor),
+                        value,
+                        depth,
+                        Cands::Count,
+                        bound,
+                        None,
+                    )
                     .0;
                 self.path.pop();
                 match e {
@@ -1171,7 +1409,7 @@ impl Search<'_> {
                 buckets.get(lb).iter().map(|&p| g0[p as usize]).collect();
             self.div[fi] = base + ks[lb];
             self.path.push((fi, ks[lb]));
-            let level_e = self.c_beside(factored, &rest, at(neg, divisor), depth, bound);
+            let level_e = self.c_beside(factored, &rest, at(neg, divisor), depth, bound, None);
             self.path.pop();
             match level_e {
                 Some(level_e) => e = wrap(level_e, steps),
