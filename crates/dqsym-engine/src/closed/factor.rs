@@ -1461,6 +1461,119 @@ mod tests {
         assert!(second >= 50, "the second bound skipped {second} splits");
     }
 
+    /// The entries of random chains of two to four joints in the shape of a DH transform, in
+    /// plain symbols (`c1`, `s1` for a joint's cosine and sine, `ca1`, `sa1` for its twist's,
+    /// `a1`, `d1`): multilinear sums like the symbolic 6R's recurrence entries, some
+    /// parameters zero or a right angle.
+    fn chain_entries(seed: u64) -> Vec<Scalar> {
+        let mut next = crate::testing::xorshift_below(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
+        let z = || Scalar::int(0);
+        let mut m: Vec<Vec<Scalar>> = (0..4)
+            .map(|r| (0..4).map(|c| Scalar::int(i64::from(r == c))).collect())
+            .collect();
+        for j in 1..=2 + next(3) {
+            let v = |n: &str| Scalar::sym(&format!("{n}{j}"));
+            let (c, s) = (v("c"), v("s"));
+            let (ca, sa) = match next(4) {
+                0 => (Scalar::int(1), z()),
+                1 => (z(), Scalar::int(1)),
+                _ => (v("ca"), v("sa")),
+            };
+            let a = if next(3) == 0 { z() } else { v("a") };
+            let d = if next(3) == 0 { z() } else { v("d") };
+            let t = [
+                [
+                    c.clone(),
+                    -(s.clone() * ca.clone()),
+                    s.clone() * sa.clone(),
+                    a.clone() * c.clone(),
+                ],
+                [
+                    s.clone(),
+                    c.clone() * ca.clone(),
+                    -(c.clone() * sa.clone()),
+                    a * s,
+                ],
+                [z(), sa, ca, d],
+                [z(), z(), z(), Scalar::int(1)],
+            ];
+            m = (0..4)
+                .map(|r| {
+                    (0..4)
+                        .map(|k| (0..4).fold(z(), |acc, i| acc + m[r][i].clone() * t[i][k].clone()))
+                        .collect()
+                })
+                .collect();
+        }
+        m.into_iter().take(3).flatten().collect()
+    }
+
+    /// The bounded search of `mons` (as [`build`]), a multilinear root's parts handed their
+    /// visit's pass by their split (`derived`, `costs.rs`'s `Pre`) or each visit passing over
+    /// its group (the route before it), under `budget`: the expression or the budget error,
+    /// with the work charged.
+    fn derived_or_counted(
+        mons: &[Mon],
+        ctx: &Ctx,
+        derived: bool,
+        budget: Option<u64>,
+    ) -> (Result<Expr, String>, u64) {
+        let mut c = crate::Context::default();
+        if let Some(b) = budget {
+            c = c.with_work_budget(b);
+        }
+        let _entered = c.enter();
+        let w0 = crate::Context::work_done();
+        let mut s = search(mons, Pass::Bounded);
+        if let Some(c) = s.costs.as_mut() {
+            c.derived = derived;
+        }
+        let e = s.build_at(&root_group(mons), 0);
+        let out = match s.spent {
+            Some(err) => Err(format!("{err:?}")),
+            None => Ok(e.to_expr(ctx)),
+        };
+        (out, crate::Context::work_done() - w0)
+    }
+
+    /// A multilinear root's parts take their value, work and counts from the split that made
+    /// them (`costs.rs`'s `Pre`): the same expressions and the same work charged as each
+    /// visit's own pass over its group, on random multilinear sums and the entries of random
+    /// chains, and at budgets that run out in the search the same budget errors after the
+    /// same work.
+    #[test]
+    fn parts_handed_their_pass_choose_and_charge_as_each_visit_counting() {
+        let (mut masked, mut compared, mut ran_out) = (0, 0, 0);
+        let polys = (0..40)
+            .map(poly_multilinear)
+            .chain((0..12).flat_map(chain_entries));
+        for (k, p) in polys.enumerate() {
+            let (ctx, mons) = whole_modes(&p);
+            if mons.len() < 2 || !costs::Costs::for_mons(&mons).is_some_and(|c| c.masked()) {
+                continue;
+            }
+            masked += 1;
+            let (old, work) = derived_or_counted(&mons, &ctx, false, None);
+            let new = derived_or_counted(&mons, &ctx, true, None);
+            assert_eq!(new, (old.clone(), work), "{k}: {p}");
+            assert_eq!(old.expect("factored").to_scalar(), p, "{k}");
+            compared += 1;
+            if k % 4 == 0 {
+                for budget in [work / 3, work / 2, work - work / 8, work - 1] {
+                    let old = derived_or_counted(&mons, &ctx, false, Some(budget));
+                    let new = derived_or_counted(&mons, &ctx, true, Some(budget));
+                    ran_out += usize::from(old.0.is_err());
+                    assert_eq!(new, old, "{k} at {budget}: {p}");
+                }
+            }
+        }
+        assert!(masked >= 120, "{masked} multilinear roots");
+        assert!(
+            compared >= 120 && ran_out >= 40,
+            "{compared} compared, {ran_out} ran out"
+        );
+    }
+
     /// Past 126 bits a coefficient is not a machine integer: the candidates are built, not
     /// costed without their trees.
     #[test]

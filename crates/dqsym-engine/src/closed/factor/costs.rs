@@ -890,6 +890,20 @@ impl Search<'_> {
         bound: usize,
         pre: Option<&Pre>,
     ) -> Option<Shape> {
+        match pre {
+            Some(pre) => self.c_build_pre(group, d, depth, bound, pre),
+            None => self.c_build_counting(group, d, depth, bound),
+        }
+    }
+
+    /// [`Search::c_build_at`] with its pass over the group.
+    fn c_build_counting(
+        &mut self,
+        group: &[u32],
+        d: i128,
+        depth: usize,
+        bound: usize,
+    ) -> Option<Shape> {
         match group {
             [] => return Some(Shape::ZERO),
             [i] => return Some(self.c_mon(*i, d)),
@@ -899,8 +913,7 @@ impl Search<'_> {
             return None;
         }
         // The work's pass over the quotients also hashes them (see [`Search::c_search`]) and
-        // counts their factors (the candidates), one pass for three; made by the split that
-        // made the group when the root is multilinear (`pre`).
+        // counts their factors (the candidates), one pass for three.
         let mut work = 0u64;
         let mut h = FxHasher::default();
         let Some(costs) = self.costs.as_mut() else {
@@ -908,10 +921,7 @@ impl Search<'_> {
         };
         let (root, div, counts) = (self.root, &self.div, &mut self.counts);
         let base = counts.sym_base;
-        if let Some(pre) = pre {
-            debug_assert!(costs.derived && costs.masks.is_some());
-            work = pre.work;
-        } else if costs.masks.is_some() {
+        if costs.masks.is_some() {
             work = costs.count_masked(group, &mut h);
         } else {
             for &i in group {
@@ -921,32 +931,70 @@ impl Search<'_> {
                 work += 1 + len + costs.words[i as usize];
             }
         }
-        let value = pre.map_or_else(|| h.finish(), |p| p.value);
+        let value = h.finish();
         debug_assert!(self.masks().is_none_or(|m| m.div == self.div_as_mask()));
-        debug_assert!(pre.is_none_or(|p| self.c_pre(group).is_some_and(|q| {
-            (q.value, q.work, q.tally.planes) == (p.value, p.work, p.tally.planes)
-        })));
-        let tally = pre.map(|p| &p.tally);
         self.charge_work(work);
         if self.spent.is_some() {
-            self.clear_counted_unless(tally);
+            self.clear_counted();
             return Some(self.c_plain_sum(group, d));
         }
         // The negation and the content each add one operation to the group's cost.
         if group.iter().all(|&i| (self.coef(i) < 0) != (d < 0)) {
-            self.clear_counted_unless(tally);
+            self.clear_counted();
             return self
-                .c_build_at(group, -d, depth, bound.saturating_sub(1), pre)
+                .c_build_counting(group, -d, depth, bound.saturating_sub(1))
                 .map(Shape::neg);
         }
         let g = gcd_over(d, group.iter().map(|&i| self.coef(i)), 0) / d.unsigned_abs();
         if g != 1 {
-            self.clear_counted_unless(tally);
+            self.clear_counted();
             let d = d * g as i128;
-            let inner = self.c_build_at(group, d, depth, bound.saturating_sub(1), pre)?;
+            let inner = self.c_build_counting(group, d, depth, bound.saturating_sub(1))?;
             return Some(mul(&[Shape::int(g as i128), inner]));
         }
-        self.c_search(group, d, value, depth, Cands::Counted, bound, tally)
+        self.c_search(group, d, value, depth, Cands::Counted, bound, None)
+            .0
+    }
+
+    /// [`Search::c_build_counting`] of a multilinear root's group whose pass its split made
+    /// (`pre`): the same steps, the same work charged.
+    fn c_build_pre(
+        &mut self,
+        group: &[u32],
+        d: i128,
+        depth: usize,
+        bound: usize,
+        pre: &Pre,
+    ) -> Option<Shape> {
+        match group {
+            [] => return Some(Shape::ZERO),
+            [i] => return Some(self.c_mon(*i, d)),
+            _ => {}
+        }
+        if additions(group.len()) >= bound {
+            return None;
+        }
+        debug_assert!(self.c_pre(group).is_some_and(|q| {
+            (q.value, q.work, q.tally.planes) == (pre.value, pre.work, pre.tally.planes)
+        }));
+        self.charge_work(pre.work);
+        if self.spent.is_some() {
+            return Some(self.c_plain_sum(group, d));
+        }
+        // The negation and the content each add one operation to the group's cost.
+        if group.iter().all(|&i| (self.coef(i) < 0) != (d < 0)) {
+            return self
+                .c_build_pre(group, -d, depth, bound.saturating_sub(1), pre)
+                .map(Shape::neg);
+        }
+        let g = gcd_over(d, group.iter().map(|&i| self.coef(i)), 0) / d.unsigned_abs();
+        if g != 1 {
+            let d = d * g as i128;
+            let inner = self.c_build_pre(group, d, depth, bound.saturating_sub(1), pre)?;
+            return Some(mul(&[Shape::int(g as i128), inner]));
+        }
+        let tally = Some(&pre.tally);
+        self.c_search(group, d, pre.value, depth, Cands::Counted, bound, tally)
             .0
     }
 
