@@ -12,7 +12,7 @@
 //! back.
 
 use super::quantity::{Family, Letters, MatrixFrom, Quantity, Section, SectionKind};
-use super::recurrence::recurrence_sections;
+use super::recurrence::{recurrence_sections_printed, CosSinTexts};
 use crate::emit::names::{line_comment, Comment, Lang};
 use crate::emit::syntax::syntax;
 use crate::emit::{
@@ -115,13 +115,13 @@ pub fn fk_report_and_entries(
     // The joint factors once, for the expansions, the header's parameters and the recurrence.
     let joints = robot.made_joints();
     let params = robot.parameters_of(joints.dqs());
-    let entries = entries_of(robot, joints, o)?;
+    let (entries, texts) = entries_of(robot, joints, o)?;
     let text = if entries.recurrence {
         let notes = [format!(
             "the expanded pose exceeds {} terms per entry: it is given exactly, as a recurrence over the joint factors (entry X[k] is the symbol X_k of later entries)",
             o.max_terms
         )];
-        render(robot, &params, &entries.sections, o, &notes)?
+        render_printed(robot, &params, &entries.sections, o, &notes, texts)?
     } else {
         render(robot, &params, &entries.sections, o, &[])?
     };
@@ -170,17 +170,18 @@ impl FkEntries {
 /// # Errors
 /// As [`fk_report`].
 pub fn fk_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError> {
-    entries_of(robot, robot.made_joints(), o)
+    entries_of(robot, robot.made_joints(), o).map(|(entries, _)| entries)
 }
 
 /// [`fk_entries`] from the robot's joint factors `joints` ([`Robot::made_joints`]): the
 /// recurrence takes them as the expansion leaves them (it moves them out only for the DQ
-/// product, past the matrix product that gives a fully symbolic chain up).
+/// product, past the matrix product that gives a fully symbolic chain up). With the entries,
+/// the text of a recurrence's matrix in cosines and sines, printed already ([`CosSinTexts`]).
 fn entries_of(
     robot: &Robot,
     mut joints: MadeJoints,
     o: &FkOptions,
-) -> Result<FkEntries, ReportError> {
+) -> Result<(FkEntries, Option<CosSinTexts>), ReportError> {
     // Any stage past the term limit (the DQ, the matrix, the point, the Jacobian, a closed
     // form) switches to the recurrence, whose every entry is small.
     // The expansion is an attempt with a budget of its own (what is left of the caller's), so
@@ -202,9 +203,12 @@ fn entries_of(
             | ScalarError::Budget { .. },
         )))
         | None => recurrence_entries(robot, &joints, o),
-        Some(r) => r.map(|sections| FkEntries {
-            sections,
-            recurrence: false,
+        Some(r) => r.map(|sections| {
+            let entries = FkEntries {
+                sections,
+                recurrence: false,
+            };
+            (entries, None)
         }),
     }
 }
@@ -241,11 +245,13 @@ fn recurrence_entries(
     robot: &Robot,
     joints: &MadeJoints,
     o: &FkOptions,
-) -> Result<FkEntries, ReportError> {
-    Ok(FkEntries {
-        sections: recurrence_sections(robot, Some(joints), o)?,
+) -> Result<(FkEntries, Option<CosSinTexts>), ReportError> {
+    let (sections, texts) = recurrence_sections_printed(robot, Some(joints), o)?;
+    let entries = FkEntries {
+        sections,
         recurrence: true,
-    })
+    };
+    Ok((entries, texts))
 }
 
 /// The sections of a report.
@@ -340,7 +346,12 @@ fn expanded_entries(
     // abandons it, as on the PUMA 560): then the DQ product is begun beside the matrix
     // product, which ran alone while the helper waited (PUMA 560 `fk --jacobian`, SCHED_FIFO
     // runs: wall minimum 4.31 -> 4.26 ms, median 4.54 -> 4.49 ms).
-    let factors = robot.factor_matrices(joints.dqs(), EARLY_FORM_TERMS.min(o.max_terms));
+    // Their matrices are kept in `joints` for the recurrence that follows a pose given up.
+    let factors = robot.factor_matrices(
+        joints.dqs(),
+        EARLY_FORM_TERMS.min(o.max_terms),
+        joints.matrices(),
+    );
     let (matrix, q) = if factors.small() {
         let joints = joints.take();
         join(|| product(factors).map(matrix_forms), || dq_product(joints))
@@ -756,6 +767,20 @@ pub(super) fn render(
     o: &FkOptions,
     notes: &[String],
 ) -> Result<String, ReportError> {
+    render_printed(robot, params, sections, o, notes, None)
+}
+
+/// [`render`], the rows of a matrix in cosines and sines taken from `texts` (their plain
+/// text, shorthand and without decimals, [`CosSinTexts`]) where the report prints them so:
+/// the same closed forms, printed the same way.
+fn render_printed(
+    robot: &Robot,
+    params: &[String],
+    sections: &[Section],
+    o: &FkOptions,
+    notes: &[String],
+    texts: Option<CosSinTexts>,
+) -> Result<String, ReportError> {
     let shorthand = o.shorthand;
     // A robot whose file wrote decimals reads in decimals (`0.425 c2`), exactly: the
     // denominators pulled out of sums put back, decimal fractions printed as decimals.
@@ -797,10 +822,24 @@ pub(super) fn render(
                 out.push_str(&line_comment(Comment::Hash, "#", n));
             }
             // The rows printed on the threads the closed forms were found on (printing was a
-            // tenth of the PUMA 560's report, all of it after the last closed form).
-            let rows: Vec<&(Quantity, Expr)> = sections.iter().flat_map(|s| &s.rows).collect();
-            let lines = par_map(&rows, |(n, e)| {
-                format!("{} = {}\n", n.name(), plain(e, &po))
+            // tenth of the PUMA 560's report, all of it after the last closed form). A matrix
+            // in cosines and sines was printed already, in this report's options when
+            // shorthand and without decimals (`sections` are then the entries themselves).
+            let mut printed = texts.filter(|_| shorthand && !decimals).map(Vec::into_iter);
+            let mut rows: Vec<(&(Quantity, Expr), Option<String>)> = Vec::new();
+            for s in sections {
+                let cos_sin = s.kind == SectionKind::Matrix(MatrixFrom::CosSin);
+                for row in &s.rows {
+                    let text = printed
+                        .as_mut()
+                        .filter(|_| cos_sin)
+                        .and_then(Iterator::next);
+                    rows.push((row, text));
+                }
+            }
+            let lines = par_map(&rows, |((n, e), text)| match text {
+                Some(text) => format!("{} = {text}\n", n.name()),
+                None => format!("{} = {}\n", n.name(), plain(e, &po)),
             });
             let all: Vec<&Expr> = sections
                 .iter()
