@@ -1062,6 +1062,7 @@ pub fn ops_tables() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::app::recurrence::recurrence_sections;
     use crate::kin::{random_test_chain, LARGEST_FIRST};
 
     /// `fk`'s entries and decision (expanded or recurrence) on a thread of its own, with
@@ -1105,13 +1106,71 @@ mod tests {
         assert!(recurrences >= 8, "{recurrences} recurrences");
     }
 
-    /// The recurrence from the joint factors `fk` made gives what it gives making them
-    /// itself, and charges the same work, under no budget and under budgets that run out
-    /// around the first place it would make them (the pose's factors: `units` and one unit
-    /// either side) and later. Not reached here: a budget that refuses the third use (the
-    /// names' check, after the products; the second, the matrix in cosines and sines, runs on
-    /// a budget of its own), which `joint_factors_kept_are_charged_as_made` covers for
-    /// `MadeJoints::again` itself.
+    /// A recurrence's report prints the matrix in cosines and sines from the text kept when
+    /// it was measured (`CosSinTexts`) as it prints it without, in every format and with or
+    /// without the shorthand, on random chains and the fully symbolic 6R (whose matrix is
+    /// made so); a robot read in decimals prints its own text.
+    #[test]
+    fn the_matrix_text_kept_is_the_matrix_printed() {
+        let mut next = crate::testing::xorshift_below(3535);
+        let mut robots: Vec<Robot> = (0..8).map(|_| random_test_chain(&mut next, 6)).collect();
+        // A fully symbolic 6R (tests/data/generic_6r.toml): a random chain's shell, its joints
+        // replaced.
+        let mut r6 = random_test_chain(&mut next, 6);
+        let s = |name: &str, i: usize| Scalar::sym(&format!("{name}{i}"));
+        r6.chain = crate::kin::Chain::new(
+            (1..=6)
+                .map(|i| {
+                    let (d, a, alpha) = (s("d", i), s("a", i), s("alpha", i));
+                    crate::kin::Joint::revolute_dh(Scalar::int(0), d, a, alpha)
+                })
+                .collect(),
+        );
+        r6.variables = (1..=6).map(|i| format!("theta{i}")).collect();
+        r6.joint_values = (1..=6).map(|i| s("theta", i)).collect();
+        r6.convention = crate::kin::Convention::Dh;
+        robots.push(r6);
+        let mut kept = 0;
+        for robot in &robots {
+            let _in = crate::Context::new().with_threads(1).enter();
+            let o = FkOptions {
+                jacobian: true,
+                max_terms: 300,
+                ..FkOptions::default()
+            };
+            let Ok((entries, texts)) = entries_of(robot, robot.made_joints(), &o) else {
+                continue;
+            };
+            kept += usize::from(texts.is_some());
+            let params = robot.parameters();
+            for format in [Format::Plain, Format::Latex, Format::Sympy] {
+                for shorthand in [true, false] {
+                    let o = FkOptions {
+                        format,
+                        shorthand,
+                        ..o.clone()
+                    };
+                    let mut decimal = robot.clone();
+                    decimal.decimals = vec![num_rational::BigRational::new(17.into(), 40.into())];
+                    for r in [robot, &decimal] {
+                        let s = &entries.sections;
+                        let with = render_printed(r, &params, s, &o, &[], texts.clone());
+                        assert_eq!(with, render(r, &params, s, &o, &[]));
+                    }
+                }
+            }
+        }
+        assert!(kept >= 3, "{kept}");
+    }
+
+    /// The recurrence from the joint factors `fk` made (and their matrices kept) gives what it
+    /// gives making them itself, and charges the same work, under no budget and under budgets
+    /// that run out around the first place it would make them (the pose's factors: `units`
+    /// and one unit either side) and later. Not reached here: a budget that refuses the third
+    /// use (the names' check, after the products; the second, the matrix in cosines and sines,
+    /// runs on a budget of its own), which `joint_factors_kept_are_charged_as_made` covers for
+    /// `MadeJoints::again` itself (and `joint_matrices_kept_are_charged_as_made` for the
+    /// matrices).
     #[test]
     fn the_recurrence_from_the_factors_made_is_the_recurrence() {
         let mut next = crate::testing::xorshift_below(4141);
@@ -1124,10 +1183,15 @@ mod tests {
             };
             // Made on warm caches, as the recurrence would make them again (see
             // `MadeJoints::again`: on cold ones the charge may be the caches' misses more).
+            // Their matrices kept as the expansion keeps them (`JointMatrices`: those of the
+            // factors a matrix product reached), on warm caches too.
             let made = {
                 let _in = crate::Context::new().with_threads(1).enter();
                 let _ = robot.joint_dqs();
-                robot.made_joints()
+                let made = robot.made_joints();
+                let _ = robot.forward_matrix_cos_sin_of(made.dqs(), None, 1_000);
+                let _ = robot.forward_matrix_cos_sin_of(made.dqs(), made.matrices(), 1_000);
+                made
             };
             let units = made.units_for_tests();
             let run = |budget: Option<u64>, from_made: bool| {

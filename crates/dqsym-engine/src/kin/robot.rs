@@ -2486,6 +2486,75 @@ mod tests {
         }
     }
 
+    /// `JointMatrices::matrix` gives the matrix `to_matrix` makes, kept or not; kept, it is
+    /// charged the work its making was (made on warm caches, as in
+    /// `joint_factors_kept_are_charged_as_made`); under a budget short of that by one unit it
+    /// is made anew, with the error values that gives, and a matrix with an error value is
+    /// not kept. The products `fk` makes from kept matrices are those made without.
+    #[test]
+    fn joint_matrices_kept_are_charged_as_made() {
+        let mut next = crate::testing::xorshift_below(3131);
+        let mut tight_errors = 0;
+        for _ in 0..30 {
+            let robot = random_test_chain(&mut next, 8);
+            let _in = crate::Context::new().with_threads(1).enter();
+            let made = robot.made_joints();
+            let kept = made.matrices().expect("sound factors").clone();
+            for (i, q) in made.dqs().iter().enumerate() {
+                let _ = q.to_matrix();
+                let before = crate::scalar::work_used();
+                let m = q.to_matrix();
+                let units = crate::scalar::work_used() - before;
+                // Not kept yet: made (and kept), charged as `to_matrix` is.
+                let before = crate::scalar::work_used();
+                assert!(kept.matrix(i, q) == m);
+                assert_eq!(crate::scalar::work_used() - before, units);
+                // Kept: the same matrix, the same charge.
+                let before = crate::scalar::work_used();
+                assert!(kept.matrix(i, q) == m);
+                assert_eq!(crate::scalar::work_used() - before, units);
+                if units == 0 {
+                    continue;
+                }
+                let tight = || {
+                    crate::Context::new()
+                        .with_threads(1)
+                        .with_work_budget(units - 1)
+                        .enter()
+                };
+                let from_kept = {
+                    let _t = tight();
+                    kept.matrix(i, q)
+                };
+                let _t = tight();
+                let anew = q.to_matrix();
+                assert!(from_kept == anew);
+                if anew.rows.iter().flatten().any(|x| x.as_error().is_some()) {
+                    tight_errors += 1;
+                    // Not kept: a fresh slot stays empty.
+                    let fresh = JointMatrices::new(made.dqs().len());
+                    let _ = fresh.matrix(i, q);
+                    assert!(fresh.0[i].get().is_none());
+                }
+            }
+            // The matrix products of `fk`'s expansion and of the recurrence, from the matrices
+            // kept and without.
+            let (with, without) = (
+                robot.forward_matrix_cos_sin_of(made.dqs(), Some(&kept), 1_000),
+                robot.forward_matrix_cos_sin_of(made.dqs(), None, 1_000),
+            );
+            assert!(with == without);
+            let flag = || AtomicBool::new(false);
+            let mut all = |_: usize, _: usize, _: &Scalar| true;
+            let factors = robot.factor_matrices(made.dqs(), EARLY, Some(&kept));
+            let with = robot.forward_matrix_until(factors, 5_000, &flag(), &mut all);
+            let factors = robot.factor_matrices(made.dqs(), EARLY, None);
+            let without = robot.forward_matrix_until(factors, 5_000, &flag(), &mut all);
+            assert!(with == without);
+        }
+        assert!(tight_errors > 20, "{tight_errors}");
+    }
+
     #[test]
     fn a_joint_whose_variable_is_elsewhere_is_not_shifted() {
         let offset = Scalar::pi() * Scalar::from_ratio(5, 9);
