@@ -12,7 +12,7 @@
 //! back.
 
 use super::quantity::{Family, Letters, MatrixFrom, Quantity, Section, SectionKind};
-use super::recurrence::recurrence_sections;
+use super::recurrence::{recurrence_sections_printed, CosSinTexts};
 use crate::emit::names::{line_comment, Comment, Lang};
 use crate::emit::syntax::syntax;
 use crate::emit::{
@@ -115,13 +115,13 @@ pub fn fk_report_and_entries(
     // The joint factors once, for the expansions, the header's parameters and the recurrence.
     let joints = robot.made_joints();
     let params = robot.parameters_of(joints.dqs());
-    let entries = entries_of(robot, joints, o)?;
+    let (entries, texts) = entries_of(robot, joints, o)?;
     let text = if entries.recurrence {
         let notes = [format!(
             "the expanded pose exceeds {} terms per entry: it is given exactly, as a recurrence over the joint factors (entry X[k] is the symbol X_k of later entries)",
             o.max_terms
         )];
-        render(robot, &params, &entries.sections, o, &notes)?
+        render_printed(robot, &params, &entries.sections, o, &notes, texts)?
     } else {
         render(robot, &params, &entries.sections, o, &[])?
     };
@@ -170,17 +170,18 @@ impl FkEntries {
 /// # Errors
 /// As [`fk_report`].
 pub fn fk_entries(robot: &Robot, o: &FkOptions) -> Result<FkEntries, ReportError> {
-    entries_of(robot, robot.made_joints(), o)
+    entries_of(robot, robot.made_joints(), o).map(|(entries, _)| entries)
 }
 
 /// [`fk_entries`] from the robot's joint factors `joints` ([`Robot::made_joints`]): the
 /// recurrence takes them as the expansion leaves them (it moves them out only for the DQ
-/// product, past the matrix product that gives a fully symbolic chain up).
+/// product, past the matrix product that gives a fully symbolic chain up). With the entries,
+/// the text of a recurrence's matrix in cosines and sines, printed already ([`CosSinTexts`]).
 fn entries_of(
     robot: &Robot,
     mut joints: MadeJoints,
     o: &FkOptions,
-) -> Result<FkEntries, ReportError> {
+) -> Result<(FkEntries, Option<CosSinTexts>), ReportError> {
     // Any stage past the term limit (the DQ, the matrix, the point, the Jacobian, a closed
     // form) switches to the recurrence, whose every entry is small.
     // The expansion is an attempt with a budget of its own (what is left of the caller's), so
@@ -202,9 +203,12 @@ fn entries_of(
             | ScalarError::Budget { .. },
         )))
         | None => recurrence_entries(robot, &joints, o),
-        Some(r) => r.map(|sections| FkEntries {
-            sections,
-            recurrence: false,
+        Some(r) => r.map(|sections| {
+            let entries = FkEntries {
+                sections,
+                recurrence: false,
+            };
+            (entries, None)
         }),
     }
 }
@@ -241,11 +245,13 @@ fn recurrence_entries(
     robot: &Robot,
     joints: &MadeJoints,
     o: &FkOptions,
-) -> Result<FkEntries, ReportError> {
-    Ok(FkEntries {
-        sections: recurrence_sections(robot, Some(joints), o)?,
+) -> Result<(FkEntries, Option<CosSinTexts>), ReportError> {
+    let (sections, texts) = recurrence_sections_printed(robot, Some(joints), o)?;
+    let entries = FkEntries {
+        sections,
         recurrence: true,
-    })
+    };
+    Ok((entries, texts))
 }
 
 /// The sections of a report.
@@ -340,7 +346,12 @@ fn expanded_entries(
     // abandons it, as on the PUMA 560): then the DQ product is begun beside the matrix
     // product, which ran alone while the helper waited (PUMA 560 `fk --jacobian`, SCHED_FIFO
     // runs: wall minimum 4.31 -> 4.26 ms, median 4.54 -> 4.49 ms).
-    let factors = robot.factor_matrices(joints.dqs(), EARLY_FORM_TERMS.min(o.max_terms));
+    // Their matrices are kept in `joints` for the recurrence that follows a pose given up.
+    let factors = robot.factor_matrices(
+        joints.dqs(),
+        EARLY_FORM_TERMS.min(o.max_terms),
+        joints.matrices(),
+    );
     let (matrix, q) = if factors.small() {
         let joints = joints.take();
         join(|| product(factors).map(matrix_forms), || dq_product(joints))
@@ -756,6 +767,20 @@ pub(super) fn render(
     o: &FkOptions,
     notes: &[String],
 ) -> Result<String, ReportError> {
+    render_printed(robot, params, sections, o, notes, None)
+}
+
+/// [`render`], the rows of a matrix in cosines and sines taken from `texts` (their plain
+/// text, shorthand and without decimals, [`CosSinTexts`]) where the report prints them so:
+/// the same closed forms, printed the same way.
+fn render_printed(
+    robot: &Robot,
+    params: &[String],
+    sections: &[Section],
+    o: &FkOptions,
+    notes: &[String],
+    texts: Option<CosSinTexts>,
+) -> Result<String, ReportError> {
     let shorthand = o.shorthand;
     // A robot whose file wrote decimals reads in decimals (`0.425 c2`), exactly: the
     // denominators pulled out of sums put back, decimal fractions printed as decimals.
@@ -797,10 +822,24 @@ pub(super) fn render(
                 out.push_str(&line_comment(Comment::Hash, "#", n));
             }
             // The rows printed on the threads the closed forms were found on (printing was a
-            // tenth of the PUMA 560's report, all of it after the last closed form).
-            let rows: Vec<&(Quantity, Expr)> = sections.iter().flat_map(|s| &s.rows).collect();
-            let lines = par_map(&rows, |(n, e)| {
-                format!("{} = {}\n", n.name(), plain(e, &po))
+            // tenth of the PUMA 560's report, all of it after the last closed form). A matrix
+            // in cosines and sines was printed already, in this report's options when
+            // shorthand and without decimals (`sections` are then the entries themselves).
+            let mut printed = texts.filter(|_| shorthand && !decimals).map(Vec::into_iter);
+            let mut rows: Vec<(&(Quantity, Expr), Option<String>)> = Vec::new();
+            for s in sections {
+                let cos_sin = s.kind == SectionKind::Matrix(MatrixFrom::CosSin);
+                for row in &s.rows {
+                    let text = printed
+                        .as_mut()
+                        .filter(|_| cos_sin)
+                        .and_then(Iterator::next);
+                    rows.push((row, text));
+                }
+            }
+            let lines = par_map(&rows, |((n, e), text)| match text {
+                Some(text) => format!("{} = {text}\n", n.name()),
+                None => format!("{} = {}\n", n.name(), plain(e, &po)),
             });
             let all: Vec<&Expr> = sections
                 .iter()
@@ -1023,6 +1062,7 @@ pub fn ops_tables() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::app::recurrence::recurrence_sections;
     use crate::kin::{random_test_chain, LARGEST_FIRST};
 
     /// `fk`'s entries and decision (expanded or recurrence) on a thread of its own, with
@@ -1066,13 +1106,71 @@ mod tests {
         assert!(recurrences >= 8, "{recurrences} recurrences");
     }
 
-    /// The recurrence from the joint factors `fk` made gives what it gives making them
-    /// itself, and charges the same work, under no budget and under budgets that run out
-    /// around the first place it would make them (the pose's factors: `units` and one unit
-    /// either side) and later. Not reached here: a budget that refuses the third use (the
-    /// names' check, after the products; the second, the matrix in cosines and sines, runs on
-    /// a budget of its own), which `joint_factors_kept_are_charged_as_made` covers for
-    /// `MadeJoints::again` itself.
+    /// A recurrence's report prints the matrix in cosines and sines from the text kept when
+    /// it was measured (`CosSinTexts`) as it prints it without, in every format and with or
+    /// without the shorthand, on random chains and the fully symbolic 6R (whose matrix is
+    /// made so); a robot read in decimals prints its own text.
+    #[test]
+    fn the_matrix_text_kept_is_the_matrix_printed() {
+        let mut next = crate::testing::xorshift_below(3535);
+        let mut robots: Vec<Robot> = (0..8).map(|_| random_test_chain(&mut next, 6)).collect();
+        // A fully symbolic 6R (tests/data/generic_6r.toml): a random chain's shell, its joints
+        // replaced.
+        let mut r6 = random_test_chain(&mut next, 6);
+        let s = |name: &str, i: usize| Scalar::sym(&format!("{name}{i}"));
+        r6.chain = crate::kin::Chain::new(
+            (1..=6)
+                .map(|i| {
+                    let (d, a, alpha) = (s("d", i), s("a", i), s("alpha", i));
+                    crate::kin::Joint::revolute_dh(Scalar::int(0), d, a, alpha)
+                })
+                .collect(),
+        );
+        r6.variables = (1..=6).map(|i| format!("theta{i}")).collect();
+        r6.joint_values = (1..=6).map(|i| s("theta", i)).collect();
+        r6.convention = crate::kin::Convention::Dh;
+        robots.push(r6);
+        let mut kept = 0;
+        for robot in &robots {
+            let _in = crate::Context::new().with_threads(1).enter();
+            let o = FkOptions {
+                jacobian: true,
+                max_terms: 300,
+                ..FkOptions::default()
+            };
+            let Ok((entries, texts)) = entries_of(robot, robot.made_joints(), &o) else {
+                continue;
+            };
+            kept += usize::from(texts.is_some());
+            let params = robot.parameters();
+            for format in [Format::Plain, Format::Latex, Format::Sympy] {
+                for shorthand in [true, false] {
+                    let o = FkOptions {
+                        format,
+                        shorthand,
+                        ..o.clone()
+                    };
+                    let mut decimal = robot.clone();
+                    decimal.decimals = vec![num_rational::BigRational::new(17.into(), 40.into())];
+                    for r in [robot, &decimal] {
+                        let s = &entries.sections;
+                        let with = render_printed(r, &params, s, &o, &[], texts.clone());
+                        assert_eq!(with, render(r, &params, s, &o, &[]));
+                    }
+                }
+            }
+        }
+        assert!(kept >= 3, "{kept}");
+    }
+
+    /// The recurrence from the joint factors `fk` made (and their matrices kept) gives what it
+    /// gives making them itself, and charges the same work, under no budget and under budgets
+    /// that run out around the first place it would make them (the pose's factors: `units`
+    /// and one unit either side) and later. Not reached here: a budget that refuses the third
+    /// use (the names' check, after the products; the second, the matrix in cosines and sines,
+    /// runs on a budget of its own), which `joint_factors_kept_are_charged_as_made` covers for
+    /// `MadeJoints::again` itself (and `joint_matrices_kept_are_charged_as_made` for the
+    /// matrices).
     #[test]
     fn the_recurrence_from_the_factors_made_is_the_recurrence() {
         let mut next = crate::testing::xorshift_below(4141);
@@ -1085,10 +1183,15 @@ mod tests {
             };
             // Made on warm caches, as the recurrence would make them again (see
             // `MadeJoints::again`: on cold ones the charge may be the caches' misses more).
+            // Their matrices kept as the expansion keeps them (`JointMatrices`: those of the
+            // factors a matrix product reached), on warm caches too.
             let made = {
                 let _in = crate::Context::new().with_threads(1).enter();
                 let _ = robot.joint_dqs();
-                robot.made_joints()
+                let made = robot.made_joints();
+                let _ = robot.forward_matrix_cos_sin_of(made.dqs(), None, 1_000);
+                let _ = robot.forward_matrix_cos_sin_of(made.dqs(), made.matrices(), 1_000);
+                made
             };
             let units = made.units_for_tests();
             let run = |budget: Option<u64>, from_made: bool| {

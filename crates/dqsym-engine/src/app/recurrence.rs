@@ -110,6 +110,16 @@ pub(crate) fn recurrence_sections(
     made: Option<&MadeJoints>,
     o: &FkOptions,
 ) -> Result<Vec<Section>, ReportError> {
+    recurrence_sections_printed(robot, made, o).map(|(sections, _)| sections)
+}
+
+/// [`recurrence_sections`], and when the matrix is the one in cosines and sines, the plain
+/// text of its rows (shorthand, no decimals: [`CosSinTexts`]).
+pub(crate) fn recurrence_sections_printed(
+    robot: &Robot,
+    made: Option<&MadeJoints>,
+    o: &FkOptions,
+) -> Result<(Vec<Section>, Option<CosSinTexts>), ReportError> {
     let joints = || made.map_or_else(|| Cow::Owned(robot.joint_dqs()), |m| m.again(robot));
     // The base frame is folded into the first factor and the tool frame into the last.
     let factors = robot.pose_factors_of(joints().into_owned());
@@ -201,10 +211,10 @@ pub(crate) fn recurrence_sections(
         sections.push((SectionKind::SuffixProducts, suffix));
     }
     let last = q(n);
-    let cos_sin_forms = cos_sin_matrix(robot, &joints, o);
-    let (m, from, t_forms) = match cos_sin_forms {
-        Some((m, forms)) => (m, MatrixFrom::CosSin, Some(forms)),
-        None => (last.to_matrix(), MatrixFrom::LastQ, None),
+    let cos_sin_forms = cos_sin_matrix(robot, &joints, made.and_then(MadeJoints::matrices), o);
+    let (m, from, t_forms, texts) = match cos_sin_forms {
+        Some((m, forms, texts)) => (m, MatrixFrom::CosSin, Some(forms), Some(texts)),
+        None => (last.to_matrix(), MatrixFrom::LastQ, None, None),
     };
     let mut t = Vec::new();
     for i in 0..3 {
@@ -248,23 +258,36 @@ pub(crate) fn recurrence_sections(
     }
 
     check_names(robot, &joints, o, &sections)?;
-    with_closed_forms(sections, t_forms)
+    Ok((with_closed_forms(sections, t_forms)?, texts))
 }
+
+/// The plain text (shorthand, no decimals) of each row of the matrix made in cosines and
+/// sines, in order: printed to measure it ([`MAX_COS_SIN_TEXT`]), and kept for the report,
+/// which prints these rows as they are (the symbolic 6R printed them twice, 1.85 M
+/// instructions).
+pub(crate) type CosSinTexts = Vec<String>;
 
 /// The matrix as a polynomial in the cosines and sines of the joint matrices, with the closed
 /// forms of its rows 0..2, when that fits (see the module docs); `None` past a budget or the
-/// size of text.
+/// size of text. The joint factors' matrices are those `kept` where it has them (made by the
+/// expansion given up, [`crate::kin::JointMatrices`]). With the forms, their text
+/// ([`CosSinTexts`]).
 #[allow(clippy::type_complexity)]
 fn cos_sin_matrix<'a>(
     robot: &Robot,
     joints: &dyn Fn() -> Cow<'a, [DualQuat<Scalar>]>,
+    kept: Option<&crate::kin::JointMatrices>,
     o: &FkOptions,
-) -> Option<(crate::Matrix4<Scalar>, Vec<Result<Expr, ScalarError>>)> {
+) -> Option<(
+    crate::Matrix4<Scalar>,
+    Vec<Result<Expr, ScalarError>>,
+    CosSinTexts,
+)> {
     // The matrix in the robot's own symbols when it fits as a polynomial in the cosines and
     // sines (a generic 6R: 1,595 monomials), else in the last Q's symbols.
     // An attempt with its own small budget: a long chain stops early and costs little.
     let cos_sin = with_own_budget(COS_SIN_BUDGET, || {
-        robot.forward_matrix_cos_sin_of(&joints(), o.max_terms.min(COS_SIN_MAX_TERMS))
+        robot.forward_matrix_cos_sin_of(&joints(), kept, o.max_terms.min(COS_SIN_MAX_TERMS))
     });
     // Its closed forms are kept when they are short (a numeric 10-joint chain can give 20 kB
     // per entry); else the matrix is read from the last Q.
@@ -282,11 +305,16 @@ fn cos_sin_matrix<'a>(
             shorthand: true,
             decimals: false,
         };
-        let len: usize = forms
+        // Every form is one here (an error returned above).
+        let texts: CosSinTexts = forms
             .iter()
-            .map(|e| e.as_ref().map_or(0, |e| crate::print::plain(e, &po).len()))
-            .sum();
-        (len <= MAX_COS_SIN_TEXT).then_some((m, forms))
+            .map(|e| {
+                e.as_ref()
+                    .map_or_else(|_| String::new(), |e| crate::print::plain(e, &po))
+            })
+            .collect();
+        let len: usize = texts.iter().map(String::len).sum();
+        (len <= MAX_COS_SIN_TEXT).then_some((m, forms, texts))
     })
 }
 

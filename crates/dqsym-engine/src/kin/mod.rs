@@ -20,12 +20,12 @@ pub use chain::{Chain, ChainError};
 pub use dh::{dh_link, dh_link_matrix, mdh_link, mdh_link_matrix};
 pub use jacobian::{dq_jacobian, geometric_jacobian, geometric_jacobian_body};
 pub use joint::{local_frame_dq, local_frame_matrix, Joint, JointGeometry, JointKind, LocalFrame};
-pub(crate) use robot::MadeJoints;
 pub use robot::{
     parse_robot, parse_robot_with, split_top_level, Convention, ExprError, FieldError, FieldEval,
     Frame, Robot, RobotError, RobotOptions,
 };
 #[cfg(test)]
 pub(crate) use robot::{random_test_chain, LARGEST_FIRST};
+pub(crate) use robot::{JointMatrices, MadeJoints};
 pub use screw::{screw_parameters, ScrewError, ScrewParams};
 pub use urdf::{parse_urdf, UrdfError, UrdfOptions, UrdfRobot, SNAP_TOLERANCE};

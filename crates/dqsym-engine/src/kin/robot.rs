@@ -20,6 +20,7 @@ use crate::{DualQuat, Matrix4, Quat, Scalar, ScalarError, Sym};
 use num_traits::CheckedMul;
 use serde::Deserialize;
 use std::sync::atomic::{AtomicBool, Ordering as AtomicOrdering};
+use std::sync::{Arc, OnceLock};
 use thiserror::Error;
 
 /// The joint convention of a robot file: its `convention` field, `"dh"`, `"mdh"` or `"screw"`.
@@ -965,6 +966,7 @@ impl Robot {
         let dqs = self.joint_dqs();
         MadeJoints {
             units: crate::scalar::work_used().saturating_sub(before),
+            matrices: sound(&dqs).then(|| JointMatrices::new(dqs.len())),
             dqs: Some(dqs),
         }
     }
@@ -1054,17 +1056,19 @@ impl Robot {
         max_terms: Option<usize>,
         entry: impl Fn(Scalar) -> Option<Scalar>,
     ) -> Option<Matrix4<Scalar>> {
-        self.matrix_product_of(&self.joint_dqs(), max_terms, entry)
+        self.matrix_product_of(&self.joint_dqs(), None, max_terms, entry)
     }
 
-    /// [`Robot::matrix_product`] of the joint factors `joints` ([`Robot::joint_dqs`]).
+    /// [`Robot::matrix_product`] of the joint factors `joints` ([`Robot::joint_dqs`]), their
+    /// matrices those `kept` where it has them ([`JointMatrices`]).
     fn matrix_product_of(
         &self,
         joints: &[DualQuat<Scalar>],
+        kept: Option<&JointMatrices>,
         max_terms: Option<usize>,
         entry: impl Fn(Scalar) -> Option<Scalar>,
     ) -> Option<Matrix4<Scalar>> {
-        let factors = self.factor_matrices(joints, 0);
+        let factors = self.factor_matrices(joints, 0, kept);
         matrix_product_until(factors, max_terms, entry, None, None, None)
     }
 
@@ -1073,11 +1077,14 @@ impl Robot {
     /// the identity (the tool of most chains leaves the product as it is, exactly). Their
     /// matrices are made while [`FactorMatrices::small`]'s estimate of the partial products
     /// stays below `terms`, the others' as the product reaches them (a product given up for
-    /// its size never converts the factors after it).
+    /// its size never converts the factors after it). The joint factors' matrices are taken
+    /// from `kept` (the matrices of these `joints`, [`MadeJoints::matrices`]) where it has
+    /// them, and left there when it has not.
     pub(crate) fn factor_matrices(
         &self,
         joints: &[DualQuat<Scalar>],
         terms: usize,
+        kept: Option<&JointMatrices>,
     ) -> FactorMatrices {
         let id = DualQuat::identity();
         let base = (self.chain.base != id).then_some(&self.chain.base);
@@ -1087,7 +1094,10 @@ impl Robot {
             .chain(std::iter::once(&self.chain.tool))
             .collect();
         let last = factors.iter().rposition(|f| **f != id).unwrap_or(0);
-        FactorMatrices::new(&factors[..=last], factors.len(), terms)
+        let kept = kept
+            .filter(|k| k.0.len() == joints.len())
+            .map(|k| (k.clone(), usize::from(base.is_some())));
+        FactorMatrices::new(&factors[..=last], factors.len(), terms, kept)
     }
 
     /// The homogeneous matrix as polynomials in the cosines and sines of the joint variables
@@ -1100,13 +1110,15 @@ impl Robot {
         self.matrix_product(Some(max_terms), |x| x.to_cos_sin_polynomial())
     }
 
-    /// [`Robot::forward_matrix_cos_sin`] of the joint factors `joints` ([`Robot::joint_dqs`]).
+    /// [`Robot::forward_matrix_cos_sin`] of the joint factors `joints` ([`Robot::joint_dqs`]),
+    /// their matrices those `kept` where it has them (see [`Robot::factor_matrices`]).
     pub(crate) fn forward_matrix_cos_sin_of(
         &self,
         joints: &[DualQuat<Scalar>],
+        kept: Option<&JointMatrices>,
         max_terms: usize,
     ) -> Option<Matrix4<Scalar>> {
-        self.matrix_product_of(joints, Some(max_terms), |x| x.to_cos_sin_polynomial())
+        self.matrix_product_of(joints, kept, Some(max_terms), |x| x.to_cos_sin_polynomial())
     }
 
     /// The forward kinematics, or `None` as soon as a component of a partial product has more
@@ -1299,7 +1311,7 @@ impl Robot {
     ) -> Option<Option<Matrix4<Scalar>>> {
         let below = OffsetFree::below(max_terms);
         let fits = |x: &Scalar| free.fits(x, below);
-        let factors = self.factor_matrices(&free.joints, 0);
+        let factors = self.factor_matrices(&free.joints, 0, None);
         let rows = charged_if_kept(|| {
             let made = matrix_product_until(
                 factors,
@@ -1413,18 +1425,39 @@ fn charged_if_kept<R>(attempt: impl FnOnce() -> Option<R>) -> Option<R> {
 /// the callers that would make them again: `fk` makes them for the expansion and the
 /// header, and the recurrence that follows an expansion given up made them three times more
 /// (its factors, its parameters' names, its matrix in cosines and sines: 1.15 M of a fully
-/// symbolic 6R's 94.6 M instructions).
+/// symbolic 6R's 94.6 M instructions). Their matrices too, as they are made
+/// ([`JointMatrices`]).
 pub(crate) struct MadeJoints {
     /// The factors; `None` once [`MadeJoints::take`] moved them out.
     dqs: Option<Vec<DualQuat<Scalar>>>,
     /// The work units making them charged the context they were made in.
     units: u64,
+    /// Their matrices as the matrix products make them; `None` when a factor is an error
+    /// value (see [`MadeJoints::again`]).
+    matrices: Option<JointMatrices>,
+}
+
+/// Whether no component of the factors `dqs` is an error value.
+fn sound(dqs: &[DualQuat<Scalar>]) -> bool {
+    dqs.iter().all(|q| {
+        [&q.real, &q.dual].iter().all(|p| {
+            [&p.w, &p.x, &p.y, &p.z]
+                .iter()
+                .all(|c| c.as_error().is_none())
+        })
+    })
 }
 
 impl MadeJoints {
     /// The factors (empty once taken).
     pub(crate) fn dqs(&self) -> &[DualQuat<Scalar>] {
         self.dqs.as_deref().unwrap_or(&[])
+    }
+
+    /// The factors' matrices made so far, kept for the next product that needs them
+    /// ([`Robot::factor_matrices`]); they stay when the factors are taken.
+    pub(crate) fn matrices(&self) -> Option<&JointMatrices> {
+        self.matrices.as_ref()
     }
 
     /// The work making them charged (tests).
@@ -1455,15 +1488,6 @@ impl MadeJoints {
     /// error value, at some operation): there they are made again, as before.
     pub(crate) fn again(&self, robot: &Robot) -> std::borrow::Cow<'_, [DualQuat<Scalar>]> {
         // Factors with an error value are made again: there, it may be another, or none.
-        let sound = |dqs: &[DualQuat<Scalar>]| {
-            dqs.iter().all(|q| {
-                [&q.real, &q.dual].iter().all(|p| {
-                    [&p.w, &p.x, &p.y, &p.z]
-                        .iter()
-                        .all(|c| c.as_error().is_none())
-                })
-            })
-        };
         let units = self.units;
         match &self.dqs {
             Some(dqs)
@@ -1475,6 +1499,51 @@ impl MadeJoints {
             }
             _ => std::borrow::Cow::Owned(robot.joint_dqs()),
         }
+    }
+}
+
+/// The matrices ([`DualQuat::to_matrix`]) of the joint factors of a [`MadeJoints`], each kept
+/// with the work its making charged once a matrix product made it: `fk`'s expansion of a
+/// fully symbolic 6R converts five of its six joint factors before it gives the pose up, and
+/// the recurrence's matrix in cosines and sines converted the same five again (0.4 M
+/// instructions each). Shared (an `Arc`) by the products that read them, on any thread.
+///
+/// The charging rule is [`MadeJoints::again`]'s: a matrix kept is given only when the entered
+/// context can take the whole charge its making was (`charge` checks the cancel flag before
+/// it adds anything), else it is made again, as before; the conversion is a pure function
+/// of the factor, so the matrix is the same, and so is its charge, but for the caches charged
+/// on a miss (`cyclo`'s templates and fields, for angles off the pi/12 grid): made on caches
+/// its first making filled, a matrix may charge those misses less. So the product that takes
+/// it is charged, where it made it, the same work or a few units more, in one step where no
+/// operation in between could see it: an input whose recurrence ends within those units of
+/// the work budget may now stop at the budget. A matrix with an error value (a budget or a
+/// limit met while it was made) is not kept.
+#[derive(Clone)]
+pub(crate) struct JointMatrices(Arc<[OnceLock<(Matrix4<Scalar>, u64)>]>);
+
+impl JointMatrices {
+    /// Room for the matrices of `n` joint factors, none made.
+    fn new(n: usize) -> JointMatrices {
+        JointMatrices((0..n).map(|_| OnceLock::new()).collect())
+    }
+
+    /// The matrix of joint factor `i`, `dq`: the one kept, charged as its making was, or
+    /// made now (and kept when it is not an error value and none is).
+    fn matrix(&self, i: usize, dq: &DualQuat<Scalar>) -> Matrix4<Scalar> {
+        let slot = &self.0[i];
+        if let Some((m, units)) = slot.get() {
+            if *units <= crate::scalar::work_left() && crate::scalar::charge(*units).is_ok() {
+                return m.clone();
+            }
+            return dq.to_matrix();
+        }
+        let before = crate::scalar::work_used();
+        let m = dq.to_matrix();
+        let units = crate::scalar::work_used().saturating_sub(before);
+        if m.rows.iter().flatten().all(|x| x.as_error().is_none()) {
+            let _ = slot.set((m.clone(), units));
+        }
+        m
     }
 }
 
@@ -1751,6 +1820,9 @@ pub(crate) struct FactorMatrices {
     count: usize,
     /// Whether every factor is converted and the estimate stayed below the threshold.
     small: bool,
+    /// The joint factors' matrices kept ([`Robot::factor_matrices`]), and the index of the
+    /// first joint factor among the factors (1 after a base frame).
+    kept: Option<(JointMatrices, usize)>,
 }
 
 impl FactorMatrices {
@@ -1758,12 +1830,17 @@ impl FactorMatrices {
     /// entry of every partial product has fewer than `terms` terms by an estimate from the
     /// matrices' term counts alone: an entry of a product has at most two terms per term
     /// pair (a product of two Fourier terms is at most two).
-    fn new(factors: &[&DualQuat<Scalar>], count: usize, terms: usize) -> FactorMatrices {
+    fn new(
+        factors: &[&DualQuat<Scalar>],
+        count: usize,
+        terms: usize,
+        kept: Option<(JointMatrices, usize)>,
+    ) -> FactorMatrices {
         let mut mats = Vec::with_capacity(factors.len());
         let mut estimate: Option<[[usize; 4]; 4]> = None;
         let mut small = true;
         while small && mats.len() < factors.len() {
-            let m = factors[mats.len()].to_matrix();
+            let m = converted(&kept, mats.len(), factors[mats.len()]);
             let counts = m.rows.each_ref().map(|r| r.each_ref().map(Scalar::len));
             let e = estimate.map_or(counts, |a| {
                 std::array::from_fn(|i| {
@@ -1783,6 +1860,7 @@ impl FactorMatrices {
             mats,
             count,
             small,
+            kept,
         }
     }
 
@@ -1794,6 +1872,19 @@ impl FactorMatrices {
     /// fills its factors' matrices and passes 512 within a few links).
     pub(crate) fn small(&self) -> bool {
         self.small
+    }
+}
+
+/// The matrix of factor `k`, `f`, of a [`FactorMatrices`]: a joint factor's from `kept`
+/// ([`JointMatrices::matrix`]), another's made.
+fn converted(
+    kept: &Option<(JointMatrices, usize)>,
+    k: usize,
+    f: &DualQuat<Scalar>,
+) -> Matrix4<Scalar> {
+    match kept {
+        Some((m, first)) if k >= *first && k - first < m.0.len() => m.matrix(k - first, f),
+        _ => f.to_matrix(),
     }
 }
 
@@ -1813,10 +1904,15 @@ fn matrix_product_until(
     fits: Option<&Fits<'_>>,
 ) -> Option<Matrix4<Scalar>> {
     let FactorMatrices {
-        mats, rest, count, ..
+        mats,
+        rest,
+        count,
+        kept,
+        ..
     } = factors;
-    let last = mats.len() + rest.len() - 1;
-    let (mut mats, mut rest) = (mats.into_iter(), rest.iter());
+    let made = mats.len();
+    let last = made + rest.len() - 1;
+    let (mut mats, mut rest) = (mats.into_iter(), rest.iter().enumerate());
     let stopped = || stop.is_some_and(|s| s.load(AtomicOrdering::Relaxed));
     let mut growth = Growth::default();
     let mut pairs_before: Option<EntryPairs> = None;
@@ -1826,7 +1922,10 @@ fn matrix_product_until(
             return None;
         }
         // The identity factors after the last other one leave the product as it is.
-        let Some(mut m) = mats.next().or_else(|| rest.next().map(DualQuat::to_matrix)) else {
+        let Some(mut m) = mats
+            .next()
+            .or_else(|| rest.next().map(|(r, f)| converted(&kept, made + r, f)))
+        else {
             continue;
         };
         for x in m.rows.iter_mut().flatten() {
@@ -2013,7 +2112,7 @@ mod tests {
             })
             .collect();
         let refs: Vec<&DualQuat<Scalar>> = links.iter().collect();
-        FactorMatrices::new(&refs, refs.len(), EARLY)
+        FactorMatrices::new(&refs, refs.len(), EARLY, None)
     }
 
     /// The largest entry of the product of `f`, multiplied out.
@@ -2152,7 +2251,7 @@ mod tests {
             // A flag each: a product given up sets its own.
             let flag = || AtomicBool::new(false);
             let mut all = |_: usize, _: usize, _: &Scalar| true;
-            let factors = robot.factor_matrices(&joints, EARLY);
+            let factors = robot.factor_matrices(&joints, EARLY, None);
             let matrix = robot.forward_matrix_until(factors, 20_000, &flag(), &mut all);
             let dq = robot.forward_within_until(joints.clone(), 20_000, &flag());
             let mut seen = Vec::new();
@@ -2214,7 +2313,7 @@ mod tests {
                         robot.forward_matrix_offset_free(f, terms, &flag(), &mut all)
                     });
                     let m = tried.clone().unwrap_or_else(|| {
-                        let factors = robot.factor_matrices(&joints, EARLY);
+                        let factors = robot.factor_matrices(&joints, EARLY, None);
                         robot.forward_matrix_until(factors, terms, &flag(), &mut all)
                     });
                     let tried_q = free
@@ -2276,7 +2375,7 @@ mod tests {
                 let joints = robot.joint_dqs();
                 let before = crate::scalar::work_used();
                 let mut all = |_: usize, _: usize, _: &Scalar| true;
-                let factors = robot.factor_matrices(&joints, EARLY);
+                let factors = robot.factor_matrices(&joints, EARLY, None);
                 let stop = AtomicBool::new(false);
                 let m = robot.forward_matrix_until(factors, limit, &stop, &mut all);
                 (m, crate::scalar::work_used() - before)
@@ -2385,6 +2484,75 @@ mod tests {
                 .iter()
                 .any(|q| q.components().iter().any(|c| c.as_error().is_some())));
         }
+    }
+
+    /// `JointMatrices::matrix` gives the matrix `to_matrix` makes, kept or not; kept, it is
+    /// charged the work its making was (made on warm caches, as in
+    /// `joint_factors_kept_are_charged_as_made`); under a budget short of that by one unit it
+    /// is made anew, with the error values that gives, and a matrix with an error value is
+    /// not kept. The products `fk` makes from kept matrices are those made without.
+    #[test]
+    fn joint_matrices_kept_are_charged_as_made() {
+        let mut next = crate::testing::xorshift_below(3131);
+        let mut tight_errors = 0;
+        for _ in 0..30 {
+            let robot = random_test_chain(&mut next, 8);
+            let _in = crate::Context::new().with_threads(1).enter();
+            let made = robot.made_joints();
+            let kept = made.matrices().expect("sound factors").clone();
+            for (i, q) in made.dqs().iter().enumerate() {
+                let _ = q.to_matrix();
+                let before = crate::scalar::work_used();
+                let m = q.to_matrix();
+                let units = crate::scalar::work_used() - before;
+                // Not kept yet: made (and kept), charged as `to_matrix` is.
+                let before = crate::scalar::work_used();
+                assert!(kept.matrix(i, q) == m);
+                assert_eq!(crate::scalar::work_used() - before, units);
+                // Kept: the same matrix, the same charge.
+                let before = crate::scalar::work_used();
+                assert!(kept.matrix(i, q) == m);
+                assert_eq!(crate::scalar::work_used() - before, units);
+                if units == 0 {
+                    continue;
+                }
+                let tight = || {
+                    crate::Context::new()
+                        .with_threads(1)
+                        .with_work_budget(units - 1)
+                        .enter()
+                };
+                let from_kept = {
+                    let _t = tight();
+                    kept.matrix(i, q)
+                };
+                let _t = tight();
+                let anew = q.to_matrix();
+                assert!(from_kept == anew);
+                if anew.rows.iter().flatten().any(|x| x.as_error().is_some()) {
+                    tight_errors += 1;
+                    // Not kept: a fresh slot stays empty.
+                    let fresh = JointMatrices::new(made.dqs().len());
+                    let _ = fresh.matrix(i, q);
+                    assert!(fresh.0[i].get().is_none());
+                }
+            }
+            // The matrix products of `fk`'s expansion and of the recurrence, from the matrices
+            // kept and without.
+            let (with, without) = (
+                robot.forward_matrix_cos_sin_of(made.dqs(), Some(&kept), 1_000),
+                robot.forward_matrix_cos_sin_of(made.dqs(), None, 1_000),
+            );
+            assert!(with == without);
+            let flag = || AtomicBool::new(false);
+            let mut all = |_: usize, _: usize, _: &Scalar| true;
+            let factors = robot.factor_matrices(made.dqs(), EARLY, Some(&kept));
+            let with = robot.forward_matrix_until(factors, 5_000, &flag(), &mut all);
+            let factors = robot.factor_matrices(made.dqs(), EARLY, None);
+            let without = robot.forward_matrix_until(factors, 5_000, &flag(), &mut all);
+            assert!(with == without);
+        }
+        assert!(tight_errors > 20, "{tight_errors}");
     }
 
     #[test]
