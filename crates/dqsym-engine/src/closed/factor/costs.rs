@@ -17,6 +17,17 @@
 //! trigonometric atom and every coefficient an integer within 126 bits; otherwise the
 //! candidates are built as before.
 //!
+//! A visit of a group passes over its monomials once for its value (the memo's key), the work
+//! it charges and the counts of its quotients' symbols (its candidates). For a multilinear
+//! root ([`Masks`]) the split that makes the group, which passes over the parent's monomials
+//! anyway, makes both parts' passes ([`Pre`]): the value is a sum over the monomials and the
+//! work too, so each part's is summed as its monomials are sorted into it, and only the
+//! smaller part is counted, the other's counts being the parent's less those. The work
+//! charged is the sum the visit's own pass made (the test of `factor.rs` that compares the
+//! two routes checks it, with the choices, under budgets that run out); on the symbolic 6R
+//! the pass was about a fifth of the cost search (`fk --jacobian`: 81.7 M instructions to
+//! 78.1 M).
+//!
 //! # Branch and bound
 //!
 //! Here no cost has calls (there is no atom and no radical), so a cost is its count of
