@@ -833,6 +833,24 @@ pub fn closed_form_of_derivative(
 }
 
 /// [`closed_form_of_derivative`] for a scalar and monomials in the same symbols.
+///
+/// What it costs, measured on the Jaco-style arm's `fk --jacobian` (callgrind, one thread,
+/// session 30): 23.8 M instructions for the 36 derivatives searched of the 48 rows (the
+/// other 12 are rational multiples of a searched one, shared by `app/fk.rs`). The 20 of the
+/// dual part (96 terms, 48 shifted; the regrouped shape won for the component and wins
+/// again, no candidate of `alt.rs` is made) cost 0.60-0.62 M each, four fifths of it the
+/// factor search of the differentiated monomials; the 8 of `dq[1]` and `dq[2]` (16 terms;
+/// the whole modes won for the component, so both shapes are factored here) 1.22-1.32 M
+/// each, where a form of `extra.rs` (pairs joined, common factors) wins, 139 operations down
+/// to 41-52, and `trigfac.rs`'s sinusoid factors spend 0.25 M finding none; the 8 of `dq[0]`
+/// and `dq[3]` (16 terms, 8 shifted) 0.18-0.19 M each. Left, with the reasons: the 8 of the `q1` column (the base
+/// joint's derivative is a signed permutation of the components) are rational multiples of
+/// pose entries, 5.4 M, but the pose's search is another route and its forms change rows
+/// (see `expanded_sections`); and the component's factored tree cannot stand in for this
+/// search: the differentiated monomials are the component's with each atom in `var` turned
+/// (cosine and sine swapped) and scaled by its own signed coefficient, which changes the
+/// coefficients the search's costs count (a common factor's sign, the rational content), so
+/// its choice is not provably the renamed tree.
 fn derivative_unshifted(p: &Prepared, var: &str, dx: &Scalar) -> Result<Expr, ScalarError> {
     let Some((ctx, mons, split_won)) = &p.0 else {
         return closed_form(dx);
