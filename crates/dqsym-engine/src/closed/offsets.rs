@@ -2008,7 +2008,9 @@ mod tests {
             }
             groups
         }
-        let shape = |g: &[Group]| -> Vec<(Vec<(Sym, Small)>, Vec<usize>)> {
+        // Each group's frequency vector and its terms' addresses.
+        type Shape = Vec<(Vec<(Sym, Small)>, Vec<usize>)>;
+        let shape = |g: &[Group]| -> Shape {
             g.iter()
                 .map(|g| {
                     let at = g.terms.iter().map(|t| std::ptr::from_ref(*t) as usize);
