@@ -34,7 +34,6 @@ use crate::scalar::{Small, Sym, Term};
 use crate::Scalar;
 use num_integer::Integer;
 use num_traits::{Signed, ToPrimitive, Zero};
-use std::collections::BTreeMap;
 
 /// The most terms a scalar may have for offsets to be looked for.
 const MAX_TERMS: usize = 20_000;
@@ -195,14 +194,39 @@ fn symbolic(t: &Term) -> bool {
     t.mode.freq.iter().any(|(s, _)| !s.is_one())
 }
 
+/// A group's key for [`groups_of`]: its frequency vector and monomial, equal as the derived
+/// `Eq` of the pair says (a symbol by its interned address, a coefficient by value). Hashed by
+/// the symbols' addresses (one per name: names are interned for the process) and the
+/// coefficients' numerators and denominators, which agrees with `Eq` because every `Small` of
+/// a canonical term is reduced (as `Mode`'s hash assumes). A map ordered by the pair's derived
+/// `Ord` was a third of `find`'s own work on the Jaco-style arm (`Ratio::cmp` by divisions,
+/// names compared for every step of every search).
+#[derive(PartialEq, Eq)]
+struct GroupKey<'a>(&'a [(Sym, Small)], &'a [(Sym, u32)]);
+
+impl std::hash::Hash for GroupKey<'_> {
+    fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
+        h.write_usize(self.0.len());
+        for (s, k) in self.0 {
+            h.write_usize(s.addr());
+            h.write_i64(*k.numer());
+            h.write_i64(*k.denom());
+        }
+        h.write_usize(self.1.len());
+        for (s, e) in self.1 {
+            h.write_usize(s.addr());
+            h.write_u32(*e);
+        }
+    }
+}
+
 /// The groups of the symbolic terms, by (frequency vector, monomial), in the order their
 /// first terms come.
 fn groups_of(terms: &[Term]) -> Vec<Group<'_>> {
-    type GroupKey<'a> = (&'a [(Sym, Small)], &'a crate::scalar::MonoRc);
-    let mut index: BTreeMap<GroupKey, usize> = BTreeMap::new();
+    let mut index: super::FxMap<GroupKey, usize> = Default::default();
     let mut groups: Vec<Group> = Vec::new();
     for t in terms.iter().filter(|t| symbolic(t)) {
-        let k = (&*t.mode.freq, &t.mono);
+        let k = GroupKey(&t.mode.freq, &t.mono);
         let i = *index.entry(k).or_insert_with(|| {
             groups.push(Group {
                 freq: t
@@ -1953,6 +1977,61 @@ mod tests {
         assert!(
             merged > 1000 && compared > 400,
             "{merged} merged, {compared} compared"
+        );
+    }
+
+    /// `groups_of` (a hash map by the symbols' addresses and the coefficients' words) against
+    /// the map ordered by the key pair's derived `Ord` it replaced (kept here): the same groups,
+    /// frequency vectors and terms (by address) in the same order, on seeded random products
+    /// with offsets (several monomials and frequency vectors a scalar, repeated across terms).
+    #[test]
+    fn the_hashed_groups_are_the_groups_of_the_ordered_map() {
+        fn old(terms: &[Term]) -> Vec<Group<'_>> {
+            type Key<'a> = (&'a [(Sym, Small)], &'a crate::scalar::MonoRc);
+            let mut index: std::collections::BTreeMap<Key, usize> = Default::default();
+            let mut groups: Vec<Group> = Vec::new();
+            for t in terms.iter().filter(|t| symbolic(t)) {
+                let i = *index.entry((&*t.mode.freq, &t.mono)).or_insert_with(|| {
+                    groups.push(Group {
+                        freq: t
+                            .mode
+                            .freq
+                            .iter()
+                            .filter(|(s, _)| !s.is_one())
+                            .cloned()
+                            .collect(),
+                        terms: Vec::new(),
+                    });
+                    groups.len() - 1
+                });
+                groups[i].terms.push(t);
+            }
+            groups
+        }
+        // Each group's frequency vector and its terms' addresses.
+        type Shape = Vec<(Vec<(Sym, Small)>, Vec<usize>)>;
+        let shape = |g: &[Group]| -> Shape {
+            g.iter()
+                .map(|g| {
+                    let at = g.terms.iter().map(|t| std::ptr::from_ref(*t) as usize);
+                    (g.freq.clone(), at.collect())
+                })
+                .collect()
+        };
+        let mut next = crate::testing::xorshift_below(0x6a0c_5b1e_d00d_0001);
+        let (mut groups, mut shared) = (0, 0);
+        for _ in 0..300 {
+            let den = [5, 7, 9, 18][next(4) as usize];
+            let e = offset_products(&mut next, den, 4);
+            let Ok(terms) = e.terms() else { continue };
+            let want = old(terms);
+            groups += want.len();
+            shared += want.iter().filter(|g| g.terms.len() > 1).count();
+            assert_eq!(shape(&groups_of(terms)), shape(&want), "{e:?}");
+        }
+        assert!(
+            groups > 1000 && shared > 800,
+            "{groups} groups, {shared} shared"
         );
     }
 
