@@ -1519,7 +1519,10 @@ impl MadeJoints {
 /// the work budget may now stop at the budget. A matrix with an error value (a budget or a
 /// limit met while it was made) is not kept.
 #[derive(Clone)]
-pub(crate) struct JointMatrices(Arc<[OnceLock<(Matrix4<Scalar>, u64)>]>);
+pub(crate) struct JointMatrices(Arc<[OnceLock<KeptMatrix>]>);
+
+/// A joint factor's matrix and the work units its making charged.
+type KeptMatrix = (Matrix4<Scalar>, u64);
 
 impl JointMatrices {
     /// Room for the matrices of `n` joint factors, none made.
