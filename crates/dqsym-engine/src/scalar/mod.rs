@@ -687,7 +687,7 @@ impl Scalar {
     /// The distinct symbols are kept as they are met (a comparison of pointers each, names
     /// being interned), and only those sorted: a scalar names a few symbols many times over,
     /// and sorting every occurrence was 1.6 M instructions of a fully symbolic 6R's report.
-    /// Past [`FEW_SYMBOLS`] distinct ones the rest are pushed as met and sorted and
+    /// Past `FEW_SYMBOLS` distinct ones the rest are pushed as met and sorted and
     /// deduplicated with them, as before (the scan would be quadratic). Two symbols compare
     /// equal exactly when they are the same (`Sym`'s `Ord` and `Eq`), so either route gives
     /// the one sorted list.
