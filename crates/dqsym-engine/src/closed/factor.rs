@@ -1543,16 +1543,31 @@ mod tests {
     /// same work.
     #[test]
     fn parts_handed_their_pass_choose_and_charge_as_each_visit_counting() {
-        let (mut masked, mut compared, mut ran_out) = (0, 0, 0);
+        let (mut masked, mut compared, mut ran_out, mut wide) = (0, 0, 0, 0);
+        // Coefficients past a machine word (a monomial's work counts its coefficient's
+        // words; low words shared, so that memo values collide), negations and contents
+        // (found by the reviewer's scratch test).
+        let two64 = Scalar::int(1 << 32) * Scalar::int(1 << 32);
+        let words = (0..6).flat_map(|i| {
+            let (p, q) = (poly_multilinear(100 + i), poly_multilinear(200 + i));
+            [
+                p.clone() * &two64 + &q,
+                p.clone() * (two64.clone() * Scalar::int(3) + Scalar::int(5))
+                    + q.clone() * &two64 * Scalar::int(7),
+                p * Scalar::int(-6) - q * Scalar::int(12),
+            ]
+        });
         let polys = (0..40)
             .map(poly_multilinear)
-            .chain((0..12).flat_map(chain_entries));
+            .chain((0..12).flat_map(chain_entries))
+            .chain(words);
         for (k, p) in polys.enumerate() {
             let (ctx, mons) = whole_modes(&p);
             if mons.len() < 2 || !costs::Costs::for_mons(&mons).is_some_and(|c| c.masked()) {
                 continue;
             }
             masked += 1;
+            wide += usize::from(mons.iter().any(|m| m.q.words() > 0));
             let (old, work) = derived_or_counted(&mons, &ctx, false, None);
             let new = derived_or_counted(&mons, &ctx, true, None);
             assert_eq!(new, (old.clone(), work), "{k}: {p}");
@@ -1567,7 +1582,10 @@ mod tests {
                 }
             }
         }
-        assert!(masked >= 120, "{masked} multilinear roots");
+        assert!(
+            masked >= 120 && wide >= 8,
+            "{masked} multilinear roots, {wide} wide"
+        );
         assert!(
             compared >= 120 && ran_out >= 40,
             "{compared} compared, {ran_out} ran out"

@@ -440,8 +440,8 @@ pub(super) struct Masks {
     /// The symbols of the current group's quotients counted, where [`super::Counts`] counts
     /// those of a root that is not multilinear.
     tally: Tally,
-    /// Each monomial's mask with what [`Search::c_partition_pre`] reads of it, one bounds
-    /// check for three.
+    /// Each monomial's mask with what [`Search::c_partition_pre`] and [`Search::c_pre`] read
+    /// of it, one bounds check for three.
     bits: Vec<Bits>,
 }
 
@@ -463,10 +463,10 @@ fn hash_quotient(coef: i128, q: u64, h: &mut FxHasher) {
     h.write_u64(q);
 }
 
-/// The odd multiplier of a coefficient's low word in [`Masks::seed`].
+/// The odd multiplier of a coefficient's low word in [`Bits::seed`].
 const MIX_SEED: u64 = 0x9e37_79b9_7f4a_7c15;
 
-/// Monomial `q` with a coefficient seeded `seed` ([`Masks::seed`]) as one word of a group's
+/// Monomial `q` with a coefficient seeded `seed` ([`Bits::seed`]) as one word of a group's
 /// value: a multilinear root's group's value is the sum of its monomials' words, so a split
 /// makes both parts' values in its one pass over the group (the memo compares the groups a
 /// value finds, so a collision costs only that comparison).
@@ -479,9 +479,10 @@ fn mix(seed: u64, q: u64) -> u64 {
 /// What a visit of a multilinear root's group ([`Search::c_build_at`]) takes from its pass
 /// over the group, handed to it by the split that made the group ([`Search::c_split_on`]),
 /// which passes over the group's monomials anyway: the group's value (the memo's key, the
-/// sum of [`mix`]), the work the pass charges and its quotients' symbols counted. The part
-/// without the split's factor is counted as the group less the part with it: most
-/// monomials are counted once per split, not once per part they fall in.
+/// sum of [`mix`]), the work the pass charges and its quotients' symbols counted. The smaller
+/// part is counted and the larger one's counts are the group's less those (either may hold
+/// the split's factor): most monomials are counted once per split, not once per part they
+/// fall in.
 struct Pre {
     value: u64,
     work: u64,
