@@ -1448,6 +1448,13 @@ fn sound(dqs: &[DualQuat<Scalar>]) -> bool {
     })
 }
 
+/// Whether the entered context takes the whole charge `units` in one step (`charge` checks the
+/// cancel flag before it adds anything): the rule by which a factor or matrix kept is given
+/// in place of its making again ([`MadeJoints::again`], [`JointMatrices`]).
+fn charged_whole(units: u64) -> bool {
+    units <= crate::scalar::work_left() && crate::scalar::charge(units).is_ok()
+}
+
 impl MadeJoints {
     /// The factors (empty once taken).
     pub(crate) fn dqs(&self) -> &[DualQuat<Scalar>] {
@@ -1490,13 +1497,7 @@ impl MadeJoints {
         // Factors with an error value are made again: there, it may be another, or none.
         let units = self.units;
         match &self.dqs {
-            Some(dqs)
-                if sound(dqs)
-                    && units <= crate::scalar::work_left()
-                    && crate::scalar::charge(units).is_ok() =>
-            {
-                std::borrow::Cow::Borrowed(dqs)
-            }
+            Some(dqs) if sound(dqs) && charged_whole(units) => std::borrow::Cow::Borrowed(dqs),
             _ => std::borrow::Cow::Owned(robot.joint_dqs()),
         }
     }
@@ -1535,7 +1536,7 @@ impl JointMatrices {
     fn matrix(&self, i: usize, dq: &DualQuat<Scalar>) -> Matrix4<Scalar> {
         let slot = &self.0[i];
         if let Some((m, units)) = slot.get() {
-            if *units <= crate::scalar::work_left() && crate::scalar::charge(*units).is_ok() {
+            if charged_whole(*units) {
                 return m.clone();
             }
             return dq.to_matrix();
