@@ -22,7 +22,9 @@ use crate::emit::{
 use crate::kin::{dq_jacobian, MadeJoints, Robot};
 use crate::print::{legend, plain, plain_len_bound, Format, PlainOptions};
 use crate::scalar::{join, par_map, with_own_budget};
-use crate::scalar::{FxHasher, ProportionalKey, SampledKey, Q};
+use crate::closed::turn::{self, turned_entries, Turn, Turned};
+use crate::kin::JointKind;
+use crate::scalar::{FxHasher, ProportionalKey, SampledKey, Small, Sym, Q};
 use std::collections::hash_map::Entry as MapEntry;
 use std::collections::HashMap;
 use std::hash::BuildHasherDefault;
@@ -289,6 +291,7 @@ fn expanded_entries(
     // order changes what is decided: the sum only grows.
     let text = PoseText::default();
     let stop = AtomicBool::new(false);
+    let (dq_turns, t_turns) = pose_turns(robot);
     // Both products multiply the joint factors without their constant angle offsets where
     // that gives the same entries and decisions (`OffsetFree`), the offsets put back once
     // per entry: the partial products then carry no cyclotomic phases.
@@ -316,7 +319,9 @@ fn expanded_entries(
     };
     // The closed forms of the matrix's other entries (`pose_forms` is a `par_map`).
     let matrix_forms = |(m, found): (crate::Matrix4<Scalar>, Vec<Option<PoseForm>>)| {
-        let forms = pose_forms(&matrix_cells(&m), found, &text, |x| (closed_form(x), None));
+        let (forms, _) = pose_forms(&matrix_cells(&m), found, &text, &t_turns, |x| {
+            (closed_form(x), None)
+        });
         if text.exceeded() {
             stop.store(true, Ordering::Relaxed);
         }
@@ -373,9 +378,9 @@ fn expanded_entries(
     // while this thread begins the DQ's closed forms, as above; not made once the pose's text
     // is past the limit.
     let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
-    let (forms, (img, jac)) = join(
+    let ((forms, dq_turned), (img, jac)) = join(
         || {
-            pose_forms(&comp_refs, none, &text, |x| {
+            pose_forms(&comp_refs, none, &text, &dq_turns, |x| {
                 let (e, p) = closed_form_prepared(x);
                 (e, Some(p))
             })
@@ -396,7 +401,6 @@ fn expanded_entries(
     let (dq_forms, prepared): (Vec<_>, Vec<_>) = forms
         .into_iter()
         .flatten()
-        .map(|(e, p)| (e, p.expect("a DQ entry is prepared")))
         .unzip();
     let t_forms: Vec<_> = t_forms.into_iter().flatten().map(|(e, _)| e).collect();
     // One offset per angle across the report (`closed/common.rs`), chosen from the pose's
@@ -410,7 +414,7 @@ fn expanded_entries(
         return None;
     }
     let (sections, rest_bound) =
-        match expanded_sections(&q, &vars, img, jac, dq_forms, prepared, t_forms, m) {
+        match expanded_sections(&q, &vars, img, jac, dq_forms, prepared, &dq_turned, t_forms, m) {
             Ok(made) => made,
             Err(e) => return Some(Err(e)),
         };
@@ -448,13 +452,23 @@ const EARLY_FORM_TERMS: usize = 512;
 /// [`MAX_EXPANDED_TEXT`] the entries not yet begun are `None`. The entries are begun largest
 /// first (by terms): the longest texts are found first, so the limit is passed after as few
 /// closed forms as the entries allow.
+///
+/// An entry that is a turn of an earlier one (`turned_entries` with `turns`: a rational
+/// multiple of it with a joint angle turned, the second row of `Rz(q1) M`) takes that one's
+/// form turned (`turn::turned_form`), not a search of its own; the entries so made are
+/// returned beside the forms. One whose turned form is not found (an error, a form past the
+/// text limit, a failed check) is searched after all.
 fn pose_forms(
     entries: &[&Scalar],
     found: Vec<Option<PoseForm>>,
     text: &PoseText,
+    turns: &[Turn],
     form: impl Fn(&Scalar) -> PoseForm + Sync,
-) -> Vec<Option<PoseForm>> {
-    let mut order: Vec<usize> = (0..entries.len()).filter(|&k| found[k].is_none()).collect();
+) -> (Vec<Option<PoseForm>>, Vec<Option<Turned>>) {
+    let mut turned = turned_entries(entries, turns, TURNED_TERMS);
+    let mut order: Vec<usize> = (0..entries.len())
+        .filter(|&k| found[k].is_none() && turned[k].is_none())
+        .collect();
     order.sort_by_key(|&k| std::cmp::Reverse(entries[k].len()));
     let made = par_map(&order, |&k| {
         if text.exceeded() {
@@ -468,7 +482,65 @@ fn pose_forms(
     for (k, f) in order.into_iter().zip(made) {
         forms[k] = f;
     }
-    forms
+    for k in 0..entries.len() {
+        let Some(t) = &turned[k] else {
+            continue;
+        };
+        if forms[k].is_some() {
+            // Found before (as the matrix product made it).
+            turned[k] = None;
+            continue;
+        }
+        if text.exceeded() {
+            continue;
+        }
+        let from = match &forms[t.from] {
+            Some((Ok(e), _)) => turn::turned_form(e, t, entries[k]),
+            _ => None,
+        };
+        let f = match from {
+            Some(e) => (Ok(e), None),
+            None => {
+                turned[k] = None;
+                form(entries[k])
+            }
+        };
+        text.add(&f.0);
+        forms[k] = Some(f);
+    }
+    (forms, turned)
+}
+
+/// The fewest terms a pose entry must have to be looked at as a turn of another
+/// ([`turned_entries`]): below it, its own search costs about what the turn does.
+const TURNED_TERMS: usize = 8;
+
+/// The turns [`pose_forms`] tries, for the dual quaternion's components (half angles: a
+/// turn by pi) and for the matrix's entries (a quarter turn): the first joint's and the last
+/// joint's, when revolute and their values plain symbols (`Rz(q1)` first: the matrix's second
+/// row is a turn of its first; the last joint's turn relates its first two columns).
+fn pose_turns(robot: &Robot) -> (Vec<Turn>, Vec<Turn>) {
+    let first = robot
+        .chain
+        .joints
+        .first()
+        .zip(robot.joint_values.first())
+        .filter(|(j, _)| j.kind == JointKind::Revolute)
+        .and_then(|(_, v)| v.as_plain_symbol());
+    let last = robot
+        .chain
+        .joints
+        .last()
+        .zip(robot.joint_values.last())
+        .filter(|(j, _)| j.kind == JointKind::Revolute)
+        .and_then(|(_, v)| v.as_plain_symbol());
+    let mut syms: Vec<Sym> = first.into_iter().collect();
+    if let Some(l) = last.filter(|l| !syms.contains(l)) {
+        syms.push(l);
+    }
+    let dq = syms.iter().map(|s| (s.clone(), Small::from_integer(1))).collect();
+    let t = syms.into_iter().map(|s| (s, Small::new(1, 2))).collect();
+    (dq, t)
 }
 
 /// The plain text of the pose's closed forms found so far, counted as they are found (by
@@ -576,7 +648,8 @@ fn expanded_sections(
     img: Option<[Scalar; 3]>,
     jac: Option<Vec<Vec<Scalar>>>,
     dq_forms: Vec<Result<Expr, ScalarError>>,
-    prepared: Vec<crate::closed::Prepared>,
+    prepared: Vec<Option<crate::closed::Prepared>>,
+    dq_turned: &[Option<Turned>],
     t_forms: Vec<Result<Expr, ScalarError>>,
     m: crate::Matrix4<Scalar>,
 ) -> Result<(Sections, Option<usize>), ReportError> {
@@ -635,40 +708,92 @@ fn expanded_sections(
     index.reserve(rest.len());
     let mut distinct: Vec<(&Scalar, Option<(usize, &str)>)> = Vec::new();
     type Source<'a> = Result<&'a Result<Expr, ScalarError>, usize>;
-    let sources: Vec<(Source, Q)> = rest
+    // A row of a component that is a turn of another (`pose_forms`) is the same turn of that
+    // component's row in the same column (a turn of a joint angle commutes with the
+    // derivative in every variable): a distinct row so is not searched but turned from its
+    // partner's form, when that is a pose entry's or a searched row's. Rows of the Jacobian
+    // come after the point's, in order.
+    let jac_start = rest
         .iter()
-        .map(|(_, x, from)| {
-            if let Some(e) = known.get(&SampledKey(x)) {
-                return (Ok(*e), Q::ONE);
+        .position(|(q, _, _)| matches!(q, Quantity::J { .. }))
+        .unwrap_or(rest.len());
+    let mut distinct_turn: Vec<Option<(usize, &Turned)>> = Vec::new();
+    let mut sources: Vec<(Source, Q)> = Vec::with_capacity(rest.len());
+    for (q, x, from) in &rest {
+        if let Some(e) = known.get(&SampledKey(x)) {
+            sources.push((Ok(*e), Q::ONE));
+            continue;
+        }
+        let key = ProportionalKey(x);
+        let source = match index.entry(key) {
+            MapEntry::Occupied(o) => (Err(*o.get()), key.factor(o.key())),
+            MapEntry::Vacant(v) => {
+                let turn = match (q, from) {
+                    (Quantity::J { col, .. }, Some((i, _))) => {
+                        dq_turned.get(*i).and_then(Option::as_ref).and_then(|t| {
+                            let partner = jac_start + t.from * vars.len() + col;
+                            match sources.get(partner)?.0 {
+                                Ok(_) => Some((partner, t)),
+                                Err(j) if distinct_turn[j].is_none() => Some((partner, t)),
+                                Err(_) => None,
+                            }
+                        })
+                    }
+                    _ => None,
+                };
+                distinct.push((x, *from));
+                distinct_turn.push(turn);
+                v.insert(distinct.len() - 1);
+                (Err(distinct.len() - 1), Q::ONE)
             }
-            let key = ProportionalKey(x);
-            match index.entry(key) {
-                MapEntry::Occupied(o) => (Err(*o.get()), key.factor(o.key())),
-                MapEntry::Vacant(v) => {
-                    distinct.push((x, *from));
-                    v.insert(distinct.len() - 1);
-                    (Err(distinct.len() - 1), Q::ONE)
-                }
-            }
-        })
-        .collect();
+        };
+        sources.push(source);
+    }
+    let search = |k: usize| match distinct[k] {
+        (x, Some((i, var))) => match &prepared[i] {
+            Some(p) => closed_form_of_derivative(p, var, x),
+            None => closed_form(x),
+        },
+        (x, None) => closed_form(x),
+    };
     // Begun largest first (by terms), so that the last closed forms to end, when one thread
     // may wait for the other, are small ones.
-    let mut order: Vec<usize> = (0..distinct.len()).collect();
+    let mut order: Vec<usize> = (0..distinct.len())
+        .filter(|&k| distinct_turn[k].is_none())
+        .collect();
     order.sort_by_key(|&k| std::cmp::Reverse(distinct[k].0.len()));
     let made = par_map(&order, |&k| {
-        let form = match distinct[k] {
-            (x, Some((i, var))) => closed_form_of_derivative(&prepared[i], var, x),
-            (x, None) => closed_form(x),
-        };
+        let form = search(k);
         let bound = final_bound(&form);
         (form, bound)
     });
-    let mut by_entry: Vec<_> = order.into_iter().zip(made).collect();
-    by_entry.sort_unstable_by_key(|(k, _)| *k);
     // Each distinct entry's form (taken by its last row, below) and its text's bound.
-    let (mut forms, bounds): (Vec<_>, Vec<_>) =
-        by_entry.into_iter().map(|(_, (f, b))| (Some(f), b)).unzip();
+    let mut forms: Vec<Option<Result<Expr, ScalarError>>> = vec![None; distinct.len()];
+    let mut bounds: Vec<Option<usize>> = vec![None; distinct.len()];
+    for (k, (f, b)) in order.into_iter().zip(made) {
+        forms[k] = Some(f);
+        bounds[k] = b;
+    }
+    // The turned rows, from their partners' forms (made above: a partner's class is never a
+    // turned one), each searched when its turn is not found.
+    for k in 0..distinct.len() {
+        let Some((partner, t)) = distinct_turn[k] else {
+            continue;
+        };
+        let (source, c) = &sources[partner];
+        let base = match source {
+            Ok(Ok(e)) => Some(e.clone()),
+            Ok(Err(_)) => None,
+            Err(j) => forms[*j].as_ref().and_then(|f| f.as_ref().ok()).cloned(),
+        };
+        let base = base.map(|e| if c.is_one() { e } else { e.scaled(&c.to_big()) });
+        let form = match base.and_then(|e| turn::turned_form(&e, t, distinct[k].0)) {
+            Some(e) => Ok(e),
+            None => search(k),
+        };
+        bounds[k] = final_bound(&form);
+        forms[k] = Some(form);
+    }
     // Each row's form: a pose entry's, or a distinct entry's, moved into its last row and
     // cloned into the others. The pose's own rows take its forms after these, moved too
     // (cloning the PUMA 560's 68 rows and dropping the originals took ~0.1 ms after the last

@@ -166,6 +166,7 @@ mod roots;
 mod square;
 mod trace;
 mod trigfac;
+pub(crate) mod turn;
 mod zfactor;
 
 pub use crate::scalar::Trig;

@@ -1,0 +1,191 @@
+//! Entries that are turns of each other: `x = c f(y)`, where `f` adds a multiple of pi to one
+//! symbol (`q1 -> q1 + pi`) and `c` is a rational. A robot whose first joint turns about the
+//! base's z axis has such pairs in its pose: the dual quaternion is `r(q1) R` with `r(q1) =
+//! cos(q1/2) + k sin(q1/2)`, and `r(q1 + pi) = r(q1) k`, so its `z` component is `-f(w)`, `y`
+//! is `f(x)` (and the dual part alike), and the matrix `Rz(q1) M` has its second row `-f` of
+//! its first with `q1 -> q1 + pi/2`. The closed form of `x` is then `c` times the form of
+//! `y` with each call turned (`cos(q1/2 + pi/2) = -sin(q1/2)`: [`turned`]), found without a
+//! search of its own, and checked against `x` like every closed form.
+//!
+//! What is exact and what is not: the pairs are found exactly (the turned scalar is
+//! [`Scalar::shift_angles`], compared up to a rational factor by [`ProportionalKey`]), and
+//! every turned form is checked against its entry (exactly in debug builds, numerically first
+//! in release builds). The form is the turn of the other's, not necessarily the one a search
+//! of `x` would give: the search's costs see signs and its ties the order of the atoms, which
+//! a turn changes (see `app/fk.rs` for what that changes in the reports).
+
+use super::expr::{quarter_turned, Expr};
+use crate::scalar::{FxHasher, ProportionalKey, Small, Sym, Q};
+use crate::Scalar;
+use std::collections::HashMap;
+use std::hash::BuildHasherDefault;
+
+/// One turn: a symbol and the multiple of pi added to it.
+pub(crate) type Turn = (Sym, Small);
+
+/// An entry found to be a turn of an earlier one: `entries[to] = factor * turns[turn]
+/// (entries[from])`.
+#[derive(Clone, Debug)]
+pub(crate) struct Turned {
+    /// The entry it is a turn of (earlier in the list, not itself turned).
+    pub(crate) from: usize,
+    /// The turn, as given.
+    pub(crate) turn: Turn,
+    /// The rational factor.
+    pub(crate) factor: Q,
+}
+
+/// For each of `entries`, the earlier entry it is a turn of (by one of `turns`, up to a
+/// rational factor), if any. Each entry `a` is turned by each of `turns` in order while a
+/// later entry not yet taken could be its turn ([`turn_invariant`]: the same number of terms
+/// and the same frequency vectors and monomials), and the turn is looked up among the
+/// entries: a multiple of a later one not yet taken makes that one a turn of `a` (`a` may
+/// itself be a turn of an earlier one: its form is found first). Only entries of at least
+/// `min_terms` terms are looked at (a small entry's search costs about what its turn does).
+pub(crate) fn turned_entries(
+    entries: &[&Scalar],
+    turns: &[Turn],
+    min_terms: usize,
+) -> Vec<Option<Turned>> {
+    let mut out: Vec<Option<Turned>> = vec![None; entries.len()];
+    if turns.is_empty() {
+        return out;
+    }
+    let invariant: Vec<Option<u64>> = entries
+        .iter()
+        .map(|x| (x.len() >= min_terms).then(|| turn_invariant(x)).flatten())
+        .collect();
+    let mut index: HashMap<ProportionalKey, usize, BuildHasherDefault<FxHasher>> =
+        HashMap::with_capacity_and_hasher(entries.len(), Default::default());
+    for (k, x) in entries.iter().enumerate() {
+        if invariant[k].is_some() {
+            index.entry(ProportionalKey(x)).or_insert(k);
+        }
+    }
+    for (a, x) in entries.iter().enumerate() {
+        let Some(inv) = invariant[a] else {
+            continue;
+        };
+        for turn in turns {
+            let open = (a + 1..entries.len()).any(|b| out[b].is_none() && invariant[b] == Some(inv));
+            if !open {
+                break;
+            }
+            let Some(y) = x.shift_angles(std::slice::from_ref(turn)) else {
+                continue;
+            };
+            let key = ProportionalKey(&y);
+            let Some((found, &b)) = index.get_key_value(&key) else {
+                continue;
+            };
+            if b <= a || out[b].is_some() {
+                continue;
+            }
+            // `entries[b] = c y`.
+            let Some(c) = found.factor_over(&key) else {
+                continue;
+            };
+            out[b] = Some(Turned {
+                from: a,
+                turn: turn.clone(),
+                factor: c,
+            });
+        }
+    }
+    out
+}
+
+/// A hash of what every turn of `x` keeps: its number of terms and the multiset of its
+/// terms' frequency vectors and monomials (a turn changes a term's cosine into a sine and
+/// its coefficient, not its angle's symbols or its monomial); `None` for an error value.
+/// A group whose canonical terms carry an offset may change its number of terms when
+/// turned: such a pair is only missed (searched as before).
+fn turn_invariant(x: &Scalar) -> Option<u64> {
+    use std::hash::{Hash, Hasher};
+    let terms = x.terms().ok()?;
+    let mut sum = terms.len() as u64;
+    for t in terms {
+        let mut h = FxHasher::default();
+        for (s, k) in t.mode.freq.iter() {
+            h.write_usize(s.addr());
+            k.hash(&mut h);
+        }
+        t.mono.hash(&mut h);
+        sum = sum.wrapping_add(h.finish());
+    }
+    Some(sum)
+}
+
+/// `e` with `turn` applied to its symbol: each call `f(a)` whose angle holds the symbol with
+/// coefficient `k` is `f(a + k t pi)`, written as `g(a)` with a sign ([`quarter_turned`]);
+/// `None` when some `k t` is not a multiple of 1/2 (a call that does not turn into another) or
+/// the symbol appears outside an angle.
+pub(crate) fn turned(e: Expr, turn: &Turn) -> Option<Expr> {
+    let (sym, t) = turn;
+    if reads_outside_angles(&e, sym) {
+        return None;
+    }
+    let mut whole = true;
+    let out = e.map_trig_signed(&mut |f, angle| {
+        let k = angle.terms.iter().find(|(s, _)| s == sym).map(|(_, k)| *k)?;
+        let quarters = k * *t * Small::from_integer(2);
+        if !quarters.is_integer() {
+            whole = false;
+            return None;
+        }
+        let q = quarters.numer().rem_euclid(4);
+        if q == 0 {
+            return None;
+        }
+        let (g, neg) = quarter_turned(f, q);
+        Some((g, angle.clone(), neg))
+    });
+    whole.then_some(out)
+}
+
+/// Whether `sym` appears in `e` other than in an angle (a monomial's symbol).
+fn reads_outside_angles(e: &Expr, sym: &Sym) -> bool {
+    match e {
+        Expr::Sym(s) => s == sym,
+        Expr::Add(v) | Expr::Mul(v) => v.iter().any(|x| reads_outside_angles(x, sym)),
+        Expr::Neg(x) | Expr::Pow(x, _) => reads_outside_angles(x, sym),
+        Expr::Num(_) | Expr::Sqrt(_) | Expr::Trig { .. } => false,
+    }
+}
+
+/// The closed form of `x`, an entry that is `t.factor` times `t.turn` of an entry whose
+/// closed form is `from`: `from` turned and scaled; `None` when it cannot be turned or its
+/// check fails. Checked exactly against `x` in debug builds (so in every test); in release
+/// builds numerically against `from` at a turned point ([`agrees_turned`]): `x` is that
+/// multiple of the turned entry exactly ([`turned_entries`]) and `from` was checked against
+/// that entry, so only the turn itself is left to check, without evaluating `x`.
+pub(crate) fn turned_form(from: &Expr, t: &Turned, x: &Scalar) -> Option<Expr> {
+    let e = turned(from.clone(), &t.turn)?.scaled(&t.factor.to_big());
+    let good = if cfg!(debug_assertions) {
+        e.to_scalar() == *x
+    } else {
+        agrees_turned(&e, from, t)
+    };
+    good.then_some(e)
+}
+
+/// Whether `e` and `t.factor` times `from` with `t.turn`'s symbol turned agree at a fixed
+/// pseudo-random point, to a relative 1e-9 of the magnitudes involved (as
+/// `agrees_numerically` compares a form with its scalar).
+fn agrees_turned(e: &Expr, from: &Expr, t: &Turned) -> bool {
+    let seed = 0x9e37_79b9_7f4a_7c15u64;
+    let (sym, turn) = &t.turn;
+    let shift = *turn.numer() as f64 / *turn.denom() as f64 * std::f64::consts::PI;
+    let (a, scale_a) = e.eval_f64(&|s| super::point_value(s, seed));
+    let (b, scale_b) = from.eval_f64(&|s| {
+        let v = super::point_value(s, seed);
+        if s == sym {
+            v + shift
+        } else {
+            v
+        }
+    });
+    let c = t.factor.to_f64().unwrap_or(f64::NAN);
+    let scale = scale_a.max(scale_b * c.abs()).max(1.0);
+    a.is_finite() && b.is_finite() && (a - c * b).abs() <= 1e-9 * scale
+}
