@@ -13,17 +13,17 @@
 
 use super::quantity::{Family, Letters, MatrixFrom, Quantity, Section, SectionKind};
 use super::recurrence::{recurrence_sections_printed, CosSinTexts};
+use crate::closed::turn::{self, turned_entries, Turn, Turned};
 use crate::emit::names::{line_comment, Comment, Lang};
 use crate::emit::syntax::syntax;
 use crate::emit::{
     arguments, count_ops, generated_ops, latex_aligned, product_table, rotation_chain_ops, sympy,
     sympy_decimals, CodegenError, CodegenOptions, Counted, LatexOptions, Output,
 };
+use crate::kin::JointKind;
 use crate::kin::{dq_jacobian, MadeJoints, Robot};
 use crate::print::{legend, plain, plain_len_bound, Format, PlainOptions};
 use crate::scalar::{join, par_map, with_own_budget};
-use crate::closed::turn::{self, turned_entries, Turn, Turned};
-use crate::kin::JointKind;
 use crate::scalar::{FxHasher, ProportionalKey, SampledKey, Small, Sym, Q};
 use std::collections::hash_map::Entry as MapEntry;
 use std::collections::HashMap;
@@ -398,10 +398,7 @@ fn expanded_entries(
     if text.exceeded() {
         return None;
     }
-    let (dq_forms, prepared): (Vec<_>, Vec<_>) = forms
-        .into_iter()
-        .flatten()
-        .unzip();
+    let (dq_forms, prepared): (Vec<_>, Vec<_>) = forms.into_iter().flatten().unzip();
     let t_forms: Vec<_> = t_forms.into_iter().flatten().map(|(e, _)| e).collect();
     // One offset per angle across the report (`closed/common.rs`), chosen from the pose's
     // entries and shown in every entry.
@@ -413,11 +410,12 @@ fn expanded_entries(
     if !text.all_within(pose_entries, 0) && pose_text_exceeds(&dq_forms, &t_forms, &common) {
         return None;
     }
-    let (sections, rest_bound) =
-        match expanded_sections(&q, &vars, img, jac, dq_forms, prepared, &dq_turned, t_forms, m) {
-            Ok(made) => made,
-            Err(e) => return Some(Err(e)),
-        };
+    let (sections, rest_bound) = match expanded_sections(
+        &q, &vars, img, jac, dq_forms, prepared, &dq_turned, t_forms, m,
+    ) {
+        Ok(made) => made,
+        Err(e) => return Some(Err(e)),
+    };
     let sections: Sections = sections
         .into_iter()
         .map(|s| Section {
@@ -538,7 +536,10 @@ fn pose_turns(robot: &Robot) -> (Vec<Turn>, Vec<Turn>) {
     if let Some(l) = last.filter(|l| !syms.contains(l)) {
         syms.push(l);
     }
-    let dq = syms.iter().map(|s| (s.clone(), Small::from_integer(1))).collect();
+    let dq = syms
+        .iter()
+        .map(|s| (s.clone(), Small::from_integer(1)))
+        .collect();
     let t = syms.into_iter().map(|s| (s, Small::new(1, 2))).collect();
     (dq, t)
 }
@@ -1189,6 +1190,7 @@ mod tests {
     use super::*;
     use crate::app::recurrence::recurrence_sections;
     use crate::kin::{random_test_chain, LARGEST_FIRST};
+    use crate::Ring;
 
     /// `fk`'s entries and decision (expanded or recurrence) on a thread of its own, with
     /// the matrix products' entries made largest first (`largest_first`, the order before
@@ -1204,6 +1206,213 @@ mod tests {
             .join()
             .expect("the entries")
         })
+    }
+
+    /// The entries of a random chain's pose: the DQ's components and the matrix's rows 0..2.
+    fn pose_entries(next: &mut impl FnMut(u64) -> u64) -> (Vec<Scalar>, Vec<Sym>) {
+        let robot = random_test_chain(next, 5);
+        let q = robot.forward();
+        let m = robot.forward_matrix();
+        let mut entries: Vec<Scalar> = q.components().to_vec();
+        entries.extend(m.rows[..3].iter().flatten().cloned());
+        let vars = robot.variables.iter().map(|v| Sym::new(v)).collect();
+        (entries, vars)
+    }
+
+    /// The turn of a scalar term by term ([`turned_scalar`]) is the scalar shift of its
+    /// angles (the canonical rewrite), on the entries of random chains (offsets of ninths,
+    /// tenths and eighteenths of pi on some joints, prismatic joints, symbolic twists) turned
+    /// by half and quarter turns of each variable, and by a turn that is not one (pi/3: no
+    /// form term by term).
+    #[test]
+    fn a_scalar_turned_term_by_term_is_its_angles_shifted() {
+        let mut next = crate::testing::xorshift_below(0x7e57_0031);
+        let (mut turned, mut moved) = (0, 0);
+        for _ in 0..12 {
+            let (entries, vars) = pose_entries(&mut next);
+            for x in &entries {
+                for v in &vars {
+                    for t in [Small::from_integer(1), Small::new(1, 2), Small::new(-3, 2)] {
+                        let turn = (v.clone(), t);
+                        let Some(y) = turn::turned_scalar(x, &turn) else {
+                            continue;
+                        };
+                        let shifted = x.shift_angles(std::slice::from_ref(&turn));
+                        assert_eq!(Some(&y), shifted.as_ref(), "{x} turned by {turn:?}");
+                        turned += 1;
+                        moved += usize::from(y != *x);
+                    }
+                    let third = (v.clone(), Small::new(1, 3));
+                    let moves = x.shift_angles(std::slice::from_ref(&third)) != Some(x.clone());
+                    assert!(!moves || turn::turned_scalar(x, &third).is_none());
+                }
+            }
+        }
+        assert!(
+            turned > 1_000 && moved > 500,
+            "{turned} turned, {moved} moved"
+        );
+    }
+
+    /// A closed form turned ([`turned`]) is the closed form of its scalar turned, exactly, on
+    /// the closed forms of random chains' entries; an angle the turn does not take to a
+    /// quarter turn (half a variable turned by a quarter) leaves no form.
+    #[test]
+    fn a_form_turned_is_the_form_of_the_turned_scalar() {
+        let mut next = crate::testing::xorshift_below(0x7e57_0032);
+        let mut checked = 0;
+        for _ in 0..6 {
+            let (entries, vars) = pose_entries(&mut next);
+            for x in entries.iter().filter(|x| x.len() <= 64) {
+                let Ok(e) = crate::closed_form(x) else {
+                    continue;
+                };
+                for v in &vars {
+                    for t in [
+                        Small::from_integer(1),
+                        Small::new(1, 2),
+                        Small::from_integer(-1),
+                    ] {
+                        let turn = (v.clone(), t);
+                        let Some(y) = x.shift_angles(std::slice::from_ref(&turn)) else {
+                            continue;
+                        };
+                        match turn::turned(e.clone(), &turn) {
+                            Some(f) => {
+                                assert_eq!(f.to_scalar(), y, "{e:?} turned by {turn:?}");
+                                checked += 1;
+                            }
+                            // Only half angles turned by a quarter turn have no form.
+                            None => assert!(t.denom() % 2 == 0, "{e:?} by {turn:?}"),
+                        }
+                    }
+                }
+            }
+        }
+        assert!(checked > 300, "{checked} forms turned");
+    }
+
+    /// Among entries, each turned one is found with its source and factor, and only those:
+    /// the entries of random chains with copies of some entries turned (the scalar shift of
+    /// their angles) and scaled put among them; every pair found holds exactly, and every copy
+    /// that is no multiple of an earlier entry is found.
+    #[test]
+    fn the_turned_entries_found_are_turns_of_their_sources() {
+        let mut next = crate::testing::xorshift_below(0x7e57_0033);
+        let (mut found, mut copies) = (0, 0);
+        for _ in 0..20 {
+            let (mut entries, vars) = pose_entries(&mut next);
+            let turns = [
+                (vars[0].clone(), Small::from_integer(1)),
+                (vars[0].clone(), Small::new(1, 2)),
+                (vars[vars.len() - 1].clone(), Small::from_integer(1)),
+            ];
+            let n = entries.len();
+            for k in 0..10 {
+                let x = entries[next(n as u64) as usize].clone();
+                let turn = &turns[next(3) as usize];
+                if x.len() < 2 || turn::turned_scalar(&x, turn).is_none() {
+                    continue;
+                }
+                let y = x.shift_angles(std::slice::from_ref(turn)).expect("a turn");
+                entries.push(&y * &Scalar::from_ratio(-(k as i64) - 1, 3));
+            }
+            let refs: Vec<&Scalar> = entries.iter().collect();
+            let out = turn::turned_entries(&refs, &turns, 2);
+            for (b, t) in out.iter().enumerate() {
+                let Some(t) = t else {
+                    continue;
+                };
+                assert!(t.from < b);
+                let y = entries[t.from]
+                    .shift_angles(std::slice::from_ref(&t.turn))
+                    .expect("a turn");
+                assert_eq!(entries[b], &y * &Scalar::rational(t.factor.to_big()));
+                found += 1;
+            }
+            for b in n..entries.len() {
+                let key = ProportionalKey(&entries[b]);
+                if !entries[..b].iter().any(|x| ProportionalKey(x) == key) {
+                    assert!(out[b].is_some(), "copy {b} not found");
+                    copies += 1;
+                }
+            }
+        }
+        assert!(
+            found >= 60 && copies >= 15,
+            "{found} found, {copies} copies"
+        );
+    }
+
+    /// Every row of `fk --jacobian` on random chains (3 to 6 joints; offsets, prismatic
+    /// joints, symbolic twists) and on the Jaco-style arm's chain is its entry exactly: the
+    /// rows turned from others (`closed/turn.rs`: the second half of the DQ's components and
+    /// their Jacobian rows, the matrix's second row and the first two columns' pairs) among
+    /// them, none of whose checks fails (a failed one would be searched, unseen).
+    #[test]
+    fn every_row_and_every_turned_row_is_its_entry() {
+        let mut next = crate::testing::xorshift_below(0x7e57_0034);
+        let mut robots: Vec<Robot> = (0..8).map(|_| random_test_chain(&mut next, 6)).collect();
+        // The Jaco-style arm (tests/data/jaco_style.toml): a random chain's shell, its
+        // joints replaced.
+        let mut jaco = random_test_chain(&mut next, 6);
+        let pi = |n: i64, d: i64| Scalar::pi() * Scalar::from_ratio(n, d);
+        let sym = |name: &str| Scalar::sym(name);
+        let table = [
+            (pi(0, 1), sym("d1"), Scalar::int(0), pi(1, 2)),
+            (pi(5, 9), Scalar::int(0), sym("a2"), pi(1, 1)),
+            (pi(0, 1), sym("d3"), Scalar::int(0), pi(1, 2)),
+            (pi(0, 1), sym("d4"), Scalar::int(0), pi(1, 3)),
+            (pi(0, 1), sym("d5"), Scalar::int(0), pi(1, 3)),
+            (pi(0, 1), sym("d6"), Scalar::int(0), pi(1, 1)),
+        ];
+        jaco.chain = crate::kin::Chain::new(
+            table
+                .into_iter()
+                .map(|(theta, d, a, alpha)| crate::kin::Joint::revolute_dh(theta, d, a, alpha))
+                .collect(),
+        );
+        jaco.variables = (1..=6).map(|i| format!("q{i}")).collect();
+        jaco.joint_values = (1..=6).map(|i| sym(&format!("q{i}"))).collect();
+        jaco.convention = crate::kin::Convention::Dh;
+        robots.push(jaco);
+        let mut turned_rows = 0;
+        for robot in &robots {
+            let _in = crate::Context::new().with_threads(1).enter();
+            crate::closed::turn::counts::COUNTS.with(|c| c.set((0, 0)));
+            let o = FkOptions {
+                jacobian: true,
+                ..FkOptions::default()
+            };
+            let entries = fk_entries(robot, &o).expect("a report");
+            let (made, failed) = crate::closed::turn::counts::COUNTS.with(|c| c.get());
+            assert_eq!(failed, 0, "{:?}", robot.chain);
+            turned_rows += made;
+            if entries.recurrence {
+                continue;
+            }
+            let q = robot.forward();
+            let comps = q.components();
+            let m = robot.forward_matrix();
+            let vars: Vec<&str> = robot.variables.iter().map(String::as_str).collect();
+            let jac = dq_jacobian(&q, &vars);
+            for (quantity, e) in entries.rows() {
+                let x = match *quantity {
+                    Quantity::Dq(k) => &comps[k],
+                    Quantity::T(i, j) => &m.rows[i][j],
+                    Quantity::J { row, col } => &jac[row][col],
+                    _ => continue,
+                };
+                assert_eq!(
+                    e.to_scalar(),
+                    *x,
+                    "{} of {:?}",
+                    quantity.name(),
+                    robot.chain
+                );
+            }
+        }
+        assert!(turned_rows >= 100, "{turned_rows} rows turned");
     }
 
     /// On random chains (3 to 8 joints; symbolic, numeric and mixed parameters; offsets;

@@ -15,8 +15,9 @@
 //! a turn changes (see `app/fk.rs` for what that changes in the reports).
 
 use super::expr::{quarter_turned, Expr};
-use crate::scalar::{FxHasher, ProportionalKey, Small, Sym, Q};
+use crate::scalar::{FxHasher, ProportionalKey, Small, Sym, Trig, Q};
 use crate::Scalar;
+use num_traits::CheckedMul;
 use std::collections::HashMap;
 use std::hash::BuildHasherDefault;
 
@@ -67,11 +68,12 @@ pub(crate) fn turned_entries(
             continue;
         };
         for turn in turns {
-            let open = (a + 1..entries.len()).any(|b| out[b].is_none() && invariant[b] == Some(inv));
+            let open =
+                (a + 1..entries.len()).any(|b| out[b].is_none() && invariant[b] == Some(inv));
             if !open {
                 break;
             }
-            let Some(y) = x.shift_angles(std::slice::from_ref(turn)) else {
+            let Some(y) = turned_scalar(x, turn) else {
                 continue;
             };
             let key = ProportionalKey(&y);
@@ -93,6 +95,50 @@ pub(crate) fn turned_entries(
         }
     }
     out
+}
+
+/// `x` with `turn` applied, term by term, when the turn moves every term it moves by
+/// quarter turns: `c cos(a + p pi)` with the symbol's coefficient `k` in `a` is `c cos(a + p
+/// pi + k t pi)`, and for `k t` a multiple of 1/2 that is `+-c cos` or `+-c sin` of the same
+/// angle and offset ([`quarter_turned`]). Each term so is an identity, so the sum is the
+/// turned value whether or not its terms are canonical; [`turned_entries`] compares it with
+/// canonical entries term by term, so a form that is not canonical only misses a pair. The
+/// scalar shift of every angle ([`Scalar::shift_angles`]) writes the same value canonically
+/// but rewrites every group with an offset (`cos(q2 + 5*pi/9)`), ten times the work on the
+/// Jaco-style arm's entries. `None` when a turn is not by quarter turns, or the symbol is in
+/// a monomial (then it is no angle).
+pub(crate) fn turned_scalar(x: &Scalar, turn: &Turn) -> Option<Scalar> {
+    let (sym, t) = turn;
+    let terms = x.terms().ok()?;
+    let mut out = Vec::with_capacity(terms.len());
+    for term in terms {
+        if term.mono.iter().any(|(s, _)| s == sym) {
+            return None;
+        }
+        let Some(k) = term
+            .mode
+            .freq
+            .iter()
+            .find(|(s, _)| s == sym)
+            .map(|(_, k)| *k)
+        else {
+            out.push(term.clone());
+            continue;
+        };
+        let quarters = k.checked_mul(t)?.checked_mul(&Small::from_integer(2))?;
+        if !quarters.is_integer() {
+            return None;
+        }
+        let f = if term.mode.sin { Trig::Sin } else { Trig::Cos };
+        let (g, neg) = quarter_turned(f, quarters.numer().rem_euclid(4));
+        let mut moved = term.clone();
+        moved.mode.sin = g.is_sin();
+        if neg {
+            moved.coef = -moved.coef;
+        }
+        out.push(moved);
+    }
+    Some(Scalar::from_terms_settled(out))
 }
 
 /// A hash of what every turn of `x` keeps: its number of terms and the multiset of its
@@ -127,12 +173,19 @@ pub(crate) fn turned(e: Expr, turn: &Turn) -> Option<Expr> {
     }
     let mut whole = true;
     let out = e.map_trig_signed(&mut |f, angle| {
-        let k = angle.terms.iter().find(|(s, _)| s == sym).map(|(_, k)| *k)?;
-        let quarters = k * *t * Small::from_integer(2);
-        if !quarters.is_integer() {
+        let k = angle
+            .terms
+            .iter()
+            .find(|(s, _)| s == sym)
+            .map(|(_, k)| *k)?;
+        let quarters = k
+            .checked_mul(t)
+            .and_then(|kt| kt.checked_mul(&Small::from_integer(2)))
+            .filter(Small::is_integer);
+        let Some(quarters) = quarters else {
             whole = false;
             return None;
-        }
+        };
         let q = quarters.numer().rem_euclid(4);
         if q == 0 {
             return None;
@@ -166,6 +219,15 @@ pub(crate) fn turned_form(from: &Expr, t: &Turned, x: &Scalar) -> Option<Expr> {
     } else {
         agrees_turned(&e, from, t)
     };
+    #[cfg(test)]
+    counts::COUNTS.with(|c| {
+        let (made, failed) = c.get();
+        c.set(if good {
+            (made + 1, failed)
+        } else {
+            (made, failed + 1)
+        });
+    });
     good.then_some(e)
 }
 
@@ -188,4 +250,13 @@ fn agrees_turned(e: &Expr, from: &Expr, t: &Turned) -> bool {
     let c = t.factor.to_f64().unwrap_or(f64::NAN);
     let scale = scale_a.max(scale_b * c.abs()).max(1.0);
     a.is_finite() && b.is_finite() && (a - c * b).abs() <= 1e-9 * scale
+}
+
+/// The turned forms made and those whose check failed, on this thread (for tests).
+#[cfg(test)]
+pub(crate) mod counts {
+    thread_local! {
+        pub(crate) static COUNTS: std::cell::Cell<(u64, u64)> =
+            const { std::cell::Cell::new((0, 0)) };
+    }
 }
