@@ -32,8 +32,10 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
 use crate::{
-    closed::{closed_form_of_derivative, closed_form_prepared, decimal_form, CommonOffsets},
-    closed_form, Context, DualQuat, Expr, Scalar, ScalarError,
+    closed::{
+        closed_form_of_derivative, decimal_form, report_form, report_form_prepared, CommonOffsets,
+    },
+    Context, DualQuat, Expr, Scalar, ScalarError,
 };
 
 /// What the report contains.
@@ -303,7 +305,7 @@ fn expanded_entries(
             if i == 3 || x.len() < EARLY_FORM_TERMS {
                 return true;
             }
-            let f = closed_form(x);
+            let f = report_form(x);
             text.add(&f);
             t_forms[4 * i + j] = Some((f, None));
             !text.exceeded()
@@ -320,7 +322,7 @@ fn expanded_entries(
     // The closed forms of the matrix's other entries (`pose_forms` is a `par_map`).
     let matrix_forms = |(m, found): (crate::Matrix4<Scalar>, Vec<Option<PoseForm>>)| {
         let (forms, _) = pose_forms(&matrix_cells(&m), found, &text, &t_turns, |x| {
-            (closed_form(x), None)
+            (report_form(x), None)
         });
         if text.exceeded() {
             stop.store(true, Ordering::Relaxed);
@@ -381,7 +383,7 @@ fn expanded_entries(
     let ((forms, dq_turned), (img, jac)) = join(
         || {
             pose_forms(&comp_refs, none, &text, &dq_turns, |x| {
-                let (e, p) = closed_form_prepared(x);
+                let (e, p) = report_form_prepared(x);
                 (e, Some(p))
             })
         },
@@ -753,9 +755,9 @@ fn expanded_sections(
     let search = |k: usize| match distinct[k] {
         (x, Some((i, var))) => match &prepared[i] {
             Some(p) => closed_form_of_derivative(p, var, x),
-            None => closed_form(x),
+            None => report_form(x),
         },
-        (x, None) => closed_form(x),
+        (x, None) => report_form(x),
     };
     // Begun largest first (by terms), so that the last closed forms to end, when one thread
     // may wait for the other, are small ones.

@@ -110,7 +110,10 @@
 //! shifted alike; the congruences are scaled to integer residues modulo one common modulus and
 //! solved in echelon form (`congruence.rs`: each unknown a residue class given the earlier ones,
 //! the solutions listed in lexicographic order without a search, every value charged to the
-//! Context); across an `fk` report one offset per angle direction (`common.rs`, `CommonOffsets`):
+//! Context); an `fk` report's entry that is a rational multiple of another with a joint angle
+//! turned by a quarter or half turn (`turn.rs`: the second half of a dual quaternion whose first
+//! joint turns about z, `Rz(q1) M`'s second row) takes the other's form turned, checked, not a
+//! search of its own, a form that can differ from its own search's; across an `fk` report one offset per angle direction (`common.rs`, `CommonOffsets`):
 //! each angle `l (g . x + t pi)` (`g` primitive) votes for `t` once per pose entry, directions of
 //! fewer symbols first and then by votes fix one offset vector `o` (ties: non-negative, then
 //! smallest), and every entry's angle whose offset differs from `l (g . o)` by a multiple of pi/2
@@ -288,8 +291,46 @@ pub struct Prepared(
 /// and factored like `cos(q2)`), the shorter of the two kept (`alt::shorter`; the shifted
 /// one on ties).
 pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+    closed_form_prepared_as(x, AsGiven::Searched)
+}
+
+/// [`closed_form_prepared`] as an `fk` report shows a pose entry: with its offsets absorbed
+/// into the joint angles when they can be (`offsets.rs`), without the search of the form as
+/// given beside it ([`AsGiven::Skipped`]).
+///
+/// Why: a report's entries carry the joints' offsets (`theta2 = q2 + 5*pi/9`), and the shifted
+/// form is written in the angles the robot file wrote. The search as given only wins by
+/// another grouping of the offsets' phases, by a few operations (the Jaco-style arm's `dq[1]`:
+/// 41 against 44), and costs twice the shifted search (its phases split every mode in two):
+/// on the Jaco-style arm's `fk --jacobian` it was 19 M of 78 M instructions (callgrind, one
+/// thread, session 31). Measured on the `fk --jacobian` reports of every robot file in the
+/// repository (61): 22 rows of 2 robots change (the Jaco-style arm and
+/// `datasheet_base_yaw.toml`), 16 of them printed longer (134 characters in all, the few
+/// operations the search as given won by), 6 shorter (154 characters). Expressions
+/// (`closed_form`, the REPL, `-e`) and the searches nested in a report's search both ways
+/// as before.
+pub(crate) fn report_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+    closed_form_prepared_as(x, AsGiven::Skipped)
+}
+
+/// [`report_form_prepared`]'s closed form.
+pub(crate) fn report_form(x: &Scalar) -> Result<Expr, ScalarError> {
+    report_form_prepared(x).0
+}
+
+/// Whether a scalar with offsets absorbed ([`prepared_shifted`]) is also searched as given.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum AsGiven {
+    /// Searched (where [`as_given_may_win`] says it may win), the shorter kept.
+    Searched,
+    /// Not searched: the shifted form is kept (an `fk` report's entries).
+    Skipped,
+}
+
+/// [`closed_form_prepared`], the form as given searched or not (`as_given`).
+fn closed_form_prepared_as(x: &Scalar, as_given: AsGiven) -> (Result<Expr, ScalarError>, Prepared) {
     let memo = Memo::open();
-    let (e, prepared) = prepared_shifted(x);
+    let (e, prepared) = prepared_shifted(x, as_given);
     let Ok(found) = e else {
         return (e, prepared);
     };
@@ -301,7 +342,10 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
         let Some(l) = lifting.as_mut().and_then(|l| l.lift(phased)) else {
             continue;
         };
-        let Ok(c) = prepared_shifted(&l.scalar).0.map(|c| l.substitute(c)) else {
+        let Ok(c) = prepared_shifted(&l.scalar, as_given)
+            .0
+            .map(|c| l.substitute(c))
+        else {
             continue;
         };
         let c = joined(c, x, memo.0);
@@ -312,7 +356,7 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
     // Angles at offsets that are multiples of pi/12, hidden in radicals, as angles again
     // (`l1 sin(x + pi/6)`, canonically `l1 (cos(x) + sqrt(3) sin(x))/2`).
     if let Some(a) = coefs::phase_angles(x) {
-        if let Some(c) = prepared_shifted(&a.scalar)
+        if let Some(c) = prepared_shifted(&a.scalar, as_given)
             .0
             .ok()
             .and_then(|c| a.substitute(c))
@@ -343,8 +387,8 @@ fn joined(e: Expr, x: &Scalar, outermost: bool) -> Expr {
 
 /// [`closed_form_prepared`] without the constants lifted.
 ///
-/// With offsets absorbed (`offsets.rs`), the shifted form `e` is found first and the form as
-/// given is searched with `e`'s key as its cap ([`best_of`]'s `cap`): the form as given is
+/// With offsets absorbed (`offsets.rs`), the shifted form `e` is found first and, with
+/// [`AsGiven::Searched`], the form as given is searched with `e`'s key as its cap ([`best_of`]'s `cap`): the form as given is
 /// taken only when [`alt::shorter`] than `e`, so a search of it that gives up on forms not
 /// below `e` changes nothing. Where [`as_given_may_win`] (a measured rule, not a proven one)
 /// says it cannot win, it is not made. Otherwise the choice is the same as searching both in
@@ -369,7 +413,7 @@ fn joined(e: Expr, x: &Scalar, outermost: bool) -> Expr {
 /// A search as given that [`as_given_may_win`] skips leaves its work in the budget: 2 of 120
 /// random 5-joint chains whose `fk --jacobian` ran out of the default budget (and printed the
 /// recurrence) now print the expanded report, the one both ways print with a raised budget.
-fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+fn prepared_shifted(x: &Scalar, as_given: AsGiven) -> (Result<Expr, ScalarError>, Prepared) {
     let Some((shift, y)) = offsets::find(x).and_then(|s| s.apply(x).map(|y| (s, y))) else {
         return prepared_unshifted(x, None);
     };
@@ -388,7 +432,7 @@ fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
             break;
         }
     }
-    if as_given_may_win(x, &e) {
+    if as_given == AsGiven::Searched && as_given_may_win(x, &e) {
         let (plain, prepared) = match prepared_unshifted(x, cap_of(x, &e)) {
             // Out of the budget (or another limit) after the shifted search: as when first.
             (Err(_), _) => as_first(&before, x),
@@ -796,7 +840,9 @@ fn same_monomials(x: &Scalar, smons: &[mon::Mon]) -> bool {
 /// and factored, compared with the whole-modes shape of `dx` when that shape won for the
 /// prepared scalar, and checked against `dx`. Much cheaper than [`closed_form`] on `dx` for the
 /// Jacobian of a chain, whose entries are long half-angle series: the expansion into single
-/// angles is not redone. The form may differ from `closed_form(dx)`; it equals `dx`.
+/// angles is not redone. The form may differ from `closed_form(dx)`; it equals `dx`. Where it
+/// starts over, it searches as an `fk` report does (`report_form`: the form in the joints'
+/// angles, not also as given).
 ///
 /// # Errors
 /// As [`closed_form`].
@@ -819,7 +865,7 @@ pub fn closed_form_of_derivative(
             Ok(_) => dy,
             Err(_) => match shift.apply(dx) {
                 Some(dy) => dy,
-                None => return closed_form(dx),
+                None => return report_form(dx),
             },
         };
         debug_assert!(shift.apply(dx).is_none_or(|d| d == dy), "d/d{var} shifted");
@@ -827,7 +873,7 @@ pub fn closed_form_of_derivative(
         return if verified(&e, dx) {
             Ok(e)
         } else {
-            closed_form(dx)
+            report_form(dx)
         };
     }
     derivative_unshifted(p, var, dx)
@@ -854,7 +900,7 @@ pub fn closed_form_of_derivative(
 /// its choice is not provably the renamed tree.
 fn derivative_unshifted(p: &Prepared, var: &str, dx: &Scalar) -> Result<Expr, ScalarError> {
     let Some((ctx, mons, split_won)) = &p.0 else {
-        return closed_form(dx);
+        return report_form(dx);
     };
     let mut ctx = ctx.clone();
     let dmons = mon::differentiate(&ctx, mons, var);
