@@ -193,7 +193,64 @@ pub(crate) fn turned(e: Expr, turn: &Turn) -> Option<Expr> {
         let (g, neg) = quarter_turned(f, q);
         Some((g, angle.clone(), neg))
     });
-    whole.then_some(out)
+    whole.then_some(tidy_signs(out))
+}
+
+/// `e` with the sign of each sum inside a product whose terms are all negative taken out of it
+/// and out of the product (`s23 (-c4 s6 - s4 c6)` is `-s23 (c4 s6 + s4 c6)`): as long, one
+/// minus sign, where a turn left one on every term ([`Expr::map_trig_signed`] keeps the signs
+/// on the terms of sums). The value is unchanged.
+fn tidy_signs(e: Expr) -> Expr {
+    fn all_negative(v: &[Expr]) -> bool {
+        !v.is_empty() && v.iter().all(|t| matches!(t, Expr::Neg(_)))
+    }
+    fn flip(neg: &mut bool, e: Expr) -> Expr {
+        match e {
+            Expr::Neg(x) => {
+                *neg = !*neg;
+                *x
+            }
+            Expr::Add(v) if all_negative(&v) => {
+                *neg = !*neg;
+                Expr::Add(v.into_iter().map(|t| unsign(t)).collect())
+            }
+            e => e,
+        }
+    }
+    fn unsign(e: Expr) -> Expr {
+        match e {
+            Expr::Neg(x) => *x,
+            e => e,
+        }
+    }
+    fn signed(neg: bool, e: Expr) -> Expr {
+        if neg {
+            Expr::Neg(Box::new(e))
+        } else {
+            e
+        }
+    }
+    match e {
+        Expr::Add(v) => Expr::Add(v.into_iter().map(tidy_signs).collect()),
+        Expr::Mul(v) => {
+            let mut neg = false;
+            let parts = v
+                .into_iter()
+                .map(|f| flip(&mut neg, tidy_signs(f)))
+                .collect();
+            signed(neg, Expr::Mul(parts))
+        }
+        Expr::Neg(x) => match tidy_signs(*x) {
+            Expr::Neg(y) => *y,
+            y => Expr::Neg(Box::new(y)),
+        },
+        Expr::Pow(x, n) => {
+            let mut neg = false;
+            let base = flip(&mut neg, tidy_signs(*x));
+            signed(neg && n % 2 == 1, Expr::Pow(Box::new(base), n))
+        }
+        e => e,
+    }
 }
 
 /// Whether `sym` appears in `e` other than in an angle (a monomial's symbol).
