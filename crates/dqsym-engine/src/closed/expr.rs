@@ -625,7 +625,8 @@ impl Expr {
 /// the printer's precedence `prec` (1 a sum's term, 2 a factor or what follows a minus):
 /// minus signs, ` + ` and ` - `, a product's separators and the brackets around sums and
 /// negations; and the minus signs alone. The leaves (numbers, symbols, calls) are left out:
-/// ways of placing the same signs differ only in these ([`minus`] compares them).
+/// ways of placing the same signs differ only in these ([`minus`] compares them, read off
+/// each node's [`Shape`] once; this walk checks what it builds).
 fn sign_text(e: &Expr, prec: u8) -> (usize, usize) {
     let brackets = |inner: bool| if inner { 2 } else { 0 };
     match e {
@@ -633,14 +634,30 @@ fn sign_text(e: &Expr, prec: u8) -> (usize, usize) {
             v.iter()
                 .enumerate()
                 .fold((brackets(prec > 1), 0), |(len, minus), (i, t)| {
-                    let (l, m) = term_text(t, false, i == 0);
+                    // Each term with the separator before it (none before the first, else
+                    // ` + ` or ` - `): `-x` is its minus sign or ` - `, then `x` as a factor
+                    // (a number as a term).
+                    let (l, m) = match t {
+                        Expr::Neg(x) => {
+                            let (l, m) =
+                                sign_text(x, if matches!(**x, Expr::Num(_)) { 1 } else { 2 });
+                            (l + if i == 0 { 1 } else { 3 }, m + 1)
+                        }
+                        t => {
+                            let (l, m) = sign_text(t, 1);
+                            (l + if i == 0 { 0 } else { 3 }, m)
+                        }
+                    };
                     (len + l, minus + m)
                 })
         }
-        Expr::Mul(v) => {
-            let (l, m) = factors_text(v);
-            (brackets(prec > 2) + l, m)
-        }
+        Expr::Mul(v) => v.iter().fold(
+            (brackets(prec > 2) + v.len().saturating_sub(1), 0),
+            |(len, minus), f| {
+                let (l, m) = sign_text(f, 2);
+                (len + l, minus + m)
+            },
+        ),
         Expr::Neg(x) => {
             let (l, m) = sign_text(x, 2);
             (brackets(prec > 1) + 1 + l, m + 1)
@@ -650,36 +667,93 @@ fn sign_text(e: &Expr, prec: u8) -> (usize, usize) {
     }
 }
 
-/// [`sign_text`] of term `t` of a sum, or of `-t` (without a double negation, as [`negated`]
-/// makes it) when `neg`, with the separator before it (none before the first term, ` + ` or
-/// ` - ` before a later one): what the sum's text holds for it. Read off `t` without building
-/// `-t` ([`minus`] compares a term turned both ways).
-fn term_text(t: &Expr, neg: bool, first: bool) -> (usize, usize) {
-    // The term `-x`: its minus sign, or ` - `, then `x` as a factor (a number as a term).
-    let negative = |x: &Expr| {
-        let (l, m) = sign_text(x, if matches!(x, Expr::Num(_)) { 1 } else { 2 });
-        (l + if first { 1 } else { 3 }, m + 1)
+/// What [`sign_text`] reads of an expression at every precedence, found once per node: its
+/// text at precedence 0, the precedence above which it takes brackets, and whether it is a
+/// negation (as a sum's term it then brings its own ` - `, not a ` + `).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+struct Shape {
+    /// `sign_text(e, 0)`.
+    text: (usize, usize),
+    /// Brackets (2 characters) at a precedence above this: a sum's or a negation's above 1, a
+    /// product's above 2, never a power's (at every precedence its base's at 3) or a leaf's.
+    open: u8,
+    /// Whether `e` is `Expr::Neg`.
+    neg: bool,
+}
+
+impl Shape {
+    /// A number, symbol or call: no signs or brackets of its own.
+    const LEAF: Shape = Shape {
+        text: (0, 0),
+        open: u8::MAX,
+        neg: false,
     };
-    match (t, neg) {
-        (Expr::Neg(x), true) => term_text(x, false, first),
-        (Expr::Neg(x), false) => negative(x),
-        (t, true) => negative(t),
-        (t, false) => {
-            let (l, m) = sign_text(t, 1);
+
+    /// `sign_text(e, prec)`.
+    fn at(self, prec: u8) -> (usize, usize) {
+        let (l, m) = self.text;
+        (l + if prec > self.open { 2 } else { 0 }, m)
+    }
+
+    /// The text `e` makes as a term of a sum with the separator before it (none before the
+    /// first term, ` + ` or ` - ` before a later one): a negation's own minus sign is its
+    /// ` - `, then what it negates as a factor (or a number as a term: a number's text is
+    /// empty at every precedence, so that is the same).
+    fn term(self, first: bool) -> (usize, usize) {
+        if self.neg {
+            let (l, m) = self.text;
+            (l + if first { 0 } else { 2 }, m)
+        } else {
+            let (l, m) = self.at(1);
             (l + if first { 0 } else { 3 }, m)
+        }
+    }
+
+    /// The shape of `Expr::Neg(e)`: a minus sign, then `e` as a factor.
+    fn minus_sign(self) -> Shape {
+        let (l, m) = self.at(2);
+        Shape {
+            text: (1 + l, m + 1),
+            open: 1,
+            neg: true,
+        }
+    }
+
+    /// The shape of the sum of terms of these shapes, in this order.
+    fn sum(terms: impl Iterator<Item = Shape>) -> Shape {
+        let text = terms.enumerate().fold((0, 0), |(len, minus), (i, t)| {
+            let (l, m) = t.term(i == 0);
+            (len + l, minus + m)
+        });
+        Shape {
+            text,
+            open: 1,
+            neg: false,
         }
     }
 }
 
-/// [`sign_text`] of the product of `v` without its brackets: its separators and each
-/// factor's text as a factor. A sum over the factors, so that [`minus`] finds the text of the
-/// product with one factor replaced from the whole's.
-fn factors_text(v: &[Expr]) -> (usize, usize) {
-    v.iter()
-        .fold((v.len().saturating_sub(1), 0), |(len, minus), f| {
-            let (l, m) = sign_text(f, 2);
-            (len + l, minus + m)
-        })
+/// The [`Shape`] of `e`, read in one walk.
+fn shape(e: &Expr) -> Shape {
+    match e {
+        Expr::Add(v) => Shape::sum(v.iter().map(shape)),
+        Expr::Mul(v) => Shape {
+            text: v
+                .iter()
+                .fold((v.len().saturating_sub(1), 0), |(len, minus), f| {
+                    let (l, m) = shape(f).at(2);
+                    (len + l, minus + m)
+                }),
+            open: 2,
+            neg: false,
+        },
+        Expr::Neg(x) => shape(x).minus_sign(),
+        Expr::Pow(x, _) => Shape {
+            text: shape(x).at(3),
+            ..Shape::LEAF
+        },
+        _ => Shape::LEAF,
+    }
 }
 
 /// `-e` with its sign placed where it prints shortest ([`sign_text`]), then with the fewest
@@ -688,78 +762,191 @@ fn factors_text(v: &[Expr]) -> (usize, usize) {
 /// factor, or kept in front. `-(1/4 (a - b))` is
 /// `1/4 (b - a)`, `-(-a + b)` is `a - b`, `-(c (-a + b))` is `c (a - b)`; `-1/4 (a + b)`
 /// stays (`1/4 (-a - b)` prints as long with one minus more), never a `-(-...)`.
+///
+/// Each way is judged by its text, read off the operands' [`Shape`]s ([`plan`]), and only the
+/// way taken is built ([`turn`]) of `e`'s own operands: one walk of `e` and one of what is
+/// rebuilt. Building each sub-sum's turned form to compare it (the route before) cloned,
+/// walked and dropped each subtree once for every sum and product above it.
 fn minus(e: Expr) -> Expr {
-    let key = |e: &Expr| sign_text(e, 0);
     match e {
         Expr::Neg(x) => *x,
-        Expr::Add(terms) => {
-            let mut turned: Vec<Expr> = terms
-                .iter()
-                .map(|t| {
-                    let inside = minus(t.clone());
-                    // As a later term of the sum, where its own sign costs nothing; the term
-                    // negated is built only when taken.
-                    debug_assert_eq!(
-                        term_text(t, true, false),
-                        term_text(&negated(t.clone()), false, false)
-                    );
-                    if term_text(&inside, false, false) < term_text(t, true, false) {
-                        inside
-                    } else {
-                        negated(t.clone())
-                    }
-                })
-                .collect();
-            // A positive term first, the others in their order (a Fourier sum keeps its
-            // modes' order but one).
-            if matches!(turned.first(), Some(Expr::Neg(_))) {
-                if let Some(p) = turned.iter().position(|t| !matches!(t, Expr::Neg(_))) {
-                    let first = turned.remove(p);
-                    turned.insert(0, first);
-                }
-            }
-            let inside = Expr::Add(turned);
-            let outside = Expr::Neg(Box::new(Expr::Add(terms)));
-            if key(&inside) < key(&outside) {
-                inside
-            } else {
-                outside
-            }
-        }
-        Expr::Mul(mut v) => {
-            // The texts compared from the factors' ([`factors_text`]): the sign in front,
-            // `-(...)`, or one sum factor turned, the product built once, for the one taken.
-            let (len, neg) = factors_text(&v);
-            let mut best: (Option<(usize, Expr)>, (usize, usize)) = (None, (1 + len, neg + 1));
-            for (i, f) in v.iter().enumerate() {
-                if !matches!(f, Expr::Add(_)) {
-                    continue;
-                }
-                let turned = minus(f.clone());
-                if matches!(turned, Expr::Neg(_)) {
-                    continue;
-                }
-                let ((fl, fm), (tl, tm)) = (sign_text(f, 2), sign_text(&turned, 2));
-                let candidate = (len - fl + tl, neg - fm + tm);
-                if candidate < best.1 {
-                    best = (Some((i, turned)), candidate);
-                }
-            }
-            let (turned, text) = best;
-            let e = match turned {
-                Some((i, f)) => {
-                    v[i] = f;
-                    Expr::Mul(v)
-                }
-                None => Expr::Neg(Box::new(Expr::Mul(v))),
-            };
-            debug_assert_eq!(key(&e), text, "the product's text from its factors'");
+        e @ (Expr::Add(_) | Expr::Mul(_)) => {
+            let mut steps = Vec::new();
+            let (_, turned) = plan(&e, &mut steps);
+            let e = turn(e, &steps, 0);
+            debug_assert_eq!(sign_text(&e, 0), turned.text, "the text planned is built");
             e
         }
         e => Expr::Neg(Box::new(e)),
     }
 }
 
+/// What [`minus`] does at a sum or product that it turns: one per node, in the order
+/// [`plan`] meets them (a node's own, then those of the sums and products its turning
+/// reaches, operand by operand).
+#[derive(Clone, Copy, Debug)]
+struct Step {
+    /// The index past this node's steps and those of the nodes under it.
+    end: usize,
+    /// Whether the sign goes into the node (else it is left in front, `-(...)`).
+    into: bool,
+    /// A product's sum factor that takes the sign (when `into`).
+    factor: usize,
+    /// As a sum's term: whether its [`minus`] is taken (else it is put under a minus sign).
+    taken: bool,
+}
+
+/// The shapes of the sum or product `e` and of [`minus`] of it, the choices pushed on
+/// `steps` (this node's first): each way compared as [`minus`] compares it, with the same
+/// ties (the first way met is kept on equal texts).
+fn plan(e: &Expr, steps: &mut Vec<Step>) -> (Shape, Shape) {
+    let at = steps.len();
+    steps.push(Step {
+        end: at,
+        into: false,
+        factor: 0,
+        taken: false,
+    });
+    let (whole, turned) = match e {
+        Expr::Add(terms) => {
+            // The turned terms' texts as later terms; the one moved first (a positive term
+            // if there is one, else the first) is read as first at the end.
+            let (mut text, mut turned, mut front) = ((0, 0), (0, 0), None::<Shape>);
+            for (i, t) in terms.iter().enumerate() {
+                let (s, m) = match t {
+                    Expr::Add(_) | Expr::Mul(_) => {
+                        let k = steps.len();
+                        let (s, inside) = plan(t, steps);
+                        let under = s.minus_sign();
+                        // As a later term, where its own sign costs nothing.
+                        let taken = inside.term(false) < under.term(false);
+                        steps[k].taken = taken;
+                        (s, if taken { inside } else { under })
+                    }
+                    // `minus` of any other term is its negation.
+                    Expr::Neg(x) => {
+                        let x = shape(x);
+                        (x.minus_sign(), x)
+                    }
+                    t => {
+                        let s = shape(t);
+                        (s, s.minus_sign())
+                    }
+                };
+                let ((l, n), (tl, tn)) = (s.term(i == 0), m.term(false));
+                text = (text.0 + l, text.1 + n);
+                turned = (turned.0 + tl, turned.1 + tn);
+                if front.is_none_or(|f| f.neg && !m.neg) {
+                    front = Some(m);
+                }
+            }
+            if let Some(f) = front {
+                turned.0 -= f.term(false).0 - f.term(true).0;
+            }
+            let whole = Shape {
+                text,
+                open: 1,
+                neg: false,
+            };
+            let outside = whole.minus_sign();
+            let into = turned < outside.text;
+            steps[at].into = into;
+            let turned = Shape {
+                text: turned,
+                ..whole
+            };
+            (whole, if into { turned } else { outside })
+        }
+        Expr::Mul(v) => {
+            // The texts of the ways differ from the product's text by a sign in front or by
+            // one factor's: compared by those differences, the first way met kept on ties.
+            let (mut text, mut best) = ((v.len().saturating_sub(1), 0), None);
+            let mut least: (isize, isize) = (1, 1);
+            for (i, f) in v.iter().enumerate() {
+                let s = match f {
+                    Expr::Add(_) => {
+                        let (s, turned) = plan(f, steps);
+                        let ((fl, fm), (tl, tm)) = (s.at(2), turned.at(2));
+                        let change = (tl as isize - fl as isize, tm as isize - fm as isize);
+                        if !turned.neg && change < least {
+                            (least, best) = (change, Some(i));
+                        }
+                        s
+                    }
+                    f => shape(f),
+                };
+                let (l, m) = s.at(2);
+                text = (text.0 + l, text.1 + m);
+            }
+            let whole = Shape {
+                text,
+                open: 2,
+                neg: false,
+            };
+            let turned = match best {
+                Some(i) => {
+                    steps[at].into = true;
+                    steps[at].factor = i;
+                    let moved = |x: usize, d: isize| x.checked_add_signed(d).expect("a text");
+                    Shape {
+                        text: (moved(text.0, least.0), moved(text.1, least.1)),
+                        ..whole
+                    }
+                }
+                None => whole.minus_sign(),
+            };
+            (whole, turned)
+        }
+        _ => unreachable!("only sums and products are planned"),
+    };
+    steps[at].end = steps.len();
+    (whole, turned)
+}
+
+/// [`minus`] of the sum or product `e` as [`plan`] chose it (its step `steps[at]`): only the
+/// way taken is built, of `e`'s own operands.
+fn turn(e: Expr, steps: &[Step], at: usize) -> Expr {
+    let step = steps[at];
+    match e {
+        Expr::Add(terms) if step.into => {
+            let mut next = at + 1;
+            let mut turned: Vec<Expr> = terms
+                .into_iter()
+                .map(|t| match t {
+                    t @ (Expr::Add(_) | Expr::Mul(_)) => {
+                        let k = next;
+                        next = steps[k].end;
+                        if steps[k].taken {
+                            turn(t, steps, k)
+                        } else {
+                            Expr::Neg(Box::new(t))
+                        }
+                    }
+                    t => negated(t),
+                })
+                .collect();
+            // A positive term first, the others in their order (a Fourier sum keeps its
+            // modes' order but one).
+            if matches!(turned.first(), Some(Expr::Neg(_))) {
+                if let Some(p) = turned.iter().position(|t| !matches!(t, Expr::Neg(_))) {
+                    turned[..=p].rotate_right(1);
+                }
+            }
+            Expr::Add(turned)
+        }
+        Expr::Mul(mut v) if step.into => {
+            // The factor's steps follow those of the sum factors before it.
+            let k = v[..step.factor]
+                .iter()
+                .filter(|f| matches!(f, Expr::Add(_)))
+                .fold(at + 1, |k, _| steps[k].end);
+            let f = std::mem::replace(&mut v[step.factor], Expr::zero());
+            v[step.factor] = turn(f, steps, k);
+            Expr::Mul(v)
+        }
+        e => Expr::Neg(Box::new(e)),
+    }
+}
 /// `f(b + q pi/2)` as `g(b)`, negated when the flag says so: `(g, negated)` for `q` quarter
 /// turns (modulo 4; `cos(b + pi/2) = -sin(b)`, `sin(b - pi/2) = -cos(b)`).
 pub(crate) fn quarter_turned(f: Trig, q: i64) -> (Trig, bool) {
@@ -1022,6 +1209,309 @@ mod tests {
         assert!(
             changed > 100 && checked > 2000,
             "{changed} changed, {checked} checked"
+        );
+    }
+
+    // The route before `plan` and `turn` (session 31), kept as the reference: each sum's and
+    // product's turned operands built and their texts compared.
+    /// [`sign_text`] of term `t` of a sum, or of `-t` (without a double negation, as [`negated`]
+    /// makes it) when `neg`, with the separator before it (none before the first term, ` + ` or
+    /// ` - ` before a later one): what the sum's text holds for it. Read off `t` without building
+    /// `-t` ([`minus`] compares a term turned both ways).
+    fn term_text_before(t: &Expr, neg: bool, first: bool) -> (usize, usize) {
+        // The term `-x`: its minus sign, or ` - `, then `x` as a factor (a number as a term).
+        let negative = |x: &Expr| {
+            let (l, m) = sign_text(x, if matches!(x, Expr::Num(_)) { 1 } else { 2 });
+            (l + if first { 1 } else { 3 }, m + 1)
+        };
+        match (t, neg) {
+            (Expr::Neg(x), true) => term_text_before(x, false, first),
+            (Expr::Neg(x), false) => negative(x),
+            (t, true) => negative(t),
+            (t, false) => {
+                let (l, m) = sign_text(t, 1);
+                (l + if first { 0 } else { 3 }, m)
+            }
+        }
+    }
+
+    /// [`sign_text`] of the product of `v` without its brackets: its separators and each
+    /// factor's text as a factor. A sum over the factors, so that [`minus`] finds the text of the
+    /// product with one factor replaced from the whole's.
+    fn factors_text_before(v: &[Expr]) -> (usize, usize) {
+        v.iter()
+            .fold((v.len().saturating_sub(1), 0), |(len, minus), f| {
+                let (l, m) = sign_text(f, 2);
+                (len + l, minus + m)
+            })
+    }
+
+    /// `-e` with its sign placed where it prints shortest ([`sign_text`]), then with the fewest
+    /// minus signs: taken into a sum (each term turned, or its own sign cancelled inside it, a
+    /// positive term moved first when the first would be negative) or into a product's sum
+    /// factor, or kept in front. `-(1/4 (a - b))` is
+    /// `1/4 (b - a)`, `-(-a + b)` is `a - b`, `-(c (-a + b))` is `c (a - b)`; `-1/4 (a + b)`
+    /// stays (`1/4 (-a - b)` prints as long with one minus more), never a `-(-...)`.
+    fn minus_before(e: Expr) -> Expr {
+        let key = |e: &Expr| sign_text(e, 0);
+        match e {
+            Expr::Neg(x) => *x,
+            Expr::Add(terms) => {
+                let mut turned: Vec<Expr> = terms
+                    .iter()
+                    .map(|t| {
+                        let inside = minus_before(t.clone());
+                        // As a later term of the sum, where its own sign costs nothing; the term
+                        // negated is built only when taken.
+                        debug_assert_eq!(
+                            term_text_before(t, true, false),
+                            term_text_before(&negated(t.clone()), false, false)
+                        );
+                        if term_text_before(&inside, false, false)
+                            < term_text_before(t, true, false)
+                        {
+                            inside
+                        } else {
+                            negated(t.clone())
+                        }
+                    })
+                    .collect();
+                // A positive term first, the others in their order (a Fourier sum keeps its
+                // modes' order but one).
+                if matches!(turned.first(), Some(Expr::Neg(_))) {
+                    if let Some(p) = turned.iter().position(|t| !matches!(t, Expr::Neg(_))) {
+                        let first = turned.remove(p);
+                        turned.insert(0, first);
+                    }
+                }
+                let inside = Expr::Add(turned);
+                let outside = Expr::Neg(Box::new(Expr::Add(terms)));
+                if key(&inside) < key(&outside) {
+                    inside
+                } else {
+                    outside
+                }
+            }
+            Expr::Mul(mut v) => {
+                // The texts compared from the factors' ([`factors_text`]): the sign in front,
+                // `-(...)`, or one sum factor turned, the product built once, for the one taken.
+                let (len, neg) = factors_text_before(&v);
+                let mut best: (Option<(usize, Expr)>, (usize, usize)) = (None, (1 + len, neg + 1));
+                for (i, f) in v.iter().enumerate() {
+                    if !matches!(f, Expr::Add(_)) {
+                        continue;
+                    }
+                    let turned = minus_before(f.clone());
+                    if matches!(turned, Expr::Neg(_)) {
+                        continue;
+                    }
+                    let ((fl, fm), (tl, tm)) = (sign_text(f, 2), sign_text(&turned, 2));
+                    let candidate = (len - fl + tl, neg - fm + tm);
+                    if candidate < best.1 {
+                        best = (Some((i, turned)), candidate);
+                    }
+                }
+                let (turned, text) = best;
+                let e = match turned {
+                    Some((i, f)) => {
+                        v[i] = f;
+                        Expr::Mul(v)
+                    }
+                    None => Expr::Neg(Box::new(Expr::Mul(v))),
+                };
+                debug_assert_eq!(key(&e), text, "the product's text from its factors'");
+                e
+            }
+            e => Expr::Neg(Box::new(e)),
+        }
+    }
+
+    /// Random display expressions of every kind `minus` meets: sums (empty, of one term or
+    /// more, terms signed), products (with a leading number, sum factors, even signed
+    /// factors), negations (nested too), powers of sums and products, and leaves.
+    fn random_expr(g: &mut Gen, depth: u32) -> Expr {
+        let leaf = g.pick(&[0, 1, 2, 3, 4, 5]);
+        if depth == 0 || g.pick(&[0, 1, 2, 3]) == 0 {
+            let q = |n: i64, d: i64| BigRational::new(n.into(), d.into());
+            return match leaf {
+                0 => Expr::Num(g.pick(&[q(1, 1), q(1, 2), q(3, 1), q(0, 1)])),
+                1 => Expr::Sqrt(g.pick(&[2, 3])),
+                2 => Expr::Sym(Sym::new(g.pick(&["a", "l1"]))),
+                _ => Expr::Trig {
+                    f: g.pick(&[Trig::Cos, Trig::Sin]),
+                    angle: random_angle(g),
+                },
+            };
+        }
+        let n = g.pick(&[0usize, 1, 2, 2, 3, 3, 4]);
+        match g.pick(&[0, 0, 0, 1, 1, 1, 2, 3]) {
+            0 => Expr::Add(
+                (0..n)
+                    .map(|_| match random_expr(g, depth - 1) {
+                        t if g.pick(&[false, true]) => negated(t),
+                        t => t,
+                    })
+                    .collect(),
+            ),
+            1 => {
+                let mut v: Vec<Expr> = (0..n).map(|_| random_expr(g, depth - 1)).collect();
+                if g.pick(&[false, true]) {
+                    v.insert(0, Expr::Num(BigRational::new(1.into(), 4.into())));
+                }
+                Expr::Mul(v)
+            }
+            2 => Expr::Neg(Box::new(random_expr(g, depth - 1))),
+            _ => Expr::Pow(Box::new(random_expr(g, depth - 1)), 2),
+        }
+    }
+
+    /// Every sum and product in `e` (`e` first).
+    fn sums_and_products<'a>(e: &'a Expr, out: &mut Vec<&'a Expr>) {
+        match e {
+            Expr::Add(v) | Expr::Mul(v) => {
+                out.push(e);
+                v.iter().for_each(|x| sums_and_products(x, out));
+            }
+            Expr::Neg(x) | Expr::Pow(x, _) => sums_and_products(x, out),
+            _ => {}
+        }
+    }
+
+    /// Whether `-e` was not simply left in front: the sign taken into a sum or a product.
+    fn taken_in(e: &Expr, m: &Expr) -> bool {
+        !matches!(m, Expr::Neg(x) if **x == *e) && !matches!(e, Expr::Neg(_))
+    }
+
+    /// `minus` planned from the operands' shapes and built once is the route before, which
+    /// built every way: the same `Expr` on seeded random expressions of every kind and on each
+    /// sum and product in them; and the shapes read in one walk are `sign_text` at every
+    /// precedence. Most sums and many products take the sign in, terms and factors turned
+    /// inside them at several depths.
+    #[test]
+    fn minus_planned_is_minus_built_every_way() {
+        // A tie: the one-term sum of `(a) + (a)` (one-term sums, no brackets) with the sign
+        // taken into its term prints `-(a + a)`, as with the sign in front: it stays in front.
+        let a = || Expr::Add(vec![Expr::Sym(Sym::new("a"))]);
+        let tie = Expr::Add(vec![Expr::Add(vec![a(), a()])]);
+        assert_eq!(minus(tie.clone()), minus_before(tie.clone()));
+        assert_eq!(minus(tie.clone()), Expr::Neg(Box::new(tie)));
+        let mut g = Gen(0x51ed_2702_c0ff_ee31);
+        let (mut checked, mut into_sums, mut into_products, mut deep) = (0, 0, 0, 0);
+        for _ in 0..3000 {
+            let e = random_expr(&mut g, 5);
+            let mut parts = Vec::new();
+            sums_and_products(&e, &mut parts);
+            for x in std::iter::once(&e).chain(parts) {
+                for prec in 0..4 {
+                    assert_eq!(shape(x).at(prec), sign_text(x, prec), "{x:?} at {prec}");
+                }
+                let (new, old) = (minus(x.clone()), minus_before(x.clone()));
+                assert_eq!(new, old, "-({x:?})");
+                checked += 1;
+                if taken_in(x, &new) {
+                    match x {
+                        Expr::Add(_) => into_sums += 1,
+                        Expr::Mul(_) => into_products += 1,
+                        _ => {}
+                    }
+                    let mut inner = Vec::new();
+                    sums_and_products(&new, &mut inner);
+                    deep += usize::from(inner.len() > 3);
+                }
+            }
+        }
+        assert!(
+            checked > 10_000 && into_sums > 1000 && into_products > 300 && deep > 300,
+            "{checked} checked, {into_sums} sums and {into_products} products taking the \
+             sign, {deep} deep"
+        );
+    }
+
+    /// The entries of the last column and the first row of pseudo-random DH chains of
+    /// `joints` revolute joints in the Jaco-style arm's shape (twists pi/3, pi/6, pi/2,
+    /// angles offset by `k pi/9` one time in two, symbolic lengths).
+    fn chain_entries(seed: u64, joints: usize) -> Vec<Scalar> {
+        let mut next = crate::testing::xorshift_below(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
+        let pi = |p: i64, q: i64| Scalar::pi() * small(&Small::new(p, q));
+        let mut m: Vec<Vec<Scalar>> = (0..4)
+            .map(|i| (0..4).map(|j| Scalar::int(i64::from(i == j))).collect())
+            .collect();
+        for j in 1..=joints {
+            let mut theta = Scalar::sym(&format!("q{j}"));
+            if next(2) == 0 {
+                theta = theta + pi(1 + next(17) as i64, 9);
+            }
+            let alpha = pi(1, [3, 6, 2][next(3) as usize]);
+            let (a, d) = (Scalar::sym(&format!("a{j}")), Scalar::sym(&format!("d{j}")));
+            let (ct, st, ca, sa) = (
+                theta.clone().cos(),
+                theta.sin(),
+                alpha.clone().cos(),
+                alpha.sin(),
+            );
+            let z = Scalar::int(0);
+            let t = [
+                [
+                    ct.clone(),
+                    -(st.clone() * ca.clone()),
+                    st.clone() * sa.clone(),
+                    a.clone() * ct.clone(),
+                ],
+                [
+                    st.clone(),
+                    ct.clone() * ca.clone(),
+                    -(ct * sa.clone()),
+                    a * st,
+                ],
+                [z.clone(), sa, ca, d],
+                [z.clone(), z.clone(), z, Scalar::int(1)],
+            ];
+            m = (0..4)
+                .map(|i| {
+                    (0..4)
+                        .map(|k| {
+                            (0..4).fold(Scalar::int(0), |acc, l| {
+                                acc + m[i][l].clone() * t[l][k].clone()
+                            })
+                        })
+                        .collect()
+                })
+                .collect();
+        }
+        let mut out: Vec<Scalar> = (0..3).map(|i| m[i][3].clone()).collect();
+        out.extend((0..3).map(|k| m[0][k].clone()));
+        out
+    }
+
+    /// On real closed forms (the translations and a rotation row of pseudo-random
+    /// Jaco-style chains), `minus` gives what the route before gives on each sum and product
+    /// in each form, and `scaled` by a negative number is still the form's multiple.
+    #[test]
+    fn minus_of_closed_forms_is_the_route_before() {
+        let (mut forms, mut taken) = (0, 0);
+        for seed in 0..6 {
+            for x in chain_entries(seed, 3 + seed as usize % 2) {
+                let Ok(e) = crate::closed_form(&x) else {
+                    continue;
+                };
+                forms += 1;
+                let mut parts = Vec::new();
+                sums_and_products(&e, &mut parts);
+                for p in parts {
+                    let new = minus(p.clone());
+                    assert_eq!(new, minus_before(p.clone()), "-({p:?})");
+                    taken += usize::from(taken_in(p, &new));
+                }
+                for c in [-1, -3] {
+                    let c = BigRational::from_integer(c.into());
+                    let s = e.clone().scaled(&c);
+                    assert_eq!(s.to_scalar(), x.clone() * Scalar::rational(c), "{e:?}");
+                }
+            }
+        }
+        assert!(
+            forms >= 30 && taken > 100,
+            "{forms} forms, {taken} taken in"
         );
     }
 
