@@ -797,8 +797,9 @@ struct Step {
 }
 
 /// The shapes of the sum or product `e` and of [`minus`] of it, the choices pushed on
-/// `steps` (this node's first): each way compared as [`minus`] compares it, with the same
-/// ties (the first way met is kept on equal texts).
+/// `steps` (this node's first): each way compared by its text as the route that built every
+/// way compared it (kept in the tests as `minus_before`), with the same ties (the first way
+/// met is kept on equal texts).
 fn plan(e: &Expr, steps: &mut Vec<Step>) -> (Shape, Shape) {
     let at = steps.len();
     steps.push(Step {
