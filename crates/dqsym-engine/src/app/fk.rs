@@ -519,7 +519,7 @@ const TURNED_TERMS: usize = 8;
 /// turn by pi) and for the matrix's entries (a quarter turn): the first joint's and the last
 /// joint's, when revolute and their values plain symbols (`Rz(q1)` first: the matrix's second
 /// row is a turn of its first; the last joint's turn relates its first two columns).
-fn pose_turns(robot: &Robot) -> (Vec<Turn>, Vec<Turn>) {
+pub(super) fn pose_turns(robot: &Robot) -> (Vec<Turn>, Vec<Turn>) {
     let first = robot
         .chain
         .joints

@@ -49,6 +49,7 @@ const COS_SIN_FORMS_BUDGET: u64 = 4_000_000;
 /// The most bytes of plain text the closed forms of that matrix may take (RTB's Ball: 10 kB).
 const MAX_COS_SIN_TEXT: usize = 40_000;
 use crate::kin::MadeJoints;
+use crate::closed::turn;
 use crate::{closed::closed_form_cos_sin, DualQuat, Expr, Robot, Scalar, ScalarError};
 use std::borrow::Cow;
 use std::cell::RefCell;
@@ -295,9 +296,7 @@ fn cos_sin_matrix<'a>(
     // runs out.
     cos_sin.and_then(|m| {
         let cells: Vec<&Scalar> = m.rows[..3].iter().flatten().collect();
-        let forms = with_own_budget(COS_SIN_FORMS_BUDGET, || {
-            par_map(&cells, |x| closed_form_cos_sin(x))
-        });
+        let forms = with_own_budget(COS_SIN_FORMS_BUDGET, || cos_sin_forms(robot, &cells));
         if forms.iter().any(Result::is_err) {
             return None;
         }
@@ -316,6 +315,39 @@ fn cos_sin_matrix<'a>(
         let len: usize = texts.iter().map(String::len).sum();
         (len <= MAX_COS_SIN_TEXT).then_some((m, forms, texts))
     })
+}
+
+/// The closed forms of a matrix's entries in cosines and sines (`closed_form_cos_sin`). An
+/// entry that is a quarter turn of an earlier one in the first joint's angle (the second row
+/// of `Rz(q1) M`: `closed/turn.rs`) takes that one's form turned, checked, not a search of its
+/// own (one whose check fails is searched); the others are searched in parallel. On the fully
+/// symbolic 6R the second row's four entries.
+fn cos_sin_forms(robot: &Robot, cells: &[&Scalar]) -> Vec<Result<Expr, ScalarError>> {
+    let (_, turns) = super::fk::pose_turns(robot);
+    let turned = turn::turned_placeholder_entries(cells, &turns, 8);
+    let order: Vec<usize> = (0..cells.len()).filter(|&k| turned[k].is_none()).collect();
+    let made = par_map(&order, |&k| crate::closed_form(cells[k]));
+    let mut forms: Vec<Option<Result<Expr, ScalarError>>> = vec![None; cells.len()];
+    for (k, f) in order.into_iter().zip(made) {
+        forms[k] = Some(f);
+    }
+    for k in 0..cells.len() {
+        let Some(t) = &turned[k] else {
+            continue;
+        };
+        let from = match &forms[t.from] {
+            Some(Ok(e)) => turn::turned_placeholder_form(e, t, cells[k]),
+            _ => None,
+        };
+        forms[k] = Some(from.map_or_else(|| crate::closed_form(cells[k]), Ok));
+    }
+    forms
+        .into_iter()
+        .map(|f| {
+            f.expect("every entry's form is made")
+                .map(Expr::with_placeholders_as_trig)
+        })
+        .collect()
 }
 
 /// Refuses a robot or point symbol named like an entry's symbol.

@@ -48,13 +48,43 @@ pub(crate) fn turned_entries(
     turns: &[Turn],
     min_terms: usize,
 ) -> Vec<Option<Turned>> {
+    turned_entries_with(entries, turns, min_terms, &turned_scalar, &turn_invariant)
+}
+
+/// [`turned_entries`] of polynomials in cosine and sine placeholders
+/// ([`Scalar::to_cos_sin_polynomial`]: a recurrence's matrix), by quarter turns of the angles of
+/// `turns` ([`quarter_turned_placeholders`]; other turns are not tried).
+pub(crate) fn turned_placeholder_entries(
+    entries: &[&Scalar],
+    turns: &[Turn],
+    min_terms: usize,
+) -> Vec<Option<Turned>> {
+    let quarter = |x: &Scalar, (s, t): &Turn| {
+        (*t == Small::new(1, 2))
+            .then(|| quarter_turned_placeholders(x, s))
+            .flatten()
+    };
+    let syms: Vec<[Sym; 2]> = turns.iter().map(|(s, _)| placeholders(s)).collect();
+    let invariant = |x: &Scalar| placeholder_invariant(x, &syms);
+    turned_entries_with(entries, turns, min_terms, &quarter, &invariant)
+}
+
+/// [`turned_entries`] with the turn of a scalar `turned` and what every turn keeps
+/// `invariant`.
+fn turned_entries_with(
+    entries: &[&Scalar],
+    turns: &[Turn],
+    min_terms: usize,
+    turned: &dyn Fn(&Scalar, &Turn) -> Option<Scalar>,
+    invariant: &dyn Fn(&Scalar) -> Option<u64>,
+) -> Vec<Option<Turned>> {
     let mut out: Vec<Option<Turned>> = vec![None; entries.len()];
     if turns.is_empty() {
         return out;
     }
     let invariant: Vec<Option<u64>> = entries
         .iter()
-        .map(|x| (x.len() >= min_terms).then(|| turn_invariant(x)).flatten())
+        .map(|x| (x.len() >= min_terms).then(|| invariant(x)).flatten())
         .collect();
     let mut index: HashMap<ProportionalKey, usize, BuildHasherDefault<FxHasher>> =
         HashMap::with_capacity_and_hasher(entries.len(), Default::default());
@@ -73,7 +103,7 @@ pub(crate) fn turned_entries(
             if !open {
                 break;
             }
-            let Some(y) = turned_scalar(x, turn) else {
+            let Some(y) = turned(x, turn) else {
                 continue;
             };
             let key = ProportionalKey(&y);
@@ -139,6 +169,127 @@ pub(crate) fn turned_scalar(x: &Scalar, turn: &Turn) -> Option<Scalar> {
         out.push(moved);
     }
     Some(Scalar::from_terms_settled(out))
+}
+
+/// The placeholders of `cos(x)` and `sin(x)` ([`crate::scalar::trig_placeholder`]).
+fn placeholders(x: &Sym) -> [Sym; 2] {
+    [Trig::Cos, Trig::Sin].map(|f| Sym::new(&format!("{}({})", f.name(), x.name())))
+}
+
+/// A polynomial in cosine and sine placeholders turned by a quarter turn of the angle `x`:
+/// `cos(x)` is `-sin(x)` and `sin(x)` is `cos(x)`, so each term's exponents of the two are
+/// swapped and its sign turned when the cosine's is odd. `None` when a term has a
+/// trigonometric mode (no polynomial) or `x`'s angle appears in one.
+pub(crate) fn quarter_turned_placeholders(p: &Scalar, x: &Sym) -> Option<Scalar> {
+    let [c, s] = placeholders(x);
+    let terms = p.terms().ok()?;
+    let mut out = Vec::with_capacity(terms.len());
+    for term in terms {
+        if !term.mode.is_unit() {
+            return None;
+        }
+        let (mut ec, mut es) = (0, 0);
+        for (y, e) in term.mono.iter() {
+            if *y == c {
+                ec = *e;
+            } else if *y == s {
+                es = *e;
+            } else if y == x {
+                return None;
+            }
+        }
+        let mut moved = term.clone();
+        if ec != 0 || es != 0 {
+            let mut mono: Vec<(Sym, u32)> = term
+                .mono
+                .iter()
+                .filter(|(y, _)| *y != c && *y != s)
+                .cloned()
+                .collect();
+            if es != 0 {
+                mono.push((c.clone(), es));
+            }
+            if ec != 0 {
+                mono.push((s.clone(), ec));
+            }
+            mono.sort_by(|a, b| a.0.cmp(&b.0));
+            moved.mono = mono.into();
+            if ec % 2 == 1 {
+                moved.coef = -moved.coef;
+            }
+        }
+        out.push(moved);
+    }
+    Some(Scalar::from_terms_settled(out))
+}
+
+/// A closed form in placeholders ([`Expr::with_placeholders_as_trig`] not applied yet) turned
+/// as [`quarter_turned_placeholders`] turns its value, the signs tidied ([`tidy_signs`]).
+pub(crate) fn quarter_turned_placeholder_form(e: Expr, x: &Sym) -> Expr {
+    fn walk(e: Expr, c: &Sym, s: &Sym) -> Expr {
+        match e {
+            Expr::Sym(y) if y == *c => Expr::Neg(Box::new(Expr::Sym(s.clone()))),
+            Expr::Sym(y) if y == *s => Expr::Sym(c.clone()),
+            Expr::Add(v) => Expr::Add(v.into_iter().map(|t| walk(t, c, s)).collect()),
+            Expr::Mul(v) => {
+                let mut v: Vec<Expr> = v.into_iter().map(|t| walk(t, c, s)).collect();
+                sort_leaves(&mut v);
+                Expr::Mul(v)
+            }
+            Expr::Neg(t) => Expr::Neg(Box::new(walk(*t, c, s))),
+            Expr::Pow(t, n) => Expr::Pow(Box::new(walk(*t, c, s)), n),
+            e => e,
+        }
+    }
+    let [c, s] = placeholders(x);
+    tidy_signs(walk(e, &c, &s))
+}
+
+/// The symbols of a product (a symbol or its power, signed or not) sorted by name in the
+/// places they hold among its other factors, as the search orders them (`c1 c2`, where a
+/// turned `s1 c2` would print `c2 c1`).
+fn sort_leaves(v: &mut [Expr]) {
+    fn leaf(e: &Expr) -> Option<&Sym> {
+        match e {
+            Expr::Sym(s) => Some(s),
+            Expr::Pow(x, _) | Expr::Neg(x) => leaf(x),
+            _ => None,
+        }
+    }
+    let places: Vec<usize> = (0..v.len()).filter(|&i| leaf(&v[i]).is_some()).collect();
+    if places.windows(2).all(|w| leaf(&v[w[0]]) <= leaf(&v[w[1]])) {
+        return;
+    }
+    let mut leaves: Vec<Expr> = places.iter().map(|&i| v[i].clone()).collect();
+    leaves.sort_by(|a, b| leaf(a).cmp(&leaf(b)));
+    for (i, e) in places.into_iter().zip(leaves) {
+        v[i] = e;
+    }
+}
+
+/// A hash of what a quarter turn of the angles of `syms` (their placeholders) keeps in a
+/// polynomial: its number of terms and the multiset of its monomials with the two
+/// placeholders of each angle counted as one.
+fn placeholder_invariant(x: &Scalar, syms: &[[Sym; 2]]) -> Option<u64> {
+    use std::hash::{Hash, Hasher};
+    let terms = x.terms().ok()?;
+    let mut sum = terms.len() as u64;
+    for t in terms {
+        let mut h = FxHasher::default();
+        let mut degrees = vec![0u32; syms.len()];
+        for (y, e) in t.mono.iter() {
+            match syms.iter().position(|p| p.contains(y)) {
+                Some(k) => degrees[k] += e,
+                None => {
+                    h.write_usize(y.addr());
+                    e.hash(&mut h);
+                }
+            }
+        }
+        degrees.hash(&mut h);
+        sum = sum.wrapping_add(h.finish());
+    }
+    Some(sum)
 }
 
 /// A hash of what every turn of `x` keeps: its number of terms and the multiset of its
@@ -317,3 +468,20 @@ pub(crate) mod counts {
             const { std::cell::Cell::new((0, 0)) };
     }
 }
+
+/// The closed form of `x`, a polynomial in placeholders that is `t.factor` times the quarter
+/// turn of `t.turn`'s angle of one whose closed form (in placeholders) is `from`: `from`
+/// turned ([`quarter_turned_placeholder_form`]) and scaled, checked against `x` as every closed
+/// form is (exactly in debug builds, numerically first in release builds); `None` when the
+/// check fails.
+pub(crate) fn turned_placeholder_form(from: &Expr, t: &Turned, x: &Scalar) -> Option<Expr> {
+    let e = quarter_turned_placeholder_form(from.clone(), &t.turn.0).scaled(&t.factor.to_big());
+    let good = super::verified(&e, x);
+    #[cfg(test)]
+    counts::COUNTS.with(|c| {
+        let (made, failed) = c.get();
+        c.set(if good { (made + 1, failed) } else { (made, failed + 1) });
+    });
+    good.then_some(e)
+}
+
