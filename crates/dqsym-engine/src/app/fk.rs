@@ -30,7 +30,10 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
 use crate::{
-    closed::{closed_form_of_derivative, closed_form_prepared, decimal_form, CommonOffsets},
+    closed::{
+        closed_form_hinted, closed_form_of_derivative, closed_form_prepared_hinted, decimal_form,
+        CommonOffsets, Hint,
+    },
     closed_form, Context, DualQuat, Expr, Scalar, ScalarError,
 };
 
@@ -305,18 +308,33 @@ fn expanded_entries(
             t_forms[4 * i + j] = Some((f, None));
             !text.exceeded()
         };
-        let m = match free
+        // Offset-free, the product as multiplied is kept beside it (`made`) for the hints.
+        let (m, made) = match free
             .as_ref()
             .and_then(|f| robot.forward_matrix_offset_free(f, o.max_terms, &stop, &mut seen))
         {
-            Some(m) => m?,
-            None => robot.forward_matrix_until(factors, o.max_terms, &stop, &mut seen)?,
+            Some(m) => m.map(|(m, made)| (m, Some(made)))?,
+            None => (
+                robot.forward_matrix_until(factors, o.max_terms, &stop, &mut seen)?,
+                None,
+            ),
         };
-        Some((m, t_forms))
+        Some((m, t_forms, made))
     };
-    // The closed forms of the matrix's other entries (`pose_forms` is a `par_map`).
-    let matrix_forms = |(m, found): (crate::Matrix4<Scalar>, Vec<Option<PoseForm>>)| {
-        let forms = pose_forms(&matrix_cells(&m), found, &text, |x| (closed_form(x), None));
+    // The closed forms of the matrix's other entries (`pose_forms` is a `par_map`), each told
+    // the offset-free entry it was shifted back from (`hint_of`).
+    type Made = (
+        crate::Matrix4<Scalar>,
+        Vec<Option<PoseForm>>,
+        Option<crate::Matrix4<Scalar>>,
+    );
+    let matrix_forms = |(m, found, made): Made| {
+        let cells = matrix_cells(&m);
+        let made_cells = made.as_ref().map(matrix_cells);
+        let forms = pose_forms(&cells, found, &text, |x| {
+            let hint = hint_of(x, &cells, free.as_ref(), made_cells.as_deref());
+            (closed_form_hinted(x, hint), None)
+        });
         if text.exceeded() {
             stop.store(true, Ordering::Relaxed);
         }
@@ -330,8 +348,10 @@ fn expanded_entries(
             .as_ref()
             .and_then(|f| robot.forward_within_offset_free(f, o.max_terms, &stop))
         {
-            Some(q) => q,
-            None => robot.forward_within_until(joints, o.max_terms, &stop),
+            Some(q) => q.map(|(q, made)| (q, Some(made))),
+            None => robot
+                .forward_within_until(joints, o.max_terms, &stop)
+                .map(|q| (q, None)),
         }
     };
     // The DQ product on the helper while this thread begins the matrix's closed forms; the
@@ -365,9 +385,10 @@ fn expanded_entries(
     if text.exceeded() {
         return None;
     }
-    let q = q?;
+    let (q, made) = q?;
     let comps = q.components();
     let comp_refs: Vec<&Scalar> = comps.iter().collect();
+    let made_refs: Option<Vec<&Scalar>> = made.as_ref().map(|m| m.iter().collect());
     let none = (0..comp_refs.len()).map(|_| None).collect();
     // The point's image and the Jacobian (derivatives of the DQ's components) on the helper
     // while this thread begins the DQ's closed forms, as above; not made once the pose's text
@@ -376,7 +397,8 @@ fn expanded_entries(
     let (forms, (img, jac)) = join(
         || {
             pose_forms(&comp_refs, none, &text, |x| {
-                let (e, p) = closed_form_prepared(x);
+                let hint = hint_of(x, &comp_refs, free.as_ref(), made_refs.as_deref());
+                let (e, p) = closed_form_prepared_hinted(x, hint);
                 (e, Some(p))
             })
         },
@@ -390,6 +412,8 @@ fn expanded_entries(
             )
         },
     );
+    drop(made_refs);
+    drop(made);
     if text.exceeded() {
         return None;
     }
@@ -433,6 +457,21 @@ fn expanded_entries(
         return None;
     }
     Some(Ok(sections))
+}
+
+/// What the closed form of the pose entry `x` is told of it ([`closed_form_prepared_hinted`]):
+/// when the pose was multiplied offset-free (`free`) and `made` holds the entries as
+/// multiplied, in the order of `entries` (the same pose's entries, shifted back), the one at
+/// `x`'s place, found by its address (`pose_forms` shows its closures the entries
+/// themselves); else none, which changes nothing but the work.
+fn hint_of<'a>(
+    x: &Scalar,
+    entries: &[&Scalar],
+    free: Option<&'a crate::kin::OffsetFree>,
+    made: Option<&[&'a Scalar]>,
+) -> Option<Hint<'a>> {
+    let k = entries.iter().position(|e| std::ptr::eq(*e, x))?;
+    Some(free?.hint(made?.get(k)?))
 }
 
 /// A pose entry's closed form (and, for a DQ component, its prepared form).

@@ -174,6 +174,7 @@ pub use decimals::{decimal_form, shows_as_decimal};
 pub use expr::{Angle, Cost, Expr};
 pub use notation::{angle_text, angle_text_decimals, angle_text_with, shorthand_name, TrigNames};
 pub(crate) use notation::{decimal_constant, write_shorthand};
+pub(crate) use offsets::Hint;
 pub use trace::{Identity, TraceStep};
 
 use crate::scalar::FxHasher;
@@ -190,10 +191,16 @@ const SPLIT_LIMIT: usize = 100_000;
 /// When `x` is an error value, and when the search or the check of its result against `x`
 /// runs out of the work budget or over the term limit (see [`crate::Context::with_work_budget`]).
 pub fn closed_form(x: &Scalar) -> Result<Expr, ScalarError> {
+    closed_form_hinted(x, None)
+}
+
+/// [`closed_form`] of `x`, told how `x` was made when it was made by shifting symbols
+/// (`hint`: see [`closed_form_prepared_hinted`]). The same result as without the hint.
+pub(crate) fn closed_form_hinted(x: &Scalar, hint: Option<Hint>) -> Result<Expr, ScalarError> {
     if let Some(e) = Memo::get(x) {
         return Ok(e);
     }
-    let r = closed_form_prepared(x).0;
+    let r = closed_form_prepared_hinted(x, hint).0;
     if let Ok(e) = &r {
         Memo::put(x, e);
     }
@@ -287,8 +294,21 @@ pub struct Prepared(
 /// and factored like `cos(q2)`), the shorter of the two kept (`alt::shorter`; the shifted
 /// one on ties).
 pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
+    closed_form_prepared_hinted(x, None)
+}
+
+/// [`closed_form_prepared`] of `x`, told how `x` was made when it was made by shifting
+/// symbols (`hint`, `offsets::Hint`: `x` is the hint's `y` with its symbols shifted, as an
+/// offset-free product's entry is shifted back). When the shift that `x`'s offsets are
+/// absorbed into is the hint's, the shifted scalar is the hint's `y` and is not made again
+/// (`offsets::Shift::apply_hinted`): the same scalar, so the same result. Only `x` itself
+/// takes the hint, not the scalars derived from it below (constants lifted, phases as angles).
+pub(crate) fn closed_form_prepared_hinted(
+    x: &Scalar,
+    hint: Option<Hint>,
+) -> (Result<Expr, ScalarError>, Prepared) {
     let memo = Memo::open();
-    let (e, prepared) = prepared_shifted(x);
+    let (e, prepared) = prepared_shifted(x, hint);
     let Ok(found) = e else {
         return (e, prepared);
     };
@@ -300,7 +320,7 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
         let Some(l) = lifting.as_mut().and_then(|l| l.lift(phased)) else {
             continue;
         };
-        let Ok(c) = prepared_shifted(&l.scalar).0.map(|c| l.substitute(c)) else {
+        let Ok(c) = prepared_shifted(&l.scalar, None).0.map(|c| l.substitute(c)) else {
             continue;
         };
         let c = joined(c, x, memo.0);
@@ -311,7 +331,7 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
     // Angles at offsets that are multiples of pi/12, hidden in radicals, as angles again
     // (`l1 sin(x + pi/6)`, canonically `l1 (cos(x) + sqrt(3) sin(x))/2`).
     if let Some(a) = coefs::phase_angles(x) {
-        if let Some(c) = prepared_shifted(&a.scalar)
+        if let Some(c) = prepared_shifted(&a.scalar, None)
             .0
             .ok()
             .and_then(|c| a.substitute(c))
@@ -368,8 +388,9 @@ fn joined(e: Expr, x: &Scalar, outermost: bool) -> Expr {
 /// A search as given that [`as_given_may_win`] skips leaves its work in the budget: 2 of 120
 /// random 5-joint chains whose `fk --jacobian` ran out of the default budget (and printed the
 /// recurrence) now print the expanded report, the one both ways print with a raised budget.
-fn prepared_shifted(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
-    let Some((shift, y)) = offsets::find(x).and_then(|s| s.apply(x).map(|y| (s, y))) else {
+fn prepared_shifted(x: &Scalar, hint: Option<Hint>) -> (Result<Expr, ScalarError>, Prepared) {
+    let shifted = offsets::find(x).and_then(|s| s.apply_hinted(x, hint).map(|y| (s, y)));
+    let Some((shift, y)) = shifted else {
         return prepared_unshifted(x, None);
     };
     // No context entered: nothing is charged, and none is entered for the fallback.
