@@ -1240,7 +1240,8 @@ impl Shift {
     }
 
     /// The hint's `y` translated by `c - o` (the hint's offsets `c` less this shift's `o`),
-    /// when every mode's phase `f.(c - o)` is an integer: its terms of odd phase negated (see
+    /// when every mode's phase `f.(c - o)` is a multiple of 1/2 (of pi), and of 1 on the
+    /// terms with an offset: its terms turned by that phase, in place (see
     /// [`Shift::apply_hinted`]); `None` otherwise, and for an error value.
     fn translated(&self, h: &Hint) -> Option<Scalar> {
         // `c - o` over the symbols of either, zero entries left out: none when the shifts are
@@ -1256,13 +1257,18 @@ impl Shift {
         let terms = h.y.terms().ok()?;
         if v.is_empty() {
             #[cfg(test)]
-            tests::HINTS_TAKEN.with(|n| n.set([n.get()[0] + 1, n.get()[1]]));
+            tests::HINTS_TAKEN.with(|n| {
+                let mut c = n.get();
+                c[0] += 1;
+                n.set(c);
+            });
             return Some(h.y.clone());
         }
-        // Whether each term's phase is odd; the terms of one frequency vector mostly follow
-        // each other (see `apply`), each run's phase computed once.
-        let mut last: Option<(&[(Sym, Small)], bool)> = None;
-        let mut odd: Vec<bool> = Vec::with_capacity(terms.len());
+        // Each term's phase in quarter turns (`2 f.(c - o)` modulo 4); the terms of one
+        // frequency vector mostly follow each other (see `apply`), each run's phase computed
+        // once.
+        let mut last: Option<(&[(Sym, Small)], i64)> = None;
+        let mut turns: Vec<u8> = Vec::with_capacity(terms.len());
         for t in terms {
             let turn = match last {
                 Some((f, turn)) if crate::scalar::atoms::freq_cmp(f, &t.mode.freq).is_eq() => turn,
@@ -1270,37 +1276,65 @@ impl Shift {
                     let d = dot_of_pairs(t.mode.freq.iter().filter_map(|(s, k)| {
                         v.iter().find(|(x, _)| x == s).map(|(_, d)| (*k, *d))
                     }));
-                    if !d.is_integer() {
+                    let twice = d * Small::from_integer(2);
+                    if !twice.is_integer() {
                         return None;
                     }
-                    let turn = d.numer() % 2 != 0;
+                    let turn = twice.numer().rem_euclid(4);
                     last = Some((&t.mode.freq, turn));
                     turn
                 }
             };
-            odd.push(turn);
+            // A quarter turn writes the term's cosine as a sine (and back), which leaves its
+            // group canonical only without an offset (see below).
+            if turn % 2 == 1 && !t.mode.pi.is_zero() {
+                return None;
+            }
+            turns.push(turn as u8);
         }
         #[cfg(test)]
         tests::HINTS_TAKEN.with(|n| {
             let mut c = n.get();
-            c[usize::from(odd.contains(&true))] += 1;
+            let most = turns.iter().map(|t| usize::from(t % 2 == 1) + 1).max();
+            c[most.filter(|_| turns.iter().any(|t| *t != 0)).unwrap_or(0)] += 1;
             n.set(c);
         });
-        if !odd.contains(&true) {
+        if turns.iter().all(|t| *t == 0) {
             return Some(h.y.clone());
         }
-        let turned = terms
+        // `trig(a + k pi/2)`: `k = 2` negates the term; `k = 1` makes `cos a` into `-sin a`
+        // and `sin a` into `cos a`, `k = 3` into `sin a` and `-cos a`. A group's terms share
+        // `k`: negated, or with an odd `k` its cosine and sine parts swapped (one negated),
+        // the value `Re(i^k z e^{i a})` of a group `Re(z e^{i a})` without an offset, written
+        // in the same columns (`cos a`, `sin a` over the square-root field), as
+        // `Term::push_at_twelfths` writes a term moved by `k/2`: canonical once sorted, and no
+        // two terms meet (the swap is one-to-one on each group's keys).
+        let quarter = turns.iter().any(|t| t % 2 == 1);
+        let turned: Vec<Term> = terms
             .iter()
-            .zip(odd)
+            .zip(turns)
             .map(|(t, turn)| {
                 let mut t = t.clone();
-                if turn {
+                let negate = match turn {
+                    1 => !t.mode.sin,
+                    2 => true,
+                    3 => t.mode.sin,
+                    _ => false,
+                };
+                if turn % 2 == 1 {
+                    t.mode.sin = !t.mode.sin;
+                }
+                if negate {
                     t.coef = -t.coef;
                 }
                 t
             })
             .collect();
-        Some(Scalar::from_sorted_settled(turned))
+        Some(if quarter {
+            Scalar::from_terms_settled(turned)
+        } else {
+            Scalar::from_sorted_settled(turned)
+        })
     }
 
     /// `f . o` for a frequency vector, exactly (in machine words when they suffice:
@@ -1344,9 +1378,9 @@ mod tests {
         /// The groups `representatives` scored, one per group per solution or prefix.
         pub(super) static GROUPS_SCORED: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
         /// The scalars `Shift::apply_hinted` made from a hint: kept as it was, some groups
-        /// negated.
-        pub(super) static HINTS_TAKEN: std::cell::Cell<[u64; 2]> =
-            const { std::cell::Cell::new([0; 2]) };
+        /// negated (none turned by a quarter), some groups turned by a quarter.
+        pub(super) static HINTS_TAKEN: std::cell::Cell<[u64; 3]> =
+            const { std::cell::Cell::new([0; 3]) };
     }
 
     /// `apply_hinted` against `apply` (the old route, kept as the reference): on seeded random
@@ -1364,7 +1398,7 @@ mod tests {
         let l = Scalar::sym("l");
         let half = |k: i64| Scalar::rational(num_rational::BigRational::new(k.into(), 2.into()));
         let (mut compared, mut fell_back) = (0u64, 0u64);
-        HINTS_TAKEN.with(|n| n.set([0; 2]));
+        HINTS_TAKEN.with(|n| n.set([0; 3]));
         for round in 0..1000 {
             // Half angles on even rounds (a dual quaternion's components), whole ones on odd.
             let scale = if round % 2 == 0 {
@@ -1431,10 +1465,11 @@ mod tests {
             compared += 1;
             fell_back += u64::from(HINTS_TAKEN.with(std::cell::Cell::get) == before);
         }
-        let [kept, turned] = HINTS_TAKEN.with(std::cell::Cell::get);
+        let [kept, negated, quarter] = HINTS_TAKEN.with(std::cell::Cell::get);
         assert!(
-            compared >= 400 && kept >= 30 && turned >= 30 && fell_back >= 100,
-            "{compared} compared: {kept} kept, {turned} turned, {fell_back} shifted"
+            compared >= 400 && kept >= 30 && negated >= 30 && quarter >= 30 && fell_back >= 100,
+            "{compared} compared: {kept} kept, {negated} negated, {quarter} turned by a \
+             quarter, {fell_back} shifted"
         );
     }
 
