@@ -360,7 +360,8 @@ fn joined(e: Expr, x: &Scalar, outermost: bool) -> Expr {
     extra::joined_form(&e, outermost, |c| verified(c, x)).unwrap_or(e)
 }
 
-/// [`closed_form_prepared`] without the constants lifted.
+/// [`closed_form_prepared`] without the constants lifted; with `hint`, the shifted scalar
+/// may be the hint's (see [`closed_form_prepared_hinted`]).
 ///
 /// With offsets absorbed (`offsets.rs`), the shifted form `e` is found first and the form as
 /// given is searched with `e`'s key as its cap ([`best_of`]'s `cap`): the form as given is

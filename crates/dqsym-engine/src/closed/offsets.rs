@@ -1206,11 +1206,12 @@ impl Shift {
     }
 
     /// [`Shift::apply`] of `x`, made from `hint`'s scalar `y` when the hint's shift and this
-    /// one differ by a translation of whole turns of pi on every mode of `y`
+    /// one differ by a translation that moves every mode of `y` by a multiple of pi/2
     /// ([`Shift::translated`]): the hint's own shift (the same symbols with the same offsets),
     /// or `q3` shifted by `-5 pi/9` where the hint shifts `q2` by `5 pi/9`, in an entry of
-    /// `q2 - q3` alone, or `-4 pi/9` for `5 pi/9` (the terms of odd `q2` negated). Otherwise
-    /// `x` is shifted as before.
+    /// `q2 - q3` alone, or `-4 pi/9` for `5 pi/9` (the terms of odd `q2` negated; on the half
+    /// angles of a dual quaternion's components, `cos(q2/2)` made `-sin(q2/2)`). Otherwise `x`
+    /// is shifted as before.
     ///
     /// Why it is the same scalar: `x` is `y` with each symbol `s` of the hint replaced by
     /// `s + c_s` ([`Hint`]), and [`Shift::apply`] replaces each `s` of this shift by `s - o_s`
@@ -1221,10 +1222,12 @@ impl Shift {
     /// odd `k` negated. The terms of one group (monomial, frequency vector) share `k`, so each
     /// group is kept or negated whole: the terms stay sorted and merged and every group
     /// canonical (as `-y` is: `Neg for &Scalar`), and a value has one canonical form, so it
-    /// is `apply`'s scalar. `apply` returns it when no symbolic mode of it keeps an offset,
-    /// and so does this (the same test on the same scalar). The Jaco-style arm's 20 pose
-    /// entries all take this route: `apply` was 3.6% of its `fk --jacobian` (callgrind, one
-    /// thread). Checked against `apply` in debug builds, and by the tests below.
+    /// is `apply`'s scalar. A group moved by an odd multiple of pi/2 has its cosine and sine
+    /// parts swapped (see [`Shift::translated`]), canonical when it has no offset, as `apply`
+    /// writes it. `apply` returns the scalar when no symbolic mode of it keeps an offset, and
+    /// so does this (the same test on the same scalar). The Jaco-style arm's 20 pose entries
+    /// all but one take this route (`apply` was 3.6% of its `fk --jacobian`, callgrind, one
+    /// thread; now 0.2%). Checked against `apply` in debug builds, and by the tests below.
     pub(crate) fn apply_hinted(&self, x: &Scalar, hint: Option<Hint>) -> Option<Scalar> {
         // Under a cancelled context `apply` may give an error value (and `None`): then as
         // before.
