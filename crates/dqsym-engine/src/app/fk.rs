@@ -470,8 +470,15 @@ fn hint_of<'a>(
     free: Option<&'a crate::kin::OffsetFree>,
     made: Option<&[&'a Scalar]>,
 ) -> Option<Hint<'a>> {
+    #[cfg(test)]
+    if tests::NO_HINTS.with(std::cell::Cell::get) {
+        return None;
+    }
     let k = entries.iter().position(|e| std::ptr::eq(*e, x))?;
-    Some(free?.hint(made?.get(k)?))
+    let hint = free?.hint(made?.get(k)?);
+    #[cfg(test)]
+    tests::HINTS_GIVEN.with(|n| n.set(n.get() + 1));
+    Some(hint)
 }
 
 /// A pose entry's closed form (and, for a DQ component, its prepared form).
@@ -1103,6 +1110,53 @@ mod tests {
     use super::*;
     use crate::app::recurrence::recurrence_sections;
     use crate::kin::{random_test_chain, LARGEST_FIRST};
+
+    thread_local! {
+        /// Set by a test: no pose entry is told its offset-free entry (`hint_of`).
+        pub(super) static NO_HINTS: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+        /// The pose entries told their offset-free entry on this thread.
+        pub(super) static HINTS_GIVEN: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+    }
+
+    /// On random chains (3 to 6 joints, offsets of fifths of pi on some: the offset-free
+    /// route), `fk`'s entries and decision with each pose entry told its offset-free entry
+    /// (`hint_of`, `closed::offsets::Hint`) are those without (the route before), and some
+    /// entries were told.
+    #[test]
+    fn fk_prints_as_without_the_offset_free_entries_told() {
+        let mut next = crate::testing::xorshift_below(0x41e7_0f4e);
+        let run = |robot: &Robot, hints: bool| {
+            std::thread::scope(|s| {
+                s.spawn(|| {
+                    NO_HINTS.with(|f| f.set(!hints));
+                    HINTS_GIVEN.with(|n| n.set(0));
+                    let _in = crate::Context::new().with_threads(1).enter();
+                    let o = FkOptions {
+                        jacobian: true,
+                        ..FkOptions::default()
+                    };
+                    let r = fk_entries(robot, &o).map(|e| (e.recurrence, e.named_rows()));
+                    (format!("{r:?}"), HINTS_GIVEN.with(std::cell::Cell::get))
+                })
+                .join()
+                .expect("the entries")
+            })
+        };
+        let (mut told, mut robots) = (0, 0);
+        for _ in 0..16 {
+            let robot = random_test_chain(&mut next, 6);
+            let (with, given) = run(&robot, true);
+            let (without, none) = run(&robot, false);
+            assert_eq!(none, 0);
+            assert!(with == without, "{:?}", robot.chain);
+            told += given;
+            robots += usize::from(given > 0);
+        }
+        assert!(
+            robots >= 3 && told >= 30,
+            "{told} entries told, on {robots} chains"
+        );
+    }
 
     /// `fk`'s entries and decision (expanded or recurrence) on a thread of its own, with
     /// the matrix products' entries made largest first (`largest_first`, the order before
