@@ -34,6 +34,7 @@ type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
 use crate::{
     closed::{
         closed_form_of_derivative, decimal_form, report_form, report_form_prepared, CommonOffsets,
+        Hint,
     },
     Context, DualQuat, Expr, Scalar, ScalarError,
 };
@@ -305,24 +306,37 @@ fn expanded_entries(
             if i == 3 || x.len() < EARLY_FORM_TERMS {
                 return true;
             }
-            let f = report_form(x);
+            let f = report_form(x, None);
             text.add(&f);
             t_forms[4 * i + j] = Some((f, None));
             !text.exceeded()
         };
-        let m = match free
+        // Offset-free, the product as multiplied is kept beside it (`made`) for the hints.
+        let (m, made) = match free
             .as_ref()
             .and_then(|f| robot.forward_matrix_offset_free(f, o.max_terms, &stop, &mut seen))
         {
-            Some(m) => m?,
-            None => robot.forward_matrix_until(factors, o.max_terms, &stop, &mut seen)?,
+            Some(m) => m.map(|(m, made)| (m, Some(made)))?,
+            None => (
+                robot.forward_matrix_until(factors, o.max_terms, &stop, &mut seen)?,
+                None,
+            ),
         };
-        Some((m, t_forms))
+        Some((m, t_forms, made))
     };
-    // The closed forms of the matrix's other entries (`pose_forms` is a `par_map`).
-    let matrix_forms = |(m, found): (crate::Matrix4<Scalar>, Vec<Option<PoseForm>>)| {
-        let (forms, _) = pose_forms(&matrix_cells(&m), found, &text, &t_turns, |x| {
-            (report_form(x), None)
+    // The closed forms of the matrix's other entries (`pose_forms` is a `par_map`), each told
+    // the offset-free entry it was shifted back from (`hint_of`).
+    type Made = (
+        crate::Matrix4<Scalar>,
+        Vec<Option<PoseForm>>,
+        Option<crate::Matrix4<Scalar>>,
+    );
+    let matrix_forms = |(m, found, made): Made| {
+        let cells = matrix_cells(&m);
+        let made_cells = made.as_ref().map(matrix_cells);
+        let (forms, _) = pose_forms(&cells, found, &text, &t_turns, |x| {
+            let hint = hint_of(x, &cells, free.as_ref(), made_cells.as_deref());
+            (report_form(x, hint), None)
         });
         if text.exceeded() {
             stop.store(true, Ordering::Relaxed);
@@ -337,8 +351,10 @@ fn expanded_entries(
             .as_ref()
             .and_then(|f| robot.forward_within_offset_free(f, o.max_terms, &stop))
         {
-            Some(q) => q,
-            None => robot.forward_within_until(joints, o.max_terms, &stop),
+            Some(q) => q.map(|(q, made)| (q, Some(made))),
+            None => robot
+                .forward_within_until(joints, o.max_terms, &stop)
+                .map(|q| (q, None)),
         }
     };
     // The DQ product on the helper while this thread begins the matrix's closed forms; the
@@ -372,9 +388,10 @@ fn expanded_entries(
     if text.exceeded() {
         return None;
     }
-    let q = q?;
+    let (q, made) = q?;
     let comps = q.components();
     let comp_refs: Vec<&Scalar> = comps.iter().collect();
+    let made_refs: Option<Vec<&Scalar>> = made.as_ref().map(|m| m.iter().collect());
     let none = (0..comp_refs.len()).map(|_| None).collect();
     // The point's image and the Jacobian (derivatives of the DQ's components) on the helper
     // while this thread begins the DQ's closed forms, as above; not made once the pose's text
@@ -383,7 +400,8 @@ fn expanded_entries(
     let ((forms, dq_turned), (img, jac)) = join(
         || {
             pose_forms(&comp_refs, none, &text, &dq_turns, |x| {
-                let (e, p) = report_form_prepared(x);
+                let hint = hint_of(x, &comp_refs, free.as_ref(), made_refs.as_deref());
+                let (e, p) = report_form_prepared(x, hint);
                 (e, Some(p))
             })
         },
@@ -397,6 +415,8 @@ fn expanded_entries(
             )
         },
     );
+    drop(made_refs);
+    drop(made);
     if text.exceeded() {
         return None;
     }
@@ -437,6 +457,28 @@ fn expanded_entries(
         return None;
     }
     Some(Ok(sections))
+}
+
+/// What the closed form of the pose entry `x` is told of it (`closed::report_form_prepared`):
+/// when the pose was multiplied offset-free (`free`) and `made` holds the entries as
+/// multiplied, in the order of `entries` (the same pose's entries, shifted back), the one at
+/// `x`'s place, found by its address (`pose_forms` shows its closures the entries
+/// themselves); else none, which changes nothing but the work.
+fn hint_of<'a>(
+    x: &Scalar,
+    entries: &[&Scalar],
+    free: Option<&'a crate::kin::OffsetFree>,
+    made: Option<&[&'a Scalar]>,
+) -> Option<Hint<'a>> {
+    #[cfg(test)]
+    if tests::NO_HINTS.with(std::cell::Cell::get) {
+        return None;
+    }
+    let k = entries.iter().position(|e| std::ptr::eq(*e, x))?;
+    let hint = free?.hint(made?.get(k)?);
+    #[cfg(test)]
+    tests::HINTS_GIVEN.with(|n| n.set(n.get() + 1));
+    Some(hint)
 }
 
 /// A pose entry's closed form (and, for a DQ component, its prepared form).
@@ -755,9 +797,9 @@ fn expanded_sections(
     let search = |k: usize| match distinct[k] {
         (x, Some((i, var))) => match &prepared[i] {
             Some(p) => closed_form_of_derivative(p, var, x),
-            None => report_form(x),
+            None => report_form(x, None),
         },
-        (x, None) => report_form(x),
+        (x, None) => report_form(x, None),
     };
     // Begun largest first (by terms), so that the last closed forms to end, when one thread
     // may wait for the other, are small ones.
@@ -1193,6 +1235,53 @@ mod tests {
     use crate::app::recurrence::recurrence_sections;
     use crate::kin::{random_test_chain, LARGEST_FIRST};
     use crate::Ring;
+
+    thread_local! {
+        /// Set by a test: no pose entry is told its offset-free entry (`hint_of`).
+        pub(super) static NO_HINTS: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+        /// The pose entries told their offset-free entry on this thread.
+        pub(super) static HINTS_GIVEN: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+    }
+
+    /// On random chains (3 to 6 joints, offsets of fifths of pi on some: the offset-free
+    /// route), `fk`'s entries and decision with each pose entry told its offset-free entry
+    /// (`hint_of`, `closed::offsets::Hint`) are those without (the route before), and some
+    /// entries were told.
+    #[test]
+    fn fk_prints_as_without_the_offset_free_entries_told() {
+        let mut next = crate::testing::xorshift_below(0x41e7_0f4e);
+        let run = |robot: &Robot, hints: bool| {
+            std::thread::scope(|s| {
+                s.spawn(|| {
+                    NO_HINTS.with(|f| f.set(!hints));
+                    HINTS_GIVEN.with(|n| n.set(0));
+                    let _in = crate::Context::new().with_threads(1).enter();
+                    let o = FkOptions {
+                        jacobian: true,
+                        ..FkOptions::default()
+                    };
+                    let r = fk_entries(robot, &o).map(|e| (e.recurrence, e.named_rows()));
+                    (format!("{r:?}"), HINTS_GIVEN.with(std::cell::Cell::get))
+                })
+                .join()
+                .expect("the entries")
+            })
+        };
+        let (mut told, mut robots) = (0, 0);
+        for _ in 0..16 {
+            let robot = random_test_chain(&mut next, 6);
+            let (with, given) = run(&robot, true);
+            let (without, none) = run(&robot, false);
+            assert_eq!(none, 0);
+            assert!(with == without, "{:?}", robot.chain);
+            told += given;
+            robots += usize::from(given > 0);
+        }
+        assert!(
+            robots >= 3 && told >= 30,
+            "{told} entries told, on {robots} chains"
+        );
+    }
 
     /// `fk`'s entries and decision (expanded or recurrence) on a thread of its own, with
     /// the matrix products' entries made largest first (`largest_first`, the order before

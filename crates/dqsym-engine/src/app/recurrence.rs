@@ -48,8 +48,8 @@ const COS_SIN_FORMS_BUDGET: u64 = 4_000_000;
 
 /// The most bytes of plain text the closed forms of that matrix may take (RTB's Ball: 10 kB).
 const MAX_COS_SIN_TEXT: usize = 40_000;
-use crate::kin::MadeJoints;
 use crate::closed::turn;
+use crate::kin::MadeJoints;
 use crate::{closed::closed_form_cos_sin, DualQuat, Expr, Robot, Scalar, ScalarError};
 use std::borrow::Cow;
 use std::cell::RefCell;

@@ -178,6 +178,7 @@ pub use decimals::{decimal_form, shows_as_decimal};
 pub use expr::{Angle, Cost, Expr};
 pub use notation::{angle_text, angle_text_decimals, angle_text_with, shorthand_name, TrigNames};
 pub(crate) use notation::{decimal_constant, write_shorthand};
+pub(crate) use offsets::Hint;
 pub use trace::{Identity, TraceStep};
 
 use crate::scalar::FxHasher;
@@ -291,7 +292,7 @@ pub struct Prepared(
 /// and factored like `cos(q2)`), the shorter of the two kept (`alt::shorter`; the shifted
 /// one on ties).
 pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
-    closed_form_prepared_as(x, AsGiven::Searched)
+    closed_form_prepared_as(x, AsGiven::Searched, None)
 }
 
 /// [`closed_form_prepared`] as an `fk` report shows a pose entry: with its offsets absorbed
@@ -309,13 +310,22 @@ pub fn closed_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared)
 /// operations the search as given won by), 6 shorter (154 characters). Expressions
 /// (`closed_form`, the REPL, `-e`) and the searches nested in a report's search both ways
 /// as before.
-pub(crate) fn report_form_prepared(x: &Scalar) -> (Result<Expr, ScalarError>, Prepared) {
-    closed_form_prepared_as(x, AsGiven::Skipped)
+///
+/// With `hint` (`offsets::Hint`: `x` is the hint's `y` with its symbols shifted, as an
+/// offset-free product's entry is shifted back), the shifted scalar is the hint's `y` when the
+/// shift that `x`'s offsets are absorbed into is the hint's, and is not made again
+/// (`offsets::Shift::apply_hinted`): the same scalar, so the same result. Only `x` itself takes
+/// the hint, not the scalars derived from it (constants lifted, phases as angles).
+pub(crate) fn report_form_prepared(
+    x: &Scalar,
+    hint: Option<Hint>,
+) -> (Result<Expr, ScalarError>, Prepared) {
+    closed_form_prepared_as(x, AsGiven::Skipped, hint)
 }
 
 /// [`report_form_prepared`]'s closed form.
-pub(crate) fn report_form(x: &Scalar) -> Result<Expr, ScalarError> {
-    report_form_prepared(x).0
+pub(crate) fn report_form(x: &Scalar, hint: Option<Hint>) -> Result<Expr, ScalarError> {
+    report_form_prepared(x, hint).0
 }
 
 /// Whether a scalar with offsets absorbed ([`prepared_shifted`]) is also searched as given.
@@ -327,10 +337,15 @@ enum AsGiven {
     Skipped,
 }
 
-/// [`closed_form_prepared`], the form as given searched or not (`as_given`).
-fn closed_form_prepared_as(x: &Scalar, as_given: AsGiven) -> (Result<Expr, ScalarError>, Prepared) {
+/// [`closed_form_prepared`], the form as given searched or not (`as_given`), with `hint` (see
+/// [`report_form_prepared`]).
+fn closed_form_prepared_as(
+    x: &Scalar,
+    as_given: AsGiven,
+    hint: Option<Hint>,
+) -> (Result<Expr, ScalarError>, Prepared) {
     let memo = Memo::open();
-    let (e, prepared) = prepared_shifted(x, as_given);
+    let (e, prepared) = prepared_shifted(x, as_given, hint);
     let Ok(found) = e else {
         return (e, prepared);
     };
@@ -342,7 +357,7 @@ fn closed_form_prepared_as(x: &Scalar, as_given: AsGiven) -> (Result<Expr, Scala
         let Some(l) = lifting.as_mut().and_then(|l| l.lift(phased)) else {
             continue;
         };
-        let Ok(c) = prepared_shifted(&l.scalar, as_given)
+        let Ok(c) = prepared_shifted(&l.scalar, as_given, None)
             .0
             .map(|c| l.substitute(c))
         else {
@@ -356,7 +371,7 @@ fn closed_form_prepared_as(x: &Scalar, as_given: AsGiven) -> (Result<Expr, Scala
     // Angles at offsets that are multiples of pi/12, hidden in radicals, as angles again
     // (`l1 sin(x + pi/6)`, canonically `l1 (cos(x) + sqrt(3) sin(x))/2`).
     if let Some(a) = coefs::phase_angles(x) {
-        if let Some(c) = prepared_shifted(&a.scalar, as_given)
+        if let Some(c) = prepared_shifted(&a.scalar, as_given, None)
             .0
             .ok()
             .and_then(|c| a.substitute(c))
@@ -385,7 +400,8 @@ fn joined(e: Expr, x: &Scalar, outermost: bool) -> Expr {
     extra::joined_form(&e, outermost, |c| verified(c, x)).unwrap_or(e)
 }
 
-/// [`closed_form_prepared`] without the constants lifted.
+/// [`closed_form_prepared`] without the constants lifted; with `hint`, the shifted scalar
+/// may be the hint's (see [`report_form_prepared`]).
 ///
 /// With offsets absorbed (`offsets.rs`), the shifted form `e` is found first and, with
 /// [`AsGiven::Searched`], the form as given is searched with `e`'s key as its cap ([`best_of`]'s `cap`): the form as given is
@@ -413,8 +429,13 @@ fn joined(e: Expr, x: &Scalar, outermost: bool) -> Expr {
 /// A search as given that [`as_given_may_win`] skips leaves its work in the budget: 2 of 120
 /// random 5-joint chains whose `fk --jacobian` ran out of the default budget (and printed the
 /// recurrence) now print the expanded report, the one both ways print with a raised budget.
-fn prepared_shifted(x: &Scalar, as_given: AsGiven) -> (Result<Expr, ScalarError>, Prepared) {
-    let Some((shift, y)) = offsets::find(x).and_then(|s| s.apply(x).map(|y| (s, y))) else {
+fn prepared_shifted(
+    x: &Scalar,
+    as_given: AsGiven,
+    hint: Option<Hint>,
+) -> (Result<Expr, ScalarError>, Prepared) {
+    let shifted = offsets::find(x).and_then(|s| s.apply_hinted(x, hint).map(|y| (s, y)));
+    let Some((shift, y)) = shifted else {
         return prepared_unshifted(x, None);
     };
     // No context entered: nothing is charged, and none is entered for the fallback.
@@ -865,7 +886,7 @@ pub fn closed_form_of_derivative(
             Ok(_) => dy,
             Err(_) => match shift.apply(dx) {
                 Some(dy) => dy,
-                None => return report_form(dx),
+                None => return report_form(dx, None),
             },
         };
         debug_assert!(shift.apply(dx).is_none_or(|d| d == dy), "d/d{var} shifted");
@@ -873,7 +894,7 @@ pub fn closed_form_of_derivative(
         return if verified(&e, dx) {
             Ok(e)
         } else {
-            report_form(dx)
+            report_form(dx, None)
         };
     }
     derivative_unshifted(p, var, dx)
@@ -900,7 +921,7 @@ pub fn closed_form_of_derivative(
 /// its choice is not provably the renamed tree.
 fn derivative_unshifted(p: &Prepared, var: &str, dx: &Scalar) -> Result<Expr, ScalarError> {
     let Some((ctx, mons, split_won)) = &p.0 else {
-        return report_form(dx);
+        return report_form(dx, None);
     };
     let mut ctx = ctx.clone();
     let dmons = mon::differentiate(&ctx, mons, var);

@@ -480,8 +480,11 @@ pub(crate) fn turned_placeholder_form(from: &Expr, t: &Turned, x: &Scalar) -> Op
     #[cfg(test)]
     counts::COUNTS.with(|c| {
         let (made, failed) = c.get();
-        c.set(if good { (made + 1, failed) } else { (made, failed + 1) });
+        c.set(if good {
+            (made + 1, failed)
+        } else {
+            (made, failed + 1)
+        });
     });
     good.then_some(e)
 }
-

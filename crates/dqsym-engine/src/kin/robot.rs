@@ -1259,6 +1259,15 @@ impl OffsetFree {
     fn below(max_terms: usize) -> usize {
         max_terms.min(crate::scalar::term_limit()) / 16
     }
+
+    /// What the closed form of an entry `x` shifted back from the offset-free entry `y` is
+    /// told of it (`closed::report_form_prepared`).
+    pub(crate) fn hint<'a>(&'a self, y: &'a Scalar) -> crate::closed::Hint<'a> {
+        crate::closed::Hint {
+            shifts: &self.shifts,
+            y,
+        }
+    }
 }
 
 impl Robot {
@@ -1300,15 +1309,16 @@ impl Robot {
 
     /// [`Robot::forward_matrix_until`] multiplied offset-free (see [`OffsetFree`]): `None`
     /// when the offset-free product is not kept (the caller multiplies the factors with their
-    /// offsets), else what that gives. `seen` is told of the last product's entries with
-    /// their offsets, once all are made, largest first.
+    /// offsets), else what that gives, with the offset-free product beside it (each entry
+    /// shifted back is the matrix's: [`OffsetFree::hint`]). `seen` is told of the last
+    /// product's entries with their offsets, once all are made, largest first.
     pub(crate) fn forward_matrix_offset_free(
         &self,
         free: &OffsetFree,
         max_terms: usize,
         stop: &AtomicBool,
         seen: EntrySeen,
-    ) -> Option<Option<Matrix4<Scalar>>> {
+    ) -> Option<Option<(Matrix4<Scalar>, Matrix4<Scalar>)>> {
         let below = OffsetFree::below(max_terms);
         let fits = |x: &Scalar| free.fits(x, below);
         let factors = self.factor_matrices(&free.joints, 0, None);
@@ -1330,9 +1340,9 @@ impl Robot {
                     *x = shifted_back(y, free, max_terms)?;
                 }
             }
-            Some(Some(rows))
+            Some(Some((rows, m)))
         })?;
-        let Some(rows) = rows else {
+        let Some((rows, made)) = rows else {
             return Some(None);
         };
         let mut order: Vec<(usize, usize)> =
@@ -1344,18 +1354,19 @@ impl Robot {
                 return Some(None);
             }
         }
-        Some(Some(Matrix4::from_rows(rows)))
+        Some(Some((Matrix4::from_rows(rows), made)))
     }
 
     /// [`Robot::forward_within_until`] multiplied offset-free (see [`OffsetFree`]): `None`
     /// when the offset-free product is not kept (the caller multiplies the factors with their
-    /// offsets), else what that gives.
+    /// offsets), else what that gives, with the offset-free product's components beside it
+    /// (each shifted back is the product's: [`OffsetFree::hint`]).
     pub(crate) fn forward_within_offset_free(
         &self,
         free: &OffsetFree,
         max_terms: usize,
         stop: &AtomicBool,
-    ) -> Option<Option<DualQuat<Scalar>>> {
+    ) -> Option<Option<(DualQuat<Scalar>, [Scalar; 8])>> {
         let below = OffsetFree::below(max_terms);
         let fits = |x: &Scalar| free.fits(x, below);
         charged_if_kept(|| {
@@ -1363,11 +1374,12 @@ impl Robot {
             let Some(q) = made else {
                 return stop.load(AtomicOrdering::Relaxed).then_some(None);
             };
-            let mut comps = q.components();
-            for c in &mut comps {
-                *c = shifted_back(c, free, max_terms)?;
+            let made = q.components();
+            let mut comps: [Scalar; 8] = Default::default();
+            for (c, y) in comps.iter_mut().zip(&made) {
+                *c = shifted_back(y, free, max_terms)?;
             }
-            Some(Some(DualQuat::from_components(comps)))
+            Some(Some((DualQuat::from_components(comps), made)))
         })
     }
 }
@@ -2265,6 +2277,25 @@ mod tests {
             };
             let free_matrix = robot.forward_matrix_offset_free(&free, 20_000, &flag(), &mut record);
             let free_dq = robot.forward_within_offset_free(&free, 20_000, &flag());
+            // Beside each product, the offset-free one whose entries shifted back are its.
+            let back = |y: &Scalar| y.shift_angles(&free.shifts);
+            if let Some(Some((m, made))) = &free_matrix {
+                for (row, from) in m.rows.iter().zip(&made.rows) {
+                    assert!(row
+                        .iter()
+                        .zip(from)
+                        .all(|(x, y)| back(y).as_ref() == Some(x)));
+                }
+            }
+            if let Some(Some((q, made))) = &free_dq {
+                let comps = q.components();
+                assert!(comps
+                    .iter()
+                    .zip(made)
+                    .all(|(x, y)| back(y).as_ref() == Some(x)));
+            }
+            let free_matrix = free_matrix.map(|m| m.map(|(m, _)| m));
+            let free_dq = free_dq.map(|q| q.map(|(q, _)| q));
             compared += 1;
             if let (Some(m), Some(q)) = (free_matrix, free_dq) {
                 kept += 1;
@@ -2314,15 +2345,19 @@ mod tests {
                     let free = offset_free.then(|| robot.offset_free(&joints)).flatten();
                     // Each product falls back on its own, as in `fk`.
                     let tried = free.as_ref().and_then(|f| {
-                        robot.forward_matrix_offset_free(f, terms, &flag(), &mut all)
+                        robot
+                            .forward_matrix_offset_free(f, terms, &flag(), &mut all)
+                            .map(|m| m.map(|(m, _)| m))
                     });
                     let m = tried.clone().unwrap_or_else(|| {
                         let factors = robot.factor_matrices(&joints, EARLY, None);
                         robot.forward_matrix_until(factors, terms, &flag(), &mut all)
                     });
-                    let tried_q = free
-                        .as_ref()
-                        .and_then(|f| robot.forward_within_offset_free(f, terms, &flag()));
+                    let tried_q = free.as_ref().and_then(|f| {
+                        robot
+                            .forward_within_offset_free(f, terms, &flag())
+                            .map(|q| q.map(|(q, _)| q))
+                    });
                     let fell = free.is_some() && (tried.is_none() || tried_q.is_none());
                     let q = tried_q.unwrap_or_else(|| {
                         robot.forward_within_until(joints.clone(), terms, &flag())
