@@ -608,6 +608,61 @@ mod tests {
         }
     }
 
+    /// The closed forms of a matrix in cosines and sines (`cos_sin_forms`) on random chains
+    /// and a fully symbolic 4R: each has the value of the entry's own search
+    /// (`closed_form_cos_sin`), the entries turned from others (the second row) among them,
+    /// none of whose checks fails (a failed one would be searched, unseen).
+    #[test]
+    fn the_cos_sin_forms_turned_from_others_are_their_entries() {
+        let mut next = crate::testing::xorshift_below(0x7e57_0035);
+        let mut robots: Vec<Robot> = (0..10)
+            .map(|_| crate::kin::random_test_chain(&mut next, 5))
+            .collect();
+        let mut r4 = crate::kin::random_test_chain(&mut next, 4);
+        let s = |name: &str, i: usize| Scalar::sym(&format!("{name}{i}"));
+        r4.chain = crate::kin::Chain::new(
+            (1..=4)
+                .map(|i| {
+                    crate::kin::Joint::revolute_dh(
+                        Scalar::int(0),
+                        s("d", i),
+                        s("a", i),
+                        s("alpha", i),
+                    )
+                })
+                .collect(),
+        );
+        r4.variables = (1..=4).map(|i| format!("theta{i}")).collect();
+        r4.joint_values = (1..=4).map(|i| s("theta", i)).collect();
+        robots.push(r4);
+        let (mut turned, mut matrices) = (0, 0);
+        for robot in &robots {
+            let _in = crate::Context::new().with_threads(1).enter();
+            let Some(m) = robot.forward_matrix_cos_sin(20_000) else {
+                continue;
+            };
+            matrices += 1;
+            let cells: Vec<&Scalar> = m.rows[..3].iter().flatten().collect();
+            turn::counts::COUNTS.with(|c| c.set((0, 0)));
+            let forms = cos_sin_forms(robot, &cells);
+            let (made, failed) = turn::counts::COUNTS.with(|c| c.get());
+            assert_eq!(failed, 0, "{:?}", robot.chain);
+            turned += made;
+            if robot.variables[0] == "theta1" {
+                assert_eq!(made, 4, "the symbolic 4R's second row");
+            }
+            for (x, f) in cells.iter().zip(&forms) {
+                let own = closed_form_cos_sin(x).expect("a form");
+                let f = f.as_ref().expect("a form");
+                assert_eq!(f.to_scalar(), own.to_scalar(), "{x}");
+            }
+        }
+        assert!(
+            matrices >= 8 && turned >= 20,
+            "{matrices} matrices, {turned} turned"
+        );
+    }
+
     #[test]
     fn placeholders_are_written_as_format_writes_them() {
         for k in [

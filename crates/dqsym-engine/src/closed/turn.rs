@@ -363,7 +363,7 @@ fn tidy_signs(e: Expr) -> Expr {
             }
             Expr::Add(v) if all_negative(&v) => {
                 *neg = !*neg;
-                Expr::Add(v.into_iter().map(|t| unsign(t)).collect())
+                Expr::Add(v.into_iter().map(unsign).collect())
             }
             e => e,
         }
@@ -460,15 +460,6 @@ fn agrees_turned(e: &Expr, from: &Expr, t: &Turned) -> bool {
     a.is_finite() && b.is_finite() && (a - c * b).abs() <= 1e-9 * scale
 }
 
-/// The turned forms made and those whose check failed, on this thread (for tests).
-#[cfg(test)]
-pub(crate) mod counts {
-    thread_local! {
-        pub(crate) static COUNTS: std::cell::Cell<(u64, u64)> =
-            const { std::cell::Cell::new((0, 0)) };
-    }
-}
-
 /// The closed form of `x`, a polynomial in placeholders that is `t.factor` times the quarter
 /// turn of `t.turn`'s angle of one whose closed form (in placeholders) is `from`: `from`
 /// turned ([`quarter_turned_placeholder_form`]) and scaled, checked against `x` as every closed
@@ -487,4 +478,13 @@ pub(crate) fn turned_placeholder_form(from: &Expr, t: &Turned, x: &Scalar) -> Op
         });
     });
     good.then_some(e)
+}
+
+/// The turned forms made and those whose check failed, on this thread (for tests).
+#[cfg(test)]
+pub(crate) mod counts {
+    thread_local! {
+        pub(crate) static COUNTS: std::cell::Cell<(u64, u64)> =
+            const { std::cell::Cell::new((0, 0)) };
+    }
 }
