@@ -656,9 +656,9 @@ mod tests {
                 let f = f.as_ref().expect("a form");
                 assert_eq!(f.to_scalar(), own.to_scalar(), "{x}");
             }
-            // The 4R's second row (the last robot's four), and rows of random DH chains (an MDH
-            // chain's first twist, or a prismatic first joint, leaves its rows unrelated).
         }
+        // The 4R's second row (the last robot's four), and rows of random DH chains (an MDH
+        // chain's first twist, or a prismatic first joint, leaves its rows unrelated).
         assert!(
             matrices >= 8 && turned >= 8,
             "{matrices} matrices, {turned} turned"
