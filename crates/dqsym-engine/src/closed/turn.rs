@@ -224,25 +224,69 @@ pub(crate) fn quarter_turned_placeholders(p: &Scalar, x: &Sym) -> Option<Scalar>
 }
 
 /// A closed form in placeholders ([`Expr::with_placeholders_as_trig`] not applied yet) turned
-/// as [`quarter_turned_placeholders`] turns its value, the signs tidied ([`tidy_signs`]).
+/// as [`quarter_turned_placeholders`] turns its value, the signs tidied as [`tidy_signs`]
+/// tidies them and the symbols of each product sorted ([`sort_leaves`]), in one walk that
+/// leaves the subtrees without the two placeholders as they are (the fully symbolic 6R's
+/// matrix entries are deep products).
 pub(crate) fn quarter_turned_placeholder_form(e: Expr, x: &Sym) -> Expr {
-    fn walk(e: Expr, c: &Sym, s: &Sym) -> Expr {
+    /// The turned subtree and whether it changed.
+    fn walk(e: Expr, c: &Sym, s: &Sym) -> (Expr, bool) {
         match e {
-            Expr::Sym(y) if y == *c => Expr::Neg(Box::new(Expr::Sym(s.clone()))),
-            Expr::Sym(y) if y == *s => Expr::Sym(c.clone()),
-            Expr::Add(v) => Expr::Add(v.into_iter().map(|t| walk(t, c, s)).collect()),
-            Expr::Mul(v) => {
-                let mut v: Vec<Expr> = v.into_iter().map(|t| walk(t, c, s)).collect();
-                sort_leaves(&mut v);
-                Expr::Mul(v)
+            Expr::Sym(y) if y == *c => (Expr::Neg(Box::new(Expr::Sym(s.clone()))), true),
+            Expr::Sym(y) if y == *s => (Expr::Sym(c.clone()), true),
+            Expr::Add(v) => {
+                let mut changed = false;
+                let v = v
+                    .into_iter()
+                    .map(|t| {
+                        let (t, ch) = walk(t, c, s);
+                        changed |= ch;
+                        t
+                    })
+                    .collect();
+                (Expr::Add(v), changed)
             }
-            Expr::Neg(t) => Expr::Neg(Box::new(walk(*t, c, s))),
-            Expr::Pow(t, n) => Expr::Pow(Box::new(walk(*t, c, s)), n),
-            e => e,
+            Expr::Mul(v) => {
+                let mut changed = false;
+                let mut v: Vec<Expr> = v
+                    .into_iter()
+                    .map(|t| {
+                        let (t, ch) = walk(t, c, s);
+                        changed |= ch;
+                        t
+                    })
+                    .collect();
+                if !changed {
+                    return (Expr::Mul(v), false);
+                }
+                let mut neg = false;
+                for f in &mut v {
+                    *f = flip_sign(&mut neg, std::mem::replace(f, Expr::zero()));
+                }
+                sort_leaves(&mut v);
+                (signed(neg, Expr::Mul(v)), true)
+            }
+            Expr::Neg(t) => match walk(*t, c, s) {
+                (Expr::Neg(y), ch) => (*y, ch),
+                (y, ch) => (Expr::Neg(Box::new(y)), ch),
+            },
+            Expr::Pow(t, n) => {
+                let (t, ch) = walk(*t, c, s);
+                if !ch {
+                    return (Expr::Pow(Box::new(t), n), false);
+                }
+                let mut neg = false;
+                let base = flip_sign(&mut neg, t);
+                (
+                    signed(neg && n % 2 == 1, Expr::Pow(Box::new(base), n)),
+                    true,
+                )
+            }
+            e => (e, false),
         }
     }
     let [c, s] = placeholders(x);
-    tidy_signs(walk(e, &c, &s))
+    walk(e, &c, &s).0
 }
 
 /// The symbols of a product (a symbol or its power, signed or not) sorted by name in the
@@ -256,10 +300,16 @@ fn sort_leaves(v: &mut [Expr]) {
             _ => None,
         }
     }
-    let places: Vec<usize> = (0..v.len()).filter(|&i| leaf(&v[i]).is_some()).collect();
-    if places.windows(2).all(|w| leaf(&v[w[0]]) <= leaf(&v[w[1]])) {
+    let mut last: Option<&Sym> = None;
+    let mut sorted = true;
+    for l in v.iter().filter_map(leaf) {
+        sorted &= last.is_none_or(|p| p <= l);
+        last = Some(l);
+    }
+    if sorted {
         return;
     }
+    let places: Vec<usize> = (0..v.len()).filter(|&i| leaf(&v[i]).is_some()).collect();
     let mut leaves: Vec<Expr> = places.iter().map(|&i| v[i].clone()).collect();
     leaves.sort_by(|a, b| leaf(a).cmp(&leaf(b)));
     for (i, e) in places.into_iter().zip(leaves) {
@@ -347,47 +397,50 @@ pub(crate) fn turned(e: Expr, turn: &Turn) -> Option<Expr> {
     whole.then_some(tidy_signs(out))
 }
 
+/// A factor of a product with its sign taken out into `neg`: a negation's, or that of a sum
+/// whose terms are all negative (its terms turned).
+fn flip_sign(neg: &mut bool, e: Expr) -> Expr {
+    match e {
+        Expr::Neg(x) => {
+            *neg = !*neg;
+            *x
+        }
+        Expr::Add(v) if !v.is_empty() && v.iter().all(|t| matches!(t, Expr::Neg(_))) => {
+            *neg = !*neg;
+            Expr::Add(
+                v.into_iter()
+                    .map(|t| match t {
+                        Expr::Neg(x) => *x,
+                        t => t,
+                    })
+                    .collect(),
+            )
+        }
+        e => e,
+    }
+}
+
+/// `e`, negated when `neg`.
+fn signed(neg: bool, e: Expr) -> Expr {
+    if neg {
+        Expr::Neg(Box::new(e))
+    } else {
+        e
+    }
+}
+
 /// `e` with the sign of each sum inside a product whose terms are all negative taken out of it
 /// and out of the product (`s23 (-c4 s6 - s4 c6)` is `-s23 (c4 s6 + s4 c6)`): as long, one
 /// minus sign, where a turn left one on every term ([`Expr::map_trig_signed`] keeps the signs
 /// on the terms of sums). The value is unchanged.
 fn tidy_signs(e: Expr) -> Expr {
-    fn all_negative(v: &[Expr]) -> bool {
-        !v.is_empty() && v.iter().all(|t| matches!(t, Expr::Neg(_)))
-    }
-    fn flip(neg: &mut bool, e: Expr) -> Expr {
-        match e {
-            Expr::Neg(x) => {
-                *neg = !*neg;
-                *x
-            }
-            Expr::Add(v) if all_negative(&v) => {
-                *neg = !*neg;
-                Expr::Add(v.into_iter().map(unsign).collect())
-            }
-            e => e,
-        }
-    }
-    fn unsign(e: Expr) -> Expr {
-        match e {
-            Expr::Neg(x) => *x,
-            e => e,
-        }
-    }
-    fn signed(neg: bool, e: Expr) -> Expr {
-        if neg {
-            Expr::Neg(Box::new(e))
-        } else {
-            e
-        }
-    }
     match e {
         Expr::Add(v) => Expr::Add(v.into_iter().map(tidy_signs).collect()),
         Expr::Mul(v) => {
             let mut neg = false;
             let parts = v
                 .into_iter()
-                .map(|f| flip(&mut neg, tidy_signs(f)))
+                .map(|f| flip_sign(&mut neg, tidy_signs(f)))
                 .collect();
             signed(neg, Expr::Mul(parts))
         }
@@ -397,7 +450,7 @@ fn tidy_signs(e: Expr) -> Expr {
         },
         Expr::Pow(x, n) => {
             let mut neg = false;
-            let base = flip(&mut neg, tidy_signs(*x));
+            let base = flip_sign(&mut neg, tidy_signs(*x));
             signed(neg && n % 2 == 1, Expr::Pow(Box::new(base), n))
         }
         e => e,
