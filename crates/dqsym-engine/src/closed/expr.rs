@@ -767,7 +767,7 @@ fn shape(e: &Expr) -> Shape {
 /// way taken is built ([`turn`]) of `e`'s own operands: one walk of `e` and one of what is
 /// rebuilt. Building each sub-sum's turned form to compare it (the route before) cloned,
 /// walked and dropped each subtree once for every sum and product above it.
-fn minus(e: Expr) -> Expr {
+pub(super) fn minus(e: Expr) -> Expr {
     match e {
         Expr::Neg(x) => *x,
         e @ (Expr::Add(_) | Expr::Mul(_)) => {

@@ -420,12 +420,14 @@ fn flip_sign(neg: &mut bool, e: Expr) -> Expr {
     }
 }
 
-/// `e`, negated when `neg`.
+/// `e`, negated when `neg`: a product's sign placed where it prints shortest
+/// (`super::expr::minus`: into one of its sums when that is shorter, `-s1 (-c2 + s3)` as `s1
+/// (c2 - s3)`), another's in front.
 fn signed(neg: bool, e: Expr) -> Expr {
-    if neg {
-        Expr::Neg(Box::new(e))
-    } else {
-        e
+    match (neg, e) {
+        (false, e) => e,
+        (true, e @ Expr::Mul(_)) => super::expr::minus(e),
+        (true, e) => Expr::Neg(Box::new(e)),
     }
 }
 
