@@ -509,8 +509,8 @@ const EARLY_FORM_TERMS: usize = 512;
 /// `closed::report_form_prepared`): 421 rows change, 274 print shorter (4,614 characters in
 /// all), 62 as long, 85 longer (1,934 characters; a 7-joint arm's `dq[7]` by 93, where its own
 /// search found a grouping the search of its partner did not). Instructions (callgrind, one
-/// thread, session 31): Jaco-style arm 78.3 M -> 57.1 M with the other changes of the
-/// session, PUMA 560 21.1 M -> 15.9 M.
+/// thread, session 31), the turns alone: Jaco-style arm 115.6 M -> 78.3 M, PUMA 560 21.1 M ->
+/// 16.6 M.
 fn pose_forms(
     entries: &[&Scalar],
     found: Vec<Option<PoseForm>>,
