@@ -483,14 +483,7 @@ pub(crate) fn turned_form(from: &Expr, t: &Turned, x: &Scalar) -> Option<Expr> {
         agrees_turned(&e, from, t)
     };
     #[cfg(test)]
-    counts::COUNTS.with(|c| {
-        let (made, failed) = c.get();
-        c.set(if good {
-            (made + 1, failed)
-        } else {
-            (made, failed + 1)
-        });
-    });
+    counts::count(good);
     good.then_some(e)
 }
 
@@ -524,14 +517,7 @@ pub(crate) fn turned_placeholder_form(from: &Expr, t: &Turned, x: &Scalar) -> Op
     let e = quarter_turned_placeholder_form(from.clone(), &t.turn.0).scaled(&t.factor.to_big());
     let good = super::verified(&e, x);
     #[cfg(test)]
-    counts::COUNTS.with(|c| {
-        let (made, failed) = c.get();
-        c.set(if good {
-            (made + 1, failed)
-        } else {
-            (made, failed + 1)
-        });
-    });
+    counts::count(good);
     good.then_some(e)
 }
 
@@ -541,5 +527,17 @@ pub(crate) mod counts {
     thread_local! {
         pub(crate) static COUNTS: std::cell::Cell<(u64, u64)> =
             const { std::cell::Cell::new((0, 0)) };
+    }
+
+    /// One turned form counted, made (`good`) or failed.
+    pub(crate) fn count(good: bool) {
+        COUNTS.with(|c| {
+            let (made, failed) = c.get();
+            c.set(if good {
+                (made + 1, failed)
+            } else {
+                (made, failed + 1)
+            });
+        });
     }
 }
