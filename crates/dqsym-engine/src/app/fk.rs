@@ -573,21 +573,16 @@ const TURNED_TERMS: usize = 8;
 /// joint's, when revolute and their values plain symbols (`Rz(q1)` first: the matrix's second
 /// row is a turn of its first; the last joint's turn relates its first two columns).
 pub(super) fn pose_turns(robot: &Robot) -> (Vec<Turn>, Vec<Turn>) {
-    let first = robot
-        .chain
-        .joints
-        .first()
-        .zip(robot.joint_values.first())
-        .filter(|(j, _)| j.kind == JointKind::Revolute)
-        .and_then(|(_, v)| v.as_plain_symbol());
-    let last = robot
-        .chain
-        .joints
-        .last()
-        .zip(robot.joint_values.last())
-        .filter(|(j, _)| j.kind == JointKind::Revolute)
-        .and_then(|(_, v)| v.as_plain_symbol());
-    let mut syms: Vec<Sym> = first.into_iter().collect();
+    // The symbol of joint `i`, when it is revolute and its value is one.
+    let angle = |i: usize| {
+        let joint = robot.chain.joints.get(i)?;
+        let value = robot.joint_values.get(i)?;
+        (joint.kind == JointKind::Revolute)
+            .then(|| value.as_plain_symbol())
+            .flatten()
+    };
+    let mut syms: Vec<Sym> = angle(0).into_iter().collect();
+    let last = robot.chain.joints.len().checked_sub(1).and_then(angle);
     if let Some(l) = last.filter(|l| !syms.contains(l)) {
         syms.push(l);
     }
@@ -1321,7 +1316,7 @@ mod tests {
         (entries, vars)
     }
 
-    /// The turn of a scalar term by term ([`turned_scalar`]) is the scalar shift of its
+    /// The turn of a scalar term by term (`turn::turned_scalar`) is the scalar shift of its
     /// angles (the canonical rewrite), on the entries of random chains (offsets of ninths,
     /// tenths and eighteenths of pi on some joints, prismatic joints, symbolic twists) turned
     /// by half and quarter turns of each variable, and by a turn that is not one (pi/3: no
@@ -1356,7 +1351,7 @@ mod tests {
         );
     }
 
-    /// A closed form turned ([`turned`]) is the closed form of its scalar turned, exactly, on
+    /// A closed form turned (`turn::turned`) is the closed form of its scalar turned, exactly, on
     /// the closed forms of random chains' entries; an angle the turn does not take to a
     /// quarter turn (half a variable turned by a quarter) leaves no form.
     #[test]

@@ -1432,53 +1432,7 @@ mod tests {
     /// `joints` revolute joints in the Jaco-style arm's shape (twists pi/3, pi/6, pi/2,
     /// angles offset by `k pi/9` one time in two, symbolic lengths).
     fn chain_entries(seed: u64, joints: usize) -> Vec<Scalar> {
-        let mut next = crate::testing::xorshift_below(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
-        let pi = |p: i64, q: i64| Scalar::pi() * small(&Small::new(p, q));
-        let mut m: Vec<Vec<Scalar>> = (0..4)
-            .map(|i| (0..4).map(|j| Scalar::int(i64::from(i == j))).collect())
-            .collect();
-        for j in 1..=joints {
-            let mut theta = Scalar::sym(&format!("q{j}"));
-            if next(2) == 0 {
-                theta = theta + pi(1 + next(17) as i64, 9);
-            }
-            let alpha = pi(1, [3, 6, 2][next(3) as usize]);
-            let (a, d) = (Scalar::sym(&format!("a{j}")), Scalar::sym(&format!("d{j}")));
-            let (ct, st, ca, sa) = (
-                theta.clone().cos(),
-                theta.sin(),
-                alpha.clone().cos(),
-                alpha.sin(),
-            );
-            let z = Scalar::int(0);
-            let t = [
-                [
-                    ct.clone(),
-                    -(st.clone() * ca.clone()),
-                    st.clone() * sa.clone(),
-                    a.clone() * ct.clone(),
-                ],
-                [
-                    st.clone(),
-                    ct.clone() * ca.clone(),
-                    -(ct * sa.clone()),
-                    a * st,
-                ],
-                [z.clone(), sa, ca, d],
-                [z.clone(), z.clone(), z, Scalar::int(1)],
-            ];
-            m = (0..4)
-                .map(|i| {
-                    (0..4)
-                        .map(|k| {
-                            (0..4).fold(Scalar::int(0), |acc, l| {
-                                acc + m[i][l].clone() * t[l][k].clone()
-                            })
-                        })
-                        .collect()
-                })
-                .collect();
-        }
+        let m = super::super::tests::chain_matrix(seed, joints, 4);
         let mut out: Vec<Scalar> = (0..3).map(|i| m[i][3].clone()).collect();
         out.extend((0..3).map(|k| m[0][k].clone()));
         out

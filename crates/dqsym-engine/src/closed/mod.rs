@@ -113,7 +113,8 @@
 //! Context); an `fk` report's entry that is a rational multiple of another with a joint angle
 //! turned by a quarter or half turn (`turn.rs`: the second half of a dual quaternion whose first
 //! joint turns about z, `Rz(q1) M`'s second row) takes the other's form turned, checked, not a
-//! search of its own, a form that can differ from its own search's; across an `fk` report one offset per angle direction (`common.rs`, `CommonOffsets`):
+//! search of its own, a form that can differ from its own search's; across an `fk` report one
+//! offset per angle direction (`common.rs`, `CommonOffsets`):
 //! each angle `l (g . x + t pi)` (`g` primitive) votes for `t` once per pose entry, directions of
 //! fewer symbols first and then by votes fix one offset vector `o` (ties: non-negative, then
 //! smallest), and every entry's angle whose offset differs from `l (g . o)` by a multiple of pi/2
@@ -404,10 +405,10 @@ fn joined(e: Expr, x: &Scalar, outermost: bool) -> Expr {
 /// may be the hint's (see [`report_form_prepared`]).
 ///
 /// With offsets absorbed (`offsets.rs`), the shifted form `e` is found first and, with
-/// [`AsGiven::Searched`], the form as given is searched with `e`'s key as its cap ([`best_of`]'s `cap`): the form as given is
-/// taken only when [`alt::shorter`] than `e`, so a search of it that gives up on forms not
-/// below `e` changes nothing. Where [`as_given_may_win`] (a measured rule, not a proven one)
-/// says it cannot win, it is not made. Otherwise the choice is the same as searching both in
+/// [`AsGiven::Searched`], the form as given is searched with `e`'s key as its cap ([`best_of`]'s
+/// `cap`): the form as given is taken only when [`alt::shorter`] than `e`, so a search of it
+/// that gives up on forms not below `e` changes nothing. Where [`as_given_may_win`] (a
+/// measured rule, not a proven one) says it cannot win, it is not made. Otherwise the choice is the same as searching both in
 /// full:
 /// - the capped search gives the uncapped search's form whenever either is strictly below
 ///   the cap (`alt::best_alternative_below`; every other step is the same), so when the form
@@ -1196,10 +1197,22 @@ mod tests {
     /// Jaco-style arm's shape): twists pi/3, pi/6 or pi/2, and each joint angle offset by
     /// `k pi/9` one time in two (`Rz(theta) Rx(alpha)` multiplied out, expanded).
     fn chain_rotation(seed: u64, joints: usize) -> Vec<Scalar> {
+        chain_matrix(seed, joints, 3)
+            .into_iter()
+            .flatten()
+            .collect()
+    }
+
+    /// The top-left `size` x `size` block (3: the rotation; 4: the homogeneous matrix, lengths
+    /// `a{j}`, `d{j}` symbolic) of the product of the links of a pseudo-random DH chain of
+    /// `joints` revolute joints in the Jaco-style arm's shape, as [`chain_rotation`] draws it:
+    /// the block of each link multiplied out, expanded (the rotation block of a product of
+    /// homogeneous matrices is the product of their rotation blocks).
+    pub(super) fn chain_matrix(seed: u64, joints: usize, size: usize) -> Vec<Vec<Scalar>> {
         let mut next = crate::testing::xorshift_below(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
         let pi = |p: i64, q: i64| Scalar::pi() * Scalar::from_q(Q::new(p, q));
-        let mut m: Vec<Vec<Scalar>> = (0..3)
-            .map(|i| (0..3).map(|j| Scalar::int(i64::from(i == j))).collect())
+        let mut m: Vec<Vec<Scalar>> = (0..size)
+            .map(|i| (0..size).map(|j| Scalar::int(i64::from(i == j))).collect())
             .collect();
         for j in 1..=joints {
             let mut theta = s(&format!("q{j}"));
@@ -1207,6 +1220,7 @@ mod tests {
                 theta = theta + pi(1 + next(17) as i64, 9);
             }
             let alpha = pi(1, [3, 6, 2][next(3) as usize]);
+            let (a, d) = (s(&format!("a{j}")), s(&format!("d{j}")));
             let (ct, st, ca, sa) = (
                 theta.clone().cos(),
                 theta.sin(),
@@ -1214,28 +1228,35 @@ mod tests {
                 alpha.sin(),
             );
             let z = Scalar::int(0);
-            let r = [
+            let t = [
                 [
                     ct.clone(),
                     -(st.clone() * ca.clone()),
                     st.clone() * sa.clone(),
+                    a.clone() * ct.clone(),
                 ],
-                [st, ct.clone() * ca.clone(), -(ct * sa.clone())],
-                [z, sa, ca],
+                [
+                    st.clone(),
+                    ct.clone() * ca.clone(),
+                    -(ct * sa.clone()),
+                    a * st,
+                ],
+                [z.clone(), sa, ca, d],
+                [z.clone(), z.clone(), z, Scalar::int(1)],
             ];
-            m = (0..3)
+            m = (0..size)
                 .map(|i| {
-                    (0..3)
+                    (0..size)
                         .map(|k| {
-                            (0..3).fold(Scalar::int(0), |acc, l| {
-                                acc + m[i][l].clone() * r[l][k].clone()
+                            (0..size).fold(Scalar::int(0), |acc, l| {
+                                acc + m[i][l].clone() * t[l][k].clone()
                             })
                         })
                         .collect()
                 })
                 .collect();
         }
-        m.into_iter().flatten().collect()
+        m
     }
 
     /// The measured rule of [`as_given_may_win`] changes no chosen form where it skips the

@@ -1280,11 +1280,7 @@ impl Shift {
                     let d = dot_of_pairs(t.mode.freq.iter().filter_map(|(s, k)| {
                         v.iter().find(|(x, _)| x == s).map(|(_, d)| (*k, *d))
                     }));
-                    let twice = d * Small::from_integer(2);
-                    if !twice.is_integer() {
-                        return None;
-                    }
-                    let turn = twice.numer().rem_euclid(4);
+                    let turn = super::turn::quarters(d)?;
                     last = Some((&t.mode.freq, turn));
                     turn
                 }
@@ -1317,22 +1313,7 @@ impl Shift {
         let turned: Vec<Term> = terms
             .iter()
             .zip(turns)
-            .map(|(t, turn)| {
-                let mut t = t.clone();
-                let negate = match turn {
-                    1 => !t.mode.sin,
-                    2 => true,
-                    3 => t.mode.sin,
-                    _ => false,
-                };
-                if turn % 2 == 1 {
-                    t.mode.sin = !t.mode.sin;
-                }
-                if negate {
-                    t.coef = -t.coef;
-                }
-                t
-            })
+            .map(|(t, turn)| super::turn::quarter_turned_term(t, i64::from(turn)))
             .collect();
         Some(if quarter {
             Scalar::from_terms_settled(turned)

@@ -7,15 +7,15 @@
 //! `y` with each call turned (`cos(q1/2 + pi/2) = -sin(q1/2)`: [`turned`]), found without a
 //! search of its own, and checked against `x` like every closed form.
 //!
-//! What is exact and what is not: the pairs are found exactly (the turned scalar is
-//! [`Scalar::shift_angles`], compared up to a rational factor by [`ProportionalKey`]), and
+//! What is exact and what is not: the pairs are found exactly (the turned scalar made term by
+//! term, [`turned_scalar`], compared up to a rational factor by [`ProportionalKey`]), and
 //! every turned form is checked against its entry (exactly in debug builds, numerically first
 //! in release builds). The form is the turn of the other's, not necessarily the one a search
 //! of `x` would give: the search's costs see signs and its ties the order of the atoms, which
 //! a turn changes (see `app/fk.rs` for what that changes in the reports).
 
 use super::expr::{quarter_turned, Expr};
-use crate::scalar::{FxHasher, ProportionalKey, Small, Sym, Trig, Q};
+use crate::scalar::{trig_placeholder_name, FxHasher, ProportionalKey, Small, Sym, Term, Trig, Q};
 use crate::Scalar;
 use num_traits::CheckedMul;
 use std::collections::HashMap;
@@ -28,7 +28,7 @@ pub(crate) type Turn = (Sym, Small);
 /// (entries[from])`.
 #[derive(Clone, Debug)]
 pub(crate) struct Turned {
-    /// The entry it is a turn of (earlier in the list, not itself turned).
+    /// The entry it is a turn of (earlier in the list; itself a turn of another or not).
     pub(crate) from: usize,
     /// The turn, as given.
     pub(crate) turn: Turn,
@@ -127,6 +127,26 @@ fn turned_entries_with(
     out
 }
 
+/// A phase `d` (a multiple of pi) in quarter turns modulo 4, when it is a multiple of 1/2.
+pub(crate) fn quarters(d: Small) -> Option<i64> {
+    let q = d.checked_mul(&Small::from_integer(2))?;
+    q.is_integer().then(|| q.numer().rem_euclid(4))
+}
+
+/// The term `t` with its angle turned by `q` quarter turns (`trig(a + q pi/2)`, written as
+/// [`quarter_turned`] writes it: `cos` into `-sin` for one, the term negated for two): the
+/// same angle and offset, its cosine and sine swapped for odd `q`, its sign turned.
+pub(crate) fn quarter_turned_term(t: &Term, q: i64) -> Term {
+    let f = if t.mode.sin { Trig::Sin } else { Trig::Cos };
+    let (g, neg) = quarter_turned(f, q);
+    let mut moved = t.clone();
+    moved.mode.sin = g.is_sin();
+    if neg {
+        moved.coef = -moved.coef;
+    }
+    moved
+}
+
 /// `x` with `turn` applied, term by term, when the turn moves every term it moves by
 /// quarter turns: `c cos(a + p pi)` with the symbol's coefficient `k` in `a` is `c cos(a + p
 /// pi + k t pi)`, and for `k t` a multiple of 1/2 that is `+-c cos` or `+-c sin` of the same
@@ -155,25 +175,14 @@ pub(crate) fn turned_scalar(x: &Scalar, turn: &Turn) -> Option<Scalar> {
             out.push(term.clone());
             continue;
         };
-        let quarters = k.checked_mul(t)?.checked_mul(&Small::from_integer(2))?;
-        if !quarters.is_integer() {
-            return None;
-        }
-        let f = if term.mode.sin { Trig::Sin } else { Trig::Cos };
-        let (g, neg) = quarter_turned(f, quarters.numer().rem_euclid(4));
-        let mut moved = term.clone();
-        moved.mode.sin = g.is_sin();
-        if neg {
-            moved.coef = -moved.coef;
-        }
-        out.push(moved);
+        out.push(quarter_turned_term(term, quarters(k.checked_mul(t)?)?));
     }
     Some(Scalar::from_terms_settled(out))
 }
 
 /// The placeholders of `cos(x)` and `sin(x)` ([`crate::scalar::trig_placeholder`]).
 fn placeholders(x: &Sym) -> [Sym; 2] {
-    [Trig::Cos, Trig::Sin].map(|f| Sym::new(&format!("{}({})", f.name(), x.name())))
+    [Trig::Cos, Trig::Sin].map(|f| Sym::new(&trig_placeholder_name(x.name(), f)))
 }
 
 /// A polynomial in cosine and sine placeholders turned by a quarter turn of the angle `x`:
@@ -379,15 +388,10 @@ pub(crate) fn turned(e: Expr, turn: &Turn) -> Option<Expr> {
             .iter()
             .find(|(s, _)| s == sym)
             .map(|(_, k)| *k)?;
-        let quarters = k
-            .checked_mul(t)
-            .and_then(|kt| kt.checked_mul(&Small::from_integer(2)))
-            .filter(Small::is_integer);
-        let Some(quarters) = quarters else {
+        let Some(q) = k.checked_mul(t).and_then(quarters) else {
             whole = false;
             return None;
         };
-        let q = quarters.numer().rem_euclid(4);
         if q == 0 {
             return None;
         }

@@ -15,7 +15,12 @@ use super::{Mode, Scalar, Term, Trig};
 
 /// The placeholder symbol standing for `cos(x)` (or `sin(x)`).
 pub fn trig_placeholder(x: &str, f: Trig) -> Scalar {
-    Scalar::sym(&format!("{}({x})", f.name()))
+    Scalar::sym(&trig_placeholder_name(x, f))
+}
+
+/// The name of [`trig_placeholder`]'s symbol: `cos(x)`.
+pub(crate) fn trig_placeholder_name(x: &str, f: Trig) -> String {
+    format!("{}({x})", f.name())
 }
 
 /// The angle symbol and function of a placeholder name: `("theta1", Trig::Cos)` for

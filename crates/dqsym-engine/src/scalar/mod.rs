@@ -40,6 +40,7 @@ mod shift;
 pub(crate) use arith::FxHasher;
 pub(crate) use atoms::{Mode, MonoRc, Small};
 pub use atoms::{Sym, Trig};
+pub(crate) use cs::trig_placeholder_name;
 pub use cs::{parse_trig_placeholder, trig_placeholder};
 pub(crate) use ctx::{
     charge, check_cancelled, max_angle_symbols, max_digits, term_limit, work_left, work_used, Poll,
