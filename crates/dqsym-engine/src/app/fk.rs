@@ -20,8 +20,8 @@ use crate::emit::{
     arguments, count_ops, generated_ops, latex_aligned, product_table, rotation_chain_ops, sympy,
     sympy_decimals, CodegenError, CodegenOptions, Counted, LatexOptions, Output,
 };
-use crate::kin::JointKind;
 use crate::kin::{dq_jacobian, MadeJoints, Robot};
+use crate::kin::{JointGeometry, JointKind};
 use crate::print::{legend, plain, plain_len_bound, Format, PlainOptions};
 use crate::scalar::{join, par_map, with_own_budget};
 use crate::scalar::{FxHasher, ProportionalKey, SampledKey, Small, Sym, Q};
@@ -582,9 +582,30 @@ pub(super) fn pose_turns(robot: &Robot) -> (Vec<Turn>, Vec<Turn>) {
             .flatten()
     };
     let mut syms: Vec<Sym> = angle(0).into_iter().collect();
-    let last = robot.chain.joints.len().checked_sub(1).and_then(angle);
+    let n = robot.chain.joints.len();
+    let last = n.checked_sub(1).and_then(angle);
     if let Some(l) = last.filter(|l| !syms.contains(l)) {
         syms.push(l);
+    }
+    // The twist that begins or ends the product, when it is a plain symbol: the last DH
+    // joint's `Rx(alpha)` (no tool frame after it) turns the matrix's columns 1 and 2 into
+    // each other, the first modified-DH joint's (no base frame before it) its rows 1 and 2.
+    let twist = |i: usize, dh: bool| match &robot.chain.joints.get(i)?.geometry {
+        JointGeometry::Dh { alpha, .. } if dh => alpha.as_plain_symbol(),
+        JointGeometry::Mdh { alpha, .. } if !dh => alpha.as_plain_symbol(),
+        _ => None,
+    };
+    let ends = [
+        robot.base_frames.is_empty().then(|| twist(0, false)),
+        robot
+            .tool_frames
+            .is_empty()
+            .then(|| n.checked_sub(1).and_then(|l| twist(l, true))),
+    ];
+    for t in ends.into_iter().flatten().flatten() {
+        if !syms.contains(&t) && !robot.variables.iter().any(|v| v == t.name()) {
+            syms.push(t);
+        }
     }
     let dq = syms
         .iter()
