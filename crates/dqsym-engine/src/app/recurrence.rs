@@ -48,6 +48,7 @@ const COS_SIN_FORMS_BUDGET: u64 = 4_000_000;
 
 /// The most bytes of plain text the closed forms of that matrix may take (RTB's Ball: 10 kB).
 const MAX_COS_SIN_TEXT: usize = 40_000;
+use crate::closed::rename::SignedRenaming;
 use crate::closed::turn;
 use crate::kin::MadeJoints;
 use crate::{closed::closed_form_cos_sin, DualQuat, Expr, Robot, Scalar, ScalarError};
@@ -150,6 +151,14 @@ pub(crate) fn recurrence_sections_printed(
             syms(&known, Step::Suffix, i)
         }
     };
+    // The symbols of `p(i)`, for `i <= n`.
+    let p_family = |i: usize| {
+        if i == n {
+            (Step::Factor, n)
+        } else {
+            (Step::Suffix, i)
+        }
+    };
     let comps =
         |name: &dyn Fn(usize) -> Quantity, d: &DualQuat<Scalar>| -> Vec<(Quantity, Scalar)> {
             d.components()
@@ -191,10 +200,13 @@ pub(crate) fn recurrence_sections_printed(
         learn(&known, &derivs);
         sections.push((SectionKind::FactorDerivatives, derivs));
     }
+    // The components of each product that are renamings of its first (see `component_hints`).
+    let mut renamed = Renamed::default();
     let mut steps: Vec<(Quantity, Scalar)> = Vec::new();
     for i in 2..=n {
         let rows = comps(&step(Step::Prefix, i), &(q(i - 1) * l(i)));
         learn(&known, &rows);
+        component_hints(&mut renamed, &step(Step::Prefix, i), &[(Step::Factor, i)]);
         steps.extend(rows);
     }
     sections.push((SectionKind::PrefixProducts, steps));
@@ -207,6 +219,7 @@ pub(crate) fn recurrence_sections_printed(
         for i in (2..n).rev() {
             let rows = comps(&step(Step::Suffix, i), &(l(i) * p(i + 1)));
             learn(&known, &rows);
+            component_hints(&mut renamed, &step(Step::Suffix, i), &[p_family(i + 1)]);
             suffix.extend(rows);
         }
         sections.push((SectionKind::SuffixProducts, suffix));
@@ -255,12 +268,79 @@ pub(crate) fn recurrence_sections_printed(
                 jac.push((Quantity::J { row: k, col: j }, c[k].clone()));
             }
         }
+        // Each term of column v ends in `P{i+1}`, or in `dL{n}` for the last joint.
+        for (j, v) in robot.variables.iter().enumerate() {
+            let lasts: Vec<(Step, usize)> = (1..=n)
+                .filter(|&i| joint_var.get(i - 1).and_then(Option::as_ref) == Some(v))
+                .map(|i| {
+                    if i == n {
+                        (Step::FactorDerivative, n)
+                    } else {
+                        p_family(i + 1)
+                    }
+                })
+                .collect();
+            component_hints(&mut renamed, &|k| Quantity::J { row: k, col: j }, &lasts);
+        }
         sections.push((SectionKind::Jacobian { recurrence: true }, jac));
     }
 
     check_names(robot, &joints, o, &sections)?;
-    Ok((with_closed_forms(sections, t_forms)?, texts))
+    Ok((with_closed_forms(sections, t_forms, &renamed)?, texts))
 }
+
+/// Entries that may be renamings of others ([`SignedRenaming`]): by entry, the entry it would
+/// be that renaming of. A hint only: [`shared_closed_forms`] takes it when the renamed scalar
+/// is the entry, exactly.
+type Renamed = HashMap<Quantity, (Quantity, SignedRenaming)>;
+
+/// The hints of a product's components `name(0..8)` whose terms end in factors with the
+/// symbols of `lasts` (`(step, joint)`: `Q2_0`..`Q2_7`). Component `k` of a product `X` is
+/// component 0 of `X v` with `v = -i, -j, -k` for `k = 1, 2, 3` (`w(X (-i)) = x(X)`), and
+/// component `4 + k` is component 4 of it (the dual part is multiplied by `v` alike); `X v`
+/// ends in `B v` where `X` ends in `B`, whose components are `B`'s permuted with signs
+/// ([`UNIT_PRODUCTS`]). So component `k` is component 0 (or 4) with each last factor's
+/// symbols renamed so.
+fn component_hints(
+    renamed: &mut Renamed,
+    name: &dyn Fn(usize) -> Quantity,
+    lasts: &[(Step, usize)],
+) {
+    if lasts.is_empty() {
+        return;
+    }
+    let families: Vec<[crate::Sym; 8]> = lasts
+        .iter()
+        .map(|&(step, joint)| {
+            std::array::from_fn(|c| crate::Sym::new(&Quantity::Step { step, joint, k: c }.symbol()))
+        })
+        .collect();
+    for (k, images) in UNIT_PRODUCTS.iter().enumerate() {
+        let mut map: Vec<(crate::Sym, crate::Sym, bool)> = Vec::with_capacity(8 * lasts.len());
+        for b in &families {
+            for (c, &(to, neg)) in images.iter().enumerate() {
+                for part in [0, 4] {
+                    map.push((b[part + c].clone(), b[part + to].clone(), neg));
+                }
+            }
+        }
+        let Some(r) = SignedRenaming::new(map) else {
+            return;
+        };
+        renamed.insert(name(k + 1), (name(0), r.clone()));
+        renamed.insert(name(k + 5), (name(4), r));
+    }
+}
+
+/// The components of `B v` for `v = -i, -j, -k`: component `c` (of the real part, and of
+/// the dual part alike) is component `to` of `B`, negated when `neg` (`B (-i) = (B1, -B0,
+/// -B3, B2)`). Checked against the product of dual quaternions by the test
+/// `component_hints_are_the_products_by_units`.
+const UNIT_PRODUCTS: [[(usize, bool); 4]; 3] = [
+    [(1, false), (0, true), (3, true), (2, false)],
+    [(2, false), (3, false), (0, true), (1, true)],
+    [(3, false), (2, true), (1, false), (0, true)],
+];
 
 /// The plain text (shorthand, no decimals) of each row of the matrix made in cosines and
 /// sines, in order: printed to measure it ([`MAX_COS_SIN_TEXT`]), and kept for the report,
@@ -379,21 +459,50 @@ fn check_names<'a>(
     Ok(())
 }
 
+#[cfg(test)]
+thread_local! {
+    /// Tests: [`with_closed_forms`] on this thread takes no hint ([`component_hints`]): the
+    /// reference the renamed forms are compared with.
+    static NO_HINTS: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Whether a test asked for the forms without hints ([`NO_HINTS`]).
+fn no_hints_in_tests() -> bool {
+    #[cfg(test)]
+    return NO_HINTS.with(std::cell::Cell::get);
+    #[cfg(not(test))]
+    false
+}
+
 /// The sections with every entry in closed form: the matrix's `t_forms` when they were made
 /// already, the others each shape's once ([`shared_closed_forms`]).
 fn with_closed_forms(
     sections: Staged,
     t_forms: Option<Vec<Result<Expr, ScalarError>>>,
+    renamed: &Renamed,
 ) -> Result<Vec<Section>, ReportError> {
     // The matrix's closed forms, when already made, are not made again.
     let have_t = t_forms.is_some();
     let done = |t: &SectionKind| matches!(t, SectionKind::Matrix(_)) && have_t;
-    let all: Vec<&Scalar> = sections
+    let rows: Vec<&(Quantity, Scalar)> = sections
         .iter()
         .filter(|(t, _)| !done(t))
-        .flat_map(|(_, rows)| rows.iter().map(|(_, x)| x))
+        .flat_map(|(_, rows)| rows)
         .collect();
-    let mut forms = shared_closed_forms(&all).into_iter();
+    let all: Vec<&Scalar> = rows.iter().map(|(_, x)| x).collect();
+    let at: HashMap<Quantity, usize, BuildHasherDefault<FxHasher>> =
+        rows.iter().enumerate().map(|(k, (q, _))| (*q, k)).collect();
+    let hints: Vec<Option<(usize, &SignedRenaming)>> = rows
+        .iter()
+        .map(|(q, _)| {
+            if no_hints_in_tests() {
+                return None;
+            }
+            let (from, r) = renamed.get(q)?;
+            Some((*at.get(from)?, r))
+        })
+        .collect();
+    let mut forms = shared_closed_forms(&all, &hints).into_iter();
     let mut t_forms = t_forms.into_iter().flatten();
     sections
         .into_iter()
@@ -468,7 +577,7 @@ fn shape(x: &Scalar, symbols: Vec<crate::Sym>, holders: &[crate::Sym]) -> Option
 
 /// `e` with the placeholders renamed back to `symbols` (placeholder `k` to `symbols[k]`).
 fn unshape(e: Expr, symbols: &[crate::Sym]) -> Expr {
-    let back = |s: crate::Sym| -> crate::Sym {
+    map_syms(e, &|s: crate::Sym| -> crate::Sym {
         match s
             .name()
             .strip_prefix('~')
@@ -477,26 +586,59 @@ fn unshape(e: Expr, symbols: &[crate::Sym]) -> Expr {
             Some(k) if k < symbols.len() => symbols[k].clone(),
             _ => s,
         }
-    };
-    match e {
-        Expr::Sym(s) => Expr::Sym(back(s)),
-        Expr::Trig { f, mut angle } => {
-            angle.terms = angle.terms.into_iter().map(|(s, k)| (back(s), k)).collect();
-            Expr::Trig { f, angle }
+    })
+}
+
+/// `e` with `symbols` (sorted by name) renamed to the placeholders of their places, as
+/// [`shape`] renames an entry: the inverse of [`unshape`].
+fn reshape(e: Expr, symbols: &[crate::Sym], holders: &[crate::Sym]) -> Expr {
+    map_syms(e, &|s: crate::Sym| -> crate::Sym {
+        match symbols.binary_search_by(|o| o.name().cmp(s.name())) {
+            Ok(k) if k < holders.len() => holders[k].clone(),
+            _ => s,
         }
-        Expr::Add(v) => Expr::Add(v.into_iter().map(|e| unshape(e, symbols)).collect()),
-        Expr::Mul(v) => Expr::Mul(v.into_iter().map(|e| unshape(e, symbols)).collect()),
-        Expr::Neg(e) => Expr::Neg(Box::new(unshape(*e, symbols))),
-        Expr::Pow(e, n) => Expr::Pow(Box::new(unshape(*e, symbols)), n),
+    })
+}
+
+/// `e` with each symbol `s` (of a monomial or an angle) renamed to `f(s)`.
+fn map_syms(e: Expr, f: &dyn Fn(crate::Sym) -> crate::Sym) -> Expr {
+    match e {
+        Expr::Sym(s) => Expr::Sym(f(s)),
+        Expr::Trig { f: g, mut angle } => {
+            angle.terms = angle.terms.into_iter().map(|(s, k)| (f(s), k)).collect();
+            Expr::Trig { f: g, angle }
+        }
+        Expr::Add(v) => Expr::Add(v.into_iter().map(|e| map_syms(e, f)).collect()),
+        Expr::Mul(v) => Expr::Mul(v.into_iter().map(|e| map_syms(e, f)).collect()),
+        Expr::Neg(e) => Expr::Neg(Box::new(map_syms(*e, f))),
+        Expr::Pow(e, n) => Expr::Pow(Box::new(map_syms(*e, f)), n),
         e => e,
     }
+}
+
+/// What a distinct entry's closed form is made from: its own search, or the renaming of
+/// another entry's form (`from`, an entry before `entry`: [`SignedRenaming`]).
+enum Slot<'a> {
+    Search(&'a Scalar),
+    Renamed {
+        entry: usize,
+        from: usize,
+        renaming: &'a SignedRenaming,
+    },
 }
 
 /// The closed form of every entry, each shape's once (in parallel, in order of first
 /// appearance, so the result does not depend on the threads). The renaming keeps the order of
 /// the symbols, and closed forms only compare symbols, so an entry's form is its shape's form
-/// renamed back, of the same value (checked exactly in debug builds).
-fn shared_closed_forms(all: &[&Scalar]) -> Vec<Result<Expr, ScalarError>> {
+/// renamed back, of the same value (checked exactly in debug builds). An entry of a new shape
+/// with a hint (`hints[k]`: an earlier entry and a [`SignedRenaming`], see
+/// [`component_hints`]) whose renamed scalar is the entry, exactly, takes that entry's form
+/// renamed, checked, instead of a search (the symbolic 6R's prefix products and Jacobian: 24
+/// of 47 searches).
+fn shared_closed_forms(
+    all: &[&Scalar],
+    hints: &[Option<(usize, &SignedRenaming)>],
+) -> Vec<Result<Expr, ScalarError>> {
     let symbols: Vec<(&Scalar, Option<Vec<crate::Sym>>)> = par_map(all, |x| (*x, shape_symbols(x)));
     // The placeholders interned once for every entry.
     let most = symbols
@@ -513,42 +655,88 @@ fn shared_closed_forms(all: &[&Scalar]) -> Vec<Result<Expr, ScalarError>> {
     // std's SipHash of every term of every entry was 2.3 M instructions of a fully symbolic
     // 6R's report. Only looked up, never iterated: the order is the entries'.
     let mut index: HashMap<SampledKey, usize, BuildHasherDefault<FxHasher>> = HashMap::default();
-    let mut distinct: Vec<&Scalar> = Vec::new();
+    let mut slots: Vec<Slot> = Vec::new();
+    let renames = |k: usize| -> Option<(usize, &SignedRenaming)> {
+        let (from, r) = hints.get(k).copied().flatten()?;
+        (from < k && r.scalar(all[from]).as_ref() == Some(all[k])).then_some((from, r))
+    };
     let keys: Vec<usize> = all
         .iter()
         .zip(&shapes)
-        .map(|(x, sh)| {
-            let key = sh.as_ref().map_or(*x, |(k, _)| k);
+        .enumerate()
+        .map(|(k, (x, sh))| {
+            let key = sh.as_ref().map_or(*x, |(s, _)| s);
             *index.entry(SampledKey(key)).or_insert_with(|| {
-                distinct.push(key);
-                distinct.len() - 1
+                slots.push(match renames(k) {
+                    Some((from, renaming)) => Slot::Renamed {
+                        entry: k,
+                        from,
+                        renaming,
+                    },
+                    None => Slot::Search(key),
+                });
+                slots.len() - 1
             })
         })
         .collect();
     // `closed_form_cos_sin` is `closed_form` on every entry without cos/sin placeholders.
-    let forms = par_map(&distinct, |x| closed_form_cos_sin(x));
-    keys.iter()
-        .zip(shapes.iter().zip(all))
-        .map(|(&k, (sh, x))| {
-            let e = forms[k].clone()?;
-            Ok(match sh {
-                None => e,
-                Some((_, symbols)) => {
-                    let e = unshape(e, symbols);
-                    // A limit reached by the check itself (the budget is shared) proves
-                    // nothing either way. Only debug builds expand the form to check it
-                    // (release builds spent 3.6% of a symbolic 6R's report on a value
-                    // they threw away).
-                    if cfg!(debug_assertions) {
-                        let d = e.to_scalar() - *x;
-                        debug_assert!(
-                            d.as_error().is_some() || d.is_zero_value(),
-                            "a shared closed form differs from its entry"
-                        );
-                    }
-                    e
-                }
-            })
+    let searched: Vec<(usize, &Scalar)> = slots
+        .iter()
+        .enumerate()
+        .filter_map(|(k, s)| match s {
+            Slot::Search(x) => Some((k, *x)),
+            Slot::Renamed { .. } => None,
+        })
+        .collect();
+    let made = par_map(&searched, |(_, x)| closed_form_cos_sin(x));
+    let mut forms: Vec<Option<Result<Expr, ScalarError>>> = vec![None; slots.len()];
+    for ((k, _), f) in searched.iter().zip(made) {
+        forms[*k] = Some(f);
+    }
+    // An entry's own form from its slot's (a shape's, in placeholders).
+    let own = |forms: &[Option<Result<Expr, ScalarError>>], k: usize| {
+        let e = forms[keys[k]]
+            .clone()
+            .expect("a slot's form is made before its uses")?;
+        Ok(match &shapes[k] {
+            None => e,
+            Some((_, symbols)) => unshape(e, symbols),
+        })
+    };
+    // The renamed slots in order: each one's source is an earlier entry, of an earlier slot.
+    for s in 0..slots.len() {
+        let Slot::Renamed {
+            entry,
+            from,
+            renaming,
+        } = slots[s]
+        else {
+            continue;
+        };
+        let x = all[entry];
+        let e = own(&forms, from)
+            .ok()
+            .and_then(|f| renaming.renamed_form(&f, x))
+            .map_or_else(|| closed_form_cos_sin(x), Ok);
+        forms[s] = Some(e.map(|e| match &shapes[entry] {
+            None => e,
+            Some((_, symbols)) => reshape(e, symbols, &holders),
+        }));
+    }
+    (0..all.len())
+        .map(|k| {
+            let e = own(&forms, k)?;
+            // A limit reached by the check itself (the budget is shared) proves nothing
+            // either way. Only debug builds expand the form to check it (release builds spent
+            // 3.6% of a symbolic 6R's report on a value they threw away).
+            if cfg!(debug_assertions) && shapes[k].is_some() {
+                let d = e.to_scalar() - all[k];
+                debug_assert!(
+                    d.as_error().is_some() || d.is_zero_value(),
+                    "a shared closed form differs from its entry"
+                );
+            }
+            Ok(e)
         })
         .collect()
 }
@@ -649,7 +837,9 @@ mod tests {
             assert_eq!(failed, 0, "{:?}", robot.chain);
             turned += made;
             if robot.variables[0] == "theta1" {
-                assert_eq!(made, 4, "the symbolic 4R's second row");
+                // Its second row turned from its first in `theta1`, and its third column
+                // from its second in the last twist `alpha4` (rows 0 and 2).
+                assert_eq!(made, 6, "the symbolic 4R's second row and third column");
             }
             for (x, f) in cells.iter().zip(&forms) {
                 let own = closed_form_cos_sin(x).expect("a form");
@@ -657,12 +847,134 @@ mod tests {
                 assert_eq!(f.to_scalar(), own.to_scalar(), "{x}");
             }
         }
-        // The 4R's second row (the last robot's four), and rows of random DH chains (an MDH
+        // The 4R's six (the last robot's), and rows of random DH chains (an MDH
         // chain's first twist, or a prismatic first joint, leaves its rows unrelated).
         assert!(
             matrices >= 8 && turned >= 8,
             "{matrices} matrices, {turned} turned"
         );
+    }
+
+    /// `UNIT_PRODUCTS` is the product by `-i`, `-j`, `-k` of a dual quaternion in symbols;
+    /// and each component of a product (of two and of three factors, and of a sum of two such
+    /// with different last factors, a mimic joint's column) is its first or fourth renamed by
+    /// the renaming `component_hints` gives.
+    #[test]
+    fn component_hints_are_the_products_by_units() {
+        let dq = |step: Step, joint: usize| {
+            DualQuat::from_components(std::array::from_fn(|k| {
+                Scalar::sym(&Quantity::Step { step, joint, k }.symbol())
+            }))
+        };
+        let b = dq(Step::Factor, 3);
+        let bc = b.components();
+        let units = [[0, -1, 0, 0], [0, 0, -1, 0], [0, 0, 0, -1]];
+        for (images, v) in UNIT_PRODUCTS.iter().zip(units) {
+            let [w, x, y, z] = v.map(Scalar::int);
+            let bv = (b.clone() * DualQuat::from_real(crate::Quat::new(w, x, y, z))).components();
+            for (c, &(to, neg)) in images.iter().enumerate() {
+                for part in [0, 4] {
+                    let want = bc[part + to].clone();
+                    let want = if neg { -want } else { want };
+                    assert_eq!(bv[part + c], want);
+                }
+            }
+        }
+        let (q2, l3, p4, p3) = (
+            dq(Step::Prefix, 2),
+            dq(Step::Factor, 3),
+            dq(Step::Suffix, 4),
+            dq(Step::Suffix, 3),
+        );
+        let products: Vec<(DualQuat<Scalar>, Vec<(Step, usize)>)> = vec![
+            (q2.clone() * l3.clone(), vec![(Step::Factor, 3)]),
+            (
+                q2.clone() * l3.clone() * p4.clone(),
+                vec![(Step::Suffix, 4)],
+            ),
+            (
+                q2.clone() * p4 + l3 * p3,
+                vec![(Step::Suffix, 4), (Step::Suffix, 3)],
+            ),
+        ];
+        for (x, lasts) in products {
+            let x = x.components();
+            let name = |k: usize| Quantity::Dq(k);
+            let mut renamed = Renamed::default();
+            component_hints(&mut renamed, &name, &lasts);
+            assert_eq!(renamed.len(), 6);
+            for k in [1, 2, 3, 5, 6, 7] {
+                let (from, r) = &renamed[&name(k)];
+                let Quantity::Dq(from) = *from else {
+                    panic!("{from:?}")
+                };
+                assert_eq!(from, if k < 4 { 0 } else { 4 });
+                assert_eq!(r.scalar(&x[from]).as_ref(), Some(&x[k]), "component {k}");
+            }
+        }
+    }
+
+    /// The recurrences of a symbolic 4R and of random chains (whose constants, the zeros of
+    /// planar links, break some renamings: those entries are searched) with and without the
+    /// renamed forms: every row has the value of its entry's own form, exactly, the rows of
+    /// the products of the symbolic chain are renamed (at least 24: three of every four
+    /// components of its prefix products and Jacobian columns), and no renamed form is longer
+    /// than its entry's own.
+    #[test]
+    fn renamed_rows_of_a_recurrence_are_their_entries() {
+        let mut next = crate::testing::xorshift_below(0x7e57_0032);
+        let mut robots: Vec<Robot> = (0..6)
+            .map(|_| crate::kin::random_test_chain(&mut next, 5))
+            .collect();
+        let s = |name: &str, i: usize| Scalar::sym(&format!("{name}{i}"));
+        let mut r4 = crate::kin::random_test_chain(&mut next, 4);
+        r4.chain = crate::kin::Chain::new(
+            (1..=4)
+                .map(|i| {
+                    crate::kin::Joint::revolute_dh(
+                        Scalar::int(0),
+                        s("d", i),
+                        s("a", i),
+                        s("alpha", i),
+                    )
+                })
+                .collect(),
+        );
+        r4.variables = (1..=4).map(|i| format!("theta{i}")).collect();
+        r4.joint_values = (1..=4).map(|i| s("theta", i)).collect();
+        robots.push(r4);
+        let o = FkOptions {
+            jacobian: true,
+            ..FkOptions::default()
+        };
+        let po = crate::print::PlainOptions {
+            shorthand: false,
+            decimals: false,
+        };
+        let mut total = 0;
+        for robot in &robots {
+            let _in = crate::Context::new().with_threads(1).enter();
+            turn::counts::COUNTS.with(|c| c.set((0, 0)));
+            let with = recurrence_sections(robot, None, &o).expect("a recurrence");
+            let (made, failed) = turn::counts::COUNTS.with(|c| c.get());
+            NO_HINTS.with(|h| h.set(true));
+            let without = recurrence_sections(robot, None, &o).expect("a recurrence");
+            NO_HINTS.with(|h| h.set(false));
+            assert_eq!(failed, 0, "{:?}", robot.chain);
+            total += made;
+            if robot.variables[0] == "theta1" {
+                assert!(made >= 24, "{made} renamed rows of the symbolic 4R");
+            }
+            for (a, b) in with.iter().zip(&without) {
+                for ((qa, ea), (qb, eb)) in a.rows.iter().zip(&b.rows) {
+                    assert_eq!(qa, qb);
+                    assert_eq!(ea.to_scalar(), eb.to_scalar(), "{qa:?}");
+                    let (la, lb) = (crate::print::plain(ea, &po), crate::print::plain(eb, &po));
+                    assert!(la.len() <= lb.len(), "{qa:?}: {la} longer than {lb}");
+                }
+            }
+        }
+        assert!(total >= 40, "{total} renamed or turned rows");
     }
 
     #[test]

@@ -166,6 +166,7 @@ mod notation;
 mod offsets;
 mod peel;
 mod recombine;
+pub(crate) mod rename;
 mod roots;
 mod square;
 mod trace;

@@ -257,7 +257,7 @@ pub(crate) fn quarter_turned_placeholder_form(e: Expr, x: &Sym) -> Expr {
             }
             Expr::Mul(v) => {
                 let mut changed = false;
-                let mut v: Vec<Expr> = v
+                let v: Vec<Expr> = v
                     .into_iter()
                     .map(|t| {
                         let (t, ch) = walk(t, c, s);
@@ -268,12 +268,7 @@ pub(crate) fn quarter_turned_placeholder_form(e: Expr, x: &Sym) -> Expr {
                 if !changed {
                     return (Expr::Mul(v), false);
                 }
-                let mut neg = false;
-                for f in &mut v {
-                    *f = flip_sign(&mut neg, std::mem::replace(f, Expr::zero()));
-                }
-                sort_leaves(&mut v);
-                (signed(neg, Expr::Mul(v)), true)
+                (signed_product(v), true)
             }
             Expr::Neg(t) => match walk(*t, c, s) {
                 (Expr::Neg(y), ch) => (*y, ch),
@@ -284,18 +279,83 @@ pub(crate) fn quarter_turned_placeholder_form(e: Expr, x: &Sym) -> Expr {
                 if !ch {
                     return (Expr::Pow(Box::new(t), n), false);
                 }
-                let mut neg = false;
-                let base = flip_sign(&mut neg, t);
-                (
-                    signed(neg && n % 2 == 1, Expr::Pow(Box::new(base), n)),
-                    true,
-                )
+                (signed_power(t, n), true)
             }
             e => (e, false),
         }
     }
     let [c, s] = placeholders(x);
     walk(e, &c, &s).0
+}
+
+/// A product whose factors were renamed or turned: the sign of each factor (a negation, or a
+/// sum whose terms are all negative) taken out ([`flip_sign`]), its symbols sorted
+/// ([`sort_leaves`]), the sign placed as [`signed`] places it.
+pub(super) fn signed_product(mut v: Vec<Expr>) -> Expr {
+    let mut neg = false;
+    for f in &mut v {
+        *f = flip_sign(&mut neg, std::mem::replace(f, Expr::zero()));
+    }
+    sort_leaves(&mut v);
+    signed(neg, Expr::Mul(v))
+}
+
+/// The negation of a product, its sign placed as [`signed`] places it.
+pub(super) fn signed_product_sign(e: Expr) -> Expr {
+    signed(true, e)
+}
+
+/// `t^n` for a base renamed or turned: its sign taken out, kept for an odd `n`.
+pub(super) fn signed_power(t: Expr, n: u32) -> Expr {
+    let mut neg = false;
+    let base = flip_sign(&mut neg, t);
+    signed(neg && n % 2 == 1, Expr::Pow(Box::new(base), n))
+}
+
+/// The terms of a sum of monomials (each a product of symbols, their powers and a number,
+/// negated or not) sorted as a search writes them, by their monomials (the symbols by name,
+/// then the exponents); a sum with another term keeps its order.
+pub(super) fn sort_monomial_terms(v: &mut [Expr]) {
+    fn leaves<'a>(e: &'a Expr, out: &mut Vec<(&'a Sym, u32)>) -> bool {
+        match e {
+            Expr::Sym(s) => {
+                out.push((s, 1));
+                true
+            }
+            Expr::Pow(b, n) => match &**b {
+                Expr::Sym(s) => {
+                    out.push((s, *n));
+                    true
+                }
+                _ => false,
+            },
+            Expr::Num(_) => true,
+            Expr::Neg(x) => leaves(x, out),
+            Expr::Mul(f) => f.iter().all(|x| leaves(x, out)),
+            _ => false,
+        }
+    }
+    let mut keys: Vec<Vec<(&Sym, u32)>> = Vec::with_capacity(v.len());
+    for t in v.iter() {
+        let mut k = Vec::new();
+        if !leaves(t, &mut k) {
+            return;
+        }
+        k.sort();
+        keys.push(k);
+    }
+    let mut order: Vec<usize> = (0..v.len()).collect();
+    order.sort_by(|&a, &b| keys[a].cmp(&keys[b]));
+    if order.iter().enumerate().all(|(i, &k)| i == k) {
+        return;
+    }
+    let mut taken: Vec<Option<Expr>> = v
+        .iter_mut()
+        .map(|t| Some(std::mem::replace(t, Expr::zero())))
+        .collect();
+    for (slot, k) in v.iter_mut().zip(order) {
+        *slot = taken[k].take().expect("each term is placed once");
+    }
 }
 
 /// The symbols of a product (a symbol or its power, signed or not) sorted by name in the
