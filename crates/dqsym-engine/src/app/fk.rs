@@ -571,7 +571,9 @@ const TURNED_TERMS: usize = 8;
 /// The turns [`pose_forms`] tries, for the dual quaternion's components (half angles: a
 /// turn by pi) and for the matrix's entries (a quarter turn): the first joint's and the last
 /// joint's, when revolute and their values plain symbols (`Rz(q1)` first: the matrix's second
-/// row is a turn of its first; the last joint's turn relates its first two columns).
+/// row is a turn of its first; the last joint's turn relates its first two columns), and the
+/// twist that ends a DH chain or begins a modified-DH one when it is a plain symbol (`M
+/// Rx(alpha)`: the third column is a turn of the second).
 pub(super) fn pose_turns(robot: &Robot) -> (Vec<Turn>, Vec<Turn>) {
     // The symbol of joint `i`, when it is revolute and its value is one.
     let angle = |i: usize| {
@@ -1494,8 +1496,36 @@ mod tests {
         jaco.joint_values = (1..=6).map(|i| sym(&format!("q{i}"))).collect();
         jaco.convention = crate::kin::Convention::Dh;
         robots.push(jaco);
+        // Fully symbolic 3R chains, DH and modified DH: the twist that ends the first (its
+        // third column a turn of its second) and begins the second (its third row a turn of
+        // its second) is a turn too.
+        let s = |name: &str, i: usize| Scalar::sym(&format!("{name}{i}"));
+        let twisted = robots.len();
+        for mdh in [false, true] {
+            let mut r = random_test_chain(&mut next, 3);
+            r.chain = crate::kin::Chain::new(
+                (1..=3)
+                    .map(|i| {
+                        let (z, d, a, al) = (Scalar::int(0), s("d", i), s("a", i), s("alpha", i));
+                        if mdh {
+                            crate::kin::Joint::revolute_mdh(al, a, z, d)
+                        } else {
+                            crate::kin::Joint::revolute_dh(z, d, a, al)
+                        }
+                    })
+                    .collect(),
+            );
+            r.variables = (1..=3).map(|i| format!("q{i}")).collect();
+            r.joint_values = (1..=3).map(|i| s("q", i)).collect();
+            r.convention = if mdh {
+                crate::kin::Convention::Mdh
+            } else {
+                crate::kin::Convention::Dh
+            };
+            robots.push(r);
+        }
         let mut turned_rows = 0;
-        for robot in &robots {
+        for (k, robot) in robots.iter().enumerate() {
             let _in = crate::Context::new().with_threads(1).enter();
             crate::closed::turn::counts::COUNTS.with(|c| c.set((0, 0)));
             let o = FkOptions {
@@ -1506,6 +1536,18 @@ mod tests {
             let (made, failed) = crate::closed::turn::counts::COUNTS.with(|c| c.get());
             assert_eq!(failed, 0, "{:?}", robot.chain);
             turned_rows += made;
+            if k >= twisted {
+                // The twist's turned entries: by name, those whose form would differ without
+                // it (the third column of a DH chain, the third row of a modified-DH one).
+                let twist = pose_turns(robot)
+                    .1
+                    .iter()
+                    .filter(|(t, _)| t.name().starts_with("alpha"))
+                    .count();
+                assert_eq!(twist, 1, "{:?}", robot.chain);
+                // 24 each; 20 without the twist's turns (the DH chain, measured).
+                assert!(made >= 24, "{made} rows turned of {:?}", robot.chain);
+            }
             if entries.recurrence {
                 continue;
             }

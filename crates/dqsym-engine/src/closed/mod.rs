@@ -111,9 +111,12 @@
 //! solved in echelon form (`congruence.rs`: each unknown a residue class given the earlier ones,
 //! the solutions listed in lexicographic order without a search, every value charged to the
 //! Context); an `fk` report's entry that is a rational multiple of another with a joint angle
-//! turned by a quarter or half turn (`turn.rs`: the second half of a dual quaternion whose first
-//! joint turns about z, `Rz(q1) M`'s second row) takes the other's form turned, checked, not a
-//! search of its own, a form that can differ from its own search's; across an `fk` report one
+//! (or the twist ending a DH chain) turned by a quarter or half turn (`turn.rs`: the second half
+//! of a dual quaternion whose first joint turns about z, `Rz(q1) M`'s second row, `M Rx(alpha)`'s
+//! third column) takes the other's form turned, checked, not a search of its own, a form that
+//! can differ from its own search's; a recurrence's entry that is another with its symbols
+//! permuted and signed (`rename.rs`: the components of a quaternion product) takes the other's
+//! form renamed, alike; across an `fk` report one
 //! offset per angle direction (`common.rs`, `CommonOffsets`):
 //! each angle `l (g . x + t pi)` (`g` primitive) votes for `t` once per pose entry, directions of
 //! fewer symbols first and then by votes fix one offset vector `o` (ties: non-negative, then

@@ -155,6 +155,11 @@ impl SignedRenaming {
     /// relative 1e-9 of the magnitudes, as `agrees_numerically` compares): `e` there against
     /// `from` at the point renamed (each renamed symbol given its image's value, signed).
     pub(crate) fn agrees(&self, e: &Expr, from: &Expr) -> bool {
+        self.agrees_times(e, from, 1.0)
+    }
+
+    /// [`SignedRenaming::agrees`] of `e` with `c` times `from` renamed.
+    pub(crate) fn agrees_times(&self, e: &Expr, from: &Expr, c: f64) -> bool {
         let seed = 0x9e37_79b9_7f4a_7c15u64;
         let (a, scale_a) = e.eval_f64(&|s| super::point_value(s, seed));
         let (b, scale_b) = from.eval_f64(&|s| match self.get(s) {
@@ -168,8 +173,8 @@ impl SignedRenaming {
             }
             None => super::point_value(s, seed),
         });
-        let scale = scale_a.max(scale_b).max(1.0);
-        a.is_finite() && b.is_finite() && (a - b).abs() <= 1e-9 * scale
+        let scale = scale_a.max(scale_b * c.abs()).max(1.0);
+        a.is_finite() && b.is_finite() && (a - c * b).abs() <= 1e-9 * scale
     }
 
     /// The form of `x`, an entry equal to this renaming of an entry whose form is `from`
