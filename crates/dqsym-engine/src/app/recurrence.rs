@@ -895,7 +895,9 @@ mod tests {
             dq(Step::Suffix, 4),
             dq(Step::Suffix, 3),
         );
-        let products: Vec<(DualQuat<Scalar>, Vec<(Step, usize)>)> = vec![
+        // Each product, and the steps and joints of its last factors.
+        type Families = Vec<(Step, usize)>;
+        let products: Vec<(DualQuat<Scalar>, Families)> = vec![
             (q2.clone() * l3.clone(), vec![(Step::Factor, 3)]),
             (
                 q2.clone() * l3.clone() * p4.clone(),
