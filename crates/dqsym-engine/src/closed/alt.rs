@@ -71,9 +71,19 @@ pub(super) fn best_alternative_below(
     // Products of sinusoids of mixed angles, sums split into parts (`trigfac.rs`): made only
     // when a lower bound of their cost is below the form found before.
     if let Ok(t) = x.terms() {
-        cands.extend(super::trigfac::candidates(t, full_cost(than).0));
+        // The cost the candidates must be below, counted once for both. Only candidates of
+        // sums with a trigonometric term use it (`trigfac.rs`, `square.rs` and `extra.rs`'s
+        // split by angles make none of a polynomial): a polynomial's is not counted (the
+        // symbolic 6R's matrix in cosine and sine placeholders: 6.6 M instructions counting
+        // the costs of forms of thousands of operations, twice each).
+        let bound = if t.iter().all(|u| u.mode.freq.is_empty()) {
+            0
+        } else {
+            full_cost(than).0
+        };
+        cands.extend(super::trigfac::candidates(t, bound));
         // Squares of sums, common factors, sums split by their angles' symbols (`extra.rs`).
-        let more = super::extra::candidates(t, than, &cands);
+        let more = super::extra::candidates(t, than, &cands, bound);
         cands.extend(more);
     }
     if cands.is_empty() {

@@ -23,10 +23,11 @@ use num_rational::BigRational as Rat;
 use num_traits::One;
 
 /// The candidates of the files listed above for the canonical terms `t`, not yet checked
-/// against them; `than` is the form found before and `others` the other candidates (only
-/// shorter ones can be taken).
-pub(super) fn candidates(t: &[Term], than: &Expr, others: &[Expr]) -> Vec<Expr> {
-    let mut out = candidates_up_to(t, full_cost(than).0, others);
+/// against them; `than` is the form found before, `bound` its cost (`alt::full_cost`; any
+/// value for a sum without a trigonometric term, which `candidates_up_to` never reads) and
+/// `others` the other candidates (only shorter ones can be taken).
+pub(super) fn candidates(t: &[Term], than: &Expr, others: &[Expr], bound: usize) -> Vec<Expr> {
+    let mut out = candidates_up_to(t, bound, others);
     if !out.is_empty() || super::trigfac::may_nest() {
         out.extend(common_factor(than));
         for e in pairs_joined(than, false) {
