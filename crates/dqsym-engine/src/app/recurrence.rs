@@ -179,6 +179,9 @@ pub(crate) fn recurrence_sections_printed(
     let step = |step: Step, joint: usize| move |k: usize| Quantity::Step { step, joint, k };
 
     let mut sections: Staged = Vec::new();
+    // The entries derived from others: the derivatives of the joint factors (turned, see
+    // `derivative_hints`) and the components of each product (renamed, `component_hints`).
+    let mut renamed = Renamed::default();
     let links: Vec<(Quantity, Scalar)> = factors
         .iter()
         .enumerate()
@@ -208,9 +211,12 @@ pub(crate) fn recurrence_sections_printed(
             .collect();
         learn(&known, &derivs);
         sections.push((SectionKind::FactorDerivatives, derivs));
+        for (i, v) in joint_var.iter().enumerate() {
+            if let Some(v) = v {
+                derivative_hints(&mut renamed, i + 1, v);
+            }
+        }
     }
-    // The components of each product that are renamings of its first (see `component_hints`).
-    let mut renamed = Renamed::default();
     let mut steps: Vec<(Quantity, Scalar)> = Vec::new();
     for i in 2..=n {
         let rows = comps(&step(Step::Prefix, i), &(q(i - 1) * l(i)));
@@ -298,10 +304,82 @@ pub(crate) fn recurrence_sections_printed(
     Ok((with_closed_forms(sections, t_forms, &renamed)?, texts))
 }
 
-/// Entries that may be renamings of others ([`SignedRenaming`]): by entry, the entry it would
-/// be that renaming of. A hint only: [`shared_closed_forms`] takes it when the renamed scalar
-/// is the entry, exactly.
-type Renamed = HashMap<Quantity, (Quantity, SignedRenaming)>;
+/// Entries that may be derived from others ([`Derivation`]): by entry, the entry it would be
+/// derived from. A hint only: [`shared_closed_forms`] takes it when the derived scalar is the
+/// entry, exactly.
+type Renamed = HashMap<Quantity, (Quantity, Derivation)>;
+
+/// How an entry is another: its symbols permuted and signed (a component of a product from
+/// its first), or its joint variable turned and scaled (a joint factor's derivative: `d L(q)
+/// / d q = L(q + pi) / 2` for `L` a function of `q/2` through `cos` and `sin`, the half angle
+/// turned by a quarter turn).
+#[derive(Clone, Debug)]
+enum Derivation {
+    Renamed(SignedRenaming),
+    Turned(turn::Turned),
+}
+
+impl Derivation {
+    /// Whether `x` is `from` derived so, exactly.
+    fn holds(&self, from: &Scalar, x: &Scalar) -> bool {
+        match self {
+            Derivation::Renamed(r) => r.scalar(from).as_ref() == Some(x),
+            Derivation::Turned(t) => turn::turned_scalar(from, &t.turn)
+                .is_some_and(|y| Scalar::from_q(t.factor.clone()) * y == *x),
+        }
+    }
+
+    /// The form of `x` from `from`'s, checked (`None` when its check fails).
+    fn form(&self, from: &Expr, x: &Scalar) -> Option<Expr> {
+        match self {
+            Derivation::Renamed(r) => r.renamed_form(from, x),
+            // A call with a constant phase (`sin(q2/2 - 3*pi/5)`) turns into one whose own
+            // search may write it at another phase, shorter (`cos(q2/2 - pi/10)`): such an
+            // entry is searched.
+            Derivation::Turned(_) if has_phase(from) => None,
+            Derivation::Turned(t) => turn::turned_form(from, t, x).map(turn::signs_placed),
+        }
+    }
+}
+
+/// Whether a call of `e` has a constant multiple of pi in its angle.
+fn has_phase(e: &Expr) -> bool {
+    match e {
+        Expr::Trig { angle, .. } => *angle.pi.numer() != 0,
+        Expr::Add(v) | Expr::Mul(v) => v.iter().any(has_phase),
+        Expr::Neg(x) | Expr::Pow(x, _) => has_phase(x),
+        Expr::Num(_) | Expr::Sqrt(_) | Expr::Sym(_) => false,
+    }
+}
+
+/// The hints of the joint factors' derivatives: `dL{i}[k]` is `L{i}[k]` with its joint's
+/// variable `v` turned by pi, halved (a prismatic joint's, or one whose factor is no function
+/// of `v/2`, is not: the check refuses it and it is searched).
+fn derivative_hints(renamed: &mut Renamed, joint: usize, v: &str) {
+    let half = crate::scalar::Q::new(1, 2);
+    for k in 0..8 {
+        let t = turn::Turned {
+            from: 0,
+            turn: (crate::Sym::new(v), crate::scalar::Small::from_integer(1)),
+            factor: half.clone(),
+        };
+        renamed.insert(
+            Quantity::Step {
+                step: Step::FactorDerivative,
+                joint,
+                k,
+            },
+            (
+                Quantity::Step {
+                    step: Step::Factor,
+                    joint,
+                    k,
+                },
+                Derivation::Turned(t),
+            ),
+        );
+    }
+}
 
 /// The hints of a product's components `name(0..8)` whose terms end in factors with the
 /// symbols of `lasts` (`(step, joint)`: `Q2_0`..`Q2_7`). Component `k` of a product `X` is
@@ -336,8 +414,8 @@ fn component_hints(
         let Some(r) = SignedRenaming::new(map) else {
             return;
         };
-        renamed.insert(name(k + 1), (name(0), r.clone()));
-        renamed.insert(name(k + 5), (name(4), r));
+        renamed.insert(name(k + 1), (name(0), Derivation::Renamed(r.clone())));
+        renamed.insert(name(k + 5), (name(4), Derivation::Renamed(r)));
     }
 }
 
@@ -501,7 +579,7 @@ fn with_closed_forms(
     let all: Vec<&Scalar> = rows.iter().map(|(_, x)| x).collect();
     let at: HashMap<Quantity, usize, BuildHasherDefault<FxHasher>> =
         rows.iter().enumerate().map(|(k, (q, _))| (*q, k)).collect();
-    let hints: Vec<Option<(usize, &SignedRenaming)>> = rows
+    let hints: Vec<Option<(usize, &Derivation)>> = rows
         .iter()
         .map(|(q, _)| {
             if no_hints_in_tests() {
@@ -632,7 +710,7 @@ enum Slot<'a> {
     Renamed {
         entry: usize,
         from: usize,
-        renaming: &'a SignedRenaming,
+        renaming: &'a Derivation,
     },
 }
 
@@ -646,7 +724,7 @@ enum Slot<'a> {
 /// of 47 searches).
 fn shared_closed_forms(
     all: &[&Scalar],
-    hints: &[Option<(usize, &SignedRenaming)>],
+    hints: &[Option<(usize, &Derivation)>],
 ) -> Vec<Result<Expr, ScalarError>> {
     let symbols: Vec<(&Scalar, Option<Vec<crate::Sym>>)> = par_map(all, |x| (*x, shape_symbols(x)));
     // The placeholders interned once for every entry.
@@ -665,9 +743,9 @@ fn shared_closed_forms(
     // 6R's report. Only looked up, never iterated: the order is the entries'.
     let mut index: HashMap<SampledKey, usize, BuildHasherDefault<FxHasher>> = HashMap::default();
     let mut slots: Vec<Slot> = Vec::new();
-    let renames = |k: usize| -> Option<(usize, &SignedRenaming)> {
+    let renames = |k: usize| -> Option<(usize, &Derivation)> {
         let (from, r) = hints.get(k).copied().flatten()?;
-        (from < k && r.scalar(all[from]).as_ref() == Some(all[k])).then_some((from, r))
+        (from < k && r.holds(all[from], all[k])).then_some((from, r))
     };
     let keys: Vec<usize> = all
         .iter()
@@ -725,7 +803,7 @@ fn shared_closed_forms(
         let x = all[entry];
         let e = own(&forms, from)
             .ok()
-            .and_then(|f| renaming.renamed_form(&f, x))
+            .and_then(|f| renaming.form(&f, x))
             .map_or_else(|| closed_form_cos_sin(x), Ok);
         forms[s] = Some(e.map(|e| match &shapes[entry] {
             None => e,
@@ -920,6 +998,9 @@ mod tests {
                     panic!("{from:?}")
                 };
                 assert_eq!(from, if k < 4 { 0 } else { 4 });
+                let Derivation::Renamed(r) = r else {
+                    panic!("{r:?}")
+                };
                 assert_eq!(r.scalar(&x[from]).as_ref(), Some(&x[k]), "component {k}");
             }
         }
@@ -927,10 +1008,11 @@ mod tests {
 
     /// The recurrences of a symbolic 4R and of random chains (whose constants, the zeros of
     /// planar links, break some renamings: those entries are searched) with and without the
-    /// renamed forms: every row has the value of its entry's own form, exactly, the rows of
-    /// the products of the symbolic chain are renamed (at least 24: three of every four
-    /// components of its prefix products and Jacobian columns), and no renamed form is longer
-    /// than its entry's own.
+    /// renamed and turned forms: every row has the value of its entry's own form, exactly, the
+    /// rows of the products of the symbolic chain are renamed (three of every four components
+    /// of its prefix products and Jacobian columns) and its joint factors' derivatives turned
+    /// (eight, the shapes of the first one's), at least 32, and no derived form is longer than
+    /// its entry's own.
     #[test]
     fn renamed_rows_of_a_recurrence_are_their_entries() {
         let mut next = crate::testing::xorshift_below(0x7e57_0032);
@@ -974,7 +1056,11 @@ mod tests {
             assert_eq!(failed, 0, "{:?}", robot.chain);
             total += made;
             if robot.variables[0] == "theta1" {
-                assert!(made >= 24, "{made} renamed rows of the symbolic 4R");
+                // 38: 6 of its matrix turned, 24 renamed, 8 derivatives turned.
+                assert!(
+                    made >= 32,
+                    "{made} renamed or turned rows of the symbolic 4R"
+                );
             }
             for (a, b) in with.iter().zip(&without) {
                 for ((qa, ea), (qb, eb)) in a.rows.iter().zip(&b.rows) {

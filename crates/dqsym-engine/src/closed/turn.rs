@@ -556,6 +556,33 @@ fn tidy_signs(e: Expr) -> Expr {
     }
 }
 
+/// `e` with the sign of each negated product placed again as [`signed`] places a product's
+/// (`-cos(u) (-a + d)` is `cos(u) (a - d)`), and a sum that begins with a negative term begun
+/// with its first positive one (`-a s + d c` is `d c - a s`): a turn leaves the negations of
+/// the form it turned where they were. The value is unchanged.
+pub(crate) fn signs_placed(e: Expr) -> Expr {
+    match e {
+        Expr::Add(v) => {
+            let mut v: Vec<Expr> = v.into_iter().map(signs_placed).collect();
+            let negative = |t: &Expr| matches!(t, Expr::Neg(_));
+            if v.first().is_some_and(negative) {
+                if let Some(j) = v.iter().position(|t| !negative(t)) {
+                    let t = v.remove(j);
+                    v.insert(0, t);
+                }
+            }
+            Expr::Add(v)
+        }
+        Expr::Mul(v) => Expr::Mul(v.into_iter().map(signs_placed).collect()),
+        Expr::Pow(x, n) => Expr::Pow(Box::new(signs_placed(*x)), n),
+        Expr::Neg(x) => match signs_placed(*x) {
+            m @ Expr::Mul(_) => signed(true, m),
+            y => Expr::Neg(Box::new(y)),
+        },
+        e => e,
+    }
+}
+
 /// Whether `sym` appears in `e` other than in an angle (a monomial's symbol).
 fn reads_outside_angles(e: &Expr, sym: &Sym) -> bool {
     match e {
