@@ -37,9 +37,10 @@
 //! of a product (of `Q{i}`, `P{i}`, a Jacobian column) are component 0 or 4 with the symbols
 //! of its last factor permuted and signed ([`component_hints`], `closed/rename.rs`), and take
 //! that one's form renamed when their scalars agree exactly (on the fully symbolic 6R, 24 of
-//! 47 searches); the matrix in cosines and sines takes the forms of rows and columns that are
-//! turns of others (`closed/turn.rs`: its second row, and its third column when the last
-//! twist is a symbol).
+//! 47 searches); a joint factor's derivative `dL{i}[k]` is `L{i}[k]` with its variable turned
+//! by pi, halved, and takes that form turned ([`derivative_hints`]: 8 more); the matrix in
+//! cosines and sines takes the forms of rows and columns that are turns of others
+//! (`closed/turn.rs`: its second row, and its third column when the last twist is a symbol).
 
 use super::fk::{FkOptions, ReportError};
 use super::quantity::{MatrixFrom, Quantity, Section, SectionKind, Step};
