@@ -1499,30 +1499,9 @@ mod tests {
         // Fully symbolic 3R chains, DH and modified DH: the twist that ends the first (its
         // third column a turn of its second) and begins the second (its third row a turn of
         // its second) is a turn too.
-        let s = |name: &str, i: usize| Scalar::sym(&format!("{name}{i}"));
         let twisted = robots.len();
         for mdh in [false, true] {
-            let mut r = random_test_chain(&mut next, 3);
-            r.chain = crate::kin::Chain::new(
-                (1..=3)
-                    .map(|i| {
-                        let (z, d, a, al) = (Scalar::int(0), s("d", i), s("a", i), s("alpha", i));
-                        if mdh {
-                            crate::kin::Joint::revolute_mdh(al, a, z, d)
-                        } else {
-                            crate::kin::Joint::revolute_dh(z, d, a, al)
-                        }
-                    })
-                    .collect(),
-            );
-            r.variables = (1..=3).map(|i| format!("q{i}")).collect();
-            r.joint_values = (1..=3).map(|i| s("q", i)).collect();
-            r.convention = if mdh {
-                crate::kin::Convention::Mdh
-            } else {
-                crate::kin::Convention::Dh
-            };
-            robots.push(r);
+            robots.push(crate::kin::symbolic_test_chain(&mut next, 3, mdh, "q"));
         }
         let mut turned_rows = 0;
         for (k, robot) in robots.iter().enumerate() {

@@ -894,23 +894,9 @@ mod tests {
         let mut robots: Vec<Robot> = (0..10)
             .map(|_| crate::kin::random_test_chain(&mut next, 5))
             .collect();
-        let mut r4 = crate::kin::random_test_chain(&mut next, 4);
-        let s = |name: &str, i: usize| Scalar::sym(&format!("{name}{i}"));
-        r4.chain = crate::kin::Chain::new(
-            (1..=4)
-                .map(|i| {
-                    crate::kin::Joint::revolute_dh(
-                        Scalar::int(0),
-                        s("d", i),
-                        s("a", i),
-                        s("alpha", i),
-                    )
-                })
-                .collect(),
-        );
-        r4.variables = (1..=4).map(|i| format!("theta{i}")).collect();
-        r4.joint_values = (1..=4).map(|i| s("theta", i)).collect();
-        robots.push(r4);
+        robots.push(crate::kin::symbolic_test_chain(
+            &mut next, 4, false, "theta",
+        ));
         let (mut turned, mut matrices) = (0, 0);
         for robot in &robots {
             let _in = crate::Context::new().with_threads(1).enter();
@@ -1020,23 +1006,9 @@ mod tests {
         let mut robots: Vec<Robot> = (0..6)
             .map(|_| crate::kin::random_test_chain(&mut next, 5))
             .collect();
-        let s = |name: &str, i: usize| Scalar::sym(&format!("{name}{i}"));
-        let mut r4 = crate::kin::random_test_chain(&mut next, 4);
-        r4.chain = crate::kin::Chain::new(
-            (1..=4)
-                .map(|i| {
-                    crate::kin::Joint::revolute_dh(
-                        Scalar::int(0),
-                        s("d", i),
-                        s("a", i),
-                        s("alpha", i),
-                    )
-                })
-                .collect(),
-        );
-        r4.variables = (1..=4).map(|i| format!("theta{i}")).collect();
-        r4.joint_values = (1..=4).map(|i| s("theta", i)).collect();
-        robots.push(r4);
+        robots.push(crate::kin::symbolic_test_chain(
+            &mut next, 4, false, "theta",
+        ));
         let o = FkOptions {
             jacobian: true,
             ..FkOptions::default()

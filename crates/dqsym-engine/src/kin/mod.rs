@@ -25,7 +25,7 @@ pub use robot::{
     Frame, Robot, RobotError, RobotOptions,
 };
 #[cfg(test)]
-pub(crate) use robot::{random_test_chain, LARGEST_FIRST};
+pub(crate) use robot::{random_test_chain, symbolic_test_chain, LARGEST_FIRST};
 pub(crate) use robot::{JointMatrices, MadeJoints, OffsetFree};
 pub use screw::{screw_parameters, ScrewError, ScrewParams};
 pub use urdf::{parse_urdf, UrdfError, UrdfOptions, UrdfRobot, SNAP_TOLERANCE};

@@ -1760,6 +1760,36 @@ fn largest_first_in_tests() -> bool {
     false
 }
 
+/// A fully symbolic revolute chain of `n` joints for tests: joint `i` has the variable
+/// `{var}{i}` and the parameters `d{i}`, `a{i}`, `alpha{i}`, DH or modified DH (`mdh`), no
+/// offsets; the rest (name, frames) is a [`random_test_chain`]'s, drawn from `next`.
+#[cfg(test)]
+pub(crate) fn symbolic_test_chain(
+    next: &mut impl FnMut(u64) -> u64,
+    n: usize,
+    mdh: bool,
+    var: &str,
+) -> Robot {
+    let mut r = random_test_chain(next, n);
+    let s = |name: &str, i: usize| Scalar::sym(&format!("{name}{i}"));
+    r.chain = Chain::new(
+        (1..=n)
+            .map(|i| {
+                let (z, d, a, al) = (Scalar::int(0), s("d", i), s("a", i), s("alpha", i));
+                if mdh {
+                    Joint::revolute_mdh(al, a, z, d)
+                } else {
+                    Joint::revolute_dh(z, d, a, al)
+                }
+            })
+            .collect(),
+    );
+    r.variables = (1..=n).map(|i| format!("{var}{i}")).collect();
+    r.joint_values = (1..=n).map(|i| s(var, i)).collect();
+    r.convention = if mdh { Convention::Mdh } else { Convention::Dh };
+    r
+}
+
 /// A random chain for tests of `fk`'s decisions: 3 to 8 joints, DH or MDH, revolute or (one
 /// in five) prismatic, each DH parameter a symbol of its own, a number, zero, or a number
 /// plus a symbol; twists of right angles, thirds, quarters and fifths of pi or a symbol;
