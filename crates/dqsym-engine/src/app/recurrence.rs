@@ -182,7 +182,7 @@ pub(crate) fn recurrence_sections_printed(
     let mut sections: Staged = Vec::new();
     // The entries derived from others: the derivatives of the joint factors (turned, see
     // `derivative_hints`) and the components of each product (renamed, `component_hints`).
-    let mut renamed = Renamed::default();
+    let mut derived = Derived::default();
     let links: Vec<(Quantity, Scalar)> = factors
         .iter()
         .enumerate()
@@ -214,7 +214,7 @@ pub(crate) fn recurrence_sections_printed(
         sections.push((SectionKind::FactorDerivatives, derivs));
         for (i, v) in joint_var.iter().enumerate() {
             if let Some(v) = v {
-                derivative_hints(&mut renamed, i + 1, v);
+                derivative_hints(&mut derived, i + 1, v);
             }
         }
     }
@@ -222,7 +222,7 @@ pub(crate) fn recurrence_sections_printed(
     for i in 2..=n {
         let rows = comps(&step(Step::Prefix, i), &(q(i - 1) * l(i)));
         learn(&known, &rows);
-        component_hints(&mut renamed, &step(Step::Prefix, i), &[(Step::Factor, i)]);
+        component_hints(&mut derived, &step(Step::Prefix, i), &[(Step::Factor, i)]);
         steps.extend(rows);
     }
     sections.push((SectionKind::PrefixProducts, steps));
@@ -235,7 +235,7 @@ pub(crate) fn recurrence_sections_printed(
         for i in (2..n).rev() {
             let rows = comps(&step(Step::Suffix, i), &(l(i) * p(i + 1)));
             learn(&known, &rows);
-            component_hints(&mut renamed, &step(Step::Suffix, i), &[p_family(i + 1)]);
+            component_hints(&mut derived, &step(Step::Suffix, i), &[p_family(i + 1)]);
             suffix.extend(rows);
         }
         sections.push((SectionKind::SuffixProducts, suffix));
@@ -296,19 +296,19 @@ pub(crate) fn recurrence_sections_printed(
                     }
                 })
                 .collect();
-            component_hints(&mut renamed, &|k| Quantity::J { row: k, col: j }, &lasts);
+            component_hints(&mut derived, &|k| Quantity::J { row: k, col: j }, &lasts);
         }
         sections.push((SectionKind::Jacobian { recurrence: true }, jac));
     }
 
     check_names(robot, &joints, o, &sections)?;
-    Ok((with_closed_forms(sections, t_forms, &renamed)?, texts))
+    Ok((with_closed_forms(sections, t_forms, &derived)?, texts))
 }
 
 /// Entries that may be derived from others ([`Derivation`]): by entry, the entry it would be
 /// derived from. A hint only: [`shared_closed_forms`] takes it when the derived scalar is the
 /// entry, exactly.
-type Renamed = HashMap<Quantity, (Quantity, Derivation)>;
+type Derived = HashMap<Quantity, (Quantity, Derivation)>;
 
 /// How an entry is another: its symbols permuted and signed (a component of a product from
 /// its first), or its joint variable turned and scaled (a joint factor's derivative: `d L(q)
@@ -356,7 +356,7 @@ fn has_phase(e: &Expr) -> bool {
 /// The hints of the joint factors' derivatives: `dL{i}[k]` is `L{i}[k]` with its joint's
 /// variable `v` turned by pi, halved (a prismatic joint's, or one whose factor is no function
 /// of `v/2`, is not: the check refuses it and it is searched).
-fn derivative_hints(renamed: &mut Renamed, joint: usize, v: &str) {
+fn derivative_hints(derived: &mut Derived, joint: usize, v: &str) {
     let half = crate::scalar::Q::new(1, 2);
     for k in 0..8 {
         let t = turn::Turned {
@@ -364,7 +364,7 @@ fn derivative_hints(renamed: &mut Renamed, joint: usize, v: &str) {
             turn: (crate::Sym::new(v), crate::scalar::Small::from_integer(1)),
             factor: half.clone(),
         };
-        renamed.insert(
+        derived.insert(
             Quantity::Step {
                 step: Step::FactorDerivative,
                 joint,
@@ -390,7 +390,7 @@ fn derivative_hints(renamed: &mut Renamed, joint: usize, v: &str) {
 /// ([`UNIT_PRODUCTS`]). So component `k` is component 0 (or 4) with each last factor's
 /// symbols renamed so.
 fn component_hints(
-    renamed: &mut Renamed,
+    derived: &mut Derived,
     name: &dyn Fn(usize) -> Quantity,
     lasts: &[(Step, usize)],
 ) {
@@ -415,8 +415,8 @@ fn component_hints(
         let Some(r) = SignedRenaming::new(map) else {
             return;
         };
-        renamed.insert(name(k + 1), (name(0), Derivation::Renamed(r.clone())));
-        renamed.insert(name(k + 5), (name(4), Derivation::Renamed(r)));
+        derived.insert(name(k + 1), (name(0), Derivation::Renamed(r.clone())));
+        derived.insert(name(k + 5), (name(4), Derivation::Renamed(r)));
     }
 }
 
@@ -549,8 +549,8 @@ fn check_names<'a>(
 
 #[cfg(test)]
 thread_local! {
-    /// Tests: [`with_closed_forms`] on this thread takes no hint ([`component_hints`]): the
-    /// reference the renamed forms are compared with.
+    /// Tests: [`with_closed_forms`] on this thread takes no hint ([`component_hints`],
+    /// [`derivative_hints`]): the reference the derived forms are compared with.
     static NO_HINTS: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
 }
 
@@ -567,7 +567,7 @@ fn no_hints_in_tests() -> bool {
 fn with_closed_forms(
     sections: Staged,
     t_forms: Option<Vec<Result<Expr, ScalarError>>>,
-    renamed: &Renamed,
+    derived: &Derived,
 ) -> Result<Vec<Section>, ReportError> {
     // The matrix's closed forms, when already made, are not made again.
     let have_t = t_forms.is_some();
@@ -586,7 +586,7 @@ fn with_closed_forms(
             if no_hints_in_tests() {
                 return None;
             }
-            let (from, r) = renamed.get(q)?;
+            let (from, r) = derived.get(q)?;
             Some((*at.get(from)?, r))
         })
         .collect();
@@ -704,14 +704,14 @@ fn map_syms(e: Expr, f: &dyn Fn(crate::Sym) -> crate::Sym) -> Expr {
     }
 }
 
-/// What a distinct entry's closed form is made from: its own search, or the renaming of
-/// another entry's form (`from`, an entry before `entry`: [`SignedRenaming`]).
+/// What a distinct entry's closed form is made from: its own search, or another entry's
+/// form derived (`from`, an entry before `entry`: [`Derivation`]).
 enum Slot<'a> {
     Search(&'a Scalar),
-    Renamed {
+    Derived {
         entry: usize,
         from: usize,
-        renaming: &'a Derivation,
+        derivation: &'a Derivation,
     },
 }
 
@@ -719,10 +719,10 @@ enum Slot<'a> {
 /// appearance, so the result does not depend on the threads). The renaming keeps the order of
 /// the symbols, and closed forms only compare symbols, so an entry's form is its shape's form
 /// renamed back, of the same value (checked exactly in debug builds). An entry of a new shape
-/// with a hint (`hints[k]`: an earlier entry and a [`SignedRenaming`], see
-/// [`component_hints`]) whose renamed scalar is the entry, exactly, takes that entry's form
-/// renamed, checked, instead of a search (the symbolic 6R's prefix products and Jacobian: 24
-/// of 47 searches).
+/// with a hint (`hints[k]`: an earlier entry and a [`Derivation`], see [`component_hints`] and
+/// [`derivative_hints`]) whose derived scalar is the entry, exactly, takes that entry's form
+/// derived, checked, instead of a search (the symbolic 6R's prefix products, Jacobian and
+/// joint factors' derivatives: 32 of 47 searches).
 fn shared_closed_forms(
     all: &[&Scalar],
     hints: &[Option<(usize, &Derivation)>],
@@ -744,7 +744,7 @@ fn shared_closed_forms(
     // 6R's report. Only looked up, never iterated: the order is the entries'.
     let mut index: HashMap<SampledKey, usize, BuildHasherDefault<FxHasher>> = HashMap::default();
     let mut slots: Vec<Slot> = Vec::new();
-    let renames = |k: usize| -> Option<(usize, &Derivation)> {
+    let derives = |k: usize| -> Option<(usize, &Derivation)> {
         let (from, r) = hints.get(k).copied().flatten()?;
         (from < k && r.holds(all[from], all[k])).then_some((from, r))
     };
@@ -755,11 +755,11 @@ fn shared_closed_forms(
         .map(|(k, (x, sh))| {
             let key = sh.as_ref().map_or(*x, |(s, _)| s);
             *index.entry(SampledKey(key)).or_insert_with(|| {
-                slots.push(match renames(k) {
-                    Some((from, renaming)) => Slot::Renamed {
+                slots.push(match derives(k) {
+                    Some((from, derivation)) => Slot::Derived {
                         entry: k,
                         from,
-                        renaming,
+                        derivation,
                     },
                     None => Slot::Search(key),
                 });
@@ -773,7 +773,7 @@ fn shared_closed_forms(
         .enumerate()
         .filter_map(|(k, s)| match s {
             Slot::Search(x) => Some((k, *x)),
-            Slot::Renamed { .. } => None,
+            Slot::Derived { .. } => None,
         })
         .collect();
     let made = par_map(&searched, |(_, x)| closed_form_cos_sin(x));
@@ -791,12 +791,12 @@ fn shared_closed_forms(
             Some((_, symbols)) => unshape(e, symbols),
         })
     };
-    // The renamed slots in order: each one's source is an earlier entry, of an earlier slot.
+    // The derived slots in order: each one's source is an earlier entry, of an earlier slot.
     for s in 0..slots.len() {
-        let Slot::Renamed {
+        let Slot::Derived {
             entry,
             from,
-            renaming,
+            derivation,
         } = slots[s]
         else {
             continue;
@@ -804,7 +804,7 @@ fn shared_closed_forms(
         let x = all[entry];
         let e = own(&forms, from)
             .ok()
-            .and_then(|f| renaming.form(&f, x))
+            .and_then(|f| derivation.form(&f, x))
             .map_or_else(|| closed_form_cos_sin(x), Ok);
         forms[s] = Some(e.map(|e| match &shapes[entry] {
             None => e,
@@ -976,11 +976,11 @@ mod tests {
         for (x, lasts) in products {
             let x = x.components();
             let name = |k: usize| Quantity::Dq(k);
-            let mut renamed = Renamed::default();
-            component_hints(&mut renamed, &name, &lasts);
-            assert_eq!(renamed.len(), 6);
+            let mut derived = Derived::default();
+            component_hints(&mut derived, &name, &lasts);
+            assert_eq!(derived.len(), 6);
             for k in [1, 2, 3, 5, 6, 7] {
-                let (from, r) = &renamed[&name(k)];
+                let (from, r) = &derived[&name(k)];
                 let Quantity::Dq(from) = *from else {
                     panic!("{from:?}")
                 };
