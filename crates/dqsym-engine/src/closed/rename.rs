@@ -124,7 +124,7 @@ impl SignedRenaming {
             // A renamed product's sign placed again (`-s1 (-c2 + s3)` is `s1 (c2 - s3)`).
             Expr::Neg(t) => match self.walk(*t)? {
                 (Expr::Neg(y), ch) => (*y, ch),
-                (y @ Expr::Mul(_), true) => (super::turn::signed_product_sign(y), true),
+                (y @ Expr::Mul(_), true) => (super::turn::signed(true, y), true),
                 (y, ch) => (Expr::Neg(Box::new(y)), ch),
             },
             Expr::Pow(t, n) => {

@@ -62,8 +62,8 @@ pub(crate) fn turned_entries(
 /// ([`Scalar::to_cos_sin_polynomial`]: a recurrence's matrix), by quarter turns of the angles of
 /// `turns` ([`quarter_turned_placeholders`]; other turns are not tried). Each turn has its own
 /// invariant (its angle's two placeholders counted as one), so an entry is turned only where
-/// a later one may be its turn in that angle (the symbolic 6R: 21 polynomials turned to find
-/// 6 pairs, 3.1 M instructions, before).
+/// a later one may be its turn in that angle (the symbolic 6R: 6 polynomials turned for its
+/// 6 pairs, where one invariant for all the turns had 9 turned).
 pub(crate) fn turned_placeholder_entries(
     entries: &[&Scalar],
     turns: &[Turn],
@@ -331,11 +331,6 @@ pub(super) fn signed_product(mut v: Vec<Expr>) -> Expr {
     signed(neg, Expr::Mul(v))
 }
 
-/// The negation of a product, its sign placed as [`signed`] places it.
-pub(super) fn signed_product_sign(e: Expr) -> Expr {
-    signed(true, e)
-}
-
 /// `t^n` for a base renamed or turned: its sign taken out, kept for an odd `n`.
 pub(super) fn signed_power(t: Expr, n: u32) -> Expr {
     let mut neg = false;
@@ -520,7 +515,7 @@ fn flip_sign(neg: &mut bool, e: Expr) -> Expr {
 /// `e`, negated when `neg`: a product's sign placed where it prints shortest
 /// (`super::expr::minus`: into one of its sums when that is shorter, `-s1 (-c2 + s3)` as `s1
 /// (c2 - s3)`), another's in front.
-fn signed(neg: bool, e: Expr) -> Expr {
+pub(super) fn signed(neg: bool, e: Expr) -> Expr {
     match (neg, e) {
         (false, e) => e,
         (true, e @ Expr::Mul(_)) => super::expr::minus(e),
