@@ -37,12 +37,16 @@ impl SignedRenaming {
         permutes.then_some(SignedRenaming(map))
     }
 
-    /// The symbol `s` is renamed to, and whether negated.
+    /// The symbol `s` is renamed to, and whether negated. A short renaming (a quarter turn's
+    /// two placeholders, a product's last factor's eight) is scanned for the interned symbol,
+    /// a longer one searched by name: `Sym`'s order compares texts, its equality addresses.
     fn get(&self, s: &Sym) -> Option<(&Sym, bool)> {
-        self.0
-            .binary_search_by(|(f, _, _)| f.cmp(s))
-            .ok()
-            .map(|k| (&self.0[k].1, self.0[k].2))
+        let k = if self.0.len() <= 16 {
+            self.0.iter().position(|(f, _, _)| f == s)
+        } else {
+            self.0.binary_search_by(|(f, _, _)| f.cmp(s)).ok()
+        };
+        k.map(|k| (&self.0[k].1, self.0[k].2))
     }
 
     /// `p` renamed: each monomial's symbols renamed, its coefficient negated for each
@@ -86,12 +90,20 @@ impl SignedRenaming {
     /// `minus` puts it), the symbols of each product and the terms of each sum of monomials
     /// sorted as the search writes them. `None` when a renamed symbol is in a call's angle.
     pub(crate) fn form(&self, e: Expr) -> Option<Expr> {
-        let (e, _) = self.walk(e)?;
+        let (e, _) = self.walk(e, true)?;
         Some(e)
     }
 
-    /// The renamed subtree and whether it changed.
-    fn walk(&self, e: Expr) -> Option<(Expr, bool)> {
+    /// [`SignedRenaming::form`] as a turn of the placeholders writes it (`turn.rs`): the
+    /// sums' terms and the negations of products kept where the form had them.
+    pub(crate) fn form_as_turned(&self, e: Expr) -> Option<Expr> {
+        let (e, _) = self.walk(e, false)?;
+        Some(e)
+    }
+
+    /// The renamed subtree and whether it changed; with `tidy`, each changed sum of
+    /// monomials sorted and each changed negated product's sign placed again.
+    fn walk(&self, e: Expr, tidy: bool) -> Option<(Expr, bool)> {
         Some(match e {
             Expr::Sym(y) => match self.get(&y) {
                 Some((t, neg)) => {
@@ -108,27 +120,27 @@ impl SignedRenaming {
                 (Expr::Trig { f, angle }, false)
             }
             Expr::Add(v) => {
-                let (mut v, changed) = self.walk_all(v)?;
-                if changed {
+                let (mut v, changed) = self.walk_all(v, tidy)?;
+                if changed && tidy {
                     super::turn::sort_monomial_terms(&mut v);
                 }
                 (Expr::Add(v), changed)
             }
             Expr::Mul(v) => {
-                let (v, changed) = self.walk_all(v)?;
+                let (v, changed) = self.walk_all(v, tidy)?;
                 if !changed {
                     return Some((Expr::Mul(v), false));
                 }
                 (super::turn::signed_product(v), true)
             }
             // A renamed product's sign placed again (`-s1 (-c2 + s3)` is `s1 (c2 - s3)`).
-            Expr::Neg(t) => match self.walk(*t)? {
+            Expr::Neg(t) => match self.walk(*t, tidy)? {
                 (Expr::Neg(y), ch) => (*y, ch),
-                (y @ Expr::Mul(_), true) => (super::turn::signed(true, y), true),
+                (y @ Expr::Mul(_), true) if tidy => (super::turn::signed(true, y), true),
                 (y, ch) => (Expr::Neg(Box::new(y)), ch),
             },
             Expr::Pow(t, n) => {
-                let (t, ch) = self.walk(*t)?;
+                let (t, ch) = self.walk(*t, tidy)?;
                 if !ch {
                     return Some((Expr::Pow(Box::new(t), n), false));
                 }
@@ -138,12 +150,12 @@ impl SignedRenaming {
         })
     }
 
-    fn walk_all(&self, v: Vec<Expr>) -> Option<(Vec<Expr>, bool)> {
+    fn walk_all(&self, v: Vec<Expr>, tidy: bool) -> Option<(Vec<Expr>, bool)> {
         let mut changed = false;
         let v = v
             .into_iter()
             .map(|t| {
-                let (t, ch) = self.walk(t)?;
+                let (t, ch) = self.walk(t, tidy)?;
                 changed |= ch;
                 Some(t)
             })

@@ -216,107 +216,36 @@ fn placeholders(x: &Sym) -> [Sym; 2] {
     [Trig::Cos, Trig::Sin].map(|f| Sym::new(&trig_placeholder_name(x.name(), f)))
 }
 
-/// A polynomial in cosine and sine placeholders turned by a quarter turn of the angle `x`:
-/// `cos(x)` is `-sin(x)` and `sin(x)` is `cos(x)`, so each term's exponents of the two are
-/// swapped and its sign turned when the cosine's is odd. `None` when a term has a
-/// trigonometric mode (no polynomial) or `x`'s angle appears in one.
-pub(crate) fn quarter_turned_placeholders(p: &Scalar, x: &Sym) -> Option<Scalar> {
+/// The quarter turn of the angle `x` on its placeholders, as a signed renaming: `cos(x)`
+/// becomes `-sin(x)` and `sin(x)` becomes `cos(x)`.
+fn quarter_renaming(x: &Sym) -> SignedRenaming {
     let [c, s] = placeholders(x);
+    SignedRenaming::new(vec![(c.clone(), s.clone(), true), (s, c, false)])
+        .expect("two placeholders swapped are a permutation")
+}
+
+/// A polynomial in cosine and sine placeholders turned by a quarter turn of the angle `x`
+/// ([`quarter_renaming`]): each term's exponents of the two are swapped and its sign turned
+/// when the cosine's is odd. `None` when a term has a trigonometric mode (no polynomial) or
+/// `x`'s angle appears in one.
+pub(crate) fn quarter_turned_placeholders(p: &Scalar, x: &Sym) -> Option<Scalar> {
     let terms = p.terms().ok()?;
-    let mut out = Vec::with_capacity(terms.len());
-    for term in terms {
-        if !term.mode.is_unit() {
-            return None;
-        }
-        let (mut ec, mut es) = (0, 0);
-        for (y, e) in term.mono.iter() {
-            if *y == c {
-                ec = *e;
-            } else if *y == s {
-                es = *e;
-            } else if y == x {
-                return None;
-            }
-        }
-        let mut moved = term.clone();
-        if ec != 0 || es != 0 {
-            let mut mono: Vec<(Sym, u32)> = term
-                .mono
-                .iter()
-                .filter(|(y, _)| *y != c && *y != s)
-                .cloned()
-                .collect();
-            if es != 0 {
-                mono.push((c.clone(), es));
-            }
-            if ec != 0 {
-                mono.push((s.clone(), ec));
-            }
-            mono.sort_by(|a, b| a.0.cmp(&b.0));
-            moved.mono = mono.into();
-            if ec % 2 == 1 {
-                moved.coef = -moved.coef;
-            }
-        }
-        out.push(moved);
+    if terms
+        .iter()
+        .any(|t| !t.mode.is_unit() || t.mono.iter().any(|(y, _)| y == x))
+    {
+        return None;
     }
-    Some(Scalar::from_terms_settled(out))
+    quarter_renaming(x).scalar(p)
 }
 
 /// A closed form in placeholders ([`Expr::with_placeholders_as_trig`] not applied yet) turned
-/// as [`quarter_turned_placeholders`] turns its value, the signs tidied as [`tidy_signs`]
-/// tidies them and the symbols of each product sorted ([`sort_leaves`]), in one walk that
-/// leaves the subtrees without the two placeholders as they are (the fully symbolic 6R's
-/// matrix entries are deep products).
-pub(crate) fn quarter_turned_placeholder_form(e: Expr, x: &Sym) -> Expr {
-    /// The turned subtree and whether it changed.
-    fn walk(e: Expr, c: &Sym, s: &Sym) -> (Expr, bool) {
-        match e {
-            Expr::Sym(y) if y == *c => (Expr::Neg(Box::new(Expr::Sym(s.clone()))), true),
-            Expr::Sym(y) if y == *s => (Expr::Sym(c.clone()), true),
-            Expr::Add(v) => {
-                let mut changed = false;
-                let v = v
-                    .into_iter()
-                    .map(|t| {
-                        let (t, ch) = walk(t, c, s);
-                        changed |= ch;
-                        t
-                    })
-                    .collect();
-                (Expr::Add(v), changed)
-            }
-            Expr::Mul(v) => {
-                let mut changed = false;
-                let v: Vec<Expr> = v
-                    .into_iter()
-                    .map(|t| {
-                        let (t, ch) = walk(t, c, s);
-                        changed |= ch;
-                        t
-                    })
-                    .collect();
-                if !changed {
-                    return (Expr::Mul(v), false);
-                }
-                (signed_product(v), true)
-            }
-            Expr::Neg(t) => match walk(*t, c, s) {
-                (Expr::Neg(y), ch) => (*y, ch),
-                (y, ch) => (Expr::Neg(Box::new(y)), ch),
-            },
-            Expr::Pow(t, n) => {
-                let (t, ch) = walk(*t, c, s);
-                if !ch {
-                    return (Expr::Pow(Box::new(t), n), false);
-                }
-                (signed_power(t, n), true)
-            }
-            e => (e, false),
-        }
-    }
-    let [c, s] = placeholders(x);
-    walk(e, &c, &s).0
+/// as [`quarter_turned_placeholders`] turns its value: the renaming's form with the signs of
+/// products tidied and their symbols sorted, the sums and negations as the form wrote them
+/// ([`SignedRenaming::form_as_turned`]), in one walk that leaves the subtrees without the two
+/// placeholders as they are (the fully symbolic 6R's matrix entries are deep products).
+pub(crate) fn quarter_turned_placeholder_form(e: Expr, x: &Sym) -> Option<Expr> {
+    quarter_renaming(x).form_as_turned(e)
 }
 
 /// A product whose factors were renamed or turned: the sign of each factor (a negation, or a
@@ -636,14 +565,12 @@ fn agrees_turned(e: &Expr, from: &Expr, t: &Turned) -> bool {
 /// without evaluating `x` (whose numeric check was 1.5 M instructions of the symbolic 6R's
 /// six turned entries). `None` when the check fails.
 pub(crate) fn turned_placeholder_form(from: &Expr, t: &Turned, x: &Scalar) -> Option<Expr> {
-    let e = quarter_turned_placeholder_form(from.clone(), &t.turn.0).scaled(&t.factor.to_big());
+    let e = quarter_turned_placeholder_form(from.clone(), &t.turn.0)?.scaled(&t.factor.to_big());
     let good = if cfg!(debug_assertions) {
         e.to_scalar() == *x
     } else {
-        let [c, s] = placeholders(&t.turn.0);
-        let quarter = SignedRenaming::new(vec![(c.clone(), s.clone(), true), (s, c, false)]);
         let factor = t.factor.to_f64().unwrap_or(f64::NAN);
-        quarter.is_some_and(|r| r.agrees_times(&e, from, factor))
+        quarter_renaming(&t.turn.0).agrees_times(&e, from, factor)
     };
     #[cfg(test)]
     counts::count(good);
