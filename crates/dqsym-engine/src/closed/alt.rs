@@ -74,7 +74,7 @@ pub(super) fn best_alternative_below(
         // The cost the candidates must be below, counted once for both. Only candidates of
         // sums with a trigonometric term use it (`trigfac.rs`, `square.rs` and `extra.rs`'s
         // split by angles make none of a polynomial): a polynomial's is not counted (the
-        // symbolic 6R's matrix in cosine and sine placeholders: 6.6 M instructions counting
+        // symbolic 6R's matrix in cosine and sine placeholders: 0.7 M instructions counting
         // the costs of forms of thousands of operations, twice each).
         let bound = if t.iter().all(|u| u.mode.freq.is_empty()) {
             0
